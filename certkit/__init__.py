@@ -1,0 +1,3 @@
+"""certkit — a compliance engine for transport aircraft against 14 CFR Part 25."""
+
+__version__ = "0.1.0"

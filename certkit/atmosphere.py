@@ -1,0 +1,146 @@
+"""International Standard Atmosphere (ISO 2533:1975 / ICAO Doc 7488) and airspeed conversions.
+
+Every function takes and returns numpy arrays (or floats) in SI: geopotential altitude h (m),
+temperature (K), pressure (Pa), density (kg/m³), speeds (m/s).
+
+Layers up to 20 km: troposphere (lapse −6.5 K/km to 11 km) and the isothermal lower stratosphere
+(216.65 K to 20 km), which covers every transport-airplane envelope.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.units import G0
+
+T0 = 288.15  # K
+P0 = 101_325.0  # Pa
+RHO0 = 1.225  # kg/m³
+R_AIR = 287.05287  # J/(kg K)
+GAMMA = 1.4
+LAPSE = -0.0065  # K/m
+H_TROPOPAUSE = 11_000.0
+H_MAX = 20_000.0
+A0 = float(np.sqrt(GAMMA * R_AIR * T0))  # 340.294 m/s
+
+
+class AtmosphereRangeError(ValueError):
+    """An altitude outside the modelled layers (−610 m to 20 km)."""
+
+
+def _check_range(h: np.ndarray) -> None:
+    if np.any(h < -610.0) or np.any(h > H_MAX):
+        bad = h[(h < -610.0) | (h > H_MAX)]
+        raise AtmosphereRangeError(
+            f"altitude {bad.flat[0]:.0f} m is outside the standard atmosphere modelled here (-610 m to {H_MAX:.0f} m)"
+        )
+
+
+def temperature(h):
+    h = np.asarray(h, dtype=float)
+    _check_range(h)
+    return np.where(h <= H_TROPOPAUSE, T0 + LAPSE * h, T0 + LAPSE * H_TROPOPAUSE)
+
+
+def pressure(h):
+    h = np.asarray(h, dtype=float)
+    _check_range(h)
+    t11 = T0 + LAPSE * H_TROPOPAUSE
+    p11 = P0 * (t11 / T0) ** (-G0 / (LAPSE * R_AIR))
+    tropo = P0 * ((T0 + LAPSE * h) / T0) ** (-G0 / (LAPSE * R_AIR))
+    strato = p11 * np.exp(-G0 * (h - H_TROPOPAUSE) / (R_AIR * t11))
+    return np.where(h <= H_TROPOPAUSE, tropo, strato)
+
+
+def density(h):
+    return pressure(h) / (R_AIR * temperature(h))
+
+
+def speed_of_sound(h):
+    return np.sqrt(GAMMA * R_AIR * temperature(h))
+
+
+def dynamic_viscosity(h):
+    """Sutherland's law (ISO 2533)."""
+    t = temperature(h)
+    return 1.458e-6 * t**1.5 / (t + 110.4)
+
+
+def density_ratio(h):
+    return density(h) / RHO0
+
+
+# --- airspeed conversions -------------------------------------------------------------------
+
+def eas_to_tas(eas, h):
+    return np.asarray(eas, dtype=float) / np.sqrt(density_ratio(h))
+
+
+def tas_to_eas(tas, h):
+    return np.asarray(tas, dtype=float) * np.sqrt(density_ratio(h))
+
+
+def tas_to_mach(tas, h):
+    return np.asarray(tas, dtype=float) / speed_of_sound(h)
+
+
+def mach_to_tas(mach, h):
+    return np.asarray(mach, dtype=float) * speed_of_sound(h)
+
+
+def _impact_pressure_from_mach(mach, p):
+    """Subsonic isentropic impact pressure; Rayleigh pitot formula above Mach 1."""
+    m = np.asarray(mach, dtype=float)
+    sub = p * ((1.0 + 0.2 * m**2) ** 3.5 - 1.0)
+    sup = p * (166.92158 * m**7 / np.maximum(7.0 * m**2 - 1.0, 1e-9) ** 2.5 - 1.0)
+    return np.where(m <= 1.0, sub, sup)
+
+
+def mach_to_cas(mach, h):
+    """Calibrated airspeed: the sea-level speed giving the same impact pressure."""
+    qc = _impact_pressure_from_mach(mach, pressure(h))
+    return A0 * np.sqrt(5.0 * ((qc / P0 + 1.0) ** (2.0 / 7.0) - 1.0))
+
+
+def cas_to_mach(cas, h):
+    cas = np.asarray(cas, dtype=float)
+    qc = P0 * ((1.0 + 0.2 * (cas / A0) ** 2) ** 3.5 - 1.0)
+    p = pressure(h)
+    mach = np.sqrt(5.0 * ((qc / p + 1.0) ** (2.0 / 7.0) - 1.0))
+    if np.any(mach > 1.0):  # solve the Rayleigh formula by fixed point (converges in a few steps)
+        for _ in range(30):
+            m_sup = 0.88128485 * np.sqrt((qc / p + 1.0) * (1.0 - 1.0 / (7.0 * mach**2)) ** 2.5)
+            mach = np.where(mach > 1.0, m_sup, mach)
+    return mach
+
+
+def to_tas(speed, kind: str, h):
+    """Convert a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h`` to true airspeed."""
+    kind = kind.upper()
+    if kind == "TAS":
+        return np.asarray(speed, dtype=float) + 0.0 * np.asarray(h, dtype=float)
+    if kind == "EAS":
+        return eas_to_tas(speed, h)
+    if kind == "CAS":
+        return mach_to_tas(cas_to_mach(speed, h), h)
+    if kind == "MACH":
+        return mach_to_tas(speed, h)
+    raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)")
+
+
+def from_tas(tas, kind: str, h):
+    """Convert true airspeed to a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h``."""
+    kind = kind.upper()
+    if kind == "TAS":
+        return np.asarray(tas, dtype=float) + 0.0 * np.asarray(h, dtype=float)
+    if kind == "EAS":
+        return tas_to_eas(tas, h)
+    if kind == "CAS":
+        return mach_to_cas(tas_to_mach(tas, h), h)
+    if kind == "MACH":
+        return tas_to_mach(tas, h)
+    raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)")
+
+
+def convert_speed(speed, from_kind: str, to_kind: str, h):
+    return from_tas(to_tas(speed, from_kind, h), to_kind, h)

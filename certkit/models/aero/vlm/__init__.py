@@ -1,0 +1,1 @@
+"""Vortex-lattice method (own implementation, numpy)."""

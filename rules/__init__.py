@@ -1,0 +1,1 @@
+"""Built-in regulation content: one module per paragraph (installed as ``certkit_rules``)."""

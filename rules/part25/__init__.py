@@ -1,0 +1,1 @@
+"""14 CFR Part 25 — Airworthiness standards: transport category airplanes."""

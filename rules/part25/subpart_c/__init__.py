@@ -1,0 +1,1 @@
+"""Part 25 Subpart C — Structure."""
