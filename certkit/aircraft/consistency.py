@@ -1,0 +1,200 @@
+"""Physical consistency of an aircraft file: relations between fields.
+
+Each check declares the sections it needs; it runs when those sections are valid on their own,
+so a file with a bad speed and a bad mass gets both messages in one run.
+"""
+
+from __future__ import annotations
+
+from typing import Callable, Iterator
+
+import numpy as np
+
+from certkit.errors import Problem
+
+Check = Callable[[dict], Iterator[tuple[str, str, object]]]
+CHECKS: list[tuple[tuple[str, ...], Check]] = []
+
+
+def needs(*sections: str):
+    def register(fn: Check) -> Check:
+        CHECKS.append((sections, fn))
+        return fn
+
+    return register
+
+
+@needs("mass")
+def _mass_order(s):
+    m = s["mass"]
+    if m.MLW > m.MTOW:
+        yield "mass.MLW", f"maximum landing weight must not exceed MTOW ({m.MTOW:.0f} kg)", m.MLW
+    if m.MZFW > m.MLW:
+        yield "mass.MZFW", f"maximum zero-fuel weight must not exceed MLW ({m.MLW:.0f} kg)", m.MZFW
+    if m.OEW >= m.MZFW:
+        yield "mass.OEW", f"operating empty weight must be below MZFW ({m.MZFW:.0f} kg)", m.OEW
+    if m.MRW is not None and m.MRW < m.MTOW:
+        yield "mass.MRW", f"maximum ramp weight must be at least MTOW ({m.MTOW:.0f} kg)", m.MRW
+    for i, c in enumerate(m.components):
+        if c.inertia is not None and not _triangle_ok(c.inertia):
+            yield f"mass.components.{i}.inertia", "inertia tensor is not physically possible (not positive definite or violates Ixx+Iyy≥Izz)", None
+    if m.inertia is not None and not _triangle_ok(m.inertia):
+        yield "mass.inertia", "inertia tensor is not physically possible (not positive definite or violates Ixx+Iyy≥Izz)", None
+    for i, z in enumerate(m.payload_zones):
+        if z.x_end <= z.x_start:
+            yield f"mass.payload_zones.{i}.x_end", f"zone must end aft of its start ({z.x_start:.2f} m)", z.x_end
+
+
+def _triangle_ok(t) -> bool:
+    tensor = np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+    eig = np.linalg.eigvalsh(tensor)
+    if eig.min() <= 0:
+        return False
+    a, b, c = sorted(eig)
+    return a + b >= c * (1 - 1e-9)
+
+
+@needs("speeds")
+def _speed_order(s):
+    sp = s["speeds"]
+    def tas_free_compare(name_lo, name_hi, factor=1.0, what=""):
+        lo, hi = getattr(sp, name_lo), getattr(sp, name_hi)
+        if lo is None or hi is None:
+            return None
+        if lo.kind != hi.kind:
+            return None  # different kinds compare only at an altitude; the rules do that
+        if hi.value < factor * lo.value:
+            return f"speeds.{name_hi}", f"{name_hi} must not be below {what or name_lo} ({factor * lo.value:.2f} m/s {lo.kind})", hi.value
+        return None
+
+    for lo, hi in (("VC", "VD"), ("VB", "VC"), ("V1", "VR"), ("VR", "V2"), ("VA", "VD"), ("VMO", "VD")):
+        found = tas_free_compare(lo, hi)
+        if found:
+            yield found
+    for lo, hi in (("MC", "MD"), ("MMO", "MD")):
+        a, b = getattr(sp, lo), getattr(sp, hi)
+        if a is not None and b is not None and b < a:
+            yield f"speeds.{hi}", f"{hi} must not be below {lo} ({a:.3f})", b
+
+
+@needs("speeds", "configurations")
+def _speed_configurations(s):
+    names = set(s["configurations"])
+    for field in ("VSR", "VFE"):
+        for name in getattr(s["speeds"], field):
+            if name not in names:
+                yield f"speeds.{field}.{name}", f"unknown configuration (declared: {', '.join(sorted(names))})", name
+
+
+@needs("configurations")
+def _configurations(s):
+    if "clean" not in s["configurations"]:
+        yield "configurations", "a 'clean' configuration (flaps and gear up) is required", sorted(s["configurations"])
+
+
+@needs("cg_envelope", "mass")
+def _cg_envelope(s):
+    env, m = s["cg_envelope"], s["mass"]
+    pts = np.array([[v.x, v.mass] for v in env.vertices])
+    crossing = _self_intersection(pts)
+    if crossing is not None:
+        i, j = crossing
+        yield "cg_envelope.vertices", (f"the polygon crosses itself: edge {i}–{i + 1} crosses edge {j}–{(j + 1) % len(pts)}; "
+                                       "list the vertices in order around the envelope"), None
+    elif _polygon_area(pts) == 0.0:
+        yield "cg_envelope.vertices", "the polygon has zero area", None
+    heavy = max(v.mass for v in env.vertices)
+    limit = m.MRW if m.MRW is not None else m.MTOW
+    if heavy > limit * (1 + 1e-9):
+        i = int(np.argmax([v.mass for v in env.vertices]))
+        yield f"cg_envelope.vertices.{i}.mass", f"envelope weight exceeds the maximum {('ramp' if m.MRW else 'takeoff')} weight ({limit:.0f} kg)", heavy
+    names = [v.name for v in env.vertices if v.name]
+    dupes = {n for n in names if names.count(n) > 1}
+    for n in sorted(dupes):
+        yield "cg_envelope.vertices", f"vertex name {n!r} is used more than once", n
+
+
+@needs("cg_envelope", "mass")
+def _reference_cg_inside(s):
+    env = s["cg_envelope"]
+    if env.reference_x is None:
+        return
+    xs = [v.x for v in env.vertices]
+    if not (min(xs) <= env.reference_x <= max(xs)):
+        yield "cg_envelope.reference_x", f"reference CG lies outside the envelope ({min(xs):.2f} to {max(xs):.2f} m)", env.reference_x
+
+
+@needs("geometry")
+def _geometry(s):
+    g = s["geometry"]
+    if g.horizontal_tail.root_leading_edge.x <= g.wing.root_leading_edge.x:
+        yield "geometry.horizontal_tail.root_leading_edge.x", "horizontal tail must be aft of the wing leading edge", g.horizontal_tail.root_leading_edge.x
+    for name in ("wing", "horizontal_tail", "vertical_tail"):
+        x = getattr(g, name).root_leading_edge.x
+        if not (0.0 <= x <= g.fuselage.length):
+            yield f"geometry.{name}.root_leading_edge.x", f"root lies outside the fuselage (0 to {g.fuselage.length:.2f} m)", x
+
+
+@needs("reference", "geometry")
+def _reference_vs_wing(s):
+    r, w = s["reference"], s["geometry"].wing
+    if abs(r.area - w.area) > 0.25 * w.area:
+        yield "reference.area", f"differs from the wing area ({w.area:.1f} m²) by more than 25 %", r.area
+
+
+@needs("propulsion", "geometry")
+def _engines(s):
+    length = s["geometry"].fuselage.length
+    for i, e in enumerate(s["propulsion"].engines):
+        if not (-0.2 * length <= e.position.x <= 1.2 * length):
+            yield f"propulsion.engines.{i}.position.x", "engine far outside the airplane", e.position.x
+
+
+@needs("propulsion")
+def _deck(s):
+    d = s["propulsion"].deck
+    if d is None:
+        return
+    if np.any(np.diff(d.altitude) <= 0):
+        yield "propulsion.deck.altitude", "must increase strictly", d.altitude
+    if np.any(np.diff(d.mach) <= 0):
+        yield "propulsion.deck.mach", "must increase strictly", d.mach
+    for rating, table in d.thrust.items():
+        if len(table) != len(d.altitude) or any(len(row) != len(d.mach) for row in table):
+            yield f"propulsion.deck.thrust.{rating}", f"must have {len(d.altitude)} rows of {len(d.mach)} values", None
+
+
+def _polygon_area(pts: np.ndarray) -> float:
+    # scale-free shoelace area in normalised units
+    p = (pts - pts.min(0)) / np.maximum(np.ptp(pts, 0), 1e-12)
+    x, y = p[:, 0], p[:, 1]
+    return float(0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
+def _self_intersection(pts: np.ndarray) -> tuple[int, int] | None:
+    """First pair of non-adjacent edges that properly intersect, or None."""
+    p = (pts - pts.min(0)) / np.maximum(np.ptp(pts, 0), 1e-12)
+    n = len(p)
+
+    def orient(a, b, c):
+        return np.sign((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+
+    for i in range(n):
+        a, b = p[i], p[(i + 1) % n]
+        for j in range(i + 2, n):
+            if i == 0 and j == n - 1:
+                continue  # adjacent through the closing edge
+            c, d = p[j], p[(j + 1) % n]
+            if orient(a, b, c) * orient(a, b, d) < 0 and orient(c, d, a) * orient(c, d, b) < 0:
+                return i, j
+    return None
+
+
+def consistency_problems(sections: dict) -> list[Problem]:
+    """Run every check whose sections are available; return problems (path, message, value)."""
+    problems = []
+    for required, check in CHECKS:
+        if all(name in sections for name in required):
+            for path, message, value in check(sections) or ():
+                problems.append(Problem(path, message, value))
+    return problems

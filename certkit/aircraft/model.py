@@ -1,0 +1,293 @@
+"""The aircraft file, as pydantic v2 models. Every quantity is SI after validation.
+
+Positions are in the airplane frame of :mod:`certkit.conventions` (X aft of the nose, Y right,
+Z up). Field-level limits (positive areas, taper in (0, 1], fractions in [0, 1]) are declared
+here; relations between fields (MLW ≤ MTOW, VD > VC, a CG polygon that does not cross itself …)
+are checked in :mod:`certkit.aircraft.consistency` so that all problems are reported together.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+from certkit.aircraft.quantities import (
+    Angle, Area, Force, Fraction, Inertia, Length, Mass, PositiveArea, PositiveForce, PositiveLength,
+    PositiveMass, Speed,
+)
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# --- reference -----------------------------------------------------------------------------
+
+class Point(_Section):
+    """A point in the airplane frame (X aft of the nose, Y right, Z up)."""
+
+    x: Length
+    y: Length = 0.0
+    z: Length = 0.0
+
+
+class Reference(_Section):
+    """Reference values for coefficients: area S, span b, mean aerodynamic chord c̄, moment point."""
+
+    area: PositiveArea
+    span: PositiveLength
+    mean_chord: PositiveLength
+    moment_point: Point
+
+
+# --- geometry ------------------------------------------------------------------------------
+
+class Limits(_Section):
+    """Deflection limits (rad): ``min`` ≤ δ ≤ ``max`` in the sign convention of the surface."""
+
+    min: Angle
+    max: Angle
+
+    @model_validator(mode="after")
+    def _ordered(self):
+        if self.max <= self.min:
+            raise ValueError(f"max ({self.max:.4f} rad) must be greater than min ({self.min:.4f} rad)")
+        return self
+
+
+class ControlSurface(_Section):
+    """A trailing-edge control surface on a lifting surface.
+
+    Span fractions are of the semispan (or of the fin height); ``travel`` is the mechanical
+    deflection range, ``design_limits`` the tighter range the design allows itself (the limit the
+    rules check trims and manoeuvres against). Signs: :mod:`certkit.conventions`.
+    """
+
+    span_start: Fraction
+    span_end: Fraction
+    chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
+    travel: Limits
+    design_limits: Limits | None = None
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.span_end <= self.span_start:
+            raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
+        d, t = self.design_limits, self.travel
+        if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
+            raise ValueError("design_limits must lie within the travel")
+        return self
+
+
+class LiftingSurface(_Section):
+    """A trapezoidal lifting surface (one pair of panels, or the fin on the plane of symmetry)."""
+
+    area: PositiveArea
+    aspect_ratio: Annotated[float, Field(gt=0.0, description="b²/S (for a fin: height²/S)")]
+    taper: Annotated[float, Field(gt=0.0, le=1.0, description="tip chord / root chord")]
+    sweep_quarter_chord: Annotated[Angle, Field(gt=-1.2, lt=1.2)]
+    dihedral: Annotated[Angle, Field(gt=-0.8, lt=0.8)] = 0.0
+    thickness_ratio: Annotated[float, Field(gt=0.0, lt=0.4)] = 0.12
+    root_leading_edge: Point
+    incidence: Angle = 0.0
+    tip_twist: Angle = Field(0.0, description="tip incidence relative to root (negative: washout)")
+    airfoil: str = Field("NACA 0012", description="NACA 4-digit designation or an airfoil coordinate file")
+    controls: dict[str, ControlSurface] = Field(default_factory=dict)
+
+
+class Fuselage(_Section):
+    length: PositiveLength
+    width: PositiveLength
+    height: PositiveLength
+
+
+class Nacelle(_Section):
+    length: PositiveLength
+    diameter: PositiveLength
+
+
+class LandingGear(_Section):
+    """Gear contact points (static, gear extended), for the ground model."""
+
+    main: Point
+    nose: Point
+
+
+class Geometry(_Section):
+    wing: LiftingSurface
+    horizontal_tail: LiftingSurface
+    vertical_tail: LiftingSurface
+    fuselage: Fuselage
+    nacelle: Nacelle | None = None
+    landing_gear: LandingGear | None = None
+
+
+# --- mass ----------------------------------------------------------------------------------
+
+class InertiaTensor(_Section):
+    """Moments and products of inertia (kg m²), body axes at the CG of the item."""
+
+    Ixx: Annotated[Inertia, Field(ge=0)]
+    Iyy: Annotated[Inertia, Field(ge=0)]
+    Izz: Annotated[Inertia, Field(ge=0)]
+    Ixz: Inertia = 0.0
+    Ixy: Inertia = 0.0
+    Iyz: Inertia = 0.0
+
+
+class MassComponent(_Section):
+    name: str
+    mass: PositiveMass
+    cg: Point
+    inertia: InertiaTensor | None = None
+    group: Literal["structure", "propulsion", "systems", "furnishings", "operator", "payload", "fuel", "other"] = "other"
+    source: str | None = None
+
+
+class FuelTank(_Section):
+    name: str
+    capacity: PositiveMass
+    cg: Point
+
+
+class PayloadZone(_Section):
+    """A cabin or hold zone: payload is distributed between its fore and aft ends."""
+
+    name: str
+    capacity: PositiveMass
+    x_start: Length
+    x_end: Length
+
+
+class MassProperties(_Section):
+    MTOW: PositiveMass
+    MLW: PositiveMass
+    MZFW: PositiveMass
+    OEW: PositiveMass
+    MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
+    max_fuel: PositiveMass | None = None
+    max_payload: PositiveMass | None = None
+    passengers: Annotated[int, Field(ge=0)] | None = None
+    oew_cg: Point | None = None
+    inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (if no components)")
+    components: list[MassComponent] = Field(default_factory=list)
+    fuel_tanks: list[FuelTank] = Field(default_factory=list)
+    payload_zones: list[PayloadZone] = Field(default_factory=list)
+
+
+class EnvelopeVertex(_Section):
+    name: str | None = None
+    mass: PositiveMass
+    x: Length
+
+
+class CgEnvelope(_Section):
+    """The weight–CG envelope: an ordered polygon of (mass, CG station) vertices."""
+
+    vertices: Annotated[list[EnvelopeVertex], Field(min_length=3)]
+    reference_x: Length | None = Field(None, description="reference CG station for rules evaluated at one CG")
+
+
+# --- propulsion ----------------------------------------------------------------------------
+
+class Engine(_Section):
+    name: str
+    position: Point
+    thrust_angle: Angle = 0.0
+    toe_angle: Angle = 0.0
+
+
+class EngineDeck(_Section):
+    """Installed thrust (and fuel flow) per engine on an altitude × Mach grid, at each rating."""
+
+    altitude: Annotated[list[Length], Field(min_length=2)]
+    mach: Annotated[list[float], Field(min_length=2)]
+    thrust: dict[str, list[list[Force]]] = Field(description="rating name → rows per altitude, columns per Mach")
+    fuel_flow: dict[str, list[list[float]]] | None = Field(None, description="kg/s, same layout as thrust")
+
+
+class Propulsion(_Section):
+    engines: Annotated[list[Engine], Field(min_length=1)]
+    static_thrust: PositiveForce = Field(description="sea-level static thrust of one engine")
+    bypass_ratio: Annotated[float, Field(gt=0)] = 8.0
+    deck: EngineDeck | None = None
+
+
+# --- configurations, speeds, envelope, criteria --------------------------------------------
+
+class Configuration(_Section):
+    flap: Angle = 0.0
+    slat: Angle = 0.0
+    gear: Literal["up", "down"] = "up"
+    CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
+    delta_CL0: float = 0.0
+    delta_CD0: float = 0.0
+    delta_Cm0: float = 0.0
+    source: str | None = None
+
+
+class Speeds(_Section):
+    """Declared speeds. Per-configuration speeds map a configuration name to a speed."""
+
+    VSR: dict[str, Speed] = Field(default_factory=dict, description="reference stall speed per configuration")
+    V1: Speed | None = None
+    VR: Speed | None = None
+    V2: Speed | None = None
+    VMC: Speed | None = Field(None, description="minimum control speed in the air (VMCA)")
+    VMCG: Speed | None = None
+    VMU: Speed | None = None
+    VLOF: Speed | None = None
+    VREF: Speed | None = None
+    VFTO: Speed | None = None
+    VA: Speed | None = None
+    VB: Speed | None = None
+    VC: Speed | None = None
+    MC: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
+    VD: Speed | None = None
+    MD: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
+    VMO: Speed | None = None
+    MMO: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
+    VFE: dict[str, Speed] = Field(default_factory=dict, description="flap-extended speed per configuration")
+    VLE: Speed | None = None
+    VLO: Speed | None = None
+
+
+class LoadFactors(_Section):
+    positive: Annotated[float, Field(gt=0.0)]
+    negative: Annotated[float, Field(le=0.0)] = -1.0
+    flaps_extended: Annotated[float, Field(gt=0.0)] | None = None
+
+
+class Envelope(_Section):
+    ceiling: PositiveLength = Field(description="maximum operating altitude")
+    min_altitude: Length = 0.0
+    limit_load_factors: LoadFactors
+    altitude_points: Annotated[int, Field(ge=2, le=50)] = 5
+
+
+class CriterionOverride(_Section):
+    """Override of a rule's numeric criteria; the justification is printed in the report."""
+
+    justification: Annotated[str, Field(min_length=10)]
+    values: dict[str, float | str | bool]
+
+
+RuleId = Annotated[str, Field(pattern=r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")]
+
+
+class Aircraft(_Section):
+    """A transport airplane as certkit reads it from YAML."""
+
+    name: Annotated[str, Field(min_length=1)]
+    description: str | None = None
+    reference: Reference
+    geometry: Geometry
+    mass: MassProperties
+    cg_envelope: CgEnvelope
+    propulsion: Propulsion
+    configurations: dict[str, Configuration]
+    speeds: Speeds = Field(default_factory=Speeds)
+    envelope: Envelope
+    criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
+    sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

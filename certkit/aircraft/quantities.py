@@ -1,0 +1,93 @@
+"""Pydantic field types for physical quantities.
+
+A quantity in the aircraft file is either a bare number, taken as SI, or a string with a unit
+("4927.3 ft^2", "97300 lbf", "43000 ft"), converted with pint (:mod:`certkit.units`). After
+validation every field holds a float in SI.
+
+A speed also states its kind: ``"340 kn EAS"``, ``"340 KEAS"``, ``{value: 340 kn, kind: CAS}``.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, model_validator
+
+from certkit.units import DIMENSIONS, UnitError, to_si
+
+
+def _quantity_schema(dimension: str) -> dict:
+    unit = DIMENSIONS[dimension] or "1"
+    return {
+        "anyOf": [{"type": "number"}, {"type": "string"}],
+        "description": f"{dimension}: a number in {unit} or a string with a unit",
+    }
+
+
+def _converter(dimension: str):
+    def convert(value: object) -> object:
+        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
+            try:
+                return to_si(value, dimension)
+            except UnitError as exc:
+                raise ValueError(str(exc)) from None
+        return value  # let pydantic report the wrong type
+
+    return convert
+
+
+def quantity(dimension: str):
+    """``Annotated[float, ...]`` accepting a number in SI or a string with a unit of ``dimension``."""
+    return Annotated[float, BeforeValidator(_converter(dimension)), WithJsonSchema(_quantity_schema(dimension))]
+
+
+Length = quantity("length")
+Area = quantity("area")
+Mass = quantity("mass")
+Force = quantity("force")
+Angle = quantity("angle")
+Inertia = quantity("inertia")
+Time = quantity("time")
+SpeedValue = quantity("speed")
+
+PositiveLength = Annotated[Length, Field(gt=0)]
+PositiveArea = Annotated[Area, Field(gt=0)]
+PositiveMass = Annotated[Mass, Field(gt=0)]
+PositiveForce = Annotated[Force, Field(gt=0)]
+Fraction = Annotated[float, Field(ge=0.0, le=1.0)]
+
+SpeedKind = Literal["EAS", "CAS", "TAS"]
+_KIND_SUFFIXES = {"EAS": ("EAS", None), "CAS": ("CAS", None), "TAS": ("TAS", None),
+                  "KEAS": ("EAS", "kn"), "KCAS": ("CAS", "kn"), "KTAS": ("TAS", "kn")}
+
+
+class Speed(BaseModel):
+    """An airspeed in m/s with its kind (EAS, CAS or TAS)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, json_schema_extra={
+        "description": 'a speed with its kind: "340 kn EAS", "340 KEAS" or {value: "340 kn", kind: EAS}'})
+
+    value: Annotated[SpeedValue, Field(gt=0)]
+    kind: SpeedKind
+
+    @model_validator(mode="before")
+    @classmethod
+    def _from_text(cls, data: object) -> object:
+        if isinstance(data, bool) or isinstance(data, (int, float)):
+            raise ValueError("a speed must state its kind: write for example '340 kn EAS' (EAS, CAS or TAS)")
+        if isinstance(data, str):
+            parts = data.split()
+            if not parts or parts[-1].upper() not in _KIND_SUFFIXES:
+                raise ValueError(f"{data!r}: a speed must end with its kind, e.g. '340 kn EAS' or '340 KEAS'")
+            kind, unit = _KIND_SUFFIXES[parts[-1].upper()]
+            number = " ".join(parts[:-1]) + (f" {unit}" if unit else "")
+            if not parts[:-1]:
+                raise ValueError(f"{data!r}: no value before the speed kind")
+            return {"value": number.strip(), "kind": kind}
+        return data
+
+
+__all__ = [
+    "Length", "Area", "Mass", "Force", "Angle", "Inertia", "Time", "SpeedValue", "PositiveLength",
+    "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
+]
