@@ -1,0 +1,232 @@
+"""Aerodynamic model from a table of stability and control derivatives.
+
+This is the model an aircraft file uses when it declares whole derivative tables (wind tunnel,
+CFD or published data), and the model the flight-dynamics tests build from published data.
+
+Inputs
+    Derivatives per radian in **stability axes** (x along the relative wind projected on the plane
+    of symmetry), as AVL and the textbooks give them; rate derivatives per unit p̂ = p b/2V,
+    q̂ = q c/2V, r̂ = r b/2V, α̇-derivatives per unit α̇ c/2V. Values are floats or sequences with
+    one entry per Mach breakpoint; every term is linearly interpolated in Mach and held at the end
+    values outside the breakpoints (``mach_range`` says where the table ends).
+
+Equations (δ_j: control deflections in radians, Etkin sign convention; p_s, r_s stability-axis
+rates, p_s = p cos α + r sin α, r_s = r cos α − p sin α)
+
+    CL_lin = CL0 + CL_alpha α + CL_q q̂ + Σ CL_δj δj
+    CL     = stall(CL_lin)                       (see below; CL = CL_lin without a stall model)
+    CD     = CD0 + k (CL − CL_minD)² + Σ CD_δj δj            (parabolic polar, the default)
+    CD     = CD0 + CD_alpha α + CD_alpha2 α² + Σ CD_δj δj    (when CD_alpha is given)
+    CY     = CY_beta β + CY_p p̂_s + CY_r r̂_s + Σ CY_δj δj
+    Cl_s   = Cl_beta β + Cl_p p̂_s + Cl_r r̂_s + Σ Cl_δj δj
+    Cm     = Cm0 + Cm_alpha α + Cm_q q̂ + Σ Cm_δj δj
+    Cn_s   = Cn_beta β + Cn_p p̂_s + Cn_r r̂_s + Σ Cn_δj δj
+    Cl     = Cl_s cos α − Cn_s sin α,   Cn = Cl_s sin α + Cn_s cos α   (body axes, as the
+                                                                       AeroModel protocol asks)
+
+    The α̇ terms (CL_alphadot, Cm_alphadot) cannot be carried by :class:`AeroState`; the equations
+    of motion take them from :meth:`StabilityDerivativeModel.alpha_dot_derivatives` and solve the
+    resulting implicit equation for α̇ exactly (Etkin's (m − Z_ẇ) form).
+
+Stall model (optional, :class:`StallModel`)
+    Below stall the lift is rounded onto CLmax with a smooth minimum of width w = ``rounding``:
+        CL_att = CLmax − w ln(1 + exp((CLmax − CL_lin)/w)),
+    which tends to CL_lin well below CLmax and to CLmax above it.
+    Past the break angle α_b = α_s + ``break_delta`` (α_s: where CL_lin reaches CLmax) the flow is
+    blended, with a logistic weight σ = 1/(1 + exp(−(α − α_b)/``break_width``)), into a
+    separated flat-plate flow: CL_sep = CD90 sin α cos α, CD_sep = CD90 sin² α,
+        CL = (1 − σ) CL_att + σ CL_sep,   CD = CD_attached + σ CD_sep.
+    The result is smooth (continuous derivatives), so Newton trims and RK4 simulations near stall
+    behave, and lift falls after the break as a real wing's does.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from certkit.models.aero.interface import AeroReference, AeroState, Coefficients
+
+_BASE_TERMS = (
+    "CL0", "CL_alpha", "CL_q", "CL_alphadot",
+    "CD0", "k", "CL_minD", "CD_alpha", "CD_alpha2",
+    "CY_beta", "CY_p", "CY_r",
+    "Cl_beta", "Cl_p", "Cl_r",
+    "Cm0", "Cm_alpha", "Cm_q", "Cm_alphadot",
+    "Cn_beta", "Cn_p", "Cn_r",
+)
+_CONTROL_PREFIXES = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
+
+
+@dataclass(frozen=True)
+class StallModel:
+    """Smooth stall: CLmax (float or one per Mach breakpoint), rounding width in CL, break angle
+    beyond the linear-lift stall angle and its width (radians), flat-plate normal-force
+    coefficient CD90 of the separated flow."""
+
+    CLmax: float | Sequence[float]
+    rounding: float = 0.08
+    break_delta: float = np.radians(2.0)
+    break_width: float = np.radians(1.5)
+    CD90: float = 1.8
+
+
+class StabilityDerivativeModel:
+    """AeroModel from stability and control derivatives (see the module docstring for equations).
+
+    Parameters
+    ----------
+    reference : AeroReference
+        S, b, c and the moment reference point the moment derivatives refer to.
+    derivatives : mapping name → float or sequence (one value per Mach breakpoint)
+        Names from ``CL0 CL_alpha CL_q CL_alphadot CD0 k CL_minD CD_alpha CD_alpha2 CY_beta CY_p
+        CY_r Cl_beta Cl_p Cl_r Cm0 Cm_alpha Cm_q Cm_alphadot Cn_beta Cn_p Cn_r`` and control terms
+        ``<coef>_<control>`` (e.g. ``Cm_elevator``, ``Cl_aileron``, ``CD_flap``). A missing term is
+        zero. Unknown names raise ``KeyError`` (a misspelt derivative must not vanish silently).
+    mach : sequence of Mach breakpoints (increasing), or None for a single Mach-independent table.
+    control_names : the controls; by default those appearing in control terms, in order of
+        appearance.
+    stall : optional StallModel.
+    """
+
+    def __init__(
+        self,
+        reference: AeroReference,
+        derivatives: Mapping[str, float | Sequence[float]],
+        mach: Sequence[float] | None = None,
+        control_names: Sequence[str] | None = None,
+        stall: StallModel | None = None,
+    ) -> None:
+        self.reference = reference
+        self.mach = np.atleast_1d(np.asarray(mach if mach is not None else [0.0], dtype=float))
+        if self.mach.ndim != 1 or np.any(np.diff(self.mach) <= 0):
+            raise ValueError("Mach breakpoints must be a strictly increasing 1-D sequence")
+        nm = self.mach.size
+        found: list[str] = []
+        for name in derivatives:
+            if name in _BASE_TERMS:
+                continue
+            prefix, _, ctrl = name.partition("_")
+            if prefix not in _CONTROL_PREFIXES or not ctrl or ctrl in ("alpha", "beta", "p", "q", "r"):
+                raise KeyError(f"unknown derivative {name!r}")
+            if ctrl not in found:
+                found.append(ctrl)
+        self.control_names: tuple[str, ...] = tuple(control_names) if control_names is not None else tuple(found)
+        for ctrl in found:
+            if ctrl not in self.control_names:
+                raise KeyError(f"derivative for control {ctrl!r} not in control_names {self.control_names}")
+        self.uses_alpha_drag = "CD_alpha" in derivatives or "CD_alpha2" in derivatives
+        names = list(_BASE_TERMS) + [f"{p}_{c}" for c in self.control_names for p in _CONTROL_PREFIXES]
+        self._index = {n: i for i, n in enumerate(names)}
+        table = np.zeros((len(names), nm))
+        for name, value in derivatives.items():
+            v = np.asarray(value, dtype=float)
+            if v.ndim == 0:
+                table[self._index[name]] = v
+            elif v.shape == (nm,):
+                table[self._index[name]] = v
+            else:
+                raise ValueError(f"{name}: expected a float or {nm} values (one per Mach breakpoint), got shape {v.shape}")
+        self._table = table
+        self.stall = stall
+        if stall is not None:
+            clmax = np.asarray(stall.CLmax, dtype=float)
+            self._clmax = np.broadcast_to(clmax, (nm,)).copy() if clmax.ndim == 0 or clmax.shape == (nm,) else None
+            if self._clmax is None:
+                raise ValueError(f"CLmax: expected a float or {nm} values")
+
+    # ------------------------------------------------------------------ helpers
+    @property
+    def mach_range(self) -> tuple[float, float]:
+        return float(self.mach[0]), float(self.mach[-1])
+
+    def _weights(self, mach: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        m = self.mach
+        if m.size == 1:
+            z = np.zeros(np.shape(mach), dtype=int)
+            return z, np.zeros(np.shape(mach))
+        x = np.clip(mach, m[0], m[-1])
+        i = np.clip(np.searchsorted(m, x, side="right") - 1, 0, m.size - 2)
+        w = (x - m[i]) / (m[i + 1] - m[i])
+        return i, w
+
+    def _interp_rows(self, rows: np.ndarray, i: np.ndarray, w: np.ndarray) -> np.ndarray:
+        if self.mach.size == 1:
+            r = rows[..., 0]
+            return np.broadcast_to(r.reshape(r.shape + (1,) * np.ndim(w)), r.shape + np.shape(w))
+        return rows[..., i] * (1.0 - w) + rows[..., np.minimum(i + 1, self.mach.size - 1)] * w
+
+    def derivative(self, name: str, mach=0.0) -> np.ndarray:
+        """One derivative interpolated at ``mach``."""
+        i, w = self._weights(np.asarray(mach, dtype=float))
+        return self._interp_rows(self._table[self._index[name]], i, w)
+
+    def alpha_dot_derivatives(self, mach) -> tuple[np.ndarray, np.ndarray]:
+        """(CL_alphadot, Cm_alphadot) at ``mach``, per unit α̇ c/2V (used by the equations of motion)."""
+        i, w = self._weights(np.asarray(mach, dtype=float))
+        rows = self._table[[self._index["CL_alphadot"], self._index["Cm_alphadot"]]]
+        out = self._interp_rows(rows, i, w)
+        return out[0], out[1]
+
+    # ------------------------------------------------------------------ protocol
+    def coefficients(self, state: AeroState) -> Coefficients:
+        alpha = np.asarray(state.alpha, dtype=float)
+        shape = np.broadcast_shapes(
+            alpha.shape, np.shape(state.beta), np.shape(state.p_hat), np.shape(state.q_hat),
+            np.shape(state.r_hat), np.shape(state.mach),
+            *[np.shape(v) for v in state.controls.values()],
+        )
+        alpha = np.broadcast_to(alpha, shape)
+        beta = np.broadcast_to(np.asarray(state.beta, dtype=float), shape)
+        i, w = self._weights(np.broadcast_to(np.asarray(state.mach, dtype=float), shape))
+        T = self._interp_rows(self._table, i, w)  # (n_terms, *shape)
+        ix = self._index
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        p_hat, q_hat, r_hat = state.p_hat, state.q_hat, state.r_hat
+        ps = p_hat * ca + r_hat * sa
+        rs = r_hat * ca - p_hat * sa
+
+        CL = T[ix["CL0"]] + T[ix["CL_alpha"]] * alpha + T[ix["CL_q"]] * q_hat
+        CY = T[ix["CY_beta"]] * beta + T[ix["CY_p"]] * ps + T[ix["CY_r"]] * rs
+        Cl = T[ix["Cl_beta"]] * beta + T[ix["Cl_p"]] * ps + T[ix["Cl_r"]] * rs
+        Cm = T[ix["Cm0"]] + T[ix["Cm_alpha"]] * alpha + T[ix["Cm_q"]] * q_hat
+        Cn = T[ix["Cn_beta"]] * beta + T[ix["Cn_p"]] * ps + T[ix["Cn_r"]] * rs
+        CDc = 0.0
+        for name in self.control_names:
+            d = state.controls.get(name)
+            if d is None:
+                continue
+            d = np.asarray(d, dtype=float)
+            CL = CL + T[ix[f"CL_{name}"]] * d
+            CY = CY + T[ix[f"CY_{name}"]] * d
+            Cl = Cl + T[ix[f"Cl_{name}"]] * d
+            Cm = Cm + T[ix[f"Cm_{name}"]] * d
+            Cn = Cn + T[ix[f"Cn_{name}"]] * d
+            CDc = CDc + T[ix[f"CD_{name}"]] * d
+
+        CD_sep = 0.0
+        if self.stall is not None:
+            clmax = self._interp_rows(self._clmax, i, w)
+            s = self.stall
+            wr = s.rounding
+            x = (clmax - CL) / wr
+            # smooth minimum of CL and CLmax: CLmax − w·softplus(x), softplus written stably
+            cl_att = clmax - wr * (np.maximum(x, 0.0) + np.log1p(np.exp(-np.abs(x))))
+            cla = np.where(np.abs(T[ix["CL_alpha"]]) > 1e-9, T[ix["CL_alpha"]], 1e-9)
+            alpha_s = alpha + (clmax - CL) / cla
+            z = (alpha - alpha_s - s.break_delta) / s.break_width
+            sig = 0.5 * (1.0 + np.tanh(0.5 * z))
+            CL = (1.0 - sig) * cl_att + sig * s.CD90 * sa * ca
+            CD_sep = sig * s.CD90 * sa * sa
+
+        if self.uses_alpha_drag:
+            CD = T[ix["CD0"]] + T[ix["CD_alpha"]] * alpha + T[ix["CD_alpha2"]] * alpha**2
+        else:
+            CD = T[ix["CD0"]] + T[ix["k"]] * (CL - T[ix["CL_minD"]]) ** 2
+        CD = CD + CDc + CD_sep
+
+        Cl_b = Cl * ca - Cn * sa
+        Cn_b = Cl * sa + Cn * ca
+        return Coefficients(CL=CL, CD=CD, CY=CY, Cl=Cl_b, Cm=Cm, Cn=Cn_b)

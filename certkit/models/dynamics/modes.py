@@ -1,0 +1,116 @@
+"""Identification of the classical rigid-body modes from a linearisation, by eigenvector content.
+
+The eigenproblem is solved on the 8 states u, v, w, p, q, r, φ, θ (position, heading and altitude
+give neutral or near-neutral roots of no handling interest and are left out). Each eigenvector is
+made dimensionless — velocities divided by the trim airspeed (u/V, β ≈ v/V, α ≈ w/V), rates divided
+by |λ| so that a rate counts like the angle it integrates to — and then:
+
+* longitudinal vs lateral: the share of the vector's norm in (u, w, q, θ) vs (v, p, r, φ);
+* longitudinal oscillations: phugoid = the pair with the largest speed share |u/V| / (|u/V|+|α|),
+  short period = the pair with the largest angle-of-attack share (two real roots with dominant α
+  are reported as an aperiodic short period);
+* lateral: Dutch roll = the oscillatory pair; among the real roots, roll subsidence = the one with
+  the largest roll-rate share |p| / (|p| + |r|), spiral = the one with the largest yaw-rate share.
+
+No assignment relies on the ordering or size of the eigenvalues.
+For each mode: eigenvalue λ = σ + iω_d, natural frequency ω_n = |λ|, damping ratio ζ = −σ/|λ|,
+period 2π/ω_d (oscillatory), time to half amplitude ln 2/(−σ) (σ < 0) or to double ln 2/σ (σ > 0).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.models.dynamics.linearize import Linearization
+
+_SUB = ("u", "v", "w", "p", "q", "r", "phi", "theta")
+_LON = np.array([True, False, True, False, True, False, False, True])
+
+
+@dataclass
+class Mode:
+    name: str
+    eigenvalue: complex
+    natural_frequency: float  # rad/s
+    damping_ratio: float
+    period: float | None  # s, oscillatory modes
+    time_to_half: float | None  # s, convergent
+    time_to_double: float | None  # s, divergent
+    eigenvector: np.ndarray  # dimensionless, over u/V, β, α, p, q, r, φ, θ (rates over |λ|)
+
+    @property
+    def stable(self) -> bool:
+        return self.eigenvalue.real < 0
+
+
+def _mode(name, lam, vec) -> Mode:
+    wn = abs(lam)
+    zeta = -lam.real / wn if wn > 0 else 1.0
+    period = 2 * np.pi / abs(lam.imag) if abs(lam.imag) > 1e-12 else None
+    half = np.log(2) / -lam.real if lam.real < 0 else None
+    double = np.log(2) / lam.real if lam.real > 0 else None
+    return Mode(name, complex(lam), float(wn), float(zeta), period, half, double, vec)
+
+
+def identify_modes(lin: Linearization, i: int) -> dict[str, Mode]:
+    """Modes of condition ``i``: keys ``short_period``, ``phugoid``, ``dutch_roll``, ``roll``,
+    ``spiral`` (a mode that does not appear in its classical form is left out; extra roots go
+    under ``other_<k>``)."""
+    idx = [lin.state_names.index(s) for s in _SUB]
+    A = lin.A[i][np.ix_(idx, idx)]
+    V = float(np.linalg.norm(lin.x0[i, 3:6]))
+    lam, vecs = np.linalg.eig(A)
+    scaled = vecs.copy()
+    scaled[[0, 1, 2], :] /= V
+    for k in range(lam.size):
+        scaled[[3, 4, 5], k] /= max(abs(lam[k]), 1e-6)
+    scaled /= np.linalg.norm(scaled, axis=0, keepdims=True)
+    mag = np.abs(scaled)
+    lon_share = np.sum(mag[_LON] ** 2, axis=0)
+    # one representative per conjugate pair (imag ≥ 0)
+    keep = [k for k in range(lam.size) if lam[k].imag >= -1e-12]
+    lon = [k for k in keep if lon_share[k] >= 0.5]
+    lat = [k for k in keep if lon_share[k] < 0.5]
+    modes: dict[str, Mode] = {}
+
+    def take(name, pool, k):
+        modes[name] = _mode(name, lam[k], scaled[:, k])
+        pool.remove(k)
+
+    def split(ks):
+        return [k for k in ks if abs(lam[k].imag) > 1e-9], [k for k in ks if abs(lam[k].imag) <= 1e-9]
+
+    osc, real = split(lon)
+    speed_share = lambda k: mag[0, k] / (mag[0, k] + mag[2, k] + 1e-30)  # noqa: E731
+    if osc:
+        ph = max(osc, key=speed_share)
+        if speed_share(ph) > 0.5 or len(osc) > 1:
+            take("phugoid", osc, ph)
+        if osc:
+            take("short_period", osc, min(osc, key=speed_share))
+    a_dom = [k for k in real if speed_share(k) < 0.5]
+    if a_dom and "short_period" not in modes:
+        take("short_period", real, min(a_dom, key=lambda k: lam[k].real))
+    rest = osc + real
+
+    osc, real = split(lat)
+    if osc:
+        take("dutch_roll", osc, max(osc, key=lambda k: mag[1, k]))
+    # p and r carry the same 1/|λ| factor, so this ratio is that of the raw rates
+    roll_share = lambda k: mag[3, k] / (mag[3, k] + mag[5, k] + 1e-30)  # noqa: E731
+    if real:
+        take("roll", real, max(real, key=roll_share))
+    if real:
+        take("spiral", real, min(real, key=roll_share))
+    for j, k in enumerate(rest + osc + real):
+        modes[f"other_{j}"] = _mode(f"other_{j}", lam[k], scaled[:, k])
+    return modes
+
+
+def identify_all(lin: Linearization) -> list[dict[str, Mode]]:
+    return [identify_modes(lin, i) for i in range(lin.A.shape[0])]
+
+
+__all__ = ["Mode", "identify_modes", "identify_all"]

@@ -1,0 +1,297 @@
+"""Vectorised trims of a batch of conditions (Newton with a finite-difference Jacobian).
+
+Trim kinds (``kind`` argument of :func:`trim`), with the six unknowns solved for and what is given:
+
+    straight  steady straight flight at flight-path angle γ (0: level; climb/descent otherwise),
+              wings level.          Unknowns α, β, pitch, roll, yaw controls, throttle.
+    turn      steady coordinated turn (β = 0) at bank φ and flight-path angle γ.
+              Unknowns α, turn rate ψ̇, pitch, roll, yaw controls, throttle.
+    oei       one engine inoperative (``operative`` mask of the model), straight flight at a
+              given bank φ (|φ| ≤ 5°, §25.149) and γ; the sideslip results.
+              Unknowns α, β, pitch, roll, yaw controls, throttle of the operative engines.
+    sideslip  steady-heading sideslip at a given β; the bank results.
+              Unknowns α, φ, pitch, roll, yaw controls, throttle.
+
+Equations: the six body-axis accelerations u̇, v̇, ẇ (m/s²) and ṗ, q̇, ṙ (rad/s²) vanish.
+The attitude θ follows from the flight-path constraint (Stevens & Lewis, *Aircraft Control and
+Simulation*, §3.6): with a = cos α cos β, b = sin φ sin β + cos φ sin α cos β,
+    sin γ = a sin θ − b cos θ  ⇒  θ = atan[(a b + sin γ √(a² − sin²γ + b²)) / (a² − sin²γ)],
+and the body rates from the turn rate: p = −ψ̇ sin θ, q = ψ̇ sin φ cos θ, r = ψ̇ cos φ cos θ.
+
+Without engines the throttle unknown is replaced by γ (a glide).
+
+A control that would have to go past its limit is not an error: the trim is solved without
+limits and each :class:`TrimResult` lists the :class:`LimitExceedance` found ("needs −34.2°
+elevator, limit −30°") with a hint. Conditions that do not converge are reported as such with
+their residual; nothing raises for a single bad condition.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Mapping, Sequence
+
+import numpy as np
+
+from certkit.models.dynamics.eom import AircraftModel
+
+KINDS = ("straight", "turn", "oei", "sideslip")
+
+DEFAULT_ROLES = {"pitch": "elevator", "roll": "aileron", "yaw": "rudder"}
+
+_HINTS = {
+    "pitch": "pitch control authority is insufficient here: check the CG against its limits, the speed, and the stabilizer/trim setting",
+    "roll": "roll control authority is insufficient: raise the speed or reduce the rolling asymmetry",
+    "yaw": "directional control is insufficient (below VMC for this thrust?): raise the speed, bank toward the live engine, or reduce the asymmetric thrust",
+    "throttle_high": "not enough thrust for this flight-path gradient at this weight and altitude",
+    "throttle_low": "less than idle thrust needed: the descent is too steep for a clean configuration (use drag devices)",
+}
+
+
+@dataclass
+class LimitExceedance:
+    control: str
+    required: float  # rad, or throttle fraction
+    limit: float
+    excess: float  # required − limit, same unit
+    message: str
+    hint: str
+
+
+@dataclass
+class TrimResult:
+    index: int
+    kind: str
+    converged: bool
+    residual_norm: float
+    iterations: int
+    V: float
+    h: float
+    alpha: float
+    beta: float
+    theta: float
+    phi: float
+    gamma: float
+    turn_rate: float
+    controls: dict[str, float]
+    thrust: dict[str, float]
+    limits_exceeded: list[LimitExceedance] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return self.converged and not self.limits_exceeded
+
+    def summary(self) -> str:
+        d = np.degrees
+        s = (f"[{self.index}] {self.kind} {'converged' if self.converged else 'NOT converged'} "
+             f"(|r|={self.residual_norm:.1e}, {self.iterations} it): V={self.V:.1f} m/s h={self.h:.0f} m "
+             f"α={d(self.alpha):.2f}° β={d(self.beta):.2f}° θ={d(self.theta):.2f}° φ={d(self.phi):.2f}° "
+             + " ".join(f"{k}={d(v) if not k.startswith('throttle') else v:.3g}" for k, v in self.controls.items()))
+        for lim in self.limits_exceeded:
+            s += f"\n    {lim.message} — {lim.hint}"
+        return s
+
+
+@dataclass
+class TrimBatch:
+    """Trim of n conditions: Euler state x (n, 12), controls u (n, n_controls), per-condition results."""
+
+    model: AircraftModel
+    x: np.ndarray
+    u: np.ndarray
+    results: list[TrimResult]
+
+    @property
+    def converged(self) -> np.ndarray:
+        return np.array([r.converged for r in self.results])
+
+    def __getitem__(self, i) -> TrimResult:
+        return self.results[i]
+
+    def __len__(self) -> int:
+        return len(self.results)
+
+
+def theta_from_gamma(alpha, beta, phi, gamma):
+    """Pitch attitude giving flight-path angle γ (Stevens & Lewis rate-of-climb constraint)."""
+    a = np.cos(alpha) * np.cos(beta)
+    b = np.sin(phi) * np.sin(beta) + np.cos(phi) * np.sin(alpha) * np.cos(beta)
+    sg = np.sin(gamma)
+    return np.arctan2(a * b + sg * np.sqrt(np.maximum(a * a - sg * sg + b * b, 0.0)), a * a - sg * sg)
+
+
+def assemble_state(V, h, alpha, beta, phi, gamma, turn_rate, psi=0.0):
+    """Euler state (n, 12) of a steady condition."""
+    V, h, alpha, beta, phi, gamma, turn_rate, psi = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (V, h, alpha, beta, phi, gamma, turn_rate, psi)))
+    theta = theta_from_gamma(alpha, beta, phi, gamma)
+    n = V.size
+    x = np.zeros((n, 12))
+    x[:, 2] = h
+    x[:, 3] = V * np.cos(alpha) * np.cos(beta)
+    x[:, 4] = V * np.sin(beta)
+    x[:, 5] = V * np.sin(alpha) * np.cos(beta)
+    x[:, 6] = -turn_rate * np.sin(theta)
+    x[:, 7] = turn_rate * np.sin(phi) * np.cos(theta)
+    x[:, 8] = turn_rate * np.cos(phi) * np.cos(theta)
+    x[:, 9] = phi
+    x[:, 10] = theta
+    x[:, 11] = psi
+    return x
+
+
+def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
+         controls: Mapping[str, float | np.ndarray] | None = None,
+         limits: Mapping[str, tuple[float, float]] | None = None,
+         roles: Mapping[str, str] | None = None, initial_alpha=0.05,
+         tol: float = 1e-9, max_iter: int = 40) -> TrimBatch:
+    """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
+    ``h`` (m); scalars or (n,) arrays.
+
+    ``gamma`` flight-path angle (rad), ``bank`` φ for turn/oei, ``beta`` for sideslip.
+    ``controls`` fixes the controls that are not trim unknowns (flap, stabilizer …; radians).
+    ``limits`` maps control names (and ``throttle``) to (min, max); the defaults are ±30° for the
+    role controls and (0, 1) for the throttle. ``roles`` maps pitch/roll/yaw to control names.
+    """
+    if kind not in KINDS:
+        raise ValueError(f"unknown trim kind {kind!r}; one of {KINDS}")
+    n = model.n
+    roles = {**DEFAULT_ROLES, **(roles or {})}
+    bc = lambda a: np.broadcast_to(np.asarray(a, dtype=float), (n,)).astype(float)  # noqa: E731
+    V, h, gamma, bank, beta_in = bc(V), bc(h), bc(gamma), bc(bank), bc(beta)
+    names = model.control_names
+    u0 = np.zeros((n, len(names)))
+    for k, v in (controls or {}).items():
+        u0[:, names.index(k)] = bc(v)
+    has_engines = len(model.engines) > 0
+    thr_idx = np.arange(model.throttle_slice.start, model.throttle_slice.stop)
+
+    # unknowns: ordered list of names; equations: indices into (u̇ v̇ ẇ ṗ q̇ ṙ)
+    unknowns = ["alpha"]
+    unknowns.append({"straight": "beta", "oei": "beta", "turn": "turn_rate", "sideslip": "phi"}[kind])
+    equations = [0, 1, 2, 3, 4, 5]
+    for role, eq in (("pitch", 4), ("roll", 3), ("yaw", 5)):
+        if roles.get(role) in model.aero_controls:
+            unknowns.append(role)
+        else:
+            equations.remove(eq)
+    unknowns.append("throttle" if has_engines else "gamma")
+    while len(unknowns) > len(equations):  # symmetric models lacking lateral controls
+        drop = "beta" if "beta" in unknowns else ("phi" if "phi" in unknowns else "turn_rate")
+        unknowns.remove(drop)
+    if len(unknowns) != len(equations):
+        raise ValueError(f"trim {kind}: {len(unknowns)} unknowns {unknowns} for {len(equations)} equations")
+
+    # initial values
+    z = np.zeros((n, len(unknowns)))
+    for j, name in enumerate(unknowns):
+        if name == "alpha":
+            z[:, j] = initial_alpha
+        elif name == "turn_rate":
+            z[:, j] = model.g * np.tan(bank) / np.maximum(V, 1.0)
+        elif name == "throttle":
+            z[:, j] = 0.5
+        elif name == "gamma":
+            z[:, j] = gamma
+        elif name == "beta":
+            z[:, j] = beta_in if kind == "sideslip" else 0.0
+
+    def unpack(z):
+        vals = {"alpha": z[:, 0], "beta": beta_in.copy() if kind == "sideslip" else np.zeros(n),
+                "phi": bank.copy() if kind in ("turn", "oei") else np.zeros(n),
+                "turn_rate": np.zeros(n), "gamma": gamma.copy()}
+        u = u0.copy()
+        for j, name in enumerate(unknowns):
+            if name in ("alpha", "beta", "phi", "turn_rate", "gamma"):
+                vals[name] = z[:, j]
+            elif name == "throttle":
+                u[:, thr_idx] = z[:, j][:, None]
+            else:
+                u[:, names.index(roles[name])] = z[:, j]
+        x = assemble_state(V, h, vals["alpha"], vals["beta"], vals["phi"], vals["gamma"], vals["turn_rate"])
+        return x, u, vals
+
+    def residual(z):
+        x, u, _ = unpack(z)
+        xd = model.derivatives_euler(x, u)
+        return xd[:, 3:9][:, equations]
+
+    steps = {"alpha": 1e-6, "beta": 1e-6, "phi": 1e-6, "turn_rate": 1e-7, "gamma": 1e-6,
+             "pitch": 1e-6, "roll": 1e-6, "yaw": 1e-6, "throttle": 1e-6}
+    max_step = {"alpha": 0.1, "beta": 0.1, "phi": 0.2, "turn_rate": 0.05, "gamma": 0.05,
+                "pitch": 0.2, "roll": 0.2, "yaw": 0.2, "throttle": 0.5}
+    hstep = np.array([steps[u] for u in unknowns])
+    smax = np.array([max_step[u] for u in unknowns])
+    k = len(unknowns)
+    iters = np.zeros(n, dtype=int)
+    active = np.ones(n, dtype=bool)
+    r = residual(z)
+    scale = np.where(np.array(equations) < 3, 1.0 / model.g, 1.0)
+    rnorm = np.max(np.abs(r * scale), axis=1)
+    for _ in range(max_iter):
+        active = rnorm > tol
+        if not active.any():
+            break
+        iters += active
+        Jm = np.empty((n, len(equations), k))
+        for j in range(k):
+            zp = z.copy()
+            zp[:, j] += hstep[j]
+            Jm[:, :, j] = (residual(zp) - r) / hstep[j]
+        try:
+            dz = -np.linalg.solve(Jm, r[:, :, None])[:, :, 0]
+        except np.linalg.LinAlgError:
+            dz = -np.einsum("nij,nj->ni", np.linalg.pinv(Jm), r)
+        dz = np.where(np.isfinite(dz), dz, 0.0)
+        ratio = np.max(np.abs(dz) / smax, axis=1)
+        dz = dz / np.maximum(ratio, 1.0)[:, None]
+        # backtracking: accept the step if it reduces the residual, else halve (per condition)
+        lam = np.ones(n)
+        for _bt in range(6):
+            z_try = np.where(active[:, None], z + lam[:, None] * dz, z)
+            r_try = residual(z_try)
+            rn_try = np.max(np.abs(r_try * scale), axis=1)
+            bad = active & ~(rn_try < rnorm)
+            if not bad.any():
+                break
+            lam = np.where(bad, lam * 0.5, lam)
+        z, r, rnorm = z_try, r_try, np.where(np.isfinite(rn_try), rn_try, np.inf)
+
+    x, u, vals = unpack(z)
+    lim = {roles["pitch"]: (-np.radians(30), np.radians(30)), roles["roll"]: (-np.radians(30), np.radians(30)),
+           roles["yaw"]: (-np.radians(30), np.radians(30)), "throttle": (0.0, 1.0)}
+    lim.update(limits or {})
+    _, out = model.derivatives_euler(x, u, with_outputs=True)
+    results = []
+    for i in range(n):
+        ctrl = {name: float(u[i, j]) for j, name in enumerate(names)}
+        found = []
+        for role in ("pitch", "roll", "yaw"):
+            cname = roles[role]
+            if role in unknowns and cname in lim:
+                found += _check(cname, ctrl[cname], lim[cname], _HINTS[role], angle=True)
+        if "throttle" in unknowns:
+            tval = float(z[i, unknowns.index("throttle")])
+            lo, hi = lim["throttle"]
+            found += _check("throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False)
+        results.append(TrimResult(
+            index=i, kind=kind, converged=bool(rnorm[i] <= tol), residual_norm=float(rnorm[i]),
+            iterations=int(iters[i]), V=float(V[i]), h=float(h[i]), alpha=float(vals["alpha"][i]),
+            beta=float(vals["beta"][i]), theta=float(x[i, 10]), phi=float(x[i, 9]), gamma=float(vals["gamma"][i]),
+            turn_rate=float(vals["turn_rate"][i]), controls=ctrl,
+            thrust={e.name: float(out.thrust[i, j]) for j, e in enumerate(model.engines)},
+            limits_exceeded=found))
+    return TrimBatch(model=model, x=x, u=u, results=results)
+
+
+def _check(name, value, bounds, hint, angle):
+    lo, hi = bounds
+    if lo <= value <= hi:
+        return []
+    lim = hi if value > hi else lo
+    f = (lambda a: f"{np.degrees(a):.1f}°") if angle else (lambda a: f"{a:.2f}")
+    return [LimitExceedance(control=name, required=float(value), limit=float(lim), excess=float(value - lim),
+                            message=f"needs {f(value)} {name}, limit {f(lim)}", hint=hint)]
+
+
+__all__ = ["trim", "TrimBatch", "TrimResult", "LimitExceedance", "theta_from_gamma", "assemble_state", "KINDS"]
