@@ -47,7 +47,9 @@ def altitude() -> float:
     return brentq(lambda h: float(isa.density(h)) - RHO, 10_000.0, 14_000.0)
 
 
-def build(n: int = 1):
+def build(n: int = 1, mach_effects: bool = True, cd: float | None = None):
+    """The 747 model; ``mach_effects=False`` drops the speed derivatives (CL_M, CD_M, Cm_M) and
+    ``cd`` overrides the drag coefficient (for the Lanchester-phugoid check)."""
     h = altitude()
     a = float(isa.speed_of_sound(h))
     M0 = U0 / a
@@ -75,9 +77,11 @@ def build(n: int = 1):
     CD_M = (-XU / K - 2 * CD_TRIM) / M0
     CL_M = (-ZU / K - 2 * CL) / M0
     Cm_M = MU / (K * CBAR) / M0
+    if not mach_effects:
+        CD_M = CL_M = Cm_M = 0.0
     mach = np.array([M0 - 0.05, M0 + 0.05])
     d["CL0"] = CL + CL_M * (mach - M0)
-    d["CD0"] = CD_TRIM + CD_M * (mach - M0)
+    d["CD0"] = (CD_TRIM if cd is None else cd) + CD_M * (mach - M0)
     d["Cm0"] = Cm_M * (mach - M0)
     aero = StabilityDerivativeModel(AeroReference(S, B, CBAR, x_ref=30.0), d, mach=mach,
                                     control_names=("elevator", "aileron", "rudder"))

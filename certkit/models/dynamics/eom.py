@@ -52,6 +52,10 @@ QUAT_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "q0", "q1", "q2",
 EULER_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "phi", "theta", "psi")
 
 _H_MIN, _H_MAX = -600.0, isa.H_MAX
+_T11 = isa.T0 + isa.LAPSE * isa.H_TROPOPAUSE
+_EXP_TROPO = -G0 / (isa.LAPSE * isa.R_AIR)
+_P11 = isa.P0 * (_T11 / isa.T0) ** _EXP_TROPO
+_K_STRATO = -G0 / (isa.R_AIR * _T11)
 
 
 def airplane_to_body(points, cg) -> np.ndarray:
@@ -231,6 +235,14 @@ class AircraftModel:
             names.append("brake")
         self.control_names = tuple(names)
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
+        self._rref = tuple(self.r_ref[:, k].copy() for k in range(3))
+        self._inv_mass = 1.0 / self.mass
+        J, K = self.inertia, self.inertia_inv
+        self._J = tuple(J[:, i, j].copy() for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
+        self._Jinv = tuple(K[:, i, j].copy() for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
+        if ne:
+            self._reng = [tuple(self.r_eng[:, j, k].copy() for k in range(3)) for j in range(ne)]
+        self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
 
@@ -251,90 +263,118 @@ class AircraftModel:
         controls (n, n_controls). Returns (pos_dot (n,3) as ẋ_N, ẏ_E, ḣ; vel_dot; omega_dot) and
         an :class:`Outputs` when asked.
         """
-        n = vel.shape[0]
-        u, v, w = vel[:, 0], vel[:, 1], vel[:, 2]
-        p, q, r = omega[:, 0], omega[:, 1], omega[:, 2]
-        V = np.sqrt(u * u + v * v + w * w)
+        C = tuple(dcm[:, i, j] for i in range(3) for j in range(3))
+        res = self._dynamics(h, vel[:, 0], vel[:, 1], vel[:, 2], omega[:, 0], omega[:, 1], omega[:, 2], C,
+                             controls, with_outputs)
+        pos_dot = np.stack(res[0:3], axis=1)
+        vel_dot = np.stack(res[3:6], axis=1)
+        omega_dot = np.stack(res[6:9], axis=1)
+        return pos_dot, vel_dot, omega_dot, res[9]
+
+    def _dynamics(self, h, u, v, w, p, q, r, C, controls, with_outputs):
+        """Component form of the equations (the hot path: (n,) arrays only, no small-matrix
+        numpy calls). C = the nine body→NED direction cosines, row by row."""
+        n = u.shape[0]
+        C11, C12, C13, C21, C22, C23, C31, C32, C33 = C
+        V2 = u * u + v * v + w * w
+        V = np.sqrt(V2)
         Vs = np.maximum(V, 1e-3)
+        uw2 = np.maximum(u * u + w * w, 1e-6)
         alpha = np.arctan2(w, u)
         beta = np.arcsin(np.clip(v / Vs, -1.0, 1.0))
+        # ISA, inlined (troposphere + isothermal layer), altitude clipped to the modelled range
         hc = np.clip(h, _H_MIN, _H_MAX)
-        T_air = np.where(hc <= isa.H_TROPOPAUSE, isa.T0 + isa.LAPSE * hc, isa.T0 + isa.LAPSE * isa.H_TROPOPAUSE)
-        rho = isa.density(hc)
-        a_snd = np.sqrt(isa.GAMMA * isa.R_AIR * T_air)
-        mach = V / a_snd
-        qbar = 0.5 * rho * V * V
+        T_air = np.maximum(isa.T0 + isa.LAPSE * hc, _T11)
+        p_air = np.where(hc <= isa.H_TROPOPAUSE, isa.P0 * (T_air / isa.T0) ** _EXP_TROPO,
+                         _P11 * np.exp(_K_STRATO * (hc - isa.H_TROPOPAUSE)))
+        rho = p_air / (isa.R_AIR * T_air)
+        mach = V / np.sqrt(isa.GAMMA * isa.R_AIR * T_air)
+        qbar = 0.5 * rho * V2
         b, c, S = self.b, self.c, self.S
         ctrl = {name: controls[:, i] for i, name in enumerate(self.aero_controls)}
         coef = self.aero.coefficients(AeroState(
-            alpha=alpha, beta=beta, p_hat=p * b / (2 * Vs), q_hat=q * c / (2 * Vs), r_hat=r * b / (2 * Vs),
+            alpha=alpha, beta=beta, p_hat=p * (b / 2) / Vs, q_hat=q * (c / 2) / Vs, r_hat=r * (b / 2) / Vs,
             mach=mach, controls=ctrl))
-        ca, sa = np.cos(alpha), np.sin(alpha)
+        ca, sa = u / np.sqrt(uw2), w / np.sqrt(uw2)
         qS = qbar * S
-        F = np.empty((n, 3))
-        F[:, 0] = qS * (-coef.CD * ca + coef.CL * sa)
-        F[:, 1] = qS * np.broadcast_to(coef.CY, (n,))
-        F[:, 2] = qS * (-coef.CD * sa - coef.CL * ca)
-        M = np.empty((n, 3))
-        M[:, 0] = qS * b * coef.Cl
-        M[:, 1] = qS * c * coef.Cm
-        M[:, 2] = qS * b * coef.Cn
-        M += np.cross(self.r_ref, F)
+        CL, CD = coef.CL, coef.CD
+        Fx = qS * (CL * sa - CD * ca)
+        Fy = qS * coef.CY
+        Fz = -qS * (CD * sa + CL * ca)
+        rx, ry, rz = self._rref
+        Mx = qS * b * coef.Cl + ry * Fz - rz * Fy
+        My = qS * c * coef.Cm + rz * Fx - rx * Fz
+        Mz = qS * b * coef.Cn + rx * Fy - ry * Fx
 
         ne = len(self.engines)
-        thrust = np.zeros((n, ne))
+        thrust = None
         if ne:
+            thrust = np.empty((n, ne))
             thr = controls[:, self.throttle_slice]
             for j, eng in enumerate(self.engines):
-                t = np.asarray(eng.thrust(thr[:, j], hc, mach), dtype=float)
-                if eng.windmill_drag is not None:
-                    dwm = np.asarray(eng.windmill_drag(qbar, mach), dtype=float)
-                else:
-                    dwm = 0.0
-                thrust[:, j] = np.where(self.operative[:, j], t, -dwm)
-            Fe = thrust[:, :, None] * self.d_eng[None, :, :]
-            F += Fe.sum(axis=1)
-            M += np.cross(self.r_eng, Fe).sum(axis=1)
+                t = eng.thrust(thr[:, j], hc, mach)
+                if eng.windmill_drag is not None and not self._all_operative[j]:
+                    t = np.where(self.operative[:, j], t, -eng.windmill_drag(qbar, mach))
+                elif not self._all_operative[j]:
+                    t = np.where(self.operative[:, j], t, 0.0)
+                thrust[:, j] = t
+                dx, dy, dz = self.d_eng[j]
+                ex, ey, ez = self._reng[j]
+                fx, fy, fz = t * dx, t * dy, t * dz
+                Fx, Fy, Fz = Fx + fx, Fy + fy, Fz + fz
+                Mx = Mx + ey * fz - ez * fy
+                My = My + ez * fx - ex * fz
+                Mz = Mz + ex * fy - ey * fx
 
         gear_load = np.zeros((n, 0))
         if self.ground is not None:
-            Fg, Mg, gear_load = self._ground_forces(h, vel, omega, dcm, controls)
-            F += Fg
-            M += Mg
+            dcm = np.stack([np.stack([C11, C12, C13], -1), np.stack([C21, C22, C23], -1),
+                            np.stack([C31, C32, C33], -1)], -2)
+            Fg, Mg, gear_load = self._ground_forces(h, np.stack([u, v, w], 1), np.stack([p, q, r], 1), dcm, controls)
+            Fx, Fy, Fz = Fx + Fg[:, 0], Fy + Fg[:, 1], Fz + Fg[:, 2]
+            Mx, My, Mz = Mx + Mg[:, 0], My + Mg[:, 1], Mz + Mg[:, 2]
 
-        m = self.mass
-        g_body = self.g * dcm[:, 2, :]  # third row of body→NED = earth-down in body axes
-        wxv = np.cross(omega, vel)
-        vel_dot = F / m[:, None] + g_body - wxv
-
-        alpha_dot = (u * vel_dot[:, 2] - w * vel_dot[:, 0]) / np.maximum(u * u + w * w, 1e-6)
+        im = self._inv_mass
+        g = self.g
+        udot = Fx * im + g * C31 - (q * w - r * v)
+        vdot = Fy * im + g * C32 - (r * u - p * w)
+        wdot = Fz * im + g * C33 - (p * v - q * u)
+        alpha_dot = (u * wdot - w * udot) / uw2
         if self._alpha_dot is not None:
             CLad, Cmad = self._alpha_dot(mach)
-            kf = qS * c / (2 * Vs) * CLad  # lift per unit alpha_dot
-            dF = np.stack([kf * sa, np.zeros(n), -kf * ca], axis=1)  # force per unit alpha_dot
-            kx, kz = dF[:, 0] / m, dF[:, 2] / m
-            denom = 1.0 - (u * kz - w * kx) / np.maximum(u * u + w * w, 1e-6)
-            alpha_dot = alpha_dot / denom
-            vel_dot = vel_dot + dF / m[:, None] * alpha_dot[:, None]
-            dM = np.zeros((n, 3))
-            dM[:, 1] = qS * c * c / (2 * Vs) * Cmad
-            dM += np.cross(self.r_ref, dF)
-            F = F + dF * alpha_dot[:, None]
-            M = M + dM * alpha_dot[:, None]
+            kf = qS * (c / 2) / Vs * CLad  # lift per unit alpha_dot
+            dFx, dFz = kf * sa, -kf * ca
+            alpha_dot = alpha_dot / (1.0 - (u * dFz - w * dFx) * im / uw2)
+            udot = udot + dFx * im * alpha_dot
+            wdot = wdot + dFz * im * alpha_dot
+            Fx = Fx + dFx * alpha_dot
+            Fz = Fz + dFz * alpha_dot
+            Mx = Mx + ry * dFz * alpha_dot
+            My = My + (qS * c * (c / 2) / Vs * Cmad + rz * dFx - rx * dFz) * alpha_dot
+            Mz = Mz - ry * dFx * alpha_dot
 
-        J = self.inertia
-        Jw = np.einsum("nij,nj->ni", J, omega)
-        omega_dot = np.einsum("nij,nj->ni", self.inertia_inv, M - np.cross(omega, Jw))
-        v_ned = np.einsum("nij,nj->ni", dcm, vel)
-        pos_dot = np.stack([v_ned[:, 0], v_ned[:, 1], -v_ned[:, 2]], axis=1)
-        if not with_outputs:
-            return pos_dot, vel_dot, omega_dot, None
-        W = m * self.g
-        out = Outputs(V=V, alpha=alpha, beta=beta, mach=mach, qbar=qbar,
-                      n_x=F[:, 0] / W, n_y=F[:, 1] / W, n_z=-F[:, 2] / W, alpha_dot=alpha_dot,
-                      thrust=thrust, gear_load=gear_load,
-                      CL=np.broadcast_to(coef.CL, (n,)), CD=np.broadcast_to(coef.CD, (n,)))
-        return pos_dot, vel_dot, omega_dot, out
+        J11, J12, J13, J22, J23, J33 = self._J
+        hx = J11 * p + J12 * q + J13 * r
+        hy = J12 * p + J22 * q + J23 * r
+        hz = J13 * p + J23 * q + J33 * r
+        ax = Mx - (q * hz - r * hy)
+        ay = My - (r * hx - p * hz)
+        az = Mz - (p * hy - q * hx)
+        K11, K12, K13, K22, K23, K33 = self._Jinv
+        pdot = K11 * ax + K12 * ay + K13 * az
+        qdot = K12 * ax + K22 * ay + K23 * az
+        rdot = K13 * ax + K23 * ay + K33 * az
+        xNdot = C11 * u + C12 * v + C13 * w
+        yEdot = C21 * u + C22 * v + C23 * w
+        hdot = -(C31 * u + C32 * v + C33 * w)
+        out = None
+        if with_outputs:
+            Wt = self.mass * g
+            out = Outputs(V=V, alpha=alpha, beta=beta, mach=mach, qbar=qbar,
+                          n_x=Fx / Wt, n_y=Fy / Wt, n_z=-Fz / Wt, alpha_dot=alpha_dot,
+                          thrust=thrust if thrust is not None else np.zeros((n, 0)), gear_load=gear_load,
+                          CL=np.broadcast_to(CL, (n,)), CD=np.broadcast_to(CD, (n,)))
+        return xNdot, yEdot, hdot, udot, vdot, wdot, pdot, qdot, rdot, out
 
     def _ground_forces(self, h, vel, omega, dcm, controls):
         gm = self.ground
@@ -370,34 +410,43 @@ class AircraftModel:
     # ------------------------------------------------------------------ state forms
     def derivatives_quat(self, x, controls, with_outputs=False):
         """ẋ for the quaternion state (n, 13)."""
-        quat = x[:, 9:13]
-        dcm = quat_to_dcm(quat)
-        pos_dot, vel_dot, omega_dot, out = self.body_dynamics(x[:, 2], x[:, 3:6], x[:, 6:9], dcm, controls, with_outputs)
-        p, q, r = x[:, 6], x[:, 7], x[:, 8]
-        q0, q1, q2, q3 = quat[:, 0], quat[:, 1], quat[:, 2], quat[:, 3]
-        qdot = 0.5 * np.stack([
-            -p * q1 - q * q2 - r * q3,
-            p * q0 + r * q2 - q * q3,
-            q * q0 - r * q1 + p * q3,
-            r * q0 + q * q1 - p * q2,
-        ], axis=1)
-        xd = np.concatenate([pos_dot, vel_dot, omega_dot, qdot], axis=1)
-        return (xd, out) if with_outputs else xd
+        X = x.T
+        q0, q1, q2, q3 = X[9], X[10], X[11], X[12]
+        q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
+        q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
+        C = (q00 + q11 - q22 - q33, 2 * (q12 - q03), 2 * (q13 + q02),
+             2 * (q12 + q03), q00 - q11 + q22 - q33, 2 * (q23 - q01),
+             2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33)
+        p, q, r = X[6], X[7], X[8]
+        res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
+        xd = np.empty_like(x)
+        XD = xd.T
+        for k in range(9):
+            XD[k] = res[k]
+        XD[9] = -0.5 * (p * q1 + q * q2 + r * q3)
+        XD[10] = 0.5 * (p * q0 + r * q2 - q * q3)
+        XD[11] = 0.5 * (q * q0 - r * q1 + p * q3)
+        XD[12] = 0.5 * (r * q0 + q * q1 - p * q2)
+        return (xd, res[9]) if with_outputs else xd
 
     def derivatives_euler(self, x, controls, with_outputs=False):
         """ẋ for the Euler-angle state (n, 12)."""
-        phi, theta, psi = x[:, 9], x[:, 10], x[:, 11]
-        dcm = euler_to_dcm(phi, theta, psi)
-        pos_dot, vel_dot, omega_dot, out = self.body_dynamics(x[:, 2], x[:, 3:6], x[:, 6:9], dcm, controls, with_outputs)
-        p, q, r = x[:, 6], x[:, 7], x[:, 8]
-        sf, cf, ct, tt = np.sin(phi), np.cos(phi), np.cos(theta), np.tan(theta)
-        eul_dot = np.stack([
-            p + (q * sf + r * cf) * tt,
-            q * cf - r * sf,
-            (q * sf + r * cf) / ct,
-        ], axis=1)
-        xd = np.concatenate([pos_dot, vel_dot, omega_dot, eul_dot], axis=1)
-        return (xd, out) if with_outputs else xd
+        X = x.T
+        phi, theta, psi = X[9], X[10], X[11]
+        sf, cf, st, ct, sp, cp = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta), np.sin(psi), np.cos(psi)
+        C = (ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
+             ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
+             -st, sf * ct, cf * ct)
+        p, q, r = X[6], X[7], X[8]
+        res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
+        xd = np.empty_like(x)
+        XD = xd.T
+        for k in range(9):
+            XD[k] = res[k]
+        XD[9] = p + (q * sf + r * cf) * st / ct
+        XD[10] = q * cf - r * sf
+        XD[11] = (q * sf + r * cf) / ct
+        return (xd, res[9]) if with_outputs else xd
 
 
 def euler_state_to_quat_state(x12) -> np.ndarray:

@@ -1,0 +1,294 @@
+"""Fixed-step RK4 time simulation of a whole batch of conditions.
+
+The state is the quaternion state (n, 13) of :mod:`certkit.models.dynamics.eom`. Controls are the
+trim controls plus pilot inputs from schedules (vectorised functions of time, one value per
+condition) and, optionally, closed-loop controllers; they are held constant over a step
+(zero-order hold, as a flight-control computer would). Each condition may stop on its own
+criteria: it is then frozen (state and records held) while the others go on; the run ends when
+all have stopped or at ``t_end``.
+
+Input schedules (amplitudes are floats or (n,) arrays — a different input per condition):
+    :class:`Step`, :class:`Ramp`, :class:`Doublet`, :class:`Hold`, :class:`CheckedManeuver`
+    (§25.331(c)(2): δ₁ sin ωt for 0 ≤ t ≤ 3π/(2ω), optionally held at its peak for up to 5 s
+    before returning), :class:`RudderKick` (§25.351: ramp to full rudder, hold, ramp back).
+    Schedules add: ``Step(1, a) + Ramp(3, 4, b)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Mapping, Sequence
+
+import numpy as np
+
+from certkit.models.dynamics.eom import AircraftModel, euler_state_to_quat_state, quat_to_euler
+
+
+class Schedule:
+    """A control increment as a function of time, vectorised over conditions."""
+
+    def __call__(self, t: float) -> np.ndarray | float:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    def __add__(self, other: "Schedule") -> "Schedule":
+        return _Sum(self, other)
+
+
+@dataclass
+class _Sum(Schedule):
+    a: Schedule
+    b: Schedule
+
+    def __call__(self, t):
+        return self.a(t) + self.b(t)
+
+
+@dataclass
+class Hold(Schedule):
+    """A constant increment (e.g. a held pull)."""
+
+    value: float | np.ndarray
+
+    def __call__(self, t):
+        return np.asarray(self.value, dtype=float)
+
+
+@dataclass
+class Step(Schedule):
+    t0: float
+    amplitude: float | np.ndarray
+
+    def __call__(self, t):
+        return np.asarray(self.amplitude, dtype=float) * (t >= self.t0)
+
+
+@dataclass
+class Ramp(Schedule):
+    """Linear from 0 at t0 to ``amplitude`` at t1, held after."""
+
+    t0: float
+    t1: float
+    amplitude: float | np.ndarray
+
+    def __call__(self, t):
+        f = np.clip((t - self.t0) / max(self.t1 - self.t0, 1e-12), 0.0, 1.0)
+        return np.asarray(self.amplitude, dtype=float) * f
+
+
+@dataclass
+class Doublet(Schedule):
+    """+amplitude for ``width`` seconds from t0, then −amplitude for ``width``, then 0."""
+
+    t0: float
+    width: float
+    amplitude: float | np.ndarray
+
+    def __call__(self, t):
+        a = np.asarray(self.amplitude, dtype=float)
+        if self.t0 <= t < self.t0 + self.width:
+            return a
+        if self.t0 + self.width <= t < self.t0 + 2 * self.width:
+            return -a
+        return 0.0 * a
+
+
+@dataclass
+class Pulse(Schedule):
+    t0: float
+    width: float
+    amplitude: float | np.ndarray
+
+    def __call__(self, t):
+        return np.asarray(self.amplitude, dtype=float) * (self.t0 <= t < self.t0 + self.width)
+
+
+@dataclass
+class CheckedManeuver(Schedule):
+    """§25.331(c)(2) checked pitch manoeuvre: δ(t) = δ₁ sin(ω (t − t0)) for 0 ≤ t − t0 ≤ 3π/(2ω),
+    zero after. With ``hold`` > 0 the deflection is held at its peak δ₁ (reached at π/(2ω)) for
+    ``hold`` seconds before the sinusoid resumes back through zero (the rule allows at most 5 s).
+    ``omega`` and ``delta1`` may be (n,) arrays."""
+
+    delta1: float | np.ndarray
+    omega: float | np.ndarray
+    t0: float = 0.0
+    hold: float = 0.0
+
+    def __post_init__(self):
+        if not 0.0 <= self.hold <= 5.0:
+            raise ValueError(f"§25.331(c)(2) allows holding the peak deflection for at most 5 s, got {self.hold} s")
+
+    def __call__(self, t):
+        w = np.asarray(self.omega, dtype=float)
+        d1 = np.asarray(self.delta1, dtype=float)
+        tau = t - self.t0
+        t_peak = np.pi / (2 * w)
+        tau_eff = np.where(tau <= t_peak, tau, np.where(tau <= t_peak + self.hold, t_peak, tau - self.hold))
+        on = (tau >= 0) & (tau_eff <= 3 * np.pi / (2 * w))
+        return np.where(on, d1 * np.sin(w * tau_eff), 0.0)
+
+    def duration(self) -> np.ndarray:
+        return 3 * np.pi / (2 * np.asarray(self.omega, dtype=float)) + self.hold
+
+
+@dataclass
+class RudderKick(Schedule):
+    """§25.351 yaw manoeuvre: rudder ramped to ``amplitude`` in ``ramp`` s from t0, held
+    ``hold`` s (to the overswing / steady sideslip), then ramped back to neutral in ``ramp`` s."""
+
+    t0: float
+    amplitude: float | np.ndarray
+    ramp: float = 0.5
+    hold: float = 5.0
+
+    def __call__(self, t):
+        a = np.asarray(self.amplitude, dtype=float)
+        t1 = self.t0 + self.ramp + self.hold
+        up = np.clip((t - self.t0) / self.ramp, 0.0, 1.0)
+        down = np.clip(1.0 - (t - t1) / self.ramp, 0.0, 1.0)
+        return a * np.minimum(up, down)
+
+
+class Function(Schedule):
+    """Any function f(t) → (n,) array as a schedule."""
+
+    def __init__(self, f: Callable[[float], np.ndarray]):
+        self.f = f
+
+    def __call__(self, t):
+        return self.f(t)
+
+
+# ---------------------------------------------------------------------- stop criteria
+StopCriterion = Callable[[float, np.ndarray, object], np.ndarray]
+
+
+def stop_when(name: str, predicate: Callable[[float, np.ndarray, object], np.ndarray]) -> StopCriterion:
+    """A named stop criterion; ``predicate(t, x13, outputs) -> bool (n,)``."""
+    predicate.__name__ = name
+    return predicate
+
+
+def altitude_below(h_min) -> StopCriterion:
+    return stop_when(f"h<{h_min}", lambda t, x, out: x[:, 2] < h_min)
+
+
+def load_factor_beyond(nz_min, nz_max) -> StopCriterion:
+    return stop_when("n_z limit", lambda t, x, out: (out.n_z < nz_min) | (out.n_z > nz_max))
+
+
+def alpha_beyond(alpha_max) -> StopCriterion:
+    return stop_when("alpha limit", lambda t, x, out: out.alpha > alpha_max)
+
+
+def airborne_above(height) -> StopCriterion:
+    """Takeoff: stop once the aircraft is ``height`` m above the runway with no gear load."""
+    return stop_when(f"airborne {height} m", lambda t, x, out: (x[:, 2] > height) & (out.gear_load.sum(axis=1) <= 0.0))
+
+
+# ---------------------------------------------------------------------- controllers
+class Controller:
+    """Closed-loop law: ``update(t, x13, outputs, u) -> u`` (n, n_controls); may keep state."""
+
+    def update(self, t: float, x: np.ndarray, out, u: np.ndarray, dt: float) -> np.ndarray:  # pragma: no cover
+        raise NotImplementedError
+
+
+@dataclass
+class SimulationResult:
+    """Recorded time histories: ``t`` (nt,), each history (nt, n); ``controls`` (nt, n, m).
+    ``stop_time`` (n,) is when each condition stopped (``t_end`` if it did not) and
+    ``stop_reason`` the criterion's name ('' if none)."""
+
+    t: np.ndarray
+    history: dict[str, np.ndarray]
+    controls: np.ndarray
+    control_names: tuple[str, ...]
+    stop_time: np.ndarray
+    stop_reason: list[str]
+    final_state: np.ndarray
+
+    def __getitem__(self, key: str) -> np.ndarray:
+        return self.history[key]
+
+
+RECORDED = ("V", "alpha", "beta", "p", "q", "r", "phi", "theta", "psi", "h", "x_N", "y_E",
+            "n_x", "n_y", "n_z", "mach", "qbar", "alpha_dot", "CL")
+
+
+def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: float, dt: float = 0.01,
+             inputs: Mapping[str, Schedule] | None = None, controllers: Sequence[Controller] = (),
+             stop: Sequence[StopCriterion] = (), record_every: int = 1,
+             limits: Mapping[str, tuple[float, float]] | None = None) -> SimulationResult:
+    """Integrate the batch from ``x0`` (Euler (n, 12) — e.g. a trim's ``x`` — or quaternion
+    (n, 13)) with controls ``u_trim`` (n, m) plus the scheduled ``inputs`` (control name →
+    schedule), the ``controllers`` and the control ``limits`` (name → (min, max), clipped)."""
+    x = np.array(x0, dtype=float)
+    if x.shape[1] == 12:
+        x = euler_state_to_quat_state(x)
+    n = x.shape[0]
+    names = model.control_names
+    u_trim = np.broadcast_to(np.asarray(u_trim, dtype=float), (n, len(names))).copy()
+    sched = [(names.index(k), s) for k, s in (inputs or {}).items()]
+    lim = [(names.index(k), lo, hi) for k, (lo, hi) in (limits or {}).items()]
+    f = model.derivatives_quat
+    nsteps = int(round(t_end / dt))
+    nrec = nsteps // record_every + 1
+    hist = {k: np.empty((nrec, n)) for k in RECORDED}
+    ctrl_hist = np.empty((nrec, n, len(names)))
+    t_rec = np.empty(nrec)
+    active = np.ones(n, dtype=bool)
+    stop_time = np.full(n, nsteps * dt)
+    stop_reason = [""] * n
+    irec = 0
+    for k in range(nsteps + 1):
+        t = k * dt
+        u = u_trim.copy()
+        for j, s in sched:
+            u[:, j] += s(t)
+        xd1, out = f(x, u, with_outputs=True)
+        for c in controllers:
+            u = c.update(t, x, out, u, dt)
+        for j, lo, hi in lim:
+            u[:, j] = np.clip(u[:, j], lo, hi)
+        if controllers or lim:
+            xd1, out = f(x, u, with_outputs=True)
+        # stop criteria on the state at t
+        if stop:
+            for crit in stop:
+                hit = active & np.asarray(crit(t, x, out), dtype=bool)
+                if hit.any():
+                    for i in np.flatnonzero(hit):
+                        stop_reason[i] = getattr(crit, "__name__", "stop")
+                    stop_time[hit] = t
+                    active &= ~hit
+        if k % record_every == 0:
+            eul = quat_to_euler(x[:, 9:13])
+            vals = {"V": out.V, "alpha": out.alpha, "beta": out.beta, "p": x[:, 6], "q": x[:, 7], "r": x[:, 8],
+                    "phi": eul[:, 0], "theta": eul[:, 1], "psi": eul[:, 2], "h": x[:, 2], "x_N": x[:, 0],
+                    "y_E": x[:, 1], "n_x": out.n_x, "n_y": out.n_y, "n_z": out.n_z, "mach": out.mach,
+                    "qbar": out.qbar, "alpha_dot": out.alpha_dot, "CL": out.CL}
+            for key, val in vals.items():
+                rec = hist[key]
+                rec[irec] = val if irec == 0 else np.where(active, val, rec[irec - 1])
+            ctrl_hist[irec] = u if irec == 0 else np.where(active[:, None], u, ctrl_hist[irec - 1])
+            t_rec[irec] = t
+            irec += 1
+        if k == nsteps or not active.any():
+            break
+        xd2 = f(x + 0.5 * dt * xd1, u)
+        xd3 = f(x + 0.5 * dt * xd2, u)
+        xd4 = f(x + dt * xd3, u)
+        x_new = x + dt / 6.0 * (xd1 + 2 * xd2 + 2 * xd3 + xd4)
+        x_new[:, 9:13] /= np.linalg.norm(x_new[:, 9:13], axis=1, keepdims=True)
+        x = np.where(active[:, None], x_new, x)
+    hist = {key: v[:irec] for key, v in hist.items()}
+    return SimulationResult(t=t_rec[:irec], history=hist, controls=ctrl_hist[:irec], control_names=names,
+                            stop_time=stop_time, stop_reason=stop_reason, final_state=x)
+
+
+__all__ = [
+    "Schedule", "Hold", "Step", "Ramp", "Doublet", "Pulse", "CheckedManeuver", "RudderKick", "Function",
+    "StopCriterion", "stop_when", "altitude_below", "load_factor_beyond", "alpha_beyond", "airborne_above",
+    "Controller", "SimulationResult", "simulate", "RECORDED",
+]
