@@ -109,7 +109,7 @@ def cas_to_mach(cas, h):
     mach = np.sqrt(5.0 * ((qc / p + 1.0) ** (2.0 / 7.0) - 1.0))
     if np.any(mach > 1.0):  # solve the Rayleigh formula by fixed point (converges in a few steps)
         for _ in range(30):
-            m_sup = 0.88128485 * np.sqrt((qc / p + 1.0) * (1.0 - 1.0 / (7.0 * mach**2)) ** 2.5)
+            m_sup = 0.88128485 * np.sqrt((qc / p + 1.0) * np.maximum(1.0 - 1.0 / (7.0 * mach**2), 0.0) ** 2.5)
             mach = np.where(mach > 1.0, m_sup, mach)
     return mach
 

@@ -221,6 +221,7 @@ class Configuration(_Section):
     slat: Angle = 0.0
     gear: Literal["up", "down"] = "up"
     CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
+    CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
     delta_CL0: float = 0.0
     delta_CD0: float = 0.0
     delta_Cm0: float = 0.0
@@ -262,7 +263,7 @@ class LoadFactors(_Section):
 class Envelope(_Section):
     ceiling: PositiveLength = Field(description="maximum operating altitude")
     min_altitude: Length = 0.0
-    limit_load_factors: LoadFactors
+    limit_load_factors: LoadFactors | None = Field(None, description="declared design limit load factors")
     altitude_points: Annotated[int, Field(ge=2, le=50)] = 5
 
 

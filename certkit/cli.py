@@ -1,0 +1,143 @@
+"""Command line: ``certkit check | rules | explain | schema | new-rule``.
+
+Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
+3 nothing fails but something was not evaluated.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import sys
+import time
+from pathlib import Path
+
+import click
+
+from certkit import __version__
+from certkit.errors import UserError
+
+EXIT_USAGE = 2
+
+
+class _Group(click.Group):
+    """Turns a :class:`UserError` anywhere below into a message and exit code 2."""
+
+    def invoke(self, ctx):
+        try:
+            return super().invoke(ctx)
+        except UserError as exc:
+            click.echo(f"error: {exc}", err=True)
+            sys.exit(EXIT_USAGE)
+
+
+def _discovery(rules_dirs):
+    from certkit.registry import DiscoveryOptions, discover
+
+    options = DiscoveryOptions(rules_dirs=tuple(rules_dirs))
+    return options, discover(options)
+
+
+_rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
+                             help="Folder of your own rule modules (repeatable).")
+
+
+@click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, prog_name="certkit")
+def main():
+    """certkit — compliance engine for transport aircraft against 14 CFR Part 25."""
+
+
+def _safe_dirname(name: str) -> str:
+    return re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._") or "aircraft"
+
+
+@main.command()
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@click.option("--out", "out_dir", type=click.Path(file_okay=False), help="Report folder (default reports/<aircraft name>/).")
+@click.option("--select", multiple=True, help="Rule id prefix or symbol to run (repeatable, comma-separated).")
+@click.option("--ignore", multiple=True, help="Rule id prefix or symbol to skip (repeatable, comma-separated).")
+@click.option("--jobs", "-j", default=1, show_default=True, type=int, help="Parallel processes.")
+@click.option("--json", "as_json", is_flag=True, help="Print results.json to standard output as well.")
+@_rules_option
+def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
+    """Evaluate every selected rule on AIRCRAFT_FILE and write results.json and an HTML report."""
+    from certkit.aircraft import load_aircraft
+    from certkit.registry import select as select_rules
+    from certkit.report.html import write_report
+    from certkit.scheduler import run
+
+    start = time.perf_counter()
+    loaded = load_aircraft(aircraft_file)
+    options, rules = _discovery(rules_dirs)
+    split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
+    chosen = select_rules(rules, split(select), split(ignore))
+    result = run(loaded, chosen, jobs=jobs, options=options)
+    out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
+    json_path, html_path = write_report(result, chosen, out)
+    if as_json:
+        click.echo(json_path.read_text(encoding="utf-8"))
+    else:
+        for r in result.rules:
+            crit = r.critical
+            margin = f"{crit.margin:+.4g} {crit.unit}".rstrip() if crit else "—"
+            where = crit.condition.label() if crit else (r.findings[0].reason if r.findings else "")
+            click.echo(f"{r.status:>13}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
+        s = result.summary()
+        click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['fails']} fail, {s['not_evaluated']} not evaluated "
+                   f"({time.perf_counter() - start:.2f} s)")
+        click.echo(f"report: {html_path}\nresults: {json_path}")
+    sys.exit(result.exit_code())
+
+
+@main.command(name="rules")
+@_rules_option
+@click.option("--markdown", is_flag=True, help="Print a Markdown table (for the README).")
+def list_rules(rules_dirs, markdown):
+    """List the registered rules: id, symbol, title, implementation status."""
+    _, rules = _discovery(rules_dirs)
+    if markdown:
+        click.echo("| Rule | Symbol | Title | Status |\n| --- | --- | --- | --- |")
+        for r in rules:
+            click.echo(f"| §{r.id} | `{r.symbol}` | {r.title} | {r.implementation} |")
+        return
+    for r in rules:
+        click.echo(f"{r.id:<14} {r.symbol:<38} {r.implementation:<12} {r.title}")
+
+
+@main.command()
+@click.argument("rule")
+@_rules_option
+def explain(rule, rules_dirs):
+    """Print a rule's documentation (id prefix or symbol): requirement, criterion, conditions, margin."""
+    _, rules = _discovery(rules_dirs)
+    matches = [r for r in rules if r.id == rule or r.symbol == rule] or [r for r in rules if r.id.startswith(rule)]
+    if not matches:
+        raise UserError(f"no rule {rule!r} (see `certkit rules`)")
+    click.echo("\n\n".join(r.documentation() for r in matches))
+
+
+@main.command()
+def schema():
+    """Print the JSON Schema of the aircraft file (for editor autocompletion)."""
+    from certkit.aircraft import json_schema
+
+    click.echo(json.dumps(json_schema(), indent=2))
+
+
+@main.command(name="new-rule")
+@click.argument("rule_id")
+@click.option("--symbol", required=True, help="Kebab-case symbol, e.g. 'stall-speed'.")
+@click.option("--title", required=True, help="Short title.")
+@click.option("--subpart", type=click.Choice(["b", "c", "d"]), default=None, help="Subpart (default from the paragraph number).")
+@click.option("--root", type=click.Path(file_okay=False), default=".", show_default=True, help="Repository root.")
+def new_rule(rule_id, symbol, title, subpart, root):
+    """Scaffold a rule module under rules/part25/subpart_X/ and its test under tests/rules/."""
+    from certkit.scaffold import scaffold_rule
+
+    module, test = scaffold_rule(Path(root), rule_id, symbol, title, subpart)
+    click.echo(f"created {module}\ncreated {test}")
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,236 @@
+"""Conditions, findings and results.
+
+A margin is signed so that **≥ 0 complies**; it carries its unit, and its normalised twin
+(margin / |limit|) lets a design study compare rules. A finding that could not be computed is
+``not_evaluated`` with the reason, never a pass.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+Status = Literal["complies", "fails", "not_evaluated"]
+COMPLIES: Status = "complies"
+FAILS: Status = "fails"
+NOT_EVALUATED: Status = "not_evaluated"
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One point of a rule's condition space (§25.21(a): weight and CG, configuration, flight condition)."""
+
+    loading: str | None = None          # CG-envelope corner or loading name
+    mass: float | None = None           # kg
+    x_cg: float | None = None           # m, airplane frame (aft of the nose)
+    configuration: str | None = None
+    altitude: float | None = None       # m
+    speed: float | None = None          # m/s
+    speed_kind: str | None = None       # EAS, CAS, TAS or MACH
+    speed_name: str | None = None       # VC, VD, … when the speed is a declared one
+    extra: tuple[tuple[str, object], ...] = ()
+
+    def get(self, key: str, default=None):
+        return dict(self.extra).get(key, default)
+
+    def with_(self, **changes) -> "Condition":
+        extra = dict(self.extra)
+        for key in list(changes):
+            if key not in self.__dataclass_fields__:
+                extra[key] = changes.pop(key)
+        return replace(self, extra=tuple(extra.items()), **changes)
+
+    def as_dict(self) -> dict:
+        """JSON form (SI, with units in the key names)."""
+        out: dict[str, object] = {}
+        if self.loading is not None:
+            out["loading"] = self.loading
+        if self.mass is not None:
+            out["mass_kg"] = round(self.mass, 3)
+        if self.x_cg is not None:
+            out["x_cg_m"] = round(self.x_cg, 4)
+        if self.configuration is not None:
+            out["configuration"] = self.configuration
+        if self.altitude is not None:
+            out["altitude_m"] = round(self.altitude, 2)
+        if self.speed is not None:
+            out["speed_m_s"] = round(self.speed, 4)
+            out["speed_kind"] = self.speed_kind
+        if self.speed_name is not None:
+            out["speed_name"] = self.speed_name
+        for k, v in self.extra:
+            out[k] = v
+        return out
+
+    def label(self) -> str:
+        """Short human label: ``fwd_mrw · 297 557 kg · x 29.11 m · clean · 0 ft · VC``."""
+        from certkit.units import FT, KN, LB
+
+        parts = []
+        if self.loading:
+            parts.append(self.loading)
+        if self.mass is not None:
+            parts.append(f"{self.mass / LB:,.0f} lb")
+        if self.x_cg is not None:
+            parts.append(f"CG {self.x_cg / FT:.2f} ft")
+        if self.configuration:
+            parts.append(self.configuration)
+        if self.altitude is not None:
+            parts.append(f"{self.altitude / FT:,.0f} ft")
+        if self.speed is not None:
+            unit = "" if self.speed_kind == "MACH" else f" kn {self.speed_kind}"
+            value = f"M {self.speed:.3f}" if self.speed_kind == "MACH" else f"{self.speed / KN:.1f}{unit}"
+            parts.append(f"{self.speed_name + ' = ' if self.speed_name else ''}{value}")
+        parts += [f"{k} {v}" for k, v in self.extra]
+        return " · ".join(parts) if parts else "whole airplane"
+
+
+@dataclass
+class Finding:
+    """The outcome of one check at one condition."""
+
+    condition: Condition
+    check: str
+    status: Status
+    value: float | None = None
+    limit: float | None = None
+    margin: float | None = None
+    unit: str = ""
+    reason: str = ""
+    details: dict = field(default_factory=dict)
+
+    @property
+    def normalized_margin(self) -> float | None:
+        if self.margin is None or self.limit is None:
+            return None
+        scale = abs(self.limit) if self.limit != 0 else 1.0
+        return self.margin / scale
+
+    @classmethod
+    def compare(cls, condition: Condition, check: str, value: float, limit: float, *, at_least: bool,
+                unit: str = "", reason: str = "", tolerance: float | None = None, **details) -> "Finding":
+        """A finding for ``value ≥ limit`` (``at_least``) or ``value ≤ limit``; margin ≥ 0 complies.
+
+        ``tolerance`` (in the margin's unit; default 1e-9 × |limit|) absorbs round-off when a value sits
+        exactly on its limit, as declared speeds derived from each other do.
+        """
+        value, limit = float(value), float(limit)
+        if not (math.isfinite(value) and math.isfinite(limit)):
+            return cls.not_evaluated(condition, check, f"non-finite value ({value}) or limit ({limit})")
+        margin = value - limit if at_least else limit - value
+        if tolerance is None:
+            tolerance = 1e-9 * max(1.0, abs(limit))
+        status: Status = COMPLIES if margin >= -tolerance else FAILS
+        return cls(condition, check, status, value, limit, margin, unit, reason, details)
+
+    @classmethod
+    def not_applicable(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+        """The paragraph does not apply at this condition (computed, not assumed): complies, no margin."""
+        return cls(condition, check, COMPLIES, reason="not applicable: " + reason, details=details)
+
+    @classmethod
+    def not_evaluated(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+        return cls(condition, check, NOT_EVALUATED, reason=reason, details=details)
+
+    def as_dict(self) -> dict:
+        return {
+            "condition": self.condition.as_dict(),
+            "check": self.check,
+            "value": self.value,
+            "limit": self.limit,
+            "margin": self.margin,
+            "normalized_margin": self.normalized_margin,
+            "unit": self.unit,
+            "status": self.status,
+            "reason": self.reason,
+            **({"details": self.details} if self.details else {}),
+        }
+
+
+@dataclass
+class Evidence:
+    """A plot (inline SVG) or a table attached to a rule result."""
+
+    title: str
+    svg: str = ""
+    caption: str = ""
+    table: list[dict] | None = None
+
+
+@dataclass
+class RuleResult:
+    id: str
+    symbol: str
+    title: str
+    findings: list[Finding]
+    evidence: list[Evidence] = field(default_factory=list)
+    overrides: dict = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def status(self) -> Status:
+        statuses = {f.status for f in self.findings}
+        if FAILS in statuses:
+            return FAILS
+        if NOT_EVALUATED in statuses or not self.findings:
+            return NOT_EVALUATED
+        return COMPLIES
+
+    @property
+    def critical(self) -> Finding | None:
+        """The evaluated finding with the smallest normalised margin (the critical condition)."""
+        evaluated = [f for f in self.findings if f.margin is not None]
+        if not evaluated:
+            return None
+        return min(evaluated, key=lambda f: (f.normalized_margin if f.normalized_margin is not None else f.margin))
+
+    def as_dict(self) -> dict:
+        crit = self.critical
+        return {
+            "id": self.id,
+            "symbol": self.symbol,
+            "title": self.title,
+            "status": self.status,
+            "min_margin": crit.margin if crit else None,
+            "normalized_min_margin": crit.normalized_margin if crit else None,
+            "unit": crit.unit if crit else "",
+            "critical_check": crit.check if crit else None,
+            "critical_condition": crit.condition.as_dict() if crit else None,
+            "overrides": self.overrides,
+            "notes": self.notes,
+            "findings": [f.as_dict() for f in self.findings],
+        }
+
+
+@dataclass
+class RunResult:
+    certkit_version: str
+    aircraft_name: str
+    source_sha256: str
+    source_path: str
+    created: str
+    rules: list[RuleResult]
+
+    def summary(self) -> dict:
+        statuses = [r.status for r in self.rules]
+        return {"rules": len(self.rules), "complies": statuses.count(COMPLIES), "fails": statuses.count(FAILS),
+                "not_evaluated": statuses.count(NOT_EVALUATED)}
+
+    def as_dict(self) -> dict:
+        return {
+            "certkit_version": self.certkit_version,
+            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path},
+            "created": self.created,
+            "summary": self.summary(),
+            "rules": [r.as_dict() for r in self.rules],
+        }
+
+    def exit_code(self) -> int:
+        """0 all comply, 1 any fails, 3 nothing fails but something was not evaluated."""
+        s = self.summary()
+        if s["fails"]:
+            return 1
+        if s["not_evaluated"]:
+            return 3
+        return 0

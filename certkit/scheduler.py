@@ -1,0 +1,126 @@
+"""Runs rules over their conditions; isolates failures; deterministic with any number of jobs.
+
+For each rule: check the inputs it needs (missing → ``not_evaluated`` before any computation),
+apply the aircraft file's criteria overrides, expand the condition space, evaluate the whole batch,
+and if the batch raises, evaluate condition by condition so that one bad condition is recorded
+as ``not_evaluated`` with its reason while the others still run. ``jobs > 1`` spreads rules over
+processes; results are put back in rule order, so they equal those of ``jobs = 1``.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import traceback
+from concurrent.futures import ProcessPoolExecutor
+
+from certkit import __version__
+from certkit.aircraft import LoadedAircraft, load_aircraft
+from certkit.context import Context
+from certkit.errors import UserError
+from certkit.registry import Criteria, DiscoveryOptions, Rule, discover
+from certkit.results import Condition, Finding, RuleResult, RunResult
+
+
+def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
+    """The rule's criteria with the aircraft file's overrides; unknown names are a user error."""
+    values = Criteria({name: c.value for name, c in rule.criteria.items()})
+    override = ctx.aircraft.criteria.get(rule.id)
+    applied: dict = {}
+    if override is not None:
+        for name, value in override.values.items():
+            if name not in rule.criteria:
+                known = ", ".join(rule.criteria) or "none"
+                raise UserError(f"criteria.{rule.id}.values.{name}: rule {rule.id} has no criterion {name!r} (known: {known})")
+            default = rule.criteria[name].value
+            if isinstance(default, (int, float)) and not isinstance(default, bool) and not isinstance(value, (int, float)):
+                raise UserError(f"criteria.{rule.id}.values.{name}: expected a number like {default!r}, got {value!r}")
+            applied[name] = {"default": default, "value": value, "justification": override.justification}
+            values[name] = value
+    return values, applied
+
+
+def _describe_exception(exc: BaseException) -> str:
+    return f"{exc.__class__.__name__}: {exc}"
+
+
+def evaluate_rule(rule: type[Rule], ctx: Context) -> RuleResult:
+    instance = rule()
+    criteria, overrides = criteria_for(rule, ctx)
+    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides)
+    missing = ctx.missing(rule.requires)
+    if missing:
+        result.findings.append(Finding.not_evaluated(
+            Condition(), "inputs", "needs " + ", ".join(missing),
+            hint=f"declare {', '.join(missing)} in the aircraft file"))
+        return result
+    try:
+        conditions = rule.conditions.expand(ctx.aircraft)
+    except Exception as exc:  # a condition space that cannot be built is reported, not raised
+        result.findings.append(Finding.not_evaluated(Condition(), "conditions", _describe_exception(exc)))
+        return result
+    if not conditions:
+        result.findings.append(Finding.not_evaluated(Condition(), "conditions", "no condition applies (configurations or speeds not declared)"))
+        return result
+    try:
+        findings = instance.evaluate(ctx, conditions, criteria)
+    except UserError:
+        raise
+    except Exception:
+        findings = []
+        for cond in conditions:
+            try:
+                findings += instance.evaluate(ctx, [cond], criteria)
+            except UserError:
+                raise
+            except Exception as exc:
+                findings.append(Finding.not_evaluated(cond, "computation", _describe_exception(exc),
+                                                      traceback=traceback.format_exc(limit=3)))
+    covered = {f.condition for f in findings}
+    for cond in conditions:
+        if cond not in covered:
+            findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
+    result.findings = findings
+    try:
+        result.evidence = instance.evidence(ctx, findings, criteria)
+    except Exception as exc:
+        result.notes.append(f"evidence could not be drawn: {_describe_exception(exc)}")
+    return result
+
+
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> list[RuleResult]:
+    ctx = Context(loaded)
+    return [evaluate_rule(r, ctx) for r in rules]
+
+
+_WORKER: dict = {}
+
+
+def _worker_init(path: str, options: DiscoveryOptions) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    _WORKER["loaded"] = load_aircraft(path)
+    _WORKER["rules"] = {r.id: r for r in discover(options)}
+
+
+def _worker_run(rule_ids: list[str]) -> list[RuleResult]:
+    return _evaluate_many(_WORKER["loaded"], [_WORKER["rules"][i] for i in rule_ids])
+
+
+def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None) -> RunResult:
+    """Evaluate ``rules`` on ``loaded``; ``jobs`` processes (rules are split round-robin)."""
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1 (got {jobs})")
+    if jobs == 1 or len(rules) <= 1:
+        results = _evaluate_many(loaded, rules)
+    else:
+        chunks = [[r.id for r in rules[i::jobs]] for i in range(jobs)]
+        chunks = [c for c in chunks if c]
+        with ProcessPoolExecutor(max_workers=len(chunks), initializer=_worker_init,
+                                 initargs=(loaded.path, options)) as pool:
+            parts = list(pool.map(_worker_run, chunks))
+        by_id = {r.id: r for part in parts for r in part}
+        results = [by_id[r.id] for r in rules]
+    created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results)

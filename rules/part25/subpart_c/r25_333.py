@@ -1,0 +1,112 @@
+"""§25.333 Flight maneuvering envelope (Amdt. 25-86).
+
+The strength requirements must be met at each combination of airspeed and load factor on and
+within the representative maneuvering envelope (V–n diagram) of (b). This rule builds the envelope
+per weight and altitude — stall lines from ±C_Nmax, corners A (VA-point, n₊), D (VD, n₊),
+E (VD, 0), F (VC, n₋), H (negative stall, n₋) — checks that the declared speeds close it, and draws
+it. The strength check on the envelope belongs to the loads rules (§25.331, §25.341 …).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
+from certkit.models.performance.stall import stall_speed_eas
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Evidence, Finding
+from certkit_rules.part25.subpart_c.r25_335 import CN_SOURCE, declared_eas
+
+
+@dataclass(frozen=True)
+class VnEnvelope:
+    """Corners of the manoeuvring envelope (speeds m/s EAS)."""
+
+    vs1_pos: float
+    vs1_neg: float
+    n_pos: float
+    n_neg: float
+    v_a: float   # positive stall line meets n_pos (point A)
+    v_c: float
+    v_d: float
+    v_h: float   # negative stall line meets n_neg (point H)
+
+    def corners(self) -> dict[str, tuple[float, float]]:
+        return {"A": (self.v_a, self.n_pos), "D": (self.v_d, self.n_pos), "E": (self.v_d, 0.0),
+                "F": (self.v_c, self.n_neg), "H": (self.v_h, self.n_neg)}
+
+    def outline(self, samples: int = 60) -> tuple[np.ndarray, np.ndarray]:
+        """Closed outline: stall line to A, A–D, D–E, E–F, F–H, negative stall line back to 0."""
+        vp = np.linspace(0.0, self.v_a, samples)
+        vn = np.linspace(self.v_h, 0.0, samples)
+        v = np.concatenate([vp, [self.v_d, self.v_d, self.v_c], vn])
+        n = np.concatenate([(vp / self.vs1_pos) ** 2, [self.n_pos, 0.0, self.n_neg], -(vn / self.vs1_neg) ** 2])
+        return v, n
+
+
+def envelope(ctx, mass: float, altitude: float, cn_over_cl: float) -> VnEnvelope:
+    a = ctx.aircraft
+    clean = a.configurations["clean"]
+    lf = a.envelope.limit_load_factors
+    vs_pos = float(stall_speed_eas(mass, a.reference.area, cn_over_cl * clean.CLmax))
+    vs_neg = float(stall_speed_eas(mass, a.reference.area, cn_over_cl * clean.CLmin))
+    vc, _ = ctx.design_speed_eas("VC", altitude)
+    vd, _ = ctx.design_speed_eas("VD", altitude)
+    return VnEnvelope(vs_pos, vs_neg, lf.positive, lf.negative, vs_pos * np.sqrt(lf.positive), float(vc), float(vd),
+                      vs_neg * np.sqrt(abs(lf.negative)))
+
+
+@rule
+class FlightManeuveringEnvelope(Rule):
+    id = "25.333"
+    symbol = "flight-maneuvering-envelope"
+    title = "Flight maneuvering envelope (V–n diagram)"
+    amendment = "25-86"
+    requirement = """
+        The strength requirements must be met at each combination of airspeed and load factor on and within
+        the boundaries of the representative manoeuvring envelope: the stall lines of ±C_Nmax, the positive
+        limit load factor from A to D, VD from D to E, the negative limit load factor from F (VC) back to the
+        negative stall line at H, and the line E–F.
+    """
+    margin = """
+        For each weight and altitude, three closure checks in m/s EAS: VA − V_A (the declared VA is at or
+        above where the +C_Nmax line reaches n₊), VC − V_H (the −C_Nmax line reaches n₋ before VC) and
+        VD − VC (the envelope has a positive width). ≥ 0 complies.
+    """
+    references = ("25.335(c)", "25.337", "25.331", "25.1501")
+    requires = ("speeds.VA", "speeds.VC", "speeds.VD", "configurations.clean.CLmax", "configurations.clean.CLmin",
+                "envelope.limit_load_factors")
+    criteria = {"cn_over_cl": Criterion(1.1, "", CN_SOURCE, "C_Nmax / C_Lmax for the stall lines (estimation method)")}
+    conditions = ConditionSpace(loading=EnvelopeWeights(), altitudes=EnvelopeAltitudes())
+    limitations = ("Strength on the envelope is checked by the loads rules; this rule defines the envelope and "
+                   "checks that the declared speeds close it.")
+
+    def evaluate(self, ctx, conditions, crit):
+        out = []
+        for cond in conditions:
+            env = envelope(ctx, cond.mass, cond.altitude, crit.cn_over_cl)
+            corners = {k: [round(v, 3), round(n, 3)] for k, (v, n) in env.corners().items()}
+            va = declared_eas(ctx, "VA", cond.altitude)
+            out.append(Finding.compare(cond, "A: +C_Nmax line reaches n₊ at or below VA", va, env.v_a, at_least=True,
+                                       unit="m/s", corners=corners))
+            out.append(Finding.compare(cond, "H: −C_Nmax line reaches n₋ at or below VC", env.v_c, env.v_h,
+                                       at_least=True, unit="m/s"))
+            out.append(Finding.compare(cond, "D–E: VD above VC", env.v_d, env.v_c, at_least=True, unit="m/s"))
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.plots import vn_diagram_svg
+
+        conds = sorted({f.condition for f in findings if f.condition.mass is not None},
+                       key=lambda c: (c.altitude, c.mass))
+        if not conds:
+            return []
+        h0 = min(c.altitude for c in conds)
+        sea = [c for c in conds if c.altitude == h0]
+        picks = [sea[0], sea[-1]] if len(sea) > 1 else sea
+        envs = [(c.loading or f"{c.mass:.0f} kg", envelope(ctx, c.mass, c.altitude, crit.cn_over_cl)) for c in picks]
+        speeds = {name: declared_eas(ctx, name, h0) for name in ("VA", "VB", "VC", "VD") if getattr(ctx.aircraft.speeds, name)}
+        return [Evidence("V–n manoeuvring envelope, lightest and heaviest weight, lowest altitude",
+                         vn_diagram_svg(envs, speeds), "Stall lines from ±C_Nmax; corners A, D, E, F, H; declared speeds dashed.")]

@@ -1,0 +1,34 @@
+"""Shared fixtures: the bundled baseline and a CLI runner."""
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from certkit.aircraft import load_aircraft
+from certkit.cli import main
+from certkit.context import Context
+
+ROOT = Path(__file__).resolve().parents[1]
+BASELINE = ROOT / "aircraft" / "lta.yaml"
+SHARED_REFERENCE = ROOT.parent / "shared" / "reference"
+
+
+@pytest.fixture(scope="session")
+def baseline():
+    return load_aircraft(BASELINE)
+
+
+@pytest.fixture
+def ctx(baseline):
+    return Context(baseline)
+
+
+@pytest.fixture
+def cli():
+    runner = CliRunner()
+
+    def invoke(*args):
+        return runner.invoke(main, [str(a) for a in args], catch_exceptions=False)
+
+    return invoke

@@ -1,0 +1,109 @@
+"""The aircraft file: SI conversion, every problem at once with path and line, exit code 2."""
+
+import json
+import subprocess
+import sys
+import textwrap
+
+import pytest
+
+from certkit.aircraft import load_aircraft
+from certkit.errors import InputError
+
+from ..conftest import BASELINE
+
+
+def test_baseline_values_in_si(baseline):
+    a = baseline.model
+    assert a.geometry.wing.area == pytest.approx(4927.3 * 0.3048**2)
+    assert a.propulsion.static_thrust == pytest.approx(97300 * 4.4482216152605)
+    assert a.speeds.VD.kind == "EAS" and a.speeds.VD.value == pytest.approx(340 * 1852 / 3600)
+    assert len(a.cg_envelope.vertices) == 8
+    assert a.geometry.horizontal_tail.controls["elevator"].travel.min == pytest.approx(-30 * 3.141592653589793 / 180)
+
+
+BAD = textwrap.dedent("""\
+    name: bad
+    reference: {area: -3 ft^2, span: 10 m, mean_chord: 2 m, moment_point: {x: 1 m}}
+    geometry:
+      wing: {area: 10, aspect_ratio: 8, taper: 1.4, sweep_quarter_chord: 0, root_leading_edge: {x: 1}}
+      horizontal_tail: {area: 2, aspect_ratio: 4, taper: 0.5, sweep_quarter_chord: 0, root_leading_edge: {x: 8}}
+      vertical_tail: {area: 2, aspect_ratio: 1.5, taper: 0.5, sweep_quarter_chord: 0, root_leading_edge: {x: 8}}
+      fuselage: {length: 10, width: 1, height: 1}
+    mass: {MTOW: 1000, MLW: 1200 kg, MZFW: 800, OEW: 500}
+    cg_envelope:
+      vertices: [{mass: 500, x: 1}, {mass: 1000, x: 2}, {mass: 500, x: 2}, {mass: 1000, x: 1}]
+    propulsion: {static_thrust: "10 kg", engines: [{name: a, position: {x: 3}}]}
+    configurations: {clean: {CLmax: 1.4}}
+    speeds: {VC: "300 kn EAS", VD: "250 kn EAS"}
+    envelope: {ceiling: 1000 m, limit_load_factors: {positive: 2.5}}
+    aspect: 3
+""")
+
+
+@pytest.fixture
+def bad_file(tmp_path):
+    path = tmp_path / "bad.yaml"
+    path.write_text(BAD)
+    return path
+
+
+def test_every_problem_reported_at_once_with_line(bad_file):
+    with pytest.raises(InputError) as info:
+        load_aircraft(bad_file)
+    by_path = {p.path: p for p in info.value.problems}
+    expected = {
+        "reference.area": (2, "greater than 0"),
+        "geometry.wing.taper": (4, "less than or equal to 1"),
+        "mass.MLW": (8, "must not exceed MTOW"),
+        "cg_envelope.vertices": (10, "crosses itself"),
+        "propulsion.static_thrust": (11, "not a force"),
+        "speeds.VD": (13, "must not be below VC"),
+        "aspect": (15, "unknown field"),
+    }
+    for path, (line, words) in expected.items():
+        assert path in by_path, f"{path} not reported: {list(by_path)}"
+        assert by_path[path].line == line
+        assert words in by_path[path].message
+    assert by_path["mass.MLW"].value == "1200 kg"  # the value as written
+
+
+def test_cli_exit_2_without_traceback(bad_file):
+    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(bad_file)], capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert "Traceback" not in proc.stderr + proc.stdout
+    assert "geometry.wing.taper" in proc.stderr and f"{bad_file}:4" in proc.stderr
+
+
+@pytest.mark.parametrize("text,path,words", [
+    ("name: x\nname: y\n", "name", "duplicate key"),
+    ("!!python/object/apply:os.system ['echo hi']\n", "", "not valid YAML"),
+    ("- a\n- b\n", "", "mapping of sections"),
+    ("name: [unclosed\n", "", "not valid YAML"),
+])
+def test_unsafe_or_malformed_yaml(tmp_path, text, path, words):
+    f = tmp_path / "a.yaml"
+    f.write_text(text)
+    with pytest.raises(InputError) as info:
+        load_aircraft(f)
+    assert any(p.path == path and words in p.message for p in info.value.problems), info.value
+
+
+def test_speed_must_state_its_kind(tmp_path):
+    text = BASELINE.read_text().replace("VA: 265 kn EAS", "VA: 265 kn")
+    f = tmp_path / "a.yaml"
+    f.write_text(text)
+    with pytest.raises(InputError, match=r"speeds\.VA: .*end with its kind"):
+        load_aircraft(f)
+
+
+def test_missing_file_is_a_user_error(cli, tmp_path):
+    with pytest.raises(InputError, match="file not found"):
+        load_aircraft(tmp_path / "nope.yaml")
+
+
+def test_schema_command_prints_json_schema(cli):
+    out = cli("schema")
+    schema = json.loads(out.output)
+    assert out.exit_code == 0
+    assert {"reference", "geometry", "mass", "cg_envelope", "speeds"} <= set(schema["properties"])

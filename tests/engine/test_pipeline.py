@@ -1,0 +1,184 @@
+"""The check pipeline: results.json, determinism, --jobs, --rules folders, plugins, isolation, escaping."""
+
+import json
+import textwrap
+
+import pytest
+
+from certkit.aircraft import load_aircraft
+from certkit.errors import UserError
+from certkit.registry import DiscoveryOptions, PluginError, discover, folder_rules, select
+from certkit.scheduler import run
+
+from ..conftest import BASELINE
+
+USER_RULE = textwrap.dedent('''
+    from certkit.conditions import CgCorners, ConditionSpace
+    from certkit.registry import Criterion, Rule, rule
+    from certkit.results import Finding
+
+    @rule
+    class CornerMassCheck(Rule):
+        id = "25.901"
+        symbol = "user-corner-mass"
+        title = "User rule: corner mass below MRW"
+        amendment = "none"
+        requirement = "Every corner of the envelope is below the maximum ramp weight."
+        margin = "MRW minus corner mass."
+        criteria = {"scale": Criterion(1.0, "", "user test", "factor on MRW")}
+        conditions = ConditionSpace(loading=CgCorners())
+
+        def evaluate(self, ctx, conditions, crit):
+            out = []
+            for c in conditions:
+                if c.loading == "{explode}":
+                    raise RuntimeError("solver diverged at this corner")
+                out.append(Finding.compare(c, "mass", c.mass, crit.scale * ctx.aircraft.mass.MRW, at_least=False, unit="kg"))
+            return out
+''')
+
+
+def write_rule(folder, explode="none"):
+    folder.mkdir(exist_ok=True)
+    (folder / "corner_mass.py").write_text(USER_RULE.replace("{explode}", explode))
+    return folder
+
+
+def test_check_writes_results_json_with_stable_keys(cli, tmp_path):
+    out = cli("check", BASELINE, "--out", tmp_path)
+    data = json.loads((tmp_path / "results.json").read_text())
+    assert set(data) >= {"certkit_version", "aircraft", "summary", "rules"}
+    assert set(data["aircraft"]) >= {"name", "source_sha256"}
+    assert set(data["summary"]) == {"rules", "complies", "fails", "not_evaluated"}
+    ids = [r["id"] for r in data["rules"]]
+    assert {"25.333", "25.335(c)", "25.337"} <= set(ids)
+    for r in data["rules"]:
+        assert set(r) >= {"id", "symbol", "title", "status", "min_margin", "unit", "critical_condition", "findings"}
+        for f in r["findings"]:
+            assert set(f) >= {"condition", "value", "limit", "margin", "normalized_margin", "unit", "status", "reason"}
+            if f["margin"] is not None:
+                assert (f["margin"] >= -1e-9 * max(1, abs(f["limit"]))) == (f["status"] == "complies")
+    # the three first rules are evaluated over the CG-envelope weights
+    r337 = next(r for r in data["rules"] if r["id"] == "25.337")
+    masses = {round(f["condition"]["mass_kg"]) for f in r337["findings"]}
+    assert len(masses) == 4  # 300,000 / 430,000 / 460,000 / 657,000 lb
+    s = data["summary"]
+    assert out.exit_code == (1 if s["fails"] else 3 if s["not_evaluated"] else 0)
+    assert (tmp_path / "index.html").read_text().count("<svg") >= 1
+
+
+def test_deterministic_and_jobs_equal(baseline):
+    rules = discover()
+    a = run(baseline, rules).as_dict()
+    b = run(baseline, rules).as_dict()
+    c = run(baseline, rules, jobs=2).as_dict()
+    for d in (a, b, c):
+        d.pop("created")
+    assert a == b
+    assert a == c
+
+
+def test_user_rules_folder_appears_in_report(cli, tmp_path):
+    folder = write_rule(tmp_path / "my_rules")
+    out = cli("check", BASELINE, "--rules", folder, "--out", tmp_path / "rep", "--select", "25.9")
+    data = json.loads((tmp_path / "rep" / "results.json").read_text())
+    assert [r["id"] for r in data["rules"]] == ["25.901"]
+    assert data["rules"][0]["status"] == "complies"
+    assert out.exit_code == 0
+    assert "User rule: corner mass below MRW" in (tmp_path / "rep" / "index.html").read_text()
+
+
+def test_exception_at_one_condition_is_isolated(baseline, tmp_path):
+    rules = folder_rules(write_rule(tmp_path / "r", explode="fwd_mid"))
+    result = run(baseline, rules).rules[0]
+    bad = [f for f in result.findings if f.status == "not_evaluated"]
+    assert [f.condition.loading for f in bad] == ["fwd_mid"]
+    assert "solver diverged" in bad[0].reason
+    assert len(result.findings) == 8
+    assert result.status == "not_evaluated"
+    assert run(baseline, rules).exit_code() == 3
+
+
+def test_invalid_plugin_metadata_names_plugin_and_field(tmp_path):
+    folder = tmp_path / "broken"
+    folder.mkdir()
+    (folder / "bad_rule.py").write_text(USER_RULE.replace('id = "25.901"', 'id = "twenty-five"'))
+    with pytest.raises(PluginError, match=r"bad_rule\.py.*CornerMassCheck.*field 'id'"):
+        folder_rules(folder)
+
+
+def test_cli_plugin_error_exit_2(cli, tmp_path):
+    import subprocess
+    import sys
+
+    folder = tmp_path / "broken"
+    folder.mkdir()
+    (folder / "bad_rule.py").write_text(USER_RULE.replace('symbol = "user-corner-mass"', 'symbol = "Bad Symbol"'))
+    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "rules", "--rules", str(folder)], capture_output=True, text=True)
+    assert proc.returncode == 2 and "field 'symbol'" in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_missing_input_is_not_evaluated_before_computation(tmp_path):
+    text = BASELINE.read_text().replace("  VB: 222 kn EAS", "  # VB removed")
+    f = tmp_path / "a.yaml"
+    f.write_text(text)
+    result = run(load_aircraft(f), select(discover(), ("25.335(d)",))).rules[0]
+    assert result.status == "not_evaluated"
+    assert result.findings[0].reason == "needs speeds.VB"
+
+
+def test_select_and_ignore():
+    rules = discover()
+    assert [r.id for r in select(rules, ("25.335",), ("25.335(b)",))] == ["25.335(a)", "25.335(c)", "25.335(d)"]
+    assert [r.id for r in select(rules, ("limit-maneuvering-load-factors",))] == ["25.337"]
+    with pytest.raises(UserError, match="no rule matches"):
+        select(rules, ("25.999",))
+
+
+def test_html_escapes_every_input_string(cli, tmp_path):
+    evil = "<script>alert('x')</script>"
+    text = BASELINE.read_text().replace("name: LTA-300 large twin-aisle", f'name: "{evil}"')
+    text = text.replace("name: fwd_light", 'name: "<b>fwd&light</b>"')
+    f = tmp_path / "evil.yaml"
+    f.write_text(text)
+    cli("check", f, "--out", tmp_path / "out")
+    html = (tmp_path / "out" / "index.html").read_text()
+    assert "<script>" not in html and "<b>fwd" not in html
+    assert "&lt;script&gt;" in html and "&lt;b&gt;fwd&amp;light&lt;/b&gt;" in html
+
+
+def test_criteria_override_is_applied_and_reported(tmp_path, cli):
+    text = BASELINE.read_text() + textwrap.dedent("""
+        criteria:
+          "25.335(b)":
+            justification: rational analysis including the automatic overspeed protection (test)
+            values: {mach_margin: 0.05}
+    """)
+    f = tmp_path / "o.yaml"
+    f.write_text(text)
+    cli("check", f, "--out", tmp_path / "o", "--select", "25.335(b)")
+    data = json.loads((tmp_path / "o" / "results.json").read_text())
+    assert data["rules"][0]["overrides"]["mach_margin"]["value"] == 0.05
+    assert "automatic overspeed protection" in (tmp_path / "o" / "index.html").read_text()
+    bad = text.replace("mach_margin: 0.05", "mach_margn: 0.05")
+    f.write_text(bad)
+    with pytest.raises(UserError, match=r"criteria\.25\.335\(b\)\.values\.mach_margn"):
+        run(load_aircraft(f), select(discover(), ("25.335(b)",)))
+
+
+def test_rules_explain_and_new_rule(cli, tmp_path):
+    listing = cli("rules").output
+    assert "25.337" in listing and "limit-maneuvering-load-factors" in listing
+    doc = cli("explain", "25.337").output
+    for heading in ("Requirement", "Criterion", "Conditions", "Margin", "Cross-references"):
+        assert heading in doc
+    assert "24000" in doc and "14 CFR 25.337" in doc
+    root = tmp_path / "repo"
+    (root / "rules" / "part25" / "subpart_b").mkdir(parents=True)
+    (root / "rules" / "part25" / "subpart_b" / "__init__.py").write_text("")
+    out = cli("new-rule", "25.171", "--symbol", "static-stability", "--title", "Stability: general", "--root", root)
+    assert out.exit_code == 0
+    module = root / "rules" / "part25" / "subpart_b" / "r25_171.py"
+    assert module.exists() and (root / "tests" / "rules" / "test_r25_171.py").exists()
+    (rule_cls,) = folder_rules(module.parent)
+    assert rule_cls.id == "25.171" and rule_cls.implementation == "planned"

@@ -1,0 +1,53 @@
+"""Units at the boundary and the ISA (references: ISO 2533:1975 defining values)."""
+
+import numpy as np
+import pytest
+
+from certkit import atmosphere as isa
+from certkit.units import UnitError, from_si, to_si
+
+
+def test_quantities_convert_to_si():
+    """Exact conversion factors (NIST SP 811): 1 ft = 0.3048 m, 1 lbf = 4.4482216152605 N, 1 kn = 1852/3600 m/s."""
+    assert to_si("4927.3 ft^2", "area") == pytest.approx(4927.3 * 0.3048**2, rel=1e-12)
+    assert to_si("97300 lbf", "force") == pytest.approx(97300 * 4.4482216152605, rel=1e-12)
+    assert to_si("340 kn", "speed") == pytest.approx(340 * 1852 / 3600, rel=1e-12)
+    assert to_si("43000 ft", "length") == pytest.approx(13106.4, rel=1e-12)
+    assert to_si(12.5, "length") == 12.5
+    assert from_si(174.9111111, "kn") == pytest.approx(340.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("text,dim", [("10 kg", "force"), ("3 furlongs per bogus", "length"), ("abc", "area")])
+def test_wrong_units_are_rejected(text, dim):
+    with pytest.raises(UnitError):
+        to_si(text, dim)
+
+
+def test_isa_defining_values():
+    """ISO 2533: sea level 288.15 K / 101325 Pa / 1.225 kg/m³; tropopause (11 km geopotential) 216.65 K and
+    22632.06 Pa; 20 km 5474.89 Pa. Tolerance 1e-5 relative (table digits)."""
+    h = np.array([0.0, 11000.0, 20000.0])
+    assert isa.temperature(h) == pytest.approx([288.15, 216.65, 216.65], rel=1e-9)
+    assert isa.pressure(h) == pytest.approx([101325.0, 22632.06, 5474.89], rel=1e-5)
+    assert isa.density(0.0) == pytest.approx(1.225, rel=1e-4)
+    assert isa.speed_of_sound(0.0) == pytest.approx(340.294, rel=1e-5)
+
+
+def test_airspeed_conversions_are_consistent():
+    """CAS = TAS = EAS at sea level; EAS = TAS·√σ; CAS ≥ EAS at altitude (compressibility); round trips."""
+    v = np.array([60.0, 150.0, 250.0])
+    for kind in ("EAS", "CAS"):
+        assert isa.convert_speed(v, kind, "TAS", 0.0) == pytest.approx(v, rel=1e-7)
+    h = 10668.0
+    tas = isa.to_tas(v, "EAS", h)
+    assert tas == pytest.approx(v / np.sqrt(isa.density(h) / isa.RHO0))
+    assert np.all(isa.convert_speed(v, "EAS", "CAS", h) > v)
+    for kind in ("EAS", "CAS", "MACH"):
+        assert isa.from_tas(isa.to_tas(v / 300 if kind == "MACH" else v, kind, h), kind, h) == pytest.approx(
+            v / 300 if kind == "MACH" else v, rel=1e-7)
+    assert isa.cas_to_mach(isa.mach_to_cas(1.3, h), h) == pytest.approx(1.3, rel=1e-6)
+
+
+def test_altitude_outside_the_model_is_an_error():
+    with pytest.raises(isa.AtmosphereRangeError, match="outside"):
+        isa.density(25000.0)

@@ -1,0 +1,89 @@
+"""§25.335 design airspeeds against hand calculations in the paragraph's own units (lb, ft, slug, kn).
+
+Independent of certkit's SI path: ρ₀ = 0.0023769 slug/ft³, g = 32.174 ft/s², 1 kn = 1.68781 ft/s,
+and the paragraph's dimensional constant 498 in (d)(1). Tolerances state the rounding of 498 (0.1 %).
+"""
+
+import math
+
+import pytest
+
+from certkit.units import KN
+
+from .helpers import run_rule
+
+RHO0_SLUG, G_FT, KT_FT = 0.0023769, 32.174, 1.6878099
+S_FT2, CLMAX, CN_OVER_CL = 4927.3, 1.4, 1.1
+SPAN_FT = 208.35
+
+
+def vs1_kn(w_lb):
+    return math.sqrt(2 * w_lb / (RHO0_SLUG * S_FT2 * CN_OVER_CL * CLMAX)) / KT_FT
+
+
+def by_mass(result, lb, altitude_m=0.0):
+    return next(f for f in result.findings if abs(f.condition.mass / 0.45359237 - lb) < 1 and f.condition.altitude == altitude_m)
+
+
+def test_va_hand_calculation():
+    """(c): VA ≥ min(VS1·√2.5, VC) with VS1 from C_Nmax = 1.1·1.4 at 657,000 lb; declared VA 265 KEAS."""
+    r = run_rule("25.335(c)")
+    f = by_mass(r, 657_000)
+    required = min(vs1_kn(657_000) * math.sqrt(2.5), 272.0)
+    assert f.limit / KN == pytest.approx(required, rel=1e-4)
+    assert f.margin / KN == pytest.approx(265.0 - required, abs=0.02)
+    assert r.status == "complies"
+
+
+def test_vb_hand_calculation_with_the_498_formula(ctx):
+    """(d)(1): VB ≥ VS1·[1 + Kg Uref Vc a/(498 w)]^½, Kg = 0.88μ/(5.3+μ), μ = 2w/(ρ c a g), at sea level, 657,000 lb."""
+    r = run_rule("25.335(d)")
+    f = by_mass(r, 657_000)
+    a = f.details["lift_slope"]
+    w = 657_000 / S_FT2
+    c = S_FT2 / SPAN_FT
+    mu = 2 * w / (RHO0_SLUG * c * a * G_FT)
+    kg = 0.88 * mu / (5.3 + mu)
+    ng = 1 + kg * 56.0 * 272.0 * a / (498 * w)
+    assert f.details["mu"] == pytest.approx(mu, rel=2e-3)
+    assert f.limit / KN == pytest.approx(vs1_kn(657_000) * math.sqrt(ng), rel=1e-3)
+    # the lift slope is the DATCOM value for AR 8.81 at the Mach of 272 KEAS at sea level (M 0.411)
+    assert 4.0 < a < 5.5
+
+
+def test_vc_hand_calculation():
+    """(a)(2) at sea level: VC − (VB + 1.32·56 ft/s) = 272 − (222 + 43.79) = 6.21 kn."""
+    r = run_rule("25.335(a)")
+    f = next(f for f in r.findings if f.condition.altitude == 0.0)
+    assert f.margin / KN == pytest.approx(272 - (222 + 1.32 * 56 / KT_FT), abs=0.01)
+    high = next(f for f in r.findings if f.condition.altitude > 12000)
+    assert high.reason.startswith("not applicable") and high.margin is None
+
+
+def test_vd_on_the_limit_and_sign(tmp_path):
+    """(b): VD = 340 = VC/0.8 exactly -> margin 0 complies; a higher VC fails; a higher VD adds margin."""
+    r = run_rule("25.335(b)")
+    sea = next(f for f in r.findings if f.condition.altitude == 0.0)
+    assert sea.status == "complies" and sea.margin == pytest.approx(0.0, abs=1e-9)
+    worse = run_rule("25.335(b)", tmp_path, [("VC: 272 kn EAS", "VC: 280 kn EAS")])
+    assert worse.status == "fails"
+    better = run_rule("25.335(b)", tmp_path, [("VD: 340 kn EAS", "VD: 350 kn EAS")])
+    assert better.critical.margin > sea.margin
+
+
+def test_mach_margin_route_at_ceiling():
+    """(b)(2) at 43,000 ft both speeds are Mach-limited: MD − MC = 0.94 − 0.87 = 0.07 ≥ 0.07."""
+    r = run_rule("25.335(b)")
+    top = max(r.findings, key=lambda f: f.condition.altitude)
+    assert top.unit == "Mach" and top.value == pytest.approx(0.07, abs=1e-9)
+
+
+def test_sign_more_clmax_lowers_required_va(tmp_path):
+    base = run_rule("25.335(c)").critical.margin
+    more = run_rule("25.335(c)", tmp_path, [("CLmax: 1.4 ", "CLmax: 1.6 ")]).critical.margin
+    assert more > base
+
+
+def test_not_evaluated_without_va(tmp_path):
+    r = run_rule("25.335(c)", tmp_path, [("  VA: 265 kn EAS ", "  # VA: 265 kn EAS ")])
+    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VA"
