@@ -419,10 +419,7 @@ class AircraftModel:
              2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33)
         p, q, r = X[6], X[7], X[8]
         res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
-        xd = np.empty_like(x)
-        XD = xd.T
-        for k in range(9):
-            XD[k] = res[k]
+        xd, XD = _translational_part(x, res)
         XD[9] = -0.5 * (p * q1 + q * q2 + r * q3)
         XD[10] = 0.5 * (p * q0 + r * q2 - q * q3)
         XD[11] = 0.5 * (q * q0 - r * q1 + p * q3)
@@ -439,14 +436,19 @@ class AircraftModel:
              -st, sf * ct, cf * ct)
         p, q, r = X[6], X[7], X[8]
         res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
-        xd = np.empty_like(x)
-        XD = xd.T
-        for k in range(9):
-            XD[k] = res[k]
+        xd, XD = _translational_part(x, res)
         XD[9] = p + (q * sf + r * cf) * st / ct
         XD[10] = q * cf - r * sf
         XD[11] = (q * sf + r * cf) / ct
         return (xd, res[9]) if with_outputs else xd
+
+
+def _translational_part(x, res):
+    xd = np.empty_like(x)
+    XD = xd.T
+    for k in range(9):
+        XD[k] = res[k]
+    return xd, XD
 
 
 def euler_state_to_quat_state(x12) -> np.ndarray:

@@ -1,0 +1,138 @@
+"""Engine models: a tabulated deck, a parametric high-bypass turbofan, windmilling drag.
+
+Every model offers ``thrust(throttle, h, mach) -> N`` and ``fuel_flow(throttle, h, mach) -> kg/s``
+on arrays (the signature :class:`certkit.models.dynamics.eom.Engine` expects), throttle in [0, 1].
+
+:class:`EngineDeck`
+    Thrust and fuel flow tabulated on an (altitude, Mach, throttle) grid, interpolated linearly.
+    A point outside the table raises :class:`DeckRangeError` naming the point and the table's
+    range, unless the deck was built with ``allow_extrapolation=True`` (then the end values are
+    extrapolated linearly) — never silently.
+
+:class:`ParametricTurbofan`
+    Without a deck: thrust lapse of a high-bypass turbofan after Mattingly (*Aircraft Engine
+    Design*, 2nd ed., AIAA 2002, §2.3 installed-thrust lapse for high-bypass turbofans):
+        δ0 = δ (1 + 0.2 M²)^3.5,  θ0 = θ (1 + 0.2 M²)     (total pressure / temperature ratios)
+        lapse = δ0 (1 − 0.49 √M)                              for θ0 ≤ TR
+        lapse = δ0 (1 − 0.49 √M − 3 (θ0 − TR) / (1.5 + M))    for θ0 > TR
+    with TR the throttle ratio (1.0 by default: the engine is flat-rated to ISA sea level);
+    thrust = T_SL · lapse · (idle + (1 − idle) · throttle);
+    TSFC = (0.4 + 0.45 M) √θ  per hour (same source), fuel flow = TSFC · T / g0, TSFC taken
+    independent of throttle (a simplification: part-power TSFC rises at low settings).
+
+:func:`windmill_drag`
+    Drag of a failed, windmilling turbofan as a momentum deficit through the fan plus nacelle
+    spillage, of the form used by Torenbeek (*Synthesis of Subsonic Airplane Design*, App. G):
+        D = q [0.0785 D_i² + 2/(1 + 0.16 M²) · (π/4) D_i² · (V_N/V)(1 − V_N/V)]
+    with D_i the inlet diameter and V_N/V ≈ 0.42 for high-bypass fans (check these constants
+    against the source before relying on the value in a VMC finding).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import RegularGridInterpolator
+
+from certkit import atmosphere as isa
+from certkit.units import G0
+
+
+class DeckRangeError(ValueError):
+    """A point outside an engine deck's table."""
+
+
+class EngineDeck:
+    """Tabulated engine: ``altitude`` (m), ``mach``, ``throttle`` grids (increasing), ``thrust``
+    (N) and ``fuel_flow`` (kg/s) arrays of shape (n_alt, n_mach, n_throttle)."""
+
+    def __init__(self, altitude, mach, throttle, thrust, fuel_flow=None, allow_extrapolation: bool = False,
+                 name: str = "engine deck"):
+        self.grid = tuple(np.asarray(g, dtype=float) for g in (altitude, mach, throttle))
+        shape = tuple(g.size for g in self.grid)
+        for g, label in zip(self.grid, ("altitude", "Mach", "throttle")):
+            if g.ndim != 1 or g.size < 2 or np.any(np.diff(g) <= 0):
+                raise ValueError(f"{name}: the {label} breakpoints must be increasing (at least two)")
+        thrust = np.asarray(thrust, dtype=float)
+        if thrust.shape != shape:
+            raise ValueError(f"{name}: thrust table has shape {thrust.shape}, the grid needs {shape}")
+        self.name = name
+        self.allow_extrapolation = allow_extrapolation
+        self._thrust = RegularGridInterpolator(self.grid, thrust, bounds_error=False, fill_value=None)
+        self._ff = None
+        if fuel_flow is not None:
+            ff = np.asarray(fuel_flow, dtype=float)
+            if ff.shape != shape:
+                raise ValueError(f"{name}: fuel-flow table has shape {ff.shape}, the grid needs {shape}")
+            self._ff = RegularGridInterpolator(self.grid, ff, bounds_error=False, fill_value=None)
+
+    def _points(self, throttle, h, mach):
+        h, mach, throttle = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (h, mach, throttle)))
+        pts = np.stack([h, mach, throttle], axis=-1)
+        if not self.allow_extrapolation:
+            lo = np.array([g[0] for g in self.grid])
+            hi = np.array([g[-1] for g in self.grid])
+            bad = np.any((pts < lo - 1e-9) | (pts > hi + 1e-9), axis=-1)
+            if np.any(bad):
+                b = pts[bad][0]
+                raise DeckRangeError(
+                    f"{self.name}: altitude {b[0]:.0f} m, Mach {b[1]:.3f}, throttle {b[2]:.3f} is outside the table "
+                    f"(altitude {lo[0]:.0f}–{hi[0]:.0f} m, Mach {lo[1]:.2f}–{hi[1]:.2f}, throttle {lo[2]:.2f}–{hi[2]:.2f}); "
+                    "extend the deck or build it with allow_extrapolation=True")
+        return pts
+
+    def thrust(self, throttle, h, mach):
+        return self._thrust(self._points(throttle, h, mach))
+
+    def fuel_flow(self, throttle, h, mach):
+        if self._ff is None:
+            raise ValueError(f"{self.name}: no fuel-flow table")
+        return self._ff(self._points(throttle, h, mach))
+
+
+@dataclass
+class ParametricTurbofan:
+    """High-bypass turbofan scaled to its sea-level static thrust (N); see the module docstring."""
+
+    static_thrust: float
+    throttle_ratio: float = 1.0
+    idle_fraction: float = 0.05
+
+    def lapse(self, h, mach):
+        h = np.asarray(h, dtype=float)
+        m = np.maximum(np.asarray(mach, dtype=float), 0.0)
+        theta = isa.temperature(h) / isa.T0
+        delta = isa.pressure(h) / isa.P0
+        k = 1.0 + 0.2 * m * m
+        d0, t0 = delta * k**3.5, theta * k
+        base = 1.0 - 0.49 * np.sqrt(m)
+        hot = base - 3.0 * (t0 - self.throttle_ratio) / (1.5 + m)
+        return d0 * np.where(t0 <= self.throttle_ratio, base, hot)
+
+    def thrust(self, throttle, h, mach):
+        thr = np.clip(np.asarray(throttle, dtype=float), 0.0, 1.0)
+        return self.static_thrust * self.lapse(h, mach) * (self.idle_fraction + (1 - self.idle_fraction) * thr)
+
+    def tsfc(self, h, mach):
+        """Thrust-specific fuel consumption, kg/(N s)."""
+        theta = isa.temperature(h) / isa.T0
+        return (0.4 + 0.45 * np.asarray(mach, dtype=float)) * np.sqrt(theta) / 3600.0 / G0
+
+    def fuel_flow(self, throttle, h, mach):
+        return self.tsfc(h, mach) * self.thrust(throttle, h, mach)
+
+
+def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
+    """A ``windmill_drag(qbar, mach) -> N`` callable for a failed turbofan (module docstring)."""
+    area = np.pi / 4 * inlet_diameter**2
+    r = velocity_ratio
+
+    def drag(qbar, mach):
+        m = np.asarray(mach, dtype=float)
+        return np.asarray(qbar, dtype=float) * (0.0785 * inlet_diameter**2 + 2.0 / (1.0 + 0.16 * m * m) * area * r * (1 - r))
+
+    return drag
+
+
+__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "windmill_drag"]
