@@ -15,8 +15,10 @@ rates, p_s = p cos α + r sin α, r_s = r cos α − p sin α)
 
     CL_lin = CL0 + CL_alpha α + CL_q q̂ + Σ CL_δj δj
     CL     = stall(CL_lin)                       (see below; CL = CL_lin without a stall model)
-    CD     = CD0 + k (CL − CL_minD)² + Σ CD_δj δj            (parabolic polar, the default)
-    CD     = CD0 + CD_alpha α + CD_alpha2 α² + Σ CD_δj δj    (when CD_alpha is given)
+    CD     = CD0 + CD_alpha α + CD_alpha2 α² + k (CL − CL_minD)² + Σ CD_δj δj
+             (the parabolic polar CD0 + k (CL − CL_minD)² when only k is given, drag derivatives
+             when CD_alpha/CD_alpha2 are given; both may be combined, e.g. a zero-lift drag
+             varying with α plus induced drag)
     CY     = CY_beta β + CY_p p̂_s + CY_r r̂_s + Σ CY_δj δj
     Cl_s   = Cl_beta β + Cl_p p̂_s + Cl_r r̂_s + Σ Cl_δj δj
     Cm     = Cm0 + Cm_alpha α + Cm_q q̂ + Σ Cm_δj δj
@@ -221,11 +223,9 @@ class StabilityDerivativeModel:
             CL = (1.0 - sig) * cl_att + sig * s.CD90 * sa * ca
             CD_sep = sig * s.CD90 * sa * sa
 
+        CD = T[ix["CD0"]] + T[ix["k"]] * (CL - T[ix["CL_minD"]]) ** 2 + CDc + CD_sep
         if self.uses_alpha_drag:
-            CD = T[ix["CD0"]] + T[ix["CD_alpha"]] * alpha + T[ix["CD_alpha2"]] * alpha**2
-        else:
-            CD = T[ix["CD0"]] + T[ix["k"]] * (CL - T[ix["CL_minD"]]) ** 2
-        CD = CD + CDc + CD_sep
+            CD = CD + T[ix["CD_alpha"]] * alpha + T[ix["CD_alpha2"]] * alpha**2
 
         Cl_b = Cl * ca - Cn * sa
         Cn_b = Cl * sa + Cn * ca
