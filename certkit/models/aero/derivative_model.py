@@ -132,6 +132,7 @@ class StabilityDerivativeModel:
             else:
                 raise ValueError(f"{name}: expected a float or {nm} values (one per Mach breakpoint), got shape {v.shape}")
         self._table = table
+        self._alpha_dot_cache = None
         self.stall = stall
         if stall is not None:
             clmax = np.asarray(stall.CLmax, dtype=float)
@@ -149,8 +150,8 @@ class StabilityDerivativeModel:
         if m.size == 1:
             z = np.zeros(np.shape(mach), dtype=int)
             return z, np.zeros(np.shape(mach))
-        x = np.clip(mach, m[0], m[-1])
-        i = np.clip(np.searchsorted(m, x, side="right") - 1, 0, m.size - 2)
+        x = np.minimum(np.maximum(mach, m[0]), m[-1])
+        i = np.minimum(np.searchsorted(m, x, side="right") - 1, m.size - 2)
         w = (x - m[i]) / (m[i + 1] - m[i])
         return i, w
 
@@ -167,6 +168,9 @@ class StabilityDerivativeModel:
 
     def alpha_dot_derivatives(self, mach) -> tuple[np.ndarray, np.ndarray]:
         """(CL_alphadot, Cm_alphadot) at ``mach``, per unit α̇ c/2V (used by the equations of motion)."""
+        cached = self._alpha_dot_cache
+        if cached is not None and cached[0] is mach:  # the same array the last coefficients() saw
+            return cached[1], cached[2]
         i, w = self._weights(np.asarray(mach, dtype=float))
         rows = self._table[[self._index["CL_alphadot"], self._index["Cm_alphadot"]]]
         out = self._interp_rows(rows, i, w)
@@ -185,6 +189,7 @@ class StabilityDerivativeModel:
         i, w = self._weights(np.broadcast_to(np.asarray(state.mach, dtype=float), shape))
         T = self._interp_rows(self._table, i, w)  # (n_terms, *shape)
         ix = self._index
+        self._alpha_dot_cache = (state.mach, T[ix["CL_alphadot"]], T[ix["Cm_alphadot"]])
         ca, sa = np.cos(alpha), np.sin(alpha)
         p_hat, q_hat, r_hat = state.p_hat, state.q_hat, state.r_hat
         ps = p_hat * ca + r_hat * sa

@@ -281,9 +281,9 @@ class AircraftModel:
         Vs = np.maximum(V, 1e-3)
         uw2 = np.maximum(u * u + w * w, 1e-6)
         alpha = np.arctan2(w, u)
-        beta = np.arcsin(np.clip(v / Vs, -1.0, 1.0))
+        beta = np.arcsin(np.minimum(np.maximum(v / Vs, -1.0), 1.0))
         # ISA, inlined (troposphere + isothermal layer), altitude clipped to the modelled range
-        hc = np.clip(h, _H_MIN, _H_MAX)
+        hc = np.minimum(np.maximum(h, _H_MIN), _H_MAX)
         T_air = np.maximum(isa.T0 + isa.LAPSE * hc, _T11)
         p_air = np.where(hc <= isa.H_TROPOPAUSE, isa.P0 * (T_air / isa.T0) ** _EXP_TROPO,
                          _P11 * np.exp(_K_STRATO * (hc - isa.H_TROPOPAUSE)))
