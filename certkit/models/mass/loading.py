@@ -1,0 +1,250 @@
+"""Loading conditions: the payload and fuel distribution that reaches a (weight, CG) point.
+
+§25.21(a) asks for compliance at each weight–CG combination, and the dynamics needs the inertia
+of each one. For a target mass W and CG station x:
+
+1. the operating empty airplane is the component table (or OEW at its CG);
+2. fuel fills the tanks in the declared order (mains, then centre, as on twin-aisle transports);
+3. payload fills the cabin and hold zones; its CG can move between "forward zones first" and
+   "aft zones first" (each zone is a uniform line load between its ends).
+
+Among the payload/fuel splits with zero-fuel mass ≤ MZFW and fuel ≤ capacity, the one with the
+most payload whose required payload CG is reachable is taken, and the zone fill is solved for the
+exact CG. The inertia follows from the parallel-axis theorem over every item
+(:func:`certkit.models.mass.properties.combine`). When the file has no component table, the empty
+airplane is a point mass at ``oew_cg`` and the whole-airplane inertia is scaled from the declared
+tensor with constant radii of gyration (I ∝ m), which the result states in its notes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from certkit.models.mass.properties import MassComponent, MassProperties, combine, inertia_from_radii
+
+
+class LoadingError(ValueError):
+    """A (weight, CG) point that no payload and fuel distribution of the airplane can reach."""
+
+
+@dataclass(frozen=True)
+class Loading:
+    """A solved loading condition."""
+
+    name: str
+    target_mass: float
+    target_x_cg: float
+    payload: float
+    fuel: float
+    payload_by_zone: dict[str, float]
+    fuel_by_tank: dict[str, float]
+    properties: MassProperties
+    items: tuple[MassComponent, ...] = field(default=())
+    notes: tuple[str, ...] = field(default=())
+
+    def table(self) -> list[dict]:
+        """Component table for the report: mass, CG and share of the total mass of every item."""
+        return [{"item": c.name, "mass_kg": round(c.mass, 1), "x_m": round(c.cg[0], 3), "y_m": round(c.cg[1], 3),
+                 "z_m": round(c.cg[2], 3), "share": f"{100 * c.mass / self.properties.mass:.1f} %"} for c in self.items]
+
+
+def _item(name, mass, x, y=0.0, z=0.0, inertia=None):
+    return MassComponent(name, float(mass), (float(x), float(y), float(z)), inertia)
+
+
+def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
+    """The operating empty airplane as mass items, with a note when it is a single point mass."""
+    m = aircraft.mass
+    if m.components:
+        items = []
+        for c in m.components:
+            inertia = None
+            if c.inertia is not None:
+                t = c.inertia
+                inertia = np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+            items.append(_item(c.name, c.mass, c.cg.x, c.cg.y, c.cg.z, inertia))
+        total = sum(c.mass for c in m.components)
+        notes = []
+        if abs(total - m.OEW) > 0.005 * m.OEW:
+            notes.append(f"component masses sum to {total:.0f} kg, not the declared OEW {m.OEW:.0f} kg; the components are used")
+        return items, notes
+    x = m.oew_cg.x if m.oew_cg is not None else aircraft.reference.moment_point.x
+    return [_item("operating empty airplane", m.OEW, x)], ["no component table: the empty airplane is a point mass at its CG"]
+
+
+def _fuel_items(aircraft, fuel: float) -> list[MassComponent]:
+    """Fuel in the tanks in declared order (each filled before the next); a point mass per tank."""
+    items, left = [], fuel
+    for t in aircraft.mass.fuel_tanks:
+        load = min(left, t.capacity)
+        if load > 0:
+            items.append(_item(f"fuel: {t.name}", load, t.cg.x, t.cg.y, t.cg.z))
+        left -= load
+    if left > 1e-6 * max(fuel, 1.0):
+        raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
+    return items
+
+
+@dataclass(frozen=True)
+class _Bay:
+    name: str
+    capacity: float
+    x_start: float
+    x_end: float
+
+
+def bays(zones, per_zone: int = 10) -> list[_Bay]:
+    """Each payload zone split into ``per_zone`` equal bays, so that a fill order can load forward or aft."""
+    out = []
+    for z in zones:
+        edges = np.linspace(z.x_start, z.x_end, per_zone + 1)
+        out += [_Bay(z.name, z.capacity / per_zone, a, b) for a, b in zip(edges[:-1], edges[1:])]
+    return out
+
+
+def _payload_fill(zones, payload: float, forward_first: bool) -> list[tuple[object, float]]:
+    order = sorted(zones, key=lambda z: 0.5 * (z.x_start + z.x_end), reverse=not forward_first)
+    out, left = [], payload
+    for z in order:
+        load = min(left, z.capacity)
+        out.append((z, load))
+        left -= load
+    if left > 1e-6 * max(payload, 1.0):
+        raise LoadingError(f"{payload:.0f} kg of payload exceeds the zone capacity")
+    return out
+
+
+def _moment(fill) -> float:
+    return sum(load * 0.5 * (z.x_start + z.x_end) for z, load in fill)
+
+
+def _payload_cg_range(zones, payload: float) -> tuple[float, float]:
+    if payload <= 0:
+        return -np.inf, np.inf
+    return _moment(_payload_fill(zones, payload, True)) / payload, _moment(_payload_fill(zones, payload, False)) / payload
+
+
+def _payload_items(zones, payload: float, x_target: float) -> list[MassComponent]:
+    """Blend the forward-first and aft-first fills to put the payload CG at ``x_target`` exactly."""
+    fwd, aft = _payload_fill(zones, payload, True), _payload_fill(zones, payload, False)
+    x_f, x_a = _moment(fwd) / payload, _moment(aft) / payload
+    s = 0.0 if x_a == x_f else float(np.clip((x_target - x_f) / (x_a - x_f), 0.0, 1.0))
+    loads: dict[int, float] = {}
+    for weight, fill in ((1 - s, fwd), (s, aft)):
+        for z, load in fill:
+            loads[id(z)] = loads.get(id(z), 0.0) + weight * load
+    by_zone: dict[str, list] = {}
+    for z in zones:
+        if loads.get(id(z), 0.0) > 0:
+            by_zone.setdefault(z.name, []).append((z, loads[id(z)]))
+    items = []
+    for name, parts in by_zone.items():
+        # each loaded bay is a uniform line load: its own pitch/yaw inertia is m L²/12
+        mass = sum(load for _, load in parts)
+        x = sum(load * 0.5 * (z.x_start + z.x_end) for z, load in parts) / mass
+        own = sum(load * ((z.x_end - z.x_start) ** 2 / 12 + (0.5 * (z.x_start + z.x_end) - x) ** 2) for z, load in parts)
+        items.append(_item(f"payload: {name}", mass, x, inertia=np.diag([1e-9 * mass, own, own])))
+    return items
+
+
+def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: int = 201) -> Loading:
+    """The payload/fuel distribution reaching ``mass`` (kg) at CG station ``x_cg`` (m), with its inertia."""
+    m = aircraft.mass
+    empty, notes = empty_airplane(aircraft)
+    oew = sum(c.mass for c in empty)
+    oew_moment = sum(c.mass * c.cg[0] for c in empty)
+    if mass < oew * (1 - 1e-9):
+        return _scaled_loading(aircraft, mass, x_cg, name, notes + [
+            f"{mass:.0f} kg is below the operating empty mass {oew:.0f} kg: inertia scaled from the declared tensor"])
+    if not (m.fuel_tanks and m.payload_zones):
+        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes + [
+            "no fuel tanks or payload zones declared"], 0.0)
+    zones = bays(m.payload_zones)
+    fuel_cap = sum(t.capacity for t in m.fuel_tanks)
+    zone_cap = sum(z.capacity for z in zones)
+    useful = mass - oew
+    p_max = min(useful, m.MZFW - oew, zone_cap, m.max_payload if m.max_payload else np.inf)
+    p_min = max(0.0, useful - fuel_cap)
+    if p_max < p_min - 1e-9:
+        raise LoadingError(f"{mass:.0f} kg cannot be reached: needs more fuel than the tanks hold with payload ≤ {p_max:.0f} kg")
+    best = None
+    for payload in np.linspace(p_max, p_min, samples):
+        fuel = useful - payload
+        fuel_items = _fuel_items(aircraft, fuel)
+        rest = mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)
+        if payload <= 1e-9:
+            if abs(rest) <= 1e-6 * mass * max(x_cg, 1.0):
+                best = (payload, fuel_items, [])
+                break
+            continue
+        x_needed = rest / payload
+        lo, hi = _payload_cg_range(zones, payload)
+        if lo - 1e-9 <= x_needed <= hi + 1e-9:
+            best = (payload, fuel_items, _payload_items(zones, payload, x_needed))
+            break
+    if best is None:
+        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes, useful - p_max)
+    payload, fuel_items, payload_items = best
+    return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes)
+
+
+def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes) -> Loading:
+    items = empty + fuel_items + payload_items
+    props = _scaled_if_point_empty(aircraft, combine(items), empty)
+    payload = {c.name.removeprefix("payload: "): c.mass for c in payload_items}
+    fuel = {c.name.removeprefix("fuel: "): c.mass for c in fuel_items}
+    return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items), tuple(notes))
+
+
+def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading:
+    """A corner no declared distribution reaches (envelope limits need not be reachable in service).
+    First: the fuel in its tanks and the payload as ballast at the station giving the CG (keeps the
+    wing-fuel roll inertia). Else: the whole-airplane inertia scaled from the declared tensor."""
+    oew_moment = sum(c.mass * c.cg[0] for c in empty)
+    oew = sum(c.mass for c in empty)
+    fuel_items = _fuel_items(aircraft, fuel) if aircraft.mass.fuel_tanks and fuel > 0 else []
+    ballast = mass - oew - sum(c.mass for c in fuel_items)
+    length = aircraft.geometry.fuselage.length
+    if ballast > 1e-6 * mass:
+        x = (mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)) / ballast
+        if 0.0 <= x <= length:
+            note = (f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m: "
+                    f"fuel in its tanks and {ballast:.0f} kg of payload as ballast at station {x:.2f} m")
+            return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, [_item("payload: ballast", ballast, x)], notes + [note])
+    return _scaled_loading(aircraft, mass, x_cg, name, notes + [
+        f"{mass:.0f} kg at CG {x_cg:.3f} m cannot be built from the declared items: whole-airplane inertia "
+        "scaled from the declared tensor at constant radii of gyration"])
+
+
+def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
+    declared = _declared_inertia(aircraft)
+    if declared is not None:
+        J = declared * mass / aircraft.mass.MTOW
+    else:
+        g = aircraft.geometry
+        J = inertia_from_radii(mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
+    props = MassProperties(float(mass), np.array([x_cg, 0.0, 0.0]), J)
+    return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes))
+
+
+def _declared_inertia(aircraft) -> np.ndarray | None:
+    t = aircraft.mass.inertia
+    if t is None:
+        return None
+    return np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+
+
+def _scaled_if_point_empty(aircraft, props: MassProperties, empty) -> MassProperties:
+    """With no component table, the parallel-axis inertia of point masses is meaningless: scale the
+    declared whole-airplane inertia (at MTOW) with mass, or use Roskam radii of gyration."""
+    if aircraft.mass.components:
+        return props
+    declared = _declared_inertia(aircraft)
+    if declared is not None:
+        J = declared * props.mass / aircraft.mass.MTOW
+    else:
+        g = aircraft.geometry
+        J = inertia_from_radii(props.mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
+    return MassProperties(props.mass, props.cg, J)
