@@ -13,9 +13,9 @@ from .test_r25_335 import CN_OVER_CL, KT_FT, RHO0_SLUG, S_FT2
 def test_corners_hand_calculation():
     r = run_rule("25.333")
     f = next(f for f in r.findings if f.check.startswith("A") and f.condition.altitude == 0.0
-             and abs(f.condition.mass / 0.45359237 - 300_000) < 1)
-    vs_pos = math.sqrt(2 * 300_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 1.4)) / KT_FT
-    vs_neg = math.sqrt(2 * 300_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 0.8)) / KT_FT
+             and abs(f.condition.mass / 0.45359237 - 310_000) < 1)
+    vs_pos = math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 1.4)) / KT_FT
+    vs_neg = math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 0.8)) / KT_FT
     corners = f.details["corners"]
     assert corners["A"][0] / KN == pytest.approx(vs_pos * math.sqrt(2.5), rel=1e-4)
     assert corners["H"][0] / KN == pytest.approx(vs_neg * 1.0, rel=1e-4)
