@@ -77,6 +77,23 @@ def _speed_order(s):
             yield f"speeds.{hi}", f"{hi} must not be below {lo} ({a:.3f})", b
 
 
+@needs("aerodynamics", "configurations")
+def _aero_configurations(s):
+    names = set(s["configurations"])
+    aero = s["aerodynamics"]
+    for field in ("derivative_tables", "overrides"):
+        for name in getattr(aero, field):
+            if name not in names:
+                yield f"aerodynamics.{field}.{name}", f"unknown configuration (declared: {', '.join(sorted(names))})", name
+    for name, table in aero.derivative_tables.items():
+        if any(b <= a for a, b in zip(table.mach, table.mach[1:])):
+            yield f"aerodynamics.derivative_tables.{name}.mach", "Mach breakpoints must increase strictly", table.mach
+        for key, value in table.derivatives.items():
+            if isinstance(value, list) and len(value) != len(table.mach):
+                yield (f"aerodynamics.derivative_tables.{name}.derivatives.{key}",
+                       f"needs one value per Mach breakpoint ({len(table.mach)})", value)
+
+
 @needs("speeds", "configurations")
 def _speed_configurations(s):
     names = set(s["configurations"])
@@ -194,7 +211,7 @@ def consistency_problems(sections: dict) -> list[Problem]:
     """Run every check whose sections are available; return problems (path, message, value)."""
     problems = []
     for required, check in CHECKS:
-        if all(name in sections for name in required):
+        if all(sections.get(name) is not None for name in required):
             for path, message, value in check(sections) or ():
                 problems.append(Problem(path, message, value))
     return problems

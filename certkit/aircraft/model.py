@@ -214,6 +214,38 @@ class Propulsion(_Section):
     deck: EngineDeck | None = None
 
 
+# --- aerodynamics: calibration and declared data ------------------------------------------
+
+class DerivativeTable(_Section):
+    """Stability and control derivatives of one configuration (wind tunnel, CFD or published data).
+
+    Per radian, stability axes, AVL rate normalisation, moments about ``reference.moment_point``;
+    names as :class:`certkit.models.aero.derivative_model.StabilityDerivativeModel` takes them
+    (``CL0``, ``CL_alpha``, ``Cm_q``, ``CD0``, ``k``, control terms ``Cm_elevator`` …). Each value is
+    a number or one number per Mach breakpoint. Declared tables replace the vortex lattice.
+    """
+
+    mach: Annotated[list[Annotated[float, Field(ge=0.0, lt=1.0)]], Field(min_length=1)]
+    derivatives: dict[str, float | list[float]]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class LatticeResolution(_Section):
+    """Vortex-lattice panels per surface (chordwise × spanwise per half)."""
+
+    chordwise: Annotated[int, Field(ge=1, le=40)] = 8
+    spanwise: Annotated[int, Field(ge=2, le=120)] = 20
+
+
+class Aerodynamics(_Section):
+    derivative_tables: dict[str, DerivativeTable] = Field(
+        default_factory=dict, description="configuration name → declared derivatives (replace the lattice)")
+    overrides: dict[str, dict[str, float]] = Field(
+        default_factory=dict, description="configuration name → coefficient name → value (e.g. a measured CD0)")
+    overrides_source: str | None = None
+    lattice: LatticeResolution = Field(default_factory=LatticeResolution)
+
+
 # --- configurations, speeds, envelope, criteria --------------------------------------------
 
 class Configuration(_Section):
@@ -283,12 +315,13 @@ class Aircraft(_Section):
     name: Annotated[str, Field(min_length=1)]
     description: str | None = None
     reference: Reference
-    geometry: Geometry
+    geometry: Geometry | None = Field(None, description="needed unless every configuration has derivative tables")
     mass: MassProperties
     cg_envelope: CgEnvelope
     propulsion: Propulsion
     configurations: dict[str, Configuration]
     speeds: Speeds = Field(default_factory=Speeds)
     envelope: Envelope
+    aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

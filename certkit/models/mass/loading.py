@@ -206,7 +206,7 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading
     oew = sum(c.mass for c in empty)
     fuel_items = _fuel_items(aircraft, fuel) if aircraft.mass.fuel_tanks and fuel > 0 else []
     ballast = mass - oew - sum(c.mass for c in fuel_items)
-    length = aircraft.geometry.fuselage.length
+    length = aircraft.geometry.fuselage.length if aircraft.geometry else np.inf
     if ballast > 1e-6 * mass:
         x = (mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)) / ballast
         if 0.0 <= x <= length:
@@ -219,13 +219,7 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading
 
 
 def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
-    declared = _declared_inertia(aircraft)
-    if declared is not None:
-        J = declared * mass / aircraft.mass.MTOW
-    else:
-        g = aircraft.geometry
-        J = inertia_from_radii(mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
-    props = MassProperties(float(mass), np.array([x_cg, 0.0, 0.0]), J)
+    props = MassProperties(float(mass), np.array([x_cg, 0.0, 0.0]), whole_airplane_inertia(aircraft, mass))
     return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes))
 
 
@@ -241,10 +235,16 @@ def _scaled_if_point_empty(aircraft, props: MassProperties, empty) -> MassProper
     declared whole-airplane inertia (at MTOW) with mass, or use Roskam radii of gyration."""
     if aircraft.mass.components:
         return props
+    return MassProperties(props.mass, props.cg, whole_airplane_inertia(aircraft, props.mass))
+
+
+def whole_airplane_inertia(aircraft, mass: float) -> np.ndarray:
+    """The declared whole-airplane tensor (at MTOW) scaled by mass at constant radii of gyration, or,
+    without one, Roskam radii of gyration (needs span and fuselage length)."""
     declared = _declared_inertia(aircraft)
     if declared is not None:
-        J = declared * props.mass / aircraft.mass.MTOW
-    else:
-        g = aircraft.geometry
-        J = inertia_from_radii(props.mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
-    return MassProperties(props.mass, props.cg, J)
+        return declared * mass / aircraft.mass.MTOW
+    g = aircraft.geometry
+    if g is None:
+        raise LoadingError("no inertia: declare mass.inertia, mass.components or the geometry (span, fuselage length)")
+    return inertia_from_radii(mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)

@@ -174,7 +174,7 @@ class DesignSpeedMaximumGust(Rule):
     """
     margin = "VB − VS1·√(n_g) (or − VC where VC is Mach-limited and smaller), m/s EAS."
     references = ("25.341", "25.335(a)")
-    requires = ("speeds.VB", "speeds.VC", "configurations.clean.CLmax")
+    requires = ("speeds.VB", "speeds.VC", "configurations.clean.CLmax", "geometry.wing")
     criteria = {
         **_CN,
         "kg_a": Criterion(0.88, "", "14 CFR 25.335(d)(1)", "gust alleviation factor K_g = a μ/(b + μ): a"),
