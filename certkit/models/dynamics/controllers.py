@@ -1,0 +1,114 @@
+"""Closed-loop pilot models for simulations (vectorised over the batch).
+
+:class:`PitchAttitudeHold`
+    Takeoff rotation and attitude hold: below the rotation speed V_R the elevator stays at its
+    initial value; from V_R the commanded pitch attitude ramps at ``rotation_rate`` to
+    ``theta_target`` and the elevator follows
+        δe = δe0 + K_θ (θ − θ_cmd) + K_q q        (positive δe is nose-down, Etkin)
+    clipped to the elevator limits.
+
+:class:`TECSApproach`
+    A total-energy control system (after Lambregts' TECS) that flies a glide path of angle
+    ``glide`` (−3°) at constant airspeed and flares to touchdown:
+        throttle = thr0 + K_E (ė_cmd − ė) + K_I ∫(ė_cmd − ė) dt,
+            ė = γ + V̇/g  (specific total-energy rate over V)
+        θ_cmd = θ0 + K_γ ∫ ... written as a pitch command from the energy *distribution* error
+            d = (γ_cmd − γ) − (V̇_cmd − V̇)/g,  θ_cmd ← θ_cmd + K_D d dt,
+        plus a proportional part K_P d, and the pitch-attitude law above for the elevator.
+    Above the flare height γ_cmd = glide and V_cmd = the initial airspeed (V̇_cmd from the speed
+    error). Below it the sink-rate command is the exponential flare ḣ_cmd = −(h_agl + h_aim)/τ
+    with τ chosen so that it is continuous at the flare height (τ = (h_f + h_aim)/|ḣ_approach|),
+    γ_cmd = ḣ_cmd / V, and the throttle goes to idle.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.models.dynamics.eom import AircraftModel, quat_to_euler
+from certkit.models.dynamics.simulate import Controller
+
+
+def _pitch_law(u, j, de0, theta, theta_cmd, q, k_theta, k_q, limits):
+    u[:, j] = np.clip(de0 + k_theta * (theta - theta_cmd) + k_q * q, limits[0], limits[1])
+    return u
+
+
+class PitchAttitudeHold(Controller):
+    def __init__(self, model: AircraftModel, u0: np.ndarray, rotation_speed, theta_target,
+                 rotation_rate: float = np.radians(3.0), k_theta: float = 2.0, k_q: float = 1.0,
+                 elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+        self.j = model.control_index(elevator)
+        self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
+        self.vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (model.n,))
+        self.target = np.broadcast_to(np.asarray(theta_target, dtype=float), (model.n,))
+        self.rate, self.kt, self.kq, self.limits = rotation_rate, k_theta, k_q, limits
+        self.theta_cmd = None
+        self.rotating = np.zeros(model.n, dtype=bool)
+
+    def update(self, t, x, out, u, dt):
+        theta = quat_to_euler(x[:, 9:13])[:, 1]
+        if self.theta_cmd is None:
+            self.theta_cmd = theta.copy()
+        self.rotating |= out.V >= self.vr
+        step = np.where(self.rotating, self.rate * dt, 0.0)
+        self.theta_cmd = np.where(self.rotating, np.minimum(self.theta_cmd + step, self.target), theta)
+        held = _pitch_law(u.copy(), self.j, self.de0, theta, self.theta_cmd, x[:, 7], self.kt, self.kq, self.limits)
+        u[:, self.j] = np.where(self.rotating, held[:, self.j], self.de0)
+        return u
+
+
+class TECSApproach(Controller):
+    def __init__(self, model: AircraftModel, x0: np.ndarray, u0: np.ndarray, glide: float = np.radians(-3.0),
+                 flare_height: float = 15.0, aim_below: float = 1.0, runway_elevation: float = 0.0,
+                 k_e: float = 2.0, k_i: float = 0.3, k_d: float = 0.5, k_theta: float = 2.0, k_q: float = 1.0,
+                 k_v: float = 0.1, k_p: float = 1.5, elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+        self.model = model
+        self.j = model.control_index(elevator)
+        self.thr = np.arange(model.throttle_slice.start, model.throttle_slice.stop)
+        u0 = np.asarray(u0, dtype=float)
+        self.de0 = u0[:, self.j].copy()
+        self.thr0 = u0[:, self.thr].mean(axis=1)
+        x0 = np.asarray(x0, dtype=float)
+        self.V_cmd = np.linalg.norm(x0[:, 3:6], axis=1)
+        self.glide, self.hf, self.aim, self.h_rwy = glide, flare_height, aim_below, runway_elevation
+        self.k_e, self.k_i, self.k_d, self.kt, self.kq, self.k_v, self.k_p = k_e, k_i, k_d, k_theta, k_q, k_v, k_p
+        self.limits = limits
+        sink = self.V_cmd * np.sin(-glide)
+        self.tau = (flare_height + aim_below) / np.maximum(sink, 0.1)
+        self.integral = np.zeros(model.n)
+        self.theta_cmd = None
+        self.prev_V = None
+        self.flaring = np.zeros(model.n, dtype=bool)
+
+    def update(self, t, x, out, u, dt):
+        theta = quat_to_euler(x[:, 9:13])[:, 1]
+        V = out.V
+        # flight-path angle from the earth-frame climb rate
+        q0, q1, q2, q3 = (x[:, 9 + k] for k in range(4))
+        c31, c32, c33 = 2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+        hdot = -(c31 * x[:, 3] + c32 * x[:, 4] + c33 * x[:, 5])
+        gamma = np.arcsin(np.clip(hdot / np.maximum(V, 1.0), -1, 1))
+        h_agl = x[:, 2] - self.h_rwy
+        self.flaring |= h_agl <= self.hf
+        gamma_cmd = np.where(self.flaring, np.arcsin(np.clip(-(h_agl + self.aim) / self.tau / np.maximum(V, 1.0), -1, 1)),
+                             self.glide)
+        if self.prev_V is None:
+            self.prev_V = V.copy()
+            self.theta_cmd = theta.copy()
+        vdot = (V - self.prev_V) / max(dt, 1e-9)
+        self.prev_V = V.copy()
+        g = self.model.g
+        vdot_cmd = self.k_v * (self.V_cmd - V)
+        e_err = (gamma_cmd - gamma) + (vdot_cmd - vdot) / g
+        d_err = (gamma_cmd - gamma) - (vdot_cmd - vdot) / g
+        self.integral += e_err * dt
+        thr = np.clip(self.thr0 + self.k_e * e_err + self.k_i * self.integral, 0.0, 1.0)
+        thr = np.where(self.flaring, 0.0, thr)
+        u[:, self.thr] = thr[:, None]
+        self.theta_cmd = self.theta_cmd + self.k_d * d_err * dt
+        cmd = self.theta_cmd + self.k_p * d_err
+        return _pitch_law(u, self.j, self.de0, theta, cmd, x[:, 7], self.kt, self.kq, self.limits)
+
+
+__all__ = ["PitchAttitudeHold", "TECSApproach"]
