@@ -125,6 +125,41 @@ def schema():
     click.echo(json.dumps(json_schema(), indent=2))
 
 
+@main.command()
+@click.argument("model_file", type=click.Path(dir_okay=False))
+@click.option("--mach", type=float, default=None, help="Mach number (default: the AVL file's, or 0.2).")
+@click.option("--alpha", "alpha_deg", type=float, default=0.0, show_default=True, help="Angle of attack, deg.")
+@click.option("--beta", "beta_deg", type=float, default=0.0, show_default=True, help="Sideslip angle, deg.")
+@click.option("--config", "configuration", default="clean", show_default=True, help="Configuration (aircraft files).")
+@click.option("--json", "as_json", is_flag=True, help="Machine-readable output.")
+def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
+    """Stability and control derivatives of an aircraft file or an AVL geometry (.avl) file.
+
+    Per radian, stability axes, rates per p̂ = pb/2V, q̂ = qc̄/2V, r̂ = rb/2V (AVL's conventions) with
+    certkit's control signs (a positive deflection gives a negative moment); neutral point in the
+    file's X axis. For an aircraft file the model column adds the fuselage, drag and overrides.
+    """
+    from certkit.aero_report import derivative_report
+
+    report = derivative_report(model_file, mach, alpha_deg, beta_deg, configuration)
+    if as_json:
+        click.echo(json.dumps(report, indent=2))
+        return
+    click.echo(f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg")
+    click.echo(f"Sref {report['reference']['area']:.5g}  Cref {report['reference']['chord']:.5g}  Bref {report['reference']['span']:.5g}  "
+               f"Xref {report['reference']['x_ref']:.5g}")
+    click.echo(f"CL {report['totals']['CL']:.5f}  CDi {report['totals']['CD_induced']:.6f}  e {report['totals']['span_efficiency']:.4f}  "
+               f"Cm {report['totals']['Cm']:.5f}")
+    click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c")
+    columns = [c for c in ("lattice", "model") if c in report]
+    click.echo(f"\n{'derivative':<22}" + "".join(f"{c:>14}" for c in columns))
+    for name in report["lattice"]:
+        row = "".join(f"{report[c].get(name, float('nan')):>14.6f}" for c in columns)
+        click.echo(f"{name:<22}{row}")
+    for note in report.get("notes", []):
+        click.echo(f"note: {note}")
+
+
 @main.command(name="new-rule")
 @click.argument("rule_id")
 @click.option("--symbol", required=True, help="Kebab-case symbol, e.g. 'stall-speed'.")

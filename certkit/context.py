@@ -59,6 +59,18 @@ class Context:
 
     # --- shared models (each lazily built and memoised) ---------------------------------
 
+    def aero(self, configuration: str):
+        """The aerodynamic model of ``configuration`` (:mod:`certkit.models.aero.airplane`), built once;
+        the vortex lattice is shared by every configuration."""
+        from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
+
+        def build():
+            declared = configuration in self.aircraft.aerodynamics.derivative_tables
+            lattice = None if declared else self.memo("lattice_derivatives", lambda: lattice_derivatives(self.aircraft))
+            return build_airplane_aero(self.aircraft, configuration, lattice=lattice)
+
+        return self.memo(("aero", configuration), build)
+
     def clmax(self, configuration: str) -> float | None:
         cfg = self.aircraft.configurations.get(configuration)
         return None if cfg is None else cfg.CLmax

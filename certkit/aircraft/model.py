@@ -227,6 +227,8 @@ class DerivativeTable(_Section):
 
     mach: Annotated[list[Annotated[float, Field(ge=0.0, lt=1.0)]], Field(min_length=1)]
     derivatives: dict[str, float | list[float]]
+    controls: list[str] = Field(default_factory=lambda: ["elevator", "aileron", "rudder"],
+                                description="control surfaces the control terms (Cm_elevator …) refer to")
     source: Annotated[str, Field(min_length=3)]
 
 

@@ -116,9 +116,11 @@ class StabilityDerivativeModel:
             if ctrl not in found:
                 found.append(ctrl)
         self.control_names: tuple[str, ...] = tuple(control_names) if control_names is not None else tuple(found)
-        for ctrl in found:
-            if ctrl not in self.control_names:
-                raise KeyError(f"derivative for control {ctrl!r} not in control_names {self.control_names}")
+        for name in derivatives:
+            ctrl = name.partition("_")[2]
+            if name not in _BASE_TERMS and ctrl not in self.control_names:
+                raise KeyError(f"unknown derivative {name!r}: neither a stability derivative nor a term of a "
+                               f"control in {self.control_names}")
         self.uses_alpha_drag = "CD_alpha" in derivatives or "CD_alpha2" in derivatives
         names = list(_BASE_TERMS) + [f"{p}_{c}" for c in self.control_names for p in _CONTROL_PREFIXES]
         self._index = {n: i for i, n in enumerate(names)}

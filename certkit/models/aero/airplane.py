@@ -1,0 +1,174 @@
+"""The aerodynamic model of a whole airplane in one configuration — the object the rules use.
+
+Built once per aircraft and configuration (the Context caches it) and evaluated on arrays of
+states (:class:`certkit.models.aero.derivative_model.StabilityDerivativeModel`). Two sources:
+
+* **declared tables** (``aerodynamics.derivative_tables.<config>``): wind-tunnel, CFD or published
+  derivatives, used as they are; no geometry beyond the reference values is needed;
+* **estimated**: the vortex lattice of the wing, horizontal and vertical tails (own solver,
+  :mod:`certkit.models.aero.vlm`) at several Mach numbers gives lift, moment and lateral stability
+  and control derivatives, wing–tail interference included; the fuselage contributions to Cm_α and
+  Cn_β (:mod:`certkit.models.aero.fuselage`) and the drag build-up (:mod:`certkit.models.aero.drag`)
+  are added; high-lift increments come from the configuration (declared ΔCL0, ΔCD0, ΔCm0, or the
+  lattice's flap derivative times the flap angle), and the stall from the configuration's CLmax.
+
+Any coefficient named in ``aerodynamics.overrides.<config>`` replaces its estimate; every
+replacement is recorded so that the report lists it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from certkit.models.aero.derivative_model import StabilityDerivativeModel, StallModel
+from certkit.models.aero.interface import AeroReference
+from certkit.models.aero.vlm import Configuration as LatticeConfiguration
+from certkit.models.aero.vlm import ControlSpan, VortexLattice, trapezoidal_surface
+
+#: Mach breakpoints at which the lattice is solved; the model interpolates between them
+DEFAULT_MACHS = (0.2, 0.4, 0.6, 0.75, 0.85)
+COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
+#: lattice derivatives carried into the flight model (the others are zero by symmetry or not used)
+CARRIED = ("CL_alpha", "CL_q", "CY_beta", "CY_p", "CY_r", "Cl_beta", "Cl_p", "Cl_r", "Cm_alpha", "Cm_q",
+           "Cn_beta", "Cn_p", "Cn_r")
+
+
+def aero_reference(aircraft) -> AeroReference:
+    r = aircraft.reference
+    return AeroReference(r.area, r.span, r.mean_chord, r.moment_point.x, r.moment_point.z)
+
+
+def _camber_digits(airfoil: str) -> str | None:
+    digits = airfoil.strip().upper().removeprefix("NACA").strip()
+    return digits if len(digits) == 4 and digits.isdigit() else None
+
+
+def _surface(name: str, s, resolution, *, vertical: bool = False, component: int | None = None):
+    """A lattice surface from an aircraft-file lifting surface, with its controls and tip twist."""
+    controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
+    surface = trapezoidal_surface(
+        name, area=s.area, aspect_ratio=s.aspect_ratio, taper=s.taper, sweep_quarter_chord=s.sweep_quarter_chord,
+        dihedral=s.dihedral, root_leading_edge=(s.root_leading_edge.x, s.root_leading_edge.y, s.root_leading_edge.z),
+        incidence=s.incidence, thickness_ratio=s.thickness_ratio, camber=_camber_digits(s.airfoil), vertical=vertical,
+        controls=controls, n_chord=resolution.chordwise, n_span=resolution.spanwise, chord_spacing=1.0,
+        span_spacing=1.0, component=component)
+    if s.tip_twist and not vertical:
+        root_y = surface.sections[0].leading_edge[1]
+        semi = surface.sections[-1].leading_edge[1] - root_y
+        surface = replace(surface, sections=[
+            replace(sec, incidence=sec.incidence + s.tip_twist * (sec.leading_edge[1] - root_y) / semi)
+            for sec in surface.sections])
+    return surface
+
+
+def lattice_configuration(aircraft, name: str = "") -> LatticeConfiguration:
+    """Wing (component 1), horizontal tail and fin (component 2) as a lattice configuration."""
+    g = aircraft.geometry
+    if g is None:
+        raise ValueError("the vortex lattice needs the geometry section (or declare aerodynamics.derivative_tables)")
+    res = aircraft.aerodynamics.lattice
+    surfaces = [_surface("wing", g.wing, res, component=1),
+                _surface("horizontal_tail", g.horizontal_tail, res, component=2),
+                _surface("vertical_tail", g.vertical_tail, res, vertical=True, component=2)]
+    return LatticeConfiguration(surfaces, aero_reference(aircraft), name=name)
+
+
+@dataclass
+class AirplaneAero:
+    """One configuration's aerodynamic model and its provenance."""
+
+    configuration: str
+    model: StabilityDerivativeModel
+    mach: tuple[float, ...]
+    table: dict[str, list[float]]
+    source: str
+    neutral_point: list[float] | None = None
+    span_efficiency: list[float] | None = None
+    overrides: dict[str, dict] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    lattice: VortexLattice | None = field(default=None, repr=False)
+
+
+def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
+    """Derivatives at α = 0 for each Mach number: (table name → values, neutral points, e, lattice)."""
+    vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
+    table: dict[str, list[float]] = {}
+    xnp, e = [], []
+    for m in machs:
+        lat = vl.at_mach(m)
+        d = lat.stability_derivatives(alpha=0.0)
+        sol = d.solution
+        for key in CARRIED:
+            table.setdefault(key, []).append(d[key])
+        for cname in lat.control_names:
+            for coef in COEFFICIENTS:
+                table.setdefault(f"{coef}_{cname}", []).append(d[f"{coef}_delta_{cname}"])
+        table.setdefault("CL0", []).append(sol.CL)
+        table.setdefault("Cm0", []).append(sol.Cm)
+        xnp.append(d.neutral_point)
+        e.append(sol.span_efficiency)
+    return table, xnp, e, vl
+
+
+def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=None, fuselage=None,
+                        lattice=None) -> AirplaneAero:
+    """The model of ``configuration``: declared tables if any, else the lattice estimate
+    (``lattice``: the result of :func:`lattice_derivatives`, shared between configurations).
+
+    ``drag(aircraft, configuration, machs, span_efficiency) -> (CD0 list, k list, notes)`` and
+    ``fuselage(aircraft) -> {"Cm_alpha": Δ, "Cn_beta": Δ}`` supply the semi-empirical terms.
+    """
+    cfg = aircraft.configurations[configuration]
+    declared = aircraft.aerodynamics.derivative_tables.get(configuration)
+    stall = StallModel(cfg.CLmax) if cfg.CLmax else None
+    notes: list[str] = [] if stall else [f"configurations.{configuration}.CLmax not declared: no stall model"]
+    ref = aero_reference(aircraft)
+    if declared is not None:
+        table = dict(declared.derivatives)
+        result = AirplaneAero(configuration, None, tuple(declared.mach), table, f"declared table: {declared.source}", notes=notes)
+        machs, controls = declared.mach, declared.controls
+    else:
+        table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
+        controls = vl.control_names
+        table = {k: list(v) for k, v in table.items()}
+        machs = tuple(machs)
+        result = AirplaneAero(configuration, None, tuple(machs), table, "vortex lattice (certkit.models.aero.vlm)",
+                              neutral_point=xnp, span_efficiency=e, notes=notes, lattice=vl)
+        if fuselage is not None:
+            for key, delta in fuselage(aircraft).items():
+                table[key] = [v + delta for v in table[key]]
+            result.source += " + fuselage corrections"
+        if drag is not None:
+            cd0, k, drag_notes = drag(aircraft, configuration, machs, e)
+            table["CD0"], table["k"] = list(cd0), list(k)
+            result.source += " + drag build-up"
+            notes += drag_notes
+        _high_lift(aircraft, configuration, cfg, table, notes)
+    for key, value in aircraft.aerodynamics.overrides.get(configuration, {}).items():
+        estimate = table.get(key)
+        table[key] = value
+        result.overrides[key] = {"estimate": estimate, "value": value, "source": aircraft.aerodynamics.overrides_source}
+    try:
+        result.model = StabilityDerivativeModel(ref, table, mach=machs, control_names=controls, stall=stall)
+    except KeyError as exc:
+        raise ValueError(f"aerodynamics of configuration {configuration!r}: {exc.args[0]}") from None
+    return result
+
+
+def _high_lift(aircraft, name, cfg, table, notes) -> None:
+    """ΔCL0, ΔCm0 of the configuration: declared increments, else the flap's lattice derivative × angle."""
+    flap_cl, flap_cm = table.get("CL_flap"), table.get("Cm_flap")
+    if cfg.delta_CL0 or cfg.delta_Cm0 or not cfg.flap:
+        table["CL0"] = [v + cfg.delta_CL0 for v in table["CL0"]]
+        table["Cm0"] = [v + cfg.delta_Cm0 for v in table["Cm0"]]
+    elif flap_cl is not None:
+        table["CL0"] = [v + d * cfg.flap for v, d in zip(table["CL0"], flap_cl)]
+        table["Cm0"] = [v + d * cfg.flap for v, d in zip(table["Cm0"], flap_cm)]
+        notes.append(f"configuration {name}: flap increments from the lattice (linear theory; overestimates large deflections)")
+    else:
+        notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
+                     "no flap on the wing: lift and moment increments not modelled")
+    if cfg.delta_CD0:
+        table["CD0"] = [v + cfg.delta_CD0 for v in table.get("CD0", [0.0] * len(table["CL0"]))]
