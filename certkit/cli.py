@@ -160,6 +160,86 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
         click.echo(f"note: {note}")
 
 
+def _condition_options(f):
+    options = [
+        click.option("--corner", help="Named CG-envelope corner (default: --weight/--cg, else MTOW at the reference CG)."),
+        click.option("--weight", help="Mass with unit, e.g. '600000 lb'."),
+        click.option("--cg", help="CG station with unit, e.g. '97.25 ft'."),
+        click.option("--config", "configuration", default="clean", show_default=True),
+        click.option("--altitude", default="35000 ft", show_default=True, help="Altitude with unit."),
+        click.option("--speed", default="M0.84", show_default=True, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84'."),
+        click.option("--maneuver", "kind", default="straight", show_default=True,
+                     help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta)."),
+        click.option("--gamma", "gamma_deg", type=float, default=0.0, show_default=True, help="Flight-path angle, deg."),
+        click.option("--bank", "bank_deg", type=float, default=0.0, show_default=True, help="Bank angle, deg."),
+        click.option("--beta", "beta_deg", type=float, default=0.0, show_default=True, help="Sideslip, deg."),
+        click.option("--inoperative", help="Failed engine name (oei)."),
+        click.option("--json", "as_json", is_flag=True),
+    ]
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+def _flight(aircraft_file, **kw):
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit.flight_report import condition_from_options
+
+    ctx = Context(load_aircraft(aircraft_file))
+    as_json = kw.pop("as_json")
+    return ctx, condition_from_options(ctx.aircraft, **kw), as_json
+
+
+@main.command(name="trim")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@_condition_options
+def trim_command(aircraft_file, **kw):
+    """Trim one condition: angles, controls, thrust, and any control beyond its design limit."""
+    from certkit.flight_report import trim_report
+
+    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    report = trim_report(ctx, fc)
+    if as_json:
+        click.echo(json.dumps(report, indent=2, default=float))
+        return
+    _print_trim(report)
+
+
+def _print_trim(r):
+    c = r["condition"]
+    click.echo(f"{c['loading']} · {c['configuration']} · {c['altitude_m']:.0f} m · TAS {c['tas_m_s']:.2f} m/s · {c['kind']}")
+    click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
+    click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
+    for name, value in r["controls"].items():
+        click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")
+    for lim in r["limits_exceeded"]:
+        click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
+    for note in r["loading_notes"]:
+        click.echo(f"note: {note}")
+
+
+@main.command(name="modes")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@_condition_options
+def modes_command(aircraft_file, **kw):
+    """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double."""
+    from certkit.flight_report import modes_report
+
+    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    report = modes_report(ctx, fc)
+    if as_json:
+        click.echo(json.dumps(report, indent=2, default=float))
+        return
+    _print_trim(report)
+    click.echo(f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}")
+    fmt = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
+    for name, m in report["modes"].items():
+        re, im = m["eigenvalue"]
+        click.echo(f"{name:<14}{re:>12.5f} {im:+11.5f}j{m['natural_frequency_rad_s']:>15.4f}{m['damping_ratio']:>9.4f}"
+                   f"{fmt(m['period_s']):>10}{fmt(m['time_to_half_s']):>10}{fmt(m['time_to_double_s']):>11}")
+
+
 @main.command(name="new-rule")
 @click.argument("rule_id")
 @click.option("--symbol", required=True, help="Kebab-case symbol, e.g. 'stall-speed'.")

@@ -172,13 +172,18 @@ def _deck(s):
     d = s["propulsion"].deck
     if d is None:
         return
-    if np.any(np.diff(d.altitude) <= 0):
-        yield "propulsion.deck.altitude", "must increase strictly", d.altitude
-    if np.any(np.diff(d.mach) <= 0):
-        yield "propulsion.deck.mach", "must increase strictly", d.mach
-    for rating, table in d.thrust.items():
-        if len(table) != len(d.altitude) or any(len(row) != len(d.mach) for row in table):
-            yield f"propulsion.deck.thrust.{rating}", f"must have {len(d.altitude)} rows of {len(d.mach)} values", None
+    for axis in ("altitude", "mach", "throttle"):
+        if np.any(np.diff(getattr(d, axis)) <= 0):
+            yield f"propulsion.deck.{axis}", "must increase strictly", getattr(d, axis)
+    shape = (len(d.altitude), len(d.mach), len(d.throttle))
+    for name in ("thrust", "fuel_flow"):
+        table = getattr(d, name)
+        if table is not None and np.shape(np.array(table, dtype=object if _ragged(table) else float)) != shape:
+            yield f"propulsion.deck.{name}", f"must be {shape[0]} altitudes × {shape[1]} Mach numbers × {shape[2]} throttles", None
+
+
+def _ragged(table) -> bool:
+    return len({len(row) for row in table}) > 1 or len({len(r) for row in table for r in row}) > 1
 
 
 def _polygon_area(pts: np.ndarray) -> float:

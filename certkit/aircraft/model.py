@@ -199,12 +199,19 @@ class Engine(_Section):
 
 
 class EngineDeck(_Section):
-    """Installed thrust (and fuel flow) per engine on an altitude × Mach grid, at each rating."""
+    """Installed thrust (and fuel flow) of one engine on an altitude × Mach × throttle grid.
+
+    ``thrust[i][j][k]`` at ``altitude[i]``, ``mach[j]``, ``throttle[k]`` (0 idle … 1 maximum takeoff).
+    A point outside the grid is an error unless ``allow_extrapolation`` is true (then it is stated).
+    """
 
     altitude: Annotated[list[Length], Field(min_length=2)]
     mach: Annotated[list[float], Field(min_length=2)]
-    thrust: dict[str, list[list[Force]]] = Field(description="rating name → rows per altitude, columns per Mach")
-    fuel_flow: dict[str, list[list[float]]] | None = Field(None, description="kg/s, same layout as thrust")
+    throttle: Annotated[list[Annotated[float, Field(ge=0.0, le=1.0)]], Field(min_length=2)]
+    thrust: list[list[list[Force]]]
+    fuel_flow: list[list[list[float]]] | None = Field(None, description="kg/s, same layout as thrust")
+    allow_extrapolation: bool = False
+    source: str | None = None
 
 
 class Propulsion(_Section):

@@ -1,0 +1,156 @@
+"""``certkit trim`` and ``certkit modes``: one condition's trim and its dynamic modes.
+
+The condition is a CG-envelope corner (or a weight and CG), a configuration, an altitude and a
+speed (EAS, CAS, TAS with units, or a Mach number), and a trim kind: straight level flight, steady
+climb or descent at a flight-path angle, coordinated turn at a bank angle, one engine inoperative
+(bank toward the live engine), or steady heading sideslip.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.atmosphere import to_tas
+from certkit.conditions import CgCorners, cg_limits_at, reference_cg
+from certkit.errors import UserError
+from certkit.units import UnitError, to_si
+
+KINDS = {"straight": "straight", "climb": "straight", "turn": "turn", "oei": "oei", "sideslip": "sideslip"}
+
+
+@dataclass
+class FlightCondition:
+    loading_name: str
+    mass: float
+    x_cg: float
+    configuration: str
+    altitude: float
+    tas: float
+    kind: str
+    gamma: float
+    bank: float
+    beta: float
+    inoperative: str | None
+
+
+def _quantity(text: str, dimension: str, option: str) -> float:
+    try:
+        return to_si(text, dimension) if not _is_number(text) else float(text)
+    except UnitError as exc:
+        raise UserError(f"{option} {text!r}: {exc}") from None
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+        return True
+    except ValueError:
+        return False
+
+
+def parse_speed(text: str) -> tuple[float, str]:
+    """``"250 kn EAS"``, ``"128 m/s TAS"``, ``"M0.84"`` or ``"0.84 MACH"`` → (value in SI or Mach, kind)."""
+    t = text.strip()
+    if t.upper().startswith("M") and _is_number(t[1:]):
+        return float(t[1:]), "MACH"
+    parts = t.split()
+    if len(parts) >= 2 and parts[-1].upper() in ("EAS", "CAS", "TAS", "MACH"):
+        kind = parts[-1].upper()
+        value = " ".join(parts[:-1])
+        return (float(value), kind) if kind == "MACH" else (_quantity(value, "speed", "--speed"), kind)
+    raise UserError(f"--speed {text!r}: give a value with its kind, e.g. '250 kn EAS', '280 kn CAS', 'M0.84'")
+
+
+def condition_from_options(aircraft, corner, weight, cg, configuration, altitude, speed, kind, gamma_deg, bank_deg,
+                           beta_deg, inoperative) -> FlightCondition:
+    if configuration not in aircraft.configurations:
+        raise UserError(f"--config {configuration!r}: not declared (declared: {', '.join(aircraft.configurations)})")
+    if corner:
+        corners = {c.name: c for c in CgCorners().loadings(aircraft)}
+        if corner not in corners:
+            raise UserError(f"--corner {corner!r}: not a named corner (corners: {', '.join(corners)})")
+        c = corners[corner]
+        name, mass, x_cg = c.name, c.mass, c.x_cg
+    else:
+        mass = _quantity(weight, "mass", "--weight") if weight else aircraft.mass.MTOW
+        try:
+            fwd, aft = cg_limits_at(aircraft, mass)
+        except ValueError as exc:
+            raise UserError(f"--weight: {exc}") from None
+        x_cg = _quantity(cg, "length", "--cg") if cg else min(max(reference_cg(aircraft), fwd), aft)
+        if not (fwd - 1e-6 <= x_cg <= aft + 1e-6):
+            raise UserError(f"--cg {x_cg:.3f} m is outside the CG envelope at {mass:.0f} kg ({fwd:.3f} to {aft:.3f} m)")
+        name = f"{mass:.0f} kg at {x_cg:.3f} m"
+    h = _quantity(altitude, "length", "--altitude")
+    if not (-600.0 <= h <= 20_000.0):
+        raise UserError(f"--altitude {altitude!r}: outside the modelled atmosphere (-600 m to 20 km)")
+    ceiling = aircraft.envelope.ceiling
+    if h > ceiling + 1e-6:
+        raise UserError(f"--altitude {h:.0f} m is above the envelope ceiling ({ceiling:.0f} m)")
+    value, speed_kind = parse_speed(speed)
+    tas = float(to_tas(value, speed_kind, h))
+    if kind not in KINDS:
+        raise UserError(f"--maneuver {kind!r}: one of {', '.join(KINDS)}")
+    engines = [e.name for e in aircraft.propulsion.engines]
+    if kind == "oei" and inoperative not in engines:
+        raise UserError(f"--inoperative: name the failed engine ({', '.join(engines)})")
+    return FlightCondition(name, mass, x_cg, configuration, h, tas, KINDS[kind], np.radians(gamma_deg),
+                           np.radians(bank_deg), np.radians(beta_deg), inoperative)
+
+
+def trim_condition(ctx, fc: FlightCondition):
+    """Trim the condition; returns (trim batch, flight model)."""
+    from certkit.models.dynamics.trim import trim
+    from certkit.models.flight import ROLES, control_limits, flight_model
+    from certkit.models.mass.loading import solve_loading
+
+    aircraft = ctx.aircraft
+    loading = solve_loading(aircraft, fc.mass, fc.x_cg, fc.loading_name)
+    operative = None
+    if fc.inoperative:
+        operative = np.array([[e.name != fc.inoperative for e in aircraft.propulsion.engines]])
+    model = flight_model(aircraft, ctx.aero(fc.configuration).model, [loading], operative=operative)
+    batch = trim(model, fc.tas, fc.altitude, kind=fc.kind, gamma=fc.gamma, bank=fc.bank, beta=fc.beta,
+                 limits=control_limits(aircraft), roles=ROLES)
+    return batch, model, loading
+
+
+def trim_report(ctx, fc: FlightCondition) -> dict:
+    batch, _, loading = trim_condition(ctx, fc)
+    return _trim_dict(fc, batch, loading)
+
+
+def _trim_dict(fc: FlightCondition, batch, loading) -> dict:
+    r = batch.results[0]
+    return {
+        "condition": {"loading": fc.loading_name, "mass_kg": fc.mass, "x_cg_m": fc.x_cg, "configuration": fc.configuration,
+                      "altitude_m": fc.altitude, "tas_m_s": fc.tas, "kind": fc.kind, "gamma_deg": np.degrees(fc.gamma),
+                      "bank_deg": np.degrees(fc.bank), "beta_deg": np.degrees(fc.beta), "inoperative": fc.inoperative},
+        "converged": r.converged, "residual_norm": r.residual_norm, "iterations": r.iterations,
+        "alpha_deg": np.degrees(r.alpha), "beta_deg": np.degrees(r.beta), "theta_deg": np.degrees(r.theta),
+        "phi_deg": np.degrees(r.phi),
+        "controls": {k: (v if k.startswith("throttle") else float(np.degrees(v))) for k, v in r.controls.items()},
+        "controls_unit": "deg (throttle 0-1)",
+        "thrust_N": r.thrust,
+        "limits_exceeded": [{"message": lim.message, "hint": lim.hint} for lim in r.limits_exceeded],
+        "inertia_kg_m2": {"Ixx": loading.properties.Ixx, "Iyy": loading.properties.Iyy, "Izz": loading.properties.Izz,
+                          "Ixz": loading.properties.Ixz},
+        "loading_notes": list(loading.notes),
+    }
+
+
+def modes_report(ctx, fc: FlightCondition) -> dict:
+    from certkit.models.dynamics.linearize import linearize
+    from certkit.models.dynamics.modes import identify_modes
+
+    batch, model, loading = trim_condition(ctx, fc)
+    out = _trim_dict(fc, batch, loading)
+    if not batch.results[0].converged:
+        raise UserError("the condition does not trim: " + batch.results[0].summary())
+    modes = identify_modes(linearize(model, batch.x, batch.u), 0)
+    out["modes"] = {name: {"eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag], "natural_frequency_rad_s": m.natural_frequency,
+                           "damping_ratio": m.damping_ratio, "period_s": m.period, "time_to_half_s": m.time_to_half,
+                           "time_to_double_s": m.time_to_double} for name, m in modes.items()}
+    return out
