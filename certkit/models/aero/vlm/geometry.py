@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from pathlib import Path
 from typing import Sequence
 
@@ -105,9 +106,13 @@ class CamberLine:
 
     def slope(self, xc: np.ndarray) -> np.ndarray:
         """dz/dx at chord fractions ``xc`` (cubic spline through the camber points)."""
+        return self._spline(np.clip(xc, self.x[0], self.x[-1]), 1)
+
+    @cached_property
+    def _spline(self):
         from scipy.interpolate import CubicSpline
 
-        return CubicSpline(self.x, self.z)(np.clip(xc, self.x[0], self.x[-1]), 1)
+        return CubicSpline(self.x, self.z)
 
     @classmethod
     def flat(cls) -> "CamberLine":

@@ -38,7 +38,10 @@ class Lattice:
     each control variable, ``strip`` index, ``chord`` of its strip, ``dx`` element chord length.
     Per strip (J): leading edges ``rle1``/``rle2``/``rle`` and chords ``chord1``/``chord2``/``chord``
     at edge 1, edge 2 and centre, ``width``, in-plane normal ``ensy``/``ensz``, ``first``/``count``
-    vortex indices, ``component``, ``wake``, ``alpha_beta``, ``load`` flags."""
+    vortex indices, ``component``, ``wake``, ``alpha_beta``, ``load`` flags. If the configuration
+    is mirror-symmetric about y = 0, ``mirror[i]`` is the image of vortex i and ``mirror_sign[i]``
+    is +1 (image with reversed bound leg, as built by YDUPLICATE) or −1 (vortex in the plane of
+    symmetry, its own image with reversed sense); otherwise both are None."""
 
     rv1: np.ndarray
     rv2: np.ndarray
@@ -65,6 +68,8 @@ class Lattice:
     load: np.ndarray
     patches: list[SurfacePatch]
     control_names: tuple[str, ...]
+    mirror: np.ndarray | None = None
+    mirror_sign: np.ndarray | None = None
 
     @property
     def n_vortices(self) -> int:
@@ -317,6 +322,7 @@ def build_lattice(config: Configuration) -> Lattice:
         return np.concatenate([b[key].reshape(-1, *b[key].shape[2:]) for b in blocks])
 
     count = cat_strip("count")
+    mirror, mirror_sign = _mirror_map(config, patches, blocks)
     first = np.concatenate([[0], np.cumsum(count)[:-1]])
     nd = np.concatenate([b["normal_control"].reshape(len(names), b["normal"].shape[0] * b["normal"].shape[1], 3) for b in blocks], axis=1)
     return Lattice(
@@ -325,5 +331,29 @@ def build_lattice(config: Configuration) -> Lattice:
         rle1=cat_strip("rle1"), rle2=cat_strip("rle2"), rle=cat_strip("rle"), chord1=cat_strip("chord1"), chord2=cat_strip("chord2"),
         chord=cat_strip("chord"), width=cat_strip("width"), ensy=cat_strip("ensy"), ensz=cat_strip("ensz"), first=first, count=count,
         component=cat_strip("component"), wake=cat_strip("wake"), alpha_beta=cat_strip("alpha_beta"), load=cat_strip("load"),
-        patches=patches, control_names=names,
+        patches=patches, control_names=names, mirror=mirror, mirror_sign=mirror_sign,
     )
+
+
+def _mirror_map(config: Configuration, patches: list[SurfacePatch], blocks: list[dict]):
+    """Vortex ↔ image map when every surface is either mirrored about y = 0 or lies in y = 0."""
+    n = sum(b["rv"].shape[0] * b["rv"].shape[1] for b in blocks)
+    mirror = np.arange(n)
+    sign = np.ones(n)
+    k = 0
+    for surface in config.surfaces:
+        patch = patches[k]
+        if surface.y_duplicate is not None:
+            if surface.y_duplicate != 0.0:
+                return None, None
+            image = patches[k + 1]
+            mirror[patch.vortices] = np.arange(image.vortices.start, image.vortices.stop)
+            mirror[image.vortices] = np.arange(patch.vortices.start, patch.vortices.stop)
+            k += 2
+        else:
+            b = blocks[k]
+            if not (np.all(b["rv1"][..., 1] == 0.0) and np.all(b["rv2"][..., 1] == 0.0) and np.all(b["rc"][..., 1] == 0.0)):
+                return None, None
+            sign[patch.vortices] = -1.0
+            k += 1
+    return mirror, sign

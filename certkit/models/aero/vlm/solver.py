@@ -203,17 +203,30 @@ class VortexLattice:
         width = np.hypot(lat.rv2[:, 1] - lat.rv1[:, 1], lat.rv2[:, 2] - lat.rv1[:, 2])
         same = (CORE_SAME_COMPONENT * width) ** 4
         other = np.maximum(CORE_OTHER_COMPONENT_CHORD * lat.chord[lat.vortex_strip], CORE_OTHER_COMPONENT_WIDTH * width) ** 4
-        if np.all(vortex_comp == vortex_comp[0]) and np.all(target_component == vortex_comp[0]):
-            return lambda rows: same[None, :]
-        return lambda rows: np.where(target_component[rows, None] == vortex_comp[None, :], same[None, :], other[None, :])
+        by_component = {c: np.where(vortex_comp == c, same, other)[None, :] for c in np.unique(target_component)}
+
+        def core4(rows: slice) -> np.ndarray:
+            comps = target_component[rows]
+            if comps.size and np.all(comps == comps[0]):
+                return by_component[comps[0]]
+            return np.where(comps[:, None] == vortex_comp[None, :], same[None, :], other[None, :])
+
+        return core4
 
     def _solve_unit_problems(self) -> None:
         lat = self.lattice
         n, m = lat.n_vortices, len(self.control_names)
         beta = math.sqrt(1.0 - self.mach**2)
         vortex_comp = lat.component[lat.vortex_strip]
-        core = self._core4(vortex_comp)
-        aic = horseshoe_velocity(lat.rc, lat.rv1, lat.rv2, core, beta, normals=lat.normal)
+        # mirror symmetry: compute influences at one half (and the plane of symmetry) only; the
+        # image point i' of i sees vortex j as i sees the image of j, reflected (y → −y)
+        if lat.mirror is not None:
+            rows = np.flatnonzero(lat.mirror >= np.arange(n))
+            images = rows[lat.mirror[rows] != rows]
+        else:
+            rows, images = np.arange(n), np.arange(0)
+        core = self._core4(vortex_comp[rows])
+        aic = horseshoe_velocity(lat.rc[rows], lat.rv1, lat.rv2, core, beta, normals=lat.normal[rows])  # rows only
         # right-hand sides: 6 unit freestream/rotation components, then 6 per control
         unit_c = _unit_velocities(lat.rc, self._ref_point)  # (N, 6, 3)
         rhs = np.empty((n, 6 + 6 * m))
@@ -221,36 +234,80 @@ class VortexLattice:
         for d in range(m):
             rhs[:, 6 + 6 * d : 12 + 6 * d] = -np.einsum("ikc,ic->ik", unit_c, lat.normal_control[d])
         rhs[~lat.alpha_beta[lat.vortex_strip]] = 0.0
-        te = (lat.first + lat.count - 1)[~lat.wake]
-        if te.size:  # NOWAKE strips: zero net circulation replaces the trailing-edge equation
-            aic[te] = 0.0
-            for j in np.flatnonzero(~lat.wake):
-                aic[lat.first[j] + lat.count[j] - 1, lat.first[j] : lat.first[j] + lat.count[j]] = 1.0
+        row_of = np.full(n, -1)
+        row_of[rows] = np.arange(rows.size)
+        for j in np.flatnonzero(~lat.wake):  # NOWAKE strips: zero net circulation replaces the TE equation
+            te = lat.first[j] + lat.count[j] - 1
             rhs[te] = 0.0
+            if row_of[te] >= 0:
+                aic[row_of[te]] = 0.0
+                aic[row_of[te], lat.first[j] : te + 1] = 1.0
         if not np.all(np.isfinite(aic)):
             raise SingularLatticeError("influence matrix has non-finite entries (coincident vortex and control point)")
+        if images.size:
+            gam = self._solve_symmetric(aic, rows, rhs)
+        else:
+            lu = self._factorise(aic)
+            gam = scipy.linalg.lu_solve(lu, rhs, check_finite=False)  # (N, K)
+        if not np.all(np.isfinite(gam)):
+            raise SingularLatticeError("vortex strengths are not finite: the influence matrix is singular")
+        self.unit_circulation = gam
+        # velocity at bound-leg midpoints for every unit solution (induced part never stored N×N)
+        if images.size:
+            flipped = gam[lat.mirror] * lat.mirror_sign[:, None]
+            both = horseshoe_velocity(lat.rv[rows], lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=np.hstack([gam, flipped]))
+            induced = np.empty((3, n, gam.shape[1]))
+            induced[:, rows] = both[:, :, : gam.shape[1]]
+            pos = np.searchsorted(rows, images)
+            induced[:, lat.mirror[images]] = both[:, pos, gam.shape[1]:] * np.array([1.0, -1.0, 1.0])[:, None, None]
+        else:
+            induced = horseshoe_velocity(lat.rv, lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=gam)  # (3, N, K)
+        vel = np.moveaxis(induced, 0, -1).copy()  # (N, K, 3)
+        vel[:, :6, :] += _unit_velocities(lat.rv, self._ref_point)
+        self.unit_bound_velocity = vel
+        self._build_force_tensor()
+
+    def _factorise(self, matrix: np.ndarray, index: np.ndarray | None = None):
+        """LU factors of a (sub)system, raising SingularLatticeError on a zero or tiny pivot."""
         with warnings.catch_warnings():
             warnings.simplefilter("error", scipy.linalg.LinAlgWarning)
             try:
-                lu = scipy.linalg.lu_factor(aic, check_finite=False)
+                lu = scipy.linalg.lu_factor(matrix, check_finite=False)
             except (scipy.linalg.LinAlgWarning, np.linalg.LinAlgError, ValueError) as exc:
                 raise SingularLatticeError(f"influence matrix is singular: {exc}") from None
         pivots = np.abs(np.diag(lu[0]))
         if pivots.min() <= 1e-12 * pivots.max():
             worst = int(np.argmin(pivots))
-            strip = lat.vortex_strip[min(worst, n - 1)]
-            raise SingularLatticeError(f"influence matrix is singular near vortex {worst} (surface {self._surface_of_strip(strip)!r})")
-        gam = scipy.linalg.lu_solve(lu, rhs, check_finite=False)  # (N, K)
-        if not np.all(np.isfinite(gam)):
-            raise SingularLatticeError("vortex strengths are not finite: the influence matrix is singular")
-        self._lu = lu
-        self.unit_circulation = gam
-        # velocity at bound-leg midpoints for every unit solution (induced part never stored N×N)
-        induced = horseshoe_velocity(lat.rv, lat.rv1, lat.rv2, core, beta, skip_own_bound=True, out_rhs=gam)  # (3, N, K)
-        vel = np.moveaxis(induced, 0, -1)  # (N, K, 3)
-        vel[:, :6, :] += _unit_velocities(lat.rv, self._ref_point)
-        self.unit_bound_velocity = vel
-        self._build_force_tensor()
+            vortex = int(index[worst]) if index is not None else worst
+            strip = self.lattice.vortex_strip[min(vortex, self.lattice.n_vortices - 1)]
+            raise SingularLatticeError(f"influence matrix is singular near vortex {vortex} (surface {self._surface_of_strip(strip)!r})")
+        return lu
+
+    def _solve_symmetric(self, aic_rows: np.ndarray, rows: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """Solve a mirror-symmetric system from its rows at one half (R) and the symmetry plane (Z).
+
+        With images L = mirror(R), the rows at L repeat those at R with the columns of R and L
+        swapped and those of Z negated; Z rows see L as the negative of R. Writing Γ_R = a + b,
+        Γ_L = a − b gives two independent systems, (A_RR + A_RL) a = (r_R + r_L)/2 for the
+        symmetric part and [[A_RR − A_RL, A_RZ], [2 A_ZR, A_ZZ]] [b; Γ_Z] = [(r_R − r_L)/2; r_Z] for
+        the antisymmetric part: two factorisations of about half the size."""
+        lat = self.lattice
+        pair = lat.mirror[rows] != rows
+        r_idx, z_idx = rows[pair], rows[~pair]
+        l_idx = lat.mirror[r_idx]
+        a_r, a_z = aic_rows[pair], aic_rows[~pair]
+        a_rr, a_rl, a_rz = a_r[:, r_idx], a_r[:, l_idx], a_r[:, z_idx]
+        sym = self._factorise(a_rr + a_rl, r_idx)
+        anti = np.block([[a_rr - a_rl, a_rz], [2.0 * a_z[:, r_idx], a_z[:, z_idx]]])
+        anti_lu = self._factorise(anti, np.concatenate([r_idx, z_idx]))
+        a = scipy.linalg.lu_solve(sym, 0.5 * (rhs[r_idx] + rhs[l_idx]), check_finite=False)
+        bz = scipy.linalg.lu_solve(anti_lu, np.vstack([0.5 * (rhs[r_idx] - rhs[l_idx]), rhs[z_idx]]), check_finite=False)
+        b = bz[: r_idx.size]
+        gam = np.empty_like(rhs)
+        gam[r_idx] = a + b
+        gam[l_idx] = a - b
+        gam[z_idx] = bz[r_idx.size :]
+        return gam
 
     def _surface_of_strip(self, j: int) -> str:
         for p in self.lattice.patches:
