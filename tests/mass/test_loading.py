@@ -59,3 +59,10 @@ def test_below_empty_mass_is_scaled_and_noted(baseline):
     r = solve_loading(baseline.model, 200_000 * LB, 95.0 * FT)
     assert "below the operating empty mass" in r.notes[-1]
     assert r.properties.Ixx == pytest.approx(baseline.model.mass.inertia.Ixx * 200_000 / 656_000, rel=1e-9)
+
+
+def test_fuel_never_moves_the_cg_sideways(baseline, corners):
+    """Mirror-image wing tanks fill together: every corner's CG is on the plane of symmetry."""
+    for r in corners.values():
+        assert abs(r.properties.cg[1]) < 1e-9
+        assert abs(r.properties.inertia[0, 1]) < 1e-6 * r.properties.Ixx

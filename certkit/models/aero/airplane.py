@@ -28,7 +28,11 @@ from certkit.models.aero.vlm import Configuration as LatticeConfiguration
 from certkit.models.aero.vlm import ControlSpan, VortexLattice, trapezoidal_surface
 
 #: Mach breakpoints at which the lattice is solved; the model interpolates between them
-DEFAULT_MACHS = (0.2, 0.4, 0.6, 0.75, 0.85)
+DEFAULT_MACHS = (0.2, 0.4, 0.6, 0.75, 0.84, 0.9)
+#: lift coefficient at which the wave drag is folded into CD0(M) (transport design CL, as the CRM's)
+DESIGN_CL = 0.5
+#: calibrated airspeed of the climb schedule that fixes the Reynolds number at each Mach breakpoint
+SCHEDULE_CAS = 300 * 1852 / 3600
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
 #: lattice derivatives carried into the flight model (the others are zero by symmetry or not used)
 CARRIED = ("CL_alpha", "CL_q", "CY_beta", "CY_p", "CY_r", "Cl_beta", "Cl_p", "Cl_r", "Cm_alpha", "Cm_q",
@@ -112,13 +116,48 @@ def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
     return table, xnp, e, vl
 
 
-def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=None, fuselage=None,
+def schedule_altitude(aircraft, machs) -> np.ndarray:
+    """Altitude where the 300 KCAS climb schedule reaches each Mach number (sea level below it, the
+    ceiling above it): the Reynolds number of the drag build-up at that Mach breakpoint."""
+    from scipy.optimize import brentq
+
+    from certkit.atmosphere import cas_to_mach
+
+    top = aircraft.envelope.ceiling
+    out = []
+    for m in machs:
+        f = lambda h: float(cas_to_mach(SCHEDULE_CAS, h)) - m  # noqa: E731  (Mach rises with altitude at fixed CAS)
+        out.append(0.0 if f(0.0) >= 0 else top if f(top) <= 0 else brentq(f, 0.0, top))
+    return np.array(out)
+
+
+def drag_terms(aircraft, machs) -> tuple[list[float], list[float], list[str]]:
+    """CD0(M) (parasite at the schedule's Reynolds number plus wave drag at the design CL) and the
+    induced-drag factor k = 1/(π A e) (Oswald e of the drag build-up), clean configuration."""
+    from certkit.models.aero.drag import drag_buildup
+
+    machs = np.asarray(machs, dtype=float)
+    b = drag_buildup(aircraft, machs, schedule_altitude(aircraft, machs), DESIGN_CL)
+    k = 1.0 / (np.pi * aircraft.geometry.wing.aspect_ratio * b.oswald_efficiency)
+    notes = [f"CD0 includes wave drag at CL {DESIGN_CL} (Korn/Lock); Reynolds number on the 300 KCAS climb schedule"]
+    return list(b.CD0 + b.CD_wave), list(k), notes
+
+
+def fuselage_terms(aircraft) -> dict[str, float]:
+    """Fuselage Cm_α (Gilruth & White) and Cn_β (Raymer 16.50) increments, per radian."""
+    from certkit.models.aero.fuselage import fuselage_derivatives
+
+    f = fuselage_derivatives(aircraft.geometry, aircraft.reference)
+    return {"Cm_alpha": f.Cm_alpha, "Cn_beta": f.Cn_beta}
+
+
+def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=drag_terms, fuselage=fuselage_terms,
                         lattice=None) -> AirplaneAero:
     """The model of ``configuration``: declared tables if any, else the lattice estimate
     (``lattice``: the result of :func:`lattice_derivatives`, shared between configurations).
 
-    ``drag(aircraft, configuration, machs, span_efficiency) -> (CD0 list, k list, notes)`` and
-    ``fuselage(aircraft) -> {"Cm_alpha": Δ, "Cn_beta": Δ}`` supply the semi-empirical terms.
+    ``drag(aircraft, machs) -> (CD0 list, k list, notes)`` and ``fuselage(aircraft) -> {"Cm_alpha": Δ,
+    "Cn_beta": Δ}`` supply the semi-empirical terms (None leaves them out).
     """
     cfg = aircraft.configurations[configuration]
     declared = aircraft.aerodynamics.derivative_tables.get(configuration)
@@ -141,7 +180,7 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
                 table[key] = [v + delta for v in table[key]]
             result.source += " + fuselage corrections"
         if drag is not None:
-            cd0, k, drag_notes = drag(aircraft, configuration, machs, e)
+            cd0, k, drag_notes = drag(aircraft, machs)
             table["CD0"], table["k"] = list(cd0), list(k)
             result.source += " + drag build-up"
             notes += drag_notes
@@ -170,5 +209,10 @@ def _high_lift(aircraft, name, cfg, table, notes) -> None:
     else:
         notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
                      "no flap on the wing: lift and moment increments not modelled")
-    if cfg.delta_CD0:
-        table["CD0"] = [v + cfg.delta_CD0 for v in table.get("CD0", [0.0] * len(table["CL0"]))]
+    from certkit.models.aero.drag import configuration_drag_increment
+
+    delta, declared = configuration_drag_increment(cfg)
+    if delta:
+        table["CD0"] = [v + delta for v in table.get("CD0", [0.0] * len(table["CL0"]))]
+        if not declared:
+            notes.append(f"configuration {name}: ΔCD0 {delta:.4f} estimated (flaps Raymer 12.61, gear Roskam Part I)")

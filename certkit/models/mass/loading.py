@@ -74,13 +74,27 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
     return [_item("operating empty airplane", m.OEW, x)], ["no component table: the empty airplane is a point mass at its CG"]
 
 
+def tank_groups(tanks) -> list[list]:
+    """Tanks in filling order; mirror-image tanks (same x and z, opposite y) form one group and are
+    filled together, so that fuel never moves the CG sideways."""
+    groups: dict[tuple, list] = {}
+    for t in tanks:
+        key = (round(t.cg.x, 3), round(abs(t.cg.y), 3), round(t.cg.z, 3))
+        groups.setdefault(key, []).append(t)
+    return list(groups.values())
+
+
 def _fuel_items(aircraft, fuel: float) -> list[MassComponent]:
-    """Fuel in the tanks in declared order (each filled before the next); a point mass per tank."""
+    """Fuel in the tank groups in declared order (each group filled before the next, its tanks in
+    proportion to their capacity); a point mass per tank."""
     items, left = [], fuel
-    for t in aircraft.mass.fuel_tanks:
-        load = min(left, t.capacity)
-        if load > 0:
-            items.append(_item(f"fuel: {t.name}", load, t.cg.x, t.cg.y, t.cg.z))
+    for group in tank_groups(aircraft.mass.fuel_tanks):
+        capacity = sum(t.capacity for t in group)
+        load = min(left, capacity)
+        for t in group:
+            share = load * t.capacity / capacity
+            if share > 0:
+                items.append(_item(f"fuel: {t.name}", share, t.cg.x, t.cg.y, t.cg.z))
         left -= load
     if left > 1e-6 * max(fuel, 1.0):
         raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
