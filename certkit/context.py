@@ -95,3 +95,68 @@ class Context:
         if speed is None and mach is None:
             raise ValueError(f"speeds.{name} is not declared")
         return np.minimum(eas, eas_m), eas_m < eas
+
+    # --- flight: loadings, trims and modes of conditions (batched, memoised) --------------
+
+    def loading(self, mass: float, x_cg: float, name: str = ""):
+        """Payload/fuel distribution and inertia reaching (mass, x_cg) (:mod:`certkit.models.mass.loading`)."""
+        from certkit.models.mass.loading import solve_loading
+
+        return self.memo(("loading", round(float(mass), 3), round(float(x_cg), 6)),
+                         lambda: solve_loading(self.aircraft, mass, x_cg, name))
+
+    def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
+             configuration: str | None = None, design_limits: bool = True):
+        """Trim every condition (its loading, configuration, altitude and speed) in one batch.
+
+        Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
+        value per condition (rad); ``inoperative`` names a failed engine. Control limits are the design limits.
+        """
+        from certkit.conditions import speed_as
+
+        conds = tuple(conditions)
+        configs = {configuration or c.configuration for c in conds}
+        if len(configs) != 1 or None in configs:
+            raise ValueError(f"a trim batch needs one configuration, got {sorted(map(str, configs))}")
+        config = configs.pop()
+        tas = np.array([speed_as(c, "TAS") for c in conds])
+        h = np.array([c.altitude or 0.0 for c in conds])
+        key = ("trim", config, tuple((c.mass, c.x_cg) for c in conds), tuple(np.round(tas, 6)), tuple(h), kind,
+               _hashable(gamma), _hashable(bank), _hashable(beta), inoperative, design_limits)
+        return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits))
+
+    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits):
+        from certkit.models.dynamics.trim import trim
+        from certkit.models.flight import ROLES, control_limits, flight_model
+
+        loadings = [self.loading(c.mass, c.x_cg, c.loading or "") for c in conds]
+        operative = None
+        if inoperative is not None:
+            names = [e.name for e in self.aircraft.propulsion.engines]
+            if inoperative not in names:
+                raise ValueError(f"no engine named {inoperative!r} (engines: {', '.join(names)})")
+            operative = np.array([[n != inoperative for n in names]] * len(conds))
+        model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
+        return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta,
+                    limits=control_limits(self.aircraft, design=design_limits), roles=ROLES)
+
+    def modes(self, conditions):
+        """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
+        condition; None where the trim did not converge."""
+        from certkit.models.dynamics.linearize import linearize
+        from certkit.models.dynamics.modes import identify_modes
+
+        conds = tuple(conditions)
+
+        def compute():
+            batch = self.trim(conds)
+            lin = linearize(batch.model, batch.x, batch.u)
+            return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
+
+        return self.memo(("modes",) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds),
+                         compute)
+
+
+def _hashable(value):
+    arr = np.asarray(value, dtype=float)
+    return float(arr) if arr.ndim == 0 else tuple(np.round(arr.ravel(), 9))
