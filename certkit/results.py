@@ -41,6 +41,16 @@ class Condition:
                 extra[key] = changes.pop(key)
         return replace(self, extra=tuple(extra.items()), **changes)
 
+    def refines(self, other: "Condition") -> bool:
+        """True when this condition is ``other`` with more fields set (a rule that computes, say, the
+        speed 1.3 VSR of a weight refines the scheduled condition of that weight)."""
+        for name in ("loading", "mass", "x_cg", "configuration", "altitude", "speed", "speed_kind", "speed_name"):
+            theirs = getattr(other, name)
+            if theirs is not None and getattr(self, name) != theirs:
+                return False
+        mine = dict(self.extra)
+        return all(k in mine and mine[k] == v for k, v in other.extra)
+
     def as_dict(self) -> dict:
         """JSON form (SI, with units in the key names)."""
         out: dict[str, object] = {}

@@ -77,7 +77,7 @@ def evaluate_rule(rule: type[Rule], ctx: Context) -> RuleResult:
                                                       traceback=traceback.format_exc(limit=3)))
     covered = {f.condition for f in findings}
     for cond in conditions:
-        if cond not in covered:
+        if cond not in covered and not any(c.refines(cond) for c in covered):
             findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
     result.findings = findings
     try:

@@ -182,3 +182,12 @@ def test_rules_explain_and_new_rule(cli, tmp_path):
     assert module.exists() and (root / "tests" / "rules" / "test_r25_171.py").exists()
     (rule_cls,) = folder_rules(module.parent)
     assert rule_cls.id == "25.171" and rule_cls.implementation == "planned"
+
+
+def test_refined_conditions_cover_their_origin():
+    from certkit.results import Condition
+
+    base = Condition(loading="fwd_mlw", mass=2e5, x_cg=28.0, configuration="landing")
+    assert base.with_(speed=70.0, speed_kind="EAS", thrust="idle").refines(base)
+    assert not base.with_(mass=1e5).refines(base)
+    assert not Condition(loading="aft_mlw", mass=2e5, x_cg=28.0).refines(base)
