@@ -331,7 +331,7 @@ class VortexLattice:
             fl = _cross(_unit_velocities(pts, self._ref_point), leg[:, None, :])  # (N, 6, 3)
             zl = np.concatenate([fl, _cross((pts - self._ref_point)[:, None, :], fl)], axis=-1)
             t[:, :6, :] += 2.0 * np.tensordot(g, zl, axes=(0, 0))
-        self.force_tensor = np.moveaxis(t, -1, 0) / s  # (6, K, K): FX, FY, FZ, MX, MY, MZ (geometry)
+        self.force_tensor = np.ascontiguousarray(np.moveaxis(t, -1, 0)) / s  # (6, K, K): FX, FY, FZ, MX, MY, MZ (geometry)
         self._n_inputs = k
 
     def _leg_geometry(self):
