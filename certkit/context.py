@@ -40,6 +40,29 @@ class Context:
             value = self._memo[key] = compute()
             return value
 
+    def provenance(self) -> dict:
+        """What the shared models were built from, for the report: aerodynamic sources, overrides and
+        notes per configuration, every loading solved (mass, CG, inertia, payload, fuel, notes), and the
+        empty airplane's component table."""
+        from certkit.models.aero.airplane import AirplaneAero
+        from certkit.models.mass.loading import Loading, empty_airplane
+
+        aero, loadings = {}, {}
+        for key, value in self._memo.items():
+            if isinstance(value, AirplaneAero):
+                aero[value.configuration] = {"source": value.source, "mach": list(value.mach),
+                                             "overrides": value.overrides, "notes": value.notes}
+            elif isinstance(value, Loading):
+                p = value.properties
+                loadings[key] = {"name": value.name, "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
+                                 "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
+                                 "notes": list(value.notes)}
+        components, notes = empty_airplane(self.aircraft)
+        return {"aerodynamics": aero, "loadings": [loadings[k] for k in sorted(loadings)],
+                "components": [{"item": c.name, "mass_kg": c.mass, "x_m": c.cg[0], "y_m": c.cg[1], "z_m": c.cg[2],
+                                "own_inertia": c.inertia is not None} for c in components],
+                "component_notes": notes}
+
     def lookup(self, dotted: str) -> object:
         """The aircraft-file value at ``speeds.VMC`` / ``configurations.landing.CLmax`` (None if absent)."""
         node: object = self.aircraft

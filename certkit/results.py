@@ -221,6 +221,7 @@ class RunResult:
     source_path: str
     created: str
     rules: list[RuleResult]
+    models: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
@@ -234,6 +235,7 @@ class RunResult:
             "created": self.created,
             "summary": self.summary(),
             "rules": [r.as_dict() for r in self.rules],
+            "models": self.models,
         }
 
     def exit_code(self) -> int:

@@ -87,9 +87,26 @@ def evaluate_rule(rule: type[Rule], ctx: Context) -> RuleResult:
     return result
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> list[RuleResult]:
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
-    return [evaluate_rule(r, ctx) for r in rules]
+    return [evaluate_rule(r, ctx) for r in rules], ctx.provenance()
+
+
+def _merge_provenance(parts: list[dict]) -> dict:
+    """One provenance from several workers' (same inputs give the same entries; keep one of each)."""
+    merged = {"aerodynamics": {}, "loadings": [], "components": parts[0]["components"] if parts else [],
+              "component_notes": parts[0]["component_notes"] if parts else []}
+    seen = set()
+    for p in parts:
+        merged["aerodynamics"].update(p["aerodynamics"])
+        for row in p["loadings"]:
+            key = (round(row["mass_kg"], 3), round(row["x_cg_m"], 6))
+            if key not in seen:
+                seen.add(key)
+                merged["loadings"].append(row)
+    merged["aerodynamics"] = dict(sorted(merged["aerodynamics"].items()))
+    merged["loadings"].sort(key=lambda r: (r["mass_kg"], r["x_cg_m"]))
+    return merged
 
 
 _WORKER: dict = {}
@@ -103,7 +120,7 @@ def _worker_init(path: str, options: DiscoveryOptions) -> None:
     _WORKER["rules"] = {r.id: r for r in discover(options)}
 
 
-def _worker_run(rule_ids: list[str]) -> list[RuleResult]:
+def _worker_run(rule_ids: list[str]) -> tuple[list[RuleResult], dict]:
     return _evaluate_many(_WORKER["loaded"], [_WORKER["rules"][i] for i in rule_ids])
 
 
@@ -113,14 +130,16 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results = _evaluate_many(loaded, rules)
+        results, provenance = _evaluate_many(loaded, rules)
+        provenance = _merge_provenance([provenance])
     else:
         chunks = [[r.id for r in rules[i::jobs]] for i in range(jobs)]
         chunks = [c for c in chunks if c]
         with ProcessPoolExecutor(max_workers=len(chunks), initializer=_worker_init,
                                  initargs=(loaded.path, options)) as pool:
             parts = list(pool.map(_worker_run, chunks))
-        by_id = {r.id: r for part in parts for r in part}
+        by_id = {r.id: r for part, _ in parts for r in part}
         results = [by_id[r.id] for r in rules]
+        provenance = _merge_provenance([p for _, p in parts])
     created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
-    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results)
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance)

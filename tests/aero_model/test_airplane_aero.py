@@ -111,3 +111,27 @@ def test_derivatives_command_bad_input_exit_2(tmp_path):
     bad.write_text("title\n0.5\n0 0 0\n-1 1 1\n0 0 0\n")
     proc = subprocess.run([sys.executable, "-m", "certkit.cli", "derivatives", str(bad)], capture_output=True, text=True)
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and "bad.avl" in proc.stderr
+
+
+def test_report_lists_every_override(tmp_path):
+    """Issue 3: the report lists every coefficient the aircraft file overrides (models.aerodynamics)."""
+    from certkit.report.html import render_html
+    from certkit.registry import discover
+    from certkit.scheduler import _merge_provenance
+    from certkit.results import RunResult
+
+    f = tmp_path / "o.yaml"
+    f.write_text(BASELINE.read_text() + textwrap.dedent("""
+        aerodynamics:
+          overrides_source: flight-test polar FT-7 (test)
+          overrides:
+            clean: {CD0: 0.0171}
+    """))
+    ctx = Context(load_aircraft(f))
+    ctx.aero("clean")
+    ctx.loading(ctx.aircraft.mass.MTOW, 29.0, "test loading")
+    models = _merge_provenance([ctx.provenance()])
+    assert models["aerodynamics"]["clean"]["overrides"]["CD0"]["value"] == 0.0171
+    assert models["loadings"][0]["name"] == "test loading"
+    html = render_html(RunResult("0", "x", "0" * 64, str(f), "now", [], models), discover())
+    assert "flight-test polar FT-7 (test)" in html and "CD0: 0.0171" in html
