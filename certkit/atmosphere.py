@@ -114,32 +114,30 @@ def cas_to_mach(cas, h):
     return mach
 
 
+#: kind → (speed to TAS, TAS to speed), each f(value, h)
+_CONVERSIONS = {
+    "TAS": (lambda v, h: np.asarray(v, dtype=float) + 0.0 * np.asarray(h, dtype=float),) * 2,
+    "EAS": (eas_to_tas, tas_to_eas),
+    "CAS": (lambda v, h: mach_to_tas(cas_to_mach(v, h), h), lambda v, h: mach_to_cas(tas_to_mach(v, h), h)),
+    "MACH": (mach_to_tas, tas_to_mach),
+}
+
+
+def _conversion(kind: str, direction: int):
+    try:
+        return _CONVERSIONS[kind.upper()][direction]
+    except KeyError:
+        raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)") from None
+
+
 def to_tas(speed, kind: str, h):
     """Convert a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h`` to true airspeed."""
-    kind = kind.upper()
-    if kind == "TAS":
-        return np.asarray(speed, dtype=float) + 0.0 * np.asarray(h, dtype=float)
-    if kind == "EAS":
-        return eas_to_tas(speed, h)
-    if kind == "CAS":
-        return mach_to_tas(cas_to_mach(speed, h), h)
-    if kind == "MACH":
-        return mach_to_tas(speed, h)
-    raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)")
+    return _conversion(kind, 0)(speed, h)
 
 
 def from_tas(tas, kind: str, h):
     """Convert true airspeed to a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h``."""
-    kind = kind.upper()
-    if kind == "TAS":
-        return np.asarray(tas, dtype=float) + 0.0 * np.asarray(h, dtype=float)
-    if kind == "EAS":
-        return tas_to_eas(tas, h)
-    if kind == "CAS":
-        return mach_to_cas(tas_to_mach(tas, h), h)
-    if kind == "MACH":
-        return tas_to_mach(tas, h)
-    raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)")
+    return _conversion(kind, 1)(tas, h)
 
 
 def convert_speed(speed, from_kind: str, to_kind: str, h):
