@@ -48,6 +48,10 @@ _HINTS = {
 }
 
 
+#: range of the throttle iterate (the engine models' throttle range, kept 1e-5 inside at full thrust)
+_THROTTLE_BOX = (0.0, 1.0 - 1e-5)
+
+
 @dataclass
 class LimitExceedance:
     control: str
@@ -223,6 +227,10 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     hstep = np.array([steps[u] for u in unknowns])
     smax = np.array([max_step[u] for u in unknowns])
     k = len(unknowns)
+    # the engine models saturate outside throttle [0, 1]: an iterate beyond has a flat Jacobian column and
+    # Newton stalls there, so the throttle iterate is kept inside (just below 1, where the forward difference
+    # still sees the engine); a condition needing more than full thrust ends non-converged at the bound
+    j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
     iters = np.zeros(n, dtype=int)
     active = np.ones(n, dtype=bool)
     r = residual(z)
@@ -249,6 +257,8 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         lam = np.ones(n)
         for _bt in range(6):
             z_try = np.where(active[:, None], z + lam[:, None] * dz, z)
+            if j_thr is not None:
+                z_try[:, j_thr] = np.clip(z_try[:, j_thr], *_THROTTLE_BOX)
             r_try = residual(z_try)
             rn_try = np.max(np.abs(r_try * scale), axis=1)
             bad = active & ~(rn_try < rnorm)
@@ -274,6 +284,12 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
             tval = float(z[i, unknowns.index("throttle")])
             lo, hi = lim["throttle"]
             found += _check("throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False)
+            if rnorm[i] > tol and not found and (tval >= _THROTTLE_BOX[1] or tval <= _THROTTLE_BOX[0]):
+                high = tval >= _THROTTLE_BOX[1]
+                found.append(LimitExceedance(
+                    control="throttle", required=tval, limit=hi if high else lo, excess=0.0,
+                    message=f"needs {'more than full' if high else 'less than idle'} throttle",
+                    hint=_HINTS["throttle_high" if high else "throttle_low"]))
         results.append(TrimResult(
             index=i, kind=kind, converged=bool(rnorm[i] <= tol), residual_norm=float(rnorm[i]),
             iterations=int(iters[i]), V=float(V[i]), h=float(h[i]), alpha=float(vals["alpha"][i]),
