@@ -1,0 +1,118 @@
+"""§25.103 Stall speed (Amdt. 25-108/25-121). The reference stall speed VSR of each configuration.
+
+VSR is a calibrated airspeed defined by the applicant and may not be less than a 1-g stall speed.
+certkit computes the 1-g stall speed from the configuration's declared trimmed 1-g CLmax and the
+weight, V = √(2W / (ρ₀ S CLmax)) (EAS; equal to CAS at sea level, where the stall is evaluated),
+and checks a declared ``speeds.VSR.<configuration>`` against it. The other Subpart B rules take
+their VSR from :func:`reference_stall_speed`: the declared value where given (scaled with √W from
+the configuration's reference weight), else the computed 1-g stall speed.
+"""
+
+from __future__ import annotations
+
+import math
+
+from certkit.atmosphere import convert_speed
+from certkit.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
+from certkit.models.performance.stall import stall_speed_eas
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+
+AMDT = "25-121"
+
+#: the weight at which a declared VSR of each configuration is read (the weight the configuration is used at)
+REFERENCE_WEIGHT = {"takeoff": "MTOW", "clean": "MTOW", "approach": "MLW", "landing": "MLW"}
+
+
+def reference_weight(ctx, configuration: str) -> tuple[str, float]:
+    """(name, kg) of the weight a configuration is used at: MLW for approach/landing, MTOW otherwise."""
+    name = REFERENCE_WEIGHT.get(configuration, "MTOW")
+    mass = getattr(ctx.aircraft.mass, name) or ctx.aircraft.mass.MTOW
+    return name, float(mass)
+
+
+def computed_stall_speed(ctx, configuration: str, mass) -> float:
+    """1-g stall speed (m/s EAS) from the declared trimmed CLmax of ``configuration`` at ``mass`` (kg)."""
+    clmax = ctx.clmax(configuration)
+    if clmax is None:
+        raise ValueError(f"configurations.{configuration}.CLmax is not declared")
+    return float(stall_speed_eas(mass, ctx.aircraft.reference.area, clmax))
+
+
+def reference_stall_speed(ctx, configuration: str, mass) -> tuple[float, str]:
+    """VSR (m/s EAS, = CAS at sea level) of ``configuration`` at ``mass`` and where it comes from.
+
+    A declared ``speeds.VSR.<configuration>`` is read at the configuration's reference weight and
+    scaled with √(W/W_ref) (constant CL); otherwise the 1-g stall speed from CLmax is used.
+    """
+    declared = ctx.aircraft.speeds.VSR.get(configuration)
+    if declared is not None:
+        name, w_ref = reference_weight(ctx, configuration)
+        v = float(convert_speed(declared.value, declared.kind, "EAS", 0.0)) * math.sqrt(mass / w_ref)
+        return v, f"declared speeds.VSR.{configuration} at {name}, scaled with √W"
+    return computed_stall_speed(ctx, configuration, mass), f"1-g stall speed from configurations.{configuration}.CLmax"
+
+
+def _weights(ctx, configuration: str) -> list[tuple[str, float, float]]:
+    """(loading name, kg, forward CG) at which ``configuration`` is used."""
+    env_max = max(v.mass for v in ctx.aircraft.cg_envelope.vertices)
+    if configuration == "clean":
+        return [(ld.name, ld.mass, ld.x_cg) for ld in EnvelopeWeights().loadings(ctx.aircraft)]
+    name, mass = reference_weight(ctx, configuration)
+    fwd, _ = cg_limits_at(ctx.aircraft, min(mass, env_max))
+    return [(f"{name} forward", mass, fwd)]
+
+
+@rule
+class StallSpeed(Rule):
+    id = "25.103"
+    symbol = "reference-stall-speed"
+    title = "Stall speed VSR"
+    amendment = AMDT
+    requirement = """
+        The reference stall speed VSR is a calibrated airspeed defined by the applicant; it may not be
+        less than a 1-g stall speed, VCLMAX/√nZW, obtained in the (c) manoeuvre (deceleration not more
+        than 1 kt/s from a trim speed between 1.13 and 1.3 VSR, engines idle, the CG giving the highest
+        VSR). With a stick pusher, VSR is at least 2 kt or 2 % above the pusher speed (d).
+    """
+    margin = """
+        Declared VSR − 1-g stall speed (m/s CAS at sea level) for each configuration at the weights where
+        it is used (takeoff and clean at MTOW, clean also at every envelope weight, approach and landing at
+        MLW); ≥ 0 complies. Without a declared VSR the computed 1-g stall speed is VSR (margin 0) and is
+        the reference the other Subpart B rules use: estimated values must be conservative.
+    """
+    references = ("25.107", "25.121", "25.125", "25.143", "25.145")
+    requires = ("mass.MTOW",)
+    criteria = {
+        "load_factor": Criterion(1.0, "", "14 CFR 25.103(a)", "normal load factor nZW at which the 1-g stall speed is taken"),
+    }
+    conditions = ConditionSpace(configurations=("clean", "takeoff", "approach", "landing"),
+                                note="Weights per configuration: MTOW for takeoff, MLW for approach and landing, "
+                                     "every envelope weight for clean; forward CG (declared CLmax is the trimmed value).")
+    limitations = """
+        CLmax is the declared trimmed 1-g value (taken at the forward CG); the (c) deceleration manoeuvre,
+        the nZW correction and the stick-pusher margin (d) are not simulated.
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        out = []
+        for cond in conditions:
+            cfg = cond.configuration
+            check = f"(a) VSR {cfg} ≥ 1-g stall speed"
+            if ctx.clmax(cfg) is None:
+                out.append(Finding.not_evaluated(cond, check, f"needs configurations.{cfg}.CLmax"))
+                continue
+            declared = ctx.aircraft.speeds.VSR.get(cfg)
+            for name, mass, x_cg in _weights(ctx, cfg):
+                v_1g = computed_stall_speed(ctx, cfg, mass) * math.sqrt(crit.load_factor)
+                here = cond.with_(loading=name, mass=mass, x_cg=x_cg, altitude=0.0)
+                if declared is None:
+                    out.append(Finding.compare(
+                        here.with_(speed=v_1g, speed_kind="CAS", speed_name="VSR"), check, v_1g, v_1g, at_least=True,
+                        unit="m/s", reason=f"speeds.VSR.{cfg} not declared: the 1-g stall speed from CLmax is VSR "
+                                           "(estimated values must be conservative)", CLmax=ctx.clmax(cfg)))
+                    continue
+                vsr, source = reference_stall_speed(ctx, cfg, mass)
+                out.append(Finding.compare(here.with_(speed=vsr, speed_kind="CAS", speed_name="VSR"), check, vsr, v_1g,
+                                           at_least=True, unit="m/s", CLmax=ctx.clmax(cfg), VSR_source=source))
+        return out

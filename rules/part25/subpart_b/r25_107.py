@@ -1,0 +1,93 @@
+"""§25.107 Takeoff speeds (Amdt. 25-121 era text). Declared V1, VR, V2, VLOF against VSR, VMC, VMCG, VMU.
+
+Each sub-check is its own finding, so the rule reports what it can: the VSR parts are evaluated from
+§25.103's reference stall speed of the takeoff configuration at MTOW, the VMC/VMCG/VMU parts are
+``not_evaluated`` until those speeds are declared.
+"""
+
+from __future__ import annotations
+
+from certkit.atmosphere import convert_speed
+from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+
+AMDT = "25-121"
+TAKEOFF = "takeoff"
+
+
+def declared_cas(ctx, name: str) -> float | None:
+    """A declared takeoff speed (m/s CAS at sea level), None when absent."""
+    s = getattr(ctx.aircraft.speeds, name)
+    return None if s is None else float(convert_speed(s.value, s.kind, "CAS", 0.0))
+
+
+def ratio_check(cond, check, speeds, numerator, denominator, factor, *, basis=""):
+    """``numerator/denominator ≥ factor`` as a ratio margin, or not_evaluated naming the missing speed."""
+    missing = [n for n in (numerator, denominator) if speeds.get(n) is None]
+    if missing:
+        return Finding.not_evaluated(cond, check, "needs " + ", ".join(f"speeds.{m}" for m in missing))
+    value = speeds[numerator] / speeds[denominator]
+    return Finding.compare(cond.with_(speed=speeds[numerator], speed_kind="CAS", speed_name=numerator), check, value,
+                           factor, at_least=True, unit="ratio", **{numerator: speeds[numerator],
+                                                                   denominator: speeds[denominator]},
+                           **({"basis": basis} if basis else {}))
+
+
+@rule
+class TakeoffSpeeds(Rule):
+    id = "25.107"
+    symbol = "takeoff-speeds"
+    title = "Takeoff speeds"
+    amendment = AMDT
+    requirement = """
+        V2MIN may not be less than 1.13 VSR (two- and three-engine propeller airplanes, and turbojets without
+        provisions for a significant reduction of the one-engine-inoperative power-on stall speed; 1.08 VSR for
+        propeller airplanes with more than three engines and turbojets with such provisions) nor 1.10 VMC (b);
+        V2 may not be less than V2MIN (c)(1). VEF may not be less than VMCG, V1 not less than VEF (a).
+        VR may not be less than V1 nor 1.05 VMC (e)(1)(i)-(ii), and must give a VLOF of not less than
+        110 % of VMU with all engines operating (e)(1)(iv).
+    """
+    margin = """
+        Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
+        V1/VMCG − 1, VLOF/VMU − 1.10; VSR of the takeoff configuration at MTOW (§25.103), speeds CAS.
+    """
+    references = ("25.103", "25.111", "25.121(b)", "25.143(h)", "25.149")
+    requires = ("speeds.V2", "configurations.takeoff")
+    criteria = {
+        "v2_over_vsr": Criterion(1.13, "", "14 CFR 25.107(b)(1)(ii)",
+                                 "V2MIN/VSR, turbojet without power-on stall-speed reduction provisions "
+                                 "(1.08 under (b)(2)(ii): override with the justification)"),
+        "v2_over_vmc": Criterion(1.10, "", "14 CFR 25.107(b)(3)", "V2MIN/VMC"),
+        "vr_over_v1": Criterion(1.0, "", "14 CFR 25.107(e)(1)(i)", "VR may not be less than V1"),
+        "vr_over_vmc": Criterion(1.05, "", "14 CFR 25.107(e)(1)(ii)", "VR/VMC"),
+        "v1_over_vmcg": Criterion(1.0, "", "14 CFR 25.107(a)(1)-(2)",
+                                  "V1 ≥ VEF ≥ VMCG, so V1/VMCG ≥ 1 (VEF is not declared)"),
+        "vlof_over_vmu": Criterion(1.10, "", "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, "
+                                   "docs/regulation-notes.md)", "VLOF/VMU, all engines operating"),
+    }
+    conditions = ConditionSpace(loading=DesignWeight("MTOW", ("reference",)), configurations=(TAKEOFF,), altitudes=None,
+                                note="VSR from the declared trimmed CLmax is not CG-sensitive here, so the reference CG.")
+    limitations = """
+        V2 ≥ VR + the increment to 35 ft (c)(2), VR giving V2 by 35 ft (e)(1)(iii) and the VR − 5 kt abuse case
+        (e)(3) need the takeoff-path simulation of §25.111 and are not evaluated; the OEI VLOF ≥ 1.05 VMU part of
+        (e)(1)(iv) is not separated from the all-engines one (one VLOF is declared).
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        out = []
+        for cond in conditions:
+            cond = cond.with_(altitude=0.0)
+            vsr, source = reference_stall_speed(ctx, TAKEOFF, cond.mass)
+            speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VMU", "VLOF")}
+            speeds["VSR"] = vsr
+            out += [
+                ratio_check(cond, "(b)(1), (c)(1) V2 ≥ 1.13 VSR", speeds, "V2", "VSR", crit.v2_over_vsr, basis=source),
+                ratio_check(cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc),
+                ratio_check(cond, "(e)(1)(i) VR ≥ V1", speeds, "VR", "V1", crit.vr_over_v1),
+                ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc),
+                ratio_check(cond, "(a) V1 ≥ VEF ≥ VMCG", speeds, "V1", "VMCG", crit.v1_over_vmcg),
+                ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
+            ]
+        return out

@@ -1,0 +1,50 @@
+"""§25.107 takeoff speeds against hand calculations in kn CAS.
+
+VSR (takeoff, MTOW 656,000 lb, CLmax 1.95, S 4927.3 ft², ρ₀ 0.0023769 slug/ft³) = 142.009 kn by
+VS = √(2W/(ρ₀ S CLmax)) (Anderson, *Introduction to Flight*, eq. 6.47). Tolerance 1e-4 on ratios.
+"""
+
+import pytest
+
+from .helpers import run_rule
+
+VSR_KN = 142.0091
+
+
+def check(result, prefix):
+    return next(f for f in result.findings if f.check.startswith(prefix))
+
+
+def test_hand_calculation_v2_over_vsr_and_vr_over_v1():
+    """V2/VSR − 1.13 = 161/142.009 − 1.13 = 0.00373; VR/V1 − 1 = 155/150 − 1 = 0.0333."""
+    r = run_rule("25.107")
+    assert check(r, "(b)(1)").margin == pytest.approx(161 / VSR_KN - 1.13, abs=1e-4)
+    assert check(r, "(e)(1)(i)").margin == pytest.approx(155 / 150 - 1, abs=1e-9)
+
+
+def test_v2_on_the_limit(tmp_path):
+    """V2 = 1.13 × 142.009 = 160.470 kn CAS: margin 0 within 1e-5."""
+    r = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", f"V2: {1.13 * VSR_KN:.4f} kn CAS")])
+    f = check(r, "(b)(1)")
+    assert f.margin == pytest.approx(0.0, abs=1e-5)
+
+
+def test_sign_higher_v1_reduces_margin_and_higher_v2_adds_margin(tmp_path):
+    """V1 raised to VR (155 kn) puts (e)(1)(i) on its limit (margin 0); the file loader already rejects
+    VR < V1, so the check cannot be driven below zero from a valid file. V2 165 kn adds V2/VSR margin."""
+    on = run_rule("25.107", tmp_path, [("V1: 150 kn CAS", "V1: 155 kn CAS")])
+    assert check(on, "(e)(1)(i)").margin == pytest.approx(0.0, abs=1e-12) and check(on, "(e)(1)(i)").status == "complies"
+    faster = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 165 kn CAS")])
+    assert check(faster, "(b)(1)").margin == pytest.approx(165 / VSR_KN - 1.13, abs=1e-4)
+    assert check(faster, "(b)(1)").margin > check(run_rule("25.107"), "(b)(1)").margin
+
+
+def test_vmc_parts_not_evaluated_until_declared(tmp_path):
+    """The baseline has no VMC: its parts are not_evaluated while the VSR part is evaluated; declaring
+    VMC 120 kn CAS gives V2/VMC − 1.10 = 0.2417 and VR/VMC − 1.05 = 0.2417."""
+    r = run_rule("25.107")
+    assert check(r, "(b)(3)").status == "not_evaluated" and check(r, "(b)(3)").reason == "needs speeds.VMC"
+    assert check(r, "(b)(1)").status == "complies" and r.status == "not_evaluated"
+    with_vmc = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMC: 120 kn CAS")])
+    assert check(with_vmc, "(b)(3)").margin == pytest.approx(161 / 120 - 1.10, abs=1e-9)
+    assert check(with_vmc, "(e)(1)(ii)").margin == pytest.approx(155 / 120 - 1.05, abs=1e-9)
