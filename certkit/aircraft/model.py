@@ -80,6 +80,21 @@ class ControlSurface(_Section):
         return self
 
 
+class HighLiftDevice(_Section):
+    """A flap or slat: spanwise extent (fractions of the semispan), chord ratio and type."""
+
+    span_start: Fraction
+    span_end: Fraction
+    chord_ratio: Annotated[float, Field(gt=0.0, lt=0.6)]
+    type: Literal["plain", "split", "slotted", "double_slotted", "fowler", "slat", "krueger"] = "slotted"
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.span_end <= self.span_start:
+            raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
+        return self
+
+
 class LiftingSurface(_Section):
     """A trapezoidal lifting surface (one pair of panels, or the fin on the plane of symmetry)."""
 
@@ -94,6 +109,8 @@ class LiftingSurface(_Section):
     tip_twist: Angle = Field(0.0, description="tip incidence relative to root (negative: washout)")
     airfoil: str = Field("NACA 0012", description="NACA 4-digit designation or an airfoil coordinate file")
     controls: dict[str, ControlSurface] = Field(default_factory=dict)
+    flaps: HighLiftDevice | None = None
+    slats: HighLiftDevice | None = None
 
 
 class Fuselage(_Section):

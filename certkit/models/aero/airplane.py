@@ -161,8 +161,16 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
     """
     cfg = aircraft.configurations[configuration]
     declared = aircraft.aerodynamics.derivative_tables.get(configuration)
-    stall = StallModel(cfg.CLmax) if cfg.CLmax else None
-    notes: list[str] = [] if stall else [f"configurations.{configuration}.CLmax not declared: no stall model"]
+    notes: list[str] = []
+    clmax = cfg.CLmax
+    if clmax is None and aircraft.geometry is not None:
+        from certkit.models.aero.high_lift import estimated_clmax
+
+        clmax = estimated_clmax(aircraft.geometry.wing, cfg)
+        notes.append(f"configuration {configuration}: CLmax {clmax:.2f} estimated (Raymer eqs 12.15, 12.21)")
+    elif clmax is None:
+        notes.append(f"configurations.{configuration}.CLmax not declared: no stall model")
+    stall = StallModel(clmax) if clmax else None
     ref = aero_reference(aircraft)
     if declared is not None:
         table = dict(declared.derivatives)
@@ -197,18 +205,32 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
 
 
 def _high_lift(aircraft, name, cfg, table, notes) -> None:
-    """ΔCL0, ΔCm0 of the configuration: declared increments, else the flap's lattice derivative × angle."""
+    """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
+    (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle."""
+    from certkit.models.aero.high_lift import lift_and_moment_increment
+
+    wing = aircraft.geometry.wing
     flap_cl, flap_cm = table.get("CL_flap"), table.get("Cm_flap")
     if cfg.delta_CL0 or cfg.delta_Cm0 or not cfg.flap:
-        table["CL0"] = [v + cfg.delta_CL0 for v in table["CL0"]]
-        table["Cm0"] = [v + cfg.delta_Cm0 for v in table["Cm0"]]
+        d_cl = [cfg.delta_CL0] * len(table["CL0"])
+        d_cm = [cfg.delta_Cm0] * len(table["CL0"])
+    elif wing.flaps is not None:
+        ref = aircraft.reference
+        pairs = [lift_and_moment_increment(wing, wing.flaps, cfg.flap, a, ref.moment_point.x, ref.mean_chord)
+                 for a in table["CL_alpha"]]
+        d_cl, d_cm = [p[0] for p in pairs], [p[1] for p in pairs]
+        notes.append(f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22; "
+                     f"ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach breakpoint)")
     elif flap_cl is not None:
-        table["CL0"] = [v + d * cfg.flap for v, d in zip(table["CL0"], flap_cl)]
-        table["Cm0"] = [v + d * cfg.flap for v, d in zip(table["Cm0"], flap_cm)]
+        d_cl = [d * cfg.flap for d in flap_cl]
+        d_cm = [d * cfg.flap for d in flap_cm]
         notes.append(f"configuration {name}: flap increments from the lattice (linear theory; overestimates large deflections)")
     else:
+        d_cl = d_cm = [0.0] * len(table["CL0"])
         notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
                      "no flap on the wing: lift and moment increments not modelled")
+    table["CL0"] = [v + d for v, d in zip(table["CL0"], d_cl)]
+    table["Cm0"] = [v + d for v, d in zip(table["Cm0"], d_cm)]
     from certkit.models.aero.drag import configuration_drag_increment
 
     delta, declared = configuration_drag_increment(cfg)

@@ -1,0 +1,90 @@
+"""High-lift estimates when the aircraft file declares none (Raymer, *Aircraft Design*, 6th ed., §12.4.4).
+
+* Maximum lift, clean: C_Lmax = 0.9 c_lmax cos Λ_c/4 (Raymer eq. 12.15 form for high-aspect-ratio
+  swept wings), c_lmax of the section from its thickness (NACA 4-digit sections at Re ≈ 6·10⁶,
+  Abbott & von Doenhoff: about 1.3 at t/c 0.09 rising to 1.6 at t/c 0.12-0.15).
+* Flap and slat increment of maximum lift: ΔC_Lmax = 0.9 Δc_lmax (S_flapped / S_ref) cos Λ_HL
+  (Raymer eq. 12.21) with Δc_lmax of Raymer Table 12.2 (plain/split 0.9, slotted 1.3, double
+  slotted 1.6 c'/c, Fowler 1.3 c'/c, slat 0.4 c'/c, Krueger 0.3) at the landing deflection; a smaller
+  deflection scales it by δ / 40° (takeoff settings give 60-80 % of the landing increment, Raymer).
+* Zero-lift angle shift: Δα_L=0 = −15° (S_flapped/S_ref) cos Λ_HL at landing deflection, scaled the
+  same way (Raymer eq. 12.22), so ΔC_L0 = −C_Lα Δα_L=0.
+* Flap pitching moment: the flap increment acts at half the local chord (thin-airfoil theory puts the
+  centre of a trailing-edge flap's load between c/4 and c/2, Abbott & von Doenhoff §8.2), at the
+  flapped span's centroid: ΔC_m0 = −ΔC_L0 (x_flap − x_ref)/c̄.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.models.aero import planform
+
+DELTA_CLMAX_SECTION = {"plain": 0.9, "split": 0.9, "slotted": 1.3, "double_slotted": 1.6, "fowler": 1.3,
+                       "slat": 0.4, "krueger": 0.3}
+#: types whose Δc_lmax multiplies the extended-chord ratio c'/c (Raymer Table 12.2)
+CHORD_SCALED = {"double_slotted", "fowler", "slat"}
+LANDING_DEFLECTION = np.radians(40.0)
+ALPHA0_SHIFT_LANDING = np.radians(-15.0)
+
+
+def section_clmax(thickness_ratio: float) -> float:
+    """Section maximum lift of a NACA 4-digit-like section (Abbott & von Doenhoff, Re ≈ 6e6)."""
+    return float(np.interp(thickness_ratio, [0.06, 0.09, 0.12, 0.15, 0.21], [1.0, 1.3, 1.6, 1.6, 1.4]))
+
+
+def clean_clmax(wing) -> float:
+    return 0.9 * section_clmax(wing.thickness_ratio) * np.cos(wing.sweep_quarter_chord)
+
+
+def flapped_area_ratio(wing, device) -> float:
+    """S_flapped/S: the wing area between the device's spanwise ends (trapezoid, fractions of semispan)."""
+    lam = wing.taper
+
+    def area_inboard_of(eta):  # fraction of the half-wing area inboard of eta
+        return (eta - 0.5 * (1 - lam) * eta**2) / (0.5 * (1 + lam))
+
+    return area_inboard_of(device.span_end) - area_inboard_of(device.span_start)
+
+
+def hinge_sweep(wing, device, trailing: bool = True) -> float:
+    fraction = 1.0 - device.chord_ratio if trailing else device.chord_ratio
+    return float(planform.sweep_at(fraction, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper))
+
+
+def _deflection_scale(deflection: float) -> float:
+    return float(min(max(deflection, 0.0) / LANDING_DEFLECTION, 1.0))
+
+
+def delta_clmax(wing, device, deflection: float) -> float:
+    """ΔC_Lmax of one device at ``deflection`` (rad), Raymer eq. 12.21."""
+    if device is None or deflection <= 0:
+        return 0.0
+    base = DELTA_CLMAX_SECTION[device.type]
+    if device.type in CHORD_SCALED:
+        base *= 1.0 + device.chord_ratio  # c'/c with the extension about equal to the device chord
+    trailing = device.type not in ("slat", "krueger")
+    return 0.9 * base * flapped_area_ratio(wing, device) * np.cos(hinge_sweep(wing, device, trailing)) * _deflection_scale(deflection)
+
+
+def lift_and_moment_increment(wing, flaps, flap_deflection: float, cl_alpha: float, x_ref: float, mean_chord: float):
+    """(ΔC_L0, ΔC_m0) of the trailing-edge flaps at ``flap_deflection`` (Raymer eq. 12.22 and the module notes)."""
+    if flaps is None or flap_deflection <= 0:
+        return 0.0, 0.0
+    ratio = flapped_area_ratio(wing, flaps)
+    d_alpha0 = ALPHA0_SHIFT_LANDING * ratio * np.cos(hinge_sweep(wing, flaps)) * _deflection_scale(flap_deflection)
+    d_cl = -cl_alpha * d_alpha0
+    semi = 0.5 * planform.span(wing.area, wing.aspect_ratio)
+    c_root = planform.root_chord(wing.area, wing.aspect_ratio, wing.taper)
+    eta = 0.5 * (flaps.span_start + flaps.span_end)
+    y = eta * semi
+    chord = c_root * (1 - (1 - wing.taper) * eta)
+    x_le = wing.root_leading_edge.x + y * np.tan(planform.sweep_at(0.0, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper))
+    x_flap = x_le + 0.5 * chord
+    return float(d_cl), float(-d_cl * (x_flap - x_ref) / mean_chord)
+
+
+def estimated_clmax(wing, configuration) -> float:
+    """C_Lmax of a configuration: clean estimate plus the flap and slat increments."""
+    return (clean_clmax(wing) + delta_clmax(wing, wing.flaps, configuration.flap)
+            + delta_clmax(wing, wing.slats, configuration.slat))
