@@ -1,0 +1,135 @@
+"""MIL-F-8785C (5 Nov 1980) flying-qualities levels for Class III airplanes, as data.
+
+Part 25 states no numeric damping or time-constant requirement; certkit reports the military
+specification's Level (1 best, 3 worst; 4 = worse than Level 3) of each rigid-body mode as a
+reference reading, and uses one of its numbers (short-period ζ ≥ 0.35, Level 1 category A/C) as the
+numeric reading of §25.181(a)'s "heavily damped" (overridable in the aircraft file).
+
+Every limit carries its paragraph number. ``verified`` is False for every row: the values come from
+docs/regulation-notes.md §6 — R. C. Nelson, *Flight Stability and Automatic Control* (2nd ed.),
+Tables 10.1–10.3, as reproduced secondarily, and from memory of the specification (marked ``mem``
+in the note) — and have not been checked against the specification's text.
+
+Flight-phase categories (MIL-F-8785C 1.3): A non-terminal phases needing rapid manoeuvring or precise
+tracking (cruise manoeuvring), B gradual non-terminal phases (climb, cruise, descent), C terminal
+phases (takeoff, approach, landing).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+SOURCE = ("MIL-F-8785C (1980), Class III, as reproduced in Nelson, Flight Stability and Automatic Control, "
+          "Tables 10.1-10.3, and docs/regulation-notes.md §6 (UNVERIFIED against the specification)")
+
+#: flight-phase category of each certkit configuration
+CATEGORY = {"takeoff": "C", "approach": "C", "landing": "C", "clean": "B"}
+
+
+@dataclass(frozen=True)
+class Limit:
+    """One boundary of one Level: ``quantity`` of ``mode`` must be ≥ (``bound`` "min") or ≤ ("max") ``value``."""
+
+    mode: str
+    quantity: str          # zeta, zeta_wn (rad/s), wn (rad/s), tau (s), t_double (s)
+    categories: str        # the categories it applies to, e.g. "AC"
+    level: int
+    bound: str             # "min" or "max"
+    value: float
+    unit: str
+    paragraph: str
+    verified: bool = False
+    note: str = ""
+
+
+_T4 = "3.2.2.1.2 Table IV"
+_T6 = "3.3.1.1 Table VI"
+_T7 = "3.3.1.2 Table VII"
+_T8 = "3.3.1.3 Table VIII"
+_PH = "3.2.1.2"
+
+LIMITS: tuple[Limit, ...] = (
+    # short-period damping ratio, Table IV (mem)
+    Limit("short_period", "zeta", "AC", 1, "min", 0.35, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "AC", 1, "max", 1.30, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "B", 1, "min", 0.30, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "B", 1, "max", 2.00, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "AC", 2, "min", 0.25, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "B", 2, "min", 0.20, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "ABC", 2, "max", 2.00, "", _T4, note="mem"),
+    Limit("short_period", "zeta", "ABC", 3, "min", 0.15, "", _T4, note="mem"),
+    # phugoid, 3.2.1.2 (mem)
+    Limit("phugoid", "zeta", "ABC", 1, "min", 0.04, "", _PH, note="mem"),
+    Limit("phugoid", "zeta", "ABC", 2, "min", 0.0, "", _PH, note="mem"),
+    Limit("phugoid", "t_double", "ABC", 3, "min", 55.0, "s", _PH, note="mem; time to double of an unstable phugoid"),
+    # Dutch roll, Table VI (Nelson Table 10.2)
+    Limit("dutch_roll", "zeta", "A", 1, "min", 0.19, "", _T6),
+    Limit("dutch_roll", "zeta_wn", "A", 1, "min", 0.35, "rad/s", _T6),
+    Limit("dutch_roll", "zeta", "BC", 1, "min", 0.08, "", _T6),
+    Limit("dutch_roll", "zeta_wn", "BC", 1, "min", 0.15, "rad/s", _T6),
+    Limit("dutch_roll", "wn", "ABC", 1, "min", 0.4, "rad/s", _T6),
+    Limit("dutch_roll", "zeta", "ABC", 2, "min", 0.02, "", _T6),
+    Limit("dutch_roll", "zeta_wn", "ABC", 2, "min", 0.05, "rad/s", _T6),
+    Limit("dutch_roll", "wn", "ABC", 2, "min", 0.4, "rad/s", _T6),
+    Limit("dutch_roll", "zeta", "ABC", 3, "min", 0.0, "", _T6, note="mem; Nelson's reproduction is ambiguous (may read 0.02)"),
+    Limit("dutch_roll", "wn", "ABC", 3, "min", 0.4, "rad/s", _T6),
+    # roll-mode time constant, Table VII (Nelson Table 10.1)
+    Limit("roll", "tau", "ABC", 1, "max", 1.4, "s", _T7),
+    Limit("roll", "tau", "ABC", 2, "max", 3.0, "s", _T7),
+    Limit("roll", "tau", "ABC", 3, "max", 10.0, "s", _T7),
+    # spiral, minimum time to double amplitude, Table VIII (Nelson Table 10.3); a convergent spiral meets every level
+    Limit("spiral", "t_double", "ABC", 1, "min", 20.0, "s", _T8),
+    Limit("spiral", "t_double", "ABC", 2, "min", 12.0, "s", _T8),
+    Limit("spiral", "t_double", "ABC", 3, "min", 4.0, "s", _T8),
+)
+
+
+def limits_for(mode: str, category: str, level: int) -> list[Limit]:
+    """The boundaries a mode must meet for ``level`` in ``category``."""
+    return [lim for lim in LIMITS if lim.mode == mode and category in lim.categories and lim.level == level]
+
+
+def quantities(mode) -> dict[str, float]:
+    """The quantities the tables bound, from a :class:`certkit.models.dynamics.modes.Mode`.
+
+    An unstable (divergent) mode has an infinite time constant and a finite time to double; a
+    convergent one an infinite time to double."""
+    sigma = mode.eigenvalue.real
+    return {
+        "zeta": mode.damping_ratio,
+        "wn": mode.natural_frequency,
+        "zeta_wn": mode.damping_ratio * mode.natural_frequency,
+        "tau": 1.0 / -sigma if sigma < 0 else np.inf,
+        "t_double": mode.time_to_double if mode.time_to_double is not None else np.inf,
+    }
+
+
+def _meets(lim: Limit, q: dict[str, float]) -> bool:
+    value = q[lim.quantity]
+    return value >= lim.value if lim.bound == "min" else value <= lim.value
+
+
+def level_of(mode_name: str, mode, category: str) -> tuple[int, str]:
+    """(level, reason): the best Level whose every boundary the mode meets (4 = worse than Level 3),
+    and the first boundary it misses at the next better Level."""
+    q = quantities(mode)
+    missed = ""
+    for level in (1, 2, 3):
+        bounds = limits_for(mode_name, category, level)
+        failed = [lim for lim in bounds if not _meets(lim, q)]
+        if not failed:
+            return level, missed
+        if not missed:
+            lim = failed[0]
+            missed = (f"Level {level} needs {lim.quantity} {'≥' if lim.bound == 'min' else '≤'} {lim.value:g}"
+                      f"{' ' + lim.unit if lim.unit else ''} (MIL-F-8785C {lim.paragraph}), has {q[lim.quantity]:.3g}")
+    return 4, missed
+
+
+def table_rows() -> list[dict]:
+    """The limits as report rows."""
+    return [{"mode": lim.mode, "quantity": lim.quantity, "categories": lim.categories, "level": lim.level,
+             "bound": lim.bound, "value": lim.value, "unit": lim.unit, "paragraph": f"MIL-F-8785C {lim.paragraph}",
+             "verified": lim.verified, "note": lim.note} for lim in LIMITS]
