@@ -1,0 +1,312 @@
+"""Strip loads model of the lifting surfaces: aerodynamic and inertial loads integrated along the span.
+
+Each lifting surface (one half of the wing and of the horizontal tail, the whole fin) is cut into the
+spanwise strips of the vortex lattice (:class:`certkit.models.aero.vlm.VortexLattice`). For every strip
+the model keeps, per unit dynamic pressure,
+
+* the normal force of each **unit lattice solution** — the base state (α = 0, incidence and camber),
+  α, β, the body rates p̂ = pb/2V, q̂ = qc/2V, r̂ = rb/2V and each control deflection — obtained by
+  central differences of the lattice's (quadratic) force about the base state, at each Mach
+  breakpoint of the airplane model and interpolated linearly in Mach as the airplane model is;
+* the X position where that force acts: the circulation-weighted position of the strip's bound
+  vortices for the same unit solution (the first-order Kutta–Joukowski force of each bound leg is
+  proportional to its circulation).
+
+Loads at an instant are the superposition  N_j = q̄ Σ_k x_k N_jk(M)  over the inputs x_k (linear, so a
+whole batch of conditions and time steps is one tensor contraction), plus the inertial force of the
+strip's mass m_j at its station, −m_j g n_local with the rigid-body load factor at the strip,
+n_z,loc = n_z + q̇ (X_cg − X_j)/g and n_y,loc = n_y + (ṙ (X_cg − X_j) − ṗ (Z_cg − Z_j))/g
+(body-axis angular accelerations; centripetal terms neglected).
+
+Sign conventions (airplane frame X aft, Y right, Z up): the surface normal points up for the wing and
+horizontal tail and to the right (+Y) for the fin. At each station, for the part of the surface
+outboard of it: **shear** = Σ normal force (N); **bending** = Σ normal force × distance along the span in
+the plane of the surface (N·m, positive when an upward/rightward load bends the tip up/right);
+**torsion** about the reference axis at ``axis_fraction`` of the local chord, streamwise
+(N·m, positive nose up / leading edge toward the positive normal): Σ N (X_axis − X_load).
+
+Strip mass: the structural mass of the surface (aircraft-file component named like the surface,
+group ``structure``) distributed in proportion to strip area at ``axis_fraction`` of the chord; on
+the wing the propulsion components (engines, nacelles) are point masses at their span station. Wing
+fuel is not distributed (its inertia relief is not counted: conservative for wing bending).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from certkit.units import G0
+
+QUANTITIES = ("shear", "bending", "torsion")
+UNITS = {"shear": "N", "bending": "N·m", "torsion": "N·m"}
+RATE_INPUTS = ("alpha", "beta", "p_hat", "q_hat", "r_hat")
+#: structural component names that carry each surface's mass
+SURFACE_COMPONENTS = {"wing": ("wing",), "horizontal_tail": ("horizontal tail", "horizontal_tail", "stabilizer", "stabiliser"),
+                      "vertical_tail": ("vertical tail", "vertical_tail", "fin")}
+#: terms of the inertial force, see :meth:`SurfaceLoads.inertia_terms`
+INERTIA_TERMS = ("n_z", "qdot_xcg", "qdot", "n_y", "rdot_xcg", "rdot", "pdot_zcg", "pdot")
+EPS = 1e-3
+
+
+@dataclass
+class SurfaceLoads:
+    """Strips and load stations of one surface, with the unit load tables.
+
+    ``aero[m, k, q, s]``: load quantity q at station s per unit dynamic pressure and unit input k
+    (``inputs``) at Mach breakpoint m; ``inertia[t, q, s]``: per unit inertial term t (INERTIA_TERMS).
+    ``strip_aero[m, k, j]``: normal force per unit q̄ of strip j (for span-load plots)."""
+
+    name: str
+    inputs: tuple[str, ...]
+    mach: np.ndarray
+    station_names: tuple[str, ...]
+    station_span: np.ndarray  # m, along the span in the plane of the surface from the root
+    station_y: np.ndarray  # m, airplane Y (Z for the fin) of each station
+    strip_span: np.ndarray
+    strip_x: np.ndarray  # X of the reference axis at each strip (m)
+    strip_mass: np.ndarray  # kg
+    aero: np.ndarray
+    inertia: np.ndarray
+    strip_aero: np.ndarray
+    axis_fraction: float
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def structural_mass(self) -> float:
+        return float(self.strip_mass.sum())
+
+    def _mach_weights(self, mach):
+        m = self.mach
+        x = np.clip(np.asarray(mach, dtype=float), m[0], m[-1])
+        i = np.clip(np.searchsorted(m, x, side="right") - 1, 0, max(m.size - 2, 0))
+        if m.size == 1:
+            return i, np.zeros_like(x)
+        return i, (x - m[i]) / (m[i + 1] - m[i])
+
+    def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
+        """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs
+        (missing inputs are zero; ``one`` is implied)."""
+        qbar = np.asarray(qbar, dtype=float)
+        i, w = self._mach_weights(mach)
+        shape = qbar.shape
+        x = np.zeros(shape + (len(self.inputs),))
+        x[..., 0] = 1.0
+        for k, name in enumerate(self.inputs[1:], start=1):
+            if name in inputs:
+                x[..., k] = inputs[name]
+        lo = np.einsum("...k,...kqs->...qs", x, self.aero[i])
+        hi = np.einsum("...k,...kqs->...qs", x, self.aero[np.minimum(i + 1, self.mach.size - 1)])
+        return qbar[..., None, None] * (lo * (1 - w)[..., None, None] + hi * w[..., None, None])
+
+    def inertia_loads(self, terms: dict[str, np.ndarray]) -> np.ndarray:
+        """Inertial station loads (..., 3, n_stations) from the named inertial terms (INERTIA_TERMS)."""
+        out = 0.0
+        for t, name in enumerate(INERTIA_TERMS):
+            if name in terms:
+                out = out + np.asarray(terms[name], dtype=float)[..., None, None] * self.inertia[t]
+        return np.asarray(out) + np.zeros(self.inertia.shape[1:])
+
+    def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
+        """Aerodynamic normal force of each strip (..., n_strips), N."""
+        qbar = np.asarray(qbar, dtype=float)
+        i, w = self._mach_weights(mach)
+        x = np.zeros(qbar.shape + (len(self.inputs),))
+        x[..., 0] = 1.0
+        for k, name in enumerate(self.inputs[1:], start=1):
+            if name in inputs:
+                x[..., k] = inputs[name]
+        lo = np.einsum("...k,...kj->...j", x, self.strip_aero[i])
+        hi = np.einsum("...k,...kj->...j", x, self.strip_aero[np.minimum(i + 1, self.mach.size - 1)])
+        return qbar[..., None] * (lo * (1 - w)[..., None] + hi * w[..., None])
+
+
+def _strip_indices(lattice, surface: str) -> np.ndarray:
+    for p in lattice.patches:
+        if p.name == surface:
+            return np.arange(p.strips.start, p.strips.stop)
+    raise KeyError(f"no surface {surface!r} in the lattice")
+
+
+def _station_matrices(s1, s2, x_axis_strip, x_axis_station, stations):
+    """(3, n_stations, n_strips) matrices turning strip forces (with their X of application, see
+    below) into shear, bending and torsion at each station: the outboard fraction of each strip
+    (strips cut by a station contribute their outboard part, load uniform over the strip)."""
+    lo, hi = np.minimum(s1, s2), np.maximum(s1, s2)
+    width = np.maximum(hi - lo, 1e-12)
+    frac = np.clip((hi[None, :] - stations[:, None]) / width[None, :], 0.0, 1.0)
+    centre = np.maximum(lo[None, :], stations[:, None]) * 0.5 + hi[None, :] * 0.5
+    arm = np.where(frac > 0, centre - stations[:, None], 0.0)
+    return frac, frac * arm
+
+
+def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 0.4,
+                        station_fractions=(0.0, 0.25, 0.5, 0.75), side_of_body: float | None = None,
+                        point_masses=()) -> SurfaceLoads:
+    """Unit load tables of ``surface`` (lattice surface name; the right half for mirrored surfaces).
+
+    ``masses``: total structural mass of the surface (both halves for a mirrored one), kg.
+    ``point_masses``: (mass kg, X, Y, Z) items attached to the surface at their span station.
+    ``side_of_body``: Y (m) of an extra station where the surface leaves the fuselage."""
+    lat = vl.lattice
+    idx = _strip_indices(lat, surface)
+    vertical = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
+    sign = np.sign(lat.ensy[idx]) if vertical else np.sign(lat.ensz[idx])
+    ny, nz = lat.ensy[idx] * sign, lat.ensz[idx] * sign  # normal up (or right for the fin)
+    root = lat.rle1[idx[0]] if abs(lat.rle1[idx[0], 1]) + abs(lat.rle1[idx[0], 2]) <= abs(lat.rle2[idx[0], 1]) + abs(lat.rle2[idx[0], 2]) else lat.rle2[idx[0]]
+
+    def span_of(p):
+        return np.hypot(p[..., 1] - root[1], p[..., 2] - root[2])
+
+    s1, s2 = span_of(lat.rle1[idx]), span_of(lat.rle2[idx])
+    s_mid = 0.5 * (s1 + s2)
+    semispan = max(s1.max(), s2.max())
+    chord = lat.chord[idx]
+    x_axis = lat.rle[idx, 0] + axis_fraction * chord
+    names = [f"{f:.0%} span" if f else "root" for f in station_fractions]
+    stations = [f * semispan for f in station_fractions]
+    if side_of_body is not None and 0.0 < side_of_body < semispan:
+        cos_dihedral = float(np.mean(np.abs(nz))) if not vertical else 1.0
+        stations.append(side_of_body / max(cos_dihedral, 1e-6))
+        names.append("side of body")
+    order = np.argsort(stations)
+    stations = np.array(stations)[order]
+    names = tuple(np.array(names, dtype=object)[order])
+    x_axis_station = np.interp(stations, s_mid, x_axis)
+    shear_m, bend_m = _station_matrices(s1, s2, x_axis, x_axis_station, stations)
+
+    def integrate(force, x_load):
+        """force (..., J), x_load (..., J) → (..., 3, S)."""
+        shear = np.einsum("...j,sj->...s", force, shear_m)
+        bend = np.einsum("...j,sj->...s", force, bend_m)
+        tors = np.einsum("...j,sj->...s", force, shear_m) * x_axis_station - np.einsum("...j,sj->...s", force * x_load, shear_m)
+        return np.stack([shear, bend, tors], axis=-2)
+
+    # --- unit aerodynamic solutions ---------------------------------------------------------
+    controls = tuple(vl.control_names)
+    inputs = ("one",) + RATE_INPUTS + controls
+    first, count = lat.first[idx], lat.count[idx]
+    xv = lat.rv[:, 0]
+    aero, strip_aero = [], []
+    for m in machs:
+        v = vl.at_mach(float(m))
+
+        def state(name, value):
+            kw = {"alpha": 0.0, "beta": 0.0, "p_hat": 0.0, "q_hat": 0.0, "r_hat": 0.0}
+            ctrl = {}
+            if name in kw:
+                kw[name] = value
+            elif name in controls:
+                ctrl[name] = value
+            sol = v.solve(**kw, controls=ctrl or None, rate_axes="body")
+            f = sol.strips.force_over_q[idx]
+            normal = f[:, 1] * ny + f[:, 2] * nz
+            g = sol.circulation
+            gsum = np.add.reduceat(g, lat.first)[idx]
+            gx = np.add.reduceat(g * xv, lat.first)[idx]
+            return normal, gsum, gx
+
+        base_n, base_g, base_gx = state("one", 0.0)
+        a_n, a_g, _ = state("alpha", EPS)
+        am_n, am_g, _ = state("alpha", -EPS)
+        # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force)
+        ratio = np.where(np.abs(a_g - am_g) > 1e-14, (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
+                         2 * lat.width[idx])
+        unit_n, unit_m = [base_n], [ratio * base_gx]
+        for name in inputs[1:]:
+            pn, pg, pgx = state(name, EPS)
+            mn, mg, mgx = state(name, -EPS)
+            unit_n.append((pn - mn) / (2 * EPS))
+            unit_m.append(ratio * (pgx - mgx) / (2 * EPS))
+        unit_n, unit_m = np.array(unit_n), np.array(unit_m)  # (K, J): force and force × X
+        x_load = np.where(np.abs(unit_n) > 1e-12, unit_m / np.where(np.abs(unit_n) > 1e-12, unit_n, 1.0), x_axis)
+        aero.append(integrate(unit_n, x_load))
+        strip_aero.append(unit_n)
+        del base_g
+
+    # --- mass ------------------------------------------------------------------------------
+    area = lat.chord[idx] * lat.width[idx]
+    mirrored = any(p.name == surface + " (YDUP)" for p in lat.patches)
+    half = 0.5 if mirrored else 1.0
+    strip_mass = half * masses * area / area.sum()
+    x_mass = x_axis.copy()
+    z_mass = lat.rle[idx, 2].copy()
+    extra_force_mass = np.zeros_like(strip_mass)
+    for pm, px, py, pz in point_masses:
+        if mirrored and py < 0:
+            continue
+        pspan = np.hypot(py - root[1], pz - root[2])
+        j = int(np.argmin(np.abs(s_mid - pspan)))
+        total = strip_mass[j] + extra_force_mass[j] + pm
+        x_mass[j] = (x_mass[j] * (strip_mass[j] + extra_force_mass[j]) + px * pm) / total
+        z_mass[j] = (z_mass[j] * (strip_mass[j] + extra_force_mass[j]) + pz * pm) / total
+        extra_force_mass[j] += pm
+    mass = strip_mass + extra_force_mass
+    terms = np.array([
+        -mass * G0 * nz, -mass * nz, mass * nz * x_mass,
+        -mass * G0 * ny, -mass * ny, mass * ny * x_mass,
+        mass * ny, -mass * ny * z_mass,
+    ])
+    inertia = integrate(terms, np.broadcast_to(x_mass, terms.shape))
+    notes = []
+    if masses <= 0:
+        notes.append(f"{surface}: no structural mass declared; inertial loads are zero")
+    return SurfaceLoads(surface, inputs, np.asarray(machs, dtype=float), names, stations,
+                        np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical else lat.rle[idx, 1])),
+                        s_mid, x_axis, mass, np.array(aero), inertia, np.array(strip_aero), axis_fraction, notes)
+
+
+def surface_mass(aircraft, surface: str) -> float:
+    """Structural mass (kg) of the surface from the aircraft file's components (0 if not declared)."""
+    keys = SURFACE_COMPONENTS.get(surface, (surface,))
+    total = 0.0
+    for c in aircraft.mass.components:
+        if c.name.strip().lower() in keys:
+            total += c.mass
+    return total
+
+
+def wing_point_masses(aircraft) -> list[tuple[float, float, float, float]]:
+    """Propulsion components off the plane of symmetry (engines, nacelles) as wing point masses."""
+    return [(c.mass, c.cg.x, c.cg.y, c.cg.z) for c in aircraft.mass.components
+            if c.group == "propulsion" and abs(c.cg.y) > 0.0]
+
+
+@dataclass
+class AirplaneLoads:
+    """The loads models of the lifting surfaces of one aircraft (wing and tail halves, fin)."""
+
+    surfaces: dict[str, SurfaceLoads]
+    notes: list[str]
+
+    def __getitem__(self, name: str) -> SurfaceLoads:
+        return self.surfaces[name]
+
+
+def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4) -> AirplaneLoads:
+    """Wing, horizontal tail and fin loads models from the lattice ``vl`` at the Mach breakpoints."""
+    g = aircraft.geometry
+    sob = 0.5 * g.fuselage.width if g is not None and g.fuselage is not None else None
+    out = {}
+    notes = ["strip loads from unit vortex-lattice solutions (linear superposition, quasi-steady)",
+             f"torsion about the {axis_fraction:.0%} chord line; strip masses at that line",
+             "wing fuel inertia relief not included (conservative for wing bending)"]
+    for name in ("wing", "horizontal_tail", "vertical_tail"):
+        pm = wing_point_masses(aircraft) if name == "wing" else ()
+        out[name] = build_surface_loads(vl, name, machs, surface_mass(aircraft, name), axis_fraction,
+                                        side_of_body=None if name == "vertical_tail" else sob, point_masses=pm)
+        notes += out[name].notes
+    return AirplaneLoads(out, notes)
+
+
+def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
+    """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared)."""
+    def build():
+        aero = ctx.aero(configuration)
+        if aero.lattice is None:
+            raise ValueError(f"configuration {configuration!r} uses declared derivative tables: the strip loads "
+                             "model needs the geometry's vortex lattice")
+        return build_airplane_loads(ctx.aircraft, aero.lattice, aero.mach)
+
+    return ctx.memo(("airplane_loads", configuration), build)

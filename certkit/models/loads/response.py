@@ -1,0 +1,158 @@
+"""Loads along a simulated response: time histories per condition, envelopes and critical cases.
+
+:func:`response_loads` turns the recorded histories of a batch simulation
+(:func:`certkit.models.dynamics.simulate.simulate`) into station loads of each surface at every time
+step; :class:`LoadEnvelope` keeps, across the conditions, the maximum and minimum of every station
+and quantity with the condition and time where it occurs (a loads engineer's critical-case list),
+and the conditions that could not be simulated with the reason (DLR Loads Kernel style).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from certkit.models.loads.model import QUANTITIES, UNITS, AirplaneLoads
+from certkit.units import G0
+
+
+def _rates_dot(t, x):
+    if x.shape[0] < 2:
+        return np.zeros_like(x)
+    return np.gradient(x, t, axis=0)
+
+
+def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
+                   valid=None) -> dict[str, np.ndarray]:
+    """Station loads (nt, n, 3, n_stations) of each of ``surfaces`` along the simulation ``sim`` of
+    the flight model ``model`` (its CGs and reference lengths).
+
+    ``extra_alpha``: surface name → (nt, n) angle-of-attack increment felt by that surface only (a
+    gust). ``valid``: (nt, n) booleans; loads outside are set to NaN (times after a stop criterion or
+    beyond the time the paragraph asks to consider)."""
+    h = sim.history
+    t = sim.t
+    V = np.maximum(h["V"], 1e-3)
+    b, c = model.b, model.c
+    names = list(sim.control_names)
+    controls = {n: sim.controls[:, :, names.index(n)] for n in names if ":" not in n and n != "brake"}
+    qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
+    xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
+    terms = {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
+             "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+    out = {}
+    for name in surfaces:
+        s = loads[name]
+        alpha = h["alpha"] + (extra_alpha or {}).get(name, 0.0)
+        inputs = {"alpha": alpha, "beta": h["beta"], "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
+                  "r_hat": h["r"] * b / (2 * V), **controls}
+        total = s.aero_loads(h["qbar"], h["mach"], inputs) + s.inertia_loads(terms)
+        if valid is not None:
+            total = np.where(valid[:, :, None, None], total, np.nan)
+        out[name] = total
+    return out
+
+
+@dataclass
+class CriticalCase:
+    surface: str
+    station: str
+    quantity: str
+    sense: str  # "max" or "min"
+    value: float
+    unit: str
+    condition: int  # index into the envelope's conditions
+    time: float
+
+
+@dataclass
+class LoadEnvelope:
+    """Max/min of each surface, quantity and station over the time histories of every condition.
+
+    ``peaks[surface]`` is (n_conditions, 2, 3, n_stations): per condition the minimum [0] and maximum
+    [1] over time; ``times`` the same shape, when they occur. ``failed`` lists (condition index,
+    reason) of conditions that could not be simulated."""
+
+    stations: dict[str, tuple[str, ...]]
+    peaks: dict[str, np.ndarray]
+    times: dict[str, np.ndarray]
+    labels: list[str]
+    failed: list[tuple[int, str]] = field(default_factory=list)
+
+    @classmethod
+    def from_histories(cls, loads: AirplaneLoads, histories: dict[str, np.ndarray], t: np.ndarray, labels,
+                       failed=()) -> "LoadEnvelope":
+        peaks, times = {}, {}
+        for name, L in histories.items():
+            filled_lo = np.where(np.isnan(L), np.inf, L)
+            filled_hi = np.where(np.isnan(L), -np.inf, L)
+            ilo, ihi = np.argmin(filled_lo, axis=0), np.argmax(filled_hi, axis=0)
+            lo = np.take_along_axis(L, ilo[None], axis=0)[0]
+            hi = np.take_along_axis(L, ihi[None], axis=0)[0]
+            peaks[name] = np.stack([lo, hi], axis=1)
+            times[name] = np.stack([t[ilo], t[ihi]], axis=1)
+        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed))
+
+    @classmethod
+    def merge(cls, parts: list["LoadEnvelope"]) -> "LoadEnvelope":
+        """One envelope over several batches (conditions appended in order)."""
+        parts = [p for p in parts if p is not None]
+        labels, failed = [], []
+        peaks: dict[str, list] = {}
+        times: dict[str, list] = {}
+        stations = {}
+        for p in parts:
+            offset = len(labels)
+            labels += p.labels
+            failed += [(i + offset, r) for i, r in p.failed]
+            for k in p.peaks:
+                peaks.setdefault(k, []).append(p.peaks[k])
+                times.setdefault(k, []).append(p.times[k])
+                stations[k] = p.stations[k]
+        return cls(stations, {k: np.concatenate(v) for k, v in peaks.items()},
+                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed)
+
+    def extreme(self, surface: str, quantity: str, station: int = 0, sense: str = "max") -> tuple[float, int]:
+        """The extreme (value, condition index) of one quantity at one station over all conditions."""
+        q = QUANTITIES.index(quantity)
+        col = self.peaks[surface][:, 1 if sense == "max" else 0, q, station]
+        if np.all(np.isnan(col)):
+            return float("nan"), -1
+        i = int(np.nanargmax(col) if sense == "max" else np.nanargmin(col))
+        return float(col[i]), i
+
+    def critical_cases(self) -> list[CriticalCase]:
+        """For every surface, station, quantity and sense: the critical condition and time."""
+        out = []
+        for name, P in self.peaks.items():
+            for s, station in enumerate(self.stations[name]):
+                for q, quantity in enumerate(QUANTITIES):
+                    for sense in ("max", "min"):
+                        value, i = self.extreme(name, quantity, s, sense)
+                        if i < 0:
+                            continue
+                        tt = float(self.times[name][i, 1 if sense == "max" else 0, q, s])
+                        out.append(CriticalCase(name, station, quantity, sense, value, UNITS[quantity], i, tt))
+        return out
+
+    def table(self, surface: str | None = None) -> list[dict]:
+        """The critical-case table (rows for the report)."""
+        rows = []
+        for c in self.critical_cases():
+            if surface and c.surface != surface:
+                continue
+            rows.append({"surface": c.surface, "station": c.station, "quantity": c.quantity, "sense": c.sense,
+                         "value": _fmt(c.value, c.unit), "condition": self.labels[c.condition], "time_s": round(c.time, 3)})
+        return rows
+
+
+def _fmt(value: float, unit: str) -> str:
+    if unit == "N":
+        return f"{value / 1e3:,.1f} kN"
+    return f"{value / 1e3:,.1f} kN·m"
+
+
+def load_factor_at(n_z, qdot, x_cg, x):
+    """Rigid-body normal load factor at airplane station X (m) for load factor n_z at a CG at X_cg."""
+    return n_z + qdot * (x_cg - x) / G0

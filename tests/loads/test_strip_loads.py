@@ -1,0 +1,97 @@
+"""Strip loads model: a steady pull-up balanced by hand, signs, and the inertial terms.
+
+The pull-up state (α, δe at n = 2.5, q = (n − 1) g / V) is solved by hand from the airplane's linear
+derivatives (two equations: lift = nW, moment about the CG = 0). The hand balance then finds the tail
+load as the part of nW the wing does not carry, with the wing's load from a vortex lattice of the wing
+alone (no tail): N_tail = nW − N_wing. Tolerance 5 % of the tail load (the wing alone lacks the small
+upwash of the tail's bound vortex; the normal force differs from the lift by cos α at α ≈ 3°).
+"""
+
+import numpy as np
+import pytest
+
+from certkit.atmosphere import density
+from certkit.context import Context
+from certkit.models.aero.airplane import lattice_configuration
+from certkit.models.aero.vlm import Configuration, VortexLattice
+from certkit.models.loads.model import airplane_loads
+from certkit.units import G0, KN, LB
+
+MACH = 0.6
+
+
+@pytest.fixture(scope="module")
+def setup(baseline):
+    ctx = Context(baseline)
+    return ctx, airplane_loads(ctx)
+
+
+def pull_up_state(ctx, mass, x_cg, n, v_eas):
+    m = ctx.aero("clean").model
+    ref = ctx.aircraft.reference
+    S, c, xref = ref.area, ref.mean_chord, ref.moment_point.x
+    d = lambda k: float(m.derivative(k, MACH))  # noqa: E731
+    qbar = 0.5 * density(0.0) * v_eas**2
+    qh = (n - 1) * G0 / v_eas * c / (2 * v_eas)
+    arm = (x_cg - xref) / c  # lift at the reference point, ahead of the CG: nose up
+    A = np.array([[d("CL_alpha"), d("CL_elevator")],
+                  [d("Cm_alpha") + d("CL_alpha") * arm, d("Cm_elevator") + d("CL_elevator") * arm]])
+    rhs = np.array([n * mass * G0 / (qbar * S) - d("CL0") - d("CL_q") * qh,
+                    -(d("Cm0") + d("CL0") * arm + (d("Cm_q") + d("CL_q") * arm) * qh)])
+    alpha, de = np.linalg.solve(A, rhs)
+    return qbar, {"alpha": alpha, "q_hat": qh, "elevator": de}
+
+
+def test_steady_pull_up_tail_load_against_hand_balance(setup):
+    """400,000 lb, CG 29.5 m, 340 KEAS at sea level (M 0.6 breakpoint), n = 2.5."""
+    ctx, loads = setup
+    mass, n = 400_000 * LB, 2.5
+    qbar, state = pull_up_state(ctx, mass, 29.5, n, 340 * KN)
+    assert 0.0 < state["alpha"] < np.radians(5)
+    tail = 2 * loads["horizontal_tail"].aero_loads(qbar, MACH, state)[0, 0]  # both halves, root shear
+    wing_model = 2 * loads["wing"].aero_loads(qbar, MACH, state)[0, 0]
+    cfg = lattice_configuration(ctx.aircraft)
+    wing_alone = VortexLattice(Configuration(cfg.surfaces[:1], cfg.reference), mach=MACH)
+    sol = wing_alone.solve(alpha=state["alpha"], q_hat=state["q_hat"], rate_axes="body")
+    n_wing = -sol.CZ * qbar * ctx.aircraft.reference.area
+    hand_tail = n * mass * G0 - n_wing
+    assert tail < 0  # a download trims the nose-down wing moment at this CG
+    assert tail == pytest.approx(hand_tail, rel=0.05)
+    assert wing_model + tail == pytest.approx(n * mass * G0, rel=0.01)
+
+
+def test_signs(setup):
+    """Trailing edge up elevator (negative) pushes the tail down; a nose-up pitch rate loads it up
+    (tail moving down meets the air from below); upward load gives positive root bending and, acting
+    aft of the 40 % chord axis on a swept tail, nose-down (negative) torsion."""
+    ctx, loads = setup
+    ht = loads["horizontal_tail"]
+    base = ht.aero_loads(20e3, MACH, {"alpha": 0.03})
+    up = ht.aero_loads(20e3, MACH, {"alpha": 0.03, "elevator": -0.1})
+    pitch = ht.aero_loads(20e3, MACH, {"alpha": 0.03, "q_hat": 0.01})
+    assert up[0, 0] < base[0, 0] and pitch[0, 0] > base[0, 0]
+    d = ht.aero_loads(20e3, MACH, {"alpha": 0.1}) - base
+    assert d[0, 0] > 0 and d[1, 0] > 0 and d[2, 0] < 0
+    # shear decreases outboard and vanishes at the tip side
+    assert np.all(np.diff(np.abs(d[0])) <= 1e-9)
+    fin = loads["vertical_tail"]
+    side = fin.aero_loads(20e3, MACH, {"beta": 0.05}) - fin.aero_loads(20e3, MACH, {})
+    assert side[0, 0] < 0  # wind from the right pushes the fin to the left (−Y)
+    rud = fin.aero_loads(20e3, MACH, {"rudder": 0.1}) - fin.aero_loads(20e3, MACH, {})
+    assert rud[0, 0] > 0  # trailing edge left: fin force to the right, nose-left yawing moment
+
+
+def test_inertia_terms(setup):
+    """1 g inertial shear at the tail root equals the half-tail's weight, downward, times cos 7° (the
+    shear is normal to the tail's plane, 7° dihedral); a nose-up pitch acceleration moves the tail
+    (aft of the CG) down, so its inertial force on the structure is upward: m q̇ (X − X_cg) cos 7°."""
+    ctx, loads = setup
+    ht = loads["horizontal_tail"]
+    one_g = ht.inertia_loads({"n_z": 1.0})
+    assert one_g[0, 0] == pytest.approx(-ht.structural_mass * G0 * np.cos(np.radians(7.0)), rel=1e-9)
+    x_cg = 29.5
+    qdot = ht.inertia_loads({"qdot_xcg": 0.1 * x_cg, "qdot": 0.1})
+    # tail aft of the CG: nose-up acceleration moves it down, inertial force up on the structure
+    assert qdot[0, 0] == pytest.approx(ht.structural_mass * 0.1 * (np.average(ht.strip_x, weights=ht.strip_mass) - x_cg)
+                                      * np.cos(np.radians(7.0)), rel=1e-6)
+    assert ht.structural_mass * 2 == pytest.approx(5800 * LB, rel=1e-9)
