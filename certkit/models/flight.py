@@ -5,13 +5,25 @@ configuration, with each engine at its position (so an inoperative engine gives 
 yawing moment and windmilling drag), thrust from the declared deck or, without one, the parametric
 turbofan scaled to the declared static thrust. Control limits come from the geometry's control
 surfaces: the design limits (``design_limits``) by default, the mechanical travel otherwise.
+
+Ground model (:func:`ground_model`): the declared ``geometry.landing_gear`` contact points — the
+main gear point and its mirror image (two main legs) and the nose gear — as spring–damper legs.
+Each leg's stiffness is its share of the weight at a sizing loading (MTOW at the reference CG by
+default, shared by the lever rule between the nose and the two mains) over a static stroke
+(0.30 m, of the order of a large transport's oleo static compression, Currey, *Aircraft Landing
+Gear Design: Principles and Practices*, AIAA 1988, ch. 5: static position about 2/3 … 3/4 of
+a 0.4–0.6 m stroke), and its damping a fraction ``damping_ratio`` of the critical damping of
+that share of the mass on that spring. Tyre rolling friction 0.02 (dry concrete, Torenbeek
+*Synthesis of Subsonic Airplane Design* §K-2 / Raymer Table 17.1: 0.02–0.03), braked friction
+0.4 added on the mains at full brake (Raymer Table 17.1: 0.3–0.5 dry concrete). These are model
+settings, not regulation numbers.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from certkit.models.dynamics.eom import AircraftModel, Engine
+from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundModel
 from certkit.models.propulsion.engine import EngineDeck, ParametricTurbofan, windmill_drag
 
 #: the aero control that moves each trim axis
@@ -57,9 +69,48 @@ def control_limits(aircraft, design: bool = True) -> dict[str, tuple[float, floa
     return limits
 
 
-def flight_model(aircraft, aero_model, loadings, operative=None) -> AircraftModel:
-    """Equations of motion for the loadings (:class:`certkit.models.mass.loading.Loading`) of one batch."""
+def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundModel | None = None) -> AircraftModel:
+    """Equations of motion for the loadings (:class:`certkit.models.mass.loading.Loading`) of one batch
+    (with ``ground`` — e.g. :func:`ground_model` — for takeoff and landing)."""
     mass = np.array([ld.properties.mass for ld in loadings])
     cg = np.array([ld.properties.cg for ld in loadings])
     inertia = np.array([ld.properties.inertia for ld in loadings])
-    return AircraftModel(aero_model, mass, cg, inertia, engines(aircraft), operative=operative)
+    return AircraftModel(aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground)
+
+
+def gear_static_loads(aircraft, mass: float, x_cg: float, g: float = 9.80665) -> tuple[float, float]:
+    """(nose, each main) static reactions (N) at rest by the lever rule about the gear contact stations."""
+    lg = aircraft.geometry.landing_gear
+    base = lg.main.x - lg.nose.x
+    nose = mass * g * (lg.main.x - x_cg) / base
+    main = mass * g * (x_cg - lg.nose.x) / base / 2.0
+    return nose, main
+
+
+def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None, elevation: float = 0.0,
+                 static_stroke: float = 0.30, damping_ratio: float = 0.5, rolling_friction: float = 0.02,
+                 brake_friction: float = 0.4, side_friction: float = 0.6) -> GroundModel:
+    """Spring–damper legs from ``geometry.landing_gear`` (module docstring); ``mass``/``x_cg`` the sizing
+    loading (default MTOW at the reference CG). Raises ValueError when the gear is not declared."""
+    from certkit.conditions import reference_cg
+
+    g = aircraft.geometry
+    if g is None or g.landing_gear is None:
+        raise ValueError("geometry.landing_gear is not declared (main and nose gear contact points)")
+    lg = g.landing_gear
+    mass = aircraft.mass.MTOW if mass is None else mass
+    x_cg = reference_cg(aircraft) if x_cg is None else x_cg
+    nose_load, main_load = gear_static_loads(aircraft, mass, x_cg)
+    if nose_load <= 0 or main_load <= 0:
+        raise ValueError(f"the CG at {x_cg:.2f} m is not between the nose ({lg.nose.x:.2f} m) and main gear ({lg.main.x:.2f} m)")
+
+    def leg(name, pos, load, braked):
+        k = load / static_stroke
+        c = damping_ratio * 2.0 * np.sqrt(k * load / 9.80665)
+        return GearLeg(name, pos, k, c, rolling_friction=rolling_friction, side_friction=side_friction, braked=braked)
+
+    main_y = abs(lg.main.y)
+    legs = [leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
+            leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
+            leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False)]
+    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction)

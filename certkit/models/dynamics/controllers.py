@@ -19,6 +19,15 @@
     error). Below it the sink-rate command is the exponential flare ḣ_cmd = −(h_agl + h_aim)/τ
     with τ chosen so that it is continuous at the flare height (τ = (h_f + h_aim)/|ḣ_approach|),
     γ_cmd = ḣ_cmd / V, and the throttle goes to idle.
+
+:class:`WingsLevel`
+    Lateral–directional hold for takeoffs and approaches (an engine failure's asymmetry): aileron
+    δa = K_φ φ + K_p p toward wings level and rudder δr = K_r r − K_β β toward zero sideslip
+    (positive deflections give negative moments, :mod:`certkit.conventions`), clipped.
+
+:class:`EngineFailure`
+    Makes the named engines inoperative (windmilling) from the instant the airspeed first reaches
+    ``speed`` (V_EF), per condition, and for the rest of the run (§25.111(a)(2)'s failure model).
 """
 
 from __future__ import annotations
@@ -111,4 +120,45 @@ class TECSApproach(Controller):
         return _pitch_law(u, self.j, self.de0, theta, cmd, x[:, 7], self.kt, self.kq, self.limits)
 
 
-__all__ = ["PitchAttitudeHold", "TECSApproach"]
+class WingsLevel(Controller):
+    def __init__(self, model: AircraftModel, u0: np.ndarray, k_phi: float = 2.0, k_p: float = 1.0,
+                 k_beta: float = 3.0, k_r: float = 2.0, aileron: str = "aileron", rudder: str = "rudder",
+                 limits: dict | None = None):
+        self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
+        u0 = np.asarray(u0, dtype=float)
+        self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
+        self.k_phi, self.k_p, self.k_beta, self.k_r = k_phi, k_p, k_beta, k_r
+        lim = limits or {}
+        self.lim_a = lim.get(aileron, (-np.radians(25), np.radians(25)))
+        self.lim_r = lim.get(rudder, (-np.radians(25), np.radians(25)))
+
+    def update(self, t, x, out, u, dt):
+        phi = quat_to_euler(x[:, 9:13])[:, 0]
+        u[:, self.ja] = np.clip(self.da0 + self.k_phi * phi + self.k_p * x[:, 6], *self.lim_a)
+        u[:, self.jr] = np.clip(self.dr0 + self.k_r * x[:, 8] - self.k_beta * out.beta, *self.lim_r)
+        return u
+
+
+class EngineFailure(Controller):
+    def __init__(self, model: AircraftModel, engines, speed):
+        self.model = model
+        names = [e.name for e in model.engines]
+        idx = [names.index(e) if isinstance(e, str) else int(e) for e in np.atleast_1d(engines)]
+        self.mask = np.zeros(len(names), dtype=bool)
+        self.mask[idx] = True
+        self.speed = np.broadcast_to(np.asarray(speed, dtype=float), (model.n,))
+        self.failed = np.zeros(model.n, dtype=bool)
+        self.fail_time = np.full(model.n, np.nan)
+
+    def update(self, t, x, out, u, dt):
+        now = ~self.failed & (out.V >= self.speed)
+        if now.any():
+            self.failed |= now
+            self.fail_time[now] = t
+            op = self.model.operative.copy()
+            op[self.failed[:, None] & self.mask[None, :]] = False
+            self.model.set_operative(op)
+        return u
+
+
+__all__ = ["PitchAttitudeHold", "TECSApproach", "WingsLevel", "EngineFailure"]

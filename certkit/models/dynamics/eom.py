@@ -229,12 +229,14 @@ class AircraftModel:
             self.mu_roll = np.array([leg.rolling_friction for leg in ground.legs])
             self.mu_side = np.array([leg.side_friction for leg in ground.legs])
             self.braked = np.array([leg.braked for leg in ground.legs], dtype=float)
+            self._rgear = tuple(self.r_gear[:, :, k].copy() for k in range(3))
         self.aero_controls = tuple(aero.control_names)
         names = list(self.aero_controls) + [f"throttle:{e.name}" for e in self.engines]
         if ground is not None:
             names.append("brake")
         self.control_names = tuple(names)
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
+        self._brake_index = names.index("brake") if ground is not None else None
         self._rref = tuple(self.r_ref[:, k].copy() for k in range(3))
         self._inv_mass = 1.0 / self.mass
         J, K = self.inertia, self.inertia_inv
@@ -242,9 +244,22 @@ class AircraftModel:
         self._Jinv = tuple(K[:, i, j].copy() for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
         if ne:
             self._reng = [tuple(self.r_eng[:, j, k].copy() for k in range(3)) for j in range(ne)]
+            self._reng_arr = tuple(self.r_eng[:, :, k].copy() for k in range(3))  # (n, ne) each
+            self._deng = tuple(self.d_eng[:, k].copy() for k in range(3))  # (ne,) each
+            groups: dict[int, tuple] = {}
+            for j, e in enumerate(self.engines):
+                groups.setdefault(id(e.thrust), (e.thrust, []))[1].append(j)
+            self._thrust_groups = [(fn, np.array(idx)) for fn, idx in groups.values()]
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
+
+    def set_operative(self, operative) -> None:
+        """Change which engines run ((n_engines,) or (n, n_engines) booleans), e.g. an engine failure
+        during a simulation; a failed engine windmills from the next evaluation on."""
+        ne = len(self.engines)
+        self.operative = np.broadcast_to(np.asarray(operative, dtype=bool), (self.n, ne)).copy()
+        self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
 
     def control_index(self, name: str) -> int:
         return self.control_names.index(name)
@@ -309,30 +324,30 @@ class AircraftModel:
         ne = len(self.engines)
         thrust = None
         if ne:
-            thrust = np.empty((n, ne))
             thr = controls[:, self.throttle_slice]
+            thrust = np.empty((n, ne))
+            hc2, mach2 = hc[:, None], mach[:, None]
+            for fn, idx in self._thrust_groups:  # one call per distinct thrust function
+                thrust[:, idx] = fn(thr[:, idx], hc2, mach2)
             for j, eng in enumerate(self.engines):
-                t = eng.thrust(thr[:, j], hc, mach)
-                if eng.windmill_drag is not None and not self._all_operative[j]:
-                    t = np.where(self.operative[:, j], t, -eng.windmill_drag(qbar, mach))
-                elif not self._all_operative[j]:
-                    t = np.where(self.operative[:, j], t, 0.0)
-                thrust[:, j] = t
-                dx, dy, dz = self.d_eng[j]
-                ex, ey, ez = self._reng[j]
-                fx, fy, fz = t * dx, t * dy, t * dz
-                Fx, Fy, Fz = Fx + fx, Fy + fy, Fz + fz
-                Mx = Mx + ey * fz - ez * fy
-                My = My + ez * fx - ex * fz
-                Mz = Mz + ex * fy - ey * fx
+                if not self._all_operative[j]:
+                    dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
+                    thrust[:, j] = np.where(self.operative[:, j], thrust[:, j], dead)
+            dx, dy, dz = self._deng
+            ex, ey, ez = self._reng_arr
+            fx, fy, fz = thrust * dx, thrust * dy, thrust * dz
+            Fx = Fx + fx.sum(1)
+            Fy = Fy + fy.sum(1)
+            Fz = Fz + fz.sum(1)
+            Mx = Mx + (ey * fz - ez * fy).sum(1)
+            My = My + (ez * fx - ex * fz).sum(1)
+            Mz = Mz + (ex * fy - ey * fx).sum(1)
 
         gear_load = np.zeros((n, 0))
         if self.ground is not None:
-            dcm = np.stack([np.stack([C11, C12, C13], -1), np.stack([C21, C22, C23], -1),
-                            np.stack([C31, C32, C33], -1)], -2)
-            Fg, Mg, gear_load = self._ground_forces(h, np.stack([u, v, w], 1), np.stack([p, q, r], 1), dcm, controls)
-            Fx, Fy, Fz = Fx + Fg[:, 0], Fy + Fg[:, 1], Fz + Fg[:, 2]
-            Mx, My, Mz = Mx + Mg[:, 0], My + Mg[:, 1], Mz + Mg[:, 2]
+            gx, gy, gz, gl, gm_, gn, gear_load = self._ground_forces(h, u, v, w, p, q, r, C, controls)
+            Fx, Fy, Fz = Fx + gx, Fy + gy, Fz + gz
+            Mx, My, Mz = Mx + gl, My + gm_, Mz + gn
 
         im = self._inv_mass
         g = self.g
@@ -376,36 +391,46 @@ class AircraftModel:
                           CL=np.broadcast_to(CL, (n,)), CD=np.broadcast_to(CD, (n,)))
         return xNdot, yEdot, hdot, udot, vdot, wdot, pdot, qdot, rdot, out
 
-    def _ground_forces(self, h, vel, omega, dcm, controls):
+    def _ground_forces(self, h, u, v, w, p, q, r, C, controls):
+        """Gear reactions in component form over (n, n_legs) arrays: returns body force and moment
+        components (six (n,) arrays) and the legs' normal loads (n, n_legs)."""
         gm = self.ground
-        r = self.r_gear  # (n,nl,3)
-        r_ned = np.einsum("nij,nlj->nli", dcm, r)
-        height = h[:, None] - gm.elevation - r_ned[:, :, 2]  # point height above runway
-        v_pt = vel[:, None, :] + np.cross(omega[:, None, :], r)  # body
-        v_ned = np.einsum("nij,nlj->nli", dcm, v_pt)
+        C11, C12, C13, C21, C22, C23, C31, C32, C33 = (c[:, None] for c in C)
+        rx, ry, rz = self._rgear
+        height = (h - gm.elevation)[:, None] - (C31 * rx + C32 * ry + C33 * rz)
+        n = h.shape[0]
+        if not (height < 0.0).any():  # airborne: nothing touches
+            z = np.zeros(n)
+            return z, z, z, z, z, z, np.zeros((n, rx.shape[1]))
+        u, v, w, p, q, r = (a[:, None] for a in (u, v, w, p, q, r))
+        vx = u + q * rz - r * ry  # contact-point velocity, body axes
+        vy = v + r * rx - p * rz
+        vz = w + p * ry - q * rx
+        vN = C11 * vx + C12 * vy + C13 * vz
+        vE = C21 * vx + C22 * vy + C23 * vz
+        vD = C31 * vx + C32 * vy + C33 * vz
         comp = np.maximum(-height, 0.0)
-        load = np.where(comp > 0.0, np.maximum(self.k_gear * comp + self.c_gear * v_ned[:, :, 2], 0.0), 0.0)
+        load = np.where(comp > 0.0, np.maximum(self.k_gear * comp + self.c_gear * vD, 0.0), 0.0)
         # wheel axes on the ground: heading of body x projected on the horizontal plane
-        hx = dcm[:, 0, 0]
-        hy = dcm[:, 1, 0]
-        nrm = np.maximum(np.hypot(hx, hy), 1e-9)
-        ex = np.stack([hx / nrm, hy / nrm], axis=1)  # (n,2)
-        ey = np.stack([-ex[:, 1], ex[:, 0]], axis=1)
-        v_long = v_ned[:, :, 0] * ex[:, None, 0] + v_ned[:, :, 1] * ex[:, None, 1]
-        v_lat = v_ned[:, :, 0] * ey[:, None, 0] + v_ned[:, :, 1] * ey[:, None, 1]
-        if "brake" in self.control_names:
-            brake = np.clip(controls[:, self.control_names.index("brake")], 0.0, 1.0)
+        nrm = np.maximum(np.hypot(C11, C21), 1e-9)
+        ex, ey = C11 / nrm, C21 / nrm
+        v_long = vN * ex + vE * ey
+        v_lat = vE * ex - vN * ey
+        if self._brake_index is not None:
+            brake = np.clip(controls[:, self._brake_index], 0.0, 1.0)[:, None]
+            mu_long = self.mu_roll + self.braked * gm.brake_friction * brake
         else:
-            brake = np.zeros(h.shape)
-        mu_long = self.mu_roll[None, :] + self.braked[None, :] * gm.brake_friction * brake[:, None]
-        f_long = -mu_long * load * np.tanh(v_long / gm.slip_speed)
-        f_lat = -self.mu_side[None, :] * load * np.tanh(v_lat / gm.slip_speed)
-        f_ned = np.empty(r.shape)
-        f_ned[:, :, 0] = f_long * ex[:, None, 0] + f_lat * ey[:, None, 0]
-        f_ned[:, :, 1] = f_long * ex[:, None, 1] + f_lat * ey[:, None, 1]
-        f_ned[:, :, 2] = -load
-        f_body = np.einsum("nji,nlj->nli", dcm, f_ned)
-        return f_body.sum(axis=1), np.cross(r, f_body).sum(axis=1), load
+            mu_long = self.mu_roll
+        inv_slip = 1.0 / gm.slip_speed
+        f_long = -mu_long * load * np.tanh(v_long * inv_slip)
+        f_lat = -self.mu_side * load * np.tanh(v_lat * inv_slip)
+        fN = f_long * ex - f_lat * ey
+        fE = f_long * ey + f_lat * ex
+        fbx = C11 * fN + C21 * fE - C31 * load
+        fby = C12 * fN + C22 * fE - C32 * load
+        fbz = C13 * fN + C23 * fE - C33 * load
+        return (fbx.sum(1), fby.sum(1), fbz.sum(1), (ry * fbz - rz * fby).sum(1), (rz * fbx - rx * fbz).sum(1),
+                (rx * fby - ry * fbx).sum(1), load)
 
     # ------------------------------------------------------------------ state forms
     def derivatives_quat(self, x, controls, with_outputs=False):

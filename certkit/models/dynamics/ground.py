@@ -1,0 +1,59 @@
+"""Ground states: the airplane at rest on its gear (the start of a takeoff run).
+
+:func:`ground_equilibrium` solves, for every condition of a batch with a ground model, the height
+h of the CG and the pitch attitude θ at which the gear legs carry the airplane at rest (vertical
+acceleration and pitch acceleration zero, wings level, no motion), by Newton iteration with a
+finite-difference 2 × 2 Jacobian per condition. Thrust (idle at throttle 0) and aerodynamic forces
+at zero airspeed are included as the model gives them; the horizontal force is not balanced
+(friction is zero at zero speed: the airplane starts rolling as soon as it is released).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.models.dynamics.eom import AircraftModel, quat_to_dcm, euler_to_quat
+
+
+def gear_heights(model: AircraftModel, x12: np.ndarray) -> np.ndarray:
+    """Height (m) of each gear contact point above the runway, (n, n_legs), for Euler states (n, 12)."""
+    if model.ground is None:
+        raise ValueError("the model has no ground model")
+    dcm = quat_to_dcm(euler_to_quat(x12[:, 9], x12[:, 10], x12[:, 11]))
+    r_ned = np.einsum("nij,nlj->nli", dcm, model.r_gear)
+    return x12[:, 2:3] - model.ground.elevation - r_ned[:, :, 2]
+
+
+def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, max_iter: int = 30) -> np.ndarray:
+    """Euler states (n, 12) of the batch at rest on the runway with controls ``u`` (module docstring)."""
+    if model.ground is None:
+        raise ValueError("the model has no ground model")
+    n = model.n
+    u = np.broadcast_to(np.asarray(u, dtype=float), (n, len(model.control_names)))
+    x = np.zeros((n, 12))
+    # start with every leg just touching at θ = 0
+    x[:, 2] = model.ground.elevation - model.r_gear[:, :, 2].max(axis=1)
+
+    def residual(x):
+        xd = model.derivatives_euler(x, u)
+        theta = x[:, 10]
+        hddot = -(-np.sin(theta) * xd[:, 3] + np.cos(theta) * xd[:, 5])
+        return np.stack([hddot, xd[:, 7]], axis=1)
+
+    steps = (1e-4, 1e-6)
+    for _ in range(max_iter):
+        r = residual(x)
+        if np.all(np.abs(r) < tol):
+            break
+        J = np.empty((n, 2, 2))
+        for k, (col, dz) in enumerate(zip((2, 10), steps)):
+            xp = x.copy()
+            xp[:, col] += dz
+            J[:, :, k] = (residual(xp) - r) / dz
+        dz = np.linalg.solve(J, -r[:, :, None])[:, :, 0]
+        x[:, 2] += dz[:, 0]
+        x[:, 10] += dz[:, 1]
+    return x
+
+
+__all__ = ["ground_equilibrium", "gear_heights"]
