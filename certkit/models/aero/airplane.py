@@ -67,15 +67,32 @@ def _surface(name: str, s, resolution, *, vertical: bool = False, component: int
     return surface
 
 
+def with_carry_through(surface, z_axis: float):
+    """The fin continued below its root to the fuselage axis with the root chord and no control:
+    the lattice's stand-in for the fuselage acting as the fin's end plate, the same treatment the
+    wing and tailplane get by running to the plane of symmetry (a fin floating above the body
+    would shed its root vortex and lose the end-plate lift, cf. DATCOM §5.3.1.1 where the body
+    raises a fin's effective aspect ratio)."""
+    root = surface.sections[0]
+    x, y, z = root.leading_edge
+    if z - z_axis <= 1e-9:
+        return surface
+    base = replace(root, leading_edge=(x, y, z_axis), controls=[])
+    return replace(surface, sections=[base] + list(surface.sections))
+
+
 def lattice_configuration(aircraft, name: str = "") -> LatticeConfiguration:
-    """Wing (component 1), horizontal tail and fin (component 2) as a lattice configuration."""
+    """Wing (component 1), horizontal tail and fin (component 2) as a lattice configuration; each
+    surface reaches the fuselage axis (wing and tailplane through the plane of symmetry, the fin
+    down to z = 0 by :func:`with_carry_through`)."""
     g = aircraft.geometry
     if g is None:
         raise ValueError("the vortex lattice needs the geometry section (or declare aerodynamics.derivative_tables)")
     res = aircraft.aerodynamics.lattice
+    fin = _surface("vertical_tail", g.vertical_tail, res, vertical=True, component=2)
     surfaces = [_surface("wing", g.wing, res, component=1),
                 _surface("horizontal_tail", g.horizontal_tail, res, component=2),
-                _surface("vertical_tail", g.vertical_tail, res, vertical=True, component=2)]
+                with_carry_through(fin, 0.0)]
     return LatticeConfiguration(surfaces, aero_reference(aircraft), name=name)
 
 
