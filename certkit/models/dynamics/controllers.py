@@ -16,9 +16,23 @@
             d = (γ_cmd − γ) − (V̇_cmd − V̇)/g,  θ_cmd ← θ_cmd + K_D d dt,
         plus a proportional part K_P d, and the pitch-attitude law above for the elevator.
     Above the flare height γ_cmd = glide and V_cmd = the initial airspeed (V̇_cmd from the speed
-    error). Below it the sink-rate command is the exponential flare ḣ_cmd = −(h_agl + h_aim)/τ
-    with τ chosen so that it is continuous at the flare height (τ = (h_f + h_aim)/|ḣ_approach|),
-    γ_cmd = ḣ_cmd / V, and the throttle goes to idle.
+    error). Heights are those of the *wheels* above the runway: h_w is the height of the lowest
+    gear contact point at the current attitude (from the model's ground model; without one, or
+    with ``gear_height`` given, h_w = h_cg − h_rwy − gear_height). Below the flare height h_f the
+    sink-rate command is the exponential flare (Stevens & Lewis, *Aircraft Control and
+    Simulation*, 2nd ed., Wiley 2003, §4.7 automatic-landing example: h = h₀ e^(−t/τ) aimed at a
+    point h_aim below the runway so that the airplane touches down at a finite sink rate;
+    McRuer, Ashkenas & Graham, *Aircraft Dynamics and Automatic Control*, 1973, ch. 10 the same
+    exponential flare path)
+        ḣ_cmd = −(h_w + h_aim)/τ,   τ = (h_f + h_aim)/|ḣ_approach|,
+    continuous with the approach sink rate |ḣ_approach| = V sin|glide| at h_f, and giving a
+    commanded touchdown sink rate h_aim/τ = |ḣ_approach| h_aim/(h_f + h_aim); γ_cmd = ḣ_cmd/V.
+    In the flare the throttle goes to idle and the pitch loop flies the path alone (the speed
+    term leaves the distribution error: with idle thrust the speed is let decay, as a pilot
+    does), with the commanded path-angle rate fed forward into the attitude command and the
+    tighter gains ``k_p_flare``, ``k_d_flare`` (the flare is a short, precise path task), and a
+    path-angle-rate damping term −K_γ̇ γ̇ in the attitude command (without it the PI path loop
+    overshoots and the baseline touched down at 3–7 ft/s; with it 1.5–2 ft/s, tests/dynamics/test_flare.py).
 
 :class:`WingsLevel`
     Lateral–directional hold for takeoffs and approaches (an engine failure's asymmetry): aileron
@@ -69,10 +83,13 @@ class PitchAttitudeHold(Controller):
 
 class TECSApproach(Controller):
     def __init__(self, model: AircraftModel, x0: np.ndarray, u0: np.ndarray, glide: float = np.radians(-3.0),
-                 flare_height: float = 15.0, aim_below: float = 1.0, runway_elevation: float = 0.0,
+                 flare_height: float = 15.0, aim_below: float = 1.0, runway_elevation: float | None = None,
                  k_e: float = 2.0, k_i: float = 0.3, k_d: float = 0.5, k_theta: float = 2.0, k_q: float = 1.0,
-                 k_v: float = 0.1, k_p: float = 1.5, elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+                 k_v: float = 0.1, k_p: float = 1.5, elevator: str = "elevator", limits=(-np.radians(30), np.radians(20)),
+                 gear_height=None, k_p_flare: float = 4.0, k_d_flare: float = 1.0, k_gdot_flare: float = 2.0):
         self.model = model
+        self.k_p_flare, self.k_d_flare, self.k_gdot_flare = k_p_flare, k_d_flare, k_gdot_flare
+        self.prev_gamma = None
         self.j = model.control_index(elevator)
         self.thr = np.arange(model.throttle_slice.start, model.throttle_slice.stop)
         u0 = np.asarray(u0, dtype=float)
@@ -80,15 +97,29 @@ class TECSApproach(Controller):
         self.thr0 = u0[:, self.thr].mean(axis=1)
         x0 = np.asarray(x0, dtype=float)
         self.V_cmd = np.linalg.norm(x0[:, 3:6], axis=1)
+        if runway_elevation is None:
+            runway_elevation = model.ground.elevation if model.ground is not None else 0.0
+        # wheel heights from the gear geometry at the current attitude, or a fixed CG-to-wheel height
+        self.gear_geometry = gear_height is None and model.ground is not None
+        self.h_gear = np.broadcast_to(np.asarray(gear_height or 0.0, dtype=float), (model.n,))
         self.glide, self.hf, self.aim, self.h_rwy = glide, flare_height, aim_below, runway_elevation
         self.k_e, self.k_i, self.k_d, self.kt, self.kq, self.k_v, self.k_p = k_e, k_i, k_d, k_theta, k_q, k_v, k_p
         self.limits = limits
-        sink = self.V_cmd * np.sin(-glide)
-        self.tau = (flare_height + aim_below) / np.maximum(sink, 0.1)
+        self.sink = self.V_cmd * np.sin(-glide)
+        self.tau = (flare_height + aim_below) / np.maximum(self.sink, 0.1)
         self.integral = np.zeros(model.n)
         self.theta_cmd = None
         self.prev_V = None
         self.flaring = np.zeros(model.n, dtype=bool)
+
+    def wheel_height(self, x) -> np.ndarray:
+        """Height of the lowest gear contact point (or of the CG less ``gear_height``) above the runway."""
+        if not self.gear_geometry:
+            return x[:, 2] - self.h_rwy - self.h_gear
+        q0, q1, q2, q3 = (x[:, 9 + k, None] for k in range(4))
+        rx, ry, rz = (self.model.r_gear[:, :, k] for k in range(3))
+        down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
+        return x[:, 2] - self.h_rwy - down.max(axis=1)
 
     def update(self, t, x, out, u, dt):
         theta = quat_to_euler(x[:, 9:13])[:, 1]
@@ -97,11 +128,12 @@ class TECSApproach(Controller):
         q0, q1, q2, q3 = (x[:, 9 + k] for k in range(4))
         c31, c32, c33 = 2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
         hdot = -(c31 * x[:, 3] + c32 * x[:, 4] + c33 * x[:, 5])
-        gamma = np.arcsin(np.clip(hdot / np.maximum(V, 1.0), -1, 1))
-        h_agl = x[:, 2] - self.h_rwy
-        self.flaring |= h_agl <= self.hf
-        gamma_cmd = np.where(self.flaring, np.arcsin(np.clip(-(h_agl + self.aim) / self.tau / np.maximum(V, 1.0), -1, 1)),
-                             self.glide)
+        Vs = np.maximum(V, 1.0)
+        gamma = np.arcsin(np.clip(hdot / Vs, -1, 1))
+        h_w = self.wheel_height(x)
+        self.flaring |= h_w <= self.hf
+        flare_hdot = -(np.maximum(h_w, 0.0) + self.aim) / self.tau
+        gamma_cmd = np.where(self.flaring, np.arcsin(np.clip(flare_hdot / Vs, -1, 1)), self.glide)
         if self.prev_V is None:
             self.prev_V = V.copy()
             self.theta_cmd = theta.copy()
@@ -109,14 +141,25 @@ class TECSApproach(Controller):
         self.prev_V = V.copy()
         g = self.model.g
         vdot_cmd = self.k_v * (self.V_cmd - V)
-        e_err = (gamma_cmd - gamma) + (vdot_cmd - vdot) / g
-        d_err = (gamma_cmd - gamma) - (vdot_cmd - vdot) / g
-        self.integral += e_err * dt
+        path_err = gamma_cmd - gamma
+        speed_err = (vdot_cmd - vdot) / g
+        e_err = path_err + speed_err
+        d_err = np.where(self.flaring, path_err, path_err - speed_err)
+        self.integral += np.where(self.flaring, 0.0, e_err) * dt
         thr = np.clip(self.thr0 + self.k_e * e_err + self.k_i * self.integral, 0.0, 1.0)
         thr = np.where(self.flaring, 0.0, thr)
         u[:, self.thr] = thr[:, None]
-        self.theta_cmd = self.theta_cmd + self.k_d * d_err * dt
-        cmd = self.theta_cmd + self.k_p * d_err
+        # flare: feed the commanded path-angle rate forward (γ̇_cmd = ḧ_cmd/V = −ḣ/(τ V))
+        ff = np.where(self.flaring, -hdot / self.tau / Vs, 0.0)
+        k_d = np.where(self.flaring, self.k_d_flare, self.k_d)
+        k_p = np.where(self.flaring, self.k_p_flare, self.k_p)
+        self.theta_cmd = self.theta_cmd + (k_d * d_err + ff) * dt
+        cmd = self.theta_cmd + k_p * d_err
+        # flare: damp the path loop with the path-angle rate (γ̇ from successive samples)
+        if self.prev_gamma is not None:
+            gdot = (gamma - self.prev_gamma) / max(dt, 1e-9)
+            cmd = cmd - np.where(self.flaring, self.k_gdot_flare * gdot, 0.0)
+        self.prev_gamma = gamma.copy()
         return _pitch_law(u, self.j, self.de0, theta, cmd, x[:, 7], self.kt, self.kq, self.limits)
 
 
