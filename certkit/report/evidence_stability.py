@@ -72,14 +72,14 @@ def damping_frequency_svg(points: list[dict], boundaries: list[tuple[str, float,
     vertical lines at the damping-ratio boundaries (label, ζ, mode)."""
     fig, ax = plt.subplots(figsize=(6.6, 4.0))
     colours = {1: "#2e7d32", 2: "#f9a825", 3: "#ef6c00", 4: "#c0392b"}
-    seen = set()
+    groups: dict[tuple[str, int], list[tuple[float, float]]] = {}
     for p in points:
-        if p["mode"] not in ("short_period", "phugoid", "dutch_roll"):
-            continue
-        label = f"{p['mode'].replace('_', ' ')} — Level {p['level'] if p['level'] < 4 else '>3'}"
-        ax.scatter(p["zeta"], p["wn"], marker=_MARKERS[p["mode"]], color=colours[p["level"]], s=22,
-                   label=None if label in seen else label, edgecolors="0.2", linewidths=0.3)
-        seen.add(label)
+        if p["mode"] in ("short_period", "phugoid", "dutch_roll"):
+            groups.setdefault((p["mode"], p["level"]), []).append((p["zeta"], p["wn"]))
+    for (mode, level), xy in sorted(groups.items()):
+        z, w = np.array(xy).T
+        ax.scatter(z, w, marker=_MARKERS[mode], color=colours[level], s=22, edgecolors="0.2", linewidths=0.3,
+                   label=f"{mode.replace('_', ' ')} — Level {level if level < 4 else '>3'}")
     for label, zeta, mode in boundaries:
         ax.axvline(zeta, color="0.4", ls=":", lw=0.8)
         ax.annotate(label, (zeta, 0.012), rotation=90, fontsize=6.5, color="0.3", textcoords="offset points", xytext=(2, 0))

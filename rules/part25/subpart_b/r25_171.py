@@ -13,7 +13,7 @@ from collections import defaultdict
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit.models.performance.stall import stall_speed_eas
+from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 
 #: certkit configuration of each flight phase the stability paragraphs name
 PHASES = {"takeoff": "takeoff", "cruise": "clean", "landing": "landing"}
@@ -21,12 +21,9 @@ SPEED_POINTS = ("1.13 VSR", "mid", "max allowable")
 
 
 def vsr_cas(ctx, configuration: str, mass: float, h: float = 0.0) -> float:
-    """Reference stall speed (m/s CAS) of ``configuration`` at ``mass``: the 1-g stall speed with the declared
-    CLmax (§25.103(a): VSR may not be less than the 1-g stall speed), at altitude ``h``."""
-    clmax = ctx.clmax(configuration)
-    if clmax is None:
-        raise ValueError(f"configurations.{configuration}.CLmax is not declared")
-    eas = float(stall_speed_eas(mass, ctx.aircraft.reference.area, clmax))
+    """Reference stall speed (m/s CAS) of ``configuration`` at ``mass`` at altitude ``h``: §25.103's VSR
+    (declared, or the 1-g stall speed from the declared CLmax), as :mod:`r25_103` defines it for Subpart B."""
+    eas, _ = reference_stall_speed(ctx, configuration, mass)
     return float(convert_speed(eas, "EAS", "CAS", h))
 
 

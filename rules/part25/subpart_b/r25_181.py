@@ -1,0 +1,147 @@
+"""§25.181 Dynamic stability, with the MIL-F-8785C Level of every rigid-body mode as a reference reading.
+
+The modes are those of the linearised six-degree-of-freedom model about the level-flight trim of each
+condition (``ctx.modes``): every CG corner × (takeoff, cruise, landing) × altitude band × three speeds
+from 1.13 VSR to the configuration's maximum allowable speed.
+"""
+
+from __future__ import annotations
+
+from certkit.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.units import FT
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit_rules.part25.subpart_b import handling_levels as hq
+from certkit_rules.part25.subpart_b.r25_171 import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS, by_configuration,
+                                                    refine_speeds)
+
+MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
+
+
+def categories(configuration: str) -> tuple[str, ...]:
+    """MIL-F-8785C flight-phase categories read for a configuration: clean is both cruise manoeuvring (A)
+    and cruise (B); flaps/gear extended are terminal phases (C)."""
+    return ("A", "B") if hq.CATEGORY.get(configuration, "B") == "B" else ("C",)
+
+
+def mode_levels(modes: dict, configuration: str) -> dict:
+    """{mode: {ζ, ωn, eigenvalue, level per category, reason}} for the classical modes present."""
+    out = {}
+    for name in MODES:
+        m = modes.get(name)
+        if m is None:
+            continue
+        q = hq.quantities(m)
+        row = {"zeta": round(m.damping_ratio, 5), "wn_rad_s": round(m.natural_frequency, 5),
+               "eigenvalue": [round(m.eigenvalue.real, 6), round(m.eigenvalue.imag, 6)],
+               "tau_s": None if q["tau"] == float("inf") else round(float(q["tau"]), 3),
+               "t_double_s": None if q["t_double"] == float("inf") else round(float(q["t_double"]), 2)}
+        for cat in categories(configuration):
+            level, why = hq.level_of(name, m, cat)
+            row[f"level_{cat}"] = level
+            if why:
+                row[f"level_{cat}_limited_by"] = why
+        out[name] = row
+    return out
+
+
+@rule
+class DynamicStability(Rule):
+    id = "25.181"
+    symbol = "dynamic-stability"
+    title = "Dynamic stability"
+    amendment = "25-108"
+    requirement = """
+        (a) Any short-period oscillation, not including combined lateral-directional oscillations, occurring between
+        1.13 VSR and the maximum allowable speed appropriate to the configuration must be heavily damped with the
+        primary controls free and fixed. (b) Any combined lateral-directional oscillation (Dutch roll) occurring in
+        that speed range must be positively damped with controls free, and controllable with normal use of the
+        primary controls without exceptional piloting skill.
+    """
+    margin = """
+        ζ_sp − ζ_sp,min (short period, "heavily damped" read as the criterion) and ζ_dr − ζ_dr,min (Dutch roll,
+        "positively damped": ζ_dr > 0), dimensionless, at every condition. The MIL-F-8785C Level of every mode
+        (short period, phugoid, Dutch roll, roll, spiral) is reported in the details and the evidence; it is not a
+        Part 25 requirement and does not set the status.
+    """
+    references = ("25.171", "25.103")
+    requires = ("configurations.clean.CLmax", "speeds.VMO")
+    criteria = {
+        "short_period_damping_min": Criterion(
+            0.35, "", "MIL-F-8785C 3.2.2.1.2 Table IV, Level 1 category A and C minimum (" + hq.SOURCE + ")",
+            "short-period damping ratio read as 'heavily damped' (§25.181(a) gives no number)"),
+        "dutch_roll_damping_min": Criterion(
+            0.0, "", "§25.181(b) 'positively damped' (wording from memory; docs/regulation-notes.md)",
+            "Dutch-roll damping ratio (> 0: the oscillation decays)"),
+        "low_speed_factor": Criterion(1.13, "", "§25.181(a),(b): from 1.13 VSR", "low end of the speed range, multiple of VSR"),
+        "flap_altitude_max": Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations"),
+    }
+    conditions = ConditionSpace(loading=CgCorners(), configurations=tuple(PHASES.values()),
+                                altitudes=Altitudes((0.0, 20000 * FT, 37000 * FT)), extra=(("speed_point", SPEED_POINTS),),
+                                note="Speeds in CAS, level flight at the power for level flight; flaps only up to the flap altitude limit.")
+    implementation = "partial"
+    limitations = """
+        Controls-fixed modes only: no hinge-moment or control-system model, so 'controls free' (§25.181(a)(1), (b)) is
+        read with the controls fixed. Rigid airplane. Controllability of the Dutch roll by normal use of the
+        controls is not assessed. The MIL-F-8785C numbers are unverified secondary values (handling_levels.py).
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a), (b) modes")
+        for config, idx in by_configuration(refined).items():
+            conds = [refined[i] for i in idx]
+            for cond, modes in zip(conds, ctx.modes(conds)):
+                if modes is None:
+                    res = ctx.trim(conds)[conds.index(cond)]
+                    out.append(Finding.not_evaluated(cond, "(a), (b) modes", "level-flight trim did not converge "
+                                                     f"(|r| = {res.residual_norm:.1e}) "
+                                                     + "; ".join(e.message for e in res.limits_exceeded)))
+                    continue
+                levels = mode_levels(modes, config)
+                for name, check, key in (("short_period", "(a) short period heavily damped", "short_period_damping_min"),
+                                         ("dutch_roll", "(b) Dutch roll positively damped", "dutch_roll_damping_min")):
+                    m = modes.get(name)
+                    if m is None:
+                        out.append(Finding.not_evaluated(cond, check, f"no {name.replace('_', ' ')} mode identified "
+                                                         "among the eigenvalues", modes=levels))
+                        continue
+                    out.append(Finding.compare(cond, check, m.damping_ratio, crit[key], at_least=True, unit="",
+                                               natural_frequency_rad_s=m.natural_frequency, modes=levels))
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_stability import damping_frequency_svg, margin_matrix_evidence
+        from certkit.results import Evidence
+        from certkit.units import KN
+
+        points, worst = [], {}
+        for f in findings:
+            if not f.check.startswith("(a)") or "modes" not in f.details:
+                continue
+            c = f.condition
+            cat = categories(c.configuration)[-1]
+            for mode, row in f.details["modes"].items():
+                level = row[f"level_{cat}"]
+                points.append({"mode": mode, "zeta": row["zeta"], "wn": row["wn_rad_s"], "level": level})
+                key = (c.loading, c.configuration, mode)
+                if key not in worst or (level, -row["zeta"]) > (worst[key]["level"], -worst[key]["zeta"]):
+                    worst[key] = {"corner": c.loading, "configuration": c.configuration, "mode": mode, "category": cat,
+                                  "level": level, "zeta": row["zeta"], "wn_rad_s": row["wn_rad_s"],
+                                  "tau_s": row["tau_s"], "t_double_s": row["t_double_s"],
+                                  "altitude_ft": round(c.altitude / FT), "speed_kn_cas": round(c.speed / KN, 1),
+                                  "limited_by": row.get(f"level_{cat}_limited_by", "")}
+        boundaries = [("SP L1 A/C 0.35", 0.35, "short_period"), ("SP L3 0.15", 0.15, "short_period"),
+                      ("DR L1 A 0.19", 0.19, "dutch_roll"), ("DR L1 B/C 0.08", 0.08, "dutch_roll"),
+                      ("DR L2 0.02", 0.02, "dutch_roll"), ("PH L1 0.04", 0.04, "phugoid")]
+        out = []
+        if points:
+            out.append(Evidence(
+                "Modes over CG corners × configurations × speeds × altitudes, with MIL-F-8785C levels",
+                damping_frequency_svg(points, boundaries),
+                caption=("Damping ratio and natural frequency of the oscillatory modes, coloured by MIL-F-8785C Class III "
+                         "Level (category C with flaps, B clean); dotted lines are the damping boundaries "
+                         "(Table IV short period, Table VI Dutch roll, 3.2.1.2 phugoid; unverified values). "
+                         "The table lists, per corner, configuration and mode, the worst condition."),
+                table=sorted(worst.values(), key=lambda r: (r["mode"], r["configuration"], r["corner"]))))
+            out.append(Evidence("MIL-F-8785C level boundaries used (Class III)", caption=hq.SOURCE, table=hq.table_rows()))
+        return out + margin_matrix_evidence(findings, "§25.181 damping margins (normalised) over CG corners × configurations")
