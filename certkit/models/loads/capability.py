@@ -1,0 +1,57 @@
+"""Structural capability and the comparison of loads with it.
+
+A capability is what the structure of one surface can carry at one station, for one load quantity:
+the allowable **limit** load (no detrimental permanent deformation) and the allowable **ultimate**
+load (no failure), each as a magnitude (the same in both senses) or as a (negative, positive) pair.
+The comparison forms two margins, each ≥ 0 when the structure is adequate:
+
+    limit margin    = allowable_limit − |limit load|
+    ultimate margin = allowable_ultimate − factor × |limit load|
+
+``factor`` is the factor of safety the rule passes in (the regulation's number lives in the rule).
+The aircraft file has no ``structure`` section yet; the rules propose its fields and pass a
+capability here when one is declared (the tests pass one directly).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Capability:
+    surface: str
+    station: str
+    quantity: str  # shear, bending, torsion
+    limit: float | tuple[float, float]  # N or N·m; (negative sense, positive sense) magnitudes if a pair
+    ultimate: float | tuple[float, float]
+    source: str = ""
+
+    def allowable(self, which: str, sense: str) -> float:
+        value = getattr(self, which)
+        if isinstance(value, tuple):
+            return float(value[1] if sense == "max" else value[0])
+        return float(value)
+
+
+@dataclass(frozen=True)
+class LoadMargin:
+    check: str  # "limit" or "ultimate"
+    sense: str  # "max" or "min"
+    load: float  # the design load compared (limit load, or factor × limit load), magnitude
+    allowable: float
+    margin: float
+
+
+def compare(cap: Capability, max_load: float, min_load: float, ultimate_factor: float) -> list[LoadMargin]:
+    """Margins of the largest positive and negative limit loads against the capability."""
+    out = []
+    for sense, load in (("max", max_load), ("min", min_load)):
+        if (sense == "max" and load <= 0) or (sense == "min" and load >= 0):
+            continue  # this sense is not loaded
+        mag = abs(float(load))
+        lim = cap.allowable("limit", sense)
+        ult = cap.allowable("ultimate", sense)
+        out.append(LoadMargin("limit", sense, mag, lim, lim - mag))
+        out.append(LoadMargin("ultimate", sense, ultimate_factor * mag, ult, ult - ultimate_factor * mag))
+    return out

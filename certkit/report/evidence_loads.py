@@ -1,0 +1,94 @@
+"""Evidence of the loads rules: time histories of the critical conditions, load envelopes along the
+span, and the critical-case table (one row per surface, station, quantity and sense)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.models.loads.model import QUANTITIES
+from certkit.report.plots import figure_to_svg, plt
+from certkit.results import Evidence
+
+_KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
+
+
+def _critical_indices(run, surface) -> list[int]:
+    env = run["envelope"]
+    picks = []
+    for sense in ("max", "min"):
+        _, i = env.extreme(surface, "shear", 0, sense)
+        if i >= 0 and i not in picks:
+            picks.append(i)
+    kind = run.get("kind")
+    if kind is not None:
+        for k in (0, 1, 2):
+            idx = np.flatnonzero(kind == k)
+            if idx.size:
+                root = env.peaks[surface][idx, 1, 0, 0]
+                j = int(idx[np.nanargmax(np.abs(root))]) if np.any(np.isfinite(root)) else int(idx[0])
+                if j not in picks:
+                    picks.append(j)
+    return picks[:5]
+
+
+def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> str:
+    sim, hist, valid = run["sim"], run["loads"][surface], run["valid"]
+    picks = _critical_indices(run, surface)
+    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    j = list(sim.control_names).index(control)
+    kind = run.get("kind")
+    for i in picks:
+        m = valid[:, i]
+        label = run["conditions"][i].label()
+        if kind is not None:
+            label += f" [{_KIND[int(kind[i])]}]"
+        axes[0].plot(sim.t[m], np.degrees(sim.controls[m, i, j]), lw=1.2, label=label)
+        axes[1].plot(sim.t[m], sim[signals[0]][m, i], lw=1.2)
+        axes[2].plot(sim.t[m], np.degrees(sim[signals[1]][m, i]), lw=1.2)
+        axes[3].plot(sim.t[m], hist[m, i, 0, 0] / 1e3, lw=1.2)
+    axes[0].set_ylabel(f"{control} (deg)")
+    axes[1].set_ylabel(signals[0])
+    axes[2].set_ylabel(f"{signals[1]} (deg/s)")
+    axes[3].set_ylabel("root shear (kN)")
+    axes[3].set_xlabel("time (s)")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=6, loc="best")
+    return figure_to_svg(fig)
+
+
+def envelope_svg(run, surface: str) -> str:
+    env = run["envelope"]
+    P = env.peaks[surface]  # (n, 2, 3, S)
+    fig, axes = plt.subplots(1, 3, figsize=(8.4, 2.8))
+    stations = env.stations[surface]
+    x = np.arange(len(stations))
+    for q, (ax, quantity) in enumerate(zip(axes, QUANTITIES)):
+        hi = np.nanmax(P[:, 1, q, :], axis=0) / 1e3
+        lo = np.nanmin(P[:, 0, q, :], axis=0) / 1e3
+        ax.fill_between(x, lo, hi, alpha=0.25)
+        ax.plot(x, hi, "o-", lw=1.2, label="max")
+        ax.plot(x, lo, "s-", lw=1.2, label="min")
+        ax.set_xticks(x, stations, rotation=40, fontsize=7)
+        ax.set_title(f"{quantity} ({'kN' if q == 0 else 'kN·m'})", fontsize=9)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=7)
+    return figure_to_svg(fig)
+
+
+def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q")) -> list[Evidence]:
+    name = surface.replace("_", " ")
+    out = [
+        Evidence(f"Critical conditions: {control}, {signals[0]}, {signals[1]} and {name} root shear",
+                 time_history_svg(run, surface, control, signals),
+                 "The conditions with the largest positive and negative root shear and, for each input kind, the one "
+                 "with the largest root load; curves end where the paragraph stops considering loads."),
+        Evidence(f"Load envelope along the {name} span", envelope_svg(run, surface),
+                 "Maximum and minimum over every condition and time (limit loads)."),
+        Evidence(f"Critical-case table, {name}", caption="Critical condition and time of every station and quantity.",
+                 table=run["envelope"].table(surface)),
+    ]
+    failed = run["envelope"].failed
+    if failed:
+        out.append(Evidence("Conditions not simulated", table=[{"condition": run["envelope"].labels[i], "reason": r} for i, r in failed]))
+    return out

@@ -1,0 +1,345 @@
+"""§25.331(c) Pitch maneuver conditions: (c)(1) maximum pitch control displacement at VA and (c)(2)
+the checked manoeuvre between VA and VD, as rigid-airplane batch simulations with the strip loads
+model of the horizontal tail (:mod:`certkit.models.loads`).
+
+The regulation text of (c)(2) is only partly verified (docs/regulation-notes.md): t₂ = t₁ + Δt,
+t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t_max = 3π/(2ω) without hold and
+ω ≥ πV/(2VA) are from memory — they are criteria here, overridable in the aircraft file.
+
+Without a declared structural capability (the aircraft file has no ``structure`` section yet) each
+condition reports its horizontal-tail loads and is not evaluated with the reason
+"no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.models.dynamics.linearize import linearize
+from certkit.models.dynamics.modes import identify_modes
+from certkit.models.dynamics.simulate import Step, simulate, stop_when
+from certkit.models.flight import control_limits
+from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.capability import compare
+from certkit.models.loads.inputs import SinusoidHold, bisect_batch
+from certkit.models.loads.model import QUANTITIES, airplane_loads
+from certkit.models.loads.response import LoadEnvelope, response_loads
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit.units import KN
+
+NO_CAPABILITY = "no structural capability declared"
+REG_NOTES = "docs/regulation-notes.md §25.331(c)"
+SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
+PILOT_EFFORT_NOTE = ("no control-force model is declared: the pilot-effort limit of §25.397(b) (300 lbf elevator wheel) "
+                     "cannot reduce the deflection; the design control limit bounds it")
+
+
+# --------------------------------------------------------------------------- shared loads helpers
+
+def entry_speeds(ctx, h: float, names) -> dict[str, float]:
+    """EAS (m/s) of the named design speeds at altitude h, each limited by its Mach counterpart; VA
+    need not exceed VC (§25.335(c)), so it is capped at the Mach-limited VC."""
+    out = {}
+    vc = float(ctx.design_speed_eas("VC", h)[0])
+    for name in names:
+        v = float(ctx.design_speed_eas(name, h)[0])
+        out[name] = min(v, vc) if name == "VA" else v
+    return out
+
+
+def declared_capabilities(ctx, surface: str):
+    """Capabilities of ``surface`` from the aircraft file (none can be declared yet: see the module doc)."""
+    node = ctx.lookup(f"structure.{surface}")
+    return list(node) if node else []
+
+
+def station_summary(loads_peaks: np.ndarray, stations) -> dict:
+    """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
+    out = {}
+    for s, station in enumerate(stations):
+        for q, quantity in enumerate(QUANTITIES):
+            lo, hi = loads_peaks[0, q, s], loads_peaks[1, q, s]
+            out[f"{station} {quantity} max/min (kN{'·m' if q else ''})"] = [round(float(hi) / 1e3, 1), round(float(lo) / 1e3, 1)]
+    return out
+
+
+def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor,
+                       **details) -> Finding:
+    """One finding per condition: the smallest margin of the limit and ultimate loads against the
+    capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
+    details = {**station_summary(peaks, stations), **details}
+    if not capabilities:
+        return Finding.not_evaluated(cond, check, NO_CAPABILITY, **details)
+    worst = None
+    for cap in capabilities:
+        if cap.surface != surface or cap.station not in stations:
+            continue
+        s, q = list(stations).index(cap.station), QUANTITIES.index(cap.quantity)
+        for m in compare(cap, peaks[1, q, s], peaks[0, q, s], ultimate_factor):
+            norm = m.margin / max(abs(m.allowable), 1e-9)
+            if worst is None or norm < worst[0]:
+                worst = (norm, m, cap)
+    if worst is None:
+        return Finding.not_evaluated(cond, check, f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations", **details)
+    _, m, cap = worst
+    unit = "N" if cap.quantity == "shear" else "N·m"
+    return Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load, m.allowable,
+                           at_least=False, unit=unit, **details)
+
+
+def _modes_frequency(batch) -> np.ndarray:
+    lin = linearize(batch.model, batch.x, batch.u)
+    out = np.full(batch.n, np.nan)
+    for i in range(batch.n):
+        sp = identify_modes(lin, i).get("short_period")
+        if sp is not None and np.isfinite(sp.natural_frequency):
+            out[i] = sp.natural_frequency
+    return out
+
+
+def _label(cond) -> str:
+    return cond.label()
+
+
+# --------------------------------------------------------------------------- (c)(2) checked manoeuvre
+
+@rule
+class CheckedPitchManeuver(Rule):
+    id = "25.331(c)(2)"
+    symbol = "checked-pitch-maneuver"
+    title = "Checked pitch manoeuvre between VA and VD"
+    amendment = "25-141"
+    requirement = """
+        From unaccelerated flight at speeds from VA to VD the cockpit pitch control is moved as
+        δ(t) = δ₁ sin ωt for 0 ≤ t ≤ t_max = 3π/(2ω), ω the undamped short-period frequency but not less
+        than πV/(2VA); δ₁ such that the positive limit load factor (nose up) or 0 g (nose down) is reached
+        but not exceeded. Where the sinusoid at the available deflection does not reach it, the peak is
+        held for Δt (the minimum time to reach it, at most 5 s) before returning (t_max = t₂ + π/ω).
+        Loads after n_z < 0 (nose up) or n_z > the limit (nose down), or after t_max, need not be
+        considered. The horizontal tail must carry the resulting loads (§25.303, §25.305).
+    """
+    margin = """
+        Per condition: the smallest of (allowable limit load − |limit load|) and (allowable ultimate load −
+        1.5 × |limit load|) over the declared horizontal-tail stations and quantities; without a declared
+        structural capability the condition is not evaluated and its loads are reported.
+    """
+    references = ("25.331(c)(1)", "25.333", "25.337", "25.397", "25.303", "25.305")
+    requires = ("speeds.VA", "speeds.VD", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
+    criteria = {
+        "omega_floor_factor": Criterion(0.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
+                                        "ω ≥ factor × π V/VA (rad/s), i.e. πV/(2VA)"),
+        "t_max_periods": Criterion(1.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
+                                   "t_max = factor × π/ω without hold (3π/(2ω))"),
+        "max_hold": Criterion(5.0, "s", "14 CFR 25.331(c)(2)(iii) (verified fragment)", "longest hold Δt at the peak"),
+        "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
+        "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
+        "search_steps": Criterion(6, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
+        "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted"),
+        **SAFETY,
+    }
+    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
+                                extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
+                                note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).")
+    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
+                   "; no structural capability can be declared yet (proposed aircraft-file section `structure`).")
+    implementation = "partial"
+
+    def evaluate(self, ctx, conditions, crit):
+        run = checked_maneuver(ctx, conditions, crit)
+        ctx.memo(("checked_pitch_run", id(crit)), lambda: run)
+        return run["findings"]
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_loads import maneuver_evidence
+
+        run = ctx.memo(("checked_pitch_run", id(crit)), lambda: None)
+        return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
+
+
+def checked_maneuver(ctx, conditions, crit) -> dict:
+    """Batch simulation of every checked-manoeuvre condition; returns findings, the envelope and the
+    histories of the final inputs (for evidence)."""
+    n_lim = ctx.aircraft.envelope.limit_load_factors.positive
+    va_decl = float(ctx.design_speed_eas("VA", 0.0)[0])
+    entries, key_of = [], {}
+    for c in conditions:
+        key = (c.loading, c.altitude, c.get("entry_speed"))
+        if key not in key_of:
+            v = entry_speeds(ctx, c.altitude, [c.get("entry_speed")])[c.get("entry_speed")]
+            key_of[key] = len(entries)
+            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None))
+    batch = trimmed_batch(ctx, [e.with_() for e in entries])
+    findings = []
+    failed_entry = dict(batch.failed)
+    pos = {int(i): k for k, i in enumerate(batch.index)}
+    sim_rows, sim_conds = [], []
+    for c in conditions:
+        e = key_of[(c.loading, c.altitude, c.get("entry_speed"))]
+        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
+        if e in failed_entry:
+            findings.append(Finding.not_evaluated(refined, "(c)(2) checked manoeuvre", failed_entry[e]))
+            continue
+        k = pos[e]
+        if batch.gamma[k]:
+            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
+        sim_rows.append(k)
+        sim_conds.append(refined)
+    if not sim_rows:
+        return {"findings": findings, "envelope": None}
+    rows = np.array(sim_rows)
+    omega_sp = _modes_frequency(batch)[rows]
+    model = batch.model.subset(rows)
+    x0, u0 = batch.x[rows], batch.u[rows]
+    nose_up = np.array([c.get("direction") == "nose up" for c in sim_conds])
+    v_eas = np.array([c.speed for c in sim_conds])
+    omega_floor = crit.omega_floor_factor * np.pi * v_eas / va_decl
+    omega = np.fmax(np.nan_to_num(omega_sp, nan=0.0), omega_floor)
+    lim = control_limits(ctx.aircraft)["elevator"]
+    de_trim = u0[:, model.control_names.index("elevator")]
+    available = np.where(nose_up, de_trim - lim[0], lim[1] - de_trim)
+    sign = np.where(nose_up, -1.0, 1.0)
+    target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
+    dt = float(crit.time_step)
+
+    def simulate_inputs(amp, hold, mask=None, record=False):
+        """Simulate the conditions of ``mask`` (all by default); the response (peak n_z − 1 nose up,
+        1 − lowest n_z nose down) for the whole batch, NaN outside the mask."""
+        idx = np.flatnonzero(np.ones(len(rows), dtype=bool) if mask is None else mask)
+        up = nose_up[idx]
+        sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
+        t_max = 2 * crit.t_max_periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
+        stop = [stop_when("n_z < 0 (nose up)", lambda t, x, out: up & (out.n_z < 0.0)),
+                stop_when("n_z > limit (nose down)", lambda t, x, out: ~up & (out.n_z > n_lim)),
+                stop_when("t_max", lambda t, x, out: t > t_max + 1e-9)]
+        sub = model if idx.size == len(rows) else model.subset(idx)
+        sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
+        nz = sim["n_z"]
+        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
+        resp = np.full(len(rows), np.nan)
+        resp[idx] = np.where(up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0))
+        return (resp, sim, valid, t_max) if record else resp
+
+    max_hold = float(crit.max_hold)
+    r_full = simulate_inputs(available, np.zeros(len(rows)))
+    reach = r_full >= target
+    r_held = np.where(reach, r_full, simulate_inputs(available, np.full(len(rows), max_hold), ~reach)) if (~reach).any() else r_full
+    held_short = ~reach & (r_held < target)  # even the longest hold does not reach the load factor: maximal input
+
+    def inputs_of(p):
+        """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
+        hold fraction of the longest hold (full deflection)."""
+        return np.where(reach, p * available, available), np.where(reach | held_short, 0.0, p * max_hold) + held_short * max_hold
+
+    search = ~held_short
+    p, _, p_hi, _ = bisect_batch(lambda p, mask: simulate_inputs(*inputs_of(p), mask), np.zeros(len(rows)), np.ones(len(rows)), target,
+                                 steps=int(crit.search_steps), tol=float(crit.load_factor_tolerance),
+                                 f_lo=np.where(reach, 0.0, r_full), f_hi=np.where(reach, r_full, r_held))
+    # the hold is the minimum time that reaches the load factor: take the bracket end at or above it
+    p = np.where(search & ~reach, p_hi, np.where(search, p, 1.0))
+    amp, hold = inputs_of(p)
+    resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
+    loads = airplane_loads(ctx)
+    hist = response_loads(loads, sim, model, ("horizontal_tail",), valid=valid)
+    env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds])
+    stations = loads["horizontal_tail"].station_names
+    caps = declared_capabilities(ctx, "horizontal_tail")
+    for i, c in enumerate(sim_conds):
+        converged = abs(resp[i] - target[i]) <= float(crit.load_factor_tolerance)
+        kind = (("sinusoid, amplitude scaled to the load factor" if converged else
+                 f"sinusoid, amplitude search not converged in {int(crit.search_steps)} steps") if reach[i] else
+                "held at full deflection for the longest hold (load factor not reached)" if held_short[i] else
+                "held at full deflection, minimum hold to the load factor")
+        peak_nz = float(np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan)) if nose_up[i]
+                        else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan)))
+        findings.append(capability_finding(
+            c, f"(c)(2) checked manoeuvre, {c.get('direction')}", "horizontal_tail", env.peaks["horizontal_tail"][i],
+            stations, caps, crit.ultimate_factor, input=kind, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
+            omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
+            hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), peak_n_z=round(peak_nz, 4),
+            stop=sim.stop_reason[i] or "end", pilot_effort=PILOT_EFFORT_NOTE))
+    return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
+            "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
+
+
+# --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
+
+@rule
+class MaximumPitchControlDisplacement(Rule):
+    id = "25.331(c)(1)"
+    symbol = "maximum-pitch-control-displacement"
+    title = "Maximum pitch control displacement at VA"
+    amendment = "25-141"
+    requirement = """
+        In steady level flight at VA (point A1 of §25.333(b)) the cockpit pitch control is suddenly moved
+        to obtain extreme nose-up pitching acceleration; the tail load is determined with the airplane's
+        response. Loads after the normal acceleration at the CG exceeds the positive limit manoeuvring
+        load factor, or after the tail load reaches its maximum, whichever is first, need not be considered.
+    """
+    margin = """
+        Per condition: the smallest of (allowable limit load − |limit load|) and (allowable ultimate load −
+        1.5 × |limit load|) over the declared horizontal-tail stations and quantities; without a declared
+        structural capability the condition is not evaluated and its loads are reported.
+    """
+    references = ("25.331(c)(2)", "25.333", "25.337", "25.397", "25.303", "25.305")
+    requires = ("speeds.VA", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
+    criteria = {
+        "ramp_time": Criterion(0.1, "s", "certkit assumption: 'suddenly' with no declared actuator rate",
+                               "time to reach the full deflection"),
+        "duration": Criterion(4.0, "s", "certkit numerical choice", "longest simulated time"),
+        "time_step": Criterion(0.02, "s", "certkit numerical choice", "simulation step"),
+        **SAFETY,
+    }
+    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
+                                note="At VA (EAS), capped at the Mach-limited VC at altitude.")
+    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
+                   "; no structural capability can be declared yet (proposed aircraft-file section `structure`).")
+    implementation = "partial"
+
+    def evaluate(self, ctx, conditions, crit):
+        n_lim = ctx.aircraft.envelope.limit_load_factors.positive
+        entries = [c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
+                   for c in conditions]
+        batch = trimmed_batch(ctx, entries)
+        findings = [Finding.not_evaluated(entries[i], "(c)(1) maximum pitch control displacement", reason)
+                    for i, reason in batch.failed]
+        if not batch.n:
+            return findings
+        lim = control_limits(ctx.aircraft)["elevator"]
+        step = lim[0] - batch.control("elevator")  # to the nose-up (trailing edge up) design limit
+        dt, ramp = float(crit.time_step), float(crit.ramp_time)
+        sched = Step(0.0, step) if ramp <= 0 else _ramp(ramp, step)
+        sim = simulate(batch.model, batch.x, batch.u, float(crit.duration), dt, inputs={"elevator": sched},
+                       stop=[stop_when("n_z > limit", lambda t, x, out: out.n_z > n_lim)])
+        loads = airplane_loads(ctx)
+        hist = response_loads(loads, sim, batch.model, ("horizontal_tail",))
+        # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
+        root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
+        t_peak = sim.t[np.nanargmax(root, axis=0)]
+        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_peak)[None, :] + 1e-9
+        hist["horizontal_tail"] = np.where(valid[:, :, None, None], hist["horizontal_tail"], np.nan)
+        env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions])
+        stations = loads["horizontal_tail"].station_names
+        caps = declared_capabilities(ctx, "horizontal_tail")
+        for i, c in enumerate(batch.conditions):
+            findings.append(capability_finding(
+                c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
+                stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
+                considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
+                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=PILOT_EFFORT_NOTE))
+        ctx.memo(("max_pitch_run", id(crit)), lambda: {"envelope": env, "sim": sim, "valid": valid, "loads": hist,
+                                                        "conditions": batch.conditions, "stations": stations})
+        return findings
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_loads import maneuver_evidence
+
+        run = ctx.memo(("max_pitch_run", id(crit)), lambda: None)
+        return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
+
+
+def _ramp(ramp: float, amplitude):
+    from certkit.models.dynamics.simulate import Ramp
+
+    return Ramp(0.0, ramp, amplitude)

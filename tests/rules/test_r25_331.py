@@ -1,0 +1,116 @@
+"""§25.331(c)(1) and (c)(2): the input generator against the paragraph, the amplitude scaling and the
+frequency floor on the baseline (sea level and the ceiling only, to stay fast), the capability comparison
+of §25.303/§25.305, and the not-evaluated paths.
+
+Paragraph (docs/regulation-notes.md): δ(t) = δ₁ sin ωt, t_max = 3π/(2ω) (unverified); held case
+t₁ = π/(2ω), t₂ = t₁ + Δt, t_max = t₂ + π/ω, Δt ≤ 5 s (verified); ω ≥ πV/(2VA) (unverified).
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from certkit.models.dynamics.simulate import CheckedManeuver
+from certkit.models.loads.capability import Capability
+from certkit.models.loads.inputs import SinusoidHold
+from certkit.units import KN
+from certkit_rules.part25.subpart_c.r25_331 import NO_CAPABILITY, capability_finding
+from certkit.results import Condition
+
+from .helpers import run_rule
+
+TWO_ALTITUDES = [("altitude_points: 5", "altitude_points: 2")]  # sea level and the ceiling
+
+
+@pytest.fixture(scope="module")
+def checked(tmp_path_factory):
+    return run_rule("25.331(c)(2)", tmp_path_factory.mktemp("c2"), TWO_ALTITUDES)
+
+
+def test_input_generator_against_the_paragraph():
+    w, d1 = 2.0, -0.1
+    plain = SinusoidHold(d1, w)
+    assert float(plain.t_max) == pytest.approx(3 * math.pi / (2 * w))
+    assert float(plain(math.pi / (2 * w))) == pytest.approx(d1)          # peak at t₁ = π/(2ω)
+    assert float(plain(math.pi / w)) == pytest.approx(0.0, abs=1e-12)   # back through zero
+    assert float(plain(float(plain.t_max))) == pytest.approx(-d1)       # checked: opposite peak at t_max
+    assert float(plain(float(plain.t_max) + 0.1)) == 0.0
+    held = SinusoidHold(d1, w, hold=1.5)
+    t1, t2 = math.pi / (2 * w), math.pi / (2 * w) + 1.5
+    assert float(held.t_max) == pytest.approx(t2 + math.pi / w)         # t_max = t₂ + π/ω
+    for t in np.linspace(t1, t2, 5):
+        assert float(held(t)) == pytest.approx(d1)
+    # agrees with the dynamics package's single-hold schedule; holds may differ per condition
+    ref = CheckedManeuver(d1, w, hold=1.5)
+    for t in np.linspace(0, float(held.t_max), 23):
+        assert float(held(t)) == pytest.approx(float(ref(t)), abs=1e-12)
+    both = SinusoidHold(np.array([d1, d1]), np.array([w, w]), np.array([0.0, 1.5]))
+    assert both(t2).tolist() == pytest.approx([d1 * math.sin(w * t2), d1])
+
+
+def test_scaling_frequency_floor_and_reason(checked):
+    """Every condition reports its tail loads and is not evaluated (no capability). Nose up
+    reaches n = 2.5, nose down 0 g (tolerance 0.02 g, the search tolerance); ω ≥ πV/(2VA) with V, VA
+    in EAS (VA 265 kn); t_max = 3π/(2ω) + Δt."""
+    assert checked.findings and all(f.status == "not_evaluated" for f in checked.findings)
+    assert all(f.reason == NO_CAPABILITY for f in checked.findings)
+    for f in checked.findings:
+        d = f.details
+        assert "root shear max/min (kN)" in d and "side of body bending max/min (kN·m)" in d
+        v = f.condition.speed / KN
+        assert d["omega_rad_s"] >= math.pi * v / (2 * 265.0) - 1e-3
+        assert d["omega_rad_s"] == pytest.approx(max(d["omega_short_period"], math.pi * v / (2 * 265.0)), abs=1e-3)
+        assert d["t_max_s"] == pytest.approx(3 * math.pi / (2 * d["omega_rad_s"]) + d["hold_s"], abs=2e-3)
+        assert 0.0 <= d["hold_s"] <= 5.0
+        target = 2.5 if f.condition.get("direction") == "nose up" else 0.0
+        if d["input"].startswith("sinusoid, amplitude scaled"):
+            assert d["peak_n_z"] == pytest.approx(target, abs=0.02)
+        elif d["input"] == "held at full deflection, minimum hold to the load factor":
+            assert abs(d["peak_n_z"] - 1.0) >= abs(target - 1.0) - 0.02
+        assert (d["delta1_deg"] < 0) == (f.condition.get("direction") == "nose up")
+    flagged = [f for f in checked.findings if "not converged" in f.details["input"]]
+    assert len(flagged) <= 0.05 * len(checked.findings)  # near stall the response is not monotonic
+
+
+def test_sign_nose_up_loads_the_tail_down(checked):
+    """The nose-up input (trailing edge up) gives the largest tail download; the nose-down one does not."""
+    up = [f.details["root shear max/min (kN)"][1] for f in checked.findings if f.condition.get("direction") == "nose up"]
+    down = [f.details["root shear max/min (kN)"][1] for f in checked.findings if f.condition.get("direction") == "nose down"]
+    assert min(up) < min(down) < 0
+
+
+def test_capability_margins_limit_and_ultimate():
+    """§25.303/§25.305: limit load 100 kN against a 120 kN limit allowable (margin 20 kN) and 1.5 × 100 =
+    150 kN against a 160 kN ultimate allowable (margin 10 kN, the smaller normalised: 10/160 < 20/120)."""
+    peaks = np.zeros((2, 3, 1))
+    peaks[1, 0, 0], peaks[0, 0, 0] = 100e3, -40e3
+    cap = Capability("horizontal_tail", "root", "shear", 120e3, 160e3)
+    f = capability_finding(Condition(loading="x"), "test", "horizontal_tail", peaks, ("root",), [cap], 1.5)
+    assert f.status == "complies" and f.margin == pytest.approx(10e3) and "ultimate" in f.check
+    weak = Capability("horizontal_tail", "root", "shear", 90e3, 200e3)
+    g = capability_finding(Condition(loading="x"), "test", "horizontal_tail", peaks, ("root",), [weak], 1.5)
+    assert g.status == "fails" and g.margin == pytest.approx(-10e3) and "limit" in g.check
+    none = capability_finding(Condition(loading="x"), "test", "horizontal_tail", peaks, ("root",), [], 1.5)
+    assert none.status == "not_evaluated" and none.reason == NO_CAPABILITY
+
+
+def test_not_evaluated_without_va(tmp_path):
+    r = run_rule("25.331(c)(2)", tmp_path, [("  VA: 265 kn EAS", "  # VA removed")])
+    assert r.status == "not_evaluated" and "speeds.VA" in r.findings[0].reason
+    r1 = run_rule("25.331(c)(1)", tmp_path, [("  VA: 265 kn EAS", "  # VA removed")])
+    assert r1.status == "not_evaluated" and "speeds.VA" in r1.findings[0].reason
+
+
+def test_maximum_displacement_at_va(tmp_path):
+    """(c)(1): full nose-up elevator from trim; loads considered until n_z exceeds 2.5 or the tail load
+    peaks; the tail load is a download and every condition is not evaluated (no capability)."""
+    r = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES)
+    assert r.findings and all(f.reason == NO_CAPABILITY for f in r.findings)
+    for f in r.findings:
+        assert f.details["elevator_step_deg"] < 0
+        assert f.details["root shear max/min (kN)"][1] < 0
+        if f.condition.altitude == 0.0:
+            assert f.condition.speed / KN == pytest.approx(265.0)
+        else:  # VA need not exceed VC, Mach-limited (MC 0.87) at 43,000 ft
+            assert f.condition.speed / KN < 265.0
