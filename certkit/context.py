@@ -25,6 +25,7 @@ class Context:
         self.loaded = loaded
         self.aircraft: Aircraft = loaded.model
         self._memo: dict[Hashable, object] = {}
+        self._loading_names: dict[Hashable, set[str]] = {}
         self.notes: list[str] = []
         self.hits = 0
         self.misses = 0
@@ -54,7 +55,8 @@ class Context:
                                              "overrides": value.overrides, "notes": value.notes}
             elif isinstance(value, Loading):
                 p = value.properties
-                loadings[key] = {"name": value.name, "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
+                names = self._loading_names.get(key) or {value.name}
+                loadings[key] = {"name": " / ".join(sorted(names)), "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
                                  "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
                                  "notes": list(value.notes)}
         components, notes = empty_airplane(self.aircraft)
@@ -125,8 +127,10 @@ class Context:
         """Payload/fuel distribution and inertia reaching (mass, x_cg) (:mod:`certkit.models.mass.loading`)."""
         from certkit.models.mass.loading import solve_loading
 
-        return self.memo(("loading", round(float(mass), 3), round(float(x_cg), 6)),
-                         lambda: solve_loading(self.aircraft, mass, x_cg, name))
+        key = ("loading", round(float(mass), 3), round(float(x_cg), 6))
+        if name:  # one loading may be asked for under several names (a corner and a design weight's CG limit)
+            self._loading_names.setdefault(key, set()).add(name)
+        return self.memo(key, lambda: solve_loading(self.aircraft, mass, x_cg, name))
 
     def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
              configuration: str | None = None, design_limits: bool = True):

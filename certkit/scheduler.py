@@ -96,14 +96,17 @@ def _merge_provenance(parts: list[dict]) -> dict:
     """One provenance from several workers' (same inputs give the same entries; keep one of each)."""
     merged = {"aerodynamics": {}, "loadings": [], "components": parts[0]["components"] if parts else [],
               "component_notes": parts[0]["component_notes"] if parts else []}
-    seen = set()
+    seen: dict = {}
     for p in parts:
         merged["aerodynamics"].update(p["aerodynamics"])
         for row in p["loadings"]:
             key = (round(row["mass_kg"], 3), round(row["x_cg_m"], 6))
             if key not in seen:
-                seen.add(key)
-                merged["loadings"].append(row)
+                seen[key] = dict(row)
+                merged["loadings"].append(seen[key])
+            else:  # the same loading named differently by different workers' rules: keep every name
+                names = set(seen[key]["name"].split(" / ")) | set(row["name"].split(" / "))
+                seen[key]["name"] = " / ".join(sorted(names))
     merged["aerodynamics"] = dict(sorted(merged["aerodynamics"].items()))
     merged["loadings"].sort(key=lambda r: (r["mass_kg"], r["x_cg_m"]))
     return merged
