@@ -1,0 +1,92 @@
+"""§25.171 static margin and §25.173 speed stability.
+
+Hand calculations in feet and knots (MAC 27.456 ft, reference point 97.25 ft):
+* neutral point x_np = 97.25 − 27.456·Cm_α/CL_α (ft), static margin (x_np − x_cg)/27.456 (Etkin & Reid §2.3);
+* elevator-fixed speed stability from the two trim equations Cm = 0, CL = W/(qS) (Etkin & Reid §2.4; McLean):
+  dδe/dCL = −(Cm_α,cg/CL_α)/(Cm_δe − Cm_α,cg CL_δe/CL_α), dCL/dV = −2 CL/V, so dδe/dV = −2 CL/V · dδe/dCL.
+  Tolerance 15 % (the trims add the thrust moment, the flight-path change at constant thrust and q-terms).
+"""
+
+import math
+
+import pytest
+
+from certkit.conditions import speed_as
+from certkit.units import KN, LB
+
+from .helpers import run_rule
+
+MAC_FT, XREF_FT = 27.456, 97.25
+
+
+@pytest.fixture(scope="module")
+def sm():
+    return run_rule("25.171")
+
+
+@pytest.fixture(scope="module")
+def grad():
+    return run_rule("25.173(a)")
+
+
+def _at(result, loading, configuration, point, altitude=0.0):
+    return next(f for f in result.findings if f.condition.loading == loading and f.condition.configuration == configuration
+                and f.condition.get("speed_point") == point and f.condition.altitude == altitude and f.margin is not None)
+
+
+def test_static_margin_hand_calculation(sm, ctx):
+    f = _at(sm, "aft_mlw", "landing", "1.13 VSR")
+    m = ctx.aero("landing").model
+    mach = f.details["mach"]
+    x_np = XREF_FT - MAC_FT * float(m.derivative("Cm_alpha", mach)) / float(m.derivative("CL_alpha", mach))
+    assert f.value == pytest.approx((x_np - 101.92) / MAC_FT, abs=1e-4)
+    assert f.margin == pytest.approx(f.value - 0.05, abs=1e-12)
+
+
+def test_static_margin_on_the_limit(sm, tmp_path):
+    low = min(f.value for f in sm.findings if f.value is not None)
+    block = f'criteria:\n  "25.171":\n    justification: test on the limit\n    values: {{static_margin_min: {low!r}}}\nsources:'
+    r = run_rule("25.171", tmp_path, edits=[("\nsources:", "\n" + block)])
+    assert min(f.margin for f in r.findings if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
+    assert r.status == "complies"
+
+
+def test_sign_aft_cg_reduces_static_margin_and_speed_stability(sm, grad, tmp_path):
+    """Moving the most aft corner 1.5 ft aft lowers its static margin by 1.5/27.456 MAC and its dδe/dV."""
+    edit = [("x: 101.92 ft}    # 42 % MAC", "x: 103.42 ft}    # 42 % MAC")]
+    r = run_rule("25.171", tmp_path, edits=edit)
+    before, after = _at(sm, "aft_mlw", "landing", "1.13 VSR"), _at(r, "aft_mlw", "landing", "1.13 VSR")
+    assert after.value - before.value == pytest.approx(-1.5 / MAC_FT, abs=1e-6)
+    g = run_rule("25.173(a)", tmp_path, edits=edit)
+    assert _at(g, "aft_mlw", "landing", "1.3 VSR").value < _at(grad, "aft_mlw", "landing", "1.3 VSR").value
+
+
+def test_speed_stability_hand_calculation(grad, ctx):
+    f = _at(grad, "fwd_mlw", "landing", "1.3 VSR")
+    c = f.condition
+    m = ctx.aero("landing").model
+    mach = speed_as(c, "MACH")
+    d = lambda name: float(m.derivative(name, mach))  # noqa: E731
+    v_fts = c.speed / 0.3048  # CAS = TAS at sea level
+    cl = 460_000 / (0.5 * 0.0023769 * v_fts**2 * 4927.3)
+    cm_a = d("Cm_alpha") + d("CL_alpha") * (92.04 - XREF_FT) / MAC_FT
+    ddelta_dcl = -(cm_a / d("CL_alpha")) / (d("Cm_elevator") - cm_a * d("CL_elevator") / d("CL_alpha"))
+    per_kt = math.degrees(-2 * cl / (c.speed / KN) * ddelta_dcl)
+    assert c.mass / LB == pytest.approx(460_000, rel=1e-6)
+    assert f.value == pytest.approx(per_kt, rel=0.15)
+    assert f.value > 0 and f.status == "complies"
+
+
+def test_speed_stability_on_the_limit(grad, tmp_path):
+    low = min(f.value for f in grad.findings if f.value is not None)
+    block = f'criteria:\n  "25.173(a)":\n    justification: test on the limit\n    values: {{gradient_min: {low!r}}}\nsources:'
+    r = run_rule("25.173(a)", tmp_path, edits=[("\nsources:", "\n" + block)])
+    assert min(f.margin for f in r.findings if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
+
+
+def test_not_evaluated(tmp_path):
+    """(c) needs a control-force model, which the schema lacks; (a) and 25.171 need VMO."""
+    r = run_rule("25.173(c)")
+    assert r.status == "not_evaluated" and "control-force model" in r.findings[0].reason
+    r = run_rule("25.171", tmp_path, edits=[("  VMO: 272 kn EAS              # = VC, see above\n", "")])
+    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VMO"
