@@ -88,12 +88,13 @@ def trim_details(result) -> dict:
             **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")}}
 
 
-def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None):
+def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
     """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
     configuration; returns (gradients, last TrimBatch, info). ``drag_credit`` (ΔCD per condition) is drag
-    that the configuration carries but the paragraph removes (the gear for §25.121(b))."""
+    that the configuration carries but the paragraph removes (the gear for §25.121(b)); ``engine_out=False``
+    gives the all-engines climb at the same thrust setting."""
     thrust, thrust_source = thrust_function(ctx.aircraft)
-    dead = critical_engine(ctx)
+    dead = critical_engine(ctx) if engine_out else None
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
     h = np.array([c.altitude or 0.0 for c in conds])
     tas = np.array([speed_as(c, "TAS") for c in conds])
@@ -107,7 +108,7 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None):
     gamma = np.zeros_like(h)
     batch = None
     for _ in range(_TRIMS):
-        batch = ctx.trim(conds, kind="sideslip", beta=0.0, gamma=gamma, inoperative=dead)
+        batch = ctx.trim(conds, kind="sideslip" if dead else "straight", beta=0.0, gamma=gamma, inoperative=dead)
         needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
         ok = np.array([r.converged for r in batch.results])
         gamma = np.where(ok, gamma + (available - needed) / weight, gamma - _DESCENT_STEP)
