@@ -146,18 +146,18 @@ class StabilityGeneral(Rule):
         return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
 
 
-def trims_at_throttle(ctx, conds, throttle, gamma_probe: float = 0.02):
-    """Level-flight-like trims of ``conds`` with the throttle held at ``throttle`` (one value per condition): the
-    flight-path angle is found by a secant step on the straight-flight trim (throttle is nearly linear in sin γ,
-    T = D + W sin γ). Returns the final TrimBatch results."""
+def trims_at_throttle(ctx, conds, throttle, gammas=(0.0, 0.02), **trim_args):
+    """Trims of ``conds`` with the throttle held at ``throttle`` (one value per condition): the flight-path angle
+    is found by a secant step between two probe trims at ``gammas`` (throttle is nearly linear in sin γ,
+    T = D + W sin γ; the probes must need less than full throttle). Returns the final trim results."""
     t = np.asarray(throttle, dtype=float)
     th = lambda res: np.array([r.controls[next(k for k in r.controls if k.startswith("throttle"))] for r in res])  # noqa: E731
-    r0 = ctx.trim(conds).results
-    r1 = ctx.trim(conds, gamma=gamma_probe).results
-    t0, t1 = th(r0), th(r1)
-    slope = np.where(np.abs(t1 - t0) > 1e-9, (t1 - t0) / gamma_probe, np.inf)
-    gamma = np.clip((t - t0) / slope, -0.3, 0.3)
-    return ctx.trim(conds, gamma=gamma).results
+    g0, g1 = gammas
+    t0 = th(ctx.trim(conds, gamma=g0, **trim_args).results)
+    t1 = th(ctx.trim(conds, gamma=g1, **trim_args).results)
+    slope = np.where(np.abs(t1 - t0) > 1e-9, (t1 - t0) / (g1 - g0), np.inf)
+    gamma = np.clip(g0 + (t - t0) / slope, -0.3, 0.3)
+    return ctx.trim(conds, gamma=gamma, **trim_args).results
 
 
 @rule
