@@ -24,15 +24,15 @@ def gear_heights(model: AircraftModel, x12: np.ndarray) -> np.ndarray:
     return x12[:, 2:3] - model.ground.elevation - r_ned[:, :, 2]
 
 
-def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, max_iter: int = 30) -> np.ndarray:
+def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, max_iter: int = 50) -> np.ndarray:
     """Euler states (n, 12) of the batch at rest on the runway with controls ``u`` (module docstring)."""
     if model.ground is None:
         raise ValueError("the model has no ground model")
     n = model.n
     u = np.broadcast_to(np.asarray(u, dtype=float), (n, len(model.control_names)))
     x = np.zeros((n, 12))
-    # start with every leg just touching at θ = 0
-    x[:, 2] = model.ground.elevation - model.r_gear[:, :, 2].max(axis=1)
+    # start level with every leg compressed by 0.1 m (at exactly touching the Jacobian is singular)
+    x[:, 2] = model.ground.elevation + model.r_gear[:, :, 2].max(axis=1) - 0.1
 
     def residual(x):
         xd = model.derivatives_euler(x, u)
@@ -51,8 +51,8 @@ def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, m
             xp[:, col] += dz
             J[:, :, k] = (residual(xp) - r) / dz
         dz = np.linalg.solve(J, -r[:, :, None])[:, :, 0]
-        x[:, 2] += dz[:, 0]
-        x[:, 10] += dz[:, 1]
+        x[:, 2] += np.clip(dz[:, 0], -0.2, 0.2)  # damped steps: stay on the branch with every leg on the runway
+        x[:, 10] += np.clip(dz[:, 1], -0.01, 0.01)
     return x
 
 

@@ -1,0 +1,148 @@
+"""Simulated takeoff and landing procedures over a batch (no regulation content).
+
+:func:`takeoff_run`
+    From rest on the runway (gear in static equilibrium at idle thrust, :func:`ground_equilibrium`),
+    brakes released at t = 0 with the throttles set to ``throttle`` (no spool-up); the elevator held at ``elevator0`` until
+    the rotation speed V_R, then :class:`PitchAttitudeHold` rotates at ``rotation_rate`` to
+    ``theta_target``; :class:`WingsLevel` holds wings level / zero sideslip; optionally
+    :class:`EngineFailure` fails ``failed_engine`` at ``failure_speed``. Runs until the lowest
+    gear point is ``screen_height`` above the runway with no gear load (or ``t_end``).
+    Returns a :class:`TakeoffResult` with V_LOF (first instant with no gear load after the
+    rotation), the speed, distance and time at the screen height, and the extreme elevator.
+
+:func:`approach_and_landing`
+    From trimmed states on the glide path, :class:`TECSApproach` flies the path, flares
+    (exponential flare, throttle to idle at the flare height) and stops at touchdown (first gear
+    load). Returns a :class:`LandingResult` with the rate of descent at touchdown and the extreme
+    elevator.
+
+Speeds are true airspeeds (m/s); heights in m; angles in rad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.models.dynamics.controllers import EngineFailure, PitchAttitudeHold, TECSApproach, WingsLevel
+from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
+from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
+
+
+def _hdot(x13):
+    q0, q1, q2, q3 = x13[:, 9:13].T
+    return -(2 * (q1 * q3 - q0 * q2) * x13[:, 3] + 2 * (q2 * q3 + q0 * q1) * x13[:, 4]
+             + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * x13[:, 5])
+
+
+@dataclass
+class TakeoffResult:
+    sim: SimulationResult
+    x0: np.ndarray                 # rest state (n, 12)
+    initial_acceleration: np.ndarray  # m/s² along the runway at brake release
+    reached: np.ndarray            # bool (n,): screen height reached
+    v_lof: np.ndarray              # m/s TAS (nan if no lift-off)
+    x_lof: np.ndarray              # m from brake release
+    v_screen: np.ndarray           # m/s at the screen height (nan if not reached)
+    x_screen: np.ndarray
+    t_screen: np.ndarray
+    elevator_min: np.ndarray       # rad, most nose-up elevator
+    elevator_max: np.ndarray
+    wheel_height: np.ndarray       # (nt, n) lowest gear point above the runway
+
+
+@dataclass
+class LandingResult:
+    sim: SimulationResult
+    touched_down: np.ndarray       # bool (n,)
+    sink_rate: np.ndarray          # m/s at touchdown (positive down)
+    speed: np.ndarray              # m/s TAS at touchdown
+    elevator_min: np.ndarray
+    elevator_max: np.ndarray
+    tau: np.ndarray                # flare time constant (s)
+    approach_sink: np.ndarray      # m/s on the glide path
+
+
+def _elevator_extremes(sim: SimulationResult, j: int):
+    e = sim.controls[:, :, j]
+    return e.min(axis=0), e.max(axis=0)
+
+
+def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: float = 1.0, elevator0=0.0,
+                rotation_rate: float = np.radians(3.0), screen_height: float = 35 * 0.3048,
+                elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
+                failed_engine: str | None = None, failure_speed=None, t_end: float = 120.0,
+                dt: float = 0.05) -> TakeoffResult:
+    n = model.n
+    u = np.zeros((n, len(model.control_names)))
+    u[:, model.throttle_slice] = throttle
+    je = model.control_index("elevator")
+    u[:, je] = elevator0
+    idle = u.copy()
+    idle[:, model.throttle_slice] = 0.0
+    x0 = ground_equilibrium(model, idle)  # at rest on the brakes, engines idle; then takeoff thrust and release
+    xd = model.derivatives_euler(x0, u)
+    th = x0[:, 10]
+    a0 = np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
+    ctrls = [PitchAttitudeHold(model, u, rotation_speed, theta_target, rotation_rate=rotation_rate,
+                               limits=elevator_limits),
+             WingsLevel(model, u, limits=lateral_limits)]
+    if failed_engine is not None:
+        ctrls.append(EngineFailure(model, failed_engine, failure_speed))
+    elevation = model.ground.elevation
+
+    def screen(t, x, out):
+        down = _lowest_point_below_cg(model, x)
+        return (x[:, 2] - elevation - down > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
+
+    sim = simulate(model, x0, u, t_end, dt, controllers=ctrls, stop=[stop_when("screen height", screen)])
+    nt = sim.t.size
+    x12 = np.zeros((nt * n, 12))
+    x12[:, 2], x12[:, 9], x12[:, 10] = sim["h"].ravel(), sim["phi"].ravel(), sim["theta"].ravel()
+    idx = np.tile(np.arange(n), nt)
+    heights = gear_heights(model.subset(idx), x12).reshape(nt, n, -1)
+    wheel = heights.min(axis=2)
+    reached = np.array([r == "screen height" for r in sim.stop_reason])
+    airborne = wheel > 0.0
+    v_lof, x_lof = np.full(n, np.nan), np.full(n, np.nan)
+    for i in range(n):
+        k = np.flatnonzero(airborne[:, i])
+        if k.size:
+            v_lof[i], x_lof[i] = sim["V"][k[0], i], sim["x_N"][k[0], i]
+    k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time), nt - 1)
+    cols = np.arange(n)
+    v_scr = np.where(reached, sim["V"][k_end, cols], np.nan)
+    x_scr = np.where(reached, sim["x_N"][k_end, cols] - x0[:, 0], np.nan)
+    t_scr = np.where(reached, sim.stop_time, np.nan)
+    emin, emax = _elevator_extremes(sim, je)
+    return TakeoffResult(sim, x0, a0, reached, v_lof, x_lof - x0[:, 0], v_scr, x_scr, t_scr, emin, emax, wheel)
+
+
+def _lowest_point_below_cg(model, x13):
+    q0, q1, q2, q3 = (x13[:, 9 + k, None] for k in range(4))
+    rx, ry, rz = (model.r_gear[:, :, k] for k in range(3))
+    down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
+    return down.max(axis=1)
+
+
+def approach_and_landing(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, glide: float = np.radians(-3.0),
+                         flare_height: float = 15.0, aim_below: float = 1.0,
+                         elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
+                         t_end: float = 90.0, dt: float = 0.05) -> LandingResult:
+    u = np.zeros((model.n, len(model.control_names)))
+    u0 = np.asarray(u0, dtype=float)
+    u[:, :u0.shape[1]] = u0
+    tecs = TECSApproach(model, x0, u, glide=glide, flare_height=flare_height, aim_below=aim_below,
+                        limits=elevator_limits)
+    sim = simulate(model, x0, u, t_end, dt, controllers=[tecs, WingsLevel(model, u, limits=lateral_limits)],
+                   stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)])
+    touched = np.array([r == "touchdown" for r in sim.stop_reason])
+    sink = np.where(touched, -_hdot(sim.final_state), np.nan)
+    speed = np.where(touched, np.linalg.norm(sim.final_state[:, 3:6], axis=1), np.nan)
+    emin, emax = _elevator_extremes(sim, model.control_index("elevator"))
+    return LandingResult(sim, touched, sink, speed, emin, emax, tecs.tau, tecs.sink)
+
+
+__all__ = ["takeoff_run", "approach_and_landing", "TakeoffResult", "LandingResult"]

@@ -1,0 +1,59 @@
+"""§25.125 landing (simulated −3° approach at VREF, flare, touchdown) against hand numbers in ft and kn.
+
+Hand references: VREF 136 KCAS is 136 × 1.0022 = 136.3 kn TAS at 150 ft (ISA σ = 0.99561), so the
+approach sink rate is 136.3 × 1.68781 × sin 3° = 12.04 ft/s and the flare time constant
+τ = (15 m + 1 m)/(3.670 m/s) = 4.36 s (exponential flare, Stevens & Lewis §4.7); the criterion is
+6 ft/s (§25.473(a)(2)(ii)); the elevator design limit −21.8°.
+"""
+
+import pytest
+
+from .helpers import run_rule
+
+
+@pytest.fixture(scope="module")
+def result():
+    return run_rule("25.125")
+
+
+def _by(result, loading, check):
+    return next(f for f in result.findings if f.condition.loading == loading and f.check.startswith(check))
+
+
+def test_hand_calculation_approach_sink_and_flare_constant(result):
+    """Approach sink 12.04 ft/s (±0.05), τ 4.36 s (±0.02), limit 6 ft/s, touchdown well below it (< 3 ft/s)."""
+    for loading in ("MLW forward", "MLW reference", "MLW aft"):
+        f = _by(result, loading, "touchdown")
+        assert f.details["approach_sink_fps"] == pytest.approx(136 * 1.0022 * 1.68781 * 0.0523360, abs=0.05)
+        assert f.details["flare_tau_s"] == pytest.approx(16.0 / (12.04 * 0.3048), abs=0.02)
+        assert f.limit == 6.0 and f.unit == "ft/s" and 0.0 < f.value < 3.0
+        e = _by(result, loading, "elevator")
+        assert e.limit == pytest.approx(-21.8) and e.unit == "deg"
+
+
+def test_on_the_limit_with_the_criterion_at_the_computed_sink_rate(result, tmp_path):
+    """Overriding the criterion with the reference CG's touchdown sink rate puts that finding on the limit."""
+    ref = _by(result, "MLW reference", "touchdown")
+    block = ('criteria:\n  "25.125":\n    justification: test of the on-limit case\n'
+             f'    values: {{touchdown_sink_rate: {ref.value:.6f}}}\n\nsources:\n')
+    edited = run_rule("25.125", tmp_path, [("\nsources:\n", "\n" + block)])
+    assert _by(edited, "MLW reference", "touchdown").margin == pytest.approx(0.0, abs=1e-5)
+
+
+def test_sign_forward_cg_needs_more_elevator_and_a_larger_limit_helps(result, tmp_path):
+    """The forward CG needs the most nose-up elevator (smallest margin; at MLW it already needs −22.6° to trim
+    on the path, past the −21.8° design limit: fails with the trim's message); a −30° design limit raises every
+    elevator margin by exactly 8.2°."""
+    m = [_by(result, c, "elevator").margin for c in ("MLW forward", "MLW reference", "MLW aft")]
+    assert m[0] < m[1] < m[2]
+    fwd = _by(result, "MLW forward", "elevator")
+    assert fwd.status == "fails" and "elevator" in fwd.reason
+    wider = run_rule("25.125", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
+                                           "design_limits: {min: -30 deg, max: 16.8 deg}")])
+    assert _by(wider, "MLW forward", "elevator").margin == pytest.approx(fwd.margin + 8.2, abs=1e-6)
+
+
+def test_not_evaluated_without_vref(tmp_path):
+    r = run_rule("25.125", tmp_path, [("  VREF: 136 kn CAS ", "  # VREF removed ")])
+    assert r.status == "not_evaluated"
+    assert all(f.status == "not_evaluated" and "VREF" in f.reason for f in r.findings)
