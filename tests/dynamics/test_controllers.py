@@ -22,7 +22,7 @@ def approach():
 def test_tecs_tracks_3deg_glide_path_and_idles_in_flare(approach):
     """TECS from a trimmed −3° approach: after 20 s the height is within 1 m of the geometric
     glide path (150 m − 20 s · 85 sin 3°) and the speed within 1 m/s; below the flare height the
-    throttle is at idle. (The flare itself is not yet tuned: touchdown sink rates of 4–6 m/s
+    throttle is at idle. (The flare and touchdown are tested in test_flare.py; earlier sink rates of 4–6 m/s
     are still too high — see the report.)"""
     model, tb = approach
     c = TECSApproach(model, tb.x, tb.u)

@@ -56,8 +56,10 @@ def _takeoff(ctx, conditions, crit):
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         model = flight_model(ac, ctx.aero("takeoff").model, loadings, ground=ground_model(ac))
         travel = control_limits(ac, design=False)
+        # RK4 at 10 Hz: against 20 Hz the extreme elevator moves by < 0.1° and V35 by < 0.1 kn (measured on
+        # the baseline), at 40 % of the cost
         run = takeoff_run(model, vr, theta, screen_height=crit.screen_height * FT,
-                          elevator_limits=travel["elevator"], lateral_limits=travel)
+                          elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1)
         return trims, run
 
     key = ("25.111 takeoff", tuple((c.mass, c.x_cg) for c in conditions), crit.screen_height)
