@@ -161,11 +161,11 @@ def drag_terms(aircraft, machs) -> tuple[list[float], list[float], list[str]]:
 
 
 def fuselage_terms(aircraft) -> dict[str, float]:
-    """Fuselage Cm_α (Gilruth & White) and Cn_β (Raymer 16.50) increments, per radian."""
+    """Fuselage Cm_α (Gilruth & White), Cn_β (Raymer 16.50) and CY_β (DATCOM 5.2.1.1) increments, per radian."""
     from certkit.models.aero.fuselage import fuselage_derivatives
 
     f = fuselage_derivatives(aircraft.geometry, aircraft.reference)
-    return {"Cm_alpha": f.Cm_alpha, "Cn_beta": f.Cn_beta}
+    return {"Cm_alpha": f.Cm_alpha, "Cn_beta": f.Cn_beta, "CY_beta": f.CY_beta}
 
 
 def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=drag_terms, fuselage=fuselage_terms,

@@ -1,4 +1,4 @@
-"""Fuselage contributions to the static stability derivatives Cm_α and Cn_β (per radian).
+"""Fuselage contributions to the static stability derivatives Cm_α, Cn_β and CY_β (per radian).
 
 Conventions of :mod:`certkit.conventions`: Cm nose up positive, Cn nose right positive, β positive
 with the wind from the right; coefficients on the wing reference area, c̄ and span. A fuselage is
@@ -55,6 +55,15 @@ def fuselage_volume(length, width, depth):
     return np.pi / 4.0 * width * depth * length * (1.0 - 2.0 * d / length)
 
 
+def cy_beta_fuselage(depth, width, reference_area, interference=1.0):
+    """ΔCY_β (per radian) = −2 K_i S_0/S (USAF DATCOM §5.2.1.1, Roskam Part VI eq. 10.28), S_0 the
+    body's maximum cross-section (an ellipse of the fuselage width and depth); K_i, the wing–body
+    interference factor of the DATCOM figure (1 mid wing, larger for low and high wings), is 1 here:
+    the figure is not digitised in certkit, so the side force of low- and high-wing bodies is on the
+    small side."""
+    return -2.0 * interference * (np.pi / 4.0 * width * depth) / reference_area
+
+
 def cn_beta_fuselage(volume, depth, width, reference_area, span):
     """ΔCn_β (per radian) = −1.3 V/(S b) · D/W, Raymer eq. 16.50."""
     return -1.3 * volume / (reference_area * span) * depth / width
@@ -66,6 +75,7 @@ class FuselageDerivatives:
 
     Cm_alpha: float
     Cn_beta: float
+    CY_beta: float
     K_f: float
     root_quarter_chord_fraction: float
     volume: float
@@ -85,6 +95,7 @@ def fuselage_derivatives(geometry: Geometry, reference: Reference) -> FuselageDe
     return FuselageDerivatives(
         Cm_alpha=float(cm_alpha_fuselage(f.length, f.width, x_qc, reference.area, reference.mean_chord)),
         Cn_beta=float(cn_beta_fuselage(volume, f.height, f.width, reference.area, reference.span)),
+        CY_beta=float(cy_beta_fuselage(f.height, f.width, reference.area)),
         K_f=float(pitching_moment_factor(x_qc / f.length)),
         root_quarter_chord_fraction=x_qc / f.length,
         volume=volume,
@@ -92,4 +103,4 @@ def fuselage_derivatives(geometry: Geometry, reference: Reference) -> FuselageDe
 
 
 __all__ = ["K_F_STATION", "K_F_PER_DEG", "pitching_moment_factor", "cm_alpha_fuselage", "fuselage_volume",
-           "cn_beta_fuselage", "FuselageDerivatives", "wing_root_quarter_chord_station", "fuselage_derivatives"]
+           "cn_beta_fuselage", "cy_beta_fuselage", "FuselageDerivatives", "wing_root_quarter_chord_station", "fuselage_derivatives"]
