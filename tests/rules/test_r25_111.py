@@ -11,6 +11,7 @@ import pytest
 
 from certkit.units import FT
 
+from .helpers import finding_by as _by
 from .helpers import run_rule
 
 GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
@@ -20,10 +21,6 @@ GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36
 @pytest.fixture(scope="module")
 def result():
     return run_rule("25.111")
-
-
-def _by(result, loading, check):
-    return next(f for f in result.findings if f.condition.loading == loading and f.check.startswith(check))
 
 
 def test_hand_calculation_initial_acceleration_and_v2_limit(result):

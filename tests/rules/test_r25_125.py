@@ -8,16 +8,13 @@ approach sink rate is 136.3 × 1.68781 × sin 3° = 12.04 ft/s and the flare tim
 
 import pytest
 
+from .helpers import finding_by as _by
 from .helpers import run_rule
 
 
 @pytest.fixture(scope="module")
 def result():
     return run_rule("25.125")
-
-
-def _by(result, loading, check):
-    return next(f for f in result.findings if f.condition.loading == loading and f.check.startswith(check))
 
 
 def test_hand_calculation_approach_sink_and_flare_constant(result):
