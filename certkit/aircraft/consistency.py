@@ -220,3 +220,23 @@ def consistency_problems(sections: dict) -> list[Problem]:
             for path, message, value in check(sections) or ():
                 problems.append(Problem(path, message, value))
     return problems
+
+
+@needs("structure")
+def _structure(s):
+    st = s["structure"]
+    for surface in ("wing", "horizontal_tail", "vertical_tail"):
+        seen = {}
+        for i, c in enumerate(getattr(st, surface)):
+            path = f"structure.{surface}.{i}"
+            if surface == "vertical_tail" and c.station == "side_of_body":
+                yield f"{path}.station", "the fin has no side-of-body station: use root or a fraction of its height", c.station
+            key = ("root" if c.station in ("root", 0.0) else c.station, c.quantity)
+            if key in seen:
+                yield path, f"{c.quantity} at this station is already declared (item {seen[key]})", None
+            seen.setdefault(key, i)
+            for sense in ("negative", "positive"):
+                lim = getattr(c.limit, sense, c.limit)
+                ult = getattr(c.ultimate, sense, c.ultimate)
+                if ult < lim:
+                    yield f"{path}.ultimate", f"ultimate allowable ({sense} sense, {ult:.4g}) is below the limit allowable ({lim:.4g})", ult

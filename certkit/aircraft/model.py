@@ -10,8 +10,9 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, model_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
+from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
     Angle, Area, Force, Fraction, Inertia, Length, Mass, PositiveArea, PositiveForce, PositiveLength,
     PositiveMass, Speed,
@@ -332,6 +333,59 @@ class CriterionOverride(_Section):
     values: dict[str, float | str | bool]
 
 
+# --- structure -----------------------------------------------------------------------------
+
+StructuralQuantity = Literal["shear", "bending", "torsion"]
+_QUANTITY_DIMENSION = {"shear": "force", "bending": "moment", "torsion": "moment"}
+
+
+class SenseAllowable(_Section):
+    """Allowable load magnitudes that differ with the sense of the load: ``negative`` (download on the
+    wing or tailplane, leftward on the fin, tip-down bending, nose-down torsion) and ``positive``
+    (upward / rightward, tip-up bending, nose-up torsion). N for shear, N·m for bending and torsion."""
+
+    negative: Annotated[float, Field(gt=0)]
+    positive: Annotated[float, Field(gt=0)]
+
+
+class StructuralCapability(_Section):
+    """What the structure of one surface carries at one station for one load quantity (§25.305).
+
+    ``station``: ``root`` (the surface's root on the plane of symmetry, the fin's root at the fuselage
+    axis), ``side_of_body`` (wing and horizontal tail, at half the fuselage width) or a fraction 0–1 of
+    the semispan (fin height) measured in the plane of the surface. ``limit`` is the allowable limit
+    load (no detrimental permanent deformation), ``ultimate`` the allowable ultimate load (no
+    failure): each a magnitude valid in both senses or ``{negative, positive}``. Shear in force units
+    (``"1200 kN"``, ``"270000 lbf"``), bending and torsion in moment units (``"9.5 MN*m"``,
+    ``"7.0e6 lbf*ft"``); SI after validation. Signs follow :mod:`certkit.models.loads.model`."""
+
+    station: Literal["root", "side_of_body"] | Fraction
+    quantity: StructuralQuantity
+    limit: Annotated[float, Field(gt=0)] | SenseAllowable
+    ultimate: Annotated[float, Field(gt=0)] | SenseAllowable
+    source: Annotated[str, Field(min_length=3, description="where the allowables come from (stress report, test)")]
+
+    @field_validator("limit", "ultimate", mode="before")
+    @classmethod
+    def _units(cls, value: object, info: ValidationInfo) -> object:
+        quantity = info.data.get("quantity")
+        if quantity not in _QUANTITY_DIMENSION:
+            return value  # the quantity's own error is reported
+        convert = _quantity_converter(_QUANTITY_DIMENSION[quantity])
+        if isinstance(value, dict):
+            return {k: convert(v) if k in ("negative", "positive") else v for k, v in value.items()}
+        return convert(value)
+
+
+class Structure(_Section):
+    """Declared structural capabilities per lifting surface (the loads rules compare their limit
+    loads and 1.5 × limit loads with them, §25.303/§25.305)."""
+
+    wing: list[StructuralCapability] = Field(default_factory=list)
+    horizontal_tail: list[StructuralCapability] = Field(default_factory=list)
+    vertical_tail: list[StructuralCapability] = Field(default_factory=list)
+
+
 RuleId = Annotated[str, Field(pattern=r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")]
 
 
@@ -349,5 +403,6 @@ class Aircraft(_Section):
     speeds: Speeds = Field(default_factory=Speeds)
     envelope: Envelope
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
+    structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

@@ -45,6 +45,7 @@ Length = quantity("length")
 Area = quantity("area")
 Mass = quantity("mass")
 Force = quantity("force")
+Moment = quantity("moment")
 Angle = quantity("angle")
 Inertia = quantity("inertia")
 Time = quantity("time")
@@ -88,6 +89,6 @@ class Speed(BaseModel):
 
 
 __all__ = [
-    "Length", "Area", "Mass", "Force", "Angle", "Inertia", "Time", "SpeedValue", "PositiveLength",
+    "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "PositiveLength",
     "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
 ]

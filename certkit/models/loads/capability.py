@@ -9,13 +9,16 @@ The comparison forms two margins, each ≥ 0 when the structure is adequate:
     ultimate margin = allowable_ultimate − factor × |limit load|
 
 ``factor`` is the factor of safety the rule passes in (the regulation's number lives in the rule).
-The aircraft file has no ``structure`` section yet; the rules propose its fields and pass a
-capability here when one is declared (the tests pass one directly).
+:func:`declared_capabilities` reads them from the aircraft file's optional ``structure`` section
+(:class:`certkit.aircraft.model.StructuralCapability`); the loads model adds the declared span
+fractions to its load stations, so a declared station is always one the loads are computed at.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+from certkit.models.loads.model import station_label
 
 
 @dataclass(frozen=True)
@@ -54,4 +57,16 @@ def compare(cap: Capability, max_load: float, min_load: float, ultimate_factor: 
         ult = cap.allowable("ultimate", sense)
         out.append(LoadMargin("limit", sense, mag, lim, lim - mag))
         out.append(LoadMargin("ultimate", sense, ultimate_factor * mag, ult, ult - ultimate_factor * mag))
+    return out
+
+
+def declared_capabilities(ctx, surface: str) -> list[Capability]:
+    """The capabilities of ``surface`` declared in the aircraft file (empty when none are)."""
+    st = getattr(ctx.aircraft, "structure", None)
+    out = []
+    for c in (getattr(st, surface) if st is not None else ()):
+        def value(v):
+            return (float(v.negative), float(v.positive)) if hasattr(v, "negative") else float(v)
+
+        out.append(Capability(surface, station_label(c.station), c.quantity, value(c.limit), value(c.ultimate), c.source))
     return out

@@ -122,6 +122,16 @@ class SurfaceLoads:
         return qbar[..., None] * (lo * (1 - w)[..., None] + hi * w[..., None])
 
 
+def station_label(station) -> str:
+    """Name of a load station: ``root``, ``side of body`` or ``"62.5% span"`` for a span fraction."""
+    if station in ("root", "side_of_body", "side of body"):
+        return str(station).replace("_", " ")
+    f = float(station)
+    if f == 0.0:
+        return "root"
+    return f"{f:.0%} span" if abs(f * 100 - round(f * 100)) < 1e-9 else f"{f:.1%} span"
+
+
 def _strip_indices(lattice, surface: str) -> np.ndarray:
     for p in lattice.patches:
         if p.name == surface:
@@ -164,7 +174,7 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     semispan = max(s1.max(), s2.max())
     chord = lat.chord[idx]
     x_axis = lat.rle[idx, 0] + axis_fraction * chord
-    names = [f"{f:.0%} span" if f else "root" for f in station_fractions]
+    names = [station_label(f) for f in station_fractions]
     stations = [f * semispan for f in station_fractions]
     if side_of_body is not None and 0.0 < side_of_body < semispan:
         cos_dihedral = float(np.mean(np.abs(nz))) if not vertical else 1.0
@@ -284,8 +294,20 @@ class AirplaneLoads:
         return self.surfaces[name]
 
 
+DEFAULT_STATIONS = (0.0, 0.25, 0.5, 0.75)
+
+
+def declared_station_fractions(aircraft, surface: str) -> tuple[float, ...]:
+    """The default station fractions plus those of the declared capabilities (``structure`` section)."""
+    st = getattr(aircraft, "structure", None)
+    extra = [float(c.station) for c in (getattr(st, surface) if st is not None else ())
+             if not isinstance(c.station, str) and float(c.station) < 1.0]
+    return tuple(sorted(set(DEFAULT_STATIONS) | set(extra)))
+
+
 def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4) -> AirplaneLoads:
-    """Wing, horizontal tail and fin loads models from the lattice ``vl`` at the Mach breakpoints."""
+    """Wing, horizontal tail and fin loads models from the lattice ``vl`` at the Mach breakpoints
+    (stations: :data:`DEFAULT_STATIONS` and those of the declared capabilities)."""
     g = aircraft.geometry
     sob = 0.5 * g.fuselage.width if g is not None and g.fuselage is not None else None
     out = {}
@@ -295,6 +317,7 @@ def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4) -> Air
     for name in ("wing", "horizontal_tail", "vertical_tail"):
         pm = wing_point_masses(aircraft) if name == "wing" else ()
         out[name] = build_surface_loads(vl, name, machs, surface_mass(aircraft, name), axis_fraction,
+                                        station_fractions=declared_station_fractions(aircraft, name),
                                         side_of_body=None if name == "vertical_tail" else sob, point_masses=pm)
         notes += out[name].notes
     return AirplaneLoads(out, notes)

@@ -6,9 +6,9 @@ The regulation text of (c)(2) is only partly verified (docs/regulation-notes.md)
 t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t_max = 3π/(2ω) without hold and
 ω ≥ πV/(2VA) are from memory — they are criteria here, overridable in the aircraft file.
 
-Without a declared structural capability (the aircraft file has no ``structure`` section yet) each
-condition reports its horizontal-tail loads and is not evaluated with the reason
-"no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
+Each condition's horizontal-tail limit loads are compared with the capabilities declared in the aircraft
+file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
+one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Step, simulate, stop_when
 from certkit.models.flight import control_limits
 from certkit.models.loads.batch import trimmed_batch
-from certkit.models.loads.capability import compare
+from certkit.models.loads.capability import compare, declared_capabilities  # noqa: F401 (shared by §25.341/§25.351)
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
@@ -47,12 +47,6 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
         v = float(ctx.design_speed_eas(name, h)[0])
         out[name] = min(v, vc) if name == "VA" else v
     return out
-
-
-def declared_capabilities(ctx, surface: str):
-    """Capabilities of ``surface`` from the aircraft file (none can be declared yet: see the module doc)."""
-    node = ctx.lookup(f"structure.{surface}")
-    return list(node) if node else []
 
 
 def station_summary(loads_peaks: np.ndarray, stations) -> dict:
@@ -143,7 +137,7 @@ class CheckedPitchManeuver(Rule):
                                 extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
                                 note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).")
     limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
-                   "; no structural capability can be declared yet (proposed aircraft-file section `structure`).")
+                   "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
     def evaluate(self, ctx, conditions, crit):
@@ -294,7 +288,7 @@ class MaximumPitchControlDisplacement(Rule):
     conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
                                 note="At VA (EAS), capped at the Mach-limited VC at altitude.")
     limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
-                   "; no structural capability can be declared yet (proposed aircraft-file section `structure`).")
+                   "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
     def evaluate(self, ctx, conditions, crit):
