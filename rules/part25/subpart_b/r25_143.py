@@ -1,0 +1,224 @@
+"""§25.143(h) Controllability and manoeuvrability: manoeuvring capability in coordinated turns.
+
+The paragraph's table (docs/regulation-notes.md marks it unverified — from memory, corroborated only by
+EASA AMC 25.143(h), which names V2, V2 + XX, VFTO, VREF and "WAT-limited"):
+
+    configuration   speed     bank in a coordinated turn   thrust
+    takeoff         V2        30°                          asymmetric, WAT-limited
+    takeoff         V2 + XX   40°                          all-engines-operating climb (takeoff thrust)
+    en route        VFTO      40°                          asymmetric, WAT-limited
+    landing         VREF      40°                          symmetric, for a −3° flight path
+
+Each case is trimmed as a steady coordinated turn (``ctx.trim(kind="turn")``: zero sideslip, the bank
+given, turn rate, α and the three controls solved for) — with the critical engine inoperative for the
+asymmetric cases (the windmilling engine and the asymmetric thrust are in the flight model), in both
+directions. ``kind="oei"`` is not used: it trims *straight* flight at a bank (|φ| ≤ 5°, §25.149), which at
+30° needs a sideslip of some 36°. Where the table gives a thrust rather than a path, the turn is trimmed at
+the flight-path angle that thrust gives (:func:`trim_at_thrust`, the energy relation sin γ = (T − D)/W of
+Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12, iterated on the thrust the trim needs).
+The elevator, aileron and rudder of each trim are reported against their design limits.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
+from certkit.conditions import ConditionSpace, DesignWeight, speed_as
+from certkit.models.flight import control_limits, thrust_function
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit.units import FT, G0, KN
+from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, declared_cas, trim_details
+
+CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
+_UNVERIFIED = "14 CFR 25.143(h) table (unverified: from memory, corroborated only by EASA AMC 25.143(h); docs/regulation-notes.md)"
+
+#: a thrust aim is kept this far inside the throttle range, where the trim's throttle iterate is free (trim.py)
+_THROTTLE_INSIDE = 0.003
+_GAMMA_STEP = 0.03  # rad: a trim that needs thrust outside the range is retried this much lower / higher
+
+
+def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, inoperative: str | None = None):
+    """Total thrust (N) of the operating engines at ``throttle`` × ``fraction`` per condition (its altitude
+    and Mach), kept just inside the throttle range so that a trim can reach it."""
+    thrust, _ = thrust_function(ctx.aircraft)
+    live = [e for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
+    h = np.array([c.altitude or 0.0 for c in conds])
+    mach = np.array([speed_as(c, "TAS") for c in conds]) / speed_of_sound(h)
+    per_engine = lambda t: np.asarray(thrust(np.full_like(h, t), h, mach), dtype=float)  # noqa: E731
+    lo, hi = per_engine(_THROTTLE_INSIDE), per_engine(1.0 - _THROTTLE_INSIDE)
+    return len(live) * np.clip(fraction * per_engine(throttle), lo, hi)
+
+
+def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
+                   iterations: int = 4):
+    """Trim ``conds`` (one configuration) at the flight-path angle the operating engines' total thrust
+    ``thrust_aim`` (N, per condition) gives. A wings-level trim at γ = 0 and the polar's induced drag of the
+    turn's load factor estimate the drag; then
+    γ ← γ + (T_aim − T_trim)/W (Anderson eq. 5.12; the step undershoots by cos γ, so the iterate approaches
+    the aim from the side the trim can reach). A trim needing thrust beyond the engines' range is retried
+    0.03 rad lower (higher at idle); one failing for another reason (lift, a control) is final.
+    Returns the TrimResult of each condition, its flight-path angle (rad) and thrust residual (T_aim − T_trim)/W."""
+    n = len(conds)
+    live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
+    weight = np.array([c.mass for c in conds]) * G0
+    aim = np.broadcast_to(np.asarray(thrust_aim, dtype=float), (n,)).copy()
+    bank = np.broadcast_to(np.asarray(bank, dtype=float), (n,)).copy()
+    needed = lambda b: np.array([sum(r.thrust[e] for e in live) for r in b.results])  # noqa: E731
+    first = ctx.trim(conds, kind="straight", inoperative=inoperative)
+    # the turn's extra induced drag, k CL² (n² − 1) q S with CL the 1-g lift coefficient (the model's polar)
+    h = np.array([c.altitude or 0.0 for c in conds])
+    tas = np.array([speed_as(c, "TAS") for c in conds])
+    qs = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2 \
+        * ctx.aircraft.reference.area
+    k_polar = np.asarray(ctx.aero(conds[0].configuration).model.derivative("k", tas / speed_of_sound(h)), dtype=float)
+    turn_drag = k_polar * (weight / qs) ** 2 * (1.0 / np.cos(bank) ** 2 - 1.0) * qs
+    gamma = np.where(first.converged, (aim - needed(first) - turn_drag) / weight, 0.0)
+    results, flown, residual = list(first.results), gamma.copy(), np.full(n, np.nan)
+    active = np.arange(n)
+    for k in range(iterations):
+        batch = ctx.trim([conds[i] for i in active], kind=kind, bank=bank[active], gamma=gamma[active],
+                         inoperative=inoperative)
+        res = (aim[active] - needed(batch)) / weight[active]
+        for j, i in enumerate(active):
+            results[i], flown[i], residual[i] = batch.results[j], gamma[i], res[j]
+        ok = batch.converged
+        throttle = np.array([np.mean([r.controls.get(f"throttle:{e}", 0.5) for e in live]) for r in batch.results])
+        saturated = ~ok & ((throttle >= 0.999) | (throttle <= 0.001))
+        gamma[active] += np.where(ok, res, np.where(throttle > 0.5, -_GAMMA_STEP, _GAMMA_STEP))
+        active = active[(ok & (np.abs(res) > 1e-5)) | saturated]
+        if not len(active):
+            break
+    return results, flown, residual
+
+
+def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
+    """Trim angles and controls, load factor n = cos γ / cos φ and the lift coefficient it needs over CLmax."""
+    n = math.cos(gamma) / math.cos(bank)
+    veas = float(convert_speed(speed_as(cond, "TAS"), "TAS", "EAS", cond.altitude or 0.0))
+    cl = n * cond.mass * G0 / (0.5 * RHO0 * veas**2 * ctx.aircraft.reference.area)
+    out = dict(trim_details(result), flight_path_deg=round(math.degrees(gamma), 3), load_factor=round(n, 4), CL=round(cl, 4))
+    clmax = ctx.clmax(cond.configuration)
+    if clmax:
+        out["CL_over_CLmax"] = round(cl / clmax, 4)
+    return out
+
+
+@rule
+class ManeuveringCapability(Rule):
+    id = "25.143(h)"
+    symbol = "maneuvering-capability"
+    title = "Controllability: manoeuvring capability in coordinated turns"
+    amendment = "25-108"
+    requirement = """
+        (Table from memory, unverified.) The manoeuvring capabilities in a constant-speed coordinated turn at
+        forward CG must be free of stall warning or other characteristics that might interfere with normal
+        manoeuvring: takeoff configuration, V2, 30° bank, asymmetric WAT-limited thrust; takeoff, V2 + XX (the
+        all-engines initial-climb speed), 40°, all-engines climb thrust; en route, VFTO, 40°, asymmetric
+        WAT-limited thrust; landing, VREF, 40°, symmetric thrust for a −3° flight path. certkit checks that
+        each turn can be trimmed with the elevator, aileron and rudder within their design limits, at the
+        forward, reference and aft CG.
+    """
+    margin = """Each trim control's design limit on the side it is deflected − |deflection| (deg), for every
+        case, CG and turn direction; a control beyond its limit fails with the trim's message."""
+    references = ("25.107", "25.121", "25.125", "25.147")
+    requires = ("mass.MTOW", "configurations.takeoff")
+    criteria = {
+        "bank_v2_deg": Criterion(30.0, "deg", _UNVERIFIED, "bank of the coordinated turn at V2, takeoff, critical engine inoperative"),
+        "bank_deg": Criterion(40.0, "deg", _UNVERIFIED, "bank at V2 + XX, at VFTO and at VREF"),
+        "v2_increment_kt": Criterion(
+            10.0, "kt", _UNVERIFIED + "; XX is the all-engines initial-climb speed, not stated in the notes: V2 + 10 kt "
+                                      "assumed, override with the approved speed", "XX of V2 + XX (CAS)"),
+        "landing_path_deg": Criterion(-3.0, "deg", _UNVERIFIED, "flight-path angle of the landing-configuration turn"),
+        "enroute_altitude_ft": Criterion(1500.0, "ft", "14 CFR 25.111 end of the takeoff path (25.121(c)), as for VFTO",
+                                         "second altitude of the en-route case (also at sea level)"),
+        "mct_over_takeoff_thrust": Criterion(
+            0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
+            "maximum continuous (en route, WAT-limited) over takeoff thrust of the engine model"),
+    }
+    conditions = ConditionSpace(
+        extra=(("case", CASES),),
+        note="MTOW (takeoff and en-route cases) or MLW (landing case) at the forward, reference and aft CG; sea level "
+             "(and 1500 ft en route); turns toward and away from the inoperative (critical) engine for the asymmetric cases")
+    implementation = "partial"
+    limitations = """
+        The table of (h) is from memory (unverified). Freedom from stall warning is not evaluated (no stall-warning
+        lift coefficient is declared); each finding carries CL/CLmax of the turn. "WAT-limited" is read as MTOW at
+        sea level (and 1500 ft en route) with takeoff thrust (V2) or maximum continuous thrust (VFTO) on the
+        operating engine. The stabiliser is fixed at its declared incidence, so the elevator carries the whole
+        trim (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        ac = ctx.aircraft
+        limits = control_limits(ac)
+        dead = critical_engine(ctx)
+        dead_y = next(e.position.y for e in ac.propulsion.engines if e.name == dead)
+        toward_dead = -1.0 if dead_y < 0 else 1.0  # positive bank is right wing down
+        specs = {
+            "takeoff V2": dict(config="takeoff", weight="MTOW", speed="V2", bank=crit.bank_v2_deg, oei=True, fraction=1.0,
+                               thrust="takeoff thrust on the operating engine"),
+            "takeoff V2+XX": dict(config="takeoff", weight="MTOW", speed="V2", increment=crit.v2_increment_kt,
+                                  bank=crit.bank_deg, oei=False, fraction=1.0, thrust="takeoff thrust, all engines"),
+            "en route VFTO": dict(config="clean", weight="MTOW", speed="VFTO", bank=crit.bank_deg, oei=True,
+                                  fraction=crit.mct_over_takeoff_thrust, altitudes=(0.0, crit.enroute_altitude_ft * FT),
+                                  thrust="maximum continuous thrust on the operating engine"),
+            "landing VREF": dict(config="landing", weight="MLW", speed="VREF", bank=crit.bank_deg, oei=False, fraction=None,
+                                 thrust=f"all engines, for a {crit.landing_path_deg:g}° path"),
+        }
+        out = []
+        for cond in conditions:
+            spec = specs[cond.get("case")]
+            out += self._case(ctx, cond, spec, limits, dead, toward_dead, crit)
+        return out
+
+    def _case(self, ctx, cond, spec, limits, dead, toward_dead, crit):
+        ac = ctx.aircraft
+        check = f"(h) {cond.get('case')}"
+        missing = [p for p, ok in ((f"configurations.{spec['config']}", spec["config"] in ac.configurations),
+                                   (f"speeds.{spec['speed']}", getattr(ac.speeds, spec["speed"]) is not None),
+                                   (f"mass.{spec['weight']}", getattr(ac.mass, spec["weight"]) is not None)) if not ok]
+        if missing:
+            return [Finding.not_evaluated(cond, f"{check} trim", "needs " + ", ".join(missing))]
+        v = declared_cas(ctx, spec["speed"]) + spec.get("increment", 0.0) * KN
+        name = spec["speed"] + (f" + {spec['increment']:g} kt" if spec.get("increment") else "")
+        bank = math.radians(spec["bank"])
+        directions = (("toward the operating engine", -toward_dead), ("toward the inoperative engine", toward_dead)) \
+            if spec["oei"] else (("right", 1.0),)
+        conds, banks = [], []
+        for ld in DesignWeight(spec["weight"], CGS).loadings(ac):
+            for h in spec.get("altitudes", (0.0,)):
+                for label, sign in directions:
+                    conds.append(cond.with_(loading=ld.name, mass=ld.mass, x_cg=ld.x_cg, configuration=spec["config"],
+                                            altitude=h, speed=v, speed_kind="CAS", speed_name=name,
+                                            thrust=(f"critical engine ({dead}) inoperative, " if spec["oei"] else "")
+                                            + spec["thrust"], bank_deg=spec["bank"], turn=label))
+                    banks.append(sign * bank)
+        banks = np.array(banks)
+        inop = dead if spec["oei"] else None
+        if spec["fraction"] is None:
+            gamma = np.full(len(conds), math.radians(crit.landing_path_deg))
+            results = ctx.trim(conds, kind="turn", bank=banks, gamma=gamma).results
+            residual = np.zeros(len(conds))
+        else:
+            aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
+            results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop)
+        out = []
+        for i, c in enumerate(conds):
+            r = results[i]
+            details = dict(turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i]))
+            if not r.converged:
+                lift = (f"; the turn needs n = {details['load_factor']:.3f}, CL = {details['CL']:.2f}"
+                        + (f" ({details['CL_over_CLmax']:.0%} of CLmax: the model's lift near stall may not hold it)"
+                           if "CL_over_CLmax" in details else ""))
+                out.append(Finding.not_evaluated(c, f"{check} trim", f"coordinated-turn trim did not converge "
+                                                 f"(residual {r.residual_norm:.1e}){lift}"
+                                                 + "".join(f"; {m.message}" for m in r.limits_exceeded), **details))
+                continue
+            for f in control_findings(c, check, r, limits):
+                f.details.update(details)
+                out.append(f)
+        return out

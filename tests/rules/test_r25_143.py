@@ -1,0 +1,109 @@
+"""§25.143(h) manoeuvring capability: coordinated turns checked by hand where the path is independent of certkit.
+
+* Load factor and lift coefficient of a steady coordinated turn (Anderson, *Introduction to Flight*, eq. 6.81
+  n = 1/cos φ, with the flight-path term n = cos γ / cos φ): landing case, VREF = 136 kn CAS at sea level,
+  MLW 460,000 lb, S = 4927.3 ft², ρ0 = 0.0023769 slug/ft³, φ = 40°, γ = −3°: n = 1.30374,
+  CL = n W / (½ ρ0 V² S) = 1.9434 (tolerance 1e-3).
+* Thrust of the V2 + 10 kt all-engines case: two engines of the parametric turbofan (Mattingly lapse, see
+  test_r25_121) at throttle 0.997 — the rule flies at the takeoff thrust kept 0.3 % inside the throttle range.
+* Margin: the elevator design limit −21.8°/+16.8° (aircraft file) minus |δe| (deg).
+"""
+
+import math
+
+import pytest
+
+from certkit.aircraft import load_aircraft
+from certkit.context import Context
+from certkit.registry import discover, select
+from certkit.scheduler import criteria_for, evaluate_rule
+from certkit.units import KN
+
+from ..conftest import BASELINE
+from .helpers import edited_baseline
+
+LIMITS = "design_limits: {min: -21.8 deg, max: 16.8 deg}"
+
+
+def rule_class(rule_id):
+    (rule,) = [r for r in select(discover(), (rule_id,)) if r.id == rule_id]
+    return rule
+
+
+def evaluate_part(rule_id, ctx, keep=lambda c: True, **criteria):
+    """The rule's findings on the conditions ``keep`` selects, with criteria overridden (fast partial runs)."""
+    rule = rule_class(rule_id)
+    crit, _ = criteria_for(rule, ctx)
+    crit.update(criteria)
+    return rule().evaluate(ctx, [c for c in rule.conditions.expand(ctx.aircraft) if keep(c)], crit)
+
+
+def edited_context(tmp_path, edits):
+    return Context(load_aircraft(edited_baseline(tmp_path, edits)))
+
+
+@pytest.fixture(scope="module")
+def shared():
+    return Context(load_aircraft(BASELINE))
+
+
+@pytest.fixture(scope="module")
+def base(shared):
+    return evaluate_rule(rule_class("25.143(h)"), shared)
+
+
+def landing(c):
+    return c.get("case") == "landing VREF"
+
+
+def control(result, case, loading, name, turn=None):
+    findings = result if isinstance(result, list) else result.findings
+    return next(f for f in findings if f.condition.get("case") == case and f.condition.loading == loading
+                and f.check.endswith(f"{name} within design limit") and (turn is None or f.condition.get("turn") == turn))
+
+
+def test_hand_calculation_load_factor_lift_and_margin(base):
+    f = control(base, "landing VREF", "MLW reference", "elevator")
+    n = math.cos(math.radians(-3)) / math.cos(math.radians(40))
+    q = 0.5 * 0.0023769 * (136 * 1.6878099) ** 2
+    assert f.details["load_factor"] == pytest.approx(n, abs=1e-4)
+    assert f.details["CL"] == pytest.approx(n * 460_000 / (q * 4927.3), abs=1e-3)
+    assert f.details["CL_over_CLmax"] == pytest.approx(n * 460_000 / (q * 4927.3) / 2.25, abs=1e-3)
+    assert f.details["flight_path_deg"] == pytest.approx(-3.0) and f.details["bank_deg"] == pytest.approx(40.0, abs=1e-6)
+    limit = 16.8 if f.value >= 0 else -21.8
+    assert f.margin == pytest.approx(abs(limit) - abs(f.value), abs=1e-9)
+    g = control(base, "takeoff V2+XX", "MTOW reference", "elevator")
+    assert g.condition.speed / KN == pytest.approx(171.0, abs=1e-6)
+    assert g.details["throttle:left"] == pytest.approx(0.997, abs=5e-4)  # at the takeoff thrust, climbing
+    assert g.details["flight_path_deg"] > 0 and abs(g.details["thrust_residual"]) < 1e-4
+
+
+def test_on_the_limit(tmp_path, base):
+    """Elevator-up design limit set to the landing turn's elevator at MLW reference CG: margin 0."""
+    f = control(base, "landing VREF", "MLW reference", "elevator")
+    assert f.value < 0
+    ctx = edited_context(tmp_path, [(LIMITS, f"design_limits: {{min: {f.value:.9f} deg, max: 16.8 deg}}")])
+    r = evaluate_part("25.143(h)", ctx, landing)
+    g = control(r, "landing VREF", "MLW reference", "elevator")
+    assert g.margin == pytest.approx(0.0, abs=1e-6) and g.status == "complies"
+
+
+def test_sign_less_bank_more_margin_forward_cg_more_nose_up_and_rudder(shared, base):
+    """A 30° instead of a 40° landing turn needs less nose-up elevator; forward CG needs more than aft; the
+    V2 turn toward the operating engine needs rudder against the asymmetric thrust (left engine out: δr < 0)."""
+    r = evaluate_part("25.143(h)", shared, landing, bank_deg=30.0)
+    assert control(r, "landing VREF", "MLW reference", "elevator").margin > \
+        control(base, "landing VREF", "MLW reference", "elevator").margin
+    assert control(base, "landing VREF", "MLW forward", "elevator").value < \
+        control(base, "landing VREF", "MLW aft", "elevator").value
+    rud = control(base, "takeoff V2", "MTOW reference", "rudder", "toward the operating engine")
+    assert rud.value < 0 and rud.condition.get("bank_deg") == 30.0
+
+
+def test_not_evaluated_without_vref_and_where_the_turn_cannot_be_trimmed(tmp_path, base):
+    ctx = edited_context(tmp_path, [("  VREF: 136 kn CAS ", "  # VREF: 136 kn CAS ")])
+    r = evaluate_part("25.143(h)", ctx, landing)
+    assert len(r) == 1 and r[0].status == "not_evaluated" and r[0].reason == "needs speeds.VREF"
+    # the baseline's VFTO (1.18 VSR clean) turn at 40° needs about 94 % of CLmax: no steady turn is found
+    enroute = [f for f in base.findings if f.condition.get("case") == "en route VFTO"]
+    assert enroute and all(f.status == "not_evaluated" and "CLmax" in f.reason for f in enroute)
