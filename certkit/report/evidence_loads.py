@@ -92,3 +92,59 @@ def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q")) -> 
     if failed:
         out.append(Evidence("Conditions not simulated", table=[{"condition": run["envelope"].labels[i], "reason": r} for i, r in failed]))
     return out
+
+
+# --------------------------------------------------------------------------- discrete gusts (§25.341(a))
+
+def _gust_picks(run) -> list[tuple[int, int]]:
+    """(condition, gradient index) of the extreme wing root bending and tail root shear, both senses."""
+    env, which = run["envelope"], run["which"]
+    picks = []
+    for surface, quantity in (("wing", "bending"), ("horizontal_tail", "shear")):
+        q = QUANTITIES.index(quantity)
+        for sense in ("max", "min"):
+            _, i = env.extreme(surface, quantity, 0, sense)
+            if i >= 0:
+                pick = (i, int(which[surface][i, 1 if sense == "max" else 0, q, 0]))
+                if pick not in picks:
+                    picks.append(pick)
+    return picks
+
+
+def gust_time_history_svg(replays, conditions) -> str:
+    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    for i, H, r in replays:
+        sim = r.sim
+        label = f"{conditions[i].label()} · H {H / 0.3048:.0f} ft"
+        axes[0].plot(sim.t, np.degrees(r.alpha_gust["wing"][:, 0]), lw=1.2, label=label)
+        axes[1].plot(sim.t, sim["n_z"][:, 0], lw=1.2)
+        axes[2].plot(sim.t, r.loads["wing"][:, 0, 1, 0] / 1e3, lw=1.2)
+        axes[3].plot(sim.t, r.loads["horizontal_tail"][:, 0, 0, 0] / 1e3, lw=1.2)
+    for ax, name in zip(axes, ("gust angle at the wing (deg)", "n_z", "wing root bending (kN·m)", "tail root shear (kN)")):
+        ax.set_ylabel(name, fontsize=8)
+        ax.grid(True, alpha=0.3)
+    axes[3].set_xlabel("time (s)")
+    axes[0].legend(fontsize=6, loc="best")
+    return figure_to_svg(fig)
+
+
+def gust_evidence(run) -> list[Evidence]:
+    replays = run["replay"](_gust_picks(run))
+    H = run["gradients"]
+    out = [Evidence("Critical discrete-gust conditions: gust angle, load factor, wing root bending, tail root shear",
+                    gust_time_history_svg(replays, run["conditions"]),
+                    "The conditions and gradients with the largest positive and negative wing root bending and tail "
+                    "root shear; the gust reaches the tail a tail arm / V after the wing.")]
+    for surface in ("wing", "horizontal_tail"):
+        name = surface.replace("_", " ")
+        table = run["envelope"].table(surface)
+        cases = [c for c in run["envelope"].critical_cases() if c.surface == surface]
+        for row, c in zip(table, cases):
+            q = QUANTITIES.index(c.quantity)
+            s = run["envelope"].stations[surface].index(c.station)
+            row["H_ft"] = round(float(H[run["which"][surface][c.condition, 1 if c.sense == "max" else 0, q, s]] / 0.3048))
+        out += [Evidence(f"Gust load envelope along the {name} span", envelope_svg(run, surface),
+                         "Maximum and minimum over every condition, gust gradient and time (limit loads)."),
+                Evidence(f"Critical-case table, {name} (discrete gust)", caption="Critical condition, gradient and time "
+                         "of every station and quantity.", table=table)]
+    return out

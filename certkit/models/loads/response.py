@@ -113,6 +113,24 @@ class LoadEnvelope:
         return cls(stations, {k: np.concatenate(v) for k, v in peaks.items()},
                    {k: np.concatenate(v) for k, v in times.items()}, labels, failed)
 
+    @classmethod
+    def worst_of(cls, parts: list["LoadEnvelope"]) -> tuple["LoadEnvelope", dict[str, np.ndarray]]:
+        """One envelope over several runs of the same conditions (e.g. one per gust gradient): per
+        condition the lowest minimum and highest maximum; also, per surface, the index of the run each
+        extreme comes from ((n, 2, 3, S) integers)."""
+        first = parts[0]
+        peaks, times, which = {}, {}, {}
+        for k in first.peaks:
+            P = np.stack([p.peaks[k] for p in parts])  # (nr, n, 2, 3, S)
+            T = np.stack([p.times[k] for p in parts])
+            lo = np.argmin(np.where(np.isnan(P[:, :, 0]), np.inf, P[:, :, 0]), axis=0)
+            hi = np.argmax(np.where(np.isnan(P[:, :, 1]), -np.inf, P[:, :, 1]), axis=0)
+            w = np.stack([lo, hi], axis=1)
+            which[k] = w
+            peaks[k] = np.take_along_axis(P, w[None], axis=0)[0]
+            times[k] = np.take_along_axis(T, w[None], axis=0)[0]
+        return cls(dict(first.stations), peaks, times, list(first.labels), list(first.failed)), which
+
     def extreme(self, surface: str, quantity: str, station: int = 0, sense: str = "max") -> tuple[float, int]:
         """The extreme (value, condition index) of one quantity at one station over all conditions."""
         q = QUANTITIES.index(quantity)

@@ -1,0 +1,201 @@
+"""§25.341(a) Discrete gust design criteria: 1 − cos vertical gusts of gradients 30–350 ft on the rigid
+airplane (heave and pitch, the gust reaching the tail a tail arm later), wing and horizontal-tail loads
+from the strip loads model, compared with the declared structural capability (§25.303, §25.305).
+
+Verification (docs/regulation-notes.md §4): the words of (a)(1)–(3), (a)(5)(i) and the Z_mo definition
+are verified (Amdt. 25-141); the formulas of (a)(2), (a)(4) and (a)(6) (the 1 − cos shape,
+U_ds = U_ref F_g (H/350)^(1/6), F_g = 0.5 (F_gz + F_gm), F_gz = 1 − Z_mo/250 000, F_gm = √(R2 tan(π R1/4)))
+are from FAA AC 25.341-1 via secondary sources and UNVERIFIED against the CFR; the (a)(5)(ii) half U_ref
+at VD is unverified wording. They are criteria here, overridable in the aircraft file.
+
+Limitations: rigid airplane (no structural modes, (a)(1) asks for all significant ones), quasi-steady
+aerodynamics (no Küssner/Wagner lift growth, conservative for short gusts), vertical gusts only (the
+lateral gust of (a) is not evaluated).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.capability import declared_capabilities
+from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
+from certkit.models.loads.model import airplane_loads
+from certkit.models.loads.response import LoadEnvelope
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit.units import FT, KN
+from certkit_rules.part25.gust import SOURCE as UREF_SOURCE
+from certkit_rules.part25.gust import reference_gust_velocity
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
+
+AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
+SPEEDS = ("VB", "VC", "VD")
+#: flight-path angles (rad) tried in turn for conditions without a level trim: descending where the thrust
+#: is short (VD), climbing where even idle thrust is too much (light airplane at VB)
+TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
+
+
+def flight_profile_alleviation(aircraft, altitude, crit) -> float:
+    """F_g at ``altitude`` (m): 0.5 (F_gz + F_gm) at sea level, F_gz = 1 − Z_mo/250 000 ft,
+    F_gm = √(R2 tan(π R1/4)), R1 = MLW/MTOW, R2 = MZFW/MTOW, rising linearly to 1 at Z_mo (the ceiling)."""
+    m = aircraft.mass
+    zmo = aircraft.envelope.ceiling
+    r1, r2 = m.MLW / m.MTOW, m.MZFW / m.MTOW
+    fgz = 1.0 - zmo / (crit.fgz_altitude * FT)
+    fgm = np.sqrt(r2 * np.tan(np.pi * r1 / 4.0))
+    fg0 = 0.5 * (fgz + fgm)
+    return float(fg0 + (1.0 - fg0) * min(max(altitude / zmo, 0.0), 1.0))
+
+
+def design_gust_velocity(u_ref, f_g, H, crit):
+    """U_ds = U_ref F_g (H / 350 ft)^(1/6) (same unit as U_ref; H in m)."""
+    return u_ref * f_g * (np.asarray(H) / (crit.gradient_reference * FT)) ** crit.gradient_exponent
+
+
+def gradients(crit) -> np.ndarray:
+    """The gust gradients H (m) of the criterion, each within 30–350 ft."""
+    values = np.array([float(v) for v in str(crit.gradients).replace(",", " ").split()])
+    if values.size == 0 or values.min() < crit.gradient_min - 1e-9 or values.max() > crit.gradient_max + 1e-9:
+        raise ValueError(f"gust gradients {values.tolist()} ft must lie within {crit.gradient_min}–{crit.gradient_max} ft")
+    return values * FT
+
+
+@rule
+class DiscreteGust(Rule):
+    id = "25.341(a)"
+    symbol = "discrete-gust"
+    title = "Discrete vertical gusts (1 − cos), rigid airplane"
+    amendment = "25-141"
+    requirement = """
+        In level flight the airplane meets symmetrical vertical gusts U = (U_ds/2)(1 − cos πs/H) for
+        0 ≤ s ≤ 2H, with enough gradients H from 30 to 350 ft to find the critical response of each load
+        quantity; U_ds = U_ref F_g (H/350)^(1/6), U_ref 56 ft/s EAS at sea level, 44 ft/s at 15,000 ft,
+        20.86 ft/s at 60,000 ft (linear between) from VB to VC, half at VD; F_g the flight-profile
+        alleviation factor. Positive and negative gusts. Limit gust loads by dynamic analysis; the
+        structure carries them (limit) and 1.5 × them (ultimate), §25.303/§25.305.
+    """
+    margin = """
+        Per condition and surface (wing, horizontal tail): the smallest of (allowable limit load − |limit
+        load|) and (allowable ultimate load − 1.5 × |limit load|) over the declared stations and quantities,
+        the limit load the extreme over all gust gradients; without a declared structural capability the
+        condition is not evaluated and reports its loads.
+    """
+    references = ("25.333", "25.335", "25.303", "25.305", "25.1527")
+    requires = ("speeds.VB", "speeds.VC", "speeds.VD", "geometry.horizontal_tail")
+    criteria = {
+        "gradients": Criterion("30 60 100 150 200 250 300 350", "ft", "14 CFR 25.341(a)(3) (verified: 'a sufficient "
+                               "number … in the range 30 feet to 350 feet')", "gust gradient distances H investigated"),
+        "gradient_min": Criterion(30.0, "ft", "14 CFR 25.341(a)(3)", "shortest gust gradient"),
+        "gradient_max": Criterion(350.0, "ft", "14 CFR 25.341(a)(3)", "longest gust gradient"),
+        "gradient_reference": Criterion(350.0, "ft", "14 CFR 25.341(a)(4), " + AC, "H of U_ds = U_ref F_g"),
+        "gradient_exponent": Criterion(1 / 6, "", "14 CFR 25.341(a)(4), " + AC, "exponent of H/350"),
+        "fgz_altitude": Criterion(250_000.0, "ft", "14 CFR 25.341(a)(6), " + AC, "F_gz = 1 − Z_mo / this"),
+        "vd_factor": Criterion(0.5, "", "14 CFR 25.341(a)(5)(ii) (wording UNVERIFIED)", "U_ref at VD / U_ref (a)(5)(i)"),
+        "steps_per_gust": Criterion(20, "", "certkit numerical choice (zero-order hold of the gust)",
+                                    "simulation steps per gust length 2H/V"),
+        "settle_time": Criterion(1.5, "s", "certkit numerical choice", "time simulated after the gust leaves the tail"),
+        **SAFETY,
+    }
+    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
+                                extra=(("speed_point", SPEEDS), ("gust", ("up", "down"))),
+                                note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude; U_ref "
+                                     "by altitude (" + UREF_SOURCE + "), F_g from the ceiling as Z_mo.")
+    limitations = ("Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag), vertical "
+                   "gusts only (the lateral gust is not evaluated); U_ds and F_g formulas unverified against the CFR "
+                   "(AC 25.341-1).")
+    implementation = "partial"
+
+    def evaluate(self, ctx, conditions, crit):
+        run = discrete_gusts(ctx, conditions, crit)
+        ctx.memo(("discrete_gust_run", id(crit)), lambda: run)
+        return run["findings"]
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_loads import gust_evidence
+
+        run = ctx.memo(("discrete_gust_run", id(crit)), lambda: None)
+        return gust_evidence(run) if run and run.get("envelope") is not None else []
+
+
+def gust_speeds(ctx, h: float) -> dict[str, float]:
+    """EAS (m/s) of VB, VC, VD at altitude h, Mach-limited; VB capped at VC."""
+    vc = float(ctx.design_speed_eas("VC", h)[0])
+    return {"VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc), "VC": vc, "VD": float(ctx.design_speed_eas("VD", h)[0])}
+
+
+def discrete_gusts(ctx, conditions, crit) -> dict:
+    H = gradients(crit)
+    entries, key_of = [], {}
+    for c in conditions:
+        key = (c.loading, c.altitude, c.get("speed_point"))
+        if key not in key_of:
+            key_of[key] = len(entries)
+            v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
+            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
+    batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
+    failed = dict(batch.failed)
+    pos = {int(i): k for k, i in enumerate(batch.index)}
+    findings, rows, sim_conds = [], [], []
+    for c in conditions:
+        e = key_of[(c.loading, c.altitude, c.get("speed_point"))]
+        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
+        if e in failed:
+            findings += [Finding.not_evaluated(refined, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", failed[e])
+                         for s in SURFACES]
+            continue
+        k = pos[e]
+        if batch.gamma[k]:
+            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
+        rows.append(k)
+        sim_conds.append(refined)
+    if not rows:
+        return {"findings": findings, "envelope": None}
+    rows = np.array(rows)
+    loads = airplane_loads(ctx)
+    gb = gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
+    up = np.array([c.get("gust") == "up" for c in sim_conds])
+    alt = np.array([c.altitude for c in sim_conds])
+    at_vd = np.array([c.get("speed_point") == "VD" for c in sim_conds])
+    u_ref = reference_gust_velocity(alt) * np.where(at_vd, crit.vd_factor, 1.0)
+    f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
+    v_eas = np.array([c.speed for c in sim_conds])
+    parts, nz_hi, nz_lo, uds_all = [], [], [], []
+    labels = [c.label() for c in sim_conds]
+    for h_gust in H:
+        uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
+        run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
+                            float(crit.settle_time))
+        parts.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels))
+        nz_hi.append(run.sim["n_z"].max(axis=0))
+        nz_lo.append(run.sim["n_z"].min(axis=0))
+        uds_all.append(uds)
+    env, which = LoadEnvelope.worst_of(parts)
+    nz_hi, nz_lo, uds_all = np.array(nz_hi), np.array(nz_lo), np.array(uds_all)
+    caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
+    for i, c in enumerate(sim_conds):
+        sense = 1 if up[i] else 0
+        j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
+        for s in SURFACES:
+            jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
+            findings.append(capability_finding(
+                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, env.peaks[s][i], env.stations[s],
+                caps[s], crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
+                critical_H_root_bending_ft=round(float(H[jb] / FT), 0), U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
+                peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
+                critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
+                tail_lag_s=round(float(gb.tail_arm / gb.v_tas[i]), 4)))
+
+    def replay(picks):
+        """Re-simulate the critical (condition, gradient) pairs with their histories (evidence)."""
+        out = []
+        for i, j in picks:
+            sub = gb.subset([i])
+            uds = design_gust_velocity(u_ref[i], f_g[i], H[j], crit)
+            out.append((i, H[j], simulate_gust(loads, sub, H[j], (1.0 if up[i] else -1.0) * uds / v_eas[i],
+                                               float(crit.steps_per_gust), float(crit.settle_time))))
+        return out
+
+    return {"findings": findings, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
+            "replay": replay, "loads": loads}
