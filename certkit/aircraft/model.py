@@ -14,7 +14,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validat
 
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
-    Angle, Area, Force, Fraction, Inertia, Length, Mass, PositiveArea, PositiveForce, PositiveLength,
+    Angle, Force, Fraction, Inertia, Length, PositiveArea, PositiveForce, PositiveLength,
     PositiveMass, Speed,
 )
 

@@ -14,7 +14,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit.registry import Rule
 from certkit.results import RunResult
-from certkit.units import KN, from_si
+from certkit.units import KN
 
 #: display conversions for units used in findings (SI value → extra unit shown beside it)
 DISPLAY = {"m/s": ("kn", KN), "m": ("ft", 0.3048), "kg": ("lb", 0.45359237), "N": ("lbf", 4.4482216152605)}
@@ -90,4 +90,4 @@ def _json_default(obj):
     return str(obj)
 
 
-__all__ = ["render_html", "write_report", "format_value", "from_si"]
+__all__ = ["render_html", "write_report", "format_value"]

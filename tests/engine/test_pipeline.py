@@ -7,7 +7,7 @@ import pytest
 
 from certkit.aircraft import load_aircraft
 from certkit.errors import UserError
-from certkit.registry import DiscoveryOptions, PluginError, discover, folder_rules, select
+from certkit.registry import PluginError, discover, folder_rules, select
 from certkit.scheduler import run
 
 from ..conftest import BASELINE

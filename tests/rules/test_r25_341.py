@@ -5,7 +5,6 @@ declared wing capability and the not-evaluated path. The rule runs on the baseli
 ceiling with gradients 30 and 350 ft (criteria override) to stay fast.
 """
 
-import math
 
 import numpy as np
 import pytest

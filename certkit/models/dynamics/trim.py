@@ -29,7 +29,7 @@ their residual; nothing raises for a single bad condition.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Mapping, Sequence
+from typing import Mapping
 
 import numpy as np
 

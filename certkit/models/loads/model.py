@@ -196,7 +196,6 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     # --- unit aerodynamic solutions ---------------------------------------------------------
     controls = tuple(vl.control_names)
     inputs = ("one",) + RATE_INPUTS + controls
-    first, count = lat.first[idx], lat.count[idx]
     xv = lat.rv[:, 0]
     aero, strip_aero = [], []
     for m in machs:

@@ -519,7 +519,6 @@ class VortexLattice:
         c6 = np.einsum("cab,a,b->c", t, ut, ut)
         grad = np.einsum("cab,b->ca", t + np.swapaxes(t, 1, 2), ut)  # (6, K)
         dc6 = grad @ dut  # (6, nx)
-        out = self._outputs(c6, a[0])
         dout = self._outputs(dc6, a[0])
         # the stability axes turn with alpha: add ∂/∂α at fixed geometry-axis totals
         ca, sa = math.cos(a[0]), math.sin(a[0])
