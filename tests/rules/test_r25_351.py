@@ -117,3 +117,21 @@ def test_capability_on_the_limit(yaw, tmp_path):
     assert all(m >= -0.05e3 * 1.5 - 1.0 for m in margins)
     worst = min(result.findings, key=lambda f: f.margin)
     assert "root" in worst.check and "shear" in worst.check
+
+
+def test_fin_root_torsion_arm_lies_within_the_root_chord(yaw, baseline):
+    """Torsion about the 40 % chord line over shear is the lever arm of the fin load: it must lie within
+    the fin's root chord (a regression guard: the strip force per circulation of a fin comes from a
+    sideslip perturbation, not from α, which hardly loads a fin)."""
+    from certkit.models.aero import planform
+
+    fin = baseline.model.geometry.vertical_tail
+    root_chord = float(planform.root_chord(2 * fin.area, 2 * fin.aspect_ratio, fin.taper))
+    checked = 0
+    for f in yaw.findings:
+        shear = f.details.get("root shear max/min (kN)")
+        torsion = f.details.get("root torsion max/min (kN·m)")
+        if shear and torsion and abs(shear[0]) > 50.0:
+            assert abs(torsion[0] / shear[0]) < root_chord, (f.check, shear, torsion, root_chord)
+            checked += 1
+    assert checked > 0

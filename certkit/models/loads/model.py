@@ -217,8 +217,11 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
             return normal, gsum, gx
 
         base_n, base_g, base_gx = state("one", 0.0)
-        a_n, a_g, _ = state("alpha", EPS)
-        am_n, am_g, _ = state("alpha", -EPS)
+        # the strips' force per unit circulation, from the flow angle that loads this surface: α for a
+        # horizontal surface, β for a fin (whose strips hardly respond to α)
+        loading_angle = "beta" if np.mean(np.abs(ny)) > np.mean(np.abs(nz)) else "alpha"
+        a_n, a_g, _ = state(loading_angle, EPS)
+        am_n, am_g, _ = state(loading_angle, -EPS)
         # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force)
         ratio = np.where(np.abs(a_g - am_g) > 1e-14, (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
                          2 * lat.width[idx])
