@@ -102,7 +102,8 @@ class Rule:
         raise NotImplementedError
 
     def evidence(self, ctx: "Context", findings: list["Finding"], criteria: Criteria) -> list["Evidence"]:
-        """Plots or tables for the report (optional)."""
+        """Plots or tables for the report (optional). Called on the same instance as :meth:`evaluate`, so a
+        rule may keep what it simulated on ``self`` for its plots."""
         return []
 
     @classmethod

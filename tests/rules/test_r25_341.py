@@ -6,6 +6,8 @@ ceiling with gradients 30 and 350 ft (criteria override) to stay fast.
 """
 
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -40,7 +42,7 @@ def gust_run(tmp_path_factory):
     """(rule result, the rule's run record) on the baseline edited by FAST."""
     from certkit.aircraft import load_aircraft
     from certkit.context import Context
-    from certkit.scheduler import evaluate_rule
+    from certkit.scheduler import criteria_for
 
     from ..conftest import BASELINE
 
@@ -50,9 +52,10 @@ def gust_run(tmp_path_factory):
     path = tmp_path_factory.mktemp("gust") / "gust.yaml"
     path.write_text(text)
     ctx = Context(load_aircraft(path))
-    result = evaluate_rule(DiscreteGust, ctx)
-    runs = [v for k, v in ctx._memo.items() if isinstance(k, tuple) and k and k[0] == "discrete_gust_run"]
-    return result, runs[0]
+    rule = DiscreteGust()  # as the scheduler does: evaluate, then the run is on the instance for evidence
+    crit, _ = criteria_for(DiscreteGust, ctx)
+    result = SimpleNamespace(findings=rule.evaluate(ctx, DiscreteGust.conditions.expand(ctx.aircraft), crit))
+    return result, rule.run
 
 
 @pytest.fixture(scope="module")

@@ -141,14 +141,13 @@ class CheckedPitchManeuver(Rule):
     implementation = "partial"
 
     def evaluate(self, ctx, conditions, crit):
-        run = checked_maneuver(ctx, conditions, crit)
-        ctx.memo(("checked_pitch_run", id(crit)), lambda: run)
-        return run["findings"]
+        self.run = checked_maneuver(ctx, conditions, crit)  # kept for evidence(), called on this instance
+        return self.run["findings"]
 
     def evidence(self, ctx, findings, crit):
         from certkit.report.evidence_loads import maneuver_evidence
 
-        run = ctx.memo(("checked_pitch_run", id(crit)), lambda: None)
+        run = getattr(self, "run", None)
         return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
 
 
@@ -322,14 +321,14 @@ class MaximumPitchControlDisplacement(Rule):
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
                 considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
                 VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=PILOT_EFFORT_NOTE))
-        ctx.memo(("max_pitch_run", id(crit)), lambda: {"envelope": env, "sim": sim, "valid": valid, "loads": hist,
-                                                        "conditions": batch.conditions, "stations": stations})
+        self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()
+                    "conditions": batch.conditions, "stations": stations}
         return findings
 
     def evidence(self, ctx, findings, crit):
         from certkit.report.evidence_loads import maneuver_evidence
 
-        run = ctx.memo(("max_pitch_run", id(crit)), lambda: None)
+        run = getattr(self, "run", None)
         return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
 
 

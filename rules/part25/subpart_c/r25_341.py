@@ -108,14 +108,13 @@ class DiscreteGust(Rule):
     implementation = "partial"
 
     def evaluate(self, ctx, conditions, crit):
-        run = discrete_gusts(ctx, conditions, crit)
-        ctx.memo(("discrete_gust_run", id(crit)), lambda: run)
-        return run["findings"]
+        self.run = discrete_gusts(ctx, conditions, crit)  # kept for evidence(), called on this instance
+        return self.run["findings"]
 
     def evidence(self, ctx, findings, crit):
         from certkit.report.evidence_loads import gust_evidence
 
-        run = ctx.memo(("discrete_gust_run", id(crit)), lambda: None)
+        run = getattr(self, "run", None)
         return gust_evidence(run) if run and run.get("envelope") is not None else []
 
 

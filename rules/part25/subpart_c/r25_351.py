@@ -94,14 +94,13 @@ class YawManeuver(Rule):
     implementation = "partial"
 
     def evaluate(self, ctx, conditions, crit):
-        run = yaw_maneuvers(ctx, conditions, crit)
-        ctx.memo(("yaw_maneuver_run", id(crit)), lambda: run)
-        return run["findings"]
+        self.run = yaw_maneuvers(ctx, conditions, crit)  # kept for evidence(), called on this instance
+        return self.run["findings"]
 
     def evidence(self, ctx, findings, crit):
         from certkit.report.evidence_yaw import yaw_evidence
 
-        run = ctx.memo(("yaw_maneuver_run", id(crit)), lambda: None)
+        run = getattr(self, "run", None)
         return yaw_evidence(run) if run and run.get("envelope") is not None else []
 
 
