@@ -28,6 +28,8 @@ DIMENSIONS: dict[str, str] = {
     "moment": "N*m",
     "mass_flow": "kg/s",
     "acceleration": "m/s**2",
+    "gearing": "rad/m",  # control gearing: surface angle per metre of cockpit travel
+    "stiffness": "N/m",  # feel-spring gradient: force per metre of cockpit travel
     "dimensionless": "",
 }
 

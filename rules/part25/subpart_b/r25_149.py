@@ -12,10 +12,11 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
-from certkit.units import KN
+from certkit.units import KN, LBF
 from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle, vsr_cas
 
 SOURCE = "14 CFR 25.149 (Amdt. 25-108; (a)-(e) verified, docs/regulation-notes.md)"
@@ -63,7 +64,8 @@ class MinimumControlSpeed(Rule):
         retracted, airborne with negligible ground effect. (d) The rudder force may not exceed 150 lbf.
     """
     margin = """
-        (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared.
+        (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared;
+        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder.
     """
     references = ("25.103", "25.107", "25.147")
     requires = ("configurations.takeoff.CLmax",)
@@ -75,20 +77,24 @@ class MinimumControlSpeed(Rule):
         "grid_low": Criterion(0.6, "", "project choice: grid from 0.6 VSR", "lowest grid speed, multiple of VSR"),
         "grid_high": Criterion(1.4, "", "project choice: grid to 1.4 VSR", "highest grid speed, multiple of VSR"),
         "grid_points": Criterion(33, "", "project choice: 2.5 % VSR steps", "number of grid speeds"),
+        "rudder_force_lbf": Criterion(150.0, "lbf", SOURCE + " (d)", "largest rudder force to maintain control at VMC"),
     }
     conditions = ConditionSpace(loading=DesignWeight("MTOW", cgs=("aft",)), configurations=("takeoff",),
                                 altitudes=Altitudes((0.0,)), extra=(("inoperative", ("left", "right")),),
                                 note="Operating engine at full throttle; bank toward it; sea level, standard day.")
     implementation = "partial"
     limitations = """
-        Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. Rudder at its
-        design limit instead of the 150 lbf pedal force of (d): the aircraft file has no control-force model. The
+        Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. VMCA is where the
+        rudder or aileron reaches its design limit; the 150 lbf of (d) is a separate finding at that VMCA (the pedal
+        force of the steady trim, rudder trim neutral), evaluated only with control_forces.rudder; the speed at which
+        the force reaches 150 lbf is reported with it. The
         baseline's takeoff configuration has the gear down (more drag, steeper flight path only; the moments are
         those of the gear-up airplane in the model). Thrust at throttle 1 is the maximum takeoff thrust.
     """
 
     def evaluate(self, ctx, conditions, crit):
         limits = control_limits(ctx.aircraft)
+        rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
         n = int(crit.grid_points)
         factors = np.linspace(crit.grid_low, crit.grid_high, n)
@@ -129,7 +135,9 @@ class MinimumControlSpeed(Rule):
                                            reason=(f"controls beyond their design limits up to {crit.grid_high} VSR "
                                                    f"(VMCA above the grid): {why}") if top else "",
                                            VSR=vsr, VMCA_over_VSR=vmca / vsr, grid=table,
-                                           force_model="none declared: rudder at its design limit, not 150 lbf"))
+                                           force_model=("rudder at its design limit; the 150 lbf of (d) is a separate finding"
+                                                        if rudder else "none declared: rudder at its design limit, not 150 lbf")))
+            out.append(self._force_finding(ctx, found, vmca, factors * vsr, res, crit))
             declared = ctx.aircraft.speeds.VMC
             if declared is None:
                 out.append(Finding.not_evaluated(found, "(b) declared VMC ≥ computed VMCA", "needs speeds.VMC",
@@ -140,3 +148,27 @@ class MinimumControlSpeed(Rule):
                 vmc = float(convert_speed(declared.value, declared.kind, "CAS", cond.altitude or 0.0))
                 out.append(Finding.compare(found, "(b) declared VMC ≥ computed VMCA", vmc, vmca, at_least=True, unit="m/s"))
         return out
+
+
+    @staticmethod
+    def _force_finding(ctx, found, vmca, speeds, results, crit):
+        """(d) rudder pedal force (lbf, rudder trim neutral) at the computed VMCA, interpolated on the grid; with
+        the highest grid speed at which the force reaches the limit (the force-limited VMCA)."""
+        from certkit_rules.part25.subpart_b.r25_147 import pedal_force_finding
+
+        check = f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf"
+        rudder = control_force_model(ctx.aircraft, "rudder")
+        if rudder is None:
+            return pedal_force_finding(ctx, None, found, None, crit.rudder_force_lbf, check)
+        q, a, d = trim_state(ctx.aircraft, "rudder", results)
+        force = np.abs(rudder.force(q, a, d)) / LBF
+        ok = np.isfinite(force)  # a trim that did not converge has no force: (c) covers it
+        usage = np.where(ok, force / crit.rudder_force_lbf, 0.0)
+        if not ok.any():
+            return Finding.not_evaluated(found, check, "no grid trim converged")
+        at_vmca = float(np.interp(vmca, np.asarray(speeds)[ok], force[ok]))
+        limited = vmca_from_grid(speeds, usage)
+        return Finding.compare(found, check, at_vmca, crit.rudder_force_lbf, at_least=False, unit="lbf",
+                               force_model=rudder.kind,
+                               force_limited_VMCA_kn_cas=None if limited is None else round(limited / KN, 1),
+                               pedal_force_grid_lbf=[None if not np.isfinite(f) else round(float(f), 1) for f in force])
