@@ -331,3 +331,12 @@ def test_force_parts_not_evaluated_without_a_model(ctx):
 def test_free_return_needs_friction(tmp_path):
     r = run_rule("25.173(b)", tmp_path, edits=[("\nsources:", "\n" + FORCES.replace("    friction: 3 lbf\n", ""))])
     assert r.status == "not_evaluated" and "friction" in r.findings[0].reason
+
+
+def test_a_force_model_needs_its_control_surface(tmp_path):
+    """A force model of a control the geometry does not declare is an input error at the control's line."""
+    edits = [("\nsources:", "\n" + ELEVATOR_FEEL), ("      elevator:\n        span_start: 0.07", "      elevatorx:\n        span_start: 0.07")]
+    with pytest.raises(InputError) as err:
+        load_aircraft(edited_baseline(tmp_path, edits))
+    (problem,) = [p for p in err.value.problems if p.path == "control_forces.elevator"]
+    assert "no control surface named 'elevator' on geometry.horizontal_tail" in problem.message and problem.line
