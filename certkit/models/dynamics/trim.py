@@ -18,7 +18,8 @@ Simulation*, §3.6): with a = cos α cos β, b = sin φ sin β + cos φ sin α c
     sin γ = a sin θ − b cos θ  ⇒  θ = atan[(a b + sin γ √(a² − sin²γ + b²)) / (a² − sin²γ)],
 and the body rates from the turn rate: p = −ψ̇ sin θ, q = ψ̇ sin φ cos θ, r = ψ̇ cos φ cos θ.
 
-Without engines the throttle unknown is replaced by γ (a glide).
+Without engines, or with the throttle fixed (``throttle=``, e.g. a power-off glide), the throttle
+unknown is replaced by γ.
 
 A control that would have to go past its limit is not an error: the trim is solved without
 limits and each :class:`TrimResult` lists the :class:`LimitExceedance` found ("needs −34.2°
@@ -148,7 +149,7 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
          controls: Mapping[str, float | np.ndarray] | None = None,
          limits: Mapping[str, tuple[float, float]] | None = None,
          roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-         tol: float = 1e-9, max_iter: int = 40) -> TrimBatch:
+         tol: float = 1e-9, max_iter: int = 40, throttle=None) -> TrimBatch:
     """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
     ``h`` (m); scalars or (n,) arrays.
 
@@ -169,6 +170,9 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         u0[:, names.index(k)] = bc(v)
     has_engines = len(model.engines) > 0
     thr_idx = np.arange(model.throttle_slice.start, model.throttle_slice.stop)
+    if throttle is not None:
+        u0[:, thr_idx] = bc(throttle)[:, None]
+    solve_throttle = has_engines and throttle is None
 
     # unknowns: ordered list of names; equations: indices into (u̇ v̇ ẇ ṗ q̇ ṙ)
     unknowns = ["alpha"]
@@ -179,7 +183,7 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
             unknowns.append(role)
         else:
             equations.remove(eq)
-    unknowns.append("throttle" if has_engines else "gamma")
+    unknowns.append("throttle" if solve_throttle else "gamma")
     while len(unknowns) > len(equations):  # symmetric models lacking lateral controls
         drop = "beta" if "beta" in unknowns else ("phi" if "phi" in unknowns else "turn_rate")
         unknowns.remove(drop)
