@@ -1,6 +1,6 @@
 """§25.145(b) Longitudinal control: flap and thrust changes without re-trimming.
 
-Text ([CFR 2003], docs/regulation-notes.md; later amendments may have edited it): with the landing gear
+Text ([CFR 2003]; the lead-in and (b)(1) verified against [CFR 1-1-19] p. 221, docs/regulation-notes.md): with the landing gear
 extended, no change in trim control, or exertion of more than 50 lbf control force, may be required for:
 (1) power off, flaps retracted, trimmed at 1.3 VSR1: extend the flaps as rapidly as possible, keeping about
 1.3 × the reference stall speed existing at each instant; (2) as (1), flaps extended then retracted; (3) as
@@ -34,7 +34,7 @@ from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thr
 
 FLAPS = ("takeoff", "approach", "landing")
 IDLE, GO_AROUND = "idle", "go-around"
-_SRC = "14 CFR 25.145(b) (2003 text, docs/regulation-notes.md)"
+_SRC = "14 CFR 25.145(b) (lead-in and (b)(1) verified, [CFR 1-1-19] p. 221; docs/regulation-notes.md)"
 
 
 def manoeuvres(flap: str):
