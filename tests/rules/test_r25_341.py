@@ -176,5 +176,14 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
         surface = "wing" if f.check.endswith(", wing") or ", wing:" in f.check else "horizontal tail"
         normalized, margin, check = hand_margin(f.details, caps[surface])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
+        # information: the manoeuvring envelope's n at the speed (§25.337: n+ 2.5; n- -1.0 to VC, 0 at VD)
+        d = f.details
+        if f.condition.get("gust") == "up":
+            assert d["maneuver_envelope_n_z"] == 2.5 and d["beyond_maneuver_envelope"] == (d["peak_n_z"] > 2.5)
+        else:
+            assert -1.0 <= d["maneuver_envelope_n_z"] <= 0.0
+            assert d["beyond_maneuver_envelope"] == (d["peak_n_z"] < d["maneuver_envelope_n_z"])
+            if f.condition.get("speed_point") == "VD":
+                assert d["maneuver_envelope_n_z"] == pytest.approx(0.0, abs=1e-4)
     wing = min((f for f in evaluated if ", wing:" in f.check), key=lambda f: f.normalized_margin)
     assert "bending" in wing.check and wing.status == "complies"
