@@ -14,6 +14,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.units import FT, LB
 
 from ..conftest import BASELINE
+from ..rules.helpers import NO_STRUCTURE
 
 STRUCTURE = textwrap.dedent("""\
     structure:
@@ -28,7 +29,8 @@ STRUCTURE = textwrap.dedent("""\
 
 
 def with_structure(tmp_path, structure=STRUCTURE):
-    text = BASELINE.read_text().replace("\nsources:\n", "\n" + structure, 1)
+    """The baseline with its own structure section replaced by ``structure``."""
+    text = BASELINE.read_text().replace(NO_STRUCTURE[0], "", 1).replace("\nsources:\n", "\n" + structure, 1)
     path = tmp_path / "structure.yaml"
     path.write_text(text)
     return path
@@ -46,8 +48,11 @@ def test_values_in_si_and_capabilities(tmp_path):
     assert caps[1].allowable("ultimate", "max") == pytest.approx(500e3)
     fin = declared_capabilities(Context(load_aircraft(with_structure(tmp_path))), "vertical_tail")
     assert fin[0].limit == (pytest.approx(1e6), pytest.approx(1.2e6))
-    assert load_aircraft(BASELINE).model.structure is None
-    assert declared_capabilities(Context(load_aircraft(BASELINE)), "wing") == []
+    bare = tmp_path / "bare.yaml"
+    bare.write_text(BASELINE.read_text().replace(NO_STRUCTURE[0], "", 1))
+    assert load_aircraft(bare).model.structure is None
+    assert declared_capabilities(Context(load_aircraft(bare)), "wing") == []
+    assert {c.station for c in declared_capabilities(Context(load_aircraft(BASELINE)), "wing")} == {"root", "side of body"}
 
 
 def test_problems_reported_with_paths(tmp_path):

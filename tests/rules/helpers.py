@@ -8,6 +8,17 @@ from certkit.scheduler import evaluate_rule
 from ..conftest import BASELINE
 
 
+def _structure_section(text: str) -> str:
+    """The baseline's ``structure:`` section (from its key to the next top-level key), newline-terminated."""
+    start = text.index("\nstructure:\n") + 1
+    end = text.index("\nsources:\n", start) + 1
+    return text[start:end]
+
+
+#: edit removing the baseline's declared structural capability (aircraft/lta.yaml ``structure:``)
+NO_STRUCTURE = (_structure_section(BASELINE.read_text()), "")
+
+
 def edited_baseline(tmp_path, edits):
     """The baseline with each (old, new) text replacement applied, written to tmp_path/edited.yaml."""
     text = BASELINE.read_text()
@@ -28,3 +39,26 @@ def run_rule(rule_id, tmp_path=None, edits=()):
 def finding_by(result, loading, check_prefix):
     """The finding of ``result`` at the loading named ``loading`` whose check starts with ``check_prefix``."""
     return next(f for f in result.findings if f.condition.loading == loading and f.check.startswith(check_prefix))
+
+
+def hand_margin(details, capabilities, ultimate_factor=1.5):
+    """The smallest normalised margin of a loads finding recomputed by hand from its reported station loads
+    (details "<station> <quantity> max/min (kN…)", rounded to 0.1 kN / kN·m) and the declared capabilities
+    (§25.305: allowable limit − |limit load|; allowable ultimate − 1.5 |limit load|, §25.303), each sense
+    against its own allowable. Returns (normalised margin, margin in N or N·m, "<limit|ultimate> <quantity> at
+    <station>"); where two checks tie within rounding either may be the rule's."""
+    worst = None
+    for cap in capabilities:
+        key = f"{cap.station} {cap.quantity} max/min (kN{'·m' if cap.quantity != 'shear' else ''})"
+        if key not in details:
+            continue
+        hi, lo = (1e3 * v for v in details[key])
+        for sense, load in (("max", hi), ("min", lo)):
+            if (sense == "max" and load <= 0) or (sense == "min" and load >= 0):
+                continue
+            for which, factor in (("limit", 1.0), ("ultimate", ultimate_factor)):
+                allowable = cap.allowable(which, sense)
+                margin = allowable - factor * abs(load)
+                if worst is None or margin / allowable < worst[0]:
+                    worst = (margin / allowable, margin, f"{which} {cap.quantity} at {cap.station}")
+    return worst

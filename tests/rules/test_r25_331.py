@@ -15,12 +15,21 @@ from certkit.models.dynamics.simulate import CheckedManeuver
 from certkit.models.loads.capability import Capability
 from certkit.models.loads.inputs import SinusoidHold
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import NO_CAPABILITY, capability_finding
+from certkit_rules.part25.subpart_c.r25_331 import (NO_CAPABILITY, capability_finding, load_factor_finding,
+                                                    maneuver_limit_load_factor)
 from certkit.results import Condition
 
-from .helpers import run_rule
+from .helpers import NO_STRUCTURE, hand_margin, run_rule
 
 TWO_ALTITUDES = [("altitude_points: 5", "altitude_points: 2")]  # sea level and the ceiling
+
+
+LOAD_FACTOR = "load factor reached"
+
+
+def structural(result):
+    """The findings comparing loads with the structural capability (not the §25.337 load-factor ones)."""
+    return [f for f in result.findings if LOAD_FACTOR not in f.check]
 
 
 @pytest.fixture(scope="module")
@@ -50,12 +59,12 @@ def test_input_generator_against_the_paragraph():
 
 
 def test_scaling_frequency_floor_and_reason(checked):
-    """Every condition reports its tail loads and is not evaluated (no capability). Nose up
-    reaches n = 2.5, nose down 0 g (tolerance 0.02 g, the search tolerance); ω ≥ πV/(2VA) with V, VA
-    in EAS (VA 265 kn); t_max = 3π/(2ω) + Δt."""
-    assert checked.findings and all(f.status == "not_evaluated" for f in checked.findings)
-    assert all(f.reason == NO_CAPABILITY for f in checked.findings)
-    for f in checked.findings:
+    """Every condition reports its tail loads and is compared with the baseline's declared tailplane
+    capability (aircraft/lta.yaml structure). Nose up reaches n = 2.5, nose down 0 g (tolerance 0.02 g,
+    the search tolerance); ω ≥ πV/(2VA) with V, VA in EAS (VA 265 kn); t_max = 3π/(2ω) + Δt."""
+    loads = structural(checked)
+    assert loads and all(f.status in ("complies", "fails") for f in loads)
+    for f in loads:
         d = f.details
         assert "root shear max/min (kN)" in d and "side of body bending max/min (kN·m)" in d
         v = f.condition.speed / KN
@@ -69,14 +78,14 @@ def test_scaling_frequency_floor_and_reason(checked):
         elif d["input"] == "held at full deflection, minimum hold to the load factor":
             assert abs(d["peak_n_z"] - 1.0) >= abs(target - 1.0) - 0.02
         assert (d["delta1_deg"] < 0) == (f.condition.get("direction") == "nose up")
-    flagged = [f for f in checked.findings if "not converged" in f.details["input"]]
-    assert len(flagged) <= 0.05 * len(checked.findings)  # near stall the response is not monotonic
+    flagged = [f for f in loads if "not converged" in f.details["input"]]
+    assert len(flagged) <= 0.05 * len(loads)  # near stall the response is not monotonic
 
 
 def test_sign_nose_up_loads_the_tail_down(checked):
     """The nose-up input (trailing edge up) gives the largest tail download; the nose-down one does not."""
-    up = [f.details["root shear max/min (kN)"][1] for f in checked.findings if f.condition.get("direction") == "nose up"]
-    down = [f.details["root shear max/min (kN)"][1] for f in checked.findings if f.condition.get("direction") == "nose down"]
+    up = [f.details["root shear max/min (kN)"][1] for f in structural(checked) if f.condition.get("direction") == "nose up"]
+    down = [f.details["root shear max/min (kN)"][1] for f in structural(checked) if f.condition.get("direction") == "nose down"]
     assert min(up) < min(down) < 0
 
 
@@ -104,9 +113,10 @@ def test_not_evaluated_without_va(tmp_path):
 
 def test_maximum_displacement_at_va(tmp_path):
     """(c)(1): full nose-up elevator from trim; loads considered until n_z exceeds 2.5 or the tail load
-    peaks; the tail load is a download and every condition is not evaluated (no capability)."""
-    r = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES)
-    assert r.findings and all(f.reason == NO_CAPABILITY for f in r.findings)
+    peaks; the tail load is a download. Without the structure section every condition is not evaluated
+    with the reason and still reports its loads."""
+    r = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES + [NO_STRUCTURE])
+    assert r.findings and all(f.status == "not_evaluated" and f.reason == NO_CAPABILITY for f in r.findings)
     for f in r.findings:
         assert f.details["elevator_step_deg"] < 0
         assert f.details["root shear max/min (kN)"][1] < 0
@@ -114,3 +124,93 @@ def test_maximum_displacement_at_va(tmp_path):
             assert f.condition.speed / KN == pytest.approx(265.0)
         else:  # VA need not exceed VC, Mach-limited (MC 0.87) at 43,000 ft
             assert f.condition.speed / KN < 265.0
+
+
+def _tail_caps(result):
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit.models.loads.capability import declared_capabilities
+
+    from ..conftest import BASELINE
+
+    return declared_capabilities(Context(load_aircraft(BASELINE)), "horizontal_tail")
+
+
+def test_baseline_margins_against_the_declared_capability(checked, tmp_path):
+    """Each (c)(2) and (c)(1) finding's margin recomputed by hand from its reported tailplane loads and the
+    declared allowables (docs/baseline-sources.md §10: root 3,288 kN, 7,366 kN·m, 5,204 kN·m; side of body
+    2,047 kN, 3,281 kN·m, 2,311 kN·m, CFRP so limit = ultimate and the 1.5 × limit load governs): the smallest
+    normalised margin over stations, quantities and senses, within the 0.1 kN rounding of the details
+    (1.5 × 50 N·m over a ≥ 2 MN allowable: 5e-5). The baseline's tailplane carries both manoeuvres."""
+    caps = _tail_caps(checked)
+    c1 = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES)
+    for result in (checked, c1):
+        for f in structural(result):
+            normalized, margin, check = hand_margin(f.details, caps)
+            assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
+            if check in f.check:
+                assert f.margin == pytest.approx(margin, abs=1.5 * 50 + 1), f.check
+        assert all(f.status == "complies" for f in structural(result))
+        worst = min(structural(result), key=lambda f: f.normalized_margin)
+        assert "ultimate" in worst.check and 0 < worst.normalized_margin < 1
+
+
+# --------------------------------------------------------------------------- §25.337 load factor reached
+
+
+def test_limit_load_factor_by_speed_by_hand(baseline):
+    """§25.337(b)–(c) on the declared envelope (n₊ 2.5, n₋ −1.0) at sea level, VC 272 and VD 340 kn EAS:
+    n₊ = 2.5 at any speed; n₋ = −1.0 up to VC, −1.0 × (340 − 306)/(340 − 272) = −0.5 at 306 kn, 0 at VD."""
+    from certkit.context import Context
+
+    ctx = Context(baseline)
+    assert maneuver_limit_load_factor(ctx, 300 * KN, 0.0, True) == pytest.approx(2.5)
+    assert maneuver_limit_load_factor(ctx, 250 * KN, 0.0, False) == pytest.approx(-1.0)
+    assert maneuver_limit_load_factor(ctx, 272 * KN, 0.0, False) == pytest.approx(-1.0)
+    assert maneuver_limit_load_factor(ctx, 306 * KN, 0.0, False) == pytest.approx(-0.5, abs=1e-3)
+    assert maneuver_limit_load_factor(ctx, 340 * KN, 0.0, False) == pytest.approx(0.0, abs=1e-3)
+
+
+def test_load_factor_check_on_the_limit_and_sign(baseline):
+    """Built on the limit: a nose-up peak of exactly n₊ + tolerance (2.52 g) has margin 0 and complies;
+    0.01 g more fails (converged search) or is not evaluated with the reason (search not converged, loads
+    conservative); a lower peak moves the margin up. Nose down at VD: the 0 g target sits on §25.337(c)'s
+    zero line, margin = peak − (0 − 0.02)."""
+    from types import SimpleNamespace
+
+    from certkit.context import Context
+
+    ctx, crit = Context(baseline), SimpleNamespace(load_factor_tolerance=0.02)
+    up = Condition(loading="x", altitude=0.0, speed=300 * KN, speed_kind="EAS", extra=(("direction", "nose up"),))
+    on = load_factor_finding(ctx, up, True, 2.52, True, "sinusoid", crit)
+    assert on.status == "complies" and on.margin == pytest.approx(0.0, abs=1e-12) and on.unit == "g"
+    over = load_factor_finding(ctx, up, True, 2.53, True, "sinusoid", crit)
+    assert over.status == "fails" and over.margin == pytest.approx(-0.01)
+    loose = load_factor_finding(ctx, up, True, 2.53, False, "sinusoid", crit)
+    assert loose.status == "not_evaluated" and "not converged" in loose.reason
+    short = load_factor_finding(ctx, up, True, 2.0, True, "held", crit)
+    assert short.margin == pytest.approx(0.52) and "not reached" in short.details["note"]
+    down = Condition(loading="x", altitude=0.0, speed=340 * KN, speed_kind="EAS", extra=(("direction", "nose down"),))
+    f = load_factor_finding(ctx, down, False, -0.005, True, "sinusoid", crit)
+    assert f.status == "complies" and f.margin == pytest.approx(-0.005 + 0.02, abs=1e-3)
+
+
+def test_baseline_load_factors_reached(checked):
+    """On the baseline every manoeuvre stays within the §25.337 envelope to the search tolerance, except
+    conditions whose amplitude search did not converge (not evaluated, ≤ 5 %); nose-down conditions are
+    checked against n₋(V) (−1.0 to VC, 0 at VD); held conditions that do not reach 2.5 g say so."""
+    lf = [f for f in checked.findings if LOAD_FACTOR in f.check]
+    assert len(lf) == len(structural(checked))
+    for f in lf:
+        d = f.details
+        if f.status == "not_evaluated":
+            assert "not converged" in f.reason and d["peak_n_z"] > 2.52
+            continue
+        assert f.status == "complies"
+        if f.condition.get("direction") == "nose up":
+            assert d["limit_load_factor"] == 2.5 and f.margin == pytest.approx(2.52 - d["peak_n_z"], abs=1e-4)
+        else:
+            assert -1.0 <= d["limit_load_factor"] <= 0.0
+            assert f.margin == pytest.approx(d["peak_n_z"] - (d["limit_load_factor"] - 0.02), abs=1e-4)
+    assert sum(f.status == "not_evaluated" for f in lf) <= 0.05 * len(lf)
+    assert any("note" in f.details for f in lf)  # high-altitude conditions: n₊ not reached at full elevator

@@ -22,7 +22,7 @@ from certkit.units import FT, G0
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust, design_gust_velocity, flight_profile_alleviation
 
 from ..loads.test_gust_response import A, MASS, S, V, closed_form
-from .helpers import run_rule
+from .helpers import NO_STRUCTURE, hand_margin, run_rule
 
 BEND_LIMIT = 25e6  # N·m, a wing root bending allowable near the baseline's gust loads
 STRUCTURE = f"""structure:
@@ -34,7 +34,9 @@ criteria:
     values: {{gradients: "30 350"}}
 sources:
 """
-FAST = [("altitude_points: 5", "altitude_points: 2"), ("\nsources:\n", "\n" + STRUCTURE)]
+FAST = [("altitude_points: 5", "altitude_points: 2"), NO_STRUCTURE, ("\nsources:\n", "\n" + STRUCTURE)]
+#: the baseline with its declared capability (docs/baseline-sources.md §10), sea level and ceiling, 2 gradients
+FAST_BASELINE = [("altitude_points: 5", "altitude_points: 2"), ("\nsources:\n", "\ncriteria:\n" + STRUCTURE.split("criteria:\n", 1)[1])]
 
 
 @pytest.fixture(scope="module")
@@ -152,3 +154,36 @@ def test_capability_comparison_and_reasons(gusts):
 def test_not_evaluated_without_vc(tmp_path):
     r = run_rule("25.341(a)", tmp_path, [("  VC: 272 kn EAS", "  # VC removed")])
     assert r.status == "not_evaluated" and "speeds.VC" in r.findings[0].reason
+
+
+def test_baseline_margins_against_the_declared_capability(tmp_path):
+    """The baseline's declared wing and tailplane capability (docs/baseline-sources.md §10; wing root
+    bending limit 49,896 kN·m up / 47,230 down, ultimate 60,434 / 47,230; tailplane CFRP, limit = ultimate):
+    every evaluated finding's normalised margin recomputed by hand from its reported loads (0.1 kN rounding:
+    5e-5). Gusts are the wing's design case here: its critical check is limit or ultimate bending."""
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit.models.loads.capability import declared_capabilities
+
+    from ..conftest import BASELINE
+
+    result = run_rule("25.341(a)", tmp_path, FAST_BASELINE)
+    ctx = Context(load_aircraft(BASELINE))
+    caps = {"wing": declared_capabilities(ctx, "wing"), "horizontal tail": declared_capabilities(ctx, "horizontal_tail")}
+    evaluated = [f for f in result.findings if f.status != "not_evaluated"]
+    assert evaluated and all("no trim" in f.reason for f in result.findings if f.status == "not_evaluated")
+    for f in evaluated:
+        surface = "wing" if f.check.endswith(", wing") or ", wing:" in f.check else "horizontal tail"
+        normalized, margin, check = hand_margin(f.details, caps[surface])
+        assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
+        # information: the manoeuvring envelope's n at the speed (§25.337: n+ 2.5; n- -1.0 to VC, 0 at VD)
+        d = f.details
+        if f.condition.get("gust") == "up":
+            assert d["maneuver_envelope_n_z"] == 2.5 and d["beyond_maneuver_envelope"] == (d["peak_n_z"] > 2.5)
+        else:
+            assert -1.0 <= d["maneuver_envelope_n_z"] <= 0.0
+            assert d["beyond_maneuver_envelope"] == (d["peak_n_z"] < d["maneuver_envelope_n_z"])
+            if f.condition.get("speed_point") == "VD":
+                assert d["maneuver_envelope_n_z"] == pytest.approx(0.0, abs=1e-4)
+    wing = min((f for f in evaluated if ", wing:" in f.check), key=lambda f: f.normalized_margin)
+    assert "bending" in wing.check and wing.status == "complies"

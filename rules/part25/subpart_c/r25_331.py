@@ -9,6 +9,11 @@ t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t
 Each condition's horizontal-tail limit loads are compared with the capabilities declared in the aircraft
 file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
 one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
+
+(c)(2) also compares the load factor each manoeuvre reaches with the §25.337 limit at its speed (n₊ nose up;
+nose down n₋ = −1.0 up to VC, linearly to 0 at VD), allowing the amplitude search's tolerance; a search that
+did not converge and overshoots the limit is not evaluated (its loads are conservative). In (c)(1) the load
+factor may exceed the limit (loads after that need not be considered): no such check.
 """
 
 from __future__ import annotations
@@ -147,12 +152,16 @@ class CheckedPitchManeuver(Rule):
         but not exceeded. Where the sinusoid at the available deflection does not reach it, the peak is
         held for Δt (the minimum time to reach it, at most 5 s) before returning (t_max = t₂ + π/ω).
         Loads after n_z < 0 (nose up) or n_z > the limit (nose down), or after t_max, need not be
-        considered. The horizontal tail must carry the resulting loads (§25.303, §25.305).
+        considered. The horizontal tail must carry the resulting loads (§25.303, §25.305), and the load
+        factor reached stays within the §25.337 limits (positive factor nose up; nose down the negative
+        factor, −1.0 up to VC and zero at VD, §25.337(c)).
     """
     margin = """
         Per condition: the smallest of (allowable limit load − |limit load|) and (allowable ultimate load −
         1.5 × |limit load|) over the declared horizontal-tail stations and quantities; without a declared
-        structural capability the condition is not evaluated and its loads are reported.
+        structural capability the condition is not evaluated and its loads are reported. A second finding
+        per condition: (n₊ + search tolerance) − highest n_z nose up, lowest n_z − (n₋(V) − search
+        tolerance) nose down, in g.
     """
     references = ("25.331(c)(1)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VD", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
@@ -165,7 +174,8 @@ class CheckedPitchManeuver(Rule):
         "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
         "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
         "search_steps": Criterion(6, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
-        "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted"),
+        "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted "
+                                           "(also the allowance on the §25.337 limit of the load-factor check)"),
         **SAFETY,
         **PILOT_EFFORT,
     }
@@ -291,8 +301,43 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
             hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), peak_n_z=round(peak_nz, 4),
             stop=sim.stop_reason[i] or "end", pilot_effort=_effort_note(effort_limited, i)))
+        findings.append(load_factor_finding(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit))
     return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
             "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
+
+
+def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
+    """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
+    the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
+    VC and VD Mach-limited at the altitude)."""
+    lf = ctx.aircraft.envelope.limit_load_factors
+    if positive:
+        return float(lf.positive)
+    v = entry_speeds(ctx, h, ["VC", "VD"])
+    vc, vd = v["VC"], v["VD"]
+    if v_eas <= vc or vd <= vc:
+        return float(lf.negative)
+    return float(lf.negative) * max(vd - v_eas, 0.0) / (vd - vc)
+
+
+def load_factor_finding(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit) -> Finding:
+    """The load factor the checked manoeuvre reached (highest nose up, lowest nose down, within the loads'
+    window) against the §25.337 limit at its speed, plus the search tolerance within which the paragraph's
+    'reached but not exceeded' is met numerically. A search that did not converge and overshoots is not
+    evaluated (its loads are conservative, the manoeuvre is not the paragraph's)."""
+    n_lim = maneuver_limit_load_factor(ctx, cond.speed, cond.altitude, nose_up)
+    tol = float(crit.load_factor_tolerance)
+    check = f"(c)(2) load factor reached, {cond.get('direction')}, within the §25.337 limit"
+    details = dict(peak_n_z=round(peak_nz, 4), limit_load_factor=round(n_lim, 4), search_tolerance=tol, input=kind)
+    if nose_up and peak_nz < n_lim - tol:
+        details["note"] = ("the positive limit load factor is not reached with the available elevator and the "
+                           "longest hold (§25.331(c)(2)(iii) maximal input)")
+    limit = n_lim + tol if nose_up else n_lim - tol
+    exceeded = peak_nz > limit if nose_up else peak_nz < limit
+    if exceeded and not settled:
+        return Finding.not_evaluated(cond, check, f"amplitude search not converged: peak n_z {peak_nz:.3f} is beyond the "
+                                     f"§25.337 limit {n_lim:.3f} (loads of this condition are conservative)", **details)
+    return Finding.compare(cond, check, peak_nz, limit, at_least=not nose_up, unit="g", **details)
 
 
 # --------------------------------------------------------------------------- (c)(1) maximum displacement at VA

@@ -11,6 +11,9 @@ at VD is unverified wording. They are criteria here, overridable in the aircraft
 Limitations: rigid airplane (no structural modes, (a)(1) asks for all significant ones), quasi-steady
 aerodynamics (no Küssner/Wagner lift growth, conservative for short gusts), vertical gusts only (the
 lateral gust of (a) is not evaluated).
+
+Each finding also reports the manoeuvring envelope's load factor at its speed (§25.333/§25.337) and whether
+the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.333 has no gust V–n envelope.
 """
 
 from __future__ import annotations
@@ -28,7 +31,7 @@ from certkit.results import Finding
 from certkit.units import FT, KN
 from certkit_rules.part25.gust import SOURCE as UREF_SOURCE
 from certkit_rules.part25.gust import reference_gust_velocity
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, maneuver_limit_load_factor
 
 AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
 SPEEDS = ("VB", "VC", "VD")
@@ -173,6 +176,9 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     env, which = LoadEnvelope.worst_of(parts)
     nz_hi, nz_lo, uds_all = np.array(nz_hi), np.array(nz_lo), np.array(uds_all)
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
+    # information, not a criterion: the §25.333 manoeuvring envelope's load factor at each speed (§25.337), to
+    # show where gusts load the airplane beyond the manoeuvres (since Amdt. 25-86 there is no gust V–n envelope)
+    n_env = [round(maneuver_limit_load_factor(ctx, float(v_eas[i]), float(alt[i]), bool(up[i])), 4) for i in range(len(sim_conds))]
     for i, c in enumerate(sim_conds):
         sense = 1 if up[i] else 0
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
@@ -184,6 +190,8 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
                 critical_H_root_bending_ft=round(float(H[jb] / FT), 0), U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
                 peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
                 critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
+                maneuver_envelope_n_z=n_env[i], beyond_maneuver_envelope=bool(
+                    (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
                 tail_lag_s=round(float(gb.tail_arm / gb.v_tas[i]), 4)))
 
     def replay(picks):
