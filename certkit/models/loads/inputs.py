@@ -50,8 +50,8 @@ def bisect_batch(run, lo, hi, target, steps: int = 8, tol: float = 0.0, f_lo=Non
     step, only of the conditions not yet converged; it returns values for the whole batch, anything
     outside the mask). Regula falsi with the Illinois correction: a near-linear response converges in
     two or three steps. ``f_lo``/``f_hi``: run at lo and hi when already known (else computed).
-    Returns (x, run(x)) of the last step and the bracket end (hi, run(hi)) at or above the target.
-    Conditions whose bracket does not hold the target are left at hi."""
+    Returns (x, run(x)) of the last step and the bracket ends (lo, run(lo)) below and (hi, run(hi)) at or
+    above the target. Conditions whose bracket does not hold the target are left at hi."""
     lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
     everyone = np.ones(lo.shape, dtype=bool)
     f_lo = (run(lo, everyone) if f_lo is None else np.asarray(f_lo, dtype=float)) - target
@@ -75,4 +75,4 @@ def bisect_batch(run, lo, hi, target, steps: int = 8, tol: float = 0.0, f_lo=Non
         f_lo = np.where(right & (side < 0), 0.5 * f_lo, f_lo)
         side = np.where(left, 1.0, np.where(right, -1.0, side))
         active = active & (np.abs(fx) > tol)
-    return x, fx + target, hi, f_hi + target
+    return x, fx + target, lo, f_lo + target, hi, f_hi + target

@@ -173,7 +173,7 @@ class CheckedPitchManeuver(Rule):
         "max_hold": Criterion(5.0, "s", "14 CFR 25.331(c)(2)(iii) (verified fragment)", "longest hold Δt at the peak"),
         "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
         "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
-        "search_steps": Criterion(6, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
+        "search_steps": Criterion(10, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
         "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted "
                                            "(also the allowance on the §25.337 limit of the load-factor check)"),
         **SAFETY,
@@ -275,11 +275,14 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
         return np.where(reach, p * available, available), np.where(reach | held_short, 0.0, p * max_hold) + held_short * max_hold
 
     search = ~held_short
-    p, _, p_hi, _ = bisect_batch(lambda p, mask: simulate_inputs(*inputs_of(p), mask), np.zeros(len(rows)), np.ones(len(rows)), target,
+    p, r_p, p_lo, _, p_hi, _ = bisect_batch(lambda p, mask: simulate_inputs(*inputs_of(p), mask), np.zeros(len(rows)), np.ones(len(rows)), target,
                                  steps=int(crit.search_steps), tol=float(crit.load_factor_tolerance),
                                  f_lo=np.where(reach, 0.0, r_full), f_hi=np.where(reach, r_full, r_held))
-    # the hold is the minimum time that reaches the load factor: take the bracket end at or above it
-    p = np.where(search & ~reach, p_hi, np.where(search, p, 1.0))
+    # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
+    # amplitude search that did not converge (a response that jumps across the target near stall) takes the
+    # largest amplitude found that does not exceed the load factor, as the paragraph scales the input down
+    over = reach & (np.abs(r_p - target) > float(crit.load_factor_tolerance)) & (r_p > target)
+    p = np.where(search & ~reach, p_hi, np.where(search, np.where(over, p_lo, p), 1.0))
     amp, hold = inputs_of(p)
     resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
     loads = airplane_loads(ctx)
@@ -290,6 +293,8 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     for i, c in enumerate(sim_conds):
         converged = abs(resp[i] - target[i]) <= float(crit.load_factor_tolerance)
         kind = (("sinusoid, amplitude scaled to the load factor" if converged else
+                 f"sinusoid, the largest amplitude found below the load factor (search not converged in "
+                 f"{int(crit.search_steps)} steps)" if resp[i] < target[i] else
                  f"sinusoid, amplitude search not converged in {int(crit.search_steps)} steps") if reach[i] else
                 "held at full deflection for the longest hold (load factor not reached)" if held_short[i] else
                 "held at full deflection, minimum hold to the load factor")
