@@ -144,8 +144,17 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
         e = key_of[(c.loading, c.altitude, c.get("speed_point"))]
         refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
         if e in failed:
-            findings += [Finding.not_evaluated(refined, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", failed[e])
-                         for s in SURFACES]
+            check = lambda s: f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"  # noqa: E731
+            if "more than full throttle" in failed[e]:
+                # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
+                # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
+                steepest = float(np.degrees(min(TRIM_PATHS)))
+                findings += [Finding.not_applicable(
+                    refined, check(s), f"no steady flight at this weight, altitude and speed (more than full thrust "
+                    f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
+                    "this weight, outside the flight envelope the gusts are applied in") for s in SURFACES]
+            else:
+                findings += [Finding.not_evaluated(refined, check(s), failed[e]) for s in SURFACES]
             continue
         k = pos[e]
         if batch.gamma[k]:
