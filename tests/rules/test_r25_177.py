@@ -31,10 +31,13 @@ def _at(result, loading, configuration, point, check_start, altitude=0.0):
 
 
 def test_hand_calculation_sideslip_and_cn_beta(result, ctx):
-    """fwd_light (92.04 ft), takeoff, sea level, 1.13 VSR: Cn_β about the CG and the 10° sideslip deflections."""
+    """fwd_light (92.04 ft), takeoff, sea level, 1.13 VSR: Cn_β about the CG and the deflections at the end of
+    the (c) range, whose rudder is half the available 23.2° (the range is scaled from a 5° trim; 2 %)."""
     cn = _at(result, "fwd_light", "takeoff", "1.13 VSR", "(a)")
-    rud = _at(result, "fwd_light", "takeoff", "1.13 VSR", "(c) 10° steady-heading sideslip: rudder within")
-    ail = _at(result, "fwd_light", "takeoff", "1.13 VSR", "(c) 10° steady-heading sideslip: aileron within")
+    rud = _at(result, "fwd_light", "takeoff", "1.13 VSR", "(c) steady sideslips: rudder within")
+    ail = _at(result, "fwd_light", "takeoff", "1.13 VSR", "(c) steady sideslips: aileron within")
+    assert rud.details["range_bound"] == "half the available rudder"
+    assert rud.details["deflection_deg"] == pytest.approx(0.5 * 23.2, rel=0.02)
     m = ctx.aero("takeoff").model
     cond = cn.condition
     mach = float(cond.speed / 340.294)  # CAS at sea level: Mach = V / a0
@@ -45,7 +48,7 @@ def test_hand_calculation_sideslip_and_cn_beta(result, ctx):
     assert cn.status == "complies" and cn.margin == pytest.approx(cn_beta, rel=1e-3)
     cn_a, cn_r = d("Cn_aileron") + d("CY_aileron") * arm, d("Cn_rudder") + d("CY_rudder") * arm
     cl_a, cl_r, cl_b = d("Cl_aileron"), d("Cl_rudder"), d("Cl_beta")
-    beta = math.radians(10.0)
+    beta = math.radians(rud.details["sideslip_range_deg"])
     det = cn_a * cl_r - cn_r * cl_a
     da = (-cn_beta * beta * cl_r + cl_b * beta * cn_r) / det
     dr = (-cl_b * beta * cn_a + cn_beta * beta * cl_a) / det
@@ -56,15 +59,44 @@ def test_hand_calculation_sideslip_and_cn_beta(result, ctx):
     assert dr > 0 and da < 0
 
 
-def test_rudder_design_limit_on_the_limit(result, tmp_path):
-    """Design rudder limit set to the largest rudder the baseline's sideslips need: smallest rudder margin 0."""
-    rudder = [f for f in result.findings if "rudder within" in f.check and f.value is not None]
-    need = max(f.value for f in rudder)
-    limit = f"{need:.6f}"
-    r = run_rule(RULE, tmp_path, edits=[("design_limits: {min: -23.2 deg, max: 23.2 deg}",
+def test_aileron_design_limit_on_the_limit(result, tmp_path):
+    """Aileron design limit set to the largest aileron the (c) sideslips need (the range is set by the rudder, so
+    the deflections do not move): smallest aileron margin 0."""
+    aileron = [f for f in result.findings if "aileron within" in f.check and f.value is not None]
+    limit = f"{max(f.value for f in aileron):.6f}"
+    r = run_rule(RULE, tmp_path, edits=[("design_limits: {min: -25 deg, max: 25 deg}",  # the aileron's (baseline)
                                          f"design_limits: {{min: -{limit} deg, max: {limit} deg}}")])
-    edited = [f for f in r.findings if "rudder within" in f.check and f.margin is not None]
+    edited = [f for f in r.findings if "aileron within" in f.check and f.margin is not None]
     assert min(f.margin for f in edited) == pytest.approx(0.0, abs=1e-4)
+
+
+def test_sideslip_sweep_stable_and_beyond(result):
+    """(c): four points to the range, every increment in the stable sense; (d): more rudder for more sideslip up to
+    full rudder (the sweep reaches twice the range: 23.2° in the linear estimate) or full aileron."""
+    steps = [f for f in result.findings if "at every step" in f.check]
+    assert steps and all(len(f.details["gradients"]) == 4 and f.status == "complies" for f in steps)
+    beyond = [f for f in result.findings if f.check.startswith("(d)")]
+    assert beyond and all(f.status == "complies" for f in beyond)
+    assert any(f.margin is not None and f.details["largest_sideslip_deg"] > f.details["sideslip_range_deg"] for f in beyond)
+
+
+def test_pedal_force_bounds_the_range(tmp_path):
+    """With a stiff q-feel rudder (F = 10 lbf + 200 lbf/in × q/10 kPa × δr / (6 °/in)) the 180 lbf bound is the
+    lesser at VMO: its range ends where the pedal force is 180 lbf (the feel law by hand, 3 %)."""
+    feel = ("control_forces:\n  rudder:\n    type: artificial_feel\n    preload: 10 lbf\n    gradient: 200 lbf/in\n"
+            "    gearing: 6 deg/in\n    q_feel_reference: 10 kPa\nsources:")
+    r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + feel)])
+    bounded = [f for f in r.findings if "rudder within" in f.check and f.details.get("range_bound") == "180 lbf pedal force"]
+    assert bounded
+    for f in bounded:
+        v = f.condition.speed  # CAS, m/s; q from EAS ≈ CAS at these speeds only at sea level
+        if f.condition.altitude:
+            continue
+        q_kpa = 0.5 * 1.225 * v**2 / 1e3
+        force = 10 + 200 * q_kpa / 10 * abs(f.details["deflection_deg"]) / 6
+        assert force == pytest.approx(180.0, rel=0.03)
+    forces = [f for f in r.findings if f.check.startswith("(d) rudder force does not reverse")]
+    assert forces and all(f.status in ("complies", "fails") for f in forces)
 
 
 def test_sign_larger_fin_raises_directional_margin(result, tmp_path):
@@ -82,7 +114,10 @@ def test_not_evaluated_without_clean_clmax(tmp_path):
 
 
 def test_baseline_complies_and_aft_corner_is_critical(result):
+    """The baseline complies; its critical check is the aileron the landing configuration needs at the end of the
+    (c) range at an aft corner (normalised margin), and the smallest directional-stability margin is aft too."""
     assert result.status == "complies"
     crit = result.critical
-    assert crit.condition.loading.startswith("aft") and crit.check.startswith("(a) Cn")
-    assert np.isfinite(crit.margin) and crit.condition.x_cg > 100 * FT
+    assert crit.condition.loading.startswith("aft") and "aileron within" in crit.check
+    cn = min((f for f in result.findings if f.check.startswith("(a) Cn")), key=lambda f: f.margin)
+    assert cn.condition.loading.startswith("aft") and np.isfinite(cn.margin) and cn.condition.x_cg > 100 * FT
