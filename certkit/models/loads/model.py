@@ -15,8 +15,9 @@ the model keeps, per unit dynamic pressure,
 Loads at an instant are the superposition  N_j = q̄ Σ_k x_k N_jk(M)  over the inputs x_k (linear, so a
 whole batch of conditions and time steps is one tensor contraction), plus the inertial force of the
 strip's mass m_j at its station, −m_j g n_local with the rigid-body load factor at the strip,
-n_z,loc = n_z + q̇ (X_cg − X_j)/g and n_y,loc = n_y + (ṙ (X_cg − X_j) − ṗ (Z_cg − Z_j))/g
-(body-axis angular accelerations; centripetal terms neglected).
+n_z,loc = n_z + q̇ (X_cg − X_j)/g − ṗ Y_j/g and n_y,loc = n_y + (ṙ (X_cg − X_j) − ṗ (Z_cg − Z_j))/g
+(body-axis angular accelerations; the roll-acceleration term ṗ Y_j is the inertia relief of a rolling
+wing or tail, §25.349; centripetal terms neglected).
 
 Sign conventions (airplane frame X aft, Y right, Z up): the surface normal points up for the wing and
 horizontal tail and to the right (+Y) for the fin. At each station, for the part of the surface
@@ -244,6 +245,7 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     strip_mass = half * masses * area / area.sum()
     x_mass = x_axis.copy()
     z_mass = lat.rle[idx, 2].copy()
+    y_mass = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
     extra_force_mass = np.zeros_like(strip_mass)
     for pm, px, py, pz in point_masses:
         if mirrored and py < 0:
@@ -253,12 +255,13 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
         total = strip_mass[j] + extra_force_mass[j] + pm
         x_mass[j] = (x_mass[j] * (strip_mass[j] + extra_force_mass[j]) + px * pm) / total
         z_mass[j] = (z_mass[j] * (strip_mass[j] + extra_force_mass[j]) + pz * pm) / total
+        y_mass[j] = (y_mass[j] * (strip_mass[j] + extra_force_mass[j]) + py * pm) / total
         extra_force_mass[j] += pm
     mass = strip_mass + extra_force_mass
     terms = np.array([
         -mass * G0 * nz, -mass * nz, mass * nz * x_mass,
         -mass * G0 * ny, -mass * ny, mass * ny * x_mass,
-        mass * ny, -mass * ny * z_mass,
+        mass * ny, -mass * ny * z_mass + mass * nz * y_mass,
     ])
     inertia = integrate(terms, np.broadcast_to(x_mass, terms.shape))
     notes = []

@@ -1,0 +1,286 @@
+"""§25.349(a) Rolling conditions, manoeuvring: sudden aileron from a steady symmetric manoeuvre at load factors 0
+and 2/3 of the design positive limit, at VA (to the stop), VC (the deflection that gives at least the VA roll rate)
+and VD (at least one third of it), as one batched rigid-airplane simulation; wing (both halves), horizontal-tail
+(both halves) and fin loads from the strip loads model at every time step, compared with the declared structural
+capability (§25.303, §25.305).
+
+Text: docs/regulation-notes.md §25.349 (P: a secondary copy of the CFR text, consistent word for word in (a) with
+EASA CS 25.349; amendment bracket not seen). Approximations: no control-force model, so the pilot-effort limit
+cannot reduce the deflection (the aileron's design limit bounds it); rigid wing (the torsional flexibility that
+(a) asks to consider when finding the deflections is not modelled — no aileron effectiveness loss); spoilers not
+modelled; one roll direction (right wing down: the airplane is symmetric and both wing halves are computed, the
+left one as the right half of the mirror image); the pilot holds the pull (elevator) and the rudder at their
+manoeuvre values; the roll rate compared between speeds, and the end of the time history whose loads are
+considered, is where |p| first stops growing (the steady rolling velocity of (a)(1); the maximum roll acceleration
+comes at the end of the aileron ramp, inside it). (b), the
+unsymmetrical gust, is not evaluated (see `limitations`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.models.flight import control_limits
+from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.capability import declared_capabilities
+from certkit.models.loads.model import QUANTITIES, airplane_loads
+from certkit.models.loads.response import LoadEnvelope, response_loads
+from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
+from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
+from certkit.units import KN
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
+
+REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
+SPEEDS = ("VA", "VC", "VD")
+LOAD_FACTORS = ("zero", "two-thirds")
+SURFACES = ("wing", "horizontal_tail", "vertical_tail")
+MIRRORED = ("wing", "horizontal_tail")
+TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
+PARAGRAPH = {"VA": "(a)(2) VA, sudden aileron to the stop", "VC": "(a)(3) VC, roll rate ≥ that at VA",
+             "VD": "(a)(4) VD, roll rate ≥ 1/3 of that at VA"}
+EFFORT_NOTE = ("no control-force model is declared: pilot effort (§25.349(a), §25.397) cannot reduce the deflection; "
+               "the aileron design limit bounds it")
+FLEX_NOTE = ("rigid wing: the torsional flexibility that §25.349(a) asks to consider in finding the aileron deflections "
+             "(aileron effectiveness loss) is not modelled")
+NO_VA_NOTE = ("the VA roll rate of (a)(2) is not available for this loading, altitude and load factor (the VA condition "
+              "could not be set up): full aileron, conservative")
+PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: the VA roll rate of (a)(2) is taken at "
+              "the {} load factor of the same loading and altitude")
+GUST_NOTE = "§25.349(b) unsymmetrical gusts (100 % of the §25.341(a) wing air load on one side, 80 % on the other) not evaluated"
+
+
+@rule
+class RollingConditions(Rule):
+    id = "25.349(a)"
+    symbol = "rolling-conditions"
+    title = "Rolling conditions: sudden aileron at VA, VC and VD at load factors 0 and 2/3 n"
+    amendment = "25-94"
+    requirement = """
+        Unsymmetrical (rolling) manoeuvre loads, with unbalanced aerodynamic moments about the CG reacted
+        rationally by the inertia forces, in combination with an airplane load factor of zero and of two-thirds
+        of the positive manoeuvring factor used in design: (a)(1) steady rolling velocities and maximum roll
+        acceleration; (a)(2) at VA a sudden deflection of the aileron to the stop; (a)(3) at VC the aileron
+        deflection that gives a roll rate not less than that of (a)(2); (a)(4) at VD the deflection that gives
+        not less than one third of it (deflections as limited by pilot effort). The structure carries the
+        loads (limit) and 1.5 × them (ultimate), §25.303/§25.305.
+    """
+    margin = """
+        Per condition and surface (wing, horizontal tail, fin): the smallest of (allowable limit load − |limit
+        load|) and (allowable ultimate load − 1.5 × |limit load|) over the declared stations and quantities, the
+        limit load the extreme over the time history from the aileron input to the steady rolling velocity (where
+        the roll rate first stops growing) and, for the wing and horizontal tail, over both halves;
+        without a declared structural capability the condition is not evaluated and reports its loads.
+    """
+    references = ("25.333", "25.337", "25.341", "25.397", "25.427", "25.303", "25.305")
+    requires = ("speeds.VA", "speeds.VC", "speeds.VD", "envelope.limit_load_factors", "geometry.wing")
+    criteria = {
+        "load_factor_fraction": Criterion(2 / 3, "", REG, "load factor = fraction × positive limit manoeuvring factor"),
+        "load_factor_low": Criterion(0.0, "", REG, "the other airplane load factor (zero)"),
+        "vc_roll_rate_ratio": Criterion(1.0, "", "14 CFR 25.349(a)(3)", "roll rate at VC ≥ ratio × roll rate at VA"),
+        "vd_roll_rate_ratio": Criterion(1 / 3, "", "14 CFR 25.349(a)(4)", "roll rate at VD ≥ ratio × roll rate at VA"),
+        "ramp_time": Criterion(0.1, "s", "certkit assumption: 'sudden' with no declared actuator rate",
+                               "time to reach the aileron deflection"),
+        "duration": Criterion(4.0, "s", "certkit numerical choice: past the steady rolling velocity (first roll-rate "
+                              "peak, ≤ 3.1 s) at every baseline condition", "time simulated from the aileron input"),
+        "time_step": Criterion(0.02, "s", "certkit numerical choice (0.04 s changes the peak roll rate by < 0.5 %)",
+                               "simulation step"),
+        "roll_rate_tolerance": Criterion(0.03, "", "certkit numerical choice",
+                                         "VC/VD roll rate accepted within [target, (1 + tolerance) × target]"),
+        "search_steps": Criterion(4, "", "certkit numerical choice", "proportional corrections of the VC/VD deflection"),
+        **SAFETY,
+    }
+    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(2),
+                                extra=(("speed_point", SPEEDS), ("load_factor", LOAD_FACTORS)),
+                                note="VA (≤ VC), VC and VD in EAS, Mach-limited at altitude; from a steady wings-level "
+                                     "pull-up (2/3 n) or push-over (n = 0) set up on the trimmed flight path; aileron to "
+                                     "the larger design limit rolling right (the left wing is the mirror image).")
+    limitations = (EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
+                   "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; " + GUST_NOTE + ".")
+    implementation = "partial"
+
+    def evaluate(self, ctx, conditions, crit):
+        self.run = rolling_maneuvers(ctx, conditions, crit)  # kept for evidence(), called on this instance
+        return self.run["findings"]
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_roll import roll_evidence
+
+        run = getattr(self, "run", None)
+        return roll_evidence(run) if run and run.get("sim") is not None else []
+
+
+def target_load_factor(ctx, cond, crit) -> float:
+    """The airplane load factor of the condition: 0, or the fraction (2/3) of the positive limit manoeuvring factor."""
+    if cond.get("load_factor") == "zero":
+        return float(crit.load_factor_low)
+    return float(crit.load_factor_fraction * ctx.aircraft.envelope.limit_load_factors.positive)
+
+
+def full_aileron(ctx) -> float:
+    """The aileron deflection (rad) to the stop rolling right: minus the larger design-limit magnitude (the
+    airplane is symmetric, so rolling left to the positive limit is the mirror image)."""
+    lo, hi = control_limits(ctx.aircraft)["aileron"]
+    return -max(abs(lo), abs(hi))
+
+
+#: where in the accepted roll-rate band [target, (1 + tol) target] the corrections aim: above its middle, as the
+#: roll rate grows slightly less than in proportion to the deflection (up to 1.5 % at the baseline's VD conditions)
+AIM = 0.7
+
+
+def scale_ailerons(model, x0, u0, amplitude, target, scaled, sim_full, crit):
+    """From the full-deflection run ``sim_full``, correct the fraction of the deflection of the ``scaled``
+    conditions (proportionally: the roll rate is nearly linear in the deflection) until their peak roll rate lies
+    within [target, (1 + tol) target], or the stop is reached. Returns the simulation of the final fractions,
+    its peak roll rates and the fractions."""
+    dt, ramp, T = float(crit.time_step), float(crit.ramp_time), float(crit.duration)
+    tol = float(crit.roll_rate_tolerance)
+    sim, (p, _) = sim_full, peak_roll_rate(sim_full)
+    simulated = np.ones(len(x0))
+    frac = np.where(scaled, np.clip(target * (1 + AIM * tol) / np.maximum(p, 1e-9), 0.0, 1.0), 1.0)
+    for _ in range(int(crit.search_steps)):
+        if np.array_equal(frac, simulated):
+            break
+        sim = simulate_roll(model, x0, u0, frac * amplitude, T, dt, ramp)
+        p, simulated = peak_roll_rate(sim)[0], frac.copy()
+        done = ~scaled | ((p >= target) & (p <= target * (1 + tol))) | ((frac >= 1.0) & (p < target))
+        if done.all():
+            break
+        frac = np.where(done, frac, np.clip(frac * target * (1 + AIM * tol) / np.maximum(p, 1e-9), 0.0, 1.0))
+    if not np.array_equal(frac, simulated):
+        sim = simulate_roll(model, x0, u0, frac * amplitude, T, dt, ramp)
+        p = peak_roll_rate(sim)[0]
+    return sim, p, frac
+
+
+def _deg(x, nd=2):
+    return round(float(np.degrees(x)), nd)
+
+
+def rolling_maneuvers(ctx, conditions, crit) -> dict:
+    """Batch simulation of every rolling condition; findings, load envelopes and histories for the evidence."""
+    entries, key_of = [], {}
+    for c in conditions:
+        key = (c.loading, c.altitude, c.get("speed_point"))
+        if key not in key_of:
+            key_of[key] = len(entries)
+            v = entry_speeds(ctx, c.altitude, [c.get("speed_point")])[c.get("speed_point")]
+            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, load_factor=None))
+    batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
+    failed_entry = dict(batch.failed)
+    pos = {int(i): k for k, i in enumerate(batch.index)}
+    findings, rows, sim_conds = [], [], []
+    for c in conditions:
+        e = key_of[(c.loading, c.altitude, c.get("speed_point"))]
+        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
+        check = PARAGRAPH[c.get("speed_point")]
+        if e in failed_entry:
+            findings += [Finding.not_evaluated(refined, f"{check}: {s.replace('_', ' ')}", failed_entry[e]) for s in SURFACES]
+            continue
+        k = pos[e]
+        if batch.gamma[k]:
+            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
+        rows.append(k)
+        sim_conds.append(refined)
+    if not rows:
+        return {"findings": findings, "sim": None}
+    rows = np.array(rows)
+    model = batch.model.subset(rows)
+    n_target = np.array([target_load_factor(ctx, c, crit) for c in sim_conds])
+    st = symmetric_manoeuvre_state(model, batch.x[rows], batch.u[rows], n_target, batch.gamma[rows])
+    je, ja = model.control_index("elevator"), model.control_index("aileron")
+    e_lo, e_hi = control_limits(ctx.aircraft)["elevator"]
+    ok = np.ones(len(rows), dtype=bool)
+    for i, c in enumerate(sim_conds):
+        reason = None
+        if not st.converged[i] or abs(st.n_z[i] - n_target[i]) > 1e-3:
+            reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre cannot be set up at this speed (the lift is short of "
+                      f"it: n reached {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)")
+        elif not e_lo - 1e-9 <= st.u[i, je] <= e_hi + 1e-9:
+            lim = e_lo if st.u[i, je] < e_lo else e_hi
+            reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre needs {np.degrees(st.u[i, je]):.1f}° elevator, "
+                      f"design limit {np.degrees(lim):.1f}°")
+        if reason:
+            ok[i] = False
+            findings += [Finding.not_evaluated(c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}", reason)
+                         for s in SURFACES]
+    idx = np.flatnonzero(ok)
+    if not idx.size:
+        return {"findings": findings, "sim": None}
+    conds = [sim_conds[i] for i in idx]
+    model = model.subset(idx)
+    x0, u0 = st.x[idx], st.u[idx]
+    amplitude = full_aileron(ctx) - u0[:, ja]
+    # the VA reference of each (loading, altitude, load factor) group, and the targets of (a)(3)/(a)(4)
+    group = [(c.loading, c.altitude, c.get("load_factor")) for c in conds]
+    at_va = {g: i for i, (g, c) in enumerate(zip(group, conds)) if c.get("speed_point") == "VA"}
+    ratio = {"VA": np.nan, "VC": float(crit.vc_roll_rate_ratio), "VD": float(crit.vd_roll_rate_ratio)}
+    # a VA pull-up beyond the lift available (VA capped at VC at altitude): the VA roll rate at the other load factor
+    # of the same loading and altitude stands in (the roll rate hardly depends on the load factor)
+    other = {(g[0], g[1]): i for g, i in at_va.items()}
+    ref = np.array([at_va.get(g, other.get((g[0], g[1]), -1)) for g in group])
+    proxy = np.array([g not in at_va and r >= 0 for g, r in zip(group, ref)])
+    speed_point = [c.get("speed_point") for c in conds]
+    scaled = np.array([sp != "VA" and r >= 0 for sp, r in zip(speed_point, ref)])
+    # VA rows are simulated at full deflection in the first run: their peak roll rates are the references
+    sim_full = simulate_roll(model, x0, u0, amplitude, float(crit.duration), float(crit.time_step), float(crit.ramp_time))
+    p_full = peak_roll_rate(sim_full)[0]
+    p_va = np.where(ref >= 0, p_full[np.maximum(ref, 0)], np.nan)
+    target = np.where(scaled, p_va * np.array([ratio[s] for s in speed_point]), 0.0)
+    sim, p_peak, frac = scale_ailerons(model, x0, u0, amplitude, target, scaled, sim_full, crit)
+    # loads from the aileron input to the steady rolling velocity (where |p| first stops growing): beyond it the
+    # flight path departs from the condition (bank growing, the n = 0 push-over diving and gaining speed)
+    _, k_peak = peak_roll_rate(sim)
+    t_end = sim.t[k_peak]
+    valid = sim.t[:, None] <= t_end[None, :] + 1e-9
+    loads = airplane_loads(ctx)
+    right = response_loads(loads, sim, model, SURFACES, valid=valid)
+    left = response_loads(loads, mirror(sim), model, MIRRORED, valid=valid)
+    labels = [c.label() for c in conds]
+    env_sides = LoadEnvelope.merge([
+        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels]),
+        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels])])
+    env_fin = LoadEnvelope.from_histories(loads, {"vertical_tail": right["vertical_tail"]}, sim.t, labels)
+    n = len(conds)
+    caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
+    pdot = np.gradient(sim["p"], sim.t, axis=0)
+    for i, c in enumerate(conds):
+        sp = speed_point[i]
+        common = dict(
+            V_kn_EAS=round(float(c.speed / KN), 1), load_factor=round(float(st.n_z[idx[i]]), 4),
+            pitch_rate_deg_s=_deg(st.pitch_rate[idx[i]], 3), elevator_deg=_deg(u0[i, je]),
+            aileron_deg=_deg(u0[i, ja] + frac[i] * amplitude[i]), aileron_fraction_of_stop=round(float(frac[i]), 4),
+            peak_roll_rate_deg_s=_deg(p_peak[i]), loads_considered_until_s=round(float(t_end[i]), 2),
+            peak_roll_acceleration_deg_s2=_deg(np.nanmax(np.abs(pdot[valid[:, i], i])), 1),
+            bank_at_end_deg=_deg(sim["phi"][k_peak[i], i], 1),
+            peak_sideslip_deg=_deg(np.nanmax(np.abs(sim["beta"][valid[:, i], i]))),
+            pilot_effort=EFFORT_NOTE, wing_flexibility=FLEX_NOTE)
+        if sp != "VA":
+            if scaled[i]:
+                common.update(roll_rate_VA_deg_s=_deg(p_va[i]), target_roll_rate_deg_s=_deg(target[i]))
+                if proxy[i]:
+                    common["roll_rate_reference"] = PROXY_NOTE.format(conds[ref[i]].get("load_factor"))
+                if frac[i] >= 1.0 and p_peak[i] < target[i]:
+                    common["roll_rate_shortfall"] = "the target roll rate is not reached with the aileron at its stop"
+            else:
+                common["roll_rate_reference"] = NO_VA_NOTE
+        for s in SURFACES:
+            if s in MIRRORED:
+                R, L = env_sides.peaks[s][i], env_sides.peaks[s][n + i]
+                peaks = np.stack([np.fmin(R[0], L[0]), np.fmax(R[1], L[1])])
+                extra = {}
+                for q in ("bending", "torsion"):
+                    jq = QUANTITIES.index(q)
+                    extra[f"root {q} down-going/up-going side max/min (kN·m)"] = [
+                        [round(float(P[1, jq, 0]) / 1e3, 1), round(float(P[0, jq, 0]) / 1e3, 1)] for P in (R, L)]
+                stations = env_sides.stations[s]
+            else:
+                peaks, extra, stations = env_fin.peaks[s][i], {}, env_fin.stations[s]
+            findings.append(capability_finding(c, f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}", s, peaks, stations, caps[s],
+                                               crit.ultimate_factor, **common, **extra))
+    return {"findings": findings, "sim": sim, "conditions": conds, "right": right, "left": left,
+            "env_sides": env_sides, "env_fin": env_fin, "aileron_index": ja, "fraction": frac, "t_end": t_end,
+            "failed": [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"
+                       and f.reason and "structural capability" not in f.reason][::len(SURFACES)]}
