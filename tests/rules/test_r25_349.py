@@ -19,7 +19,7 @@ from certkit.scheduler import evaluate_rule
 from certkit.units import FT, KN, LB
 from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
 
-from .helpers import run_rule
+from .helpers import NO_STRUCTURE, hand_margin, run_rule
 
 ROOT_BENDING = "root bending max/min (kN·m)"
 
@@ -42,8 +42,13 @@ def entry(shared, baseline):
     return ctx, trimmed_batch(ctx, [cond.with_(speed=250 * KN, speed_kind="EAS")] * 2)
 
 
+def _surface(f):
+    """The surface a finding is about: "<case>: <surface>" or "<case>: <surface>: <structural check>"."""
+    return f.check.split(": ")[1]
+
+
 def _by_condition(result, surface="wing"):
-    return {f.condition: f for f in result.findings if f.check.endswith(surface) and "load_factor" in f.details}
+    return {f.condition: f for f in result.findings if _surface(f) == surface and "load_factor" in f.details}
 
 
 def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, shared):
@@ -159,16 +164,17 @@ def test_more_aileron_larger_wing_root_increments(entry):
         assert np.all(peak[1] > peak[0])
 
 
-def test_not_evaluated_without_capability(roll):
-    """The baseline declares no structure: every condition is not evaluated, either for want of a capability (the
+def test_not_evaluated_without_capability(tmp_path):
+    """Without the structure section every condition is not evaluated, either for want of a capability (the
     loads are reported in the details) or because the 2/3 n pull-up exceeds the lift available (VA = VC at
     43,000 ft, heavy)."""
+    roll = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE])
     assert roll.status == "not_evaluated"
     reasons = {f.reason for f in roll.findings}
     assert "no structural capability declared" in reasons
     others = reasons - {"no structural capability declared"}
     assert others and all("cannot be set up" in r for r in others)
-    f = next(f for f in roll.findings if f.reason == "no structural capability declared" and f.check.endswith("wing"))
+    f = next(f for f in roll.findings if f.reason == "no structural capability declared" and _surface(f) == "wing")
     assert ROOT_BENDING in f.details and "root bending down-going/up-going side max/min (kN·m)" in f.details
 
 
@@ -178,11 +184,11 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     1.5), so the critical wing finding fails on ultimate bending at the root with −0.1 L (L from the details in
     kN·m to 0.1: within 1.5 × 50 N·m); the tail findings stay not evaluated (no tail capability)."""
     L = 1e3 * max(max(abs(v) for v in f.details[ROOT_BENDING]) for f in roll.findings
-                  if f.check.endswith("wing") and ROOT_BENDING in f.details)
+                  if _surface(f) == "wing" and ROOT_BENDING in f.details)
     structure = ("structure:\n  wing:\n"
                  f"    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: \"test\"}}\n"
                  "sources:\n")
-    result = run_rule("25.349(a)", tmp_path, edits=[("\nsources:\n", "\n" + structure)])
+    result = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
     wing = [f for f in result.findings if ": wing" in f.check and f.margin is not None]
     assert len(wing) == 92
     worst = min(wing, key=lambda f: f.margin)
@@ -190,3 +196,17 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     assert worst.margin == pytest.approx(-0.1 * L, abs=1.5 * 50.0 + 1.0)
     assert all(f.status == "not_evaluated" for f in result.findings if ": wing" not in f.check)
     assert result.status == "fails"
+
+
+def test_baseline_margins_against_the_declared_capability(roll, shared):
+    """The baseline's declared allowables (docs/baseline-sources.md §10): every evaluated finding's normalised margin
+    recomputed by hand from its reported station loads (§25.305 limit, §25.303 1.5 × limit ultimate; 5e-5); the
+    only findings not evaluated are the 2/3 n pull-ups beyond the lift available."""
+    from certkit.models.loads.capability import declared_capabilities
+
+    caps = {s: declared_capabilities(shared, s.replace(" ", "_")) for s in ("wing", "horizontal tail", "vertical tail")}
+    evaluated = [f for f in roll.findings if f.margin is not None]
+    assert evaluated and all("cannot be set up" in f.reason for f in roll.findings if f.status == "not_evaluated")
+    for f in evaluated:
+        normalized, _, _ = hand_margin(f.details, caps[_surface(f)])
+        assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
