@@ -151,6 +151,8 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'symbol' = {cls.symbol!r} must be kebab-case, e.g. 'checked-pitch-maneuver'")
     if cls.implementation not in IMPLEMENTATION:
         raise PluginError(f"{where}: field 'implementation' = {cls.implementation!r} must be one of {IMPLEMENTATION}")
+    if isinstance(cls.cost, bool) or not isinstance(cls.cost, (int, float)) or not cls.cost > 0:
+        raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
     for ref in cls.references:
         if not isinstance(ref, str) or not RULE_ID.match(ref):
             raise PluginError(f"{where}: field 'references' holds {ref!r}, not a paragraph id")

@@ -105,6 +105,9 @@ def test_invalid_plugin_metadata_names_plugin_and_field(tmp_path):
     (folder / "bad_rule.py").write_text(USER_RULE.replace('id = "25.901"', 'id = "twenty-five"'))
     with pytest.raises(PluginError, match=r"bad_rule\.py.*CornerMassCheck.*field 'id'"):
         folder_rules(folder)
+    (folder / "bad_rule.py").write_text(USER_RULE.replace('id = "25.901"', 'id = "25.901"\n    cost = -1'))
+    with pytest.raises(PluginError, match=r"bad_rule\.py.*CornerMassCheck.*field 'cost' = -1 must be a positive"):
+        folder_rules(folder)
 
 
 def test_cli_plugin_error_exit_2(cli, tmp_path):

@@ -61,6 +61,7 @@ def _elevator_design_min(ac) -> float:
 @rule
 class LandingTouchdown(Rule):
     id = "25.125"
+    cost = 3  # relative evaluation time (orders work over --jobs processes)
     symbol = "landing-approach-and-touchdown"
     title = "Landing: stabilised approach at VREF, flare and touchdown (simulated)"
     amendment = "25-121"

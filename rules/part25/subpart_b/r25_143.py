@@ -122,6 +122,7 @@ def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
 @rule
 class ManeuveringCapability(Rule):
     id = "25.143(h)"
+    cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "maneuvering-capability"
     title = "Controllability: manoeuvring capability in coordinated turns"
     amendment = "25-108"

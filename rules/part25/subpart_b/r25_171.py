@@ -174,6 +174,7 @@ def speed_step_trims(ctx, refined, k: float):
 @rule
 class SpeedStability(Rule):
     id = "25.173(a)"
+    cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "speed-stability-elevator-fixed"
     title = "Static longitudinal stability: elevator-fixed speed stability"
     amendment = "25-7"

@@ -45,6 +45,7 @@ def derivatives_at_cg(ctx, cond) -> tuple[float, float]:
 @rule
 class StaticLateralDirectionalStability(Rule):
     id = "25.177"
+    cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "static-lateral-directional-stability"
     title = "Static lateral-directional stability"
     amendment = "25-135"  # verified text

@@ -48,6 +48,7 @@ def mode_levels(modes: dict, configuration: str) -> dict:
 @rule
 class DynamicStability(Rule):
     id = "25.181"
+    cost = 3  # relative evaluation time (orders work over --jobs processes)
     symbol = "dynamic-stability"
     title = "Dynamic stability"
     amendment = "25-108"

@@ -68,6 +68,7 @@ def gradients(crit) -> np.ndarray:
 @rule
 class DiscreteGust(Rule):
     id = "25.341(a)"
+    cost = 8  # relative evaluation time (orders work over --jobs processes)
     symbol = "discrete-gust"
     title = "Discrete vertical gusts (1 − cos), rigid airplane"
     amendment = "25-141"

@@ -54,6 +54,7 @@ GUST_NOTE = "§25.349(b) unsymmetrical gusts (100 % of the §25.341(a) wing air 
 @rule
 class RollingConditions(Rule):
     id = "25.349(a)"
+    cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "rolling-conditions"
     title = "Rolling conditions: sudden aileron at VA, VC and VD at load factors 0 and 2/3 n"
     amendment = "25-94"

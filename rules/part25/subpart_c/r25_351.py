@@ -52,6 +52,7 @@ def pedal_force_limit(v, va, vc, crit) -> float:
 @rule
 class YawManeuver(Rule):
     id = "25.351"
+    cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "yaw-maneuver"
     title = "Yaw manoeuvre: sudden rudder, overswing, steady sideslip, rudder returned"
     amendment = "25-91"
