@@ -147,3 +147,10 @@ class LongitudinalControlConfigurationChanges(Rule):
             end_flight_path_deg=round(math.degrees(g1), 3), start_speed_m_s=round(c0.speed, 3),
             end_thrust_residual=res1, direction="trailing edge down" if change >= 0 else "trailing edge up",
             **{f"end_{k}": v for k, v in trim_details(r1).items()})
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
+                                "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
+                                ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"))
