@@ -23,6 +23,12 @@ def _critical(findings):
 
 
 # ---------------------------------------------------------------------------------------------- § 25.111
+def _time_at(V, t, speeds):
+    """First recorded time at which each run's airspeed V (nt, n) reaches ``speeds`` (n,) (m/s)."""
+    reached = V >= np.asarray(speeds)[None, :]
+    return np.where(reached.any(axis=0), t[np.argmax(reached, axis=0)], np.nan)
+
+
 def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evidence]:
     """§25.111: time histories (speed, wheel height, elevator, rudder, heading, lateral deviation, bank) of the
     engine-out runs of every loading (the critical one bold) and of the critical loading with all engines; a
@@ -50,7 +56,11 @@ def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evide
         ("lateral deviation (ft)", (sim["y_E"][:, cols] - sim["y_E"][:1, cols]) / FT, {}),
         ("bank φ (deg)", np.degrees(sim["phi"][:, cols]), {f"{crit.bank_deg:g}°": crit.bank_deg}),
     ]
-    svg = time_histories_svg(sim.t, panels, labels, critical=k,
+    # from a few seconds before the failure: the ground roll before it is the same in every run
+    t_fail = _time_at(sim["V"][:, :n], sim.t, vef[:n])
+    k0 = max(0, int(np.searchsorted(sim.t, np.nanmin(t_fail) - 5.0))) if np.isfinite(t_fail).any() else 0
+    panels = [(lab, vals[k0:], lim_) for lab, vals, lim_ in panels]
+    svg = time_histories_svg(sim.t[k0:], panels, labels, critical=k,
                              title=f"§25.111 takeoff, {engine} engine failed at VEF, from brake release")
     rows = []
     for f in findings:
@@ -63,8 +73,9 @@ def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evide
                          "lateral dev at 35 ft ft": dd["lateral_deviation_at_35ft_ft"],
                          "gradient after 35 ft %": dd["mean_gradient_after_35ft_pct"]})
     caption = (f"Critical condition {conds[k].loading} ({worst.check}: margin {worst.margin:.2f} {worst.unit}) with its "
-               f"neighbours, {engine} engine failed at VEF; thin line: the same loading with all engines. The rudder "
-               "holds the runway heading over its full travel; dashed lines are the design limits.")
+               f"neighbours, {engine} engine failed at VEF (from 5 s before the failure); the last line is the critical "
+               "loading with all engines. The rudder holds the runway heading over its full travel; dashed lines are "
+               "the design limits.")
     return [Evidence("Engine-out takeoff time histories", svg, caption, rows)]
 
 
