@@ -9,7 +9,10 @@ Layers up to 20 km: troposphere (lapse −6.5 K/km to 11 km) and the isothermal 
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit, vectorize
 
 from certkit.units import G0
 
@@ -36,20 +39,42 @@ def _check_range(h: np.ndarray) -> None:
         )
 
 
+_T11 = T0 + LAPSE * H_TROPOPAUSE
+_EXP_TROPO = -G0 / (LAPSE * R_AIR)
+_P11 = P0 * (_T11 / T0) ** _EXP_TROPO
+_K_STRATO = -G0 / (R_AIR * _T11)
+
+
+@njit(cache=True, inline="always")
+def isa_scalar(h):
+    """(temperature K, pressure Pa) at one altitude (m), no range check: the single implementation
+    of the layers, used by the array functions below and by compiled kernels."""
+    if h <= H_TROPOPAUSE:
+        t = T0 + LAPSE * h
+        return t, P0 * (t / T0) ** _EXP_TROPO
+    return _T11, _P11 * math.exp(_K_STRATO * (h - H_TROPOPAUSE))
+
+
+@vectorize(["float64(float64)"], cache=True)
+def _temperature(h):
+    return isa_scalar(h)[0]
+
+
+@vectorize(["float64(float64)"], cache=True)
+def _pressure(h):
+    return isa_scalar(h)[1]
+
+
 def temperature(h):
     h = np.asarray(h, dtype=float)
     _check_range(h)
-    return np.where(h <= H_TROPOPAUSE, T0 + LAPSE * h, T0 + LAPSE * H_TROPOPAUSE)
+    return _temperature(h)
 
 
 def pressure(h):
     h = np.asarray(h, dtype=float)
     _check_range(h)
-    t11 = T0 + LAPSE * H_TROPOPAUSE
-    p11 = P0 * (t11 / T0) ** (-G0 / (LAPSE * R_AIR))
-    tropo = P0 * ((T0 + LAPSE * h) / T0) ** (-G0 / (LAPSE * R_AIR))
-    strato = p11 * np.exp(-G0 * (h - H_TROPOPAUSE) / (R_AIR * t11))
-    return np.where(h <= H_TROPOPAUSE, tropo, strato)
+    return _pressure(h)
 
 
 def density(h):

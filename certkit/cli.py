@@ -7,6 +7,7 @@ Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no tr
 from __future__ import annotations
 
 import json
+import os
 import re
 import sys
 import time
@@ -57,7 +58,8 @@ def _safe_dirname(name: str) -> str:
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), help="Report folder (default reports/<aircraft name>/).")
 @click.option("--select", multiple=True, help="Rule id prefix or symbol to run (repeatable, comma-separated).")
 @click.option("--ignore", multiple=True, help="Rule id prefix or symbol to skip (repeatable, comma-separated).")
-@click.option("--jobs", "-j", default=1, show_default=True, type=int, help="Parallel processes.")
+@click.option("--jobs", "-j", default=None, type=int,
+              help="Parallel processes (default: the CPU cores available, at most 4; results do not depend on it).")
 @click.option("--json", "as_json", is_flag=True, help="Print results.json to standard output as well.")
 @_rules_option
 def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
@@ -72,6 +74,8 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     options, rules = _discovery(rules_dirs)
     split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
     chosen = select_rules(rules, split(select), split(ignore))
+    if jobs is None:
+        jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
     result = run(loaded, chosen, jobs=jobs, options=options)
     out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
     json_path, html_path = write_report(result, chosen, out)

@@ -133,12 +133,13 @@ class Context:
         return self.memo(key, lambda: solve_loading(self.aircraft, mass, x_cg, name))
 
     def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
-             configuration: str | None = None, design_limits: bool = True):
+             configuration: str | None = None, design_limits: bool = True, throttle=None):
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
-        value per condition (rad); ``inoperative`` names a failed engine (or gives one name per condition). Control
-        limits are the design limits.
+        value per condition (rad); ``inoperative`` names a failed engine (or gives one name per condition);
+        ``throttle`` fixes the throttles (0–1, the flight-path angle is then solved for). Control limits are the design
+        limits.
         """
         from certkit.conditions import speed_as
 
@@ -151,10 +152,12 @@ class Context:
         h = np.array([c.altitude or 0.0 for c in conds])
         key = ("trim", config, tuple((c.mass, c.x_cg) for c in conds), tuple(np.round(tas, 6)), tuple(h), kind,
                _hashable(gamma), _hashable(bank), _hashable(beta),
-               inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative), design_limits)
-        return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits))
+               inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative), design_limits,
+               None if throttle is None else _hashable(throttle))
+        return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits,
+                                                 throttle))
 
-    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits):
+    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits, throttle=None):
         from certkit.models.dynamics.trim import trim
         from certkit.models.flight import ROLES, control_limits, flight_model
 
@@ -167,7 +170,7 @@ class Context:
                 raise ValueError(f"no engine named {d!r} (engines: {', '.join(names)})")
             operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
-        return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta,
+        return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
                     limits=control_limits(self.aircraft, design=design_limits), roles=ROLES)
 
     def modes(self, conditions):

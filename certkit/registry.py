@@ -81,6 +81,9 @@ class Rule:
         The :class:`~certkit.conditions.ConditionSpace` the rule is evaluated over.
     implementation
         ``implemented``, ``partial`` (say what is missing in ``limitations``) or ``planned``.
+    cost
+        Rough evaluation time relative to a trim-only rule (1); used only to start the heaviest
+        rules first when ``--jobs`` spreads them over processes.
     """
 
     id: ClassVar[str]
@@ -96,6 +99,7 @@ class Rule:
     implementation: ClassVar[str] = "implemented"
     limitations: ClassVar[str] = ""
     origin: ClassVar[str] = "built-in"
+    cost: ClassVar[float] = 1.0
 
     def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
         """Return findings for the conditions (any number per condition, each naming its condition)."""

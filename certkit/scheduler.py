@@ -119,29 +119,32 @@ def _worker_init(path: str, options: DiscoveryOptions) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    _WORKER["loaded"] = load_aircraft(path)
+    _WORKER["ctx"] = Context(load_aircraft(path))
     _WORKER["rules"] = {r.id: r for r in discover(options)}
 
 
-def _worker_run(rule_ids: list[str]) -> tuple[list[RuleResult], dict]:
-    return _evaluate_many(_WORKER["loaded"], [_WORKER["rules"][i] for i in rule_ids])
+def _worker_run(rule_id: str) -> tuple[RuleResult, dict]:
+    """One rule in a worker process, on the worker's own Context (its models are reused by the next
+    rules the worker takes)."""
+    ctx = _WORKER["ctx"]
+    return evaluate_rule(_WORKER["rules"][rule_id], ctx), ctx.provenance()
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None) -> RunResult:
-    """Evaluate ``rules`` on ``loaded``; ``jobs`` processes (rules are split round-robin)."""
+    """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next rule when
+    it is free, the heaviest (:attr:`Rule.cost`) first."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
         results, provenance = _evaluate_many(loaded, rules)
         provenance = _merge_provenance([provenance])
     else:
-        chunks = [[r.id for r in rules[i::jobs]] for i in range(jobs)]
-        chunks = [c for c in chunks if c]
-        with ProcessPoolExecutor(max_workers=len(chunks), initializer=_worker_init,
+        order = sorted(rules, key=lambda r: -r.cost)  # stable: equal costs keep the registry order
+        with ProcessPoolExecutor(max_workers=min(jobs, len(rules)), initializer=_worker_init,
                                  initargs=(loaded.path, options)) as pool:
-            parts = list(pool.map(_worker_run, chunks))
-        by_id = {r.id: r for part, _ in parts for r in part}
+            parts = list(pool.map(_worker_run, [r.id for r in order]))
+        by_id = {res.id: res for res, _ in parts}
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])
     created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")

@@ -10,7 +10,18 @@ from functools import lru_cache
 
 import pint
 
-ureg = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+
+
+def _registry() -> pint.UnitRegistry:
+    """pint's registry, its parsed definitions cached in the user's cache folder (a tenth of the start-up
+    time); without a writable cache folder, parsed afresh."""
+    try:
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
+    except OSError:
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+
+
+ureg = _registry()
 ureg.define("knot_ = knot = kn = kt = kts")  # aliases used on flight decks
 
 #: dimension name → (SI unit, pint dimensionality)
@@ -28,6 +39,8 @@ DIMENSIONS: dict[str, str] = {
     "moment": "N*m",
     "mass_flow": "kg/s",
     "acceleration": "m/s**2",
+    "gearing": "rad/m",  # control gearing: surface angle per metre of cockpit travel
+    "stiffness": "N/m",  # feel-spring gradient: force per metre of cockpit travel
     "dimensionless": "",
 }
 

@@ -240,3 +240,16 @@ def _structure(s):
                 ult = getattr(c.ultimate, sense, c.ultimate)
                 if ult < lim:
                     yield f"{path}.ultimate", f"ultimate allowable ({sense} sense, {ult:.4g}) is below the limit allowable ({lim:.4g})", ult
+
+
+#: the lifting surface that carries each primary control
+_CONTROL_SURFACE = {"elevator": "horizontal_tail", "aileron": "wing", "rudder": "vertical_tail"}
+
+
+@needs("control_forces", "geometry")
+def _control_forces(s):
+    forces, g = s["control_forces"], s["geometry"]
+    for name, surface in _CONTROL_SURFACE.items():
+        if getattr(forces, name) is not None and name not in getattr(g, surface).controls:
+            yield (f"control_forces.{name}", f"no control surface named {name!r} on geometry.{surface} "
+                   f"(declared: {', '.join(getattr(g, surface).controls) or 'none'})", None)

@@ -14,8 +14,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validat
 
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
-    Angle, Force, Fraction, Inertia, Length, PositiveArea, PositiveForce, PositiveLength,
-    PositiveMass, Speed,
+    Angle, Force, Fraction, Gearing, Inertia, Length, PositiveArea, PositiveForce, PositiveLength,
+    PositiveMass, Pressure, Speed, Stiffness,
 )
 
 
@@ -386,6 +386,104 @@ class Structure(_Section):
     vertical_tail: list[StructuralCapability] = Field(default_factory=list)
 
 
+# --- control forces ----------------------------------------------------------------------
+
+class HingeMoment(_Section):
+    """Hinge-moment derivatives of a control surface, per radian: C_h = Ch_0 + Ch_alpha α_s + Ch_delta δ, with
+    α_s the local angle of attack of the surface it is hinged to (tailplane, fin or wing) and δ its deflection,
+    the hinge moment H = C_h q_s S c positive in the sense of positive δ (:mod:`certkit.conventions`)."""
+
+    Ch_0: float = 0.0
+    Ch_alpha: float
+    Ch_delta: Annotated[float, Field(lt=0.0, description="restoring (negative): a surface with Ch_delta ≥ 0 is "
+                                                         "overbalanced and cannot be flown reversible")]
+
+
+#: fields that only one type of control-force model takes
+_TYPE_FIELDS = {"reversible": ("hinge_moment", "chord", "area", "span", "downwash_gradient"),
+                "artificial_feel": ("gradient", "q_feel_reference")}
+
+
+class ControlFeel(_Section):
+    """The force model of one cockpit control (:mod:`certkit.models.control_force`), of one of two types.
+
+    ``type: reversible`` — an aerodynamically reversible (or boosted) control: the pilot holds
+    ``hinge_moment_fraction`` of the surface's hinge moment through the gearing, F = −G f η q S c C_h. Needs
+    ``hinge_moment``, ``chord`` (mean chord aft of the hinge line) and ``area`` (area aft of the hinge line) or
+    ``span`` (area = span × chord); for the elevator both halves as one surface, for the aileron one side.
+
+    ``type: artificial_feel`` — a fully powered control with a feel unit: F = ``preload`` + ``gradient`` ×
+    displacement from the feel neutral (the trim), the gradient scaled by q / ``q_feel_reference`` when given.
+
+    Both: the linkage is a linear ``gearing`` (surface angle per length of column or pedal travel,
+    ``"0.9 deg/in"``) or, for a wheel, ``wheel_gearing`` (surface rad per wheel rad) with ``wheel_diameter``
+    (the force is then at the rim); ``friction`` is the control's friction force (§25.173(b) free return).
+    """
+
+    type: Literal["reversible", "artificial_feel"]
+    gearing: Annotated[Gearing, Field(gt=0.0)] | None = None
+    wheel_gearing: Annotated[float, Field(gt=0.0)] | None = None
+    wheel_diameter: PositiveLength | None = None
+    friction: Annotated[Force, Field(ge=0.0)] | None = Field(
+        None, description="friction force at the cockpit control, for the free return of §25.173(b)")
+    # reversible
+    hinge_moment: HingeMoment | None = None
+    chord: PositiveLength | None = None
+    area: PositiveArea | None = None
+    span: PositiveLength | None = None
+    hinge_moment_fraction: Annotated[float, Field(gt=0.0, le=1.0, description="share of the hinge moment the pilot "
+                                                                                 "carries: 1 unboosted, 1/(1+B) with a boost ratio B")] = 1.0
+    dynamic_pressure_ratio: Annotated[float, Field(gt=0.0, le=1.2, description="η = q at the surface / free-stream q")] = 1.0
+    downwash_gradient: Annotated[float, Field(ge=0.0, lt=1.0)] | None = Field(
+        None, description="dε/dα at the tailplane (elevator) or dσ/dβ at the fin (rudder); default: elevator "
+                          "2 a_w/(π A) from the wing, rudder 0")
+    downwash_at_zero_alpha: Angle = Field(0.0, description="ε at zero body angle of attack (elevator only)")
+    # artificial feel
+    preload: Annotated[Force, Field(ge=0.0)] = Field(0.0, description="breakout force")
+    gradient: Annotated[Stiffness, Field(gt=0.0)] | None = Field(None, description="force per cockpit travel ('20 lbf/in')")
+    q_feel_reference: Annotated[Pressure, Field(gt=0.0)] | None = Field(
+        None, description="dynamic pressure at which the gradient is as declared (q-feel); none: constant gradient")
+    source: str | None = None
+
+    @model_validator(mode="after")
+    def _complete(self):
+        problems = []
+        wheel = self.wheel_gearing is not None or self.wheel_diameter is not None
+        if self.gearing is not None and wheel:
+            problems.append("give either gearing (column or pedals) or wheel_gearing with wheel_diameter, not both")
+        elif self.gearing is None and not (self.wheel_gearing is not None and self.wheel_diameter is not None):
+            problems.append("needs gearing (surface angle per cockpit travel, e.g. '0.9 deg/in') or wheel_gearing "
+                            "with wheel_diameter")
+        other = "artificial_feel" if self.type == "reversible" else "reversible"
+        stray = [f for f in _TYPE_FIELDS[other] if getattr(self, f) is not None]
+        if stray:
+            problems.append(f"{', '.join(stray)} belong{'s' if len(stray) == 1 else ''} to type {other}, not {self.type}")
+        if self.type == "reversible":
+            missing = [f for f in ("hinge_moment", "chord") if getattr(self, f) is None]
+            if missing:
+                problems.append(f"type reversible needs {' and '.join(missing)}")
+            if (self.area is None) == (self.span is None):
+                problems.append("type reversible needs the surface's area aft of the hinge line or its span (one of the two)")
+        elif self.gradient is None:
+            problems.append("type artificial_feel needs gradient (force per cockpit travel, e.g. '20 lbf/in')")
+        if problems:
+            raise ValueError("; ".join(problems))
+        return self
+
+    @property
+    def surface_area(self) -> float:
+        return self.area if self.area is not None else self.span * self.chord
+
+
+class ControlForces(_Section):
+    """Cockpit control-force models per primary control (:mod:`certkit.models.control_force`)."""
+
+    elevator: ControlFeel | None = None
+    aileron: ControlFeel | None = None
+    rudder: ControlFeel | None = None
+    source: str | None = None
+
+
 RuleId = Annotated[str, Field(pattern=r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")]
 
 
@@ -404,5 +502,6 @@ class Aircraft(_Section):
     envelope: Envelope
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
+    control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

@@ -50,6 +50,9 @@ Angle = quantity("angle")
 Inertia = quantity("inertia")
 Time = quantity("time")
 SpeedValue = quantity("speed")
+Pressure = quantity("pressure")
+Gearing = quantity("gearing")
+Stiffness = quantity("stiffness")
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 PositiveArea = Annotated[Area, Field(gt=0)]
@@ -89,6 +92,7 @@ class Speed(BaseModel):
 
 
 __all__ = [
-    "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "PositiveLength",
+    "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "Pressure", "Gearing", "Stiffness",
+    "PositiveLength",
     "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
 ]

@@ -53,7 +53,7 @@ def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> s
     axes[3].set_xlabel("time (s)")
     for ax in axes:
         ax.grid(True, alpha=0.3)
-    axes[0].legend(fontsize=6, loc="best")
+    axes[0].legend(fontsize=6, loc="upper right")
     return figure_to_svg(fig)
 
 
@@ -124,7 +124,7 @@ def gust_time_history_svg(replays, conditions) -> str:
         ax.set_ylabel(name, fontsize=8)
         ax.grid(True, alpha=0.3)
     axes[3].set_xlabel("time (s)")
-    axes[0].legend(fontsize=6, loc="best")
+    axes[0].legend(fontsize=6, loc="upper right")
     return figure_to_svg(fig)
 
 

@@ -24,7 +24,7 @@ def time_histories_svg(t, panels, labels, critical: int = 0, title: str = "") ->
             ax.annotate(name, (ax.get_xlim()[0], value), fontsize=7, va="bottom")
         ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7, loc="best")
+    axes[0].legend(fontsize=7, loc="upper right")
     axes[-1].set_xlabel("time (s)")
     if title:
         axes[0].set_title(title)

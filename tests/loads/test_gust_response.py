@@ -16,7 +16,7 @@ from certkit.models.aero.derivative_model import StabilityDerivativeModel
 from certkit.models.aero.interface import AeroReference
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
-from certkit.models.loads.gust import GustAero, one_minus_cosine
+from certkit.models.loads.gust import gust_aero, one_minus_cosine
 from certkit.units import FT, G0
 
 S, A, MASS, V, H_ALT = 400.0, 5.0, 200_000.0, 200.0, 0.0
@@ -27,7 +27,7 @@ def heave_run(H, Uds, dt=0.002):
     rho = density(H_ALT)
     qbar = 0.5 * rho * V**2
     base = StabilityDerivativeModel(ref, {"CL_alpha": A})
-    aero = GustAero(base, np.array([0.0, 1.0]), np.array([A, A]), np.zeros(2), np.zeros(2), np.zeros(2))
+    aero = gust_aero(base, np.array([0.0, 1.0]), np.array([A, A]), np.zeros(2), np.zeros(2), np.zeros(2))
     model = AircraftModel(aero, MASS, (30.0, 0.0, 0.0), np.diag([1e7, 1e7, 1e7]))
     alpha0 = MASS * G0 / (qbar * S * A)
     x0 = np.array([[0, 0, H_ALT, V * np.cos(alpha0), 0, V * np.sin(alpha0), 0, 0, 0, 0, alpha0, 0]])

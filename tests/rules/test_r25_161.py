@@ -20,9 +20,9 @@ def base():
     return run_rule("25.161")
 
 
-def finding(result, loading, segment):
-    return next(f for f in result.findings if f.condition.loading == loading and f.condition.get("segment") == segment
-                and f.margin is not None)
+def finding(result, loading, case, check="(c)(1) climb, clean elevator"):
+    return next(f for f in result.findings if f.condition.loading == loading and f.condition.get("case") == case
+                and f.margin is not None and f.check.startswith(check))
 
 
 def test_hand_calculation_climb_speed_and_margin(base):
@@ -52,6 +52,33 @@ def test_sign_larger_design_limit_more_margin_and_aft_cg_more_trailing_edge_down
     assert finding(base, "aft_mrw", "climb").value > finding(base, "fwd_mrw", "climb").value
 
 
-def test_not_evaluated_without_vc(tmp_path):
-    r = run_rule("25.161", tmp_path, [("  VC: 272 kn EAS ", "  # VC: 272 kn EAS ")])
-    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VC"
+def test_cases_of_the_paragraph(base):
+    """Every case of (c)(1)–(c)(3) and (d) is flown at every corner: climb clean and takeoff flaps, power-off
+    glide (idle: the flight path results, steeper than level), 3° approach gear down (the landing configuration;
+    the baseline's approach configuration has its gear up), level flight
+    at 1.3 VSR1 and VMO/MMO at both altitudes, and the engine-out climb with its three controls and bank."""
+    checks = {f.check for f in base.findings}
+    for c in ("(c)(1) climb, clean elevator", "(c)(1) climb, takeoff elevator", "(c)(2) power-off glide elevator",
+              "(c)(2) 3° approach, landing elevator", "(c)(3) level flight elevator",
+              "(d) engine-out climb elevator", "(d) engine-out climb rudder", "(d) engine-out climb aileron",
+              "(d) engine-out climb bank within 5°"):
+        assert any(k.startswith(c) for k in checks), c
+    glide = finding(base, "fwd_mrw", "glide", "(c)(2) power-off glide")
+    assert glide.details["throttle:left"] == 0.0 and glide.details["flight_path_deg"] < -1.0
+    level = [f for f in base.findings if f.condition.loading == "fwd_mrw" and f.check.startswith("(c)(3)")]
+    # 272 KEAS at 35,000 ft is M 0.85 < MMO 0.87: VMO bounds the range at both altitudes
+    assert {f.condition.speed_name for f in level} == {"1.3 VSR1", "VMO"}
+    assert len({f.condition.altitude for f in level}) == 2
+    banks = [f for f in base.findings if f.check.startswith("(d) engine-out climb bank")]
+    assert len(banks) == 8 and all(f.limit == 5.0 and 0.0 < f.value <= 5.0 + 1e-9 for f in banks)
+    # where the zero-sideslip trim needs more than 5°, the trim is flown at 5° (the sideslip results)
+    steep = [f for f in banks if abs(f.details["zero_sideslip_bank_deg"]) > 5.0]
+    assert all(f.value == pytest.approx(5.0, abs=1e-6) and abs(f.details["beta_deg"]) > 0.01 for f in steep)
+
+
+def test_not_evaluated_without_takeoff_configuration(tmp_path):
+    """No takeoff configuration: the (c)(1) flaps-in-takeoff-position climb is not evaluated, with the reason."""
+    r = run_rule("25.161", tmp_path, [("  takeoff:\n    flap: 15 deg", "  takeoff_alt:\n    flap: 15 deg"),
+                                       ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS")])
+    f = [f for f in r.findings if f.check == "(c)(1) climb"]
+    assert f and all(x.status == "not_evaluated" and x.reason == "needs configurations.takeoff" for x in f)

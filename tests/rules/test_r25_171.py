@@ -85,7 +85,7 @@ def test_speed_stability_on_the_limit(grad, tmp_path):
 
 
 def test_not_evaluated(tmp_path):
-    """(c) needs a control-force model, which the schema lacks; (a) and 25.171 need VMO."""
+    """(c) needs a control-force model, which the baseline does not declare; (a) and 25.171 need VMO."""
     r = run_rule("25.173(c)")
     assert r.status == "not_evaluated" and "control-force model" in r.findings[0].reason
     r = run_rule("25.171", tmp_path, edits=[("  VMO: 272 kn EAS              # = VC, see above\n", "")])

@@ -15,7 +15,7 @@ from certkit.atmosphere import density
 from certkit.models.aero.derivative_model import StabilityDerivativeModel
 from certkit.models.aero.interface import AeroReference
 from certkit.models.dynamics.eom import AircraftModel
-from certkit.models.loads.gust import GustAero
+from certkit.models.loads.gust import gust_aero
 from certkit.models.loads.gust_response import GustBatch, simulate_gust
 from certkit.registry import Criteria
 from certkit.units import FT, G0
@@ -87,7 +87,7 @@ def test_two_phase_heave_against_closed_form(H_ft):
     of tests/loads/test_gust_response.py: Δn within 2 % of the peak of the closed-form quasi-steady solution
     while the gust acts; after it, the response decays (Δn → 0 within the settle time)."""
     ref = AeroReference(S, 60.0, 7.0, 30.0, 0.0)
-    aero = GustAero(StabilityDerivativeModel(ref, {"CL_alpha": A}), np.array([0.0, 1.0]), np.array([A, A]),
+    aero = gust_aero(StabilityDerivativeModel(ref, {"CL_alpha": A}), np.array([0.0, 1.0]), np.array([A, A]),
                     np.zeros(2), np.zeros(2), np.zeros(2))
     model = AircraftModel(aero, MASS, (30.0, 0.0, 0.0), np.diag([1e7, 1e7, 1e7]))
     qbar = 0.5 * density(0.0) * V**2

@@ -40,6 +40,11 @@ Stall model (optional, :class:`StallModel`)
         CL = (1 − σ) CL_att + σ CL_sep,   CD = CD_attached + σ CD_sep.
     The result is smooth (continuous derivatives), so Newton trims and RK4 simulations near stall
     behave, and lift falls after the break as a real wing's does.
+    Controls named in ``after_stall`` (pseudo-controls such as a gust angle) add their lift after
+    the stall model and outside the induced drag.
+
+The equations are evaluated by compiled code (:mod:`certkit.models.aero.derivative_kernel`), the
+same function the equations of motion call inside their integration step.
 """
 
 from __future__ import annotations
@@ -49,17 +54,11 @@ from typing import Mapping, Sequence
 
 import numpy as np
 
+from certkit.models.aero.derivative_kernel import BASE_TERMS, CONTROL_PREFIXES, coefficients_batch
 from certkit.models.aero.interface import AeroReference, AeroState, Coefficients
 
-_BASE_TERMS = (
-    "CL0", "CL_alpha", "CL_q", "CL_alphadot",
-    "CD0", "k", "CL_minD", "CD_alpha", "CD_alpha2",
-    "CY_beta", "CY_p", "CY_r",
-    "Cl_beta", "Cl_p", "Cl_r",
-    "Cm0", "Cm_alpha", "Cm_q", "Cm_alphadot",
-    "Cn_beta", "Cn_p", "Cn_r",
-)
-_CONTROL_PREFIXES = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
+_BASE_TERMS = BASE_TERMS
+_CONTROL_PREFIXES = CONTROL_PREFIXES
 
 
 @dataclass(frozen=True)
@@ -100,6 +99,8 @@ class StabilityDerivativeModel:
         mach: Sequence[float] | None = None,
         control_names: Sequence[str] | None = None,
         stall: StallModel | None = None,
+        after_stall: Sequence[str] = (),
+        alpha_drag: bool | None = None,
     ) -> None:
         self.reference = reference
         self.mach = np.atleast_1d(np.asarray(mach if mach is not None else [0.0], dtype=float))
@@ -121,7 +122,12 @@ class StabilityDerivativeModel:
             if name not in _BASE_TERMS and ctrl not in self.control_names:
                 raise KeyError(f"unknown derivative {name!r}: neither a stability derivative nor a term of a "
                                f"control in {self.control_names}")
-        self.uses_alpha_drag = "CD_alpha" in derivatives or "CD_alpha2" in derivatives
+        self.uses_alpha_drag = (alpha_drag if alpha_drag is not None
+                                else "CD_alpha" in derivatives or "CD_alpha2" in derivatives)
+        unknown = [c for c in after_stall if c not in self.control_names]
+        if unknown:
+            raise KeyError(f"after_stall names unknown controls {unknown}")
+        self.after_stall = tuple(after_stall)
         names = list(_BASE_TERMS) + [f"{p}_{c}" for c in self.control_names for p in _CONTROL_PREFIXES]
         self._index = {n: i for i, n in enumerate(names)}
         table = np.zeros((len(names), nm))
@@ -134,13 +140,20 @@ class StabilityDerivativeModel:
             else:
                 raise ValueError(f"{name}: expected a float or {nm} values (one per Mach breakpoint), got shape {v.shape}")
         self._table = table
-        self._alpha_dot_cache = None
         self.stall = stall
+        self._clmax = np.zeros(nm)
+        stall_params = np.zeros(5)
         if stall is not None:
             clmax = np.asarray(stall.CLmax, dtype=float)
-            self._clmax = np.broadcast_to(clmax, (nm,)).copy() if clmax.ndim == 0 or clmax.shape == (nm,) else None
-            if self._clmax is None:
+            if not (clmax.ndim == 0 or clmax.shape == (nm,)):
                 raise ValueError(f"CLmax: expected a float or {nm} values")
+            self._clmax = np.broadcast_to(clmax, (nm,)).copy()
+            stall_params[:] = (1.0, stall.rounding, stall.break_delta, stall.break_width, stall.CD90)
+        #: the compiled evaluator's arguments (table, Mach breakpoints, CLmax, stall parameters,
+        #: α-drag flag, after-stall flags) — see :mod:`certkit.models.aero.derivative_kernel`
+        self.kernel_data = (np.ascontiguousarray(table), self.mach, self._clmax, stall_params,
+                            bool(self.uses_alpha_drag),
+                            np.array([c in self.after_stall for c in self.control_names], dtype=np.bool_))
 
     # ------------------------------------------------------------------ helpers
     @property
@@ -170,9 +183,6 @@ class StabilityDerivativeModel:
 
     def alpha_dot_derivatives(self, mach) -> tuple[np.ndarray, np.ndarray]:
         """(CL_alphadot, Cm_alphadot) at ``mach``, per unit α̇ c/2V (used by the equations of motion)."""
-        cached = self._alpha_dot_cache
-        if cached is not None and cached[0] is mach:  # the same array the last coefficients() saw
-            return cached[1], cached[2]
         i, w = self._weights(np.asarray(mach, dtype=float))
         rows = self._table[[self._index["CL_alphadot"], self._index["Cm_alphadot"]]]
         out = self._interp_rows(rows, i, w)
@@ -180,60 +190,33 @@ class StabilityDerivativeModel:
 
     # ------------------------------------------------------------------ protocol
     def coefficients(self, state: AeroState) -> Coefficients:
-        alpha = np.asarray(state.alpha, dtype=float)
         shape = np.broadcast_shapes(
-            alpha.shape, np.shape(state.beta), np.shape(state.p_hat), np.shape(state.q_hat),
-            np.shape(state.r_hat), np.shape(state.mach),
-            *[np.shape(v) for v in state.controls.values()],
+            np.shape(state.alpha), np.shape(state.beta), np.shape(state.p_hat), np.shape(state.q_hat),
+            np.shape(state.r_hat), np.shape(state.mach), *[np.shape(v) for v in state.controls.values()],
         )
-        alpha = np.broadcast_to(alpha, shape)
-        beta = np.broadcast_to(np.asarray(state.beta, dtype=float), shape)
-        i, w = self._weights(np.broadcast_to(np.asarray(state.mach, dtype=float), shape))
-        T = self._interp_rows(self._table, i, w)  # (n_terms, *shape)
-        ix = self._index
-        self._alpha_dot_cache = (state.mach, T[ix["CL_alphadot"]], T[ix["Cm_alphadot"]])
-        ca, sa = np.cos(alpha), np.sin(alpha)
-        p_hat, q_hat, r_hat = state.p_hat, state.q_hat, state.r_hat
-        ps = p_hat * ca + r_hat * sa
-        rs = r_hat * ca - p_hat * sa
-
-        CL = T[ix["CL0"]] + T[ix["CL_alpha"]] * alpha + T[ix["CL_q"]] * q_hat
-        CY = T[ix["CY_beta"]] * beta + T[ix["CY_p"]] * ps + T[ix["CY_r"]] * rs
-        Cl = T[ix["Cl_beta"]] * beta + T[ix["Cl_p"]] * ps + T[ix["Cl_r"]] * rs
-        Cm = T[ix["Cm0"]] + T[ix["Cm_alpha"]] * alpha + T[ix["Cm_q"]] * q_hat
-        Cn = T[ix["Cn_beta"]] * beta + T[ix["Cn_p"]] * ps + T[ix["Cn_r"]] * rs
-        CDc = 0.0
-        for name in self.control_names:
+        flat = [np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)).reshape(-1)
+                for a in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)]
+        ctrl = np.zeros((flat[0].size, len(self.control_names)))
+        for j, name in enumerate(self.control_names):
             d = state.controls.get(name)
-            if d is None:
-                continue
-            d = np.asarray(d, dtype=float)
-            CL = CL + T[ix[f"CL_{name}"]] * d
-            CY = CY + T[ix[f"CY_{name}"]] * d
-            Cl = Cl + T[ix[f"Cl_{name}"]] * d
-            Cm = Cm + T[ix[f"Cm_{name}"]] * d
-            Cn = Cn + T[ix[f"Cn_{name}"]] * d
-            CDc = CDc + T[ix[f"CD_{name}"]] * d
+            if d is not None:
+                ctrl[:, j] = np.broadcast_to(np.asarray(d, dtype=float), shape).reshape(-1)
+        out = coefficients_batch(*self.kernel_data, *flat, ctrl)
+        c = [out[:, k].reshape(shape) for k in range(6)]
+        return Coefficients(CL=c[0], CD=c[1], CY=c[2], Cl=c[3], Cm=c[4], Cn=c[5])
 
-        CD_sep = 0.0
-        if self.stall is not None:
-            clmax = self._interp_rows(self._clmax, i, w)
-            s = self.stall
-            wr = s.rounding
-            x = (clmax - CL) / wr
-            # smooth minimum of CL and CLmax: CLmax − w·softplus(x), softplus written stably
-            cl_att = clmax - wr * (np.maximum(x, 0.0) + np.log1p(np.exp(-np.abs(x))))
-            cla = np.where(np.abs(T[ix["CL_alpha"]]) > 1e-9, T[ix["CL_alpha"]], 1e-9)
-            alpha_s = alpha + (clmax - CL) / cla
-            z = (alpha - alpha_s - s.break_delta) / s.break_width
-            sig = 0.5 * (1.0 + np.tanh(0.5 * z))
-            CL = (1.0 - sig) * cl_att + sig * s.CD90 * sa * ca
-            CD_sep = sig * s.CD90 * sa * sa
-
-        CD = T[ix["CD0"]] + T[ix["k"]] * (CL - T[ix["CL_minD"]]) ** 2 + CDc + CD_sep
-        if self.uses_alpha_drag:
-            CD = CD + T[ix["CD_alpha"]] * alpha + T[ix["CD_alpha2"]] * alpha**2
-
-        Cl_b = Cl * ca - Cn * sa
-        Cn_b = Cl * sa + Cn * ca
-        return Coefficients(CL=CL, CD=CD, CY=CY, Cl=Cl_b, Cm=Cm, Cn=Cn_b)
+    def with_control_terms(self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()
+                           ) -> "StabilityDerivativeModel":
+        """A copy with further control terms (``<coef>_<control>``, one value per Mach breakpoint
+        or a float); controls named in ``after_stall`` add their lift after the stall model and
+        outside the induced drag (pseudo-controls such as a gust angle)."""
+        names = list(self.control_names)
+        for name in terms:
+            ctrl = name.partition("_")[2]
+            if ctrl not in names:
+                names.append(ctrl)
+        derivs = {n: self._table[i] for n, i in self._index.items() if np.any(self._table[i] != 0.0)}
+        derivs.update(terms)
+        return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=names, stall=self.stall,
+                                        after_stall=tuple(self.after_stall) + tuple(after_stall),
+                                        alpha_drag=self.uses_alpha_drag)

@@ -44,18 +44,13 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from certkit import atmosphere as isa
 from certkit.models.aero.interface import AeroModel, AeroState
+from certkit.models.dynamics import kernel
 from certkit.units import G0
 
 QUAT_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "q0", "q1", "q2", "q3")
 EULER_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "phi", "theta", "psi")
 
-_H_MIN, _H_MAX = -600.0, isa.H_MAX
-_T11 = isa.T0 + isa.LAPSE * isa.H_TROPOPAUSE
-_EXP_TROPO = -G0 / (isa.LAPSE * isa.R_AIR)
-_P11 = isa.P0 * (_T11 / isa.T0) ** _EXP_TROPO
-_K_STRATO = -G0 / (isa.R_AIR * _T11)
 
 
 def airplane_to_body(points, cg) -> np.ndarray:
@@ -229,7 +224,6 @@ class AircraftModel:
             self.mu_roll = np.array([leg.rolling_friction for leg in ground.legs])
             self.mu_side = np.array([leg.side_friction for leg in ground.legs])
             self.braked = np.array([leg.braked for leg in ground.legs], dtype=float)
-            self._rgear = tuple(self.r_gear[:, :, k].copy() for k in range(3))
         self.aero_controls = tuple(aero.control_names)
         names = list(self.aero_controls) + [f"throttle:{e.name}" for e in self.engines]
         if ground is not None:
@@ -237,15 +231,7 @@ class AircraftModel:
         self.control_names = tuple(names)
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
         self._brake_index = names.index("brake") if ground is not None else None
-        self._rref = tuple(self.r_ref[:, k].copy() for k in range(3))
-        self._inv_mass = 1.0 / self.mass
-        J, K = self.inertia, self.inertia_inv
-        self._J = tuple(J[:, i, j].copy() for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
-        self._Jinv = tuple(K[:, i, j].copy() for i, j in ((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)))
         if ne:
-            self._reng = [tuple(self.r_eng[:, j, k].copy() for k in range(3)) for j in range(ne)]
-            self._reng_arr = tuple(self.r_eng[:, :, k].copy() for k in range(3))  # (n, ne) each
-            self._deng = tuple(self.d_eng[:, k].copy() for k in range(3))  # (ne,) each
             groups: dict[int, tuple] = {}
             for j, e in enumerate(self.engines):
                 groups.setdefault(id(e.thrust), (e.thrust, []))[1].append(j)
@@ -253,6 +239,7 @@ class AircraftModel:
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
+        self._pack()
 
     def set_operative(self, operative) -> None:
         """Change which engines run ((n_engines,) or (n, n_engines) booleans), e.g. an engine failure
@@ -271,209 +258,124 @@ class AircraftModel:
                              self.operative[idx], self.ground, self.g, n=idx.size)
 
     # ------------------------------------------------------------------ core
-    def body_dynamics(self, h, vel, omega, dcm, controls, with_outputs=False):
-        """Accelerations for positions/velocities of the batch.
-
-        h (n,), vel (n,3) body velocity, omega (n,3) body rates, dcm (n,3,3) body→NED,
-        controls (n, n_controls). Returns (pos_dot (n,3) as ẋ_N, ẏ_E, ḣ; vel_dot; omega_dot) and
-        an :class:`Outputs` when asked.
-        """
-        C = tuple(dcm[:, i, j] for i in range(3) for j in range(3))
-        res = self._dynamics(h, vel[:, 0], vel[:, 1], vel[:, 2], omega[:, 0], omega[:, 1], omega[:, 2], C,
-                             controls, with_outputs)
-        pos_dot = np.stack(res[0:3], axis=1)
-        vel_dot = np.stack(res[3:6], axis=1)
-        omega_dot = np.stack(res[6:9], axis=1)
-        return pos_dot, vel_dot, omega_dot, res[9]
-
-    def _dynamics(self, h, u, v, w, p, q, r, C, controls, with_outputs):
-        """Component form of the equations (the hot path: (n,) arrays only, no small-matrix
-        numpy calls). C = the nine body→NED direction cosines, row by row."""
-        n = u.shape[0]
-        C11, C12, C13, C21, C22, C23, C31, C32, C33 = C
-        V2 = u * u + v * v + w * w
-        V = np.sqrt(V2)
-        Vs = np.maximum(V, 1e-3)
-        uw2 = np.maximum(u * u + w * w, 1e-6)
-        alpha = np.arctan2(w, u)
-        beta = np.arcsin(np.minimum(np.maximum(v / Vs, -1.0), 1.0))
-        # ISA, inlined (troposphere + isothermal layer), altitude clipped to the modelled range
-        hc = np.minimum(np.maximum(h, _H_MIN), _H_MAX)
-        T_air = np.maximum(isa.T0 + isa.LAPSE * hc, _T11)
-        p_air = np.where(hc <= isa.H_TROPOPAUSE, isa.P0 * (T_air / isa.T0) ** _EXP_TROPO,
-                         _P11 * np.exp(_K_STRATO * (hc - isa.H_TROPOPAUSE)))
-        rho = p_air / (isa.R_AIR * T_air)
-        mach = V / np.sqrt(isa.GAMMA * isa.R_AIR * T_air)
-        qbar = 0.5 * rho * V2
-        b, c, S = self.b, self.c, self.S
-        ctrl = {name: controls[:, i] for i, name in enumerate(self.aero_controls)}
-        coef = self.aero.coefficients(AeroState(
-            alpha=alpha, beta=beta, p_hat=p * (b / 2) / Vs, q_hat=q * (c / 2) / Vs, r_hat=r * (b / 2) / Vs,
-            mach=mach, controls=ctrl))
-        ca, sa = u / np.sqrt(uw2), w / np.sqrt(uw2)
-        qS = qbar * S
-        CL, CD = coef.CL, coef.CD
-        Fx = qS * (CL * sa - CD * ca)
-        Fy = qS * coef.CY
-        Fz = -qS * (CD * sa + CL * ca)
-        rx, ry, rz = self._rref
-        Mx = qS * b * coef.Cl + ry * Fz - rz * Fy
-        My = qS * c * coef.Cm + rz * Fx - rx * Fz
-        Mz = qS * b * coef.Cn + rx * Fy - ry * Fx
-
-        ne = len(self.engines)
-        thrust = None
-        if ne:
-            thr = controls[:, self.throttle_slice]
-            thrust = np.empty((n, ne))
-            hc2, mach2 = hc[:, None], mach[:, None]
-            for fn, idx in self._thrust_groups:  # one call per distinct thrust function
-                thrust[:, idx] = fn(thr[:, idx], hc2, mach2)
-            for j, eng in enumerate(self.engines):
-                if not self._all_operative[j]:
-                    dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
-                    thrust[:, j] = np.where(self.operative[:, j], thrust[:, j], dead)
-            dx, dy, dz = self._deng
-            ex, ey, ez = self._reng_arr
-            fx, fy, fz = thrust * dx, thrust * dy, thrust * dz
-            Fx = Fx + fx.sum(1)
-            Fy = Fy + fy.sum(1)
-            Fz = Fz + fz.sum(1)
-            Mx = Mx + (ey * fz - ez * fy).sum(1)
-            My = My + (ez * fx - ex * fz).sum(1)
-            Mz = Mz + (ex * fy - ey * fx).sum(1)
-
-        gear_load = np.zeros((n, 0))
-        if self.ground is not None:
-            gx, gy, gz, gl, gm_, gn, gear_load = self._ground_forces(h, u, v, w, p, q, r, C, controls)
-            Fx, Fy, Fz = Fx + gx, Fy + gy, Fz + gz
-            Mx, My, Mz = Mx + gl, My + gm_, Mz + gn
-
-        im = self._inv_mass
-        g = self.g
-        udot = Fx * im + g * C31 - (q * w - r * v)
-        vdot = Fy * im + g * C32 - (r * u - p * w)
-        wdot = Fz * im + g * C33 - (p * v - q * u)
-        alpha_dot = (u * wdot - w * udot) / uw2
-        if self._alpha_dot is not None:
-            CLad, Cmad = self._alpha_dot(mach)
-            kf = qS * (c / 2) / Vs * CLad  # lift per unit alpha_dot
-            dFx, dFz = kf * sa, -kf * ca
-            alpha_dot = alpha_dot / (1.0 - (u * dFz - w * dFx) * im / uw2)
-            udot = udot + dFx * im * alpha_dot
-            wdot = wdot + dFz * im * alpha_dot
-            Fx = Fx + dFx * alpha_dot
-            Fz = Fz + dFz * alpha_dot
-            Mx = Mx + ry * dFz * alpha_dot
-            My = My + (qS * c * (c / 2) / Vs * Cmad + rz * dFx - rx * dFz) * alpha_dot
-            Mz = Mz - ry * dFx * alpha_dot
-
-        J11, J12, J13, J22, J23, J33 = self._J
-        hx = J11 * p + J12 * q + J13 * r
-        hy = J12 * p + J22 * q + J23 * r
-        hz = J13 * p + J23 * q + J33 * r
-        ax = Mx - (q * hz - r * hy)
-        ay = My - (r * hx - p * hz)
-        az = Mz - (p * hy - q * hx)
-        K11, K12, K13, K22, K23, K33 = self._Jinv
-        pdot = K11 * ax + K12 * ay + K13 * az
-        qdot = K12 * ax + K22 * ay + K23 * az
-        rdot = K13 * ax + K23 * ay + K33 * az
-        xNdot = C11 * u + C12 * v + C13 * w
-        yEdot = C21 * u + C22 * v + C23 * w
-        hdot = -(C31 * u + C32 * v + C33 * w)
-        out = None
-        if with_outputs:
-            Wt = self.mass * g
-            out = Outputs(V=V, alpha=alpha, beta=beta, mach=mach, qbar=qbar,
-                          n_x=Fx / Wt, n_y=Fy / Wt, n_z=-Fz / Wt, alpha_dot=alpha_dot,
-                          thrust=thrust if thrust is not None else np.zeros((n, 0)), gear_load=gear_load,
-                          CL=np.broadcast_to(CL, (n,)), CD=np.broadcast_to(CD, (n,)))
-        return xNdot, yEdot, hdot, udot, vdot, wdot, pdot, qdot, rdot, out
-
-    def _ground_forces(self, h, u, v, w, p, q, r, C, controls):
-        """Gear reactions in component form over (n, n_legs) arrays: returns body force and moment
-        components (six (n,) arrays) and the legs' normal loads (n, n_legs)."""
+    def _pack(self) -> None:
+        """The compiled kernel's arguments (layout in :mod:`certkit.models.dynamics.kernel`)."""
+        n, ne = self.n, len(self.engines)
+        props = np.empty((n, 16))
+        props[:, 0] = 1.0 / self.mass
+        J, K = self.inertia, self.inertia_inv
+        for k, (a, b_) in enumerate(((0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2))):
+            props[:, 1 + k] = J[:, a, b_]
+            props[:, 7 + k] = K[:, a, b_]
+        props[:, 13:16] = self.r_ref
+        table = getattr(self.aero, "kernel_data", None)
+        self._use_table = table is not None
+        if table is None:
+            table = (np.zeros((1, 1)), np.zeros(1), np.zeros(1), np.zeros(5), False, np.zeros(0, dtype=np.bool_))
+        r_eng = np.ascontiguousarray(self.r_eng) if ne else np.zeros((n, 0, 3))
+        d_eng = np.ascontiguousarray(self.d_eng) if ne else np.zeros((0, 3))
         gm = self.ground
-        C11, C12, C13, C21, C22, C23, C31, C32, C33 = (c[:, None] for c in C)
-        rx, ry, rz = self._rgear
-        height = (h - gm.elevation)[:, None] - (C31 * rx + C32 * ry + C33 * rz)
-        n = h.shape[0]
-        if not (height < 0.0).any():  # airborne: nothing touches
-            z = np.zeros(n)
-            return z, z, z, z, z, z, np.zeros((n, rx.shape[1]))
-        u, v, w, p, q, r = (a[:, None] for a in (u, v, w, p, q, r))
-        vx = u + q * rz - r * ry  # contact-point velocity, body axes
-        vy = v + r * rx - p * rz
-        vz = w + p * ry - q * rx
-        vN = C11 * vx + C12 * vy + C13 * vz
-        vE = C21 * vx + C22 * vy + C23 * vz
-        vD = C31 * vx + C32 * vy + C33 * vz
-        comp = np.maximum(-height, 0.0)
-        load = np.where(comp > 0.0, np.maximum(self.k_gear * comp + self.c_gear * vD, 0.0), 0.0)
-        # wheel axes on the ground: heading of body x projected on the horizontal plane
-        nrm = np.maximum(np.hypot(C11, C21), 1e-9)
-        ex, ey = C11 / nrm, C21 / nrm
-        v_long = vN * ex + vE * ey
-        v_lat = vE * ex - vN * ey
-        if self._brake_index is not None:
-            brake = np.clip(controls[:, self._brake_index], 0.0, 1.0)[:, None]
-            mu_long = self.mu_roll + self.braked * gm.brake_friction * brake
+        if gm is not None:
+            r_gear = np.ascontiguousarray(self.r_gear)
+            legs = np.array([[leg.stiffness, leg.damping, leg.rolling_friction, leg.side_friction, float(leg.braked)]
+                             for leg in gm.legs], dtype=float).reshape(-1, 5)
+            gparams = np.array([gm.elevation, gm.brake_friction, gm.slip_speed], dtype=float)
         else:
-            mu_long = self.mu_roll
-        inv_slip = 1.0 / gm.slip_speed
-        f_long = -mu_long * load * np.tanh(v_long * inv_slip)
-        f_lat = -self.mu_side * load * np.tanh(v_lat * inv_slip)
-        fN = f_long * ex - f_lat * ey
-        fE = f_long * ey + f_lat * ex
-        fbx = C11 * fN + C21 * fE - C31 * load
-        fby = C12 * fN + C22 * fE - C32 * load
-        fbz = C13 * fN + C23 * fE - C33 * load
-        return (fbx.sum(1), fby.sum(1), fbz.sum(1), (ry * fbz - rz * fby).sum(1), (rz * fbx - rx * fbz).sum(1),
-                (rx * fby - ry * fbx).sum(1), load)
+            r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 5)), np.zeros(3)
+        self._kernel_args = (props, np.array([self.b, self.c, self.S, self.g]), *table, len(self.aero_controls),
+                             self._use_table, r_eng, d_eng, gm is not None, r_gear, legs, gparams,
+                             -1 if self._brake_index is None else self._brake_index)
+
+    def thrust_forces(self, air: np.ndarray, controls: np.ndarray, rows=None) -> np.ndarray:
+        """Force of each engine along its thrust line (n, n_engines), N, from the air data
+        (:data:`kernel.AIR` columns) and the throttles of conditions ``rows`` (default: all); a
+        failed engine gives minus its windmilling drag."""
+        n, ne = air.shape[0], len(self.engines)
+        thrust = np.zeros((n, ne))
+        if not ne:
+            return thrust
+        thr = controls[:, self.throttle_slice]
+        hc, mach, qbar = air[:, 0], air[:, 4], air[:, 5]
+        for fn, idx in self._thrust_groups:  # one call per distinct thrust function
+            thrust[:, idx] = fn(thr[:, idx], hc[:, None], mach[:, None])
+        for j, eng in enumerate(self.engines):
+            if not self._all_operative[j]:
+                dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
+                op = self.operative[:, j] if rows is None else self.operative[rows, j]
+                thrust[:, j] = np.where(op, thrust[:, j], dead)
+        return thrust
+
+    def _coefficients(self, X, air, controls) -> np.ndarray:
+        """(n, 8) coefficient rows for a model the kernel cannot evaluate itself (not a derivative
+        table): CL, CD, CY, Cl, Cm, Cn, CL_α̇, Cm_α̇ from the model's own ``coefficients``."""
+        n = X.shape[0]
+        if self._use_table:
+            return np.empty((n, 8))  # scratch space for the kernel
+        Vs = np.maximum(air[:, 1], 1e-3)
+        b, c = self.b, self.c
+        coef = self.aero.coefficients(AeroState(
+            alpha=air[:, 2], beta=air[:, 3], p_hat=X[:, 6] * (b / 2) / Vs, q_hat=X[:, 7] * (c / 2) / Vs,
+            r_hat=X[:, 8] * (b / 2) / Vs, mach=air[:, 4],
+            controls={name: controls[:, i] for i, name in enumerate(self.aero_controls)}))
+        out = np.zeros((n, 8))
+        for k, name in enumerate(("CL", "CD", "CY", "Cl", "Cm", "Cn")):
+            out[:, k] = np.broadcast_to(getattr(coef, name), (n,))
+        if self._alpha_dot is not None:
+            ad = self._alpha_dot(air[:, 4])
+            out[:, 6], out[:, 7] = np.broadcast_to(ad[0], (n,)), np.broadcast_to(ad[1], (n,))
+        return out
+
+    def evaluate(self, x, controls, thrust=None, rows=None):
+        """State derivative of the batch (quaternion (n, 13) or Euler (n, 12) states), the outputs
+        and the thrust used. ``thrust`` (n, n_engines) holds the engines' forces (e.g. over an
+        integration step); by default they are computed at the state. ``rows`` (int array) says
+        which condition each row of ``x`` belongs to (default: row i is condition i), so a subset
+        of the batch, or several states per condition, are evaluated in one call."""
+        X = np.ascontiguousarray(x, dtype=float)
+        U = np.ascontiguousarray(controls, dtype=float)
+        idx = np.arange(X.shape[0]) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+        air = None
+        if thrust is None or not self._use_table:
+            air = kernel.air_data(X)
+        if thrust is None:
+            thrust = self.thrust_forces(air, U, rows)
+        thrust = np.ascontiguousarray(thrust, dtype=float)
+        xd, out, gear = kernel.derivatives(X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U),
+                                           *self._kernel_args)
+        return xd, out, gear, thrust
+
+    def make_outputs(self, out, gear, thrust) -> Outputs:
+        cols = {name: out[:, k] for k, name in enumerate(kernel.OUTPUTS)}
+        return Outputs(thrust=thrust, gear_load=gear, **cols)
+
+    def rk4_step(self, x, xd1, controls, thrust, dt, active) -> np.ndarray:
+        """One RK4 step of the quaternion-state batch (controls and thrust held over the step);
+        the conditions not ``active`` keep their state. Returns the new state."""
+        X = np.array(x, dtype=float, order="C")
+        U = np.ascontiguousarray(controls, dtype=float)
+        thrust = np.ascontiguousarray(thrust, dtype=float)
+        act = np.ascontiguousarray(active, dtype=np.bool_)
+        if self._use_table:
+            kernel.rk4_step(X, np.ascontiguousarray(xd1, dtype=float), act, float(dt), U, thrust,
+                            np.empty((X.shape[0], 8)), *self._kernel_args)
+            return X
+        k2 = self.evaluate(X + 0.5 * dt * xd1, U, thrust)[0]
+        k3 = self.evaluate(X + 0.5 * dt * k2, U, thrust)[0]
+        k4 = self.evaluate(X + dt * k3, U, thrust)[0]
+        x_new = X + dt / 6.0 * (xd1 + 2 * k2 + 2 * k3 + k4)
+        x_new[:, 9:13] /= np.linalg.norm(x_new[:, 9:13], axis=1, keepdims=True)
+        return np.where(act[:, None], x_new, X)
 
     # ------------------------------------------------------------------ state forms
     def derivatives_quat(self, x, controls, with_outputs=False):
         """ẋ for the quaternion state (n, 13)."""
-        X = x.T
-        q0, q1, q2, q3 = X[9], X[10], X[11], X[12]
-        q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
-        q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
-        C = (q00 + q11 - q22 - q33, 2 * (q12 - q03), 2 * (q13 + q02),
-             2 * (q12 + q03), q00 - q11 + q22 - q33, 2 * (q23 - q01),
-             2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33)
-        p, q, r = X[6], X[7], X[8]
-        res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
-        xd, XD = _translational_part(x, res)
-        XD[9] = -0.5 * (p * q1 + q * q2 + r * q3)
-        XD[10] = 0.5 * (p * q0 + r * q2 - q * q3)
-        XD[11] = 0.5 * (q * q0 - r * q1 + p * q3)
-        XD[12] = 0.5 * (r * q0 + q * q1 - p * q2)
-        return (xd, res[9]) if with_outputs else xd
+        xd, out, gear, thrust = self.evaluate(x, controls)
+        return (xd, self.make_outputs(out, gear, thrust)) if with_outputs else xd
 
-    def derivatives_euler(self, x, controls, with_outputs=False):
-        """ẋ for the Euler-angle state (n, 12)."""
-        X = x.T
-        phi, theta, psi = X[9], X[10], X[11]
-        sf, cf, st, ct, sp, cp = np.sin(phi), np.cos(phi), np.sin(theta), np.cos(theta), np.sin(psi), np.cos(psi)
-        C = (ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
-             ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
-             -st, sf * ct, cf * ct)
-        p, q, r = X[6], X[7], X[8]
-        res = self._dynamics(X[2], X[3], X[4], X[5], p, q, r, C, controls, with_outputs)
-        xd, XD = _translational_part(x, res)
-        XD[9] = p + (q * sf + r * cf) * st / ct
-        XD[10] = q * cf - r * sf
-        XD[11] = (q * sf + r * cf) / ct
-        return (xd, res[9]) if with_outputs else xd
-
-
-def _translational_part(x, res):
-    xd = np.empty_like(x)
-    XD = xd.T
-    for k in range(9):
-        XD[k] = res[k]
-    return xd, XD
+    def derivatives_euler(self, x, controls, with_outputs=False, rows=None):
+        """ẋ for the Euler-angle state (n, 12) (rows of conditions ``rows``, see :meth:`evaluate`)."""
+        xd, out, gear, thrust = self.evaluate(x, controls, rows=rows)
+        return (xd, self.make_outputs(out, gear, thrust)) if with_outputs else xd
 
 
 def euler_state_to_quat_state(x12) -> np.ndarray:

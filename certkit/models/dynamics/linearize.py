@@ -65,20 +65,22 @@ def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> Lineariza
     u0 = np.asarray(u0, dtype=float)
     n, ns = x0.shape
     m = u0.shape[1]
-    A = np.empty((n, ns, ns))
-    B = np.empty((n, ns, m))
-    f = model.derivatives_euler
+    # every ± perturbation of every condition in one batch: 2 (ns + m) states per condition
+    nb = 2 * (ns + m)
+    X = np.repeat(x0[None], nb, axis=0)
+    U = np.repeat(u0[None], nb, axis=0)
     for j in range(ns):
-        d = _STATE_STEP[j]
-        xp, xm = x0.copy(), x0.copy()
-        xp[:, j] += d
-        xm[:, j] -= d
-        A[:, :, j] = (f(xp, u0) - f(xm, u0)) / (2 * d)
+        X[2 * j, :, j] += _STATE_STEP[j]
+        X[2 * j + 1, :, j] -= _STATE_STEP[j]
     for j in range(m):
-        up, um = u0.copy(), u0.copy()
-        up[:, j] += _CONTROL_STEP
-        um[:, j] -= _CONTROL_STEP
-        B[:, :, j] = (f(x0, up) - f(x0, um)) / (2 * _CONTROL_STEP)
+        U[2 * (ns + j), :, j] += _CONTROL_STEP
+        U[2 * (ns + j) + 1, :, j] -= _CONTROL_STEP
+    rows = np.tile(np.arange(n), nb)
+    F = model.derivatives_euler(X.reshape(nb * n, ns), U.reshape(nb * n, m), rows=rows).reshape(nb, n, ns)
+    steps = np.concatenate([np.asarray(_STATE_STEP, dtype=float)[:ns], np.full(m, _CONTROL_STEP)])
+    D = (F[0::2] - F[1::2]) / (2 * steps[:, None, None])  # (ns + m, n, ns)
+    A = np.moveaxis(D[:ns], 0, -1)
+    B = np.moveaxis(D[ns:], 0, -1)
     return Linearization(A=A, B=B, x0=x0, u0=u0, state_names=EULER_STATE, control_names=model.control_names)
 
 

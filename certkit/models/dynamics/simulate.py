@@ -3,7 +3,9 @@
 The state is the quaternion state (n, 13) of :mod:`certkit.models.dynamics.eom`. Controls are the
 trim controls plus pilot inputs from schedules (vectorised functions of time, one value per
 condition) and, optionally, closed-loop controllers; they are held constant over a step
-(zero-order hold, as a flight-control computer would). Each condition may stop on its own
+(zero-order hold, as a flight-control computer would), and so are the engines' forces, evaluated
+at the start of each step (an engine's thrust changes over seconds, a step is 10 ms). The RK4
+step runs in compiled code (:func:`certkit.models.dynamics.kernel.rk4_step`). Each condition may stop on its own
 criteria: it is then frozen (state and records held) while the others go on; the run ends when
 all have stopped or at ``t_end``.
 
@@ -231,7 +233,6 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     u_trim = np.broadcast_to(np.asarray(u_trim, dtype=float), (n, len(names))).copy()
     sched = [(names.index(k), s) for k, s in (inputs or {}).items()]
     lim = [(names.index(k), lo, hi) for k, (lo, hi) in (limits or {}).items()]
-    f = model.derivatives_quat
     nsteps = int(round(t_end / dt))
     nrec = nsteps // record_every + 1
     hist = {k: np.empty((nrec, n)) for k in RECORDED}
@@ -246,17 +247,19 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
         u = u_trim.copy()
         for j, s in sched:
             u[:, j] += s(t)
-        xd1, out = f(x, u, with_outputs=True)
-        for c in controllers:
-            u = c.update(t, x, out, u, dt)
-        for j, lo, hi in lim:
-            u[:, j] = np.clip(u[:, j], lo, hi)
+        xd1, out, gear, thrust = model.evaluate(x, u)
         if controllers or lim:
-            xd1, out = f(x, u, with_outputs=True)
+            outputs = model.make_outputs(out, gear, thrust)
+            for c in controllers:
+                u = c.update(t, x, outputs, u, dt)
+            for j, lo, hi in lim:
+                u[:, j] = np.clip(u[:, j], lo, hi)
+            xd1, out, gear, thrust = model.evaluate(x, u)
+        outputs = model.make_outputs(out, gear, thrust)
         # stop criteria on the state at t
         if stop:
             for crit in stop:
-                hit = active & np.asarray(crit(t, x, out), dtype=bool)
+                hit = active & np.asarray(crit(t, x, outputs), dtype=bool)
                 if hit.any():
                     for i in np.flatnonzero(hit):
                         stop_reason[i] = getattr(crit, "__name__", "stop")
@@ -264,24 +267,20 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
                     active &= ~hit
         if k % record_every == 0:
             eul = quat_to_euler(x[:, 9:13])
-            vals = {"V": out.V, "alpha": out.alpha, "beta": out.beta, "p": x[:, 6], "q": x[:, 7], "r": x[:, 8],
-                    "phi": eul[:, 0], "theta": eul[:, 1], "psi": eul[:, 2], "h": x[:, 2], "x_N": x[:, 0],
-                    "y_E": x[:, 1], "n_x": out.n_x, "n_y": out.n_y, "n_z": out.n_z, "mach": out.mach,
-                    "qbar": out.qbar, "alpha_dot": out.alpha_dot, "CL": out.CL}
+            vals = {"V": outputs.V, "alpha": outputs.alpha, "beta": outputs.beta, "p": x[:, 6], "q": x[:, 7],
+                    "r": x[:, 8], "phi": eul[:, 0], "theta": eul[:, 1], "psi": eul[:, 2], "h": x[:, 2],
+                    "x_N": x[:, 0], "y_E": x[:, 1], "n_x": outputs.n_x, "n_y": outputs.n_y, "n_z": outputs.n_z,
+                    "mach": outputs.mach, "qbar": outputs.qbar, "alpha_dot": outputs.alpha_dot, "CL": outputs.CL}
+            frozen = irec > 0 and not active.all()
             for key, val in vals.items():
                 rec = hist[key]
-                rec[irec] = val if irec == 0 else np.where(active, val, rec[irec - 1])
-            ctrl_hist[irec] = u if irec == 0 else np.where(active[:, None], u, ctrl_hist[irec - 1])
+                rec[irec] = np.where(active, val, rec[irec - 1]) if frozen else val
+            ctrl_hist[irec] = np.where(active[:, None], u, ctrl_hist[irec - 1]) if frozen else u
             t_rec[irec] = t
             irec += 1
         if k == nsteps or not active.any():
             break
-        xd2 = f(x + 0.5 * dt * xd1, u)
-        xd3 = f(x + 0.5 * dt * xd2, u)
-        xd4 = f(x + dt * xd3, u)
-        x_new = x + dt / 6.0 * (xd1 + 2 * xd2 + 2 * xd3 + xd4)
-        x_new[:, 9:13] /= np.linalg.norm(x_new[:, 9:13], axis=1, keepdims=True)
-        x = np.where(active[:, None], x_new, x)
+        x = model.rk4_step(x, xd1, u, thrust, dt, active)
     hist = {key: v[:irec] for key, v in hist.items()}
     return SimulationResult(t=t_rec[:irec], history=hist, controls=ctrl_hist[:irec], control_names=names,
                             stop_time=stop_time, stop_reason=stop_reason, final_state=x)

@@ -18,7 +18,8 @@ Simulation*, §3.6): with a = cos α cos β, b = sin φ sin β + cos φ sin α c
     sin γ = a sin θ − b cos θ  ⇒  θ = atan[(a b + sin γ √(a² − sin²γ + b²)) / (a² − sin²γ)],
 and the body rates from the turn rate: p = −ψ̇ sin θ, q = ψ̇ sin φ cos θ, r = ψ̇ cos φ cos θ.
 
-Without engines the throttle unknown is replaced by γ (a glide).
+Without engines, or with the throttle fixed (``throttle=``, e.g. a power-off glide), the throttle
+unknown is replaced by γ.
 
 A control that would have to go past its limit is not an error: the trim is solved without
 limits and each :class:`TrimResult` lists the :class:`LimitExceedance` found ("needs −34.2°
@@ -148,7 +149,7 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
          controls: Mapping[str, float | np.ndarray] | None = None,
          limits: Mapping[str, tuple[float, float]] | None = None,
          roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-         tol: float = 1e-9, max_iter: int = 40) -> TrimBatch:
+         tol: float = 1e-9, max_iter: int = 40, throttle=None) -> TrimBatch:
     """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
     ``h`` (m); scalars or (n,) arrays.
 
@@ -169,6 +170,9 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         u0[:, names.index(k)] = bc(v)
     has_engines = len(model.engines) > 0
     thr_idx = np.arange(model.throttle_slice.start, model.throttle_slice.stop)
+    if throttle is not None:
+        u0[:, thr_idx] = bc(throttle)[:, None]
+    solve_throttle = has_engines and throttle is None
 
     # unknowns: ordered list of names; equations: indices into (u̇ v̇ ẇ ṗ q̇ ṙ)
     unknowns = ["alpha"]
@@ -179,7 +183,7 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
             unknowns.append(role)
         else:
             equations.remove(eq)
-    unknowns.append("throttle" if has_engines else "gamma")
+    unknowns.append("throttle" if solve_throttle else "gamma")
     while len(unknowns) > len(equations):  # symmetric models lacking lateral controls
         drop = "beta" if "beta" in unknowns else ("phi" if "phi" in unknowns else "turn_rate")
         unknowns.remove(drop)
@@ -200,11 +204,14 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         elif name == "beta":
             z[:, j] = beta_in if kind == "sideslip" else 0.0
 
-    def unpack(z):
-        vals = {"alpha": z[:, 0], "beta": beta_in.copy() if kind == "sideslip" else np.zeros(n),
-                "phi": bank.copy() if kind in ("turn", "oei") else np.zeros(n),
-                "turn_rate": np.zeros(n), "gamma": gamma.copy()}
-        u = u0.copy()
+    def unpack(z, idx=None):
+        """State and controls of the iterate ``z`` of conditions ``idx`` (default: all)."""
+        sel = (lambda a: a) if idx is None else (lambda a: a[idx])  # noqa: E731
+        m = z.shape[0]
+        vals = {"alpha": z[:, 0], "beta": sel(beta_in).copy() if kind == "sideslip" else np.zeros(m),
+                "phi": sel(bank).copy() if kind in ("turn", "oei") else np.zeros(m),
+                "turn_rate": np.zeros(m), "gamma": sel(gamma).copy()}
+        u = sel(u0).copy()
         for j, name in enumerate(unknowns):
             if name in ("alpha", "beta", "phi", "turn_rate", "gamma"):
                 vals[name] = z[:, j]
@@ -212,12 +219,13 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
                 u[:, thr_idx] = z[:, j][:, None]
             else:
                 u[:, names.index(roles[name])] = z[:, j]
-        x = assemble_state(V, h, vals["alpha"], vals["beta"], vals["phi"], vals["gamma"], vals["turn_rate"])
+        x = assemble_state(sel(V), sel(h), vals["alpha"], vals["beta"], vals["phi"], vals["gamma"], vals["turn_rate"])
         return x, u, vals
 
-    def residual(z):
-        x, u, _ = unpack(z)
-        xd = model.derivatives_euler(x, u)
+    def residual(z, idx):
+        """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
+        x, u, _ = unpack(z, idx)
+        xd = model.derivatives_euler(x, u, rows=idx)
         return xd[:, 3:9][:, equations]
 
     steps = {"alpha": 1e-6, "beta": 1e-6, "phi": 1e-6, "turn_rate": 1e-7, "gamma": 1e-6,
@@ -232,40 +240,47 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     # still sees the engine); a condition needing more than full thrust ends non-converged at the bound
     j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
     iters = np.zeros(n, dtype=int)
-    active = np.ones(n, dtype=bool)
-    r = residual(z)
+    stalls = np.zeros(n, dtype=int)
+    everyone = np.arange(n)
+    r = residual(z, everyone)
     scale = np.where(np.array(equations) < 3, 1.0 / model.g, 1.0)
     rnorm = np.max(np.abs(r * scale), axis=1)
     for _ in range(max_iter):
-        active = rnorm > tol
-        if not active.any():
+        # a condition leaves the iteration when converged, or after three Newton steps that could not
+        # reduce its residual even when cut 64-fold (a limit or a non-trimmable condition)
+        idx = np.flatnonzero((rnorm > tol) & (stalls < 3))
+        if idx.size == 0:
             break
-        iters += active
-        Jm = np.empty((n, len(equations), k))
-        for j in range(k):
-            zp = z.copy()
-            zp[:, j] += hstep[j]
-            Jm[:, :, j] = (residual(zp) - r) / hstep[j]
+        iters[idx] += 1
+        za, ra, na = z[idx], r[idx], idx.size
+        # forward-difference Jacobian: the k perturbed iterates of every active condition in one call
+        zp = np.repeat(za[None], k, axis=0)
+        zp[np.arange(k), :, np.arange(k)] += hstep[:, None]
+        rp = residual(zp.reshape(k * na, k), np.tile(idx, k)).reshape(k, na, -1)
+        Jm = np.moveaxis((rp - ra[None]) / hstep[:, None, None], 0, -1)
         try:
-            dz = -np.linalg.solve(Jm, r[:, :, None])[:, :, 0]
+            dz = -np.linalg.solve(Jm, ra[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
-            dz = -np.einsum("nij,nj->ni", np.linalg.pinv(Jm), r)
+            dz = -np.einsum("nij,nj->ni", np.linalg.pinv(Jm), ra)
         dz = np.where(np.isfinite(dz), dz, 0.0)
         ratio = np.max(np.abs(dz) / smax, axis=1)
         dz = dz / np.maximum(ratio, 1.0)[:, None]
         # backtracking: accept the step if it reduces the residual, else halve (per condition)
-        lam = np.ones(n)
+        lam = np.ones(na)
+        rn_a = rnorm[idx]
         for _bt in range(6):
-            z_try = np.where(active[:, None], z + lam[:, None] * dz, z)
+            z_try = za + lam[:, None] * dz
             if j_thr is not None:
                 z_try[:, j_thr] = np.clip(z_try[:, j_thr], *_THROTTLE_BOX)
-            r_try = residual(z_try)
+            r_try = residual(z_try, idx)
             rn_try = np.max(np.abs(r_try * scale), axis=1)
-            bad = active & ~(rn_try < rnorm)
+            bad = ~(rn_try < rn_a)
             if not bad.any():
                 break
             lam = np.where(bad, lam * 0.5, lam)
-        z, r, rnorm = z_try, r_try, np.where(np.isfinite(rn_try), rn_try, np.inf)
+        stalls[idx] = np.where(bad, stalls[idx] + 1, 0)
+        z[idx], r[idx] = z_try, r_try
+        rnorm[idx] = np.where(np.isfinite(rn_try), rn_try, np.inf)
 
     x, u, vals = unpack(z)
     lim = {roles["pitch"]: (-np.radians(30), np.radians(30)), roles["roll"]: (-np.radians(30), np.radians(30)),

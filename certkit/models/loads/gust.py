@@ -1,8 +1,8 @@
 """Discrete gusts for the rigid-airplane loads response.
 
-The gust enters as an angle-of-attack increment carried by two pseudo-controls of a wrapper around the
-airplane's aerodynamic model (the dynamics package is not changed): ``gust_wing`` (the gust angle at
-the wing, U/V) and ``gust_tail`` (the same gust reaching the tail a tail-arm / V later). The wrapper adds
+The gust enters as an angle-of-attack increment carried by two pseudo-controls added to the
+airplane's derivative model (:func:`gust_aero`; the dynamics package is not changed): ``gust_wing`` (the gust angle at
+the wing, U/V) and ``gust_tail`` (the same gust reaching the tail a tail-arm / V later). The model adds
 
     ΔCL = CL_g,wing(M) · α_g,wing + CL_g,tail(M) · α_g,tail,   ΔCm likewise (about the model's reference),
 
@@ -14,11 +14,8 @@ Inputs are held over each simulation step, so the step must resolve the gust (a 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
-from certkit.models.aero.interface import AeroState, Coefficients
 
 GUST_CONTROLS = ("gust_wing", "gust_tail")
 
@@ -29,37 +26,18 @@ def one_minus_cosine(s, H, Uds):
     return np.where((s >= 0) & (s <= 2 * H), 0.5 * Uds * (1 - np.cos(np.pi * s / H)), 0.0)
 
 
-@dataclass
-class GustAero:
-    """AeroModel wrapper adding the gust pseudo-controls. ``mach`` breakpoints and per-surface
-    (CL, Cm) per radian of gust angle: ``cl_wing``, ``cm_wing``, ``cl_tail``, ``cm_tail`` (arrays)."""
-
-    base: object
-    mach: np.ndarray
-    cl_wing: np.ndarray
-    cm_wing: np.ndarray
-    cl_tail: np.ndarray
-    cm_tail: np.ndarray
-
-    def __post_init__(self):
-        self.reference = self.base.reference
-        self.control_names = tuple(self.base.control_names) + GUST_CONTROLS
-        ad = getattr(self.base, "alpha_dot_derivatives", None)
-        if callable(ad):
-            self.alpha_dot_derivatives = ad
-
-    def coefficients(self, state: AeroState) -> Coefficients:
-        ctrl = dict(state.controls)
-        gw = np.asarray(ctrl.pop("gust_wing", 0.0), dtype=float)
-        gt = np.asarray(ctrl.pop("gust_tail", 0.0), dtype=float)
-        c = self.base.coefficients(AeroState(state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach,
-                                             ctrl, state.reynolds_per_metre))
-        m = np.asarray(state.mach, dtype=float)
-        f = lambda table: np.interp(m, self.mach, table)  # noqa: E731
-        dcl = f(self.cl_wing) * gw + f(self.cl_tail) * gt
-        dcm = f(self.cm_wing) * gw + f(self.cm_tail) * gt
-        # the gust lift is taken normal to the gust-free relative wind (small gust angles)
-        return Coefficients(CL=c.CL + dcl, CD=c.CD, CY=c.CY, Cl=c.Cl, Cm=c.Cm + dcm, Cn=c.Cn)
+def gust_aero(base, mach, cl_wing, cm_wing, cl_tail, cm_tail):
+    """The airplane's derivative model (:class:`StabilityDerivativeModel`) with the gust
+    pseudo-controls added as control terms: per radian of gust angle, lift and pitching moment of the
+    wing (``cl_wing``, ``cm_wing``) and of the tail (``cl_tail``, ``cm_tail``), one value per ``mach``
+    breakpoint (interpolated onto the model's breakpoints: exact when they coincide, as for the loads
+    model built at the aerodynamic model's Mach numbers). The gust lift is added after the stall model
+    and outside the induced drag: the gust lift is taken normal to the gust-free relative wind (small
+    gust angles)."""
+    m = np.asarray(base.mach, dtype=float)
+    f = lambda table: np.interp(m, np.asarray(mach, dtype=float), np.asarray(table, dtype=float))  # noqa: E731
+    return base.with_control_terms({"CL_gust_wing": f(cl_wing), "Cm_gust_wing": f(cm_wing),
+                                    "CL_gust_tail": f(cl_tail), "Cm_gust_tail": f(cm_tail)}, after_stall=GUST_CONTROLS)
 
 
 def gust_tables(loads, reference) -> dict[str, np.ndarray]:

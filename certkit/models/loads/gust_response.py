@@ -1,7 +1,7 @@
 """Rigid-airplane response to discrete 1 − cos vertical gusts, batched over conditions, with the strip
 loads of the wing and the horizontal tail.
 
-The trimmed batch's flight model is rebuilt around :class:`certkit.models.loads.gust.GustAero` (same
+The trimmed batch's flight model is rebuilt around :func:`certkit.models.loads.gust.gust_aero` (same
 masses, CGs, inertias and engines; the gust pseudo-controls added at zero). The gust front reaches the
 wing's centre of pressure at t = 0 and the tail's a tail arm / V later (``tail_lag``); the gust angle is
 U/V with U and V both in EAS (the ratio is the same in TAS). The wing and the tail strips feel their
@@ -20,7 +20,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
-from certkit.models.loads.gust import GUST_CONTROLS, GustAero, gust_tables, one_minus_cosine
+from certkit.models.loads.gust import GUST_CONTROLS, gust_aero, gust_tables, one_minus_cosine
 from certkit.models.loads.response import response_loads
 
 SURFACES = ("wing", "horizontal_tail")
@@ -57,7 +57,7 @@ class GustBatch:
 def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
     """Wrap the trimmed batch's flight model with the gust pseudo-controls (zero in the trim)."""
     tables = gust_tables(loads, base_model.aero.reference)
-    aero = GustAero(base_model.aero, **tables)
+    aero = gust_aero(base_model.aero, **tables)
     model = AircraftModel(aero, base_model.mass, base_model.cg, base_model.inertia, base_model.engines,
                           base_model.operative)
     old = list(base_model.control_names)

@@ -30,12 +30,15 @@ on arrays (the signature :class:`certkit.models.dynamics.eom.Engine` expects), t
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit, vectorize
 from scipy.interpolate import RegularGridInterpolator
 
 from certkit import atmosphere as isa
+from certkit.atmosphere import isa_scalar
 from certkit.units import G0
 
 
@@ -101,18 +104,14 @@ class ParametricTurbofan:
 
     def lapse(self, h, mach):
         h = np.asarray(h, dtype=float)
-        m = np.maximum(np.asarray(mach, dtype=float), 0.0)
-        theta = isa.temperature(h) / isa.T0
-        delta = isa.pressure(h) / isa.P0
-        k = 1.0 + 0.2 * m * m
-        d0, t0 = delta * k**3.5, theta * k
-        base = 1.0 - 0.49 * np.sqrt(m)
-        hot = base - 3.0 * (t0 - self.throttle_ratio) / (1.5 + m)
-        return d0 * np.where(t0 <= self.throttle_ratio, base, hot)
+        isa.temperature(h)  # range check
+        return _turbofan_lapse(h, np.asarray(mach, dtype=float), self.throttle_ratio)
 
     def thrust(self, throttle, h, mach):
-        thr = np.clip(np.asarray(throttle, dtype=float), 0.0, 1.0)
-        return self.static_thrust * self.lapse(h, mach) * (self.idle_fraction + (1 - self.idle_fraction) * thr)
+        h = np.asarray(h, dtype=float)
+        isa.temperature(h)  # range check
+        return _turbofan_thrust(np.asarray(throttle, dtype=float), h, np.asarray(mach, dtype=float), self.static_thrust,
+                                self.throttle_ratio, self.idle_fraction)
 
     def tsfc(self, h, mach):
         """Thrust-specific fuel consumption, kg/(N s)."""
@@ -121,6 +120,29 @@ class ParametricTurbofan:
 
     def fuel_flow(self, throttle, h, mach):
         return self.tsfc(h, mach) * self.thrust(throttle, h, mach)
+
+
+@njit(cache=True, inline="always")
+def _lapse_scalar(h, mach, throttle_ratio):
+    m = max(mach, 0.0)
+    t_air, p_air = isa_scalar(h)
+    k = 1.0 + 0.2 * m * m
+    d0, t0 = p_air / isa.P0 * k**3.5, t_air / isa.T0 * k
+    base = 1.0 - 0.49 * math.sqrt(m)
+    if t0 <= throttle_ratio:
+        return d0 * base
+    return d0 * (base - 3.0 * (t0 - throttle_ratio) / (1.5 + m))
+
+
+@vectorize(["float64(float64, float64, float64)"], cache=True)
+def _turbofan_lapse(h, mach, throttle_ratio):
+    return _lapse_scalar(h, mach, throttle_ratio)
+
+
+@vectorize(["float64(float64, float64, float64, float64, float64, float64)"], cache=True)
+def _turbofan_thrust(throttle, h, mach, static_thrust, throttle_ratio, idle_fraction):
+    thr = min(max(throttle, 0.0), 1.0)
+    return static_thrust * _lapse_scalar(h, mach, throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
 
 
 def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):

@@ -33,7 +33,7 @@ from certkit.results import Finding
 from certkit.units import FT, G0
 from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 
-AMDT = "25-135"
+AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 CONTROLS = ("elevator", "aileron", "rudder")
 CGS = ("forward", "reference", "aft")
 _TRIMS = 3
@@ -299,16 +299,16 @@ class ClimbOEIApproach(Rule):
         In the approach configuration (whose VSR does not exceed 110 % of the landing configuration's VSR), the
         steady climb gradient may not be less than 2.1 % for two-engine airplanes (2.4 % three, 2.7 % four) with
         the critical engine inoperative, the remaining engines at go-around thrust, maximum landing weight, and a
-        climb speed of the normal landing procedure not exceeding 1.4 VSR. (Text from memory, unverified:
-        docs/regulation-notes.md.)
+        climb speed of the normal landing procedure not exceeding 1.4 VSR (verified, [CFR 1-1-24] p. 217:
+        docs/regulation-notes.md).
     """
     margin = """Steady OEI gradient at 1.4 VSR(approach) − 0.021 (twins); 1.10 − VSR(approach)/VSR(landing);
         each trim control's design limit − |deflection| (deg)."""
     references = ("25.103", "25.119", "25.125")
     requires = ("configurations.approach", "mass.MLW")
-    criteria = {**gradient_criteria("d) (unverified", 0.021, 0.024, 0.027),
-                "speed_over_vsr": Criterion(1.4, "", "14 CFR 25.121(d) (unverified)", "climb speed, at most this × VSR"),
-                "vsr_ratio": Criterion(1.10, "", "14 CFR 25.121(d) (unverified)",
+    criteria = {**gradient_criteria("d", 0.021, 0.024, 0.027),
+                "speed_over_vsr": Criterion(1.4, "", "14 CFR 25.121(d)", "climb speed, at most this × VSR"),
+                "vsr_ratio": Criterion(1.10, "", "14 CFR 25.121(d)",
                                        "VSR(approach) / VSR(landing), at most")}
     conditions = ConditionSpace(loading=DesignWeight("MLW", CGS), configurations=("approach",),
                                 note="sea level, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach configuration")

@@ -34,7 +34,8 @@ from certkit.units import FT, G0, KN
 from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, declared_cas, trim_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
-_UNVERIFIED = "14 CFR 25.143(h) table (unverified: from memory, corroborated only by EASA AMC 25.143(h); docs/regulation-notes.md)"
+_UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
+               "EASA AMC 25.143(h); docs/regulation-notes.md)")
 
 #: a thrust aim is kept this far inside the throttle range, where the trim's throttle iterate is free (trim.py)
 _THROTTLE_INSIDE = 0.003
@@ -51,6 +52,17 @@ def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, i
     per_engine = lambda t: np.asarray(thrust(np.full_like(h, t), h, mach), dtype=float)  # noqa: E731
     lo, hi = per_engine(_THROTTLE_INSIDE), per_engine(1.0 - _THROTTLE_INSIDE)
     return len(live) * np.clip(fraction * per_engine(throttle), lo, hi)
+
+
+def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative: str):
+    """"Asymmetric WAT-limited thrust" (§25.143(h) footnote, read with EASA AMC 25.143(h)): the operating engine's
+    thrust that gives exactly the minimum §25.121 gradient in straight flight at zero sideslip with the critical
+    engine out, capped at the thrust available (``fraction`` of takeoff thrust). Returns (thrust N, capped)."""
+    available = operating_thrust(ctx, conds, 1.0, fraction, inoperative)
+    batch = ctx.trim(conds, kind="sideslip", beta=0.0, gamma=math.atan(gradient), inoperative=inoperative)
+    live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
+    needed = np.array([sum(r.thrust[e] for e in live) if r.converged else np.inf for r in batch.results])
+    return np.minimum(needed, available), needed >= available
 
 
 def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
@@ -114,7 +126,7 @@ class ManeuveringCapability(Rule):
     title = "Controllability: manoeuvring capability in coordinated turns"
     amendment = "25-108"
     requirement = """
-        (Table from memory, unverified.) The manoeuvring capabilities in a constant-speed coordinated turn at
+        (Table rows verified against the GPO print; footnotes not read.) The manoeuvring capabilities in a constant-speed coordinated turn at
         forward CG must be free of stall warning or other characteristics that might interfere with normal
         manoeuvring: takeoff configuration, V2, 30° bank, asymmetric WAT-limited thrust; takeoff, V2 + XX (the
         all-engines initial-climb speed), 40°, all-engines climb thrust; en route, VFTO, 40°, asymmetric
@@ -133,6 +145,10 @@ class ManeuveringCapability(Rule):
             10.0, "kt", _UNVERIFIED + "; XX is the all-engines initial-climb speed, not stated in the notes: V2 + 10 kt "
                                       "assumed, override with the approved speed", "XX of V2 + XX (CAS)"),
         "landing_path_deg": Criterion(-3.0, "deg", _UNVERIFIED, "flight-path angle of the landing-configuration turn"),
+        "wat_gradient_takeoff": Criterion(0.024, "", "14 CFR 25.121(b) (two engines), the WAT limit of the V2 case",
+                                          "straight-flight climb gradient the asymmetric WAT-limited thrust gives at V2"),
+        "wat_gradient_enroute": Criterion(0.012, "", "14 CFR 25.121(c) (two engines), the WAT limit of the VFTO case",
+                                          "straight-flight climb gradient the asymmetric WAT-limited thrust gives at VFTO"),
         "enroute_altitude_ft": Criterion(1500.0, "ft", "14 CFR 25.111 end of the takeoff path (25.121(c)), as for VFTO",
                                          "second altitude of the en-route case (also at sea level)"),
         "mct_over_takeoff_thrust": Criterion(
@@ -145,11 +161,12 @@ class ManeuveringCapability(Rule):
              "(and 1500 ft en route); turns toward and away from the inoperative (critical) engine for the asymmetric cases")
     implementation = "partial"
     limitations = """
-        The table of (h) is from memory (unverified). Freedom from stall warning is not evaluated (no stall-warning
+        The footnotes of the (h) table were not read. Freedom from stall warning is not evaluated (no stall-warning
         lift coefficient is declared); each finding carries CL/CLmax of the turn. "WAT-limited" is read as MTOW at
-        sea level (and 1500 ft en route) with takeoff thrust (V2) or maximum continuous thrust (VFTO) on the
-        operating engine. The stabiliser is fixed at its declared incidence, so the elevator carries the whole
-        trim (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
+        sea level (and 1500 ft en route) with the operating engine's thrust set so that straight flight climbs at
+        exactly the §25.121(b) (V2) or §25.121(c) (VFTO) minimum gradient (at most takeoff or maximum continuous
+        thrust). The stabiliser is fixed at its declared incidence, so the elevator carries the whole trim
+        (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
     """
 
     def evaluate(self, ctx, conditions, crit):
@@ -160,12 +177,12 @@ class ManeuveringCapability(Rule):
         toward_dead = -1.0 if dead_y < 0 else 1.0  # positive bank is right wing down
         specs = {
             "takeoff V2": dict(config="takeoff", weight="MTOW", speed="V2", bank=crit.bank_v2_deg, oei=True, fraction=1.0,
-                               thrust="takeoff thrust on the operating engine"),
+                               wat=crit.wat_gradient_takeoff, thrust="asymmetric WAT-limited thrust"),
             "takeoff V2+XX": dict(config="takeoff", weight="MTOW", speed="V2", increment=crit.v2_increment_kt,
                                   bank=crit.bank_deg, oei=False, fraction=1.0, thrust="takeoff thrust, all engines"),
             "en route VFTO": dict(config="clean", weight="MTOW", speed="VFTO", bank=crit.bank_deg, oei=True,
                                   fraction=crit.mct_over_takeoff_thrust, altitudes=(0.0, crit.enroute_altitude_ft * FT),
-                                  thrust="maximum continuous thrust on the operating engine"),
+                                  wat=crit.wat_gradient_enroute, thrust="asymmetric WAT-limited thrust (at most MCT)"),
             "landing VREF": dict(config="landing", weight="MLW", speed="VREF", bank=crit.bank_deg, oei=False, fraction=None,
                                  thrust=f"all engines, for a {crit.landing_path_deg:g}° path"),
         }
@@ -204,12 +221,18 @@ class ManeuveringCapability(Rule):
             results = ctx.trim(conds, kind="turn", bank=banks, gamma=gamma).results
             residual = np.zeros(len(conds))
         else:
-            aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
+            capped = np.zeros(len(conds), dtype=bool)
+            if "wat" in spec:
+                aim, capped = wat_limited_thrust(ctx, conds, spec["wat"], spec["fraction"], inop)
+            else:
+                aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
             results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop)
         out = []
         for i, c in enumerate(conds):
             r = results[i]
             details = dict(turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i]))
+            if "wat" in spec:
+                details["wat_thrust_capped_at_available"] = bool(capped[i])
             if not r.converged:
                 lift = (f"; the turn needs n = {details['load_factor']:.3f}, CL = {details['CL']:.2f}"
                         + (f" ({details['CL_over_CLmax']:.0%} of CLmax: the model's lift near stall may not hold it)"

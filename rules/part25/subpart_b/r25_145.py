@@ -1,14 +1,15 @@
 """§25.145(b) Longitudinal control: flap and thrust changes without re-trimming.
 
-Text ([CFR 2003], docs/regulation-notes.md; later amendments may have edited it): with the landing gear
+Text ([CFR 2003]; the lead-in and (b)(1) verified against [CFR 1-1-19] p. 221, docs/regulation-notes.md): with the landing gear
 extended, no change in trim control, or exertion of more than 50 lbf control force, may be required for:
 (1) power off, flaps retracted, trimmed at 1.3 VSR1: extend the flaps as rapidly as possible, keeping about
 1.3 × the reference stall speed existing at each instant; (2) as (1), flaps extended then retracted; (3) as
 (2) at go-around power or thrust; (4) power off, flaps retracted, trimmed at 1.3 VSR1: set go-around power or
 thrust at the same airspeed; (5) as (4) with the flaps extended; (6) [not retrieved].
 
-certkit has no control-force model (no hinge moments or gearing), so the 50 lbf is not evaluated. What it
-checks is the premise under it: the stabiliser (trim control) stays where it was, so the elevator must move
+With a control-force model declared (``control_forces.elevator``, :mod:`certkit.models.control_force`) the 50 lbf
+is evaluated: the force that holds the end trim with the trim device left at the start setting (zero force at
+the start trim). Without one the force is not evaluated. In both cases certkit checks the premise under it: the stabiliser (trim control) stays where it was, so the elevator must move
 from its trim at the start of each manoeuvre to its trim at the end, and that change must fit in the elevator
 authority left on that side of the start position (design limits). Each state is a steady trim at 1.3 VSR of
 its configuration: idle ("power off") in the glide that idle thrust gives, go-around thrust in the climb it
@@ -22,16 +23,18 @@ import math
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace
+from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.units import LBF
 from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import trim_details
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust
 
 FLAPS = ("takeoff", "approach", "landing")
 IDLE, GO_AROUND = "idle", "go-around"
-_SRC = "14 CFR 25.145(b) (2003 text, docs/regulation-notes.md)"
+_SRC = "14 CFR 25.145(b) (lead-in and (b)(1) verified, [CFR 1-1-19] p. 221; docs/regulation-notes.md)"
 
 
 def manoeuvres(flap: str):
@@ -59,13 +62,14 @@ class LongitudinalControlConfigurationChanges(Rule):
     """
     margin = """Elevator authority left on the side of the change at the start trim (design limit − start
         deflection) − |elevator change to the end trim| (deg), for every manoeuvre, flap setting and CG corner;
-        ≥ 0: the change can be held without re-trimming. The 50 lbf force is not evaluated."""
+        ≥ 0: the change can be held without re-trimming. With control_forces.elevator: 50 lbf − |elevator force holding
+        the end trim, trim device at its start setting| (lbf)."""
     references = ("25.103", "25.143", "25.161")
     requires = ("configurations.clean", "mass.MTOW")
     criteria = {
         "speed_over_vsr": Criterion(1.3, "", _SRC + ": (b)(1), (b)(4)",
                                     "trim speed, × VSR of the configuration flown (VSR1 clean, instantaneous VSR flaps out)"),
-        "control_force_lbf": Criterion(50.0, "lbf", _SRC + ": (b)", "largest control force (one hand, short term); not evaluated"),
+        "control_force_lbf": Criterion(50.0, "lbf", _SRC + ": (b)", "largest control force (one hand, short term)"),
         "go_around_thrust_fraction": Criterion(
             1.0, "", _SRC + ": (b)(3)-(5) go-around power or thrust; the engine model's throttle-1 (takeoff) thrust "
                             "taken as go-around thrust, as for §25.121(d)", "go-around thrust over the engine model's full thrust"),
@@ -75,8 +79,8 @@ class LongitudinalControlConfigurationChanges(Rule):
                                      "the configuration; idle (power off) and go-around thrust")
     implementation = "partial"
     limitations = """
-        No control-force model: the 50 lbf limit is not evaluated (one not_evaluated finding per corner); the
-        elevator change against the remaining authority is evaluated instead. Steady trims at the start and end
+        The 50 lbf limit needs control_forces.elevator (without it one not_evaluated finding per corner); the force
+        is the steady one at the end trim (the flap-dependent downwash change at the tail is not modelled). Steady trims at the start and end
         of each manoeuvre (no transient, no pitch-rate or speed-change dynamics). The gear is as declared for each
         configuration (the clean configuration is gear up, (b) asks gear down; the gear's pitching moment is not
         modelled). The stabiliser is fixed at its declared incidence. (b)(6) is not evaluated (text not retrieved).
@@ -84,6 +88,7 @@ class LongitudinalControlConfigurationChanges(Rule):
 
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
+        elevator = control_force_model(ac, "elevator")
         limits = control_limits(ac)
         lo, hi = limits["elevator"]
         known = lambda cfg: ctx.clmax(cfg) is not None or cfg in ac.speeds.VSR  # noqa: E731  (a VSR to fly 1.3 VSR at)
@@ -105,10 +110,13 @@ class LongitudinalControlConfigurationChanges(Rule):
                         "needs " + " or ".join(f"configurations.{c}.CLmax (or speeds.VSR.{c})" for c in dict.fromkeys(missing))))
                     continue
                 out.append(self._finding(cond, i, para, what, trims[start], trims[end], lo, hi))
-            out.append(Finding.not_evaluated(
-                cond.with_(configuration="clean"), f"(b) control force ≤ {crit.control_force_lbf:g} lbf",
-                "no control-force model (elevator hinge moments, gearing): the force is not computed; the elevator "
-                "change against the remaining authority is checked instead"))
+                if elevator is not None:
+                    out.append(force_finding(ctx, elevator, i, para, what, trims[start], trims[end], crit.control_force_lbf))
+            if elevator is None:
+                out.append(Finding.not_evaluated(
+                    cond.with_(configuration="clean"), f"(b) control force ≤ {crit.control_force_lbf:g} lbf",
+                    "no control-force model (control_forces.elevator: hinge moments and gearing, or artificial feel): the "
+                    "force is not computed; the elevator change against the remaining authority is checked instead"))
         return out
 
     @staticmethod
@@ -154,3 +162,19 @@ class LongitudinalControlConfigurationChanges(Rule):
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
                                 ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"))
+
+
+def force_finding(ctx, elevator, i, para, what, start, end, limit_lbf):
+    """(b) control force: the elevator force (lbf) that holds the end trim with the trim device left at its start
+    setting (:mod:`certkit.models.control_force`: the start trim holds zero force), against ``limit_lbf``."""
+    (c0, r0, _, _), (c1, r1, _, _) = start[i], end[i]
+    here = c1.with_(manoeuvre=f"{para} {what}")
+    check = f"{para} control force ≤ {limit_lbf:g} lbf without re-trimming"
+    if not (r0.converged and r1.converged):
+        return Finding.not_evaluated(here, check, "start or end trim did not converge (see the elevator-change finding)")
+    q0, a0, d0 = trim_state(ctx.aircraft, "elevator", [r0])
+    q1, a1, d1 = trim_state(ctx.aircraft, "elevator", [r1])
+    pull = float(-elevator.force(q1, a1, d1, trim=(d0, a0))[0] / LBF)
+    return Finding.compare(here, check, abs(pull), limit_lbf, at_least=False, unit="lbf",
+                           direction="pull" if pull >= 0 else "push", pull_force_lbf=round(pull, 2), force_model=elevator.kind,
+                           start_elevator_deg=round(math.degrees(d0[0]), 3), end_elevator_deg=round(math.degrees(d1[0]), 3))

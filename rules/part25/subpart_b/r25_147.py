@@ -8,8 +8,10 @@ paragraph starts from or manoeuvres to:
   α, the three controls and the throttle solved for) at the power for level flight (γ = 0); where that
   power is more than maximum continuous, the trim is flown at maximum continuous thrust on the flight path
   it gives (:func:`trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
-  The reasonably sudden 15° heading change and the 150 lbf rudder pedal force are a dynamic manoeuvre and a
-  control force: separate not-evaluated findings.
+  The reasonably sudden 15° heading change is a dynamic manoeuvre: a not-evaluated finding. The 150 lbf rudder
+  pedal force is read in the steady wings-level condition the heading change starts from: the pedal force that
+  holds the trim's rudder with the rudder trim at neutral (:mod:`certkit.models.control_force`), which must leave
+  room under 150 lbf; without ``control_forces.rudder`` it is not evaluated.
 * (c) lateral control — 20° banked coordinated turns (zero sideslip, ``kind="turn"``) toward and away from
   the inoperative engine at 1.3 VSR1 and MTOW, the operating engine at maximum continuous thrust, in the most
   favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`trim_at_thrust`).
@@ -26,9 +28,11 @@ import math
 import numpy as np
 
 from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.units import LBF
 from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust, turn_details
@@ -37,7 +41,8 @@ SOURCE = "14 CFR 25.147 (Amdt. 25-108; verified, docs/regulation-notes.md)"
 AMDT = "25-108"
 _MCT = Criterion(0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
                  "maximum continuous over takeoff thrust of the engine model (as in 25.121(c))")
-_NO_FORCE = "no control-force model in the aircraft file (rudder pedal force not computed)"
+_NO_FORCE = ("no control-force model in the aircraft file (control_forces.rudder: hinge moments and gearing, or "
+             "artificial feel): the rudder pedal force is not computed")
 _DYNAMIC = "a reasonably sudden heading change is a dynamic manoeuvre; certkit's steady trims do not fly it"
 
 
@@ -89,7 +94,8 @@ class DirectionalControlOEI(Rule):
         (b), for airplanes with four or more engines (two critical engines inoperative), is not applicable to a
         twin.
     """
-    margin = "Each control's design limit on the side it is deflected − |deflection| (deg), at each CG."
+    margin = """Each control's design limit on the side it is deflected − |deflection| (deg), at each CG; with
+        control_forces.rudder, 150 lbf − |pedal force holding the wings-level trim, rudder trim neutral| (lbf)."""
     references = ("25.103", "25.121", "25.149")
     requires = ("mass.MLW", "configurations.approach")
     criteria = {
@@ -102,14 +108,16 @@ class DirectionalControlOEI(Rule):
                                            "flight, at most maximum continuous")
     implementation = "partial"
     limitations = """
-        Steady straight flight only: the 15° heading change (dynamic) and the 150 lbf pedal force (no control-force
-        model) are reported not evaluated. The critical engine windmills (flight model drag); the stabiliser is
+        Steady straight flight only: the 15° heading change (dynamic) is reported not evaluated; the 150 lbf is
+        compared with the steady pedal force of the wings-level trim (rudder trim neutral), not the force during the
+        heading change, and needs control_forces.rudder. The critical engine windmills (flight model drag); the stabiliser is
         fixed at its declared incidence. Evaluated at sea level, standard day.
     """
 
     def evaluate(self, ctx, conditions, crit):
         dead = critical_engine(ctx)
         limits = control_limits(ctx.aircraft)
+        rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
         if _engines(ctx) >= 4:
             out += [Finding.not_evaluated(c, "(b) two critical engines inoperative",
@@ -149,7 +157,7 @@ class DirectionalControlOEI(Rule):
                     out.append(f)
             out.append(Finding.not_evaluated(here, f"(a) {crit.heading_change_deg:g}° heading change toward the "
                                              "inoperative engine", _DYNAMIC))
-            out.append(Finding.not_evaluated(here, f"(a) rudder pedal force ≤ {crit.pedal_force_lbf:g} lbf", _NO_FORCE))
+            out.append(pedal_force_finding(ctx, rudder, here, r, crit.pedal_force_lbf))
         return out
 
     def evidence(self, ctx, findings, crit):
@@ -236,3 +244,18 @@ class LateralControlOEI(Rule):
         return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
                                 "Turns toward and away from the inoperative engine: controls against their design limits.",
                                 ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
+
+
+def pedal_force_finding(ctx, rudder, cond, result, limit_lbf, check=None, **details):
+    """Pedal force (lbf) that holds ``result``'s rudder with the rudder trim at neutral, against ``limit_lbf``;
+    not evaluated without a rudder force model or a converged trim."""
+    check = check or f"(a) rudder pedal force ≤ {limit_lbf:g} lbf"
+    if rudder is None:
+        return Finding.not_evaluated(cond, check, _NO_FORCE, **details)
+    if not result.converged:
+        return Finding.not_evaluated(cond, check, "the trim did not converge: no rudder deflection to hold", **details)
+    q, a, d = trim_state(ctx.aircraft, "rudder", [result])
+    force = float(rudder.force(q, a, d)[0] / LBF)
+    return Finding.compare(cond, check, abs(force), limit_lbf, at_least=False, unit="lbf",
+                           pedal="left" if force >= 0 else "right", rudder_deg=round(math.degrees(d[0]), 3),
+                           fin_alpha_deg=round(math.degrees(a[0]), 3), force_model=rudder.kind, **details)

@@ -26,10 +26,11 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
-from certkit.units import KN
+from certkit.units import KN, LBF
 from certkit_rules.part25.subpart_b.r25_171 import vsr_cas
 
 SOURCE = "14 CFR 25.149 (Amdt. 25-108; (a)-(e) verified, docs/regulation-notes.md)"
@@ -198,7 +199,8 @@ class MinimumControlSpeed(Rule):
         retracted, airborne with negligible ground effect. (d) The rudder force may not exceed 150 lbf.
     """
     margin = """
-        (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared.
+        (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared;
+        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder.
     """
     references = ("25.103", "25.107", "25.147")
     requires = ("configurations.takeoff.CLmax",)
@@ -211,14 +213,17 @@ class MinimumControlSpeed(Rule):
         "grid_high": Criterion(1.4, "", "project choice: search to 1.4 VSR", "highest speed searched, multiple of VSR"),
         "speed_tolerance_kn": Criterion(0.05, "kn", "project choice: secant step at which the search stops (VMCA to "
                                         "0.1 kn)", "speed step of the VMCA search"),
+        "rudder_force_lbf": Criterion(150.0, "lbf", SOURCE + " (d)", "largest rudder force to maintain control at VMC"),
     }
     conditions = ConditionSpace(loading=DesignWeight("MTOW", cgs=("aft",)), configurations=("takeoff",),
                                 altitudes=Altitudes((0.0,)), extra=(("inoperative", ("left", "right")),),
                                 note="Operating engine at full throttle; bank toward it; sea level, standard day.")
     implementation = "partial"
     limitations = """
-        Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. Rudder at its
-        design limit instead of the 150 lbf pedal force of (d): the aircraft file has no control-force model. The
+        Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. VMCA is where the
+        rudder or aileron reaches its design limit; the 150 lbf of (d) is a separate finding at that VMCA (the pedal
+        force of the steady trim, rudder trim neutral), evaluated only with control_forces.rudder; the speed at which
+        the force reaches 150 lbf is reported with it. The
         baseline's takeoff configuration has the gear down (more drag, steeper flight path only; the moments are
         those of the gear-up airplane in the model). Thrust at throttle 1 is the maximum takeoff thrust. Only the two
         ends of the bank allowance are searched (5° toward the operating engine, and wings level); an intermediate
@@ -228,6 +233,7 @@ class MinimumControlSpeed(Rule):
     """
 
     def evaluate(self, ctx, conditions, crit):
+        rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
         rows = _vmca_rows(ctx, conditions, crit)
         for k, cond in enumerate(conditions):
@@ -245,7 +251,8 @@ class MinimumControlSpeed(Rule):
             common = dict(VSR=vsr, search=table, bank_at_vmca_deg=round(float(np.degrees(rows["banks"][best])), 1),
                           vmca_by_bank_kn={f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2)
                                            for j in pair},
-                          force_model="none declared: rudder at its design limit, not 150 lbf")
+                          force_model=("rudder at its design limit; the 150 lbf of (d) is a separate finding"
+                                       if rudder else "none declared: rudder at its design limit, not 150 lbf"))
             if all(rows["pinned_low"][j] for j in pair) or rows["pinned_low"][best]:
                 v = float(crit.grid_low * vsr)
                 found = cond.with_(speed=v, speed_kind="CAS", speed_name="VMCA")
@@ -261,6 +268,8 @@ class MinimumControlSpeed(Rule):
                                            reason=(f"controls beyond their design limits up to {crit.grid_high} VSR "
                                                    f"(VMCA above the search range): {why}") if top else "",
                                            VMCA_over_VSR=vmca / vsr, **common))
+            ordered = sorted((h["speed"], h["trim"]) for h in rows["history"][best] if np.isfinite(h["usage"]))
+            out.append(self._force_finding(ctx, found, vmca, [v for v, _ in ordered], [t for _, t in ordered], crit))
             declared = ctx.aircraft.speeds.VMC
             if declared is None:
                 out.append(Finding.not_evaluated(found, "(b) declared VMC ≥ computed VMCA", "needs speeds.VMC",
@@ -277,3 +286,28 @@ class MinimumControlSpeed(Rule):
 
         rows = _vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))
+
+    @staticmethod
+    def _force_finding(ctx, found, vmca, speeds, results, crit):
+        """(d) rudder pedal force (lbf, rudder trim neutral) at the computed VMCA, interpolated between the trims the
+        search visited (its last iterate is at VMCA); with the highest of those speeds at which the force reaches the
+        limit (the force-limited VMCA, when the visited speeds bracket it). ``pedal_force_grid_lbf`` lists the forces
+        at the visited speeds (the name kept from the former grid)."""
+        from certkit_rules.part25.subpart_b.r25_147 import pedal_force_finding
+
+        check = f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf"
+        rudder = control_force_model(ctx.aircraft, "rudder")
+        if rudder is None:
+            return pedal_force_finding(ctx, None, found, None, crit.rudder_force_lbf, check)
+        q, a, d = trim_state(ctx.aircraft, "rudder", results)
+        force = np.abs(rudder.force(q, a, d)) / LBF
+        ok = np.isfinite(force)  # a trim that did not converge has no force: (c) covers it
+        usage = np.where(ok, force / crit.rudder_force_lbf, 0.0)
+        if not ok.any():
+            return Finding.not_evaluated(found, check, "no trim of the search converged")
+        at_vmca = float(np.interp(vmca, np.asarray(speeds)[ok], force[ok]))
+        limited = vmca_from_grid(speeds, usage)
+        return Finding.compare(found, check, at_vmca, crit.rudder_force_lbf, at_least=False, unit="lbf",
+                               force_model=rudder.kind,
+                               force_limited_VMCA_kn_cas=None if limited is None else round(limited / KN, 1),
+                               pedal_force_grid_lbf=[None if not np.isfinite(f) else round(float(f), 1) for f in force])

@@ -1,10 +1,16 @@
-"""§25.161 Trim — longitudinal trim in climb, level flight (cruise) and approach glide.
+"""§25.161 Trim — longitudinal trim in climb, glide/approach and level flight; trim with an engine out.
 
-The paragraph's text could not be retrieved (docs/regulation-notes.md marks it unverified, from memory):
-(c) the airplane must maintain longitudinal trim during climb at maximum continuous thrust at a speed not
-more than 1.3 VSR1, during a glide (approach) at 1.3 VSR1, and in level flight at speeds up to VMO/MMO.
-certkit trims every CG corner in each segment (one batch per configuration) and checks the elevator
-needed against its design limits — the trim must be reachable with the longitudinal control.
+Text (docs/regulation-notes.md): (a), (b), (c)(1), the start of (c)(2) and the end of (d) verified against
+the GPO print [CFR 1-1-14 p. 389, 1-1-24 p. 225]; the rest of (c)(2) and (c)(3) from memory. certkit trims
+every CG corner in each case (one batch per configuration) and checks that the trim is reached with the
+controls within their design range (stabiliser fixed at its declared setting: the elevator carries it all):
+
+    (c)(1) climb, maximum continuous thrust, 1.3 VSR1, gear up, flaps (i) retracted and (ii) takeoff;
+    (c)(2) glide with power off (idle) at 1.3 VSR1, flaps retracted; and the approach alternative on a
+           3° glidepath at 1.3 VSR in each declared approach/landing configuration with the gear down;
+    (c)(3) level flight at 1.3 VSR1 and at VMO/MMO (sea level and the cruise altitude), gear and flaps up;
+    (d)    climb at 1.3 VSR1 with the critical engine inoperative, the other at maximum continuous thrust,
+           gear and flaps up, bank ≤ 5°: elevator, aileron and rudder within range and the bank within 5°.
 """
 
 from __future__ import annotations
@@ -21,7 +27,7 @@ from certkit.units import FT
 from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import control_findings, oei_climb, trim_details
 
-SEGMENTS = ("climb", "cruise", "approach")
+SEGMENTS = ("climb", "glide", "level", "engine-out climb")
 
 
 @rule
@@ -29,80 +35,141 @@ class Trim(Rule):
     id = "25.161"
     symbol = "longitudinal-trim"
     title = "Trim"
-    amendment = "25-38"
+    amendment = "25-108"
     requirement = """
-        (Unverified, from memory.) The airplane must maintain longitudinal trim (c): in a climb with maximum
-        continuous thrust at a speed not more than 1.3 VSR1; in a glide at 1.3 VSR1 (here the approach
-        configuration on a −3° path); and in level flight at speeds up to VMO/MMO (here VC/MC, the cruise design
-        speed). Trim is shown with the longitudinal control within its design range at each CG.
+        After being trimmed, and without further pressure on or movement of the primary or trim controls, the
+        airplane must maintain longitudinal trim (c)(1) in a climb with maximum continuous power at a speed not
+        more than 1.3 VSR1, gear retracted, flaps retracted and in the takeoff position; (c)(2) in a glide with
+        power off at not more than 1.3 VSR1, or an approach on a 3° glidepath with the gear extended, whichever is
+        the most severe; (c)(3) in level flight from 1.3 VSR1 to VMO/MMO; and (d) longitudinal, directional and
+        lateral trim (bank not more than 5°) at 1.3 VSR1 in a climb with the critical engine inoperative, the
+        others at maximum continuous power, gear and flaps retracted. Trim is shown with the controls within
+        their design range at each CG corner.
     """
-    margin = "Elevator design limit − |trim elevator| on the side it is deflected (deg), at every CG corner and segment."
-    references = ("25.103", "25.335(a)")
-    requires = ("configurations.clean", "speeds.VC")
+    margin = ("Control design limit − |trim deflection| on the side it is deflected (deg), at every CG corner and case; "
+              "for (d) also 5° − |bank| (deg).")
+    references = ("25.103", "25.121", "25.335(a)")
+    requires = ("configurations.clean",)
     criteria = {
-        "climb_speed_over_vsr": Criterion(1.3, "", "14 CFR 25.161(c)(1) (unverified)", "climb speed, × VSR1 (flaps up)"),
-        "glide_speed_over_vsr": Criterion(1.3, "", "14 CFR 25.161(c)(2) (unverified)", "glide speed, × VSR of the configuration"),
-        "glide_path_deg": Criterion(-3.0, "deg", "standard −3° approach path (ICAO Annex 14 ILS glide slope)",
-                                    "flight-path angle of the approach glide"),
-        "cruise_altitude_ft": Criterion(35000.0, "ft", "14 CFR 25.161(c)(3) (unverified): level flight up to VMO/MMO",
-                                        "cruise altitude where VC/MC is trimmed (also at sea level)"),
+        "climb_speed_over_vsr": Criterion(1.3, "", "14 CFR 25.161(c)(1), (d)", "climb speed, × VSR1 of the configuration"),
+        "glide_speed_over_vsr": Criterion(1.3, "", "14 CFR 25.161(c)(2)", "glide and approach speed, × VSR of the configuration"),
+        "glide_path_deg": Criterion(-3.0, "deg", "14 CFR 25.161(c)(2) (3° glidepath; wording unverified)",
+                                    "flight-path angle of the approach alternative"),
+        "idle_throttle": Criterion(0.0, "", "14 CFR 25.161(c)(2) 'power off': flight idle of the engine model",
+                                   "throttle of the power-off glide"),
+        "level_speed_low_over_vsr": Criterion(1.3, "", "14 CFR 25.161(b), (c)(3)", "low end of the level-flight trim range, × VSR1"),
+        "cruise_altitude_ft": Criterion(35000.0, "ft", "level-flight range flown at sea level and at a typical cruise altitude",
+                                        "cruise altitude of the level-flight cases"),
+        "max_bank_deg": Criterion(5.0, "deg", "14 CFR 25.161(d)", "largest bank of the engine-out climb trim"),
         "mct_over_takeoff_thrust": Criterion(
             0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf",
             "maximum continuous over takeoff thrust of the engine model"),
     }
-    conditions = ConditionSpace(loading=CgCorners(), extra=(("segment", SEGMENTS),),
-                                note="climb: clean, MCT, 1.3 VSR1, sea level; cruise: clean, level, VC/MC at sea level and "
-                                     "the cruise altitude; approach: approach configuration, −3° glide, 1.3 VSR, sea level")
+    conditions = ConditionSpace(loading=CgCorners(), extra=(("case", SEGMENTS),),
+                                note="climb: clean and takeoff flaps, MCT, 1.3 VSR1; glide: clean, idle, 1.3 VSR1, and each "
+                                     "approach/landing configuration on −3° at 1.3 VSR; level: clean at 1.3 VSR1 and VMO/MMO, sea "
+                                     "level and the cruise altitude; engine-out climb: clean, 1.3 VSR1, critical engine out, MCT")
     implementation = "partial"
     limitations = """
-        §25.161(a), (b) (lateral/directional trim), (d) and (e) (engine-out trim) are not evaluated; the text of (c)
-        is from memory. The stabiliser is fixed at its declared incidence, so the elevator carries the whole trim.
+        §25.161(b) lateral/directional trim with a lateral CG offset is not evaluated (the model's CG is on the plane
+        of symmetry; a symmetric airplane trims with zero lateral controls), nor (c)(3)'s gear-down range to VLE (no
+        gear-down clean configuration is declared) or (e) (four or more engines). Control forces (the 5 lbf of (d))
+        need a control-force model. The stabiliser is fixed at its declared incidence, so the elevator carries the
+        whole trim (conservative for an airplane with a trimmable stabiliser).
     """
 
     def evaluate(self, ctx, conditions, crit):
         out = []
         limits = control_limits(ctx.aircraft)
-        climb = [c for c in conditions if c.get("segment") == "climb"]
-        cruise = [c for c in conditions if c.get("segment") == "cruise"]
-        glide = [c for c in conditions if c.get("segment") == "approach"]
-        if climb:
-            conds = [c.with_(configuration="clean", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
-                             speed=crit.climb_speed_over_vsr * reference_stall_speed(ctx, "clean", c.mass)[0],
-                             thrust="maximum continuous") for c in climb]
+        cases = {k: [c for c in conditions if c.get("case") == k] for k in SEGMENTS}
+        configs = ctx.aircraft.configurations
+        vsr = lambda config, c: reference_stall_speed(ctx, config, c.mass)[0]  # noqa: E731
+        for config in ("clean", "takeoff"):
+            if not cases["climb"]:
+                break
+            if config not in configs:
+                out += [Finding.not_evaluated(c.with_(configuration=config), "(c)(1) climb", f"needs configurations.{config}")
+                        for c in cases["climb"]]
+                continue
+            conds = [c.with_(configuration=config, altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
+                             speed=crit.climb_speed_over_vsr * vsr(config, c), thrust="maximum continuous")
+                     for c in cases["climb"]]
             grads, batch, _ = oei_climb(ctx, conds, crit.mct_over_takeoff_thrust, engine_out=False)
-            out += self._elevator(conds, batch, limits, "(c)(1) climb", gradients=grads)
-        if cruise:
-            h_cr = crit.cruise_altitude_ft * FT
-            conds = []
-            for h in (0.0, h_cr):
-                v, mach_limited = ctx.design_speed_eas("VC", h)
-                conds += [c.with_(configuration="clean", altitude=h, speed=float(v), speed_kind="EAS",
-                                  speed_name="MC" if bool(mach_limited) else "VC", thrust="for level flight") for c in cruise]
-            out += self._elevator(conds, ctx.trim(conds, kind="straight"), limits, "(c)(3) level flight")
-        if glide:
-            if "approach" not in ctx.aircraft.configurations:
-                out += [Finding.not_evaluated(c, "(c)(2) glide", "needs configurations.approach") for c in glide]
-            else:
-                conds = [c.with_(configuration="approach", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR",
-                                 speed=crit.glide_speed_over_vsr * reference_stall_speed(ctx, "approach", c.mass)[0],
-                                 thrust="for the −3° path") for c in glide]
+            out += self._controls(conds, batch, limits, f"(c)(1) climb, {config}", ("elevator",), gradients=grads)
+        if cases["glide"]:
+            conds = [c.with_(configuration="clean", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
+                             speed=crit.glide_speed_over_vsr * vsr("clean", c), thrust="power off (idle)")
+                     for c in cases["glide"]]
+            batch = ctx.trim(conds, kind="straight", gamma=math.radians(-3.0), throttle=crit.idle_throttle)
+            out += self._controls(conds, batch, limits, "(c)(2) power-off glide", ("elevator",))
+            approach = [k for k in ("approach", "landing") if k in configs and configs[k].gear == "down"]
+            if not approach:
+                out += [Finding.not_evaluated(c, "(c)(2) approach", "needs an approach or landing configuration with the "
+                                              "gear down") for c in cases["glide"]]
+            for config in approach:
+                conds = [c.with_(configuration=config, altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR",
+                                 speed=crit.glide_speed_over_vsr * vsr(config, c), thrust="for the 3° path")
+                         for c in cases["glide"]]
                 batch = ctx.trim(conds, kind="straight", gamma=math.radians(crit.glide_path_deg))
-                out += self._elevator(conds, batch, limits, "(c)(2) approach glide")
+                out += self._controls(conds, batch, limits, f"(c)(2) 3° approach, {config}", ("elevator",))
+        if cases["level"]:
+            top = "VMO" if ctx.aircraft.speeds.VMO is not None or ctx.aircraft.speeds.MMO is not None else "VC"
+            conds = []
+            for h in (0.0, crit.cruise_altitude_ft * FT):
+                v, mach_limited = ctx.design_speed_eas(top, h)
+                top_name = {"VMO": "MMO", "VC": "MC"}[top] if bool(mach_limited) else top
+                conds += [c.with_(configuration="clean", altitude=h, speed=float(v), speed_kind="EAS",
+                                  speed_name=top_name, thrust="for level flight") for c in cases["level"]]
+                conds += [c.with_(configuration="clean", altitude=h, speed_kind="CAS", speed_name="1.3 VSR1",
+                                  speed=crit.level_speed_low_over_vsr * vsr("clean", c), thrust="for level flight")
+                          for c in cases["level"]]
+            out += self._controls(conds, ctx.trim(conds, kind="straight"), limits, "(c)(3) level flight", ("elevator",))
+        if cases["engine-out climb"]:
+            conds = [c.with_(configuration="clean", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
+                             speed=crit.climb_speed_over_vsr * vsr("clean", c)) for c in cases["engine-out climb"]]
+            out += self._engine_out(ctx, conds, crit, limits)
+        return out
+
+    def _engine_out(self, ctx, conds, crit, limits):
+        """(d): the zero-sideslip climb trim; where it needs more than 5° of bank, the trim at 5° bank toward the
+        live engine (the sideslip results) at the same flight path — the paragraph lets the pilot choose."""
+        grads, batch, info = oei_climb(ctx, conds, crit.mct_over_takeoff_thrust, engine_out=True)
+        conds = [c.with_(thrust=f"critical engine ({info['inoperative']}) inoperative, maximum continuous on the other")
+                 for c in conds]
+        results = list(batch.results)
+        zero_sideslip_bank = [math.degrees(r.phi) for r in results]
+        bank_max = math.radians(crit.max_bank_deg)
+        steep = [i for i, r in enumerate(results) if r.converged and abs(r.phi) > bank_max]
+        if steep:
+            sub = [conds[i] for i in steep]
+            again = ctx.trim(sub, kind="oei", bank=[math.copysign(bank_max, results[i].phi) for i in steep],
+                             gamma=[results[i].gamma for i in steep], inoperative=info["inoperative"])
+            for k, i in enumerate(steep):
+                results[i] = again.results[k]
+        batch = type(batch)(model=batch.model, x=batch.x, u=batch.u, results=results)
+        out = self._controls(conds, batch, limits, "(d) engine-out climb", ("elevator", "aileron", "rudder"), gradients=grads)
+        for i, cond in enumerate(conds):
+            r = results[i]
+            if r.converged:
+                out.append(Finding.compare(cond, "(d) engine-out climb bank within 5°", abs(math.degrees(r.phi)),
+                                           crit.max_bank_deg, at_least=False, unit="deg",
+                                           zero_sideslip_bank_deg=round(zero_sideslip_bank[i], 3), **trim_details(r)))
         return out
 
     @staticmethod
-    def _elevator(conds, batch, limits, check, gradients=None):
+    def _controls(conds, batch, limits, check, controls, gradients=None):
         out = []
         for i, cond in enumerate(conds):
             r = batch.results[i]
             if not r.converged:
-                out.append(Finding.not_evaluated(cond, f"{check} elevator within design limit",
+                out.append(Finding.not_evaluated(cond, f"{check} trim",
                                                  f"trim did not converge (residual {r.residual_norm:.1e}); "
                                                  + "; ".join(m.message for m in r.limits_exceeded)))
                 continue
             for f in control_findings(cond, check, r, limits):
-                if "elevator" in f.check:
+                if any(name in f.check for name in controls):
                     f.details.update(trim_details(r))
+                    f.details["flight_path_deg"] = round(math.degrees(r.gamma), 3)
                     if gradients is not None:
                         f.details["climb_gradient"] = float(np.asarray(gradients)[i])
                     out.append(f)

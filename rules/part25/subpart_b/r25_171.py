@@ -160,6 +160,17 @@ def trims_at_throttle(ctx, conds, throttle, gammas=(0.0, 0.02), **trim_args):
     return ctx.trim(conds, gamma=gamma, **trim_args).results
 
 
+def speed_step_trims(ctx, refined, k: float):
+    """Per configuration: (conditions, trims at V₀, their throttles, trims at V₀(1 − k) then V₀(1 + k) with the
+    throttle held) — the trims §25.173(a) and the stick-force rules share (memoised in the Context)."""
+    for idx in by_configuration(refined).values():
+        conds = [refined[i] for i in idx]
+        trim0 = ctx.trim(conds).results
+        t0 = [next(v for n, v in r.controls.items() if n.startswith("throttle")) for r in trim0]
+        side = [c.with_(speed=c.speed * (1 - k)) for c in conds] + [c.with_(speed=c.speed * (1 + k)) for c in conds]
+        yield conds, trim0, t0, trims_at_throttle(ctx, side, t0 + t0)
+
+
 @rule
 class SpeedStability(Rule):
     id = "25.173(a)"
@@ -195,12 +206,7 @@ class SpeedStability(Rule):
     def evaluate(self, ctx, conditions, crit):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a) speed stability")
         k = crit.speed_step
-        for config, idx in by_configuration(refined).items():
-            conds = [refined[i] for i in idx]
-            trim0 = ctx.trim(conds).results
-            t0 = [next(v for n, v in r.controls.items() if n.startswith("throttle")) for r in trim0]
-            side = [c.with_(speed=c.speed * (1 - k)) for c in conds] + [c.with_(speed=c.speed * (1 + k)) for c in conds]
-            res = trims_at_throttle(ctx, side, t0 + t0)
+        for conds, trim0, t0, res in speed_step_trims(ctx, refined, k):
             n = len(conds)
             for i, cond in enumerate(conds):
                 lo, hi = res[i], res[n + i]
@@ -225,6 +231,46 @@ class SpeedStability(Rule):
         return margin_matrix_evidence(findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations")
 
 
+NO_FORCE_MODEL = ("needs a control-force model (control_forces.elevator: hinge moments and gearing, or an artificial-feel "
+                  "unit): the aircraft file declares none; the elevator-fixed gradient is checked by §25.173(a)")
+_VERIFIED_173 = "14 CFR 25.173 (Amdt. 25-7; verified, docs/regulation-notes.md)"
+
+
+def stick_force_curves(ctx, refined, k: float):
+    """Elevator pull force (lbf) at the trim speed V₀ and at V₀(1 ∓ k), the throttle held at its trim value and
+    the elevator trim device fixed at its V₀ setting (:mod:`certkit.models.control_force`), per condition:
+    a list of (condition, dict) with ``pull_low``, ``pull_high``, ``gradient`` (lbf/kt, positive stable: the
+    average slope (F_pull(V₀(1−k)) − F_pull(V₀(1+k))) / 2kV₀), or (condition, reason) where a trim failed."""
+    from certkit.models.control_force import control_force_model, trim_state
+    from certkit.units import LBF
+
+    elevator = control_force_model(ctx.aircraft, "elevator")
+    out = []
+    for conds, trim0, _, res in speed_step_trims(ctx, refined, k):
+        n = len(conds)
+        q0, a0, d0 = trim_state(ctx.aircraft, "elevator", trim0)
+        q1, a1, d1 = trim_state(ctx.aircraft, "elevator", res)
+        pull = -elevator.force(q1, a1, d1, trim=(np.concatenate([d0, d0]), np.concatenate([a0, a0]))) / LBF
+        for i, cond in enumerate(conds):
+            bad = [r for r in (trim0[i], res[i], res[n + i]) if not r.converged]
+            if bad:
+                out.append((cond, "trim did not converge: " + "; ".join(e.message for r in bad for e in r.limits_exceeded)))
+                continue
+            dv = 2 * k * cond.speed / KN
+            out.append((cond, dict(pull_low=float(pull[i]), pull_high=float(pull[n + i]),
+                                   gradient=float((pull[i] - pull[n + i]) / dv), dv_kt=dv,
+                                   elevator_trim_deg=float(np.degrees(d0[i])), model=elevator.kind)))
+    return out
+
+
+_FORCE_CRITERIA = {
+    "speed_step": Criterion(0.05, "", "project choice: ±5 % about the trim speed, inside the §25.175 ranges "
+                            "(±15 % or ±50 kt, docs/regulation-notes.md)", "relative speed step of the average gradient"),
+    "low_speed_factor": Criterion(1.13, "", "§25.181 speed range from 1.13 VSR", "low end of the speeds"),
+    "flap_altitude_max": _FLAP_ALT,
+}
+
+
 @rule
 class StickForceGradient(Rule):
     id = "25.173(c)"
@@ -232,19 +278,99 @@ class StickForceGradient(Rule):
     title = "Static longitudinal stability: stick-force gradient"
     amendment = "25-7"
     requirement = """
-        The average gradient of the stable slope of the stick force versus speed curve may not be less than 1 pound
-        for each 6 knots, under the conditions of §25.175.
+        Under the conditions of §25.175, the average gradient of the stable slope of the stick force versus speed curve
+        may not be less than 1 pound for each 6 knots. certkit computes the elevator pull force of the declared
+        control-force model (control_forces.elevator) at ±5 % about each trim speed, the throttle and the elevator
+        trim device held at their trim settings, and forms the average slope over that range.
     """
-    margin = "average stick-force gradient − 1 lbf / 6 kt (lbf per kt), when a control-force model is declared."
-    references = ("25.173(a)", "25.175")
-    criteria = {"force_gradient_min": Criterion(1.0 / 6.0, "lbf/kt", "§25.173(c): 1 pound for each 6 knots (" + UNVERIFIED + ")",
-                                                "smallest average stick-force gradient")}
-    conditions = ConditionSpace(note="Needs a control-force model (hinge moments, gearing, feel system).")
+    margin = """average stick-force gradient (F_pull(0.95 V) − F_pull(1.05 V)) / 0.1 V (lbf per kt CAS; > 0 stable: a
+        pull below the trim speed) − 1 lbf / 6 kt; not evaluated without control_forces.elevator."""
+    references = ("25.173(a)", "25.173(b)", "25.175")
+    requires = ("configurations.clean.CLmax", "speeds.VMO")
+    criteria = {"force_gradient_min": Criterion(1.0 / 6.0, "lbf/kt", _VERIFIED_173 + " (c): 1 pound for each 6 knots",
+                                                "smallest average stick-force gradient"),
+                **_FORCE_CRITERIA}
+    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable")),),
+                                note="The trims of §25.173(a): 1.3 VSR and the maximum allowable speed of each configuration, "
+                                     "level flight, thrust held; needs control_forces.elevator.")
     implementation = "partial"
-    limitations = "The aircraft-file schema has no control-force model yet; the rule reports not_evaluated until it has."
+    limitations = """
+        Local average over ±5 % of the trim speed, not the whole §25.175 range (±15 % or ±50 kt plus the free-return
+        range); level-flight trim thrust, not the §25.175 climb or idle power; friction is not added to the slope;
+        the trim device is a hinge-moment bias fixed at its trim value (tab or feel-neutral shift), the stabiliser is
+        fixed at its declared incidence.
+    """
 
     def evaluate(self, ctx, conditions, crit):
-        return [Finding.not_evaluated(c, "(c) stick-force gradient ≥ 1 lbf per 6 kt",
-                                      "needs a control-force model (elevator hinge moments, gearing, feel system): the "
-                                      "aircraft file declares none; the elevator-fixed gradient is checked by §25.173(a)")
-                for c in conditions]
+        check = f"(c) stick-force gradient ≥ {crit.force_gradient_min * 6:g} lbf per 6 kt"
+        if ctx.aircraft.control_forces is None or ctx.aircraft.control_forces.elevator is None:
+            return [Finding.not_evaluated(c, check, NO_FORCE_MODEL) for c in conditions]
+        refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, check)
+        for cond, r in stick_force_curves(ctx, refined, crit.speed_step):
+            if isinstance(r, str):
+                out.append(Finding.not_evaluated(cond, check, r))
+                continue
+            out.append(Finding.compare(cond, check, r["gradient"], crit.force_gradient_min, at_least=True, unit="lbf/kt",
+                                       pull_force_low_speed_lbf=round(r["pull_low"], 2),
+                                       pull_force_high_speed_lbf=round(r["pull_high"], 2),
+                                       elevator_trim_deg=round(r["elevator_trim_deg"], 3), force_model=r["model"]))
+        return out
+
+
+@rule
+class FreeReturn(Rule):
+    id = "25.173(b)"
+    symbol = "stick-force-free-return"
+    title = "Static longitudinal stability: free return to the trim speed"
+    amendment = "25-7"
+    requirement = """
+        The airspeed must return to within 10 percent of the original trim speed for the climb, approach and landing
+        conditions of §25.175(a), (c) and (d), and within 7.5 percent for the cruise condition of §25.175(b), when the
+        control force is slowly released from any speed within the range of (a). With friction F_f in the elevator
+        control, the released airplane settles where the stick force no longer exceeds the friction: ΔV = F_f / (dF/dV)
+        with the stick-force gradient of §25.173(c).
+    """
+    margin = """(allowed fraction of the trim speed) − F_f / (gradient · V_trim) (fraction of the trim speed); an unstable or
+        zero gradient does not return (band taken as the whole trim speed) and fails; not evaluated without
+        control_forces.elevator.friction."""
+    references = ("25.173(a)", "25.173(c)", "25.175")
+    requires = ("configurations.clean.CLmax", "speeds.VMO")
+    criteria = {"return_fraction": Criterion(0.10, "", _VERIFIED_173 + " (b): climb, approach and landing",
+                                             "largest speed band left after release, fraction of the trim speed"),
+                "return_fraction_cruise": Criterion(0.075, "", _VERIFIED_173 + " (b): cruise",
+                                                    "the same, flaps retracted (cruise)"),
+                **_FORCE_CRITERIA}
+    conditions = StickForceGradient.conditions
+    implementation = "partial"
+    limitations = """
+        Quasi-static release with the local stick-force gradient of §25.173(c) (no simulation of the slow release); the
+        clean configuration is read as the cruise condition (7.5 %), the flap configurations as climb, approach and
+        landing (10 %); friction as declared (control_forces.elevator.friction).
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        from certkit.units import LBF
+
+        check = "(b) free return to the trim speed"
+        decl = None if ctx.aircraft.control_forces is None else ctx.aircraft.control_forces.elevator
+        if decl is None:
+            return [Finding.not_evaluated(c, check, NO_FORCE_MODEL) for c in conditions]
+        if decl.friction is None:
+            return [Finding.not_evaluated(c, check, "needs control_forces.elevator.friction (the friction of the elevator "
+                                          "control sets the free-return speed band)") for c in conditions]
+        refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, check)
+        friction = decl.friction / LBF
+        for cond, r in stick_force_curves(ctx, refined, crit.speed_step):
+            if isinstance(r, str):
+                out.append(Finding.not_evaluated(cond, check, r))
+                continue
+            allowed = crit.return_fraction_cruise if cond.configuration == "clean" else crit.return_fraction
+            v_kt = cond.speed / KN
+            stable = r["gradient"] > 0
+            # an unstable or neutral slope does not return: the band is taken as the whole trim speed
+            band = min(friction / (r["gradient"] * v_kt), 1.0) if stable else 1.0
+            out.append(Finding.compare(cond, check, float(band), allowed, at_least=False, unit="fraction of V_trim",
+                                       reason="" if stable else "unstable or neutral stick-force slope: the speed does not return",
+                                       friction_lbf=round(friction, 2), gradient_lbf_per_kt=round(r["gradient"], 4),
+                                       return_band_kt=round(float(band * v_kt), 2)))
+        return out

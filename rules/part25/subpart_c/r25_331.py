@@ -32,8 +32,43 @@ from certkit.units import KN
 NO_CAPABILITY = "no structural capability declared"
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
-PILOT_EFFORT_NOTE = ("no control-force model is declared: the pilot-effort limit of §25.397(b) (300 lbf elevator wheel) "
-                     "cannot reduce the deflection; the design control limit bounds it")
+PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
+                     "(300 lbf elevator wheel) cannot reduce the deflection; the design control limit bounds it")
+PILOT_EFFORT = {"pilot_effort_lbf": Criterion(
+    300.0, "lbf", "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
+    "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
+    "data (§25.397(b))", "limit pilot force on the pitch control (used with control_forces.elevator)")}
+
+
+def force_limited_deflection(ctx, control: str, conditions, trim, stop, force_limit_lbf):
+    """The deflection a sudden cockpit input reaches from each trimmed condition: the control-system stop ``stop``
+    (rad, scalar or per condition; its sign gives the direction) or, with a force model of ``control`` declared
+    (:mod:`certkit.models.control_force`), the deflection the limit pilot force ``force_limit_lbf`` holds from the
+    trim ``trim`` (rad), whichever is smaller in magnitude. The local angle of attack is the trim's at the instant
+    of the input, so its hinge-moment term cancels against the trim's; q̄ from each condition's EAS.
+    Returns (deflection, force_limited flags) — the flags None without a model."""
+    from certkit.atmosphere import RHO0
+    from certkit.conditions import speed_as
+    from certkit.models.control_force import control_force_model
+    from certkit.units import LBF
+
+    trim = np.asarray(trim, dtype=float)
+    stop = np.broadcast_to(np.asarray(stop, dtype=float), trim.shape)
+    model = control_force_model(ctx.aircraft, control)
+    if model is None:
+        return stop.copy(), None
+    qbar = 0.5 * RHO0 * np.array([speed_as(c, "EAS") for c in conditions]) ** 2
+    force = np.sign(stop - trim) * np.asarray(force_limit_lbf, dtype=float) * LBF
+    at_force = model.deflection_at_force(force, qbar, 0.0, trim=(trim, 0.0))
+    limited = np.abs(at_force - trim) < np.abs(stop - trim)
+    return np.where(limited, at_force, stop), limited
+
+
+def _effort_note(limited, i) -> str:
+    if limited is None:
+        return PILOT_EFFORT_NOTE
+    return ("deflection limited by the pilot effort (control_forces.elevator)" if limited[i]
+            else "design control limit reached below the pilot-effort force")
 
 
 # --------------------------------------------------------------------------- shared loads helpers
@@ -132,11 +167,13 @@ class CheckedPitchManeuver(Rule):
         "search_steps": Criterion(6, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
         "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted"),
         **SAFETY,
+        **PILOT_EFFORT,
     }
     conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
                                 extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
                                 note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).")
-    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
+    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
+                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input); " +
                    "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
@@ -191,7 +228,9 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     omega = np.fmax(np.nan_to_num(omega_sp, nan=0.0), omega_floor)
     lim = control_limits(ctx.aircraft)["elevator"]
     de_trim = u0[:, model.control_names.index("elevator")]
-    available = np.where(nose_up, de_trim - lim[0], lim[1] - de_trim)
+    stop = np.where(nose_up, lim[0], lim[1])
+    reach_to, effort_limited = force_limited_deflection(ctx, "elevator", sim_conds, de_trim, stop, crit.pilot_effort_lbf)
+    available = np.abs(reach_to - de_trim)
     sign = np.where(nose_up, -1.0, 1.0)
     target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
     dt = float(crit.time_step)
@@ -251,7 +290,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             stations, caps, crit.ultimate_factor, input=kind, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
             hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), peak_n_z=round(peak_nz, 4),
-            stop=sim.stop_reason[i] or "end", pilot_effort=PILOT_EFFORT_NOTE))
+            stop=sim.stop_reason[i] or "end", pilot_effort=_effort_note(effort_limited, i)))
     return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
             "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
 
@@ -283,10 +322,12 @@ class MaximumPitchControlDisplacement(Rule):
         "duration": Criterion(4.0, "s", "certkit numerical choice", "longest simulated time"),
         "time_step": Criterion(0.02, "s", "certkit numerical choice", "simulation step"),
         **SAFETY,
+        **PILOT_EFFORT,
     }
     conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
                                 note="At VA (EAS), capped at the Mach-limited VC at altitude.")
-    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; " + PILOT_EFFORT_NOTE +
+    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
+                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input); " +
                    "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
@@ -300,7 +341,10 @@ class MaximumPitchControlDisplacement(Rule):
         if not batch.n:
             return findings
         lim = control_limits(ctx.aircraft)["elevator"]
-        step = lim[0] - batch.control("elevator")  # to the nose-up (trailing edge up) design limit
+        # to the nose-up (trailing edge up) design limit, or as far as the pilot effort moves it
+        target, effort_limited = force_limited_deflection(ctx, "elevator", batch.conditions, batch.control("elevator"),
+                                                          lim[0], crit.pilot_effort_lbf)
+        step = target - batch.control("elevator")
         dt, ramp = float(crit.time_step), float(crit.ramp_time)
         sched = Step(0.0, step) if ramp <= 0 else _ramp(ramp, step)
         sim = simulate(batch.model, batch.x, batch.u, float(crit.duration), dt, inputs={"elevator": sched},
@@ -320,7 +364,7 @@ class MaximumPitchControlDisplacement(Rule):
                 c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
                 considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
-                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=PILOT_EFFORT_NOTE))
+                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i)))
         self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()
                     "conditions": batch.conditions, "stations": stations}
         return findings

@@ -2,9 +2,10 @@
 steady sideslip, then returned to neutral; vertical-tail loads from the strip loads model at each phase's
 critical instant, compared with the declared structural capability (§25.303, §25.305).
 
-Text verified (docs/regulation-notes.md, Amdt. 25-91). Approximations: no control-force model is declared, so
-the 300/200 lbf pedal-force limit of (a)(2) cannot reduce the deflection and the rudder goes to its design
-limit ((a)(1), control system stops); VMC is not declared in the baseline, so the lowest speed is 1.13 VSR
+Text verified (docs/regulation-notes.md, Amdt. 25-91). Approximations: with ``control_forces.rudder`` declared the
+rudder goes to the smaller of its design limit ((a)(1), control system stops) and the deflection the 300/200 lbf
+pedal force of (a)(2) holds from the trim at zero yaw (:func:`r25_331.force_limited_deflection`); without it the
+rudder goes to its design limit; VMC is not declared in the baseline, so the lowest speed is 1.13 VSR
 clean at the condition's weight (criterion); the roll is held wings level by the ailerons as an idealised
 restraint (the deflection it needs is reported, it may exceed the aileron's design limit — spoilers are not
 modelled); the airplane is symmetric, so one rudder direction is simulated; rigid airplane.
@@ -15,6 +16,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.models.loads.batch import trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
@@ -25,15 +27,15 @@ from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds, force_limited_deflection
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
 SPEEDS = ("low", "VA", "VC", "VD")
 PHASES = (("a", "sudden rudder"), ("b", "overswing sideslip"), ("c", "steady sideslip"), ("d", "rudder returned to neutral"))
 TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
 SURFACE = "vertical_tail"
-PEDAL_NOTE = ("no control-force model is declared: the pedal-force limit of §25.351(a)(2) cannot reduce the deflection; "
-              "the rudder design limit (§25.351(a)(1), control system stops) bounds it")
+PEDAL_NOTE = ("no control-force model is declared (control_forces.rudder): the pedal-force limit of §25.351(a)(2) cannot "
+              "reduce the deflection; the rudder design limit (§25.351(a)(1), control system stops) bounds it")
 VMC_NOTE = "VMC is not declared: the lowest speed is 1.13 VSR clean at the condition's weight"
 
 
@@ -88,7 +90,8 @@ class YawManeuver(Rule):
                                 note="1.13 VSR clean (VMC not declared), VA (≤ VC), VC and VD in EAS, Mach-limited at "
                                      "altitude; rudder to its negative design limit (nose-right yaw) only: the airplane is "
                                      "symmetric, the other direction mirrors the loads.")
-    limitations = (PEDAL_NOTE + "; " + VMC_NOTE + "; roll held wings level by the ailerons as an idealised restraint "
+    limitations = ("Pedal-force limit of (a)(2) applied with control_forces.rudder at the initial zero-yaw state (the "
+                   "deflection is then held as the sideslip builds); " + PEDAL_NOTE + "; " + VMC_NOTE + "; roll held wings level by the ailerons as an idealised restraint "
                    "(deflection reported, not limited; spoilers not modelled); one rudder direction (symmetric airplane); "
                    "rigid airplane, quasi-steady strip aerodynamics.")
     implementation = "partial"
@@ -119,7 +122,12 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
     if not batch.n:
         return {"findings": findings, "envelope": None}
     lim = control_limits(ctx.aircraft)["rudder"]
-    amplitude = lim[0] - batch.control("rudder")
+    va = float(ctx.design_speed_eas("VA", 0.0)[0])
+    vc = float(ctx.design_speed_eas("VC", 0.0)[0])
+    pedal_limit = np.array([pedal_force_limit(c.speed, va, vc, crit) for c in batch.conditions])
+    target, force_limited = force_limited_deflection(ctx, "rudder", batch.conditions, batch.control("rudder"), lim[0],
+                                                     pedal_limit)
+    amplitude = target - batch.control("rudder")
     dt = float(crit.time_step)
     run = simulate_yaw(batch.model, batch.x, batch.u, amplitude, dt=dt, ramp=float(crit.ramp_time),
                        t_max=float(crit.max_time), window=float(crit.settle_window), tolerance=float(crit.settle_tolerance),
@@ -158,13 +166,14 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
     beta, jr = run.held["beta"], batch.model.control_index("rudder")
     ja = batch.model.control_index("aileron")
     aileron_peak = np.nanmax(np.abs(np.concatenate([run.held.controls[:, :, ja], run.returned.controls[:, :, ja]])), axis=0)
-    va = float(ctx.design_speed_eas("VA", 0.0)[0])
-    vc = float(ctx.design_speed_eas("VC", 0.0)[0])
     k_over = np.minimum(np.searchsorted(t, run.t_overswing - 1e-9), len(t) - 1)
     k_end = np.minimum(np.searchsorted(t, run.t_steady - 1e-9), len(t) - 1)
     for i, c in enumerate(batch.conditions):
         common = dict(V_kn_EAS=round(float(c.speed / KN), 1), rudder_deg=round(float(np.degrees(amplitude[i] + batch.u[i, jr])), 2),
-                      pedal_force_limit_lbf=round(pedal_force_limit(c.speed, va, vc, crit), 1), pilot_effort=PEDAL_NOTE,
+                      pedal_force_limit_lbf=round(float(pedal_limit[i]), 1),
+                      pilot_effort=PEDAL_NOTE if force_limited is None else (
+                          "rudder limited by the pedal force (control_forces.rudder)" if force_limited[i]
+                          else "rudder at its design limit (control system stops) below the pedal-force limit"),
                       overswing_beta_deg=round(float(np.degrees(beta[k_over[i], i])), 3),
                       overswing_time_s=round(float(run.t_overswing[i]), 2),
                       steady_beta_deg=round(float(np.degrees(beta[k_end[i], i])), 3),
@@ -179,3 +188,4 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
     return {"findings": findings, "envelope": env, "run": run, "conditions": batch.conditions, "held_loads": held,
             "returned_loads": back, "rudder_index": jr,
             "failed": [(conds[i].label(), r) for i, r in batch.failed]}
+

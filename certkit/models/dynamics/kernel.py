@@ -1,0 +1,271 @@
+"""Compiled equations of motion: the arithmetic behind :class:`certkit.models.dynamics.eom.AircraftModel`.
+
+The physics, frames and conventions are documented in :mod:`certkit.models.dynamics.eom`; this module
+is their only implementation, written one condition at a time and compiled with numba (cached on disk
+after the first use), so a batch costs a loop in machine code instead of ~150 numpy calls per
+evaluation. :func:`rk4_step` advances a whole batch by one fixed step without returning to Python
+between the four stages.
+
+Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_kernel_args``):
+
+    props (n, 16)   1/m, J11 J12 J13 J22 J23 J33, (J⁻¹) K11 K12 K13 K22 K23 K33, r_ref (body, 3)
+    consts (4,)     b, c, S, g
+    aero            T, machs, clmax, stall, alpha_drag, after_stall (see
+                    :mod:`certkit.models.aero.derivative_kernel`), ``use_table`` (False: the
+                    coefficients are given per condition in ``coef`` (n, 8), computed in Python by a
+                    model that is not a derivative table)
+    r_eng (n, ne, 3), d_eng (ne, 3); thrust (n, ne) N along each thrust line, from Python (engines are
+                    Python models); held over an RK4 step like the controls
+    ground          has_ground, r_gear (n, nl, 3), legs (nl, 5) = stiffness, damping, rolling and side
+                    friction, braked; gparams (3,) = runway elevation, brake friction, slip speed;
+                    brake_index (−1: none)
+
+Outputs per condition, columns of :data:`OUTPUTS`; gear normal loads (n, nl).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from certkit import atmosphere as isa
+from certkit.atmosphere import isa_scalar
+from certkit.models.aero.derivative_kernel import coefficients_one
+
+OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
+AIR = ("h_clipped", "V", "alpha", "beta", "mach", "qbar")
+
+_R, _GAMMA = isa.R_AIR, isa.GAMMA
+_H_MIN, _H_MAX = -600.0, isa.H_MAX
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _air(h, u, v, w):
+    """ISA (troposphere + isothermal layer, altitude clipped to the modelled range) and air data:
+    (h clipped, V, α, β, Mach, q̄)."""
+    hc = min(max(h, _H_MIN), _H_MAX)
+    T_air, p_air = isa_scalar(hc)
+    rho = p_air / (_R * T_air)
+    V2 = u * u + v * v + w * w
+    V = math.sqrt(V2)
+    Vs = max(V, 1e-3)
+    alpha = math.atan2(w, u)
+    beta = math.asin(min(max(v / Vs, -1.0), 1.0))
+    return hc, V, alpha, beta, V / math.sqrt(_GAMMA * _R * T_air), 0.5 * rho * V2
+
+
+@njit(cache=True, fastmath=True)
+def air_data(X):
+    """Air data (columns of :data:`AIR`) of each state row (h, u, v, w at columns 2–5)."""
+    n = X.shape[0]
+    out = np.empty((n, 6))
+    for i in range(n):
+        r = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
+        for k in range(6):
+            out[i, k] = r[k]
+    return out
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _dcm(x, quat):
+    """Body→NED direction cosines (row by row) from the quaternion or the Euler angles."""
+    if quat:
+        q0, q1, q2, q3 = x[9], x[10], x[11], x[12]
+        q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
+        q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
+        return (q00 + q11 - q22 - q33, 2 * (q12 - q03), 2 * (q13 + q02),
+                2 * (q12 + q03), q00 - q11 + q22 - q33, 2 * (q23 - q01),
+                2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33)
+    sf, cf = math.sin(x[9]), math.cos(x[9])
+    st, ct = math.sin(x[10]), math.cos(x[10])
+    sp, cp = math.sin(x[11]), math.cos(x[11])
+    return (ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
+            ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
+            -st, sf * ct, cf * ct)
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz, rx, ry, rz):
+    """Totals plus the force (fx, fy, fz) applied at body point (rx, ry, rz)."""
+    return (Fx + fx, Fy + fy, Fz + fz, Mx + ry * fz - rz * fy, My + rz * fx - rx * fz, Mz + rx * fy - ry * fx)
+
+
+@njit(cache=True, fastmath=True)
+def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
+                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, xd, out, gear):
+    """State derivative of condition ``i`` (state ``x``, 13 quaternion or 12 Euler components) into
+    ``xd``; outputs into ``out`` (:data:`OUTPUTS`) and gear loads into ``gear``."""
+    h, u, v, w, p, q, r = x[2], x[3], x[4], x[5], x[6], x[7], x[8]
+    C11, C12, C13, C21, C22, C23, C31, C32, C33 = _dcm(x, quat)
+    hc, V, alpha, beta, mach, qbar = _air(h, u, v, w)
+    Vs = max(V, 1e-3)
+    uw2 = max(u * u + w * w, 1e-6)
+    b, c, S, g = consts[0], consts[1], consts[2], consts[3]
+    coef = coef_i
+    if use_table:  # coef_i is scratch space, else it holds the coefficients computed in Python
+        coefficients_one(T, machs, clmax, stall, alpha_drag, after_stall, alpha, beta, p * (b / 2) / Vs,
+                         q * (c / 2) / Vs, r * (b / 2) / Vs, mach, ctrl[:n_aero], coef)
+    CL, CD = coef[0], coef[1]
+    suw = math.sqrt(uw2)
+    ca, sa = u / suw, w / suw
+    qS = qbar * S
+    Fx = qS * (CL * sa - CD * ca)
+    Fy = qS * coef[2]
+    Fz = -qS * (CD * sa + CL * ca)
+    rx, ry, rz = props[i, 13], props[i, 14], props[i, 15]
+    Mx = qS * b * coef[3] + ry * Fz - rz * Fy
+    My = qS * c * coef[4] + rz * Fx - rx * Fz
+    Mz = qS * b * coef[5] + rx * Fy - ry * Fx
+    for j in range(thrust_i.shape[0]):
+        t = thrust_i[j]
+        fx, fy, fz = t * d_eng[j, 0], t * d_eng[j, 1], t * d_eng[j, 2]
+        Fx, Fy, Fz, Mx, My, Mz = _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz,
+                                            r_eng[i, j, 0], r_eng[i, j, 1], r_eng[i, j, 2])
+    if has_ground:
+        # spring–damper legs; friction along and across the wheel heading (body x projected on
+        # the horizontal plane), smooth saturation tanh(v / slip speed)
+        nrm = max(math.hypot(C11, C21), 1e-9)
+        hx, hy = C11 / nrm, C21 / nrm
+        brake = 0.0
+        if brake_index >= 0:
+            brake = min(max(ctrl[brake_index], 0.0), 1.0)
+        inv_slip = 1.0 / gparams[2]
+        for k in range(legs.shape[0]):
+            gx, gy, gz = r_gear[i, k, 0], r_gear[i, k, 1], r_gear[i, k, 2]
+            height = (h - gparams[0]) - (C31 * gx + C32 * gy + C33 * gz)
+            if height >= 0.0:
+                gear[k] = 0.0
+                continue
+            vx = u + q * gz - r * gy
+            vy = v + r * gx - p * gz
+            vz = w + p * gy - q * gx
+            vN = C11 * vx + C12 * vy + C13 * vz
+            vE = C21 * vx + C22 * vy + C23 * vz
+            vD = C31 * vx + C32 * vy + C33 * vz
+            load = max(legs[k, 0] * (-height) + legs[k, 1] * vD, 0.0)
+            gear[k] = load
+            mu_long = legs[k, 2] + legs[k, 4] * gparams[1] * brake
+            f_long = -mu_long * load * math.tanh((vN * hx + vE * hy) * inv_slip)
+            f_lat = -legs[k, 3] * load * math.tanh((vE * hx - vN * hy) * inv_slip)
+            fN = f_long * hx - f_lat * hy
+            fE = f_long * hy + f_lat * hx
+            fbx = C11 * fN + C21 * fE - C31 * load
+            fby = C12 * fN + C22 * fE - C32 * load
+            fbz = C13 * fN + C23 * fE - C33 * load
+            Fx, Fy, Fz, Mx, My, Mz = _add_force(Fx, Fy, Fz, Mx, My, Mz, fbx, fby, fbz, gx, gy, gz)
+    im = props[i, 0]
+    udot = Fx * im + g * C31 - (q * w - r * v)
+    vdot = Fy * im + g * C32 - (r * u - p * w)
+    wdot = Fz * im + g * C33 - (p * v - q * u)
+    alpha_dot = (u * wdot - w * udot) / uw2
+    CLad, Cmad = coef[6], coef[7]
+    if CLad != 0.0 or Cmad != 0.0:
+        # the α̇ forces are linear in α̇: solve the implicit equation exactly
+        kf = qS * (c / 2) / Vs * CLad
+        dFx, dFz = kf * sa, -kf * ca
+        alpha_dot = alpha_dot / (1.0 - (u * dFz - w * dFx) * im / uw2)
+        udot += dFx * im * alpha_dot
+        wdot += dFz * im * alpha_dot
+        Fx += dFx * alpha_dot
+        Fz += dFz * alpha_dot
+        Mx += ry * dFz * alpha_dot
+        My += (qS * c * (c / 2) / Vs * Cmad + rz * dFx - rx * dFz) * alpha_dot
+        Mz -= ry * dFx * alpha_dot
+    J11, J12, J13, J22, J23, J33 = props[i, 1], props[i, 2], props[i, 3], props[i, 4], props[i, 5], props[i, 6]
+    hx_ = J11 * p + J12 * q + J13 * r
+    hy_ = J12 * p + J22 * q + J23 * r
+    hz_ = J13 * p + J23 * q + J33 * r
+    ax = Mx - (q * hz_ - r * hy_)
+    ay = My - (r * hx_ - p * hz_)
+    az = Mz - (p * hy_ - q * hx_)
+    K11, K12, K13, K22, K23, K33 = props[i, 7], props[i, 8], props[i, 9], props[i, 10], props[i, 11], props[i, 12]
+    xd[0] = C11 * u + C12 * v + C13 * w
+    xd[1] = C21 * u + C22 * v + C23 * w
+    xd[2] = -(C31 * u + C32 * v + C33 * w)
+    xd[3] = udot
+    xd[4] = vdot
+    xd[5] = wdot
+    xd[6] = K11 * ax + K12 * ay + K13 * az
+    xd[7] = K12 * ax + K22 * ay + K23 * az
+    xd[8] = K13 * ax + K23 * ay + K33 * az
+    if quat:
+        q0, q1, q2, q3 = x[9], x[10], x[11], x[12]
+        xd[9] = -0.5 * (p * q1 + q * q2 + r * q3)
+        xd[10] = 0.5 * (p * q0 + r * q2 - q * q3)
+        xd[11] = 0.5 * (q * q0 - r * q1 + p * q3)
+        xd[12] = 0.5 * (r * q0 + q * q1 - p * q2)
+    else:
+        sf, cf = math.sin(x[9]), math.cos(x[9])
+        st, ct = math.sin(x[10]), math.cos(x[10])
+        xd[9] = p + (q * sf + r * cf) * st / ct
+        xd[10] = q * cf - r * sf
+        xd[11] = (q * sf + r * cf) / ct
+    Wt = g / im
+    out[0] = V
+    out[1] = alpha
+    out[2] = beta
+    out[3] = mach
+    out[4] = qbar
+    out[5] = Fx / Wt
+    out[6] = Fy / Wt
+    out[7] = -Fz / Wt
+    out[8] = alpha_dot
+    out[9] = CL
+    out[10] = CD
+
+
+@njit(cache=True, fastmath=True)
+def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
+                n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
+    """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
+    Returns ẋ (rows, states), outputs (rows, 11), gear loads (rows, nl)."""
+    n, ns = X.shape
+    xd = np.empty((n, ns))
+    out = np.empty((n, len(OUTPUTS)))
+    gear = np.zeros((n, legs.shape[0]))
+    for i in range(n):
+        derivative_one(rows[i], X[i], quat, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
+                       after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
+                       xd[i], out[i], gear[i])
+    return xd, out, gear
+
+
+@njit(cache=True, fastmath=True)
+def rk4_step(X, XD1, active, dt, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
+             n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
+    """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
+    classical RK4 step of ``dt``, controls and thrust held; ``XD1`` the derivative at the step's
+    start. The quaternion is renormalised after the step."""
+    n, ns = X.shape
+    k2 = np.empty(ns)
+    k3 = np.empty(ns)
+    k4 = np.empty(ns)
+    xs = np.empty(ns)
+    out = np.empty(len(OUTPUTS))
+    gear = np.zeros(legs.shape[0])
+    for i in range(n):
+        if not active[i]:
+            continue
+        x, k1 = X[i], XD1[i]
+        for s in range(ns):
+            xs[s] = x[s] + 0.5 * dt * k1[s]
+        derivative_one(i, xs, True, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
+                       after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
+                       k2, out, gear)
+        for s in range(ns):
+            xs[s] = x[s] + 0.5 * dt * k2[s]
+        derivative_one(i, xs, True, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
+                       after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
+                       k3, out, gear)
+        for s in range(ns):
+            xs[s] = x[s] + dt * k3[s]
+        derivative_one(i, xs, True, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
+                       after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
+                       k4, out, gear)
+        for s in range(ns):
+            x[s] = x[s] + dt / 6.0 * (k1[s] + 2.0 * k2[s] + 2.0 * k3[s] + k4[s])
+        nq = math.sqrt(x[9] * x[9] + x[10] * x[10] + x[11] * x[11] + x[12] * x[12])
+        for s in range(9, 13):
+            x[s] /= nq
