@@ -133,36 +133,39 @@ def _scaled(v, unit):
     return round(float(v) * 100, 3) if unit == "gradient" else round(float(v), 4)
 
 
-def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: int = 24) -> list[Evidence]:
-    """Generic evidence of a trim-based rule: the ``worst`` findings by normalised margin as a bar chart (failing in
-    red), and a table of every evaluated finding with its value, limit, margin and the trim's ``detail_keys``."""
+def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: int = 24, plot: bool = False) -> list[Evidence]:
+    """Generic evidence of a trim-based rule: a table of every evaluated finding with its value, limit, margin and the
+    trim's ``detail_keys``, worst first; with ``plot`` also the ``worst`` findings by normalised margin as a bar chart
+    (failing in red). Tables cost nothing; a plot costs about 0.2 s of a check, so it is drawn where it says more."""
     ev = [f for f in findings if f.margin is not None and f.value is not None]
     if not ev:
         return []
     ev.sort(key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
     shown = ev[:worst]
-    fig, ax = plt.subplots(figsize=(8.0, 0.28 * len(shown) + 1.2))
-    nm = [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown]
-    y = np.arange(len(shown))[::-1]
-    ax.barh(y, nm, color=["C3" if f.status == "fails" else "C0" for f in shown])
-    ax.set_yticks(y, [f"{f.check[:48]} · {_cond_label(f.condition)}"[:90] for f in shown], fontsize=6)
-    ax.axvline(0.0, color="k", lw=0.8)
-    ax.set_xlabel("normalised margin (margin / |limit|; ≥ 0 complies)")
-    ax.set_title(title, fontsize=9)
-    ax.grid(axis="x", alpha=0.3)
-    svg = figure_to_svg(fig)
+    svg = ""
+    if plot:
+        fig, ax = plt.subplots(figsize=(8.0, 0.28 * len(shown) + 1.2))
+        nm = [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown]
+        y = np.arange(len(shown))[::-1]
+        ax.barh(y, nm, color=["C3" if f.status == "fails" else "C0" for f in shown])
+        ax.set_yticks(y, [f"{f.check[:48]} · {_cond_label(f.condition)}"[:90] for f in shown], fontsize=6)
+        ax.axvline(0.0, color="k", lw=0.8)
+        ax.set_xlabel("normalised margin (margin / |limit|; ≥ 0 complies)")
+        ax.set_title(title, fontsize=9)
+        ax.grid(axis="x", alpha=0.3)
+        svg = figure_to_svg(fig)
+    keys = [k for k in detail_keys if any(f.details.get(k) is not None for f in ev)]
     table = []
     for f in ev:
         row = {"condition": _cond_label(f.condition), "check": f.check,
                "value": _scaled(f.value, f.unit), "limit": _scaled(f.limit, f.unit),
                "unit": "%" if f.unit == "gradient" else f.unit, "margin": _scaled(f.margin, f.unit), "status": f.status}
-        for k in detail_keys:
-            if k in f.details and f.details[k] is not None:
-                v = f.details[k]
-                row[k] = round(float(v), 3) if isinstance(v, (int, float, np.floating)) else v
+        for k in keys:  # every row has the same columns (the report takes its header from the first row)
+            v = f.details.get(k)
+            row[k] = round(float(v), 3) if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool) else v
         table.append(row)
-    return [Evidence(title, svg, caption + (f" The {len(shown)} smallest margins of {len(ev)} are drawn." if len(ev) > len(shown)
-                                            else ""), table)]
+    more = f" The {len(shown)} smallest margins of {len(ev)} are drawn." if plot and len(ev) > len(shown) else ""
+    return [Evidence(title, svg, caption + more, table)]
 
 
 def climb_gradient_evidence(findings, title: str) -> list[Evidence]:

@@ -18,14 +18,15 @@ def _findings():
 
 
 def test_margins_table_and_plot():
-    (ev,) = margins_evidence(_findings(), "title", "caption.", ("rudder_deg",))
+    (ev,) = margins_evidence(_findings(), "title", "caption.", ("rudder_deg",), plot=True)
     assert "<svg" in ev.svg
     assert len(ev.table) == 3  # the not-evaluated finding has no margin
     worst = ev.table[0]
     assert worst["check"].startswith("(b) gradient") and worst["status"] == "fails"
     assert worst["value"] == 2.0 and worst["limit"] == 2.4 and worst["unit"] == "%" and worst["margin"] == -0.4
     # ordered by normalised margin: −0.4/2.4 = −0.167, then −1.8/23.2 = −0.078, then +0.7/2.4
-    assert ev.table[1]["check"].startswith("(b) rudder") and "rudder_deg" not in ev.table[1]
+    assert ev.table[1]["check"].startswith("(b) rudder") and ev.table[1]["rudder_deg"] is None
+    assert len({tuple(row) for row in ev.table}) == 1  # the same columns in every row
     assert ev.table[2]["rudder_deg"] == -12.5 and ev.table[2]["margin"] == 0.7
 
 
@@ -33,3 +34,5 @@ def test_climb_gradients_and_nothing_without_margins():
     evs = climb_gradient_evidence(_findings(), "§25.121(b)")
     assert [e.title for e in evs] == ["§25.121(b): gradients", "§25.121(b): trims"]
     assert margins_evidence(_findings()[3:], "t", "c") == []
+    (table_only,) = margins_evidence(_findings(), "t", "c")
+    assert table_only.svg == "" and len(table_only.table) == 3

@@ -161,7 +161,7 @@ class LongitudinalControlConfigurationChanges(Rule):
 
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
-                                ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"))
+                                ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"), plot=True)
 
 
 def force_finding(ctx, elevator, i, para, what, start, end, limit_lbf):
