@@ -137,8 +137,9 @@ class Context:
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
-        value per condition (rad); ``inoperative`` names a failed engine; ``throttle`` fixes the throttles (0–1, the
-        flight-path angle is then solved for). Control limits are the design limits.
+        value per condition (rad); ``inoperative`` names a failed engine (or gives one name per condition);
+        ``throttle`` fixes the throttles (0–1, the flight-path angle is then solved for). Control limits are the design
+        limits.
         """
         from certkit.conditions import speed_as
 
@@ -150,7 +151,8 @@ class Context:
         tas = np.array([speed_as(c, "TAS") for c in conds])
         h = np.array([c.altitude or 0.0 for c in conds])
         key = ("trim", config, tuple((c.mass, c.x_cg) for c in conds), tuple(np.round(tas, 6)), tuple(h), kind,
-               _hashable(gamma), _hashable(bank), _hashable(beta), inoperative, design_limits,
+               _hashable(gamma), _hashable(bank), _hashable(beta),
+               inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative), design_limits,
                None if throttle is None else _hashable(throttle))
         return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits,
                                                  throttle))
@@ -163,9 +165,10 @@ class Context:
         operative = None
         if inoperative is not None:
             names = [e.name for e in self.aircraft.propulsion.engines]
-            if inoperative not in names:
-                raise ValueError(f"no engine named {inoperative!r} (engines: {', '.join(names)})")
-            operative = np.array([[n != inoperative for n in names]] * len(conds))
+            dead = [inoperative] * len(conds) if isinstance(inoperative, str) else list(inoperative)
+            for d in set(dead) - set(names):
+                raise ValueError(f"no engine named {d!r} (engines: {', '.join(names)})")
+            operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
         return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
                     limits=control_limits(self.aircraft, design=design_limits), roles=ROLES)

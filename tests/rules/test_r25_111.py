@@ -1,14 +1,21 @@
-"""§25.111 takeoff path (simulated, all engines) against hand numbers in the paragraph's units.
+"""§25.111 takeoff path with the critical engine failed at VEF (simulated), against hand numbers in the
+paragraph's units.
 
-Hand references: at brake release the runway acceleration is g · 2 T_static/W
-= 32.174 ft/s² × 2 × 97,300 lbf / 656,000 lb = 9.544 ft/s² (2.909 m/s²; thrust line along the body
-axis, no aerodynamic force at rest, and no rolling resistance yet: the ground model's tyre friction
-μ N tanh(v/0.3 m/s) builds up over the first 0.3 m/s of the roll);
-V2 = 161 KCAS is the (c)(2) limit; VR = 155 KCAS the rotation speed.
+Hand references (lb, ft, s; the baseline's GE90-94B class static thrust 97,300 lbf per engine, MTOW 656,000 lb):
+* at brake release the runway acceleration with both engines is g · 2 T_static/W
+  = 32.174 ft/s² × 2 × 97,300 lbf / 656,000 lb = 9.544 ft/s² (thrust line along the body axis, no aerodynamic
+  force at rest, no rolling resistance yet: the tyre friction μ N tanh(v/0.3 m/s) builds up over the first
+  0.3 m/s), and with one engine inoperative at rest half of it, 4.772 ft/s² (no windmilling drag at zero speed);
+* VEF = V1 − a_OEI Δt with Δt = 1 s: the speed a recognition interval after the failure must come back to
+  V1 = 150 KCAS (within 0.5 kn: a_OEI is quasi-steady, the gear carrying the weight of rest);
+* V2 = 161 KCAS is the (c)(2) limit; VR = 155 KCAS; the rudder's design limits are ±23.2° (aircraft file).
 """
 
+import numpy as np
 import pytest
 
+from certkit.models.dynamics.procedures import runway_acceleration
+from certkit.models.flight import flight_model, ground_model
 from certkit.units import FT
 
 from .helpers import finding_by as _by
@@ -16,6 +23,7 @@ from .helpers import run_rule
 
 GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
         "    nose: {x: 22.1 ft, y: 0 ft, z: -18.5 ft}\n")
+LOADINGS = ("MTOW forward", "MTOW reference", "MTOW aft")
 
 
 @pytest.fixture(scope="module")
@@ -23,36 +31,55 @@ def result():
     return run_rule("25.111")
 
 
-def test_hand_calculation_initial_acceleration_and_v2_limit(result):
-    """Initial acceleration 9.544 ft/s² within 0.5 %; the (c)(2) limit is V2 = 161 kn; lift-off after VR."""
-    for loading in ("MTOW forward", "MTOW reference", "MTOW aft"):
+def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
+    """Initial acceleration 9.544 ft/s² (both engines) and 4.772 ft/s² (one engine out) within 0.5 %; V one second
+    after the failure at VEF is V1 within 0.5 kn; the (c)(2) limit is V2 = 161 kn; lift-off after VR."""
+    ac = ctx.aircraft
+    c = _by(result, "MTOW reference", "(c)(2)").condition
+    model = flight_model(ac, ctx.aero("takeoff").model, [ctx.loading(c.mass, c.x_cg, c.loading)], ground=ground_model(ac))
+    a_oei = runway_acceleration(model, 0.0, operative=np.array([[False, True]]))
+    assert a_oei[0] / FT == pytest.approx(32.174 * 97300 / 656000, rel=5e-3)
+    for loading in LOADINGS:
         f = _by(result, loading, "(c)(2)")
         assert f.details["initial_acceleration_m_s2"] / FT == pytest.approx(32.174 * 2 * 97300 / 656000, rel=5e-3)
+        assert f.details["v_recognition_kn"] == pytest.approx(150.0, abs=0.5)
+        assert f.details["vef_kn"] < 150.0
         assert f.limit == pytest.approx(161.0, abs=1e-6) and f.unit == "kn"
         assert f.details["vlof_kn"] > 155.0 and f.value > f.details["vlof_kn"]
-        assert 3000 < f.details["distance_to_35ft_ft"] < 12000
-    assert result.status == "complies"
+        assert f.condition.get("inoperative") == "left"
+    assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
 
 
-def test_on_the_limit_when_the_design_limit_equals_the_extreme_elevator(result, tmp_path):
-    """With the elevator's design limit set to the forward-CG run's extreme elevator, that margin is 0."""
-    fwd = _by(result, "MTOW forward", "(b)")
-    edited = run_rule("25.111", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                            f"design_limits: {{min: {fwd.value:.5f} deg, max: 16.8 deg}}")])
-    f = _by(edited, "MTOW forward", "(b)")
-    assert f.margin == pytest.approx(0.0, abs=1e-4)
+def test_on_the_limit_when_the_rudder_design_limit_equals_the_extreme_rudder(result, tmp_path):
+    """With the rudder's design limit set to the forward-CG run's extreme rudder, that margin is 0 (the pilot model
+    moves the rudder over its travel, so the design limit does not change the run)."""
+    fwd = _by(result, "MTOW forward", "(a) rudder")
+    assert fwd.limit == pytest.approx(-23.2)
+    edited = run_rule("25.111", tmp_path, [("design_limits: {min: -23.2 deg, max: 23.2 deg}",
+                                            f"design_limits: {{min: {fwd.value:.6f} deg, max: 23.2 deg}}")])
+    f = _by(edited, "MTOW forward", "(a) rudder")
+    assert f.margin == pytest.approx(0.0, abs=1e-5)
 
 
-def test_sign_aft_cg_needs_less_nose_up_elevator(result):
+def test_sign_cg_and_engine_failure(result):
     """Moving the CG aft shortens the tail's lever against the weight on the mains: the elevator margin grows
-    forward → reference → aft, and the lighter rotation moment lifts off earlier (lower V at 35 ft)."""
-    m = [_by(result, c, "(b)").margin for c in ("MTOW forward", "MTOW reference", "MTOW aft")]
+    forward → reference → aft and the airplane lifts off earlier (lower V at 35 ft). Failing an engine makes the
+    takeoff worse than with all engines: a lower speed at 35 ft."""
+    m = [_by(result, c, "(a) elevator").margin for c in LOADINGS]
     assert m[0] < m[1] < m[2]
-    v = [_by(result, c, "(c)(2)").value for c in ("MTOW forward", "MTOW reference", "MTOW aft")]
+    v = [_by(result, c, "(c)(2)").value for c in LOADINGS]
     assert v[0] > v[1] > v[2]
+    for c in LOADINGS:
+        d = _by(result, c, "(c)(2)").details
+        assert d["v35_kn"] < d["all_engines_v35_kn"]
+        # the left engine failed: the nose swings left (ψ < 0 first), the rudder pushes right (δr < 0, conventions)
+        r = _by(result, c, "(a) rudder")
+        assert r.details["rudder_min_deg"] < -10.0 and r.details["rudder_max_deg"] <= 0.5
 
 
-def test_not_evaluated_without_landing_gear(tmp_path):
+def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
     r = run_rule("25.111", tmp_path, [(GEAR, "")])
     assert r.status == "not_evaluated"
     assert all(f.status == "not_evaluated" and "landing_gear" in f.reason for f in r.findings)
+    r = run_rule("25.111", tmp_path, [("  V1: 150 kn CAS", "  #V1: 150 kn CAS")])
+    assert r.status == "not_evaluated" and all("speeds.V1" in f.reason for f in r.findings)

@@ -1,8 +1,10 @@
 """§25.149 minimum control speed.
 
-Hand calculation of the VMCA search on a grid (linear interpolation where the control usage
-|δ|/δ_limit crosses 1), and the rule on the baseline: VMCA against 1.13 VSR, with VSR = √(2W/(ρ0 S CLmax))
-in lb, ft, slug (656,000 lb, 4927.3 ft², takeoff CLmax of the model) to 0.1 %.
+Hand calculation of the grid crossing (linear interpolation where the control usage |δ|/δ_limit crosses 1),
+the rule on the baseline: VMCA against 1.13 VSR, with VSR = √(2W/(ρ0 S CLmax)) in lb, ft, slug (656,000 lb,
+4927.3 ft², takeoff CLmax of the model) to 0.1 %; and the secant search against the former 33-point grid
+(0.6–1.4 VSR, 2.5 % VSR steps, linear interpolation): the same VMCA within the grid's interpolation error
+(0.5 kn), and within 0.1 kn of a fine grid (0.2 kn steps) around it.
 """
 
 import math
@@ -10,7 +12,10 @@ import math
 import numpy as np
 import pytest
 
-from certkit_rules.part25.subpart_b.r25_149 import vmca_from_grid
+from certkit.models.flight import control_limits
+from certkit.units import KN
+from certkit_rules.part25.subpart_b.r25_149 import control_usage, vmca_from_grid
+from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
 from .helpers import run_rule
 
@@ -44,6 +49,7 @@ def test_baseline_vsr_and_vmc_not_declared(result, ctx):
     assert c.details["VSR"] / 0.514444 == pytest.approx(vsr_kn, rel=1e-3)
     assert c.limit == pytest.approx(1.13 * c.details["VSR"], rel=1e-9)
     assert (c.margin >= 0) == (c.status == "complies") and np.isfinite(c.value)
+    assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
     b = next(f for f in result.findings if f.check.startswith("(b)"))
     assert b.status == "not_evaluated" and b.reason == "needs speeds.VMC"
 
@@ -51,3 +57,28 @@ def test_baseline_vsr_and_vmc_not_declared(result, ctx):
 def test_not_evaluated_without_takeoff_clmax(tmp_path):
     r = run_rule("25.149", tmp_path, edits=[("    CLmax: 1.95 ", "    #CLmax: 1.95 ")])
     assert r.status == "not_evaluated" and "configurations.takeoff.CLmax" in r.findings[0].reason
+
+
+def _grid_vmca(ctx, cond, vsr, factors, gammas=(-0.08, -0.04)):
+    """The former rule's VMCA: one batch of full-throttle OEI trims over the grid, at 5° bank toward the operating
+    engine and wings level, the better usage per speed, linear interpolation of the crossing."""
+    n = len(factors)
+    grid = [cond.with_(speed=float(f * vsr), speed_kind="CAS") for f in factors] * 2
+    banks = np.concatenate([np.full(n, np.radians(5.0)), np.zeros(n)])  # left engine out: bank right
+    res = trims_at_throttle(ctx, grid, np.full(2 * n, 0.99), gammas=gammas, kind="oei", bank=banks,
+                            inoperative="left")
+    use = np.array([control_usage(r, control_limits(ctx.aircraft)) for r in res]).reshape(2, n).min(axis=0)
+    return vmca_from_grid(np.asarray(factors) * vsr, use)
+
+
+def test_search_agrees_with_the_former_grid(result, ctx):
+    """The former 33-point grid and the secant search agree within 0.5 kn (measured 0.36 kn: the grid's single
+    secant step from probe trims at γ = −0.08/−0.04 ends at throttle 0.978, not 0.99, which moves its VMCA up by
+    0.3 kn); a fine grid (0.2 kn steps over ±1 kn) whose probes sit near the full-throttle path (γ = −0.02/0,
+    throttle 0.989) agrees with the search within 0.1 kn."""
+    c = next(f for f in result.findings if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
+    vsr, vmca = c.details["VSR"], c.value
+    old = _grid_vmca(ctx, c.condition, vsr, np.linspace(0.6, 1.4, 33))
+    assert old / KN == pytest.approx(vmca / KN, abs=0.5)
+    fine = _grid_vmca(ctx, c.condition, vsr, (vmca + np.arange(-1.0, 1.01, 0.2) * KN) / vsr, gammas=(-0.02, 0.0))
+    assert fine / KN == pytest.approx(vmca / KN, abs=0.1)

@@ -39,6 +39,10 @@
     δa = K_φ φ + K_p p toward wings level and rudder δr = K_r r − K_β β toward zero sideslip
     (positive deflections give negative moments, :mod:`certkit.conventions`), clipped.
 
+:class:`HeadingHold`
+    Rudder holding the initial (runway) heading by a PI law with yaw-rate damping, aileron holding wings
+    level on the ground and a commanded bank once airborne (an engine failure on the takeoff run).
+
 :class:`EngineFailure`
     Makes the named engines inoperative (windmilling) from the instant the airspeed first reaches
     ``speed`` (V_EF), per condition, and for the rest of the run (§25.111(a)(2)'s failure model).
@@ -204,4 +208,45 @@ class EngineFailure(Controller):
         return u
 
 
-__all__ = ["PitchAttitudeHold", "TECSApproach", "WingsLevel", "EngineFailure"]
+class HeadingHold(Controller):
+    """Lateral–directional hold of the initial heading (the runway's), for an engine failure on the takeoff
+    run and climb-out: rudder on the heading error (proportional + integral, so that the steady asymmetric
+    yawing moment needs no standing heading error) with yaw-rate damping,
+        δr = δr0 + K_ψ (ψ − ψ0) + K_I ∫(ψ − ψ0) dt + K_r r,
+    the integral frozen while the rudder is on its limit in the error's direction (anti-windup); aileron
+    toward the commanded bank, wings level on the ground and ``bank`` (rad, per condition) once the gear
+    carries no load (e.g. a few degrees toward the operating engine):
+        δa = δa0 + K_φ (φ − φ_cmd) + K_p p,
+    both clipped to ``limits`` (positive deflections give negative moments, :mod:`certkit.conventions`)."""
+
+    def __init__(self, model: AircraftModel, u0: np.ndarray, k_psi: float = 3.0, k_i: float = 1.0, k_r: float = 3.0,
+                 k_phi: float = 2.0, k_p: float = 1.0, bank=0.0, aileron: str = "aileron", rudder: str = "rudder",
+                 limits: dict | None = None):
+        self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
+        u0 = np.asarray(u0, dtype=float)
+        self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
+        self.k_psi, self.k_i, self.k_r, self.k_phi, self.k_p = k_psi, k_i, k_r, k_phi, k_p
+        self.bank = np.broadcast_to(np.asarray(bank, dtype=float), (model.n,))
+        lim = limits or {}
+        self.lim_a = lim.get(aileron, (-np.radians(25), np.radians(25)))
+        self.lim_r = lim.get(rudder, (-np.radians(25), np.radians(25)))
+        self.psi0 = None
+        self.integral = np.zeros(model.n)
+
+    def update(self, t, x, out, u, dt):
+        eul = quat_to_euler(x[:, 9:13])
+        if self.psi0 is None:
+            self.psi0 = eul[:, 2].copy()
+        err = np.angle(np.exp(1j * (eul[:, 2] - self.psi0)))
+        raw = self.dr0 + self.k_psi * err + self.k_i * self.integral + self.k_r * x[:, 8]
+        lo, hi = self.lim_r
+        saturated = ((raw >= hi) & (err > 0)) | ((raw <= lo) & (err < 0))
+        self.integral += np.where(saturated, 0.0, err) * dt
+        u[:, self.jr] = np.clip(raw, lo, hi)
+        airborne = out.gear_load.sum(axis=1) <= 0.0
+        phi_cmd = np.where(airborne, self.bank, 0.0)
+        u[:, self.ja] = np.clip(self.da0 + self.k_phi * (eul[:, 0] - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
+        return u
+
+
+__all__ = ["PitchAttitudeHold", "TECSApproach", "WingsLevel", "EngineFailure", "HeadingHold"]

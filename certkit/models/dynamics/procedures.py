@@ -9,6 +9,14 @@
     gear point is ``screen_height`` above the runway with no gear load (or ``t_end``).
     Returns a :class:`TakeoffResult` with V_LOF (first instant with no gear load after the
     rotation), the speed, distance and time at the screen height, and the extreme elevator.
+    ``lateral="heading"`` replaces the wings-level/zero-sideslip hold by :class:`HeadingHold` (rudder
+    holds the runway heading, aileron wings level on the ground and ``bank_airborne`` once airborne);
+    ``climb_out`` (s) continues the run past the screen height, and the result then carries the climb
+    gradient between records and from the screen height to the end of the run.
+
+:func:`runway_acceleration`
+    Quasi-steady acceleration along the runway at a given speed, with a chosen set of engines
+    operative (e.g. the speed gained with an engine failed over a recognition interval).
 
 :func:`approach_and_landing`
     From trimmed states on the glide path, :class:`TECSApproach` flies the path, flares
@@ -25,7 +33,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from certkit.models.dynamics.controllers import EngineFailure, PitchAttitudeHold, TECSApproach, WingsLevel
+from certkit.models.dynamics.controllers import (EngineFailure, HeadingHold, PitchAttitudeHold, TECSApproach,
+                                                    WingsLevel)
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
 from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
@@ -51,6 +60,9 @@ class TakeoffResult:
     elevator_min: np.ndarray       # rad, most nose-up elevator
     elevator_max: np.ndarray
     wheel_height: np.ndarray       # (nt, n) lowest gear point above the runway
+    gradient: np.ndarray | None = None   # (nt-1, n) climb gradient between records, airborne (nan on the ground)
+    climb_gradient: np.ndarray | None = None  # (n,) mean gradient from the screen height to the end of the run
+    screen_index: np.ndarray | None = None    # (n,) record index at the screen height
 
 
 @dataclass
@@ -74,7 +86,8 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: fl
                 rotation_rate: float = np.radians(3.0), screen_height: float = 35 * 0.3048,
                 elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
                 failed_engine: str | None = None, failure_speed=None, t_end: float = 120.0,
-                dt: float = 0.05) -> TakeoffResult:
+                dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
+                climb_out: float = 0.0) -> TakeoffResult:
     n = model.n
     u = np.zeros((n, len(model.control_names)))
     u[:, model.throttle_slice] = throttle
@@ -88,14 +101,19 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: fl
     a0 = np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
     ctrls = [PitchAttitudeHold(model, u, rotation_speed, theta_target, rotation_rate=rotation_rate,
                                limits=elevator_limits),
-             WingsLevel(model, u, limits=lateral_limits)]
+             WingsLevel(model, u, limits=lateral_limits) if lateral == "wings level"
+             else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits)]
     if failed_engine is not None:
         ctrls.append(EngineFailure(model, failed_engine, failure_speed))
     elevation = model.ground.elevation
 
+    t_scr = np.full(n, np.nan)
+
     def screen(t, x, out):
         down = _lowest_point_below_cg(model, x)
-        return (x[:, 2] - elevation - down > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
+        up = (x[:, 2] - elevation - down > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
+        t_scr[np.isnan(t_scr) & up] = t
+        return t >= t_scr + climb_out - 1e-9
 
     sim = simulate(model, x0, u, t_end, dt, controllers=ctrls, stop=[stop_when("screen height", screen)])
     nt = sim.t.size
@@ -104,20 +122,53 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: fl
     idx = np.tile(np.arange(n), nt)
     heights = gear_heights(model.subset(idx), x12).reshape(nt, n, -1)
     wheel = heights.min(axis=2)
-    reached = np.array([r == "screen height" for r in sim.stop_reason])
+    reached = np.isfinite(t_scr)
     airborne = wheel > 0.0
     v_lof, x_lof = np.full(n, np.nan), np.full(n, np.nan)
     for i in range(n):
         k = np.flatnonzero(airborne[:, i])
         if k.size:
             v_lof[i], x_lof[i] = sim["V"][k[0], i], sim["x_N"][k[0], i]
-    k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time), nt - 1)
+    k_scr = np.minimum(np.searchsorted(sim.t, np.where(reached, t_scr, sim.t[-1]) - 1e-9), nt - 1)
     cols = np.arange(n)
-    v_scr = np.where(reached, sim["V"][k_end, cols], np.nan)
-    x_scr = np.where(reached, sim["x_N"][k_end, cols] - x0[:, 0], np.nan)
-    t_scr = np.where(reached, sim.stop_time, np.nan)
+    v_scr = np.where(reached, sim["V"][k_scr, cols], np.nan)
+    x_scr = np.where(reached, sim["x_N"][k_scr, cols] - x0[:, 0], np.nan)
+    t_scr = np.where(reached, t_scr, np.nan)
+    # climb gradient (height gained per horizontal distance) between successive records, airborne only
+    s_path = np.concatenate([np.zeros((1, n)), np.cumsum(np.hypot(np.diff(sim["x_N"], axis=0),
+                                                                   np.diff(sim["y_E"], axis=0)), axis=0)])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        grad = np.diff(sim["h"], axis=0) / np.diff(s_path, axis=0)
+    grad = np.where(airborne[1:] & airborne[:-1], grad, np.nan)
+    k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time - 1e-9), nt - 1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        climb = np.where(reached & (k_end > k_scr), (sim["h"][k_end, cols] - sim["h"][k_scr, cols])
+                         / (s_path[k_end, cols] - s_path[k_scr, cols]), np.nan)
     emin, emax = _elevator_extremes(sim, je)
-    return TakeoffResult(sim, x0, a0, reached, v_lof, x_lof - x0[:, 0], v_scr, x_scr, t_scr, emin, emax, wheel)
+    return TakeoffResult(sim, x0, a0, reached, v_lof, x_lof - x0[:, 0], v_scr, x_scr, t_scr, emin, emax, wheel,
+                         grad, climb, k_scr)
+
+
+def runway_acceleration(model: AircraftModel, speed, throttle: float = 1.0, operative=None) -> np.ndarray:
+    """Acceleration (m/s², along the runway) of the batch rolling at ``speed`` (m/s TAS, along the runway) in the
+    attitude and gear compression of rest (:func:`ground_equilibrium` at idle), throttles at ``throttle``, with
+    the engines ``operative`` ((n, n_engines) booleans; the model's own when None; restored after). The gear
+    carries the weight of rest: the lift at ``speed`` would unload it and lower the rolling friction (μ_roll L),
+    which this quasi-steady value leaves out."""
+    u = np.zeros((model.n, len(model.control_names)))
+    x = ground_equilibrium(model, u)
+    u[:, model.throttle_slice] = throttle
+    th = x[:, 10]
+    v = np.broadcast_to(np.asarray(speed, dtype=float), (model.n,))
+    x[:, 3], x[:, 5] = v * np.cos(th), v * np.sin(th)
+    saved = model.operative.copy()
+    try:
+        if operative is not None:
+            model.set_operative(operative)
+        xd = model.derivatives_euler(x, u)
+    finally:
+        model.set_operative(saved)
+    return np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
 
 
 def _lowest_point_below_cg(model, x13):
@@ -145,4 +196,4 @@ def approach_and_landing(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, g
     return LandingResult(sim, touched, sink, speed, emin, emax, tecs.tau, tecs.sink)
 
 
-__all__ = ["takeoff_run", "approach_and_landing", "TakeoffResult", "LandingResult"]
+__all__ = ["takeoff_run", "runway_acceleration", "approach_and_landing", "TakeoffResult", "LandingResult"]

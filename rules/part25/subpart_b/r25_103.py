@@ -116,3 +116,10 @@ class StallSpeed(Rule):
                 out.append(Finding.compare(here.with_(speed=vsr, speed_kind="CAS", speed_name="VSR"), check, vsr, v_1g,
                                            at_least=True, unit="m/s", CLmax=ctx.clmax(cfg), VSR_source=source))
         return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.103 reference stall speeds",
+                                "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",
+                                ("CLmax",))

@@ -91,3 +91,10 @@ class TakeoffSpeeds(Rule):
                 ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
             ]
         return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.107 takeoff speed ratios",
+                                "Declared takeoff speeds as ratios against their §25.107 factors.",
+                                ("V1", "VR", "V2", "VSR", "VMC", "VMCG", "VLOF", "VMU"))

@@ -1,31 +1,50 @@
-"""§25.111 Takeoff path — simulated takeoff from brake release to 35 ft.
+"""§25.111 Takeoff path — simulated takeoff from brake release with the critical engine failed at VEF,
+rotation at VR, lift-off, the screen height of 35 ft and a short climb-out.
 
 What is simulated (docs/regulation-notes.md does not carry § 25.111's text; the paragraph is
 quoted here from memory of the eCFR, *unverified*: "(a) The takeoff path extends from a standing
 start to a point … (2) The airplane must be accelerated on the ground to VEF, at which point the
-critical engine must be made inoperative … (b) During the acceleration to speed V2, the nose gear
-may be raised off the ground at a speed not less than VR … (c)(2) The airplane must reach V2
-before it is 35 feet above the takeoff surface …"):
+critical engine must be made inoperative and remain inoperative for the rest of the takeoff …
+(3) After reaching VEF, the airplane must be accelerated to V2 … (b) During the acceleration to speed V2,
+the nose gear may be raised off the ground at a speed not less than VR … (c)(1) The slope of the airborne
+part of the takeoff path must be positive at each point; (c)(2) The airplane must reach V2 before it is
+35 feet above the takeoff surface …"):
 
-* a batched six-degree-of-freedom takeoff run (certkit.models.dynamics.procedures.takeoff_run) of
-  the takeoff configuration at MTOW and the forward, reference and aft CG, sea level ISA, from a
-  standing start with both engines at takeoff thrust (throttle 1), brakes released at t = 0,
-  elevator neutral on the ground roll, rotation at the declared VR at 3°/s by a pitch-attitude
-  controller to the V2 attitude (the pitch attitude of the 1-g trim at V2 in the takeoff
-  configuration), wings held level, up to the gear 35 ft above the runway;
-* **all engines operating**. § 25.111(a)(2) asks for the critical engine failed at VEF. That run is
-  not made: with the baseline's aerodynamic model the engine-out trim at V2 needs about −33° of
-  rudder against a −23.2° design limit (ctx.trim kind "oei"), so a simulated continued takeoff
-  departs laterally — a § 25.149 question that must be settled first. The rule is therefore
-  ``partial``;
-* the issue's "elevator found so that the takeoff field length matches the baseline's" cannot be
-  done: the baseline declares no field length. The rotation is the pitch-attitude controller's.
+* one batched six-degree-of-freedom run (certkit.models.dynamics.procedures.takeoff_run) of the takeoff
+  configuration at MTOW and the forward, reference and aft CG, sea level ISA, from a standing start at
+  takeoff thrust (throttle 1), brakes released at t = 0; every loading is run twice in the same batch:
+  **with the critical engine failed at VEF** (the findings) and with all engines operating (a reference
+  shown in the details and the evidence);
+* the critical engine is the one with the largest thrust moment arm |y| about the plane of symmetry; on a
+  mirror-symmetric twin both are equally critical and the first declared (the left) is failed. It fails
+  (windmilling, :class:`~certkit.models.dynamics.controllers.EngineFailure`) when the airspeed first
+  reaches VEF;
+* **VEF**: ``speeds.VEF`` when the aircraft model declares one; otherwise from the declared V1 less the
+  speed gained with the engine failed over the recognition interval (§25.107(a)(2)):
+  VEF = V1 − a_OEI(V1) · Δt_rec, with a_OEI the runway acceleration at V1 with the critical engine
+  inoperative (procedures.runway_acceleration: quasi-steady, the gear carrying the weight of rest) and
+  Δt_rec = ``recognition_time`` (1 s; 0 puts the failure at V1). The speed actually reached a recognition
+  interval after the failure is reported (``v_recognition_kn``) next to V1;
+* elevator neutral on the ground roll, rotation at the declared VR at 3°/s by a pitch-attitude controller to
+  the V2 attitude (the pitch attitude of the 1-g level trim at V2 in the takeoff configuration, all
+  engines), as the all-engines rule did;
+* lateral–directional pilot (:class:`~certkit.models.dynamics.controllers.HeadingHold`): rudder holds the
+  runway heading (PI on the heading error with yaw-rate damping), aileron wings level on the ground and
+  ``bank_deg`` (5°) toward the operating engine once airborne (the §25.149(b) allowance); surfaces move
+  over their full travel, and the extremes are compared with their design limits;
+* the run continues ``climb_out_s`` (10 s) past 35 ft to give the gradient after the screen height.
 
-Checks per condition:
-    (b) the most nose-up elevator of the run against the elevator's design limit (margin in deg:
-        δe − δe_min ≥ 0, the elevator never past its design limit while rotating and climbing out);
+Checks per condition (engine failed):
+    (a)(2)-(3) elevator: the extreme elevator of the run within its design limits (margin deg: the smaller of
+        δe_min − δe_lo and δe_hi − δe_max);
+    (a)(2)-(3) rudder: the extreme rudder of the run within its design limits (margin deg, likewise) — the
+        directional control the engine failure needs on the runway and in the air;
+    (c)(1) slope of the airborne path from the screen height to the end of the climb-out positive (margin %:
+        smallest gradient between records);
     (c)(2) the speed at 35 ft against V2 (margin kn CAS: V35 − V2 ≥ 0).
-V_LOF, the distances to lift-off and to 35 ft and the initial acceleration are reported as details.
+V_LOF, VEF, the speed a recognition interval after the failure, the distances, the largest heading
+deviation, the lateral deviation from the centreline at lift-off and at 35 ft, the bank, and the mean
+gradient from 35 ft to the end of the climb-out are reported as details.
 """
 
 from __future__ import annotations
@@ -35,128 +54,204 @@ import numpy as np
 from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
-from certkit.results import Evidence, Finding
+from certkit.results import Finding
 from certkit.units import FT, KN
 
-SOURCE = "14 CFR 25.111(c)(2) (text from memory, not in docs/regulation-notes.md: unverified)"
+SOURCE = "14 CFR 25.111 (text from memory, not in docs/regulation-notes.md: unverified)"
+
+
+def critical_engine(aircraft) -> str:
+    """Name of the engine whose failure gives the largest yawing moment (largest |y|; the first on a tie)."""
+    engines = aircraft.propulsion.engines
+    arms = [abs(e.position.y) for e in engines]
+    return engines[int(np.argmax(arms))].name
+
+
+def failure_speed(ctx, model, engine: str, crit) -> tuple[np.ndarray, str]:
+    """VEF (m/s TAS, one per condition of ``model``) and how it was obtained (module docstring)."""
+    from certkit.models.dynamics.procedures import runway_acceleration
+
+    sp = ctx.aircraft.speeds
+    declared = getattr(sp, "VEF", None)
+    if declared is not None:
+        return np.full(model.n, float(convert_speed(declared.value, declared.kind, "TAS", 0.0))), "declared VEF"
+    v1 = float(convert_speed(sp.V1.value, sp.V1.kind, "TAS", 0.0))
+    names = [e.name for e in model.engines]
+    op = np.ones((model.n, len(names)), dtype=bool)
+    op[:, names.index(engine)] = False
+    a = runway_acceleration(model, v1, operative=op)
+    return v1 - a * crit.recognition_time, f"V1 less {crit.recognition_time:g} s of the engine-out acceleration at V1"
 
 
 def _takeoff(ctx, conditions, crit):
-    """Trim at V2 (target attitude) and the batched takeoff run of the conditions, memoised for the evidence."""
+    """Trim at V2 (target attitude) and one batched run: rows 0..n-1 engine failed at VEF, n..2n-1 all engines."""
     from certkit.models.dynamics.procedures import takeoff_run
     from certkit.models.flight import control_limits, flight_model, ground_model
 
     def compute():
         ac = ctx.aircraft
         sp = ac.speeds
+        n = len(conditions)
         vr = float(convert_speed(sp.VR.value, sp.VR.kind, "TAS", 0.0))
         at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
         trims = ctx.trim(at_v2)
         theta = np.array([r.theta for r in trims.results])
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
-        model = flight_model(ac, ctx.aero("takeoff").model, loadings, ground=ground_model(ac))
+        model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
+        engine = critical_engine(ac)
+        vef, vef_basis = failure_speed(ctx, model, engine, crit)
+        vef[n:] = np.inf  # the all-engines rows
+        y = {e.name: e.position.y for e in ac.propulsion.engines}
+        toward_live = -np.sign(y[engine]) if y[engine] != 0 else 1.0  # bank right (+) when the left engine is dead
+        bank = np.concatenate([np.full(n, toward_live * np.radians(crit.bank_deg)), np.zeros(n)])
         travel = control_limits(ac, design=False)
         # RK4 at 10 Hz: against 20 Hz the extreme elevator moves by < 0.1° and V35 by < 0.1 kn (measured on
-        # the baseline), at 40 % of the cost
-        run = takeoff_run(model, vr, theta, screen_height=crit.screen_height * FT,
-                          elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1)
-        return trims, run
+        # the baseline, all engines), at 40 % of the cost
+        run = takeoff_run(model, vr, np.concatenate([theta, theta]), screen_height=crit.screen_height * FT,
+                          elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
+                          failed_engine=engine, failure_speed=vef, lateral="heading", bank_airborne=bank,
+                          climb_out=crit.climb_out_s)
+        return trims, run, engine, vef, vef_basis
 
-    key = ("25.111 takeoff", tuple((c.mass, c.x_cg) for c in conditions), crit.screen_height)
+    key = ("25.111 takeoff OEI", tuple((c.mass, c.x_cg) for c in conditions), crit.screen_height, crit.recognition_time,
+           crit.bank_deg, crit.climb_out_s)
     return ctx.memo(key, compute)
+
+
+def _design_margin(values_deg, lo_deg, hi_deg):
+    """The binding side of a run's deflections against the design range: (extreme value, limit, at_least) for
+    ``Finding.compare`` — the side with the smaller distance inside the range (< 0: beyond it)."""
+    lo_m, hi_m = float(np.min(values_deg)) - lo_deg, hi_deg - float(np.max(values_deg))
+    return (float(np.min(values_deg)), lo_deg, True) if lo_m <= hi_m else (float(np.max(values_deg)), hi_deg, False)
 
 
 @rule
 class TakeoffPath(Rule):
     id = "25.111"
     symbol = "takeoff-path"
-    title = "Takeoff path (simulated rotation and climb to 35 ft)"
+    title = "Takeoff path with the critical engine failed at VEF (simulated to 35 ft and a climb-out)"
     amendment = "25-121"
     implementation = "partial"
     requirement = """
-        From a standing start the airplane is accelerated to VR, rotated (the nose gear may leave the
-        ground at no less than VR) and must reach V2 before it is 35 ft above the takeoff surface, with
-        the critical engine failed at VEF. certkit simulates the run and checks that the elevator stays
-        within its design limit while rotating and climbing out and that the speed at 35 ft is at least V2.
+        From a standing start the airplane is accelerated on the ground to VEF, where the critical engine is made
+        inoperative for the rest of the takeoff; it is rotated (the nose gear may leave the ground at no less than
+        VR), the slope of the airborne path must be positive and V2 must be reached before the airplane is 35 ft
+        above the takeoff surface. certkit simulates the run with the engine failed at VEF and checks that the
+        elevator and the rudder stay within their design limits, that the airborne path climbs and that the speed
+        at 35 ft is at least V2.
     """
     margin = """
-        (b) most nose-up elevator of the run minus the elevator's design limit (deg; ≥ 0: never past it).
+        Elevator and rudder: the smaller distance of the run's extreme deflections inside the design limits (deg;
+        ≥ 0: never past them). (c)(1) smallest climb gradient from 35 ft to the end of the climb-out (%; ≥ 0).
         (c)(2) speed at 35 ft minus V2 (kn CAS; ≥ 0 complies).
     """
     limitations = """
-        All engines operating: the engine failure at VEF of (a)(2) is not simulated (the baseline's engine-out
-        trim at V2 needs more rudder than its design limit, a § 25.149 matter to settle first); no ground
-        effect; rotation by a pitch-attitude controller at 3°/s to the V2 attitude (no declared field length to
-        match); (c)(1), (c)(3), (c)(4) and the path beyond 35 ft are not checked. The paragraph's text is
-        from memory (not in docs/regulation-notes.md).
+        No ground effect; no nose-wheel steering (the tyres' side friction and the rudder hold the heading); no
+        engine spool-down (the failed engine windmills at once) nor spool-up (takeoff thrust at brake release);
+        rotation by a pitch-attitude controller at 3°/s to the level-flight V2 attitude (no declared field length
+        to match); the pilot model (rudder PI on heading, ≤ 5° bank toward the live engine in the air) stands for
+        a pilot; VEF from V1 by a quasi-steady engine-out acceleration when not declared; the path beyond the
+        climb-out (c)(3) 1.2 % from 400 ft, (c)(4) configuration changes, and the takeoff distance (§25.113) are
+        not computed. The paragraph's text is from memory (not in docs/regulation-notes.md).
     """
     references = ("25.107", "25.121", "25.149")
-    requires = ("speeds.VR", "speeds.V2", "geometry.landing_gear", "geometry.horizontal_tail.controls.elevator")
+    requires = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
+                "geometry.horizontal_tail.controls.elevator", "geometry.vertical_tail.controls.rudder")
     criteria = {
-        "screen_height": Criterion(35.0, "ft", SOURCE, "height above the takeoff surface by which V2 must be reached"),
+        "screen_height": Criterion(35.0, "ft", SOURCE + " (c)(2)", "height above the takeoff surface by which V2 must be reached"),
+        "recognition_time": Criterion(1.0, "s", "project choice after §25.107(a)(2) (VEF to V1 is the speed gained over "
+                                      "the recognition interval; 1 s is the usual demonstrated interval, AC 25-7 practice, "
+                                      "unverified); 0 fails the engine at V1", "recognition interval from VEF to V1"),
+        "bank_deg": Criterion(5.0, "deg", "project choice: the §25.149(b) allowance of not more than 5° of bank toward the "
+                              "operating engine, flown once airborne", "bank toward the operating engine in the air"),
+        "climb_out_s": Criterion(10.0, "s", "project choice: climb-out simulated past 35 ft for the gradient",
+                                 "time simulated after the screen height"),
+        "gradient_min": Criterion(0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"),
     }
     conditions = ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")),
                                 configurations=("takeoff",),
-                                note="Sea level ISA, takeoff thrust on both engines, from brake release.")
+                                note="Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
 
     def evaluate(self, ctx, conditions, crit):
+        from certkit.models.flight import control_limits
+
         ac = ctx.aircraft
-        trims, run = _takeoff(ctx, conditions, crit)
-        lo = np.degrees(ac.geometry.horizontal_tail.controls["elevator"].design_limits.min
-                        if ac.geometry.horizontal_tail.controls["elevator"].design_limits is not None
-                        else ac.geometry.horizontal_tail.controls["elevator"].travel.min)
+        trims, run, engine, vef, vef_basis = _takeoff(ctx, conditions, crit)
+        design = {k: np.degrees(v) for k, v in control_limits(ac).items() if k != "throttle"}
+        cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
+        v1_kn = float(convert_speed(ac.speeds.V1.value, ac.speeds.V1.kind, "CAS", 0.0)) / KN
         v2_kn = float(convert_speed(ac.speeds.V2.value, ac.speeds.V2.kind, "CAS", 0.0)) / KN
         vr_kn = float(convert_speed(ac.speeds.VR.value, ac.speeds.VR.kind, "CAS", 0.0)) / KN
+        sim = run.sim
+        n = len(conditions)
+        je, jr = sim.control_names.index("elevator"), sim.control_names.index("rudder")
         out = []
         for i, cond in enumerate(conditions):
-            c0 = cond.with_(altitude=0.0, thrust="takeoff")
+            c0 = cond.with_(altitude=0.0, thrust="takeoff", inoperative=engine)
             tr = trims.results[i]
+            checks = ("(a) elevator within its design limits, engine failed at VEF",
+                      "(a) rudder within its design limits, engine failed at VEF",
+                      "(c)(1) airborne path slope positive", f"(c)(2) speed at {crit.screen_height:.0f} ft at least V2")
             if not tr.converged:
-                out.append(Finding.not_evaluated(c0, "(c)(2) V2 by 35 ft", f"no 1-g trim at V2 for the target attitude: {tr.summary()}"))
+                out += [Finding.not_evaluated(c0, ch, f"no 1-g trim at V2 for the target attitude: {tr.summary()}")
+                        for ch in checks]
                 continue
             if not run.reached[i]:
-                out.append(Finding.not_evaluated(
-                    c0, "(c)(2) V2 by 35 ft",
-                    f"the simulated takeoff did not reach {crit.screen_height:.0f} ft within the run "
-                    f"(stop: {run.sim.stop_reason[i] or 'time limit'})"))
+                out += [Finding.not_evaluated(c0, ch, f"the simulated engine-out takeoff did not reach {crit.screen_height:.0f} ft "
+                                              f"within the run (stop: {sim.stop_reason[i] or 'time limit'})") for ch in checks]
                 continue
-            cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
-            details = dict(vr_kn=vr_kn, vlof_kn=round(cas(run.v_lof[i]), 2), v35_kn=round(cas(run.v_screen[i]), 2),
-                           liftoff_distance_ft=round(run.x_lof[i] / FT, 0), distance_to_35ft_ft=round(run.x_screen[i] / FT, 0),
-                           time_to_35ft_s=round(float(run.t_screen[i]), 2),
-                           initial_acceleration_m_s2=round(float(run.initial_acceleration[i]), 4),
-                           target_pitch_deg=round(float(np.degrees(tr.theta)), 2))
-            out.append(Finding.compare(
-                c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS"),
-                "(b) elevator during rotation and climb-out within its design limit",
-                np.degrees(run.elevator_min[i]), lo, at_least=True, unit="deg",
-                elevator_max_deg=round(float(np.degrees(run.elevator_max[i])), 2), **details))
-            out.append(Finding.compare(
-                c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS", speed_name="V35"),
-                f"(c)(2) speed at {crit.screen_height:.0f} ft at least V2", cas(run.v_screen[i]), v2_kn,
-                at_least=True, unit="kn", v2_kn=v2_kn, **details))
+            k_end = min(int(np.searchsorted(sim.t, sim.stop_time[i] - 1e-9)), sim.t.size - 1)
+            k_scr = int(run.screen_index[i])
+            ground = run.wheel_height[:k_end + 1, i] <= 0.0
+            k_fail = int(np.argmax(sim["V"][:, i] >= vef[i]))
+            t_rec = sim.t[k_fail] + crit.recognition_time
+            v_rec = float(np.interp(t_rec, sim.t[:k_end + 1], sim["V"][:k_end + 1, i]))
+            y = sim["y_E"][:k_end + 1, i] - sim["y_E"][0, i]
+            k_lof = int(np.argmax(~ground)) if (~ground).any() else k_end
+            a = n + i  # the all-engines twin
+            details = dict(
+                critical_engine=engine, vef_basis=vef_basis, vef_kn=round(cas(vef[i]), 2), v1_kn=v1_kn,
+                v_recognition_kn=round(cas(v_rec), 2), vr_kn=vr_kn, v2_kn=v2_kn,
+                vlof_kn=round(cas(run.v_lof[i]), 2), v35_kn=round(cas(run.v_screen[i]), 2),
+                liftoff_distance_ft=round(run.x_lof[i] / FT, 0), distance_to_35ft_ft=round(run.x_screen[i] / FT, 0),
+                time_to_35ft_s=round(float(run.t_screen[i]), 2),
+                initial_acceleration_m_s2=round(float(run.initial_acceleration[i]), 4),
+                target_pitch_deg=round(float(np.degrees(tr.theta)), 2),
+                max_heading_deviation_deg=round(float(np.degrees(np.abs(sim["psi"][:k_end + 1, i]).max())), 2),
+                max_lateral_deviation_on_ground_ft=round(float(np.abs(y[ground]).max() / FT) if ground.any() else 0.0, 1),
+                lateral_deviation_at_liftoff_ft=round(float(y[k_lof] / FT), 1),
+                lateral_deviation_at_35ft_ft=round(float(y[k_scr] / FT), 1),
+                max_bank_deg=round(float(np.degrees(np.abs(sim["phi"][:k_end + 1, i]).max())), 2),
+                mean_gradient_after_35ft_pct=round(float(run.climb_gradient[i]) * 100, 3),
+                all_engines_vlof_kn=round(cas(run.v_lof[a]), 2),
+                all_engines_v35_kn=round(cas(run.v_screen[a]), 2) if run.reached[a] else None,
+                all_engines_elevator_min_deg=round(float(np.degrees(run.elevator_min[a])), 2))
+            c35 = c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS", speed_name="V35")
+            for name, j, check in (("elevator", je, checks[0]), ("rudder", jr, checks[1])):
+                defl = np.degrees(sim.controls[:k_end + 1, i, j])
+                value, limit, at_least = _design_margin(defl, *design[name])
+                air = ~ground & (np.arange(k_end + 1) >= k_lof)
+                out.append(Finding.compare(
+                    c35, check, value, limit, at_least=at_least, unit="deg",
+                    **{f"{name}_min_deg": round(float(defl.min()), 2), f"{name}_max_deg": round(float(defl.max()), 2),
+                       f"{name}_extreme_on_ground_deg": round(float(defl[ground][np.argmax(np.abs(defl[ground]))]), 2),
+                       f"{name}_extreme_airborne_deg": round(float(defl[air][np.argmax(np.abs(defl[air]))]), 2)
+                       if air.any() else None,
+                       f"{name}_design_limits_deg": [round(float(d), 2) for d in design[name]]}, **details))
+            grad = run.gradient[k_scr:k_end, i]
+            grad = grad[np.isfinite(grad)]
+            if grad.size == 0:
+                out.append(Finding.not_evaluated(c35, checks[2], "no airborne record after the screen height "
+                                                 "(climb_out_s too short for the record interval)", **details))
+            else:
+                out.append(Finding.compare(c35, checks[2], float(grad.min()) * 100, crit.gradient_min, at_least=True,
+                                           unit="%", **details))
+            out.append(Finding.compare(c35, checks[3], cas(run.v_screen[i]), v2_kn, at_least=True, unit="kn", **details))
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_time_histories import time_histories_svg
+        from certkit.report.evidence_performance import takeoff_evidence
 
         conds = self.conditions.expand(ctx.aircraft)
-        trims, run = _takeoff(ctx, conds, crit)
-        elev = [f for f in findings if f.check.startswith("(b)") and f.margin is not None]
-        if not elev:
-            return []
-        crit_f = min(elev, key=lambda f: f.margin)
-        k = next(i for i, c in enumerate(conds) if c.x_cg == crit_f.condition.x_cg)
-        sim = run.sim
-        lo = crit_f.limit
-        je = sim.control_names.index("elevator")
-        svg = time_histories_svg(sim.t, [
-            ("V (kn TAS)", sim["V"] / KN, {"VR": crit_f.details["vr_kn"], "V2": crit_f.details["v2_kn"]
-                                            if "v2_kn" in crit_f.details else float(ctx.aircraft.speeds.V2.value / KN)}),
-            ("gear height (ft)", run.wheel_height / FT, {"35 ft": crit.screen_height}),
-            ("pitch θ (deg)", np.degrees(sim["theta"]), {}),
-            ("elevator (deg)", np.degrees(sim.controls[:, :, je]), {"design limit": lo}),
-        ], [c.loading for c in conds], critical=k, title="§25.111 takeoff (all engines) from brake release")
-        return [Evidence("Takeoff time histories", svg,
-                         f"Critical condition {conds[k].loading} (elevator margin {crit_f.margin:.2f}°) and its "
-                         "neighbours; rotation at VR by pitch-attitude hold to the V2 attitude.")]
+        trims, run, engine, vef, _ = _takeoff(ctx, conds, crit)
+        return takeoff_evidence(ctx, conds, findings, run, engine, vef, crit)

@@ -188,6 +188,11 @@ class ClimbOEITakeoffGearDown(Rule):
         out = climb_findings(ctx, conds, "(a) gradient at VLOF, gear down", required, n, notes=note)
         return [_positive(f, required) for f in out]
 
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import climb_gradient_evidence
+
+        return climb_gradient_evidence(findings, "§25.121(a) OEI climb, takeoff, gear down")
+
 
 def _positive(f: Finding, required: float) -> Finding:
     """(a) for twins asks a positive gradient: zero itself does not comply."""
@@ -243,6 +248,11 @@ class ClimbOEITakeoffGearUp(Rule):
         return climb_findings(ctx, conds, "(b) gradient at V2, gear up", required, n,
                               drag_credit=np.full(len(conds), credit), notes=f"gear retracted: ΔCD0 {credit:.4f} removed, {how}")
 
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import climb_gradient_evidence
+
+        return climb_gradient_evidence(findings, "§25.121(b) OEI climb, takeoff, gear up")
+
 
 @rule
 class ClimbOEIFinalTakeoff(Rule):
@@ -272,6 +282,11 @@ class ClimbOEIFinalTakeoff(Rule):
         conds = refined(conditions, declared_cas(ctx, "VFTO"), "VFTO", altitude=1500 * FT)
         return climb_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n,
                               thrust_fraction=crit.mct_over_takeoff_thrust)
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import climb_gradient_evidence
+
+        return climb_gradient_evidence(findings, "§25.121(c) OEI final takeoff climb")
 
 
 @rule
@@ -311,3 +326,8 @@ class ClimbOEIApproach(Rule):
                 out.append(Finding.compare(conds[-1], "(d) VSR approach ≤ 1.10 VSR landing", vsr / vsr_l, crit.vsr_ratio,
                                            at_least=False, unit="ratio", VSR_approach=vsr, VSR_landing=vsr_l, basis=src))
         return out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import climb_gradient_evidence
+
+        return climb_gradient_evidence(findings, "§25.121(d) OEI approach climb")

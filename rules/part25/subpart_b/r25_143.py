@@ -246,3 +246,10 @@ class ManeuveringCapability(Rule):
                 f.details.update(details)
                 out.append(f)
         return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.143(h) manoeuvring capability",
+                                "Coordinated-turn trims: controls against their design limits.",
+                                ("bank_deg", "load_factor", "CL_over_CLmax", "flight_path_deg", "elevator_deg", "aileron_deg", "rudder_deg"))

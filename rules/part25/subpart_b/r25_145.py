@@ -156,6 +156,13 @@ class LongitudinalControlConfigurationChanges(Rule):
             end_thrust_residual=res1, direction="trailing edge down" if change >= 0 else "trailing edge up",
             **{f"end_{k}": v for k, v in trim_details(r1).items()})
 
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
+                                "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
+                                ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"), plot=True)
+
 
 def force_finding(ctx, elevator, i, para, what, start, end, limit_lbf):
     """(b) control force: the elevator force (lbf) that holds the end trim with the trim device left at its start

@@ -160,6 +160,13 @@ class DirectionalControlOEI(Rule):
             out.append(pedal_force_finding(ctx, rudder, here, r, crit.pedal_force_lbf))
         return out
 
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.147(a) directional control, one engine inoperative",
+                                "One-engine-inoperative trims: controls against their design limits.",
+                                ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
+
 
 @rule
 class LateralControlOEI(Rule):
@@ -230,6 +237,13 @@ class LateralControlOEI(Rule):
                 f.details.update(details)
                 out.append(f)
         return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
+                                "Turns toward and away from the inoperative engine: controls against their design limits.",
+                                ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
 
 
 def pedal_force_finding(ctx, rudder, cond, result, limit_lbf, check=None, **details):

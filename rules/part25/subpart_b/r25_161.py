@@ -174,3 +174,10 @@ class Trim(Rule):
                         f.details["climb_gradient"] = float(np.asarray(gradients)[i])
                     out.append(f)
         return out
+
+    def evidence(self, ctx, findings, crit):
+        from certkit.report.evidence_performance import margins_evidence
+
+        return margins_evidence(findings, "§25.161 trim",
+                                "Trims of each §25.161 condition: controls against their design limits.",
+                                ("climb_gradient", "alpha_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
