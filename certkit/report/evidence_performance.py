@@ -82,7 +82,7 @@ def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evide
 # ---------------------------------------------------------------------------------------------- § 25.149
 def vmca_evidence(findings, rows, limits) -> list[Evidence]:
     """§25.149: rudder and aileron of the straight OEI trims the VMCA search visited, against speed, for the
-    critical condition's two banks, with the design limits, the computed VMCA and 1.13 VSR."""
+    critical condition's banks, with the design limits, the computed VMCA and 1.13 VSR."""
     worst = _critical([f for f in findings if f.check.startswith("(c)")])
     if worst is None:
         return []
@@ -112,8 +112,8 @@ def vmca_evidence(findings, rows, limits) -> list[Evidence]:
     svg = figure_to_svg(fig)
     table = [dict(r) for r in worst.details.get("search", [])]
     caption = (f"Rudder and aileron of the one-engine-inoperative straight trims visited by the VMCA search (operating engine "
-               f"at full throttle, {worst.condition.loading}), wings level and banked toward the operating engine; dashed: "
-               "design limits. VMCA is the better (lower) of the two banks' speeds where a control reaches its limit.")
+               f"at full throttle, {worst.condition.loading}), wings level to 5° banked toward the operating engine; dashed: "
+               "design limits. VMCA is the lowest over the banks of the speed where a control reaches its limit.")
     return [Evidence("VMCA: controls against speed", svg, caption, table)]
 
 

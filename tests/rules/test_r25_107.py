@@ -6,6 +6,8 @@ VS = √(2W/(ρ₀ S CLmax)) (Anderson, *Introduction to Flight*, eq. 6.47). Tol
 
 import pytest
 
+KN_TO_MS = 1852.0 / 3600.0
+
 from .helpers import run_rule
 
 VSR_KN = 142.0091
@@ -39,12 +41,23 @@ def test_sign_higher_v1_reduces_margin_and_higher_v2_adds_margin(tmp_path):
     assert check(faster, "(b)(1)").margin > check(run_rule("25.107"), "(b)(1)").margin
 
 
-def test_vmc_parts_not_evaluated_until_declared(tmp_path):
-    """The baseline has no VMC: its parts are not_evaluated while the VSR part is evaluated; declaring
-    VMC 120 kn CAS gives V2/VMC − 1.10 = 0.2417 and VR/VMC − 1.05 = 0.2417."""
+def test_vmc_parts_from_computed_vmca_until_declared(tmp_path):
+    """The baseline has no VMC: its parts use the VMCA §25.149 computes (the basis says so; the ratio is V2 over
+    the highest VMCA of §25.149's conditions), while the VSR part is evaluated; declaring VMC 120 kn CAS gives
+    V2/VMC − 1.10 = 0.2417 and VR/VMC − 1.05 = 0.2417."""
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit_rules.part25.subpart_b.r25_149 import computed_vmca
+
+    from ..conftest import BASELINE
+
     r = run_rule("25.107")
-    assert check(r, "(b)(3)").status == "not_evaluated" and check(r, "(b)(3)").reason == "needs speeds.VMC"
-    assert check(r, "(b)(1)").status == "complies" and r.status == "not_evaluated"
+    vmca = computed_vmca(Context(load_aircraft(BASELINE)))
+    b3 = check(r, "(b)(3)")
+    assert b3.details["basis"] == "VMCA computed by §25.149 (no VMC declared)"
+    assert b3.value == pytest.approx(161 * KN_TO_MS / vmca, rel=1e-6)
+    assert (b3.status == "complies") == (161 * KN_TO_MS / vmca >= 1.10)
+    assert check(r, "(b)(1)").status == "complies"
     with_vmc = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMC: 120 kn CAS")])
     assert check(with_vmc, "(b)(3)").margin == pytest.approx(161 / 120 - 1.10, abs=1e-9)
     assert check(with_vmc, "(e)(1)(ii)").margin == pytest.approx(155 / 120 - 1.05, abs=1e-9)

@@ -77,8 +77,24 @@ def test_search_agrees_with_the_former_grid(result, ctx):
     0.3 kn); a fine grid (0.2 kn steps over ±1 kn) whose probes sit near the full-throttle path (γ = −0.02/0,
     throttle 0.989) agrees with the search within 0.1 kn."""
     c = next(f for f in result.findings if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
-    vsr, vmca = c.details["VSR"], c.value
+    by_bank = c.details["vmca_by_bank_kn"]
+    # the former grid searched only 5° and wings level: compare with the search's rows at those banks
+    vsr, vmca = c.details["VSR"], min(by_bank["5 deg"], by_bank["0 deg"]) * KN
     old = _grid_vmca(ctx, c.condition, vsr, np.linspace(0.6, 1.4, 33))
     assert old / KN == pytest.approx(vmca / KN, abs=0.5)
     fine = _grid_vmca(ctx, c.condition, vsr, (vmca + np.arange(-1.0, 1.01, 0.2) * KN) / vsr, gammas=(-0.02, 0.0))
     assert fine / KN == pytest.approx(vmca / KN, abs=0.1)
+
+
+def test_vmca_is_the_least_over_the_banks_allowed(result):
+    """§25.149(b): straight flight with not more than 5° of bank — VMCA is the least over the banks searched (0° to
+    5° toward the operating engine, 1° steps); on the baseline an intermediate bank balances the rudder's and the
+    aileron's needs and gives a lower VMCA than either end, and the finding says what limits it."""
+    for c in (f for f in result.findings if f.check.startswith("(c)")):
+        by_bank = c.details["vmca_by_bank_kn"]
+        assert len(by_bank) == 6
+        assert c.value / KN == pytest.approx(min(by_bank.values()), abs=0.01)
+        assert min(by_bank.values()) < min(by_bank["5 deg" if "5 deg" in by_bank else "-5 deg"],
+                                           by_bank["0 deg" if "0 deg" in by_bank else "-0 deg"])
+        assert 0 < abs(c.details["bank_at_vmca_deg"]) < 5
+        assert c.details["vmca_limited_by"]

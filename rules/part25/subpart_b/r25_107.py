@@ -1,8 +1,9 @@
 """§25.107 Takeoff speeds (Amdt. 25-121 era text). Declared V1, VR, V2, VLOF against VSR, VMC, VMCG, VMU.
 
 Each sub-check is its own finding, so the rule reports what it can: the VSR parts are evaluated from
-§25.103's reference stall speed of the takeoff configuration at MTOW, the VMC/VMCG/VMU parts are
-``not_evaluated`` until those speeds are declared.
+§25.103's reference stall speed of the takeoff configuration at MTOW; the VMC parts use the declared VMC, or
+where none is declared the VMCA that §25.149 computes (the basis is named in the finding); the VMCG and VMU
+parts are ``not_evaluated`` until those speeds are declared.
 """
 
 from __future__ import annotations
@@ -82,11 +83,17 @@ class TakeoffSpeeds(Rule):
             vsr, source = reference_stall_speed(ctx, TAKEOFF, cond.mass)
             speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VMU", "VLOF")}
             speeds["VSR"] = vsr
+            vmc_basis = "declared VMC"
+            if speeds["VMC"] is None:
+                from certkit_rules.part25.subpart_b.r25_149 import computed_vmca
+
+                speeds["VMC"] = computed_vmca(ctx)
+                vmc_basis = "VMCA computed by §25.149 (no VMC declared)"
             out += [
                 ratio_check(cond, "(b)(1), (c)(1) V2 ≥ 1.13 VSR", speeds, "V2", "VSR", crit.v2_over_vsr, basis=source),
-                ratio_check(cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc),
+                ratio_check(cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc, basis=vmc_basis),
                 ratio_check(cond, "(e)(1)(i) VR ≥ V1", speeds, "VR", "V1", crit.vr_over_v1),
-                ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc),
+                ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc, basis=vmc_basis),
                 ratio_check(cond, "(a) V1 ≥ VEF ≥ VMCG", speeds, "V1", "VMCG", crit.v1_over_vmcg),
                 ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
             ]

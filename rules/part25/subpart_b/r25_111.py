@@ -128,6 +128,7 @@ def _design_margin(values_deg, lo_deg, hi_deg):
 @rule
 class TakeoffPath(Rule):
     id = "25.111"
+    cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "takeoff-path"
     title = "Takeoff path with the critical engine failed at VEF (simulated to 35 ft and a climb-out)"
     amendment = "25-121"

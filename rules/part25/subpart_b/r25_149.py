@@ -36,6 +36,9 @@ from certkit_rules.part25.subpart_b.r25_171 import vsr_cas
 SOURCE = "14 CFR 25.149 (Amdt. 25-108; (a)-(e) verified, docs/regulation-notes.md)"
 
 
+#: banks searched, as fractions of the largest allowed (5°) toward the operating engine: wings level to 5° in 1° steps
+BANK_FRACTIONS = np.linspace(1.0, 0.0, 6)
+
 def control_usage(res, limits) -> float:
     """Largest |deflection| / design limit of rudder and aileron (∞ when the trim did not converge)."""
     if not res.converged:
@@ -158,8 +161,9 @@ def vmca_from_grid(speeds, usage) -> float | None:
 
 
 def _vmca_rows(ctx, conditions, crit):
-    """The search over rows (condition, bank) — two per condition: the bank toward the operating engine and
-    wings level — memoised for the evidence."""
+    """The search over rows (condition, bank) — :data:`BANK_FRACTIONS` of the largest bank toward the operating
+    engine per condition, wings level included (VMCA is the least over the banks the paragraph allows: an
+    intermediate bank can balance the rudder's and the aileron's needs) — memoised for the evidence."""
     def compute():
         y = {e.name: e.position.y for e in ctx.aircraft.propulsion.engines}
         conds, engines, banks, vsr = [], [], [], []
@@ -169,7 +173,7 @@ def _vmca_rows(ctx, conditions, crit):
             # bank toward the operating engine: right wing down (+) when the live engine is on the right
             bank = np.radians(crit.bank_deg) * (1.0 if y[live[0]] > 0 else -1.0)
             v = vsr_cas(ctx, cond.configuration, cond.mass, cond.altitude or 0.0)
-            for b in (bank, 0.0):
+            for b in BANK_FRACTIONS * bank:
                 conds.append(cond)
                 engines.append(engine)
                 banks.append(b)
@@ -185,9 +189,35 @@ def _vmca_rows(ctx, conditions, crit):
     return ctx.memo(key, compute)
 
 
+def condition_vmca(rows, k: int, crit) -> tuple[float, int, bool]:
+    """VMCA (m/s CAS) of scheduled condition ``k``: the least over its banks; the search's lower end when the
+    controls stay within their limits down to it. Returns (VMCA, the row of the best bank, below the range)."""
+    nb = len(BANK_FRACTIONS)
+    pair = range(nb * k, nb * k + nb)
+    best = min(pair, key=lambda j: rows["vmca"][j])
+    if all(rows["pinned_low"][j] for j in pair) or rows["pinned_low"][best]:
+        return float(crit.grid_low * rows["vsr"][best]), best, True
+    return float(rows["vmca"][best]), best, False
+
+
+def computed_vmca(ctx):
+    """The airplane's VMCA (m/s CAS) as §25.149 computes it with its criteria (and the aircraft file's overrides):
+    the highest over its conditions (each engine inoperative, most unfavourable CG); None when the rule's inputs
+    are missing. For the rules that need VMC when the aircraft file declares none (§25.107)."""
+    from certkit.scheduler import criteria_for
+
+    if ctx.missing(MinimumControlSpeed.requires):
+        return None
+    crit, _ = criteria_for(MinimumControlSpeed, ctx)
+    conds = MinimumControlSpeed.conditions.expand(ctx.aircraft)
+    rows = _vmca_rows(ctx, conds, crit)
+    return max(condition_vmca(rows, k, crit)[0] for k in range(len(conds)))
+
+
 @rule
 class MinimumControlSpeed(Rule):
     id = "25.149"
+    cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "minimum-control-speed"
     title = "Minimum control speed VMC (VMCA)"
     amendment = "25-108"
@@ -225,11 +255,9 @@ class MinimumControlSpeed(Rule):
         force of the steady trim, rudder trim neutral), evaluated only with control_forces.rudder; the speed at which
         the force reaches 150 lbf is reported with it. The
         baseline's takeoff configuration has the gear down (more drag, steeper flight path only; the moments are
-        those of the gear-up airplane in the model). Thrust at throttle 1 is the maximum takeoff thrust. Only the two
-        ends of the bank allowance are searched (5° toward the operating engine, and wings level); an intermediate
-        bank can balance rudder and aileron and give a lower VMCA (on the baseline, 2-3.5° of bank keeps both within
-        their limits down to about 150-156 kn CAS, where the trims stop converging near the stall), so the computed
-        VMCA is conservative.
+        those of the gear-up airplane in the model). Thrust at throttle 1 is the maximum takeoff thrust. Banks from
+        wings level to 5° toward the operating engine are searched in 1° steps; VMCA is the least (to within the 1°
+        step, conservative).
     """
 
     def evaluate(self, ctx, conditions, crit):
@@ -237,9 +265,10 @@ class MinimumControlSpeed(Rule):
         out = []
         rows = _vmca_rows(ctx, conditions, crit)
         for k, cond in enumerate(conditions):
-            vsr, pair = rows["vsr"][2 * k], (2 * k, 2 * k + 1)
-            best = min(pair, key=lambda j: rows["vmca"][j])  # the better of the bank and wings level
-            vmca, r = float(rows["vmca"][best]), rows["last"][best]
+            nb = len(BANK_FRACTIONS)
+            vsr, pair = rows["vsr"][nb * k], tuple(range(nb * k, nb * k + nb))
+            vmca, best, below = condition_vmca(rows, k, crit)
+            r = rows["last"][best]
             table = [{"bank_deg": round(float(np.degrees(rows["banks"][j])), 1), "speed_kn_cas": round(h["speed"] / KN, 2),
                       "control_usage": round(h["usage"], 4) if np.isfinite(h["usage"]) else None,
                       "rudder_deg": round(float(np.degrees(h["trim"].controls["rudder"])), 2),
@@ -248,18 +277,19 @@ class MinimumControlSpeed(Rule):
                       "sideslip_deg": round(float(np.degrees(h["trim"].beta)), 2), "converged": h["trim"].converged}
                      for j in pair for h in rows["history"][j]]
             limit = crit.vmc_over_vsr_max * vsr
+            limited_by = ("a control at its design limit" if r is not None and r.converged else
+                          "the steady trim ceasing to exist (near the stall: stall-limited)")
             common = dict(VSR=vsr, search=table, bank_at_vmca_deg=round(float(np.degrees(rows["banks"][best])), 1),
+                          vmca_limited_by=limited_by,
                           vmca_by_bank_kn={f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2)
                                            for j in pair},
                           force_model=("rudder at its design limit; the 150 lbf of (d) is a separate finding"
                                        if rudder else "none declared: rudder at its design limit, not 150 lbf"))
-            if all(rows["pinned_low"][j] for j in pair) or rows["pinned_low"][best]:
-                v = float(crit.grid_low * vsr)
-                found = cond.with_(speed=v, speed_kind="CAS", speed_name="VMCA")
-                out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", v, limit, at_least=False, unit="m/s",
+            if below:
+                found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
+                out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", vmca, limit, at_least=False, unit="m/s",
                                            reason=f"controls within limits down to {crit.grid_low} VSR: VMCA is below "
                                            "the search range (stall-limited)", **common))
-                vmca = v
             else:
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
                 top = all(rows["pinned_high"][j] for j in pair)
