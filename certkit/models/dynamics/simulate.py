@@ -23,7 +23,8 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
-from certkit.models.dynamics.eom import AircraftModel, euler_state_to_quat_state, quat_to_euler
+from certkit.models.dynamics.eom import QUAT_STATE, AircraftModel, euler_state_to_quat_state, quat_to_euler
+from certkit.models.dynamics.kernel import OUTPUTS
 
 
 class Schedule:
@@ -235,7 +236,9 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     lim = [(names.index(k), lo, hi) for k, (lo, hi) in (limits or {}).items()]
     nsteps = int(round(t_end / dt))
     nrec = nsteps // record_every + 1
-    hist = {k: np.empty((nrec, n)) for k in RECORDED}
+    # records in two blocks (the kernel's outputs and the state), one copy per step; Euler angles at the end
+    out_rec = np.empty((nrec, n, len(OUTPUTS)))
+    x_rec = np.empty((nrec, n, x.shape[1]))
     ctrl_hist = np.empty((nrec, n, len(names)))
     t_rec = np.empty(nrec)
     active = np.ones(n, dtype=bool)
@@ -255,9 +258,9 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
             for j, lo, hi in lim:
                 u[:, j] = np.clip(u[:, j], lo, hi)
             xd1, out, gear, thrust = model.evaluate(x, u)
-        outputs = model.make_outputs(out, gear, thrust)
         # stop criteria on the state at t
         if stop:
+            outputs = model.make_outputs(out, gear, thrust)
             for crit in stop:
                 hit = active & np.asarray(crit(t, x, outputs), dtype=bool)
                 if hit.any():
@@ -266,22 +269,23 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
                     stop_time[hit] = t
                     active &= ~hit
         if k % record_every == 0:
-            eul = quat_to_euler(x[:, 9:13])
-            vals = {"V": outputs.V, "alpha": outputs.alpha, "beta": outputs.beta, "p": x[:, 6], "q": x[:, 7],
-                    "r": x[:, 8], "phi": eul[:, 0], "theta": eul[:, 1], "psi": eul[:, 2], "h": x[:, 2],
-                    "x_N": x[:, 0], "y_E": x[:, 1], "n_x": outputs.n_x, "n_y": outputs.n_y, "n_z": outputs.n_z,
-                    "mach": outputs.mach, "qbar": outputs.qbar, "alpha_dot": outputs.alpha_dot, "CL": outputs.CL}
-            frozen = irec > 0 and not active.all()
-            for key, val in vals.items():
-                rec = hist[key]
-                rec[irec] = np.where(active, val, rec[irec - 1]) if frozen else val
-            ctrl_hist[irec] = np.where(active[:, None], u, ctrl_hist[irec - 1]) if frozen else u
+            if irec > 0 and not active.all():  # a stopped condition keeps its last record
+                out_rec[irec] = np.where(active[:, None], out, out_rec[irec - 1])
+                x_rec[irec] = np.where(active[:, None], x, x_rec[irec - 1])
+                ctrl_hist[irec] = np.where(active[:, None], u, ctrl_hist[irec - 1])
+            else:
+                out_rec[irec], x_rec[irec], ctrl_hist[irec] = out, x, u
             t_rec[irec] = t
             irec += 1
         if k == nsteps or not active.any():
             break
         x = model.rk4_step(x, xd1, u, thrust, dt, active)
-    hist = {key: v[:irec] for key, v in hist.items()}
+    out_rec, x_rec = out_rec[:irec], x_rec[:irec]
+    eul = quat_to_euler(x_rec[:, :, 9:13])
+    hist = {name: out_rec[:, :, j] for j, name in enumerate(OUTPUTS) if name in RECORDED}
+    hist.update({name: x_rec[:, :, j] for j, name in enumerate(QUAT_STATE[:9]) if name in RECORDED})
+    hist.update(phi=eul[:, :, 0], theta=eul[:, :, 1], psi=eul[:, :, 2])
+    hist = {key: hist[key] for key in RECORDED}
     return SimulationResult(t=t_rec[:irec], history=hist, controls=ctrl_hist[:irec], control_names=names,
                             stop_time=stop_time, stop_reason=stop_reason, final_state=x)
 
