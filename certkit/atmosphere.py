@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, vectorize
+from numba import njit
 
 from certkit.units import G0
 
@@ -55,26 +55,26 @@ def isa_scalar(h):
     return _T11, _P11 * math.exp(_K_STRATO * (h - H_TROPOPAUSE))
 
 
-@vectorize(["float64(float64)"], cache=True)
-def _temperature(h):
-    return isa_scalar(h)[0]
+@njit(cache=True)
+def _isa_flat(h, which):
+    out = np.empty(h.shape[0])
+    for i in range(h.shape[0]):
+        out[i] = isa_scalar(h[i])[which]
+    return out
 
 
-@vectorize(["float64(float64)"], cache=True)
-def _pressure(h):
-    return isa_scalar(h)[1]
+def _isa(h, which: int) -> np.ndarray:
+    h = np.asarray(h, dtype=float)
+    _check_range(h)
+    return _isa_flat(np.ascontiguousarray(h).reshape(-1), which).reshape(h.shape)
 
 
 def temperature(h):
-    h = np.asarray(h, dtype=float)
-    _check_range(h)
-    return _temperature(h)
+    return _isa(h, 0)
 
 
 def pressure(h):
-    h = np.asarray(h, dtype=float)
-    _check_range(h)
-    return _pressure(h)
+    return _isa(h, 1)
 
 
 def density(h):

@@ -34,7 +34,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit, vectorize
+from numba import njit
 from scipy.interpolate import RegularGridInterpolator
 
 from certkit import atmosphere as isa
@@ -103,15 +103,13 @@ class ParametricTurbofan:
     idle_fraction: float = 0.05
 
     def lapse(self, h, mach):
-        h = np.asarray(h, dtype=float)
-        isa.temperature(h)  # range check
-        return _turbofan_lapse(h, np.asarray(mach, dtype=float), self.throttle_ratio)
+        return self.thrust(1.0, h, mach) / self.static_thrust  # full throttle: static thrust × lapse
 
     def thrust(self, throttle, h, mach):
-        h = np.asarray(h, dtype=float)
-        isa.temperature(h)  # range check
-        return _turbofan_thrust(np.asarray(throttle, dtype=float), h, np.asarray(mach, dtype=float), self.static_thrust,
-                                self.throttle_ratio, self.idle_fraction)
+        thr, h, mach = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (throttle, h, mach)))
+        isa._check_range(h)
+        flat = [np.ascontiguousarray(a).reshape(-1) for a in (thr, h, mach)]
+        return _turbofan_thrust(*flat, self.static_thrust, self.throttle_ratio, self.idle_fraction).reshape(h.shape)
 
     def tsfc(self, h, mach):
         """Thrust-specific fuel consumption, kg/(N s)."""
@@ -134,15 +132,13 @@ def _lapse_scalar(h, mach, throttle_ratio):
     return d0 * (base - 3.0 * (t0 - throttle_ratio) / (1.5 + m))
 
 
-@vectorize(["float64(float64, float64, float64)"], cache=True)
-def _turbofan_lapse(h, mach, throttle_ratio):
-    return _lapse_scalar(h, mach, throttle_ratio)
-
-
-@vectorize(["float64(float64, float64, float64, float64, float64, float64)"], cache=True)
+@njit(cache=True)
 def _turbofan_thrust(throttle, h, mach, static_thrust, throttle_ratio, idle_fraction):
-    thr = min(max(throttle, 0.0), 1.0)
-    return static_thrust * _lapse_scalar(h, mach, throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
+    out = np.empty(h.shape[0])
+    for i in range(h.shape[0]):
+        thr = min(max(throttle[i], 0.0), 1.0)
+        out[i] = static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
+    return out
 
 
 def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
