@@ -14,7 +14,7 @@ import traceback
 from concurrent.futures import ProcessPoolExecutor
 
 from certkit import __version__
-from certkit.aircraft import LoadedAircraft, load_aircraft
+from certkit.aircraft import LoadedAircraft
 from certkit.context import Context
 from certkit.errors import UserError
 from certkit.registry import Criteria, DiscoveryOptions, Rule, discover
@@ -115,11 +115,12 @@ def _merge_provenance(parts: list[dict]) -> dict:
 _WORKER: dict = {}
 
 
-def _worker_init(path: str, options: DiscoveryOptions) -> None:
+def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions) -> None:
+    """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise)."""
     import matplotlib
 
     matplotlib.use("Agg")
-    _WORKER["ctx"] = Context(load_aircraft(path))
+    _WORKER["ctx"] = Context(loaded)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
 
 
@@ -142,7 +143,7 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
     else:
         order = sorted(rules, key=lambda r: -r.cost)  # stable: equal costs keep the registry order
         with ProcessPoolExecutor(max_workers=min(jobs, len(rules)), initializer=_worker_init,
-                                 initargs=(loaded.path, options)) as pool:
+                                 initargs=(loaded, options)) as pool:
             parts = list(pool.map(_worker_run, [r.id for r in order]))
         by_id = {res.id: res for res, _ in parts}
         results = [by_id[r.id] for r in rules]

@@ -6,6 +6,7 @@ References are internal consistency checks of one implementation against another
 after-stall control."""
 
 import numpy as np
+import pytest
 
 from certkit.models.aero.derivative_model import StabilityDerivativeModel, StallModel
 from certkit.models.aero.interface import AeroState
@@ -105,3 +106,20 @@ def test_after_stall_control_lift_is_linear():
     np.testing.assert_allclose(gusty.CD, plain.CD, rtol=1e-12)
     flap = base.coefficients(AeroState(alpha=np.array([0.3]), controls={"flap": 0.5}))
     assert flap.CL[0] < 5.0 * 0.3 + 0.5 - 0.2  # rounded onto CLmax, not linear
+
+
+def test_declared_clmax_is_the_peak_of_the_lift_curve():
+    """The stall model's rounding and separated-flow blend start below CLmax; the model calibrates the CLmax it uses
+    so that the maximum of the lift curve (controls neutral) equals the declared CLmax at every Mach breakpoint
+    (reference: the definition of CLmax; tolerance 1e-3 on a 0.01° α grid), and keeps the declared value public."""
+    from certkit.models.aero.interface import AeroReference
+
+    ref_ = AeroReference(400.0, 60.0, 7.0, 30.0)
+    m = StabilityDerivativeModel(ref_, {"CL0": 0.2, "CL_alpha": [5.5, 6.0, 7.5], "CD0": 0.02, "k": 0.04},
+                                 mach=[0.2, 0.5, 0.8], stall=StallModel(CLmax=[1.5, 1.45, 1.3]))
+    alpha = np.radians(np.arange(0.0, 30.0, 0.01))
+    for mach, clmax in zip((0.2, 0.5, 0.8), (1.5, 1.45, 1.3)):
+        cl = m.coefficients(AeroState(alpha=alpha, mach=mach)).CL
+        assert cl.max() == pytest.approx(clmax, abs=1e-3)
+        assert cl[-1] < 0.9 * clmax  # lift falls after the break
+        assert float(m.clmax(mach)) == clmax

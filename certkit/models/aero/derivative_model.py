@@ -39,7 +39,10 @@ Stall model (optional, :class:`StallModel`)
     separated flat-plate flow: CL_sep = CD90 sin α cos α, CD_sep = CD90 sin² α,
         CL = (1 − σ) CL_att + σ CL_sep,   CD = CD_attached + σ CD_sep.
     The result is smooth (continuous derivatives), so Newton trims and RK4 simulations near stall
-    behave, and lift falls after the break as a real wing's does.
+    behave, and lift falls after the break as a real wing's does. The rounding and the blend's onset
+    would keep the peak below the CLmax they are written with, so the CLmax used inside is calibrated
+    at construction so that the lift curve's maximum (controls neutral) equals the declared CLmax at
+    every Mach breakpoint: the declared value is the model's maximum lift coefficient.
     Controls named in ``after_stall`` (pseudo-controls such as a gust angle) add their lift after
     the stall model and outside the induced drag.
 
@@ -154,6 +157,28 @@ class StabilityDerivativeModel:
         self.kernel_data = (np.ascontiguousarray(table), self.mach, self._clmax, stall_params,
                             bool(self.uses_alpha_drag),
                             np.array([c in self.after_stall for c in self.control_names], dtype=np.bool_))
+        self._clmax_declared = self._clmax.copy()
+        if stall is not None:
+            self._calibrate_clmax()
+
+    def _calibrate_clmax(self, iterations: int = 6) -> None:
+        """Make the declared CLmax the largest lift coefficient the model reaches (controls neutral, at each Mach
+        breakpoint): the rounding and the onset of the separated-flow blend keep the curve's peak below the
+        CLmax they are written with (by about 15 % with the default widths), so that internal value is raised
+        until the peak of the lift curve equals the declared one (a fixed-point iteration on the ratio)."""
+        internal = self._clmax
+        for k, mach in enumerate(self.mach):
+            cla = max(abs(float(self._table[self._index["CL_alpha"], k])), 1e-3)
+            cl0 = float(self._table[self._index["CL0"], k])
+            for _ in range(iterations):
+                alpha_s = (internal[k] - cl0) / cla
+                alpha = np.linspace(alpha_s - 0.2, alpha_s + self.stall.break_delta + 4 * self.stall.break_width, 801)
+                z = np.zeros_like(alpha)
+                peak = float(coefficients_batch(*self.kernel_data, alpha, z, z, z, z, np.full_like(alpha, mach),
+                                                np.zeros((alpha.size, len(self.control_names))))[:, 0].max())
+                if abs(peak - self._clmax_declared[k]) < 1e-5:
+                    break
+                internal[k] *= self._clmax_declared[k] / peak
 
     # ------------------------------------------------------------------ helpers
     @property
@@ -180,6 +205,13 @@ class StabilityDerivativeModel:
         """One derivative interpolated at ``mach``."""
         i, w = self._weights(np.asarray(mach, dtype=float))
         return self._interp_rows(self._table[self._index[name]], i, w)
+
+    def clmax(self, mach) -> np.ndarray | None:
+        """The stall model's CLmax at ``mach`` (interpolated like the derivatives), None without a stall model."""
+        if self.stall is None:
+            return None
+        i, w = self._weights(np.asarray(mach, dtype=float))
+        return self._interp_rows(self._clmax_declared, i, w)
 
     def alpha_dot_derivatives(self, mach) -> tuple[np.ndarray, np.ndarray]:
         """(CL_alphadot, Cm_alphadot) at ``mach``, per unit α̇ c/2V (used by the equations of motion)."""

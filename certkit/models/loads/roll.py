@@ -86,7 +86,7 @@ def symmetric_manoeuvre_state(model, x_trim, u_trim, n_target, gamma, pitch: str
             J[:, :, j] = (residual(zp) - r) / hstep
         dz = -np.linalg.solve(J, r[:, :, None])[:, :, 0]
         dz = np.where(np.isfinite(dz), dz, 0.0)
-        dz /= np.maximum(np.max(np.abs(dz) / np.array([0.1, 0.05, 0.2]), axis=1), 1.0)[:, None]
+        dz /= np.maximum(np.max(np.abs(dz) / np.array([0.03, 0.05, 0.2]), axis=1), 1.0)[:, None]
         z = np.where((rn > tol)[:, None], z + dz, z)
         r = residual(z)
     u[:, je] = z[:, 2]

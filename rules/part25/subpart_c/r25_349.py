@@ -119,6 +119,20 @@ def target_load_factor(ctx, cond, crit) -> float:
     return float(crit.load_factor_fraction * ctx.aircraft.envelope.limit_load_factors.positive)
 
 
+def stall_load_factor(model, x) -> np.ndarray | None:
+    """The load factor on the stall line at each state's speed and altitude: CLmax(M) q̄ S / (m g) from the aero
+    model's stall CLmax (None when the model has no stall model)."""
+    from certkit.atmosphere import density, speed_of_sound
+
+    clmax = getattr(model.aero, "clmax", None)
+    V = np.hypot(np.hypot(x[:, 3], x[:, 4]), x[:, 5])
+    values = clmax(V / speed_of_sound(x[:, 2])) if callable(clmax) else None
+    if values is None:
+        return None
+    qbar = 0.5 * density(x[:, 2]) * V**2
+    return values * qbar * model.S / (model.mass * model.g)
+
+
 def full_aileron(ctx) -> float:
     """The aileron deflection (rad) to the stop rolling right: minus the larger design-limit magnitude (the
     airplane is symmetric, so rolling left to the positive limit is the mirror image)."""
@@ -194,9 +208,20 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
     je, ja = model.control_index("elevator"), model.control_index("aileron")
     e_lo, e_hi = control_limits(ctx.aircraft)["elevator"]
     ok = np.ones(len(rows), dtype=bool)
+    n_stall = stall_load_factor(model, batch.x[rows])
     for i, c in enumerate(sim_conds):
         reason = None
         if not st.converged[i] or abs(st.n_z[i] - n_target[i]) > 1e-3:
+            if n_stall is not None and n_target[i] > n_stall[i]:
+                # computed: CLmax q S / W at the speed and Mach is below the load factor — the point lies beyond the
+                # stall line of the V–n envelope (§25.333), not a flight condition
+                ok[i] = False
+                findings += [Finding.not_applicable(
+                    c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}",
+                    f"n = {n_target[i]:.2f} at this speed lies beyond the stall line of the V–n envelope: CLmax q S / W = "
+                    f"{n_stall[i]:.2f} (the pull-up reached n {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)")
+                    for s in SURFACES]
+                continue
             reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre cannot be set up at this speed (the lift is short of "
                       f"it: n reached {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)")
         elif not e_lo - 1e-9 <= st.u[i, je] <= e_hi + 1e-9:
