@@ -209,10 +209,9 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
                 kw[name] = value
             elif name in controls:
                 ctrl[name] = value
-            sol = v.solve(**kw, controls=ctrl or None, rate_axes="body")
-            f = sol.strips.force_over_q[idx]
+            f_all, g = v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")
+            f = f_all[idx]
             normal = f[:, 1] * ny + f[:, 2] * nz
-            g = sol.circulation
             gsum = np.add.reduceat(g, lat.first)[idx]
             gx = np.add.reduceat(g * xv, lat.first)[idx]
             return normal, gsum, gx

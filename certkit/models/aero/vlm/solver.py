@@ -445,15 +445,7 @@ class VortexLattice:
         ut, _, _ = self._inputs(alpha, beta, p_hat, q_hat, r_hat, self._deltas(controls), rate_axes)
         ut = ut[:, 0]
         lat = self.lattice
-        gam = self.unit_circulation @ ut
-        vel = np.einsum("ikc,k->ic", self.unit_bound_velocity, ut)
-        f = 2.0 * gam[:, None] * _cross(vel, lat.rv2 - lat.rv1)
-        rpts = [lat.rv]
-        fparts = [f]
-        for pts, leg in self._leg_geometry() if self.trailing_leg_forces else ():
-            v = np.einsum("ikc,k->ic", _unit_velocities(pts, self._ref_point), ut[:6])
-            fparts.append(2.0 * gam[:, None] * _cross(v, leg))
-            rpts.append(pts)
+        gam, fparts, rpts = self._vortex_forces(ut)
         load = lat.load[lat.vortex_strip][:, None]
         force = sum(fparts) * load
         moment = sum(_cross(rp - self._ref_point, fp) for rp, fp in zip(rpts, fparts)) * load
@@ -467,6 +459,30 @@ class VortexLattice:
         e = (cl_ff**2 + cy_ff**2) / (math.pi * ar * cd_ff) if cd_ff > 0 else float("nan")
         return FlowSolution(float(alpha), float(beta), self.mach, *(float(out[k]) for k in ("CL", "CD", "CY", "Cl", "Cm", "Cn", "Cl_body", "Cn_body", "CX", "CZ")),
                             cl_ff, cy_ff, cd_ff, e, strips, gam)
+
+    def _vortex_forces(self, ut: np.ndarray):
+        """Circulation (per unit V∞) and the force parts of each vortex (bound legs, then the trailing legs when
+        they carry force) for the unit-input vector ``ut``, with their points of action."""
+        lat = self.lattice
+        gam = self.unit_circulation @ ut
+        vel = np.einsum("ikc,k->ic", self.unit_bound_velocity, ut)
+        fparts = [2.0 * gam[:, None] * _cross(vel, lat.rv2 - lat.rv1)]
+        rpts = [lat.rv]
+        for pts, leg in self._leg_geometry() if self.trailing_leg_forces else ():
+            v = np.einsum("ikc,k->ic", _unit_velocities(pts, self._ref_point), ut[:6])
+            fparts.append(2.0 * gam[:, None] * _cross(v, leg))
+            rpts.append(pts)
+        return gam, fparts, rpts
+
+    def strip_forces(self, alpha: float = 0.0, beta: float = 0.0, p_hat: float = 0.0, q_hat: float = 0.0,
+                     r_hat: float = 0.0, controls: Mapping[str, float] | None = None, *,
+                     rate_axes: str = "stability") -> tuple[np.ndarray, np.ndarray]:
+        """Only the spanwise loading of :meth:`solve` (for the loads model, which needs no coefficients or
+        Trefftz-plane values): each strip's force per unit q∞ (J, 3; as ``StripLoads.force_over_q``) and the
+        circulation of every vortex (per unit V∞)."""
+        ut, _, _ = self._inputs(alpha, beta, p_hat, q_hat, r_hat, self._deltas(controls), rate_axes)
+        gam, fparts, _ = self._vortex_forces(ut[:, 0])
+        return np.add.reduceat(sum(fparts), self.lattice.first, axis=0), gam
 
     def _strip_loads(self, gam: np.ndarray, force: np.ndarray, alpha: float) -> StripLoads:
         lat = self.lattice
