@@ -64,6 +64,13 @@ def _safe_dirname(name: str) -> str:
 @_rules_option
 def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     """Evaluate every selected rule on AIRCRAFT_FILE and write results.json and an HTML report."""
+    if jobs is None:
+        jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
+    if jobs > 1:
+        # one BLAS/OpenMP thread per worker process (set before numpy loads; a user's own setting is kept):
+        # threaded BLAS in several processes oversubscribes the cores and slows the lattice several times
+        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(var, "1")
     from certkit.aircraft import load_aircraft
     from certkit.registry import select as select_rules
     from certkit.report.html import write_report
@@ -74,8 +81,6 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     options, rules = _discovery(rules_dirs)
     split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
     chosen = select_rules(rules, split(select), split(ignore))
-    if jobs is None:
-        jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
     result = run(loaded, chosen, jobs=jobs, options=options)
     out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
     json_path, html_path = write_report(result, chosen, out)
