@@ -128,6 +128,26 @@ class Rule:
         return "\n".join(lines)
 
 
+class SimulationRule(Rule):
+    """A rule that evaluates one batched simulation run and draws its evidence from it. Subclasses implement
+    :meth:`simulate` (returning a dict with at least ``findings``) and :meth:`draw`; the run is kept on the
+    instance between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
+
+    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> dict:
+        raise NotImplementedError
+
+    def draw(self, run: dict) -> list["Evidence"]:
+        return []
+
+    def evaluate(self, ctx, conditions, criteria):
+        self.run = self.simulate(ctx, conditions, criteria)
+        return self.run["findings"]
+
+    def evidence(self, ctx, findings, criteria):
+        run = getattr(self, "run", None)
+        return self.draw(run) if run else []
+
+
 def _indent(text: str) -> str:
     return "\n".join("  " + line.strip() for line in inspect.cleandoc(text).splitlines())
 

@@ -28,10 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
-from certkit.aircraft import load_aircraft
 from certkit.units import FT, LB
 
-from ..conftest import BASELINE
 
 MPA = 1e6
 

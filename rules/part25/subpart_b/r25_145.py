@@ -167,7 +167,7 @@ class LongitudinalControlConfigurationChanges(Rule):
 def force_finding(ctx, elevator, i, para, what, start, end, limit_lbf):
     """(b) control force: the elevator force (lbf) that holds the end trim with the trim device left at its start
     setting (:mod:`certkit.models.control_force`: the start trim holds zero force), against ``limit_lbf``."""
-    (c0, r0, _, _), (c1, r1, _, _) = start[i], end[i]
+    (_, r0, _, _), (c1, r1, _, _) = start[i], end[i]
     here = c1.with_(manoeuvre=f"{para} {what}")
     check = f"{para} control force ≤ {limit_lbf:g} lbf without re-trimming"
     if not (r0.converged and r1.converged):

@@ -30,7 +30,7 @@ from certkit.models.loads.capability import compare, declared_capabilities  # no
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Criterion, Rule, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
 
@@ -140,7 +140,7 @@ def _label(cond) -> str:
 # --------------------------------------------------------------------------- (c)(2) checked manoeuvre
 
 @rule
-class CheckedPitchManeuver(Rule):
+class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "checked-pitch-maneuver"
@@ -188,15 +188,13 @@ class CheckedPitchManeuver(Rule):
                    "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
-    def evaluate(self, ctx, conditions, crit):
-        self.run = checked_maneuver(ctx, conditions, crit)  # kept for evidence(), called on this instance
-        return self.run["findings"]
+    def simulate(self, ctx, conditions, crit):
+        return checked_maneuver(ctx, conditions, crit)
 
-    def evidence(self, ctx, findings, crit):
+    def draw(self, run):
         from certkit.report.evidence_loads import maneuver_evidence
 
-        run = getattr(self, "run", None)
-        return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
+        return maneuver_evidence(run, "horizontal_tail", "elevator")
 
 
 def checked_maneuver(ctx, conditions, crit) -> dict:

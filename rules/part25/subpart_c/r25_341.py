@@ -26,7 +26,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
 from certkit_rules.part25.gust import SOURCE as UREF_SOURCE
@@ -66,7 +66,7 @@ def gradients(crit) -> np.ndarray:
 
 
 @rule
-class DiscreteGust(Rule):
+class DiscreteGust(SimulationRule):
     id = "25.341(a)"
     cost = 8  # relative evaluation time (orders work over --jobs processes)
     symbol = "discrete-gust"
@@ -111,15 +111,13 @@ class DiscreteGust(Rule):
                    "(AC 25.341-1).")
     implementation = "partial"
 
-    def evaluate(self, ctx, conditions, crit):
-        self.run = discrete_gusts(ctx, conditions, crit)  # kept for evidence(), called on this instance
-        return self.run["findings"]
+    def simulate(self, ctx, conditions, crit):
+        return discrete_gusts(ctx, conditions, crit)
 
-    def evidence(self, ctx, findings, crit):
+    def draw(self, run):
         from certkit.report.evidence_loads import gust_evidence
 
-        run = getattr(self, "run", None)
-        return gust_evidence(run) if run and run.get("envelope") is not None else []
+        return gust_evidence(run) if run.get("envelope") is not None else []
 
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:

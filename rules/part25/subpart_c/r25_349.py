@@ -27,7 +27,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
@@ -52,7 +52,7 @@ GUST_NOTE = "§25.349(b) unsymmetrical gusts (100 % of the §25.341(a) wing air 
 
 
 @rule
-class RollingConditions(Rule):
+class RollingConditions(SimulationRule):
     id = "25.349(a)"
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "rolling-conditions"
@@ -101,15 +101,13 @@ class RollingConditions(Rule):
                    "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; " + GUST_NOTE + ".")
     implementation = "partial"
 
-    def evaluate(self, ctx, conditions, crit):
-        self.run = rolling_maneuvers(ctx, conditions, crit)  # kept for evidence(), called on this instance
-        return self.run["findings"]
+    def simulate(self, ctx, conditions, crit):
+        return rolling_maneuvers(ctx, conditions, crit)
 
-    def evidence(self, ctx, findings, crit):
+    def draw(self, run):
         from certkit.report.evidence_roll import roll_evidence
 
-        run = getattr(self, "run", None)
-        return roll_evidence(run) if run and run.get("sim") is not None else []
+        return roll_evidence(run) if run.get("sim") is not None else []
 
 
 def target_load_factor(ctx, cond, crit) -> float:

@@ -16,7 +16,6 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.models.loads.batch import trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
@@ -24,7 +23,7 @@ from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds, force_limited_deflection
@@ -50,7 +49,7 @@ def pedal_force_limit(v, va, vc, crit) -> float:
 
 
 @rule
-class YawManeuver(Rule):
+class YawManeuver(SimulationRule):
     id = "25.351"
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "yaw-maneuver"
@@ -97,15 +96,13 @@ class YawManeuver(Rule):
                    "rigid airplane, quasi-steady strip aerodynamics.")
     implementation = "partial"
 
-    def evaluate(self, ctx, conditions, crit):
-        self.run = yaw_maneuvers(ctx, conditions, crit)  # kept for evidence(), called on this instance
-        return self.run["findings"]
+    def simulate(self, ctx, conditions, crit):
+        return yaw_maneuvers(ctx, conditions, crit)
 
-    def evidence(self, ctx, findings, crit):
+    def draw(self, run):
         from certkit.report.evidence_yaw import yaw_evidence
 
-        run = getattr(self, "run", None)
-        return yaw_evidence(run) if run and run.get("envelope") is not None else []
+        return yaw_evidence(run) if run.get("envelope") is not None else []
 
 
 def yaw_speed(ctx, cond, crit) -> float:
