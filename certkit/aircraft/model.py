@@ -326,6 +326,15 @@ class Envelope(_Section):
     altitude_points: Annotated[int, Field(ge=2, le=50)] = 5
 
 
+class Performance(_Section):
+    """Declared (flight-test or handbook) performance figures the rules match their simulations to."""
+
+    takeoff_field_length: PositiveLength | None = Field(
+        None, description="takeoff field length at MTOW, sea level, standard day, all engines (the §25.113 distance "
+                          "to 35 ft × 1.15); §25.111 solves its rotation so that its simulated takeoff matches it")
+    source: str | None = None
+
+
 class CriterionOverride(_Section):
     """Override of a rule's numeric criteria; the justification is printed in the report."""
 
@@ -502,6 +511,7 @@ class Aircraft(_Section):
     envelope: Envelope
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
+    performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

@@ -83,3 +83,38 @@ def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
     assert all(f.status == "not_evaluated" and "landing_gear" in f.reason for f in r.findings)
     r = run_rule("25.111", tmp_path, [("  V1: 150 kn CAS", "  #V1: 150 kn CAS")])
     assert r.status == "not_evaluated" and all("speeds.V1" in f.reason for f in r.findings)
+
+
+def _with_field_length(tmp_path, ft):
+    return run_rule("25.111", tmp_path, [("\nsources:", f"\nperformance:\n  takeoff_field_length: {ft} ft\n"
+                                                      "  source: test value\nsources:")])
+
+
+def test_rotation_matches_a_declared_field_length(tmp_path):
+    """With performance.takeoff_field_length the rotation attitude is solved so that 1.15 × the all-engines distance
+    to 35 ft (§25.113(a)(2)) equals it: the solved attitude is the linear interpolation of the tabulated distances
+    (attitudes V2 attitude + ROTATION_OFFSETS_DEG; hand interpolation, 0.01°). Sign: a longer field length needs a
+    lower rotation attitude and less nose-up elevator at forward CG. Without it, the V2 attitude (basis says so)."""
+    from certkit_rules.part25.subpart_b.r25_111 import ROTATION_OFFSETS_DEG
+
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    short, long_ = _with_field_length(tmp_path / "a", 10000), _with_field_length(tmp_path / "b", 12000)
+    for r, ft in ((short, 10000.0), (long_, 12000.0)):
+        for f in (f for f in r.findings if f.check.startswith("(a) elevator")):
+            d = f.details
+            assert "declared takeoff field length" in d["rotation_basis"]
+            if d["rotation_match"] != "matched":
+                continue
+            dist = np.array(d["field_length_ft_at_attitude_offsets"])
+            k = int(np.flatnonzero((dist[:-1] >= ft) & (dist[1:] <= ft))[0])
+            frac = (dist[k] - ft) / (dist[k] - dist[k + 1])
+            theta_v2 = d["target_pitch_deg"] - (ROTATION_OFFSETS_DEG[k] + frac * (ROTATION_OFFSETS_DEG[k + 1] - ROTATION_OFFSETS_DEG[k]))
+            # the V2 attitude is the same in both runs: recover it from one and compare across runs below
+            f.details["_theta_v2"] = theta_v2
+    fwd = lambda r: next(f for f in r.findings if f.check.startswith("(a) elevator") and f.condition.loading.endswith("forward"))  # noqa: E731
+    assert fwd(short).details["_theta_v2"] == pytest.approx(fwd(long_).details["_theta_v2"], abs=0.01)
+    assert fwd(long_).details["target_pitch_deg"] < fwd(short).details["target_pitch_deg"]
+    assert fwd(long_).value > fwd(short).value  # elevator less negative (less nose-up) with the gentler rotation
+    base = run_rule("25.111")
+    assert all("V2 attitude" in f.details["rotation_basis"] for f in base.findings if f.details)

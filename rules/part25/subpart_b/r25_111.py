@@ -97,6 +97,10 @@ def _takeoff(ctx, conditions, crit):
         trims = ctx.trim(at_v2)
         theta = np.array([r.theta for r in trims.results])
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
+        rotation = {"basis": "the level-flight V2 attitude (no takeoff field length declared)"}
+        tofl = ac.performance.takeoff_field_length if ac.performance is not None else None
+        if tofl is not None:
+            theta, rotation = rotation_for_field_length(ctx, loadings, theta, vr, float(tofl), crit)
         model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
         engine = critical_engine(ac)
         vef, vef_basis = failure_speed(ctx, model, engine, crit)
@@ -111,11 +115,48 @@ def _takeoff(ctx, conditions, crit):
                           elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
                           failed_engine=engine, failure_speed=vef, lateral="heading", bank_airborne=bank,
                           climb_out=crit.climb_out_s)
-        return trims, run, engine, vef, vef_basis
+        return trims, run, engine, vef, vef_basis, theta, rotation
 
     key = ("25.111 takeoff OEI", tuple((c.mass, c.x_cg) for c in conditions), crit.screen_height, crit.recognition_time,
            crit.bank_deg, crit.climb_out_s)
     return ctx.memo(key, compute)
+
+
+#: rotation attitudes tried above the level-flight V2 attitude when a field length is matched (deg)
+ROTATION_OFFSETS_DEG = (-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0)
+
+
+def rotation_for_field_length(ctx, loadings, theta_v2, vr, field_length: float, crit):
+    """The rotation target attitude of each loading for which the all-engines takeoff matches the declared field
+    length: 1.15 × the simulated distance to 35 ft (§25.113(a)(2)) = ``field_length``. One batch of all-engines runs
+    at the V2 attitude plus :data:`ROTATION_OFFSETS_DEG`, then linear interpolation of the distance in the attitude
+    (the distance falls as the target rises); held at the ends of the range (the basis says so)."""
+    from certkit.models.dynamics.procedures import takeoff_run
+    from certkit.models.flight import control_limits, flight_model, ground_model
+
+    ac = ctx.aircraft
+    n, offsets = len(loadings), np.radians(ROTATION_OFFSETS_DEG)
+    model = flight_model(ac, ctx.aero("takeoff").model, list(loadings) * offsets.size, ground=ground_model(ac))
+    targets = (theta_v2[None, :] + offsets[:, None]).ravel()
+    run = takeoff_run(model, vr, targets, screen_height=crit.screen_height * FT,
+                      elevator_limits=control_limits(ac, design=False)["elevator"], dt=0.1)
+    dist = np.where(run.reached, 1.15 * run.x_screen, np.nan).reshape(offsets.size, n)
+    theta, notes = theta_v2.copy(), []
+    for i in range(n):
+        ok = np.isfinite(dist[:, i])
+        d, th = dist[ok, i], targets.reshape(offsets.size, n)[ok, i]
+        if d.size == 0:
+            notes.append("no all-engines run reached 35 ft: V2 attitude kept")
+            continue
+        order = np.argsort(d)  # increasing distance ↔ decreasing attitude
+        theta[i] = float(np.interp(field_length, d[order], th[order]))
+        notes.append("matched" if d.min() <= field_length <= d.max() else
+                     "held at the end of the attitudes tried (field length outside their distances "
+                     f"{d.min() / FT:,.0f}–{d.max() / FT:,.0f} ft)")
+    return theta, {"basis": f"rotation attitude solved so that 1.15 × the all-engines distance to "
+                            f"{crit.screen_height:.0f} ft equals the declared takeoff field length "
+                            f"{field_length / FT:,.0f} ft", "notes": notes,
+                   "field_length_ft_by_attitude": [[round(float(x / FT), 0) for x in row] for row in dist.T]}
 
 
 def _design_margin(values_deg, lo_deg, hi_deg):
@@ -149,8 +190,9 @@ class TakeoffPath(Rule):
     limitations = """
         No ground effect; no nose-wheel steering (the tyres' side friction and the rudder hold the heading); no
         engine spool-down (the failed engine windmills at once) nor spool-up (takeoff thrust at brake release);
-        rotation by a pitch-attitude controller at 3°/s to the level-flight V2 attitude (no declared field length
-        to match); the pilot model (rudder PI on heading, ≤ 5° bank toward the live engine in the air) stands for
+        rotation by a pitch-attitude controller at 3°/s to the attitude that matches a declared
+        performance.takeoff_field_length (1.15 × the all-engines distance to 35 ft), else to the level-flight V2
+        attitude; the pilot model (rudder PI on heading, ≤ 5° bank toward the live engine in the air) stands for
         a pilot; VEF from V1 by a quasi-steady engine-out acceleration when not declared; the path beyond the
         climb-out (c)(3) 1.2 % from 400 ft, (c)(4) configuration changes, and the takeoff distance (§25.113) are
         not computed. The paragraph's text is from memory (not in docs/regulation-notes.md).
@@ -177,7 +219,7 @@ class TakeoffPath(Rule):
         from certkit.models.flight import control_limits
 
         ac = ctx.aircraft
-        trims, run, engine, vef, vef_basis = _takeoff(ctx, conditions, crit)
+        trims, run, engine, vef, vef_basis, theta, rotation = _takeoff(ctx, conditions, crit)
         design = {k: np.degrees(v) for k, v in control_limits(ac).items() if k != "throttle"}
         cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
         v1_kn = float(convert_speed(ac.speeds.V1.value, ac.speeds.V1.kind, "CAS", 0.0)) / KN
@@ -217,7 +259,10 @@ class TakeoffPath(Rule):
                 liftoff_distance_ft=round(run.x_lof[i] / FT, 0), distance_to_35ft_ft=round(run.x_screen[i] / FT, 0),
                 time_to_35ft_s=round(float(run.t_screen[i]), 2),
                 initial_acceleration_m_s2=round(float(run.initial_acceleration[i]), 4),
-                target_pitch_deg=round(float(np.degrees(tr.theta)), 2),
+                target_pitch_deg=round(float(np.degrees(theta[i])), 2), rotation_basis=rotation["basis"],
+                **({"rotation_match": rotation["notes"][i],
+                    "field_length_ft_at_attitude_offsets": rotation["field_length_ft_by_attitude"][i]}
+                   if "notes" in rotation else {}),
                 max_heading_deviation_deg=round(float(np.degrees(np.abs(sim["psi"][:k_end + 1, i]).max())), 2),
                 max_lateral_deviation_on_ground_ft=round(float(np.abs(y[ground]).max() / FT) if ground.any() else 0.0, 1),
                 lateral_deviation_at_liftoff_ft=round(float(y[k_lof] / FT), 1),
@@ -254,5 +299,5 @@ class TakeoffPath(Rule):
         from certkit.report.evidence_performance import takeoff_evidence
 
         conds = self.conditions.expand(ctx.aircraft)
-        trims, run, engine, vef, _ = _takeoff(ctx, conds, crit)
+        trims, run, engine, vef, *_ = _takeoff(ctx, conds, crit)
         return takeoff_evidence(ctx, conds, findings, run, engine, vef, crit)
