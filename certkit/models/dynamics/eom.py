@@ -219,11 +219,6 @@ class AircraftModel:
         if ground is not None:
             pos = np.array([leg.position for leg in ground.legs], dtype=float)
             self.r_gear = airplane_to_body(pos[None, :, :], self.cg[:, None, :])  # (n,nl,3)
-            self.k_gear = np.array([leg.stiffness for leg in ground.legs])
-            self.c_gear = np.array([leg.damping for leg in ground.legs])
-            self.mu_roll = np.array([leg.rolling_friction for leg in ground.legs])
-            self.mu_side = np.array([leg.side_friction for leg in ground.legs])
-            self.braked = np.array([leg.braked for leg in ground.legs], dtype=float)
         self.aero_controls = tuple(aero.control_names)
         names = list(self.aero_controls) + [f"throttle:{e.name}" for e in self.engines]
         if ground is not None:

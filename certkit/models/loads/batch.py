@@ -33,6 +33,27 @@ class TrimmedBatch:
     def control(self, name: str) -> np.ndarray:
         return self.u[:, self.model.control_names.index(name)]
 
+    def distribute(self, conditions, entry_of, speeds):
+        """Scheduled ``conditions`` each tied to one trimmed entry (``entry_of(c)`` → position in the entries this
+        batch was trimmed from; ``speeds`` the entries' EAS): each refined with its entry's speed (and flight-path
+        angle when descending). Returns the batch rows of those that trimmed (array), their refined conditions, and
+        (refined condition, reason) of those whose entry did not trim, in the conditions' order."""
+        failed = dict(self.failed)
+        pos = {int(i): k for k, i in enumerate(self.index)}
+        rows, refined_ok, refused = [], [], []
+        for c in conditions:
+            e = entry_of(c)
+            refined = c.with_(speed=speeds[e], speed_kind="EAS")
+            if e in failed:
+                refused.append((refined, failed[e]))
+                continue
+            k = pos[e]
+            if self.gamma[k]:
+                refined = refined.with_(flight_path_deg=round(float(np.degrees(self.gamma[k])), 2))
+            rows.append(k)
+            refined_ok.append(refined)
+        return np.array(rows, dtype=int), refined_ok, refused
+
 
 def trimmed_batch(ctx, conditions, gammas=(0.0, -0.05, -0.10)) -> TrimmedBatch:
     """Trim ``conditions`` (one configuration) in level flight, then on the descending paths ``gammas``

@@ -210,24 +210,11 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             key_of[key] = len(entries)
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None))
     batch = trimmed_batch(ctx, [e.with_() for e in entries])
-    findings = []
-    failed_entry = dict(batch.failed)
-    pos = {int(i): k for k, i in enumerate(batch.index)}
-    sim_rows, sim_conds = [], []
-    for c in conditions:
-        e = key_of[(c.loading, c.altitude, c.get("entry_speed"))]
-        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
-        if e in failed_entry:
-            findings.append(Finding.not_evaluated(refined, "(c)(2) checked manoeuvre", failed_entry[e]))
-            continue
-        k = pos[e]
-        if batch.gamma[k]:
-            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
-        sim_rows.append(k)
-        sim_conds.append(refined)
-    if not sim_rows:
+    rows, sim_conds, refused = batch.distribute(
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries])
+    findings = [Finding.not_evaluated(refined, "(c)(2) checked manoeuvre", reason) for refined, reason in refused]
+    if not rows.size:
         return {"findings": findings, "envelope": None}
-    rows = np.array(sim_rows)
     omega_sp = _modes_frequency(batch)[rows]
     model = batch.model.subset(rows)
     x0, u0 = batch.x[rows], batch.u[rows]

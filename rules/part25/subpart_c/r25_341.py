@@ -136,33 +136,23 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
             v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
     batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
-    failed = dict(batch.failed)
-    pos = {int(i): k for k, i in enumerate(batch.index)}
-    findings, rows, sim_conds = [], [], []
-    for c in conditions:
-        e = key_of[(c.loading, c.altitude, c.get("speed_point"))]
-        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
-        if e in failed:
-            check = lambda s: f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"  # noqa: E731
-            if "more than full throttle" in failed[e]:
-                # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
-                # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
-                steepest = float(np.degrees(min(TRIM_PATHS)))
-                findings += [Finding.not_applicable(
-                    refined, check(s), f"no steady flight at this weight, altitude and speed (more than full thrust "
-                    f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
-                    "this weight, outside the flight envelope the gusts are applied in") for s in SURFACES]
-            else:
-                findings += [Finding.not_evaluated(refined, check(s), failed[e]) for s in SURFACES]
-            continue
-        k = pos[e]
-        if batch.gamma[k]:
-            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
-        rows.append(k)
-        sim_conds.append(refined)
-    if not rows:
+    rows, sim_conds, refused = batch.distribute(
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
+    findings = []
+    for refined, reason in refused:
+        check = lambda s: f"(a) discrete gust, {refined.get('gust')}, {s.replace('_', ' ')}"  # noqa: E731
+        if "more than full throttle" in reason:
+            # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
+            # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
+            steepest = float(np.degrees(min(TRIM_PATHS)))
+            findings += [Finding.not_applicable(
+                refined, check(s), f"no steady flight at this weight, altitude and speed (more than full thrust "
+                f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
+                "this weight, outside the flight envelope the gusts are applied in") for s in SURFACES]
+        else:
+            findings += [Finding.not_evaluated(refined, check(s), reason) for s in SURFACES]
+    if not rows.size:
         return {"findings": findings, "envelope": None}
-    rows = np.array(rows)
     loads = airplane_loads(ctx)
     gb = gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
     up = np.array([c.get("gust") == "up" for c in sim_conds])

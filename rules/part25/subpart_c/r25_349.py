@@ -182,24 +182,12 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
             v = entry_speeds(ctx, c.altitude, [c.get("speed_point")])[c.get("speed_point")]
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, load_factor=None))
     batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
-    failed_entry = dict(batch.failed)
-    pos = {int(i): k for k, i in enumerate(batch.index)}
-    findings, rows, sim_conds = [], [], []
-    for c in conditions:
-        e = key_of[(c.loading, c.altitude, c.get("speed_point"))]
-        refined = c.with_(speed=entries[e].speed, speed_kind="EAS")
-        check = PARAGRAPH[c.get("speed_point")]
-        if e in failed_entry:
-            findings += [Finding.not_evaluated(refined, f"{check}: {s.replace('_', ' ')}", failed_entry[e]) for s in SURFACES]
-            continue
-        k = pos[e]
-        if batch.gamma[k]:
-            refined = refined.with_(flight_path_deg=round(float(np.degrees(batch.gamma[k])), 2))
-        rows.append(k)
-        sim_conds.append(refined)
-    if not rows:
+    rows, sim_conds, refused = batch.distribute(
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
+    findings = [Finding.not_evaluated(refined, f"{PARAGRAPH[refined.get('speed_point')]}: {s.replace('_', ' ')}", reason)
+                for refined, reason in refused for s in SURFACES]
+    if not rows.size:
         return {"findings": findings, "sim": None}
-    rows = np.array(rows)
     model = batch.model.subset(rows)
     n_target = np.array([target_load_factor(ctx, c, crit) for c in sim_conds])
     st = symmetric_manoeuvre_state(model, batch.x[rows], batch.u[rows], n_target, batch.gamma[rows])
