@@ -84,6 +84,10 @@ class Rule:
     cost
         Rough evaluation time relative to a trim-only rule (1); used only to start the heaviest
         rules first when ``--jobs`` spreads them over processes.
+    run_with
+        Optional key: rules with the same key are evaluated one after the other in one process, so
+        that a computation they share through ``ctx.memo`` is done once (e.g. §25.341(a) and §25.349(b)
+        share the gust runs).
     """
 
     id: ClassVar[str]
@@ -100,6 +104,7 @@ class Rule:
     limitations: ClassVar[str] = ""
     origin: ClassVar[str] = "built-in"
     cost: ClassVar[float] = 1.0
+    run_with: ClassVar[str] = ""
 
     def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
         """Return findings for the conditions (any number per condition, each naming its condition)."""
@@ -173,6 +178,8 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'implementation' = {cls.implementation!r} must be one of {IMPLEMENTATION}")
     if isinstance(cls.cost, bool) or not isinstance(cls.cost, (int, float)) or not cls.cost > 0:
         raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
+    if not isinstance(cls.run_with, str):
+        raise PluginError(f"{where}: field 'run_with' = {cls.run_with!r} must be a string (a key shared with other rules)")
     for ref in cls.references:
         if not isinstance(ref, str) or not RULE_ID.match(ref):
             raise PluginError(f"{where}: field 'references' holds {ref!r}, not a paragraph id")

@@ -124,27 +124,36 @@ def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions) -> None:
     _WORKER["rules"] = {r.id: r for r in discover(options)}
 
 
-def _worker_run(rule_id: str) -> tuple[RuleResult, dict]:
-    """One rule in a worker process, on the worker's own Context (its models are reused by the next
-    rules the worker takes)."""
+def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
+    """Rules in a worker process, one after the other on the worker's own Context (its models are reused by the
+    next rules the worker takes)."""
     ctx = _WORKER["ctx"]
-    return evaluate_rule(_WORKER["rules"][rule_id], ctx), ctx.provenance()
+    return [(evaluate_rule(_WORKER["rules"][rid], ctx), ctx.provenance()) for rid in rule_ids]
+
+
+def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
+    """The rules grouped for the worker processes: rules sharing a :attr:`Rule.run_with` key form one unit (in
+    registry order), every other rule its own; the heaviest units (summed :attr:`Rule.cost`) first."""
+    units: dict = {}
+    for r in rules:
+        units.setdefault(r.run_with or ("", r.id), []).append(r)
+    return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None) -> RunResult:
-    """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next rule when
-    it is free, the heaviest (:attr:`Rule.cost`) first."""
+    """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
+    (:func:`work_units`) when it is free, the heaviest first."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
         results, provenance = _evaluate_many(loaded, rules)
         provenance = _merge_provenance([provenance])
     else:
-        order = sorted(rules, key=lambda r: -r.cost)  # stable: equal costs keep the registry order
-        with ProcessPoolExecutor(max_workers=min(jobs, len(rules)), initializer=_worker_init,
+        units = work_units(rules)
+        with ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
                                  initargs=(loaded, options)) as pool:
-            parts = list(pool.map(_worker_run, [r.id for r in order]))
+            parts = [part for done in pool.map(_worker_run, [tuple(r.id for r in u) for u in units]) for part in done]
         by_id = {res.id: res for res, _ in parts}
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])

@@ -130,21 +130,108 @@ def gust_time_history_svg(replays, conditions) -> str:
 
 def gust_evidence(run) -> list[Evidence]:
     replays = run["replay"](_gust_picks(run))
-    H = run["gradients"]
     out = [Evidence("Critical discrete-gust conditions: gust angle, load factor, wing root bending, tail root shear",
                     gust_time_history_svg(replays, run["conditions"]),
                     "The conditions and gradients with the largest positive and negative wing root bending and tail "
                     "root shear; the gust reaches the tail a tail arm / V after the wing.")]
     for surface in ("wing", "horizontal_tail"):
         name = surface.replace("_", " ")
-        table = run["envelope"].table(surface)
-        cases = [c for c in run["envelope"].critical_cases() if c.surface == surface]
-        for row, c in zip(table, cases):
-            q = QUANTITIES.index(c.quantity)
-            s = run["envelope"].stations[surface].index(c.station)
-            row["H_ft"] = round(float(H[run["which"][surface][c.condition, 1 if c.sense == "max" else 0, q, s]] / 0.3048))
         out += [Evidence(f"Gust load envelope along the {name} span", envelope_svg(run, surface),
                          "Maximum and minimum over every condition, gust gradient and time (limit loads)."),
                 Evidence(f"Critical-case table, {name} (discrete gust)", caption="Critical condition, gradient and time "
-                         "of every station and quantity.", table=table)]
+                         "of every station and quantity.", table=gust_case_table(run, surface))]
+    return out
+
+
+def gust_case_table(run, surface: str) -> list[dict]:
+    """The envelope's critical-case table of ``surface`` with the gust gradient of each case (``H_ft``)."""
+    env, H, which = run["envelope"], run["gradients"], run["which"][surface]
+    table = env.table(surface)
+    for row, c in zip(table, [c for c in env.critical_cases() if c.surface == surface]):
+        q, s = QUANTITIES.index(c.quantity), env.stations[surface].index(c.station)
+        row["H_ft"] = round(float(H[which[c.condition, 1 if c.sense == "max" else 0, q, s]] / 0.3048))
+    return table
+
+
+# --------------------------------------------------------------------------- unsymmetrical gusts (§25.349(b))
+
+def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
+    """(condition, gradient index) of the largest root bending on each side and of the largest rolling moment."""
+    env, which = run["envelope"], run["which"]
+    b = QUANTITIES.index("bending")
+    picks = []
+    for side in env.peaks:
+        for sense in ("max", "min"):
+            _, i = env.extreme(side, "bending", 0, sense)
+            if i >= 0 and (i, int(which[side][i, 1 if sense == "max" else 0, b, 0])) not in picks:
+                picks.append((i, int(which[side][i, 1 if sense == "max" else 0, b, 0])))
+    roll = np.abs(run["roll"])
+    j, i = np.unravel_index(int(np.argmax(roll)), roll.shape)
+    if (int(i), int(j)) not in picks:
+        picks.append((int(i), int(j)))
+    return picks[:4]
+
+
+def unsymmetrical_time_history_svg(run, picks) -> str:
+    from certkit.models.loads.unsymmetrical import unsymmetrical_wing
+
+    runs, (full, reduced) = run["runs"], run["fractions"]
+    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    for (i, H, r), colour in zip(runs.replay(picks), plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+        aero, inertia = r.parts["wing"]
+        m = runs.batch.model.subset([i])
+        u = unsymmetrical_wing(runs.loads["wing"], aero, inertia, m.mass, m.cg, m.inertia, full, reduced,
+                               trim_aero=aero[0] if run["basis"] == "increment" else None)
+        t = r.sim.t
+        label = f"{runs.conditions[i].label()} · H {H / 0.3048:.0f} ft"
+        axes[0].plot(t, (aero + inertia)[:, 0, 1, 0] / 1e3, color=colour, lw=0.8, ls=":")
+        axes[0].plot(t, u.full[:, 0, 1, 0] / 1e3, color=colour, lw=1.2, label=label)
+        axes[0].plot(t, u.reduced[:, 0, 1, 0] / 1e3, color=colour, lw=1.2, ls="--")
+        axes[1].plot(t, u.rolling_moment[:, 0] / 1e6, color=colour, lw=1.2)
+        axes[2].plot(t, np.degrees(u.pdot[:, 0]), color=colour, lw=1.2)
+        axes[3].plot(t, r.sim["n_z"][:, 0] + u.delta_n_z[:, 0], color=colour, lw=1.2)
+    names = (f"wing root bending (kN·m)\n— {full:.0%}  -- {reduced:.0%}  ·· symmetric", "unbalanced rolling\nmoment (MN·m)",
+             "roll acceleration\n(deg/s²)", "n_z with the\nair load removed")
+    for ax, name in zip(axes, names):
+        ax.set_ylabel(name, fontsize=7)
+        ax.grid(True, alpha=0.3)
+    axes[3].set_xlabel("time (s)")
+    axes[0].legend(fontsize=6, loc="upper right")
+    return figure_to_svg(fig)
+
+
+def sides_envelope_svg(run) -> str:
+    """Root-to-tip envelopes of both sides with the symmetric §25.341(a) envelope, per quantity."""
+    env, sym = run["envelope"], run["symmetric"]
+    cases = [(side, env.peaks[side], "-") for side in env.peaks] + [("symmetric §25.341(a)", sym.peaks["wing"], ":")]
+    stations = env.stations[next(iter(env.peaks))]
+    x = np.arange(len(stations))
+    fig, axes = plt.subplots(1, 3, figsize=(8.4, 2.9))
+    for q, (ax, quantity) in enumerate(zip(axes, QUANTITIES)):
+        for (name, P, ls), colour in zip(cases, plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+            ax.plot(x, np.nanmax(P[:, 1, q, :], axis=0) / 1e3, ls=ls, marker="o", ms=3, color=colour, lw=1.2, label=name)
+            ax.plot(x, np.nanmin(P[:, 0, q, :], axis=0) / 1e3, ls=ls, marker="s", ms=3, color=colour, lw=1.2)
+        ax.set_xticks(x, stations, rotation=40, fontsize=7)
+        ax.set_title(f"{quantity} ({'kN' if q == 0 else 'kN·m'})", fontsize=9)
+        ax.grid(True, alpha=0.3)
+    axes[0].legend(fontsize=6)
+    return figure_to_svg(fig)
+
+
+def unsymmetrical_gust_evidence(run) -> list[Evidence]:
+    full, reduced = run["fractions"]
+    out = [Evidence(f"Critical unsymmetrical-gust conditions: wing root bending on the {full:.0%} and {reduced:.0%} "
+                    "sides, unbalanced rolling moment, roll acceleration and load factor",
+                    unsymmetrical_time_history_svg(run, _unsymmetrical_picks(run)),
+                    "The §25.341(a) responses with the largest root bending on either side and with the largest "
+                    f"unbalanced rolling moment; the wing air load is {'the gust increment' if run['basis'] == 'increment' else 'the whole air load'} "
+                    f"× {full:.0%} on one side and × {reduced:.0%} on the other, the unbalance reacted by the rigid "
+                    "airplane's vertical, roll and pitch accelerations."),
+           Evidence("Unsymmetrical-gust load envelopes along the wing span", sides_envelope_svg(run),
+                    "Maximum (circles) and minimum (squares) over every condition, gust gradient and time (limit "
+                    "loads), each side against the symmetric gust.")]
+    for side in run["envelope"].peaks:
+        out.append(Evidence(f"Critical-case table, {side} (unsymmetrical gust)",
+                            caption="Critical condition, gradient and time of every station and quantity.",
+                            table=gust_case_table(run, side)))
     return out

@@ -8,7 +8,7 @@ import pytest
 from certkit.aircraft import load_aircraft
 from certkit.errors import UserError
 from certkit.registry import PluginError, discover, folder_rules, select
-from certkit.scheduler import run
+from certkit.scheduler import run, work_units
 
 from ..conftest import BASELINE
 
@@ -108,6 +108,21 @@ def test_invalid_plugin_metadata_names_plugin_and_field(tmp_path):
     (folder / "bad_rule.py").write_text(USER_RULE.replace('id = "25.901"', 'id = "25.901"\n    cost = -1'))
     with pytest.raises(PluginError, match=r"bad_rule\.py.*CornerMassCheck.*field 'cost' = -1 must be a positive"):
         folder_rules(folder)
+    (folder / "bad_rule.py").write_text(USER_RULE.replace('id = "25.901"', 'id = "25.901"\n    run_with = 3'))
+    with pytest.raises(PluginError, match=r"bad_rule\.py.*CornerMassCheck.*field 'run_with' = 3 must be a string"):
+        folder_rules(folder)
+
+
+def test_rules_that_share_work_form_one_unit():
+    """§25.341(a) and §25.349(b) share the gust runs (run_with): one process evaluates both, in registry order;
+    every rule is in exactly one unit; units go heaviest first."""
+    rules = discover()
+    units = work_units(rules)
+    (gust,) = [u for u in units if any(r.id == "25.341(a)" for r in u)]
+    assert [r.id for r in gust] == ["25.341(a)", "25.349(b)"]
+    assert sorted(r.id for u in units for r in u) == sorted(r.id for r in rules)
+    costs = [sum(r.cost for r in u) for u in units]
+    assert costs == sorted(costs, reverse=True)
 
 
 def test_cli_plugin_error_exit_2(cli, tmp_path):

@@ -21,7 +21,7 @@ import numpy as np
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
 from certkit.models.loads.gust import GUST_CONTROLS, gust_aero, gust_tables, one_minus_cosine
-from certkit.models.loads.response import response_loads
+from certkit.models.loads.response import response_load_parts
 
 SURFACES = ("wing", "horizontal_tail")
 
@@ -76,13 +76,15 @@ class GustRun:
     loads: dict[str, np.ndarray]  # surface → (nt, n, 3, S)
     alpha_gust: dict[str, np.ndarray]  # surface → (nt, n) gust angle felt
     dt: float
+    parts: dict[str, tuple[np.ndarray, np.ndarray]]  # surface → aerodynamic and inertial loads, for ``split``
 
 
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
-                  max_step: float = 0.05, settle_step: float = 0.02, surfaces=SURFACES) -> GustRun:
+                  max_step: float = 0.05, settle_step: float = 0.02, surfaces=SURFACES, split=()) -> GustRun:
     """One gust gradient ``H`` (m) for the whole batch; ``alpha_peak`` (n,) the peak gust angle
     U_ds/V (signed: positive = upward gust). Two phases: while the gust crosses the airplane, at the
-    step that resolves it; then ``settle`` seconds of the free response at ``settle_step``."""
+    step that resolves it; then ``settle`` seconds of the free response at ``settle_step``. For the
+    surfaces in ``split`` the aerodynamic and inertial loads are also kept apart (``GustRun.parts``)."""
     a = np.asarray(alpha_peak, dtype=float) * np.ones(gb.x0.shape[0])
     v = gb.v_tas
     lag = gb.tail_arm / v
@@ -103,15 +105,20 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     sim = _concatenate(parts)
     t = sim.t[:, None]
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
-    hist = {}
+    hist: dict[str, list] = {}
+    kept: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         t0 = first.t[-1] if k else 0.0
         tp = part.t[:, None] + t0
         extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
-        L = response_loads(loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra})
-        for s in surfaces:
-            hist.setdefault(s, []).append(L[s] if k == 0 else L[s][1:])
-    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt)
+        L = response_load_parts(loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra})
+        for s, (aero, inertia) in L.items():
+            keep = slice(None) if k == 0 else slice(1, None)
+            hist.setdefault(s, []).append((aero + inertia)[keep])
+            if s in split:
+                kept.setdefault(s, []).append((aero[keep], inertia[keep]))
+    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
+                   {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()})
 
 
 def _concatenate(parts):

@@ -23,14 +23,12 @@ def _rates_dot(t, x):
     return np.gradient(x, t, axis=0)
 
 
-def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
-                   valid=None) -> dict[str, np.ndarray]:
-    """Station loads (nt, n, 3, n_stations) of each of ``surfaces`` along the simulation ``sim`` of
-    the flight model ``model`` (its CGs and reference lengths).
+def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None
+                        ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Aerodynamic and inertial station loads, each (nt, n, 3, n_stations), of each of ``surfaces`` along the
+    simulation ``sim`` of the flight model ``model`` (its CGs and reference lengths).
 
-    ``extra_alpha``: surface name → (nt, n) angle-of-attack increment felt by that surface only (a
-    gust). ``valid``: (nt, n) booleans; loads outside are set to NaN (times after a stop criterion or
-    beyond the time the paragraph asks to consider)."""
+    ``extra_alpha``: surface name → (nt, n) angle-of-attack increment felt by that surface only (a gust)."""
     h = sim.history
     t = sim.t
     V = np.maximum(h["V"], 1e-3)
@@ -47,7 +45,18 @@ def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail"
         alpha = h["alpha"] + (extra_alpha or {}).get(name, 0.0)
         inputs = {"alpha": alpha, "beta": h["beta"], "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
                   "r_hat": h["r"] * b / (2 * V), **controls}
-        total = s.aero_loads(h["qbar"], h["mach"], inputs) + s.inertia_loads(terms)
+        out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
+    return out
+
+
+def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
+                   valid=None) -> dict[str, np.ndarray]:
+    """Station loads (nt, n, 3, n_stations) of each of ``surfaces`` along the simulation ``sim``: the sum of
+    :func:`response_load_parts`. ``valid``: (nt, n) booleans; loads outside are set to NaN (times after a stop
+    criterion or beyond the time the paragraph asks to consider)."""
+    out = {}
+    for name, (aero, inertia) in response_load_parts(loads, sim, model, surfaces, extra_alpha).items():
+        total = aero + inertia
         if valid is not None:
             total = np.where(valid[:, :, None, None], total, np.nan)
         out[name] = total

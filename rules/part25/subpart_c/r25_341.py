@@ -18,6 +18,8 @@ the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -69,6 +71,7 @@ def gradients(crit) -> np.ndarray:
 class DiscreteGust(SimulationRule):
     id = "25.341(a)"
     cost = 8  # relative evaluation time (orders work over --jobs processes)
+    run_with = "discrete-gust"  # §25.349(b) modifies these gust runs: one process simulates them once
     symbol = "discrete-gust"
     title = "Discrete vertical gusts (1 − cos), rigid airplane"
     amendment = "25-141"
@@ -126,7 +129,54 @@ def gust_speeds(ctx, h: float) -> dict[str, float]:
     return {"VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc), "VC": vc, "VD": float(ctx.design_speed_eas("VD", h)[0])}
 
 
-def discrete_gusts(ctx, conditions, crit) -> dict:
+#: the criteria that define the gust runs (shared by §25.349(b), which modifies the §25.341(a) conditions)
+GUST_CRITERIA = ("gradients", "gradient_min", "gradient_max", "gradient_reference", "gradient_exponent", "fgz_altitude",
+                 "vd_factor", "steps_per_gust", "settle_time")
+
+
+@dataclass
+class GustRuns:
+    """The §25.341(a) gust runs of a set of conditions: per gust gradient (``gradients``) the symmetric load
+    envelope, the extreme load factors, U_ds, and the wing's aerodynamic and inertial load histories (for the
+    unsymmetrical gusts of §25.349(b)); the scheduled conditions that could not be trimmed with the reason."""
+
+    refused: list  # (condition, reason)
+    conditions: list  # the simulated (refined) conditions
+    gradients: np.ndarray  # m
+    envelopes: list  # LoadEnvelope per gradient
+    nz_hi: np.ndarray  # (n_gradients, n)
+    nz_lo: np.ndarray
+    uds: np.ndarray  # (n_gradients, n) m/s EAS
+    wing: list  # per gradient (t, aero, inertia) of the right half wing, (nt, n, 3, S) each
+    u_ref: np.ndarray = None
+    f_g: np.ndarray = None
+    v_eas: np.ndarray = None
+    up: np.ndarray = None
+    altitude: np.ndarray = None
+    batch: object = None  # GustBatch of the simulated conditions
+    loads: object = None  # AirplaneLoads
+    steps_per_gust: float = 20.0
+    settle_time: float = 1.5
+
+    def replay(self, picks):
+        """Re-simulate the (condition index, gradient index) pairs with their histories (evidence)."""
+        out = []
+        for i, j in picks:
+            H = self.gradients[j]
+            alpha = (1.0 if self.up[i] else -1.0) * self.uds[j, i] / self.v_eas[i]
+            out.append((i, H, simulate_gust(self.loads, self.batch.subset([i]), H, alpha, self.steps_per_gust,
+                                            self.settle_time, split=("wing",))))
+        return out
+
+
+def gust_runs(ctx, conditions, crit) -> GustRuns:
+    """The gust runs of ``conditions``, memoised on the conditions and the gust criteria (so that §25.341(a) and
+    §25.349(b), evaluated in one process, simulate once)."""
+    key = ("discrete_gust_runs", tuple(conditions), tuple((k, str(crit[k])) for k in GUST_CRITERIA))
+    return ctx.memo(key, lambda: _simulate_gust_runs(ctx, conditions, crit))
+
+
+def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     H = gradients(crit)
     entries, key_of = [], {}
     for c in conditions:
@@ -138,21 +188,9 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
     rows, sim_conds, refused = batch.distribute(
         conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
-    findings = []
-    for refined, reason in refused:
-        check = lambda s: f"(a) discrete gust, {refined.get('gust')}, {s.replace('_', ' ')}"  # noqa: E731
-        if "more than full throttle" in reason:
-            # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
-            # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
-            steepest = float(np.degrees(min(TRIM_PATHS)))
-            findings += [Finding.not_applicable(
-                refined, check(s), f"no steady flight at this weight, altitude and speed (more than full thrust "
-                f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
-                "this weight, outside the flight envelope the gusts are applied in") for s in SURFACES]
-        else:
-            findings += [Finding.not_evaluated(refined, check(s), reason) for s in SURFACES]
+    empty = np.zeros((len(H), 0))
     if not rows.size:
-        return {"findings": findings, "envelope": None}
+        return GustRuns(list(refused), [], H, [], empty, empty, empty, [])
     loads = airplane_loads(ctx)
     gb = gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
     up = np.array([c.get("gust") == "up" for c in sim_conds])
@@ -161,18 +199,49 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     u_ref = reference_gust_velocity(alt) * np.where(at_vd, crit.vd_factor, 1.0)
     f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
     v_eas = np.array([c.speed for c in sim_conds])
-    parts, nz_hi, nz_lo, uds_all = [], [], [], []
     labels = [c.label() for c in sim_conds]
+    envelopes, nz_hi, nz_lo, uds_all, wing = [], [], [], [], []
     for h_gust in H:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
         run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
-                            float(crit.settle_time))
-        parts.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels))
+                            float(crit.settle_time), split=("wing",))
+        envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)
-    env, which = LoadEnvelope.worst_of(parts)
-    nz_hi, nz_lo, uds_all = np.array(nz_hi), np.array(nz_lo), np.array(uds_all)
+        wing.append((run.sim.t, *run.parts["wing"]))
+    return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
+                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time))
+
+
+def refused_findings(refused, check) -> list[Finding]:
+    """Findings of the scheduled conditions without a steady flight to start the gust from: not applicable above
+    the airplane's ceiling at the weight (no steady flight even on the steepest descent tried), else not
+    evaluated with the trim's reason. ``check(condition)`` → the check names of that condition."""
+    findings = []
+    steepest = float(np.degrees(min(TRIM_PATHS)))
+    for refined, reason in refused:
+        if "more than full throttle" in reason:
+            # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
+            # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
+            findings += [Finding.not_applicable(
+                refined, name, f"no steady flight at this weight, altitude and speed (more than full thrust "
+                f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
+                "this weight, outside the flight envelope the gusts are applied in") for name in check(refined)]
+        else:
+            findings += [Finding.not_evaluated(refined, name, reason) for name in check(refined)]
+    return findings
+
+
+def discrete_gusts(ctx, conditions, crit) -> dict:
+    runs = gust_runs(ctx, conditions, crit)
+    findings = refused_findings(runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"
+                                                          for s in SURFACES])
+    if not runs.conditions:
+        return {"findings": findings, "envelope": None}
+    sim_conds, H, up = runs.conditions, runs.gradients, runs.up
+    env, which = LoadEnvelope.worst_of(runs.envelopes)
+    nz_hi, nz_lo, uds_all, u_ref, f_g, v_eas, alt = runs.nz_hi, runs.nz_lo, runs.uds, runs.u_ref, runs.f_g, runs.v_eas, runs.altitude
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     # information, not a criterion: the §25.333 manoeuvring envelope's load factor at each speed (§25.337), to
     # show where gusts load the airplane beyond the manoeuvres (since Amdt. 25-86 there is no gust V–n envelope)
@@ -190,17 +259,6 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
                 critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
                 maneuver_envelope_n_z=n_env[i], beyond_maneuver_envelope=bool(
                     (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
-                tail_lag_s=round(float(gb.tail_arm / gb.v_tas[i]), 4)))
-
-    def replay(picks):
-        """Re-simulate the critical (condition, gradient) pairs with their histories (evidence)."""
-        out = []
-        for i, j in picks:
-            sub = gb.subset([i])
-            uds = design_gust_velocity(u_ref[i], f_g[i], H[j], crit)
-            out.append((i, H[j], simulate_gust(loads, sub, H[j], (1.0 if up[i] else -1.0) * uds / v_eas[i],
-                                               float(crit.steps_per_gust), float(crit.settle_time))))
-        return out
-
+                tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
     return {"findings": findings, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
-            "replay": replay, "loads": loads}
+            "replay": runs.replay, "loads": runs.loads}

@@ -12,8 +12,13 @@ modelled; one roll direction (right wing down: the airplane is symmetric and bot
 left one as the right half of the mirror image); the pilot holds the pull (elevator) and the rudder at their
 manoeuvre values; the roll rate compared between speeds, and the end of the time history whose loads are
 considered, is where |p| first stops growing (the steady rolling velocity of (a)(1); the maximum roll acceleration
-comes at the end of the aileron ramp, inside it). (b), the
-unsymmetrical gust, is not evaluated (see `limitations`).
+comes at the end of the aileron ramp, inside it).
+
+§25.349(b) Unsymmetrical gusts: the §25.341(a) gust responses (shared with that rule through ``run_with``, simulated
+once) with 100 % of the wing air load on one side and 80 % on the other at every instant; the unbalanced vertical
+force and rolling and pitching moments are reacted by the rigid airplane's inertia (the "rational manner" of the
+lead-in), :mod:`certkit.models.loads.unsymmetrical`. "The wing air load" is read as the whole air load (1 g trim +
+gust), the literal text; the criterion ``airload_basis: increment`` applies the fractions to the gust increment only.
 """
 
 from __future__ import annotations
@@ -21,16 +26,19 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.errors import UserError
 from certkit.models.flight import control_limits
 from certkit.models.loads.batch import trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
+from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
-from certkit.units import KN
+from certkit.units import FT, KN
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
+from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs, refused_findings
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
@@ -48,7 +56,6 @@ NO_VA_NOTE = ("the VA roll rate of (a)(2) is not available for this loading, alt
               "could not be set up): full aileron, conservative")
 PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: the VA roll rate of (a)(2) is taken at "
               "the {} load factor of the same loading and altitude")
-GUST_NOTE = "§25.349(b) unsymmetrical gusts (100 % of the §25.341(a) wing air load on one side, 80 % on the other) not evaluated"
 
 
 @rule
@@ -98,7 +105,7 @@ class RollingConditions(SimulationRule):
                                      "pull-up (2/3 n) or push-over (n = 0) set up on the trimmed flight path; aileron to "
                                      "the larger design limit rolling right (the left wing is the mirror image).")
     limitations = (EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
-                   "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; " + GUST_NOTE + ".")
+                   "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b).")
     implementation = "partial"
 
     def simulate(self, ctx, conditions, crit):
@@ -296,3 +303,126 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
             "env_sides": env_sides, "env_fin": env_fin, "aileron_index": ja, "fraction": frac, "t_end": t_end,
             "failed": [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"
                        and f.reason and "structural capability" not in f.reason][::len(SURFACES)]}
+
+
+# --------------------------------------------------------------------------- (b) unsymmetrical gusts
+
+REG_B = "14 CFR 25.349(b) (secondary copy of the CFR text, end of (b) completed from EASA CS 25.349(b); docs/regulation-notes.md)"
+AIRLOAD_BASES = ("total", "increment")
+
+
+@rule
+class UnsymmetricalGust(SimulationRule):
+    id = "25.349(b)"
+    cost = 2  # relative evaluation time beyond the §25.341(a) gust runs it shares (run_with)
+    run_with = "discrete-gust"
+    symbol = "unsymmetrical-gust"
+    title = "Unsymmetrical vertical gusts: 100 % of the §25.341(a) wing air load on one side, 80 % on the other"
+    amendment = "25-94"
+    requirement = """
+        The airplane meets unsymmetrical vertical gusts in level flight. The limit loads are found from the wing
+        maximum air load of §25.341(a) (directly, or from its vertical load factor), with 100 % of the wing air
+        load acting on one side of the airplane and 80 % on the other; the unbalanced aerodynamic moments about
+        the CG are reacted in a rational or conservative manner by the principal masses' inertia forces (lead-in
+        of §25.349). The structure carries the loads (limit) and 1.5 × them (ultimate), §25.303/§25.305.
+    """
+    margin = """
+        Per §25.341(a) condition and wing side (100 % and 80 %): the smallest of (allowable limit load − |limit
+        load|) and (allowable ultimate load − 1.5 × |limit load|) over the declared wing stations and quantities,
+        the limit load the extreme over every gust gradient and time of the §25.341(a) response with the air load
+        modified at each instant and the unbalanced vertical force, rolling and pitching moments reacted by the
+        rigid airplane's inertia; without a declared structural capability the condition is not evaluated and
+        reports its loads.
+    """
+    references = ("25.341", "25.303", "25.305", "25.427")
+    requires = DiscreteGust.requires
+    criteria = {
+        **{k: DiscreteGust.criteria[k] for k in GUST_CRITERIA},
+        "full_side_fraction": Criterion(1.0, "", REG_B, "fraction of the wing air load on the more loaded side"),
+        "reduced_side_fraction": Criterion(0.8, "", REG_B, "fraction of the wing air load on the other side"),
+        "airload_basis": Criterion("total", "", "certkit reading of 'the wing air load' of 14 CFR 25.349(b) "
+                                   "(docs/regulation-notes.md §25.349)", "'total': the fractions apply to the whole wing "
+                                   "air load (1 g trim + gust); 'increment': to the gust increment over the 1 g trim"),
+        **SAFETY,
+    }
+    conditions = DiscreteGust.conditions
+    limitations = ("The §25.341(a) response it modifies is that of the rigid airplane with quasi-steady aerodynamics "
+                   "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
+                   "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
+                   "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b)).")
+    implementation = "implemented"
+
+    def simulate(self, ctx, conditions, crit):
+        return unsymmetrical_gusts(ctx, conditions, crit)
+
+    def draw(self, run):
+        from certkit.report.evidence_loads import unsymmetrical_gust_evidence
+
+        return unsymmetrical_gust_evidence(run) if run.get("envelope") is not None else []
+
+
+def _airload_basis(crit) -> str:
+    basis = str(crit.airload_basis).strip().lower()
+    if basis not in AIRLOAD_BASES:
+        raise UserError(f"criteria.25.349(b).values.airload_basis: {crit.airload_basis!r} is not one of "
+                        f"{', '.join(AIRLOAD_BASES)} (the whole wing air load, or its gust increment over the 1 g trim)")
+    for name in ("full_side_fraction", "reduced_side_fraction"):
+        if not 0.0 <= float(crit[name]) <= 1.0:
+            raise UserError(f"criteria.25.349(b).values.{name}: {crit[name]!r} must lie between 0 and 1")
+    return basis
+
+
+def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
+    """§25.349(b) from the memoised §25.341(a) gust runs: per gust gradient the wing's air load split 100/80 % at
+    every instant (:func:`certkit.models.loads.unsymmetrical.unsymmetrical_wing`), envelopes per side."""
+    basis = _airload_basis(crit)
+    full, reduced = float(crit.full_side_fraction), float(crit.reduced_side_fraction)
+    full_side, reduced_side = f"wing, {full:.0%} side", f"wing, {reduced:.0%} side"
+    if full_side == reduced_side:
+        full_side, reduced_side = full_side + " (right)", reduced_side + " (left)"
+
+    def check(c, side):
+        return f"(b) unsymmetrical gust, {c.get('gust')}, {side}"
+
+    runs = gust_runs(ctx, conditions, crit)
+    findings = refused_findings(runs.refused, lambda c: [check(c, s) for s in (full_side, reduced_side)])
+    if not runs.conditions:
+        return {"findings": findings, "envelope": None}
+    wing, model, n = runs.loads["wing"], runs.batch.model, len(runs.conditions)
+    labels = [c.label() for c in runs.conditions]
+    per_side: dict[str, list] = {full_side: [], reduced_side: []}
+    roll = np.zeros((len(runs.wing), n))
+    pdot, dnz, t_roll = np.zeros_like(roll), np.zeros_like(roll), np.zeros_like(roll)
+    for j, (t, aero, inertia) in enumerate(runs.wing):
+        u = unsymmetrical_wing(wing, aero, inertia, model.mass, model.cg, model.inertia, full, reduced,
+                               trim_aero=aero[0] if basis == "increment" else None)
+        per_side[full_side].append(LoadEnvelope.from_histories(runs.loads, {"wing": u.full}, t, labels))
+        per_side[reduced_side].append(LoadEnvelope.from_histories(runs.loads, {"wing": u.reduced}, t, labels))
+        k = np.argmax(np.abs(u.rolling_moment), axis=0)
+        cols = np.arange(n)
+        roll[j], pdot[j], dnz[j], t_roll[j] = u.rolling_moment[k, cols], u.pdot[k, cols], u.delta_n_z[k, cols], t[k]
+    stations, peaks, times, which = {}, {}, {}, {}
+    for side, parts in per_side.items():
+        env, w = LoadEnvelope.worst_of(parts)
+        stations[side], peaks[side], times[side], which[side] = env.stations["wing"], env.peaks["wing"], env.times["wing"], w["wing"]
+    envelope = LoadEnvelope(stations, peaks, times, labels)
+    j_roll = np.argmax(np.abs(roll), axis=0)
+    caps = declared_capabilities(ctx, "wing")
+    sym, _ = LoadEnvelope.worst_of(runs.envelopes)
+    b = QUANTITIES.index("bending")
+    for i, c in enumerate(runs.conditions):
+        jr = int(j_roll[i])
+        common = dict(airload_basis=basis, critical_H_rolling_moment_ft=round(float(runs.gradients[jr] / FT), 0),
+                      peak_unbalanced_rolling_moment_MNm=round(float(roll[jr, i]) / 1e6, 3),
+                      roll_acceleration_deg_s2=round(float(np.degrees(pdot[jr, i])), 2),
+                      load_factor_change=round(float(dnz[jr, i]), 4), at_time_s=round(float(t_roll[jr, i]), 3),
+                      symmetric_root_bending_max_min_kNm=[round(float(sym.peaks["wing"][i, 1, b, 0]) / 1e3, 1),
+                                                          round(float(sym.peaks["wing"][i, 0, b, 0]) / 1e3, 1)])
+        for side in (full_side, reduced_side):
+            jb = int(which[side][i, 1 if runs.up[i] else 0, b, 0])
+            findings.append(capability_finding(c, check(c, side), "wing", peaks[side][i], stations[side], caps,
+                                               crit.ultimate_factor, critical_H_root_bending_ft=round(float(runs.gradients[jb] / FT), 0),
+                                               **common))
+    return {"findings": findings, "envelope": envelope, "which": which, "gradients": runs.gradients,
+            "conditions": runs.conditions, "runs": runs, "roll": roll, "fractions": (full, reduced), "basis": basis,
+            "symmetric": sym}
