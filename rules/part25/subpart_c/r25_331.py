@@ -25,7 +25,7 @@ from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Step, simulate, stop_when
 from certkit.models.flight import control_limits
-from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.batch import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import compare, declared_capabilities  # noqa: F401 (shared by §25.341/§25.351)
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads
@@ -212,7 +212,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     batch = trimmed_batch(ctx, [e.with_() for e in entries])
     rows, sim_conds, refused = batch.distribute(
         conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries])
-    findings = [Finding.not_evaluated(refined, "(c)(2) checked manoeuvre", reason) for refined, reason in refused]
+    findings = refusal_findings(refused, lambda c: ["(c)(2) checked manoeuvre"])
     if not rows.size:
         return {"findings": findings, "envelope": None}
     omega_sp = _modes_frequency(batch)[rows]
@@ -373,8 +373,7 @@ class MaximumPitchControlDisplacement(Rule):
         entries = [c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
                    for c in conditions]
         batch = trimmed_batch(ctx, entries)
-        findings = [Finding.not_evaluated(entries[i], "(c)(1) maximum pitch control displacement", reason)
-                    for i, reason in batch.failed]
+        findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
         if not batch.n:
             return findings
         lim = control_limits(ctx.aircraft)["elevator"]

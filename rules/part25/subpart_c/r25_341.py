@@ -23,13 +23,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.batch import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
 from certkit.registry import Criterion, SimulationRule, rule
-from certkit.results import Finding
 from certkit.units import FT, KN
 from certkit_rules.part25.gust import SOURCE as UREF_SOURCE
 from certkit_rules.part25.gust import reference_gust_velocity
@@ -37,9 +36,6 @@ from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, m
 
 AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
 SPEEDS = ("VB", "VC", "VD")
-#: flight-path angles (rad) tried in turn for conditions without a level trim: descending where the thrust
-#: is short (VD), climbing where even idle thrust is too much (light airplane at VB)
-TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
 
 
 def flight_profile_alleviation(aircraft, altitude, crit) -> float:
@@ -140,7 +136,7 @@ class GustRuns:
     envelope, the extreme load factors, U_ds, and the wing's aerodynamic and inertial load histories (for the
     unsymmetrical gusts of §25.349(b)); the scheduled conditions that could not be trimmed with the reason."""
 
-    refused: list  # (condition, reason)
+    refused: list  # Refusal of the scheduled conditions without a steady flight
     conditions: list  # the simulated (refined) conditions
     gradients: np.ndarray  # m
     envelopes: list  # LoadEnvelope per gradient
@@ -185,7 +181,7 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
             key_of[key] = len(entries)
             v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
-    batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
+    batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(
         conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
     empty = np.zeros((len(H), 0))
@@ -214,29 +210,10 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
                     u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time))
 
 
-def refused_findings(refused, check) -> list[Finding]:
-    """Findings of the scheduled conditions without a steady flight to start the gust from: not applicable above
-    the airplane's ceiling at the weight (no steady flight even on the steepest descent tried), else not
-    evaluated with the trim's reason. ``check(condition)`` → the check names of that condition."""
-    findings = []
-    steepest = float(np.degrees(min(TRIM_PATHS)))
-    for refined, reason in refused:
-        if "more than full throttle" in reason:
-            # computed: not even the steepest descent tried is a steady flight at this weight, altitude and
-            # speed — the condition lies above the airplane's thrust-limited ceiling at this weight
-            findings += [Finding.not_applicable(
-                refined, name, f"no steady flight at this weight, altitude and speed (more than full thrust "
-                f"needed level and on descending paths down to {steepest:.1f}°): above the airplane's ceiling at "
-                "this weight, outside the flight envelope the gusts are applied in") for name in check(refined)]
-        else:
-            findings += [Finding.not_evaluated(refined, name, reason) for name in check(refined)]
-    return findings
-
-
 def discrete_gusts(ctx, conditions, crit) -> dict:
     runs = gust_runs(ctx, conditions, crit)
-    findings = refused_findings(runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"
-                                                          for s in SURFACES])
+    findings = refusal_findings(runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"
+                                                         for s in SURFACES])
     if not runs.conditions:
         return {"findings": findings, "envelope": None}
     sim_conds, H, up = runs.conditions, runs.gradients, runs.up

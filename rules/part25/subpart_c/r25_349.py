@@ -28,7 +28,7 @@ import numpy as np
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.errors import UserError
 from certkit.models.flight import control_limits
-from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.batch import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
@@ -38,14 +38,13 @@ from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
-from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs, refused_findings
+from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
 LOAD_FACTORS = ("zero", "two-thirds")
 SURFACES = ("wing", "horizontal_tail", "vertical_tail")
 MIRRORED = ("wing", "horizontal_tail")
-TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
 PARAGRAPH = {"VA": "(a)(2) VA, sudden aileron to the stop", "VC": "(a)(3) VC, roll rate ≥ that at VA",
              "VD": "(a)(4) VD, roll rate ≥ 1/3 of that at VA"}
 EFFORT_NOTE = ("no control-force model is declared: pilot effort (§25.349(a), §25.397) cannot reduce the deflection; "
@@ -188,11 +187,11 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
             key_of[key] = len(entries)
             v = entry_speeds(ctx, c.altitude, [c.get("speed_point")])[c.get("speed_point")]
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, load_factor=None))
-    batch = trimmed_batch(ctx, entries, gammas=TRIM_PATHS)
+    batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(
         conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
-    findings = [Finding.not_evaluated(refined, f"{PARAGRAPH[refined.get('speed_point')]}: {s.replace('_', ' ')}", reason)
-                for refined, reason in refused for s in SURFACES]
+    findings = refusal_findings(refused, lambda c: [f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}"
+                                                    for s in SURFACES])
     if not rows.size:
         return {"findings": findings, "sim": None}
     model = batch.model.subset(rows)
@@ -385,7 +384,7 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
         return f"(b) unsymmetrical gust, {c.get('gust')}, {side}"
 
     runs = gust_runs(ctx, conditions, crit)
-    findings = refused_findings(runs.refused, lambda c: [check(c, s) for s in (full_side, reduced_side)])
+    findings = refusal_findings(runs.refused, lambda c: [check(c, s) for s in (full_side, reduced_side)])
     if not runs.conditions:
         return {"findings": findings, "envelope": None}
     wing, model, n = runs.loads["wing"], runs.batch.model, len(runs.conditions)

@@ -17,21 +17,19 @@ import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.models.flight import control_limits
-from certkit.models.loads.batch import trimmed_batch
+from certkit.models.loads.batch import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, SimulationRule, rule
-from certkit.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds, force_limited_deflection
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
 SPEEDS = ("low", "VA", "VC", "VD")
 PHASES = (("a", "sudden rudder"), ("b", "overswing sideslip"), ("c", "steady sideslip"), ("d", "rudder returned to neutral"))
-TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
 SURFACE = "vertical_tail"
 PEDAL_NOTE = ("no control-force model is declared (control_forces.rudder): the pedal-force limit of §25.351(a)(2) cannot "
               "reduce the deflection; the rudder design limit (§25.351(a)(1), control system stops) bounds it")
@@ -115,8 +113,8 @@ def yaw_speed(ctx, cond, crit) -> float:
 
 def yaw_maneuvers(ctx, conditions, crit) -> dict:
     conds = [c.with_(speed=yaw_speed(ctx, c, crit), speed_kind="EAS") for c in conditions]
-    batch = trimmed_batch(ctx, conds, gammas=TRIM_PATHS)
-    findings = [Finding.not_evaluated(conds[i], f"({p}) {name}", reason) for i, reason in batch.failed for p, name in PHASES]
+    batch = trimmed_batch(ctx, conds)
+    findings = refusal_findings(batch.refusals(conds), lambda c: [f"({p}) {name}" for p, name in PHASES])
     if not batch.n:
         return {"findings": findings, "envelope": None}
     lim = control_limits(ctx.aircraft)["rudder"]
