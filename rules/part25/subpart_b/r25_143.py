@@ -125,7 +125,7 @@ class ManeuveringCapability(Rule):
     cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "maneuvering-capability"
     title = "Controllability: manoeuvring capability in coordinated turns"
-    amendment = "25-108"
+    amendment = "25-140"  # (h) came with 25-108; the section was last amended by 25-140 (2014)
     requirement = """
         (Table rows verified against the GPO print; footnotes not read.) The manoeuvring capabilities in a constant-speed coordinated turn at
         forward CG must be free of stall warning or other characteristics that might interfere with normal

@@ -100,7 +100,7 @@ from certkit.registry import Criterion, Rule, rule  # noqa: E402
 from certkit.results import Finding  # noqa: E402
 from certkit.units import FT, KN  # noqa: E402
 
-UNVERIFIED = "§§25.171–25.175 wording from memory (docs/regulation-notes.md marks them unverified)"
+VERIFIED_171_175 = "§§25.171–25.175 text verified (docs/regulation-notes.md §§ 25.171–25.175)"
 _STABILITY_SPACE = dict(loading=CgCorners(), configurations=tuple(PHASES.values()), altitudes=Altitudes((0.0, 35000 * FT)))
 _FLAP_ALT = Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations")
 
@@ -188,11 +188,13 @@ class SpeedStability(Rule):
     references = ("25.175", "25.171", "25.173(c)")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
-        "gradient_min": Criterion(0.0, "deg/kt", "§25.173(a) stable sense (" + UNVERIFIED + ")",
+        "gradient_min": Criterion(0.0, "deg/kt", "§25.173(a) stable sense (" + VERIFIED_171_175 + ")",
                                   "smallest elevator-per-speed gradient (> 0 stable)"),
         "speed_step": Criterion(0.05, "", "project choice: ±5 % about the trim speed, inside the §25.175 ranges",
                                 "relative speed step of the central difference"),
-        "low_speed_factor": Criterion(1.13, "", "§25.181 speed range from 1.13 VSR", "low end of the speeds"),
+        "low_speed_factor": Criterion(1.13, "", "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
+                                      "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets "
+                                      "the lowest speed point checked)", "low end of the speeds"),
         "flap_altitude_max": _FLAP_ALT,
     }
     conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable")),),
@@ -267,7 +269,9 @@ def stick_force_curves(ctx, refined, k: float):
 _FORCE_CRITERIA = {
     "speed_step": Criterion(0.05, "", "project choice: ±5 % about the trim speed, inside the §25.175 ranges "
                             "(±15 % or ±50 kt, docs/regulation-notes.md)", "relative speed step of the average gradient"),
-    "low_speed_factor": Criterion(1.13, "", "§25.181 speed range from 1.13 VSR", "low end of the speeds"),
+    "low_speed_factor": Criterion(1.13, "", "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
+                                  "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets the "
+                                  "lowest speed point checked)", "low end of the speeds"),
     "flap_altitude_max": _FLAP_ALT,
 }
 

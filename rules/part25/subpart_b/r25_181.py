@@ -72,7 +72,7 @@ class DynamicStability(Rule):
             0.35, "", "MIL-F-8785C 3.2.2.1.2 Table IV, Level 1 category A and C minimum (" + hq.SOURCE + ")",
             "short-period damping ratio read as 'heavily damped' (§25.181(a) gives no number)"),
         "dutch_roll_damping_min": Criterion(
-            0.0, "", "§25.181(b) 'positively damped' (wording from memory; docs/regulation-notes.md)",
+            0.0, "", "§25.181(b) 'positively damped' (verified, Amdt. 25-108; docs/regulation-notes.md)",
             "Dutch-roll damping ratio (> 0: the oscillation decays)"),
         "low_speed_factor": Criterion(1.13, "", "§25.181(a),(b): from 1.13 VSR", "low end of the speed range, multiple of VSR"),
         "flap_altitude_max": Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations"),
