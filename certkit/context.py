@@ -17,7 +17,7 @@ from certkit.atmosphere import convert_speed
 T = TypeVar("T")
 
 #: the Mach number that limits each design speed at altitude
-MACH_OF = {"VC": "MC", "VD": "MD", "VMO": "MMO"}
+MACH_OF = {"VC": "MC", "VD": "MD", "VMO": "MMO", "VFC": "MFC"}
 
 
 class Context:

@@ -67,11 +67,12 @@ def _speed_order(s):
             return f"speeds.{name_hi}", f"{name_hi} must not be below {what or name_lo} ({factor * lo.value:.2f} m/s {lo.kind})", hi.value
         return None
 
-    for lo, hi in (("VC", "VD"), ("VB", "VC"), ("V1", "VR"), ("VR", "V2"), ("VA", "VD"), ("VMO", "VD")):
+    for lo, hi in (("VC", "VD"), ("VB", "VC"), ("V1", "VR"), ("VR", "V2"), ("VA", "VD"), ("VMO", "VD"),
+                   ("VMO", "VFC"), ("VFC", "VD")):
         found = tas_free_compare(lo, hi)
         if found:
             yield found
-    for lo, hi in (("MC", "MD"), ("MMO", "MD")):
+    for lo, hi in (("MC", "MD"), ("MMO", "MD"), ("MMO", "MFC"), ("MFC", "MD")):
         a, b = getattr(sp, lo), getattr(sp, hi)
         if a is not None and b is not None and b < a:
             yield f"speeds.{hi}", f"{hi} must not be below {lo} ({a:.3f})", b

@@ -308,6 +308,9 @@ class Speeds(_Section):
     MD: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
     VMO: Speed | None = None
     MMO: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
+    VFC: Speed | None = Field(None, description="maximum speed for stability characteristics (§25.253(b)); without it "
+                              "the stability rules use the least §25.253(b) allows, midway between VMO and VD")
+    MFC: Annotated[float, Field(gt=0.0, lt=3.0)] | None = Field(None, description="Mach counterpart of VFC")
     VFE: dict[str, Speed] = Field(default_factory=dict, description="flap-extended speed per configuration")
     VLE: Speed | None = None
     VLO: Speed | None = None

@@ -107,3 +107,16 @@ def test_schema_command_prints_json_schema(cli):
     schema = json.loads(out.output)
     assert out.exit_code == 0
     assert {"reference", "geometry", "mass", "cg_envelope", "speeds"} <= set(schema["properties"])
+
+
+def test_vfc_must_lie_between_vmo_and_vd(tmp_path):
+    """speeds.VFC (§25.253(b)) between VMO and VD, MFC between MMO and MD: a VFC above VD is reported at its line."""
+    from ..rules.helpers import edited_baseline
+
+    path = edited_baseline(tmp_path, [("  VMO: 272 kn EAS", "  VFC: 350 kn EAS\n  MFC: 0.86\n  VMO: 272 kn EAS")])
+    with pytest.raises(InputError) as info:
+        load_aircraft(path)
+    by_path = {p.path: p for p in info.value.problems}
+    assert "must not be below VFC" in by_path["speeds.VD"].message
+    assert "must not be below MMO" in by_path["speeds.MFC"].message
+    assert by_path["speeds.MFC"].line == path.read_text().splitlines().index("  MFC: 0.86") + 1

@@ -90,3 +90,28 @@ def test_not_evaluated(tmp_path):
     assert r.status == "not_evaluated" and "control-force model" in r.findings[0].reason
     r = run_rule("25.171", tmp_path, edits=[("  VMO: 272 kn EAS              # = VC, see above\n", "")])
     assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VMO"
+
+
+def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
+    """§25.173(a)/§25.177: the top of the range clean is VFC/MFC; without it the least §25.253(b) allows, midway
+    between VMO and VD: (272 + 340)/2 = 306 kn EAS, = CAS at sea level (hand). A declared VFC (320 kn CAS) is used
+    as given. Extended configurations end at VFE/VLE, so their "VFC" point is not applicable. The §25.173(a) top
+    point is trimmed at VFC/1.05 so that its faster step reaches VFC (the speed in the condition, 291.4 kn)."""
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit_rules.part25.subpart_b.r25_171 import VFC_FLOOR, stability_limit_cas
+
+    from .helpers import edited_baseline
+
+    v, basis = stability_limit_cas(ctx, "clean", 0.0)
+    assert v / KN == pytest.approx(306.0, abs=0.05) and basis == VFC_FLOOR
+    assert stability_limit_cas(ctx, "landing", 0.0)[1].startswith("VFE/VLE")
+    declared = Context(load_aircraft(edited_baseline(tmp_path, [("  VMO: 272 kn EAS", "  VFC: 320 kn CAS\n  VMO: 272 kn EAS")])))
+    v, basis = stability_limit_cas(declared, "clean", 0.0)
+    assert v / KN == pytest.approx(320.0, abs=1e-6) and basis == "declared VFC/MFC"
+    top = [f for f in grad.findings if f.condition.get("speed_point") == "VFC"]
+    clean = [f for f in top if f.condition.configuration == "clean" and f.condition.altitude == 0.0]
+    assert clean and all(speed_as(f.condition, "CAS") / KN == pytest.approx(306.0 / 1.05, abs=0.05) for f in clean)
+    extended = [f for f in top if f.condition.configuration != "clean"]
+    assert extended and all(f.status == "complies" and f.margin is None for f in extended)
+    assert all("VFE/VLE" in f.reason for f in extended if f.condition.altitude == 0.0)  # above 20,000 ft: flap limit

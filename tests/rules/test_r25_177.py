@@ -121,3 +121,15 @@ def test_baseline_complies_and_aft_corner_is_critical(result):
     assert crit.condition.loading.startswith("aft") and "aileron within" in crit.check
     cn = min((f for f in result.findings if f.check.startswith("(a) Cn")), key=lambda f: f.margin)
     assert cn.condition.loading.startswith("aft") and np.isfinite(cn.margin) and cn.condition.x_cg > 100 * FT
+
+
+def test_vfc_point_checks_b2_not_b1(result):
+    """Clean, at VFC (the least §25.253(b) allows on the baseline): (a) and (c) are checked as at the other speeds;
+    the lateral stability there is (b)(2) (between VMO/MMO and VFC/MFC), not (b)(1); the extended configurations'
+    VFC point is not applicable (their range ends at VFE/VLE)."""
+    at_vfc = [f for f in result.findings if f.condition.get("speed_point") == "VFC"]
+    clean = [f for f in at_vfc if f.condition.configuration == "clean"]
+    assert any(f.check.startswith("(a)") for f in clean) and any(f.check.startswith("(c)") for f in clean)
+    assert {f.check for f in clean if f.check.startswith("(b)")} == {"(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC"}
+    assert all(f.condition.get("VFC") == "§25.253(b) least: (VMO + VD)/2" for f in clean)
+    assert all(f.margin is None and f.status == "complies" for f in at_vfc if f.condition.configuration != "clean")

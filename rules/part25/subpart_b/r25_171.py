@@ -43,12 +43,32 @@ def max_allowable_cas(ctx, configuration: str, h: float = 0.0) -> float:
     return min(limits)
 
 
+VFC_FLOOR = ("VFC/MFC not declared: the least §25.253(b) allows, midway between VMO/MMO and VDF/MDF, with VD/MD "
+             "for VDF/MDF (which may not exceed them), each Mach-limited at the altitude")
+
+
+def stability_limit_cas(ctx, configuration: str, h: float = 0.0) -> tuple[float, str]:
+    """Top of the §25.173(a) and §25.177(a), (c) speed ranges (m/s CAS) and its basis: VFE/VLE for an extended
+    configuration (its maximum allowable speed); clean, VFC/MFC where declared, else :data:`VFC_FLOOR`."""
+    if configuration in ctx.aircraft.speeds.VFE or getattr(ctx.aircraft.configurations[configuration], "gear", "up") == "down":
+        return max_allowable_cas(ctx, configuration, h), "VFE/VLE of the configuration"
+    sp = ctx.aircraft.speeds
+    if sp.VFC is not None or sp.MFC is not None:
+        vfc, _ = ctx.design_speed_eas("VFC", h)
+        return float(convert_speed(float(vfc), "EAS", "CAS", h)), "declared VFC/MFC"
+    vmo, _ = ctx.design_speed_eas("VMO", h)
+    vd, _ = ctx.design_speed_eas("VD", h)
+    return float(convert_speed(0.5 * (float(vmo) + float(vd)), "EAS", "CAS", h)), VFC_FLOOR
+
+
 def speed_at_point(ctx, cond, point: str, low_factor: float = 1.13) -> tuple[float, float, float]:
-    """(speed, low, high) m/s CAS of ``point`` ("1.13 VSR" = the low end, "mid", "max allowable", or a
-    multiple "1.3 VSR") for the condition."""
+    """(speed, low, high) m/s CAS of ``point`` ("1.13 VSR" = the low end, "mid", "max allowable", "VFC" = the top of
+    the stability ranges (:func:`stability_limit_cas`), or a multiple "1.3 VSR") for the condition."""
     h = cond.altitude or 0.0
     low = low_factor * vsr_cas(ctx, cond.configuration, cond.mass, h)
     high = max_allowable_cas(ctx, cond.configuration, h)
+    if point == "VFC":
+        return stability_limit_cas(ctx, cond.configuration, h)[0], low, high
     named = {"1.13 VSR": low, "mid": 0.5 * (low + high), "max allowable": high}
     v = named[point] if point in named else float(point.split()[0]) * low / low_factor  # "1.3 VSR"
     return v, low, high
@@ -87,6 +107,15 @@ def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float =
         if extended and (cond.altitude or 0.0) > flap_altitude_max + 1e-6:
             findings.append(Finding.not_applicable(cond, check, f"{cond.configuration} configuration above "
                                                    f"{flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)"))
+            continue
+        if cond.get("speed_point") == "VFC":
+            v, basis = stability_limit_cas(ctx, cond.configuration, cond.altitude or 0.0)
+            if basis.startswith("VFE/VLE"):
+                findings.append(Finding.not_applicable(cond, check, f"the {cond.configuration} configuration's range ends "
+                                                       "at its VFE/VLE, the 'max allowable' speed point"))
+                continue
+            refined.append(cond.with_(speed=v, speed_kind="CAS", VFC="declared" if basis == "declared VFC/MFC"
+                                      else "§25.253(b) least: (VMO + VD)/2"))
             continue
         v, _, _ = speed_at_point(ctx, cond, cond.get("speed_point", "mid"), low_factor)
         refined.append(cond.with_(speed=v, speed_kind="CAS"))
@@ -197,9 +226,11 @@ class SpeedStability(Rule):
                                       "the lowest speed point checked)", "low end of the speeds"),
         "flap_altitude_max": _FLAP_ALT,
     }
-    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable")),),
-                                note="Trim speeds 1.3 VSR (§25.175 climb, approach and landing trims) and the "
-                                     "configuration's maximum allowable speed (cruise up to VMO).")
+    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable", "VFC")),),
+                                note="Trim speeds 1.3 VSR (§25.175 climb, approach and landing trims), the "
+                                     "configuration's maximum allowable speed (VMO clean, VFE/VLE extended) and, clean, "
+                                     "VFC/(1 + step) so that the faster step reaches VFC/MFC, the top of the (a) range "
+                                     "(declared, or the least §25.253(b) allows).")
     limitations = """
         Elevator-fixed reading of a stick-force requirement (§25.173(c) needs a control-force model); trim in level
         flight at the power for level flight, not the §25.175 climb power or idle-power landing; the free-return
@@ -209,6 +240,8 @@ class SpeedStability(Rule):
     def evaluate(self, ctx, conditions, crit):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a) speed stability")
         k = crit.speed_step
+        # the top point is trimmed below VFC so that its faster step reaches VFC and not beyond
+        refined = [c.with_(speed=c.speed / (1 + k)) if c.get("speed_point") == "VFC" else c for c in refined]
         for conds, trim0, t0, res in speed_step_trims(ctx, refined, k):
             n = len(conds)
             for i, cond in enumerate(conds):

@@ -81,15 +81,18 @@ class StaticLateralDirectionalStability(Rule):
     }
     conditions = ConditionSpace(loading=CgCorners(), configurations=tuple(PHASES.values()),
                                 altitudes=Altitudes((0.0, 35000 * FT)),
-                                extra=(("speed_point", ("1.13 VSR", "max allowable")),),
-                                note="Speeds in CAS; flaps and gear only up to the flap altitude limit.")
+                                extra=(("speed_point", ("1.13 VSR", "max allowable", "VFC")),),
+                                note="Speeds in CAS: 1.13 VSR1, the maximum allowable speed (VMO/MMO clean, VFE/VLE "
+                                     "extended) and, clean, VFC/MFC (declared, or the least §25.253(b) allows): (a) and "
+                                     "(c) up to VFC/MFC, (b)(1) to VMO/MMO, (b)(2) beyond; flaps and gear only up to the "
+                                     "flap altitude limit.")
     limitations = """
         Rudder-free (a) and aileron-free (b) are read with the controls fixed; sideslip to the right only (the
         airplane is symmetric); the 180 lbf bound and the force reversal of (d) need control_forces.rudder (without
         it the range is bounded by the rudder deflection alone); the "limits found necessary for safe operation" of
         the proportionality factor are not numeric (the ratio of local gradients is reported); level flight at the
         power for level flight (a shallow descent where that needs more than full thrust), not every symmetric
-        power condition; speeds up to VMO/MMO (no VFC/MFC is declared).
+        power condition; without a declared VFC/MFC the top speed is the least §25.253(b) allows.
     """
 
     def evaluate(self, ctx, conditions, crit):
@@ -101,7 +104,16 @@ class StaticLateralDirectionalStability(Rule):
             for cond in conds:
                 cn, cl = derivatives_at_cg(ctx, cond)
                 out.append(Finding.compare(cond, "(a) Cn_β > 0 about the CG", cn, 0.0, at_least=True, unit="1/rad"))
-                out.append(Finding.compare(cond, "(b) Cl_β < 0", cl, 0.0, at_least=False, unit="1/rad"))
+                if cond.get("speed_point") != "VFC":
+                    out.append(Finding.compare(cond, "(b) Cl_β < 0", cl, 0.0, at_least=False, unit="1/rad"))
+                elif cl < 0:
+                    out.append(Finding.compare(cond, "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC", cl, 0.0,
+                                               at_least=False, unit="1/rad"))
+                else:
+                    out.append(Finding.not_evaluated(
+                        cond, "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC", "negative effective dihedral above VMO/MMO: "
+                        "(b)(2) accepts it if the divergence is gradual, easily recognizable and easily controllable by "
+                        "the pilot — qualitative, not assessed", Cl_beta_per_rad=float(cl)))
             out += self._sideslips(ctx, conds, crit, limits, rudder_force)
         return out
 
