@@ -349,7 +349,7 @@ class UnsymmetricalGust(SimulationRule):
                    "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
                    "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
                    "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b)).")
-    implementation = "implemented"
+    implementation = "partial"  # the paragraph in full, on the §25.341(a) response, which is partial (rigid airplane)
 
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_gusts(ctx, conditions, crit)
