@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.models.loads.model import QUANTITIES
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots, text_width
 from certkit.results import Evidence
 
 _KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
@@ -34,7 +34,7 @@ def _critical_indices(run, surface) -> list[int]:
 def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> str:
     sim, hist, valid = run["sim"], run["loads"][surface], run["valid"]
     picks = _critical_indices(run, surface)
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
     j = list(sim.control_names).index(control)
     kind = run.get("kind")
     for i in picks:
@@ -60,8 +60,9 @@ def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> s
 def envelope_svg(run, surface: str) -> str:
     env = run["envelope"]
     P = env.peaks[surface]  # (n, 2, 3, S)
-    fig, axes = plt.subplots(1, 3, figsize=(8.4, 2.8))
     stations = env.stations[surface]
+    # station names turned 40°: their height below the axes is width × sin 40° plus a line
+    fig, axes = subplots(1, 3, figsize=(8.4, 2.8), left=0.6, top=0.35, bottom=0.3 + 0.643 * text_width(stations, 7))
     x = np.arange(len(stations))
     for q, (ax, quantity) in enumerate(zip(axes, QUANTITIES)):
         hi = np.nanmax(P[:, 1, q, :], axis=0) / 1e3
@@ -112,7 +113,7 @@ def _gust_picks(run) -> list[tuple[int, int]]:
 
 
 def gust_time_history_svg(replays, conditions) -> str:
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
     for i, H, r in replays:
         sim = r.sim
         label = f"{conditions[i].label()} · H {H / 0.3048:.0f} ft"
