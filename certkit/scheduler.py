@@ -126,9 +126,11 @@ def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions) -> None:
 
 def _worker_run(rule_id: str) -> tuple[RuleResult, dict]:
     """One rule in a worker process, on the worker's own Context (its models are reused by the next
-    rules the worker takes)."""
+    rules the worker takes), encoded for ``results.json`` here, while other rules still run."""
     ctx = _WORKER["ctx"]
-    return evaluate_rule(_WORKER["rules"][rule_id], ctx), ctx.provenance()
+    result = evaluate_rule(_WORKER["rules"][rule_id], ctx)
+    result.encoded = result.to_json()
+    return result, ctx.provenance()
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
