@@ -6,11 +6,13 @@ Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no tr
 
 from __future__ import annotations
 
+import gc
 import json
 import os
 import re
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 import click
@@ -37,6 +39,19 @@ def _discovery(rules_dirs):
 
     options = DiscoveryOptions(rules_dirs=tuple(rules_dirs))
     return options, discover(options)
+
+
+@contextmanager
+def _long_lived_objects():
+    """Start-up of a check (imports, the aircraft, the rules) makes only objects that live as long as the process:
+    the cyclic garbage collector is off while they are made, and they are frozen afterwards (never scanned again,
+    here nor in the worker processes that fork from here) until the check ends. About 0.1 s less per process."""
+    gc.disable()
+    try:
+        yield
+        gc.freeze()
+    finally:
+        gc.enable()
 
 
 _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
@@ -71,19 +86,23 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         # threaded BLAS in several processes oversubscribes the cores and slows the lattice several times
         for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
             os.environ.setdefault(var, "1")
-    from certkit.aircraft import load_aircraft
-    from certkit.registry import select as select_rules
-    from certkit.report.html import write_report
-    from certkit.scheduler import run
+    with _long_lived_objects():
+        from certkit.aircraft import load_aircraft
+        from certkit.registry import select as select_rules
+        from certkit.report.html import write_report
+        from certkit.scheduler import run
 
-    start = time.perf_counter()
-    loaded = load_aircraft(aircraft_file)
-    options, rules = _discovery(rules_dirs)
-    split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
-    chosen = select_rules(rules, split(select), split(ignore))
-    result = run(loaded, chosen, jobs=jobs, options=options)
-    out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
-    json_path, html_path = write_report(result, chosen, out)
+        start = time.perf_counter()
+        loaded = load_aircraft(aircraft_file)
+        options, rules = _discovery(rules_dirs)
+        split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
+        chosen = select_rules(rules, split(select), split(ignore))
+    try:
+        result = run(loaded, chosen, jobs=jobs, options=options)
+        out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
+        json_path, html_path = write_report(result, chosen, out)
+    finally:
+        gc.unfreeze()
     if as_json:
         click.echo(json_path.read_text(encoding="utf-8"))
     else:

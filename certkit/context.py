@@ -111,8 +111,14 @@ class Context:
 
     def design_speed_eas(self, name: str, altitude) -> tuple[np.ndarray, np.ndarray]:
         """Declared design speed ``name`` (VC, VD, VMO, VB, VA …) as EAS (m/s) at ``altitude``, limited by
-        its Mach counterpart (MC, MD, MMO) where declared; returns (speed, mach_limited)."""
+        its Mach counterpart (MC, MD, MMO) where declared; returns (speed, mach_limited). Memoised (the loads
+        rules ask for the same speeds at the same altitudes for every condition); the arrays returned are copies."""
         h = np.asarray(altitude, dtype=float)
+        key = ("design_speed_eas", name, h.shape, tuple(h.ravel().tolist()))
+        speed, limited = self.memo(key, lambda: self._design_speed_eas(name, h))
+        return speed.copy(), limited.copy()
+
+    def _design_speed_eas(self, name: str, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         speed = getattr(self.aircraft.speeds, name)
         mach = getattr(self.aircraft.speeds, MACH_OF.get(name, ""), None)
         eas = np.full(h.shape, np.inf) if speed is None else convert_speed(speed.value, speed.kind, "EAS", h)

@@ -126,9 +126,14 @@ def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions) -> None:
 
 def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
     """Rules in a worker process, one after the other on the worker's own Context (its models are reused by the
-    next rules the worker takes)."""
+    next rules the worker takes), each encoded for ``results.json`` here, while other rules still run."""
     ctx = _WORKER["ctx"]
-    return [(evaluate_rule(_WORKER["rules"][rid], ctx), ctx.provenance()) for rid in rule_ids]
+    out = []
+    for rid in rule_ids:
+        result = evaluate_rule(_WORKER["rules"][rid], ctx)
+        result.encoded = result.to_json()
+        out.append((result, ctx.provenance()))
+    return out
 
 
 def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:

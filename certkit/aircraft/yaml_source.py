@@ -41,6 +41,21 @@ class _UniqueKeyLoader(yaml.SafeLoader):
     """SafeLoader that rejects duplicate keys (PyYAML silently keeps the last one)."""
 
 
+#: PyYAML's binding of libyaml, when it was built with it: the same nodes, marks and data, ~10× faster
+_C_LOADER = getattr(yaml, "CSafeLoader", None)
+
+
+def _parse(text: str) -> tuple[yaml.Node | None, object]:
+    """The document's node tree (with line marks) and its data. libyaml parses when available; a document it
+    rejects is parsed again by PyYAML's own parser, so that errors read as they always did."""
+    if _C_LOADER is not None:
+        try:
+            return yaml.compose(text, Loader=_C_LOADER), yaml.load(text, Loader=_C_LOADER)
+        except yaml.YAMLError:
+            pass
+    return yaml.compose(text, Loader=_UniqueKeyLoader), yaml.load(text, Loader=yaml.SafeLoader)
+
+
 def _record(node: yaml.Node, loc: tuple, lines: dict, problems: list[Problem], path: str) -> None:
     lines[loc] = node.start_mark.line + 1
     if isinstance(node, yaml.MappingNode):
@@ -66,8 +81,7 @@ def load_yaml(path: str | Path) -> YamlSource:
     except (OSError, UnicodeDecodeError) as exc:
         raise InputError(str(path), [Problem("", f"cannot read the file: {exc}")]) from None
     try:
-        node = yaml.compose(text, Loader=_UniqueKeyLoader)
-        data = yaml.load(text, Loader=yaml.SafeLoader)
+        node, data = _parse(text)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = mark.line + 1 if mark else None

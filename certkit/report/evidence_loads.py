@@ -6,9 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.models.loads.model import QUANTITIES
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots, text_width
 from certkit.results import Evidence
 
+#: matplotlib's default colour cycle ("C0", "C1", … as colour names)
+COLOURS = tuple(f"C{k}" for k in range(10))
 _KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
 
 
@@ -34,7 +36,7 @@ def _critical_indices(run, surface) -> list[int]:
 def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> str:
     sim, hist, valid = run["sim"], run["loads"][surface], run["valid"]
     picks = _critical_indices(run, surface)
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
     j = list(sim.control_names).index(control)
     kind = run.get("kind")
     for i in picks:
@@ -60,8 +62,10 @@ def time_history_svg(run, surface: str, control: str, signals=("n_z", "q")) -> s
 def envelope_svg(run, surface: str) -> str:
     env = run["envelope"]
     P = env.peaks[surface]  # (n, 2, 3, S)
-    fig, axes = plt.subplots(1, 3, figsize=(8.4, 2.8))
     stations = env.stations[surface]
+    # station names turned 40°: their height below the axes is width × sin 40° plus a line
+    fig, axes = subplots(1, 3, figsize=(8.4, 2.8), left=0.6, top=0.35, bottom=0.3 + 0.643 * text_width(stations, 7),
+                         wspace=0.4)
     x = np.arange(len(stations))
     for q, (ax, quantity) in enumerate(zip(axes, QUANTITIES)):
         hi = np.nanmax(P[:, 1, q, :], axis=0) / 1e3
@@ -112,7 +116,7 @@ def _gust_picks(run) -> list[tuple[int, int]]:
 
 
 def gust_time_history_svg(replays, conditions) -> str:
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
     for i, H, r in replays:
         sim = r.sim
         label = f"{conditions[i].label()} · H {H / 0.3048:.0f} ft"
@@ -176,8 +180,8 @@ def unsymmetrical_time_history_svg(run, picks) -> str:
     from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 
     runs, (full, reduced) = run["runs"], run["fractions"]
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.2), sharex=True)
-    for (i, H, r), colour in zip(runs.replay(picks), plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.6), sharex=True, left=1.0, top=0.75)
+    for (i, H, r), colour in zip(runs.replay(picks), COLOURS):
         aero, inertia = r.parts["wing"]
         m = runs.batch.model.subset([i])
         u = unsymmetrical_wing(runs.loads["wing"], aero, inertia, m.mass, m.cg, m.inertia, full, reduced,
@@ -196,7 +200,7 @@ def unsymmetrical_time_history_svg(run, picks) -> str:
         ax.set_ylabel(name, fontsize=7)
         ax.grid(True, alpha=0.3)
     axes[3].set_xlabel("time (s)")
-    axes[0].legend(fontsize=6, loc="upper right")
+    axes[0].legend(fontsize=6, loc="lower left", bbox_to_anchor=(0.0, 1.02), borderaxespad=0.0)
     return figure_to_svg(fig)
 
 
@@ -206,9 +210,10 @@ def sides_envelope_svg(run) -> str:
     cases = [(side, env.peaks[side], "-") for side in env.peaks] + [("symmetric §25.341(a)", sym.peaks["wing"], ":")]
     stations = env.stations[next(iter(env.peaks))]
     x = np.arange(len(stations))
-    fig, axes = plt.subplots(1, 3, figsize=(8.4, 2.9))
+    fig, axes = subplots(1, 3, figsize=(8.4, 2.9), left=0.6, top=0.35, bottom=0.3 + 0.643 * text_width(stations, 7),
+                         wspace=0.4)
     for q, (ax, quantity) in enumerate(zip(axes, QUANTITIES)):
-        for (name, P, ls), colour in zip(cases, plt.rcParams["axes.prop_cycle"].by_key()["color"]):
+        for (name, P, ls), colour in zip(cases, COLOURS):
             ax.plot(x, np.nanmax(P[:, 1, q, :], axis=0) / 1e3, ls=ls, marker="o", ms=3, color=colour, lw=1.2, label=name)
             ax.plot(x, np.nanmin(P[:, 0, q, :], axis=0) / 1e3, ls=ls, marker="s", ms=3, color=colour, lw=1.2)
         ax.set_xticks(x, stations, rotation=40, fontsize=7)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.report.evidence_time_histories import time_histories_svg
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots, text_width
 from certkit.results import Evidence
 from certkit.units import FT, KN
 
@@ -88,7 +88,7 @@ def vmca_evidence(findings, rows, limits) -> list[Evidence]:
         return []
     engine = worst.condition.get("inoperative")
     idx = [j for j, e in enumerate(rows["engines"]) if e == engine]
-    fig, axes = plt.subplots(1, 2, figsize=(9.0, 3.4), sharex=True)
+    fig, axes = subplots(1, 2, figsize=(9.0, 3.4), sharex=True, top=0.35)
     for j in idx:
         pts = sorted((h["speed"] / KN, np.degrees(h["trim"].controls["rudder"]), np.degrees(h["trim"].controls["aileron"]))
                      for h in rows["history"][j] if h["trim"].converged and np.isfinite(h["usage"]))
@@ -144,11 +144,12 @@ def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: 
     shown = ev[:worst]
     svg = ""
     if plot:
-        fig, ax = plt.subplots(figsize=(8.0, 0.28 * len(shown) + 1.2))
+        labels = [f"{f.check[:48]} · {_cond_label(f.condition)}"[:90] for f in shown]
+        fig, ax = subplots(figsize=(8.0, 0.28 * len(shown) + 1.2), left=text_width(labels, 6) + 0.15, top=0.35)
         nm = [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown]
         y = np.arange(len(shown))[::-1]
         ax.barh(y, nm, color=["C3" if f.status == "fails" else "C0" for f in shown])
-        ax.set_yticks(y, [f"{f.check[:48]} · {_cond_label(f.condition)}"[:90] for f in shown], fontsize=6)
+        ax.set_yticks(y, labels, fontsize=6)
         ax.axvline(0.0, color="k", lw=0.8)
         ax.set_xlabel("normalised margin (margin / |limit|; ≥ 0 complies)")
         ax.set_title(title, fontsize=9)
@@ -174,11 +175,14 @@ def climb_gradient_evidence(findings, title: str) -> list[Evidence]:
     grads = [f for f in findings if f.unit == "gradient" and f.value is not None]
     out = []
     if grads:
-        fig, ax = plt.subplots(figsize=(7.0, 3.0))
+        labels = [_cond_label(f.condition) for f in grads]
+        # labels turned 20° and ending at their bar: sin 20° of their width below the axes (the first one's
+        # reach to the left is taken in by figure_to_svg)
+        fig, ax = subplots(figsize=(7.0, 3.0), top=0.35, bottom=0.3 + 0.342 * text_width(labels, 7))
         x = np.arange(len(grads))
         ax.bar(x, [f.value * 100 for f in grads], color=["C3" if f.status == "fails" else "C0" for f in grads])
         ax.axhline(grads[0].limit * 100, color="k", ls="--", lw=1.0, label=f"minimum {grads[0].limit * 100:.1f} %")
-        ax.set_xticks(x, [_cond_label(f.condition) for f in grads], rotation=20, ha="right", fontsize=7)
+        ax.set_xticks(x, labels, rotation=20, ha="right", fontsize=7)
         ax.set_ylabel("steady climb gradient (%)")
         ax.set_title(title, fontsize=9)
         ax.legend(fontsize=7)

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots
 from certkit.results import Evidence
 
 
@@ -19,7 +19,7 @@ def critical_condition(run) -> int:
 def roll_history_svg(run, i: int) -> str:
     sim, ja = run["sim"], run["aileron_index"]
     t = sim.t
-    fig, axes = plt.subplots(4, 1, figsize=(6.8, 7.4), sharex=True)
+    fig, axes = subplots(4, 1, figsize=(6.8, 7.4), sharex=True, top=0.35)
     axes[0].plot(t, np.degrees(sim.controls[:, i, ja]), lw=1.2)
     axes[1].plot(t, np.degrees(sim["p"][:, i]), lw=1.2, label="roll rate p")
     axes[1].plot(t, np.degrees(sim["beta"][:, i]), lw=1.0, ls="--", label="sideslip β")

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots, text_width
 from certkit.results import Evidence
 
 
@@ -37,7 +37,8 @@ def margin_matrix(findings) -> tuple[list[str], list[str], np.ndarray, dict]:
 
 
 def margin_matrix_svg(corners, configs, mat, title="") -> str:
-    fig, ax = plt.subplots(figsize=(1.6 + 1.3 * len(configs), 0.9 + 0.36 * len(corners)))
+    fig, ax = subplots(figsize=(1.6 + 1.3 * len(configs), 0.9 + 0.36 * len(corners)), left=text_width(corners, 9) + 0.25,
+                       top=0.35 if title else 0.15)
     finite = mat[np.isfinite(mat)]
     span = max(1e-9, float(np.max(np.abs(finite)))) if finite.size else 1.0
     ax.imshow(np.clip(mat, -span, span), cmap="RdYlGn", vmin=-span, vmax=span, aspect="auto")
@@ -70,7 +71,7 @@ _MARKERS = {"short_period": "o", "phugoid": "s", "dutch_roll": "^", "roll": "v",
 def damping_frequency_svg(points: list[dict], boundaries: list[tuple[str, float, str]]) -> str:
     """Scatter of (damping ratio, natural frequency) of the oscillatory modes, one colour per Level, with
     vertical lines at the damping-ratio boundaries (label, ζ, mode)."""
-    fig, ax = plt.subplots(figsize=(6.6, 4.0))
+    fig, ax = subplots(figsize=(6.6, 4.0))
     colours = {1: "#2e7d32", 2: "#f9a825", 3: "#ef6c00", 4: "#c0392b"}
     groups: dict[tuple[str, int], list[tuple[float, float]]] = {}
     for p in points:

@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots
 
 
 def time_histories_svg(t, panels, labels, critical: int = 0, title: str = "") -> str:
     """``t`` (nt,) or (nt, n); ``panels`` a list of (ylabel, values (nt, n), limits dict label → value);
     ``labels`` one per condition."""
-    fig, axes = plt.subplots(len(panels), 1, figsize=(7.0, 1.7 * len(panels)), sharex=True)
+    fig, axes = subplots(len(panels), 1, figsize=(7.0, 1.7 * len(panels)), sharex=True, top=0.4 if title else 0.15)
     axes = np.atleast_1d(axes)
     t = np.asarray(t, dtype=float)
     for ax, (ylabel, values, limits) in zip(axes, panels):

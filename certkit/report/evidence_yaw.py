@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.report.plots import figure_to_svg, plt
+from certkit.report.plots import figure_to_svg, subplots
 from certkit.results import Evidence
 
 
@@ -22,7 +22,7 @@ def yaw_history_svg(run, i: int) -> str:
     t1 = r.held.t
     live = t1 <= r.t_steady[i] + 1e-9
     t2 = r.returned.t + r.t_steady[i]
-    fig, axes = plt.subplots(3, 1, figsize=(6.8, 6.0), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(6.8, 6.0), sharex=True, top=0.35)
     axes[0].plot(t1[live], np.degrees(r.held.controls[live, i, jr]), t2, np.degrees(r.returned.controls[:, i, jr]), lw=1.2)
     axes[1].plot(t1[live], np.degrees(r.held["beta"][live, i]), t2, np.degrees(r.returned["beta"][:, i]), lw=1.2)
     axes[2].plot(t1[live], run["held_loads"][live, i, 0, 0] / 1e3, t2, run["returned_loads"][:, i, 0, 0] / 1e3, lw=1.2)

@@ -6,7 +6,6 @@ the SVG that matplotlib produced is inserted as markup, and its text is XML-esca
 
 from __future__ import annotations
 
-import json
 import re
 from pathlib import Path
 
@@ -74,20 +73,10 @@ def write_report(run: RunResult, rules: list[type[Rule]], out_dir: str | Path) -
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     json_path = out / "results.json"
-    json_path.write_text(json.dumps(run.as_dict(), indent=2, default=_json_default) + "\n", encoding="utf-8")
+    json_path.write_text(run.to_json() + "\n", encoding="utf-8")
     html_path = out / "index.html"
     html_path.write_text(render_html(run, rules), encoding="utf-8")
     return json_path, html_path
-
-
-def _json_default(obj):
-    import numpy as np
-
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    return str(obj)
 
 
 __all__ = ["render_html", "write_report", "format_value"]

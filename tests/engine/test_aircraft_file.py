@@ -120,3 +120,20 @@ def test_vfc_must_lie_between_vmo_and_vd(tmp_path):
     assert "must not be below VFC" in by_path["speeds.VD"].message
     assert "must not be below MMO" in by_path["speeds.MFC"].message
     assert by_path["speeds.MFC"].line == path.read_text().splitlines().index("  MFC: 0.86") + 1
+
+
+def test_libyaml_and_pure_python_parsers_agree_on_the_baseline():
+    """The file is parsed by libyaml when PyYAML has it (10× faster); its data and the line of every value are
+    those of PyYAML's own parser (reference: yaml.SafeLoader on the baseline file)."""
+    import yaml
+
+    from certkit.aircraft import yaml_source
+
+    text = open(BASELINE, encoding="utf-8").read()
+    node, data = yaml_source._parse(text)
+    py_node = yaml.compose(text, Loader=yaml.SafeLoader)
+    assert data == yaml.load(text, Loader=yaml.SafeLoader)
+    lines_c, lines_py = {}, {}
+    yaml_source._record(node, (), lines_c, [], BASELINE)
+    yaml_source._record(py_node, (), lines_py, [], BASELINE)
+    assert lines_c == lines_py and len(lines_c) > 100

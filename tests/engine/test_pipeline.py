@@ -8,6 +8,7 @@ import pytest
 from certkit.aircraft import load_aircraft
 from certkit.errors import UserError
 from certkit.registry import PluginError, discover, folder_rules, select
+from certkit.results import json_default
 from certkit.scheduler import run, work_units
 
 from ..conftest import BASELINE
@@ -71,7 +72,11 @@ def test_deterministic_and_jobs_equal(baseline):
     rules = discover()
     a = run(baseline, rules).as_dict()
     b = run(baseline, rules).as_dict()
-    c = run(baseline, rules, jobs=2).as_dict()
+    c_run = run(baseline, rules, jobs=2)
+    c = c_run.as_dict()
+    # results.json: the rules the workers encoded, stitched into the rest, read as encoding the whole at once
+    assert all(r.encoded is not None for r in c_run.rules)
+    assert c_run.to_json() == json.dumps(c, indent=2, default=json_default)
     for d in (a, b, c):
         d.pop("created")
     assert a == b

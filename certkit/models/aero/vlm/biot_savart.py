@@ -1,4 +1,4 @@
-"""Velocity induced by horseshoe vortices (Biot–Savart law), vectorised over all point–vortex pairs.
+"""Velocity induced by horseshoe vortices (Biot–Savart law) over all point–vortex pairs.
 
 A horseshoe is a bound segment A→B plus two semi-infinite legs along +X from A and B (Katz &
 Plotkin, *Low-Speed Aerodynamics*, 2nd ed., §10.4.5; the AVL horseshoe with legs parallel to the X
@@ -7,108 +7,109 @@ axis). Compressibility enters by the Prandtl–Glauert stretch x → x/β of all
 (Burnham–Hallock) model used by AVL 3.4+: the velocity of a line vortex at distance r becomes
 ∝ r/√(r⁴ + r_c⁴), which keeps every entry finite for coincident or collinear points.
 
-The pairs are evaluated in blocks of target points so that the temporaries stay in cache.
+The pairs are evaluated one at a time in a loop compiled with numba (cached on disk after the first
+use): no N×M temporaries.
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 
 _FOUR_PI_INV = 1.0 / (4.0 * np.pi)
-_BLOCK_PAIRS = 1 << 14  # target×source pairs per block: temporaries of 128 kB stay in cache
 
 
-def _leg_factor(dx, dist_sq, ryz_sq, rc4):
-    """(dx/|d| − 1)/√(ryz⁴ + r_c⁴) of a semi-infinite leg along +x, computed in place in ``dx``."""
-    np.sqrt(dist_sq, out=dist_sq)
-    np.maximum(dist_sq, 1e-300, out=dist_sq)
-    dx /= dist_sq
-    dx -= 1.0
-    ryz_sq *= ryz_sq
-    ryz_sq += rc4
-    np.sqrt(ryz_sq, out=ryz_sq)
-    dx /= ryz_sq
-    return dx
+@njit(cache=True, error_model="numpy", inline="always")
+def _pair(px, py, pz, ax, ay, az, bx, by, bz, rc4):
+    """Unscaled (×4π) velocity of a unit horseshoe at one point: the bound segment's part (u, v, w)
+    and the full velocity's v and w (the legs along +x add nothing to u).
 
-
-def _block(px, py, pz, ax, ay, az, bx, by, bz, rc4, bound=True):
-    """Unscaled (×4π) velocity components of unit horseshoes at a block of points.
-
-    ``px`` … are (m, 1) point coordinates, ``ax`` … (1, n) segment ends already stretched, ``rc4``
-    the (m, n) or (1, n) fourth power of the core radius. ``bound=False``: bound segment only (for
-    removing a vortex's own bound leg at its midpoint)."""
-    ax = ax - px
-    ay = ay - py
-    az = az - pz
-    bx = bx - px
-    by = by - py
-    bz = bz - pz
-    ryz_a = ay * ay
-    ryz_a += az * az
-    ryz_b = by * by
-    ryz_b += bz * bz
-    asq = ax * ax
-    asq += ryz_a
-    bsq = bx * bx
-    bsq += ryz_b
+    ``p`` the point and ``a``, ``b`` the segment ends, x already stretched; ``rc4`` the fourth power
+    of the core radius."""
+    ax -= px
+    ay -= py
+    az -= pz
+    bx -= px
+    by -= py
+    bz -= pz
+    ryz_a = ay * ay + az * az
+    ryz_b = by * by + bz * bz
+    asq = ax * ax + ryz_a
+    bsq = bx * bx + ryz_b
     # bound segment A→B (Leishman core)
-    cx = ay * bz
-    cx -= az * by
-    cy = az * bx
-    cy -= ax * bz
-    cz = ax * by
-    cz -= ay * bx
-    adb = ax * bx
-    adb += ay * by
-    adb += az * bz
-    alsq = asq + bsq
-    alsq -= 2.0 * adb
-    alsq *= alsq
-    alsq *= rc4
-    den = cx * cx
-    den += cy * cy
-    den += cz * cz
-    den *= den
-    den += alsq
-    np.sqrt(den, out=den)
-    ta = asq * asq
-    ta += rc4
-    np.sqrt(ta, out=ta)
-    np.sqrt(ta, out=ta)
-    tb = bsq * bsq
-    tb += rc4
-    np.sqrt(tb, out=tb)
-    np.sqrt(tb, out=tb)
-    t = bsq - adb
-    t /= tb
-    adb -= asq
-    adb /= ta
-    t -= adb
-    t /= den
+    cx = ay * bz - az * by
+    cy = az * bx - ax * bz
+    cz = ax * by - ay * bx
+    adb = ax * bx + ay * by + az * bz
+    alsq = asq + bsq - 2.0 * adb
+    alsq = alsq * alsq * rc4
+    den = cx * cx + cy * cy + cz * cz
+    den = math.sqrt(den * den + alsq)
+    ta = math.sqrt(math.sqrt(asq * asq + rc4))
+    tb = math.sqrt(math.sqrt(bsq * bsq + rc4))
+    t = ((bsq - adb) / tb - (adb - asq) / ta) / den
     cx *= t
     cy *= t
     cz *= t
-    if not bound:
-        return cx, cy, cz
     # semi-infinite legs along +x: from infinity into A, from B out to infinity
-    ax = _leg_factor(ax, asq, ryz_a, rc4)
-    bx = _leg_factor(bx, bsq, ryz_b, rc4)  # = −(factor of the leg leaving B)
-    az *= ax
-    cy += az
-    bz *= bx
-    cy -= bz
-    ay *= ax
-    cz -= ay
-    by *= bx
-    cz += by
-    return cx, cy, cz
+    fa = (ax / max(math.sqrt(asq), 1e-300) - 1.0) / math.sqrt(ryz_a * ryz_a + rc4)
+    fb = (bx / max(math.sqrt(bsq), 1e-300) - 1.0) / math.sqrt(ryz_b * ryz_b + rc4)  # = −(factor of the leg leaving B)
+    vy = cy + az * fa - bz * fb
+    vz = cz - ay * fa + by * fb
+    return cx, cy, cz, vy, vz
+
+
+@njit(cache=True, error_model="numpy")
+def _normalwash(px, py, pz, ax, ay, az, bx, by, bz, rc4, nx, ny, nz, own_vortex, out):
+    """out[i, j] = (velocity of horseshoe j at point i) · normal i (normals scaled by the caller).
+
+    Coordinates come as separate contiguous arrays (points ``p*`` (M,), segment ends ``a*``, ``b*``
+    (N,)) so that the inner loop runs on SIMD registers; ``rc4`` is (M, N) or (1, N)."""
+    m, n = out.shape
+    full_rc4 = rc4.shape[0] > 1
+    for i in range(m):
+        r = rc4[i] if full_rc4 else rc4[0]
+        x, y, z, n0, n1, n2 = px[i], py[i], pz[i], nx[i], ny[i], nz[i]
+        row = out[i]
+        for j in range(n):
+            cx, cy, cz, vy, vz = _pair(x, y, z, ax[j], ay[j], az[j], bx[j], by[j], bz[j], r[j])
+            row[j] = cx * n0 + vy * n1 + vz * n2
+        j = own_vortex[i]
+        if j >= 0:  # drop the vortex's own bound segment
+            cx, cy, cz, vy, vz = _pair(x, y, z, ax[j], ay[j], az[j], bx[j], by[j], bz[j], r[j])
+            row[j] -= n0 * cx + n1 * cy + n2 * cz
+
+
+@njit(cache=True, error_model="numpy")
+def _velocity(px, py, pz, ax, ay, az, bx, by, bz, rc4, inv_beta, own_vortex, out):
+    """out[:, i, j] = velocity (×4π) of horseshoe j at point i, u scaled by 1/β (arguments as
+    :func:`_normalwash`)."""
+    m, n = out.shape[1], out.shape[2]
+    full_rc4 = rc4.shape[0] > 1
+    for i in range(m):
+        r = rc4[i] if full_rc4 else rc4[0]
+        x, y, z = px[i], py[i], pz[i]
+        u_row, v_row, w_row = out[0, i], out[1, i], out[2, i]
+        for j in range(n):
+            cx, cy, cz, vy, vz = _pair(x, y, z, ax[j], ay[j], az[j], bx[j], by[j], bz[j], r[j])
+            u_row[j] = cx * inv_beta
+            v_row[j] = vy
+            w_row[j] = vz
+        j = own_vortex[i]
+        if j >= 0:  # drop the vortex's own bound segment
+            cx, cy, cz, vy, vz = _pair(x, y, z, ax[j], ay[j], az[j], bx[j], by[j], bz[j], r[j])
+            u_row[j] -= cx * inv_beta
+            v_row[j] -= cy
+            w_row[j] -= cz
 
 
 def horseshoe_velocity(
     points: np.ndarray,
     rv1: np.ndarray,
     rv2: np.ndarray,
-    core4,
+    core4: np.ndarray,
     beta: float = 1.0,
     *,
     normals: np.ndarray | None = None,
@@ -118,48 +119,26 @@ def horseshoe_velocity(
     """Velocity at ``points`` (M, 3) induced by unit-strength horseshoes (N) with bound legs
     ``rv1``→``rv2`` (N, 3).
 
-    ``core4(rows)`` returns the fourth powers of the core radii (len(rows), N) (or broadcastable)
-    for the given target rows. Returns (3, M, N) velocities, or the (M, N) normal-wash matrix if
-    ``normals`` (M, 3) is given. ``own_vortex`` (M,) names, for each point, the vortex whose bound
-    segment is dropped there (the point is that segment's midpoint, where it induces nothing). If ``out_rhs`` (N, K) is given, the
+    ``core4`` holds the fourth powers of the core radii, (M, N) or (1, N) for every point alike.
+    Returns (3, M, N) velocities, or the (M, N) normal-wash matrix if ``normals`` (M, 3) is given.
+    ``own_vortex`` (M,) names, for each point, the vortex whose bound segment is dropped there (the
+    point is that segment's midpoint, where it induces nothing). If ``out_rhs`` (N, K) is given, the
     (3, M, K) product of the velocity matrix with it is returned."""
     m, n = points.shape[0], rv1.shape[0]
     inv_beta = 1.0 / beta
-    ax, ay, az = (rv1[:, 0] * inv_beta)[None], rv1[:, 1][None], rv1[:, 2][None]
-    bx, by, bz = (rv2[:, 0] * inv_beta)[None], rv2[:, 1][None], rv2[:, 2][None]
-    p = points.copy()
-    p[:, 0] *= inv_beta
+    stretch = np.array([inv_beta, 1.0, 1.0])
+    columns = lambda v: tuple(np.ascontiguousarray(c) for c in v.T)  # noqa: E731
+    coords = columns(points * stretch) + columns(rv1 * stretch) + columns(rv2 * stretch)
+    rc4 = np.ascontiguousarray(np.atleast_2d(np.asarray(core4, dtype=float)))
+    if rc4.shape[1] != n or rc4.shape[0] not in (1, m):
+        raise ValueError(f"core4 has shape {rc4.shape}; expected ({m}, {n}) or (1, {n})")
+    own = np.full(m, -1, dtype=np.int64) if own_vortex is None else np.ascontiguousarray(own_vortex, dtype=np.int64)
     if normals is not None:  # fold 1/4π and the u-scaling 1/β into the normals
-        normals = normals * (_FOUR_PI_INV * np.array([inv_beta, 1.0, 1.0]))
-    rows = max(1, _BLOCK_PAIRS // max(n, 1))
-    result = np.empty((m, n)) if normals is not None else np.empty((3, m, n))
-    for start in range(0, m, rows):
-        sl = slice(start, min(m, start + rows))
-        u, v, w = _block(p[sl, 0:1], p[sl, 1:2], p[sl, 2:3], ax, ay, az, bx, by, bz, core4(sl))
-        if normals is not None:
-            nb = normals[sl]
-            u *= nb[:, 0:1]
-            v *= nb[:, 1:2]
-            w *= nb[:, 2:3]
-            u += v
-            u += w
-            result[sl] = u
-        else:
-            u *= inv_beta
-            result[0, sl], result[1, sl], result[2, sl] = u, v, w
-    if own_vortex is not None:
-        k = np.arange(m)
-        j = np.asarray(own_vortex)
-        rc4 = np.broadcast_to(core4(slice(0, m)), (m, n))[k, j]
-        own = _block(p[k, 0], p[k, 1], p[k, 2], ax[0, j], ay[0, j], az[0, j], bx[0, j], by[0, j], bz[0, j], rc4, bound=False)
-        if normals is not None:
-            result[k, j] -= normals[k, 0] * own[0] + normals[k, 1] * own[1] + normals[k, 2] * own[2]
-        else:
-            result[0, k, j] -= own[0] * inv_beta
-            result[1, k, j] -= own[1]
-            result[2, k, j] -= own[2]
-    if normals is not None:
+        result = np.empty((m, n))
+        _normalwash(*coords, rc4, *columns(normals * (_FOUR_PI_INV * stretch)), own, result)
         return result
+    result = np.empty((3, m, n))
+    _velocity(*coords, rc4, inv_beta, own, result)
     if out_rhs is not None:
         return result @ (out_rhs * _FOUR_PI_INV)
     result *= _FOUR_PI_INV

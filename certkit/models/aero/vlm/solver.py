@@ -197,21 +197,17 @@ class VortexLattice:
 
     # -- setup ---------------------------------------------------------------------------------
 
-    def _core4(self, target_component: np.ndarray):
+    def _core4(self, target_component: np.ndarray) -> np.ndarray:
+        """Fourth powers of the vortex core radii seen from targets of the given components: (M, N), or
+        (1, N) when every target lies on one component."""
         lat = self.lattice
         vortex_comp = lat.component[lat.vortex_strip]
         width = np.hypot(lat.rv2[:, 1] - lat.rv1[:, 1], lat.rv2[:, 2] - lat.rv1[:, 2])
         same = (CORE_SAME_COMPONENT * width) ** 4
         other = np.maximum(CORE_OTHER_COMPONENT_CHORD * lat.chord[lat.vortex_strip], CORE_OTHER_COMPONENT_WIDTH * width) ** 4
-        by_component = {c: np.where(vortex_comp == c, same, other)[None, :] for c in np.unique(target_component)}
-
-        def core4(rows: slice) -> np.ndarray:
-            comps = target_component[rows]
-            if comps.size and np.all(comps == comps[0]):
-                return by_component[comps[0]]
-            return np.where(comps[:, None] == vortex_comp[None, :], same[None, :], other[None, :])
-
-        return core4
+        if target_component.size and np.all(target_component == target_component[0]):
+            return np.where(vortex_comp == target_component[0], same, other)[None, :]
+        return np.where(target_component[:, None] == vortex_comp[None, :], same[None, :], other[None, :])
 
     def _solve_unit_problems(self) -> None:
         lat = self.lattice
