@@ -1,9 +1,9 @@
 """Batch set-up for the loads manoeuvres: trimmed initial states of many conditions in one flight model.
 
 Level flight at high speed may need more thrust than the engines give (VD is reached in a dive): such
-conditions are re-trimmed on descending flight paths (``gammas``) and the path angle is recorded; where
-even idle thrust is too much (a light airplane at low speed) on climbing ones. Conditions that still do
-not trim, or need a control beyond its design limit, are returned with the trim's message as the reason;
+conditions fly the path that full thrust holds (a shallow descent), those with too much thrust even at
+idle (a light airplane at low speed) the idle-thrust climb, and the path angle is recorded; conditions
+without any of these trims are tried on the fallback paths ``gammas``. Conditions that still do not trim, or need a control beyond its design limit, are returned with the trim's message as the reason;
 the others form one :class:`AircraftModel` batch ready to simulate. One policy for every loads rule
 (:func:`refusal_findings`): a condition whose 1 g lift coefficient exceeds CLmax has no steady flight at
 any thrust — not applicable, with that computed reason; any other refusal is not evaluated with the
@@ -21,7 +21,7 @@ from certkit.results import Finding
 from certkit.units import G0
 
 #: flight-path angles (rad) tried in turn where neither level flight nor the full/idle-thrust path trims
-TRIM_PATHS = (0.0, -0.05, -0.10, -0.15, 0.03, 0.06)
+FALLBACK_PATHS = (-0.05, -0.10, -0.15, 0.03, 0.06)
 BELOW_STALL = ("no steady flight at this weight, altitude and speed: the 1 g lift coefficient W/(q̄S) = {cl:.3f} "
                "exceeds CLmax = {clmax:.3f} at M {mach:.3f} (below the 1 g stall speed, outside the flight envelope)")
 
@@ -55,7 +55,7 @@ class TrimmedBatch:
     gamma: np.ndarray
     trims: list
     failed: list[tuple[int, str]] = field(default_factory=list)
-    outside: frozenset = frozenset()  # input positions above the ceiling (more than full thrust on every path)
+    outside: frozenset = frozenset()  # input positions below the 1 g stall speed (no steady flight at any thrust)
 
     @property
     def n(self) -> int:
@@ -90,7 +90,7 @@ class TrimmedBatch:
         return np.array(rows, dtype=int), refined_ok, refused
 
 
-def trimmed_batch(ctx, conditions, gammas=TRIM_PATHS) -> TrimmedBatch:
+def trimmed_batch(ctx, conditions, gammas=FALLBACK_PATHS) -> TrimmedBatch:
     """Trim ``conditions`` (one configuration) in level flight; those short of thrust (or with too much at idle)
     on the flight path that full (idle) thrust holds, the steady flight nearest to level; those still without a
     trim on the paths ``gammas`` in turn. One flight model for all that trimmed."""
@@ -126,9 +126,7 @@ def trimmed_batch(ctx, conditions, gammas=TRIM_PATHS) -> TrimmedBatch:
     failures += attempt(short, throttle=1.0) + attempt(excess, throttle=0.0)
     todo = [i for i, _ in failures]
     for g in gammas:
-        if g == 0.0:
-            continue
-        todo = [i for i, msg in attempt(todo, gamma=g)]
+        todo = [i for i, _ in attempt(todo, gamma=g)]
     stalled = {i: below_stall(ctx, conds[i]) for i in reason}
     outside = frozenset(i for i, why in stalled.items() if why)
     reason.update({i: stalled[i] for i in outside})

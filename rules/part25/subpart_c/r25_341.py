@@ -19,6 +19,7 @@ the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -154,6 +155,12 @@ class GustRuns:
     steps_per_gust: float = 20.0
     settle_time: float = 1.5
 
+    @cached_property
+    def symmetric(self) -> tuple[LoadEnvelope, dict]:
+        """The envelope over every gradient and which gradient each extreme comes from (:meth:`LoadEnvelope.worst_of`),
+        computed once for the rules that share the runs."""
+        return LoadEnvelope.worst_of(self.envelopes)
+
     def replay(self, picks):
         """Re-simulate the (condition index, gradient index) pairs with their histories (evidence)."""
         out = []
@@ -217,7 +224,7 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     if not runs.conditions:
         return {"findings": findings, "envelope": None}
     sim_conds, H, up = runs.conditions, runs.gradients, runs.up
-    env, which = LoadEnvelope.worst_of(runs.envelopes)
+    env, which = runs.symmetric
     nz_hi, nz_lo, uds_all, u_ref, f_g, v_eas, alt = runs.nz_hi, runs.nz_lo, runs.uds, runs.u_ref, runs.f_g, runs.v_eas, runs.altitude
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     # information, not a criterion: the §25.333 manoeuvring envelope's load factor at each speed (§25.337), to

@@ -407,7 +407,7 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
     envelope = LoadEnvelope(stations, peaks, times, labels)
     j_roll = np.argmax(np.abs(roll), axis=0)
     caps = declared_capabilities(ctx, "wing")
-    sym, _ = LoadEnvelope.worst_of(runs.envelopes)
+    sym, _ = runs.symmetric
     b = QUANTITIES.index("bending")
     for i, c in enumerate(runs.conditions):
         jr = int(j_roll[i])
