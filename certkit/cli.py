@@ -284,3 +284,24 @@ def new_rule(rule_id, symbol, title, subpart, root):
 
 if __name__ == "__main__":  # pragma: no cover
     main()
+
+
+@main.command(name="evaluate")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
+              help='Design variable, e.g. --set geometry.horizontal_tail.area="1250 ft^2" (repeatable).')
+@click.option("--response", "responses", multiple=True, metavar="NAME",
+              help="Response name or glob pattern to compute (repeatable; default: all).")
+@click.option("--json", "as_json", is_flag=True, help="Print the whole record as JSON.")
+def evaluate_command(aircraft_file, settings, responses, as_json):
+    """Evaluate one design: size the horizontal tail from its loads, run every rule and the mission, print one
+    record (design variables, objectives, rule margins, sub-checks, handling levels, sizing, timings)."""
+    from certkit.design.evaluate import evaluate_design
+    from certkit.design.report import print_record
+    from certkit.design.variables import parse_setting
+
+    record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None)
+    if as_json:
+        click.echo(json.dumps(record, indent=2, allow_nan=False))
+    else:
+        print_record(record, click.echo)

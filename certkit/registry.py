@@ -88,6 +88,9 @@ class Rule:
         Optional key: rules with the same key are evaluated one after the other in one process, so
         that a computation they share through ``ctx.memo`` is done once (e.g. §25.341(a) and §25.349(b)
         share the gust runs).
+    loads_surfaces
+        The lifting surfaces whose station loads the rule computes (``("horizontal_tail",)``); the design
+        layer sizes structure from the envelopes these rules keep (:meth:`load_envelopes`).
     """
 
     id: ClassVar[str]
@@ -105,6 +108,7 @@ class Rule:
     origin: ClassVar[str] = "built-in"
     cost: ClassVar[float] = 1.0
     run_with: ClassVar[str] = ""
+    loads_surfaces: ClassVar[tuple[str, ...]] = ()
 
     def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
         """Return findings for the conditions (any number per condition, each naming its condition)."""
@@ -114,6 +118,14 @@ class Rule:
         """Plots or tables for the report (optional). Called on the same instance as :meth:`evaluate`, so a
         rule may keep what it simulated on ``self`` for its plots."""
         return []
+
+    def load_envelopes(self) -> list:
+        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) of the last evaluation, as a
+        loads rule keeps them in ``self.run``; empty for other rules."""
+        from certkit.models.loads.response import LoadEnvelope
+
+        run = getattr(self, "run", None)
+        return [v for v in run.values() if isinstance(v, LoadEnvelope)] if isinstance(run, dict) else []
 
     @classmethod
     def documentation(cls) -> str:

@@ -180,6 +180,8 @@ class RuleResult:
     notes: list[str] = field(default_factory=list)
     #: :meth:`to_json` as a worker process encoded it once the rule was evaluated (None: encoded when needed)
     encoded: str | None = field(default=None, repr=False, compare=False)
+    #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.scheduler.evaluate_rule`)
+    load_envelopes: list = field(default_factory=list, repr=False, compare=False)
 
     @property
     def status(self) -> Status:

@@ -43,7 +43,9 @@ def _describe_exception(exc: BaseException) -> str:
     return f"{exc.__class__.__name__}: {exc}"
 
 
-def evaluate_rule(rule: type[Rule], ctx: Context) -> RuleResult:
+def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False) -> RuleResult:
+    """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
+    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result."""
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides)
@@ -80,6 +82,10 @@ def evaluate_rule(rule: type[Rule], ctx: Context) -> RuleResult:
         if cond not in covered and not any(c.refines(cond) for c in covered):
             findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
     result.findings = findings
+    if keep_loads:
+        result.load_envelopes = instance.load_envelopes()
+    if not evidence:
+        return result
     try:
         result.evidence = instance.evidence(ctx, findings, criteria)
     except Exception as exc:

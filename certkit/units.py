@@ -103,3 +103,5 @@ FT = 0.3048
 LB = 0.45359237
 LBF = LB * G0
 KN = 1852.0 / 3600.0
+NMI = 1852.0
+"""international nautical mile (m)"""

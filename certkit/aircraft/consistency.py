@@ -151,6 +151,28 @@ def _geometry(s):
         x = getattr(g, name).root_leading_edge.x
         if not (0.0 <= x <= g.fuselage.length):
             yield f"geometry.{name}.root_leading_edge.x", f"root lies outside the fuselage (0 to {g.fuselage.length:.2f} m)", x
+    yield from _tail_on_fuselage(g)
+
+
+def _tail_on_fuselage(g):
+    """The horizontal tail's root chord must end on the fuselage (it is attached there) and its tip must not lie
+    wholly behind the fuselage end; trapezoid geometry: b = √(A S), c_r = 2S / (b (1 + λ)),
+    tan Λ_LE = tan Λ_c/4 + (1 − λ) / (A (1 + λ))."""
+    import math
+
+    t, length = g.horizontal_tail, g.fuselage.length
+    b = math.sqrt(t.aspect_ratio * t.area)
+    c_root = 2.0 * t.area / (b * (1.0 + t.taper))
+    tan_le = math.tan(t.sweep_quarter_chord) + (1.0 - t.taper) / (t.aspect_ratio * (1.0 + t.taper))
+    x_root = t.root_leading_edge.x
+    if x_root + c_root > length:
+        yield ("geometry.horizontal_tail", f"root chord {c_root:.2f} m from x = {x_root:.2f} m ends behind the fuselage "
+               f"end ({length:.2f} m): the tail root would not be attached to the fuselage", round(x_root + c_root, 3))
+    x_tip = x_root + 0.5 * b * tan_le
+    if x_tip > length:
+        yield ("geometry.horizontal_tail", f"tip leading edge at x = {x_tip:.2f} m lies behind the fuselage end "
+               f"({length:.2f} m): the planform (area, aspect ratio, taper, sweep) places the whole tip behind the "
+               "airplane", round(x_tip, 3))
 
 
 @needs("reference", "geometry")

@@ -142,6 +142,7 @@ def _label(cond) -> str:
 @rule
 class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
+    loads_surfaces = ("horizontal_tail",)
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "checked-pitch-maneuver"
     title = "Checked pitch manoeuvre between VA and VD"
@@ -336,6 +337,7 @@ def load_factor_finding(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
 @rule
 class MaximumPitchControlDisplacement(Rule):
     id = "25.331(c)(1)"
+    loads_surfaces = ("horizontal_tail",)
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "maximum-pitch-control-displacement"
     title = "Maximum pitch control displacement at VA"

@@ -67,6 +67,7 @@ def gradients(crit) -> np.ndarray:
 @rule
 class DiscreteGust(SimulationRule):
     id = "25.341(a)"
+    loads_surfaces = ("wing", "horizontal_tail")
     cost = 8  # relative evaluation time (orders work over --jobs processes)
     run_with = "discrete-gust"  # §25.349(b) modifies these gust runs: one process simulates them once
     symbol = "discrete-gust"

@@ -60,6 +60,7 @@ PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: 
 @rule
 class RollingConditions(SimulationRule):
     id = "25.349(a)"
+    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "rolling-conditions"
     title = "Rolling conditions: sudden aileron at VA, VC and VD at load factors 0 and 2/3 n"
@@ -313,6 +314,7 @@ AIRLOAD_BASES = ("total", "increment")
 @rule
 class UnsymmetricalGust(SimulationRule):
     id = "25.349(b)"
+    loads_surfaces = ("wing",)
     cost = 2  # relative evaluation time beyond the §25.341(a) gust runs it shares (run_with)
     run_with = "discrete-gust"
     symbol = "unsymmetrical-gust"

@@ -49,6 +49,7 @@ def pedal_force_limit(v, va, vc, crit) -> float:
 @rule
 class YawManeuver(SimulationRule):
     id = "25.351"
+    loads_surfaces = ("vertical_tail",)
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "yaw-maneuver"
     title = "Yaw manoeuvre: sudden rudder, overswing, steady sideslip, rudder returned"

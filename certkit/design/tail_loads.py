@@ -1,0 +1,86 @@
+"""The horizontal-tail load envelope the structure is sized for, from the Subpart C rules' own runs.
+
+Every rule that declares ``loads_surfaces`` containing ``horizontal_tail`` (§§25.331(c)(1), 25.331(c)(2),
+25.341(a), 25.349(a) today) keeps the load envelopes of its conditions; this module reduces them to the largest
+limit-load magnitude of each quantity (shear, bending, torsion) at each station of the tail, with the rule and
+condition that set it (the loads engineer's critical-case list). Ultimate = 1.5 × limit (§25.303).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from certkit.models.loads.model import QUANTITIES
+
+SURFACE = "horizontal_tail"
+
+
+@dataclass
+class CriticalLoad:
+    quantity: str
+    station: str
+    limit_load: float  # N or N·m, signed as the loads model signs it
+    rule: str
+    condition: str
+
+
+@dataclass
+class TailLoadEnvelope:
+    """Largest limit-load magnitudes (3, n_stations) at the tail's stations over every loads rule's conditions."""
+
+    stations: tuple[str, ...]
+    limit: np.ndarray
+    critical: list[CriticalLoad] = field(default_factory=list)
+    rules: tuple[str, ...] = ()
+
+    def exceeds(self, other: "TailLoadEnvelope", rtol: float = 1e-9) -> bool:
+        """True when any load of this envelope is larger than ``other``'s (same stations)."""
+        return bool(np.any(self.limit > other.limit * (1.0 + rtol) + 1e-9))
+
+    def union(self, other: "TailLoadEnvelope | None") -> "TailLoadEnvelope":
+        """The larger of the two envelopes at every station and quantity (critical cases from whichever is larger)."""
+        if other is None:
+            return self
+        take_self = self.limit >= other.limit
+        crit = [c for c in self.critical if take_self[QUANTITIES.index(c.quantity), self.stations.index(c.station)]]
+        crit += [c for c in other.critical if not take_self[QUANTITIES.index(c.quantity), other.stations.index(c.station)]]
+        return TailLoadEnvelope(self.stations, np.where(take_self, self.limit, other.limit), crit,
+                                tuple(sorted(set(self.rules) | set(other.rules))))
+
+    def as_dict(self) -> dict:
+        return {"stations": list(self.stations),
+                "limit_loads": {q: [float(v) for v in self.limit[i]] for i, q in enumerate(QUANTITIES)},
+                "units": {"shear": "N", "bending": "N·m", "torsion": "N·m"},
+                "critical": [vars(c) for c in self.critical], "rules": list(self.rules)}
+
+
+def tail_load_envelope(results) -> TailLoadEnvelope:
+    """Reduce the kept envelopes of evaluated loads rules (:class:`certkit.results.RuleResult` with
+    ``load_envelopes``) to the tail's limit-load magnitudes. Raises ``ValueError`` when no rule computed tail loads
+    (the structure cannot be sized: the caller reports why)."""
+    stations, best, crit, rules = None, None, {}, set()
+    for res in results:
+        for env in res.load_envelopes:
+            if SURFACE not in env.peaks:
+                continue
+            P = env.peaks[SURFACE]  # (n, 2, 3, S): min [0] / max [1] over time
+            if stations is None:
+                stations, best = tuple(env.stations[SURFACE]), np.zeros((len(QUANTITIES), P.shape[-1]))
+            elif tuple(env.stations[SURFACE]) != stations:
+                raise ValueError(f"rule {res.id}: tail stations {env.stations[SURFACE]} differ from {stations}")
+            rules.add(res.id)
+            mag = np.abs(np.nan_to_num(P, nan=0.0))  # (n, 2, 3, S)
+            for q in range(len(QUANTITIES)):
+                for s in range(len(stations)):
+                    flat = mag[:, :, q, s]
+                    i, sense = np.unravel_index(int(np.argmax(flat)), flat.shape)
+                    if flat[i, sense] > best[q, s]:
+                        best[q, s] = flat[i, sense]
+                        crit[(q, s)] = CriticalLoad(QUANTITIES[q], stations[s], float(P[i, sense, q, s]), res.id,
+                                                    env.labels[i] if i < len(env.labels) else str(i))
+    if stations is None:
+        raise ValueError("no loads rule computed horizontal-tail loads (the §25.331/§25.341/§25.349 rules were not "
+                         "evaluated or could not trim any condition)")
+    return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)))
