@@ -81,8 +81,8 @@ def _literal_brackets(pattern: str) -> str:
 def mission_needed(patterns: Sequence[str] | None) -> bool:
     if patterns is None:
         return True
-    names = ("objective.x", "mission.x", "constraint.x")
-    return any(fnmatch.fnmatchcase(n, _literal_brackets(p)) for p in patterns for n in names)
+    prefixes = ("objective.", "mission.", "constraint.")
+    return any(p.startswith(x) or fnmatch.fnmatchcase(x + "name", _literal_brackets(p)) for p in patterns for x in prefixes)
 
 
 def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Setting] | None = None,
