@@ -282,10 +282,6 @@ def new_rule(rule_id, symbol, title, subpart, root):
     click.echo(f"created {module}\ncreated {test}")
 
 
-if __name__ == "__main__":  # pragma: no cover
-    main()
-
-
 @main.command(name="evaluate")
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
 @click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
@@ -305,3 +301,7 @@ def evaluate_command(aircraft_file, settings, responses, as_json):
         click.echo(json.dumps(record, indent=2, allow_nan=False))
     else:
         print_record(record, click.echo)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -100,12 +100,14 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, rules, loaded_of
     history: list[dict] = []
     seconds: list[float] = []
     union: TailLoadEnvelope | None = None
-    previous_mass = None
+    previous_mass, ctx = None, None
     for k in range(spec.max_iterations):
         t = time.perf_counter()
         oew = base_oew - base_tail + group.total_mass - group.baseline_actuator_mass
         current = design_aircraft(source, settings, with_tail_group(data, group, oew))
-        ctx = Context(loaded_of(current))
+        previous_ctx, ctx = ctx, Context(loaded_of(current))
+        if previous_ctx is not None:
+            ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
         results = [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in loads_rules]
         envelope = tail_load_envelope(results)
         within = union is not None and not envelope.exceeds(union)
