@@ -64,12 +64,12 @@ class ActuatorSizing:
         return [MassComponent(f"elevator actuator {i + 1}", self.mass, p) for i, p in enumerate(self.positions)]
 
     def summary(self) -> dict:
-        return {"count": self.count, "design_hinge_moment_kNm": round(self.design_hinge_moment / 1e3, 2),
-                "stall_force_kN": round(self.stall_force / 1e3, 2), "piston_area_cm2": round(self.piston_area * 1e4, 2),
-                "bore_mm": round(self.bore * 1e3, 1), "stroke_mm": round(self.stroke * 1e3, 1),
-                "mass_kg_each": round(self.mass, 2), "total_mass_kg": round(self.total_mass, 2),
-                "flow_l_per_min_each": round(self.flow_l_per_min, 2), "flow_gpm_each": round(self.flow_gpm, 2),
-                "total_flow_gpm": round(self.count * self.flow_gpm, 2)}
+        values = {"design_hinge_moment_kNm": (self.design_hinge_moment / 1e3, 2), "stall_force_kN": (self.stall_force / 1e3, 2),
+                  "piston_area_cm2": (self.piston_area * 1e4, 2), "bore_mm": (self.bore * 1e3, 1),
+                  "stroke_mm": (self.stroke * 1e3, 1), "mass_kg_each": (self.mass, 2), "total_mass_kg": (self.total_mass, 2),
+                  "flow_l_per_min_each": (self.flow_l_per_min, 2), "flow_gpm_each": (self.flow_gpm, 2),
+                  "total_flow_gpm": (self.count * self.flow_gpm, 2)}
+        return {"count": self.count, **{k: round(float(v), n) for k, (v, n) in values.items()}}
 
 
 def hinge_line_positions(aircraft, per_panel: int) -> tuple[tuple[float, float, float], ...]:
