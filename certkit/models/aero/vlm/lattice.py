@@ -339,7 +339,7 @@ def build_lattice(config: Configuration) -> Lattice:
         chord=cat_strip("chord"), width=cat_strip("width"), ensy=cat_strip("ensy"), ensz=cat_strip("ensz"), first=first, count=count,
         component=cat_strip("component"), wake=cat_strip("wake"), alpha_beta=cat_strip("alpha_beta"), load=cat_strip("load"),
         patches=patches, control_names=names, mirror=mirror, mirror_sign=mirror_sign,
-        control_fraction=np.concatenate([b["dcontrol"].reshape(len(names), -1) for b in blocks], axis=1),
+        control_fraction=np.concatenate([b["dcontrol"].reshape(len(names), b["xvr"].shape[0] * b["xvr"].shape[1]) for b in blocks], axis=1),
         hinge_axis=np.concatenate([b["hinge"] for b in blocks], axis=1),
         hinge_point=np.concatenate([b["hinge_point"] for b in blocks], axis=1),
     )
