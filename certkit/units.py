@@ -41,6 +41,10 @@ DIMENSIONS: dict[str, str] = {
     "acceleration": "m/s**2",
     "gearing": "rad/m",  # control gearing: surface angle per metre of cockpit travel
     "stiffness": "N/m",  # feel-spring gradient: force per metre of cockpit travel
+    "density": "kg/m**3",
+    "areal_density": "kg/m**2",  # mass per unit planform area (structural sizing)
+    "angular_rate": "rad/s",
+    "mass_per_energy": "kg/J",  # actuator mass per unit work capacity (stall force × stroke)
     "dimensionless": "",
 }
 

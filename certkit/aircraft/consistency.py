@@ -276,3 +276,22 @@ def _control_forces(s):
         if getattr(forces, name) is not None and name not in getattr(g, surface).controls:
             yield (f"control_forces.{name}", f"no control surface named {name!r} on geometry.{surface} "
                    f"(declared: {', '.join(getattr(g, surface).controls) or 'none'})", None)
+
+
+@needs("sizing")
+def _sizing_spars(s):
+    t = s["sizing"].horizontal_tail
+    if t is not None and t.rear_spar <= t.front_spar:
+        yield "sizing.horizontal_tail.rear_spar", f"must lie aft of the front spar ({t.front_spar})", t.rear_spar
+
+
+@needs("sizing", "geometry")
+def _sizing_geometry(s):
+    sz, ht = s["sizing"], s["geometry"].horizontal_tail
+    elevator = ht.controls.get("elevator")
+    if sz.horizontal_tail is not None and elevator is not None and 1.0 - elevator.chord_ratio < sz.horizontal_tail.rear_spar:
+        yield ("sizing.horizontal_tail.rear_spar", f"the elevator hinge line ({1.0 - elevator.chord_ratio:.3f} of the chord, "
+               "geometry.horizontal_tail.controls.elevator.chord_ratio) lies ahead of the rear spar", sz.horizontal_tail.rear_spar)
+    if sz.elevator_actuators is not None and elevator is None:
+        yield ("sizing.elevator_actuators", "no control surface named 'elevator' on geometry.horizontal_tail "
+               f"(declared: {', '.join(ht.controls) or 'none'})", None)

@@ -14,8 +14,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validat
 
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
-    Angle, Force, Fraction, Gearing, Inertia, Length, PositiveArea, PositiveForce, PositiveLength,
-    PositiveMass, Pressure, Speed, Stiffness,
+    Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
+    PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, Speed, Stiffness,
 )
 
 
@@ -496,6 +496,89 @@ class ControlForces(_Section):
     source: str | None = None
 
 
+# --- structural sizing (design loop) ----------------------------------------------------
+
+class LaminateAllowables(_Section):
+    """Material of a sized box: a laminate linear to failure, allowable stress = modulus × design ultimate strain
+    (:class:`certkit.models.structure.box.BoxMaterial`)."""
+
+    density: Annotated[Density, Field(gt=0, description="kg/m³ of the laminate ('1580 kg/m^3')")]
+    cover_modulus: Annotated[Pressure, Field(gt=0, description="E_x of the cover laminate (skin + stringers)")]
+    cover_shear_modulus: Annotated[Pressure, Field(gt=0, description="G_xy of the cover laminate")]
+    web_shear_modulus: Annotated[Pressure, Field(gt=0, description="G_xy of the spar-web laminate")]
+    design_strain: Annotated[float, Field(gt=0, lt=0.05, description="design ultimate direct strain of the covers")]
+    design_shear_strain: Annotated[float, Field(gt=0, lt=0.1, description="design ultimate shear strain")]
+    skin_fraction: Annotated[float, Field(gt=0, le=1, description="skin share of the smeared cover (carries the torsion)")]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class MinimumGauges(_Section):
+    """Minimum thicknesses of the sized box (smeared cover, spar web)."""
+
+    cover: Annotated[Length, Field(gt=0)]
+    web: Annotated[Length, Field(gt=0)]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class ArealWeights(_Section):
+    """Masses per unit planform area of the tail's secondary items (both halves): ribs on the box planform, the
+    leading edge ahead of the front spar, the fixed trailing edge aft of the rear spar (to the hinge line along
+    the elevator, to the trailing edge elsewhere), the elevator aft of its hinge line."""
+
+    ribs: Annotated[ArealDensity, Field(ge=0)]
+    leading_edge: Annotated[ArealDensity, Field(ge=0)]
+    trailing_edge: Annotated[ArealDensity, Field(ge=0)]
+    elevator: Annotated[ArealDensity, Field(ge=0)]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class TailStructureSizing(_Section):
+    """Structural sizing data of the horizontal tail (:func:`certkit.models.structure.tail.size_horizontal_tail`)."""
+
+    front_spar: Annotated[float, Field(gt=0, lt=1, description="front spar chord fraction")]
+    rear_spar: Annotated[float, Field(gt=0, lt=1, description="rear spar chord fraction")]
+    material: LaminateAllowables
+    minimum_gauge: MinimumGauges
+    areal_weights: ArealWeights
+    fittings_fraction: Annotated[float, Field(ge=0, lt=1, description="fittings and attachments, fraction of box + ribs")]
+    non_optimum_factor: Annotated[float, Field(ge=1, le=3, description="sized (ideal) cover and web mass × factor = "
+                                                                       "built box mass (joints, fasteners, cut-outs)")]
+    source: Annotated[str, Field(min_length=3, description="where the factors come from and how they were calibrated")]
+
+
+class SizingLoop(_Section):
+    """Convergence of the design loop (loads → sizing → mass → loads)."""
+
+    mass_tolerance: Annotated[Mass, Field(gt=0, description="converged when the sized mass changes by less than this")]
+    max_iterations: Annotated[int, Field(ge=1, le=50)]
+
+
+class ActuatorSizingData(_Section):
+    """Elevator actuators (:func:`certkit.models.structure.actuators.size_elevator_actuators`): piston area =
+    margin × share × panel hinge moment / (arm × pressure); stroke = arm (sin δ_max − sin δ_min) over the travel;
+    mass = fixed_mass + mass_per_work × stall force × stroke; flow at ``surface_rate``."""
+
+    per_panel: Annotated[int, Field(ge=1, le=6, description="actuators on each elevator panel")]
+    pressure: Annotated[Pressure, Field(gt=0, description="hydraulic supply pressure ('3000 psi')")]
+    arm: Annotated[Length, Field(gt=0, description="moment arm of the actuator about the hinge line (horn)")]
+    margin: Annotated[float, Field(ge=1, le=3, description="stall force over the design force")]
+    share: Annotated[float, Field(gt=0, le=1, description="fraction of the panel hinge moment one actuator must react "
+                                                          "(1: each actuator holds the panel alone)")]
+    surface_rate: Annotated[AngularRate, Field(gt=0, description="design surface rate ('40 deg/s')")]
+    mass_per_work: Annotated[MassPerEnergy, Field(ge=0, description="actuator mass per unit stall force × stroke")]
+    fixed_mass: Annotated[Mass, Field(ge=0, description="mass independent of size (servo valve, manifold, sensors)")]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class Sizing(_Section):
+    """Structural sizing data for design studies (issue 13): the horizontal-tail group, the loop's tolerance and
+    the elevator actuators."""
+
+    horizontal_tail: TailStructureSizing | None = None
+    loop: SizingLoop | None = None
+    elevator_actuators: ActuatorSizingData | None = None
+
+
 RuleId = Annotated[str, Field(pattern=r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")]
 
 
@@ -516,5 +599,6 @@ class Aircraft(_Section):
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
+    sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")

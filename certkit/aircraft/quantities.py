@@ -53,6 +53,10 @@ SpeedValue = quantity("speed")
 Pressure = quantity("pressure")
 Gearing = quantity("gearing")
 Stiffness = quantity("stiffness")
+Density = quantity("density")
+ArealDensity = quantity("areal_density")
+AngularRate = quantity("angular_rate")
+MassPerEnergy = quantity("mass_per_energy")
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 PositiveArea = Annotated[Area, Field(gt=0)]
@@ -93,6 +97,6 @@ class Speed(BaseModel):
 
 __all__ = [
     "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "Pressure", "Gearing", "Stiffness",
-    "PositiveLength",
+    "Density", "ArealDensity", "AngularRate", "MassPerEnergy", "PositiveLength",
     "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
 ]

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 import pytest
 
+from certkit.models.structure.section import laminate_moduli as _laminate_moduli
+from certkit.models.structure.section import naca_thickness
 from certkit.units import FT, LB
 
 
@@ -102,30 +104,9 @@ SURFACES = (
 # --------------------------------------------------------------------------- the arithmetic
 
 
-def naca_thickness(x, t):
-    """Full thickness / chord of a NACA 4-digit section of thickness ratio t at chord fraction x."""
-    x = np.asarray(x, dtype=float)
-    return 10.0 * t * (0.2969 * np.sqrt(x) - 0.1260 * x - 0.3516 * x**2 + 0.2843 * x**3 - 0.1015 * x**4)
-
-
 def laminate_moduli(layup) -> tuple[float, float]:
-    """In-plane E_x and G_xy (MPa) of a balanced symmetric laminate (classical lamination theory)."""
-    e1, e2, g12, nu12 = PLY["E1"], PLY["E2"], PLY["G12"], PLY["nu12"]
-    nu21 = nu12 * e2 / e1
-    d = 1.0 - nu12 * nu21
-    q11, q22, q12, q66 = e1 / d, e2 / d, nu12 * e2 / d, g12
-    a = np.zeros((3, 3))
-    for angle, frac in layup.items():
-        m, n = math.cos(math.radians(angle)), math.sin(math.radians(angle))
-        qb11 = q11 * m**4 + 2 * (q12 + 2 * q66) * m**2 * n**2 + q22 * n**4
-        qb22 = q11 * n**4 + 2 * (q12 + 2 * q66) * m**2 * n**2 + q22 * m**4
-        qb12 = (q11 + q22 - 4 * q66) * m**2 * n**2 + q12 * (m**4 + n**4)
-        qb66 = (q11 + q22 - 2 * q12 - 2 * q66) * m**2 * n**2 + q66 * (m**4 + n**4)
-        qb16 = (q11 - q12 - 2 * q66) * m**3 * n + (q12 - q22 + 2 * q66) * m * n**3
-        qb26 = (q11 - q12 - 2 * q66) * m * n**3 + (q12 - q22 + 2 * q66) * m**3 * n
-        a += frac * np.array([[qb11, qb12, qb16], [qb12, qb22, qb26], [qb16, qb26, qb66]])
-    s = np.linalg.inv(a)
-    return 1.0 / s[0, 0], 1.0 / s[2, 2]
+    """In-plane E_x and G_xy (MPa) of a balanced symmetric laminate of the §10 ply (classical lamination theory)."""
+    return _laminate_moduli(PLY, layup)
 
 
 def schrenk_shear_moment(eta, taper):

@@ -70,6 +70,9 @@ class Lattice:
     control_names: tuple[str, ...]
     mirror: np.ndarray | None = None
     mirror_sign: np.ndarray | None = None
+    control_fraction: np.ndarray | None = None  # (n_controls, N): gain × fraction of each element on the control
+    hinge_axis: np.ndarray | None = None  # (n_controls, J, 3): unit hinge vector of each strip (zero: no control)
+    hinge_point: np.ndarray | None = None  # (n_controls, J, 3): hinge-line point at each strip's centre (AVL PHINGE)
 
     @property
     def n_vortices(self) -> int:
@@ -170,7 +173,7 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
     cambers = [s.camber or CamberLine.flat() for s in surface.sections]
     claf = np.array([s.claf for s in surface.sections], float)
 
-    out: dict[str, list] = {k: [] for k in ("rle1", "rle2", "rle", "chord1", "chord2", "chord", "width", "ainc", "xpt", "xvr", "xcp", "slope", "dcontrol", "hinge", "dupsign")}
+    out: dict[str, list] = {k: [] for k in ("rle1", "rle2", "rle", "chord1", "chord2", "chord", "width", "ainc", "xpt", "xvr", "xcp", "slope", "dcontrol", "hinge", "dupsign", "hinge_point")}
     for k in range(len(surface.sections) - 1):
         lo, hi = iptloc[k], iptloc[k + 1]
         span_lo, span_hi = ypt[lo], ypt[hi]
@@ -211,6 +214,7 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
 
         dcontrol = np.zeros((n_ctrl, hi - lo, nc))
         hinge = np.zeros((n_ctrl, hi - lo, 3))
+        hinge_point = np.zeros((n_ctrl, hi - lo, 3))
         dups = np.ones((n_ctrl, hi - lo))
         left = {c.name: c for c in surface.sections[k].controls}
         right = {c.name: c for c in surface.sections[k + 1].controls}
@@ -225,6 +229,7 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
             frac_le = np.clip((x_lead / chord_c)[:, None] - xpt[:, :-1], 0.0, dxoc) / dxoc
             frac_te = np.clip((x_trail / chord_c)[:, None] - xpt[:, :-1], 0.0, dxoc) / dxoc
             dcontrol[n] = gain[:, None] * (frac_te - frac_le)
+            hinge_point[n] = lerp(fc, le_l, le_r) + np.abs(xhd)[:, None] * np.array([1.0, 0.0, 0.0])
             vh = np.asarray(cl_.hinge_vector, float) * scale
             if not np.any(vh):
                 raw_l, raw_r = le_raw[k], le_raw[k + 1]
@@ -240,8 +245,9 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
         out["dcontrol"].append(dcontrol)
         out["hinge"].append(hinge)
         out["dupsign"].append(dups)
+        out["hinge_point"].append(hinge_point)
 
-    strips = {k: np.concatenate(v, axis=(1 if k in ("dcontrol", "hinge", "dupsign") else 0)) for k, v in out.items()}
+    strips = {k: np.concatenate(v, axis=(1 if k in ("dcontrol", "hinge", "dupsign", "hinge_point") else 0)) for k, v in out.items()}
     x_ = np.array([1.0, 0.0, 0.0])
     strips["rv1"] = strips["rle1"][:, None, :] + (strips["xvr"] * strips["chord1"][:, None])[..., None] * x_
     strips["rv2"] = strips["rle2"][:, None, :] + (strips["xvr"] * strips["chord2"][:, None])[..., None] * x_
@@ -262,6 +268,7 @@ def _mirror(strips: dict[str, np.ndarray], y_mirror: float) -> dict[str, np.ndar
     m["rv"], m["rc"] = flip(strips["rv"]), flip(strips["rc"])
     m["hinge"] = strips["hinge"] * np.array([1.0, -1.0, 1.0])
     m["dcontrol"] = -strips["dcontrol"] * strips["dupsign"][..., None]
+    m["hinge_point"] = flip(strips["hinge_point"])
     return m
 
 
@@ -332,6 +339,9 @@ def build_lattice(config: Configuration) -> Lattice:
         chord=cat_strip("chord"), width=cat_strip("width"), ensy=cat_strip("ensy"), ensz=cat_strip("ensz"), first=first, count=count,
         component=cat_strip("component"), wake=cat_strip("wake"), alpha_beta=cat_strip("alpha_beta"), load=cat_strip("load"),
         patches=patches, control_names=names, mirror=mirror, mirror_sign=mirror_sign,
+        control_fraction=np.concatenate([b["dcontrol"].reshape(len(names), b["xvr"].shape[0] * b["xvr"].shape[1]) for b in blocks], axis=1),
+        hinge_axis=np.concatenate([b["hinge"] for b in blocks], axis=1),
+        hinge_point=np.concatenate([b["hinge_point"] for b in blocks], axis=1),
     )
 
 

@@ -480,6 +480,15 @@ class VortexLattice:
         gam, fparts, _ = self._vortex_forces(ut[:, 0])
         return np.add.reduceat(sum(fparts), self.lattice.first, axis=0), gam
 
+    def vortex_forces(self, alpha: float = 0.0, beta: float = 0.0, p_hat: float = 0.0, q_hat: float = 0.0,
+                      r_hat: float = 0.0, controls: Mapping[str, float] | None = None, *,
+                      rate_axes: str = "stability") -> np.ndarray:
+        """Kutta–Joukowski force of every bound leg per unit q∞ (N, 3; geometry axes), the forces AVL sums for
+        control hinge moments."""
+        ut, _, _ = self._inputs(alpha, beta, p_hat, q_hat, r_hat, self._deltas(controls), rate_axes)
+        _, fparts, _ = self._vortex_forces(ut[:, 0])
+        return fparts[0] * self.lattice.load[self.lattice.vortex_strip][:, None]
+
     def _strip_loads(self, gam: np.ndarray, force: np.ndarray, alpha: float) -> StripLoads:
         lat = self.lattice
         fs = np.add.reduceat(force, lat.first, axis=0)  # (J, 3), per unit q∞ after scaling below
