@@ -182,6 +182,8 @@ class RuleResult:
     encoded: str | None = field(default=None, repr=False, compare=False)
     #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.scheduler.evaluate_rule`)
     load_envelopes: list = field(default_factory=list, repr=False, compare=False)
+    #: the rule's own run data (simulations) when the load envelopes are kept; never written to results.json
+    run: dict | None = field(default=None, repr=False, compare=False)
 
     @property
     def status(self) -> Status:

@@ -84,6 +84,7 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     result.findings = findings
     if keep_loads:
         result.load_envelopes = instance.load_envelopes()
+        result.run = getattr(instance, "run", None)
     if not evidence:
         return result
     try:

@@ -45,6 +45,14 @@ def _source(path: str):
     return _SOURCES[key]
 
 
+def _base_aircraft(source):
+    """The aircraft file as declared (validated once per process and file)."""
+    key = ("base", source.sha256)
+    if key not in _SOURCES:
+        _SOURCES[key] = design_aircraft(source, [])
+    return _SOURCES[key]
+
+
 def _rules():
     if not _RULES:
         from certkit.registry import DiscoveryOptions, discover
@@ -54,6 +62,8 @@ def _rules():
 
 
 _KINDS = ("rule", "subcheck", "travel")
+#: the objectives the mission computes (objective.OEW_kg comes from the sizing loop)
+MISSION_OBJECTIVES = ("objective.cruise_CD", "objective.block_fuel_kg", "objective.block_time_s")
 
 
 def rule_needed(rule_id: str, patterns: Sequence[str] | None) -> bool:
@@ -81,8 +91,9 @@ def _literal_brackets(pattern: str) -> str:
 def mission_needed(patterns: Sequence[str] | None) -> bool:
     if patterns is None:
         return True
-    prefixes = ("objective.", "mission.", "constraint.")
-    return any(p.startswith(x) or fnmatch.fnmatchcase(x + "name", _literal_brackets(p)) for p in patterns for x in prefixes)
+    names = MISSION_OBJECTIVES + ("mission.name", "constraint.name")
+    return any(p.startswith(("mission.", "constraint.")) or fnmatch.fnmatchcase(n, _literal_brackets(p))
+               for p in patterns for n in names)
 
 
 def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Setting] | None = None,
@@ -114,7 +125,8 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     def loaded_of(model):
         return LoadedAircraft(model=model, path=str(aircraft_path), sha256=source.sha256, source=source)
 
-    loop = size_horizontal_tail_loop(source, settings, data, aircraft, rules, loaded_of)
+    base = _base_aircraft(source) if settings else aircraft
+    loop = size_horizontal_tail_loop(source, settings, data, aircraft, base, rules, loaded_of)
     timings["sizing_s"] = loop.seconds
     timings["sizing_iteration_s"] = [round(s, 3) for s in loop.iteration_seconds]
 

@@ -21,6 +21,9 @@ from certkit.design.variables import design_aircraft
 
 TAIL_COMPONENT = "horizontal tail"
 ACTUATOR_COMPONENT = "elevator actuators"
+#: the declared component that carries the baseline's elevator actuators (they are moved out of it, at their own
+#: positions, so that the design's actuators replace them)
+FLIGHT_CONTROLS = "flight controls"
 
 
 class SizingNotConverged(RuntimeError):
@@ -29,6 +32,16 @@ class SizingNotConverged(RuntimeError):
     def __init__(self, message: str, history: list[dict]):
         super().__init__(message)
         self.history = history
+
+
+@dataclass(frozen=True)
+class BaselineActuators:
+    """The elevator actuators of the unmodified aircraft file, sized by the same method (their mass sits in the
+    declared flight-controls component)."""
+
+    mass: float
+    centroid: tuple[float, float, float]
+    hinge: dict
 
 
 @dataclass
@@ -41,36 +54,61 @@ class LoopResult:
     envelope: TailLoadEnvelope
     oew_kg: float
     baseline_tail_kg: float
+    baseline_actuators: BaselineActuators
     seconds: float
     iteration_seconds: list[float] = field(default_factory=list)
 
     def responses(self) -> dict:
         g = self.group
-        return {"sizing.ht_group_mass_kg": g.total_mass, "sizing.ht_structure_mass_kg": g.structure_mass,
-                "sizing.ht_box_mass_kg": g.box_mass, "sizing.actuator_mass_kg": g.actuator_mass,
-                "sizing.iterations": float(len(self.history)), "objective.OEW_kg": self.oew_kg}
+        out = {"sizing.ht_group_mass_kg": g.total_mass, "sizing.ht_structure_mass_kg": g.structure_mass,
+               "sizing.ht_box_mass_kg": g.box_mass, "sizing.actuator_mass_kg": g.actuator_mass,
+               "sizing.iterations": float(len(self.history)), "objective.OEW_kg": self.oew_kg,
+               "sizing.design_hinge_moment_Nm": g.hinge.get("design_hinge_moment_Nm")}
+        if g.actuators is not None:
+            out["sizing.hydraulic_flow_m3_s"] = g.actuators.total_flow
+        return out
 
     def details(self) -> dict:
         return {"history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
-                "oew_kg": self.oew_kg, "baseline_tail_group_kg": self.baseline_tail_kg}
+                "oew_kg": self.oew_kg, "declared_tail_component_kg": self.baseline_tail_kg,
+                "baseline_actuators": {"mass_kg": self.baseline_actuators.mass, "centroid_m": list(self.baseline_actuators.centroid),
+                                       "hinge_moment": self.baseline_actuators.hinge},
+                "oew_basis": "declared OEW − declared horizontal-tail component + sized structure + sized elevator "
+                             "actuators − the baseline's elevator actuators (sized alike; inside the declared flight controls)"}
+
+
+def _index(data: dict, name: str) -> int | None:
+    for i, c in enumerate(data["mass"]["components"]):
+        if str(c.get("name", "")).strip().lower() == name:
+            return i
+    return None
 
 
 def _tail_component_index(data: dict) -> int:
-    for i, c in enumerate(data["mass"]["components"]):
-        if str(c.get("name", "")).strip().lower() == TAIL_COMPONENT:
-            return i
-    raise ValueError(f"the aircraft file has no mass component named {TAIL_COMPONENT!r} for the sized tail to replace")
+    i = _index(data, TAIL_COMPONENT)
+    if i is None:
+        raise ValueError(f"the aircraft file has no mass component named {TAIL_COMPONENT!r} for the sized tail to replace")
+    return i
 
 
-def with_tail_group(data: dict, group, oew_kg: float) -> dict:
+def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oew_kg: float) -> dict:
     """A copy of the aircraft data whose tail component, actuators, structural capability and OEW are the sized
-    group's (SI numbers); the rest of the data is shared."""
+    group's (SI numbers); the baseline's actuators leave the flight-controls component at their own positions. The
+    rest of the data is shared, not copied."""
     out = dict(data)
     mass = dict(data["mass"])
     comps = list(mass["components"])
     i = _tail_component_index(data)
     comps[i] = {**comps[i], **group.component(), "name": comps[i]["name"]}
-    comps = [c for c in comps if str(c.get("name", "")).strip().lower() != ACTUATOR_COMPONENT]
+    j = _index(data, FLIGHT_CONTROLS)
+    if j is not None and group.actuator_mass > 0 and baseline.mass > 0:
+        fc = aircraft.mass.components[j]
+        m = fc.mass - baseline.mass
+        if m <= 0:
+            raise ValueError(f"the baseline's elevator actuators ({baseline.mass:.0f} kg) outweigh the declared "
+                             f"{FLIGHT_CONTROLS!r} component ({fc.mass:.0f} kg)")
+        cg = [(fc.mass * a - baseline.mass * b) / m for a, b in zip((fc.cg.x, fc.cg.y, fc.cg.z), baseline.centroid)]
+        comps[j] = {**comps[j], "mass": m, "cg": {"x": cg[0], "y": cg[1], "z": cg[2]}}
     if group.actuator_mass > 0:
         comps.append(group.actuator_component(ACTUATOR_COMPONENT))
     mass["components"] = comps
@@ -82,9 +120,35 @@ def with_tail_group(data: dict, group, oew_kg: float) -> dict:
     return out
 
 
-def size_horizontal_tail_loop(source, settings, data, aircraft, rules, loaded_of) -> LoopResult:
-    """Run the loop for the design (``data``/``aircraft`` with the settings applied); ``rules`` the registered rule
-    classes, ``loaded_of(aircraft)`` wraps an aircraft as the engine's LoadedAircraft."""
+_BASELINE: dict = {}
+
+
+def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActuators:
+    """The unmodified file's elevator actuators, sized from its own pitch manoeuvres (once per process and file)."""
+    from certkit.context import Context
+    from certkit.design.tail_group import design_hinge_moment
+    from certkit.models.structure.actuators import size_elevator_actuators
+    from certkit.scheduler import evaluate_rule
+
+    if source.sha256 in _BASELINE:
+        return _BASELINE[source.sha256]
+    if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
+        value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
+    else:
+        ctx = Context(loaded_of(base_aircraft))
+        pitch = [r for r in rules if r.id.startswith("25.331(c)")]
+        hinge = design_hinge_moment(ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in pitch])
+        act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
+        c = tuple(float(v) for v in __import__("numpy").mean(act.positions, axis=0))
+        value = BaselineActuators(act.total_mass, c, hinge)
+    _BASELINE.clear()
+    _BASELINE[source.sha256] = value
+    return value
+
+
+def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, rules, loaded_of) -> LoopResult:
+    """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
+    declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine."""
     from certkit.context import Context
     from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
     from certkit.scheduler import evaluate_rule
@@ -95,16 +159,18 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, rules, loaded_of
     if not loads_rules:
         raise ValueError("no registered rule computes horizontal-tail loads: the tail cannot be sized")
     base_oew = float(aircraft.mass.OEW)
-    base_tail = float(aircraft.mass.components[_tail_component_index(data)].mass)
-    group = initial_group(aircraft, spec)
+    declared = aircraft.mass.components[_tail_component_index(data)]
+    base_act = baseline_actuators(source, base_aircraft, rules, loaded_of)
+    group = initial_group(aircraft, base_aircraft, declared)
     history: list[dict] = []
     seconds: list[float] = []
     union: TailLoadEnvelope | None = None
-    previous_mass, ctx = None, None
+    ctx = None
     for k in range(spec.max_iterations):
         t = time.perf_counter()
-        oew = base_oew - base_tail + group.total_mass - group.baseline_actuator_mass
-        current = design_aircraft(source, settings, with_tail_group(data, group, oew))
+        actuators = group.actuator_mass - base_act.mass if group.actuator_mass > 0 else 0.0
+        oew = base_oew - declared.mass + group.structure_mass + actuators
+        current = design_aircraft(source, settings, with_tail_group(data, aircraft, group, base_act, oew))
         previous_ctx, ctx = ctx, Context(loaded_of(current))
         if previous_ctx is not None:
             ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
@@ -112,16 +178,18 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, rules, loaded_of
         envelope = tail_load_envelope(results)
         within = union is not None and not envelope.exceeds(union)
         union = envelope.union(union)
-        sized = size_tail_group(current, ctx, union, spec)
-        change = None if previous_mass is None else sized.total_mass - group.total_mass
+        sized = size_tail_group(current, ctx, union, results)
+        change = sized.total_mass - group.total_mass
         seconds.append(time.perf_counter() - t)
-        history.append({"iteration": k, "group_mass_kg": round(group.total_mass, 3),
-                        "sized_mass_kg": round(sized.total_mass, 3), "change_kg": round(sized.total_mass - group.total_mass, 3),
-                        "loads_within_sized": bool(within), "seconds": round(seconds[-1], 3)})
-        if k > 0 and abs(sized.total_mass - group.total_mass) < spec.tolerance_kg and within:
-            return LoopResult(current, ctx, results, history, group, union, oew, base_tail, time.perf_counter() - start, seconds)
-        previous_mass, group = group.total_mass, sized
+        history.append({"iteration": k, "group_mass_kg": round(group.total_mass, 3), "sized_mass_kg": round(sized.total_mass, 3),
+                        "change_kg": round(change, 3), "loads_within_sized": bool(within), "seconds": round(seconds[-1], 3)})
+        if k > 0 and abs(change) < spec.tolerance_kg and within:
+            for r in results:
+                r.run = None  # the simulations are not needed any more
+            return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,
+                              time.perf_counter() - start, seconds)
+        group = sized
     raise SizingNotConverged(
         f"horizontal-tail sizing did not converge in {spec.max_iterations} iterations (tolerance "
         f"{spec.tolerance_kg:g} kg): " + "; ".join(f"#{h['iteration']} {h['group_mass_kg']:.1f} → {h['sized_mass_kg']:.1f} kg"
-                                                  for h in history), history)
+                                                  f"{'' if h['loads_within_sized'] else ' (loads grew)'}" for h in history), history)

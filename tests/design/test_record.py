@@ -70,4 +70,5 @@ def test_rules_needed_by_responses(patterns, rid, needed):
 
 def test_mission_needed():
     assert mission_needed(None) and mission_needed(["objective.*"]) and mission_needed(["constraint.range_margin_m"])
+    assert not mission_needed(["objective.OEW_kg"])  # from the sizing loop
     assert not mission_needed(["rule.*"])
