@@ -1,4 +1,4 @@
-"""Command line: ``certkit check | rules | explain | schema | new-rule``.
+"""Command line: ``certkit check | rules | explain | schema | new-rule | study ...``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated.
@@ -280,6 +280,15 @@ def new_rule(rule_id, symbol, title, subpart, root):
 
     module, test = scaffold_rule(Path(root), rule_id, symbol, title, subpart)
     click.echo(f"created {module}\ncreated {test}")
+
+
+def _register_study() -> None:
+    from certkit.study.cli import study
+
+    main.add_command(study)
+
+
+_register_study()
 
 
 if __name__ == "__main__":  # pragma: no cover
