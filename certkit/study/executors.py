@@ -102,18 +102,26 @@ class LocalExecutor:
         in_flight: dict = {}  # future → (task, run alone)
         suspects: deque[Task] = deque()
         limit = IN_FLIGHT_PER_WORKER * self.workers
+
+        def submit(task: Task, alone: bool) -> bool:
+            try:
+                in_flight[self._pool.submit(run_case, task)] = (task, alone)
+                return True
+            except BrokenProcessPool:  # broken since the last wait: the task never started
+                suspects.appendleft(task)
+                return False
+
         while True:
+            broken = False
             if suspects:
                 if not in_flight:
-                    task = suspects.popleft()
-                    in_flight[self._pool.submit(run_case, task)] = (task, True)
+                    broken = not submit(suspects.popleft(), True)
             else:
-                while len(in_flight) < limit and (task := next(tasks, None)) is not None:
-                    in_flight[self._pool.submit(run_case, task)] = (task, False)
-            if not in_flight:
+                while not broken and len(in_flight) < limit and (task := next(tasks, None)) is not None:
+                    broken = not submit(task, False)
+            if not in_flight and not broken:
                 return
-            done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
-            broken = False
+            done = wait(in_flight, return_when=FIRST_COMPLETED)[0] if not broken else ()
             for future in done:
                 task, alone = in_flight.pop(future)
                 try:

@@ -43,10 +43,9 @@ def parse_quantity(value: object) -> tuple[float, str | None]:
 
 
 def _si(value: object) -> object:
-    try:
-        return parse_quantity(value)[0]
-    except ValueError:
-        return value  # pydantic reports the wrong type with its own words
+    if not isinstance(value, str):
+        return value  # a number, or a wrong type that pydantic reports with its own words
+    return parse_quantity(value)[0]
 
 
 Quantity = Annotated[float, BeforeValidator(_si), WithJsonSchema({
@@ -260,6 +259,16 @@ def relation_problems(study: Study) -> list[Found]:
     return found
 
 
+def _without_tag(loc: tuple) -> tuple:
+    """pydantic puts the discriminating tag in an error's location (designs.2.lhs.seed): not a YAML path."""
+    if len(loc) > 2 and loc[0] == "designs" and loc[2] in _GENERATORS:
+        return loc[:2] + loc[3:]
+    return loc
+
+
+_GENERATORS = ("ccd", "box-behnken", "lhs", "random")
+
+
 def validate_study(data: object, source=None, base_dir: Path | None = None) -> Study:
     """Validate plain data; raise :class:`InputError` with every problem (path and line when ``source`` is
     given). The aircraft path is resolved against ``base_dir`` and must name an existing file."""
@@ -270,7 +279,8 @@ def validate_study(data: object, source=None, base_dir: Path | None = None) -> S
     try:
         study = Study.model_validate(data)
     except ValidationError as err:
-        raise InputError(path, located(found_in(err, schema_command=SCHEMA_COMMAND), source)) from None
+        found = [(_without_tag(loc), message, value) for loc, message, value in found_in(err, schema_command=SCHEMA_COMMAND)]
+        raise InputError(path, located(found, source)) from None
     found = relation_problems(study)
     aircraft = Path(study.aircraft).expanduser()
     if not aircraft.is_absolute():
