@@ -13,8 +13,7 @@ from collections import deque
 from collections.abc import Iterable, Iterator
 
 from certkit.errors import UserError
-from certkit.study.store import CaseResult
-from certkit.study.worker import Task, run_case
+from certkit.study.worker import CaseResult, Task, run_case
 
 EXECUTORS = ("local", "dask", "serial")
 IN_FLIGHT_PER_WORKER = 2

@@ -17,12 +17,12 @@ import math
 import os
 import sqlite3
 from contextlib import contextmanager
-from dataclasses import dataclass
 from pathlib import Path
 
 from certkit.errors import UserError
 from certkit.study.plan import Case, CaseContext, Plan
 from certkit.study.spec import Study
+from certkit.study.worker import CaseResult
 
 SCHEMA_VERSION = "1"
 
@@ -48,19 +48,6 @@ CREATE TABLE IF NOT EXISTS cases (
 );
 CREATE INDEX IF NOT EXISTS cases_status ON cases (status, in_plan);
 """
-
-
-@dataclass(frozen=True)
-class CaseResult:
-    """What a worker returns for one case."""
-
-    key: str
-    status: str  # "ok" | "failed" | "user_error" (a mistake of the study, not of the design)
-    error: str | None
-    wall_s: float
-    worker: str
-    record: str | None = None  # canonical JSON
-    timings: str | None = None
 
 
 class Store:

@@ -4,6 +4,7 @@ The evaluator is named by a dotted path ("package.module:function") and imported
 what it keeps between calls (the parsed aircraft, compiled kernels, influence blocks) serves every case the
 process evaluates. A :class:`~certkit.errors.UserError` is a mistake of the study (a bad variable path), not of
 the design: it comes back as ``user_error`` and stops the run; any other exception is a failed case.
+This module imports only the standard library and certkit.errors: a worker process starts fast.
 """
 
 from __future__ import annotations
@@ -21,9 +22,21 @@ import traceback
 from dataclasses import dataclass
 
 from certkit.errors import UserError
-from certkit.study.store import CaseResult
 
 _EVALUATORS: dict[str, object] = {}
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """What a worker returns for one case."""
+
+    key: str
+    status: str  # "ok" | "failed" | "user_error" (a mistake of the study, not of the design)
+    error: str | None
+    wall_s: float
+    worker: str
+    record: str | None = None  # canonical JSON
+    timings: str | None = None
 
 
 @dataclass(frozen=True)

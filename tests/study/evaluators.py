@@ -50,9 +50,9 @@ def flaky(aircraft_path, values, responses):
 
 
 def sleepy(aircraft_path, values, responses):
-    """The analytic record after 0.05–0.25 s (a duration fixed by the values), to leave time to kill a run."""
+    """The analytic record after 0.1–0.4 s (a duration fixed by the values), to leave time to kill a run."""
     digest = hashlib.sha256(json.dumps(sorted(values.items())).encode()).digest()
-    time.sleep(0.05 + 0.2 * digest[0] / 255)
+    time.sleep(0.1 + 0.3 * digest[0] / 255)
     return analytic(aircraft_path, values, responses)
 
 
