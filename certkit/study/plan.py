@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from certkit import __version__
+from certkit.errors import UserError
 from certkit.study import doe
 from certkit.study.spec import Study
 
@@ -72,7 +73,11 @@ def cases_for_points(context: CaseContext, points: list[dict[str, float]], block
 
 def block_points(study: Study, block) -> list[dict[str, float]]:
     """The block's points in SI, as {path: value} in the study's variable order."""
-    values = doe.scale(doe.unit_points(block, len(study.variables)), study.variables)
+    try:
+        values = doe.scale(doe.unit_points(block, len(study.variables)), study.variables)
+    except ValueError as exc:  # e.g. a design the library cannot build for this many variables
+        raise UserError(f"design block {block.name!r} ({block.generator}, {len(study.variables)} variables): "
+                        f"{exc}") from None
     paths = study.variable_paths()
     return [dict(zip(paths, map(float, row))) for row in np.asarray(values)]
 
