@@ -86,6 +86,7 @@ def run_study(study: Study, store: Store, executor: str = "local", workers: int 
               scheduler: str | None = None, evaluator: str = DEFAULT_EVALUATOR, retry_failed: bool = False,
               progress=None, interval: float = 10.0) -> RunSummary:
     """Plan ``study``, record the plan in ``store`` and evaluate every case without a result."""
+    _check_evaluator(evaluator)
     context = CaseContext.of(study, evaluator)
     plan = plan_study(study, context)
     with store.writer():
