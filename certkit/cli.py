@@ -1,4 +1,4 @@
-"""Command line: ``certkit check | rules | explain | schema | new-rule``.
+"""Command line: ``certkit check | rules | explain | schema | new-rule | study ...``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated.
@@ -301,6 +301,15 @@ def evaluate_command(aircraft_file, settings, responses, as_json):
         click.echo(json.dumps(record, indent=2, allow_nan=False))
     else:
         print_record(record, click.echo)
+
+
+def _register_study() -> None:
+    from certkit.study.cli import study
+
+    main.add_command(study)
+
+
+_register_study()
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -13,6 +13,7 @@ from pydantic import TypeAdapter, ValidationError
 
 from certkit.aircraft.consistency import consistency_problems
 from certkit.aircraft.model import Aircraft
+from certkit.aircraft.pydantic_problems import found_in, located, pydantic_messages, raw_at, split_path
 from certkit.aircraft.yaml_source import YamlSource, load_yaml
 from certkit.errors import InputError, Problem
 
@@ -31,38 +32,6 @@ class LoadedAircraft:
         return self.model.name
 
 
-_PYDANTIC_MESSAGES = {
-    "missing": "required field is missing",
-    "extra_forbidden": "unknown field (check the spelling; `certkit schema` lists the fields)",
-}
-
-
-Found = tuple[tuple, str, object]  # (location, message, value)
-
-
-def _from_pydantic(err: ValidationError, prefix: tuple) -> list[Found]:
-    found = []
-    for e in err.errors(include_url=False):
-        message = _PYDANTIC_MESSAGES.get(e["type"], e["msg"])
-        message = message.removeprefix("Value error, ")
-        found.append((prefix + tuple(e["loc"]), message, None if e["type"] == "missing" else e.get("input")))
-    return found
-
-
-def _split(path: str) -> tuple:
-    return tuple(int(part) if part.isdigit() else part for part in path.split(".") if part)
-
-
-def _raw_at(data: object, loc: tuple, default: object) -> object:
-    """The value as the user wrote it (``"460000 lb"``), when ``loc`` names a scalar."""
-    for key in loc:
-        try:
-            data = data[key]
-        except (KeyError, IndexError, TypeError):
-            return default
-    return data if isinstance(data, (str, int, float)) else default
-
-
 def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Aircraft:
     """Validate plain data section by section, then the relations between sections; raise an
     :class:`InputError` with every problem found."""
@@ -70,10 +39,10 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
     if not isinstance(data, dict):
         raise InputError(path, [Problem("", "the file must be a mapping of sections (name:, reference:, ...)",
                                         type(data).__name__)])
-    found: list[Found] = []
+    found = []
     sections: dict[str, object] = {}
     fields = Aircraft.model_fields
-    found += [((key,), _PYDANTIC_MESSAGES["extra_forbidden"], None) for key in data if key not in fields]
+    found += [((key,), pydantic_messages("certkit schema")["extra_forbidden"], None) for key in data if key not in fields]
     for name, info in fields.items():
         if name not in data:
             if info.is_required():
@@ -82,14 +51,11 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
         try:
             sections[name] = TypeAdapter(info.annotation).validate_python(data[name])
         except ValidationError as err:
-            found += _from_pydantic(err, (name,))
-    found += [(_split(p.path), p.message, _raw_at(data, _split(p.path), p.value)) for p in consistency_problems(sections)]
+            found += found_in(err, (name,))
+    found += [(split_path(p.path), p.message, raw_at(data, split_path(p.path), p.value))
+              for p in consistency_problems(sections)]
     if found:
-        raise InputError(path, [
-            Problem(".".join(map(str, loc)), message, value,
-                    source.line_of(loc) if source else None, source.path if source else None)
-            for loc, message, value in found
-        ])
+        raise InputError(path, located(found, source))
     return Aircraft.model_validate(data)
 
 

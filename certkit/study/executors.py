@@ -1,0 +1,225 @@
+"""Where cases run: ``serial`` (this process), ``local`` (a pool of worker processes, the default) or ``dask``
+(dask.distributed: a LocalCluster of worker processes, or an existing scheduler and its workers).
+
+Each executor is a context manager whose ``map_unordered(tasks)`` yields a :class:`CaseResult` per task as
+cases finish, keeping only a few tasks in flight (so that an interrupted run has little to redo and a huge
+study costs no memory up front). Leaving the context stops the workers.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import deque
+from collections.abc import Iterable, Iterator
+
+from certkit.errors import UserError
+from certkit.study.worker import CaseResult, Task, run_case
+
+EXECUTORS = ("local", "dask", "serial")
+IN_FLIGHT_PER_WORKER = 2
+
+
+def available_cores() -> int:
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+def _died(task: Task, where: str) -> CaseResult:
+    return CaseResult(task.key, "failed", f"the worker process died while evaluating this case ({where})", 0.0, "")
+
+
+class SerialExecutor:
+    """Every case in this process, one after the other (debugging, profiling)."""
+
+    workers = 1
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        return None
+
+    def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
+        for task in tasks:
+            yield run_case(task)
+
+
+class LocalExecutor:
+    """A pool of ``workers`` spawned processes (spawn: no state inherited by forking a threaded process).
+
+    The workers ignore Ctrl-C and die with the coordinator (see :func:`~certkit.study.worker.init_local_worker`).
+    A worker that dies in a case (a crash, the kernel's OOM killer) breaks the pool: the pool is restarted and
+    the cases that were in flight are run again one at a time, so that the case that kills its worker is
+    recorded as failed — once, not retried forever — and the others are not blamed.
+    """
+
+    def __init__(self, workers: int):
+        self.workers = max(1, workers)
+        self._pool = None
+
+    def _start(self) -> None:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+        from concurrent.futures.process import BrokenProcessPool
+
+        from certkit.study.worker import init_local_worker
+
+        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(var, "1")  # one BLAS thread per worker: threaded BLAS in N processes oversubscribes
+        self._pool = ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("spawn"),
+                                         initializer=init_local_worker, initargs=(os.getpid(),))
+        try:  # a pool whose workers cannot start is the machine's problem, not the cases': stop, blame no case
+            self._pool.submit(os.getpid).result()
+        except BrokenProcessPool:
+            self._stop()
+            raise UserError("the local worker processes die on start-up (see the messages above); "
+                            "--executor serial runs the cases in this process") from None
+
+    def _stop(self) -> None:
+        if self._pool is None:
+            return
+        processes = list(getattr(self._pool, "_processes", {}).values())  # no public handle before Python 3.14
+        for process in processes:
+            if process.is_alive():
+                process.terminate()
+        self._pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            process.join(timeout=5)
+        self._pool = None
+
+    def __enter__(self):
+        self._start()
+        return self
+
+    def __exit__(self, *exc):
+        self._stop()
+
+    def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
+        from concurrent.futures import FIRST_COMPLETED, wait
+        from concurrent.futures.process import BrokenProcessPool
+
+        tasks = iter(tasks)
+        in_flight: dict = {}  # future → (task, run alone)
+        suspects: deque[Task] = deque()
+        limit = IN_FLIGHT_PER_WORKER * self.workers
+
+        def submit(task: Task, alone: bool) -> bool:
+            try:
+                in_flight[self._pool.submit(run_case, task)] = (task, alone)
+                return True
+            except BrokenProcessPool:  # broken since the last wait: the task never started
+                suspects.appendleft(task)
+                return False
+
+        while True:
+            broken = False
+            if suspects:
+                if not in_flight:
+                    broken = not submit(suspects.popleft(), True)
+            else:
+                while not broken and len(in_flight) < limit and (task := next(tasks, None)) is not None:
+                    broken = not submit(task, False)
+            if not in_flight and not broken:
+                return
+            done = wait(in_flight, return_when=FIRST_COMPLETED)[0] if not broken else ()
+            for future in done:
+                task, alone = in_flight.pop(future)
+                try:
+                    yield future.result()
+                except BrokenProcessPool:
+                    broken = True
+                    if alone:
+                        yield _died(task, "alone in the pool")
+                    else:
+                        suspects.append(task)
+            if broken:
+                for future, (task, _alone) in list(in_flight.items()):
+                    if future.done() and future.exception() is None:
+                        yield future.result()
+                    else:
+                        suspects.append(task)
+                in_flight.clear()
+                self._stop()
+                self._start()
+
+
+class DaskExecutor:
+    """dask.distributed: the given scheduler's workers, or a LocalCluster of ``workers`` processes with one
+    thread each. The workers need certkit (and the evaluator) importable. A worker lost in a case is retried
+    by dask up to ``distributed.scheduler.allowed-failures`` times, then the case is recorded as failed."""
+
+    def __init__(self, workers: int, scheduler: str | None = None):
+        self.workers = max(1, workers)
+        self.scheduler = scheduler
+        self._cluster = None
+        self._client = None
+
+    def __enter__(self):
+        import logging
+
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            raise UserError("--executor dask needs dask.distributed: pip install 'dask[distributed]'") from None
+        if self.scheduler:
+            try:
+                self._client = Client(self.scheduler, timeout="20s")
+            except (OSError, TimeoutError) as exc:
+                raise UserError(f"cannot reach the dask scheduler at {self.scheduler}: {exc}") from None
+            self.workers = max(1, sum(self._client.nthreads().values()))
+        else:
+            self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
+                                         dashboard_address=None, silence_logs=logging.ERROR)
+            self._client = Client(self._cluster)
+        return self
+
+    def __exit__(self, *exc):
+        if self._client is not None:
+            self._client.close()
+        if self._cluster is not None:
+            self._cluster.close()
+
+    def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
+        from distributed import as_completed
+        from distributed.scheduler import KilledWorker
+
+        tasks = iter(tasks)
+        running = as_completed()
+        by_future: dict = {}
+
+        def submit(n: int) -> None:
+            for _ in range(n):
+                task = next(tasks, None)
+                if task is None:
+                    return
+                future = self._client.submit(run_case, task, key=f"certkit-case-{task.key}", pure=False, retries=0)
+                by_future[future.key] = task
+                running.add(future)
+
+        submit(IN_FLIGHT_PER_WORKER * self.workers)
+        for future in running:
+            task = by_future.pop(future.key)
+            try:
+                yield future.result()
+            except KilledWorker as exc:
+                yield _died(task, f"dask: {exc}")
+            finally:
+                future.release()
+            submit(1)
+
+
+def make_executor(name: str, workers: int | None = None, scheduler: str | None = None):
+    if name not in EXECUTORS:
+        raise UserError(f"unknown executor {name!r} (one of {', '.join(EXECUTORS)})")
+    if scheduler and name != "dask":
+        raise UserError("--scheduler is for --executor dask")
+    if workers is not None and workers < 1:
+        raise UserError(f"--workers must be 1 or more (got {workers})")
+    workers = workers or available_cores()
+    if name == "serial":
+        return SerialExecutor()
+    if name == "local":
+        return LocalExecutor(workers)
+    return DaskExecutor(workers, scheduler)
+
+
+__all__ = ["EXECUTORS", "make_executor", "available_cores", "SerialExecutor", "LocalExecutor", "DaskExecutor"]

@@ -1,0 +1,305 @@
+"""The study file: which aircraft, which design variables, which designs of experiments, what to record.
+
+YAML read like the aircraft file (every value's line remembered, :mod:`certkit.aircraft.yaml_source`) and
+validated with pydantic; every problem is reported at once with its YAML path and line (exit code 2).
+Quantities are numbers in SI or strings with a unit ("1119 ft^2", "34.82 deg"), converted at load time, so
+that a validated :class:`Study` holds SI floats only. ``certkit study schema`` prints the JSON Schema.
+"""
+
+from __future__ import annotations
+
+import re
+from fnmatch import fnmatchcase
+from pathlib import Path
+from typing import Annotated, Literal, Union
+
+from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, ValidationInfo,
+                      WithJsonSchema, field_validator, model_validator)
+
+from certkit.aircraft.pydantic_problems import Found, found_in, located
+from certkit.aircraft.yaml_source import load_yaml
+from certkit.errors import InputError, Problem
+from certkit.units import DIMENSIONS, UnitError, to_si
+
+SCHEMA_COMMAND = "certkit study schema"
+ROLES = ("training", "validation")
+_PERCENT = re.compile(r"^\s*(?:±|\+-|\+/-)\s*([0-9]*\.?[0-9]+(?:[eE][-+]?[0-9]+)?)\s*(?:%|percent)\s*$")
+_PATH = r"^[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)+$"
+
+
+def parse_quantity(value: object) -> tuple[float, str | None]:
+    """A number (taken as SI) or a string with a unit of any known dimension → (SI float, dimension name).
+    A bare number has no dimension (None); angles and plain ratios share the dimension name "angle"."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ValueError(f"expected a number or a string with a unit, got {type(value).__name__}")
+    if not isinstance(value, str):
+        return float(value), None
+    for dimension in DIMENSIONS:
+        try:
+            return to_si(value, dimension), dimension
+        except UnitError:
+            continue
+    raise ValueError(f"cannot read {value!r} as a number or a quantity with a unit")
+
+
+def _si(value: object) -> object:
+    if not isinstance(value, str):
+        return value  # a number, or a wrong type that pydantic reports with its own words
+    return parse_quantity(value)[0]
+
+
+Quantity = Annotated[float, BeforeValidator(_si), WithJsonSchema({
+    "anyOf": [{"type": "number"}, {"type": "string"}],
+    "description": "a number in SI units or a string with a unit, e.g. \"1119 ft^2\", \"34.82 deg\""})]
+
+
+class _Model(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class Variable(_Model):
+    """A design variable: an aircraft-file path, its baseline and its bounds (SI once validated)."""
+
+    path: str = Field(pattern=_PATH, description="aircraft-file path, e.g. geometry.horizontal_tail.area")
+    baseline: Quantity = Field(description="the baseline design's value")
+    bounds: Annotated[tuple[float, float], WithJsonSchema({
+        "anyOf": [{"type": "array", "minItems": 2, "maxItems": 2,
+                   "items": {"anyOf": [{"type": "number"}, {"type": "string"}]}},
+                  {"type": "string", "pattern": "^\\s*(±|\\+-|\\+/-)"}],
+        "description": "[lower, upper] (numbers in SI or strings with a unit), or \"±20 %\" of the baseline"})]
+    unit_label: str = Field("", description="unit to show values in (default: the unit written for the baseline "
+                                            "or bounds; empty for SI)")
+
+    @property
+    def lower(self) -> float:
+        return self.bounds[0]
+
+    @property
+    def upper(self) -> float:
+        return self.bounds[1]
+
+    @model_validator(mode="before")
+    @classmethod
+    def _units_agree(cls, data: object) -> object:
+        """The baseline and the bounds written with units must all be of one dimension; the first unit written
+        becomes the display unit."""
+        if not isinstance(data, dict):
+            return data
+        written = [data.get("baseline")]
+        if isinstance(data.get("bounds"), (list, tuple)):
+            written += list(data["bounds"])
+        dims, label = set(), ""
+        for value in written:
+            if isinstance(value, str) and not _PERCENT.match(value):
+                try:
+                    _, dim = parse_quantity(value)
+                except ValueError:
+                    continue  # reported on the field itself
+                dims.add(dim)
+                label = label or _unit_of(value)
+        if len(dims) > 1:
+            raise ValueError(f"baseline and bounds are written in units of different kinds ({', '.join(sorted(dims))})")
+        if label and "unit_label" not in data:
+            data = {**data, "unit_label": label}
+        return data
+
+    @field_validator("bounds", mode="before")
+    @classmethod
+    def _absolute(cls, value: object, info: ValidationInfo) -> object:
+        """``"±P %"`` of the baseline → [lower, upper]; a pair of quantities → SI floats."""
+        if isinstance(value, str):
+            match = _PERCENT.match(value)
+            if not match:
+                raise ValueError('bounds must be [lower, upper] or a percentage of the baseline such as "±20 %"')
+            if "baseline" not in info.data:
+                raise ValueError("a ± percentage needs a valid baseline")
+            base, p = info.data["baseline"], float(match.group(1)) / 100.0
+            return tuple(sorted((base * (1.0 - p), base * (1.0 + p))))
+        if isinstance(value, (list, tuple)):
+            return tuple(_si(v) for v in value)
+        return value
+
+    @field_validator("bounds")
+    @classmethod
+    def _ordered(cls, value: tuple[float, float], info: ValidationInfo) -> tuple[float, float]:
+        lower, upper = value
+        if not lower < upper:
+            raise ValueError(f"the lower bound ({lower:g}) must be below the upper bound ({upper:g}) (SI units)")
+        base = info.data.get("baseline")
+        if base is not None and not lower <= base <= upper:
+            raise ValueError(f"the baseline ({base:g}) lies outside the bounds [{lower:g}, {upper:g}] (SI units)")
+        return value
+
+
+def _unit_of(text: str) -> str:
+    """The unit part of "1119 ft^2" → "ft^2"."""
+    match = re.match(r"^\s*[-+]?(?:[0-9]*\.?[0-9]+)(?:[eE][-+]?[0-9]+)?\s*(.*?)\s*$", text)
+    return match.group(1) if match else ""
+
+
+class _Block(_Model):
+    name: str = Field(pattern=r"^[A-Za-z0-9][A-Za-z0-9_.-]*$", description="block name (unique in the study)")
+    role: Literal["training", "validation"] = Field("training", description="training data, or held-out validation")
+
+
+class CcdBlock(_Block):
+    """Face-centred central composite design (axial points on the faces, α = 1: three levels, inside the
+    bounds), on a resolution-V two-level fraction unless ``fraction: full`` (NIST/SEMATECH e-Handbook §5.3.3.6.1)."""
+
+    generator: Literal["ccd"]
+    fraction: Literal["resolution-v", "full"] = Field(
+        "resolution-v", description="factorial part: smallest fraction of resolution V or more (pydoe "
+                                    "fracfact_by_res), or the full 2^k factorial")
+    center: int = Field(1, ge=0, description="centre points (repeats of one point count once)")
+
+
+class BoxBehnkenBlock(_Block):
+    """Box–Behnken design (Box & Behnken 1960; pydoe bbdesign): pairs of factors at ±1, the others at the centre."""
+
+    generator: Literal["box-behnken"]
+    center: int = Field(0, ge=0, description="centre points (repeats of one point count once)")
+
+
+class LhsBlock(_Block):
+    """Latin hypercube (scipy.stats.qmc.LatinHypercube), space-filling by default: ``random-cd`` lowers the
+    centred L2-discrepancy by random coordinate swaps (Fang et al. 2002); ``lloyd`` relaxes towards a
+    centroidal Voronoi tessellation; ``none`` keeps the plain random LHS."""
+
+    generator: Literal["lhs"]
+    n: int = Field(gt=0, description="number of points")
+    seed: int = Field(ge=0, description="random seed (the same seed gives the same points)")
+    criterion: Literal["random-cd", "lloyd", "none"] = Field("random-cd", description="space-filling criterion")
+
+
+class RandomBlock(_Block):
+    """Independent uniform points (numpy PCG64 generator); a larger ``n`` with the same seed keeps the first points."""
+
+    generator: Literal["random"]
+    n: int = Field(gt=0, description="number of points")
+    seed: int = Field(ge=0, description="random seed (the same seed gives the same points)")
+
+
+DesignBlock = Annotated[Union[CcdBlock, BoxBehnkenBlock, LhsBlock, RandomBlock], Field(discriminator="generator")]
+
+
+class Objective(_Model):
+    response: str = Field(description="response name, e.g. objective.block_fuel_kg")
+    sense: Literal["min", "max"] = "min"
+
+
+class Constraint(_Model):
+    """Feasible when ``min <= response <= max`` (either side optional, SI units)."""
+
+    name: str
+    response: str = Field(description="response name, e.g. subcheck.25.111.elevator_fraction_of_travel.value")
+    min: Quantity | None = None
+    max: Quantity | None = None
+
+    @model_validator(mode="after")
+    def _bounded(self) -> "Constraint":
+        if self.min is None and self.max is None:
+            raise ValueError("a constraint needs a min or a max (or both)")
+        if self.min is not None and self.max is not None and self.min > self.max:
+            raise ValueError(f"min ({self.min:g}) is above max ({self.max:g})")
+        return self
+
+
+class Study(_Model):
+    """A design study: variables with bounds, designs of experiments, and what each case records."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, json_schema_extra={"title": "certkit study file"})
+
+    name: str = Field("", description="study name (default: the file name)")
+    aircraft: str = Field(description="the base aircraft file, relative to the study file "
+                                      "(held as an absolute path once loaded)")
+    variables: list[Variable] = Field(min_length=1)
+    designs: list[DesignBlock] = Field(min_length=1)
+    responses: list[str] = Field(default_factory=list, description="response names or glob patterns each case "
+                                 "records (e.g. objective.*, rule.*.margin); empty = every response")
+    objectives: list[Objective] = Field(default_factory=list)
+    constraints: list[Constraint] = Field(default_factory=list)
+
+    def variable_paths(self) -> list[str]:
+        return [v.path for v in self.variables]
+
+    def requested(self, response: str) -> bool:
+        """True when ``response`` is matched by one of the study's response patterns (every one if none)."""
+        return not self.responses or any(fnmatchcase(response, p) for p in self.responses)
+
+
+_MIN_FACTORS = {"ccd": 2, "box-behnken": 3}
+
+
+def relation_problems(study: Study) -> list[Found]:
+    """What each field alone cannot tell: duplicates, designs the number of variables does not allow,
+    objectives and constraints on responses the study does not record."""
+    found: list[Found] = []
+
+    def unique(items, field: str, section: str):
+        seen: dict[str, int] = {}
+        for i, item in enumerate(items):
+            value = getattr(item, field)
+            if value in seen:
+                found.append(((section, i, field), f"duplicate (first at {section}.{seen[value]})", value))
+            seen.setdefault(value, i)
+
+    unique(study.variables, "path", "variables")
+    unique(study.designs, "name", "designs")
+    unique(study.constraints, "name", "constraints")
+    for i, block in enumerate(study.designs):
+        need = _MIN_FACTORS.get(block.generator, 1)
+        if len(study.variables) < need:
+            found.append((("designs", i, "generator"), f"{block.generator} needs at least {need} variables "
+                          f"(the study has {len(study.variables)})", block.generator))
+    for section, items in (("objectives", study.objectives), ("constraints", study.constraints)):
+        for i, item in enumerate(items):
+            if not study.requested(item.response):
+                found.append(((section, i, "response"), "not recorded: no pattern of `responses:` matches it",
+                              item.response))
+    return found
+
+
+def _without_tag(loc: tuple) -> tuple:
+    """pydantic puts the discriminating tag in an error's location (designs.2.lhs.seed): not a YAML path."""
+    if len(loc) > 2 and loc[0] == "designs" and loc[2] in _GENERATORS:
+        return loc[:2] + loc[3:]
+    return loc
+
+
+_GENERATORS = ("ccd", "box-behnken", "lhs", "random")
+
+
+def validate_study(data: object, source=None, base_dir: Path | None = None) -> Study:
+    """Validate plain data; raise :class:`InputError` with every problem (path and line when ``source`` is
+    given). The aircraft path is resolved against ``base_dir`` and must name an existing file."""
+    path = source.path if source else "<data>"
+    if not isinstance(data, dict):
+        raise InputError(path, [Problem("", "the study file must be a mapping (aircraft:, variables:, designs:, ...)",
+                                        type(data).__name__)])
+    try:
+        study = Study.model_validate(data)
+    except ValidationError as err:
+        found = [(_without_tag(loc), message, value) for loc, message, value in found_in(err, schema_command=SCHEMA_COMMAND)]
+        raise InputError(path, located(found, source)) from None
+    found = relation_problems(study)
+    aircraft = Path(study.aircraft).expanduser()
+    if not aircraft.is_absolute():
+        aircraft = (base_dir or Path.cwd()) / aircraft
+    if not aircraft.is_file():
+        found.append((("aircraft",), f"aircraft file not found ({aircraft})", study.aircraft))
+    if found:
+        raise InputError(path, located(found, source))
+    return study.model_copy(update={"aircraft": str(aircraft.resolve())})
+
+
+def load_study(path: str | Path) -> Study:
+    """Read and validate a study file; the name defaults to the file's stem."""
+    source = load_yaml(path)
+    study = validate_study(source.data, source, Path(path).resolve().parent)
+    return study if study.name else study.model_copy(update={"name": Path(path).stem})
+
+
+def json_schema() -> dict:
+    schema = Study.model_json_schema()
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    return schema

@@ -1,0 +1,117 @@
+"""What runs in a worker process: one case → one :class:`CaseResult`, never an exception.
+
+The evaluator is named by a dotted path ("package.module:function") and imported once per process, so that
+what it keeps between calls (the parsed aircraft, compiled kernels, influence blocks) serves every case the
+process evaluates. A :class:`~certkit.errors.UserError` is a mistake of the study (a bad variable path), not of
+the design: it comes back as ``user_error`` and stops the run; any other exception is a failed case.
+This module imports only the standard library and certkit.errors: a worker process starts fast.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import importlib
+import json
+import os
+import signal
+import socket
+import sys
+import threading
+import time
+import traceback
+from dataclasses import dataclass
+
+from certkit.errors import UserError
+
+_EVALUATORS: dict[str, object] = {}
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """What a worker returns for one case."""
+
+    key: str
+    status: str  # "ok" | "failed" | "user_error" (a mistake of the study, not of the design)
+    error: str | None
+    wall_s: float
+    worker: str
+    record: str | None = None  # canonical JSON
+    timings: str | None = None
+
+
+@dataclass(frozen=True)
+class Task:
+    key: str
+    evaluator: str
+    aircraft_path: str
+    values: dict[str, float]
+    responses: tuple[str, ...] | None
+
+
+def resolve_evaluator(name: str):
+    """``"pkg.module:function"`` (or ``"pkg.module.function"``) → the function, imported once per process."""
+    if name not in _EVALUATORS:
+        module, _, attr = name.partition(":") if ":" in name else name.rpartition(".")
+        try:
+            _EVALUATORS[name] = getattr(importlib.import_module(module), attr)
+        except (ImportError, AttributeError, ValueError) as exc:
+            raise UserError(f"cannot load the evaluator {name!r}: {exc}") from None
+    return _EVALUATORS[name]
+
+
+def canonical_json(value: object) -> str:
+    """Sorted keys, no spaces, no NaN (the record contract uses None for what was not computed)."""
+    return json.dumps(value, sort_keys=True, separators=(",", ":"), allow_nan=False, ensure_ascii=False)
+
+
+def worker_id() -> str:
+    return f"{socket.gethostname()}:{os.getpid()}"
+
+
+def _where(exc: BaseException) -> str:
+    frames = traceback.extract_tb(exc.__traceback__)
+    if not frames:
+        return ""
+    last = frames[-1]
+    return f" (at {os.path.basename(last.filename)}:{last.lineno} in {last.name})"
+
+
+def run_case(task: Task) -> CaseResult:
+    start = time.perf_counter()
+    elapsed = lambda: time.perf_counter() - start  # noqa: E731
+    try:
+        evaluate = resolve_evaluator(task.evaluator)
+        record = dict(evaluate(task.aircraft_path, dict(task.values), list(task.responses) if task.responses else None))
+        timings = record.pop("timings", None)
+        text = canonical_json(record)
+        return CaseResult(task.key, "ok", None, elapsed(), worker_id(), text,
+                          None if timings is None else canonical_json(timings))
+    except UserError as exc:
+        return CaseResult(task.key, "user_error", str(exc), elapsed(), worker_id())
+    except Exception as exc:  # a failed design is data: its reason is recorded, the study goes on
+        return CaseResult(task.key, "failed", f"{type(exc).__name__}: {exc}{_where(exc)}", elapsed(), worker_id())
+
+
+_PR_SET_PDEATHSIG = 1
+
+
+def init_local_worker(coordinator_pid: int) -> None:
+    """Initialiser of a local worker process: Ctrl-C is the coordinator's to handle (a worker interrupted
+    mid-case would report a failure that is not the design's), and the worker dies with its coordinator —
+    by the kernel (Linux PR_SET_PDEATHSIG) or, elsewhere and as a fallback, by a thread that watches the
+    parent process id."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if sys.platform.startswith("linux"):
+        try:
+            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+        except (OSError, AttributeError):
+            pass
+    if os.getppid() != coordinator_pid:  # the coordinator died before the line above took effect
+        os._exit(1)
+
+    def watch() -> None:
+        while os.getppid() == coordinator_pid:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="certkit-coordinator-watch", daemon=True).start()
