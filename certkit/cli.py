@@ -296,7 +296,14 @@ def evaluate_command(aircraft_file, settings, responses, as_json):
     from certkit.design.report import print_record
     from certkit.design.variables import parse_setting
 
-    record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None)
+    from certkit.design.sizing_loop import SizingNotConverged
+    from certkit.models.structure.box import StructuralSizingError
+
+    try:
+        record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None)
+    except (SizingNotConverged, StructuralSizingError) as exc:  # the design is possible but cannot be sized
+        click.echo(f"error: the design could not be evaluated: {exc}", err=True)
+        sys.exit(1)
     if as_json:
         click.echo(json.dumps(record, indent=2, allow_nan=False))
     else:

@@ -44,3 +44,9 @@ class InputError(UserError):
         n = len(self.problems)
         head = f"{source}: {n} problem{'s' if n != 1 else ''} found"
         super().__init__("\n".join([head] + [f"  - {p}" for p in self.problems]))
+
+
+class InfeasibleDesign(UserError):
+    """Design-variable values that make an impossible aircraft (taper above 1, a tail tip behind the fuselage end):
+    a user error for one design (``certkit evaluate`` exits 2), a failed case with its reason in a study whose
+    bounds reach such values."""

@@ -182,8 +182,9 @@ def design_hinge_moment(ctx, results) -> dict:
     return best
 
 
-def size_tail_group(aircraft, ctx, envelope, results) -> TailGroup:
-    """Size the structure for the limit-load envelope × 1.5 (§25.303) and the actuators for the design hinge moment."""
+def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) -> TailGroup:
+    """Size the structure for the limit-load envelope × 1.5 (§25.303) × (1 + ``allowance``) and the actuators for
+    the design hinge moment."""
     from certkit.models.loads.model import airplane_loads
     from certkit.models.structure.actuators import size_elevator_actuators
     from certkit.models.structure.box import UltimateLoads
@@ -192,7 +193,7 @@ def size_tail_group(aircraft, ctx, envelope, results) -> TailGroup:
     tail = airplane_loads(ctx)["horizontal_tail"]
     if tuple(tail.station_names) != tuple(envelope.stations):
         raise ValueError(f"load stations {envelope.stations} differ from the loads model's {tail.station_names}")
-    lim = envelope.limit
+    lim = envelope.limit * (1.0 + allowance)
     ult = UltimateLoads(np.asarray(tail.station_span, dtype=float), 1.5 * lim[0], 1.5 * lim[1], 1.5 * lim[2])
     sized = size_horizontal_tail(aircraft, ult)
     p = sized.properties

@@ -22,7 +22,7 @@ import yaml
 
 from certkit.aircraft import Aircraft, validate_aircraft_data
 from certkit.aircraft.yaml_source import YamlSource
-from certkit.errors import InputError, UserError
+from certkit.errors import InfeasibleDesign, InputError, UserError
 
 #: the horizontal-tail redesign variables of the seed study (issue 13), with what each one means
 HORIZONTAL_TAIL_VARIABLES = {
@@ -39,6 +39,10 @@ HORIZONTAL_TAIL_VARIABLES = {
 
 class DesignError(UserError):
     """A design variable that cannot be applied: unknown path, wrong value, or an impossible aircraft."""
+
+
+class ImpossibleDesign(DesignError, InfeasibleDesign):
+    """Design-variable values that the aircraft file's validation rejects (a failed case in a study)."""
 
 
 @dataclass(frozen=True)
@@ -127,18 +131,20 @@ def design_aircraft(source: YamlSource, settings: list[Setting], data: dict | No
     try:
         return validate_aircraft_data(data, source)
     except InputError as err:
-        lines = []
+        lines, related = [], 0
         for p in err.problems:
             owners = [s for s in settings if p.path == s.path or p.path.startswith(s.path + ".")
                       or s.path.startswith(p.path + ".")]
             if owners:
+                related += 1
                 names = ", ".join(map(str, owners))
                 lines.append(f"  - design variable{'s' if len(owners) > 1 else ''} {names}: {p.path}: {p.message}"
                              + ("" if p.value is None or len(owners) > 1 else f" (got {p.value!r})"))
             else:
                 lines.append(f"  - {p}")
         head = f"{source.path} with {', '.join(map(str, settings))}: {len(lines)} problem{'s' if len(lines) != 1 else ''}"
-        raise DesignError("\n".join([head] + lines)) from None
+        error = ImpossibleDesign if related == len(lines) else DesignError
+        raise error("\n".join([head] + lines)) from None
 
 
 def settings_from(values: Mapping[str, object] | list[Setting] | None) -> list[Setting]:

@@ -21,7 +21,7 @@ import time
 import traceback
 from dataclasses import dataclass
 
-from certkit.errors import UserError
+from certkit.errors import InfeasibleDesign, UserError
 
 _EVALUATORS: dict[str, object] = {}
 
@@ -86,6 +86,8 @@ def run_case(task: Task) -> CaseResult:
         text = canonical_json(record)
         return CaseResult(task.key, "ok", None, elapsed(), worker_id(), text,
                           None if timings is None else canonical_json(timings))
+    except InfeasibleDesign as exc:  # this design's values make an impossible aircraft: a failed case
+        return CaseResult(task.key, "failed", f"infeasible design: {exc}", elapsed(), worker_id())
     except UserError as exc:
         return CaseResult(task.key, "user_error", str(exc), elapsed(), worker_id())
     except Exception as exc:  # a failed design is data: its reason is recorded, the study goes on
