@@ -41,6 +41,7 @@ DIMENSIONS: dict[str, str] = {
     "acceleration": "m/s**2",
     "gearing": "rad/m",  # control gearing: surface angle per metre of cockpit travel
     "stiffness": "N/m",  # feel-spring gradient: force per metre of cockpit travel
+    "specific_fuel_consumption": "kg/N/s",  # thrust-specific fuel consumption ("0.52 lb/lbf/h")
     "dimensionless": "",
 }
 

@@ -53,6 +53,7 @@ SpeedValue = quantity("speed")
 Pressure = quantity("pressure")
 Gearing = quantity("gearing")
 Stiffness = quantity("stiffness")
+SpecificFuelConsumption = quantity("specific_fuel_consumption")
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 PositiveArea = Annotated[Area, Field(gt=0)]
