@@ -45,7 +45,7 @@ from certkit import atmosphere as isa
 from certkit.errors import UserError
 from certkit.models.performance.integrators import LevelCruise, fly_path
 from certkit.models.performance.mission_tables import MissionTables, build_tables
-from certkit.units import FT, G0, LB
+from certkit.units import FT
 
 NMI = 1852.0
 
@@ -477,4 +477,4 @@ def _speed_notes(aircraft) -> list[str]:
 
 
 __all__ = ["fly_missions", "MissionResult", "MissionProfile", "PayloadRangePoint", "CruiseDrag", "Phase", "StepClimb",
-           "MissionFlyer", "cruise_drag", "NMI", "LB", "G0"]
+           "MissionFlyer", "cruise_drag", "NMI"]
