@@ -392,7 +392,7 @@ def fly_missions(aircraft, ctx=None, oew_kg: float | None = None) -> MissionResu
                         f"(min of mass.max_payload and MZFW − OEW with OEW {oew:.0f} kg)")
     capacity = fuel_capacity(aircraft)
     ctx = _context(aircraft, ctx)
-    lo = 0.8 * min(mass.OEW, oew)
+    lo = 0.8 * (mass.OEW if oew >= 0.85 * mass.OEW else oew)  # one table for every OEW near the declared one
     tables = ctx.memo(("mission_tables", round(lo, 0)), lambda: build_tables(ctx, aircraft, (lo, 1.05 * mass.MTOW)))
     t1 = time.perf_counter()
     flyer = MissionFlyer(aircraft, tables, oew)
