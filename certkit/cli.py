@@ -1,4 +1,4 @@
-"""Command line: ``certkit check | rules | explain | schema | new-rule | study ...``.
+"""Command line: ``certkit check | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated.
@@ -266,6 +266,28 @@ def modes_command(aircraft_file, **kw):
         re, im = m["eigenvalue"]
         click.echo(f"{name:<14}{re:>12.5f} {im:+11.5f}j{m['natural_frequency_rad_s']:>15.4f}{m['damping_ratio']:>9.4f}"
                    f"{fmt(m['period_s']):>10}{fmt(m['time_to_half_s']):>10}{fmt(m['time_to_double_s']):>11}")
+
+
+@main.command(name="mission")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@click.option("--oew", help="Operating empty weight replacing the declared one, with unit ('306000 lb').")
+@click.option("--svg", "svg_path", type=click.Path(dir_okay=False), help="Write the payload-range diagram (SVG) here.")
+@click.option("--json", "as_json", is_flag=True, help="Machine-readable output (SI).")
+def mission_command(aircraft_file, oew, svg_path, as_json):
+    """Design range, payload-range, block fuel and time of the nominal mission, cruise drag (the mission: section)."""
+    from certkit.aircraft import load_aircraft
+    from certkit.context import Context
+    from certkit.flight_report import _quantity
+    from certkit.models.performance.mission import fly_missions
+    from certkit.models.performance.mission_report import mission_json, mission_table
+
+    loaded = load_aircraft(aircraft_file)
+    result = fly_missions(loaded.model, Context(loaded), oew_kg=_quantity(oew, "mass", "--oew") if oew else None)
+    if svg_path:
+        from certkit.report.mission_plots import payload_range_svg
+
+        Path(svg_path).write_text(payload_range_svg(result.payload_range, result.range_requirement_m), encoding="utf-8")
+    click.echo(json.dumps(mission_json(result), indent=2) if as_json else mission_table(result))
 
 
 @main.command(name="new-rule")

@@ -45,6 +45,8 @@ DIMENSIONS: dict[str, str] = {
     "areal_density": "kg/m**2",  # mass per unit planform area (structural sizing)
     "angular_rate": "rad/s",
     "mass_per_energy": "kg/J",  # actuator mass per unit work capacity (stall force × stroke)
+
+    "specific_fuel_consumption": "kg/N/s",  # thrust-specific fuel consumption ("0.52 lb/lbf/h")
     "dimensionless": "",
 }
 

@@ -295,3 +295,53 @@ def _sizing_geometry(s):
     if sz.elevator_actuators is not None and elevator is None:
         yield ("sizing.elevator_actuators", "no control surface named 'elevator' on geometry.horizontal_tail "
                f"(declared: {', '.join(ht.controls) or 'none'})", None)
+
+@needs("mass")
+def _fuel_capacity(s):
+    m = s["mass"]
+    capacity = sum(t.capacity for t in m.fuel_tanks)
+    if m.max_fuel is not None and m.fuel_tanks and m.max_fuel > capacity * (1 + 1e-3):
+        yield "mass.max_fuel", f"exceeds the capacity of the declared fuel tanks ({capacity:.0f} kg)", m.max_fuel
+
+
+@needs("mission", "mass")
+def _mission_payload(s):
+    mission, m = s["mission"], s["mass"]
+    room = m.MZFW - m.OEW
+    if m.max_payload is not None and mission.design_payload > m.max_payload * (1 + 1e-9):
+        yield "mission.design_payload", f"exceeds mass.max_payload ({m.max_payload:.0f} kg)", mission.design_payload
+    elif mission.design_payload > room * (1 + 1e-9):
+        yield "mission.design_payload", f"exceeds MZFW − OEW ({room:.0f} kg)", mission.design_payload
+    dc = mission.drag_condition
+    if dc.mass is not None and not (m.OEW < dc.mass <= m.MTOW):
+        yield "mission.drag_condition.mass", f"must lie between OEW ({m.OEW:.0f} kg) and MTOW ({m.MTOW:.0f} kg)", dc.mass
+
+
+@needs("mission", "envelope")
+def _mission_altitudes(s):
+    mission, ceiling = s["mission"], s["envelope"].ceiling
+    top = mission.max_altitude if mission.max_altitude is not None else ceiling
+    if mission.max_altitude is not None and mission.max_altitude > ceiling * (1 + 1e-9):
+        yield "mission.max_altitude", f"above envelope.ceiling ({ceiling:.0f} m)", mission.max_altitude
+    if mission.initial_altitude > top * (1 + 1e-9):
+        yield "mission.initial_altitude", f"above the highest cruise level ({top:.0f} m)", mission.initial_altitude
+    r = mission.reserves
+    if r.alternate_altitude > ceiling:
+        yield "mission.reserves.alternate_altitude", f"above envelope.ceiling ({ceiling:.0f} m)", r.alternate_altitude
+    if r.hold_altitude >= r.alternate_altitude:
+        yield "mission.reserves.hold_altitude", f"must be below the alternate cruise altitude ({r.alternate_altitude:.0f} m)", r.hold_altitude
+    if mission.speed_limit_altitude >= mission.initial_altitude:
+        yield "mission.speed_limit_altitude", f"must be below the initial cruise altitude ({mission.initial_altitude:.0f} m)", mission.speed_limit_altitude
+    if not (0.0 <= mission.drag_condition.altitude <= ceiling):
+        yield "mission.drag_condition.altitude", f"outside 0 … envelope.ceiling ({ceiling:.0f} m)", mission.drag_condition.altitude
+    lo, hi = mission.low_altitude_speed, mission.climb_speed
+    if lo.kind == hi.kind and lo.value > hi.value:
+        yield "mission.low_altitude_speed", f"must not exceed the climb speed ({hi.value:.2f} m/s {hi.kind})", lo.value
+
+
+@needs("mission", "cg_envelope")
+def _mission_cg(s):
+    x = s["mission"].cruise_cg
+    xs = [v.x for v in s["cg_envelope"].vertices]
+    if x is not None and not (min(xs) <= x <= max(xs)):
+        yield "mission.cruise_cg", f"outside the CG envelope ({min(xs):.2f} to {max(xs):.2f} m)", x

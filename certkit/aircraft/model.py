@@ -15,7 +15,8 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validat
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
     Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
-    PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, Speed, Stiffness,
+    PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, SpecificFuelConsumption, Speed, SpeedValue,
+    Stiffness, Time,
 )
 
 
@@ -338,6 +339,78 @@ class Performance(_Section):
     source: str | None = None
 
 
+class TsfcCalibration(_Section):
+    """A cruise thrust-specific fuel consumption of the installed engine at one flight condition: the engine model's
+    fuel flow is scaled so that it gives this value there (its variation with Mach and altitude is kept)."""
+
+    value: Annotated[SpecificFuelConsumption, Field(gt=0.0, description="TSFC, e.g. '0.526 lb/lbf/h'")]
+    mach: Annotated[float, Field(gt=0.0, lt=1.0)]
+    altitude: Length
+    source: Annotated[str, Field(min_length=3)]
+
+
+class EngineAllowance(_Section):
+    """A ground or terminal-area phase flown as a time at a fixed throttle (0 idle … 1 maximum) at the given Mach
+    number, sea level, standard day: its fuel is the engine model's fuel flow times the time."""
+
+    time: Annotated[Time, Field(ge=0.0)]
+    throttle: Fraction
+    mach: Annotated[float, Field(ge=0.0, lt=1.0)] = 0.0
+
+
+class ReservePolicy(_Section):
+    """Reserve fuel carried beyond the trip: contingency (a fraction of trip fuel), the flight to an alternate
+    (climb, cruise at ``alternate_altitude`` at the climb-schedule speed, descent) and a final reserve held at
+    ``hold_altitude`` at the minimum-drag speed for ``hold_time``."""
+
+    contingency_fraction: Annotated[float, Field(ge=0.0, lt=0.5)]
+    alternate_distance: Annotated[Length, Field(ge=0.0)]
+    alternate_altitude: PositiveLength
+    hold_time: Annotated[Time, Field(ge=0.0)]
+    hold_altitude: Annotated[Length, Field(ge=0.0)]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class DragCondition(_Section):
+    """The design cruise condition at which the trimmed cruise drag coefficient is reported (at the cruise Mach)."""
+
+    altitude: Length
+    mass: PositiveMass | None = Field(None, description="none: the mid-cruise mass of the design-range mission")
+
+
+class Mission(_Section):
+    """The mission the design is flown on (:mod:`certkit.models.performance.mission`): a climb on a CAS/Mach
+    schedule, a step cruise at ``cruise_mach`` from the level that maximises specific air range at the top of
+    climb (levels ``initial_altitude`` + k ``altitude_step`` up to ``max_altitude``), a descent at idle on the
+    same schedule, allowances for taxi, takeoff and approach, reserves by ``reserves``."""
+
+    cruise_mach: Annotated[float, Field(gt=0.0, lt=1.0)]
+    initial_altitude: PositiveLength = Field(description="lowest cruise level considered")
+    altitude_step: PositiveLength = Field(description="step between cruise levels (step climbs)")
+    max_altitude: PositiveLength | None = Field(None, description="highest cruise level (none: envelope.ceiling)")
+    climb_speed: Speed = Field(description="climb and descent CAS above speed_limit_altitude, up to the cruise Mach")
+    low_altitude_speed: Speed = Field(description="climb and descent speed below speed_limit_altitude")
+    speed_limit_altitude: Annotated[Length, Field(ge=0.0)]
+    climb_throttle: Fraction = Field(1.0, description="maximum-climb rating as a fraction of the engine model's maximum")
+    residual_climb_rate: Annotated[SpeedValue, Field(ge=0.0, description="rate of climb that a cruise level must "
+                                                                         "still allow at maximum-climb thrust")]
+    buffet_onset_CL: Annotated[float, Field(gt=0.0, lt=2.0, description="1-g initial-buffet lift coefficient at the "
+                                                                          "cruise Mach (trimmed, reference area)")]
+    buffet_load_factor: Annotated[float, Field(ge=1.0, le=2.0)] = 1.3
+    design_payload: PositiveMass
+    cruise_cg: Length | None = Field(None, description="CG station of the mission's trims (none: the reference CG)")
+    taxi_out: EngineAllowance
+    takeoff: EngineAllowance
+    approach: EngineAllowance
+    taxi_in: EngineAllowance
+    reserves: ReservePolicy
+    tsfc: TsfcCalibration | None = Field(None, description="cruise TSFC the engine model is calibrated to")
+    nominal_distance: PositiveLength = Field(description="still-air distance of the block-fuel mission")
+    range_requirement: PositiveLength = Field(description="design range the design must reach (constraint)")
+    drag_condition: DragCondition
+    source: str | None = None
+
+
 class CriterionOverride(_Section):
     """Override of a rule's numeric criteria; the justification is printed in the report."""
 
@@ -598,6 +671,7 @@ class Aircraft(_Section):
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
+    mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)

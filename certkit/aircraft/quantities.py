@@ -58,6 +58,8 @@ ArealDensity = quantity("areal_density")
 AngularRate = quantity("angular_rate")
 MassPerEnergy = quantity("mass_per_energy")
 
+SpecificFuelConsumption = quantity("specific_fuel_consumption")
+
 PositiveLength = Annotated[Length, Field(gt=0)]
 PositiveArea = Annotated[Area, Field(gt=0)]
 PositiveMass = Annotated[Mass, Field(gt=0)]
