@@ -16,6 +16,8 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from certkit.design.tail_loads import TailLoadEnvelope, tail_load_envelope
 from certkit.design.variables import design_aircraft
 
@@ -128,27 +130,35 @@ def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oe
 _BASELINE: dict = {}
 
 
+def _baseline_value(base_aircraft, ctx, results) -> BaselineActuators:
+    from certkit.design.tail_group import design_hinge_moment
+    from certkit.models.structure.actuators import size_elevator_actuators
+
+    hinge = design_hinge_moment(ctx, results)
+    act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
+    c = tuple(float(v) for v in np.mean(act.positions, axis=0))
+    return BaselineActuators(act.total_mass, c, hinge, ctx)
+
+
 def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActuators:
     """The unmodified file's elevator actuators, sized from its own pitch manoeuvres (once per process and file)."""
     from certkit.context import Context
-    from certkit.design.tail_group import design_hinge_moment
-    from certkit.models.structure.actuators import size_elevator_actuators
     from certkit.scheduler import evaluate_rule
 
-    if source.sha256 in _BASELINE:
-        return _BASELINE[source.sha256]
-    if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
-        value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
-    else:
-        ctx = Context(loaded_of(base_aircraft))
-        pitch = [r for r in rules if r.id.startswith("25.331(c)")]
-        hinge = design_hinge_moment(ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in pitch])
-        act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
-        c = tuple(float(v) for v in __import__("numpy").mean(act.positions, axis=0))
-        value = BaselineActuators(act.total_mass, c, hinge, ctx)
+    if source.sha256 not in _BASELINE:
+        if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
+            value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
+        else:
+            ctx = Context(loaded_of(base_aircraft))
+            pitch = [r for r in rules if r.id.startswith("25.331(c)")]
+            value = _baseline_value(base_aircraft, ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in pitch])
+        _remember(source, value)
+    return _BASELINE[source.sha256]
+
+
+def _remember(source, value: BaselineActuators) -> None:
     _BASELINE.clear()
     _BASELINE[source.sha256] = value
-    return value
 
 
 def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, rules, loaded_of) -> LoopResult:
@@ -165,22 +175,28 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         raise ValueError("no registered rule computes horizontal-tail loads: the tail cannot be sized")
     base_oew = float(aircraft.mass.OEW)
     declared = aircraft.mass.components[_tail_component_index(data)]
-    base_act = baseline_actuators(source, base_aircraft, rules, loaded_of)
     group = initial_group(aircraft, base_aircraft, declared)
     history: list[dict] = []
     seconds: list[float] = []
     union: TailLoadEnvelope | None = None
     same_geometry = all(st.path.split(".")[0] in ("mass", "sizing", "structure", "criteria") for st in settings)
-    ctx = base_act.ctx if same_geometry else None  # the declared aircraft's lattice serves an unchanged geometry
+    known = _BASELINE.get(source.sha256)
+    if known is None and settings:  # without settings, iteration 0 flies the declared airplane: sized from it below
+        known = baseline_actuators(source, base_aircraft, rules, loaded_of)
+    ctx = known.ctx if same_geometry and known is not None else None  # the declared lattice serves an unchanged geometry
+    base_act = known
     for k in range(spec.max_iterations):
         t = time.perf_counter()
-        actuators = group.actuator_mass - base_act.mass if group.actuator_mass > 0 else 0.0
+        actuators = group.actuator_mass - base_act.mass if k > 0 else 0.0
         oew = base_oew - declared.mass + group.structure_mass + actuators
         current = design_aircraft(source, settings, with_tail_group(data, aircraft, group, base_act, oew))
         previous_ctx, ctx = ctx, Context(loaded_of(current))
         if previous_ctx is not None:
             ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
         results = [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in loads_rules]
+        if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
+            base_act = _baseline_value(base_aircraft, ctx, results)
+            _remember(source, base_act)
         envelope = tail_load_envelope(results)
         within = union is not None and not envelope.exceeds(union, rtol=LOAD_ALLOWANCE)
         union = envelope.union(union)
