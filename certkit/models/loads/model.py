@@ -86,41 +86,48 @@ class SurfaceLoads:
             return i, np.zeros_like(x)
         return i, (x - m[i]) / (m[i + 1] - m[i])
 
-    def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
-        """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs
-        (missing inputs are zero; ``one`` is implied)."""
-        qbar = np.asarray(qbar, dtype=float)
-        i, w = self._mach_weights(mach)
-        shape = qbar.shape
+    def _input_matrix(self, shape, inputs) -> np.ndarray:
         x = np.zeros(shape + (len(self.inputs),))
         x[..., 0] = 1.0
         for k, name in enumerate(self.inputs[1:], start=1):
             if name in inputs:
                 x[..., k] = inputs[name]
-        lo = np.einsum("...k,...kqs->...qs", x, self.aero[i])
-        hi = np.einsum("...k,...kqs->...qs", x, self.aero[np.minimum(i + 1, self.mach.size - 1)])
-        return qbar[..., None, None] * (lo * (1 - w)[..., None, None] + hi * w[..., None, None])
+        return x
+
+    def _superpose(self, qbar, mach, inputs, table) -> np.ndarray:
+        """q̄ Σ_k x_k T_k(M): the inputs times the unit tables at every Mach breakpoint in one matrix product, then
+        linear in Mach between the two breakpoints around each point (as the airplane model interpolates)."""
+        qbar = np.asarray(qbar, dtype=float)
+        i, w = self._mach_weights(mach)
+        shape = qbar.shape
+        x = self._input_matrix(shape, inputs).reshape(-1, len(self.inputs))
+        m, k = table.shape[:2]
+        tail = table.shape[2:]
+        full = (x @ table.reshape(m, k, -1).transpose(1, 0, 2).reshape(k, -1)).reshape(x.shape[0], m, -1)
+        rows = np.arange(x.shape[0])
+        i = np.broadcast_to(i, shape).ravel()
+        w = np.broadcast_to(w, shape).ravel()[:, None]
+        out = full[rows, i] * (1 - w) + full[rows, np.minimum(i + 1, m - 1)] * w
+        return qbar[..., *([None] * len(tail))] * out.reshape(shape + tail)
+
+    def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
+        """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs
+        (missing inputs are zero; ``one`` is implied)."""
+        return self._superpose(qbar, mach, inputs, self.aero)
 
     def inertia_loads(self, terms: dict[str, np.ndarray]) -> np.ndarray:
         """Inertial station loads (..., 3, n_stations) from the named inertial terms (INERTIA_TERMS)."""
-        out = 0.0
-        for t, name in enumerate(INERTIA_TERMS):
-            if name in terms:
-                out = out + np.asarray(terms[name], dtype=float)[..., None, None] * self.inertia[t]
-        return np.asarray(out) + np.zeros(self.inertia.shape[1:])
+        present = [(t, np.asarray(terms[name], dtype=float)) for t, name in enumerate(INERTIA_TERMS) if name in terms]
+        if not present:
+            return np.zeros(self.inertia.shape[1:])
+        shape = np.broadcast_shapes(*(v.shape for _, v in present))
+        x = np.stack([np.broadcast_to(v, shape).ravel() for _, v in present], axis=1)
+        table = self.inertia[[t for t, _ in present]].reshape(len(present), -1)
+        return (x @ table).reshape(shape + self.inertia.shape[1:])
 
     def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
         """Aerodynamic normal force of each strip (..., n_strips), N."""
-        qbar = np.asarray(qbar, dtype=float)
-        i, w = self._mach_weights(mach)
-        x = np.zeros(qbar.shape + (len(self.inputs),))
-        x[..., 0] = 1.0
-        for k, name in enumerate(self.inputs[1:], start=1):
-            if name in inputs:
-                x[..., k] = inputs[name]
-        lo = np.einsum("...k,...kj->...j", x, self.strip_aero[i])
-        hi = np.einsum("...k,...kj->...j", x, self.strip_aero[np.minimum(i + 1, self.mach.size - 1)])
-        return qbar[..., None] * (lo * (1 - w)[..., None] + hi * w[..., None])
+        return self._superpose(qbar, mach, inputs, self.strip_aero)
 
 
 def station_label(station) -> str:
