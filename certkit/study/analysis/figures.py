@@ -4,6 +4,7 @@ points stays small; lines, axes and text remain vector."""
 
 from __future__ import annotations
 
+import itertools
 import re
 
 import numpy as np
@@ -17,13 +18,17 @@ STAGE_COLOURS = ("#b8bec7", "#2f6db5", "#2e9d4a")
 STAGE_LABELS = ("unconstrained", "constrained", "Level-1 preferred")
 #: most points of each stage drawn in a scatter panel
 SCATTER_POINTS = 4000
+_FIGURE_NUMBERS = itertools.count(1)
 
 
 def inline_svg(svg: str) -> str:
     """An SVG fragment for HTML: without namespace declarations and metadata (HTML5 parses inline SVG
-    without them), so the page carries no URL at all."""
+    without them), so the page carries no URL at all; its element ids (matplotlib numbers them per figure:
+    ``figure_1``, ``patch_1``...) and the references to them get a prefix of their own, unique in the page."""
     svg = re.sub(r"<metadata>.*?</metadata>", "", svg, flags=re.S)
-    return re.sub(r'\s+xmlns(:\w+)?="[^"]*"', "", svg)
+    svg = re.sub(r'\s+xmlns(:\w+)?="[^"]*"', "", svg)
+    prefix = f"s{next(_FIGURE_NUMBERS)}-"
+    return re.sub(r'(\bid="|href="#|url\(#)', lambda m: m.group(1) + prefix, svg)
 
 
 def _svg(fig) -> str:

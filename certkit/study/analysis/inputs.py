@@ -227,10 +227,11 @@ def _options(raw: Any) -> Options:
                                             low=0)))
 
 
-def study_view(study: Any, sha256: str | None = None) -> StudyView:
+def study_view(study: Any, sha256: str | None = None, analysis: Any = None) -> StudyView:
     """Adapter from the study definition (INTERFACES.md field names; a pydantic ``Study`` or a mapping with the
     same fields) to :class:`StudyView`. ``sha256`` identifies the study (the study file's hash); without it,
-    the hash of the definition's canonical JSON is used."""
+    the hash of the definition's canonical JSON is used. ``analysis``: the study file's ``analysis:`` mapping
+    when the definition does not carry it."""
     variables = tuple(
         Variable(str(_get(v, "path")), float(_get(v, "lower")), float(_get(v, "upper")), float(_get(v, "baseline")),
                  str(_get(v, "unit_label", "") or ""))
@@ -254,7 +255,7 @@ def study_view(study: Any, sha256: str | None = None) -> StudyView:
     if sha256 is None:
         sha256 = hashlib.sha256(json.dumps(definition, sort_keys=True, default=str).encode()).hexdigest()
     return StudyView(name=str(_get(study, "name", "") or "study"), variables=variables, objectives=objectives,
-                     constraints=constraints, options=_options(_get(study, "analysis")), definition=definition,
+                     constraints=constraints, options=_options(_get(study, "analysis") or analysis), definition=definition,
                      sha256=sha256)
 
 

@@ -25,7 +25,7 @@ from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_mont
 from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
-from certkit.study.analysis.surrogates import Surrogate, fit_response
+from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_response
 
 #: failed cases listed one by one in the report (the count is always given)
 FAILED_SHOWN = 200
@@ -79,11 +79,11 @@ def _run_checks(study, store, view, surrogates, mc, optima) -> tuple[DirectCheck
 
 
 def analyse(study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
-            sha256: str | None = None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
+            sha256: str | None = None, analysis=None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
     """Run every analysis of the study report on the store's ``frame``."""
     timings = {}
     t = time.perf_counter()
-    view = study_view(study, sha256)
+    view = study_view(study, sha256, analysis)
     cs = cases(frame, view)
     surrogates, not_fitted = _fit_all(view, cs, log)
     timings["surrogates_s"] = time.perf_counter() - t
@@ -162,7 +162,7 @@ def render(a: Analysis) -> str:
                        "rows": [list(fr) + list(xr) for fr, xr in zip(f[:FRONT_SHOWN], x[:FRONT_SHOWN])]})
     context = {
         "a": a, "view": a.view, "mc": mc, "version": __version__, "created": time.strftime("%Y-%m-%d %H:%M:%S"),
-        "stage_rows": stage_rows, "fronts": fronts, "front_shown": FRONT_SHOWN,
+        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN,
         "fits": [{"s": s, "svg": figures.fit_svg(s)} for s in a.surrogates.values()],
         "cdfs": [{"o": o, "svg": figures.cdf_svg(o)} for o in mc.ranked()],
         "matrix": figures.scatter_matrix_svg(mc, mc.objectives) if len(mc.objectives) >= 2 else "",

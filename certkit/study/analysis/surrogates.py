@@ -62,7 +62,7 @@ def _polynomial(degree: int) -> object:
 
 
 def _mlp() -> object:
-    net = MLPRegressor(hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=3000,
+    net = MLPRegressor(hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=1000,
                        random_state=0)
     return TransformedTargetRegressor(regressor=net, transformer=StandardScaler())
 

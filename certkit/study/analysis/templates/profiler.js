@@ -98,16 +98,29 @@
     return vars.map(function () { return tr.insertCell(); });
   });
 
-  function draw(td, r, i, y0) {
-    var v = vars[i], pts = [], ys = [], k, p = x.slice();
+  function curve(r, i) {
+    var v = vars[i], pts = [], k, p = x.slice();
     for (k = 0; k < NPTS; k++) {
       p[i] = v.from + (v.to - v.from) * k / (NPTS - 1);
-      var y = evaluate(r.model, p);
-      pts.push([p[i], y]); ys.push(y);
+      pts.push([p[i], evaluate(r.model, p)]);
     }
+    return pts;
+  }
+
+  // one y scale per response row (all its curves and limits), so that a flat dependence looks flat
+  function drawRow(r, j, y0) {
+    var curves = vars.map(function (v, i) { return curve(r, i); });
+    var ys = [y0];
+    curves.forEach(function (pts) { pts.forEach(function (q) { if (isFinite(q[1])) { ys.push(q[1]); } }); });
     var lims = [r.min, r.max].filter(function (t) { return t !== null && t !== undefined; });
     var ymin = Math.min.apply(null, ys.concat(lims)), ymax = Math.max.apply(null, ys.concat(lims));
-    if (!(ymax > ymin)) { ymax = ymin + 1; }
+    var pad = 0.05 * (ymax - ymin) || Math.abs(ymin) * 1e-3 || 1;
+    ymin -= pad; ymax += pad;
+    cells[j].forEach(function (td, i) { draw(td, r, i, y0, curves[i], lims, ymin, ymax); });
+  }
+
+  function draw(td, r, i, y0, pts, lims, ymin, ymax) {
+    var v = vars[i];
     var sx = function (t) { return (PAD + (W - 2 * PAD) * (t - v.from) / (v.to - v.from)).toFixed(2); };
     var sy = function (t) { return (H - PAD - (H - 2 * PAD) * (t - ymin) / (ymax - ymin)).toFixed(2); };
     var hstep = 1e-4 * (v.upper - v.lower), a = x.slice(), b = x.slice();
@@ -139,7 +152,7 @@
       if (r.max !== null && r.max !== undefined) { lim.push("≤ " + fmt(r.max)); }
       cell.textContent = r.name + " = " + fmt(y0) + (lim.length ? " (" + lim.join(", ") + ")" : "") +
         (r.flagged ? " — surrogate flagged (R² below threshold)" : "");
-      cells[j].forEach(function (td, i) { draw(td, r, i, y0); });
+      drawRow(r, j, y0);
     });
   }
   update();
