@@ -147,3 +147,12 @@ def schema():
     from certkit.study.spec import json_schema
 
     click.echo(json.dumps(json_schema(), indent=2))
+
+
+def _register_report() -> None:
+    from certkit.study.analysis.cli import report_command
+
+    study.add_command(report_command)
+
+
+_register_report()

@@ -218,6 +218,8 @@ class Study(_Model):
                                  "records (e.g. objective.*, rule.*.margin); empty = every response")
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
+    analysis: dict | None = Field(None, description="options of `certkit study report` (r2_threshold, level_relaxation, "
+                                                    "uncertainty, profiler, gp_max_cases; see the README)")
 
     def variable_paths(self) -> list[str]:
         return [v.path for v in self.variables]

@@ -1,0 +1,70 @@
+"""``certkit study report STUDY.yaml``: the study report from the study's store (see :mod:`.report`)."""
+
+from __future__ import annotations
+
+import hashlib
+import sys
+from pathlib import Path
+
+import click
+
+from certkit.errors import UserError
+
+EXIT_USAGE = 2
+
+
+def _samples(ctx, param, value) -> int:
+    try:
+        n = float(value)
+    except ValueError:
+        raise click.BadParameter(f"expected a number of samples such as 1e6, got {value!r}") from None
+    if not (n >= 1000 and n == int(n)):
+        raise click.BadParameter(f"expected a whole number of at least 1000, got {value!r}")
+    return int(n)
+
+
+def open_study(study_path: Path, store_path: Path | None):
+    """(study definition, store, store frame, analysis options from the study file) for ``study_path``.
+
+    The study definition and store come from the study runner's modules (``certkit.study.spec`` /
+    ``certkit.study.store``, INTERFACES.md): ``Store.open(path)``, ``store.study()``, ``store.frame()``."""
+    import yaml
+
+    try:
+        from certkit.study.store import Store
+    except ImportError as exc:
+        raise UserError(f"{study_path}: the study store is not available in this installation ({exc})") from None
+    if store_path is None:
+        default = getattr(Store, "default_path", None)
+        store_path = Path(default(study_path)) if default else study_path.with_suffix(".sqlite")
+    if not store_path.exists():
+        raise UserError(f"{study_path}: no study store at {store_path}; run `certkit study run {study_path}` first "
+                        f"or give --store")
+    store = Store.open(store_path)
+    raw = yaml.safe_load(study_path.read_text(encoding="utf-8")) or {}
+    return store.study(), store, store.frame(), raw.get("analysis") if isinstance(raw, dict) else None
+
+
+@click.command("report")
+@click.argument("study_file", metavar="STUDY.yaml", type=click.Path(exists=True, dir_okay=False, path_type=Path))
+@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=None,
+              help="Folder for index.html (default: <study>-report next to the study file).")
+@click.option("--store", "store_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
+              help="The study store (default: the study's own store).")
+@click.option("--no-check", is_flag=True, help="Skip the true-model re-evaluations (direct check and optima).")
+@click.option("--samples", default="1e6", callback=_samples, show_default=True,
+              help="Monte Carlo samples over the design box.")
+def report_command(study_file: Path, out_dir: Path | None, store_path: Path | None, no_check: bool, samples: int):
+    """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity."""
+    from certkit.study.analysis.report import write_study_report
+
+    try:
+        study, store, frame, analysis = open_study(study_file, store_path)
+        sha = hashlib.sha256(study_file.read_bytes()).hexdigest()
+        out = out_dir or study_file.with_name(study_file.stem + "-report")
+        path = write_study_report(study, frame, out, store=store, samples=samples, check=not no_check, sha256=sha,
+                                  analysis=analysis, log=lambda msg: click.echo(msg, err=True))
+    except UserError as exc:
+        click.echo(f"error: {exc}", err=True)
+        sys.exit(EXIT_USAGE)
+    click.echo(str(path))

@@ -1,0 +1,46 @@
+"""Data of the interactive prediction profiler: each objective and chosen constraint response against each
+variable through the current point, evaluated in the page from the exported surrogates (``profiler.js``).
+
+Slider ranges reach ``OVERHANG`` of each variable's range beyond its bounds; that part is drawn greyed, as
+outside the sampled region (extrapolation).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+
+from certkit.study.analysis.export import export_surrogate
+from certkit.study.analysis.inputs import StudyView
+from certkit.study.analysis.surrogates import Surrogate
+
+OVERHANG = 0.1
+
+
+def profiler_data(view: StudyView, surrogates: dict[str, Surrogate], start: np.ndarray | None = None) -> dict:
+    """Everything the page needs: variables with bounds and slider range, the responses' exported models
+    with their thresholds and flags, and the starting point (the baseline unless given)."""
+    start = view.baseline if start is None else np.asarray(start, dtype=float)
+    limits = {c.response: (c.min, c.max) for c in view.constraints}
+    names = [o.response for o in view.objectives] + view.profiled_constraints()
+    responses = []
+    for name in dict.fromkeys(names):
+        if name not in surrogates:
+            continue
+        s = surrogates[name]
+        lo, hi = limits.get(name, (None, None))
+        responses.append({"name": name, "model": export_surrogate(s), "min": lo, "max": hi,
+                          "flagged": s.flagged, "label": s.kept.label})
+    variables = []
+    for v, x0 in zip(view.variables, start):
+        span = v.upper - v.lower
+        variables.append({"path": v.path, "label": v.short, "lower": v.lower, "upper": v.upper,
+                          "from": v.lower - OVERHANG * span, "to": v.upper + OVERHANG * span, "value": float(x0),
+                          "unit": v.unit_label})
+    return {"variables": variables, "responses": responses}
+
+
+def profiler_json(data: dict) -> str:
+    """JSON for a ``<script type="application/json">`` element (``</`` escaped so the element cannot close)."""
+    return json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")

@@ -1,0 +1,241 @@
+"""Surrogate models of the study's responses (scikit-learn), chosen by validation error, with goodness of fit.
+
+Per response three families are fitted on the training cases, every input first mapped linearly from its
+bounds to [−1, 1]:
+
+- multivariate polynomial regression: ``PolynomialFeatures`` (degree 1 up to the highest whose term count
+  stays below half the training cases, at most 4) + ``RidgeCV`` (a tiny, cross-validated ridge keeps the
+  normal equations well posed); each degree once on the response and once on its logarithm where the response
+  is positive (a multiplicative response is linear in its logarithm);
+- a neural network: ``MLPRegressor`` (two tanh layers of 16, L-BFGS) with the outputs standardised
+  (``TransformedTargetRegressor`` + ``StandardScaler``) on the transform the best polynomial chose;
+- a Gaussian process (constant × anisotropic RBF + white noise, ``normalize_y``) when the training cases do
+  not exceed ``gp_max_cases`` (its fit is O(n³) and its prediction O(n) per point).
+
+The candidate with the least RMSE on the held-out validation cases is kept (5-fold cross-validation RMSE on
+the training cases when fewer than ``MIN_VALIDATION`` validation cases exist); the others are reported.
+Goodness of fit (R², RMSE, maximum error) is given on training and validation cases and by k-fold
+cross-validation of the kept model, as in a DoE/RSM fit table (Myers, Montgomery & Anderson-Cook,
+*Response Surface Methodology*, 4th ed., §2.5 and §7.4).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import minimize
+from sklearn.base import clone
+from sklearn.compose import TransformedTargetRegressor
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.gaussian_process import GaussianProcessRegressor
+from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+from sklearn.linear_model import RidgeCV
+from sklearn.model_selection import KFold, cross_val_predict
+from sklearn.neural_network import MLPRegressor
+from sklearn.pipeline import make_pipeline
+from sklearn.preprocessing import PolynomialFeatures, StandardScaler
+
+#: fewer validation cases than this: candidates are compared by k-fold cross-validation instead
+MIN_VALIDATION = 10
+K_FOLDS = 5
+MAX_DEGREE = 4
+#: points per prediction chunk (bounds the polynomial feature matrix and the GP cross-covariance)
+PREDICT_CHUNK = 20_000
+
+
+def to_unit(x: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    """Map inputs from their bounds to [−1, 1] (column-wise)."""
+    lo, hi = bounds[:, 0], bounds[:, 1]
+    return (np.asarray(x, dtype=float) - lo) * (2.0 / (hi - lo)) - 1.0
+
+
+def _log_target(estimator, log: bool):
+    return TransformedTargetRegressor(regressor=estimator, func=np.log, inverse_func=np.exp,
+                                      check_inverse=False) if log else estimator
+
+
+def _polynomial(degree: int) -> object:
+    return make_pipeline(PolynomialFeatures(degree, include_bias=False), RidgeCV(alphas=np.logspace(-10, 1, 12)))
+
+
+def _mlp() -> object:
+    net = MLPRegressor(hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=1000,
+                       random_state=0)
+    return TransformedTargetRegressor(regressor=net, transformer=StandardScaler())
+
+
+def _gp_optimizer(obj_func, initial_theta, bounds):
+    """L-BFGS-B on the log marginal likelihood with a bounded iteration count (keeps the fit time bounded)."""
+    res = minimize(obj_func, initial_theta, method="L-BFGS-B", jac=True, bounds=bounds, options={"maxiter": 80})
+    return res.x, res.fun
+
+
+def _gp(n_inputs: int) -> object:
+    kernel = (ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3))
+              + WhiteKernel(1e-4, (1e-10, 1e0)))
+    return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=_gp_optimizer, random_state=0)
+
+
+def n_polynomial_terms(n_inputs: int, degree: int) -> int:
+    """Terms of a full polynomial of ``degree`` in ``n_inputs`` variables, the constant excluded."""
+    return math.comb(n_inputs + degree, degree) - 1
+
+
+@dataclass(frozen=True)
+class Fit:
+    """Goodness of fit of predictions against actual values."""
+
+    n: int
+    r2: float | None
+    rmse: float | None
+    max_error: float | None
+
+    @staticmethod
+    def of(actual: np.ndarray, predicted: np.ndarray) -> "Fit":
+        n = len(actual)
+        if n == 0:
+            return Fit(0, None, None, None)
+        err = predicted - actual
+        ss_res = float(np.sum(err**2))
+        ss_tot = float(np.sum((actual - actual.mean()) ** 2))
+        r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 and np.all(np.isfinite(err)) else None
+        finite = np.all(np.isfinite(err))
+        return Fit(n, r2, float(np.sqrt(ss_res / n)) if finite else None,
+                   float(np.max(np.abs(err))) if finite else None)
+
+
+@dataclass
+class Candidate:
+    """One fitted model: family, label, estimator (on inputs in [−1, 1]) and its selection error."""
+
+    family: str
+    label: str
+    estimator: object | None
+    log: bool = False
+    degree: int | None = None
+    selection_rmse: float | None = None
+    selection_r2: float | None = None
+    note: str = ""
+
+    def predict_unit(self, u: np.ndarray) -> np.ndarray:
+        with np.errstate(over="ignore", invalid="ignore"):
+            return np.asarray(self.estimator.predict(u), dtype=float).ravel()
+
+
+@dataclass
+class Surrogate:
+    """The kept model of one response, with its goodness of fit and the other candidates."""
+
+    response: str
+    bounds: np.ndarray
+    kept: Candidate
+    candidates: list[Candidate]
+    training: Fit
+    validation: Fit
+    cv: Fit
+    selection: str
+    r2_threshold: float
+    n_training: int
+    n_validation: int
+    n_missing: int
+    plot_data: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def r2_judged(self) -> float | None:
+        """The R² the threshold is judged on: validation when there are enough cases, else cross-validation."""
+        return self.validation.r2 if self.validation.n >= MIN_VALIDATION else self.cv.r2
+
+    @property
+    def flagged(self) -> bool:
+        r2 = self.r2_judged
+        return r2 is None or r2 < self.r2_threshold
+
+    def predict(self, x: np.ndarray) -> np.ndarray:
+        """Predictions at inputs ``x`` (n, n_variables; SI), evaluated in chunks."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        out = np.empty(len(x))
+        for start in range(0, len(x), PREDICT_CHUNK):
+            stop = start + PREDICT_CHUNK
+            out[start:stop] = self.kept.predict_unit(to_unit(x[start:stop], self.bounds))
+        return out
+
+
+def _score(candidate: Candidate, u_tr, y_tr, u_val, y_val, use_validation: bool) -> None:
+    """Fit the candidate and record its selection error (validation RMSE, or k-fold CV RMSE)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        if use_validation:
+            candidate.estimator.fit(u_tr, y_tr)
+            fit = Fit.of(y_val, candidate.predict_unit(u_val))
+        else:
+            fit = _cross_validated(candidate.estimator, u_tr, y_tr)
+            candidate.estimator.fit(u_tr, y_tr)
+    candidate.selection_rmse, candidate.selection_r2 = fit.rmse, fit.r2
+
+
+def _cross_validated(estimator, u, y) -> Fit:
+    folds = KFold(n_splits=min(K_FOLDS, len(y)), shuffle=True, random_state=0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        with np.errstate(over="ignore", invalid="ignore"):
+            predicted = cross_val_predict(clone(estimator), u, y, cv=folds)
+    return Fit.of(y, np.asarray(predicted, dtype=float).ravel())
+
+
+def _rank_key(c: Candidate) -> float:
+    return math.inf if c.selection_rmse is None or not math.isfinite(c.selection_rmse) else c.selection_rmse
+
+
+def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train: np.ndarray,
+                 x_val: np.ndarray, y_val: np.ndarray, *, r2_threshold: float = 0.9, gp_max_cases: int = 600,
+                 n_missing: int = 0, families: tuple[str, ...] = ("polynomial", "neural network",
+                                                                   "Gaussian process")) -> Surrogate:
+    """Fit every candidate family to one response and keep the best by validation error."""
+    bounds = np.asarray(bounds, dtype=float)
+    n_in = bounds.shape[0]
+    if len(y_train) < n_in + 2:
+        raise ValueError(f"{response}: {len(y_train)} training cases with a value; at least {n_in + 2} needed")
+    u_tr, u_val = to_unit(x_train, bounds), to_unit(x_val, bounds)
+    use_validation = len(y_val) >= MIN_VALIDATION
+    selection = (f"validation RMSE ({len(y_val)} cases)" if use_validation
+                 else f"{K_FOLDS}-fold cross-validation RMSE (only {len(y_val)} validation cases)")
+    positive = bool(np.all(y_train > 0))
+    candidates: list[Candidate] = []
+    if "polynomial" in families:
+        for degree in range(1, MAX_DEGREE + 1):
+            if n_polynomial_terms(n_in, degree) >= len(y_train) / 2:
+                break
+            for log in ((False, True) if positive else (False,)):
+                label = f"polynomial degree {degree}" + (", log response" if log else "")
+                c = Candidate("polynomial", label, _log_target(_polynomial(degree), log), log, degree)
+                _score(c, u_tr, y_train, u_val, y_val, use_validation)
+                candidates.append(c)
+    best_poly = min((c for c in candidates if c.family == "polynomial"), key=_rank_key, default=None)
+    log = bool(best_poly.log) if best_poly else False
+    if "neural network" in families:
+        c = Candidate("neural network", "MLP 16-16 tanh" + (", log response" if log else ""),
+                      _log_target(_mlp(), log), log)
+        _score(c, u_tr, y_train, u_val, y_val, use_validation)
+        candidates.append(c)
+    if "Gaussian process" in families:
+        label = "Gaussian process RBF" + (", log response" if log else "")
+        if len(y_train) <= gp_max_cases:
+            c = Candidate("Gaussian process", label, _log_target(_gp(n_in), log), log)
+            _score(c, u_tr, y_train, u_val, y_val, use_validation)
+        else:
+            c = Candidate("Gaussian process", label, None, log,
+                          note=f"not fitted: {len(y_train)} training cases exceed the limit of {gp_max_cases}")
+        candidates.append(c)
+    fitted = [c for c in candidates if c.estimator is not None]
+    kept = min(fitted, key=_rank_key)
+    train_pred = kept.predict_unit(u_tr)
+    val_pred = kept.predict_unit(u_val) if len(y_val) else np.empty(0)
+    cv = _cross_validated(kept.estimator, u_tr, y_train)
+    return Surrogate(response, bounds, kept, candidates, Fit.of(y_train, train_pred), Fit.of(y_val, val_pred), cv,
+                     selection, r2_threshold, len(y_train), len(y_val), n_missing,
+                     plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)})

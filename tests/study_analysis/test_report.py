@@ -1,0 +1,121 @@
+"""The study report page: well-formed, self-contained (no network reference), the required content; the CLI."""
+
+from __future__ import annotations
+
+import json
+import re
+from html.parser import HTMLParser
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from certkit.study.analysis import cli as analysis_cli
+from certkit.study.analysis.export import evaluate_export
+from tests.study_analysis.report_fixture import small_report
+from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, study_dict
+
+VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
+
+
+class _Balance(HTMLParser):
+    """Every non-void element closed in order (SVG's self-closing elements allowed)."""
+
+    def __init__(self):
+        super().__init__(convert_charrefs=True)
+        self.stack, self.errors, self.ids = [], [], []
+
+    def handle_starttag(self, tag, attrs):
+        self.ids += [v for k, v in attrs if k == "id"]
+        if tag not in VOID:
+            self.stack.append((tag, self.getpos()))
+
+    def handle_startendtag(self, tag, attrs):
+        self.ids += [v for k, v in attrs if k == "id"]
+
+    def handle_endtag(self, tag):
+        if tag in VOID:
+            return
+        if not self.stack or self.stack[-1][0] != tag:
+            self.errors.append(f"</{tag}> at {self.getpos()} closes {self.stack[-1] if self.stack else None}")
+            return
+        self.stack.pop()
+
+
+def test_html_is_well_formed_and_self_contained():
+    _, html = small_report()
+    parser = _Balance()
+    parser.feed(html)
+    parser.close()
+    assert parser.errors == []
+    assert parser.stack == []
+    assert len(parser.ids) == len(set(parser.ids))
+    assert not re.search(r"https?:", html, re.I), "a network reference in the page"
+    assert not re.search(r"""<(script|img|link|iframe)[^>]*\s(src|href)=["'](?!data:|#)""", html, re.I)
+    assert '<meta name="viewport"' in html and "@media print" in html and "@media (max-width" in html
+
+
+def test_report_content():
+    analysis, html = small_report()
+    assert analysis.view.sha256 in html
+    assert "trim did not converge at 25.331(c)(2) condition 3" in html
+    n_failed = int((store_frame(n_train=200, n_val=60)["status"] == "failed").sum())
+    assert f"{n_failed} failed cases, excluded from fitting" in html
+    for heading in ("Surrogates and goodness of fit", "Constraints ranked by activity", "Joint probability by stage",
+                    "Pareto fronts", "Optima", "Prediction profiler", "Global sensitivity", "Provenance"):
+        assert heading in html
+    assert "Direct check not run (--no-check)" in html
+    # every analysed response has a surrogate; the ranking puts the least probable constraint first
+    assert set(analysis.surrogates) == set(analysis.view.analysed_responses())
+    ps = [o.p for o in analysis.mc.ranked()]
+    assert ps == sorted(ps)
+    # a flagged surrogate is named wherever it is used
+    for name in [r for r, s in analysis.surrogates.items() if s.flagged]:
+        assert html.count(name) >= 3
+
+
+def test_profiler_data_reproduces_the_surrogates():
+    analysis, html = small_report()
+    data = json.loads(re.search(r'<script type="application/json" id="profiler-data">(.*?)</script>', html,
+                                re.S).group(1))
+    assert [v["path"] for v in data["variables"]] == [v["path"] for v in VARIABLES]
+    x = sample(10, 9)
+    for r in data["responses"]:
+        np.testing.assert_allclose(evaluate_export(r["model"], x), analysis.surrogates[r["name"]].predict(x),
+                                   rtol=1e-9, atol=1e-12)
+
+
+def test_report_command(tmp_path, monkeypatch):
+    study = tmp_path / "study.yaml"
+    study.write_text("name: synthetic-ht\n")
+    frame = store_frame(n_train=80, n_val=20)
+    seen = {}
+
+    def write_study_report(study_def, frame_, out, **kw):  # the analysis itself is tested above
+        seen.update(kw, study=study_def, frame=frame_, out=out)
+        return out / "index.html"
+
+    monkeypatch.setattr(analysis_cli, "open_study", lambda path, store_path: (study_dict(), "STORE", frame, None))
+    monkeypatch.setattr("certkit.study.analysis.report.write_study_report", write_study_report)
+    result = CliRunner().invoke(analysis_cli.report_command,
+                                [str(study), "--out", str(tmp_path / "out"), "--samples", "2e4", "--no-check"])
+    assert result.exit_code == 0, result.output
+    assert seen["samples"] == 20_000 and seen["check"] is False and seen["store"] == "STORE"
+    assert seen["out"] == tmp_path / "out" and seen["frame"] is frame
+    assert len(seen["sha256"]) == 64
+    result = CliRunner().invoke(analysis_cli.report_command, [str(study)])
+    assert seen["samples"] == 1_000_000 and seen["check"] is True and seen["out"] == tmp_path / "study-report"
+    bad = CliRunner().invoke(analysis_cli.report_command, [str(study), "--samples", "12.5"])
+    assert bad.exit_code == 2 and "whole number" in bad.output
+
+
+def test_bad_analysis_option_is_a_user_error(tmp_path, monkeypatch):
+    study = tmp_path / "study.yaml"
+    study.write_text("name: x\n")
+    frame = store_frame(n_train=40, n_val=0)
+    monkeypatch.setattr(analysis_cli, "open_study", lambda p, s: (
+        study_dict(level_relaxation=[{"responses": "level.*", "max_level": 5}]), None, frame, None))
+    result = CliRunner().invoke(analysis_cli.report_command, [str(study), "--out", str(tmp_path / "o")])
+    assert result.exit_code == 2
+    assert "analysis.level_relaxation[0].max_level: MIL-F-8785C levels are 1, 2 or 3, got 5" in result.output
+    assert "Traceback" not in result.output

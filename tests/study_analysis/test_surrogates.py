@@ -1,0 +1,103 @@
+"""Surrogates: recovery of known functions to their noise-limited R², log transform choice, failed cases,
+flagging, and the exported models (the page's arithmetic) against scikit-learn's predictions."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from certkit.study.analysis.export import evaluate_export, export_surrogate
+from certkit.study.analysis.inputs import cases, study_view
+from certkit.study.analysis.surrogates import fit_response, n_polynomial_terms
+from tests.study_analysis.synthetic import VARIABLES, store_frame, study_dict
+
+D = 8
+BOX = np.array([[-1.0, 1.0]] * D)
+
+
+def _quadratic(seed: int = 3):
+    """A full quadratic in 8 variables with random coefficients (x ~ U(-1, 1)) and its variance in closed form:
+    with E[x²] = 1/3, E[x⁴] = 1/5 and independent inputs, the terms a·x, b·(x² − 1/3) and c·x_i·x_j are
+    uncorrelated, so Var f = Σa²/3 + Σb²·(1/5 − 1/9) + Σc²/9."""
+    rng = np.random.default_rng(seed)
+    a, b = rng.normal(0, 1, D), rng.normal(0, 1, D)
+    c = np.triu(rng.normal(0, 0.5, (D, D)), 1)
+
+    def f(x):
+        return x @ a + (x**2) @ b + np.einsum("ni,ij,nj->n", x, c, x)
+
+    var = np.sum(a**2) / 3 + np.sum(b**2) * (1 / 5 - 1 / 9) + np.sum(c**2) / 9
+    return f, var
+
+
+def test_quadratic_recovered_to_its_noise_limited_r2():
+    f, var_f = _quadratic()
+    sigma = np.sqrt(var_f / 9.0)  # noise-limited R² = Var f / (Var f + σ²) = 0.9
+    r2_limit = var_f / (var_f + sigma**2)
+    rng = np.random.default_rng(5)
+    n_tr, n_val = 500, 1000
+    x_tr, x_val = rng.uniform(-1, 1, (n_tr, D)), rng.uniform(-1, 1, (n_val, D))
+    y_tr = f(x_tr) + rng.normal(0, sigma, n_tr)
+    y_val = f(x_val) + rng.normal(0, sigma, n_val)
+    s = fit_response("q", BOX, x_tr, y_tr, x_val, y_val, gp_max_cases=0, r2_threshold=0.85)
+    polys = [c for c in s.candidates if c.family == "polynomial"]
+    assert min(polys, key=lambda c: c.selection_rmse).degree == 2
+    # least squares with p coefficients on n random points: expected prediction error σ²(1 + p/(n − p − 1))
+    # (random-design OLS, e.g. Hastie, Tibshirani & Friedman, ESL 2nd ed., §7.3 / Breiman & Freedman 1983)
+    p = n_polynomial_terms(D, 2) + 1
+    expected = 1.0 - sigma**2 * (1 + p / (n_tr - p - 1)) / (var_f + sigma**2)
+    # sampling s.e. of a validation R² ≈ (1 − R²)·√(2/n) (χ² of the residual sum of squares)
+    se = (1 - expected) * np.sqrt(2 / n_val)
+    assert s.validation.r2 == pytest.approx(expected, abs=3 * se)
+    assert s.validation.r2 < r2_limit + 3 * se  # cannot beat the noise
+    assert s.kept.family == "polynomial" and s.kept.degree == 2
+    assert s.cv.r2 == pytest.approx(expected, abs=0.03)
+    assert not s.flagged  # threshold 0.85 below the noise limit 0.9
+
+
+def test_log_transform_chosen_for_a_multiplicative_response_only():
+    rng = np.random.default_rng(8)
+    beta = np.array([0.9, -0.6, 0.5, 0.4, -0.3, 0.3, 0.2, -0.2])
+    x_tr, x_val = rng.uniform(-1, 1, (300, D)), rng.uniform(-1, 1, (200, D))
+
+    def mult(x):
+        return 50.0 * np.exp(x @ beta) * np.exp(rng.normal(0, 0.05, len(x)))
+
+    s = fit_response("m", BOX, x_tr, mult(x_tr), x_val, mult(x_val), families=("polynomial",))
+    assert s.kept.log
+    additive = lambda x: 10.0 + x @ beta + 0.3 * x[:, 0] ** 2 + rng.normal(0, 0.05, len(x))  # noqa: E731
+    s = fit_response("a", BOX, x_tr, additive(x_tr), x_val, additive(x_val), families=("polynomial",))
+    assert not s.kept.log and s.kept.degree == 2
+
+
+def test_failed_cases_excluded_and_counted_and_noise_flagged():
+    frame = store_frame(n_train=100, n_val=40, fail_every=10)
+    view = study_view(study_dict())
+    cs = cases(frame, view)
+    x, y, missing = cs.xy("training", "objective.cruise_CD")
+    assert len(y) == 90 and missing == 0 and np.isfinite(y).all()
+    assert len(cs.failed()) == 14 and set(cs.failed()["error"]) == {"trim did not converge at 25.331(c)(2) condition 3"}
+    frame.loc[frame.index[:5], "resp:objective.OEW_kg"] = np.nan
+    _, y, missing = cases(frame, view).xy("training", "objective.OEW_kg")
+    assert missing == 5 and len(y) == 85
+    rng = np.random.default_rng(0)
+    noise = fit_response("noise", view.bounds, x, rng.normal(size=len(x)), x[:20], rng.normal(size=20),
+                         families=("polynomial",))
+    assert noise.flagged
+
+
+@pytest.mark.parametrize("families,log", [(("polynomial",), False), (("polynomial",), True),
+                                          (("neural network",), False), (("Gaussian process",), True)])
+def test_exported_model_reproduces_sklearn(families, log):
+    rng = np.random.default_rng(2)
+    bounds = np.array([[v["lower"], v["upper"]] for v in VARIABLES])
+    x = bounds[:, 0] + (bounds[:, 1] - bounds[:, 0]) * rng.random((120, D))
+    u = (x - bounds[:, 0]) / (bounds[:, 1] - bounds[:, 0])
+    y = np.exp(u @ np.linspace(-1, 1, D) + 0.3 * u[:, 0] * u[:, 1]) if log else np.sin(3 * u[:, 0]) + u[:, 1] ** 2
+    s = fit_response("r", bounds, x[:90], y[:90], x[90:], y[90:], families=families)
+    assert s.kept.family == families[0]
+    if families == ("polynomial",):
+        assert s.kept.log == log
+    doc = export_surrogate(s)
+    probe = bounds[:, 0] + (bounds[:, 1] - bounds[:, 0]) * rng.uniform(-0.1, 1.1, (25, D))
+    np.testing.assert_allclose(evaluate_export(doc, probe), s.predict(probe), rtol=1e-9, atol=1e-12)
