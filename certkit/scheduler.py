@@ -77,10 +77,8 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
             except Exception as exc:
                 findings.append(Finding.not_evaluated(cond, "computation", _describe_exception(exc),
                                                       traceback=traceback.format_exc(limit=3)))
-    covered = {f.condition for f in findings}
-    for cond in conditions:
-        if cond not in covered and not any(c.refines(cond) for c in covered):
-            findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
+    for cond in _uncovered(conditions, findings):
+        findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
     result.findings = findings
     if keep_loads:
         result.load_envelopes = instance.load_envelopes()
@@ -92,6 +90,27 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     except Exception as exc:
         result.notes.append(f"evidence could not be drawn: {_describe_exception(exc)}")
     return result
+
+
+def _uncovered(conditions, findings) -> list:
+    """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
+    Findings are grouped by loading and configuration, which a refinement keeps, so each condition is compared with
+    its own group only."""
+    covered = {f.condition for f in findings}
+    groups: dict = {}
+    for c in covered:
+        groups.setdefault((c.loading, c.configuration), []).append(c)
+    out = []
+    for cond in conditions:
+        if cond in covered:
+            continue
+        if cond.loading is not None and cond.configuration is not None:
+            candidates = groups.get((cond.loading, cond.configuration), ())
+        else:
+            candidates = covered
+        if not any(c.refines(cond) for c in candidates):
+            out.append(cond)
+    return out
 
 
 def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> tuple[list[RuleResult], dict]:

@@ -91,11 +91,11 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
 
 def station_summary(loads_peaks: np.ndarray, stations) -> dict:
     """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
+    lo, hi = (np.asarray(loads_peaks, dtype=float)[:2] / 1e3).tolist()
     out = {}
     for s, station in enumerate(stations):
         for q, quantity in enumerate(QUANTITIES):
-            lo, hi = loads_peaks[0, q, s], loads_peaks[1, q, s]
-            out[f"{station} {quantity} max/min (kN{'·m' if q else ''})"] = [round(float(hi) / 1e3, 1), round(float(lo) / 1e3, 1)]
+            out[f"{station} {quantity} max/min (kN{'·m' if q else ''})"] = [round(hi[q][s], 1), round(lo[q][s], 1)]
     return out
 
 
