@@ -60,9 +60,9 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
             key = f"subcheck.{r.id}.{name}"
             statuses[key] = _worse(statuses.get(key), f.status)
             nm = f.normalized_margin
-            if nm is not None and math.isfinite(nm) and (key not in best or nm < best[key][0]):
+            if nm is not None and math.isfinite(nm) and (best.get(key, (None,))[0] is None or nm < best[key][0]):
                 best[key] = (nm, f.value)
-            elif key not in best:
+            else:
                 best.setdefault(key, (None, None))
             if f.unit == "deg" and f.value is not None and math.isfinite(f.value):
                 for control in CONTROLS:

@@ -137,7 +137,7 @@ def design_aircraft(source: YamlSource, settings: list[Setting], data: dict | No
                       or s.path.startswith(p.path + ".")]
             if owners:
                 related += 1
-                names = ", ".join(map(str, owners))
+                names = ", ".join(map(str, owners)) if len(owners) == 1 else ", ".join(o.path for o in owners)
                 lines.append(f"  - design variable{'s' if len(owners) > 1 else ''} {names}: {p.path}: {p.message}"
                              + ("" if p.value is None or len(owners) > 1 else f" (got {p.value!r})"))
             else:

@@ -72,3 +72,15 @@ def test_mission_needed():
     assert mission_needed(None) and mission_needed(["objective.*"]) and mission_needed(["constraint.range_margin_m"])
     assert not mission_needed(["objective.OEW_kg"])  # from the sizing loop
     assert not mission_needed(["rule.*"])
+
+
+def test_not_evaluated_first_then_evaluated():
+    """A check whose first finding could not be evaluated still takes the margin of a later evaluated one."""
+    c = Condition(loading="fwd_mrw")
+    r = RuleResult("25.149", "minimum-control-speed", "t", [
+        Finding.not_evaluated(c, "(c) VMCA ≤ 1.13 VSR", "trim did not converge"),
+        Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 70.0, 80.0, at_least=False, unit="m/s"),
+        Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 75.0, 80.0, at_least=False, unit="m/s")])
+    out, st = rule_responses([r], {})
+    assert out["subcheck.25.149.c_vmca_1_13_vsr.margin"] == pytest.approx(5.0 / 80.0)
+    assert st["subcheck.25.149.c_vmca_1_13_vsr"] == "not_evaluated"
