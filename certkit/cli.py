@@ -54,6 +54,24 @@ def _long_lived_objects():
         gc.enable()
 
 
+def _mission_for_report(aircraft) -> dict | None:
+    """The aircraft file's missions (design range, payload–range, nominal mission, cruise drag) for the report, or
+    why they could not be flown; None without a ``mission:`` section."""
+    if aircraft.mission is None:
+        return None
+    from certkit.models.performance.mission import fly_missions
+    from certkit.report.mission_plots import payload_range_svg
+
+    try:
+        m = fly_missions(aircraft)
+    except UserError as exc:
+        return {"error": str(exc)}
+    out = m.as_dict()
+    out.pop("timings", None)  # results.json is the same for identical runs
+    out["svg"] = payload_range_svg(m.payload_range, m.range_requirement_m)
+    return out
+
+
 _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
                              help="Folder of your own rule modules (repeatable).")
 
@@ -99,6 +117,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         chosen = select_rules(rules, split(select), split(ignore))
     try:
         result = run(loaded, chosen, jobs=jobs, options=options)
+        result.models["mission"] = _mission_for_report(loaded.model)
         out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
         json_path, html_path = write_report(result, chosen, out)
     finally:

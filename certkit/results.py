@@ -247,7 +247,8 @@ class RunResult:
             "created": self.created,
             "summary": self.summary(),
             "rules": [r.as_dict() for r in self.rules] if rules is None else rules,
-            "models": self.models,
+            "models": {k: ({kk: vv for kk, vv in v.items() if kk != "svg"} if isinstance(v, dict) else v)
+                       for k, v in self.models.items()},
         }
 
     def to_json(self) -> str:
