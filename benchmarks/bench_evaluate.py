@@ -51,7 +51,8 @@ def in_process():
         wall = time.perf_counter() - t0
         t = rec["timings"]
         its = ", ".join(f"{s:.2f}" for s in t.get("sizing_iteration_s", []))
-        print(f"{wall:6.2f} s  set-up {t['setup_s']:.2f} | sizing {t['sizing_s']:.2f} ({its}) | other rules "
+        print(f"{wall:6.2f} s  set-up {t['setup_s']:.2f} | sizing {t['sizing_s']:.2f} ({its}; aero models "
+              f"{t['aero_setup_s']:.2f}) | other rules "
               f"{t['rules_s']:.2f} | mission {t.get('mission_s', 0.0):.2f}   {values or 'baseline'}")
 
 

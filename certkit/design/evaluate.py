@@ -129,6 +129,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     loop = size_horizontal_tail_loop(source, settings, data, aircraft, base, rules, loaded_of)
     timings["sizing_s"] = loop.seconds
     timings["sizing_iteration_s"] = [round(s, 3) for s in loop.iteration_seconds]
+    timings["aero_setup_s"] = loop.aero_seconds  # inside the sizing time
 
     t = time.perf_counter()
     done = {r.id for r in loop.results}

@@ -64,6 +64,7 @@ class LoopResult:
     baseline_actuators: BaselineActuators
     seconds: float
     iteration_seconds: list[float] = field(default_factory=list)
+    aero_seconds: float = 0.0  # of which: lattice, aerodynamic and strip-loads models
 
     def responses(self) -> dict:
         g = self.group
@@ -166,6 +167,7 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
     declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine."""
     from certkit.context import Context
     from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
+    from certkit.models.loads.model import airplane_loads
     from certkit.scheduler import evaluate_rule
 
     start = time.perf_counter()
@@ -178,6 +180,7 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
     group = initial_group(aircraft, base_aircraft, declared)
     history: list[dict] = []
     seconds: list[float] = []
+    aero_seconds = 0.0
     union: TailLoadEnvelope | None = None
     same_geometry = all(st.path.split(".")[0] in ("mass", "sizing", "structure", "criteria") for st in settings)
     known = _BASELINE.get(source.sha256)
@@ -193,6 +196,9 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         previous_ctx, ctx = ctx, Context(loaded_of(current))
         if previous_ctx is not None:
             ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
+        t_aero = time.perf_counter()
+        ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
+        aero_seconds += time.perf_counter() - t_aero
         results = [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in loads_rules]
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results)
@@ -209,7 +215,7 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
             for r in results:
                 r.run = None  # the simulations are not needed any more
             return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,
-                              time.perf_counter() - start, seconds)
+                              time.perf_counter() - start, seconds, aero_seconds)
         group = sized
     raise SizingNotConverged(
         f"horizontal-tail sizing did not converge in {spec.max_iterations} iterations (tolerance "
