@@ -26,9 +26,8 @@ def _samples(ctx, param, value) -> int:
 def open_study(study_path: Path, store_path: Path | None):
     """(study definition, store, store frame, analysis options from the study file) for ``study_path``.
 
-    The study definition and store come from the study runner's modules (``certkit.study.spec`` /
-    ``certkit.study.store``, INTERFACES.md): ``Store.open(path)``, ``store.study()``, ``store.frame()``."""
-    import yaml
+    The definition is the study file as it is now (objectives, constraints and analysis options may change after a
+    run without changing a case); its variables must be those the store was run with."""
 
     try:
         from certkit.study.store import Store
@@ -40,9 +39,15 @@ def open_study(study_path: Path, store_path: Path | None):
     if not store_path.exists():
         raise UserError(f"{study_path}: no study store at {store_path}; run `certkit study run {study_path}` first "
                         f"or give --store")
+    from certkit.study.spec import load_study
+
     store = Store.open(store_path)
-    raw = yaml.safe_load(study_path.read_text(encoding="utf-8")) or {}
-    return store.study(), store, store.frame(), raw.get("analysis") if isinstance(raw, dict) else None
+    study = load_study(study_path)  # the file as it is now: objectives, constraints and options may be edited after a run
+    stored = {v.path for v in store.study().variables}
+    if {v.path for v in study.variables} != stored:
+        raise UserError(f"{study_path}: its variables differ from those the store {store_path} was run with "
+                        f"({', '.join(sorted(stored))}); run the study again or give --store")
+    return study, store, store.frame(), study.analysis
 
 
 @click.command("report")
