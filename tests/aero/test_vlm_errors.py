@@ -160,3 +160,19 @@ def test_body_skipped_with_warning_and_comments(tmp_path):
     assert s.name == "wing" and s.y_duplicate == 0.0 and not s.wake
     assert s.sections[0].incidence == pytest.approx(math.radians(2.0))
     assert cfg.mach == 0.2 and cfg.reference.area == 10.0
+
+
+def test_control_edge_closer_to_the_tip_than_one_strip():
+    """A control ending 0.13 % of the semispan short of the tip (a design study's corner) gets a narrow strip of its
+    own instead of an error; its effectiveness is continuous with the control that reaches the tip (within 1 %: the
+    shifted strip edges change the discretisation by about 0.2 %) and above that of a control ending at 0.98."""
+    def cl_delta(eta_out):
+        s = trapezoidal_surface("tail", area=100.0, aspect_ratio=4.5, taper=0.35, sweep_quarter_chord=0.6, n_span=20,
+                                controls=[ControlSpan("elevator", 0.002, eta_out, 0.3)])
+        vl = VortexLattice(Configuration([s], AeroReference(100.0, math.sqrt(450.0), 5.0, 0.0)), mach=0.3)
+        d = 1e-3
+        return (vl.solve(controls={"elevator": d}).CL - vl.solve(controls={"elevator": -d}).CL) / (2 * d)
+
+    near, full, short = cl_delta(0.9987), cl_delta(1.0), cl_delta(0.98)
+    assert near == pytest.approx(full, rel=0.01)
+    assert short < near and short < full

@@ -93,6 +93,12 @@ def _spanwise_nodes(surface: Surface, yzlen: np.ndarray) -> tuple[np.ndarray, np
         ypt = yzlen[0] + (yzlen[-1] - yzlen[0]) * f[0::2]
         ycp = yzlen[0] + (yzlen[-1] - yzlen[0]) * f[1::2]
         iptloc = [0] + [int(np.argmin(np.abs(yzlen[k] - ypt))) for k in range(1, nsec - 1)] + [nvs]
+        # a section closer to its neighbour than one strip takes the next free node (a narrow strip between them)
+        # instead of sharing its node; an order-preserving shift, the same nodes as before whenever they differ
+        for k in range(1, nsec - 1):
+            iptloc[k] = max(iptloc[k], iptloc[k - 1] + 1)
+        for k in range(nsec - 2, 0, -1):
+            iptloc[k] = min(iptloc[k], iptloc[k + 1] - 1)
         # move the nodes nearest each interior section onto it, rescaling the intervals on both sides
         for k in range(1, nsec - 1):
             for lo, hi, anchor_lo in ((iptloc[k - 1], iptloc[k], True), (iptloc[k], iptloc[k + 1], False)):
