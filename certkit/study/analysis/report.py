@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -51,18 +52,32 @@ class Analysis:
     timings: dict[str, float] = field(default_factory=dict)
 
 
+def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
+    (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
+    try:
+        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
+                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
+    except ValueError as exc:
+        return name, None, str(exc)
+
+
 def _fit_all(view: StudyView, cs, log) -> tuple[dict[str, Surrogate], dict[str, str]]:
+    """One surrogate per analysed response, the responses fitted in parallel over the cores (each fit is seeded:
+    the same models whatever the number of processes)."""
+    from joblib import Parallel, delayed
+
+    names = view.analysed_responses()
+    data = {n: (cs.xy("training", n), cs.xy("validation", n)) for n in names}
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    done = Parallel(n_jobs=min(cores, len(names)) or 1)(
+        delayed(_fit_one)(n, view.bounds, data[n], view.options) for n in names)
     surrogates, not_fitted = {}, {}
-    for name in view.analysed_responses():
-        x_tr, y_tr, miss_tr = cs.xy("training", name)
-        x_val, y_val, miss_val = cs.xy("validation", name)
-        try:
-            surrogates[name] = fit_response(name, view.bounds, x_tr, y_tr, x_val, y_val,
-                                            r2_threshold=view.options.r2_threshold,
-                                            gp_max_cases=view.options.gp_max_cases, n_missing=miss_tr + miss_val)
-            log(f"surrogate {name}: {surrogates[name].kept.label}")
-        except ValueError as exc:
-            not_fitted[name] = str(exc)
+    for name, surrogate, error in done:
+        if surrogate is None:
+            not_fitted[name] = error
+        else:
+            surrogates[name] = surrogate
+            log(f"surrogate {name}: {surrogate.kept.label}")
     return surrogates, not_fitted
 
 
