@@ -142,7 +142,8 @@ def design_aircraft(source: YamlSource, settings: list[Setting], data: dict | No
                              + ("" if p.value is None or len(owners) > 1 else f" (got {p.value!r})"))
             else:
                 lines.append(f"  - {p}")
-        head = f"{source.path} with {', '.join(map(str, settings))}: {len(lines)} problem{'s' if len(lines) != 1 else ''}"
+        shown = ", ".join(map(str, settings)) if len(settings) <= 3 else f"{len(settings)} design variables"
+        head = f"{source.path} with {shown}: {len(lines)} problem{'s' if len(lines) != 1 else ''}"
         error = ImpossibleDesign if related == len(lines) else DesignError
         raise error("\n".join([head] + lines)) from None
 

@@ -101,3 +101,14 @@ def test_exported_model_reproduces_sklearn(families, log):
     doc = export_surrogate(s)
     probe = bounds[:, 0] + (bounds[:, 1] - bounds[:, 0]) * rng.uniform(-0.1, 1.1, (25, D))
     np.testing.assert_allclose(evaluate_export(doc, probe), s.predict(probe), rtol=1e-9, atol=1e-12)
+
+
+def test_a_constant_response_is_reproduced_not_flagged():
+    """A response that took one value over every case (a handling level the variables never change) has no R²;
+    its surrogate reproduces the value and is not flagged as a poor fit."""
+    rng = np.random.default_rng(3)
+    bounds = np.array([[0.0, 1.0]] * 3)
+    x = rng.random((40, 3))
+    s = fit_response("level.x", bounds, x, np.full(40, 2.0), x[:0], np.empty(0), families=("polynomial",))
+    assert s.constant and not s.flagged
+    assert np.allclose(s.predict(rng.random((5, 3))), 2.0)

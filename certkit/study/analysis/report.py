@@ -52,6 +52,18 @@ class Analysis:
     timings: dict[str, float] = field(default_factory=dict)
 
 
+def _in_unit(value: float, unit: str) -> float:
+    """An SI value in the variable's display unit (``deg``, ``ft^2``); unchanged without one."""
+    if not unit:
+        return value
+    from certkit.units import from_si
+
+    try:
+        return from_si(value, unit)
+    except Exception:  # an unknown display unit: the SI value, rather than no report
+        return value
+
+
 def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
     (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
     try:
@@ -142,6 +154,7 @@ def _environment() -> Environment:
     env = Environment(loader=PackageLoader("certkit.study.analysis", "templates"),
                       autoescape=select_autoescape(["html"]), trim_blocks=True, lstrip_blocks=True)
     env.filters["num"] = _num
+    env.filters["in_unit"] = _in_unit
     env.filters["pct"] = lambda p: "—" if p is None else f"{100 * p:.2f} %"
     return env
 

@@ -149,7 +149,15 @@ class Surrogate:
         return self.validation.r2 if self.validation.n >= MIN_VALIDATION else self.cv.r2
 
     @property
+    def constant(self) -> bool:
+        """The response took one value over every training case (R² undefined; the surrogate reproduces it)."""
+        y = self.plot_data.get("train", (np.empty(0),))[0]
+        return len(y) > 0 and float(np.ptp(y)) == 0.0
+
+    @property
     def flagged(self) -> bool:
+        if self.constant:
+            return False
         r2 = self.r2_judged
         return r2 is None or r2 < self.r2_threshold
 
