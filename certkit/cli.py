@@ -72,6 +72,20 @@ def _mission_for_report(aircraft) -> dict | None:
     return out
 
 
+def _default_jobs(jobs: int | None) -> int:
+    """The processes to use (default: the cores available, at most 4). With more than one, each process gets one
+    BLAS/OpenMP thread (set before numpy loads; a user's own setting is kept): threaded BLAS in several processes
+    oversubscribes the cores and slows the lattice several times."""
+    if jobs is None:
+        jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1 (got {jobs})")
+    if jobs > 1:
+        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+            os.environ.setdefault(var, "1")
+    return jobs
+
+
 _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
                              help="Folder of your own rule modules (repeatable).")
 
@@ -97,13 +111,7 @@ def _safe_dirname(name: str) -> str:
 @_rules_option
 def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     """Evaluate every selected rule on AIRCRAFT_FILE and write results.json and an HTML report."""
-    if jobs is None:
-        jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
-    if jobs > 1:
-        # one BLAS/OpenMP thread per worker process (set before numpy loads; a user's own setting is kept):
-        # threaded BLAS in several processes oversubscribes the cores and slows the lattice several times
-        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-            os.environ.setdefault(var, "1")
+    jobs = _default_jobs(jobs)
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
@@ -329,10 +337,14 @@ def new_rule(rule_id, symbol, title, subpart, root):
               help='Design variable, e.g. --set geometry.horizontal_tail.area="1250 ft^2" (repeatable).')
 @click.option("--response", "responses", multiple=True, metavar="NAME",
               help="Response name or glob pattern to compute (repeatable; default: all).")
+@click.option("--jobs", "-j", default=None, type=int,
+              help="Processes sharing the rules (default: the CPU cores available, at most 4; the record does not "
+                   "depend on it).")
 @click.option("--json", "as_json", is_flag=True, help="Print the whole record as JSON.")
-def evaluate_command(aircraft_file, settings, responses, as_json):
+def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
     """Evaluate one design: size the horizontal tail from its loads, run every rule and the mission, print one
     record (design variables, objectives, rule margins, sub-checks, handling levels, sizing, timings)."""
+    jobs = _default_jobs(jobs)
     from certkit.design.evaluate import evaluate_design
     from certkit.design.report import print_record
     from certkit.design.variables import parse_setting
@@ -341,7 +353,7 @@ def evaluate_command(aircraft_file, settings, responses, as_json):
     from certkit.models.structure.box import StructuralSizingError
 
     try:
-        record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None)
+        record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None, jobs=jobs)
     except (SizingNotConverged, StructuralSizingError) as exc:  # the design is possible but cannot be sized
         click.echo(f"error: the design could not be evaluated: {exc}", err=True)
         sys.exit(1)

@@ -97,11 +97,12 @@ def mission_needed(patterns: Sequence[str] | None) -> bool:
 
 
 def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Setting] | None = None,
-                    responses: Sequence[str] | None = None) -> dict:
+                    responses: Sequence[str] | None = None, *, jobs: int = 1) -> dict:
     """Evaluate one design of ``aircraft_path`` with the design ``values`` ({path: SI number or "value unit"}).
 
     ``responses``: names or glob patterns of the responses wanted (None: all); rules no response needs are skipped
-    (the horizontal-tail loads rules always run: the sizing needs them). Raises :class:`DesignError` (a user error)
+    (the horizontal-tail loads rules always run: the sizing needs them). ``jobs`` > 1 spreads each pass of rules
+    over that many forked processes (the record is the same; a study runs one design per core instead). Raises :class:`DesignError` (a user error)
     for an unknown path, a wrong value or an impossible planform; any other exception is a failure of this design.
 
     Returns ``{"schema", "certkit_version", "aircraft": {name, sha256}, "variables": {path: SI}, "responses":
@@ -109,8 +110,8 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     """
     from certkit.aircraft import LoadedAircraft
     from certkit.design.record import handling_levels, rule_responses
+    from certkit.design.parallel import evaluate_rules
     from certkit.design.sizing_loop import size_horizontal_tail_loop
-    from certkit.scheduler import evaluate_rule
 
     t0 = time.perf_counter()
     timings: dict[str, float] = {}
@@ -126,7 +127,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
         return LoadedAircraft(model=model, path=str(aircraft_path), sha256=source.sha256, source=source)
 
     base = _base_aircraft(source) if settings else aircraft
-    loop = size_horizontal_tail_loop(source, settings, data, aircraft, base, rules, loaded_of)
+    loop = size_horizontal_tail_loop(source, settings, data, aircraft, base, rules, loaded_of, jobs)
     timings["sizing_s"] = loop.seconds
     timings["sizing_iteration_s"] = [round(s, 3) for s in loop.iteration_seconds]
     timings["aero_setup_s"] = loop.aero_seconds  # inside the sizing time
@@ -134,7 +135,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     t = time.perf_counter()
     done = {r.id for r in loop.results}
     others = [r for r in rules if r.id not in done and rule_needed(r.id, responses)]
-    results = list(loop.results) + [evaluate_rule(r, loop.ctx, evidence=False) for r in others]
+    results = list(loop.results) + evaluate_rules(others, loop.ctx, jobs, evidence=False)
     order = {r.id: i for i, r in enumerate(rules)}
     results.sort(key=lambda r: order.get(r.id, len(order)))
     timings["rules_s"] = time.perf_counter() - t

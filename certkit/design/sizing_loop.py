@@ -162,13 +162,15 @@ def _remember(source, value: BaselineActuators) -> None:
     _BASELINE[source.sha256] = value
 
 
-def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, rules, loaded_of) -> LoopResult:
+def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, rules, loaded_of,
+                              jobs: int = 1) -> LoopResult:
     """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
-    declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine."""
+    declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine;
+    ``jobs`` processes share the loads rules of an iteration (:mod:`certkit.design.parallel`)."""
     from certkit.context import Context
     from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
+    from certkit.design.parallel import evaluate_rules
     from certkit.models.loads.model import airplane_loads
-    from certkit.scheduler import evaluate_rule
 
     start = time.perf_counter()
     spec = declared_sizing(aircraft)
@@ -199,7 +201,7 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         t_aero = time.perf_counter()
         ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
         aero_seconds += time.perf_counter() - t_aero
-        results = [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in loads_rules]
+        results = evaluate_rules(loads_rules, ctx, jobs, evidence=False, keep_loads=True)
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results)
             _remember(source, base_act)

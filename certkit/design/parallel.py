@@ -1,0 +1,62 @@
+"""Rules of one design over several processes (``certkit evaluate`` on a multi-core machine).
+
+The worker processes are forked from the evaluating process, so each starts from its Context (the aircraft, the
+lattice and the models already built) and evaluates its share of the rules, the heaviest first (longest-processing-
+time order over :attr:`Rule.cost`). The results come back in rule order and are the same as in one process: every
+memoised model is a deterministic function of its inputs. Only the parts a design needs of a loads rule's run are
+sent back (its load envelopes and the pitch-manoeuvre histories the actuator sizing reads). A study evaluates one
+design per core and does not use this.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from concurrent.futures import ProcessPoolExecutor
+
+#: the run data a design keeps of a loads rule (:func:`certkit.design.tail_group.design_hinge_moment`)
+KEPT_RUN = ("sim", "valid", "conditions")
+_SHARED: dict = {}
+
+
+def _slim(result):
+    if result.run is not None:
+        result.run = {k: result.run[k] for k in KEPT_RUN if k in result.run}
+    result.evidence = []
+    return result
+
+
+def _work(ids: tuple[str, ...]) -> list:
+    from certkit.scheduler import evaluate_rule
+
+    ctx, rules, kw = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"]
+    return [_slim(evaluate_rule(rules[i], ctx, **kw)) for i in ids]
+
+
+def shares(rules, jobs: int) -> list[tuple]:
+    """The rules in ``jobs`` groups of about equal summed cost (heaviest first into the lightest group)."""
+    groups: list[list] = [[] for _ in range(jobs)]
+    load = [0.0] * jobs
+    for r in sorted(rules, key=lambda r: -r.cost):
+        k = load.index(min(load))
+        groups[k].append(r)
+        load[k] += r.cost
+    return [tuple(g) for g in groups if g]
+
+
+def evaluate_rules(rules, ctx, jobs: int = 1, **kw) -> list:
+    """:func:`certkit.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
+    processes when more than one is asked for and the platform forks; in rule order."""
+    from certkit.scheduler import evaluate_rule
+
+    rules = list(rules)
+    if jobs <= 1 or len(rules) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        return [evaluate_rule(r, ctx, **kw) for r in rules]
+    groups = shares(rules, min(jobs, len(rules)))
+    _SHARED.update(ctx=ctx, rules={r.id: r for r in rules}, kw=kw)
+    try:
+        with ProcessPoolExecutor(len(groups), mp_context=multiprocessing.get_context("fork")) as pool:
+            done = [res for part in pool.map(_work, [tuple(r.id for r in g) for g in groups]) for res in part]
+    finally:
+        _SHARED.clear()
+    by_id = {res.id: res for res in done}
+    return [by_id[r.id] for r in rules]
