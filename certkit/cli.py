@@ -303,13 +303,12 @@ def modes_command(aircraft_file, **kw):
 def mission_command(aircraft_file, oew, svg_path, as_json):
     """Design range, payload-range, block fuel and time of the nominal mission, cruise drag (the mission: section)."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
     from certkit.flight_report import _quantity
     from certkit.models.performance.mission import fly_missions
     from certkit.models.performance.mission_report import mission_json, mission_table
 
     loaded = load_aircraft(aircraft_file)
-    result = fly_missions(loaded.model, Context(loaded), oew_kg=_quantity(oew, "mass", "--oew") if oew else None)
+    result = fly_missions(loaded.model, oew_kg=_quantity(oew, "mass", "--oew") if oew else None)
     if svg_path:
         from certkit.report.mission_plots import payload_range_svg
 

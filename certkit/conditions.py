@@ -15,6 +15,7 @@ import numpy as np
 
 from certkit.aircraft.model import Aircraft
 from certkit.atmosphere import from_tas, to_tas
+from certkit.models.mass.loading import reference_cg
 from certkit.results import Condition
 
 
@@ -46,11 +47,6 @@ def inside_envelope(aircraft: Aircraft, mass: float, x_cg: float, tol: float = 1
     except ValueError:
         return False
     return fwd - tol <= x_cg <= aft + tol
-
-
-def reference_cg(aircraft: Aircraft) -> float:
-    env = aircraft.cg_envelope
-    return env.reference_x if env.reference_x is not None else aircraft.reference.moment_point.x
 
 
 # --- axes ----------------------------------------------------------------------------------

@@ -14,7 +14,7 @@ def mission_responses(aircraft, ctx, oew_kg: float) -> tuple[dict, dict]:
     from certkit.models.performance.mission import fly_missions
 
     try:
-        result = fly_missions(aircraft, ctx, oew_kg)
+        result = fly_missions(aircraft, ctx.aero("clean"), oew_kg)
     except InfeasibleDesign:
         raise
     except UserError as exc:

@@ -92,7 +92,7 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
                  brake_friction: float = 0.4, side_friction: float = 0.6) -> GroundModel:
     """Spring–damper legs from ``geometry.landing_gear`` (module docstring); ``mass``/``x_cg`` the sizing
     loading (default MTOW at the reference CG). Raises ValueError when the gear is not declared."""
-    from certkit.conditions import reference_cg
+    from certkit.models.mass.loading import reference_cg
 
     g = aircraft.geometry
     if g is None or g.landing_gear is None:
@@ -114,3 +114,20 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
             leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
             leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False)]
     return GroundModel(legs, elevation=elevation, brake_friction=brake_friction)
+
+
+def level_trims(aircraft, aero_model, masses, x_cg: float, altitude, tas, loading_name: str = ""):
+    """Straight, wings-level trims of one batch at the masses (kg), one CG station (m), altitudes (m) and true
+    airspeeds (m/s), with the design control limits: the trims a :class:`certkit.context.Context` would make for the
+    same conditions, for models that hold no Context (the mission). Each distinct mass is loaded once."""
+    from certkit.models.dynamics.trim import trim
+    from certkit.models.mass.loading import solve_loading
+
+    masses = [float(m) for m in masses]
+    solved: dict[float, object] = {}
+    for m in masses:
+        if m not in solved:
+            solved[m] = solve_loading(aircraft, m, float(x_cg), loading_name)
+    model = flight_model(aircraft, aero_model, [solved[m] for m in masses])
+    return trim(model, np.asarray(tas, dtype=float), np.asarray(altitude, dtype=float), kind="straight",
+                limits=control_limits(aircraft, design=True), roles=ROLES)

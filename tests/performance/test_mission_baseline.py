@@ -23,9 +23,13 @@ def base_ctx(baseline):
     return ctx
 
 
+#: the baseline's mission trim tables, shared by the tests of this module (fly_missions' tables_cache)
+TABLES: dict = {}
+
+
 @pytest.fixture(scope="module")
 def result(base_ctx):
-    return fly_missions(base_ctx.aircraft, base_ctx)
+    return fly_missions(base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES)
 
 
 def phase(profile, name):
@@ -122,7 +126,8 @@ def test_profile_bookkeeping_and_limits(result):
 def test_oew_increase_costs_range_as_breguet_predicts(result, base_ctx):
     """+1,000 kg of OEW at fixed takeoff weight and payload: the range falls by about V (L/D)/(c g) × ΔW/W_end
     (Breguet differentiated at the end weight), within 25 % (steps and reserves shift), and block fuel rises."""
-    heavier = fly_missions(base_ctx.aircraft, base_ctx, oew_kg=base_ctx.aircraft.mass.OEW + 1000.0)
+    heavier = fly_missions(base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES,
+                           oew_kg=base_ctx.aircraft.mass.OEW + 1000.0)
     c = result.cruise_drag
     from certkit import atmosphere as isa
     from certkit.models.performance.fuel_flow import EngineFuel
@@ -150,5 +155,5 @@ def test_tail_change_shows_in_cruise_drag_and_fuel(result, baseline):
 def test_one_mission_after_warm_up_is_fast(base_ctx):
     """The design study runs this thousands of times: well under 1 s once the tables are trimmed."""
     start = time.perf_counter()
-    fly_missions(base_ctx.aircraft, base_ctx, oew_kg=base_ctx.aircraft.mass.OEW + 10.0)
+    fly_missions(base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES, oew_kg=base_ctx.aircraft.mass.OEW + 10.0)
     assert time.perf_counter() - start < 1.0

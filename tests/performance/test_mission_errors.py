@@ -53,20 +53,20 @@ def test_unreachable_first_cruise_level(tmp_path, aero_memo):
     path = variant(tmp_path, "initial_altitude: 31000 ft", "initial_altitude: 43000 ft")
     ctx = context(path, aero_memo)
     with pytest.raises(UserError, match=r"mission\.initial_altitude: .*cannot reach the first cruise level 43000 ft \(thrust"):
-        fly_missions(ctx.aircraft, ctx)
+        fly_missions(ctx.aircraft, ctx.aero("clean"))
 
 
 def test_nominal_mission_beyond_the_fuel(tmp_path, aero_memo):
     path = variant(tmp_path, "nominal_distance: 5000 nmi", "nominal_distance: 12000 nmi")
     ctx = context(path, aero_memo)
     with pytest.raises(UserError, match=r"mission\.nominal_distance: 12000 nmi"):
-        fly_missions(ctx.aircraft, ctx)
+        fly_missions(ctx.aircraft, ctx.aero("clean"))
 
 
 def test_short_range_is_a_result_not_an_error(tmp_path, aero_memo):
     path = variant(tmp_path, "range_requirement: 7530 nmi", "range_requirement: 11000 nmi")
     ctx = context(path, aero_memo)
-    r = fly_missions(ctx.aircraft, ctx)
+    r = fly_missions(ctx.aircraft, ctx.aero("clean"))
     assert r.range_margin_m < 0 and r.responses()["constraint.range_margin_m"] == r.range_margin_m
 
 

@@ -11,7 +11,7 @@ from certkit.atmosphere import eas_to_tas, tas_to_mach
 from certkit.conditions import CgCorners, ConditionSpace
 from certkit.context import Context
 from certkit.models.dynamics.simulate import Controller
-from certkit.models.loads.batch import trimmed_batch
+from certkit.loads_conditions import trimmed_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import response_loads
 from certkit.models.loads.roll import mirror, simulate_roll, symmetric_manoeuvre_state

@@ -8,7 +8,7 @@ import pytest
 
 from certkit.conditions import CgCorners, ConditionSpace
 from certkit.context import Context
-from certkit.models.loads.batch import trimmed_batch
+from certkit.loads_conditions import trimmed_batch
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.scheduler import evaluate_rule
 from certkit.units import KN

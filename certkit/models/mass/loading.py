@@ -50,6 +50,12 @@ class Loading:
                  "z_m": round(c.cg[2], 3), "share": f"{100 * c.mass / self.properties.mass:.1f} %"} for c in self.items]
 
 
+def reference_cg(aircraft) -> float:
+    """The reference CG station (m): the CG envelope's ``reference_x``, else the reference moment point."""
+    env = aircraft.cg_envelope
+    return env.reference_x if env.reference_x is not None else aircraft.reference.moment_point.x
+
+
 def _item(name, mass, x, y=0.0, z=0.0, inertia=None):
     return MassComponent(name, float(mass), (float(x), float(y), float(z)), inertia)
 

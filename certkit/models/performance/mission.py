@@ -357,13 +357,12 @@ class MissionFlyer:
         return self.fly(name, payload, w)
 
 
-def _context(aircraft, ctx):
-    if ctx is not None:
-        return ctx
-    from certkit.aircraft import LoadedAircraft
-    from certkit.context import Context
+def clean_aero(aircraft):
+    """The clean configuration's aerodynamic model (vortex lattice unless the file declares derivative tables)."""
+    from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
 
-    return Context(LoadedAircraft(model=aircraft, path="<memory>", sha256="", source=None))
+    declared = "clean" in aircraft.aerodynamics.derivative_tables
+    return build_airplane_aero(aircraft, "clean", lattice=None if declared else lattice_derivatives(aircraft))
 
 
 def fuel_capacity(aircraft) -> float | None:
@@ -373,10 +372,11 @@ def fuel_capacity(aircraft) -> float | None:
     return sum(t.capacity for t in m.fuel_tanks) or None
 
 
-def fly_missions(aircraft, ctx=None, oew_kg: float | None = None) -> MissionResult:
+def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache: dict | None = None) -> MissionResult:
     """Design range, payload–range, nominal mission and cruise drag of ``aircraft`` (its ``mission:`` section),
-    with the OEW overridden by ``oew_kg`` when given (the design layer's sized OEW). ``ctx``: a
-    :class:`certkit.context.Context` of the same aircraft to reuse (its aerodynamic model and trims)."""
+    with the OEW overridden by ``oew_kg`` when given (the design layer's sized OEW). ``aero``: the clean
+    configuration's aerodynamic model of the same aircraft to reuse (built when not given); ``tables_cache``: a dict
+    the caller keeps for one aircraft, so that missions with other OEWs reuse its trim tables."""
     t0 = time.perf_counter()
     m = aircraft.mission
     if m is None:
@@ -391,9 +391,13 @@ def fly_missions(aircraft, ctx=None, oew_kg: float | None = None) -> MissionResu
         raise UserError(f"mission.design_payload: {m.design_payload:.0f} kg exceeds the maximum payload {max_payload:.0f} kg "
                         f"(min of mass.max_payload and MZFW − OEW with OEW {oew:.0f} kg)")
     capacity = fuel_capacity(aircraft)
-    ctx = _context(aircraft, ctx)
+    aero = clean_aero(aircraft) if aero is None else aero
     lo = 0.8 * (mass.OEW if oew >= 0.85 * mass.OEW else oew)  # one table for every OEW near the declared one
-    tables = ctx.memo(("mission_tables", round(lo, 0)), lambda: build_tables(ctx, aircraft, (lo, 1.05 * mass.MTOW)))
+    cache = {} if tables_cache is None else tables_cache
+    key = ("mission_tables", round(lo, 0))
+    if key not in cache:
+        cache[key] = build_tables(aircraft, aero, (lo, 1.05 * mass.MTOW))
+    tables = cache[key]
     t1 = time.perf_counter()
     flyer = MissionFlyer(aircraft, tables, oew)
     taxi = flyer.allowance["taxi_out"]
@@ -434,22 +438,21 @@ def fly_missions(aircraft, ctx=None, oew_kg: float | None = None) -> MissionResu
             notes.append(f"{p.name}: landing weight {p.landing_weight_kg:.0f} kg exceeds MLW ({mass.MLW:.0f} kg)")
         notes += p.notes
     t3 = time.perf_counter()
-    drag = cruise_drag(ctx, aircraft, tables.x_cg, m.drag_condition.mass or design.mid_cruise_weight_kg)
+    drag = cruise_drag(aircraft, aero, tables.x_cg, m.drag_condition.mass or design.mid_cruise_weight_kg)
     notes += _speed_notes(aircraft)
     t4 = time.perf_counter()
     timings = {"tables_s": t1 - t0, "range_s": t2 - t1, "nominal_s": t3 - t2, "drag_s": t4 - t3, "total_s": t4 - t0}
     return MissionResult(design, nominal, points, drag, m.range_requirement, oew, notes, timings)
 
 
-def cruise_drag(ctx, aircraft, x_cg: float, mass_kg: float) -> CruiseDrag:
+def cruise_drag(aircraft, aero, x_cg: float, mass_kg: float) -> CruiseDrag:
     """The trimmed level-flight drag coefficient at the declared design cruise condition and ``mass_kg``."""
-    from certkit.results import Condition
+    from certkit.models.flight import level_trims
 
     m = aircraft.mission
     h = m.drag_condition.altitude
-    cond = Condition(loading="mission", mass=float(mass_kg), x_cg=float(x_cg), configuration="clean", altitude=float(h),
-                     speed=float(isa.mach_to_tas(m.cruise_mach, h)), speed_kind="TAS")
-    batch = ctx.trim([cond], configuration="clean")
+    batch = level_trims(aircraft, aero.model, [mass_kg], x_cg, [float(h)], [float(isa.mach_to_tas(m.cruise_mach, h))],
+                        "mission")
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     r = batch.results[0]
     cl, cd = float(out.CL[0]), float(out.CD[0])

@@ -3,7 +3,7 @@
 Every condition of the mission — the points of the climb/descent schedule, the cruise levels at the cruise Mach
 number, the holding speeds — is trimmed in steady level flight (α, elevator and throttle solved, so that the
 horizontal tail's trim load and the elevator drag are in the thrust required) by
-:meth:`certkit.context.Context.trim`, for every weight of a weight grid, in **one** call. The thrust required
+:func:`certkit.models.flight.level_trims`, for every weight of a weight grid, in **one** call. The thrust required
 of each condition is then a cubic spline in weight. A trim that does not converge (more than full throttle)
 is filled from a fit D = a + b W² of its column's converged trims (the shape of a parabolic polar at fixed
 speed and altitude) and can only be infeasible where it is used (the excess power is then negative).
@@ -181,10 +181,11 @@ def cruise_levels(m, ceiling) -> np.ndarray:
     return m.initial_altitude + m.altitude_step * np.arange(max(n, 1))
 
 
-def build_tables(ctx, aircraft, weight_range: tuple[float, float]) -> MissionTables:
-    """Trim every mission condition for ``N_WEIGHTS`` weights spanning ``weight_range`` (kg) in one batch."""
-    from certkit.conditions import reference_cg
-    from certkit.results import Condition
+def build_tables(aircraft, aero, weight_range: tuple[float, float]) -> MissionTables:
+    """Trim every mission condition for ``N_WEIGHTS`` weights spanning ``weight_range`` (kg) in one batch
+    (``aero``: the clean configuration's :class:`certkit.models.aero.airplane.AirplaneAero`)."""
+    from certkit.models.flight import level_trims
+    from certkit.models.mass.loading import reference_cg
 
     m = aircraft.mission
     fuel = EngineFuel.of(aircraft)
@@ -198,9 +199,9 @@ def build_tables(ctx, aircraft, weight_range: tuple[float, float]) -> MissionTab
     hold_v = isa.eas_to_tas(HOLD_EAS, hold_h)
     per_weight = [(h, v) for h, v in zip(sched_h, sched_v)] + [(h, v) for h, v in zip(levels, level_v)] + \
                  [(hold_h, v) for v in hold_v]
-    conds = [Condition(loading="mission", mass=float(w), x_cg=float(x_cg), configuration="clean", altitude=float(h),
-                       speed=float(v), speed_kind="TAS") for w in weights for h, v in per_weight]
-    batch = ctx.trim(conds, configuration="clean")
+    conds = [(float(w), float(h), float(v)) for w in weights for h, v in per_weight]
+    batch = level_trims(aircraft, aero.model, [c[0] for c in conds], x_cg, [c[1] for c in conds],
+                        [c[2] for c in conds], "mission")
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     shape = (N_WEIGHTS, len(per_weight))
     thrust = out.thrust.sum(axis=1).reshape(shape)

@@ -25,7 +25,7 @@ from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Step, simulate, stop_when
 from certkit.models.flight import control_limits
-from certkit.models.loads.batch import refusal_findings, trimmed_batch
+from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import compare, declared_capabilities  # noqa: F401 (shared by §25.341/§25.351)
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads

@@ -24,7 +24,7 @@ from functools import cached_property
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.models.loads.batch import refusal_findings, trimmed_batch
+from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads

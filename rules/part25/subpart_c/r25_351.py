@@ -17,7 +17,7 @@ import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.models.flight import control_limits
-from certkit.models.loads.batch import refusal_findings, trimmed_batch
+from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads

@@ -1,5 +1,8 @@
 """Batch set-up for the loads manoeuvres: trimmed initial states of many conditions in one flight model.
 
+Engine layer: it turns scheduled conditions into trims through the Context and refusals into findings, for every
+loads rule (the shared physics it calls stays in :mod:`certkit.models`).
+
 Level flight at high speed may need more thrust than the engines give (VD is reached in a dive): such
 conditions fly the path that full thrust holds (a shallow descent), those with too much thrust even at
 idle (a light airplane at low speed) the idle-thrust climb, and the path angle is recorded; conditions
