@@ -54,7 +54,6 @@ class TailGroup:
     sized: object = None  # HorizontalTailSizing
     actuators: object = None  # ActuatorSizing
     hinge: dict = field(default_factory=dict)
-    declared_capabilities: list | None = None  # iteration 0: the file's own
 
     @property
     def total_mass(self) -> float:
@@ -83,8 +82,6 @@ class TailGroup:
                 "source": f"{len(p)} elevator actuators sized for {self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m"}
 
     def capabilities(self) -> list:
-        if self.declared_capabilities is not None:
-            return self.declared_capabilities
         out = []
         for station, values in self.capability.items():
             for q, v in zip(QUANTITIES, values):
@@ -109,12 +106,13 @@ class TailGroup:
 
 def initial_group(aircraft, base_aircraft, component) -> TailGroup:
     """The loop's start: the declared tail component, its mass and inertia scaled with the planform area of the
-    design over the declared one (an areal-weight guess), and the declared capabilities."""
+    design over the declared one (an areal-weight guess, inertia with the square of the ratio), and no structural
+    capability: the tail-load margins of iteration 0 are not used."""
     ratio = aircraft.geometry.horizontal_tail.area / base_aircraft.geometry.horizontal_tail.area
     inertia = component.inertia
     tensor = (0.0, 0.0, 0.0, 0.0) if inertia is None else (inertia.Ixx, inertia.Iyy, inertia.Izz, inertia.Ixz)
     return TailGroup(component.mass * ratio, (component.cg.x, component.cg.y, component.cg.z),
-                     tuple(v * ratio ** 2 for v in tensor), declared_capabilities=None, capability={})
+                     tuple(v * ratio ** 2 for v in tensor))
 
 
 def _file_station(name: str):
