@@ -137,3 +137,17 @@ def test_not_evaluated_without_structural_capability(tmp_path):
                              for f in evaluated)
     assert all("root bending max/min (kN·m)" in f.details for f in evaluated)  # the loads are still reported
     assert result.status == "not_evaluated"
+
+
+def test_a_weak_wing_fails(tmp_path):
+    """A deficient airplane: the side-of-body positive bending allowables cut to 15/20 MN·m (the baseline's gust
+    bending there is about 33 MN·m ultimate): the up-gust conditions fail against exactly that allowable."""
+    weak = FAST + [("positive: 38494 kN*m}", "positive: 15000 kN*m}"),
+                   ("positive: 46624 kN*m}", "positive: 20000 kN*m}")]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, weak)))
+    result = evaluate_rule(UnsymmetricalGust, ctx)
+    failing = [f for f in result.findings if f.status == "fails"]
+    assert result.status == "fails" and failing
+    crit = result.critical
+    assert "side of body" in crit.check and crit.value > crit.limit
+    assert crit.limit in (pytest.approx(15000e3), pytest.approx(20000e3))
