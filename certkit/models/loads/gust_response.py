@@ -80,10 +80,12 @@ class GustRun:
 
 
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
-                  max_step: float = 0.05, settle_step: float = 0.02, surfaces=SURFACES, split=()) -> GustRun:
+                  max_step: float = 0.05, settle_step: float = 0.04, surfaces=SURFACES, split=()) -> GustRun:
     """One gust gradient ``H`` (m) for the whole batch; ``alpha_peak`` (n,) the peak gust angle
     U_ds/V (signed: positive = upward gust). Two phases: while the gust crosses the airplane, at the
-    step that resolves it; then ``settle`` seconds of the free response at ``settle_step``. For the
+    step that resolves it; then ``settle`` seconds of the free response at ``settle_step`` (the longest
+    gradients' own step: the short-period motion left, ω ≈ 1–3 rad/s, needs no finer; the tail load peaks move by
+    less than 0.1 % from a 0.005 s step, tests/loads/test_gust_settle_step.py). For the
     surfaces in ``split`` the aerodynamic and inertial loads are also kept apart (``GustRun.parts``)."""
     a = np.asarray(alpha_peak, dtype=float) * np.ones(gb.x0.shape[0])
     v = gb.v_tas

@@ -103,11 +103,14 @@ class SurfaceLoads:
         x = self._input_matrix(shape, inputs).reshape(-1, len(self.inputs))
         m, k = table.shape[:2]
         tail = table.shape[2:]
-        full = (x @ table.reshape(m, k, -1).transpose(1, 0, 2).reshape(k, -1)).reshape(x.shape[0], m, -1)
-        rows = np.arange(x.shape[0])
+        flat = table.reshape(m, k, -1)
         i = np.broadcast_to(i, shape).ravel()
         w = np.broadcast_to(w, shape).ravel()[:, None]
-        out = full[rows, i] * (1 - w) + full[rows, np.minimum(i + 1, m - 1)] * w
+        out = np.empty((x.shape[0], flat.shape[2]))
+        for j in np.unique(i):  # the points between the same two breakpoints (a few intervals per batch)
+            sel = i == j
+            xs, ws = x[sel], w[sel]
+            out[sel] = (xs @ flat[j]) * (1 - ws) + (xs @ flat[min(j + 1, m - 1)]) * ws
         return qbar[..., *([None] * len(tail))] * out.reshape(shape + tail)
 
     def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:

@@ -88,10 +88,13 @@ class LoadEnvelope:
     times: dict[str, np.ndarray]
     labels: list[str]
     failed: list[tuple[int, str]] = field(default_factory=list)
+    #: an identity per condition row that the caller passes and this model does not interpret (a rule passes its
+    #: conditions, so that a design loop can find which conditions set the envelope); empty when not given
+    keys: list = field(default_factory=list)
 
     @classmethod
     def from_histories(cls, loads: AirplaneLoads, histories: dict[str, np.ndarray], t: np.ndarray, labels,
-                       failed=()) -> "LoadEnvelope":
+                       failed=(), keys=None) -> "LoadEnvelope":
         peaks, times = {}, {}
         for name, L in histories.items():
             filled_lo = np.where(np.isnan(L), np.inf, L)
@@ -101,7 +104,8 @@ class LoadEnvelope:
             hi = np.take_along_axis(L, ihi[None], axis=0)[0]
             peaks[name] = np.stack([lo, hi], axis=1)
             times[name] = np.stack([t[ilo], t[ihi]], axis=1)
-        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed))
+        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed),
+                   list(keys) if keys is not None else [])
 
     @classmethod
     def merge(cls, parts: list["LoadEnvelope"]) -> "LoadEnvelope":
@@ -119,8 +123,10 @@ class LoadEnvelope:
                 peaks.setdefault(k, []).append(p.peaks[k])
                 times.setdefault(k, []).append(p.times[k])
                 stations[k] = p.stations[k]
+        keyed = all(len(p.keys) == len(p.labels) for p in parts)
         return cls(stations, {k: np.concatenate(v) for k, v in peaks.items()},
-                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed)
+                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed,
+                   [key for p in parts for key in p.keys] if keyed else [])
 
     @classmethod
     def worst_of(cls, parts: list["LoadEnvelope"]) -> tuple["LoadEnvelope", dict[str, np.ndarray]]:
@@ -138,7 +144,7 @@ class LoadEnvelope:
             which[k] = w
             peaks[k] = np.take_along_axis(P, w[None], axis=0)[0]
             times[k] = np.take_along_axis(T, w[None], axis=0)[0]
-        return cls(dict(first.stations), peaks, times, list(first.labels), list(first.failed)), which
+        return cls(dict(first.stations), peaks, times, list(first.labels), list(first.failed), list(first.keys)), which
 
     def extreme(self, surface: str, quantity: str, station: int = 0, sense: str = "max") -> tuple[float, int]:
         """The extreme (value, condition index) of one quantity at one station over all conditions."""

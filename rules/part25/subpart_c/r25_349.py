@@ -259,8 +259,9 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
     left = response_loads(loads, mirror(sim), model, MIRRORED, valid=valid)
     labels = [c.label() for c in conds]
     env_sides = LoadEnvelope.merge([
-        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels]),
-        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels])])
+        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels],
+                                    keys=conds),
+        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels], keys=conds)])
     env_fin = LoadEnvelope.from_histories(loads, {"vertical_tail": right["vertical_tail"]}, sim.t, labels)
     n = len(conds)
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
