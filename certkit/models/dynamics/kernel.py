@@ -233,11 +233,11 @@ def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, 
 
 
 @njit(cache=True, fastmath=True)
-def rk4_step(X, XD1, active, dt, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
+def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
              n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
-    classical RK4 step of ``dt``, controls and thrust held; ``XD1`` the derivative at the step's
-    start. The quaternion is renormalised after the step."""
+    classical RK4 step of ``dts[i]`` each, controls and thrust held; ``XD1`` the derivative at the
+    step's start. The quaternion is renormalised after the step."""
     n, ns = X.shape
     k2 = np.empty(ns)
     k3 = np.empty(ns)
@@ -248,6 +248,7 @@ def rk4_step(X, XD1, active, dt, U, thrust, coef, props, consts, T, machs, clmax
     for i in range(n):
         if not active[i]:
             continue
+        dt = dts[i]
         x, k1 = X[i], XD1[i]
         for s in range(ns):
             xs[s] = x[s] + 0.5 * dt * k1[s]

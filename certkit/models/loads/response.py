@@ -18,9 +18,21 @@ from certkit.units import G0
 
 
 def _rates_dot(t, x):
+    """d/dt of the histories x (nt, n) on the time grid t: (nt,), or (nt, n) uniform per condition."""
     if x.shape[0] < 2:
         return np.zeros_like(x)
+    if t.ndim == 2:
+        return np.gradient(x, axis=0) / (t[1] - t[0])
     return np.gradient(x, t, axis=0)
+
+
+def times_at(t, k) -> np.ndarray:
+    """The times of record indices ``k`` (n, ...) of each condition (axis 0 of ``k`` the conditions) on the grid
+    ``t``: (nt,), or (nt, n) with a time step per condition."""
+    if t.ndim == 1:
+        return t[k]
+    cols = np.arange(k.shape[0]).reshape((-1,) + (1,) * (k.ndim - 1))
+    return t[k, cols]
 
 
 def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None
@@ -103,7 +115,7 @@ class LoadEnvelope:
             lo = np.take_along_axis(L, ilo[None], axis=0)[0]
             hi = np.take_along_axis(L, ihi[None], axis=0)[0]
             peaks[name] = np.stack([lo, hi], axis=1)
-            times[name] = np.stack([t[ilo], t[ihi]], axis=1)
+            times[name] = np.stack([times_at(t, ilo), times_at(t, ihi)], axis=1)
         return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed),
                    list(keys) if keys is not None else [])
 
