@@ -103,15 +103,13 @@ class SurfaceLoads:
         x = self._input_matrix(shape, inputs).reshape(-1, len(self.inputs))
         m, k = table.shape[:2]
         tail = table.shape[2:]
-        flat = table.reshape(m, k, -1)
+        x *= np.broadcast_to(qbar, shape).reshape(-1, 1)  # q̄ on the inputs: fewer products than on the loads
+        full = (x @ table.reshape(m, k, -1).transpose(1, 0, 2).reshape(k, -1)).reshape(x.shape[0], m, -1)
+        rows = np.arange(x.shape[0])
         i = np.broadcast_to(i, shape).ravel()
         w = np.broadcast_to(w, shape).ravel()[:, None]
-        out = np.empty((x.shape[0], flat.shape[2]))
-        for j in np.unique(i):  # the points between the same two breakpoints (a few intervals per batch)
-            sel = i == j
-            xs, ws = x[sel], w[sel]
-            out[sel] = (xs @ flat[j]) * (1 - ws) + (xs @ flat[min(j + 1, m - 1)]) * ws
-        return qbar[..., *([None] * len(tail))] * out.reshape(shape + tail)
+        out = full[rows, i] * (1 - w) + full[rows, np.minimum(i + 1, m - 1)] * w
+        return out.reshape(shape + tail)
 
     def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
         """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs
