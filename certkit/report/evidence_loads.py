@@ -240,3 +240,21 @@ def unsymmetrical_gust_evidence(run) -> list[Evidence]:
                             caption="Critical condition, gradient and time of every station and quantity.",
                             table=gust_case_table(run, side)))
     return out
+
+
+# --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
+
+def envelope_evidence(run, surfaces, what: str) -> list[Evidence]:
+    """The load envelope along the span and the critical-case table of each of ``surfaces`` (skipping a surface with
+    no computed load), for load cases without time histories."""
+    env = run["envelope"]
+    out = []
+    for surface in surfaces:
+        if surface not in env.peaks or not np.any(np.isfinite(env.peaks[surface])):
+            continue
+        name = surface.replace("_", " ")
+        out += [Evidence(f"Load envelope along the {name} span ({what})", envelope_svg(run, surface),
+                         "Maximum and minimum over every condition (limit loads)."),
+                Evidence(f"Critical-case table, {name} ({what})", caption="Critical condition of every station, "
+                         "quantity and sense.", table=env.table(surface))]
+    return out
