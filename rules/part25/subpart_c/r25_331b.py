@@ -129,6 +129,12 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     if point in ("A", "H") and v > env.v_c:
         note = f"stall-line speed {v / KN:.1f} kn EAS above VC at this altitude: taken at VC"
         v = env.v_c
+    # a speed below the stall line's (Mach-limited VC at altitude): the envelope's boundary there is the stall line
+    stall_n = (v / env.vs1_pos) ** 2 if n > 0 else -((v / env.vs1_neg) ** 2)
+    if abs(stall_n) < abs(n) * (1.0 - 1e-9):
+        note = (note + "; " if note else "") + (f"{v / KN:.1f} kn EAS is below the stall line's speed at n = {n:g}: "
+                                                f"the point is on the ±C_N,max line at n = {stall_n:.3f}")
+        n = stall_n
     return float(v), float(n), note
 
 
