@@ -63,6 +63,25 @@ def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail"
     return out
 
 
+def below_stall(model, sim) -> np.ndarray | None:
+    """(nt, n) booleans: True where the linear lift coefficient of the airplane along ``sim`` (its aerodynamics
+    without the stall model) is at or below the stall model's CLmax — the times at which strip loads, linear in α,
+    represent the airplane's lift; past the stall the airplane's lift is rounded onto CLmax and the linear strips
+    overstate it. None when the aerodynamics have no stall model."""
+    from certkit.models.aero.interface import AeroState
+
+    aero = model.aero
+    if getattr(aero, "stall", None) is None or not hasattr(aero, "without_stall"):
+        return None
+    h = sim.history
+    V = np.maximum(h["V"], 1e-3)
+    names = list(sim.control_names)
+    controls = {n: sim.controls[:, :, names.index(n)] for n in aero.control_names if n in names}
+    state = AeroState(alpha=h["alpha"], beta=h["beta"], p_hat=h["p"] * model.b / (2 * V), q_hat=h["q"] * model.c / (2 * V),
+                      r_hat=h["r"] * model.b / (2 * V), mach=h["mach"], controls=controls)
+    return aero.without_stall().coefficients(state).CL <= aero.clmax(h["mach"])
+
+
 @dataclass
 class CriticalCase:
     surface: str
