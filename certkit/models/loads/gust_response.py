@@ -20,7 +20,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
-from certkit.models.loads.gust import GUST_CONTROLS, gust_aero, gust_tables, one_minus_cosine
+from certkit.models.loads.gust import gust_aero, gust_tables, one_minus_cosine
 from certkit.models.loads.response import response_load_parts
 
 SURFACES = ("wing", "horizontal_tail")
@@ -54,17 +54,23 @@ class GustBatch:
         return GustBatch(self.model.subset(idx), self.x0[idx], self.u0[idx], self.v_tas[idx], self.tail_arm)
 
 
-def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
-    """Wrap the trimmed batch's flight model with the gust pseudo-controls (zero in the trim)."""
-    tables = gust_tables(loads, base_model.aero.reference)
-    aero = gust_aero(base_model.aero, **tables)
+def with_aero(base_model: AircraftModel, aero, u0) -> tuple[AircraftModel, np.ndarray]:
+    """The flight model ``base_model`` (same masses, CGs, inertias, engines) around the aerodynamics ``aero`` (the base
+    model's with pseudo-controls added), and the controls ``u0`` in its order (the added ones zero)."""
     model = AircraftModel(aero, base_model.mass, base_model.cg, base_model.inertia, base_model.engines,
                           base_model.operative)
     old = list(base_model.control_names)
-    u = np.zeros((x0.shape[0], len(model.control_names)))
+    u = np.zeros((np.shape(u0)[0], len(model.control_names)))
     for j, name in enumerate(model.control_names):
-        if name not in GUST_CONTROLS:
-            u[:, j] = u0[:, old.index(name)]
+        if name in old:
+            u[:, j] = np.asarray(u0)[:, old.index(name)]
+    return model, u
+
+
+def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
+    """Wrap the trimmed batch's flight model with the gust pseudo-controls (zero in the trim)."""
+    tables = gust_tables(loads, base_model.aero.reference)
+    model, u = with_aero(base_model, gust_aero(base_model.aero, **tables), u0)
     v = np.hypot(np.hypot(x0[:, 3], x0[:, 4]), x0[:, 5])  # body velocity components u, v, w of the Euler state
     xc = pressure_centres(loads)
     return GustBatch(model, np.asarray(x0, dtype=float), u, v, xc["horizontal_tail"] - xc["wing"])

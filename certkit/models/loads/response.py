@@ -23,12 +23,13 @@ def _rates_dot(t, x):
     return np.gradient(x, t, axis=0)
 
 
-def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None
-                        ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
+                        extra_beta=None) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Aerodynamic and inertial station loads, each (nt, n, 3, n_stations), of each of ``surfaces`` along the
     simulation ``sim`` of the flight model ``model`` (its CGs and reference lengths).
 
-    ``extra_alpha``: surface name → (nt, n) angle-of-attack increment felt by that surface only (a gust)."""
+    ``extra_alpha`` / ``extra_beta``: surface name → (nt, n) angle-of-attack / sideslip increment felt by that
+    surface only (a vertical / lateral gust)."""
     h = sim.history
     t = sim.t
     V = np.maximum(h["V"], 1e-3)
@@ -43,7 +44,7 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
     for name in surfaces:
         s = loads[name]
         alpha = h["alpha"] + (extra_alpha or {}).get(name, 0.0)
-        inputs = {"alpha": alpha, "beta": h["beta"], "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
+        inputs = {"alpha": alpha, "beta": h["beta"] + (extra_beta or {}).get(name, 0.0), "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
                   "r_hat": h["r"] * b / (2 * V), **controls}
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
     return out
