@@ -11,7 +11,7 @@ from certkit.scheduler import evaluate_rule
 from certkit.units import G0
 from certkit_rules.part25.subpart_c.r25_331b import NO_FLAP_STRIPS, BalancedManeuver
 
-from .helpers import NO_STRUCTURE, edited_baseline, hand_margin
+from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 
@@ -144,9 +144,7 @@ def test_a_weak_tailplane_fails(tmp_path):
     hundred kN·m): the tail findings fail against exactly that allowable."""
     weak = FAST + [("quantity: bending, limit: 7366 kN*m, ultimate: 7366 kN*m",
                     "quantity: bending, limit: 100 kN*m, ultimate: 100 kN*m")]
-    ctx = Context(load_aircraft(edited_baseline(tmp_path, weak)))
-    result = evaluate_rule(BalancedManeuver, ctx)
-    tail = [f for f in result.findings if f.status == "fails" and "horizontal tail" in f.check]
+    tail = failures_with(tmp_path, BalancedManeuver, weak, "horizontal tail")
     assert tail and all(f.limit == pytest.approx(100e3) and "bending at root" in f.check for f in tail)
 
 

@@ -140,7 +140,7 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
 
 def balanced_maneuvers(ctx, conditions, crit) -> dict:
     """Balanced states and loads of every condition (batched per configuration); findings, envelope, states."""
-    findings, parts, labels, done, states = [], [], [], [], []
+    findings, parts, labels, done, states, tail_parts = [], [], [], [], [], []
     by_cfg: dict[str, list] = {}
     for c in conditions:
         by_cfg.setdefault(c.configuration, []).append(c)
@@ -206,6 +206,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
                     findings.append(capability_finding(c, check, s, peaks, loads[s].station_names, caps[s],
                                                        crit.ultimate_factor, **details))
         parts.append(total)
+        tail_parts.append(tuple(np.where(bad[:, None, None], np.nan, x) for x in sl["horizontal_tail"]))
         names = list(model.control_names)
         states.append({"n_z": st.outputs.n_z, "qbar": st.outputs.qbar, "mach": st.outputs.mach, "alpha": st.alpha,
                        "q_hat": st.pitch_rate * model.c / (2 * st.outputs.V),
@@ -217,7 +218,9 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
     hist = {s: np.concatenate([p[s] for p in parts])[None] for s in SURFACES}
     env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels)
     state = {k: np.concatenate([p[k] for p in states]) for k in states[0]}
-    return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads}
+    tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
+    return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads,
+            "tail_parts": tail}  # (aerodynamic, inertial) loads of the right half tailplane, (n, 3, S) each
 
 
 def _check(cond, surface: str) -> str:

@@ -162,6 +162,7 @@ class GustRuns:
     loads: object = None  # AirplaneLoads
     steps_per_gust: float = 20.0
     settle_time: float = 1.5
+    tail: list = None  # per gradient (t, aero, inertia) of the right half tailplane (§25.427(b)), like ``wing``
 
     @cached_property
     def symmetric(self) -> tuple[LoadEnvelope, dict]:
@@ -211,18 +212,19 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
-    envelopes, nz_hi, nz_lo, uds_all, wing = [], [], [], [], []
+    envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
     for h_gust in H:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
         run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
-                            float(crit.settle_time), split=("wing",))
+                            float(crit.settle_time), split=SURFACES)
         envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)
         wing.append((run.sim.t, *run.parts["wing"]))
+        tail.append((run.sim.t, *run.parts["horizontal_tail"]))
     return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
-                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time))
+                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail)
 
 
 def discrete_gusts(ctx, conditions, crit) -> dict:
