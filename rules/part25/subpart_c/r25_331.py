@@ -221,7 +221,8 @@ class CheckedPitchManeuver(SimulationRule):
     def draw(self, run):
         from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
 
-        return maneuver_evidence(run, "horizontal_tail", "elevator") + envelope_evidence(run, ("wing",), "checked manoeuvre")
+        return (maneuver_evidence(run, "horizontal_tail", "elevator")
+                + envelope_evidence(run, ("wing",), "checked manoeuvre", plot=False))
 
 
 def checked_maneuver(ctx, conditions, crit) -> dict:
@@ -446,7 +447,7 @@ class MaximumPitchControlDisplacement(Rule):
 
         run = getattr(self, "run", None)
         return (maneuver_evidence(run, "horizontal_tail", "elevator") + envelope_evidence(run, ("wing",), "maximum pitch "
-                "control displacement")) if run else []
+                "control displacement", plot=False)) if run else []
 
 
 def _ramp(ramp: float, amplitude):

@@ -66,6 +66,7 @@ class BalancedManeuver(SimulationRule):
     id = "25.331(b)"
     loads_surfaces = SURFACES
     cost = 2
+    run_with = "discrete-gust"  # §25.427(b) splits these balanced states' tail loads: one process computes them once
     symbol = "balanced-maneuver"
     title = "Maneuvering balanced conditions on the V–n envelope"
     amendment = "25-141"
@@ -102,7 +103,7 @@ class BalancedManeuver(SimulationRule):
     implementation = "partial"
 
     def simulate(self, ctx, conditions, crit):
-        return balanced_maneuvers(ctx, conditions, crit)
+        return balanced_runs(ctx, conditions, crit)
 
     def draw(self, run):
         from certkit.report.evidence_loads import envelope_evidence
@@ -136,6 +137,17 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
                                                 f"the point is on the ±C_N,max line at n = {stall_n:.3f}")
         n = stall_n
     return float(v), float(n), note
+
+
+#: the criteria that define the balanced states (shared by §25.427(b), which splits their tail loads)
+BALANCE_CRITERIA = ("cn_over_cl", "flaps_load_factor", "convergence", "ultimate_factor")
+
+
+def balanced_runs(ctx, conditions, crit) -> dict:
+    """:func:`balanced_maneuvers` memoised on the conditions and the criteria that define them (§25.331(b) and
+    §25.427(b), evaluated in one process, balance once)."""
+    key = ("balanced_maneuvers", tuple(conditions), tuple((k, str(crit[k])) for k in BALANCE_CRITERIA))
+    return ctx.memo(key, lambda: balanced_maneuvers(ctx, conditions, crit))
 
 
 def balanced_maneuvers(ctx, conditions, crit) -> dict:

@@ -124,8 +124,8 @@ class DiscreteGust(SimulationRule):
         if run.get("envelope") is None:
             return []
         lateral = run.get("lateral_envelope")
-        return gust_evidence(run) + (envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust") if lateral is not None
-                                    else [])
+        table = envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust", plot=False) if lateral is not None else []
+        return gust_evidence(run) + table
 
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:

@@ -18,6 +18,7 @@ shared with this rule): said by a not-evaluated finding. The fuselage has no dec
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -28,7 +29,7 @@ from certkit.models.loads.unsymmetrical import unsymmetrical_tail
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Condition, Finding
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver, balanced_maneuvers
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver, balanced_runs
 from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
 
 TAIL = "horizontal_tail"
@@ -105,35 +106,36 @@ class UnsymmetricalTailLoads(SimulationRule):
     def draw(self, run):
         from certkit.report.evidence_loads import envelope_evidence
 
-        return envelope_evidence(run, run["envelope"].peaks, "100/80 % split") if run.get("envelope") is not None else []
+        env = run.get("envelope")
+        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False) if env is not None else []
 
 
-def _symmetric_parts(ctx, conditions, crit):
-    """Per source: {condition key: (aero (…, 3, S), inertia (…, 3, S))} of the right half tailplane (a leading time and
-    gradient axis for the gusts), and the label of each."""
-    out = {}
+def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
+    """{(source, condition key): (100 % side peaks (2, 3, S), reduced side peaks, fuselage torsion (min, max), refined
+    condition)} of every symmetric condition computed by its source (over every gust gradient and time)."""
     by_source: dict[str, list] = {}
     for c in conditions:
         by_source.setdefault(c.get("source"), []).append(_untag(c))
+    parts = []  # (source, aero (T, n, 3, S), inertia, refined conditions)
     if "25.331(b)" in by_source:
-        run = balanced_maneuvers(ctx, by_source["25.331(b)"], crit)
+        run = balanced_runs(ctx, by_source["25.331(b)"], crit)
         if run.get("envelope") is not None:
             aero, inertia = run["tail_parts"]
-            for i, c in enumerate(run["conditions"]):
-                out[("25.331(b)",) + _key(c, "25.331(b)")] = (aero[i][None], inertia[i][None], c)
+            parts.append(("25.331(b)", aero[None], inertia[None], run["conditions"]))
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)
-        if runs.conditions:
-            aero = np.concatenate([a for _, a, _ in runs.tail])  # (Σ nt, n, 3, S) over every gradient
-            inertia = np.concatenate([i for _, _, i in runs.tail])
-            for i, c in enumerate(runs.conditions):
-                out[("25.341(a)",) + _key(c, "25.341(a)")] = (aero[:, i], inertia[:, i], c)
+        if runs.conditions:  # every gradient's time history one after the other
+            parts.append(("25.341(a)", np.concatenate([a for _, a, _ in runs.tail]),
+                          np.concatenate([i for _, _, i in runs.tail]), runs.conditions))
+    out = {}
+    for source, aero, inertia, conds in parts:
+        split = unsymmetrical_tail(tail, aero, inertia, full, reduced)
+        p_full = np.stack([np.nanmin(split.full, axis=0), np.nanmax(split.full, axis=0)], axis=1)  # (n, 2, 3, S)
+        p_red = np.stack([np.nanmin(split.reduced, axis=0), np.nanmax(split.reduced, axis=0)], axis=1)
+        t_lo, t_hi = np.nanmin(split.fuselage_torsion, axis=0), np.nanmax(split.fuselage_torsion, axis=0)
+        for i, c in enumerate(conds):
+            out[(source,) + _key(c, source)] = (p_full[i], p_red[i], (float(t_lo[i]), float(t_hi[i])), c)
     return out
-
-
-def _peaks(loads: np.ndarray) -> np.ndarray:
-    """(2, 3, S) min/max over the leading axis, NaN-aware."""
-    return np.stack([np.nanmin(loads, axis=0), np.nanmax(loads, axis=0)])
 
 
 def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
@@ -144,9 +146,11 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
     tail = loads[TAIL]
     caps = declared_capabilities(ctx, TAIL)
     full, reduced = float(crit.full_side_fraction), float(crit.reduced_side_fraction)
-    sym = _symmetric_parts(ctx, conditions, crit)
+    with warnings.catch_warnings():  # all-NaN rows (states that were not balanced) are refused below
+        warnings.simplefilter("ignore", RuntimeWarning)
+        sym = _split_sources(ctx, conditions, crit, tail, full, reduced)
     findings, labels, peaks = [], [], {"100 % side": [], "80 % side": []}
-    worst = (0.0, None, 0.0, 0.0)
+    worst = (0.0, None)
     for c in conditions:
         source = c.get("source")
         hit = sym.get((source,) + _key(c, source))
@@ -155,17 +159,12 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
             findings += [Finding.not_evaluated(c, k, f"no symmetric loads of this condition (§{source} could not trim or "
                                                      "balance it)") for k in checks]
             continue
-        aero, inertia, refined = hit
-        split = unsymmetrical_tail(tail, aero, inertia, full, reduced)
-        torsion = split.fuselage_torsion
-        p_full, p_red = _peaks(split.full), _peaks(split.reduced)
-        t_max = float(np.nanmax(np.abs(torsion)))
-        if t_max > worst[0]:
-            worst = (t_max, refined.with_(source=source).label(), float(np.nanmin(torsion)), float(np.nanmax(torsion)))
-        details = {"fuselage torsion at the tail max/min (kN·m)": [round(float(np.nanmax(torsion)) / 1e3, 1),
-                                                                    round(float(np.nanmin(torsion)) / 1e3, 1)],
-                   "source": f"§{source}"}
+        p_full, p_red, (t_lo, t_hi), refined = hit
         cond = refined.with_(source=source)
+        if max(abs(t_lo), abs(t_hi)) > worst[0]:
+            worst = (max(abs(t_lo), abs(t_hi)), cond.label())
+        details = {"fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
+                   "source": f"§{source}"}
         findings.append(capability_finding(cond, checks[0], TAIL, p_full, tail.station_names, caps, crit.ultimate_factor,
                                            **details))
         findings.append(capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor,
