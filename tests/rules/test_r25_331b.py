@@ -157,3 +157,17 @@ def test_a_strong_wing_complies(tmp_path):
     result = evaluate_rule(BalancedManeuver, ctx)
     wing = [f for f in result.findings if "wing:" in f.check]
     assert wing and not [f for f in wing if f.status == "fails"]
+
+
+def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
+    """Bad input: a flaps-extended limit load factor above the flaps-retracted one is reported with its path and line,
+    and the CLI exits 2."""
+    from certkit.errors import InputError
+
+    bad = edited_baseline(tmp_path, [("    flaps_extended: 2.0", "    flaps_extended: 3.0")])
+    with pytest.raises(InputError) as info:
+        load_aircraft(bad)
+    (p,) = [p for p in info.value.problems if p.path == "envelope.limit_load_factors.flaps_extended"]
+    assert "must not exceed the flaps-retracted one (2.5" in p.message and p.value == 3.0
+    assert p.line == next(i for i, t in enumerate(bad.read_text().splitlines(), 1) if "flaps_extended: 3.0" in t)
+    assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
