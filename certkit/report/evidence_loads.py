@@ -240,3 +240,23 @@ def unsymmetrical_gust_evidence(run) -> list[Evidence]:
                             caption="Critical condition, gradient and time of every station and quantity.",
                             table=gust_case_table(run, side)))
     return out
+
+
+# --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
+
+def envelope_evidence(run, surfaces, what: str, plot: bool = True) -> list[Evidence]:
+    """The critical-case table of each of ``surfaces`` (skipping a surface with no computed load) and, with ``plot``,
+    its load envelope along the span (a plot costs about a second: the tables alone where the rule's own plots
+    already show the case)."""
+    env = run["envelope"]
+    out = []
+    for surface in surfaces:
+        if surface not in env.peaks or not np.any(np.isfinite(env.peaks[surface])):
+            continue
+        name = surface.replace("_", " ")
+        if plot:
+            out.append(Evidence(f"Load envelope along the {name} span ({what})", envelope_svg(run, surface),
+                                "Maximum and minimum over every condition (limit loads)."))
+        out.append(Evidence(f"Critical-case table, {name} ({what})", caption="Critical condition of every station, "
+                            "quantity and sense.", table=env.table(surface)))
+    return out

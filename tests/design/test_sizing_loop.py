@@ -12,7 +12,7 @@ from certkit.design.sizing_loop import SizingNotConverged
 from certkit.units import LB
 
 BASELINE = "aircraft/lta.yaml"
-LOADS_ONLY = ["rule.25.331*", "rule.25.341(a).margin", "sizing.*", "objective.OEW_kg"]
+LOADS_ONLY = ["rule.25.331*", "subcheck.25.331(c)*", "rule.25.341(a).margin", "sizing.*", "objective.OEW_kg"]
 
 
 @pytest.fixture(scope="module")
@@ -41,9 +41,14 @@ def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):
     """Capability = the sized box's; the critical station of the tail sized for these loads sits at zero margin."""
     for rec in (baseline, bigger):
         r = rec["responses"]
-        m = [r["rule.25.331(c)(1).margin"], r["rule.25.331(c)(2).margin"]]
+        m = [r["subcheck.25.331(c)(1).c_1_maximum_pitch_control_displacement.margin"],  # the tail's (not the wing's)
+             r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_up.margin"],
+             r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_down.margin"]]
         assert min(m) >= 0.0
-        assert min(m) < 0.01  # fully stressed somewhere (covers or webs governed by the load, not a minimum gauge)
+        # fully stressed somewhere (covers or webs governed by the load, not a minimum gauge): the box is sized for the
+        # envelope + 2 %, so its critical station sits at 1 − 1/1.02 ≈ 0.02 (the tail's own findings; the rule-level
+        # margins also hold the wing's and the §25.337 load-factor findings)
+        assert min(m) < 0.03
 
 
 def test_oew_bookkeeping(baseline):

@@ -62,3 +62,10 @@ def hand_margin(details, capabilities, ultimate_factor=1.5):
                 if worst is None or margin / allowable < worst[0]:
                     worst = (margin / allowable, margin, f"{which} {cap.quantity} at {cap.station}")
     return worst
+
+
+def failures_with(tmp_path, rule, edits, check_part):
+    """The failing findings of ``rule`` on the baseline edited by ``edits`` (a deficient airplane) whose check
+    contains ``check_part``."""
+    result = evaluate_rule(rule, Context(load_aircraft(edited_baseline(tmp_path, edits))))
+    return [f for f in result.findings if f.status == "fails" and check_part in f.check]

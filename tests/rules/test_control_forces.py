@@ -299,7 +299,7 @@ def test_loads_rules_use_the_pilot_effort(feel_ctx):
     """§25.331(c)(1) at the forward light corner, sea level: the elevator step is the 300 lbf one (17.28° at
     265 KEAS), and the finding says so."""
     findings, _ = _evaluate("25.331(c)(1)", feel_ctx, lambda c: c.loading == "fwd_light" and c.altitude == 0.0)
-    (f,) = findings
+    (f,) = [f for f in findings if ", wing" not in f.check]  # the tail's finding (the wing's has no elevator details)
     assert f.details["elevator_step_deg"] == pytest.approx(-17.28, abs=0.01)
     assert "pilot effort" in f.details["pilot_effort"]
 

@@ -237,6 +237,17 @@ class StabilityDerivativeModel:
         c = [out[:, k].reshape(shape) for k in range(6)]
         return Coefficients(CL=c[0], CD=c[1], CY=c[2], Cl=c[3], Cm=c[4], Cn=c[5])
 
+    def _nonzero_terms(self) -> dict[str, np.ndarray]:
+        """The table's non-zero terms by name (one value per Mach breakpoint)."""
+        return {n: self._table[i] for n, i in self._index.items() if np.any(self._table[i] != 0.0)}
+
+    def without_stall(self) -> "StabilityDerivativeModel":
+        """A copy with linear lift (no stall model): for balanced load states on the V–n envelope's stall line,
+        whose lift coefficient C_N,max the rounded stall model does not reach."""
+        derivs = self._nonzero_terms()
+        return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=self.control_names,
+                                        after_stall=self.after_stall, alpha_drag=self.uses_alpha_drag)
+
     def with_control_terms(self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()
                            ) -> "StabilityDerivativeModel":
         """A copy with further control terms (``<coef>_<control>``, one value per Mach breakpoint
@@ -247,7 +258,7 @@ class StabilityDerivativeModel:
             ctrl = name.partition("_")[2]
             if ctrl not in names:
                 names.append(ctrl)
-        derivs = {n: self._table[i] for n, i in self._index.items() if np.any(self._table[i] != 0.0)}
+        derivs = self._nonzero_terms()
         derivs.update(terms)
         return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=names, stall=self.stall,
                                         after_stall=tuple(self.after_stall) + tuple(after_stall),

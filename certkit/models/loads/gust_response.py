@@ -20,7 +20,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
-from certkit.models.loads.gust import GUST_CONTROLS, gust_aero, gust_tables, one_minus_cosine
+from certkit.models.loads.gust import gust_aero, gust_tables, one_minus_cosine
 from certkit.models.loads.response import response_load_parts
 
 SURFACES = ("wing", "horizontal_tail")
@@ -54,17 +54,23 @@ class GustBatch:
         return GustBatch(self.model.subset(idx), self.x0[idx], self.u0[idx], self.v_tas[idx], self.tail_arm)
 
 
-def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
-    """Wrap the trimmed batch's flight model with the gust pseudo-controls (zero in the trim)."""
-    tables = gust_tables(loads, base_model.aero.reference)
-    aero = gust_aero(base_model.aero, **tables)
+def with_aero(base_model: AircraftModel, aero, u0) -> tuple[AircraftModel, np.ndarray]:
+    """The flight model ``base_model`` (same masses, CGs, inertias, engines) around the aerodynamics ``aero`` (the base
+    model's with pseudo-controls added), and the controls ``u0`` in its order (the added ones zero)."""
     model = AircraftModel(aero, base_model.mass, base_model.cg, base_model.inertia, base_model.engines,
                           base_model.operative)
     old = list(base_model.control_names)
-    u = np.zeros((x0.shape[0], len(model.control_names)))
+    u = np.zeros((np.shape(u0)[0], len(model.control_names)))
     for j, name in enumerate(model.control_names):
-        if name not in GUST_CONTROLS:
-            u[:, j] = u0[:, old.index(name)]
+        if name in old:
+            u[:, j] = np.asarray(u0)[:, old.index(name)]
+    return model, u
+
+
+def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
+    """Wrap the trimmed batch's flight model with the gust pseudo-controls (zero in the trim)."""
+    tables = gust_tables(loads, base_model.aero.reference)
+    model, u = with_aero(base_model, gust_aero(base_model.aero, **tables), u0)
     v = np.hypot(np.hypot(x0[:, 3], x0[:, 4]), x0[:, 5])  # body velocity components u, v, w of the Euler state
     xc = pressure_centres(loads)
     return GustBatch(model, np.asarray(x0, dtype=float), u, v, xc["horizontal_tail"] - xc["wing"])
@@ -82,20 +88,11 @@ class GustRun:
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
                   max_step: float = 0.05, settle_step: float = 0.04, surfaces=SURFACES, split=()) -> GustRun:
     """One gust gradient ``H`` (m) for the whole batch; ``alpha_peak`` (n,) the peak gust angle
-    U_ds/V (signed: positive = upward gust). Two phases: while the gust crosses the airplane, at the
-    step that resolves it; then ``settle`` seconds of the free response at ``settle_step`` (the longest
-    gradients' own step: the short-period motion left, ω ≈ 1–3 rad/s, needs no finer; the tail load peaks move by
-    less than 0.1 % from a 0.005 s step, tests/loads/test_gust_settle_step.py). For the
+    U_ds/V (signed: positive = upward gust), in the two phases of :func:`two_phase_run`. For the
     surfaces in ``split`` the aerodynamic and inertial loads are also kept apart (``GustRun.parts``)."""
     a = np.asarray(alpha_peak, dtype=float) * np.ones(gb.x0.shape[0])
     v = gb.v_tas
     lag = gb.tail_arm / v
-    # each condition resolves the gust in its own length 2H/V: the same number of steps for all, each its own step
-    dt = np.minimum(max_step, 2 * H / v / steps_per_gust)
-    steps = float(np.ceil(np.max((2 * H / v + lag) / dt)))
-    if np.ptp(dt) == 0.0:
-        dt = float(dt[0])
-    t_gust = steps * dt
 
     def wing(t):
         return one_minus_cosine(v * t, H, a)
@@ -103,19 +100,14 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     def tail(t):
         return one_minus_cosine(v * (t - lag), H, a)
 
-    first = simulate(gb.model, gb.x0, gb.u0, t_gust, dt, inputs={"gust_wing": Function(wing), "gust_tail": Function(tail)})
-    parts = [first]
-    if settle > 0:
-        dt2 = max(float(np.min(dt)), settle_step)
-        parts.append(simulate(gb.model, first.final_state, gb.u0, settle, dt2))
-    sim = _concatenate(parts)
+    parts, sim, dt = two_phase_run(gb.model, gb.x0, gb.u0, H, v, lag, {"gust_wing": Function(wing), "gust_tail": Function(tail)},
+                                   steps_per_gust, settle, max_step, settle_step)
     t = _per_condition(sim.t)
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
     hist: dict[str, list] = {}
     kept: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
-        t0 = first.t[-1] if k else 0.0
-        tp = _per_condition(part.t) + t0
+        tp = phase_times(parts, k)
         extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
         L = response_load_parts(loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra})
         for s, (aero, inertia) in L.items():
@@ -123,8 +115,31 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
-    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, float(np.min(dt)),
+    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
                    {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()})
+
+
+def two_phase_run(model, x0, u0, H: float, v, lag, inputs, steps_per_gust: float, settle: float, max_step: float,
+                  settle_step: float):
+    """A gust run in two phases: while the gust of gradient ``H`` crosses the airplane (reaching its last surface
+    ``lag`` (n,) s after the first), each condition resolving the gust in its own length 2H/V in ``steps_per_gust``
+    steps (at most ``max_step``; the same number of steps for all); then ``settle`` seconds of free response at
+    ``settle_step`` (the longest gradients' own step: the short-period motion left, ω ≈ 1–3 rad/s, needs no finer;
+    tests/loads/test_gust_settle_step.py). Returns the phases, their concatenation and the smallest step."""
+    dt = np.minimum(max_step, 2 * H / v / steps_per_gust)
+    steps = float(np.ceil(np.max((2 * H / v + lag) / dt)))
+    if np.ptp(dt) == 0.0:
+        dt = float(dt[0])
+    first = simulate(model, x0, u0, steps * dt, dt, inputs=inputs)
+    parts = [first]
+    if settle > 0:
+        parts.append(simulate(model, first.final_state, u0, settle, max(float(np.min(dt)), settle_step)))
+    return parts, _concatenate(parts), float(np.min(dt))
+
+
+def phase_times(parts, k: int) -> np.ndarray:
+    """The times of phase ``k`` of :func:`two_phase_run` on the run's clock, (nt, n) or (nt, 1)."""
+    return _per_condition(parts[k].t) + (parts[0].t[-1] if k else 0.0)
 
 
 def _per_condition(t):

@@ -35,12 +35,13 @@ def times_at(t, k) -> np.ndarray:
     return t[k, cols]
 
 
-def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None
-                        ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
+                        extra_beta=None) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Aerodynamic and inertial station loads, each (nt, n, 3, n_stations), of each of ``surfaces`` along the
     simulation ``sim`` of the flight model ``model`` (its CGs and reference lengths).
 
-    ``extra_alpha``: surface name → (nt, n) angle-of-attack increment felt by that surface only (a gust)."""
+    ``extra_alpha`` / ``extra_beta``: surface name → (nt, n) angle-of-attack / sideslip increment felt by that
+    surface only (a vertical / lateral gust)."""
     h = sim.history
     t = sim.t
     V = np.maximum(h["V"], 1e-3)
@@ -55,7 +56,7 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
     for name in surfaces:
         s = loads[name]
         alpha = h["alpha"] + (extra_alpha or {}).get(name, 0.0)
-        inputs = {"alpha": alpha, "beta": h["beta"], "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
+        inputs = {"alpha": alpha, "beta": h["beta"] + (extra_beta or {}).get(name, 0.0), "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
                   "r_hat": h["r"] * b / (2 * V), **controls}
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
     return out
@@ -73,6 +74,25 @@ def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail"
             total = np.where(valid[:, :, None, None], total, np.nan)
         out[name] = total
     return out
+
+
+def below_stall(model, sim) -> np.ndarray | None:
+    """(nt, n) booleans: True where the linear lift coefficient of the airplane along ``sim`` (its aerodynamics
+    without the stall model) is at or below the stall model's CLmax — the times at which strip loads, linear in α,
+    represent the airplane's lift; past the stall the airplane's lift is rounded onto CLmax and the linear strips
+    overstate it. None when the aerodynamics have no stall model."""
+    from certkit.models.aero.interface import AeroState
+
+    aero = model.aero
+    if getattr(aero, "stall", None) is None or not hasattr(aero, "without_stall"):
+        return None
+    h = sim.history
+    V = np.maximum(h["V"], 1e-3)
+    names = list(sim.control_names)
+    controls = {n: sim.controls[:, :, names.index(n)] for n in aero.control_names if n in names}
+    state = AeroState(alpha=h["alpha"], beta=h["beta"], p_hat=h["p"] * model.b / (2 * V), q_hat=h["q"] * model.c / (2 * V),
+                      r_hat=h["r"] * model.b / (2 * V), mach=h["mach"], controls=controls)
+    return aero.without_stall().coefficients(state).CL <= aero.clmax(h["mach"])
 
 
 @dataclass

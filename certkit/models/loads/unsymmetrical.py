@@ -83,3 +83,26 @@ def unsymmetrical_wing(wing: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray
     full_side = aero - removed_full + inertia + react(pdot)
     reduced_side = aero - removed_red + inertia + react(-pdot)
     return UnsymmetricalLoads(full_side, reduced_side, d_nz, pdot, qdot, roll)
+
+
+@dataclass
+class UnsymmetricalTail:
+    """Station loads (…, 3, S) of the two tailplane halves and the torsion they put into the fuselage (…)."""
+
+    full: np.ndarray
+    reduced: np.ndarray
+    fuselage_torsion: np.ndarray  # N·m about the X axis, positive when the full side is the right half pushed up
+
+
+def unsymmetrical_tail(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0,
+                       reduced: float = 0.8) -> UnsymmetricalTail:
+    """A symmetric tail loading split ``full`` on one half and ``reduced`` on the other (§25.427(b)): each half's air
+    load A scaled by its fraction, its inertial load I unchanged (the airplane's state is the symmetric one); the
+    unbalanced rolling moment of the two halves' air loads about the plane of symmetry — each half's root bending +
+    root shear × root Y (:func:`half_wing_moment`) — goes into the fuselage as torsion at the tail (the tail's own
+    roll inertia relief neglected, conservative). ``aero``, ``inertia``: (…, 3, S) of the right half."""
+    if tail.station_span[0] > 1e-9:
+        raise ValueError(f"the tailplane's first load station is {tail.station_span[0]:.3f} m from its root: the "
+                         "unbalanced moment needs the root station")
+    return UnsymmetricalTail(full * aero + inertia, reduced * aero + inertia,
+                             (full - reduced) * half_wing_moment(tail, aero))

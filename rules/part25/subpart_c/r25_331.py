@@ -29,7 +29,7 @@ from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import compare, declared_capabilities  # noqa: F401 (shared by §25.341/§25.351)
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads
-from certkit.models.loads.response import LoadEnvelope, response_loads
+from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
 from certkit.registry import Criterion, Rule, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
@@ -123,6 +123,32 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
                            at_least=False, unit=unit, **details)
 
 
+#: the surfaces whose loads the §25.331(c) manoeuvres compute (the tail's window of time also bounds the wing's)
+LOADED = ("horizontal_tail", "wing")
+
+
+WING_STALL_NOTE = ("wing loads considered while the airplane's linear lift is below CLmax: the strip loads are linear "
+                   "in α, past the stall they overstate the wing's lift (which the airplane model rounds onto CLmax)")
+
+
+def wing_before_stall(hist, model, sim) -> np.ndarray | None:
+    """Blank the wing's loads of ``hist`` where the airplane is past its stall (:func:`below_stall`); returns the
+    (nt, n) mask of the times kept (None without a stall model)."""
+    keep = below_stall(model, sim)
+    if keep is not None:
+        hist["wing"] = np.where(keep[:, :, None, None], hist["wing"], np.nan)
+    return keep
+
+
+def wing_finding(ctx, cond, check: str, env, i: int, crit, stalled: bool = False, **details) -> Finding:
+    """The wing's finding of condition ``i`` of a manoeuvre's envelope (its loads in the same time window as the
+    tail's, up to the stall) against the declared wing capability."""
+    if stalled:
+        details["wing_window"] = WING_STALL_NOTE
+    return capability_finding(cond, f"{check}, wing", "wing", env.peaks["wing"][i], env.stations["wing"],
+                              declared_capabilities(ctx, "wing"), crit.ultimate_factor, **details)
+
+
 def _modes_frequency(batch) -> np.ndarray:
     lin = linearize(batch.model, batch.x, batch.u)
     out = np.full(batch.n, np.nan)
@@ -142,7 +168,7 @@ def _label(cond) -> str:
 @rule
 class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
-    loads_surfaces = ("horizontal_tail",)
+    loads_surfaces = LOADED
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "checked-pitch-maneuver"
     title = "Checked pitch manoeuvre between VA and VD"
@@ -193,9 +219,10 @@ class CheckedPitchManeuver(SimulationRule):
         return checked_maneuver(ctx, conditions, crit)
 
     def draw(self, run):
-        from certkit.report.evidence_loads import maneuver_evidence
+        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
 
-        return maneuver_evidence(run, "horizontal_tail", "elevator")
+        return (maneuver_evidence(run, "horizontal_tail", "elevator")
+                + envelope_evidence(run, ("wing",), "checked manoeuvre", plot=False))
 
 
 def checked_maneuver(ctx, conditions, crit) -> dict:
@@ -273,7 +300,9 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     amp, hold = inputs_of(p)
     resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
     loads = airplane_loads(ctx)
-    hist = response_loads(loads, sim, model, ("horizontal_tail",), valid=valid)
+    hist = response_loads(loads, sim, model, LOADED, valid=valid)
+    unstalled = wing_before_stall(hist, model, sim)
+    stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
     env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds)
     stations = loads["horizontal_tail"].station_names
     caps = declared_capabilities(ctx, "horizontal_tail")
@@ -293,6 +322,8 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
             hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), peak_n_z=round(peak_nz, 4),
             stop=sim.stop_reason[i] or "end", pilot_effort=_effort_note(effort_limited, i)))
+        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit,
+                                     bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
         findings.append(load_factor_finding(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit))
     return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
             "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
@@ -337,7 +368,7 @@ def load_factor_finding(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
 @rule
 class MaximumPitchControlDisplacement(Rule):
     id = "25.331(c)(1)"
-    loads_surfaces = ("horizontal_tail",)
+    loads_surfaces = LOADED
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "maximum-pitch-control-displacement"
     title = "Maximum pitch control displacement at VA"
@@ -388,12 +419,14 @@ class MaximumPitchControlDisplacement(Rule):
         sim = simulate(batch.model, batch.x, batch.u, float(crit.duration), dt, inputs={"elevator": sched},
                        stop=[stop_when("n_z > limit", lambda t, x, out: out.n_z > n_lim)])
         loads = airplane_loads(ctx)
-        hist = response_loads(loads, sim, batch.model, ("horizontal_tail",))
+        hist = response_loads(loads, sim, batch.model, LOADED)
         # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
         root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
         t_peak = sim.t[np.nanargmax(root, axis=0)]
         valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_peak)[None, :] + 1e-9
-        hist["horizontal_tail"] = np.where(valid[:, :, None, None], hist["horizontal_tail"], np.nan)
+        hist = {s: np.where(valid[:, :, None, None], h, np.nan) for s, h in hist.items()}
+        unstalled = wing_before_stall(hist, batch.model, sim)
+        stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
         env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
                                           keys=batch.conditions)
         stations = loads["horizontal_tail"].station_names
@@ -404,15 +437,18 @@ class MaximumPitchControlDisplacement(Rule):
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
                 considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
                 VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i)))
+            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
+                                         bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
         self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()
                     "conditions": batch.conditions, "stations": stations}
         return findings
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_loads import maneuver_evidence
+        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
 
         run = getattr(self, "run", None)
-        return maneuver_evidence(run, "horizontal_tail", "elevator") if run else []
+        return (maneuver_evidence(run, "horizontal_tail", "elevator") + envelope_evidence(run, ("wing",), "maximum pitch "
+                "control displacement", plot=False)) if run else []
 
 
 def _ramp(ramp: float, amplitude):

@@ -9,8 +9,9 @@ are from FAA AC 25.341-1 via secondary sources and UNVERIFIED against the CFR; t
 at VD is unverified wording. They are criteria here, overridable in the aircraft file.
 
 Limitations: rigid airplane (no structural modes, (a)(1) asks for all significant ones), quasi-steady
-aerodynamics (no Küssner/Wagner lift growth, conservative for short gusts), vertical gusts only (the
-lateral gust of (a) is not evaluated).
+aerodynamics (no Küssner/Wagner lift growth, conservative for short gusts). Lateral gusts (same gradients, U_ds
+and F_g) load the fin alone (:mod:`certkit.models.loads.lateral_gust`; the fuselage's and wing's share of the gust
+not modelled): fin shear, bending and torsion against the declared fin capability.
 
 Each finding also reports the manoeuvring envelope's load factor at its speed (§25.333/§25.337) and whether
 the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.333 has no gust V–n envelope.
@@ -27,6 +28,7 @@ from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
+from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
 from certkit.registry import Criterion, SimulationRule, rule
@@ -67,22 +69,23 @@ def gradients(crit) -> np.ndarray:
 @rule
 class DiscreteGust(SimulationRule):
     id = "25.341(a)"
-    loads_surfaces = ("wing", "horizontal_tail")
+    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
     cost = 8  # relative evaluation time (orders work over --jobs processes)
     run_with = "discrete-gust"  # §25.349(b) modifies these gust runs: one process simulates them once
     symbol = "discrete-gust"
-    title = "Discrete vertical gusts (1 − cos), rigid airplane"
+    title = "Discrete vertical and lateral gusts (1 − cos), rigid airplane"
     amendment = "25-141"
     requirement = """
         In level flight the airplane meets symmetrical vertical gusts U = (U_ds/2)(1 − cos πs/H) for
         0 ≤ s ≤ 2H, with enough gradients H from 30 to 350 ft to find the critical response of each load
         quantity; U_ds = U_ref F_g (H/350)^(1/6), U_ref 56 ft/s EAS at sea level, 44 ft/s at 15,000 ft,
         20.86 ft/s at 60,000 ft (linear between) from VB to VC, half at VD; F_g the flight-profile
-        alleviation factor. Positive and negative gusts. Limit gust loads by dynamic analysis; the
+        alleviation factor. Positive and negative gusts; lateral gusts alike (the vertical tail). Limit
+        gust loads by dynamic analysis; the
         structure carries them (limit) and 1.5 × them (ultimate), §25.303/§25.305.
     """
     margin = """
-        Per condition and surface (wing, horizontal tail): the smallest of (allowable limit load − |limit
+        Per condition and surface (wing, horizontal tail; the fin in lateral gusts): the smallest of (allowable limit load − |limit
         load|) and (allowable ultimate load − 1.5 × |limit load|) over the declared stations and quantities,
         the limit load the extreme over all gust gradients; without a declared structural capability the
         condition is not evaluated and reports its loads.
@@ -107,18 +110,22 @@ class DiscreteGust(SimulationRule):
                                 extra=(("speed_point", SPEEDS), ("gust", ("up", "down"))),
                                 note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude; U_ref "
                                      "by altitude (" + UREF_SOURCE + "), F_g from the ceiling as Z_mo.")
-    limitations = ("Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag), vertical "
-                   "gusts only (the lateral gust is not evaluated); U_ds and F_g formulas unverified against the CFR "
-                   "(AC 25.341-1).")
+    limitations = ("Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag); the lateral "
+                   "gust loads the fin alone (the fuselage's and wing's share of it not modelled); U_ds and F_g formulas "
+                   "unverified against the CFR (AC 25.341-1).")
     implementation = "partial"
 
     def simulate(self, ctx, conditions, crit):
         return discrete_gusts(ctx, conditions, crit)
 
     def draw(self, run):
-        from certkit.report.evidence_loads import gust_evidence
+        from certkit.report.evidence_loads import envelope_evidence, gust_evidence
 
-        return gust_evidence(run) if run.get("envelope") is not None else []
+        if run.get("envelope") is None:
+            return []
+        lateral = run.get("lateral_envelope")
+        table = envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust", plot=False) if lateral is not None else []
+        return gust_evidence(run) + table
 
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:
@@ -155,6 +162,7 @@ class GustRuns:
     loads: object = None  # AirplaneLoads
     steps_per_gust: float = 20.0
     settle_time: float = 1.5
+    tail: list = None  # per gradient (t, aero, inertia) of the right half tailplane (§25.427(b)), like ``wing``
 
     @cached_property
     def symmetric(self) -> tuple[LoadEnvelope, dict]:
@@ -204,18 +212,19 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
-    envelopes, nz_hi, nz_lo, uds_all, wing = [], [], [], [], []
+    envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
     for h_gust in H:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
         run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
-                            float(crit.settle_time), split=("wing",))
+                            float(crit.settle_time), split=SURFACES)
         envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)
         wing.append((run.sim.t, *run.parts["wing"]))
+        tail.append((run.sim.t, *run.parts["horizontal_tail"]))
     return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
-                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time))
+                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail)
 
 
 def discrete_gusts(ctx, conditions, crit) -> dict:
@@ -245,5 +254,40 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
                 maneuver_envelope_n_z=n_env[i], beyond_maneuver_envelope=bool(
                     (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
                 tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
-    return {"findings": findings, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
-            "replay": runs.replay, "loads": runs.loads}
+    lateral, lateral_env = lateral_gusts(ctx, runs, crit)
+    return {"findings": findings + lateral, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
+            "replay": runs.replay, "loads": runs.loads, "lateral_envelope": lateral_env}
+
+
+def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]:
+    """The lateral 1 − cos gusts on the fin (:mod:`certkit.models.loads.lateral_gust`) at the entries of the vertical
+    gust runs (one per loading, altitude and speed point), with the same gradients and U_ds: one finding per entry
+    (condition ``gust lateral``) against the declared fin capability. The gust from the left is the mirror image of
+    the gust from the right (symmetric airplane: every fin load changes sign), so both are in each envelope."""
+    idx = [i for i, c in enumerate(runs.conditions) if c.get("gust") == "up"]
+    if not idx:
+        return [], None
+    lb = lateral_gust_batch(runs.loads, runs.batch.model.subset(idx), runs.batch.x0[idx], runs.batch.u0[idx])
+    conds = [runs.conditions[i].with_(gust="lateral") for i in idx]
+    labels = [c.label() for c in conds]
+    envelopes, ny = [], []
+    for j, H in enumerate(runs.gradients):
+        sim, fin, _ = simulate_lateral_gust(runs.loads, lb, H, runs.uds[j, idx] / runs.v_eas[idx],
+                                            float(crit.steps_per_gust), float(crit.settle_time))
+        envelopes.append(LoadEnvelope.from_histories(runs.loads, {FIN: np.concatenate([fin, -fin])},
+                                                     np.concatenate([sim.t, sim.t]), labels))
+        ny.append(np.abs(sim["n_y"]).max(axis=0))
+    env, which = LoadEnvelope.worst_of(envelopes)
+    caps = declared_capabilities(ctx, FIN)
+    findings = []
+    for k, c in enumerate(conds):
+        jb = int(which[FIN][k, 1, 0, 0])  # gradient of the largest root shear
+        i = idx[k]
+        findings.append(capability_finding(
+            c, "(a) discrete lateral gust, vertical tail", FIN, env.peaks[FIN][k], env.stations[FIN], caps,
+            crit.ultimate_factor, U_ref_ft_s_EAS=round(float(runs.u_ref[i] / FT), 2), F_g=round(float(runs.f_g[i]), 4),
+            critical_H_root_shear_ft=round(float(runs.gradients[jb] / FT), 0),
+            U_ds_ft_s_EAS=round(float(runs.uds[jb, i] / FT), 2), V_kn_EAS=round(float(runs.v_eas[i] / KN), 1),
+            peak_gust_sideslip_deg=round(float(np.degrees(runs.uds[jb, i] / runs.v_eas[i])), 3),
+            peak_n_y=round(float(max(v[k] for v in ny)), 4), direction="from the right and (mirror image) the left"))
+    return findings, env

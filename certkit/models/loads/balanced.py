@@ -1,0 +1,130 @@
+"""Balanced symmetric manoeuvres: the airplane at a normal load factor n with zero pitching acceleration, and the
+station loads of that one trimmed state.
+
+A steady symmetric pull-up (n > 1) or push-over (n < 1) at the instant the flight path passes the angle γ of the
+entry trim: the flight path turns at q = g (n − cos γ) / V (wings level, q the body pitch rate), the normal load
+factor on the path is n (Etkin & Reid, *Dynamics of Flight*, 3rd ed., §6.7, the pull-up: n = 1 + V q / g in level
+flight). Solved for each condition of a batch at once by Newton's method (forward-difference Jacobian) for the
+angle of attack and the pitch control such that
+
+    α̇ = 0 (the path-normal force balance: L + T sin(α + …) − W cos γ = m V q)   and   q̇ = 0 (moment balance),
+
+the throttle and every other control held at the entry trim's (thrust ≈ drag of the 1 g flight; the speed change
+the extra drag causes is not balanced — it is a longitudinal acceleration, not a pitching one). The horizontal
+tail load is then the balancing load of the trimmed state and the wing carries the rest of n W, from the same
+state, in the strip loads model (:mod:`certkit.models.loads.model`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import numpy as np
+
+from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.trim import assemble_state
+from certkit.models.loads.response import response_load_parts
+
+
+@dataclass
+class BalancedStates:
+    """Balanced states of a batch: Euler states (n, 12), controls (n, nc), the kernel outputs, convergence."""
+
+    x: np.ndarray
+    u: np.ndarray
+    outputs: object  # certkit.models.dynamics.eom.Outputs
+    load_factor: np.ndarray  # the path-normal n asked for
+    converged: np.ndarray
+    residual: np.ndarray  # max |α̇|, |q̇| (rad/s, rad/s²)
+
+    @property
+    def alpha(self) -> np.ndarray:
+        return self.outputs.alpha
+
+    @property
+    def pitch_rate(self) -> np.ndarray:
+        return self.x[:, 7]
+
+
+def linear_lift(model: AircraftModel) -> AircraftModel:
+    """The flight model ``model`` with its aerodynamics' stall model removed (linear lift up to any C_L): the V–n
+    envelope's corners on the stall lines ask for C_N,max, which a rounded stall model only approaches; the strip
+    loads are linear in α as well. Models without a stall model are returned as they are."""
+    aero = model.aero
+    if getattr(aero, "stall", None) is None or not hasattr(aero, "without_stall"):
+        return model
+    return AircraftModel(aero.without_stall(), model.mass, model.cg, model.inertia, model.engines, model.operative,
+                         model.ground, model.g, n=model.n)
+
+
+def _entry(x_entry):
+    """Speed, altitude, angle of attack and flight-path angle of steady Euler states (n, 12)."""
+    u, w = x_entry[:, 3], x_entry[:, 5]
+    alpha = np.arctan2(w, u)
+    return np.hypot(u, w), x_entry[:, 2], alpha, x_entry[:, 10] - alpha
+
+
+def balanced_states(model, x_entry, u_entry, load_factor, pitch_control: str = "elevator", g: float = 9.80665,
+                    tol: float = 1e-9, max_iter: int = 30) -> BalancedStates:
+    """The balanced manoeuvre of every condition of ``model`` (n) entered from its steady state ``x_entry`` /
+    ``u_entry`` (straight trims: the speed, altitude, flight-path angle and the controls kept) at the path-normal
+    load factors ``load_factor`` (scalar or (n,)). Conditions that do not converge are flagged, not raised."""
+    V, h, alpha0, gamma = _entry(np.asarray(x_entry, dtype=float))
+    n_cond = V.size
+    nz = np.broadcast_to(np.asarray(load_factor, dtype=float), (n_cond,)).astype(float)
+    q = g * (nz - np.cos(gamma)) / np.maximum(V, 1.0)
+    j_pitch = list(model.control_names).index(pitch_control)
+    u_entry = np.asarray(u_entry, dtype=float)
+
+    def state(z, idx):
+        x = assemble_state(V[idx], h[idx], z[:, 0], 0.0, 0.0, gamma[idx], 0.0)
+        x[:, 7] = q[idx]
+        u = u_entry[idx].copy()
+        u[:, j_pitch] = z[:, 1]
+        return x, u
+
+    def residual(z, idx):
+        x, u = state(z, idx)
+        xd, out = model.derivatives_euler(x, u, with_outputs=True, rows=idx)
+        return np.stack([out.alpha_dot, xd[:, 7]], axis=1)
+
+    # initial guess: the entry α scaled with the load factor (lift ∝ α from zero lift near α = 0), entry pitch control
+    z = np.stack([alpha0 * np.maximum(nz, 0.2) / np.maximum(np.cos(gamma), 0.5), u_entry[:, j_pitch]], axis=1)
+    everyone = np.arange(n_cond)
+    r = residual(z, everyone)
+    step = np.array([1e-6, 1e-6])
+    max_step = np.array([0.05, 0.1])
+    for _ in range(max_iter):
+        idx = np.flatnonzero(np.max(np.abs(r), axis=1) > tol)
+        if idx.size == 0:
+            break
+        za, ra = z[idx], r[idx]
+        zp = np.concatenate([za + [step[0], 0.0], za + [0.0, step[1]]])
+        rp = residual(zp, np.tile(idx, 2)).reshape(2, idx.size, 2)
+        jac = np.stack([(rp[0] - ra) / step[0], (rp[1] - ra) / step[1]], axis=-1)  # (m, eq, unknown)
+        det = jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0]
+        det = np.where(np.abs(det) > 1e-300, det, 1e-300)
+        dz = -np.stack([jac[:, 1, 1] * ra[:, 0] - jac[:, 0, 1] * ra[:, 1],
+                        -jac[:, 1, 0] * ra[:, 0] + jac[:, 0, 0] * ra[:, 1]], axis=1) / det[:, None]
+        dz = np.where(np.isfinite(dz), dz, 0.0)
+        dz /= np.maximum(np.max(np.abs(dz) / max_step, axis=1), 1.0)[:, None]
+        z[idx] = za + dz
+        r[idx] = residual(z[idx], idx)
+    x, u = state(z, everyone)
+    _, out = model.derivatives_euler(x, u, with_outputs=True)
+    res = np.max(np.abs(r), axis=1)
+    return BalancedStates(x, u, out, nz, res <= tol * 10, res)
+
+
+def steady_load_parts(loads, model, x, u, outputs, surfaces) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Aerodynamic and inertial station loads, each (n, 3, S), of ``surfaces`` in the steady states ``x``/``u``
+    (outputs of the flight model there): the strip loads of :func:`response_load_parts` at one instant, with the
+    angular accelerations zero (a balanced state)."""
+    o = outputs
+    history = {"V": o.V, "alpha": o.alpha, "beta": o.beta, "mach": o.mach, "qbar": o.qbar, "n_z": o.n_z,
+               "n_y": o.n_y, "p": x[:, 6], "q": x[:, 7], "r": x[:, 8]}
+    record = SimpleNamespace(history={k: np.asarray(v, dtype=float)[None, :] for k, v in history.items()},
+                             t=np.zeros(1), controls=np.asarray(u, dtype=float)[None], control_names=model.control_names)
+    parts = response_load_parts(loads, record, model, tuple(surfaces))
+    return {k: (a[0], i[0]) for k, (a, i) in parts.items()}

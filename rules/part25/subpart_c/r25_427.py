@@ -1,0 +1,184 @@
+"""§25.427(b) Unsymmetrical loads on the horizontal tail: 100 % of the loading of the symmetrical manoeuvre
+conditions of §25.331 and of the vertical gusts of §25.341(a) on the surface on one side of the plane of symmetry,
+80 % on the other; the stabiliser root loads of each side against the declared tailplane capability and the torsion
+the unbalance puts into the fuselage at the tail.
+
+Text verified against an eCFR mirror of Amdt. 25-86 (pilotfriend.com, Sec. 25.427): "(b) The horizontal tail must
+be assumed to be subjected to unsymmetrical loading conditions determined as follows: (1) 100 percent of the maximum
+loading from the symmetrical maneuver conditions of §25.331 and the vertical gust conditions of §25.341(a) acting
+separately on the surface on one side of the plane of symmetry; and (2) 80 percent of these loadings acting on the
+other side." Every symmetric condition is split (the maximum loading is among them); the fractions apply to the
+air load, the inertial load of each half stays (:func:`certkit.models.loads.unsymmetrical.unsymmetrical_tail`).
+
+Sources of the symmetric loadings: the §25.331(b) balanced manoeuvres and the §25.341(a) gusts (the same runs, shared
+in one process with §25.341(a) and §25.349(b)). The §25.331(c) pitch manoeuvres are not included (their runs are not
+shared with this rule): said by a not-evaluated finding. The fuselage has no declared capability (the aircraft file's
+``structure`` section holds lifting surfaces only): its torsion at the tail is reported, not evaluated.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from certkit.conditions import ConditionSpace
+from certkit.models.loads.capability import declared_capabilities
+from certkit.models.loads.unsymmetrical import unsymmetrical_tail
+from certkit.registry import Criterion, SimulationRule, rule
+from certkit.results import Condition, Finding
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver, balanced_runs
+from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
+
+TAIL = "horizontal_tail"
+SOURCES = {"25.331(b)": BalancedManeuver, "25.341(a)": DiscreteGust}
+REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
+NOT_SHARED = ("the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
+              "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads")
+NO_FUSELAGE = ("no fuselage capability can be declared (the aircraft file's structure section holds the lifting "
+               "surfaces only): the fuselage torsion at the tail is reported, not compared")
+
+LIMITATIONS = ("Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
+               "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
+               "(tail roll inertia relief neglected); no fuselage capability to compare the torsion with.")
+
+
+@dataclass(frozen=True)
+class SymmetricSources(ConditionSpace):
+    """The conditions of the symmetric loads rules, each tagged with its ``source`` rule."""
+
+    def expand(self, aircraft):
+        out = []
+        for rid, cls in SOURCES.items():
+            out += [c.with_(source=rid) for c in cls.conditions.expand(aircraft)]
+        return out
+
+    def describe(self):
+        return "the conditions of " + " and ".join(f"§{k} ({v.conditions.describe()})" for k, v in SOURCES.items())
+
+
+def _untag(c: Condition) -> Condition:
+    return replace(c, extra=tuple((k, v) for k, v in c.extra if k != "source"))
+
+
+def _key(c: Condition, source: str):
+    axis = ("point",) if source == "25.331(b)" else ("speed_point", "gust")
+    return (c.loading, c.configuration, c.altitude) + tuple(c.get(a) for a in axis)
+
+
+@rule
+class UnsymmetricalTailLoads(SimulationRule):
+    id = "25.427(b)"
+    symbol = "unsymmetrical-tail-loads"
+    title = "Unsymmetrical horizontal-tail loads: 100 % on one side, 80 % on the other"
+    amendment = "25-86"
+    cost = 3
+    run_with = "discrete-gust"  # shares the §25.341(a) gust runs in one process
+    requirement = """
+        The horizontal tail is subjected to 100 % of the maximum loading from the symmetrical manoeuvre
+        conditions of §25.331 and the vertical gusts of §25.341(a), acting separately, on the surface on one side
+        of the plane of symmetry, and 80 % of these loadings on the other side (§25.427(b)(1), (2)); the
+        structure carries the limit loads and 1.5 × them (§25.303, §25.305).
+    """
+    margin = """
+        Per symmetric condition and side (100 %, 80 %): the smallest of (allowable limit load − |limit load|) and
+        (allowable ultimate load − 1.5 × |limit load|) over the declared tailplane stations and quantities; the
+        fuselage torsion at the tail is reported (no fuselage capability is declarable).
+    """
+    references = ("25.331", "25.341", "25.303", "25.305", "25.349")
+    requires = BalancedManeuver.requires + ("speeds.VB",)
+    criteria = {
+        **{k: v for k, v in BalancedManeuver.criteria.items()},
+        **{k: DiscreteGust.criteria[k] for k in GUST_CRITERIA},
+        "full_side_fraction": Criterion(1.0, "", REG + " (b)(1)", "fraction of the tail air load on one side"),
+        "reduced_side_fraction": Criterion(0.8, "", REG + " (b)(2)", "fraction of the tail air load on the other side"),
+        **SAFETY,
+    }
+    conditions = SymmetricSources()
+    limitations = LIMITATIONS
+    implementation = "partial"
+
+    def simulate(self, ctx, conditions, crit):
+        return unsymmetrical_tail_loads(ctx, conditions, crit)
+
+    def draw(self, run):
+        from certkit.report.evidence_loads import envelope_evidence
+
+        env = run.get("envelope")
+        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False) if env is not None else []
+
+
+def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
+    """{(source, condition key): (100 % side peaks (2, 3, S), reduced side peaks, fuselage torsion (min, max), refined
+    condition)} of every symmetric condition computed by its source (over every gust gradient and time)."""
+    by_source: dict[str, list] = {}
+    for c in conditions:
+        by_source.setdefault(c.get("source"), []).append(_untag(c))
+    parts = []  # (source, aero (T, n, 3, S), inertia, refined conditions)
+    if "25.331(b)" in by_source:
+        run = balanced_runs(ctx, by_source["25.331(b)"], crit)
+        if run.get("envelope") is not None:
+            aero, inertia = run["tail_parts"]
+            parts.append(("25.331(b)", aero[None], inertia[None], run["conditions"]))
+    if "25.341(a)" in by_source:
+        runs = gust_runs(ctx, by_source["25.341(a)"], crit)
+        if runs.conditions:  # every gradient's time history one after the other
+            parts.append(("25.341(a)", np.concatenate([a for _, a, _ in runs.tail]),
+                          np.concatenate([i for _, _, i in runs.tail]), runs.conditions))
+    out = {}
+    for source, aero, inertia, conds in parts:
+        split = unsymmetrical_tail(tail, aero, inertia, full, reduced)
+        p_full = np.stack([np.nanmin(split.full, axis=0), np.nanmax(split.full, axis=0)], axis=1)  # (n, 2, 3, S)
+        p_red = np.stack([np.nanmin(split.reduced, axis=0), np.nanmax(split.reduced, axis=0)], axis=1)
+        t_lo, t_hi = np.nanmin(split.fuselage_torsion, axis=0), np.nanmax(split.fuselage_torsion, axis=0)
+        for i, c in enumerate(conds):
+            out[(source,) + _key(c, source)] = (p_full[i], p_red[i], (float(t_lo[i]), float(t_hi[i])), c)
+    return out
+
+
+def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
+    from certkit.models.loads.model import airplane_loads
+    from certkit.models.loads.response import LoadEnvelope
+
+    loads = airplane_loads(ctx)
+    tail = loads[TAIL]
+    caps = declared_capabilities(ctx, TAIL)
+    full, reduced = float(crit.full_side_fraction), float(crit.reduced_side_fraction)
+    with warnings.catch_warnings():  # all-NaN rows (states that were not balanced) are refused below
+        warnings.simplefilter("ignore", RuntimeWarning)
+        sym = _split_sources(ctx, conditions, crit, tail, full, reduced)
+    findings, labels, peaks = [], [], {"100 % side": [], "80 % side": []}
+    worst = (0.0, None)
+    for c in conditions:
+        source = c.get("source")
+        hit = sym.get((source,) + _key(c, source))
+        checks = [f"(b)(1) {full:.0%} side, horizontal tail", f"(b)(2) {reduced:.0%} side, horizontal tail"]
+        if hit is None or not np.isfinite(hit[0]).any():
+            findings += [Finding.not_evaluated(c, k, f"no symmetric loads of this condition (§{source} could not trim or "
+                                                     "balance it)") for k in checks]
+            continue
+        p_full, p_red, (t_lo, t_hi), refined = hit
+        cond = refined.with_(source=source)
+        if max(abs(t_lo), abs(t_hi)) > worst[0]:
+            worst = (max(abs(t_lo), abs(t_hi)), cond.label())
+        details = {"fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
+                   "source": f"§{source}"}
+        findings.append(capability_finding(cond, checks[0], TAIL, p_full, tail.station_names, caps, crit.ultimate_factor,
+                                           **details))
+        findings.append(capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor,
+                                           **details))
+        labels.append(cond.label())
+        peaks["100 % side"].append(p_full)
+        peaks["80 % side"].append(p_red)
+    findings.append(Finding.not_evaluated(Condition(), "(b) symmetric loadings of §25.331(c)", NOT_SHARED))
+    if worst[1] is not None:
+        findings.append(Finding.not_evaluated(Condition(), "(b) fuselage torsion at the tail", NO_FUSELAGE,
+                                              largest_torsion_kNm=round(worst[0] / 1e3, 1), critical_condition=worst[1]))
+    if not labels:
+        return {"findings": findings, "envelope": None}
+    stations = {s: tail.station_names for s in peaks}
+    P = {s: np.stack(v) for s, v in peaks.items()}  # (n, 2, 3, S)
+    env = LoadEnvelope(stations, P, {s: np.zeros_like(v) for s, v in P.items()}, labels)
+    return {"findings": findings, "envelope": env, "largest_fuselage_torsion": worst}
