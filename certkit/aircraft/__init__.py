@@ -51,12 +51,15 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
         try:
             sections[name] = TypeAdapter(info.annotation).validate_python(data[name])
         except ValidationError as err:
-            found += found_in(err, (name,))
+            found += found_in(err, (name,), data=data)
     found += [(split_path(p.path), p.message, raw_at(data, split_path(p.path), p.value))
               for p in consistency_problems(sections)]
     if found:
         raise InputError(path, located(found, source))
-    return Aircraft.model_validate(data)
+    try:
+        return Aircraft.model_validate(data)
+    except ValidationError as err:  # a relation the section models check together (none today): still located
+        raise InputError(path, located(found_in(err, data=data), source)) from None
 
 
 def load_aircraft(path: str | Path) -> LoadedAircraft:
