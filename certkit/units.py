@@ -127,10 +127,23 @@ def _unit_of(unit_text: str) -> pint.Unit:
     return unit
 
 
+#: largest magnitude of a quantity in SI: a laminate modulus is 1e11 Pa, a widebody's yaw inertia 1e8 kg·m²; beyond
+#: this a value is a slip (and its squares and products would overflow in the checks and models)
+MAX_SI_MAGNITUDE = 1e15
+
+
 def finite_number(value: float, what: object) -> float:
     """``value`` if finite, else a :class:`UnitError` naming ``what`` (the text as written)."""
     if not math.isfinite(value):
         raise UnitError(f"{what!r} is not a finite number (NaN, infinity and numbers beyond ±1.8e308 are not accepted)")
+    return value
+
+
+def physical(value: float, what: object) -> float:
+    """``value`` (SI) if finite and within ±:data:`MAX_SI_MAGNITUDE`, else a :class:`UnitError`."""
+    if abs(finite_number(value, what)) > MAX_SI_MAGNITUDE:
+        raise UnitError(f"{what!r} is beyond any physical value certkit takes (magnitude above {MAX_SI_MAGNITUDE:.0e} "
+                        "in SI units)")
     return value
 
 
@@ -144,7 +157,7 @@ def _parse_string(text: str, dimension: str) -> float:
         raise UnitError(f"cannot read {text!r} as a quantity: expected a number and a unit, e.g. '97300 lbf'")
     number = finite_number(float(m[1]), text)
     if not m[2]:
-        return number  # a bare number is SI, as a number would be
+        return physical(number, text)  # a bare number is SI, as a number would be
     if m[2][0] in "*^0123456789.":
         raise UnitError(f"cannot read {text!r}: write one decimal number then the unit (e.g. '3.87e8 lb'); "
                         "arithmetic is not evaluated")
@@ -152,7 +165,7 @@ def _parse_string(text: str, dimension: str) -> float:
     if unit.dimensionality != _si_unit(dimension).dimensionality:
         expected = DIMENSIONS[dimension] or "no unit"
         raise UnitError(f"{text!r} is not a {dimension} (expected a unit convertible to {expected})")
-    return finite_number(float(ureg.Quantity(number, unit).to(_si_unit(dimension)).magnitude), text)
+    return physical(float(ureg.Quantity(number, unit).to(_si_unit(dimension)).magnitude), text)
 
 
 def si_reading(text: str) -> float | None:
@@ -191,7 +204,7 @@ def to_si(value: object, dimension: str) -> float:
         raise UnitError(f"{value!r} is not a {dimension}")
     if isinstance(value, (int, float)):
         try:
-            return finite_number(float(value), value)
+            return physical(float(value), value)
         except OverflowError:
             raise UnitError(f"a number of {len(str(abs(value)))} digits is beyond ±1.8e308") from None
     if isinstance(value, str):

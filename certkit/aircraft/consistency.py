@@ -241,8 +241,13 @@ def consistency_problems(sections: dict) -> list[Problem]:
     problems = []
     for required, check in CHECKS:
         if all(sections.get(name) is not None for name in required):
-            for path, message, value in check(sections) or ():
-                problems.append(Problem(path, message, value))
+            try:
+                with np.errstate(over="raise", divide="raise", invalid="raise"):
+                    for path, message, value in check(sections) or ():
+                        problems.append(Problem(path, message, value))
+            except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:  # finite but extreme values
+                problems.append(Problem(required[0], f"values too extreme to check against {', '.join(required[1:]) or 'each other'} "
+                                        f"({exc.__class__.__name__}): check the magnitudes and units", None))
     return problems
 
 
@@ -426,9 +431,10 @@ def _component_inertia(components) -> dict[str, float] | None:
         return None
     masses = np.array([c.mass for c in components])
     r = np.array([[c.cg.x, c.cg.y, c.cg.z] for c in components])
-    d = r - masses @ r / masses.sum()
     out = {}
-    for name, (a, b) in _AXES.items():
-        own = sum(getattr(c.inertia, name) for c in components if c.inertia is not None)
-        out[name] = float(masses @ (d[:, a] ** 2 + d[:, b] ** 2)) + own
-    return out
+    with np.errstate(all="ignore"):  # absurd (finite) inputs may overflow: then there is no bound to check
+        d = r - masses @ r / masses.sum()
+        for name, (a, b) in _AXES.items():
+            own = sum(getattr(c.inertia, name) for c in components if c.inertia is not None)
+            out[name] = float(masses @ (d[:, a] ** 2 + d[:, b] ** 2)) + own
+    return out if all(map(math.isfinite, out.values())) else None

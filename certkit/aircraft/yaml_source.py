@@ -142,7 +142,7 @@ def _read(path: Path) -> str:
         raise InputError(str(path), [Problem("", "is a folder, not a file")]) from None
     except OSError as exc:
         raise InputError(str(path), [Problem("", f"cannot read the file: {exc.strerror or exc}")]) from None
-    if len(raw) > MAX_FILE_BYTES:
+    if len(raw) > MAX_FILE_BYTES:  # also checked by source_from_text, but /dev/zero must not be read whole
         raise InputError(str(path), [Problem("", f"file larger than {MAX_FILE_BYTES // 1024 ** 2} MB (an aircraft "
                                                  "file is tens of kilobytes)")])
     try:
@@ -153,7 +153,14 @@ def _read(path: Path) -> str:
 
 def load_yaml(path: str | Path) -> YamlSource:
     path = Path(path)
-    text = _read(path)
+    return source_from_text(_read(path), path)
+
+
+def source_from_text(text: str, path: str | Path = "<text>") -> YamlSource:
+    """The :class:`YamlSource` of YAML ``text`` (``path`` names it in messages), within the limits above."""
+    path = Path(path)
+    if len(text) > MAX_FILE_BYTES:
+        raise InputError(str(path), [Problem("", f"text larger than {MAX_FILE_BYTES // 1024 ** 2} MB")])
     try:
         node, data = _parse(text, str(path))
     except yaml.YAMLError as exc:
