@@ -128,3 +128,14 @@ def test_written_baseline_variant_round_trips(tmp_path):
     """A variant written back to YAML loads (the test helper itself can fail: this is its check)."""
     loaded = load_aircraft(write_yaml(tmp_path, with_value("mass.MTOW", "656000 lb")))
     assert loaded.model.mass.MTOW == pytest.approx(656000 * LB)
+
+
+@pytest.mark.parametrize("text", ["nan", "inf", "1e999", "9**9**9 lb", "nan lb"])
+def test_command_line_quantities_refuse_non_finite_and_arithmetic(text):
+    from certkit.errors import UserError
+    from certkit.flight_report import _quantity, parse_speed
+
+    with pytest.raises(UserError):
+        _quantity(text, "mass", "--weight")
+    with pytest.raises(UserError):
+        parse_speed(f"M{text}" if " " not in text else f"{text} MACH")
