@@ -187,7 +187,7 @@ class MassProperties(_Section):
     MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
     max_fuel: PositiveMass | None = None
     max_payload: PositiveMass | None = None
-    passengers: Annotated[int, Field(ge=0)] | None = None
+    passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
     oew_cg: Point | None = None
     inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (if no components)")
     components: list[MassComponent] = Field(default_factory=list)

@@ -71,7 +71,10 @@ def _scaled(value, factor):
     if isinstance(value, bool):
         return not value
     if isinstance(value, (int, float)):
-        return value * factor
+        try:
+            return value * factor
+        except OverflowError:  # a 400-digit integer times a float: keep the integer
+            return value
     if isinstance(value, str):
         number, _, unit = value.partition(" ")
         try:
