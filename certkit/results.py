@@ -53,6 +53,19 @@ class Condition:
         mine = dict(self.extra)
         return all(k in mine and mine[k] == v for k, v in other.extra)
 
+    def same_point(self, scheduled: "Condition") -> bool:
+        """True when this condition (as a rule evaluated it, possibly refined) is the point ``scheduled`` of a rule's
+        condition space whatever the airplane-dependent numbers (mass, CG, speed): the same loading, configuration,
+        altitude, named speed and scheduled fields. It finds one airplane's condition among another's schedule."""
+        if (self.loading, self.configuration) != (scheduled.loading, scheduled.configuration):
+            return False
+        if (self.altitude is None) != (scheduled.altitude is None) or (
+                self.altitude is not None and abs(self.altitude - scheduled.altitude) > 1e-6):
+            return False
+        if scheduled.speed_name is not None and self.speed_name != scheduled.speed_name:
+            return False
+        return all(item in self.extra for item in scheduled.extra)
+
     def as_dict(self) -> dict:
         """JSON form (SI, with units in the key names)."""
         out: dict[str, object] = {}

@@ -95,9 +95,12 @@ def _describe_exception(exc: BaseException) -> str:
     return f"{exc.__class__.__name__}: {exc}"
 
 
-def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False) -> RuleResult:
+def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False,
+                  only=None) -> RuleResult:
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
-    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result."""
+    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
+    (conditions, e.g. of another airplane) restricts the evaluation to the scheduled conditions that are the same
+    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict."""
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides)
@@ -112,6 +115,9 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     except Exception as exc:  # a condition space that cannot be built is reported, not raised
         result.findings.append(Finding.not_evaluated(Condition(), "conditions", _describe_exception(exc)))
         return result
+    if only is not None:
+        conditions = [c for c in conditions if any(k.same_point(c) for k in only)]
+        result.notes.append(f"partial evaluation: {len(conditions)} selected conditions")
     if not conditions:
         result.findings.append(Finding.not_evaluated(Condition(), "conditions", "no condition applies (configurations or speeds not declared)"))
         return result

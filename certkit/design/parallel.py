@@ -31,8 +31,8 @@ def _slim(result):
 def _work(ids: tuple[str, ...]) -> list:
     from certkit.scheduler import evaluate_rule
 
-    ctx, rules, kw = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"]
-    return [_slim(evaluate_rule(rules[i], ctx, **kw)) for i in ids]
+    ctx, rules, kw, select = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"], _SHARED["select"]
+    return [_slim(evaluate_rule(rules[i], ctx, only=select.get(i), **kw)) for i in ids]
 
 
 def shares(rules, jobs: int) -> list[tuple]:
@@ -46,16 +46,18 @@ def shares(rules, jobs: int) -> list[tuple]:
     return [tuple(g) for g in groups if g]
 
 
-def evaluate_rules(rules, ctx, jobs: int = 1, **kw) -> list:
+def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
     """:func:`certkit.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
-    processes when more than one is asked for and the platform forks; in rule order."""
+    processes when more than one is asked for and the platform forks; in rule order. ``select`` (rule id →
+    conditions) restricts those rules to the same points (``only``); a rule it maps to no condition is skipped."""
     from certkit.scheduler import evaluate_rule
 
-    rules = list(rules)
+    select = dict(select or {})
+    rules = [r for r in rules if r.id not in select or len(select[r.id]) > 0]
     if jobs <= 1 or len(rules) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
-        return [evaluate_rule(r, ctx, **kw) for r in rules]
+        return [evaluate_rule(r, ctx, only=select.get(r.id), **kw) for r in rules]
     groups = shares(rules, min(jobs, len(rules)))
-    _SHARED.update(ctx=ctx, rules={r.id: r for r in rules}, kw=kw)
+    _SHARED.update(ctx=ctx, rules={r.id: r for r in rules}, kw=kw, select=select)
     pool = ProcessPoolExecutor(len(groups), mp_context=multiprocessing.get_context("fork"),
                                initializer=die_with_parent, initargs=(os.getpid(),))
     try:

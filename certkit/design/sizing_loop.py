@@ -5,10 +5,15 @@ tail group is the one sized at iteration k − 1 (at k = 0 the declared componen
 changed tail), reduces their envelopes to the tail's limit loads (:mod:`certkit.design.tail_loads`), and sizes the
 tail group for the union of the envelopes seen so far (so the structure carries every load the loop computed).
 The sized group (box, secondary structure, elevator and actuators) replaces the tail's component in the mass table
-and its box becomes the tail's declared structural capability at every station. The loop ends when the group mass
-changes by less than the declared tolerance and the loads of the airplane carrying it stay within what it was
-sized for (the box is sized for the envelope × (1 + LOAD_ALLOWANCE)); then the loads rules' results of that last iteration are final. A loop that does not converge within the
-declared number of iterations raises :class:`SizingNotConverged` with its history — never a silent last value.
+and its box becomes the tail's declared structural capability at every station.
+
+A changed design first iterates on the declared airplane's near-critical conditions only (those whose tail load or
+elevator hinge moment reaches :data:`START_FRACTION` of its largest) until its mass settles, then on every
+condition. The loop ends, after an iteration over every condition, when the group mass changes by less than the
+declared tolerance and the loads of the airplane carrying it stay within what it was sized for (the box is sized
+for the envelope × (1 + LOAD_ALLOWANCE)); then the loads rules' results of that last iteration are final. A loop
+that does not converge within the declared number of iterations raises :class:`SizingNotConverged` with its
+history — never a silent last value.
 """
 
 from __future__ import annotations
@@ -27,6 +32,17 @@ ACTUATOR_COMPONENT = "elevator actuators"
 #: own mass changing its inertia relief: +1.6 % of the 75 %-span torsion for the baseline's +175 kg first step) is
 #: still carried, so the loop need not run again for it (numerical choice; ~1 % of the tail group's mass)
 LOAD_ALLOWANCE = 0.02
+#: a design's loop starts from the declared airplane's near-critical conditions: those whose tail load (or elevator
+#: hinge moment) reaches this fraction of the declared airplane's envelope somewhere (numerical choice: the loop's
+#: later iterations evaluate every condition, so a point it misses costs an iteration, not a load)
+START_FRACTION = 0.85
+#: … and, per rule, the conditions within this fraction of the rule's own largest tail load somewhere (a changed tail
+#: can make another rule's case critical: §25.349(a)'s 75 %-span torsion in one sampled design)
+START_OWN_FRACTION = 0.95
+#: the start hands over to iterations over every condition once its mass changes by less than this many times the
+#: loop's tolerance (numerical choice: the start's changes shrink by 10–30× per iteration after the first, which
+#: adds the actuators; only full iterations end the loop)
+START_SETTLED = 5.0
 #: the declared component that carries the baseline's elevator actuators (they are moved out of it, at their own
 #: positions, so that the design's actuators replace them)
 FLIGHT_CONTROLS = "flight controls"
@@ -49,6 +65,8 @@ class BaselineActuators:
     centroid: tuple[float, float, float]
     hinge: dict
     ctx: object = field(default=None, repr=False, compare=False)  # the declared aircraft's Context (its lattice)
+    #: rule id → the declared airplane's near-critical conditions (None: all), where a design's loop starts
+    critical: dict | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
@@ -138,11 +156,27 @@ def _baseline_value(base_aircraft, ctx, results) -> BaselineActuators:
     hinge = design_hinge_moment(ctx, results)
     act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
     c = tuple(float(v) for v in np.mean(act.positions, axis=0))
-    return BaselineActuators(act.total_mass, c, hinge, ctx)
+    return BaselineActuators(act.total_mass, c, hinge, ctx, start_conditions(ctx, results))
+
+
+def start_conditions(ctx, results) -> dict:
+    """Rule id → the conditions where the declared airplane's tail loads or elevator hinge moment come within
+    :data:`START_FRACTION` of their largest (None: all the rule's conditions)."""
+    from certkit.design.tail_group import hinge_critical_conditions
+    from certkit.design.tail_loads import near_critical_conditions
+
+    out = near_critical_conditions(results, START_FRACTION, START_OWN_FRACTION)
+    for rid, conds in hinge_critical_conditions(ctx, results, START_FRACTION).items():
+        if conds is None or out.get(rid, []) is None:
+            out[rid] = None
+        else:
+            out[rid] = list(out.get(rid, [])) + [c for c in conds if c not in out.get(rid, [])]
+    return out
 
 
 def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActuators:
-    """The unmodified file's elevator actuators, sized from its own pitch manoeuvres (once per process and file)."""
+    """The unmodified file's elevator actuators, sized from its own pitch manoeuvres, and its near-critical loads
+    conditions (once per process and file)."""
     from certkit.context import Context
     from certkit.scheduler import evaluate_rule
 
@@ -151,8 +185,9 @@ def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActua
             value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
         else:
             ctx = Context(loaded_of(base_aircraft))
-            pitch = [r for r in rules if r.id.startswith("25.331(c)")]
-            value = _baseline_value(base_aircraft, ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in pitch])
+            loads_rules = [r for r in rules if "horizontal_tail" in r.loads_surfaces]
+            value = _baseline_value(base_aircraft, ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True)
+                                                         for r in loads_rules])
         _remember(source, value)
     return _BASELINE[source.sha256]
 
@@ -190,6 +225,9 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         known = baseline_actuators(source, base_aircraft, rules, loaded_of)
     ctx = known.ctx if same_geometry and known is not None else None  # the declared lattice serves an unchanged geometry
     base_act = known
+    # a changed design first iterates on the declared airplane's near-critical points until the mass settles, then
+    # on every condition until it settles again with the loads inside the sized box (only that ends the loop)
+    partial = bool(settings) and known is not None and known.critical is not None
     for k in range(spec.max_iterations):
         t = time.perf_counter()
         actuators = group.actuator_mass - base_act.mass if k > 0 else 0.0
@@ -201,7 +239,8 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         t_aero = time.perf_counter()
         ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
         aero_seconds += time.perf_counter() - t_aero
-        results = evaluate_rules(loads_rules, ctx, jobs, evidence=False, keep_loads=True)
+        results = evaluate_rules(loads_rules, ctx, jobs, evidence=False, keep_loads=True,
+                                 select=base_act.critical if partial else None)
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results)
             _remember(source, base_act)
@@ -212,8 +251,11 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         change = sized.total_mass - group.total_mass
         seconds.append(time.perf_counter() - t)
         history.append({"iteration": k, "group_mass_kg": round(group.total_mass, 3), "sized_mass_kg": round(sized.total_mass, 3),
-                        "change_kg": round(change, 3), "loads_within_sized": bool(within)})
-        if k > 0 and abs(change) < spec.tolerance_kg and within:
+                        "change_kg": round(change, 3), "loads_within_sized": bool(within),
+                        "conditions": "near-critical" if partial else "all"})
+        if partial:
+            partial = abs(change) >= START_SETTLED * spec.tolerance_kg
+        elif k > 0 and abs(change) < spec.tolerance_kg and within:
             for r in results:
                 r.run = None  # the simulations are not needed any more
             return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,

@@ -140,8 +140,9 @@ def box_capability(aircraft, sized, station_names, station_span) -> dict:
             for name, s in zip(station_names, station_span)}
 
 
-def design_hinge_moment(ctx, results) -> dict:
-    """The largest elevator hinge moment over the pitch-manoeuvre histories the rules kept (module doc)."""
+def _hinge_moments(ctx, results) -> list:
+    """Per pitch-manoeuvre run the rules kept (§25.331(c)): (rule id, hinge moments H (samples,) of the elevator,
+    their (time, condition) indices, Mach, q̄, α, δ, conditions, times, derivatives)."""
     from certkit.models.aero.hinge_moment import hinge_moment_derivatives
 
     samples = []
@@ -164,10 +165,18 @@ def design_hinge_moment(ctx, results) -> dict:
                       lambda: [hinge_moment_derivatives(aero.lattice.at_mach(float(m)), "elevator") for m in grid])
     table = {k: np.array([getattr(d, k) for d in derivs]) for k in ("Ch_0", "Ch_alpha", "Ch_delta")}
     ref = derivs[0]
-    best = None
+    out = []
     for rid, qbar, m, alpha, de, where, conds, t in samples:
         coef = {k: np.interp(m, grid, v) for k, v in table.items()}  # linear in Mach, held beyond the ends
         H = qbar * ref.area * ref.chord * (coef["Ch_0"] + coef["Ch_alpha"] * alpha + coef["Ch_delta"] * de)
+        out.append((rid, H, where, m, qbar, alpha, de, conds, t, coef, ref))
+    return out
+
+
+def design_hinge_moment(ctx, results) -> dict:
+    """The largest elevator hinge moment over the pitch-manoeuvre histories the rules kept (module doc)."""
+    best = None
+    for rid, H, where, m, qbar, alpha, de, conds, t, coef, ref in _hinge_moments(ctx, results):
         i = int(np.argmax(np.abs(H)))
         if best is None or abs(H[i]) > abs(best["design_hinge_moment_Nm"]):
             k, c = where[i]
@@ -178,6 +187,22 @@ def design_hinge_moment(ctx, results) -> dict:
                     "Ch_alpha_per_rad": float(coef["Ch_alpha"][i]), "Ch_delta_per_rad": float(coef["Ch_delta"][i]),
                     "elevator_area_m2": ref.area, "elevator_chord_m": ref.chord}
     return best
+
+
+def hinge_critical_conditions(ctx, results, fraction: float) -> dict:
+    """Per rule id, the conditions of the kept pitch manoeuvres whose largest elevator hinge moment reaches
+    ``fraction`` of the design hinge moment (rules whose runs do not name their conditions: None, all)."""
+    runs = _hinge_moments(ctx, results)
+    top = max(float(np.max(np.abs(H))) for _, H, *_ in runs if H.size)
+    out: dict = {}
+    for rid, H, where, *_, conds, t, coef, ref in runs:
+        if conds is None:
+            out[rid] = None
+            continue
+        peak = np.zeros(len(conds))
+        np.maximum.at(peak, where[:, 1], np.abs(H))
+        out[rid] = [conds[c] for c in np.flatnonzero(peak >= fraction * top)]
+    return out
 
 
 def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) -> TailGroup:

@@ -84,3 +84,28 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
         raise ValueError("no loads rule computed horizontal-tail loads (the §25.331/§25.341/§25.349 rules were not "
                          "evaluated or could not trim any condition)")
     return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)))
+
+
+def near_critical_conditions(results, fraction: float, own_fraction: float = 1.0) -> dict:
+    """Per loads rule id, the conditions whose tail load reaches ``fraction`` of the envelope over every rule
+    (:func:`tail_load_envelope`), or ``own_fraction`` of the rule's own largest, at some station and quantity —
+    as the rule's envelopes name them (their ``keys``); a rule whose envelopes do not name their conditions maps to
+    None (all of them). The start of a design's sizing loop evaluates these points only
+    (:mod:`certkit.design.sizing_loop`): each rule's own critical cases stay in, as a changed tail can make a
+    case critical that was not for the declared one."""
+    best = tail_load_envelope(results).limit[None, None]  # (1, 1, 3, S)
+    out: dict = {}
+    for res in results:
+        envs = [e for e in res.load_envelopes if SURFACE in e.peaks]
+        if not envs:
+            continue
+        if any(len(e.keys) != len(e.labels) for e in envs):
+            out[res.id] = None
+            continue
+        mags = [np.abs(np.nan_to_num(e.peaks[SURFACE], nan=0.0)) for e in envs]  # each (n, 2, 3, S)
+        own = np.max([m.max(axis=(0, 1)) for m in mags], axis=0)[None, None]
+        chosen = out.setdefault(res.id, [])
+        for env, mag in zip(envs, mags):
+            near = np.any((mag >= fraction * best) | (mag >= own_fraction * own), axis=(1, 2, 3))
+            chosen += [env.keys[i] for i in np.flatnonzero(near) if env.keys[i] not in chosen]
+    return out

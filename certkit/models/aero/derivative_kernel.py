@@ -54,7 +54,7 @@ def _row(T, k, i0, i1, w):
     return T[k, i0] * (1.0 - w) + T[k, i1] * w
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, fastmath=True, inline="always")
 def coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach,
                      ctrl, out):
     """Coefficients of one state into ``out`` (length :data:`N_OUT`); ``ctrl`` the deflections

@@ -226,11 +226,6 @@ class AircraftModel:
         self.control_names = tuple(names)
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
         self._brake_index = names.index("brake") if ground is not None else None
-        if ne:
-            groups: dict[int, tuple] = {}
-            for j, e in enumerate(self.engines):
-                groups.setdefault(id(e.thrust), (e.thrust, []))[1].append(j)
-            self._thrust_groups = [(fn, np.array(idx)) for fn, idx in groups.values()]
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
@@ -291,9 +286,8 @@ class AircraftModel:
             return thrust
         thr = controls[:, self.throttle_slice]
         hc, mach, qbar = air[:, 0], air[:, 4], air[:, 5]
-        for fn, idx in self._thrust_groups:  # one call per distinct thrust function
-            thrust[:, idx] = fn(thr[:, idx], hc[:, None], mach[:, None])
-        for j, eng in enumerate(self.engines):
+        for j, eng in enumerate(self.engines):  # one call per engine, on arrays of one shape (no broadcasting)
+            thrust[:, j] = eng.thrust(thr[:, j], hc, mach)
             if not self._all_operative[j]:
                 dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
                 op = self.operative[:, j] if rows is None else self.operative[rows, j]
@@ -344,16 +338,18 @@ class AircraftModel:
         return Outputs(thrust=thrust, gear_load=gear, **cols)
 
     def rk4_step(self, x, xd1, controls, thrust, dt, active) -> np.ndarray:
-        """One RK4 step of the quaternion-state batch (controls and thrust held over the step);
-        the conditions not ``active`` keep their state. Returns the new state."""
+        """One RK4 step of the quaternion-state batch (controls and thrust held over the step) of ``dt``, one
+        for all or one per condition (n,); the conditions not ``active`` keep their state. Returns the new state."""
         X = np.array(x, dtype=float, order="C")
         U = np.ascontiguousarray(controls, dtype=float)
         thrust = np.ascontiguousarray(thrust, dtype=float)
         act = np.ascontiguousarray(active, dtype=np.bool_)
         if self._use_table:
-            kernel.rk4_step(X, np.ascontiguousarray(xd1, dtype=float), act, float(dt), U, thrust,
+            dts = np.full(X.shape[0], dt) if np.ndim(dt) == 0 else np.ascontiguousarray(dt, dtype=float)
+            kernel.rk4_step(X, np.ascontiguousarray(xd1, dtype=float), act, dts, U, thrust,
                             np.empty((X.shape[0], 8)), *self._kernel_args)
             return X
+        dt = np.asarray(dt, dtype=float)[..., None] if np.ndim(dt) else dt
         k2 = self.evaluate(X + 0.5 * dt * xd1, U, thrust)[0]
         k3 = self.evaluate(X + 0.5 * dt * k2, U, thrust)[0]
         k4 = self.evaluate(X + dt * k3, U, thrust)[0]

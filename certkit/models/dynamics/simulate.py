@@ -199,7 +199,8 @@ class Controller:
 
 @dataclass
 class SimulationResult:
-    """Recorded time histories: ``t`` (nt,), each history (nt, n); ``controls`` (nt, n, m).
+    """Recorded time histories: ``t`` (nt,) — (nt, n) with a time step per condition —, each history (nt, n);
+    ``controls`` (nt, n, m).
     ``stop_time`` (n,) is when each condition stopped (``t_end`` if it did not) and
     ``stop_reason`` the criterion's name ('' if none)."""
 
@@ -225,24 +226,33 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
              limits: Mapping[str, tuple[float, float]] | None = None) -> SimulationResult:
     """Integrate the batch from ``x0`` (Euler (n, 12) — e.g. a trim's ``x`` — or quaternion
     (n, 13)) with controls ``u_trim`` (n, m) plus the scheduled ``inputs`` (control name →
-    schedule), the ``controllers`` and the control ``limits`` (name → (min, max), clipped)."""
+    schedule), the ``controllers`` and the control ``limits`` (name → (min, max), clipped).
+
+    ``dt`` may differ per condition ((n,) array, e.g. a gust resolved in its own length at each speed): every
+    condition then takes the same number of steps, round(max(t_end / dt)), the schedules see each condition's own
+    time (an (n,) array) and the result's ``t`` is (nt, n); without controllers, stop criteria or limits."""
     x = np.array(x0, dtype=float)
     if x.shape[1] == 12:
         x = euler_state_to_quat_state(x)
     n = x.shape[0]
+    per_row = np.ndim(dt) > 0
+    if per_row:
+        dt = np.broadcast_to(np.asarray(dt, dtype=float), (n,))
+        if controllers or stop or limits:
+            raise ValueError("a time step per condition takes no controllers, stop criteria or control limits")
     names = model.control_names
     u_trim = np.broadcast_to(np.asarray(u_trim, dtype=float), (n, len(names))).copy()
     sched = [(names.index(k), s) for k, s in (inputs or {}).items()]
     lim = [(names.index(k), lo, hi) for k, (lo, hi) in (limits or {}).items()]
-    nsteps = int(round(t_end / dt))
+    nsteps = int(round(float(np.max(np.asarray(t_end) / dt))))
     nrec = nsteps // record_every + 1
     # records in two blocks (the kernel's outputs and the state), one copy per step; Euler angles at the end
     out_rec = np.empty((nrec, n, len(OUTPUTS)))
     x_rec = np.empty((nrec, n, x.shape[1]))
     ctrl_hist = np.empty((nrec, n, len(names)))
-    t_rec = np.empty(nrec)
+    t_rec = np.empty((nrec, n) if per_row else nrec)
     active = np.ones(n, dtype=bool)
-    stop_time = np.full(n, nsteps * dt)
+    stop_time = np.broadcast_to(nsteps * dt, (n,)).astype(float)
     stop_reason = [""] * n
     irec = 0
     for k in range(nsteps + 1):

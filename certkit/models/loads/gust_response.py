@@ -80,16 +80,22 @@ class GustRun:
 
 
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
-                  max_step: float = 0.05, settle_step: float = 0.02, surfaces=SURFACES, split=()) -> GustRun:
+                  max_step: float = 0.05, settle_step: float = 0.04, surfaces=SURFACES, split=()) -> GustRun:
     """One gust gradient ``H`` (m) for the whole batch; ``alpha_peak`` (n,) the peak gust angle
     U_ds/V (signed: positive = upward gust). Two phases: while the gust crosses the airplane, at the
-    step that resolves it; then ``settle`` seconds of the free response at ``settle_step``. For the
+    step that resolves it; then ``settle`` seconds of the free response at ``settle_step`` (the longest
+    gradients' own step: the short-period motion left, ω ≈ 1–3 rad/s, needs no finer; the tail load peaks move by
+    less than 0.1 % from a 0.005 s step, tests/loads/test_gust_settle_step.py). For the
     surfaces in ``split`` the aerodynamic and inertial loads are also kept apart (``GustRun.parts``)."""
     a = np.asarray(alpha_peak, dtype=float) * np.ones(gb.x0.shape[0])
     v = gb.v_tas
     lag = gb.tail_arm / v
-    dt = float(min(max_step, np.min(2 * H / v) / steps_per_gust))
-    t_gust = float(np.ceil(np.max(2 * H / v + lag) / dt) * dt)
+    # each condition resolves the gust in its own length 2H/V: the same number of steps for all, each its own step
+    dt = np.minimum(max_step, 2 * H / v / steps_per_gust)
+    steps = float(np.ceil(np.max((2 * H / v + lag) / dt)))
+    if np.ptp(dt) == 0.0:
+        dt = float(dt[0])
+    t_gust = steps * dt
 
     def wing(t):
         return one_minus_cosine(v * t, H, a)
@@ -100,16 +106,16 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     first = simulate(gb.model, gb.x0, gb.u0, t_gust, dt, inputs={"gust_wing": Function(wing), "gust_tail": Function(tail)})
     parts = [first]
     if settle > 0:
-        dt2 = max(dt, settle_step)
+        dt2 = max(float(np.min(dt)), settle_step)
         parts.append(simulate(gb.model, first.final_state, gb.u0, settle, dt2))
     sim = _concatenate(parts)
-    t = sim.t[:, None]
+    t = _per_condition(sim.t)
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
     hist: dict[str, list] = {}
     kept: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         t0 = first.t[-1] if k else 0.0
-        tp = part.t[:, None] + t0
+        tp = _per_condition(part.t) + t0
         extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
         L = response_load_parts(loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra})
         for s, (aero, inertia) in L.items():
@@ -117,8 +123,13 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
-    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
+    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, float(np.min(dt)),
                    {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()})
+
+
+def _per_condition(t):
+    """A time grid as (nt, n) or (nt, 1) for broadcasting over the conditions."""
+    return t if t.ndim == 2 else t[:, None]
 
 
 def _concatenate(parts):
@@ -128,14 +139,19 @@ def _concatenate(parts):
 
     if len(parts) == 1:
         return parts[0]
-    t, hist, ctrl = [parts[0].t], {k: [v] for k, v in parts[0].history.items()}, [parts[0].controls]
-    offset = parts[0].t[-1]
+    per_row = any(p.t.ndim == 2 for p in parts)
+    grid = (lambda p: _per_condition(p.t)) if per_row else (lambda p: p.t)
+    t, hist, ctrl = [grid(parts[0])], {k: [v] for k, v in parts[0].history.items()}, [parts[0].controls]
+    offset = grid(parts[0])[-1]
     for p in parts[1:]:
-        t.append(p.t[1:] + offset)
+        t.append(grid(p)[1:] + offset)
         for k in hist:
             hist[k].append(p.history[k][1:])
         ctrl.append(p.controls[1:])
-        offset += p.t[-1]
+        offset = offset + grid(p)[-1]
     last = parts[-1]
-    return SimulationResult(np.concatenate(t), {k: np.concatenate(v) for k, v in hist.items()}, np.concatenate(ctrl),
+    t = np.concatenate(t)
+    if per_row:
+        t = np.broadcast_to(t, (t.shape[0], parts[0].stop_time.shape[0])).copy()
+    return SimulationResult(t, {k: np.concatenate(v) for k, v in hist.items()}, np.concatenate(ctrl),
                             parts[0].control_names, parts[0].stop_time, parts[0].stop_reason, last.final_state)

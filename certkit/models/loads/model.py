@@ -103,12 +103,13 @@ class SurfaceLoads:
         x = self._input_matrix(shape, inputs).reshape(-1, len(self.inputs))
         m, k = table.shape[:2]
         tail = table.shape[2:]
+        x *= np.broadcast_to(qbar, shape).reshape(-1, 1)  # q̄ on the inputs: fewer products than on the loads
         full = (x @ table.reshape(m, k, -1).transpose(1, 0, 2).reshape(k, -1)).reshape(x.shape[0], m, -1)
         rows = np.arange(x.shape[0])
         i = np.broadcast_to(i, shape).ravel()
         w = np.broadcast_to(w, shape).ravel()[:, None]
         out = full[rows, i] * (1 - w) + full[rows, np.minimum(i + 1, m - 1)] * w
-        return qbar[..., *([None] * len(tail))] * out.reshape(shape + tail)
+        return out.reshape(shape + tail)
 
     def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
         """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs

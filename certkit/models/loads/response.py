@@ -18,9 +18,21 @@ from certkit.units import G0
 
 
 def _rates_dot(t, x):
+    """d/dt of the histories x (nt, n) on the time grid t: (nt,), or (nt, n) uniform per condition."""
     if x.shape[0] < 2:
         return np.zeros_like(x)
+    if t.ndim == 2:
+        return np.gradient(x, axis=0) / (t[1] - t[0])
     return np.gradient(x, t, axis=0)
+
+
+def times_at(t, k) -> np.ndarray:
+    """The times of record indices ``k`` (n, ...) of each condition (axis 0 of ``k`` the conditions) on the grid
+    ``t``: (nt,), or (nt, n) with a time step per condition."""
+    if t.ndim == 1:
+        return t[k]
+    cols = np.arange(k.shape[0]).reshape((-1,) + (1,) * (k.ndim - 1))
+    return t[k, cols]
 
 
 def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None
@@ -88,10 +100,13 @@ class LoadEnvelope:
     times: dict[str, np.ndarray]
     labels: list[str]
     failed: list[tuple[int, str]] = field(default_factory=list)
+    #: an identity per condition row that the caller passes and this model does not interpret (a rule passes its
+    #: conditions, so that a design loop can find which conditions set the envelope); empty when not given
+    keys: list = field(default_factory=list)
 
     @classmethod
     def from_histories(cls, loads: AirplaneLoads, histories: dict[str, np.ndarray], t: np.ndarray, labels,
-                       failed=()) -> "LoadEnvelope":
+                       failed=(), keys=None) -> "LoadEnvelope":
         peaks, times = {}, {}
         for name, L in histories.items():
             filled_lo = np.where(np.isnan(L), np.inf, L)
@@ -100,8 +115,9 @@ class LoadEnvelope:
             lo = np.take_along_axis(L, ilo[None], axis=0)[0]
             hi = np.take_along_axis(L, ihi[None], axis=0)[0]
             peaks[name] = np.stack([lo, hi], axis=1)
-            times[name] = np.stack([t[ilo], t[ihi]], axis=1)
-        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed))
+            times[name] = np.stack([times_at(t, ilo), times_at(t, ihi)], axis=1)
+        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed),
+                   list(keys) if keys is not None else [])
 
     @classmethod
     def merge(cls, parts: list["LoadEnvelope"]) -> "LoadEnvelope":
@@ -119,8 +135,10 @@ class LoadEnvelope:
                 peaks.setdefault(k, []).append(p.peaks[k])
                 times.setdefault(k, []).append(p.times[k])
                 stations[k] = p.stations[k]
+        keyed = all(len(p.keys) == len(p.labels) for p in parts)
         return cls(stations, {k: np.concatenate(v) for k, v in peaks.items()},
-                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed)
+                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed,
+                   [key for p in parts for key in p.keys] if keyed else [])
 
     @classmethod
     def worst_of(cls, parts: list["LoadEnvelope"]) -> tuple["LoadEnvelope", dict[str, np.ndarray]]:
@@ -138,7 +156,7 @@ class LoadEnvelope:
             which[k] = w
             peaks[k] = np.take_along_axis(P, w[None], axis=0)[0]
             times[k] = np.take_along_axis(T, w[None], axis=0)[0]
-        return cls(dict(first.stations), peaks, times, list(first.labels), list(first.failed)), which
+        return cls(dict(first.stations), peaks, times, list(first.labels), list(first.failed), list(first.keys)), which
 
     def extreme(self, surface: str, quantity: str, station: int = 0, sense: str = "max") -> tuple[float, int]:
         """The extreme (value, condition index) of one quantity at one station over all conditions."""

@@ -140,10 +140,23 @@ def _moment(fill) -> float:
     return sum(load * 0.5 * (z.x_start + z.x_end) for z, load in fill)
 
 
-def _payload_cg_range(zones, payload: float) -> tuple[float, float]:
-    if payload <= 0:
-        return -np.inf, np.inf
-    return _moment(_payload_fill(zones, payload, True)) / payload, _moment(_payload_fill(zones, payload, False)) / payload
+def _payload_cg_ranges(zones, payloads: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The payload CG of the forward-first and aft-first fills (:func:`_payload_fill`) of each payload (kg), at once
+    from the cumulative capacities and moments of the bays in each order; ±inf for no payload."""
+    centres = np.array([0.5 * (z.x_start + z.x_end) for z in zones])
+    caps = np.array([z.capacity for z in zones])
+    payloads = np.asarray(payloads, dtype=float)
+    out = []
+    for order in (np.argsort(centres, kind="stable"), np.argsort(-centres, kind="stable")):
+        c, x = caps[order], centres[order]
+        C = np.concatenate([[0.0], np.cumsum(c)])
+        M = np.concatenate([[0.0], np.cumsum(c * x)])
+        k = np.clip(np.searchsorted(C, payloads, side="right") - 1, 0, len(c) - 1)  # bays filled before the last
+        moment = M[k] + np.clip(payloads - C[k], 0.0, c[k]) * x[k]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out.append(np.where(payloads > 0, moment / np.where(payloads > 0, payloads, 1.0), np.nan))
+    lo, hi = out
+    return np.where(payloads > 0, lo, -np.inf), np.where(payloads > 0, hi, np.inf)
 
 
 def _payload_items(zones, payload: float, x_target: float) -> list[MassComponent]:
@@ -190,7 +203,9 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
     if p_max < p_min - 1e-9:
         raise LoadingError(f"{mass:.0f} kg cannot be reached: needs more fuel than the tanks hold with payload ≤ {p_max:.0f} kg")
     best = None
-    for payload in np.linspace(p_max, p_min, samples):
+    payloads = np.linspace(p_max, p_min, samples)
+    ranges = zip(*_payload_cg_ranges(zones, payloads))
+    for payload, (lo, hi) in zip(payloads, ranges):
         fuel = useful - payload
         fuel_items = _fuel_items(aircraft, fuel)
         rest = mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)
@@ -200,7 +215,6 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
                 break
             continue
         x_needed = rest / payload
-        lo, hi = _payload_cg_range(zones, payload)
         if lo - 1e-9 <= x_needed <= hi + 1e-9:
             best = (payload, fuel_items, _payload_items(zones, payload, x_needed))
             break

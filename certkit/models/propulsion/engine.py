@@ -106,7 +106,9 @@ class ParametricTurbofan:
         return self.thrust(1.0, h, mach) / self.static_thrust  # full throttle: static thrust × lapse
 
     def thrust(self, throttle, h, mach):
-        thr, h, mach = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (throttle, h, mach)))
+        thr, h, mach = (np.asarray(a, dtype=float) for a in (throttle, h, mach))
+        if not thr.shape == h.shape == mach.shape:  # (the simulations call this at every step with equal shapes)
+            thr, h, mach = np.broadcast_arrays(thr, h, mach)
         isa._check_range(h)
         flat = [np.ascontiguousarray(a).reshape(-1) for a in (thr, h, mach)]
         return _turbofan_thrust(*flat, self.static_thrust, self.throttle_ratio, self.idle_fraction).reshape(h.shape)

@@ -274,7 +274,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
     loads = airplane_loads(ctx)
     hist = response_loads(loads, sim, model, ("horizontal_tail",), valid=valid)
-    env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds])
+    env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds)
     stations = loads["horizontal_tail"].station_names
     caps = declared_capabilities(ctx, "horizontal_tail")
     for i, c in enumerate(sim_conds):
@@ -394,7 +394,8 @@ class MaximumPitchControlDisplacement(Rule):
         t_peak = sim.t[np.nanargmax(root, axis=0)]
         valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_peak)[None, :] + 1e-9
         hist["horizontal_tail"] = np.where(valid[:, :, None, None], hist["horizontal_tail"], np.nan)
-        env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions])
+        env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
+                                          keys=batch.conditions)
         stations = loads["horizontal_tail"].station_names
         caps = declared_capabilities(ctx, "horizontal_tail")
         for i, c in enumerate(batch.conditions):

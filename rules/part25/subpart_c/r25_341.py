@@ -209,7 +209,7 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
         run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
                             float(crit.settle_time), split=("wing",))
-        envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels))
+        envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)

@@ -31,7 +31,7 @@ from certkit.models.flight import control_limits
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
-from certkit.models.loads.response import LoadEnvelope, response_loads
+from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 from certkit.registry import Criterion, SimulationRule, rule
@@ -259,8 +259,9 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
     left = response_loads(loads, mirror(sim), model, MIRRORED, valid=valid)
     labels = [c.label() for c in conds]
     env_sides = LoadEnvelope.merge([
-        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels]),
-        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels])])
+        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels],
+                                    keys=conds),
+        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels], keys=conds)])
     env_fin = LoadEnvelope.from_histories(loads, {"vertical_tail": right["vertical_tail"]}, sim.t, labels)
     n = len(conds)
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
@@ -401,7 +402,7 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
         per_side[reduced_side].append(LoadEnvelope.from_histories(runs.loads, {"wing": u.reduced}, t, labels))
         k = np.argmax(np.abs(u.rolling_moment), axis=0)
         cols = np.arange(n)
-        roll[j], pdot[j], dnz[j], t_roll[j] = u.rolling_moment[k, cols], u.pdot[k, cols], u.delta_n_z[k, cols], t[k]
+        roll[j], pdot[j], dnz[j], t_roll[j] = u.rolling_moment[k, cols], u.pdot[k, cols], u.delta_n_z[k, cols], times_at(t, k)
     stations, peaks, times, which = {}, {}, {}, {}
     for side, parts in per_side.items():
         env, w = LoadEnvelope.worst_of(parts)
