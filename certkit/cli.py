@@ -1,7 +1,8 @@
 """Command line: ``certkit check | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
-3 nothing fails but something was not evaluated.
+3 nothing fails but something was not evaluated, 70 internal error (a bug: the message asks for a report; the
+traceback with ``certkit --debug``), 130 interrupted (Ctrl-C; previous outputs are left as they were).
 """
 
 from __future__ import annotations
@@ -9,9 +10,10 @@ from __future__ import annotations
 import gc
 import json
 import os
-import re
 import sys
 import time
+import traceback
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -21,10 +23,14 @@ from certkit import __version__
 from certkit.errors import UserError
 
 EXIT_USAGE = 2
+EXIT_INTERNAL = 70  # EX_SOFTWARE of sysexits(3)
+EXIT_INTERRUPTED = 130  # 128 + SIGINT, as shells report it
+_DEBUG = {"on": False}
 
 
 class _Group(click.Group):
-    """Turns a :class:`UserError` anywhere below into a message and exit code 2."""
+    """The one error boundary: a :class:`UserError` anywhere below is a message and exit code 2; Ctrl-C exits 130;
+    anything else is an internal error (exit 70) with a bug-report hint, its traceback only with ``--debug``."""
 
     def invoke(self, ctx):
         try:
@@ -32,6 +38,20 @@ class _Group(click.Group):
         except UserError as exc:
             click.echo(f"error: {exc}", err=True)
             sys.exit(EXIT_USAGE)
+        except KeyboardInterrupt:
+            click.echo("interrupted: nothing was written (previous reports are left as they were)", err=True)
+            sys.exit(EXIT_INTERRUPTED)
+        except (click.exceptions.ClickException, click.exceptions.Exit, click.exceptions.Abort):
+            raise
+        except Exception as exc:  # noqa: BLE001 - the boundary: every other exception is a bug of certkit
+            if _DEBUG["on"]:
+                traceback.print_exc()
+            detail = str(exc).splitlines()[0][:300] if str(exc) else ""
+            click.echo(f"internal error: {exc.__class__.__name__}{': ' + detail if detail else ''}\n"
+                       f"This is a bug in certkit {__version__}, not a mistake in your input. Please report it to the "
+                       "certkit developers with the command, the input files and this message"
+                       f"{'' if _DEBUG['on'] else ' (run `certkit --debug ...` for the traceback)'}.", err=True)
+            sys.exit(EXIT_INTERNAL)
 
 
 def _discovery(rules_dirs):
@@ -92,12 +112,14 @@ _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="certkit")
-def main():
+@click.option("--debug", is_flag=True, envvar="CERTKIT_DEBUG",
+              help="Show the traceback of an internal error and numerical warnings.")
+def main(debug):
     """certkit — compliance engine for transport aircraft against 14 CFR Part 25."""
-
-
-def _safe_dirname(name: str) -> str:
-    return re.sub(r"[^A-Za-z0-9._-]+", "_", name).strip("._") or "aircraft"
+    _DEBUG["on"] = debug
+    if not debug:  # numerical warnings (overflow in a trial step...) are handled where they matter, not printed
+        warnings.simplefilter("ignore", RuntimeWarning)
+        os.environ.setdefault("PYTHONWARNINGS", "ignore::RuntimeWarning")  # for processes that do not fork
 
 
 @main.command()
@@ -116,17 +138,21 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
         from certkit.report.html import write_report
-        from certkit.scheduler import run
+
+        from certkit.report.output import prepare_output, report_folder_name
+        from certkit.scheduler import check_overrides, run
 
         start = time.perf_counter()
         loaded = load_aircraft(aircraft_file)
         options, rules = _discovery(rules_dirs)
+        check_overrides(loaded, rules)
         split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
         chosen = select_rules(rules, split(select), split(ignore))
+        out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
+        prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
     try:
         result = run(loaded, chosen, jobs=jobs, options=options)
         result.models["mission"] = _mission_for_report(loaded.model)
-        out = Path(out_dir) if out_dir else Path("reports") / _safe_dirname(loaded.name)
         json_path, html_path = write_report(result, chosen, out)
     finally:
         gc.unfreeze()
@@ -312,7 +338,10 @@ def mission_command(aircraft_file, oew, svg_path, as_json):
     if svg_path:
         from certkit.report.mission_plots import payload_range_svg
 
-        Path(svg_path).write_text(payload_range_svg(result.payload_range, result.range_requirement_m), encoding="utf-8")
+        try:
+            Path(svg_path).write_text(payload_range_svg(result.payload_range, result.range_requirement_m), encoding="utf-8")
+        except OSError as exc:
+            raise UserError(f"--svg {svg_path!r}: cannot write ({exc.strerror or exc})") from None
     click.echo(json.dumps(mission_json(result), indent=2) if as_json else mission_table(result))
 
 

@@ -45,6 +45,9 @@ class InputError(UserError):
         head = f"{source}: {n} problem{'s' if n != 1 else ''} found"
         super().__init__("\n".join([head] + [f"  - {p}" for p in self.problems]))
 
+    def __reduce__(self):  # raised in a worker process, re-raised in the parent
+        return (InputError, (self.source, self.problems))
+
 
 class InfeasibleDesign(UserError):
     """Design-variable values that make an impossible aircraft (taper above 1, a tail tip behind the fuselage end):

@@ -8,6 +8,8 @@ climb or descent at a flight-path angle, coordinated turn at a bank angle, one e
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -37,15 +39,15 @@ class FlightCondition:
 
 def _quantity(text: str, dimension: str, option: str) -> float:
     try:
-        return to_si(text, dimension) if not _is_number(text) else float(text)
+        return to_si(text, dimension)  # a bare number is SI; NaN, infinities and arithmetic are refused
     except UnitError as exc:
         raise UserError(f"{option} {text!r}: {exc}") from None
 
 
 def _is_number(text: str) -> bool:
+    """A finite decimal number ("0.84"; not "nan", "inf" or "1e999")."""
     try:
-        float(text)
-        return True
+        return math.isfinite(float(text))
     except ValueError:
         return False
 
@@ -59,6 +61,8 @@ def parse_speed(text: str) -> tuple[float, str]:
     if len(parts) >= 2 and parts[-1].upper() in ("EAS", "CAS", "TAS", "MACH"):
         kind = parts[-1].upper()
         value = " ".join(parts[:-1])
+        if kind == "MACH" and not _is_number(value):
+            raise UserError(f"--speed {text!r}: the Mach number must be a finite number")
         return (float(value), kind) if kind == "MACH" else (_quantity(value, "speed", "--speed"), kind)
     raise UserError(f"--speed {text!r}: give a value with its kind, e.g. '250 kn EAS', '280 kn CAS', 'M0.84'")
 

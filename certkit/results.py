@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from dataclasses import dataclass, field, replace
 from typing import Literal
 
@@ -271,7 +272,14 @@ class RunResult:
         head = self.as_dict(rules=_RULES_MARK)
         parts = [r.encoded if r.encoded is not None else r.to_json() for r in self.rules]
         rules = "[\n" + ",\n".join("    " + p.replace("\n", "\n    ") for p in parts) + "\n  ]" if parts else "[]"
-        return json.dumps(head, indent=2, default=json_default).replace(json.dumps(_RULES_MARK), rules, 1)
+        rules, n_rules = _NON_FINITE.subn(r"\1null\3", rules)
+        text, n_head = _NON_FINITE.subn(r"\1null\3", json.dumps(head, indent=2, default=json_default))
+        if n_rules + n_head:  # strict JSON has no NaN or Infinity: null, and the reason said once
+            head["non_finite_numbers"] = {"count": n_rules + n_head, "written_as": None, "reason":
+                                          "a computed value was NaN or infinite (not computable there); JSON has no "
+                                          "such numbers"}
+            text = _NON_FINITE.sub(r"\1null\3", json.dumps(head, indent=2, default=json_default))
+        return text.replace(json.dumps(_RULES_MARK), rules, 1)
 
     def exit_code(self) -> int:
         """0 all comply, 1 any fails, 3 nothing fails but something was not evaluated."""
@@ -282,6 +290,10 @@ class RunResult:
             return 3
         return 0
 
+
+#: a NaN or infinity as :func:`json.dumps` writes it with an indent: a whole value on its line (after a key or alone
+#: in a list), so that the same letters inside a string never match
+_NON_FINITE = re.compile(r"(?m)(: |^\s+)(NaN|-?Infinity)(,?)$")
 
 #: placeholder of the rules list while the rest of ``results.json`` is encoded
 _RULES_MARK = "\x00certkit-rules\x00"

@@ -10,33 +10,85 @@ processes; results are put back in rule order, so they equal those of ``jobs = 1
 from __future__ import annotations
 
 import datetime as _dt
+import math
+import os
 import traceback
 from concurrent.futures import ProcessPoolExecutor
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
 from certkit.context import Context
-from certkit.errors import UserError
+from certkit.errors import InputError, Problem, UserError
 from certkit.registry import Criteria, DiscoveryOptions, Rule, discover
 from certkit.results import Condition, Finding, RuleResult, RunResult
+from certkit.units import UnitError, to_unit
+from certkit.worker_processes import die_with_parent, stop_pool
 
 
 def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
-    """The rule's criteria with the aircraft file's overrides; unknown names are a user error."""
+    """The rule's criteria with the aircraft file's overrides (checked by :func:`override_problems`)."""
     values = Criteria({name: c.value for name, c in rule.criteria.items()})
     override = ctx.aircraft.criteria.get(rule.id)
     applied: dict = {}
     if override is not None:
-        for name, value in override.values.items():
-            if name not in rule.criteria:
-                known = ", ".join(rule.criteria) or "none"
-                raise UserError(f"criteria.{rule.id}.values.{name}: rule {rule.id} has no criterion {name!r} (known: {known})")
+        for name, given in override.values.items():
+            value, problem = _override_value(rule, name, given)
+            if problem:
+                raise UserError(f"criteria.{rule.id}.values.{name}: {problem}")
             default = rule.criteria[name].value
-            if isinstance(default, (int, float)) and not isinstance(default, bool) and not isinstance(value, (int, float)):
-                raise UserError(f"criteria.{rule.id}.values.{name}: expected a number like {default!r}, got {value!r}")
             applied[name] = {"default": default, "value": value, "justification": override.justification}
             values[name] = value
     return values, applied
+
+
+def _override_value(rule: type[Rule], name: str, given: object) -> tuple[object, str | None]:
+    """An override's value in the criterion's unit (a number as given; a string with a unit converted), or why not."""
+    if name not in rule.criteria:
+        return given, f"rule {rule.id} has no criterion {name!r} (known: {', '.join(rule.criteria) or 'none'})"
+    criterion = rule.criteria[name]
+    default = criterion.value
+    if isinstance(default, bool) or not isinstance(default, (int, float)):
+        if type(given) is not type(default):
+            return given, f"expected a {type(default).__name__} like {default!r}"
+        return given, None
+    if isinstance(given, str):
+        try:
+            return to_unit(given, criterion.unit), None
+        except UnitError as exc:
+            return given, f"{exc} (the criterion is in {criterion.unit or 'no unit'}, e.g. {default!r})"
+    if isinstance(given, bool) or not isinstance(given, (int, float)):
+        return given, f"expected a number in {criterion.unit or 'no unit'} like {default!r}"
+    if not math.isfinite(given):
+        return given, "must be a finite number"
+    return given, None
+
+
+def override_problems(loaded: LoadedAircraft, rules: list[type[Rule]]) -> list[Problem]:
+    """Every criteria override of the aircraft file that names no rule of ``rules`` or no criterion of its rule, or
+    whose value is not of the criterion's kind and unit: located problems, to be raised before any rule runs."""
+    by_id = {r.id: r for r in rules}
+    source = loaded.source
+    found = []
+    for rule_id, override in loaded.model.criteria.items():
+        loc = ("criteria", rule_id)
+        if rule_id not in by_id:
+            close = [r for r in by_id if r.split("(")[0] == rule_id.split("(")[0]] or sorted(by_id)
+            found.append(Problem(".".join(loc), f"no rule {rule_id} (known: {', '.join(close)})", rule_id,
+                                 source.line_of(loc), source.path))
+            continue
+        for name, given in override.values.items():
+            _, problem = _override_value(by_id[rule_id], name, given)
+            if problem:
+                at = loc + ("values", name)
+                found.append(Problem(".".join(at), problem, given, source.line_of(at), source.path))
+    return found
+
+
+def check_overrides(loaded: LoadedAircraft, rules: list[type[Rule]]) -> None:
+    """:func:`override_problems` as one :class:`InputError` (before a check starts)."""
+    found = override_problems(loaded, rules)
+    if found:
+        raise InputError(loaded.path, found)
 
 
 def _describe_exception(exc: BaseException) -> str:
@@ -147,9 +199,12 @@ def _merge_provenance(parts: list[dict]) -> dict:
 _WORKER: dict = {}
 
 
-def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions) -> None:
-    """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise)."""
+def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int) -> None:
+    """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
+    worker ends with its parent (:func:`certkit.worker_processes.die_with_parent`)."""
     import matplotlib
+
+    die_with_parent(parent_pid)
 
     matplotlib.use("Agg")
     _WORKER["ctx"] = Context(loaded)
@@ -188,9 +243,14 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         provenance = _merge_provenance([provenance])
     else:
         units = work_units(rules)
-        with ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
-                                 initargs=(loaded, options)) as pool:
+        pool = ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
+                                   initargs=(loaded, options, os.getpid()))
+        try:
             parts = [part for done in pool.map(_worker_run, [tuple(r.id for r in u) for u in units]) for part in done]
+        except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
+            stop_pool(pool)
+            raise
+        pool.shutdown()
         by_id = {res.id: res for res, _ in parts}
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])

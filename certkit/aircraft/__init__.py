@@ -13,6 +13,7 @@ from pydantic import TypeAdapter, ValidationError
 
 from certkit.aircraft.consistency import consistency_problems
 from certkit.aircraft.model import Aircraft
+from certkit.aircraft.number_range import extreme_numbers
 from certkit.aircraft.pydantic_problems import found_in, located, pydantic_messages, raw_at, split_path
 from certkit.aircraft.yaml_source import YamlSource, load_yaml
 from certkit.errors import InputError, Problem
@@ -51,12 +52,20 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
         try:
             sections[name] = TypeAdapter(info.annotation).validate_python(data[name])
         except ValidationError as err:
-            found += found_in(err, (name,))
+            found += found_in(err, (name,), data=data)
+        extreme = extreme_numbers(data[name], (name,))
+        if extreme:  # reported once per place; the section's relations are not checked with such numbers
+            sections.pop(name, None)
+            reported = {loc for loc, _, _ in found}
+            found += [f for f in extreme if f[0] not in reported]
     found += [(split_path(p.path), p.message, raw_at(data, split_path(p.path), p.value))
               for p in consistency_problems(sections)]
     if found:
         raise InputError(path, located(found, source))
-    return Aircraft.model_validate(data)
+    try:
+        return Aircraft.model_validate(data)
+    except ValidationError as err:  # a relation the section models check together (none today): still located
+        raise InputError(path, located(found_in(err, data=data), source)) from None
 
 
 def load_aircraft(path: str | Path) -> LoadedAircraft:

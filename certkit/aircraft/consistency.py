@@ -6,6 +6,7 @@ so a file with a bad speed and a bad mass gets both messages in one run.
 
 from __future__ import annotations
 
+import math
 from typing import Callable, Iterator
 
 import numpy as np
@@ -240,8 +241,13 @@ def consistency_problems(sections: dict) -> list[Problem]:
     problems = []
     for required, check in CHECKS:
         if all(sections.get(name) is not None for name in required):
-            for path, message, value in check(sections) or ():
-                problems.append(Problem(path, message, value))
+            try:
+                with np.errstate(over="raise", divide="raise", invalid="raise"):
+                    for path, message, value in check(sections) or ():
+                        problems.append(Problem(path, message, value))
+            except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:  # finite but extreme values
+                problems.append(Problem(required[0], f"values too extreme to check against {', '.join(required[1:]) or 'each other'} "
+                                        f"({exc.__class__.__name__}): check the magnitudes and units", None))
     return problems
 
 
@@ -353,3 +359,90 @@ def _flap_load_factor(s):
     if lf.flaps_extended is not None and lf.flaps_extended > lf.positive:
         yield ("envelope.limit_load_factors.flaps_extended", f"the flaps-extended limit load factor must not exceed the "
                f"flaps-retracted one ({lf.positive:g}; §25.345(a) asks 2.0 with flaps extended)", lf.flaps_extended)
+
+
+#: stations of mass items and gear may lie this fraction of the fuselage length ahead of the nose or behind the tail
+#: (a radome, a tail cone, an APU exhaust); beyond it a station is a mistake (a unit or datum slip)
+STATION_MARGIN = 0.1
+
+
+@needs("geometry", "cg_envelope")
+def _cg_ahead_of_main_gear(s):
+    """Every CG the envelope allows lies ahead of the main gear contact (else the airplane sits on its tail), and
+    the nose gear ahead of the main gear."""
+    gear = s["geometry"].landing_gear
+    if gear is None:
+        return
+    vertices = s["cg_envelope"].vertices
+    i = int(np.argmax([v.x for v in vertices]))
+    if vertices[i].x >= gear.main.x:
+        yield (f"cg_envelope.vertices.{i}.x", f"CG at or behind the main gear (geometry.landing_gear.main.x = "
+               f"{gear.main.x:.2f} m): the airplane would tip onto its tail", vertices[i].x)
+    if gear.nose.x >= gear.main.x:
+        yield "geometry.landing_gear.nose.x", f"must lie ahead of the main gear ({gear.main.x:.2f} m)", gear.nose.x
+
+
+@needs("geometry", "mass")
+def _stations_on_the_airplane(s):
+    """Mass items, fuel tanks, payload zones and gear within the fuselage length ± :data:`STATION_MARGIN`."""
+    length = s["geometry"].fuselage.length
+    lo, hi = -STATION_MARGIN * length, (1 + STATION_MARGIN) * length
+    m, gear = s["mass"], s["geometry"].landing_gear
+    stations = [(f"mass.components.{i}.cg.x", c.cg.x) for i, c in enumerate(m.components)]
+    stations += [(f"mass.fuel_tanks.{i}.cg.x", t.cg.x) for i, t in enumerate(m.fuel_tanks)]
+    stations += [(f"mass.payload_zones.{i}.{end}", getattr(z, end)) for i, z in enumerate(m.payload_zones)
+                 for end in ("x_start", "x_end")]
+    stations += [(f"geometry.landing_gear.{leg}.x", getattr(gear, leg).x) for leg in ("main", "nose")] if gear else []
+    stations += [("mass.oew_cg.x", m.oew_cg.x)] if m.oew_cg is not None else []
+    for path, x in stations:
+        if not lo <= x <= hi:
+            yield path, f"station outside the airplane ({lo:.2f} to {hi:.2f} m: the fuselage length ± {STATION_MARGIN:.0%})", x
+    if gear is not None and m.oew_cg is not None and m.oew_cg.x >= gear.main.x:
+        yield "mass.oew_cg.x", f"empty-weight CG at or behind the main gear ({gear.main.x:.2f} m)", m.oew_cg.x
+
+
+_AXES = {"Ixx": (1, 2), "Iyy": (0, 2), "Izz": (0, 1)}
+
+
+@needs("geometry", "mass")
+def _inertia_bounds(s):
+    """The whole-airplane inertia (at MTOW) against two bounds it cannot leave.
+
+    Upper: a mass spread over an interval of width w about its mean has a variance of at most w²/4 (Popoviciu's
+    inequality on variances, 1935), so I_yy ≤ MTOW (Δx² + Δz²)/4 with Δx, Δy, Δz the airplane's extents (fuselage
+    length with the station margin, the largest span, fuselage height + fin height + gear depth). Lower: the declared
+    components are part of the airplane at MTOW, and the inertia of a part about the whole's CG is at least its
+    inertia about its own CG (parallel-axis theorem), so I ≥ Σ m_i d_i² + Σ I_i over the components."""
+    m, g = s["mass"], s["geometry"]
+    if m.inertia is None:
+        return
+    spans = [math.sqrt(t.aspect_ratio * t.area) for t in (g.wing, g.horizontal_tail)]
+    depth = max(0.0, -min(leg.z for leg in (g.landing_gear.main, g.landing_gear.nose))) if g.landing_gear else 0.0
+    extent = ((1 + 2 * STATION_MARGIN) * g.fuselage.length, max(spans + [g.fuselage.width]),
+              g.fuselage.height + math.sqrt(g.vertical_tail.aspect_ratio * g.vertical_tail.area) + depth)
+    lower = _component_inertia(m.components) if sum(c.mass for c in m.components) <= m.MTOW * (1 + 1e-9) else None
+    for name, (a, b) in _AXES.items():
+        declared = getattr(m.inertia, name)
+        upper = m.MTOW * (extent[a] ** 2 + extent[b] ** 2) / 4.0
+        if declared > upper:
+            yield (f"mass.inertia.{name}", f"larger than any mass of MTOW within the airplane's extents can have "
+                   f"({upper:.4g} kg·m²): check the unit", declared)
+        if lower is not None and declared < lower[name] * (1 - 1e-3):
+            yield (f"mass.inertia.{name}", f"smaller than the inertia of the declared mass.components alone "
+                   f"({lower[name]:.4g} kg·m² about their own CG): adding mass cannot reduce it; check the unit or "
+                   "the components", declared)
+
+
+def _component_inertia(components) -> dict[str, float] | None:
+    """Moments of inertia of the components about their common CG (point masses plus their own inertias)."""
+    if not components:
+        return None
+    masses = np.array([c.mass for c in components])
+    r = np.array([[c.cg.x, c.cg.y, c.cg.z] for c in components])
+    out = {}
+    with np.errstate(all="ignore"):  # absurd (finite) inputs may overflow: then there is no bound to check
+        d = r - masses @ r / masses.sum()
+        for name, (a, b) in _AXES.items():
+            own = sum(getattr(c.inertia, name) for c in components if c.inertia is not None)
+            out[name] = float(masses @ (d[:, a] ** 2 + d[:, b] ** 2)) + own
+    return out if all(map(math.isfinite, out.values())) else None

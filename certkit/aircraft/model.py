@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Annotated, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
@@ -21,7 +21,7 @@ from certkit.aircraft.quantities import (
 
 
 class _Section(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 # --- reference -----------------------------------------------------------------------------
@@ -187,7 +187,7 @@ class MassProperties(_Section):
     MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
     max_fuel: PositiveMass | None = None
     max_payload: PositiveMass | None = None
-    passengers: Annotated[int, Field(ge=0)] | None = None
+    passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
     oew_cg: Point | None = None
     inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (if no components)")
     components: list[MassComponent] = Field(default_factory=list)
@@ -652,13 +652,20 @@ class Sizing(_Section):
     elevator_actuators: ActuatorSizingData | None = None
 
 
+def _printable(name: str) -> str:
+    if not name.isprintable():
+        raise ValueError("the name must be one line of printable characters (no control characters such as a "
+                         "newline or NUL): it names the report folder and heads the report")
+    return name
+
+
 RuleId = Annotated[str, Field(pattern=r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")]
 
 
 class Aircraft(_Section):
     """A transport airplane as certkit reads it from YAML."""
 
-    name: Annotated[str, Field(min_length=1)]
+    name: Annotated[str, Field(min_length=1, max_length=200), AfterValidator(_printable)]
     description: str | None = None
     reference: Reference
     geometry: Geometry | None = Field(None, description="needed unless every configuration has derivative tables")
@@ -676,3 +683,4 @@ class Aircraft(_Section):
     sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")
+

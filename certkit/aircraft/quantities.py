@@ -26,7 +26,10 @@ def _quantity_schema(dimension: str) -> dict:
 
 def _converter(dimension: str):
     def convert(value: object) -> object:
-        if isinstance(value, (str, int, float)) and not isinstance(value, bool):
+        if isinstance(value, bool):
+            raise ValueError(f"expected a {dimension} (a number in {DIMENSIONS[dimension] or 'no unit'} or a string "
+                             f"with a unit), not a yes/no value")
+        if isinstance(value, (str, int, float)):
             try:
                 return to_si(value, dimension)
             except UnitError as exc:
@@ -74,7 +77,7 @@ _KIND_SUFFIXES = {"EAS": ("EAS", None), "CAS": ("CAS", None), "TAS": ("TAS", Non
 class Speed(BaseModel):
     """An airspeed in m/s with its kind (EAS, CAS or TAS)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, json_schema_extra={
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False, json_schema_extra={
         "description": 'a speed with its kind: "340 kn EAS", "340 KEAS" or {value: "340 kn", kind: EAS}'})
 
     value: Annotated[SpeedValue, Field(gt=0)]

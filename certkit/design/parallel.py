@@ -11,7 +11,10 @@ design per core and does not use this.
 from __future__ import annotations
 
 import multiprocessing
+import os
 from concurrent.futures import ProcessPoolExecutor
+
+from certkit.worker_processes import die_with_parent, stop_pool
 
 #: the run data a design keeps of a loads rule (:func:`certkit.design.tail_group.design_hinge_moment`)
 KEPT_RUN = ("sim", "valid", "conditions")
@@ -55,10 +58,15 @@ def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
         return [evaluate_rule(r, ctx, only=select.get(r.id), **kw) for r in rules]
     groups = shares(rules, min(jobs, len(rules)))
     _SHARED.update(ctx=ctx, rules={r.id: r for r in rules}, kw=kw, select=select)
+    pool = ProcessPoolExecutor(len(groups), mp_context=multiprocessing.get_context("fork"),
+                               initializer=die_with_parent, initargs=(os.getpid(),))
     try:
-        with ProcessPoolExecutor(len(groups), mp_context=multiprocessing.get_context("fork")) as pool:
-            done = [res for part in pool.map(_work, [tuple(r.id for r in g) for g in groups]) for res in part]
+        done = [res for part in pool.map(_work, [tuple(r.id for r in g) for g in groups]) for res in part]
+    except BaseException:  # Ctrl-C or a failure: the workers end now (they also end with this process)
+        stop_pool(pool)
+        raise
     finally:
         _SHARED.clear()
+    pool.shutdown()
     by_id = {res.id: res for res in done}
     return [by_id[r.id] for r in rules]

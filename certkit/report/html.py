@@ -12,6 +12,7 @@ from pathlib import Path
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit.registry import Rule
+from certkit.report.output import prepare_output, write_set
 from certkit.results import RunResult
 from certkit.units import KN
 
@@ -69,14 +70,12 @@ def _paragraphs(text: str) -> str:
 
 
 def write_report(run: RunResult, rules: list[type[Rule]], out_dir: str | Path) -> tuple[Path, Path]:
-    """Write ``results.json`` and ``index.html`` into ``out_dir``; return both paths."""
+    """Write ``results.json`` and ``index.html`` into ``out_dir`` as one set (:func:`certkit.report.output.write_set`:
+    the previous set stays whole until the new one replaces it); return both paths."""
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    json_path = out / "results.json"
-    json_path.write_text(run.to_json() + "\n", encoding="utf-8")
-    html_path = out / "index.html"
-    html_path.write_text(render_html(run, rules), encoding="utf-8")
-    return json_path, html_path
+    texts = {"results.json": run.to_json() + "\n", "index.html": render_html(run, rules)}
+    write_set(prepare_output(out), texts)
+    return out / "results.json", out / "index.html"
 
 
 __all__ = ["render_html", "write_report", "format_value"]
