@@ -53,7 +53,7 @@ def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
     from certkit.scheduler import evaluate_rule
 
     select = dict(select or {})
-    rules = [r for r in rules if r.id not in select or len(select[r.id]) > 0]
+    rules = [r for r in rules if select.get(r.id) is None or len(select[r.id]) > 0]
     if jobs <= 1 or len(rules) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [evaluate_rule(r, ctx, only=select.get(r.id), **kw) for r in rules]
     groups = shares(rules, min(jobs, len(rules)))

@@ -228,7 +228,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
     if not parts:
         return {"findings": findings, "envelope": None}
     hist = {s: np.concatenate([p[s] for p in parts])[None] for s in SURFACES}
-    env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels)
+    env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels, keys=done)
     state = {k: np.concatenate([p[k] for p in states]) for k in states[0]}
     tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
     return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads,
