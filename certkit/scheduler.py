@@ -10,6 +10,7 @@ processes; results are put back in rule order, so they equal those of ``jobs = 1
 from __future__ import annotations
 
 import datetime as _dt
+import inspect
 import traceback
 from concurrent.futures import ProcessPoolExecutor
 
@@ -48,7 +49,10 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result."""
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
-    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides)
+    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
+                        limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
+                        unevaluated=[list(u) for u in rule.unevaluated])
+    result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
     missing = ctx.missing(rule.requires)
     if missing:
         result.findings.append(Finding.not_evaluated(
@@ -79,7 +83,7 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
                                                       traceback=traceback.format_exc(limit=3)))
     for cond in _uncovered(conditions, findings):
         findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
-    result.findings = findings
+    result.findings += findings
     if keep_loads:
         result.load_envelopes = instance.load_envelopes()
         result.run = getattr(instance, "run", None)

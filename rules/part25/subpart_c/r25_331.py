@@ -189,6 +189,10 @@ class CheckedPitchManeuver(SimulationRule):
                    "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
 
+    unevaluated = (
+        ("25.331(c)(2)", "the wing loads of the checked manoeuvre are not reported (horizontal-tail loads only)"),
+    )
+
     def simulate(self, ctx, conditions, crit):
         return checked_maneuver(ctx, conditions, crit)
 
@@ -369,6 +373,10 @@ class MaximumPitchControlDisplacement(Rule):
                    "control_forces.elevator (force at the trim's angle of attack, at the instant of the input); " +
                    "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
+
+    unevaluated = (
+        ("25.331(c)(1)", "the wing loads of the manoeuvre are not reported (horizontal-tail loads only)"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         n_lim = ctx.aircraft.envelope.limit_load_factors.positive

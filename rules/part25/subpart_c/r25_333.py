@@ -83,6 +83,12 @@ class FlightManeuveringEnvelope(Rule):
     limitations = ("Strength on the envelope is checked by the loads rules; this rule defines the envelope and "
                    "checks that the declared speeds close it.")
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.333(a)", "strength at each point of the envelope is not checked by this rule (the loads rules check "
+                      "their own points); the flaps-extended envelope of §25.345 is not drawn"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         for cond in conditions:

@@ -111,6 +111,12 @@ class DesignDiveSpeed(Rule):
     conditions = ConditionSpace(altitudes=EnvelopeAltitudes())
     limitations = "The upset-manoeuvre margin of (b)(1) is not simulated; the Mach-margin route uses (b)(2)."
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.335(b)(1)", "the upset-manoeuvre speed increase (20° nose-down upset from VC, 1.5 g recovery) is not "
+                         "simulated: only the 0.8 ratio and the (b)(2) Mach margin are checked"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         for cond in conditions:

@@ -112,6 +112,12 @@ class DiscreteGust(SimulationRule):
                    "(AC 25.341-1).")
     implementation = "partial"
 
+    unevaluated = (
+        ("25.341(a)", "lateral gusts on the vertical tail are not evaluated (vertical gusts only); the dynamic "
+                      "analysis is of the rigid airplane (no structural modes)"),
+        ("25.341(b)", "continuous turbulence not modelled (no rule evaluates it)"),
+    )
+
     def simulate(self, ctx, conditions, crit):
         return discrete_gusts(ctx, conditions, crit)
 

@@ -108,6 +108,11 @@ class RollingConditions(SimulationRule):
                    "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b).")
     implementation = "partial"
 
+    unevaluated = (
+        ("25.349(a)", "the wing torsional flexibility that (a) says must be considered in finding the aileron "
+                      "deflections is not modelled (rigid wing); spoilers are not modelled"),
+    )
+
     def simulate(self, ctx, conditions, crit):
         return rolling_maneuvers(ctx, conditions, crit)
 
@@ -351,7 +356,11 @@ class UnsymmetricalGust(SimulationRule):
                    "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
                    "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
                    "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b)).")
-    implementation = "partial"  # the paragraph in full, on the §25.341(a) response, which is partial (rigid airplane)
+    implementation = "partial"
+
+    unevaluated = (
+        ('25.349(b)', "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal tail's unsymmetrical loads (§25.427(b)) are not in it"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_gusts(ctx, conditions, crit)

@@ -95,6 +95,11 @@ class YawManeuver(SimulationRule):
                    "rigid airplane, quasi-steady strip aerodynamics.")
     implementation = "partial"
 
+    unevaluated = (
+        ("25.351", "roll is held wings level by an idealised restraint (spoilers not modelled); one rudder direction"
+                   " (symmetric airplane); rigid airplane"),
+    )
+
     def simulate(self, ctx, conditions, crit):
         return yaw_maneuvers(ctx, conditions, crit)
 
