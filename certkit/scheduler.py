@@ -46,13 +46,20 @@ def _describe_exception(exc: BaseException) -> str:
 
 def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False) -> RuleResult:
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
-    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result."""
+    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. After the
+    rule's own findings come one ``not_evaluated`` finding per sub-paragraph it does not evaluate
+    (:attr:`Rule.unevaluated`)."""
+    result = _evaluate_own(rule, ctx, evidence, keep_loads)
+    result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
+    return result
+
+
+def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool) -> RuleResult:
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
                         limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
                         unevaluated=[list(u) for u in rule.unevaluated])
-    result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
     missing = ctx.missing(rule.requires)
     if missing:
         result.findings.append(Finding.not_evaluated(
@@ -83,7 +90,7 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
                                                       traceback=traceback.format_exc(limit=3)))
     for cond in _uncovered(conditions, findings):
         findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
-    result.findings += findings
+    result.findings = findings
     if keep_loads:
         result.load_envelopes = instance.load_envelopes()
         result.run = getattr(instance, "run", None)

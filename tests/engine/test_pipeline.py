@@ -144,7 +144,7 @@ def test_cli_plugin_error_exit_2(cli, tmp_path):
 
 
 def test_missing_input_is_not_evaluated_before_computation(tmp_path):
-    text = BASELINE.read_text().replace("  VB: 222 kn EAS", "  # VB removed")
+    text = BASELINE.read_text().replace("  VB: 226 kn EAS", "  # VB removed")
     f = tmp_path / "a.yaml"
     f.write_text(text)
     result = run(load_aircraft(f), select(discover(), ("25.335(d)",))).rules[0]

@@ -36,6 +36,13 @@ def run_rule(rule_id, tmp_path=None, edits=()):
     return evaluate_rule(rule, Context(load_aircraft(path)))
 
 
+def own(result):
+    """The rule's own findings: without those standing for the sub-paragraphs it does not evaluate."""
+    from certkit.results import SCOPE_KEY
+
+    return [f for f in result.findings if SCOPE_KEY not in f.details]
+
+
 def finding_by(result, loading, check_prefix):
     """The finding of ``result`` at the loading named ``loading`` whose check starts with ``check_prefix``."""
     return next(f for f in result.findings if f.condition.loading == loading and f.check.startswith(check_prefix))
