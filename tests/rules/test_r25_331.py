@@ -120,7 +120,12 @@ def test_maximum_displacement_at_va(tmp_path):
     r = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES + [NO_STRUCTURE])
     assert own(r) and all(f.status == "not_evaluated" and f.reason == NO_CAPABILITY for f in own(r))
     for f in own(r):
-        assert f.details["elevator_step_deg"] < 0
+        # to the −30° stop (travel, aircraft/lta.yaml [given]) from a trim within a few degrees of neutral: beyond
+        # the −21.8° design limit that bounds trims only; without control_forces no pilot-effort limit applies
+        d = f.details
+        assert d["elevator_stop_deg"] == -30.0 and "stop (travel)" in d["pilot_effort"]
+        assert d["elevator_trim_deg"] + d["elevator_step_deg"] == pytest.approx(-30.0, abs=2e-3)
+        assert -21.8 <= d["elevator_trim_deg"] <= 16.8  # the trim keeps the design limits
         assert f.details["root shear max/min (kN)"][1] < 0
         if f.condition.altitude == 0.0:
             assert f.condition.speed / KN == pytest.approx(266.0)

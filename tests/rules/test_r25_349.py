@@ -53,7 +53,8 @@ def _by_condition(result, surface="wing"):
 
 def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, shared):
     """§25.349(a): load factors 0 and 2/3 × the positive limit manoeuvring factor (2.5 in the baseline, §25.337(b):
-    2/3 × 2.5 = 1.6667); (a)(2) the aileron to the stop at VA (design limit −25°); (a)(3) at VC the deflection
+    2/3 × 2.5 = 1.6667); (a)(2) the aileron to the stop at VA (travel −30° in aircraft/lta.yaml, not the −25°
+    design limit, which bounds trims only); (a)(3) at VC the deflection
     giving a roll rate (the steady rolling velocity, where |p| first stops growing, found before the end of the
     4 s simulation) not less than that at VA (same loading, altitude, load factor), (a)(4) at VD not less
     than one third of it — and not more than 3 % above (the rule's tolerance; the details are rounded to 0.01°/s).
@@ -73,7 +74,7 @@ def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, s
         assert d["load_factor"] == pytest.approx(0.0 if cond.get("load_factor") == "zero" else 2 / 3 * n_lim, abs=1e-3)
         sp = cond.get("speed_point")
         if sp == "VA":
-            assert d["aileron_deg"] == pytest.approx(-25.0, abs=0.01) and d["aileron_fraction_of_stop"] == 1.0
+            assert d["aileron_deg"] == pytest.approx(-30.0, abs=0.01) and d["aileron_fraction_of_stop"] == 1.0
             continue
         ratio = 1.0 if sp == "VC" else 1 / 3
         assert "roll_rate_VA_deg_s" in d, cond
