@@ -34,7 +34,7 @@ def structural(result):
 
 @pytest.fixture(scope="module")
 def checked(tmp_path_factory):
-    return run_rule("25.331(c)(2)", tmp_path_factory.mktemp("c2"), TWO_ALTITUDES)
+    return run_rule("25.331(c)(2)", tmp_path_factory.mktemp("c2"), TWO_ALTITUDES, keep_loads=True)
 
 
 def test_input_generator_against_the_paragraph():
@@ -203,21 +203,28 @@ def test_load_factor_check_on_the_limit_and_sign(baseline):
 
 
 def test_baseline_load_factors_reached(checked):
-    """On the baseline every manoeuvre stays within the §25.337 envelope to the search tolerance, except
-    conditions whose amplitude search did not converge (not evaluated, ≤ 5 %); nose-down conditions are
-    checked against n₋(V) (−1.0 to VC, 0 at VD); held conditions that do not reach 2.5 g say so."""
-    lf = [f for f in own(checked) if LOAD_FACTOR in f.check]
-    assert len(lf) == len(structural(checked))
-    for f in lf:
-        d = f.details
-        if f.status == "not_evaluated":
-            assert "not converged" in f.reason and d["peak_n_z"] > 2.52
-            continue
-        assert f.status == "complies"
-        if f.condition.get("direction") == "nose up":
-            assert d["limit_load_factor"] == 2.5 and f.margin == pytest.approx(2.52 - d["peak_n_z"], abs=1e-4)
-        else:
-            assert -1.0 <= d["limit_load_factor"] <= 0.0
-            assert f.margin == pytest.approx(d["peak_n_z"] - (d["limit_load_factor"] - 0.02), abs=1e-4)
-    assert sum(f.status == "not_evaluated" for f in lf) <= 0.05 * len(lf)
-    assert any("note" in f.details for f in lf)  # high-altitude conditions: n₊ not reached at full elevator
+    """§25.331(c)(2): the input is scaled so that n₊ = 2.5 (nose up) or 0 g (nose down) is "reached but not
+    exceeded". Read from the simulated n_z histories the rule keeps (not from its findings): within each
+    condition's loads window the extreme n_z is the finding's peak_n_z (rounding 1e-4), a scaled sinusoid reaches
+    the target within the 0.02 g search tolerance, no condition whose search converged goes beyond the §25.337
+    limit, and a held input that does not reach 2.5 g says so. (The rule's load-factor finding compares that same
+    peak with the target it searched for, so on its own it cannot fail on a converged search; this test checks the
+    search and the report against the simulation instead.)"""
+    run = checked.run
+    nz, valid = run["sim"]["n_z"], run["valid"]
+    lf = {f.condition: f for f in own(checked) if LOAD_FACTOR in f.check}
+    assert len(lf) == len(run["conditions"]) == len(structural(checked))
+    for i, c in enumerate(run["conditions"]):
+        f = lf[c]
+        window = nz[:, i][valid[:, i]]
+        up = c.get("direction") == "nose up"
+        peak = window.max() if up else window.min()
+        assert f.details["peak_n_z"] == pytest.approx(peak, abs=1e-4)
+        target = 2.5 if up else 0.0
+        if f.details["input"] == "sinusoid, amplitude scaled to the load factor":
+            assert peak == pytest.approx(target, abs=0.02)
+        if f.status != "not_evaluated":
+            assert (peak <= 2.5 + 0.02) if up else (peak >= f.details["limit_load_factor"] - 0.02)
+        if f.details["input"].startswith("held at full deflection for the longest hold"):
+            assert peak < 2.5 - 0.02 and "not reached" in f.details["note"]
+    assert sum(f.status == "not_evaluated" for f in lf.values()) <= 0.05 * len(lf)
