@@ -141,7 +141,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
             click.echo(f"{STATUS_LABEL[r.status]:>17}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
         s = result.summary()
         click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['complies_partial']} comply in part (sub-paragraphs "
-                   f"or conditions not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
+                   f"not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
                    f"({time.perf_counter() - start:.2f} s)")
         click.echo(f"report: {html_path}\nresults: {json_path}")
     sys.exit(result.exit_code())
