@@ -140,6 +140,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         from certkit.report.html import write_report
 
         from certkit.report.output import prepare_output, report_folder_name
+        from certkit.results import STATUS_LABEL
         from certkit.scheduler import check_overrides, run
 
         start = time.perf_counter()
@@ -162,10 +163,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         for r in result.rules:
             crit = r.critical
             margin = f"{crit.margin:+.4g} {crit.unit}".rstrip() if crit else "—"
-            where = crit.condition.label() if crit else (r.findings[0].reason if r.findings else "")
-            click.echo(f"{r.status:>13}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
+            where = crit.condition.label() if crit else r.headline_reason
+            click.echo(f"{STATUS_LABEL[r.status]:>17}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
         s = result.summary()
-        click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['fails']} fail, {s['not_evaluated']} not evaluated "
+        click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['complies_partial']} comply in part (sub-paragraphs "
+                   f"not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
                    f"({time.perf_counter() - start:.2f} s)")
         click.echo(f"report: {html_path}\nresults: {json_path}")
     sys.exit(result.exit_code())

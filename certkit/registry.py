@@ -80,7 +80,13 @@ class Rule:
     conditions
         The :class:`~certkit.conditions.ConditionSpace` the rule is evaluated over.
     implementation
-        ``implemented``, ``partial`` (say what is missing in ``limitations``) or ``planned``.
+        ``implemented``, ``partial`` (list what is not evaluated in ``unevaluated``) or ``planned``.
+    limitations
+        Free text: the modelling simplifications of what the rule does evaluate (rigid airplane, …).
+    unevaluated
+        ``(paragraph, reason)`` pairs: each sub-paragraph (or part of one) the rule does not evaluate.
+        The scheduler turns each into a ``not_evaluated`` finding, so a partial rule never reads
+        "complies"; a ``partial`` rule must list at least one, an ``implemented`` one none.
     cost
         Rough evaluation time relative to a trim-only rule (1); used only to start the heaviest
         rules first when ``--jobs`` spreads them over processes.
@@ -105,6 +111,7 @@ class Rule:
     conditions: ClassVar["ConditionSpace"]
     implementation: ClassVar[str] = "implemented"
     limitations: ClassVar[str] = ""
+    unevaluated: ClassVar[tuple[tuple[str, str], ...]] = ()
     origin: ClassVar[str] = "built-in"
     cost: ClassVar[float] = 1.0
     run_with: ClassVar[str] = ""
@@ -142,6 +149,8 @@ class Rule:
             lines += ["", "Cross-references", "  " + ", ".join(f"§{r}" for r in cls.references)]
         if cls.limitations:
             lines += ["", "Limitations", _indent(cls.limitations)]
+        if cls.unevaluated:
+            lines += ["", "Not evaluated"] + [f"  §{para}: {why}" for para, why in cls.unevaluated]
         return "\n".join(lines)
 
 
@@ -188,6 +197,7 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'symbol' = {cls.symbol!r} must be kebab-case, e.g. 'checked-pitch-maneuver'")
     if cls.implementation not in IMPLEMENTATION:
         raise PluginError(f"{where}: field 'implementation' = {cls.implementation!r} must be one of {IMPLEMENTATION}")
+    _validate_unevaluated(cls, where)
     if isinstance(cls.cost, bool) or not isinstance(cls.cost, (int, float)) or not cls.cost > 0:
         raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
     if not isinstance(cls.run_with, str):
@@ -204,6 +214,22 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'conditions' must be a certkit.conditions.ConditionSpace")
     if cls.evaluate is Rule.evaluate:
         raise PluginError(f"{where}: method 'evaluate' is not implemented")
+
+
+def _validate_unevaluated(cls, where: str) -> None:
+    """``unevaluated`` holds (paragraph id, reason) pairs and agrees with ``implementation``."""
+    entries = cls.unevaluated
+    if not isinstance(entries, tuple):
+        raise PluginError(f"{where}: field 'unevaluated' must be a tuple of (paragraph, reason) pairs")
+    for entry in entries:
+        if not (isinstance(entry, tuple) and len(entry) == 2 and isinstance(entry[0], str) and RULE_ID.match(entry[0])
+                and isinstance(entry[1], str) and entry[1].strip()):
+            raise PluginError(f"{where}: field 'unevaluated' holds {entry!r}, not a (paragraph id, reason) pair")
+    if cls.implementation == "partial" and not entries:
+        raise PluginError(f"{where}: implementation 'partial' needs the sub-paragraphs it does not evaluate in 'unevaluated'")
+    if cls.implementation == "implemented" and entries:
+        raise PluginError(f"{where}: lists sub-paragraphs in 'unevaluated' but declares implementation 'implemented' "
+                          "(declare 'partial')")
 
 
 def rule(cls: type) -> type:

@@ -3,6 +3,11 @@
 A margin is signed so that **≥ 0 complies**; it carries its unit, and its normalised twin
 (margin / |limit|) lets a design study compare rules. A finding that could not be computed is
 ``not_evaluated`` with the reason, never a pass.
+
+A rule's status: ``fails`` when any finding fails; ``complies`` when every finding complies;
+``complies_partial`` when every condition the rule computed complies but it does not evaluate some
+sub-paragraphs (:attr:`certkit.registry.Rule.unevaluated`, one ``not_evaluated`` finding each);
+``not_evaluated`` when a condition the rule computes could not be evaluated, or nothing complies.
 """
 
 from __future__ import annotations
@@ -17,6 +22,13 @@ Status = Literal["complies", "fails", "not_evaluated"]
 COMPLIES: Status = "complies"
 FAILS: Status = "fails"
 NOT_EVALUATED: Status = "not_evaluated"
+#: rule-level only: what was computed complies, something was not evaluated
+COMPLIES_PARTIAL = "complies_partial"
+#: how each status reads in the terminal and the report
+STATUS_LABEL = {COMPLIES: "complies", COMPLIES_PARTIAL: "complies, partial", FAILS: "fails",
+                NOT_EVALUATED: "not evaluated"}
+#: ``details`` key of the finding that stands for a sub-paragraph the rule does not evaluate
+SCOPE_KEY = "not_evaluated_by_rule"
 
 
 @dataclass(frozen=True)
@@ -158,6 +170,12 @@ class Finding:
     def not_evaluated(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
         return cls(condition, check, NOT_EVALUATED, reason=reason, details=details)
 
+    @classmethod
+    def outside_scope(cls, paragraph: str, reason: str) -> "Finding":
+        """The whole-airplane ``not_evaluated`` finding of a sub-paragraph the rule does not evaluate."""
+        return cls(Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason,
+                   details={SCOPE_KEY: paragraph})
+
     def as_dict(self) -> dict:
         return {
             "condition": self.condition.as_dict(),
@@ -198,15 +216,30 @@ class RuleResult:
     load_envelopes: list = field(default_factory=list, repr=False, compare=False)
     #: the rule's own run data (simulations) when the load envelopes are kept; never written to results.json
     run: dict | None = field(default=None, repr=False, compare=False)
+    #: the rule's implementation status (``implemented``, ``partial``, ``planned``) and modelling limitations
+    implementation: str = "implemented"
+    limitations: str = ""
+    #: (paragraph, reason) of each sub-paragraph the rule does not evaluate
+    unevaluated: list = field(default_factory=list)
 
     @property
-    def status(self) -> Status:
+    def status(self) -> str:
+        """``fails``, ``complies``, ``complies_partial`` or ``not_evaluated`` (module docstring)."""
         statuses = {f.status for f in self.findings}
         if FAILS in statuses:
             return FAILS
-        if NOT_EVALUATED in statuses or not self.findings:
+        own = {f.status for f in self.findings if SCOPE_KEY not in f.details}
+        if NOT_EVALUATED in own or COMPLIES not in own:
             return NOT_EVALUATED
-        return COMPLIES
+        return COMPLIES_PARTIAL if NOT_EVALUATED in statuses else COMPLIES
+
+    @property
+    def headline_reason(self) -> str:
+        """The reason to show when there is no critical finding: the first finding's, those of the rule's own
+        computation before the sub-paragraphs it does not evaluate."""
+        own = [f for f in self.findings if SCOPE_KEY not in f.details]
+        first = (own or self.findings)[:1]
+        return first[0].reason if first else ""
 
     @property
     def critical(self) -> Finding | None:
@@ -223,6 +256,9 @@ class RuleResult:
             "symbol": self.symbol,
             "title": self.title,
             "status": self.status,
+            "implementation": self.implementation,
+            "limitations": self.limitations,
+            "unevaluated": [{"paragraph": p, "reason": r} for p, r in self.unevaluated],
             "min_margin": crit.margin if crit else None,
             "normalized_min_margin": crit.normalized_margin if crit else None,
             "unit": crit.unit if crit else "",
@@ -250,7 +286,8 @@ class RunResult:
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
-        return {"rules": len(self.rules), "complies": statuses.count(COMPLIES), "fails": statuses.count(FAILS),
+        return {"rules": len(self.rules), "complies": statuses.count(COMPLIES),
+                "complies_partial": statuses.count(COMPLIES_PARTIAL), "fails": statuses.count(FAILS),
                 "not_evaluated": statuses.count(NOT_EVALUATED)}
 
     def as_dict(self, rules=None) -> dict:
@@ -282,11 +319,12 @@ class RunResult:
         return text.replace(json.dumps(_RULES_MARK), rules, 1)
 
     def exit_code(self) -> int:
-        """0 all comply, 1 any fails, 3 nothing fails but something was not evaluated."""
+        """0 every rule complies in full, 1 any fails, 3 nothing fails but something was not evaluated (a rule
+        ``not_evaluated`` or ``complies_partial``); 2 is the CLI's for a user error."""
         s = self.summary()
         if s["fails"]:
             return 1
-        if s["not_evaluated"]:
+        if s["not_evaluated"] or s["complies_partial"]:
             return 3
         return 0
 

@@ -10,6 +10,7 @@ processes; results are put back in rule order, so they equal those of ``jobs = 1
 from __future__ import annotations
 
 import datetime as _dt
+import inspect
 import math
 import os
 import traceback
@@ -100,10 +101,20 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
     evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
     (conditions, e.g. of another airplane) restricts the evaluation to the scheduled conditions that are the same
-    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict."""
+    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict. After the
+    rule's own findings come one ``not_evaluated`` finding per sub-paragraph it does not evaluate
+    (:attr:`Rule.unevaluated`)."""
+    result = _evaluate_own(rule, ctx, evidence, keep_loads, only)
+    result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
+    return result
+
+
+def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only=None) -> RuleResult:
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
-    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides)
+    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
+                        limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
+                        unevaluated=[list(u) for u in rule.unevaluated])
     missing = ctx.missing(rule.requires)
     if missing:
         result.findings.append(Finding.not_evaluated(

@@ -271,6 +271,30 @@ def _structure(s):
                     yield f"{path}.ultimate", f"ultimate allowable ({sense} sense, {ult:.4g}) is below the limit allowable ({lim:.4g})", ult
 
 
+@needs("structure", "geometry")
+def _capability_stations(s):
+    """Every declared capability must sit at a station the loads are computed at (:mod:`certkit.models.loads.model`):
+    inboard of the tip, and the side of body outboard of the surface's root, inside its semispan."""
+    st, g = s["structure"], s["geometry"]
+    for surface in ("wing", "horizontal_tail", "vertical_tail"):
+        semispan = 0.5 * float(np.sqrt(getattr(g, surface).aspect_ratio * getattr(g, surface).area))
+        for i, c in enumerate(getattr(st, surface)):
+            path = f"structure.{surface}.{i}.station"
+            if not isinstance(c.station, str) and c.station >= 1.0:
+                yield path, "no load acts at the tip: a capability station must lie inboard of it (0 ≤ station < 1)", c.station
+            if c.station == "side_of_body" and surface != "vertical_tail" and 0.5 * g.fuselage.width >= semispan:
+                yield (path, f"the side of body (half the fuselage width, {0.5 * g.fuselage.width:.2f} m) lies outside the "
+                       f"{surface.replace('_', ' ')} semispan ({semispan:.2f} m): no load is computed there", c.station)
+
+
+@needs("envelope")
+def _flap_load_factor(s):
+    lf = s["envelope"].limit_load_factors
+    if lf is not None and lf.flaps_extended is not None and lf.flaps_extended > lf.positive:
+        yield ("envelope.limit_load_factors.flaps_extended", f"the flaps-extended limit load factor (§25.345(a)) must "
+               f"not exceed the clean positive limit load factor ({lf.positive:g}, §25.337(b))", lf.flaps_extended)
+
+
 #: the lifting surface that carries each primary control
 _CONTROL_SURFACE = {"elevator": "horizontal_tail", "aileron": "wing", "rudder": "vertical_tail"}
 

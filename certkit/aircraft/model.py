@@ -8,6 +8,8 @@ are checked in :mod:`certkit.aircraft.consistency` so that all problems are repo
 
 from __future__ import annotations
 
+import math
+
 from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
@@ -62,8 +64,10 @@ class ControlSurface(_Section):
     """A trailing-edge control surface on a lifting surface.
 
     Span fractions are of the semispan (or of the fin height); ``travel`` is the mechanical
-    deflection range, ``design_limits`` the tighter range the design allows itself (the limit the
-    rules check trims and manoeuvres against). Signs: :mod:`certkit.conventions`.
+    deflection range to the control-system stops (what the loads manoeuvres of §§25.331(c), 25.349 and
+    25.351 deflect to, unless a §25.397 pilot-force limit comes first), ``design_limits`` the tighter
+    range the design allows itself (the limit trims and controllability margins are checked against).
+    Signs: :mod:`certkit.conventions`.
     """
 
     span_start: Fraction
@@ -78,7 +82,9 @@ class ControlSurface(_Section):
             raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
         d, t = self.design_limits, self.travel
         if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
-            raise ValueError("design_limits must lie within the travel")
+            deg = 180.0 / math.pi
+            raise ValueError(f"design_limits ({d.min * deg:.1f}° to {d.max * deg:.1f}°) must lie within the travel to the "
+                             f"control-system stops ({t.min * deg:.1f}° to {t.max * deg:.1f}°): a stop inside a design limit")
         return self
 
 

@@ -12,7 +12,8 @@ Names (all numbers SI, normalised margins ≥ 0 comply):
 * ``level.<mode>.<corner>.<configuration>`` — the MIL-F-8785C level (1–3, 4 worse than 3) of each mode, the
   worst over the speeds and altitudes of §25.181's conditions at that CG corner and configuration.
 
-Statuses ("complies", "fails", "not_evaluated") accompany the rule and sub-check names.
+Statuses accompany the rule names ("complies", "complies_partial", "fails", "not_evaluated") and the sub-check
+names (a finding's: "complies", "fails", "not_evaluated").
 """
 
 from __future__ import annotations

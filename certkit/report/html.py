@@ -13,7 +13,7 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit.registry import Rule
 from certkit.report.output import prepare_output, write_set
-from certkit.results import RunResult
+from certkit.results import STATUS_LABEL, RunResult
 from certkit.units import KN
 
 #: display conversions for units used in findings (SI value → extra unit shown beside it)
@@ -39,6 +39,7 @@ def _environment() -> Environment:
                       trim_blocks=True, lstrip_blocks=True)
     env.filters["value"] = format_value
     env.filters["slug"] = slug
+    env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
     env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %"
     return env
 

@@ -32,6 +32,11 @@ def test_converges_and_reports_its_history(baseline):
     assert baseline["responses"]["sizing.iterations"] == len(h)
 
 
+@pytest.mark.xfail(strict=True, reason=(
+    "finding (issue 11): with the §25.331(c) manoeuvres deflecting the elevator to its −30° stop (travel) instead of "
+    "the −21.8° design limit, and no control-force model in the baseline to apply the §25.397 pilot-effort limit, "
+    "the sized stabiliser structure is 3,254 kg (7,173 lb), 24 % above the declared 5,800 lb group (was 6,063 lb, "
+    "+4.5 %). The band is kept; the baseline needs a control_forces.elevator model or a revisited declared mass."))
 def test_baseline_tail_group_within_10_percent_of_declared(baseline):
     structure = baseline["responses"]["sizing.ht_structure_mass_kg"]
     assert structure == pytest.approx(5800 * LB, rel=0.10)

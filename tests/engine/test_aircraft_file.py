@@ -90,7 +90,7 @@ def test_unsafe_or_malformed_yaml(tmp_path, text, path, words):
 
 
 def test_speed_must_state_its_kind(tmp_path):
-    text = BASELINE.read_text().replace("VA: 265 kn EAS", "VA: 265 kn")
+    text = BASELINE.read_text().replace("VA: 266 kn EAS", "VA: 266 kn")
     f = tmp_path / "a.yaml"
     f.write_text(text)
     with pytest.raises(InputError, match=r"speeds\.VA: .*end with its kind"):

@@ -30,10 +30,17 @@ def edited_baseline(tmp_path, edits):
     return path
 
 
-def run_rule(rule_id, tmp_path=None, edits=()):
+def run_rule(rule_id, tmp_path=None, edits=(), keep_loads=False):
     path = edited_baseline(tmp_path, edits) if edits else BASELINE
     (rule,) = [r for r in select(discover(), (rule_id,)) if r.id == rule_id]
-    return evaluate_rule(rule, Context(load_aircraft(path)))
+    return evaluate_rule(rule, Context(load_aircraft(path)), keep_loads=keep_loads)
+
+
+def own(result):
+    """The rule's own findings: without those standing for the sub-paragraphs it does not evaluate."""
+    from certkit.results import SCOPE_KEY
+
+    return [f for f in result.findings if SCOPE_KEY not in f.details]
 
 
 def finding_by(result, loading, check_prefix):

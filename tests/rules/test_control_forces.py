@@ -24,7 +24,7 @@ from certkit.results import Condition
 from certkit.scheduler import criteria_for
 from certkit.units import LBF
 
-from .helpers import edited_baseline, run_rule
+from .helpers import edited_baseline, own, run_rule
 
 RHO0_SLUG = 0.0023769
 PSF_PER_KPA = 20.885434
@@ -296,11 +296,11 @@ def test_force_limited_deflections_of_the_loads_rules(forces_ctx, feel_ctx):
 
 
 def test_loads_rules_use_the_pilot_effort(feel_ctx):
-    """§25.331(c)(1) at the forward light corner, sea level: the elevator step is the 300 lbf one (17.28° at
-    265 KEAS), and the finding says so."""
+    """§25.331(c)(1) at the forward light corner, sea level: the elevator step is the 300 lbf one at VA 266 KEAS
+    (136.84 m/s, q = 11,470 Pa): x = (300 − 5)/(30 × 1.14695) = 8.573 in → 17.15° up, and the finding says so."""
     findings, _ = _evaluate("25.331(c)(1)", feel_ctx, lambda c: c.loading == "fwd_light" and c.altitude == 0.0)
     (f,) = [f for f in findings if ", wing" not in f.check]  # the tail's finding (the wing's has no elevator details)
-    assert f.details["elevator_step_deg"] == pytest.approx(-17.28, abs=0.01)
+    assert f.details["elevator_step_deg"] == pytest.approx(-17.15, abs=0.01)
     assert "pilot effort" in f.details["pilot_effort"]
 
 
@@ -311,7 +311,7 @@ def test_loads_rules_use_the_pilot_effort(feel_ctx):
 def test_not_evaluated_without_a_model(rule_id, check, reason):
     r = run_rule(rule_id)
     assert r.status == "not_evaluated"
-    assert all(f.check.startswith(check) and reason in f.reason for f in r.findings)
+    assert all(f.check.startswith(check) and reason in f.reason for f in own(r))
 
 
 def test_force_parts_not_evaluated_without_a_model(ctx):
@@ -330,7 +330,7 @@ def test_force_parts_not_evaluated_without_a_model(ctx):
 
 def test_free_return_needs_friction(tmp_path):
     r = run_rule("25.173(b)", tmp_path, edits=[("\nsources:", "\n" + FORCES.replace("    friction: 3 lbf\n", ""))])
-    assert r.status == "not_evaluated" and "friction" in r.findings[0].reason
+    assert r.status == "not_evaluated" and "friction" in own(r)[0].reason
 
 
 def test_a_force_model_needs_its_control_surface(tmp_path):

@@ -18,7 +18,7 @@ from certkit.models.dynamics.procedures import runway_acceleration
 from certkit.models.flight import flight_model, ground_model
 from certkit.units import FT
 
-from .helpers import finding_by as _by
+from .helpers import finding_by as _by, own
 from .helpers import run_rule
 
 GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
@@ -80,9 +80,9 @@ def test_sign_cg_and_engine_failure(result):
 def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
     r = run_rule("25.111", tmp_path, [(GEAR, "")])
     assert r.status == "not_evaluated"
-    assert all(f.status == "not_evaluated" and "landing_gear" in f.reason for f in r.findings)
+    assert all(f.status == "not_evaluated" and "landing_gear" in f.reason for f in own(r))
     r = run_rule("25.111", tmp_path, [("  V1: 150 kn CAS", "  #V1: 150 kn CAS")])
-    assert r.status == "not_evaluated" and all("speeds.V1" in f.reason for f in r.findings)
+    assert r.status == "not_evaluated" and all("speeds.V1" in f.reason for f in own(r))
 
 
 def _with_field_length(tmp_path, ft):
@@ -101,7 +101,7 @@ def test_rotation_matches_a_declared_field_length(tmp_path):
     (tmp_path / "b").mkdir()
     short, long_ = _with_field_length(tmp_path / "a", 10000), _with_field_length(tmp_path / "b", 12000)
     for r, ft in ((short, 10000.0), (long_, 12000.0)):
-        for f in (f for f in r.findings if f.check.startswith("(a) elevator")):
+        for f in (f for f in own(r) if f.check.startswith("(a) elevator")):
             d = f.details
             assert "declared takeoff field length" in d["rotation_basis"]
             if d["rotation_match"] != "matched":
@@ -112,9 +112,9 @@ def test_rotation_matches_a_declared_field_length(tmp_path):
             theta_v2 = d["target_pitch_deg"] - (ROTATION_OFFSETS_DEG[k] + frac * (ROTATION_OFFSETS_DEG[k + 1] - ROTATION_OFFSETS_DEG[k]))
             # the V2 attitude is the same in both runs: recover it from one and compare across runs below
             f.details["_theta_v2"] = theta_v2
-    fwd = lambda r: next(f for f in r.findings if f.check.startswith("(a) elevator") and f.condition.loading.endswith("forward"))  # noqa: E731
+    fwd = lambda r: next(f for f in own(r) if f.check.startswith("(a) elevator") and f.condition.loading.endswith("forward"))  # noqa: E731
     assert fwd(short).details["_theta_v2"] == pytest.approx(fwd(long_).details["_theta_v2"], abs=0.01)
     assert fwd(long_).details["target_pitch_deg"] < fwd(short).details["target_pitch_deg"]
     assert fwd(long_).value > fwd(short).value  # elevator less negative (less nose-up) with the gentler rotation
     base = run_rule("25.111")
-    assert all("V2 attitude" in f.details["rotation_basis"] for f in base.findings if f.details)
+    assert all("V2 attitude" in f.details["rotation_basis"] for f in own(base) if f.details)

@@ -19,7 +19,7 @@ from certkit.context import Context
 from certkit.units import KN, LB, LBF
 
 from ..conftest import BASELINE
-from .helpers import run_rule
+from .helpers import own, run_rule
 
 G = 9.80665
 S_M2 = 4927.3 * 0.3048**2
@@ -37,7 +37,7 @@ def base_b():
 
 
 def gradient(result, loading="MTOW reference"):
-    return next(f for f in result.findings if f.unit == "gradient" and f.condition.loading == loading)
+    return next(f for f in own(result) if f.unit == "gradient" and f.condition.loading == loading)
 
 
 def test_hand_calculation_thrust_gear_credit_and_energy_method(base_b):
@@ -71,14 +71,14 @@ def test_sign_more_thrust_more_gradient_and_rudder_margin(tmp_path, base_b):
     more = run_rule("25.121(b)", tmp_path, [("static_thrust: 97300 lbf", "static_thrust: 107030 lbf")])
     d = gradient(more).value - gradient(base_b).value
     assert d == pytest.approx(0.1 * mattingly_thrust_n(161 * KN) / (656_000 * LB * G), rel=0.1)
-    rud = lambda r: next(f for f in r.findings if f.check.endswith("rudder within design limit")  # noqa: E731
+    rud = lambda r: next(f for f in own(r) if f.check.endswith("rudder within design limit")  # noqa: E731
                          and f.condition.loading == "MTOW reference")
     assert rud(more).margin < rud(base_b).margin  # more asymmetric thrust needs more rudder
 
 
 def test_not_evaluated_without_v2_and_positive_gradient_in_a(tmp_path):
     r = run_rule("25.121(b)", tmp_path, [("  V2: 161 kn CAS ", "  # V2: 161 kn CAS ")])
-    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.V2"
+    assert r.status == "not_evaluated" and own(r)[0].reason == "needs speeds.V2"
     a = run_rule("25.121(a)")
     f = gradient(a)
     assert f.condition.speed_name == "VR" and "VLOF not declared" in f.reason and f.limit == 0.0

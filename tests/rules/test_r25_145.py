@@ -24,6 +24,7 @@ from ..conftest import BASELINE
 
 from .test_r25_121 import mattingly_thrust_n
 from .test_r25_143 import LIMITS, edited_context, evaluate_part, rule_class
+from .helpers import own
 
 G = 9.80665
 
@@ -39,7 +40,7 @@ def base(shared145):
 
 
 def finding(findings, loading, para, flap="landing"):
-    findings = findings if isinstance(findings, list) else findings.findings
+    findings = findings if isinstance(findings, list) else own(findings)
     return next(f for f in findings if f.condition.loading == loading and (f.condition.get("manoeuvre") or "").startswith(para)
                 and (flap in f.condition.get("manoeuvre") or para == "(b)(4)"))
 
@@ -75,13 +76,13 @@ def test_sign_more_flap_more_nose_up_and_thrust_below_cg_needs_nose_down(base):
     ext = [finding(base, "fwd_mrw", "(b)(1)", flap) for flap in ("takeoff", "approach", "landing")]
     assert all(f.details["direction"] == "trailing edge up" for f in ext)
     assert ext[0].value < ext[1].value < ext[2].value and ext[0].margin > ext[1].margin > ext[2].margin
-    corners = {f.condition.loading for f in base.findings}
+    corners = {f.condition.loading for f in own(base)}
     for loading in corners:
         assert finding(base, loading, "(b)(4)").details["direction"] == "trailing edge down"
 
 
 def test_not_evaluated_force_and_missing_stall_speed(tmp_path, base):
-    forces = [f for f in base.findings if "lbf" in f.check]
+    forces = [f for f in own(base) if "lbf" in f.check]
     assert len(forces) == 8 and all(f.status == "not_evaluated" and "control-force model" in f.reason for f in forces)
     ctx = edited_context(tmp_path, [("    CLmax: 2.25 ", "    # CLmax: 2.25 ")])
     r = evaluate_part("25.145(b)", ctx, lambda c: c.loading == "fwd_mlw")

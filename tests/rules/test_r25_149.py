@@ -17,7 +17,7 @@ from certkit.units import KN
 from certkit_rules.part25.subpart_b.r25_149 import control_usage, vmca_from_grid
 from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
-from .helpers import run_rule
+from .helpers import own, run_rule
 
 
 @pytest.fixture(scope="module")
@@ -43,20 +43,20 @@ def test_sign_more_usage_raises_vmca():
 
 
 def test_baseline_vsr_and_vmc_not_declared(result, ctx):
-    c = next(f for f in result.findings if f.check.startswith("(c)"))
+    c = next(f for f in own(result) if f.check.startswith("(c)"))
     clmax = ctx.clmax("takeoff")
     vsr_kn = math.sqrt(2 * 656_000 / (0.0023769 * 4927.3 * clmax)) / 1.6878099
     assert c.details["VSR"] / 0.514444 == pytest.approx(vsr_kn, rel=1e-3)
     assert c.limit == pytest.approx(1.13 * c.details["VSR"], rel=1e-9)
     assert (c.margin >= 0) == (c.status == "complies") and np.isfinite(c.value)
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
-    b = next(f for f in result.findings if f.check.startswith("(b)"))
+    b = next(f for f in own(result) if f.check.startswith("(b)"))
     assert b.status == "not_evaluated" and b.reason == "needs speeds.VMC"
 
 
 def test_not_evaluated_without_takeoff_clmax(tmp_path):
     r = run_rule("25.149", tmp_path, edits=[("    CLmax: 1.95 ", "    #CLmax: 1.95 ")])
-    assert r.status == "not_evaluated" and "configurations.takeoff.CLmax" in r.findings[0].reason
+    assert r.status == "not_evaluated" and "configurations.takeoff.CLmax" in own(r)[0].reason
 
 
 def _grid_vmca(ctx, cond, vsr, factors, gammas=(-0.08, -0.04)):
@@ -76,7 +76,7 @@ def test_search_agrees_with_the_former_grid(result, ctx):
     secant step from probe trims at γ = −0.08/−0.04 ends at throttle 0.978, not 0.99, which moves its VMCA up by
     0.3 kn); a fine grid (0.2 kn steps over ±1 kn) whose probes sit near the full-throttle path (γ = −0.02/0,
     throttle 0.989) agrees with the search within 0.1 kn."""
-    c = next(f for f in result.findings if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
+    c = next(f for f in own(result) if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
     by_bank = c.details["vmca_by_bank_kn"]
     # the former grid searched only 5° and wings level: compare with the search's rows at those banks
     vsr, vmca = c.details["VSR"], min(by_bank["5 deg"], by_bank["0 deg"]) * KN
@@ -90,7 +90,7 @@ def test_vmca_is_the_least_over_the_banks_allowed(result):
     """§25.149(b): straight flight with not more than 5° of bank — VMCA is the least over the banks searched (0° to
     5° toward the operating engine, 1° steps); on the baseline an intermediate bank balances the rudder's and the
     aileron's needs and gives a lower VMCA than either end, and the finding says what limits it."""
-    for c in (f for f in result.findings if f.check.startswith("(c)")):
+    for c in (f for f in own(result) if f.check.startswith("(c)")):
         by_bank = c.details["vmca_by_bank_kn"]
         assert len(by_bank) == 6
         assert c.value / KN == pytest.approx(min(by_bank.values()), abs=0.01)

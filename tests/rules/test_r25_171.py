@@ -14,7 +14,7 @@ import pytest
 from certkit.conditions import speed_as
 from certkit.units import KN, LB
 
-from .helpers import run_rule
+from .helpers import own, run_rule
 
 MAC_FT, XREF_FT = 27.456, 97.25
 
@@ -30,7 +30,7 @@ def grad():
 
 
 def _at(result, loading, configuration, point, altitude=0.0):
-    return next(f for f in result.findings if f.condition.loading == loading and f.condition.configuration == configuration
+    return next(f for f in own(result) if f.condition.loading == loading and f.condition.configuration == configuration
                 and f.condition.get("speed_point") == point and f.condition.altitude == altitude and f.margin is not None)
 
 
@@ -44,10 +44,10 @@ def test_static_margin_hand_calculation(sm, ctx):
 
 
 def test_static_margin_on_the_limit(sm, tmp_path):
-    low = min(f.value for f in sm.findings if f.value is not None)
+    low = min(f.value for f in own(sm) if f.value is not None)
     block = f'criteria:\n  "25.171":\n    justification: test on the limit\n    values: {{static_margin_min: {low!r}}}\nsources:'
     r = run_rule("25.171", tmp_path, edits=[("\nsources:", "\n" + block)])
-    assert min(f.margin for f in r.findings if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
+    assert min(f.margin for f in own(r) if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
     assert r.status == "complies"
 
 
@@ -78,18 +78,18 @@ def test_speed_stability_hand_calculation(grad, ctx):
 
 
 def test_speed_stability_on_the_limit(grad, tmp_path):
-    low = min(f.value for f in grad.findings if f.value is not None)
+    low = min(f.value for f in own(grad) if f.value is not None)
     block = f'criteria:\n  "25.173(a)":\n    justification: test on the limit\n    values: {{gradient_min: {low!r}}}\nsources:'
     r = run_rule("25.173(a)", tmp_path, edits=[("\nsources:", "\n" + block)])
-    assert min(f.margin for f in r.findings if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
+    assert min(f.margin for f in own(r) if f.margin is not None) == pytest.approx(0.0, abs=1e-12)
 
 
 def test_not_evaluated(tmp_path):
     """(c) needs a control-force model, which the baseline does not declare; (a) and 25.171 need VMO."""
     r = run_rule("25.173(c)")
-    assert r.status == "not_evaluated" and "control-force model" in r.findings[0].reason
+    assert r.status == "not_evaluated" and "control-force model" in own(r)[0].reason
     r = run_rule("25.171", tmp_path, edits=[("  VMO: 272 kn EAS              # = VC, see above\n", "")])
-    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VMO"
+    assert r.status == "not_evaluated" and own(r)[0].reason == "needs speeds.VMO"
 
 
 def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
@@ -109,7 +109,7 @@ def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
     declared = Context(load_aircraft(edited_baseline(tmp_path, [("  VMO: 272 kn EAS", "  VFC: 320 kn CAS\n  VMO: 272 kn EAS")])))
     v, basis = stability_limit_cas(declared, "clean", 0.0)
     assert v / KN == pytest.approx(320.0, abs=1e-6) and basis == "declared VFC/MFC"
-    top = [f for f in grad.findings if f.condition.get("speed_point") == "VFC"]
+    top = [f for f in own(grad) if f.condition.get("speed_point") == "VFC"]
     clean = [f for f in top if f.condition.configuration == "clean" and f.condition.altitude == 0.0]
     assert clean and all(speed_as(f.condition, "CAS") / KN == pytest.approx(306.0 / 1.05, abs=0.05) for f in clean)
     extended = [f for f in top if f.condition.configuration != "clean"]

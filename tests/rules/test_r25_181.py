@@ -17,7 +17,7 @@ from certkit.conditions import speed_as
 from certkit.models.dynamics.modes import Mode
 from certkit_rules.part25.subpart_b import handling_levels as hq
 
-from .helpers import run_rule
+from .helpers import own, run_rule
 
 RULE = "25.181"
 
@@ -28,7 +28,7 @@ def result():
 
 
 def _sp(result, loading, configuration, point, altitude=0.0):
-    return next(f for f in result.findings if f.condition.loading == loading and f.condition.configuration == configuration
+    return next(f for f in own(result) if f.condition.loading == loading and f.condition.configuration == configuration
                 and f.condition.get("speed_point") == point and f.condition.altitude == altitude
                 and f.check.startswith("(a) short"))
 
@@ -59,11 +59,11 @@ def test_short_period_hand_calculation(result, ctx):
 
 def test_on_the_limit_with_the_critical_damping_as_criterion(result, tmp_path):
     """Criterion overridden to the baseline's smallest short-period ζ: that condition sits on its limit."""
-    zmin = min(f.value for f in result.findings if f.check.startswith("(a) short") and f.value is not None)
+    zmin = min(f.value for f in own(result) if f.check.startswith("(a) short") and f.value is not None)
     block = (f'criteria:\n  "25.181":\n    justification: test on the limit\n'
              f'    values: {{short_period_damping_min: {zmin!r}}}\nsources:')
     r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + block)])
-    sp = [f for f in r.findings if f.check.startswith("(a) short") and f.margin is not None]
+    sp = [f for f in own(r) if f.check.startswith("(a) short") and f.margin is not None]
     assert min(f.margin for f in sp) == pytest.approx(0.0, abs=1e-12)
     assert all(f.status == "complies" for f in sp)
 
@@ -79,20 +79,20 @@ def test_sign_more_pitch_damping_raises_short_period_margin(result, tmp_path):
 
 def test_not_evaluated_without_vmo(tmp_path):
     r = run_rule(RULE, tmp_path, edits=[("  VMO: 272 kn EAS              # = VC, see above\n", "")])
-    assert r.status == "not_evaluated" and r.findings[0].reason == "needs speeds.VMO"
+    assert r.status == "not_evaluated" and own(r)[0].reason == "needs speeds.VMO"
 
 
 def test_trim_impossible_is_not_evaluated_with_the_reason(result):
     """MRW at 37,000 ft cannot hold level flight at full thrust: not evaluated, never a pass."""
-    bad = [f for f in result.findings if f.status == "not_evaluated"]
+    bad = [f for f in own(result) if f.status == "not_evaluated"]
     assert bad and all("did not converge" in f.reason for f in bad)
 
 
 def test_baseline_dutch_roll_is_weakest_at_aft_corners(result):
     """The Dutch roll of the estimated aerodynamics is least damped at an aft corner (smaller Cn_β about the CG);
     whatever its sign, it is reported with its MIL-F-8785C level, never hidden."""
-    dr = [f for f in result.findings if f.check.startswith("(b)") and f.margin is not None]
-    assert len(dr) == len([f for f in result.findings if f.check.startswith("(a)") and f.margin is not None])
+    dr = [f for f in own(result) if f.check.startswith("(b)") and f.margin is not None]
+    assert len(dr) == len([f for f in own(result) if f.check.startswith("(a)") and f.margin is not None])
     worst = min(dr, key=lambda f: f.margin)
     assert worst.condition.loading.startswith("aft")
     assert (worst.status == "fails") == (worst.value < 0)

@@ -19,7 +19,7 @@ from certkit_rules.part25.subpart_c.r25_331 import (NO_CAPABILITY, capability_fi
                                                     maneuver_limit_load_factor)
 from certkit.results import Condition
 
-from .helpers import NO_STRUCTURE, hand_margin, run_rule
+from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
 TWO_ALTITUDES = [("altitude_points: 5", "altitude_points: 2")]  # sea level and the ceiling
 
@@ -30,12 +30,12 @@ LOAD_FACTOR = "load factor reached"
 def structural(result):
     """The findings comparing tailplane loads with the structural capability (not the §25.337 load-factor ones, nor
     the wing's: tests/rules/test_r25_331_wing.py)."""
-    return [f for f in result.findings if LOAD_FACTOR not in f.check and ", wing" not in f.check]
+    return [f for f in own(result) if LOAD_FACTOR not in f.check and ", wing" not in f.check]
 
 
 @pytest.fixture(scope="module")
 def checked(tmp_path_factory):
-    return run_rule("25.331(c)(2)", tmp_path_factory.mktemp("c2"), TWO_ALTITUDES)
+    return run_rule("25.331(c)(2)", tmp_path_factory.mktemp("c2"), TWO_ALTITUDES, keep_loads=True)
 
 
 def test_input_generator_against_the_paragraph():
@@ -62,15 +62,15 @@ def test_input_generator_against_the_paragraph():
 def test_scaling_frequency_floor_and_reason(checked):
     """Every condition reports its tail loads and is compared with the baseline's declared tailplane
     capability (aircraft/lta.yaml structure). Nose up reaches n = 2.5, nose down 0 g (tolerance 0.02 g,
-    the search tolerance); ω ≥ πV/(2VA) with V, VA in EAS (VA 265 kn); t_max = 3π/(2ω) + Δt."""
+    the search tolerance); ω ≥ πV/(2VA) with V, VA in EAS (VA 266 kn); t_max = 3π/(2ω) + Δt."""
     loads = structural(checked)
     assert loads and all(f.status in ("complies", "fails") for f in loads)
     for f in loads:
         d = f.details
         assert "root shear max/min (kN)" in d and "side of body bending max/min (kN·m)" in d
         v = f.condition.speed / KN
-        assert d["omega_rad_s"] >= math.pi * v / (2 * 265.0) - 1e-3
-        assert d["omega_rad_s"] == pytest.approx(max(d["omega_short_period"], math.pi * v / (2 * 265.0)), abs=1e-3)
+        assert d["omega_rad_s"] >= math.pi * v / (2 * 266.0) - 1e-3
+        assert d["omega_rad_s"] == pytest.approx(max(d["omega_short_period"], math.pi * v / (2 * 266.0)), abs=1e-3)
         assert d["t_max_s"] == pytest.approx(3 * math.pi / (2 * d["omega_rad_s"]) + d["hold_s"], abs=2e-3)
         assert 0.0 <= d["hold_s"] <= 5.0
         target = 2.5 if f.condition.get("direction") == "nose up" else 0.0
@@ -108,10 +108,10 @@ def test_capability_margins_limit_and_ultimate():
 
 
 def test_not_evaluated_without_va(tmp_path):
-    r = run_rule("25.331(c)(2)", tmp_path, [("  VA: 265 kn EAS", "  # VA removed")])
-    assert r.status == "not_evaluated" and "speeds.VA" in r.findings[0].reason
-    r1 = run_rule("25.331(c)(1)", tmp_path, [("  VA: 265 kn EAS", "  # VA removed")])
-    assert r1.status == "not_evaluated" and "speeds.VA" in r1.findings[0].reason
+    r = run_rule("25.331(c)(2)", tmp_path, [("  VA: 266 kn EAS", "  # VA removed")])
+    assert r.status == "not_evaluated" and "speeds.VA" in own(r)[0].reason
+    r1 = run_rule("25.331(c)(1)", tmp_path, [("  VA: 266 kn EAS", "  # VA removed")])
+    assert r1.status == "not_evaluated" and "speeds.VA" in own(r1)[0].reason
 
 
 def test_maximum_displacement_at_va(tmp_path):
@@ -119,14 +119,19 @@ def test_maximum_displacement_at_va(tmp_path):
     peaks; the tail load is a download. Without the structure section every condition is not evaluated
     with the reason and still reports its loads."""
     r = run_rule("25.331(c)(1)", tmp_path, TWO_ALTITUDES + [NO_STRUCTURE])
-    assert r.findings and all(f.status == "not_evaluated" and f.reason == NO_CAPABILITY for f in r.findings)
+    assert own(r) and all(f.status == "not_evaluated" and f.reason == NO_CAPABILITY for f in own(r))
     for f in structural(r):
-        assert f.details["elevator_step_deg"] < 0
+        # to the −30° stop (travel, aircraft/lta.yaml [given]) from a trim within a few degrees of neutral: beyond
+        # the −21.8° design limit that bounds trims only; without control_forces no pilot-effort limit applies
+        d = f.details
+        assert d["elevator_stop_deg"] == -30.0 and "stop (travel)" in d["pilot_effort"]
+        assert d["elevator_trim_deg"] + d["elevator_step_deg"] == pytest.approx(-30.0, abs=2e-3)
+        assert -21.8 <= d["elevator_trim_deg"] <= 16.8  # the trim keeps the design limits
         assert f.details["root shear max/min (kN)"][1] < 0
         if f.condition.altitude == 0.0:
-            assert f.condition.speed / KN == pytest.approx(265.0)
+            assert f.condition.speed / KN == pytest.approx(266.0)
         else:  # VA need not exceed VC, Mach-limited (MC 0.87) at 43,000 ft
-            assert f.condition.speed / KN < 265.0
+            assert f.condition.speed / KN < 266.0
 
 
 def _tail_caps(result):
@@ -199,21 +204,28 @@ def test_load_factor_check_on_the_limit_and_sign(baseline):
 
 
 def test_baseline_load_factors_reached(checked):
-    """On the baseline every manoeuvre stays within the §25.337 envelope to the search tolerance, except
-    conditions whose amplitude search did not converge (not evaluated, ≤ 5 %); nose-down conditions are
-    checked against n₋(V) (−1.0 to VC, 0 at VD); held conditions that do not reach 2.5 g say so."""
-    lf = [f for f in checked.findings if LOAD_FACTOR in f.check]
-    assert len(lf) == len(structural(checked))
-    for f in lf:
-        d = f.details
-        if f.status == "not_evaluated":
-            assert "not converged" in f.reason and d["peak_n_z"] > 2.52
-            continue
-        assert f.status == "complies"
-        if f.condition.get("direction") == "nose up":
-            assert d["limit_load_factor"] == 2.5 and f.margin == pytest.approx(2.52 - d["peak_n_z"], abs=1e-4)
-        else:
-            assert -1.0 <= d["limit_load_factor"] <= 0.0
-            assert f.margin == pytest.approx(d["peak_n_z"] - (d["limit_load_factor"] - 0.02), abs=1e-4)
-    assert sum(f.status == "not_evaluated" for f in lf) <= 0.05 * len(lf)
-    assert any("note" in f.details for f in lf)  # high-altitude conditions: n₊ not reached at full elevator
+    """§25.331(c)(2): the input is scaled so that n₊ = 2.5 (nose up) or 0 g (nose down) is "reached but not
+    exceeded". Read from the simulated n_z histories the rule keeps (not from its findings): within each
+    condition's loads window the extreme n_z is the finding's peak_n_z (rounding 1e-4), a scaled sinusoid reaches
+    the target within the 0.02 g search tolerance, no condition whose search converged goes beyond the §25.337
+    limit, and a held input that does not reach 2.5 g says so. (The rule's load-factor finding compares that same
+    peak with the target it searched for, so on its own it cannot fail on a converged search; this test checks the
+    search and the report against the simulation instead.)"""
+    run = checked.run
+    nz, valid = run["sim"]["n_z"], run["valid"]
+    lf = {f.condition: f for f in own(checked) if LOAD_FACTOR in f.check}
+    assert len(lf) == len(run["conditions"]) == len(structural(checked))
+    for i, c in enumerate(run["conditions"]):
+        f = lf[c]
+        window = nz[:, i][valid[:, i]]
+        up = c.get("direction") == "nose up"
+        peak = window.max() if up else window.min()
+        assert f.details["peak_n_z"] == pytest.approx(peak, abs=1e-4)
+        target = 2.5 if up else 0.0
+        if f.details["input"] == "sinusoid, amplitude scaled to the load factor":
+            assert peak == pytest.approx(target, abs=0.02)
+        if f.status != "not_evaluated":
+            assert (peak <= 2.5 + 0.02) if up else (peak >= f.details["limit_load_factor"] - 0.02)
+        if f.details["input"].startswith("held at full deflection for the longest hold"):
+            assert peak < 2.5 - 0.02 and "not reached" in f.details["note"]
+    assert sum(f.status == "not_evaluated" for f in lf.values()) <= 0.05 * len(lf)

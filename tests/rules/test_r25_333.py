@@ -1,4 +1,5 @@
-"""§25.333 V–n envelope corners against hand calculation (n W = ½ ρ₀ V² S C_N)."""
+"""§25.333 V–n envelope corners against hand calculation (n W = ½ ρ₀ V² S C_N), C_N = ±C_Lmax (factor 1: §25.335
+estimated stall speeds must be conservative), in the paragraph's units (lb, ft, slug, kn)."""
 
 import math
 
@@ -7,21 +8,33 @@ import pytest
 from certkit.units import KN
 
 from .helpers import run_rule
-from .test_r25_335 import CN_OVER_CL, KT_FT, RHO0_SLUG, S_FT2
+from .test_r25_335 import KT_FT, RHO0_SLUG, S_FT2
 
 
 def test_corners_hand_calculation():
+    """310,000 lb, sea level: +stall VS = √(2W/(ρ₀ S 1.40)) = 115.21 kn, A = VS·√2.5 = 182.17 kn; −stall with
+    CLmin −0.80: 152.41 kn, H = that × √1 = 152.41 kn; D = (VD 340, 2.5), E = (340, 0), F = (VC 272, −1)."""
     r = run_rule("25.333")
     f = next(f for f in r.findings if f.check.startswith("A") and f.condition.altitude == 0.0
              and abs(f.condition.mass / 0.45359237 - 310_000) < 1)
-    vs_pos = math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 1.4)) / KT_FT
-    vs_neg = math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * CN_OVER_CL * 0.8)) / KT_FT
+    assert math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * 1.4)) / KT_FT == pytest.approx(115.21, abs=0.01)
     corners = f.details["corners"]
-    assert corners["A"][0] / KN == pytest.approx(vs_pos * math.sqrt(2.5), rel=1e-4)
-    assert corners["H"][0] / KN == pytest.approx(vs_neg * 1.0, rel=1e-4)
+    assert corners["A"][0] / KN == pytest.approx(182.17, abs=0.01) and corners["A"][1] == 2.5
+    assert corners["H"][0] / KN == pytest.approx(152.41, abs=0.01) and corners["H"][1] == -1.0
     assert corners["D"] == [pytest.approx(340 * KN, rel=1e-4), 2.5]
     assert corners["E"][1] == 0.0 and corners["F"] == [pytest.approx(272 * KN, rel=1e-4), -1.0]
-    assert r.status == "complies"
+    assert r.status == "complies_partial"  # (a), strength on the envelope, is the loads rules'
+
+
+def test_corner_a_at_mrw_against_the_declared_va(tmp_path):
+    """657,000 lb: A = √(2W/(ρ₀ S 1.40))·√2.5 = 265.20 kn; VA 266 closes the envelope (+0.80 kn), 265 does not."""
+    r = run_rule("25.333")
+    f = next(f for f in r.findings if f.check.startswith("A") and f.condition.altitude == 0.0
+             and abs(f.condition.mass / 0.45359237 - 657_000) < 1)
+    assert f.details["corners"]["A"][0] / KN == pytest.approx(265.20, abs=0.01)
+    assert f.margin / KN == pytest.approx(0.80, abs=0.01)
+    low = run_rule("25.333", tmp_path, [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])
+    assert low.status == "fails"
 
 
 def test_evidence_is_an_inline_svg():
@@ -38,4 +51,4 @@ def test_negative_stall_beyond_vc_fails(tmp_path):
 
 def test_not_evaluated_without_negative_stall(tmp_path):
     r = run_rule("25.333", tmp_path, [("    CLmin: -0.8 ", "    # ")])
-    assert r.status == "not_evaluated" and "configurations.clean.CLmin" in r.findings[0].reason
+    assert r.status == "not_evaluated" and "configurations.clean.CLmin" in r.headline_reason

@@ -22,7 +22,7 @@ from certkit.units import FT, G0
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust, design_gust_velocity, flight_profile_alleviation
 
 from ..loads.test_gust_response import A, MASS, S, V, closed_form
-from .helpers import NO_STRUCTURE, hand_margin, run_rule
+from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
 BEND_LIMIT = 25e6  # N·m, a wing root bending allowable near the baseline's gust loads
 STRUCTURE = f"""structure:
@@ -125,7 +125,7 @@ def test_sign_up_gust_loads_the_wing_up(gust_run):
             k = int(np.argmin(np.abs(r.sim.t - H / r.sim["V"][0, 0])))
             wing = r.loads["wing"][:, 0]
             assert sign * (wing[k, 0, 0] - wing[0, 0, 0]) > 0 and sign * (wing[k, 1, 0] - wing[0, 1, 0]) > 0
-    wing = [f for f in result.findings if ", wing" in f.check and f.details]
+    wing = [f for f in own(result) if ", wing" in f.check and f.details]
     assert all(f.details["peak_n_z"] > 1.0 for f in wing if f.condition.get("gust") == "up")
     assert all(f.details["peak_n_z"] < 1.0 for f in wing if f.condition.get("gust") == "down")
 
@@ -136,10 +136,10 @@ def test_capability_comparison_and_reasons(gusts):
     largest |root bending| of the condition (details rounded to 0.1 kN·m). The tailplane has no declared
     capability: not evaluated with the reason. Every condition flies: the heavy corners at VB at 43,000 ft, short of
     thrust level, on the full-thrust path (a shallow descent), marked with its flight-path angle."""
-    assert all(f.details for f in gusts.findings)
-    descending = {f.condition for f in gusts.findings if f.condition.get("flight_path_deg") is not None}
+    assert all(f.details for f in own(gusts))
+    descending = {f.condition for f in own(gusts) if f.condition.get("flight_path_deg") is not None}
     assert descending and all(-3.0 < c.get("flight_path_deg") < 0.0 for c in descending)
-    for f in gusts.findings:
+    for f in own(gusts):
         if "horizontal tail" in f.check or "vertical tail" in f.check:  # the fin: lateral gusts
             assert f.status == "not_evaluated" and f.reason == "no structural capability declared"
         else:
@@ -154,7 +154,7 @@ def test_capability_comparison_and_reasons(gusts):
 
 def test_not_evaluated_without_vc(tmp_path):
     r = run_rule("25.341(a)", tmp_path, [("  VC: 272 kn EAS", "  # VC removed")])
-    assert r.status == "not_evaluated" and "speeds.VC" in r.findings[0].reason
+    assert r.status == "not_evaluated" and "speeds.VC" in own(r)[0].reason
 
 
 def test_baseline_margins_against_the_declared_capability(tmp_path):
@@ -172,8 +172,8 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
     ctx = Context(load_aircraft(BASELINE))
     caps = {"wing": declared_capabilities(ctx, "wing"), "horizontal tail": declared_capabilities(ctx, "horizontal_tail"),
             "vertical tail": declared_capabilities(ctx, "vertical_tail")}
-    evaluated = [f for f in result.findings if f.status != "not_evaluated" and f.margin is not None]
-    assert evaluated and all("no trim" in f.reason for f in result.findings if f.status == "not_evaluated")
+    evaluated = [f for f in own(result) if f.status != "not_evaluated" and f.margin is not None]
+    assert evaluated and all("no trim" in f.reason for f in own(result) if f.status == "not_evaluated")
     for f in evaluated:
         surface = ("wing" if f.check.endswith(", wing") or ", wing:" in f.check else
                    "vertical tail" if "vertical tail" in f.check else "horizontal tail")

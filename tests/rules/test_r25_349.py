@@ -19,7 +19,7 @@ from certkit.scheduler import evaluate_rule
 from certkit.units import FT, KN, LB
 from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
 
-from .helpers import NO_STRUCTURE, hand_margin, run_rule
+from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
 ROOT_BENDING = "root bending max/min (kN·m)"
 
@@ -48,12 +48,13 @@ def _surface(f):
 
 
 def _by_condition(result, surface="wing"):
-    return {f.condition: f for f in result.findings if _surface(f) == surface and "load_factor" in f.details}
+    return {f.condition: f for f in own(result) if _surface(f) == surface and "load_factor" in f.details}
 
 
 def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, shared):
     """§25.349(a): load factors 0 and 2/3 × the positive limit manoeuvring factor (2.5 in the baseline, §25.337(b):
-    2/3 × 2.5 = 1.6667); (a)(2) the aileron to the stop at VA (design limit −25°); (a)(3) at VC the deflection
+    2/3 × 2.5 = 1.6667); (a)(2) the aileron to the stop at VA (travel −30° in aircraft/lta.yaml, not the −25°
+    design limit, which bounds trims only); (a)(3) at VC the deflection
     giving a roll rate (the steady rolling velocity, where |p| first stops growing, found before the end of the
     4 s simulation) not less than that at VA (same loading, altitude, load factor), (a)(4) at VD not less
     than one third of it — and not more than 3 % above (the rule's tolerance; the details are rounded to 0.01°/s).
@@ -73,7 +74,7 @@ def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, s
         assert d["load_factor"] == pytest.approx(0.0 if cond.get("load_factor") == "zero" else 2 / 3 * n_lim, abs=1e-3)
         sp = cond.get("speed_point")
         if sp == "VA":
-            assert d["aileron_deg"] == pytest.approx(-25.0, abs=0.01) and d["aileron_fraction_of_stop"] == 1.0
+            assert d["aileron_deg"] == pytest.approx(-30.0, abs=0.01) and d["aileron_fraction_of_stop"] == 1.0
             continue
         ratio = 1.0 if sp == "VC" else 1 / 3
         assert "roll_rate_VA_deg_s" in d, cond
@@ -170,11 +171,11 @@ def test_not_evaluated_without_capability(tmp_path):
     43,000 ft, heavy)."""
     roll = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE])
     assert roll.status == "not_evaluated"
-    reasons = {f.reason for f in roll.findings}
+    reasons = {f.reason for f in own(roll)}
     assert "no structural capability declared" in reasons
     others = reasons - {"no structural capability declared"}
     assert all("cannot be set up" in r for r in others)  # none since the model reaches its declared CLmax
-    f = next(f for f in roll.findings if f.reason == "no structural capability declared" and _surface(f) == "wing")
+    f = next(f for f in own(roll) if f.reason == "no structural capability declared" and _surface(f) == "wing")
     assert ROOT_BENDING in f.details and "root bending down-going/up-going side max/min (kN·m)" in f.details
 
 
@@ -183,18 +184,18 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     and 1.4 × L (ultimate): the limit margin is 0.2 L but the ultimate margin 1.4 L − 1.5 L = −0.1 L (§25.303 factor
     1.5), so the critical wing finding fails on ultimate bending at the root with −0.1 L (L from the details in
     kN·m to 0.1: within 1.5 × 50 N·m); the tail findings stay not evaluated (no tail capability)."""
-    L = 1e3 * max(max(abs(v) for v in f.details[ROOT_BENDING]) for f in roll.findings
+    L = 1e3 * max(max(abs(v) for v in f.details[ROOT_BENDING]) for f in own(roll)
                   if _surface(f) == "wing" and ROOT_BENDING in f.details)
     structure = ("structure:\n  wing:\n"
                  f"    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: \"test\"}}\n"
                  "sources:\n")
     result = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
-    wing = [f for f in result.findings if ": wing" in f.check and f.margin is not None]
+    wing = [f for f in own(result) if ": wing" in f.check and f.margin is not None]
     assert len(wing) == 96
     worst = min(wing, key=lambda f: f.margin)
     assert worst.status == "fails" and "ultimate bending at root" in worst.check
     assert worst.margin == pytest.approx(-0.1 * L, abs=1.5 * 50.0 + 1.0)
-    assert all(f.status == "not_evaluated" for f in result.findings if ": wing" not in f.check)
+    assert all(f.status == "not_evaluated" for f in own(result) if ": wing" not in f.check)
     assert result.status == "fails"
 
 
@@ -205,8 +206,8 @@ def test_baseline_margins_against_the_declared_capability(roll, shared):
     from certkit.models.loads.capability import declared_capabilities
 
     caps = {s: declared_capabilities(shared, s.replace(" ", "_")) for s in ("wing", "horizontal tail", "vertical tail")}
-    evaluated = [f for f in roll.findings if f.margin is not None]
-    assert evaluated and all("cannot be set up" in f.reason for f in roll.findings if f.status == "not_evaluated")
+    evaluated = [f for f in own(roll) if f.margin is not None]
+    assert evaluated and all("cannot be set up" in f.reason for f in own(roll) if f.status == "not_evaluated")
     for f in evaluated:
         normalized, _, _ = hand_margin(f.details, caps[_surface(f)])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check

@@ -15,7 +15,7 @@ from certkit.units import G0
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 from certkit_rules.part25.subpart_c.r25_349 import UnsymmetricalGust
 
-from .helpers import NO_STRUCTURE, edited_baseline, hand_margin
+from .helpers import NO_STRUCTURE, edited_baseline, hand_margin, own
 
 FAST_CRITERIA = """criteria:
   "25.341(a)":
@@ -50,7 +50,7 @@ def test_gust_runs_are_shared_with_25_341a(shared):
     ctx, sym, findings, _, _ = shared
     assert sum(1 for k in ctx._memo if isinstance(k, tuple) and k[0] == "discrete_gust_runs") == 1
     assert UnsymmetricalGust.run_with == DiscreteGust.run_with != ""
-    by_cond = {f.condition: f for f in sym.findings if f.check.endswith(", wing") or ", wing:" in f.check}
+    by_cond = {f.condition: f for f in own(sym) if f.check.endswith(", wing") or ", wing:" in f.check}
     checked = 0
     for f in _evaluated(findings):
         a = by_cond[f.condition].details["root bending max/min (kN·m)"]
@@ -132,7 +132,7 @@ def test_bad_airload_basis_is_a_user_error(shared):
 def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(UnsymmetricalGust, ctx)
-    evaluated = _evaluated(result.findings)
+    evaluated = _evaluated(own(result))
     assert evaluated and all(f.status == "not_evaluated" and f.reason == "no structural capability declared"
                              for f in evaluated)
     assert all("root bending max/min (kN·m)" in f.details for f in evaluated)  # the loads are still reported
@@ -146,7 +146,7 @@ def test_a_weak_wing_fails(tmp_path):
                    ("positive: 46624 kN*m}", "positive: 20000 kN*m}")]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, weak)))
     result = evaluate_rule(UnsymmetricalGust, ctx)
-    failing = [f for f in result.findings if f.status == "fails"]
+    failing = [f for f in own(result) if f.status == "fails"]
     assert result.status == "fails" and failing
     crit = result.critical
     assert "side of body" in crit.check and crit.value > crit.limit

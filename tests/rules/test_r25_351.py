@@ -14,7 +14,7 @@ from certkit.scheduler import evaluate_rule
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_351 import YawManeuver
 
-from .helpers import NO_STRUCTURE, hand_margin, run_rule
+from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
 ROOT_SHEAR = "root shear max/min (kN)"
 
@@ -75,21 +75,23 @@ def test_steady_sideslip_by_hand(baseline):
 
 
 def test_overswing_exceeds_steady_and_load_signs(yaw):
-    """Rudder to its negative design limit (−23.2°, nose-right yaw: C_nδr < 0): the sideslip is negative
+    """Rudder to its negative stop (§25.351(a)(1) control system stops: the travel −27.3° of aircraft/lta.yaml, not
+    the −23.2° design limit; nose-right yaw: C_nδr < 0; no control-force model, so no pedal-force limit): the
+    sideslip is negative
     (β = −C_nδr δr / C_nβ has the sign of δr), the overswing |β| exceeds the settled |β| at every condition,
     and the fin root shear reverses between (a) (rudder force alone, C_Yδr δr < 0) and (b) (sideslip force
     C_Yβ β > 0 dominates)."""
     by = {}
-    for f in yaw.findings:
+    for f in own(yaw):
         by.setdefault(f.condition, {})[f.check[:3]] = f
     assert len(by) == 64  # 8 CG corners × 2 altitudes × 4 speeds
     for cond, ph in by.items():
         d = ph["(b)"].details
-        assert d["rudder_deg"] == pytest.approx(-23.2, abs=0.01)
+        assert d["rudder_deg"] == pytest.approx(-27.3, abs=0.01) and "rudder stop (travel" in d["pilot_effort"]
         assert d["overswing_beta_deg"] < 0 and d["steady_beta_deg"] < 0
         assert abs(d["overswing_beta_deg"]) > abs(d["steady_beta_deg"]), cond
         assert ph["(a)"].details[ROOT_SHEAR][0] < 0 < ph["(b)"].details[ROOT_SHEAR][0], cond
-    assert all(f.status in ("complies", "fails") for f in yaw.findings)
+    assert all(f.status in ("complies", "fails") for f in own(yaw))
 
 
 def test_baseline_margins_against_the_declared_capability(yaw, baseline):
@@ -101,7 +103,7 @@ def test_baseline_margins_against_the_declared_capability(yaw, baseline):
 
     caps = declared_capabilities(Context(baseline), "vertical_tail")
     assert {c.station for c in caps} == {"root", "50% span"}
-    for f in yaw.findings:
+    for f in own(yaw):
         normalized, margin, check = hand_margin(f.details, caps)
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
         assert "ultimate" in f.check
@@ -114,33 +116,33 @@ def test_not_evaluated_without_structure(tmp_path):
     reason, and still reports its fin loads (sea level and ceiling only, to stay fast)."""
     result = run_rule("25.351", tmp_path, edits=[NO_STRUCTURE, ("altitude_points: 5", "altitude_points: 2")])
     assert result.status == "not_evaluated"
-    assert {f.reason for f in result.findings} == {"no structural capability declared"}
-    assert all(ROOT_SHEAR in f.details for f in result.findings)
+    assert {f.reason for f in own(result)} == {"no structural capability declared"}
+    assert all(ROOT_SHEAR in f.details for f in own(result))
 
 
 def test_not_evaluated_without_vd(tmp_path):
     """VD missing from the aircraft file: the rule is not evaluated before computing, naming speeds.VD."""
     result = run_rule("25.351", tmp_path, edits=[("  VD: 340 kn EAS", "  # VD removed")])
     assert result.status == "not_evaluated"
-    assert all(f.status == "not_evaluated" for f in result.findings)
-    assert any("speeds.VD" in (f.reason or "") for f in result.findings)
+    assert all(f.status == "not_evaluated" for f in own(result))
+    assert any("speeds.VD" in (f.reason or "") for f in own(result))
 
 
 def test_capability_on_the_limit(yaw, tmp_path):
     """A fin root-shear capability declared equal to the largest |root shear| of the baseline run (limit) and
     1.5 × it (ultimate, §25.303): the critical margin is zero within rounding (the loads are reported in kN
     to 0.1, so the declared value is within 50 N); every other condition has a positive margin."""
-    peak_kn = max(max(abs(v) for v in f.details[ROOT_SHEAR]) for f in yaw.findings)
+    peak_kn = max(max(abs(v) for v in f.details[ROOT_SHEAR]) for f in own(yaw))
     limit = peak_kn * 1e3
     structure = ("structure:\n  vertical_tail:\n"
                  f"    - {{station: root, quantity: shear, limit: {limit}, ultimate: {1.5 * limit}, source: \"test\"}}\n"
                  "sources:\n")
     result = run_rule("25.351", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
-    margins = [f.margin for f in result.findings if f.margin is not None]
-    assert len(margins) == len(yaw.findings)
+    margins = [f.margin for f in own(result) if f.margin is not None]
+    assert len(margins) == len(own(yaw))
     assert min(margins) == pytest.approx(0.0, abs=0.05e3 * 1.5 + 1.0)
     assert all(m >= -0.05e3 * 1.5 - 1.0 for m in margins)
-    worst = min(result.findings, key=lambda f: f.margin)
+    worst = min(own(result), key=lambda f: f.margin)
     assert "root" in worst.check and "shear" in worst.check
 
 
@@ -153,7 +155,7 @@ def test_fin_root_torsion_arm_lies_within_the_root_chord(yaw, baseline):
     fin = baseline.model.geometry.vertical_tail
     root_chord = float(planform.root_chord(2 * fin.area, 2 * fin.aspect_ratio, fin.taper))
     checked = 0
-    for f in yaw.findings:
+    for f in own(yaw):
         shear = f.details.get("root shear max/min (kN)")
         torsion = f.details.get("root torsion max/min (kN·m)")
         if shear and torsion and abs(shear[0]) > 50.0:

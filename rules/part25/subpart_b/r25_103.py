@@ -16,7 +16,8 @@ from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.results import NOT_EVALUATED, Finding
+from certkit.units import KN
 
 AMDT = "25-121"
 
@@ -78,8 +79,8 @@ class StallSpeed(Rule):
     margin = """
         Declared VSR − 1-g stall speed (m/s CAS at sea level) for each configuration at the weights where
         it is used (takeoff and clean at MTOW, clean also at every envelope weight, approach and landing at
-        MLW); ≥ 0 complies. Without a declared VSR the computed 1-g stall speed is VSR (margin 0) and is
-        the reference the other Subpart B rules use: estimated values must be conservative.
+        MLW); ≥ 0 complies. Without a declared VSR there is nothing to compare: the finding is not_evaluated
+        and carries the computed 1-g stall speed, which the other Subpart B rules then use as VSR.
     """
     references = ("25.107", "25.121", "25.125", "25.143", "25.145")
     requires = ("mass.MTOW",)
@@ -94,6 +95,14 @@ class StallSpeed(Rule):
         the nZW correction and the stick-pusher margin (d) are not simulated.
     """
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.103(c)", "the 1-g stall manoeuvre (trim at 1.13–1.3 VSR, deceleration ≤ 1 kt/s, nZW-corrected CL first "
+                      "maximum) is not simulated: the declared trimmed CLmax stands for it"),
+        ("25.103(d)", "stick-pusher margin (VSR ≥ the pusher speed + 2 kt or 2 %) not evaluated: no pusher speed in "
+                      "the aircraft file"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         for cond in conditions:
@@ -107,10 +116,11 @@ class StallSpeed(Rule):
                 v_1g = computed_stall_speed(ctx, cfg, mass) * math.sqrt(crit.load_factor)
                 here = cond.with_(loading=name, mass=mass, x_cg=x_cg, altitude=0.0)
                 if declared is None:
-                    out.append(Finding.compare(
-                        here.with_(speed=v_1g, speed_kind="CAS", speed_name="VSR"), check, v_1g, v_1g, at_least=True,
-                        unit="m/s", reason=f"speeds.VSR.{cfg} not declared: the 1-g stall speed from CLmax is VSR "
-                                           "(estimated values must be conservative)", CLmax=ctx.clmax(cfg)))
+                    out.append(Finding(
+                        here.with_(speed=v_1g, speed_kind="CAS", speed_name="VSR"), check, NOT_EVALUATED, value=v_1g,
+                        unit="m/s", reason=f"no declared speeds.VSR.{cfg} to compare with the 1-g stall speed "
+                                           f"({v_1g / KN:.1f} kn CAS from CLmax {ctx.clmax(cfg):g}); the other rules "
+                                           "use that computed speed as VSR", details={"CLmax": ctx.clmax(cfg)}))
                     continue
                 vsr, source = reference_stall_speed(ctx, cfg, mass)
                 out.append(Finding.compare(here.with_(speed=vsr, speed_kind="CAS", speed_name="VSR"), check, vsr, v_1g,

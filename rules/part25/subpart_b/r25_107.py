@@ -76,6 +76,18 @@ class TakeoffSpeeds(Rule):
         (e)(1)(iv) is not separated from the all-engines one (one VLOF is declared).
     """
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.107(a)(2)", "V1 ≥ VEF + the speed gained during the recognition interval needs the engine-out "
+                         "acceleration: only V1 ≥ VEF is checked"),
+        ("25.107(c)(2)", "V2 ≥ VR + the speed increment to 35 ft needs the §25.111(c)(2) takeoff path: not evaluated"),
+        ("25.107(e)(1)(iii)", "VR allowing V2 to be reached by 35 ft (§25.111(c)(2)) not evaluated"),
+        ("25.107(e)(1)(iv)", "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
+                             "(one VLOF is declared)"),
+        ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
+        ("25.107(g)", "VFTO ≥ 1.18 VSR and the §25.143(h) manoeuvring capability at VFTO not checked here"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         for cond in conditions:

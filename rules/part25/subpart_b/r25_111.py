@@ -215,6 +215,12 @@ class TakeoffPath(Rule):
                                 configurations=("takeoff",),
                                 note="Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
 
+    unevaluated = (
+        ("25.111(a)", "the takeoff path beyond 35 ft (to 1,500 ft or the en-route transition) is not simulated"),
+        ("25.111(c)(3)", "the climb gradient from 400 ft (not less than 1.2 % for a twin) is not evaluated"),
+        ("25.111(c)(4)", "no change of configuration before 400 ft other than gear retraction: not evaluated"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         from certkit.models.flight import control_limits
 

@@ -240,6 +240,11 @@ class ClimbOEITakeoffGearUp(Rule):
         configuration's (see gear_up_credit); the gear's small pitching moment is kept. Icing (b)(2)(ii) is not
         evaluated."""
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.121(b)(2)(ii)", "icing conditions (takeoff ice accretion) not evaluated"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
         cfg = crit.configuration
@@ -277,6 +282,11 @@ class ClimbOEIFinalTakeoff(Rule):
 
     limitations = _COMMON_LIMITS
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.121(c)(2)(ii)", "icing conditions (final takeoff ice accretion) not evaluated"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
         conds = refined(conditions, declared_cas(ctx, "VFTO"), "VFTO", altitude=1500 * FT)
@@ -313,6 +323,11 @@ class ClimbOEIApproach(Rule):
     conditions = ConditionSpace(loading=DesignWeight("MLW", CGS), configurations=("approach",),
                                 note="sea level, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach configuration")
     limitations = _COMMON_LIMITS + " Evaluated at 1.4 VSR, the largest speed allowed (no procedure speed is declared)."
+
+    implementation = "partial"
+    unevaluated = (
+        ("25.121(d)(2)(ii)", "icing conditions (approach ice accretion) not evaluated"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")

@@ -94,6 +94,11 @@ class LandingTouchdown(Rule):
     conditions = ConditionSpace(loading=DesignWeight("MLW", ("forward", "reference", "aft")), configurations=("landing",),
                                 note="ISA, sea-level runway, −3° approach at VREF from 150 ft, flare to touchdown.")
 
+    unevaluated = (
+        ("25.125(a)", "the landing distance from 50 ft to a full stop (non-icing and icing) is not computed"),
+        ("25.125(b)", "the VREF minima (1.23 VSR0, VMCL, the §25.143(h) manoeuvring speed) are not checked"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
         trims, run = _landing(ctx, conditions, crit)

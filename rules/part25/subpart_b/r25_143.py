@@ -170,6 +170,11 @@ class ManeuveringCapability(Rule):
         (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
     """
 
+    unevaluated = (
+        ("25.143(h)", "freedom from stall warning in the turns is not evaluated (no stall-warning lift coefficient "
+                      "declared); only the trim of each turn within the control design limits is"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
         limits = control_limits(ac)

@@ -86,6 +86,10 @@ class LongitudinalControlConfigurationChanges(Rule):
         modelled). The stabiliser is fixed at its declared incidence. (b)(6) is not evaluated (text not retrieved).
     """
 
+    unevaluated = (
+        ("25.145(b)(6)", "not evaluated (text of (b)(6) not retrieved)"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
         elevator = control_force_model(ac, "elevator")

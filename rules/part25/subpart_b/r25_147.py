@@ -43,7 +43,6 @@ _MCT = Criterion(0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,5
                  "maximum continuous over takeoff thrust of the engine model (as in 25.121(c))")
 _NO_FORCE = ("no control-force model in the aircraft file (control_forces.rudder: hinge moments and gearing, or "
              "artificial feel): the rudder pedal force is not computed")
-_DYNAMIC = "a reasonably sudden heading change is a dynamic manoeuvre; certkit's steady trims do not fly it"
 
 
 def _speed_criterion(paragraph: str) -> Criterion:
@@ -100,7 +99,6 @@ class DirectionalControlOEI(Rule):
     requires = ("mass.MLW", "configurations.approach")
     criteria = {
         "speed_over_vsr": _speed_criterion("a"),
-        "heading_change_deg": Criterion(15.0, "deg", SOURCE + " (a)", "heading change toward the inoperative engine"),
         "pedal_force_lbf": Criterion(150.0, "lbf", SOURCE + " (a)", "rudder pedal force at which the heading change may stop"),
         "mct_over_takeoff_thrust": _MCT,
     }
@@ -113,6 +111,11 @@ class DirectionalControlOEI(Rule):
         heading change, and needs control_forces.rudder. The critical engine windmills (flight model drag); the stabiliser is
         fixed at its declared incidence. Evaluated at sea level, standard day.
     """
+
+    unevaluated = (
+        ("25.147(a)", "the reasonably sudden 15° heading change toward the inoperative engine (dynamic) is not "
+                      "simulated; only the steady wings-level engine-out trim is checked"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         dead = critical_engine(ctx)
@@ -155,8 +158,6 @@ class DirectionalControlOEI(Rule):
                 for f in control_findings(here, "(a) wings level,", r, limits):
                     f.details.update(details)
                     out.append(f)
-            out.append(Finding.not_evaluated(here, f"(a) {crit.heading_change_deg:g}° heading change toward the "
-                                             "inoperative engine", _DYNAMIC))
             out.append(pedal_force_finding(ctx, rudder, here, r, crit.pedal_force_lbf))
         return out
 
@@ -200,6 +201,13 @@ class LateralControlOEI(Rule):
         is reported not evaluated. Sea level, standard day.
     """
 
+    unevaluated = (
+        ("25.147(c)", "the roll into the 20° banked turns and the gear-extended case are not flown (steady "
+                      "coordinated turns, gear up)"),
+        ("25.147(d)", "roll capability with one engine inoperative (a roll-response handling quality) is not "
+                      "evaluated"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
         dead = critical_engine(ctx)
@@ -208,9 +216,6 @@ class LateralControlOEI(Rule):
         limits = control_limits(ac)
         out = []
         for c in conditions:
-            out.append(Finding.not_evaluated(c, "(d) roll capability, one engine inoperative",
-                                             "a roll-response handling quality; no steady-trim measure (text of (d) "
-                                             "not in docs/regulation-notes.md)"))
             if _engines(ctx) < 4:
                 out.append(Finding.not_applicable(c, "(e) 20° turns, two engines inoperative",
                                                   f"(e) applies to airplanes with four or more engines ({_engines(ctx)} here)"))

@@ -260,6 +260,13 @@ class MinimumControlSpeed(Rule):
         step, conservative).
     """
 
+    unevaluated = (
+        ("25.149(d)", "the dynamic recovery after the sudden engine failure (heading change ≤ 20°) is not simulated:"
+                      " VMCA is the static one"),
+        ("25.149(e)", "VMCG (ground) is not determined"),
+        ("25.149(f)", "VMCL (landing, all engines) is not determined"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         rudder = control_force_model(ctx.aircraft, "rudder")
         out = []

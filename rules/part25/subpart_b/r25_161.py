@@ -78,6 +78,14 @@ class Trim(Rule):
         whole trim (conservative for an airplane with a trimmable stabiliser).
     """
 
+    unevaluated = (
+        ("25.161(b)", "lateral and directional trim with a lateral CG offset is not evaluated (the CG is on the "
+                      "plane of symmetry)"),
+        ("25.161(c)(3)", "the gear-down level-flight range to VLE is not evaluated (no gear-down clean configuration"
+                         " declared)"),
+        ("25.161(d)", "the 5 lbf control force of (d) needs a control-force model: not evaluated"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         limits = control_limits(ctx.aircraft)

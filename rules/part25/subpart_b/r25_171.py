@@ -237,6 +237,11 @@ class SpeedStability(Rule):
         (§25.173(b)) is not simulated.
     """
 
+    implementation = "partial"
+    unevaluated = (
+        ('25.173(a)', "the stick-force reading of (a) (pull below the trim speed, push above) is read elevator-fixed; the force itself is §25.173(c)'s"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a) speed stability")
         k = crit.speed_step
@@ -339,6 +344,11 @@ class StickForceGradient(Rule):
         fixed at its declared incidence.
     """
 
+    unevaluated = (
+        ("25.173(c)", "the average gradient is taken over ±5 % of the trim speed, not the whole §25.175 speed range,"
+                      " at level-flight thrust, not the §25.175 climb or idle power"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         check = f"(c) stick-force gradient ≥ {crit.force_gradient_min * 6:g} lbf per 6 kt"
         if ctx.aircraft.control_forces is None or ctx.aircraft.control_forces.elevator is None:
@@ -385,6 +395,11 @@ class FreeReturn(Rule):
         clean configuration is read as the cruise condition (7.5 %), the flap configurations as climb, approach and
         landing (10 %); friction as declared (control_forces.elevator.friction).
     """
+
+    unevaluated = (
+        ("25.173(b)", "the slow release of the control force is not simulated: the quasi-static return from the "
+                      "local force gradient stands for it"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         from certkit.units import LBF

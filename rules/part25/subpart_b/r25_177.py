@@ -95,6 +95,13 @@ class StaticLateralDirectionalStability(Rule):
         power condition; without a declared VFC/MFC the top speed is the least §25.253(b) allows.
     """
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.177(a)", "rudder-free directional stability is read with the rudder fixed; not every symmetric power "
+                      "condition is flown"),
+        ("25.177(b)", "aileron-free lateral stability is read with the ailerons fixed"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a)-(c)")
         limits = control_limits(ctx.aircraft)

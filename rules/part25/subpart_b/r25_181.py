@@ -87,6 +87,12 @@ class DynamicStability(Rule):
         controls is not assessed. The MIL-F-8785C numbers are unverified secondary values (handling_levels.py).
     """
 
+    unevaluated = (
+        ("25.181(a)", "the short period with the primary controls free is not evaluated (controls fixed only)"),
+        ("25.181(b)", "the Dutch roll with controls free, and its controllability by normal use of the controls, are"
+                      " not evaluated (controls fixed only)"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a), (b) modes")
         for config, idx in by_configuration(refined).items():

@@ -38,11 +38,18 @@ NO_CAPABILITY = "no structural capability declared"
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
 PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
-                     "(300 lbf elevator wheel) cannot reduce the deflection; the design control limit bounds it")
+                     "(300 lbf elevator wheel) cannot reduce the deflection; the control-system stop (travel) bounds it")
 PILOT_EFFORT = {"pilot_effort_lbf": Criterion(
     300.0, "lbf", "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
     "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
     "data (§25.397(b))", "limit pilot force on the pitch control (used with control_forces.elevator)")}
+
+
+def control_stops(ctx, control: str) -> tuple[float, float]:
+    """(min, max) rad of ``control``'s control-system stops (``travel`` in the aircraft file). The loads manoeuvres
+    of §§25.331(c), 25.349 and 25.351 deflect to them unless a §25.397 pilot-force limit is reached first; trim and
+    controllability margins keep the narrower ``design_limits``."""
+    return control_limits(ctx.aircraft, design=False)[control]
 
 
 def force_limited_deflection(ctx, control: str, conditions, trim, stop, force_limit_lbf):
@@ -73,7 +80,7 @@ def _effort_note(limited, i) -> str:
     if limited is None:
         return PILOT_EFFORT_NOTE
     return ("deflection limited by the pilot effort (control_forces.elevator)" if limited[i]
-            else "design control limit reached below the pilot-effort force")
+            else "control-system stop (travel) reached below the pilot-effort force")
 
 
 # --------------------------------------------------------------------------- shared loads helpers
@@ -211,9 +218,14 @@ class CheckedPitchManeuver(SimulationRule):
                                 extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
                                 note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).")
     limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
-                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input); " +
-                   "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
+                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
+                   "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
+
+    unevaluated = (
+        ("25.331(c)(2)", "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
+                         "tail loads only)"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return checked_maneuver(ctx, conditions, crit)
@@ -250,7 +262,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     v_eas = np.array([c.speed for c in sim_conds])
     omega_floor = crit.omega_floor_factor * np.pi * v_eas / va_decl
     omega = np.fmax(np.nan_to_num(omega_sp, nan=0.0), omega_floor)
-    lim = control_limits(ctx.aircraft)["elevator"]
+    lim = control_stops(ctx, "elevator")
     de_trim = u0[:, model.control_names.index("elevator")]
     stop = np.where(nose_up, lim[0], lim[1])
     reach_to, effort_limited = force_limited_deflection(ctx, "elevator", sim_conds, de_trim, stop, crit.pilot_effort_lbf)
@@ -397,9 +409,14 @@ class MaximumPitchControlDisplacement(Rule):
     conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
                                 note="At VA (EAS), capped at the Mach-limited VC at altitude.")
     limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
-                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input); " +
-                   "; the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
+                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
+                   "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
     implementation = "partial"
+
+    unevaluated = (
+        ("25.331(c)(1)", "fuselage and vertical-tail loads of the manoeuvre are not reported (wing and horizontal-tail "
+                         "loads only)"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         n_lim = ctx.aircraft.envelope.limit_load_factors.positive
@@ -409,8 +426,8 @@ class MaximumPitchControlDisplacement(Rule):
         findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
         if not batch.n:
             return findings
-        lim = control_limits(ctx.aircraft)["elevator"]
-        # to the nose-up (trailing edge up) design limit, or as far as the pilot effort moves it
+        lim = control_stops(ctx, "elevator")
+        # to the nose-up (trailing edge up) stop, or as far as the pilot effort moves it
         target, effort_limited = force_limited_deflection(ctx, "elevator", batch.conditions, batch.control("elevator"),
                                                           lim[0], crit.pilot_effort_lbf)
         step = target - batch.control("elevator")
@@ -436,7 +453,9 @@ class MaximumPitchControlDisplacement(Rule):
                 c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
                 considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
-                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i)))
+                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i),
+                elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
+                elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3)))
             findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
                                          bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
         self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()

@@ -101,6 +101,10 @@ class BalancedManeuver(SimulationRule):
                    "model) and VF is the declared VFE; wing fuel inertia relief is not modelled (conservative for "
                    "wing bending).")
     implementation = "partial"
+    unevaluated = (
+        ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
+        ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return balanced_runs(ctx, conditions, crit)

@@ -15,9 +15,9 @@ import numpy as np
 
 from certkit.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Rule, rule
 from certkit.results import Evidence, Finding
-from certkit_rules.part25.subpart_c.r25_335 import CN_SOURCE, declared_eas
+from certkit_rules.part25.subpart_c.r25_335 import CN_OVER_CL, declared_eas
 
 
 @dataclass(frozen=True)
@@ -78,10 +78,16 @@ class FlightManeuveringEnvelope(Rule):
     references = ("25.335(c)", "25.337", "25.331", "25.1501")
     requires = ("speeds.VA", "speeds.VC", "speeds.VD", "configurations.clean.CLmax", "configurations.clean.CLmin",
                 "envelope.limit_load_factors")
-    criteria = {"cn_over_cl": Criterion(1.1, "", CN_SOURCE, "C_Nmax / C_Lmax for the stall lines (estimation method)")}
+    criteria = dict(CN_OVER_CL)
     conditions = ConditionSpace(loading=EnvelopeWeights(), altitudes=EnvelopeAltitudes())
     limitations = ("Strength on the envelope is checked by the loads rules; this rule defines the envelope and "
                    "checks that the declared speeds close it.")
+
+    implementation = "partial"
+    unevaluated = (
+        ("25.333(a)", "strength at each point of the envelope is not checked by this rule (the loads rules check "
+                      "their own points); the flaps-extended envelope of §25.345 is not drawn"),
+    )
 
     def evaluate(self, ctx, conditions, crit):
         out = []

@@ -19,7 +19,8 @@ from certkit_rules.part25.gust import SOURCE as GUST_SOURCE
 from certkit_rules.part25.gust import reference_gust_velocity
 
 AMDT = "25-91"
-CN_SOURCE = "Roskam, Airplane Design Part V (1985), §4.2: C_Nmax ≈ 1.1 C_Lmax for the V-n diagram"
+CN_SOURCE = ("14 CFR 25.335(c)/(d) and 25.333: estimated VS0/VS1 must be conservative, so C_Nmax = C_Lmax (factor 1) "
+             "unless the aircraft file's criteria override declares a larger factor with its justification")
 
 
 def cn_max_clean(ctx, factor: float) -> float:
@@ -49,7 +50,8 @@ def gust_load_factor(ctx, mass, h, vc_eas, uref, kg_a, kg_b):
     return 1.0 + kg * RHO0 * uref * vc_eas * a / (2 * w), dict(K_g=float(kg), mu=float(mu), lift_slope=float(a))
 
 
-_CN = {"cn_over_cl": Criterion(1.1, "", CN_SOURCE, "C_Nmax / C_Lmax used for VS1 (estimation method)")}
+CN_OVER_CL = {"cn_over_cl": Criterion(1.0, "", CN_SOURCE, "C_Nmax / C_Lmax of the stall lines and VS1 (1: the declared "
+                                                   "1-g CLmax; a larger value needs a justification)")}
 
 
 @rule
@@ -111,6 +113,12 @@ class DesignDiveSpeed(Rule):
     conditions = ConditionSpace(altitudes=EnvelopeAltitudes())
     limitations = "The upset-manoeuvre margin of (b)(1) is not simulated; the Mach-margin route uses (b)(2)."
 
+    implementation = "partial"
+    unevaluated = (
+        ("25.335(b)(1)", "the upset-manoeuvre speed increase (20° nose-down upset from VC, 1.5 g recovery) is not "
+                         "simulated: only the 0.8 ratio and the (b)(2) Mach margin are checked"),
+    )
+
     def evaluate(self, ctx, conditions, crit):
         out = []
         for cond in conditions:
@@ -145,7 +153,7 @@ class DesignManeuveringSpeed(Rule):
     margin = "VA − min(VS1·√n, VC), m/s EAS, at every envelope weight and altitude."
     references = ("25.333", "25.337", "25.103")
     requires = ("speeds.VA", "speeds.VC", "configurations.clean.CLmax", "envelope.limit_load_factors")
-    criteria = dict(_CN)
+    criteria = dict(CN_OVER_CL)
     conditions = ConditionSpace(loading=EnvelopeWeights(), altitudes=EnvelopeAltitudes())
 
     def evaluate(self, ctx, conditions, crit):
@@ -176,7 +184,7 @@ class DesignSpeedMaximumGust(Rule):
     references = ("25.341", "25.335(a)")
     requires = ("speeds.VB", "speeds.VC", "configurations.clean.CLmax", "geometry.wing")
     criteria = {
-        **_CN,
+        **CN_OVER_CL,
         "kg_a": Criterion(0.88, "", "14 CFR 25.335(d)(1)", "gust alleviation factor K_g = a μ/(b + μ): a"),
         "kg_b": Criterion(5.3, "", "14 CFR 25.335(d)(1)", "gust alleviation factor K_g = a μ/(b + μ): b"),
     }

@@ -115,6 +115,12 @@ class DiscreteGust(SimulationRule):
                    "unverified against the CFR (AC 25.341-1).")
     implementation = "partial"
 
+    unevaluated = (
+        ("25.341(a)", "the dynamic analysis is of the rigid airplane (no structural modes); the lateral gust acts on "
+                      "the fin alone (the fuselage's and wing's share is not modelled)"),
+        ("25.341(b)", "continuous turbulence not modelled (no rule evaluates it)"),
+    )
+
     def simulate(self, ctx, conditions, crit):
         return discrete_gusts(ctx, conditions, crit)
 

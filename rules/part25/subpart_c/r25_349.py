@@ -6,7 +6,7 @@ capability (§25.303, §25.305).
 
 Text: docs/regulation-notes.md §25.349 (P: a secondary copy of the CFR text, consistent word for word in (a) with
 EASA CS 25.349; amendment bracket not seen). Approximations: no control-force model, so the pilot-effort limit
-cannot reduce the deflection (the aileron's design limit bounds it); rigid wing (the torsional flexibility that
+cannot reduce the deflection (the aileron's stop, its travel, bounds it); rigid wing (the torsional flexibility that
 (a) asks to consider when finding the deflections is not modelled — no aileron effectiveness loss); spoilers not
 modelled; one roll direction (right wing down: the airplane is symmetric and both wing halves are computed, the
 left one as the right half of the mirror image); the pilot holds the pull (elevator) and the rudder at their
@@ -27,7 +27,6 @@ import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.errors import UserError
-from certkit.models.flight import control_limits
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
@@ -37,7 +36,7 @@ from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds
+from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, control_stops, entry_speeds
 from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
@@ -48,7 +47,7 @@ MIRRORED = ("wing", "horizontal_tail")
 PARAGRAPH = {"VA": "(a)(2) VA, sudden aileron to the stop", "VC": "(a)(3) VC, roll rate ≥ that at VA",
              "VD": "(a)(4) VD, roll rate ≥ 1/3 of that at VA"}
 EFFORT_NOTE = ("no control-force model is declared: pilot effort (§25.349(a), §25.397) cannot reduce the deflection; "
-               "the aileron design limit bounds it")
+               "the aileron stop (travel) bounds it")
 FLEX_NOTE = ("rigid wing: the torsional flexibility that §25.349(a) asks to consider in finding the aileron deflections "
              "(aileron effectiveness loss) is not modelled")
 NO_VA_NOTE = ("the VA roll rate of (a)(2) is not available for this loading, altitude and load factor (the VA condition "
@@ -103,10 +102,15 @@ class RollingConditions(SimulationRule):
                                 extra=(("speed_point", SPEEDS), ("load_factor", LOAD_FACTORS)),
                                 note="VA (≤ VC), VC and VD in EAS, Mach-limited at altitude; from a steady wings-level "
                                      "pull-up (2/3 n) or push-over (n = 0) set up on the trimmed flight path; aileron to "
-                                     "the larger design limit rolling right (the left wing is the mirror image).")
+                                     "the larger stop (travel) rolling right (the left wing is the mirror image).")
     limitations = (EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
                    "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b).")
     implementation = "partial"
+
+    unevaluated = (
+        ("25.349(a)", "the wing torsional flexibility that (a) says must be considered in finding the aileron "
+                      "deflections is not modelled (rigid wing); spoilers are not modelled"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return rolling_maneuvers(ctx, conditions, crit)
@@ -139,9 +143,9 @@ def stall_load_factor(model, x) -> np.ndarray | None:
 
 
 def full_aileron(ctx) -> float:
-    """The aileron deflection (rad) to the stop rolling right: minus the larger design-limit magnitude (the
-    airplane is symmetric, so rolling left to the positive limit is the mirror image)."""
-    lo, hi = control_limits(ctx.aircraft)["aileron"]
+    """The aileron deflection (rad) to the stop rolling right: minus the larger magnitude of the control-system stops
+    (travel; the airplane is symmetric, so rolling left to the positive stop is the mirror image)."""
+    lo, hi = control_stops(ctx, "aileron")
     return -max(abs(lo), abs(hi))
 
 
@@ -199,7 +203,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
     n_target = np.array([target_load_factor(ctx, c, crit) for c in sim_conds])
     st = symmetric_manoeuvre_state(model, batch.x[rows], batch.u[rows], n_target, batch.gamma[rows])
     je, ja = model.control_index("elevator"), model.control_index("aileron")
-    e_lo, e_hi = control_limits(ctx.aircraft)["elevator"]
+    e_lo, e_hi = control_stops(ctx, "elevator")
     ok = np.ones(len(rows), dtype=bool)
     n_stall = stall_load_factor(model, batch.x[rows])
     for i, c in enumerate(sim_conds):
@@ -220,7 +224,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
         elif not e_lo - 1e-9 <= st.u[i, je] <= e_hi + 1e-9:
             lim = e_lo if st.u[i, je] < e_lo else e_hi
             reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre needs {np.degrees(st.u[i, je]):.1f}° elevator, "
-                      f"design limit {np.degrees(lim):.1f}°")
+                      f"stop {np.degrees(lim):.1f}°")
         if reason:
             ok[i] = False
             findings += [Finding.not_evaluated(c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}", reason)
@@ -352,7 +356,11 @@ class UnsymmetricalGust(SimulationRule):
                    "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
                    "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
                    "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b)).")
-    implementation = "partial"  # the paragraph in full, on the §25.341(a) response, which is partial (rigid airplane)
+    implementation = "partial"
+
+    unevaluated = (
+        ('25.349(b)', "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal tail's unsymmetrical loads (§25.427(b)) are not in it"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_gusts(ctx, conditions, crit)

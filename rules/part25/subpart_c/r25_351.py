@@ -3,9 +3,9 @@ steady sideslip, then returned to neutral; vertical-tail loads from the strip lo
 critical instant, compared with the declared structural capability (§25.303, §25.305).
 
 Text verified (docs/regulation-notes.md, Amdt. 25-91). Approximations: with ``control_forces.rudder`` declared the
-rudder goes to the smaller of its design limit ((a)(1), control system stops) and the deflection the 300/200 lbf
+rudder goes to the smaller of its stop ((a)(1), control system stops: the travel) and the deflection the 300/200 lbf
 pedal force of (a)(2) holds from the trim at zero yaw (:func:`r25_331.force_limited_deflection`); without it the
-rudder goes to its design limit; VMC is not declared in the baseline, so the lowest speed is 1.13 VSR
+rudder goes to its stop (travel); VMC is not declared in the baseline, so the lowest speed is 1.13 VSR
 clean at the condition's weight (criterion); the roll is held wings level by the ailerons as an idealised
 restraint (the deflection it needs is reported, it may exceed the aileron's design limit — spoilers are not
 modelled); the airplane is symmetric, so one rudder direction is simulated; rigid airplane.
@@ -16,7 +16,6 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.models.flight import control_limits
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
@@ -25,14 +24,15 @@ from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, entry_speeds, force_limited_deflection
+from certkit_rules.part25.subpart_c.r25_331 import (SAFETY, capability_finding, control_stops, entry_speeds,
+                                                  force_limited_deflection)
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
 SPEEDS = ("low", "VA", "VC", "VD")
 PHASES = (("a", "sudden rudder"), ("b", "overswing sideslip"), ("c", "steady sideslip"), ("d", "rudder returned to neutral"))
 SURFACE = "vertical_tail"
 PEDAL_NOTE = ("no control-force model is declared (control_forces.rudder): the pedal-force limit of §25.351(a)(2) cannot "
-              "reduce the deflection; the rudder design limit (§25.351(a)(1), control system stops) bounds it")
+              "reduce the deflection; the rudder stop (travel: §25.351(a)(1), control system stops) bounds it")
 VMC_NOTE = "VMC is not declared: the lowest speed is 1.13 VSR clean at the condition's weight"
 
 
@@ -87,13 +87,18 @@ class YawManeuver(SimulationRule):
     conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(2),
                                 extra=(("speed_point", SPEEDS),),
                                 note="1.13 VSR clean (VMC not declared), VA (≤ VC), VC and VD in EAS, Mach-limited at "
-                                     "altitude; rudder to its negative design limit (nose-right yaw) only: the airplane is "
+                                     "altitude; rudder to its negative stop (travel) (nose-right yaw) only: the airplane is "
                                      "symmetric, the other direction mirrors the loads.")
     limitations = ("Pedal-force limit of (a)(2) applied with control_forces.rudder at the initial zero-yaw state (the "
                    "deflection is then held as the sideslip builds); " + PEDAL_NOTE + "; " + VMC_NOTE + "; roll held wings level by the ailerons as an idealised restraint "
                    "(deflection reported, not limited; spoilers not modelled); one rudder direction (symmetric airplane); "
                    "rigid airplane, quasi-steady strip aerodynamics.")
     implementation = "partial"
+
+    unevaluated = (
+        ("25.351", "roll is held wings level by an idealised restraint (spoilers not modelled); one rudder direction"
+                   " (symmetric airplane); rigid airplane"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return yaw_maneuvers(ctx, conditions, crit)
@@ -118,7 +123,7 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
     findings = refusal_findings(batch.refusals(conds), lambda c: [f"({p}) {name}" for p, name in PHASES])
     if not batch.n:
         return {"findings": findings, "envelope": None}
-    lim = control_limits(ctx.aircraft)["rudder"]
+    lim = control_stops(ctx, "rudder")
     va = float(ctx.design_speed_eas("VA", 0.0)[0])
     vc = float(ctx.design_speed_eas("VC", 0.0)[0])
     pedal_limit = np.array([pedal_force_limit(c.speed, va, vc, crit) for c in batch.conditions])
@@ -170,7 +175,7 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
                       pedal_force_limit_lbf=round(float(pedal_limit[i]), 1),
                       pilot_effort=PEDAL_NOTE if force_limited is None else (
                           "rudder limited by the pedal force (control_forces.rudder)" if force_limited[i]
-                          else "rudder at its design limit (control system stops) below the pedal-force limit"),
+                          else "rudder at its stop (travel, control system stops) below the pedal-force limit"),
                       overswing_beta_deg=round(float(np.degrees(beta[k_over[i], i])), 3),
                       overswing_time_s=round(float(run.t_overswing[i]), 2),
                       steady_beta_deg=round(float(np.degrees(beta[k_end[i], i])), 3),

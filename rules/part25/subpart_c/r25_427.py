@@ -99,6 +99,10 @@ class UnsymmetricalTailLoads(SimulationRule):
     conditions = SymmetricSources()
     limitations = LIMITATIONS
     implementation = "partial"
+    unevaluated = (
+        ("25.427(b)(1)", "the §25.331(c) pitch-manoeuvre tail loads are not split (balanced manoeuvres and gusts only)"),
+        ("25.427(b)", "the fuselage torsion at the tail is reported, not compared (no fuselage capability)"),
+    )
 
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_tail_loads(ctx, conditions, crit)
