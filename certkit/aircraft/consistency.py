@@ -377,14 +377,6 @@ def _mission_cg(s):
         yield "mission.cruise_cg", f"outside the CG envelope ({min(xs):.2f} to {max(xs):.2f} m)", x
 
 
-@needs("envelope")
-def _flap_load_factor(s):
-    lf = s["envelope"].limit_load_factors
-    if lf.flaps_extended is not None and lf.flaps_extended > lf.positive:
-        yield ("envelope.limit_load_factors.flaps_extended", f"the flaps-extended limit load factor must not exceed the "
-               f"flaps-retracted one ({lf.positive:g}; §25.345(a) asks 2.0 with flaps extended)", lf.flaps_extended)
-
-
 #: stations of mass items and gear may lie this fraction of the fuselage length ahead of the nose or behind the tail
 #: (a radome, a tail cone, an APU exhaust); beyond it a station is a mistake (a unit or datum slip)
 STATION_MARGIN = 0.1

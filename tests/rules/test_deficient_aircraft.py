@@ -46,7 +46,7 @@ CASES = {
     "speeds, load factor and structure below the paragraphs' minima": (
         SPEEDS + [("    positive: 2.5 ", "    positive: 2.3 ")], True,
         ("25.103", "25.107", "25.333", "25.335(b)", "25.335(c)", "25.335(d)", "25.337",
-         "25.331(c)(1)", "25.331(c)(2)", "25.341(a)", "25.349(a)", "25.349(b)", "25.351")),
+         "25.331(b)", "25.331(c)(1)", "25.331(c)(2)", "25.341(a)", "25.349(a)", "25.349(b)", "25.351", "25.427(b)")),
     # §25.335(a) VC ≥ VB + 1.32 U_ref: 272 < 240 + 43.8
     "VB too close to VC": ([("  VB: 226 kn EAS", "  VB: 240 kn EAS")], False, ("25.335(a)",)),
     # §25.121: half the thrust, one engine out, cannot hold the minimum gradients; a 450 ft² stabiliser (from

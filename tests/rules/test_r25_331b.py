@@ -168,6 +168,6 @@ def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
     with pytest.raises(InputError) as info:
         load_aircraft(bad)
     (p,) = [p for p in info.value.problems if p.path == "envelope.limit_load_factors.flaps_extended"]
-    assert "must not exceed the flaps-retracted one (2.5" in p.message and p.value == 3.0
+    assert "must not exceed the clean positive limit load factor (2.5" in p.message and p.value == 3.0
     assert p.line == next(i for i, t in enumerate(bad.read_text().splitlines(), 1) if "flaps_extended: 3.0" in t)
     assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
