@@ -18,7 +18,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from certkit.models.loads.model import station_label
+import numpy as np
+
+from certkit.models.loads.model import QUANTITIES, station_label
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,37 @@ def compare(cap: Capability, max_load: float, min_load: float, ultimate_factor: 
         out.append(LoadMargin("limit", sense, mag, lim, lim - mag))
         out.append(LoadMargin("ultimate", sense, ultimate_factor * mag, ult, ult - ultimate_factor * mag))
     return out
+
+
+def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultimate_factor: float):
+    """The smallest normalised margin (margin / |allowable|) of :func:`compare` over the ``capabilities`` of
+    ``surface`` at ``stations`` for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None
+    when no capability applies; ties and NaN as the loop over :func:`compare` in declared order takes them."""
+    stations = list(stations)
+    rows = [(cap, stations.index(cap.station), QUANTITIES.index(cap.quantity)) for cap in capabilities
+            if cap.surface == surface and cap.station in stations]
+    if not rows:
+        return None
+    s = np.array([r[1] for r in rows])
+    q = np.array([r[2] for r in rows])
+    hi, lo = np.asarray(peaks[1], dtype=float)[q, s], np.asarray(peaks[0], dtype=float)[q, s]
+    allow = np.array([[cap.allowable(check, sense) for sense in ("max", "min") for check in ("limit", "ultimate")]
+                      for cap, *_ in rows])  # candidates per capability: max limit, max ultimate, min limit, min ultimate
+    mag = np.abs(np.stack([hi, hi, lo, lo], axis=1))
+    load = mag * np.array([1.0, ultimate_factor, 1.0, ultimate_factor])
+    loaded = np.repeat(np.stack([~(hi <= 0), ~(lo >= 0)], axis=1), 2, axis=1)  # compare()'s test, NaN loaded
+    with np.errstate(invalid="ignore"):
+        norm = (allow - load) / np.maximum(np.abs(allow), 1e-9)
+    best = None
+    for k in np.flatnonzero(loaded.ravel()):
+        if best is None or norm.flat[k] < norm.flat[best]:
+            best = k
+    if best is None:
+        return None
+    i, j = divmod(int(best), 4)
+    margin = LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], float(load[i, j]), float(allow[i, j]),
+                        float(allow[i, j] - load[i, j]))
+    return margin, rows[i][0]
 
 
 def declared_capabilities(ctx, surface: str) -> list[Capability]:

@@ -26,7 +26,7 @@ from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Step, simulate, stop_when
 from certkit.models.flight import control_limits
 from certkit.loads_conditions import refusal_findings, trimmed_batch
-from certkit.models.loads.capability import compare, declared_capabilities  # noqa: F401 (shared by §25.341/§25.351)
+from certkit.models.loads.capability import declared_capabilities, worst_margin
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
@@ -113,18 +113,10 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
     details = {**station_summary(peaks, stations), **details}
     if not capabilities:
         return Finding.not_evaluated(cond, check, NO_CAPABILITY, **details)
-    worst = None
-    for cap in capabilities:
-        if cap.surface != surface or cap.station not in stations:
-            continue
-        s, q = list(stations).index(cap.station), QUANTITIES.index(cap.quantity)
-        for m in compare(cap, peaks[1, q, s], peaks[0, q, s], ultimate_factor):
-            norm = m.margin / max(abs(m.allowable), 1e-9)
-            if worst is None or norm < worst[0]:
-                worst = (norm, m, cap)
+    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor)
     if worst is None:
         return Finding.not_evaluated(cond, check, f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations", **details)
-    _, m, cap = worst
+    m, cap = worst
     unit = "N" if cap.quantity == "shear" else "N·m"
     return Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load, m.allowable,
                            at_least=False, unit=unit, **details)
