@@ -112,6 +112,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     from certkit.design.record import handling_levels, rule_responses
     from certkit.design.parallel import evaluate_rules
     from certkit.design.sizing_loop import size_horizontal_tail_loop
+    from certkit.scheduler import check_overrides
 
     t0 = time.perf_counter()
     timings: dict[str, float] = {}
@@ -121,10 +122,13 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     aircraft = design_aircraft(source, settings, data)
     variables = {s.path: _si_value(aircraft, s.path) for s in settings}
     rules = _rules()
-    timings["setup_s"] = time.perf_counter() - t0
 
     def loaded_of(model):
         return LoadedAircraft(model=model, path=str(aircraft_path), sha256=source.sha256, source=source)
+
+    if aircraft.criteria:  # an override of an unknown rule or criterion, or of the wrong unit: a user error
+        check_overrides(loaded_of(aircraft), rules)
+    timings["setup_s"] = time.perf_counter() - t0
 
     base = _base_aircraft(source) if settings else aircraft
     loop = size_horizontal_tail_loop(source, settings, data, aircraft, base, rules, loaded_of, jobs)

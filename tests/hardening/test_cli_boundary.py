@@ -75,3 +75,11 @@ def test_bad_output_refused_before_the_evaluation(tmp_path, out):
 def test_dev_zero_is_a_user_error(tmp_path):
     result = _certkit("check", "/dev/zero", "--out", tmp_path / "out")
     assert result.returncode == 2 and "larger than" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_evaluate_checks_the_overrides_too(tmp_path):
+    """`certkit evaluate` (and so every study case) refuses an override of an unknown rule before it sizes anything."""
+    data = with_value("criteria", {"25.999": {"justification": "no such rule here", "values": {"x": 1}}})
+    result = _certkit("evaluate", write_yaml(tmp_path, data))
+    assert result.returncode == 2, result.stderr
+    assert "no rule 25.999" in result.stderr and "Traceback" not in result.stderr
