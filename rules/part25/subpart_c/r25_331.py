@@ -10,10 +10,11 @@ Each condition's horizontal-tail limit loads are compared with the capabilities 
 file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
 one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
 
-(c)(2) also compares the load factor each manoeuvre reaches with the §25.337 limit at its speed (n₊ nose up;
-nose down n₋ = −1.0 up to VC, linearly to 0 at VD), allowing the amplitude search's tolerance; a search that
-did not converge and overshoots the limit is not evaluated (its loads are conservative). In (c)(1) the load
-factor may exceed the limit (loads after that need not be considered): no such check.
+(c)(2) reports the load factor each manoeuvre reaches and the §25.337 limit at its speed (n₊ nose up; nose
+down n₋ = −1.0 up to VC, linearly to 0 at VD) in the details: the input is scaled to reach that limit, so being
+on it is the manoeuvre's construction, not a verdict. Only a peak beyond the limit (+ the search tolerance) is a
+finding: "fails" after a converged search, not evaluated when the search did not converge (its loads are
+conservative). In (c)(1) the load factor may exceed the limit (loads after that need not be considered).
 """
 
 from __future__ import annotations
@@ -186,9 +187,9 @@ class CheckedPitchManeuver(SimulationRule):
     margin = """
         Per condition: the smallest of (allowable limit load − |limit load|) and (allowable ultimate load −
         1.5 × |limit load|) over the declared horizontal-tail stations and quantities; without a declared
-        structural capability the condition is not evaluated and its loads are reported. A second finding
-        per condition: (n₊ + search tolerance) − highest n_z nose up, lowest n_z − (n₋(V) − search
-        tolerance) nose down, in g.
+        structural capability the condition is not evaluated and its loads are reported. The load factor
+        reached is a detail; a peak beyond the §25.337 limit + the search tolerance is a further finding:
+        (n₊ + tolerance) − highest n_z nose up, lowest n_z − (n₋(V) − tolerance) nose down, in g.
     """
     references = ("25.331(c)(1)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VD", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
@@ -320,15 +321,17 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
                 "held at full deflection, minimum hold to the load factor")
         peak_nz = float(np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan)) if nose_up[i]
                         else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan)))
+        reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
         findings.append(capability_finding(
             c, f"(c)(2) checked manoeuvre, {c.get('direction')}", "horizontal_tail", env.peaks["horizontal_tail"][i],
-            stations, caps, crit.ultimate_factor, input=kind, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
+            stations, caps, crit.ultimate_factor, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
-            hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), peak_n_z=round(peak_nz, 4),
-            stop=sim.stop_reason[i] or "end", pilot_effort=_effort_note(effort_limited, i)))
+            hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), stop=sim.stop_reason[i] or "end",
+            pilot_effort=_effort_note(effort_limited, i), **reached))
         findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit,
                                      bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
-        findings.append(load_factor_finding(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit))
+        if beyond is not None:
+            findings.append(beyond)
     return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
             "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
 
@@ -347,24 +350,27 @@ def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> f
     return float(lf.negative) * max(vd - v_eas, 0.0) / (vd - vc)
 
 
-def load_factor_finding(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit) -> Finding:
-    """The load factor the checked manoeuvre reached (highest nose up, lowest nose down, within the loads'
-    window) against the §25.337 limit at its speed, plus the search tolerance within which the paragraph's
-    'reached but not exceeded' is met numerically. A search that did not converge and overshoots is not
-    evaluated (its loads are conservative, the manoeuvre is not the paragraph's)."""
+def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
+    """The load factor the checked manoeuvre reached (highest nose up, lowest nose down, within the loads' window)
+    against the §25.337 limit at its speed, as details of the condition's findings (the input is scaled to reach that
+    limit: being on it is how the manoeuvre is built, not a verdict). A finding only when the peak goes beyond the
+    limit + the search tolerance: "fails" after a converged search, not evaluated when the search did not converge
+    (its loads are conservative, the manoeuvre is not the paragraph's). Returns (details, finding or None)."""
     n_lim = maneuver_limit_load_factor(ctx, cond.speed, cond.altitude, nose_up)
     tol = float(crit.load_factor_tolerance)
-    check = f"(c)(2) load factor reached, {cond.get('direction')}, within the §25.337 limit"
     details = dict(peak_n_z=round(peak_nz, 4), limit_load_factor=round(n_lim, 4), search_tolerance=tol, input=kind)
     if nose_up and peak_nz < n_lim - tol:
-        details["note"] = ("the positive limit load factor is not reached with the available elevator and the "
-                           "longest hold (§25.331(c)(2)(iii) maximal input)")
+        details["load_factor_note"] = ("the positive limit load factor is not reached with the available elevator and "
+                                       "the longest hold (§25.331(c)(2)(iii) maximal input)")
     limit = n_lim + tol if nose_up else n_lim - tol
-    exceeded = peak_nz > limit if nose_up else peak_nz < limit
-    if exceeded and not settled:
-        return Finding.not_evaluated(cond, check, f"amplitude search not converged: peak n_z {peak_nz:.3f} is beyond the "
-                                     f"§25.337 limit {n_lim:.3f} (loads of this condition are conservative)", **details)
-    return Finding.compare(cond, check, peak_nz, limit, at_least=not nose_up, unit="g", **details)
+    if not (peak_nz > limit if nose_up else peak_nz < limit):
+        return details, None
+    check = f"(c)(2) load factor beyond the §25.337 limit, {cond.get('direction')}"
+    if not settled:
+        return details, Finding.not_evaluated(cond, check, f"amplitude search not converged: peak n_z {peak_nz:.3f} is "
+                                              f"beyond the §25.337 limit {n_lim:.3f} (loads of this condition are "
+                                              "conservative)", **details)
+    return details, Finding.compare(cond, check, peak_nz, limit, at_least=not nose_up, unit="g", **details)
 
 
 # --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
