@@ -167,10 +167,8 @@ def start_conditions(ctx, results) -> dict:
 
     out = near_critical_conditions(results, START_FRACTION, START_OWN_FRACTION)
     for rid, conds in hinge_critical_conditions(ctx, results, START_FRACTION).items():
-        if conds is None or out.get(rid, []) is None:
-            out[rid] = None
-        else:
-            out[rid] = list(out.get(rid, [])) + [c for c in conds if c not in out.get(rid, [])]
+        loads = out.get(rid, [])
+        out[rid] = None if conds is None or loads is None else loads + [c for c in conds if c not in loads]
     return out
 
 

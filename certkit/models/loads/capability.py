@@ -48,24 +48,12 @@ class LoadMargin:
     margin: float
 
 
-def compare(cap: Capability, max_load: float, min_load: float, ultimate_factor: float) -> list[LoadMargin]:
-    """Margins of the largest positive and negative limit loads against the capability."""
-    out = []
-    for sense, load in (("max", max_load), ("min", min_load)):
-        if (sense == "max" and load <= 0) or (sense == "min" and load >= 0):
-            continue  # this sense is not loaded
-        mag = abs(float(load))
-        lim = cap.allowable("limit", sense)
-        ult = cap.allowable("ultimate", sense)
-        out.append(LoadMargin("limit", sense, mag, lim, lim - mag))
-        out.append(LoadMargin("ultimate", sense, ultimate_factor * mag, ult, ult - ultimate_factor * mag))
-    return out
-
-
 def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultimate_factor: float):
-    """The smallest normalised margin (margin / |allowable|) of :func:`compare` over the ``capabilities`` of
-    ``surface`` at ``stations`` for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None
-    when no capability applies; ties and NaN as the loop over :func:`compare` in declared order takes them."""
+    """The smallest normalised margin (margin / |allowable|) over the ``capabilities`` of ``surface`` at ``stations``
+    for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None when no capability applies.
+    Each capability is compared in each loaded sense (max when the largest load is not ≤ 0, min when the smallest is
+    not ≥ 0; a NaN load counts as loaded) at limit (|load|) and ultimate (factor × |load|), in that order; the first
+    smallest wins (a NaN margin first in that order stays)."""
     stations = list(stations)
     rows = [(cap, stations.index(cap.station), QUANTITIES.index(cap.quantity)) for cap in capabilities
             if cap.surface == surface and cap.station in stations]
@@ -78,7 +66,7 @@ def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultima
                       for cap, *_ in rows])  # candidates per capability: max limit, max ultimate, min limit, min ultimate
     mag = np.abs(np.stack([hi, hi, lo, lo], axis=1))
     load = mag * np.array([1.0, ultimate_factor, 1.0, ultimate_factor])
-    loaded = np.repeat(np.stack([~(hi <= 0), ~(lo >= 0)], axis=1), 2, axis=1)  # compare()'s test, NaN loaded
+    loaded = np.repeat(np.stack([~(hi <= 0), ~(lo >= 0)], axis=1), 2, axis=1)
     with np.errstate(invalid="ignore"):
         norm = (allow - load) / np.maximum(np.abs(allow), 1e-9)
     best = None

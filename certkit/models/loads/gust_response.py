@@ -154,8 +154,13 @@ def _concatenate(parts):
 
     if len(parts) == 1:
         return parts[0]
-    per_row = any(p.t.ndim == 2 for p in parts)
-    grid = (lambda p: _per_condition(p.t)) if per_row else (lambda p: p.t)
+    n = parts[0].stop_time.shape[0]
+    if any(p.t.ndim == 2 for p in parts):  # a time step per condition in some phase: every grid (nt, n)
+        def grid(p):
+            return np.broadcast_to(_per_condition(p.t), (p.t.shape[0], n))
+    else:
+        def grid(p):
+            return p.t
     t, hist, ctrl = [grid(parts[0])], {k: [v] for k, v in parts[0].history.items()}, [parts[0].controls]
     offset = grid(parts[0])[-1]
     for p in parts[1:]:
@@ -165,8 +170,5 @@ def _concatenate(parts):
         ctrl.append(p.controls[1:])
         offset = offset + grid(p)[-1]
     last = parts[-1]
-    t = np.concatenate(t)
-    if per_row:
-        t = np.broadcast_to(t, (t.shape[0], parts[0].stop_time.shape[0])).copy()
-    return SimulationResult(t, {k: np.concatenate(v) for k, v in hist.items()}, np.concatenate(ctrl),
+    return SimulationResult(np.concatenate(t), {k: np.concatenate(v) for k, v in hist.items()}, np.concatenate(ctrl),
                             parts[0].control_names, parts[0].stop_time, parts[0].stop_reason, last.final_state)
