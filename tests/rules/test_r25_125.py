@@ -54,3 +54,19 @@ def test_not_evaluated_without_vref(tmp_path):
     r = run_rule("25.125", tmp_path, [("  VREF: 136 kn CAS ", "  # VREF removed ")])
     assert r.status == "not_evaluated"
     assert all(f.status == "not_evaluated" and "VREF" in f.reason for f in own(r))
+
+
+VSR0_KN = 110.707  # MLW 460,000 lb, landing CLmax 2.25, S 4927.3 ft², ρ₀: VS = √(2W/(ρ₀ S CLmax)) (Anderson eq. 6.47)
+
+
+def test_vref_over_vsr0_by_hand_a_finding_on_the_baseline(result, tmp_path):
+    """§25.125(b)(2)(i)(A): VREF ≥ 1.23 VSR0. The baseline declares VREF 136 kn CAS while its landing CLmax gives
+    1.23 × 110.707 = 136.17 kn: ratio 1.2285, fails by 0.17 kn (a finding about the declared data, the CLmax having
+    been rounded when it was calibrated on VREF). VREF 137 kn complies (137/110.707 = 1.2375)."""
+    for loading in ("MLW forward", "MLW reference", "MLW aft"):
+        f = _by(result, loading, "(b)(2)(i)(A)")
+        assert f.value == pytest.approx(136 / VSR0_KN, abs=1e-4) and f.limit == 1.23
+        assert f.status == "fails"
+    ok = run_rule("25.125", tmp_path, [("  VREF: 136 kn CAS ", "  VREF: 137 kn CAS ")])
+    f = _by(ok, "MLW reference", "(b)(2)(i)(A)")
+    assert f.value == pytest.approx(137 / VSR0_KN, abs=1e-4) and f.status == "complies"

@@ -30,6 +30,7 @@ from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_incr
 from certkit.models.flight import control_limits, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.speed_checks import declared_cas
 from certkit.units import FT, G0
 from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
 
@@ -147,11 +148,6 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
 def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration: str | None = None):
     return [c.with_(speed=speed, speed_kind="CAS", speed_name=name, altitude=altitude,
                     **({"configuration": configuration} if configuration else {})) for c in conds]
-
-
-def declared_cas(ctx, name):
-    s = getattr(ctx.aircraft.speeds, name)
-    return None if s is None else float(convert_speed(s.value, s.kind, "CAS", 0.0))
 
 
 _COMMON_LIMITS = """

@@ -30,8 +30,9 @@ from certkit.conditions import ConditionSpace, DesignWeight, speed_as
 from certkit.models.flight import control_limits, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.speed_checks import declared_cas
 from certkit.units import FT, G0, KN
-from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, declared_cas, trim_details
+from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
 _UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
