@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
-from certkit.speed_checks import declared_cas, ratio_check
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import declared_cas, ratio_check
+from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"

@@ -30,9 +30,9 @@ from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_incr
 from certkit.models.flight import control_limits, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
-from certkit.speed_checks import declared_cas
+from certkit.reference_speeds import declared_cas
 from certkit.units import FT, G0
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 CONTROLS = ("elevator", "aileron", "rudder")

@@ -27,9 +27,9 @@ from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Evidence, Finding
-from certkit.speed_checks import declared_cas, ratio_check
+from certkit.reference_speeds import declared_cas, ratio_check
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 
 START_HEIGHT = 150 * FT  # m, CG height above the runway at the start of the simulated approach
 
