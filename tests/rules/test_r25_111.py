@@ -50,15 +50,18 @@ def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
 
 
-def test_on_the_limit_when_the_rudder_design_limit_equals_the_extreme_rudder(result, tmp_path):
-    """With the rudder's design limit set to the forward-CG run's extreme rudder, that margin is 0 (the pilot model
-    moves the rudder over its travel, so the design limit does not change the run)."""
+def test_a_smaller_rudder_design_limit_fails_the_engine_out_takeoff(result, tmp_path):
+    """A deficient airplane: a rudder design limit of ±15° (the engine-out runs use about 27°; the pilot model moves
+    the rudder over its travel, so the run is the same) fails (a)'s rudder check at every CG, by |δr| − 15°."""
     fwd = _by(result, "MTOW forward", "(a) rudder")
-    assert fwd.limit == pytest.approx(-23.2)
+    assert fwd.limit == pytest.approx(-23.2) and fwd.value < -15.0
     edited = run_rule("25.111", tmp_path, [("design_limits: {min: -23.2 deg, max: 23.2 deg}",
-                                            f"design_limits: {{min: {fwd.value:.6f} deg, max: 23.2 deg}}")])
-    f = _by(edited, "MTOW forward", "(a) rudder")
-    assert f.margin == pytest.approx(0.0, abs=1e-5)
+                                            "design_limits: {min: -15 deg, max: 15 deg}")])
+    for loading in LOADINGS:
+        f = _by(edited, loading, "(a) rudder")
+        assert f.status == "fails" and f.limit == pytest.approx(-15.0)
+    assert _by(edited, "MTOW forward", "(a) rudder").value == pytest.approx(fwd.value, abs=1e-6)
+
 
 
 def test_sign_cg_and_engine_failure(result):
