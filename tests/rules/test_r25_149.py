@@ -14,7 +14,7 @@ import pytest
 
 from certkit.models.flight import control_limits
 from certkit.units import KN
-from certkit_rules.part25.subpart_b.r25_149 import control_usage, vmca_from_grid
+from certkit.control_speeds import control_usage, vmca_from_grid
 from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
 from .helpers import own, run_rule

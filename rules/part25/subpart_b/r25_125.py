@@ -101,7 +101,8 @@ class LandingTouchdown(Rule):
 
     unevaluated = (
         ("25.125(a)", "the landing distance from 50 ft to a full stop (non-icing and icing) is not computed"),
-        ("25.125(b)(2)(i)(B)", "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined"),
+        ("25.125(b)(2)(i)(B)", "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined (the static search "
+                               "does not converge in the landing configuration at go-around thrust)"),
         ("25.125(b)(2)(i)(C)", "the §25.143(h) manoeuvring capability at VREF is not judged here (§25.143(h) flies its "
                                "turns)"),
         ("25.125(b)(2)(ii)", "the VREF minima with the landing ice accretion are not checked"),
