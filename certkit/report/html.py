@@ -12,7 +12,9 @@ from pathlib import Path
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit.registry import Rule
+from certkit.report.figures import render_result
 from certkit.report.output import prepare_output, write_set
+from certkit.report.tables import formatted
 from certkit.results import STATUS_LABEL, RunResult
 from certkit.units import KN
 
@@ -40,6 +42,7 @@ def _environment() -> Environment:
     env.filters["value"] = format_value
     env.filters["slug"] = slug
     env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
+    env.filters["table"] = formatted
     env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %"
     return env
 
@@ -48,6 +51,7 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
     by_id = {r.id: r for r in rules}
     sections = []
     for result in run.rules:
+        render_result(result)  # figures not drawn yet (those drawn by the workers of a check are kept)
         cls = by_id[result.id]
         crit = result.critical
         sections.append({
