@@ -23,6 +23,7 @@ import numpy as np
 from certkit.evidence import Axis, Bars, Chart, Heatmap, Limit, Panel, Series
 from certkit.report.display import axis_label, format_value, unit_and_factor
 from certkit.report.plots import figure_to_svg, new_figure, text_width
+from matplotlib.ticker import MaxNLocator, NullLocator  # noqa: E402 (after plots.py chose the backend)
 
 
 def _thousands(x, _pos=None) -> str:
@@ -136,7 +137,7 @@ def chart_svg(chart: Chart, prefix: str) -> str:
     top = 0.15 + (0.2 * (title.count("\n") + 1) if title else 0.0) + (text_width(above, FONT) + 0.08 if above else 0.0)
     if column:
         size = (WIDTH, top + 1.6 * n + bottom)
-        fig, axes = new_figure(n, 1, size, left=1.0, right=1.1, bottom=bottom, top=top, sharex=True, hspace=0.18)
+        fig, axes = new_figure(n, 1, size, left=1.0, right=1.1, bottom=bottom, top=top, hspace=0.18)
     else:
         size = (WIDTH + 0.4 * (n - 1), top + 2.3 + bottom)
         fig, axes = new_figure(1, n, size, left=0.7, right=0.3, bottom=bottom, top=top, wspace=0.45)
@@ -174,7 +175,8 @@ def chart_svg(chart: Chart, prefix: str) -> str:
         ax.set_ylabel(textwrap.fill(ylabel, 26) if column else ylabel, fontsize=FONT + 1)
         if panel.y.log:
             ax.set_yscale("log")
-        else:
+        else:  # few ticks: each tick is several artists, the largest part of a figure's cost
+            ax.yaxis.set_major_locator(MaxNLocator(nbins=5, steps=[1, 2, 2.5, 5, 10]))
             ax.yaxis.set_major_formatter(_thousands)
         if panel.title:
             ax.set_title(panel.title, fontsize=FONT + 1)
@@ -182,18 +184,37 @@ def chart_svg(chart: Chart, prefix: str) -> str:
         ax.tick_params(labelsize=FONT)
         _limits(ax, [lim for lim in panel.limits if lim.axis == "y"], fy, "y")
         _limits(ax, [lim for lim in panel.limits if lim.axis == "x"], pfx, "x", label=not column)
-        if column and p == 0 and above_top:
-            _limits(ax, above_top, pfx, "x", lines=False)
         if not column or p == n - 1:
             if cats:
                 ax.set_xticks(range(len(cats)), cats, rotation=40, ha="right", rotation_mode="anchor", fontsize=FONT)
             else:
+                ax.xaxis.set_major_locator(MaxNLocator(nbins=8, steps=[1, 2, 2.5, 5, 10]))
                 ax.xaxis.set_major_formatter(_thousands)
             ax.set_xlabel(_scaled(panel.x)[0] if panel.x is not None else xlabel, fontsize=FONT + 1)
+    if column:
+        _shared_time_axis(axes)
+        if above_top:
+            _limits(axes[0], above_top, fx, "x", lines=False)
     if title:
         fig.suptitle(title, fontsize=FONT + 1.5, y=1.0 - 0.06 / size[1], va="top")
     _legend(fig, [(lab, handles[lab]) for lab in labels if lab in handles], legend, size, left=1.0 if column else 0.7)
     return figure_to_svg(fig, prefix)
+
+
+def _shared_time_axis(axes) -> None:
+    """Stacked panels on one x range: the bottom panel's ticks and labels, the others only its vertical grid lines
+    (no tick artists: cheaper than shared axes, which create every tick on every panel)."""
+    lo = min(ax.get_xlim()[0] for ax in axes)
+    hi = max(ax.get_xlim()[1] for ax in axes)
+    bottom = axes[-1]
+    bottom.set_xlim(lo, hi)
+    ticks = [v for v in bottom.xaxis.get_major_locator().tick_values(lo, hi) if lo <= v <= hi]
+    for ax in axes[:-1]:
+        ax.set_xlim(lo, hi)
+        ax.xaxis.set_major_locator(NullLocator())
+        ax.grid(False, axis="x")
+        ax.vlines(ticks, 0.0, 1.0, transform=ax.get_xaxis_transform(), colors="#b0b0b0", linewidths=0.8, alpha=0.3,
+                  zorder=0.5)
 
 
 def _unit_of(axis: Axis) -> str:
@@ -343,8 +364,9 @@ def heatmap_svg(hm: Heatmap, prefix: str) -> str:
             if v < thr:
                 ax.add_patch(_cell(j, i))
             dark = v < thr or norm(v) > 0.8
-            ax.text(j, i, f"{v:+.2f}", ha="center", va="center", fontsize=FONT, color="#ffffff" if dark else "#000000",
-                    fontweight="bold" if v < thr else "normal")
+            ax.text(j, i, f"{v:+.2f}".replace("-", "\u2212"), ha="center", va="center", fontsize=FONT,
+                    color="#ffffff" if dark else "#000000", fontweight="bold" if v < thr else "normal",
+                    bbox=dict(facecolor="#7a1c00", edgecolor="none", pad=1.5) if v < thr else None)
     ax.set_xticks(range(len(cols)), cols, fontsize=FONT)
     ax.set_yticks(range(len(rows)), rows, fontsize=FONT)
     if hm.column_label:
