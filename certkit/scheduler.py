@@ -218,11 +218,7 @@ _WORKER: dict = {}
 def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish=None) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.worker_processes.die_with_parent`)."""
-    import matplotlib
-
     die_with_parent(parent_pid)
-
-    matplotlib.use("Agg")
     _WORKER["ctx"] = Context(loaded)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
     _WORKER["finish"] = finish
