@@ -248,22 +248,27 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
-        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None) -> RunResult:
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
+        alongside: dict | None = None) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
-    evaluated it, so that work runs in parallel too."""
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
+    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
         results, provenance = _evaluate_many(loaded, rules, finish)
         provenance = _merge_provenance([provenance])
+        extra = {name: fn() for name, fn in (alongside or {}).items()}
     else:
         units = work_units(rules)
         pool = ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
                                    initargs=(loaded, options, os.getpid(), finish))
         try:
-            parts = [part for done in pool.map(_worker_run, [tuple(r.id for r in u) for u in units]) for part in done]
+            done_parts = pool.map(_worker_run, [tuple(r.id for r in u) for u in units])  # submitted: workers started
+            extra = {name: fn() for name, fn in (alongside or {}).items()}
+            parts = [part for done in done_parts for part in done]
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise
@@ -272,4 +277,4 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])
     created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
-    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance)
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance | extra)

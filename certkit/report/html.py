@@ -25,6 +25,8 @@ DISPLAY = {"m/s": ("kn", KN), "m": ("ft", 0.3048), "kg": ("lb", 0.45359237), "N"
 def format_value(value: float | None, unit: str) -> str:
     if value is None:
         return "—"
+    if abs(value) < 1e-9:  # round-off noise of a difference (5.551e-17 Mach) and -0 read 0
+        value = 0.0
     text = f"{value:.4g}" if abs(value) < 1e5 else f"{value:,.0f}"
     if unit in DISPLAY:
         other, factor = DISPLAY[unit]

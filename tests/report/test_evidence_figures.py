@@ -124,3 +124,29 @@ def test_dict_rows_get_human_columns():
     assert headers == ["bank φ (deg)", "CL / CLmax", "thrust at trim (lbf)", "VEF (kn)"]
     with pytest.raises(TypeError):
         Evidence("t", "<svg/>")  # a figure is data, never drawn SVG
+
+
+def test_a_rules_evidence_is_the_same_bytes_twice(baseline):
+    """Two evaluations of §25.333 on fresh contexts draw byte-identical evidence (no random ids, no date)."""
+    from certkit.context import Context
+    from certkit.registry import discover
+    from certkit.report.figures import render_result
+    from certkit.scheduler import evaluate_rule
+
+    rule = next(r for r in discover() if r.id == "25.333")
+    svgs = []
+    for _ in range(2):
+        result = evaluate_rule(rule, Context(baseline))
+        render_result(result)
+        svgs.append([e.svg for e in result.evidence])
+    assert svgs[0] and svgs[0][0].startswith("<svg") and svgs[0] == svgs[1]
+
+
+def test_close_vertical_lines_get_separate_labels():
+    """VA and VC a few knots apart (the V–n diagram): their labels are pushed apart by at least a text height."""
+    v = np.linspace(0.0, 180.0, 50)
+    chart = Chart(Axis("equivalent airspeed", "m/s", "kn"), [Panel(Axis("load factor n", "g"), [Series("W", v, v / 70.0)],
+                  [Limit(136.8, "VA", axis="x", kind="reference"), Limit(139.9, "VC", axis="x", kind="reference")])])
+    svg = render(chart, "v")
+    xs = [float(m) for m in re.findall(r'<text x="([0-9.]+)"[^>]*rotate\(-90[^>]*>V[AC]<', svg)]
+    assert len(xs) == 2 and abs(xs[1] - xs[0]) >= 8.0
