@@ -147,6 +147,8 @@ class Column:
     unit: str = ""
     display: str | None = None
     kind: str = "number"
+    #: the key of the column that holds each row's unit (mixed units: a findings table's value, limit, margin)
+    unit_key: str | None = None
 
 
 @dataclass

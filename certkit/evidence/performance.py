@@ -188,8 +188,9 @@ def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: 
             row[k] = float(v) if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool) else v
         rows.append(row)
     table = Table.from_dicts(rows, [Column("condition", "condition", kind="text"), Column("check", "check", kind="text"),
-                                    Column("value", "value"), Column("limit", "limit"), Column("margin", "margin"),
-                                    Column("unit", "unit", kind="text"), Column("status", "status", kind="text")])
+                                    Column("value", "value", unit_key="unit"), Column("limit", "limit", unit_key="unit"),
+                                    Column("margin", "margin", unit_key="unit"), Column("unit", "unit", kind="text"),
+                                    Column("status", "status", kind="text")])
     more = f" The {len(shown)} smallest margins of {len(ev)} are drawn." if plot and len(ev) > len(shown) else ""
     return [Evidence(title, figure, caption + more, table)]
 

@@ -150,3 +150,11 @@ def test_close_vertical_lines_get_separate_labels():
     svg = render(chart, "v")
     xs = [float(m) for m in re.findall(r'<text x="([0-9.]+)"[^>]*rotate\(-90[^>]*>V[AC]<', svg)]
     assert len(xs) == 2 and abs(xs[1] - xs[0]) >= 8.0
+
+
+def test_mixed_unit_columns_convert_per_row():
+    """A findings table (value, limit, margin in each row's unit): m/s rows read in kn, deg rows stay."""
+    t = Table([Column("value", "value", unit_key="unit"), Column("unit", "unit", kind="text")],
+              [[77.1666, "m/s"], [12.5, "deg"]])
+    rows = [[text for text, _ in row] for row in formatted(t)["rows"]]
+    assert rows == [["150.0", "kn"], ["12.5", "deg"]]  # 77.1666 m/s = 150.0 kn; one decimal for the column
