@@ -178,7 +178,7 @@ def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q"), all
         Evidence(f"Load envelope along the {name} span", envelope_chart({"envelope": env.peaks[surface]},
                                                                         env.stations[surface], (allow or {}).get(surface)),
                  "Maximum and minimum over every condition and time (limit loads); triangles: the governing allowable "
-                 "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ 1.5)."),
+                 "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of safety, §25.303)."),
         Evidence(f"Critical-case table, {name}", caption="Critical condition and time of every station and quantity.",
                  table=case_table(run, surface, allow=allow)),
     ] + not_simulated([(env.labels[i], r) for i, r in env.failed])
