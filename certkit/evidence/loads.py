@@ -12,6 +12,8 @@ from certkit.models.loads.model import QUANTITIES
 from certkit.results import Evidence
 
 _KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
+#: palette entries of the maximum and minimum of each envelope drawn (entry 5, vermillion, is the allowables')
+_PAIRS = ((0, 1), (2, 3), (4, 7))
 #: SI unit of each load quantity, and the unit a reviewer reads it in
 UNITS = {"shear": ("N", "kN"), "bending": ("N·m", "kN·m"), "torsion": ("N·m", "kN·m")}
 FT = 0.3048
@@ -103,8 +105,9 @@ def envelope_chart(peaks: dict, stations, allow: dict | None = None, title: str 
                 hi = np.nanmax(P[:, 1, q, :], axis=0) if P.shape[0] else np.full(len(stations), np.nan)
                 lo = np.nanmin(P[:, 0, q, :], axis=0) if P.shape[0] else np.full(len(stations), np.nan)
             style = "-" if k == 0 else ":"
-            series += [Series(f"{name} max" if len(peaks) > 1 else "max", x, hi, marker="o", style=style, colour=2 * k),
-                       Series(f"{name} min" if len(peaks) > 1 else "min", x, lo, marker="s", style=style, colour=2 * k + 1)]
+            c_hi, c_lo = _PAIRS[k % len(_PAIRS)]
+            series += [Series(f"{name} max" if len(peaks) > 1 else "max", x, hi, marker="o", style=style, colour=c_hi),
+                       Series(f"{name} min" if len(peaks) > 1 else "min", x, lo, marker="s", style=style, colour=c_lo)]
         points = _critical_station(series[0].y, series[1].y, x, quantity, stations, allow)
         caps = [(s, (allow or {}).get((st, quantity))) for s, st in enumerate(stations)]
         caps = [(s, c) for s, c in caps if c]

@@ -118,7 +118,7 @@ def _chart_legend(chart: Chart) -> list[str]:
 
 def _unit_of(axis: Axis) -> str:
     unit, _ = unit_and_factor(axis.unit, axis.display)
-    return f" {unit}" if unit else ""
+    return (f" × {unit}" if unit[:1].isdigit() else f" {unit}") if unit else ""
 
 
 
