@@ -141,16 +141,20 @@ def case_table(run, surface: str, env=None, allow: dict | None = None, gradients
     """The envelope's critical cases of ``surface``: station, quantity, sense, limit load (kN, kN·m), the governing
     allowable where declared, condition and time; with ``gradients`` and ``which`` the gust gradient H of each."""
     env = env if env is not None else run["envelope"]
+    cases = [c for c in env.critical_cases() if c.surface == surface]
+    # a "critical" load of zero (nothing loads the surface in that sense) has no critical condition: which of the
+    # zero loads came first is round-off, so it is not named
+    scale = max((abs(c.value) for c in cases if np.isfinite(c.value)), default=0.0)
     rows = []
-    for c in env.critical_cases():
-        if c.surface != surface:
-            continue
+    for c in cases:
         cap = (allow or {}).get(surface, {}).get((c.station, c.quantity))
+        loaded = abs(c.value) > max(1e-9 * scale, 1e-6)
         row = [c.station, c.quantity, c.sense, c.value / 1e3,
-               (cap[1] if c.sense == "max" else cap[0]) / 1e3 if cap else None, env.labels[c.condition], c.time]
+               (cap[1] if c.sense == "max" else cap[0]) / 1e3 if cap else None,
+               env.labels[c.condition] if loaded else "none (no load in this sense)", c.time if loaded else None]
         if gradients is not None:
             q, s = QUANTITIES.index(c.quantity), env.stations[surface].index(c.station)
-            row.append(float(gradients[which[c.condition, 1 if c.sense == "max" else 0, q, s]]))
+            row.append(float(gradients[which[c.condition, 1 if c.sense == "max" else 0, q, s]]) if loaded else None)
         rows.append(row)
     columns = [Column("station", "station", kind="text"), Column("quantity", "quantity", kind="text"),
                Column("sense", "sense", kind="text"), Column("load", "limit load", "kN | kN·m"),

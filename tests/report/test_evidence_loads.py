@@ -44,3 +44,18 @@ def test_envelope_chart_draws_the_allowables_and_marks_the_critical_station():
     # the tip's 40 against its allowable 35 is nearer than any other (the root has no allowable)
     (pt,) = shear.points
     assert (pt.x, pt.y) == (1.0, 40.0)
+
+
+def test_a_zero_critical_load_names_no_condition():
+    """Which of many exactly-zero loads is 'critical' is round-off (it differed between --jobs 1 and 2): not named."""
+    from types import SimpleNamespace
+
+    from certkit.evidence.loads import case_table
+    from certkit.models.loads.response import CriticalCase
+
+    cases = [CriticalCase("vertical_tail", "root", "shear", "max", 0.0, "N", 1, 0.0),
+             CriticalCase("vertical_tail", "root", "shear", "min", -131.1e3, "N", 0, 2.1)]
+    env = SimpleNamespace(critical_cases=lambda: cases, labels=["A", "B"], stations={"vertical_tail": ("root",)})
+    rows = case_table(None, "vertical_tail", env=env).as_dicts()
+    assert rows[0]["condition"].startswith("none") and rows[0]["time"] is None
+    assert rows[1]["condition"] == "A" and rows[1]["load"] == pytest.approx(-131.1) and rows[1]["time"] == 2.1
