@@ -185,6 +185,8 @@ _NAMES = {
     "speed_kn_cas": ("speed (CAS)", "kn"), "altitude_ft": ("altitude", "ft"), "mach": ("Mach", ""),
     "n_z": ("load factor n", "g"), "thrust_available_N": ("thrust available", "N"),
     "thrust_at_trim_N": ("thrust at trim", "N"), "x_cg_pct_mac": ("CG", "% MAC"),
+    "gamma_deg": ("flight-path angle γ", "deg"), "flight_path_deg": ("flight-path angle γ", "deg"),
+    "load_factor": ("load factor n", "g"), "control_usage": ("control usage", ""), "throttle": ("throttle", ""),
 }
 #: the unit a key's value is shown in: the key's own unit (it was chosen for the reader), SI ones in aviation units
 _SHOWN = {"N": "lbf", "m": "ft", "kg": "lb", "m/s": "kn"}
