@@ -404,7 +404,7 @@ def bars_svg(bars: Bars, prefix: str) -> str:
             cv.rect(x - 10, y0, 20, y1 - y0, fill=FAIL if fails else PASS)
             if fails:
                 cv.rect(x - 10, y0, 20, y1 - y0, fill=f"url(#{hatch})")
-            cv.text(x + 3, frame.bottom + 6, name, FONT, anchor="end", rotate=30.0, baseline="hanging")
+            cv.text(x + 2, frame.bottom + 6, name, FONT, anchor="end", rotate=30.0, baseline="hanging")
     if bars.limit is not None:
         which = "x" if bars.horizontal else "y"
         lim = Limit(bars.limit.value, bars.limit.label, which, bars.limit.kind)

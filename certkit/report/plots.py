@@ -1,4 +1,5 @@
-"""Evidence plots rendered as inline SVG strings (matplotlib, Agg backend, no files).
+"""matplotlib figures rendered as inline SVG strings (Agg backend, no files), for the study report (the check's evidence
+figures are written directly: :mod:`certkit.report.svg`).
 
 Layout: figures are made by :func:`subplots`, which places the axes with fixed margins in inches, and are
 serialised by :func:`figure_to_svg` in one draw. (``bbox_inches="tight"`` drew every figure twice, the first
@@ -44,26 +45,6 @@ def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], le
     w, h = figsize
     fig.subplots_adjust(left=left / w, right=1.0 - right / w, bottom=bottom / h, top=1.0 - top / h,
                         hspace=hspace, wspace=wspace)
-    return fig, axes
-
-
-def new_figure(nrows: int, ncols: int, figsize: tuple[float, float], *, left: float, right: float, bottom: float,
-               top: float, sharex: bool = False, hspace: float | None = None, wspace: float | None = None):
-    """A figure (no pyplot state) and its axes as a flat list, placed by fixed margins as :func:`subplots`."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=figsize)
-    FigureCanvasAgg(fig)
-    w, h = figsize
-    grid = fig.add_gridspec(nrows, ncols, left=left / w, right=1.0 - right / w, bottom=bottom / h, top=1.0 - top / h,
-                            hspace=hspace, wspace=wspace)
-    axes = []
-    for i in range(nrows):
-        for j in range(ncols):
-            axes.append(fig.add_subplot(grid[i, j], sharex=axes[0] if sharex and axes else None))
-    if sharex:
-        for ax in axes[:-ncols]:
-            ax.tick_params(labelbottom=False)
     return fig, axes
 
 
