@@ -137,6 +137,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
+        from certkit.report.figures import render_result
         from certkit.report.html import write_report
 
         from certkit.report.output import prepare_output, report_folder_name
@@ -152,8 +153,9 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
     try:
-        result = run(loaded, chosen, jobs=jobs, options=options)
-        result.models["mission"] = _mission_for_report(loaded.model)
+        # the missions are flown in this process while the workers evaluate the rules
+        result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result,
+                     alongside={"mission": lambda: _mission_for_report(loaded.model)})
         json_path, html_path = write_report(result, chosen, out)
     finally:
         gc.unfreeze()

@@ -182,9 +182,14 @@ def _uncovered(conditions, findings) -> list:
     return out
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> tuple[list[RuleResult], dict]:
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
-    return [evaluate_rule(r, ctx) for r in rules], ctx.provenance()
+    results = []
+    for r in rules:
+        results.append(evaluate_rule(r, ctx))
+        if finish is not None:
+            finish(results[-1])
+    return results, ctx.provenance()
 
 
 def _merge_provenance(parts: list[dict]) -> dict:
@@ -210,16 +215,13 @@ def _merge_provenance(parts: list[dict]) -> dict:
 _WORKER: dict = {}
 
 
-def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int) -> None:
+def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish=None) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.worker_processes.die_with_parent`)."""
-    import matplotlib
-
     die_with_parent(parent_pid)
-
-    matplotlib.use("Agg")
     _WORKER["ctx"] = Context(loaded)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
+    _WORKER["finish"] = finish
 
 
 def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
@@ -229,6 +231,8 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
     out = []
     for rid in rule_ids:
         result = evaluate_rule(_WORKER["rules"][rid], ctx)
+        if _WORKER["finish"] is not None:
+            _WORKER["finish"](result)
         result.encoded = result.to_json()
         out.append((result, ctx.provenance()))
     return out
@@ -244,20 +248,27 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
-        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None) -> RunResult:
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
+        alongside: dict | None = None) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
-    (:func:`work_units`) when it is free, the heaviest first."""
+    (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
+    :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
+    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results, provenance = _evaluate_many(loaded, rules)
+        results, provenance = _evaluate_many(loaded, rules, finish)
         provenance = _merge_provenance([provenance])
+        extra = {name: fn() for name, fn in (alongside or {}).items()}
     else:
         units = work_units(rules)
         pool = ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
-                                   initargs=(loaded, options, os.getpid()))
+                                   initargs=(loaded, options, os.getpid(), finish))
         try:
-            parts = [part for done in pool.map(_worker_run, [tuple(r.id for r in u) for u in units]) for part in done]
+            done_parts = pool.map(_worker_run, [tuple(r.id for r in u) for u in units])  # submitted: workers started
+            extra = {name: fn() for name, fn in (alongside or {}).items()}
+            parts = [part for done in done_parts for part in done]
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise
@@ -266,4 +277,4 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])
     created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
-    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance)
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance | extra)

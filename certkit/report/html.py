@@ -12,7 +12,9 @@ from pathlib import Path
 from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit.registry import Rule
+from certkit.report.figures import render_result
 from certkit.report.output import prepare_output, write_set
+from certkit.report.tables import formatted
 from certkit.results import STATUS_LABEL, RunResult
 from certkit.units import KN
 
@@ -23,6 +25,8 @@ DISPLAY = {"m/s": ("kn", KN), "m": ("ft", 0.3048), "kg": ("lb", 0.45359237), "N"
 def format_value(value: float | None, unit: str) -> str:
     if value is None:
         return "—"
+    if abs(value) < 1e-9:  # round-off noise of a difference (5.551e-17 Mach) and -0 read 0
+        value = 0.0
     text = f"{value:.4g}" if abs(value) < 1e5 else f"{value:,.0f}"
     if unit in DISPLAY:
         other, factor = DISPLAY[unit]
@@ -40,6 +44,7 @@ def _environment() -> Environment:
     env.filters["value"] = format_value
     env.filters["slug"] = slug
     env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
+    env.filters["table"] = formatted
     env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %"
     return env
 
@@ -48,6 +53,7 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
     by_id = {r.id: r for r in rules}
     sections = []
     for result in run.rules:
+        render_result(result)  # figures not drawn yet (those drawn by the workers of a check are kept)
         cls = by_id[result.id]
         crit = result.critical
         sections.append({

@@ -73,6 +73,9 @@ def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
         assert f.limit == pytest.approx(161.0, abs=1e-6) and f.unit == "kn"
         assert f.details["vlof_kn"] > 155.0 and f.value > f.details["vlof_kn"]
         assert f.condition.get("inoperative") == "left"
+    from certkit.report.figures import render_result
+
+    render_result(result)
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
 
 

@@ -49,6 +49,9 @@ def test_baseline_vsr_and_vmc_not_declared(result, ctx):
     assert c.details["VSR"] / 0.514444 == pytest.approx(vsr_kn, rel=1e-3)
     assert c.limit == pytest.approx(1.13 * c.details["VSR"], rel=1e-9)
     assert np.isfinite(c.value) and c.value < c.limit  # VMCA ≈ 139 kn against 1.13 VSR = 160.5 kn
+    from certkit.report.figures import render_result
+
+    render_result(result)
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
     b = next(f for f in own(result) if f.check.startswith("(b)"))
     assert b.status == "not_evaluated" and b.reason == "needs speeds.VMC"

@@ -94,7 +94,7 @@ class StallSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.103 reference stall speeds",
                                 "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",

@@ -99,7 +99,7 @@ class TakeoffSpeeds(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.107 takeoff speed ratios",
                                 "Declared takeoff speeds as ratios against their §25.107 factors.",

@@ -335,7 +335,7 @@ class TakeoffPath(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import takeoff_evidence
+        from certkit.evidence.performance import takeoff_evidence
 
         conds = self.conditions.expand(ctx.aircraft)
         trims, run, engine, vef, *_ = _takeoff(ctx, conds, crit)

@@ -192,7 +192,7 @@ class ClimbOEITakeoffGearDown(Rule):
         return [_positive(f, required) for f in out]
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(a) OEI climb, takeoff, gear down")
 
@@ -257,7 +257,7 @@ class ClimbOEITakeoffGearUp(Rule):
                               drag_credit=np.full(len(conds), credit), notes=f"gear retracted: ΔCD0 {credit:.4f} removed, {how}")
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(b) OEI climb, takeoff, gear up")
 
@@ -297,7 +297,7 @@ class ClimbOEIFinalTakeoff(Rule):
                               thrust_fraction=crit.mct_over_takeoff_thrust)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(c) OEI final takeoff climb")
 
@@ -346,6 +346,6 @@ class ClimbOEIApproach(Rule):
         return out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(d) OEI approach climb")

@@ -142,7 +142,8 @@ class LandingTouchdown(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_time_histories import time_histories_svg
+        from certkit.evidence import Axis, Limit
+        from certkit.evidence.performance import time_histories
 
         conds = self.conditions.expand(ctx.aircraft)
         sinks = [f for f in findings if f.check == "touchdown rate of descent" and f.margin is not None]
@@ -154,11 +155,14 @@ class LandingTouchdown(Rule):
         sim = run.sim
         hdot = np.gradient(sim["h"], sim.t, axis=0) if sim.t.size > 1 else np.zeros_like(sim["h"])
         je = sim.control_names.index("elevator")
-        svg = time_histories_svg(sim.t, [
-            ("V (kn TAS)", sim["V"] / KN, {}),
-            ("CG height (ft)", sim["h"] / FT, {}),
-            ("rate of descent (ft/s)", -hdot / FT, {f"{crit.touchdown_sink_rate:g} ft/s": crit.touchdown_sink_rate}),
-            ("elevator (deg)", np.degrees(sim.controls[:, :, je]), {"design limit": _elevator_design_min(ctx.aircraft)}),
-        ], [c.loading for c in conds], critical=k, title="§25.125 approach, flare and touchdown")
-        return [Evidence("Approach and landing time histories", svg,
-                         f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours.")]
+        chart = time_histories(sim.t, [
+            (Axis("true airspeed V", "m/s"), sim["V"], [], []),
+            (Axis("CG height", "m"), sim["h"], [], []),
+            (Axis("rate of descent", "m/s", "ft/s"), -hdot,
+             [Limit(crit.touchdown_sink_rate * FT, f"{crit.touchdown_sink_rate:g} ft/s")], []),
+            (Axis("elevator", "rad"), sim.controls[:, :, je],
+             [Limit(np.radians(_elevator_design_min(ctx.aircraft)), "design limit", kind="allowable")], []),
+        ], [c.loading for c in conds], critical=k, ends=sim.stop_time, title="§25.125 approach, flare and touchdown")
+        return [Evidence("Approach and landing time histories", chart,
+                         f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours; "
+                         "each line ends at its touchdown.")]

@@ -261,7 +261,7 @@ class ManeuveringCapability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.143(h) manoeuvring capability",
                                 "Coordinated-turn trims: controls against their design limits.",

@@ -161,7 +161,7 @@ class LongitudinalControlConfigurationChanges(Rule):
             **{f"end_{k}": v for k, v in trim_details(r1).items()})
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",

@@ -162,7 +162,7 @@ class DirectionalControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(a) directional control, one engine inoperative",
                                 "One-engine-inoperative trims: controls against their design limits.",
@@ -244,7 +244,7 @@ class LateralControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
                                 "Turns toward and away from the inoperative engine: controls against their design limits.",

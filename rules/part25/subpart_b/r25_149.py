@@ -153,7 +153,7 @@ class MinimumControlSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import vmca_evidence
+        from certkit.evidence.performance import vmca_evidence
 
         rows = _vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))

@@ -184,7 +184,7 @@ class Trim(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.161 trim",
                                 "Trims of each §25.161 condition: controls against their design limits.",

@@ -163,7 +163,7 @@ class StabilityGeneral(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import margin_matrix_evidence
+        from certkit.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
 
@@ -260,7 +260,7 @@ class SpeedStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import margin_matrix_evidence
+        from certkit.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations")
 

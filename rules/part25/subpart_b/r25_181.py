@@ -128,7 +128,7 @@ class DynamicStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import damping_frequency_svg, margin_matrix_evidence
+        from certkit.evidence.stability import damping_frequency_chart, margin_matrix_evidence
         from certkit.results import Evidence
         from certkit.units import KN
 
@@ -156,7 +156,7 @@ class DynamicStability(Rule):
         if points:
             out.append(Evidence(
                 "Modes over CG corners × configurations × speeds × altitudes, with MIL-F-8785C levels",
-                damping_frequency_svg(points, boundaries),
+                damping_frequency_chart(points, boundaries),
                 caption=("Damping ratio and natural frequency of the oscillatory modes, coloured by MIL-F-8785C Class III "
                          "Level (category C with flaps, B clean); dotted lines are the damping boundaries "
                          "(Table IV short period, Table VI Dutch roll, 3.2.1.2 phugoid; unverified values). "

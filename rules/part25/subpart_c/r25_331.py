@@ -228,11 +228,20 @@ class CheckedPitchManeuver(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return checked_maneuver(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
+    def evidence(self, ctx, findings, crit):
+        return pitch_evidence(getattr(self, "run", None), ctx, crit, "checked manoeuvre")
 
-        return (maneuver_evidence(run, "horizontal_tail", "elevator")
-                + envelope_evidence(run, ("wing",), "checked manoeuvre", plot=False))
+
+def pitch_evidence(run, ctx, crit, what: str) -> list:
+    """Evidence of a pitch manoeuvre run: the tail's critical time histories, envelope and table, the wing's table,
+    each against the declared allowables."""
+    from certkit.evidence.loads import allowables, envelope_evidence, maneuver_evidence
+
+    if not run:
+        return []
+    allow = allowables(ctx, crit.ultimate_factor)
+    return (maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow)
+            + envelope_evidence(run, ("wing",), what, plot=False, allow=allow))
 
 
 def checked_maneuver(ctx, conditions, crit) -> dict:
@@ -466,11 +475,7 @@ class MaximumPitchControlDisplacement(Rule):
         return findings
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
-
-        run = getattr(self, "run", None)
-        return (maneuver_evidence(run, "horizontal_tail", "elevator") + envelope_evidence(run, ("wing",), "maximum pitch "
-                "control displacement", plot=False)) if run else []
+        return pitch_evidence(getattr(self, "run", None), ctx, crit, "maximum pitch control displacement")
 
 
 def _ramp(ramp: float, amplitude):

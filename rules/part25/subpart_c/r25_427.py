@@ -107,11 +107,14 @@ class UnsymmetricalTailLoads(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_tail_loads(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables, envelope_evidence
 
-        env = run.get("envelope")
-        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False) if env is not None else []
+        run = getattr(self, "run", None)
+        env = run.get("envelope") if run else None
+        if env is None:
+            return []
+        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor))
 
 
 def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
