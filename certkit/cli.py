@@ -249,8 +249,10 @@ def _condition_options(f):
         click.option("--weight", help="Mass with unit, e.g. '600000 lb'."),
         click.option("--cg", help="CG station with unit, e.g. '97.25 ft'."),
         click.option("--config", "configuration", default="clean", show_default=True),
-        click.option("--altitude", default="35000 ft", show_default=True, help="Altitude with unit."),
-        click.option("--speed", default="M0.84", show_default=True, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84'."),
+        click.option("--altitude", default=None, help="Altitude with unit (default: the file's flight_condition, "
+                                                       "else 35000 ft)."),
+        click.option("--speed", default=None, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84' (default: the "
+                                                    "file's flight_condition, else M0.84)."),
         click.option("--maneuver", "kind", default="straight", show_default=True,
                      help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta)."),
         click.option("--gamma", "gamma_deg", type=float, default=0.0, show_default=True, help="Flight-path angle, deg."),

@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.models.mass.properties import MassComponent, MassProperties, combine, inertia_from_radii
+from certkit.models.mass.properties import (MassComponent, MassProperties, body_axis_tensor, combine,
+                                            inertia_from_radii)
 
 
 class LoadingError(ValueError):
@@ -53,7 +54,7 @@ class Loading:
 def reference_cg(aircraft) -> float:
     """The reference CG station (m): the CG envelope's ``reference_x``, else the reference moment point."""
     env = aircraft.cg_envelope
-    return env.reference_x if env.reference_x is not None else aircraft.reference.moment_point.x
+    return env.reference_x if env is not None and env.reference_x is not None else aircraft.reference.moment_point.x
 
 
 def _item(name, mass, x, y=0.0, z=0.0, inertia=None):
@@ -68,14 +69,15 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
         for c in m.components:
             inertia = None
             if c.inertia is not None:
-                t = c.inertia
-                inertia = np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+                inertia = body_axis_tensor(c.inertia)
             items.append(_item(c.name, c.mass, c.cg.x, c.cg.y, c.cg.z, inertia))
         total = sum(c.mass for c in m.components)
         notes = []
-        if abs(total - m.OEW) > 0.005 * m.OEW:
+        if m.OEW is not None and abs(total - m.OEW) > 0.005 * m.OEW:
             notes.append(f"component masses sum to {total:.0f} kg, not the declared OEW {m.OEW:.0f} kg; the components are used")
         return items, notes
+    if m.OEW is None:
+        return [], ["no component table and no OEW: the airplane is flown as a whole (mass.MTOW, mass.inertia)"]
     x = m.oew_cg.x if m.oew_cg is not None else aircraft.reference.moment_point.x
     return [_item("operating empty airplane", m.OEW, x)], ["no component table: the empty airplane is a point mass at its CG"]
 
@@ -185,6 +187,10 @@ def _payload_items(zones, payload: float, x_target: float) -> list[MassComponent
 def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: int = 201) -> Loading:
     """The payload/fuel distribution reaching ``mass`` (kg) at CG station ``x_cg`` (m), with its inertia."""
     m = aircraft.mass
+    if not (m.components or m.fuel_tanks or m.payload_zones):
+        return _scaled_loading(aircraft, mass, x_cg, name, [
+            "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the declared "
+            "tensor (at MTOW) at constant radii of gyration"])
     empty, notes = empty_airplane(aircraft)
     oew = sum(c.mass for c in empty)
     oew_moment = sum(c.mass * c.cg[0] for c in empty)
@@ -226,7 +232,7 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
 
 def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes) -> Loading:
     items = empty + fuel_items + payload_items
-    props = _scaled_if_point_empty(aircraft, combine(items), empty)
+    props = _whole_airplane_if_declared(aircraft, items)
     payload = {c.name.removeprefix("payload: "): c.mass for c in payload_items}
     fuel = {c.name.removeprefix("fuel: "): c.mass for c in fuel_items}
     return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items), tuple(notes))
@@ -259,17 +265,19 @@ def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
 
 def _declared_inertia(aircraft) -> np.ndarray | None:
     t = aircraft.mass.inertia
-    if t is None:
-        return None
-    return np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+    return None if t is None else body_axis_tensor(t)
 
 
-def _scaled_if_point_empty(aircraft, props: MassProperties, empty) -> MassProperties:
-    """With no component table, the parallel-axis inertia of point masses is meaningless: scale the
-    declared whole-airplane inertia (at MTOW) with mass, or use Roskam radii of gyration."""
-    if aircraft.mass.components:
-        return props
-    return MassProperties(props.mass, props.cg, whole_airplane_inertia(aircraft, props.mass))
+def _whole_airplane_if_declared(aircraft, items) -> MassProperties:
+    """Mass, CG and inertia of the items: the parallel-axis build-up when the file has a component table and uses it
+    (``mass.inertia_used: components``); else the declared whole-airplane tensor scaled with mass (with no component
+    table the parallel-axis inertia of point masses is meaningless, and is not formed)."""
+    m = aircraft.mass
+    if m.components and not (m.inertia is not None and m.inertia_used == "declared"):
+        return combine(items)
+    total = sum(c.mass for c in items)
+    cg = sum(c.mass * np.asarray(c.cg, dtype=float) for c in items) / total
+    return MassProperties(float(total), cg, whole_airplane_inertia(aircraft, total))
 
 
 def whole_airplane_inertia(aircraft, mass: float) -> np.ndarray:
