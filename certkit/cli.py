@@ -151,6 +151,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         chosen = select_rules(rules, split(select), split(ignore))
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
+    from certkit.models.mass.loading import inertia_comparison
+
+    warning = inertia_comparison(loaded.model)
+    if warning:
+        click.echo(f"warning: {warning}", err=True)
     try:
         result = run(loaded, chosen, jobs=jobs, options=options)
         result.models["mission"] = _mission_for_report(loaded.model)
@@ -302,6 +307,8 @@ def _print_trim(r):
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
     for note in r["loading_notes"]:
         click.echo(f"note: {note}")
+    for warning in r["warnings"]:
+        click.echo(f"warning: {warning}", err=True)
 
 
 @main.command(name="modes")

@@ -141,11 +141,12 @@ def trim_condition(ctx, fc: FlightCondition):
 
 def trim_report(ctx, fc: FlightCondition) -> dict:
     batch, _, loading = trim_condition(ctx, fc)
-    return _trim_dict(fc, batch, loading)
+    return _trim_dict(ctx, fc, batch, loading)
 
 
-def _trim_dict(fc: FlightCondition, batch, loading) -> dict:
+def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
     r = batch.results[0]
+    warning = ctx.inertia_warning()
     return {
         "condition": {"loading": fc.loading_name, "mass_kg": fc.mass, "x_cg_m": fc.x_cg, "configuration": fc.configuration,
                       "altitude_m": fc.altitude, "tas_m_s": fc.tas, "kind": fc.kind, "gamma_deg": np.degrees(fc.gamma),
@@ -160,6 +161,7 @@ def _trim_dict(fc: FlightCondition, batch, loading) -> dict:
         "inertia_kg_m2": {"Ixx": loading.properties.Ixx, "Iyy": loading.properties.Iyy, "Izz": loading.properties.Izz,
                           "Ixz": loading.properties.Ixz},
         "loading_notes": list(loading.notes),
+        "warnings": [warning] if warning else [],
     }
 
 
@@ -168,7 +170,7 @@ def modes_report(ctx, fc: FlightCondition) -> dict:
     from certkit.models.dynamics.modes import identify_modes
 
     batch, model, loading = trim_condition(ctx, fc)
-    out = _trim_dict(fc, batch, loading)
+    out = _trim_dict(ctx, fc, batch, loading)
     if not batch.results[0].converged:
         hint = ""
         if "elevator" not in model.aero_controls:

@@ -290,3 +290,32 @@ def whole_airplane_inertia(aircraft, mass: float) -> np.ndarray:
     if g is None:
         raise LoadingError("no inertia: declare mass.inertia, mass.components or the geometry (span, fuselage length)")
     return inertia_from_radii(mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
+
+
+def inertia_comparison(aircraft) -> str | None:
+    """With both a component table and a declared whole-airplane inertia: the two at MTOW (the component build-up of
+    the MTOW loading at the reference CG, parallel-axis theorem, against the declared tensor) when a moment of
+    inertia differs by more than ``mass.inertia_tolerance``, naming both values and the one the dynamics uses;
+    None when they agree or only one exists."""
+    m = aircraft.mass
+    if not m.components or m.inertia is None:
+        return None
+    try:
+        loading = solve_loading(aircraft, m.MTOW, reference_cg(aircraft), "MTOW")
+        built = combine(loading.items) if loading.items else None
+    except (LoadingError, ValueError) as exc:
+        return f"the declared mass.inertia could not be compared with the component build-up at MTOW: {exc}"
+    if built is None:
+        return None
+    declared = whole_airplane_inertia(aircraft, m.MTOW)
+    off = []
+    for k, name in enumerate(("Ixx", "Iyy", "Izz")):
+        b, d = float(built.inertia[k, k]), float(declared[k, k])
+        if abs(b - d) > m.inertia_tolerance * abs(d):
+            off.append(f"{name} {b:.4g} kg·m² from the components vs {d:.4g} kg·m² declared ({(b - d) / d:+.0%})")
+    if not off:
+        return None
+    used = "the declared tensor (mass.inertia_used: declared)" if m.inertia_used == "declared" else \
+        "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
+    return (f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
+            f"{'; '.join(off)}. The dynamics uses {used}")
