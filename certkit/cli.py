@@ -223,26 +223,34 @@ def schema():
 def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
     """Stability and control derivatives of an aircraft file or an AVL geometry (.avl) file.
 
-    Per radian, stability axes, rates per p̂ = pb/2V, q̂ = qc̄/2V, r̂ = rb/2V (AVL's conventions) with
-    certkit's control signs (a positive deflection gives a negative moment); neutral point in the
-    file's X axis. For an aircraft file the model column adds the fuselage, drag and overrides.
+    Per radian, stability axes, rates per p̂ = pb/2V, q̂ = qc̄/2V, r̂ = rb/2V (AVL's normalisation). Control signs:
+    for an aircraft file certkit's (a positive deflection gives a negative moment); for an .avl file the file's
+    own (AVL's). For an aircraft file the neutral point and static margin are the model's (lattice + fuselage
+    term + overrides); the lattice's are printed beside them. Induced drag: Trefftz plane (AVL's CDff). Drag along
+    the stability x axis (see certkit/conventions.py).
     """
     from certkit.aero_report import derivative_report
 
     report = derivative_report(model_file, mach, alpha_deg, beta_deg, configuration)
     if as_json:
-        click.echo(json.dumps(report, indent=2))
+        click.echo(json.dumps(report, indent=2, allow_nan=False))
         return
+    ref, tot = report["reference"], report["totals"]
     click.echo(f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg")
-    click.echo(f"Sref {report['reference']['area']:.5g}  Cref {report['reference']['chord']:.5g}  Bref {report['reference']['span']:.5g}  "
-               f"Xref {report['reference']['x_ref']:.5g}")
-    click.echo(f"CL {report['totals']['CL']:.5f}  CDi {report['totals']['CD_induced']:.6f}  e {report['totals']['span_efficiency']:.4f}  "
-               f"Cm {report['totals']['Cm']:.5f}")
-    click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c")
+    click.echo(f"Sref {ref['area']:.5g}  Cref {ref['chord']:.5g}  Bref {ref['span']:.5g}  Xref {ref['x_ref']:.5g}")
+    click.echo(f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
+               f"Cm {tot['Cm']:.5f}")
+    click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
+               f"({report['neutral_point_source']})")
+    if "model" in report:
+        click.echo(f"lattice alone: Xnp {report['lattice_neutral_point']:.5g}  static margin "
+                   f"{report['lattice_static_margin']:+.4f} c")
+    for key in ("controls", "drag"):
+        click.echo(f"{key}: {report['conventions'][key]}")
     columns = [c for c in ("lattice", "model") if c in report]
     click.echo(f"\n{'derivative':<22}" + "".join(f"{c:>14}" for c in columns))
     for name in report["lattice"]:
-        row = "".join(f"{report[c].get(name, float('nan')):>14.6f}" for c in columns)
+        row = "".join(f"{v:>14.6f}" if v is not None else f"{'—':>14}" for v in (report[c].get(name) for c in columns))
         click.echo(f"{name:<22}{row}")
     for note in report.get("notes", []):
         click.echo(f"note: {note}")
