@@ -1,4 +1,4 @@
-"""Command line: ``certkit check | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
+"""Command line: ``certkit check | rules | explain | schema | derivatives | trim | modes | mission | evaluate | import jsbsim | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated, 70 internal error (a bug: the message asks for a report; the
@@ -408,6 +408,40 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
         click.echo(json.dumps(record, indent=2, allow_nan=False))
     else:
         print_record(record, click.echo)
+
+
+@main.group(name="import")
+def import_group():
+    """Write a certkit aircraft file from another tool's model."""
+
+
+@import_group.command(name="jsbsim")
+@click.argument("fdm_file", type=click.Path(dir_okay=False))
+@click.option("--out", "out_path", type=click.Path(dir_okay=False), help="Aircraft file to write (default: standard output).")
+@click.option("--mach", type=float, default=0.8, show_default=True, help="Mach number the α tables are linearised at.")
+@click.option("--altitude", default="35000 ft", show_default=True, help="Altitude of that point, with unit.")
+def import_jsbsim_command(fdm_file, out_path, mach, altitude):
+    """A certkit aircraft file from a JSBSim FDM (AIRCRAFT.xml): mass, inertia, engines and thrust deck, and the
+    aerodynamic functions as a derivative table linearised at level flight at --mach/--altitude; what could not
+    be mapped is listed in the file's header and on standard error."""
+    from certkit.flight_report import _quantity
+    from certkit.jsbsim_import.importer import import_jsbsim, to_yaml
+
+    result = import_jsbsim(fdm_file, mach=mach, altitude=_quantity(altitude, "length", "--altitude"))
+    text = to_yaml(result)
+    from certkit.aircraft import validate_aircraft_data
+
+    validate_aircraft_data(result.data)  # what is written must load
+    for line in result.unmapped:
+        click.echo(f"not mapped: {line}", err=True)
+    if out_path:
+        try:
+            Path(out_path).write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise UserError(f"--out {out_path!r}: cannot write ({exc.strerror or exc})") from None
+        click.echo(f"wrote {out_path} ({len(result.unmapped)} items not mapped, listed in its header)", err=True)
+    else:
+        click.echo(text)
 
 
 def _register_study() -> None:

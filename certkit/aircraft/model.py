@@ -216,6 +216,8 @@ class MassProperties(_Section):
     max_payload: PositiveMass | None = None
     passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
     oew_cg: Point | None = None
+    cg: Point | None = Field(None, description="CG of the whole airplane at MTOW (a file without components, tanks "
+                                               "or zones; default: the CG envelope's reference, else the moment point)")
     inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (used without components, "
                                                             "or with them when inertia_used is 'declared')")
     inertia_used: Literal["components", "declared"] = Field(

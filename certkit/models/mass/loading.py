@@ -54,7 +54,9 @@ class Loading:
 def reference_cg(aircraft) -> float:
     """The reference CG station (m): the CG envelope's ``reference_x``, else the reference moment point."""
     env = aircraft.cg_envelope
-    return env.reference_x if env is not None and env.reference_x is not None else aircraft.reference.moment_point.x
+    if env is not None and env.reference_x is not None:
+        return env.reference_x
+    return aircraft.mass.cg.x if aircraft.mass.cg is not None else aircraft.reference.moment_point.x
 
 
 def _item(name, mass, x, y=0.0, z=0.0, inertia=None):
@@ -259,7 +261,8 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading
 
 
 def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
-    props = MassProperties(float(mass), np.array([x_cg, 0.0, 0.0]), whole_airplane_inertia(aircraft, mass))
+    z = aircraft.mass.cg.z if aircraft.mass.cg is not None else 0.0  # the declared whole-airplane CG height
+    props = MassProperties(float(mass), np.array([x_cg, 0.0, z]), whole_airplane_inertia(aircraft, mass))
     return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes))
 
 
