@@ -30,8 +30,9 @@ Drag axis
     certkit's drag coefficient CD acts along the stability x axis (the relative wind projected on the plane of
     symmetry) and the side force CY along body y: with sideslip the drag has no side component. JSBSim's DRAG
     acts along the relative wind itself (wind axes), so with sideslip β it adds a side force −D sin β. In trimmed
-    flight D ≈ T cos α, so JSBSim's sideslip equation carries an extra damping term −T cos α/(m V) in Y_v/m (about
-    1.7 % of the Dutch-roll damping of the 747 in cruise); models imported from JSBSim differ by that much.
+    flight D ≈ T cos α, so JSBSim's sideslip equation carries an extra damping term −T cos α/(m V) in Y_v/m: about
+    half of the Dutch-roll damping difference between certkit and JSBSim for the B747 and 737 imported from JSBSim
+    (1.1 % and 0.6 % of the real part; tests/dynamics/test_jsbsim_import.py).
     ``certkit derivatives`` states it in its output (DRAG_AXIS).
 
 Control surfaces — a positive deflection produces a negative moment (Etkin & Reid)
