@@ -120,6 +120,10 @@ def _derivative_table(name, table, condition, propulsion):
     if (table.form == "dimensional" or speed) and len(mach) > 1:
         yield f"{at}.mach", ("the dimensional form and speed derivatives refer to one flight condition: give one Mach "
                              "number (a Mach-tabulated table carries its speed dependence in its breakpoints)"), table.mach
+    if (table.form == "dimensional" or speed) and table.mach is not None and len(mach) == 1 and condition is not None \
+            and condition.mach is not None and abs(mach[0] - condition.mach) > 1e-3:
+        yield (f"{at}.mach", f"the dimensional form and speed derivatives refer to the flight condition's Mach number "
+               f"({condition.mach:g}); leave mach out or give that one", table.mach)
     if table.form == "dimensional" and "CD0" not in table.derivatives:
         yield f"{at}.derivatives", "the dimensional form needs CD0, the drag coefficient in the flight condition", None
     thrust = [k for k in ("CT_u", "T_u") if k in table.derivatives]

@@ -194,3 +194,12 @@ def test_check_on_a_derivative_table_file_reports_not_evaluated(tmp_path):
     data = json.loads(res.output[res.output.index("{"):])
     statuses = {r["status"] for r in data["rules"]}
     assert statuses == {"not_evaluated"}
+
+
+def test_speed_derivatives_at_another_mach_than_the_condition_is_an_error(tmp_path):
+    text = EXAMPLE.read_text().replace("      form: dimensional\n", "      form: dimensional\n      mach: [0.7]\n").replace(
+        "  speed: 235.9 m/s TAS     # [etkin] u0 (M 0.8)", "  mach: 0.8")
+    path = tmp_path / "bad.yaml"
+    path.write_text(text)
+    res = CliRunner().invoke(main, ["modes", str(path)])
+    assert res.exit_code == 2 and "derivative_tables.clean.mach" in res.output, res.output
