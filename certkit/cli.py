@@ -238,18 +238,20 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
     ref, tot = report["reference"], report["totals"]
     click.echo(f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg")
     click.echo(f"Sref {ref['area']:.5g}  Cref {ref['chord']:.5g}  Bref {ref['span']:.5g}  Xref {ref['x_ref']:.5g}")
-    click.echo(f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
-               f"Cm {tot['Cm']:.5f}")
-    click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
-               f"({report['neutral_point_source']})")
-    if "model" in report:
+    if tot is not None:
+        click.echo(f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
+                   f"Cm {tot['Cm']:.5f}")
+    if report["neutral_point"] is not None:
+        click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
+                   f"({report['neutral_point_source']})")
+    if report.get("model") is not None and report["lattice"] is not None:
         click.echo(f"lattice alone: Xnp {report['lattice_neutral_point']:.5g}  static margin "
                    f"{report['lattice_static_margin']:+.4f} c")
     for key in ("controls", "drag"):
         click.echo(f"{key}: {report['conventions'][key]}")
-    columns = [c for c in ("lattice", "model") if c in report]
+    columns = [c for c in ("lattice", "model") if report.get(c) is not None]
     click.echo(f"\n{'derivative':<22}" + "".join(f"{c:>14}" for c in columns))
-    for name in report["lattice"]:
+    for name in report[columns[0]]:
         row = "".join(f"{v:>14.6f}" if v is not None else f"{'—':>14}" for v in (report[c].get(name) for c in columns))
         click.echo(f"{name:<22}{row}")
     for note in report.get("notes", []):

@@ -86,3 +86,16 @@ def test_drag_axis_written_in_conventions():
     import certkit.conventions as conventions
 
     assert "Drag axis" in conventions.__doc__ and "T cos α/(m V)" in conventions.__doc__
+
+
+def test_derivative_table_file_without_geometry():
+    """A derivative-table airplane (no geometry): the declared table at the flight condition's Mach, its neutral
+    point, no lattice column, strict JSON — not a crash. Etkin's 747 is statically stable (Cm_alpha < 0) with
+    the neutral point a fifth of a chord behind the CG."""
+    example = Path(__file__).resolve().parents[2] / "docs" / "examples" / "b747_etkin_cruise.yaml"
+    data = _json(example)
+    assert data["lattice"] is None and data["mach"] == pytest.approx(0.7995, abs=1e-3)
+    assert data["model"]["Cm_alpha"] < 0 and 0.15 < data["static_margin"] < 0.3
+    assert "declared derivative table" in data["neutral_point_source"]
+    res = CliRunner().invoke(main, ["derivatives", str(example)])
+    assert res.exit_code == 0 and "Cm_alpha" in res.output
