@@ -71,6 +71,8 @@ def condition_from_options(aircraft, corner, weight, cg, configuration, altitude
                            beta_deg, inoperative) -> FlightCondition:
     if configuration not in aircraft.configurations:
         raise UserError(f"--config {configuration!r}: not declared (declared: {', '.join(aircraft.configurations)})")
+    if corner and aircraft.cg_envelope is None:
+        raise UserError(f"--corner {corner!r}: the aircraft file has no cg_envelope section; give --weight and --cg")
     if corner:
         corners = {c.name: c for c in CgCorners().loadings(aircraft)}
         if corner not in corners:
@@ -140,8 +142,20 @@ def trim_condition(ctx, fc: FlightCondition):
 
 
 def trim_report(ctx, fc: FlightCondition) -> dict:
-    batch, _, loading = trim_condition(ctx, fc)
-    return _trim_dict(ctx, fc, batch, loading)
+    batch, model, loading = trim_condition(ctx, fc)
+    out = _trim_dict(ctx, fc, batch, loading)
+    if not batch.results[0].converged and _no_pitch_control(model):
+        out["warnings"].append(_NO_PITCH_CONTROL)
+    return out
+
+
+_NO_PITCH_CONTROL = ("the aerodynamics have no pitch control (no elevator terms), so the pitching moment must vanish "
+                     "at the trim angle of attack by itself: declare elevator terms (CL_elevator, Cm_elevator) or a "
+                     "condition at which the table is trimmed")
+
+
+def _no_pitch_control(model) -> bool:
+    return "elevator" not in model.aero_controls
 
 
 def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
@@ -172,11 +186,7 @@ def modes_report(ctx, fc: FlightCondition) -> dict:
     batch, model, loading = trim_condition(ctx, fc)
     out = _trim_dict(ctx, fc, batch, loading)
     if not batch.results[0].converged:
-        hint = ""
-        if "elevator" not in model.aero_controls:
-            hint = ("; the aerodynamics have no pitch control (no elevator terms), so the pitching moment must vanish "
-                    "at the trim angle of attack by itself: declare elevator terms (CL_elevator, Cm_elevator) or a "
-                    "condition at which the table is trimmed")
+        hint = f"; {_NO_PITCH_CONTROL}" if _no_pitch_control(model) else ""
         raise UserError("the condition does not trim: " + batch.results[0].summary() + hint)
     modes = identify_modes(linearize(model, batch.x, batch.u), 0)
     out["modes"] = {name: {"eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag], "natural_frequency_rad_s": m.natural_frequency,

@@ -203,3 +203,11 @@ def test_speed_derivatives_at_another_mach_than_the_condition_is_an_error(tmp_pa
     path.write_text(text)
     res = CliRunner().invoke(main, ["modes", str(path)])
     assert res.exit_code == 2 and "derivative_tables.clean.mach" in res.output, res.output
+
+
+def test_options_that_need_absent_sections_are_usage_errors():
+    """--corner without a CG envelope: exit 2 naming the section; an untrimmable trim says why (no pitch control)."""
+    res = CliRunner().invoke(main, ["trim", str(EXAMPLE), "--corner", "fwd"])
+    assert res.exit_code == 2 and "no cg_envelope section" in res.output
+    res = CliRunner().invoke(main, ["trim", str(EXAMPLE), "--weight", "250000 kg"])
+    assert res.exit_code == 0 and "NOT CONVERGED" in res.output and "no pitch control" in res.output
