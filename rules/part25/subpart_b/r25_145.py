@@ -28,7 +28,7 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import LBF
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import trim_details
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust
 

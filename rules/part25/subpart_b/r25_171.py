@@ -13,7 +13,7 @@ from collections import defaultdict
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 
 #: certkit configuration of each flight phase the stability paragraphs name
 PHASES = {"takeoff": "takeoff", "cruise": "clean", "landing": "landing"}
