@@ -129,18 +129,25 @@ def main(debug):
 @click.option("--ignore", multiple=True, help="Rule id prefix or symbol to skip (repeatable, comma-separated).")
 @click.option("--jobs", "-j", default=None, type=int,
               help="Parallel processes (default: the CPU cores available, at most 4; results do not depend on it).")
-@click.option("--json", "as_json", is_flag=True, help="Print results.json to standard output as well.")
+@click.option("--output-format", "output_format", default="text", show_default=True,
+              type=click.Choice(["text", "json", "junit", "sarif", "github"]),
+              help="What to print on standard output: the rule table, results.json, JUnit XML, SARIF 2.1.0 or GitHub "
+                   "Actions annotations.")
+@click.option("--output-file", type=click.Path(dir_okay=False), help="Write that output to a file instead.")
+@click.option("--json", "as_json", is_flag=True, help="Same as --output-format json.")
+@click.option("--quiet", "-q", is_flag=True, help="No progress and no rule table: the summary line only.")
 @_rules_option
-def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
+def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_file, as_json, quiet, rules_dirs):
     """Evaluate every selected rule on AIRCRAFT_FILE and write results.json and an HTML report."""
     jobs = _default_jobs(jobs)
+    output_format = "json" if as_json else output_format
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
         from certkit.report.html import write_report
 
         from certkit.report.output import prepare_output, report_folder_name
-        from certkit.results import STATUS_LABEL
+        from certkit.report.terminal import Progress
         from certkit.scheduler import check_overrides, run
 
         start = time.perf_counter()
@@ -151,26 +158,56 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         chosen = select_rules(rules, split(select), split(ignore))
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
+    progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
-        result = run(loaded, chosen, jobs=jobs, options=options)
+        result = run(loaded, chosen, jobs=jobs, options=options, progress=progress)
+        progress.close()
         result.models["mission"] = _mission_for_report(loaded.model)
+        result.selection = {"select": list(split(select)), "ignore": list(split(ignore)),
+                            "partial": len(chosen) < len(rules), "rules_selected": len(chosen),
+                            "rules_registered": len(rules)}
+        result.options = {"rules_dirs": [str(d) for d in rules_dirs], "plugins": options.plugins}
+        result.environment = _environment()
+        result.jobs = jobs
+        result.duration_s = round(time.perf_counter() - start, 1)
         json_path, html_path = write_report(result, chosen, out)
     finally:
+        progress.close()
         gc.unfreeze()
-    if as_json:
-        click.echo(json_path.read_text(encoding="utf-8"))
-    else:
-        for r in result.rules:
-            crit = r.critical
-            margin = f"{crit.margin:+.4g} {crit.unit}".rstrip() if crit else "—"
-            where = crit.condition.label() if crit else r.headline_reason
-            click.echo(f"{STATUS_LABEL[r.status]:>17}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
-        s = result.summary()
-        click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['complies_partial']} comply in part (sub-paragraphs "
-                   f"not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
-                   f"({time.perf_counter() - start:.2f} s)")
-        click.echo(f"report: {html_path}\nresults: {json_path}")
+    _print_check(result, output_format, output_file, quiet, json_path, html_path, time.perf_counter() - start)
     sys.exit(result.exit_code())
+
+
+def _environment() -> dict:
+    import platform
+
+    return {"platform": platform.platform(), "python": platform.python_version()}
+
+
+def _print_check(result, output_format, output_file, quiet, json_path, html_path, seconds) -> None:
+    if output_format != "text":
+        from certkit.report.ci_formats import render
+
+        text = json_path.read_text(encoding="utf-8") if output_format == "json" else render(output_format, result)
+        if output_file:
+            Path(output_file).write_text(text, encoding="utf-8")
+        else:
+            click.echo(text, nl=False)
+        return
+    from certkit.report.terminal import rule_rows
+
+    if not quiet:
+        for line in rule_rows(result.rules, colour=sys.stdout.isatty()):
+            click.echo(line)
+        click.echo()
+    s = result.summary()
+    scope = (f" (a partial selection: {s['rules']} of {result.selection['rules_registered']} registered rules)"
+             if result.selection.get("partial") else "")
+    click.echo(f"{s['rules']} rules{scope}: {s['complies']} comply, {s['complies_partial']} comply in part "
+               f"(sub-paragraphs not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
+               f"({seconds:.2f} s)")
+    if not quiet:
+        click.echo(f"report: {html_path}\nresults: {json_path}")
 
 
 @main.command(name="rules")

@@ -14,7 +14,8 @@ import inspect
 import math
 import os
 import traceback
-from concurrent.futures import ProcessPoolExecutor
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
@@ -40,6 +41,14 @@ def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
             applied[name] = {"default": default, "value": value, "justification": override.justification}
             values[name] = value
     return values, applied
+
+
+def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> dict:
+    """The criteria in force as results.json and the report state them: value, unit (``1`` without one), source,
+    basis (:attr:`Criterion.basis`), meaning, and whether the aircraft file overrode it."""
+    return {name: {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
+                   "description": c.description, "overridden": name in overrides}
+            for name, c in rule.criteria.items()}
 
 
 def _override_value(rule: type[Rule], name: str, given: object) -> tuple[object, str | None]:
@@ -114,7 +123,8 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
                         limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
-                        unevaluated=[list(u) for u in rule.unevaluated])
+                        unevaluated=[list(u) for u in rule.unevaluated], amendment=rule.amendment,
+                        references=list(rule.references), criteria=criteria_metadata(rule, criteria, overrides))
     missing = ctx.missing(rule.requires)
     if missing:
         result.findings.append(Finding.not_evaluated(
@@ -182,9 +192,23 @@ def _uncovered(conditions, findings) -> list:
     return out
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]]) -> tuple[list[RuleResult], dict]:
+def _timed(rule: type[Rule], ctx: Context) -> RuleResult:
+    start = time.perf_counter()
+    result = evaluate_rule(rule, ctx)
+    result.seconds = time.perf_counter() - start
+    return result
+
+
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], progress=None) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
-    return [evaluate_rule(r, ctx) for r in rules], ctx.provenance()
+    results = []
+    for r in rules:
+        if progress:
+            progress.started([r.id])
+        results.append(_timed(r, ctx))
+        if progress:
+            progress.finished([results[-1]])
+    return results, ctx.provenance()
 
 
 def _merge_provenance(parts: list[dict]) -> dict:
@@ -228,7 +252,7 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
     ctx = _WORKER["ctx"]
     out = []
     for rid in rule_ids:
-        result = evaluate_rule(_WORKER["rules"][rid], ctx)
+        result = _timed(_WORKER["rules"][rid], ctx)
         result.encoded = result.to_json()
         out.append((result, ctx.provenance()))
     return out
@@ -243,21 +267,39 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
+def _run_units(pool, units, workers: int, progress) -> list:
+    """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end."""
+    futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]
+    if progress:
+        for unit in units[:workers]:
+            progress.started([r.id for r in unit])
+        next_unit = workers
+        for done in as_completed(futures):
+            progress.finished([res for res, _ in done.result()])
+            if next_unit < len(units):
+                progress.started([r.id for r in units[next_unit]])
+                next_unit += 1
+    return [part for f in futures for part in f.result()]
+
+
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
-        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None) -> RunResult:
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, progress=None) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
-    (:func:`work_units`) when it is free, the heaviest first."""
+    (:func:`work_units`) when it is free, the heaviest first. ``progress`` (optional) is told
+    ``started(rule_ids)`` and ``finished(results)`` as units start and end (with several processes a unit counts as
+    started when a process becomes free for it: the processes take the units in order)."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results, provenance = _evaluate_many(loaded, rules)
+        results, provenance = _evaluate_many(loaded, rules, progress)
         provenance = _merge_provenance([provenance])
     else:
         units = work_units(rules)
-        pool = ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
+        workers = min(jobs, len(units))
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
                                    initargs=(loaded, options, os.getpid()))
         try:
-            parts = [part for done in pool.map(_worker_run, [tuple(r.id for r in u) for u in units]) for part in done]
+            parts = _run_units(pool, units, workers, progress)
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise
