@@ -93,16 +93,16 @@ def _mission_for_report(aircraft) -> dict | None:
 
 
 def _default_jobs(jobs: int | None) -> int:
-    """The processes to use (default: the cores available, at most 4). With more than one, each process gets one
-    BLAS/OpenMP thread (set before numpy loads; a user's own setting is kept): threaded BLAS in several processes
-    oversubscribes the cores and slows the lattice several times."""
+    """The processes to use (default: the cores available, at most 4). Every process gets one BLAS/OpenMP thread (set
+    before numpy loads; a user's own setting is kept): threaded BLAS in several processes oversubscribes the cores and
+    slows the lattice several times, and a threaded BLAS sums in another order, which changes the last digits of a
+    result with the number of threads — results.json would then depend on --jobs."""
     if jobs is None:
         jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
-    if jobs > 1:
-        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-            os.environ.setdefault(var, "1")
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
     return jobs
 
 

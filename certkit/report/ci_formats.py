@@ -71,8 +71,17 @@ def _failed_lines(result) -> str:
 _LEVEL = {FAILS: "error", NOT_EVALUATED: "warning", COMPLIES_PARTIAL: "note"}
 
 
+def artifact_path(path: str) -> str:
+    """The aircraft file as CI annotations locate it: relative to the working folder (the repository root in CI)
+    when it lies below it, with forward slashes."""
+    import os
+
+    rel = os.path.relpath(os.path.abspath(path))
+    return (path if rel.startswith("..") else rel).replace(os.sep, "/")
+
+
 def sarif(run: RunResult) -> str:
-    uri = run.source_path
+    uri = artifact_path(run.source_path)
     results = [{"ruleId": r.id, "level": _LEVEL[r.status], "message": {"text": message(r)},
                 "locations": [{"physicalLocation": {"artifactLocation": {"uri": uri},
                                                     "region": {"startLine": 1}}}],
@@ -93,7 +102,7 @@ def github(run: RunResult) -> str:
     lines = []
     for r in run.rules:
         if r.status in kind:
-            lines.append(f"::{kind[r.status]} file={_gh_property(run.source_path)},line=1,"
+            lines.append(f"::{kind[r.status]} file={_gh_property(artifact_path(run.source_path))},line=1,"
                          f"title={_gh_property('§' + r.id + ' ' + STATUS_WORD[r.status])}::{_gh_data(message(r))}")
     return "\n".join(lines) + ("\n" if lines else "")
 
