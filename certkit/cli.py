@@ -1,4 +1,4 @@
-"""Command line: ``certkit check | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
+"""Command line: ``certkit check | diff | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated, 70 internal error (a bug: the message asks for a report; the
@@ -38,6 +38,9 @@ class _Group(click.Group):
         except UserError as exc:
             click.echo(f"error: {exc}", err=True)
             sys.exit(EXIT_USAGE)
+        except BrokenPipeError:  # the reader went away (`certkit ... | head`): stop quietly, as Unix tools do
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            sys.exit(1)
         except KeyboardInterrupt:
             click.echo("interrupted: nothing was written (previous reports are left as they were)", err=True)
             sys.exit(EXIT_INTERRUPTED)
@@ -208,6 +211,27 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
                f"({seconds:.2f} s)")
     if not quiet:
         click.echo(f"report: {html_path}\nresults: {json_path}")
+
+
+@main.command(name="diff")
+@click.argument("old", type=click.Path(dir_okay=False))
+@click.argument("new", type=click.Path(dir_okay=False))
+@click.option("--html", "html_file", type=click.Path(dir_okay=False), help="Also write the comparison as an HTML page.")
+@click.option("--tolerance", default=1e-6, show_default=True, type=float,
+              help="Margin changes below tolerance × max(1, |limit|) are not listed.")
+def diff_command(old, new, html_file, tolerance):
+    """Compare two results.json: status flips and margin changes per rule and condition. Exit 1 when a rule got
+    worse (complies → fails or not evaluated...), else 0."""
+    from certkit.report.diff import compare, load, render_html, text_lines
+
+    a, b = load(old), load(new)
+    changes = compare(a, b, tolerance)
+    for line in text_lines(changes, a, b):
+        click.echo(line)
+    if html_file:
+        Path(html_file).write_text(render_html(changes, a, b, old, new), encoding="utf-8")
+        click.echo(f"html: {html_file}")
+    sys.exit(1 if any(c.regression for c in changes) else 0)
 
 
 @main.command(name="rules")
