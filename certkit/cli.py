@@ -239,26 +239,30 @@ def diff_command(old, new, html_file, tolerance):
 @click.option("--markdown", is_flag=True, help="Print a Markdown table (for the README).")
 def list_rules(rules_dirs, markdown):
     """List the registered rules: id, symbol, title, implementation status."""
-    _, rules = _discovery(rules_dirs)
+    from certkit.rule_index import rule_metadata
+
+    rules = rule_metadata(tuple(rules_dirs))
     if markdown:
         click.echo("| Rule | Symbol | Title | Status |\n| --- | --- | --- | --- |")
         for r in rules:
-            click.echo(f"| §{r.id} | `{r.symbol}` | {r.title} | {r.implementation} |")
+            click.echo(f"| §{r['id']} | `{r['symbol']}` | {r['title']} | {r['implementation']} |")
         return
     for r in rules:
-        click.echo(f"{r.id:<14} {r.symbol:<38} {r.implementation:<12} {r.title}")
+        click.echo(f"{r['id']:<14} {r['symbol']:<38} {r['implementation']:<12} {r['title']}")
 
 
 @main.command()
 @click.argument("rule")
 @_rules_option
 def explain(rule, rules_dirs):
-    """Print a rule's documentation (id prefix or symbol): requirement, criterion, conditions, margin."""
-    _, rules = _discovery(rules_dirs)
-    matches = [r for r in rules if r.id == rule or r.symbol == rule] or [r for r in rules if r.id.startswith(rule)]
+    """Print a rule's documentation (id — with or without §, e.g. "§25.337" — id prefix or symbol): requirement,
+    criterion, conditions, margin."""
+    from certkit.rule_index import find, rule_metadata
+
+    matches = find(rule_metadata(tuple(rules_dirs)), rule)
     if not matches:
         raise UserError(f"no rule {rule!r} (see `certkit rules`)")
-    click.echo("\n\n".join(r.documentation() for r in matches))
+    click.echo("\n\n".join(r["documentation"] for r in matches))
 
 
 @main.command()
