@@ -336,7 +336,7 @@ def _flight(aircraft_file, **kw):
 
     ctx = Context(load_aircraft(aircraft_file))
     as_json = kw.pop("as_json")
-    return ctx, condition_from_options(ctx.aircraft, **kw), as_json
+    return ctx, condition_from_options(ctx.aircraft, **kw), as_json, kw
 
 
 @main.command(name="trim")
@@ -346,21 +346,44 @@ def trim_command(aircraft_file, **kw):
     """Trim one condition: angles, controls, thrust, and any control beyond its design limit."""
     from certkit.flight_report import trim_report
 
-    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = trim_report(ctx, fc)
     if as_json:
         click.echo(json.dumps(report, indent=2, default=float))
         return
-    _print_trim(report)
+    _print_trim(report, given)
 
 
-def _print_trim(r):
+def _beside(given: str, aviation: str) -> str:
+    """A value as the user gave it, with its aviation-unit value beside it unless given in that unit."""
+    return given if given.strip().endswith(aviation.rsplit(" ", 1)[-1]) and given[:1].isdigit() else f"{given} ({aviation})"
+
+
+def _print_trim(r, given: dict):
+    """The trimmed state; the condition echoed in the units the user gave (with aviation units beside SI)."""
+    from certkit.units import FT, KN, LB, LBF
+
     c = r["condition"]
-    click.echo(f"{c['loading']} · {c['configuration']} · {c['altitude_m']:.0f} m · TAS {c['tas_m_s']:.2f} m/s · {c['kind']}")
+    who = given["corner"] or (given["weight"] or f"MTOW {c['mass_kg'] / LB:,.0f} lb")
+    cg = f" · CG {given['cg']}" if given.get("cg") else f" · CG {c['x_cg_m'] / FT:.2f} ft"
+    manoeuvre = c["kind"] + "".join(f" {k} {given[v]:g} deg" for k, v in (("γ", "gamma_deg"), ("bank", "bank_deg"),
+                                                                          ("β", "beta_deg")) if given[v])
+    if c.get("inoperative"):
+        manoeuvre += f", {c['inoperative']} engine inoperative"
+    mass = _beside(who, f"{c['mass_kg'] / LB:,.0f} lb")
+    altitude = _beside(given["altitude"], f"{c['altitude_m'] / FT:,.0f} ft")
+    click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn) · "
+               f"{manoeuvre}")
     click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
     click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
     for name, value in r["controls"].items():
         click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")
+    thrust = r.get("thrust_N") or {}
+    for name, value in thrust.items():
+        click.echo(f"  thrust {name:<11} {value / LBF:10,.0f} lbf ({value / 1e3:,.1f} kN)")
+    if len(thrust) > 1:
+        total = sum(thrust.values())
+        click.echo(f"  thrust total      {total / LBF:10,.0f} lbf ({total / 1e3:,.1f} kN)")
     for lim in r["limits_exceeded"]:
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
     for note in r["loading_notes"]:
@@ -374,12 +397,12 @@ def modes_command(aircraft_file, **kw):
     """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double."""
     from certkit.flight_report import modes_report
 
-    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = modes_report(ctx, fc)
     if as_json:
         click.echo(json.dumps(report, indent=2, default=float))
         return
-    _print_trim(report)
+    _print_trim(report, given)
     click.echo(f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}")
     fmt = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
     for name, m in report["modes"].items():
