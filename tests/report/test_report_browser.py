@@ -11,29 +11,18 @@ from collections import Counter
 import pytest
 
 from tests.report.report_run import results
-from tests.study_analysis.test_browser import ARGS, CHROMIUM, pytestmark, sync_playwright  # noqa: F401
+from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
 
-pytestmark = pytestmark  # skipped with the reason when Playwright or Chromium is missing
+pytestmark = MARKS  # skipped with the reason when Playwright or Chromium is missing
 
 
 @pytest.fixture(scope="module")
-def chromium():
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        yield b
-        b.close()
+def chromium(browser):
+    return browser
 
 
 def _open(browser, path, width):
-    page = browser.new_page(viewport={"width": width, "height": 900}) if hasattr(browser, "contexts") else \
-        browser.new_page()
-    problems = []
-    page.on("console", lambda m: problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning")
-            else None)
-    page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-    page.on("request", lambda r: problems.append(f"request {r.url}") if not r.url.startswith("file:") else None)
-    page.goto(path.as_uri())
-    return page, problems
+    return open_page(browser, path, width)
 
 
 def test_clean_page_and_every_anchor_resolves(chromium, small_check):
