@@ -33,19 +33,30 @@ def clean(obj) -> tuple[object, int]:
     """``obj`` as plain JSON data: floats rounded, non-finite numbers ``None`` (their count returned), numpy scalars
     and arrays as numbers and lists, tuples as lists, other objects as their ``str``."""
     count = [0]
+    fmt = f".{SIGNIFICANT_DIGITS}g"
+    isfinite = math.isfinite
 
     def walk(o):
-        if isinstance(o, float):
-            if not math.isfinite(o):
+        t = type(o)
+        if t is float:
+            if not isfinite(o):
                 count[0] += 1
                 return None
-            return float(f"{o:.{SIGNIFICANT_DIGITS}g}") + 0.0  # + 0.0: -0.0 becomes 0.0
-        if o is None or isinstance(o, (str, bool, int)):
+            return float(format(o, fmt)) + 0.0  # + 0.0: -0.0 becomes 0.0
+        if t is str or t is int or t is bool or o is None:
             return o
+        if t is dict:
+            return {k if type(k) is str else str(k): walk(v) for k, v in o.items()}
+        if t is list or t is tuple:
+            return [walk(v) for v in o]
         if isinstance(o, dict):
             return {str(k): walk(v) for k, v in o.items()}
         if isinstance(o, (list, tuple)):
             return [walk(v) for v in o]
+        if isinstance(o, float):
+            return walk(float(o))
+        if isinstance(o, (str, int)):
+            return o
         return walk(_numpy(o))
 
     return walk(obj), count[0]
