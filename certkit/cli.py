@@ -266,8 +266,14 @@ def explain(rule, rules_dirs):
 
 
 @main.command()
-def schema():
-    """Print the JSON Schema of the aircraft file (for editor autocompletion)."""
+@click.option("--results", "of_results", is_flag=True, help="The JSON Schema of results.json instead.")
+def schema(of_results):
+    """Print the JSON Schema of the aircraft file (for editor autocompletion), or of results.json."""
+    if of_results:
+        from certkit.results_json import schema as results_schema
+
+        click.echo(json.dumps(results_schema(), indent=2, ensure_ascii=False))
+        return
     from certkit.aircraft import json_schema
 
     click.echo(json.dumps(json_schema(), indent=2))

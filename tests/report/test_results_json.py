@@ -105,3 +105,8 @@ def test_volatile_fields_are_only_in_run(small_check, volatile):
     assert volatile in data["run"]
     flat = json.dumps({k: v for k, v in data.items() if k != "run"})
     assert f'"{volatile}"' not in flat
+
+
+def test_schema_command_prints_the_shipped_schema(cli):
+    out = cli("schema", "--results")
+    assert out.exit_code == 0 and json.loads(out.output) == schema()
