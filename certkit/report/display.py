@@ -28,7 +28,9 @@ DASH = "—"
 
 def unit_and_factor(unit: str, display: str | None = None) -> tuple[str, float]:
     """(unit shown, factor) for numbers in ``unit``: shown = value / factor."""
-    if display and display != unit:
+    if display == unit:
+        return unit, 1.0
+    if display:
         si, factor = EXPLICIT.get(display, (None, 1.0))
         if si != unit and not (unit == "N*m" and si == "N·m"):
             raise ValueError(f"cannot show {unit!r} in {display!r}")
