@@ -97,6 +97,9 @@ def sarif(run: RunResult) -> str:
     return json.dumps(log, indent=2, ensure_ascii=False) + "\n"
 
 
+STATUS_WORD = {FAILS: "fails", NOT_EVALUATED: "not evaluated", COMPLIES_PARTIAL: "complies in part"}
+
+
 def github(run: RunResult) -> str:
     kind = {FAILS: "error", NOT_EVALUATED: "warning", COMPLIES_PARTIAL: "notice"}
     lines = []
@@ -105,9 +108,6 @@ def github(run: RunResult) -> str:
             lines.append(f"::{kind[r.status]} file={_gh_property(artifact_path(run.source_path))},line=1,"
                          f"title={_gh_property('§' + r.id + ' ' + STATUS_WORD[r.status])}::{_gh_data(message(r))}")
     return "\n".join(lines) + ("\n" if lines else "")
-
-
-STATUS_WORD = {FAILS: "fails", NOT_EVALUATED: "not evaluated", COMPLIES_PARTIAL: "complies in part"}
 
 
 def _gh_data(text: str) -> str:
