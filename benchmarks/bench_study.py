@@ -78,6 +78,10 @@ def report(label: str, run: dict, plan_size: int) -> None:
         for name, value in (r["timings"] or {}).items():
             if isinstance(value, (int, float)):
                 parts[name] += value
+    cpu = parts.pop("cpu_s", None)
+    if cpu is not None and ok:
+        print(f"  CPU time per design {cpu / len(ok):.2f} s (the evaluating process's own; on a loaded machine the wall "
+              f"time above grows, this does not)")
     if parts:
         total = parts.get("total_s") or sum(parts.values())
         print("  cost split (records' timings, mean per design):")

@@ -147,6 +147,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
+        from certkit.report.figures import render_result
         from certkit.report.html import write_report
 
         from certkit.report.output import prepare_output, report_folder_name
@@ -163,9 +164,10 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
     progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
-        result = run(loaded, chosen, jobs=jobs, options=options, progress=progress)
+        # the missions are flown in this process while the workers evaluate the rules
+        result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result, progress=progress,
+                     alongside={"mission": lambda: _mission_for_report(loaded.model)})
         progress.close()
-        result.models["mission"] = _mission_for_report(loaded.model)
         result.selection = {"select": list(split(select)), "ignore": list(split(ignore)),
                             "partial": len(chosen) < len(rules), "rules_selected": len(chosen),
                             "rules_registered": len(rules)}

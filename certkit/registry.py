@@ -27,7 +27,7 @@ if TYPE_CHECKING:
     from certkit.context import Context
     from certkit.results import Condition, Evidence, Finding
 
-RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-z0-9]+\))*$")
+RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-zA-Z0-9]+\))*$")  # §25.125(b)(2)(i)(A): capitals at the fifth level
 SYMBOL = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 IMPLEMENTATION = ("implemented", "partial", "planned")
 ENTRY_POINT_GROUP = "certkit.rules"

@@ -198,12 +198,24 @@ class Finding:
 
 @dataclass
 class Evidence:
-    """A plot (inline SVG) or a table attached to a rule result."""
+    """A figure and/or a table attached to a rule result, as data (:mod:`certkit.evidence`): ``figure`` a
+    :class:`~certkit.evidence.Chart`, :class:`~certkit.evidence.Bars` or :class:`~certkit.evidence.Heatmap`,
+    ``table`` a :class:`~certkit.evidence.Table` (a list of dicts is turned into one). The report draws the figure
+    into ``svg`` (:func:`certkit.report.figures.render_evidence`)."""
 
     title: str
-    svg: str = ""
+    figure: object = None
     caption: str = ""
-    table: list[dict] | None = None
+    table: object = None
+    svg: str = ""
+
+    def __post_init__(self):
+        from certkit.evidence import Table
+
+        if isinstance(self.figure, str):
+            raise TypeError(f"evidence {self.title!r}: a figure is data (certkit.evidence), not drawn SVG")
+        if isinstance(self.table, list):
+            self.table = Table.from_dicts(self.table)
 
 
 @dataclass

@@ -192,20 +192,24 @@ def _uncovered(conditions, findings) -> list:
     return out
 
 
-def _timed(rule: type[Rule], ctx: Context) -> RuleResult:
+def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
+    """:func:`evaluate_rule` then ``finish`` (the report's drawing), with the wall time of both in ``seconds``."""
     start = time.perf_counter()
     result = evaluate_rule(rule, ctx)
+    if finish is not None:
+        finish(result)
     result.seconds = time.perf_counter() - start
     return result
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], progress=None) -> tuple[list[RuleResult], dict]:
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None,
+                   progress=None) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
     results = []
     for r in rules:
         if progress:
             progress.started([r.id])
-        results.append(_timed(r, ctx))
+        results.append(_timed(r, ctx, finish))
         if progress:
             progress.finished([results[-1]])
     return results, ctx.provenance()
@@ -234,16 +238,13 @@ def _merge_provenance(parts: list[dict]) -> dict:
 _WORKER: dict = {}
 
 
-def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int) -> None:
+def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish=None) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.worker_processes.die_with_parent`)."""
-    import matplotlib
-
     die_with_parent(parent_pid)
-
-    matplotlib.use("Agg")
     _WORKER["ctx"] = Context(loaded)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
+    _WORKER["finish"] = finish
 
 
 def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
@@ -252,7 +253,7 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
     ctx = _WORKER["ctx"]
     out = []
     for rid in rule_ids:
-        result = _timed(_WORKER["rules"][rid], ctx)
+        result = _timed(_WORKER["rules"][rid], ctx, _WORKER["finish"])
         result.encoded = result.to_json()
         out.append((result, ctx.provenance()))
     return out
@@ -267,12 +268,10 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
-def _run_units(pool, units, workers: int, progress) -> list:
-    """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end."""
-    futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]
+def _collect(futures, units, workers: int, progress) -> list:
+    """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end (the first
+    ``workers`` units were told started when submitted)."""
     if progress:
-        for unit in units[:workers]:
-            progress.started([r.id for r in unit])
         next_unit = workers
         for done in as_completed(futures):
             progress.finished([res for res, _ in done.result()])
@@ -283,23 +282,34 @@ def _run_units(pool, units, workers: int, progress) -> list:
 
 
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
-        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, progress=None) -> RunResult:
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
+        alongside: dict | None = None, progress=None) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
-    (:func:`work_units`) when it is free, the heaviest first. ``progress`` (optional) is told
-    ``started(rule_ids)`` and ``finished(results)`` as units start and end (with several processes a unit counts as
-    started when a process becomes free for it: the processes take the units in order)."""
+    (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
+    :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
+    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``.
+    ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
+    several processes a unit counts as started when a process becomes free for it: the processes take the units in
+    order)."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results, provenance = _evaluate_many(loaded, rules, progress)
+        results, provenance = _evaluate_many(loaded, rules, finish, progress)
         provenance = _merge_provenance([provenance])
+        extra = {name: fn() for name, fn in (alongside or {}).items()}
     else:
         units = work_units(rules)
         workers = min(jobs, len(units))
         pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
-                                   initargs=(loaded, options, os.getpid()))
+                                   initargs=(loaded, options, os.getpid(), finish))
         try:
-            parts = _run_units(pool, units, workers, progress)
+            futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
+            if progress:
+                for unit in units[:workers]:
+                    progress.started([r.id for r in unit])
+            extra = {name: fn() for name, fn in (alongside or {}).items()}
+            parts = _collect(futures, units, workers, progress)
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise
@@ -308,4 +318,4 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         results = [by_id[r.id] for r in rules]
         provenance = _merge_provenance([p for _, p in parts])
     created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
-    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance)
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance | extra)

@@ -282,6 +282,23 @@ class Aerodynamics(_Section):
 
 # --- configurations, speeds, envelope, criteria --------------------------------------------
 
+class StallWarning(_Section):
+    """Where stall warning begins in a configuration (§25.207(c)-(d)): the 1-g lift coefficient at its onset, or the
+    warning speed VSW as a ratio to VSR. One of the two, with its source."""
+
+    CL: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(
+        None, description="trimmed 1-g lift coefficient at which stall warning begins")
+    speed_ratio: Annotated[float, Field(gt=1.0, lt=2.0)] | None = Field(
+        None, description="VSW/VSR, the stall-warning speed over the reference stall speed (CAS)")
+    source: str | None = None
+
+    @model_validator(mode="after")
+    def _one(self):
+        if (self.CL is None) == (self.speed_ratio is None):
+            raise ValueError("declare exactly one of CL (lift coefficient at the warning onset) and speed_ratio (VSW/VSR)")
+        return self
+
+
 class Configuration(_Section):
     flap: Angle = 0.0
     slat: Angle = 0.0
@@ -291,7 +308,17 @@ class Configuration(_Section):
     delta_CL0: float = 0.0
     delta_CD0: float = 0.0
     delta_Cm0: float = 0.0
+    stall_warning: StallWarning | None = Field(
+        None, description="stall-warning onset (§25.207); without it the rules use the latest warning §25.207(c) allows")
     source: str | None = None
+
+    @model_validator(mode="after")
+    def _warning_below_stall(self):
+        w = self.stall_warning
+        if w is not None and w.CL is not None and self.CLmax is not None and w.CL >= self.CLmax:
+            raise ValueError(f"stall_warning.CL ({w.CL:g}) must be below CLmax ({self.CLmax:g}): warning begins before "
+                             "the stall")
+        return self
 
 
 class Speeds(_Section):

@@ -18,9 +18,11 @@ from markupsafe import Markup, escape
 from certkit.registry import Rule
 from certkit.report.ci_formats import subpart
 from certkit.report.display import format_value as format_number, unit_and_factor
+from certkit.report.figures import render_result
 from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
 from certkit.report.reasons import reason_line
+from certkit.report.tables import formatted
 from certkit.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 
 #: order of the summary: what needs a reviewer first
@@ -34,6 +36,8 @@ def format_value(value, unit: str) -> str:
     """A number in the unit a reviewer reads (m/s → kn, m → ft, kg → lb, N → lbf, N·m → kN·m, rad → deg)."""
     if value is None:
         return "—"
+    if abs(value) < 1e-9:  # round-off noise of a difference (5.551e-17 Mach) and -0 read 0
+        value = 0.0
     shown, factor = unit_and_factor(unit or "")
     text = format_number(value / factor)
     return f"{text} {shown}" if shown not in ("", "1") and text != "—" else text
@@ -53,6 +57,7 @@ def _environment(rule_ids) -> Environment:
     env.filters["margin"] = margin_value
     env.filters["slug"] = slug
     env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
+    env.filters["table"] = formatted
     env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %".replace("-0.0 %", "+0.0 %")
     env.filters["ecfr"] = ecfr_url
     env.filters["refs"] = lambda text: linkify(text, rule_ids)
@@ -80,6 +85,7 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
                 referenced_by[target].append(cls.id)
     sections = []
     for result in run.rules:
+        render_result(result)  # figures not drawn yet (those drawn by the workers of a check are kept)
         cls = by_id[result.id]
         flags = {}
         for name, c in cls.criteria.items():

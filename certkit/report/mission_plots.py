@@ -1,11 +1,8 @@
-"""The payload–range diagram of a mission result (inline SVG, the style of :mod:`certkit.report.plots`)."""
+"""The payload–range diagram of a mission result (inline SVG drawn by :mod:`certkit.report.figures`)."""
 
 from __future__ import annotations
 
-from certkit.report.plots import figure_to_svg, subplots
-from certkit.units import LB
-
-NMI = 1852.0
+from certkit.evidence import Axis, Chart, Limit, Panel, Point, Series
 
 
 def payload_range_outline(points) -> tuple[list[float], list[float]]:
@@ -16,24 +13,19 @@ def payload_range_outline(points) -> tuple[list[float], list[float]]:
     return [0.0] + [p.range_m for p in corners], [top] + [p.payload_kg for p in corners]
 
 
-def payload_range_svg(points, requirement_m: float | None = None) -> str:
-    """Payload (1,000 lb) against still-air range (nmi) with reserves: the outline, the design point and the
-    required design range."""
-    fig, ax = subplots(figsize=(6.4, 3.6), left=0.75)
+def payload_range_chart(points, requirement_m: float | None = None) -> Chart:
+    """Payload (1,000 lb) against still-air range (nmi) with reserves: the outline, the design point (starred) and
+    the required design range."""
     x, y = payload_range_outline(points)
-    ax.plot([v / NMI for v in x], [v / LB / 1000 for v in y], lw=1.8, color="#1f4e79", marker="o", ms=4)
-    for p in points:
-        if p.name == "design payload":
-            ax.plot(p.range_m / NMI, p.payload_kg / LB / 1000, marker="D", color="#c0392b", ms=6, ls="none")
-            ax.annotate(f"design: {p.range_m / NMI:,.0f} nmi", (p.range_m / NMI, p.payload_kg / LB / 1000),
-                        textcoords="offset points", xytext=(6, 6), fontsize=8, color="#c0392b")
-    if requirement_m:
-        ax.axvline(requirement_m / NMI, color="0.45", ls="--", lw=0.9)
-        ax.annotate(f"required {requirement_m / NMI:,.0f} nmi", (requirement_m / NMI, 0), textcoords="offset points",
-                    xytext=(-4, 4), rotation=90, ha="right", va="bottom", fontsize=8, color="0.35")
-    ax.set_xlim(left=0)
-    ax.set_ylim(bottom=0)
-    ax.set_xlabel("range (nmi, still air, reserves on landing)")
-    ax.set_ylabel("payload (1,000 lb)")
-    ax.grid(True, alpha=0.3)
-    return figure_to_svg(fig)
+    marks = [Point(p.range_m, p.payload_kg, f"design point at {p.range_m / 1852:,.0f} nmi") for p in points
+             if p.name == "design payload"]
+    limits = [Limit(requirement_m, f"required {requirement_m / 1852:,.0f} nmi", axis="x")] if requirement_m else []
+    outline = Series("payload–range outline", x, y, marker="o", colour=0)
+    return Chart(Axis("range, still air, reserves on landing", "m", "nmi"),
+                 [Panel(Axis("payload", "kg", "1,000 lb"), [outline], limits, marks)])
+
+
+def payload_range_svg(points, requirement_m: float | None = None) -> str:
+    from certkit.report.figures import render
+
+    return render(payload_range_chart(points, requirement_m), "mission")

@@ -1,4 +1,5 @@
-"""Evidence plots rendered as inline SVG strings (matplotlib, Agg backend, no files).
+"""matplotlib figures rendered as inline SVG strings (Agg backend, no files), for the study report (the check's evidence
+figures are written directly: :mod:`certkit.report.svg`).
 
 Layout: figures are made by :func:`subplots`, which places the axes with fixed margins in inches, and are
 serialised by :func:`figure_to_svg` in one draw. (``bbox_inches="tight"`` drew every figure twice, the first
@@ -24,10 +25,11 @@ from matplotlib.text import Text  # noqa: E402
 from matplotlib.textpath import TextToPath  # noqa: E402
 from matplotlib.ticker import FixedLocator  # noqa: E402
 
-from certkit.units import KN  # noqa: E402
 
 # legend.loc "best" searches every plotted vertex for the emptiest corner: seconds on long time histories
-plt.rcParams.update({"svg.fonttype": "none", "font.size": 9, "figure.dpi": 100, "legend.loc": "upper right"})
+# svg.hashsalt: matplotlib's SVG ids are hashes of their content salted with this (else a random salt per figure)
+plt.rcParams.update({"svg.fonttype": "none", "font.size": 9, "figure.dpi": 100, "legend.loc": "upper right",
+                     "svg.hashsalt": "certkit"})
 
 _TEXT = TextToPath()
 #: white space kept around texts that reach beyond the figure (inches)
@@ -71,9 +73,13 @@ def _reach(fig) -> tuple[float, float, float, float]:
     return x0, y0, x1, y1
 
 
-def figure_to_svg(fig) -> str:
-    """Serialize a figure to an SVG fragment suitable for inline HTML (no XML prolog, no fixed size); the view
-    box covers the figure and any legend, title or annotation reaching beyond it."""
+_ID = re.compile(r'(\bid="|url\(#|href="#)([^"\)]+)')
+
+
+def figure_to_svg(fig, prefix: str = "") -> str:
+    """Serialize a figure to an SVG fragment suitable for inline HTML (no XML prolog, no fixed size, no date); the
+    view box covers the figure and any legend, title or annotation reaching beyond it. With ``prefix``, every id
+    (and every reference to one) starts with it, so figures on one page never share an id."""
     w, h = fig.get_size_inches()
     x0, y0, x1, y1 = _reach(fig)
     buf = io.StringIO()
@@ -85,39 +91,6 @@ def figure_to_svg(fig) -> str:
     if (x0, y0, x1, y1) != (0.0, 0.0, w, h):  # SVG user units are points, y down from the top
         box = f"{x0 * 72:.2f} {(h - y1) * 72:.2f} {(x1 - x0) * 72:.2f} {(y1 - y0) * 72:.2f}"
         svg = re.sub(r'(<svg[^>]*?) viewBox="[^"]*"', rf'\1 viewBox="{box}"', svg, count=1)
+    if prefix:
+        svg = _ID.sub(lambda m: f"{m[1]}{prefix}-{m[2]}", svg)
     return svg
-
-
-def vn_diagram_svg(envelopes: list, speeds: dict[str, float]) -> str:
-    """V–n diagrams (speeds in kn EAS) of several weights with the declared speeds marked."""
-    fig, ax = subplots(figsize=(6.4, 3.8), left=0.65)
-    for label, env in envelopes:
-        v, n = env.outline()
-        line, = ax.plot(v / KN, n, lw=1.6, label=label)
-        for name, (vc, nc) in env.corners().items():
-            ax.annotate(name, (vc / KN, nc), textcoords="offset points", xytext=(4, 3), color=line.get_color(), fontsize=8)
-    for name, value in speeds.items():
-        ax.axvline(value / KN, color="0.5", ls="--", lw=0.8)
-        ax.annotate(name, (value / KN, ax.get_ylim()[0]), textcoords="offset points", xytext=(2, 4), color="0.35", fontsize=8)
-    ax.axhline(0, color="0.2", lw=0.6)
-    ax.set_xlabel("equivalent airspeed (kn EAS)")
-    ax.set_ylabel("load factor n")
-    ax.grid(True, alpha=0.3)
-    ax.legend(loc="lower left", fontsize=8)
-    return figure_to_svg(fig)
-
-
-def margin_bars_svg(labels: list[str], margins: list[float], unit: str, title: str = "") -> str:
-    """Horizontal bars of normalised margins per condition; failures in red."""
-    height = max(1.6, 0.22 * len(labels) + 0.8)
-    fig, ax = subplots(figsize=(6.4, height), left=text_width(labels, 7) + 0.2, top=0.35 if title else 0.15)
-    colors = ["#c0392b" if m < 0 else "#2e7d32" for m in margins]
-    ax.barh(range(len(labels)), margins, color=colors)
-    ax.set_yticks(range(len(labels)), labels, fontsize=7)
-    ax.axvline(0, color="0.2", lw=0.8)
-    ax.invert_yaxis()
-    ax.set_xlabel(f"normalised margin ({unit})" if unit else "normalised margin")
-    if title:
-        ax.set_title(title, fontsize=9)
-    ax.grid(True, axis="x", alpha=0.3)
-    return figure_to_svg(fig)

@@ -1,7 +1,11 @@
-"""The generic performance evidence (certkit/report/evidence_performance.py) on hand-made findings: the table carries
+"""The generic performance evidence (certkit/evidence/performance.py) on hand-made findings: the table carries
 every evaluated finding (gradients in percent), the bar chart the worst ones, and nothing is drawn without margins."""
 
-from certkit.report.evidence_performance import climb_gradient_evidence, margins_evidence
+import pytest
+
+from certkit.evidence import Bars
+from certkit.evidence.performance import climb_gradient_evidence, margins_evidence
+from certkit.report.figures import render_evidence
 from certkit.results import Condition, Finding
 
 
@@ -19,15 +23,19 @@ def _findings():
 
 def test_margins_table_and_plot():
     (ev,) = margins_evidence(_findings(), "title", "caption.", ("rudder_deg",), plot=True)
+    assert isinstance(ev.figure, Bars) and ev.figure.failing == [True, True, False]
+    render_evidence([ev], "t")
     assert "<svg" in ev.svg
     assert len(ev.table) == 3  # the not-evaluated finding has no margin
-    worst = ev.table[0]
+    rows = ev.table.as_dicts()
+    worst = rows[0]
     assert worst["check"].startswith("(b) gradient") and worst["status"] == "fails"
-    assert worst["value"] == 2.0 and worst["limit"] == 2.4 and worst["unit"] == "%" and worst["margin"] == -0.4
+    assert worst["value"] == pytest.approx(2.0) and worst["limit"] == pytest.approx(2.4) and worst["unit"] == "%"
+    assert worst["margin"] == pytest.approx(-0.4)
     # ordered by normalised margin: −0.4/2.4 = −0.167, then −1.8/23.2 = −0.078, then +0.7/2.4
-    assert ev.table[1]["check"].startswith("(b) rudder") and ev.table[1]["rudder_deg"] is None
-    assert len({tuple(row) for row in ev.table}) == 1  # the same columns in every row
-    assert ev.table[2]["rudder_deg"] == -12.5 and ev.table[2]["margin"] == 0.7
+    assert rows[1]["check"].startswith("(b) rudder") and rows[1]["rudder_deg"] is None
+    assert ev.table.columns[-1].name == "rudder" and ev.table.columns[-1].unit == "deg"  # a human name, the unit apart
+    assert rows[2]["rudder_deg"] == -12.5 and rows[2]["margin"] == pytest.approx(0.7)
 
 
 def test_climb_gradients_and_nothing_without_margins():
@@ -35,4 +43,4 @@ def test_climb_gradients_and_nothing_without_margins():
     assert [e.title for e in evs] == ["§25.121(b): gradients", "§25.121(b): trims"]
     assert margins_evidence(_findings()[3:], "t", "c") == []
     (table_only,) = margins_evidence(_findings(), "t", "c")
-    assert table_only.svg == "" and len(table_only.table) == 3
+    assert table_only.figure is None and table_only.svg == "" and len(table_only.table) == 3

@@ -1,6 +1,7 @@
 """The check pipeline: results.json, determinism, --jobs, --rules folders, plugins, isolation, escaping."""
 
 import json
+import re
 import textwrap
 
 import pytest
@@ -67,7 +68,11 @@ def test_check_writes_results_json_with_stable_keys(cli, tmp_path):
     assert len(masses) == 4  # 310,000 / 460,000 / 560,000 / 657,000 lb
     s = data["summary"]
     assert out.exit_code == (1 if s["fails"] else 3 if s["not_evaluated"] or s["complies_partial"] else 0)
-    assert (tmp_path / "index.html").read_text().count("<svg") >= 1
+    html = (tmp_path / "index.html").read_text()
+    assert html.count("<svg") >= 1
+    ids = re.findall(r'\bid="([^"]+)"', html)
+    assert len(ids) == len(set(ids))  # no SVG or page id twice (each figure's ids carry its own prefix)
+    assert set(re.findall(r'(?:url\(#|href="#)([^")]+)', html)) <= set(ids)
 
 
 def test_deterministic_and_jobs_equal(baseline):

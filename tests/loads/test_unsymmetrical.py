@@ -96,3 +96,29 @@ def test_equal_fractions_and_increment_without_increment_change_nothing(wing_cas
         np.testing.assert_allclose(u.full, aero + inertia, rtol=1e-12)
         np.testing.assert_allclose(u.reduced, aero + inertia, rtol=1e-12)
         assert float(u.rolling_moment[0]) == 0.0 and float(u.delta_n_z[0]) == 0.0
+
+
+def test_tail_split_peaks_are_the_extremes_of_the_split_histories(wing_case):
+    """§25.427(b) reduces each split time history to its extremes: the one-pass peaks equal NaN-ignoring min/max of
+    the split histories (an all-NaN time column, a state that was not balanced, stays NaN)."""
+    import warnings
+
+    from certkit.models.loads.unsymmetrical import unsymmetrical_tail, unsymmetrical_tail_peaks
+
+    ctx = wing_case[0] if isinstance(wing_case, tuple) else wing_case
+    tail = airplane_loads(ctx)["horizontal_tail"]
+    rng = np.random.default_rng(3)
+    S = tail.station_span.size
+    aero, inertia = rng.normal(size=(2, 50, 4, 3, S)) * 1e5
+    aero[10:20, 1] = np.nan
+    aero[:, 3] = np.nan
+    split = unsymmetrical_tail(tail, aero, inertia, 1.0, 0.8)
+    p_full, p_red, t_lo, t_hi = unsymmetrical_tail_peaks(tail, aero, inertia, 1.0, 0.8)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        for peaks, hist in ((p_full, split.full), (p_red, split.reduced)):
+            np.testing.assert_array_equal(peaks[:, 0], np.nanmin(hist, axis=0))
+            np.testing.assert_array_equal(peaks[:, 1], np.nanmax(hist, axis=0))
+        np.testing.assert_array_equal(t_lo, np.nanmin(split.fuselage_torsion, axis=0))
+        np.testing.assert_array_equal(t_hi, np.nanmax(split.fuselage_torsion, axis=0))
+    assert np.isnan(p_full[3]).all() and np.isfinite(p_full[:3]).all()

@@ -4,9 +4,10 @@ limits of ±2°, structure at 5 % of its declared capability — and each rule w
 (``--select`` style subsets) and must report "fails". The thresholds are the paragraphs' own (cited per case); the
 deficiencies are gross so that the verdict does not hang on model detail.
 
-Rules already failing on the baseline show their failure path there (§25.111, §25.125, §25.143(h), §25.161, §25.181,
-see `certkit check aircraft/lta.yaml`); §25.173(b)/(c) need a control-force model the baseline does not declare
-(tests/rules/test_control_forces.py runs them with one).
+Rules already failing on the baseline show their failure path there (§25.125, §25.143(h), §25.161, §25.181, see
+`certkit check aircraft/lta.yaml`, and each rule's own deficient-airplane test); §25.111's baseline runs are not
+representative (not evaluated), and tests/rules/test_r25_111.py fails it with a ±15° rudder; §25.173(b)/(c) need a
+control-force model the baseline does not declare (tests/rules/test_control_forces.py runs them with one).
 """
 
 import re

@@ -61,3 +61,16 @@ def test_vmc_parts_from_computed_vmca_until_declared(tmp_path):
     with_vmc = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMC: 120 kn CAS")])
     assert check(with_vmc, "(b)(3)").margin == pytest.approx(161 / 120 - 1.10, abs=1e-9)
     assert check(with_vmc, "(e)(1)(ii)").margin == pytest.approx(155 / 120 - 1.05, abs=1e-9)
+
+
+VSR_CLEAN_KN = 167.598  # MTOW 656,000 lb, clean CLmax 1.4, S 4927.3 ft², same formula (Anderson eq. 6.47)
+
+
+def test_vfto_over_clean_vsr_by_hand_and_a_low_vfto_fails(tmp_path):
+    """§25.107(g)(1): VFTO/VSR − 1.18 with VSR of the en-route (clean) configuration at MTOW:
+    198/167.598 − 1.18 = +0.0014 for the baseline; a declared VFTO of 195 kn gives 195/167.598 = 1.1635, which fails."""
+    f = check(run_rule("25.107"), "(g)(1)")
+    assert f.value == pytest.approx(198 / VSR_CLEAN_KN, abs=1e-4)
+    assert f.condition.configuration == "clean" and f.status == "complies"
+    low = check(run_rule("25.107", tmp_path, [("VFTO: 198 kn CAS", "VFTO: 195 kn CAS")]), "(g)(1)")
+    assert low.value == pytest.approx(195 / VSR_CLEAN_KN, abs=1e-4) and low.status == "fails"

@@ -26,9 +26,35 @@ GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36
 LOADINGS = ("MTOW forward", "MTOW reference", "MTOW aft")
 
 
+#: the baseline's runs do not represent a takeoff a pilot flies (test_unrepresentative_runs_earn_no_verdict); these
+#: bounds let the rule compute their verdicts anyway, so that the physics of the runs can be checked
+WIDE = ('criteria:\n  "25.111":\n    justification: the physics of the baseline runs, verdicts computed past the bounds\n'
+        '    values: {vlof_above_vr_max: 100.0, v35_above_v2_max: 100.0, lateral_deviation_max: 1000.0}\n\nsources:\n')
+
+
+def wide(*edits):
+    return [("\nsources:\n", "\n" + WIDE), *edits]
+
+
 @pytest.fixture(scope="module")
-def result():
-    return run_rule("25.111")
+def result(tmp_path_factory):
+    return run_rule("25.111", tmp_path_factory.mktemp("wide"), wide())
+
+
+def test_unrepresentative_runs_earn_no_verdict(result):
+    """With the rule's own bounds (VLOF ≤ VR + 15 kn, V35 ≤ V2 + 10 kn, ≤ 30 ft off the centreline on the ground) the
+    baseline's runs are not representative (issue 12: VLOF 187 kn for VR 155 kn at forward CG, 128–235 ft sideways):
+    every check is not evaluated, and the reason quotes the run's own numbers."""
+    base = run_rule("25.111")
+    assert base.status == "not_evaluated"
+    for loading in LOADINGS:
+        d = _by(result, loading, "(c)(2)").details
+        for f in (f for f in own(base) if f.condition.loading == loading):
+            assert f.status == "not_evaluated" and "does not represent" in f.reason
+            assert f"deviates {d['max_lateral_deviation_on_ground_ft']:.0f} ft" in f.reason
+            late = d["vlof_kn"] - d["vr_kn"] > 15.0
+            assert ("above VR" in f.reason) == late
+    assert "31.8 kn above VR" in _by(base, "MTOW forward", "(c)(2)").reason
 
 
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
@@ -47,18 +73,24 @@ def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
         assert f.limit == pytest.approx(161.0, abs=1e-6) and f.unit == "kn"
         assert f.details["vlof_kn"] > 155.0 and f.value > f.details["vlof_kn"]
         assert f.condition.get("inoperative") == "left"
+    from certkit.report.figures import render_result
+
+    render_result(result)
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
 
 
-def test_on_the_limit_when_the_rudder_design_limit_equals_the_extreme_rudder(result, tmp_path):
-    """With the rudder's design limit set to the forward-CG run's extreme rudder, that margin is 0 (the pilot model
-    moves the rudder over its travel, so the design limit does not change the run)."""
+def test_a_smaller_rudder_design_limit_fails_the_engine_out_takeoff(result, tmp_path):
+    """A deficient airplane: a rudder design limit of ±15° (the engine-out runs use about 27°; the pilot model moves
+    the rudder over its travel, so the run is the same) fails (a)'s rudder check at every CG, by |δr| − 15°."""
     fwd = _by(result, "MTOW forward", "(a) rudder")
-    assert fwd.limit == pytest.approx(-23.2)
-    edited = run_rule("25.111", tmp_path, [("design_limits: {min: -23.2 deg, max: 23.2 deg}",
-                                            f"design_limits: {{min: {fwd.value:.6f} deg, max: 23.2 deg}}")])
-    f = _by(edited, "MTOW forward", "(a) rudder")
-    assert f.margin == pytest.approx(0.0, abs=1e-5)
+    assert fwd.limit == pytest.approx(-23.2) and fwd.value < -15.0
+    edited = run_rule("25.111", tmp_path, wide(("design_limits: {min: -23.2 deg, max: 23.2 deg}",
+                                                 "design_limits: {min: -15 deg, max: 15 deg}")))
+    for loading in LOADINGS:
+        f = _by(edited, loading, "(a) rudder")
+        assert f.status == "fails" and f.limit == pytest.approx(-15.0)
+    assert _by(edited, "MTOW forward", "(a) rudder").value == pytest.approx(fwd.value, abs=1e-6)
+
 
 
 def test_sign_cg_and_engine_failure(result):
@@ -86,8 +118,8 @@ def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
 
 
 def _with_field_length(tmp_path, ft):
-    return run_rule("25.111", tmp_path, [("\nsources:", f"\nperformance:\n  takeoff_field_length: {ft} ft\n"
-                                                      "  source: test value\nsources:")])
+    return run_rule("25.111", tmp_path, wide(("\nsources:", f"\nperformance:\n  takeoff_field_length: {ft} ft\n"
+                                                           "  source: test value\nsources:")))
 
 
 def test_rotation_matches_a_declared_field_length(tmp_path):

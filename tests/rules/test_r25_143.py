@@ -78,14 +78,66 @@ def test_hand_calculation_load_factor_lift_and_margin(base):
     assert g.details["flight_path_deg"] > 0 and abs(g.details["thrust_residual"]) < 1e-4
 
 
-def test_on_the_limit(tmp_path, base):
-    """Elevator-up design limit set to the landing turn's elevator at MLW reference CG: margin 0."""
-    f = control(base, "landing VREF", "MLW reference", "elevator")
-    assert f.value < 0
-    ctx = edited_context(tmp_path, [(LIMITS, f"design_limits: {{min: {f.value:.9f} deg, max: 16.8 deg}}")])
+def test_too_little_elevator_authority_fails(tmp_path, base):
+    """A deficient airplane: the elevator's nose-up design limit cut to −10° (the landing turn needs about −19° at
+    the reference CG, more forward): the landing turn at MLW fails on the elevator at the forward and reference CG,
+    with the trim's message; the aft CG (about −5°) still complies."""
+    assert control(base, "landing VREF", "MLW reference", "elevator").value < -10.0
+    ctx = edited_context(tmp_path, [(LIMITS, "design_limits: {min: -10 deg, max: 16.8 deg}")])
     r = evaluate_part("25.143(h)", ctx, landing)
-    g = control(r, "landing VREF", "MLW reference", "elevator")
-    assert g.margin == pytest.approx(0.0, abs=1e-6) and g.status == "complies"
+    for loading in ("MLW forward", "MLW reference"):
+        g = control(r, "landing VREF", loading, "elevator")
+        assert g.status == "fails" and g.value < -10.0 and "limit -10.0°" in g.reason
+    assert control(r, "landing VREF", "MLW aft", "elevator").status == "complies"
+
+
+def warning(result, case, loading, turn=None):
+    findings = result if isinstance(result, list) else result.findings
+    return [f for f in findings if f.condition.get("case") == case and f.condition.loading == loading
+            and f.check.endswith("free of stall warning") and (turn is None or f.condition.get("turn") == turn)]
+
+
+VSR_CLEAN_KN = 167.598  # 1-g stall, MTOW 656,000 lb, clean CLmax 1.4, S 4927.3 ft² (Anderson eq. 6.47)
+
+
+def test_stall_warning_by_hand_and_the_vfto_turn_finding(base):
+    """Without a declared warning onset the latest §25.207(c) allows is used: VSW = VSR + max(5 kn, 5 %) = 1.05 VSR,
+    so the warning CL is CLmax/1.05² = 1.26984 clean. The 40° turn at VFTO = 198 kn (1.1814 VSR) needs
+    CL/CLmax ≈ (1/cos 40°)/1.1814² = 0.935 (the flight path of the WAT-limited climb changes it by < 0.2 %): above
+    0.907, so the en-route case fails (issue 12's reading: the VFTO turns fly inside any warning that meets
+    §25.207(c) with the stall identified at VSR). The landing turn at VREF needs 0.864 CLmax: free of warning."""
+    hand = (1 / math.cos(math.radians(40))) / (198 / VSR_CLEAN_KN) ** 2
+    for f in warning(base, "en route VFTO", "MTOW forward"):
+        assert f.limit == pytest.approx(1.4 / 1.05**2, rel=1e-6)
+        assert f.value / 1.4 == pytest.approx(hand, rel=2e-3)
+        assert f.status == "fails" and "§25.207(c)" in f.details["stall_warning_basis"]
+    (land,) = warning(base, "landing VREF", "MLW reference")
+    assert land.limit == pytest.approx(2.25 / 1.05**2, rel=1e-6) and land.status == "complies"
+
+
+def test_a_declared_stall_warning_onset_is_used(tmp_path):
+    """A declared clean warning onset at CL 1.33 (or VSW = 1.03 VSR, the least of §25.207(d): CL = 1.4/1.03² = 1.3196)
+    puts the VFTO turns (CL ≈ 1.31) below it: free of warning, with the declared basis named."""
+    clean = "    CLmax: 1.4                 # [given]\n"
+    for line, limit in (("    stall_warning: {CL: 1.33, source: test}\n", 1.33),
+                        ("    stall_warning: {speed_ratio: 1.03, source: test}\n", 1.4 / 1.03**2)):
+        ctx = edited_context(tmp_path, [(clean, clean + line)])
+        r = evaluate_part("25.143(h)", ctx, lambda c: c.get("case") == "en route VFTO")
+        found = warning(r, "en route VFTO", "MTOW reference")
+        assert found and all(f.limit == pytest.approx(limit, rel=1e-6) and f.status == "complies"
+                             and "declared" in f.details["stall_warning_basis"] for f in found)
+
+
+def test_bad_stall_warning_declarations_are_input_errors(tmp_path):
+    """A warning CL at or above CLmax, or both a CL and a speed ratio: an input error naming the path."""
+    from certkit.errors import UserError
+
+    clean = "    CLmax: 1.4                 # [given]\n"
+    for line, words in (("    stall_warning: {CL: 1.45}\n", "below CLmax"),
+                        ("    stall_warning: {CL: 1.3, speed_ratio: 1.05}\n", "exactly one")):
+        with pytest.raises(UserError) as err:
+            load_aircraft(edited_baseline(tmp_path, [(clean, clean + line)]))
+        assert words in str(err.value) and "configurations.clean" in str(err.value)
 
 
 def test_sign_less_bank_more_margin_forward_cg_more_nose_up_and_rudder(shared, base):

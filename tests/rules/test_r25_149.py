@@ -14,7 +14,7 @@ import pytest
 
 from certkit.models.flight import control_limits
 from certkit.units import KN
-from certkit_rules.part25.subpart_b.r25_149 import control_usage, vmca_from_grid
+from certkit.control_speeds import control_usage, vmca_from_grid
 from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
 from .helpers import own, run_rule
@@ -48,10 +48,25 @@ def test_baseline_vsr_and_vmc_not_declared(result, ctx):
     vsr_kn = math.sqrt(2 * 656_000 / (0.0023769 * 4927.3 * clmax)) / 1.6878099
     assert c.details["VSR"] / 0.514444 == pytest.approx(vsr_kn, rel=1e-3)
     assert c.limit == pytest.approx(1.13 * c.details["VSR"], rel=1e-9)
-    assert (c.margin >= 0) == (c.status == "complies") and np.isfinite(c.value)
+    assert np.isfinite(c.value) and c.value < c.limit  # VMCA ≈ 139 kn against 1.13 VSR = 160.5 kn
+    from certkit.report.figures import render_result
+
+    render_result(result)
     assert result.evidence and result.evidence[0].svg and not any("evidence" in n for n in result.notes)
     b = next(f for f in own(result) if f.check.startswith("(b)"))
     assert b.status == "not_evaluated" and b.reason == "needs speeds.VMC"
+
+
+def test_a_small_rudder_raises_vmca_beyond_the_limit(result, tmp_path):
+    """A deficient airplane: the rudder's design limit cut from ±23.2° to ±12°. The rudder's yawing moment is ∝ δr q,
+    so the static VMCA grows about as √(23.2/12) = 1.39 (139 → ≈ 193 kn, the bank and aileron help aside), beyond
+    1.13 VSR = 160.5 kn: (c) fails, at every engine failed."""
+    base = next(f for f in own(result) if f.check.startswith("(c)"))
+    r = run_rule("25.149", tmp_path, edits=[("design_limits: {min: -23.2 deg, max: 23.2 deg}",
+                                             "design_limits: {min: -12 deg, max: 12 deg}")])
+    small = [f for f in own(r) if f.check.startswith("(c)")]
+    assert small and all(f.status == "fails" for f in small)
+    assert all(1.2 < f.value / base.value < 1.5 for f in small)
 
 
 def test_not_evaluated_without_takeoff_clmax(tmp_path):

@@ -34,14 +34,17 @@ def test_hand_calculation_climb_speed_and_margin(base):
     assert f.details["elevator_deg"] == pytest.approx(f.value, abs=1e-3)
 
 
-def test_on_the_limit(tmp_path, base):
-    """Elevator-down design limit set to the aft_light climb trim elevator: that finding's margin is 0."""
+def test_a_smaller_elevator_design_limit_fails(tmp_path, base):
+    """A deficient airplane: the elevator's trailing-edge-down design limit cut to 5° (the aft_light climb trims need
+    about 9.7°): §25.161(c)(1) fails there, with the trim's message; the forward corners (nose-up elevator) still comply."""
     f = finding(base, "aft_light", "climb")
-    assert f.value > 0
+    assert f.value > 5.0
     r = run_rule("25.161", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                       f"design_limits: {{min: -21.8 deg, max: {f.value:.9f} deg}}")])
+                                       "design_limits: {min: -21.8 deg, max: 5 deg}")])
     g = finding(r, "aft_light", "climb")
-    assert g.margin == pytest.approx(0.0, abs=1e-6)
+    assert g.status == "fails" and g.value > 5.0
+    assert finding(r, "fwd_mrw", "climb").status == "complies"
+
 
 
 def test_sign_larger_design_limit_more_margin_and_aft_cg_more_trailing_edge_down(tmp_path, base):

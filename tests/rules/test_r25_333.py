@@ -38,8 +38,12 @@ def test_corner_a_at_mrw_against_the_declared_va(tmp_path):
 
 
 def test_evidence_is_an_inline_svg():
+    from certkit.report.figures import render_result
+
     r = run_rule("25.333")
-    assert r.evidence and r.evidence[0].svg.startswith("<svg")
+    assert r.evidence and r.evidence[0].figure is not None
+    render_result(r)
+    assert r.evidence[0].svg.startswith("<svg") and not any("evidence" in n for n in r.notes)
 
 
 def test_negative_stall_beyond_vc_fails(tmp_path):

@@ -74,6 +74,20 @@ class Engine:
     windmill_drag: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = None
 
 
+def _shared_thrust(engines) -> Callable | None:
+    """The thrust function of every engine when they are all one model with equal parameters (bound methods of
+    equal objects), so that one call serves them all; None otherwise."""
+    fns = [e.thrust for e in engines]
+    if len(fns) < 2 or not all(hasattr(f, "__self__") and f.__func__ is fns[0].__func__ for f in fns):
+        return None
+    first = fns[0].__self__
+    try:
+        same = all(f.__self__ is first or (type(f.__self__) is type(first) and bool(f.__self__ == first)) for f in fns[1:])
+    except (ValueError, TypeError):  # objects whose equality is not a single truth value (array fields)
+        return None
+    return fns[0] if same else None
+
+
 @dataclass
 class GearLeg:
     """A gear contact point (airplane frame, wheel bottom at full extension), spring stiffness
@@ -227,6 +241,7 @@ class AircraftModel:
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
         self._brake_index = names.index("brake") if ground is not None else None
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
+        self._shared_thrust = _shared_thrust(self.engines)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
         self._pack()
@@ -286,8 +301,11 @@ class AircraftModel:
             return thrust
         thr = controls[:, self.throttle_slice]
         hc, mach, qbar = air[:, 0], air[:, 4], air[:, 5]
-        for j, eng in enumerate(self.engines):  # one call per engine, on arrays of one shape (no broadcasting)
-            thrust[:, j] = eng.thrust(thr[:, j], hc, mach)
+        if self._shared_thrust is not None:  # identical engines: one call for all, row by row as the throttles
+            thrust[:] = self._shared_thrust(thr.reshape(-1), np.repeat(hc, ne), np.repeat(mach, ne)).reshape(n, ne)
+        for j, eng in enumerate(self.engines):  # else one call per engine, on arrays of one shape (no broadcasting)
+            if self._shared_thrust is None:
+                thrust[:, j] = eng.thrust(thr[:, j], hc, mach)
             if not self._all_operative[j]:
                 dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
                 op = self.operative[:, j] if rows is None else self.operative[rows, j]

@@ -29,10 +29,12 @@ their residual; nothing raises for a single bad condition.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Mapping
 
 import numpy as np
+from numba import njit
 
 from certkit.models.dynamics.eom import AircraftModel
 
@@ -126,23 +128,37 @@ def theta_from_gamma(alpha, beta, phi, gamma):
 
 
 def assemble_state(V, h, alpha, beta, phi, gamma, turn_rate, psi=0.0):
-    """Euler state (n, 12) of a steady condition."""
-    V, h, alpha, beta, phi, gamma, turn_rate, psi = np.broadcast_arrays(
-        *(np.asarray(a, dtype=float) for a in (V, h, alpha, beta, phi, gamma, turn_rate, psi)))
-    theta = theta_from_gamma(alpha, beta, phi, gamma)
-    n = V.size
-    x = np.zeros((n, 12))
-    x[:, 2] = h
-    x[:, 3] = V * np.cos(alpha) * np.cos(beta)
-    x[:, 4] = V * np.sin(beta)
-    x[:, 5] = V * np.sin(alpha) * np.cos(beta)
-    x[:, 6] = -turn_rate * np.sin(theta)
-    x[:, 7] = turn_rate * np.sin(phi) * np.cos(theta)
-    x[:, 8] = turn_rate * np.cos(phi) * np.cos(theta)
-    x[:, 9] = phi
-    x[:, 10] = theta
-    x[:, 11] = psi
+    """Euler state (n, 12) of a steady condition: body velocities from V, α, β; the pitch attitude from γ
+    (:func:`theta_from_gamma`); body rates of a steady turn at ``turn_rate`` (ψ̇) with bank φ."""
+    args = [np.asarray(a, dtype=float) for a in (V, h, alpha, beta, phi, gamma, turn_rate, psi)]
+    n = max(a.size for a in args)
+    cols = [a if a.ndim == 1 and a.size == n else np.broadcast_to(a, (n,)) for a in args]
+    x = np.empty((n, 12))
+    _assemble(*(np.ascontiguousarray(c) for c in cols), x)
     return x
+
+
+@njit(cache=True, fastmath=False)
+def _assemble(V, h, alpha, beta, phi, gamma, turn_rate, psi, x):
+    for i in range(x.shape[0]):
+        ca, sa, cb, sb = math.cos(alpha[i]), math.sin(alpha[i]), math.cos(beta[i]), math.sin(beta[i])
+        cp, sp, sg = math.cos(phi[i]), math.sin(phi[i]), math.sin(gamma[i])
+        a = ca * cb
+        b = sp * sb + cp * sa * cb
+        theta = math.atan2(a * b + sg * math.sqrt(max(a * a - sg * sg + b * b, 0.0)), a * a - sg * sg)
+        st, ct = math.sin(theta), math.cos(theta)
+        x[i, 0] = 0.0
+        x[i, 1] = 0.0
+        x[i, 2] = h[i]
+        x[i, 3] = V[i] * ca * cb
+        x[i, 4] = V[i] * sb
+        x[i, 5] = V[i] * sa * cb
+        x[i, 6] = -turn_rate[i] * st
+        x[i, 7] = turn_rate[i] * sp * ct
+        x[i, 8] = turn_rate[i] * cp * ct
+        x[i, 9] = phi[i]
+        x[i, 10] = theta
+        x[i, 11] = psi[i]
 
 
 def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
@@ -204,21 +220,23 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         elif name == "beta":
             z[:, j] = beta_in if kind == "sideslip" else 0.0
 
+    j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
+    fixed = {"beta": beta_in if kind == "sideslip" else np.zeros(n), "phi": bank if kind in ("turn", "oei") else np.zeros(n),
+             "turn_rate": np.zeros(n), "gamma": gamma}
+    state_cols = {name: j for j, name in enumerate(unknowns) if name in fixed or name == "alpha"}
+    control_cols = [(j, names.index(roles[name])) for j, name in enumerate(unknowns)
+                    if name not in state_cols and name != "throttle"]
+
     def unpack(z, idx=None):
         """State and controls of the iterate ``z`` of conditions ``idx`` (default: all)."""
         sel = (lambda a: a) if idx is None else (lambda a: a[idx])  # noqa: E731
-        m = z.shape[0]
-        vals = {"alpha": z[:, 0], "beta": sel(beta_in).copy() if kind == "sideslip" else np.zeros(m),
-                "phi": sel(bank).copy() if kind in ("turn", "oei") else np.zeros(m),
-                "turn_rate": np.zeros(m), "gamma": sel(gamma).copy()}
-        u = sel(u0).copy()
-        for j, name in enumerate(unknowns):
-            if name in ("alpha", "beta", "phi", "turn_rate", "gamma"):
-                vals[name] = z[:, j]
-            elif name == "throttle":
-                u[:, thr_idx] = z[:, j][:, None]
-            else:
-                u[:, names.index(roles[name])] = z[:, j]
+        vals = {name: (z[:, state_cols[name]] if name in state_cols else sel(v)) for name, v in fixed.items()}
+        vals["alpha"] = z[:, 0]
+        u = u0.copy() if idx is None else u0[idx]
+        for j, c in control_cols:
+            u[:, c] = z[:, j]
+        if j_thr is not None:
+            u[:, thr_idx] = z[:, j_thr][:, None]
         x = assemble_state(sel(V), sel(h), vals["alpha"], vals["beta"], vals["phi"], vals["gamma"], vals["turn_rate"])
         return x, u, vals
 
@@ -238,7 +256,6 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     # the engine models saturate outside throttle [0, 1]: an iterate beyond has a flat Jacobian column and
     # Newton stalls there, so the throttle iterate is kept inside (just below 1, where the forward difference
     # still sees the engine); a condition needing more than full thrust ends non-converged at the bound
-    j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
     iters = np.zeros(n, dtype=int)
     stalls = np.zeros(n, dtype=int)
     everyone = np.arange(n)

@@ -17,6 +17,7 @@ fractions to its load stations, so a declared station is always one the loads ar
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -48,37 +49,52 @@ class LoadMargin:
     margin: float
 
 
-def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultimate_factor: float):
-    """The smallest normalised margin (margin / |allowable|) over the ``capabilities`` of ``surface`` at ``stations``
-    for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None when no capability applies.
-    Each capability is compared in each loaded sense (max when the largest load is not ≤ 0, min when the smallest is
-    not ≥ 0; a NaN load counts as loaded) at limit (|load|) and ultimate (factor × |load|), in that order; the first
-    smallest wins (a NaN margin first in that order stays)."""
-    stations = list(stations)
+@lru_cache(maxsize=256)
+def _table(capabilities: tuple, surface: str, stations: tuple):
+    """The capabilities of ``surface`` at ``stations`` as arrays: the rows, their station and quantity indices and the
+    allowables (R, 4) in the order max limit, max ultimate, min limit, min ultimate (one table per capability set)."""
     rows = [(cap, stations.index(cap.station), QUANTITIES.index(cap.quantity)) for cap in capabilities
             if cap.surface == surface and cap.station in stations]
     if not rows:
         return None
     s = np.array([r[1] for r in rows])
     q = np.array([r[2] for r in rows])
-    hi, lo = np.asarray(peaks[1], dtype=float)[q, s], np.asarray(peaks[0], dtype=float)[q, s]
     allow = np.array([[cap.allowable(check, sense) for sense in ("max", "min") for check in ("limit", "ultimate")]
-                      for cap, *_ in rows])  # candidates per capability: max limit, max ultimate, min limit, min ultimate
-    mag = np.abs(np.stack([hi, hi, lo, lo], axis=1))
-    load = mag * np.array([1.0, ultimate_factor, 1.0, ultimate_factor])
-    loaded = np.repeat(np.stack([~(hi <= 0), ~(lo >= 0)], axis=1), 2, axis=1)
-    with np.errstate(invalid="ignore"):
-        norm = (allow - load) / np.maximum(np.abs(allow), 1e-9)
-    best = None
-    for k in np.flatnonzero(loaded.ravel()):
-        if best is None or norm.flat[k] < norm.flat[best]:
-            best = k
-    if best is None:
+                      for cap, *_ in rows])
+    return tuple(r[0] for r in rows), q, s, allow, 1.0 / np.maximum(np.abs(allow), 1e-9)
+
+
+def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultimate_factor: float):
+    """The smallest normalised margin (margin / |allowable|) over the ``capabilities`` of ``surface`` at ``stations``
+    for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None when no capability applies.
+    Each capability is compared in each loaded sense (max when the largest load is not ≤ 0, min when the smallest is
+    not ≥ 0; a NaN load counts as loaded) at limit (|load|) and ultimate (factor × |load|), in that order; the first
+    smallest wins (a NaN margin first in that order stays)."""
+    table = _table(tuple(capabilities), surface, tuple(stations))
+    if table is None:
         return None
+    caps, q, s, allow, inv_scale = table
+    peaks = np.asarray(peaks, dtype=float)
+    hi, lo = peaks[1][q, s], peaks[0][q, s]
+    load = np.empty(allow.shape)
+    load[:, 0] = load[:, 1] = np.abs(hi)
+    load[:, 2] = load[:, 3] = np.abs(lo)
+    load[:, 1::2] *= ultimate_factor
+    loaded = np.empty(allow.shape, dtype=bool)
+    loaded[:, 0] = loaded[:, 1] = ~(hi <= 0)
+    loaded[:, 2] = loaded[:, 3] = ~(lo >= 0)
+    norm = ((allow - load) * inv_scale).ravel()  # finite allowables: NaN only from a NaN load, without a warning
+    candidates = np.flatnonzero(loaded.ravel())
+    if candidates.size == 0:
+        return None
+    values = norm[candidates]
+    nan = np.isnan(values)
+    # the first smallest: a NaN first in the order stays; a NaN after a number never wins
+    best = candidates[0] if nan[0] else candidates[np.where(nan, np.inf, values).argmin()]
     i, j = divmod(int(best), 4)
     margin = LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], float(load[i, j]), float(allow[i, j]),
                         float(allow[i, j] - load[i, j]))
-    return margin, rows[i][0]
+    return margin, caps[i]
 
 
 def declared_capabilities(ctx, surface: str) -> list[Capability]:

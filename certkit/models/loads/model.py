@@ -37,6 +37,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from certkit.units import G0
 
@@ -86,30 +87,24 @@ class SurfaceLoads:
             return i, np.zeros_like(x)
         return i, (x - m[i]) / (m[i + 1] - m[i])
 
-    def _input_matrix(self, shape, inputs) -> np.ndarray:
-        x = np.zeros(shape + (len(self.inputs),))
-        x[..., 0] = 1.0
-        for k, name in enumerate(self.inputs[1:], start=1):
-            if name in inputs:
-                x[..., k] = inputs[name]
-        return x
-
     def _superpose(self, qbar, mach, inputs, table) -> np.ndarray:
-        """q̄ Σ_k x_k T_k(M): the inputs times the unit tables at every Mach breakpoint in one matrix product, then
-        linear in Mach between the two breakpoints around each point (as the airplane model interpolates)."""
+        """q̄ Σ_k x_k T_k(M), linear in Mach between the two breakpoints around each point (as the airplane model
+        interpolates), over the inputs given (the others are zero; ``one`` is implied)."""
         qbar = np.asarray(qbar, dtype=float)
         i, w = self._mach_weights(mach)
-        shape = qbar.shape
-        x = self._input_matrix(shape, inputs).reshape(-1, len(self.inputs))
-        m, k = table.shape[:2]
-        tail = table.shape[2:]
-        x *= np.broadcast_to(qbar, shape).reshape(-1, 1)  # q̄ on the inputs: fewer products than on the loads
-        full = (x @ table.reshape(m, k, -1).transpose(1, 0, 2).reshape(k, -1)).reshape(x.shape[0], m, -1)
-        rows = np.arange(x.shape[0])
-        i = np.broadcast_to(i, shape).ravel()
-        w = np.broadcast_to(w, shape).ravel()[:, None]
-        out = full[rows, i] * (1 - w) + full[rows, np.minimum(i + 1, m - 1)] * w
-        return out.reshape(shape + tail)
+        shape = np.broadcast_shapes(qbar.shape, np.shape(i), *(np.shape(inputs[n]) for n in self.inputs[1:] if n in inputs))
+        cols = [0] + [k for k, name in enumerate(self.inputs[1:], start=1) if name in inputs]
+        x = np.empty((len(cols), int(np.prod(shape, dtype=int))))
+        x[0] = 1.0
+        for r, k in enumerate(cols[1:], start=1):
+            x[r] = np.broadcast_to(np.asarray(inputs[self.inputs[k]], dtype=float), shape).ravel()
+        flat = np.ascontiguousarray(table.reshape(table.shape[0], table.shape[1], -1))
+        out = np.empty((x.shape[1], flat.shape[2]))
+        _superpose_kernel(np.ascontiguousarray(np.broadcast_to(qbar, shape).ravel()),
+                          np.ascontiguousarray(np.broadcast_to(i, shape).ravel(), dtype=np.int64),
+                          np.ascontiguousarray(np.broadcast_to(w, shape).ravel(), dtype=float), x,
+                          np.array(cols, dtype=np.int64), flat, out)
+        return out.reshape(shape + table.shape[2:])
 
     def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
         """Aerodynamic station loads (..., 3, n_stations) for arrays of q̄, Mach and the named inputs
@@ -129,6 +124,26 @@ class SurfaceLoads:
     def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
         """Aerodynamic normal force of each strip (..., n_strips), N."""
         return self._superpose(qbar, mach, inputs, self.strip_aero)
+
+
+@njit(cache=True)
+def _superpose_kernel(qbar, index, weight, x, cols, table, out):
+    """out[p] = q̄_p Σ_c x[c, p] ((1 − w_p) T[i_p, k_c] + w_p T[i_p + 1, k_c]) (zero inputs skipped)."""
+    m, n_out = table.shape[0], table.shape[2]
+    for p in range(out.shape[0]):
+        i = index[p]
+        j = min(i + 1, m - 1)
+        w = weight[p]
+        for col in range(n_out):
+            out[p, col] = 0.0
+        for c in range(cols.shape[0]):
+            v = x[c, p] * qbar[p]
+            if v == 0.0:
+                continue
+            a, b = v * (1.0 - w), v * w
+            k = cols[c]
+            for col in range(n_out):
+                out[p, col] += a * table[i, k, col] + b * table[j, k, col]
 
 
 def station_label(station) -> str:

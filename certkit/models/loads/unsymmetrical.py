@@ -106,3 +106,21 @@ def unsymmetrical_tail(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray
                          "unbalanced moment needs the root station")
     return UnsymmetricalTail(full * aero + inertia, reduced * aero + inertia,
                              (full - reduced) * half_wing_moment(tail, aero))
+
+
+def unsymmetrical_tail_peaks(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0,
+                             reduced: float = 0.8):
+    """The extremes over the leading (time) axis of :func:`unsymmetrical_tail`'s loads, NaN entries ignored:
+    (full-side peaks (…, 2, 3, S) min then max, reduced-side peaks, fuselage torsion min (…), max (…)), without
+    keeping the split histories (one work array)."""
+    if tail.station_span[0] > 1e-9:
+        raise ValueError(f"the tailplane's first load station is {tail.station_span[0]:.3f} m from its root: the "
+                         "unbalanced moment needs the root station")
+    work = np.empty(np.broadcast_shapes(aero.shape, inertia.shape))
+    peaks = []
+    for fraction in (full, reduced):
+        np.multiply(aero, fraction, out=work)
+        work += inertia
+        peaks.append(np.stack([np.fmin.reduce(work, axis=0), np.fmax.reduce(work, axis=0)], axis=-3))
+    torsion = (full - reduced) * half_wing_moment(tail, aero)
+    return peaks[0], peaks[1], np.fmin.reduce(torsion, axis=0), np.fmax.reduce(torsion, axis=0)

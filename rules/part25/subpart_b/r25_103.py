@@ -12,47 +12,13 @@ from __future__ import annotations
 
 import math
 
-from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
-from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, Rule, rule
+from certkit.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
 from certkit.results import NOT_EVALUATED, Finding
 from certkit.units import KN
 
 AMDT = "25-121"
-
-#: the weight at which a declared VSR of each configuration is read (the weight the configuration is used at)
-REFERENCE_WEIGHT = {"takeoff": "MTOW", "clean": "MTOW", "approach": "MLW", "landing": "MLW"}
-
-
-def reference_weight(ctx, configuration: str) -> tuple[str, float]:
-    """(name, kg) of the weight a configuration is used at: MLW for approach/landing, MTOW otherwise."""
-    name = REFERENCE_WEIGHT.get(configuration, "MTOW")
-    mass = getattr(ctx.aircraft.mass, name) or ctx.aircraft.mass.MTOW
-    return name, float(mass)
-
-
-def computed_stall_speed(ctx, configuration: str, mass) -> float:
-    """1-g stall speed (m/s EAS) from the declared trimmed CLmax of ``configuration`` at ``mass`` (kg)."""
-    clmax = ctx.clmax(configuration)
-    if clmax is None:
-        raise ValueError(f"configurations.{configuration}.CLmax is not declared")
-    return float(stall_speed_eas(mass, ctx.aircraft.reference.area, clmax))
-
-
-def reference_stall_speed(ctx, configuration: str, mass) -> tuple[float, str]:
-    """VSR (m/s EAS, = CAS at sea level) of ``configuration`` at ``mass`` and where it comes from.
-
-    A declared ``speeds.VSR.<configuration>`` is read at the configuration's reference weight and
-    scaled with √(W/W_ref) (constant CL); otherwise the 1-g stall speed from CLmax is used.
-    """
-    declared = ctx.aircraft.speeds.VSR.get(configuration)
-    if declared is not None:
-        name, w_ref = reference_weight(ctx, configuration)
-        v = float(convert_speed(declared.value, declared.kind, "EAS", 0.0)) * math.sqrt(mass / w_ref)
-        return v, f"declared speeds.VSR.{configuration} at {name}, scaled with √W"
-    return computed_stall_speed(ctx, configuration, mass), f"1-g stall speed from configurations.{configuration}.CLmax"
-
 
 def _weights(ctx, configuration: str) -> list[tuple[str, float, float]]:
     """(loading name, kg, forward CG) at which ``configuration`` is used."""
@@ -128,7 +94,7 @@ class StallSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.103 reference stall speeds",
                                 "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",

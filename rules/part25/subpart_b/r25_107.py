@@ -8,32 +8,13 @@ parts are ``not_evaluated`` until those speeds are declared.
 
 from __future__ import annotations
 
-from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import declared_cas, ratio_check
+from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
-
-
-def declared_cas(ctx, name: str) -> float | None:
-    """A declared takeoff speed (m/s CAS at sea level), None when absent."""
-    s = getattr(ctx.aircraft.speeds, name)
-    return None if s is None else float(convert_speed(s.value, s.kind, "CAS", 0.0))
-
-
-def ratio_check(cond, check, speeds, numerator, denominator, factor, *, basis=""):
-    """``numerator/denominator ≥ factor`` as a ratio margin, or not_evaluated naming the missing speed."""
-    missing = [n for n in (numerator, denominator) if speeds.get(n) is None]
-    if missing:
-        return Finding.not_evaluated(cond, check, "needs " + ", ".join(f"speeds.{m}" for m in missing))
-    value = speeds[numerator] / speeds[denominator]
-    return Finding.compare(cond.with_(speed=speeds[numerator], speed_kind="CAS", speed_name=numerator), check, value,
-                           factor, at_least=True, unit="ratio", **{numerator: speeds[numerator],
-                                                                   denominator: speeds[denominator]},
-                           **({"basis": basis} if basis else {}))
 
 
 @rule
@@ -43,6 +24,7 @@ class TakeoffSpeeds(Rule):
     title = "Takeoff speeds"
     amendment = AMDT
     requirement = """
+        VFTO may not be less than 1.18 VSR of the en-route configuration (g)(1).
         V2MIN may not be less than 1.13 VSR (two- and three-engine propeller airplanes, and turbojets without
         provisions for a significant reduction of the one-engine-inoperative power-on stall speed; 1.08 VSR for
         propeller airplanes with more than three engines and turbojets with such provisions) nor 1.10 VMC (b);
@@ -52,7 +34,8 @@ class TakeoffSpeeds(Rule):
     """
     margin = """
         Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
-        V1/VMCG − 1, VLOF/VMU − 1.10; VSR of the takeoff configuration at MTOW (§25.103), speeds CAS.
+        V1/VMCG − 1, VLOF/VMU − 1.10, VFTO/VSR − 1.18; VSR of the takeoff configuration (of the clean one for VFTO) at
+        MTOW (§25.103), speeds CAS.
     """
     references = ("25.103", "25.111", "25.121(b)", "25.143(h)", "25.149")
     requires = ("speeds.V2", "configurations.takeoff")
@@ -65,6 +48,7 @@ class TakeoffSpeeds(Rule):
         "vr_over_vmc": Criterion(1.05, "", "14 CFR 25.107(e)(1)(ii)", "VR/VMC"),
         "v1_over_vmcg": Criterion(1.0, "", "14 CFR 25.107(a)(1)-(2)",
                                   "V1 ≥ VEF ≥ VMCG, so V1/VMCG ≥ 1 (VEF is not declared)"),
+        "vfto_over_vsr": Criterion(1.18, "", "14 CFR 25.107(g)(1)", "VFTO/VSR, VSR of the en-route (clean) configuration"),
         "vlof_over_vmu": Criterion(1.10, "", "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, "
                                    "docs/regulation-notes.md)", "VLOF/VMU, all engines operating"),
     }
@@ -85,7 +69,7 @@ class TakeoffSpeeds(Rule):
         ("25.107(e)(1)(iv)", "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
                              "(one VLOF is declared)"),
         ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
-        ("25.107(g)", "VFTO ≥ 1.18 VSR and the §25.143(h) manoeuvring capability at VFTO not checked here"),
+        ("25.107(g)(2)", "the §25.143(h) manoeuvring capability at VFTO is not judged here (§25.143(h) flies its turns)"),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -93,8 +77,9 @@ class TakeoffSpeeds(Rule):
         for cond in conditions:
             cond = cond.with_(altitude=0.0)
             vsr, source = reference_stall_speed(ctx, TAKEOFF, cond.mass)
-            speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VMU", "VLOF")}
+            speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VMU", "VLOF", "VFTO")}
             speeds["VSR"] = vsr
+            speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
             if speeds["VMC"] is None:
                 from certkit_rules.part25.subpart_b.r25_149 import computed_vmca
@@ -108,11 +93,13 @@ class TakeoffSpeeds(Rule):
                 ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc, basis=vmc_basis),
                 ratio_check(cond, "(a) V1 ≥ VEF ≥ VMCG", speeds, "V1", "VMCG", crit.v1_over_vmcg),
                 ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
+                ratio_check(cond.with_(configuration="clean"), "(g)(1) VFTO ≥ 1.18 VSR (en route)", speeds, "VFTO",
+                            "VSR clean", crit.vfto_over_vsr, basis=clean_source),
             ]
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.107 takeoff speed ratios",
                                 "Declared takeoff speeds as ratios against their §25.107 factors.",

@@ -159,6 +159,23 @@ def rotation_for_field_length(ctx, loadings, theta_v2, vr, field_length: float, 
                    "field_length_ft_by_attitude": [[round(float(x / FT), 0) for x in row] for row in dist.T]}
 
 
+def _unrepresentative(details: dict, crit) -> list[str]:
+    """Why a simulated engine-out takeoff does not stand for the takeoff a pilot flies (empty: it does): lift-off too
+    long after VR, the screen height passed too far above V2, or the run wandering off the runway's centreline beyond
+    the bounds of the criteria. Such a run earns no verdict."""
+    out = []
+    late = details["vlof_kn"] - details["vr_kn"]
+    if late > crit.vlof_above_vr_max:
+        out.append(f"VLOF {details['vlof_kn']:.1f} kn is {late:.1f} kn above VR (at most {crit.vlof_above_vr_max:g} kn)")
+    fast = details["v35_kn"] - details["v2_kn"]
+    if fast > crit.v35_above_v2_max:
+        out.append(f"V35 {details['v35_kn']:.1f} kn is {fast:.1f} kn above V2 (at most {crit.v35_above_v2_max:g} kn)")
+    wide = details["max_lateral_deviation_on_ground_ft"]
+    if wide > crit.lateral_deviation_max:
+        out.append(f"the ground run deviates {wide:.0f} ft from the centreline (at most {crit.lateral_deviation_max:g} ft)")
+    return out
+
+
 def _design_margin(values_deg, lo_deg, hi_deg):
     """The binding side of a run's deflections against the design range: (extreme value, limit, at_least) for
     ``Finding.compare`` — the side with the smaller distance inside the range (< 0: beyond it)."""
@@ -195,7 +212,9 @@ class TakeoffPath(Rule):
         attitude; the pilot model (rudder PI on heading, ≤ 5° bank toward the live engine in the air) stands for
         a pilot; VEF from V1 by a quasi-steady engine-out acceleration when not declared; the path beyond the
         climb-out (c)(3) 1.2 % from 400 ft, (c)(4) configuration changes, and the takeoff distance (§25.113) are
-        not computed. The paragraph's text is from memory (not in docs/regulation-notes.md).
+        not computed. A run that lifts off more than 15 kn after VR, passes 35 ft more than 10 kn above V2 or
+        deviates more than 30 ft from the centreline on the ground does not represent a takeoff a pilot flies: its
+        checks are not evaluated, with the reason. The paragraph's text is from memory (not in docs/regulation-notes.md).
     """
     references = ("25.107", "25.121", "25.149")
     requires = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
@@ -210,6 +229,15 @@ class TakeoffPath(Rule):
         "climb_out_s": Criterion(10.0, "s", "project choice: climb-out simulated past 35 ft for the gradient",
                                  "time simulated after the screen height"),
         "gradient_min": Criterion(0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"),
+        "vlof_above_vr_max": Criterion(15.0, "kn", "project choice: a rotation a pilot flies lifts the airplane off a few "
+                                       "seconds after VR; more means the simulated rotation does not represent the takeoff",
+                                       "largest VLOF − VR of a representative run (CAS)"),
+        "v35_above_v2_max": Criterion(10.0, "kn", "project choice after §25.111(c)(2) ('as close as practical to, but not "
+                                      "less than, V2'; V2 is chosen to be reached at 35 ft, §25.107(c)(2))",
+                                      "largest V35 − V2 of a representative run (CAS)"),
+        "lateral_deviation_max": Criterion(30.0, "ft", "the §25.149(e) bound on the deviation from the runway centreline "
+                                           "after an engine failure on the ground (a certificated airplane meets it at VMCG)",
+                                           "largest lateral deviation on the ground of a representative run"),
     }
     conditions = ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")),
                                 configurations=("takeoff",),
@@ -279,6 +307,11 @@ class TakeoffPath(Rule):
                 all_engines_v35_kn=round(cas(run.v_screen[a]), 2) if run.reached[a] else None,
                 all_engines_elevator_min_deg=round(float(np.degrees(run.elevator_min[a])), 2))
             c35 = c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS", speed_name="V35")
+            unrepresentative = _unrepresentative(details, crit)
+            if unrepresentative:
+                out += [Finding.not_evaluated(c35, ch, "the simulated takeoff does not represent one a pilot flies: "
+                                              + "; ".join(unrepresentative), **details) for ch in checks]
+                continue
             for name, j, check in (("elevator", je, checks[0]), ("rudder", jr, checks[1])):
                 defl = np.degrees(sim.controls[:k_end + 1, i, j])
                 value, limit, at_least = _design_margin(defl, *design[name])
@@ -302,7 +335,7 @@ class TakeoffPath(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import takeoff_evidence
+        from certkit.evidence.performance import takeoff_evidence
 
         conds = self.conditions.expand(ctx.aircraft)
         trims, run, engine, vef, *_ = _takeoff(ctx, conds, crit)

@@ -30,14 +30,13 @@ from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_incr
 from certkit.models.flight import control_limits, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.reference_speeds import declared_cas
 from certkit.units import FT, G0
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 CONTROLS = ("elevator", "aileron", "rudder")
 CGS = ("forward", "reference", "aft")
-_TRIMS = 3
-_DESCENT_STEP = 0.03  # rad: where the thrust does not hold level flight, try the next trim this much lower
 
 
 def critical_engine(ctx) -> str:
@@ -90,9 +89,10 @@ def trim_details(result) -> dict:
 
 def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
     """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
-    configuration; returns (gradients, last TrimBatch, info). ``drag_credit`` (ΔCD per condition) is drag
-    that the configuration carries but the paragraph removes (the gear for §25.121(b)); ``engine_out=False``
-    gives the all-engines climb at the same thrust setting."""
+    configuration; returns (gradients, TrimBatch, info). The operating engines' throttle is held where they give
+    ``thrust_fraction`` of their full thrust and the trim solves the flight-path angle (a steady climb at that
+    thrust). ``drag_credit`` (ΔCD per condition) is drag that the configuration carries but the paragraph removes
+    (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting."""
     thrust, thrust_source = thrust_function(ctx.aircraft)
     dead = critical_engine(ctx) if engine_out else None
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
@@ -100,24 +100,32 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine
     tas = np.array([speed_as(c, "TAS") for c in conds])
     mach = tas / speed_of_sound(h)
     weight = np.array([c.mass for c in conds]) * G0
-    available = len(live) * thrust_fraction * np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
+    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
+    available = len(live) * thrust_fraction * full
+    throttle = throttle_for_thrust(thrust, thrust_fraction * full, h, mach)
     credit = np.zeros_like(h)
     if drag_credit is not None:
         qbar = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2
         credit = np.asarray(drag_credit, dtype=float) * qbar * ctx.aircraft.reference.area
-    gamma = np.zeros_like(h)
-    batch = None
-    for _ in range(_TRIMS):
-        batch = ctx.trim(conds, kind="sideslip" if dead else "straight", beta=0.0, gamma=gamma, inoperative=dead)
-        needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
-        ok = np.array([r.converged for r in batch.results])
-        gamma = np.where(ok, gamma + (available - needed) / weight, gamma - _DESCENT_STEP)
+    batch = ctx.trim(conds, kind="sideslip" if dead else "straight", beta=0.0, throttle=throttle, inoperative=dead)
+    gamma = np.array([r.gamma if r.converged else np.nan for r in batch.results])
     needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
     residual = (available - needed) / weight
     gamma = gamma + credit / weight  # drag the configuration carries but the segment does not (sin γ = (T − D)/W)
     info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
             "credit": credit, "residual": residual, "weight": weight}
     return np.tan(gamma), batch, info
+
+
+def throttle_for_thrust(thrust, target, h, mach, iterations: int = 48) -> np.ndarray:
+    """The throttle (0–1) at which one engine gives ``target`` thrust (N) per condition: bisection, the thrust
+    increasing with the throttle; 1 where the target is the full thrust."""
+    lo, hi = np.zeros_like(h), np.ones_like(h)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        short = np.asarray(thrust(mid, h, mach), dtype=float) < target
+        lo, hi = np.where(short, mid, lo), np.where(short, hi, mid)
+    return np.where(target >= np.asarray(thrust(np.ones_like(h), h, mach), dtype=float), 1.0, 0.5 * (lo + hi))
 
 
 def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, thrust_fraction=1.0, drag_credit=None,
@@ -137,7 +145,7 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
         details = dict(trim_details(r), thrust_available_N=float(info["available"][i]),
                        thrust_at_trim_N=float(info["needed"][i]), gear_drag_credit_N=float(info["credit"][i]),
                        gradient_residual=float(info["residual"][i]), engines=n_engines,
-                       thrust_model=info["thrust_source"], method="trim at the gradient, energy-method update")
+                       thrust_model=info["thrust_source"], method="trim at the thrust, flight-path angle solved")
         out.append(Finding.compare(here, check, float(grads[i]), required, at_least=True,
                                    unit="gradient", reason=notes, **details))
         out += control_findings(here, check.split(" ")[0], r, limits)
@@ -147,11 +155,6 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
 def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration: str | None = None):
     return [c.with_(speed=speed, speed_kind="CAS", speed_name=name, altitude=altitude,
                     **({"configuration": configuration} if configuration else {})) for c in conds]
-
-
-def declared_cas(ctx, name):
-    s = getattr(ctx.aircraft.speeds, name)
-    return None if s is None else float(convert_speed(s.value, s.kind, "CAS", 0.0))
 
 
 _COMMON_LIMITS = """
@@ -189,7 +192,7 @@ class ClimbOEITakeoffGearDown(Rule):
         return [_positive(f, required) for f in out]
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(a) OEI climb, takeoff, gear down")
 
@@ -254,7 +257,7 @@ class ClimbOEITakeoffGearUp(Rule):
                               drag_credit=np.full(len(conds), credit), notes=f"gear retracted: ΔCD0 {credit:.4f} removed, {how}")
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(b) OEI climb, takeoff, gear up")
 
@@ -294,7 +297,7 @@ class ClimbOEIFinalTakeoff(Rule):
                               thrust_fraction=crit.mct_over_takeoff_thrust)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(c) OEI final takeoff climb")
 
@@ -343,6 +346,6 @@ class ClimbOEIApproach(Rule):
         return out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import climb_gradient_evidence
+        from certkit.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(d) OEI approach climb")

@@ -27,7 +27,9 @@ from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Evidence, Finding
+from certkit.reference_speeds import declared_cas, ratio_check
 from certkit.units import FT, KN
+from certkit.reference_speeds import reference_stall_speed
 
 START_HEIGHT = 150 * FT  # m, CG height above the runway at the start of the simulated approach
 
@@ -71,13 +73,15 @@ class LandingTouchdown(Rule):
         without excessive vertical acceleration. certkit flies a −3° approach at VREF in the landing
         configuration at MLW and flares to touchdown with the throttle at idle from the flare height, and
         checks the rate of descent at touchdown and that the elevator stays within its design limit.
+        VREF may not be less than 1.23 VSR0 ((b)(2)(i)(A)).
     """
     margin = """
         Rate of descent: the criterion (6 ft/s) minus the rate of descent at touchdown (ft/s; ≥ 0 complies).
         Elevator: most nose-up elevator of the approach and flare minus its design limit (deg; ≥ 0 complies).
+        VREF: VREF/VSR0 − 1.23 (VSR0 of the landing configuration at the condition's weight, §25.103).
     """
     limitations = """
-        The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i) (1.23 VSR0, VMCL, § 25.143(h)) and
+        The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i)(B)-(C) (VMCL, § 25.143(h)) and
         icing are not evaluated here; no ground effect; the flare is the TECS pilot model's (flare height 15 m,
         aim point 1 m below the runway); the 6 ft/s criterion is from § 25.473 (text from memory).
     """
@@ -88,6 +92,7 @@ class LandingTouchdown(Rule):
             6.0, "ft/s", "14 CFR 25.473(a)(2)(ii) limit descent velocity at the design takeoff weight (text from memory, "
             "unverified); quantifies 25.125's 'without excessive vertical acceleration'",
             "maximum rate of descent at touchdown"),
+        "vref_over_vsr0": Criterion(1.23, "", "14 CFR 25.125(b)(2)(i)(A)", "VREF/VSR0, VSR0 of the landing configuration"),
         "glide_slope": Criterion(-3.0, "deg", "14 CFR 25.125 / AC 25-7 (the standard stabilised approach path; "
                                  "the -3 deg of 25.143(h)'s landing row)", "flight-path angle of the stabilised approach"),
     }
@@ -96,7 +101,11 @@ class LandingTouchdown(Rule):
 
     unevaluated = (
         ("25.125(a)", "the landing distance from 50 ft to a full stop (non-icing and icing) is not computed"),
-        ("25.125(b)", "the VREF minima (1.23 VSR0, VMCL, the §25.143(h) manoeuvring speed) are not checked"),
+        ("25.125(b)(2)(i)(B)", "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined (the static search "
+                               "does not converge in the landing configuration at go-around thrust)"),
+        ("25.125(b)(2)(i)(C)", "the §25.143(h) manoeuvring capability at VREF is not judged here (§25.143(h) flies its "
+                               "turns)"),
+        ("25.125(b)(2)(ii)", "the VREF minima with the landing ice accretion are not checked"),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -106,6 +115,10 @@ class LandingTouchdown(Rule):
         vref_kn = float(convert_speed(ac.speeds.VREF.value, ac.speeds.VREF.kind, "CAS", 0.0)) / KN
         out = []
         for i, cond in enumerate(conditions):
+            vsr0, source = reference_stall_speed(ctx, "landing", cond.mass)
+            out.append(ratio_check(cond.with_(altitude=0.0), "(b)(2)(i)(A) VREF ≥ 1.23 VSR0",
+                                   {"VREF": declared_cas(ctx, "VREF"), "VSR0": vsr0}, "VREF", "VSR0", crit.vref_over_vsr0,
+                                   basis=source))
             c0 = cond.with_(altitude=0.0, speed=ac.speeds.VREF.value, speed_kind=ac.speeds.VREF.kind,
                             speed_name="VREF", thrust="idle from the flare")
             tr = trims.results[i]
@@ -129,7 +142,8 @@ class LandingTouchdown(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_time_histories import time_histories_svg
+        from certkit.evidence import Axis, Limit
+        from certkit.evidence.performance import time_histories
 
         conds = self.conditions.expand(ctx.aircraft)
         sinks = [f for f in findings if f.check == "touchdown rate of descent" and f.margin is not None]
@@ -141,11 +155,14 @@ class LandingTouchdown(Rule):
         sim = run.sim
         hdot = np.gradient(sim["h"], sim.t, axis=0) if sim.t.size > 1 else np.zeros_like(sim["h"])
         je = sim.control_names.index("elevator")
-        svg = time_histories_svg(sim.t, [
-            ("V (kn TAS)", sim["V"] / KN, {}),
-            ("CG height (ft)", sim["h"] / FT, {}),
-            ("rate of descent (ft/s)", -hdot / FT, {f"{crit.touchdown_sink_rate:g} ft/s": crit.touchdown_sink_rate}),
-            ("elevator (deg)", np.degrees(sim.controls[:, :, je]), {"design limit": _elevator_design_min(ctx.aircraft)}),
-        ], [c.loading for c in conds], critical=k, title="§25.125 approach, flare and touchdown")
-        return [Evidence("Approach and landing time histories", svg,
-                         f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours.")]
+        chart = time_histories(sim.t, [
+            (Axis("true airspeed V", "m/s"), sim["V"], [], []),
+            (Axis("CG height", "m"), sim["h"], [], []),
+            (Axis("rate of descent", "m/s", "ft/s"), -hdot,
+             [Limit(crit.touchdown_sink_rate * FT, f"{crit.touchdown_sink_rate:g} ft/s")], []),
+            (Axis("elevator", "rad"), sim.controls[:, :, je],
+             [Limit(np.radians(_elevator_design_min(ctx.aircraft)), "design limit", kind="allowable")], []),
+        ], [c.loading for c in conds], critical=k, ends=sim.stop_time, title="§25.125 approach, flare and touchdown")
+        return [Evidence("Approach and landing time histories", chart,
+                         f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours; "
+                         "each line ends at its touchdown.")]

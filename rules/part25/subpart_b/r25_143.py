@@ -30,8 +30,9 @@ from certkit.conditions import ConditionSpace, DesignWeight, speed_as
 from certkit.models.flight import control_limits, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
+from certkit.reference_speeds import declared_cas, stall_warning_cl
 from certkit.units import FT, G0, KN
-from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, declared_cas, trim_details
+from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
 _UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
@@ -133,10 +134,12 @@ class ManeuveringCapability(Rule):
         all-engines initial-climb speed), 40°, all-engines climb thrust; en route, VFTO, 40°, asymmetric
         WAT-limited thrust; landing, VREF, 40°, symmetric thrust for a −3° flight path. certkit checks that
         each turn can be trimmed with the elevator, aileron and rudder within their design limits, at the
-        forward, reference and aft CG.
+        forward, reference and aft CG, and that the lift coefficient it needs stays below the stall-warning onset
+        (the declared one, or the latest §25.207(c) allows).
     """
     margin = """Each trim control's design limit on the side it is deflected − |deflection| (deg), for every
-        case, CG and turn direction; a control beyond its limit fails with the trim's message."""
+        case, CG and turn direction; a control beyond its limit fails with the trim's message. Stall warning: the
+        warning-onset 1-g lift coefficient − the turn's CL = n W/(q S) (≥ 0: free of warning)."""
     references = ("25.107", "25.121", "25.125", "25.147")
     requires = ("mass.MTOW", "configurations.takeoff")
     criteria = {
@@ -162,8 +165,10 @@ class ManeuveringCapability(Rule):
              "(and 1500 ft en route); turns toward and away from the inoperative (critical) engine for the asymmetric cases")
     implementation = "partial"
     limitations = """
-        The footnotes of the (h) table were not read. Freedom from stall warning is not evaluated (no stall-warning
-        lift coefficient is declared); each finding carries CL/CLmax of the turn. "WAT-limited" is read as MTOW at
+        The footnotes of the (h) table were not read. Without a declared stall-warning onset the warning is taken at
+        the latest speed §25.207(c) allows (VSR + the greater of 5 kn and 5 %, the stall identified at VSR), which
+        is the most favourable reading for the turns; other characteristics that might interfere with normal
+        manoeuvring (buffet) are not modelled. "WAT-limited" is read as MTOW at
         sea level (and 1500 ft en route) with the operating engine's thrust set so that straight flight climbs at
         exactly the §25.121(b) (V2) or §25.121(c) (VFTO) minimum gradient (at most takeoff or maximum continuous
         thrust). The stabiliser is fixed at its declared incidence, so the elevator carries the whole trim
@@ -171,8 +176,8 @@ class ManeuveringCapability(Rule):
     """
 
     unevaluated = (
-        ("25.143(h)", "freedom from stall warning in the turns is not evaluated (no stall-warning lift coefficient "
-                      "declared); only the trim of each turn within the control design limits is"),
+        ("25.143(h)", "characteristics other than stall warning that might interfere with normal manoeuvring (buffet "
+                      "onset) are not evaluated"),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -250,10 +255,13 @@ class ManeuveringCapability(Rule):
             for f in control_findings(c, check, r, limits):
                 f.details.update(details)
                 out.append(f)
+            cl_sw, basis = stall_warning_cl(ctx, c.configuration, c.mass)
+            out.append(Finding.compare(c, f"{check} free of stall warning", details["CL"], cl_sw, at_least=False, unit="",
+                                       stall_warning_CL=round(cl_sw, 4), stall_warning_basis=basis, **details))
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.143(h) manoeuvring capability",
                                 "Coordinated-turn trims: controls against their design limits.",

@@ -28,7 +28,7 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import LBF
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import trim_details
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust
 
@@ -161,7 +161,7 @@ class LongitudinalControlConfigurationChanges(Rule):
             **{f"end_{k}": v for k, v in trim_details(r1).items()})
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",

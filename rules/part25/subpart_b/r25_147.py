@@ -33,7 +33,7 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import LBF
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust, turn_details
 
@@ -162,7 +162,7 @@ class DirectionalControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(a) directional control, one engine inoperative",
                                 "One-engine-inoperative trims: controls against their design limits.",
@@ -244,7 +244,7 @@ class LateralControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
                                 "Turns toward and away from the inoperative engine: controls against their design limits.",

@@ -24,7 +24,7 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import FT
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import control_findings, oei_climb, trim_details
 
 SEGMENTS = ("climb", "glide", "level", "engine-out climb")
@@ -184,7 +184,7 @@ class Trim(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_performance import margins_evidence
+        from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.161 trim",
                                 "Trims of each §25.161 condition: controls against their design limits.",

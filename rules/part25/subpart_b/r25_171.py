@@ -13,18 +13,11 @@ from collections import defaultdict
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit_rules.part25.subpart_b.r25_103 import reference_stall_speed
+from certkit.control_speeds import vsr_cas
 
 #: certkit configuration of each flight phase the stability paragraphs name
 PHASES = {"takeoff": "takeoff", "cruise": "clean", "landing": "landing"}
 SPEED_POINTS = ("1.13 VSR", "mid", "max allowable")
-
-
-def vsr_cas(ctx, configuration: str, mass: float, h: float = 0.0) -> float:
-    """Reference stall speed (m/s CAS) of ``configuration`` at ``mass`` at altitude ``h``: §25.103's VSR
-    (declared, or the 1-g stall speed from the declared CLmax), as :mod:`r25_103` defines it for Subpart B."""
-    eas, _ = reference_stall_speed(ctx, configuration, mass)
-    return float(convert_speed(eas, "EAS", "CAS", h))
 
 
 def max_allowable_cas(ctx, configuration: str, h: float = 0.0) -> float:
@@ -170,7 +163,7 @@ class StabilityGeneral(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import margin_matrix_evidence
+        from certkit.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
 
@@ -267,7 +260,7 @@ class SpeedStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import margin_matrix_evidence
+        from certkit.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations")
 

@@ -233,6 +233,6 @@ class StaticLateralDirectionalStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import margin_matrix_evidence
+        from certkit.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.177 static lateral-directional margins (normalised) over CG corners × configurations")

@@ -16,6 +16,9 @@ from certkit_rules.part25.subpart_b.r25_171 import (FLAP_ALTITUDE_SOURCE, PHASES
                                                     refine_speeds)
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
+#: how the short-period criterion reads each configuration's flight phase (MIL-F-8785C 1.5 flight-phase categories)
+PHASE_READING = {"cruise": "B (en route: climb, cruise, descent), Level 1 ζ_sp ≥ 0.30",
+                 "terminal": "C (terminal: takeoff, approach, landing), Level 1 ζ_sp ≥ 0.35"}
 
 
 def categories(configuration: str) -> tuple[str, ...]:
@@ -60,7 +63,8 @@ class DynamicStability(Rule):
         primary controls without exceptional piloting skill.
     """
     margin = """
-        ζ_sp − ζ_sp,min (short period, "heavily damped" read as the criterion) and ζ_dr − ζ_dr,min (Dutch roll,
+        ζ_sp − ζ_sp,min (short period, "heavily damped" read as MIL-F-8785C's Level 1 minimum of the flight phase's
+        category: 0.30 for the clean configuration (category B, en route), 0.35 with flaps (category C, terminal)) and ζ_dr − ζ_dr,min (Dutch roll,
         "positively damped": ζ_dr > 0), dimensionless, at every condition. The MIL-F-8785C Level of every mode
         (short period, phugoid, Dutch roll, roll, spiral) is reported in the details and the evidence; it is not a
         Part 25 requirement and does not set the status.
@@ -68,9 +72,14 @@ class DynamicStability(Rule):
     references = ("25.171", "25.103")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
-        "short_period_damping_min": Criterion(
-            0.35, "", "MIL-F-8785C 3.2.2.1.2 Table IV, Level 1 category A and C minimum (" + hq.SOURCE + ")",
-            "short-period damping ratio read as 'heavily damped' (§25.181(a) gives no number)"),
+        "short_period_damping_min_cruise": Criterion(
+            0.30, "", "MIL-F-8785C 3.2.2.1.2 Table IV, Level 1 category B minimum (" + hq.SOURCE + ")",
+            "short-period damping ratio read as 'heavily damped' (§25.181(a) gives no number) in the en-route "
+            "configuration: cruise, climb and descent are category B flight phases"),
+        "short_period_damping_min_terminal": Criterion(
+            0.35, "", "MIL-F-8785C 3.2.2.1.2 Table IV, Level 1 category C minimum (" + hq.SOURCE + ")",
+            "short-period damping ratio read as 'heavily damped' with flaps or gear extended: takeoff, approach and "
+            "landing are category C (terminal) flight phases"),
         "dutch_roll_damping_min": Criterion(
             0.0, "", "§25.181(b) 'positively damped' (verified, Amdt. 25-108; docs/regulation-notes.md)",
             "Dutch-roll damping ratio (> 0: the oscillation decays)"),
@@ -105,7 +114,8 @@ class DynamicStability(Rule):
                                                      + "; ".join(e.message for e in res.limits_exceeded)))
                     continue
                 levels = mode_levels(modes, config)
-                for name, check, key in (("short_period", "(a) short period heavily damped", "short_period_damping_min"),
+                phase = "cruise" if hq.CATEGORY.get(config, "B") == "B" else "terminal"
+                for name, check, key in (("short_period", "(a) short period heavily damped", f"short_period_damping_min_{phase}"),
                                          ("dutch_roll", "(b) Dutch roll positively damped", "dutch_roll_damping_min")):
                     m = modes.get(name)
                     if m is None:
@@ -113,11 +123,12 @@ class DynamicStability(Rule):
                                                          "among the eigenvalues", modes=levels))
                         continue
                     out.append(Finding.compare(cond, check, m.damping_ratio, crit[key], at_least=True, unit="",
-                                               natural_frequency_rad_s=m.natural_frequency, modes=levels))
+                                               natural_frequency_rad_s=m.natural_frequency, modes=levels,
+                                               **({"category": PHASE_READING[phase]} if name == "short_period" else {})))
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_stability import damping_frequency_svg, margin_matrix_evidence
+        from certkit.evidence.stability import damping_frequency_chart, margin_matrix_evidence
         from certkit.results import Evidence
         from certkit.units import KN
 
@@ -137,14 +148,15 @@ class DynamicStability(Rule):
                                   "tau_s": row["tau_s"], "t_double_s": row["t_double_s"],
                                   "altitude_ft": round(c.altitude / FT), "speed_kn_cas": round(c.speed / KN, 1),
                                   "limited_by": row.get(f"level_{cat}_limited_by", "")}
-        boundaries = [("SP L1 A/C 0.35", 0.35, "short_period"), ("SP L3 0.15", 0.15, "short_period"),
+        boundaries = [("SP L1 A/C 0.35", 0.35, "short_period"), ("SP L1 B 0.30", 0.30, "short_period"),
+                      ("SP L3 0.15", 0.15, "short_period"),
                       ("DR L1 A 0.19", 0.19, "dutch_roll"), ("DR L1 B/C 0.08", 0.08, "dutch_roll"),
                       ("DR L2 0.02", 0.02, "dutch_roll"), ("PH L1 0.04", 0.04, "phugoid")]
         out = []
         if points:
             out.append(Evidence(
                 "Modes over CG corners × configurations × speeds × altitudes, with MIL-F-8785C levels",
-                damping_frequency_svg(points, boundaries),
+                damping_frequency_chart(points, boundaries),
                 caption=("Damping ratio and natural frequency of the oscillatory modes, coloured by MIL-F-8785C Class III "
                          "Level (category C with flaps, B clean); dotted lines are the damping boundaries "
                          "(Table IV short period, Table VI Dutch roll, 3.2.1.2 phugoid; unverified values). "

@@ -19,6 +19,8 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -99,12 +101,15 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
 
 def station_summary(loads_peaks: np.ndarray, stations) -> dict:
     """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
-    lo, hi = (np.asarray(loads_peaks, dtype=float)[:2] / 1e3).tolist()
-    out = {}
-    for s, station in enumerate(stations):
-        for q, quantity in enumerate(QUANTITIES):
-            out[f"{station} {quantity} max/min (kN{'·m' if q else ''})"] = [round(hi[q][s], 1), round(lo[q][s], 1)]
-    return out
+    lo, hi = np.round(np.asarray(loads_peaks, dtype=float)[:2] / 1e3, 1).transpose(0, 2, 1).reshape(2, -1).tolist()
+    return dict(zip(_summary_keys(tuple(stations)), map(list, zip(hi, lo))))
+
+
+@lru_cache(maxsize=64)
+def _summary_keys(stations: tuple) -> tuple:
+    """The :func:`station_summary` keys, station by station."""
+    return tuple(f"{station} {quantity} max/min (kN{'·m' if q else ''})"
+                 for station in stations for q, quantity in enumerate(QUANTITIES))
 
 
 def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor,
@@ -223,11 +228,20 @@ class CheckedPitchManeuver(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return checked_maneuver(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
+    def evidence(self, ctx, findings, crit):
+        return pitch_evidence(getattr(self, "run", None), ctx, crit, "checked manoeuvre")
 
-        return (maneuver_evidence(run, "horizontal_tail", "elevator")
-                + envelope_evidence(run, ("wing",), "checked manoeuvre", plot=False))
+
+def pitch_evidence(run, ctx, crit, what: str) -> list:
+    """Evidence of a pitch manoeuvre run: the tail's critical time histories, envelope and table, the wing's table,
+    each against the declared allowables."""
+    from certkit.evidence.loads import allowables, envelope_evidence, maneuver_evidence
+
+    if not run:
+        return []
+    allow = allowables(ctx, crit.ultimate_factor)
+    return (maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow)
+            + envelope_evidence(run, ("wing",), what, plot=False, allow=allow))
 
 
 def checked_maneuver(ctx, conditions, crit) -> dict:
@@ -461,11 +475,7 @@ class MaximumPitchControlDisplacement(Rule):
         return findings
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.evidence_loads import envelope_evidence, maneuver_evidence
-
-        run = getattr(self, "run", None)
-        return (maneuver_evidence(run, "horizontal_tail", "elevator") + envelope_evidence(run, ("wing",), "maximum pitch "
-                "control displacement", plot=False)) if run else []
+        return pitch_evidence(getattr(self, "run", None), ctx, crit, "maximum pitch control displacement")
 
 
 def _ramp(ramp: float, amplitude):

@@ -109,10 +109,13 @@ class BalancedManeuver(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return balanced_runs(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables, envelope_evidence
 
-        return envelope_evidence(run, SURFACES, "balanced manoeuvres") if run.get("envelope") is not None else []
+        run = getattr(self, "run", None)
+        if not run or run.get("envelope") is None:
+            return []
+        return envelope_evidence(run, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))
 
 
 def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:

@@ -103,7 +103,7 @@ class FlightManeuveringEnvelope(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.report.plots import vn_diagram_svg
+        from certkit.evidence import Axis, Chart, Limit, Panel, Point, Series
 
         conds = sorted({f.condition for f in findings if f.condition.mass is not None},
                        key=lambda c: (c.altitude, c.mass))
@@ -114,5 +114,15 @@ class FlightManeuveringEnvelope(Rule):
         picks = [sea[0], sea[-1]] if len(sea) > 1 else sea
         envs = [(c.loading or f"{c.mass:.0f} kg", envelope(ctx, c.mass, c.altitude, crit.cn_over_cl)) for c in picks]
         speeds = {name: declared_eas(ctx, name, h0) for name in ("VA", "VB", "VC", "VD") if getattr(ctx.aircraft.speeds, name)}
-        return [Evidence("V–n manoeuvring envelope, lightest and heaviest weight, lowest altitude",
-                         vn_diagram_svg(envs, speeds), "Stall lines from ±C_Nmax; corners A, D, E, F, H; declared speeds dashed.")]
+        series, corners = [], []
+        for k, (label, env) in enumerate(envs):
+            v, n = env.outline()
+            series.append(Series(label, v, n, colour=k))
+            corners += [Point(vc, nc, name, kind="corner", colour=k) for name, (vc, nc) in env.corners().items()]
+        lf = ctx.aircraft.envelope.limit_load_factors
+        limits = ([Limit(value, name, axis="x", kind="reference") for name, value in speeds.items()]
+                  + [Limit(lf.positive, f"n = {lf.positive:g}"), Limit(lf.negative, f"n = {lf.negative:g}")])
+        chart = Chart(Axis("equivalent airspeed", "m/s", "kn"), [Panel(Axis("load factor n", "g"), series, limits, corners)])
+        return [Evidence("V–n manoeuvring envelope, lightest and heaviest weight, lowest altitude (speeds in kn EAS)",
+                         chart, "Stall lines from ±C_Nmax; corners A, D, E, F, H; declared speeds dashed; limit "
+                         "manoeuvring load factors (§25.337) dashed black.")]

@@ -124,14 +124,17 @@ class DiscreteGust(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return discrete_gusts(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence, gust_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables, envelope_evidence, gust_evidence
 
-        if run.get("envelope") is None:
+        run = getattr(self, "run", None)
+        if not run or run.get("envelope") is None:
             return []
+        allow = allowables(ctx, crit.ultimate_factor)
         lateral = run.get("lateral_envelope")
-        table = envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust", plot=False) if lateral is not None else []
-        return gust_evidence(run) + table
+        table = (envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust", plot=False, allow=allow)
+                 if lateral is not None else [])
+        return gust_evidence(run, allow) + table
 
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:

@@ -115,10 +115,14 @@ class RollingConditions(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return rolling_maneuvers(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_roll import roll_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables
+        from certkit.evidence.roll import roll_evidence
 
-        return roll_evidence(run) if run.get("sim") is not None else []
+        run = getattr(self, "run", None)
+        if not run or run.get("sim") is None:
+            return []
+        return roll_evidence(run, allowables(ctx, crit.ultimate_factor))
 
 
 def target_load_factor(ctx, cond, crit) -> float:
@@ -365,10 +369,13 @@ class UnsymmetricalGust(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_gusts(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import unsymmetrical_gust_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables, unsymmetrical_gust_evidence
 
-        return unsymmetrical_gust_evidence(run) if run.get("envelope") is not None else []
+        run = getattr(self, "run", None)
+        if not run or run.get("envelope") is None:
+            return []
+        return unsymmetrical_gust_evidence(run, allowables(ctx, crit.ultimate_factor))
 
 
 def _airload_basis(crit) -> str:

@@ -103,10 +103,14 @@ class YawManeuver(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return yaw_maneuvers(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_yaw import yaw_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables
+        from certkit.evidence.yaw import yaw_evidence
 
-        return yaw_evidence(run) if run.get("envelope") is not None else []
+        run = getattr(self, "run", None)
+        if not run or run.get("envelope") is None:
+            return []
+        return yaw_evidence(run, allowables(ctx, crit.ultimate_factor))
 
 
 def yaw_speed(ctx, cond, crit) -> float:

@@ -25,7 +25,7 @@ import numpy as np
 
 from certkit.conditions import ConditionSpace
 from certkit.models.loads.capability import declared_capabilities
-from certkit.models.loads.unsymmetrical import unsymmetrical_tail
+from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Condition, Finding
 from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
@@ -107,11 +107,14 @@ class UnsymmetricalTailLoads(SimulationRule):
     def simulate(self, ctx, conditions, crit):
         return unsymmetrical_tail_loads(ctx, conditions, crit)
 
-    def draw(self, run):
-        from certkit.report.evidence_loads import envelope_evidence
+    def evidence(self, ctx, findings, crit):
+        from certkit.evidence.loads import allowables, envelope_evidence
 
-        env = run.get("envelope")
-        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False) if env is not None else []
+        run = getattr(self, "run", None)
+        env = run.get("envelope") if run else None
+        if env is None:
+            return []
+        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor))
 
 
 def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
@@ -133,10 +136,7 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
                           np.concatenate([i for _, _, i in runs.tail]), runs.conditions))
     out = {}
     for source, aero, inertia, conds in parts:
-        split = unsymmetrical_tail(tail, aero, inertia, full, reduced)
-        p_full = np.stack([np.nanmin(split.full, axis=0), np.nanmax(split.full, axis=0)], axis=1)  # (n, 2, 3, S)
-        p_red = np.stack([np.nanmin(split.reduced, axis=0), np.nanmax(split.reduced, axis=0)], axis=1)
-        t_lo, t_hi = np.nanmin(split.fuselage_torsion, axis=0), np.nanmax(split.fuselage_torsion, axis=0)
+        p_full, p_red, t_lo, t_hi = unsymmetrical_tail_peaks(tail, aero, inertia, full, reduced)  # (n, 2, 3, S), (n,)
         for i, c in enumerate(conds):
             out[(source,) + _key(c, source)] = (p_full[i], p_red[i], (float(t_lo[i]), float(t_hi[i])), c)
     return out
