@@ -1,4 +1,5 @@
-"""Command line: ``certkit check | diff | rules | explain | schema | trim | modes | mission | evaluate | study ... | new-rule``.
+"""Command line: ``certkit check | diff | rules | explain | schema | derivatives | trim | modes | mission | evaluate |
+import jsbsim | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated, 70 internal error (a bug: the message asks for a report; the
@@ -162,6 +163,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         chosen = select_rules(rules, split(select), split(ignore))
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
+    from certkit.models.mass.loading import inertia_comparison
+
+    warning = inertia_comparison(loaded.model)
+    if warning:
+        click.echo(f"warning: {warning}", err=True)
     progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
         # the missions are flown in this process while the workers evaluate the rules
@@ -291,26 +297,36 @@ def schema(of_results):
 def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
     """Stability and control derivatives of an aircraft file or an AVL geometry (.avl) file.
 
-    Per radian, stability axes, rates per p̂ = pb/2V, q̂ = qc̄/2V, r̂ = rb/2V (AVL's conventions) with
-    certkit's control signs (a positive deflection gives a negative moment); neutral point in the
-    file's X axis. For an aircraft file the model column adds the fuselage, drag and overrides.
+    Per radian, stability axes, rates per p̂ = pb/2V, q̂ = qc̄/2V, r̂ = rb/2V (AVL's normalisation). Control signs:
+    for an aircraft file certkit's (a positive deflection gives a negative moment); for an .avl file the file's
+    own (AVL's). For an aircraft file the neutral point and static margin are the model's (lattice + fuselage
+    term + overrides); the lattice's are printed beside them. Induced drag: Trefftz plane (AVL's CDff). Drag along
+    the stability x axis (see certkit/conventions.py).
     """
     from certkit.aero_report import derivative_report
 
     report = derivative_report(model_file, mach, alpha_deg, beta_deg, configuration)
     if as_json:
-        click.echo(json.dumps(report, indent=2))
+        click.echo(json.dumps(report, indent=2, allow_nan=False))
         return
+    ref, tot = report["reference"], report["totals"]
     click.echo(f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg")
-    click.echo(f"Sref {report['reference']['area']:.5g}  Cref {report['reference']['chord']:.5g}  Bref {report['reference']['span']:.5g}  "
-               f"Xref {report['reference']['x_ref']:.5g}")
-    click.echo(f"CL {report['totals']['CL']:.5f}  CDi {report['totals']['CD_induced']:.6f}  e {report['totals']['span_efficiency']:.4f}  "
-               f"Cm {report['totals']['Cm']:.5f}")
-    click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c")
-    columns = [c for c in ("lattice", "model") if c in report]
+    click.echo(f"Sref {ref['area']:.5g}  Cref {ref['chord']:.5g}  Bref {ref['span']:.5g}  Xref {ref['x_ref']:.5g}")
+    if tot is not None:
+        click.echo(f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
+                   f"Cm {tot['Cm']:.5f}")
+    if report["neutral_point"] is not None:
+        click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
+                   f"({report['neutral_point_source']})")
+    if report.get("model") is not None and report["lattice"] is not None:
+        click.echo(f"lattice alone: Xnp {report['lattice_neutral_point']:.5g}  static margin "
+                   f"{report['lattice_static_margin']:+.4f} c")
+    for key in ("controls", "drag"):
+        click.echo(f"{key}: {report['conventions'][key]}")
+    columns = [c for c in ("lattice", "model") if report.get(c) is not None]
     click.echo(f"\n{'derivative':<22}" + "".join(f"{c:>14}" for c in columns))
-    for name in report["lattice"]:
-        row = "".join(f"{report[c].get(name, float('nan')):>14.6f}" for c in columns)
+    for name in report[columns[0]]:
+        row = "".join(f"{v:>14.6f}" if v is not None else f"{'—':>14}" for v in (report[c].get(name) for c in columns))
         click.echo(f"{name:<22}{row}")
     for note in report.get("notes", []):
         click.echo(f"note: {note}")
@@ -322,8 +338,10 @@ def _condition_options(f):
         click.option("--weight", help="Mass with unit, e.g. '600000 lb'."),
         click.option("--cg", help="CG station with unit, e.g. '97.25 ft'."),
         click.option("--config", "configuration", default="clean", show_default=True),
-        click.option("--altitude", default="35000 ft", show_default=True, help="Altitude with unit."),
-        click.option("--speed", default="M0.84", show_default=True, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84'."),
+        click.option("--altitude", default=None, help="Altitude with unit (default: the file's flight_condition, "
+                                                       "else 35000 ft)."),
+        click.option("--speed", default=None, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84' (default: the "
+                                                    "file's flight_condition, else M0.84)."),
         click.option("--maneuver", "kind", default="straight", show_default=True,
                      help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta)."),
         click.option("--gamma", "gamma_deg", type=float, default=0.0, show_default=True, help="Flight-path angle, deg."),
@@ -396,6 +414,8 @@ def _print_trim(r, given: dict):
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
     for note in r["loading_notes"]:
         click.echo(f"note: {note}")
+    for warning in r["warnings"]:
+        click.echo(f"warning: {warning}", err=True)
 
 
 @main.command(name="modes")
@@ -487,6 +507,40 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
         click.echo(json.dumps(record, indent=2, allow_nan=False))
     else:
         print_record(record, click.echo)
+
+
+@main.group(name="import")
+def import_group():
+    """Write a certkit aircraft file from another tool's model."""
+
+
+@import_group.command(name="jsbsim")
+@click.argument("fdm_file", type=click.Path(dir_okay=False))
+@click.option("--out", "out_path", type=click.Path(dir_okay=False), help="Aircraft file to write (default: standard output).")
+@click.option("--mach", type=float, default=0.8, show_default=True, help="Mach number the α tables are linearised at.")
+@click.option("--altitude", default="35000 ft", show_default=True, help="Altitude of that point, with unit.")
+def import_jsbsim_command(fdm_file, out_path, mach, altitude):
+    """A certkit aircraft file from a JSBSim FDM (AIRCRAFT.xml): mass, inertia, engines and thrust deck, and the
+    aerodynamic functions as a derivative table linearised at level flight at --mach/--altitude; what could not
+    be mapped is listed in the file's header and on standard error."""
+    from certkit.flight_report import _quantity
+    from certkit.jsbsim_import.importer import import_jsbsim, to_yaml
+
+    result = import_jsbsim(fdm_file, mach=mach, altitude=_quantity(altitude, "length", "--altitude"))
+    text = to_yaml(result)
+    from certkit.aircraft import validate_aircraft_data
+
+    validate_aircraft_data(result.data)  # what is written must load
+    for line in result.unmapped:
+        click.echo(f"not mapped: {line}", err=True)
+    if out_path:
+        try:
+            Path(out_path).write_text(text, encoding="utf-8")
+        except OSError as exc:
+            raise UserError(f"--out {out_path!r}: cannot write ({exc.strerror or exc})") from None
+        click.echo(f"wrote {out_path} ({len(result.unmapped)} items not mapped, listed in its header)", err=True)
+    else:
+        click.echo(text)
 
 
 def _register_study() -> None:

@@ -68,10 +68,18 @@ class Context:
                                  "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
                                  "notes": list(value.notes)}
         components, notes = empty_airplane(self.aircraft)
+        warning = self.inertia_warning()
+        notes = notes + ([f"warning: {warning}"] if warning else [])
         return {"aerodynamics": aero, "loadings": [loadings[k] for k in sorted(loadings)],
                 "components": [{"item": c.name, "mass_kg": c.mass, "x_m": c.cg[0], "y_m": c.cg[1], "z_m": c.cg[2],
                                 "own_inertia": c.inertia is not None} for c in components],
                 "component_notes": notes}
+
+    def inertia_warning(self) -> str | None:
+        """Declared inertia vs component build-up beyond the file's tolerance (:func:`inertia_comparison`), once."""
+        from certkit.models.mass.loading import inertia_comparison
+
+        return self.memo("inertia_comparison", lambda: inertia_comparison(self.aircraft))
 
     def lookup(self, dotted: str) -> object:
         """The aircraft-file value at ``speeds.VMC`` / ``configurations.landing.CLmax`` (None if absent)."""

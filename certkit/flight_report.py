@@ -71,6 +71,8 @@ def condition_from_options(aircraft, corner, weight, cg, configuration, altitude
                            beta_deg, inoperative) -> FlightCondition:
     if configuration not in aircraft.configurations:
         raise UserError(f"--config {configuration!r}: not declared (declared: {', '.join(aircraft.configurations)})")
+    if corner and aircraft.cg_envelope is None:
+        raise UserError(f"--corner {corner!r}: the aircraft file has no cg_envelope section; give --weight and --cg")
     if corner:
         corners = {c.name: c for c in CgCorners().loadings(aircraft)}
         if corner not in corners:
@@ -79,29 +81,47 @@ def condition_from_options(aircraft, corner, weight, cg, configuration, altitude
         name, mass, x_cg = c.name, c.mass, c.x_cg
     else:
         mass = _quantity(weight, "mass", "--weight") if weight else aircraft.mass.MTOW
-        try:
-            fwd, aft = cg_limits_at(aircraft, mass)
-        except ValueError as exc:
-            raise UserError(f"--weight: {exc}") from None
-        x_cg = _quantity(cg, "length", "--cg") if cg else min(max(reference_cg(aircraft), fwd), aft)
-        if not (fwd - 1e-6 <= x_cg <= aft + 1e-6):
-            raise UserError(f"--cg {x_cg:.3f} m is outside the CG envelope at {mass:.0f} kg ({fwd:.3f} to {aft:.3f} m)")
+        x_cg = _quantity(cg, "length", "--cg") if cg else reference_cg(aircraft)
+        if aircraft.cg_envelope is not None:
+            try:
+                fwd, aft = cg_limits_at(aircraft, mass)
+            except ValueError as exc:
+                raise UserError(f"--weight: {exc}") from None
+            x_cg = x_cg if cg else min(max(x_cg, fwd), aft)
+            if not (fwd - 1e-6 <= x_cg <= aft + 1e-6):
+                raise UserError(f"--cg {x_cg:.3f} m is outside the CG envelope at {mass:.0f} kg ({fwd:.3f} to {aft:.3f} m)")
         name = f"{mass:.0f} kg at {x_cg:.3f} m"
-    h = _quantity(altitude, "length", "--altitude")
-    if not (-600.0 <= h <= 20_000.0):
-        raise UserError(f"--altitude {altitude!r}: outside the modelled atmosphere (-600 m to 20 km)")
-    ceiling = aircraft.envelope.ceiling
-    if h > ceiling + 1e-6:
-        raise UserError(f"--altitude {h:.0f} m is above the envelope ceiling ({ceiling:.0f} m)")
-    value, speed_kind = parse_speed(speed)
-    tas = float(to_tas(value, speed_kind, h))
+    h, tas = _altitude_and_speed(aircraft, altitude, speed)
     if kind not in KINDS:
         raise UserError(f"--maneuver {kind!r}: one of {', '.join(KINDS)}")
-    engines = [e.name for e in aircraft.propulsion.engines]
+    engines = [e.name for e in aircraft.propulsion.engines] if aircraft.propulsion is not None else []
     if kind == "oei" and inoperative not in engines:
         raise UserError(f"--inoperative: name the failed engine ({', '.join(engines)})")
     return FlightCondition(name, mass, x_cg, configuration, h, tas, KINDS[kind], np.radians(gamma_deg),
                            np.radians(bank_deg), np.radians(beta_deg), inoperative)
+
+
+DEFAULT_ALTITUDE, DEFAULT_SPEED = "35000 ft", "M0.84"
+
+
+def _altitude_and_speed(aircraft, altitude: str | None, speed: str | None) -> tuple[float, float]:
+    """Altitude (m) and true airspeed (m/s) of the options; an option not given is the file's flight_condition
+    (when declared), else 35 000 ft and M0.84."""
+    from certkit.models.reference_condition import declared_speed_at, reference_condition
+
+    ref = reference_condition(aircraft)
+    if altitude is None:
+        h = ref.altitude if ref is not None else _quantity(DEFAULT_ALTITUDE, "length", "--altitude")
+    else:
+        h = _quantity(altitude, "length", "--altitude")
+        if not (-600.0 <= h <= 20_000.0):
+            raise UserError(f"--altitude {altitude!r}: outside the modelled atmosphere (-600 m to 20 km)")
+    if aircraft.envelope is not None and h > aircraft.envelope.ceiling + 1e-6:
+        raise UserError(f"--altitude {h:.0f} m is above the envelope ceiling ({aircraft.envelope.ceiling:.0f} m)")
+    if speed is None and ref is not None:
+        return h, declared_speed_at(aircraft.flight_condition, h)
+    value, speed_kind = parse_speed(speed if speed is not None else DEFAULT_SPEED)
+    return h, float(to_tas(value, speed_kind, h))
 
 
 def trim_condition(ctx, fc: FlightCondition):
@@ -122,12 +142,25 @@ def trim_condition(ctx, fc: FlightCondition):
 
 
 def trim_report(ctx, fc: FlightCondition) -> dict:
-    batch, _, loading = trim_condition(ctx, fc)
-    return _trim_dict(fc, batch, loading)
+    batch, model, loading = trim_condition(ctx, fc)
+    out = _trim_dict(ctx, fc, batch, loading)
+    if not batch.results[0].converged and _no_pitch_control(model):
+        out["warnings"].append(_NO_PITCH_CONTROL)
+    return out
 
 
-def _trim_dict(fc: FlightCondition, batch, loading) -> dict:
+_NO_PITCH_CONTROL = ("the aerodynamics have no pitch control (no elevator terms), so the pitching moment must vanish "
+                     "at the trim angle of attack by itself: declare elevator terms (CL_elevator, Cm_elevator) or a "
+                     "condition at which the table is trimmed")
+
+
+def _no_pitch_control(model) -> bool:
+    return "elevator" not in model.aero_controls
+
+
+def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
     r = batch.results[0]
+    warning = ctx.inertia_warning()
     return {
         "condition": {"loading": fc.loading_name, "mass_kg": fc.mass, "x_cg_m": fc.x_cg, "configuration": fc.configuration,
                       "altitude_m": fc.altitude, "tas_m_s": fc.tas, "kind": fc.kind, "gamma_deg": np.degrees(fc.gamma),
@@ -142,6 +175,7 @@ def _trim_dict(fc: FlightCondition, batch, loading) -> dict:
         "inertia_kg_m2": {"Ixx": loading.properties.Ixx, "Iyy": loading.properties.Iyy, "Izz": loading.properties.Izz,
                           "Ixz": loading.properties.Ixz},
         "loading_notes": list(loading.notes),
+        "warnings": [warning] if warning else [],
     }
 
 
@@ -150,9 +184,10 @@ def modes_report(ctx, fc: FlightCondition) -> dict:
     from certkit.models.dynamics.modes import identify_modes
 
     batch, model, loading = trim_condition(ctx, fc)
-    out = _trim_dict(fc, batch, loading)
+    out = _trim_dict(ctx, fc, batch, loading)
     if not batch.results[0].converged:
-        raise UserError("the condition does not trim: " + batch.results[0].summary())
+        hint = f"; {_NO_PITCH_CONTROL}" if _no_pitch_control(model) else ""
+        raise UserError("the condition does not trim: " + batch.results[0].summary() + hint)
     modes = identify_modes(linearize(model, batch.x, batch.u), 0)
     out["modes"] = {name: {"eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag], "natural_frequency_rad_s": m.natural_frequency,
                            "damping_ratio": m.damping_ratio, "period_s": m.period, "time_to_half_s": m.time_to_half,

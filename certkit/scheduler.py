@@ -101,6 +101,12 @@ def check_overrides(loaded: LoadedAircraft, rules: list[type[Rule]]) -> None:
         raise InputError(loaded.path, found)
 
 
+#: sections every rule's conditions and models build on (the CG-envelope corners, the altitude range, the engines,
+#: the loading solver's masses): optional in the file (a derivative-table airplane flown by ``trim``/``modes`` needs
+#: none of them), so a rule without them is ``not_evaluated`` naming them, never a crash
+RULE_SECTIONS = ("cg_envelope", "envelope", "propulsion", "mass.MLW", "mass.MZFW", "mass.OEW")
+
+
 def _describe_exception(exc: BaseException) -> str:
     return f"{exc.__class__.__name__}: {exc}"
 
@@ -125,7 +131,7 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
                         limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
                         unevaluated=[list(u) for u in rule.unevaluated], amendment=rule.amendment,
                         references=list(rule.references), criteria=criteria_metadata(rule, criteria, overrides))
-    missing = ctx.missing(rule.requires)
+    missing = ctx.missing(tuple(dict.fromkeys(RULE_SECTIONS + tuple(rule.requires))))
     if missing:
         result.findings.append(Finding.not_evaluated(
             Condition(), "inputs", "needs " + ", ".join(missing),

@@ -48,6 +48,8 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
         if name not in data:
             if info.is_required():
                 found.append(((name,), "required section is missing", None))
+            else:  # a default section takes part in the relations (the default 'clean' configuration...)
+                sections[name] = info.get_default(call_default_factory=True)
             continue
         try:
             sections[name] = TypeAdapter(info.annotation).validate_python(data[name])

@@ -28,12 +28,17 @@ def needs(*sections: str):
 @needs("mass")
 def _mass_order(s):
     m = s["mass"]
-    if m.MLW > m.MTOW:
+    if m.MLW is not None and m.MLW > m.MTOW:
         yield "mass.MLW", f"maximum landing weight must not exceed MTOW ({m.MTOW:.0f} kg)", m.MLW
-    if m.MZFW > m.MLW:
-        yield "mass.MZFW", f"maximum zero-fuel weight must not exceed MLW ({m.MLW:.0f} kg)", m.MZFW
-    if m.OEW >= m.MZFW:
-        yield "mass.OEW", f"operating empty weight must be below MZFW ({m.MZFW:.0f} kg)", m.OEW
+    if m.MZFW is not None and m.MZFW > (m.MLW if m.MLW is not None else m.MTOW):
+        limit = "MLW" if m.MLW is not None else "MTOW"
+        yield "mass.MZFW", f"maximum zero-fuel weight must not exceed {limit} ({getattr(m, limit):.0f} kg)", m.MZFW
+    if m.OEW is not None and m.OEW >= (m.MZFW if m.MZFW is not None else m.MTOW):
+        limit = "MZFW" if m.MZFW is not None else "MTOW"
+        yield "mass.OEW", f"operating empty weight must be below {limit} ({getattr(m, limit):.0f} kg)", m.OEW
+    for name in ("MZFW", "OEW"):
+        if getattr(m, name) is None and (m.fuel_tanks or m.payload_zones):
+            yield f"mass.{name}", "needed with fuel tanks or payload zones (the loading solver's limits)", None
     if m.MRW is not None and m.MRW < m.MTOW:
         yield "mass.MRW", f"maximum ramp weight must be at least MTOW ({m.MTOW:.0f} kg)", m.MRW
     for i, c in enumerate(m.components):
@@ -88,12 +93,43 @@ def _aero_configurations(s):
             if name not in names:
                 yield f"aerodynamics.{field}.{name}", f"unknown configuration (declared: {', '.join(sorted(names))})", name
     for name, table in aero.derivative_tables.items():
-        if any(b <= a for a, b in zip(table.mach, table.mach[1:])):
-            yield f"aerodynamics.derivative_tables.{name}.mach", "Mach breakpoints must increase strictly", table.mach
-        for key, value in table.derivatives.items():
-            if isinstance(value, list) and len(value) != len(table.mach):
-                yield (f"aerodynamics.derivative_tables.{name}.derivatives.{key}",
-                       f"needs one value per Mach breakpoint ({len(table.mach)})", value)
+        yield from _derivative_table(name, table, s.get("flight_condition"), s.get("propulsion"))
+
+
+def _derivative_table(name, table, condition, propulsion):
+    """Names of the table's form, one value per Mach breakpoint, what the dimensional form and the speed
+    derivatives need (a flight condition, one Mach), thrust–speed only without a propulsion section."""
+    from certkit.aircraft.derivative_names import SPEED_TERMS, unknown_names
+
+    at = f"aerodynamics.derivative_tables.{name}"
+    mach = table.mach if table.mach is not None else [condition.mach if condition and condition.mach else 0.0]
+    if table.mach is None and condition is None:
+        yield f"{at}.mach", "give the Mach breakpoints or a flight_condition section (whose Mach number is used)", None
+    if any(b <= a for a, b in zip(mach, mach[1:])):
+        yield f"{at}.mach", "Mach breakpoints must increase strictly", table.mach
+    for key in unknown_names(table.derivatives, table.form, table.control_names):
+        yield (f"{at}.derivatives.{key}", f"not a {table.form} derivative name nor a term of a control in "
+               f"{table.control_names} (names: `certkit schema`, aerodynamics.derivative_tables)", key)
+    for key, value in table.derivatives.items():
+        if isinstance(value, list) and len(value) != len(mach):
+            yield f"{at}.derivatives.{key}", f"needs one value per Mach breakpoint ({len(mach)})", value
+    speed = [k for k in table.derivatives if k in SPEED_TERMS + ("CT_u", "T_u")]
+    if (table.form == "dimensional" or speed) and condition is None:
+        what = "the dimensional form" if table.form == "dimensional" else ", ".join(speed)
+        yield at, f"{what} needs the flight_condition section (the speed and density the derivatives refer to)", None
+    if (table.form == "dimensional" or speed) and len(mach) > 1:
+        yield f"{at}.mach", ("the dimensional form and speed derivatives refer to one flight condition: give one Mach "
+                             "number (a Mach-tabulated table carries its speed dependence in its breakpoints)"), table.mach
+    if (table.form == "dimensional" or speed) and table.mach is not None and len(mach) == 1 and condition is not None \
+            and condition.mach is not None and abs(mach[0] - condition.mach) > 1e-3:
+        yield (f"{at}.mach", f"the dimensional form and speed derivatives refer to the flight condition's Mach number "
+               f"({condition.mach:g}); leave mach out or give that one", table.mach)
+    if table.form == "dimensional" and "CD0" not in table.derivatives:
+        yield f"{at}.derivatives", "the dimensional form needs CD0, the drag coefficient in the flight condition", None
+    thrust = [k for k in ("CT_u", "T_u") if k in table.derivatives]
+    if thrust and propulsion is not None:
+        yield (f"{at}.derivatives.{thrust[0]}", "a thrust–speed derivative is for files without propulsion (the "
+               "declared engines carry their own thrust variation)", None)
 
 
 @needs("speeds", "configurations")
@@ -337,6 +373,9 @@ def _fuel_capacity(s):
 @needs("mission", "mass")
 def _mission_payload(s):
     mission, m = s["mission"], s["mass"]
+    if m.MZFW is None or m.OEW is None:
+        yield "mass", "the mission needs mass.MZFW and mass.OEW", None
+        return
     room = m.MZFW - m.OEW
     if m.max_payload is not None and mission.design_payload > m.max_payload * (1 + 1e-9):
         yield "mission.design_payload", f"exceeds mass.max_payload ({m.max_payload:.0f} kg)", mission.design_payload

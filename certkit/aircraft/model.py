@@ -14,9 +14,10 @@ from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
+from certkit.aircraft import derivative_names
 from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
-    Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
+    Acceleration, Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
     PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, SpecificFuelConsumption, Speed, SpeedValue,
     Stiffness, Time,
 )
@@ -151,7 +152,14 @@ class Geometry(_Section):
 # --- mass ----------------------------------------------------------------------------------
 
 class InertiaTensor(_Section):
-    """Moments and products of inertia (kg m²), body axes at the CG of the item."""
+    """Moments and products of inertia (kg m²) at the CG of the item, in the axes ``axes`` names.
+
+    ``body`` (default): certkit's body axes (x forward along the fuselage reference line, z down). ``stability``:
+    the stability axes of the flight condition (x along the relative wind in the plane of symmetry), whose x axis
+    lies ``axes_angle`` above the body x axis (the body's trim angle of attack is −``axes_angle``; 0 when the
+    derivatives are written about that condition's stability axes, as in Etkin & Reid's examples). ``principal``:
+    the principal axes (no products of inertia), x ``axes_angle`` above the body x axis (nose-up positive).
+    The tensor is turned into body axes by a rotation about y (Etkin & Reid eq. 4.8,1 form)."""
 
     Ixx: Annotated[Inertia, Field(ge=0)]
     Iyy: Annotated[Inertia, Field(ge=0)]
@@ -159,6 +167,15 @@ class InertiaTensor(_Section):
     Ixz: Inertia = 0.0
     Ixy: Inertia = 0.0
     Iyz: Inertia = 0.0
+    axes: Literal["body", "stability", "principal"] = "body"
+    axes_angle: Annotated[Angle, Field(ge=-0.8, le=0.8, description="angle of the declared x axis above the body "
+                                                                    "x axis (rotation about y, nose-up positive)")] = 0.0
+
+    @model_validator(mode="after")
+    def _principal(self):
+        if self.axes == "principal" and (self.Ixz or self.Ixy or self.Iyz):
+            raise ValueError("principal axes have no products of inertia: give Ixz = Ixy = Iyz = 0 or axes: body")
+        return self
 
 
 class MassComponent(_Section):
@@ -186,16 +203,29 @@ class PayloadZone(_Section):
 
 
 class MassProperties(_Section):
+    """Design masses, mass items and inertia. A file used only for ``trim``/``modes`` (a derivative-table airplane)
+    needs MTOW (the mass flown unless a command says otherwise) and ``inertia``; the rules that need MLW, MZFW, OEW,
+    tanks or zones are not evaluated without them."""
+
     MTOW: PositiveMass
-    MLW: PositiveMass
-    MZFW: PositiveMass
-    OEW: PositiveMass
+    MLW: PositiveMass | None = None
+    MZFW: PositiveMass | None = None
+    OEW: PositiveMass | None = None
     MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
     max_fuel: PositiveMass | None = None
     max_payload: PositiveMass | None = None
     passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
     oew_cg: Point | None = None
-    inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (if no components)")
+    cg: Point | None = Field(None, description="CG of the whole airplane at MTOW (a file without components, tanks "
+                                               "or zones; default: the CG envelope's reference, else the moment point)")
+    inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (used without components, "
+                                                            "or with them when inertia_used is 'declared')")
+    inertia_used: Literal["components", "declared"] = Field(
+        "components", description="with both components and a declared inertia: which one the dynamics uses (the "
+                                  "other is compared with it; a difference beyond inertia_tolerance is a warning)")
+    inertia_tolerance: Annotated[float, Field(gt=0.0, lt=1.0)] = Field(
+        0.10, description="relative difference of a moment of inertia (build-up at MTOW vs declared) beyond which "
+                          "certkit warns")
     components: list[MassComponent] = Field(default_factory=list)
     fuel_tanks: list[FuelTank] = Field(default_factory=list)
     payload_zones: list[PayloadZone] = Field(default_factory=list)
@@ -251,17 +281,39 @@ class Propulsion(_Section):
 class DerivativeTable(_Section):
     """Stability and control derivatives of one configuration (wind tunnel, CFD or published data).
 
-    Per radian, stability axes, AVL rate normalisation, moments about ``reference.moment_point``;
-    names as :class:`certkit.models.aero.derivative_model.StabilityDerivativeModel` takes them
-    (``CL0``, ``CL_alpha``, ``Cm_q``, ``CD0``, ``k``, control terms ``Cm_elevator`` …). Each value is
-    a number or one number per Mach breakpoint. Declared tables replace the vortex lattice.
+    ``form: nondimensional`` (default): per radian, stability axes, AVL rate normalisation, moments about
+    ``reference.moment_point``; ``form: dimensional``: SI forces and moments per unit motion variable at the
+    ``flight_condition`` (Etkin & Reid's X_u, Z_w, M_q ...). Names: :mod:`certkit.aircraft.derivative_names`
+    (listed in ``certkit schema``). Each value is a number or one number per Mach breakpoint; ``mach`` defaults to
+    the flight condition's Mach number. Speed derivatives (CL_u, CD_u, Cm_u) and the dimensional form need a single
+    Mach (the flight condition's). Control terms are optional (``controls`` defaults to those the terms name);
+    without a pitch control, trim holds the pitching moment at zero by the angle of attack alone (and says when it
+    cannot). Declared tables replace the vortex lattice.
     """
 
-    mach: Annotated[list[Annotated[float, Field(ge=0.0, lt=1.0)]], Field(min_length=1)]
-    derivatives: dict[str, float | list[float]]
-    controls: list[str] = Field(default_factory=lambda: ["elevator", "aileron", "rudder"],
-                                description="control surfaces the control terms (Cm_elevator …) refer to")
+    form: Literal["nondimensional", "dimensional"] = "nondimensional"
+    mach: Annotated[list[Annotated[float, Field(ge=0.0, lt=1.0)]], Field(min_length=1)] | None = Field(
+        None, description="Mach breakpoints (default: the flight condition's Mach number)")
+    derivatives: dict[str, float | list[float]] = Field(
+        description="derivative name → value (or one value per Mach breakpoint):\n" + derivative_names.schema_description(),
+        json_schema_extra={"properties": derivative_names.schema_properties(),
+                           "patternProperties": {r"^(CL|CD|CY|Cl|Cm|Cn|X|Y|Z|L|M|N)_[A-Za-z][A-Za-z0-9_]*$": {
+                               "description": "control derivative <prefix>_<control>, per rad"}}})
+    controls: list[str] | None = Field(None, description="control surfaces the control terms (Cm_elevator …) refer "
+                                                         "to (default: those of elevator, aileron, rudder, stabilizer, "
+                                                         "spoiler, flap, slat the terms name)")
     source: Annotated[str, Field(min_length=3)]
+
+    @property
+    def control_names(self) -> list[str]:
+        if self.controls is not None:
+            return list(self.controls)
+        found: list[str] = []
+        for name in self.derivatives:
+            term = derivative_names.control_term(name, self.form)
+            if term and term[1] not in found and term[1] in derivative_names.USUAL_CONTROLS:
+                found.append(term[1])
+        return found
 
 
 class LatticeResolution(_Section):
@@ -281,6 +333,32 @@ class Aerodynamics(_Section):
 
 
 # --- configurations, speeds, envelope, criteria --------------------------------------------
+
+class FlightCondition(_Section):
+    """The flight condition of published data: where dimensional and speed derivatives were taken, and the default
+    condition of ``certkit trim`` and ``certkit modes``. Altitude (ISA) or density; a speed with its kind
+    ('235.9 m/s TAS', '250 kn EAS') or a Mach number; the gravitational acceleration the source used."""
+
+    altitude: Length | None = Field(None, description="pressure altitude (ISA); or give density")
+    density: Annotated[Density, Field(gt=0.0)] | None = Field(None, description="air density; the ISA altitude with this "
+                                                                                "density is flown")
+    speed: Speed | None = Field(None, description="airspeed with its kind; or give mach")
+    mach: Annotated[float, Field(gt=0.0, lt=1.0)] | None = None
+    gravity: Annotated[Acceleration, Field(gt=9.7, lt=9.9)] = Field(
+        9.80665, description="gravitational acceleration of the equations of motion (standard 9.80665 m/s²)")
+    source: str | None = None
+
+    @model_validator(mode="after")
+    def _one_of_each(self):
+        problems = []
+        if (self.altitude is None) == (self.density is None):
+            problems.append("give either altitude or density (one of the two)")
+        if (self.speed is None) == (self.mach is None):
+            problems.append("give either speed (with its kind) or mach (one of the two)")
+        if problems:
+            raise ValueError("; ".join(problems))
+        return self
+
 
 class StallWarning(_Section):
     """Where stall warning begins in a configuration (§25.207(c)-(d)): the 1-g lift coefficient at its onset, or the
@@ -703,11 +781,15 @@ class Aircraft(_Section):
     reference: Reference
     geometry: Geometry | None = Field(None, description="needed unless every configuration has derivative tables")
     mass: MassProperties
-    cg_envelope: CgEnvelope
-    propulsion: Propulsion
-    configurations: dict[str, Configuration]
+    cg_envelope: CgEnvelope | None = Field(None, description="needed by the rules (their CG corners)")
+    propulsion: Propulsion | None = Field(None, description="without it: an ideal thrust along the body x axis "
+                                                             "through the moment point, constant with speed unless "
+                                                             "the derivative table gives T_u / CT_u")
+    configurations: dict[str, Configuration] = Field(default_factory=lambda: {"clean": Configuration()})
     speeds: Speeds = Field(default_factory=Speeds)
-    envelope: Envelope
+    envelope: Envelope | None = Field(None, description="needed by the rules (altitudes, ceiling, load factors)")
+    flight_condition: FlightCondition | None = Field(
+        None, description="condition of published derivatives; default condition of trim and modes")
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")

@@ -59,6 +59,7 @@ Stiffness = quantity("stiffness")
 Density = quantity("density")
 ArealDensity = quantity("areal_density")
 AngularRate = quantity("angular_rate")
+Acceleration = quantity("acceleration")
 MassPerEnergy = quantity("mass_per_energy")
 
 SpecificFuelConsumption = quantity("specific_fuel_consumption")
@@ -102,6 +103,6 @@ class Speed(BaseModel):
 
 __all__ = [
     "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "Pressure", "Gearing", "Stiffness",
-    "Density", "ArealDensity", "AngularRate", "MassPerEnergy", "PositiveLength",
+    "Density", "ArealDensity", "AngularRate", "Acceleration", "MassPerEnergy", "PositiveLength",
     "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
 ]

@@ -43,7 +43,31 @@ def thrust_function(aircraft):
     return engine.thrust, "parametric high-bypass turbofan scaled to the declared static thrust (Mattingly lapse)"
 
 
+def ideal_engine(aircraft) -> Engine:
+    """A file without propulsion (a derivative-table airplane): one ideal thrust along the body x axis through
+    the moment point, up to MTOW × g at full throttle, constant with speed unless the derivative table declares
+    ∂T/∂u (T_u, CT_u; :func:`certkit.models.aero.derivative_forms.thrust_speed_derivative`) — the textbook
+    assumption of Etkin & Reid §4.4 (thrust line through the CG, T_u given or zero)."""
+    from certkit.atmosphere import speed_of_sound
+    from certkit.models.aero.derivative_forms import thrust_speed_derivative
+    from certkit.models.reference_condition import gravity, reference_condition
+
+    cond = reference_condition(aircraft)
+    full = aircraft.mass.MTOW * gravity(aircraft)
+    t_u = thrust_speed_derivative(aircraft, cond) if cond is not None else 0.0
+    u0 = cond.tas if cond is not None else 0.0
+
+    def thrust(throttle, h, mach):
+        base = np.asarray(throttle, dtype=float) * full
+        return base if t_u == 0.0 else base + t_u * (np.asarray(mach) * speed_of_sound(h) - u0)
+
+    p = aircraft.reference.moment_point
+    return Engine("ideal thrust", thrust, (p.x, p.y, p.z), (1.0, 0.0, 0.0), None)
+
+
 def engines(aircraft) -> list[Engine]:
+    if aircraft.propulsion is None:
+        return [ideal_engine(aircraft)]
     thrust, _ = thrust_function(aircraft)
     g = aircraft.geometry
     inlet = 0.85 * g.nacelle.diameter if g is not None and g.nacelle is not None else None
@@ -75,7 +99,10 @@ def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundM
     mass = np.array([ld.properties.mass for ld in loadings])
     cg = np.array([ld.properties.cg for ld in loadings])
     inertia = np.array([ld.properties.inertia for ld in loadings])
-    return AircraftModel(aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground)
+    from certkit.models.reference_condition import gravity
+
+    return AircraftModel(aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground,
+                         g=gravity(aircraft))
 
 
 def gear_static_loads(aircraft, mass: float, x_cg: float, g: float = 9.80665) -> tuple[float, float]:

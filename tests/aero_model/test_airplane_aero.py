@@ -84,8 +84,10 @@ def test_misspelt_declared_derivative_is_an_error(tmp_path):
     text = BASELINE.read_text() + TABLES.replace("Cm_q:", "Cm_qq:")
     f = tmp_path / "bad.yaml"
     f.write_text(text)
-    with pytest.raises(ValueError, match="Cm_qq"):
-        Context(load_aircraft(f)).aero("clean")
+    from certkit.errors import InputError
+
+    with pytest.raises(InputError, match=r"derivatives\.Cm_qq"):  # at load, with its YAML path and line
+        load_aircraft(f)
 
 
 def test_derivatives_command_on_avl_and_aircraft_files(cli):

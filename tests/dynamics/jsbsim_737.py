@@ -12,7 +12,8 @@ variables near cruise, so a StabilityDerivativeModel reproduces it exactly excep
       trim α (D_s = R D_b Rᵀ for the rate derivatives), as the derivative model expects;
     * JSBSim's left aileron positive = left trailing edge down (right-wing-down roll); certkit's
       (Etkin) aileron is the opposite sign.
-Mass, CG, inertia and gravity are read from the running JSBSim model after its trim; the thrust is
+Mass, CG, inertia and gravity are read from the running JSBSim model after its trim (its inertia/ixz
+property is the tensor element −∫xz dm, so certkit's Ixz is its negative); the thrust is
 modelled as linear in throttle with JSBSim's trim thrust per engine at its trim throttle, at the
 XML engine positions.
 """
@@ -36,11 +37,20 @@ SLUG = LB * 9.80665 / FT  # kg
 SLUGFT2 = SLUG * FT * FT
 
 
+def jsbsim_root() -> str:
+    """JSBSim's data folder: the installed package's own (in chained dev venvs get_default_root_dir, which looks
+    under sys.prefix, does not find it)."""
+    import jsbsim
+
+    here = os.path.dirname(jsbsim.__file__)
+    return here if os.path.isdir(os.path.join(here, "aircraft")) else jsbsim.get_default_root_dir()
+
+
 def jsbsim_cruise():
     """Run JSBSim's 737 from cruise_init, trim it (JSBSim's own full trim) and return the FDM."""
     import jsbsim
 
-    fdm = jsbsim.FGFDMExec(None)
+    fdm = jsbsim.FGFDMExec(jsbsim_root())
     fdm.set_debug_level(0)
     fdm.load_model("737")
     fdm.load_ic("cruise_init", True)
@@ -51,9 +61,7 @@ def jsbsim_cruise():
 
 
 def _xml():
-    import jsbsim
-
-    return ET.parse(os.path.join(jsbsim.get_default_root_dir(), "aircraft", "737", "737.xml")).getroot()
+    return ET.parse(os.path.join(jsbsim_root(), "aircraft", "737", "737.xml")).getroot()
 
 
 def _function(root, name):
@@ -135,7 +143,7 @@ def build_737(fdm, n: int = 1):
         per_unit = fdm[f"propulsion/engine[{k}]/thrust-lbs"] * LBF / thr0
         engines.append(Engine(f"e{k + 1}", thrust=lambda thr, h, m, t=per_unit: thr * t, position=pos))
     J = inertia_tensor(fdm["inertia/ixx-slugs_ft2"] * SLUGFT2, fdm["inertia/iyy-slugs_ft2"] * SLUGFT2,
-                       fdm["inertia/izz-slugs_ft2"] * SLUGFT2, fdm["inertia/ixz-slugs_ft2"] * SLUGFT2)
+                       fdm["inertia/izz-slugs_ft2"] * SLUGFT2, -fdm["inertia/ixz-slugs_ft2"] * SLUGFT2)
     cg = (fdm["inertia/cg-x-in"] * IN, fdm["inertia/cg-y-in"] * IN, fdm["inertia/cg-z-in"] * IN)
     model = AircraftModel(aero, mass=fdm["inertia/mass-slugs"] * SLUG, cg=cg, inertia=J, engines=engines,
                           g=fdm["accelerations/gravity-ft_sec2"] * FT, n=n)

@@ -190,9 +190,13 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
     stall = StallModel(clmax) if clmax else None
     ref = aero_reference(aircraft)
     if declared is not None:
-        table = dict(declared.derivatives)
-        result = AirplaneAero(configuration, None, tuple(declared.mach), table, f"declared table: {declared.source}", notes=notes)
-        machs, controls = declared.mach, declared.controls
+        from certkit.models.aero.derivative_forms import nondimensional_table
+        from certkit.models.reference_condition import reference_condition
+
+        nd = nondimensional_table(declared, aircraft, reference_condition(aircraft))
+        table, machs, controls = nd.derivatives, nd.mach, nd.controls
+        notes += nd.notes
+        result = AirplaneAero(configuration, None, tuple(machs), table, f"declared table: {declared.source}", notes=notes)
     else:
         table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
         controls = vl.control_names

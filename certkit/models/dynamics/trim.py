@@ -194,11 +194,13 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     unknowns = ["alpha"]
     unknowns.append({"straight": "beta", "oei": "beta", "turn": "turn_rate", "sideslip": "phi"}[kind])
     equations = [0, 1, 2, 3, 4, 5]
+    unsolved = []  # moment equations without a control: not solved for, but checked at the end
     for role, eq in (("pitch", 4), ("roll", 3), ("yaw", 5)):
         if roles.get(role) in model.aero_controls:
             unknowns.append(role)
         else:
             equations.remove(eq)
+            unsolved.append(eq)
     unknowns.append("throttle" if solve_throttle else "gamma")
     while len(unknowns) > len(equations):  # symmetric models lacking lateral controls
         drop = "beta" if "beta" in unknowns else ("phi" if "phi" in unknowns else "turn_rate")
@@ -300,6 +302,9 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         rnorm[idx] = np.where(np.isfinite(rn_try), rn_try, np.inf)
 
     x, u, vals = unpack(z)
+    if unsolved:  # a model without (say) a pitch control trims only where that moment is zero by itself
+        left = model.derivatives_euler(x, u)[:, 3:9][:, unsolved]
+        rnorm = np.maximum(rnorm, np.max(np.abs(left), axis=1))
     lim = {roles["pitch"]: (-np.radians(30), np.radians(30)), roles["roll"]: (-np.radians(30), np.radians(30)),
            roles["yaw"]: (-np.radians(30), np.radians(30)), "throttle": (0.0, 1.0)}
     lim.update(limits or {})

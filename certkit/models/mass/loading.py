@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.models.mass.properties import MassComponent, MassProperties, combine, inertia_from_radii
+from certkit.models.mass.properties import (MassComponent, MassProperties, body_axis_tensor, combine,
+                                            inertia_from_radii)
 
 
 class LoadingError(ValueError):
@@ -53,7 +54,9 @@ class Loading:
 def reference_cg(aircraft) -> float:
     """The reference CG station (m): the CG envelope's ``reference_x``, else the reference moment point."""
     env = aircraft.cg_envelope
-    return env.reference_x if env.reference_x is not None else aircraft.reference.moment_point.x
+    if env is not None and env.reference_x is not None:
+        return env.reference_x
+    return aircraft.mass.cg.x if aircraft.mass.cg is not None else aircraft.reference.moment_point.x
 
 
 def _item(name, mass, x, y=0.0, z=0.0, inertia=None):
@@ -68,14 +71,15 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
         for c in m.components:
             inertia = None
             if c.inertia is not None:
-                t = c.inertia
-                inertia = np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+                inertia = body_axis_tensor(c.inertia)
             items.append(_item(c.name, c.mass, c.cg.x, c.cg.y, c.cg.z, inertia))
         total = sum(c.mass for c in m.components)
         notes = []
-        if abs(total - m.OEW) > 0.005 * m.OEW:
+        if m.OEW is not None and abs(total - m.OEW) > 0.005 * m.OEW:
             notes.append(f"component masses sum to {total:.0f} kg, not the declared OEW {m.OEW:.0f} kg; the components are used")
         return items, notes
+    if m.OEW is None:
+        return [], ["no component table and no OEW: the airplane is flown as a whole (mass.MTOW, mass.inertia)"]
     x = m.oew_cg.x if m.oew_cg is not None else aircraft.reference.moment_point.x
     return [_item("operating empty airplane", m.OEW, x)], ["no component table: the empty airplane is a point mass at its CG"]
 
@@ -185,6 +189,10 @@ def _payload_items(zones, payload: float, x_target: float) -> list[MassComponent
 def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: int = 201) -> Loading:
     """The payload/fuel distribution reaching ``mass`` (kg) at CG station ``x_cg`` (m), with its inertia."""
     m = aircraft.mass
+    if not (m.components or m.fuel_tanks or m.payload_zones):
+        return _scaled_loading(aircraft, mass, x_cg, name, [
+            "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the declared "
+            "tensor (at MTOW) at constant radii of gyration"])
     empty, notes = empty_airplane(aircraft)
     oew = sum(c.mass for c in empty)
     oew_moment = sum(c.mass * c.cg[0] for c in empty)
@@ -226,7 +234,7 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
 
 def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes) -> Loading:
     items = empty + fuel_items + payload_items
-    props = _scaled_if_point_empty(aircraft, combine(items), empty)
+    props = _whole_airplane_if_declared(aircraft, items)
     payload = {c.name.removeprefix("payload: "): c.mass for c in payload_items}
     fuel = {c.name.removeprefix("fuel: "): c.mass for c in fuel_items}
     return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items), tuple(notes))
@@ -253,23 +261,26 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading
 
 
 def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
-    props = MassProperties(float(mass), np.array([x_cg, 0.0, 0.0]), whole_airplane_inertia(aircraft, mass))
+    z = aircraft.mass.cg.z if aircraft.mass.cg is not None else 0.0  # the declared whole-airplane CG height
+    props = MassProperties(float(mass), np.array([x_cg, 0.0, z]), whole_airplane_inertia(aircraft, mass))
     return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes))
 
 
 def _declared_inertia(aircraft) -> np.ndarray | None:
     t = aircraft.mass.inertia
-    if t is None:
-        return None
-    return np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]])
+    return None if t is None else body_axis_tensor(t)
 
 
-def _scaled_if_point_empty(aircraft, props: MassProperties, empty) -> MassProperties:
-    """With no component table, the parallel-axis inertia of point masses is meaningless: scale the
-    declared whole-airplane inertia (at MTOW) with mass, or use Roskam radii of gyration."""
-    if aircraft.mass.components:
-        return props
-    return MassProperties(props.mass, props.cg, whole_airplane_inertia(aircraft, props.mass))
+def _whole_airplane_if_declared(aircraft, items) -> MassProperties:
+    """Mass, CG and inertia of the items: the parallel-axis build-up when the file has a component table and uses it
+    (``mass.inertia_used: components``); else the declared whole-airplane tensor scaled with mass (with no component
+    table the parallel-axis inertia of point masses is meaningless, and is not formed)."""
+    m = aircraft.mass
+    if m.components and not (m.inertia is not None and m.inertia_used == "declared"):
+        return combine(items)
+    total = sum(c.mass for c in items)
+    cg = sum(c.mass * np.asarray(c.cg, dtype=float) for c in items) / total
+    return MassProperties(float(total), cg, whole_airplane_inertia(aircraft, total))
 
 
 def whole_airplane_inertia(aircraft, mass: float) -> np.ndarray:
@@ -282,3 +293,32 @@ def whole_airplane_inertia(aircraft, mass: float) -> np.ndarray:
     if g is None:
         raise LoadingError("no inertia: declare mass.inertia, mass.components or the geometry (span, fuselage length)")
     return inertia_from_radii(mass, np.sqrt(g.wing.aspect_ratio * g.wing.area), g.fuselage.length)
+
+
+def inertia_comparison(aircraft) -> str | None:
+    """With both a component table and a declared whole-airplane inertia: the two at MTOW (the component build-up of
+    the MTOW loading at the reference CG, parallel-axis theorem, against the declared tensor) when a moment of
+    inertia differs by more than ``mass.inertia_tolerance``, naming both values and the one the dynamics uses;
+    None when they agree or only one exists."""
+    m = aircraft.mass
+    if not m.components or m.inertia is None:
+        return None
+    try:
+        loading = solve_loading(aircraft, m.MTOW, reference_cg(aircraft), "MTOW")
+        built = combine(loading.items) if loading.items else None
+    except (LoadingError, ValueError) as exc:
+        return f"the declared mass.inertia could not be compared with the component build-up at MTOW: {exc}"
+    if built is None:
+        return None
+    declared = whole_airplane_inertia(aircraft, m.MTOW)
+    off = []
+    for k, name in enumerate(("Ixx", "Iyy", "Izz")):
+        b, d = float(built.inertia[k, k]), float(declared[k, k])
+        if abs(b - d) > m.inertia_tolerance * abs(d):
+            off.append(f"{name} {b:.4g} kg·m² from the components vs {d:.4g} kg·m² declared ({(b - d) / d:+.0%})")
+    if not off:
+        return None
+    used = "the declared tensor (mass.inertia_used: declared)" if m.inertia_used == "declared" else \
+        "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
+    return (f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
+            f"{'; '.join(off)}. The dynamics uses {used}")

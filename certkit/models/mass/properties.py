@@ -60,6 +60,19 @@ class MassProperties:
         return float(-self.inertia[0, 2])
 
 
+def body_axis_tensor(t) -> np.ndarray:
+    """The inertia tensor J (body axes) of a declared :class:`certkit.aircraft.model.InertiaTensor`: its moments and
+    products in its own axes (body, stability or principal, x ``axes_angle`` above the body x axis) turned about y,
+    J_body = C J C^T with C's columns the declared axes in body axes: x = (cos ε, 0, −sin ε), z = (sin ε, 0, cos ε)."""
+    J = np.array([[t.Ixx, -t.Ixy, -t.Ixz], [-t.Ixy, t.Iyy, -t.Iyz], [-t.Ixz, -t.Iyz, t.Izz]], dtype=float)
+    eps = getattr(t, "axes_angle", 0.0)
+    if eps == 0.0:
+        return J
+    c, s = np.cos(eps), np.sin(eps)
+    C = np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+    return C @ J @ C.T
+
+
 def combine(components: Sequence[MassComponent]) -> MassProperties:
     """Total mass, CG and inertia about the total CG (parallel-axis theorem)."""
     if not components:

@@ -1,0 +1,1 @@
+"""Import of JSBSim flight-dynamics models into certkit aircraft files (:mod:`.importer`)."""
