@@ -380,8 +380,11 @@ def trim_command(aircraft_file, **kw):
     _print_trim(report, given)
 
 
-def _beside(given: str, aviation: str) -> str:
-    """A value as the user gave it, with its aviation-unit value beside it unless given in that unit."""
+def _beside(given: str | None, aviation: str) -> str:
+    """A value as the user gave it, with its aviation-unit value beside it unless given in that unit (not given: the
+    value used, in the aviation unit)."""
+    if not given:
+        return aviation
     return given if given.strip().endswith(aviation.rsplit(" ", 1)[-1]) and given[:1].isdigit() else f"{given} ({aviation})"
 
 
@@ -390,16 +393,15 @@ def _print_trim(r, given: dict):
     from certkit.units import FT, KN, LB, LBF
 
     c = r["condition"]
-    who = given["corner"] or (given["weight"] or f"MTOW {c['mass_kg'] / LB:,.0f} lb")
     cg = f" · CG {given['cg']}" if given.get("cg") else f" · CG {c['x_cg_m'] / FT:.2f} ft"
     manoeuvre = c["kind"] + "".join(f" {k} {given[v]:g} deg" for k, v in (("γ", "gamma_deg"), ("bank", "bank_deg"),
                                                                           ("β", "beta_deg")) if given[v])
     if c.get("inoperative"):
         manoeuvre += f", {c['inoperative']} engine inoperative"
-    mass = _beside(who, f"{c['mass_kg'] / LB:,.0f} lb")
+    mass = _beside(given["corner"] or given["weight"], f"{c['mass_kg'] / LB:,.0f} lb")
     altitude = _beside(given["altitude"], f"{c['altitude_m'] / FT:,.0f} ft")
-    click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn) · "
-               f"{manoeuvre}")
+    speed = f"{given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn)" if given.get("speed") else f"TAS {c['tas_m_s'] / KN:.1f} kn"
+    click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {speed} · {manoeuvre}")
     click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
     click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
     for name, value in r["controls"].items():
