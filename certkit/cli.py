@@ -1,4 +1,5 @@
-"""Command line: ``certkit check | rules | explain | schema | derivatives | trim | modes | mission | evaluate | import jsbsim | study ... | new-rule``.
+"""Command line: ``certkit check | diff | rules | explain | schema | derivatives | trim | modes | mission | evaluate |
+import jsbsim | study ... | new-rule``.
 
 Exit codes: 0 every rule complies, 1 a rule fails, 2 input or usage error (no traceback),
 3 nothing fails but something was not evaluated, 70 internal error (a bug: the message asks for a report; the
@@ -38,6 +39,9 @@ class _Group(click.Group):
         except UserError as exc:
             click.echo(f"error: {exc}", err=True)
             sys.exit(EXIT_USAGE)
+        except BrokenPipeError:  # the reader went away (`certkit ... | head`): stop quietly, as Unix tools do
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            sys.exit(1)
         except KeyboardInterrupt:
             click.echo("interrupted: nothing was written (previous reports are left as they were)", err=True)
             sys.exit(EXIT_INTERRUPTED)
@@ -93,16 +97,16 @@ def _mission_for_report(aircraft) -> dict | None:
 
 
 def _default_jobs(jobs: int | None) -> int:
-    """The processes to use (default: the cores available, at most 4). With more than one, each process gets one
-    BLAS/OpenMP thread (set before numpy loads; a user's own setting is kept): threaded BLAS in several processes
-    oversubscribes the cores and slows the lattice several times."""
+    """The processes to use (default: the cores available, at most 4). Every process gets one BLAS/OpenMP thread (set
+    before numpy loads; a user's own setting is kept): threaded BLAS in several processes oversubscribes the cores and
+    slows the lattice several times, and a threaded BLAS sums in another order, which changes the last digits of a
+    result with the number of threads — results.json would then depend on --jobs."""
     if jobs is None:
         jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
-    if jobs > 1:
-        for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-            os.environ.setdefault(var, "1")
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")
     return jobs
 
 
@@ -129,11 +133,18 @@ def main(debug):
 @click.option("--ignore", multiple=True, help="Rule id prefix or symbol to skip (repeatable, comma-separated).")
 @click.option("--jobs", "-j", default=None, type=int,
               help="Parallel processes (default: the CPU cores available, at most 4; results do not depend on it).")
-@click.option("--json", "as_json", is_flag=True, help="Print results.json to standard output as well.")
+@click.option("--output-format", "output_format", default="text", show_default=True,
+              type=click.Choice(["text", "json", "junit", "sarif", "github"]),
+              help="What to print on standard output: the rule table, results.json, JUnit XML, SARIF 2.1.0 or GitHub "
+                   "Actions annotations.")
+@click.option("--output-file", type=click.Path(dir_okay=False), help="Write that output to a file instead.")
+@click.option("--json", "as_json", is_flag=True, help="Same as --output-format json.")
+@click.option("--quiet", "-q", is_flag=True, help="No progress and no rule table: the summary line only.")
 @_rules_option
-def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
+def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_file, as_json, quiet, rules_dirs):
     """Evaluate every selected rule on AIRCRAFT_FILE and write results.json and an HTML report."""
     jobs = _default_jobs(jobs)
+    output_format = "json" if as_json else output_format
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.registry import select as select_rules
@@ -141,7 +152,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
         from certkit.report.html import write_report
 
         from certkit.report.output import prepare_output, report_folder_name
-        from certkit.results import STATUS_LABEL
+        from certkit.report.terminal import Progress
         from certkit.scheduler import check_overrides, run
 
         start = time.perf_counter()
@@ -157,27 +168,78 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
     warning = inertia_comparison(loaded.model)
     if warning:
         click.echo(f"warning: {warning}", err=True)
+    progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
         # the missions are flown in this process while the workers evaluate the rules
-        result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result,
+        result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result, progress=progress,
                      alongside={"mission": lambda: _mission_for_report(loaded.model)})
+        progress.close()
+        result.selection = {"select": list(split(select)), "ignore": list(split(ignore)),
+                            "partial": len(chosen) < len(rules), "rules_selected": len(chosen),
+                            "rules_registered": len(rules)}
+        result.options = {"rules_dirs": [str(d) for d in rules_dirs], "plugins": options.plugins}
+        result.environment = _environment()
+        result.jobs = jobs
+        result.duration_s = round(time.perf_counter() - start, 1)
         json_path, html_path = write_report(result, chosen, out)
     finally:
+        progress.close()
         gc.unfreeze()
-    if as_json:
-        click.echo(json_path.read_text(encoding="utf-8"))
-    else:
-        for r in result.rules:
-            crit = r.critical
-            margin = f"{crit.margin:+.4g} {crit.unit}".rstrip() if crit else "—"
-            where = crit.condition.label() if crit else r.headline_reason
-            click.echo(f"{STATUS_LABEL[r.status]:>17}  §{r.id:<12} {r.title[:44]:<44} {margin:>16}  {where}")
-        s = result.summary()
-        click.echo(f"\n{s['rules']} rules: {s['complies']} comply, {s['complies_partial']} comply in part (sub-paragraphs "
-                   f"not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
-                   f"({time.perf_counter() - start:.2f} s)")
-        click.echo(f"report: {html_path}\nresults: {json_path}")
+    _print_check(result, output_format, output_file, quiet, json_path, html_path, time.perf_counter() - start)
     sys.exit(result.exit_code())
+
+
+def _environment() -> dict:
+    import platform
+
+    return {"platform": platform.platform(), "python": platform.python_version()}
+
+
+def _print_check(result, output_format, output_file, quiet, json_path, html_path, seconds) -> None:
+    if output_format != "text":
+        from certkit.report.ci_formats import render
+
+        text = json_path.read_text(encoding="utf-8") if output_format == "json" else render(output_format, result)
+        if output_file:
+            Path(output_file).write_text(text, encoding="utf-8")
+        else:
+            click.echo(text, nl=False)
+        return
+    from certkit.report.terminal import rule_rows
+
+    if not quiet:
+        for line in rule_rows(result.rules, colour=sys.stdout.isatty()):
+            click.echo(line)
+        click.echo()
+    s = result.summary()
+    scope = (f" (a partial selection: {s['rules']} of {result.selection['rules_registered']} registered rules)"
+             if result.selection.get("partial") else "")
+    click.echo(f"{s['rules']} rules{scope}: {s['complies']} comply, {s['complies_partial']} comply in part "
+               f"(sub-paragraphs not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
+               f"({seconds:.2f} s)")
+    if not quiet:
+        click.echo(f"report: {html_path}\nresults: {json_path}")
+
+
+@main.command(name="diff")
+@click.argument("old", type=click.Path(dir_okay=False))
+@click.argument("new", type=click.Path(dir_okay=False))
+@click.option("--html", "html_file", type=click.Path(dir_okay=False), help="Also write the comparison as an HTML page.")
+@click.option("--tolerance", default=1e-6, show_default=True, type=float,
+              help="Margin changes below tolerance × max(1, |limit|) are not listed.")
+def diff_command(old, new, html_file, tolerance):
+    """Compare two results.json: status flips and margin changes per rule and condition. Exit 1 when a rule got
+    worse (complies → fails or not evaluated...), else 0."""
+    from certkit.report.diff import compare, load, render_html, text_lines
+
+    a, b = load(old), load(new)
+    changes = compare(a, b, tolerance)
+    for line in text_lines(changes, a, b):
+        click.echo(line)
+    if html_file:
+        Path(html_file).write_text(render_html(changes, a, b, old, new), encoding="utf-8")
+        click.echo(f"html: {html_file}")
+    sys.exit(1 if any(c.regression for c in changes) else 0)
 
 
 @main.command(name="rules")
@@ -185,31 +247,41 @@ def check(aircraft_file, out_dir, select, ignore, jobs, as_json, rules_dirs):
 @click.option("--markdown", is_flag=True, help="Print a Markdown table (for the README).")
 def list_rules(rules_dirs, markdown):
     """List the registered rules: id, symbol, title, implementation status."""
-    _, rules = _discovery(rules_dirs)
+    from certkit.rule_index import rule_metadata
+
+    rules = rule_metadata(tuple(rules_dirs))
     if markdown:
         click.echo("| Rule | Symbol | Title | Status |\n| --- | --- | --- | --- |")
         for r in rules:
-            click.echo(f"| §{r.id} | `{r.symbol}` | {r.title} | {r.implementation} |")
+            click.echo(f"| §{r['id']} | `{r['symbol']}` | {r['title']} | {r['implementation']} |")
         return
     for r in rules:
-        click.echo(f"{r.id:<14} {r.symbol:<38} {r.implementation:<12} {r.title}")
+        click.echo(f"{r['id']:<14} {r['symbol']:<38} {r['implementation']:<12} {r['title']}")
 
 
 @main.command()
 @click.argument("rule")
 @_rules_option
 def explain(rule, rules_dirs):
-    """Print a rule's documentation (id prefix or symbol): requirement, criterion, conditions, margin."""
-    _, rules = _discovery(rules_dirs)
-    matches = [r for r in rules if r.id == rule or r.symbol == rule] or [r for r in rules if r.id.startswith(rule)]
+    """Print a rule's documentation (id — with or without §, e.g. "§25.337" — id prefix or symbol): requirement,
+    criterion, conditions, margin."""
+    from certkit.rule_index import find, rule_metadata
+
+    matches = find(rule_metadata(tuple(rules_dirs)), rule)
     if not matches:
         raise UserError(f"no rule {rule!r} (see `certkit rules`)")
-    click.echo("\n\n".join(r.documentation() for r in matches))
+    click.echo("\n\n".join(r["documentation"] for r in matches))
 
 
 @main.command()
-def schema():
-    """Print the JSON Schema of the aircraft file (for editor autocompletion)."""
+@click.option("--results", "of_results", is_flag=True, help="The JSON Schema of results.json instead.")
+def schema(of_results):
+    """Print the JSON Schema of the aircraft file (for editor autocompletion), or of results.json."""
+    if of_results:
+        from certkit.results_json import schema as results_schema
+
+        click.echo(json.dumps(results_schema(), indent=2, ensure_ascii=False))
+        return
     from certkit.aircraft import json_schema
 
     click.echo(json.dumps(json_schema(), indent=2))
@@ -290,7 +362,7 @@ def _flight(aircraft_file, **kw):
 
     ctx = Context(load_aircraft(aircraft_file))
     as_json = kw.pop("as_json")
-    return ctx, condition_from_options(ctx.aircraft, **kw), as_json
+    return ctx, condition_from_options(ctx.aircraft, **kw), as_json, kw
 
 
 @main.command(name="trim")
@@ -300,21 +372,46 @@ def trim_command(aircraft_file, **kw):
     """Trim one condition: angles, controls, thrust, and any control beyond its design limit."""
     from certkit.flight_report import trim_report
 
-    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = trim_report(ctx, fc)
     if as_json:
         click.echo(json.dumps(report, indent=2, default=float))
         return
-    _print_trim(report)
+    _print_trim(report, given)
 
 
-def _print_trim(r):
+def _beside(given: str | None, aviation: str) -> str:
+    """A value as the user gave it, with its aviation-unit value beside it unless given in that unit (not given: the
+    value used, in the aviation unit)."""
+    if not given:
+        return aviation
+    return given if given.strip().endswith(aviation.rsplit(" ", 1)[-1]) and given[:1].isdigit() else f"{given} ({aviation})"
+
+
+def _print_trim(r, given: dict):
+    """The trimmed state; the condition echoed in the units the user gave (with aviation units beside SI)."""
+    from certkit.units import FT, KN, LB, LBF
+
     c = r["condition"]
-    click.echo(f"{c['loading']} · {c['configuration']} · {c['altitude_m']:.0f} m · TAS {c['tas_m_s']:.2f} m/s · {c['kind']}")
+    cg = f" · CG {given['cg']}" if given.get("cg") else f" · CG {c['x_cg_m'] / FT:.2f} ft"
+    manoeuvre = c["kind"] + "".join(f" {k} {given[v]:g} deg" for k, v in (("γ", "gamma_deg"), ("bank", "bank_deg"),
+                                                                          ("β", "beta_deg")) if given[v])
+    if c.get("inoperative"):
+        manoeuvre += f", {c['inoperative']} engine inoperative"
+    mass = _beside(given["corner"] or given["weight"], f"{c['mass_kg'] / LB:,.0f} lb")
+    altitude = _beside(given["altitude"], f"{c['altitude_m'] / FT:,.0f} ft")
+    speed = f"{given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn)" if given.get("speed") else f"TAS {c['tas_m_s'] / KN:.1f} kn"
+    click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {speed} · {manoeuvre}")
     click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
     click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
     for name, value in r["controls"].items():
         click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")
+    thrust = r.get("thrust_N") or {}
+    for name, value in thrust.items():
+        click.echo(f"  thrust {name:<11} {value / LBF:10,.0f} lbf ({value / 1e3:,.1f} kN)")
+    if len(thrust) > 1:
+        total = sum(thrust.values())
+        click.echo(f"  thrust total      {total / LBF:10,.0f} lbf ({total / 1e3:,.1f} kN)")
     for lim in r["limits_exceeded"]:
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
     for note in r["loading_notes"]:
@@ -330,12 +427,12 @@ def modes_command(aircraft_file, **kw):
     """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double."""
     from certkit.flight_report import modes_report
 
-    ctx, fc, as_json = _flight(aircraft_file, **kw)
+    ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = modes_report(ctx, fc)
     if as_json:
         click.echo(json.dumps(report, indent=2, default=float))
         return
-    _print_trim(report)
+    _print_trim(report, given)
     click.echo(f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}")
     fmt = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
     for name, m in report["modes"].items():

@@ -37,6 +37,14 @@ class PluginError(UserError):
     """Invalid rule metadata or a rule module that cannot be loaded."""
 
 
+#: what a criterion rests on, read from its source: ``regulation`` (the text of 14 CFR), ``unverified`` (text from
+#: memory, a secondary copy or another authority's code, not checked against the CFR), ``data`` (published data: a
+#: type certificate data sheet), ``project`` (a value certkit chose or assumed, its reading of the text) and
+#: ``numerical`` (a numerical setting of the method, not a compliance criterion)
+CRITERION_BASES = ("regulation", "unverified", "data", "project", "numerical")
+_UNVERIFIED_WORDS = ("unverified", "secondary", "mirror", "from memory", "checked against cs")
+
+
 @dataclass(frozen=True)
 class Criterion:
     """A numeric criterion a rule applies, with its unit and where it comes from."""
@@ -45,6 +53,22 @@ class Criterion:
     unit: str
     source: str
     description: str = ""
+
+    @property
+    def basis(self) -> str:
+        """One of :data:`CRITERION_BASES`, from the words of :attr:`source` (``unverified``, ``secondary``, ``mirror``,
+        ``from memory``; ``numerical choice``; ``project choice``, ``certkit …``; ``TCDS``; a CFR citation); a source
+        that cites no CFR paragraph is a project choice."""
+        text = self.source.lower()
+        if any(word in text for word in _UNVERIFIED_WORDS):
+            return "unverified"
+        if "numerical choice" in text:
+            return "numerical"
+        if "project choice" in text or "certkit" in text or "assumption" in text:
+            return "project"
+        if "tcds" in text:
+            return "data"
+        return "regulation" if "cfr" in text or "§" in text else "project"
 
 
 class Criteria(dict):

@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import json
 import math
-import re
 from dataclasses import dataclass, field, replace
 from typing import Literal
+
+from certkit.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, VOLATILE_KEY, clean, encode
 
 Status = Literal["complies", "fails", "not_evaluated"]
 COMPLIES: Status = "complies"
@@ -138,6 +139,10 @@ class Finding:
     details: dict = field(default_factory=dict)
 
     @property
+    def has_number(self) -> bool:
+        return self.value is not None or self.limit is not None or self.margin is not None
+
+    @property
     def normalized_margin(self) -> float | None:
         if self.margin is None or self.limit is None:
             return None
@@ -184,7 +189,7 @@ class Finding:
             "limit": self.limit,
             "margin": self.margin,
             "normalized_margin": self.normalized_margin,
-            "unit": self.unit,
+            "unit": (self.unit or "1") if self.has_number else None,
             "status": self.status,
             "reason": self.reason,
             **({"details": self.details} if self.details else {}),
@@ -233,6 +238,15 @@ class RuleResult:
     limitations: str = ""
     #: (paragraph, reason) of each sub-paragraph the rule does not evaluate
     unevaluated: list = field(default_factory=list)
+    #: the amendment the rule reflects, the paragraphs it cross-references, the criteria in force (name → value,
+    #: unit, source, basis, description, overridden) — the rule's metadata for results.json and the report
+    amendment: str = ""
+    references: list = field(default_factory=list)
+    criteria: dict = field(default_factory=dict)
+    #: wall time of the rule's evaluation, s (for the terminal; not in results.json, which is the same for every run)
+    seconds: float | None = field(default=None, repr=False, compare=False)
+    #: NaN or infinite numbers :meth:`to_json` wrote as null
+    non_finite: int = field(default=0, repr=False, compare=False)
 
     @property
     def status(self) -> str:
@@ -269,21 +283,26 @@ class RuleResult:
             "title": self.title,
             "status": self.status,
             "implementation": self.implementation,
+            "amendment": self.amendment,
             "limitations": self.limitations,
             "unevaluated": [{"paragraph": p, "reason": r} for p, r in self.unevaluated],
             "min_margin": crit.margin if crit else None,
             "normalized_min_margin": crit.normalized_margin if crit else None,
-            "unit": crit.unit if crit else "",
+            "unit": (crit.unit or "1") if crit else None,
             "critical_check": crit.check if crit else None,
             "critical_condition": crit.condition.as_dict() if crit else None,
+            "references": list(self.references),
+            "criteria": self.criteria,
             "overrides": self.overrides,
             "notes": self.notes,
             "findings": [f.as_dict() for f in self.findings],
         }
 
     def to_json(self) -> str:
-        """:meth:`as_dict` as JSON, indented as in ``results.json`` (before the nesting indent)."""
-        return json.dumps(self.as_dict(), indent=2, default=json_default)
+        """:meth:`as_dict` as it stands in ``results.json`` (:mod:`certkit.results_json`, at a rule's depth);
+        counts the non-finite numbers written as null in :attr:`non_finite`."""
+        data, self.non_finite = clean(self.as_dict())
+        return encode(data, depth=2)
 
 
 @dataclass
@@ -295,6 +314,14 @@ class RunResult:
     created: str
     rules: list[RuleResult]
     models: dict = field(default_factory=dict)
+    #: which rules ran: the --select/--ignore patterns, ``partial`` when they left registered rules out
+    selection: dict = field(default_factory=dict)
+    #: the options that change what is evaluated (rule folders, plugins) and the platform
+    options: dict = field(default_factory=dict)
+    environment: dict = field(default_factory=dict)
+    #: what varies between identical runs: wall time of the evaluation (s) and the processes used
+    duration_s: float | None = None
+    jobs: int | None = None
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
@@ -303,32 +330,42 @@ class RunResult:
                 "not_evaluated": statuses.count(NOT_EVALUATED)}
 
     def as_dict(self, rules=None) -> dict:
-        """The run as plain data (``results.json``); ``rules`` stands in for the list of rule dicts."""
+        """The run as plain data (``results.json``); ``rules`` stands in for the list of rule dicts. The last key,
+        ``run``, holds what varies between identical runs (time stamp, duration, processes)."""
         return {
+            "schema_version": SCHEMA_VERSION,
             "certkit_version": self.certkit_version,
             "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path},
-            "created": self.created,
+            "selection": self.selection,
+            "options": self.options,
+            "environment": self.environment,
+            "precision": {"significant_digits": SIGNIFICANT_DIGITS, "non_finite": None},
             "summary": self.summary(),
             "rules": [r.as_dict() for r in self.rules] if rules is None else rules,
             "models": {k: ({kk: vv for kk, vv in v.items() if kk != "svg"} if isinstance(v, dict) else v)
                        for k, v in self.models.items()},
+            VOLATILE_KEY: {"created": self.created, "duration_s": self.duration_s, "jobs": self.jobs},
         }
 
     def to_json(self) -> str:
-        """``results.json``: :meth:`as_dict` as JSON indented by 2, each rule's part taken from
-        :attr:`RuleResult.encoded` where a worker process already encoded it (the text is the same as encoding the
-        whole at once; the encoder is pure Python with an indent, ~0.5 µs a value, so the workers share it)."""
-        head = self.as_dict(rules=_RULES_MARK)
-        parts = [r.encoded if r.encoded is not None else r.to_json() for r in self.rules]
-        rules = "[\n" + ",\n".join("    " + p.replace("\n", "\n    ") for p in parts) + "\n  ]" if parts else "[]"
-        rules, n_rules = _NON_FINITE.subn(r"\1null\3", rules)
-        text, n_head = _NON_FINITE.subn(r"\1null\3", json.dumps(head, indent=2, default=json_default))
-        if n_rules + n_head:  # strict JSON has no NaN or Infinity: null, and the reason said once
-            head["non_finite_numbers"] = {"count": n_rules + n_head, "written_as": None, "reason":
-                                          "a computed value was NaN or infinite (not computable there); JSON has no "
-                                          "such numbers"}
-            text = _NON_FINITE.sub(r"\1null\3", json.dumps(head, indent=2, default=json_default))
-        return text.replace(json.dumps(_RULES_MARK), rules, 1)
+        """``results.json`` (:mod:`certkit.results_json`): each rule's part taken from :attr:`RuleResult.encoded`
+        where a worker process already encoded it (the same text as encoding the whole at once)."""
+        parts = []
+        non_finite = 0
+        for r in self.rules:
+            if r.encoded is None:
+                r.encoded = r.to_json()
+            parts.append(r.encoded)
+            non_finite += r.non_finite
+        head, n_head = clean(self.as_dict(rules=_RULES_MARK))
+        non_finite += n_head
+        if non_finite:  # strict JSON has no NaN or Infinity: null, and the reason said once
+            head = {**{k: v for k, v in head.items() if k != VOLATILE_KEY},
+                    "non_finite_numbers": {"count": non_finite, "written_as": None, "reason":
+                                           "a computed value was NaN or infinite (not computable there); JSON has no "
+                                           "such numbers"}, VOLATILE_KEY: head[VOLATILE_KEY]}
+        rules = "[\n" + ",\n".join("    " + p for p in parts) + "\n  ]" if parts else "[]"
+        return encode(head).replace(json.dumps(_RULES_MARK), rules, 1)
 
     def exit_code(self) -> int:
         """0 every rule complies in full, 1 any fails, 3 nothing fails but something was not evaluated (a rule
@@ -340,10 +377,6 @@ class RunResult:
             return 3
         return 0
 
-
-#: a NaN or infinity as :func:`json.dumps` writes it with an indent: a whole value on its line (after a key or alone
-#: in a list), so that the same letters inside a string never match
-_NON_FINITE = re.compile(r"(?m)(: |^\s+)(NaN|-?Infinity)(,?)$")
 
 #: placeholder of the rules list while the rest of ``results.json`` is encoded
 _RULES_MARK = "\x00certkit-rules\x00"

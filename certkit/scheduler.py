@@ -14,7 +14,8 @@ import inspect
 import math
 import os
 import traceback
-from concurrent.futures import ProcessPoolExecutor
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
@@ -40,6 +41,14 @@ def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
             applied[name] = {"default": default, "value": value, "justification": override.justification}
             values[name] = value
     return values, applied
+
+
+def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> dict:
+    """The criteria in force as results.json and the report state them: value, unit (``1`` without one), source,
+    basis (:attr:`Criterion.basis`), meaning, and whether the aircraft file overrode it."""
+    return {name: {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
+                   "description": c.description, "overridden": name in overrides}
+            for name, c in rule.criteria.items()}
 
 
 def _override_value(rule: type[Rule], name: str, given: object) -> tuple[object, str | None]:
@@ -120,7 +129,8 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
                         limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
-                        unevaluated=[list(u) for u in rule.unevaluated])
+                        unevaluated=[list(u) for u in rule.unevaluated], amendment=rule.amendment,
+                        references=list(rule.references), criteria=criteria_metadata(rule, criteria, overrides))
     missing = ctx.missing(tuple(dict.fromkeys(RULE_SECTIONS + tuple(rule.requires))))
     if missing:
         result.findings.append(Finding.not_evaluated(
@@ -188,13 +198,26 @@ def _uncovered(conditions, findings) -> list:
     return out
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None) -> tuple[list[RuleResult], dict]:
+def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
+    """:func:`evaluate_rule` then ``finish`` (the report's drawing), with the wall time of both in ``seconds``."""
+    start = time.perf_counter()
+    result = evaluate_rule(rule, ctx)
+    if finish is not None:
+        finish(result)
+    result.seconds = time.perf_counter() - start
+    return result
+
+
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None,
+                   progress=None) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
     results = []
     for r in rules:
-        results.append(evaluate_rule(r, ctx))
-        if finish is not None:
-            finish(results[-1])
+        if progress:
+            progress.started([r.id])
+        results.append(_timed(r, ctx, finish))
+        if progress:
+            progress.finished([results[-1]])
     return results, ctx.provenance()
 
 
@@ -236,9 +259,7 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
     ctx = _WORKER["ctx"]
     out = []
     for rid in rule_ids:
-        result = evaluate_rule(_WORKER["rules"][rid], ctx)
-        if _WORKER["finish"] is not None:
-            _WORKER["finish"](result)
+        result = _timed(_WORKER["rules"][rid], ctx, _WORKER["finish"])
         result.encoded = result.to_json()
         out.append((result, ctx.provenance()))
     return out
@@ -253,28 +274,48 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
+def _collect(futures, units, workers: int, progress) -> list:
+    """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end (the first
+    ``workers`` units were told started when submitted)."""
+    if progress:
+        next_unit = workers
+        for done in as_completed(futures):
+            progress.finished([res for res, _ in done.result()])
+            if next_unit < len(units):
+                progress.started([r.id for r in units[next_unit]])
+                next_unit += 1
+    return [part for f in futures for part in f.result()]
+
+
 def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
         options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
-        alongside: dict | None = None) -> RunResult:
+        alongside: dict | None = None, progress=None) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
     evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
-    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``."""
+    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``.
+    ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
+    several processes a unit counts as started when a process becomes free for it: the processes take the units in
+    order)."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results, provenance = _evaluate_many(loaded, rules, finish)
+        results, provenance = _evaluate_many(loaded, rules, finish, progress)
         provenance = _merge_provenance([provenance])
         extra = {name: fn() for name, fn in (alongside or {}).items()}
     else:
         units = work_units(rules)
-        pool = ProcessPoolExecutor(max_workers=min(jobs, len(units)), initializer=_worker_init,
+        workers = min(jobs, len(units))
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
                                    initargs=(loaded, options, os.getpid(), finish))
         try:
-            done_parts = pool.map(_worker_run, [tuple(r.id for r in u) for u in units])  # submitted: workers started
+            futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
+            if progress:
+                for unit in units[:workers]:
+                    progress.started([r.id for r in unit])
             extra = {name: fn() for name, fn in (alongside or {}).items()}
-            parts = [part for done in done_parts for part in done]
+            parts = _collect(futures, units, workers, progress)
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise

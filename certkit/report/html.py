@@ -1,78 +1,115 @@
-"""The HTML report: one self-contained folder (inline CSS and SVG) that opens offline.
+"""The HTML report: one self-contained folder (inline CSS, SVG and a little script) that opens offline.
 
-Every string that comes from the aircraft file or a plugin is escaped (jinja2 autoescape); only
-the SVG that matplotlib produced is inserted as markup, and its text is XML-escaped by matplotlib.
+Every string that comes from the aircraft file or a plugin is escaped (jinja2 autoescape); only the SVG that
+matplotlib produced is inserted as markup, and its text is XML-escaped by matplotlib. Paragraph references in the
+text (``§25.337``, ``14 CFR 25.303``) become links (:mod:`certkit.report.links`). Numbers are shown in aviation
+units (:mod:`certkit.report.display`); results.json keeps SI.
 """
 
 from __future__ import annotations
 
+import inspect
 import re
 from pathlib import Path
 
 from jinja2 import Environment, PackageLoader, select_autoescape
+from markupsafe import Markup, escape
 
 from certkit.registry import Rule
+from certkit.report.ci_formats import subpart
+from certkit.report.display import format_value as format_number, unit_and_factor
 from certkit.report.figures import render_result
+from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
+from certkit.report.reasons import reason_line
 from certkit.report.tables import formatted
-from certkit.results import STATUS_LABEL, RunResult
-from certkit.units import KN
+from certkit.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 
-#: display conversions for units used in findings (SI value → extra unit shown beside it)
-DISPLAY = {"m/s": ("kn", KN), "m": ("ft", 0.3048), "kg": ("lb", 0.45359237), "N": ("lbf", 4.4482216152605)}
+#: order of the summary: what needs a reviewer first
+STATUS_ORDER = {FAILS: 0, NOT_EVALUATED: 1, COMPLIES_PARTIAL: 2, COMPLIES: 3}
+#: criterion bases that earn a rule a badge (the verdict may rest on them)
+FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion"}
+_REFERENCE = re.compile(r"(§§?\s?|14 CFR\s|CFR\s)(\d+\.\d+[a-z]?(?:\([a-z0-9]+\))*)")
 
 
-def format_value(value: float | None, unit: str) -> str:
+def format_value(value, unit: str) -> str:
+    """A number in the unit a reviewer reads (m/s → kn, m → ft, kg → lb, N → lbf, N·m → kN·m, rad → deg)."""
     if value is None:
         return "—"
     if abs(value) < 1e-9:  # round-off noise of a difference (5.551e-17 Mach) and -0 read 0
         value = 0.0
-    text = f"{value:.4g}" if abs(value) < 1e5 else f"{value:,.0f}"
-    if unit in DISPLAY:
-        other, factor = DISPLAY[unit]
-        return f"{text} {unit} ({value / factor:.4g} {other})"
-    return f"{text} {unit}".strip()
+    shown, factor = unit_and_factor(unit or "")
+    text = format_number(value / factor)
+    return f"{text} {shown}" if shown not in ("", "1") and text != "—" else text
 
 
-def slug(rule_id: str) -> str:
-    return "r" + re.sub(r"[^0-9a-z]+", "-", rule_id.lower()).strip("-")
+def margin_value(value, unit: str, limit) -> str:
+    """A margin: round-off of a value sitting on its limit (within 1e-9 × |limit|) reads 0."""
+    if value is not None and limit is not None and abs(value) <= 1e-9 * max(1.0, abs(limit)):
+        value = 0.0
+    return format_value(value, unit)
 
 
-def _environment() -> Environment:
+def _environment(rule_ids) -> Environment:
     env = Environment(loader=PackageLoader("certkit.report", "templates"), autoescape=select_autoescape(["html"]),
                       trim_blocks=True, lstrip_blocks=True)
     env.filters["value"] = format_value
+    env.filters["margin"] = margin_value
     env.filters["slug"] = slug
     env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
     env.filters["table"] = formatted
-    env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %"
+    env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %".replace("-0.0 %", "+0.0 %")
+    env.filters["ecfr"] = ecfr_url
+    env.filters["refs"] = lambda text: linkify(text, rule_ids)
     return env
+
+
+def linkify(text, rule_ids) -> Markup:
+    """``text`` escaped, each paragraph reference a link to its rule's section or its eCFR page."""
+
+    def link(m):
+        href, _ = resolve(m[2], rule_ids)
+        external = "" if href.startswith("#") else ' class="ecfr" rel="noopener"'
+        return f'<a href="{escape(href)}"{external}>{m[0]}</a>'
+
+    return Markup(_REFERENCE.sub(link, str(escape("" if text is None else text))))
 
 
 def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
     by_id = {r.id: r for r in rules}
+    referenced_by: dict[str, list[str]] = {}
+    for cls in rules:
+        for ref in cls.references:
+            _, target = resolve(ref, by_id)
+            if target and target != cls.id and cls.id not in referenced_by.setdefault(target, []):
+                referenced_by[target].append(cls.id)
     sections = []
     for result in run.rules:
         render_result(result)  # figures not drawn yet (those drawn by the workers of a check are kept)
         cls = by_id[result.id]
-        crit = result.critical
+        flags = {}
+        for name, c in cls.criteria.items():
+            if c.basis in FLAGGED_BASES and name not in result.overrides:
+                flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
         sections.append({
-            "result": result, "rule": cls, "critical": crit,
+            "result": result, "rule": cls, "critical": result.critical, "subpart": subpart(result.id).upper(),
+            "reason": reason_line(result), "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
             "requirement": _paragraphs(cls.requirement), "margin": _paragraphs(cls.margin),
             "conditions": cls.conditions.describe(),
-            "references": [{"id": ref, "present": ref in by_id or any(k.startswith(ref + "(") for k in by_id),
-                            "target": ref if ref in by_id else next((k for k in by_id if k.startswith(ref + "(")), ref)}
-                           for ref in cls.references],
+            "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
+            "referenced_by": referenced_by.get(result.id, []),
             "criteria": [{"name": k, "criterion": c, "override": result.overrides.get(k)} for k, c in cls.criteria.items()],
         })
+    order = sorted(sections, key=lambda s: (STATUS_ORDER[s["result"].status],
+                                            s["critical"].normalized_margin if s["critical"] and
+                                            s["critical"].normalized_margin is not None else float("inf")))
     overrides = [(r.id, k, v) for r in run.rules for k, v in r.overrides.items()]
-    return _environment().get_template("report.html").render(
-        run=run, summary=run.summary(), sections=sections, overrides=overrides)
+    return _environment(by_id).get_template("report.html").render(
+        run=run, summary=run.summary(), sections=sections, triage=order, overrides=overrides,
+        subparts=sorted({s["subpart"] for s in sections}))
 
 
 def _paragraphs(text: str) -> str:
-    import inspect
-
     return " ".join(inspect.cleandoc(text).split())
 
 
@@ -85,4 +122,4 @@ def write_report(run: RunResult, rules: list[type[Rule]], out_dir: str | Path) -
     return out / "results.json", out / "index.html"
 
 
-__all__ = ["render_html", "write_report", "format_value"]
+__all__ = ["render_html", "write_report", "format_value", "slug", "linkify"]

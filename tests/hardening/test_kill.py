@@ -58,7 +58,7 @@ def _refuse(constant):
 def _rule_set(out) -> tuple:
     assert sorted(os.listdir(out)) == ["index.html", "results.json"], os.listdir(out)
     ids = tuple(r["id"] for r in json.loads((out / "results.json").read_text(), parse_constant=_refuse)["rules"])
-    sections = set(re.findall(r'<h2 id="(r[0-9a-z-]+)"', (out / "index.html").read_text()))
+    sections = set(re.findall(r'<section class="rule" id="(r[0-9a-z-]+)"', (out / "index.html").read_text()))
     assert sections == {slug(i) for i in ids}
     return ids
 

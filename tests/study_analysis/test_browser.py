@@ -3,45 +3,18 @@ in-page surrogate values follow the sliders exactly as the Python surrogates do,
 
 from __future__ import annotations
 
-import os
 
 import numpy as np
 import pytest
 
+from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
 from tests.study_analysis.report_fixture import small_report, write_small_report
 
-CHROMIUM = "/usr/bin/chromium"
-try:
-    from playwright.sync_api import sync_playwright
-except ImportError:  # pragma: no cover - depends on the machine
-    sync_playwright = None
-
-pytestmark = [
-    pytest.mark.skipif(sync_playwright is None, reason="Playwright for Python is not installed (pip install playwright)"),
-    pytest.mark.skipif(not os.path.exists(CHROMIUM), reason=f"no browser at {CHROMIUM} (apt-get install chromium)"),
-]
-ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--disable-background-networking",
-        "--disable-component-update", "--disable-sync"]
-
-
-@pytest.fixture(scope="module")
-def browser():
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
-        yield b
-        b.close()
+pytestmark = MARKS
 
 
 def _open(browser, path, width):
-    page = browser.new_page(viewport={"width": width, "height": 900})
-    problems = []
-    page.on("console", lambda m: problems.append(f"console {m.type}: {m.text}") if m.type in ("error", "warning")
-            else None)
-    page.on("pageerror", lambda e: problems.append(f"page error: {e}"))
-    page.on("request", lambda r: problems.append(f"request {r.url}") if not r.url.startswith("file:") else None)
-    page.goto(path.as_uri())
-    page.wait_for_selector('#profiler[data-ready="1"]')
-    return page, problems
+    return open_page(browser, path, width, ready='#profiler[data-ready="1"]')
 
 
 def test_profiler_follows_the_sliders_as_the_surrogates_do(browser, tmp_path):

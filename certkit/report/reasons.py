@@ -1,0 +1,46 @@
+"""One line per rule saying why it has its status: the worst failing check, the reason it was not evaluated, the
+sub-paragraphs a partial rule leaves out, or the critical check of a rule that complies."""
+
+from __future__ import annotations
+
+from certkit.report.display import format_value, unit_and_factor
+from certkit.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, SCOPE_KEY
+
+
+def margin_text(value, unit: str) -> str:
+    """A margin in the unit a reviewer reads (kn, ft, lb, lbf, kN·m, g), signed; an em dash when missing."""
+    if value is None:
+        return "—"
+    shown, factor = unit_and_factor(unit or "")
+    text = format_value(value / factor)
+    if not text.startswith(("-", "—")):
+        text = "+" + text
+    return f"{text} {shown}" if shown not in ("", "1") else text
+
+
+def not_evaluated_reason(result) -> str:
+    """Why a rule (or the part it computes) was not evaluated: its first own ``not_evaluated`` finding's reason."""
+    own = [f for f in result.findings if f.status == NOT_EVALUATED and SCOPE_KEY not in f.details]
+    return (own[0].reason if own else result.headline_reason) or "no finding"
+
+
+def worst_failure(result):
+    failing = [f for f in result.findings if f.status == FAILS]
+    with_margin = [f for f in failing if f.margin is not None]
+    if with_margin:
+        return min(with_margin, key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
+    return failing[0] if failing else None
+
+
+def reason_line(result) -> str:
+    """The one-line reason of the rule's status (see the module docstring)."""
+    if result.status == FAILS:
+        f = worst_failure(result)
+        return f"fails by {margin_text(f.margin, f.unit)}: {f.check} at {f.condition.label()}"
+    if result.status == NOT_EVALUATED:
+        return "not evaluated: " + not_evaluated_reason(result)
+    crit = result.critical
+    where = f"critical {crit.check} at {crit.condition.label()}" if crit else "complies"
+    if result.status == COMPLIES_PARTIAL:
+        return where + "; not evaluated: " + ", ".join(f"§{p}" for p, _ in result.unevaluated)
+    return where

@@ -1,0 +1,101 @@
+"""The text of ``results.json``: strict JSON, numbers rounded, human-diffable, written by CPython's C encoder.
+
+Conventions (the schema ``certkit/data/results.schema.json`` states them field by field):
+
+- every float is rounded to :data:`SIGNIFICANT_DIGITS` significant digits (``-0.0`` is written ``0.0``); a NaN or
+  an infinity (a value that could not be computed) is written ``null`` and counted;
+- containers down to nesting depth :data:`INDENTED_DEPTH` are indented by two spaces, one member a line; anything
+  deeper (a finding, its condition and details) is one compact line, so that a diff shows one finding per line;
+- the object ``run`` (time stamp, duration, processes: what varies between identical runs) is one line, the last of
+  the top-level object, so that two runs compare equal line by line once that line is left out.
+
+The compact parts are encoded with ``json.dumps`` without an indent, which CPython does in C (the indenting
+encoder is pure Python, about four times slower on a results.json of several MB).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+#: version of the results.json layout: the major number changes when a field is removed or changes meaning
+SCHEMA_VERSION = "1.0"
+SIGNIFICANT_DIGITS = 9
+INDENTED_DEPTH = 4
+#: the top-level key of what varies between identical runs
+VOLATILE_KEY = "run"
+
+_compact = json.JSONEncoder(ensure_ascii=False, separators=(", ", ": "), allow_nan=False).encode
+_key = json.JSONEncoder(ensure_ascii=False).encode
+
+
+def clean(obj) -> tuple[object, int]:
+    """``obj`` as plain JSON data: floats rounded, non-finite numbers ``None`` (their count returned), numpy scalars
+    and arrays as numbers and lists, tuples as lists, other objects as their ``str``."""
+    count = [0]
+    fmt = f".{SIGNIFICANT_DIGITS}g"
+    isfinite = math.isfinite
+
+    def walk(o):
+        t = type(o)
+        if t is float:
+            if not isfinite(o):
+                count[0] += 1
+                return None
+            return float(format(o, fmt)) + 0.0  # + 0.0: -0.0 becomes 0.0
+        if t is str or t is int or t is bool or o is None:
+            return o
+        if t is dict:
+            return {k if type(k) is str else str(k): walk(v) for k, v in o.items()}
+        if t is list or t is tuple:
+            return [walk(v) for v in o]
+        if isinstance(o, dict):
+            return {str(k): walk(v) for k, v in o.items()}
+        if isinstance(o, (list, tuple)):
+            return [walk(v) for v in o]
+        if isinstance(o, float):
+            return walk(float(o))
+        if isinstance(o, (str, int)):
+            return o
+        return walk(_numpy(o))
+
+    return walk(obj), count[0]
+
+
+def _numpy(o):
+    import numpy as np
+
+    if isinstance(o, np.bool_):
+        return bool(o)
+    if isinstance(o, np.integer):
+        return int(o)
+    if isinstance(o, np.floating):
+        return float(o)
+    if isinstance(o, np.ndarray):
+        return o.tolist()
+    return str(o)
+
+
+def encode(data, depth: int = 0) -> str:
+    """Cleaned ``data`` (:func:`clean`) as text at nesting ``depth`` (a rule's object sits at depth 2: the top-level
+    object, then ``rules``): indented down to :data:`INDENTED_DEPTH`, compact below."""
+    if depth >= INDENTED_DEPTH or not data or not isinstance(data, (dict, list)):
+        return _compact(data)
+    pad, close = "  " * (depth + 1), "  " * depth
+    if isinstance(data, dict):
+        items = [f"{pad}{_key(k)}: {_compact(v) if k == VOLATILE_KEY and depth == 0 else encode(v, depth + 1)}"
+                 for k, v in data.items()]
+        return "{\n" + ",\n".join(items) + "\n" + close + "}"
+    return "[\n" + ",\n".join(pad + encode(v, depth + 1) for v in data) + "\n" + close + "]"
+
+
+def stable_lines(text: str) -> str:
+    """``results.json`` text without its ``run`` line: what two runs of the same input and options write alike."""
+    return "\n".join(line for line in text.splitlines() if not line.startswith(f'  "{VOLATILE_KEY}": '))
+
+
+def schema() -> dict:
+    """The JSON Schema of results.json shipped with certkit."""
+    from importlib.resources import files
+
+    return json.loads(files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8"))
