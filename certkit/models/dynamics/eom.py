@@ -242,6 +242,7 @@ class AircraftModel:
         self._brake_index = names.index("brake") if ground is not None else None
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         self._shared_thrust = _shared_thrust(self.engines)
+        self._thrust_rows = getattr(getattr(self._shared_thrust, "__self__", None), "thrust_rows", None)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
         self._pack()
@@ -301,7 +302,9 @@ class AircraftModel:
             return thrust
         thr = controls[:, self.throttle_slice]
         hc, mach, qbar = air[:, 0], air[:, 4], air[:, 5]
-        if self._shared_thrust is not None:  # identical engines: one call for all, row by row as the throttles
+        if self._thrust_rows is not None:  # identical engines whose model takes them all at once
+            thrust = self._thrust_rows(thr, hc, mach)
+        elif self._shared_thrust is not None:  # identical engines: one call for all, row by row as the throttles
             thrust[:] = self._shared_thrust(thr.reshape(-1), np.repeat(hc, ne), np.repeat(mach, ne)).reshape(n, ne)
         for j, eng in enumerate(self.engines):  # else one call per engine, on arrays of one shape (no broadcasting)
             if self._shared_thrust is None:

@@ -113,6 +113,17 @@ class ParametricTurbofan:
         flat = [np.ascontiguousarray(a).reshape(-1) for a in (thr, h, mach)]
         return _turbofan_thrust(*flat, self.static_thrust, self.throttle_ratio, self.idle_fraction).reshape(h.shape)
 
+    def thrust_rows(self, throttle, h, mach) -> np.ndarray:
+        """Thrust (N) of several engines of this model at once: ``throttle`` (n, n_engines), ``h`` and ``mach`` (n,)
+        per condition (the flight simulations call this at every step)."""
+        thr = np.ascontiguousarray(throttle, dtype=float)
+        h = np.ascontiguousarray(h, dtype=float)
+        out = np.empty(thr.shape)
+        if _turbofan_thrust_rows(thr, h, np.ascontiguousarray(mach, dtype=float), self.static_thrust,
+                                 self.throttle_ratio, self.idle_fraction, out) >= 0:
+            isa._check_range(h)  # raises, naming the altitude
+        return out
+
     def tsfc(self, h, mach):
         """Thrust-specific fuel consumption, kg/(N s)."""
         theta = isa.temperature(h) / isa.T0
@@ -141,6 +152,20 @@ def _turbofan_thrust(throttle, h, mach, static_thrust, throttle_ratio, idle_frac
         thr = min(max(throttle[i], 0.0), 1.0)
         out[i] = static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
     return out
+
+
+@njit(cache=True)
+def _turbofan_thrust_rows(throttle, h, mach, static_thrust, throttle_ratio, idle_fraction, out):
+    """:func:`_turbofan_thrust` for engines in columns, the lapse computed once per condition; returns the first
+    condition whose altitude lies outside the modelled atmosphere (−1: none)."""
+    for i in range(h.shape[0]):
+        if h[i] < isa.H_MIN or h[i] > isa.H_MAX:
+            return i
+        lapse = static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio)
+        for j in range(throttle.shape[1]):
+            thr = min(max(throttle[i, j], 0.0), 1.0)
+            out[i, j] = lapse * (idle_fraction + (1.0 - idle_fraction) * thr)
+    return -1
 
 
 def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
