@@ -18,6 +18,7 @@ phases (takeoff, approach, landing).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -86,9 +87,10 @@ LIMITS: tuple[Limit, ...] = (
 )
 
 
-def limits_for(mode: str, category: str, level: int) -> list[Limit]:
-    """The boundaries a mode must meet for ``level`` in ``category``."""
-    return [lim for lim in LIMITS if lim.mode == mode and category in lim.categories and lim.level == level]
+@lru_cache(maxsize=None)
+def limits_for(mode: str, category: str, level: int) -> tuple[Limit, ...]:
+    """The boundaries a mode must meet for ``level`` in ``category`` (one scan of the table per combination)."""
+    return tuple(lim for lim in LIMITS if lim.mode == mode and category in lim.categories and lim.level == level)
 
 
 def quantities(mode) -> dict[str, float]:
