@@ -177,12 +177,14 @@ def _station_matrices(s1, s2, x_axis_strip, x_axis_station, stations):
 
 def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 0.4,
                         station_fractions=(0.0, 0.25, 0.5, 0.75), side_of_body: float | None = None,
-                        point_masses=()) -> SurfaceLoads:
+                        point_masses=(), solutions: dict | None = None) -> SurfaceLoads:
     """Unit load tables of ``surface`` (lattice surface name; the right half for mirrored surfaces).
 
     ``masses``: total structural mass of the surface (both halves for a mirrored one), kg.
     ``point_masses``: (mass kg, X, Y, Z) items attached to the surface at their span station.
-    ``side_of_body``: Y (m) of an extra station where the surface leaves the fuselage."""
+    ``side_of_body``: Y (m) of an extra station where the surface leaves the fuselage.
+    ``solutions``: a store of the lattice's unit solutions (every surface's strips come from the same solve, and
+    the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value)."""
     lat = vl.lattice
     idx = _strip_indices(lat, surface)
     vertical = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
@@ -225,14 +227,23 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     for m in machs:
         v = vl.at_mach(float(m))
 
-        def state(name, value):
+        def solve(name, value):
             kw = {"alpha": 0.0, "beta": 0.0, "p_hat": 0.0, "q_hat": 0.0, "r_hat": 0.0}
             ctrl = {}
             if name in kw:
                 kw[name] = value
             elif name in controls:
                 ctrl[name] = value
-            f_all, g = v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")
+            return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")
+
+        def state(name, value):
+            if solutions is None:
+                f_all, g = solve(name, value)
+            else:
+                key = (float(m), name, value)
+                if key not in solutions:
+                    solutions[key] = solve(name, value)
+                f_all, g = solutions[key]
             f = f_all[idx]
             normal = f[:, 1] * ny + f[:, 2] * nz
             gsum = np.add.reduceat(g, lat.first)[idx]
@@ -332,9 +343,11 @@ def declared_station_fractions(aircraft, surface: str) -> tuple[float, ...]:
     return tuple(sorted(set(DEFAULT_STATIONS) | set(extra)))
 
 
-def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4) -> AirplaneLoads:
+def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4, solutions: dict | None = None) -> AirplaneLoads:
     """Wing, horizontal tail and fin loads models from the lattice ``vl`` at the Mach breakpoints
-    (stations: :data:`DEFAULT_STATIONS` and those of the declared capabilities)."""
+    (stations: :data:`DEFAULT_STATIONS` and those of the declared capabilities); the three surfaces share the
+    lattice's unit solutions (``solutions``: a store kept with the lattice, see :func:`build_surface_loads`)."""
+    solutions = {} if solutions is None else solutions
     g = aircraft.geometry
     sob = 0.5 * g.fuselage.width if g is not None and g.fuselage is not None else None
     out = {}
@@ -345,7 +358,8 @@ def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4) -> Air
         pm = wing_point_masses(aircraft) if name == "wing" else ()
         out[name] = build_surface_loads(vl, name, machs, surface_mass(aircraft, name), axis_fraction,
                                         station_fractions=declared_station_fractions(aircraft, name),
-                                        side_of_body=None if name == "vertical_tail" else sob, point_masses=pm)
+                                        side_of_body=None if name == "vertical_tail" else sob, point_masses=pm,
+                                        solutions=solutions)
         notes += out[name].notes
     return AirplaneLoads(out, notes)
 
@@ -357,6 +371,9 @@ def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
         if aero.lattice is None:
             raise ValueError(f"configuration {configuration!r} uses declared derivative tables: the strip loads "
                              "model needs the geometry's vortex lattice")
-        return build_airplane_loads(ctx.aircraft, aero.lattice, aero.mach)
+        # the unit solutions belong to the lattice: kept under an "aero" key, a Context that shares the aerodynamics
+        # (the sizing loop's next airplane, same geometry) shares them too
+        solutions = ctx.memo(("aero", "loads unit solutions", configuration, id(aero.lattice)), dict)
+        return build_airplane_loads(ctx.aircraft, aero.lattice, aero.mach, solutions=solutions)
 
     return ctx.memo(("airplane_loads", configuration), build)
