@@ -242,7 +242,10 @@ class AircraftModel:
         self._brake_index = names.index("brake") if ground is not None else None
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         self._shared_thrust = _shared_thrust(self.engines)
-        self._thrust_rows = getattr(getattr(self._shared_thrust, "__self__", None), "thrust_rows", None)
+        engine_model = getattr(self._shared_thrust, "__self__", None)
+        self._thrust_rows = getattr(engine_model, "thrust_rows", None)
+        #: the engines' parameters for a compiled run (:meth:`open_loop_run`), when their model provides them
+        self._turbofan = engine_model.kernel_parameters() if hasattr(engine_model, "kernel_parameters") else None
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
         self._pack()
@@ -353,6 +356,16 @@ class AircraftModel:
         xd, out, gear = kernel.derivatives(X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U),
                                            *self._kernel_args)
         return xd, out, gear, thrust
+
+    def open_loop_run(self, x13, U_all, dts, record_every: int, out_rec, x_rec) -> int | None:
+        """A whole fixed-step run in compiled code (:func:`kernel.integrate_open_loop`) when the model allows it —
+        derivative-table aerodynamics, one parametric engine model for every engine, all of them running; returns
+        the number of records, or None (the caller then runs its Python loop)."""
+        if not self._use_table or self._turbofan is None or not self._all_operative.all():
+            return None
+        return int(kernel.integrate_open_loop(x13, U_all, dts, record_every, self._turbofan, self.throttle_slice.start,
+                                              len(self.engines), np.empty((x13.shape[0], 8)), *self._kernel_args,
+                                              out_rec, x_rec))
 
     def make_outputs(self, out, gear, thrust) -> Outputs:
         cols = {name: out[:, k] for k, name in enumerate(kernel.OUTPUTS)}

@@ -33,6 +33,7 @@ from numba import njit
 from certkit import atmosphere as isa
 from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import coefficients_one
+from certkit.models.propulsion.engine import _lapse_scalar
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
 AIR = ("h_clipped", "V", "alpha", "beta", "mach", "qbar")
@@ -263,3 +264,42 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
         nq = math.sqrt(x[9] * x[9] + x[10] * x[10] + x[11] * x[11] + x[12] * x[12])
         for s in range(9, 13):
             x[s] /= nq
+
+
+@njit(cache=True, fastmath=True)
+def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
+                        clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
+                        legs, gparams, brake_index, out_rec, x_rec):
+    """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
+    the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers or stop criteria, every engine
+    running as the parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of
+    each step from the air data as :meth:`certkit.models.propulsion.engine.ParametricTurbofan.thrust_rows` gives it,
+    then :func:`derivatives` and :func:`rk4_step` as the Python loop calls them. ``X`` advances in place; the outputs
+    and states of every ``record_every``-th step go to ``out_rec`` and ``x_rec``. Returns the number recorded."""
+    n = X.shape[0]
+    rows = np.arange(n)
+    thrust = np.empty((n, n_engines))
+    active = np.ones(n, dtype=np.bool_)
+    irec = 0
+    nsteps = U_all.shape[0] - 1
+    for k in range(nsteps + 1):
+        U = U_all[k]
+        for i in range(n):
+            air = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
+            lapse = turbofan[0] * _lapse_scalar(air[0], air[4], turbofan[1])
+            for j in range(n_engines):
+                thr = min(max(U[i, throttle_start + j], 0.0), 1.0)
+                thrust[i, j] = lapse * (turbofan[2] + (1.0 - turbofan[2]) * thr)
+        xd, out, gear = derivatives(X, rows, True, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
+                                    after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
+                                    brake_index)
+        if k % record_every == 0:
+            out_rec[irec] = out
+            x_rec[irec] = X
+            irec += 1
+        if k == nsteps:
+            break
+        rk4_step(X, xd, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
+                 n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index)
+    return irec
+

@@ -255,7 +255,22 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     stop_time = np.broadcast_to(nsteps * dt, (n,)).astype(float)
     stop_reason = [""] * n
     irec = 0
-    for k in range(nsteps + 1):
+    compiled = None
+    if not (controllers or stop or lim):  # the controls of every step are known: one compiled run if the model allows
+        U_all = np.empty((nsteps + 1, n, len(names)))
+        for k in range(nsteps + 1):
+            U_all[k] = u_trim
+            for j, s in sched:
+                U_all[k, :, j] += s(k * dt)
+        x = np.ascontiguousarray(x)
+        compiled = model.open_loop_run(x, U_all, np.ascontiguousarray(np.broadcast_to(dt, (n,)), dtype=float),
+                                       record_every, out_rec, x_rec)
+    if compiled is not None:
+        irec = compiled
+        steps = np.arange(0, nsteps + 1, record_every)[:irec]
+        t_rec[:irec] = steps[:, None] * dt if per_row else steps * dt
+        ctrl_hist[:irec] = U_all[steps]
+    for k in range(nsteps + 1 if compiled is None else 0):
         t = k * dt
         u = u_trim.copy()
         for j, s in sched:

@@ -113,6 +113,11 @@ class ParametricTurbofan:
         flat = [np.ascontiguousarray(a).reshape(-1) for a in (thr, h, mach)]
         return _turbofan_thrust(*flat, self.static_thrust, self.throttle_ratio, self.idle_fraction).reshape(h.shape)
 
+    def kernel_parameters(self) -> np.ndarray:
+        """(static thrust, throttle ratio, idle fraction): what compiled integrations need to give the thrust as
+        :meth:`thrust_rows` does (:func:`certkit.models.dynamics.kernel.integrate_open_loop`)."""
+        return np.array([self.static_thrust, self.throttle_ratio, self.idle_fraction], dtype=float)
+
     def thrust_rows(self, throttle, h, mach) -> np.ndarray:
         """Thrust (N) of several engines of this model at once: ``throttle`` (n, n_engines), ``h`` and ``mach`` (n,)
         per condition (the flight simulations call this at every step)."""
