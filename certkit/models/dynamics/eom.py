@@ -357,12 +357,15 @@ class AircraftModel:
                                            *self._kernel_args)
         return xd, out, gear, thrust
 
-    def open_loop_run(self, x13, U_all, dts, record_every: int, out_rec, x_rec) -> int | None:
-        """A whole fixed-step run in compiled code (:func:`kernel.integrate_open_loop`) when the model allows it —
-        derivative-table aerodynamics, one parametric engine model for every engine, all of them running; returns
-        the number of records, or None (the caller then runs its Python loop)."""
-        if not self._use_table or self._turbofan is None or not self._all_operative.all():
-            return None
+    @property
+    def runs_open_loop_compiled(self) -> bool:
+        """Can :meth:`open_loop_run` integrate this model: derivative-table aerodynamics, one parametric engine
+        model for every engine, all of them running."""
+        return bool(self._use_table and self._turbofan is not None and self._all_operative.all())
+
+    def open_loop_run(self, x13, U_all, dts, record_every: int, out_rec, x_rec) -> int:
+        """A whole fixed-step run in compiled code (:func:`kernel.integrate_open_loop`), for a model that
+        :attr:`runs_open_loop_compiled`; returns the number of records."""
         return int(kernel.integrate_open_loop(x13, U_all, dts, record_every, self._turbofan, self.throttle_slice.start,
                                               len(self.engines), np.empty((x13.shape[0], 8)), *self._kernel_args,
                                               out_rec, x_rec))

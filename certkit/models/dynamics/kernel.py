@@ -33,7 +33,7 @@ from numba import njit
 from certkit import atmosphere as isa
 from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import coefficients_one
-from certkit.models.propulsion.engine import _lapse_scalar
+from certkit.models.propulsion.engine import turbofan_row_thrust
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
 AIR = ("h_clipped", "V", "alpha", "beta", "mach", "qbar")
@@ -286,10 +286,8 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
         U = U_all[k]
         for i in range(n):
             air = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
-            lapse = turbofan[0] * _lapse_scalar(air[0], air[4], turbofan[1])
-            for j in range(n_engines):
-                thr = min(max(U[i, throttle_start + j], 0.0), 1.0)
-                thrust[i, j] = lapse * (turbofan[2] + (1.0 - turbofan[2]) * thr)
+            turbofan_row_thrust(air[0], air[4], U[i, throttle_start:throttle_start + n_engines], turbofan[0],
+                                turbofan[1], turbofan[2], thrust[i])
         xd, out, gear = derivatives(X, rows, True, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
                                     after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
                                     brake_index)

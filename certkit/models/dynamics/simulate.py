@@ -256,7 +256,7 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     stop_reason = [""] * n
     irec = 0
     compiled = None
-    if not (controllers or stop or lim):  # the controls of every step are known: one compiled run if the model allows
+    if not (controllers or stop or lim) and model.runs_open_loop_compiled:  # every step's controls known: one compiled run
         U_all = np.empty((nsteps + 1, n, len(names)))
         for k in range(nsteps + 1):
             U_all[k] = u_trim

@@ -166,11 +166,19 @@ def _turbofan_thrust_rows(throttle, h, mach, static_thrust, throttle_ratio, idle
     for i in range(h.shape[0]):
         if h[i] < isa.H_MIN or h[i] > isa.H_MAX:
             return i
-        lapse = static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio)
-        for j in range(throttle.shape[1]):
-            thr = min(max(throttle[i, j], 0.0), 1.0)
-            out[i, j] = lapse * (idle_fraction + (1.0 - idle_fraction) * thr)
+        turbofan_row_thrust(h[i], mach[i], throttle[i], static_thrust, throttle_ratio, idle_fraction, out[i])
     return -1
+
+
+@njit(cache=True, inline="always")
+def turbofan_row_thrust(h, mach, throttle, static_thrust, throttle_ratio, idle_fraction, out):
+    """The parametric turbofan's thrust (N) of each engine of one condition into ``out``, ``throttle`` one entry
+    per engine (clipped to 0–1): static thrust × lapse(h, M) × (idle + (1 − idle) × throttle). Compiled callers
+    (:func:`_turbofan_thrust_rows`, the open-loop integration) share it."""
+    lapse = static_thrust * _lapse_scalar(h, mach, throttle_ratio)
+    for j in range(out.shape[0]):
+        thr = min(max(throttle[j], 0.0), 1.0)
+        out[j] = lapse * (idle_fraction + (1.0 - idle_fraction) * thr)
 
 
 def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
