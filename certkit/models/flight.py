@@ -43,6 +43,17 @@ def thrust_function(aircraft):
     return engine.thrust, "parametric high-bypass turbofan scaled to the declared static thrust (Mattingly lapse)"
 
 
+def throttle_for_thrust(thrust, target, h, mach, iterations: int = 48) -> np.ndarray:
+    """The throttle (0–1) at which one engine gives ``target`` thrust (N) per condition: bisection, the thrust
+    increasing with the throttle; 1 where the target is the full thrust."""
+    lo, hi = np.zeros_like(h), np.ones_like(h)
+    for _ in range(iterations):
+        mid = 0.5 * (lo + hi)
+        short = np.asarray(thrust(mid, h, mach), dtype=float) < target
+        lo, hi = np.where(short, mid, lo), np.where(short, hi, mid)
+    return np.where(target >= np.asarray(thrust(np.ones_like(h), h, mach), dtype=float), 1.0, 0.5 * (lo + hi))
+
+
 def ideal_engine(aircraft) -> Engine:
     """A file without propulsion (a derivative-table airplane): one ideal thrust along the body x axis through
     the moment point, up to MTOW × g at full throttle, constant with speed unless the derivative table declares

@@ -42,6 +42,14 @@ class UnsymmetricalLoads:
     rolling_moment: np.ndarray  # N·m, body axes, unbalanced aerodynamic rolling moment
 
 
+def _require_root_station(loads: SurfaceLoads, name: str, what: str) -> None:
+    """The unbalanced moments of an unsymmetrical loading are taken at the root: refuse a surface without a root
+    station (``what``: "moment needs" or "moments need", for the message)."""
+    if loads.station_span[0] > 1e-9:
+        raise ValueError(f"the {name}'s first load station is {loads.station_span[0]:.3f} m from its root: the "
+                         f"unbalanced {what} the root station")
+
+
 def half_wing_moment(wing: SurfaceLoads, loads: np.ndarray) -> np.ndarray:
     """Moment (N·m) of a half wing's normal loads about the plane of symmetry: root bending + root shear × root Y."""
     return loads[..., 1, 0] + loads[..., 0, 0] * wing.station_y[0]
@@ -56,9 +64,7 @@ def unsymmetrical_wing(wing: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray
     leading time axis); ``mass`` (n,) kg, ``cg`` (n, 3) airplane frame (X aft, Z up), ``inertia_tensor``
     (n, 3, 3) body axes. ``trim_aero`` (n, 3, S): when given, the fractions apply to the air load's increment
     over it (the gust increment) instead of the whole air load."""
-    if wing.station_span[0] > 1e-9:
-        raise ValueError(f"the wing's first load station is {wing.station_span[0]:.3f} m from its root: the "
-                         "unbalanced moments need the root station")
+    _require_root_station(wing, "wing", "moments need")
     base = 0.0 if trim_aero is None else trim_aero
     varying = aero - base
     removed_full = (1.0 - full) * varying
@@ -101,9 +107,7 @@ def unsymmetrical_tail(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray
     unbalanced rolling moment of the two halves' air loads about the plane of symmetry — each half's root bending +
     root shear × root Y (:func:`half_wing_moment`) — goes into the fuselage as torsion at the tail (the tail's own
     roll inertia relief neglected, conservative). ``aero``, ``inertia``: (…, 3, S) of the right half."""
-    if tail.station_span[0] > 1e-9:
-        raise ValueError(f"the tailplane's first load station is {tail.station_span[0]:.3f} m from its root: the "
-                         "unbalanced moment needs the root station")
+    _require_root_station(tail, "tailplane", "moment needs")
     return UnsymmetricalTail(full * aero + inertia, reduced * aero + inertia,
                              (full - reduced) * half_wing_moment(tail, aero))
 
@@ -113,9 +117,7 @@ def unsymmetrical_tail_peaks(tail: SurfaceLoads, aero: np.ndarray, inertia: np.n
     """The extremes over the leading (time) axis of :func:`unsymmetrical_tail`'s loads, NaN entries ignored:
     (full-side peaks (…, 2, 3, S) min then max, reduced-side peaks, fuselage torsion min (…), max (…)), without
     keeping the split histories (one work array)."""
-    if tail.station_span[0] > 1e-9:
-        raise ValueError(f"the tailplane's first load station is {tail.station_span[0]:.3f} m from its root: the "
-                         "unbalanced moment needs the root station")
+    _require_root_station(tail, "tailplane", "moment needs")
     work = np.empty(np.broadcast_shapes(aero.shape, inertia.shape))
     peaks = []
     for fraction in (full, reduced):

@@ -27,7 +27,7 @@ import numpy as np
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import ConditionSpace, DesignWeight, speed_as
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
-from certkit.models.flight import control_limits, thrust_function
+from certkit.models.flight import control_limits, throttle_for_thrust, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas
@@ -115,17 +115,6 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine
     info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
             "credit": credit, "residual": residual, "weight": weight}
     return np.tan(gamma), batch, info
-
-
-def throttle_for_thrust(thrust, target, h, mach, iterations: int = 48) -> np.ndarray:
-    """The throttle (0–1) at which one engine gives ``target`` thrust (N) per condition: bisection, the thrust
-    increasing with the throttle; 1 where the target is the full thrust."""
-    lo, hi = np.zeros_like(h), np.ones_like(h)
-    for _ in range(iterations):
-        mid = 0.5 * (lo + hi)
-        short = np.asarray(thrust(mid, h, mach), dtype=float) < target
-        lo, hi = np.where(short, mid, lo), np.where(short, hi, mid)
-    return np.where(target >= np.asarray(thrust(np.ones_like(h), h, mach), dtype=float), 1.0, 0.5 * (lo + hi))
 
 
 def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, thrust_fraction=1.0, drag_credit=None,
