@@ -172,14 +172,16 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
 def distances(to: Takeoffs, i: int, n: int) -> dict:
     """§25.113(a) distances of loading ``i`` (ft; None where the run did not reach 35 ft): the engine-out distance to
     35 ft (the accelerate-go distance, failure at VEF), the all-engines distance to 35 ft and 1.15 × it, and the
-    takeoff distance, the greater of the engine-out and the factored all-engines distances."""
+    takeoff distance, the greater of the engine-out and the factored all-engines distances; and the length of the
+    engine-out run (a lower bound of its distance to 35 ft when it did not get there)."""
     run = to.run
     ft = lambda v: round(float(v) / FT, 0) if np.isfinite(v) else None  # noqa: E731
     oei, aeo = run.x_screen[i], run.x_screen[n + i]
     return {"accelerate_go_distance_ft": ft(oei), "all_engines_distance_to_35ft_ft": ft(aeo),
             "all_engines_distance_x1.15_ft": ft(1.15 * aeo),
             "takeoff_distance_ft": ft(max(oei, 1.15 * aeo)) if np.isfinite(oei) and np.isfinite(aeo) else None,
-            "all_engines_liftoff_distance_ft": ft(run.x_lof[n + i])}
+            "all_engines_liftoff_distance_ft": ft(run.x_lof[n + i]),
+            "engine_out_run_length_ft": ft(run.sim["x_N"][-1, i] - run.x0[i, 0])}
 
 
 def run_summary(to: Takeoffs, i: int, vr_kn: float, v2_kn: float) -> dict:

@@ -10,7 +10,8 @@ Per loading (MTOW at the forward, reference and aft CG, sea level ISA, the same 
 engine-out distance to 35 ft with the critical engine failed at VEF (the accelerate-go distance), the all-engines
 distance to 35 ft and 115 % of it, and the takeoff distance, the greater. With a declared
 ``performance.takeoff_field_length`` the takeoff distance is checked against it (margin ft: field length − takeoff
-distance ≥ 0); without one the distances are reported and the check is not evaluated. A run that does not represent
+distance ≥ 0; an engine-out run that had not reached 35 ft when it had rolled past the field length fails on that
+lower bound); without one the distances are reported and the check is not evaluated. A run that does not represent
 a takeoff a pilot flies (the §25.111 bounds: lift-off too late after VR, ground track off the centreline, the tail on
 the runway) earns no verdict.
 """
@@ -78,8 +79,16 @@ class TakeoffDistance(Rule):
                        "all_engines": run_summary(to, n + i, vr_kn, v2_kn), "critical_engine": to.engine,
                        "rotation_basis": to.basis["rotation"], "spool_down_basis": to.basis["spool_down"]}
             if details["takeoff_distance_ft"] is None:
-                out.append(Finding.not_evaluated(c0, check, "a simulated takeoff did not reach "
-                                                 f"{crit.screen_height:.0f} ft within the run", **details))
+                run_ft = details["engine_out_run_length_ft"]
+                if field is not None and to.run.reached[n + i] and run_ft > float(field) / FT:
+                    # the engine-out takeoff had not reached 35 ft when it had rolled past the field length
+                    out.append(Finding.compare(c0, check, run_ft, round(float(field) / FT, 0), at_least=False,
+                                               unit="ft", reason=f"the engine-out takeoff had not reached "
+                                               f"{crit.screen_height:.0f} ft after {run_ft:,.0f} ft (a lower bound of "
+                                               "its distance)", **details))
+                else:
+                    out.append(Finding.not_evaluated(c0, check, "a simulated takeoff did not reach "
+                                                     f"{crit.screen_height:.0f} ft within the run", **details))
                 continue
             why = [f"engine out: {w}" for w in unrepresentative(details["engine_out"], crit, vlof,
                                                                    tail_strike_deg=to.basis["tail_strike_deg"])]
