@@ -218,10 +218,11 @@ class HeadingHold(Controller):
     """Lateral–directional hold of the initial heading (the runway's), for an engine failure on the takeoff
     run and climb-out: rudder on the heading error (proportional + integral, so that the steady asymmetric
     yawing moment needs no standing heading error) with yaw-rate damping,
-        δr = δr0 + K_ψ e + K_I ∫e dt + K_r r,   e = (ψ − ψ0) + K_y (y − y0) on the ground, ψ − ψ0 airborne,
+        δr = δr0 + K_ψ e + K_I ∫e dt + K_r r,   e = (ψ − ψ0) + c,   c = K_y (y − y0) limited to ± ``max_correction``,
     the integral frozen while the rudder is on its limit in the error's direction (anti-windup); with K_y > 0 the
-    ground run also tracks the centreline (a lateral outer loop: heading command ψ0 − K_y (y − y0), back to the
-    centreline with a time constant of about 1/(V K_y)); no nose-wheel steering (the §25.149(e) VMCG
+    ground run also tracks the centreline (a lateral outer loop: heading command ψ0 − c, back to the centreline
+    with a time constant of about 1/(V K_y), a crab of at most 3°), c held at its last ground value once airborne
+    (no step in the rudder at lift-off); no nose-wheel steering (the §25.149(e) VMCG
     demonstration uses the rudder alone). Aileron toward the commanded bank, wings level on the ground and
     ``bank`` (rad, per condition) once the gear carries no load (e.g. a few degrees toward the operating engine):
         δa = δa0 + K_φ (φ − φ_cmd) + K_p p,
@@ -229,7 +230,7 @@ class HeadingHold(Controller):
 
     def __init__(self, model: AircraftModel, u0: np.ndarray, k_psi: float = 3.0, k_i: float = 1.0, k_r: float = 3.0,
                  k_phi: float = 2.0, k_p: float = 1.0, bank=0.0, aileron: str = "aileron", rudder: str = "rudder",
-                 limits: dict | None = None, k_y: float = 0.0):
+                 limits: dict | None = None, k_y: float = 0.0, max_correction: float = np.radians(3.0)):
         self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
         u0 = np.asarray(u0, dtype=float)
         self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
@@ -238,23 +239,28 @@ class HeadingHold(Controller):
         lim = limits or {}
         self.lim_a = lim.get(aileron, (-np.radians(25), np.radians(25)))
         self.lim_r = lim.get(rudder, (-np.radians(25), np.radians(25)))
+        self.max_correction = max_correction
         self.psi0 = self.y0 = None
-        self.integral = np.zeros(model.n)
+        self.integral, self.correction = np.zeros(model.n), np.zeros(model.n)
 
     def update(self, t, x, out, u, dt):
-        eul = quat_to_euler(x[:, 9:13])
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        phi = np.arctan2(2.0 * (q0 * q1 + q2 * q3), 1.0 - 2.0 * (q1 * q1 + q2 * q2))
+        psi = np.arctan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2 * q2 + q3 * q3))
         if self.psi0 is None:
-            self.psi0, self.y0 = eul[:, 2].copy(), x[:, 1].copy()
+            self.psi0, self.y0 = psi.copy(), x[:, 1].copy()
         airborne = out.gear_load.sum(axis=1) <= 0.0
-        err = np.angle(np.exp(1j * (eul[:, 2] - self.psi0)))
-        if self.k_y:
-            err = err + np.where(airborne, 0.0, self.k_y * (x[:, 1] - self.y0))
+        err = (psi - self.psi0 + np.pi) % (2.0 * np.pi) - np.pi
+        if self.k_y:  # the centreline's heading correction, limited, held at its last value on the ground once airborne
+            ground = np.clip(self.k_y * (x[:, 1] - self.y0), -self.max_correction, self.max_correction)
+            self.correction = np.where(airborne, self.correction, ground)
+            err = err + self.correction
         raw = self.dr0 + self.k_psi * err + self.k_i * self.integral + self.k_r * x[:, 8]
         lo, hi = self.lim_r
         self.integral += np.where(on_stop(raw, err, lo, hi), 0.0, err) * dt
         u[:, self.jr] = np.clip(raw, lo, hi)
         phi_cmd = np.where(airborne, self.bank, 0.0)
-        u[:, self.ja] = np.clip(self.da0 + self.k_phi * (eul[:, 0] - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
+        u[:, self.ja] = np.clip(self.da0 + self.k_phi * (phi - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
         return u
 
 

@@ -44,6 +44,7 @@ class RotationPilot(Controller):
         self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
         b = lambda v: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()  # noqa: E731
         self.vr, self.v_climb = b(rotation_speed), b(climb_speed)
+        self.climb_free = np.isnan(self.v_climb)
         ground = b(theta_ground)
         if tail_strike is not None:
             ground = np.minimum(ground, b(tail_strike) - tail_margin)
@@ -59,27 +60,37 @@ class RotationPilot(Controller):
         self.speed_integral = np.zeros(n)
 
     def update(self, t, x, out, u, dt):
-        theta = quat_to_euler(x[:, 9:13])[:, 1]
-        if self.theta_cmd is None:
-            self.theta_cmd = theta.copy()
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        theta = np.arcsin(np.clip(2.0 * (q0 * q2 - q3 * q1), -1.0, 1.0))
+        rotating = self.rotating
+        rotating |= out.V >= self.vr
+        if self.theta_cmd is None or not rotating.any():  # the ground roll before VR: elevator at its takeoff setting, command on the attitude
+            self.theta_cmd = theta
+            u[:, self.j] = np.where(rotating, self.de_ff, self.de0)
+            return u
         V = out.V
-        self.rotating |= V >= self.vr
-        lifted = self.rotating & ~self.airborne & (out.gear_load.sum(axis=1) <= 0.0)
-        self.theta_lof = np.where(lifted, theta, self.theta_lof)
-        self.airborne |= lifted
-        dv = np.where(np.isnan(self.v_climb), 0.0, V - self.v_climb)  # nan: hold the lift-off attitude
-        self.speed_integral += np.where(self.airborne, dv, 0.0) * dt
-        target = np.where(self.airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral,
-                          self.theta_ground)
-        step = np.clip(target - self.theta_cmd, -self.rate * dt, self.rate * dt)
+        lifted = rotating & ~self.airborne & (out.gear_load.sum(axis=1) <= 0.0)
+        if lifted.any():
+            self.theta_lof = np.where(lifted, theta, self.theta_lof)
+            self.airborne |= lifted
+        airborne = self.airborne
+        if airborne.any():
+            dv = np.where(self.climb_free, 0.0, V - self.v_climb)  # no climb speed: hold the lift-off attitude
+            self.speed_integral += np.where(airborne, dv, 0.0) * dt
+            target = np.where(airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral,
+                              self.theta_ground)
+        else:
+            target = self.theta_ground
         previous = self.theta_cmd
-        self.theta_cmd = np.where(self.rotating, np.minimum(self.theta_cmd + step, theta + self.lead), theta)
-        rate_cmd = np.where(self.rotating, (self.theta_cmd - previous) / dt, 0.0)
-        err = theta - self.theta_cmd
+        step = np.clip(target - previous, -self.rate * dt, self.rate * dt)
+        cmd = np.where(rotating, np.minimum(previous + step, theta + self.lead), theta)
+        self.theta_cmd = cmd
+        rate_cmd = (cmd - previous) / dt
+        err = theta - cmd
         lo, hi = self.limits
         raw = self.de_ff + self.kt * err + self.ki * self.integral + self.kq * (x[:, 7] - rate_cmd)
-        self.integral += np.where(self.rotating & ~on_stop(raw, err, lo, hi), err, 0.0) * dt
-        u[:, self.j] = np.where(self.rotating, np.clip(raw, lo, hi), self.de0)
+        self.integral += np.where(rotating & ~on_stop(raw, err, lo, hi), err * dt, 0.0)
+        u[:, self.j] = np.where(rotating, np.clip(raw, lo, hi), self.de0)
         return u
 
 
