@@ -43,3 +43,26 @@ def test_reported_but_not_checked_without_a_field_length_and_no_verdict_when_unr
         assert f"{f.details['takeoff_distance_ft']:,.0f} ft" in f.reason
     base = run_rule("25.113")
     assert all(f.status == "not_evaluated" and "does not represent" in f.reason for f in own(base))
+
+
+def test_representativeness_bounds():
+    """The bounds of a representative run (rules/part25/takeoff.py): VLOF ≤ VR + 15 kn (about a declared VLOF when
+    there is one), V35 ≤ V2 + 10 kn with an engine out (§25.111(c)(2) 'as close as practical to V2'), ≤ 30 ft off the
+    centreline on the ground (§25.149(e)), the attitude on the runway below the tail-strike attitude; each reason
+    quotes the run's number and the bound. A run inside every bound has no reason."""
+    from types import SimpleNamespace
+
+    from certkit_rules.part25.takeoff import REPRESENTATIVE_CRITERIA, unrepresentative
+
+    crit = SimpleNamespace(**{k: c.value for k, c in REPRESENTATIVE_CRITERIA.items()})
+    good = {"vr_kn": 155.0, "v2_kn": 161.0, "vlof_kn": 163.0, "v35_kn": 165.0, "max_lateral_deviation_on_ground_ft": 12.0,
+            "max_pitch_on_ground_deg": 10.5}
+    assert unrepresentative(good, crit, tail_strike_deg=12.1) == []
+    assert unrepresentative({**good, "vlof_kn": 170.5}, crit) == ["VLOF 170.5 kn is 15.5 kn above VR (at most 15 kn)"]
+    assert unrepresentative({**good, "vlof_kn": 170.5}, crit, vlof_declared_kn=160.0) == []
+    assert unrepresentative({**good, "v35_kn": 171.5}, crit) == ["V35 171.5 kn is 10.5 kn above V2 (at most 10 kn)"]
+    assert unrepresentative({**good, "v35_kn": 171.5}, crit, engine_out=False) == []
+    assert unrepresentative({**good, "max_lateral_deviation_on_ground_ft": 31.0}, crit) == [
+        "the ground run deviates 31 ft from the centreline (at most 30 ft)"]
+    assert "tail-strike" in unrepresentative({**good, "max_pitch_on_ground_deg": 12.2}, crit, tail_strike_deg=12.1)[0]
+    assert unrepresentative({**good, "vlof_kn": None}, crit) == ["the airplane did not lift off"]
