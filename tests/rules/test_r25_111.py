@@ -137,3 +137,16 @@ def test_pilot_rotation_below_tail_strike_and_distances(result):
         assert d["takeoff_distance_ft"] == pytest.approx(max(d["accelerate_go_distance_ft"],
                                                              d["all_engines_distance_x1.15_ft"]), abs=1.5)
         assert "tail strike" in d["rotation_basis"] and "τ = 1.5 s" in d["spool_down_basis"]
+
+
+def test_too_little_elevator_never_complies(tmp_path):
+    """A deficient airplane: elevator travel and design limit cut to −8° nose-up (the baseline's rotation at forward
+    CG uses about −25°). The rotation stalls (forward CG: 5.5° on the runway, lift-off about 55 kn after VR), so with
+    the rule's own bounds no check of any loading may comply: the forward-CG run is not evaluated with the late
+    lift-off as its reason."""
+    cut = [("travel: {min: -30 deg, max: 25 deg}", "travel: {min: -8 deg, max: 25 deg}"),
+           ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -8 deg, max: 16.8 deg}")]
+    r = run_rule("25.111", tmp_path, cut)
+    assert all(f.status != "complies" for f in own(r))
+    f = _by(r, "MTOW forward", "(c)(2)")
+    assert f.status == "not_evaluated" and "above VR" in f.reason and f.details["vlof_kn"] > 155.0 + 15.0
