@@ -3,7 +3,8 @@
 One batched six-degree-of-freedom run (:func:`certkit.models.dynamics.procedures.takeoff_run`) per set of loadings,
 sea level ISA, takeoff thrust from brake release: rows 0..n−1 with the critical engine failed at VEF (§25.111(a)(2)),
 rows n..2n−1 with all engines operating (the §25.113(a)(2) distance). The procedure a pilot flies (§25.101(f)):
-  * elevator at its takeoff setting to VR, then the rotation of :class:`~certkit.models.dynamics.takeoff_pilot.
+  * aerodynamic controls other than the pilot's (a movable stabiliser) held at their V2-trim values throughout (the
+    takeoff trim); elevator at its takeoff setting (neutral) to VR, then the rotation of :class:`~certkit.models.dynamics.takeoff_pilot.
     RotationPilot`: attitude command at ``rotation_rate_deg_s`` (2.5°/s: Boeing Flight Operations Review, 14 March
     1986, "typically 2–3 degrees per second … should not exceed 3"; the 777 FCTM the same) toward the attitude of
     the 1-g trim at V2, at most the declared tail-strike attitude (``geometry.landing_gear.tail_strike_attitude``)
@@ -126,6 +127,10 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         trims = ctx.trim(at_v2)
         theta = np.array([r.theta for r in trims.results])
         de_ff = np.array([r.controls.get("elevator", 0.0) if r.converged else 0.0 for r in trims.results])
+        # aerodynamic controls the V2 trim sets besides the pilot's (e.g. a movable stabiliser) are held there
+        pilot = {"elevator", "aileron", "rudder"}
+        held = sorted({k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot))
+        settings = {k: np.tile([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results], 2) for k in held}
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
         engine = critical_engine(ac)
@@ -144,7 +149,7 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         travel = control_limits(ac, design=False)
         # RK4 at 10 Hz: against 20 Hz the extreme elevator moves by < 0.1° and V35 by < 0.1 kn (measured on
         # the baseline, all engines), at 40 % of the cost
-        run = takeoff_run(model, vr, np.concatenate([target, target]), climb_speed=climb,
+        run = takeoff_run(model, vr, np.concatenate([target, target]), climb_speed=climb, settings=settings,
                           elevator_ff=np.concatenate([de_ff, de_ff]), tail_strike=None,
                           rotation_rate=np.radians(crit.rotation_rate_deg_s), screen_height=crit.screen_height * FT,
                           elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
@@ -161,6 +166,8 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
             "spool_down": (f"first-order thrust decay, τ = {decay:g} s (propulsion.failure_decay_time)" if decay else
                            "no propulsion.failure_decay_time declared: the failed engine windmills at once"),
             "tail_strike_deg": None if strike is None else round(float(np.degrees(strike)), 2),
+            "held_settings": ({k: [round(float(np.degrees(v)), 2) for v in vals[:n]] for k, vals in settings.items()}
+                              or None),
         }
         return Takeoffs(trims, run, engine, vef, vef_basis, target, basis)
 
