@@ -19,7 +19,9 @@
         with δe_ff the elevator of the airborne climb (e.g. the V2 trim's), the integral frozen while the elevator
         is on its stop in the error's direction (anti-windup), clipped to the elevator ``limits``.
     The rotation rate is the commanded one: how fast the airplane follows is the airplane's (its elevator power
-    against the weight on the main gear).
+    against the weight on the main gear). Gains K_θ 3 (rad/rad), K_I 0.5 /s, K_q 6 s, K_V 1°/(m/s), K_VI 0.1°/m are
+    a choice, made on the baseline so that the pitch rate before lift-off stays within the 3°/s ceiling at every CG
+    (2.7–3.0°/s; with K_q 1 the airplane overshot to 5°/s and past the tail-strike attitude).
 
 Centreline tracking on the runway is :class:`~certkit.models.dynamics.controllers.HeadingHold` with ``k_y`` > 0.
 """
@@ -29,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.models.dynamics.controllers import on_stop
-from certkit.models.dynamics.eom import AircraftModel, quat_to_euler
+from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Controller
 
 
