@@ -101,8 +101,8 @@ def test_lanchester_phugoid_period():
 
 
 def test_phugoid_density_gradient_stiffening():
-    """The phugoid with the density gradient (certkit/models/dynamics/modes.py derives it; Etkin, *Dynamics of
-    Atmospheric Flight*, 1972, §9.2): ω² = 2 g²/V² − g (dρ/dh)/ρ, i.e. ω² grows by the factor
+    """The phugoid with the density gradient (Etkin & Reid, 3rd ed., §6.5, the Lanchester estimate with the density
+    gradient's lift stiffness): ω² = 2 g²/V² − g (dρ/dh)/ρ, i.e. ω² grows by the factor
     1 − (dρ/dh)/ρ · V²/(2 g) over the constant-density phugoid. In the Lanchester conditions above (no Mach effects,
     a tenth of the drag) at the 747's 12.13 km, in the isothermal layer where (dρ/dh)/ρ is the log-slope of the
     ISO 2533 table densities 0.31194 kg/m³ (12 km) and 0.26660 kg/m³ (13 km): factor 1.4455. The pitch dynamics

@@ -9,9 +9,10 @@ constant CL, thrust equal to drag and no pitch dynamics, ΔV̇ = −g Δγ, V Δ
     ω_ph² = 2 g²/V² − g (dρ/dh)/ρ
 
 (Lanchester's 2 g²/V² plus the stiffening of the density gradient: in the troposphere (dρ/dh)/ρ =
-−(g + R dT/dh)/(R T), ≈ 15–20 % on the frequency of a jet transport at cruise; the same result as in Etkin,
-*Dynamics of Atmospheric Flight*, 1972, §9.2 on the phugoid with the density gradient, and Stengel, *Flight
-Dynamics*, 2004, §4.4). The altitude adds a slow real root (the height mode), reported under ``other_<k>``.
+−(g + R dT/dh)/(R T), ≈ 15–20 % on the frequency of a jet transport at cruise; Etkin & Reid, *Dynamics of
+Flight*, 3rd ed., 1996, §6.5 "Effect of vertical density gradient": the altitude moved into the matrix equation
+with Z_z = −m g κ, κ = −(dρ/dh)/ρ, and the Lanchester estimate modified the same way). The altitude adds a slow
+real root (the height mode), reported under ``other_<k>``.
 Each eigenvector is made dimensionless — velocities divided by the trim airspeed (u/V, β ≈ v/V, α ≈ w/V),
 rates divided by |λ| so that a rate counts like the angle it integrates to, the height multiplied by |λ|/V
 (the flight-path angle whose integral it is) — and then:
