@@ -29,6 +29,7 @@ speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -44,7 +45,9 @@ from certkit.reference_speeds import declared_cas
 from certkit.units import FT, G0
 from certkit.reference_speeds import reference_stall_speed
 
-AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
+AMDT = "25-140"
+#: a WAT limit weight is reported when a trim there gives the minimum gradient within this (about 0.5 % in weight)
+WAT_GRADIENT_TOLERANCE = 1e-4  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 CONTROLS = ("elevator", "aileron", "rudder")
 CGS = ("forward", "reference", "aft")
 
@@ -97,6 +100,24 @@ def trim_details(result) -> dict:
             **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")}}
 
 
+def full_thrust(ctx, conds):
+    """(pressure altitude, TAS, Mach, full thrust of one engine (N), thrust model) per condition: the engine model's
+    throttle 1, scaled on an off-standard day (``delta_isa_K``) by the flat-rated temperature lapse."""
+    thrust, source = thrust_function(ctx.aircraft)
+    h = np.array([c.altitude or 0.0 for c in conds])
+    tas = np.array([speed_as(c, "TAS") for c in conds])
+    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
+    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
+    delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
+    if np.any(delta_isa):
+        flat = ctx.aircraft.propulsion.flat_rating_temperature
+        if flat is None:
+            raise ValueError("an off-standard day needs propulsion.flat_rating_temperature")
+        full = full * temperature_thrust_ratio(h, mach, delta_isa, flat)
+        source += f"; temperature lapse above the flat rating {flat - 273.15:.1f} °C (Mattingly)"
+    return h, tas, mach, full, source
+
+
 def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
     """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
     configuration; returns (gradients, TrimBatch, info). The operating engines' throttle is held where they give
@@ -105,21 +126,11 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine
     (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting. A
     condition's ``delta_isa_K`` (off-standard day, altitude its pressure altitude) scales the full thrust by the
     flat-rated engine's temperature lapse; the trim itself is the standard day's (module docstring)."""
-    thrust, thrust_source = thrust_function(ctx.aircraft)
+    thrust, _ = thrust_function(ctx.aircraft)
     dead = critical_engine(ctx) if engine_out else None
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
-    h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
+    h, tas, mach, full, thrust_source = full_thrust(ctx, conds)
     weight = np.array([c.mass for c in conds]) * G0
-    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
-    delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
-    if np.any(delta_isa):
-        flat = ctx.aircraft.propulsion.flat_rating_temperature
-        if flat is None:
-            raise ValueError("an off-standard day needs propulsion.flat_rating_temperature")
-        full = full * temperature_thrust_ratio(h, mach, delta_isa, flat)
-        thrust_source += f"; temperature lapse above the flat rating {flat - 273.15:.1f} °C (Mattingly)"
     available = len(live) * thrust_fraction * full
     throttle = throttle_for_thrust(thrust, thrust_fraction * full, h, mach)
     credit = np.zeros_like(h)
@@ -161,37 +172,76 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
 
 
 def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_at, *, altitude_offset: float = 0.0,
-                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 4) -> list[Finding]:
+                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5) -> list[Finding]:
     """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
     conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
     ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient fails gets its WAT
-    limit weight (module docstring), ``iterations`` trims of all failing corners at once."""
+    limit weight (module docstring), at most ``iterations`` trims of all failing corners at once. Corners whose trim
+    would be another's (a day colder than standard: flat-rated thrust, the same forces) share its trim."""
     env = ctx.aircraft.takeoff_landing_envelope
     if env is None:
         return []
     corners = [a for a in envelope_corners(env) if a.pressure_altitude != 0.0 or abs(a.delta_isa) > 1e-9]
     grid = [c.with_(altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3), airport=a.label())
             for a in corners for c in conds]
-    out = climb_findings(ctx, grid, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
-                         drag_credit=np.full(len(grid), drag_credit), notes=notes)
-    worst = {}
+    full = full_thrust(ctx, grid)[3]
+    first: dict[tuple, int] = {}  # the corner nearest the standard day stands for those it equals
+    for k in sorted(range(len(grid)), key=lambda k: abs(grid[k].get("delta_isa_K"))):
+        c = grid[k]
+        first.setdefault((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, full[k]), k)
+    same = [first[(c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, t)] for c, t in zip(grid, full)]
+    trimmed = [grid[k] for k in sorted(set(same))]
+    out = climb_findings(ctx, trimmed, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
+                         drag_credit=np.full(len(trimmed), drag_credit), notes=notes)
+    _wat_limits(ctx, out, required, speed_at, thrust_fraction, drag_credit, iterations)
+    by_point: dict[tuple, list[Finding]] = {}
     for f in out:
+        by_point.setdefault((f.condition.get("airport"), f.condition.loading), []).append(f)
+    expanded = []
+    for k, c in enumerate(grid):
+        twin = grid[same[k]]
+        for f in by_point.get((twin.get("airport"), twin.loading), []):
+            if same[k] == k:
+                expanded.append(f)
+                continue
+            copy = replace(f, condition=c.with_(thrust=f.condition.get("thrust")), details=dict(f.details))
+            copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
+                                                          "the same forces at this CAS and pressure altitude)") if x)
+            expanded.append(copy)
+    return expanded
+
+
+def _wat_limits(ctx, findings, required, speed_at, thrust_fraction, drag_credit, iterations) -> None:
+    """Add the WAT limit weight to the lowest failing gradient finding of each corner (in place)."""
+    worst = {}
+    for f in findings:
         if f.unit == "gradient" and f.value is not None and f.value < required:
             key = f.condition.get("airport")
             if key not in worst or f.value < worst[key].value:
                 worst[key] = f
     if not worst:
-        return out
+        return
     failing = list(worst.values())
     base = [f.condition for f in failing]
-    cur = base
+    cur, grads, history = base, None, []
     for _ in range(iterations):
         grads, _, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-        mass = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
-        cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, mass)]
-    grads, _, _ = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+        if cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
+            break
+        history.append((np.array([c.mass for c in cur]), grads))
+        if len(history) < 3:  # two constant-CL steps, then secant steps through the last two trims
+            new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+        else:
+            (m0, g0), (m1, g1) = history[-2:]
+            slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
+            new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
+        cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, new)]
+        grads = None
+    if grads is None:
+        grads, _, _ = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
     for f, c, g in zip(failing, cur, grads):
-        ok = math.isfinite(g) and c.mass is not None and math.isfinite(c.mass) and abs(g - required) < 5e-4
+        ok = (math.isfinite(g) and c.mass is not None and math.isfinite(c.mass)
+              and abs(g - required) < WAT_GRADIENT_TOLERANCE)
         if ok:
             f.details.update(wat_limit_mass_kg=round(c.mass, 1), wat_limit_speed_CAS_m_s=round(c.speed, 3),
                              wat_limit_gradient=round(float(g), 5))
@@ -206,7 +256,6 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
         else:
             f.reason = "; ".join(x for x in (f.reason, "WAT limit weight not found (trims did not converge to the "
                                                        "minimum gradient)") if x)
-    return out
 
 
 def _lightest(ctx) -> float:
