@@ -5,6 +5,10 @@ temperature (K), pressure (Pa), density (kg/m³), speeds (m/s).
 
 Layers up to 20 km: troposphere (lapse −6.5 K/km to 11 km) and the isothermal lower stratosphere
 (216.65 K to 20 km), which covers every transport-airplane envelope.
+
+Off-standard days (``delta_isa``, K): h is then the pressure altitude, the pressure is the standard one at h and
+the temperature T_ISA(h) + ΔT, so ρ = p/(R T) and a = √(γ R T) — the pressure-altitude/ambient-temperature
+convention of flight-manual performance charts (an ISA deviation constant with height).
 """
 
 from __future__ import annotations
@@ -84,20 +88,22 @@ def _isa(h, which: int) -> np.ndarray:
     return _isa_flat(np.ascontiguousarray(h).reshape(-1), which).reshape(h.shape)
 
 
-def temperature(h):
-    return _isa(h, 0)
+def temperature(h, delta_isa=0.0):
+    """Ambient temperature (K) at (pressure) altitude h on a day ISA + ``delta_isa`` (K)."""
+    t = _isa(h, 0)
+    return t + delta_isa if np.any(delta_isa) else t
 
 
 def pressure(h):
     return _isa(h, 1)
 
 
-def density(h):
-    return pressure(h) / (R_AIR * temperature(h))
+def density(h, delta_isa=0.0):
+    return pressure(h) / (R_AIR * temperature(h, delta_isa))
 
 
-def speed_of_sound(h):
-    return np.sqrt(GAMMA * R_AIR * temperature(h))
+def speed_of_sound(h, delta_isa=0.0):
+    return np.sqrt(GAMMA * R_AIR * temperature(h, delta_isa))
 
 
 def dynamic_viscosity(h):

@@ -423,12 +423,17 @@ def _print_trim(r, given: dict):
 @main.command(name="modes")
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
 @_condition_options
-def modes_command(aircraft_file, **kw):
-    """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double."""
+@click.option("--no-density-gradient", is_flag=True,
+              help="Leave the altitude out of the linear model: the textbook four longitudinal equations (Etkin & "
+                   "Reid eq. 4.9,18), whose phugoid lacks the density gradient's stiffening.")
+def modes_command(aircraft_file, no_density_gradient, **kw):
+    """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double.
+    The linear model includes the altitude (the density gradient and the thrust lapse with height, which raise the
+    phugoid frequency) unless --no-density-gradient."""
     from certkit.flight_report import modes_report
 
     ctx, fc, as_json, given = _flight(aircraft_file, **kw)
-    report = modes_report(ctx, fc)
+    report = modes_report(ctx, fc, density_gradient=not no_density_gradient)
     if as_json:
         click.echo(json.dumps(report, indent=2, default=float))
         return

@@ -179,7 +179,9 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
     }
 
 
-def modes_report(ctx, fc: FlightCondition) -> dict:
+def modes_report(ctx, fc: FlightCondition, density_gradient: bool = True) -> dict:
+    """The trim and the modes about it; ``density_gradient``: the altitude state in the linear model
+    (:mod:`certkit.models.dynamics.modes`)."""
     from certkit.models.dynamics.linearize import linearize
     from certkit.models.dynamics.modes import identify_modes
 
@@ -188,7 +190,8 @@ def modes_report(ctx, fc: FlightCondition) -> dict:
     if not batch.results[0].converged:
         hint = f"; {_NO_PITCH_CONTROL}" if _no_pitch_control(model) else ""
         raise UserError("the condition does not trim: " + batch.results[0].summary() + hint)
-    modes = identify_modes(linearize(model, batch.x, batch.u), 0)
+    modes = identify_modes(linearize(model, batch.x, batch.u), 0, density_gradient=density_gradient)
+    out["density_gradient"] = density_gradient
     out["modes"] = {name: {"eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag], "natural_frequency_rad_s": m.natural_frequency,
                            "damping_ratio": m.damping_ratio, "period_s": m.period, "time_to_half_s": m.time_to_half,
                            "time_to_double_s": m.time_to_double} for name, m in modes.items()}

@@ -501,3 +501,19 @@ def _component_inertia(components) -> dict[str, float] | None:
             own = sum(getattr(c.inertia, name) for c in components if c.inertia is not None)
             out[name] = float(masses @ (d[:, a] ** 2 + d[:, b] ** 2)) + own
     return out if all(map(math.isfinite, out.values())) else None
+
+
+@needs("takeoff_landing_envelope")
+def _takeoff_landing_envelope(s):
+    """Ranges that run from low to high, a hot limit above the coldest, and (with engines) the flat rating an
+    off-standard day needs."""
+    env = s["takeoff_landing_envelope"]
+    if env.pressure_altitude_min >= env.pressure_altitude_max:
+        yield ("takeoff_landing_envelope.pressure_altitude_max", f"must exceed pressure_altitude_min "
+               f"({env.pressure_altitude_min:.0f} m)", env.pressure_altitude_max)
+    if env.temperature_min >= env.temperature_max:
+        yield "takeoff_landing_envelope.temperature_max", f"must exceed temperature_min ({env.temperature_min:.2f} K)", env.temperature_max
+    p = s.get("propulsion")
+    if p is not None and p.flat_rating_temperature is None:
+        yield ("propulsion.flat_rating_temperature", "needed with takeoff_landing_envelope: the thrust on a day other than "
+               "ISA follows from it (the engine type certificate's flat rating ambient temperature)", None)

@@ -19,7 +19,7 @@ from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
     Acceleration, Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
     PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, SpecificFuelConsumption, Speed, SpeedValue,
-    Stiffness, Time,
+    Stiffness, Temperature, Time,
 )
 
 
@@ -281,6 +281,10 @@ class Propulsion(_Section):
     failure_decay_time: Annotated[Time, Field(gt=0.0)] | None = Field(
         None, description="time constant of the first-order decay of a failed engine's thrust to its windmilling "
                           "drag (fuel cut); without it a failed engine windmills at once")
+    flat_rating_temperature: Annotated[Temperature, Field(gt=200.0, lt=350.0)] | None = Field(
+        None, description="ambient temperature up to which takeoff thrust is held at sea level static (the engine "
+                          "type certificate's 'flat rating ambient temperature', e.g. '30 degC'); above it thrust "
+                          "lapses with Mattingly's high-bypass law. Needed for off-standard days (takeoff_landing_envelope)")
 
 
 # --- aerodynamics: calibration and declared data ------------------------------------------
@@ -446,6 +450,23 @@ class Envelope(_Section):
     min_altitude: Length = 0.0
     limit_load_factors: LoadFactors | None = Field(None, description="declared design limit load factors")
     altitude_points: Annotated[int, Field(ge=2, le=50)] = 5
+
+
+class TakeoffLandingEnvelope(_Section):
+    """Airport pressure altitudes and ambient temperatures the airplane is certificated to take off and land in (the
+    flight manual's takeoff and landing envelope); §25.121 is evaluated over it (weight–altitude–temperature)."""
+
+    pressure_altitude_min: Annotated[Length, Field(ge=-610.0)] = Field(
+        description="lowest airport pressure altitude (at least -2000 ft)")
+    pressure_altitude_max: Annotated[Length, Field(le=6000.0)] = Field(description="highest airport pressure altitude")
+    temperature_min: Annotated[Temperature, Field(gt=180.0)] = Field(description="coldest ambient temperature")
+    temperature_max: Annotated[Temperature, Field(lt=360.0)] = Field(description="hottest ambient temperature")
+    isa_deviation_max: Annotated[Temperature, Field(gt=0.0, le=60.0)] | None = Field(
+        None, description="hot limit as a deviation from ISA (K, e.g. '40 delta_degC'); the hot limit at an altitude "
+                          "is the lower of this line and temperature_max")
+    altitude_points: Annotated[int, Field(ge=2, le=10)] = Field(
+        3, description="pressure altitudes evaluated, evenly from the lowest to the highest (sea level added)")
+    source: str | None = None
 
 
 class Performance(_Section):
@@ -801,6 +822,8 @@ class Aircraft(_Section):
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
+    takeoff_landing_envelope: TakeoffLandingEnvelope | None = Field(
+        None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature")
     mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")

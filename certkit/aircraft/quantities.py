@@ -61,6 +61,7 @@ ArealDensity = quantity("areal_density")
 AngularRate = quantity("angular_rate")
 Acceleration = quantity("acceleration")
 MassPerEnergy = quantity("mass_per_energy")
+Temperature = quantity("temperature")
 
 SpecificFuelConsumption = quantity("specific_fuel_consumption")
 

@@ -34,7 +34,7 @@ def _modes(path, *args):
 
 @pytest.fixture(scope="module")
 def etkin():
-    return _modes(EXAMPLE)
+    return _modes(EXAMPLE, "--no-density-gradient")  # the book's four longitudinal equations (no altitude state)
 
 
 def _eig(report, name):
@@ -100,7 +100,7 @@ def test_speed_derivatives_and_thrust_speed(tmp_path):
             + "".join(f"        {k}: {v!r}\n" for k, v in d.items()))
     path = tmp_path / "nd.yaml"
     path.write_text(text)
-    r = _modes(path)
+    r = _modes(path, "--no-density-gradient")  # Etkin's equations have no altitude state
     assert r["converged"] and abs(r["alpha_deg"]) < 1e-6
     K = q * S / u0
     book = _textbook_longitudinal(m, u0, g, Xu=-K * (2 * CD + d["CD_u"]) + K * d["CT_u"], Xw=K * (CL - 0.0),
@@ -113,7 +113,7 @@ def test_speed_derivatives_and_thrust_speed(tmp_path):
     for k in ("CL_u", "CD_u", "Cm_u", "CT_u"):
         plain = plain.replace(f"        {k}: {d[k]!r}\n", "")
     path.write_text(plain)
-    without = _eig(_modes(path), "phugoid")
+    without = _eig(_modes(path, "--no-density-gradient"), "phugoid")
     assert abs(without.real - _eig(r, "phugoid").real) > 0.5 * abs(without.real)
 
 
@@ -211,3 +211,13 @@ def test_options_that_need_absent_sections_are_usage_errors():
     assert res.exit_code == 2 and "no cg_envelope section" in res.output
     res = CliRunner().invoke(main, ["trim", str(EXAMPLE), "--weight", "250000 kg"])
     assert res.exit_code == 0 and "NOT CONVERGED" in res.output and "no pitch control" in res.output
+
+
+def test_modes_default_has_the_density_gradient(etkin):
+    """`certkit modes` linearises with the altitude state unless told not to (recorded in the JSON): at the book's
+    12.13 km the phugoid is faster than the textbook four-equation one (tests/dynamics/test_physics.py checks the
+    size of the change against ω² = 2 g²/V² − g ρ'/ρ); the short period does not move (1e-3)."""
+    graded = _modes(EXAMPLE)
+    assert graded["density_gradient"] is True and etkin["density_gradient"] is False
+    assert abs(_eig(graded, "phugoid").imag) > 1.1 * abs(_eig(etkin, "phugoid").imag)
+    assert abs(_eig(graded, "short_period") - _eig(etkin, "short_period")) < 1e-3 * abs(_eig(etkin, "short_period"))

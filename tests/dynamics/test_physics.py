@@ -100,6 +100,24 @@ def test_lanchester_phugoid_period():
     assert modes["phugoid"].damping_ratio < 0.02
 
 
+def test_phugoid_density_gradient_stiffening():
+    """The phugoid with the density gradient (Etkin & Reid, 3rd ed., §6.5, the Lanchester estimate with the density
+    gradient's lift stiffness): ω² = 2 g²/V² − g (dρ/dh)/ρ, i.e. ω² grows by the factor
+    1 − (dρ/dh)/ρ · V²/(2 g) over the constant-density phugoid. In the Lanchester conditions above (no Mach effects,
+    a tenth of the drag) at the 747's 12.13 km, in the isothermal layer where (dρ/dh)/ρ is the log-slope of the
+    ISO 2533 table densities 0.31194 kg/m³ (12 km) and 0.26660 kg/m³ (13 km): factor 1.4455. The pitch dynamics
+    scale both roots alike (the 6 % of the Lanchester test), so the ratio is compared, within 1 %."""
+    model, h = ref.build(n=1, mach_effects=False, cd=0.0043)
+    tb = trim(model, ref.U0, h)
+    lin = linearize(model, tb.x, tb.u)
+    plain = identify_modes(lin, 0)["phugoid"]
+    graded = identify_modes(lin, 0, density_gradient=True)["phugoid"]
+    slope = np.log(0.26660 / 0.31194) / 1000.0
+    expected = 1.0 - slope * ref.U0**2 / (2.0 * ref.G)
+    assert (graded.natural_frequency / plain.natural_frequency) ** 2 == pytest.approx(expected, rel=0.01)
+    assert graded.period < 0.85 * plain.period  # 15–20 % shorter at cruise altitude
+
+
 def test_batch_equals_single():
     """Conditions are independent: a condition trimmed and simulated inside a batch of 4 gives
     the same result as alone (to round-off)."""

@@ -1,9 +1,21 @@
 """Identification of the classical rigid-body modes from a linearisation, by eigenvector content.
 
-The eigenproblem is solved on the 8 states u, v, w, p, q, r, φ, θ (position, heading and altitude
-give neutral or near-neutral roots of no handling interest and are left out). Each eigenvector is
-made dimensionless — velocities divided by the trim airspeed (u/V, β ≈ v/V, α ≈ w/V), rates divided
-by |λ| so that a rate counts like the angle it integrates to — and then:
+The eigenproblem is solved on the 8 states u, v, w, p, q, r, φ, θ (position and heading give neutral
+roots of no handling interest and are left out) and, with ``density_gradient``, the altitude h as a ninth:
+the forces then change with height through ρ(h) (and the engines' thrust through their altitude lapse), and
+ḣ = u sin θ − v sin φ cos θ − w cos φ cos θ closes the loop. This is the phugoid with the density gradient: for
+constant CL, thrust equal to drag and no pitch dynamics, ΔV̇ = −g Δγ, V Δγ̇ = g (2 ΔV/V + (ρ'/ρ) Δh), Δḣ = V Δγ give
+
+    ω_ph² = 2 g²/V² − g (dρ/dh)/ρ
+
+(Lanchester's 2 g²/V² plus the stiffening of the density gradient: in the troposphere (dρ/dh)/ρ =
+−(g + R dT/dh)/(R T), ≈ 15–20 % on the frequency of a jet transport at cruise; Etkin & Reid, *Dynamics of
+Flight*, 3rd ed., 1996, §6.5 "Effect of vertical density gradient": the altitude moved into the matrix equation
+with Z_z = −m g κ, κ = −(dρ/dh)/ρ, and the Lanchester estimate modified the same way). The altitude adds a slow
+real root (the height mode), reported under ``other_<k>``.
+Each eigenvector is made dimensionless — velocities divided by the trim airspeed (u/V, β ≈ v/V, α ≈ w/V),
+rates divided by |λ| so that a rate counts like the angle it integrates to, the height multiplied by |λ|/V
+(the flight-path angle whose integral it is) — and then:
 
 * longitudinal vs lateral: the share of the vector's norm in (u, w, q, θ) vs (v, p, r, φ);
 * longitudinal oscillations: phugoid = the pair with the largest speed share |u/V| / (|u/V|+|α|),
@@ -25,8 +37,8 @@ import numpy as np
 
 from certkit.models.dynamics.linearize import Linearization
 
-_SUB = ("u", "v", "w", "p", "q", "r", "phi", "theta")
-_LON = np.array([True, False, True, False, True, False, False, True])
+_SUB = ("u", "v", "w", "p", "q", "r", "phi", "theta", "h")
+_LON = np.array([True, False, True, False, True, False, False, True, True])
 
 
 @dataclass
@@ -38,7 +50,7 @@ class Mode:
     period: float | None  # s, oscillatory modes
     time_to_half: float | None  # s, convergent
     time_to_double: float | None  # s, divergent
-    eigenvector: np.ndarray  # dimensionless, over u/V, β, α, p, q, r, φ, θ (rates over |λ|)
+    eigenvector: np.ndarray  # dimensionless, over u/V, β, α, p, q, r, φ, θ (rates over |λ|) [, h |λ|/V]
 
     @property
     def stable(self) -> bool:
@@ -54,11 +66,13 @@ def _mode(name, lam, vec) -> Mode:
     return Mode(name, complex(lam), float(wn), float(zeta), period, half, double, vec)
 
 
-def identify_modes(lin: Linearization, i: int) -> dict[str, Mode]:
+def identify_modes(lin: Linearization, i: int, density_gradient: bool = False) -> dict[str, Mode]:
     """Modes of condition ``i``: keys ``short_period``, ``phugoid``, ``dutch_roll``, ``roll``,
     ``spiral`` (a mode that does not appear in its classical form is left out; extra roots go
-    under ``other_<k>``)."""
-    idx = [lin.state_names.index(s) for s in _SUB]
+    under ``other_<k>``). ``density_gradient`` adds the altitude state (module docstring); without it the
+    longitudinal equations are the textbook four (Etkin & Reid eq. 4.9,18)."""
+    n = len(_SUB) if density_gradient else len(_SUB) - 1
+    idx = [lin.state_names.index(s) for s in _SUB[:n]]
     A = lin.A[i][np.ix_(idx, idx)]
     V = float(np.linalg.norm(lin.x0[i, 3:6]))
     lam, vecs = np.linalg.eig(A)
@@ -66,9 +80,11 @@ def identify_modes(lin: Linearization, i: int) -> dict[str, Mode]:
     scaled[[0, 1, 2], :] /= V
     for k in range(lam.size):
         scaled[[3, 4, 5], k] /= max(abs(lam[k]), 1e-6)
+        if density_gradient:
+            scaled[8, k] *= abs(lam[k]) / V
     scaled /= np.linalg.norm(scaled, axis=0, keepdims=True)
     mag = np.abs(scaled)
-    lon_share = np.sum(mag[_LON] ** 2, axis=0)
+    lon_share = np.sum(mag[_LON[:n]] ** 2, axis=0)
     # one representative per conjugate pair (imag ≥ 0)
     keep = [k for k in range(lam.size) if lam[k].imag >= -1e-12]
     lon = [k for k in keep if lon_share[k] >= 0.5]

@@ -139,15 +139,48 @@ class ParametricTurbofan:
 
 
 @njit(cache=True, inline="always")
-def _lapse_scalar(h, mach, throttle_ratio):
-    m = max(mach, 0.0)
-    t_air, p_air = isa_scalar(h)
-    k = 1.0 + 0.2 * m * m
-    d0, t0 = p_air / isa.P0 * k**3.5, t_air / isa.T0 * k
+def _mattingly_lapse(d0, t0, m, throttle_ratio):
+    """Mattingly's high-bypass installed-thrust lapse from δ0, θ0 and Mach (module docstring)."""
     base = 1.0 - 0.49 * math.sqrt(m)
     if t0 <= throttle_ratio:
         return d0 * base
     return d0 * (base - 3.0 * (t0 - throttle_ratio) / (1.5 + m))
+
+
+@njit(cache=True, inline="always")
+def _lapse_scalar(h, mach, throttle_ratio):
+    m = max(mach, 0.0)
+    t_air, p_air = isa_scalar(h)
+    k = 1.0 + 0.2 * m * m
+    return _mattingly_lapse(p_air / isa.P0 * k**3.5, t_air / isa.T0 * k, m, throttle_ratio)
+
+
+@njit(cache=True)
+def _hot_day_ratio(h, mach, delta_isa, throttle_ratio):
+    out = np.empty(h.shape[0])
+    for i in range(h.shape[0]):
+        m = max(mach[i], 0.0)
+        t_air, p_air = isa_scalar(h[i])
+        k = 1.0 + 0.2 * m * m
+        d0 = p_air / isa.P0 * k**3.5
+        standard = _mattingly_lapse(d0, t_air / isa.T0 * k, m, throttle_ratio)
+        hot = _mattingly_lapse(d0, (t_air + delta_isa[i]) / isa.T0 * k, m, throttle_ratio)
+        out[i] = max(hot, 0.0) / standard if standard > 0.0 else 0.0
+    return out
+
+
+def temperature_thrust_ratio(h, mach, delta_isa, flat_rating_temperature: float) -> np.ndarray:
+    """Full thrust on a day ISA + ``delta_isa`` (K) over the standard day's at the same pressure altitude ``h`` (m)
+    and Mach number, for an engine flat-rated to the ambient ``flat_rating_temperature`` (K) at sea level static.
+
+    Mattingly's lapse (module docstring) with the throttle ratio that puts its break there, TR = T_flat / T0 (θ0 =
+    θ at M = 0, h = 0): 1 while the total temperature stays below the break (flat rating), then about 0.7 %/K
+    static and 0.8 %/K at M 0.3 less. δ0 depends on pressure and Mach only, so it is the same on both days; the
+    ratio multiplies the standard-day thrust of any engine model (a deck tabulated for ISA included)."""
+    h, mach, dt = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (h, mach, delta_isa)))
+    isa._check_range(h)
+    flat = [np.ascontiguousarray(a).reshape(-1) for a in (h, mach, dt)]
+    return _hot_day_ratio(*flat, flat_rating_temperature / isa.T0).reshape(h.shape)
 
 
 @njit(cache=True)
@@ -193,4 +226,4 @@ def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
     return drag
 
 
-__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "windmill_drag"]
+__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "temperature_thrust_ratio", "windmill_drag"]

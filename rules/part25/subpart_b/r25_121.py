@@ -16,25 +16,38 @@ is tan γ (height gained over horizontal distance).
 Thrust available is the engine model's throttle 1: the takeoff rating of the declared deck, and for the
 parametric turbofan (one rating) its sea-level static thrust with the Mattingly lapse, i.e. the takeoff
 rating. Maximum continuous thrust for (c) is that thrust times ``mct_over_takeoff_thrust``.
+
+Weight–altitude–temperature (§25.21(a), §25.121's "at each weight, altitude, and ambient temperature within the
+operational limits"): with ``takeoff_landing_envelope`` declared, each paragraph is also evaluated at the envelope's
+corners (:func:`certkit.models.performance.wat.envelope_corners`) at the design weight — the gradient falls with
+weight, so it is the critical one — as standard-day trims at the pressure altitude and CAS with the day's thrust
+(the reasoning is in :mod:`certkit.models.performance.wat`). Where a corner fails, the weight at which the gradient
+is the minimum (the WAT limit that §25.1533(a)(2)/(3) turns into a flight-manual limitation) is found by trims, the
+speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved inside the envelope at that weight.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
-from certkit.conditions import ConditionSpace, DesignWeight, speed_as
+from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at, speed_as
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits, throttle_for_thrust, thrust_function
+from certkit.models.performance.wat import envelope_corners, weight_for_gradient
+from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas
 from certkit.units import FT, G0
 from certkit.reference_speeds import reference_stall_speed
 
-AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
+AMDT = "25-140"
+#: a WAT limit weight is reported when a trim there gives the minimum gradient within this (about 0.5 % in weight)
+WAT_GRADIENT_TOLERANCE = 1e-4  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 CONTROLS = ("elevator", "aileron", "rudder")
 CGS = ("forward", "reference", "aft")
 
@@ -87,20 +100,37 @@ def trim_details(result) -> dict:
             **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")}}
 
 
+def full_thrust(ctx, conds):
+    """(pressure altitude, TAS, Mach, full thrust of one engine (N), thrust model) per condition: the engine model's
+    throttle 1, scaled on an off-standard day (``delta_isa_K``) by the flat-rated temperature lapse."""
+    thrust, source = thrust_function(ctx.aircraft)
+    h = np.array([c.altitude or 0.0 for c in conds])
+    tas = np.array([speed_as(c, "TAS") for c in conds])
+    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
+    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
+    delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
+    if np.any(delta_isa):
+        flat = ctx.aircraft.propulsion.flat_rating_temperature
+        if flat is None:
+            raise ValueError("an off-standard day needs propulsion.flat_rating_temperature")
+        full = full * temperature_thrust_ratio(h, mach, delta_isa, flat)
+        source += f"; temperature lapse above the flat rating {flat - 273.15:.1f} °C (Mattingly)"
+    return h, tas, mach, full, source
+
+
 def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
     """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
     configuration; returns (gradients, TrimBatch, info). The operating engines' throttle is held where they give
     ``thrust_fraction`` of their full thrust and the trim solves the flight-path angle (a steady climb at that
     thrust). ``drag_credit`` (ΔCD per condition) is drag that the configuration carries but the paragraph removes
-    (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting."""
-    thrust, thrust_source = thrust_function(ctx.aircraft)
+    (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting. A
+    condition's ``delta_isa_K`` (off-standard day, altitude its pressure altitude) scales the full thrust by the
+    flat-rated engine's temperature lapse; the trim itself is the standard day's (module docstring)."""
+    thrust, _ = thrust_function(ctx.aircraft)
     dead = critical_engine(ctx) if engine_out else None
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
-    h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    mach = tas / speed_of_sound(h)
+    h, tas, mach, full, thrust_source = full_thrust(ctx, conds)
     weight = np.array([c.mass for c in conds]) * G0
-    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
     available = len(live) * thrust_fraction * full
     throttle = throttle_for_thrust(thrust, thrust_fraction * full, h, mach)
     credit = np.zeros_like(h)
@@ -141,6 +171,110 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
     return out
 
 
+def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_at, *, altitude_offset: float = 0.0,
+                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5) -> list[Finding]:
+    """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
+    conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
+    ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient fails gets its WAT
+    limit weight (module docstring), at most ``iterations`` trims of all failing corners at once. Corners whose trim
+    would be another's (a day colder than standard: flat-rated thrust, the same forces) share its trim."""
+    env = ctx.aircraft.takeoff_landing_envelope
+    if env is None:
+        return []
+    corners = [a for a in envelope_corners(env) if a.pressure_altitude != 0.0 or abs(a.delta_isa) > 1e-9]
+    grid = [c.with_(altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3), airport=a.label())
+            for a in corners for c in conds]
+    full = full_thrust(ctx, grid)[3]
+    first: dict[tuple, int] = {}  # the corner nearest the standard day stands for those it equals
+    for k in sorted(range(len(grid)), key=lambda k: abs(grid[k].get("delta_isa_K"))):
+        c = grid[k]
+        first.setdefault((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, full[k]), k)
+    same = [first[(c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, t)] for c, t in zip(grid, full)]
+    trimmed = [grid[k] for k in sorted(set(same))]
+    out = climb_findings(ctx, trimmed, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
+                         drag_credit=np.full(len(trimmed), drag_credit), notes=notes)
+    _wat_limits(ctx, out, required, speed_at, thrust_fraction, drag_credit, iterations)
+    by_point: dict[tuple, list[Finding]] = {}
+    for f in out:
+        by_point.setdefault((f.condition.get("airport"), f.condition.loading), []).append(f)
+    expanded = []
+    for k, c in enumerate(grid):
+        twin = grid[same[k]]
+        for f in by_point.get((twin.get("airport"), twin.loading), []):
+            if same[k] == k:
+                expanded.append(f)
+                continue
+            copy = replace(f, condition=c.with_(thrust=f.condition.get("thrust")), details=dict(f.details))
+            copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
+                                                          "the same forces at this CAS and pressure altitude)") if x)
+            expanded.append(copy)
+    return expanded
+
+
+def _wat_limits(ctx, findings, required, speed_at, thrust_fraction, drag_credit, iterations) -> None:
+    """Add the WAT limit weight to the lowest failing gradient finding of each corner (in place)."""
+    worst = {}
+    for f in findings:
+        if f.unit == "gradient" and f.value is not None and f.value < required:
+            key = f.condition.get("airport")
+            if key not in worst or f.value < worst[key].value:
+                worst[key] = f
+    if not worst:
+        return
+    failing = list(worst.values())
+    base = [f.condition for f in failing]
+    cur, grads, history = base, None, []
+    for _ in range(iterations):
+        grads, _, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+        if cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
+            break
+        history.append((np.array([c.mass for c in cur]), grads))
+        if len(history) < 3:  # two constant-CL steps, then secant steps through the last two trims
+            new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+        else:
+            (m0, g0), (m1, g1) = history[-2:]
+            slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
+            new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
+        cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, new)]
+        grads = None
+    if grads is None:
+        grads, _, _ = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+    for f, c, g in zip(failing, cur, grads):
+        ok = (math.isfinite(g) and c.mass is not None and math.isfinite(c.mass)
+              and abs(g - required) < WAT_GRADIENT_TOLERANCE)
+        if ok:
+            f.details.update(wat_limit_mass_kg=round(c.mass, 1), wat_limit_speed_CAS_m_s=round(c.speed, 3),
+                             wat_limit_gradient=round(float(g), 5))
+            f.reason = "; ".join(x for x in (f.reason, (
+                f"WAT limit at {c.get('airport')}: {c.mass / 0.45359237:,.0f} lb "
+                f"({c.mass / f.condition.mass:.1%} of {f.condition.loading.split()[0]}); §25.1533(a) makes it a "
+                "flight-manual weight limit")) if x)
+        elif math.isfinite(g) and g < required and c.mass <= _lightest(ctx) * (1 + 1e-9):
+            f.reason = "; ".join(x for x in (f.reason, (
+                f"no WAT limit weight: at the lightest weight of the CG envelope ({c.mass / 0.45359237:,.0f} lb) the "
+                f"gradient is still {g:.2%}")) if x)
+        else:
+            f.reason = "; ".join(x for x in (f.reason, "WAT limit weight not found (trims did not converge to the "
+                                                       "minimum gradient)") if x)
+
+
+def _lightest(ctx) -> float:
+    return min(v.mass for v in ctx.aircraft.cg_envelope.vertices)
+
+
+def _at_mass(ctx, cond, mass: float, speed_at):
+    """``cond`` at another mass, between the CG envelope's lightest weight and its own: the speed of that weight,
+    the CG kept inside the envelope."""
+    mass = float(min(max(mass, _lightest(ctx)), cond.mass)) if math.isfinite(mass) else _lightest(ctx)
+    fwd, aft = cg_limits_at(ctx.aircraft, min(mass, max(v.mass for v in ctx.aircraft.cg_envelope.vertices)))
+    return cond.with_(mass=mass, x_cg=min(max(cond.x_cg, fwd), aft), speed=speed_at(cond, mass))
+
+
+def scaled_speed(cond, mass: float) -> float:
+    """The condition's CAS at ``mass`` at the same multiple of the stall speed (∝ √W)."""
+    return cond.speed * math.sqrt(mass / cond.mass)
+
+
 def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration: str | None = None):
     return [c.with_(speed=speed, speed_kind="CAS", speed_name=name, altitude=altitude,
                     **({"configuration": configuration} if configuration else {})) for c in conds]
@@ -149,6 +283,9 @@ def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration
 _COMMON_LIMITS = """
     Steady-state trim (no ground effect, no transient); the critical engine windmills with the flight model's
     windmilling drag (Torenbeek App. G form); weight not reduced by the fuel burned before the segment.
+    Off-standard days: the standard-day trim at the pressure altitude and CAS with the day's thrust (Mattingly's
+    lapse above the declared flat rating); the Reynolds-number change of drag with temperature is neglected. A
+    corner failing at the design weight fails, with its WAT limit weight stated.
 """
 
 
@@ -169,7 +306,8 @@ class ClimbOEITakeoffGearDown(Rule):
     requires = ("speeds.VR", "configurations.takeoff")
     criteria = gradient_criteria("a", 0.0, 0.003, 0.005)
     conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("takeoff",),
-                                note="sea level, takeoff thrust; VLOF, or VR when VLOF is not declared")
+                                note="sea level ISA, takeoff thrust; VLOF, or VR when VLOF is not declared; and the corners of the "
+                                     "takeoff_landing_envelope when declared")
     limitations = _COMMON_LIMITS + " VLOF ≈ VR when VLOF is not declared (a lower speed, so conservative)."
 
     def evaluate(self, ctx, conditions, crit):
@@ -178,6 +316,7 @@ class ClimbOEITakeoffGearDown(Rule):
         note = "" if name == "VLOF" else "VLOF not declared: evaluated at VR (VLOF ≥ VR)"
         conds = refined(conditions, declared_cas(ctx, name), name)
         out = climb_findings(ctx, conds, "(a) gradient at VLOF, gear down", required, n, notes=note)
+        out += wat_findings(ctx, conds, "(a) gradient at VLOF, gear down", required, n, scaled_speed, notes=note)
         return [_positive(f, required) for f in out]
 
     def evidence(self, ctx, findings, crit):
@@ -227,7 +366,8 @@ class ClimbOEITakeoffGearUp(Rule):
                 "configuration": Criterion("takeoff", "", "14 CFR 25.121(b): the takeoff configuration",
                                            "configuration flown; its extended gear drag is removed (gear retracted)")}
     conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("takeoff",),
-                                note="sea level, takeoff thrust, V2")
+                                note="sea level ISA, takeoff thrust, V2; and the corners of the takeoff_landing_envelope "
+                                     "when declared")
     limitations = _COMMON_LIMITS + """ The gear is retracted by removing its drag increment from the takeoff
         configuration's (see gear_up_credit); the gear's small pitching moment is kept. Icing (b)(2)(ii) is not
         evaluated."""
@@ -242,8 +382,11 @@ class ClimbOEITakeoffGearUp(Rule):
         cfg = crit.configuration
         credit, how = gear_up_credit(ctx, cfg)
         conds = refined(conditions, declared_cas(ctx, "V2"), "V2", configuration=cfg)
-        return climb_findings(ctx, conds, "(b) gradient at V2, gear up", required, n,
-                              drag_credit=np.full(len(conds), credit), notes=f"gear retracted: ΔCD0 {credit:.4f} removed, {how}")
+        note = f"gear retracted: ΔCD0 {credit:.4f} removed, {how}"
+        return (climb_findings(ctx, conds, "(b) gradient at V2, gear up", required, n,
+                               drag_credit=np.full(len(conds), credit), notes=note)
+                + wat_findings(ctx, conds, "(b) gradient at V2, gear up", required, n, scaled_speed, drag_credit=credit,
+                               notes=note))
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import climb_gradient_evidence
@@ -270,7 +413,8 @@ class ClimbOEIFinalTakeoff(Rule):
                     0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
                     "maximum continuous over takeoff thrust, used when the engine model has one (takeoff) rating")}
     conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("clean",),
-                                note="1500 ft (end of the takeoff path), maximum continuous thrust, VFTO")
+                                note="1500 ft (end of the takeoff path), ISA, maximum continuous thrust, VFTO; and "
+                                     "1500 ft above each corner of the takeoff_landing_envelope when declared")
 
     limitations = _COMMON_LIMITS
 
@@ -282,8 +426,10 @@ class ClimbOEIFinalTakeoff(Rule):
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
         conds = refined(conditions, declared_cas(ctx, "VFTO"), "VFTO", altitude=1500 * FT)
-        return climb_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n,
-                              thrust_fraction=crit.mct_over_takeoff_thrust)
+        return (climb_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n,
+                               thrust_fraction=crit.mct_over_takeoff_thrust)
+                + wat_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n, scaled_speed,
+                               altitude_offset=1500 * FT, thrust_fraction=crit.mct_over_takeoff_thrust))
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import climb_gradient_evidence
@@ -313,7 +459,8 @@ class ClimbOEIApproach(Rule):
                 "vsr_ratio": Criterion(1.10, "", "14 CFR 25.121(d)",
                                        "VSR(approach) / VSR(landing), at most")}
     conditions = ConditionSpace(loading=DesignWeight("MLW", CGS), configurations=("approach",),
-                                note="sea level, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach configuration")
+                                note="sea level ISA, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach "
+                                     "configuration; and the corners of the takeoff_landing_envelope when declared")
     limitations = _COMMON_LIMITS + " Evaluated at 1.4 VSR, the largest speed allowed (no procedure speed is declared)."
 
     implementation = "partial"
@@ -332,7 +479,9 @@ class ClimbOEIApproach(Rule):
                 vsr_l, _ = reference_stall_speed(ctx, "landing", c.mass)
                 out.append(Finding.compare(conds[-1], "(d) VSR approach ≤ 1.10 VSR landing", vsr / vsr_l, crit.vsr_ratio,
                                            at_least=False, unit="ratio", VSR_approach=vsr, VSR_landing=vsr_l, basis=src))
-        return out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
+        at_mass = lambda c, m: crit.speed_over_vsr * reference_stall_speed(ctx, "approach", m)[0]  # noqa: E731
+        return (out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
+                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass))
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import climb_gradient_evidence

@@ -105,14 +105,14 @@ class CamberLine:
     name: str = ""
 
     def slope(self, xc: np.ndarray) -> np.ndarray:
-        """dz/dx at chord fractions ``xc`` (cubic spline through the camber points)."""
-        return self._spline(np.clip(xc, self.x[0], self.x[-1]), 1)
+        """dz/dx at chord fractions ``xc`` (not-a-knot cubic spline through the camber points)."""
+        return self._spline.derivative(np.clip(xc, self.x[0], self.x[-1]))
 
     @cached_property
     def _spline(self):
-        from scipy.interpolate import CubicSpline
+        from .cubic_spline import NotAKnotSpline
 
-        return CubicSpline(self.x, self.z)
+        return NotAKnotSpline(self.x, self.z)
 
     @classmethod
     def flat(cls) -> "CamberLine":
