@@ -2,7 +2,8 @@
 
 :func:`takeoff_run`
     From rest on the runway (gear in static equilibrium at idle thrust, :func:`ground_equilibrium`),
-    brakes released at t = 0 with the throttles set to ``throttle`` (no spool-up); the elevator held at ``elevator0`` until
+    brakes released at t = 0 with the throttles set to ``throttle`` (no spool-up); a movable stabiliser set to
+    ``stabilizer0`` (the takeoff trim, deflection from its datum) and held; the elevator held at ``elevator0`` until
     the rotation speed V_R, then :class:`PitchAttitudeHold` rotates at ``rotation_rate`` to
     ``theta_target``; :class:`WingsLevel` holds wings level / zero sideslip; optionally
     :class:`EngineFailure` fails ``failed_engine`` at ``failure_speed``. Runs until the lowest
@@ -87,12 +88,14 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: fl
                 elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
                 failed_engine: str | None = None, failure_speed=None, t_end: float = 120.0,
                 dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
-                climb_out: float = 0.0) -> TakeoffResult:
+                climb_out: float = 0.0, stabilizer0=None) -> TakeoffResult:
     n = model.n
     u = np.zeros((n, len(model.control_names)))
     u[:, model.throttle_slice] = throttle
     je = model.control_index("elevator")
     u[:, je] = elevator0
+    if stabilizer0 is not None:  # a movable stabiliser set to the takeoff trim, held; the elevator rotates
+        u[:, model.control_index("stabilizer")] = stabilizer0
     idle = u.copy()
     idle[:, model.throttle_slice] = 0.0
     x0 = ground_equilibrium(model, idle)  # at rest on the brakes, engines idle; then takeoff thrust and release

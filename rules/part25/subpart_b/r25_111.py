@@ -53,6 +53,7 @@ import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.models.dynamics.trim import held_stabilizer
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
@@ -96,11 +97,13 @@ def _takeoff(ctx, conditions, crit):
         at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
         trims = ctx.trim(at_v2)
         theta = np.array([r.theta for r in trims.results])
+        # a movable stabiliser is set to its trim at V2 (the takeoff trim) and held; None without one
+        stab = held_stabilizer(trims.results)
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         rotation = {"basis": "the level-flight V2 attitude (no takeoff field length declared)"}
         tofl = ac.performance.takeoff_field_length if ac.performance is not None else None
         if tofl is not None:
-            theta, rotation = rotation_for_field_length(ctx, loadings, theta, vr, float(tofl), crit)
+            theta, rotation = rotation_for_field_length(ctx, loadings, theta, vr, float(tofl), crit, stab)
         model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
         engine = critical_engine(ac)
         vef, vef_basis = failure_speed(ctx, model, engine, crit)
@@ -114,7 +117,7 @@ def _takeoff(ctx, conditions, crit):
         run = takeoff_run(model, vr, np.concatenate([theta, theta]), screen_height=crit.screen_height * FT,
                           elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
                           failed_engine=engine, failure_speed=vef, lateral="heading", bank_airborne=bank,
-                          climb_out=crit.climb_out_s)
+                          climb_out=crit.climb_out_s, stabilizer0=None if stab is None else np.concatenate([stab, stab]))
         return trims, run, engine, vef, vef_basis, theta, rotation
 
     key = ("25.111 takeoff OEI", tuple((c.mass, c.x_cg) for c in conditions), crit.screen_height, crit.recognition_time,
@@ -126,7 +129,7 @@ def _takeoff(ctx, conditions, crit):
 ROTATION_OFFSETS_DEG = (-6.0, -4.0, -2.0, 0.0, 2.0, 4.0, 6.0, 8.0)
 
 
-def rotation_for_field_length(ctx, loadings, theta_v2, vr, field_length: float, crit):
+def rotation_for_field_length(ctx, loadings, theta_v2, vr, field_length: float, crit, stabilizer=None):
     """The rotation target attitude of each loading for which the all-engines takeoff matches the declared field
     length: 1.15 × the simulated distance to 35 ft (§25.113(a)(2)) = ``field_length``. One batch of all-engines runs
     at the V2 attitude plus :data:`ROTATION_OFFSETS_DEG`, then linear interpolation of the distance in the attitude
@@ -139,7 +142,8 @@ def rotation_for_field_length(ctx, loadings, theta_v2, vr, field_length: float, 
     model = flight_model(ac, ctx.aero("takeoff").model, list(loadings) * offsets.size, ground=ground_model(ac))
     targets = (theta_v2[None, :] + offsets[:, None]).ravel()
     run = takeoff_run(model, vr, targets, screen_height=crit.screen_height * FT,
-                      elevator_limits=control_limits(ac, design=False)["elevator"], dt=0.1)
+                      elevator_limits=control_limits(ac, design=False)["elevator"], dt=0.1,
+                      stabilizer0=None if stabilizer is None else np.tile(stabilizer, offsets.size))
     dist = np.where(run.reached, 1.15 * run.x_screen, np.nan).reshape(offsets.size, n)
     theta, notes = theta_v2.copy(), []
     for i in range(n):

@@ -174,8 +174,9 @@ class ManeuveringCapability(Rule):
         manoeuvring (buffet) are not modelled. "WAT-limited" is read as MTOW at
         sea level (and 1500 ft en route) with the operating engine's thrust set so that straight flight climbs at
         exactly the §25.121(b) (V2) or §25.121(c) (VFTO) minimum gradient (at most takeoff or maximum continuous
-        thrust). The stabiliser is fixed at its declared incidence, so the elevator carries the whole trim
-        (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
+        thrust). A movable stabiliser is trimmed in wings-level flight at the
+        case's speed and thrust and held; the elevator pulls into the turn. Without one the stabiliser is fixed at its
+        declared incidence and the elevator carries the whole trim. A coordinated turn is flown at zero sideslip.
     """
 
     unevaluated = (

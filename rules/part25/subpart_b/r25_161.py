@@ -93,8 +93,9 @@ class Trim(Rule):
         §25.161(b) lateral/directional trim with a lateral CG offset is not evaluated (the model's CG is on the plane
         of symmetry; a symmetric airplane trims with zero lateral controls), nor (c)(3)'s gear-down range to VLE (no
         gear-down clean configuration is declared) or (e) (four or more engines). Control forces (the 5 lbf of (d))
-        need a control-force model. The stabiliser is fixed at its declared incidence, so the elevator carries the
-        whole trim (conservative for an airplane with a trimmable stabiliser).
+        need a control-force model. Without a movable stabiliser (geometry.horizontal_tail.stabilizer) the stabiliser
+        is fixed at its declared incidence and the elevator carries the whole trim; with one, one set of trim limits
+        applies in every configuration.
     """
 
     unevaluated = (

@@ -336,8 +336,9 @@ class StickForceGradient(Rule):
     limitations = """
         Local average over ±5 % of the trim speed, not the whole §25.175 range (±15 % or ±50 kt plus the free-return
         range); level-flight trim thrust, not the §25.175 climb or idle power; friction is not added to the slope;
-        the trim device is a hinge-moment bias fixed at its trim value (tab or feel-neutral shift), the stabiliser is
-        fixed at its declared incidence.
+        the trim device is a hinge-moment bias fixed at its trim value (tab or feel-neutral shift); a movable stabiliser
+        is held at its trim-speed setting (the elevator holds the speed change), else the stabiliser is fixed at its
+        declared incidence.
     """
 
     unevaluated = (
