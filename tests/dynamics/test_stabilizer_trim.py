@@ -124,3 +124,29 @@ def test_declaration_relations_are_checked_together(tmp_path):
     text = str(err.value)
     assert "geometry.horizontal_tail.incidence" in text and "datum" in text
     assert "geometry.horizontal_tail.stabilizer.elevator_trim" in text
+
+
+def test_cruise_trims_lie_within_the_published_trim_range(ctx):
+    """Plausibility against the airplane the baseline stands for: a certificated 777 trims in cruise at every CG in its
+    flaps-up PFC trim limits, +2.25° nose down to −10.25° nose up (777 AMM 27-41-00). At M 0.84, 35,000 ft, the
+    forward and aft CG at MTOW and at the lightest corner trim inside that range with the elevator at 0°, and the aft
+    CG needs less nose-up stabiliser than the forward one."""
+    from certkit.atmosphere import convert_speed
+
+    v = float(convert_speed(0.84, "MACH", "CAS", 35000 * FT)) / KN
+    corners = [(656000, 94.23), (656000, 100.28), (310000, 92.04), (310000, 100.82)]
+    batch = ctx.trim([_cond(m, x, "clean", v, 35000) for m, x in corners])
+    lo, hi = -10.25, 2.25
+    incidence = [math.degrees(r.stabilizer) for r in batch.results]
+    assert all(r.converged and not r.stabilizer_at_stop for r in batch.results)
+    assert all(lo < s < hi for s in incidence)
+    assert incidence[1] > incidence[0] and incidence[3] > incidence[2]
+
+
+def test_cli_trim_prints_the_incidence_and_the_stop(cli):
+    from ..conftest import BASELINE
+
+    out = cli("trim", BASELINE, "--corner", "fwd_mlw", "--config", "landing", "--speed", "140 kn CAS",
+              "--altitude", "0 ft").output
+    line = next(ln for ln in out.splitlines() if ln.strip().startswith("stabilizer"))
+    assert "-10.2500 deg incidence" in line and "nose-up stop" in line
