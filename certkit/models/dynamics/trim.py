@@ -25,6 +25,13 @@ A control that would have to go past its limit is not an error: the trim is solv
 limits and each :class:`TrimResult` lists the :class:`LimitExceedance` found ("needs −34.2°
 elevator, limit −30°") with a hint. Conditions that do not converge are reported as such with
 their residual; nothing raises for a single bad condition.
+
+A movable horizontal stabiliser (:class:`StabilizerTrim`, from ``geometry.horizontal_tail.stabilizer``) takes the
+elevator's place as the pitch unknown, the elevator held at its trim setting. Where the stabiliser would pass its
+trim limit it is left at that stop and the condition is trimmed again with the elevator (the airplane is held, not
+trimmed: ``stabilizer_at_stop`` and ``stabilizer_required`` say so, and the elevator's own limits are checked as
+usual). A stabiliser given as a setting (``stabilizer_setting``) is held there and the elevator trims: the state
+after a change made without re-trimming, or the start of a manoeuvre.
 """
 
 from __future__ import annotations
