@@ -28,7 +28,7 @@ import numpy as np
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import ConditionSpace, DesignWeight, speed_as
 from certkit.models.dynamics.trim import held_stabilizer
-from certkit.models.flight import control_limits, thrust_function
+from certkit.models.flight import control_limits, stabilizer_trim, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, stall_warning_cl
@@ -233,9 +233,10 @@ class ManeuveringCapability(Rule):
         inop = dead if spec["oei"] else None
         # a movable stabiliser stays where the wings-level trim at the same speed and thrust set it; the elevator
         # pulls into the turn (held_stabilizer: None without one)
+        movable = stabilizer_trim(ac) is not None
         if spec["fraction"] is None:
             gamma = np.full(len(conds), math.radians(crit.landing_path_deg))
-            held = held_stabilizer(ctx.trim(conds, kind="straight", gamma=gamma).results)
+            held = held_stabilizer(ctx.trim(conds, kind="straight", gamma=gamma).results) if movable else None
             results = ctx.trim(conds, kind="turn", bank=banks, gamma=gamma, stabilizer=held).results
             residual = np.zeros(len(conds))
         else:
@@ -244,9 +245,9 @@ class ManeuveringCapability(Rule):
                 aim, capped = wat_limited_thrust(ctx, conds, spec["wat"], spec["fraction"], inop)
             else:
                 aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
-            straight = trim_at_thrust(ctx, conds, aim, inoperative=inop)[0]
+            held = held_stabilizer(trim_at_thrust(ctx, conds, aim, inoperative=inop)[0]) if movable else None
             results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop,
-                                                      stabilizer=held_stabilizer(straight))
+                                                      stabilizer=held)
         out = []
         for i, c in enumerate(conds):
             r = results[i]
