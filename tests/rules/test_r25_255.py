@@ -67,3 +67,26 @@ def test_too_little_nose_down_elevator_fails_the_push(tmp_path, rated):
     pushes = [f for f in own(r) if f.check.startswith("push") and "design limit" in f.check]
     assert any(f.status == "fails" and f.value > 3.0 for f in pushes)
     assert all(f.status == "complies" for f in own(r) if f.check.startswith("pull") and "design limit" in f.check)
+
+
+def test_stick_forces_with_an_artificial_feel_elevator(tmp_path):
+    """With an artificial-feel elevator (test values: 5 lbf preload, 30 lbf/in at q̄ 10 kPa, 2 deg/in; zero force at
+    the original trim, elevator 0°) the forces are evaluated: pull F = −sign(δe)·5 − 30 (q̄/10 kPa) δe/2 lbf with
+    q̄ = ½ ρ0 V_EAS² (hand, 0.05 lbf). The pull force rises with g at every point ((b)) — also where the nose-up
+    mistrim leaves a push at 1 g and at 1.5 g — and the pull holding 1.5 g at VDF/MDF is within 125 lbf ((f))."""
+    import math
+
+    feel = ("\nsources:", "\ncontrol_forces:\n  elevator:\n    type: artificial_feel\n    preload: 5 lbf\n"
+                          "    gradient: 30 lbf/in\n    gearing: 2 deg/in\n    q_feel_reference: 10 kPa\nsources:")
+    r = run_rule("25.255", tmp_path, [RATE, feel])
+    slopes = [f for f in own(r) if "stick force per g" in f.check]
+    assert slopes and all(f.status == "complies" for f in slopes)
+    for f in slopes:
+        q = 0.5 * 1.225 * f.condition.speed ** 2
+        for key, angle in (("pull_force_pull_lbf", "elevator_pull_deg"), ("pull_force_push_lbf", "elevator_push_deg")):
+            d = f.details[angle]
+            assert f.details[key] == pytest.approx(-math.copysign(5.0, d) - 30.0 * q / 10e3 * d / 2.0, abs=0.05)
+    assert any(f.details["pull_force_pull_lbf"] < 0 for f in slopes)  # a push still at 1.5 g (nose-up mistrim)
+    recovery = [f for f in own(r) if f.check.startswith("(f)")]
+    assert recovery and all(f.condition.speed_name == "VDF/MDF" and f.limit == 125.0 and f.status == "complies"
+                            for f in recovery)

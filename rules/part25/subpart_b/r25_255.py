@@ -15,8 +15,9 @@ at VFC/MFC and VDF/MDF (thrust held at the trim), solve the instantaneous symmet
 to 0 g for the elevator (:func:`certkit.models.dynamics.pull_up.symmetric_pull_up`). Checks: the elevator within
 its design limits (control margin), and the elevator-fixed sense of (b): more trailing-edge-up elevator to pull,
 more trailing-edge-down to push (a positive elevator-per-g slope; no reversal). With control_forces.elevator the
-stick force itself (zero at the original trim) must be a pull at 1.5 g and a push at 0 g, and at most 125 lbf
-for the 1.5 g recovery at VDF/MDF ((f)); without one the force checks are not evaluated.
+stick force itself (zero at the original trim, pull positive) must rise with g from 0 g through 1 g to 1.5 g
+((b)(1) positive slope, (b)(2) no reversal), and the pull holding 1.5 g at VDF/MDF may not exceed 125 lbf ((f));
+without one the force checks are not evaluated.
 """
 
 from __future__ import annotations
@@ -65,8 +66,8 @@ class OutOfTrim(Rule):
         load factors of (c), and 1.5 g must be reachable for recovery at VDF/MDF with at most 125 lbf (f).
     """
     margin = """Elevator design limit on the deflected side − |elevator| for the 1.5 g pull and the 0 g push (deg);
-        the elevator change from 1 g in the right sense (deg, ≥ 0); with control_forces.elevator the pull (push)
-        force (lbf, > 0) and 125 lbf − the 1.5 g force at VDF/MDF."""
+        the elevator change from 1 g in the right sense (deg, ≥ 0); with control_forces.elevator the pull-force change
+        from 0 g to 1 g and from 1 g to 1.5 g (lbf, > 0) and 125 lbf − the pull holding 1.5 g at VDF/MDF."""
     references = ("25.253", "25.161", "25.655")
     requires = ("configurations.clean", "speeds.VMO", "speeds.VD")
     criteria = {
@@ -161,12 +162,17 @@ class OutOfTrim(Rule):
         trim_alpha = local_angle(ac, "elevator", trim.alpha, trim.beta, trim.V / float(speed_of_sound(trim.h)))
         trim_at = (trim.controls["elevator"], trim_alpha)
         force = lambda a, d: float(-elevator.force(q, local_angle(ac, "elevator", a, 0.0, mach), d, trim=trim_at) / LBF)  # noqa: E731
+        f_one = force(one.alpha[i], one.elevator[i])
         f_pull, f_push = force(pull.alpha[i], pull.elevator[i]), force(push.alpha[i], push.elevator[i])
-        out.append(Finding.compare(here, f"{para}: pull force at {crit.pull_load_factor:g} g", f_pull, 0.0, at_least=True,
-                                   unit="lbf", force_model=elevator.kind, **details))
-        out.append(Finding.compare(here, f"{para}: push force at {crit.push_load_factor:g} g", -f_push, 0.0, at_least=True,
-                                   unit="lbf", force_model=elevator.kind, **details))
-        if speed_name == "VDF/MDF":
-            out.append(Finding.compare(here, f"(f) {crit.pull_load_factor:g} g recovery force", abs(f_pull),
-                                       crit.recovery_force_lbf, at_least=False, unit="lbf", force_model=elevator.kind, **details))
+        forces = dict(pull_force_1g_lbf=round(f_one, 2), pull_force_pull_lbf=round(f_pull, 2),
+                      pull_force_push_lbf=round(f_push, 2), force_model=elevator.kind)
+        # (b): the pull force rises with g — from 1 g to the pull-up and from the push-over to 1 g (a pilot holding
+        # a push at 1 g out of trim pulls by pushing less); positive: the stable sense
+        out.append(Finding.compare(here, f"{para}: stick force per g, 1 g to {crit.pull_load_factor:g} g", f_pull - f_one,
+                                   0.0, at_least=True, unit="lbf", **forces, **details))
+        out.append(Finding.compare(here, f"{para}: stick force per g, {crit.push_load_factor:g} g to 1 g", f_one - f_push,
+                                   0.0, at_least=True, unit="lbf", **forces, **details))
+        if speed_name == "VDF/MDF":  # (f): the pull that holds 1.5 g (a push there needs no pull at all)
+            out.append(Finding.compare(here, f"(f) {crit.pull_load_factor:g} g recovery pull force", f_pull,
+                                       crit.recovery_force_lbf, at_least=False, unit="lbf", **forces, **details))
         return out
