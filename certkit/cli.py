@@ -559,5 +559,19 @@ def _register_study() -> None:
 _register_study()
 
 
+def entry() -> None:
+    """The ``certkit`` program: :func:`main` with Ctrl-C recorded (:mod:`certkit.interrupts`); an interrupted run ends
+    with exit code 130 at once, without the interpreter's shutdown."""
+    from certkit import interrupts
+
+    interrupts.install()
+    try:
+        main()
+    except SystemExit as exc:
+        if interrupts.requested() and exc.code == EXIT_INTERRUPTED:
+            interrupts.leave(EXIT_INTERRUPTED)
+        raise
+
+
 if __name__ == "__main__":  # pragma: no cover
-    main()
+    entry()

@@ -163,6 +163,10 @@ class LandingGear(_Section):
 
     main: Point
     nose: Point
+    tail_strike_attitude: Annotated[Angle, Field(gt=0.0, lt=math.radians(30.0))] | None = Field(
+        None, description="pitch attitude at which the aft fuselage touches the runway with the main gear on it "
+                          "(struts extended, e.g. the manufacturer's flight crew training manual); the simulated "
+                          "takeoff rotation stays below it while the gear carries load")
 
 
 class Geometry(_Section):
@@ -299,6 +303,9 @@ class Propulsion(_Section):
     static_thrust: PositiveForce = Field(description="sea-level static thrust of one engine")
     bypass_ratio: Annotated[float, Field(gt=0)] = 8.0
     deck: EngineDeck | None = None
+    failure_decay_time: Annotated[Time, Field(gt=0.0)] | None = Field(
+        None, description="time constant of the first-order decay of a failed engine's thrust to its windmilling "
+                          "drag (fuel cut); without it a failed engine windmills at once")
 
 
 # --- aerodynamics: calibration and declared data ------------------------------------------
@@ -470,8 +477,9 @@ class Performance(_Section):
     """Declared (flight-test or handbook) performance figures the rules match their simulations to."""
 
     takeoff_field_length: PositiveLength | None = Field(
-        None, description="takeoff field length at MTOW, sea level, standard day, all engines (the §25.113 distance "
-                          "to 35 ft × 1.15); §25.111 solves its rotation so that its simulated takeoff matches it")
+        None, description="takeoff field length at MTOW, sea level, standard day (§25.113(a): the greater of the "
+                          "one-engine-inoperative distance to 35 ft and 1.15 × the all-engines distance to 35 ft); "
+                          "§25.113 checks the simulated takeoff distance against it")
     source: str | None = None
 
 

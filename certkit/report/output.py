@@ -22,6 +22,8 @@ import tempfile
 import unicodedata
 from pathlib import Path
 
+from certkit.interrupts import raise_if_requested
+
 from certkit.errors import UserError
 
 #: the files of one report set, in the order they are replaced when the folder cannot be swapped
@@ -75,7 +77,9 @@ def _checked_target(given: Path) -> Path:
 
 
 def write_set(out: Path, files: dict[str, str]) -> None:
-    """Write ``files`` (name → text) as the content of folder ``out``, replacing its previous set in one step."""
+    """Write ``files`` (name → text) as the content of folder ``out``, replacing its previous set in one step; never
+    after an interrupt (Ctrl-C: the previous set stays)."""
+    raise_if_requested()
     parent = out.parent
     _remove_stale(parent)
     new = None
@@ -85,6 +89,7 @@ def write_set(out: Path, files: dict[str, str]) -> None:
         for name, text in files.items():
             _write_new(new / name, text)
         _sync(new)
+        raise_if_requested()
         if not out.exists() and not out.is_symlink():
             os.rename(new, out)
         elif set(os.listdir(out)) <= set(REPORT_FILES):

@@ -48,6 +48,7 @@ def study():
               help="Seconds between progress lines when the output is not a terminal.")
 def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator, progress_interval):
     """Evaluate every case of STUDY_FILE without a result yet (run it again to resume)."""
+    from certkit import interrupts
     from certkit.study.plan import DEFAULT_EVALUATOR
     from certkit.study.runner import run_study
     from certkit.study.spec import load_study
@@ -55,7 +56,7 @@ def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator
 
     spec = load_study(study_file)
     path = _store_of(study_file, store)
-    signal.signal(signal.SIGTERM, signal.default_int_handler)  # `kill` stops as Ctrl-C does: workers first
+    signal.signal(signal.SIGTERM, interrupts.on_interrupt)  # `kill` stops as Ctrl-C does: workers first
     try:
         with Store.open(path, create=True) as db:
             summary = run_study(spec, db, executor, workers, scheduler, evaluator or DEFAULT_EVALUATOR,

@@ -10,6 +10,7 @@ This module imports only the standard library and certkit.errors: a worker proce
 from __future__ import annotations
 
 import ctypes
+import gc
 import importlib
 import json
 import os
@@ -76,7 +77,28 @@ def _where(exc: BaseException) -> str:
     return f" (at {os.path.basename(last.filename)}:{last.lineno} in {last.name})"
 
 
+_SETTLED = {"done": False}
+
+
+def _freeze_long_lived() -> None:
+    """After a process's first case, what it keeps for the next ones (imports, compiled kernels, the parsed aircraft,
+    the declared airplane's lattice and loads) is moved out of the cyclic garbage collector's reach (``gc.freeze``,
+    after one full collection so no garbage is kept). Scanning those ~200,000 objects again and again cost about
+    0.4 s of every design's 3.5 s (measured with ``gc.callbacks`` on the benchmark sample)."""
+    if not _SETTLED["done"]:
+        _SETTLED["done"] = True
+        gc.collect()
+        gc.freeze()
+
+
 def run_case(task: Task) -> CaseResult:
+    try:
+        return _run_case(task)
+    finally:
+        _freeze_long_lived()
+
+
+def _run_case(task: Task) -> CaseResult:
     start = time.perf_counter()
     elapsed = lambda: time.perf_counter() - start  # noqa: E731
     try:

@@ -72,3 +72,23 @@ def test_workers_end_when_the_coordinator_is_killed(tmp_path):
     proc.send_signal(signal.SIGKILL)
     proc.wait(timeout=30)
     assert _gone(workers)
+
+
+def test_an_interrupt_swallowed_on_its_way_up_still_stops_the_outputs(tmp_path, monkeypatch):
+    """A KeyboardInterrupt lost in a finaliser or a callback (the check then runs on) must not let the new set replace
+    the previous one: the recorded interrupt is raised again before any output is written."""
+    from certkit import interrupts
+    from certkit.report.output import write_set
+
+    out = tmp_path / "report"
+    out.mkdir()
+    (out / "results.json").write_text('{"previous": true}')
+    monkeypatch.setitem(interrupts._state, "requested", False)
+    with pytest.raises(KeyboardInterrupt):
+        try:
+            interrupts.on_interrupt(signal.SIGINT, None)
+        except KeyboardInterrupt:
+            pass  # swallowed, as a finaliser does
+        write_set(out, {"results.json": '{"new": true}'})
+    assert (out / "results.json").read_text() == '{"previous": true}'
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".certkit-")]

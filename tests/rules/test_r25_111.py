@@ -6,8 +6,10 @@ Hand references (lb, ft, s; the baseline's GE90-94B class static thrust 97,300 l
   = 32.174 ft/s² × 2 × 97,300 lbf / 656,000 lb = 9.544 ft/s² (thrust line along the body axis, no aerodynamic
   force at rest, no rolling resistance yet: the tyre friction μ N tanh(v/0.3 m/s) builds up over the first
   0.3 m/s), and with one engine inoperative at rest half of it, 4.772 ft/s² (no windmilling drag at zero speed);
-* VEF = V1 − a_OEI Δt with Δt = 1 s: the speed a recognition interval after the failure must come back to
-  V1 = 150 KCAS (within 0.5 kn: a_OEI is quasi-steady, the gear carrying the weight of rest);
+* VEF = V1 − Δv, Δv = a_OEI Δt + (a_AEO − a_OEI) τ (1 − e^(−Δt/τ)) with Δt = 1 s and the declared spool-down
+  τ = 1.5 s: the speed a recognition interval after the failure must come back to V1 = 150 KCAS (within 1 kn: the
+  accelerations are quasi-steady, the gear carrying the weight of rest; the 10-Hz run sees the failure up to a step
+  late and holds each step's decaying thrust from its start);
 * V2 = 161 KCAS is the (c)(2) limit; VR = 155 KCAS; the rudder's design limits are ±23.2° (aircraft file).
 """
 
@@ -22,7 +24,8 @@ from .helpers import finding_by as _by, own
 from .helpers import run_rule
 
 GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
-        "    nose: {x: 22.1 ft, y: 0 ft, z: -18.5 ft}\n")
+        "    nose: {x: 22.1 ft, y: 0 ft, z: -18.5 ft}\n"
+        "    tail_strike_attitude: 12.1 deg   # 777-200, wheels on the runway, struts extended, flaps 5/15/20 [b777-fctm]\n")
 LOADINGS = ("MTOW forward", "MTOW reference", "MTOW aft")
 
 
@@ -43,8 +46,9 @@ def result(tmp_path_factory):
 
 def test_unrepresentative_runs_earn_no_verdict(result):
     """With the rule's own bounds (VLOF ≤ VR + 15 kn, V35 ≤ V2 + 10 kn, ≤ 30 ft off the centreline on the ground) the
-    baseline's runs are not representative (issue 12: VLOF 187 kn for VR 155 kn at forward CG, 128–235 ft sideways):
-    every check is not evaluated, and the reason quotes the run's own numbers."""
+    baseline's engine-out runs are not representative (the rudder on its stop cannot hold the centreline after the
+    failure; the rotation held below the tail-strike attitude lifts off late at forward CG): every check is not
+    evaluated, and the reason quotes the run's own numbers — never "complies"."""
     base = run_rule("25.111")
     assert base.status == "not_evaluated"
     for loading in LOADINGS:
@@ -54,22 +58,8 @@ def test_unrepresentative_runs_earn_no_verdict(result):
             assert f"deviates {d['max_lateral_deviation_on_ground_ft']:.0f} ft" in f.reason
             late = d["vlof_kn"] - d["vr_kn"] > 15.0
             assert ("above VR" in f.reason) == late
-    # the late lift-off at the forward CG (VLOF 187 kn, issue 12) was the elevator-trimmed airplane's: with the
-    # stabiliser set to its V2 trim and held, the elevator rotates the airplane and lift-off is within VR + 15 kn at
-    # every CG (the lateral deviation, the heading controller's, remains)
-    for loading in LOADINGS:
-        d = _by(result, loading, "(c)(2)").details
-        assert d["vlof_kn"] - d["vr_kn"] < 15.0 and d["v35_kn"] < 161.0 + 10.0
-        assert "above VR" not in _by(base, loading, "(c)(2)").reason
-
-
-def test_elevator_trimmed_airplane_lifts_off_late_at_forward_cg(tmp_path):
-    """Without its movable stabiliser (the stabiliser fixed at its cruise incidence, the elevator trimming) the
-    forward-CG rotation stalls and lift-off comes 31.8 kn after VR — the artefact issue 12 names."""
-    from .helpers import NO_STABILIZER
-
-    plain = run_rule("25.111", tmp_path, [NO_STABILIZER])
-    assert "31.8 kn above VR" in _by(plain, "MTOW forward", "(c)(2)").reason
+    d = _by(result, "MTOW forward", "(c)(2)").details
+    assert f"{d['vlof_kn'] - 155.0:.1f} kn above VR" in _by(base, "MTOW forward", "(c)(2)").reason
 
 
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
@@ -83,10 +73,10 @@ def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
     for loading in LOADINGS:
         f = _by(result, loading, "(c)(2)")
         assert f.details["initial_acceleration_m_s2"] / FT == pytest.approx(32.174 * 2 * 97300 / 656000, rel=5e-3)
-        assert f.details["v_recognition_kn"] == pytest.approx(150.0, abs=0.5)
+        assert f.details["v_recognition_kn"] == pytest.approx(150.0, abs=1.0)
         assert f.details["vef_kn"] < 150.0
         assert f.limit == pytest.approx(161.0, abs=1e-6) and f.unit == "kn"
-        assert f.details["vlof_kn"] > 155.0 and f.value > f.details["vlof_kn"]
+        assert f.details["vlof_kn"] > 155.0 and f.value > 161.0 - 5.0
         assert f.condition.get("inoperative") == "left"
     from certkit.report.figures import render_result
 
@@ -108,21 +98,25 @@ def test_a_smaller_rudder_design_limit_fails_the_engine_out_takeoff(result, tmp_
 
 
 
-def test_sign_cg_and_engine_failure(result):
-    """Moving the CG aft shortens the tail's lever against the weight on the mains: the elevator margin grows
-    forward → reference → aft and the airplane lifts off earlier (lower VLOF; the speed at 35 ft no longer orders
-    with the CG once the stabiliser is set to each CG's own V2 trim). Failing an engine makes the takeoff worse than
-    with all engines: a lower speed at 35 ft."""
-    m = [_by(result, c, "(a) elevator").margin for c in LOADINGS]
+def test_sign_cg_and_engine_failure(result, tmp_path):
+    """Moving the CG aft shortens the tail's lever against the weight on the mains: with the elevator trimming (the
+    baseline without its movable stabiliser) the elevator margin grows forward → reference → aft and the airplane
+    lifts off earlier (lower V at 35 ft); with the stabiliser set to each CG's own V2 trim the CG is trimmed out and
+    the margins need not order. Failing an engine makes the takeoff worse than with all engines: a lower speed at
+    35 ft."""
+    from .helpers import NO_STABILIZER
+
+    plain = run_rule("25.111", tmp_path, wide(NO_STABILIZER))
+    m = [_by(plain, c, "(a) elevator").margin for c in LOADINGS]
     assert m[0] < m[1] < m[2]
-    v = [_by(result, c, "(c)(2)").details["vlof_kn"] for c in LOADINGS]
+    v = [_by(plain, c, "(c)(2)").value for c in LOADINGS]
     assert v[0] > v[1] > v[2]
     for c in LOADINGS:
         d = _by(result, c, "(c)(2)").details
         assert d["v35_kn"] < d["all_engines_v35_kn"]
         # the left engine failed: the nose swings left (ψ < 0 first), the rudder pushes right (δr < 0, conventions)
         r = _by(result, c, "(a) rudder")
-        assert r.details["rudder_min_deg"] < -10.0 and r.details["rudder_max_deg"] <= 0.5
+        assert r.details["rudder_min_deg"] < -10.0 and r.details["rudder_max_deg"] < -r.details["rudder_min_deg"] / 2
 
 
 def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
@@ -133,37 +127,35 @@ def test_not_evaluated_without_landing_gear_or_v1(tmp_path):
     assert r.status == "not_evaluated" and all("speeds.V1" in f.reason for f in own(r))
 
 
-def _with_field_length(tmp_path, ft):
-    return run_rule("25.111", tmp_path, wide(("\nsources:", f"\nperformance:\n  takeoff_field_length: {ft} ft\n"
-                                                           "  source: test value\nsources:")))
+def test_pilot_rotation_below_tail_strike_and_distances(result):
+    """The rotation a pilot flies (Boeing Flight Operations Review 1986: 2–3°/s, not more than 3°/s; lift-off attitude
+    2–4° below the tail-strike attitude, 12.1° for the 777-200 per the FCTM): before lift-off the pitch rate stays
+    within 3°/s + 0.3°/s (the commanded 2.5°/s and the overshoot of the attitude loop) and the attitude on the runway
+    below 12.1°; the accelerate-go distance is the engine-out distance to 35 ft and the §25.113 takeoff distance the
+    greater of it and 1.15 × the all-engines one (hand arithmetic on the reported distances, 1 ft rounding); the
+    engine-out V35 lies 0–10 kn above V2."""
+    for loading in LOADINGS:
+        d = _by(result, loading, "(c)(2)").details
+        assert 0.5 < d["max_pitch_rate_before_liftoff_deg_s"] <= 3.3
+        assert d["max_pitch_on_ground_deg"] < 12.1
+        assert d["accelerate_go_distance_ft"] == pytest.approx(d["distance_to_35ft_ft"], abs=1.0)
+        assert d["all_engines_distance_x1.15_ft"] == pytest.approx(1.15 * d["all_engines_distance_to_35ft_ft"], abs=1.5)
+        assert d["takeoff_distance_ft"] == pytest.approx(max(d["accelerate_go_distance_ft"],
+                                                             d["all_engines_distance_x1.15_ft"]), abs=1.5)
+        assert "tail strike" in d["rotation_basis"] and "τ = 1.5 s" in d["spool_down_basis"]
+        # the pitch flies V2 once airborne: the 35-ft speed within the band of a representative run, 0 to 10 kn above
+        # V2 (§25.111(c)(2) "not less than V2 … as close as practical"; the 10 kn of the rule's criteria)
+        assert 0.0 <= d["v35_kn"] - d["v2_kn"] <= 10.0
 
 
-def test_rotation_matches_a_declared_field_length(tmp_path):
-    """With performance.takeoff_field_length the rotation attitude is solved so that 1.15 × the all-engines distance
-    to 35 ft (§25.113(a)(2)) equals it: the solved attitude is the linear interpolation of the tabulated distances
-    (attitudes V2 attitude + ROTATION_OFFSETS_DEG; hand interpolation, 0.01°). Sign: a longer field length needs a
-    lower rotation attitude and less nose-up elevator at forward CG. Without it, the V2 attitude (basis says so)."""
-    from certkit_rules.part25.subpart_b.r25_111 import ROTATION_OFFSETS_DEG
-
-    (tmp_path / "a").mkdir()
-    (tmp_path / "b").mkdir()
-    # field lengths inside the tabulated distances (about 8,000–10,000 ft with the stabiliser set to the V2 trim)
-    short, long_ = _with_field_length(tmp_path / "a", 9000), _with_field_length(tmp_path / "b", 9800)
-    for r, ft in ((short, 9000.0), (long_, 9800.0)):
-        for f in (f for f in own(r) if f.check.startswith("(a) elevator")):
-            d = f.details
-            assert "declared takeoff field length" in d["rotation_basis"]
-            if d["rotation_match"] != "matched":
-                continue
-            dist = np.array(d["field_length_ft_at_attitude_offsets"])
-            k = int(np.flatnonzero((dist[:-1] >= ft) & (dist[1:] <= ft))[0])
-            frac = (dist[k] - ft) / (dist[k] - dist[k + 1])
-            theta_v2 = d["target_pitch_deg"] - (ROTATION_OFFSETS_DEG[k] + frac * (ROTATION_OFFSETS_DEG[k + 1] - ROTATION_OFFSETS_DEG[k]))
-            # the V2 attitude is the same in both runs: recover it from one and compare across runs below
-            f.details["_theta_v2"] = theta_v2
-    fwd = lambda r: next(f for f in own(r) if f.check.startswith("(a) elevator") and f.condition.loading.endswith("forward"))  # noqa: E731
-    assert fwd(short).details["_theta_v2"] == pytest.approx(fwd(long_).details["_theta_v2"], abs=0.01)
-    assert fwd(long_).details["target_pitch_deg"] < fwd(short).details["target_pitch_deg"]
-    assert fwd(long_).value > fwd(short).value  # elevator less negative (less nose-up) with the gentler rotation
-    base = run_rule("25.111")
-    assert all("V2 attitude" in f.details["rotation_basis"] for f in own(base) if f.details)
+def test_too_little_elevator_never_complies(tmp_path):
+    """A deficient airplane: elevator travel and design limit cut to −8° nose-up (the baseline's rotation at forward
+    CG uses about −25°). The rotation stalls (forward CG: 5.5° on the runway, lift-off about 55 kn after VR), so with
+    the rule's own bounds no check of any loading may comply: the forward-CG run is not evaluated with the late
+    lift-off as its reason."""
+    cut = [("travel: {min: -30 deg, max: 25 deg}", "travel: {min: -8 deg, max: 25 deg}"),
+           ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -8 deg, max: 16.8 deg}")]
+    r = run_rule("25.111", tmp_path, cut)
+    assert all(f.status != "complies" for f in own(r))
+    f = _by(r, "MTOW forward", "(c)(2)")
+    assert f.status == "not_evaluated" and "above VR" in f.reason and f.details["vlof_kn"] > 155.0 + 15.0

@@ -44,8 +44,10 @@
     level on the ground and a commanded bank once airborne (an engine failure on the takeoff run).
 
 :class:`EngineFailure`
-    Makes the named engines inoperative (windmilling) from the instant the airspeed first reaches
-    ``speed`` (V_EF), per condition, and for the rest of the run (§25.111(a)(2)'s failure model).
+    Makes the named engines inoperative from the instant the airspeed first reaches ``speed`` (V_EF), per
+    condition, and for the rest of the run (§25.111(a)(2)'s failure model): windmilling at once, or with
+    ``decay_time`` τ a first-order spool-down, the failed engine's force T = D_wm + (T_run − D_wm) e^(−(t − t_EF)/τ)
+    (D_wm the windmilling drag, negative thrust; T_run the thrust it would give running).
 """
 
 from __future__ import annotations
@@ -187,8 +189,9 @@ class WingsLevel(Controller):
 
 
 class EngineFailure(Controller):
-    def __init__(self, model: AircraftModel, engines, speed):
+    def __init__(self, model: AircraftModel, engines, speed, decay_time: float | None = None):
         self.model = model
+        self.decay_time = decay_time
         names = [e.name for e in model.engines]
         idx = [names.index(e) if isinstance(e, str) else int(e) for e in np.atleast_1d(engines)]
         self.mask = np.zeros(len(names), dtype=bool)
@@ -205,6 +208,9 @@ class EngineFailure(Controller):
             op = self.model.operative.copy()
             op[self.failed[:, None] & self.mask[None, :]] = False
             self.model.set_operative(op)
+        if self.decay_time is not None and self.failed.any():
+            frac = np.exp(-(t - np.where(self.failed, self.fail_time, t)) / self.decay_time)
+            self.model.failed_thrust_fraction = np.where(self.failed[:, None] & self.mask[None, :], frac[:, None], 0.0)
         return u
 
 
@@ -212,41 +218,56 @@ class HeadingHold(Controller):
     """Lateral–directional hold of the initial heading (the runway's), for an engine failure on the takeoff
     run and climb-out: rudder on the heading error (proportional + integral, so that the steady asymmetric
     yawing moment needs no standing heading error) with yaw-rate damping,
-        δr = δr0 + K_ψ (ψ − ψ0) + K_I ∫(ψ − ψ0) dt + K_r r,
-    the integral frozen while the rudder is on its limit in the error's direction (anti-windup); aileron
-    toward the commanded bank, wings level on the ground and ``bank`` (rad, per condition) once the gear
-    carries no load (e.g. a few degrees toward the operating engine):
+        δr = δr0 + K_ψ e + K_I ∫e dt + K_r r,   e = (ψ − ψ0) + c,   c = K_y (y − y0) limited to ± ``max_correction``,
+    the integral frozen while the rudder is on its limit in the error's direction (anti-windup); with K_y > 0 the
+    ground run also tracks the centreline (a lateral outer loop: heading command ψ0 − c, back to the centreline
+    with a time constant of about 1/(V K_y), a crab of at most 3°), c held at its last ground value once airborne
+    (no step in the rudder at lift-off); no nose-wheel steering (the §25.149(e) VMCG
+    demonstration uses the rudder alone). Aileron toward the commanded bank, wings level on the ground and
+    ``bank`` (rad, per condition) once the gear carries no load (e.g. a few degrees toward the operating engine):
         δa = δa0 + K_φ (φ − φ_cmd) + K_p p,
     both clipped to ``limits`` (positive deflections give negative moments, :mod:`certkit.conventions`)."""
 
     def __init__(self, model: AircraftModel, u0: np.ndarray, k_psi: float = 3.0, k_i: float = 1.0, k_r: float = 3.0,
                  k_phi: float = 2.0, k_p: float = 1.0, bank=0.0, aileron: str = "aileron", rudder: str = "rudder",
-                 limits: dict | None = None):
+                 limits: dict | None = None, k_y: float = 0.0, max_correction: float = np.radians(3.0)):
         self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
         u0 = np.asarray(u0, dtype=float)
         self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
-        self.k_psi, self.k_i, self.k_r, self.k_phi, self.k_p = k_psi, k_i, k_r, k_phi, k_p
+        self.k_psi, self.k_i, self.k_r, self.k_phi, self.k_p, self.k_y = k_psi, k_i, k_r, k_phi, k_p, k_y
         self.bank = np.broadcast_to(np.asarray(bank, dtype=float), (model.n,))
         lim = limits or {}
         self.lim_a = lim.get(aileron, (-np.radians(25), np.radians(25)))
         self.lim_r = lim.get(rudder, (-np.radians(25), np.radians(25)))
-        self.psi0 = None
-        self.integral = np.zeros(model.n)
+        self.max_correction = max_correction
+        self.psi0 = self.y0 = None
+        self.integral, self.correction = np.zeros(model.n), np.zeros(model.n)
 
     def update(self, t, x, out, u, dt):
-        eul = quat_to_euler(x[:, 9:13])
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        phi = np.arctan2(2.0 * (q0 * q1 + q2 * q3), 1.0 - 2.0 * (q1 * q1 + q2 * q2))
+        psi = np.arctan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2 * q2 + q3 * q3))
         if self.psi0 is None:
-            self.psi0 = eul[:, 2].copy()
-        err = np.angle(np.exp(1j * (eul[:, 2] - self.psi0)))
+            self.psi0, self.y0 = psi.copy(), x[:, 1].copy()
+        airborne = out.gear_load.sum(axis=1) <= 0.0
+        err = (psi - self.psi0 + np.pi) % (2.0 * np.pi) - np.pi
+        if self.k_y:  # the centreline's heading correction, limited, held at its last value on the ground once airborne
+            ground = np.clip(self.k_y * (x[:, 1] - self.y0), -self.max_correction, self.max_correction)
+            self.correction = np.where(airborne, self.correction, ground)
+            err = err + self.correction
         raw = self.dr0 + self.k_psi * err + self.k_i * self.integral + self.k_r * x[:, 8]
         lo, hi = self.lim_r
-        saturated = ((raw >= hi) & (err > 0)) | ((raw <= lo) & (err < 0))
-        self.integral += np.where(saturated, 0.0, err) * dt
+        self.integral += np.where(on_stop(raw, err, lo, hi), 0.0, err) * dt
         u[:, self.jr] = np.clip(raw, lo, hi)
-        airborne = out.gear_load.sum(axis=1) <= 0.0
         phi_cmd = np.where(airborne, self.bank, 0.0)
-        u[:, self.ja] = np.clip(self.da0 + self.k_phi * (eul[:, 0] - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
+        u[:, self.ja] = np.clip(self.da0 + self.k_phi * (phi - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
         return u
 
 
-__all__ = ["PitchAttitudeHold", "TECSApproach", "WingsLevel", "EngineFailure", "HeadingHold"]
+def on_stop(raw, err, lo, hi) -> np.ndarray:
+    """True where the command ``raw`` is on a stop in the direction the error ``err`` (command − state, with a
+    positive gain) drives it: an integral is frozen there (anti-windup)."""
+    return ((raw >= hi) & (err > 0)) | ((raw <= lo) & (err < 0))
+
+
+__all__ = ["PitchAttitudeHold", "TECSApproach", "WingsLevel", "EngineFailure", "HeadingHold", "on_stop"]

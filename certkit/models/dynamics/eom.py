@@ -27,7 +27,8 @@ Forces and moments
       over m.
     * thrust: per engine, ``thrust(throttle, h, mach)`` in newtons along the engine's thrust line
       at its position, so an engine out (``operative`` False) gives the asymmetric yawing moment;
-      a failed engine produces its windmilling drag instead (if the engine gives one).
+      a failed engine produces its windmilling drag instead (if the engine gives one), or while it spools down
+      the drag plus the fraction ``failed_thrust_fraction`` of the difference to its running thrust.
     * gravity, g along earth-down.
     * ground reactions (optional :class:`GroundModel`): spring–damper gear legs with rolling and
       side friction, for takeoff and landing.
@@ -220,6 +221,9 @@ class AircraftModel:
         ne = len(self.engines)
         op = np.ones((n, ne), dtype=bool) if operative is None else np.broadcast_to(np.asarray(operative, dtype=bool), (n, ne)).copy()
         self.operative = op
+        #: share of its running thrust a failed engine still gives (n, n_engines): 0 windmills at once; a spool-down
+        #: (:class:`~certkit.models.dynamics.controllers.EngineFailure`) lets it decay from 1
+        self.failed_thrust_fraction = np.zeros((n, ne))
         self.ground = ground
         self.g = float(g)
         ref = aero.reference
@@ -315,7 +319,8 @@ class AircraftModel:
             if not self._all_operative[j]:
                 dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
                 op = self.operative[:, j] if rows is None else self.operative[rows, j]
-                thrust[:, j] = np.where(op, thrust[:, j], dead)
+                frac = self.failed_thrust_fraction[:, j] if rows is None else self.failed_thrust_fraction[rows, j]
+                thrust[:, j] = np.where(op, thrust[:, j], dead + frac * (thrust[:, j] - dead))
         return thrust
 
     def _coefficients(self, X, air, controls) -> np.ndarray:

@@ -2,18 +2,23 @@
 
 :func:`takeoff_run`
     From rest on the runway (gear in static equilibrium at idle thrust, :func:`ground_equilibrium`),
-    brakes released at t = 0 with the throttles set to ``throttle`` (no spool-up); a movable stabiliser set to
-    ``stabilizer0`` (the takeoff trim, deflection from its datum) and held; the elevator held at ``elevator0`` until
-    the rotation speed V_R, then :class:`PitchAttitudeHold` rotates at ``rotation_rate`` to
-    ``theta_target``; :class:`WingsLevel` holds wings level / zero sideslip; optionally
-    :class:`EngineFailure` fails ``failed_engine`` at ``failure_speed``. Runs until the lowest
-    gear point is ``screen_height`` above the runway with no gear load (or ``t_end``).
-    Returns a :class:`TakeoffResult` with V_LOF (first instant with no gear load after the
-    rotation), the speed, distance and time at the screen height, and the extreme elevator.
+    brakes released at t = 0 with the throttles set to ``throttle`` (no spool-up); the elevator held at
+    ``elevator0`` (and any ``settings``, e.g. a stabiliser at its takeoff setting, held throughout) until the
+    rotation speed V_R, then the pilot's rotation (:class:`~certkit.models.dynamics.takeoff_pilot.RotationPilot`):
+    attitude command rate-limited at ``rotation_rate`` toward ``theta_target`` while on the gear (at most the
+    ``tail_strike`` attitude less ``tail_margin``), then toward the attitude that holds ``climb_speed`` once
+    airborne, elevator by feed-forward (``elevator_ff``) and PI attitude feedback. :class:`WingsLevel` holds wings
+    level / zero sideslip; optionally :class:`EngineFailure` fails ``failed_engine`` at ``failure_speed`` (its
+    thrust decaying with ``failure_decay_time``). Runs until the lowest gear point is ``screen_height`` above the
+    runway with no gear load (or ``t_end``). Returns a :class:`TakeoffResult` with V_LOF (first instant with no
+    gear load after the rotation), the speed, distance and time at the screen height, the extreme elevator, the
+    largest pitch attitude with a gear leg on the runway, the largest pitch rate before lift-off and the largest
+    lateral deviation on the ground.
     ``lateral="heading"`` replaces the wings-level/zero-sideslip hold by :class:`HeadingHold` (rudder
-    holds the runway heading, aileron wings level on the ground and ``bank_airborne`` once airborne);
-    ``climb_out`` (s) continues the run past the screen height, and the result then carries the climb
-    gradient between records and from the screen height to the end of the run.
+    holds the runway heading and, with ``centreline_gain`` K_y, the centreline on the ground; aileron wings level
+    on the ground and ``bank_airborne`` once airborne); ``climb_out`` (s) continues the run past the screen
+    height, and the result then carries the climb gradient between records and from the screen height to the
+    end of the run.
 
 :func:`runway_acceleration`
     Quasi-steady acceleration along the runway at a given speed, with a chosen set of engines
@@ -34,11 +39,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from certkit.models.dynamics.controllers import (EngineFailure, HeadingHold, PitchAttitudeHold, TECSApproach,
-                                                    WingsLevel)
+from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
 from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
+from certkit.models.dynamics.takeoff_pilot import RotationPilot
 
 
 def _hdot(x13):
@@ -64,6 +69,9 @@ class TakeoffResult:
     gradient: np.ndarray | None = None   # (nt-1, n) climb gradient between records, airborne (nan on the ground)
     climb_gradient: np.ndarray | None = None  # (n,) mean gradient from the screen height to the end of the run
     screen_index: np.ndarray | None = None    # (n,) record index at the screen height
+    pitch_on_ground_max: np.ndarray | None = None  # (n,) rad, largest attitude with a gear leg on the runway
+    pitch_rate_max: np.ndarray | None = None       # (n,) rad/s, largest pitch rate from VR to lift-off
+    lateral_on_ground_max: np.ndarray | None = None  # (n,) m, largest |y − y0| on the ground
 
 
 @dataclass
@@ -83,31 +91,33 @@ def _elevator_extremes(sim: SimulationResult, j: int):
     return e.min(axis=0), e.max(axis=0)
 
 
-def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: float = 1.0, elevator0=0.0,
-                rotation_rate: float = np.radians(3.0), screen_height: float = 35 * 0.3048,
+def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=None, throttle: float = 1.0,
+                elevator0=0.0, settings=None, elevator_ff=None, tail_strike=None, tail_margin: float = np.radians(2.0),
+                rotation_rate: float = np.radians(2.5), screen_height: float = 35 * 0.3048,
                 elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
-                failed_engine: str | None = None, failure_speed=None, t_end: float = 120.0,
-                dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
-                climb_out: float = 0.0, stabilizer0=None) -> TakeoffResult:
+                failed_engine: str | None = None, failure_speed=None, failure_decay_time: float | None = None,
+                t_end: float = 120.0, dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
+                climb_out: float = 0.0, centreline_gain: float = 0.004) -> TakeoffResult:
     n = model.n
     u = np.zeros((n, len(model.control_names)))
+    for name, value in (settings or {}).items():
+        u[:, model.control_index(name)] = value
     u[:, model.throttle_slice] = throttle
     je = model.control_index("elevator")
     u[:, je] = elevator0
-    if stabilizer0 is not None:  # a movable stabiliser set to the takeoff trim, held; the elevator rotates
-        u[:, model.control_index("stabilizer")] = stabilizer0
     idle = u.copy()
     idle[:, model.throttle_slice] = 0.0
     x0 = ground_equilibrium(model, idle)  # at rest on the brakes, engines idle; then takeoff thrust and release
     xd = model.derivatives_euler(x0, u)
     th = x0[:, 10]
     a0 = np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
-    ctrls = [PitchAttitudeHold(model, u, rotation_speed, theta_target, rotation_rate=rotation_rate,
-                               limits=elevator_limits),
+    ctrls = [RotationPilot(model, u, rotation_speed, theta_target, np.nan if climb_speed is None else climb_speed,
+                           rotation_rate=rotation_rate, elevator_ff=elevator_ff, tail_strike=tail_strike,
+                           tail_margin=tail_margin, limits=elevator_limits),
              WingsLevel(model, u, limits=lateral_limits) if lateral == "wings level"
-             else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits)]
+             else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain)]
     if failed_engine is not None:
-        ctrls.append(EngineFailure(model, failed_engine, failure_speed))
+        ctrls.append(EngineFailure(model, failed_engine, failure_speed, decay_time=failure_decay_time))
     elevation = model.ground.elevation
 
     t_scr = np.full(n, np.nan)
@@ -148,8 +158,16 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, throttle: fl
         climb = np.where(reached & (k_end > k_scr), (sim["h"][k_end, cols] - sim["h"][k_scr, cols])
                          / (s_path[k_end, cols] - s_path[k_scr, cols]), np.nan)
     emin, emax = _elevator_extremes(sim, je)
+    on_ground = ~airborne & (np.arange(nt)[:, None] <= k_end[None, :])
+    vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (n,))
+    before_lof = (sim["V"] >= vr[None, :]) & (np.cumsum(airborne, axis=0) == 0)
+    with np.errstate(invalid="ignore"):
+        pitch_ground = np.where(on_ground, sim["theta"], -np.inf).max(axis=0)
+        rate_max = np.where(before_lof, sim["q"], -np.inf).max(axis=0)
+    lateral_ground = np.where(on_ground, np.abs(sim["y_E"] - sim["y_E"][0]), 0.0).max(axis=0)
     return TakeoffResult(sim, x0, a0, reached, v_lof, x_lof - x0[:, 0], v_scr, x_scr, t_scr, emin, emax, wheel,
-                         grad, climb, k_scr)
+                         grad, climb, k_scr, pitch_ground, np.where(np.isfinite(rate_max), rate_max, np.nan),
+                         lateral_ground)
 
 
 def runway_acceleration(model: AircraftModel, speed, throttle: float = 1.0, operative=None) -> np.ndarray:

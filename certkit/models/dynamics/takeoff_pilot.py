@@ -1,0 +1,99 @@
+"""The takeoff rotation a pilot flies (vectorised over the batch).
+
+:class:`RotationPilot`
+    The pitch technique of the transport-airplane takeoff (Boeing, *The importance of proper rotation technique*,
+    Flight Operations Review, 14 March 1986: rotation initiated at VR, a smooth continuous manoeuvre to the target
+    pitch attitude at typically 2–3°/s, not more than 3°/s; the lift-off attitude about 2–4° below the tail-strike
+    attitude; Boeing 777 FCTM §3: lift-off attitude 8.5°, tail strike at 12.1° for the 777-200):
+      * below VR the elevator stays at its take-off setting ``u0`` (the stabiliser, if any, at its setting);
+      * from VR the commanded attitude θ_c rises at the rotation rate r (rate-limited, and never more than
+        r × ``lead_time`` (0.5 s) ahead of the attitude: the pilot flies the rate he sees), toward the attitude
+        ``theta_ground`` while a gear leg carries load — at most the tail-strike attitude less ``tail_margin``:
+        the pilot holds the attitude there until the airplane unsticks rather than over-rotate —, and once
+        airborne toward the climb attitude: θ_air = θ_LOF + K_V (V − V_climb) + K_VI ∫(V − V_climb) dt, the attitude
+        at lift-off corrected for the speed error (the flight director's speed-on-pitch law: V2 with an engine
+        out, a few knots more with all engines), still rate-limited at r;
+      * the elevator: feed-forward plus proportional–integral attitude feedback and rate feedback on the commanded
+        rate,
+            δe = δe_ff + K_θ (θ − θ_c) + K_I ∫(θ − θ_c) dt + K_q (q − θ̇_c)   (positive δe nose-down, Etkin)
+        with δe_ff the elevator of the airborne climb (e.g. the V2 trim's), the integral frozen while the elevator
+        is on its stop in the error's direction (anti-windup), clipped to the elevator ``limits``.
+    The rotation rate is the commanded one: how fast the airplane follows is the airplane's (its elevator power
+    against the weight on the main gear). Gains K_θ 3 (rad/rad), K_I 0.5 /s, K_q 6 s, K_V 1°/(m/s), K_VI 0.1°/m are
+    a choice, made on the baseline so that the pitch rate before lift-off stays within the 3°/s ceiling at every CG
+    (2.7–3.0°/s; with K_q 1 the airplane overshot to 5°/s and past the tail-strike attitude).
+
+Centreline tracking on the runway is :class:`~certkit.models.dynamics.controllers.HeadingHold` with ``k_y`` > 0.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from certkit.models.dynamics.controllers import on_stop
+from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.simulate import Controller
+
+
+class RotationPilot(Controller):
+    def __init__(self, model: AircraftModel, u0: np.ndarray, rotation_speed, theta_ground, climb_speed,
+                 rotation_rate: float = np.radians(2.5), elevator_ff=None, tail_strike=None,
+                 tail_margin: float = np.radians(2.0), k_theta: float = 3.0, k_i: float = 0.5, k_q: float = 6.0,
+                 k_v: float = np.radians(1.0), k_vi: float = np.radians(0.1), lead_time: float = 0.5,
+                 elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+        n = model.n
+        self.j = model.control_index(elevator)
+        self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
+        b = lambda v: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()  # noqa: E731
+        self.vr, self.v_climb = b(rotation_speed), b(climb_speed)
+        self.climb_free = np.isnan(self.v_climb)
+        ground = b(theta_ground)
+        if tail_strike is not None:
+            ground = np.minimum(ground, b(tail_strike) - tail_margin)
+        self.theta_ground = ground
+        self.de_ff = self.de0.copy() if elevator_ff is None else b(elevator_ff)
+        self.rate, self.limits, self.lead = rotation_rate, limits, rotation_rate * lead_time
+        self.kt, self.ki, self.kq, self.kv, self.kvi = k_theta, k_i, k_q, k_v, k_vi
+        self.rotating = np.zeros(n, dtype=bool)
+        self.airborne = np.zeros(n, dtype=bool)
+        self.theta_cmd = None
+        self.theta_lof = np.full(n, np.nan)
+        self.integral = np.zeros(n)
+        self.speed_integral = np.zeros(n)
+
+    def update(self, t, x, out, u, dt):
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        theta = np.arcsin(np.clip(2.0 * (q0 * q2 - q3 * q1), -1.0, 1.0))
+        rotating = self.rotating
+        rotating |= out.V >= self.vr
+        if self.theta_cmd is None or not rotating.any():  # the ground roll before VR: elevator at its takeoff setting, command on the attitude
+            self.theta_cmd = theta
+            u[:, self.j] = np.where(rotating, self.de_ff, self.de0)
+            return u
+        V = out.V
+        lifted = rotating & ~self.airborne & (out.gear_load.sum(axis=1) <= 0.0)
+        if lifted.any():
+            self.theta_lof = np.where(lifted, theta, self.theta_lof)
+            self.airborne |= lifted
+        airborne = self.airborne
+        if airborne.any():
+            dv = np.where(self.climb_free, 0.0, V - self.v_climb)  # no climb speed: hold the lift-off attitude
+            self.speed_integral += np.where(airborne, dv, 0.0) * dt
+            target = np.where(airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral,
+                              self.theta_ground)
+        else:
+            target = self.theta_ground
+        previous = self.theta_cmd
+        step = np.clip(target - previous, -self.rate * dt, self.rate * dt)
+        cmd = np.where(rotating, np.minimum(previous + step, theta + self.lead), theta)
+        self.theta_cmd = cmd
+        rate_cmd = (cmd - previous) / dt
+        err = theta - cmd
+        lo, hi = self.limits
+        raw = self.de_ff + self.kt * err + self.ki * self.integral + self.kq * (x[:, 7] - rate_cmd)
+        self.integral += np.where(rotating & ~on_stop(raw, err, lo, hi), err * dt, 0.0)
+        u[:, self.j] = np.where(rotating, np.clip(raw, lo, hi), self.de0)
+        return u
+
+
+__all__ = ["RotationPilot"]

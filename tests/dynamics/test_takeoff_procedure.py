@@ -1,0 +1,66 @@
+"""The simulated takeoff procedure (certkit.models.dynamics.procedures.takeoff_run with the pilot's rotation) against
+references no one here wrote.
+
+* Ground roll: Raymer, *Aircraft Design: A Conceptual Approach*, 5th ed., §17.8.1, eq. 17.101: the distance to
+  accelerate from V_i to V_f on the runway with constant thrust is
+      S_G = 1/(2 g K_A) ln[(K_T + K_A V_f²)/(K_T + K_A V_i²)],  K_T = T/W − μ,  K_A = ρ/(2 W/S) (μ C_L − C_D),
+  with the thrust taken at 0.7 V_f (Raymer's recommendation for a thrust that varies with speed). Same thrust model,
+  C_L and C_D at the rest attitude from the same aerodynamic model, μ = 0.02 (the ground model's rolling friction).
+  Tolerance 3 %: the closed form holds the thrust constant at its 0.7 V_f value and the lift on the gear at the
+  rest attitude; the simulation integrates both as they vary (and the small pitch change as the struts extend).
+* Rotation: the pitch rate before lift-off stays within the 3°/s ceiling of the Boeing Flight Operations Review
+  (1986) plus 0.3°/s for the attitude loop's overshoot, with the commanded 2.5°/s.
+"""
+
+import numpy as np
+import pytest
+
+from certkit.atmosphere import density, speed_of_sound
+from certkit.models.aero.interface import AeroState
+from certkit.models.dynamics.procedures import takeoff_run
+from certkit.models.flight import control_limits, flight_model, ground_model
+from certkit.units import KN
+
+
+@pytest.fixture
+def setup(ctx):
+    ac = ctx.aircraft
+    mass = ac.mass.MTOW
+    from certkit.models.mass.loading import reference_cg
+
+    loading = ctx.loading(mass, reference_cg(ac), "MTOW reference")
+    model = flight_model(ac, ctx.aero("takeoff").model, [loading], ground=ground_model(ac))
+    return ac, model
+
+
+def test_ground_roll_against_raymer_closed_form(setup):
+    ac, model = setup
+    v_f = 140 * KN  # below VR: no rotation yet (VR 155 kn)
+    run = takeoff_run(model, rotation_speed=1e3, theta_target=0.0, t_end=50.0, dt=0.1)
+    V, x = run.sim["V"][:, 0], run.sim["x_N"][:, 0] - run.x0[0, 0]
+    k = int(np.argmax(V >= v_f))
+    s_sim = np.interp(v_f, V[k - 1:k + 1], x[k - 1:k + 1])
+
+    rho, a_sound = float(density(0.0)), float(speed_of_sound(0.0))
+    W = model.mass[0] * model.g
+    thrust = sum(float(e.thrust(np.array([1.0]), np.array([0.0]), np.array([0.7 * v_f / a_sound]))[0])
+                 for e in model.engines)
+    theta0 = run.x0[0, 10]
+    c = model.aero.coefficients(AeroState(alpha=np.array([theta0]), mach=np.array([0.5 * v_f / a_sound])))
+    CL, CD = float(np.ravel(c.CL)[0]), float(np.ravel(c.CD)[0])
+    mu, S = 0.02, model.S
+    K_T = thrust / W - mu
+    K_A = rho / (2 * W / S) * (mu * CL - CD)
+    s_raymer = np.log((K_T + K_A * v_f ** 2) / K_T) / (2 * model.g * K_A)
+    print(f"ground roll to 140 kn: simulated {s_sim:.1f} m, Raymer {s_raymer:.1f} m")
+    assert s_sim == pytest.approx(s_raymer, rel=0.03)
+
+
+def test_rotation_rate_within_the_pilot_limit(setup):
+    ac, model = setup
+    travel = control_limits(ac, design=False)
+    run = takeoff_run(model, 155 * KN, np.radians(10.1), climb_speed=171 * KN, rotation_rate=np.radians(2.5),
+                      elevator_limits=travel["elevator"], dt=0.1, t_end=90.0)
+    assert run.reached[0]
+    assert 1.5 <= np.degrees(run.pitch_rate_max[0]) <= 3.3
+    assert np.degrees(run.pitch_on_ground_max[0]) < 12.1
