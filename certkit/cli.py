@@ -404,7 +404,12 @@ def _print_trim(r, given: dict):
     click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {speed} · {manoeuvre}")
     click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
     click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
+    st = r.get("stabilizer")
     for name, value in r["controls"].items():
+        if name == "stabilizer" and st:  # the incidence, not the model's deflection from the datum
+            stop = f" (at its {st['at_stop']} stop; needs {st['required_deg']:.2f} deg)" if st["at_stop"] else ""
+            click.echo(f"  {'stabilizer':<18} {st['incidence_deg']:10.4f} deg incidence{stop}")
+            continue
         click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")
     thrust = r.get("thrust_N") or {}
     for name, value in thrust.items():

@@ -155,13 +155,15 @@ class Context:
         return self.memo(key, lambda: solve_loading(self.aircraft, mass, x_cg, name))
 
     def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
-             configuration: str | None = None, design_limits: bool = True, throttle=None):
+             configuration: str | None = None, design_limits: bool = True, throttle=None, stabilizer=None):
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
         value per condition (rad); ``inoperative`` names a failed engine (or gives one name per condition);
         ``throttle`` fixes the throttles (0–1, the flight-path angle is then solved for). Control limits are the design
-        limits.
+        limits. An airplane with a movable stabiliser trims it (the elevator at its trim setting); ``stabilizer``
+        (rad, deflection from the datum as in ``TrimBatch.u``, a scalar or one per condition) holds it there instead
+        and solves for the elevator — a change without re-trimming, or a manoeuvre from a trim.
         """
         from certkit.conditions import speed_as
 
@@ -176,12 +178,15 @@ class Context:
                _hashable(gamma), _hashable(bank), _hashable(beta),
                inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative), design_limits,
                None if throttle is None else _hashable(throttle))
+        if stabilizer is not None:
+            key += ("stabilizer", _hashable(stabilizer))
         return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits,
-                                                 throttle))
+                                                 throttle, stabilizer))
 
-    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits, throttle=None):
+    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits, throttle=None,
+              stabilizer=None):
         from certkit.models.dynamics.trim import trim
-        from certkit.models.flight import ROLES, control_limits, flight_model
+        from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
 
         loadings = [self.loading(c.mass, c.x_cg, c.loading or "") for c in conds]
         operative = None
@@ -192,8 +197,10 @@ class Context:
                 raise ValueError(f"no engine named {d!r} (engines: {', '.join(names)})")
             operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
+        st = model_stabilizer(self.aircraft, model, design_limits)
         return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
-                    limits=control_limits(self.aircraft, design=design_limits), roles=ROLES)
+                    limits=control_limits(self.aircraft, design=design_limits), roles=ROLES, stabilizer=st,
+                    stabilizer_setting=None if st is None else stabilizer)
 
     def modes(self, conditions):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each

@@ -37,6 +37,9 @@ Drag axis
 
 Control surfaces — a positive deflection produces a negative moment (Etkin & Reid)
     elevator: trailing edge down positive (nose-down pitching moment).
+    stabilizer (movable horizontal stabiliser): leading edge up positive (airplane nose-down trim), the whole tail
+    turning about the pitch axis; the model's control is the deflection from ``horizontal_tail.incidence``, the
+    trims report the incidence.
     aileron: right aileron trailing edge down positive, left one up (left-wing-down rolling moment).
     rudder: trailing edge left positive (nose-left yawing moment).
     flaps, slats: deployed positive.

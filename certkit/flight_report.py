@@ -127,7 +127,7 @@ def _altitude_and_speed(aircraft, altitude: str | None, speed: str | None) -> tu
 def trim_condition(ctx, fc: FlightCondition):
     """Trim the condition; returns (trim batch, flight model)."""
     from certkit.models.dynamics.trim import trim
-    from certkit.models.flight import ROLES, control_limits, flight_model
+    from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
     from certkit.models.mass.loading import solve_loading
 
     aircraft = ctx.aircraft
@@ -137,7 +137,7 @@ def trim_condition(ctx, fc: FlightCondition):
         operative = np.array([[e.name != fc.inoperative for e in aircraft.propulsion.engines]])
     model = flight_model(aircraft, ctx.aero(fc.configuration).model, [loading], operative=operative)
     batch = trim(model, fc.tas, fc.altitude, kind=fc.kind, gamma=fc.gamma, bank=fc.bank, beta=fc.beta,
-                 limits=control_limits(aircraft), roles=ROLES)
+                 limits=control_limits(aircraft), roles=ROLES, stabilizer=model_stabilizer(aircraft, model))
     return batch, model, loading
 
 
@@ -161,7 +161,7 @@ def _no_pitch_control(model) -> bool:
 def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
     r = batch.results[0]
     warning = ctx.inertia_warning()
-    return {
+    out = {
         "condition": {"loading": fc.loading_name, "mass_kg": fc.mass, "x_cg_m": fc.x_cg, "configuration": fc.configuration,
                       "altitude_m": fc.altitude, "tas_m_s": fc.tas, "kind": fc.kind, "gamma_deg": np.degrees(fc.gamma),
                       "bank_deg": np.degrees(fc.bank), "beta_deg": np.degrees(fc.beta), "inoperative": fc.inoperative},
@@ -177,6 +177,10 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
         "loading_notes": list(loading.notes),
         "warnings": [warning] if warning else [],
     }
+    if r.stabilizer is not None:  # a movable stabiliser: its incidence (the controls give its deflection from the datum)
+        out["stabilizer"] = {"incidence_deg": float(np.degrees(r.stabilizer)),
+                             "required_deg": float(np.degrees(r.stabilizer_required)), "at_stop": r.stabilizer_at_stop}
+    return out
 
 
 def modes_report(ctx, fc: FlightCondition, density_gradient: bool = True) -> dict:

@@ -189,6 +189,33 @@ def _geometry(s):
         if not (0.0 <= x <= g.fuselage.length):
             yield f"geometry.{name}.root_leading_edge.x", f"root lies outside the fuselage (0 to {g.fuselage.length:.2f} m)", x
     yield from _tail_on_fuselage(g)
+    yield from _movable_stabilizer(g)
+
+
+def _movable_stabilizer(g):
+    """A movable stabiliser is the horizontal tail's; its datum incidence and the elevator's trim setting must lie
+    within their ranges, and it needs an elevator to manoeuvre with."""
+    for name in ("wing", "vertical_tail"):
+        if getattr(g, name).stabilizer is not None:
+            yield f"geometry.{name}.stabilizer", "only the horizontal tail can be a movable stabiliser", None
+    t = g.horizontal_tail
+    st = t.stabilizer
+    if st is None:
+        return
+    deg = 180.0 / math.pi
+    lim = st.design_limits or st.travel
+    if not lim.min - 1e-12 <= t.incidence <= lim.max + 1e-12:
+        yield ("geometry.horizontal_tail.incidence", f"the incidence is the stabiliser's datum and must lie within its "
+               f"{'design limits' if st.design_limits else 'travel'} ({lim.min * deg:.2f}° to {lim.max * deg:.2f}°)",
+               t.incidence)
+    elevator = t.controls.get("elevator")
+    if elevator is None:
+        yield "geometry.horizontal_tail.controls", "a movable stabiliser needs an elevator (controls.elevator)", None
+        return
+    e = elevator.design_limits or elevator.travel
+    if not e.min <= st.elevator_trim <= e.max:
+        yield ("geometry.horizontal_tail.stabilizer.elevator_trim", f"must lie within the elevator's limits "
+               f"({e.min * deg:.1f}° to {e.max * deg:.1f}°)", st.elevator_trim)
 
 
 def _tail_on_fuselage(g):

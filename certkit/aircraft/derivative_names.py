@@ -81,6 +81,8 @@ DIMENSIONAL_CONTROL = {"X": ("x force", "N/rad"), "Y": ("side force", "N/rad"), 
                        "N": ("yawing moment", "N m/rad")}
 #: control names a table may use without listing them in ``controls:`` (others must be listed, so that a misspelt
 #: derivative such as X_uu is an error, not a control named "uu")
+#: the control of a movable horizontal stabiliser in the flight models (deflection from the declared tail incidence)
+STABILIZER = "stabilizer"
 USUAL_CONTROLS = ("elevator", "aileron", "rudder", "stabilizer", "spoiler", "flap", "slat")
 _MOTION = ("alpha", "beta", "p", "q", "r", "u", "v", "w", "wdot", "alphadot", "minD")
 

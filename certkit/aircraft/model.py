@@ -104,6 +104,29 @@ class HighLiftDevice(_Section):
         return self
 
 
+class MovableStabilizer(_Section):
+    """A trimmable (movable) horizontal stabiliser: the whole tail's incidence is the long-term pitch trim and the
+    elevator is left for manoeuvring (issue 12). Angles are the stabiliser incidence to the body x axis, positive
+    leading edge up (airplane nose-down trim), as ``horizontal_tail.incidence``, which is the datum the
+    aerodynamic model is built at. Every steady trim solves for the stabiliser with the elevator at
+    ``elevator_trim``; where the stabiliser reaches its limit, the elevator carries the rest."""
+
+    travel: Limits = Field(description="incidence range to the structural stops (min: nose-up trim, leading edge down)")
+    design_limits: Limits | None = Field(None, description="range the trim system allows (the trims are solved within "
+                                                           "it); the travel when omitted")
+    rate: Annotated[AngularRate, Field(gt=0)] | None = Field(None, description="trim rate of the stabiliser "
+                                                                                 "('0.5 deg/s'), for out-of-trim cases")
+    elevator_trim: Angle = Field(0.0, description="elevator deflection at which the airplane is trimmed (default 0)")
+    source: str = Field("", description="where the travel and rate come from")
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        d, t = self.design_limits, self.travel
+        if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
+            raise ValueError("design_limits must lie within the travel to the structural stops")
+        return self
+
+
 class LiftingSurface(_Section):
     """A trapezoidal lifting surface (one pair of panels, or the fin on the plane of symmetry)."""
 
@@ -120,6 +143,8 @@ class LiftingSurface(_Section):
     controls: dict[str, ControlSurface] = Field(default_factory=dict)
     flaps: HighLiftDevice | None = None
     slats: HighLiftDevice | None = None
+    stabilizer: MovableStabilizer | None = Field(None, description="horizontal tail only: the whole tail's incidence "
+                                                                    "moves to trim (travel, rate, elevator trim setting)")
 
 
 class Fuselage(_Section):

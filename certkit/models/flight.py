@@ -23,8 +23,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from certkit.aircraft.derivative_names import STABILIZER
 from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundModel
 from certkit.models.propulsion.engine import EngineDeck, ParametricTurbofan, windmill_drag
+
 
 #: the aero control that moves each trim axis
 ROLES = {"pitch": "elevator", "roll": "aileron", "yaw": "rudder"}
@@ -92,7 +94,8 @@ def engines(aircraft) -> list[Engine]:
 
 
 def control_limits(aircraft, design: bool = True) -> dict[str, tuple[float, float]]:
-    """(min, max) in radians of every control surface, design limits where declared."""
+    """(min, max) in radians of every control surface, design limits where declared; a movable stabiliser's as
+    deflections from its datum incidence (the model's ``stabilizer`` control)."""
     limits: dict[str, tuple[float, float]] = {"throttle": (0.0, 1.0)}
     g = aircraft.geometry
     if g is None:
@@ -101,7 +104,33 @@ def control_limits(aircraft, design: bool = True) -> dict[str, tuple[float, floa
         for name, c in surface.controls.items():
             lim = c.design_limits if (design and c.design_limits is not None) else c.travel
             limits[name] = (lim.min, lim.max)
+    st = g.horizontal_tail.stabilizer
+    if st is not None:
+        lim = st.design_limits if (design and st.design_limits is not None) else st.travel
+        limits[STABILIZER] = (lim.min - g.horizontal_tail.incidence, lim.max - g.horizontal_tail.incidence)
     return limits
+
+
+def stabilizer_trim(aircraft, design: bool = True):
+    """The movable stabiliser of the aircraft as a trim device
+    (:class:`certkit.models.dynamics.trim.StabilizerTrim`), None without one (or without geometry, e.g. an airplane
+    given by derivative tables, whose model has no stabiliser control)."""
+    from certkit.models.dynamics.trim import StabilizerTrim
+
+    g = aircraft.geometry
+    if g is None or g.horizontal_tail.stabilizer is None:
+        return None
+    st = g.horizontal_tail.stabilizer
+    return StabilizerTrim(control_limits(aircraft, design)[STABILIZER], datum=g.horizontal_tail.incidence,
+                          elevator_trim=st.elevator_trim, control=STABILIZER, elevator=ROLES["pitch"])
+
+
+def model_stabilizer(aircraft, model, design: bool = True):
+    """:func:`stabilizer_trim` when ``model``'s aerodynamics carry the stabiliser control (a declared derivative
+    table may not), else None: the trims of that model keep the elevator as the pitch control."""
+    if STABILIZER not in model.aero_controls:
+        return None
+    return stabilizer_trim(aircraft, design)
 
 
 def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundModel | None = None) -> AircraftModel:
@@ -168,4 +197,4 @@ def level_trims(aircraft, aero_model, masses, x_cg: float, altitude, tas, loadin
             solved[m] = solve_loading(aircraft, m, float(x_cg), loading_name)
     model = flight_model(aircraft, aero_model, [solved[m] for m in masses])
     return trim(model, np.asarray(tas, dtype=float), np.asarray(altitude, dtype=float), kind="straight",
-                limits=control_limits(aircraft, design=True), roles=ROLES)
+                limits=control_limits(aircraft, design=True), roles=ROLES, stabilizer=model_stabilizer(aircraft, model))

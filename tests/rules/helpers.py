@@ -19,6 +19,18 @@ def _structure_section(text: str) -> str:
 NO_STRUCTURE = (_structure_section(BASELINE.read_text()), "")
 
 
+def _stabilizer_block(text: str) -> str:
+    """The baseline's movable-stabiliser declaration (``geometry.horizontal_tail.stabilizer``), newline-terminated."""
+    start = text.index("    stabilizer:")
+    end = text.index("  vertical_tail:", start)
+    return text[start:end]
+
+
+#: edit removing the baseline's movable stabiliser: the airplane trims with the elevator, the stabiliser fixed at its
+#: declared incidence (the behaviour before issue 12)
+NO_STABILIZER = (_stabilizer_block(BASELINE.read_text()), "")
+
+
 def edited_baseline(tmp_path, edits):
     """The baseline with each (old, new) text replacement applied, written to tmp_path/edited.yaml."""
     text = BASELINE.read_text()

@@ -3,18 +3,19 @@
 Hand references: VREF 136 KCAS is 136 × 1.0022 = 136.3 kn TAS at 150 ft (ISA σ = 0.99561), so the
 approach sink rate is 136.3 × 1.68781 × sin 3° = 12.04 ft/s and the flare time constant
 τ = (15 m + 1 m)/(3.670 m/s) = 4.36 s (exponential flare, Stevens & Lewis §4.7); the criterion is
-6 ft/s (§25.473(a)(2)(ii)); the elevator design limit −21.8°.
+6 ft/s (§25.473(a)(2)(ii)); the elevator design limit −21.8°. These run on the baseline without its movable
+stabiliser (the elevator trims, as before issue 12); the last test flies the baseline as declared.
 """
 
 import pytest
 
 from .helpers import finding_by as _by, own
-from .helpers import run_rule
+from .helpers import NO_STABILIZER, run_rule
 
 
 @pytest.fixture(scope="module")
-def result():
-    return run_rule("25.125")
+def result(tmp_path_factory):
+    return run_rule("25.125", tmp_path_factory.mktemp("plain"), [NO_STABILIZER])
 
 
 def test_hand_calculation_approach_sink_and_flare_constant(result):
@@ -33,7 +34,7 @@ def test_a_steeper_approach_lands_harder(result, tmp_path):
     VREF): the flare, started at the same height, ends with a higher touchdown sink rate at every CG."""
     block = ('criteria:\n  "25.125":\n    justification: a steeper approach\n'
              '    values: {glide_slope: -4.5}\n\nsources:\n')
-    steep = run_rule("25.125", tmp_path, [("\nsources:\n", "\n" + block)])
+    steep = run_rule("25.125", tmp_path, [NO_STABILIZER, ("\nsources:\n", "\n" + block)])
     for loading in ("MLW forward", "MLW reference", "MLW aft"):
         base, f = _by(result, loading, "touchdown"), _by(steep, loading, "touchdown")
         assert f.details["approach_sink_fps"] == pytest.approx(base.details["approach_sink_fps"] * 1.4990, rel=2e-3)
@@ -48,7 +49,7 @@ def test_sign_forward_cg_needs_more_elevator_and_a_larger_limit_helps(result, tm
     assert m[0] < m[1] < m[2]
     fwd = _by(result, "MLW forward", "elevator")
     assert fwd.status == "fails" and "elevator" in fwd.reason
-    wider = run_rule("25.125", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
+    wider = run_rule("25.125", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
                                            "design_limits: {min: -30 deg, max: 16.8 deg}")])
     assert _by(wider, "MLW forward", "elevator").margin == pytest.approx(fwd.margin + 8.2, abs=1e-6)
 
@@ -73,3 +74,19 @@ def test_vref_over_vsr0_by_hand_a_finding_on_the_baseline(result, tmp_path):
     ok = run_rule("25.125", tmp_path, [("  VREF: 136 kn CAS ", "  VREF: 137 kn CAS ")])
     f = _by(ok, "MLW reference", "(b)(2)(i)(A)")
     assert f.value == pytest.approx(137 / VSR0_KN, abs=1e-4) and f.status == "complies"
+
+
+def test_movable_stabiliser_relieves_the_flare_elevator(result):
+    """The baseline as declared: trimmed on the path at VREF the stabiliser is at its −10.25° nose-up trim limit at
+    the forward CG (the elevator holding the rest, a few degrees) and within it elsewhere (elevator at its 0° trim
+    setting); the flare moves only the elevator, which now stays within its design limit at every CG where the
+    elevator-trimmed airplane needed −22.6° at the forward CG just to trim."""
+    declared = run_rule("25.125")
+    for loading in ("MLW forward", "MLW reference", "MLW aft"):
+        e = _by(declared, loading, "elevator")
+        assert e.status == "complies" and e.margin > 0.0
+    for loading in ("MLW forward", "MLW reference"):  # where the elevator-trimmed airplane trims trailing edge up
+        assert _by(declared, loading, "elevator").margin > _by(result, loading, "elevator").margin + 5.0
+    fwd = _by(declared, "MLW forward", "touchdown").details
+    assert -10.0 < fwd["trim_elevator_deg"] < 0.0
+    assert _by(declared, "MLW reference", "touchdown").details["trim_elevator_deg"] == 0.0

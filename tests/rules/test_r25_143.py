@@ -79,15 +79,16 @@ def test_hand_calculation_load_factor_lift_and_margin(base):
 
 
 def test_too_little_elevator_authority_fails(tmp_path, base):
-    """A deficient airplane: the elevator's nose-up design limit cut to −10° (the landing turn needs about −19° at
-    the reference CG, more forward): the landing turn at MLW fails on the elevator at the forward and reference CG,
-    with the trim's message; the aft CG (about −5°) still complies."""
-    assert control(base, "landing VREF", "MLW reference", "elevator").value < -10.0
-    ctx = edited_context(tmp_path, [(LIMITS, "design_limits: {min: -10 deg, max: 16.8 deg}")])
+    """A deficient airplane: the elevator's nose-up design limit cut to −7° (with the stabiliser trimmed wings level
+    and held, the landing turn needs about −9° of elevator at the reference CG, −19° forward where the stabiliser is at
+    its stop): the landing turn at MLW fails on the elevator at the forward and reference CG, with the trim's message;
+    the aft CG (about −6°) still complies."""
+    assert control(base, "landing VREF", "MLW reference", "elevator").value < -7.0
+    ctx = edited_context(tmp_path, [(LIMITS, "design_limits: {min: -7 deg, max: 16.8 deg}")])
     r = evaluate_part("25.143(h)", ctx, landing)
     for loading in ("MLW forward", "MLW reference"):
         g = control(r, "landing VREF", loading, "elevator")
-        assert g.status == "fails" and g.value < -10.0 and "limit -10.0°" in g.reason
+        assert g.status == "fails" and g.value < -7.0 and "limit -7.0°" in g.reason
     assert control(r, "landing VREF", "MLW aft", "elevator").status == "complies"
 
 

@@ -3,7 +3,8 @@
 Climb speed 1.3 VSR1 with VSR1 = √(2W/(ρ0 S CLmax)) (Anderson, *Introduction to Flight*, eq. 6.47):
 at fwd_mrw, 657,000 lb, CLmax 1.4, S 4927.3 ft², ρ0 0.0023769 slug/ft³: VSR1 = 167.73 kn, 1.3 VSR1 = 218.05 kn
 (tolerance 0.01 kn). The margin is the design limit on the deflected side minus |δe| (deg): elevator design
-limits −21.8°/+16.8° (aircraft file).
+limits −21.8°/+16.8° (aircraft file). The elevator cases run on the baseline without its movable stabiliser (the
+elevator trims); the stabiliser's trim authority is tested on the baseline as declared.
 """
 
 import math
@@ -12,12 +13,12 @@ import pytest
 
 from certkit.units import KN
 
-from .helpers import run_rule
+from .helpers import NO_STABILIZER, run_rule
 
 
 @pytest.fixture(scope="module")
-def base():
-    return run_rule("25.161")
+def base(tmp_path_factory):
+    return run_rule("25.161", tmp_path_factory.mktemp("plain"), [NO_STABILIZER])
 
 
 def finding(result, loading, case, check="(c)(1) climb, clean elevator"):
@@ -39,8 +40,8 @@ def test_a_smaller_elevator_design_limit_fails(tmp_path, base):
     about 9.7°): §25.161(c)(1) fails there, with the trim's message; the forward corners (nose-up elevator) still comply."""
     f = finding(base, "aft_light", "climb")
     assert f.value > 5.0
-    r = run_rule("25.161", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                       "design_limits: {min: -21.8 deg, max: 5 deg}")])
+    r = run_rule("25.161", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
+                                                      "design_limits: {min: -21.8 deg, max: 5 deg}")])
     g = finding(r, "aft_light", "climb")
     assert g.status == "fails" and g.value > 5.0
     assert finding(r, "fwd_mrw", "climb").status == "complies"
@@ -48,8 +49,8 @@ def test_a_smaller_elevator_design_limit_fails(tmp_path, base):
 
 
 def test_sign_larger_design_limit_more_margin_and_aft_cg_more_trailing_edge_down(tmp_path, base):
-    r = run_rule("25.161", tmp_path, [("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                       "design_limits: {min: -21.8 deg, max: 18.8 deg}")])
+    r = run_rule("25.161", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
+                                                      "design_limits: {min: -21.8 deg, max: 18.8 deg}")])
     assert finding(r, "aft_light", "climb").margin == pytest.approx(finding(base, "aft_light", "climb").margin + 2, abs=1e-6)
     # aft CG needs less nose-up (more trailing-edge-down) elevator than forward CG at the same weight
     assert finding(base, "aft_mrw", "climb").value > finding(base, "fwd_mrw", "climb").value
@@ -85,3 +86,24 @@ def test_not_evaluated_without_takeoff_configuration(tmp_path):
                                        ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS")])
     f = [f for f in r.findings if f.check == "(c)(1) climb"]
     assert f and all(x.status == "not_evaluated" and x.reason == "needs configurations.takeoff" for x in f)
+
+
+def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path):
+    """A deficient airplane: the stabiliser's trim range cut to −4°…+1° (the baseline's level-flight trims at the
+    forward corners need more nose-up incidence at 1.3 VSR1): §25.161(c)(3) fails on the stabiliser at its nose-up stop,
+    the elevator holding the rest — while with the declared range (−10.25°…+2.25°) the same trims comply. The
+    stabiliser margin is the trim limit minus the incidence needed, so a failing one needs more than the stop."""
+    check = "(c)(3) level flight stabiliser within its trim limits"
+
+    def most_nose_up(result):
+        return min((f for f in result.findings if f.condition.loading == "fwd_light" and f.check == check),
+                   key=lambda f: f.value)
+
+    ok = most_nose_up(run_rule("25.161"))
+    assert ok.status == "complies" and -10.25 < ok.value < -4.0
+    r = run_rule("25.161", tmp_path, [("design_limits: {min: -10.25 deg, max: 2.25 deg}",
+                                       "design_limits: {min: -4 deg, max: 1 deg}")])
+    f = most_nose_up(r)
+    assert f.status == "fails" and f.limit == pytest.approx(-4.0) and f.value < -4.0
+    assert "nose-up stop" in f.reason and f.details["stabilizer_deg"] == pytest.approx(-4.0, abs=1e-6)
+    assert f.value == pytest.approx(ok.value, abs=1e-6)  # the incidence needed does not depend on the range

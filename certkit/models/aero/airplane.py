@@ -22,6 +22,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from certkit.aircraft.derivative_names import STABILIZER
 from certkit.models.aero.derivative_model import StabilityDerivativeModel, StallModel
 from certkit.models.aero.interface import AeroReference
 from certkit.models.aero.vlm import Configuration as LatticeConfiguration
@@ -52,6 +53,10 @@ def _camber_digits(airfoil: str) -> str | None:
 def _surface(name: str, s, resolution, *, vertical: bool = False, component: int | None = None):
     """A lattice surface from an aircraft-file lifting surface, with its controls and tip twist."""
     controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
+    if s.stabilizer is not None and not vertical:
+        # a movable stabiliser: the whole chord turns about the lateral (pitch) axis, i.e. a change of the tail's
+        # incidence from its declared datum (the control's deflection δs = i_h − incidence)
+        controls.append(ControlSpan(STABILIZER, 0.0, 1.0, 1.0, hinge_vector=(0.0, 1.0, 0.0)))
     surface = trapezoidal_surface(
         name, area=s.area, aspect_ratio=s.aspect_ratio, taper=s.taper, sweep_quarter_chord=s.sweep_quarter_chord,
         dihedral=s.dihedral, root_leading_edge=(s.root_leading_edge.x, s.root_leading_edge.y, s.root_leading_edge.z),

@@ -25,6 +25,13 @@ A control that would have to go past its limit is not an error: the trim is solv
 limits and each :class:`TrimResult` lists the :class:`LimitExceedance` found ("needs −34.2°
 elevator, limit −30°") with a hint. Conditions that do not converge are reported as such with
 their residual; nothing raises for a single bad condition.
+
+A movable horizontal stabiliser (:class:`StabilizerTrim`, from ``geometry.horizontal_tail.stabilizer``) takes the
+elevator's place as the pitch unknown, the elevator held at its trim setting. Where the stabiliser would pass its
+trim limit it is left at that stop and the condition is trimmed again with the elevator (the airplane is held, not
+trimmed: ``stabilizer_at_stop`` and ``stabilizer_required`` say so, and the elevator's own limits are checked as
+usual). A stabiliser given as a setting (``stabilizer_setting``) is held there and the elevator trims: the state
+after a change made without re-trimming, or the start of a manoeuvre.
 """
 
 from __future__ import annotations
@@ -83,6 +90,13 @@ class TrimResult:
     controls: dict[str, float]
     thrust: dict[str, float]
     limits_exceeded: list[LimitExceedance] = field(default_factory=list)
+    #: movable stabiliser (None without one): the incidence set (rad, leading edge up positive), the incidence the
+    #: trim would need with the elevator at its trim setting (beyond the stop when the stop is reached), the stop
+    #: reached ("nose-up"/"nose-down", the elevator then carrying the rest) and whether it was held as given
+    stabilizer: float | None = None
+    stabilizer_required: float | None = None
+    stabilizer_at_stop: str = ""
+    stabilizer_frozen: bool = False
 
     @property
     def ok(self) -> bool:
@@ -94,6 +108,10 @@ class TrimResult:
              f"(|r|={self.residual_norm:.1e}, {self.iterations} it): V={self.V:.1f} m/s h={self.h:.0f} m "
              f"α={d(self.alpha):.2f}° β={d(self.beta):.2f}° θ={d(self.theta):.2f}° φ={d(self.phi):.2f}° "
              + " ".join(f"{k}={d(v) if not k.startswith('throttle') else v:.3g}" for k, v in self.controls.items()))
+        if self.stabilizer is not None:
+            s += f" stabiliser {d(self.stabilizer):.2f}°" + (" (held)" if self.stabilizer_frozen else "")
+            if self.stabilizer_at_stop:
+                s += f" at its {self.stabilizer_at_stop} stop (needs {d(self.stabilizer_required):.2f}°)"
         for lim in self.limits_exceeded:
             s += f"\n    {lim.message} — {lim.hint}"
         return s
@@ -161,19 +179,12 @@ def _assemble(V, h, alpha, beta, phi, gamma, turn_rate, psi, x):
         x[i, 11] = psi[i]
 
 
-def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
-         controls: Mapping[str, float | np.ndarray] | None = None,
-         limits: Mapping[str, tuple[float, float]] | None = None,
-         roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-         tol: float = 1e-9, max_iter: int = 40, throttle=None) -> TrimBatch:
-    """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
-    ``h`` (m); scalars or (n,) arrays.
-
-    ``gamma`` flight-path angle (rad), ``bank`` φ for turn/oei, ``beta`` for sideslip.
-    ``controls`` fixes the controls that are not trim unknowns (flap, stabilizer …; radians).
-    ``limits`` maps control names (and ``throttle``) to (min, max); the defaults are ±30° for the
-    role controls and (0, 1) for the throttle. ``roles`` maps pitch/roll/yaw to control names.
-    """
+def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
+           controls: Mapping[str, float | np.ndarray] | None = None,
+           limits: Mapping[str, tuple[float, float]] | None = None,
+           roles: Mapping[str, str] | None = None, initial_alpha=0.05,
+           tol: float = 1e-9, max_iter: int = 40, throttle=None) -> TrimBatch:
+    """The trim of :func:`trim` with the given pitch, roll and yaw controls (no stabiliser logic)."""
     if kind not in KINDS:
         raise ValueError(f"unknown trim kind {kind!r}; one of {KINDS}")
     n = model.n
@@ -337,6 +348,102 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     return TrimBatch(model=model, x=x, u=u, results=results)
 
 
+@dataclass(frozen=True)
+class StabilizerTrim:
+    """A movable horizontal stabiliser as a trim device: the model control ``control`` is its deflection from the
+    datum incidence ``datum`` (rad), solved within ``limits`` (deflections, rad) with the ``elevator`` held at
+    ``elevator_trim``."""
+
+    limits: tuple[float, float]
+    datum: float = 0.0
+    elevator_trim: float = 0.0
+    control: str = "stabilizer"
+    elevator: str = "elevator"
+
+
+def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
+         controls: Mapping[str, float | np.ndarray] | None = None,
+         limits: Mapping[str, tuple[float, float]] | None = None,
+         roles: Mapping[str, str] | None = None, initial_alpha=0.05,
+         tol: float = 1e-9, max_iter: int = 40, throttle=None, stabilizer: StabilizerTrim | None = None,
+         stabilizer_setting=None) -> TrimBatch:
+    """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
+    ``h`` (m); scalars or (n,) arrays.
+
+    ``gamma`` flight-path angle (rad), ``bank`` φ for turn/oei, ``beta`` for sideslip.
+    ``controls`` fixes the controls that are not trim unknowns (flap, stabilizer …; radians).
+    ``limits`` maps control names (and ``throttle``) to (min, max); the defaults are ±30° for the
+    role controls and (0, 1) for the throttle. ``roles`` maps pitch/roll/yaw to control names.
+
+    ``stabilizer`` (a model with a movable stabiliser): the stabiliser is the pitch unknown with the elevator at its
+    trim setting; a condition whose stabiliser would pass a limit is trimmed again with the stabiliser at that stop
+    and the elevator as the pitch unknown (the elevator carries the rest; its own limits are checked as usual), and
+    its result says so (``stabilizer_at_stop``, ``stabilizer_required``). ``stabilizer_setting`` (deflections, one
+    per condition or a scalar) holds the stabiliser where it was trimmed — a manoeuvre or a change "without
+    re-trimming" — and the elevator is solved for. Without ``stabilizer`` this is the plain trim.
+    """
+    plain = dict(kind=kind, gamma=gamma, bank=bank, beta=beta, limits=limits, initial_alpha=initial_alpha, tol=tol,
+                 max_iter=max_iter, throttle=throttle)
+    if stabilizer is None:
+        return _solve(model, V, h, controls=controls, roles=roles, **plain)
+    n = model.n
+    bc = lambda a: np.broadcast_to(np.asarray(a, dtype=float), (n,)).astype(float)  # noqa: E731
+    st = stabilizer
+    fixed = dict(controls or {})
+    lim = {**(limits or {}), st.control: st.limits}
+    plain["limits"] = lim
+    if stabilizer_setting is not None:
+        fixed[st.control] = bc(stabilizer_setting)
+        batch = _solve(model, V, h, controls=fixed, roles=roles, **plain)
+        _mark_stabilizer(batch, st, frozen=True)
+        return batch
+    fixed.setdefault(st.elevator, st.elevator_trim)
+    batch = _solve(model, V, h, controls=fixed, roles={**(roles or {}), "pitch": st.control}, **plain)
+    need = batch.u[:, model.control_names.index(st.control)].copy()
+    lo, hi = st.limits
+    over = np.flatnonzero((need < lo) | (need > hi))
+    if over.size:
+        sub = dict(plain)
+        for key in ("gamma", "bank", "beta", "throttle"):
+            if plain[key] is not None:
+                sub[key] = bc(plain[key])[over]
+        again = dict(controls or {})
+        for k, v in again.items():
+            again[k] = bc(v)[over]
+        again[st.control] = np.clip(need[over], lo, hi)
+        part = _solve(model.subset(over), bc(V)[over], bc(h)[over], controls=again, roles=roles, **sub)
+        batch.x[over], batch.u[over] = part.x, part.u
+        for j, i in enumerate(over):
+            r = part.results[j]
+            r.index = int(i)
+            batch.results[i] = r
+    _mark_stabilizer(batch, st, frozen=False, required=need)
+    return batch
+
+
+def held_stabilizer(results) -> np.ndarray | None:
+    """The movable stabiliser's deflection (rad, per :class:`TrimResult`), to hold in a manoeuvre or a change that
+    follows those trims without re-trimming (``stabilizer_setting``); None on an airplane without one."""
+    if not results or results[0].stabilizer is None:
+        return None
+    return np.array([r.controls["stabilizer"] for r in results])
+
+
+def _mark_stabilizer(batch: TrimBatch, st: StabilizerTrim, frozen: bool, required=None) -> None:
+    """The stabiliser fields of each result (absolute incidence = datum + deflection)."""
+    j = batch.model.control_names.index(st.control)
+    lo, hi = st.limits
+    for i, r in enumerate(batch.results):
+        r.stabilizer = st.datum + float(batch.u[i, j])
+        r.stabilizer_frozen = frozen
+        need = float(batch.u[i, j] if required is None else required[i])
+        r.stabilizer_required = st.datum + need
+        if not frozen:
+            r.stabilizer_at_stop = "nose-up" if need < lo else ("nose-down" if need > hi else "")
+        if not frozen:  # the stabiliser's own limit is reported by its stop, not as an exceedance
+            r.limits_exceeded = [e for e in r.limits_exceeded if e.control != st.control]
+
+
 def _check(name, value, bounds, hint, angle):
     lo, hi = bounds
     if lo <= value <= hi:
@@ -347,4 +454,4 @@ def _check(name, value, bounds, hint, angle):
                             message=f"needs {f(value)} {name}, limit {f(lim)}", hint=hint)]
 
 
-__all__ = ["trim", "TrimBatch", "TrimResult", "LimitExceedance", "theta_from_gamma", "assemble_state", "KINDS"]
+__all__ = ["trim", "StabilizerTrim", "held_stabilizer", "TrimBatch", "TrimResult", "LimitExceedance", "theta_from_gamma", "assemble_state", "KINDS"]

@@ -97,7 +97,8 @@ def trim_details(result) -> dict:
     return {"alpha_deg": round(math.degrees(result.alpha), 3), "bank_deg": round(math.degrees(result.phi), 3),
             "beta_deg": round(math.degrees(result.beta), 3),
             **{f"{k}_deg": round(math.degrees(v), 3) for k, v in result.controls.items() if k in CONTROLS},
-            **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")}}
+            **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")},
+            **({} if result.stabilizer is None else {"stabilizer_deg": round(math.degrees(result.stabilizer), 3)})}
 
 
 def full_thrust(ctx, conds):

@@ -27,7 +27,8 @@ import numpy as np
 
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import ConditionSpace, DesignWeight, speed_as
-from certkit.models.flight import control_limits, thrust_function
+from certkit.models.dynamics.trim import held_stabilizer
+from certkit.models.flight import control_limits, stabilizer_trim, thrust_function
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, stall_warning_cl
@@ -67,21 +68,23 @@ def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative
 
 
 def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
-                   iterations: int = 4):
+                   iterations: int = 4, stabilizer=None):
     """Trim ``conds`` (one configuration) at the flight-path angle the operating engines' total thrust
     ``thrust_aim`` (N, per condition) gives. A wings-level trim at γ = 0 and the polar's induced drag of the
     turn's load factor estimate the drag; then
     γ ← γ + (T_aim − T_trim)/W (Anderson eq. 5.12; the step undershoots by cos γ, so the iterate approaches
     the aim from the side the trim can reach). A trim needing thrust beyond the engines' range is retried
     0.03 rad lower (higher at idle); one failing for another reason (lift, a control) is final.
+    ``stabilizer`` holds a movable stabiliser (deflection per condition, :meth:`certkit.context.Context.trim`).
     Returns the TrimResult of each condition, its flight-path angle (rad) and thrust residual (T_aim − T_trim)/W."""
     n = len(conds)
+    held = None if stabilizer is None else np.broadcast_to(np.asarray(stabilizer, dtype=float), (n,))
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
     weight = np.array([c.mass for c in conds]) * G0
     aim = np.broadcast_to(np.asarray(thrust_aim, dtype=float), (n,)).copy()
     bank = np.broadcast_to(np.asarray(bank, dtype=float), (n,)).copy()
     needed = lambda b: np.array([sum(r.thrust[e] for e in live) for r in b.results])  # noqa: E731
-    first = ctx.trim(conds, kind="straight", inoperative=inoperative)
+    first = ctx.trim(conds, kind="straight", inoperative=inoperative, stabilizer=held)
     # the turn's extra induced drag, k CL² (n² − 1) q S with CL the 1-g lift coefficient (the model's polar)
     h = np.array([c.altitude or 0.0 for c in conds])
     tas = np.array([speed_as(c, "TAS") for c in conds])
@@ -94,7 +97,7 @@ def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, 
     active = np.arange(n)
     for k in range(iterations):
         batch = ctx.trim([conds[i] for i in active], kind=kind, bank=bank[active], gamma=gamma[active],
-                         inoperative=inoperative)
+                         inoperative=inoperative, stabilizer=None if held is None else held[active])
         res = (aim[active] - needed(batch)) / weight[active]
         for j, i in enumerate(active):
             results[i], flown[i], residual[i] = batch.results[j], gamma[i], res[j]
@@ -171,8 +174,9 @@ class ManeuveringCapability(Rule):
         manoeuvring (buffet) are not modelled. "WAT-limited" is read as MTOW at
         sea level (and 1500 ft en route) with the operating engine's thrust set so that straight flight climbs at
         exactly the §25.121(b) (V2) or §25.121(c) (VFTO) minimum gradient (at most takeoff or maximum continuous
-        thrust). The stabiliser is fixed at its declared incidence, so the elevator carries the whole trim
-        (conservative against a trimmed stabiliser). A coordinated turn is flown at zero sideslip.
+        thrust). A movable stabiliser is trimmed in wings-level flight at the
+        case's speed and thrust and held; the elevator pulls into the turn. Without one the stabiliser is fixed at its
+        declared incidence and the elevator carries the whole trim. A coordinated turn is flown at zero sideslip.
     """
 
     unevaluated = (
@@ -227,9 +231,13 @@ class ManeuveringCapability(Rule):
                     banks.append(sign * bank)
         banks = np.array(banks)
         inop = dead if spec["oei"] else None
+        # a movable stabiliser stays where the wings-level trim at the same speed and thrust set it; the elevator
+        # pulls into the turn (held_stabilizer: None without one)
+        movable = stabilizer_trim(ac) is not None
         if spec["fraction"] is None:
             gamma = np.full(len(conds), math.radians(crit.landing_path_deg))
-            results = ctx.trim(conds, kind="turn", bank=banks, gamma=gamma).results
+            held = held_stabilizer(ctx.trim(conds, kind="straight", gamma=gamma).results) if movable else None
+            results = ctx.trim(conds, kind="turn", bank=banks, gamma=gamma, stabilizer=held).results
             residual = np.zeros(len(conds))
         else:
             capped = np.zeros(len(conds), dtype=bool)
@@ -237,7 +245,9 @@ class ManeuveringCapability(Rule):
                 aim, capped = wat_limited_thrust(ctx, conds, spec["wat"], spec["fraction"], inop)
             else:
                 aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
-            results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop)
+            held = held_stabilizer(trim_at_thrust(ctx, conds, aim, inoperative=inop)[0]) if movable else None
+            results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop,
+                                                      stabilizer=held)
         out = []
         for i, c in enumerate(conds):
             r = results[i]

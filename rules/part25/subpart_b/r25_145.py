@@ -30,6 +30,7 @@ from certkit.results import Finding
 from certkit.units import LBF
 from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import trim_details
+from certkit.models.dynamics.trim import held_stabilizer
 from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust
 
 FLAPS = ("takeoff", "approach", "landing")
@@ -83,7 +84,9 @@ class LongitudinalControlConfigurationChanges(Rule):
         is the steady one at the end trim (the flap-dependent downwash change at the tail is not modelled). Steady trims at the start and end
         of each manoeuvre (no transient, no pitch-rate or speed-change dynamics). The gear is as declared for each
         configuration (the clean configuration is gear up, (b) asks gear down; the gear's pitching moment is not
-        modelled). The stabiliser is fixed at its declared incidence. (b)(6) is not evaluated (text not retrieved).
+        modelled). A movable stabiliser (geometry.horizontal_tail.stabilizer) stays where the start trim set it — that is
+        what "without re-trimming" means — and the elevator takes the change; without one the stabiliser is fixed at its
+        declared incidence. (b)(6) is not evaluated (text not retrieved).
     """
 
     unevaluated = (
@@ -98,11 +101,13 @@ class LongitudinalControlConfigurationChanges(Rule):
         known = lambda cfg: ctx.clmax(cfg) is not None or cfg in ac.speeds.VSR  # noqa: E731  (a VSR to fly 1.3 VSR at)
         flaps = [f for f in FLAPS if f in ac.configurations]
         unknown = [cfg for cfg in ("clean", *flaps) if not known(cfg)]
-        trims = {}
+        trims, aims = {}, {}
         for cfg in ("clean", *flaps):
             if cfg not in unknown:
-                trims.update(self._trim_states(ctx, conditions, cfg, crit))
-        out = []
+                states, aim = self._trim_states(ctx, conditions, cfg, crit)
+                trims.update(states)
+                aims.update(aim)
+        out, held = [], {}
         for i, cond in enumerate(conditions):
             plan = list(CLEAN_MANOEUVRES) + [m for f in flaps for m in manoeuvres(f)]
             for para, what, start, end in plan:
@@ -113,9 +118,12 @@ class LongitudinalControlConfigurationChanges(Rule):
                         f"{para} elevator change within the remaining authority",
                         "needs " + " or ".join(f"configurations.{c}.CLmax (or speeds.VSR.{c})" for c in dict.fromkeys(missing))))
                     continue
-                out.append(self._finding(cond, i, para, what, trims[start], trims[end], lo, hi))
+                if (start, end) not in held:
+                    held[(start, end)] = held_trims(ctx, trims[start], trims[end], aims[end])
+                ends = held[(start, end)]
+                out.append(self._finding(cond, i, para, what, trims[start], ends, lo, hi))
                 if elevator is not None:
-                    out.append(force_finding(ctx, elevator, i, para, what, trims[start], trims[end], crit.control_force_lbf))
+                    out.append(force_finding(ctx, elevator, i, para, what, trims[start], ends, crit.control_force_lbf))
             if elevator is None:
                 out.append(Finding.not_evaluated(
                     cond.with_(configuration="clean"), f"(b) control force ≤ {crit.control_force_lbf:g} lbf",
@@ -135,8 +143,9 @@ class LongitudinalControlConfigurationChanges(Rule):
         aim = np.concatenate([operating_thrust(ctx, conds[:n], 0.0),
                               operating_thrust(ctx, conds[n:], 1.0, crit.go_around_thrust_fraction)])
         results, gamma, residual = trim_at_thrust(ctx, conds, aim)
-        return {(cfg, s): [(conds[k * n + i], results[k * n + i], float(gamma[k * n + i]), float(residual[k * n + i]))
-                           for i in range(n)] for k, s in enumerate(states)}
+        return ({(cfg, s): [(conds[k * n + i], results[k * n + i], float(gamma[k * n + i]), float(residual[k * n + i]))
+                            for i in range(n)] for k, s in enumerate(states)},
+                {(cfg, s): aim[k * n:(k + 1) * n] for k, s in enumerate(states)})
 
     @staticmethod
     def _finding(cond, i, para, what, start, end, lo, hi):
@@ -166,6 +175,18 @@ class LongitudinalControlConfigurationChanges(Rule):
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
                                 ("direction", "start_elevator_deg", "end_elevator_deg", "start_flight_path_deg", "end_flight_path_deg", "start_speed_m_s"), plot=True)
+
+
+def held_trims(ctx, start, end, end_aim):
+    """The end trims of a change "without re-trimming": on an airplane with a movable stabiliser the end states
+    trimmed again with the stabiliser held where each start trim set it (the elevator takes the change; memoised by
+    the context, so each pair is trimmed once); the end trims as they are otherwise."""
+    held = held_stabilizer([s[1] for s in start])
+    if held is None:
+        return end
+    conds = [e[0] for e in end]
+    results, gamma, residual = trim_at_thrust(ctx, conds, end_aim, stabilizer=held)
+    return [(c, r, float(g), float(res)) for c, r, g, res in zip(conds, results, gamma, residual)]
 
 
 def force_finding(ctx, elevator, i, para, what, start, end, limit_lbf):

@@ -3,7 +3,10 @@
 Text (docs/regulation-notes.md): (a), (b), (c)(1), the start of (c)(2) and the end of (d) verified against
 the GPO print [CFR 1-1-14 p. 389, 1-1-24 p. 225]; the rest of (c)(2) and (c)(3) from memory. certkit trims
 every CG corner in each case (one batch per configuration) and checks that the trim is reached with the
-controls within their design range (stabiliser fixed at its declared setting: the elevator carries it all):
+controls within their design range. Without a movable stabiliser the stabiliser is fixed at its declared
+setting and the elevator carries it all; with one (``geometry.horizontal_tail.stabilizer``) each trim solves for
+the stabiliser with the elevator at its trim setting and the trim authority is reported as the stabiliser's margin to
+its trim limit (a trim needing more has the stabiliser at its stop and the elevator holding the rest — not trimmed):
 
     (c)(1) climb, maximum continuous thrust, 1.3 VSR1, gear up, flaps (i) retracted and (ii) takeoff;
     (c)(2) glide with power off (idle) at 1.3 VSR1, flaps retracted; and the approach alternative on a
@@ -27,6 +30,21 @@ from certkit.units import FT
 from certkit.reference_speeds import reference_stall_speed
 from certkit_rules.part25.subpart_b.r25_121 import control_findings, oei_climb, trim_details
 
+def stabilizer_finding(cond, check, r, limits) -> Finding:
+    """Trim authority of a movable stabiliser: the incidence the trim needs (elevator at its trim setting) against
+    the trim limit on the side of the nearer stop (deg); negative: beyond the stop, the elevator holding the rest."""
+    datum = r.stabilizer - r.controls["stabilizer"]
+    lo, hi = (datum + v for v in limits["stabilizer"])
+    need = r.stabilizer_required
+    nose_up = need < 0.5 * (lo + hi)
+    reason = (f"the stabiliser is at its {r.stabilizer_at_stop} stop ({math.degrees(r.stabilizer):.2f}°); it would need "
+              f"{math.degrees(need):.2f}°, the elevator holds the rest at {math.degrees(r.controls['elevator']):.2f}°"
+              if r.stabilizer_at_stop else "")
+    return Finding.compare(cond, f"{check} stabiliser within its trim limits", math.degrees(need),
+                           math.degrees(lo if nose_up else hi), at_least=nose_up, unit="deg", reason=reason,
+                           stabilizer_deg=round(math.degrees(r.stabilizer), 3), side="nose-up" if nose_up else "nose-down")
+
+
 SEGMENTS = ("climb", "glide", "level", "engine-out climb")
 
 
@@ -47,7 +65,8 @@ class Trim(Rule):
         their design range at each CG corner.
     """
     margin = ("Control design limit − |trim deflection| on the side it is deflected (deg), at every CG corner and case; "
-              "for (d) also 5° − |bank| (deg).")
+              "for (d) also 5° − |bank| (deg); with a movable stabiliser also the stabiliser incidence the trim needs "
+              "to its trim limit on the nearer side (deg).")
     references = ("25.103", "25.121", "25.335(a)")
     requires = ("configurations.clean",)
     criteria = {
@@ -74,8 +93,9 @@ class Trim(Rule):
         §25.161(b) lateral/directional trim with a lateral CG offset is not evaluated (the model's CG is on the plane
         of symmetry; a symmetric airplane trims with zero lateral controls), nor (c)(3)'s gear-down range to VLE (no
         gear-down clean configuration is declared) or (e) (four or more engines). Control forces (the 5 lbf of (d))
-        need a control-force model. The stabiliser is fixed at its declared incidence, so the elevator carries the
-        whole trim (conservative for an airplane with a trimmable stabiliser).
+        need a control-force model. Without a movable stabiliser (geometry.horizontal_tail.stabilizer) the stabiliser
+        is fixed at its declared incidence and the elevator carries the whole trim; with one, one set of trim limits
+        applies in every configuration.
     """
 
     unevaluated = (
@@ -174,8 +194,11 @@ class Trim(Rule):
                                                  f"trim did not converge (residual {r.residual_norm:.1e}); "
                                                  + "; ".join(m.message for m in r.limits_exceeded)))
                 continue
-            for f in control_findings(cond, check, r, limits):
-                if any(name in f.check for name in controls):
+            found = control_findings(cond, check, r, limits)
+            if r.stabilizer is not None:
+                found.append(stabilizer_finding(cond, check, r, limits))
+            for f in found:
+                if any(name in f.check for name in controls + ("stabiliser",)):
                     f.details.update(trim_details(r))
                     f.details["flight_path_deg"] = round(math.degrees(r.gamma), 3)
                     if gradients is not None:

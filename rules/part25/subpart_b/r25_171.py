@@ -14,6 +14,7 @@ import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit.control_speeds import vsr_cas
+from certkit.models.dynamics.trim import held_stabilizer
 
 #: certkit configuration of each flight phase the stability paragraphs name
 PHASES = {"takeoff": "takeoff", "cruise": "clean", "landing": "landing"}
@@ -190,7 +191,9 @@ def speed_step_trims(ctx, refined, k: float):
         trim0 = ctx.trim(conds).results
         t0 = [next(v for n, v in r.controls.items() if n.startswith("throttle")) for r in trim0]
         side = [c.with_(speed=c.speed * (1 - k)) for c in conds] + [c.with_(speed=c.speed * (1 + k)) for c in conds]
-        yield conds, trim0, t0, trims_at_throttle(ctx, side, t0 + t0)
+        held = held_stabilizer(trim0)  # a movable stabiliser stays at its V₀ trim; the elevator holds the speed change
+        extra = {} if held is None else {"stabilizer": np.concatenate([held, held])}
+        yield conds, trim0, t0, trims_at_throttle(ctx, side, t0 + t0, **extra)
 
 
 @rule
@@ -333,8 +336,9 @@ class StickForceGradient(Rule):
     limitations = """
         Local average over ±5 % of the trim speed, not the whole §25.175 range (±15 % or ±50 kt plus the free-return
         range); level-flight trim thrust, not the §25.175 climb or idle power; friction is not added to the slope;
-        the trim device is a hinge-moment bias fixed at its trim value (tab or feel-neutral shift), the stabiliser is
-        fixed at its declared incidence.
+        the trim device is a hinge-moment bias fixed at its trim value (tab or feel-neutral shift); a movable stabiliser
+        is held at its trim-speed setting (the elevator holds the speed change), else the stabiliser is fixed at its
+        declared incidence.
     """
 
     unevaluated = (

@@ -467,7 +467,10 @@ class MaximumPitchControlDisplacement(Rule):
                 considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
                 VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i),
                 elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
-                elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3)))
+                elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3),
+                **({"stabilizer_trim_deg": round(float(np.degrees(batch.control("stabilizer")[i]
+                                                                  + ctx.aircraft.geometry.horizontal_tail.incidence)), 3)}
+                   if "stabilizer" in batch.model.control_names else {})))
             findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
                                          bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
         self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()

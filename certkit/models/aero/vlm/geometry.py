@@ -332,6 +332,7 @@ class ControlSpan:
     chord_ratio: float
     gain: float = 1.0
     kind: str | None = None  # "symmetric", "antisymmetric" or "rudder"; default from the name
+    hinge_vector: tuple[float, float, float] = (0.0, 0.0, 0.0)  # zero: along the hinge line
 
 
 def _control_kind(spec: ControlSpan) -> str:
@@ -393,8 +394,8 @@ def trapezoidal_surface(
             raise GeometryError(
                 f"{where}: control {c.name!r} span fractions ({c.eta_inboard}, {c.eta_outboard}) must satisfy 0 <= inboard < outboard <= 1"
             )
-        if not 0.0 < c.chord_ratio < 1.0:
-            raise GeometryError(f"{where}: control {c.name!r} chord ratio {c.chord_ratio} must be in (0, 1)")
+        if not 0.0 < c.chord_ratio <= 1.0:  # 1: the whole chord turns (an all-moving surface's incidence)
+            raise GeometryError(f"{where}: control {c.name!r} chord ratio {c.chord_ratio} must be in (0, 1]")
         etas.update((c.eta_inboard, c.eta_outboard))
     x0, y0, z0 = root_leading_edge
     sections: list[Section] = []
@@ -415,7 +416,7 @@ def trapezoidal_surface(
                 elif kind == "rudder":  # hinge along +z: positive rotation swings the TE to +y (right)
                     sec_controls.append(ControlSurface(c.name, 1.0 - c.chord_ratio, -c.gain))
                 else:
-                    sec_controls.append(ControlSurface(c.name, 1.0 - c.chord_ratio, c.gain))
+                    sec_controls.append(ControlSurface(c.name, 1.0 - c.chord_ratio, c.gain, c.hinge_vector))
         sections.append(Section(le, chord, 0.0 if vertical else incidence, camber_line, sec_controls))
     return Surface(
         name,
