@@ -54,7 +54,9 @@ def test_unrepresentative_runs_earn_no_verdict(result):
             assert f"deviates {d['max_lateral_deviation_on_ground_ft']:.0f} ft" in f.reason
             late = d["vlof_kn"] - d["vr_kn"] > 15.0
             assert ("above VR" in f.reason) == late
-    assert "31.8 kn above VR" in _by(base, "MTOW forward", "(c)(2)").reason
+    # 31.8 kn before the tail-on flap moment (issue 12): the flap's downwash at the tail pitches nose-up, so the
+    # forward-CG rotation lifts off 3 kn earlier
+    assert "28.8 kn above VR" in _by(base, "MTOW forward", "(c)(2)").reason
 
 
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
