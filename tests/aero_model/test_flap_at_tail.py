@@ -90,3 +90,17 @@ def test_declared_derivative_tables_keep_their_alpha_dot_terms(tmp_path):
     """))
     model = Context(load_aircraft(f)).aero("clean").model
     assert np.allclose(model.alpha_dot_derivatives(0.5), 0.0)
+
+
+def test_tail_share_without_flaps_is_an_input_error(tmp_path):
+    """A tail share declared on a configuration without flaps would be ignored: an error naming the YAML path,
+    line and the flap angle, reported at load."""
+    from certkit.errors import InputError
+
+    text = BASELINE.read_text().replace(
+        '    source: "[given]"\n',
+        '    source: "[given]"\n    tail_flap_increment: {delta_CL: -0.02, delta_Cm: 0.05, source: test entry}\n', 1)
+    f = tmp_path / "clean_share.yaml"
+    f.write_text(text)
+    with pytest.raises(InputError, match=r"clean_share.yaml:\d+: configurations\.clean\.tail_flap_increment: .*flap 0 deg"):
+        load_aircraft(f)
