@@ -111,15 +111,15 @@ DOWNWASH_CHORDWISE = 4
 
 
 def downwash_configurations(aircraft) -> tuple[LatticeConfiguration, LatticeConfiguration]:
-    """Wing (:data:`DOWNWASH_WING_STRIPS` strips per half, its trailing-edge flap as the control
+    """Wing (at least :data:`DOWNWASH_WING_STRIPS` strips per half, its trailing-edge flap as the control
     :data:`FLAP_CONTROL` when it has one) with the horizontal tail, and the same tail alone: the downwash at the tail
     (the fin carries no load in symmetric flow and is left out)."""
     g = aircraft.geometry
     res = aircraft.aerodynamics.lattice.model_copy(update={"chordwise": DOWNWASH_CHORDWISE})
     f = g.wing.flaps
     flap = [] if f is None else [ControlSpan(FLAP_CONTROL, f.span_start, f.span_end, f.chord_ratio, kind="symmetric")]
-    wing = _surface("wing", g.wing, res.model_copy(update={"spanwise": DOWNWASH_WING_STRIPS}), component=1,
-                    controls=flap)
+    strips = max(DOWNWASH_WING_STRIPS, res.spanwise)
+    wing = _surface("wing", g.wing, res.model_copy(update={"spanwise": strips}), component=1, controls=flap)
     tail = _surface("horizontal_tail", g.horizontal_tail, res, component=2, controls=[])
     ref = aero_reference(aircraft)
     return (LatticeConfiguration([wing, tail], ref, name="wing and horizontal tail (downwash)"),
