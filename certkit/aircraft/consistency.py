@@ -147,6 +147,16 @@ def _configurations(s):
         yield "configurations", "a 'clean' configuration (flaps and gear up) is required", sorted(s["configurations"])
 
 
+@needs("configurations")
+def _tail_flap_increment(s):
+    """The tail's share of the flap increments applies only with the flaps down."""
+    for name, cfg in s["configurations"].items():
+        if cfg.tail_flap_increment is not None and not cfg.flap > 0:
+            yield (f"configurations.{name}.tail_flap_increment", "the tail's share of the flap increments needs the "
+                   f"flaps down (flap > 0); configuration {name!r} has flap {math.degrees(cfg.flap):g} deg",
+                   cfg.tail_flap_increment.model_dump())
+
+
 @needs("cg_envelope", "mass")
 def _cg_envelope(s):
     env, m = s["cg_envelope"], s["mass"]

@@ -413,15 +413,28 @@ class StallWarning(_Section):
         return self
 
 
+class TailFlapIncrement(_Section):
+    """The horizontal tail's share of a configuration's flap increments: its lift and pitching-moment change from the
+    change of downwash at the tail with the flaps down (tail-on minus tail-off increment, e.g. from wind-tunnel runs
+    with and without the tail), on the reference area and chord, moment about the moment point."""
+
+    delta_CL: Annotated[float, Field(gt=-1.0, lt=1.0)] = Field(description="tail lift change, usually negative")
+    delta_Cm: Annotated[float, Field(gt=-2.0, lt=2.0)] = Field(description="tail pitching-moment change, usually nose-up")
+    source: str = Field(description="where the increments come from")
+
+
 class Configuration(_Section):
     flap: Angle = 0.0
     slat: Angle = 0.0
     gear: Literal["up", "down"] = "up"
     CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
     CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
-    delta_CL0: float = 0.0
+    delta_CL0: float = Field(0.0, description="tail-off (wing-body) lift increment of the high-lift devices")
     delta_CD0: float = 0.0
-    delta_Cm0: float = 0.0
+    delta_Cm0: float = Field(0.0, description="tail-off (wing-body) pitching-moment increment of the high-lift devices")
+    tail_flap_increment: TailFlapIncrement | None = Field(
+        None, description="the horizontal tail's share of the flap increments (change of downwash at the tail); "
+                          "without it the vortex lattice estimates it for a file with geometry")
     stall_warning: StallWarning | None = Field(
         None, description="stall-warning onset (§25.207); without it the rules use the latest warning §25.207(c) allows")
     source: str | None = None

@@ -31,24 +31,32 @@ def test_hand_calculation_approach_sink_and_flare_constant(result):
 
 def test_a_steeper_approach_lands_harder(result, tmp_path):
     """A −4.5° approach (criterion glide_slope) sinks 1.5 × faster on the path (sin 4.5°/sin 3° = 1.50, 18.1 ft/s at
-    VREF): the flare, started at the same height, ends with a higher touchdown sink rate at every CG."""
+    VREF): the flare, started at the same height, ends with a higher touchdown sink rate at the forward and aft CG
+    and on average over the three. (At the reference CG, since the downwash-lag damping and the tail-on flap moment
+    of issue 12, the 3° run's flare lags its law more than the steep one's: 1.42 against 1.18 ft/s, both near the
+    exponential flare's own terminal sink 1 m/τ, 0.75 and 1.13 ft/s — a difference of flare tracking, not of the
+    approach.)"""
     block = ('criteria:\n  "25.125":\n    justification: a steeper approach\n'
              '    values: {glide_slope: -4.5}\n\nsources:\n')
     steep = run_rule("25.125", tmp_path, [NO_STABILIZER, ("\nsources:\n", "\n" + block)])
+    sinks = []
     for loading in ("MLW forward", "MLW reference", "MLW aft"):
         base, f = _by(result, loading, "touchdown"), _by(steep, loading, "touchdown")
         assert f.details["approach_sink_fps"] == pytest.approx(base.details["approach_sink_fps"] * 1.4990, rel=2e-3)
-        assert f.value > base.value
+        sinks.append((base.value, f.value))
+    assert sinks[0][1] > sinks[0][0] and sinks[2][1] > sinks[2][0]
+    assert sum(s for _, s in sinks) > sum(b for b, _ in sinks)
 
 
 def test_sign_forward_cg_needs_more_elevator_and_a_larger_limit_helps(result, tmp_path):
-    """The forward CG needs the most nose-up elevator (smallest margin; at MLW it already needs −22.6° to trim
-    on the path, past the −21.8° design limit: fails with the trim's message); a −30° design limit raises every
-    elevator margin by exactly 8.2°."""
+    """The forward CG needs the most nose-up elevator (smallest margin; at MLW it trims on the path at −19.5° —
+    −22.6° before the tail-on flap moment of issue 12, the flap's downwash at the tail pitching nose-up — and the
+    flare takes it past the −21.8° design limit: fails); a −30° design limit raises every elevator margin by
+    exactly 8.2°."""
     m = [_by(result, c, "elevator").margin for c in ("MLW forward", "MLW reference", "MLW aft")]
     assert m[0] < m[1] < m[2]
     fwd = _by(result, "MLW forward", "elevator")
-    assert fwd.status == "fails" and "elevator" in fwd.reason
+    assert fwd.status == "fails" and fwd.value < -21.8 < fwd.details["trim_elevator_deg"]
     wider = run_rule("25.125", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
                                            "design_limits: {min: -30 deg, max: 16.8 deg}")])
     assert _by(wider, "MLW forward", "elevator").margin == pytest.approx(fwd.margin + 8.2, abs=1e-6)

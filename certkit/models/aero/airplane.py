@@ -10,7 +10,9 @@ states (:class:`certkit.models.aero.derivative_model.StabilityDerivativeModel`).
   and control derivatives, wing–tail interference included; the fuselage contributions to Cm_α and
   Cn_β (:mod:`certkit.models.aero.fuselage`) and the drag build-up (:mod:`certkit.models.aero.drag`)
   are added; high-lift increments come from the configuration (declared ΔCL0, ΔCD0, ΔCm0, or the
-  lattice's flap derivative times the flap angle), and the stall from the configuration's CLmax.
+  lattice's flap derivative times the flap angle) with the tail's share from the change of downwash
+  (declared, or a lattice with the flap deflected), the downwash-lag CL_α̇, Cm_α̇ from the tail's
+  downwash gradient (:mod:`certkit.models.aero.tail_downwash`), and the stall from the configuration's CLmax.
 
 Any coefficient named in ``aerodynamics.overrides.<config>`` replaces its estimate; every
 replacement is recorded so that the report lists it.
@@ -35,6 +37,8 @@ DESIGN_CL = 0.5
 #: calibrated airspeed of the climb schedule that fixes the Reynolds number at each Mach breakpoint
 SCHEDULE_CAS = 300 * 1852 / 3600
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
+#: the lattice's tail lift and moment increments per unit flap lift increment of the wing (not model terms)
+FLAP_TAIL_TERMS = ("tail_CL_per_flap_CL", "tail_Cm_per_flap_CL")
 #: lattice derivatives carried into the flight model (the others are zero by symmetry or not used)
 CARRIED = ("CL_alpha", "CL_q", "CY_beta", "CY_p", "CY_r", "Cl_beta", "Cl_p", "Cl_r", "Cm_alpha", "Cm_q",
            "Cn_beta", "Cn_p", "Cn_r")
@@ -50,13 +54,15 @@ def _camber_digits(airfoil: str) -> str | None:
     return digits if len(digits) == 4 and digits.isdigit() else None
 
 
-def _surface(name: str, s, resolution, *, vertical: bool = False, component: int | None = None):
-    """A lattice surface from an aircraft-file lifting surface, with its controls and tip twist."""
-    controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
-    if s.stabilizer is not None and not vertical:
-        # a movable stabiliser: the whole chord turns about the lateral (pitch) axis, i.e. a change of the tail's
-        # incidence from its declared datum (the control's deflection δs = i_h − incidence)
-        controls.append(ControlSpan(STABILIZER, 0.0, 1.0, 1.0, hinge_vector=(0.0, 1.0, 0.0)))
+def _surface(name: str, s, resolution, *, vertical: bool = False, component: int | None = None, controls=None):
+    """A lattice surface from an aircraft-file lifting surface, with its controls (or only ``controls``, a list of
+    :class:`ControlSpan`) and tip twist."""
+    if controls is None:
+        controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
+        if s.stabilizer is not None and not vertical:
+            # a movable stabiliser: the whole chord turns about the lateral (pitch) axis, i.e. a change of the tail's
+            # incidence from its declared datum (the control's deflection δs = i_h − incidence)
+            controls.append(ControlSpan(STABILIZER, 0.0, 1.0, 1.0, hinge_vector=(0.0, 1.0, 0.0)))
     surface = trapezoidal_surface(
         name, area=s.area, aspect_ratio=s.aspect_ratio, taper=s.taper, sweep_quarter_chord=s.sweep_quarter_chord,
         dihedral=s.dihedral, root_leading_edge=(s.root_leading_edge.x, s.root_leading_edge.y, s.root_leading_edge.z),
@@ -101,6 +107,30 @@ def lattice_configuration(aircraft, name: str = "") -> LatticeConfiguration:
     return LatticeConfiguration(surfaces, aero_reference(aircraft), name=name)
 
 
+#: the wing's flap as a lattice control, in the lattice of :func:`downwash_configurations` only
+FLAP_CONTROL = "flap"
+#: strips per half-wing and chordwise vortices of the lattice that gives the downwash at the tail (converged within
+#: about 2 % on the baseline, see :mod:`certkit.models.aero.tail_downwash`)
+DOWNWASH_WING_STRIPS = 64
+DOWNWASH_CHORDWISE = 4
+
+
+def downwash_configurations(aircraft) -> tuple[LatticeConfiguration, LatticeConfiguration]:
+    """Wing (at least :data:`DOWNWASH_WING_STRIPS` strips per half, its trailing-edge flap as the control
+    :data:`FLAP_CONTROL` when it has one) with the horizontal tail, and the same tail alone: the downwash at the tail
+    (the fin carries no load in symmetric flow and is left out)."""
+    g = aircraft.geometry
+    res = aircraft.aerodynamics.lattice.model_copy(update={"chordwise": DOWNWASH_CHORDWISE})
+    f = g.wing.flaps
+    flap = [] if f is None else [ControlSpan(FLAP_CONTROL, f.span_start, f.span_end, f.chord_ratio, kind="symmetric")]
+    strips = max(DOWNWASH_WING_STRIPS, res.spanwise)
+    wing = _surface("wing", g.wing, res.model_copy(update={"spanwise": strips}), component=1, controls=flap)
+    tail = _surface("horizontal_tail", g.horizontal_tail, res, component=2, controls=[])
+    ref = aero_reference(aircraft)
+    return (LatticeConfiguration([wing, tail], ref, name="wing and horizontal tail (downwash)"),
+            LatticeConfiguration([tail], ref, name="horizontal tail alone"))
+
+
 @dataclass
 class AirplaneAero:
     """One configuration's aerodynamic model and its provenance."""
@@ -118,16 +148,29 @@ class AirplaneAero:
 
 
 def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
-    """Derivatives at α = 0 for each Mach number: (table name → values, neutral points, e, lattice)."""
+    """Derivatives at α = 0 for each Mach number: (table name → values, neutral points, e, lattice).
+
+    The table also holds the downwash-lag derivatives CL_alphadot, Cm_alphadot at each Mach number and, for a
+    wing with flaps, the tail's flap ratios :data:`FLAP_TAIL_TERMS` at the lowest one
+    (:mod:`certkit.models.aero.tail_downwash`)."""
+    from certkit.models.aero.tail_downwash import WING, downwash_gradient, downwash_lag, flap_at_tail, slopes
+
     vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
+    on, alone = downwash_configurations(aircraft)
+    wing_tail, tail = VortexLattice(on, mach=machs[0]), VortexLattice(alone, mach=machs[0])
+    gradient_low = downwash_gradient(wing_tail, tail)
     table: dict[str, list[float]] = {}
-    xnp, e = [], []
+    xnp, e, wing_slope = [], [], []
     for m in machs:
         lat = vl.at_mach(m)
         d = lat.stability_derivatives(alpha=0.0)
         sol = d.solution
         for key in CARRIED:
             table.setdefault(key, []).append(d[key])
+        wing_slope.append(slopes(lat, WING)[0])
+        lag = downwash_lag(gradient_low * wing_slope[-1] / wing_slope[0], lat, tail.at_mach(m))
+        table.setdefault("CL_alphadot", []).append(lag.CL_alphadot)
+        table.setdefault("Cm_alphadot", []).append(lag.Cm_alphadot)
         for cname in lat.control_names:
             for coef in COEFFICIENTS:
                 table.setdefault(f"{coef}_{cname}", []).append(d[f"{coef}_delta_{cname}"])
@@ -135,6 +178,10 @@ def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
         table.setdefault("Cm0", []).append(sol.Cm)
         xnp.append(d.neutral_point)
         e.append(sol.span_efficiency)
+    if aircraft.geometry.wing.flaps is not None:
+        at_tail = flap_at_tail(wing_tail, tail, FLAP_CONTROL)
+        table[FLAP_TAIL_TERMS[0]] = [at_tail.CL_per_wing_CL] * len(machs)
+        table[FLAP_TAIL_TERMS[1]] = [at_tail.Cm_per_wing_CL] * len(machs)
     return table, xnp, e, vl
 
 
@@ -206,6 +253,7 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
         table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
         controls = vl.control_names
         table = {k: list(v) for k, v in table.items()}
+        flap_tail = [table.pop(k, None) for k in FLAP_TAIL_TERMS]
         machs = tuple(machs)
         result = AirplaneAero(configuration, None, tuple(machs), table, "vortex lattice (certkit.models.aero.vlm)",
                               neutral_point=xnp, span_efficiency=e, notes=notes, lattice=vl)
@@ -218,7 +266,7 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
             table["CD0"], table["k"] = list(cd0), list(k)
             result.source += " + drag build-up"
             notes += drag_notes
-        _high_lift(aircraft, configuration, cfg, table, notes)
+        _high_lift(aircraft, configuration, cfg, table, notes, flap_tail)
     for key, value in aircraft.aerodynamics.overrides.get(configuration, {}).items():
         estimate = table.get(key)
         table[key] = value
@@ -230,9 +278,10 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
     return result
 
 
-def _high_lift(aircraft, name, cfg, table, notes) -> None:
+def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> None:
     """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
-    (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle."""
+    (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle (tail-on already);
+    the first two are tail-off, so the tail's share (:func:`_tail_flap_share`) is added to them."""
     from certkit.models.aero.high_lift import lift_and_moment_increment
 
     wing = aircraft.geometry.wing
@@ -255,6 +304,9 @@ def _high_lift(aircraft, name, cfg, table, notes) -> None:
         d_cl = d_cm = [0.0] * len(table["CL0"])
         notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
                      "no flap on the wing: lift and moment increments not modelled")
+    tail_off = bool(cfg.delta_CL0 or cfg.delta_Cm0) or wing.flaps is not None  # declared or Raymer: tail-off
+    if cfg.flap > 0 and tail_off:
+        d_cl, d_cm = _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes)
     table["CL0"] = [v + d for v, d in zip(table["CL0"], d_cl)]
     table["Cm0"] = [v + d for v, d in zip(table["Cm0"], d_cm)]
     from certkit.models.aero.drag import configuration_drag_increment
@@ -264,3 +316,24 @@ def _high_lift(aircraft, name, cfg, table, notes) -> None:
         table["CD0"] = [v + delta for v in table.get("CD0", [0.0] * len(table["CL0"]))]
         if not declared:
             notes.append(f"configuration {name}: ΔCD0 {delta:.4f} estimated (flaps Raymer 12.61, gear Roskam Part I)")
+
+
+def _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes):
+    """The tail-off flap increments (d_cl, d_cm per Mach breakpoint) with the horizontal tail's share added: the
+    declared ``tail_flap_increment``, else the lattice's tail increments per unit wing flap lift
+    (:func:`certkit.models.aero.tail_downwash.flap_at_tail`) times the wing's ΔCL0."""
+    declared = cfg.tail_flap_increment
+    if declared is not None:
+        notes.append(f"configuration {name}: tail share of the flap increments declared (ΔCL {declared.delta_CL:+.4f}, "
+                     f"ΔCm {declared.delta_Cm:+.4f}; {declared.source})")
+        return [d + declared.delta_CL for d in d_cl], [d + declared.delta_Cm for d in d_cm]
+    per_cl, per_cm = flap_tail
+    if per_cl is None:
+        notes.append(f"configuration {name}: no flap on the lattice's wing: the change of downwash at the tail with "
+                     "the flaps down is not modelled (the flap increments are tail-off)")
+        return d_cl, d_cm
+    t_cl = [r * d for r, d in zip(per_cl, d_cl)]
+    t_cm = [r * d for r, d in zip(per_cm, d_cl)]
+    notes.append(f"configuration {name}: tail share of the flap increments from the change of downwash in the vortex "
+                 f"lattice with the flap deflected (ΔCL {t_cl[0]:+.4f}, ΔCm {t_cm[0]:+.4f} at the lowest Mach breakpoint)")
+    return [a + b for a, b in zip(d_cl, t_cl)], [a + b for a, b in zip(d_cm, t_cm)]
