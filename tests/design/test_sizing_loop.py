@@ -51,9 +51,12 @@ def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):
              r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_down.margin"]]
         assert min(m) >= 0.0
         # fully stressed somewhere (covers or webs governed by the load, not a minimum gauge): the box is sized for the
-        # envelope + 2 %, so its critical station sits at 1 − 1/1.02 ≈ 0.02 (the tail's own findings; the rule-level
-        # margins also hold the wing's and the §25.337 load-factor findings)
-        assert min(m) < 0.03
+        # union of the loop's envelopes + 2 %, so its critical station sits near 1.02 − 1 (the tail's own findings; the
+        # rule-level margins also hold the wing's and the §25.337 load-factor findings). The union keeps iteration 0's
+        # loads, flown with the initial tail group (the declared one scaled: 3,056 kg for the 1,300 ft² tail against
+        # the 3,798 kg sized one, whose heavier tail relieves more): 1.2–1.6 % above the converged airplane's, so
+        # the critical margin is up to 1.02 × 1.016 − 1 ≈ 0.036
+        assert min(m) < 0.04
 
 
 def test_oew_bookkeeping(baseline):
