@@ -42,7 +42,7 @@ from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas
-from certkit.units import FT, G0
+from certkit.units import FT, G0, LB
 from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-140"
@@ -175,8 +175,9 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
                  thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5) -> list[Finding]:
     """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
     conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
-    ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient fails gets its WAT
-    limit weight (module docstring), at most ``iterations`` trims of all failing corners at once. Corners whose trim
+    ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient is below the minimum
+    is weight-limited (module docstring): its WAT limit weight is searched (at most ``iterations`` trims of all such
+    corners at once) and the corner's finding becomes that limitation (:func:`_weight_limited`). Corners whose trim
     would be another's (a day colder than standard: flat-rated thrust, the same forces) share its trim."""
     env = ctx.aircraft.takeoff_landing_envelope
     if env is None:
@@ -193,73 +194,120 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
     trimmed = [grid[k] for k in sorted(set(same))]
     out = climb_findings(ctx, trimmed, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
                          drag_credit=np.full(len(trimmed), drag_credit), notes=notes)
-    _wat_limits(ctx, out, required, speed_at, thrust_fraction, drag_credit, iterations)
-    by_point: dict[tuple, list[Finding]] = {}
+    out = _weight_limited(ctx, out, check, required, speed_at, thrust_fraction, drag_credit, iterations)
+    by_corner: dict[str, list[Finding]] = {}
     for f in out:
-        by_point.setdefault((f.condition.get("airport"), f.condition.loading), []).append(f)
+        by_corner.setdefault(f.condition.get("airport"), []).append(f)
     expanded = []
-    for k, c in enumerate(grid):
-        twin = grid[same[k]]
-        for f in by_point.get((twin.get("airport"), twin.loading), []):
-            if same[k] == k:
+    for a in corners:
+        label = a.label()
+        twin = grid[same[next(k for k, c in enumerate(grid) if c.get("airport") == label)]]
+        for f in by_corner.get(twin.get("airport"), []):
+            if twin.get("airport") == label:
                 expanded.append(f)
                 continue
-            copy = replace(f, condition=c.with_(thrust=f.condition.get("thrust")), details=dict(f.details))
+            copy = replace(f, condition=f.condition.with_(airport=label, delta_isa_K=round(a.delta_isa, 3)),
+                           details=dict(f.details))
             copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
                                                           "the same forces at this CAS and pressure altitude)") if x)
             expanded.append(copy)
     return expanded
 
 
-def _wat_limits(ctx, findings, required, speed_at, thrust_fraction, drag_credit, iterations) -> None:
-    """Add the WAT limit weight to the lowest failing gradient finding of each corner (in place)."""
-    worst = {}
+def lowest_operating_mass(ctx) -> tuple[float, str]:
+    """The lowest weight the airplane is declared to fly at, and what it is: the CG envelope's lightest vertex (the
+    loading envelope's minimum flight weight; §25.25(b))."""
+    v = min(ctx.aircraft.cg_envelope.vertices, key=lambda v: v.mass)
+    return v.mass, f"the CG envelope's lightest weight{f' ({v.name})' if v.name else ''}"
+
+
+def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, drag_credit, iterations) -> list[Finding]:
+    """Corners where a gradient at the design weight is below the minimum are weight–altitude–temperature limited
+    (§25.1533(a)(1)/(2): the maximum takeoff and landing weights are those at which §25.121 is met, for altitudes and
+    ambient temperatures). At such a corner the design-weight gradients become not applicable (the weight is above
+    the corner's limit) and one finding states the limitation: value the WAT limit weight of the most unfavourable CG
+    (kg), limit the lowest operating weight (:func:`lowest_operating_mass`), margin their difference; it fails when
+    even that weight cannot meet the gradient. The trim at the limit weight adds its control findings."""
+    worst: dict[str, Finding] = {}
     for f in findings:
         if f.unit == "gradient" and f.value is not None and f.value < required:
             key = f.condition.get("airport")
             if key not in worst or f.value < worst[key].value:
                 worst[key] = f
     if not worst:
-        return
-    failing = list(worst.values())
+        return findings
+    limited = _wat_limit_search(ctx, list(worst.values()), required, speed_at, thrust_fraction, drag_credit, iterations)
+    lowest, what = lowest_operating_mass(ctx)
+    limits = control_limits(ctx.aircraft)
+    out = []
+    for f in findings:
+        key = f.condition.get("airport")
+        if key in worst and f.unit == "gradient" and f.value is not None:
+            f = Finding.not_applicable(f.condition, f.check, (
+                f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most unfavourable "
+                f"CG, {worst[key].condition.loading}): gradient here {f.value:.2%} against {required:.1%}"),
+                gradient_at_design_weight=round(f.value, 6),
+                **{k: v for k, v in f.details.items() if k != "hint"})
+        out.append(f)
+    paragraph = check.split(" ")[0]
+    for key, f in worst.items():
+        cond, grad, trim, estimate = limited[key]
+        here = cond.with_(loading=f"WAT limit, {f.condition.loading}")
+        name = f"{check}, WAT limit weight"
+        landing = paragraph == "(d)"
+        where = (f"{'landing' if landing else 'takeoff'} weight limited to {{:,.0f}} lb at {key} by "
+                 f"§25.121{paragraph}")
+        base = dict(lowest_operating_weight=what, design_weight_gradient=round(f.value, 6),
+                    most_unfavourable_cg=f.condition.loading)
+        if trim is not None and trim.converged and abs(grad - required) < WAT_GRADIENT_TOLERANCE:
+            out.append(Finding.compare(here, name, cond.mass, lowest, at_least=True, unit="kg", reason=(
+                where.format(cond.mass / LB) + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"
+                + (f"; below {what} ({lowest / LB:,.0f} lb): no weight meets §25.121{paragraph} at this corner, "
+                   "which the declared envelope includes" if cond.mass < lowest else "")),
+                wat_limit_mass_kg=round(cond.mass, 1), wat_limit_speed_CAS_m_s=round(cond.speed, 3),
+                wat_limit_gradient=round(float(grad), 5), **base, **trim_details(trim)))
+            out += control_findings(here, paragraph, trim, limits)
+        elif trim is not None and trim.converged and grad < required and cond.mass <= lowest * (1 + 1e-9):
+            out.append(Finding.compare(here, name, estimate, lowest, at_least=True, unit="kg", reason=(
+                f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient is "
+                f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that trim "
+                "(0 when none); the declared envelope includes a corner the airplane cannot operate at"),
+                gradient_at_lowest_weight=round(float(grad), 5), **base))
+        else:
+            out.append(Finding.not_evaluated(here, name, (
+                f"WAT limit weight not found at {key}: the trims between {what} and {f.condition.mass / LB:,.0f} lb "
+                f"did not converge to the minimum gradient (last {grad:.3%} at {cond.mass / LB:,.0f} lb)"), **base))
+    return out
+
+
+def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
+    """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate there (kg,
+    ≥ 0)) for the findings ``failing`` (the lowest gradient of each corner): two constant-CL steps
+    (:func:`weight_for_gradient`), then secant steps through the last two trims, the weight kept between the CG
+    envelope's lightest and the design weight."""
     base = [f.condition for f in failing]
-    cur, grads, history = base, None, []
-    for _ in range(iterations):
-        grads, _, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-        if cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
+    cur, history = base, []
+    for k in range(iterations + 1):
+        grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+        if k == iterations or (cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE)):
             break
         history.append((np.array([c.mass for c in cur]), grads))
-        if len(history) < 3:  # two constant-CL steps, then secant steps through the last two trims
+        if len(history) < 3:
             new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
         else:
             (m0, g0), (m1, g1) = history[-2:]
             slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
             new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
         cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, new)]
-        grads = None
-    if grads is None:
-        grads, _, _ = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-    for f, c, g in zip(failing, cur, grads):
-        ok = (math.isfinite(g) and c.mass is not None and math.isfinite(c.mass)
-              and abs(g - required) < WAT_GRADIENT_TOLERANCE)
-        if ok:
-            f.details.update(wat_limit_mass_kg=round(c.mass, 1), wat_limit_speed_CAS_m_s=round(c.speed, 3),
-                             wat_limit_gradient=round(float(g), 5))
-            f.reason = "; ".join(x for x in (f.reason, (
-                f"WAT limit at {c.get('airport')}: {c.mass / 0.45359237:,.0f} lb "
-                f"({c.mass / f.condition.mass:.1%} of {f.condition.loading.split()[0]}); §25.1533(a) makes it a "
-                "flight-manual weight limit")) if x)
-        elif math.isfinite(g) and g < required and c.mass <= _lightest(ctx) * (1 + 1e-9):
-            f.reason = "; ".join(x for x in (f.reason, (
-                f"no WAT limit weight: at the lightest weight of the CG envelope ({c.mass / 0.45359237:,.0f} lb) the "
-                f"gradient is still {g:.2%}")) if x)
-        else:
-            f.reason = "; ".join(x for x in (f.reason, "WAT limit weight not found (trims did not converge to the "
-                                                       "minimum gradient)") if x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        estimate = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+    estimate = np.where(np.isfinite(estimate) & (estimate > 0.0), estimate, 0.0)
+    return {f.condition.get("airport"): (c, float(g), r, float(e))
+            for f, c, g, r, e in zip(failing, cur, grads, batch.results, estimate)}
 
 
 def _lightest(ctx) -> float:
-    return min(v.mass for v in ctx.aircraft.cg_envelope.vertices)
+    return lowest_operating_mass(ctx)[0]
 
 
 def _at_mass(ctx, cond, mass: float, speed_at):
