@@ -17,13 +17,19 @@ Thrust available is the engine model's throttle 1: the takeoff rating of the dec
 parametric turbofan (one rating) its sea-level static thrust with the Mattingly lapse, i.e. the takeoff
 rating. Maximum continuous thrust for (c) is that thrust times ``mct_over_takeoff_thrust``.
 
-Weight–altitude–temperature (§25.21(a), §25.121's "at each weight, altitude, and ambient temperature within the
-operational limits"): with ``takeoff_landing_envelope`` declared, each paragraph is also evaluated at the envelope's
-corners (:func:`certkit.models.performance.wat.envelope_corners`) at the design weight — the gradient falls with
-weight, so it is the critical one — as standard-day trims at the pressure altitude and CAS with the day's thrust
-(the reasoning is in :mod:`certkit.models.performance.wat`). Where a corner fails, the weight at which the gradient
-is the minimum (the WAT limit that §25.1533(a)(2)/(3) turns into a flight-manual limitation) is found by trims, the
-speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved inside the envelope at that weight.
+Weight–altitude–temperature: with ``takeoff_landing_envelope`` declared, each paragraph is also evaluated at the
+envelope's corners (:func:`certkit.models.performance.wat.envelope_corners`) at the design weight — the gradient
+falls with weight, so it is the critical one — as standard-day trims at the pressure altitude and CAS with the day's
+thrust (the reasoning is in :mod:`certkit.models.performance.wat`). A corner that meets the gradient there complies
+as at sea level. One that does not is weight–altitude–temperature limited, not non-compliant: §25.1533(a)(1) and (2)
+establish the maximum takeoff and landing weights as the weights at which §25.121(a)–(c) and (d) are met "for
+altitudes and ambient temperatures" (and §25.25(a) the maximum weights for environmental conditions "such as
+altitude and temperature"). Its weight at which the gradient is the minimum (the WAT limit, the flight manual's
+limitation) is found by trims, the speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved
+inside the envelope at that weight; the corner's finding is that limitation, against the lowest weight the airplane
+is declared to fly at (the CG envelope's lightest). It fails when even that weight cannot meet the gradient: the
+declared envelope then holds a corner at which the airplane cannot operate (§25.1533(b): the extremes of altitude
+and temperature are those at which compliance is shown).
 """
 
 from __future__ import annotations
@@ -282,14 +288,18 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
 
 def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
     """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate there (kg,
-    ≥ 0)) for the findings ``failing`` (the lowest gradient of each corner): two constant-CL steps
-    (:func:`weight_for_gradient`), then secant steps through the last two trims, the weight kept between the CG
-    envelope's lightest and the design weight."""
+    ≥ 0)) for the findings ``failing`` (the lowest gradient of each corner, whose trims give the first step): two
+    constant-CL steps (:func:`weight_for_gradient`), then secant steps through the last two trims, the weight kept
+    between the CG envelope's lightest and the design weight; at most ``iterations`` trims of all corners at once."""
     base = [f.condition for f in failing]
-    cur, history = base, []
-    for k in range(iterations + 1):
+    grads = np.array([f.value for f in failing])
+    weight = np.array([c.mass for c in base]) * G0
+    available = np.array([f.details["thrust_available_N"] for f in failing])
+    history = [(weight / G0, grads)]
+    cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, weight_for_gradient(weight, available, grads, required) / G0)]
+    for k in range(iterations):
         grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-        if k == iterations or (cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE)):
+        if k == iterations - 1 or np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
             break
         history.append((np.array([c.mass for c in cur]), grads))
         if len(history) < 3:
@@ -333,7 +343,9 @@ _COMMON_LIMITS = """
     windmilling drag (Torenbeek App. G form); weight not reduced by the fuel burned before the segment.
     Off-standard days: the standard-day trim at the pressure altitude and CAS with the day's thrust (Mattingly's
     lapse above the declared flat rating); the Reynolds-number change of drag with temperature is neglected. A
-    corner failing at the design weight fails, with its WAT limit weight stated.
+    corner whose gradient at the design weight is below the minimum is reported as its WAT limit weight (a
+    flight-manual limitation, §25.1533(a)), found for the CG least favourable at the design weight; it fails only
+    below the CG envelope's lightest weight. Declared AFM WAT tables are not read.
 """
 
 
