@@ -179,3 +179,15 @@ def test_without_an_envelope_only_sea_level_isa(tmp_path, base_b):
     mine = [(f.check, f.condition.loading, f.value, f.status) for f in own(r)]
     theirs = [(f.check, f.condition.loading, f.value, f.status) for f in own(base_b) if not f.condition.get("airport")]
     assert mine == theirs
+
+
+def test_the_study_record_carries_the_lowest_wat_limit_weight(base_b):
+    """A design study reads the lowest WAT limit weight of (b) as a named sub-check value (certkit/design/record.py),
+    and the report has the per-corner table: 8 weight-limited corners, the lowest at 8,400 ft, ISA+40."""
+    from certkit.design.record import rule_responses
+
+    responses, statuses = rule_responses([base_b], {})
+    key = "subcheck.25.121(b).b_gradient_at_v2_gear_up_wat_limit_weight"
+    assert responses[key + ".value"] == limitation(base_b, "8,400 ft, +38.4").value and statuses[key] == "complies"
+    (table,) = [e.table for e in base_b.evidence if e.title.endswith("WAT limit weights")]
+    assert len(table) == 8 and min(row[1] for row in table.rows) == responses[key + ".value"]
