@@ -191,3 +191,45 @@ def test_the_study_record_carries_the_lowest_wat_limit_weight(base_b):
     assert responses[key + ".value"] == limitation(base_b, "8,400 ft, +38.4").value and statuses[key] == "complies"
     (table,) = [e.table for e in base_b.evidence if e.title.endswith("WAT limit weights")]
     assert len(table) == 8 and min(row[1] for row in table.rows) == responses[key + ".value"]
+
+
+SOURCE_LINE = '  source: "altitude [b777-fcom]; temperatures estimated'
+
+
+def declared_rows(*rows):
+    return (SOURCE_LINE, "  wat_limits:\n" + "".join(f"    - {{{r}}}\n" for r in rows) + SOURCE_LINE)
+
+
+def test_a_declared_wat_limit_is_checked_at_its_weight(tmp_path):
+    """Declared flight-manual takeoff limits: 475,000 lb at 8,400 ft, 38.4 °C is above the weight where the own trim
+    gives 2.4 % (460,789 lb; 3 % heavier loses about 0.35 %) and fails; 495,000 lb at 3,700 ft, 47.7 °C is below that
+    corner's (508,400 lb) and complies. A landing-only row does not enter (b)."""
+    rows = ("pressure_altitude: 8400 ft, temperature: 38.4 degC, takeoff_weight: 475000 lb, source: AFM test",
+            "pressure_altitude: 3700 ft, temperature: 47.7 degC, takeoff_weight: 495000 lb",
+            "pressure_altitude: 0 ft, temperature: 50 degC, landing_weight: 400000 lb")
+    r = run_rule("25.121(b)", tmp_path, [declared_rows(*rows)])
+    declared = [f for f in own(r) if f.check.endswith("declared WAT limit") and f.unit == "gradient"]
+    hot = [f for f in declared if f.condition.get("airport").startswith("8,400 ft")]
+    warm = [f for f in declared if f.condition.get("airport").startswith("3,700 ft")]
+    assert len(declared) == 6 and len(hot) == 3 and len(warm) == 3
+    assert all(f.condition.mass == pytest.approx(475_000 * LB) for f in hot)
+    assert min(f.value for f in hot) < 0.024 and any(f.status == "fails" for f in hot) and r.status == "fails"
+    assert all(f.status == "complies" and f.value > 0.024 for f in warm) and "AFM test" in hot[0].reason
+    worst = min(hot, key=lambda f: f.value)
+    assert own_gradient(worst.condition, 38.4 + 273.15 - isa(8400 * FT)[0]) == pytest.approx(worst.value, abs=1e-4)
+
+
+def test_a_declared_wat_limit_outside_the_envelope_is_an_input_error(tmp_path):
+    """A declared point above the envelope's highest airport, and one with no weight: both reported with their paths."""
+    from certkit.aircraft import load_aircraft
+    from certkit.errors import InputError
+
+    from .helpers import edited_baseline
+
+    path = edited_baseline(tmp_path, [declared_rows("pressure_altitude: 9000 ft, temperature: 20 degC, takeoff_weight: 1 lb",
+                                                    "pressure_altitude: 0 ft, temperature: 20 degC")])
+    with pytest.raises(InputError) as err:
+        load_aircraft(path)
+    message = str(err.value)
+    assert "takeoff_landing_envelope.wat_limits.0.pressure_altitude" in message
+    assert "takeoff_landing_envelope.wat_limits.1" in message and "neither takeoff_weight nor landing_weight" in message

@@ -29,7 +29,9 @@ limitation) is found by trims, the speeds kept at the same multiple of the stall
 inside the envelope at that weight; the corner's finding is that limitation, against the lowest weight the airplane
 is declared to fly at (the CG envelope's lightest). It fails when even that weight cannot meet the gradient: the
 declared envelope then holds a corner at which the airplane cannot operate (§25.1533(b): the extremes of altitude
-and temperature are those at which compliance is shown).
+and temperature are those at which compliance is shown). Flight-manual WAT limits the envelope declares
+(``wat_limits``) are checked at their own altitude and temperature at the lower of that weight and the design weight:
+there the gradient must be met.
 """
 
 from __future__ import annotations
@@ -43,7 +45,7 @@ from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at, speed_as
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits, throttle_for_thrust, thrust_function
-from certkit.models.performance.wat import envelope_corners, weight_for_gradient
+from certkit.models.performance.wat import Ambient, envelope_corners, weight_for_gradient
 from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
@@ -178,7 +180,8 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
 
 
 def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_at, *, altitude_offset: float = 0.0,
-                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5) -> list[Finding]:
+                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5,
+                 declared: str = "takeoff_weight") -> list[Finding]:
     """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
     conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
     ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient is below the minimum
@@ -217,7 +220,33 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
             copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
                                                           "the same forces at this CAS and pressure altitude)") if x)
             expanded.append(copy)
-    return expanded
+    return expanded + _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset,
+                                       thrust_fraction, drag_credit, notes)
+
+
+def _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset, thrust_fraction,
+                     drag_credit, notes) -> list[Finding]:
+    """The paragraph at each flight-manual WAT limit the envelope declares (``declared``: its ``takeoff_weight`` or
+    ``landing_weight``), at its pressure altitude and temperature and the lower of that weight and the conditions'
+    (the design weight), each CG moved inside the envelope: the declared limit complies only where the gradient is
+    met there."""
+    grid = []
+    for w in ctx.aircraft.takeoff_landing_envelope.wat_limits:
+        limit = getattr(w, declared)
+        if limit is None:
+            continue
+        a = Ambient(w.pressure_altitude, w.temperature)
+        for c in conds:
+            at = _at_mass(ctx, c, limit, speed_at) if limit < c.mass else c
+            grid.append(at.with_(loading=f"declared WAT limit {limit / LB:,.0f} lb, {c.loading}",
+                                 altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3),
+                                 airport=a.label()))
+    if not grid:
+        return []
+    source = "; ".join(dict.fromkeys(w.source for w in ctx.aircraft.takeoff_landing_envelope.wat_limits if w.source))
+    note = "; ".join(x for x in (notes, f"declared flight-manual WAT limit ({source or 'no source given'})") if x)
+    return climb_findings(ctx, grid, f"{check}, declared WAT limit", required, n_engines,
+                          thrust_fraction=thrust_fraction, drag_credit=np.full(len(grid), drag_credit), notes=note)
 
 
 def lowest_operating_mass(ctx) -> tuple[float, str]:
@@ -345,7 +374,8 @@ _COMMON_LIMITS = """
     lapse above the declared flat rating); the Reynolds-number change of drag with temperature is neglected. A
     corner whose gradient at the design weight is below the minimum is reported as its WAT limit weight (a
     flight-manual limitation, §25.1533(a)), found for the CG least favourable at the design weight; it fails only
-    below the CG envelope's lightest weight. Declared AFM WAT tables are not read.
+    below the CG envelope's lightest weight. Declared flight-manual WAT limits (takeoff_landing_envelope.wat_limits)
+    are checked at their own altitude and temperature, at the lower of the declared and the design weight.
 """
 
 
@@ -541,7 +571,8 @@ class ClimbOEIApproach(Rule):
                                            at_least=False, unit="ratio", VSR_approach=vsr, VSR_landing=vsr_l, basis=src))
         at_mass = lambda c, m: crit.speed_over_vsr * reference_stall_speed(ctx, "approach", m)[0]  # noqa: E731
         return (out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
-                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass))
+                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass,
+                               declared="landing_weight"))
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import climb_gradient_evidence
