@@ -296,9 +296,7 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
                     most_unfavourable_cg=f.condition.loading)
         if trim is not None and trim.converged and abs(grad - required) < WAT_GRADIENT_TOLERANCE:
             out.append(Finding.compare(here, name, cond.mass, lowest, at_least=True, unit="kg", reason=(
-                where.format(cond.mass / LB) + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"
-                + (f"; below {what} ({lowest / LB:,.0f} lb): no weight meets §25.121{paragraph} at this corner, "
-                   "which the declared envelope includes" if cond.mass < lowest else "")),
+                where.format(cond.mass / LB) + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"),
                 wat_limit_mass_kg=round(cond.mass, 1), wat_limit_speed_CAS_m_s=round(cond.speed, 3),
                 wat_limit_gradient=round(float(grad), 5), **base, **trim_details(trim)))
             out += control_findings(here, paragraph, trim, limits)
@@ -367,6 +365,9 @@ def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration
                     **({"configuration": configuration} if configuration else {})) for c in conds]
 
 
+WAT_MARGIN = (" At a weight-limited corner of the takeoff and landing envelope: its WAT limit weight − the CG envelope's "
+              "lightest weight (kg).")
+
 _COMMON_LIMITS = """
     Steady-state trim (no ground effect, no transient); the critical engine windmills with the flight model's
     windmilling drag (Torenbeek App. G form); weight not reduced by the fuel burned before the segment.
@@ -391,7 +392,8 @@ class ClimbOEITakeoffGearDown(Rule):
         with the critical engine inoperative, the remaining engines at the thrust available when gear retraction
         begins, and the weight existing then.
     """
-    margin = "Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
+    margin = ("Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
+              + WAT_MARGIN)
     references = ("25.107", "25.111", "25.121(b)")
     requires = ("speeds.VR", "configurations.takeoff")
     criteria = gradient_criteria("a", 0.0, 0.003, 0.005)
@@ -449,7 +451,8 @@ class ClimbOEITakeoffGearUp(Rule):
         critical engine inoperative and the remaining engines at takeoff thrust, at the weight when the gear is
         fully retracted; in non-icing and icing conditions.
     """
-    margin = "Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)."
+    margin = ("Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)."
+              + WAT_MARGIN)
     references = ("25.107", "25.111", "25.121(a)")
     requires = ("speeds.V2", "configurations.takeoff")
     criteria = {**gradient_criteria("b)(1", 0.024, 0.027, 0.030),
@@ -495,7 +498,8 @@ class ClimbOEIFinalTakeoff(Rule):
         climb gradient at VFTO may not be less than 1.2 % for two-engine airplanes (1.5 % three, 1.7 % four), with
         the critical engine inoperative and the remaining engines at maximum continuous thrust.
     """
-    margin = "Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
+    margin = ("Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
+              + WAT_MARGIN)
     references = ("25.111", "25.121(b)")
     requires = ("speeds.VFTO", "configurations.clean")
     criteria = {**gradient_criteria("c", 0.012, 0.015, 0.017),
@@ -541,7 +545,7 @@ class ClimbOEIApproach(Rule):
         docs/regulation-notes.md).
     """
     margin = """Steady OEI gradient at 1.4 VSR(approach) − 0.021 (twins); 1.10 − VSR(approach)/VSR(landing);
-        each trim control's design limit − |deflection| (deg)."""
+        each trim control's design limit − |deflection| (deg).""" + WAT_MARGIN
     references = ("25.103", "25.119", "25.125")
     requires = ("configurations.approach", "mass.MLW")
     criteria = {**gradient_criteria("d", 0.021, 0.024, 0.027),
