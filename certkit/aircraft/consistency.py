@@ -542,14 +542,24 @@ def _component_inertia(components) -> dict[str, float] | None:
 
 @needs("takeoff_landing_envelope")
 def _takeoff_landing_envelope(s):
-    """Ranges that run from low to high, a hot limit above the coldest, and (with engines) the flat rating an
-    off-standard day needs."""
+    """Ranges that run from low to high, a hot limit above the coldest, declared WAT limits inside the envelope with a
+    weight, and (with engines) the flat rating an off-standard day needs."""
     env = s["takeoff_landing_envelope"]
     if env.pressure_altitude_min >= env.pressure_altitude_max:
         yield ("takeoff_landing_envelope.pressure_altitude_max", f"must exceed pressure_altitude_min "
                f"({env.pressure_altitude_min:.0f} m)", env.pressure_altitude_max)
     if env.temperature_min >= env.temperature_max:
         yield "takeoff_landing_envelope.temperature_max", f"must exceed temperature_min ({env.temperature_min:.2f} K)", env.temperature_max
+    for i, w in enumerate(env.wat_limits):
+        where = f"takeoff_landing_envelope.wat_limits.{i}"
+        if not env.pressure_altitude_min - 1e-6 <= w.pressure_altitude <= env.pressure_altitude_max + 1e-6:
+            yield (f"{where}.pressure_altitude", f"outside the envelope's pressure altitudes ({env.pressure_altitude_min:.0f}"
+                   f"…{env.pressure_altitude_max:.0f} m)", w.pressure_altitude)
+        if not env.temperature_min - 1e-6 <= w.temperature <= env.temperature_max + 1e-6:
+            yield (f"{where}.temperature", f"outside the envelope's temperatures ({env.temperature_min:.2f}…"
+                   f"{env.temperature_max:.2f} K)", w.temperature)
+        if w.takeoff_weight is None and w.landing_weight is None:
+            yield f"{where}", "declares neither takeoff_weight nor landing_weight", None
     p = s.get("propulsion")
     if p is not None and p.flat_rating_temperature is None:
         yield ("propulsion.flat_rating_temperature", "needed with takeoff_landing_envelope: the thrust on a day other than "

@@ -490,6 +490,19 @@ class Envelope(_Section):
     altitude_points: Annotated[int, Field(ge=2, le=50)] = 5
 
 
+class WatLimit(_Section):
+    """One point of the flight manual's weight–altitude–temperature limits (§25.1533(a)(1)/(2)): the maximum takeoff
+    and/or landing weight the applicant declares at an airport pressure altitude and ambient temperature."""
+
+    pressure_altitude: Length = Field(description="airport pressure altitude")
+    temperature: Annotated[Temperature, Field(gt=180.0, lt=360.0)] = Field(description="ambient temperature")
+    takeoff_weight: PositiveMass | None = Field(None, description="maximum takeoff weight there (§25.121(a)–(c) are "
+                                                                  "checked at the lower of it and MTOW)")
+    landing_weight: PositiveMass | None = Field(None, description="maximum landing weight there (§25.121(d) is checked "
+                                                                  "at the lower of it and MLW)")
+    source: str | None = None
+
+
 class TakeoffLandingEnvelope(_Section):
     """Airport pressure altitudes and ambient temperatures the airplane is certificated to take off and land in (the
     flight manual's takeoff and landing envelope); §25.121 is evaluated over it (weight–altitude–temperature)."""
@@ -504,6 +517,8 @@ class TakeoffLandingEnvelope(_Section):
                           "is the lower of this line and temperature_max")
     altitude_points: Annotated[int, Field(ge=2, le=10)] = Field(
         3, description="pressure altitudes evaluated, evenly from the lowest to the highest (sea level added)")
+    wat_limits: list[WatLimit] = Field(default_factory=list, description=(
+        "declared flight-manual WAT limit weights; §25.121 is also checked at each point at that weight"))
     source: str | None = None
 
 

@@ -211,4 +211,22 @@ def climb_gradient_evidence(findings, title: str) -> list[Evidence]:
                             "design limits, and the gradients.",
                             ("alpha_deg", "beta_deg", "bank_deg", "elevator_deg", "aileron_deg", "rudder_deg",
                              "thrust_available_N", "thrust_at_trim_N"))
-    return out
+    return out + wat_limit_evidence(findings, title)
+
+
+def wat_limit_evidence(findings, title: str) -> list[Evidence]:
+    """§25.121 over weight–altitude–temperature: per weight-limited corner of the takeoff and landing envelope, the
+    WAT limit weight (the flight-manual weight limitation of §25.1533(a)) against the lowest operating weight."""
+    limited = [f for f in findings if f.unit == "kg" and f.check.endswith("WAT limit weight")]
+    if not limited:
+        return []
+    table = Table([Column("corner", "airport pressure altitude, temperature", kind="text"),
+                   Column("limit", "WAT limit weight", "kg"), Column("lowest", "lowest operating weight", "kg"),
+                   Column("status", "status", kind="text"), Column("cg", "most unfavourable CG", kind="text"),
+                   Column("gradient", "gradient at the design weight", "")],
+                  [[f.condition.get("airport"), f.value, f.limit, f.status, f.details.get("most_unfavourable_cg"),
+                    f.details.get("design_weight_gradient")] for f in limited])
+    return [Evidence(title + ": WAT limit weights", None, "Corners of the takeoff and landing envelope where the "
+                     "minimum gradient is not met at the design weight: the weight at which it is met (a weight "
+                     "limitation the flight manual must carry, §25.1533(a)), against the lightest declared weight; "
+                     "a corner fails when no operating weight meets the gradient.", table)]

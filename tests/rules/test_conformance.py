@@ -18,7 +18,10 @@ RULES = discover()
 #: not applicable without it being declared and checked here
 FLAPS_ABOVE_20000 = r"^(takeoff|landing) configuration above 20,000 ft \(flap altitude limit\)$"
 BEYOND_VFE = r"^the (takeoff|landing) configuration's range ends at its VFE/VLE"
+#: §25.121 at a weight–altitude–temperature corner where the design weight is above the WAT limit (§25.1533(a))
+WAT_LIMITED = r"^[\d,]+ lb is above this corner's WAT limit weight"
 NOT_APPLICABLE = {
+    **{f"25.121({p})": [WAT_LIMITED] for p in "abcd"},
     "25.147(a)": [r"^\(b\) applies to airplanes with four or more engines \(2 here\)$"],
     "25.147(c)": [r"^\(e\) applies to airplanes with four or more engines \(2 here\)$"],
     "25.171": [FLAPS_ABOVE_20000],
@@ -35,6 +38,8 @@ def _check_not_applicable(rule_id, f, ctx):
     why = f.reason.removeprefix("not applicable: ")
     matched = [p for p in NOT_APPLICABLE.get(rule_id, ()) if re.search(p, why)]
     assert matched, f"{rule_id}: undeclared 'not applicable' reason {why!r}"
+    if matched[0] == WAT_LIMITED:  # an envelope corner, whose own limitation finding is in the rule's findings
+        assert f.condition.get("airport") and "gradient_at_design_weight" in f.details
     if matched[0] == FLAPS_ABOVE_20000:
         assert f.condition.altitude > 20_000 * 0.3048 and f.condition.configuration in ("takeoff", "landing")
     if "four or more engines" in why:

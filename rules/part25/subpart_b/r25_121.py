@@ -17,13 +17,21 @@ Thrust available is the engine model's throttle 1: the takeoff rating of the dec
 parametric turbofan (one rating) its sea-level static thrust with the Mattingly lapse, i.e. the takeoff
 rating. Maximum continuous thrust for (c) is that thrust times ``mct_over_takeoff_thrust``.
 
-Weight–altitude–temperature (§25.21(a), §25.121's "at each weight, altitude, and ambient temperature within the
-operational limits"): with ``takeoff_landing_envelope`` declared, each paragraph is also evaluated at the envelope's
-corners (:func:`certkit.models.performance.wat.envelope_corners`) at the design weight — the gradient falls with
-weight, so it is the critical one — as standard-day trims at the pressure altitude and CAS with the day's thrust
-(the reasoning is in :mod:`certkit.models.performance.wat`). Where a corner fails, the weight at which the gradient
-is the minimum (the WAT limit that §25.1533(a)(2)/(3) turns into a flight-manual limitation) is found by trims, the
-speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved inside the envelope at that weight.
+Weight–altitude–temperature: with ``takeoff_landing_envelope`` declared, each paragraph is also evaluated at the
+envelope's corners (:func:`certkit.models.performance.wat.envelope_corners`) at the design weight — the gradient
+falls with weight, so it is the critical one — as standard-day trims at the pressure altitude and CAS with the day's
+thrust (the reasoning is in :mod:`certkit.models.performance.wat`). A corner that meets the gradient there complies
+as at sea level. One that does not is weight–altitude–temperature limited, not non-compliant: §25.1533(a)(1) and (2)
+establish the maximum takeoff and landing weights as the weights at which §25.121(a)–(c) and (d) are met "for
+altitudes and ambient temperatures" (and §25.25(a) the maximum weights for environmental conditions "such as
+altitude and temperature"). Its weight at which the gradient is the minimum (the WAT limit, the flight manual's
+limitation) is found by trims, the speeds kept at the same multiple of the stall speed (∝ √W) and the CG moved
+inside the envelope at that weight; the corner's finding is that limitation, against the lowest weight the airplane
+is declared to fly at (the CG envelope's lightest). It fails when even that weight cannot meet the gradient: the
+declared envelope then holds a corner at which the airplane cannot operate (§25.1533(b): the extremes of altitude
+and temperature are those at which compliance is shown). Flight-manual WAT limits the envelope declares
+(``wat_limits``) are checked at their own altitude and temperature at the lower of that weight and the design weight:
+there the gradient must be met.
 """
 
 from __future__ import annotations
@@ -37,12 +45,12 @@ from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at, speed_as
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits, throttle_for_thrust, thrust_function
-from certkit.models.performance.wat import envelope_corners, weight_for_gradient
+from certkit.models.performance.wat import Ambient, envelope_corners, weight_for_gradient
 from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas
-from certkit.units import FT, G0
+from certkit.units import FT, G0, LB
 from certkit.reference_speeds import reference_stall_speed
 
 AMDT = "25-140"
@@ -173,11 +181,13 @@ def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, t
 
 
 def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_at, *, altitude_offset: float = 0.0,
-                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5) -> list[Finding]:
+                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5,
+                 declared: str = "takeoff_weight") -> list[Finding]:
     """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
     conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
-    ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient fails gets its WAT
-    limit weight (module docstring), at most ``iterations`` trims of all failing corners at once. Corners whose trim
+    ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient is below the minimum
+    is weight-limited (module docstring): its WAT limit weight is searched (at most ``iterations`` trims of all such
+    corners at once) and the corner's finding becomes that limitation (:func:`_weight_limited`). Corners whose trim
     would be another's (a day colder than standard: flat-rated thrust, the same forces) share its trim."""
     env = ctx.aircraft.takeoff_landing_envelope
     if env is None:
@@ -194,73 +204,148 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
     trimmed = [grid[k] for k in sorted(set(same))]
     out = climb_findings(ctx, trimmed, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
                          drag_credit=np.full(len(trimmed), drag_credit), notes=notes)
-    _wat_limits(ctx, out, required, speed_at, thrust_fraction, drag_credit, iterations)
-    by_point: dict[tuple, list[Finding]] = {}
+    out = _weight_limited(ctx, out, check, required, speed_at, thrust_fraction, drag_credit, iterations)
+    by_corner: dict[str, list[Finding]] = {}
     for f in out:
-        by_point.setdefault((f.condition.get("airport"), f.condition.loading), []).append(f)
+        by_corner.setdefault(f.condition.get("airport"), []).append(f)
     expanded = []
-    for k, c in enumerate(grid):
-        twin = grid[same[k]]
-        for f in by_point.get((twin.get("airport"), twin.loading), []):
-            if same[k] == k:
+    for a in corners:
+        label = a.label()
+        twin = grid[same[next(k for k, c in enumerate(grid) if c.get("airport") == label)]]
+        for f in by_corner.get(twin.get("airport"), []):
+            if twin.get("airport") == label:
                 expanded.append(f)
                 continue
-            copy = replace(f, condition=c.with_(thrust=f.condition.get("thrust")), details=dict(f.details))
+            copy = replace(f, condition=f.condition.with_(airport=label, delta_isa_K=round(a.delta_isa, 3)),
+                           details=dict(f.details))
             copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
                                                           "the same forces at this CAS and pressure altitude)") if x)
             expanded.append(copy)
-    return expanded
+    return expanded + _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset,
+                                       thrust_fraction, drag_credit, notes)
 
 
-def _wat_limits(ctx, findings, required, speed_at, thrust_fraction, drag_credit, iterations) -> None:
-    """Add the WAT limit weight to the lowest failing gradient finding of each corner (in place)."""
-    worst = {}
+def _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset, thrust_fraction,
+                     drag_credit, notes) -> list[Finding]:
+    """The paragraph at each flight-manual WAT limit the envelope declares (``declared``: its ``takeoff_weight`` or
+    ``landing_weight``), at its pressure altitude and temperature and the lower of that weight and the conditions'
+    (the design weight), each CG moved inside the envelope: the declared limit complies only where the gradient is
+    met there."""
+    grid = []
+    for w in ctx.aircraft.takeoff_landing_envelope.wat_limits:
+        limit = getattr(w, declared)
+        if limit is None:
+            continue
+        a = Ambient(w.pressure_altitude, w.temperature)
+        for c in conds:
+            at = _at_mass(ctx, c, limit, speed_at) if limit < c.mass else c
+            grid.append(at.with_(loading=f"declared WAT limit {limit / LB:,.0f} lb, {c.loading}",
+                                 altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3),
+                                 airport=a.label()))
+    if not grid:
+        return []
+    source = "; ".join(dict.fromkeys(w.source for w in ctx.aircraft.takeoff_landing_envelope.wat_limits if w.source))
+    note = "; ".join(x for x in (notes, f"declared flight-manual WAT limit ({source or 'no source given'})") if x)
+    return climb_findings(ctx, grid, f"{check}, declared WAT limit", required, n_engines,
+                          thrust_fraction=thrust_fraction, drag_credit=np.full(len(grid), drag_credit), notes=note)
+
+
+def lowest_operating_mass(ctx) -> tuple[float, str]:
+    """The lowest weight the airplane is declared to fly at, and what it is: the CG envelope's lightest vertex (the
+    loading envelope's minimum flight weight; §25.25(b))."""
+    v = min(ctx.aircraft.cg_envelope.vertices, key=lambda v: v.mass)
+    return v.mass, f"the CG envelope's lightest weight{f' ({v.name})' if v.name else ''}"
+
+
+def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, drag_credit, iterations) -> list[Finding]:
+    """Corners where a gradient at the design weight is below the minimum are weight–altitude–temperature limited
+    (§25.1533(a)(1)/(2): the maximum takeoff and landing weights are those at which §25.121 is met, for altitudes and
+    ambient temperatures). At such a corner the design-weight gradients become not applicable (the weight is above
+    the corner's limit) and one finding states the limitation: value the WAT limit weight of the most unfavourable CG
+    (kg), limit the lowest operating weight (:func:`lowest_operating_mass`), margin their difference; it fails when
+    even that weight cannot meet the gradient. The trim at the limit weight adds its control findings."""
+    worst: dict[str, Finding] = {}
     for f in findings:
         if f.unit == "gradient" and f.value is not None and f.value < required:
             key = f.condition.get("airport")
             if key not in worst or f.value < worst[key].value:
                 worst[key] = f
     if not worst:
-        return
-    failing = list(worst.values())
+        return findings
+    limited = _wat_limit_search(ctx, list(worst.values()), required, speed_at, thrust_fraction, drag_credit, iterations)
+    lowest, what = lowest_operating_mass(ctx)
+    limits = control_limits(ctx.aircraft)
+    out = []
+    for f in findings:
+        key = f.condition.get("airport")
+        if key in worst and f.unit == "gradient" and f.value is not None:
+            f = Finding.not_applicable(f.condition, f.check, (
+                f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most unfavourable "
+                f"CG, {worst[key].condition.loading}): gradient here {f.value:.2%} against {required:.1%}"),
+                gradient_at_design_weight=round(f.value, 6),
+                **{k: v for k, v in f.details.items() if k != "hint"})
+        out.append(f)
+    paragraph = check.split(" ")[0]
+    for key, f in worst.items():
+        cond, grad, trim, estimate = limited[key]
+        here = cond.with_(loading=f"WAT limit, {f.condition.loading}")
+        name = f"{check}, WAT limit weight"
+        landing = paragraph == "(d)"
+        where = (f"{'landing' if landing else 'takeoff'} weight limited to {{:,.0f}} lb at {key} by "
+                 f"§25.121{paragraph}")
+        base = dict(lowest_operating_weight=what, design_weight_gradient=round(f.value, 6),
+                    most_unfavourable_cg=f.condition.loading)
+        if trim is not None and trim.converged and abs(grad - required) < WAT_GRADIENT_TOLERANCE:
+            out.append(Finding.compare(here, name, cond.mass, lowest, at_least=True, unit="kg", reason=(
+                where.format(cond.mass / LB) + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"),
+                wat_limit_mass_kg=round(cond.mass, 1), wat_limit_speed_CAS_m_s=round(cond.speed, 3),
+                wat_limit_gradient=round(float(grad), 5), **base, **trim_details(trim)))
+            out += control_findings(here, paragraph, trim, limits)
+        elif trim is not None and trim.converged and grad < required and cond.mass <= lowest * (1 + 1e-9):
+            out.append(Finding.compare(here, name, estimate, lowest, at_least=True, unit="kg", reason=(
+                f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient is "
+                f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that trim "
+                "(0 when none); the declared envelope includes a corner the airplane cannot operate at"),
+                gradient_at_lowest_weight=round(float(grad), 5), **base))
+        else:
+            out.append(Finding.not_evaluated(here, name, (
+                f"WAT limit weight not found at {key}: the trims between {what} and {f.condition.mass / LB:,.0f} lb "
+                f"did not converge to the minimum gradient (last {grad:.3%} at {cond.mass / LB:,.0f} lb)"), **base))
+    return out
+
+
+def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
+    """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate there (kg,
+    ≥ 0)) for the findings ``failing`` (the lowest gradient of each corner, whose trims give the first step): two
+    constant-CL steps (:func:`weight_for_gradient`), then secant steps through the last two trims, the weight kept
+    between the CG envelope's lightest and the design weight; at most ``iterations`` trims of all corners at once."""
     base = [f.condition for f in failing]
-    cur, grads, history = base, None, []
-    for _ in range(iterations):
-        grads, _, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-        if cur is not base and np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
+    grads = np.array([f.value for f in failing])
+    weight = np.array([c.mass for c in base]) * G0
+    available = np.array([f.details["thrust_available_N"] for f in failing])
+    history = [(weight / G0, grads)]
+    cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, weight_for_gradient(weight, available, grads, required) / G0)]
+    for k in range(iterations):
+        grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+        if k == iterations - 1 or np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
             break
         history.append((np.array([c.mass for c in cur]), grads))
-        if len(history) < 3:  # two constant-CL steps, then secant steps through the last two trims
+        if len(history) < 3:
             new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
         else:
             (m0, g0), (m1, g1) = history[-2:]
             slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
             new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
         cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, new)]
-        grads = None
-    if grads is None:
-        grads, _, _ = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-    for f, c, g in zip(failing, cur, grads):
-        ok = (math.isfinite(g) and c.mass is not None and math.isfinite(c.mass)
-              and abs(g - required) < WAT_GRADIENT_TOLERANCE)
-        if ok:
-            f.details.update(wat_limit_mass_kg=round(c.mass, 1), wat_limit_speed_CAS_m_s=round(c.speed, 3),
-                             wat_limit_gradient=round(float(g), 5))
-            f.reason = "; ".join(x for x in (f.reason, (
-                f"WAT limit at {c.get('airport')}: {c.mass / 0.45359237:,.0f} lb "
-                f"({c.mass / f.condition.mass:.1%} of {f.condition.loading.split()[0]}); §25.1533(a) makes it a "
-                "flight-manual weight limit")) if x)
-        elif math.isfinite(g) and g < required and c.mass <= _lightest(ctx) * (1 + 1e-9):
-            f.reason = "; ".join(x for x in (f.reason, (
-                f"no WAT limit weight: at the lightest weight of the CG envelope ({c.mass / 0.45359237:,.0f} lb) the "
-                f"gradient is still {g:.2%}")) if x)
-        else:
-            f.reason = "; ".join(x for x in (f.reason, "WAT limit weight not found (trims did not converge to the "
-                                                       "minimum gradient)") if x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        estimate = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+    estimate = np.where(np.isfinite(estimate) & (estimate > 0.0), estimate, 0.0)
+    return {f.condition.get("airport"): (c, float(g), r, float(e))
+            for f, c, g, r, e in zip(failing, cur, grads, batch.results, estimate)}
 
 
 def _lightest(ctx) -> float:
-    return min(v.mass for v in ctx.aircraft.cg_envelope.vertices)
+    return lowest_operating_mass(ctx)[0]
 
 
 def _at_mass(ctx, cond, mass: float, speed_at):
@@ -281,12 +366,18 @@ def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration
                     **({"configuration": configuration} if configuration else {})) for c in conds]
 
 
+WAT_MARGIN = (" At a weight-limited corner of the takeoff and landing envelope: its WAT limit weight − the CG envelope's "
+              "lightest weight (kg).")
+
 _COMMON_LIMITS = """
     Steady-state trim (no ground effect, no transient); the critical engine windmills with the flight model's
     windmilling drag (Torenbeek App. G form); weight not reduced by the fuel burned before the segment.
     Off-standard days: the standard-day trim at the pressure altitude and CAS with the day's thrust (Mattingly's
     lapse above the declared flat rating); the Reynolds-number change of drag with temperature is neglected. A
-    corner failing at the design weight fails, with its WAT limit weight stated.
+    corner whose gradient at the design weight is below the minimum is reported as its WAT limit weight (a
+    flight-manual limitation, §25.1533(a)), found for the CG least favourable at the design weight; it fails only
+    below the CG envelope's lightest weight. Declared flight-manual WAT limits (takeoff_landing_envelope.wat_limits)
+    are checked at their own altitude and temperature, at the lower of the declared and the design weight.
 """
 
 
@@ -302,7 +393,8 @@ class ClimbOEITakeoffGearDown(Rule):
         with the critical engine inoperative, the remaining engines at the thrust available when gear retraction
         begins, and the weight existing then.
     """
-    margin = "Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
+    margin = ("Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
+              + WAT_MARGIN)
     references = ("25.107", "25.111", "25.121(b)")
     requires = ("speeds.VR", "configurations.takeoff")
     criteria = gradient_criteria("a", 0.0, 0.003, 0.005)
@@ -360,7 +452,8 @@ class ClimbOEITakeoffGearUp(Rule):
         critical engine inoperative and the remaining engines at takeoff thrust, at the weight when the gear is
         fully retracted; in non-icing and icing conditions.
     """
-    margin = "Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)."
+    margin = ("Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)."
+              + WAT_MARGIN)
     references = ("25.107", "25.111", "25.121(a)")
     requires = ("speeds.V2", "configurations.takeoff")
     criteria = {**gradient_criteria("b)(1", 0.024, 0.027, 0.030),
@@ -406,7 +499,8 @@ class ClimbOEIFinalTakeoff(Rule):
         climb gradient at VFTO may not be less than 1.2 % for two-engine airplanes (1.5 % three, 1.7 % four), with
         the critical engine inoperative and the remaining engines at maximum continuous thrust.
     """
-    margin = "Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
+    margin = ("Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
+              + WAT_MARGIN)
     references = ("25.111", "25.121(b)")
     requires = ("speeds.VFTO", "configurations.clean")
     criteria = {**gradient_criteria("c", 0.012, 0.015, 0.017),
@@ -452,7 +546,7 @@ class ClimbOEIApproach(Rule):
         docs/regulation-notes.md).
     """
     margin = """Steady OEI gradient at 1.4 VSR(approach) − 0.021 (twins); 1.10 − VSR(approach)/VSR(landing);
-        each trim control's design limit − |deflection| (deg)."""
+        each trim control's design limit − |deflection| (deg).""" + WAT_MARGIN
     references = ("25.103", "25.119", "25.125")
     requires = ("configurations.approach", "mass.MLW")
     criteria = {**gradient_criteria("d", 0.021, 0.024, 0.027),
@@ -482,7 +576,8 @@ class ClimbOEIApproach(Rule):
                                            at_least=False, unit="ratio", VSR_approach=vsr, VSR_landing=vsr_l, basis=src))
         at_mass = lambda c, m: crit.speed_over_vsr * reference_stall_speed(ctx, "approach", m)[0]  # noqa: E731
         return (out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
-                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass))
+                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass,
+                               declared="landing_weight"))
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import climb_gradient_evidence
