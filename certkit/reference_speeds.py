@@ -94,3 +94,9 @@ def stall_warning_cl(ctx, configuration: str, mass) -> tuple[float, str]:
         how = (f"no stall warning declared: the latest §25.207(c) allows, VSW = VSR + max(5 kn, 5 %) = {vsw / KN:.1f} kn "
                f"with the stall identified at VSR ({basis})")
     return float(mass * G0 / (0.5 * RHO0 * vsw**2 * ctx.aircraft.reference.area)), how
+
+
+def declared_eas(ctx, name: str, h: float) -> float:
+    """A declared speed (m/s EAS at altitude ``h``)."""
+    s = getattr(ctx.aircraft.speeds, name)
+    return float(convert_speed(s.value, s.kind, "EAS", h))

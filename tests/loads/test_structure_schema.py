@@ -124,7 +124,7 @@ def test_not_evaluated_without_capability_for_the_surface(tmp_path):
     import numpy as np
 
     from certkit.results import Condition
-    from certkit_rules.part25.subpart_c.r25_331 import NO_CAPABILITY, capability_finding
+    from certkit_rules.part25.subpart_c.structural_checks import NO_CAPABILITY, capability_finding
 
     structure = "structure:\n  vertical_tail:" + STRUCTURE.split("  vertical_tail:")[1]
     ctx = Context(load_aircraft(with_structure(tmp_path, structure)))

@@ -47,7 +47,7 @@ def test_vmc_parts_from_computed_vmca_until_declared(tmp_path):
     V2/VMC − 1.10 = 0.2417 and VR/VMC − 1.05 = 0.2417."""
     from certkit.aircraft import load_aircraft
     from certkit.context import Context
-    from certkit_rules.part25.subpart_b.r25_149 import computed_vmca
+    from certkit_rules.part25.subpart_b.minimum_control import computed_vmca
 
     from ..conftest import BASELINE
 

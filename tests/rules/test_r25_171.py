@@ -99,7 +99,7 @@ def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
     point is trimmed at VFC/1.05 so that its faster step reaches VFC (the speed in the condition, 291.4 kn)."""
     from certkit.aircraft import load_aircraft
     from certkit.context import Context
-    from certkit_rules.part25.subpart_b.r25_171 import VFC_FLOOR, stability_limit_cas
+    from certkit_rules.part25.subpart_b.stability_speeds import VFC_FLOOR, stability_limit_cas
 
     from .helpers import edited_baseline
 

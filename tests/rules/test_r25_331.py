@@ -15,8 +15,8 @@ from certkit.models.dynamics.simulate import CheckedManeuver
 from certkit.models.loads.capability import Capability
 from certkit.models.loads.inputs import SinusoidHold
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import (NO_CAPABILITY, capability_finding, load_factor_reached,
-                                                    maneuver_limit_load_factor)
+from certkit_rules.part25.subpart_c.r25_331 import load_factor_reached
+from certkit_rules.part25.subpart_c.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
 from certkit.results import Condition
 
 from .helpers import NO_STRUCTURE, hand_margin, own, run_rule

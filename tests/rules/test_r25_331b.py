@@ -9,7 +9,8 @@ from certkit.context import Context
 from certkit.models.loads.capability import declared_capabilities
 from certkit.scheduler import evaluate_rule
 from certkit.units import G0
-from certkit_rules.part25.subpart_c.r25_331b import NO_FLAP_STRIPS, BalancedManeuver
+from certkit_rules.part25.subpart_c.balanced_runs import NO_FLAP_STRIPS
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
 from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
 

@@ -19,7 +19,8 @@ from certkit.models.loads.gust import gust_aero
 from certkit.models.loads.gust_response import GustBatch, simulate_gust
 from certkit.registry import Criteria
 from certkit.units import FT, G0
-from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust, design_gust_velocity, flight_profile_alleviation
+from certkit_rules.part25.subpart_c.gust_runs import design_gust_velocity, flight_profile_alleviation
+from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 
 from ..loads.test_gust_response import A, MASS, S, V, closed_form
 from .helpers import NO_STRUCTURE, hand_margin, own, run_rule

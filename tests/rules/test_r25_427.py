@@ -8,7 +8,8 @@ import pytest
 from certkit.aircraft import load_aircraft
 from certkit.context import Context
 from certkit.scheduler import criteria_for, evaluate_rule
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver, balanced_maneuvers
+from certkit_rules.part25.subpart_c.balanced_runs import balanced_maneuvers
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, NOT_SHARED, UnsymmetricalTailLoads
 
 from .helpers import edited_baseline, failures_with

@@ -82,7 +82,7 @@ class TakeoffSpeeds(Rule):
             speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
             if speeds["VMC"] is None:
-                from certkit_rules.part25.subpart_b.r25_149 import computed_vmca
+                from certkit_rules.part25.subpart_b.minimum_control import computed_vmca
 
                 speeds["VMC"] = computed_vmca(ctx)
                 vmc_basis = "VMCA computed by §25.149 (no VMC declared)"

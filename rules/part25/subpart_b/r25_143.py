@@ -14,7 +14,7 @@ given, turn rate, α and the three controls solved for) — with the critical en
 asymmetric cases (the windmilling engine and the asymmetric thrust are in the flight model), in both
 directions. ``kind="oei"`` is not used: it trims *straight* flight at a bank (|φ| ≤ 5°, §25.149), which at
 30° needs a sideslip of some 36°. Where the table gives a thrust rather than a path, the turn is trimmed at
-the flight-path angle that thrust gives (:func:`trim_at_thrust`, the energy relation sin γ = (T − D)/W of
+the flight-path angle that thrust gives (:func:`certkit.thrust_trims.trim_at_thrust`, the energy relation sin γ = (T − D)/W of
 Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12, iterated on the thrust the trim needs).
 The elevator, aileron and rudder of each trim are reported against their design limits.
 """
@@ -25,35 +25,20 @@ import math
 
 import numpy as np
 
-from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
-from certkit.conditions import ConditionSpace, DesignWeight, speed_as
+from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.models.dynamics.trim import held_stabilizer
-from certkit.models.flight import control_limits, stabilizer_trim, thrust_function
+from certkit.models.flight import control_limits, stabilizer_trim
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, stall_warning_cl
-from certkit.units import FT, G0, KN
-from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
+from certkit.thrust_trims import operating_thrust, trim_at_thrust
+from certkit.units import FT, KN
+from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine
+from certkit_rules.part25.subpart_b.turns import turn_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
 _UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
                "EASA AMC 25.143(h); docs/regulation-notes.md)")
-
-#: a thrust aim is kept this far inside the throttle range, where the trim's throttle iterate is free (trim.py)
-_THROTTLE_INSIDE = 0.003
-_GAMMA_STEP = 0.03  # rad: a trim that needs thrust outside the range is retried this much lower / higher
-
-
-def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, inoperative: str | None = None):
-    """Total thrust (N) of the operating engines at ``throttle`` × ``fraction`` per condition (its altitude
-    and Mach), kept just inside the throttle range so that a trim can reach it."""
-    thrust, _ = thrust_function(ctx.aircraft)
-    live = [e for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
-    h = np.array([c.altitude or 0.0 for c in conds])
-    mach = np.array([speed_as(c, "TAS") for c in conds]) / speed_of_sound(h)
-    per_engine = lambda t: np.asarray(thrust(np.full_like(h, t), h, mach), dtype=float)  # noqa: E731
-    lo, hi = per_engine(_THROTTLE_INSIDE), per_engine(1.0 - _THROTTLE_INSIDE)
-    return len(live) * np.clip(fraction * per_engine(throttle), lo, hi)
 
 
 def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative: str):
@@ -65,62 +50,6 @@ def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative
     live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
     needed = np.array([sum(r.thrust[e] for e in live) if r.converged else np.inf for r in batch.results])
     return np.minimum(needed, available), needed >= available
-
-
-def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
-                   iterations: int = 4, stabilizer=None):
-    """Trim ``conds`` (one configuration) at the flight-path angle the operating engines' total thrust
-    ``thrust_aim`` (N, per condition) gives. A wings-level trim at γ = 0 and the polar's induced drag of the
-    turn's load factor estimate the drag; then
-    γ ← γ + (T_aim − T_trim)/W (Anderson eq. 5.12; the step undershoots by cos γ, so the iterate approaches
-    the aim from the side the trim can reach). A trim needing thrust beyond the engines' range is retried
-    0.03 rad lower (higher at idle); one failing for another reason (lift, a control) is final.
-    ``stabilizer`` holds a movable stabiliser (deflection per condition, :meth:`certkit.context.Context.trim`).
-    Returns the TrimResult of each condition, its flight-path angle (rad) and thrust residual (T_aim − T_trim)/W."""
-    n = len(conds)
-    held = None if stabilizer is None else np.broadcast_to(np.asarray(stabilizer, dtype=float), (n,))
-    live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
-    weight = np.array([c.mass for c in conds]) * G0
-    aim = np.broadcast_to(np.asarray(thrust_aim, dtype=float), (n,)).copy()
-    bank = np.broadcast_to(np.asarray(bank, dtype=float), (n,)).copy()
-    needed = lambda b: np.array([sum(r.thrust[e] for e in live) for r in b.results])  # noqa: E731
-    first = ctx.trim(conds, kind="straight", inoperative=inoperative, stabilizer=held)
-    # the turn's extra induced drag, k CL² (n² − 1) q S with CL the 1-g lift coefficient (the model's polar)
-    h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    qs = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2 \
-        * ctx.aircraft.reference.area
-    k_polar = np.asarray(ctx.aero(conds[0].configuration).model.derivative("k", tas / speed_of_sound(h)), dtype=float)
-    turn_drag = k_polar * (weight / qs) ** 2 * (1.0 / np.cos(bank) ** 2 - 1.0) * qs
-    gamma = np.where(first.converged, (aim - needed(first) - turn_drag) / weight, 0.0)
-    results, flown, residual = list(first.results), gamma.copy(), np.full(n, np.nan)
-    active = np.arange(n)
-    for k in range(iterations):
-        batch = ctx.trim([conds[i] for i in active], kind=kind, bank=bank[active], gamma=gamma[active],
-                         inoperative=inoperative, stabilizer=None if held is None else held[active])
-        res = (aim[active] - needed(batch)) / weight[active]
-        for j, i in enumerate(active):
-            results[i], flown[i], residual[i] = batch.results[j], gamma[i], res[j]
-        ok = batch.converged
-        throttle = np.array([np.mean([r.controls.get(f"throttle:{e}", 0.5) for e in live]) for r in batch.results])
-        saturated = ~ok & ((throttle >= 0.999) | (throttle <= 0.001))
-        gamma[active] += np.where(ok, res, np.where(throttle > 0.5, -_GAMMA_STEP, _GAMMA_STEP))
-        active = active[(ok & (np.abs(res) > 1e-5)) | saturated]
-        if not len(active):
-            break
-    return results, flown, residual
-
-
-def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
-    """Trim angles and controls, load factor n = cos γ / cos φ and the lift coefficient it needs over CLmax."""
-    n = math.cos(gamma) / math.cos(bank)
-    veas = float(convert_speed(speed_as(cond, "TAS"), "TAS", "EAS", cond.altitude or 0.0))
-    cl = n * cond.mass * G0 / (0.5 * RHO0 * veas**2 * ctx.aircraft.reference.area)
-    out = dict(trim_details(result), flight_path_deg=round(math.degrees(gamma), 3), load_factor=round(n, 4), CL=round(cl, 4))
-    clmax = ctx.clmax(cond.configuration)
-    if clmax:
-        out["CL_over_CLmax"] = round(cl / clmax, 4)
-    return out
 
 
 @rule

@@ -13,7 +13,7 @@ the start trim). Without one the force is not evaluated. In both cases certkit c
 from its trim at the start of each manoeuvre to its trim at the end, and that change must fit in the elevator
 authority left on that side of the start position (design limits). Each state is a steady trim at 1.3 VSR of
 its configuration: idle ("power off") in the glide that idle thrust gives, go-around thrust in the climb it
-gives (:func:`certkit_rules.part25.subpart_b.r25_143.trim_at_thrust`, the energy relation).
+gives (:func:`certkit.thrust_trims.trim_at_thrust`, the energy relation).
 """
 
 from __future__ import annotations
@@ -29,9 +29,9 @@ from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import LBF
 from certkit.reference_speeds import reference_stall_speed
+from certkit.thrust_trims import operating_thrust, trim_at_thrust
 from certkit_rules.part25.subpart_b.r25_121 import trim_details
 from certkit.models.dynamics.trim import held_stabilizer
-from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust
 
 FLAPS = ("takeoff", "approach", "landing")
 IDLE, GO_AROUND = "idle", "go-around"

@@ -7,14 +7,14 @@ paragraph starts from or manoeuvres to:
   inoperative (windmilling), wings level, straight flight (``ctx.trim(kind="oei")``: bank given, sideslip,
   α, the three controls and the throttle solved for) at the power for level flight (γ = 0); where that
   power is more than maximum continuous, the trim is flown at maximum continuous thrust on the flight path
-  it gives (:func:`trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
+  it gives (:func:`certkit.thrust_trims.trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
   The reasonably sudden 15° heading change is a dynamic manoeuvre: a not-evaluated finding. The 150 lbf rudder
   pedal force is read in the steady wings-level condition the heading change starts from: the pedal force that
   holds the trim's rudder with the rudder trim at neutral (:mod:`certkit.models.control_force`), which must leave
   room under 150 lbf; without ``control_forces.rudder`` it is not evaluated.
 * (c) lateral control — 20° banked coordinated turns (zero sideslip, ``kind="turn"``) toward and away from
   the inoperative engine at 1.3 VSR1 and MTOW, the operating engine at maximum continuous thrust, in the most
-  favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`trim_at_thrust`).
+  favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`certkit.thrust_trims.trim_at_thrust`).
 
 The margin of each finding is a control's design limit on the side it is deflected minus |deflection|
 (deg, :func:`control_findings`). (b) and (e) apply to airplanes with four or more engines; (d) (roll
@@ -28,21 +28,20 @@ import math
 import numpy as np
 
 from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
-from certkit.models.control_force import control_force_model, trim_state
+from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
-from certkit.units import LBF
 from certkit.reference_speeds import reference_stall_speed
+from certkit.thrust_trims import operating_thrust, trim_at_thrust
 from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
-from certkit_rules.part25.subpart_b.r25_143 import operating_thrust, trim_at_thrust, turn_details
+from certkit_rules.part25.subpart_b.control_checks import pedal_force_finding
+from certkit_rules.part25.subpart_b.turns import turn_details
 
 SOURCE = "14 CFR 25.147 (Amdt. 25-108; verified, docs/regulation-notes.md)"
 AMDT = "25-108"
 _MCT = Criterion(0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
                  "maximum continuous over takeoff thrust of the engine model (as in 25.121(c))")
-_NO_FORCE = ("no control-force model in the aircraft file (control_forces.rudder: hinge moments and gearing, or "
-             "artificial feel): the rudder pedal force is not computed")
 
 
 def _speed_criterion(paragraph: str) -> Criterion:
@@ -251,16 +250,3 @@ class LateralControlOEI(Rule):
                                 ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
 
 
-def pedal_force_finding(ctx, rudder, cond, result, limit_lbf, check=None, **details):
-    """Pedal force (lbf) that holds ``result``'s rudder with the rudder trim at neutral, against ``limit_lbf``;
-    not evaluated without a rudder force model or a converged trim."""
-    check = check or f"(a) rudder pedal force ≤ {limit_lbf:g} lbf"
-    if rudder is None:
-        return Finding.not_evaluated(cond, check, _NO_FORCE, **details)
-    if not result.converged:
-        return Finding.not_evaluated(cond, check, "the trim did not converge: no rudder deflection to hold", **details)
-    q, a, d = trim_state(ctx.aircraft, "rudder", [result])
-    force = float(rudder.force(q, a, d)[0] / LBF)
-    return Finding.compare(cond, check, abs(force), limit_lbf, at_least=False, unit="lbf",
-                           pedal="left" if force >= 0 else "right", rudder_deg=round(math.degrees(d[0]), 3),
-                           fin_alpha_deg=round(math.degrees(a[0]), 3), force_model=rudder.kind, **details)

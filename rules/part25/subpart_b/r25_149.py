@@ -11,45 +11,20 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
-from certkit.control_speeds import BANK_FRACTIONS, condition_vmc, throttle_of, vmc_rows, vmca_from_grid
+from certkit.control_speeds import BANK_FRACTIONS, throttle_of, vmca_from_grid
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
+from certkit.registry import Rule, rule
 from certkit.results import Finding
 from certkit.units import KN, LBF
-
-SOURCE = "14 CFR 25.149 (Amdt. 25-108; (a)-(e) verified, docs/regulation-notes.md)"
-
-
-def _vmca_rows(ctx, conditions, crit):
-    """The VMCA search of the rule's conditions with its criteria (:func:`certkit.control_speeds.vmc_rows`)."""
-    return vmc_rows(ctx, conditions, bank_deg=crit.bank_deg, throttle=crit.throttle, low=crit.grid_low,
-                    high=crit.grid_high, tolerance_kn=crit.speed_tolerance_kn)
-
-
-def condition_vmca(rows, k: int, crit) -> tuple[float, int, bool]:
-    """VMCA (m/s CAS) of scheduled condition ``k`` (:func:`certkit.control_speeds.condition_vmc`)."""
-    return condition_vmc(rows, k, crit.grid_low)
-
-
-def computed_vmca(ctx):
-    """The airplane's VMCA (m/s CAS) as §25.149 computes it with its criteria (and the aircraft file's overrides):
-    the highest over its conditions (each engine inoperative, most unfavourable CG); None when the rule's inputs
-    are missing. For the rules that need VMC when the aircraft file declares none (§25.107)."""
-    from certkit.scheduler import criteria_for
-
-    if ctx.missing(MinimumControlSpeed.requires):
-        return None
-    crit, _ = criteria_for(MinimumControlSpeed, ctx)
-    conds = MinimumControlSpeed.conditions.expand(ctx.aircraft)
-    rows = _vmca_rows(ctx, conds, crit)
-    return max(condition_vmca(rows, k, crit)[0] for k in range(len(conds)))
+from certkit_rules.part25.subpart_b.control_checks import pedal_force_finding
+from certkit_rules.part25.subpart_b.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_REQUIRES, VMCA_RULE_ID,
+                                                              condition_vmca, vmca_rows)
 
 
 @rule
 class MinimumControlSpeed(Rule):
-    id = "25.149"
+    id = VMCA_RULE_ID
     cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "minimum-control-speed"
     title = "Minimum control speed VMC (VMCA)"
@@ -66,21 +41,9 @@ class MinimumControlSpeed(Rule):
         (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder.
     """
     references = ("25.103", "25.107", "25.147")
-    requires = ("configurations.takeoff.CLmax",)
-    criteria = {
-        "vmc_over_vsr_max": Criterion(1.13, "", SOURCE + " (c)", "largest VMC / VSR"),
-        "bank_deg": Criterion(5.0, "deg", SOURCE + " (b)", "bank toward the operating engine"),
-        "throttle": Criterion(0.99, "", "project choice: 99 % of the throttle range stands for maximum takeoff thrust "
-                              "(the trim cannot converge on the throttle stop itself)", "throttle of the operating engine"),
-        "grid_low": Criterion(0.6, "", "project choice: search from 0.6 VSR", "lowest speed searched, multiple of VSR"),
-        "grid_high": Criterion(1.4, "", "project choice: search to 1.4 VSR", "highest speed searched, multiple of VSR"),
-        "speed_tolerance_kn": Criterion(0.05, "kn", "project choice: secant step at which the search stops (VMCA to "
-                                        "0.1 kn)", "speed step of the VMCA search"),
-        "rudder_force_lbf": Criterion(150.0, "lbf", SOURCE + " (d)", "largest rudder force to maintain control at VMC"),
-    }
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", cgs=("aft",)), configurations=("takeoff",),
-                                altitudes=Altitudes((0.0,)), extra=(("inoperative", ("left", "right")),),
-                                note="Operating engine at full throttle; bank toward it; sea level, standard day.")
+    requires = VMCA_REQUIRES
+    criteria = dict(VMCA_CRITERIA)
+    conditions = VMCA_CONDITIONS
     implementation = "partial"
     limitations = """
         Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. VMCA is where the
@@ -104,7 +67,7 @@ class MinimumControlSpeed(Rule):
     def evaluate(self, ctx, conditions, crit):
         rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
-        rows = _vmca_rows(ctx, conditions, crit)
+        rows = vmca_rows(ctx, conditions, crit)
         for k, cond in enumerate(conditions):
             nb = len(BANK_FRACTIONS)
             vsr, pair = rows["vsr"][nb * k], tuple(range(nb * k, nb * k + nb))
@@ -155,7 +118,7 @@ class MinimumControlSpeed(Rule):
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import vmca_evidence
 
-        rows = _vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
+        rows = vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))
 
     @staticmethod
@@ -164,8 +127,6 @@ class MinimumControlSpeed(Rule):
         search visited (its last iterate is at VMCA); with the highest of those speeds at which the force reaches the
         limit (the force-limited VMCA, when the visited speeds bracket it). ``pedal_force_grid_lbf`` lists the forces
         at the visited speeds (the name kept from the former grid)."""
-        from certkit_rules.part25.subpart_b.r25_147 import pedal_force_finding
-
         check = f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf"
         rudder = control_force_model(ctx.aircraft, "rudder")
         if rudder is None:

@@ -24,7 +24,7 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import FT, LBF
-from certkit_rules.part25.subpart_b.r25_171 import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.subpart_b.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
 
 SOURCE = "14 CFR 25.177, Amdt. 25-135 (verified, docs/regulation-notes.md)"
 #: sweep of (c) and (d), fractions of the (c) range

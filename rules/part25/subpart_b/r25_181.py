@@ -12,8 +12,8 @@ from certkit.units import FT
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit_rules.part25.subpart_b import handling_levels as hq
-from certkit_rules.part25.subpart_b.r25_171 import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS, by_configuration,
-                                                    refine_speeds)
+from certkit_rules.part25.subpart_b.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
+                                                             by_configuration, refine_speeds)
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
 #: how the short-period criterion reads each configuration's flight phase (MIL-F-8785C 1.5 flight-phase categories)

@@ -8,7 +8,8 @@ t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t
 
 Each condition's horizontal-tail limit loads are compared with the capabilities declared in the aircraft
 file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
-one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The loads helpers here are shared by §25.341 and §25.351.
+one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The
+structural checks it shares with §§25.341, 25.349 and 25.351 are in :mod:`certkit_rules.part25.subpart_c.structural_checks`.
 
 (c)(2) reports the load factor each manoeuvre reaches and the §25.337 limit at its speed (n₊ nose up; nose
 down n₋ = −1.0 up to VC, linearly to 0 at VD) in the details: the input is scaled to reach that limit, so being
@@ -19,64 +20,30 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Step, simulate, stop_when
-from certkit.models.flight import control_limits
 from certkit.loads_conditions import refusal_findings, trimmed_batch
-from certkit.models.loads.capability import declared_capabilities, worst_margin
+from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
-from certkit.models.loads.model import QUANTITIES, airplane_loads
+from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
 from certkit.registry import Criterion, Rule, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
+from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
+                                                             force_limited_deflection, maneuver_limit_load_factor)
 
-NO_CAPABILITY = "no structural capability declared"
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
-SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
 PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
                      "(300 lbf elevator wheel) cannot reduce the deflection; the control-system stop (travel) bounds it")
 PILOT_EFFORT = {"pilot_effort_lbf": Criterion(
     300.0, "lbf", "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
     "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
     "data (§25.397(b))", "limit pilot force on the pitch control (used with control_forces.elevator)")}
-
-
-def control_stops(ctx, control: str) -> tuple[float, float]:
-    """(min, max) rad of ``control``'s control-system stops (``travel`` in the aircraft file). The loads manoeuvres
-    of §§25.331(c), 25.349 and 25.351 deflect to them unless a §25.397 pilot-force limit is reached first; trim and
-    controllability margins keep the narrower ``design_limits``."""
-    return control_limits(ctx.aircraft, design=False)[control]
-
-
-def force_limited_deflection(ctx, control: str, conditions, trim, stop, force_limit_lbf):
-    """The deflection a sudden cockpit input reaches from each trimmed condition: the control-system stop ``stop``
-    (rad, scalar or per condition; its sign gives the direction) or, with a force model of ``control`` declared
-    (:mod:`certkit.models.control_force`), the deflection the limit pilot force ``force_limit_lbf`` holds from the
-    trim ``trim`` (rad), whichever is smaller in magnitude. The local angle of attack is the trim's at the instant
-    of the input, so its hinge-moment term cancels against the trim's; q̄ from each condition's EAS.
-    Returns (deflection, force_limited flags) — the flags None without a model."""
-    from certkit.atmosphere import RHO0
-    from certkit.conditions import speed_as
-    from certkit.models.control_force import control_force_model
-    from certkit.units import LBF
-
-    trim = np.asarray(trim, dtype=float)
-    stop = np.broadcast_to(np.asarray(stop, dtype=float), trim.shape)
-    model = control_force_model(ctx.aircraft, control)
-    if model is None:
-        return stop.copy(), None
-    qbar = 0.5 * RHO0 * np.array([speed_as(c, "EAS") for c in conditions]) ** 2
-    force = np.sign(stop - trim) * np.asarray(force_limit_lbf, dtype=float) * LBF
-    at_force = model.deflection_at_force(force, qbar, 0.0, trim=(trim, 0.0))
-    limited = np.abs(at_force - trim) < np.abs(stop - trim)
-    return np.where(limited, at_force, stop), limited
 
 
 def _effort_note(limited, i) -> str:
@@ -86,47 +53,7 @@ def _effort_note(limited, i) -> str:
             else "control-system stop (travel) reached below the pilot-effort force")
 
 
-# --------------------------------------------------------------------------- shared loads helpers
-
-def entry_speeds(ctx, h: float, names) -> dict[str, float]:
-    """EAS (m/s) of the named design speeds at altitude h, each limited by its Mach counterpart; VA
-    need not exceed VC (§25.335(c)), so it is capped at the Mach-limited VC."""
-    out = {}
-    vc = float(ctx.design_speed_eas("VC", h)[0])
-    for name in names:
-        v = float(ctx.design_speed_eas(name, h)[0])
-        out[name] = min(v, vc) if name == "VA" else v
-    return out
-
-
-def station_summary(loads_peaks: np.ndarray, stations) -> dict:
-    """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
-    lo, hi = np.round(np.asarray(loads_peaks, dtype=float)[:2] / 1e3, 1).transpose(0, 2, 1).reshape(2, -1).tolist()
-    return dict(zip(_summary_keys(tuple(stations)), map(list, zip(hi, lo))))
-
-
-@lru_cache(maxsize=64)
-def _summary_keys(stations: tuple) -> tuple:
-    """The :func:`station_summary` keys, station by station."""
-    return tuple(f"{station} {quantity} max/min (kN{'·m' if q else ''})"
-                 for station in stations for q, quantity in enumerate(QUANTITIES))
-
-
-def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor,
-                       **details) -> Finding:
-    """One finding per condition: the smallest margin of the limit and ultimate loads against the
-    capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
-    details = {**station_summary(peaks, stations), **details}
-    if not capabilities:
-        return Finding.not_evaluated(cond, check, NO_CAPABILITY, **details)
-    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor)
-    if worst is None:
-        return Finding.not_evaluated(cond, check, f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations", **details)
-    m, cap = worst
-    unit = "N" if cap.quantity == "shear" else "N·m"
-    return Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load, m.allowable,
-                           at_least=False, unit=unit, **details)
-
+# --------------------------------------------------------------------------- wing loads
 
 #: the surfaces whose loads the §25.331(c) manoeuvres compute (the tail's window of time also bounds the wing's)
 LOADED = ("horizontal_tail", "wing")
@@ -348,20 +275,6 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             findings.append(beyond)
     return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
             "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
-
-
-def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
-    """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
-    the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
-    VC and VD Mach-limited at the altitude)."""
-    lf = ctx.aircraft.envelope.limit_load_factors
-    if positive:
-        return float(lf.positive)
-    v = entry_speeds(ctx, h, ["VC", "VD"])
-    vc, vd = v["VC"], v["VD"]
-    if v_eas <= vc or vd <= vc:
-        return float(lf.negative)
-    return float(lf.negative) * max(vd - v_eas, 0.0) / (vd - vc)
 
 
 def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):

@@ -12,15 +12,15 @@ import numpy as np
 from certkit.atmosphere import RHO0, convert_speed, density
 from certkit.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.models.performance.stall import stall_speed_eas
+from certkit.reference_speeds import declared_eas
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import G0
 from certkit_rules.part25.gust import SOURCE as GUST_SOURCE
 from certkit_rules.part25.gust import reference_gust_velocity
+from certkit_rules.part25.subpart_c.envelope_criteria import CN_OVER_CL
 
 AMDT = "25-91"
-CN_SOURCE = ("14 CFR 25.335(c)/(d) and 25.333: estimated VS0/VS1 must be conservative, so C_Nmax = C_Lmax (factor 1) "
-             "unless the aircraft file's criteria override declares a larger factor with its justification")
 
 
 def cn_max_clean(ctx, factor: float) -> float:
@@ -33,11 +33,6 @@ def vs1(ctx, mass, factor: float):
     return stall_speed_eas(mass, ctx.aircraft.reference.area, cn_max_clean(ctx, factor))
 
 
-def declared_eas(ctx, name: str, h: float) -> float:
-    s = getattr(ctx.aircraft.speeds, name)
-    return float(convert_speed(s.value, s.kind, "EAS", h))
-
-
 def gust_load_factor(ctx, mass, h, vc_eas, uref, kg_a, kg_b):
     """n_g = 1 + K_g U_ref V_C a ρ₀ / (2 w), K_g = a_k μ/(b_k + μ), μ = 2w/(ρ c a g) (§25.335(d)(1),
     the paragraph's 498 constant written in SI). a = wing lift-curve slope at the Mach number of VC."""
@@ -48,10 +43,6 @@ def gust_load_factor(ctx, mass, h, vc_eas, uref, kg_a, kg_b):
     mu = 2 * w / (density(h) * (S / b) * a * G0)
     kg = kg_a * mu / (kg_b + mu)
     return 1.0 + kg * RHO0 * uref * vc_eas * a / (2 * w), dict(K_g=float(kg), mu=float(mu), lift_slope=float(a))
-
-
-CN_OVER_CL = {"cn_over_cl": Criterion(1.0, "", CN_SOURCE, "C_Nmax / C_Lmax of the stall lines and VS1 (1: the declared "
-                                                   "1-g CLmax; a larger value needs a justification)")}
 
 
 @rule

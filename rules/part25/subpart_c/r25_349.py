@@ -36,8 +36,8 @@ from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding, control_stops, entry_speeds
-from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
+from certkit_rules.part25.subpart_c.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding, control_stops, entry_speeds
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
@@ -345,9 +345,9 @@ class UnsymmetricalGust(SimulationRule):
         reports its loads.
     """
     references = ("25.341", "25.303", "25.305", "25.427")
-    requires = DiscreteGust.requires
+    requires = GUST_REQUIRES
     criteria = {
-        **{k: DiscreteGust.criteria[k] for k in GUST_CRITERIA},
+        **GUST_RUN_CRITERIA,
         "full_side_fraction": Criterion(1.0, "", REG_B, "fraction of the wing air load on the more loaded side"),
         "reduced_side_fraction": Criterion(0.8, "", REG_B, "fraction of the wing air load on the other side"),
         "airload_basis": Criterion("total", "", "certkit reading of 'the wing air load' of 14 CFR 25.349(b) "
@@ -355,7 +355,7 @@ class UnsymmetricalGust(SimulationRule):
                                    "air load (1 g trim + gust); 'increment': to the gust increment over the 1 g trim"),
         **SAFETY,
     }
-    conditions = DiscreteGust.conditions
+    conditions = GUST_CONDITIONS
     limitations = ("The §25.341(a) response it modifies is that of the rigid airplane with quasi-steady aerodynamics "
                    "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
                    "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "

@@ -24,8 +24,8 @@ from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import (SAFETY, capability_finding, control_stops, entry_speeds,
-                                                  force_limited_deflection)
+from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
+                                                             force_limited_deflection)
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
 SPEEDS = ("low", "VA", "VC", "VD")

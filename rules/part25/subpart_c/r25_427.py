@@ -28,12 +28,14 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 from certkit.registry import Criterion, SimulationRule, rule
 from certkit.results import Condition, Finding
-from certkit_rules.part25.subpart_c.r25_331 import SAFETY, capability_finding
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver, balanced_runs
-from certkit_rules.part25.subpart_c.r25_341 import GUST_CRITERIA, DiscreteGust, gust_runs
+from certkit_rules.part25.subpart_c.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
+                                                          balanced_runs)
+from certkit_rules.part25.subpart_c.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding
 
 TAIL = "horizontal_tail"
-SOURCES = {"25.331(b)": BalancedManeuver, "25.341(a)": DiscreteGust}
+#: the condition spaces of the symmetric loads rules whose tail loads are split
+SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
 REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
 NOT_SHARED = ("the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
               "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads")
@@ -51,12 +53,12 @@ class SymmetricSources(ConditionSpace):
 
     def expand(self, aircraft):
         out = []
-        for rid, cls in SOURCES.items():
-            out += [c.with_(source=rid) for c in cls.conditions.expand(aircraft)]
+        for rid, space in SOURCES.items():
+            out += [c.with_(source=rid) for c in space.expand(aircraft)]
         return out
 
     def describe(self):
-        return "the conditions of " + " and ".join(f"§{k} ({v.conditions.describe()})" for k, v in SOURCES.items())
+        return "the conditions of " + " and ".join(f"§{k} ({v.describe()})" for k, v in SOURCES.items())
 
 
 def _untag(c: Condition) -> Condition:
@@ -88,10 +90,10 @@ class UnsymmetricalTailLoads(SimulationRule):
         fuselage torsion at the tail is reported (no fuselage capability is declarable).
     """
     references = ("25.331", "25.341", "25.303", "25.305", "25.349")
-    requires = BalancedManeuver.requires + ("speeds.VB",)
+    requires = BALANCED_REQUIRES + ("speeds.VB",)
     criteria = {
-        **{k: v for k, v in BalancedManeuver.criteria.items()},
-        **{k: DiscreteGust.criteria[k] for k in GUST_CRITERIA},
+        **BALANCED_RUN_CRITERIA,
+        **GUST_RUN_CRITERIA,
         "full_side_fraction": Criterion(1.0, "", REG + " (b)(1)", "fraction of the tail air load on one side"),
         "reduced_side_fraction": Criterion(0.8, "", REG + " (b)(2)", "fraction of the tail air load on the other side"),
         **SAFETY,
