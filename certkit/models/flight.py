@@ -24,7 +24,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.aircraft.derivative_names import STABILIZER
-from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundModel
+from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundEffectWing, GroundModel
 from certkit.models.propulsion.engine import EngineDeck, ParametricTurbofan, windmill_drag
 
 
@@ -180,7 +180,21 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
     legs = [leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
             leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
             leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False)]
-    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction)
+    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing))
+
+
+def ground_effect_wing(wing) -> GroundEffectWing:
+    """The declared wing for ground effect: height taken at the MAC quarter chord (DATCOM §1.2.2 station,
+    dihedral included), the wing's own span, aspect ratio and half-chord sweep."""
+    from certkit.models.aero import planform
+
+    y = planform.mac_spanwise_position(wing.area, wing.aspect_ratio, wing.taper)
+    mac = planform.mean_aerodynamic_chord(wing.area, wing.aspect_ratio, wing.taper)
+    le = wing.root_leading_edge
+    x = le.x + y * np.tan(planform.sweep_at(0.0, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)) + 0.25 * mac
+    point = (x, 0.0, le.z + y * np.tan(wing.dihedral))
+    return GroundEffectWing(point, float(planform.span(wing.area, wing.aspect_ratio)), float(wing.aspect_ratio),
+                            float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)))
 
 
 def level_trims(aircraft, aero_model, masses, x_cg: float, altitude, tas, loading_name: str = ""):

@@ -51,14 +51,17 @@ def test_flare_time_constant_from_the_approach_sink_rate(landing):
 
 
 def test_approach_tracks_the_glide_path_then_flares_to_a_soft_touchdown(landing):
-    """Above the flare height the −3° path is held (sink 12.0 ft/s within 0.3 ft/s after 3 s); below it
+    """Above the flare height the −3° path is held (sink 12.0 ft/s within 0.6 ft/s after 3 s: the trim at 150 ft
+    is a free-air trim, and ground effect at h/b ≈ 0.75 — lift +0.9 %, induced drag −5 % (Wieselsberger's image
+    theory, certkit.models.aero.ground_effect) — slows the sink by about 0.5 ft/s before the TECS takes it out;
+    0.3 ft/s without ground effect); below it
     the throttle is at idle; the airplane touches down (first gear load) with a sink rate below
     3 ft/s — half of the 6 ft/s landing-distance demonstration criterion — on its main gear first."""
     m, tb, tecs, res = landing
     assert res.stop_reason[0] == "touchdown"
     k3 = int(3.0 / 0.05)
     hdot3 = (res["h"][k3 + 1, 0] - res["h"][k3 - 1, 0]) / 0.1
-    assert -hdot3 / FT == pytest.approx(136 * 1.68781 * np.sin(np.radians(3.0)), abs=0.3)
+    assert -hdot3 / FT == pytest.approx(136 * 1.68781 * np.sin(np.radians(3.0)), abs=0.6)
     thr = res.controls[:, 0, m.throttle_slice.start]
     assert np.all(thr[tecs.flaring[0] & (np.arange(res.t.size) > np.argmax(res["h"][:, 0] - tecs.h_gear[0] < 15.0))] == 0.0)
     td_sink = sink_rate(res.final_state)[0] / FT

@@ -8,6 +8,8 @@ references no one here wrote.
   C_L and C_D at the rest attitude from the same aerodynamic model, μ = 0.02 (the ground model's rolling friction).
   Tolerance 3 %: the closed form holds the thrust constant at its 0.7 V_f value and the lift on the gear at the
   rest attitude; the simulation integrates both as they vary (and the small pitch change as the struts extend).
+  Ground effect in Raymer's own form (§12.6, K_eff/K = 33(h/b)^1.5/(1 + 33(h/b)^1.5), h the wing's height at rest)
+  on the drag-due-to-lift; the lift at the rest attitude taken from the simulation's own ground-effect lift ratio.
 * Rotation: the pitch rate before lift-off stays within the 3°/s ceiling of the Boeing Flight Operations Review
   (1986) plus 0.3°/s for the attitude loop's overshoot, with the commanded 2.5°/s.
 """
@@ -17,6 +19,8 @@ import pytest
 
 from certkit.atmosphere import density, speed_of_sound
 from certkit.models.aero.interface import AeroState
+from certkit.models.aero.ground_effect import induced_drag_factor_at, induced_drag_factor_table, lift_ratio
+from certkit.models.dynamics.eom import airplane_to_body, euler_to_dcm
 from certkit.models.dynamics.procedures import takeoff_run
 from certkit.models.flight import control_limits, flight_model, ground_model
 from certkit.units import KN
@@ -48,6 +52,18 @@ def test_ground_roll_against_raymer_closed_form(setup):
     theta0 = run.x0[0, 10]
     c = model.aero.coefficients(AeroState(alpha=np.array([theta0]), mach=np.array([0.5 * v_f / a_sound])))
     CL, CD = float(np.ravel(c.CL)[0]), float(np.ravel(c.CD)[0])
+    T, machs = model.aero.kernel_data[0], model.aero.kernel_data[1]
+    k, cl_min = float(T[5, 0]), float(T[6, 0])  # the polar's drag-due-to-lift, lowest Mach breakpoint
+    wing = model.ground.wing
+    dcm = euler_to_dcm(0.0, theta0, 0.0)
+    r_wing = airplane_to_body(np.array(wing.point), model.cg[0])
+    hb = (run.x0[0, 2] - model.ground.elevation - (dcm[2] @ r_wing)) / wing.span
+    raymer = 33 * hb ** 1.5 / (1 + 33 * hb ** 1.5)
+    CL_ge = CL * lift_ratio(induced_drag_factor_at(induced_drag_factor_table(), hb), wing.aspect_ratio,
+                            np.tan(wing.sweep_half_chord), 0.5 * v_f / a_sound)
+    CD = CD + k * (raymer * (CL_ge - cl_min) ** 2 - (CL - cl_min) ** 2)
+    print(f"wing h/b at rest {hb:.3f}, Raymer's K_eff/K {raymer:.3f}, CL {CL:.3f} -> {CL_ge:.3f}")
+    CL = CL_ge
     mu, S = 0.02, model.S
     K_T = thrust / W - mu
     K_A = rho / (2 * W / S) * (mu * CL - CD)

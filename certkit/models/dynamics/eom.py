@@ -45,6 +45,7 @@ from typing import Callable, Sequence
 
 import numpy as np
 
+from certkit.models.aero.ground_effect import induced_drag_factor_table
 from certkit.models.aero.interface import AeroModel, AeroState
 from certkit.models.dynamics import kernel
 from certkit.units import G0
@@ -114,6 +115,20 @@ class GroundModel:
     elevation: float = 0.0
     brake_friction: float = 0.4
     slip_speed: float = 0.3
+    #: the wing whose ground effect the aerodynamic table gets near the runway (None: no ground effect)
+    wing: "GroundEffectWing | None" = None
+
+
+@dataclass
+class GroundEffectWing:
+    """The wing as ground effect (:mod:`certkit.models.aero.ground_effect`) sees it: ``point`` where its
+    height above the runway is taken (airplane frame, m: the MAC quarter chord), span (m), aspect ratio and
+    half-chord sweep (rad). Applied to derivative-table models only."""
+
+    point: Sequence[float]
+    span: float
+    aspect_ratio: float
+    sweep_half_chord: float
 
 
 def euler_to_quat(phi, theta, psi) -> np.ndarray:
@@ -292,12 +307,23 @@ class AircraftModel:
             r_gear = np.ascontiguousarray(self.r_gear)
             legs = np.array([[leg.stiffness, leg.damping, leg.rolling_friction, leg.side_friction, float(leg.braked)]
                              for leg in gm.legs], dtype=float).reshape(-1, 5)
-            gparams = np.array([gm.elevation, gm.brake_friction, gm.slip_speed], dtype=float)
+            gparams = np.concatenate([[gm.elevation, gm.brake_friction, gm.slip_speed],
+                                      self._ground_effect_params(gm.wing)])
         else:
-            r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 5)), np.zeros(3)
+            r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 5)), np.zeros(9)
         self._kernel_args = (props, np.array([self.b, self.c, self.S, self.g]), *table, len(self.aero_controls),
                              self._use_table, r_eng, d_eng, gm is not None, r_gear, legs, gparams,
                              -1 if self._brake_index is None else self._brake_index)
+
+    def _ground_effect_params(self, wing: "GroundEffectWing | None") -> np.ndarray:
+        """gparams[3:] of the kernel: span (0: none), aspect ratio, tan Λ½, wing point minus the aero reference
+        in body axes (3), then the φ(h/b) table."""
+        if wing is None:
+            return np.zeros(6)
+        ref = self.aero.reference
+        d = np.asarray(wing.point, dtype=float) - np.array([ref.x_ref, 0.0, ref.z_ref])
+        return np.concatenate([[wing.span, wing.aspect_ratio, np.tan(wing.sweep_half_chord), -d[0], d[1], -d[2]],
+                               induced_drag_factor_table()])
 
     def thrust_forces(self, air: np.ndarray, controls: np.ndarray, rows=None) -> np.ndarray:
         """Force of each engine along its thrust line (n, n_engines), N, from the air data

@@ -17,8 +17,10 @@ Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_
     r_eng (n, ne, 3), d_eng (ne, 3); thrust (n, ne) N along each thrust line, from Python (engines are
                     Python models); held over an RK4 step like the controls
     ground          has_ground, r_gear (n, nl, 3), legs (nl, 5) = stiffness, damping, rolling and side
-                    friction, braked; gparams (3,) = runway elevation, brake friction, slip speed;
-                    brake_index (−1: none)
+                    friction, braked; gparams = runway elevation, brake friction, slip speed, then the
+                    ground effect's wing (:meth:`~certkit.models.dynamics.eom.AircraftModel._ground_effect_params`:
+                    span, 0 for none; aspect ratio; tan Λ½; wing point from the aero reference, body axes)
+                    and its φ(h/b) table; brake_index (−1: none)
 
 Outputs per condition, columns of :data:`OUTPUTS`; gear normal loads (n, nl).
 """
@@ -32,7 +34,8 @@ from numba import njit
 
 from certkit import atmosphere as isa
 from certkit.atmosphere import isa_scalar
-from certkit.models.aero.derivative_kernel import coefficients_one
+from certkit.models.aero.derivative_kernel import _row, coefficients_one, mach_weights
+from certkit.models.aero.ground_effect import H_OVER_B_MAX, induced_drag_factor_at, lift_ratio
 from certkit.models.propulsion.engine import turbofan_row_thrust
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
@@ -93,6 +96,23 @@ def _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz, rx, ry, rz):
     return (Fx + fx, Fy + fy, Fz + fz, Mx + ry * fz - rz * fy, My + rz * fx - rx * fz, Mz + rx * fy - ry * fx)
 
 
+@njit(cache=True, fastmath=True, inline="always")
+def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, coef):
+    """Ground effect (:mod:`certkit.models.aero.ground_effect`) on the table's CL and CD: the wing point's
+    height over the span gives φ; CL × a(A/φ)/a(A), induced drag k (CL − CL_minD)² × φ at the new CL."""
+    wx, wy, wz = props_i[13] + gparams[6], props_i[14] + gparams[7], props_i[15] + gparams[8]
+    hb = (height - (C31 * wx + C32 * wy + C33 * wz)) / gparams[3]
+    if hb >= H_OVER_B_MAX:
+        return
+    phi = induced_drag_factor_at(gparams[9:], hb)
+    i0, i1, w = mach_weights(machs, mach)
+    k, cl_min = _row(T, 5, i0, i1, w), _row(T, 6, i0, i1, w)
+    cl = coef[0]
+    cl_ge = cl * lift_ratio(phi, gparams[4], gparams[5], mach)
+    coef[0] = cl_ge
+    coef[1] += k * (phi * (cl_ge - cl_min) ** 2 - (cl - cl_min) ** 2)
+
+
 # inlined (numba IR) where it is called: a call passing ~15 arrays costs as much as the arithmetic (a study's
 # simulations run ~0.8 → 0.4 µs per evaluation); the RK4 step calls it from one site to keep the compile short
 @njit(cache=True, fastmath=True, inline="always")
@@ -110,6 +130,8 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
     if use_table:  # coef_i is scratch space, else it holds the coefficients computed in Python
         coefficients_one(T, machs, clmax, stall, alpha_drag, after_stall, alpha, beta, p * (b / 2) / Vs,
                          q * (c / 2) / Vs, r * (b / 2) / Vs, mach, ctrl[:n_aero], coef)
+        if has_ground and gparams[3] > 0.0:
+            _ground_effect(C31, C32, C33, h - gparams[0], props[i], gparams, T, machs, mach, coef)
     CL, CD = coef[0], coef[1]
     suw = math.sqrt(uw2)
     ca, sa = u / suw, w / suw

@@ -7,7 +7,9 @@
     attitude; Boeing 777 FCTM §3: lift-off attitude 8.5°, tail strike at 12.1° for the 777-200):
       * below VR the elevator stays at its take-off setting ``u0`` (the stabiliser, if any, at its setting);
       * from VR the commanded attitude θ_c rises at the rotation rate r (rate-limited, and never more than
-        r × ``lead_time`` (0.5 s) ahead of the attitude: the pilot flies the rate he sees), toward the attitude
+        r × ``lead_time`` (0.5 s) ahead of the attitude: the pilot flies the rate he sees; the commanded rate itself
+        changes by at most r per ``lead_time`` and slows in time to stop on the target, so a rotation starts,
+        stops or reverses smoothly rather than with a step of the rate feedback's reference), toward the attitude
         ``theta_ground`` while a gear leg carries load — at most the tail-strike attitude less ``tail_margin``:
         the pilot holds the attitude there until the airplane unsticks rather than over-rotate —, and once
         airborne toward the climb attitude: θ_air = θ_LOF + K_V (V − V_climb) + K_VI ∫(V − V_climb) dt, the attitude
@@ -52,11 +54,12 @@ class RotationPilot(Controller):
             ground = np.minimum(ground, b(tail_strike) - tail_margin)
         self.theta_ground = ground
         self.de_ff = self.de0.copy() if elevator_ff is None else b(elevator_ff)
-        self.rate, self.limits, self.lead = rotation_rate, limits, rotation_rate * lead_time
+        self.rate, self.limits, self.lead, self.lead_time = rotation_rate, limits, rotation_rate * lead_time, lead_time
         self.kt, self.ki, self.kq, self.kv, self.kvi = k_theta, k_i, k_q, k_v, k_vi
         self.rotating = np.zeros(n, dtype=bool)
         self.airborne = np.zeros(n, dtype=bool)
         self.theta_cmd = None
+        self.rate_cmd = np.zeros(n)
         self.theta_lof = np.full(n, np.nan)
         self.integral = np.zeros(n)
         self.speed_integral = np.zeros(n)
@@ -84,10 +87,15 @@ class RotationPilot(Controller):
         else:
             target = self.theta_ground
         previous = self.theta_cmd
-        step = np.clip(target - previous, -self.rate * dt, self.rate * dt)
+        dr = self.rate * dt / self.lead_time  # the commanded rate's largest change over the step
+        rem = target - previous  # approach the target at a rate that can still stop on it
+        wanted = np.sign(rem) * np.minimum(np.minimum(np.abs(rem) / dt, self.rate),
+                                           np.sqrt(2.0 * self.rate / self.lead_time * np.abs(rem)))
+        step = np.clip(wanted, self.rate_cmd - dr, self.rate_cmd + dr) * dt
         cmd = np.where(rotating, np.minimum(previous + step, theta + self.lead), theta)
         self.theta_cmd = cmd
         rate_cmd = (cmd - previous) / dt
+        self.rate_cmd = rate_cmd
         err = theta - cmd
         lo, hi = self.limits
         raw = self.de_ff + self.kt * err + self.ki * self.integral + self.kq * (x[:, 7] - rate_cmd)
