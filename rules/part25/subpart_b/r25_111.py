@@ -86,16 +86,21 @@ class TakeoffPath(Rule):
         (c)(2) speed at 35 ft minus V2 (kn CAS; ≥ 0 complies).
     """
     limitations = """
-        No ground effect; no nose-wheel steering (the rudder and the tyres' side friction hold the centreline); no
-        spool-up (takeoff thrust at brake release); the failed engine's thrust decays as a first-order lag with the
-        declared propulsion.failure_decay_time (windmilling at once without it); the pilot (rotation at 2.5°/s to
-        the V2 attitude below the declared tail-strike attitude less 2°, speed on pitch once airborne; rudder PI on
-        heading and centreline, ≤ 5° bank toward the live engine in the air) stands for a pilot; VEF from V1 by a
-        quasi-steady engine-out acceleration when not declared; the path beyond the climb-out, (c)(3) 1.2 % from
-        400 ft and (c)(4) configuration changes are not computed. A run that lifts off more than 15 kn after VR (or
-        the declared VLOF), passes 35 ft more than 10 kn above V2, deviates more than 30 ft from the centreline on
-        the ground or reaches the tail-strike attitude on the runway does not represent a takeoff a pilot flies: its
-        checks are not evaluated, with the reason. The paragraph's text is from memory (not in docs/regulation-notes.md).
+        Ground effect on the wing's lift and induced drag (image-vortex factor,
+        certkit/models/aero/ground_effect.py) but not on the tail's downwash: on the runway the tail sees about
+        a fifth of its free-air downwash, a nose-down moment worth up to about 10° of elevator that is missing,
+        so the elevator used near the ground is optimistic (rotation's elevator is an upper bound of its
+        margin); no nose-wheel steering (the rudder and the tyres' side friction hold the centreline); no
+        spool-up (takeoff thrust at brake release); the failed engine's thrust decays as a first-order lag with
+        the declared propulsion.failure_decay_time (windmilling at once without it); the pilot (rotation at
+        2.5°/s to the V2 attitude below the declared tail-strike attitude less 2°, speed on pitch once airborne;
+        rudder PI on heading and centreline, ≤ 5° bank toward the live engine in the air) stands for a pilot;
+        VEF from V1 by a quasi-steady engine-out acceleration when not declared; the path beyond the climb-out,
+        (c)(3) 1.2 % from 400 ft and (c)(4) configuration changes are not computed. A run that lifts off more
+        than 15 kn after VR (or the declared VLOF), passes 35 ft more than 10 kn above V2, deviates more than 30
+        ft from the centreline on the ground or reaches the tail-strike attitude on the runway does not
+        represent a takeoff a pilot flies: its checks are not evaluated, with the reason. The paragraph's text
+        is from memory (not in docs/regulation-notes.md).
     """
     references = ("25.107", "25.121", "25.149")
     requires = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",

@@ -81,9 +81,13 @@ class LandingTouchdown(Rule):
         VREF: VREF/VSR0 − 1.23 (VSR0 of the landing configuration at the condition's weight, §25.103).
     """
     limitations = """
-        The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i)(B)-(C) (VMCL, § 25.143(h)) and
-        icing are not evaluated here; no ground effect; the flare is the TECS pilot model's (flare height 15 m,
-        aim point 1 m below the runway); the 6 ft/s criterion is from § 25.473 (text from memory).
+        The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i)(B)-(C) (VMCL, § 25.143(h)) and icing
+        are not evaluated here; ground effect on the wing's lift and induced drag (image-vortex factor,
+        certkit/models/aero/ground_effect.py) but not on the tail's downwash: on the runway the tail sees about
+        a fifth of its free-air downwash, a nose-down moment worth up to about 10° of elevator that is missing,
+        so the elevator used near the ground is optimistic (the flare's elevator margin is an upper bound); the
+        flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway); the 6 ft/s
+        criterion is from § 25.473 (text from memory).
     """
     references = ("25.473", "25.143", "25.149")
     requires = ("speeds.VREF", "mass.MLW", "geometry.landing_gear", "geometry.horizontal_tail.controls.elevator")
