@@ -1,7 +1,9 @@
 """Trims at a given thrust, shared by the rules whose conditions state a thrust rather than a flight path
-(§25.143(h), §25.145(b), §25.147): the operating engines' total thrust at a throttle setting, and the trim at the
-flight-path angle that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircraft Performance and
-Design*, 1999, eq. 5.12, iterated on the thrust the trim needs).
+(§25.121, §25.143(h), §25.145(b), §25.147, §25.161): the critical engine, the full thrust of one engine (on an
+off-standard day too), the operating engines' total thrust at a throttle setting, the trim at the flight-path angle
+that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircraft Performance and Design*, 1999,
+eq. 5.12, iterated on the thrust the trim needs) and the steady climb at a thrust with the critical engine
+inoperative (the flight-path angle solved by the trim).
 """
 
 from __future__ import annotations
@@ -10,12 +12,20 @@ import numpy as np
 
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
 from certkit.conditions import speed_as
-from certkit.models.flight import thrust_function
+from certkit.models.flight import throttle_for_thrust, thrust_function
+from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.units import G0
 
 #: a thrust aim is kept this far inside the throttle range, where the trim's throttle iterate is free (trim.py)
 _THROTTLE_INSIDE = 0.003
 _GAMMA_STEP = 0.03  # rad: a trim that needs thrust outside the range is retried this much lower / higher
+
+
+def critical_engine(ctx) -> str:
+    """The critical engine: the outermost engine, left side first (for a symmetric turbofan layout the two
+    outboard engines are equally critical; turbofans have no propeller asymmetry)."""
+    engines = ctx.aircraft.propulsion.engines
+    return min(engines, key=lambda e: (-abs(e.position.y), e.position.y)).name
 
 
 def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, inoperative: str | None = None):
@@ -72,3 +82,51 @@ def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, 
         if not len(active):
             break
     return results, flown, residual
+
+
+def full_thrust(ctx, conds):
+    """(pressure altitude, TAS, Mach, full thrust of one engine (N), thrust model) per condition: the engine model's
+    throttle 1, scaled on an off-standard day (``delta_isa_K``) by the flat-rated temperature lapse."""
+    thrust, source = thrust_function(ctx.aircraft)
+    h = np.array([c.altitude or 0.0 for c in conds])
+    tas = np.array([speed_as(c, "TAS") for c in conds])
+    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
+    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
+    delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
+    if np.any(delta_isa):
+        flat = ctx.aircraft.propulsion.flat_rating_temperature
+        if flat is None:
+            raise ValueError("an off-standard day needs propulsion.flat_rating_temperature")
+        full = full * temperature_thrust_ratio(h, mach, delta_isa, flat)
+        source += f"; temperature lapse above the flat rating {flat - 273.15:.1f} °C (Mattingly)"
+    return h, tas, mach, full, source
+
+
+def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
+    """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
+    configuration; returns (gradients, TrimBatch, info). The operating engines' throttle is held where they give
+    ``thrust_fraction`` of their full thrust and the trim solves the flight-path angle (a steady climb at that
+    thrust). ``drag_credit`` (ΔCD per condition) is drag that the configuration carries but the paragraph removes
+    (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting. A
+    condition's ``delta_isa_K`` (off-standard day, altitude its pressure altitude) scales the full thrust by the
+    flat-rated engine's temperature lapse; the trim itself is the standard day's (the reasoning is in
+    :mod:`certkit.models.performance.wat`)."""
+    thrust, _ = thrust_function(ctx.aircraft)
+    dead = critical_engine(ctx) if engine_out else None
+    live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
+    h, tas, mach, full, thrust_source = full_thrust(ctx, conds)
+    weight = np.array([c.mass for c in conds]) * G0
+    available = len(live) * thrust_fraction * full
+    throttle = throttle_for_thrust(thrust, thrust_fraction * full, h, mach)
+    credit = np.zeros_like(h)
+    if drag_credit is not None:
+        qbar = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2
+        credit = np.asarray(drag_credit, dtype=float) * qbar * ctx.aircraft.reference.area
+    batch = ctx.trim(conds, kind="sideslip" if dead else "straight", beta=0.0, throttle=throttle, inoperative=dead)
+    gamma = np.array([r.gamma if r.converged else np.nan for r in batch.results])
+    needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
+    residual = (available - needed) / weight
+    gamma = gamma + credit / weight  # drag the configuration carries but the segment does not (sin γ = (T − D)/W)
+    info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
+            "credit": credit, "residual": residual, "weight": weight}
+    return np.tan(gamma), batch, info

@@ -11,22 +11,8 @@ import importlib
 import pkgutil
 from pathlib import Path
 
-import pytest
-
 import certkit_rules
 from certkit.registry import _rules_in_module
-
-#: imports of §25.121's shared content, left while another branch edits r25_121.py (importer -> names it imports);
-#: they move to shared modules (subpart_b/climb_checks.py, certkit/models) once that branch has merged
-PENDING_R25_121 = {
-    "certkit_rules.part25.subpart_b.r25_143": {"CGS", "control_findings", "critical_engine", "trim_details"},
-    "certkit_rules.part25.subpart_b.r25_145": {"trim_details"},
-    "certkit_rules.part25.subpart_b.r25_147": {"CGS", "control_findings", "critical_engine", "trim_details"},
-    "certkit_rules.part25.subpart_b.r25_161": {"control_findings", "oei_climb", "trim_details"},
-    "certkit_rules.part25.subpart_b.turns": {"trim_details"},
-}
-R25_121 = "certkit_rules.part25.subpart_b.r25_121"
-
 
 def _modules() -> dict[str, object]:
     return {info.name: importlib.import_module(info.name)
@@ -73,18 +59,13 @@ def test_shared_modules_declare_no_rule():
     rules = _rule_modules(modules)
     assert all(name.rsplit(".", 1)[1].startswith("r25_") for name in rules)
     shared = {name for name, m in modules.items() if not hasattr(m, "__path__")} - rules
-    assert {"certkit_rules.part25.subpart_c.structural_checks", "certkit_rules.part25.subpart_c.gust_runs"} <= shared
+    assert {"certkit_rules.part25.subpart_c.structural_checks", "certkit_rules.part25.subpart_c.gust_runs",
+            "certkit_rules.part25.subpart_b.climb_checks", "certkit_rules.part25.subpart_b.control_checks"} <= shared
 
 
 def test_no_module_imports_a_rule_module():
-    """No module imports a rule module, apart from the §25.121 imports listed in :data:`PENDING_R25_121`."""
-    found = [(who, target, names) for who, target, names in _rule_imports(_modules())
-             if not (target == R25_121 and names <= PENDING_R25_121.get(who, set()))]
+    """No module of the rules package imports a rule module (§25.121's included: what it shares lives in
+    ``subpart_b/climb_checks.py``, ``subpart_b/control_checks.py`` and ``certkit/thrust_trims.py``)."""
+    found = _rule_imports(_modules())
     assert not found, "modules importing rule modules (move what they share to a module without rules):\n" + \
         "\n".join(f"  {who} imports {target} {sorted(names)}" for who, target, names in found)
-
-
-@pytest.mark.xfail(strict=True, reason="another branch (wat2) is editing r25_121.py: its shared names (CGS, "
-                   "control_findings, critical_engine, trim_details, oei_climb) move out of it after that merge")
-def test_no_rule_module_imports_r25_121():
-    assert not [t for t in _rule_imports(_modules()) if t[1] == R25_121]

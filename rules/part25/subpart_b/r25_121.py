@@ -41,30 +41,21 @@ from dataclasses import replace
 
 import numpy as np
 
-from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
-from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at, speed_as
+from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
-from certkit.models.flight import control_limits, throttle_for_thrust, thrust_function
+from certkit.models.flight import control_limits
 from certkit.models.performance.wat import Ambient, envelope_corners, weight_for_gradient
-from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
-from certkit.reference_speeds import declared_cas
+from certkit.reference_speeds import declared_cas, reference_stall_speed
+from certkit.thrust_trims import full_thrust, oei_climb
 from certkit.units import FT, G0, LB
-from certkit.reference_speeds import reference_stall_speed
+from certkit_rules.part25.subpart_b.climb_checks import CGS
+from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
 
-AMDT = "25-140"
+AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 #: a WAT limit weight is reported when a trim there gives the minimum gradient within this (about 0.5 % in weight)
-WAT_GRADIENT_TOLERANCE = 1e-4  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
-CONTROLS = ("elevator", "aileron", "rudder")
-CGS = ("forward", "reference", "aft")
-
-
-def critical_engine(ctx) -> str:
-    """The critical engine: the outermost engine, left side first (for a symmetric turbofan layout the two
-    outboard engines are equally critical; turbofans have no propeller asymmetry)."""
-    engines = ctx.aircraft.propulsion.engines
-    return min(engines, key=lambda e: (-abs(e.position.y), e.position.y)).name
+WAT_GRADIENT_TOLERANCE = 1e-4
 
 
 def engine_count_criterion(ctx, crit, stem: str) -> tuple[float, int]:
@@ -77,83 +68,6 @@ def gradient_criteria(paragraph: str, two: float, three: float, four: float) -> 
     src = f"14 CFR 25.121({paragraph})"
     return {f"gradient_{k}": Criterion(v, "", src, f"minimum steady climb gradient, {k}-engine airplanes")
             for k, v in (("two", two), ("three", three), ("four", four))}
-
-
-def control_findings(cond, prefix: str, result, limits) -> list[Finding]:
-    """Each trim control (elevator, aileron, rudder) against its design limit on the side it is deflected:
-    margin = limit − |deflection| (deg); the trim's own message when it is beyond."""
-    out = []
-    for name in CONTROLS:
-        if name not in result.controls or name not in limits:
-            continue
-        d = result.controls[name]
-        lo, hi = limits[name]
-        message = next((m.message for m in result.limits_exceeded if m.control == name), "")
-        hint = next((m.hint for m in result.limits_exceeded if m.control == name), "")
-        extra = {"hint": hint} if hint else {}
-        if d >= 0:
-            f = Finding.compare(cond, f"{prefix} {name} within design limit", math.degrees(d), math.degrees(hi),
-                                at_least=False, unit="deg", reason=message, **extra)
-        else:
-            f = Finding.compare(cond, f"{prefix} {name} within design limit", math.degrees(d), math.degrees(lo),
-                                at_least=True, unit="deg", reason=message, **extra)
-        out.append(f)
-    return out
-
-
-def trim_details(result) -> dict:
-    return {"alpha_deg": round(math.degrees(result.alpha), 3), "bank_deg": round(math.degrees(result.phi), 3),
-            "beta_deg": round(math.degrees(result.beta), 3),
-            **{f"{k}_deg": round(math.degrees(v), 3) for k, v in result.controls.items() if k in CONTROLS},
-            **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")},
-            **({} if result.stabilizer is None else {"stabilizer_deg": round(math.degrees(result.stabilizer), 3)})}
-
-
-def full_thrust(ctx, conds):
-    """(pressure altitude, TAS, Mach, full thrust of one engine (N), thrust model) per condition: the engine model's
-    throttle 1, scaled on an off-standard day (``delta_isa_K``) by the flat-rated temperature lapse."""
-    thrust, source = thrust_function(ctx.aircraft)
-    h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
-    full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
-    delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
-    if np.any(delta_isa):
-        flat = ctx.aircraft.propulsion.flat_rating_temperature
-        if flat is None:
-            raise ValueError("an off-standard day needs propulsion.flat_rating_temperature")
-        full = full * temperature_thrust_ratio(h, mach, delta_isa, flat)
-        source += f"; temperature lapse above the flat rating {flat - 273.15:.1f} °C (Mattingly)"
-    return h, tas, mach, full, source
-
-
-def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine_out: bool = True):
-    """Gradient (tan γ) with the critical engine inoperative at available thrust, for conditions of one
-    configuration; returns (gradients, TrimBatch, info). The operating engines' throttle is held where they give
-    ``thrust_fraction`` of their full thrust and the trim solves the flight-path angle (a steady climb at that
-    thrust). ``drag_credit`` (ΔCD per condition) is drag that the configuration carries but the paragraph removes
-    (the gear for §25.121(b)); ``engine_out=False`` gives the all-engines climb at the same thrust setting. A
-    condition's ``delta_isa_K`` (off-standard day, altitude its pressure altitude) scales the full thrust by the
-    flat-rated engine's temperature lapse; the trim itself is the standard day's (module docstring)."""
-    thrust, _ = thrust_function(ctx.aircraft)
-    dead = critical_engine(ctx) if engine_out else None
-    live = [e.name for e in ctx.aircraft.propulsion.engines if e.name != dead]
-    h, tas, mach, full, thrust_source = full_thrust(ctx, conds)
-    weight = np.array([c.mass for c in conds]) * G0
-    available = len(live) * thrust_fraction * full
-    throttle = throttle_for_thrust(thrust, thrust_fraction * full, h, mach)
-    credit = np.zeros_like(h)
-    if drag_credit is not None:
-        qbar = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2
-        credit = np.asarray(drag_credit, dtype=float) * qbar * ctx.aircraft.reference.area
-    batch = ctx.trim(conds, kind="sideslip" if dead else "straight", beta=0.0, throttle=throttle, inoperative=dead)
-    gamma = np.array([r.gamma if r.converged else np.nan for r in batch.results])
-    needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
-    residual = (available - needed) / weight
-    gamma = gamma + credit / weight  # drag the configuration carries but the segment does not (sin γ = (T − D)/W)
-    info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
-            "credit": credit, "residual": residual, "weight": weight}
-    return np.tan(gamma), batch, info
 
 
 def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, thrust_fraction=1.0, drag_credit=None,

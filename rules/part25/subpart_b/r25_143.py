@@ -31,9 +31,10 @@ from certkit.models.flight import control_limits, stabilizer_trim
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, stall_warning_cl
-from certkit.thrust_trims import operating_thrust, trim_at_thrust
+from certkit.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine
+from certkit_rules.part25.subpart_b.climb_checks import CGS
+from certkit_rules.part25.subpart_b.control_checks import control_findings
 from certkit_rules.part25.subpart_b.turns import turn_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")

@@ -30,7 +30,7 @@ from certkit.results import Finding
 from certkit.units import LBF
 from certkit.reference_speeds import reference_stall_speed
 from certkit.thrust_trims import operating_thrust, trim_at_thrust
-from certkit_rules.part25.subpart_b.r25_121 import trim_details
+from certkit_rules.part25.subpart_b.control_checks import trim_details
 from certkit.models.dynamics.trim import held_stabilizer
 
 FLAPS = ("takeoff", "approach", "landing")

@@ -33,9 +33,9 @@ from certkit.models.flight import control_limits
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import reference_stall_speed
-from certkit.thrust_trims import operating_thrust, trim_at_thrust
-from certkit_rules.part25.subpart_b.r25_121 import CGS, control_findings, critical_engine, trim_details
-from certkit_rules.part25.subpart_b.control_checks import pedal_force_finding
+from certkit.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
+from certkit_rules.part25.subpart_b.climb_checks import CGS
+from certkit_rules.part25.subpart_b.control_checks import control_findings, pedal_force_finding, trim_details
 from certkit_rules.part25.subpart_b.turns import turn_details
 
 SOURCE = "14 CFR 25.147 (Amdt. 25-108; verified, docs/regulation-notes.md)"

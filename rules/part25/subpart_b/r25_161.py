@@ -28,7 +28,8 @@ from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import FT
 from certkit.reference_speeds import reference_stall_speed
-from certkit_rules.part25.subpart_b.r25_121 import control_findings, oei_climb, trim_details
+from certkit.thrust_trims import oei_climb
+from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
 
 def stabilizer_finding(cond, check, r, limits) -> Finding:
     """Trim authority of a movable stabiliser: the incidence the trim needs (elevator at its trim setting) against

@@ -8,7 +8,7 @@ import math
 from certkit.atmosphere import RHO0, convert_speed
 from certkit.conditions import speed_as
 from certkit.units import G0
-from certkit_rules.part25.subpart_b.r25_121 import trim_details
+from certkit_rules.part25.subpart_b.control_checks import trim_details
 
 
 def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
