@@ -29,6 +29,7 @@ import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit.registry import Criterion
+from certkit.thrust_trims import critical_engine
 from certkit.units import FT, KN
 
 #: criteria shared by the rules that use the simulated takeoff (same defaults: one memoised run serves them all)
@@ -68,13 +69,6 @@ REPRESENTATIVE_CRITERIA = {
                                        "after an engine failure on the ground (a certificated airplane meets it at VMCG)",
                                        "largest lateral deviation on the ground of a representative run"),
 }
-
-
-def critical_engine(aircraft) -> str:
-    """Name of the engine whose failure gives the largest yawing moment (largest |y|; the first on a tie)."""
-    engines = aircraft.propulsion.engines
-    arms = [abs(e.position.y) for e in engines]
-    return engines[int(np.argmax(arms))].name
 
 
 def failure_speed(ctx, model, engine: str, recognition_time: float) -> tuple[np.ndarray, str]:
@@ -133,7 +127,7 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         settings = {k: np.tile([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results], 2) for k in held}
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
-        engine = critical_engine(ac)
+        engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
         vef, vef_basis = failure_speed(ctx, model, engine, crit.recognition_time)
         vef[n:] = np.inf  # the all-engines rows
         y = {e.name: e.position.y for e in ac.propulsion.engines}
