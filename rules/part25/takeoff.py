@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.atmosphere import convert_speed
+from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion
 from certkit.thrust_trims import critical_engine
 from certkit.units import FT, KN
@@ -54,6 +55,17 @@ PROCEDURE_CRITERIA = {
                                                 "V2 + 25, secondary copy; 10 kn keeps the run near the scheduled "
                                                 "speeds)", "all-engines climb speed above V2 (CAS)"),
 }
+
+#: what the simulated takeoffs need from the aircraft file (§25.111 and §25.113 fly the same runs)
+TAKEOFF_REQUIRES = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
+                    "geometry.horizontal_tail.controls.elevator", "geometry.vertical_tail.controls.rudder")
+
+
+def takeoff_conditions(note: str) -> ConditionSpace:
+    """The runs' conditions: MTOW at the forward, reference and aft CG, takeoff configuration."""
+    return ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")), configurations=("takeoff",),
+                          note=note)
+
 
 #: the representativeness bounds of a simulated takeoff (:func:`unrepresentative`)
 REPRESENTATIVE_CRITERIA = {

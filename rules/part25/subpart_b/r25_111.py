@@ -47,12 +47,12 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.reference_speeds import declared_cas
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, distances, run_summary,
-                                          simulated_takeoffs, unrepresentative)
+from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
+                                          run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 SOURCE = "14 CFR 25.111 (text from memory, not in docs/regulation-notes.md: unverified)"
 
@@ -103,16 +103,13 @@ class TakeoffPath(Rule):
         is from memory (not in docs/regulation-notes.md).
     """
     references = ("25.107", "25.121", "25.149")
-    requires = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
-                "geometry.horizontal_tail.controls.elevator", "geometry.vertical_tail.controls.rudder")
+    requires = TAKEOFF_REQUIRES
     criteria = {
         **PROCEDURE_CRITERIA,
         "gradient_min": Criterion(0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"),
         **REPRESENTATIVE_CRITERIA,
     }
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")),
-                                configurations=("takeoff",),
-                                note="Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
+    conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
 
     unevaluated = (
         ("25.111(a)", "the takeoff path beyond 35 ft (to 1,500 ft or the en-route transition) is not simulated"),
@@ -126,13 +123,11 @@ class TakeoffPath(Rule):
         ac = ctx.aircraft
         to = simulated_takeoffs(ctx, conditions, crit)
         trims, run, engine, vef = to.trims, to.run, to.engine, to.vef
-        vlof_declared = (float(convert_speed(ac.speeds.VLOF.value, ac.speeds.VLOF.kind, "CAS", 0.0)) / KN
-                         if ac.speeds.VLOF is not None else None)
+        vlof = declared_cas(ctx, "VLOF")
+        vlof_declared = None if vlof is None else vlof / KN
         design = {k: np.degrees(v) for k, v in control_limits(ac).items() if k != "throttle"}
         cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
-        v1_kn = float(convert_speed(ac.speeds.V1.value, ac.speeds.V1.kind, "CAS", 0.0)) / KN
-        v2_kn = float(convert_speed(ac.speeds.V2.value, ac.speeds.V2.kind, "CAS", 0.0)) / KN
-        vr_kn = float(convert_speed(ac.speeds.VR.value, ac.speeds.VR.kind, "CAS", 0.0)) / KN
+        v1_kn, v2_kn, vr_kn = (declared_cas(ctx, name) / KN for name in ("V1", "V2", "VR"))
         sim = run.sim
         n = len(conditions)
         je, jr = sim.control_names.index("elevator"), sim.control_names.index("rudder")

@@ -20,13 +20,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.atmosphere import convert_speed
-from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.reference_speeds import declared_cas
 from certkit.registry import Rule, rule
 from certkit.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, distances, run_summary,
-                                          simulated_takeoffs, unrepresentative)
+from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
+                                          run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 
 @rule
@@ -52,12 +51,9 @@ class TakeoffDistance(Rule):
         docs/regulation-notes.md).
     """
     references = ("25.111", "25.107", "25.109")
-    requires = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
-                "geometry.horizontal_tail.controls.elevator", "geometry.vertical_tail.controls.rudder")
+    requires = TAKEOFF_REQUIRES
     criteria = {**PROCEDURE_CRITERIA, **REPRESENTATIVE_CRITERIA}
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")),
-                                configurations=("takeoff",),
-                                note="Sea level ISA, takeoff thrust from brake release; the §25.111 runs.")
+    conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release; the §25.111 runs.")
     unevaluated = (
         ("25.113(b)", "the wet-runway takeoff distance is not computed"),
         ("25.113(c)", "the takeoff run (clearway credit) is not computed"),
@@ -67,9 +63,9 @@ class TakeoffDistance(Rule):
         ac = ctx.aircraft
         to = simulated_takeoffs(ctx, conditions, crit)
         n = len(conditions)
-        kn = lambda s: float(convert_speed(s.value, s.kind, "CAS", 0.0)) / KN  # noqa: E731
-        vr_kn, v2_kn = kn(ac.speeds.VR), kn(ac.speeds.V2)
-        vlof = kn(ac.speeds.VLOF) if ac.speeds.VLOF is not None else None
+        vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
+        vlof = declared_cas(ctx, "VLOF")
+        vlof = None if vlof is None else vlof / KN
         field = ac.performance.takeoff_field_length if ac.performance is not None else None
         check = "(a) takeoff distance within the declared takeoff field length"
         out = []
