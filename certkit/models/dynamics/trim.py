@@ -438,9 +438,8 @@ def _mark_stabilizer(batch: TrimBatch, st: StabilizerTrim, frozen: bool, require
         r.stabilizer_frozen = frozen
         need = float(batch.u[i, j] if required is None else required[i])
         r.stabilizer_required = st.datum + need
-        if not frozen:
-            r.stabilizer_at_stop = "nose-up" if need < lo else ("nose-down" if need > hi else "")
         if not frozen:  # the stabiliser's own limit is reported by its stop, not as an exceedance
+            r.stabilizer_at_stop = "nose-up" if need < lo else ("nose-down" if need > hi else "")
             r.limits_exceeded = [e for e in r.limits_exceeded if e.control != st.control]
 
 
