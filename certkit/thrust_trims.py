@@ -3,16 +3,20 @@
 off-standard day too), the operating engines' total thrust at a throttle setting, the trim at the flight-path angle
 that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircraft Performance and Design*, 1999,
 eq. 5.12, iterated on the thrust the trim needs) and the steady climb at a thrust with the critical engine
-inoperative (the flight-path angle solved by the trim).
+inoperative (the flight-path angle solved by the trim), and the weight at which that climb has a given gradient
+(the WAT limit weight search of §25.121).
 """
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from certkit.atmosphere import RHO0, convert_speed, speed_of_sound
-from certkit.conditions import speed_as
+from certkit.conditions import cg_limits_at, speed_as
 from certkit.models.flight import throttle_for_thrust, thrust_function
+from certkit.models.performance.wat import weight_for_gradient
 from certkit.models.propulsion.engine import temperature_thrust_ratio
 from certkit.units import G0
 
@@ -130,3 +134,45 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine
     info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
             "credit": credit, "residual": residual, "weight": weight}
     return np.tan(gamma), batch, info
+
+
+def scaled_speed(cond, mass: float) -> float:
+    """The condition's CAS at ``mass`` at the same multiple of the stall speed (∝ √W)."""
+    return cond.speed * math.sqrt(mass / cond.mass)
+
+
+def at_mass(ctx, cond, mass: float, lightest: float, speed_at):
+    """``cond`` at another mass, between ``lightest`` (kg) and its own: the speed ``speed_at(cond, mass)`` of that
+    weight, the CG kept inside the envelope."""
+    mass = float(min(max(mass, lightest), cond.mass)) if math.isfinite(mass) else lightest
+    fwd, aft = cg_limits_at(ctx.aircraft, min(mass, max(v.mass for v in ctx.aircraft.cg_envelope.vertices)))
+    return cond.with_(mass=mass, x_cg=min(max(cond.x_cg, fwd), aft), speed=speed_at(cond, mass))
+
+
+def wat_limit_search(ctx, conds, grads, available, required: float, speed_at, lightest: float, *, thrust_fraction,
+                     drag_credit, iterations: int, tolerance: float) -> list[tuple]:
+    """The weight at which the engine-out climb of each condition (gradient ``grads`` and thrust ``available`` (N) at
+    its own weight) has the gradient ``required``: two constant-CL steps (:func:`weight_for_gradient`), then secant
+    steps through the last two trims, the weight kept between ``lightest`` and the condition's; at most
+    ``iterations`` trims of all conditions at once, ending when every gradient is within ``tolerance``. Per condition:
+    (condition at the last weight tried, its gradient, its trim, the constant-CL weight estimate there (kg, ≥ 0))."""
+    weight = np.array([c.mass for c in conds]) * G0
+    history = [(weight / G0, grads)]
+    cur = [at_mass(ctx, b, m, lightest, speed_at)
+           for b, m in zip(conds, weight_for_gradient(weight, available, grads, required) / G0)]
+    for k in range(iterations):
+        grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
+        if k == iterations - 1 or np.all(np.abs(grads - required) < tolerance):
+            break
+        history.append((np.array([c.mass for c in cur]), grads))
+        if len(history) < 3:
+            new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+        else:
+            (m0, g0), (m1, g1) = history[-2:]
+            slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
+            new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
+        cur = [at_mass(ctx, b, m, lightest, speed_at) for b, m in zip(conds, new)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        estimate = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
+    estimate = np.where(np.isfinite(estimate) & (estimate > 0.0), estimate, 0.0)
+    return [(c, float(g), r, float(e)) for c, g, r, e in zip(cur, grads, batch.results, estimate)]

@@ -36,20 +36,19 @@ there the gradient must be met.
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
 
-from certkit.conditions import ConditionSpace, DesignWeight, cg_limits_at
+from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits
-from certkit.models.performance.wat import Ambient, envelope_corners, weight_for_gradient
+from certkit.models.performance.wat import Ambient, envelope_corners
 from certkit.registry import Criterion, Rule, rule
 from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, reference_stall_speed
-from certkit.thrust_trims import full_thrust, oei_climb
-from certkit.units import FT, G0, LB
+from certkit.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
+from certkit.units import FT, LB
 from certkit_rules.part25.subpart_b.climb_checks import CGS
 from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
 
@@ -152,7 +151,7 @@ def _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared,
             continue
         a = Ambient(w.pressure_altitude, w.temperature)
         for c in conds:
-            at = _at_mass(ctx, c, limit, speed_at) if limit < c.mass else c
+            at = at_mass(ctx, c, limit, lowest_operating_mass(ctx)[0], speed_at) if limit < c.mass else c
             grid.append(at.with_(loading=f"declared WAT limit {limit / LB:,.0f} lb, {c.loading}",
                                  altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3),
                                  airport=a.label()))
@@ -229,50 +228,13 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
 
 
 def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
-    """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate there (kg,
-    ≥ 0)) for the findings ``failing`` (the lowest gradient of each corner, whose trims give the first step): two
-    constant-CL steps (:func:`weight_for_gradient`), then secant steps through the last two trims, the weight kept
-    between the CG envelope's lightest and the design weight; at most ``iterations`` trims of all corners at once."""
-    base = [f.condition for f in failing]
-    grads = np.array([f.value for f in failing])
-    weight = np.array([c.mass for c in base]) * G0
-    available = np.array([f.details["thrust_available_N"] for f in failing])
-    history = [(weight / G0, grads)]
-    cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, weight_for_gradient(weight, available, grads, required) / G0)]
-    for k in range(iterations):
-        grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
-        if k == iterations - 1 or np.all(np.abs(grads - required) < WAT_GRADIENT_TOLERANCE):
-            break
-        history.append((np.array([c.mass for c in cur]), grads))
-        if len(history) < 3:
-            new = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
-        else:
-            (m0, g0), (m1, g1) = history[-2:]
-            slope = np.where(m1 != m0, (g1 - g0) / np.where(m1 != m0, m1 - m0, 1.0), 0.0)
-            new = np.where(slope != 0.0, m1 + (required - g1) / np.where(slope != 0.0, slope, 1.0), m1)
-        cur = [_at_mass(ctx, b, m, speed_at) for b, m in zip(base, new)]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        estimate = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
-    estimate = np.where(np.isfinite(estimate) & (estimate > 0.0), estimate, 0.0)
-    return {f.condition.get("airport"): (c, float(g), r, float(e))
-            for f, c, g, r, e in zip(failing, cur, grads, batch.results, estimate)}
-
-
-def _lightest(ctx) -> float:
-    return lowest_operating_mass(ctx)[0]
-
-
-def _at_mass(ctx, cond, mass: float, speed_at):
-    """``cond`` at another mass, between the CG envelope's lightest weight and its own: the speed of that weight,
-    the CG kept inside the envelope."""
-    mass = float(min(max(mass, _lightest(ctx)), cond.mass)) if math.isfinite(mass) else _lightest(ctx)
-    fwd, aft = cg_limits_at(ctx.aircraft, min(mass, max(v.mass for v in ctx.aircraft.cg_envelope.vertices)))
-    return cond.with_(mass=mass, x_cg=min(max(cond.x_cg, fwd), aft), speed=speed_at(cond, mass))
-
-
-def scaled_speed(cond, mass: float) -> float:
-    """The condition's CAS at ``mass`` at the same multiple of the stall speed (∝ √W)."""
-    return cond.speed * math.sqrt(mass / cond.mass)
+    """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate) for the
+    findings ``failing`` (the lowest gradient of each corner): :func:`certkit.thrust_trims.wat_limit_search`."""
+    found = wat_limit_search(ctx, [f.condition for f in failing], np.array([f.value for f in failing]),
+                             np.array([f.details["thrust_available_N"] for f in failing]), required, speed_at,
+                             lowest_operating_mass(ctx)[0], thrust_fraction=thrust_fraction, drag_credit=drag_credit,
+                             iterations=iterations, tolerance=WAT_GRADIENT_TOLERANCE)
+    return {f.condition.get("airport"): row for f, row in zip(failing, found)}
 
 
 def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration: str | None = None):
