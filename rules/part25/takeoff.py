@@ -14,7 +14,7 @@ rows n..2n−1 with all engines operating (the §25.113(a)(2) distance). The pro
     feedback with rate damping;
   * rudder on the runway heading and the centreline on the ground (no nose-wheel steering), wings level on the
     ground, ``bank_deg`` toward the live engine in the air (§25.149(b) allowance);
-  * the critical engine (largest |y|) fails when the airspeed reaches VEF (declared, else V1 less the speed gained
+  * the critical engine (largest |y|) fails when the airspeed reaches VEF (V1 less the speed gained
     over the recognition interval after the failure, §25.107(a)(2)), its thrust decaying to windmilling drag with the
     declared ``propulsion.failure_decay_time`` (windmilling at once without it: the basis says so).
 Representativeness (:func:`unrepresentative`): a run whose lift-off, speed at 35 ft or ground track is outside the
@@ -83,29 +83,6 @@ REPRESENTATIVE_CRITERIA = {
 }
 
 
-def failure_speed(ctx, model, engine: str, recognition_time: float) -> tuple[np.ndarray, str]:
-    """VEF (m/s TAS, one per condition of ``model``) and how it was obtained (module docstring)."""
-    from certkit.models.dynamics.procedures import runway_acceleration
-
-    sp = ctx.aircraft.speeds
-    declared = getattr(sp, "VEF", None)
-    if declared is not None:
-        return np.full(model.n, float(convert_speed(declared.value, declared.kind, "TAS", 0.0))), "declared VEF"
-    v1 = float(convert_speed(sp.V1.value, sp.V1.kind, "TAS", 0.0))
-    names = [e.name for e in model.engines]
-    op = np.ones((model.n, len(names)), dtype=bool)
-    op[:, names.index(engine)] = False
-    a = runway_acceleration(model, v1, operative=op)
-    tau = ctx.aircraft.propulsion.failure_decay_time
-    if not tau:
-        return v1 - a * recognition_time, f"V1 less {recognition_time:g} s of the engine-out acceleration at V1"
-    # the failed engine's thrust decays as e^(−t/τ): the acceleration too, from the all-engines value to a_OEI
-    a_all = runway_acceleration(model, v1)
-    gain = a * recognition_time + (a_all - a) * tau * (1.0 - np.exp(-recognition_time / tau))
-    return v1 - gain, (f"V1 less the speed gained over {recognition_time:g} s after the failure at V1's "
-                       f"accelerations (engine-out, plus the decaying thrust of the failed engine, τ = {tau:g} s)")
-
-
 @dataclass
 class Takeoffs:
     trims: object              # 1-g trims at V2 (one per loading)
@@ -120,7 +97,7 @@ class Takeoffs:
 def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
     """The memoised engine-out and all-engines takeoffs of ``conditions`` (module docstring); ``crit`` holds the
     :data:`PROCEDURE_CRITERIA`."""
-    from certkit.models.dynamics.procedures import takeoff_run
+    from certkit.models.dynamics.procedures import engine_failure_speed, takeoff_run
     from certkit.models.flight import control_limits, flight_model, ground_model
 
     def compute():
@@ -140,7 +117,8 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
         engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
-        vef, vef_basis = failure_speed(ctx, model, engine, crit.recognition_time)
+        vef, vef_basis = engine_failure_speed(model, tas(sp.V1), engine, crit.recognition_time,
+                                              ac.propulsion.failure_decay_time)
         vef[n:] = np.inf  # the all-engines rows
         y = {e.name: e.position.y for e in ac.propulsion.engines}
         toward_live = -np.sign(y[engine]) if y[engine] != 0 else 1.0  # bank right (+) when the left engine is dead

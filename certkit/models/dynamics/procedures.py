@@ -192,6 +192,24 @@ def runway_acceleration(model: AircraftModel, speed, throttle: float = 1.0, oper
     return np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
 
 
+def engine_failure_speed(model: AircraftModel, v1: float, engine: str, recognition_time: float,
+                         decay_time: float | None = None) -> tuple[np.ndarray, str]:
+    """VEF (m/s TAS, one per condition) such that V1 is reached ``recognition_time`` after the failure of ``engine``
+    (§25.107(a)(2)), at the runway accelerations of :func:`runway_acceleration` at V1 (``v1``, m/s TAS): engine out,
+    or, with the failed engine's thrust decaying as e^(−t/τ) (``decay_time`` τ), from the all-engines value to it;
+    and how it was obtained."""
+    names = [e.name for e in model.engines]
+    op = np.ones((model.n, len(names)), dtype=bool)
+    op[:, names.index(engine)] = False
+    a = runway_acceleration(model, v1, operative=op)
+    if not decay_time:
+        return v1 - a * recognition_time, f"V1 less {recognition_time:g} s of the engine-out acceleration at V1"
+    a_all = runway_acceleration(model, v1)
+    gain = a * recognition_time + (a_all - a) * decay_time * (1.0 - np.exp(-recognition_time / decay_time))
+    return v1 - gain, (f"V1 less the speed gained over {recognition_time:g} s after the failure at V1's "
+                       f"accelerations (engine-out, plus the decaying thrust of the failed engine, τ = {decay_time:g} s)")
+
+
 def _lowest_point_below_cg(model, x13):
     q0, q1, q2, q3 = (x13[:, 9 + k, None] for k in range(4))
     rx, ry, rz = (model.r_gear[:, :, k] for k in range(3))

@@ -19,7 +19,7 @@ part of the takeoff path must be positive at each point; (c)(2) The airplane mus
   attitude feedback with rate damping) toward the V2 attitude, held below the declared tail-strike attitude less
   2° while a gear leg is on the runway, airborne the attitude flying V2; rudder on the runway heading and the
   centreline on the ground, wings level on the ground and 5° of bank toward the live engine in the air (§25.149(b));
-* the critical engine (largest |y|; the left on a mirror-symmetric twin) fails at VEF (declared, else V1 less the
+* the critical engine (largest |y|; the left on a mirror-symmetric twin) fails at VEF (V1 less the
   engine-out speed gain over the 1-s recognition interval, §25.107(a)(2)), its thrust decaying to windmilling with
   the declared propulsion.failure_decay_time (at once without it); the speed actually reached a recognition
   interval after the failure is reported (``v_recognition_kn``) next to V1;
@@ -95,7 +95,7 @@ class TakeoffPath(Rule):
         the declared propulsion.failure_decay_time (windmilling at once without it); the pilot (rotation at
         2.5°/s to the V2 attitude below the declared tail-strike attitude less 2°, speed on pitch once airborne;
         rudder PI on heading and centreline, ≤ 5° bank toward the live engine in the air) stands for a pilot;
-        VEF from V1 by a quasi-steady engine-out acceleration when not declared; the path beyond the climb-out,
+        VEF from V1 by a quasi-steady engine-out acceleration; the path beyond the climb-out,
         (c)(3) 1.2 % from 400 ft and (c)(4) configuration changes are not computed. A run that lifts off more
         than 15 kn after VR (or the declared VLOF), passes 35 ft more than 10 kn above V2, deviates more than 30
         ft from the centreline on the ground or reaches the tail-strike attitude on the runway does not
