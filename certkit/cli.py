@@ -22,6 +22,7 @@ import click
 
 from certkit import __version__
 from certkit.errors import UserError
+from certkit.worker_processes import one_blas_thread
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 70  # EX_SOFTWARE of sysexits(3)
@@ -105,14 +106,8 @@ def _default_jobs(jobs: int | None) -> int:
         jobs = min(4, len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1)
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
-    _one_blas_thread()
+    one_blas_thread()
     return jobs
-
-
-def _one_blas_thread() -> None:
-    """One BLAS/OpenMP thread per process, set before numpy loads (a user's own setting is kept)."""
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
-        os.environ.setdefault(var, "1")
 
 
 _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
@@ -308,7 +303,7 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
     term + overrides); the lattice's are printed beside them. Induced drag: Trefftz plane (AVL's CDff). Drag along
     the stability x axis (see certkit/conventions.py).
     """
-    _one_blas_thread()  # a threaded LU of a few thousand panels starts threads it cannot use (0.5-0.8 s -> 0.4 s)
+    one_blas_thread()  # a threaded LU of a few thousand panels starts threads it cannot use (0.5-0.8 s -> 0.4 s)
     from certkit.aero_report import derivative_report
 
     report = derivative_report(model_file, mach, alpha_deg, beta_deg, configuration)

@@ -52,3 +52,11 @@ def stop_pool(pool) -> None:
             process.terminate()
     for process in processes:
         process.join(timeout=5)
+
+
+def one_blas_thread() -> None:
+    """One BLAS/OpenMP thread per process, set before numpy loads (a user's own setting is kept): threaded BLAS in
+    several processes oversubscribes the cores, and its summation order (the last digits of a result) would depend on
+    the number of threads."""
+    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(var, "1")

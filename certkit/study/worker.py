@@ -9,15 +9,11 @@ This module imports only the standard library and certkit.errors: a worker proce
 
 from __future__ import annotations
 
-import ctypes
 import gc
 import importlib
 import json
 import os
-import signal
 import socket
-import sys
-import threading
 import time
 import traceback
 from dataclasses import dataclass
@@ -114,28 +110,3 @@ def _run_case(task: Task) -> CaseResult:
         return CaseResult(task.key, "user_error", str(exc), elapsed(), worker_id())
     except Exception as exc:  # a failed design is data: its reason is recorded, the study goes on
         return CaseResult(task.key, "failed", f"{type(exc).__name__}: {exc}{_where(exc)}", elapsed(), worker_id())
-
-
-_PR_SET_PDEATHSIG = 1
-
-
-def init_local_worker(coordinator_pid: int) -> None:
-    """Initialiser of a local worker process: Ctrl-C is the coordinator's to handle (a worker interrupted
-    mid-case would report a failure that is not the design's), and the worker dies with its coordinator —
-    by the kernel (Linux PR_SET_PDEATHSIG) or, elsewhere and as a fallback, by a thread that watches the
-    parent process id."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    if sys.platform.startswith("linux"):
-        try:
-            ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
-        except (OSError, AttributeError):
-            pass
-    if os.getppid() != coordinator_pid:  # the coordinator died before the line above took effect
-        os._exit(1)
-
-    def watch() -> None:
-        while os.getppid() == coordinator_pid:
-            time.sleep(0.5)
-        os._exit(1)
-
-    threading.Thread(target=watch, name="certkit-coordinator-watch", daemon=True).start()
