@@ -17,6 +17,8 @@ import os
 from importlib.util import find_spec
 from pathlib import Path
 
+from certkit.user_cache import cache_folder
+
 FIELDS = ("id", "symbol", "title", "implementation", "amendment")
 
 
@@ -42,10 +44,6 @@ def index_key() -> str:
                     st = os.stat(os.path.join(root, name))
                     h.update(f"{root}/{name}:{st.st_size}:{st.st_mtime_ns}\n".encode())
     return h.hexdigest()[:32]
-
-
-def cache_folder() -> Path:
-    return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "certkit"
 
 
 def _has_plugins() -> bool:

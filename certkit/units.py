@@ -12,15 +12,27 @@ from functools import lru_cache
 
 import pint
 
+from certkit.user_cache import cache_folder
 
 
 def _registry() -> pint.UnitRegistry:
-    """pint's registry, its parsed definitions cached in the user's cache folder (a tenth of the start-up
-    time); without a writable cache folder, parsed afresh."""
-    try:
-        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
-    except OSError:
-        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    """pint's registry, its parsed definitions cached in certkit's cache folder (a tenth of the start-up time).
+
+    pint writes that cache in place, not atomically, so a process starting while another writes it can read a
+    truncated file (``EOFError``), and a process killed while writing leaves one. A cache that cannot be read is
+    removed and rebuilt once; if that fails too, or the folder cannot be written, the definitions are parsed afresh.
+    """
+    folder = cache_folder() / "pint"
+    for _ in range(2):
+        try:
+            return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=folder)
+        except Exception:  # noqa: BLE001 - any failure of the cache (OSError, EOFError, UnpicklingError …)
+            for stale in folder.glob("*.*"):
+                try:
+                    stale.unlink()
+                except OSError:
+                    pass
+    return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 
 ureg = _registry()

@@ -1,0 +1,42 @@
+"""The user cache (pint's parsed unit definitions, the rule index) is only a speed-up: a truncated or half-written
+file, as a killed process or two processes starting together leave it, costs time, never a run (the CI failure of
+stop 22: `certkit explain` exited 70 on ``EOFError: Ran out of input`` from pint's cache)."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import subprocess
+import sys
+
+PROBE = "from certkit.units import to_si; print(to_si('1000 ft', 'length'))"
+
+
+def _run(cache):
+    return subprocess.Popen([sys.executable, "-c", PROBE], env={**os.environ, "XDG_CACHE_HOME": str(cache)},
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def _ok(proc):
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 0, err
+    assert abs(float(out) - 304.8) < 1e-9  # 1000 ft = 304.8 m exactly (international foot)
+
+
+def test_truncated_unit_cache_is_rebuilt(tmp_path):
+    _ok(_run(tmp_path))
+    pickles = sorted((tmp_path / "certkit" / "pint").glob("*.pickle"))
+    assert pickles, "pint's definitions are cached in certkit's cache folder"
+    for p in pickles:
+        with open(p, "r+b") as f:
+            f.truncate(20)  # as a process killed mid-write leaves it
+    _ok(_run(tmp_path))
+    for p in pickles:  # rebuilt, not left truncated
+        with open(p, "rb") as f:
+            pickle.load(f)
+
+
+def test_processes_starting_together_on_an_empty_cache(tmp_path):
+    procs = [_run(tmp_path) for _ in range(6)]
+    for proc in procs:
+        _ok(proc)
