@@ -137,6 +137,10 @@ class Finding:
     unit: str = ""
     reason: str = ""
     details: dict = field(default_factory=dict)
+    #: more details computed only when the finding is written (:meth:`as_dict`), placed before ``details``: a
+    #: picklable callable returning a dict (a structural finding's per-station load table: a design study makes
+    #: thousands of them per design and writes none)
+    written_details: object = field(default=None, repr=False, compare=False)
 
     @property
     def has_number(self) -> bool:
@@ -192,8 +196,12 @@ class Finding:
             "unit": (self.unit or "1") if self.has_number else None,
             "status": self.status,
             "reason": self.reason,
-            **({"details": self.details} if self.details else {}),
+            **({"details": details} if (details := self.all_details()) else {}),
         }
+
+    def all_details(self) -> dict:
+        """``details`` with the :attr:`written_details` before them."""
+        return {**self.written_details(), **self.details} if self.written_details is not None else self.details
 
 
 @dataclass

@@ -101,7 +101,7 @@ def test_pitch_rule_compares_with_declared_tail_capability(tmp_path):
     assert tail and all(f.status in ("complies", "fails") for f in tail)
     bend_lim = 300000 * LB * 9.80665 * FT
     for f in tail:
-        d = f.details
+        d = f.all_details()
         assert "60% span bending max/min (kN·m)" in d
         candidates = []
         for key, lim, ult, unit in (("root shear max/min (kN)", (250e3, 250e3), (400e3, 400e3), "shear at root"),

@@ -52,7 +52,7 @@ def own(result):
     """The rule's own findings: without those standing for the sub-paragraphs it does not evaluate."""
     from certkit.results import SCOPE_KEY
 
-    return [f for f in result.findings if SCOPE_KEY not in f.details]
+    return [f for f in result.findings if SCOPE_KEY not in f.all_details()]
 
 
 def finding_by(result, loading, check_prefix):

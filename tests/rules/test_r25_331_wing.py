@@ -38,7 +38,7 @@ def test_one_wing_finding_per_tail_finding(results):
         tail = [f for f in r.findings if _base(f) + ", wing" in {_base(w) for w in wing}]
         assert wing and len(wing) == len(tail)
         assert {f.condition for f in wing} == {f.condition for f in tail}
-        assert all("side of body bending max/min (kN·m)" in f.details for f in wing)
+        assert all("side of body bending max/min (kN·m)" in f.all_details() for f in wing)
 
 
 def test_wing_margins_by_hand(results):
@@ -49,7 +49,7 @@ def test_wing_margins_by_hand(results):
     caps = declared_capabilities(ctx, "wing")
     for rid in ("25.331(c)(1)", "25.331(c)(2)"):
         for f in _wing(res[rid]):
-            norm, margin, check = hand_margin(f.details, caps)
+            norm, margin, check = hand_margin(f.all_details(), caps)
             assert f.normalized_margin == pytest.approx(norm, abs=5e-5), f.check
             if check in f.check:
                 assert f.margin == pytest.approx(margin, abs=1.5 * 50 + 1)
@@ -63,13 +63,13 @@ def test_held_manoeuvres_past_the_stall_keep_the_wing_within_its_stalled_lift(re
     ctx, res = results
     r = res["25.331(c)(2)"]
     tails = {f.condition: f for f in r.findings if _base(f).endswith(("nose up", "nose down"))}
-    held = [f for f in _wing(r) if f.details.get("wing_window") == WING_STALL_NOTE]
+    held = [f for f in _wing(r) if f.all_details().get("wing_window") == WING_STALL_NOTE]
     assert held  # the baseline's VA conditions at MRW stall
     for f in held:
         W = f.condition.mass * 9.80665
-        tail = tails[f.condition].details["root shear max/min (kN)"]
+        tail = tails[f.condition].all_details()["root shear max/min (kN)"]
         bound = 0.5 * (2.52 * W + 2 * 1e3 * max(abs(tail[0]), abs(tail[1])))
-        assert 1e3 * f.details["root shear max/min (kN)"][0] <= bound
+        assert 1e3 * f.all_details()["root shear max/min (kN)"][0] <= bound
 
 
 def test_checked_manoeuvre_wing_load_near_the_balanced_one(results):
@@ -83,12 +83,12 @@ def test_checked_manoeuvre_wing_load_near_the_balanced_one(results):
     compared = 0
     for f in _wing(res["25.331(c)(2)"]):
         c = f.condition
-        if c.get("entry_speed") != "VC" or c.get("direction") != "nose up" or abs(f.details["peak_n_z"] - 2.5) > 0.03:
+        if c.get("entry_speed") != "VC" or c.get("direction") != "nose up" or abs(f.all_details()["peak_n_z"] - 2.5) > 0.03:
             continue
         b = balanced[(c.loading, c.altitude)]
-        if b.details["n"] != 2.5:
+        if b.all_details()["n"] != 2.5:
             continue
-        ratio = f.details["side of body bending max/min (kN·m)"][0] / b.details["side of body bending max/min (kN·m)"][0]
+        ratio = f.all_details()["side of body bending max/min (kN·m)"][0] / b.all_details()["side of body bending max/min (kN·m)"][0]
         assert 0.8 <= ratio <= 1.05, c.label()
         compared += 1
     assert compared >= 4

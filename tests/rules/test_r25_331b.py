@@ -49,22 +49,22 @@ def test_load_factor_and_pull_up_rate_of_each_point(run):
     ctx, findings, _ = run
     expected = {"A": 2.5, "VC at n+": 2.5, "D": 2.5, "E": 0.0, "F": -1.0, "H": -1.0, "VF at n flaps": 2.0, "VF at 0": 0.0}
     for f in findings:
-        if not f.details or "n" not in f.details:
+        if not f.all_details() or "n" not in f.all_details():
             continue
         point = f.condition.get("point")
-        if "stall line" in f.details.get("speed_note", ""):
+        if "stall line" in f.all_details().get("speed_note", ""):
             # below the stall line's speed (VC Mach-limited at altitude): n on the ±C_N,max line, n = ±(V/VS1)²
             # with VS1 = √(2 m g / (ρ₀ S C_N,max)) (§25.333(b) stall lines, §25.335(c) VS1)
             cfg = ctx.aircraft.configurations["clean"]
             cn = BalancedManeuver.criteria["cn_over_cl"].value * (cfg.CLmax if expected[point] > 0 else -cfg.CLmin)
             vs1 = np.sqrt(2 * f.condition.mass * G0 / (1.225 * ctx.aircraft.reference.area * cn))
             n = np.sign(expected[point]) * (f.condition.speed / vs1) ** 2
-            assert abs(n) < abs(expected[point]) and f.details["n"] == pytest.approx(n, abs=2e-3)
+            assert abs(n) < abs(expected[point]) and f.all_details()["n"] == pytest.approx(n, abs=2e-3)
         else:
-            assert f.details["n"] == expected[point]
+            assert f.all_details()["n"] == expected[point]
         v_tas = f.condition.speed * np.sqrt(1.225 / _rho(f.condition.altitude))
-        q = np.degrees(G0 * (f.details["n"] - 1.0) / v_tas)
-        assert f.details["pitch_rate_deg_s"] == pytest.approx(q, rel=0.02, abs=0.002)
+        q = np.degrees(G0 * (f.all_details()["n"] - 1.0) / v_tas)
+        assert f.all_details()["pitch_rate_deg_s"] == pytest.approx(q, rel=0.02, abs=0.002)
 
 
 def _rho(h):
@@ -85,11 +85,11 @@ def test_wing_root_bending_by_hand_from_the_strip_forces(run):
     strips = wing.strip_normal_force(st["qbar"], st["mach"], {k: st[k] for k in ("alpha", "q_hat", "elevator",
                                                                                   "aileron", "rudder")})
     hand = np.sum((strips - wing.strip_mass * G0 * st["n_z"]) * wing.strip_span)
-    assert f.details["root bending max/min (kN·m)"][0] == pytest.approx(hand / 1e3, rel=0.01)
+    assert f.all_details()["root bending max/min (kN·m)"][0] == pytest.approx(hand / 1e3, rel=0.01)
     # and the wing carries about n W plus the tail download (both halves' air load)
     W = f.condition.mass * G0
     air = 2 * np.sum(strips)
-    assert air == pytest.approx(2.5 * W - 1e3 * f.details["tail_balancing_load_kN"], rel=0.03)
+    assert air == pytest.approx(2.5 * W - 1e3 * f.all_details()["tail_balancing_load_kN"], rel=0.03)
 
 
 def test_margins_by_hand_and_the_critical_wing_case(run):
@@ -101,12 +101,12 @@ def test_margins_by_hand_and_the_critical_wing_case(run):
     for f in findings:
         if f.status in ("complies", "fails"):
             surface = "wing" if f.check.split(":")[0].endswith("wing") else "horizontal_tail"
-            norm, margin, _ = hand_margin(f.details, caps[surface])
+            norm, margin, _ = hand_margin(f.all_details(), caps[surface])
             assert f.margin == pytest.approx(margin, abs=0.2e3 + 1e-3 * abs(f.limit))
     wing = [f for f in findings if f.status in ("complies", "fails") and "wing:" in f.check]
     worst = min(wing, key=lambda f: f.margin / f.limit)
     assert worst.condition.loading == "fwd_mrw" and worst.condition.get("point") in ("A", "VC at n+", "D")
-    assert worst.details["n"] > 2.0  # on the n₊ line, or on the stall line just below it (Mach-limited VD at altitude)
+    assert worst.all_details()["n"] > 2.0  # on the n₊ line, or on the stall line just below it (Mach-limited VD at altitude)
     assert "ultimate bending at side of body" in worst.check
     assert worst.status == "fails"
 
@@ -137,7 +137,7 @@ def test_not_evaluated_without_structural_capability(tmp_path):
     result = evaluate_rule(BalancedManeuver, ctx)
     clean = [f for f in result.findings if f.condition.configuration == "clean"]
     assert clean and all(f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in clean)
-    assert all("root bending max/min (kN·m)" in f.details for f in clean)
+    assert all("root bending max/min (kN·m)" in f.all_details() for f in clean)
 
 
 def test_a_weak_tailplane_fails(tmp_path):

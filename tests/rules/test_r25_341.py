@@ -126,9 +126,9 @@ def test_sign_up_gust_loads_the_wing_up(gust_run):
             k = int(np.argmin(np.abs(r.sim.t - H / r.sim["V"][0, 0])))
             wing = r.loads["wing"][:, 0]
             assert sign * (wing[k, 0, 0] - wing[0, 0, 0]) > 0 and sign * (wing[k, 1, 0] - wing[0, 1, 0]) > 0
-    wing = [f for f in own(result) if ", wing" in f.check and f.details]
-    assert all(f.details["peak_n_z"] > 1.0 for f in wing if f.condition.get("gust") == "up")
-    assert all(f.details["peak_n_z"] < 1.0 for f in wing if f.condition.get("gust") == "down")
+    wing = [f for f in own(result) if ", wing" in f.check and f.all_details()]
+    assert all(f.all_details()["peak_n_z"] > 1.0 for f in wing if f.condition.get("gust") == "up")
+    assert all(f.all_details()["peak_n_z"] < 1.0 for f in wing if f.condition.get("gust") == "down")
 
 
 def test_capability_comparison_and_reasons(gusts):
@@ -137,20 +137,20 @@ def test_capability_comparison_and_reasons(gusts):
     largest |root bending| of the condition (details rounded to 0.1 kN·m). The tailplane has no declared
     capability: not evaluated with the reason. Every condition flies: the heavy corners at VB at 43,000 ft, short of
     thrust level, on the full-thrust path (a shallow descent), marked with its flight-path angle."""
-    assert all(f.details for f in own(gusts))
+    assert all(f.all_details() for f in own(gusts))
     descending = {f.condition for f in own(gusts) if f.condition.get("flight_path_deg") is not None}
     assert descending and all(-3.0 < c.get("flight_path_deg") < 0.0 for c in descending)
     for f in own(gusts):
         if "horizontal tail" in f.check or "vertical tail" in f.check:  # the fin: lateral gusts
             assert f.status == "not_evaluated" and f.reason == "no structural capability declared"
         else:
-            hi, lo = f.details["root bending max/min (kN·m)"]
+            hi, lo = f.all_details()["root bending max/min (kN·m)"]
             expected = BEND_LIMIT - 1e3 * max(abs(hi), abs(lo))
             assert f.margin == pytest.approx(expected, abs=200.0)
             assert f.status == ("complies" if f.margin >= 0 else "fails")
             assert "limit bending at root" in f.check
-            assert 0.0 <= f.details["F_g"] <= 1.0
-            assert f.details["critical_H_root_bending_ft"] in (30.0, 350.0)
+            assert 0.0 <= f.all_details()["F_g"] <= 1.0
+            assert f.all_details()["critical_H_root_bending_ft"] in (30.0, 350.0)
 
 
 def test_not_evaluated_without_vc(tmp_path):
@@ -178,10 +178,10 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
     for f in evaluated:
         surface = ("wing" if f.check.endswith(", wing") or ", wing:" in f.check else
                    "vertical tail" if "vertical tail" in f.check else "horizontal tail")
-        normalized, margin, check = hand_margin(f.details, caps[surface])
+        normalized, margin, check = hand_margin(f.all_details(), caps[surface])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
         # information: the manoeuvring envelope's n at the speed (§25.337: n+ 2.5; n- -1.0 to VC, 0 at VD)
-        d = f.details
+        d = f.all_details()
         if f.condition.get("gust") == "up":
             assert d["maneuver_envelope_n_z"] == 2.5 and d["beyond_maneuver_envelope"] == (d["peak_n_z"] > 2.5)
         elif f.condition.get("gust") == "down":

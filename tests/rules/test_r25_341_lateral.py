@@ -41,8 +41,8 @@ def test_one_lateral_finding_per_entry_with_margins_by_hand(result):
     assert {(f.condition.loading, f.condition.altitude, f.condition.get("speed_point")) for f in lateral} == entries
     caps = declared_capabilities(ctx, "vertical_tail")
     for f in lateral:
-        assert f.details["root shear max/min (kN)"][0] == pytest.approx(-f.details["root shear max/min (kN)"][1])
-        norm, margin, _ = hand_margin(f.details, caps)
+        assert f.all_details()["root shear max/min (kN)"][0] == pytest.approx(-f.all_details()["root shear max/min (kN)"][1])
+        norm, margin, _ = hand_margin(f.all_details(), caps)
         assert f.normalized_margin == pytest.approx(norm, abs=5e-5)
     assert all(f.status == "complies" for f in lateral)  # the fin is sized by §25.351 on the baseline
     env = res.run["lateral_envelope"] if res.run else None
@@ -56,7 +56,7 @@ def test_without_fin_capability_not_evaluated(tmp_path):
     lateral = _lateral(res)
     assert lateral and all(f.status == "not_evaluated" and "no structural capability declared" in f.reason
                            for f in lateral)
-    assert all("root shear max/min (kN)" in f.details for f in lateral)
+    assert all("root shear max/min (kN)" in f.all_details() for f in lateral)
     assert all(f.status != "not_evaluated" for f in own(res) if f.condition.get("gust") != "lateral")
 
 

@@ -48,7 +48,7 @@ def _surface(f):
 
 
 def _by_condition(result, surface="wing"):
-    return {f.condition: f for f in own(result) if _surface(f) == surface and "load_factor" in f.details}
+    return {f.condition: f for f in own(result) if _surface(f) == surface and "load_factor" in f.all_details()}
 
 
 def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, shared):
@@ -69,7 +69,7 @@ def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, s
     aero = shared.aero("clean").model
     checked = 0
     for cond, f in found.items():
-        d = f.details
+        d = f.all_details()
         assert 0.5 < d["loads_considered_until_s"] < 4.0
         assert d["load_factor"] == pytest.approx(0.0 if cond.get("load_factor") == "zero" else 2 / 3 * n_lim, abs=1e-3)
         sp = cond.get("speed_point")
@@ -176,7 +176,7 @@ def test_not_evaluated_without_capability(tmp_path):
     others = reasons - {"no structural capability declared"}
     assert all("cannot be set up" in r for r in others)  # none since the model reaches its declared CLmax
     f = next(f for f in own(roll) if f.reason == "no structural capability declared" and _surface(f) == "wing")
-    assert ROOT_BENDING in f.details and "root bending down-going/up-going side max/min (kN·m)" in f.details
+    assert ROOT_BENDING in f.all_details() and "root bending down-going/up-going side max/min (kN·m)" in f.all_details()
 
 
 def test_wing_capability_limit_and_ultimate(roll, tmp_path):
@@ -184,8 +184,8 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     and 1.4 × L (ultimate): the limit margin is 0.2 L but the ultimate margin 1.4 L − 1.5 L = −0.1 L (§25.303 factor
     1.5), so the critical wing finding fails on ultimate bending at the root with −0.1 L (L from the details in
     kN·m to 0.1: within 1.5 × 50 N·m); the tail findings stay not evaluated (no tail capability)."""
-    L = 1e3 * max(max(abs(v) for v in f.details[ROOT_BENDING]) for f in own(roll)
-                  if _surface(f) == "wing" and ROOT_BENDING in f.details)
+    L = 1e3 * max(max(abs(v) for v in f.all_details()[ROOT_BENDING]) for f in own(roll)
+                  if _surface(f) == "wing" and ROOT_BENDING in f.all_details())
     structure = ("structure:\n  wing:\n"
                  f"    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: \"test\"}}\n"
                  "sources:\n")
@@ -209,5 +209,5 @@ def test_baseline_margins_against_the_declared_capability(roll, shared):
     evaluated = [f for f in own(roll) if f.margin is not None]
     assert evaluated and all("cannot be set up" in f.reason for f in own(roll) if f.status == "not_evaluated")
     for f in evaluated:
-        normalized, _, _ = hand_margin(f.details, caps[_surface(f)])
+        normalized, _, _ = hand_margin(f.all_details(), caps[_surface(f)])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check

@@ -41,7 +41,7 @@ def shared(tmp_path_factory):
 
 
 def _evaluated(findings):
-    return [f for f in findings if f.details]
+    return [f for f in findings if f.all_details()]
 
 
 def test_gust_runs_are_shared_with_25_341a(shared):
@@ -53,8 +53,8 @@ def test_gust_runs_are_shared_with_25_341a(shared):
     by_cond = {f.condition: f for f in own(sym) if f.check.endswith(", wing") or ", wing:" in f.check}
     checked = 0
     for f in _evaluated(findings):
-        a = by_cond[f.condition].details["root bending max/min (kN·m)"]
-        assert f.details["symmetric_root_bending_max_min_kNm"] == [a[0], a[1]]
+        a = by_cond[f.condition].all_details()["root bending max/min (kN·m)"]
+        assert f.all_details()["symmetric_root_bending_max_min_kNm"] == [a[0], a[1]]
         checked += 1
     assert checked == len(_evaluated(findings)) > 0
 
@@ -72,7 +72,7 @@ def test_rolling_moment_arm_against_lifting_line(shared, baseline):
     masses = run["runs"].batch.model.mass
     index = {c: i for i, c in enumerate(run["conditions"])}
     for f in _evaluated(findings):
-        d = f.details
+        d = f.all_details()
         i = index[f.condition]
         arm = d["peak_unbalanced_rolling_moment_MNm"] * 1e6 / (d["load_factor_change"] * masses[i] * G0)
         assert arm / semispan == pytest.approx(0.5 * (4 / (3 * np.pi) + 1.36 / 3.54), rel=0.10), f.condition.label()
@@ -87,7 +87,7 @@ def test_roll_acceleration_from_the_loading_inertia(shared):
     J = run["runs"].batch.model.inertia
     index = {c: i for i, c in enumerate(run["conditions"])}
     for f in _evaluated(findings):
-        d = f.details
+        d = f.all_details()
         expected = np.degrees(d["peak_unbalanced_rolling_moment_MNm"] * 1e6 / J[index[f.condition], 0, 0])
         assert d["roll_acceleration_deg_s2"] == pytest.approx(expected, rel=2e-3, abs=0.01)
 
@@ -102,7 +102,7 @@ def test_margins_by_hand_against_the_declared_wing_capability(shared, baseline):
     assert len(evaluated) == 2 * len(run["conditions"])
     assert {f.check.rsplit(", ", 1)[1].split(":")[0] for f in evaluated} == {"100% side", "80% side"}
     for f in evaluated:
-        normalized, _, _ = hand_margin(f.details, caps)
+        normalized, _, _ = hand_margin(f.all_details(), caps)
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
     assert len(evaluated) == len(findings)
 
@@ -118,8 +118,8 @@ def test_increment_basis_has_a_smaller_unbalance_for_up_gusts(shared):
     assert ups
     for f in ups:
         t = total[(f.condition, f.check.split(":")[0])]
-        assert abs(f.details["peak_unbalanced_rolling_moment_MNm"]) < abs(t.details["peak_unbalanced_rolling_moment_MNm"])
-        assert f.details["airload_basis"] == "increment"
+        assert abs(f.all_details()["peak_unbalanced_rolling_moment_MNm"]) < abs(t.all_details()["peak_unbalanced_rolling_moment_MNm"])
+        assert f.all_details()["airload_basis"] == "increment"
 
 
 def test_bad_airload_basis_is_a_user_error(shared):
@@ -135,7 +135,7 @@ def test_not_evaluated_without_structural_capability(tmp_path):
     evaluated = _evaluated(own(result))
     assert evaluated and all(f.status == "not_evaluated" and f.reason == "no structural capability declared"
                              for f in evaluated)
-    assert all("root bending max/min (kN·m)" in f.details for f in evaluated)  # the loads are still reported
+    assert all("root bending max/min (kN·m)" in f.all_details() for f in evaluated)  # the loads are still reported
     assert result.status == "not_evaluated"
 
 

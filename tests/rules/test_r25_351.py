@@ -86,11 +86,11 @@ def test_overswing_exceeds_steady_and_load_signs(yaw):
         by.setdefault(f.condition, {})[f.check[:3]] = f
     assert len(by) == 64  # 8 CG corners × 2 altitudes × 4 speeds
     for cond, ph in by.items():
-        d = ph["(b)"].details
+        d = ph["(b)"].all_details()
         assert d["rudder_deg"] == pytest.approx(-27.3, abs=0.01) and "rudder stop (travel" in d["pilot_effort"]
         assert d["overswing_beta_deg"] < 0 and d["steady_beta_deg"] < 0
         assert abs(d["overswing_beta_deg"]) > abs(d["steady_beta_deg"]), cond
-        assert ph["(a)"].details[ROOT_SHEAR][0] < 0 < ph["(b)"].details[ROOT_SHEAR][0], cond
+        assert ph["(a)"].all_details()[ROOT_SHEAR][0] < 0 < ph["(b)"].all_details()[ROOT_SHEAR][0], cond
     assert all(f.status in ("complies", "fails") for f in own(yaw))
 
 
@@ -104,7 +104,7 @@ def test_baseline_margins_against_the_declared_capability(yaw, baseline):
     caps = declared_capabilities(Context(baseline), "vertical_tail")
     assert {c.station for c in caps} == {"root", "50% span"}
     for f in own(yaw):
-        normalized, margin, check = hand_margin(f.details, caps)
+        normalized, margin, check = hand_margin(f.all_details(), caps)
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
         assert "ultimate" in f.check
         if check in f.check:
@@ -117,7 +117,7 @@ def test_not_evaluated_without_structure(tmp_path):
     result = run_rule("25.351", tmp_path, edits=[NO_STRUCTURE, ("altitude_points: 5", "altitude_points: 2")])
     assert result.status == "not_evaluated"
     assert {f.reason for f in own(result)} == {"no structural capability declared"}
-    assert all(ROOT_SHEAR in f.details for f in own(result))
+    assert all(ROOT_SHEAR in f.all_details() for f in own(result))
 
 
 def test_not_evaluated_without_vd(tmp_path):
@@ -132,7 +132,7 @@ def test_capability_on_the_limit(yaw, tmp_path):
     """A fin root-shear capability declared equal to the largest |root shear| of the baseline run (limit) and
     1.5 × it (ultimate, §25.303): the critical margin is zero within rounding (the loads are reported in kN
     to 0.1, so the declared value is within 50 N); every other condition has a positive margin."""
-    peak_kn = max(max(abs(v) for v in f.details[ROOT_SHEAR]) for f in own(yaw))
+    peak_kn = max(max(abs(v) for v in f.all_details()[ROOT_SHEAR]) for f in own(yaw))
     limit = peak_kn * 1e3
     structure = ("structure:\n  vertical_tail:\n"
                  f"    - {{station: root, quantity: shear, limit: {limit}, ultimate: {1.5 * limit}, source: \"test\"}}\n"
@@ -156,8 +156,8 @@ def test_fin_root_torsion_arm_lies_within_the_root_chord(yaw, baseline):
     root_chord = float(planform.root_chord(2 * fin.area, 2 * fin.aspect_ratio, fin.taper))
     checked = 0
     for f in own(yaw):
-        shear = f.details.get("root shear max/min (kN)")
-        torsion = f.details.get("root torsion max/min (kN·m)")
+        shear = f.all_details().get("root shear max/min (kN)")
+        torsion = f.all_details().get("root torsion max/min (kN·m)")
         if shear and torsion and abs(shear[0]) > 50.0:
             assert abs(torsion[0] / shear[0]) < root_chord, (f.check, shear, torsion, root_chord)
             checked += 1

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 
 from certkit.models.loads.model import QUANTITIES, station_label
 
@@ -74,27 +75,40 @@ def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultima
     if table is None:
         return None
     caps, q, s, allow, inv_scale = table
-    peaks = np.asarray(peaks, dtype=float)
-    hi, lo = peaks[1][q, s], peaks[0][q, s]
-    load = np.empty(allow.shape)
-    load[:, 0] = load[:, 1] = np.abs(hi)
-    load[:, 2] = load[:, 3] = np.abs(lo)
-    load[:, 1::2] *= ultimate_factor
-    loaded = np.empty(allow.shape, dtype=bool)
-    loaded[:, 0] = loaded[:, 1] = ~(hi <= 0)
-    loaded[:, 2] = loaded[:, 3] = ~(lo >= 0)
-    norm = ((allow - load) * inv_scale).ravel()  # finite allowables: NaN only from a NaN load, without a warning
-    candidates = np.flatnonzero(loaded.ravel())
-    if candidates.size == 0:
+    i, j, load = _worst(np.ascontiguousarray(peaks, dtype=float), q, s, allow, inv_scale, float(ultimate_factor))
+    if i < 0:
         return None
-    values = norm[candidates]
-    nan = np.isnan(values)
-    # the first smallest: a NaN first in the order stays; a NaN after a number never wins
-    best = candidates[0] if nan[0] else candidates[np.where(nan, np.inf, values).argmin()]
-    i, j = divmod(int(best), 4)
-    margin = LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], float(load[i, j]), float(allow[i, j]),
-                        float(allow[i, j] - load[i, j]))
-    return margin, caps[i]
+    a = float(allow[i, j])
+    return LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], load, a, a - load), caps[i]
+
+
+@njit(cache=True)
+def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):
+    """:func:`worst_margin`'s search in compiled code (a design study makes thousands per design): the row and column
+    (max limit, max ultimate, min limit, min ultimate) of the first smallest normalised margin and its load, or
+    (−1, −1, 0) when no capability is loaded."""
+    first_i = first_j = best_i = best_j = -1
+    best = np.inf
+    for i in range(q.shape[0]):
+        hi, lo = peaks[1, q[i], s[i]], peaks[0, q[i], s[i]]
+        for j in range(4):
+            value = hi if j < 2 else lo
+            if (j < 2 and value <= 0.0) or (j >= 2 and value >= 0.0):
+                continue  # not loaded in that sense (a NaN load counts as loaded)
+            load = abs(value) * ultimate_factor if j % 2 else abs(value)
+            norm = (allow[i, j] - load) * inv_scale[i, j]
+            if first_i < 0:
+                first_i, first_j = i, j
+                if np.isnan(norm):  # a NaN first in the order stays
+                    return i, j, load
+            if norm < best:  # the first smallest; a NaN after a number never wins
+                best, best_i, best_j = norm, i, j
+    if first_i < 0:
+        return -1, -1, 0.0
+    if best_i < 0:  # every margin after the first NaN or infinite: the first stays
+        best_i, best_j = first_i, first_j
+    value = peaks[1, q[best_i], s[best_i]] if best_j < 2 else peaks[0, q[best_i], s[best_i]]
+    return best_i, best_j, abs(value) * ultimate_factor if best_j % 2 else abs(value)
 
 
 def declared_capabilities(ctx, surface: str) -> list[Capability]:

@@ -5,7 +5,7 @@ speeds a manoeuvre starts from and the §25.337 limit manoeuvring load factor at
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import lru_cache, partial
 
 import numpy as np
 
@@ -54,16 +54,17 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
                        **details) -> Finding:
     """One finding per condition: the smallest margin of the limit and ultimate loads against the
     capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
-    details = {**station_summary(peaks, stations), **details}
-    if not capabilities:
-        return Finding.not_evaluated(cond, check, NO_CAPABILITY, **details)
-    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor)
+    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
     if worst is None:
-        return Finding.not_evaluated(cond, check, f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations", **details)
-    m, cap = worst
-    unit = "N" if cap.quantity == "shear" else "N·m"
-    return Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load, m.allowable,
-                           at_least=False, unit=unit, **details)
+        reason = f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations" if capabilities else NO_CAPABILITY
+        finding = Finding.not_evaluated(cond, check, reason, **details)
+    else:
+        m, cap = worst
+        unit = "N" if cap.quantity == "shear" else "N·m"
+        finding = Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load,
+                                  m.allowable, at_least=False, unit=unit, **details)
+    finding.written_details = partial(station_summary, np.array(peaks, dtype=float), tuple(stations))
+    return finding
 
 
 def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
