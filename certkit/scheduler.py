@@ -179,20 +179,23 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
 
 def _uncovered(conditions, findings) -> list:
     """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
-    Findings are grouped by loading and configuration, which a refinement keeps, so each condition is compared with
-    its own group only."""
+    Findings are grouped by loading, configuration and altitude, which a refinement keeps, so each condition is
+    compared with its own group only (a design's loads rules schedule thousands of conditions)."""
     covered = {f.condition for f in findings}
     groups: dict = {}
     for c in covered:
         groups.setdefault((c.loading, c.configuration), []).append(c)
+        groups.setdefault((c.loading, c.configuration, c.altitude), []).append(c)
     out = []
     for cond in conditions:
         if cond in covered:
             continue
-        if cond.loading is not None and cond.configuration is not None:
+        if cond.loading is None or cond.configuration is None:
+            candidates = covered
+        elif cond.altitude is None:
             candidates = groups.get((cond.loading, cond.configuration), ())
         else:
-            candidates = covered
+            candidates = groups.get((cond.loading, cond.configuration, cond.altitude), ())
         if not any(c.refines(cond) for c in candidates):
             out.append(cond)
     return out
