@@ -408,7 +408,8 @@ def _print_trim(r, given: dict):
     st = r.get("stabilizer")
     for name, value in r["controls"].items():
         if name == "stabilizer" and st:  # the incidence, not the model's deflection from the datum
-            stop = f" (at its {st['at_stop']} stop; needs {st['required_deg']:.2f} deg)" if st["at_stop"] else ""
+            stop = (f" (at its {st['at_stop']} stop; needs {st['required_deg']:.2f} deg; limits "
+                    f"{st['limits_deg'][0]:.2f} to {st['limits_deg'][1]:.2f} deg, {st['limits']})" if st["at_stop"] else "")
             click.echo(f"  {'stabilizer':<18} {st['incidence_deg']:10.4f} deg incidence{stop}")
             continue
         click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")

@@ -161,9 +161,11 @@ class Context:
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
         value per condition (rad); ``inoperative`` names a failed engine (or gives one name per condition);
         ``throttle`` fixes the throttles (0–1, the flight-path angle is then solved for). Control limits are the design
-        limits. An airplane with a movable stabiliser trims it (the elevator at its trim setting); ``stabilizer``
-        (rad, deflection from the datum as in ``TrimBatch.u``, a scalar or one per condition) holds it there instead
-        and solves for the elevator — a change without re-trimming, or a manoeuvre from a trim.
+        limits, a movable stabiliser's those of the configuration. An airplane with a movable stabiliser trims it (the
+        elevator at its trim setting); ``stabilizer`` (rad, deflection from the datum as in ``TrimBatch.u``, a scalar or
+        one per condition) holds it there instead and solves for the elevator — a change without re-trimming, or a
+        manoeuvre from a trim (a held stabiliser may lie beyond the new configuration's trim limits: those limit
+        trimming, not where the stabiliser already is).
         """
         from certkit.conditions import speed_as
 
@@ -197,9 +199,9 @@ class Context:
                 raise ValueError(f"no engine named {d!r} (engines: {', '.join(names)})")
             operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
-        st = model_stabilizer(self.aircraft, model, design_limits)
+        st = model_stabilizer(self.aircraft, model, design_limits, config)
         return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
-                    limits=control_limits(self.aircraft, design=design_limits), roles=ROLES, stabilizer=st,
+                    limits=control_limits(self.aircraft, design_limits, config), roles=ROLES, stabilizer=st,
                     stabilizer_setting=None if st is None else stabilizer)
 
     def modes(self, conditions):

@@ -137,7 +137,8 @@ def trim_condition(ctx, fc: FlightCondition):
         operative = np.array([[e.name != fc.inoperative for e in aircraft.propulsion.engines]])
     model = flight_model(aircraft, ctx.aero(fc.configuration).model, [loading], operative=operative)
     batch = trim(model, fc.tas, fc.altitude, kind=fc.kind, gamma=fc.gamma, bank=fc.bank, beta=fc.beta,
-                 limits=control_limits(aircraft), roles=ROLES, stabilizer=model_stabilizer(aircraft, model))
+                 limits=control_limits(aircraft, True, fc.configuration), roles=ROLES,
+                 stabilizer=model_stabilizer(aircraft, model, True, fc.configuration))
     return batch, model, loading
 
 
@@ -178,8 +179,10 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
         "warnings": [warning] if warning else [],
     }
     if r.stabilizer is not None:  # a movable stabiliser: its incidence (the controls give its deflection from the datum)
+        lim, basis = ctx.aircraft.geometry.horizontal_tail.stabilizer.trim_limits(fc.configuration)
         out["stabilizer"] = {"incidence_deg": float(np.degrees(r.stabilizer)),
-                             "required_deg": float(np.degrees(r.stabilizer_required)), "at_stop": r.stabilizer_at_stop}
+                             "required_deg": float(np.degrees(r.stabilizer_required)), "at_stop": r.stabilizer_at_stop,
+                             "limits_deg": [float(np.degrees(lim.min)), float(np.degrees(lim.max))], "limits": basis}
     return out
 
 

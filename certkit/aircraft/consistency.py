@@ -228,6 +228,29 @@ def _movable_stabilizer(g):
                f"({e.min * deg:.1f}° to {e.max * deg:.1f}°)", st.elevator_trim)
 
 
+@needs("geometry", "configurations")
+def _stabilizer_configurations(s):
+    """Each configuration's stabiliser trim limits name a declared configuration, lie within the travel to the
+    structural stops and hold the datum incidence (as ``design_limits`` do)."""
+    t = s["geometry"].horizontal_tail
+    st = t.stabilizer
+    if st is None:
+        return
+    names = set(s["configurations"])
+    deg = 180.0 / math.pi
+    at = "geometry.horizontal_tail.stabilizer.design_limits_by_configuration"
+    for name, lim in st.design_limits_by_configuration.items():
+        if name not in names:
+            yield f"{at}.{name}", f"unknown configuration (declared: {', '.join(sorted(names))})", name
+        tr = st.travel
+        if lim.min < tr.min - 1e-12 or lim.max > tr.max + 1e-12:
+            yield (f"{at}.{name}", f"{lim.min * deg:.2f}° to {lim.max * deg:.2f}° must lie within the travel to the "
+                   f"structural stops ({tr.min * deg:.2f}° to {tr.max * deg:.2f}°)", None)
+        if not lim.min - 1e-12 <= t.incidence <= lim.max + 1e-12:
+            yield (f"{at}.{name}", f"{lim.min * deg:.2f}° to {lim.max * deg:.2f}° must hold the stabiliser's datum, "
+                   f"geometry.horizontal_tail.incidence ({t.incidence * deg:.2f}°)", None)
+
+
 def _tail_on_fuselage(g):
     """The horizontal tail's root chord must end on the fuselage (it is attached there) and its tip must not lie
     wholly behind the fuselage end; trapezoid geometry: b = √(A S), c_r = 2S / (b (1 + λ)),

@@ -114,6 +114,10 @@ class MovableStabilizer(_Section):
     travel: Limits = Field(description="incidence range to the structural stops (min: nose-up trim, leading edge down)")
     design_limits: Limits | None = Field(None, description="range the trim system allows (the trims are solved within "
                                                            "it); the travel when omitted")
+    design_limits_by_configuration: dict[str, Limits] = Field(
+        default_factory=dict, description="trim range of a configuration (a name under configurations) where it differs "
+                                          "from design_limits, e.g. a nose-down limit that widens with the flaps extended; "
+                                          "configurations not named use design_limits")
     rate: Annotated[AngularRate, Field(gt=0)] | None = Field(None, description="trim rate of the stabiliser "
                                                                                  "('0.5 deg/s'), for out-of-trim cases")
     elevator_trim: Angle = Field(0.0, description="elevator deflection at which the airplane is trimmed (default 0)")
@@ -125,6 +129,16 @@ class MovableStabilizer(_Section):
         if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
             raise ValueError("design_limits must lie within the travel to the structural stops")
         return self
+
+    def trim_limits(self, configuration: str | None = None, design: bool = True) -> tuple[Limits, str]:
+        """The incidence range the trims of ``configuration`` are solved within, and the field it comes from: that
+        configuration's entry of ``design_limits_by_configuration``, else ``design_limits``, else the ``travel``
+        (``design`` False: the travel, one range for every configuration)."""
+        if design and configuration in self.design_limits_by_configuration:
+            return self.design_limits_by_configuration[configuration], f"design_limits_by_configuration.{configuration}"
+        if design and self.design_limits is not None:
+            return self.design_limits, "design_limits"
+        return self.travel, "travel"
 
 
 class LiftingSurface(_Section):

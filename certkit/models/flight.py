@@ -4,7 +4,8 @@ Builds :class:`certkit.models.dynamics.eom.AircraftModel` for a batch of loading
 configuration, with each engine at its position (so an inoperative engine gives its asymmetric
 yawing moment and windmilling drag), thrust from the declared deck or, without one, the parametric
 turbofan scaled to the declared static thrust. Control limits come from the geometry's control
-surfaces: the design limits (``design_limits``) by default, the mechanical travel otherwise.
+surfaces: the design limits (``design_limits``) by default, the mechanical travel otherwise; a movable
+stabiliser's design limits may differ per configuration (``design_limits_by_configuration``).
 
 Ground model (:func:`ground_model`): the declared ``geometry.landing_gear`` contact points — the
 main gear point and its mirror image (two main legs) and the nose gear — as spring–damper legs.
@@ -93,9 +94,10 @@ def engines(aircraft) -> list[Engine]:
     return out
 
 
-def control_limits(aircraft, design: bool = True) -> dict[str, tuple[float, float]]:
+def control_limits(aircraft, design: bool = True, configuration: str | None = None) -> dict[str, tuple[float, float]]:
     """(min, max) in radians of every control surface, design limits where declared; a movable stabiliser's as
-    deflections from its datum incidence (the model's ``stabilizer`` control)."""
+    deflections from its datum incidence (the model's ``stabilizer`` control), its design limits those of
+    ``configuration`` (:meth:`certkit.aircraft.model.MovableStabilizer.trim_limits`; None: the default pair)."""
     limits: dict[str, tuple[float, float]] = {"throttle": (0.0, 1.0)}
     g = aircraft.geometry
     if g is None:
@@ -106,31 +108,31 @@ def control_limits(aircraft, design: bool = True) -> dict[str, tuple[float, floa
             limits[name] = (lim.min, lim.max)
     st = g.horizontal_tail.stabilizer
     if st is not None:
-        lim = st.design_limits if (design and st.design_limits is not None) else st.travel
+        lim, _ = st.trim_limits(configuration, design)
         limits[STABILIZER] = (lim.min - g.horizontal_tail.incidence, lim.max - g.horizontal_tail.incidence)
     return limits
 
 
-def stabilizer_trim(aircraft, design: bool = True):
+def stabilizer_trim(aircraft, design: bool = True, configuration: str | None = None):
     """The movable stabiliser of the aircraft as a trim device
-    (:class:`certkit.models.dynamics.trim.StabilizerTrim`), None without one (or without geometry, e.g. an airplane
-    given by derivative tables, whose model has no stabiliser control)."""
+    (:class:`certkit.models.dynamics.trim.StabilizerTrim`) within the limits of ``configuration``, None without one
+    (or without geometry, e.g. an airplane given by derivative tables, whose model has no stabiliser control)."""
     from certkit.models.dynamics.trim import StabilizerTrim
 
     g = aircraft.geometry
     if g is None or g.horizontal_tail.stabilizer is None:
         return None
     st = g.horizontal_tail.stabilizer
-    return StabilizerTrim(control_limits(aircraft, design)[STABILIZER], datum=g.horizontal_tail.incidence,
+    return StabilizerTrim(control_limits(aircraft, design, configuration)[STABILIZER], datum=g.horizontal_tail.incidence,
                           elevator_trim=st.elevator_trim, control=STABILIZER, elevator=ROLES["pitch"])
 
 
-def model_stabilizer(aircraft, model, design: bool = True):
+def model_stabilizer(aircraft, model, design: bool = True, configuration: str | None = None):
     """:func:`stabilizer_trim` when ``model``'s aerodynamics carry the stabiliser control (a declared derivative
     table may not), else None: the trims of that model keep the elevator as the pitch control."""
     if STABILIZER not in model.aero_controls:
         return None
-    return stabilizer_trim(aircraft, design)
+    return stabilizer_trim(aircraft, design, configuration)
 
 
 def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundModel | None = None) -> AircraftModel:
@@ -197,10 +199,12 @@ def ground_effect_wing(wing) -> GroundEffectWing:
                             float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)))
 
 
-def level_trims(aircraft, aero_model, masses, x_cg: float, altitude, tas, loading_name: str = ""):
-    """Straight, wings-level trims of one batch at the masses (kg), one CG station (m), altitudes (m) and true
-    airspeeds (m/s), with the design control limits: the trims a :class:`certkit.context.Context` would make for the
-    same conditions, for models that hold no Context (the mission). Each distinct mass is loaded once."""
+def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name: str = ""):
+    """Straight, wings-level trims of one batch in the configuration of ``aero`` (an
+    :class:`certkit.models.aero.airplane.AirplaneAero`) at the masses (kg), one CG station (m), altitudes (m) and true
+    airspeeds (m/s), with the design control limits of that configuration: the trims a
+    :class:`certkit.context.Context` would make for the same conditions, for models that hold no Context (the mission).
+    Each distinct mass is loaded once."""
     from certkit.models.dynamics.trim import trim
     from certkit.models.mass.loading import solve_loading
 
@@ -209,6 +213,8 @@ def level_trims(aircraft, aero_model, masses, x_cg: float, altitude, tas, loadin
     for m in masses:
         if m not in solved:
             solved[m] = solve_loading(aircraft, m, float(x_cg), loading_name)
-    model = flight_model(aircraft, aero_model, [solved[m] for m in masses])
+    model = flight_model(aircraft, aero.model, [solved[m] for m in masses])
+    config = aero.configuration
     return trim(model, np.asarray(tas, dtype=float), np.asarray(altitude, dtype=float), kind="straight",
-                limits=control_limits(aircraft, design=True), roles=ROLES, stabilizer=model_stabilizer(aircraft, model))
+                limits=control_limits(aircraft, True, config), roles=ROLES,
+                stabilizer=model_stabilizer(aircraft, model, True, config))

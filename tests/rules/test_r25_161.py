@@ -83,12 +83,19 @@ def test_cases_of_the_paragraph(base):
 def test_not_evaluated_without_takeoff_configuration(tmp_path):
     """No takeoff configuration: the (c)(1) flaps-in-takeoff-position climb is not evaluated, with the reason."""
     r = run_rule("25.161", tmp_path, [("  takeoff:\n    flap: 15 deg", "  takeoff_alt:\n    flap: 15 deg"),
-                                       ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS")])
+                                       ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS"),
+                                       ("        takeoff: {min: -10.25", "        takeoff_alt: {min: -10.25")])
     f = [f for f in r.findings if f.check == "(c)(1) climb"]
     assert f and all(x.status == "not_evaluated" and x.reason == "needs configurations.takeoff" for x in f)
 
 
-def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path):
+@pytest.fixture(scope="module")
+def declared():
+    """§25.161 on the baseline as declared (movable stabiliser, per-configuration trim limits)."""
+    return run_rule("25.161")
+
+
+def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path, declared):
     """A deficient airplane: the stabiliser's trim range cut to −4°…+1° (the baseline's level-flight trims at the
     forward corners need more nose-up incidence at 1.3 VSR1): §25.161(c)(3) fails on the stabiliser at its nose-up stop,
     the elevator holding the rest — while with the declared range (−10.25°…+2.25°) the same trims comply. The
@@ -99,7 +106,7 @@ def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path):
         return min((f for f in result.findings if f.condition.loading == "fwd_light" and f.check == check),
                    key=lambda f: f.value)
 
-    ok = most_nose_up(run_rule("25.161"))
+    ok = most_nose_up(declared)
     assert ok.status == "complies" and -10.25 < ok.value < -4.0
     r = run_rule("25.161", tmp_path, [("design_limits: {min: -10.25 deg, max: 2.25 deg}",
                                        "design_limits: {min: -4 deg, max: 1 deg}")])
@@ -107,3 +114,34 @@ def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path):
     assert f.status == "fails" and f.limit == pytest.approx(-4.0) and f.value < -4.0
     assert "nose-up stop" in f.reason and f.details["stabilizer_deg"] == pytest.approx(-4.0, abs=1e-6)
     assert f.value == pytest.approx(ok.value, abs=1e-6)  # the incidence needed does not depend on the range
+
+
+TAKEOFF_CLIMB = "(c)(1) climb, takeoff stabiliser within its trim limits"
+CLEAN_CLIMB = "(c)(1) climb, clean stabiliser within its trim limits"
+
+
+def test_stabiliser_margin_against_the_configurations_limits(declared):
+    """The takeoff-flap climb is held to the flaps-extended nose-down limit, +3.75° (777 AMM 27-41-00), the clean climb
+    to the flaps-up +2.25°; each finding names the limits that applied. The aft_mlw takeoff climb needs about +2.3°:
+    beyond the flaps-up limit, inside the flaps-extended one."""
+    f = next(f for f in declared.findings if f.condition.loading == "aft_mlw" and f.check == TAKEOFF_CLIMB)
+    assert f.limit == pytest.approx(3.75) and 2.25 < f.value < 3.75 and f.status == "complies"
+    assert f.details["trim_limits"].startswith("stabilizer.design_limits_by_configuration.takeoff: -10.25° to 3.75°")
+    c = next(f for f in declared.findings if f.condition.loading == "aft_mlw" and f.check == CLEAN_CLIMB)
+    assert c.limit == pytest.approx(2.25) and c.details["trim_limits"].startswith("stabilizer.design_limits: ")
+
+
+def test_narrow_flaps_extended_limits_fail_at_the_takeoff_flaps(tmp_path, declared):
+    """A deficient airplane: the flaps-15 nose-down limit cut to +1° (the aft corners' takeoff-flap climbs need
+    +1.4° to +3.9°): §25.161(c)(1) fails there on the stabiliser at its nose-down stop, against +1°, while the clean
+    climbs (design_limits) are unchanged."""
+    narrow = ("        takeoff: {min: -10.25 deg, max: 3.75 deg}", "        takeoff: {min: -10.25 deg, max: 1 deg}")
+    r = run_rule("25.161", tmp_path, [narrow])
+    fails = [f for f in r.findings if f.check == TAKEOFF_CLIMB and f.status == "fails"]
+    assert {f.condition.loading for f in fails} >= {"aft_mid", "aft_mlw", "aft_light"}
+    for f in fails:
+        assert f.limit == pytest.approx(1.0) and f.value > 1.0 and "nose-down stop" in f.reason
+        assert f.details["trim_limits"] == "stabilizer.design_limits_by_configuration.takeoff: -10.25° to 1.00°"
+    before = {f.condition.loading: (f.status, f.value, f.limit) for f in declared.findings if f.check == CLEAN_CLIMB}
+    after = {f.condition.loading: (f.status, f.value, f.limit) for f in r.findings if f.check == CLEAN_CLIMB}
+    assert after == before

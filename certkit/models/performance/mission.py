@@ -451,7 +451,7 @@ def cruise_drag(aircraft, aero, x_cg: float, mass_kg: float) -> CruiseDrag:
 
     m = aircraft.mission
     h = m.drag_condition.altitude
-    batch = level_trims(aircraft, aero.model, [mass_kg], x_cg, [float(h)], [float(isa.mach_to_tas(m.cruise_mach, h))],
+    batch = level_trims(aircraft, aero, [mass_kg], x_cg, [float(h)], [float(isa.mach_to_tas(m.cruise_mach, h))],
                         "mission")
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     r = batch.results[0]

@@ -200,7 +200,7 @@ def build_tables(aircraft, aero, weight_range: tuple[float, float]) -> MissionTa
     per_weight = [(h, v) for h, v in zip(sched_h, sched_v)] + [(h, v) for h, v in zip(levels, level_v)] + \
                  [(hold_h, v) for v in hold_v]
     conds = [(float(w), float(h), float(v)) for w in weights for h, v in per_weight]
-    batch = level_trims(aircraft, aero.model, [c[0] for c in conds], x_cg, [c[1] for c in conds],
+    batch = level_trims(aircraft, aero, [c[0] for c in conds], x_cg, [c[1] for c in conds],
                         [c[2] for c in conds], "mission")
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     shape = (N_WEIGHTS, len(per_weight))

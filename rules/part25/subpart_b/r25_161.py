@@ -6,7 +6,7 @@ every CG corner in each case (one batch per configuration) and checks that the t
 controls within their design range. Without a movable stabiliser the stabiliser is fixed at its declared
 setting and the elevator carries it all; with one (``geometry.horizontal_tail.stabilizer``) each trim solves for
 the stabiliser with the elevator at its trim setting and the trim authority is reported as the stabiliser's margin to
-its trim limit (a trim needing more has the stabiliser at its stop and the elevator holding the rest — not trimmed):
+its configuration's trim limit (a trim needing more has the stabiliser at its stop and the elevator holding the rest — not trimmed):
 
     (c)(1) climb, maximum continuous thrust, 1.3 VSR1, gear up, flaps (i) retracted and (ii) takeoff;
     (c)(2) glide with power off (idle) at 1.3 VSR1, flaps retracted; and the approach alternative on a
@@ -31,11 +31,12 @@ from certkit.reference_speeds import reference_stall_speed
 from certkit.thrust_trims import oei_climb
 from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
 
-def stabilizer_finding(cond, check, r, limits) -> Finding:
+def stabilizer_finding(cond, check, r, stabilizer) -> Finding:
     """Trim authority of a movable stabiliser: the incidence the trim needs (elevator at its trim setting) against
-    the trim limit on the side of the nearer stop (deg); negative: beyond the stop, the elevator holding the rest."""
-    datum = r.stabilizer - r.controls["stabilizer"]
-    lo, hi = (datum + v for v in limits["stabilizer"])
+    the trim limit of the condition's configuration on the side of the nearer stop (deg); negative: beyond the stop,
+    the elevator holding the rest. The details name the limits that applied."""
+    lim, basis = stabilizer.trim_limits(cond.configuration)
+    lo, hi = lim.min, lim.max
     need = r.stabilizer_required
     nose_up = need < 0.5 * (lo + hi)
     reason = (f"the stabiliser is at its {r.stabilizer_at_stop} stop ({math.degrees(r.stabilizer):.2f}°); it would need "
@@ -43,7 +44,8 @@ def stabilizer_finding(cond, check, r, limits) -> Finding:
               if r.stabilizer_at_stop else "")
     return Finding.compare(cond, f"{check} stabiliser within its trim limits", math.degrees(need),
                            math.degrees(lo if nose_up else hi), at_least=nose_up, unit="deg", reason=reason,
-                           stabilizer_deg=round(math.degrees(r.stabilizer), 3), side="nose-up" if nose_up else "nose-down")
+                           stabilizer_deg=round(math.degrees(r.stabilizer), 3), side="nose-up" if nose_up else "nose-down",
+                           trim_limits=f"stabilizer.{basis}: {math.degrees(lo):.2f}° to {math.degrees(hi):.2f}°")
 
 
 SEGMENTS = ("climb", "glide", "level", "engine-out climb")
@@ -67,7 +69,7 @@ class Trim(Rule):
     """
     margin = ("Control design limit − |trim deflection| on the side it is deflected (deg), at every CG corner and case; "
               "for (d) also 5° − |bank| (deg); with a movable stabiliser also the stabiliser incidence the trim needs "
-              "to its trim limit on the nearer side (deg).")
+              "to its configuration's trim limit on the nearer side (deg).")
     references = ("25.103", "25.121", "25.335(a)")
     requires = ("configurations.clean",)
     criteria = {
@@ -95,8 +97,9 @@ class Trim(Rule):
         of symmetry; a symmetric airplane trims with zero lateral controls), nor (c)(3)'s gear-down range to VLE (no
         gear-down clean configuration is declared) or (e) (four or more engines). Control forces (the 5 lbf of (d))
         need a control-force model. Without a movable stabiliser (geometry.horizontal_tail.stabilizer) the stabiliser
-        is fixed at its declared incidence and the elevator carries the whole trim; with one, one set of trim limits
-        applies in every configuration.
+        is fixed at its declared incidence and the elevator carries the whole trim; with one, each trim is solved within
+        its configuration's trim limits (stabilizer.design_limits_by_configuration where declared, else
+        stabilizer.design_limits), named in each stabiliser finding's details (trim_limits).
     """
 
     unevaluated = (
@@ -109,7 +112,6 @@ class Trim(Rule):
 
     def evaluate(self, ctx, conditions, crit):
         out = []
-        limits = control_limits(ctx.aircraft)
         cases = {k: [c for c in conditions if c.get("case") == k] for k in SEGMENTS}
         configs = ctx.aircraft.configurations
         vsr = lambda config, c: reference_stall_speed(ctx, config, c.mass)[0]  # noqa: E731
@@ -124,13 +126,13 @@ class Trim(Rule):
                              speed=crit.climb_speed_over_vsr * vsr(config, c), thrust="maximum continuous")
                      for c in cases["climb"]]
             grads, batch, _ = oei_climb(ctx, conds, crit.mct_over_takeoff_thrust, engine_out=False)
-            out += self._controls(conds, batch, limits, f"(c)(1) climb, {config}", ("elevator",), gradients=grads)
+            out += self._controls(ctx, conds, batch, f"(c)(1) climb, {config}", ("elevator",), gradients=grads)
         if cases["glide"]:
             conds = [c.with_(configuration="clean", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
                              speed=crit.glide_speed_over_vsr * vsr("clean", c), thrust="power off (idle)")
                      for c in cases["glide"]]
             batch = ctx.trim(conds, kind="straight", gamma=math.radians(-3.0), throttle=crit.idle_throttle)
-            out += self._controls(conds, batch, limits, "(c)(2) power-off glide", ("elevator",))
+            out += self._controls(ctx, conds, batch, "(c)(2) power-off glide", ("elevator",))
             approach = [k for k in ("approach", "landing") if k in configs and configs[k].gear == "down"]
             if not approach:
                 out += [Finding.not_evaluated(c, "(c)(2) approach", "needs an approach or landing configuration with the "
@@ -140,7 +142,7 @@ class Trim(Rule):
                                  speed=crit.glide_speed_over_vsr * vsr(config, c), thrust="for the 3° path")
                          for c in cases["glide"]]
                 batch = ctx.trim(conds, kind="straight", gamma=math.radians(crit.glide_path_deg))
-                out += self._controls(conds, batch, limits, f"(c)(2) 3° approach, {config}", ("elevator",))
+                out += self._controls(ctx, conds, batch, f"(c)(2) 3° approach, {config}", ("elevator",))
         if cases["level"]:
             top = "VMO" if ctx.aircraft.speeds.VMO is not None or ctx.aircraft.speeds.MMO is not None else "VC"
             conds = []
@@ -152,14 +154,14 @@ class Trim(Rule):
                 conds += [c.with_(configuration="clean", altitude=h, speed_kind="CAS", speed_name="1.3 VSR1",
                                   speed=crit.level_speed_low_over_vsr * vsr("clean", c), thrust="for level flight")
                           for c in cases["level"]]
-            out += self._controls(conds, ctx.trim(conds, kind="straight"), limits, "(c)(3) level flight", ("elevator",))
+            out += self._controls(ctx, conds, ctx.trim(conds, kind="straight"), "(c)(3) level flight", ("elevator",))
         if cases["engine-out climb"]:
             conds = [c.with_(configuration="clean", altitude=0.0, speed_kind="CAS", speed_name="1.3 VSR1",
                              speed=crit.climb_speed_over_vsr * vsr("clean", c)) for c in cases["engine-out climb"]]
-            out += self._engine_out(ctx, conds, crit, limits)
+            out += self._engine_out(ctx, conds, crit)
         return out
 
-    def _engine_out(self, ctx, conds, crit, limits):
+    def _engine_out(self, ctx, conds, crit):
         """(d): the zero-sideslip climb trim; where it needs more than 5° of bank, the trim at 5° bank toward the
         live engine (the sideslip results) at the same flight path — the paragraph lets the pilot choose."""
         grads, batch, info = oei_climb(ctx, conds, crit.mct_over_takeoff_thrust, engine_out=True)
@@ -176,7 +178,7 @@ class Trim(Rule):
             for k, i in enumerate(steep):
                 results[i] = again.results[k]
         batch = type(batch)(model=batch.model, x=batch.x, u=batch.u, results=results)
-        out = self._controls(conds, batch, limits, "(d) engine-out climb", ("elevator", "aileron", "rudder"), gradients=grads)
+        out = self._controls(ctx, conds, batch, "(d) engine-out climb", ("elevator", "aileron", "rudder"), gradients=grads)
         for i, cond in enumerate(conds):
             r = results[i]
             if r.converged:
@@ -186,8 +188,10 @@ class Trim(Rule):
         return out
 
     @staticmethod
-    def _controls(conds, batch, limits, check, controls, gradients=None):
+    def _controls(ctx, conds, batch, check, controls, gradients=None):
+        """The trim findings of one batch (one configuration), against that configuration's design limits."""
         out = []
+        limits = control_limits(ctx.aircraft, configuration=conds[0].configuration) if conds else {}
         for i, cond in enumerate(conds):
             r = batch.results[i]
             if not r.converged:
@@ -197,7 +201,7 @@ class Trim(Rule):
                 continue
             found = control_findings(cond, check, r, limits)
             if r.stabilizer is not None:
-                found.append(stabilizer_finding(cond, check, r, limits))
+                found.append(stabilizer_finding(cond, check, r, ctx.aircraft.geometry.horizontal_tail.stabilizer))
             for f in found:
                 if any(name in f.check for name in controls + ("stabiliser",)):
                     f.details.update(trim_details(r))
@@ -211,5 +215,6 @@ class Trim(Rule):
         from certkit.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.161 trim",
-                                "Trims of each §25.161 condition: controls against their design limits.",
+                                "Trims of each §25.161 condition: controls against their design limits (a movable "
+                                "stabiliser against its configuration's trim limits).",
                                 ("climb_gradient", "alpha_deg", "elevator_deg", "aileron_deg", "rudder_deg"))

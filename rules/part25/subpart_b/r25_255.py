@@ -106,7 +106,7 @@ class OutOfTrim(Rule):
             vmo, _ = ctx.design_speed_eas("VMO", c.altitude or 0.0)
             conds.append(c.with_(speed=float(vmo), speed_kind="EAS", speed_name="VMO/MMO"))
         batch = ctx.trim(conds)
-        limits = control_limits(ac)
+        limits = control_limits(ac, configuration=conds[0].configuration)  # the trims' configuration (one batch)
         lo, hi = limits["stabilizer"]
         e_lo, e_hi = limits["elevator"]
         delta = crit.mistrim_seconds * st.rate
