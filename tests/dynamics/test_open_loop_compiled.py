@@ -40,3 +40,32 @@ def test_compiled_run_equals_the_python_loop(batch, dt):
         np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
                                    err_msg=key)
     np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)
+
+
+def test_compiled_run_with_bound_stops_equals_the_python_loop(batch):
+    """Stop criteria that are bounds (:class:`Bound`) run in the compiled loop: each condition stops at the same step
+    for the same criterion as the Python loop (the first in order wins), keeps its last record and its state, and
+    the run ends when every condition has stopped."""
+    from certkit.models.dynamics.simulate import Bound
+
+    model, trims, _ = batch
+    n = trims.x.shape[0]
+    pull = {"elevator": Function(lambda t: -0.08 * np.minimum(t, 1.0) * np.ones(n))}  # a pull: n_z rises
+    nz_cap = np.array([1.3, 1.5, np.inf, 1.4, np.inf, 1.6])
+    stops = [Bound("n_z cap", "n_z", upper=nz_cap), Bound("alpha floor", "alpha", lower=np.full(n, -1.0)),
+             Bound("t_max", "t", upper=np.array([9.0, 9.0, 1.2, 9.0, 2.0, 9.0]))]
+    compiled = simulate(model, trims.x, trims.u, 3.0, 0.01, inputs=pull, stop=stops)
+    saved, model._turbofan = model._turbofan, None
+    try:
+        loop = simulate(model, trims.x, trims.u, 3.0, 0.01, inputs=pull, stop=stops)
+    finally:
+        model._turbofan = saved
+    assert set(loop.stop_reason) >= {"n_z cap", "t_max"}  # both kinds of bound stop some condition here
+    assert compiled.stop_reason == loop.stop_reason
+    np.testing.assert_array_equal(compiled.stop_time, loop.stop_time)
+    np.testing.assert_array_equal(compiled.t, loop.t)
+    np.testing.assert_array_equal(compiled.controls, loop.controls)
+    for key, ref in loop.history.items():
+        np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
+                                   err_msg=key)
+    np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)

@@ -394,12 +394,18 @@ class AircraftModel:
         model for every engine, all of them running."""
         return bool(self._use_table and self._turbofan is not None and self._all_operative.all())
 
-    def open_loop_run(self, x13, U_all, dts, record_every: int, out_rec, x_rec) -> int:
+    def open_loop_run(self, x13, U_all, dts, record_every: int, out_rec, x_rec, u_rec, stops=None) -> tuple:
         """A whole fixed-step run in compiled code (:func:`kernel.integrate_open_loop`), for a model that
-        :attr:`runs_open_loop_compiled`; returns the number of records."""
-        return int(kernel.integrate_open_loop(x13, U_all, dts, record_every, self._turbofan, self.throttle_slice.start,
-                                              len(self.engines), np.empty((x13.shape[0], 8)), *self._kernel_args,
-                                              out_rec, x_rec))
+        :attr:`runs_open_loop_compiled`; ``stops`` = (output columns (c,), lower (c, n), upper (c, n)) bounds or None.
+        Returns the number of records and, per condition, the step it stopped at and the criterion (−1: none)."""
+        n = x13.shape[0]
+        cols, lo, hi = stops if stops is not None else (np.zeros(0, dtype=np.int64), np.zeros((0, n)), np.zeros((0, n)))
+        stop_step = np.full(n, -1, dtype=np.int64)
+        stop_which = np.full(n, -1, dtype=np.int64)
+        irec = kernel.integrate_open_loop(x13, U_all, dts, record_every, self._turbofan, self.throttle_slice.start,
+                                          len(self.engines), np.empty((n, 8)), *self._kernel_args, cols, lo, hi,
+                                          out_rec, x_rec, u_rec, stop_step, stop_which)
+        return int(irec), stop_step, stop_which
 
     def make_outputs(self, out, gear, thrust) -> Outputs:
         cols = {name: out[:, k] for k, name in enumerate(kernel.OUTPUTS)}

@@ -291,17 +291,24 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
 @njit(cache=True, fastmath=True)
 def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
                         clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
-                        legs, gparams, brake_index, out_rec, x_rec):
+                        legs, gparams, brake_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec, stop_step,
+                        stop_which):
     """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
-    the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers or stop criteria, every engine
-    running as the parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of
-    each step from the air data as :meth:`certkit.models.propulsion.engine.ParametricTurbofan.thrust_rows` gives it,
-    then :func:`derivatives` and :func:`rk4_step` as the Python loop calls them. ``X`` advances in place; the outputs
-    and states of every ``record_every``-th step go to ``out_rec`` and ``x_rec``. Returns the number recorded."""
+    the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
+    parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of each step from
+    the air data as :meth:`certkit.models.propulsion.engine.ParametricTurbofan.thrust_rows` gives it, then
+    :func:`derivatives` and :func:`rk4_step` as the Python loop calls them — and stop criteria that are bounds
+    (:class:`certkit.models.dynamics.simulate.Bound`): criterion c stops a condition when its output column
+    ``stop_cols[c]`` (−1: the time) lies strictly below ``stop_lo[c, i]`` or above ``stop_hi[c, i]``, the first
+    criterion in order naming the stop (``stop_which``, ``stop_step``: −1 when none); a stopped condition keeps its
+    state and its last record, and the run ends when every condition has stopped. ``X`` advances in place; the
+    outputs, states and controls of every ``record_every``-th step go to ``out_rec``, ``x_rec`` and ``u_rec``.
+    Returns the number recorded."""
     n = X.shape[0]
     rows = np.arange(n)
     thrust = np.empty((n, n_engines))
     active = np.ones(n, dtype=np.bool_)
+    n_active = n
     irec = 0
     nsteps = U_all.shape[0] - 1
     for k in range(nsteps + 1):
@@ -313,11 +320,27 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
         xd, out, gear = derivatives(X, rows, True, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
                                     after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
                                     brake_index)
+        for c in range(stop_cols.shape[0]):
+            for i in range(n):
+                if active[i]:
+                    v = k * dts[i] if stop_cols[c] < 0 else out[i, stop_cols[c]]
+                    if v < stop_lo[c, i] or v > stop_hi[c, i]:
+                        active[i] = False
+                        n_active -= 1
+                        stop_step[i] = k
+                        stop_which[i] = c
         if k % record_every == 0:
-            out_rec[irec] = out
-            x_rec[irec] = X
+            for i in range(n):
+                if irec == 0 or active[i] or n_active == n:
+                    out_rec[irec, i] = out[i]
+                    x_rec[irec, i] = X[i]
+                    u_rec[irec, i] = U[i]
+                else:  # a stopped condition keeps its last record
+                    out_rec[irec, i] = out_rec[irec - 1, i]
+                    x_rec[irec, i] = x_rec[irec - 1, i]
+                    u_rec[irec, i] = u_rec[irec - 1, i]
             irec += 1
-        if k == nsteps:
+        if k == nsteps or n_active == 0:
             break
         rk4_step(X, xd, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
                  n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index)

@@ -172,6 +172,26 @@ def stop_when(name: str, predicate: Callable[[float, np.ndarray, object], np.nda
     return predicate
 
 
+class Bound:
+    """A stop criterion the compiled run evaluates itself: stop a condition when ``quantity`` — a recorded output
+    (:data:`certkit.models.dynamics.kernel.OUTPUTS`, e.g. ``"n_z"``) or ``"t"`` — lies strictly below ``lower`` or
+    above ``upper`` (scalars or one per condition; a NaN never stops). Called, it is an ordinary criterion."""
+
+    def __init__(self, name: str, quantity: str, lower=-np.inf, upper=np.inf):
+        if quantity != "t" and quantity not in OUTPUTS:
+            raise ValueError(f"stop bound on {quantity!r}: one of {('t',) + OUTPUTS}")
+        self.__name__, self.quantity, self.lower, self.upper = name, quantity, lower, upper
+
+    def __call__(self, t, x, out):
+        value = np.broadcast_to(t, (x.shape[0],)) if self.quantity == "t" else getattr(out, self.quantity)
+        return (value < self.lower) | (value > self.upper)
+
+    def arrays(self, n: int) -> tuple[int, np.ndarray, np.ndarray]:
+        """(output column or −1 for the time, lower (n,), upper (n,)) for the compiled run."""
+        col = -1 if self.quantity == "t" else OUTPUTS.index(self.quantity)
+        return col, np.broadcast_to(np.asarray(self.lower, dtype=float), (n,)), np.broadcast_to(np.asarray(self.upper, dtype=float), (n,))
+
+
 def altitude_below(h_min) -> StopCriterion:
     return stop_when(f"h<{h_min}", lambda t, x, out: x[:, 2] < h_min)
 
@@ -256,20 +276,27 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     stop_reason = [""] * n
     irec = 0
     compiled = None
-    if not (controllers or stop or lim) and model.runs_open_loop_compiled:  # every step's controls known: one compiled run
+    if not (controllers or lim) and all(isinstance(c, Bound) for c in stop) and model.runs_open_loop_compiled:
+        # every step's controls known, the stop criteria bounds: one compiled run
         U_all = np.empty((nsteps + 1, n, len(names)))
         for k in range(nsteps + 1):
             U_all[k] = u_trim
             for j, s in sched:
                 U_all[k, :, j] += s(k * dt)
         x = np.ascontiguousarray(x)
-        compiled = model.open_loop_run(x, U_all, np.ascontiguousarray(np.broadcast_to(dt, (n,)), dtype=float),
-                                       record_every, out_rec, x_rec)
+        bounds = [c.arrays(n) for c in stop]
+        stops = (np.array([b[0] for b in bounds], dtype=np.int64), np.array([b[1] for b in bounds]).reshape(len(stop), n),
+                 np.array([b[2] for b in bounds]).reshape(len(stop), n))
+        compiled, stop_step, stop_which = model.open_loop_run(
+            x, U_all, np.ascontiguousarray(np.broadcast_to(dt, (n,)), dtype=float), record_every, out_rec, x_rec,
+            ctrl_hist, stops)
+        for i in np.flatnonzero(stop_step >= 0):
+            stop_time[i] = stop_step[i] * dt
+            stop_reason[i] = stop[stop_which[i]].__name__
     if compiled is not None:
         irec = compiled
         steps = np.arange(0, nsteps + 1, record_every)[:irec]
         t_rec[:irec] = steps[:, None] * dt if per_row else steps * dt
-        ctrl_hist[:irec] = U_all[steps]
     for k in range(nsteps + 1 if compiled is None else 0):
         t = k * dt
         u = u_trim.copy()
@@ -317,6 +344,6 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
 
 __all__ = [
     "Schedule", "Hold", "Step", "Ramp", "Doublet", "Pulse", "CheckedManeuver", "RudderKick", "Function",
-    "StopCriterion", "stop_when", "altitude_below", "load_factor_beyond", "alpha_beyond", "airborne_above",
+    "StopCriterion", "Bound", "stop_when", "altitude_below", "load_factor_beyond", "alpha_beyond", "airborne_above",
     "Controller", "SimulationResult", "simulate", "RECORDED",
 ]

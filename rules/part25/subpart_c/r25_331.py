@@ -25,7 +25,7 @@ import numpy as np
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
-from certkit.models.dynamics.simulate import Step, simulate, stop_when
+from certkit.models.dynamics.simulate import Bound, Step, simulate
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
@@ -212,9 +212,9 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
         up = nose_up[idx]
         sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
         t_max = 2 * crit.t_max_periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
-        stop = [stop_when("n_z < 0 (nose up)", lambda t, x, out: up & (out.n_z < 0.0)),
-                stop_when("n_z > limit (nose down)", lambda t, x, out: ~up & (out.n_z > n_lim)),
-                stop_when("t_max", lambda t, x, out: t > t_max + 1e-9)]
+        stop = [Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
+                Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
+                Bound("t_max", "t", upper=t_max + 1e-9)]
         sub = model if idx.size == len(rows) else model.subset(idx)
         sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
         nz = sim["n_z"]
@@ -359,7 +359,7 @@ class MaximumPitchControlDisplacement(Rule):
         dt, ramp = float(crit.time_step), float(crit.ramp_time)
         sched = Step(0.0, step) if ramp <= 0 else _ramp(ramp, step)
         sim = simulate(batch.model, batch.x, batch.u, float(crit.duration), dt, inputs={"elevator": sched},
-                       stop=[stop_when("n_z > limit", lambda t, x, out: out.n_z > n_lim)])
+                       stop=[Bound("n_z > limit", "n_z", upper=n_lim)])
         loads = airplane_loads(ctx)
         hist = response_loads(loads, sim, batch.model, LOADED)
         # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
