@@ -2,7 +2,7 @@
 (§25.121, §25.143(h), §25.145(b), §25.147, §25.161): the critical engine, the full thrust of one engine (on an
 off-standard day too), the operating engines' total thrust at a throttle setting, the trim at the flight-path angle
 that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircraft Performance and Design*, 1999,
-eq. 5.12, iterated on the thrust the trim needs) and the steady climb at a thrust with the critical engine
+eq. 5.12, the trim solving the flight-path angle at the throttle that gives the thrust) and the steady climb at a thrust with the critical engine
 inoperative (the flight-path angle solved by the trim), and the weight at which that climb has a given gradient
 (the WAT limit weight search of §25.121).
 """
@@ -22,7 +22,6 @@ from certkit.units import G0
 
 #: a thrust aim is kept this far inside the throttle range, where the trim's throttle iterate is free (trim.py)
 _THROTTLE_INSIDE = 0.003
-_GAMMA_STEP = 0.03  # rad: a trim that needs thrust outside the range is retried this much lower / higher
 
 
 def critical_engine(ctx) -> str:
@@ -45,14 +44,14 @@ def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, i
 
 
 def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
-                   iterations: int = 4, stabilizer=None):
+                   stabilizer=None):
     """Trim ``conds`` (one configuration) at the flight-path angle the operating engines' total thrust
-    ``thrust_aim`` (N, per condition) gives. A wings-level trim at γ = 0 and the polar's induced drag of the
-    turn's load factor estimate the drag; then
-    γ ← γ + (T_aim − T_trim)/W (Anderson eq. 5.12; the step undershoots by cos γ, so the iterate approaches
-    the aim from the side the trim can reach). A trim needing thrust beyond the engines' range is retried
-    0.03 rad lower (higher at idle); one failing for another reason (lift, a control) is final.
-    ``stabilizer`` holds a movable stabiliser (deflection per condition, :meth:`certkit.context.Context.trim`).
+    ``thrust_aim`` (N, per condition) gives: each operating engine's throttle is set where it gives its share at the
+    condition's altitude and Mach (:func:`~certkit.models.flight.throttle_for_thrust`), and the trim solves the
+    flight-path angle — the steady climb or descent of sin γ = (T − D)/W (Anderson, *Aircraft Performance and
+    Design*, 1999, eq. 5.12) with the trim's own drag, turn and control deflections included. An aim beyond an
+    engine's full thrust flies at full thrust (the residual says by how much). ``stabilizer`` holds a movable
+    stabiliser (deflection per condition, :meth:`certkit.context.Context.trim`).
     Returns the TrimResult of each condition, its flight-path angle (rad) and thrust residual (T_aim − T_trim)/W."""
     n = len(conds)
     held = None if stabilizer is None else np.broadcast_to(np.asarray(stabilizer, dtype=float), (n,))
@@ -60,32 +59,14 @@ def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, 
     weight = np.array([c.mass for c in conds]) * G0
     aim = np.broadcast_to(np.asarray(thrust_aim, dtype=float), (n,)).copy()
     bank = np.broadcast_to(np.asarray(bank, dtype=float), (n,)).copy()
-    needed = lambda b: np.array([sum(r.thrust[e] for e in live) for r in b.results])  # noqa: E731
-    first = ctx.trim(conds, kind="straight", inoperative=inoperative, stabilizer=held)
-    # the turn's extra induced drag, k CL² (n² − 1) q S with CL the 1-g lift coefficient (the model's polar)
+    thrust, _ = thrust_function(ctx.aircraft)
     h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    qs = 0.5 * RHO0 * np.array([float(convert_speed(v, "TAS", "EAS", hh)) for v, hh in zip(tas, h)]) ** 2 \
-        * ctx.aircraft.reference.area
-    k_polar = np.asarray(ctx.aero(conds[0].configuration).model.derivative("k", tas / speed_of_sound(h)), dtype=float)
-    turn_drag = k_polar * (weight / qs) ** 2 * (1.0 / np.cos(bank) ** 2 - 1.0) * qs
-    gamma = np.where(first.converged, (aim - needed(first) - turn_drag) / weight, 0.0)
-    results, flown, residual = list(first.results), gamma.copy(), np.full(n, np.nan)
-    active = np.arange(n)
-    for k in range(iterations):
-        batch = ctx.trim([conds[i] for i in active], kind=kind, bank=bank[active], gamma=gamma[active],
-                         inoperative=inoperative, stabilizer=None if held is None else held[active])
-        res = (aim[active] - needed(batch)) / weight[active]
-        for j, i in enumerate(active):
-            results[i], flown[i], residual[i] = batch.results[j], gamma[i], res[j]
-        ok = batch.converged
-        throttle = np.array([np.mean([r.controls.get(f"throttle:{e}", 0.5) for e in live]) for r in batch.results])
-        saturated = ~ok & ((throttle >= 0.999) | (throttle <= 0.001))
-        gamma[active] += np.where(ok, res, np.where(throttle > 0.5, -_GAMMA_STEP, _GAMMA_STEP))
-        active = active[(ok & (np.abs(res) > 1e-5)) | saturated]
-        if not len(active):
-            break
-    return results, flown, residual
+    mach = np.array([speed_as(c, "TAS") for c in conds]) / speed_of_sound(h)
+    throttle = throttle_for_thrust(thrust, aim / len(live), h, mach)
+    batch = ctx.trim(conds, kind=kind, bank=bank, throttle=throttle, inoperative=inoperative, stabilizer=held)
+    needed = np.array([sum(r.thrust[e] for e in live) for r in batch.results])
+    gamma = np.array([r.gamma for r in batch.results])
+    return list(batch.results), gamma, (aim - needed) / weight
 
 
 def full_thrust(ctx, conds):
