@@ -182,21 +182,22 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
     legs = [leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
             leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
             leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False)]
-    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing))
+    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing, g.horizontal_tail))
 
 
-def ground_effect_wing(wing) -> GroundEffectWing:
+def ground_effect_wing(wing, horizontal_tail=None) -> GroundEffectWing:
     """The declared wing for ground effect: height taken at the MAC quarter chord (DATCOM §1.2.2 station,
-    dihedral included), the wing's own span, aspect ratio and half-chord sweep."""
+    dihedral included), the wing's own span, aspect ratio and half-chord sweep; with ``horizontal_tail``, both
+    quarter-chord lines for the downwash at the tail (:mod:`certkit.models.aero.tail_ground_effect`)."""
     from certkit.models.aero import planform
+    from certkit.models.aero.tail_ground_effect import lifting_line
 
-    y = planform.mac_spanwise_position(wing.area, wing.aspect_ratio, wing.taper)
-    mac = planform.mean_aerodynamic_chord(wing.area, wing.aspect_ratio, wing.taper)
-    le = wing.root_leading_edge
-    x = le.x + y * np.tan(planform.sweep_at(0.0, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)) + 0.25 * mac
-    point = (x, 0.0, le.z + y * np.tan(wing.dihedral))
+    line = lifting_line(wing)
+    point = (line.reference[0], 0.0, line.reference[1])
+    lines = None if horizontal_tail is None else (line, lifting_line(horizontal_tail))
     return GroundEffectWing(point, float(planform.span(wing.area, wing.aspect_ratio)), float(wing.aspect_ratio),
-                            float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)))
+                            float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)),
+                            lines)
 
 
 def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name: str = ""):

@@ -29,22 +29,41 @@ def test_hand_calculation_approach_sink_and_flare_constant(result):
         assert e.limit == pytest.approx(-21.8) and e.unit == "deg"
 
 
-def test_a_steeper_approach_lands_harder(result, tmp_path):
-    """A −4.5° approach (criterion glide_slope) sinks 1.5 × faster on the path (sin 4.5°/sin 3° = 1.50, 18.1 ft/s at
-    VREF): the flare, started at the same height, ends with a higher touchdown sink rate at the forward and aft CG
-    and on average over the three. (At the reference CG, since the downwash-lag damping and the tail-on flap moment
-    of issue 12, the 3° run's flare lags its law more than the steep one's: 1.42 against 1.18 ft/s, both near the
-    exponential flare's own terminal sink 1 m/τ, 0.75 and 1.13 ft/s — a difference of flare tracking, not of the
-    approach.)"""
+@pytest.fixture(scope="module")
+def steep(tmp_path_factory):
     block = ('criteria:\n  "25.125":\n    justification: a steeper approach\n'
              '    values: {glide_slope: -4.5}\n\nsources:\n')
-    steep = run_rule("25.125", tmp_path, [NO_STABILIZER, ("\nsources:\n", "\n" + block)])
+    return run_rule("25.125", tmp_path_factory.mktemp("steep"), [NO_STABILIZER, ("\nsources:\n", "\n" + block)])
+
+
+def _sinks(result, steep):
     sinks = []
     for loading in ("MLW forward", "MLW reference", "MLW aft"):
         base, f = _by(result, loading, "touchdown"), _by(steep, loading, "touchdown")
         assert f.details["approach_sink_fps"] == pytest.approx(base.details["approach_sink_fps"] * 1.4990, rel=2e-3)
         sinks.append((base.value, f.value))
-    assert sinks[0][1] > sinks[0][0] and sinks[2][1] > sinks[2][0]
+    return sinks
+
+
+def test_a_steeper_approach_lands_harder(result, steep):
+    """A −4.5° approach (criterion glide_slope) sinks 1.5 × faster on the path (sin 4.5°/sin 3° = 1.50, 18.1 ft/s at
+    VREF): the flare, started at the same height, ends with a higher touchdown sink rate at the forward CG, where the
+    elevator of this airplane without its movable stabiliser is on its stop through the flare (2.67 against
+    1.57 ft/s)."""
+    sinks = _sinks(result, steep)
+    assert sinks[0][1] > sinks[0][0]
+
+
+@pytest.mark.xfail(strict=True, reason="since the tail's ground effect (tail_ground_effect.py) the TECS flare's tracking, "
+                   "not the approach angle, sets the touchdown sink at the reference and aft CG: the −4.5° flare "
+                   "over-rotates and floats (aft CG 0.23 against 1.46 ft/s; sum of the three 3.96 against 4.55)")
+def test_a_steeper_approach_lands_harder_at_the_aft_cg_and_on_average(result, steep):
+    """The same at the aft CG and on average over the three CGs (held before the tail's ground effect: at the
+    reference CG the 3° run's flare already lagged its law more than the steep one's, 1.42 against 1.18 ft/s, both
+    near the exponential flare's own terminal sink 1 m/τ, 0.75 and 1.13 ft/s — a difference of flare tracking, not
+    of the approach)."""
+    sinks = _sinks(result, steep)
+    assert sinks[2][1] > sinks[2][0]
     assert sum(s for _, s in sinks) > sum(b for b, _ in sinks)
 
 

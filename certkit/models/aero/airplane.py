@@ -39,6 +39,8 @@ SCHEDULE_CAS = 300 * 1852 / 3600
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
 #: the lattice's tail lift and moment increments per unit flap lift increment of the wing (not model terms)
 FLAP_TAIL_TERMS = ("tail_CL_per_flap_CL", "tail_Cm_per_flap_CL")
+#: the table's entry holding the free-air downwash at the tail (not a model term; lowest Mach breakpoint)
+FREE_AIR_DOWNWASH = "free_air_downwash"
 #: lattice derivatives carried into the flight model (the others are zero by symmetry or not used)
 CARRIED = ("CL_alpha", "CL_q", "CY_beta", "CY_p", "CY_r", "Cl_beta", "Cl_p", "Cl_r", "Cm_alpha", "Cm_q",
            "Cn_beta", "Cn_p", "Cn_r")
@@ -150,15 +152,17 @@ class AirplaneAero:
 def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
     """Derivatives at α = 0 for each Mach number: (table name → values, neutral points, e, lattice).
 
-    The table also holds the downwash-lag derivatives CL_alphadot, Cm_alphadot at each Mach number and, for a
-    wing with flaps, the tail's flap ratios :data:`FLAP_TAIL_TERMS` at the lowest one
+    The table also holds the downwash-lag derivatives CL_alphadot, Cm_alphadot at each Mach number, for a
+    wing with flaps the tail's flap ratios :data:`FLAP_TAIL_TERMS` at the lowest one, and the free-air downwash at the
+    tail there (:data:`FREE_AIR_DOWNWASH`, a :class:`~certkit.models.aero.tail_downwash.FreeAirDownwash`)
     (:mod:`certkit.models.aero.tail_downwash`)."""
-    from certkit.models.aero.tail_downwash import WING, downwash_gradient, downwash_lag, flap_at_tail, slopes
+    from certkit.models.aero.tail_downwash import WING, downwash_lag, flap_at_tail, free_air_downwash, slopes
 
     vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
     on, alone = downwash_configurations(aircraft)
     wing_tail, tail = VortexLattice(on, mach=machs[0]), VortexLattice(alone, mach=machs[0])
-    gradient_low = downwash_gradient(wing_tail, tail)
+    free_air = free_air_downwash(wing_tail, tail)
+    gradient_low = free_air.gradient
     table: dict[str, list[float]] = {}
     xnp, e, wing_slope = [], [], []
     for m in machs:
@@ -182,6 +186,7 @@ def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
         at_tail = flap_at_tail(wing_tail, tail, FLAP_CONTROL)
         table[FLAP_TAIL_TERMS[0]] = [at_tail.CL_per_wing_CL] * len(machs)
         table[FLAP_TAIL_TERMS[1]] = [at_tail.Cm_per_wing_CL] * len(machs)
+    table[FREE_AIR_DOWNWASH] = free_air
     return table, xnp, e, vl
 
 
@@ -241,6 +246,7 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
         notes.append(f"configurations.{configuration}.CLmax not declared: no stall model")
     stall = StallModel(clmax) if clmax else None
     ref = aero_reference(aircraft)
+    tail_downwash = None  # the free-air downwash at the tail (lattice only): the ground effect at the tail needs it
     if declared is not None:
         from certkit.models.aero.derivative_forms import nondimensional_table
         from certkit.models.reference_condition import reference_condition
@@ -252,7 +258,8 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
     else:
         table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
         controls = vl.control_names
-        table = {k: list(v) for k, v in table.items()}
+        free_air = table.get(FREE_AIR_DOWNWASH)
+        table = {k: list(v) for k, v in table.items() if k != FREE_AIR_DOWNWASH}
         flap_tail = [table.pop(k, None) for k in FLAP_TAIL_TERMS]
         machs = tuple(machs)
         result = AirplaneAero(configuration, None, tuple(machs), table, "vortex lattice (certkit.models.aero.vlm)",
@@ -266,22 +273,26 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
             table["CD0"], table["k"] = list(cd0), list(k)
             result.source += " + drag build-up"
             notes += drag_notes
-        _high_lift(aircraft, configuration, cfg, table, notes, flap_tail)
+        tail_flap_cl = _high_lift(aircraft, configuration, cfg, table, notes, flap_tail)
+        if free_air is not None:
+            tail_downwash = free_air.with_flap(tail_flap_cl)
     for key, value in aircraft.aerodynamics.overrides.get(configuration, {}).items():
         estimate = table.get(key)
         table[key] = value
         result.overrides[key] = {"estimate": estimate, "value": value, "source": aircraft.aerodynamics.overrides_source}
     try:
-        result.model = StabilityDerivativeModel(ref, table, mach=machs, control_names=controls, stall=stall)
+        result.model = StabilityDerivativeModel(ref, table, mach=machs, control_names=controls, stall=stall,
+                                                tail_downwash=tail_downwash)
     except KeyError as exc:
         raise ValueError(f"aerodynamics of configuration {configuration!r}: {exc.args[0]}") from None
     return result
 
 
-def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> None:
+def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> float:
     """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
     (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle (tail-on already);
-    the first two are tail-off, so the tail's share (:func:`_tail_flap_share`) is added to them."""
+    the first two are tail-off, so the tail's share (:func:`_tail_flap_share`) is added to them. Returns the tail's
+    lift share at the lowest Mach breakpoint (0 when none is added: its downwash change is then not known)."""
     from certkit.models.aero.high_lift import lift_and_moment_increment
 
     wing = aircraft.geometry.wing
@@ -305,8 +316,11 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> Non
         notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
                      "no flap on the wing: lift and moment increments not modelled")
     tail_off = bool(cfg.delta_CL0 or cfg.delta_Cm0) or wing.flaps is not None  # declared or Raymer: tail-off
+    tail_cl = 0.0
     if cfg.flap > 0 and tail_off:
+        wing_cl = d_cl[0]
         d_cl, d_cm = _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes)
+        tail_cl = d_cl[0] - wing_cl
     table["CL0"] = [v + d for v, d in zip(table["CL0"], d_cl)]
     table["Cm0"] = [v + d for v, d in zip(table["Cm0"], d_cm)]
     from certkit.models.aero.drag import configuration_drag_increment
@@ -316,6 +330,7 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> Non
         table["CD0"] = [v + delta for v in table.get("CD0", [0.0] * len(table["CL0"]))]
         if not declared:
             notes.append(f"configuration {name}: ΔCD0 {delta:.4f} estimated (flaps Raymer 12.61, gear Roskam Part I)")
+    return tail_cl
 
 
 def _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes):

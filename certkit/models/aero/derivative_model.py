@@ -93,6 +93,9 @@ class StabilityDerivativeModel:
     control_names : the controls; by default those appearing in control terms, in order of
         appearance.
     stall : optional StallModel.
+    tail_downwash : optional :class:`~certkit.models.aero.tail_downwash.FreeAirDownwash`, the free-air downwash at
+        the horizontal tail the table's pitching moment holds; the equations of motion reduce it near the runway
+        (:mod:`certkit.models.aero.tail_ground_effect`). None: no ground effect at the tail.
     """
 
     def __init__(
@@ -104,8 +107,10 @@ class StabilityDerivativeModel:
         stall: StallModel | None = None,
         after_stall: Sequence[str] = (),
         alpha_drag: bool | None = None,
+        tail_downwash=None,
     ) -> None:
         self.reference = reference
+        self.tail_downwash = tail_downwash
         self.mach = np.atleast_1d(np.asarray(mach if mach is not None else [0.0], dtype=float))
         if self.mach.ndim != 1 or np.any(np.diff(self.mach) <= 0):
             raise ValueError("Mach breakpoints must be a strictly increasing 1-D sequence")
@@ -246,7 +251,8 @@ class StabilityDerivativeModel:
         whose lift coefficient C_N,max the rounded stall model does not reach."""
         derivs = self._nonzero_terms()
         return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=self.control_names,
-                                        after_stall=self.after_stall, alpha_drag=self.uses_alpha_drag)
+                                        after_stall=self.after_stall, alpha_drag=self.uses_alpha_drag,
+                                        tail_downwash=self.tail_downwash)
 
     def with_control_terms(self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()
                            ) -> "StabilityDerivativeModel":
@@ -262,4 +268,4 @@ class StabilityDerivativeModel:
         derivs.update(terms)
         return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=names, stall=self.stall,
                                         after_stall=tuple(self.after_stall) + tuple(after_stall),
-                                        alpha_drag=self.uses_alpha_drag)
+                                        alpha_drag=self.uses_alpha_drag, tail_downwash=self.tail_downwash)

@@ -18,7 +18,8 @@ Consequences used by the equations of motion (:mod:`certkit.models.dynamics.kern
   ratio A/φ: the lift at a given attitude is the free-air lift times a(A/φ)/a(A), a the DATCOM
   lift-curve slope (:func:`certkit.models.aero.planform.lift_curve_slope`).
 
-The change of the downwash at the tail (a nose-down moment near the ground) is not modelled.
+The change of the downwash at the tail (a nose-down moment near the ground) is
+:mod:`certkit.models.aero.tail_ground_effect`'s.
 """
 
 from __future__ import annotations
@@ -31,7 +32,8 @@ from numba import njit
 
 #: h/b beyond which the ground's effect is ignored (φ > 0.995 there)
 H_OVER_B_MAX = 2.0
-_N_TABLE = 201
+#: entries of the φ table (h/b = 0 … H_OVER_B_MAX)
+N_TABLE = 201
 
 
 @lru_cache(maxsize=None)
@@ -52,8 +54,8 @@ def induced_drag_factor_table(n_span: int = 400) -> np.ndarray:
         return float((gamma * w * width).sum())
 
     free = drag(0.0)
-    h_over_b = np.linspace(0.0, H_OVER_B_MAX, _N_TABLE)
-    table = np.empty(_N_TABLE)
+    h_over_b = np.linspace(0.0, H_OVER_B_MAX, N_TABLE)
+    table = np.empty(N_TABLE)
     table[0] = 0.0
     for i, hb in enumerate(h_over_b[1:], start=1):
         table[i] = (free - drag(4.0 * hb)) / free  # image 2h below; span 2 → 2h = 4 h/b
@@ -82,4 +84,4 @@ def lift_ratio(phi, aspect_ratio, tan_sweep_half_chord, mach, airfoil_efficiency
     return ae * (2.0 + math.sqrt(4.0 + a * a * t)) / (a * (2.0 + math.sqrt(4.0 + ae * ae * t)))
 
 
-__all__ = ["induced_drag_factor_table", "induced_drag_factor_at", "lift_ratio", "H_OVER_B_MAX"]
+__all__ = ["induced_drag_factor_table", "induced_drag_factor_at", "lift_ratio", "H_OVER_B_MAX", "N_TABLE"]

@@ -24,6 +24,9 @@ to the wing's trailing-vortex sheet and its lift converges only with narrow wing
 0.120, 0.117), solved once at the lowest Mach number; at the others it scales with the wing's lift slope
 (DATCOM §4.4.1: (dε/dα)_M = (dε/dα)_low C_Lα,w(M)/C_Lα,w,low).
 
+Free-air downwash for the ground effect at the tail (:mod:`certkit.models.aero.tail_ground_effect`): ε = ε₀ + (dε/dα) α
+from the same lattice, ε₀ = −(C_L,t(with the wing) − C_L,t(isolated))/C_Lα,t at α = 0 (:func:`free_air_downwash`).
+
 Flap at the tail: the change of the tail's lift and moment per unit of the wing's flap lift increment,
 (ΔC_L,t / ΔC_L,w, ΔC_m,t / ΔC_L,w) from the lattice with the flap deflected. The downwash is linear in the wing's
 circulation, so this ratio carries the lattice's tail response to a flap increment estimated or declared by
@@ -32,7 +35,7 @@ another method (the lattice's own increment is linear theory and overestimates l
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -86,6 +89,29 @@ def downwash_gradient(airplane_vl, tail_vl) -> float:
     """dε/dα: 1 − the tail's lift slope in the lattice with the wing over that of the isolated tail (same panels,
     same Mach)."""
     return 1.0 - slopes(airplane_vl, TAIL)[0] / slopes(tail_vl, TAIL)[0]
+
+
+@dataclass(frozen=True)
+class FreeAirDownwash:
+    """The free-air downwash at the tail, ε = ``epsilon0`` + ``gradient`` α (rad, body α), and the isolated tail's lift
+    and moment slopes (airplane reference, moment about its reference point, per rad): what the ground effect at the
+    tail changes (:mod:`certkit.models.aero.tail_ground_effect`)."""
+
+    epsilon0: float
+    gradient: float
+    lift_slope: float
+    moment_slope: float
+
+    def with_flap(self, tail_CL: float) -> "FreeAirDownwash":
+        """The same with the downwash of a flap whose tail lift share is ``tail_CL`` (Δε = −ΔC_L,t/C_Lα,t)."""
+        return replace(self, epsilon0=self.epsilon0 - tail_CL / self.lift_slope)
+
+
+def free_air_downwash(airplane_vl, tail_vl) -> FreeAirDownwash:
+    """:class:`FreeAirDownwash` of the wing-and-tail lattice and the isolated tail's (same Mach, same panels)."""
+    cl_t, cm_t = slopes(tail_vl, TAIL)
+    eps0 = -(surface_coefficients(airplane_vl, TAIL)[0] - surface_coefficients(tail_vl, TAIL)[0]) / cl_t
+    return FreeAirDownwash(float(eps0), downwash_gradient(airplane_vl, tail_vl), cl_t, cm_t)
 
 
 @dataclass(frozen=True)

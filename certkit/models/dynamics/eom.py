@@ -123,12 +123,16 @@ class GroundModel:
 class GroundEffectWing:
     """The wing as ground effect (:mod:`certkit.models.aero.ground_effect`) sees it: ``point`` where its
     height above the runway is taken (airplane frame, m: the MAC quarter chord), span (m), aspect ratio and
-    half-chord sweep (rad). Applied to derivative-table models only."""
+    half-chord sweep (rad); ``lines``: the wing's and the horizontal tail's quarter-chord lines
+    (:func:`certkit.models.aero.tail_ground_effect.lifting_line`) for the downwash at the tail, which is reduced near
+    the runway when the aerodynamic model also gives its free-air downwash (``tail_downwash``). Applied to
+    derivative-table models only."""
 
     point: Sequence[float]
     span: float
     aspect_ratio: float
     sweep_half_chord: float
+    lines: tuple | None = None
 
 
 def euler_to_quat(phi, theta, psi) -> np.ndarray:
@@ -316,14 +320,30 @@ class AircraftModel:
                              -1 if self._brake_index is None else self._brake_index)
 
     def _ground_effect_params(self, wing: "GroundEffectWing | None") -> np.ndarray:
-        """gparams[3:] of the kernel: span (0: none), aspect ratio, tan Λ½, wing point minus the aero reference
-        in body axes (3), then the φ(h/b) table."""
+        """gparams[3:] of the kernel (layout in :mod:`certkit.models.dynamics.kernel`): span (0: none), aspect ratio,
+        tan Λ½, wing point minus the aero reference in body axes (3); the tail's point likewise (3), its free-air
+        downwash ε₀ and dε/dα, lift and moment slopes (0: no ground effect at the tail), the R table's axes and shape
+        (6); the φ(h/b) table; the R table."""
         if wing is None:
             return np.zeros(6)
         ref = self.aero.reference
-        d = np.asarray(wing.point, dtype=float) - np.array([ref.x_ref, 0.0, ref.z_ref])
+        origin = np.array([ref.x_ref, 0.0, ref.z_ref])
+        d = np.asarray(wing.point, dtype=float) - origin
+        tail = np.zeros(13)
+        table = np.zeros(0)
+        free_air = getattr(self.aero, "tail_downwash", None)
+        if wing.lines is not None and free_air is not None:
+            from certkit.models.aero.ground_effect import H_OVER_B_MAX
+            from certkit.models.aero.tail_ground_effect import downwash_table
+
+            line, tail_line = wing.lines
+            r = downwash_table(line, tail_line, wing.span, H_OVER_B_MAX)
+            dt = np.array([tail_line.reference[0], 0.0, tail_line.reference[1]]) - origin
+            tail[:] = (-dt[0], dt[1], -dt[2], free_air.epsilon0, free_air.gradient, free_air.lift_slope,
+                       free_air.moment_slope, r.root_start, r.root_step, r.dz_start, r.dz_step, *r.ratio.shape)
+            table = r.ratio.ravel()
         return np.concatenate([[wing.span, wing.aspect_ratio, np.tan(wing.sweep_half_chord), -d[0], d[1], -d[2]],
-                               induced_drag_factor_table()])
+                               tail, induced_drag_factor_table(), table])
 
     def thrust_forces(self, air: np.ndarray, controls: np.ndarray, rows=None) -> np.ndarray:
         """Force of each engine along its thrust line (n, n_engines), N, from the air data

@@ -19,8 +19,11 @@ Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_
     ground          has_ground, r_gear (n, nl, 3), legs (nl, 5) = stiffness, damping, rolling and side
                     friction, braked; gparams = runway elevation, brake friction, slip speed, then the
                     ground effect's wing (:meth:`~certkit.models.dynamics.eom.AircraftModel._ground_effect_params`:
-                    span, 0 for none; aspect ratio; tan Λ½; wing point from the aero reference, body axes)
-                    and its φ(h/b) table; brake_index (−1: none)
+                    [3] span, 0 for none; [4] aspect ratio; [5] tan Λ½; [6:9] wing point from the aero reference,
+                    body axes), the tail's ([9:12] its point likewise; [12] ε₀, [13] dε/dα of the free-air downwash;
+                    [14] C_Lα,t, 0 for none; [15] C_mα,t; [16:20] the R table's √(h/b) start and step, Δz start and
+                    step; [20:22] its shape), the φ(h/b) table ([22:22 + N_TABLE]) and the R table (row-major);
+                    brake_index (−1: none)
 
 Outputs per condition, columns of :data:`OUTPUTS`; gear normal loads (n, nl).
 """
@@ -35,13 +38,17 @@ from numba import njit
 from certkit import atmosphere as isa
 from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import _row, coefficients_one, mach_weights
-from certkit.models.aero.ground_effect import H_OVER_B_MAX, induced_drag_factor_at, lift_ratio
+from certkit.models.aero.ground_effect import H_OVER_B_MAX, N_TABLE, induced_drag_factor_at, lift_ratio
+from certkit.models.aero.tail_ground_effect import downwash_ratio_one
 from certkit.models.propulsion.engine import turbofan_row_thrust
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
 AIR = ("h_clipped", "V", "alpha", "beta", "mach", "qbar")
 
 _R, _GAMMA = isa.R_AIR, isa.GAMMA
+#: where the φ table and the tail's R table start in gparams
+_PHI = 22
+_RATIO = _PHI + N_TABLE
 _H_MIN, _H_MAX = -600.0, isa.H_MAX
 
 
@@ -97,20 +104,35 @@ def _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz, rx, ry, rz):
 
 
 @njit(cache=True, fastmath=True, inline="always")
-def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, coef):
+def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alpha, coef):
     """Ground effect (:mod:`certkit.models.aero.ground_effect`) on the table's CL and CD: the wing point's
-    height over the span gives φ; CL × a(A/φ)/a(A), induced drag k (CL − CL_minD)² × φ at the new CL."""
+    height over the span gives φ; CL × λ = a(A/φ)/a(A), induced drag k (CL − CL_minD)² × φ at the new CL. With the
+    tail's data, the downwash at the tail (:mod:`certkit.models.aero.tail_ground_effect`): ε = R λ ε_free, so the
+    tail's angle of attack rises by ε_free (1 − R λ), through its lift and moment slopes, and the downwash-lag
+    derivatives scale by R λ."""
     wx, wy, wz = props_i[13] + gparams[6], props_i[14] + gparams[7], props_i[15] + gparams[8]
     hb = (height - (C31 * wx + C32 * wy + C33 * wz)) / gparams[3]
     if hb >= H_OVER_B_MAX:
         return
-    phi = induced_drag_factor_at(gparams[9:], hb)
+    phi = induced_drag_factor_at(gparams[_PHI:_RATIO], hb)
     i0, i1, w = mach_weights(machs, mach)
     k, cl_min = _row(T, 5, i0, i1, w), _row(T, 6, i0, i1, w)
     cl = coef[0]
-    cl_ge = cl * lift_ratio(phi, gparams[4], gparams[5], mach)
+    lam = lift_ratio(phi, gparams[4], gparams[5], mach)
+    cl_ge = cl * lam
     coef[0] = cl_ge
     coef[1] += k * (phi * (cl_ge - cl_min) ** 2 - (cl - cl_min) ** 2)
+    if gparams[14] != 0.0:
+        tx, ty, tz = props_i[13] + gparams[9], props_i[14] + gparams[10], props_i[15] + gparams[11]
+        dz = C31 * (wx - tx) + C32 * (wy - ty) + C33 * (wz - tz)  # the tail's height over the wing point
+        nr, nz = int(gparams[20]), int(gparams[21])
+        keep = lam * downwash_ratio_one(hb, dz, gparams[_RATIO:_RATIO + nr * nz].reshape((nr, nz)), gparams[16],
+                                        gparams[17], gparams[18], gparams[19])
+        d_alpha = (gparams[12] + gparams[13] * alpha) * (1.0 - keep)
+        coef[0] += gparams[14] * d_alpha
+        coef[4] += gparams[15] * d_alpha
+        coef[6] *= keep
+        coef[7] *= keep
 
 
 # inlined (numba IR) where it is called: a call passing ~15 arrays costs as much as the arithmetic (a study's
@@ -131,7 +153,7 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
         coefficients_one(T, machs, clmax, stall, alpha_drag, after_stall, alpha, beta, p * (b / 2) / Vs,
                          q * (c / 2) / Vs, r * (b / 2) / Vs, mach, ctrl[:n_aero], coef)
         if has_ground and gparams[3] > 0.0:
-            _ground_effect(C31, C32, C33, h - gparams[0], props[i], gparams, T, machs, mach, coef)
+            _ground_effect(C31, C32, C33, h - gparams[0], props[i], gparams, T, machs, mach, alpha, coef)
     CL, CD = coef[0], coef[1]
     suw = math.sqrt(uw2)
     ca, sa = u / suw, w / suw

@@ -87,10 +87,12 @@ class TakeoffPath(Rule):
     """
     limitations = """
         Ground effect on the wing's lift and induced drag (image-vortex factor,
-        certkit/models/aero/ground_effect.py) but not on the tail's downwash: on the runway the tail sees about
-        a fifth of its free-air downwash, a nose-down moment worth up to about 10° of elevator that is missing,
-        so the elevator used near the ground is optimistic (rotation's elevator is an upper bound of its
-        margin); no nose-wheel steering (the rudder and the tyres' side friction hold the centreline); no
+        certkit/models/aero/ground_effect.py) and on the downwash at the tail (the wing's vortices and their image,
+        span load solved with the image, certkit/models/aero/tail_ground_effect.py; within 0.02 of AVL's ground
+        plane): on the runway the tail keeps about half of its free-air downwash per unit lift, a nose-down moment
+        of about 2° of elevator at the ground attitude and 8–9° at the rotation attitude; not modelled: the wake's
+        displacement near the ground, the flaps' own span load, the tail's own ground effect (the rotation's
+        elevator is an estimate, not a bound); no nose-wheel steering (the rudder and the tyres' side friction hold the centreline); no
         spool-up (takeoff thrust at brake release); the failed engine's thrust decays as a first-order lag with
         the declared propulsion.failure_decay_time (windmilling at once without it); the pilot (rotation at
         2.5°/s to the V2 attitude below the declared tail-strike attitude less 2°, speed on pitch once airborne;

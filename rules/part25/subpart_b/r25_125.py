@@ -83,10 +83,12 @@ class LandingTouchdown(Rule):
     limitations = """
         The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i)(B)-(C) (VMCL, § 25.143(h)) and icing
         are not evaluated here; ground effect on the wing's lift and induced drag (image-vortex factor,
-        certkit/models/aero/ground_effect.py) but not on the tail's downwash: on the runway the tail sees about
-        a fifth of its free-air downwash, a nose-down moment worth up to about 10° of elevator that is missing,
-        so the elevator used near the ground is optimistic (the flare's elevator margin is an upper bound); the
-        flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway); the 6 ft/s
+        certkit/models/aero/ground_effect.py) and on the downwash at the tail (the wing's vortices and their image,
+        span load solved with the image, certkit/models/aero/tail_ground_effect.py; within 0.02 of AVL's ground
+        plane), which takes 2.5–6° more nose-up elevator in the baseline's flare; not modelled: the wake's
+        displacement near the ground, the flaps' own span load, the tail's own ground effect, the lower stall angle
+        in ground effect; the approach starts from a free-air trim at 150 ft (h/b ≈ 0.7, already slightly inside
+        both ground effects); the flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway); the 6 ft/s
         criterion is from § 25.473 (text from memory).
     """
     references = ("25.473", "25.143", "25.149")
