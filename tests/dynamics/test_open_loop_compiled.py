@@ -11,6 +11,16 @@ from certkit.models.dynamics.trim import trim
 from certkit.models.flight import ROLES, control_limits, flight_model
 
 
+def _assert_same_run(compiled, loop):
+    """The same grid and controls; states, outputs and the final state within round-off (1e-9 of each scale)."""
+    np.testing.assert_array_equal(compiled.t, loop.t)
+    np.testing.assert_array_equal(compiled.controls, loop.controls)
+    for key, ref in loop.history.items():
+        np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
+                                   err_msg=key)
+    np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)
+
+
 @pytest.fixture(scope="module")
 def batch(baseline):
     from certkit.context import Context
@@ -34,12 +44,7 @@ def test_compiled_run_equals_the_python_loop(batch, dt):
         loop = simulate(model, trims.x, trims.u, 3.0, dt, inputs=inputs)
     finally:
         model._turbofan = saved
-    np.testing.assert_array_equal(compiled.t, loop.t)
-    np.testing.assert_array_equal(compiled.controls, loop.controls)
-    for key, ref in loop.history.items():
-        np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
-                                   err_msg=key)
-    np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)
+    _assert_same_run(compiled, loop)
 
 
 def test_compiled_run_with_bound_stops_equals_the_python_loop(batch):
@@ -63,9 +68,4 @@ def test_compiled_run_with_bound_stops_equals_the_python_loop(batch):
     assert set(loop.stop_reason) >= {"n_z cap", "t_max"}  # both kinds of bound stop some condition here
     assert compiled.stop_reason == loop.stop_reason
     np.testing.assert_array_equal(compiled.stop_time, loop.stop_time)
-    np.testing.assert_array_equal(compiled.t, loop.t)
-    np.testing.assert_array_equal(compiled.controls, loop.controls)
-    for key, ref in loop.history.items():
-        np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
-                                   err_msg=key)
-    np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)
+    _assert_same_run(compiled, loop)
