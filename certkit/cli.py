@@ -9,11 +9,11 @@ traceback with ``certkit --debug``), 130 interrupted (Ctrl-C; previous outputs a
 from __future__ import annotations
 
 import gc
+import importlib
 import json
 import os
 import sys
 import time
-import traceback
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
@@ -32,7 +32,19 @@ _DEBUG = {"on": False}
 
 class _Group(click.Group):
     """The one error boundary: a :class:`UserError` anywhere below is a message and exit code 2; Ctrl-C exits 130;
-    anything else is an internal error (exit 70) with a bug-report hint, its traceback only with ``--debug``."""
+    anything else is an internal error (exit 70) with a bug-report hint, its traceback only with ``--debug``.
+    Command groups of their own package (``study``) are imported when named, not at every start."""
+
+    lazy_commands = {"study": ("certkit.study.cli", "study")}
+
+    def list_commands(self, ctx):
+        return sorted({*super().list_commands(ctx), *self.lazy_commands})
+
+    def get_command(self, ctx, name):
+        if name in self.lazy_commands and name not in self.commands:
+            module, attr = self.lazy_commands[name]
+            self.add_command(getattr(importlib.import_module(module), attr), name)
+        return super().get_command(ctx, name)
 
     def invoke(self, ctx):
         try:
@@ -50,6 +62,8 @@ class _Group(click.Group):
             raise
         except Exception as exc:  # noqa: BLE001 - the boundary: every other exception is a bug of certkit
             if _DEBUG["on"]:
+                import traceback
+
                 traceback.print_exc()
             detail = str(exc).splitlines()[0][:300] if str(exc) else ""
             click.echo(f"internal error: {exc.__class__.__name__}{': ' + detail if detail else ''}\n"
@@ -555,15 +569,6 @@ def import_jsbsim_command(fdm_file, out_path, mach, altitude):
         click.echo(f"wrote {out_path} ({len(result.unmapped)} items not mapped, listed in its header)", err=True)
     else:
         click.echo(text)
-
-
-def _register_study() -> None:
-    from certkit.study.cli import study
-
-    main.add_command(study)
-
-
-_register_study()
 
 
 def entry() -> None:

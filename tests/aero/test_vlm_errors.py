@@ -74,8 +74,25 @@ def test_coincident_surfaces_singular_not_nan():
     singular matrix; the solver must raise SingularLatticeError, never return NaN."""
     w = trapezoidal_surface("wing", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1)
     w2 = trapezoidal_surface("wing copy", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1)
-    with pytest.raises(SingularLatticeError):
+    with pytest.raises(SingularLatticeError, match=r"singular near vortex \d+ \(surface 'wing copy'\)"):
         VortexLattice(config(w, w2))
+
+
+@pytest.mark.parametrize("gap", [1e-9, 1e-4])
+def test_nearly_coincident_surfaces(gap):
+    """Reference: Munk's biplane limit — two lifting sheets at zero gap act as one sheet, so a pair 1e-4 m
+    apart (1e-5 of the span) must be solved with the single wing's CL_α (to 1e-6); at 1e-9 m the two rows
+    agree to rounding (condition number ~1e20, above the 1e12 limit) and the solver must refuse, naming the copy."""
+    w = trapezoidal_surface("wing", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1)
+    w2 = trapezoidal_surface("wing copy", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1,
+                             root_leading_edge=(0.0, 0.0, gap))
+    if gap < 1e-6:
+        with pytest.raises(SingularLatticeError, match=r"singular near vortex \d+ \(surface 'wing copy'\)"):
+            VortexLattice(config(w, w2))
+    else:
+        single = VortexLattice(config(w)).stability_derivatives().CL_alpha
+        pair = VortexLattice(config(w, w2)).stability_derivatives().CL_alpha
+        assert pair == pytest.approx(single, rel=1e-6)
 
 
 def test_unknown_control_rejected():
