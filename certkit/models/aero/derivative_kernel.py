@@ -36,7 +36,7 @@ N_BASE = len(BASE_TERMS)
 N_OUT = 8
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def mach_weights(machs, mach):
     """Index i and weight w of the linear interpolation at ``mach`` (held at the end values)."""
     nm = machs.shape[0]
@@ -49,12 +49,12 @@ def mach_weights(machs, mach):
     return i, i + 1, (x - machs[i]) / (machs[i + 1] - machs[i])
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def _row(T, k, i0, i1, w):
     return T[k, i0] * (1.0 - w) + T[k, i1] * w
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach,
                      ctrl, out):
     """Coefficients of one state into ``out`` (length :data:`N_OUT`); ``ctrl`` the deflections
@@ -113,7 +113,7 @@ def coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha,
     out[7] = _row(T, 18, i0, i1, w)
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def coefficients_batch(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach,
                        ctrl):
     """:func:`coefficients_one` over flat arrays of n states; ``ctrl`` (n, n_controls). Returns (n, 8)."""

@@ -100,7 +100,7 @@ def induced_upwash(points, a, b, core) -> np.ndarray:
     return out.reshape(p.shape[:-1] + (len(a),))
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def _upwash(p, a, b, core):
     """:func:`induced_upwash` on flat arrays: p (m, 3), a and b (n, 3)."""
     m, n = p.shape[0], a.shape[0]
@@ -215,7 +215,7 @@ def downwash_table(wing: LiftingLine, tail: LiftingLine, span: float, h_over_b_m
     return _table(wing, tail, float(span), float(h_over_b_max))
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def downwash_ratio_one(h_over_b, dz, ratio, root_start, root_step, dz_start, dz_step):
     """R (module docstring) at the wing's height over the span and the tail's height over the wing (m), bilinear in
     √(h_w/b) and Δz, held at the table's ends."""

@@ -52,7 +52,7 @@ _RATIO = _PHI + N_TABLE
 _H_MIN, _H_MAX = -600.0, isa.H_MAX
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def _air(h, u, v, w):
     """ISA (troposphere + isothermal layer, altitude clipped to the modelled range) and air data:
     (h clipped, V, α, β, Mach, q̄)."""
@@ -67,7 +67,7 @@ def _air(h, u, v, w):
     return hc, V, alpha, beta, V / math.sqrt(_GAMMA * _R * T_air), 0.5 * rho * V2
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def air_data(X):
     """Air data (columns of :data:`AIR`) of each state row (h, u, v, w at columns 2–5)."""
     n = X.shape[0]
@@ -79,7 +79,7 @@ def air_data(X):
     return out
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def _dcm(x, quat):
     """Body→NED direction cosines (row by row) from the quaternion or the Euler angles."""
     if quat:
@@ -97,13 +97,13 @@ def _dcm(x, quat):
             -st, sf * ct, cf * ct)
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz, rx, ry, rz):
     """Totals plus the force (fx, fy, fz) applied at body point (rx, ry, rz)."""
     return (Fx + fx, Fy + fy, Fz + fz, Mx + ry * fz - rz * fy, My + rz * fx - rx * fz, Mz + rx * fy - ry * fx)
 
 
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alpha, coef):
     """Ground effect (:mod:`certkit.models.aero.ground_effect`) on the table's CL and CD: the wing point's
     height over the span gives φ; CL × λ = a(A/φ)/a(A), induced drag k (CL − CL_minD)² × φ at the new CL. With the
@@ -137,7 +137,7 @@ def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alph
 
 # inlined (numba IR) where it is called: a call passing ~15 arrays costs as much as the arithmetic (a study's
 # simulations run ~0.8 → 0.4 µs per evaluation); the RK4 step calls it from one site to keep the compile short
-@njit(cache=True, fastmath=True, inline="always")
+@njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
                    n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, xd, out, gear):
     """State derivative of condition ``i`` (state ``x``, 13 quaternion or 12 Euler components) into
@@ -263,7 +263,7 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
     out[10] = CD
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
                 n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
     """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
@@ -279,7 +279,7 @@ def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, 
     return xd, out, gear
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
              n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
@@ -310,7 +310,7 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
             x[s] /= nq
 
 
-@njit(cache=True, fastmath=True)
+@njit(cache=True, error_model="numpy", fastmath=True)
 def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
                         clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
                         legs, gparams, brake_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec, stop_step,
