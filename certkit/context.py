@@ -155,7 +155,7 @@ class Context:
         return self.memo(key, lambda: solve_loading(self.aircraft, mass, x_cg, name))
 
     def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
-             configuration: str | None = None, design_limits: bool = True, throttle=None, stabilizer=None):
+             configuration: str | None = None, design_limits: bool = True, throttle=None, stabilizer=None, initial=None):
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
@@ -165,7 +165,8 @@ class Context:
         elevator at its trim setting); ``stabilizer`` (rad, deflection from the datum as in ``TrimBatch.u``, a scalar or
         one per condition) holds it there instead and solves for the elevator — a change without re-trimming, or a
         manoeuvre from a trim (a held stabiliser may lie beyond the new configuration's trim limits: those limit
-        trimming, not where the stabiliser already is).
+        trimming, not where the stabiliser already is). ``initial`` warm-starts the trims (see
+        :func:`certkit.models.dynamics.trim.trim`).
         """
         from certkit.conditions import speed_as
 
@@ -182,11 +183,13 @@ class Context:
                None if throttle is None else _hashable(throttle))
         if stabilizer is not None:
             key += ("stabilizer", _hashable(stabilizer))
+        if initial is not None:
+            key += ("initial",) + tuple((k, _hashable(v)) for k, v in sorted(initial.items()))
         return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits,
-                                                 throttle, stabilizer))
+                                                 throttle, stabilizer, initial))
 
     def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits, throttle=None,
-              stabilizer=None):
+              stabilizer=None, initial=None):
         from certkit.models.dynamics.trim import trim
         from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
 
@@ -202,7 +205,7 @@ class Context:
         st = model_stabilizer(self.aircraft, model, design_limits, config)
         return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
                     limits=control_limits(self.aircraft, design_limits, config), roles=ROLES, stabilizer=st,
-                    stabilizer_setting=None if st is None else stabilizer)
+                    stabilizer_setting=None if st is None else stabilizer, initial=initial)
 
     def modes(self, conditions):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each

@@ -6,15 +6,22 @@ batch at each step (a trim batch costs about the same for 4 rows as for 1). The 
 u = max(|δr|/δr_lim, |δa|/δa_lim) of a straight OEI trim is nearly linear in 1/V² (the asymmetric thrust
 moment over the dynamic pressure), so VMCA — the root of u − 1 — is found from 1.2 VSR by a first step
 V·√u (at most ±15 %), then a secant in s = 1/V², kept inside the bracket of speeds known above and below
-(bisection in 1/V² when the secant leaves it). Each iterate is one trim at a fixed flight-path angle: two
-probe trims at γ = −0.04 and −0.02 at the start speed give dthrottle/dγ and du/dthrottle, the usage of each
-iterate is brought to the full-throttle value by that first-order correction, and the next flight-path
-angle is the corrected one, extrapolated linearly in speed; an iterate that needs more than full thrust at
-its guessed angle is retried 0.02 rad lower (it says nothing about the controls). A row stops when its
-speed step is below ``speed_tolerance_kn`` (0.05 kn: VMCA to 0.1 kn) with |u − 1| < 0.02, or pinned at
-an end of the range. On the baseline: 7 trim batches, 0.3 s, against 12 batches of 33 speeds (3.3 s) for
-the former grid; the grid's VMCA is 0.36 kn higher because its throttle matching ends at 0.978, not 0.99
-(tests/rules/test_r25_149.py compares both, and a fine grid with the throttle on target within 0.1 kn).
+(bisection in 1/V² when the secant leaves it). Each iterate is one trim with the operating engine's throttle
+held at the rule's value and the flight-path angle solved for, started from the row's last converged trim. A
+trim that does not converge counts as usage ∞ (no straight trim: near the stall), so a row may end where
+the trim ceases to exist with the controls within their limits (stall-limited: its last trim is then the
+non-converged one). A row stops when its speed step is below ``speed_tolerance_kn`` (0.05 kn: VMCA to
+0.1 kn) with |u − 1| < 0.02, when its bracket is narrower than two steps (VMCA is then its upper end), or
+pinned at an end of the range; one still searching after ``max_iter`` steps stands at the lowest speed known
+to be controllable. On the baseline: 9 trim batches, 0.06 s once the aerodynamics is built.
+
+The former search trimmed at a guessed flight-path angle with the throttle free, corrected the usage to the
+target throttle with a slope from two probe trims, and retried 0.02 rad lower a trim whose throttle iterate
+ended on its stop. Near the stall the non-converged iterates wander and where they end changes with round-off:
+the baseline's mirror-image rows (left/right engine out) took different paths, 139.4 against 139.8 kn, and a
+usage corrected from throttle 0.83 put VMCA low on an airplane with a ±12° rudder (3° bank: 170.4 against
+198.7 kn with the throttle held; the least over the banks 170.3 against 172.6 kn). tests/rules/test_r25_149.py
+checks the mirror symmetry, the stability under a 1e-9 change of the mass, and the search against grids.
 """
 
 from __future__ import annotations
@@ -54,45 +61,45 @@ def throttle_of(res) -> float:
     return next(v for k, v in res.controls.items() if k.startswith("throttle"))
 
 
-def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start: float = 1.2, max_iter: int = 10):
+def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start: float = 1.2, max_iter: int = 16):
     """VMCA (m/s CAS) of each row (``conds[i]`` with ``engines[i]`` inoperative at bank ``banks[i]``) by the
     safeguarded secant in 1/V² of the module docstring, all rows in one trim batch per step; ``vsr`` (m/s CAS)
     per row, ``low``/``high`` the search range and ``start`` the first speed in multiples of VSR, ``tol`` the
     speed step (m/s) at which a row stops. Returns (vmca, pinned_low, pinned_high, history, last trims):
     ``pinned_low``/``pinned_high`` flag rows whose root lies beyond the range (VMCA is then that bound),
-    ``history`` per row a list of dicts (speed, usage at the target throttle, gamma, trim)."""
+    ``history`` per row a list of dicts (speed, usage, gamma, trim); the last trim of a row that ends where the
+    straight trim ceases to exist (controls within their limits above) is the non-converged one below."""
     limits = control_limits(ctx.aircraft)
     n = len(conds)
     vsr = np.asarray(vsr, dtype=float)
     v_lo, v_hi = low * vsr, high * vsr
+    warm: dict[str, np.ndarray] = {}  # per row, the start of its next trim: its last converged trim (NaN: default)
 
-    def trims(speeds, gammas):
+    def step(speeds):
         cs = [c.with_(speed=float(v), speed_kind="CAS") for c, v in zip(conds, speeds)]
-        return ctx.trim(cs, kind="oei", gamma=gammas, bank=banks, inoperative=list(engines)).results
+        res = ctx.trim(cs, kind="oei", gamma=warm.get("gamma", np.zeros(n)), bank=banks, inoperative=list(engines),
+                       throttle=np.full(n, throttle), initial={k: a.copy() for k, a in warm.items()}).results
+        for i, r in enumerate(res):
+            if r.converged:
+                for k, val in r.start().items():
+                    warm.setdefault(k, np.full(n, np.nan))[i] = val
+        return res, np.array([control_usage(r, limits) for r in res])
 
-    # two probe trims at the start speed: usage and throttle slopes per row
-    g0, g1 = -0.04, -0.02
     v = np.clip(start * vsr, v_lo, v_hi)
-    probe = [trims(v, np.full(n, g)) for g in (g0, g1)]
-    t = np.array([[throttle_of(r) for r in p] for p in probe])
-    u = np.array([[control_usage(r, limits) for r in p] for p in probe])
-    ok = np.isfinite(u).all(axis=0) & (np.abs(t[1] - t[0]) > 1e-9)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        dthr_dg = np.where(ok, (t[1] - t[0]) / (g1 - g0), np.nan)
-        du_dthr = np.where(ok, (u[1] - u[0]) / (t[1] - t[0]), 0.0)
-        gam = np.where(ok, np.clip(g1 + (throttle - t[1]) / dthr_dg, -0.3, 0.3), g1)
-    use = np.where(ok, u[1] + du_dthr * (throttle - t[1]), np.inf)
-    hist = [[{"speed": float(v[i]), "usage": float(use[i]), "gamma": float(gam[i]), "trim": probe[1][i]}] for i in range(n)]
+    res, use = step(v)
+    hist = [[{"speed": float(v[i]), "usage": float(use[i]), "gamma": res[i].gamma, "trim": res[i]}] for i in range(n)]
     below = np.where(use > 1.0, v, np.nan)    # highest speed known with usage > 1 (or no trim)
     above = np.where(use <= 1.0, v, np.nan)   # lowest speed known with usage ≤ 1
+    end_trim = {"below": [r if u > 1.0 else None for r, u in zip(res, use)],
+                "above": [r if u <= 1.0 else None for r, u in zip(res, use)]}
     prev = [None] * n
-    cur = [(v[i], use[i], gam[i]) for i in range(n)]
+    cur = [(v[i], use[i]) for i in range(n)]
     done = np.zeros(n, dtype=bool)
-    last = list(probe[1])
+    last = list(res)
     for _ in range(max_iter):
-        new, g_new = v.copy(), gam.copy()
+        new = v.copy()
         for i in np.flatnonzero(~done):
-            v1, u1, gg1 = cur[i]
+            v1, u1 = cur[i]
             lo_b = below[i] if np.isfinite(below[i]) else v_lo[i]
             hi_b = above[i] if np.isfinite(above[i]) else v_hi[i]
             cand = np.nan
@@ -105,39 +112,29 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
             if not (np.isfinite(cand) and lo_b <= cand <= hi_b):
                 cand = (0.5 * (lo_b ** -2 + hi_b ** -2)) ** -0.5   # bisection in 1/V² inside the bracket
             new[i] = cand
-            g_new[i] = gg1
-            if prev[i] is not None and abs(v1 - prev[i][0]) > 1e-9:  # γ linear in V through the last two
-                g_new[i] = gg1 + (cand - v1) * (gg1 - prev[i][2]) / (v1 - prev[i][0])
-            g_new[i] = float(np.clip(g_new[i], -0.3, 0.3))
-        res = trims(new, g_new)
+        res, use = step(new)
         for i in np.flatnonzero(~done):
-            r = res[i]
-            thr = throttle_of(r)
-            # the trim keeps its throttle iterate just below 1: at the stop it is thrust-limited
-            if not r.converged and (thr >= 1.0 - 1e-4 or any(e.control == "throttle" for e in r.limits_exceeded)):
-                # thrust-limited at the guessed flight-path angle (not a control verdict): retry lower
-                hist[i].append({"speed": float(new[i]), "usage": np.nan, "gamma": float(g_new[i]), "trim": r})
-                gam[i] = cur[i][2] - 0.02 if abs(new[i] - cur[i][0]) < 1e-9 else g_new[i] - 0.02
-                cur[i] = (cur[i][0], cur[i][1], gam[i])
-                prev[i] = None if prev[i] is None else (prev[i][0], prev[i][1], prev[i][2] - 0.02)
-                v[i] = cur[i][0]
-                continue
-            uu = control_usage(r, limits) + du_dthr[i] * (throttle - thr)
-            gg = float(np.clip(g_new[i] + (throttle - thr) / dthr_dg[i], -0.3, 0.3)) if ok[i] and r.converged else g_new[i]
-            hist[i].append({"speed": float(new[i]), "usage": float(uu), "gamma": gg, "trim": r})
-            step = abs(new[i] - cur[i][0])
-            prev[i], cur[i], last[i] = cur[i], (new[i], uu, gg), r
-            v[i], gam[i] = new[i], gg
+            r, uu = res[i], use[i]
+            hist[i].append({"speed": float(new[i]), "usage": float(uu), "gamma": r.gamma, "trim": r})
+            moved = abs(new[i] - cur[i][0])
+            prev[i], cur[i], last[i], v[i] = cur[i], (new[i], uu), r, new[i]
             if not np.isfinite(uu) or uu > 1.0:
-                below[i] = np.nanmax([below[i], new[i]])
-            else:
-                above[i] = np.nanmin([above[i], new[i]])
+                if not new[i] <= below[i]:
+                    below[i], end_trim["below"][i] = new[i], r
+            elif not new[i] >= above[i]:
+                above[i], end_trim["above"][i] = new[i], r
             at_bound = new[i] <= v_lo[i] * (1 + 1e-9) or new[i] >= v_hi[i] * (1 - 1e-9)
             bracketed = np.isfinite(below[i]) and np.isfinite(above[i]) and above[i] - below[i] < 2 * tol
-            if step < tol and (abs(uu - 1.0) < 0.02 or at_bound or bracketed):
+            if (moved < tol and (abs(uu - 1.0) < 0.02 or at_bound)) or bracketed:
                 done[i] = True
         if done.all():
             break
+    for i in range(n):
+        if np.isfinite(above[i]) and np.isfinite(below[i]) and (not done[i] or above[i] - below[i] < 2 * tol):
+            # the bracket (or, still searching, the lowest speed known to be controllable)
+            v[i], last[i] = above[i], end_trim["above"][i]
+            if not end_trim["below"][i].converged:
+                last[i] = end_trim["below"][i]   # no trim just below, the controls within limits above: stall-limited
     pinned_low = ~np.isfinite(below) & (v <= v_lo * (1 + 1e-9))
     pinned_high = ~np.isfinite(above) & (v >= v_hi * (1 - 1e-9))
     return v, pinned_low, pinned_high, hist, last

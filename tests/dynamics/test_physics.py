@@ -134,3 +134,18 @@ def test_batch_equals_single():
 
 def test_gravity_constant_is_used():
     assert G0 == pytest.approx(9.80665)
+
+
+def test_trim_warm_start():
+    """``initial``: a trim started from its own solution is a fixed point of Newton (converged in at most one step,
+    same state within 1e-9); a NaN start keeps the default start (the same iterations as without ``initial``); a key
+    that is not an unknown of the trim (``phi`` in straight flight, ``flap``) is ignored."""
+    model, h = ref.build(n=2)
+    cold = trim(model, [ref.U0, 220.0], h)
+    assert cold.converged.all() and min(r.iterations for r in cold.results) >= 2
+    start = {k: np.array([r.start()[k] for r in cold.results]) for k in cold.results[0].start()}
+    warm = trim(model, [ref.U0, 220.0], h, initial={**start, "phi": 0.3, "flap": 0.2})
+    assert warm.converged.all() and all(r.iterations <= 1 for r in warm.results)
+    assert np.allclose(warm.x, cold.x, atol=1e-9) and np.allclose(warm.u, cold.u, atol=1e-9)
+    half = trim(model, [ref.U0, 220.0], h, initial={k: np.array([np.nan, v[1]]) for k, v in start.items()})
+    assert half.results[0].iterations == cold.results[0].iterations and half.results[1].iterations <= 1

@@ -102,6 +102,12 @@ class TrimResult:
     def ok(self) -> bool:
         return self.converged and not self.limits_exceeded
 
+    def start(self) -> dict[str, float]:
+        """This trim as the warm start (``initial``) of a nearby one: α, β, the controls and the throttle."""
+        thr = [v for k, v in self.controls.items() if k.startswith("throttle")]
+        return {"alpha": self.alpha, "beta": self.beta, **{k: v for k, v in self.controls.items() if not k.startswith("throttle")},
+                **({"throttle": thr[0]} if thr else {})}
+
     def summary(self) -> str:
         d = np.degrees
         s = (f"[{self.index}] {self.kind} {'converged' if self.converged else 'NOT converged'} "
@@ -183,7 +189,8 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
            controls: Mapping[str, float | np.ndarray] | None = None,
            limits: Mapping[str, tuple[float, float]] | None = None,
            roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-           tol: float = 1e-9, max_iter: int = 40, throttle=None) -> TrimBatch:
+           tol: float = 1e-9, max_iter: int = 40, throttle=None,
+           initial: Mapping[str, float | np.ndarray] | None = None) -> TrimBatch:
     """The trim of :func:`trim` with the given pitch, roll and yaw controls (no stabiliser logic)."""
     if kind not in KINDS:
         raise ValueError(f"unknown trim kind {kind!r}; one of {KINDS}")
@@ -232,6 +239,12 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
             z[:, j] = gamma
         elif name == "beta":
             z[:, j] = beta_in if kind == "sideslip" else 0.0
+
+    for key, val in (initial or {}).items():  # warm start: an unknown by its name or its control's, NaN keeps the default
+        col = [j for j, name in enumerate(unknowns) if key == name or key == roles.get(name)]
+        if col:
+            v = bc(val)
+            z[:, col[0]] = np.where(np.isfinite(v), v, z[:, col[0]])
 
     j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
     fixed = {"beta": beta_in if kind == "sideslip" else np.zeros(n), "phi": bank if kind in ("turn", "oei") else np.zeros(n),
@@ -366,7 +379,7 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
          limits: Mapping[str, tuple[float, float]] | None = None,
          roles: Mapping[str, str] | None = None, initial_alpha=0.05,
          tol: float = 1e-9, max_iter: int = 40, throttle=None, stabilizer: StabilizerTrim | None = None,
-         stabilizer_setting=None) -> TrimBatch:
+         stabilizer_setting=None, initial: Mapping[str, float | np.ndarray] | None = None) -> TrimBatch:
     """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
     ``h`` (m); scalars or (n,) arrays.
 
@@ -381,9 +394,15 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     its result says so (``stabilizer_at_stop``, ``stabilizer_required``). ``stabilizer_setting`` (deflections, one
     per condition or a scalar) holds the stabiliser where it was trimmed — a manoeuvre or a change "without
     re-trimming" — and the elevator is solved for. Without ``stabilizer`` this is the plain trim.
+
+    ``initial`` warm-starts the Newton iteration: values (scalars or one per condition, NaN for the default) keyed by
+    unknown (``alpha``, ``beta``, ``phi``, ``turn_rate``, ``throttle``, ``gamma``) or by control name (``rudder``, …);
+    keys that are not unknowns of this trim are ignored. The default start is β = 0, α = ``initial_alpha``, the
+    role controls 0 and the throttle 0.5 — far from a trim near the stall or the control limits, where Newton from
+    there may fail or land on another solution; a nearby converged trim is the better start.
     """
     plain = dict(kind=kind, gamma=gamma, bank=bank, beta=beta, limits=limits, initial_alpha=initial_alpha, tol=tol,
-                 max_iter=max_iter, throttle=throttle)
+                 max_iter=max_iter, throttle=throttle, initial=initial)
     if stabilizer is None:
         return _solve(model, V, h, controls=controls, roles=roles, **plain)
     n = model.n
@@ -407,6 +426,8 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
         for key in ("gamma", "bank", "beta", "throttle"):
             if plain[key] is not None:
                 sub[key] = bc(plain[key])[over]
+        if initial is not None:
+            sub["initial"] = {k: bc(v)[over] for k, v in initial.items()}
         again = dict(controls or {})
         for k, v in again.items():
             again[k] = bc(v)[over]
