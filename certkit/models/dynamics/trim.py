@@ -185,6 +185,10 @@ def _assemble(V, h, alpha, beta, phi, gamma, turn_rate, psi, x):
         x[i, 11] = psi[i]
 
 
+#: Newton's progress test (numerical choice; see :func:`_solve`)
+SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
+
+
 def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
            controls: Mapping[str, float | np.ndarray] | None = None,
            limits: Mapping[str, tuple[float, float]] | None = None,
@@ -288,6 +292,7 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
     r = residual(z, everyone)
     scale = np.where(np.array(equations) < 3, 1.0 / model.g, 1.0)
     rnorm = np.max(np.abs(r * scale), axis=1)
+    checkpoint = rnorm.copy()
     for _ in range(max_iter):
         # a condition leaves the iteration when converged, or after three Newton steps that could not
         # reduce its residual even when cut 64-fold (a limit or a non-trimmable condition)
@@ -324,6 +329,11 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
         stalls[idx] = np.where(bad, stalls[idx] + 1, 0)
         z[idx], r[idx] = z_try, r_try
         rnorm[idx] = np.where(np.isfinite(rn_try), rn_try, np.inf)
+        # after 2 SLOW_WINDOW iterations, a condition whose residual fell less than SLOW_FACTOR-fold over its last
+        # SLOW_WINDOW iterations is not converging (a limit, a non-trimmable condition): it leaves like a stalled one
+        due = idx[(iters[idx] % SLOW_WINDOW == 0) & (iters[idx] > SLOW_WINDOW)]
+        stalls[due[~(rnorm[due] * SLOW_FACTOR < checkpoint[due])]] = 3
+        checkpoint[due] = rnorm[due]
 
     x, u, vals = unpack(z)
     if unsolved:  # a model without (say) a pitch control trims only where that moment is zero by itself
