@@ -31,13 +31,20 @@ def critical_engine(ctx) -> str:
     return min(engines, key=lambda e: (-abs(e.position.y), e.position.y)).name
 
 
+def altitude_speed_mach(conds):
+    """(pressure altitude (m), TAS (m/s), Mach) per condition: the standard day's TAS and speed of sound, so the
+    Mach number of the condition's CAS on any day (what the engine models take)."""
+    h = np.array([c.altitude or 0.0 for c in conds])
+    tas = np.array([speed_as(c, "TAS") for c in conds])
+    return h, tas, tas / speed_of_sound(h)
+
+
 def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, inoperative: str | None = None):
     """Total thrust (N) of the operating engines at ``throttle`` × ``fraction`` per condition (its altitude
     and Mach), kept just inside the throttle range so that a trim can reach it."""
     thrust, _ = thrust_function(ctx.aircraft)
     live = [e for e in ctx.aircraft.propulsion.engines if e.name != inoperative]
-    h = np.array([c.altitude or 0.0 for c in conds])
-    mach = np.array([speed_as(c, "TAS") for c in conds]) / speed_of_sound(h)
+    h, _, mach = altitude_speed_mach(conds)
     per_engine = lambda t: np.asarray(thrust(np.full_like(h, t), h, mach), dtype=float)  # noqa: E731
     lo, hi = per_engine(_THROTTLE_INSIDE), per_engine(1.0 - _THROTTLE_INSIDE)
     return len(live) * np.clip(fraction * per_engine(throttle), lo, hi)
@@ -60,8 +67,7 @@ def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, 
     aim = np.broadcast_to(np.asarray(thrust_aim, dtype=float), (n,)).copy()
     bank = np.broadcast_to(np.asarray(bank, dtype=float), (n,)).copy()
     thrust, _ = thrust_function(ctx.aircraft)
-    h = np.array([c.altitude or 0.0 for c in conds])
-    mach = np.array([speed_as(c, "TAS") for c in conds]) / speed_of_sound(h)
+    h, _, mach = altitude_speed_mach(conds)
     throttle = throttle_for_thrust(thrust, aim / len(live), h, mach)
     batch = ctx.trim(conds, kind=kind, bank=bank, throttle=throttle, inoperative=inoperative, stabilizer=held)
     needed = np.array([sum(r.thrust[e] for e in live) for r in batch.results])
@@ -73,9 +79,7 @@ def full_thrust(ctx, conds):
     """(pressure altitude, TAS, Mach, full thrust of one engine (N), thrust model) per condition: the engine model's
     throttle 1, scaled on an off-standard day (``delta_isa_K``) by the flat-rated temperature lapse."""
     thrust, source = thrust_function(ctx.aircraft)
-    h = np.array([c.altitude or 0.0 for c in conds])
-    tas = np.array([speed_as(c, "TAS") for c in conds])
-    mach = tas / speed_of_sound(h)  # the standard day's TAS and sound speed: the Mach number of the CAS on any day
+    h, tas, mach = altitude_speed_mach(conds)
     full = np.asarray(thrust(np.ones_like(h), h, mach), dtype=float)
     delta_isa = np.array([c.get("delta_isa_K", 0.0) for c in conds], dtype=float)
     if np.any(delta_isa):

@@ -88,7 +88,7 @@ def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):
     (max limit, max ultimate, min limit, min ultimate) of the first smallest normalised margin and its load, or
     (−1, −1, 0) when no capability is loaded."""
     first_i = first_j = best_i = best_j = -1
-    best = np.inf
+    best, first_load, best_load = np.inf, 0.0, 0.0
     for i in range(q.shape[0]):
         hi, lo = peaks[1, q[i], s[i]], peaks[0, q[i], s[i]]
         for j in range(4):
@@ -98,17 +98,14 @@ def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):
             load = abs(value) * ultimate_factor if j % 2 else abs(value)
             norm = (allow[i, j] - load) * inv_scale[i, j]
             if first_i < 0:
-                first_i, first_j = i, j
+                first_i, first_j, first_load = i, j, load
                 if np.isnan(norm):  # a NaN first in the order stays
                     return i, j, load
             if norm < best:  # the first smallest; a NaN after a number never wins
-                best, best_i, best_j = norm, i, j
-    if first_i < 0:
-        return -1, -1, 0.0
-    if best_i < 0:  # every margin after the first NaN or infinite: the first stays
-        best_i, best_j = first_i, first_j
-    value = peaks[1, q[best_i], s[best_i]] if best_j < 2 else peaks[0, q[best_i], s[best_i]]
-    return best_i, best_j, abs(value) * ultimate_factor if best_j % 2 else abs(value)
+                best, best_i, best_j, best_load = norm, i, j, load
+    if best_i < 0:  # none loaded (−1, −1, 0), or every margin infinite: the first stays
+        return first_i, first_j, first_load
+    return best_i, best_j, best_load
 
 
 def declared_capabilities(ctx, surface: str) -> list[Capability]:
