@@ -91,7 +91,8 @@ def _isa(h, which: int) -> np.ndarray:
 def temperature(h, delta_isa=0.0):
     """Ambient temperature (K) at (pressure) altitude h on a day ISA + ``delta_isa`` (K)."""
     t = _isa(h, 0)
-    return t + delta_isa if np.any(delta_isa) else t
+    off_standard = delta_isa != 0.0 if isinstance(delta_isa, (int, float)) else np.any(delta_isa)
+    return t + delta_isa if off_standard else t
 
 
 def pressure(h):

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -205,5 +206,11 @@ class ConditionSpace:
 
 def speed_as(condition: Condition, kind: str) -> float:
     """The condition's speed converted to ``kind`` at the condition's altitude (sea level if none)."""
-    h = condition.altitude or 0.0
-    return float(from_tas(to_tas(condition.speed, condition.speed_kind, h), kind, h))
+    return _converted(float(condition.speed), condition.speed_kind, float(condition.altitude or 0.0), kind)
+
+
+@lru_cache(maxsize=16384)
+def _converted(speed: float, from_kind: str, h: float, kind: str) -> float:
+    """One speed conversion, remembered: the rules convert the same few hundred speeds thousands of times per
+    evaluation (a pure function of its arguments, so the cache returns exactly what the conversion would)."""
+    return float(from_tas(to_tas(speed, from_kind, h), kind, h))

@@ -94,21 +94,27 @@ def tank_groups(tanks) -> list[list]:
     return list(groups.values())
 
 
-def _fuel_items(aircraft, fuel: float) -> list[MassComponent]:
-    """Fuel in the tank groups in declared order (each group filled before the next, its tanks in
-    proportion to their capacity); a point mass per tank."""
-    items, left = [], fuel
-    for group in tank_groups(aircraft.mass.fuel_tanks):
+def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
+    """(tank, kg) of ``fuel`` in the tank ``groups`` (:func:`tank_groups`) in declared order (each group filled before
+    the next, its tanks in proportion to their capacity); tanks left empty are omitted."""
+    shares, left = [], fuel
+    for group in groups:
         capacity = sum(t.capacity for t in group)
         load = min(left, capacity)
         for t in group:
             share = load * t.capacity / capacity
             if share > 0:
-                items.append(_item(f"fuel: {t.name}", share, t.cg.x, t.cg.y, t.cg.z))
+                shares.append((t, share))
         left -= load
     if left > 1e-6 * max(fuel, 1.0):
         raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
-    return items
+    return shares
+
+
+def _fuel_items(aircraft, fuel: float, groups=None) -> list[MassComponent]:
+    """The fuel of :func:`_fuel_shares` as a point mass per tank."""
+    groups = tank_groups(aircraft.mass.fuel_tanks) if groups is None else groups
+    return [_item(f"fuel: {t.name}", share, t.cg.x, t.cg.y, t.cg.z) for t, share in _fuel_shares(groups, fuel)]
 
 
 @dataclass(frozen=True)
@@ -213,23 +219,23 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
     best = None
     payloads = np.linspace(p_max, p_min, samples)
     ranges = zip(*_payload_cg_ranges(zones, payloads))
+    groups = tank_groups(m.fuel_tanks)
     for payload, (lo, hi) in zip(payloads, ranges):
         fuel = useful - payload
-        fuel_items = _fuel_items(aircraft, fuel)
-        rest = mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)
+        rest = mass * x_cg - oew_moment - sum(float(share) * float(t.cg.x) for t, share in _fuel_shares(groups, fuel))
         if payload <= 1e-9:
             if abs(rest) <= 1e-6 * mass * max(x_cg, 1.0):
-                best = (payload, fuel_items, [])
+                best = (fuel, [])
                 break
             continue
         x_needed = rest / payload
         if lo - 1e-9 <= x_needed <= hi + 1e-9:
-            best = (payload, fuel_items, _payload_items(zones, payload, x_needed))
+            best = (fuel, _payload_items(zones, payload, x_needed))
             break
     if best is None:
         return _fallback_loading(aircraft, mass, x_cg, name, empty, notes, useful - p_max)
-    payload, fuel_items, payload_items = best
-    return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes)
+    fuel, payload_items = best
+    return _assemble(aircraft, name, mass, x_cg, empty, _fuel_items(aircraft, fuel, groups), payload_items, notes)
 
 
 def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes) -> Loading:
