@@ -30,8 +30,23 @@ from certkit.models.dynamics.kernel import OUTPUTS
 class Schedule:
     """A control increment as a function of time, vectorised over conditions."""
 
+    #: can :meth:`__call__` take a grid of times (nt, 1) or (nt, n) and give every step's values at once (the same
+    #: element-wise arithmetic as one step at a time)? Schedules written with Python branches on ``t`` cannot.
+    time_grid = True
+
     def __call__(self, t: float) -> np.ndarray | float:  # pragma: no cover - abstract
         raise NotImplementedError
+
+    def over(self, times: np.ndarray) -> np.ndarray:
+        """The increments at every time of ``times`` ((nt, 1), or (nt, n) with a time step per condition), (nt, n)
+        or broadcastable to it."""
+        if self.time_grid:
+            return self(times)
+        vals = [np.asarray(self(t[0] if t.shape[0] == 1 else t), dtype=float) for t in times]  # one step at a time
+        out = np.empty((len(vals),) + np.broadcast_shapes(*(v.shape for v in vals)))
+        for k, v in enumerate(vals):
+            out[k] = v
+        return out.reshape(len(vals), -1)
 
     def __add__(self, other: "Schedule") -> "Schedule":
         return _Sum(self, other)
@@ -44,6 +59,9 @@ class _Sum(Schedule):
 
     def __call__(self, t):
         return self.a(t) + self.b(t)
+
+    def over(self, times):
+        return self.a.over(times) + self.b.over(times)
 
 
 @dataclass
@@ -82,6 +100,7 @@ class Ramp(Schedule):
 class Doublet(Schedule):
     """+amplitude for ``width`` seconds from t0, then −amplitude for ``width``, then 0."""
 
+    time_grid = False
     t0: float
     width: float
     amplitude: float | np.ndarray
@@ -97,6 +116,7 @@ class Doublet(Schedule):
 
 @dataclass
 class Pulse(Schedule):
+    time_grid = False
     t0: float
     width: float
     amplitude: float | np.ndarray
@@ -153,10 +173,12 @@ class RudderKick(Schedule):
 
 
 class Function(Schedule):
-    """Any function f(t) → (n,) array as a schedule."""
+    """Any function f(t) → (n,) array as a schedule; ``time_grid``: f also takes a grid of times (see
+    :attr:`Schedule.time_grid`)."""
 
-    def __init__(self, f: Callable[[float], np.ndarray]):
+    def __init__(self, f: Callable[[float], np.ndarray], time_grid: bool = False):
         self.f = f
+        self.time_grid = time_grid
 
     def __call__(self, t):
         return self.f(t)
@@ -279,10 +301,11 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     if not (controllers or lim) and all(isinstance(c, Bound) for c in stop) and model.runs_open_loop_compiled:
         # every step's controls known, the stop criteria bounds: one compiled run
         U_all = np.empty((nsteps + 1, n, len(names)))
-        for k in range(nsteps + 1):
-            U_all[k] = u_trim
-            for j, s in sched:
-                U_all[k, :, j] += s(k * dt)
+        U_all[:] = u_trim
+        steps = np.arange(nsteps + 1)
+        times = steps[:, None] * dt[None, :] if per_row else (steps * dt)[:, None]  # each step's k·dt
+        for j, s in sched:
+            U_all[:, :, j] += s.over(times)
         x = np.ascontiguousarray(x)
         bounds = [c.arrays(n) for c in stop]
         stops = (np.array([b[0] for b in bounds], dtype=np.int64), np.array([b[1] for b in bounds]).reshape(len(stop), n),

@@ -100,7 +100,8 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     def tail(t):
         return one_minus_cosine(v * (t - lag), H, a)
 
-    parts, sim, dt = two_phase_run(gb.model, gb.x0, gb.u0, H, v, lag, {"gust_wing": Function(wing), "gust_tail": Function(tail)},
+    gusts = {"gust_wing": Function(wing, time_grid=True), "gust_tail": Function(tail, time_grid=True)}
+    parts, sim, dt = two_phase_run(gb.model, gb.x0, gb.u0, H, v, lag, gusts,
                                    steps_per_gust, settle, max_step, settle_step)
     t = _per_condition(sim.t)
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}

@@ -70,7 +70,7 @@ def simulate_lateral_gust(loads, lb: LateralGustBatch, H: float, beta_peak, step
     a = np.asarray(beta_peak, dtype=float) * np.ones(lb.x0.shape[0])
     v = lb.v_tas
     parts, sim, _ = two_phase_run(lb.model, lb.x0, lb.u0, H, v, np.zeros_like(v),
-                                  {CONTROL: Function(lambda t: one_minus_cosine(v * t, H, a))}, steps_per_gust, settle,
+                                  {CONTROL: Function(lambda t: one_minus_cosine(v * t, H, a), time_grid=True)}, steps_per_gust, settle,
                                   max_step, settle_step)
     hist = []
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
