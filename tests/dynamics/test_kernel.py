@@ -123,3 +123,20 @@ def test_declared_clmax_is_the_peak_of_the_lift_curve():
         assert cl.max() == pytest.approx(clmax, abs=1e-3)
         assert cl[-1] < 0.9 * clmax  # lift falls after the break
         assert float(m.clmax(mach)) == clmax
+
+
+def test_a_copy_with_further_controls_keeps_the_calibrated_clmax():
+    """A copy with more control terms (a gust pseudo-control) skips the CLmax calibration: it must hold exactly what
+    calibrating it afresh gives (controls neutral see only the base terms)."""
+    from certkit.models.aero.interface import AeroReference
+
+    ref_ = AeroReference(400.0, 60.0, 7.0, 30.0)
+    terms = {"CL0": 0.2, "CL_alpha": [5.5, 6.0, 7.5], "CD0": 0.02, "k": 0.04, "CL_flap": 0.8}
+    m = StabilityDerivativeModel(ref_, terms, mach=[0.2, 0.5, 0.8], stall=StallModel(CLmax=[1.5, 1.45, 1.3]))
+    copy = m.with_control_terms({"CL_gust": [4.0, 4.5, 5.0]}, after_stall=("gust",))
+    fresh = StabilityDerivativeModel(ref_, {**terms, "CL_gust": [4.0, 4.5, 5.0]}, mach=[0.2, 0.5, 0.8],
+                                     stall=StallModel(CLmax=[1.5, 1.45, 1.3]), after_stall=("gust",))
+    np.testing.assert_array_equal(copy.kernel_data[2], fresh.kernel_data[2])
+    assert not np.array_equal(copy.kernel_data[2], [1.5, 1.45, 1.3])  # calibrated above the declared values
+    alpha = np.radians(np.arange(0.0, 30.0, 0.01))
+    assert copy.coefficients(AeroState(alpha=alpha, mach=0.5)).CL.max() == pytest.approx(1.45, abs=1e-3)

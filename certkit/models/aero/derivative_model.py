@@ -96,6 +96,8 @@ class StabilityDerivativeModel:
     tail_downwash : optional :class:`~certkit.models.aero.tail_downwash.FreeAirDownwash`, the free-air downwash at
         the horizontal tail the table's pitching moment holds; the equations of motion reduce it near the runway
         (:mod:`certkit.models.aero.tail_ground_effect`). None: no ground effect at the tail.
+    calibrated_clmax : optional, the internal CLmax of a model with the same base terms and stall model, already
+        calibrated (a copy with further control terms); None: calibrated here.
     """
 
     def __init__(
@@ -108,6 +110,7 @@ class StabilityDerivativeModel:
         after_stall: Sequence[str] = (),
         alpha_drag: bool | None = None,
         tail_downwash=None,
+        calibrated_clmax: np.ndarray | None = None,
     ) -> None:
         self.reference = reference
         self.tail_downwash = tail_downwash
@@ -163,7 +166,9 @@ class StabilityDerivativeModel:
                             bool(self.uses_alpha_drag),
                             np.array([c in self.after_stall for c in self.control_names], dtype=np.bool_))
         self._clmax_declared = self._clmax.copy()
-        if stall is not None:
+        if stall is not None and calibrated_clmax is not None:  # a copy with other controls: the same calibration
+            self._clmax[:] = calibrated_clmax
+        elif stall is not None:
             self._calibrate_clmax()
 
     def _calibrate_clmax(self, iterations: int = 6) -> None:
@@ -266,6 +271,8 @@ class StabilityDerivativeModel:
                 names.append(ctrl)
         derivs = self._nonzero_terms()
         derivs.update(terms)
+        # the CLmax calibration (controls neutral) sees only the base terms: unchanged, it is this model's
         return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=names, stall=self.stall,
                                         after_stall=tuple(self.after_stall) + tuple(after_stall),
-                                        alpha_drag=self.uses_alpha_drag, tail_downwash=self.tail_downwash)
+                                        alpha_drag=self.uses_alpha_drag, tail_downwash=self.tail_downwash,
+                                        calibrated_clmax=self._clmax)

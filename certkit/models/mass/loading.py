@@ -19,6 +19,7 @@ tensor with constant radii of gyration (I ∝ m), which the result states in its
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import numpy as np
 
@@ -127,11 +128,18 @@ class _Bay:
 
 def bays(zones, per_zone: int = 10) -> list[_Bay]:
     """Each payload zone split into ``per_zone`` equal bays, so that a fill order can load forward or aft."""
+    return list(_bays(tuple((z.name, z.capacity, z.x_start, z.x_end) for z in zones), per_zone))
+
+
+@lru_cache(maxsize=64)
+def _bays(zones: tuple, per_zone: int) -> tuple[_Bay, ...]:
+    """:func:`bays` of zones given as (name, capacity, x_start, x_end), remembered (every loading of every design
+    splits the same declared zones)."""
     out = []
-    for z in zones:
-        edges = np.linspace(z.x_start, z.x_end, per_zone + 1)
-        out += [_Bay(z.name, z.capacity / per_zone, a, b) for a, b in zip(edges[:-1], edges[1:])]
-    return out
+    for name, capacity, x_start, x_end in zones:
+        edges = np.linspace(x_start, x_end, per_zone + 1)
+        out += [_Bay(name, capacity / per_zone, a, b) for a, b in zip(edges[:-1], edges[1:])]
+    return tuple(out)
 
 
 def _payload_fill(zones, payload: float, forward_first: bool) -> list[tuple[object, float]]:
