@@ -286,7 +286,7 @@ def failed_engine_force(running, dead, fraction):
     return dead + fraction * (running - dead)
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=False)
 def failed_engine_forces(thrust, dead, operative, fraction):
     """:func:`failed_engine_force` in place of the running thrust (n, ne) of the engines not ``operative``."""
     for i in range(thrust.shape[0]):

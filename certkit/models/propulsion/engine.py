@@ -239,7 +239,7 @@ def windmill_drag_one(qbar, mach, params):
     return qbar * (params[0] + 2.0 / (1.0 + 0.16 * mach * mach) * params[1] * r * (1.0 - r))
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=False)  # explicit: not inherited from a fastmath caller
 def _windmill_drag_rows(qbar, mach, params):
     out = np.empty(qbar.shape[0])
     for i in range(qbar.shape[0]):
