@@ -48,6 +48,7 @@ import numpy as np
 from certkit.models.aero.ground_effect import induced_drag_factor_table
 from certkit.models.aero.interface import AeroModel, AeroState
 from certkit.models.dynamics import kernel
+from certkit.models.propulsion.engine import WindmillDrag
 from certkit.units import G0
 
 QUAT_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "q0", "q1", "q2", "q3")
@@ -88,6 +89,18 @@ def _shared_thrust(engines) -> Callable | None:
     except (ValueError, TypeError):  # objects whose equality is not a single truth value (array fields)
         return None
     return fns[0] if same else None
+
+
+def _windmill_parameters(engines) -> np.ndarray | None:
+    """(n_engines, 3) windmilling-drag parameters of compiled code (NaN rows: no drag), None when an engine's drag
+    is not a :class:`~certkit.models.propulsion.engine.WindmillDrag`."""
+    out = np.full((len(engines), 3), np.nan)
+    for j, e in enumerate(engines):
+        if isinstance(e.windmill_drag, WindmillDrag):
+            out[j] = e.windmill_drag.kernel_parameters()
+        elif e.windmill_drag is not None:
+            return None
+    return out
 
 
 @dataclass
@@ -269,6 +282,7 @@ class AircraftModel:
         self._thrust_rows = getattr(engine_model, "thrust_rows", None)
         #: the engines' parameters for a compiled run (:meth:`open_loop_run`), when their model provides them
         self._turbofan = engine_model.kernel_parameters() if hasattr(engine_model, "kernel_parameters") else None
+        self._windmill = _windmill_parameters(self.engines)
         ad = getattr(aero, "alpha_dot_derivatives", None)
         self._alpha_dot = ad if callable(ad) else None
         self._pack()
@@ -359,14 +373,17 @@ class AircraftModel:
             thrust = self._thrust_rows(thr, hc, mach)
         elif self._shared_thrust is not None:  # identical engines: one call for all, row by row as the throttles
             thrust[:] = self._shared_thrust(thr.reshape(-1), np.repeat(hc, ne), np.repeat(mach, ne)).reshape(n, ne)
-        for j, eng in enumerate(self.engines):  # else one call per engine, on arrays of one shape (no broadcasting)
-            if self._shared_thrust is None:
+        if self._shared_thrust is None:  # else one call per engine, on arrays of one shape (no broadcasting)
+            for j, eng in enumerate(self.engines):
                 thrust[:, j] = eng.thrust(thr[:, j], hc, mach)
-            if not self._all_operative[j]:
-                dead = -eng.windmill_drag(qbar, mach) if eng.windmill_drag is not None else 0.0
-                op = self.operative[:, j] if rows is None else self.operative[rows, j]
-                frac = self.failed_thrust_fraction[:, j] if rows is None else self.failed_thrust_fraction[rows, j]
-                thrust[:, j] = np.where(op, thrust[:, j], dead + frac * (thrust[:, j] - dead))
+        if not self._all_operative.all():
+            dead = np.zeros((n, ne))
+            for j, eng in enumerate(self.engines):
+                if not self._all_operative[j] and eng.windmill_drag is not None:
+                    dead[:, j] = -eng.windmill_drag(qbar, mach)
+            op = self.operative if rows is None else self.operative[rows]
+            frac = self.failed_thrust_fraction if rows is None else self.failed_thrust_fraction[rows]
+            kernel.failed_engine_forces(thrust, dead, op, np.ascontiguousarray(frac, dtype=float))
         return thrust
 
     def _coefficients(self, X, air, controls) -> np.ndarray:
@@ -401,12 +418,23 @@ class AircraftModel:
         air = None
         if thrust is None or not self._use_table:
             air = kernel.air_data(X)
-        if thrust is None:
+        if thrust is None and self.thrust_compiled:
+            thrust = kernel.engine_forces(air, U, idx, self._turbofan, self.throttle_slice.start, self.operative,
+                                          np.ascontiguousarray(self.failed_thrust_fraction, dtype=float), self._windmill)
+        elif thrust is None:
             thrust = self.thrust_forces(air, U, rows)
         thrust = np.ascontiguousarray(thrust, dtype=float)
         xd, out, gear = kernel.derivatives(X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U),
                                            *self._kernel_args)
         return xd, out, gear, thrust
+
+    @property
+    def thrust_compiled(self) -> bool:
+        """Does :meth:`evaluate` compute the thrust in compiled code (:func:`kernel.engine_forces`, the arithmetic of
+        :meth:`thrust_forces` bit for bit): derivative-table aerodynamics, one parametric engine model for every
+        engine, failed engines windmilling by :class:`~certkit.models.propulsion.engine.WindmillDrag` (or without
+        drag)."""
+        return bool(self._use_table and self._turbofan is not None and self._windmill is not None)
 
     @property
     def runs_open_loop_compiled(self) -> bool:

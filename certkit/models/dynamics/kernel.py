@@ -15,7 +15,7 @@ Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_
                     coefficients are given per condition in ``coef`` (n, 8), computed in Python by a
                     model that is not a derivative table)
     r_eng (n, ne, 3), d_eng (ne, 3); thrust (n, ne) N along each thrust line, from Python (engines are
-                    Python models); held over an RK4 step like the controls
+                    Python models) or, for the parametric turbofan, from :func:`engine_forces`; held over an RK4 step like the controls
     ground          has_ground, r_gear (n, nl, 3), legs (nl, 5) = stiffness, damping, rolling and side
                     friction, braked; gparams = runway elevation, brake friction, slip speed, then the
                     ground effect's wing (:meth:`~certkit.models.dynamics.eom.AircraftModel._ground_effect_params`:
@@ -40,7 +40,7 @@ from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import _row, coefficients_one, mach_weights
 from certkit.models.aero.ground_effect import H_OVER_B_MAX, N_TABLE, induced_drag_factor_at, lift_ratio
 from certkit.models.aero.tail_ground_effect import downwash_ratio_one
-from certkit.models.propulsion.engine import turbofan_row_thrust
+from certkit.models.propulsion.engine import turbofan_row_thrust, windmill_drag_one
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
 AIR = ("h_clipped", "V", "alpha", "beta", "mach", "qbar")
@@ -277,6 +277,44 @@ def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, 
                        after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
                        xd[i], out[i], gear[i])
     return xd, out, gear
+
+
+@njit(cache=True, inline="always")
+def failed_engine_force(running, dead, fraction):
+    """Force of a failed engine: its windmilling force ``dead`` (minus the drag) plus ``fraction`` of the difference
+    to its ``running`` thrust (a spool-down; 0: windmilling at once)."""
+    return dead + fraction * (running - dead)
+
+
+@njit(cache=True, fastmath=False)
+def failed_engine_forces(thrust, dead, operative, fraction):
+    """:func:`failed_engine_force` in place of the running thrust (n, ne) of the engines not ``operative``."""
+    for i in range(thrust.shape[0]):
+        for j in range(thrust.shape[1]):
+            if not operative[i, j]:
+                thrust[i, j] = failed_engine_force(thrust[i, j], dead[i, j], fraction[i, j])
+
+
+# fastmath off, explicitly (a callee inherits its caller's unless set): the thrust bit for bit as the engine models
+# give it in Python (AircraftModel.thrust_forces)
+@njit(cache=True, fastmath=False)
+def engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, windmill):
+    """Force of each engine along its thrust line (n, ne), N, from the air data (:data:`AIR` columns) and the controls
+    of each row, row i of condition ``rows[i]``: the parametric turbofan ``turbofan``
+    (:meth:`~certkit.models.propulsion.engine.ParametricTurbofan.kernel_parameters`) at the clipped altitude and Mach;
+    a failed engine (``operative`` False) by :func:`failed_engine_force` (``fraction`` (n, ne)) with its windmilling
+    drag (``windmill`` row: :meth:`~certkit.models.propulsion.engine.WindmillDrag.kernel_parameters`, NaN: none)."""
+    n, ne = air.shape[0], operative.shape[1]
+    thrust = np.empty((n, ne))
+    for i in range(n):
+        hc, mach, qbar, c = air[i, 0], air[i, 4], air[i, 5], rows[i]
+        turbofan_row_thrust(hc, mach, U[i, throttle_start:throttle_start + ne], turbofan[0], turbofan[1], turbofan[2],
+                            thrust[i])
+        for j in range(ne):
+            if not operative[c, j]:
+                dead = 0.0 if math.isnan(windmill[j, 0]) else -windmill_drag_one(qbar, mach, windmill[j])
+                thrust[i, j] = failed_engine_force(thrust[i, j], dead, fraction[c, j])
+    return thrust
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)

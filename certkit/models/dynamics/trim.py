@@ -165,25 +165,178 @@ def assemble_state(V, h, alpha, beta, phi, gamma, turn_rate, psi=0.0):
 @njit(cache=True, fastmath=False)
 def _assemble(V, h, alpha, beta, phi, gamma, turn_rate, psi, x):
     for i in range(x.shape[0]):
-        ca, sa, cb, sb = math.cos(alpha[i]), math.sin(alpha[i]), math.cos(beta[i]), math.sin(beta[i])
-        cp, sp, sg = math.cos(phi[i]), math.sin(phi[i]), math.sin(gamma[i])
-        a = ca * cb
-        b = sp * sb + cp * sa * cb
-        theta = math.atan2(a * b + sg * math.sqrt(max(a * a - sg * sg + b * b, 0.0)), a * a - sg * sg)
-        st, ct = math.sin(theta), math.cos(theta)
-        x[i, 0] = 0.0
-        x[i, 1] = 0.0
-        x[i, 2] = h[i]
-        x[i, 3] = V[i] * ca * cb
-        x[i, 4] = V[i] * sb
-        x[i, 5] = V[i] * sa * cb
-        x[i, 6] = -turn_rate[i] * st
-        x[i, 7] = turn_rate[i] * sp * ct
-        x[i, 8] = turn_rate[i] * cp * ct
-        x[i, 9] = phi[i]
-        x[i, 10] = theta
-        x[i, 11] = psi[i]
+        _state_row(V[i], h[i], alpha[i], beta[i], phi[i], gamma[i], turn_rate[i], psi[i], x[i])
 
+
+@njit(cache=True, fastmath=False, inline="always")
+def _state_row(V, h, alpha, beta, phi, gamma, turn_rate, psi, x):
+    """One row of :func:`assemble_state`."""
+    ca, sa, cb, sb = math.cos(alpha), math.sin(alpha), math.cos(beta), math.sin(beta)
+    cp, sp, sg = math.cos(phi), math.sin(phi), math.sin(gamma)
+    a = ca * cb
+    b = sp * sb + cp * sa * cb
+    theta = math.atan2(a * b + sg * math.sqrt(max(a * a - sg * sg + b * b, 0.0)), a * a - sg * sg)
+    st, ct = math.sin(theta), math.cos(theta)
+    x[0] = 0.0
+    x[1] = 0.0
+    x[2] = h
+    x[3] = V * ca * cb
+    x[4] = V * sb
+    x[5] = V * sa * cb
+    x[6] = -turn_rate * st
+    x[7] = turn_rate * sp * ct
+    x[8] = turn_rate * cp * ct
+    x[9] = phi
+    x[10] = theta
+    x[11] = psi
+
+
+@njit(cache=True, fastmath=False)
+def _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, throttles):
+    """Euler states (m, 12) and controls (m, n_controls) of the Newton iterates ``z`` (m, k) of conditions ``rows``.
+    α is z[:, 0]; β, φ, ψ̇, γ (``sources``) come from the column of z given there, or from ``given`` (n, 4) where it
+    is −1; the controls are ``u0`` with the columns ``control_cols`` (control, column of z) replaced, and the
+    throttles (``throttles`` = first, count) set to ``throttle_col`` of z (−1: none)."""
+    m = z.shape[0]
+    X = np.empty((m, 12))
+    U = np.empty((m, u0.shape[1]))
+    vals = np.empty(4)
+    for i in range(m):
+        c = rows[i]
+        for k in range(4):
+            vals[k] = given[c, k] if sources[k] < 0 else z[i, sources[k]]
+        _state_row(V[c], h[c], z[i, 0], vals[0], vals[1], vals[3], vals[2], 0.0, X[i])
+        U[i] = u0[c]
+        for k in range(control_cols.shape[0]):
+            U[i, control_cols[k, 0]] = z[i, control_cols[k, 1]]
+        if throttle_col >= 0:
+            U[i, throttles[0]:throttles[0] + throttles[1]] = z[i, throttle_col]
+    return X, U
+
+
+# The Newton iteration's bookkeeping, compiled (fastmath off: the arithmetic of the numpy expressions it replaces, bit
+# for bit); the residuals (the model's evaluation) and the linear solves stay with their numpy callers.
+
+@njit(cache=True, fastmath=False)
+def _norms(r, scale):
+    """max_e |r[i, e] scale[e]| per row (NaN if any is NaN)."""
+    out = np.empty(r.shape[0])
+    for i in range(r.shape[0]):
+        m = abs(r[i, 0] * scale[0])
+        for e in range(1, r.shape[1]):
+            v = abs(r[i, e] * scale[e])
+            if v != v or v > m:
+                m = v
+            if m != m:
+                break
+        out[i] = m
+    return out
+
+
+@njit(cache=True, fastmath=False)
+def _active(rnorm, stalls, tol, iters):
+    """The conditions still iterating (residual above ``tol``, fewer than 3 stalls); counts their iteration."""
+    idx = np.flatnonzero((rnorm > tol) & (stalls < 3))
+    for i in idx:
+        iters[i] += 1
+    return idx
+
+
+@njit(cache=True, fastmath=False)
+def _perturbed(z, idx, hstep):
+    """The forward-difference points of the conditions ``idx``: row j·na + i is z[idx[i]] with unknown j moved by
+    hstep[j]; and the condition of each row."""
+    na, k = idx.size, z.shape[1]
+    zp = np.empty((k * na, k))
+    rows = np.empty(k * na, dtype=np.int64)
+    for j in range(k):
+        for i in range(na):
+            zp[j * na + i] = z[idx[i]]
+            zp[j * na + i, j] += hstep[j]
+            rows[j * na + i] = idx[i]
+    return zp, rows
+
+
+@njit(cache=True, fastmath=False)
+def _jacobian(rp, r, idx, hstep):
+    """Forward-difference Jacobians (na, equations, unknowns) from the residuals ``rp`` of :func:`_perturbed`'s
+    points, and the residuals of the conditions ``idx``."""
+    na, k = idx.size, hstep.size
+    J = np.empty((na, r.shape[1], k))
+    ra = np.empty((na, r.shape[1]))
+    for i in range(na):
+        ra[i] = r[idx[i]]
+        for j in range(k):
+            for e in range(r.shape[1]):
+                J[i, e, j] = (rp[j * na + i, e] - ra[i, e]) / hstep[j]
+    return J, ra
+
+
+@njit(cache=True, fastmath=False)
+def _limited_step(s, smax):
+    """The Newton step −s (non-finite components 0), scaled down where a component exceeds its ``smax``."""
+    dz = np.empty_like(s)
+    for i in range(s.shape[0]):
+        ratio = 1.0
+        for j in range(s.shape[1]):
+            d = -s[i, j]
+            dz[i, j] = d if math.isfinite(d) else 0.0
+            ratio = max(ratio, abs(dz[i, j]) / smax[j])
+        for j in range(s.shape[1]):
+            dz[i, j] = dz[i, j] / ratio
+    return dz
+
+
+@njit(cache=True, fastmath=False)
+def _trial(z, idx, dz, lam, j_thr, box):
+    """The iterates z[idx] + λ dz, the throttle column ``j_thr`` (−1: none) kept in ``box`` as ``np.clip`` keeps it
+    (NaN stays NaN, −0 becomes 0)."""
+    zt = np.empty_like(dz)
+    for i in range(idx.size):
+        for j in range(dz.shape[1]):
+            zt[i, j] = z[idx[i], j] + lam[i] * dz[i, j]
+        t = zt[i, j_thr] if j_thr >= 0 else 0.0
+        if j_thr >= 0 and not math.isnan(t):
+            t = t if t > box[0] else box[0]
+            zt[i, j_thr] = t if t < box[1] else box[1]
+    return zt
+
+
+@njit(cache=True, fastmath=False)
+def _backtrack(r_try, scale, rn_a, lam, bad):
+    """Residual norms of the trial iterates; ``bad`` where they do not fall below ``rn_a`` (λ halved there when any is
+    bad). Returns the norms and whether any is bad."""
+    rn = _norms(r_try, scale)
+    any_bad = False
+    for i in range(rn.size):
+        bad[i] = not (rn[i] < rn_a[i])
+        any_bad |= bad[i]
+    if any_bad:
+        for i in range(rn.size):
+            if bad[i]:
+                lam[i] *= 0.5
+    return rn, any_bad
+
+
+@njit(cache=True, fastmath=False)
+def _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoint, window, factor):
+    """Take the last trial iterates of the conditions ``idx``; a bad step counts a stall; every ``window``
+    iterations after the first ``window``, a condition whose residual fell less than ``factor``-fold since the
+    last check stops (3 stalls)."""
+    for a in range(idx.size):
+        i = idx[a]
+        stalls[i] = stalls[i] + 1 if bad[a] else 0
+        z[i] = z_try[a]
+        r[i] = r_try[a]
+        rnorm[i] = rn_try[a] if math.isfinite(rn_try[a]) else np.inf
+        if iters[i] % window == 0 and iters[i] > window:
+            if not (rnorm[i] * factor < checkpoint[i]):
+                stalls[i] = 3
+            checkpoint[i] = rnorm[i]
+
+
+#: the state parameters given per condition or solved for, in :func:`_iterates`' order
+_GIVEN = ("beta", "phi", "turn_rate", "gamma")
 
 #: Newton's progress test (numerical choice; see :func:`_solve`)
 SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
@@ -251,30 +404,20 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
             z[:, col[0]] = np.where(np.isfinite(v), v, z[:, col[0]])
 
     j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
-    fixed = {"beta": beta_in if kind == "sideslip" else np.zeros(n), "phi": bank if kind in ("turn", "oei") else np.zeros(n),
-             "turn_rate": np.zeros(n), "gamma": gamma}
-    state_cols = {name: j for j, name in enumerate(unknowns) if name in fixed or name == "alpha"}
-    control_cols = [(j, names.index(roles[name])) for j, name in enumerate(unknowns)
-                    if name not in state_cols and name != "throttle"]
+    given = np.stack([beta_in if kind == "sideslip" else np.zeros(n), bank if kind in ("turn", "oei") else np.zeros(n),
+                      np.zeros(n), gamma], axis=1)  # β, φ, ψ̇, γ where they are not unknowns
+    sources = np.array([unknowns.index(name) if name in unknowns else -1 for name in _GIVEN])
+    control_cols = np.array([(names.index(roles[name]), j) for j, name in enumerate(unknowns)
+                             if name not in _GIVEN and name not in ("alpha", "throttle")], dtype=np.int64).reshape(-1, 2)
+    throttles = np.array([model.throttle_slice.start, thr_idx.size])
+    layout = (V, h, given, sources, u0, control_cols, -1 if j_thr is None else j_thr, throttles)
 
-    def unpack(z, idx=None):
-        """State and controls of the iterate ``z`` of conditions ``idx`` (default: all)."""
-        sel = (lambda a: a) if idx is None else (lambda a: a[idx])  # noqa: E731
-        vals = {name: (z[:, state_cols[name]] if name in state_cols else sel(v)) for name, v in fixed.items()}
-        vals["alpha"] = z[:, 0]
-        u = u0.copy() if idx is None else u0[idx]
-        for j, c in control_cols:
-            u[:, c] = z[:, j]
-        if j_thr is not None:
-            u[:, thr_idx] = z[:, j_thr][:, None]
-        x = assemble_state(sel(V), sel(h), vals["alpha"], vals["beta"], vals["phi"], vals["gamma"], vals["turn_rate"])
-        return x, u, vals
+    eq_cols = 3 + np.array(equations)
 
     def residual(z, idx):
         """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
-        x, u, _ = unpack(z, idx)
-        xd = model.derivatives_euler(x, u, rows=idx)
-        return xd[:, 3:9][:, equations]
+        x, u = _iterates(z, idx, *layout)
+        return model.derivatives_euler(x, u, rows=idx)[:, eq_cols]
 
     steps = {"alpha": 1e-6, "beta": 1e-6, "phi": 1e-6, "turn_rate": 1e-7, "gamma": 1e-6,
              "pitch": 1e-6, "roll": 1e-6, "yaw": 1e-6, "throttle": 1e-6}
@@ -282,60 +425,47 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
                 "pitch": 0.2, "roll": 0.2, "yaw": 0.2, "throttle": 0.5}
     hstep = np.array([steps[u] for u in unknowns])
     smax = np.array([max_step[u] for u in unknowns])
-    k = len(unknowns)
     # the engine models saturate outside throttle [0, 1]: an iterate beyond has a flat Jacobian column and
     # Newton stalls there, so the throttle iterate is kept inside (just below 1, where the forward difference
     # still sees the engine); a condition needing more than full thrust ends non-converged at the bound
-    iters = np.zeros(n, dtype=int)
-    stalls = np.zeros(n, dtype=int)
+    box = np.array(_THROTTLE_BOX)
+    iters = np.zeros(n, dtype=np.int64)
+    stalls = np.zeros(n, dtype=np.int64)
     everyone = np.arange(n)
     r = residual(z, everyone)
     scale = np.where(np.array(equations) < 3, 1.0 / model.g, 1.0)
-    rnorm = np.max(np.abs(r * scale), axis=1)
+    rnorm = _norms(r, scale)
     checkpoint = rnorm.copy()
     for _ in range(max_iter):
         # a condition leaves the iteration when converged, or after three Newton steps that could not
         # reduce its residual even when cut 64-fold (a limit or a non-trimmable condition)
-        idx = np.flatnonzero((rnorm > tol) & (stalls < 3))
+        idx = _active(rnorm, stalls, tol, iters)
         if idx.size == 0:
             break
-        iters[idx] += 1
-        za, ra, na = z[idx], r[idx], idx.size
         # forward-difference Jacobian: the k perturbed iterates of every active condition in one call
-        zp = np.repeat(za[None], k, axis=0)
-        zp[np.arange(k), :, np.arange(k)] += hstep[:, None]
-        rp = residual(zp.reshape(k * na, k), np.tile(idx, k)).reshape(k, na, -1)
-        Jm = np.moveaxis((rp - ra[None]) / hstep[:, None, None], 0, -1)
+        Jm, ra = _jacobian(residual(*_perturbed(z, idx, hstep)), r, idx, hstep)
         try:
-            dz = -np.linalg.solve(Jm, ra[:, :, None])[:, :, 0]
+            sol = np.linalg.solve(Jm, ra[:, :, None])[:, :, 0]
         except np.linalg.LinAlgError:
-            dz = -np.einsum("nij,nj->ni", np.linalg.pinv(Jm), ra)
-        dz = np.where(np.isfinite(dz), dz, 0.0)
-        ratio = np.max(np.abs(dz) / smax, axis=1)
-        dz = dz / np.maximum(ratio, 1.0)[:, None]
+            sol = np.einsum("nij,nj->ni", np.linalg.pinv(Jm), ra)
+        dz = _limited_step(sol, smax)
         # backtracking: accept the step if it reduces the residual, else halve (per condition)
-        lam = np.ones(na)
+        lam = np.ones(idx.size)
+        bad = np.empty(idx.size, dtype=np.bool_)
         rn_a = rnorm[idx]
         for _bt in range(6):
-            z_try = za + lam[:, None] * dz
-            if j_thr is not None:
-                z_try[:, j_thr] = np.clip(z_try[:, j_thr], *_THROTTLE_BOX)
+            z_try = _trial(z, idx, dz, lam, -1 if j_thr is None else j_thr, box)
             r_try = residual(z_try, idx)
-            rn_try = np.max(np.abs(r_try * scale), axis=1)
-            bad = ~(rn_try < rn_a)
-            if not bad.any():
+            rn_try, any_bad = _backtrack(r_try, scale, rn_a, lam, bad)
+            if not any_bad:
                 break
-            lam = np.where(bad, lam * 0.5, lam)
-        stalls[idx] = np.where(bad, stalls[idx] + 1, 0)
-        z[idx], r[idx] = z_try, r_try
-        rnorm[idx] = np.where(np.isfinite(rn_try), rn_try, np.inf)
         # after 2 SLOW_WINDOW iterations, a condition whose residual fell less than SLOW_FACTOR-fold over its last
         # SLOW_WINDOW iterations is not converging (a limit, a non-trimmable condition): it leaves like a stalled one
-        due = idx[(iters[idx] % SLOW_WINDOW == 0) & (iters[idx] > SLOW_WINDOW)]
-        stalls[due[~(rnorm[due] * SLOW_FACTOR < checkpoint[due])]] = 3
-        checkpoint[due] = rnorm[due]
+        _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoint, SLOW_WINDOW, SLOW_FACTOR)
 
-    x, u, vals = unpack(z)
+    x, u = _iterates(z, everyone, *layout)
+    vals = {name: (z[:, j] if j >= 0 else given[:, k]) for k, (name, j) in enumerate(zip(_GIVEN, sources))}
+    vals["alpha"] = z[:, 0]
     if unsolved:  # a model without (say) a pitch control trims only where that moment is zero by itself
         left = model.derivatives_euler(x, u)[:, 3:9][:, unsolved]
         rnorm = np.maximum(rnorm, np.max(np.abs(left), axis=1))
@@ -343,16 +473,19 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
            roles["yaw"]: (-np.radians(30), np.radians(30)), "throttle": (0.0, 1.0)}
     lim.update(limits or {})
     _, out = model.derivatives_euler(x, u, with_outputs=True)
+    # rows as lists of Python floats (the values of float(a[i, j]), without a conversion per element)
+    ul, zl, thrust, x9, x10 = u.tolist(), z.tolist(), out.thrust.tolist(), x[:, 9].tolist(), x[:, 10].tolist()
+    vl = {key: np.asarray(v, dtype=float).tolist() for key, v in vals.items()}
+    engine_names = [e.name for e in model.engines]
+    checked = [(role, roles[role]) for role in ("pitch", "roll", "yaw") if role in unknowns and roles[role] in lim]
     results = []
     for i in range(n):
-        ctrl = {name: float(u[i, j]) for j, name in enumerate(names)}
+        ctrl = dict(zip(names, ul[i]))
         found = []
-        for role in ("pitch", "roll", "yaw"):
-            cname = roles[role]
-            if role in unknowns and cname in lim:
-                found += _check(cname, ctrl[cname], lim[cname], _HINTS[role], angle=True)
-        if "throttle" in unknowns:
-            tval = float(z[i, unknowns.index("throttle")])
+        for role, cname in checked:
+            found += _check(cname, ctrl[cname], lim[cname], _HINTS[role], angle=True)
+        if j_thr is not None:
+            tval = zl[i][j_thr]
             lo, hi = lim["throttle"]
             found += _check("throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False)
             if rnorm[i] > tol and not found and (tval >= _THROTTLE_BOX[1] or tval <= _THROTTLE_BOX[0]):
@@ -363,11 +496,9 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
                     hint=_HINTS["throttle_high" if high else "throttle_low"]))
         results.append(TrimResult(
             index=i, kind=kind, converged=bool(rnorm[i] <= tol), residual_norm=float(rnorm[i]),
-            iterations=int(iters[i]), V=float(V[i]), h=float(h[i]), alpha=float(vals["alpha"][i]),
-            beta=float(vals["beta"][i]), theta=float(x[i, 10]), phi=float(x[i, 9]), gamma=float(vals["gamma"][i]),
-            turn_rate=float(vals["turn_rate"][i]), controls=ctrl,
-            thrust={e.name: float(out.thrust[i, j]) for j, e in enumerate(model.engines)},
-            limits_exceeded=found))
+            iterations=int(iters[i]), V=float(V[i]), h=float(h[i]), alpha=vl["alpha"][i], beta=vl["beta"][i],
+            theta=x10[i], phi=x9[i], gamma=vl["gamma"][i], turn_rate=vl["turn_rate"][i], controls=ctrl,
+            thrust=dict(zip(engine_names, thrust[i])), limits_exceeded=found))
     return TrimBatch(model=model, x=x, u=u, results=results)
 
 

@@ -214,16 +214,42 @@ def turbofan_row_thrust(h, mach, throttle, static_thrust, throttle_ratio, idle_f
         out[j] = lapse * (idle_fraction + (1.0 - idle_fraction) * thr)
 
 
-def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42):
+@dataclass(frozen=True)
+class WindmillDrag:
+    """``drag(qbar, mach) -> N`` of a failed turbofan of inlet diameter ``inlet_diameter`` (m) (module docstring)."""
+
+    inlet_diameter: float
+    velocity_ratio: float = 0.42
+
+    def kernel_parameters(self) -> np.ndarray:
+        """(0.0785 D_i², π/4 D_i², V_N/V): the arguments of :func:`windmill_drag_one` in compiled code."""
+        d = self.inlet_diameter
+        return np.array([0.0785 * d**2, np.pi / 4 * d**2, self.velocity_ratio], dtype=float)
+
+    def __call__(self, qbar, mach):
+        qbar, mach = np.broadcast_arrays(np.asarray(qbar, dtype=float), np.asarray(mach, dtype=float))
+        flat = [np.ascontiguousarray(a).reshape(-1) for a in (qbar, mach)]
+        return _windmill_drag_rows(*flat, self.kernel_parameters()).reshape(qbar.shape)
+
+
+@njit(cache=True, inline="always")
+def windmill_drag_one(qbar, mach, params):
+    """Windmilling drag (N) at one condition; ``params`` from :meth:`WindmillDrag.kernel_parameters`."""
+    r = params[2]
+    return qbar * (params[0] + 2.0 / (1.0 + 0.16 * mach * mach) * params[1] * r * (1.0 - r))
+
+
+@njit(cache=True, fastmath=False)  # explicit: not inherited from a fastmath caller
+def _windmill_drag_rows(qbar, mach, params):
+    out = np.empty(qbar.shape[0])
+    for i in range(qbar.shape[0]):
+        out[i] = windmill_drag_one(qbar[i], mach[i], params)
+    return out
+
+
+def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42) -> WindmillDrag:
     """A ``windmill_drag(qbar, mach) -> N`` callable for a failed turbofan (module docstring)."""
-    area = np.pi / 4 * inlet_diameter**2
-    r = velocity_ratio
-
-    def drag(qbar, mach):
-        m = np.asarray(mach, dtype=float)
-        return np.asarray(qbar, dtype=float) * (0.0785 * inlet_diameter**2 + 2.0 / (1.0 + 0.16 * m * m) * area * r * (1 - r))
-
-    return drag
+    return WindmillDrag(float(inlet_diameter), float(velocity_ratio))
 
 
-__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "temperature_thrust_ratio", "windmill_drag"]
+__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "temperature_thrust_ratio", "windmill_drag", "WindmillDrag"]
