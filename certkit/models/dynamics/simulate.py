@@ -31,8 +31,9 @@ class Schedule:
     """A control increment as a function of time, vectorised over conditions."""
 
     #: can :meth:`__call__` take a grid of times (nt, 1) or (nt, n) and give every step's values at once (the same
-    #: element-wise arithmetic as one step at a time)? Schedules written with Python branches on ``t`` cannot.
-    time_grid = True
+    #: element-wise arithmetic as one step at a time)? A schedule says so (those with Python branches on ``t`` cannot);
+    #: else :meth:`over` calls it one step at a time.
+    time_grid = False
 
     def __call__(self, t: float) -> np.ndarray | float:  # pragma: no cover - abstract
         raise NotImplementedError
@@ -68,6 +69,7 @@ class _Sum(Schedule):
 class Hold(Schedule):
     """A constant increment (e.g. a held pull)."""
 
+    time_grid = True
     value: float | np.ndarray
 
     def __call__(self, t):
@@ -76,6 +78,7 @@ class Hold(Schedule):
 
 @dataclass
 class Step(Schedule):
+    time_grid = True
     t0: float
     amplitude: float | np.ndarray
 
@@ -87,6 +90,7 @@ class Step(Schedule):
 class Ramp(Schedule):
     """Linear from 0 at t0 to ``amplitude`` at t1, held after."""
 
+    time_grid = True
     t0: float
     t1: float
     amplitude: float | np.ndarray
@@ -100,7 +104,6 @@ class Ramp(Schedule):
 class Doublet(Schedule):
     """+amplitude for ``width`` seconds from t0, then −amplitude for ``width``, then 0."""
 
-    time_grid = False
     t0: float
     width: float
     amplitude: float | np.ndarray
@@ -116,7 +119,6 @@ class Doublet(Schedule):
 
 @dataclass
 class Pulse(Schedule):
-    time_grid = False
     t0: float
     width: float
     amplitude: float | np.ndarray
@@ -132,6 +134,7 @@ class CheckedManeuver(Schedule):
     ``hold`` seconds before the sinusoid resumes back through zero (the rule allows at most 5 s).
     ``omega`` and ``delta1`` may be (n,) arrays."""
 
+    time_grid = True
     delta1: float | np.ndarray
     omega: float | np.ndarray
     t0: float = 0.0
@@ -159,6 +162,7 @@ class RudderKick(Schedule):
     """§25.351 yaw manoeuvre: rudder ramped to ``amplitude`` in ``ramp`` s from t0, held
     ``hold`` s (to the overswing / steady sideslip), then ramped back to neutral in ``ramp`` s."""
 
+    time_grid = True
     t0: float
     amplitude: float | np.ndarray
     ramp: float = 0.5

@@ -22,6 +22,7 @@ from certkit.models.dynamics.simulate import Schedule
 
 @dataclass
 class SinusoidHold(Schedule):
+    time_grid = True
     delta1: float | np.ndarray
     omega: float | np.ndarray
     hold: float | np.ndarray = 0.0
