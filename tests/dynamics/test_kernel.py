@@ -140,3 +140,5 @@ def test_a_copy_with_further_controls_keeps_the_calibrated_clmax():
     assert not np.array_equal(copy.kernel_data[2], [1.5, 1.45, 1.3])  # calibrated above the declared values
     alpha = np.radians(np.arange(0.0, 30.0, 0.01))
     assert copy.coefficients(AeroState(alpha=alpha, mach=0.5)).CL.max() == pytest.approx(1.45, abs=1e-3)
+    with pytest.raises(KeyError, match="CL_alpha"):  # a base term would change the lift curve the calibration holds
+        m.with_control_terms({"CL_alpha": [4.0, 4.5, 5.0]})

@@ -263,7 +263,11 @@ class StabilityDerivativeModel:
                            ) -> "StabilityDerivativeModel":
         """A copy with further control terms (``<coef>_<control>``, one value per Mach breakpoint
         or a float); controls named in ``after_stall`` add their lift after the stall model and
-        outside the induced drag (pseudo-controls such as a gust angle)."""
+        outside the induced drag (pseudo-controls such as a gust angle). A base term (``CL_alpha`` …) is refused:
+        it is not a control's, and the copy keeps this model's CLmax calibration, which only base terms change."""
+        base = sorted(set(terms) & set(_BASE_TERMS))
+        if base:
+            raise KeyError(f"with_control_terms takes control terms only, not the stability derivatives {base}")
         names = list(self.control_names)
         for name in terms:
             ctrl = name.partition("_")[2]
