@@ -87,18 +87,16 @@ def combine(components: Sequence[MassComponent]) -> MassProperties:
     pos = np.array([c.cg for c in components], dtype=float)
     cg = (m[:, None] * pos).sum(axis=0) / total
     d = airplane_to_body(pos, cg)
-    # parallel-axis terms m (|d|² I − d dᵀ), summed one after another with the components' own tensors in the
-    # components' order (a cumulative sum: the same additions as a loop, without its per-component overhead)
+    # parallel-axis terms m (|d|² I − d dᵀ), formed for all at once, then added one after another from zero with the
+    # components' own tensors in the components' order (a cumulative sum: the additions of a loop, without its cost)
     dd = np.array([np.dot(di, di) for di in d])
     terms = m[:, None, None] * (dd[:, None, None] * np.eye(3) - d[:, :, None] * d[:, None, :])
-    own = [k for k, c in enumerate(components) if c.inertia is not None]
-    if own:
-        addends = np.empty((len(components) + len(own), 3, 3))
-        slot = np.arange(len(components)) + np.searchsorted(own, np.arange(len(components)), side="right")
-        addends[slot] = terms
-        addends[slot[own] - 1] = [np.asarray(components[k].inertia, dtype=float) for k in own]
-        terms = addends
-    J = np.cumsum(terms, axis=0)[-1] if len(terms) > 1 else terms[0] + 0.0
+    addends = [np.zeros((3, 3))]
+    for c, term in zip(components, terms):
+        if c.inertia is not None:
+            addends.append(np.asarray(c.inertia, dtype=float))
+        addends.append(term)
+    J = np.cumsum(addends, axis=0)[-1]
     check_inertia(J)
     return MassProperties(mass=float(total), cg=cg, inertia=J)
 
