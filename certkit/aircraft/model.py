@@ -326,6 +326,26 @@ class Propulsion(_Section):
                           "lapses with Mattingly's high-bypass law. Needed for off-standard days (takeoff_landing_envelope)")
 
 
+class TakeoffPilot(_Section):
+    """How the pilot flies the directions of a takeoff run after an engine failure (the simulated takeoffs of
+    §25.111/§25.113 and the §25.149(e) ground minimum control speed): a reaction time from the failure to the first
+    pedal input, then the pedal moved at most at ``rudder_rate`` toward what the heading and centreline ask; and,
+    where the procedure allows it (not for VMCG, which is flown with the rudder alone), pedal nose-wheel steering of
+    at most ``nose_wheel_steering`` at full pedal. Defaults: 1 s from the failure to the first input (the recognition
+    interval the takeoff speeds assume, §25.107(a)(2); AC 25-7D's VMCG guidance asks for the pilot's normal reaction,
+    without anticipating the failure), full pedal in about a second (30 deg/s), no nose-wheel steering declared."""
+
+    rudder_reaction_time: Annotated[Time, Field(ge=0.0, le=5.0)] = Field(
+        1.0, description="time from the engine failure to the pilot's first rudder-pedal input, s (0 to 5 s)")
+    rudder_rate: Annotated[AngularRate, Field(gt=0.0, le=math.radians(200.0))] = Field(
+        math.radians(30.0), description="largest rate at which the pilot moves the rudder, e.g. '30 deg/s' "
+                                        "(greater than 0, at most 200 deg/s)")
+    nose_wheel_steering: Annotated[Angle, Field(ge=0.0, le=math.radians(80.0))] | None = Field(
+        None, description="nose-wheel angle at full rudder pedal (pedal steering, e.g. '7 deg'), used on the runway "
+                          "where the procedure allows it; without it the nose wheel stays straight")
+    source: str | None = None
+
+
 # --- aerodynamics: calibration and declared data ------------------------------------------
 
 class DerivativeTable(_Section):
@@ -889,6 +909,8 @@ class Aircraft(_Section):
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
+    takeoff_pilot: TakeoffPilot = Field(default_factory=TakeoffPilot, description="the pilot of the simulated takeoff "
+                                        "runs: reaction to an engine failure, rudder rate, nose-wheel steering")
     takeoff_landing_envelope: TakeoffLandingEnvelope | None = Field(
         None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature")
     mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")

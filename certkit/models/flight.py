@@ -158,9 +158,11 @@ def gear_static_loads(aircraft, mass: float, x_cg: float, g: float = 9.80665) ->
 
 def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None, elevation: float = 0.0,
                  static_stroke: float = 0.30, damping_ratio: float = 0.5, rolling_friction: float = 0.02,
-                 brake_friction: float = 0.4, side_friction: float = 0.6) -> GroundModel:
+                 brake_friction: float = 0.4, side_friction: float = 0.6, nose_wheel: str = "straight") -> GroundModel:
     """Spring–damper legs from ``geometry.landing_gear`` (module docstring); ``mass``/``x_cg`` the sizing
-    loading (default MTOW at the reference CG). Raises ValueError when the gear is not declared."""
+    loading (default MTOW at the reference CG). ``nose_wheel``: "straight" (held straight, side friction as the
+    mains'), "steered" (turned by the model's ``nose_wheel_steering`` control) or "castering" (steering disengaged:
+    the wheel trails freely, no side force). Raises ValueError when the gear is not declared."""
     from certkit.models.mass.loading import reference_cg
 
     g = aircraft.geometry
@@ -173,15 +175,20 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
     if nose_load <= 0 or main_load <= 0:
         raise ValueError(f"the CG at {x_cg:.2f} m is not between the nose ({lg.nose.x:.2f} m) and main gear ({lg.main.x:.2f} m)")
 
-    def leg(name, pos, load, braked):
+    if nose_wheel not in ("straight", "steered", "castering"):
+        raise ValueError(f"nose_wheel must be 'straight', 'steered' or 'castering', not {nose_wheel!r}")
+
+    def leg(name, pos, load, braked, side=side_friction, steered=False):
         k = load / static_stroke
         c = damping_ratio * 2.0 * np.sqrt(k * load / 9.80665)
-        return GearLeg(name, pos, k, c, rolling_friction=rolling_friction, side_friction=side_friction, braked=braked)
+        return GearLeg(name, pos, k, c, rolling_friction=rolling_friction, side_friction=side, braked=braked,
+                       steered=steered)
 
     main_y = abs(lg.main.y)
     legs = [leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
             leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
-            leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False)]
+            leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False,
+                side=0.0 if nose_wheel == "castering" else side_friction, steered=nose_wheel == "steered")]
     return GroundModel(legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing, g.horizontal_tail))
 
 

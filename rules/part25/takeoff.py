@@ -115,7 +115,10 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         held = sorted({k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot))
         settings = {k: np.tile([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results], 2) for k in held}
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
-        model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings, ground=ground_model(ac))
+        pilot = ac.takeoff_pilot
+        steering = pilot.nose_wheel_steering or None
+        model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings,
+                             ground=ground_model(ac, nose_wheel="steered" if steering else "straight"))
         engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
         vef, vef_basis = engine_failure_speed(model, tas(sp.V1), engine, crit.recognition_time,
                                               ac.propulsion.failure_decay_time)
@@ -137,8 +140,9 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
                           elevator_ff=np.concatenate([de_ff, de_ff]), tail_strike=None,
                           rotation_rate=np.radians(crit.rotation_rate_deg_s), screen_height=crit.screen_height * FT,
                           elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
-                          failed_engine=engine, failure_speed=vef, failure_decay_time=decay, lateral="heading",
-                          bank_airborne=bank, climb_out=crit.climb_out_s)
+                          failed_engine=engine, failure_speed=vef, failure_decay_time=decay, lateral="pilot",
+                          bank_airborne=bank, climb_out=crit.climb_out_s, reaction_time=pilot.rudder_reaction_time,
+                          rudder_rate=pilot.rudder_rate, steering=steering)
         basis = {
             "rotation": (f"rotation at {crit.rotation_rate_deg_s:g}°/s from VR toward the 1-g V2 attitude"
                          + ("" if strike is None else f", at most {np.degrees(strike):.1f}° tail strike − "
@@ -158,6 +162,28 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
     key = ("simulated takeoffs", tuple((c.mass, c.x_cg) for c in conditions),
            tuple(float(getattr(crit, k)) for k in PROCEDURE_CRITERIA))
     return ctx.memo(key, compute)
+
+
+def failure_speed_at_v1(ctx, cond, recognition_time: float | None = None):
+    """(VEF m/s CAS, how it was obtained) of the loading of ``cond`` at sea level: V1 less the speed gained over the
+    recognition interval (:data:`PROCEDURE_CRITERIA`'s unless given) after the critical engine's failure, as the
+    simulated takeoff fails it; (None, why) without V1 or the landing gear."""
+    from certkit.models.dynamics.procedures import engine_failure_speed
+    from certkit.models.flight import flight_model, ground_model
+
+    ac = ctx.aircraft
+    if ac.speeds.V1 is None or ctx.missing(("geometry.landing_gear",)):
+        return None, "needs speeds.V1 and geometry.landing_gear (VEF from V1)"
+    dt = PROCEDURE_CRITERIA["recognition_time"].value if recognition_time is None else recognition_time
+
+    def compute():
+        v1 = float(convert_speed(ac.speeds.V1.value, ac.speeds.V1.kind, "TAS", 0.0))
+        model = flight_model(ac, ctx.aero("takeoff").model, [ctx.loading(cond.mass, cond.x_cg, cond.loading or "")],
+                             ground=ground_model(ac))
+        vef, basis = engine_failure_speed(model, v1, critical_engine(ctx), dt, ac.propulsion.failure_decay_time)
+        return float(convert_speed(float(vef[0]), "TAS", "CAS", 0.0)), basis
+
+    return ctx.memo(("vef at v1", cond.mass, cond.x_cg, dt), compute)
 
 
 def distances(to: Takeoffs, i: int, n: int) -> dict:

@@ -54,6 +54,8 @@ from certkit.units import G0
 QUAT_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "q0", "q1", "q2", "q3")
 EULER_STATE = ("x_N", "y_E", "h", "u", "v", "w", "p", "q", "r", "phi", "theta", "psi")
 
+#: the control turning the steered gear legs (rad, positive: nose right)
+STEERING = "nose_wheel_steering"
 
 
 def airplane_to_body(points, cg) -> np.ndarray:
@@ -107,7 +109,8 @@ def _windmill_parameters(engines) -> np.ndarray | None:
 class GearLeg:
     """A gear contact point (airplane frame, wheel bottom at full extension), spring stiffness
     (N/m), damping (N s/m), rolling and side-friction coefficients; ``braked`` legs add the
-    brake control's friction."""
+    brake control's friction; a ``steered`` leg's wheel turns by the ``nose_wheel_steering`` control (rad, positive
+    toward the right: the nose goes right). A castering wheel (steering disengaged) is a leg without side friction."""
 
     name: str
     position: Sequence[float]
@@ -116,6 +119,7 @@ class GearLeg:
     rolling_friction: float = 0.02
     side_friction: float = 0.6
     braked: bool = False
+    steered: bool = False
 
 
 @dataclass
@@ -232,7 +236,7 @@ class AircraftModel:
 
     Controls are one array of shape (n, n_controls) in the order :attr:`control_names`: the aero
     model's controls, one throttle per engine (``throttle:<name>``), then ``brake`` when there is a
-    ground model.
+    ground model and ``nose_wheel_steering`` when a leg is steered.
     """
 
     def __init__(self, aero: AeroModel, mass, cg, inertia, engines: Sequence[Engine] = (), operative=None,
@@ -273,9 +277,12 @@ class AircraftModel:
         names = list(self.aero_controls) + [f"throttle:{e.name}" for e in self.engines]
         if ground is not None:
             names.append("brake")
+            if any(leg.steered for leg in ground.legs):
+                names.append(STEERING)
         self.control_names = tuple(names)
         self.throttle_slice = slice(len(self.aero_controls), len(self.aero_controls) + ne)
         self._brake_index = names.index("brake") if ground is not None else None
+        self._steer_index = names.index(STEERING) if STEERING in names else -1
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
         self._shared_thrust = _shared_thrust(self.engines)
         engine_model = getattr(self._shared_thrust, "__self__", None)
@@ -323,15 +330,15 @@ class AircraftModel:
         gm = self.ground
         if gm is not None:
             r_gear = np.ascontiguousarray(self.r_gear)
-            legs = np.array([[leg.stiffness, leg.damping, leg.rolling_friction, leg.side_friction, float(leg.braked)]
-                             for leg in gm.legs], dtype=float).reshape(-1, 5)
+            legs = np.array([[leg.stiffness, leg.damping, leg.rolling_friction, leg.side_friction, float(leg.braked),
+                              float(leg.steered)] for leg in gm.legs], dtype=float).reshape(-1, 6)
             gparams = np.concatenate([[gm.elevation, gm.brake_friction, gm.slip_speed],
                                       self._ground_effect_params(gm.wing)])
         else:
-            r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 5)), np.zeros(9)
+            r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 6)), np.zeros(9)
         self._kernel_args = (props, np.array([self.b, self.c, self.S, self.g]), *table, len(self.aero_controls),
                              self._use_table, r_eng, d_eng, gm is not None, r_gear, legs, gparams,
-                             -1 if self._brake_index is None else self._brake_index)
+                             -1 if self._brake_index is None else self._brake_index, self._steer_index)
 
     def _ground_effect_params(self, wing: "GroundEffectWing | None") -> np.ndarray:
         """gparams[3:] of the kernel (layout in :mod:`certkit.models.dynamics.kernel`): span (0: none), aspect ratio,

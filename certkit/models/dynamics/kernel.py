@@ -16,14 +16,15 @@ Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_
                     model that is not a derivative table)
     r_eng (n, ne, 3), d_eng (ne, 3); thrust (n, ne) N along each thrust line, from Python (engines are
                     Python models) or, for the parametric turbofan, from :func:`engine_forces`; held over an RK4 step like the controls
-    ground          has_ground, r_gear (n, nl, 3), legs (nl, 5) = stiffness, damping, rolling and side
-                    friction, braked; gparams = runway elevation, brake friction, slip speed, then the
+    ground          has_ground, r_gear (n, nl, 3), legs (nl, 6) = stiffness, damping, rolling and side
+                    friction, braked, steered (the wheel turned by the steering control, positive toward body +y:
+                    nose right); gparams = runway elevation, brake friction, slip speed, then the
                     ground effect's wing (:meth:`~certkit.models.dynamics.eom.AircraftModel._ground_effect_params`:
                     [3] span, 0 for none; [4] aspect ratio; [5] tan Λ½; [6:9] wing point from the aero reference,
                     body axes), the tail's ([9:12] its point likewise; [12] ε₀, [13] dε/dα of the free-air downwash;
                     [14] C_Lα,t, 0 for none; [15] C_mα,t; [16:20] the R table's √(h/b) start and step, Δz start and
                     step; [20:22] its shape), the φ(h/b) table ([22:22 + N_TABLE]) and the R table (row-major);
-                    brake_index (−1: none)
+                    brake_index, steer_index (control columns; −1: none)
 
 Outputs per condition, columns of :data:`OUTPUTS`; gear normal loads (n, nl).
 """
@@ -139,7 +140,7 @@ def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alph
 # simulations run ~0.8 → 0.4 µs per evaluation); the RK4 step calls it from one site to keep the compile short
 @njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, xd, out, gear):
+                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index, xd, out, gear):
     """State derivative of condition ``i`` (state ``x``, 13 quaternion or 12 Euler components) into
     ``xd``; outputs into ``out`` (:data:`OUTPUTS`) and gear loads into ``gear``."""
     h, u, v, w, p, q, r = x[2], x[3], x[4], x[5], x[6], x[7], x[8]
@@ -193,11 +194,17 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
             vD = C31 * vx + C32 * vy + C33 * vz
             load = max(legs[k, 0] * (-height) + legs[k, 1] * vD, 0.0)
             gear[k] = load
+            wx, wy = hx, hy  # the wheel's heading: the body's, or turned by the steering angle on a steered leg
+            if steer_index >= 0 and legs[k, 5] != 0.0:
+                cs, sn = math.cos(ctrl[steer_index]), math.sin(ctrl[steer_index])
+                sx, sy = C11 * cs + C12 * sn, C21 * cs + C22 * sn
+                ns = max(math.hypot(sx, sy), 1e-9)
+                wx, wy = sx / ns, sy / ns
             mu_long = legs[k, 2] + legs[k, 4] * gparams[1] * brake
-            f_long = -mu_long * load * math.tanh((vN * hx + vE * hy) * inv_slip)
-            f_lat = -legs[k, 3] * load * math.tanh((vE * hx - vN * hy) * inv_slip)
-            fN = f_long * hx - f_lat * hy
-            fE = f_long * hy + f_lat * hx
+            f_long = -mu_long * load * math.tanh((vN * wx + vE * wy) * inv_slip)
+            f_lat = -legs[k, 3] * load * math.tanh((vE * wx - vN * wy) * inv_slip)
+            fN = f_long * wx - f_lat * wy
+            fE = f_long * wy + f_lat * wx
             fbx = C11 * fN + C21 * fE - C31 * load
             fby = C12 * fN + C22 * fE - C32 * load
             fbz = C13 * fN + C23 * fE - C33 * load
@@ -265,7 +272,7 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
 def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
+                n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index):
     """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
     Returns ẋ (rows, states), outputs (rows, 11), gear loads (rows, nl)."""
     n, ns = X.shape
@@ -275,7 +282,7 @@ def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, 
     for i in range(n):
         derivative_one(rows[i], X[i], quat, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
                        after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
-                       xd[i], out[i], gear[i])
+                       steer_index, xd[i], out[i], gear[i])
     return xd, out, gear
 
 
@@ -319,7 +326,7 @@ def engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, w
 
 @njit(cache=True, error_model="numpy", fastmath=True)
 def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-             n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index):
+             n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index):
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
     classical RK4 step of ``dts[i]`` each, controls and thrust held; ``XD1`` the derivative at the
     step's start. The quaternion is renormalised after the step."""
@@ -340,7 +347,7 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
                 xs[s] = x[s] + h * prev[s]
             derivative_one(i, xs, True, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
                            after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
-                           k[stage], out, gear)
+                           steer_index, k[stage], out, gear)
         for s in range(ns):
             x[s] = x[s] + dt / 6.0 * (k1[s] + 2.0 * k[0, s] + 2.0 * k[1, s] + k[2, s])
         nq = math.sqrt(x[9] * x[9] + x[10] * x[10] + x[11] * x[11] + x[12] * x[12])
@@ -351,7 +358,7 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
 @njit(cache=True, error_model="numpy", fastmath=True)
 def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
                         clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
-                        legs, gparams, brake_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec, stop_step,
+                        legs, gparams, brake_index, steer_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec, stop_step,
                         stop_which):
     """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
     the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
@@ -379,7 +386,7 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
                                 turbofan[1], turbofan[2], thrust[i])
         xd, out, gear = derivatives(X, rows, True, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
                                     after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
-                                    brake_index)
+                                    brake_index, steer_index)
         for c in range(stop_cols.shape[0]):
             for i in range(n):
                 if active[i]:
@@ -403,6 +410,6 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
         if k == nsteps or n_active == 0:
             break
         rk4_step(X, xd, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                 n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index)
+                 n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index)
     return irec
 

@@ -18,7 +18,9 @@
     holds the runway heading and, with ``centreline_gain`` K_y, the centreline on the ground; aileron wings level
     on the ground and ``bank_airborne`` once airborne); ``climb_out`` (s) continues the run past the screen
     height, and the result then carries the climb gradient between records and from the screen height to the
-    end of the run.
+    end of the run. ``lateral="pilot"`` flies the pedals as a pilot does (:class:`DirectionalPilot`: the same law,
+    the rudder moved at most at ``rudder_rate`` and held for ``reaction_time`` after the engine failure; with
+    ``steering`` the pedals also steer the nose wheel, for a model whose ground model has a steered leg).
 
 :func:`runway_acceleration`
     Quasi-steady acceleration along the runway at a given speed, with a chosen set of engines
@@ -43,7 +45,7 @@ from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECS
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
 from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
-from certkit.models.dynamics.takeoff_pilot import RotationPilot
+from certkit.models.dynamics.takeoff_pilot import DirectionalPilot, RotationPilot
 
 
 def _hdot(x13):
@@ -97,7 +99,8 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=
                 elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
                 failed_engine: str | None = None, failure_speed=None, failure_decay_time: float | None = None,
                 t_end: float = 120.0, dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
-                climb_out: float = 0.0, centreline_gain: float = 0.004) -> TakeoffResult:
+                climb_out: float = 0.0, centreline_gain: float = 0.004, reaction_time: float = 0.0,
+                rudder_rate: float | None = None, steering: float | None = None) -> TakeoffResult:
     n = model.n
     u = np.zeros((n, len(model.control_names)))
     for name, value in (settings or {}).items():
@@ -116,8 +119,14 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=
                            tail_margin=tail_margin, limits=elevator_limits),
              WingsLevel(model, u, limits=lateral_limits) if lateral == "wings level"
              else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain)]
+    failure = None
     if failed_engine is not None:
-        ctrls.append(EngineFailure(model, failed_engine, failure_speed, decay_time=failure_decay_time))
+        failure = EngineFailure(model, failed_engine, failure_speed, decay_time=failure_decay_time)
+    if lateral == "pilot":
+        ctrls[1] = DirectionalPilot(model, u, failure, reaction_time, rudder_rate or np.inf, steering,
+                                    bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain)
+    if failure is not None:
+        ctrls.append(failure)
     elevation = model.ground.elevation
 
     t_scr = np.full(n, np.nan)

@@ -2,14 +2,18 @@
 
 Each sub-check is its own finding, so the rule reports what it can: the VSR parts are evaluated from
 §25.103's reference stall speed of the takeoff configuration at MTOW; the VMC parts use the declared VMC, or
-where none is declared the VMCA that §25.149 computes (the basis is named in the finding); the VMCG and VMU
-parts are ``not_evaluated`` until those speeds are declared.
+where none is declared the VMCA that §25.149 computes (the basis is named in the finding); the VMCG part the
+declared VMCG or the one §25.149(e) computes by simulation, against VEF (V1 less the speed gained over the
+recognition interval after the critical engine's failure); the VMU part is ``not_evaluated`` until VMU is declared.
 """
 
 from __future__ import annotations
 
+import numpy as np
+
 from certkit.conditions import ConditionSpace, DesignWeight
 from certkit.registry import Criterion, Rule, rule
+from certkit.results import Finding
 from certkit.reference_speeds import declared_cas, ratio_check
 from certkit.reference_speeds import reference_stall_speed
 
@@ -34,7 +38,7 @@ class TakeoffSpeeds(Rule):
     """
     margin = """
         Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
-        V1/VMCG − 1, VLOF/VMU − 1.10, VFTO/VSR − 1.18; VSR of the takeoff configuration (of the clean one for VFTO) at
+        VEF/VMCG − 1, VLOF/VMU − 1.10, VFTO/VSR − 1.18; VSR of the takeoff configuration (of the clean one for VFTO) at
         MTOW (§25.103), speeds CAS.
     """
     references = ("25.103", "25.111", "25.121(b)", "25.143(h)", "25.149")
@@ -47,7 +51,7 @@ class TakeoffSpeeds(Rule):
         "vr_over_v1": Criterion(1.0, "", "14 CFR 25.107(e)(1)(i)", "VR may not be less than V1"),
         "vr_over_vmc": Criterion(1.05, "", "14 CFR 25.107(e)(1)(ii)", "VR/VMC"),
         "v1_over_vmcg": Criterion(1.0, "", "14 CFR 25.107(a)(1)-(2)",
-                                  "V1 ≥ VEF ≥ VMCG, so V1/VMCG ≥ 1 (VEF is not declared)"),
+                                  "VEF/VMCG, VEF ≥ VMCG (VEF from V1 less the recognition interval's speed gain)"),
         "vfto_over_vsr": Criterion(1.18, "", "14 CFR 25.107(g)(1)", "VFTO/VSR, VSR of the en-route (clean) configuration"),
         "vlof_over_vmu": Criterion(1.10, "", "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, "
                                    "docs/regulation-notes.md)", "VLOF/VMU, all engines operating"),
@@ -62,8 +66,6 @@ class TakeoffSpeeds(Rule):
 
     implementation = "partial"
     unevaluated = (
-        ("25.107(a)(2)", "V1 ≥ VEF + the speed gained during the recognition interval needs the engine-out "
-                         "acceleration: only V1 ≥ VEF is checked"),
         ("25.107(c)(2)", "V2 ≥ VR + the speed increment to 35 ft needs the §25.111(c)(2) takeoff path: not evaluated"),
         ("25.107(e)(1)(iii)", "VR allowing V2 to be reached by 35 ft (§25.111(c)(2)) not evaluated"),
         ("25.107(e)(1)(iv)", "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
@@ -91,12 +93,39 @@ class TakeoffSpeeds(Rule):
                 ratio_check(cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc, basis=vmc_basis),
                 ratio_check(cond, "(e)(1)(i) VR ≥ V1", speeds, "VR", "V1", crit.vr_over_v1),
                 ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc, basis=vmc_basis),
-                ratio_check(cond, "(a) V1 ≥ VEF ≥ VMCG", speeds, "V1", "VMCG", crit.v1_over_vmcg),
+                self._vef_check(ctx, cond, speeds, crit),
                 ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
                 ratio_check(cond.with_(configuration="clean"), "(g)(1) VFTO ≥ 1.18 VSR (en route)", speeds, "VFTO",
                             "VSR clean", crit.vfto_over_vsr, basis=clean_source),
             ]
         return out
+
+    @staticmethod
+    def _vef_check(ctx, cond, speeds, crit):
+        """(a) VEF ≥ VMCG: VEF the speed from which V1 is reached one recognition interval after the failure of the
+        critical engine (the simulated takeoff's, at MTOW and the reference CG: V1 ≥ VEF by construction); VMCG the
+        declared one, or where none is declared the highest §25.149(e) computes over the weight–CG corners."""
+        from certkit_rules.part25.subpart_b.ground_control import computed_vmcg
+        from certkit_rules.part25.takeoff import failure_speed_at_v1
+
+        check = "(a) VEF ≥ VMCG (V1 ≥ VEF)"
+        basis = "declared VMCG"
+        if speeds["VMCG"] is None:
+            vmcg, corner, _ = computed_vmcg(ctx)
+            if vmcg is None:
+                return Finding.not_evaluated(cond, check, "needs speeds.VMCG (or what §25.149(e) needs to compute it)")
+            speeds["VMCG"] = vmcg
+            basis = f"VMCG computed by §25.149(e) (highest over the weight–CG corners: {corner}; no VMCG declared)"
+        vef, vef_basis = failure_speed_at_v1(ctx, cond)
+        if vef is None:
+            return Finding.not_evaluated(cond, check, vef_basis)
+        speeds["VEF"] = vef
+        if not np.isfinite(speeds["VMCG"]):
+            return Finding.compare(cond.with_(speed=vef, speed_kind="CAS", speed_name="VEF"), check, 0.0, 1.0,
+                                   at_least=True, unit="ratio", VEF=vef, basis=basis, vef_basis=vef_basis,
+                                   reason="§25.149(e) finds no VMCG on the runway (below VR)")
+        return ratio_check(cond, check, speeds, "VEF", "VMCG", crit.v1_over_vmcg,
+                           basis=f"{basis}; VEF: {vef_basis}")
 
     def evidence(self, ctx, findings, crit):
         from certkit.evidence.performance import margins_evidence

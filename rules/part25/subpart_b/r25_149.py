@@ -18,6 +18,7 @@ from certkit.registry import Rule, rule
 from certkit.results import Finding
 from certkit.units import KN, LBF
 from certkit_rules.part25.subpart_b.control_checks import pedal_force_finding
+from certkit_rules.part25.subpart_b.ground_control import VMCG_CONDITIONS, VMCG_CRITERIA, VMCG_REQUIRES, vmcg_runs
 from certkit_rules.part25.subpart_b.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_REQUIRES, VMCA_RULE_ID,
                                                               condition_vmca, vmca_rows)
 
@@ -34,15 +35,19 @@ class MinimumControlSpeed(Rule):
         possible to maintain control with that engine still inoperative and straight flight with not more than 5° of
         bank. (c) VMC may not exceed 1.13 VSR with maximum available takeoff thrust, the most unfavourable CG, trimmed
         for takeoff, maximum sea-level takeoff weight, the most critical takeoff configuration with the gear
-        retracted, airborne with negligible ground effect. (d) The rudder force may not exceed 150 lbf.
+        retracted, airborne with negligible ground effect. (d) The rudder force may not exceed 150 lbf. (e) VMCG is the
+        calibrated airspeed on the takeoff run at which, the critical engine suddenly made inoperative, control can be
+        kept with the rudder alone (no nose-wheel steering), the wings level, and the path from the failure to the
+        recovery to a direction parallel to the centreline deviates no more than 30 ft from the centreline.
     """
     margin = """
         (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared;
-        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder.
+        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder; (e) VR − VMCG (kn CAS) per corner
+        of the weight–CG envelope, and declared VMCG − the highest computed VMCG (kn CAS) when VMCG is declared.
     """
     references = ("25.103", "25.107", "25.147")
     requires = VMCA_REQUIRES
-    criteria = dict(VMCA_CRITERIA)
+    criteria = {**VMCA_CRITERIA, **VMCG_CRITERIA}
     conditions = VMCA_CONDITIONS
     implementation = "partial"
     limitations = """
@@ -53,18 +58,82 @@ class MinimumControlSpeed(Rule):
         baseline's takeoff configuration has the gear down (more drag, steeper flight path only; the moments are
         those of the gear-up airplane in the model). Thrust at throttle 1 is the maximum takeoff thrust. Banks from
         wings level to 5° toward the operating engine are searched in 1° steps; VMCA is the least (to within the 1°
-        step, conservative).
+        step, conservative). (e) VMCG by simulation (:mod:`certkit.models.dynamics.ground_control`): the critical engine
+        cut with the declared spool-down, the nose wheel castering, the stabiliser at the V2 takeoff trim, the column
+        holding the attitude of rest, the pilot's rudder held for the criteria's reaction time (1 s) after the cut and
+        then moved at the declared takeoff_pilot.rudder_rate over its travel on heading and centreline, wings level;
+        the deviation is the largest from the cut to the heading's return parallel to the centreline; the search
+        runs 6 failure speeds from 60 KCAS to VR and 3 inside the bracket, VMCG interpolated linearly (about 1 kn).
+        The 150 lbf rudder force of (e) is not modelled (the rudder reaches its stop); sea level ISA, no wind;
+        the takeoff configuration named 'takeoff' only.
     """
 
     unevaluated = (
         ("25.149(d)", "the dynamic recovery after the sudden engine failure (heading change ≤ 20°) is not simulated:"
                       " VMCA is the static one"),
-        ("25.149(e)", "VMCG (ground) is not determined"),
         ("25.149(f)", "VMCL (landing, all engines) is not determined: in the landing configuration at go-around thrust "
                       "the static search finds a control usage nearly independent of speed and does not converge"),
     )
 
     def evaluate(self, ctx, conditions, crit):
+        out = self._vmca(ctx, conditions, crit)
+        return out + self._vmcg(ctx, crit)
+
+    @staticmethod
+    def _vmcg(ctx, crit):
+        """(e) VMCG by simulation over the corners of the weight–CG envelope (:mod:`.ground_control`): per corner,
+        VMCG no higher than VR (a speed on the runway at which the rudder alone holds the 30-ft band), and, with a
+        declared speeds.VMCG, the declared value not below the highest computed one."""
+        from certkit.atmosphere import convert_speed
+
+        conds = VMCG_CONDITIONS.expand(ctx.aircraft)
+        check = f"(e) VMCG (rudder only, ≤ {crit.vmcg_deviation_max_ft:g} ft off the centreline) found below VR"
+        missing = ctx.missing(VMCG_REQUIRES)
+        if missing:
+            why = "needs " + ", ".join(missing)
+            return [Finding.not_evaluated(c.with_(altitude=0.0), check, why) for c in conds]
+        res = vmcg_runs(ctx, conds, crit)
+        out = []
+        worst, worst_cond = -np.inf, None
+        for i, c in enumerate(conds):
+            c0 = c.with_(altitude=0.0, thrust="takeoff", inoperative=res.engine)
+            table = [{"failure_speed_kn_cas": round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1),
+                      "max_lateral_deviation_ft": (round(d / 0.3048, 1) if np.isfinite(d) else None)}
+                     for v, d in zip(res.search.speeds[i], res.search.deviations[i])]
+            details = dict(search=table, **res.basis)
+            vmcg = res.speed_cas[i]
+            if not np.isfinite(vmcg):
+                out.append(Finding.not_evaluated(c0, check, "every engine-cut run left the runway before the heading "
+                                                 "recovered (the airplane lifts off at the ground attitude)", **details))
+                continue
+            found = c0.with_(speed=float(vmcg), speed_kind="CAS", speed_name="VMCG")
+            reason = ""
+            if res.above[i]:
+                reason = (f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
+                          f"VR ({res.high_cas / KN:.1f} kn): no VMCG on the runway")
+                vmcg = np.inf
+            elif res.below[i]:
+                reason = f"within the bound from the lowest speed searched ({crit.vmcg_low_kn:g} kn): VMCG no higher"
+            value = float(vmcg) / KN if np.isfinite(vmcg) else float(res.high_cas) / KN + 1.0
+            out.append(Finding.compare(found, check, value, round(res.high_cas / KN, 2), at_least=False, unit="kn",
+                                       reason=reason, **details))
+            if vmcg > worst:
+                worst, worst_cond = vmcg, found
+        declared = ctx.aircraft.speeds.VMCG
+        if worst_cond is not None:
+            dcheck = "(e) declared VMCG ≥ computed VMCG"
+            shown = round(worst / KN, 1) if np.isfinite(worst) else None
+            if declared is None:
+                out.append(Finding.not_evaluated(worst_cond, dcheck, "needs speeds.VMCG", computed_VMCG_kn_cas=shown))
+            else:
+                vmcg_decl = float(convert_speed(declared.value, declared.kind, "CAS", 0.0)) / KN
+                limit = worst / KN if np.isfinite(worst) else res.high_cas / KN
+                out.append(Finding.compare(worst_cond, dcheck, vmcg_decl, round(limit, 2), at_least=True, unit="kn",
+                                           computed_VMCG_kn_cas=shown,
+                                           reason="" if np.isfinite(worst) else "no VMCG on the runway (limit: VR)"))
+        return out
+
+    def _vmca(self, ctx, conditions, crit):
         rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
         rows = vmca_rows(ctx, conditions, crit)

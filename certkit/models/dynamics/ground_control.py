@@ -1,0 +1,187 @@
+"""The minimum control speed on the ground by simulation: engine cuts on the takeoff run, rudder only (no regulation
+numbers here: the deviation bound, the reaction time and the pedal rate are the caller's).
+
+:func:`engine_cut_runs`
+    Each row of the batch rolls along the centreline with every engine at ``throttle`` (from about
+    ``lead_time`` before the failure, at the quasi-steady runway acceleration of the failure speed, at the attitude and gear compression of rest), any ``settings`` (e.g. a
+    stabiliser at its takeoff setting) held and the elevator holding the attitude of rest (the nose wheel on the
+    runway, no rotation); ``engine`` fails when the airspeed reaches the row's
+    ``failure_speed`` (its thrust decaying with ``decay_time``, :class:`~certkit.models.dynamics.controllers.EngineFailure`);
+    the pilot (:class:`~certkit.models.dynamics.takeoff_pilot.DirectionalPilot`, no nose-wheel steering) holds the
+    rudder for ``reaction_time`` after the failure, then flies the heading and centreline with the rudder moved at most
+    at ``rudder_rate``; the ailerons hold the wings level. The model's nose wheel should caster (a ground model built
+    with ``nose_wheel="castering"``): the rudder alone keeps the direction. The run of a row ends when the heading,
+    after its swing toward the failed engine, is back parallel to the centreline (the recovery), or ``after`` s after
+    the failure. Returned per row: the largest lateral deviation from the centreline between the failure and the
+    recovery (m; infinite when the heading did not recover, or the airplane left the ground, within the run), the
+    heading swing and the peak rudder.
+
+:func:`ground_minimum_control_speed`
+    For each condition of the batch, the failure speed at which the largest lateral deviation of
+    :func:`engine_cut_runs` equals ``deviation_limit``: the runs over a grid of failure speeds, then over
+    ``refine`` speeds inside the bracket where the deviation crosses the bound, the speed interpolated linearly in
+    the final bracket (the deviation falls as the failure speed rises: the rudder's power grows with q̄ while the
+    thrust asymmetry does not). A condition whose deviation stays within the bound at the lowest speed of the grid is
+    reported at that speed with ``below`` set (VMCG no higher); one beyond the bound at the highest with ``above`` set.
+    Runs that leave the runway before the recovery (``airborne``) say nothing of the control on the ground and are
+    left out; a condition with no run on the ground has no speed (NaN).
+
+Speeds are true airspeeds (m/s), lengths m, angles rad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.models.dynamics.controllers import EngineFailure, PitchAttitudeHold
+from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.ground import ground_equilibrium
+from certkit.models.dynamics.procedures import runway_acceleration
+from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
+from certkit.models.dynamics.takeoff_pilot import DirectionalPilot
+
+#: heading swing (rad) below which a row has not yet swung (its recovery is not looked for before)
+_SWING = np.radians(0.02)
+
+
+@dataclass
+class EngineCutRuns:
+    failure_speed: np.ndarray   # (n,) m/s TAS
+    deviation: np.ndarray       # (n,) m, largest |y| from the failure to the recovery (inf: not recovered)
+    recovered: np.ndarray       # (n,) bool
+    heading_swing: np.ndarray   # (n,) rad, largest |ψ| after the failure
+    rudder_peak: np.ndarray     # (n,) rad, largest |δr|
+    recovery_time: np.ndarray   # (n,) s after the failure (nan: not recovered)
+    airborne: np.ndarray        # (n,) bool: the gear left the runway before the recovery (deviation up to then)
+    sim: SimulationResult
+
+
+@dataclass
+class GroundControlSpeed:
+    speed: np.ndarray           # (n,) m/s TAS, the failure speed at which the deviation equals the bound
+    below: np.ndarray           # (n,) bool: within the bound at the lowest speed searched
+    above: np.ndarray           # (n,) bool: beyond the bound at the highest speed searched
+    speeds: list                # per condition, the failure speeds run (sorted)
+    deviations: list            # per condition, their deviations (m)
+    runs: list                  # the EngineCutRuns of each pass
+
+
+def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_time: float, rudder_rate: float,
+                    decay_time: float | None = None, throttle: float = 1.0, settings=None, lateral_limits=None,
+                    lead_time: float = 3.0, after: float = 20.0, dt: float = 0.1,
+                    centreline_gain: float = 0.004, departure: float = 60.0,
+                    elevator_limits=(-np.radians(30), np.radians(20))) -> EngineCutRuns:
+    """The engine-cut runs of the batch (module docstring); ``departure`` (m) off the centreline ends a row early."""
+    n = model.n
+    vf = np.broadcast_to(np.asarray(failure_speed, dtype=float), (n,)).copy()
+    u = np.zeros((n, len(model.control_names)))
+    for name, value in (settings or {}).items():
+        u[:, model.control_index(name)] = value
+    x0 = ground_equilibrium(model, u)  # attitude and gear compression of rest, engines idle
+    u[:, model.throttle_slice] = throttle
+    v0 = np.maximum(vf - runway_acceleration(model, vf, throttle) * lead_time, 1.0)
+    x0[:, 3], x0[:, 5] = v0 * np.cos(x0[:, 10]), v0 * np.sin(x0[:, 10])
+    # the column holds the attitude of rest: the nose wheel stays on the runway (no rotation)
+    pitch = PitchAttitudeHold(model, u, 0.0, x0[:, 10], limits=elevator_limits)
+    failure = EngineFailure(model, engine, vf, decay_time=decay_time)
+    pilot = DirectionalPilot(model, u, failure, reaction_time, rudder_rate, None, limits=lateral_limits,
+                             k_y=centreline_gain)
+    y0 = x0[:, 1].copy()
+    swing_sign = np.zeros(n)
+    recovered = np.zeros(n, dtype=bool)
+    airborne = np.zeros(n, dtype=bool)
+
+    def done(t, x, out):
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        psi = np.arctan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2 * q2 + q3 * q3))
+        t_fail = failure.fail_time
+        failed = np.isfinite(t_fail)
+        started = failed & (swing_sign == 0.0) & (np.abs(psi) > _SWING)
+        swing_sign[started] = np.sign(psi[started])
+        back = failed & (swing_sign != 0.0) & (psi * swing_sign <= 0.0)
+        recovered[back] = True
+        with np.errstate(invalid="ignore"):
+            late = failed & (t >= t_fail + after)
+            reacted = failed & (t >= t_fail + reaction_time)
+        up = reacted & ~back & (out.gear_load.sum(axis=1) <= 0.0)
+        airborne[up] = True
+        return back | late | up | (np.abs(x[:, 1] - y0) > departure)
+
+    t_end = lead_time * 3.0 + after + 10.0
+    sim = simulate(model, x0, u, t_end, dt, controllers=[pitch, pilot, failure], stop=[stop_when("recovered", done)])
+    k_fail = np.argmax(sim["V"] >= vf[None, :], axis=0)
+    nt = sim.t.size
+    k = np.arange(nt)[:, None]
+    window = (k >= k_fail[None, :]) & (sim.t[:, None] <= sim.stop_time[None, :] + 1e-9)
+    y = np.abs(sim["y_E"] - y0[None, :])
+    dev = np.where(window, y, 0.0).max(axis=0)
+    dev = np.where(recovered | airborne, dev, np.inf)
+    swing = np.where(window, np.abs(sim["psi"]), 0.0).max(axis=0)
+    rudder = np.abs(sim.controls[:, :, model.control_index("rudder")]).max(axis=0)
+    t_rec = np.where(recovered, sim.stop_time - sim.t[np.minimum(k_fail, nt - 1)], np.nan)
+    return EngineCutRuns(vf, dev, recovered, swing, rudder, t_rec, airborne, sim)
+
+
+
+
+def ground_minimum_control_speed(model: AircraftModel, engine: str, low: float, high: float, deviation_limit: float,
+                                 reaction_time: float, rudder_rate: float, grid: int = 6, refine: int = 3,
+                                 settings=None, **runs) -> GroundControlSpeed:
+    """The failure speed of each condition at which the deviation equals ``deviation_limit`` (module docstring),
+    searched from ``low`` to ``high`` (m/s TAS); ``settings`` (control → value, one or (n,) per condition) held;
+    ``runs`` go to :func:`engine_cut_runs`."""
+    n = model.n
+    speeds = [[] for _ in range(n)]
+    devs = [[] for _ in range(n)]
+    passes = []
+    lo = np.full(n, float(low))
+    hi = np.full(n, float(high))
+    for m, inside in ((grid, False), (refine, True)):
+        if inside:
+            grid_i = lo[:, None] + (hi - lo)[:, None] * (np.arange(1, m + 1) / (m + 1))[None, :]
+        else:
+            grid_i = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, m)[None, :]
+        rows = np.repeat(np.arange(n), m)
+        held = {k: np.broadcast_to(np.asarray(v, dtype=float), (n,))[rows] for k, v in (settings or {}).items()}
+        res = engine_cut_runs(model.subset(rows), grid_i.ravel(), engine, reaction_time, rudder_rate, settings=held,
+                              **runs)
+        passes.append(res)
+        for i, (v, d) in enumerate(zip(grid_i.ravel(), res.deviation)):
+            if res.airborne[i]:  # off the runway before the recovery: says nothing of the control on the ground
+                continue
+            speeds[rows[i]].append(float(v))
+            devs[rows[i]].append(float(d))
+        for c in range(n):
+            order = np.argsort(speeds[c])
+            v, d = np.asarray(speeds[c])[order], np.asarray(devs[c])[order]
+            speeds[c], devs[c] = list(v), list(d)
+            if v.size == 0:
+                continue
+            beyond = np.flatnonzero(d > deviation_limit)
+            if beyond.size == 0 or beyond[-1] == v.size - 1:
+                lo[c] = hi[c] = v[0] if beyond.size == 0 else v[-1]
+            else:
+                lo[c], hi[c] = v[beyond[-1]], v[beyond[-1] + 1]
+        if np.all(lo == hi):
+            break
+    speed = np.empty(n)
+    below, above = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
+    for c in range(n):
+        v, d = np.asarray(speeds[c]), np.asarray(devs[c])
+        beyond = np.flatnonzero(d > deviation_limit)
+        if v.size == 0:
+            speed[c] = np.nan
+        elif beyond.size == 0:
+            speed[c], below[c] = v[0], True
+        elif beyond[-1] == v.size - 1:
+            speed[c], above[c] = v[-1], True
+        else:
+            k = beyond[-1]
+            d0 = min(d[k], 10.0 * deviation_limit)  # an unrecovered run counts as far beyond the bound
+            speed[c] = v[k] + (v[k + 1] - v[k]) * (d0 - deviation_limit) / (d0 - d[k + 1])
+    return GroundControlSpeed(speed, below, above, speeds, devs, passes)
+
+
+__all__ = ["engine_cut_runs", "ground_minimum_control_speed", "EngineCutRuns", "GroundControlSpeed"]
