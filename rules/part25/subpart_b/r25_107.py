@@ -11,11 +11,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import ConditionSpace, DesignWeight
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit.reference_speeds import declared_cas, ratio_check
-from certkit.reference_speeds import reference_stall_speed
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
@@ -84,7 +84,7 @@ class TakeoffSpeeds(Rule):
             speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
             if speeds["VMC"] is None:
-                from certkit_rules.part25.subpart_b.minimum_control import computed_vmca
+                from certkit_rules.part25.support.minimum_control import computed_vmca
 
                 speeds["VMC"] = computed_vmca(ctx)
                 vmc_basis = "VMCA computed by §25.149 (no VMC declared)"
@@ -105,8 +105,8 @@ class TakeoffSpeeds(Rule):
         """(a) VEF ≥ VMCG: VEF the speed from which V1 is reached one recognition interval after the failure of the
         critical engine (the simulated takeoff's, at MTOW and the reference CG: V1 ≥ VEF by construction); VMCG the
         declared one, or where none is declared the highest §25.149(e) computes over the weight–CG corners."""
-        from certkit_rules.part25.subpart_b.ground_control import computed_vmcg
-        from certkit_rules.part25.takeoff import failure_speed_at_v1
+        from certkit_rules.part25.support.ground_control import computed_vmcg
+        from certkit_rules.part25.support.takeoff import failure_speed_at_v1
 
         check = "(a) VEF ≥ VMCG (V1 ≥ VEF)"
         basis = "declared VMCG"
@@ -128,7 +128,7 @@ class TakeoffSpeeds(Rule):
                            basis=f"{basis}; VEF: {vef_basis}")
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.107 takeoff speed ratios",
                                 "Declared takeoff speeds as ratios against their §25.107 factors.",

@@ -1,0 +1,115 @@
+"""The §25.149(e) minimum control speed on the ground VMCG as the regulation's conditions define it, shared by §25.149
+(which reports it) and §25.107 (VEF ≥ VMCG) and the simulated takeoff (regulation content, no rule here).
+
+§25.149(e): VMCG is the calibrated airspeed on the takeoff run at which, when the critical engine is suddenly made
+inoperative, control can be kept with the rudder alone (no nose-wheel steering), the lateral control keeping the
+wings level, and the path from the failure to the recovery to a direction parallel to the centreline deviates no
+more than 30 ft laterally from the centreline; in each takeoff configuration, maximum takeoff thrust, the most
+unfavourable CG and weight, the airplane trimmed for takeoff. The procedure is
+:func:`certkit.models.dynamics.ground_control.ground_minimum_control_speed`: the critical engine cut with the engine's
+spool-down (``propulsion.failure_decay_time``), the castering nose wheel, the stabiliser (if any) at the takeoff trim
+of V2, the pilot holding the rudder for the reaction time of the criteria after the failure, then moving it at the
+declared ``takeoff_pilot.rudder_rate`` on the heading and centreline; over every corner of the weight–CG envelope.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from types import SimpleNamespace
+
+import numpy as np
+
+from certkit.atmosphere import convert_speed
+from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.engine.registry import Criterion
+from certkit_rules.part25.support.thrust_trims import critical_engine
+from certkit.units import FT, KN
+
+VMCG_RULE_ID = "25.149"
+SOURCE = "14 CFR 25.149(e) (Amdt. 25-108; verified, docs/regulation-notes.md)"
+VMCG_CRITERIA = {
+    "vmcg_deviation_max_ft": Criterion(30.0, "ft", SOURCE, "largest lateral deviation from the centreline between "
+                                       "the engine failure and the recovery to a parallel direction"),
+    "vmcg_reaction_time_s": Criterion(1.0, "s", "AC 25-7D §25.149 VMCG test technique: the engine is cut without "
+                                      "warning and the pilot recovers with normal piloting skill, no anticipation; "
+                                      "1 s from the failure to the first rudder input, the recognition interval of "
+                                      "§25.107(a)(2) practice (the AC's own wording not retrieved: unverified)",
+                                      "time from the engine cut to the pilot's first rudder input"),
+    "vmcg_low_kn": Criterion(60.0, "kn", "project choice: the search starts at 60 KCAS (below any transport's VMCG)",
+                             "lowest failure speed searched (CAS)"),
+}
+#: what the VMCG procedure needs from the aircraft file
+VMCG_REQUIRES = ("speeds.VR", "speeds.V2", "geometry.landing_gear", "geometry.vertical_tail.controls.rudder",
+                 "cg_envelope")
+VMCG_CONDITIONS = ConditionSpace(loading=CgCorners(), configurations=("takeoff",), altitudes=Altitudes((0.0,)),
+                                 note="Sea level ISA, maximum takeoff thrust, the critical engine cut; every corner of "
+                                      "the weight–CG envelope (the most unfavourable weight and CG).")
+
+
+@dataclass
+class Vmcg:
+    speed_cas: np.ndarray   # (n,) m/s CAS per condition (nan: no run stayed on the runway)
+    below: np.ndarray       # (n,) within the bound at the lowest speed searched: VMCG no higher
+    above: np.ndarray       # (n,) beyond the bound at the highest speed searched (VR): no VMCG on the runway
+    search: object          # GroundControlSpeed
+    engine: str
+    high_cas: float         # m/s CAS, the highest failure speed searched (VR)
+    basis: dict
+
+
+def vmcg_runs(ctx, conditions, crit) -> Vmcg:
+    """The memoised VMCG search of ``conditions`` with the criteria ``crit`` (module docstring)."""
+    from certkit.models.dynamics.ground_control import ground_minimum_control_speed
+    from certkit.models.flight import control_limits, flight_model, ground_model
+
+    def compute():
+        ac = ctx.aircraft
+        sp = ac.speeds
+        pilot = ac.takeoff_pilot
+        tas = lambda v: float(convert_speed(v, "CAS", "TAS", 0.0))  # noqa: E731
+        vr_cas = float(convert_speed(sp.VR.value, sp.VR.kind, "CAS", 0.0))
+        at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
+        trims = ctx.trim(at_v2)
+        held = sorted({k for r in trims.results for k in r.controls}
+                      & (set(ctx.aero("takeoff").model.control_names) - {"elevator", "aileron", "rudder"}))
+        settings = {k: np.array([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results]) for k in held}
+        loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
+        model = flight_model(ac, ctx.aero("takeoff").model, loadings, ground=ground_model(ac, nose_wheel="castering"))
+        engine = critical_engine(ctx)
+        n = len(conditions)
+        travel = control_limits(ac, design=False)
+        search = ground_minimum_control_speed(
+            model, engine, tas(crit.vmcg_low_kn * KN), tas(vr_cas), crit.vmcg_deviation_max_ft * FT,
+            crit.vmcg_reaction_time_s, pilot.rudder_rate, decay_time=ac.propulsion.failure_decay_time,
+            lateral_limits=travel, elevator_limits=travel["elevator"], settings=settings)
+        cas = np.array([float(convert_speed(v, "TAS", "CAS", 0.0)) if np.isfinite(v) else np.nan for v in search.speed])
+        basis = {"engine": engine, "nose_wheel": "castering (no nose-wheel steering)",
+                 "reaction_time_s": crit.vmcg_reaction_time_s,
+                 "rudder_rate_deg_s": round(float(np.degrees(pilot.rudder_rate)), 1),
+                 "spool_down": (f"τ = {ac.propulsion.failure_decay_time:g} s" if ac.propulsion.failure_decay_time
+                                else "windmilling at once"),
+                 "held_settings": sorted(settings) or None, "conditions": n}
+        return Vmcg(cas, search.below, search.above, search, engine, vr_cas, basis)
+
+    key = ("vmcg", tuple((c.mass, c.x_cg) for c in conditions), tuple(float(getattr(crit, k)) for k in VMCG_CRITERIA))
+    return ctx.memo(key, compute)
+
+
+def computed_vmcg(ctx):
+    """(VMCG m/s CAS, the condition's loading name, the Vmcg) as §25.149 computes it with its criteria (and the file's
+    overrides): the highest over its conditions; (None, None, None) when the inputs are missing."""
+    from certkit.engine.scheduler import criteria_for
+
+    if ctx.missing(VMCG_REQUIRES):
+        return None, None, None
+    crit, _ = criteria_for(SimpleNamespace(id=VMCG_RULE_ID, criteria=VMCG_CRITERIA), ctx)
+    conds = VMCG_CONDITIONS.expand(ctx.aircraft)
+    res = vmcg_runs(ctx, conds, crit)
+    speeds = np.where(res.above, np.inf, res.speed_cas)
+    if not np.isfinite(np.nan_to_num(speeds, nan=-np.inf)).any() and not res.above.any():
+        return None, None, res
+    k = int(np.nanargmax(np.where(np.isnan(speeds), -np.inf, speeds)))
+    return float(speeds[k]), conds[k].loading, res
+
+
+__all__ = ["VMCG_RULE_ID", "VMCG_CRITERIA", "VMCG_REQUIRES", "VMCG_CONDITIONS", "Vmcg", "vmcg_runs", "computed_vmcg"]
