@@ -137,3 +137,26 @@ def test_libyaml_and_pure_python_parsers_agree_on_the_baseline():
     yaml_source._record(node, (), lines_c, [], BASELINE)
     yaml_source._record(py_node, (), lines_py, [], BASELINE)
     assert lines_c == lines_py and len(lines_c) > 100
+
+
+def test_takeoff_pilot_defaults_and_bad_values(baseline, tmp_path):
+    """The takeoff pilot: AC 25-7D-based defaults when the file says nothing (1 s, 30 deg/s, no nose-wheel steering);
+    a negative rate, a reaction beyond 5 s and a steering angle beyond 80° are each reported with path and line."""
+    pilot = baseline.model.takeoff_pilot
+    assert pilot.rudder_reaction_time == 1.0 and pilot.rudder_rate == pytest.approx(30 * 3.141592653589793 / 180)
+    assert pilot.nose_wheel_steering is None
+    text = BASELINE.read_text().replace(
+        "\nconfigurations:\n",
+        "\ntakeoff_pilot:\n  rudder_reaction_time: 7 s\n  rudder_rate: -5 deg/s\n  nose_wheel_steering: 95 deg\n"
+        "\nconfigurations:\n", 1)
+    f = tmp_path / "a.yaml"
+    f.write_text(text)
+    line = text[:text.index("takeoff_pilot:")].count("\n") + 1
+    with pytest.raises(InputError) as info:
+        load_aircraft(f)
+    by_path = {p.path: p for p in info.value.problems}
+    for k, (path, words) in enumerate((("takeoff_pilot.rudder_reaction_time", "less than or equal to 5"),
+                                       ("takeoff_pilot.rudder_rate", "greater than 0"),
+                                       ("takeoff_pilot.nose_wheel_steering", "less than or equal to"))):
+        assert path in by_path, list(by_path)
+        assert words in by_path[path].message and by_path[path].line == line + 1 + k

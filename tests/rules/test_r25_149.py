@@ -142,3 +142,55 @@ def test_vmca_mirror_symmetric_and_stable(result, ctx):
     moved, *_ = vmca_search(ctx, rows["conds"], rows["engines"], rows["banks"], rows["vsr"], crit.throttle,
                             crit.grid_low, crit.grid_high, crit.speed_tolerance_kn * KN, start=1.2 * (1 + 1e-6))
     assert np.allclose(moved / KN, rows["vmca"] / KN, atol=0.05, rtol=0)
+
+
+# --- (e) VMCG by simulation -------------------------------------------------------------------------------------------
+
+FIN = ("area: 527.84 ft^2          # [given]", "area: 316.70 ft^2          # 40 % smaller fin")
+
+
+def _vmcg(result):
+    return [f for f in own(result) if f.check.startswith("(e) VMCG")]
+
+
+def test_vmcg_over_the_weight_cg_corners(result):
+    """Every corner of the weight–CG envelope gets a VMCG below VR = 155 KCAS, found inside the search (the deviation
+    beyond 30 ft just below it and within 30 ft just above, in its own search table). The highest is a heavy corner
+    (the yaw inertia grows with weight while the thrust asymmetry does not); without a declared VMCG the comparison with
+    it is not evaluated and names the computed value."""
+    found = _vmcg(result)
+    assert len(found) == 8 and all(f.status == "complies" and f.limit == pytest.approx(155.0) for f in found)
+    for f in found:
+        below = [row for row in f.details["search"] if row["failure_speed_kn_cas"] < f.value - 0.5]
+        above = [row for row in f.details["search"] if row["failure_speed_kn_cas"] > f.value + 0.5]
+        assert all(r["max_lateral_deviation_ft"] is None or r["max_lateral_deviation_ft"] > 30.0 for r in below)
+        assert all(r["max_lateral_deviation_ft"] <= 30.0 for r in above)
+    worst = max(found, key=lambda f: f.value)
+    assert worst.condition.mass > 600_000 * 0.4536
+    declared = next(f for f in own(result) if f.check.startswith("(e) declared"))
+    assert declared.status == "not_evaluated" and declared.details["computed_VMCG_kn_cas"] == pytest.approx(worst.value,
+                                                                                                            abs=0.1)
+
+
+def test_declared_vmcg_checked_against_the_computed_one(result, tmp_path):
+    """A declared VMCG 5 kn above the computed one complies by 5 kn; 5 kn below it fails by 5 kn (kn CAS)."""
+    worst = max(f.value for f in _vmcg(result))
+    for offset in (5.0, -5.0):
+        (tmp_path / str(offset)).mkdir()
+        r = run_rule("25.149", tmp_path / str(offset),
+                     [("  V2: 161 kn CAS", f"  V2: 161 kn CAS\n  VMCG: {worst + offset:.2f} kn CAS")])
+        f = next(f for f in own(r) if f.check.startswith("(e) declared"))
+        assert f.margin == pytest.approx(offset, abs=0.02) and f.status == ("complies" if offset > 0 else "fails")
+
+
+def test_a_40_percent_smaller_fin_has_no_vmcg_on_the_runway(result, tmp_path):
+    """A deficient airplane: the fin (and its rudder) 40 % smaller, aspect ratio kept. The rudder's yawing moment
+    scales about with the fin's area times its arm, so the speed at which the rudder balances the engine-out moment
+    grows about as 1/√0.6 = 1.29: from ≈ 136 kn to ≈ 175 kn, beyond VR = 155 kn. No failure speed on the runway keeps
+    the deviation within 30 ft at the heavy corners: (e) fails there."""
+    r = run_rule("25.149", tmp_path, [FIN])
+    heavy = [f for f in _vmcg(r) if f.condition.mass > 600_000 * 0.4536]
+    assert heavy and all(f.status == "fails" and "no VMCG on the runway" in f.reason for f in heavy)
+    base = {f.condition.loading: f.value for f in _vmcg(result)}
+    for f in _vmcg(r):
+        assert f.status != "complies" or f.value > base[f.condition.loading]

@@ -28,7 +28,7 @@ class MinimumControlSpeed(Rule):
     id = VMCA_RULE_ID
     cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "minimum-control-speed"
-    title = "Minimum control speed VMC (VMCA)"
+    title = "Minimum control speeds VMCA (in the air) and VMCG (on the ground, simulated)"
     amendment = "25-108"
     requirement = """
         (b) VMC is the calibrated airspeed at which, when the critical engine is suddenly made inoperative, it is
