@@ -5,9 +5,10 @@ limits of ±2°, structure at 5 % of its declared capability — and each rule w
 deficiencies are gross so that the verdict does not hang on model detail.
 
 Rules already failing on the baseline show their failure path there (§25.125, §25.143(h), §25.161, §25.181, see
-`certkit check aircraft/lta.yaml`, and each rule's own deficient-airplane test); §25.111's baseline runs are not
-representative (not evaluated), and tests/rules/test_r25_111.py fails it with a ±15° rudder; §25.113 needs a declared
-takeoff field length, and tests/rules/test_r25_113.py fails it with one and 23 % less thrust; §25.173(b)/(c) need a
+`certkit check aircraft/lta.yaml`, and each rule's own deficient-airplane test); §25.111 fails on the baseline (its
+rudder beyond the ±23.2° design limit, docs/baseline-sources.md §14a), and tests/rules/test_r25_111.py fails it with a
+±15° rudder too; §25.113 needs a declared takeoff field length, and tests/rules/test_r25_113.py fails it with one and
+30 % less thrust; §25.173(b)/(c) need a
 control-force model the baseline does not declare (tests/rules/test_control_forces.py runs them with one).
 """
 

@@ -70,7 +70,7 @@ class GroundControlSpeed:
 
 def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_time: float, rudder_rate: float,
                     decay_time: float | None = None, throttle: float = 1.0, settings=None, lateral_limits=None,
-                    lead_time: float = 3.0, after: float = 20.0, dt: float = 0.1,
+                    lead_time: float = 3.0, after: float = 15.0, dt: float = 0.1,
                     centreline_gain: float = 0.004, departure: float = 60.0,
                     elevator_limits=(-np.radians(30), np.radians(20))) -> EngineCutRuns:
     """The engine-cut runs of the batch (module docstring); ``departure`` (m) off the centreline ends a row early."""

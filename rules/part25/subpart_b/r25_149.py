@@ -109,8 +109,11 @@ class MinimumControlSpeed(Rule):
             found = c0.with_(speed=float(vmcg), speed_kind="CAS", speed_name="VMCG")
             reason = ""
             if res.above[i]:
+                at_vr = res.search.deviations[i][-1] / 0.3048
                 reason = (f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
-                          f"VR ({res.high_cas / KN:.1f} kn): no VMCG on the runway")
+                          f"VR ({res.high_cas / KN:.1f} kn; at VR "
+                          + (f"{at_vr:.0f} ft" if np.isfinite(at_vr) else "the heading does not recover") +
+                          "): no VMCG on the runway (value shown as VR + 1 kn)")
                 vmcg = np.inf
             elif res.below[i]:
                 reason = f"within the bound from the lowest speed searched ({crit.vmcg_low_kn:g} kn): VMCG no higher"

@@ -83,6 +83,17 @@ REPRESENTATIVE_CRITERIA = {
 }
 
 
+def takeoff_trim(ctx, conditions):
+    """The 1-g trims at V2, sea level, of ``conditions`` (takeoff configuration) and the aerodynamic controls they set
+    besides the pilot's (e.g. a movable stabiliser), held at those values through a takeoff run: control → (n,)."""
+    sp = ctx.aircraft.speeds
+    at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
+    trims = ctx.trim(at_v2)
+    pilot = {"elevator", "aileron", "rudder"}
+    names = sorted({k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot))
+    return trims, {k: np.array([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results]) for k in names}
+
+
 @dataclass
 class Takeoffs:
     trims: object              # 1-g trims at V2 (one per loading)
@@ -106,14 +117,10 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         n = len(conditions)
         tas = lambda s: float(convert_speed(s.value, s.kind, "TAS", 0.0))  # noqa: E731
         vr, v2 = tas(sp.VR), tas(sp.V2)
-        at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
-        trims = ctx.trim(at_v2)
+        trims, held = takeoff_trim(ctx, conditions)
         theta = np.array([r.theta for r in trims.results])
         de_ff = np.array([r.controls.get("elevator", 0.0) if r.converged else 0.0 for r in trims.results])
-        # aerodynamic controls the V2 trim sets besides the pilot's (e.g. a movable stabiliser) are held there
-        pilot = {"elevator", "aileron", "rudder"}
-        held = sorted({k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot))
-        settings = {k: np.tile([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results], 2) for k in held}
+        settings = {k: np.tile(v, 2) for k, v in held.items()}
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         pilot = ac.takeoff_pilot
         steering = pilot.nose_wheel_steering or None
@@ -122,6 +129,14 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
         vef, vef_basis = engine_failure_speed(model, tas(sp.V1), engine, crit.recognition_time,
                                               ac.propulsion.failure_decay_time)
+        from certkit_rules.part25.support.ground_control import computed_vmcg
+
+        vmcg, _, _ = computed_vmcg(ctx)  # the failure is never scheduled below VMCG (§25.107(a)(1))
+        if vmcg is not None and np.isfinite(vmcg):
+            low = vef < float(convert_speed(vmcg, "CAS", "TAS", 0.0))
+            if low.any():
+                vef = np.where(low, float(convert_speed(vmcg, "CAS", "TAS", 0.0)), vef)
+                vef_basis += f"; raised to VMCG {vmcg / KN:.1f} KCAS (§25.149(e)) where below it"
         vef[n:] = np.inf  # the all-engines rows
         y = {e.name: e.position.y for e in ac.propulsion.engines}
         toward_live = -np.sign(y[engine]) if y[engine] != 0 else 1.0  # bank right (+) when the left engine is dead
