@@ -104,3 +104,25 @@ def test_vmcg_against_the_rudder_moment_balance(ctx):
     # the search's bracket: the deviation is beyond 30 ft just below VMCG and within it just above
     v, d = np.asarray(found.speeds[0]), np.asarray(found.deviations[0])
     assert d[v < found.speed[0]].min() > 30.0 * FT >= d[v > found.speed[0]].max()
+
+
+def test_takeoff_run_steers_with_the_pedals_on_the_ground_only(heavy, ctx):
+    """With pedal steering declared (7° at full pedal, the travel ±27.3°) the takeoff pilot turns the nose wheel by
+    −7/27.3 of the rudder while a gear leg carries load and leaves it straight once airborne (a definition: the
+    pedal-to-wheel gearing is linear)."""
+    from certkit.models.dynamics.procedures import takeoff_run
+
+    ac, loading = heavy
+    model = flight_model(ac, ctx.aero("takeoff").model, [loading], ground=ground_model(ac, nose_wheel="steered"))
+    travel = control_limits(ac, design=False)
+    run = takeoff_run(model, _tas(155.0), np.radians(8.0), climb_speed=_tas(161.0), lateral="pilot",
+                      lateral_limits=travel, failed_engine="left", failure_speed=_tas(147.0), failure_decay_time=1.5,
+                      reaction_time=1.0, rudder_rate=np.radians(30.0), steering=np.radians(7.0), dt=0.1)
+    sim = run.sim
+    dr = sim.controls[:, 0, sim.control_names.index("rudder")]
+    nw = sim.controls[:, 0, sim.control_names.index(STEERING)]
+    ground = run.wheel_height[:, 0] < -0.05  # a strut clearly compressed (at lift-off the load leaves first)
+    air = run.wheel_height[:, 0] > 0.0
+    assert np.abs(dr[ground]).max() > np.radians(10.0)
+    assert nw[ground] == pytest.approx(-dr[ground] * 7.0 / 27.3, abs=np.radians(0.5))
+    assert np.abs(nw[air]).max() == pytest.approx(0.0, abs=1e-12)

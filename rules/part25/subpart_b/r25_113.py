@@ -46,7 +46,7 @@ class TakeoffDistance(Rule):
     limitations = """
         Dry runway only ((b) wet runway and (c)-(d) takeoff run with clearway are not computed); sea level ISA at MTOW;
         ground effect on the wing and on the tail's downwash as in §25.111; the pilot and engine models of §25.111 (rotation at 2.5°/s below the tail-strike attitude,
-        rudder on heading and centreline, first-order spool-down of the failed engine). Runs outside the §25.111
+        the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs outside the §25.111
         representativeness bounds are not evaluated. The paragraph's text is from memory (not in
         docs/regulation-notes.md).
     """

@@ -12,10 +12,13 @@ rows n..2n−1 with all engines operating (the §25.113(a)(2) distance). The pro
     below the tail-strike attitude); airborne, the attitude flies the speed: V2 with the engine failed,
     V2 + ``all_engines_speed_increment_kn`` with all engines; feed-forward elevator of the V2 trim, PI attitude
     feedback with rate damping;
-  * rudder on the runway heading and the centreline on the ground (no nose-wheel steering), wings level on the
+  * the pedals on the runway heading and the centreline on the ground as the aircraft file's ``takeoff_pilot`` says
+    (held for its reaction time after the failure, then at most its rudder rate; pedal nose-wheel steering when
+    declared, the nose wheel held straight otherwise), wings level on the
     ground, ``bank_deg`` toward the live engine in the air (§25.149(b) allowance);
   * the critical engine (largest |y|) fails when the airspeed reaches VEF (V1 less the speed gained
-    over the recognition interval after the failure, §25.107(a)(2)), its thrust decaying to windmilling drag with the
+    over the recognition interval after the failure, §25.107(a)(2); never below the computed VMCG, §25.107(a)(1)), its
+    thrust decaying to windmilling drag with the
     declared ``propulsion.failure_decay_time`` (windmilling at once without it: the basis says so).
 Representativeness (:func:`unrepresentative`): a run whose lift-off, speed at 35 ft or ground track is outside the
 bounds does not stand for a takeoff a pilot flies and earns no verdict.
@@ -166,6 +169,10 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
             "tail_strike": ("declared geometry.landing_gear.tail_strike_attitude" if strike is not None else
                             "no tail-strike attitude declared (geometry.landing_gear.tail_strike_attitude): the "
                             "rotation is limited by the V2 attitude only"),
+            "pilot": (f"rudder held {pilot.rudder_reaction_time:g} s after the failure, then at most "
+                      f"{np.degrees(pilot.rudder_rate):g}°/s (takeoff_pilot); "
+                      + (f"pedal nose-wheel steering {np.degrees(steering):g}° at full pedal" if steering else
+                         "no nose-wheel steering declared (the nose wheel held straight)")),
             "spool_down": (f"first-order thrust decay, τ = {decay:g} s (propulsion.failure_decay_time)" if decay else
                            "no propulsion.failure_decay_time declared: the failed engine windmills at once"),
             "tail_strike_deg": None if strike is None else round(float(np.degrees(strike)), 2),
