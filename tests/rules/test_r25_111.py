@@ -67,17 +67,23 @@ def test_runs_are_representative_and_every_check_is_evaluated(result):
             assert f.details["vlof_kn"] - 155.0 <= 15.0
 
 
-def test_the_rudder_peak_beyond_the_design_limit_is_the_airplane_not_the_pilot(result, ctx):
-    """§25.111(a) fails on the rudder at every CG, and the cause is the declared data, not the procedure: the rudder
-    that merely balances the engine-out yawing moment at VEF (147 kn, the moment balance with the model's moments,
-    wings level, no sideslip) is already beyond the 23.2° design limit (about 24°), so any pilot who holds the
-    centreline exceeds it; the run's peak lies between that steady value and the 27.3° stop."""
+def test_the_rudder_peak_beyond_the_design_limit_is_the_airplane_not_the_pilot(result, ctx, tmp_path):
+    """§25.111(a) fails on the rudder at every CG, and the cause is the declared data, not the procedure. (1) The rudder
+    that merely balances the engine-out yawing moment at VEF (147 kn, full asymmetry, the moment balance with the
+    model's moments, wings level, no sideslip) is already beyond the ±23.2° design limit (about 24°). (2) With the
+    rudder's travel cut to that design limit, the VMCG §25.149(e) computes lies above VEF (about 150 kn at the heaviest
+    forward corner; none below VR at the light aft one),
+    so §25.107(a) VEF ≥ VMCG fails: no pilot who keeps the ground run within 30 ft of the centreline after a failure at
+    VEF stays within 23.2°. The run's peak lies between the design limit and the 27.3° stop."""
     steady = _static_rudder_deg(ctx, 147.0)
     assert steady < -23.2
     for loading in LOADINGS:
         f = _by(result, loading, "(a) rudder")
         assert f.status == "fails" and f.limit == pytest.approx(-23.2)
-        assert -27.3 - 1e-6 <= f.details["rudder_min_deg"] <= steady + 1.0
+        assert -27.3 - 1e-6 <= f.details["rudder_min_deg"] < -23.2
+    cut = run_rule("25.107", tmp_path, [("travel: {min: -27.3 deg, max: 27.3 deg}", "travel: {min: -23.2 deg, max: 23.2 deg}")])
+    vef = next(f for f in own(cut) if f.check.startswith("(a)"))
+    assert vef.status == "fails" and "VMCG computed" in vef.details["basis"]
 
 
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
