@@ -81,7 +81,8 @@ def test_the_rudder_peak_beyond_the_design_limit_is_the_airplane_not_the_pilot(r
         f = _by(result, loading, "(a) rudder")
         assert f.status == "fails" and f.limit == pytest.approx(-23.2)
         assert -27.3 - 1e-6 <= f.details["rudder_min_deg"] < -23.2
-    cut = run_rule("25.107", tmp_path, [("travel: {min: -27.3 deg, max: 27.3 deg}", "travel: {min: -23.2 deg, max: 23.2 deg}")])
+    cut = run_rule("25.107", tmp_path, [("travel: {min: -27.3 deg, max: 27.3 deg}",
+                                         "travel: {min: -23.2 deg, max: 23.2 deg}")])
     vef = next(f for f in own(cut) if f.check.startswith("(a)"))
     assert vef.status == "fails" and "VMCG computed" in vef.details["basis"]
 

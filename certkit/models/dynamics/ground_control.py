@@ -3,10 +3,11 @@ numbers here: the deviation bound, the reaction time and the pedal rate are the 
 
 :func:`engine_cut_runs`
     Each row of the batch rolls along the centreline with every engine at ``throttle`` (from about
-    ``lead_time`` before the failure, at the quasi-steady runway acceleration of the failure speed, at the attitude and gear compression of rest), any ``settings`` (e.g. a
-    stabiliser at its takeoff setting) held and the elevator holding the attitude of rest (the nose wheel on the
-    runway, no rotation); ``engine`` fails when the airspeed reaches the row's
-    ``failure_speed`` (its thrust decaying with ``decay_time``, :class:`~certkit.models.dynamics.controllers.EngineFailure`);
+    ``lead_time`` before the failure, at the quasi-steady runway acceleration of the failure speed, at the attitude
+    and gear compression of rest), any ``settings`` (e.g. a stabiliser at its takeoff setting) held and the elevator
+    holding the attitude of rest (the nose wheel on the runway, no rotation); ``engine`` fails when the airspeed
+    reaches the row's ``failure_speed`` (its thrust decaying with ``decay_time``,
+    :class:`~certkit.models.dynamics.controllers.EngineFailure`);
     the pilot (:class:`~certkit.models.dynamics.takeoff_pilot.DirectionalPilot`, no nose-wheel steering) holds the
     rudder for ``reaction_time`` after the failure, then flies the heading and centreline with the rudder moved at most
     at ``rudder_rate``; the ailerons hold the wings level. The model's nose wheel should caster (a ground model built

@@ -140,7 +140,8 @@ def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alph
 # simulations run ~0.8 → 0.4 µs per evaluation); the RK4 step calls it from one site to keep the compile short
 @njit(cache=True, error_model="numpy", fastmath=True, inline="always")
 def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index, xd, out, gear):
+                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index, xd,
+                   out, gear):
     """State derivative of condition ``i`` (state ``x``, 13 quaternion or 12 Euler components) into
     ``xd``; outputs into ``out`` (:data:`OUTPUTS`) and gear loads into ``gear``."""
     h, u, v, w, p, q, r = x[2], x[3], x[4], x[5], x[6], x[7], x[8]
@@ -358,8 +359,8 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
 @njit(cache=True, error_model="numpy", fastmath=True)
 def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
                         clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
-                        legs, gparams, brake_index, steer_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec, stop_step,
-                        stop_which):
+                        legs, gparams, brake_index, steer_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec,
+                        stop_step, stop_which):
     """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
     the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
     parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of each step from
