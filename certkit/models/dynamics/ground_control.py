@@ -19,9 +19,11 @@ numbers here: the deviation bound, the reaction time and the pedal rate are the 
 
 :func:`ground_minimum_control_speed`
     For each condition of the batch, the failure speed at which the largest lateral deviation of
-    :func:`engine_cut_runs` equals ``deviation_limit``: the runs over a grid of failure speeds, then over
-    ``refine`` speeds inside the bracket where the deviation crosses the bound, the speed interpolated linearly in
-    the final bracket (the deviation falls as the failure speed rises: the rudder's power grows with q̄ while the
+    :func:`engine_cut_runs` equals ``deviation_limit``: the runs over ``grid`` failure speeds from 0.85 to 1.15 times
+    the static rudder-moment balance speed (:func:`rudder_balance_speed`: one batch of model evaluations; a run costs
+    its steps, so one pass of runs where VMCG lies is cheaper than a coarse pass over the whole range and a refining
+    one), more toward the range's ends only where the crossing lies outside, the speed interpolated linearly in the
+    bracket (the deviation falls as the failure speed rises: the rudder's power grows with q̄ while the
     thrust asymmetry does not). A condition whose deviation stays within the bound at the lowest speed of the grid is
     reported at that speed with ``below`` set (VMCG no higher); one beyond the bound at the highest with ``above`` set.
     Runs that leave the runway before the recovery (``airborne``) say nothing of the control on the ground and are
@@ -67,6 +69,7 @@ class GroundControlSpeed:
     speeds: list                # per condition, the failure speeds run (sorted)
     deviations: list            # per condition, their deviations (m)
     runs: list                  # the EngineCutRuns of each pass
+    balance_speed: np.ndarray   # (n,) m/s TAS, the static rudder-moment balance the search started from (NaN: none)
 
 
 def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_time: float, rudder_rate: float,
@@ -127,46 +130,93 @@ def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_t
 
 
 
+def rudder_balance_speed(model: AircraftModel, engine: str, rudder_limits, low: float, high: float, settings=None,
+                         throttle: float = 1.0, points: int = 25) -> np.ndarray:
+    """The speed (m/s TAS, one per condition; NaN where none between ``low`` and ``high``) at which the rudder on its
+    stop balances the yawing moment of ``engine`` failed (windmilling) and the others at ``throttle``: straight,
+    wings level, no sideslip, no rates, clear of the runway — the static rudder-moment balance, where the search of
+    :func:`ground_minimum_control_speed` looks first."""
+    n, m = model.n, points
+    rows = np.repeat(np.arange(n), m)
+    sub = model.subset(rows)
+    names = [e.name for e in sub.engines]
+    op = np.ones((sub.n, len(names)), dtype=bool)
+    op[:, names.index(engine)] = False
+    sub.set_operative(op)
+    v = np.tile(np.linspace(low, high, m), n)
+    x = np.zeros((sub.n, 12))
+    x[:, 2] = sub.ground.elevation + 30.0 + np.abs(sub.r_gear[:, :, 2]).max(axis=1) if sub.ground is not None else 30.0
+    x[:, 3] = v
+    u = np.zeros((sub.n, len(sub.control_names)))
+    for name, value in (settings or {}).items():
+        u[:, sub.control_index(name)] = np.broadcast_to(np.asarray(value, dtype=float), (n,))[rows]
+    u[:, sub.throttle_slice] = throttle
+    jr = sub.control_index("rudder")
+    yaw = {}
+    for stop in rudder_limits:
+        u[:, jr] = stop
+        yaw[stop] = sub.derivatives_euler(x, u)[:, 8].reshape(n, m)
+    u[:, jr] = 0.0
+    free = sub.derivatives_euler(x, u)[:, 8].reshape(n, m)
+    out = np.full(n, np.nan)
+    for c in range(n):
+        sign = np.sign(free[c, -1])
+        for stop in rudder_limits:
+            r = -yaw[stop][c] * sign  # the stop that opposes the failure's yaw turns positive past the balance
+            k = np.flatnonzero((r[:-1] < 0.0) & (r[1:] >= 0.0))
+            if k.size:
+                k0 = k[0]
+                vv = v.reshape(n, m)[c]
+                out[c] = vv[k0] + (vv[k0 + 1] - vv[k0]) * (-r[k0]) / (r[k0 + 1] - r[k0])
+    return out
+
+
 def ground_minimum_control_speed(model: AircraftModel, engine: str, low: float, high: float, deviation_limit: float,
-                                 reaction_time: float, rudder_rate: float, grid: int = 6, refine: int = 3,
-                                 settings=None, **runs) -> GroundControlSpeed:
+                                 reaction_time: float, rudder_rate: float, grid: int = 9, extend: int = 4,
+                                 window=(0.85, 1.15), settings=None, **runs) -> GroundControlSpeed:
     """The failure speed of each condition at which the deviation equals ``deviation_limit`` (module docstring),
-    searched from ``low`` to ``high`` (m/s TAS); ``settings`` (control → value, one or (n,) per condition) held;
-    ``runs`` go to :func:`engine_cut_runs`."""
+    searched from ``low`` to ``high`` (m/s TAS): ``grid`` failure speeds across ``window`` × the static rudder-moment
+    balance speed (:func:`rudder_balance_speed`, the rudder at its stop in ``runs["lateral_limits"]``; the whole range
+    where it has none), then, for a condition whose crossing lies outside them, ``extend`` more toward ``low`` or
+    ``high``; ``settings`` (control → value, one or (n,) per condition) held; ``runs`` go to :func:`engine_cut_runs`."""
     n = model.n
     speeds = [[] for _ in range(n)]
     devs = [[] for _ in range(n)]
     passes = []
-    lo = np.full(n, float(low))
-    hi = np.full(n, float(high))
-    for m, inside in ((grid, False), (refine, True)):
-        if inside:
-            grid_i = lo[:, None] + (hi - lo)[:, None] * (np.arange(1, m + 1) / (m + 1))[None, :]
-        else:
-            grid_i = lo[:, None] + (hi - lo)[:, None] * np.linspace(0.0, 1.0, m)[None, :]
-        rows = np.repeat(np.arange(n), m)
+    limits = (runs.get("lateral_limits") or {}).get("rudder", (-np.radians(25), np.radians(25)))
+    guess = rudder_balance_speed(model, engine, limits, low, high, settings)
+    lo = np.where(np.isfinite(guess), np.maximum(low, window[0] * guess), low)
+    hi = np.where(np.isfinite(guess), np.minimum(high, window[1] * guess), high)
+    plan = {c: np.linspace(lo[c], hi[c], grid) for c in range(n)}
+    for _ in range(3):
+        if not plan:
+            break
+        cond = np.array(sorted(plan))
+        rows = np.concatenate([np.full(plan[c].size, c) for c in cond])
+        vf = np.concatenate([plan[c] for c in cond])
         held = {k: np.broadcast_to(np.asarray(v, dtype=float), (n,))[rows] for k, v in (settings or {}).items()}
-        res = engine_cut_runs(model.subset(rows), grid_i.ravel(), engine, reaction_time, rudder_rate, settings=held,
-                              **runs)
+        res = engine_cut_runs(model.subset(rows), vf, engine, reaction_time, rudder_rate, settings=held, **runs)
         passes.append(res)
-        for i, (v, d) in enumerate(zip(grid_i.ravel(), res.deviation)):
+        for i, (v, d) in enumerate(zip(vf, res.deviation)):
             if res.airborne[i]:  # off the runway before the recovery: says nothing of the control on the ground
                 continue
             speeds[rows[i]].append(float(v))
             devs[rows[i]].append(float(d))
-        for c in range(n):
+        plan = {}
+        for c in cond:
             order = np.argsort(speeds[c])
             v, d = np.asarray(speeds[c])[order], np.asarray(devs[c])[order]
             speeds[c], devs[c] = list(v), list(d)
-            if v.size == 0:
+            if v.size == 0:  # every run left the runway: look lower
+                if lo[c] > low * (1 + 1e-9):
+                    plan[c] = np.linspace(low, lo[c], extend + 1)[:-1]
+                    lo[c] = low
                 continue
             beyond = np.flatnonzero(d > deviation_limit)
-            if beyond.size == 0 or beyond[-1] == v.size - 1:
-                lo[c] = hi[c] = v[0] if beyond.size == 0 else v[-1]
-            else:
-                lo[c], hi[c] = v[beyond[-1]], v[beyond[-1] + 1]
-        if np.all(lo == hi):
-            break
+            if beyond.size == 0 and v[0] > low * (1 + 1e-9):  # within the bound throughout: look lower
+                plan[c] = np.linspace(low, v[0], extend + 1)[:-1]
+            elif beyond.size and beyond[-1] == v.size - 1 and v[-1] < high * (1 - 1e-9):  # beyond throughout: higher
+                plan[c] = np.linspace(v[-1], high, extend + 1)[1:]
     speed = np.empty(n)
     below, above = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
     for c in range(n):
@@ -182,7 +232,7 @@ def ground_minimum_control_speed(model: AircraftModel, engine: str, low: float, 
             k = beyond[-1]
             d0 = min(d[k], 10.0 * deviation_limit)  # an unrecovered run counts as far beyond the bound
             speed[c] = v[k] + (v[k + 1] - v[k]) * (d0 - deviation_limit) / (d0 - d[k + 1])
-    return GroundControlSpeed(speed, below, above, speeds, devs, passes)
+    return GroundControlSpeed(speed, below, above, speeds, devs, passes, guess)
 
 
-__all__ = ["engine_cut_runs", "ground_minimum_control_speed", "EngineCutRuns", "GroundControlSpeed"]
+__all__ = ["engine_cut_runs", "ground_minimum_control_speed", "rudder_balance_speed", "EngineCutRuns", "GroundControlSpeed"]

@@ -63,7 +63,9 @@ class MinimumControlSpeed(Rule):
         holding the attitude of rest, the pilot's rudder held for the criteria's reaction time (1 s) after the cut and
         then moved at the declared takeoff_pilot.rudder_rate over its travel on heading and centreline, wings level;
         the deviation is the largest from the cut to the heading's return parallel to the centreline; the search
-        runs 6 failure speeds from 60 KCAS to VR and 3 inside the bracket, VMCG interpolated linearly (about 1 kn).
+        runs 9 failure speeds from 0.85 to 1.15 times the static rudder-moment balance speed (more toward 60 KCAS or
+        VR only where the crossing lies outside), VMCG interpolated linearly (spacing about 5 kn, within 0.6 kn of a
+        finer search on the baseline).
         The 150 lbf rudder force of (e) is not modelled (the rudder reaches its stop); sea level ISA, no wind;
         the takeoff configuration named 'takeoff' only.
     """
