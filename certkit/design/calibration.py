@@ -159,7 +159,7 @@ def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
             progress(f, m)
         if abs(m / goal - 1.0) < MASS_TOLERANCE:
             break
-        slope = _mass_per_factor(details, f)
+        slope = mass_per_factor(details, f)
         f_new = f + (goal - m) / slope
         if f_new < 1.0:
             history.append(Iteration(1.0, np.nan))
@@ -172,7 +172,7 @@ def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
                              last.value, "kg", history)
 
 
-def _mass_per_factor(details: dict, factor: float) -> float:
+def mass_per_factor(details: dict, factor: float) -> float:
     """d(mass)/d(factor) of the sized group at fixed loads: the non-optimum increment per unit of (factor − 1),
     with the fittings' fraction of it (fittings are a fraction of box + ribs)."""
     items = details["group"]["items_kg"]
@@ -193,4 +193,4 @@ def calibration_text(result: CalibrationResult) -> str:
 
 
 __all__ = ["calibration_text", "CalibrationResult", "Iteration", "with_drag_factor", "target_range", "solve_drag_factor",
-           "tail_group_mass", "declared_tail_mass", "solve_tail_factor", "RANGE_TOLERANCE", "MASS_TOLERANCE"]
+           "tail_group_mass", "declared_tail_mass", "solve_tail_factor", "mass_per_factor", "RANGE_TOLERANCE", "MASS_TOLERANCE"]
