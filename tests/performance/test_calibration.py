@@ -86,3 +86,17 @@ def test_calibration_needs_a_target(tmp_path):
     out = subprocess.run([sys.executable, "-m", "certkit.cli", "calibrate", str(path)], capture_output=True, text=True)
     assert out.returncode == 2
     assert "calibration.target" in out.stderr and "Traceback" not in out.stderr
+
+
+def test_tail_calibration_needs_the_declared_component(baseline):
+    """The tail calibration's target is the declared 'horizontal tail' component (5,800 lb); a file without one is a
+    user error naming mass.components."""
+    from certkit.design.calibration import declared_tail_mass
+    from certkit.errors import UserError
+
+    ac = baseline.model
+    assert declared_tail_mass(ac) == pytest.approx(5800 * 0.45359237)
+    others = [c for c in ac.mass.components if c.name != "horizontal tail"]
+    without = ac.model_copy(update={"mass": ac.mass.model_copy(update={"components": others})})
+    with pytest.raises(UserError, match="mass.components"):
+        declared_tail_mass(without)

@@ -154,13 +154,17 @@ def test_oew_increase_costs_range_as_breguet_predicts(result, base_ctx):
 
 
 def test_tail_change_shows_in_cruise_drag_and_fuel(result, baseline):
-    """A 25 % larger horizontal tail (more wetted area, a different trim load): cruise CD and block fuel rise."""
+    """A 25 % larger horizontal tail (more wetted area, a different trim load): cruise CD and block fuel rise, the
+    design range falls, and the declared calibration factors in force are the baseline's."""
     a = baseline.model
     ht = a.geometry.horizontal_tail.model_copy(update={"area": 1.25 * a.geometry.horizontal_tail.area})
     bigger = a.model_copy(update={"geometry": a.geometry.model_copy(update={"horizontal_tail": ht})})
     other = fly_missions(bigger)
     assert other.cruise_drag.CD > result.cruise_drag.CD
     assert other.nominal.block_fuel_kg > result.nominal.block_fuel_kg
+    # the design is flown against the baseline's declared calibration, not re-calibrated: the same factors, less range
+    assert other.calibration == result.calibration and other.calibration["drag_factor"] == a.calibration.drag_factor
+    assert other.design_range_m < result.design_range_m
 
 
 def test_one_mission_after_warm_up_is_fast(base_ctx):
