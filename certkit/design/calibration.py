@@ -110,7 +110,8 @@ def solve_drag_factor(aircraft, *, progress=None) -> CalibrationResult:
     # the factor as the file holds it (4 decimals), rounded down so that the target range is reached, not missed by
     # a fraction of a mile (the range constraint of a study is ≥ 0 on the baseline)
     step = 10.0**-DECIMALS
-    declared = round(np.floor(history[-1].factor / step) * step, DECIMALS)
+    # (+ 1e-6: a factor already at 4 decimals whose quotient comes out as …999 stays itself)
+    declared = round(np.floor(history[-1].factor / step + 1e-6) * step, DECIMALS)
     for _ in range(MAX_ITERATIONS):
         if declared == history[-1].factor and history[-1].value >= goal:
             break
