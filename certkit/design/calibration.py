@@ -167,10 +167,30 @@ def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
             return CalibrationResult("non-optimum factor", "sizing.horizontal_tail.non_optimum_factor", 1.0, goal, m,
                                      "kg", history, [f"no factor ≥ 1 reaches the declared mass: at {f:.4f} the group "
                                                      f"is {m:.0f} kg and would need {f_new:.3f}"])
-        f = f_new
+        f = round(f_new, DECIMALS)  # evaluated as the file will hold it
     last = history[-1]
     return CalibrationResult("non-optimum factor", "sizing.horizontal_tail.non_optimum_factor", last.factor, goal,
-                             last.value, "kg", history)
+                             last.value, "kg", history, sizing_summary(details))
+
+
+def sizing_summary(details: dict) -> list[str]:
+    """The numbers of the sized group the documentation quotes: items, CG, own inertia, the envelope at the root,
+    the actuators' design hinge moment."""
+    g, env = details["group"], details["envelope"]
+    items = ", ".join(f"{k.replace('_', ' ')} {v:,.0f} kg" for k, v in g["items_kg"].items())
+    root = env["stations"].index("root") if "root" in env["stations"] else 0
+    loads = env["limit_loads"]
+    inertia = g["inertia_kg_m2"]
+    hinge = g.get("hinge_moment") or {}
+    lines = [f"sized group {g['structure_mass_kg']:,.1f} kg ({g['structure_mass_kg'] / 0.45359237:,.0f} lb): {items}",
+             f"CG x {g['cg_m'][0]:.2f} m, z {g['cg_m'][2]:.2f} m; own inertia Ixx {inertia['Ixx']:.2g}, Iyy "
+             f"{inertia['Iyy']:.2g}, Izz {inertia['Izz']:.2g} kg·m²",
+             f"limit envelope at the root: shear {loads['shear'][root] / 1e3:,.0f} kN, bending "
+             f"{loads['bending'][root] / 1e3:,.0f} kN·m, torsion {loads['torsion'][root] / 1e3:,.0f} kN·m (× 1.5 ultimate)",
+             f"elevator actuators {g['actuator_mass_kg']:,.0f} kg for {hinge.get('design_hinge_moment_Nm', float('nan')) / 1e3:,.0f} kN·m "
+             f"({hinge.get('rule', '?')}, elevator {hinge.get('elevator_deg', float('nan')):.1f} deg)",
+             f"loop iterations {len(details['history'])}"]
+    return lines
 
 
 def mass_per_factor(details: dict, factor: float) -> float:
@@ -194,4 +214,4 @@ def calibration_text(result: CalibrationResult) -> str:
 
 
 __all__ = ["calibration_text", "CalibrationResult", "Iteration", "with_drag_factor", "target_range", "solve_drag_factor",
-           "tail_group_mass", "declared_tail_mass", "solve_tail_factor", "mass_per_factor", "RANGE_TOLERANCE", "MASS_TOLERANCE"]
+           "tail_group_mass", "declared_tail_mass", "solve_tail_factor", "mass_per_factor", "sizing_summary", "RANGE_TOLERANCE", "MASS_TOLERANCE"]

@@ -53,6 +53,11 @@ def test_declared_non_optimum_factor_is_the_solved_one(baseline):
     m = baseline["responses"]["sizing.ht_structure_mass_kg"]
     solved = factor + (5800 * LB - m) / mass_per_factor(details, factor)
     assert solved == pytest.approx(factor, abs=0.01)
+    # what `certkit calibrate --tail` prints for the documentation is this sizing's
+    from certkit.design.calibration import sizing_summary
+
+    summary = sizing_summary(details)
+    assert summary[0].startswith(f"sized group {m:,.1f} kg") and "covers" in summary[0]
 
 
 def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):
