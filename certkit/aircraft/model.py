@@ -165,6 +165,9 @@ class Fuselage(_Section):
     length: PositiveLength
     width: PositiveLength
     height: PositiveLength
+    upsweep: Annotated[Angle, Field(ge=0.0, le=0.5, description=(
+        "upsweep of the aft fuselage's centre line, rad ('6 deg'): its drag by Raymer eq. 12.36 "
+        "(none: no upsweep drag)"))] | None = None
 
 
 class Nacelle(_Section):
@@ -618,6 +621,31 @@ class Mission(_Section):
     source: str | None = None
 
 
+class RangeTarget(_Section):
+    """A published or required range the performance calibration reproduces: ``range`` with ``payload`` from MTOW
+    with the mission's reserves (the design-range mission of :mod:`certkit.models.performance.mission`)."""
+
+    range: PositiveLength
+    payload: PositiveMass | None = Field(None, description="none: mission.design_payload")
+    tolerance: Annotated[float, Field(gt=0.0, lt=0.2, description="relative tolerance the calibration is tested to")]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class PerformanceCalibration(_Section):
+    """Declared factors that close the gap between the drag and engine models and the airplane's published
+    performance (FLOPS's drag and fuel-flow factors): fixed for every design of a study, shown in the report.
+    ``certkit calibrate`` solves ``drag_factor`` for ``target`` with ``fuel_flow_factor`` as declared."""
+
+    drag_factor: Annotated[float, Field(ge=0.7, le=1.5, description=(
+        "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; the "
+        "induced drag, declared configuration increments and derivative tables are not scaled"))] = 1.0
+    fuel_flow_factor: Annotated[float, Field(ge=0.8, le=1.3, description=(
+        "multiplies the engine model's TSFC: installation losses (customer bleed, power off-take)"))] = 1.0
+    fuel_flow_source: Annotated[str, Field(min_length=3)] | None = None
+    target: RangeTarget | None = None
+    source: Annotated[str, Field(min_length=3)]
+
+
 class CriterionOverride(_Section):
     """Override of a rule's numeric criteria; the justification is printed in the report."""
 
@@ -892,6 +920,8 @@ class Aircraft(_Section):
     takeoff_landing_envelope: TakeoffLandingEnvelope | None = Field(
         None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature")
     mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")
+    calibration: PerformanceCalibration | None = Field(
+        None, description="declared drag and fuel-flow factors reproducing published performance (certkit calibrate)")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)

@@ -537,6 +537,27 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
         print_record(record, click.echo)
 
 
+@main.command(name="calibrate")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@click.option("--tail", is_flag=True, help="Solve the horizontal tail's non-optimum factor (the declared tail group "
+                                          "from today's loads) instead of the performance calibration.")
+def calibrate_command(aircraft_file, tail):
+    """Solve the declared calibration factors from their targets and print them for the aircraft file: the drag
+    factor that flies calibration.target (fuel-flow factor as declared), or with --tail the non-optimum factor whose
+    sized tail group equals the declared 'horizontal tail' component."""
+    from certkit.aircraft import load_aircraft
+    from certkit.design.calibration import calibration_text, solve_drag_factor, solve_tail_factor
+
+    loaded = load_aircraft(aircraft_file)
+
+    def progress(f, v):
+        click.echo(f"  factor {f:.5f}: {'%.1f kg' % v if tail else '%.1f nmi' % (v / 1852.0)}", err=True)
+
+    result = solve_tail_factor(aircraft_file, loaded.model, progress=progress) if tail else \
+        solve_drag_factor(loaded.model, progress=progress)
+    click.echo(calibration_text(result))
+
+
 @main.group(name="import")
 def import_group():
     """Write a certkit aircraft file from another tool's model."""
