@@ -147,16 +147,16 @@ def _hinge_moments(ctx, results) -> list:
 
     samples = []
     for res in results:
-        run = res.run or {}
-        sim = run.get("sim")
+        run = res.run
+        sim = run.records if run is not None else None
         if sim is None or "elevator" not in list(sim.control_names) or not res.id.startswith("25.331"):
             continue
-        valid = run.get("valid")
+        valid = run.valid
         h = sim.history
         de = sim.controls[:, :, list(sim.control_names).index("elevator")]
         mask = np.ones(de.shape, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
         samples.append((res.id, h["qbar"][mask], h["mach"][mask], h["alpha"][mask], de[mask],
-                        np.argwhere(mask), run.get("conditions"), sim.t))
+                        np.argwhere(mask), run.conditions, sim.t))
     if not samples:
         raise ValueError("no pitch-manoeuvre history (§25.331(c)) to take the elevator hinge moment from")
     aero = ctx.aero("clean")

@@ -25,7 +25,7 @@ from certkit.errors import UserError
 if TYPE_CHECKING:
     from certkit.engine.conditions import ConditionSpace
     from certkit.engine.context import Context
-    from certkit.engine.results import Condition, Evidence, Finding
+    from certkit.engine.results import Condition, Evidence, Finding, SimulationRun
 
 RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-zA-Z0-9]+\))*$")  # §25.125(b)(2)(i)(A): capitals at the fifth level
 SYMBOL = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
@@ -120,7 +120,7 @@ class Rule:
         share the gust runs).
     loads_surfaces
         The lifting surfaces whose station loads the rule computes (``("horizontal_tail",)``); the design
-        layer sizes structure from the envelopes these rules keep (:meth:`load_envelopes`).
+        layer sizes structure from the envelopes these rules keep (:meth:`certkit.results.SimulationRun.envelopes`).
     """
 
     id: ClassVar[str]
@@ -150,14 +150,6 @@ class Rule:
         rule may keep what it simulated on ``self`` for its plots."""
         return []
 
-    def load_envelopes(self) -> list:
-        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) of the last evaluation, as a
-        loads rule keeps them in ``self.run``; empty for other rules."""
-        from certkit.models.loads.response import LoadEnvelope
-
-        run = getattr(self, "run", None)
-        return [v for v in run.values() if isinstance(v, LoadEnvelope)] if isinstance(run, dict) else []
-
     @classmethod
     def documentation(cls) -> str:
         """The text ``certkit explain`` prints."""
@@ -179,23 +171,18 @@ class Rule:
 
 
 class SimulationRule(Rule):
-    """A rule that evaluates one batched simulation run and draws its evidence from it. Subclasses implement
-    :meth:`simulate` (returning a dict with at least ``findings``) and :meth:`draw`; the run is kept on the
-    instance between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
+    """A rule that evaluates one batched simulation run. Subclasses implement :meth:`simulate`, returning a
+    :class:`certkit.results.SimulationRun` (its findings and what it simulated); the run is kept on the instance
+    (``self.run``) between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
 
-    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> dict:
+    run: "SimulationRun | None" = None
+
+    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> "SimulationRun":
         raise NotImplementedError
-
-    def draw(self, run: dict) -> list["Evidence"]:
-        return []
 
     def evaluate(self, ctx, conditions, criteria):
         self.run = self.simulate(ctx, conditions, criteria)
-        return self.run["findings"]
-
-    def evidence(self, ctx, findings, criteria):
-        run = getattr(self, "run", None)
-        return self.draw(run) if run else []
+        return self.run.findings
 
 
 def _indent(text: str) -> str:

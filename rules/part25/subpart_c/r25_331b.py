@@ -65,7 +65,6 @@ class BalancedManeuver(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import allowables, envelope_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("envelope") is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return envelope_evidence(run, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))
+        return envelope_evidence(self.run.envelope, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))
