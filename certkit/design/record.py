@@ -10,7 +10,9 @@ Names (all numbers SI, normalised margins ≥ 0 comply):
   finding of the rule reports for the elevator, aileron or rudder, and ``travel.<control>`` over all rules (the
   seed study constrains the elevator to 70 % of its travel);
 * ``level.<mode>.<corner>.<configuration>`` — the MIL-F-8785C level (1–3, 4 worse than 3) of each mode, the
-  worst over the speeds and altitudes of §25.181's conditions at that CG corner and configuration.
+  worst over the speeds and altitudes of the conditions at that CG corner and configuration, from the rules that
+  offer mode responses (``Rule.offers``: :class:`certkit.engine.registry.ModeResponses`);
+* (rules may also offer control deflections per case: :class:`certkit.engine.registry.ControlResponses`).
 
 Statuses accompany the rule names ("complies", "complies_partial", "fails", "not_evaluated") and the sub-check
 names (a finding's: "complies", "fails", "not_evaluated").
@@ -20,6 +22,8 @@ from __future__ import annotations
 
 import math
 import re
+
+from certkit.engine.registry import ModeResponses
 
 CONTROLS = ("elevator", "aileron", "rudder")
 _DEG = math.pi / 180.0
@@ -83,21 +87,40 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
     return responses, statuses
 
 
-def handling_levels(results) -> dict[str, int]:
-    """``level.<mode>.<corner>.<configuration>`` from the §25.181 findings' mode tables (worst level)."""
-    out: dict[str, int] = {}
-    for r in results:
-        if r.id != "25.181":
-            continue
-        for f in r.findings:
-            modes = f.details.get("modes") if f.details else None
-            cond = f.condition
-            if not modes or cond.loading is None or cond.configuration is None:
-                continue
-            for mode, row in modes.items():
-                levels = [v for k, v in row.items() if k.startswith("level_") and not k.endswith("_by")]
-                if not levels:
-                    continue
-                key = f"level.{mode}.{cond.loading}.{cond.configuration}"
-                out[key] = max(out.get(key, 0), max(int(v) for v in levels))
+def offered_responses(results, rules) -> dict[str, float]:
+    """The responses the rules offer by declaration (``Rule.offers``), from their results (``rules``: the rule
+    classes, or anything with their ``id`` and ``offers``)."""
+    offers = {r.id: r.offers for r in rules}
+    out: dict[str, float] = {}
+    for res in results:
+        for offer in offers.get(res.id, ()):
+            if isinstance(offer, ModeResponses):
+                handling_levels(res, offer, out)
     return out
+
+
+def offered_prefixes(rule) -> tuple[str, ...]:
+    """The beginnings of the response names a rule offers (``level.<mode>.`` …)."""
+    out: list[str] = []
+    for offer in rule.offers:
+        if isinstance(offer, ModeResponses):
+            out += [f"level.{mode}." for mode in offer.modes]
+    return tuple(out)
+
+
+def handling_levels(result, offer: ModeResponses, out: dict) -> None:
+    """``level.<mode>.<corner>.<configuration>`` into ``out`` from the mode tables of ``result``'s findings (the
+    worst level, also over the levels already in ``out``)."""
+    for f in result.findings:
+        modes = f.details.get(offer.key) if f.details else None
+        cond = f.condition
+        if not modes or cond.loading is None or cond.configuration is None:
+            continue
+        for mode, row in modes.items():
+            if mode not in offer.modes:
+                continue
+            levels = [v for k, v in row.items() if k.startswith("level_") and not k.endswith("_by")]
+            if not levels:
+                continue
+            key = f"level.{mode}.{cond.loading}.{cond.configuration}"
+            out[key] = max(out.get(key, 0), max(int(v) for v in levels))

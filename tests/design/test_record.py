@@ -1,11 +1,13 @@
 """Flat responses of a design record, from hand-made rule results (values checked by hand)."""
 
 import math
+from types import SimpleNamespace
 
 import pytest
 
 from certkit.design.evaluate import mission_needed, rule_needed
-from certkit.design.record import check_name, handling_levels, rule_responses
+from certkit.design.record import check_name, offered_responses, rule_responses
+from certkit.engine.registry import ModeResponses
 from certkit.engine.results import Condition, Finding, RuleResult
 
 TRAVEL = {"elevator": (math.radians(-30.0), math.radians(25.0)), "rudder": (math.radians(-27.3), math.radians(27.3))}
@@ -45,27 +47,40 @@ def test_levels_worst_per_mode_corner_configuration():
     c = Condition(loading="fwd_mrw", configuration="clean")
     mk = lambda lv: Finding.compare(c, "(a) short period heavily damped", 0.5, 0.35, at_least=True,  # noqa: E731
                                     modes={"short_period": {"level_A": 1, "level_B": lv, "level_B_limited_by": "x"}})
-    levels = handling_levels([RuleResult("25.181", "dynamic-stability", "t", [mk(1), mk(2)])])
+    rules = [_rule("25.181", ModeResponses(("short_period",)))]
+    levels = offered_responses([RuleResult("25.181", "dynamic-stability", "t", [mk(1), mk(2)])], rules)
     assert levels == {"level.short_period.fwd_mrw.clean": 2}
+    # a rule that does not declare mode responses gives none, whatever its findings hold
+    assert offered_responses([RuleResult("25.181", "dynamic-stability", "t", [mk(1)])], [_rule("25.181")]) == {}
+
+
+def _rule(rid, *offers):
+    return SimpleNamespace(id=rid, offers=tuple(offers))
 
 
 def test_check_name_slug():
     assert check_name("(c)(2) checked manoeuvre, nose up: ultimate bending at root (min)") == "c_2_checked_manoeuvre_nose_up"
 
 
-@pytest.mark.parametrize("patterns, rid, needed", [
-    (None, "25.103", True),
-    (["rule.25.331(c)(2).margin"], "25.331(c)(2)", True),
-    (["rule.25.331(c)(2).margin"], "25.331(c)(1)", False),
-    (["subcheck.25.143(h).*"], "25.143(h)", True),
-    (["level.*"], "25.181", True),
-    (["level.*"], "25.171", False),
-    (["travel.elevator"], "25.171", True),
-    (["objective.*"], "25.171", False),
-    (["*"], "25.171", True),
+MODES = ModeResponses(("short_period", "phugoid"))
+
+
+@pytest.mark.parametrize("patterns, rid, offers, needed", [
+    (None, "25.103", (), True),
+    (["rule.25.331(c)(2).margin"], "25.331(c)(2)", (), True),
+    (["rule.25.331(c)(2).margin"], "25.331(c)(1)", (), False),
+    (["subcheck.25.143(h).*"], "25.143(h)", (), True),
+    (["level.*"], "25.181", (MODES,), True),
+    (["level.phugoid.fwd_mrw.clean"], "25.181", (MODES,), True),
+    (["level.*.fwd_mrw.*"], "25.181", (MODES,), True),
+    (["level.dutch_roll.*"], "25.181", (MODES,), False),
+    (["level.*"], "25.171", (), False),
+    (["travel.elevator"], "25.171", (), True),
+    (["objective.*"], "25.171", (), False),
+    (["*"], "25.171", (), True),
 ])
-def test_rules_needed_by_responses(patterns, rid, needed):
-    assert rule_needed(rid, patterns) is needed
+def test_rules_needed_by_responses(patterns, rid, offers, needed):
+    assert rule_needed(_rule(rid, *offers), patterns) is needed
 
 
 def test_mission_needed():

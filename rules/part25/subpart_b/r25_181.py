@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.units import FT
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.registry import Criterion, ModeResponses, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support import handling_levels as hq
 from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
@@ -70,6 +70,7 @@ class DynamicStability(Rule):
         Part 25 requirement and does not set the status.
     """
     references = ("25.171", "25.103")
+    offers = (ModeResponses(MODES),)
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
         "short_period_damping_min_cruise": Criterion(

@@ -33,7 +33,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
-from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
@@ -59,6 +59,8 @@ def _effort_note(limited, i) -> str:
 
 #: the surfaces whose loads the §25.331(c) manoeuvres compute (the tail's window of time also bounds the wing's)
 LOADED = ("horizontal_tail", "wing")
+#: … their station loads, and the elevator's hinge moments along the manoeuvre (the elevator actuators' design case)
+PRODUCED = tuple(Loads(s) for s in LOADED) + (Loads("elevator", HINGE_MOMENT),)
 
 
 @dataclass
@@ -116,7 +118,7 @@ def _label(cond) -> str:
 @rule
 class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
-    loads_surfaces = LOADED
+    produces = PRODUCED
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "checked-pitch-maneuver"
     title = "Checked pitch manoeuvre between VA and VD"
@@ -321,7 +323,7 @@ def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
 @rule
 class MaximumPitchControlDisplacement(SimulationRule):
     id = "25.331(c)(1)"
-    loads_surfaces = LOADED
+    produces = PRODUCED
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "maximum-pitch-control-displacement"
     title = "Maximum pitch control displacement at VA"

@@ -28,7 +28,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES
 from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.response import LoadEnvelope
-from certkit.engine.registry import SimulationRule, rule
+from certkit.engine.registry import Loads, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
@@ -39,7 +39,7 @@ from certkit_rules.part25.support.structural_checks import SAFETY, capability_fi
 @rule
 class DiscreteGust(SimulationRule):
     id = "25.341(a)"
-    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
+    produces = (Loads("wing"), Loads("horizontal_tail"), Loads("vertical_tail"))
     cost = 8  # relative evaluation time (orders work over --jobs processes)
     run_with = "discrete-gust"  # §25.349(b) modifies these gust runs: one process simulates them once
     symbol = "discrete-gust"

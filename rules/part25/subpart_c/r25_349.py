@@ -35,7 +35,7 @@ from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
-from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
@@ -61,7 +61,7 @@ PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: 
 @rule
 class RollingConditions(SimulationRule):
     id = "25.349(a)"
-    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
+    produces = (Loads("wing"), Loads("horizontal_tail"), Loads("vertical_tail"))
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "rolling-conditions"
     title = "Rolling conditions: sudden aileron at VA, VC and VD at load factors 0 and 2/3 n"
@@ -343,7 +343,7 @@ AIRLOAD_BASES = ("total", "increment")
 @rule
 class UnsymmetricalGust(SimulationRule):
     id = "25.349(b)"
-    loads_surfaces = ("wing",)
+    produces = (Loads("wing"),)
     cost = 2  # relative evaluation time beyond the §25.341(a) gust runs it shares (run_with)
     run_with = "discrete-gust"
     symbol = "unsymmetrical-gust"

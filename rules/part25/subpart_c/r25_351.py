@@ -24,7 +24,7 @@ from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
@@ -52,7 +52,7 @@ def pedal_force_limit(v, va, vc, crit) -> float:
 @rule
 class YawManeuver(SimulationRule):
     id = "25.351"
-    loads_surfaces = ("vertical_tail",)
+    produces = (Loads("vertical_tail"),)
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "yaw-maneuver"
     title = "Yaw manoeuvre: sudden rudder, overswing, steady sideslip, rudder returned"
