@@ -12,7 +12,7 @@ The pipeline (issue 13):
    models, no evidence, no HTML).
 4. The mission (design range, block fuel, cruise drag) with the design's OEW.
 
-The record's format is ``certkit.design-record/1`` (documented in :func:`evaluate_design`). Everything a
+The record's format is ``certkit.design-record/2`` (documented in :func:`evaluate_design`). Everything a
 design does not change (the parsed file, the rule classes, compiled kernels) is loaded once per process.
 """
 
@@ -29,7 +29,8 @@ from certkit import __version__
 from certkit.design.record import CONTROLS, offered_prefixes
 from certkit.design.variables import Setting, design_aircraft, design_data, settings_from
 
-SCHEMA = "certkit.design-record/1"
+#: the record's format: 2 added ``mode.*`` and ``control.*`` responses (the other names unchanged since 1)
+SCHEMA = "certkit.design-record/2"
 _SOURCES: dict = {}
 _RULES: list = []
 
@@ -156,7 +157,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     travel = {name: (c.travel.min, c.travel.max) for surface in ("wing", "horizontal_tail", "vertical_tail")
               for name, c in getattr(loop.aircraft.geometry, surface).controls.items()} if loop.aircraft.geometry else {}
     out, statuses = rule_responses(results, travel)
-    out.update(offered_responses(results, rules))
+    out.update(offered_responses(results, rules, travel))
     out.update(loop.responses())
     details = {"sizing": loop.details()}
 
