@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
+from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
 from certkit.design.variables import design_aircraft
 
 TAIL_COMPONENT = "horizontal tail"
@@ -86,6 +87,8 @@ class LoopResult:
     seconds: float
     iteration_seconds: list[float] = field(default_factory=list)
     aero_seconds: float = 0.0  # of which: lattice, aerodynamic and strip-loads models
+    #: the weight–CG corners the design was evaluated at when they follow its loading (sizing.cg_envelope: loading)
+    cg_corners: list | None = None
 
     def responses(self) -> dict:
         g = self.group
@@ -98,7 +101,8 @@ class LoopResult:
         return out
 
     def details(self) -> dict:
-        return {"history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
+        extra = {} if self.cg_corners is None else {"cg_envelope": self.cg_corners}
+        return {**extra, "history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
                 "oew_kg": self.oew_kg, "declared_tail_component_kg": self.baseline_tail_kg,
                 "baseline_actuators": {"mass_kg": self.baseline_actuators.mass, "centroid_m": list(self.baseline_actuators.centroid),
                                        "hinge_moment": self.baseline_actuators.hinge},
@@ -254,7 +258,11 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         t = time.perf_counter()
         actuators = group.actuator_mass - base_act.mass if k > 0 else 0.0
         oew = base_oew - declared.mass + group.structure_mass + actuators
-        current = design_aircraft(source, settings, with_tail_group(data, aircraft, group, base_act, oew))
+        current_data = with_tail_group(data, aircraft, group, base_act, oew)
+        current = design_aircraft(source, settings, current_data)
+        if follows_loading(current):  # the corners the design's own loading reaches (certkit.design.cg_envelope)
+            corners = loading_corners(current, aircraft)
+            current = design_aircraft(source, settings, with_loading_corners(current_data, corners))
         previous_ctx, ctx = ctx, Context(loaded_of(current))
         if previous_ctx is not None:
             ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
@@ -281,7 +289,8 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
             for r in results:
                 r.run = None  # the simulations are not needed any more
             return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,
-                              time.perf_counter() - start, seconds, aero_seconds)
+                              time.perf_counter() - start, seconds, aero_seconds,
+                              corners if follows_loading(current) else None)
         group = sized
     raise SizingNotConverged(
         f"horizontal-tail sizing did not converge in {spec.max_iterations} iterations (tolerance "
