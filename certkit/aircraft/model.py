@@ -885,6 +885,10 @@ class Sizing(_Section):
     horizontal_tail: TailStructureSizing | None = None
     loop: SizingLoop | None = None
     elevator_actuators: ActuatorSizingData | None = None
+    cg_envelope: Literal["declared", "loading"] = Field(
+        "declared", description="the weight–CG corners a design is evaluated at: 'declared' (cg_envelope as written) "
+        "or 'loading' (each corner moved to the CG the design's own loading reaches at its weight — OEW and its CG "
+        "with the sized tail, payload zones and fuel tanks — with the declared corner as the bound)")
 
 
 def _printable(name: str) -> str:

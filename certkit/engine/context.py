@@ -210,18 +210,34 @@ class Context:
     def modes(self, conditions):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
         condition; None where the trim did not converge."""
-        from certkit.models.dynamics.linearize import linearize
         from certkit.models.dynamics.modes import identify_modes
 
         conds = tuple(conditions)
 
         def compute():
             batch = self.trim(conds)
-            lin = linearize(batch.model, batch.x, batch.u)
+            lin = self.linearization(conds)
             return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
 
-        return self.memo(("modes",) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds),
-                         compute)
+        return self.memo(("modes",) + _points(conds), compute)
+
+    def linearization(self, conditions):
+        """The linearised dynamics (:class:`certkit.models.dynamics.linearize.Linearization`) about the
+        straight-flight trim of each condition, memoised (the one :meth:`modes` reads)."""
+        from certkit.models.dynamics.linearize import linearize
+
+        conds = tuple(conditions)
+
+        def compute():
+            batch = self.trim(conds)
+            return linearize(batch.model, batch.x, batch.u)
+
+        return self.memo(("linearization",) + _points(conds), compute)
+
+
+def _points(conds) -> tuple:
+    """The memo key of conditions' flight points (loading, configuration, altitude, speed)."""
+    return tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds)
 
 
 def _hashable(value):

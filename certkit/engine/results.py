@@ -227,6 +227,52 @@ class Evidence:
 
 
 @dataclass
+class SimulationRun:
+    """What a simulated rule computes, kept for its evidence and for the design layer (never written to
+    results.json): its findings, the conditions it simulated (column i of every record is ``conditions[i]``), the
+    batch's records (:class:`certkit.models.dynamics.simulate.SimulationResult`, None when the rule's histories are
+    of another kind), where the paragraph considers them (``valid``, (n_t, n) booleans; None: everywhere), the
+    conditions it could not simulate with each reason (``failed``: (label, reason)) and, when nothing was simulated,
+    why (``reason``). Rules that keep more (load histories, gust replays) extend it."""
+
+    findings: list[Finding]
+    conditions: list[Condition] = field(default_factory=list)
+    records: object = None
+    valid: object = None
+    failed: list[tuple[str, str]] = field(default_factory=list)
+    reason: str = ""
+
+    @property
+    def simulated(self) -> bool:
+        """True when the run holds simulated conditions (False: only refusals, see :attr:`reason`)."""
+        return bool(self.conditions)
+
+    def envelopes(self) -> list:
+        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) the run computed, in the rule's
+        order; none for a run that computes no loads."""
+        return []
+
+    def records_only(self) -> "SimulationRun":
+        """The conditions, records and validity alone (what a design keeps of a run between processes)."""
+        return SimulationRun([], self.conditions, self.records, self.valid)
+
+
+@dataclass
+class LoadsRun(SimulationRun):
+    """A run that computes station loads: ``envelope`` over every simulated condition (None when nothing was
+    simulated)."""
+
+    envelope: object = None
+
+    @property
+    def simulated(self) -> bool:
+        return self.envelope is not None
+
+    def envelopes(self) -> list:
+        return [] if self.envelope is None else [self.envelope]
+
+
+@dataclass
 class RuleResult:
     id: str
     symbol: str
@@ -239,8 +285,8 @@ class RuleResult:
     encoded: str | None = field(default=None, repr=False, compare=False)
     #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.engine.scheduler.evaluate_rule`)
     load_envelopes: list = field(default_factory=list, repr=False, compare=False)
-    #: the rule's own run data (simulations) when the load envelopes are kept; never written to results.json
-    run: dict | None = field(default=None, repr=False, compare=False)
+    #: what the rule simulated (:class:`SimulationRun`) when the load envelopes are kept; never written to results.json
+    run: SimulationRun | None = field(default=None, repr=False, compare=False)
     #: the rule's implementation status (``implemented``, ``partial``, ``planned``) and modelling limitations
     implementation: str = "implemented"
     limitations: str = ""

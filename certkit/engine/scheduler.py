@@ -22,7 +22,7 @@ from certkit.aircraft import LoadedAircraft
 from certkit.engine.context import Context
 from certkit.errors import InputError, Problem, UserError
 from certkit.engine.registry import Criteria, DiscoveryOptions, Rule, discover
-from certkit.engine.results import Condition, Finding, RuleResult, RunResult
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult, SimulationRun
 from certkit.units import UnitError, to_unit
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 
@@ -166,8 +166,9 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
         findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
     result.findings = findings
     if keep_loads:
-        result.load_envelopes = instance.load_envelopes()
-        result.run = getattr(instance, "run", None)
+        run = getattr(instance, "run", None)
+        if isinstance(run, SimulationRun):
+            result.run, result.load_envelopes = run, run.envelopes()
     if not evidence:
         return result
     try:

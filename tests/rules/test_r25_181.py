@@ -124,3 +124,55 @@ def test_level_table_boundaries():
     roll = Mode("roll", complex(-0.5, 0.0), 0.5, 1.0, None, math.log(2) / 0.5, None, None)
     assert hq.level_of("roll", roll, "B")[0] == 2
     assert all(not lim.verified and lim.paragraph for lim in hq.LIMITS)
+
+
+def test_control_anticipation_parameter_from_the_short_period_approximation(result, ctx):
+    """CAP = ω_sp² / (n/α) with n/α = −Z_α / g = (CL_α + CD0) q̄ S / (m g) (Nelson §4.4, the Z_α of the hand
+    calculation above): the rule's n/α comes from the linearised model's Z_w instead; 3 % (the full model's drag and
+    thrust terms at the trim)."""
+    f = _sp(result, "fwd_mrw", "takeoff", "mid")
+    c = f.condition
+    m = ctx.aero("takeoff").model
+    u0, mach = speed_as(c, "TAS"), speed_as(c, "MACH")
+    d = lambda name: float(m.derivative(name, mach))  # noqa: E731
+    qbar = 0.5 * float(density(0.0)) * u0**2
+    n_alpha = (d("CL_alpha") + d("CD0")) * qbar * m.reference.area / (c.mass * 9.80665)
+    row = f.details["modes"]["short_period"]
+    assert row["n_alpha_g_rad"] == pytest.approx(n_alpha, rel=0.03)
+    assert row["cap"] == pytest.approx(row["wn_rad_s"] ** 2 / n_alpha, rel=0.03)
+
+
+def test_level_from_quantities_on_the_table_boundaries():
+    """MIL-F-8785C Class III boundaries (handling_levels.LIMITS, its paragraphs): short period ζ ≥ 0.35 Level 1 in
+    category C, ≥ 0.25 Level 2, ≥ 0.15 Level 3 (Table IV); phugoid ζ ≥ 0.04 / ≥ 0 / T2 ≥ 55 s (3.2.1.2); roll τ ≤
+    1.4 / 3 / 10 s (Table VII); spiral T2 ≥ 20 / 12 / 4 s (Table VIII), a convergent spiral Level 1. Arrays in, array
+    out (as a study passes surrogate predictions)."""
+    sp = hq.level_from_quantities("short_period", "C", zeta=[0.36, 0.34, 0.26, 0.24, 0.14], wn=1.5)
+    assert sp.tolist() == [1, 2, 2, 3, 4]
+    assert hq.level_from_quantities("short_period", "B", zeta=0.31, wn=1.5) == 1
+    ph = hq.level_from_quantities("phugoid", "B", zeta=[0.05, 0.01, -0.02, -0.02], wn=0.08,
+                                  t_double=[None, None, 60.0, 50.0])
+    assert ph.tolist() == [1, 2, 3, 4]
+    ln2 = math.log(2)
+    roll = hq.level_from_quantities("roll", "A", zeta=1.0, wn=1.0, t_half=[1.0 * ln2, 2.0 * ln2, 5.0 * ln2, 12.0 * ln2])
+    assert roll.tolist() == [1, 2, 3, 4]
+    spiral = hq.level_from_quantities("spiral", "B", zeta=1.0, wn=0.01, t_half=[None, None, None, None, 50.0],
+                                      t_double=[25.0, 15.0, 5.0, 3.0, None])
+    assert spiral.tolist() == [1, 2, 3, 4, 1]
+    # clean is read in categories A and B: the worse of the two (Dutch roll ζ 0.1: Level 1 in B, 2 in A)
+    assert hq.configuration_level("dutch_roll", "clean", zeta=0.1, wn=2.0) == 2
+    assert hq.configuration_level("dutch_roll", "landing", zeta=0.1, wn=2.0) == 1
+
+
+def test_levels_follow_from_the_recorded_quantities(result):
+    """Every mode table of the baseline: the Level from its rounded quantities (level_from_quantities) equals the
+    rule's own (level_of on the full-precision mode), per category."""
+    checked = 0
+    for f in own(result):
+        for mode, row in (f.details.get("modes") or {}).items():
+            for cat in hq.categories_of(f.condition.configuration):
+                level = hq.level_from_quantities(mode, cat, zeta=row["zeta"], wn=row["wn_rad_s"],
+                                                 t_half=row["t_half_s"], t_double=row["t_double_s"])
+                assert level == row[f"level_{cat}"], (f.condition.label(), mode, cat, row)
+                checked += 1
+    assert checked > 500

@@ -336,3 +336,32 @@ def inertia_comparison(aircraft) -> str | None:
         "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
     return (f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
             f"{'; '.join(off)}. The dynamics uses {used}")
+
+
+def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float, float] | None:
+    """The most forward and most aft CG stations (m) the airplane's own loading reaches at ``mass`` (kg): the
+    operating empty airplane (its components), fuel in the declared tank order and payload filled forward-first or
+    aft-first (:func:`_payload_cg_ranges`), over every payload/fuel split with zero-fuel mass ≤ MZFW, fuel ≤ the tanks'
+    capacity and payload ≤ the zones' capacity and the maximum payload. None when the file declares no tanks or zones,
+    or no split reaches ``mass``."""
+    m = aircraft.mass
+    if not (m.fuel_tanks and m.payload_zones):
+        return None
+    empty, _ = empty_airplane(aircraft)
+    oew = sum(c.mass for c in empty)
+    oew_moment = sum(c.mass * c.cg[0] for c in empty)
+    zones = bays(m.payload_zones)
+    useful = mass - oew
+    p_max = min(useful, m.MZFW - oew, sum(z.capacity for z in zones), m.max_payload if m.max_payload else np.inf)
+    p_min = max(0.0, useful - sum(t.capacity for t in m.fuel_tanks))
+    if useful < 0 or p_max < p_min - 1e-9:
+        return None
+    payloads = np.linspace(p_max, max(p_min, 0.0), samples)
+    fwd, aft = _payload_cg_ranges(zones, payloads)
+    groups = tank_groups(m.fuel_tanks)
+    base = np.array([oew_moment + sum(share * float(t.cg.x) for t, share in _fuel_shares(groups, useful - p))
+                     for p in payloads])
+    with np.errstate(invalid="ignore"):
+        x_fwd = (base + np.where(payloads > 0, payloads * fwd, 0.0)) / mass
+        x_aft = (base + np.where(payloads > 0, payloads * aft, 0.0)) / mass
+    return float(np.nanmin(x_fwd)), float(np.nanmax(x_aft))

@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.units import FT
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.models.dynamics.modes import load_factor_per_alpha
+from certkit.engine.registry import Criterion, ModeResponses, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support import handling_levels as hq
 from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
@@ -21,14 +22,13 @@ PHASE_READING = {"cruise": "B (en route: climb, cruise, descent), Level 1 ζ_sp 
                  "terminal": "C (terminal: takeoff, approach, landing), Level 1 ζ_sp ≥ 0.35"}
 
 
-def categories(configuration: str) -> tuple[str, ...]:
-    """MIL-F-8785C flight-phase categories read for a configuration: clean is both cruise manoeuvring (A)
-    and cruise (B); flaps/gear extended are terminal phases (C)."""
-    return ("A", "B") if hq.CATEGORY.get(configuration, "B") == "B" else ("C",)
+categories = hq.categories_of
 
 
-def mode_levels(modes: dict, configuration: str) -> dict:
-    """{mode: {ζ, ωn, eigenvalue, level per category, reason}} for the classical modes present."""
+def mode_levels(modes: dict, configuration: str, n_alpha: float | None = None) -> dict:
+    """{mode: {ζ, ωn, eigenvalue, period, times to half and double, level per category, reason}} for the classical
+    modes present; the short period's control anticipation parameter ω²/(n/α) ((rad/s²)/g, MIL-F-8785C 3.2.2.1.1)
+    with the condition's n/α (g/rad)."""
     out = {}
     for name in MODES:
         m = modes.get(name)
@@ -38,7 +38,12 @@ def mode_levels(modes: dict, configuration: str) -> dict:
         row = {"zeta": round(m.damping_ratio, 5), "wn_rad_s": round(m.natural_frequency, 5),
                "eigenvalue": [round(m.eigenvalue.real, 6), round(m.eigenvalue.imag, 6)],
                "tau_s": None if q["tau"] == float("inf") else round(float(q["tau"]), 3),
-               "t_double_s": None if q["t_double"] == float("inf") else round(float(q["t_double"]), 2)}
+               "t_double_s": None if q["t_double"] == float("inf") else round(float(q["t_double"]), 2),
+               "period_s": None if m.period is None else round(m.period, 3),
+               "t_half_s": None if m.time_to_half is None else round(m.time_to_half, 3)}
+        if name == "short_period" and n_alpha is not None and n_alpha > 0:
+            row["cap"] = round(m.natural_frequency ** 2 / n_alpha, 5)
+            row["n_alpha_g_rad"] = round(float(n_alpha), 4)
         for cat in categories(configuration):
             level, why = hq.level_of(name, m, cat)
             row[f"level_{cat}"] = level
@@ -70,6 +75,7 @@ class DynamicStability(Rule):
         Part 25 requirement and does not set the status.
     """
     references = ("25.171", "25.103")
+    offers = (ModeResponses(MODES),)
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
         "short_period_damping_min_cruise": Criterion(
@@ -106,14 +112,15 @@ class DynamicStability(Rule):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a), (b) modes")
         for config, idx in by_configuration(refined).items():
             conds = [refined[i] for i in idx]
-            for cond, modes in zip(conds, ctx.modes(conds)):
+            n_alpha = load_factor_per_alpha(ctx.linearization(conds))
+            for j, (cond, modes) in enumerate(zip(conds, ctx.modes(conds))):
                 if modes is None:
                     res = ctx.trim(conds)[conds.index(cond)]
                     out.append(Finding.not_evaluated(cond, "(a), (b) modes", "level-flight trim did not converge "
                                                      f"(|r| = {res.residual_norm:.1e}) "
                                                      + "; ".join(e.message for e in res.limits_exceeded)))
                     continue
-                levels = mode_levels(modes, config)
+                levels = mode_levels(modes, config, float(n_alpha[j]))
                 phase = "cruise" if hq.CATEGORY.get(config, "B") == "B" else "terminal"
                 for name, check, key in (("short_period", "(a) short period heavily damped", f"short_period_damping_min_{phase}"),
                                          ("dutch_roll", "(b) Dutch roll positively damped", "dutch_roll_damping_min")):
