@@ -12,9 +12,13 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from certkit.aircraft.yaml_source import read_regular_file
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
 from certkit.results_json import SCHEMA_VERSION
+
+#: the largest results.json read (a full check writes about 10 MB)
+MAX_RESULTS_BYTES = 512 * 1024 ** 2
 
 #: how bad a status is: a change to a larger rank is a regression
 RANK = {"complies": 0, "complies_partial": 1, "not_evaluated": 2, "fails": 3, None: -1}
@@ -65,9 +69,16 @@ def load(path: str | Path) -> dict:
     """A results.json, checked to be one this certkit reads (same schema major version)."""
     p = Path(path)
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
+        raw = read_regular_file(p, MAX_RESULTS_BYTES)
     except OSError as exc:
         raise UserError(f"{p}: cannot be read ({exc.strerror or exc})") from None
+    if len(raw) > MAX_RESULTS_BYTES:
+        raise UserError(f"{p}: larger than {MAX_RESULTS_BYTES // 1024 ** 2} MB, not a results.json of certkit")
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise UserError(f"{p}: not a results.json (not UTF-8 text: byte {exc.start} is "
+                        f"{raw[exc.start:exc.start + 1]!r}); give the results.json a `certkit check` wrote") from None
     except json.JSONDecodeError as exc:
         raise UserError(f"{p}: not JSON (line {exc.lineno}: {exc.msg})") from None
     version = data.get("schema_version") if isinstance(data, dict) else None
