@@ -15,7 +15,7 @@ from pathlib import Path
 from certkit.aircraft.yaml_source import read_regular_file
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
-from certkit.results_json import SCHEMA_VERSION
+from certkit.engine.results_json import SCHEMA_VERSION
 
 #: the largest results.json read (a full check writes about 10 MB)
 MAX_RESULTS_BYTES = 512 * 1024 ** 2
@@ -94,7 +94,7 @@ _SI_FIELDS = {"loading": "loading", "mass_kg": "mass", "x_cg_m": "x_cg", "config
 
 def _label(condition: dict) -> str:
     """The condition as the report labels it (aviation units), from its results.json form."""
-    from certkit.results import Condition
+    from certkit.engine.results import Condition
 
     known = {_SI_FIELDS[k]: v for k, v in condition.items() if k in _SI_FIELDS}
     extra = tuple((k, v) for k, v in condition.items() if k not in _SI_FIELDS)

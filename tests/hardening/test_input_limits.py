@@ -55,7 +55,7 @@ def test_unreadable_or_non_finite_numbers_are_located_errors(path, value, words)
 
 
 def test_bare_number_string_is_si():
-    """README: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of kilograms."""
+    """docs/aircraft-file.md: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of kilograms."""
     assert to_si("3e5", "mass") == 3e5
     found = _problems(with_value("mass.MTOW", "3e5"))
     assert list(found) == ["mass.MRW"]  # only the relation with the ramp weight (657,000 lb > 300 t) remains
@@ -137,7 +137,7 @@ def test_written_baseline_variant_round_trips(tmp_path):
 @pytest.mark.parametrize("text", ["nan", "inf", "1e999", "9**9**9 lb", "nan lb"])
 def test_command_line_quantities_refuse_non_finite_and_arithmetic(text):
     from certkit.errors import UserError
-    from certkit.flight_report import _quantity, parse_speed
+    from certkit.cli.flight_report import _quantity, parse_speed
 
     with pytest.raises(UserError):
         _quantity(text, "mass", "--weight")

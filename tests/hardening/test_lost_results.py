@@ -30,8 +30,8 @@ from .mutate import with_value, write_yaml
 EXITING_RULE = textwrap.dedent('''
     import sys
 
-    from certkit.conditions import CgCorners, ConditionSpace
-    from certkit.registry import Rule, rule
+    from certkit.engine.conditions import CgCorners, ConditionSpace
+    from certkit.engine.registry import Rule, rule
 
     {module_level}
 
