@@ -251,6 +251,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         result.options = {"rules_dirs": [str(d) for d in rules_dirs], "plugins": options.plugins}
         result.environment = _environment()
         result.jobs = jobs
+        result.inputs = loaded.source.values_by_path()
         result.duration_s = round(time.perf_counter() - start, 1)
         json_path, html_path = write_report(result, chosen, out)
     finally:

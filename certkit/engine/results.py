@@ -330,6 +330,9 @@ class RunResult:
     #: what varies between identical runs: wall time of the evaluation (s) and the processes used
     duration_s: float | None = None
     jobs: int | None = None
+    #: the aircraft file's values by dotted YAML path, as written (:meth:`YamlSource.values_by_path`): what
+    #: ``certkit diff`` compares to name the inputs that changed
+    inputs: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
@@ -343,7 +346,8 @@ class RunResult:
         return {
             "schema_version": SCHEMA_VERSION,
             "certkit_version": self.certkit_version,
-            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path},
+            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path,
+                         **({"inputs": self.inputs} if self.inputs else {})},
             "selection": self.selection,
             "options": self.options,
             "environment": self.environment,

@@ -28,7 +28,8 @@ from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUA
 #: order of the summary: what needs a reviewer first
 STATUS_ORDER = {FAILS: 0, NOT_EVALUATED: 1, COMPLIES_PARTIAL: 2, COMPLIES: 3}
 #: criterion bases that earn a rule a badge (the verdict may rest on them)
-FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion"}
+FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion",
+                 "override": "criterion overridden"}
 _REFERENCE = re.compile(r"(§§?\s?|14 CFR\s|CFR\s)(\d+\.\d+[a-z]?(?:\([a-z0-9]+\))*)")
 
 
@@ -91,6 +92,8 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
         for name, c in cls.criteria.items():
             if c.basis in FLAGGED_BASES and name not in result.overrides:
                 flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
+        for name, o in result.overrides.items():
+            flags.setdefault("override", []).append(f"{name} {o['default']} → {o['value']}: {o['justification']}")
         sections.append({
             "result": result, "rule": cls, "critical": result.critical, "subpart": subpart(result.id).upper(),
             "reason": reason_line(result), "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},

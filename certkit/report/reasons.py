@@ -11,6 +11,8 @@ def margin_text(value, unit: str) -> str:
     """A margin in the unit a reviewer reads (kn, ft, lb, lbf, kN·m, g), signed; an em dash when missing."""
     if value is None:
         return "—"
+    if abs(value) < 1e-9:  # round-off of a value on its limit reads 0, not "+0.000000 Mach"
+        value = 0.0
     shown, factor = unit_and_factor(unit or "")
     text = format_value(value / factor)
     if not text.startswith(("-", "—")):
