@@ -33,17 +33,11 @@ class YamlSource:
     def values_by_path(self) -> dict[str, object]:
         """Every scalar of the file by dotted path (list items by index), as written (a date or other YAML scalar as
         text): what two runs compare to name the inputs that changed."""
-        out: dict[str, object] = {}
-        stack = [((), self.data)]
-        while stack:
-            loc, node = stack.pop()
-            if isinstance(node, dict):
-                stack.extend((loc + (k,), v) for k, v in node.items())
-            elif isinstance(node, list):
-                stack.extend((loc + (i,), v) for i, v in enumerate(node))
-            else:
-                out[".".join(map(str, loc))] = node if node is None or isinstance(node, (str, int, float, bool)) else str(node)
-        return dict(sorted(out.items()))
+        from certkit.aircraft.number_range import scalars
+
+        plain = (str, int, float, bool)
+        return dict(sorted((".".join(map(str, loc)), v if v is None or isinstance(v, plain) else str(v))
+                           for loc, v in scalars(self.data)))
 
     def line_of(self, loc: tuple) -> int | None:
         """Line of ``loc``, or of its nearest existing parent (a missing key points at its parent)."""
