@@ -38,11 +38,17 @@ def reason_line(result) -> str:
     """The one-line reason of the rule's status (see the module docstring)."""
     if result.status == FAILS:
         f = worst_failure(result)
-        return f"fails by {margin_text(f.margin, f.unit)}: {f.check} at {f.condition.label()}"
+        return f"fails by {margin_text(f.margin, f.unit)} at {f.condition.label(numbers=False)}: {f.check}"
     if result.status == NOT_EVALUATED:
         return "not evaluated: " + not_evaluated_reason(result)
     crit = result.critical
-    where = f"critical {crit.check} at {crit.condition.label()}" if crit else "complies"
+    where = f"critical {crit.check} at {crit.condition.label(numbers=False)}" if crit else "complies"
     if result.status == COMPLIES_PARTIAL:
         return where + "; not evaluated: " + ", ".join(f"§{p}" for p, _ in result.unevaluated)
     return where
+
+
+def reason_condition(result) -> str:
+    """The full condition behind :func:`reason_line` (masses, CG and speeds in aviation units), for a tooltip."""
+    f = worst_failure(result) if result.status == FAILS else result.critical
+    return f.condition.label() if f is not None else ""
