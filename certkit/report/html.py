@@ -140,7 +140,7 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
 
 #: a table larger than this (bytes of HTML) is stored compressed in the report and drawn when shown
 PACK_THRESHOLD = 8192
-_TABLE = re.compile(r'<div class="table-wrap"><table>.*?</table></div>', re.S)
+_TABLE_OPEN, _TABLE_CLOSE = '<div class="table-wrap"><table>', "</table></div>"
 
 
 def pack_tables(html: str, threshold: int = PACK_THRESHOLD) -> str:
@@ -152,18 +152,25 @@ def pack_tables(html: str, threshold: int = PACK_THRESHOLD) -> str:
     import base64
     import zlib
 
-    def pack(m):
-        table = m[0]
+    def pack(table: str) -> str:
         if len(table) <= threshold:
             return table
         rows = table.count("<tr") - table.count("<thead><tr")
-        data = base64.b64encode(zlib.compress(table.encode("utf-8"), 9)).decode("ascii")
+        data = base64.b64encode(zlib.compress(table.encode("utf-8"), 6)).decode("ascii")
         return (f'<div class="packed" data-rows="{rows}"><p class="meta packed-note">A table of {rows} rows, stored '
                 'compressed in this file: it opens with its section<noscript> when scripts are enabled (every value '
                 'is also in results.json)</noscript>.</p>'
                 f'<script type="application/x-certkit-table">{data}</script></div>')
 
-    return _TABLE.sub(pack, html)
+    parts, at = [], 0
+    while (start := html.find(_TABLE_OPEN, at)) >= 0:
+        end = html.find(_TABLE_CLOSE, start)
+        if end < 0:
+            break
+        end += len(_TABLE_CLOSE)
+        parts += [html[at:start], pack(html[start:end])]
+        at = end
+    return "".join(parts) + html[at:]
 
 
 def _paragraphs(text: str) -> str:
