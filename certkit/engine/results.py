@@ -136,6 +136,8 @@ def field_words(name: str, value) -> str:
     """A scheduled condition field in words: ``speed_point`` 1.3 VSR → "at 1.3 VSR", ``delta_isa_K`` 15 → "ISA +15
     °C"; a field not listed reads "name value" with underscores as spaces."""
     template = _FIELD_WORDS.get(name)
+    if isinstance(value, float):
+        value = round(value, 1) if abs(value) >= 1 else float(f"{value:.3g}")  # a label, not a record
     if template is None:
         return f"{name.replace('_', ' ')} {value}"
     try:

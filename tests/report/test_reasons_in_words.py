@@ -28,6 +28,7 @@ def test_scheduled_fields_read_as_words():
     assert "at 1.3 VSR" in label and "30° bank" in label and "ISA +15 °C" in label and "entry at VA" in label
     assert "left engine inoperative" in label
     assert field_words("some_new_field", 3) == "some new field 3"
+    assert field_words("delta_isa_K", 33.019) == "ISA +33 °C"
 
 
 def _result(findings, rule_id="25.335(b)"):
