@@ -38,7 +38,8 @@ def reason_line(result) -> str:
     """The one-line reason of the rule's status (see the module docstring)."""
     if result.status == FAILS:
         f = worst_failure(result)
-        return f"fails by {margin_text(f.margin, f.unit)} at {f.condition.label(numbers=False)}: {f.check}"
+        by = margin_text(-f.margin, f.unit).lstrip("+") if f.margin is not None else "—"  # "fails by 0.90 deg"
+        return f"fails by {by} at {f.condition.label(numbers=False)}: {f.check}"
     if result.status == NOT_EVALUATED:
         return "not evaluated: " + not_evaluated_reason(result)
     crit = result.critical

@@ -39,7 +39,7 @@ def test_one_line_cause_leaves_the_numbers_of_the_loading_to_the_tooltip():
     f = Finding.compare(CONDITION, "(b) VC/MC ≤ 0.8 VD/MD", 240 * KN, 250 * KN, at_least=True, unit="m/s")
     r = _result([f])
     line = reason_line(r)
-    assert line.startswith("fails by -10.00 kn at aft_light") and line.endswith(": (b) VC/MC ≤ 0.8 VD/MD")
+    assert line.startswith("fails by 10.00 kn at aft_light") and line.endswith(": (b) VC/MC ≤ 0.8 VD/MD")
     assert " lb" not in line and "CG" not in line
     assert "200,000 lb" in reason_condition(r) and "CG 100.00 ft" in reason_condition(r)
 
