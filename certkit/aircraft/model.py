@@ -146,7 +146,8 @@ class LiftingSurface(_Section):
 
     area: PositiveArea
     aspect_ratio: Annotated[float, Field(gt=0.0, description="b²/S (for a fin: height²/S)")]
-    taper: Annotated[float, Field(gt=0.0, le=1.0, description="tip chord / root chord")]
+    taper: Annotated[float, Field(ge=0.02, le=1.0, description="tip chord / root chord (from 0.02: a pointed tip is "
+                                                               "outside the trapezoidal-panel model)")]
     sweep_quarter_chord: Annotated[Angle, Field(gt=-1.2, lt=1.2)]
     dihedral: Annotated[Angle, Field(gt=-0.8, lt=0.8)] = 0.0
     thickness_ratio: Annotated[float, Field(gt=0.0, lt=0.4)] = 0.12
@@ -260,7 +261,7 @@ class MassProperties(_Section):
     MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
     max_fuel: PositiveMass | None = None
     max_payload: PositiveMass | None = None
-    passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
+    passengers: Annotated[int, Field(ge=0, le=10_000, strict=True, description="seats: a whole number")] | None = None
     oew_cg: Point | None = None
     cg: Point | None = Field(None, description="CG of the whole airplane at MTOW (a file without components, tanks "
                                                "or zones; default: the CG envelope's reference, else the moment point)")
@@ -441,13 +442,17 @@ class TailFlapIncrement(_Section):
 
 
 class Configuration(_Section):
-    flap: Angle = 0.0
-    slat: Angle = 0.0
+    flap: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="flap deflection, 0 (retracted) to "
+                                                                          "70 deg")] = 0.0
+    slat: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="slat deflection, 0 (retracted) to "
+                                                                          "70 deg")] = 0.0
     gear: Literal["up", "down"] = "up"
     CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
     CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
     delta_CL0: float = Field(0.0, description="tail-off (wing-body) lift increment of the high-lift devices")
-    delta_CD0: float = 0.0
+    delta_CD0: Annotated[float, Field(ge=0.0, lt=0.3)] = Field(
+        0.0, description="zero-lift drag increment of the high-lift devices and gear, 0 to 0.3 (landing flaps with the "
+                         "gear down are about 0.07-0.10: Roskam, Airplane Design Part I, Table 3.6)")
     delta_Cm0: float = Field(0.0, description="tail-off (wing-body) pitching-moment increment of the high-lift devices")
     tail_flap_increment: TailFlapIncrement | None = Field(
         None, description="the horizontal tail's share of the flap increments (change of downwash at the tail); "

@@ -39,7 +39,10 @@ def _source(path: str):
     """The parsed aircraft file, reused while the file is unchanged (one parse per process and file)."""
     from certkit.aircraft.yaml_source import load_yaml
 
-    st = os.stat(path)
+    try:
+        st = os.stat(path)
+    except OSError:  # missing, unreadable: load_yaml says so with the path (a user error)
+        return load_yaml(path)
     key = (os.path.abspath(path), st.st_mtime_ns, st.st_size)
     if key not in _SOURCES:
         _SOURCES.clear()

@@ -38,6 +38,12 @@ class PluginError(UserError):
     """Invalid rule metadata or a rule module that cannot be loaded."""
 
 
+def exit_called(exc: SystemExit) -> str:
+    """What a rule module did when it raised :class:`SystemExit` (``sys.exit``, ``exit()``): a rule ends nothing, it
+    returns findings, so certkit never ends with the plugin's exit code (an exit 0 would read "all comply")."""
+    return f"called sys.exit({exc.code!r}) (a rule must return findings or raise an exception, never end the program)"
+
+
 #: what a criterion rests on, read from its source: ``regulation`` (the text of 14 CFR), ``unverified`` (text from
 #: memory, a secondary copy or another authority's code, not checked against the CFR), ``data`` (published data: a
 #: type certificate data sheet), ``project`` (a value certkit chose or assumed, its reading of the text) and
@@ -367,6 +373,8 @@ def plugin_rules() -> list[type[Rule]]:
             obj = ep.load()
         except PluginError:
             raise
+        except SystemExit as exc:
+            raise PluginError(f"{origin}: {exit_called(exc)} while being loaded") from None
         except Exception as exc:
             raise PluginError(f"{origin}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
         if inspect.ismodule(obj):
@@ -395,6 +403,8 @@ def folder_rules(folder: str | Path) -> list[type[Rule]]:
             spec.loader.exec_module(module)
         except PluginError as exc:
             raise PluginError(f"{path}: {exc}") from None
+        except SystemExit as exc:
+            raise PluginError(f"{path}: {exit_called(exc)} while being loaded") from None
         except Exception as exc:
             raise PluginError(f"{path}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
         rules += _rules_in_module(module, f"user folder {folder}")
