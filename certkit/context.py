@@ -66,7 +66,7 @@ class Context:
                 names = self._loading_names.get(key) or {value.name}
                 loadings[key] = {"name": " / ".join(sorted(names)), "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
                                  "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
-                                 "notes": list(value.notes)}
+                                 "built": value.construction, "notes": list(value.notes)}
         components, notes = empty_airplane(self.aircraft)
         warning = self.inertia_warning()
         notes = notes + ([f"warning: {warning}"] if warning else [])
