@@ -207,21 +207,22 @@ class Context:
                     limits=control_limits(self.aircraft, design_limits, config), roles=ROLES, stabilizer=st,
                     stabilizer_setting=None if st is None else stabilizer, initial=initial)
 
-    def modes(self, conditions):
+    def modes(self, conditions, throttle=None):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
-        condition; None where the trim did not converge."""
+        condition; None where the trim did not converge. ``throttle`` (a scalar or one per condition) fixes the
+        throttles: the modes are then those of the steady climb or descent at that thrust (see :meth:`trim`)."""
         from certkit.models.dynamics.linearize import linearize
         from certkit.models.dynamics.modes import identify_modes
 
         conds = tuple(conditions)
 
         def compute():
-            batch = self.trim(conds)
+            batch = self.trim(conds, throttle=throttle)
             lin = linearize(batch.model, batch.x, batch.u)
             return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
 
-        return self.memo(("modes",) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds),
-                         compute)
+        key = ("modes",) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds)
+        return self.memo(key if throttle is None else key + ("throttle", _hashable(throttle)), compute)
 
 
 def _hashable(value):

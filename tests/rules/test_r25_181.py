@@ -10,6 +10,7 @@ CL_q and the thrust terms).
 
 import math
 
+import numpy as np
 import pytest
 
 from certkit.atmosphere import density
@@ -94,10 +95,24 @@ def test_not_evaluated_without_vmo(tmp_path):
     assert r.status == "not_evaluated" and own(r)[0].reason == "needs speeds.VMO"
 
 
-def test_trim_impossible_is_not_evaluated_with_the_reason(result):
-    """MRW at 37,000 ft cannot hold level flight at full thrust: not evaluated, never a pass."""
-    bad = [f for f in own(result) if f.status == "not_evaluated"]
-    assert bad and all("did not converge" in f.reason for f in bad)
+def test_beyond_the_level_flight_ceiling_the_modes_are_those_of_the_steady_descent(result, ctx):
+    """MRW at 37,000 ft and 1.13 VSR cannot hold level flight at full thrust: its modes are those of the steady
+    descent at full thrust, and the finding says so. Cross-checks by other trim formulations: the level trim there
+    needs more than full throttle, and trims solving for the throttle bracket full throttle: 0.05° steeper than the
+    descent found it needs less (above 0.95), 0.05° shallower more than full. Every condition is evaluated."""
+    from certkit.units import FT
+
+    assert not [f for f in own(result) if f.status == "not_evaluated" and f.condition.loading]
+    f = _sp(result, "fwd_mrw", "clean", "1.13 VSR", altitude=37000 * FT)
+    assert f.details["flight"].startswith("steady descent at full thrust")
+    gamma = f.details["flight_path_deg"]
+    assert -2.0 < gamma < 0.0 and f"{gamma:+.2f}°" in f.details["flight"]
+    level = ctx.trim([f.condition]).results[0]
+    assert not level.converged and any("more than full" in e.message for e in level.limits_exceeded)
+    steeper, shallower = ctx.trim([f.condition] * 2, gamma=np.radians([gamma - 0.05, gamma + 0.05])).results
+    assert steeper.converged and 0.95 < next(v for n, v in steeper.controls.items() if n.startswith("throttle")) < 1.0
+    assert not shallower.converged and any("more than full" in e.message for e in shallower.limits_exceeded)
+    assert _sp(result, "fwd_mrw", "clean", "1.13 VSR").details["flight"] == "level flight"
 
 
 def test_baseline_dutch_roll_is_weakest_at_aft_corners(result):
