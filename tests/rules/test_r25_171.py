@@ -53,6 +53,23 @@ def test_sign_aft_cg_reduces_static_margin_and_speed_stability(sm, grad, tmp_pat
     assert _at(g, "aft_mlw", "landing", "1.3 VSR").value < _at(grad, "aft_mlw", "landing", "1.3 VSR").value
 
 
+def test_a_horizontal_tail_moved_forward_fails(sm, tmp_path):
+    """A deficient airplane by geometry: the horizontal tail moved 20 ft forward (root leading edge 168 → 148 ft; tail
+    arm 87 → 67 ft). The tail's contribution to the stability about the CG falls with its arm, so the neutral point
+    moves forward and the aft corners' stick-fixed static margin drops below the 5 % MAC minimum: §25.171 fails at
+    aft_mid and aft_mlw, and every condition's margin is smaller than the baseline's."""
+    r = run_rule("25.171", tmp_path, edits=[("root_leading_edge: {x: 168.0 ft, y: 0 ft, z: 2.0 ft}",
+                                             "root_leading_edge: {x: 148.0 ft, y: 0 ft, z: 2.0 ft}")])
+    assert r.status == "fails"
+    assert {f.condition.loading for f in own(r) if f.status == "fails"} >= {"aft_mid", "aft_mlw"}
+    before = {(f.condition.loading, f.condition.configuration, f.condition.altitude, f.condition.get("speed_point")): f.value
+              for f in own(sm) if f.value is not None}
+    for f in own(r):
+        if f.value is not None:
+            key = (f.condition.loading, f.condition.configuration, f.condition.altitude, f.condition.get("speed_point"))
+            assert f.value < before[key]
+
+
 def test_speed_stability_hand_calculation(grad, ctx):
     f = _at(grad, "fwd_mlw", "landing", "1.3 VSR")
     c = f.condition
