@@ -81,6 +81,26 @@ def test_a_poorly_damped_airplane_fails(result, tmp_path):
     assert r.status == "fails"
 
 
+def test_the_verdict_does_not_hang_on_the_downwash_lag_estimate(result, tmp_path):
+    """The estimated Cm_α̇ (−6.2 at M 0.2 to −12.2 at M 0.9) is 1.55–1.9 times the 747's published values (Heffley &
+    Jewell, CR-2144: −6.41 at M 0.8, −3.3 in power approach; tests/aero/test_directional_against_747.py). With the
+    747's values put in instead (−6.41 clean, −3.3 with flaps), every short period is still heavily damped by the
+    category minimum: the least ζ_sp falls from 0.319 to 0.310 clean (≥ 0.30) and from 0.407 to 0.378 with flaps
+    (≥ 0.35), so the §25.181 verdict on the baseline does not depend on the estimate."""
+    block = ("aerodynamics:\n  overrides_source: 747 published (Heffley & Jewell, NASA CR-2144)\n  overrides:\n"
+             + "".join(f"    {c}: {{Cm_alphadot: {v}}}\n" for c, v in (("clean", -6.41), ("takeoff", -3.3),
+                                                                        ("approach", -3.3), ("landing", -3.3)))
+             + "sources:")
+    r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + block)])
+    sp = [f for f in own(r) if f.check.startswith("(a) short") and f.value is not None]
+    base = [f for f in own(result) if f.check.startswith("(a) short") and f.value is not None]
+    assert sp and all(f.status == "complies" for f in sp)
+    for clean in (True, False):
+        ours = min(f.value for f in base if (f.condition.configuration == "clean") == clean)
+        published = min(f.value for f in sp if (f.condition.configuration == "clean") == clean)
+        assert published < ours  # less lag damping, less damping: the substitution took effect
+
+
 def test_sign_more_pitch_damping_raises_short_period_margin(result, tmp_path):
     """A pitch-damping derivative Cm_q of −40 (table: −22 to −29) in every configuration raises ζ_sp."""
     base = _sp(result, "fwd_mrw", "takeoff", "mid").margin
