@@ -155,3 +155,24 @@ def test_a_fin_forty_percent_smaller_fails(result, tmp_path):
         assert set(f.details["limited_by_bank"].values()) <= {"rudder", "aileron"}
     base = min(f.value for f in own(result) if f.check.startswith("(c)"))
     assert min(f.value for f in small) > base + 20 * KN
+
+
+def test_with_roll_control_to_spare_vmca_falls_with_bank(tmp_path):
+    """The directional model against the classical static result behind §25.149(b)'s 5° of bank (FAA AC 25-7D's VMCA
+    flight tests are flown with it): banking toward the operating engine lowers VMCA, the weight component then
+    supplying the side force the rudder and the sideslip otherwise must. On the baseline the
+    declared roll control (ailerons only, 17 % chord over 78–98 % span; the 777's roll spoilers are not declared)
+    runs out first at 4° and 5° of bank, holding the sideslip of 6.6–8.5° the weak side force needs. With the roll
+    power doubled (Cl_δa −0.14/rad, standing for the spoilers) the rudder-limited VMCA falls at every step of bank
+    until straight flight reaches the lift maximum, and no bank is aileron-limited."""
+    block = ("aerodynamics:\n  overrides_source: test, roll spoilers\n  overrides:\n    takeoff: {Cl_aileron: -0.14}\n"
+             "sources:")
+    r = run_rule("25.149", tmp_path, edits=[("\nsources:", "\n" + block)])
+    c = next(f for f in own(r) if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
+    by_bank = [c.details["vmca_by_bank_kn"][f"{b} deg"] for b in range(6)]
+    limits = [c.details["limited_by_bank"][f"{b} deg"] for b in range(6)]
+    assert "aileron" not in limits
+    rudder = [v for v, what in zip(by_bank, limits) if what == "rudder"]
+    assert len(rudder) >= 3 and all(a > b for a, b in zip(rudder, rudder[1:]))
+    assert all(what == "stall" for what in limits[len(rudder):])
+    assert c.details["vmca_limited_by"].startswith("the stall")
