@@ -45,16 +45,21 @@ def vsr_cas(ctx, configuration: str, mass: float, h: float = 0.0) -> float:
 BANK_FRACTIONS = np.linspace(1.0, 0.0, 6)
 
 
+def _usages(res, limits) -> dict[str, float]:
+    """|deflection| / design limit (on the deflected side) of the rudder and the aileron of a trim."""
+    use = {}
+    for name in ("rudder", "aileron"):
+        d = res.controls[name]
+        lo, hi = limits[name]
+        use[name] = d / hi if d >= 0 else d / lo
+    return use
+
+
 def control_usage(res, limits) -> float:
     """Largest |deflection| / design limit of rudder and aileron (∞ when the trim did not converge)."""
     if not res.converged:
         return np.inf
-    use = []
-    for name in ("rudder", "aileron"):
-        d = res.controls[name]
-        lo, hi = limits[name]
-        use.append(d / hi if d >= 0 else d / lo)
-    return max(use)
+    return max(_usages(res, limits).values())
 
 
 def throttle_of(res) -> float:
@@ -162,11 +167,7 @@ def at_lift_maximum(ctx, configuration: str, res, step: float = np.radians(0.25)
 
 def limiting_control(res, limits) -> str:
     """The control at (or nearest) its design limit in the converged trim ``res``: 'rudder' or 'aileron'."""
-    use = {}
-    for name in ("rudder", "aileron"):
-        d = res.controls[name]
-        lo, hi = limits[name]
-        use[name] = d / hi if d >= 0 else d / lo
+    use = _usages(res, limits)
     return max(use, key=use.get)
 
 
