@@ -12,10 +12,11 @@ Among the payload/fuel splits with zero-fuel mass ≤ MZFW and fuel ≤ capacity
 most payload whose required payload CG is reachable is taken, and the zone fill is solved for the
 exact CG. A corner no split reaches (an envelope corner drawn for a fleet, whose empty airplanes
 differ from the declared one, e.g. a light corner a few per cent of MAC from the declared OEW CG)
-is built from the same items: the payload as ballast at a station inside the payload zones, or
-else the split and fill nearest the corner with the empty airplane moved fore or aft as a whole
+is built from the same items: the payload as ballast at a station inside the fuselage, or else
+the split and fill nearest the corner with the empty airplane moved fore or aft as a whole
 (another operating empty CG, at the empty airplane's own height); never a point at the datum.
-Each loading names how it was built (:attr:`Loading.construction`). The inertia follows from the parallel-axis theorem over every item
+Each loading names how it was built (:attr:`Loading.construction`). The inertia follows from the
+parallel-axis theorem over every item
 (:func:`certkit.models.mass.properties.combine`). When the file has no component table, the empty
 airplane is a point mass at ``oew_cg`` and the whole-airplane inertia is scaled from the declared
 tensor with constant radii of gyration (I ∝ m), which the result states in its notes.

@@ -97,9 +97,11 @@ class MinimumControlSpeed(Rule):
                                        if rudder else "none declared: rudder at its design limit, not 150 lbf"))
             if "trim failure" in [rows["limited_by"][j] for j in pair]:
                 bad = [f"{np.degrees(rows['banks'][j]):.0f}°" for j in pair if rows["limited_by"][j] == "trim failure"]
-                out.append(Finding.not_evaluated(cond, "(c) VMCA ≤ 1.13 VSR", "the straight one-engine-inoperative trim "
-                                                 f"failed above the stall at bank {', '.join(bad)} (neither a control "
-                                                 "limit nor the lift maximum): VMCA is not determined", **common))
+                why = (f"the straight one-engine-inoperative trim failed above the stall at bank {', '.join(bad)} "
+                       "(neither a control limit nor the lift maximum): VMCA is not determined")
+                out += [Finding.not_evaluated(cond, check, why, **common) for check in (
+                    "(c) VMCA ≤ 1.13 VSR", f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf",
+                    "(b) declared VMC ≥ computed VMCA")]
                 continue
             if below:
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
