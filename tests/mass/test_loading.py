@@ -112,3 +112,17 @@ def test_fuel_never_moves_the_cg_sideways(baseline, corners):
     for r in corners.values():
         assert abs(r.properties.cg[1]) < 1e-9
         assert abs(r.properties.inertia[0, 1]) < 1e-6 * r.properties.Ixx
+
+
+def test_report_provenance_names_how_each_loading_was_built(baseline):
+    """The report's loadings table (Context.provenance, column "Built from") carries the construction of each loading
+    solved, the moved empty airplane of a light corner included."""
+    from certkit.engine.context import Context
+
+    ctx = Context(baseline)
+    for c in CgCorners().loadings(baseline.model):
+        if c.name in ("fwd_light", "fwd_mlw"):
+            ctx.loading(c.mass, c.x_cg, c.name)
+    rows = {r["name"]: r for r in ctx.provenance()["loadings"]}
+    assert "empty airplane moved" in rows["fwd_light"]["built"]
+    assert rows["fwd_mlw"]["built"].startswith("declared items: empty airplane (")
