@@ -503,6 +503,8 @@ def _print_trim(r, given: dict):
         click.echo(f"  thrust total      {total / LBF:10,.0f} lbf ({total / 1e3:,.1f} kN)")
     for lim in r["limits_exceeded"]:
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
+    if r.get("loading_built"):
+        click.echo(f"loading built from {r['loading_built']}")
     for note in r["loading_notes"]:
         click.echo(f"note: {note}")
     for warning in r["warnings"]:

@@ -1,11 +1,15 @@
 """§25.181 Dynamic stability, with the MIL-F-8785C Level of every rigid-body mode as a reference reading.
 
-The modes are those of the linearised six-degree-of-freedom model about the level-flight trim of each
-condition (``ctx.modes``): every CG corner × (takeoff, cruise, landing) × altitude band × three speeds
-from 1.13 VSR to the configuration's maximum allowable speed.
+The modes are those of the linearised six-degree-of-freedom model about the trim of each condition
+(``ctx.modes``): every CG corner × (takeoff, cruise, landing) × altitude band × three speeds from 1.13 VSR to the
+configuration's maximum allowable speed. The trim is level flight, or, where the weight is beyond its level-flight
+thrust ceiling at that altitude and speed, the steady descent at full thrust the airplane can hold there; each
+finding says which (``flight``).
 """
 
 from __future__ import annotations
+
+import math
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.units import FT
@@ -14,7 +18,8 @@ from certkit.engine.registry import Criterion, ModeResponses, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support import handling_levels as hq
 from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
-                                                             by_configuration, refine_speeds)
+                                                             by_configuration, flight_described, refine_speeds,
+                                                             steady_flight_trims)
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
 #: how the short-period criterion reads each configuration's flight phase (MIL-F-8785C 1.5 flight-phase categories)
@@ -94,7 +99,8 @@ class DynamicStability(Rule):
     }
     conditions = ConditionSpace(loading=CgCorners(), configurations=tuple(PHASES.values()),
                                 altitudes=Altitudes((0.0, 20000 * FT, 37000 * FT)), extra=(("speed_point", SPEED_POINTS),),
-                                note="Speeds in CAS, level flight at the power for level flight; flaps only up to the flap altitude limit.")
+                                note="Speeds in CAS, level flight at the power for level flight (beyond the level-flight thrust "
+                                     "ceiling, the steady descent at full thrust); flaps only up to the flap altitude limit.")
     implementation = "partial"
     limitations = """
         Controls-fixed modes only: no hinge-moment or control-system model, so 'controls free' (§25.181(a)(1), (b)) is
@@ -112,25 +118,34 @@ class DynamicStability(Rule):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a), (b) modes")
         for config, idx in by_configuration(refined).items():
             conds = [refined[i] for i in idx]
-            n_alpha = load_factor_per_alpha(ctx.linearization(conds))
-            for j, (cond, modes) in enumerate(zip(conds, ctx.modes(conds))):
+            trims, stops = steady_flight_trims(ctx, conds)
+            modes_of = dict(zip(range(len(conds)), ctx.modes(conds)))
+            n_alpha = dict(enumerate(load_factor_per_alpha(ctx.linearization(conds))))
+            held = [i for i, s in enumerate(stops) if s is not None]
+            if held:  # beyond the level-flight ceiling: the modes of the steady descent (climb) at the throttle stop
+                held_conds, held_throttle = [conds[i] for i in held], [stops[i] for i in held]
+                modes_of.update(zip(held, ctx.modes(held_conds, throttle=held_throttle)))
+                n_alpha.update(zip(held, load_factor_per_alpha(ctx.linearization(held_conds, throttle=held_throttle))))
+            for i, cond in enumerate(conds):
+                modes, res = modes_of[i], trims[i]
+                flight = flight_described(res, stops[i])
+                path = {} if stops[i] is None else {"flight_path_deg": math.degrees(res.gamma)}
                 if modes is None:
-                    res = ctx.trim(conds)[conds.index(cond)]
-                    out.append(Finding.not_evaluated(cond, "(a), (b) modes", "level-flight trim did not converge "
+                    out.append(Finding.not_evaluated(cond, "(a), (b) modes", f"trim in {flight} did not converge "
                                                      f"(|r| = {res.residual_norm:.1e}) "
                                                      + "; ".join(e.message for e in res.limits_exceeded)))
                     continue
-                levels = mode_levels(modes, config, float(n_alpha[j]))
+                levels = mode_levels(modes, config, float(n_alpha[i]))
                 phase = "cruise" if hq.CATEGORY.get(config, "B") == "B" else "terminal"
                 for name, check, key in (("short_period", "(a) short period heavily damped", f"short_period_damping_min_{phase}"),
                                          ("dutch_roll", "(b) Dutch roll positively damped", "dutch_roll_damping_min")):
                     m = modes.get(name)
                     if m is None:
                         out.append(Finding.not_evaluated(cond, check, f"no {name.replace('_', ' ')} mode identified "
-                                                         "among the eigenvalues", modes=levels))
+                                                         "among the eigenvalues", modes=levels, flight=flight, **path))
                         continue
                     out.append(Finding.compare(cond, check, m.damping_ratio, crit[key], at_least=True, unit="",
-                                               natural_frequency_rad_s=m.natural_frequency, modes=levels,
+                                               natural_frequency_rad_s=m.natural_frequency, modes=levels, flight=flight, **path,
                                                **({"category": PHASE_READING[phase]} if name == "short_period" else {})))
         return out
 
