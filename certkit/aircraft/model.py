@@ -231,9 +231,23 @@ class MassComponent(_Section):
 
 
 class FuelTank(_Section):
+    """A fuel tank: its capacity and centroid; a wing tank (centroid off the plane of symmetry) may also declare the
+    spanwise extent of its bay (|y| of the inboard and outboard ends), else the loads model places it from the side
+    of body outboard as far as its centroid asks (:mod:`certkit.models.loads.fuel`)."""
+
     name: str
     capacity: PositiveMass
     cg: Point
+    y_inboard: Length | None = Field(None, description="|y| of the tank bay's inboard end (wing tanks)")
+    y_outboard: Length | None = Field(None, description="|y| of the tank bay's outboard end (wing tanks)")
+
+    @model_validator(mode="after")
+    def _bay(self):
+        a, b = self.y_inboard, self.y_outboard
+        if a is not None and b is not None and not a < abs(self.cg.y) < b:
+            raise ValueError(f"the tank's centroid |y| = {abs(self.cg.y):.3f} m must lie between y_inboard "
+                             f"{a:.3f} m and y_outboard {b:.3f} m")
+        return self
 
 
 class PayloadZone(_Section):

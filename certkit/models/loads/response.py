@@ -43,15 +43,11 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
     ``extra_alpha`` / ``extra_beta``: surface name → (nt, n) angle-of-attack / sideslip increment felt by that
     surface only (a vertical / lateral gust)."""
     h = sim.history
-    t = sim.t
     V = np.maximum(h["V"], 1e-3)
     b, c = model.b, model.c
     names = list(sim.control_names)
     controls = {n: sim.controls[:, :, names.index(n)] for n in names if ":" not in n and n != "brake"}
-    qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
-    xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
-    terms = {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
-             "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+    terms = inertia_terms(sim, model)
     out = {}
     for name in surfaces:
         s = loads[name]
@@ -59,6 +55,49 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
         inputs = {"alpha": alpha, "beta": h["beta"] + (extra_beta or {}).get(name, 0.0), "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
                   "r_hat": h["r"] * b / (2 * V), **controls}
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
+    return out
+
+
+def inertia_terms(sim, model) -> dict[str, np.ndarray]:
+    """The inertial terms (:data:`certkit.models.loads.model.INERTIA_TERMS`), each (nt, n), along the simulation
+    ``sim``: load factors and the body angular accelerations (differentiated on the record's time grid)."""
+    h, t = sim.history, sim.t
+    qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
+    xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
+    return {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
+            "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+
+
+def fuel_load_units(loads: AirplaneLoads, sim, model, surface: str = "wing") -> np.ndarray | None:
+    """Inertial station loads per kilogram of each tank's fuel, (nt, n, K, 3, n_stations), of ``surface`` along
+    ``sim`` (:meth:`SurfaceLoads.fuel_loads`); None without tanks."""
+    return loads[surface].fuel_loads(inertia_terms(sim, model))
+
+
+def with_fuel_states(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarray | None) -> np.ndarray:
+    """Station loads (..., n, 3, S) without fuel plus each fuel state's: (M, ..., n, 3, S) for the fuel states
+    ``fuel`` (n, M, K) kg per condition, state and tank and the per-kilogram loads ``units`` (..., n, K, 3, S). Without
+    tanks or states: ``total`` with a leading axis of one."""
+    if units is None or fuel is None or fuel.shape[1] == 0:
+        return np.asarray(total)[None]
+    return np.asarray(total)[None] + np.einsum("...nkqs,nmk->m...nqs", units, fuel)
+
+
+def fuel_state_peaks(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarray | None) -> np.ndarray:
+    """Per fuel state, the minimum and maximum over time of station loads: (M, n, 2, 3, S) from the loads without
+    fuel ``total`` (nt, n, 3, S), the per-kilogram fuel loads ``units`` (nt, n, K, 3, S) and the fuel states ``fuel``
+    (n, M, K) kg (NaN times ignored, as :meth:`LoadEnvelope.from_histories` does; all-NaN stays NaN). Without tanks
+    or states: one state, the loads as they are."""
+    M = 1 if units is None or fuel is None or fuel.shape[1] == 0 else fuel.shape[1]
+    out = np.empty((M,) + total.shape[1:2] + (2,) + total.shape[2:])
+    missing = np.isnan(total).all(axis=0)
+    for m in range(M):
+        L = total if M == 1 and (units is None or fuel is None or fuel.shape[1] == 0) else \
+            total + np.einsum("tnkqs,nk->tnqs", units, fuel[:, m])
+        lo = np.where(np.isnan(L), np.inf, L).min(axis=0)
+        hi = np.where(np.isnan(L), -np.inf, L).max(axis=0)
+        lo[missing], hi[missing] = np.nan, np.nan
+        out[m, :, 0], out[m, :, 1] = lo, hi
     return out
 
 

@@ -14,16 +14,17 @@ from certkit.atmosphere import convert_speed
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.flight import control_limits
-from certkit.models.loads.balanced import balanced_states, linear_lift, steady_load_parts
+from certkit.models.loads.balanced import balanced_states, linear_lift, steady_fuel_units, steady_load_parts
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope
+from certkit.models.loads.response import LoadEnvelope, with_fuel_states
 from certkit.models.loads.vn_envelope import envelope
 from certkit.registry import Criterion
 from certkit.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.envelope_criteria import CN_OVER_CL
-from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding
+from certkit_rules.part25.subpart_c.fuel_states import fuel_detail, fuel_state_table
+from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding, critical_state_finding
 
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
@@ -141,11 +142,17 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
         st = balanced_states(model, batch.x[rows], batch.u[rows], n, tol=float(crit.convergence))
         sl = steady_load_parts(loads, model, st.x, st.u, st.outputs, SURFACES)
         total = {s: a + i for s, (a, i) in sl.items()}
+        # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel)
+        state_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in kept])
+        units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if cfg == "clean" else None
+        wing_states = np.array(np.broadcast_to(with_fuel_states(total["wing"], units, fuel),
+                                               (fuel.shape[1],) + total["wing"].shape))
         if cfg != "clean":
-            total["wing"] = np.full_like(total["wing"], np.nan)
+            wing_states[:] = np.nan
         bad = ~st.converged
         for s in SURFACES:
             total[s][bad] = np.nan
+        wing_states[:, bad] = np.nan
         de = st.u[:, list(model.control_names).index("elevator")]
         tail_load = 2.0 * sl["horizontal_tail"][0][:, 0, 0]  # both halves' aerodynamic root shear
         wing_lift = 2.0 * sl["wing"][0][:, 0, 0]
@@ -168,11 +175,16 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
                                                           f"{st.residual[i]:.2e})", **details))
                 elif s == "wing" and cfg != "clean":
                     findings.append(Finding.not_evaluated(c, check, NO_FLAP_STRIPS, **details))
+                elif s == "wing":
+                    peaks = np.stack([wing_states[:, i], wing_states[:, i]], axis=1)  # one state each: min = max
+                    findings.append(critical_state_finding(
+                        c, check, s, peaks, loads[s].station_names, caps[s], crit.ultimate_factor,
+                        lambda j, i=i: fuel_detail(state_names[i], fuel[i], loads["wing"].tank_names, j), **details))
                 else:
                     peaks = np.stack([total[s][i], total[s][i]])  # one state: min = max
                     findings.append(capability_finding(c, check, s, peaks, loads[s].station_names, caps[s],
                                                        crit.ultimate_factor, **details))
-        parts.append(total)
+        parts.append({"wing": wing_states, "horizontal_tail": total["horizontal_tail"]})
         tail_parts.append(tuple(np.where(bad[:, None, None], np.nan, x) for x in sl["horizontal_tail"]))
         names = list(model.control_names)
         states.append({"n_z": st.outputs.n_z, "qbar": st.outputs.qbar, "mach": st.outputs.mach, "alpha": st.alpha,
@@ -182,8 +194,11 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
         done += refined
     if not parts:
         return {"findings": findings, "envelope": None}
-    hist = {s: np.concatenate([p[s] for p in parts])[None] for s in SURFACES}
-    env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels, keys=done)
+    # the fuel states as the envelope's "time" axis (the tail's loads do not depend on the wing's fuel)
+    wing = np.concatenate([p["wing"] for p in parts], axis=1)
+    tail = np.concatenate([p["horizontal_tail"] for p in parts])
+    hist = {"wing": wing, "horizontal_tail": np.broadcast_to(tail, wing.shape[:1] + tail.shape)}
+    env = LoadEnvelope.from_histories(loads, hist, np.zeros(wing.shape[0]), labels, keys=done)
     state = {k: np.concatenate([p[k] for p in states]) for k in states[0]}
     tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
     return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads,

@@ -20,6 +20,8 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -34,7 +36,10 @@ from certkit.models.loads.response import LoadEnvelope, below_stall, response_lo
 from certkit.registry import Criterion, Rule, SimulationRule, rule
 from certkit.results import Finding
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
+from certkit_rules.part25.subpart_c.fuel_states import (fuel_detail, fuel_tank_names, fuelled_wing,
+                                                       fuelled_wing_envelope)
+from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops,
+                                                             critical_state_finding, entry_speeds,
                                                              force_limited_deflection, maneuver_limit_load_factor)
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
@@ -72,13 +77,16 @@ def wing_before_stall(hist, model, sim) -> np.ndarray | None:
     return keep
 
 
-def wing_finding(ctx, cond, check: str, env, i: int, crit, stalled: bool = False, **details) -> Finding:
+def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: bool = False, **details) -> Finding:
     """The wing's finding of condition ``i`` of a manoeuvre's envelope (its loads in the same time window as the
-    tail's, up to the stall) against the declared wing capability."""
+    tail's, up to the stall) against the declared wing capability, in the critical fuel state (``fuelled``:
+    :func:`fuelled_wing`'s peaks, names and fuel)."""
     if stalled:
         details["wing_window"] = WING_STALL_NOTE
-    return capability_finding(cond, f"{check}, wing", "wing", env.peaks["wing"][i], env.stations["wing"],
-                              declared_capabilities(ctx, "wing"), crit.ultimate_factor, **details)
+    peaks, names, fuel = fuelled
+    return critical_state_finding(cond, f"{check}, wing", "wing", peaks[:, i], env.stations["wing"],
+                                  declared_capabilities(ctx, "wing"), crit.ultimate_factor,
+                                  partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)), **details)
 
 
 def _modes_frequency(batch) -> np.ndarray:
@@ -249,7 +257,9 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
     hist = response_loads(loads, sim, model, LOADED, valid=valid)
     unstalled = wing_before_stall(hist, model, sim)
     stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-    env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds)
+    fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
+    env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds],
+                                                            keys=sim_conds), fuelled[0])
     stations = loads["horizontal_tail"].station_names
     caps = declared_capabilities(ctx, "horizontal_tail")
     for i, c in enumerate(sim_conds):
@@ -269,7 +279,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
             hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), stop=sim.stop_reason[i] or "end",
             pilot_effort=_effort_note(effort_limited, i), **reached))
-        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit,
+        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit, fuelled,
                                      bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
         if beyond is not None:
             findings.append(beyond)
@@ -369,8 +379,9 @@ class MaximumPitchControlDisplacement(Rule):
         hist = {s: np.where(valid[:, :, None, None], h, np.nan) for s, h in hist.items()}
         unstalled = wing_before_stall(hist, batch.model, sim)
         stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-        env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
-                                          keys=batch.conditions)
+        fuelled = fuelled_wing(ctx, loads, sim, batch.model, hist["wing"], batch.conditions)
+        env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
+                                                                keys=batch.conditions), fuelled[0])
         stations = loads["horizontal_tail"].station_names
         caps = declared_capabilities(ctx, "horizontal_tail")
         for i, c in enumerate(batch.conditions):
@@ -384,7 +395,7 @@ class MaximumPitchControlDisplacement(Rule):
                 **({"stabilizer_trim_deg": round(float(np.degrees(batch.control("stabilizer")[i]
                                                                   + ctx.aircraft.geometry.horizontal_tail.incidence)), 3)}
                    if "stabilizer" in batch.model.control_names else {})))
-            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
+            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit, fuelled,
                                          bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
         self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()
                     "conditions": batch.conditions, "stations": stations}

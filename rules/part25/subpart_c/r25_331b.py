@@ -51,8 +51,9 @@ class BalancedManeuver(SimulationRule):
     limitations = ("Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
                    "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
                    "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
-                   "model) and VF is the declared VFE; wing fuel inertia relief is not modelled (conservative for "
-                   "wing bending).")
+                   "model) and VF is the declared VFE; the wing is evaluated in each fuel state of the §25.343 range "
+                   "at the condition's weight and CG (tanks used in the reverse of the declared filling order), the "
+                   "critical one named in the finding.")
     implementation = "partial"
     unevaluated = (
         ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),

@@ -19,6 +19,8 @@ the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 
 from certkit.loads_conditions import refusal_findings
@@ -30,7 +32,9 @@ from certkit.registry import SimulationRule, rule
 from certkit.units import FT, KN
 from certkit_rules.part25.subpart_c.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
                                                       gust_runs)
-from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding, maneuver_limit_load_factor
+from certkit_rules.part25.subpart_c.fuel_states import fuel_detail, fuelled_wing_envelope
+from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, critical_state_finding,
+                                                              maneuver_limit_load_factor)
 
 
 @rule
@@ -106,9 +110,15 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
         for s in SURFACES:
             jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
-            findings.append(capability_finding(
-                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, env.peaks[s][i], env.stations[s],
-                caps[s], crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
+            if s == "wing":  # the wing in each fuel state (§25.343), the critical one named
+                check = partial(critical_state_finding, peaks_by_state=runs.wing_fuel_peaks[:, i],
+                                state_details=partial(fuel_detail, runs.fuel_names[i], runs.fuel[i],
+                                                      runs.loads["wing"].tank_names))
+            else:
+                check = partial(capability_finding, peaks=env.peaks[s][i])
+            findings.append(check(
+                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, stations=env.stations[s],
+                capabilities=caps[s], ultimate_factor=crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
                 critical_H_root_bending_ft=round(float(H[jb] / FT), 0), U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
                 peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
                 critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
@@ -116,6 +126,7 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
                     (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
                 tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
     lateral, lateral_env = lateral_gusts(ctx, runs, crit)
+    env = fuelled_wing_envelope(env, runs.wing_fuel_peaks)
     return {"findings": findings + lateral, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
             "replay": runs.replay, "loads": runs.loads, "lateral_envelope": lateral_env}
 

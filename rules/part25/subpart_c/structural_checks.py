@@ -67,6 +67,33 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
     return finding
 
 
+def critical_state_finding(cond, check: str, surface: str, peaks_by_state: np.ndarray, stations, capabilities,
+                           ultimate_factor, state_details, **details) -> Finding:
+    """:func:`capability_finding` of the state (e.g. the fuel state) with the smallest normalised margin among
+    ``peaks_by_state`` (M, 2, 3, S); ``state_details(j)`` → the details naming state j. Without a capability, the
+    loads reported are the envelope over the states (and no state is named)."""
+    peaks_by_state = np.asarray(peaks_by_state, dtype=float)
+    if len(peaks_by_state) == 1:
+        return capability_finding(cond, check, surface, peaks_by_state[0], stations, capabilities, ultimate_factor,
+                                  **details, **state_details(0))
+    best, worst = None, np.inf
+    for j, peaks in enumerate(peaks_by_state):
+        w = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
+        if w is None:
+            continue
+        norm = w[0].margin / max(abs(w[0].allowable), 1e-9)
+        if np.isnan(norm):
+            best = j
+            break
+        if norm < worst:
+            best, worst = j, norm
+    if best is None:
+        envelope = np.stack([np.fmin.reduce(peaks_by_state[:, 0]), np.fmax.reduce(peaks_by_state[:, 1])])
+        return capability_finding(cond, check, surface, envelope, stations, capabilities, ultimate_factor, **details)
+    return capability_finding(cond, check, surface, peaks_by_state[best], stations, capabilities, ultimate_factor,
+                              **details, **state_details(best))
+
+
 def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
     """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
     the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
