@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.loads.capability import declared_capabilities
-from certkit.scheduler import criteria_for, evaluate_rule
+from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.units import G0
-from certkit_rules.part25.subpart_c.balanced_runs import NO_FLAP_STRIPS
+from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
 from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
