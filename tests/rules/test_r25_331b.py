@@ -12,7 +12,7 @@ from certkit.units import G0
 from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
-from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
+from .helpers import NO_STABILIZER, NO_STRUCTURE, edited_baseline, failures_with, hand_margin
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 
@@ -167,9 +167,13 @@ def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_pat
     assert f.margin / abs(f.limit) == pytest.approx(hand_norm, abs=0.04)
 
 
+STOP = "beyond the control-system stop"
+
+
 def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
+    """Flaps extended (balances within the elevator's stops): the tail is evaluated, the wing is not (no flap strips)."""
     _, findings, _ = run
-    flap = [f for f in findings if f.condition.configuration != "clean"]
+    flap = [f for f in findings if f.condition.configuration != "clean" and STOP not in (f.reason or "")]
     assert flap
     assert all(f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS for f in flap if "wing:" in f.check
                or f.check.endswith("wing"))
@@ -191,7 +195,7 @@ def test_envelope_is_kept_for_the_sizing_loop(run):
 def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(BalancedManeuver, ctx)
-    clean = [f for f in result.findings if f.condition.configuration == "clean"]
+    clean = [f for f in result.findings if f.condition.configuration == "clean" and STOP not in (f.reason or "")]
     assert clean and all(f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in clean)
     assert all("root bending max/min (kN·m)" in f.all_details() for f in clean)
 
@@ -217,3 +221,30 @@ def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
     assert "must not exceed the clean positive limit load factor (2.5" in p.message and p.value == 3.0
     assert p.line == next(i for i, t in enumerate(bad.read_text().splitlines(), 1) if "flaps_extended: 3.0" in t)
     assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
+
+
+def test_no_balanced_state_beyond_the_elevator_stop_complies(run):
+    """A balance that needs the elevator beyond its control-system stop (aircraft/lta.yaml travel −30…+25°) is not a
+    computed compliance: with the baseline's movable stabiliser held at its 1 g trim it is not evaluated, with the
+    deflection in the reason (point H at the forward CG needs about +31°)."""
+    _, findings, _ = run
+    beyond = [f for f in findings if "elevator_deg" in f.all_details()
+              and not -30.0 <= f.all_details()["elevator_deg"] <= 25.0]
+    assert beyond
+    assert all(f.status == "not_evaluated" and "beyond the control-system stop" in f.reason for f in beyond)
+
+
+def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):
+    """The same airplane trimming with the elevator alone (stabiliser fixed): a balance beyond the elevator stop
+    fails, its margin the stop minus the deflection needed (degrees)."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STABILIZER])))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [c for c in BalancedManeuver.conditions.expand(ctx.aircraft) if c.loading == "fwd_mrw" and c.altitude == 0.0
+             and c.configuration == "clean" and c.get("point") in ("H", "F")]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    beyond = [f for f in findings if not -30.0 <= f.all_details().get("elevator_deg", 0.0) <= 25.0]
+    assert beyond
+    for f in beyond:
+        de = f.all_details()["elevator_deg"]
+        assert f.status == "fails" and "elevator within its stop" in f.check
+        assert f.margin == pytest.approx((25.0 if de > 0 else 30.0) - abs(de), abs=2e-3)

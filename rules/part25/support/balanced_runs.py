@@ -115,6 +115,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
     loads = airplane_loads(ctx)  # the lattice is shared by every configuration
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     lim = control_limits(ctx.aircraft)["elevator"]
+    stops = control_limits(ctx.aircraft, design=False)["elevator"]
     for cfg, conds in by_cfg.items():
         entries, key_of, target, notes = [], {}, {}, {}
         for c in conds:
@@ -168,9 +169,13 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
                                             f"limits {np.degrees(lim[0]):.1f}…{np.degrees(lim[1]):.1f}°")
             if notes[kept[i]]:
                 details["speed_note"] = notes[kept[i]]
+            past_stop = not stops[0] <= de[i] <= stops[1]
             for s in SURFACES:
                 check = _check(c, s)
-                if bad[i]:
+                if past_stop and not bad[i]:
+                    findings.append(beyond_stop_finding(c, check, float(de[i]), stops, "stabilizer" in model.control_names,
+                                                        **details))
+                elif bad[i]:
                     findings.append(Finding.not_evaluated(c, check, f"balanced state not found (residual "
                                                           f"{st.residual[i]:.2e})", **details))
                 elif s == "wing" and cfg != "clean":
@@ -203,6 +208,21 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
     tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
     return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads,
             "tail_parts": tail}  # (aerodynamic, inertial) loads of the right half tailplane, (n, 3, S) each
+
+
+def beyond_stop_finding(cond, check: str, elevator: float, stops, movable_stabilizer: bool, **details) -> Finding:
+    """The finding of a balanced state that needs the elevator beyond its control-system stop (``travel``): the
+    airplane cannot hold it with the elevator. With a movable stabiliser held at its 1 g trim a retrimmed balance may
+    exist and is not computed: not evaluated, with the deflection; without one the condition fails (margin in
+    degrees, the stop − the deflection needed). Its loads stay in the envelope (conservative for sizing)."""
+    stop = stops[1] if elevator > stops[1] else stops[0]
+    what = (f"the balance needs {np.degrees(elevator):+.1f}° elevator, beyond the control-system stop "
+            f"{np.degrees(stop):+.1f}°")
+    if movable_stabilizer:
+        return Finding.not_evaluated(cond, check, what + " with the stabiliser held at its 1 g trim; a balance with the "
+                                     "stabiliser retrimmed is not computed", **details)
+    return Finding.compare(cond, f"{check}: elevator within its stop", abs(np.degrees(elevator)), abs(np.degrees(stop)),
+                           at_least=False, unit="deg", reason=what, **details)
 
 
 def _check(cond, surface: str) -> str:
