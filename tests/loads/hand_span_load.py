@@ -53,3 +53,41 @@ def bending_at(station: float, half_wing_air_load: float, n: float, wing: dict, 
 def lift_centroid(y, load) -> float:
     """Spanwise centroid ∫ l y dy / ∫ l dy of a span load."""
     return float(np.trapezoid(load * y, y) / np.trapezoid(load, y))
+
+
+def _segment_w(p, a, b):
+    """z-velocity at points p (..., 3) induced by a unit-circulation straight vortex from a to b (Biot–Savart, the
+    segment formula of Bertin & Cummings, *Aerodynamics for Engineers*, 5th ed., eq. 7.38)."""
+    r0, r1, r2 = b - a, p - a, p - b
+    cross = np.cross(r1, r2)
+    c2 = np.sum(cross**2, axis=-1)
+    n1, n2 = np.linalg.norm(r1, axis=-1), np.linalg.norm(r2, axis=-1)
+    k = np.sum(r0 * (r1 / n1[..., None] - r2 / n2[..., None]), axis=-1) / np.where(c2 > 1e-12, c2, np.inf)
+    return cross[..., 2] * k / (4 * np.pi)
+
+
+def weissinger(area: float, aspect_ratio: float, taper: float, sweep_quarter_chord: float, mach: float = 0.0,
+               panels: int = 80):
+    """Additional span load (per unit angle of attack, shape only) of a swept tapered wing by Weissinger's
+    three-quarter-chord method: one horseshoe vortex per spanwise panel bound on the quarter-chord line, trailing
+    legs streamwise, flow tangency at the panel's three-quarter-chord point (Bertin & Cummings §7.5; Katz & Plotkin,
+    *Low-Speed Aerodynamics*, 2nd ed., §12.2). Compressibility by the Prandtl–Glauert–Göthert rule: the
+    incompressible solution of the wing stretched streamwise by 1/√(1 − M²) (Katz & Plotkin §12.5 / Anderson,
+    *Modern Compressible Flow*, §9.4), whose span-load shape is the compressible wing's. Returns (y of the right half's
+    panel centres, circulation)."""
+    s, _, c = planform(area, aspect_ratio, taper)
+    beta = np.sqrt(1.0 - mach**2)
+    edges = np.linspace(-s, s, 2 * panels + 1)
+    ya, yb = edges[:-1], edges[1:]
+    xq = lambda y: np.abs(y) * np.tan(sweep_quarter_chord) / beta  # noqa: E731 - quarter-chord line, stretched
+    ym = 0.5 * (ya + yb)
+    cp = np.stack([xq(ym) + 0.5 * c(np.abs(ym)) / beta, ym, np.zeros_like(ym)], axis=1)
+    far = 1e4 * s
+    A = np.stack([xq(ya), ya, 0 * ya], axis=1)
+    B = np.stack([xq(yb), yb, 0 * yb], axis=1)
+    Af, Bf = A + [far, 0, 0], B + [far, 0, 0]
+    P = cp[:, None, :]
+    w = _segment_w(P, Af[None], A[None]) + _segment_w(P, A[None], B[None]) + _segment_w(P, B[None], Bf[None])
+    gamma = np.linalg.solve(w, -np.ones(len(ym)))  # w Γ = −V∞ α per unit V∞ α
+    right = ym > 0
+    return ym[right], gamma[right]
