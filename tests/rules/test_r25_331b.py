@@ -168,6 +168,7 @@ def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_pat
 
 
 STOP = "beyond the control-system stop"
+MACH = "beyond the aerodynamic and strip loads model's Mach range"
 
 
 def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
@@ -195,7 +196,8 @@ def test_envelope_is_kept_for_the_sizing_loop(run):
 def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(BalancedManeuver, ctx)
-    clean = [f for f in result.findings if f.condition.configuration == "clean" and STOP not in (f.reason or "")]
+    clean = [f for f in result.findings if f.condition.configuration == "clean" and STOP not in (f.reason or "")
+             and MACH not in (f.reason or "")]
     assert clean and all(f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in clean)
     assert all("root bending max/min (kN·m)" in f.all_details() for f in clean)
 
@@ -248,3 +250,20 @@ def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):
         de = f.all_details()["elevator_deg"]
         assert f.status == "fails" and "elevator within its stop" in f.check
         assert f.margin == pytest.approx((25.0 if de > 0 else 30.0) - abs(de), abs=2e-3)
+
+
+def test_conditions_beyond_the_model_mach_range_are_not_evaluated(run):
+    """Beyond the highest Mach breakpoint of the aerodynamic and strip tables (0.9; MD is 0.94) nothing is
+    extrapolated silently: each such balanced point is not evaluated with its Mach in the reason, and every evaluated
+    one lies within the range."""
+    ctx, findings, r = run
+    top = float(max(r["loads"]["wing"].mach))
+    assert any(MACH in (f.reason or "") for f in findings)
+    for f in findings:
+        m = f.all_details().get("mach")
+        if m is None:
+            continue
+        if m > top + 1e-3:
+            assert f.status == "not_evaluated" and MACH in f.reason and f"M {m:.3f}"[:6] in f.reason
+        elif f.status in ("complies", "fails"):
+            assert m <= top + 1e-3

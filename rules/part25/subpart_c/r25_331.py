@@ -38,9 +38,10 @@ from certkit.engine.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.support.fuel_states import (fuel_detail, fuel_tank_names, fuelled_wing,
                                                     fuelled_wing_envelope)
-from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops,
-                                                           critical_state_finding, entry_speeds,
-                                                             force_limited_deflection, maneuver_limit_load_factor)
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                           condition_mach, control_stops, critical_state_finding,
+                                                           entry_speeds, force_limited_deflection,
+                                                           maneuver_limit_load_factor, set_aside_finding)
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
@@ -158,6 +159,10 @@ class CheckedPitchManeuver(SimulationRule):
     unevaluated = (
         ("25.331(c)(2)", "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
                          "tail loads only)"),
+        ("25.331(a)(2)", "out-of-trim loads are not computed: the manoeuvres start from the 1 g trim, not from the "
+                         "§25.255 mistrim (stabiliser trimmed for the adjacent speed); no rule evaluates them"),
+        ("25.331(c)", "a condition beyond the aerodynamic model's Mach range (its highest breakpoint) is not evaluated, "
+                      "its loads would be extrapolated"),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -273,6 +278,14 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
         peak_nz = float(np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan)) if nose_up[i]
                         else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan)))
         reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
+        beyond_mach = beyond_mach_range(loads, condition_mach(c))
+        if beyond_mach:
+            findings += [set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}", beyond_mach,
+                                           env.peaks["horizontal_tail"][i], stations, peak_n_z=round(peak_nz, 4),
+                                           input=kind),
+                         set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}, wing", beyond_mach,
+                                           fuelled[0][:, i], env.stations["wing"], peak_n_z=round(peak_nz, 4))]
+            continue
         findings.append(capability_finding(
             c, f"(c)(2) checked manoeuvre, {c.get('direction')}", "horizontal_tail", env.peaks["horizontal_tail"][i],
             stations, caps, crit.ultimate_factor, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
@@ -351,6 +364,9 @@ class MaximumPitchControlDisplacement(Rule):
     unevaluated = (
         ("25.331(c)(1)", "fuselage and vertical-tail loads of the manoeuvre are not reported (wing and horizontal-tail "
                          "loads only)"),
+        ("25.391", "the elevator's hinge-line loads of this manoeuvre (§25.391, §25.395 control system, §25.397 pilot "
+                   "effort, §25.415 ground gusts) are not computed; no rule evaluates control-surface and control-system "
+                   "loads"),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -385,6 +401,13 @@ class MaximumPitchControlDisplacement(Rule):
         stations = loads["horizontal_tail"].station_names
         caps = declared_capabilities(ctx, "horizontal_tail")
         for i, c in enumerate(batch.conditions):
+            beyond_mach = beyond_mach_range(loads, condition_mach(c))
+            if beyond_mach:
+                findings += [set_aside_finding(c, "(c)(1) maximum pitch control displacement", beyond_mach,
+                                               env.peaks["horizontal_tail"][i], stations),
+                             set_aside_finding(c, "(c)(1) maximum pitch control displacement, wing", beyond_mach,
+                                               fuelled[0][:, i], env.stations["wing"])]
+                continue
             findings.append(capability_finding(
                 c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),

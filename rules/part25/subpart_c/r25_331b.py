@@ -58,6 +58,14 @@ class BalancedManeuver(SimulationRule):
     unevaluated = (
         ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
         ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
+        ("25.335(e)", "the design flap speed VF is the declared VFE, not the larger of the placard and the §25.335(e)"
+                      "(1)–(3) minima (1.6 VS1 takeoff, 1.8 VS1 approach and landing): the flaps-extended points may "
+                      "be at too low a dynamic pressure"),
+        ("25.345(a)", "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
+                      "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
+                      "evaluated"),
+        ("25.333", "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at "
+                   "altitude; conditions beyond the aerodynamic model's highest Mach breakpoint are not evaluated"),
     )
 
     def simulate(self, ctx, conditions, crit):

@@ -33,8 +33,9 @@ from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
                                                       gust_runs)
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuelled_wing_envelope
-from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, critical_state_finding,
-                                                            maneuver_limit_load_factor)
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                            condition_mach, critical_state_finding,
+                                                            maneuver_limit_load_factor, set_aside_finding)
 
 
 @rule
@@ -108,9 +109,13 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     for i, c in enumerate(sim_conds):
         sense = 1 if up[i] else 0
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
+        beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
         for s in SURFACES:
             jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
-            if s == "wing":  # the wing in each fuel state (§25.343), the critical one named
+            if beyond_mach:
+                check = partial(_not_evaluated, beyond_mach, peaks=(runs.wing_fuel_peaks[:, i] if s == "wing"
+                                                                    else env.peaks[s][i]))
+            elif s == "wing":  # the wing in each fuel state (§25.343), the critical one named
                 check = partial(critical_state_finding, peaks_by_state=runs.wing_fuel_peaks[:, i],
                                 state_details=partial(fuel_detail, runs.fuel_names[i], runs.fuel[i],
                                                       runs.loads["wing"].tank_names))
@@ -129,6 +134,12 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
     env = fuelled_wing_envelope(env, runs.wing_fuel_peaks)
     return {"findings": findings + lateral, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
             "replay": runs.replay, "loads": runs.loads, "lateral_envelope": lateral_env}
+
+
+def _not_evaluated(reason, cond, check, surface, peaks=None, stations=(), capabilities=None, ultimate_factor=None,
+                   peaks_by_state=None, state_details=None, **details):
+    """A not-evaluated finding in place of :func:`capability_finding` (same call), with ``reason`` and the loads."""
+    return set_aside_finding(cond, check, reason, peaks if peaks is not None else peaks_by_state, stations, **details)
 
 
 def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]:
@@ -155,7 +166,8 @@ def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]
     for k, c in enumerate(conds):
         jb = int(which[FIN][k, 1, 0, 0])  # gradient of the largest root shear
         i = idx[k]
-        findings.append(capability_finding(
+        beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
+        findings.append((partial(_not_evaluated, beyond_mach) if beyond_mach else capability_finding)(
             c, "(a) discrete lateral gust, vertical tail", FIN, env.peaks[FIN][k], env.stations[FIN], caps,
             crit.ultimate_factor, U_ref_ft_s_EAS=round(float(runs.u_ref[i] / FT), 2), F_g=round(float(runs.f_g[i]), 4),
             critical_H_root_shear_ft=round(float(runs.gradients[jb] / FT), 0),

@@ -24,7 +24,8 @@ from certkit.engine.results import Finding
 from certkit.units import KN
 from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
-from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, critical_state_finding
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                           critical_state_finding, set_aside_finding)
 
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
@@ -170,9 +171,14 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
             if notes[kept[i]]:
                 details["speed_note"] = notes[kept[i]]
             past_stop = not stops[0] <= de[i] <= stops[1]
+            beyond_mach = beyond_mach_range(loads, float(st.outputs.mach[i]))
             for s in SURFACES:
                 check = _check(c, s)
-                if past_stop and not bad[i]:
+                if beyond_mach:
+                    findings.append(set_aside_finding(
+                        c, check, beyond_mach, np.stack([wing_states[:, i]] * 2, axis=1) if s == "wing"
+                        else np.stack([total[s][i]] * 2), loads[s].station_names, **details))
+                elif past_stop and not bad[i]:
                     findings.append(beyond_stop_finding(c, check, float(de[i]), stops, "stabilizer" in model.control_names,
                                                         **details))
                 elif bad[i]:

@@ -94,6 +94,37 @@ def critical_state_finding(cond, check: str, surface: str, peaks_by_state: np.nd
                               **details, **state_details(best))
 
 
+def beyond_mach_range(loads, mach: float) -> str | None:
+    """The reason a condition at Mach ``mach`` is not evaluated when it lies beyond the Mach breakpoints of the strip
+    loads model ``loads`` (the airplane's aerodynamic tables share them): its loads and lift would be extrapolated
+    (held at the last breakpoint) — None within the range."""
+    top = float(np.max(loads["wing"].mach))
+    if mach <= top + 1e-3:
+        return None
+    return (f"M {mach:.3f} is beyond the aerodynamic and strip loads model's Mach range (up to M {top:.2f}): its lift "
+            f"and loads would be extrapolated, not computed")
+
+
+def set_aside_finding(cond, check: str, reason: str, peaks=None, stations=(), **details) -> Finding:
+    """A not-evaluated finding with ``reason`` that still reports the loads computed (``peaks`` (2, 3, S) or, per state,
+    (M, 2, 3, S): their envelope) as :func:`capability_finding` does."""
+    finding = Finding.not_evaluated(cond, check, reason, **details)
+    if peaks is not None:
+        peaks = np.asarray(peaks, dtype=float)
+        if peaks.ndim == 4:
+            peaks = np.stack([np.fmin.reduce(peaks[:, 0]), np.fmax.reduce(peaks[:, 1])])
+        finding.written_details = partial(station_summary, peaks, tuple(stations))
+    return finding
+
+
+def condition_mach(cond) -> float:
+    """Flight Mach number of a condition (its speed and altitude, standard atmosphere)."""
+    from certkit.atmosphere import speed_of_sound
+    from certkit.engine.conditions import speed_as
+
+    return float(speed_as(cond, "TAS") / float(speed_of_sound(cond.altitude or 0.0)))
+
+
 def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
     """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
     the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
