@@ -267,3 +267,21 @@ def test_conditions_beyond_the_model_mach_range_are_not_evaluated(run):
             assert f.status == "not_evaluated" and MACH in f.reason and f"M {m:.3f}"[:6] in f.reason
         elif f.status in ("complies", "fails"):
             assert m <= top + 1e-3
+
+
+def test_design_flap_speed_is_the_larger_of_the_placard_and_the_335e_minima(run):
+    """§25.335(e)(3) by hand from aircraft/lta.yaml: VS1 = √(2 W g / (ρ₀ S CLmax)), S 4,927.3 ft²; takeoff 1.6 VS1 at
+    MTOW 656,000 lb, CLmax 1.95 → 227.2 kn EAS (placard 215 kn); approach 1.8 VS1 at MLW 460,000 lb, CLmax 2.00 →
+    211.3 kn (195); landing, CLmax 2.25 → 199.2 kn (170). Each flaps-extended point flies at that speed (0.2 kn)."""
+    ctx, findings, _ = run
+    expected = {}
+    for cfg, lb, clmax, factor in (("takeoff", 656000, 1.95, 1.6), ("approach", 460000, 2.00, 1.8),
+                                   ("landing", 460000, 2.25, 1.8)):
+        vs1 = np.sqrt(2 * lb * 0.45359237 * G0 / (1.225 * 4927.3 * 0.3048**2 * clmax))
+        expected[cfg] = factor * vs1 / 0.514444
+    assert expected["takeoff"] == pytest.approx(227.2, abs=0.3) and expected["landing"] == pytest.approx(199.2, abs=0.3)
+    flap = [f for f in findings if f.condition.configuration != "clean" and "V_kn_EAS" in f.all_details()]
+    assert {f.condition.configuration for f in flap} == set(expected)
+    for f in flap:
+        assert f.all_details()["V_kn_EAS"] == pytest.approx(expected[f.condition.configuration], abs=0.2)
+        assert "§25.335(e)(3)" in f.all_details()["speed_note"]

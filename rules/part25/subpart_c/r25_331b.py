@@ -11,9 +11,10 @@ n₊ line is named by its speed. The balanced state itself is :mod:`certkit.mode
 push-over at n, linear lift up to C_N,max).
 
 Flaps extended (every configuration other than ``clean``): n = the declared ``envelope.limit_load_factors.
-flaps_extended`` (else 2.0, §25.345(a)(1)) and n = 0 at the configuration's declared VFE taken as the design flap
-speed VF (§25.335(e) lets VF exceed the placard; a larger VF is not known here). The strip loads model has no flap
-deflection (the lattice is the clean wing), so the wing's loads flaps extended are not evaluated; the tail's are.
+flaps_extended`` (else 2.0, §25.345(a)(1)) and n = 0 at the design flap speed VF: the larger of the declared placard
+VFE and the §25.335(e)(3) minimum (1.6 VS1 takeoff flaps at MTOW, 1.8 VS1 approach and landing flaps at MLW). The
+strip loads model has no flap deflection (the lattice is the clean wing), so the wing's loads flaps extended are not
+evaluated; the tail's are, without the flaps' downwash.
 """
 
 from __future__ import annotations
@@ -51,16 +52,14 @@ class BalancedManeuver(SimulationRule):
     limitations = ("Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
                    "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
                    "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
-                   "model) and VF is the declared VFE; the wing is evaluated in each fuel state of the §25.343 range "
-                   "at the condition's weight and CG (tanks used in the reverse of the declared filling order), the "
-                   "critical one named in the finding.")
+                   "model, no flap downwash at the tail) and VF is the larger of the placard VFE and the §25.335(e)(3) "
+                   "minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
+                   "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
+                   "finding.")
     implementation = "partial"
     unevaluated = (
         ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
         ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
-        ("25.335(e)", "the design flap speed VF is the declared VFE, not the larger of the placard and the §25.335(e)"
-                      "(1)–(3) minima (1.6 VS1 takeoff, 1.8 VS1 approach and landing): the flaps-extended points may "
-                      "be at too low a dynamic pressure"),
         ("25.345(a)", "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
                       "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
                       "evaluated"),

@@ -62,12 +62,9 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     lf = ctx.aircraft.envelope.limit_load_factors
     point, h = cond.get("point"), cond.altitude
     if point in FLAP_POINTS:
-        vfe = ctx.aircraft.speeds.VFE.get(cond.configuration)
-        if vfe is None:
-            raise LookupError(f"speeds.VFE.{cond.configuration} is not declared (the design flap speed)")
-        v = float(convert_speed(vfe.value, vfe.kind, "EAS", h))
+        v, note = design_flap_speed(ctx, cond.configuration, h, crit)
         n = float(lf.flaps_extended if lf.flaps_extended is not None else crit.flaps_load_factor)
-        return v, (n if point == FLAP_POINTS[0] else 0.0), "declared VFE as the design flap speed VF"
+        return v, (n if point == FLAP_POINTS[0] else 0.0), note
     env = envelope(ctx, cond.mass, h, crit.cn_over_cl)
     table = {"A": (env.v_a, env.n_pos), "VC at n+": (env.v_c, env.n_pos), "D": (env.v_d, env.n_pos),
              "E": (env.v_d, 0.0), "F": (env.v_c, env.n_neg), "H": (env.v_h, env.n_neg)}
@@ -85,12 +82,45 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     return float(v), float(n), note
 
 
+def design_flap_speed(ctx, configuration: str, h: float, crit) -> tuple[float, str]:
+    """EAS (m/s) of the design flap speed VF of a flap configuration and a note: the larger of the declared placard
+    VFE and the §25.335(e)(3) minimum — ``vf_takeoff_factor`` × VS1 at MTOW for the configuration named ``takeoff``,
+    ``vf_landing_factor`` × VS1 at MLW for the others (approach and landing positions) — VS1 = √(2 W / (ρ₀ S CLmax))
+    with the configuration's declared CLmax. Raises LookupError without a declared VFE."""
+    from certkit.atmosphere import RHO0
+    from certkit.units import G0
+
+    ac = ctx.aircraft
+    vfe = ac.speeds.VFE.get(configuration)
+    if vfe is None:
+        raise LookupError(f"speeds.VFE.{configuration} is not declared (the design flap speed)")
+    placard = float(convert_speed(vfe.value, vfe.kind, "EAS", h))
+    takeoff = configuration == "takeoff"
+    mass = ac.mass.MTOW if takeoff else ac.mass.MLW
+    clmax = ac.configurations[configuration].CLmax
+    if mass is None or clmax is None:
+        return placard, "declared VFE as VF (no MLW or CLmax to form the §25.335(e)(3) minimum)"
+    factor = float(crit.vf_takeoff_factor if takeoff else crit.vf_landing_factor)
+    vs1 = float(np.sqrt(2 * mass * G0 / (RHO0 * ac.reference.area * clmax)))
+    minimum = factor * vs1
+    if minimum > placard:
+        return minimum, (f"VF = {factor:g} VS1 at {'MTOW' if takeoff else 'MLW'} = {minimum / KN:.1f} kn EAS "
+                         f"(§25.335(e)(3)), above the placard VFE {placard / KN:.1f} kn EAS")
+    return placard, (f"VF = the placard VFE {placard / KN:.1f} kn EAS, above the §25.335(e)(3) minimum "
+                     f"{factor:g} VS1 = {minimum / KN:.1f} kn EAS")
+
+
 #: the criteria that define the balanced states (shared by §25.427(b), which splits their tail loads)
 BALANCED_RUN_CRITERIA = {
     "cn_over_cl": CN_OVER_CL["cn_over_cl"],
     "flaps_load_factor": Criterion(2.0, "", "14 CFR 25.345(a)(1) (wording checked against CS 25.345(a) only, "
                                    "docs/regulation-notes.md §3)", "positive limit load factor flaps extended, "
                                    "used when envelope.limit_load_factors.flaps_extended is not declared"),
+    "vf_takeoff_factor": Criterion(1.6, "", "14 CFR 25.335(e)(3)(i) (text recalled, not re-verified)",
+                                   "VF ≥ this × VS1, flaps in the takeoff position, at the maximum takeoff weight"),
+    "vf_landing_factor": Criterion(1.8, "", "14 CFR 25.335(e)(3)(ii)-(iii) (text recalled, not re-verified)",
+                                   "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum "
+                                   "landing weight"),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
     **SAFETY,
 }
