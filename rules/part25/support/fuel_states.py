@@ -72,9 +72,12 @@ def fuelled_wing_envelope(env: LoadEnvelope, wing_fuel_peaks) -> LoadEnvelope:
     the wing without fuel: the fuel changes the loads' size more than their timing)."""
     if wing_fuel_peaks is None:
         return env
-    peaks = dict(env.peaks)
-    peaks["wing"] = np.stack([np.fmin.reduce(wing_fuel_peaks[:, :, 0]), np.fmax.reduce(wing_fuel_peaks[:, :, 1])], axis=1)
-    return replace(env, peaks=peaks)
+    return replace(env, peaks={**env.peaks, "wing": state_envelope(wing_fuel_peaks)})
+
+
+def state_envelope(peaks_by_state) -> np.ndarray:
+    """The extremes over the states of per-state peaks (M, n, 2, 3, S): (n, 2, 3, S), NaN states ignored."""
+    return np.stack([np.fmin.reduce(peaks_by_state[:, :, 0]), np.fmax.reduce(peaks_by_state[:, :, 1])], axis=1)
 
 
 def fuelled_wing(ctx, loads, sim, model, wing_hist, conditions):
