@@ -97,3 +97,21 @@ def test_fuel_states_at_the_baseline_weights(baseline):
     assert most["right main"] == pytest.approx(64050 * LB) and most["centre"] == pytest.approx((155500 - 128100) * LB)
     assert names[0].startswith("least fuel") and names[-1].startswith("most fuel")
     assert "left main and right main full" in names[1]
+
+
+def test_compiled_fuel_state_peaks_equal_the_plain_sums():
+    """The compiled per-state peaks equal, state by state, the NumPy sum total + Σ_k m_k u_k and its NaN-ignoring
+    extremes over time (an all-NaN history stays NaN)."""
+    from certkit.models.loads.response import fuel_state_peaks
+
+    rng = np.random.default_rng(3)
+    nt, n, k, s = 40, 6, 3, 4
+    total, units, fuel = rng.normal(size=(nt, n, 3, s)), rng.normal(size=(nt, n, k, 3, s)), rng.uniform(size=(n, 4, k))
+    total[5:9, 2] = np.nan
+    total[:, 4] = np.nan
+    got = fuel_state_peaks(total, units, fuel)
+    for m in range(4):
+        loads = total + np.einsum("tnkqs,nk->tnqs", units, fuel[:, m])
+        lo, hi = np.fmin.reduce(loads, axis=0), np.fmax.reduce(loads, axis=0)
+        assert np.allclose(got[m, :, 0], lo, equal_nan=True) and np.allclose(got[m, :, 1], hi, equal_nan=True)
+    assert np.all(np.isnan(got[:, 4]))

@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from certkit.models.loads.model import QUANTITIES, UNITS, AirplaneLoads
 from certkit.units import G0
@@ -87,18 +88,43 @@ def fuel_state_peaks(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarr
     """Per fuel state, the minimum and maximum over time of station loads: (M, n, 2, 3, S) from the loads without
     fuel ``total`` (nt, n, 3, S), the per-kilogram fuel loads ``units`` (nt, n, K, 3, S) and the fuel states ``fuel``
     (n, M, K) kg (NaN times ignored, as :meth:`LoadEnvelope.from_histories` does; all-NaN stays NaN). Without tanks
-    or states: one state, the loads as they are."""
-    M = 1 if units is None or fuel is None or fuel.shape[1] == 0 else fuel.shape[1]
-    out = np.empty((M,) + total.shape[1:2] + (2,) + total.shape[2:])
-    missing = np.isnan(total).all(axis=0)
-    for m in range(M):
-        L = total if M == 1 and (units is None or fuel is None or fuel.shape[1] == 0) else \
-            total + np.einsum("tnkqs,nk->tnqs", units, fuel[:, m])
-        lo = np.where(np.isnan(L), np.inf, L).min(axis=0)
-        hi = np.where(np.isnan(L), -np.inf, L).max(axis=0)
-        lo[missing], hi[missing] = np.nan, np.nan
-        out[m, :, 0], out[m, :, 1] = lo, hi
-    return out
+    or states: one state, the loads as they are. One compiled pass over the histories for every state."""
+    if units is None or fuel is None or fuel.shape[1] == 0:
+        return np.stack([np.fmin.reduce(total, axis=0), np.fmax.reduce(total, axis=0)], axis=1)[None]
+    nt, n = total.shape[:2]
+    q = int(np.prod(total.shape[2:]))
+    out = np.empty((fuel.shape[1], n, 2, q))
+    _fuel_state_peaks(np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
+                      np.ascontiguousarray(units, dtype=float).reshape(nt, n, units.shape[2], q),
+                      np.ascontiguousarray(fuel, dtype=float), out)
+    return out.reshape((fuel.shape[1], n, 2) + total.shape[2:])
+
+
+@njit(cache=True)
+def _fuel_state_peaks(total, units, fuel, out):
+    """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k fuel[i, m, k] units[t, i, k, j], NaN skipped (the
+    histories read once, in memory order)."""
+    nt, n, q = total.shape
+    n_states, n_tanks = fuel.shape[1], fuel.shape[2]
+    out[:, :, 0, :] = np.inf
+    out[:, :, 1, :] = -np.inf
+    for t in range(nt):
+        for i in range(n):
+            for m in range(n_states):
+                for j in range(q):
+                    v = total[t, i, j]
+                    for k in range(n_tanks):
+                        v += fuel[i, m, k] * units[t, i, k, j]
+                    if v < out[m, i, 0, j]:
+                        out[m, i, 0, j] = v
+                    if v > out[m, i, 1, j]:
+                        out[m, i, 1, j] = v
+    for m in range(n_states):
+        for i in range(n):
+            for j in range(q):
+                if out[m, i, 0, j] > out[m, i, 1, j]:  # every time NaN
+                    out[m, i, 0, j] = np.nan
+                    out[m, i, 1, j] = np.nan
 
 
 def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
