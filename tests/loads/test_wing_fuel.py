@@ -115,3 +115,21 @@ def test_compiled_fuel_state_peaks_equal_the_plain_sums():
         lo, hi = np.fmin.reduce(loads, axis=0), np.fmax.reduce(loads, axis=0)
         assert np.allclose(got[m, :, 0], lo, equal_nan=True) and np.allclose(got[m, :, 1], hi, equal_nan=True)
     assert np.all(np.isnan(got[:, 4]))
+
+
+def test_a_tank_bay_that_does_not_hold_its_centroid_is_an_input_error(tmp_path, cli):
+    """Bad input: declared bay ends that do not bracket the tank's centroid are reported with the YAML path and line,
+    and the CLI exits 2."""
+    from certkit.errors import InputError
+
+    from ..rules.helpers import edited_baseline
+
+    bad = edited_baseline(tmp_path, [("{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}}",
+                                      "{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}, "
+                                      "y_inboard: 50 ft, y_outboard: 90 ft}")])
+    with pytest.raises(InputError) as info:
+        load_aircraft(bad)
+    (p,) = [p for p in info.value.problems if p.path.startswith("mass.fuel_tanks.1")]
+    assert "must lie between y_inboard" in p.message
+    assert p.line == next(i for i, t in enumerate(bad.read_text().splitlines(), 1) if "y_inboard: 50 ft" in t)
+    assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
