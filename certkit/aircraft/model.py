@@ -683,13 +683,22 @@ class StructuralCapability(_Section):
         return convert(value)
 
 
+class FuselageCapability(StructuralCapability):
+    """What the fuselage carries at the horizontal tail's attachment: the torsion about the X axis an unsymmetrical
+    tail loading puts into it (§25.427(b)); positive as the full side's air load up on the right half."""
+
+    station: Literal["tail"]
+    quantity: Literal["torsion"]
+
+
 class Structure(_Section):
-    """Declared structural capabilities per lifting surface (the loads rules compare their limit
-    loads and 1.5 × limit loads with them, §25.303/§25.305)."""
+    """Declared structural capabilities per lifting surface, and of the fuselage at the tail (the loads rules compare
+    their limit loads and 1.5 × limit loads with them, §25.303/§25.305)."""
 
     wing: list[StructuralCapability] = Field(default_factory=list)
     horizontal_tail: list[StructuralCapability] = Field(default_factory=list)
     vertical_tail: list[StructuralCapability] = Field(default_factory=list)
+    fuselage: list[FuselageCapability] = Field(default_factory=list)
 
 
 # --- control forces ----------------------------------------------------------------------

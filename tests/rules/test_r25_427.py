@@ -103,3 +103,26 @@ def test_a_weak_tailplane_fails(tmp_path):
                     "quantity: torsion, limit: 50 kN*m, ultimate: 50 kN*m")]
     failing = failures_with(tmp_path, UnsymmetricalTailLoads, weak, "100% side")
     assert failing and all(f.limit == pytest.approx(50e3) and "torsion at root" in f.check for f in failing)
+
+
+def _with_fuselage(limit_knm: float):
+    """The baseline with a declared fuselage torsion capability at the tail (a test value)."""
+    return FAST + [("  vertical_tail:\n    - {station: root, quantity: shear",
+                    f"  fuselage:\n    - {{station: tail, quantity: torsion, limit: {limit_knm} kN*m, ultimate: "
+                    f"{limit_knm} kN*m, source: \"test value\"}}\n  vertical_tail:\n    - {{station: root, quantity: shear")]
+
+
+def test_fuselage_torsion_against_a_declared_capability(tmp_path):
+    """With structure.fuselage declared (tail, torsion; limit = ultimate = 2,000 kN·m, a test value), each split
+    condition's fuselage torsion is compared by hand: margin = 2,000 kN·m − 1.5 |T| (the ultimate governs with equal
+    allowables, §25.303), T the larger reported magnitude; and a 50 kN·m fuselage (deficient) fails everywhere the tail
+    is loaded."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, _with_fuselage(2000))))
+    res = evaluate_rule(UnsymmetricalTailLoads, ctx)
+    fus = [f for f in res.findings if f.check.startswith("(b) fuselage torsion at the tail:")]
+    assert fus and not any(f.reason == NO_FUSELAGE for f in res.findings)
+    for f in fus:
+        t = 1e3 * max(abs(v) for v in f.all_details()["fuselage torsion at the tail max/min (kN·m)"])
+        assert f.margin == pytest.approx(2000e3 - 1.5 * t, abs=1.5 * 50 + 1)
+    weak = failures_with(tmp_path, UnsymmetricalTailLoads, _with_fuselage(50), "fuselage torsion")
+    assert weak and all(f.limit == pytest.approx(50e3) for f in weak)
