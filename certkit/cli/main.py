@@ -258,7 +258,7 @@ def diff_command(old, new, html_file, tolerance):
 
 @main.command(name="rules")
 @_rules_option
-@click.option("--markdown", is_flag=True, help="Print a Markdown table (for the README).")
+@click.option("--markdown", is_flag=True, help="Print a Markdown table (docs/rules.md holds it).")
 def list_rules(rules_dirs, markdown):
     """List the registered rules: id, symbol, title, implementation status."""
     from certkit.engine.rule_index import rule_metadata

@@ -7,7 +7,7 @@ missing target is a plain rename. The previous set stays whole until the new one
 set or the new one, and no symlink inside the folder is ever followed (the old folder, links included, is removed
 after the swap without following them). A target holding files certkit did not write (``--out .``) is not swapped:
 its report files are replaced one by one (each a temporary file renamed into place, ``results.json`` first), which
-keeps each file whole but not the pair; the README says so.
+keeps each file whole but not the pair; docs/usage.md says so.
 """
 
 from __future__ import annotations

@@ -219,7 +219,7 @@ class Study(_Model):
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
     analysis: dict | None = Field(None, description="options of `certkit study report` (r2_threshold, level_relaxation, "
-                                                    "uncertainty, profiler, gp_max_cases; see the README)")
+                                                    "uncertainty, profiler, gp_max_cases; see docs/design-studies.md)")
 
     def variable_paths(self) -> list[str]:
         return [v.path for v in self.variables]
