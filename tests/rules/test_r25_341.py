@@ -192,3 +192,21 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
                 assert d["maneuver_envelope_n_z"] == pytest.approx(0.0, abs=1e-4)
     wing = min((f for f in evaluated if ", wing:" in f.check), key=lambda f: f.normalized_margin)
     assert "bending" in wing.check and wing.status == "complies"
+
+
+def test_wing_findings_name_the_critical_fuel_state(gusts):
+    """The wing in the §25.343 fuel states (aircraft/lta.yaml: mains filled first, used last): at MRW the mains are
+    full in every state (64,050 lb a side); at MLW (460,000 lb: 30,000–155,500 lb of fuel) the up-bending check (max)
+    is critical with the least wing fuel, 15,000 lb a side (smallest inertia relief), a down-bending one (min) with the
+    most (64,050 lb)."""
+    lb = 0.45359237
+    wing = [f for f in in_mach_range(own(gusts)) if f.check.split(":")[0].endswith(", wing")
+            and f.status in ("complies", "fails")]
+    assert wing and all("fuel_state" in f.all_details() for f in wing)
+    assert any(f.condition.loading in ("fwd_mlw", "aft_mlw") for f in wing)
+    for f in wing:
+        main = f.all_details()["fuel_kg"]["right main"]
+        if f.condition.loading == "fwd_mrw":
+            assert main == pytest.approx(64050 * lb, abs=1)
+        if f.condition.loading in ("fwd_mlw", "aft_mlw"):
+            assert main == pytest.approx((15000 if "(max)" in f.check else 64050) * lb, abs=1), f.check
