@@ -100,16 +100,18 @@ def test_fuel_states_at_the_baseline_weights(baseline):
 
 
 def test_compiled_fuel_state_peaks_equal_the_plain_sums():
-    """The compiled per-state peaks equal, state by state, the NumPy sum total + Σ_k m_k u_k and its NaN-ignoring
-    extremes over time (an all-NaN history stays NaN)."""
+    """The compiled per-state peaks equal, state by state, the NumPy sum total + Σ_k m_k Σ_j x_j T_kj (the per-kilogram
+    loads of each tank from the inertial terms) and its NaN-ignoring extremes over time (all-NaN stays NaN)."""
     from certkit.models.loads.response import fuel_state_peaks
 
     rng = np.random.default_rng(3)
-    nt, n, k, s = 40, 6, 3, 4
-    total, units, fuel = rng.normal(size=(nt, n, 3, s)), rng.normal(size=(nt, n, k, 3, s)), rng.uniform(size=(n, 4, k))
+    nt, n, k, j, s = 40, 6, 3, 5, 4
+    total, x = rng.normal(size=(nt, n, 3, s)), rng.normal(size=(nt, n, j))
+    tables, fuel = rng.normal(size=(k, j, 3, s)), rng.uniform(size=(n, 4, k))
     total[5:9, 2] = np.nan
     total[:, 4] = np.nan
-    got = fuel_state_peaks(total, units, fuel)
+    got = fuel_state_peaks(total, (x, tables), fuel)
+    units = np.einsum("tnj,kjqs->tnkqs", x, tables)
     for m in range(4):
         loads = total + np.einsum("tnkqs,nk->tnqs", units, fuel[:, m])
         lo, hi = np.fmin.reduce(loads, axis=0), np.fmax.reduce(loads, axis=0)

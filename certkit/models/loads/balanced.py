@@ -24,7 +24,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.trim import assemble_state
-from certkit.models.loads.response import fuel_load_units, response_load_parts
+from certkit.models.loads.response import inertia_terms, response_load_parts
 
 
 @dataclass
@@ -128,8 +128,8 @@ def steady_load_parts(loads, model, x, u, outputs, surfaces) -> dict[str, tuple[
 
 def steady_fuel_units(loads, model, x, u, outputs, surface: str = "wing") -> np.ndarray | None:
     """Inertial station loads per kilogram of each tank's fuel, (n, K, 3, S), of ``surface`` in the steady states
-    (:func:`certkit.models.loads.response.fuel_load_units`); None without tanks."""
-    units = fuel_load_units(loads, _steady_record(model, x, u, outputs), model, surface)
+    (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_loads`); None without tanks."""
+    units = loads[surface].fuel_loads(inertia_terms(_steady_record(model, x, u, outputs), model))
     return None if units is None else units[0]
 
 

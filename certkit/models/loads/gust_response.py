@@ -83,9 +83,9 @@ class GustRun:
     alpha_gust: dict[str, np.ndarray]  # surface → (nt, n) gust angle felt
     dt: float
     parts: dict[str, tuple[np.ndarray, np.ndarray]]  # surface → aerodynamic and inertial loads, for ``split``
-    #: surface → inertial loads per kilogram of each tank's fuel (nt, n, K, 3, S), for the surfaces of ``split`` with
-    #: tanks (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_loads`)
-    fuel_units: dict[str, np.ndarray] = field(default_factory=dict)
+    #: surface → the fuel's inertial loading, uncontracted: terms (nt, n, J) and per-kilogram tables (K, J, 3, S), for
+    #: the surfaces of ``split`` with tanks (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_term_tables`)
+    fuel_units: dict[str, tuple] = field(default_factory=dict)
 
 
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
@@ -120,12 +120,12 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
-                units = loads[s].fuel_loads(inertia_terms(part, gb.model))
-                if units is not None:
-                    fuel.setdefault(s, []).append(units[keep])
+                terms = loads[s].fuel_term_tables(inertia_terms(part, gb.model))
+                if terms is not None:
+                    fuel.setdefault(s, []).append((terms[0][keep], terms[1]))
     return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
                    {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
-                   {s: np.concatenate(v_) for s, v_ in fuel.items()})
+                   {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()})
 
 
 def two_phase_run(model, x0, u0, H: float, v, lag, inputs, steps_per_gust: float, settle: float, max_step: float,

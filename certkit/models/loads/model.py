@@ -143,6 +143,20 @@ class SurfaceLoads:
         table = np.moveaxis(table, 1, 0).reshape(len(present), -1)
         return (x @ table).reshape(shape + (K,) + self.inertia.shape[1:])
 
+    def fuel_term_tables(self, terms: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray] | None:
+        """The inertial terms that load this surface's fuel, stacked (..., J), and their per-kilogram tables (K, J, 3,
+        S): :meth:`fuel_loads` is Σ_j x_j × table_j, left uncontracted so that a caller combining fuel states contracts
+        the small tables with the states first. None for a surface without tanks."""
+        if self.fuel_inertia is None or not len(self.tank_names):
+            return None
+        present = [(t, np.asarray(terms[name], dtype=float)) for t, name in enumerate(INERTIA_TERMS)
+                   if name in terms and np.any(self.fuel_inertia[:, t])]
+        if not present:
+            return None
+        shape = np.broadcast_shapes(*(v.shape for _, v in present))
+        x = np.stack([np.broadcast_to(v, shape) for _, v in present], axis=-1)
+        return x, self.fuel_inertia[:, [t for t, _ in present]]
+
     def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
         """Aerodynamic normal force of each strip (..., n_strips), N."""
         return self._superpose(qbar, mach, inputs, self.strip_aero)

@@ -69,10 +69,10 @@ def inertia_terms(sim, model) -> dict[str, np.ndarray]:
             "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
 
 
-def fuel_load_units(loads: AirplaneLoads, sim, model, surface: str = "wing") -> np.ndarray | None:
-    """Inertial station loads per kilogram of each tank's fuel, (nt, n, K, 3, n_stations), of ``surface`` along
-    ``sim`` (:meth:`SurfaceLoads.fuel_loads`); None without tanks."""
-    return loads[surface].fuel_loads(inertia_terms(sim, model))
+def fuel_load_units(loads: AirplaneLoads, sim, model, surface: str = "wing") -> tuple[np.ndarray, np.ndarray] | None:
+    """The fuel's inertial loading of ``surface`` along ``sim``, uncontracted: the inertial terms (nt, n, J) and their
+    per-kilogram tables (K, J, 3, S) (:meth:`SurfaceLoads.fuel_term_tables`); None without tanks."""
+    return loads[surface].fuel_term_tables(inertia_terms(sim, model))
 
 
 def with_fuel_states(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarray | None) -> np.ndarray:
@@ -84,28 +84,33 @@ def with_fuel_states(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarr
     return np.asarray(total)[None] + np.einsum("...nkqs,nmk->m...nqs", units, fuel)
 
 
-def fuel_state_peaks(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarray | None) -> np.ndarray:
+def fuel_state_peaks(total: np.ndarray, fuel_terms: tuple[np.ndarray, np.ndarray] | None,
+                     fuel: np.ndarray | None) -> np.ndarray:
     """Per fuel state, the minimum and maximum over time of station loads: (M, n, 2, 3, S) from the loads without
-    fuel ``total`` (nt, n, 3, S), the per-kilogram fuel loads ``units`` (nt, n, K, 3, S) and the fuel states ``fuel``
-    (n, M, K) kg (NaN times ignored, as :meth:`LoadEnvelope.from_histories` does; all-NaN stays NaN). Without tanks
-    or states: one state, the loads as they are. One compiled pass over the histories for every state."""
-    if units is None or fuel is None or fuel.shape[1] == 0:
+    fuel ``total`` (nt, n, 3, S), the fuel's inertial loading ``fuel_terms`` — the terms (nt, n, J) and their
+    per-kilogram tables (K, J, 3, S), :func:`fuel_load_units` — and the fuel states ``fuel`` (n, M, K) kg. The states
+    are contracted with the small tables first, then one compiled pass over the histories gives every state's
+    extremes (NaN times ignored, as :meth:`LoadEnvelope.from_histories` does; all-NaN stays NaN). Without tanks or
+    states: one state, the loads as they are."""
+    if fuel_terms is None or fuel is None or fuel.shape[1] == 0:
         return np.stack([np.fmin.reduce(total, axis=0), np.fmax.reduce(total, axis=0)], axis=1)[None]
+    x, tables = fuel_terms
     nt, n = total.shape[:2]
     q = int(np.prod(total.shape[2:]))
+    per_state = np.einsum("nmk,kjq->nmjq", fuel, tables.reshape(tables.shape[0], tables.shape[1], q))
     out = np.empty((fuel.shape[1], n, 2, q))
     _fuel_state_peaks(np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
-                      np.ascontiguousarray(units, dtype=float).reshape(nt, n, units.shape[2], q),
-                      np.ascontiguousarray(fuel, dtype=float), out)
+                      np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])), dtype=float),
+                      np.ascontiguousarray(per_state), out)
     return out.reshape((fuel.shape[1], n, 2) + total.shape[2:])
 
 
 @njit(cache=True)
-def _fuel_state_peaks(total, units, fuel, out):
-    """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k fuel[i, m, k] units[t, i, k, j], NaN skipped (the
-    histories read once, in memory order)."""
+def _fuel_state_peaks(total, terms, per_state, out):
+    """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k terms[t, i, k] per_state[i, m, k, j], NaN skipped
+    (the histories read once, in memory order)."""
     nt, n, q = total.shape
-    n_states, n_tanks = fuel.shape[1], fuel.shape[2]
+    n_states, n_terms = per_state.shape[1], per_state.shape[2]
     out[:, :, 0, :] = np.inf
     out[:, :, 1, :] = -np.inf
     for t in range(nt):
@@ -113,8 +118,8 @@ def _fuel_state_peaks(total, units, fuel, out):
             for m in range(n_states):
                 for j in range(q):
                     v = total[t, i, j]
-                    for k in range(n_tanks):
-                        v += fuel[i, m, k] * units[t, i, k, j]
+                    for k in range(n_terms):
+                        v += terms[t, i, k] * per_state[i, m, k, j]
                     if v < out[m, i, 0, j]:
                         out[m, i, 0, j] = v
                     if v > out[m, i, 1, j]:
