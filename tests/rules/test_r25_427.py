@@ -46,9 +46,9 @@ def test_split_by_hand_from_the_balancing_load(result):
     from tests.loads.hand_span_load import planform
 
     ctx, res, sym = result
-    key = next(c for c in sym["conditions"] if c.loading == "fwd_mrw" and c.get("point") == "VC at n+"
+    key = next(c for c in sym.conditions if c.loading == "fwd_mrw" and c.get("point") == "VC at n+"
                and c.altitude == 0.0 and c.configuration == "clean")
-    bal = next(f for f in sym["findings"] if f.condition == key and "horizontal tail" in f.check)
+    bal = next(f for f in sym.findings if f.condition == key and "horizontal tail" in f.check)
     d = bal.all_details()
     s_a = 0.5e3 * d["tail_balancing_load_kN"]
     ht = ctx.aircraft.geometry.horizontal_tail
