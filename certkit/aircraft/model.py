@@ -235,9 +235,23 @@ class MassComponent(_Section):
 
 
 class FuelTank(_Section):
+    """A fuel tank: its capacity and centroid; a wing tank (centroid off the plane of symmetry) may also declare the
+    spanwise extent of its bay (|y| of the inboard and outboard ends), else the loads model places it from the side
+    of body outboard as far as its centroid asks (:mod:`certkit.models.loads.fuel`)."""
+
     name: str
     capacity: PositiveMass
     cg: Point
+    y_inboard: Length | None = Field(None, description="|y| of the tank bay's inboard end (wing tanks)")
+    y_outboard: Length | None = Field(None, description="|y| of the tank bay's outboard end (wing tanks)")
+
+    @model_validator(mode="after")
+    def _bay(self):
+        a, b = self.y_inboard, self.y_outboard
+        if a is not None and b is not None and not a < abs(self.cg.y) < b:
+            raise ValueError(f"the tank's centroid |y| = {abs(self.cg.y):.3f} m must lie between y_inboard "
+                             f"{a:.3f} m and y_outboard {b:.3f} m")
+        return self
 
 
 class PayloadZone(_Section):
@@ -722,13 +736,22 @@ class StructuralCapability(_Section):
         return convert(value)
 
 
+class FuselageCapability(StructuralCapability):
+    """What the fuselage carries at the horizontal tail's attachment: the torsion about the X axis an unsymmetrical
+    tail loading puts into it (§25.427(b)); positive as the full side's air load up on the right half."""
+
+    station: Literal["tail"]
+    quantity: Literal["torsion"]
+
+
 class Structure(_Section):
-    """Declared structural capabilities per lifting surface (the loads rules compare their limit
-    loads and 1.5 × limit loads with them, §25.303/§25.305)."""
+    """Declared structural capabilities per lifting surface, and of the fuselage at the tail (the loads rules compare
+    their limit loads and 1.5 × limit loads with them, §25.303/§25.305)."""
 
     wing: list[StructuralCapability] = Field(default_factory=list)
     horizontal_tail: list[StructuralCapability] = Field(default_factory=list)
     vertical_tail: list[StructuralCapability] = Field(default_factory=list)
+    fuselage: list[FuselageCapability] = Field(default_factory=list)
 
 
 # --- control forces ----------------------------------------------------------------------

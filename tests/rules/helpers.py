@@ -48,6 +48,15 @@ def run_rule(rule_id, tmp_path=None, edits=(), keep_loads=False):
     return evaluate_rule(rule, Context(load_aircraft(path)), keep_loads=keep_loads)
 
 
+#: the reason of a loads finding beyond the aerodynamic model's highest Mach breakpoint (not extrapolated)
+MACH_RANGE = "beyond the aerodynamic and strip loads model's Mach range"
+
+
+def in_mach_range(findings):
+    """The findings not set aside as beyond the aerodynamic model's Mach range."""
+    return [f for f in findings if MACH_RANGE not in (f.reason or "")]
+
+
 def own(result):
     """The rule's own findings: without those standing for the sub-paragraphs it does not evaluate."""
     from certkit.engine.results import SCOPE_KEY

@@ -7,12 +7,12 @@ import pytest
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.models.loads.capability import declared_capabilities
-from certkit.engine.scheduler import evaluate_rule
+from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.units import G0
 from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
-from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
+from .helpers import NO_STABILIZER, NO_STRUCTURE, edited_baseline, failures_with, hand_margin
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 
@@ -21,8 +21,6 @@ FAST = [("altitude_points: 5", "altitude_points: 2")]
 def run(tmp_path_factory):
     ctx = Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("b331"), FAST)))
     rule = BalancedManeuver()
-    from certkit.engine.scheduler import criteria_for
-
     crit, _ = criteria_for(BalancedManeuver, ctx)
     findings = rule.evaluate(ctx, BalancedManeuver.conditions.expand(ctx.aircraft), crit)
     return ctx, findings, rule.run
@@ -73,29 +71,69 @@ def _rho(h):
     return float(density(h))
 
 
-def test_wing_root_bending_by_hand_from_the_strip_forces(run):
-    """Root bending of one point summed by hand: Σ_j (q̄ N_j − m_j g n_z) × s_j over the half wing's strips (aerodynamic
-    normal force of each strip at the balanced state, strip mass at the body load factor, arm s_j to the strip's
-    middle along the span) — the beam statics of Megson §14.1 — against the rule's reported root bending."""
+LB = 0.45359237
+FT = 0.3048
+#: the baseline's declared items on the right half wing (aircraft/lta.yaml mass): engine and nacelle, main tank
+ENGINE = (25494 * LB, 32.3 * FT)
+MAIN_TANK = (64050 * LB, 43.8 * FT)
+
+
+def _wing(ctx):
+    w = ctx.aircraft.geometry.wing
+    return dict(area=w.area, aspect_ratio=w.aspect_ratio, taper=w.taper), w.dihedral
+
+
+def _hand_side_of_body_bending(ctx, f, point_masses):
+    """Limit side-of-body bending by hand (:mod:`tests.loads.hand_span_load`: Schrenk span load, beam statics) of the
+    half wing at the finding's load factor, its air load n W − tail load (vertical equilibrium), the wing's structural
+    mass (aircraft file, 72,000 lb) spread with the chord and the given point masses."""
+    from tests.loads.hand_span_load import bending_at
+
+    d = f.all_details()
+    wing, dihedral = _wing(ctx)
+    air = d["n"] * f.condition.mass * G0 - 1e3 * d["tail_balancing_load_kN"]
+    sob = 0.5 * ctx.aircraft.geometry.fuselage.width
+    return bending_at(sob, 0.5 * air, d["n"], wing, 0.5 * 72000 * LB, point_masses, dihedral)
+
+
+def test_wing_air_load_balances_the_weight_and_the_tail(run):
+    """Vertical equilibrium of the balanced state (Newton): both wing halves' air load (twice the root shear of the
+    aerodynamic strip forces) = n W − the tail's balancing load, within 3 % (thrust, fuselage lift and the dihedral's
+    cos Γ make the rest)."""
     ctx, findings, r = run
     f = _one(findings, "fwd_mrw", "VC at n+", "wing")
-    i = r.conditions.index(f.condition)
-    st = {k: v[i] for k, v in r.state.items()}
-    wing = r.loads["wing"]
-    strips = wing.strip_normal_force(st["qbar"], st["mach"], {k: st[k] for k in ("alpha", "q_hat", "elevator",
-                                                                                  "aileron", "rudder")})
-    hand = np.sum((strips - wing.strip_mass * G0 * st["n_z"]) * wing.strip_span)
-    assert f.all_details()["root bending max/min (kN·m)"][0] == pytest.approx(hand / 1e3, rel=0.01)
-    # and the wing carries about n W plus the tail download (both halves' air load)
-    W = f.condition.mass * G0
-    air = 2 * np.sum(strips)
-    assert air == pytest.approx(2.5 * W - 1e3 * f.all_details()["tail_balancing_load_kN"], rel=0.03)
+    d = f.all_details()
+    assert 1e3 * d["wing_air_load_kN"] == pytest.approx(d["n"] * f.condition.mass * G0 - 1e3 * d["tail_balancing_load_kN"],
+                                                         rel=0.03)
+
+
+def test_side_of_body_bending_against_a_schrenk_hand_load_with_the_wing_fuel(run):
+    """The critical wing case (fwd_mrw, VC on the n₊ line, sea level) against a hand estimate independent of the strip
+    model: Schrenk span load (NACA TM 948) of n W − tail, minus the inertia relief of the wing structure, the engine and
+    the full main tank at its declared centroid (43.8 ft). Band 5 %: Schrenk against a vortex lattice on a swept,
+    twisted wing (Schrenk ignores sweep and twist; the lattice's washout moves load inboard). At MRW the §25.343 range
+    keeps the main tanks full in every state (fuel ≥ MRW − MZFW = 227,000 lb > the mains' 128,100 lb): the critical
+    state is named and carries 64,050 lb per main tank."""
+    ctx, findings, _ = run
+    f = _one(findings, "fwd_mrw", "VC at n+", "wing")
+    d = f.all_details()
+    hand = _hand_side_of_body_bending(ctx, f, [ENGINE, MAIN_TANK])
+    assert 1e3 * d["side of body bending max/min (kN·m)"][0] == pytest.approx(hand, rel=0.05)
+    assert d["fuel_kg"]["right main"] == pytest.approx(MAIN_TANK[0], rel=1e-3)
+    assert d["fuel_state"].startswith("least fuel in the §25.343 range")
+    # the hand margin of the declared side-of-body ultimate bending (46,624 kN·m, docs/baseline-sources.md §10):
+    # about +16 % (issue estimate: relief of about 10.7 MN·m ultimate from the main tanks)
+    allowable = 46624e3
+    hand_margin_norm = (allowable - 1.5 * hand) / allowable
+    assert 0.10 < hand_margin_norm < 0.22
+    sob = [x for x in findings if x.condition == f.condition and "wing:" in x.check][0]
+    assert sob.status == "complies"
 
 
 def test_margins_by_hand_and_the_critical_wing_case(run):
     """Each evaluated finding's margin recomputed from its reported loads and the declared capability; the baseline's
-    critical wing case is the heaviest forward-CG airplane at the top of the envelope, side-of-body ultimate bending — the
-    declared capability (openly derived, docs/baseline-sources.md §10) is below 1.5 × its balanced 2.5 g load."""
+    critical wing case is the heaviest forward-CG airplane at the top of the envelope, side-of-body ultimate bending,
+    and with the wing fuel of §25.343 it complies (docs/baseline-sources.md §10)."""
     ctx, findings, _ = run
     caps = {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")}
     for f in findings:
@@ -108,12 +146,35 @@ def test_margins_by_hand_and_the_critical_wing_case(run):
     assert worst.condition.loading == "fwd_mrw" and worst.condition.get("point") in ("A", "VC at n+", "D")
     assert worst.all_details()["n"] > 2.0  # on the n₊ line, or on the stall line just below it (Mach-limited VD at altitude)
     assert "ultimate bending at side of body" in worst.check
-    assert worst.status == "fails"
+    assert worst.status == "complies" and "fuel_state" in worst.all_details()
+
+
+def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_path):
+    """Deficient by mass: the same airplane with its main (wing) tanks cut to 500 lb each and the centre tank holding the
+    rest — at MRW the wing carries no fuel relief. §25.331(b) must fail at side-of-body ultimate bending, with the
+    normalised margin within 0.04 of the hand estimate without main-tank fuel (Schrenk, as above; about −7 %)."""
+    edits = FAST + [("capacity: 64050 lb", "capacity: 500 lb"), ("capacity: 174870 lb", "capacity: 301900 lb")]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [c for c in BalancedManeuver.conditions.expand(ctx.aircraft) if c.loading == "fwd_mrw" and c.altitude == 0.0
+             and c.configuration == "clean" and c.get("point") == "VC at n+"]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    f = _one(findings, "fwd_mrw", "VC at n+", "wing")
+    assert f.status == "fails" and "ultimate bending at side of body" in f.check
+    hand = _hand_side_of_body_bending(ctx, f, [ENGINE, (500 * LB, 43.8 * FT)])
+    hand_norm = (46624e3 - 1.5 * hand) / 46624e3
+    assert hand_norm < 0
+    assert f.margin / abs(f.limit) == pytest.approx(hand_norm, abs=0.04)
+
+
+STOP = "beyond the control-system stop"
+MACH = "beyond the aerodynamic and strip loads model's Mach range"
 
 
 def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
+    """Flaps extended (balances within the elevator's stops): the tail is evaluated, the wing is not (no flap strips)."""
     _, findings, _ = run
-    flap = [f for f in findings if f.condition.configuration != "clean"]
+    flap = [f for f in findings if f.condition.configuration != "clean" and STOP not in (f.reason or "")]
     assert flap
     assert all(f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS for f in flap if "wing:" in f.check
                or f.check.endswith("wing"))
@@ -133,7 +194,8 @@ def test_envelope_is_kept_for_the_sizing_loop(run):
 def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(BalancedManeuver, ctx)
-    clean = [f for f in result.findings if f.condition.configuration == "clean"]
+    clean = [f for f in result.findings if f.condition.configuration == "clean" and STOP not in (f.reason or "")
+             and MACH not in (f.reason or "")]
     assert clean and all(f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in clean)
     assert all("root bending max/min (kN·m)" in f.all_details() for f in clean)
 
@@ -145,17 +207,6 @@ def test_a_weak_tailplane_fails(tmp_path):
                     "quantity: bending, limit: 100 kN*m, ultimate: 100 kN*m")]
     tail = failures_with(tmp_path, BalancedManeuver, weak, "horizontal tail")
     assert tail and all(f.limit == pytest.approx(100e3) and "bending at root" in f.check for f in tail)
-
-
-def test_a_strong_wing_complies(tmp_path):
-    """The converse: with the side-of-body and root positive bending allowables doubled the wing findings comply — the
-    baseline's wing failures come from the declared allowables, not from the rule."""
-    strong = FAST + [("positive: 49896 kN*m}", "positive: 99792 kN*m}"), ("positive: 60434 kN*m}", "positive: 120868 kN*m}"),
-                     ("positive: 38494 kN*m}", "positive: 76988 kN*m}"), ("positive: 46624 kN*m}", "positive: 93248 kN*m}")]
-    ctx = Context(load_aircraft(edited_baseline(tmp_path, strong)))
-    result = evaluate_rule(BalancedManeuver, ctx)
-    wing = [f for f in result.findings if "wing:" in f.check]
-    assert wing and not [f for f in wing if f.status == "fails"]
 
 
 def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
@@ -170,3 +221,65 @@ def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
     assert "must not exceed the clean positive limit load factor (2.5" in p.message and p.value == 3.0
     assert p.line == next(i for i, t in enumerate(bad.read_text().splitlines(), 1) if "flaps_extended: 3.0" in t)
     assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
+
+
+def test_no_balanced_state_beyond_the_elevator_stop_complies(run):
+    """A balance that needs the elevator beyond its control-system stop (aircraft/lta.yaml travel −30…+25°) is not a
+    computed compliance: with the baseline's movable stabiliser held at its 1 g trim it is not evaluated, with the
+    deflection in the reason (point H at the forward CG needs about +31°)."""
+    _, findings, _ = run
+    beyond = [f for f in findings if "elevator_deg" in f.all_details()
+              and not -30.0 <= f.all_details()["elevator_deg"] <= 25.0]
+    assert beyond
+    assert all(f.status == "not_evaluated" and "beyond the control-system stop" in f.reason for f in beyond)
+
+
+def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):
+    """The same airplane trimming with the elevator alone (stabiliser fixed): a balance beyond the elevator stop
+    fails, its margin the stop minus the deflection needed (degrees)."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STABILIZER])))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [c for c in BalancedManeuver.conditions.expand(ctx.aircraft) if c.loading == "fwd_mrw" and c.altitude == 0.0
+             and c.configuration == "clean" and c.get("point") in ("H", "F")]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    beyond = [f for f in findings if not -30.0 <= f.all_details().get("elevator_deg", 0.0) <= 25.0]
+    assert beyond
+    for f in beyond:
+        de = f.all_details()["elevator_deg"]
+        assert f.status == "fails" and "elevator within its stop" in f.check
+        assert f.margin == pytest.approx((25.0 if de > 0 else 30.0) - abs(de), abs=2e-3)
+
+
+def test_conditions_beyond_the_model_mach_range_are_not_evaluated(run):
+    """Beyond the highest Mach breakpoint of the aerodynamic and strip tables (0.9; MD is 0.94) nothing is
+    extrapolated silently: each such balanced point is not evaluated with its Mach in the reason, and every evaluated
+    one lies within the range."""
+    ctx, findings, r = run
+    top = float(max(r.loads["wing"].mach))
+    assert any(MACH in (f.reason or "") for f in findings)
+    for f in findings:
+        m = f.all_details().get("mach")
+        if m is None:
+            continue
+        if m > top + 1e-3:
+            assert f.status == "not_evaluated" and MACH in f.reason and f"M {m:.3f}"[:6] in f.reason
+        elif f.status in ("complies", "fails"):
+            assert m <= top + 1e-3
+
+
+def test_design_flap_speed_is_the_larger_of_the_placard_and_the_335e_minima(run):
+    """§25.335(e)(3) by hand from aircraft/lta.yaml: VS1 = √(2 W g / (ρ₀ S CLmax)), S 4,927.3 ft²; takeoff 1.6 VS1 at
+    MTOW 656,000 lb, CLmax 1.95 → 227.2 kn EAS (placard 215 kn); approach 1.8 VS1 at MLW 460,000 lb, CLmax 2.00 →
+    211.3 kn (195); landing, CLmax 2.25 → 199.2 kn (170). Each flaps-extended point flies at that speed (0.2 kn)."""
+    ctx, findings, _ = run
+    expected = {}
+    for cfg, lb, clmax, factor in (("takeoff", 656000, 1.95, 1.6), ("approach", 460000, 2.00, 1.8),
+                                   ("landing", 460000, 2.25, 1.8)):
+        vs1 = np.sqrt(2 * lb * 0.45359237 * G0 / (1.225 * 4927.3 * 0.3048**2 * clmax))
+        expected[cfg] = factor * vs1 / 0.514444
+    assert expected["takeoff"] == pytest.approx(227.2, abs=0.3) and expected["landing"] == pytest.approx(199.2, abs=0.3)
+    flap = [f for f in findings if f.condition.configuration != "clean" and "V_kn_EAS" in f.all_details()]
+    assert {f.condition.configuration for f in flap} == set(expected)
+    for f in flap:
+        assert f.all_details()["V_kn_EAS"] == pytest.approx(expected[f.condition.configuration], abs=0.2)
+        assert "§25.335(e)(3)" in f.all_details()["speed_note"]

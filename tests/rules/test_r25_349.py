@@ -183,8 +183,12 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     """A wing root-bending capability declared at 1.2 × the largest |root bending| L of the baseline run (limit)
     and 1.4 × L (ultimate): the limit margin is 0.2 L but the ultimate margin 1.4 L − 1.5 L = −0.1 L (§25.303 factor
     1.5), so the critical wing finding fails on ultimate bending at the root with −0.1 L (L from the details in
-    kN·m to 0.1: within 1.5 × 50 N·m); the tail findings stay not evaluated (no tail capability)."""
-    L = 1e3 * max(max(abs(v) for v in f.all_details()[ROOT_BENDING]) for f in own(roll)
+    kN·m to 0.1: within 1.5 × 50 N·m); the tail findings stay not evaluated (no tail capability). L is read from a run
+    without any capability, whose details are the envelope over the §25.343 fuel states (with a capability they are
+    the loads of each condition's critical fuel state)."""
+    (tmp_path / "bare").mkdir()
+    bare = run_rule("25.349(a)", tmp_path / "bare", edits=[NO_STRUCTURE])
+    L = 1e3 * max(max(abs(v) for v in f.all_details()[ROOT_BENDING]) for f in own(bare)
                   if _surface(f) == "wing" and ROOT_BENDING in f.all_details())
     structure = ("structure:\n  wing:\n"
                  f"    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: \"test\"}}\n"

@@ -24,7 +24,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.trim import assemble_state
-from certkit.models.loads.response import response_load_parts
+from certkit.models.loads.response import inertia_terms, response_load_parts
 
 
 @dataclass
@@ -121,10 +121,22 @@ def steady_load_parts(loads, model, x, u, outputs, surfaces) -> dict[str, tuple[
     """Aerodynamic and inertial station loads, each (n, 3, S), of ``surfaces`` in the steady states ``x``/``u``
     (outputs of the flight model there): the strip loads of :func:`response_load_parts` at one instant, with the
     angular accelerations zero (a balanced state)."""
+    record = _steady_record(model, x, u, outputs)
+    parts = response_load_parts(loads, record, model, tuple(surfaces))
+    return {k: (a[0], i[0]) for k, (a, i) in parts.items()}
+
+
+def steady_fuel_units(loads, model, x, u, outputs, surface: str = "wing") -> np.ndarray | None:
+    """Inertial station loads per kilogram of each tank's fuel, (n, K, 3, S), of ``surface`` in the steady states
+    (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_loads`); None without tanks."""
+    units = loads[surface].fuel_loads(inertia_terms(_steady_record(model, x, u, outputs), model))
+    return None if units is None else units[0]
+
+
+def _steady_record(model, x, u, outputs):
+    """A one-instant simulation record of the steady states (angular accelerations zero)."""
     o = outputs
     history = {"V": o.V, "alpha": o.alpha, "beta": o.beta, "mach": o.mach, "qbar": o.qbar, "n_z": o.n_z,
                "n_y": o.n_y, "p": x[:, 6], "q": x[:, 7], "r": x[:, 8]}
-    record = SimpleNamespace(history={k: np.asarray(v, dtype=float)[None, :] for k, v in history.items()},
-                             t=np.zeros(1), controls=np.asarray(u, dtype=float)[None], control_names=model.control_names)
-    parts = response_load_parts(loads, record, model, tuple(surfaces))
-    return {k: (a[0], i[0]) for k, (a, i) in parts.items()}
+    return SimpleNamespace(history={k: np.asarray(v, dtype=float)[None, :] for k, v in history.items()},
+                           t=np.zeros(1), controls=np.asarray(u, dtype=float)[None], control_names=model.control_names)

@@ -14,14 +14,14 @@ the slowest condition. The numbers the regulation sets (H range, U_ds) belong to
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, simulate
 from certkit.models.loads.gust import gust_aero, gust_tables, one_minus_cosine
-from certkit.models.loads.response import response_load_parts
+from certkit.models.loads.response import inertia_terms, response_load_parts
 
 SURFACES = ("wing", "horizontal_tail")
 
@@ -83,6 +83,9 @@ class GustRun:
     alpha_gust: dict[str, np.ndarray]  # surface → (nt, n) gust angle felt
     dt: float
     parts: dict[str, tuple[np.ndarray, np.ndarray]]  # surface → aerodynamic and inertial loads, for ``split``
+    #: surface → the fuel's inertial loading, uncontracted: terms (nt, n, J) and per-kilogram tables (K, J, 3, S), for
+    #: the surfaces of ``split`` with tanks (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_term_tables`)
+    fuel_units: dict[str, tuple] = field(default_factory=dict)
 
 
 def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
@@ -107,6 +110,7 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
     hist: dict[str, list] = {}
     kept: dict[str, list] = {}
+    fuel: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         tp = phase_times(parts, k)
         extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
@@ -116,8 +120,12 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
+                terms = loads[s].fuel_term_tables(inertia_terms(part, gb.model))
+                if terms is not None:
+                    fuel.setdefault(s, []).append((terms[0][keep], terms[1]))
     return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
-                   {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()})
+                   {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
+                   {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()})
 
 
 def two_phase_run(model, x0, u0, H: float, v, lag, inputs, steps_per_gust: float, settle: float, max_step: float,

@@ -29,7 +29,9 @@ the plane of the surface (N·m, positive when an upward/rightward load bends the
 Strip mass: the structural mass of the surface (aircraft-file component named like the surface,
 group ``structure``) distributed in proportion to strip area at ``axis_fraction`` of the chord; on
 the wing the propulsion components (engines, nacelles) are point masses at their span station. Wing
-fuel is not distributed (its inertia relief is not counted: conservative for wing bending).
+fuel is kept apart: one inertial table per declared tank and per kilogram of its fuel (the tank spread on
+the strips by :mod:`certkit.models.loads.fuel`), so that any fuel state is a linear combination
+(:meth:`SurfaceLoads.fuel_loads`); the station loads without a fuel state carry no fuel.
 """
 
 from __future__ import annotations
@@ -74,6 +76,11 @@ class SurfaceLoads:
     strip_aero: np.ndarray
     axis_fraction: float
     notes: list[str] = field(default_factory=list)
+    #: declared fuel tanks (all, in the aircraft file's order) and the inertial loads per kilogram of each one's fuel,
+    #: ``fuel_inertia[k, t, q, s]`` (zero for a tank this half does not carry); empty for a surface without tanks
+    tank_names: tuple[str, ...] = ()
+    fuel_inertia: np.ndarray | None = None
+    fuel_strip_share: np.ndarray | None = None  # (K, J) fraction of each tank's fuel on each strip
 
     @property
     def structural_mass(self) -> float:
@@ -120,6 +127,35 @@ class SurfaceLoads:
         x = np.stack([np.broadcast_to(v, shape).ravel() for _, v in present], axis=1)
         table = self.inertia[[t for t, _ in present]].reshape(len(present), -1)
         return (x @ table).reshape(shape + self.inertia.shape[1:])
+
+    def fuel_loads(self, terms: dict[str, np.ndarray]) -> np.ndarray | None:
+        """Inertial station loads per kilogram of each tank's fuel, (..., K, 3, n_stations), from the named inertial
+        terms; None for a surface without tanks. A fuel state m (..., K) kg loads the stations by Σ_k m_k × this."""
+        if self.fuel_inertia is None or not len(self.tank_names):
+            return None
+        present = [(t, np.asarray(terms[name], dtype=float)) for t, name in enumerate(INERTIA_TERMS) if name in terms]
+        K = len(self.tank_names)
+        if not present:
+            return np.zeros((K,) + self.inertia.shape[1:])
+        shape = np.broadcast_shapes(*(v.shape for _, v in present))
+        x = np.stack([np.broadcast_to(v, shape).ravel() for _, v in present], axis=1)
+        table = self.fuel_inertia[:, [t for t, _ in present]]  # (K, T', 3, S)
+        table = np.moveaxis(table, 1, 0).reshape(len(present), -1)
+        return (x @ table).reshape(shape + (K,) + self.inertia.shape[1:])
+
+    def fuel_term_tables(self, terms: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray] | None:
+        """The inertial terms that load this surface's fuel, stacked (..., J), and their per-kilogram tables (K, J, 3,
+        S): :meth:`fuel_loads` is Σ_j x_j × table_j, left uncontracted so that a caller combining fuel states contracts
+        the small tables with the states first. None for a surface without tanks."""
+        if self.fuel_inertia is None or not len(self.tank_names):
+            return None
+        present = [(t, np.asarray(terms[name], dtype=float)) for t, name in enumerate(INERTIA_TERMS)
+                   if name in terms and np.any(self.fuel_inertia[:, t])]
+        if not present:
+            return None
+        shape = np.broadcast_shapes(*(v.shape for _, v in present))
+        x = np.stack([np.broadcast_to(v, shape) for _, v in present], axis=-1)
+        return x, self.fuel_inertia[:, [t for t, _ in present]]
 
     def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
         """Aerodynamic normal force of each strip (..., n_strips), N."""
@@ -177,14 +213,15 @@ def _station_matrices(s1, s2, x_axis_strip, x_axis_station, stations):
 
 def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 0.4,
                         station_fractions=(0.0, 0.25, 0.5, 0.75), side_of_body: float | None = None,
-                        point_masses=(), solutions: dict | None = None) -> SurfaceLoads:
+                        point_masses=(), solutions: dict | None = None, aircraft=None) -> SurfaceLoads:
     """Unit load tables of ``surface`` (lattice surface name; the right half for mirrored surfaces).
 
     ``masses``: total structural mass of the surface (both halves for a mirrored one), kg.
     ``point_masses``: (mass kg, X, Y, Z) items attached to the surface at their span station.
     ``side_of_body``: Y (m) of an extra station where the surface leaves the fuselage.
     ``solutions``: a store of the lattice's unit solutions (every surface's strips come from the same solve, and
-    the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value)."""
+    the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value).
+    ``aircraft``: for the wing, the file whose ``mass.fuel_tanks`` are spread on its strips (fuel tables per tank)."""
     lat = vl.lattice
     idx = _strip_indices(lat, surface)
     vertical = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
@@ -291,18 +328,33 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
         y_mass[j] = (y_mass[j] * (strip_mass[j] + extra_force_mass[j]) + py * pm) / total
         extra_force_mass[j] += pm
     mass = strip_mass + extra_force_mass
-    terms = np.array([
-        -mass * G0 * nz, -mass * nz, mass * nz * x_mass,
-        -mass * G0 * ny, -mass * ny, mass * ny * x_mass,
-        mass * ny, -mass * ny * z_mass + mass * nz * y_mass,
-    ])
-    inertia = integrate(terms, np.broadcast_to(x_mass, terms.shape))
+
+    def inertia_table(mass, x_mass, y_mass, z_mass):
+        terms = np.array([
+            -mass * G0 * nz, -mass * nz, mass * nz * x_mass,
+            -mass * G0 * ny, -mass * ny, mass * ny * x_mass,
+            mass * ny, -mass * ny * z_mass + mass * nz * y_mass,
+        ])
+        return integrate(terms, np.broadcast_to(x_mass, terms.shape))
+
+    inertia = inertia_table(mass, x_mass, y_mass, z_mass)
     notes = []
+    tank_names, fuel_inertia, shares = (), None, None
+    if aircraft is not None and aircraft.mass.fuel_tanks and not vertical:
+        from certkit.models.loads.fuel import wing_tank_shares
+
+        y_strip = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
+        tank_names, shares, tank_notes = wing_tank_shares(aircraft, np.abs(lat.rle1[idx, 1]), np.abs(lat.rle2[idx, 1]),
+                                                          chord, side_of_body or 0.0)
+        notes += tank_notes
+        z_strip = lat.rle[idx, 2]
+        fuel_inertia = np.array([inertia_table(share, x_axis, y_strip, z_strip) for share in shares])
     if masses <= 0:
         notes.append(f"{surface}: no structural mass declared; inertial loads are zero")
     return SurfaceLoads(surface, inputs, np.asarray(machs, dtype=float), names, stations,
                         np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical else lat.rle[idx, 1])),
-                        s_mid, x_axis, mass, np.array(aero), inertia, np.array(strip_aero), axis_fraction, notes)
+                        s_mid, x_axis, mass, np.array(aero), inertia, np.array(strip_aero), axis_fraction, notes,
+                        tank_names, fuel_inertia, shares)
 
 
 def surface_mass(aircraft, surface: str) -> float:
@@ -353,13 +405,14 @@ def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4, soluti
     out = {}
     notes = ["strip loads from unit vortex-lattice solutions (linear superposition, quasi-steady)",
              f"torsion about the {axis_fraction:.0%} chord line; strip masses at that line",
-             "wing fuel inertia relief not included (conservative for wing bending)"]
+             "wing fuel: one inertial table per declared tank (volume-weighted over its bay); the loads rules add the "
+             "fuel state they evaluate"]
     for name in ("wing", "horizontal_tail", "vertical_tail"):
         pm = wing_point_masses(aircraft) if name == "wing" else ()
         out[name] = build_surface_loads(vl, name, machs, surface_mass(aircraft, name), axis_fraction,
                                         station_fractions=declared_station_fractions(aircraft, name),
                                         side_of_body=None if name == "vertical_tail" else sob, point_masses=pm,
-                                        solutions=solutions)
+                                        solutions=solutions, aircraft=aircraft if name == "wing" else None)
         notes += out[name].notes
     return AirplaneLoads(out, notes)
 

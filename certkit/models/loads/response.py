@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numba import njit
 
 from certkit.models.loads.model import QUANTITIES, UNITS, AirplaneLoads
 from certkit.units import G0
@@ -43,15 +44,11 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
     ``extra_alpha`` / ``extra_beta``: surface name → (nt, n) angle-of-attack / sideslip increment felt by that
     surface only (a vertical / lateral gust)."""
     h = sim.history
-    t = sim.t
     V = np.maximum(h["V"], 1e-3)
     b, c = model.b, model.c
     names = list(sim.control_names)
     controls = {n: sim.controls[:, :, names.index(n)] for n in names if ":" not in n and n != "brake"}
-    qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
-    xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
-    terms = {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
-             "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+    terms = inertia_terms(sim, model)
     out = {}
     for name in surfaces:
         s = loads[name]
@@ -60,6 +57,79 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
                   "r_hat": h["r"] * b / (2 * V), **controls}
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
     return out
+
+
+def inertia_terms(sim, model) -> dict[str, np.ndarray]:
+    """The inertial terms (:data:`certkit.models.loads.model.INERTIA_TERMS`), each (nt, n), along the simulation
+    ``sim``: load factors and the body angular accelerations (differentiated on the record's time grid)."""
+    h, t = sim.history, sim.t
+    qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
+    xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
+    return {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
+            "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+
+
+def fuel_load_units(loads: AirplaneLoads, sim, model, surface: str = "wing") -> tuple[np.ndarray, np.ndarray] | None:
+    """The fuel's inertial loading of ``surface`` along ``sim``, uncontracted: the inertial terms (nt, n, J) and their
+    per-kilogram tables (K, J, 3, S) (:meth:`SurfaceLoads.fuel_term_tables`); None without tanks."""
+    return loads[surface].fuel_term_tables(inertia_terms(sim, model))
+
+
+def with_fuel_states(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarray | None) -> np.ndarray:
+    """Station loads (..., n, 3, S) without fuel plus each fuel state's: (M, ..., n, 3, S) for the fuel states
+    ``fuel`` (n, M, K) kg per condition, state and tank and the per-kilogram loads ``units`` (..., n, K, 3, S). Without
+    tanks or states: ``total`` with a leading axis of one."""
+    if units is None or fuel is None or fuel.shape[1] == 0:
+        return np.asarray(total)[None]
+    return np.asarray(total)[None] + np.einsum("...nkqs,nmk->m...nqs", units, fuel)
+
+
+def fuel_state_peaks(total: np.ndarray, fuel_terms: tuple[np.ndarray, np.ndarray] | None,
+                     fuel: np.ndarray | None) -> np.ndarray:
+    """Per fuel state, the minimum and maximum over time of station loads: (M, n, 2, 3, S) from the loads without
+    fuel ``total`` (nt, n, 3, S), the fuel's inertial loading ``fuel_terms`` — the terms (nt, n, J) and their
+    per-kilogram tables (K, J, 3, S), :func:`fuel_load_units` — and the fuel states ``fuel`` (n, M, K) kg. The states
+    are contracted with the small tables first, then one compiled pass over the histories gives every state's
+    extremes (NaN times ignored, as :meth:`LoadEnvelope.from_histories` does; all-NaN stays NaN). Without tanks or
+    states: one state, the loads as they are."""
+    if fuel_terms is None or fuel is None or fuel.shape[1] == 0:
+        return np.stack([np.fmin.reduce(total, axis=0), np.fmax.reduce(total, axis=0)], axis=1)[None]
+    x, tables = fuel_terms
+    nt, n = total.shape[:2]
+    q = int(np.prod(total.shape[2:]))
+    per_state = np.einsum("nmk,kjq->nmjq", fuel, tables.reshape(tables.shape[0], tables.shape[1], q))
+    out = np.empty((fuel.shape[1], n, 2, q))
+    _fuel_state_peaks(np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
+                      np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])), dtype=float),
+                      np.ascontiguousarray(per_state), out)
+    return out.reshape((fuel.shape[1], n, 2) + total.shape[2:])
+
+
+@njit(cache=True)
+def _fuel_state_peaks(total, terms, per_state, out):
+    """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k terms[t, i, k] per_state[i, m, k, j], NaN skipped
+    (the histories read once, in memory order)."""
+    nt, n, q = total.shape
+    n_states, n_terms = per_state.shape[1], per_state.shape[2]
+    out[:, :, 0, :] = np.inf
+    out[:, :, 1, :] = -np.inf
+    for t in range(nt):
+        for i in range(n):
+            for m in range(n_states):
+                for j in range(q):
+                    v = total[t, i, j]
+                    for k in range(n_terms):
+                        v += terms[t, i, k] * per_state[i, m, k, j]
+                    if v < out[m, i, 0, j]:
+                        out[m, i, 0, j] = v
+                    if v > out[m, i, 1, j]:
+                        out[m, i, 1, j] = v
+    for m in range(n_states):
+        for i in range(n):
+            for j in range(q):
+                if out[m, i, 0, j] > out[m, i, 1, j]:  # every time NaN
+                    out[m, i, 0, j] = np.nan
+                    out[m, i, 1, j] = np.nan
 
 
 def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,

@@ -125,6 +125,17 @@ def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
     return shares
 
 
+def fuel_by_tank(aircraft, fuel: float) -> np.ndarray:
+    """kg of ``fuel`` in each declared tank (the file's order), the tanks filled group by group in the declared order
+    (:func:`tank_groups`) and used in the reverse order. Raises LoadingError beyond the capacity."""
+    tanks = aircraft.mass.fuel_tanks
+    out = np.zeros(len(tanks))
+    where = {id(t): k for k, t in enumerate(tanks)}
+    for t, share in _fuel_shares(tank_groups(tanks), fuel):
+        out[where[id(t)]] = share
+    return out
+
+
 def _fuel_items(aircraft, fuel: float, groups=None) -> list[MassComponent]:
     """The fuel of :func:`_fuel_shares` as a point mass per tank."""
     groups = tank_groups(aircraft.mass.fuel_tanks) if groups is None else groups

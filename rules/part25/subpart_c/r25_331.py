@@ -21,6 +21,7 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import partial
 
 import numpy as np
 
@@ -36,8 +37,12 @@ from certkit.models.loads.response import LoadEnvelope, below_stall, response_lo
 from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
-from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
-                                                             force_limited_deflection, maneuver_limit_load_factor)
+from certkit_rules.part25.support.fuel_states import (fuel_detail, fuel_tank_names, fuelled_wing,
+                                                    fuelled_wing_envelope)
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                           condition_mach, control_stops, critical_state_finding,
+                                                           entry_speeds, force_limited_deflection,
+                                                           maneuver_limit_load_factor, set_aside_finding)
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
@@ -90,13 +95,16 @@ def wing_before_stall(hist, model, sim) -> np.ndarray | None:
     return keep
 
 
-def wing_finding(ctx, cond, check: str, env, i: int, crit, stalled: bool = False, **details) -> Finding:
+def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: bool = False, **details) -> Finding:
     """The wing's finding of condition ``i`` of a manoeuvre's envelope (its loads in the same time window as the
-    tail's, up to the stall) against the declared wing capability."""
+    tail's, up to the stall) against the declared wing capability, in the critical fuel state (``fuelled``:
+    :func:`fuelled_wing`'s peaks, names and fuel)."""
     if stalled:
         details["wing_window"] = WING_STALL_NOTE
-    return capability_finding(cond, f"{check}, wing", "wing", env.peaks["wing"][i], env.stations["wing"],
-                              declared_capabilities(ctx, "wing"), crit.ultimate_factor, **details)
+    peaks, names, fuel = fuelled
+    return critical_state_finding(cond, f"{check}, wing", "wing", peaks[:, i], env.stations["wing"],
+                                  declared_capabilities(ctx, "wing"), crit.ultimate_factor,
+                                  partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)), **details)
 
 
 def _modes_frequency(batch) -> np.ndarray:
@@ -168,6 +176,10 @@ class CheckedPitchManeuver(SimulationRule):
     unevaluated = (
         ("25.331(c)(2)", "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
                          "tail loads only)"),
+        ("25.331(a)(2)", "out-of-trim loads are not computed: the manoeuvres start from the 1 g trim, not from the "
+                         "§25.255 mistrim (stabiliser trimmed for the adjacent speed); no rule evaluates them"),
+        ("25.331(c)", "a condition beyond the aerodynamic model's Mach range (its highest breakpoint) is not evaluated, "
+                      "its loads would be extrapolated"),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -267,7 +279,9 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     hist = response_loads(loads, sim, model, LOADED, valid=valid)
     unstalled = wing_before_stall(hist, model, sim)
     stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-    env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds)
+    fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
+    env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds],
+                                                            keys=sim_conds), fuelled[0])
     stations = loads["horizontal_tail"].station_names
     caps = declared_capabilities(ctx, "horizontal_tail")
     for i, c in enumerate(sim_conds):
@@ -281,13 +295,21 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         peak_nz = float(np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan)) if nose_up[i]
                         else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan)))
         reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
+        beyond_mach = beyond_mach_range(loads, condition_mach(c))
+        if beyond_mach:
+            findings += [set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}", beyond_mach,
+                                           env.peaks["horizontal_tail"][i], stations, peak_n_z=round(peak_nz, 4),
+                                           input=kind),
+                         set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}, wing", beyond_mach,
+                                           fuelled[0][:, i], env.stations["wing"], peak_n_z=round(peak_nz, 4))]
+            continue
         findings.append(capability_finding(
             c, f"(c)(2) checked manoeuvre, {c.get('direction')}", "horizontal_tail", env.peaks["horizontal_tail"][i],
             stations, caps, crit.ultimate_factor, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
             omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
             hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), stop=sim.stop_reason[i] or "end",
             pilot_effort=_effort_note(effort_limited, i), **reached))
-        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit,
+        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit, fuelled,
                                      bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
         if beyond is not None:
             findings.append(beyond)
@@ -359,6 +381,9 @@ class MaximumPitchControlDisplacement(SimulationRule):
     unevaluated = (
         ("25.331(c)(1)", "fuselage and vertical-tail loads of the manoeuvre are not reported (wing and horizontal-tail "
                          "loads only)"),
+        ("25.391", "the elevator's hinge-line loads of this manoeuvre (§25.391, §25.395 control system, §25.397 pilot "
+                   "effort, §25.415 ground gusts) are not computed; no rule evaluates control-surface and control-system "
+                   "loads"),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -387,11 +412,19 @@ class MaximumPitchControlDisplacement(SimulationRule):
         hist = {s: np.where(valid[:, :, None, None], h, np.nan) for s, h in hist.items()}
         unstalled = wing_before_stall(hist, batch.model, sim)
         stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-        env = LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
-                                          keys=batch.conditions)
+        fuelled = fuelled_wing(ctx, loads, sim, batch.model, hist["wing"], batch.conditions)
+        env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
+                                                                keys=batch.conditions), fuelled[0])
         stations = loads["horizontal_tail"].station_names
         caps = declared_capabilities(ctx, "horizontal_tail")
         for i, c in enumerate(batch.conditions):
+            beyond_mach = beyond_mach_range(loads, condition_mach(c))
+            if beyond_mach:
+                findings += [set_aside_finding(c, "(c)(1) maximum pitch control displacement", beyond_mach,
+                                               env.peaks["horizontal_tail"][i], stations),
+                             set_aside_finding(c, "(c)(1) maximum pitch control displacement, wing", beyond_mach,
+                                               fuelled[0][:, i], env.stations["wing"])]
+                continue
             findings.append(capability_finding(
                 c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
                 stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
@@ -402,7 +435,7 @@ class MaximumPitchControlDisplacement(SimulationRule):
                 **({"stabilizer_trim_deg": round(float(np.degrees(batch.control("stabilizer")[i]
                                                                   + ctx.aircraft.geometry.horizontal_tail.incidence)), 3)}
                    if "stabilizer" in batch.model.control_names else {})))
-            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
+            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit, fuelled,
                                          bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
         return PitchManeuverRun(findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations)
 

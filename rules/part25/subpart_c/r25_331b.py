@@ -11,9 +11,10 @@ n₊ line is named by its speed. The balanced state itself is :mod:`certkit.mode
 push-over at n, linear lift up to C_N,max).
 
 Flaps extended (every configuration other than ``clean``): n = the declared ``envelope.limit_load_factors.
-flaps_extended`` (else 2.0, §25.345(a)(1)) and n = 0 at the configuration's declared VFE taken as the design flap
-speed VF (§25.335(e) lets VF exceed the placard; a larger VF is not known here). The strip loads model has no flap
-deflection (the lattice is the clean wing), so the wing's loads flaps extended are not evaluated; the tail's are.
+flaps_extended`` (else 2.0, §25.345(a)(1)) and n = 0 at the design flap speed VF: the larger of the declared placard
+VFE and the §25.335(e)(3) minimum (1.6 VS1 takeoff flaps at MTOW, 1.8 VS1 approach and landing flaps at MLW). The
+strip loads model has no flap deflection (the lattice is the clean wing), so the wing's loads flaps extended are not
+evaluated; the tail's are, without the flaps' downwash.
 """
 
 from __future__ import annotations
@@ -51,12 +52,19 @@ class BalancedManeuver(SimulationRule):
     limitations = ("Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
                    "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
                    "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
-                   "model) and VF is the declared VFE; wing fuel inertia relief is not modelled (conservative for "
-                   "wing bending).")
+                   "model, no flap downwash at the tail) and VF is the larger of the placard VFE and the §25.335(e)(3) "
+                   "minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
+                   "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
+                   "finding.")
     implementation = "partial"
     unevaluated = (
         ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
         ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
+        ("25.345(a)", "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
+                      "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
+                      "evaluated"),
+        ("25.333", "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at "
+                   "altitude; conditions beyond the aerodynamic model's highest Mach breakpoint are not evaluated"),
     )
 
     def simulate(self, ctx, conditions, crit):

@@ -20,6 +20,7 @@ the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import partial
 
 import numpy as np
 
@@ -33,7 +34,10 @@ from certkit.engine.results import LoadsRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
                                                       gust_runs)
-from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, maneuver_limit_load_factor
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuelled_wing_envelope
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                            condition_mach, critical_state_finding,
+                                                            maneuver_limit_load_factor, set_aside_finding)
 
 
 @rule
@@ -123,11 +127,21 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
     for i, c in enumerate(sim_conds):
         sense = 1 if up[i] else 0
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
+        beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
         for s in SURFACES:
             jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
-            findings.append(capability_finding(
-                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, env.peaks[s][i], env.stations[s],
-                caps[s], crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
+            if beyond_mach:
+                check = partial(_not_evaluated, beyond_mach, peaks=(runs.wing_fuel_peaks[:, i] if s == "wing"
+                                                                    else env.peaks[s][i]))
+            elif s == "wing":  # the wing in each fuel state (§25.343), the critical one named
+                check = partial(critical_state_finding, peaks_by_state=runs.wing_fuel_peaks[:, i],
+                                state_details=partial(fuel_detail, runs.fuel_names[i], runs.fuel[i],
+                                                      runs.loads["wing"].tank_names))
+            else:
+                check = partial(capability_finding, peaks=env.peaks[s][i])
+            findings.append(check(
+                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, stations=env.stations[s],
+                capabilities=caps[s], ultimate_factor=crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
                 critical_H_root_bending_ft=round(float(H[jb] / FT), 0), U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
                 peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
                 critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
@@ -135,8 +149,14 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
                     (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
                 tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
     lateral, lateral_env = lateral_gusts(ctx, runs, crit)
-    return GustRun(findings + lateral, sim_conds, envelope=env, which=which, gradients=H, replay=runs.replay,
-                   loads=runs.loads, lateral_envelope=lateral_env)
+    return GustRun(findings + lateral, sim_conds, envelope=fuelled_wing_envelope(env, runs.wing_fuel_peaks), which=which,
+                   gradients=H, replay=runs.replay, loads=runs.loads, lateral_envelope=lateral_env)
+
+
+def _not_evaluated(reason, cond, check, surface, peaks=None, stations=(), capabilities=None, ultimate_factor=None,
+                   peaks_by_state=None, state_details=None, **details):
+    """A not-evaluated finding in place of :func:`capability_finding` (same call), with ``reason`` and the loads."""
+    return set_aside_finding(cond, check, reason, peaks if peaks is not None else peaks_by_state, stations, **details)
 
 
 def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]:
@@ -163,7 +183,8 @@ def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]
     for k, c in enumerate(conds):
         jb = int(which[FIN][k, 1, 0, 0])  # gradient of the largest root shear
         i = idx[k]
-        findings.append(capability_finding(
+        beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
+        findings.append((partial(_not_evaluated, beyond_mach) if beyond_mach else capability_finding)(
             c, "(a) discrete lateral gust, vertical tail", FIN, env.peaks[FIN][k], env.stations[FIN], caps,
             crit.ultimate_factor, U_ref_ft_s_EAS=round(float(runs.u_ref[i] / FT), 2), F_g=round(float(runs.f_g[i]), 4),
             critical_H_root_shear_ft=round(float(runs.gradients[jb] / FT), 0),

@@ -23,7 +23,8 @@ gust), the literal text; the criterion ``airload_basis: increment`` applies the 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from functools import partial
 
 import numpy as np
 
@@ -39,7 +40,9 @@ from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
-from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, control_stops, entry_speeds
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, state_envelope
+from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops,
+                                                           critical_state_finding, entry_speeds)
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
@@ -292,6 +295,13 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
         LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels], keys=conds)])
     env_fin = LoadEnvelope.from_histories(loads, {"vertical_tail": right["vertical_tail"]}, sim.t, labels)
     n = len(conds)
+    # the wing in each fuel state of §25.343, each side with its own roll acceleration (the fuel's roll inertia relief)
+    fuel_r, names, fuel = fuelled_wing(ctx, loads, sim, model, right["wing"], conds)
+    fuel_l, _, _ = fuelled_wing(ctx, loads, mirror(sim), model, left["wing"], conds)
+    wing_states = np.stack([np.fmin(fuel_r[:, :, 0], fuel_l[:, :, 0]), np.fmax(fuel_r[:, :, 1], fuel_l[:, :, 1])],
+                           axis=2)  # (M, n, 2, 3, S)
+    env_sides = replace(env_sides, peaks={**env_sides.peaks, "wing": np.concatenate([state_envelope(fuel_r),
+                                                                                   state_envelope(fuel_l)])})
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     pdot = np.gradient(sim["p"], sim.t, axis=0)
     for i, c in enumerate(conds):
@@ -326,6 +336,11 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                 stations = env_sides.stations[s]
             else:
                 peaks, extra, stations = env_fin.peaks[s][i], {}, env_fin.stations[s]
+            if s == "wing":
+                findings.append(critical_state_finding(
+                    c, f"{PARAGRAPH[sp]}: wing", s, wing_states[:, i], stations, caps[s], crit.ultimate_factor,
+                    partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)), **common, **extra))
+                continue
             findings.append(capability_finding(c, f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}", s, peaks, stations, caps[s],
                                                crit.ultimate_factor, **common, **extra))
     failed = [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"

@@ -1,7 +1,8 @@
 """§25.427(b) Unsymmetrical loads on the horizontal tail: 100 % of the loading of the symmetrical manoeuvre
 conditions of §25.331 and of the vertical gusts of §25.341(a) on the surface on one side of the plane of symmetry,
 80 % on the other; the stabiliser root loads of each side against the declared tailplane capability and the torsion
-the unbalance puts into the fuselage at the tail.
+the unbalance puts into the fuselage at the tail, against the declared fuselage capability there (``structure.fuselage``,
+station ``tail``, quantity ``torsion``).
 
 Text verified against an eCFR mirror of Amdt. 25-86 (pilotfriend.com, Sec. 25.427): "(b) The horizontal tail must
 be assumed to be subjected to unsymmetrical loading conditions determined as follows: (1) 100 percent of the maximum
@@ -12,8 +13,8 @@ air load, the inertial load of each half stays (:func:`certkit.models.loads.unsy
 
 Sources of the symmetric loadings: the §25.331(b) balanced manoeuvres and the §25.341(a) gusts (the same runs, shared
 in one process with §25.341(a) and §25.349(b)). The §25.331(c) pitch manoeuvres are not included (their runs are not
-shared with this rule): said by a not-evaluated finding. The fuselage has no declared capability (the aircraft file's
-``structure`` section holds lifting surfaces only): its torsion at the tail is reported, not evaluated.
+shared with this rule): said by a not-evaluated finding. The fuselage torsion at the tail is compared with a declared
+``structure.fuselage`` capability (station ``tail``, quantity ``torsion``); without one it is reported, not evaluated.
 """
 
 from __future__ import annotations
@@ -39,12 +40,13 @@ SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
 REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
 NOT_SHARED = ("the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
               "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads")
-NO_FUSELAGE = ("no fuselage capability can be declared (the aircraft file's structure section holds the lifting "
-               "surfaces only): the fuselage torsion at the tail is reported, not compared")
+NO_FUSELAGE = ("no fuselage torsion capability at the tail is declared (structure.fuselage, station tail, quantity "
+               "torsion): the fuselage torsion at the tail is reported, not compared")
 
 LIMITATIONS = ("Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
                "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
-               "(tail roll inertia relief neglected); no fuselage capability to compare the torsion with.")
+               "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
+               "at the tail is declared.")
 
 
 @dataclass
@@ -95,7 +97,8 @@ class UnsymmetricalTailLoads(SimulationRule):
     margin = """
         Per symmetric condition and side (100 %, 80 %): the smallest of (allowable limit load − |limit load|) and
         (allowable ultimate load − 1.5 × |limit load|) over the declared tailplane stations and quantities; the
-        fuselage torsion at the tail is reported (no fuselage capability is declarable).
+        fuselage torsion at the tail (its limit and 1.5 × limit value) against the declared fuselage capability at the
+        tail, one finding per condition; without one it is reported, not evaluated.
     """
     references = ("25.331", "25.341", "25.303", "25.305", "25.349")
     requires = BALANCED_REQUIRES + ("speeds.VB",)
@@ -111,7 +114,6 @@ class UnsymmetricalTailLoads(SimulationRule):
     implementation = "partial"
     unevaluated = (
         ("25.427(b)(1)", "the §25.331(c) pitch-manoeuvre tail loads are not split (balanced manoeuvres and gusts only)"),
-        ("25.427(b)", "the fuselage torsion at the tail is reported, not compared (no fuselage capability)"),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -151,6 +153,24 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
     return out
 
 
+def fuselage_torsion_finding(cond, capabilities, t_lo: float, t_hi: float, ultimate_factor, **details) -> Finding:
+    """The fuselage torsion at the tail of one split condition against the declared capability (§25.305): the smaller
+    normalised margin of allowable limit − |T| and allowable ultimate − factor × |T|, in the torsion's sense."""
+    sense, load = ("positive", t_hi) if abs(t_hi) >= abs(t_lo) else ("negative", t_lo)
+    best = None
+    for cap in capabilities:
+        for which, factor in (("limit", 1.0), ("ultimate", float(ultimate_factor))):
+            value = getattr(cap, which)
+            allowable = float(getattr(value, sense) if hasattr(value, sense) else value)
+            design = factor * abs(load)
+            norm = (allowable - design) / allowable
+            if best is None or norm < best[0]:
+                best = (norm, which, design, allowable)
+    _, which, design, allowable = best
+    return Finding.compare(cond, f"(b) fuselage torsion at the tail: {which} ({sense})", design, allowable,
+                           at_least=False, unit="N·m", **details)
+
+
 def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
     from certkit.models.loads.model import airplane_loads
     from certkit.models.loads.response import LoadEnvelope
@@ -158,6 +178,8 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
     loads = airplane_loads(ctx)
     tail = loads[TAIL]
     caps = declared_capabilities(ctx, TAIL)
+    st = getattr(ctx.aircraft, "structure", None)
+    fuselage = [c for c in (st.fuselage if st is not None else ()) if c.station == "tail" and c.quantity == "torsion"]
     full, reduced = float(crit.full_side_fraction), float(crit.reduced_side_fraction)
     with warnings.catch_warnings():  # all-NaN rows (states that were not balanced) are refused below
         warnings.simplefilter("ignore", RuntimeWarning)
@@ -178,6 +200,8 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
             worst = (max(abs(t_lo), abs(t_hi)), cond.label())
         details = {"fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
                    "source": f"§{source}"}
+        if fuselage:
+            findings.append(fuselage_torsion_finding(cond, fuselage, t_lo, t_hi, crit.ultimate_factor, **details))
         findings.append(capability_finding(cond, checks[0], TAIL, p_full, tail.station_names, caps, crit.ultimate_factor,
                                            **details))
         findings.append(capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor,
@@ -186,7 +210,7 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
         peaks["100 % side"].append(p_full)
         peaks["80 % side"].append(p_red)
     findings.append(Finding.not_evaluated(Condition(), "(b) symmetric loadings of §25.331(c)", NOT_SHARED))
-    if worst[1] is not None:
+    if worst[1] is not None and not fuselage:
         findings.append(Finding.not_evaluated(Condition(), "(b) fuselage torsion at the tail", NO_FUSELAGE,
                                               largest_torsion_kNm=round(worst[0] / 1e3, 1), critical_condition=worst[1]))
     if not labels:

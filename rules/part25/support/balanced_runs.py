@@ -14,16 +14,18 @@ from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.flight import control_limits
-from certkit.models.loads.balanced import balanced_states, linear_lift, steady_load_parts
+from certkit.models.loads.balanced import balanced_states, linear_lift, steady_fuel_units, steady_load_parts
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope
+from certkit.models.loads.response import LoadEnvelope, with_fuel_states
 from certkit.models.loads.vn_envelope import envelope
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
-from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
+from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
+                                                           critical_state_finding, set_aside_finding)
 
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
@@ -70,12 +72,9 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     lf = ctx.aircraft.envelope.limit_load_factors
     point, h = cond.get("point"), cond.altitude
     if point in FLAP_POINTS:
-        vfe = ctx.aircraft.speeds.VFE.get(cond.configuration)
-        if vfe is None:
-            raise LookupError(f"speeds.VFE.{cond.configuration} is not declared (the design flap speed)")
-        v = float(convert_speed(vfe.value, vfe.kind, "EAS", h))
+        v, note = design_flap_speed(ctx, cond.configuration, h, crit)
         n = float(lf.flaps_extended if lf.flaps_extended is not None else crit.flaps_load_factor)
-        return v, (n if point == FLAP_POINTS[0] else 0.0), "declared VFE as the design flap speed VF"
+        return v, (n if point == FLAP_POINTS[0] else 0.0), note
     env = envelope(ctx, cond.mass, h, crit.cn_over_cl)
     table = {"A": (env.v_a, env.n_pos), "VC at n+": (env.v_c, env.n_pos), "D": (env.v_d, env.n_pos),
              "E": (env.v_d, 0.0), "F": (env.v_c, env.n_neg), "H": (env.v_h, env.n_neg)}
@@ -93,12 +92,45 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     return float(v), float(n), note
 
 
+def design_flap_speed(ctx, configuration: str, h: float, crit) -> tuple[float, str]:
+    """EAS (m/s) of the design flap speed VF of a flap configuration and a note: the larger of the declared placard
+    VFE and the §25.335(e)(3) minimum — ``vf_takeoff_factor`` × VS1 at MTOW for the configuration named ``takeoff``,
+    ``vf_landing_factor`` × VS1 at MLW for the others (approach and landing positions) — VS1 = √(2 W / (ρ₀ S CLmax))
+    with the configuration's declared CLmax. Raises LookupError without a declared VFE."""
+    from certkit.atmosphere import RHO0
+    from certkit.units import G0
+
+    ac = ctx.aircraft
+    vfe = ac.speeds.VFE.get(configuration)
+    if vfe is None:
+        raise LookupError(f"speeds.VFE.{configuration} is not declared (the design flap speed)")
+    placard = float(convert_speed(vfe.value, vfe.kind, "EAS", h))
+    takeoff = configuration == "takeoff"
+    mass = ac.mass.MTOW if takeoff else ac.mass.MLW
+    clmax = ac.configurations[configuration].CLmax
+    if mass is None or clmax is None:
+        return placard, "declared VFE as VF (no MLW or CLmax to form the §25.335(e)(3) minimum)"
+    factor = float(crit.vf_takeoff_factor if takeoff else crit.vf_landing_factor)
+    vs1 = float(np.sqrt(2 * mass * G0 / (RHO0 * ac.reference.area * clmax)))
+    minimum = factor * vs1
+    if minimum > placard:
+        return minimum, (f"VF = {factor:g} VS1 at {'MTOW' if takeoff else 'MLW'} = {minimum / KN:.1f} kn EAS "
+                         f"(§25.335(e)(3)), above the placard VFE {placard / KN:.1f} kn EAS")
+    return placard, (f"VF = the placard VFE {placard / KN:.1f} kn EAS, above the §25.335(e)(3) minimum "
+                     f"{factor:g} VS1 = {minimum / KN:.1f} kn EAS")
+
+
 #: the criteria that define the balanced states (shared by §25.427(b), which splits their tail loads)
 BALANCED_RUN_CRITERIA = {
     "cn_over_cl": CN_OVER_CL["cn_over_cl"],
     "flaps_load_factor": Criterion(2.0, "", "14 CFR 25.345(a)(1) (wording checked against CS 25.345(a) only, "
                                    "docs/regulation-notes.md §3)", "positive limit load factor flaps extended, "
                                    "used when envelope.limit_load_factors.flaps_extended is not declared"),
+    "vf_takeoff_factor": Criterion(1.6, "", "14 CFR 25.335(e)(3)(i) (text recalled, not re-verified)",
+                                   "VF ≥ this × VS1, flaps in the takeoff position, at the maximum takeoff weight"),
+    "vf_landing_factor": Criterion(1.8, "", "14 CFR 25.335(e)(3)(ii)-(iii) (text recalled, not re-verified)",
+                                   "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum "
+                                   "landing weight"),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
     **SAFETY,
 }
@@ -124,6 +156,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
     loads = airplane_loads(ctx)  # the lattice is shared by every configuration
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     lim = control_limits(ctx.aircraft)["elevator"]
+    stops = control_limits(ctx.aircraft, design=False)["elevator"]
     for cfg, conds in by_cfg.items():
         entries, key_of, target, notes = [], {}, {}, {}
         for c in conds:
@@ -151,11 +184,17 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         st = balanced_states(model, batch.x[rows], batch.u[rows], n, tol=float(crit.convergence))
         sl = steady_load_parts(loads, model, st.x, st.u, st.outputs, SURFACES)
         total = {s: a + i for s, (a, i) in sl.items()}
+        # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel)
+        state_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in kept])
+        units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if cfg == "clean" else None
+        wing_states = np.array(np.broadcast_to(with_fuel_states(total["wing"], units, fuel),
+                                               (fuel.shape[1],) + total["wing"].shape))
         if cfg != "clean":
-            total["wing"] = np.full_like(total["wing"], np.nan)
+            wing_states[:] = np.nan
         bad = ~st.converged
         for s in SURFACES:
             total[s][bad] = np.nan
+        wing_states[:, bad] = np.nan
         de = st.u[:, list(model.control_names).index("elevator")]
         tail_load = 2.0 * sl["horizontal_tail"][0][:, 0, 0]  # both halves' aerodynamic root shear
         wing_lift = 2.0 * sl["wing"][0][:, 0, 0]
@@ -171,18 +210,32 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
                                             f"limits {np.degrees(lim[0]):.1f}…{np.degrees(lim[1]):.1f}°")
             if notes[kept[i]]:
                 details["speed_note"] = notes[kept[i]]
+            past_stop = not stops[0] <= de[i] <= stops[1]
+            beyond_mach = beyond_mach_range(loads, float(st.outputs.mach[i]))
             for s in SURFACES:
                 check = _check(c, s)
-                if bad[i]:
+                if beyond_mach:
+                    findings.append(set_aside_finding(
+                        c, check, beyond_mach, np.stack([wing_states[:, i]] * 2, axis=1) if s == "wing"
+                        else np.stack([total[s][i]] * 2), loads[s].station_names, **details))
+                elif past_stop and not bad[i]:
+                    findings.append(beyond_stop_finding(c, check, float(de[i]), stops, "stabilizer" in model.control_names,
+                                                        **details))
+                elif bad[i]:
                     findings.append(Finding.not_evaluated(c, check, f"balanced state not found (residual "
                                                           f"{st.residual[i]:.2e})", **details))
                 elif s == "wing" and cfg != "clean":
                     findings.append(Finding.not_evaluated(c, check, NO_FLAP_STRIPS, **details))
+                elif s == "wing":
+                    peaks = np.stack([wing_states[:, i], wing_states[:, i]], axis=1)  # one state each: min = max
+                    findings.append(critical_state_finding(
+                        c, check, s, peaks, loads[s].station_names, caps[s], crit.ultimate_factor,
+                        lambda j, i=i: fuel_detail(state_names[i], fuel[i], loads["wing"].tank_names, j), **details))
                 else:
                     peaks = np.stack([total[s][i], total[s][i]])  # one state: min = max
                     findings.append(capability_finding(c, check, s, peaks, loads[s].station_names, caps[s],
                                                        crit.ultimate_factor, **details))
-        parts.append(total)
+        parts.append({"wing": wing_states, "horizontal_tail": total["horizontal_tail"]})
         tail_parts.append(tuple(np.where(bad[:, None, None], np.nan, x) for x in sl["horizontal_tail"]))
         names = list(model.control_names)
         states.append({"n_z": st.outputs.n_z, "qbar": st.outputs.qbar, "mach": st.outputs.mach, "alpha": st.alpha,
@@ -192,11 +245,29 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         done += refined
     if not parts:
         return BalancedRun(findings, reason="no condition could be balanced (see the findings)")
-    hist = {s: np.concatenate([p[s] for p in parts])[None] for s in SURFACES}
-    env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels, keys=done)
+    # the fuel states as the envelope's "time" axis (the tail's loads do not depend on the wing's fuel)
+    wing = np.concatenate([p["wing"] for p in parts], axis=1)
+    tail = np.concatenate([p["horizontal_tail"] for p in parts])
+    hist = {"wing": wing, "horizontal_tail": np.broadcast_to(tail, wing.shape[:1] + tail.shape)}
+    env = LoadEnvelope.from_histories(loads, hist, np.zeros(wing.shape[0]), labels, keys=done)
     state = {k: np.concatenate([p[k] for p in states]) for k in states[0]}
     tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
     return BalancedRun(findings, done, envelope=env, state=state, loads=loads, tail_parts=tail)
+
+
+def beyond_stop_finding(cond, check: str, elevator: float, stops, movable_stabilizer: bool, **details) -> Finding:
+    """The finding of a balanced state that needs the elevator beyond its control-system stop (``travel``): the
+    airplane cannot hold it with the elevator. With a movable stabiliser held at its 1 g trim a retrimmed balance may
+    exist and is not computed: not evaluated, with the deflection; without one the condition fails (margin in
+    degrees, the stop − the deflection needed). Its loads stay in the envelope (conservative for sizing)."""
+    stop = stops[1] if elevator > stops[1] else stops[0]
+    what = (f"the balance needs {np.degrees(elevator):+.1f}° elevator, beyond the control-system stop "
+            f"{np.degrees(stop):+.1f}°")
+    if movable_stabilizer:
+        return Finding.not_evaluated(cond, check, what + " with the stabiliser held at its 1 g trim; a balance with the "
+                                     "stabiliser retrimmed is not computed", **details)
+    return Finding.compare(cond, f"{check}: elevator within its stop", abs(np.degrees(elevator)), abs(np.degrees(stop)),
+                           at_least=False, unit="deg", reason=what, **details)
 
 
 def _check(cond, surface: str) -> str:

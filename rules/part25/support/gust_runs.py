@@ -15,11 +15,12 @@ from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitud
 from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope
+from certkit.models.loads.response import LoadEnvelope, fuel_state_peaks
 from certkit.engine.registry import Criterion
 from certkit.units import FT
 from certkit_rules.part25.support.gust import SOURCE as UREF_SOURCE
 from certkit_rules.part25.support.gust import reference_gust_velocity
+from certkit_rules.part25.support.fuel_states import fuel_state_table
 
 AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
 SPEEDS = ("VB", "VC", "VD")
@@ -105,6 +106,11 @@ class GustRuns:
     steps_per_gust: float = 20.0
     settle_time: float = 1.5
     tail: list = None  # per gradient (t, aero, inertia) of the right half tailplane (§25.427(b)), like ``wing``
+    #: the wing's loads in each fuel state of §25.343 (:mod:`certkit_rules.part25.support.fuel_states`): per state
+    #: the minimum and maximum over time and every gradient, (M, n, 2, 3, S); the states' names and (n, M, K) kg
+    wing_fuel_peaks: np.ndarray = None
+    fuel_names: list = None
+    fuel: np.ndarray = None
 
     @cached_property
     def symmetric(self) -> tuple[LoadEnvelope, dict]:
@@ -155,6 +161,8 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
     envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
+    fuel_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in sim_conds])
+    fuel_peaks = None
     for h_gust in H:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
         run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
@@ -164,6 +172,10 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)
         wing.append((run.sim.t, *run.parts["wing"]))
+        peaks = fuel_state_peaks(run.loads["wing"], run.fuel_units.get("wing"), fuel)
+        fuel_peaks = peaks if fuel_peaks is None else np.stack([np.fmin(fuel_peaks[:, :, 0], peaks[:, :, 0]),
+                                                                np.fmax(fuel_peaks[:, :, 1], peaks[:, :, 1])], axis=2)
         tail.append((run.sim.t, *run.parts["horizontal_tail"]))
     return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
-                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail)
+                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail,
+                    fuel_peaks, fuel_names, fuel)

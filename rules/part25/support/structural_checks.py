@@ -67,6 +67,64 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
     return finding
 
 
+def critical_state_finding(cond, check: str, surface: str, peaks_by_state: np.ndarray, stations, capabilities,
+                           ultimate_factor, state_details, **details) -> Finding:
+    """:func:`capability_finding` of the state (e.g. the fuel state) with the smallest normalised margin among
+    ``peaks_by_state`` (M, 2, 3, S); ``state_details(j)`` → the details naming state j. Without a capability, the
+    loads reported are the envelope over the states (and no state is named)."""
+    peaks_by_state = np.asarray(peaks_by_state, dtype=float)
+    if len(peaks_by_state) == 1:
+        return capability_finding(cond, check, surface, peaks_by_state[0], stations, capabilities, ultimate_factor,
+                                  **details, **state_details(0))
+    best, worst = None, np.inf
+    for j, peaks in enumerate(peaks_by_state):
+        w = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
+        if w is None:
+            continue
+        norm = w[0].margin / max(abs(w[0].allowable), 1e-9)
+        if np.isnan(norm):
+            best = j
+            break
+        if norm < worst:
+            best, worst = j, norm
+    if best is None:
+        envelope = np.stack([np.fmin.reduce(peaks_by_state[:, 0]), np.fmax.reduce(peaks_by_state[:, 1])])
+        return capability_finding(cond, check, surface, envelope, stations, capabilities, ultimate_factor, **details)
+    return capability_finding(cond, check, surface, peaks_by_state[best], stations, capabilities, ultimate_factor,
+                              **details, **state_details(best))
+
+
+def beyond_mach_range(loads, mach: float) -> str | None:
+    """The reason a condition at Mach ``mach`` is not evaluated when it lies beyond the Mach breakpoints of the strip
+    loads model ``loads`` (the airplane's aerodynamic tables share them): its loads and lift would be extrapolated
+    (held at the last breakpoint) — None within the range."""
+    top = float(np.max(loads["wing"].mach))
+    if mach <= top + 1e-3:
+        return None
+    return (f"M {mach:.3f} is beyond the aerodynamic and strip loads model's Mach range (up to M {top:.2f}): its lift "
+            f"and loads would be extrapolated, not computed")
+
+
+def set_aside_finding(cond, check: str, reason: str, peaks=None, stations=(), **details) -> Finding:
+    """A not-evaluated finding with ``reason`` that still reports the loads computed (``peaks`` (2, 3, S) or, per state,
+    (M, 2, 3, S): their envelope) as :func:`capability_finding` does."""
+    finding = Finding.not_evaluated(cond, check, reason, **details)
+    if peaks is not None:
+        peaks = np.asarray(peaks, dtype=float)
+        if peaks.ndim == 4:
+            peaks = np.stack([np.fmin.reduce(peaks[:, 0]), np.fmax.reduce(peaks[:, 1])])
+        finding.written_details = partial(station_summary, peaks, tuple(stations))
+    return finding
+
+
+def condition_mach(cond) -> float:
+    """Flight Mach number of a condition (its speed and altitude, standard atmosphere)."""
+    from certkit.atmosphere import speed_of_sound
+    from certkit.engine.conditions import speed_as
+
+    return float(speed_as(cond, "TAS") / float(speed_of_sound(cond.altitude or 0.0)))
+
+
 def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
     """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
     the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
