@@ -20,12 +20,12 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 
 
 def run_check(tree: str, rules_path: str, cache: str, jobs: int) -> tuple[float, float]:
-    """(wall s, CPU s of the process and its children) of one check of the baseline with ``tree``'s certkit."""
+    """(wall s, CPU s of the process and its children) of one check of ``tree``'s baseline with its certkit."""
     env = {**os.environ, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": tree + os.pathsep + rules_path}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:
-        subprocess.run([sys.executable, "-m", "certkit.cli", "check", os.path.join(ROOT, "aircraft", "lta.yaml"),
+        subprocess.run([sys.executable, "-m", "certkit.cli", "check", os.path.join(tree, "aircraft", "lta.yaml"),
                         "--out", out, "--jobs", str(jobs), "--quiet"], env=env, cwd=tree,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     wall = time.perf_counter() - t0
