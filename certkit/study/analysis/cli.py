@@ -9,6 +9,8 @@ from pathlib import Path
 import click
 
 from certkit.errors import UserError
+from certkit.study.spec import load_study
+from certkit.study.store import Store
 
 EXIT_USAGE = 2
 
@@ -24,30 +26,24 @@ def _samples(ctx, param, value) -> int:
 
 
 def open_study(study_path: Path, store_path: Path | None):
-    """(study definition, store, store frame, analysis options from the study file) for ``study_path``.
+    """(study definition, store, store frame) for ``study_path``.
 
     The definition is the study file as it is now (objectives, constraints and analysis options may change after a
     run without changing a case); its variables must be those the store was run with."""
 
-    try:
-        from certkit.study.store import Store
-    except ImportError as exc:
-        raise UserError(f"{study_path}: the study store is not available in this installation ({exc})") from None
+    study = load_study(study_path)  # the file as it is now: objectives, constraints and options may be edited after a run
     if store_path is None:
         default = getattr(Store, "default_path", None)
         store_path = Path(default(study_path)) if default else study_path.with_suffix(".sqlite")
     if not store_path.exists():
         raise UserError(f"{study_path}: no study store at {store_path}; run `certkit study run {study_path}` first "
                         f"or give --store")
-    from certkit.study.spec import load_study
-
     store = Store.open(store_path)
-    study = load_study(study_path)  # the file as it is now: objectives, constraints and options may be edited after a run
     stored = {v.path for v in store.study().variables}
     if {v.path for v in study.variables} != stored:
         raise UserError(f"{study_path}: its variables differ from those the store {store_path} was run with "
                         f"({', '.join(sorted(stored))}); run the study again or give --store")
-    return study, store, store.frame(), study.analysis
+    return study, store, store.frame()
 
 
 @click.command("report")
@@ -64,11 +60,11 @@ def report_command(study_file: Path, out_dir: Path | None, store_path: Path | No
     from certkit.study.analysis.report import write_study_report
 
     try:
-        study, store, frame, analysis = open_study(study_file, store_path)
+        study, store, frame = open_study(study_file, store_path)
         sha = hashlib.sha256(study_file.read_bytes()).hexdigest()
         out = out_dir or study_file.with_name(study_file.stem + "-report")
         path = write_study_report(study, frame, out, store=store, samples=samples, check=not no_check, sha256=sha,
-                                  analysis=analysis, log=lambda msg: click.echo(msg, err=True))
+                                  log=lambda msg: click.echo(msg, err=True))
     except UserError as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(EXIT_USAGE)

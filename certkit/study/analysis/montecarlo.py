@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.study.analysis.inputs import Constraint, StudyView
+from certkit.study.spec import Constraint, Study
 from certkit.study.analysis.pareto import FrontAccumulator, objective_subsets
 from certkit.study.analysis.surrogates import Surrogate
 
@@ -145,18 +145,18 @@ def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.
     return np.where(values >= mid, values + shift, values - shift)
 
 
-def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
+def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
                     seed: int = 20240615, cloud: int = 20_000) -> MonteCarloResult:
     """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective."""
     t0 = time.perf_counter()
-    bounds = view.bounds
+    bounds = study.bounds
     lo, width = bounds[:, 0], bounds[:, 1] - bounds[:, 0]
     rng = np.random.default_rng(seed)
     unc_rng = np.random.default_rng([seed, 1])
-    opts = view.options
-    constraints = list(view.constraints)
-    objectives = [o.response for o in view.objectives]
-    maximise = tuple(o.sense == "max" for o in view.objectives)
+    opts = study.analysis
+    constraints = list(study.constraints)
+    objectives = [o.response for o in study.objectives]
+    maximise = tuple(o.sense == "max" for o in study.objectives)
     sign = np.array([-1.0 if m else 1.0 for m in maximise])
     relaxed = [opts.relaxed_max(c) for c in constraints]
     levels = [i for i, c in enumerate(constraints) if c.is_level]

@@ -7,7 +7,6 @@ fills the template; :func:`write_study_report` does both and writes ``index.html
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import os
 import time
@@ -21,12 +20,13 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 from certkit import __version__
 from certkit.study.analysis import figures
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
-from certkit.study.analysis.inputs import StudyView, cases, study_view
+from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_response
+from certkit.study.spec import Study
 
 #: failed cases listed one by one in the report (the count is always given)
 FAILED_SHOWN = 200
@@ -36,7 +36,8 @@ FRONT_SHOWN = 50
 
 @dataclass
 class Analysis:
-    view: StudyView
+    view: Study
+    sha256: str
     counts: pd.DataFrame
     failed: pd.DataFrame
     n_cases: dict[str, int]
@@ -73,7 +74,7 @@ def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
         return name, None, str(exc)
 
 
-def _fit_all(view: StudyView, cs, log) -> tuple[dict[str, Surrogate], dict[str, str]]:
+def _fit_all(view: Study, cs, log) -> tuple[dict[str, Surrogate], dict[str, str]]:
     """One surrogate per analysed response, the responses fitted in parallel over the cores (each fit is seeded:
     the same models whatever the number of processes)."""
     from joblib import Parallel, delayed
@@ -82,7 +83,7 @@ def _fit_all(view: StudyView, cs, log) -> tuple[dict[str, Surrogate], dict[str, 
     data = {n: (cs.xy("training", n), cs.xy("validation", n)) for n in names}
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     done = Parallel(n_jobs=min(cores, len(names)) or 1)(
-        delayed(_fit_one)(n, view.bounds, data[n], view.options) for n in names)
+        delayed(_fit_one)(n, view.bounds, data[n], view.analysis) for n in names)
     surrogates, not_fitted = {}, {}
     for name, surrogate, error in done:
         if surrogate is None:
@@ -93,30 +94,26 @@ def _fit_all(view: StudyView, cs, log) -> tuple[dict[str, Surrogate], dict[str, 
     return surrogates, not_fitted
 
 
-def _run_checks(study, store, view, surrogates, mc, optima) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
-    try:
-        from certkit.study import runner  # noqa: F401
-    except ImportError as exc:
-        return None, [], f"not run: the study runner is not available ({exc})"
+def _run_checks(usable: Study, store, surrogates, mc, optima) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
-    check = direct_check(study, store, view, surrogates, mc)
-    checked = reevaluate_optima(study, store, view, surrogates, optima)
+    check = direct_check(usable, store, surrogates, mc)
+    checked = reevaluate_optima(usable, store, surrogates, optima)
     return check, checked, ""
 
 
-def analyse(study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
-            sha256: str | None = None, analysis=None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
+def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
+            sha256: str | None = None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
     """Run every analysis of the study report on the store's ``frame``."""
     timings = {}
     t = time.perf_counter()
-    view = study_view(study, sha256, analysis)
+    view = study
     cs = cases(frame, view)
     surrogates, not_fitted = _fit_all(view, cs, log)
     timings["surrogates_s"] = time.perf_counter() - t
-    usable = dataclasses.replace(
-        view, objectives=tuple(o for o in view.objectives if o.response in surrogates),
-        constraints=tuple(c for c in view.constraints if c.response in surrogates))
+    usable = view.model_copy(update={
+        "objectives": [o for o in view.objectives if o.response in surrogates],
+        "constraints": [c for c in view.constraints if c.response in surrogates]})
     mc_note = "; ".join(f"{r} left out: {not_fitted[r]}" for r in not_fitted)
     t = time.perf_counter()
     mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk)
@@ -129,7 +126,7 @@ def analyse(study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000,
     checked, direct, check_note = [], None, "not run (--no-check)"
     if check:
         t = time.perf_counter()
-        direct, checked, check_note = _run_checks(study, store, usable, surrogates, mc, optima)
+        direct, checked, check_note = _run_checks(usable, store, surrogates, mc, optima)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
         checked = [CheckedOptimum(o, "not evaluated", check_note, {}, {
@@ -137,7 +134,7 @@ def analyse(study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000,
             if r in surrogates}) for o in optima]
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
-    return Analysis(view, counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
+    return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
                     check_note, checked, profiler_data(usable, surrogates), timings)
 
 
@@ -196,7 +193,7 @@ def render(a: Analysis) -> str:
         "matrix": figures.scatter_matrix_svg(mc, mc.objectives) if len(mc.objectives) >= 2 else "",
         "planforms": _planform_figures(a),
         "failed_rows": a.failed.head(FAILED_SHOWN), "failed_shown": FAILED_SHOWN,
-        "definition": json.dumps(a.view.definition, indent=2, default=str),
+        "definition": json.dumps(a.view.model_dump(mode="json"), indent=2, default=str),
         "profiler_json": profiler_json(a.profiler),
         "profiler_js": env.loader.get_source(env, "profiler.js")[0],
         "flagged": [r for r, s in a.surrogates.items() if s.flagged],
