@@ -18,9 +18,9 @@ import time
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from certkit.aircraft import load_aircraft  # noqa: E402
-from certkit.context import Context  # noqa: E402
-from certkit.registry import discover  # noqa: E402
-from certkit.scheduler import evaluate_rule  # noqa: E402
+from certkit.engine.context import Context  # noqa: E402
+from certkit.engine.registry import discover  # noqa: E402
+from certkit.engine.scheduler import evaluate_rule  # noqa: E402
 
 BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 

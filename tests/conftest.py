@@ -6,8 +6,8 @@ import pytest
 from click.testing import CliRunner
 
 from certkit.aircraft import load_aircraft
-from certkit.cli import main
-from certkit.context import Context
+from certkit.cli.main import main
+from certkit.engine.context import Context
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = ROOT / "aircraft" / "lta.yaml"

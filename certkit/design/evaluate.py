@@ -55,7 +55,7 @@ def _base_aircraft(source):
 
 def _rules():
     if not _RULES:
-        from certkit.registry import DiscoveryOptions, discover
+        from certkit.engine.registry import DiscoveryOptions, discover
 
         _RULES.extend(discover(DiscoveryOptions()))
     return list(_RULES)
@@ -112,7 +112,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     from certkit.design.record import handling_levels, rule_responses
     from certkit.design.parallel import evaluate_rules
     from certkit.design.sizing_loop import size_horizontal_tail_loop
-    from certkit.scheduler import check_overrides
+    from certkit.engine.scheduler import check_overrides
 
     t0, c0 = time.perf_counter(), time.process_time()
     timings: dict[str, float] = {}

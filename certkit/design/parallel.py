@@ -14,7 +14,7 @@ import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
 
-from certkit.worker_processes import die_with_parent, stop_pool
+from certkit.engine.worker_processes import die_with_parent, stop_pool
 
 #: the run data a design keeps of a loads rule (:func:`certkit.design.tail_group.design_hinge_moment`)
 KEPT_RUN = ("sim", "valid", "conditions")
@@ -29,7 +29,7 @@ def _slim(result):
 
 
 def _work(ids: tuple[str, ...]) -> list:
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.scheduler import evaluate_rule
 
     ctx, rules, kw, select = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"], _SHARED["select"]
     return [_slim(evaluate_rule(rules[i], ctx, only=select.get(i), **kw)) for i in ids]
@@ -47,10 +47,10 @@ def shares(rules, jobs: int) -> list[tuple]:
 
 
 def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
-    """:func:`certkit.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
+    """:func:`certkit.engine.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
     processes when more than one is asked for and the platform forks; in rule order. ``select`` (rule id →
     conditions) restricts those rules to the same points (``only``); a rule it maps to no condition is skipped."""
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.scheduler import evaluate_rule
 
     select = dict(select or {})
     rules = [r for r in rules if select.get(r.id) is None or len(select[r.id]) > 0]

@@ -177,8 +177,8 @@ def start_conditions(ctx, results) -> dict:
 def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActuators:
     """The unmodified file's elevator actuators, sized from its own pitch manoeuvres, and its near-critical loads
     conditions (once per process and file)."""
-    from certkit.context import Context
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.context import Context
+    from certkit.engine.scheduler import evaluate_rule
 
     if source.sha256 not in _BASELINE:
         if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
@@ -202,7 +202,7 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
     """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
     declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine;
     ``jobs`` processes share the loads rules of an iteration (:mod:`certkit.design.parallel`)."""
-    from certkit.context import Context
+    from certkit.engine.context import Context
     from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
     from certkit.design.parallel import evaluate_rules
     from certkit.models.loads.model import airplane_loads

@@ -57,7 +57,7 @@ class TailLoadEnvelope:
 
 
 def tail_load_envelope(results) -> TailLoadEnvelope:
-    """Reduce the kept envelopes of evaluated loads rules (:class:`certkit.results.RuleResult` with
+    """Reduce the kept envelopes of evaluated loads rules (:class:`certkit.engine.results.RuleResult` with
     ``load_envelopes``) to the tail's limit-load magnitudes. Raises ``ValueError`` when no rule computed tail loads
     (the structure cannot be sized: the caller reports why)."""
     stations, best, crit, rules = None, None, {}, set()

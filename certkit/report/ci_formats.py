@@ -19,7 +19,7 @@ from xml.sax.saxutils import escape, quoteattr
 from certkit import __version__
 from certkit.report.links import ecfr_url
 from certkit.report.reasons import margin_text, reason_line
-from certkit.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, RunResult
+from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, RunResult
 
 FORMATS = ("junit", "sarif", "github")
 #: first section of each subpart of Part 25 (A 25.1, B 25.21, C 25.301, D 25.601, E 25.901, F 25.1301, G 25.1501)

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
-from certkit.results_json import SCHEMA_VERSION
+from certkit.engine.results_json import SCHEMA_VERSION
 
 #: how bad a status is: a change to a larger rank is a regression
 RANK = {"complies": 0, "complies_partial": 1, "not_evaluated": 2, "fails": 3, None: -1}
@@ -83,7 +83,7 @@ _SI_FIELDS = {"loading": "loading", "mass_kg": "mass", "x_cg_m": "x_cg", "config
 
 def _label(condition: dict) -> str:
     """The condition as the report labels it (aviation units), from its results.json form."""
-    from certkit.results import Condition
+    from certkit.engine.results import Condition
 
     known = {_SI_FIELDS[k]: v for k, v in condition.items() if k in _SI_FIELDS}
     extra = tuple((k, v) for k, v in condition.items() if k not in _SI_FIELDS)

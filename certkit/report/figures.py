@@ -1,4 +1,4 @@
-"""Draw evidence data (:mod:`certkit.evidence`) as inline SVG (:mod:`certkit.report.svg`), every figure with the same
+"""Draw evidence data (:mod:`certkit.engine.evidence`) as inline SVG (:mod:`certkit.report.svg`), every figure with the same
 conventions:
 
 - colours from the Okabe–Ito palette (distinguishable with the common colour-vision deficiencies); failing bars and
@@ -21,7 +21,7 @@ import textwrap
 
 import numpy as np
 
-from certkit.evidence import Axis, Bars, Chart, Heatmap, Limit, Panel, Series
+from certkit.engine.evidence import Axis, Bars, Chart, Heatmap, Limit, Panel, Series
 from certkit.report.display import axis_label, format_value, unit_and_factor
 from certkit.report.svg import Canvas, Frame, data_range, log_ticks, nice_ticks, text_width, tick_label
 
@@ -44,8 +44,8 @@ def figure_prefix(rule_id: str) -> str:
 
 
 def render_result(result) -> None:
-    """Draw the figures of a :class:`~certkit.results.RuleResult`'s evidence (in the process that evaluated it: see
-    :func:`certkit.scheduler.run`); a figure that cannot be drawn is dropped with a note, never fails the run."""
+    """Draw the figures of a :class:`~certkit.engine.results.RuleResult`'s evidence (in the process that evaluated it: see
+    :func:`certkit.engine.scheduler.run`); a figure that cannot be drawn is dropped with a note, never fails the run."""
     try:
         render_evidence(result.evidence, figure_prefix(result.id))
     except Exception as exc:  # a drawing error must not lose the rule's findings

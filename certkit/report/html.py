@@ -15,7 +15,7 @@ from pathlib import Path
 from jinja2 import Environment, PackageLoader, select_autoescape
 from markupsafe import Markup, escape
 
-from certkit.registry import Rule
+from certkit.engine.registry import Rule
 from certkit.report.ci_formats import subpart
 from certkit.report.display import format_value as format_number, unit_and_factor
 from certkit.report.figures import render_result
@@ -23,7 +23,7 @@ from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
 from certkit.report.reasons import reason_line
 from certkit.report.tables import formatted
-from certkit.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
+from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 
 #: order of the summary: what needs a reviewer first
 STATUS_ORDER = {FAILS: 0, NOT_EVALUATED: 1, COMPLIES_PARTIAL: 2, COMPLIES: 3}

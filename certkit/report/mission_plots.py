@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from certkit.evidence import Axis, Chart, Limit, Panel, Point, Series
+from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
 
 
 def payload_range_outline(points) -> tuple[list[float], list[float]]:

@@ -4,7 +4,7 @@ sub-paragraphs a partial rule leaves out, or the critical check of a rule that c
 from __future__ import annotations
 
 from certkit.report.display import format_value, unit_and_factor
-from certkit.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, SCOPE_KEY
+from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, SCOPE_KEY
 
 
 def margin_text(value, unit: str) -> str:

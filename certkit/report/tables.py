@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from certkit.evidence import Table
+from certkit.engine.evidence import Table
 from certkit.report.display import DASH, axis_label, decimals, format_number, unit_and_factor
 
 

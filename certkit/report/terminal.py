@@ -2,7 +2,7 @@
 
 Progress: on a terminal a rich progress bar (rules done, the rule running, elapsed time and ETA); piped, one plain
 line per finished rule (``[ 3/34] §25.337  complies  0.4 s  ETA 12 s``); nothing with ``--quiet``. The ETA scales
-the elapsed time by the declared relative cost (:attr:`certkit.registry.Rule.cost`) of the rules still to run.
+the elapsed time by the declared relative cost (:attr:`certkit.engine.registry.Rule.cost`) of the rules still to run.
 Margins are shown in aviation units (:mod:`certkit.report.display`); results.json keeps SI.
 """
 
@@ -14,7 +14,7 @@ import sys
 import time
 
 from certkit.report.reasons import margin_text, not_evaluated_reason
-from certkit.results import STATUS_LABEL
+from certkit.engine.results import STATUS_LABEL
 
 _COLOURS = {"complies": "green", "complies_partial": "cyan", "fails": "red", "not_evaluated": "yellow"}
 

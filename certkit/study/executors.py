@@ -46,7 +46,7 @@ class SerialExecutor:
 class LocalExecutor:
     """A pool of ``workers`` spawned processes (spawn: no state inherited by forking a threaded process).
 
-    The workers ignore Ctrl-C and die with the coordinator (see :func:`~certkit.worker_processes.die_with_parent`).
+    The workers ignore Ctrl-C and die with the coordinator (see :func:`~certkit.engine.worker_processes.die_with_parent`).
     A worker that dies in a case (a crash, the kernel's OOM killer) breaks the pool: the pool is restarted and
     the cases that were in flight are run again one at a time, so that the case that kills its worker is
     recorded as failed — once, not retried forever — and the others are not blamed.
@@ -61,7 +61,7 @@ class LocalExecutor:
         from concurrent.futures import ProcessPoolExecutor
         from concurrent.futures.process import BrokenProcessPool
 
-        from certkit.worker_processes import die_with_parent, one_blas_thread
+        from certkit.engine.worker_processes import die_with_parent, one_blas_thread
 
         one_blas_thread()  # inherited by the spawned workers
         self._pool = ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("spawn"),

@@ -23,7 +23,7 @@ from certkit.models.aero.derivative_kernel import N_BASE
 
 @pytest.fixture(scope="module")
 def rudder(baseline):
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     model = ctx.aero("takeoff").model

@@ -93,7 +93,7 @@ NOT_LOADED = ("numba", "scipy", "numpy.ma", "certkit.study.cli")
 
 
 def test_derivatives_process_imports_nothing_it_does_not_need():
-    code = ("import sys\nfrom certkit.cli import main\nsys.argv = ['certkit', 'derivatives', sys.argv[1]]\n"
+    code = ("import sys\nfrom certkit.cli.main import main\nsys.argv = ['certkit', 'derivatives', sys.argv[1]]\n"
             "try:\n    main()\nexcept SystemExit:\n    pass\n"
             f"print('LOADED', [m for m in {NOT_LOADED!r} if m in sys.modules])")
     out = subprocess.run([sys.executable, "-c", code, str(AVL)], capture_output=True, text=True, cwd=ROOT).stdout

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.aero.interface import AeroState
 
 from ..conftest import BASELINE, SHARED_REFERENCE
@@ -118,9 +118,9 @@ def test_derivatives_command_bad_input_exit_2(tmp_path):
 def test_report_lists_every_override(tmp_path):
     """Issue 3: the report lists every coefficient the aircraft file overrides (models.aerodynamics)."""
     from certkit.report.html import render_html
-    from certkit.registry import discover
-    from certkit.scheduler import _merge_provenance
-    from certkit.results import RunResult
+    from certkit.engine.registry import discover
+    from certkit.engine.scheduler import _merge_provenance
+    from certkit.engine.results import RunResult
 
     f = tmp_path / "o.yaml"
     f.write_text(BASELINE.read_text() + textwrap.dedent("""

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
-from certkit.cli import main
+from certkit.cli.main import main
 from tests.conftest import BASELINE, SHARED_REFERENCE
 
 AVL = next((p for p in (SHARED_REFERENCE / "avl-b737" / "b737.avl", Path("/work/shared/reference/avl-b737/b737.avl"))

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.aero.high_lift import lift_and_moment_increment
 
 from ..conftest import BASELINE

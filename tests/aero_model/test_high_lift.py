@@ -44,7 +44,7 @@ def test_clean_clmax_estimate(baseline):
 
 def test_undeclared_clmax_is_estimated_and_noted(tmp_path):
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     from ..conftest import BASELINE
 

@@ -2,7 +2,7 @@
 
 from certkit.design.evaluate import evaluate_design
 from certkit.design.parallel import shares
-from certkit.registry import DiscoveryOptions, discover
+from certkit.engine.registry import DiscoveryOptions, discover
 from certkit.study.worker import canonical_json
 
 

@@ -6,7 +6,7 @@ import pytest
 
 from certkit.design.evaluate import mission_needed, rule_needed
 from certkit.design.record import check_name, handling_levels, rule_responses
-from certkit.results import Condition, Finding, RuleResult
+from certkit.engine.results import Condition, Finding, RuleResult
 
 TRAVEL = {"elevator": (math.radians(-30.0), math.radians(25.0)), "rudder": (math.radians(-27.3), math.radians(27.3))}
 

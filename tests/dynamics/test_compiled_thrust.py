@@ -14,7 +14,7 @@ from certkit.models.flight import ROLES, control_limits, flight_model
 
 @pytest.fixture(scope="module")
 def model(baseline):
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     n = 8

@@ -20,7 +20,7 @@ import pytest
 from click.testing import CliRunner
 
 from certkit import atmosphere as isa
-from certkit.cli import main
+from certkit.cli.main import main
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "b747_etkin_cruise.yaml"
 G_ETKIN = 9.81
@@ -142,9 +142,9 @@ def test_inertia_axes_against_a_direct_integral():
 def test_rules_not_evaluated_naming_the_missing_sections():
     """A rule on a file without CG envelope, envelope, engines or MLW/MZFW/OEW is not evaluated, naming them."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
-    from certkit.registry import discover
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.context import Context
+    from certkit.engine.registry import discover
+    from certkit.engine.scheduler import evaluate_rule
 
     ctx = Context(load_aircraft(EXAMPLE))
     rule = discover()[0]

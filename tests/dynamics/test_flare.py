@@ -10,8 +10,8 @@ h_aim = 1 m, τ = 16/3.66 = 4.37 s and the commanded touchdown sink h_aim/τ = 0
 import numpy as np
 import pytest
 
-from certkit.conditions import ConditionSpace, DesignWeight
-from certkit.context import Context
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.context import Context
 from certkit.models.dynamics.controllers import TECSApproach, WingsLevel
 from certkit.models.dynamics.simulate import simulate, stop_when
 from certkit.models.flight import control_limits, flight_model, ground_model

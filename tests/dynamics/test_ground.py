@@ -9,7 +9,7 @@ Hand references (SI, from the aircraft file's numbers, independent of certkit's 
 import numpy as np
 import pytest
 
-from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.models.dynamics.controllers import PitchAttitudeHold
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
@@ -23,7 +23,7 @@ X_NOSE, X_MAIN = 22.1 * FT, 107.0 * FT
 
 @pytest.fixture(scope="module")
 def setup(baseline):
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     ac = ctx.aircraft

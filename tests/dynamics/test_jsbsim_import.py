@@ -23,9 +23,9 @@ from click.testing import CliRunner
 jsbsim = pytest.importorskip("jsbsim")
 
 from certkit.aircraft import load_aircraft  # noqa: E402
-from certkit.cli import main  # noqa: E402
-from certkit.context import Context  # noqa: E402
-from certkit.flight_report import condition_from_options, trim_condition  # noqa: E402
+from certkit.cli.main import main  # noqa: E402
+from certkit.engine.context import Context  # noqa: E402
+from certkit.cli.flight_report import condition_from_options, trim_condition  # noqa: E402
 from certkit.models.dynamics.linearize import linearize  # noqa: E402
 from certkit.models.dynamics.modes import identify_modes  # noqa: E402
 from certkit.models.dynamics.simulate import simulate  # noqa: E402

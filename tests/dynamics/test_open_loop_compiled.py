@@ -23,7 +23,7 @@ def _assert_same_run(compiled, loop):
 
 @pytest.fixture(scope="module")
 def batch(baseline):
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     n = 6

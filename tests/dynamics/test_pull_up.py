@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from certkit.conditions import Condition
-from certkit.context import Context
+from certkit.engine.conditions import Condition
+from certkit.engine.context import Context
 from certkit.models.dynamics.pull_up import symmetric_pull_up
 from certkit.units import FT, KN, LB
 

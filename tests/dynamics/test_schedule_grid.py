@@ -47,7 +47,7 @@ def test_grid_values_equal_step_by_step(name, per_condition):
 
 def test_a_compiled_run_is_the_same_with_the_grid_or_step_by_step(baseline):
     """The gust schedules evaluated on the grid give the run the step-by-step evaluation gives, bit for bit."""
-    from certkit.context import Context
+    from certkit.engine.context import Context
     from certkit.models.dynamics.trim import trim
     from certkit.models.flight import ROLES, control_limits, flight_model
 

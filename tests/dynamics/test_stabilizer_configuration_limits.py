@@ -13,8 +13,8 @@ from dataclasses import replace
 import pytest
 
 from certkit.aircraft import validate_aircraft_data
-from certkit.conditions import Condition
-from certkit.context import Context
+from certkit.engine.conditions import Condition
+from certkit.engine.context import Context
 from certkit.errors import InputError
 from certkit.units import FT, KN, LB
 

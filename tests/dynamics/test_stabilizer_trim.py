@@ -7,8 +7,8 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from certkit.conditions import Condition
-from certkit.context import Context
+from certkit.engine.conditions import Condition
+from certkit.engine.context import Context
 from certkit.units import FT, KN, LB
 
 

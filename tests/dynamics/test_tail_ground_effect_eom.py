@@ -5,8 +5,8 @@ flown with more nose-up elevator. Elevator sign: certkit.conventions (trailing e
 import numpy as np
 import pytest
 
-from certkit.conditions import ConditionSpace, DesignWeight
-from certkit.context import Context
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.context import Context
 from certkit.models.dynamics.controllers import TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import euler_to_quat
 from certkit.models.dynamics.ground import ground_equilibrium

@@ -1,12 +1,12 @@
-"""The generic performance evidence (certkit/evidence/performance.py) on hand-made findings: the table carries
+"""The generic performance evidence (certkit/engine/evidence/performance.py) on hand-made findings: the table carries
 every evaluated finding (gradients in percent), the bar chart the worst ones, and nothing is drawn without margins."""
 
 import pytest
 
-from certkit.evidence import Bars
-from certkit.evidence.performance import climb_gradient_evidence, margins_evidence
+from certkit.engine.evidence import Bars
+from certkit.engine.evidence.performance import climb_gradient_evidence, margins_evidence
 from certkit.report.figures import render_evidence
-from certkit.results import Condition, Finding
+from certkit.engine.results import Condition, Finding
 
 
 def _findings():

@@ -8,16 +8,16 @@ import pytest
 
 from certkit.aircraft import load_aircraft
 from certkit.errors import UserError
-from certkit.registry import PluginError, discover, folder_rules, select
-from certkit.results_json import stable_lines
-from certkit.scheduler import run, work_units
+from certkit.engine.registry import PluginError, discover, folder_rules, select
+from certkit.engine.results_json import stable_lines
+from certkit.engine.scheduler import run, work_units
 
 from ..conftest import BASELINE
 
 USER_RULE = textwrap.dedent('''
-    from certkit.conditions import CgCorners, ConditionSpace
-    from certkit.registry import Criterion, Rule, rule
-    from certkit.results import Finding
+    from certkit.engine.conditions import CgCorners, ConditionSpace
+    from certkit.engine.registry import Criterion, Rule, rule
+    from certkit.engine.results import Finding
 
     @rule
     class CornerMassCheck(Rule):
@@ -219,7 +219,7 @@ def test_rules_explain_and_new_rule(cli, tmp_path):
 
 
 def test_refined_conditions_cover_their_origin():
-    from certkit.results import Condition
+    from certkit.engine.results import Condition
 
     base = Condition(loading="fwd_mlw", mass=2e5, x_cg=28.0, configuration="landing")
     assert base.with_(speed=70.0, speed_kind="EAS", thrust="idle").refines(base)

@@ -4,7 +4,7 @@ import re
 
 from click.testing import CliRunner
 
-from certkit.cli import main
+from certkit.cli.main import main
 
 from ..conftest import ROOT
 

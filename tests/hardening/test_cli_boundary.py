@@ -9,7 +9,7 @@ import pytest
 from click.testing import CliRunner
 
 import certkit.aircraft
-from certkit.cli import EXIT_INTERNAL, main
+from certkit.cli.main import EXIT_INTERNAL, main
 
 from ..conftest import BASELINE
 from .mutate import with_value, write_yaml

@@ -133,7 +133,7 @@ def test_written_baseline_variant_round_trips(tmp_path):
 @pytest.mark.parametrize("text", ["nan", "inf", "1e999", "9**9**9 lb", "nan lb"])
 def test_command_line_quantities_refuse_non_finite_and_arithmetic(text):
     from certkit.errors import UserError
-    from certkit.flight_report import _quantity, parse_speed
+    from certkit.cli.flight_report import _quantity, parse_speed
 
     with pytest.raises(UserError):
         _quantity(text, "mass", "--weight")

@@ -8,7 +8,7 @@ import pytest
 
 from certkit.errors import UserError
 from certkit.report.output import prepare_output, report_folder_name, write_set
-from certkit.results import Condition, Finding, RuleResult, RunResult
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult
 
 
 def _set(tag: str) -> dict:

@@ -7,9 +7,9 @@ at VC, sea level and 32,250 ft, agree within 0.1 % of each station's largest loa
 import numpy as np
 import pytest
 
-from certkit.conditions import CgCorners, ConditionSpace
-from certkit.context import Context
-from certkit.loads_conditions import trimmed_batch
+from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.context import Context
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.gust_response import gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope

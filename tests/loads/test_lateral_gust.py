@@ -17,8 +17,8 @@ result), so the test checks the airplane's dynamic response to the fin's gust fo
 import numpy as np
 import pytest
 
-from certkit.conditions import CgCorners, ConditionSpace
-from certkit.loads_conditions import trimmed_batch
+from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.lateral_gust import lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.units import FT, G0
@@ -28,7 +28,7 @@ U = 50.0 * FT  # m/s EAS
 
 @pytest.fixture(scope="module")
 def setup(baseline):
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     conds = ConditionSpace(loading=CgCorners(), configurations=("clean",)).expand(ctx.aircraft)

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from certkit.atmosphere import density
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.aero.airplane import lattice_configuration
 from certkit.models.aero.vlm import Configuration, VortexLattice
 from certkit.models.loads.model import airplane_loads

@@ -8,7 +8,7 @@ import textwrap
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.errors import InputError
 from certkit.models.loads.capability import declared_capabilities
 from certkit.units import FT, LB
@@ -92,8 +92,8 @@ def test_pitch_rule_compares_with_declared_tail_capability(tmp_path):
     text = with_structure(tmp_path).read_text().replace("altitude_points: 5", "altitude_points: 2")
     path = tmp_path / "two.yaml"
     path.write_text(text)
-    from certkit.registry import discover, select
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.registry import discover, select
+    from certkit.engine.scheduler import evaluate_rule
 
     (rule,) = [r for r in select(discover(), ("25.331(c)(1)",)) if r.id == "25.331(c)(1)"]
     result = evaluate_rule(rule, Context(load_aircraft(path)))
@@ -123,8 +123,8 @@ def test_not_evaluated_without_capability_for_the_surface(tmp_path):
     (the rule path without any ``structure`` section is tests/rules/test_r25_331.py)."""
     import numpy as np
 
-    from certkit.results import Condition
-    from certkit_rules.part25.subpart_c.structural_checks import NO_CAPABILITY, capability_finding
+    from certkit.engine.results import Condition
+    from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding
 
     structure = "structure:\n  vertical_tail:" + STRUCTURE.split("  vertical_tail:")[1]
     ctx = Context(load_aircraft(with_structure(tmp_path, structure)))

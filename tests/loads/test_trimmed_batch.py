@@ -1,4 +1,4 @@
-"""Set-up of the loads conditions (certkit.loads_conditions): a condition short of thrust in level flight flies
+"""Set-up of the loads conditions (certkit_rules.part25.support.loads_conditions): a condition short of thrust in level flight flies
 on the full-thrust path (the steady flight nearest to level), and a condition below the 1 g stall speed is not
 applicable with the lift coefficient computed by hand."""
 
@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from certkit.atmosphere import density
-from certkit.conditions import CgCorners, ConditionSpace
-from certkit.context import Context
-from certkit.loads_conditions import refusal_findings, trimmed_batch
+from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.context import Context
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.units import FT, G0, KN
 
 

@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.loads.model import _strip_indices, airplane_loads
 from certkit.models.loads.unsymmetrical import half_wing_moment, unsymmetrical_wing
 from certkit.units import G0

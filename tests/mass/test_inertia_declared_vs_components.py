@@ -14,7 +14,7 @@ import pytest
 from click.testing import CliRunner
 
 from certkit.aircraft import load_aircraft
-from certkit.cli import main
+from certkit.cli.main import main
 from certkit.models.mass.loading import inertia_comparison, reference_cg, solve_loading
 
 BASELINE = Path(__file__).resolve().parents[2] / "aircraft" / "lta.yaml"
@@ -54,7 +54,7 @@ def test_within_tolerance_no_warning(tmp_path):
 
 
 def test_report_carries_the_warning():
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     notes = Context(load_aircraft(BASELINE)).provenance()["component_notes"]
     assert any(n.startswith("warning: declared inertia") and "Iyy" in n for n in notes)

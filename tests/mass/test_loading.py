@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from certkit.conditions import CgCorners
+from certkit.engine.conditions import CgCorners
 from certkit.models.mass.loading import bays, solve_loading
 from certkit.units import FT, LB
 

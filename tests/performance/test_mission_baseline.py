@@ -10,7 +10,7 @@ import time
 import numpy as np
 import pytest
 
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.performance.integrators import breguet_range
 from certkit.models.performance.mission import NMI, fly_missions
 from certkit.units import FT, LB

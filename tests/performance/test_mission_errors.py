@@ -6,7 +6,7 @@ import json
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.errors import InputError, UserError
 from certkit.models.performance.mission import fly_missions
 

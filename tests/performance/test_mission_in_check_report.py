@@ -17,7 +17,7 @@ def test_check_report_has_the_mission_and_payload_range(tmp_path):
     data = json.loads((tmp_path / "results.json").read_text())
     m = data["models"]["mission"]
     expected = fly_missions(load_aircraft("aircraft/lta.yaml").model)
-    # results.json rounds to 9 significant digits (certkit.results_json): within half a unit of the 9th digit
+    # results.json rounds to 9 significant digits (certkit.engine.results_json): within half a unit of the 9th digit
     assert m["design_range_m"] == pytest.approx(expected.design_range_m, rel=5e-9)
     assert "svg" not in m  # the drawing is in the HTML only
     html = (tmp_path / "index.html").read_text()

@@ -8,10 +8,10 @@ import re
 import numpy as np
 import pytest
 
-from certkit.evidence import Axis, Bars, Chart, Column, Heatmap, Limit, Panel, Point, Series, Table
+from certkit.engine.evidence import Axis, Bars, Chart, Column, Heatmap, Limit, Panel, Point, Series, Table
 from certkit.report.figures import FAIL, decimate, render, render_evidence
 from certkit.report.tables import formatted
-from certkit.results import Evidence
+from certkit.engine.results import Evidence
 
 
 def _chart():
@@ -128,10 +128,10 @@ def test_dict_rows_get_human_columns():
 
 def test_a_rules_evidence_is_the_same_bytes_twice(baseline):
     """Two evaluations of §25.333 on fresh contexts draw byte-identical evidence (no random ids, no date)."""
-    from certkit.context import Context
-    from certkit.registry import discover
+    from certkit.engine.context import Context
+    from certkit.engine.registry import discover
     from certkit.report.figures import render_result
-    from certkit.scheduler import evaluate_rule
+    from certkit.engine.scheduler import evaluate_rule
 
     rule = next(r for r in discover() if r.id == "25.333")
     svgs = []

@@ -1,4 +1,4 @@
-"""The allowables a load envelope is drawn against (certkit/evidence/loads.py): per sense, the smaller of the declared
+"""The allowables a load envelope is drawn against (certkit/engine/evidence/loads.py): per sense, the smaller of the declared
 allowable limit load and the allowable ultimate load ÷ the §25.303 factor of safety — the load at which the first of
 the two margins of certkit/models/loads/capability.py reaches zero. Reference: the baseline's declared wing and tail
 capabilities (aircraft/lta.yaml `structure`, docs/baseline-sources.md §10) and 14 CFR 25.303 (factor 1.5)."""
@@ -6,8 +6,8 @@ capabilities (aircraft/lta.yaml `structure`, docs/baseline-sources.md §10) and 
 import numpy as np
 import pytest
 
-from certkit.evidence import Chart
-from certkit.evidence.loads import allowables, envelope_chart
+from certkit.engine.evidence import Chart
+from certkit.engine.evidence.loads import allowables, envelope_chart
 from certkit.models.loads.capability import Capability, worst_margin
 
 
@@ -50,7 +50,7 @@ def test_a_zero_critical_load_names_no_condition():
     """Which of many exactly-zero loads is 'critical' is round-off (it differed between --jobs 1 and 2): not named."""
     from types import SimpleNamespace
 
-    from certkit.evidence.loads import case_table
+    from certkit.engine.evidence.loads import case_table
     from certkit.models.loads.response import CriticalCase
 
     cases = [CriticalCase("vertical_tail", "root", "shear", "max", 0.0, "N", 1, 0.0),

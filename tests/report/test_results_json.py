@@ -9,8 +9,8 @@ import math
 import pytest
 from jsonschema import Draft202012Validator
 
-from certkit.results import Condition, Finding, RuleResult, RunResult
-from certkit.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, clean, encode, schema, stable_lines
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult
+from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, clean, encode, schema, stable_lines
 from tests.report.report_run import results
 
 

@@ -13,7 +13,7 @@ from tests.conftest import ROOT
 HEAVY = ("numba", "scipy", "pint", "matplotlib", "pandas", "numpy")
 PROBE = """
 import json, sys
-from certkit.cli import main
+from certkit.cli.main import main
 try:
     main(sys.argv[1:], standalone_mode=False)
 finally:
@@ -41,7 +41,7 @@ def test_rules_and_explain_load_no_heavy_library(tmp_path):
 
 
 def test_index_follows_the_package_files(tmp_path, monkeypatch):
-    from certkit import rule_index
+    from certkit.engine import rule_index
 
     pkg = tmp_path / "pkg"
     pkg.mkdir()
@@ -58,7 +58,7 @@ def test_index_follows_the_package_files(tmp_path, monkeypatch):
 
 
 def test_explain_matches_ids_with_and_without_section_sign():
-    from certkit.rule_index import find
+    from certkit.engine.rule_index import find
 
     meta = [{"id": "25.121(a)", "symbol": "a"}, {"id": "25.121(b)", "symbol": "b"}, {"id": "25.1211", "symbol": "c"}]
     assert [m["id"] for m in find(meta, "§25.121(b)")] == ["25.121(b)"]

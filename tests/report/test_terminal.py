@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import io
 
-from certkit.results import Condition, Finding, RuleResult
+from certkit.engine.results import Condition, Finding, RuleResult
 from certkit.report.terminal import Progress, rule_rows
 from tests.conftest import BASELINE
 from tests.engine.test_pipeline import write_rule

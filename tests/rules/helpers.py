@@ -1,9 +1,9 @@
 """Run one rule on the baseline or on an edited copy of it."""
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
-from certkit.registry import discover, select
-from certkit.scheduler import evaluate_rule
+from certkit.engine.context import Context
+from certkit.engine.registry import discover, select
+from certkit.engine.scheduler import evaluate_rule
 
 from ..conftest import BASELINE
 
@@ -50,7 +50,7 @@ def run_rule(rule_id, tmp_path=None, edits=(), keep_loads=False):
 
 def own(result):
     """The rule's own findings: without those standing for the sub-paragraphs it does not evaluate."""
-    from certkit.results import SCOPE_KEY
+    from certkit.engine.results import SCOPE_KEY
 
     return [f for f in result.findings if SCOPE_KEY not in f.all_details()]
 

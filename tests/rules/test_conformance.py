@@ -7,9 +7,9 @@ import re
 
 import pytest
 
-from certkit.context import Context
-from certkit.registry import RULE_ID, discover
-from certkit.scheduler import evaluate_rule
+from certkit.engine.context import Context
+from certkit.engine.registry import RULE_ID, discover
+from certkit.engine.scheduler import evaluate_rule
 
 RULES = discover()
 

@@ -15,13 +15,13 @@ import pytest
 
 from certkit.aircraft import load_aircraft
 from certkit.aircraft.model import ControlForces
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.errors import InputError
 from certkit.models.control_force import (control_force_model, downwash_gradient, local_angle,
                                           stick_free_neutral_point)
-from certkit.registry import discover, select
-from certkit.results import Condition
-from certkit.scheduler import criteria_for
+from certkit.engine.registry import discover, select
+from certkit.engine.results import Condition
+from certkit.engine.scheduler import criteria_for
 from certkit.units import LBF
 
 from .helpers import edited_baseline, own, run_rule
@@ -149,7 +149,7 @@ def test_stick_force_gradient_sign_and_zero_at_the_stick_free_neutral_point(forc
     positive (a pull below the trim speed) ahead of the stick-free neutral point, negative behind it, and
     crosses zero within 2.5 % MAC of x_np′ = x_ref − c̄ Cm_α′/CL_α′ (the textbook formula omits the thrust
     line and the Mach change over ±5 %)."""
-    from certkit.conditions import speed_as
+    from certkit.engine.conditions import speed_as
     from certkit_rules.part25.subpart_b.r25_171 import stick_force_curves
 
     ctx = forces_ctx

@@ -16,9 +16,9 @@ import re
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
-from certkit.registry import discover
-from certkit.scheduler import evaluate_rule
+from certkit.engine.context import Context
+from certkit.engine.registry import discover
+from certkit.engine.scheduler import evaluate_rule
 
 from .helpers import edited_baseline, own
 

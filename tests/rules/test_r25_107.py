@@ -46,8 +46,8 @@ def test_vmc_parts_from_computed_vmca_until_declared(tmp_path):
     the highest VMCA of §25.149's conditions), while the VSR part is evaluated; declaring VMC 120 kn CAS gives
     V2/VMC − 1.10 = 0.2417 and VR/VMC − 1.05 = 0.2417."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
-    from certkit_rules.part25.subpart_b.minimum_control import computed_vmca
+    from certkit.engine.context import Context
+    from certkit_rules.part25.support.minimum_control import computed_vmca
 
     from ..conftest import BASELINE
 

@@ -46,13 +46,13 @@ def test_reported_but_not_checked_without_a_field_length_and_no_verdict_when_unr
 
 
 def test_representativeness_bounds():
-    """The bounds of a representative run (rules/part25/takeoff.py): VLOF ≤ VR + 15 kn (about a declared VLOF when
+    """The bounds of a representative run (rules/part25/support/takeoff.py): VLOF ≤ VR + 15 kn (about a declared VLOF when
     there is one), V35 ≤ V2 + 10 kn with an engine out (§25.111(c)(2) 'as close as practical to V2'), ≤ 30 ft off the
     centreline on the ground (§25.149(e)), the attitude on the runway below the tail-strike attitude; each reason
     quotes the run's number and the bound. A run inside every bound has no reason."""
     from types import SimpleNamespace
 
-    from certkit_rules.part25.takeoff import REPRESENTATIVE_CRITERIA, unrepresentative
+    from certkit_rules.part25.support.takeoff import REPRESENTATIVE_CRITERIA, unrepresentative
 
     crit = SimpleNamespace(**{k: c.value for k, c in REPRESENTATIVE_CRITERIA.items()})
     good = {"vr_kn": 155.0, "v2_kn": 161.0, "vlof_kn": 163.0, "v35_kn": 165.0, "max_lateral_deviation_on_ground_ft": 12.0,

@@ -15,7 +15,7 @@ import math
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.units import KN, LB, LBF
 
 from ..conftest import BASELINE

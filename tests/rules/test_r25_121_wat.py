@@ -76,7 +76,7 @@ def own_gradient(cond, delta_isa, static=97_300 * LBF):
     sin γ = sin γ0 + (T − T0 + ΔD_gear)/W with T the hand thrust of the day, T0 the trim's and ΔD_gear the rule's
     gear_up_credit ΔCD0 at q̄ = ½ γ p M² (the drag the gear-up segment does not carry)."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
+    from certkit.engine.context import Context
     from certkit_rules.part25.subpart_b.r25_121 import gear_up_credit
 
     ctx = Context(load_aircraft(BASELINE))

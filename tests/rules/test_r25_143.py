@@ -14,9 +14,9 @@ import math
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
-from certkit.registry import discover, select
-from certkit.scheduler import criteria_for, evaluate_rule
+from certkit.engine.context import Context
+from certkit.engine.registry import discover, select
+from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.units import KN
 
 from ..conftest import BASELINE
@@ -171,7 +171,7 @@ def test_wat_limited_thrust_gives_the_minimum_gradient(shared):
     trimming at that thrust and reading the flight path back (Anderson eq. 5.12 path; tolerance 1e-4 in tan γ).
     At 80 % of MTOW it is below the takeoff thrust (at MTOW the baseline's gear-down takeoff configuration is close
     to the limit: capped at the takeoff thrust at some CGs)."""
-    from certkit.thrust_trims import operating_thrust, trim_at_thrust
+    from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
     from certkit_rules.part25.subpart_b.r25_143 import wat_limited_thrust
 
     conds = [c for c in evaluate_part("25.143(h)", shared, lambda c: c.get("case") == "takeoff V2")

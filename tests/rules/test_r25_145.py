@@ -16,8 +16,8 @@ import math
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
-from certkit.scheduler import evaluate_rule
+from certkit.engine.context import Context
+from certkit.engine.scheduler import evaluate_rule
 from certkit.units import KN, LB
 
 from ..conftest import BASELINE

@@ -14,7 +14,7 @@ import pytest
 
 from certkit.models.flight import control_limits
 from certkit.units import KN
-from certkit.control_speeds import control_usage, vmca_from_grid
+from certkit_rules.part25.support.control_speeds import control_usage, vmca_from_grid
 from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
 from .helpers import own, run_rule
@@ -123,9 +123,9 @@ def test_vmca_mirror_symmetric_and_stable(result, ctx):
     start speed 1e-6 relatively different, must not move VMCA by more than 0.05 kn."""
     from types import SimpleNamespace
 
-    from certkit.control_speeds import vmca_search
-    from certkit.scheduler import criteria_for
-    from certkit_rules.part25.subpart_b.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_RULE_ID,
+    from certkit_rules.part25.support.control_speeds import vmca_search
+    from certkit.engine.scheduler import criteria_for
+    from certkit_rules.part25.support.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_RULE_ID,
                                                                  vmca_rows)
 
     by_engine = {f.condition.get("inoperative"): f.value for f in own(result) if f.check.startswith("(c)")}

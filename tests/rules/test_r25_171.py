@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from certkit.conditions import speed_as
+from certkit.engine.conditions import speed_as
 from certkit.units import KN, LB
 
 from .helpers import own, run_rule
@@ -98,8 +98,8 @@ def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
     as given. Extended configurations end at VFE/VLE, so their "VFC" point is not applicable. The §25.173(a) top
     point is trimmed at VFC/1.05 so that its faster step reaches VFC (the speed in the condition, 291.4 kn)."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
-    from certkit_rules.part25.subpart_b.stability_speeds import VFC_FLOOR, stability_limit_cas
+    from certkit.engine.context import Context
+    from certkit_rules.part25.support.stability_speeds import VFC_FLOOR, stability_limit_cas
 
     from .helpers import edited_baseline
 

@@ -13,9 +13,9 @@ import math
 import pytest
 
 from certkit.atmosphere import density
-from certkit.conditions import speed_as
+from certkit.engine.conditions import speed_as
 from certkit.models.dynamics.modes import Mode
-from certkit_rules.part25.subpart_b import handling_levels as hq
+from certkit_rules.part25.support import handling_levels as hq
 
 from .helpers import own, run_rule
 

@@ -16,8 +16,8 @@ from certkit.models.loads.capability import Capability
 from certkit.models.loads.inputs import SinusoidHold
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_331 import load_factor_reached
-from certkit_rules.part25.subpart_c.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
-from certkit.results import Condition
+from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
+from certkit.engine.results import Condition
 
 from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
@@ -136,7 +136,7 @@ def test_maximum_displacement_at_va(tmp_path):
 
 def _tail_caps(result):
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
+    from certkit.engine.context import Context
     from certkit.models.loads.capability import declared_capabilities
 
     from ..conftest import BASELINE
@@ -169,7 +169,7 @@ def test_baseline_margins_against_the_declared_capability(checked, tmp_path):
 def test_limit_load_factor_by_speed_by_hand(baseline):
     """§25.337(b)–(c) on the declared envelope (n₊ 2.5, n₋ −1.0) at sea level, VC 272 and VD 340 kn EAS:
     n₊ = 2.5 at any speed; n₋ = −1.0 up to VC, −1.0 × (340 − 306)/(340 − 272) = −0.5 at 306 kn, 0 at VD."""
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx = Context(baseline)
     assert maneuver_limit_load_factor(ctx, 300 * KN, 0.0, True) == pytest.approx(2.5)
@@ -186,7 +186,7 @@ def test_load_factor_check_on_the_limit_and_sign(baseline):
     down at VD the 0 g target sits on §25.337(c)'s zero line: −0.005 g is within the tolerance, −0.03 g fails."""
     from types import SimpleNamespace
 
-    from certkit.context import Context
+    from certkit.engine.context import Context
 
     ctx, crit = Context(baseline), SimpleNamespace(load_factor_tolerance=0.02)
     up = Condition(loading="x", altitude=0.0, speed=300 * KN, speed_kind="EAS", extra=(("direction", "nose up"),))

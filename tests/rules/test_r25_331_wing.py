@@ -4,9 +4,9 @@ wing capability, the wing considered up to the airplane's stall (linear strip lo
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.loads.capability import declared_capabilities
-from certkit.scheduler import evaluate_rule
+from certkit.engine.scheduler import evaluate_rule
 from certkit_rules.part25.subpart_c.r25_331 import WING_STALL_NOTE, CheckedPitchManeuver, MaximumPitchControlDisplacement
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 

@@ -5,11 +5,11 @@ import numpy as np
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.loads.capability import declared_capabilities
-from certkit.scheduler import evaluate_rule
+from certkit.engine.scheduler import evaluate_rule
 from certkit.units import G0
-from certkit_rules.part25.subpart_c.balanced_runs import NO_FLAP_STRIPS
+from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
 from .helpers import NO_STRUCTURE, edited_baseline, failures_with, hand_margin
@@ -21,7 +21,7 @@ FAST = [("altitude_points: 5", "altitude_points: 2")]
 def run(tmp_path_factory):
     ctx = Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("b331"), FAST)))
     rule = BalancedManeuver()
-    from certkit.scheduler import criteria_for
+    from certkit.engine.scheduler import criteria_for
 
     crit, _ = criteria_for(BalancedManeuver, ctx)
     findings = rule.evaluate(ctx, BalancedManeuver.conditions.expand(ctx.aircraft), crit)

@@ -17,9 +17,9 @@ from certkit.models.aero.interface import AeroReference
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.loads.gust import gust_aero
 from certkit.models.loads.gust_response import GustBatch, simulate_gust
-from certkit.registry import Criteria
+from certkit.engine.registry import Criteria
 from certkit.units import FT, G0
-from certkit_rules.part25.subpart_c.gust_runs import design_gust_velocity, flight_profile_alleviation
+from certkit_rules.part25.support.gust_runs import design_gust_velocity, flight_profile_alleviation
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 
 from ..loads.test_gust_response import A, MASS, S, V, closed_form
@@ -44,8 +44,8 @@ FAST_BASELINE = [("altitude_points: 5", "altitude_points: 2"), ("\nsources:\n", 
 def gust_run(tmp_path_factory):
     """(rule result, the rule's run record) on the baseline edited by FAST."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
-    from certkit.scheduler import criteria_for
+    from certkit.engine.context import Context
+    from certkit.engine.scheduler import criteria_for
 
     from ..conftest import BASELINE
 
@@ -164,7 +164,7 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
     every evaluated finding's normalised margin recomputed by hand from its reported loads (0.1 kN rounding:
     5e-5). Gusts are the wing's design case here: its critical check is limit or ultimate bending."""
     from certkit.aircraft import load_aircraft
-    from certkit.context import Context
+    from certkit.engine.context import Context
     from certkit.models.loads.capability import declared_capabilities
 
     from ..conftest import BASELINE

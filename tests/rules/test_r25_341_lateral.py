@@ -4,9 +4,9 @@ declared fin capability, not evaluated without it, and a deficient fin fails."""
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.models.loads.capability import declared_capabilities
-from certkit.scheduler import evaluate_rule
+from certkit.engine.scheduler import evaluate_rule
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 
 from .helpers import BASELINE, edited_baseline, hand_margin, own

@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 
 from certkit.atmosphere import eas_to_tas, tas_to_mach
-from certkit.conditions import CgCorners, ConditionSpace
-from certkit.context import Context
+from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.context import Context
 from certkit.models.dynamics.simulate import Controller
-from certkit.loads_conditions import trimmed_batch
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import response_loads
 from certkit.models.loads.roll import mirror, simulate_roll, symmetric_manoeuvre_state
-from certkit.scheduler import evaluate_rule
+from certkit.engine.scheduler import evaluate_rule
 from certkit.units import FT, KN, LB
 from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
 

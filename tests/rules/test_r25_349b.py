@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
+from certkit.engine.context import Context
 from certkit.errors import UserError
 from certkit.models.loads.capability import declared_capabilities
-from certkit.scheduler import criteria_for, evaluate_rule
+from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.units import G0
 from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 from certkit_rules.part25.subpart_c.r25_349 import UnsymmetricalGust

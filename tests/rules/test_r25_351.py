@@ -6,11 +6,11 @@ comparison with a vertical-tail capability declared to sit exactly on the comput
 import numpy as np
 import pytest
 
-from certkit.conditions import CgCorners, ConditionSpace
-from certkit.context import Context
-from certkit.loads_conditions import trimmed_batch
+from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.context import Context
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.yaw import simulate_yaw
-from certkit.scheduler import evaluate_rule
+from certkit.engine.scheduler import evaluate_rule
 from certkit.units import KN
 from certkit_rules.part25.subpart_c.r25_351 import YawManeuver
 

@@ -6,9 +6,9 @@ from dataclasses import replace
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.context import Context
-from certkit.scheduler import criteria_for, evaluate_rule
-from certkit_rules.part25.subpart_c.balanced_runs import balanced_maneuvers
+from certkit.engine.context import Context
+from certkit.engine.scheduler import criteria_for, evaluate_rule
+from certkit_rules.part25.support.balanced_runs import balanced_maneuvers
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, NOT_SHARED, UnsymmetricalTailLoads
 

@@ -1,7 +1,7 @@
 """The developers' guide: "rules return findings and evidence data; physics procedures live in models, not in rule
 modules; rules do not import each other". Every module of the built-in rules package is read (its import statements,
 at module level and inside functions) and must not name a module that declares a rule (other than itself): what rules
-share lives in modules that declare none (``rules/part25/gust.py``, ``subpart_c/structural_checks.py`` …), and those
+share lives in modules that declare none (``rules/part25/support/gust.py``, ``support/structural_checks.py`` …), and those
 depend on no rule either."""
 
 from __future__ import annotations
@@ -12,7 +12,7 @@ import pkgutil
 from pathlib import Path
 
 import certkit_rules
-from certkit.registry import _rules_in_module
+from certkit.engine.registry import _rules_in_module
 
 def _modules() -> dict[str, object]:
     return {info.name: importlib.import_module(info.name)
@@ -59,13 +59,13 @@ def test_shared_modules_declare_no_rule():
     rules = _rule_modules(modules)
     assert all(name.rsplit(".", 1)[1].startswith("r25_") for name in rules)
     shared = {name for name, m in modules.items() if not hasattr(m, "__path__")} - rules
-    assert {"certkit_rules.part25.subpart_c.structural_checks", "certkit_rules.part25.subpart_c.gust_runs",
-            "certkit_rules.part25.subpart_b.climb_checks", "certkit_rules.part25.subpart_b.control_checks"} <= shared
+    assert {"certkit_rules.part25.support.structural_checks", "certkit_rules.part25.support.gust_runs",
+            "certkit_rules.part25.support.climb_checks", "certkit_rules.part25.support.control_checks"} <= shared
 
 
 def test_no_module_imports_a_rule_module():
     """No module of the rules package imports a rule module (§25.121's included: what it shares lives in
-    ``subpart_b/climb_checks.py``, ``subpart_b/control_checks.py`` and ``certkit/thrust_trims.py``)."""
+    ``support/climb_checks.py``, ``support/control_checks.py`` and ``rules/part25/support/thrust_trims.py``)."""
     found = _rule_imports(_modules())
     assert not found, "modules importing rule modules (move what they share to a module without rules):\n" + \
         "\n".join(f"  {who} imports {target} {sorted(names)}" for who, target, names in found)

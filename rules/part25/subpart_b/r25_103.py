@@ -12,10 +12,10 @@ from __future__ import annotations
 
 import math
 
-from certkit.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
-from certkit.registry import Criterion, Rule, rule
-from certkit.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
-from certkit.results import NOT_EVALUATED, Finding
+from certkit.engine.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit_rules.part25.support.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
+from certkit.engine.results import NOT_EVALUATED, Finding
 from certkit.units import KN
 
 AMDT = "25-121"
@@ -94,7 +94,7 @@ class StallSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.103 reference stall speeds",
                                 "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",

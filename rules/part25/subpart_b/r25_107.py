@@ -8,10 +8,10 @@ parts are ``not_evaluated`` until those speeds are declared.
 
 from __future__ import annotations
 
-from certkit.conditions import ConditionSpace, DesignWeight
-from certkit.registry import Criterion, Rule, rule
-from certkit.reference_speeds import declared_cas, ratio_check
-from certkit.reference_speeds import reference_stall_speed
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
@@ -82,7 +82,7 @@ class TakeoffSpeeds(Rule):
             speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
             if speeds["VMC"] is None:
-                from certkit_rules.part25.subpart_b.minimum_control import computed_vmca
+                from certkit_rules.part25.support.minimum_control import computed_vmca
 
                 speeds["VMC"] = computed_vmca(ctx)
                 vmc_basis = "VMCA computed by §25.149 (no VMC declared)"
@@ -99,7 +99,7 @@ class TakeoffSpeeds(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.107 takeoff speed ratios",
                                 "Declared takeoff speeds as ratios against their §25.107 factors.",

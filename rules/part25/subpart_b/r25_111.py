@@ -10,7 +10,7 @@ the nose gear may be raised off the ground at a speed not less than VR … (c)(1
 part of the takeoff path must be positive at each point; (c)(2) The airplane must reach V2 before it is
 35 feet above the takeoff surface …"):
 
-* the simulated takeoff of certkit_rules.part25.takeoff (one batched six-degree-of-freedom run,
+* the simulated takeoff of certkit_rules.part25.support.takeoff (one batched six-degree-of-freedom run,
   certkit.models.dynamics.procedures.takeoff_run) of the takeoff configuration at MTOW and the forward, reference and
   aft CG, sea level ISA, from a standing start at takeoff thrust, brakes released at t = 0; every loading is run with
   the critical engine failed at VEF (the findings) and with all engines operating (shown in the details, and the
@@ -37,7 +37,7 @@ V_LOF, VEF, the speed a recognition interval after the failure, the distances (t
 §25.113 takeoff distance), the largest heading deviation, the lateral deviation from the centreline at lift-off and
 at 35 ft, the bank, the largest attitude on the runway and pitch rate before lift-off, and the mean gradient from
 35 ft to the end of the climb-out are reported as details. A run outside the representativeness bounds
-(certkit_rules.part25.takeoff.unrepresentative: lift-off more than 15 kn after VR, V35 more than 10 kn above V2,
+(certkit_rules.part25.support.takeoff.unrepresentative: lift-off more than 15 kn after VR, V35 more than 10 kn above V2,
 more than 30 ft off the centreline on the ground, the tail on the runway) earns no verdict: its checks are
 not evaluated, with the reason.
 """
@@ -47,11 +47,11 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit.reference_speeds import declared_cas
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
+from certkit_rules.part25.support.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
                                           run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 SOURCE = "14 CFR 25.111 (text from memory, not in docs/regulation-notes.md: unverified)"
@@ -203,7 +203,7 @@ class TakeoffPath(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import takeoff_evidence
+        from certkit.engine.evidence.performance import takeoff_evidence
 
         conds = self.conditions.expand(ctx.aircraft)
         to = simulated_takeoffs(ctx, conds, crit)

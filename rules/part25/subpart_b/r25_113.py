@@ -1,4 +1,4 @@
-"""§25.113 Takeoff distance — from the simulated takeoffs of §25.111 (certkit_rules.part25.takeoff).
+"""§25.113 Takeoff distance — from the simulated takeoffs of §25.111 (certkit_rules.part25.support.takeoff).
 
 §25.113(a) (text from memory, not in docs/regulation-notes.md: *unverified*): on a dry runway the takeoff distance is
 the greater of (1) the horizontal distance along the takeoff path from the start of the takeoff to the point at which
@@ -20,11 +20,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.reference_speeds import declared_cas
-from certkit.registry import Rule, rule
-from certkit.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas
+from certkit.engine.registry import Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
+from certkit_rules.part25.support.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
                                           run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 

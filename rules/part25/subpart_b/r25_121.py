@@ -40,17 +40,17 @@ from dataclasses import replace
 
 import numpy as np
 
-from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits
 from certkit.models.performance.wat import Ambient, envelope_corners
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit.reference_speeds import declared_cas, reference_stall_speed
-from certkit.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas, reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
 from certkit.units import FT, LB
-from certkit_rules.part25.subpart_b.climb_checks import CGS
-from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
+from certkit_rules.part25.support.climb_checks import CGS
+from certkit_rules.part25.support.control_checks import control_findings, trim_details
 
 AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 #: a WAT limit weight is reported when a trim there gives the minimum gradient within this (about 0.5 % in weight)
@@ -229,7 +229,7 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
 
 def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
     """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate) for the
-    findings ``failing`` (the lowest gradient of each corner): :func:`certkit.thrust_trims.wat_limit_search`."""
+    findings ``failing`` (the lowest gradient of each corner): :func:`certkit_rules.part25.support.thrust_trims.wat_limit_search`."""
     found = wat_limit_search(ctx, [f.condition for f in failing], np.array([f.value for f in failing]),
                              np.array([f.details["thrust_available_N"] for f in failing]), required, speed_at,
                              lowest_operating_mass(ctx)[0], thrust_fraction=thrust_fraction, drag_credit=drag_credit,
@@ -289,7 +289,7 @@ class ClimbOEITakeoffGearDown(Rule):
         return [_positive(f, required) for f in out]
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import climb_gradient_evidence
+        from certkit.engine.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(a) OEI climb, takeoff, gear down")
 
@@ -359,7 +359,7 @@ class ClimbOEITakeoffGearUp(Rule):
                                notes=note))
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import climb_gradient_evidence
+        from certkit.engine.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(b) OEI climb, takeoff, gear up")
 
@@ -403,7 +403,7 @@ class ClimbOEIFinalTakeoff(Rule):
                                altitude_offset=1500 * FT, thrust_fraction=crit.mct_over_takeoff_thrust))
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import climb_gradient_evidence
+        from certkit.engine.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(c) OEI final takeoff climb")
 
@@ -456,6 +456,6 @@ class ClimbOEIApproach(Rule):
                                declared="landing_weight"))
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import climb_gradient_evidence
+        from certkit.engine.evidence.performance import climb_gradient_evidence
 
         return climb_gradient_evidence(findings, "§25.121(d) OEI approach climb")

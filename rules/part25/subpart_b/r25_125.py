@@ -24,12 +24,12 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.atmosphere import convert_speed
-from certkit.conditions import ConditionSpace, DesignWeight
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Evidence, Finding
-from certkit.reference_speeds import declared_cas, ratio_check
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Evidence, Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check
 from certkit.units import FT, KN
-from certkit.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 START_HEIGHT = 150 * FT  # m, CG height above the runway at the start of the simulated approach
 
@@ -148,8 +148,8 @@ class LandingTouchdown(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence import Axis, Limit
-        from certkit.evidence.performance import time_histories
+        from certkit.engine.evidence import Axis, Limit
+        from certkit.engine.evidence.performance import time_histories
 
         conds = self.conditions.expand(ctx.aircraft)
         sinks = [f for f in findings if f.check == "touchdown rate of descent" and f.margin is not None]

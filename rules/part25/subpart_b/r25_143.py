@@ -14,7 +14,7 @@ given, turn rate, α and the three controls solved for) — with the critical en
 asymmetric cases (the windmilling engine and the asymmetric thrust are in the flight model), in both
 directions. ``kind="oei"`` is not used: it trims *straight* flight at a bank (|φ| ≤ 5°, §25.149), which at
 30° needs a sideslip of some 36°. Where the table gives a thrust rather than a path, the turn is trimmed at
-the flight-path angle that thrust gives (:func:`certkit.thrust_trims.trim_at_thrust`, the energy relation sin γ = (T − D)/W of
+the flight-path angle that thrust gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, the energy relation sin γ = (T − D)/W of
 Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12, iterated on the thrust the trim needs).
 The elevator, aileron and rudder of each trim are reported against their design limits.
 """
@@ -25,17 +25,17 @@ import math
 
 import numpy as np
 
-from certkit.conditions import ConditionSpace, DesignWeight
+from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.models.dynamics.trim import held_stabilizer
 from certkit.models.flight import control_limits, stabilizer_trim
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit.reference_speeds import declared_cas, stall_warning_cl
-from certkit.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_cas, stall_warning_cl
+from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_b.climb_checks import CGS
-from certkit_rules.part25.subpart_b.control_checks import control_findings
-from certkit_rules.part25.subpart_b.turns import turn_details
+from certkit_rules.part25.support.climb_checks import CGS
+from certkit_rules.part25.support.control_checks import control_findings
+from certkit_rules.part25.support.turns import turn_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
 _UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
@@ -201,7 +201,7 @@ class ManeuveringCapability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.143(h) manoeuvring capability",
                                 "Coordinated-turn trims: controls against their design limits.",

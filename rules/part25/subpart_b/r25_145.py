@@ -13,7 +13,7 @@ the start trim). Without one the force is not evaluated. In both cases certkit c
 from its trim at the start of each manoeuvre to its trim at the end, and that change must fit in the elevator
 authority left on that side of the start position (design limits). Each state is a steady trim at 1.3 VSR of
 its configuration: idle ("power off") in the glide that idle thrust gives, go-around thrust in the climb it
-gives (:func:`certkit.thrust_trims.trim_at_thrust`, the energy relation).
+gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, the energy relation).
 """
 
 from __future__ import annotations
@@ -22,15 +22,15 @@ import math
 
 import numpy as np
 
-from certkit.conditions import CgCorners, ConditionSpace
+from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import LBF
-from certkit.reference_speeds import reference_stall_speed
-from certkit.thrust_trims import operating_thrust, trim_at_thrust
-from certkit_rules.part25.subpart_b.control_checks import trim_details
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
+from certkit_rules.part25.support.control_checks import trim_details
 from certkit.models.dynamics.trim import held_stabilizer
 
 FLAPS = ("takeoff", "approach", "landing")
@@ -170,7 +170,7 @@ class LongitudinalControlConfigurationChanges(Rule):
             **{f"end_{k}": v for k, v in trim_details(r1).items()})
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.145(b) elevator to trim configuration and thrust changes",
                                 "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",

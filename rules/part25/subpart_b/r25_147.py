@@ -7,14 +7,14 @@ paragraph starts from or manoeuvres to:
   inoperative (windmilling), wings level, straight flight (``ctx.trim(kind="oei")``: bank given, sideslip,
   α, the three controls and the throttle solved for) at the power for level flight (γ = 0); where that
   power is more than maximum continuous, the trim is flown at maximum continuous thrust on the flight path
-  it gives (:func:`certkit.thrust_trims.trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
+  it gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
   The reasonably sudden 15° heading change is a dynamic manoeuvre: a not-evaluated finding. The 150 lbf rudder
   pedal force is read in the steady wings-level condition the heading change starts from: the pedal force that
   holds the trim's rudder with the rudder trim at neutral (:mod:`certkit.models.control_force`), which must leave
   room under 150 lbf; without ``control_forces.rudder`` it is not evaluated.
 * (c) lateral control — 20° banked coordinated turns (zero sideslip, ``kind="turn"``) toward and away from
   the inoperative engine at 1.3 VSR1 and MTOW, the operating engine at maximum continuous thrust, in the most
-  favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`certkit.thrust_trims.trim_at_thrust`).
+  favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`).
 
 The margin of each finding is a control's design limit on the side it is deflected minus |deflection|
 (deg, :func:`control_findings`). (b) and (e) apply to airplanes with four or more engines; (d) (roll
@@ -27,16 +27,16 @@ import math
 
 import numpy as np
 
-from certkit.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
 from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit.reference_speeds import reference_stall_speed
-from certkit.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
-from certkit_rules.part25.subpart_b.climb_checks import CGS
-from certkit_rules.part25.subpart_b.control_checks import control_findings, pedal_force_finding, trim_details
-from certkit_rules.part25.subpart_b.turns import turn_details
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
+from certkit_rules.part25.support.climb_checks import CGS
+from certkit_rules.part25.support.control_checks import control_findings, pedal_force_finding, trim_details
+from certkit_rules.part25.support.turns import turn_details
 
 SOURCE = "14 CFR 25.147 (Amdt. 25-108; verified, docs/regulation-notes.md)"
 AMDT = "25-108"
@@ -161,7 +161,7 @@ class DirectionalControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(a) directional control, one engine inoperative",
                                 "One-engine-inoperative trims: controls against their design limits.",
@@ -243,7 +243,7 @@ class LateralControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
                                 "Turns toward and away from the inoperative engine: controls against their design limits.",

@@ -4,21 +4,21 @@ VMCA is the speed at which, in straight one-engine-inoperative flight with the o
 throttle (maximum takeoff thrust; the flight-path angle takes up the excess thrust), takeoff flaps, the most
 aft CG at MTOW, sea level, the rudder or the aileron reaches its design limit — the better of 5° of bank
 toward the operating engine and wings level; below it straight flight cannot be held.
-The search is :func:`certkit.control_speeds.vmca_search`.
+The search is :func:`certkit_rules.part25.support.control_speeds.vmca_search`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from certkit.control_speeds import BANK_FRACTIONS, throttle_of, vmca_from_grid
+from certkit_rules.part25.support.control_speeds import BANK_FRACTIONS, throttle_of, vmca_from_grid
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
-from certkit.registry import Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import KN, LBF
-from certkit_rules.part25.subpart_b.control_checks import pedal_force_finding
-from certkit_rules.part25.subpart_b.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_REQUIRES, VMCA_RULE_ID,
+from certkit_rules.part25.support.control_checks import pedal_force_finding
+from certkit_rules.part25.support.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_REQUIRES, VMCA_RULE_ID,
                                                               condition_vmca, vmca_rows)
 
 
@@ -116,7 +116,7 @@ class MinimumControlSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import vmca_evidence
+        from certkit.engine.evidence.performance import vmca_evidence
 
         rows = vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))

@@ -22,14 +22,14 @@ import math
 
 import numpy as np
 
-from certkit.conditions import CgCorners, ConditionSpace
+from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT
-from certkit.reference_speeds import reference_stall_speed
-from certkit.thrust_trims import oei_climb
-from certkit_rules.part25.subpart_b.control_checks import control_findings, trim_details
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import oei_climb
+from certkit_rules.part25.support.control_checks import control_findings, trim_details
 
 def stabilizer_finding(cond, check, r, stabilizer) -> Finding:
     """Trim authority of a movable stabiliser: the incidence the trim needs (elevator at its trim setting) against
@@ -212,7 +212,7 @@ class Trim(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.performance import margins_evidence
+        from certkit.engine.evidence.performance import margins_evidence
 
         return margins_evidence(findings, "§25.161 trim",
                                 "Trims of each §25.161 condition: controls against their design limits (a movable "

@@ -1,18 +1,18 @@
 """§§25.171–25.175 Static longitudinal stability: the stick-fixed static margin (§25.171), the speed-stability
 gradient (§25.173(a)), the stick-force gradient (§25.173(c)) and the free return (§25.173(b)). The speed ranges it
-shares with §§25.177 and 25.181 are in :mod:`certkit_rules.part25.subpart_b.stability_speeds`.
+shares with §§25.177 and 25.181 are in :mod:`certkit_rules.part25.support.stability_speeds`.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
+from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
 from certkit.models.dynamics.trim import held_stabilizer
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_b.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
 
 
 def static_margin(ctx, configuration: str, x_cg, mach) -> np.ndarray:
@@ -65,7 +65,7 @@ class StabilityGeneral(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.stability import margin_matrix_evidence
+        from certkit.engine.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
 
@@ -164,7 +164,7 @@ class SpeedStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.stability import margin_matrix_evidence
+        from certkit.engine.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations")
 

@@ -18,13 +18,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
+from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, LBF
-from certkit_rules.part25.subpart_b.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
 
 SOURCE = "14 CFR 25.177, Amdt. 25-135 (verified, docs/regulation-notes.md)"
 #: sweep of (c) and (d), fractions of the (c) range
@@ -233,6 +233,6 @@ class StaticLateralDirectionalStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.stability import margin_matrix_evidence
+        from certkit.engine.evidence.stability import margin_matrix_evidence
 
         return margin_matrix_evidence(findings, "§25.177 static lateral-directional margins (normalised) over CG corners × configurations")

@@ -7,12 +7,12 @@ from 1.13 VSR to the configuration's maximum allowable speed.
 
 from __future__ import annotations
 
-from certkit.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.units import FT
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
-from certkit_rules.part25.subpart_b import handling_levels as hq
-from certkit_rules.part25.subpart_b.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit_rules.part25.support import handling_levels as hq
+from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
                                                              by_configuration, refine_speeds)
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
@@ -128,8 +128,8 @@ class DynamicStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.stability import damping_frequency_chart, margin_matrix_evidence
-        from certkit.results import Evidence
+        from certkit.engine.evidence.stability import damping_frequency_chart, margin_matrix_evidence
+        from certkit.engine.results import Evidence
         from certkit.units import KN
 
         points, worst = [], {}

@@ -27,12 +27,12 @@ import math
 import numpy as np
 
 from certkit.atmosphere import convert_speed, speed_of_sound
-from certkit.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.models.control_force import control_force_model, dynamic_pressure, local_angle
 from certkit.models.dynamics.pull_up import symmetric_pull_up
 from certkit.models.flight import control_limits
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, KN, LBF
 
 SOURCE = "14 CFR 25.255 ([CFR 2003] GPO text of (a)-(c); (f) from memory, docs/regulation-notes.md)"

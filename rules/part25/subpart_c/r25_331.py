@@ -9,7 +9,7 @@ t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t
 Each condition's horizontal-tail limit loads are compared with the capabilities declared in the aircraft
 file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
 one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The
-structural checks it shares with §§25.341, 25.349 and 25.351 are in :mod:`certkit_rules.part25.subpart_c.structural_checks`.
+structural checks it shares with §§25.341, 25.349 and 25.351 are in :mod:`certkit_rules.part25.support.structural_checks`.
 
 (c)(2) reports the load factor each manoeuvre reaches and the §25.337 limit at its speed (n₊ nose up; nose
 down n₋ = −1.0 up to VC, linearly to 0 at VD) in the details: the input is scaled to reach that limit, so being
@@ -22,19 +22,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Bound, Step, simulate
-from certkit.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
-from certkit.registry import Criterion, Rule, SimulationRule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, Rule, SimulationRule, rule
+from certkit.engine.results import Finding
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
+from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
                                                              force_limited_deflection, maneuver_limit_load_factor)
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
@@ -162,7 +162,7 @@ class CheckedPitchManeuver(SimulationRule):
 def pitch_evidence(run, ctx, crit, what: str) -> list:
     """Evidence of a pitch manoeuvre run: the tail's critical time histories, envelope and table, the wing's table,
     each against the declared allowables."""
-    from certkit.evidence.loads import allowables, envelope_evidence, maneuver_evidence
+    from certkit.engine.evidence.loads import allowables, envelope_evidence, maneuver_evidence
 
     if not run:
         return []

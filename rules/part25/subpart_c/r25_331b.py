@@ -18,8 +18,8 @@ deflection (the lattice is the clean wing), so the wing's loads flaps extended a
 
 from __future__ import annotations
 
-from certkit.registry import SimulationRule, rule
-from certkit_rules.part25.subpart_c.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
+from certkit.engine.registry import SimulationRule, rule
+from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
                                                           SURFACES, balanced_runs)
 
 
@@ -63,7 +63,7 @@ class BalancedManeuver(SimulationRule):
         return balanced_runs(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables, envelope_evidence
+        from certkit.engine.evidence.loads import allowables, envelope_evidence
 
         run = getattr(self, "run", None)
         if not run or run.get("envelope") is None:

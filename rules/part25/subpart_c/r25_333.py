@@ -9,12 +9,12 @@ it. The strength check on the envelope belongs to the loads rules (§25.331, §2
 
 from __future__ import annotations
 
-from certkit.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
+from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.models.loads.vn_envelope import envelope
-from certkit.reference_speeds import declared_eas
-from certkit.registry import Rule, rule
-from certkit.results import Evidence, Finding
-from certkit_rules.part25.subpart_c.envelope_criteria import CN_OVER_CL
+from certkit_rules.part25.support.reference_speeds import declared_eas
+from certkit.engine.registry import Rule, rule
+from certkit.engine.results import Evidence, Finding
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 
 
 @rule
@@ -62,7 +62,7 @@ class FlightManeuveringEnvelope(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence import Axis, Chart, Limit, Panel, Point, Series
+        from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
 
         conds = sorted({f.condition for f in findings if f.condition.mass is not None},
                        key=lambda c: (c.altitude, c.mass))

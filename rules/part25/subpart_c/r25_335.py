@@ -10,15 +10,15 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.atmosphere import RHO0, convert_speed, density
-from certkit.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
+from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.reference_speeds import declared_eas
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit_rules.part25.support.reference_speeds import declared_eas
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import G0
-from certkit_rules.part25.gust import SOURCE as GUST_SOURCE
-from certkit_rules.part25.gust import reference_gust_velocity
-from certkit_rules.part25.subpart_c.envelope_criteria import CN_OVER_CL
+from certkit_rules.part25.support.gust import SOURCE as GUST_SOURCE
+from certkit_rules.part25.support.gust import reference_gust_velocity
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 
 AMDT = "25-91"
 

@@ -8,9 +8,9 @@ speeds up to VC, and varies linearly to zero at VD.
 
 from __future__ import annotations
 
-from certkit.conditions import ConditionSpace, EnvelopeWeights
-from certkit.registry import Criterion, Rule, rule
-from certkit.results import Finding
+from certkit.engine.conditions import ConditionSpace, EnvelopeWeights
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.units import LB
 
 SOURCE = "14 CFR 25.337(b)-(c), Amdt. 25-23"

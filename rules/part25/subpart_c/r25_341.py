@@ -21,16 +21,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.loads_conditions import refusal_findings
+from certkit_rules.part25.support.loads_conditions import refusal_findings
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES
 from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.response import LoadEnvelope
-from certkit.registry import SimulationRule, rule
+from certkit.engine.registry import SimulationRule, rule
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_c.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
+from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
                                                       gust_runs)
-from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding, maneuver_limit_load_factor
+from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, maneuver_limit_load_factor
 
 
 @rule
@@ -76,7 +76,7 @@ class DiscreteGust(SimulationRule):
         return discrete_gusts(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables, envelope_evidence, gust_evidence
+        from certkit.engine.evidence.loads import allowables, envelope_evidence, gust_evidence
 
         run = getattr(self, "run", None)
         if not run or run.get("envelope") is None:

@@ -25,19 +25,19 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.errors import UserError
-from certkit.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
-from certkit.registry import Criterion, SimulationRule, rule
-from certkit.results import Finding
+from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.subpart_c.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
-from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding, control_stops, entry_speeds
+from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, control_stops, entry_speeds
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
@@ -116,8 +116,8 @@ class RollingConditions(SimulationRule):
         return rolling_maneuvers(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables
-        from certkit.evidence.roll import roll_evidence
+        from certkit.engine.evidence.loads import allowables
+        from certkit.engine.evidence.roll import roll_evidence
 
         run = getattr(self, "run", None)
         if not run or run.get("sim") is None:
@@ -370,7 +370,7 @@ class UnsymmetricalGust(SimulationRule):
         return unsymmetrical_gusts(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables, unsymmetrical_gust_evidence
+        from certkit.engine.evidence.loads import allowables, unsymmetrical_gust_evidence
 
         run = getattr(self, "run", None)
         if not run or run.get("envelope") is None:

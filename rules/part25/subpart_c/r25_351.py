@@ -15,16 +15,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.loads_conditions import refusal_findings, trimmed_batch
+from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.registry import Criterion, SimulationRule, rule
+from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
+from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
                                                              force_limited_deflection)
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
@@ -104,8 +104,8 @@ class YawManeuver(SimulationRule):
         return yaw_maneuvers(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables
-        from certkit.evidence.yaw import yaw_evidence
+        from certkit.engine.evidence.loads import allowables
+        from certkit.engine.evidence.yaw import yaw_evidence
 
         run = getattr(self, "run", None)
         if not run or run.get("envelope") is None:

@@ -23,15 +23,15 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from certkit.conditions import ConditionSpace
+from certkit.engine.conditions import ConditionSpace
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
-from certkit.registry import Criterion, SimulationRule, rule
-from certkit.results import Condition, Finding
-from certkit_rules.part25.subpart_c.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
+from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.results import Condition, Finding
+from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
                                                           balanced_runs)
-from certkit_rules.part25.subpart_c.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
-from certkit_rules.part25.subpart_c.structural_checks import SAFETY, capability_finding
+from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
 
 TAIL = "horizontal_tail"
 #: the condition spaces of the symmetric loads rules whose tail loads are split
@@ -110,7 +110,7 @@ class UnsymmetricalTailLoads(SimulationRule):
         return unsymmetrical_tail_loads(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.evidence.loads import allowables, envelope_evidence
+        from certkit.engine.evidence.loads import allowables, envelope_evidence
 
         run = getattr(self, "run", None)
         env = run.get("envelope") if run else None

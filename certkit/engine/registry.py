@@ -1,0 +1,368 @@
+"""Rule declaration, validation and discovery.
+
+A rule is a class deriving from :class:`Rule`, decorated with :func:`rule`, in a module of the
+built-in ``certkit_rules`` package (the repository's ``rules/`` folder), of a plugin package
+registered under the entry-point group ``certkit.rules``, or of a user folder passed with
+``--rules DIR``. Metadata is validated when the rule is declared (pluggy-style: fail early, name
+the plugin and the field).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import inspect
+import pkgutil
+import re
+import sys
+from dataclasses import dataclass
+from importlib.metadata import entry_points
+from pathlib import Path
+from typing import TYPE_CHECKING, ClassVar
+
+from certkit.errors import UserError
+
+if TYPE_CHECKING:
+    from certkit.engine.conditions import ConditionSpace
+    from certkit.engine.context import Context
+    from certkit.engine.results import Condition, Evidence, Finding
+
+RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-zA-Z0-9]+\))*$")  # §25.125(b)(2)(i)(A): capitals at the fifth level
+SYMBOL = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
+IMPLEMENTATION = ("implemented", "partial", "planned")
+ENTRY_POINT_GROUP = "certkit.rules"
+
+
+class PluginError(UserError):
+    """Invalid rule metadata or a rule module that cannot be loaded."""
+
+
+#: what a criterion rests on, read from its source: ``regulation`` (the text of 14 CFR), ``unverified`` (text from
+#: memory, a secondary copy or another authority's code, not checked against the CFR), ``data`` (published data: a
+#: type certificate data sheet), ``project`` (a value certkit chose or assumed, its reading of the text) and
+#: ``numerical`` (a numerical setting of the method, not a compliance criterion)
+CRITERION_BASES = ("regulation", "unverified", "data", "project", "numerical")
+_UNVERIFIED_WORDS = ("unverified", "secondary", "mirror", "from memory", "checked against cs")
+
+
+@dataclass(frozen=True)
+class Criterion:
+    """A numeric criterion a rule applies, with its unit and where it comes from."""
+
+    value: float | str | bool
+    unit: str
+    source: str
+    description: str = ""
+
+    @property
+    def basis(self) -> str:
+        """One of :data:`CRITERION_BASES`, from the words of :attr:`source` (``unverified``, ``secondary``, ``mirror``,
+        ``from memory``; ``numerical choice``; ``project choice``, ``certkit …``; ``TCDS``; a CFR citation); a source
+        that cites no CFR paragraph is a project choice."""
+        text = self.source.lower()
+        if any(word in text for word in _UNVERIFIED_WORDS):
+            return "unverified"
+        if "numerical choice" in text:
+            return "numerical"
+        if "project choice" in text or "certkit" in text or "assumption" in text:
+            return "project"
+        if "tcds" in text:
+            return "data"
+        return "regulation" if "cfr" in text or "§" in text else "project"
+
+
+class Criteria(dict):
+    """The criteria in force for one run: the rule's defaults with the aircraft file's overrides."""
+
+    def __getattr__(self, name):
+        try:
+            return self[name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+
+class Rule:
+    """Base class of a rule. Subclasses set the class attributes and implement :meth:`evaluate`.
+
+    Attributes
+    ----------
+    id, symbol, title
+        Paragraph (``25.331(c)(2)``), kebab-case symbol, short title.
+    amendment
+        The amendment whose text the rule reflects (``25-141``).
+    requirement
+        What the regulation asks, in plain words.
+    margin
+        How the margin is formed and signed (≥ 0 complies).
+    references
+        Paragraphs the rule cross-references (shown as links in the report).
+    requires
+        Aircraft-file paths that must be present (``speeds.VMC``); a missing one makes the rule
+        ``not_evaluated`` before any computation.
+    criteria
+        Numeric criteria with their source; overridable in the aircraft file's ``criteria``.
+    conditions
+        The :class:`~certkit.engine.conditions.ConditionSpace` the rule is evaluated over.
+    implementation
+        ``implemented``, ``partial`` (list what is not evaluated in ``unevaluated``) or ``planned``.
+    limitations
+        Free text: the modelling simplifications of what the rule does evaluate (rigid airplane, …).
+    unevaluated
+        ``(paragraph, reason)`` pairs: each sub-paragraph (or part of one) the rule does not evaluate.
+        The scheduler turns each into a ``not_evaluated`` finding, so a partial rule never reads
+        "complies"; a ``partial`` rule must list at least one, an ``implemented`` one none.
+    cost
+        Rough evaluation time relative to a trim-only rule (1); used only to start the heaviest
+        rules first when ``--jobs`` spreads them over processes.
+    run_with
+        Optional key: rules with the same key are evaluated one after the other in one process, so
+        that a computation they share through ``ctx.memo`` is done once (e.g. §25.341(a) and §25.349(b)
+        share the gust runs).
+    loads_surfaces
+        The lifting surfaces whose station loads the rule computes (``("horizontal_tail",)``); the design
+        layer sizes structure from the envelopes these rules keep (:meth:`load_envelopes`).
+    """
+
+    id: ClassVar[str]
+    symbol: ClassVar[str]
+    title: ClassVar[str]
+    amendment: ClassVar[str]
+    requirement: ClassVar[str]
+    margin: ClassVar[str]
+    references: ClassVar[tuple[str, ...]] = ()
+    requires: ClassVar[tuple[str, ...]] = ()
+    criteria: ClassVar[dict[str, Criterion]] = {}
+    conditions: ClassVar["ConditionSpace"]
+    implementation: ClassVar[str] = "implemented"
+    limitations: ClassVar[str] = ""
+    unevaluated: ClassVar[tuple[tuple[str, str], ...]] = ()
+    origin: ClassVar[str] = "built-in"
+    cost: ClassVar[float] = 1.0
+    run_with: ClassVar[str] = ""
+    loads_surfaces: ClassVar[tuple[str, ...]] = ()
+
+    def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
+        """Return findings for the conditions (any number per condition, each naming its condition)."""
+        raise NotImplementedError
+
+    def evidence(self, ctx: "Context", findings: list["Finding"], criteria: Criteria) -> list["Evidence"]:
+        """Plots or tables for the report (optional). Called on the same instance as :meth:`evaluate`, so a
+        rule may keep what it simulated on ``self`` for its plots."""
+        return []
+
+    def load_envelopes(self) -> list:
+        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) of the last evaluation, as a
+        loads rule keeps them in ``self.run``; empty for other rules."""
+        from certkit.models.loads.response import LoadEnvelope
+
+        run = getattr(self, "run", None)
+        return [v for v in run.values() if isinstance(v, LoadEnvelope)] if isinstance(run, dict) else []
+
+    @classmethod
+    def documentation(cls) -> str:
+        """The text ``certkit explain`` prints."""
+        lines = [f"§{cls.id}  {cls.title}  [{cls.symbol}]", f"Amendment: {cls.amendment}    Implementation: {cls.implementation}",
+                 "", "Requirement", _indent(cls.requirement), "", "Criterion"]
+        for name, c in cls.criteria.items():
+            unit = f" {c.unit}" if c.unit else ""
+            lines.append(f"  {name} = {c.value}{unit} — {c.description} (source: {c.source})")
+        lines += ["", "Conditions", _indent(cls.conditions.describe()), "", "Margin", _indent(cls.margin)]
+        if cls.requires:
+            lines += ["", "Needs", "  " + ", ".join(cls.requires)]
+        if cls.references:
+            lines += ["", "Cross-references", "  " + ", ".join(f"§{r}" for r in cls.references)]
+        if cls.limitations:
+            lines += ["", "Limitations", _indent(cls.limitations)]
+        if cls.unevaluated:
+            lines += ["", "Not evaluated"] + [f"  §{para}: {why}" for para, why in cls.unevaluated]
+        return "\n".join(lines)
+
+
+class SimulationRule(Rule):
+    """A rule that evaluates one batched simulation run and draws its evidence from it. Subclasses implement
+    :meth:`simulate` (returning a dict with at least ``findings``) and :meth:`draw`; the run is kept on the
+    instance between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
+
+    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> dict:
+        raise NotImplementedError
+
+    def draw(self, run: dict) -> list["Evidence"]:
+        return []
+
+    def evaluate(self, ctx, conditions, criteria):
+        self.run = self.simulate(ctx, conditions, criteria)
+        return self.run["findings"]
+
+    def evidence(self, ctx, findings, criteria):
+        run = getattr(self, "run", None)
+        return self.draw(run) if run else []
+
+
+def _indent(text: str) -> str:
+    return "\n".join("  " + line.strip() for line in inspect.cleandoc(text).splitlines())
+
+
+_REQUIRED_TEXT = ("id", "symbol", "title", "amendment", "requirement", "margin")
+
+
+def validate_rule_class(cls: type, origin: str) -> None:
+    """Raise :class:`PluginError` naming the plugin (origin) and the field when metadata is invalid."""
+    name = getattr(cls, "__name__", repr(cls))
+    where = f"rule {name} from {origin}"
+    if not (isinstance(cls, type) and issubclass(cls, Rule)):
+        raise PluginError(f"{where}: must be a subclass of certkit.engine.registry.Rule")
+    for attr in _REQUIRED_TEXT:
+        value = getattr(cls, attr, None)
+        if not isinstance(value, str) or not value.strip():
+            raise PluginError(f"{where}: field '{attr}' is missing or empty")
+    if not RULE_ID.match(cls.id):
+        raise PluginError(f"{where}: field 'id' = {cls.id!r} is not a paragraph id such as '25.331(c)(2)'")
+    if not SYMBOL.match(cls.symbol):
+        raise PluginError(f"{where}: field 'symbol' = {cls.symbol!r} must be kebab-case, e.g. 'checked-pitch-maneuver'")
+    if cls.implementation not in IMPLEMENTATION:
+        raise PluginError(f"{where}: field 'implementation' = {cls.implementation!r} must be one of {IMPLEMENTATION}")
+    _validate_unevaluated(cls, where)
+    if isinstance(cls.cost, bool) or not isinstance(cls.cost, (int, float)) or not cls.cost > 0:
+        raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
+    if not isinstance(cls.run_with, str):
+        raise PluginError(f"{where}: field 'run_with' = {cls.run_with!r} must be a string (a key shared with other rules)")
+    for ref in cls.references:
+        if not isinstance(ref, str) or not RULE_ID.match(ref):
+            raise PluginError(f"{where}: field 'references' holds {ref!r}, not a paragraph id")
+    for key, c in cls.criteria.items():
+        if not isinstance(c, Criterion) or not c.source:
+            raise PluginError(f"{where}: field 'criteria.{key}' must be a Criterion with a source")
+    from certkit.engine.conditions import ConditionSpace
+
+    if not isinstance(getattr(cls, "conditions", None), ConditionSpace):
+        raise PluginError(f"{where}: field 'conditions' must be a certkit.engine.conditions.ConditionSpace")
+    if cls.evaluate is Rule.evaluate:
+        raise PluginError(f"{where}: method 'evaluate' is not implemented")
+
+
+def _validate_unevaluated(cls, where: str) -> None:
+    """``unevaluated`` holds (paragraph id, reason) pairs and agrees with ``implementation``."""
+    entries = cls.unevaluated
+    if not isinstance(entries, tuple):
+        raise PluginError(f"{where}: field 'unevaluated' must be a tuple of (paragraph, reason) pairs")
+    for entry in entries:
+        if not (isinstance(entry, tuple) and len(entry) == 2 and isinstance(entry[0], str) and RULE_ID.match(entry[0])
+                and isinstance(entry[1], str) and entry[1].strip()):
+            raise PluginError(f"{where}: field 'unevaluated' holds {entry!r}, not a (paragraph id, reason) pair")
+    if cls.implementation == "partial" and not entries:
+        raise PluginError(f"{where}: implementation 'partial' needs the sub-paragraphs it does not evaluate in 'unevaluated'")
+    if cls.implementation == "implemented" and entries:
+        raise PluginError(f"{where}: lists sub-paragraphs in 'unevaluated' but declares implementation 'implemented' "
+                          "(declare 'partial')")
+
+
+def rule(cls: type) -> type:
+    """Class decorator declaring a rule; validates its metadata at import time."""
+    validate_rule_class(cls, cls.__module__)
+    cls.__certkit_rule__ = True
+    return cls
+
+
+def _rules_in_module(module, origin: str) -> list[type[Rule]]:
+    found = []
+    for _, obj in inspect.getmembers(module, inspect.isclass):
+        if obj.__dict__.get("__certkit_rule__") and obj.__module__ == module.__name__:
+            obj.origin = origin
+            found.append(obj)
+    return found
+
+
+def builtin_rules() -> list[type[Rule]]:
+    import certkit_rules
+
+    rules = []
+    for info in pkgutil.walk_packages(certkit_rules.__path__, prefix="certkit_rules."):
+        module = importlib.import_module(info.name)
+        rules += _rules_in_module(module, "built-in")
+    return rules
+
+
+def plugin_rules() -> list[type[Rule]]:
+    rules = []
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        origin = f"plugin '{ep.name}' ({ep.value}) of {ep.dist.name if ep.dist else 'an installed package'}"
+        try:
+            obj = ep.load()
+        except PluginError:
+            raise
+        except Exception as exc:
+            raise PluginError(f"{origin}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
+        if inspect.ismodule(obj):
+            rules += _rules_in_module(obj, origin)
+        else:
+            for cls in obj if isinstance(obj, (list, tuple)) else [obj]:
+                validate_rule_class(cls, origin)
+                cls.origin = origin
+                rules.append(cls)
+    return rules
+
+
+def folder_rules(folder: str | Path) -> list[type[Rule]]:
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise UserError(f"--rules {folder}: not a folder")
+    rules = []
+    for path in sorted(folder.glob("*.py")):
+        if path.name.startswith("_"):
+            continue
+        name = f"certkit_user_rules.{path.stem}_{abs(hash(str(path.resolve()))) % 10**8}"
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        try:
+            spec.loader.exec_module(module)
+        except PluginError as exc:
+            raise PluginError(f"{path}: {exc}") from None
+        except Exception as exc:
+            raise PluginError(f"{path}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
+        rules += _rules_in_module(module, f"user folder {folder}")
+    return rules
+
+
+@dataclass(frozen=True)
+class DiscoveryOptions:
+    rules_dirs: tuple[str, ...] = ()
+    plugins: bool = True
+
+
+def discover(options: DiscoveryOptions = DiscoveryOptions()) -> list[type[Rule]]:
+    """All rules, sorted by paragraph; duplicate ids are an error naming both origins."""
+    rules = builtin_rules()
+    if options.plugins:
+        rules += plugin_rules()
+    for folder in options.rules_dirs:
+        rules += folder_rules(folder)
+    by_id: dict[str, type[Rule]] = {}
+    for cls in rules:
+        if cls.id in by_id and by_id[cls.id] is not cls:
+            raise PluginError(f"rule id {cls.id} is declared twice: by {by_id[cls.id].origin} "
+                              f"({by_id[cls.id].__name__}) and by {cls.origin} ({cls.__name__})")
+        by_id[cls.id] = cls
+    return sorted(by_id.values(), key=lambda c: paragraph_key(c.id))
+
+
+def paragraph_key(rule_id: str) -> tuple:
+    """Sort key: 25.21 < 25.103 < 25.331(c)(1) < 25.331(c)(2)."""
+    head, _, tail = rule_id.partition("(")
+    part, _, para = head.partition(".")
+    num = re.match(r"(\d+)([a-z]?)", para)
+    return (int(part), int(num.group(1)), num.group(2), tail)
+
+
+def select(rules: list[type[Rule]], select: tuple[str, ...] = (), ignore: tuple[str, ...] = ()) -> list[type[Rule]]:
+    """``--select``/``--ignore`` by id prefix, as ruff does (``25.1`` selects 25.103 … 25.181,
+    ``25.331`` selects 25.331(c)(1) and (c)(2)) or by symbol. A pattern matching nothing is an error."""
+
+    def matches(cls, pattern: str) -> bool:
+        return pattern == cls.symbol or cls.id.startswith(pattern)
+
+    for pattern in select + ignore:
+        if not any(matches(c, pattern) for c in rules):
+            raise UserError(f"no rule matches {pattern!r} (see `certkit rules` for ids and symbols)")
+    chosen = [c for c in rules if not select or any(matches(c, p) for p in select)]
+    return [c for c in chosen if not any(matches(c, p) for p in ignore)]

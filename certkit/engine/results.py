@@ -1,0 +1,401 @@
+"""Conditions, findings and results.
+
+A margin is signed so that **≥ 0 complies**; it carries its unit, and its normalised twin
+(margin / |limit|) lets a design study compare rules. A finding that could not be computed is
+``not_evaluated`` with the reason, never a pass.
+
+A rule's status: ``fails`` when any finding fails; ``complies`` when every finding complies;
+``complies_partial`` when every condition the rule computed complies but it does not evaluate some
+sub-paragraphs (:attr:`certkit.engine.registry.Rule.unevaluated`, one ``not_evaluated`` finding each);
+``not_evaluated`` when a condition the rule computes could not be evaluated, or nothing complies.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field, replace
+from typing import Literal
+
+from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, VOLATILE_KEY, clean, encode
+
+Status = Literal["complies", "fails", "not_evaluated"]
+COMPLIES: Status = "complies"
+FAILS: Status = "fails"
+NOT_EVALUATED: Status = "not_evaluated"
+#: rule-level only: what was computed complies, something was not evaluated
+COMPLIES_PARTIAL = "complies_partial"
+#: how each status reads in the terminal and the report
+STATUS_LABEL = {COMPLIES: "complies", COMPLIES_PARTIAL: "complies, partial", FAILS: "fails",
+                NOT_EVALUATED: "not evaluated"}
+#: ``details`` key of the finding that stands for a sub-paragraph the rule does not evaluate
+SCOPE_KEY = "not_evaluated_by_rule"
+
+
+@dataclass(frozen=True)
+class Condition:
+    """One point of a rule's condition space (§25.21(a): weight and CG, configuration, flight condition)."""
+
+    loading: str | None = None          # CG-envelope corner or loading name
+    mass: float | None = None           # kg
+    x_cg: float | None = None           # m, airplane frame (aft of the nose)
+    configuration: str | None = None
+    altitude: float | None = None       # m
+    speed: float | None = None          # m/s
+    speed_kind: str | None = None       # EAS, CAS, TAS or MACH
+    speed_name: str | None = None       # VC, VD, … when the speed is a declared one
+    extra: tuple[tuple[str, object], ...] = ()
+
+    def get(self, key: str, default=None):
+        return dict(self.extra).get(key, default)
+
+    def with_(self, **changes) -> "Condition":
+        extra = dict(self.extra)
+        for key in list(changes):
+            if key not in self.__dataclass_fields__:
+                extra[key] = changes.pop(key)
+        return replace(self, extra=tuple(extra.items()), **changes)
+
+    def refines(self, other: "Condition") -> bool:
+        """True when this condition is ``other`` with more fields set (a rule that computes, say, the
+        speed 1.3 VSR of a weight refines the scheduled condition of that weight)."""
+        for name in ("loading", "mass", "x_cg", "configuration", "altitude", "speed", "speed_kind", "speed_name"):
+            theirs = getattr(other, name)
+            if theirs is not None and getattr(self, name) != theirs:
+                return False
+        mine = dict(self.extra)
+        return all(k in mine and mine[k] == v for k, v in other.extra)
+
+    def same_point(self, scheduled: "Condition") -> bool:
+        """True when this condition (as a rule evaluated it, possibly refined) is the point ``scheduled`` of a rule's
+        condition space whatever the airplane-dependent numbers (mass, CG, speed): the same loading, configuration,
+        altitude, named speed and scheduled fields. It finds one airplane's condition among another's schedule."""
+        if (self.loading, self.configuration) != (scheduled.loading, scheduled.configuration):
+            return False
+        if (self.altitude is None) != (scheduled.altitude is None) or (
+                self.altitude is not None and abs(self.altitude - scheduled.altitude) > 1e-6):
+            return False
+        if scheduled.speed_name is not None and self.speed_name != scheduled.speed_name:
+            return False
+        return all(item in self.extra for item in scheduled.extra)
+
+    def as_dict(self) -> dict:
+        """JSON form (SI, with units in the key names)."""
+        out: dict[str, object] = {}
+        if self.loading is not None:
+            out["loading"] = self.loading
+        if self.mass is not None:
+            out["mass_kg"] = round(self.mass, 3)
+        if self.x_cg is not None:
+            out["x_cg_m"] = round(self.x_cg, 4)
+        if self.configuration is not None:
+            out["configuration"] = self.configuration
+        if self.altitude is not None:
+            out["altitude_m"] = round(self.altitude, 2)
+        if self.speed is not None:
+            out["speed_m_s"] = round(self.speed, 4)
+            out["speed_kind"] = self.speed_kind
+        if self.speed_name is not None:
+            out["speed_name"] = self.speed_name
+        for k, v in self.extra:
+            out[k] = v
+        return out
+
+    def label(self) -> str:
+        """Short human label: ``fwd_mrw · 297 557 kg · x 29.11 m · clean · 0 ft · VC``."""
+        from certkit.units import FT, KN, LB
+
+        parts = []
+        if self.loading:
+            parts.append(self.loading)
+        if self.mass is not None:
+            parts.append(f"{self.mass / LB:,.0f} lb")
+        if self.x_cg is not None:
+            parts.append(f"CG {self.x_cg / FT:.2f} ft")
+        if self.configuration:
+            parts.append(self.configuration)
+        if self.altitude is not None:
+            parts.append(f"{self.altitude / FT:,.0f} ft")
+        if self.speed is not None:
+            unit = "" if self.speed_kind == "MACH" else f" kn {self.speed_kind}"
+            value = f"M {self.speed:.3f}" if self.speed_kind == "MACH" else f"{self.speed / KN:.1f}{unit}"
+            parts.append(f"{self.speed_name + ' = ' if self.speed_name else ''}{value}")
+        parts += [f"{k} {v}" for k, v in self.extra]
+        return " · ".join(parts) if parts else "whole airplane"
+
+
+@dataclass
+class Finding:
+    """The outcome of one check at one condition."""
+
+    condition: Condition
+    check: str
+    status: Status
+    value: float | None = None
+    limit: float | None = None
+    margin: float | None = None
+    unit: str = ""
+    reason: str = ""
+    details: dict = field(default_factory=dict)
+    #: more details computed only when the finding is written (:meth:`as_dict`), placed before ``details``: a
+    #: picklable callable returning a dict (a structural finding's per-station load table: a design study makes
+    #: thousands of them per design and writes none)
+    written_details: object = field(default=None, repr=False, compare=False)
+
+    @property
+    def has_number(self) -> bool:
+        return self.value is not None or self.limit is not None or self.margin is not None
+
+    @property
+    def normalized_margin(self) -> float | None:
+        if self.margin is None or self.limit is None:
+            return None
+        scale = abs(self.limit) if self.limit != 0 else 1.0
+        return self.margin / scale
+
+    @classmethod
+    def compare(cls, condition: Condition, check: str, value: float, limit: float, *, at_least: bool,
+                unit: str = "", reason: str = "", tolerance: float | None = None, **details) -> "Finding":
+        """A finding for ``value ≥ limit`` (``at_least``) or ``value ≤ limit``; margin ≥ 0 complies.
+
+        ``tolerance`` (in the margin's unit; default 1e-9 × |limit|) absorbs round-off when a value sits
+        exactly on its limit, as declared speeds derived from each other do.
+        """
+        value, limit = float(value), float(limit)
+        if not (math.isfinite(value) and math.isfinite(limit)):
+            return cls.not_evaluated(condition, check, f"non-finite value ({value}) or limit ({limit})")
+        margin = value - limit if at_least else limit - value
+        if tolerance is None:
+            tolerance = 1e-9 * max(1.0, abs(limit))
+        status: Status = COMPLIES if margin >= -tolerance else FAILS
+        return cls(condition, check, status, value, limit, margin, unit, reason, details)
+
+    @classmethod
+    def not_applicable(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+        """The paragraph does not apply at this condition (computed, not assumed): complies, no margin."""
+        return cls(condition, check, COMPLIES, reason="not applicable: " + reason, details=details)
+
+    @classmethod
+    def not_evaluated(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+        return cls(condition, check, NOT_EVALUATED, reason=reason, details=details)
+
+    @classmethod
+    def outside_scope(cls, paragraph: str, reason: str) -> "Finding":
+        """The whole-airplane ``not_evaluated`` finding of a sub-paragraph the rule does not evaluate."""
+        return cls(Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason,
+                   details={SCOPE_KEY: paragraph})
+
+    def as_dict(self) -> dict:
+        return {
+            "condition": self.condition.as_dict(),
+            "check": self.check,
+            "value": self.value,
+            "limit": self.limit,
+            "margin": self.margin,
+            "normalized_margin": self.normalized_margin,
+            "unit": (self.unit or "1") if self.has_number else None,
+            "status": self.status,
+            "reason": self.reason,
+            **({"details": details} if (details := self.all_details()) else {}),
+        }
+
+    def all_details(self) -> dict:
+        """``details`` with the :attr:`written_details` before them."""
+        return {**self.written_details(), **self.details} if self.written_details is not None else self.details
+
+
+@dataclass
+class Evidence:
+    """A figure and/or a table attached to a rule result, as data (:mod:`certkit.engine.evidence`): ``figure`` a
+    :class:`~certkit.engine.evidence.Chart`, :class:`~certkit.engine.evidence.Bars` or :class:`~certkit.engine.evidence.Heatmap`,
+    ``table`` a :class:`~certkit.engine.evidence.Table` (a list of dicts is turned into one). The report draws the figure
+    into ``svg`` (:func:`certkit.report.figures.render_evidence`)."""
+
+    title: str
+    figure: object = None
+    caption: str = ""
+    table: object = None
+    svg: str = ""
+
+    def __post_init__(self):
+        from certkit.engine.evidence import Table
+
+        if isinstance(self.figure, str):
+            raise TypeError(f"evidence {self.title!r}: a figure is data (certkit.engine.evidence), not drawn SVG")
+        if isinstance(self.table, list):
+            self.table = Table.from_dicts(self.table)
+
+
+@dataclass
+class RuleResult:
+    id: str
+    symbol: str
+    title: str
+    findings: list[Finding]
+    evidence: list[Evidence] = field(default_factory=list)
+    overrides: dict = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)
+    #: :meth:`to_json` as a worker process encoded it once the rule was evaluated (None: encoded when needed)
+    encoded: str | None = field(default=None, repr=False, compare=False)
+    #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.engine.scheduler.evaluate_rule`)
+    load_envelopes: list = field(default_factory=list, repr=False, compare=False)
+    #: the rule's own run data (simulations) when the load envelopes are kept; never written to results.json
+    run: dict | None = field(default=None, repr=False, compare=False)
+    #: the rule's implementation status (``implemented``, ``partial``, ``planned``) and modelling limitations
+    implementation: str = "implemented"
+    limitations: str = ""
+    #: (paragraph, reason) of each sub-paragraph the rule does not evaluate
+    unevaluated: list = field(default_factory=list)
+    #: the amendment the rule reflects, the paragraphs it cross-references, the criteria in force (name → value,
+    #: unit, source, basis, description, overridden) — the rule's metadata for results.json and the report
+    amendment: str = ""
+    references: list = field(default_factory=list)
+    criteria: dict = field(default_factory=dict)
+    #: wall time of the rule's evaluation, s (for the terminal; not in results.json, which is the same for every run)
+    seconds: float | None = field(default=None, repr=False, compare=False)
+    #: NaN or infinite numbers :meth:`to_json` wrote as null
+    non_finite: int = field(default=0, repr=False, compare=False)
+
+    @property
+    def status(self) -> str:
+        """``fails``, ``complies``, ``complies_partial`` or ``not_evaluated`` (module docstring)."""
+        statuses = {f.status for f in self.findings}
+        if FAILS in statuses:
+            return FAILS
+        own = {f.status for f in self.findings if SCOPE_KEY not in f.details}
+        if NOT_EVALUATED in own or COMPLIES not in own:
+            return NOT_EVALUATED
+        return COMPLIES_PARTIAL if NOT_EVALUATED in statuses else COMPLIES
+
+    @property
+    def headline_reason(self) -> str:
+        """The reason to show when there is no critical finding: the first finding's, those of the rule's own
+        computation before the sub-paragraphs it does not evaluate."""
+        own = [f for f in self.findings if SCOPE_KEY not in f.details]
+        first = (own or self.findings)[:1]
+        return first[0].reason if first else ""
+
+    @property
+    def critical(self) -> Finding | None:
+        """The evaluated finding with the smallest normalised margin (the critical condition)."""
+        evaluated = [f for f in self.findings if f.margin is not None]
+        if not evaluated:
+            return None
+        return min(evaluated, key=lambda f: (f.normalized_margin if f.normalized_margin is not None else f.margin))
+
+    def as_dict(self) -> dict:
+        crit = self.critical
+        return {
+            "id": self.id,
+            "symbol": self.symbol,
+            "title": self.title,
+            "status": self.status,
+            "implementation": self.implementation,
+            "amendment": self.amendment,
+            "limitations": self.limitations,
+            "unevaluated": [{"paragraph": p, "reason": r} for p, r in self.unevaluated],
+            "min_margin": crit.margin if crit else None,
+            "normalized_min_margin": crit.normalized_margin if crit else None,
+            "unit": (crit.unit or "1") if crit else None,
+            "critical_check": crit.check if crit else None,
+            "critical_condition": crit.condition.as_dict() if crit else None,
+            "references": list(self.references),
+            "criteria": self.criteria,
+            "overrides": self.overrides,
+            "notes": self.notes,
+            "findings": [f.as_dict() for f in self.findings],
+        }
+
+    def to_json(self) -> str:
+        """:meth:`as_dict` as it stands in ``results.json`` (:mod:`certkit.engine.results_json`, at a rule's depth);
+        counts the non-finite numbers written as null in :attr:`non_finite`."""
+        data, self.non_finite = clean(self.as_dict())
+        return encode(data, depth=2)
+
+
+@dataclass
+class RunResult:
+    certkit_version: str
+    aircraft_name: str
+    source_sha256: str
+    source_path: str
+    created: str
+    rules: list[RuleResult]
+    models: dict = field(default_factory=dict)
+    #: which rules ran: the --select/--ignore patterns, ``partial`` when they left registered rules out
+    selection: dict = field(default_factory=dict)
+    #: the options that change what is evaluated (rule folders, plugins) and the platform
+    options: dict = field(default_factory=dict)
+    environment: dict = field(default_factory=dict)
+    #: what varies between identical runs: wall time of the evaluation (s) and the processes used
+    duration_s: float | None = None
+    jobs: int | None = None
+
+    def summary(self) -> dict:
+        statuses = [r.status for r in self.rules]
+        return {"rules": len(self.rules), "complies": statuses.count(COMPLIES),
+                "complies_partial": statuses.count(COMPLIES_PARTIAL), "fails": statuses.count(FAILS),
+                "not_evaluated": statuses.count(NOT_EVALUATED)}
+
+    def as_dict(self, rules=None) -> dict:
+        """The run as plain data (``results.json``); ``rules`` stands in for the list of rule dicts. The last key,
+        ``run``, holds what varies between identical runs (time stamp, duration, processes)."""
+        return {
+            "schema_version": SCHEMA_VERSION,
+            "certkit_version": self.certkit_version,
+            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path},
+            "selection": self.selection,
+            "options": self.options,
+            "environment": self.environment,
+            "precision": {"significant_digits": SIGNIFICANT_DIGITS, "non_finite": None},
+            "summary": self.summary(),
+            "rules": [r.as_dict() for r in self.rules] if rules is None else rules,
+            "models": {k: ({kk: vv for kk, vv in v.items() if kk != "svg"} if isinstance(v, dict) else v)
+                       for k, v in self.models.items()},
+            VOLATILE_KEY: {"created": self.created, "duration_s": self.duration_s, "jobs": self.jobs},
+        }
+
+    def to_json(self) -> str:
+        """``results.json`` (:mod:`certkit.engine.results_json`): each rule's part taken from :attr:`RuleResult.encoded`
+        where a worker process already encoded it (the same text as encoding the whole at once)."""
+        parts = []
+        non_finite = 0
+        for r in self.rules:
+            if r.encoded is None:
+                r.encoded = r.to_json()
+            parts.append(r.encoded)
+            non_finite += r.non_finite
+        head, n_head = clean(self.as_dict(rules=_RULES_MARK))
+        non_finite += n_head
+        if non_finite:  # strict JSON has no NaN or Infinity: null, and the reason said once
+            head = {**{k: v for k, v in head.items() if k != VOLATILE_KEY},
+                    "non_finite_numbers": {"count": non_finite, "written_as": None, "reason":
+                                           "a computed value was NaN or infinite (not computable there); JSON has no "
+                                           "such numbers"}, VOLATILE_KEY: head[VOLATILE_KEY]}
+        rules = "[\n" + ",\n".join("    " + p for p in parts) + "\n  ]" if parts else "[]"
+        return encode(head).replace(json.dumps(_RULES_MARK), rules, 1)
+
+    def exit_code(self) -> int:
+        """0 every rule complies in full, 1 any fails, 3 nothing fails but something was not evaluated (a rule
+        ``not_evaluated`` or ``complies_partial``); 2 is the CLI's for a user error."""
+        s = self.summary()
+        if s["fails"]:
+            return 1
+        if s["not_evaluated"] or s["complies_partial"]:
+            return 3
+        return 0
+
+
+#: placeholder of the rules list while the rest of ``results.json`` is encoded
+_RULES_MARK = "\x00certkit-rules\x00"
+
+
+def json_default(obj):
+    """JSON of numpy scalars and arrays (their values); anything else as its ``str``."""
+    import numpy as np
+
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    return str(obj)

@@ -1,0 +1,330 @@
+"""Runs rules over their conditions; isolates failures; deterministic with any number of jobs.
+
+For each rule: check the inputs it needs (missing → ``not_evaluated`` before any computation),
+apply the aircraft file's criteria overrides, expand the condition space, evaluate the whole batch,
+and if the batch raises, evaluate condition by condition so that one bad condition is recorded
+as ``not_evaluated`` with its reason while the others still run. ``jobs > 1`` spreads rules over
+processes; results are put back in rule order, so they equal those of ``jobs = 1``.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import inspect
+import math
+import os
+import traceback
+import time
+from concurrent.futures import ProcessPoolExecutor, as_completed
+
+from certkit import __version__
+from certkit.aircraft import LoadedAircraft
+from certkit.engine.context import Context
+from certkit.errors import InputError, Problem, UserError
+from certkit.engine.registry import Criteria, DiscoveryOptions, Rule, discover
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult
+from certkit.units import UnitError, to_unit
+from certkit.engine.worker_processes import die_with_parent, stop_pool
+
+
+def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
+    """The rule's criteria with the aircraft file's overrides (checked by :func:`override_problems`)."""
+    values = Criteria({name: c.value for name, c in rule.criteria.items()})
+    override = ctx.aircraft.criteria.get(rule.id)
+    applied: dict = {}
+    if override is not None:
+        for name, given in override.values.items():
+            value, problem = _override_value(rule, name, given)
+            if problem:
+                raise UserError(f"criteria.{rule.id}.values.{name}: {problem}")
+            default = rule.criteria[name].value
+            applied[name] = {"default": default, "value": value, "justification": override.justification}
+            values[name] = value
+    return values, applied
+
+
+def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> dict:
+    """The criteria in force as results.json and the report state them: value, unit (``1`` without one), source,
+    basis (:attr:`Criterion.basis`), meaning, and whether the aircraft file overrode it."""
+    return {name: {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
+                   "description": c.description, "overridden": name in overrides}
+            for name, c in rule.criteria.items()}
+
+
+def _override_value(rule: type[Rule], name: str, given: object) -> tuple[object, str | None]:
+    """An override's value in the criterion's unit (a number as given; a string with a unit converted), or why not."""
+    if name not in rule.criteria:
+        return given, f"rule {rule.id} has no criterion {name!r} (known: {', '.join(rule.criteria) or 'none'})"
+    criterion = rule.criteria[name]
+    default = criterion.value
+    if isinstance(default, bool) or not isinstance(default, (int, float)):
+        if type(given) is not type(default):
+            return given, f"expected a {type(default).__name__} like {default!r}"
+        return given, None
+    if isinstance(given, str):
+        try:
+            return to_unit(given, criterion.unit), None
+        except UnitError as exc:
+            return given, f"{exc} (the criterion is in {criterion.unit or 'no unit'}, e.g. {default!r})"
+    if isinstance(given, bool) or not isinstance(given, (int, float)):
+        return given, f"expected a number in {criterion.unit or 'no unit'} like {default!r}"
+    if not math.isfinite(given):
+        return given, "must be a finite number"
+    return given, None
+
+
+def override_problems(loaded: LoadedAircraft, rules: list[type[Rule]]) -> list[Problem]:
+    """Every criteria override of the aircraft file that names no rule of ``rules`` or no criterion of its rule, or
+    whose value is not of the criterion's kind and unit: located problems, to be raised before any rule runs."""
+    by_id = {r.id: r for r in rules}
+    source = loaded.source
+    found = []
+    for rule_id, override in loaded.model.criteria.items():
+        loc = ("criteria", rule_id)
+        if rule_id not in by_id:
+            close = [r for r in by_id if r.split("(")[0] == rule_id.split("(")[0]] or sorted(by_id)
+            found.append(Problem(".".join(loc), f"no rule {rule_id} (known: {', '.join(close)})", rule_id,
+                                 source.line_of(loc), source.path))
+            continue
+        for name, given in override.values.items():
+            _, problem = _override_value(by_id[rule_id], name, given)
+            if problem:
+                at = loc + ("values", name)
+                found.append(Problem(".".join(at), problem, given, source.line_of(at), source.path))
+    return found
+
+
+def check_overrides(loaded: LoadedAircraft, rules: list[type[Rule]]) -> None:
+    """:func:`override_problems` as one :class:`InputError` (before a check starts)."""
+    found = override_problems(loaded, rules)
+    if found:
+        raise InputError(loaded.path, found)
+
+
+#: sections every rule's conditions and models build on (the CG-envelope corners, the altitude range, the engines,
+#: the loading solver's masses): optional in the file (a derivative-table airplane flown by ``trim``/``modes`` needs
+#: none of them), so a rule without them is ``not_evaluated`` naming them, never a crash
+RULE_SECTIONS = ("cg_envelope", "envelope", "propulsion", "mass.MLW", "mass.MZFW", "mass.OEW")
+
+
+def _describe_exception(exc: BaseException) -> str:
+    return f"{exc.__class__.__name__}: {exc}"
+
+
+def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False,
+                  only=None) -> RuleResult:
+    """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
+    evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
+    (conditions, e.g. of another airplane) restricts the evaluation to the scheduled conditions that are the same
+    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict. After the
+    rule's own findings come one ``not_evaluated`` finding per sub-paragraph it does not evaluate
+    (:attr:`Rule.unevaluated`)."""
+    result = _evaluate_own(rule, ctx, evidence, keep_loads, only)
+    result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
+    return result
+
+
+def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only=None) -> RuleResult:
+    instance = rule()
+    criteria, overrides = criteria_for(rule, ctx)
+    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
+                        limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
+                        unevaluated=[list(u) for u in rule.unevaluated], amendment=rule.amendment,
+                        references=list(rule.references), criteria=criteria_metadata(rule, criteria, overrides))
+    missing = ctx.missing(tuple(dict.fromkeys(RULE_SECTIONS + tuple(rule.requires))))
+    if missing:
+        result.findings.append(Finding.not_evaluated(
+            Condition(), "inputs", "needs " + ", ".join(missing),
+            hint=f"declare {', '.join(missing)} in the aircraft file"))
+        return result
+    try:
+        conditions = rule.conditions.expand(ctx.aircraft)
+    except Exception as exc:  # a condition space that cannot be built is reported, not raised
+        result.findings.append(Finding.not_evaluated(Condition(), "conditions", _describe_exception(exc)))
+        return result
+    if only is not None:
+        conditions = [c for c in conditions if any(k.same_point(c) for k in only)]
+        result.notes.append(f"partial evaluation: {len(conditions)} selected conditions")
+    if not conditions:
+        result.findings.append(Finding.not_evaluated(Condition(), "conditions", "no condition applies (configurations or speeds not declared)"))
+        return result
+    try:
+        findings = instance.evaluate(ctx, conditions, criteria)
+    except UserError:
+        raise
+    except Exception:
+        findings = []
+        for cond in conditions:
+            try:
+                findings += instance.evaluate(ctx, [cond], criteria)
+            except UserError:
+                raise
+            except Exception as exc:
+                findings.append(Finding.not_evaluated(cond, "computation", _describe_exception(exc),
+                                                      traceback=traceback.format_exc(limit=3)))
+    for cond in _uncovered(conditions, findings):
+        findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
+    result.findings = findings
+    if keep_loads:
+        result.load_envelopes = instance.load_envelopes()
+        result.run = getattr(instance, "run", None)
+    if not evidence:
+        return result
+    try:
+        result.evidence = instance.evidence(ctx, findings, criteria)
+    except Exception as exc:
+        result.notes.append(f"evidence could not be drawn: {_describe_exception(exc)}")
+    return result
+
+
+def _uncovered(conditions, findings) -> list:
+    """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
+    Findings are grouped by loading, configuration and altitude, which a refinement keeps, so each condition is
+    compared with its own group only (a design's loads rules schedule thousands of conditions)."""
+    covered = {f.condition for f in findings}
+    groups: dict = {}
+    for c in covered:
+        groups.setdefault((c.loading, c.configuration), []).append(c)
+        groups.setdefault((c.loading, c.configuration, c.altitude), []).append(c)
+    out = []
+    for cond in conditions:
+        if cond in covered:
+            continue
+        if cond.loading is None or cond.configuration is None:
+            candidates = covered
+        elif cond.altitude is None:
+            candidates = groups.get((cond.loading, cond.configuration), ())
+        else:
+            candidates = groups.get((cond.loading, cond.configuration, cond.altitude), ())
+        if not any(c.refines(cond) for c in candidates):
+            out.append(cond)
+    return out
+
+
+def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
+    """:func:`evaluate_rule` then ``finish`` (the report's drawing), with the wall time of both in ``seconds``."""
+    start = time.perf_counter()
+    result = evaluate_rule(rule, ctx)
+    if finish is not None:
+        finish(result)
+    result.seconds = time.perf_counter() - start
+    return result
+
+
+def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None,
+                   progress=None) -> tuple[list[RuleResult], dict]:
+    ctx = Context(loaded)
+    results = []
+    for r in rules:
+        if progress:
+            progress.started([r.id])
+        results.append(_timed(r, ctx, finish))
+        if progress:
+            progress.finished([results[-1]])
+    return results, ctx.provenance()
+
+
+def _merge_provenance(parts: list[dict]) -> dict:
+    """One provenance from several workers' (same inputs give the same entries; keep one of each)."""
+    merged = {"aerodynamics": {}, "loadings": [], "components": parts[0]["components"] if parts else [],
+              "component_notes": parts[0]["component_notes"] if parts else []}
+    seen: dict = {}
+    for p in parts:
+        merged["aerodynamics"].update(p["aerodynamics"])
+        for row in p["loadings"]:
+            key = (round(row["mass_kg"], 3), round(row["x_cg_m"], 6))
+            if key not in seen:
+                seen[key] = dict(row)
+                merged["loadings"].append(seen[key])
+            else:  # the same loading named differently by different workers' rules: keep every name
+                names = set(seen[key]["name"].split(" / ")) | set(row["name"].split(" / "))
+                seen[key]["name"] = " / ".join(sorted(names))
+    merged["aerodynamics"] = dict(sorted(merged["aerodynamics"].items()))
+    merged["loadings"].sort(key=lambda r: (r["mass_kg"], r["x_cg_m"]))
+    return merged
+
+
+_WORKER: dict = {}
+
+
+def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish=None) -> None:
+    """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
+    worker ends with its parent (:func:`certkit.engine.worker_processes.die_with_parent`)."""
+    die_with_parent(parent_pid)
+    _WORKER["ctx"] = Context(loaded)
+    _WORKER["rules"] = {r.id: r for r in discover(options)}
+    _WORKER["finish"] = finish
+
+
+def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
+    """Rules in a worker process, one after the other on the worker's own Context (its models are reused by the
+    next rules the worker takes), each encoded for ``results.json`` here, while other rules still run."""
+    ctx = _WORKER["ctx"]
+    out = []
+    for rid in rule_ids:
+        result = _timed(_WORKER["rules"][rid], ctx, _WORKER["finish"])
+        result.encoded = result.to_json()
+        out.append((result, ctx.provenance()))
+    return out
+
+
+def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
+    """The rules grouped for the worker processes: rules sharing a :attr:`Rule.run_with` key form one unit (in
+    registry order), every other rule its own; the heaviest units (summed :attr:`Rule.cost`) first."""
+    units: dict = {}
+    for r in rules:
+        units.setdefault(r.run_with or ("", r.id), []).append(r)
+    return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
+
+
+def _collect(futures, units, workers: int, progress) -> list:
+    """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end (the first
+    ``workers`` units were told started when submitted)."""
+    if progress:
+        next_unit = workers
+        for done in as_completed(futures):
+            progress.finished([res for res, _ in done.result()])
+            if next_unit < len(units):
+                progress.started([r.id for r in units[next_unit]])
+                next_unit += 1
+    return [part for f in futures for part in f.result()]
+
+
+def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
+        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
+        alongside: dict | None = None, progress=None) -> RunResult:
+    """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
+    (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
+    :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
+    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``.
+    ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
+    several processes a unit counts as started when a process becomes free for it: the processes take the units in
+    order)."""
+    if jobs < 1:
+        raise UserError(f"--jobs must be at least 1 (got {jobs})")
+    if jobs == 1 or len(rules) <= 1:
+        results, provenance = _evaluate_many(loaded, rules, finish, progress)
+        provenance = _merge_provenance([provenance])
+        extra = {name: fn() for name, fn in (alongside or {}).items()}
+    else:
+        units = work_units(rules)
+        workers = min(jobs, len(units))
+        pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
+                                   initargs=(loaded, options, os.getpid(), finish))
+        try:
+            futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
+            if progress:
+                for unit in units[:workers]:
+                    progress.started([r.id for r in unit])
+            extra = {name: fn() for name, fn in (alongside or {}).items()}
+            parts = _collect(futures, units, workers, progress)
+        except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
+            stop_pool(pool)
+            raise
+        pool.shutdown()
+        by_id = {res.id: res for res, _ in parts}
+        results = [by_id[r.id] for r in rules]
+        provenance = _merge_provenance([p for _, p in parts])
+    created = (now or _dt.datetime.now(_dt.timezone.utc)).isoformat(timespec="seconds")
+    return RunResult(__version__, loaded.name, loaded.sha256, loaded.path, created, results, provenance | extra)

@@ -1,0 +1,169 @@
+"""The §25.341(a) discrete vertical gust runs shared by §25.341(a), §25.349(b) and §25.427(b) (regulation content, no
+rule here): the gust criteria, the condition space, U_ds = U_ref F_g (H/350)^(1/6) and the batched 1 − cos gust
+simulations, memoised in the context so that the rules evaluated in one process (``run_with = "discrete-gust"``)
+simulate them once. The formulas' sources and verification status are in :mod:`certkit_rules.part25.subpart_c.r25_341`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
+from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
+from certkit.models.loads.model import airplane_loads
+from certkit.models.loads.response import LoadEnvelope
+from certkit.engine.registry import Criterion
+from certkit.units import FT
+from certkit_rules.part25.support.gust import SOURCE as UREF_SOURCE
+from certkit_rules.part25.support.gust import reference_gust_velocity
+
+AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
+SPEEDS = ("VB", "VC", "VD")
+
+
+def flight_profile_alleviation(aircraft, altitude, crit) -> float:
+    """F_g at ``altitude`` (m): 0.5 (F_gz + F_gm) at sea level, F_gz = 1 − Z_mo/250 000 ft,
+    F_gm = √(R2 tan(π R1/4)), R1 = MLW/MTOW, R2 = MZFW/MTOW, rising linearly to 1 at Z_mo (the ceiling)."""
+    m = aircraft.mass
+    zmo = aircraft.envelope.ceiling
+    r1, r2 = m.MLW / m.MTOW, m.MZFW / m.MTOW
+    fgz = 1.0 - zmo / (crit.fgz_altitude * FT)
+    fgm = np.sqrt(r2 * np.tan(np.pi * r1 / 4.0))
+    fg0 = 0.5 * (fgz + fgm)
+    return float(fg0 + (1.0 - fg0) * min(max(altitude / zmo, 0.0), 1.0))
+
+
+def design_gust_velocity(u_ref, f_g, H, crit):
+    """U_ds = U_ref F_g (H / 350 ft)^(1/6) (same unit as U_ref; H in m)."""
+    return u_ref * f_g * (np.asarray(H) / (crit.gradient_reference * FT)) ** crit.gradient_exponent
+
+
+def gradients(crit) -> np.ndarray:
+    """The gust gradients H (m) of the criterion, each within 30–350 ft."""
+    values = np.array([float(v) for v in str(crit.gradients).replace(",", " ").split()])
+    if values.size == 0 or values.min() < crit.gradient_min - 1e-9 or values.max() > crit.gradient_max + 1e-9:
+        raise ValueError(f"gust gradients {values.tolist()} ft must lie within {crit.gradient_min}–{crit.gradient_max} ft")
+    return values * FT
+
+
+def gust_speeds(ctx, h: float) -> dict[str, float]:
+    """EAS (m/s) of VB, VC, VD at altitude h, Mach-limited; VB capped at VC."""
+    vc = float(ctx.design_speed_eas("VC", h)[0])
+    return {"VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc), "VC": vc, "VD": float(ctx.design_speed_eas("VD", h)[0])}
+
+
+#: the criteria that define the gust runs (shared by §25.349(b), which modifies the §25.341(a) conditions, and by
+#: §25.427(b), which splits their tail loads)
+GUST_RUN_CRITERIA = {
+    "gradients": Criterion("30 60 100 150 200 250 300 350", "ft", "14 CFR 25.341(a)(3) (verified: 'a sufficient "
+                           "number … in the range 30 feet to 350 feet')", "gust gradient distances H investigated"),
+    "gradient_min": Criterion(30.0, "ft", "14 CFR 25.341(a)(3)", "shortest gust gradient"),
+    "gradient_max": Criterion(350.0, "ft", "14 CFR 25.341(a)(3)", "longest gust gradient"),
+    "gradient_reference": Criterion(350.0, "ft", "14 CFR 25.341(a)(4), " + AC, "H of U_ds = U_ref F_g"),
+    "gradient_exponent": Criterion(1 / 6, "", "14 CFR 25.341(a)(4), " + AC, "exponent of H/350"),
+    "fgz_altitude": Criterion(250_000.0, "ft", "14 CFR 25.341(a)(6), " + AC, "F_gz = 1 − Z_mo / this"),
+    "vd_factor": Criterion(0.5, "", "14 CFR 25.341(a)(5)(ii) (wording UNVERIFIED)", "U_ref at VD / U_ref (a)(5)(i)"),
+    "steps_per_gust": Criterion(20, "", "certkit numerical choice (zero-order hold of the gust)",
+                                "simulation steps per gust length 2H/V"),
+    "settle_time": Criterion(1.5, "s", "certkit numerical choice", "time simulated after the gust leaves the tail"),
+}
+GUST_CRITERIA = tuple(GUST_RUN_CRITERIA)
+#: what the gust runs need from the aircraft file
+GUST_REQUIRES = ("speeds.VB", "speeds.VC", "speeds.VD", "geometry.horizontal_tail")
+#: the conditions of the gust runs (§25.341(a), and §25.349(b) which modifies them)
+GUST_CONDITIONS = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
+                                 extra=(("speed_point", SPEEDS), ("gust", ("up", "down"))),
+                                 note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude; U_ref "
+                                      "by altitude (" + UREF_SOURCE + "), F_g from the ceiling as Z_mo.")
+
+
+@dataclass
+class GustRuns:
+    """The §25.341(a) gust runs of a set of conditions: per gust gradient (``gradients``) the symmetric load
+    envelope, the extreme load factors, U_ds, and the wing's aerodynamic and inertial load histories (for the
+    unsymmetrical gusts of §25.349(b)); the scheduled conditions that could not be trimmed with the reason."""
+
+    refused: list  # Refusal of the scheduled conditions without a steady flight
+    conditions: list  # the simulated (refined) conditions
+    gradients: np.ndarray  # m
+    envelopes: list  # LoadEnvelope per gradient
+    nz_hi: np.ndarray  # (n_gradients, n)
+    nz_lo: np.ndarray
+    uds: np.ndarray  # (n_gradients, n) m/s EAS
+    wing: list  # per gradient (t, aero, inertia) of the right half wing, (nt, n, 3, S) each
+    u_ref: np.ndarray = None
+    f_g: np.ndarray = None
+    v_eas: np.ndarray = None
+    up: np.ndarray = None
+    altitude: np.ndarray = None
+    batch: object = None  # GustBatch of the simulated conditions
+    loads: object = None  # AirplaneLoads
+    steps_per_gust: float = 20.0
+    settle_time: float = 1.5
+    tail: list = None  # per gradient (t, aero, inertia) of the right half tailplane (§25.427(b)), like ``wing``
+
+    @cached_property
+    def symmetric(self) -> tuple[LoadEnvelope, dict]:
+        """The envelope over every gradient and which gradient each extreme comes from (:meth:`LoadEnvelope.worst_of`),
+        computed once for the rules that share the runs."""
+        return LoadEnvelope.worst_of(self.envelopes)
+
+    def replay(self, picks):
+        """Re-simulate the (condition index, gradient index) pairs with their histories (evidence)."""
+        out = []
+        for i, j in picks:
+            H = self.gradients[j]
+            alpha = (1.0 if self.up[i] else -1.0) * self.uds[j, i] / self.v_eas[i]
+            out.append((i, H, simulate_gust(self.loads, self.batch.subset([i]), H, alpha, self.steps_per_gust,
+                                            self.settle_time, split=("wing",))))
+        return out
+
+
+def gust_runs(ctx, conditions, crit) -> GustRuns:
+    """The gust runs of ``conditions``, memoised on the conditions and the gust criteria (so that §25.341(a) and
+    §25.349(b), evaluated in one process, simulate once)."""
+    key = ("discrete_gust_runs", tuple(conditions), tuple((k, str(crit[k])) for k in GUST_CRITERIA))
+    return ctx.memo(key, lambda: _simulate_gust_runs(ctx, conditions, crit))
+
+
+def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
+    H = gradients(crit)
+    entries, key_of = [], {}
+    for c in conditions:
+        key = (c.loading, c.altitude, c.get("speed_point"))
+        if key not in key_of:
+            key_of[key] = len(entries)
+            v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
+            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
+    batch = trimmed_batch(ctx, entries)
+    rows, sim_conds, refused = batch.distribute(
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
+    empty = np.zeros((len(H), 0))
+    if not rows.size:
+        return GustRuns(list(refused), [], H, [], empty, empty, empty, [])
+    loads = airplane_loads(ctx)
+    gb = gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
+    up = np.array([c.get("gust") == "up" for c in sim_conds])
+    alt = np.array([c.altitude for c in sim_conds])
+    at_vd = np.array([c.get("speed_point") == "VD" for c in sim_conds])
+    u_ref = reference_gust_velocity(alt) * np.where(at_vd, crit.vd_factor, 1.0)
+    f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
+    v_eas = np.array([c.speed for c in sim_conds])
+    labels = [c.label() for c in sim_conds]
+    envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
+    for h_gust in H:
+        uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
+        run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
+                            float(crit.settle_time), split=SURFACES)
+        envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
+        nz_hi.append(run.sim["n_z"].max(axis=0))
+        nz_lo.append(run.sim["n_z"].min(axis=0))
+        uds_all.append(uds)
+        wing.append((run.sim.t, *run.parts["wing"]))
+        tail.append((run.sim.t, *run.parts["horizontal_tail"]))
+    return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
+                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail)

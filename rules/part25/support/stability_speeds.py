@@ -1,0 +1,101 @@
+"""The speed ranges shared by the stability rules §§25.171–25.181 (regulation content, no rule here): the flight
+phases and their configurations, the maximum allowable speed of a configuration (VMO/MMO clean; VFE, and VLE with
+the gear down), the top of the §25.173/§25.177 ranges (VFC/MFC, §25.253(b)), the refinement of a scheduled
+condition's ``speed_point`` into a calibrated airspeed and the flap altitude limit.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from certkit.atmosphere import convert_speed
+from certkit_rules.part25.support.control_speeds import vsr_cas
+from certkit.engine.results import Finding
+
+#: certkit configuration of each flight phase the stability paragraphs name
+PHASES = {"takeoff": "takeoff", "cruise": "clean", "landing": "landing"}
+SPEED_POINTS = ("1.13 VSR", "mid", "max allowable")
+
+
+def max_allowable_cas(ctx, configuration: str, h: float = 0.0) -> float:
+    """Maximum allowable speed of the configuration (m/s CAS): VMO/MMO clean; VFE of the flap setting, and
+    VLE when the gear is down."""
+    sp = ctx.aircraft.speeds
+    cfg = ctx.aircraft.configurations[configuration]
+    limits = []
+    if configuration in sp.VFE:
+        limits.append(float(convert_speed(sp.VFE[configuration].value, sp.VFE[configuration].kind, "CAS", h)))
+    if getattr(cfg, "gear", None) == "down" and sp.VLE is not None:
+        limits.append(float(convert_speed(sp.VLE.value, sp.VLE.kind, "CAS", h)))
+    if not limits:
+        vmo, _ = ctx.design_speed_eas("VMO", h)
+        limits.append(float(convert_speed(float(vmo), "EAS", "CAS", h)))
+    return min(limits)
+
+
+VFC_FLOOR = ("VFC/MFC not declared: the least §25.253(b) allows, midway between VMO/MMO and VDF/MDF, with VD/MD "
+             "for VDF/MDF (which may not exceed them), each Mach-limited at the altitude")
+
+
+def stability_limit_cas(ctx, configuration: str, h: float = 0.0) -> tuple[float, str]:
+    """Top of the §25.173(a) and §25.177(a), (c) speed ranges (m/s CAS) and its basis: VFE/VLE for an extended
+    configuration (its maximum allowable speed); clean, VFC/MFC where declared, else :data:`VFC_FLOOR`."""
+    if configuration in ctx.aircraft.speeds.VFE or getattr(ctx.aircraft.configurations[configuration], "gear", "up") == "down":
+        return max_allowable_cas(ctx, configuration, h), "VFE/VLE of the configuration"
+    sp = ctx.aircraft.speeds
+    if sp.VFC is not None or sp.MFC is not None:
+        vfc, _ = ctx.design_speed_eas("VFC", h)
+        return float(convert_speed(float(vfc), "EAS", "CAS", h)), "declared VFC/MFC"
+    vmo, _ = ctx.design_speed_eas("VMO", h)
+    vd, _ = ctx.design_speed_eas("VD", h)
+    return float(convert_speed(0.5 * (float(vmo) + float(vd)), "EAS", "CAS", h)), VFC_FLOOR
+
+
+def speed_at_point(ctx, cond, point: str, low_factor: float = 1.13) -> tuple[float, float, float]:
+    """(speed, low, high) m/s CAS of ``point`` ("1.13 VSR" = the low end, "mid", "max allowable", "VFC" = the top of
+    the stability ranges (:func:`stability_limit_cas`), or a multiple "1.3 VSR") for the condition."""
+    h = cond.altitude or 0.0
+    low = low_factor * vsr_cas(ctx, cond.configuration, cond.mass, h)
+    high = max_allowable_cas(ctx, cond.configuration, h)
+    if point == "VFC":
+        return stability_limit_cas(ctx, cond.configuration, h)[0], low, high
+    named = {"1.13 VSR": low, "mid": 0.5 * (low + high), "max allowable": high}
+    v = named[point] if point in named else float(point.split()[0]) * low / low_factor  # "1.3 VSR"
+    return v, low, high
+
+
+def by_configuration(conditions) -> dict[str, list[int]]:
+    """Indices of the conditions grouped by configuration (one trim batch each)."""
+    groups: dict[str, list[int]] = defaultdict(list)
+    for i, c in enumerate(conditions):
+        groups[c.configuration].append(i)
+    return groups
+
+
+FLAP_ALTITUDE_SOURCE = ("project choice: flaps and gear are not extended above 20,000 ft (Boeing 777 FCOM limitation, "
+                        "the baseline's class); flap configurations are evaluated below it")
+
+
+def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float = 1.13, check: str = "speed range"):
+    """Each condition refined to the CAS of its ``speed_point`` (the ``extra`` axis), or a not-applicable
+    finding for a flap/gear configuration above ``flap_altitude_max`` (m). Returns (refined, findings)."""
+    refined, findings = [], []
+    for cond in conditions:
+        cfg = ctx.aircraft.configurations[cond.configuration]
+        extended = cond.configuration != "clean" and (getattr(cfg, "flap", 0) or getattr(cfg, "gear", "up") == "down")
+        if extended and (cond.altitude or 0.0) > flap_altitude_max + 1e-6:
+            findings.append(Finding.not_applicable(cond, check, f"{cond.configuration} configuration above "
+                                                   f"{flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)"))
+            continue
+        if cond.get("speed_point") == "VFC":
+            v, basis = stability_limit_cas(ctx, cond.configuration, cond.altitude or 0.0)
+            if basis.startswith("VFE/VLE"):
+                findings.append(Finding.not_applicable(cond, check, f"the {cond.configuration} configuration's range ends "
+                                                       "at its VFE/VLE, the 'max allowable' speed point"))
+                continue
+            refined.append(cond.with_(speed=v, speed_kind="CAS", VFC="declared" if basis == "declared VFC/MFC"
+                                      else "§25.253(b) least: (VMO + VD)/2"))
+            continue
+        v, _, _ = speed_at_point(ctx, cond, cond.get("speed_point", "mid"), low_factor)
+        refined.append(cond.with_(speed=v, speed_kind="CAS"))
+    return refined, findings

@@ -1,0 +1,105 @@
+"""Structural checks shared by the loads rules of Subpart C (regulation content, no rule here): the factor of safety
+(§25.303), the limit/ultimate comparison of a condition's loads with the declared capability (§25.305), the
+control-system stops the loads manoeuvres deflect to (or the deflection a §25.397 pilot force holds), the design
+speeds a manoeuvre starts from and the §25.337 limit manoeuvring load factor at a speed."""
+
+from __future__ import annotations
+
+from functools import lru_cache, partial
+
+import numpy as np
+
+from certkit.models.flight import control_limits
+from certkit.models.loads.capability import worst_margin
+from certkit.models.loads.model import QUANTITIES
+from certkit.engine.registry import Criterion
+from certkit.engine.results import Finding
+
+NO_CAPABILITY = "no structural capability declared"
+SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
+
+
+def control_stops(ctx, control: str) -> tuple[float, float]:
+    """(min, max) rad of ``control``'s control-system stops (``travel`` in the aircraft file). The loads manoeuvres
+    of §§25.331(c), 25.349 and 25.351 deflect to them unless a §25.397 pilot-force limit is reached first; trim and
+    controllability margins keep the narrower ``design_limits``."""
+    return control_limits(ctx.aircraft, design=False)[control]
+
+
+def entry_speeds(ctx, h: float, names) -> dict[str, float]:
+    """EAS (m/s) of the named design speeds at altitude h, each limited by its Mach counterpart; VA
+    need not exceed VC (§25.335(c)), so it is capped at the Mach-limited VC."""
+    out = {}
+    vc = float(ctx.design_speed_eas("VC", h)[0])
+    for name in names:
+        v = float(ctx.design_speed_eas(name, h)[0])
+        out[name] = min(v, vc) if name == "VA" else v
+    return out
+
+
+def station_summary(loads_peaks: np.ndarray, stations) -> dict:
+    """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
+    lo, hi = np.round(np.asarray(loads_peaks, dtype=float)[:2] / 1e3, 1).transpose(0, 2, 1).reshape(2, -1).tolist()
+    return dict(zip(_summary_keys(tuple(stations)), map(list, zip(hi, lo))))
+
+
+@lru_cache(maxsize=64)
+def _summary_keys(stations: tuple) -> tuple:
+    """The :func:`station_summary` keys, station by station."""
+    return tuple(f"{station} {quantity} max/min (kN{'·m' if q else ''})"
+                 for station in stations for q, quantity in enumerate(QUANTITIES))
+
+
+def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor,
+                       **details) -> Finding:
+    """One finding per condition: the smallest margin of the limit and ultimate loads against the
+    capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
+    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
+    if worst is None:
+        reason = f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations" if capabilities else NO_CAPABILITY
+        finding = Finding.not_evaluated(cond, check, reason, **details)
+    else:
+        m, cap = worst
+        unit = "N" if cap.quantity == "shear" else "N·m"
+        finding = Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load,
+                                  m.allowable, at_least=False, unit=unit, **details)
+    finding.written_details = partial(station_summary, np.array(peaks, dtype=float), tuple(stations))
+    return finding
+
+
+def maneuver_limit_load_factor(ctx, v_eas: float, h: float, positive: bool) -> float:
+    """The §25.337 limit manoeuvring load factor of the declared envelope at EAS ``v_eas`` and altitude ``h``:
+    the positive factor up to VD; the negative factor up to VC, varying linearly to zero at VD (§25.337(c),
+    VC and VD Mach-limited at the altitude)."""
+    lf = ctx.aircraft.envelope.limit_load_factors
+    if positive:
+        return float(lf.positive)
+    v = entry_speeds(ctx, h, ["VC", "VD"])
+    vc, vd = v["VC"], v["VD"]
+    if v_eas <= vc or vd <= vc:
+        return float(lf.negative)
+    return float(lf.negative) * max(vd - v_eas, 0.0) / (vd - vc)
+
+
+def force_limited_deflection(ctx, control: str, conditions, trim, stop, force_limit_lbf):
+    """The deflection a sudden cockpit input reaches from each trimmed condition: the control-system stop ``stop``
+    (rad, scalar or per condition; its sign gives the direction) or, with a force model of ``control`` declared
+    (:mod:`certkit.models.control_force`), the deflection the limit pilot force ``force_limit_lbf`` holds from the
+    trim ``trim`` (rad), whichever is smaller in magnitude. The local angle of attack is the trim's at the instant
+    of the input, so its hinge-moment term cancels against the trim's; q̄ from each condition's EAS.
+    Returns (deflection, force_limited flags) — the flags None without a model."""
+    from certkit.atmosphere import RHO0
+    from certkit.engine.conditions import speed_as
+    from certkit.models.control_force import control_force_model
+    from certkit.units import LBF
+
+    trim = np.asarray(trim, dtype=float)
+    stop = np.broadcast_to(np.asarray(stop, dtype=float), trim.shape)
+    model = control_force_model(ctx.aircraft, control)
+    if model is None:
+        return stop.copy(), None
+    qbar = 0.5 * RHO0 * np.array([speed_as(c, "EAS") for c in conditions]) ** 2
+    force = np.sign(stop - trim) * np.asarray(force_limit_lbf, dtype=float) * LBF
+    at_force = model.deflection_at_force(force, qbar, 0.0, trim=(trim, 0.0))
+    limited = np.abs(at_force - trim) < np.abs(stop - trim)
+    return np.where(limited, at_force, stop), limited
