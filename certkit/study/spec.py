@@ -276,7 +276,8 @@ class AnalysisOptions(_Model):
     profiler: list[str] | None = Field(None, description="constraint responses shown in the profiler "
                                                          "(default: every constraint's)")
     gp_max_cases: int = Field(600, ge=0, description="a Gaussian process is fitted on at most this many training "
-                                                     "cases (a space-filling subsample of them above it)")
+                                                     "cases (a maximin subsample of them above it; 0: no Gaussian "
+                                                     "process)")
 
     def relaxed_max(self, constraint: Constraint) -> float | None:
         """The maximum level the constrained stage accepts for ``constraint`` (None: the declared one)."""

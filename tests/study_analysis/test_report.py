@@ -81,8 +81,11 @@ def test_profiler_data_reproduces_the_surrogates():
     assert [v["path"] for v in data["variables"]] == [v["path"] for v in VARIABLES]
     x = sample(10, 9)
     for r in data["responses"]:
+        # a near-interpolating Gaussian process sums weights α of ±3·10⁴ to values of 10⁵: the page's loop and
+        # scikit-learn's matrix product, adding in other orders, agree to ~10⁻⁸ (1e-9 where no such cancellation)
+        gp = r["model"]["kind"] == "gp"
         np.testing.assert_allclose(evaluate_export(r["model"], x), analysis.surrogates[r["name"]].predict(x),
-                                   rtol=1e-9, atol=1e-12)
+                                   rtol=1e-7 if gp else 1e-9, atol=1e-12)
 
 
 def test_report_command(tmp_path, monkeypatch):

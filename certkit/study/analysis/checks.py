@@ -11,6 +11,7 @@ import pandas as pd
 
 from certkit.study import runner
 from certkit.study.analysis.cases import RESP_PREFIX, VAR_PREFIX
+from certkit.study.analysis.intervals import wilson
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, binomial_se
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
@@ -45,6 +46,11 @@ class CheckedConstraint:
     p_mc: float
     se_true: float
     se_mc: float
+
+    @property
+    def interval_true(self) -> tuple[float, float]:
+        """95 % Wilson interval of the true model's probability of success on its n designs."""
+        return wilson(round(self.p_true * self.n), self.n)
 
     @property
     def difference(self) -> float:

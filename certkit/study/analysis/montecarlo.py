@@ -1,8 +1,8 @@
 """Monte Carlo feasibility on the surrogates: uniform samples over the design box, evaluated chunk by chunk.
 
 For N independent uniform samples the probability of success p of a constraint is estimated by the fraction
-k/N of samples that satisfy it, with the binomial standard error √(p(1−p)/N) (e.g. Rubinstein & Kroese,
-*Simulation and the Monte Carlo Method*, 3rd ed., §4.2). Nothing of size N is kept: per chunk the samples are
+k/N of samples that satisfy it, with its 95 % Wilson score interval (:mod:`.intervals`; never of zero width at
+k = 0 or N, as the binomial standard error √(p(1−p)/N) would be). Nothing of size N is kept: per chunk the samples are
 drawn, every surrogate evaluated, counts and fixed-bin histograms (for the CDFs) updated, the Pareto fronts
 and the per-stage optima merged, and the first ``cloud`` samples stored for plotting.
 
@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from certkit.study.analysis.intervals import interval_se, wilson
 from certkit.study.spec import Constraint, Study
 from certkit.study.analysis.pareto import FrontAccumulator, objective_subsets
 from certkit.study.analysis.surrogates import Surrogate
@@ -32,7 +33,8 @@ HIST_BINS = 2000
 
 
 def binomial_se(p: float, n: int) -> float:
-    return float(np.sqrt(max(p * (1.0 - p), 0.0) / n)) if n else float("nan")
+    """The standard error of a fraction p of n trials, read from its Wilson interval (positive at p = 0 or 1)."""
+    return interval_se(round(p * n), n) if n else float("nan")
 
 
 @dataclass
@@ -83,7 +85,16 @@ class ConstraintOutcome:
 
     @property
     def se(self) -> float:
-        return binomial_se(self.p, self.n)
+        return interval_se(self.successes, self.n)
+
+    @property
+    def interval(self) -> tuple[float, float]:
+        """95 % Wilson interval of the probability of success."""
+        return wilson(self.successes, self.n)
+
+    @property
+    def interval_relaxed(self) -> tuple[float, float] | None:
+        return None if self.relaxed_successes is None else wilson(self.relaxed_successes, self.n)
 
     @property
     def p_relaxed(self) -> float | None:
@@ -123,10 +134,18 @@ class MonteCarloResult:
     cloud_f: np.ndarray
     cloud_stage: np.ndarray
     flagged_responses: list[str] = field(default_factory=list)
+    n_drawn: int = 0  # samples drawn; n of them were possible designs (the others masked)
+
+    @property
+    def masked(self) -> int:
+        return max(self.n_drawn - self.n, 0)
 
     def stage_p(self, stage: str) -> tuple[float, float]:
-        p = self.stage_counts[stage] / self.n
-        return p, binomial_se(p, self.n)
+        """(fraction of samples in ``stage``, its standard error from the Wilson interval)."""
+        return self.stage_counts[stage] / self.n, interval_se(self.stage_counts[stage], self.n)
+
+    def stage_interval(self, stage: str) -> tuple[float, float]:
+        return wilson(self.stage_counts[stage], self.n)
 
     def ranked(self) -> list[ConstraintOutcome]:
         """Constraints by activity: the least probability of success first (show-stoppers at the top), ties
@@ -146,8 +165,10 @@ def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.
 
 
 def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
-                    seed: int = 20240615, cloud: int = 20_000) -> MonteCarloResult:
-    """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective."""
+                    seed: int = 20240615, cloud: int = 20_000, valid=None) -> MonteCarloResult:
+    """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective.
+    ``valid``: a function of the samples (rows, SI) → mask of possible designs; the others are masked before any
+    count, front or optimum (probabilities are then among possible designs)."""
     t0 = time.perf_counter()
     bounds = study.bounds
     lo, width = bounds[:, 0], bounds[:, 1] - bounds[:, 0]
@@ -182,9 +203,17 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
     cloud_x, cloud_f, cloud_stage = [], [], []
     kept = 0
     done = 0
+    n_valid = 0
     while done < n:
         m = min(chunk, n - done)
+        done += m
         x = lo + width * rng.random((m, len(lo)))
+        if valid is not None:
+            x = x[valid(x)]
+            m = len(x)
+            if not m:
+                continue
+        n_valid += m
         values = {r: surrogates[r].predict(x) for r in needed}
         ok_relaxed = np.ones((len(constraints), m), dtype=bool)
         level1 = np.ones(m, dtype=bool)
@@ -245,15 +274,16 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
             cloud_f.append(f[:take])
             cloud_stage.append(np.where(preferred[:take], 2, np.where(constrained[:take], 1, 0)))
             kept += take
-        done += m
-    outcomes = [ConstraintOutcome(c, int(succ[i]), n, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
+    if not n_valid:
+        raise ValueError(f"every one of the {n} samples was classed as an impossible design")
+    outcomes = [ConstraintOutcome(c, int(succ[i]), n_valid, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
                                   else None, int(sole[i]), hists[i], surrogates[c.response].flagged,
                                   int(succ_unc[i]) if uncertainty else None,
                                   int(succ_adv[i]) if uncertainty else None)
                 for i, c in enumerate(constraints)]
     optima = [Optimum(objectives[o], s, float(sign[o] * v), xb) for (o, s), (v, xb) in best.items() if xb is not None]
     flagged = [r for r in needed if surrogates[r].flagged]
-    return MonteCarloResult(n, chunk, seed, time.perf_counter() - t0, outcomes, stage_counts,
+    return MonteCarloResult(n_valid, chunk, seed, time.perf_counter() - t0, outcomes, stage_counts,
                             joint_unc if uncertainty else None, joint_adv if uncertainty else None, objectives, fronts,
                             optima, np.concatenate(cloud_x), np.concatenate(cloud_f), np.concatenate(cloud_stage),
-                            flagged)
+                            flagged, n_drawn=n)

@@ -26,6 +26,7 @@ from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_response
+from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.spec import Study
 
 #: failed cases listed one by one in the report (the count is always given)
@@ -51,6 +52,7 @@ class Analysis:
     optima: list[CheckedOptimum]
     profiler: dict
     timings: dict[str, float] = field(default_factory=dict)
+    validity: Validity | None = None
 
 
 def _in_unit(value: float, unit: str) -> float:
@@ -116,7 +118,9 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
         "constraints": [c for c in view.constraints if c.response in surrogates]})
     mc_note = "; ".join(f"{r} left out: {not_fitted[r]}" for r in not_fitted)
     t = time.perf_counter()
-    mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk)
+    validity = fit_validity(frame, view)
+    log(f"possible designs: {validity.note}")
+    mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk, valid=validity.valid)
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")
     t = time.perf_counter()
@@ -135,7 +139,7 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
     return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
-                    check_note, checked, profiler_data(usable, surrogates), timings)
+                    check_note, checked, profiler_data(usable, surrogates), timings, validity)
 
 
 def _num(value, digits: int = 4) -> str:
@@ -153,6 +157,7 @@ def _environment() -> Environment:
     env.filters["num"] = _num
     env.filters["in_unit"] = _in_unit
     env.filters["pct"] = lambda p: "—" if p is None else f"{100 * p:.2f} %"
+    env.filters["ci"] = lambda iv: "—" if iv is None else f"{100 * iv[0]:.2f} – {100 * iv[1]:.2f} %"
     return env
 
 
@@ -179,7 +184,8 @@ def render(a: Analysis) -> str:
     stage_rows = []
     for stage in STAGES:
         p, se = mc.stage_p(stage)
-        stage_rows.append({"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se})
+        stage_rows.append({"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se,
+                           "interval": mc.stage_interval(stage)})
     fronts = []
     for (stage, cols), acc in mc.fronts.items():
         f, x = acc.front()
