@@ -20,7 +20,8 @@ sys.path.insert(0, str(ROOT))
 
 from certkit.study.analysis.cases import cases  # noqa: E402
 from certkit.study.analysis.montecarlo import run_monte_carlo  # noqa: E402
-from certkit.study.analysis.report import _fit_all, write_study_report  # noqa: E402
+from certkit.study.analysis.report import write_study_report  # noqa: E402
+from certkit.study.analysis.surrogates import fit_all  # noqa: E402
 from tests.study_analysis.synthetic import frame_of, sample, study_dict, study_of, unit  # noqa: E402
 
 EXTRA_RULES = ["25.331(c)(1)", "25.331(c)(2)", "25.333", "25.349(b)", "25.143(h)", "25.111", "25.125", "25.145(a)"]
@@ -52,7 +53,7 @@ def main() -> None:
     study, frame = seed_sized_study()
     view = study
     t0 = time.perf_counter()
-    surrogates, not_fitted = _fit_all(view, cases(frame, view), lambda m: None)
+    surrogates, not_fitted = fit_all(view, cases(frame, view), lambda m: None)
     t_fit = time.perf_counter() - t0
     kinds = {}
     for s in surrogates.values():

@@ -111,10 +111,13 @@ class ConstraintOutcome:
 
 @dataclass
 class Optimum:
+    """An optimum of ``objective`` in ``stage`` (or a front point: ``objective`` then names the front)."""
+
     objective: str
     stage: str
     value: float
     x: np.ndarray
+    method: str = "best Monte Carlo sample"
 
 
 @dataclass

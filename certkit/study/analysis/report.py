@@ -8,7 +8,6 @@ fills the template; :func:`write_study_report` does both and writes ``index.html
 from __future__ import annotations
 
 import json
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,10 +21,11 @@ from certkit.study.analysis import figures
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
 from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
+from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
-from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_response
+from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_all
 from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.spec import Study
 
@@ -33,6 +33,8 @@ from certkit.study.spec import Study
 FAILED_SHOWN = 200
 #: Pareto points listed per front table
 FRONT_SHOWN = 50
+#: points of each NSGA-II front re-evaluated with the true model
+FRONT_CHECKED = 5
 
 
 @dataclass
@@ -53,6 +55,8 @@ class Analysis:
     profiler: dict
     timings: dict[str, float] = field(default_factory=dict)
     validity: Validity | None = None
+    nsga_fronts: list[dict] = field(default_factory=list)
+    front_checks: list[CheckedOptimum] = field(default_factory=list)
 
 
 def _in_unit(value: float, unit: str) -> float:
@@ -65,35 +69,6 @@ def _in_unit(value: float, unit: str) -> float:
         return from_si(value, unit)
     except Exception:  # an unknown display unit: the SI value, rather than no report
         return value
-
-
-def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
-    (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
-    try:
-        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
-                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
-    except ValueError as exc:
-        return name, None, str(exc)
-
-
-def _fit_all(view: Study, cs, log) -> tuple[dict[str, Surrogate], dict[str, str]]:
-    """One surrogate per analysed response, the responses fitted in parallel over the cores (each fit is seeded:
-    the same models whatever the number of processes)."""
-    from joblib import Parallel, delayed
-
-    names = view.analysed_responses()
-    data = {n: (cs.xy("training", n), cs.xy("validation", n)) for n in names}
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    done = Parallel(n_jobs=min(cores, len(names)) or 1)(
-        delayed(_fit_one)(n, view.bounds, data[n], view.analysis) for n in names)
-    surrogates, not_fitted = {}, {}
-    for name, surrogate, error in done:
-        if surrogate is None:
-            not_fitted[name] = error
-        else:
-            surrogates[name] = surrogate
-            log(f"surrogate {name}: {surrogate.kept.label}")
-    return surrogates, not_fitted
 
 
 def _run_checks(usable: Study, store, surrogates, mc, optima) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
@@ -111,7 +86,7 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     t = time.perf_counter()
     view = study
     cs = cases(frame, view)
-    surrogates, not_fitted = _fit_all(view, cs, log)
+    surrogates, not_fitted = fit_all(view, cs, log)
     timings["surrogates_s"] = time.perf_counter() - t
     usable = view.model_copy(update={
         "objectives": [o for o in view.objectives if o.response in surrogates],
@@ -126,20 +101,27 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     t = time.perf_counter()
     sobol = [sobol_indices(view, surrogates[r]) for r in view.analysed_responses() if r in surrogates]
     timings["sobol_s"] = time.perf_counter() - t
-    optima = sorted(mc.optima, key=lambda o: (mc.objectives.index(o.objective), STAGES.index(o.stage)))
+    t = time.perf_counter()
+    margin = validity.margin if validity.estimator is not None else None
+    optima = optimise(usable, surrogates, mc, margin)
+    nsga = pareto_fronts(usable, surrogates, margin)
+    points = optima + front_points(nsga, FRONT_CHECKED)
+    timings["optimiser_s"] = time.perf_counter() - t
+    log(f"optimiser: {len(optima)} optima, {len(nsga)} NSGA-II fronts in {timings['optimiser_s']:.1f} s")
     checked, direct, check_note = [], None, "not run (--no-check)"
     if check:
         t = time.perf_counter()
-        direct, checked, check_note = _run_checks(usable, store, surrogates, mc, optima)
+        direct, checked, check_note = _run_checks(usable, store, surrogates, mc, points)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
         checked = [CheckedOptimum(o, "not evaluated", check_note, {}, {
             r: float(surrogates[r].predict(o.x[None, :])[0]) for r in usable.analysed_responses()
-            if r in surrogates}) for o in optima]
+            if r in surrogates}) for o in points]
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
     return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
-                    check_note, checked, profiler_data(usable, surrogates), timings, validity)
+                    check_note, checked[:len(optima)], profiler_data(usable, surrogates), timings, validity, nsga,
+                    checked[len(optima):])
 
 
 def _num(value, digits: int = 4) -> str:
@@ -193,7 +175,10 @@ def render(a: Analysis) -> str:
                        "rows": [list(fr) + list(xr) for fr, xr in zip(f[:FRONT_SHOWN], x[:FRONT_SHOWN])]})
     context = {
         "a": a, "view": a.view, "mc": mc, "version": __version__, "created": time.strftime("%Y-%m-%d %H:%M:%S"),
-        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN,
+        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN, "front_checked": FRONT_CHECKED,
+        "nsga": [{"objectives": f["objectives"], "size": len(f["f"]),
+                  "checks": [c for c in a.front_checks if c.optimum.objective == " × ".join(f["objectives"])]}
+                 for f in a.nsga_fronts],
         "fits": [{"s": s, "svg": figures.fit_svg(s)} for s in a.surrogates.values()],
         "cdfs": [{"o": o, "svg": figures.cdf_svg(o)} for o in mc.ranked()],
         "matrix": figures.scatter_matrix_svg(mc, mc.objectives) if len(mc.objectives) >= 2 else "",

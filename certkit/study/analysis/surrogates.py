@@ -25,10 +25,12 @@ DoE/RSM fit table (Myers, Montgomery & Anderson-Cook, *Response Surface Methodol
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from joblib import Parallel, delayed
 from scipy.optimize import minimize
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.compose import TransformedTargetRegressor
@@ -296,3 +298,31 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
                      selection, r2_threshold, len(y_train), len(y_val), n_missing,
                      plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)},
                      n_leaked=int(leak.sum()))
+
+
+def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
+    (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
+    try:
+        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
+                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
+    except ValueError as exc:
+        return name, None, str(exc)
+
+
+def fit_all(study, cases, log=lambda msg: None) -> tuple[dict[str, Surrogate], dict[str, str]]:
+    """One surrogate per analysed response of ``study`` from ``cases`` (:class:`.cases.Cases`), the responses
+    fitted in parallel over the cores (each fit is seeded: the same models whatever the number of processes);
+    (surrogates, reasons of the responses none could be fitted for)."""
+    names = study.analysed_responses()
+    data = {n: (cases.xy("training", n), cases.xy("validation", n)) for n in names}
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    done = Parallel(n_jobs=min(cores, len(names)) or 1)(
+        delayed(_fit_one)(n, study.bounds, data[n], study.analysis) for n in names)
+    surrogates, not_fitted = {}, {}
+    for name, surrogate, error in done:
+        if surrogate is None:
+            not_fitted[name] = error
+        else:
+            surrogates[name] = surrogate
+            log(f"surrogate {name}: {surrogate.kept.label}")
+    return surrogates, not_fitted

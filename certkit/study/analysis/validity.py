@@ -52,6 +52,14 @@ class Validity:
             return np.ones(len(x), dtype=bool)
         return self.estimator.predict(to_unit(x, self.bounds)) == 0
 
+    def margin(self, x: np.ndarray) -> np.ndarray:
+        """A smooth margin, ≥ 0 where the design is classed as possible (minus the classifier's log-odds of
+        impossible): the optimiser's constraint."""
+        x = np.atleast_2d(np.asarray(x, dtype=float))
+        if self.estimator is None:
+            return np.ones(len(x))
+        return -self.estimator.decision_function(to_unit(x, self.bounds))
+
 
 def infeasible_mask(frame: pd.DataFrame) -> np.ndarray:
     """Cases that failed because their variables make an impossible aircraft."""
