@@ -78,6 +78,8 @@ class ConstraintOutcome:
     flagged: bool
     uncertain_successes: int | None = None
     adverse_successes: int | None = None
+    least_violation: float = float("nan")  # over the samples, on the surrogate (0 where some sample satisfies it)
+    best_value: float = float("nan")  # the sample value of least violation
 
     @property
     def p(self) -> float:
@@ -156,6 +158,19 @@ class MonteCarloResult:
         return sorted(self.constraints, key=lambda c: (c.p, -c.sole_violations))
 
 
+def violation(constraint: Constraint, values: np.ndarray, max_override: float | None = None) -> np.ndarray:
+    """How far each value lies outside the constraint's limits (0 inside; a level L counts up to L + ½);
+    NaN where the value is not finite."""
+    upper = constraint.max if max_override is None else max_override
+    half = 0.5 if constraint.is_level else 0.0
+    out = np.zeros(len(values))
+    if constraint.min is not None:
+        out = np.maximum(out, (constraint.min - half) - values)
+    if upper is not None:
+        out = np.maximum(out, values - (upper + half))
+    return np.where(np.isfinite(values), out, np.nan)
+
+
 def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.ndarray:
     """Values moved by ``fraction`` of their magnitude towards the infeasible side of ``constraint``."""
     shift = np.abs(values) * fraction
@@ -199,6 +214,8 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
     stage_counts = dict.fromkeys(STAGES, 0)
     joint_unc = joint_adv = 0
     hists: list[Histogram | None] = [None] * len(constraints)
+    least = np.full(len(constraints), np.inf)
+    least_value = np.full(len(constraints), np.nan)
     subsets = objective_subsets(len(objectives)) if len(objectives) >= 2 else []
     fronts = {(stage, cols): FrontAccumulator(len(lo), cols, tuple(maximise[c] for c in cols))
               for stage in STAGES for cols in subsets}
@@ -231,6 +248,10 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
             succ[i] += int(ok.sum())
             ok_r = c.feasible(v, relaxed[i]) if relaxed[i] is not None else ok
             succ_relaxed[i] += int(ok_r.sum())
+            miss = violation(c, v, relaxed[i])
+            j = int(np.nanargmin(miss)) if np.isfinite(miss).any() else -1
+            if j >= 0 and miss[j] < least[i]:
+                least[i], least_value[i] = miss[j], v[j]
             ok_relaxed[i] = ok_r
             if i in levels:
                 level1 &= c.feasible(v, 1.0)
@@ -282,7 +303,7 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
     outcomes = [ConstraintOutcome(c, int(succ[i]), n_valid, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
                                   else None, int(sole[i]), hists[i], surrogates[c.response].flagged,
                                   int(succ_unc[i]) if uncertainty else None,
-                                  int(succ_adv[i]) if uncertainty else None)
+                                  int(succ_adv[i]) if uncertainty else None, float(least[i]), float(least_value[i]))
                 for i, c in enumerate(constraints)]
     optima = [Optimum(objectives[o], s, float(sign[o] * v), xb) for (o, s), (v, xb) in best.items() if xb is not None]
     flagged = [r for r in needed if surrogates[r].flagged]

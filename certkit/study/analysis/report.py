@@ -23,6 +23,7 @@ from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.planform import planform_from
+from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_all
@@ -57,6 +58,8 @@ class Analysis:
     validity: Validity | None = None
     nsga_fronts: list[dict] = field(default_factory=list)
     front_checks: list[CheckedOptimum] = field(default_factory=list)
+    show_stoppers: list[ShowStopper] = field(default_factory=list)
+    active: dict[str, list[str]] = field(default_factory=dict)
 
 
 def _in_unit(value: float, unit: str) -> float:
@@ -121,7 +124,8 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
     return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
                     check_note, checked[:len(optima)], profiler_data(usable, surrogates), timings, validity, nsga,
-                    checked[len(optima):])
+                    checked[len(optima):], show_stoppers(usable, mc, cs, not_fitted),
+                    active_constraints(usable, surrogates, optima))
 
 
 def _num(value, digits: int = 4) -> str:
