@@ -14,8 +14,10 @@ convention of flight-manual performance charts (an ISA deviation constant with h
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
 from certkit.units import G0
@@ -30,6 +32,13 @@ H_TROPOPAUSE = 11_000.0
 H_MAX = 20_000.0
 A0 = float(np.sqrt(GAMMA * R_AIR * T0))  # 340.294 m/s
 
+#: what the functions take: a float or an array of floats (SI)
+Values = npt.ArrayLike
+#: what they return: an array of floats (0-d for a scalar input)
+FloatArray = npt.NDArray[np.float64]
+#: a speed conversion f(value, h) -> value
+Conversion = Callable[[Values, Values], FloatArray]
+
 
 class AtmosphereRangeError(ValueError):
     """An altitude outside the modelled layers (−610 m to 20 km)."""
@@ -39,7 +48,7 @@ H_MIN = -610.0
 
 
 @njit(cache=True)
-def _first_out_of_range(h):
+def _first_out_of_range(h: FloatArray) -> int:
     """Index of the first altitude outside [H_MIN, H_MAX] (−1: none; NaN is not flagged)."""
     for i in range(h.shape[0]):
         if h[i] < H_MIN or h[i] > H_MAX:
@@ -47,7 +56,7 @@ def _first_out_of_range(h):
     return -1
 
 
-def _check_range(h: np.ndarray) -> None:
+def _check_range(h: Values) -> None:
     """Raise :class:`AtmosphereRangeError` naming the first altitude outside the modelled layers (a compiled
     scan: the two numpy reductions it replaces cost ~10 µs a call, and the simulations call it at every step)."""
     h = np.asarray(h, dtype=float)
@@ -65,7 +74,7 @@ _K_STRATO = -G0 / (R_AIR * _T11)
 
 
 @njit(cache=True, inline="always")
-def isa_scalar(h):
+def isa_scalar(h: float) -> tuple[float, float]:
     """(temperature K, pressure Pa) at one altitude (m), no range check: the single implementation
     of the layers, used by the array functions below and by compiled kernels."""
     if h <= H_TROPOPAUSE:
@@ -75,67 +84,68 @@ def isa_scalar(h):
 
 
 @njit(cache=True)
-def _isa_flat(h, which):
+def _isa_flat(h: FloatArray, which: int) -> FloatArray:
     out = np.empty(h.shape[0])
     for i in range(h.shape[0]):
         out[i] = isa_scalar(h[i])[which]
     return out
 
 
-def _isa(h, which: int) -> np.ndarray:
-    h = np.asarray(h, dtype=float)
-    _check_range(h)
-    return _isa_flat(np.ascontiguousarray(h).reshape(-1), which).reshape(h.shape)
+def _isa(h: Values, which: int) -> FloatArray:
+    heights = np.asarray(h, dtype=float)
+    _check_range(heights)
+    flat: FloatArray = _isa_flat(np.ascontiguousarray(heights).reshape(-1), which)
+    return flat.reshape(heights.shape)
 
 
-def temperature(h, delta_isa=0.0):
+def temperature(h: Values, delta_isa: Values = 0.0) -> FloatArray:
     """Ambient temperature (K) at (pressure) altitude h on a day ISA + ``delta_isa`` (K)."""
     t = _isa(h, 0)
     off_standard = delta_isa != 0.0 if isinstance(delta_isa, (int, float)) else np.any(delta_isa)
-    return t + delta_isa if off_standard else t
+    return t + np.asarray(delta_isa, dtype=float) if off_standard else t
 
 
-def pressure(h):
+def pressure(h: Values) -> FloatArray:
     return _isa(h, 1)
 
 
-def density(h, delta_isa=0.0):
+def density(h: Values, delta_isa: Values = 0.0) -> FloatArray:
     return pressure(h) / (R_AIR * temperature(h, delta_isa))
 
 
-def speed_of_sound(h, delta_isa=0.0):
+def speed_of_sound(h: Values, delta_isa: Values = 0.0) -> FloatArray:
     return np.sqrt(GAMMA * R_AIR * temperature(h, delta_isa))
 
 
-def dynamic_viscosity(h):
+def dynamic_viscosity(h: Values) -> FloatArray:
     """Sutherland's law (ISO 2533)."""
     t = temperature(h)
     return 1.458e-6 * t**1.5 / (t + 110.4)
 
 
-def density_ratio(h):
+def density_ratio(h: Values) -> FloatArray:
     return density(h) / RHO0
 
 
 # --- airspeed conversions -------------------------------------------------------------------
 
-def eas_to_tas(eas, h):
+def eas_to_tas(eas: Values, h: Values) -> FloatArray:
     return np.asarray(eas, dtype=float) / np.sqrt(density_ratio(h))
 
 
-def tas_to_eas(tas, h):
+def tas_to_eas(tas: Values, h: Values) -> FloatArray:
     return np.asarray(tas, dtype=float) * np.sqrt(density_ratio(h))
 
 
-def tas_to_mach(tas, h):
+def tas_to_mach(tas: Values, h: Values) -> FloatArray:
     return np.asarray(tas, dtype=float) / speed_of_sound(h)
 
 
-def mach_to_tas(mach, h):
+def mach_to_tas(mach: Values, h: Values) -> FloatArray:
     return np.asarray(mach, dtype=float) * speed_of_sound(h)
 
 
-def _impact_pressure_from_mach(mach, p):
+def _impact_pressure_from_mach(mach: Values, p: FloatArray) -> FloatArray:
     """Subsonic isentropic impact pressure; Rayleigh pitot formula above Mach 1."""
     m = np.asarray(mach, dtype=float)
     sub = p * ((1.0 + 0.2 * m**2) ** 3.5 - 1.0)
@@ -143,15 +153,14 @@ def _impact_pressure_from_mach(mach, p):
     return np.where(m <= 1.0, sub, sup)
 
 
-def mach_to_cas(mach, h):
+def mach_to_cas(mach: Values, h: Values) -> FloatArray:
     """Calibrated airspeed: the sea-level speed giving the same impact pressure."""
     qc = _impact_pressure_from_mach(mach, pressure(h))
     return A0 * np.sqrt(5.0 * ((qc / P0 + 1.0) ** (2.0 / 7.0) - 1.0))
 
 
-def cas_to_mach(cas, h):
-    cas = np.asarray(cas, dtype=float)
-    qc = P0 * ((1.0 + 0.2 * (cas / A0) ** 2) ** 3.5 - 1.0)
+def cas_to_mach(cas: Values, h: Values) -> FloatArray:
+    qc = P0 * ((1.0 + 0.2 * (np.asarray(cas, dtype=float) / A0) ** 2) ** 3.5 - 1.0)
     p = pressure(h)
     mach = np.sqrt(5.0 * ((qc / p + 1.0) ** (2.0 / 7.0) - 1.0))
     if np.any(mach > 1.0):  # solve the Rayleigh formula by fixed point (converges in a few steps)
@@ -162,7 +171,7 @@ def cas_to_mach(cas, h):
 
 
 #: kind → (speed to TAS, TAS to speed), each f(value, h)
-_CONVERSIONS = {
+_CONVERSIONS: dict[str, tuple[Conversion, Conversion]] = {
     "TAS": (lambda v, h: np.asarray(v, dtype=float) + 0.0 * np.asarray(h, dtype=float),) * 2,
     "EAS": (eas_to_tas, tas_to_eas),
     "CAS": (lambda v, h: mach_to_tas(cas_to_mach(v, h), h), lambda v, h: mach_to_cas(tas_to_mach(v, h), h)),
@@ -170,22 +179,22 @@ _CONVERSIONS = {
 }
 
 
-def _conversion(kind: str, direction: int):
+def _conversion(kind: str, direction: int) -> Conversion:
     try:
         return _CONVERSIONS[kind.upper()][direction]
     except KeyError:
         raise ValueError(f"unknown speed kind {kind!r} (EAS, CAS, TAS or MACH)") from None
 
 
-def to_tas(speed, kind: str, h):
+def to_tas(speed: Values, kind: str, h: Values) -> FloatArray:
     """Convert a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h`` to true airspeed."""
     return _conversion(kind, 0)(speed, h)
 
 
-def from_tas(tas, kind: str, h):
+def from_tas(tas: Values, kind: str, h: Values) -> FloatArray:
     """Convert true airspeed to a speed of ``kind`` (EAS, CAS, TAS or MACH) at altitude ``h``."""
     return _conversion(kind, 1)(tas, h)
 
 
-def convert_speed(speed, from_kind: str, to_kind: str, h):
+def convert_speed(speed: Values, from_kind: str, to_kind: str, h: Values) -> FloatArray:
     return from_tas(to_tas(speed, from_kind, h), to_kind, h)

@@ -14,11 +14,13 @@ from __future__ import annotations
 import os
 import signal
 import sys
+from types import FrameType
+from typing import NoReturn
 
 _state = {"requested": False}
 
 
-def on_interrupt(signum, frame):
+def on_interrupt(signum: int, frame: FrameType | None) -> NoReturn:
     """The handler: record the interrupt, then raise KeyboardInterrupt as Python's own handler does."""
     _state["requested"] = True
     raise KeyboardInterrupt

@@ -15,7 +15,7 @@ import pint
 from certkit.user_cache import cache_folder
 
 
-def _registry() -> pint.UnitRegistry:
+def _registry() -> pint.UnitRegistry:  # type: ignore[type-arg]  # pint's generic registry: quantity type unused
     """pint's registry, its parsed definitions cached in certkit's cache folder (a tenth of the start-up time).
 
     pint writes that cache in place, not atomically, so a process starting while another writes it can read a

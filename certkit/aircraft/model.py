@@ -146,7 +146,8 @@ class LiftingSurface(_Section):
 
     area: PositiveArea
     aspect_ratio: Annotated[float, Field(gt=0.0, description="b²/S (for a fin: height²/S)")]
-    taper: Annotated[float, Field(gt=0.0, le=1.0, description="tip chord / root chord")]
+    taper: Annotated[float, Field(ge=0.02, le=1.0, description="tip chord / root chord (from 0.02: a pointed tip is "
+                                                               "outside the trapezoidal-panel model)")]
     sweep_quarter_chord: Annotated[Angle, Field(gt=-1.2, lt=1.2)]
     dihedral: Annotated[Angle, Field(gt=-0.8, lt=0.8)] = 0.0
     thickness_ratio: Annotated[float, Field(gt=0.0, lt=0.4)] = 0.12
@@ -165,6 +166,9 @@ class Fuselage(_Section):
     length: PositiveLength
     width: PositiveLength
     height: PositiveLength
+    upsweep: Annotated[Angle, Field(ge=0.0, le=0.5, description=(
+        "upsweep of the aft fuselage's centre line, rad ('6 deg'): its drag by Raymer eq. 12.36 "
+        "(none: no upsweep drag)"))] | None = None
 
 
 class Nacelle(_Section):
@@ -257,7 +261,7 @@ class MassProperties(_Section):
     MRW: PositiveMass | None = Field(None, description="maximum ramp (taxi) weight")
     max_fuel: PositiveMass | None = None
     max_payload: PositiveMass | None = None
-    passengers: Annotated[int, Field(ge=0, le=10_000)] | None = None
+    passengers: Annotated[int, Field(ge=0, le=10_000, strict=True, description="seats: a whole number")] | None = None
     oew_cg: Point | None = None
     cg: Point | None = Field(None, description="CG of the whole airplane at MTOW (a file without components, tanks "
                                                "or zones; default: the CG envelope's reference, else the moment point)")
@@ -438,13 +442,17 @@ class TailFlapIncrement(_Section):
 
 
 class Configuration(_Section):
-    flap: Angle = 0.0
-    slat: Angle = 0.0
+    flap: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="flap deflection, 0 (retracted) to "
+                                                                          "70 deg")] = 0.0
+    slat: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="slat deflection, 0 (retracted) to "
+                                                                          "70 deg")] = 0.0
     gear: Literal["up", "down"] = "up"
     CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
     CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
     delta_CL0: float = Field(0.0, description="tail-off (wing-body) lift increment of the high-lift devices")
-    delta_CD0: float = 0.0
+    delta_CD0: Annotated[float, Field(ge=0.0, lt=0.3)] = Field(
+        0.0, description="zero-lift drag increment of the high-lift devices and gear, 0 to 0.3 (landing flaps with the "
+                         "gear down are about 0.07-0.10: Roskam, Airplane Design Part I, Table 3.6)")
     delta_Cm0: float = Field(0.0, description="tail-off (wing-body) pitching-moment increment of the high-lift devices")
     tail_flap_increment: TailFlapIncrement | None = Field(
         None, description="the horizontal tail's share of the flap increments (change of downwash at the tail); "
@@ -616,6 +624,31 @@ class Mission(_Section):
     range_requirement: PositiveLength = Field(description="design range the design must reach (constraint)")
     drag_condition: DragCondition
     source: str | None = None
+
+
+class RangeTarget(_Section):
+    """A published or required range the performance calibration reproduces: ``range`` with ``payload`` from MTOW
+    with the mission's reserves (the design-range mission of :mod:`certkit.models.performance.mission`)."""
+
+    range: PositiveLength
+    payload: PositiveMass | None = Field(None, description="none: mission.design_payload")
+    tolerance: Annotated[float, Field(gt=0.0, lt=0.2, description="relative tolerance the calibration is tested to")]
+    source: Annotated[str, Field(min_length=3)]
+
+
+class PerformanceCalibration(_Section):
+    """Declared factors that close the gap between the drag and engine models and the airplane's published
+    performance (FLOPS's drag and fuel-flow factors): fixed for every design of a study, shown in the report.
+    ``certkit calibrate`` solves ``drag_factor`` for ``target`` with ``fuel_flow_factor`` as declared."""
+
+    drag_factor: Annotated[float, Field(ge=0.7, le=1.5, description=(
+        "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; the "
+        "induced drag, declared configuration increments and derivative tables are not scaled"))] = 1.0
+    fuel_flow_factor: Annotated[float, Field(ge=0.8, le=1.3, description=(
+        "multiplies the engine model's TSFC: installation losses (customer bleed, power off-take)"))] = 1.0
+    fuel_flow_source: Annotated[str, Field(min_length=3)] | None = None
+    target: RangeTarget | None = None
+    source: Annotated[str, Field(min_length=3)]
 
 
 class CriterionOverride(_Section):
@@ -857,6 +890,10 @@ class Sizing(_Section):
     horizontal_tail: TailStructureSizing | None = None
     loop: SizingLoop | None = None
     elevator_actuators: ActuatorSizingData | None = None
+    cg_envelope: Literal["declared", "loading"] = Field(
+        "declared", description="the weight–CG corners a design is evaluated at: 'declared' (cg_envelope as written) "
+        "or 'loading' (each corner moved to the CG the design's own loading reaches at its weight — OEW and its CG "
+        "with the sized tail, payload zones and fuel tanks — with the declared corner as the bound)")
 
 
 def _printable(name: str) -> str:
@@ -892,6 +929,8 @@ class Aircraft(_Section):
     takeoff_landing_envelope: TakeoffLandingEnvelope | None = Field(
         None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature")
     mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")
+    calibration: PerformanceCalibration | None = Field(
+        None, description="declared drag and fuel-flow factors reproducing published performance (certkit calibrate)")
     control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
     sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)

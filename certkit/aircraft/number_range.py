@@ -15,9 +15,8 @@ _MESSAGE = (f"number beyond any physical value certkit takes (magnitude above {M
             "infinities are refused too)")
 
 
-def extreme_numbers(data: object, prefix: tuple = ()) -> list[tuple[tuple, str, object]]:
-    """(location, message, value) of every number in ``data`` that is not finite or exceeds the range."""
-    found = []
+def scalars(data: object, prefix: tuple = ()):
+    """(location, value) of every value of plain YAML data that is not a mapping or a list (keys and indices)."""
     stack = [(prefix, data)]
     while stack:
         loc, node = stack.pop()
@@ -25,9 +24,14 @@ def extreme_numbers(data: object, prefix: tuple = ()) -> list[tuple[tuple, str, 
             stack.extend((loc + (k,), v) for k, v in node.items())
         elif isinstance(node, list):
             stack.extend((loc + (i,), v) for i, v in enumerate(node))
-        elif isinstance(node, (int, float, str)) and not isinstance(node, bool) and _extreme(node):
-            found.append((loc, _MESSAGE, node))
-    return found
+        else:
+            yield loc, node
+
+
+def extreme_numbers(data: object, prefix: tuple = ()) -> list[tuple[tuple, str, object]]:
+    """(location, message, value) of every number in ``data`` that is not finite or exceeds the range."""
+    return [(loc, _MESSAGE, node) for loc, node in scalars(data, prefix)
+            if isinstance(node, (int, float, str)) and not isinstance(node, bool) and _extreme(node)]
 
 
 def _extreme(value: int | float | str) -> bool:

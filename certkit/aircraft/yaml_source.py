@@ -7,7 +7,10 @@ maps to its 1-based line so that validation messages can point into the file.
 
 from __future__ import annotations
 
+import errno
 import hashlib
+import os
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,6 +29,15 @@ class YamlSource:
     @property
     def sha256(self) -> str:
         return hashlib.sha256(self.text.encode("utf-8")).hexdigest()
+
+    def values_by_path(self) -> dict[str, object]:
+        """Every scalar of the file by dotted path (list items by index), as written (a date or other YAML scalar as
+        text): what two runs compare to name the inputs that changed."""
+        from certkit.aircraft.number_range import scalars
+
+        plain = (str, int, float, bool)
+        return dict(sorted((".".join(map(str, loc)), v if v is None or isinstance(v, plain) else str(v))
+                           for loc, v in scalars(self.data)))
 
     def line_of(self, loc: tuple) -> int | None:
         """Line of ``loc``, or of its nearest existing parent (a missing key points at its parent)."""
@@ -126,20 +138,45 @@ def _record(node: yaml.Node, loc: tuple, lines: dict, problems: list[Problem], p
                                         line=key_node.start_mark.line + 1, file=path))
             seen[key] = key_node.start_mark.line + 1
             _record(value_node, loc + (key,), lines, problems, path)
+            lines[loc + (key,)] = seen[key]  # a section is where its key is, not its first value
     elif isinstance(node, yaml.SequenceNode):
         for i, item in enumerate(node.value):
             _record(item, loc + (i,), lines, problems, path)
 
 
+def read_regular_file(path: str | Path, limit: int) -> bytes:
+    """Up to ``limit + 1`` bytes of a regular file. Anything else is refused with an :class:`OSError` before a byte is
+    read: a FIFO (opened without waiting for a writer, which would block for ever), a device (``/dev/zero`` never
+    ends), a socket."""
+    fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK)
+    with os.fdopen(fd, "rb") as f:
+        mode = os.fstat(fd).st_mode
+        if stat.S_ISDIR(mode):
+            raise IsADirectoryError(errno.EISDIR, os.strerror(errno.EISDIR))
+        if not stat.S_ISREG(mode):
+            raise NotRegularFile(errno.EINVAL, f"not a regular file (a {_kind(mode)}); give the path of a file on disk")
+        return f.read(limit + 1)
+
+
+class NotRegularFile(OSError):
+    """An input path that names a FIFO, a device or a socket."""
+
+
+def _kind(mode: int) -> str:
+    return ("named pipe (FIFO)" if stat.S_ISFIFO(mode) else "character device" if stat.S_ISCHR(mode) else
+            "block device" if stat.S_ISBLK(mode) else "socket" if stat.S_ISSOCK(mode) else "special file")
+
+
 def _read(path: Path) -> str:
-    """The file's text, refused beyond :data:`MAX_FILE_BYTES` (read no further: ``/dev/zero`` ends there too)."""
+    """The file's text, refused beyond :data:`MAX_FILE_BYTES` (read no further) or when not a regular file."""
     try:
-        with path.open("rb") as f:
-            raw = f.read(MAX_FILE_BYTES + 1)
+        raw = read_regular_file(path, MAX_FILE_BYTES)
     except FileNotFoundError:
         raise InputError(str(path), [Problem("", "file not found")]) from None
     except IsADirectoryError:
         raise InputError(str(path), [Problem("", "is a folder, not a file")]) from None
+    except NotRegularFile as exc:
+        raise InputError(str(path), [Problem("", exc.strerror)]) from None
     except OSError as exc:
         raise InputError(str(path), [Problem("", f"cannot read the file: {exc.strerror or exc}")]) from None
     if len(raw) > MAX_FILE_BYTES:  # also checked by source_from_text, but /dev/zero must not be read whole

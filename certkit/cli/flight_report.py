@@ -175,6 +175,7 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
         "limits_exceeded": [{"message": lim.message, "hint": lim.hint} for lim in r.limits_exceeded],
         "inertia_kg_m2": {"Ixx": loading.properties.Ixx, "Iyy": loading.properties.Iyy, "Izz": loading.properties.Izz,
                           "Ixz": loading.properties.Ixz},
+        "loading_built": loading.construction,
         "loading_notes": list(loading.notes),
         "warnings": [warning] if warning else [],
     }

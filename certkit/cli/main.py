@@ -124,6 +124,62 @@ def _default_jobs(jobs: int | None) -> int:
     return jobs
 
 
+class _Number(click.ParamType):
+    """A finite number (NaN and infinities are refused), optionally at least ``minimum``."""
+
+    name = "number"
+
+    def __init__(self, minimum: float | None = None):
+        self.minimum = minimum
+
+    def convert(self, value, param, ctx):
+        import math
+
+        if isinstance(value, float):
+            number = value
+        else:
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r}: a finite number is needed", param, ctx)
+        if self.minimum is not None and number < self.minimum:
+            self.fail(f"{value!r}: must be at least {self.minimum:g}", param, ctx)
+        return number
+
+
+FINITE = _Number()
+NON_NEGATIVE = _Number(minimum=0.0)
+
+
+def _patterns(option: str, values: tuple[str, ...]) -> tuple[str, ...]:
+    """Rule patterns of a repeatable, comma-separated option; a value naming no pattern (``--select ""``) is refused
+    rather than read as "no selection" (every rule)."""
+    found = []
+    for value in values:
+        parts = [p.strip() for p in value.split(",") if p.strip()]
+        if not parts:
+            raise UserError(f"{option} {value!r}: names no rule (give a rule id prefix or a symbol, e.g. {option} 25.3; "
+                            "see `certkit rules`)")
+        found += parts
+    return tuple(found)
+
+
+def _check_output_file(output_file: str | None) -> None:
+    """``--output-file`` checked before the evaluation: its folder must exist and be writable, the path not a folder."""
+    if not output_file:
+        return
+    path = Path(output_file)
+    folder = path.parent if str(path.parent) else Path(".")
+    if not folder.is_dir():
+        raise UserError(f"--output-file {output_file!r}: the folder {str(folder)!r} does not exist (create it first)")
+    if path.is_dir():
+        raise UserError(f"--output-file {output_file!r}: is a folder; give a file name")
+    if not os.access(folder, os.W_OK | os.X_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise UserError(f"--output-file {output_file!r}: not writable (permission denied)")
+
+
 _rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
                              help="Folder of your own rule modules (repeatable).")
 
@@ -173,10 +229,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         loaded = load_aircraft(aircraft_file)
         options, rules = _discovery(rules_dirs)
         check_overrides(loaded, rules)
-        split = lambda values: tuple(p.strip() for v in values for p in v.split(",") if p.strip())  # noqa: E731
-        chosen = select_rules(rules, split(select), split(ignore))
+        select, ignore = _patterns("--select", select), _patterns("--ignore", ignore)
+        chosen = select_rules(rules, select, ignore)
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
+        _check_output_file(output_file)
     from certkit.models.mass.loading import inertia_comparison
 
     warning = inertia_comparison(loaded.model)
@@ -188,18 +245,24 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result, progress=progress,
                      alongside={"mission": lambda: _mission_for_report(loaded.model)})
         progress.close()
-        result.selection = {"select": list(split(select)), "ignore": list(split(ignore)),
+        result.selection = {"select": list(select), "ignore": list(ignore),
                             "partial": len(chosen) < len(rules), "rules_selected": len(chosen),
                             "rules_registered": len(rules)}
         result.options = {"rules_dirs": [str(d) for d in rules_dirs], "plugins": options.plugins}
         result.environment = _environment()
         result.jobs = jobs
+        result.inputs = loaded.source.values_by_path()
         result.duration_s = round(time.perf_counter() - start, 1)
         json_path, html_path = write_report(result, chosen, out)
     finally:
         progress.close()
         gc.unfreeze()
-    _print_check(result, output_format, output_file, quiet, json_path, html_path, time.perf_counter() - start)
+    lines = None
+    if output_format in ("junit", "sarif", "github"):
+        from certkit.report.ci_formats import datum_lines
+
+        lines = datum_lines(loaded.source, chosen, result.rules)
+    _print_check(result, output_format, output_file, quiet, json_path, html_path, time.perf_counter() - start, lines)
     sys.exit(result.exit_code())
 
 
@@ -209,13 +272,18 @@ def _environment() -> dict:
     return {"platform": platform.platform(), "python": platform.python_version()}
 
 
-def _print_check(result, output_format, output_file, quiet, json_path, html_path, seconds) -> None:
+def _print_check(result, output_format, output_file, quiet, json_path, html_path, seconds, lines=None) -> None:
     if output_format != "text":
         from certkit.report.ci_formats import render
 
-        text = json_path.read_text(encoding="utf-8") if output_format == "json" else render(output_format, result)
+        text = (json_path.read_text(encoding="utf-8") if output_format == "json"
+                else render(output_format, result, lines))
         if output_file:
-            Path(output_file).write_text(text, encoding="utf-8")
+            try:
+                Path(output_file).write_text(text, encoding="utf-8")
+            except OSError as exc:
+                raise UserError(f"--output-file {output_file!r}: cannot write ({exc.strerror or exc}); the report was "
+                                f"written to {json_path.parent}") from None
         else:
             click.echo(text, nl=False)
         return
@@ -239,7 +307,7 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
 @click.argument("old", type=click.Path(dir_okay=False))
 @click.argument("new", type=click.Path(dir_okay=False))
 @click.option("--html", "html_file", type=click.Path(dir_okay=False), help="Also write the comparison as an HTML page.")
-@click.option("--tolerance", default=1e-6, show_default=True, type=float,
+@click.option("--tolerance", default=1e-6, show_default=True, type=NON_NEGATIVE,
               help="Margin changes below tolerance × max(1, |limit|) are not listed.")
 def diff_command(old, new, html_file, tolerance):
     """Compare two results.json: status flips and margin changes per rule and condition. Exit 1 when a rule got
@@ -258,7 +326,7 @@ def diff_command(old, new, html_file, tolerance):
 
 @main.command(name="rules")
 @_rules_option
-@click.option("--markdown", is_flag=True, help="Print a Markdown table (for the README).")
+@click.option("--markdown", is_flag=True, help="Print a Markdown table (docs/rules.md holds it).")
 def list_rules(rules_dirs, markdown):
     """List the registered rules: id, symbol, title, implementation status."""
     from certkit.engine.rule_index import rule_metadata
@@ -303,9 +371,9 @@ def schema(of_results):
 
 @main.command()
 @click.argument("model_file", type=click.Path(dir_okay=False))
-@click.option("--mach", type=float, default=None, help="Mach number (default: the AVL file's, or 0.2).")
-@click.option("--alpha", "alpha_deg", type=float, default=0.0, show_default=True, help="Angle of attack, deg.")
-@click.option("--beta", "beta_deg", type=float, default=0.0, show_default=True, help="Sideslip angle, deg.")
+@click.option("--mach", type=FINITE, default=None, help="Mach number (default: the AVL file's, or 0.2).")
+@click.option("--alpha", "alpha_deg", type=FINITE, default=0.0, show_default=True, help="Angle of attack, deg.")
+@click.option("--beta", "beta_deg", type=FINITE, default=0.0, show_default=True, help="Sideslip angle, deg.")
 @click.option("--config", "configuration", default="clean", show_default=True, help="Configuration (aircraft files).")
 @click.option("--json", "as_json", is_flag=True, help="Machine-readable output.")
 def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
@@ -359,9 +427,9 @@ def _condition_options(f):
                                                     "file's flight_condition, else M0.84)."),
         click.option("--maneuver", "kind", default="straight", show_default=True,
                      help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta)."),
-        click.option("--gamma", "gamma_deg", type=float, default=0.0, show_default=True, help="Flight-path angle, deg."),
-        click.option("--bank", "bank_deg", type=float, default=0.0, show_default=True, help="Bank angle, deg."),
-        click.option("--beta", "beta_deg", type=float, default=0.0, show_default=True, help="Sideslip, deg."),
+        click.option("--gamma", "gamma_deg", type=FINITE, default=0.0, show_default=True, help="Flight-path angle, deg."),
+        click.option("--bank", "bank_deg", type=FINITE, default=0.0, show_default=True, help="Bank angle, deg."),
+        click.option("--beta", "beta_deg", type=FINITE, default=0.0, show_default=True, help="Sideslip, deg."),
         click.option("--inoperative", help="Failed engine name (oei)."),
         click.option("--json", "as_json", is_flag=True),
     ]
@@ -435,6 +503,8 @@ def _print_trim(r, given: dict):
         click.echo(f"  thrust total      {total / LBF:10,.0f} lbf ({total / 1e3:,.1f} kN)")
     for lim in r["limits_exceeded"]:
         click.echo(f"LIMIT: {lim['message']} — {lim['hint']}")
+    if r.get("loading_built"):
+        click.echo(f"loading built from {r['loading_built']}")
     for note in r["loading_notes"]:
         click.echo(f"note: {note}")
     for warning in r["warnings"]:
@@ -537,6 +607,27 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
         print_record(record, click.echo)
 
 
+@main.command(name="calibrate")
+@click.argument("aircraft_file", type=click.Path(dir_okay=False))
+@click.option("--tail", is_flag=True, help="Solve the horizontal tail's non-optimum factor (the declared tail group "
+                                          "from today's loads) instead of the performance calibration.")
+def calibrate_command(aircraft_file, tail):
+    """Solve the declared calibration factors from their targets and print them for the aircraft file: the drag
+    factor that flies calibration.target (fuel-flow factor as declared), or with --tail the non-optimum factor whose
+    sized tail group equals the declared 'horizontal tail' component."""
+    from certkit.aircraft import load_aircraft
+    from certkit.design.calibration import calibration_text, solve_drag_factor, solve_tail_factor
+
+    loaded = load_aircraft(aircraft_file)
+
+    def progress(f, v):
+        click.echo(f"  factor {f:.5f}: {'%.1f kg' % v if tail else '%.1f nmi' % (v / 1852.0)}", err=True)
+
+    result = solve_tail_factor(aircraft_file, loaded.model, progress=progress) if tail else \
+        solve_drag_factor(loaded.model, progress=progress)
+    click.echo(calibration_text(result))
+
+
 @main.group(name="import")
 def import_group():
     """Write a certkit aircraft file from another tool's model."""
@@ -545,7 +636,7 @@ def import_group():
 @import_group.command(name="jsbsim")
 @click.argument("fdm_file", type=click.Path(dir_okay=False))
 @click.option("--out", "out_path", type=click.Path(dir_okay=False), help="Aircraft file to write (default: standard output).")
-@click.option("--mach", type=float, default=0.8, show_default=True, help="Mach number the α tables are linearised at.")
+@click.option("--mach", type=FINITE, default=0.8, show_default=True, help="Mach number the α tables are linearised at.")
 @click.option("--altitude", default="35000 ft", show_default=True, help="Altitude of that point, with unit.")
 def import_jsbsim_command(fdm_file, out_path, mach, altitude):
     """A certkit aircraft file from a JSBSim FDM (AIRCRAFT.xml): mass, inertia, engines and thrust deck, and the

@@ -12,7 +12,7 @@ The pipeline (issue 13):
    models, no evidence, no HTML).
 4. The mission (design range, block fuel, cruise drag) with the design's OEW.
 
-The record's format is ``certkit.design-record/1`` (documented in :func:`evaluate_design`). Everything a
+The record's format is ``certkit.design-record/2`` (documented in :func:`evaluate_design`). Everything a
 design does not change (the parsed file, the rule classes, compiled kernels) is loaded once per process.
 """
 
@@ -21,14 +21,16 @@ from __future__ import annotations
 import fnmatch
 import math
 import os
+import re
 import time
 from collections.abc import Mapping, Sequence
 
 from certkit import __version__
-from certkit.design.record import CONTROLS
+from certkit.design.record import CONTROLS, offered_prefixes
 from certkit.design.variables import Setting, design_aircraft, design_data, settings_from
 
-SCHEMA = "certkit.design-record/1"
+#: the record's format: 2 added ``mode.*`` and ``control.*`` responses (the other names unchanged since 1)
+SCHEMA = "certkit.design-record/2"
 _SOURCES: dict = {}
 _RULES: list = []
 
@@ -37,7 +39,10 @@ def _source(path: str):
     """The parsed aircraft file, reused while the file is unchanged (one parse per process and file)."""
     from certkit.aircraft.yaml_source import load_yaml
 
-    st = os.stat(path)
+    try:
+        st = os.stat(path)
+    except OSError:  # missing, unreadable: load_yaml says so with the path (a user error)
+        return load_yaml(path)
     key = (os.path.abspath(path), st.st_mtime_ns, st.st_size)
     if key not in _SOURCES:
         _SOURCES.clear()
@@ -66,21 +71,29 @@ _KINDS = ("rule", "subcheck", "travel")
 MISSION_OBJECTIVES = ("objective.cruise_CD", "objective.block_fuel_kg", "objective.block_time_s")
 
 
-def rule_needed(rule_id: str, patterns: Sequence[str] | None) -> bool:
-    """Does any requested response name (or glob pattern) come from rule ``rule_id``? ``level.*`` comes from
-    §25.181, ``travel.<control>`` from every rule."""
+def rule_needed(rule, patterns: Sequence[str] | None) -> bool:
+    """Does any requested response name (or glob pattern) come from ``rule`` (a rule class: its ``id`` and the
+    responses it ``offers``)? ``travel.<control>`` comes from every rule."""
     if patterns is None:
         return True
-    for p in map(_literal_brackets, patterns):
-        if rule_id == "25.181" and fnmatch.fnmatchcase("level.mode.corner.configuration", p):
+    offered = offered_prefixes(rule)
+    for raw in patterns:
+        p = _literal_brackets(raw)
+        if any(_may_name(prefix, raw) for prefix in offered):
             return True
         if any(fnmatch.fnmatchcase(f"travel.{c}", p) for c in CONTROLS):
             return True
         for kind in _KINDS:
-            prefix = f"{kind}.{rule_id}."
+            prefix = f"{kind}.{rule.id}."
             if p.startswith(prefix.replace("[", "[[]")) or fnmatch.fnmatchcase(prefix + "name", p):
                 return True
     return False
+
+
+def _may_name(prefix: str, pattern: str) -> bool:
+    """Can ``pattern`` match a name beginning with ``prefix``? (its literal head and the prefix agree)"""
+    head = re.split(r"[*?]", pattern, maxsplit=1)[0]
+    return head.startswith(prefix) or prefix.startswith(head)
 
 
 def _literal_brackets(pattern: str) -> str:
@@ -109,7 +122,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     {name: float | None}, "statuses": {name: status}, "details": {...}, "timings": {...}}`` (JSON-safe: no NaN).
     """
     from certkit.aircraft import LoadedAircraft
-    from certkit.design.record import handling_levels, rule_responses
+    from certkit.design.record import offered_responses, rule_responses
     from certkit.design.parallel import evaluate_rules
     from certkit.design.sizing_loop import size_horizontal_tail_loop
     from certkit.engine.scheduler import check_overrides
@@ -138,7 +151,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
 
     t = time.perf_counter()
     done = {r.id for r in loop.results}
-    others = [r for r in rules if r.id not in done and rule_needed(r.id, responses)]
+    others = [r for r in rules if r.id not in done and rule_needed(r, responses)]
     results = list(loop.results) + evaluate_rules(others, loop.ctx, jobs, evidence=False)
     order = {r.id: i for i, r in enumerate(rules)}
     results.sort(key=lambda r: order.get(r.id, len(order)))
@@ -147,7 +160,7 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     travel = {name: (c.travel.min, c.travel.max) for surface in ("wing", "horizontal_tail", "vertical_tail")
               for name, c in getattr(loop.aircraft.geometry, surface).controls.items()} if loop.aircraft.geometry else {}
     out, statuses = rule_responses(results, travel)
-    out.update(handling_levels(results))
+    out.update(offered_responses(results, rules, travel))
     out.update(loop.responses())
     details = {"sizing": loop.details()}
 

@@ -16,14 +16,14 @@ from concurrent.futures import ProcessPoolExecutor
 
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 
-#: the run data a design keeps of a loads rule (:func:`certkit.design.tail_group.design_hinge_moment`)
-KEPT_RUN = ("sim", "valid", "conditions")
 _SHARED: dict = {}
 
 
 def _slim(result):
+    """What a design keeps of a loads rule's result: its findings, load envelopes and the run's records
+    (:func:`certkit.design.tail_group.design_hinge_moment`)."""
     if result.run is not None:
-        result.run = {k: result.run[k] for k in KEPT_RUN if k in result.run}
+        result.run = result.run.records_only()
     result.evidence = []
     return result
 

@@ -10,7 +10,16 @@ Names (all numbers SI, normalised margins ≥ 0 comply):
   finding of the rule reports for the elevator, aileron or rudder, and ``travel.<control>`` over all rules (the
   seed study constrains the elevator to 70 % of its travel);
 * ``level.<mode>.<corner>.<configuration>`` — the MIL-F-8785C level (1–3, 4 worse than 3) of each mode, the
-  worst over the speeds and altitudes of §25.181's conditions at that CG corner and configuration.
+  worst over the speeds and altitudes of the conditions at that CG corner and configuration, from the rules that
+  offer mode responses (``Rule.offers``: :class:`certkit.engine.registry.ModeResponses`);
+* ``mode.<mode>.<quantity>.<corner>.<configuration>`` — the quantities of the condition that sets that level (the
+  lowest damping among equal levels): ``zeta``, ``wn_rad_s``, ``period_s``, ``t_half_s``, ``t_double_s`` (None where
+  the mode has none) and, for the short period, ``cap`` (ω²/(n/α), (rad/s²)/g). The level follows from them:
+  ``certkit_rules.part25.support.handling_levels.configuration_level(mode, configuration, zeta=…, wn=…, t_half=…,
+  t_double=…)`` (MIL-F-8785C tables), so a study can derive it from surrogates of the quantities;
+* ``control.<rule id>.<case>.<control>`` — per case a rule offers (:class:`certkit.engine.registry.ControlResponses`:
+  §25.143(h)'s four manoeuvring cases, §25.145(b)'s changes, §25.121's segments, §25.111's engine-out takeoff), the
+  largest fraction of the control's mechanical travel (in the deflection's direction) over the case's conditions.
 
 Statuses accompany the rule names ("complies", "complies_partial", "fails", "not_evaluated") and the sub-check
 names (a finding's: "complies", "fails", "not_evaluated").
@@ -20,6 +29,8 @@ from __future__ import annotations
 
 import math
 import re
+
+from certkit.engine.registry import ControlResponses, ModeResponses
 
 CONTROLS = ("elevator", "aileron", "rudder")
 _DEG = math.pi / 180.0
@@ -67,11 +78,9 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
                 best.setdefault(key, (None, None))
             if f.unit == "deg" and f.value is not None and math.isfinite(f.value):
                 for control in CONTROLS:
-                    if control in f.check.lower() and control in travel:
-                        lo, hi = travel[control]
-                        end = hi if f.value >= 0 else lo
-                        if end != 0:
-                            used[control] = max(used.get(control, 0.0), abs(f.value * _DEG / end))
+                    frac = travel_fraction(control, f.value, travel) if control in f.check.lower() else None
+                    if frac is not None:
+                        used[control] = max(used.get(control, 0.0), frac)
         for key, (nm, value) in best.items():
             responses[f"{key}.margin"] = _finite(nm)
             responses[f"{key}.value"] = _finite(value)
@@ -83,21 +92,87 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
     return responses, statuses
 
 
-def handling_levels(results) -> dict[str, int]:
-    """``level.<mode>.<corner>.<configuration>`` from the §25.181 findings' mode tables (worst level)."""
-    out: dict[str, int] = {}
-    for r in results:
-        if r.id != "25.181":
-            continue
-        for f in r.findings:
-            modes = f.details.get("modes") if f.details else None
-            cond = f.condition
-            if not modes or cond.loading is None or cond.configuration is None:
+def offered_responses(results, rules, travel: dict[str, tuple[float, float]] | None = None) -> dict[str, float]:
+    """The responses the rules offer by declaration (``Rule.offers``), from their results (``rules``: the rule
+    classes, or anything with their ``id`` and ``offers``; ``travel`` as in :func:`rule_responses`)."""
+    offers = {r.id: r.offers for r in rules}
+    out: dict[str, float] = {}
+    worst: dict[str, tuple] = {}
+    for res in results:
+        for offer in offers.get(res.id, ()):
+            if isinstance(offer, ModeResponses):
+                handling_levels(res, offer, out, worst)
+            elif isinstance(offer, ControlResponses):
+                control_responses(res, offer, travel or {}, out)
+    for key, (_, _, mode, row) in worst.items():
+        corner_config = key.split(".", 2)[2]
+        for quantity, field in MODE_QUANTITIES.items():
+            if quantity == "cap" and mode != "short_period":
                 continue
-            for mode, row in modes.items():
-                levels = [v for k, v in row.items() if k.startswith("level_") and not k.endswith("_by")]
-                if not levels:
-                    continue
-                key = f"level.{mode}.{cond.loading}.{cond.configuration}"
-                out[key] = max(out.get(key, 0), max(int(v) for v in levels))
+            value = row.get(field)
+            out[f"mode.{mode}.{quantity}.{corner_config}"] = _finite(value) if value is not None else None
     return out
+
+
+#: the mode quantities of a design record (``mode.<mode>.<quantity>.<corner>.<configuration>``) and the mode-table
+#: column each comes from: damping ratio, undamped natural frequency (rad/s), period (s, oscillatory modes), times to
+#: half and to double amplitude (s, convergent or divergent modes), the short period's control anticipation
+#: parameter ω²/(n/α) ((rad/s²)/g)
+MODE_QUANTITIES = {"zeta": "zeta", "wn_rad_s": "wn_rad_s", "period_s": "period_s", "t_half_s": "t_half_s",
+                   "t_double_s": "t_double_s", "cap": "cap"}
+
+
+def offered_prefixes(rule) -> tuple[str, ...]:
+    """The beginnings of the response names a rule offers (``level.<mode>.``, ``mode.<mode>.``,
+    ``control.<rule id>.<case>.``)."""
+    out: list[str] = []
+    for offer in rule.offers:
+        if isinstance(offer, ModeResponses):
+            out += [f"{kind}.{mode}." for mode in offer.modes for kind in ("level", "mode")]
+        elif isinstance(offer, ControlResponses):
+            out += [f"control.{rule.id}.{slug(case.name)}." for case in offer.cases]
+    return tuple(out)
+
+
+def handling_levels(result, offer: ModeResponses, out: dict, worst: dict) -> None:
+    """``level.<mode>.<corner>.<configuration>`` into ``out`` from the mode tables of ``result``'s findings (the
+    worst level, also over the levels already in ``out``); ``worst`` keeps, per level name, the row of the condition
+    that sets it (the lowest damping among equal levels), whose quantities the record gives."""
+    for f in result.findings:
+        modes = f.details.get(offer.key) if f.details else None
+        cond = f.condition
+        if not modes or cond.loading is None or cond.configuration is None:
+            continue
+        for mode, row in modes.items():
+            if mode not in offer.modes:
+                continue
+            levels = [v for k, v in row.items() if k.startswith("level_") and not k.endswith("_by")]
+            if not levels:
+                continue
+            key = f"level.{mode}.{cond.loading}.{cond.configuration}"
+            level = max(int(v) for v in levels)
+            out[key] = max(out.get(key, 0), level)
+            rank = (level, -float(row.get("zeta", 0.0)))
+            if key not in worst or rank > worst[key][:2]:
+                worst[key] = (*rank, mode, row)
+
+
+def control_responses(result, offer: ControlResponses, travel: dict, out: dict) -> None:
+    """``control.<rule id>.<case>.<control>`` into ``out``: the largest fraction of the control's mechanical travel
+    (in the deflection's direction) over the case's findings (:class:`certkit.engine.registry.ControlCase`)."""
+    for case in offer.cases:
+        for f in result.findings:
+            for control, deg in case.deflections(f).items():
+                frac = travel_fraction(control, deg, travel)
+                if frac is not None:
+                    key = f"control.{result.id}.{slug(case.name)}.{control}"
+                    out[key] = max(out.get(key, 0.0), frac)
+
+
+def travel_fraction(control: str, deflection_deg: float, travel: dict) -> float | None:
+    """|deflection| over the mechanical stop on its side (None without the control's travel or a zero stop)."""
+    if control not in travel:
+        return None
+    lo, hi = travel[control]
+    end = hi if deflection_deg >= 0 else lo
+    return abs(deflection_deg * _DEG / end) if end != 0 else None

@@ -1,6 +1,7 @@
 """The design structure's loop: Subpart C horizontal-tail loads → box sizing → mass, CG, inertia → loads again.
 
-Iteration k evaluates the rules that compute horizontal-tail loads (``Rule.loads_surfaces``) on the airplane whose
+Iteration k evaluates the rules that declare horizontal-tail station loads or elevator hinge moments
+(``Rule.produces``, :func:`sizing_rules`) on the airplane whose
 tail group is the one sized at iteration k − 1 (at k = 0 the declared component, scaled with the planform area for a
 changed tail), reduces their envelopes to the tail's limit loads (:mod:`certkit.design.tail_loads`), and sizes the
 tail group for the union of the envelopes seen so far (so the structure carries every load the loop computed).
@@ -23,7 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.design.tail_loads import TailLoadEnvelope, tail_load_envelope
+from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
+from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
 from certkit.design.variables import design_aircraft
 
 TAIL_COMPONENT = "horizontal tail"
@@ -85,6 +87,8 @@ class LoopResult:
     seconds: float
     iteration_seconds: list[float] = field(default_factory=list)
     aero_seconds: float = 0.0  # of which: lattice, aerodynamic and strip-loads models
+    #: the weight–CG corners the design was evaluated at when they follow its loading (sizing.cg_envelope: loading)
+    cg_corners: list | None = None
 
     def responses(self) -> dict:
         g = self.group
@@ -97,7 +101,8 @@ class LoopResult:
         return out
 
     def details(self) -> dict:
-        return {"history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
+        extra = {} if self.cg_corners is None else {"cg_envelope": self.cg_corners}
+        return {**extra, "history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
                 "oew_kg": self.oew_kg, "declared_tail_component_kg": self.baseline_tail_kg,
                 "baseline_actuators": {"mass_kg": self.baseline_actuators.mass, "centroid_m": list(self.baseline_actuators.centroid),
                                        "hinge_moment": self.baseline_actuators.hinge},
@@ -151,24 +156,44 @@ def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oe
 _BASELINE: dict = {}
 
 
-def _baseline_value(base_aircraft, ctx, results) -> BaselineActuators:
+@dataclass(frozen=True)
+class SizingRules:
+    """The rules the loop evaluates, as they declare it (``Rule.produces``): those producing horizontal-tail station
+    loads or elevator hinge moments, in rule order, and the ids of the latter (the actuators' design cases)."""
+
+    rules: tuple
+    hinge: frozenset
+
+    def hinge_results(self, results) -> list:
+        return [r for r in results if r.id in self.hinge]
+
+
+def sizing_rules(rules) -> SizingRules:
+    from certkit.engine.registry import HINGE_MOMENT, producers
+
+    tail = producers(rules, SURFACE)
+    hinge = producers(rules, "elevator", HINGE_MOMENT)
+    return SizingRules(tuple(r for r in rules if r in tail or r in hinge), frozenset(r.id for r in hinge))
+
+
+def _baseline_value(base_aircraft, ctx, results, chosen: SizingRules) -> BaselineActuators:
     from certkit.design.tail_group import design_hinge_moment
     from certkit.models.structure.actuators import size_elevator_actuators
 
-    hinge = design_hinge_moment(ctx, results)
+    hinge = design_hinge_moment(ctx, chosen.hinge_results(results))
     act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
     c = tuple(float(v) for v in np.mean(act.positions, axis=0))
-    return BaselineActuators(act.total_mass, c, hinge, ctx, start_conditions(ctx, results))
+    return BaselineActuators(act.total_mass, c, hinge, ctx, start_conditions(ctx, results, chosen))
 
 
-def start_conditions(ctx, results) -> dict:
+def start_conditions(ctx, results, chosen: SizingRules) -> dict:
     """Rule id → the conditions where the declared airplane's tail loads or elevator hinge moment come within
     :data:`START_FRACTION` of their largest (None: all the rule's conditions)."""
     from certkit.design.tail_group import hinge_critical_conditions
     from certkit.design.tail_loads import near_critical_conditions
 
     out = near_critical_conditions(results, START_FRACTION, START_OWN_FRACTION)
-    for rid, conds in hinge_critical_conditions(ctx, results, START_FRACTION).items():
+    for rid, conds in hinge_critical_conditions(ctx, chosen.hinge_results(results), START_FRACTION).items():
         loads = out.get(rid, [])
         out[rid] = None if conds is None or loads is None else loads + [c for c in conds if c not in loads]
     return out
@@ -185,9 +210,9 @@ def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActua
             value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
         else:
             ctx = Context(loaded_of(base_aircraft))
-            loads_rules = [r for r in rules if "horizontal_tail" in r.loads_surfaces]
+            chosen = sizing_rules(rules)
             value = _baseline_value(base_aircraft, ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True)
-                                                         for r in loads_rules])
+                                                         for r in chosen.rules], chosen)
         _remember(source, value)
     return _BASELINE[source.sha256]
 
@@ -209,7 +234,8 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
 
     start = time.perf_counter()
     spec = declared_sizing(aircraft)
-    loads_rules = [r for r in rules if "horizontal_tail" in r.loads_surfaces]
+    chosen = sizing_rules(rules)
+    loads_rules = list(chosen.rules)
     if not loads_rules:
         raise ValueError("no registered rule computes horizontal-tail loads: the tail cannot be sized")
     base_oew = float(aircraft.mass.OEW)
@@ -232,7 +258,11 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         t = time.perf_counter()
         actuators = group.actuator_mass - base_act.mass if k > 0 else 0.0
         oew = base_oew - declared.mass + group.structure_mass + actuators
-        current = design_aircraft(source, settings, with_tail_group(data, aircraft, group, base_act, oew))
+        current_data = with_tail_group(data, aircraft, group, base_act, oew)
+        current = design_aircraft(source, settings, current_data)
+        if follows_loading(current):  # the corners the design's own loading reaches (certkit.design.cg_envelope)
+            corners = loading_corners(current, aircraft)
+            current = design_aircraft(source, settings, with_loading_corners(current_data, corners))
         previous_ctx, ctx = ctx, Context(loaded_of(current))
         if previous_ctx is not None:
             ctx.share_aerodynamics(previous_ctx)  # same geometry, only the tail's mass data changed
@@ -242,12 +272,12 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         results = evaluate_rules(loads_rules, ctx, jobs, evidence=False, keep_loads=True,
                                  select=base_act.critical if partial else None)
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
-            base_act = _baseline_value(base_aircraft, ctx, results)
+            base_act = _baseline_value(base_aircraft, ctx, results, chosen)
             _remember(source, base_act)
         envelope = tail_load_envelope(results)
         within = union is not None and not envelope.exceeds(union, rtol=LOAD_ALLOWANCE)
         union = envelope.union(union)
-        sized = size_tail_group(current, ctx, union, results, allowance=LOAD_ALLOWANCE)
+        sized = size_tail_group(current, ctx, union, chosen.hinge_results(results), allowance=LOAD_ALLOWANCE)
         change = sized.total_mass - group.total_mass
         seconds.append(time.perf_counter() - t)
         history.append({"iteration": k, "group_mass_kg": round(group.total_mass, 3), "sized_mass_kg": round(sized.total_mass, 3),
@@ -259,7 +289,8 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
             for r in results:
                 r.run = None  # the simulations are not needed any more
             return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,
-                              time.perf_counter() - start, seconds, aero_seconds)
+                              time.perf_counter() - start, seconds, aero_seconds,
+                              corners if follows_loading(current) else None)
         group = sized
     raise SizingNotConverged(
         f"horizontal-tail sizing did not converge in {spec.max_iterations} iterations (tolerance "

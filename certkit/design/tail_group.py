@@ -141,24 +141,25 @@ def box_capability(aircraft, sized, station_names, station_span) -> dict:
 
 
 def _hinge_moments(ctx, results) -> list:
-    """Per pitch-manoeuvre run the rules kept (§25.331(c)): (rule id, hinge moments H (samples,) of the elevator,
-    their (time, condition) indices, Mach, q̄, α, δ, conditions, times, derivatives)."""
+    """Per run of the rules that produce elevator hinge moments (their declaration, ``Rule.produces``; the caller
+    passes their results): (rule id, hinge moments H (samples,) of the elevator, their (time, condition) indices,
+    Mach, q̄, α, δ, conditions, times, derivatives)."""
     from certkit.models.aero.hinge_moment import hinge_moment_derivatives
 
     samples = []
     for res in results:
-        run = res.run or {}
-        sim = run.get("sim")
-        if sim is None or "elevator" not in list(sim.control_names) or not res.id.startswith("25.331"):
+        run = res.run
+        sim = run.records if run is not None else None
+        if sim is None or "elevator" not in list(sim.control_names):
             continue
-        valid = run.get("valid")
+        valid = run.valid
         h = sim.history
         de = sim.controls[:, :, list(sim.control_names).index("elevator")]
         mask = np.ones(de.shape, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
         samples.append((res.id, h["qbar"][mask], h["mach"][mask], h["alpha"][mask], de[mask],
-                        np.argwhere(mask), run.get("conditions"), sim.t))
+                        np.argwhere(mask), run.conditions, sim.t))
     if not samples:
-        raise ValueError("no pitch-manoeuvre history (§25.331(c)) to take the elevator hinge moment from")
+        raise ValueError("no rule produced elevator hinge moments (a pitch-manoeuvre history) to size the actuators from")
     aero = ctx.aero("clean")
     grid = np.asarray(aero.mach, dtype=float)  # the Mach breakpoints the loads model has already solved
     derivs = ctx.memo(("aero", "clean", "elevator hinge-moment derivatives"),  # geometry only: shared by the loop

@@ -1,7 +1,7 @@
 """The horizontal-tail load envelope the structure is sized for, from the Subpart C rules' own runs.
 
-Every rule that declares ``loads_surfaces`` containing ``horizontal_tail`` (§§25.331(c)(1), 25.331(c)(2),
-25.341(a), 25.349(a) today) keeps the load envelopes of its conditions; this module reduces them to the largest
+Every rule that declares it produces station loads of the ``horizontal_tail`` (``Rule.produces``; the pitch
+manoeuvres, discrete gusts and rolling conditions of the built-in rules) keeps the load envelopes of its conditions; this module reduces them to the largest
 limit-load magnitude of each quantity (shear, bending, torsion) at each station of the tail, with the rule and
 condition that set it (the loads engineer's critical-case list). Ultimate = 1.5 × limit (§25.303).
 """
@@ -81,7 +81,7 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
                         crit[(q, s)] = CriticalLoad(QUANTITIES[q], stations[s], float(P[i, sense, q, s]), res.id,
                                                     env.labels[i] if i < len(env.labels) else str(i))
     if stations is None:
-        raise ValueError("no loads rule computed horizontal-tail loads (the §25.331/§25.341/§25.349 rules were not "
+        raise ValueError("no loads rule computed horizontal-tail loads (the rules that declare them were not "
                          "evaluated or could not trim any condition)")
     return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)))
 

@@ -24,19 +24,6 @@ from certkit.aircraft import Aircraft, validate_aircraft_data
 from certkit.aircraft.yaml_source import YamlSource
 from certkit.errors import InfeasibleDesign, InputError, UserError
 
-#: the horizontal-tail redesign variables of the seed study (issue 13), with what each one means
-HORIZONTAL_TAIL_VARIABLES = {
-    "geometry.horizontal_tail.area": "planform area (both halves)",
-    "geometry.horizontal_tail.aspect_ratio": "b²/S",
-    "geometry.horizontal_tail.taper": "tip chord / root chord",
-    "geometry.horizontal_tail.sweep_quarter_chord": "quarter-chord sweep",
-    "geometry.horizontal_tail.thickness_ratio": "mean thickness / chord",
-    "geometry.horizontal_tail.controls.elevator.span_start": "inboard end, fraction of the semispan",
-    "geometry.horizontal_tail.controls.elevator.span_end": "outboard end, fraction of the semispan",
-    "geometry.horizontal_tail.controls.elevator.chord_ratio": "elevator chord / local chord",
-}
-
-
 class DesignError(UserError):
     """A design variable that cannot be applied: unknown path, wrong value, or an impossible aircraft."""
 

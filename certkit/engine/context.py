@@ -66,7 +66,7 @@ class Context:
                 names = self._loading_names.get(key) or {value.name}
                 loadings[key] = {"name": " / ".join(sorted(names)), "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
                                  "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
-                                 "notes": list(value.notes)}
+                                 "built": value.construction, "notes": list(value.notes)}
         components, notes = empty_airplane(self.aircraft)
         warning = self.inertia_warning()
         notes = notes + ([f"warning: {warning}"] if warning else [])
@@ -207,21 +207,40 @@ class Context:
                     limits=control_limits(self.aircraft, design_limits, config), roles=ROLES, stabilizer=st,
                     stabilizer_setting=None if st is None else stabilizer, initial=initial)
 
-    def modes(self, conditions):
+    def modes(self, conditions, throttle=None):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
-        condition; None where the trim did not converge."""
-        from certkit.models.dynamics.linearize import linearize
+        condition; None where the trim did not converge. ``throttle`` (a scalar or one per condition) fixes the
+        throttles: the modes are then those of the steady climb or descent at that thrust (see :meth:`trim`)."""
         from certkit.models.dynamics.modes import identify_modes
 
         conds = tuple(conditions)
 
         def compute():
-            batch = self.trim(conds)
-            lin = linearize(batch.model, batch.x, batch.u)
+            batch = self.trim(conds, throttle=throttle)
+            lin = self.linearization(conds, throttle=throttle)
             return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
 
-        return self.memo(("modes",) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds),
-                         compute)
+        return self.memo(_key("modes", conds, throttle), compute)
+
+    def linearization(self, conditions, throttle=None):
+        """The linearised dynamics (:class:`certkit.models.dynamics.linearize.Linearization`) about the
+        straight-flight trim of each condition (at the fixed ``throttle``, see :meth:`modes`), memoised (the one
+        :meth:`modes` reads)."""
+        from certkit.models.dynamics.linearize import linearize
+
+        conds = tuple(conditions)
+
+        def compute():
+            batch = self.trim(conds, throttle=throttle)
+            return linearize(batch.model, batch.x, batch.u)
+
+        return self.memo(_key("linearization", conds, throttle), compute)
+
+
+def _key(kind: str, conds, throttle) -> tuple:
+    """The memo key of conditions' flight points (loading, configuration, altitude, speed) and a fixed throttle."""
+    key = (kind,) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds)
+    return key if throttle is None else key + ("throttle", _hashable(throttle))
 
 
 def _hashable(value):

@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import inspect
+import math
 import pkgutil
 import re
 import sys
@@ -25,7 +26,7 @@ from certkit.errors import UserError
 if TYPE_CHECKING:
     from certkit.engine.conditions import ConditionSpace
     from certkit.engine.context import Context
-    from certkit.engine.results import Condition, Evidence, Finding
+    from certkit.engine.results import Condition, Evidence, Finding, SimulationRun
 
 RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-zA-Z0-9]+\))*$")  # §25.125(b)(2)(i)(A): capitals at the fifth level
 SYMBOL = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
@@ -35,6 +36,12 @@ ENTRY_POINT_GROUP = "certkit.rules"
 
 class PluginError(UserError):
     """Invalid rule metadata or a rule module that cannot be loaded."""
+
+
+def exit_called(exc: SystemExit) -> str:
+    """What a rule module did when it raised :class:`SystemExit` (``sys.exit``, ``exit()``): a rule ends nothing, it
+    returns findings, so certkit never ends with the plugin's exit code (an exit 0 would read "all comply")."""
+    return f"called sys.exit({exc.code!r}) (a rule must return findings or raise an exception, never end the program)"
 
 
 #: what a criterion rests on, read from its source: ``regulation`` (the text of 14 CFR), ``unverified`` (text from
@@ -69,6 +76,75 @@ class Criterion:
         if "tcds" in text:
             return "data"
         return "regulation" if "cfr" in text or "§" in text else "project"
+
+
+#: the kinds of loads a rule declares it produces (:class:`Loads`)
+STATION_LOADS = "station"
+HINGE_MOMENT = "hinge moment"
+LOAD_KINDS = (STATION_LOADS, HINGE_MOMENT)
+
+
+@dataclass(frozen=True)
+class Loads:
+    """Loads a rule computes beyond its findings, declared in :attr:`Rule.produces`. ``kind`` ``station``: the shear,
+    bending and torsion at the load stations of ``surface`` (``wing``, ``horizontal_tail``, ``vertical_tail``), kept
+    as the run's load envelopes (:meth:`certkit.engine.results.SimulationRun.envelopes`); ``hinge moment``: the
+    deflection of the control surface ``surface`` (``elevator``) along the run's records with the flight state
+    (Mach, dynamic pressure, angle of attack) its hinge moment follows from."""
+
+    surface: str
+    kind: str = STATION_LOADS
+
+
+@dataclass(frozen=True)
+class ModeResponses:
+    """Rigid-body mode responses a rule offers (:attr:`Rule.offers`): each of its findings whose condition names a
+    loading (CG corner) and a configuration and whose ``details[key]`` is a table {mode: row} holds, per mode of
+    ``modes``, the row's quantities (``zeta``, ``wn_rad_s``, …) and its MIL-F-8785C levels (``level_<category>``)."""
+
+    modes: tuple[str, ...]
+    key: str = "modes"
+
+
+@dataclass(frozen=True)
+class ControlCase:
+    """One case of :class:`ControlResponses`: the findings whose check text begins with ``check``, names a control of
+    ``controls`` and whose condition holds the extras ``where`` give that control's deflection (deg) in the case —
+    the finding's value, or the largest in magnitude of ``details[key.format(control=…)]`` over the keys of
+    ``deflection``; ``name`` names the case in responses (``control.<rule id>.<name>.<control>``)."""
+
+    name: str
+    check: str
+    controls: tuple[str, ...] = ("elevator", "aileron", "rudder")
+    deflection: tuple[str, ...] = ()
+    where: tuple[tuple[str, object], ...] = ()
+
+    def deflections(self, finding) -> dict[str, float]:
+        """control → deflection (deg) that ``finding`` reports for this case (empty when it is not one of its)."""
+        if not finding.check.startswith(self.check) or any(finding.condition.get(k) != v for k, v in self.where):
+            return {}
+        out = {}
+        for control in self.controls:
+            if self.deflection:
+                values = [finding.details.get(k.format(control=control)) for k in self.deflection]
+                values = [float(v) for v in values if isinstance(v, (int, float)) and math.isfinite(v)]
+                if values:
+                    out[control] = max(values, key=abs)
+            elif control in finding.check and finding.unit == "deg" and finding.value is not None \
+                    and math.isfinite(finding.value):
+                out[control] = float(finding.value)
+        return out
+
+
+@dataclass(frozen=True)
+class ControlResponses:
+    """The control deflections a rule offers per named case (:class:`ControlCase`)."""
+
+    cases: tuple[ControlCase, ...]
+
+
+#: what a rule may offer in :attr:`Rule.offers`
+RESPONSE_KINDS = (ModeResponses, ControlResponses)
 
 
 class Criteria(dict):
@@ -118,9 +194,11 @@ class Rule:
         Optional key: rules with the same key are evaluated one after the other in one process, so
         that a computation they share through ``ctx.memo`` is done once (e.g. §25.341(a) and §25.349(b)
         share the gust runs).
-    loads_surfaces
-        The lifting surfaces whose station loads the rule computes (``("horizontal_tail",)``); the design
-        layer sizes structure from the envelopes these rules keep (:meth:`load_envelopes`).
+    produces
+        The loads the rule computes beyond its findings (:class:`Loads`: surface and kind), which a design sizes
+        structure from (:func:`producers`).
+    offers
+        The responses its findings carry for a design record (:class:`ModeResponses`, :class:`ControlResponses`).
     """
 
     id: ClassVar[str]
@@ -139,7 +217,8 @@ class Rule:
     origin: ClassVar[str] = "built-in"
     cost: ClassVar[float] = 1.0
     run_with: ClassVar[str] = ""
-    loads_surfaces: ClassVar[tuple[str, ...]] = ()
+    produces: ClassVar[tuple[Loads, ...]] = ()
+    offers: ClassVar[tuple[ModeResponses | ControlResponses, ...]] = ()
 
     def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
         """Return findings for the conditions (any number per condition, each naming its condition)."""
@@ -149,14 +228,6 @@ class Rule:
         """Plots or tables for the report (optional). Called on the same instance as :meth:`evaluate`, so a
         rule may keep what it simulated on ``self`` for its plots."""
         return []
-
-    def load_envelopes(self) -> list:
-        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) of the last evaluation, as a
-        loads rule keeps them in ``self.run``; empty for other rules."""
-        from certkit.models.loads.response import LoadEnvelope
-
-        run = getattr(self, "run", None)
-        return [v for v in run.values() if isinstance(v, LoadEnvelope)] if isinstance(run, dict) else []
 
     @classmethod
     def documentation(cls) -> str:
@@ -179,23 +250,18 @@ class Rule:
 
 
 class SimulationRule(Rule):
-    """A rule that evaluates one batched simulation run and draws its evidence from it. Subclasses implement
-    :meth:`simulate` (returning a dict with at least ``findings``) and :meth:`draw`; the run is kept on the
-    instance between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
+    """A rule that evaluates one batched simulation run. Subclasses implement :meth:`simulate`, returning a
+    :class:`certkit.engine.results.SimulationRun` (its findings and what it simulated); the run is kept on the instance
+    (``self.run``) between :meth:`evaluate` and :meth:`evidence` (the scheduler calls both on one instance)."""
 
-    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> dict:
+    run: "SimulationRun | None" = None
+
+    def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> "SimulationRun":
         raise NotImplementedError
-
-    def draw(self, run: dict) -> list["Evidence"]:
-        return []
 
     def evaluate(self, ctx, conditions, criteria):
         self.run = self.simulate(ctx, conditions, criteria)
-        return self.run["findings"]
-
-    def evidence(self, ctx, findings, criteria):
-        run = getattr(self, "run", None)
-        return self.draw(run) if run else []
+        return self.run.findings
 
 
 def _indent(text: str) -> str:
@@ -226,6 +292,7 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
     if not isinstance(cls.run_with, str):
         raise PluginError(f"{where}: field 'run_with' = {cls.run_with!r} must be a string (a key shared with other rules)")
+    _validate_declarations(cls, where)
     for ref in cls.references:
         if not isinstance(ref, str) or not RULE_ID.match(ref):
             raise PluginError(f"{where}: field 'references' holds {ref!r}, not a paragraph id")
@@ -238,6 +305,22 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: field 'conditions' must be a certkit.engine.conditions.ConditionSpace")
     if cls.evaluate is Rule.evaluate:
         raise PluginError(f"{where}: method 'evaluate' is not implemented")
+
+
+def _validate_declarations(cls, where: str) -> None:
+    """``produces`` holds :class:`Loads` of a known kind, ``offers`` response declarations."""
+    if not isinstance(cls.produces, tuple) or not all(isinstance(p, Loads) and p.kind in LOAD_KINDS and p.surface
+                                                      for p in cls.produces):
+        raise PluginError(f"{where}: field 'produces' = {cls.produces!r} must be a tuple of certkit.engine.registry.Loads "
+                          f"(a surface and a kind among {LOAD_KINDS})")
+    if not isinstance(cls.offers, tuple) or not all(isinstance(o, RESPONSE_KINDS) for o in cls.offers):
+        raise PluginError(f"{where}: field 'offers' = {cls.offers!r} must be a tuple of "
+                          + " or ".join(k.__name__ for k in RESPONSE_KINDS))
+
+
+def producers(rules, surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
+    """The rules of ``rules`` that declare they produce ``kind`` loads of ``surface`` (:attr:`Rule.produces`)."""
+    return [r for r in rules if Loads(surface, kind) in r.produces]
 
 
 def _validate_unevaluated(cls, where: str) -> None:
@@ -290,6 +373,8 @@ def plugin_rules() -> list[type[Rule]]:
             obj = ep.load()
         except PluginError:
             raise
+        except SystemExit as exc:
+            raise PluginError(f"{origin}: {exit_called(exc)} while being loaded") from None
         except Exception as exc:
             raise PluginError(f"{origin}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
         if inspect.ismodule(obj):
@@ -318,6 +403,8 @@ def folder_rules(folder: str | Path) -> list[type[Rule]]:
             spec.loader.exec_module(module)
         except PluginError as exc:
             raise PluginError(f"{path}: {exc}") from None
+        except SystemExit as exc:
+            raise PluginError(f"{path}: {exit_called(exc)} while being loaded") from None
         except Exception as exc:
             raise PluginError(f"{path}: cannot be loaded: {exc.__class__.__name__}: {exc}") from None
         rules += _rules_in_module(module, f"user folder {folder}")

@@ -101,16 +101,18 @@ class Condition:
             out[k] = v
         return out
 
-    def label(self) -> str:
-        """Short human label: ``fwd_mrw · 297 557 kg · x 29.11 m · clean · 0 ft · VC``."""
+    def label(self, numbers: bool = True) -> str:
+        """Human label: ``fwd_mrw · 655,000 lb · CG 94.23 ft · clean · 0 ft · VC = 272.0 kn EAS · at 1.3 VSR``; the
+        scheduled fields in words (:func:`field_words`). ``numbers`` False leaves out the mass and CG (the loading
+        names them): the short form of a one-line cause."""
         from certkit.units import FT, KN, LB
 
         parts = []
         if self.loading:
             parts.append(self.loading)
-        if self.mass is not None:
+        if self.mass is not None and numbers:
             parts.append(f"{self.mass / LB:,.0f} lb")
-        if self.x_cg is not None:
+        if self.x_cg is not None and numbers:
             parts.append(f"CG {self.x_cg / FT:.2f} ft")
         if self.configuration:
             parts.append(self.configuration)
@@ -120,8 +122,28 @@ class Condition:
             unit = "" if self.speed_kind == "MACH" else f" kn {self.speed_kind}"
             value = f"M {self.speed:.3f}" if self.speed_kind == "MACH" else f"{self.speed / KN:.1f}{unit}"
             parts.append(f"{self.speed_name + ' = ' if self.speed_name else ''}{value}")
-        parts += [f"{k} {v}" for k, v in self.extra]
+        parts += [field_words(k, v) for k, v in self.extra]
         return " · ".join(parts) if parts else "whole airplane"
+
+
+#: scheduled condition fields (``extra``) as a reviewer reads them: name → text with ``{}`` for the value
+_FIELD_WORDS = {"speed_point": "at {}", "entry_speed": "entry at {}", "bank_deg": "{}° bank", "inoperative":
+                "{} engine inoperative", "gust": "gust {}", "direction": "{}", "load_factor": "n = {}", "case": "{}",
+                "point": "{}", "delta_isa_K": "ISA {:+g} °C"}
+
+
+def field_words(name: str, value) -> str:
+    """A scheduled condition field in words: ``speed_point`` 1.3 VSR → "at 1.3 VSR", ``delta_isa_K`` 15 → "ISA +15
+    °C"; a field not listed reads "name value" with underscores as spaces."""
+    template = _FIELD_WORDS.get(name)
+    if isinstance(value, float):
+        value = round(value, 1) if abs(value) >= 1 else float(f"{value:.3g}")  # a label, not a record
+    if template is None:
+        return f"{name.replace('_', ' ')} {value}"
+    try:
+        return template.format(value)
+    except (ValueError, TypeError):
+        return f"{name.replace('_', ' ')} {value}"
 
 
 @dataclass
@@ -227,6 +249,52 @@ class Evidence:
 
 
 @dataclass
+class SimulationRun:
+    """What a simulated rule computes, kept for its evidence and for the design layer (never written to
+    results.json): its findings, the conditions it simulated (column i of every record is ``conditions[i]``), the
+    batch's records (:class:`certkit.models.dynamics.simulate.SimulationResult`, None when the rule's histories are
+    of another kind), where the paragraph considers them (``valid``, (n_t, n) booleans; None: everywhere), the
+    conditions it could not simulate with each reason (``failed``: (label, reason)) and, when nothing was simulated,
+    why (``reason``). Rules that keep more (load histories, gust replays) extend it."""
+
+    findings: list[Finding]
+    conditions: list[Condition] = field(default_factory=list)
+    records: object = None
+    valid: object = None
+    failed: list[tuple[str, str]] = field(default_factory=list)
+    reason: str = ""
+
+    @property
+    def simulated(self) -> bool:
+        """True when the run holds simulated conditions (False: only refusals, see :attr:`reason`)."""
+        return bool(self.conditions)
+
+    def envelopes(self) -> list:
+        """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) the run computed, in the rule's
+        order; none for a run that computes no loads."""
+        return []
+
+    def records_only(self) -> "SimulationRun":
+        """The conditions, records and validity alone (what a design keeps of a run between processes)."""
+        return SimulationRun([], self.conditions, self.records, self.valid)
+
+
+@dataclass
+class LoadsRun(SimulationRun):
+    """A run that computes station loads: ``envelope`` over every simulated condition (None when nothing was
+    simulated)."""
+
+    envelope: object = None
+
+    @property
+    def simulated(self) -> bool:
+        return self.envelope is not None
+
+    def envelopes(self) -> list:
+        return [] if self.envelope is None else [self.envelope]
+
+
+@dataclass
 class RuleResult:
     id: str
     symbol: str
@@ -239,8 +307,8 @@ class RuleResult:
     encoded: str | None = field(default=None, repr=False, compare=False)
     #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.engine.scheduler.evaluate_rule`)
     load_envelopes: list = field(default_factory=list, repr=False, compare=False)
-    #: the rule's own run data (simulations) when the load envelopes are kept; never written to results.json
-    run: dict | None = field(default=None, repr=False, compare=False)
+    #: what the rule simulated (:class:`SimulationRun`) when the load envelopes are kept; never written to results.json
+    run: SimulationRun | None = field(default=None, repr=False, compare=False)
     #: the rule's implementation status (``implemented``, ``partial``, ``planned``) and modelling limitations
     implementation: str = "implemented"
     limitations: str = ""
@@ -330,6 +398,9 @@ class RunResult:
     #: what varies between identical runs: wall time of the evaluation (s) and the processes used
     duration_s: float | None = None
     jobs: int | None = None
+    #: the aircraft file's values by dotted YAML path, as written (:meth:`YamlSource.values_by_path`): what
+    #: ``certkit diff`` compares to name the inputs that changed
+    inputs: dict = field(default_factory=dict)
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
@@ -343,7 +414,8 @@ class RunResult:
         return {
             "schema_version": SCHEMA_VERSION,
             "certkit_version": self.certkit_version,
-            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path},
+            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path,
+                         **({"inputs": self.inputs} if self.inputs else {})},
             "selection": self.selection,
             "options": self.options,
             "environment": self.environment,

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+from typing import Any
 
 #: version of the results.json layout: the major number changes when a field is removed or changes meaning
 SCHEMA_VERSION = "1.0"
@@ -29,14 +30,14 @@ _compact = json.JSONEncoder(ensure_ascii=False, separators=(", ", ": "), allow_n
 _key = json.JSONEncoder(ensure_ascii=False).encode
 
 
-def clean(obj) -> tuple[object, int]:
+def clean(obj: object) -> tuple[object, int]:
     """``obj`` as plain JSON data: floats rounded, non-finite numbers ``None`` (their count returned), numpy scalars
     and arrays as numbers and lists, tuples as lists, other objects as their ``str``."""
     count = [0]
     fmt = f".{SIGNIFICANT_DIGITS}g"
     isfinite = math.isfinite
 
-    def walk(o):
+    def walk(o: Any) -> Any:
         t = type(o)
         if t is float:
             if not isfinite(o):
@@ -62,7 +63,7 @@ def clean(obj) -> tuple[object, int]:
     return walk(obj), count[0]
 
 
-def _numpy(o):
+def _numpy(o: object) -> object:
     import numpy as np
 
     if isinstance(o, np.bool_):
@@ -76,7 +77,7 @@ def _numpy(o):
     return str(o)
 
 
-def encode(data, depth: int = 0) -> str:
+def encode(data: object, depth: int = 0) -> str:
     """Cleaned ``data`` (:func:`clean`) as text at nesting ``depth`` (a rule's object sits at depth 2: the top-level
     object, then ``rules``): indented down to :data:`INDENTED_DEPTH`, compact below."""
     if depth >= INDENTED_DEPTH or not data or not isinstance(data, (dict, list)):
@@ -94,8 +95,9 @@ def stable_lines(text: str) -> str:
     return "\n".join(line for line in text.splitlines() if not line.startswith(f'  "{VOLATILE_KEY}": '))
 
 
-def schema() -> dict:
+def schema() -> dict[str, Any]:
     """The JSON Schema of results.json shipped with certkit."""
     from importlib.resources import files
 
-    return json.loads(files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8"))
+    loaded: dict[str, Any] = json.loads(files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8"))
+    return loaded

@@ -21,6 +21,9 @@ from certkit.user_cache import cache_folder
 
 FIELDS = ("id", "symbol", "title", "implementation", "amendment")
 
+#: one rule's entry: the :data:`FIELDS` and its ``documentation`` (strings)
+RuleMetadata = dict[str, str]
+
 
 def _package_folders() -> list[Path]:
     out = []
@@ -54,14 +57,15 @@ def _has_plugins() -> bool:
     return bool(list(entry_points(group=ENTRY_POINT_GROUP)))
 
 
-def rule_metadata(rules_dirs: tuple[str, ...] = ()) -> list[dict]:
+def rule_metadata(rules_dirs: tuple[str, ...] = ()) -> list[RuleMetadata]:
     """Every registered rule's :data:`FIELDS` and ``documentation`` (its ``certkit explain`` text), in paragraph
     order, from the index when it is current (see the module docstring)."""
     if rules_dirs or _has_plugins():
         return _from_rules(rules_dirs)
     path = cache_folder() / f"rules-{index_key()}.json"
     try:
-        return json.loads(path.read_text(encoding="utf-8"))
+        cached: list[RuleMetadata] = json.loads(path.read_text(encoding="utf-8"))
+        return cached
     except (OSError, ValueError):
         pass
     data = _from_rules(())
@@ -77,14 +81,14 @@ def rule_metadata(rules_dirs: tuple[str, ...] = ()) -> list[dict]:
     return data
 
 
-def _from_rules(rules_dirs) -> list[dict]:
+def _from_rules(rules_dirs: tuple[str, ...]) -> list[RuleMetadata]:
     from certkit.engine.registry import DiscoveryOptions, discover
 
     return [{**{f: getattr(r, f) for f in FIELDS}, "documentation": r.documentation()}
             for r in discover(DiscoveryOptions(rules_dirs=tuple(rules_dirs)))]
 
 
-def find(metadata: list[dict], query: str) -> list[dict]:
+def find(metadata: list[RuleMetadata], query: str) -> list[RuleMetadata]:
     """The rules ``query`` names: an id (``25.337``, ``§25.337``, ``§ 25.331(c)(2)``), a symbol, or an id prefix."""
     q = query.strip().lstrip("§").strip()
     exact = [m for m in metadata if m["id"] == q or m["symbol"] == q]

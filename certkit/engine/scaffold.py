@@ -72,7 +72,10 @@ def test_{func}_never_passes_unimplemented():
 
 
 def subpart_of(rule_id: str) -> str:
-    number = int(re.match(r"\d+\.(\d+)", rule_id).group(1))
+    match = re.match(r"\d+\.(\d+)", rule_id)
+    if match is None:
+        raise ValueError(f"not a Part 25 paragraph id: {rule_id!r}")
+    number = int(match.group(1))
     for name, lo, hi in SUBPARTS:
         if lo <= number <= hi:
             return name

@@ -13,6 +13,7 @@ import datetime as _dt
 import inspect
 import math
 import os
+import re
 import traceback
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
@@ -21,8 +22,8 @@ from certkit import __version__
 from certkit.aircraft import LoadedAircraft
 from certkit.engine.context import Context
 from certkit.errors import InputError, Problem, UserError
-from certkit.engine.registry import Criteria, DiscoveryOptions, Rule, discover
-from certkit.engine.results import Condition, Finding, RuleResult, RunResult
+from certkit.engine.registry import Criteria, DiscoveryOptions, PluginError, Rule, discover, exit_called
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult, SimulationRun
 from certkit.units import UnitError, to_unit
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 
@@ -45,10 +46,39 @@ def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
 
 def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> dict:
     """The criteria in force as results.json and the report state them: value, unit (``1`` without one), source,
-    basis (:attr:`Criterion.basis`), meaning, and whether the aircraft file overrode it."""
-    return {name: {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
-                   "description": c.description, "overridden": name in overrides}
-            for name, c in rule.criteria.items()}
+    basis (:attr:`Criterion.basis`; ``override`` when the aircraft file set the value, with the rule's default, its
+    basis and the file's justification beside it), meaning, and whether the aircraft file overrode it."""
+    out = {}
+    for name, c in rule.criteria.items():
+        entry = {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
+                 "description": c.description, "overridden": name in overrides}
+        if name in overrides:
+            entry.update(basis="override", default=c.value, default_basis=c.basis,
+                         justification=overrides[name]["justification"])
+        out[name] = entry
+    return out
+
+
+def check_in_force(check: str, overrides: dict) -> str:
+    """A check text as the criteria in force make it: a default value an override replaced, written as a number in
+    the text ("VC ≥ VB + 1.32 U_ref"), becomes the value in force ("VC ≥ VB + 1.4 U_ref"). Paragraph labels such
+    as "(2)" are never numbers here."""
+    for o in overrides.values():
+        default, value = o["default"], o["value"]
+        if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (default, value)):
+            continue
+        check = re.sub(rf"(?<![\d.(]){re.escape(f'{default:g}')}(?![\d)])", f"{value:g}", check)
+    return check
+
+
+def _show_overrides(findings: list[Finding], overrides: dict) -> None:
+    """Check texts formed from the criteria in force; the text with the defaults kept as ``check_default`` (what
+    ``certkit diff`` pairs findings of two runs by)."""
+    for f in findings:
+        shown = check_in_force(f.check, overrides)
+        if shown != f.check:
+            f.details = {**f.details, "check_default": f.check}
+            f.check = shown
 
 
 def _override_value(rule: type[Rule], name: str, given: object) -> tuple[object, str | None]:
@@ -119,7 +149,10 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
     points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict. After the
     rule's own findings come one ``not_evaluated`` finding per sub-paragraph it does not evaluate
     (:attr:`Rule.unevaluated`)."""
-    result = _evaluate_own(rule, ctx, evidence, keep_loads, only)
+    try:
+        result = _evaluate_own(rule, ctx, evidence, keep_loads, only)
+    except SystemExit as exc:  # in a worker the pool would carry it to the parent, which would end with its code
+        raise PluginError(f"rule {rule.id} ({rule.origin}): {exit_called(exc)}") from None
     result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
     return result
 
@@ -164,10 +197,13 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
                                                       traceback=traceback.format_exc(limit=3)))
     for cond in _uncovered(conditions, findings):
         findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
+    if overrides:
+        _show_overrides(findings, overrides)
     result.findings = findings
     if keep_loads:
-        result.load_envelopes = instance.load_envelopes()
-        result.run = getattr(instance, "run", None)
+        run = getattr(instance, "run", None)
+        if isinstance(run, SimulationRun):
+            result.run, result.load_envelopes = run, run.envelopes()
     if not evidence:
         return result
     try:

@@ -15,6 +15,7 @@ import signal
 import sys
 import threading
 import time
+from concurrent.futures import ProcessPoolExecutor
 
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
@@ -41,7 +42,7 @@ def _watch(parent_pid: int) -> None:
     os._exit(1)
 
 
-def stop_pool(pool) -> None:
+def stop_pool(pool: ProcessPoolExecutor) -> None:
     """End a :class:`concurrent.futures.ProcessPoolExecutor`'s workers now (interrupt, error): pending work is
     cancelled and running workers are terminated rather than awaited. ``_processes`` is the executor's own table of
     its workers (CPython 3.8–3.13); without it the pool is only shut down."""

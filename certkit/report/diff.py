@@ -1,5 +1,8 @@
 """``certkit diff OLD/results.json NEW/results.json``: what changed between two checks, per rule and condition.
 
+First what was changed: the criteria in force (by their YAML path ``criteria.<rule>.values.<name>`` when the aircraft
+file overrides them) and the aircraft file's inputs (by YAML path, from ``aircraft.inputs``); then what changed as a
+result, with status words as the report writes them ("complies in part", "not evaluated").
 Per rule: added or removed rules, status flips, the change of the critical (normalised) margin. Per condition
 (a finding is identified by its rule, check and condition): status flips, findings that appeared or disappeared,
 and margin changes larger than the tolerance (``1e-6 × max(1, |limit|)`` in the finding's unit by default, so
@@ -12,9 +15,13 @@ import json
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from certkit.aircraft.yaml_source import read_regular_file
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
 from certkit.engine.results_json import SCHEMA_VERSION
+
+#: the largest results.json read (a full check writes about 10 MB)
+MAX_RESULTS_BYTES = 512 * 1024 ** 2
 
 #: how bad a status is: a change to a larger rank is a regression
 RANK = {"complies": 0, "complies_partial": 1, "not_evaluated": 2, "fails": 3, None: -1}
@@ -65,9 +72,16 @@ def load(path: str | Path) -> dict:
     """A results.json, checked to be one this certkit reads (same schema major version)."""
     p = Path(path)
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
+        raw = read_regular_file(p, MAX_RESULTS_BYTES)
     except OSError as exc:
         raise UserError(f"{p}: cannot be read ({exc.strerror or exc})") from None
+    if len(raw) > MAX_RESULTS_BYTES:
+        raise UserError(f"{p}: larger than {MAX_RESULTS_BYTES // 1024 ** 2} MB, not a results.json of certkit")
+    try:
+        data = json.loads(raw.decode("utf-8"))
+    except UnicodeDecodeError as exc:
+        raise UserError(f"{p}: not a results.json (not UTF-8 text: byte {exc.start} is "
+                        f"{raw[exc.start:exc.start + 1]!r}); give the results.json a `certkit check` wrote") from None
     except json.JSONDecodeError as exc:
         raise UserError(f"{p}: not JSON (line {exc.lineno}: {exc.msg})") from None
     version = data.get("schema_version") if isinstance(data, dict) else None
@@ -90,11 +104,57 @@ def _label(condition: dict) -> str:
     return Condition(**known, extra=extra).label()
 
 
+#: status words of a diff (as the report writes them; "absent" for a rule or finding one run lacks)
+STATUS_WORDS = {"complies": "complies", "complies_partial": "complies in part", "not_evaluated": "not evaluated",
+                "fails": "fails", None: "absent"}
+
+
+@dataclass
+class CriterionChange:
+    rule_id: str
+    name: str
+    old: object
+    new: object
+    unit: str
+    overridden: bool
+
+    @property
+    def path(self) -> str:
+        """Where the value in force is written: its override's YAML path, else the rule's default."""
+        return f"criteria.{self.rule_id}.values.{self.name}" if self.overridden else f"§{self.rule_id} default"
+
+
+def criteria_changes(old: dict, new: dict) -> list[CriterionChange]:
+    """The criteria whose value in force differs between two runs, for the rules both ran."""
+    old_rules = {r["id"]: r for r in old["rules"]}
+    out = []
+    for r in new["rules"]:
+        before = old_rules.get(r["id"], {}).get("criteria") or {}
+        for name, c in (r.get("criteria") or {}).items():
+            b = before.get(name)
+            if b is not None and (b["value"] != c["value"] or b.get("overridden") != c.get("overridden")):
+                out.append(CriterionChange(r["id"], name, b["value"], c["value"], c.get("unit", "1"),
+                                           bool(c.get("overridden") or b.get("overridden"))))
+    return out
+
+
+def input_changes(old: dict, new: dict) -> list[tuple[str, object, object]]:
+    """(YAML path, old, new) of every aircraft-file value that differs (None: absent); empty when a run does not
+    carry its inputs (a results.json of an older certkit)."""
+    a, b = old["aircraft"].get("inputs"), new["aircraft"].get("inputs")
+    if not a or not b:
+        return []
+    missing = object()
+    return [(k, a.get(k), b.get(k)) for k in sorted(set(a) | set(b)) if a.get(k, missing) != b.get(k, missing)]
+
+
 def _findings(rule: dict) -> dict:
-    """Findings by (check, condition); a repeated key (same check and condition) gets a running number."""
+    """Findings by (check, condition); a repeated key (same check and condition) gets a running number. The check
+    is read as written with the criteria's defaults (``check_default``), so that an override pairs the findings."""
     out: dict = {}
     for f in rule["findings"]:
-        key = (f["check"], json.dumps(f["condition"], sort_keys=True))
+        check = (f.get("details") or {}).get("check_default", f["check"])
+        key = (check, json.dumps(f["condition"], sort_keys=True))
         n = 0
         while (key + (n,)) in out:
             n += 1
@@ -118,7 +178,7 @@ def compare(old: dict, new: dict, tolerance: float = 1e-6) -> list[RuleChange]:
             ref = y or x
             limit = max(abs(v["limit"]) for v in (x, y) if v and v["limit"] is not None) if any(
                 v and v["limit"] is not None for v in (x, y)) else 1.0
-            fc = FindingChange(key[0], _label(ref["condition"]), x and x["status"], y and y["status"],
+            fc = FindingChange(ref["check"], _label(ref["condition"]), x and x["status"], y and y["status"],
                                x and x["margin"], y and y["margin"], ref["unit"] or "")
             moved = fc.delta is not None and abs(fc.delta) > tolerance * max(1.0, limit)
             appeared = (x is None) != (y is None) or (fc.old_margin is None) != (fc.new_margin is None)
@@ -132,16 +192,31 @@ def compare(old: dict, new: dict, tolerance: float = 1e-6) -> list[RuleChange]:
 
 
 def text_lines(changes: list[RuleChange], old: dict, new: dict, limit: int = 20) -> list[str]:
-    """The changes as terminal lines: one per rule, then up to ``limit`` changed findings each."""
-    if not changes:
-        return [f"no change in {len(new['rules'])} rules"]
+    """The changes as terminal lines: the criteria and inputs changed (by YAML path), then one line per rule and up
+    to ``limit`` changed findings each."""
     lines = []
+    criteria = criteria_changes(old, new)
+    if criteria:
+        lines.append("criteria changed:")
+        lines += [f"  {c.path}: {_criterion_value(c.old, c.unit)} → {_criterion_value(c.new, c.unit)}"
+                  + ("" if c.overridden else f" (§{c.rule_id} {c.name})") for c in criteria]
+    inputs = input_changes(old, new)
+    if inputs:
+        lines.append("inputs changed:")
+        lines += [f"  {path}: {_input(a)} → {_input(b)}" for path, a, b in inputs[:limit]]
+        if len(inputs) > limit:
+            lines.append(f"  … {len(inputs) - limit} more changed inputs")
+    if lines:
+        lines.append("")
+    if not changes:
+        return lines + [f"no change in the results of {len(new['rules'])} rules"]
     for c in changes:
-        status = (f"{c.old_status or 'absent'} → {c.new_status or 'absent'}" if c.flipped else (c.new_status or ""))
+        status = (f"{STATUS_WORDS[c.old_status]} → {STATUS_WORDS[c.new_status]}" if c.flipped
+                  else STATUS_WORDS[c.new_status])
         margin = f"{margin_text(c.old_margin, c.unit)} → {margin_text(c.new_margin, c.unit)}"
         lines.append(f"§{c.id:<13} {status:<32} critical margin {margin}")
         for f in c.findings[:limit]:
-            what = (f"{f.old_status or 'absent'} → {f.new_status or 'absent'}" if f.flipped
+            what = (f"{STATUS_WORDS[f.old_status]} → {STATUS_WORDS[f.new_status]}" if f.flipped
                     else f"margin {margin_text(f.old_margin, f.unit)} → {margin_text(f.new_margin, f.unit)}")
             lines.append(f"    {what}: {f.check} at {f.condition}")
         if len(c.findings) > limit:
@@ -152,11 +227,21 @@ def text_lines(changes: list[RuleChange], old: dict, new: dict, limit: int = 20)
     return lines
 
 
+def _criterion_value(value, unit: str) -> str:
+    return f"{value:g}{'' if unit in ('', '1') else ' ' + unit}" if isinstance(value, float) else f"{value}"
+
+
+def _input(value) -> str:
+    return "absent" if value is None else str(value)
+
+
 def render_html(changes: list[RuleChange], old: dict, new: dict, old_path: str, new_path: str) -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
     env = Environment(loader=PackageLoader("certkit.report", "templates"), autoescape=select_autoescape(["html"]),
                       trim_blocks=True, lstrip_blocks=True)
     env.filters["margin"] = margin_text
+    env.filters["status"] = lambda status: STATUS_WORDS.get(status, status)
     return env.get_template("diff.html").render(changes=changes, old=old, new=new, old_path=old_path,
-                                                 new_path=new_path)
+                                                 new_path=new_path, criteria=criteria_changes(old, new),
+                                                 inputs=input_changes(old, new), value=_criterion_value)

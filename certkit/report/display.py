@@ -9,6 +9,7 @@ magnitude, so every number of a column has the same decimals and round-off noise
 from __future__ import annotations
 
 import math
+import re
 
 from certkit.units import FT, G0, LB, LBF
 
@@ -70,3 +71,14 @@ def _finite(v) -> bool:
         return v is not None and not isinstance(v, (bool, str)) and math.isfinite(float(v))
     except (TypeError, ValueError):
         return False
+
+
+_SI_WORDS = ((re.compile(r"m/s²"), "g"), (re.compile(r"(?<![\w/])m/s(?![\w²])"), "kn"))
+
+
+def in_display_units(text: str) -> str:
+    """A description written with SI units (a rule's margin: "m/s EAS") in the units the report shows its numbers
+    in ("kn EAS"): speeds in knots, accelerations in g."""
+    for pattern, shown in _SI_WORDS:
+        text = pattern.sub(shown, text)
+    return text

@@ -17,19 +17,24 @@ from markupsafe import Markup, escape
 
 from certkit.engine.registry import Rule
 from certkit.report.ci_formats import subpart
-from certkit.report.display import format_value as format_number, unit_and_factor
+from certkit.report.display import format_value as format_number, in_display_units, unit_and_factor
 from certkit.report.figures import render_result
 from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
-from certkit.report.reasons import reason_line
+from certkit.report.reasons import reason_condition, reason_line
 from certkit.report.tables import formatted
 from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 
 #: order of the summary: what needs a reviewer first
 STATUS_ORDER = {FAILS: 0, NOT_EVALUATED: 1, COMPLIES_PARTIAL: 2, COMPLIES: 3}
 #: criterion bases that earn a rule a badge (the verdict may rest on them)
-FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion"}
-_REFERENCE = re.compile(r"(§§?\s?|14 CFR\s|CFR\s)(\d+\.\d+[a-z]?(?:\([a-z0-9]+\))*)")
+FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion",
+                 "override": "criterion overridden"}
+#: a paragraph of Part 25 cited in a text ("§25.335(a)", "14 CFR 25.1505"): only Part 25 links to its eCFR page or
+#: rule (a textbook's "§16.3", Raymer's chapter, is not a CFR section)
+_REFERENCE = re.compile(r"(§§?\s?|14 CFR\s|CFR\s)(25\.\d+[a-z]?(?:\([a-z0-9]+\))*)")
+#: a shape beside each status colour (readable without colour vision)
+STATUS_MARK = {FAILS: "✕", NOT_EVALUATED: "?", COMPLIES_PARTIAL: "◐", COMPLIES: "✓"}
 
 
 def format_value(value, unit: str) -> str:
@@ -58,10 +63,30 @@ def _environment(rule_ids) -> Environment:
     env.filters["slug"] = slug
     env.filters["status"] = lambda status: STATUS_LABEL.get(status, status)
     env.filters["table"] = formatted
+    env.filters["mark"] = lambda status: STATUS_MARK.get(status, "")
+    env.filters["titled"] = titled_svg
+    env.filters["shown_unit"] = lambda unit: {"": "no unit", "1": "no unit"}.get(unit or "", unit_and_factor(unit)[0])
     env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %".replace("-0.0 %", "+0.0 %")
     env.filters["ecfr"] = ecfr_url
     env.filters["refs"] = lambda text: linkify(text, rule_ids)
     return env
+
+
+def titled_svg(svg: str | None, title: str) -> Markup:
+    """An inline SVG figure with an accessible name: ``role="img"``, ``aria-label`` and a ``<title>`` first child."""
+    if not svg:
+        return Markup("")
+    start = svg.find("<svg")
+    end = svg.find(">", start)
+    if start < 0 or end < 0:
+        return Markup(svg)
+    name = str(escape(title))
+    head = svg[start:end].rstrip("/")
+    closing = "/>" if svg[end - 1] == "/" else ">"
+    if closing == "/>":
+        return Markup(svg)
+    head = re.sub(r'\s(role|aria-label)="[^"]*"', "", head)
+    return Markup(f'{svg[:start]}{head} role="img" aria-label="{name}"><title>{name}</title>{svg[end + 1:]}')
 
 
 def linkify(text, rule_ids) -> Markup:
@@ -91,10 +116,14 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
         for name, c in cls.criteria.items():
             if c.basis in FLAGGED_BASES and name not in result.overrides:
                 flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
+        for name, o in result.overrides.items():
+            flags.setdefault("override", []).append(f"{name} {o['default']} → {o['value']}: {o['justification']}")
         sections.append({
             "result": result, "rule": cls, "critical": result.critical, "subpart": subpart(result.id).upper(),
-            "reason": reason_line(result), "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
-            "requirement": _paragraphs(cls.requirement), "margin": _paragraphs(cls.margin),
+            "rank": STATUS_ORDER[result.status],
+            "reason": reason_line(result), "where": reason_condition(result),
+            "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
+            "requirement": _paragraphs(cls.requirement), "margin": in_display_units(_paragraphs(cls.margin)),
             "conditions": cls.conditions.describe(),
             "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
             "referenced_by": referenced_by.get(result.id, []),
@@ -104,9 +133,44 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
                                             s["critical"].normalized_margin if s["critical"] and
                                             s["critical"].normalized_margin is not None else float("inf")))
     overrides = [(r.id, k, v) for r in run.rules for k, v in r.overrides.items()]
-    return _environment(by_id).get_template("report.html").render(
+    return pack_tables(_environment(by_id).get_template("report.html").render(
         run=run, summary=run.summary(), sections=sections, triage=order, overrides=overrides,
-        subparts=sorted({s["subpart"] for s in sections}))
+        subparts=sorted({s["subpart"] for s in sections})))
+
+
+#: a table larger than this (bytes of HTML) is stored compressed in the report and drawn when shown
+PACK_THRESHOLD = 8192
+_TABLE_OPEN, _TABLE_CLOSE = '<div class="table-wrap"><table>', "</table></div>"
+
+
+def pack_tables(html: str, threshold: int = PACK_THRESHOLD) -> str:
+    """The report within its size budget without losing a finding: each table larger than ``threshold`` (the
+    per-condition findings and evidence tables, up to 1,445 rows) becomes a zlib block (base64) in a
+    ``<script type="application/x-certkit-table">`` that the page's script inflates (``DecompressionStream``) when
+    its section is opened, and every block in the background after loading, so that search and print see them.
+    Deterministic: the same report gives the same bytes."""
+    import base64
+    import zlib
+
+    def pack(table: str) -> str:
+        if len(table) <= threshold:
+            return table
+        rows = table.count("<tr") - table.count("<thead><tr")
+        data = base64.b64encode(zlib.compress(table.encode("utf-8"), 6)).decode("ascii")
+        return (f'<div class="packed" data-rows="{rows}"><p class="meta packed-note">A table of {rows} rows, stored '
+                'compressed in this file: it opens with its section<noscript> when scripts are enabled (every value '
+                'is also in results.json)</noscript>.</p>'
+                f'<script type="application/x-certkit-table">{data}</script></div>')
+
+    parts, at = [], 0
+    while (start := html.find(_TABLE_OPEN, at)) >= 0:
+        end = html.find(_TABLE_CLOSE, start)
+        if end < 0:
+            break
+        end += len(_TABLE_CLOSE)
+        parts += [html[at:start], pack(html[start:end])]
+        at = end
+    return "".join(parts) + html[at:]
 
 
 def _paragraphs(text: str) -> str:

@@ -7,7 +7,7 @@ missing target is a plain rename. The previous set stays whole until the new one
 set or the new one, and no symlink inside the folder is ever followed (the old folder, links included, is removed
 after the swap without following them). A target holding files certkit did not write (``--out .``) is not swapped:
 its report files are replaced one by one (each a temporary file renamed into place, ``results.json`` first), which
-keeps each file whole but not the pair; the README says so.
+keeps each file whole but not the pair; docs/usage.md says so.
 """
 
 from __future__ import annotations
@@ -65,6 +65,7 @@ def _checked_target(given: Path) -> Path:
         raise UserError(f"--out {str(given)!r}: a symbolic link to {str(target)!r}, which does not exist")
     if target.exists() and not target.is_dir():
         raise UserError(f"--out {str(given)!r}: exists and is not a folder")
+    _refuse_foreign_entries(given, target)
     for folder in reversed(target.parents):
         if folder.exists() and not folder.is_dir():
             raise UserError(f"--out {str(given)!r}: {str(folder)!r} is a file, not a folder")
@@ -76,10 +77,23 @@ def _checked_target(given: Path) -> Path:
     return target
 
 
+def _refuse_foreign_entries(given: Path, target: Path) -> None:
+    """A report file's name in the folder taken by something else than a file or a symbolic link (a user's folder
+    named ``results.json``) is never replaced: replacing would delete it."""
+    for name in REPORT_FILES:
+        entry = target / name
+        if entry.exists() and not entry.is_symlink() and not entry.is_file():
+            kind = "a folder" if entry.is_dir() else "not a regular file"
+            raise UserError(f"--out {str(given)!r}: {str(entry)!r} is {kind}, not a report file; certkit writes "
+                            f"{' and '.join(REPORT_FILES)} there and will not delete it (move it, or choose another "
+                            "--out)")
+
+
 def write_set(out: Path, files: dict[str, str]) -> None:
     """Write ``files`` (name → text) as the content of folder ``out``, replacing its previous set in one step; never
     after an interrupt (Ctrl-C: the previous set stays)."""
     raise_if_requested()
+    _refuse_foreign_entries(out, out)  # checked before the evaluation too; the folder may have changed since
     parent = out.parent
     _remove_stale(parent)
     new = None

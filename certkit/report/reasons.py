@@ -11,6 +11,8 @@ def margin_text(value, unit: str) -> str:
     """A margin in the unit a reviewer reads (kn, ft, lb, lbf, kN·m, g), signed; an em dash when missing."""
     if value is None:
         return "—"
+    if abs(value) < 1e-9:  # round-off of a value on its limit reads 0, not "+0.000000 Mach"
+        value = 0.0
     shown, factor = unit_and_factor(unit or "")
     text = format_value(value / factor)
     if not text.startswith(("-", "—")):
@@ -36,11 +38,18 @@ def reason_line(result) -> str:
     """The one-line reason of the rule's status (see the module docstring)."""
     if result.status == FAILS:
         f = worst_failure(result)
-        return f"fails by {margin_text(f.margin, f.unit)}: {f.check} at {f.condition.label()}"
+        by = margin_text(-f.margin, f.unit).lstrip("+") if f.margin is not None else "—"  # "fails by 0.90 deg"
+        return f"fails by {by} at {f.condition.label(numbers=False)}: {f.check}"
     if result.status == NOT_EVALUATED:
         return "not evaluated: " + not_evaluated_reason(result)
     crit = result.critical
-    where = f"critical {crit.check} at {crit.condition.label()}" if crit else "complies"
+    where = f"critical {crit.check} at {crit.condition.label(numbers=False)}" if crit else "complies"
     if result.status == COMPLIES_PARTIAL:
         return where + "; not evaluated: " + ", ".join(f"§{p}" for p, _ in result.unevaluated)
     return where
+
+
+def reason_condition(result) -> str:
+    """The full condition behind :func:`reason_line` (masses, CG and speeds in aviation units), for a tooltip."""
+    f = worst_failure(result) if result.status == FAILS else result.critical
+    return f.condition.label() if f is not None else ""

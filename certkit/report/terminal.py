@@ -34,14 +34,15 @@ def rule_rows(results, width: int | None = None, colour: bool = False) -> list[s
             where = f"{crit.condition.label()} — {crit.check}"
         status = STATUS_LABEL[r.status]
         head = f"{status:>17}  §{r.id:<13} "
+        title = f"[override] {r.title}" if r.overrides else r.title
         if width:
             room = width - len(head) - 16  # the margin column and its spaces
             title_w = min(40, max(8, room // 2))
-            title = _fit(r.title, title_w)
+            title = _fit(title, title_w)
             row = f"{head}{title:<{title_w}} {margin:>14}  "
             row = (row + _fit(where, max(1, width - len(row))))[:width]
         else:
-            row = f"{head}{r.title:<44} {margin:>14}  {where}"
+            row = f"{head}{title:<44} {margin:>14}  {where}"
         if colour:
             import click
 

@@ -30,7 +30,22 @@ _store_option = click.option("--store", type=click.Path(dir_okay=False),
                              help="Store file (default: the study file with the suffix .sqlite).")
 
 
-@click.group(name="study")
+class _StudyGroup(click.Group):
+    """A store found damaged while it is read (after :meth:`Store.open` checked it) is a message, not a bug."""
+
+    def invoke(self, ctx):
+        import sqlite3
+
+        from certkit.errors import UserError
+
+        try:
+            return super().invoke(ctx)
+        except sqlite3.DatabaseError as exc:
+            raise UserError(f"the study store could not be read (SQLite: {exc}): a damaged file; restore it from a "
+                            "copy, or delete it and run the study again") from None
+
+
+@click.group(name="study", cls=_StudyGroup)
 def study():
     """Design studies: designs of experiments over many designs, resumable, on this machine or a Dask cluster."""
 

@@ -309,7 +309,7 @@ class Study(_Model):
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
     analysis: Annotated[AnalysisOptions, BeforeValidator(_no_analysis)] = Field(
-        default_factory=AnalysisOptions, description="options of `certkit study report`")
+        default_factory=AnalysisOptions, description="options of `certkit study report` (see docs/design-studies.md)")
 
     def variable_paths(self) -> list[str]:
         return [v.path for v in self.variables]

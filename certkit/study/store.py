@@ -71,8 +71,13 @@ class Store:
                 db.executescript(_SCHEMA)
                 db.execute("INSERT OR IGNORE INTO meta VALUES ('schema', ?)", (SCHEMA_VERSION,))
             version = db.execute("SELECT value FROM meta WHERE name = 'schema'").fetchone()
+            damage = [row[0] for row in db.execute("PRAGMA quick_check(3)")]
         except sqlite3.DatabaseError as exc:
-            raise UserError(f"{path}: not a certkit study store ({exc})") from None
+            raise UserError(f"{path}: not a certkit study store, or a damaged one (SQLite: {exc}); restore it from a "
+                            "copy, or delete it and run the study again") from None
+        if damage != ["ok"]:
+            raise UserError(f"{path}: damaged study store (SQLite: {'; '.join(damage)}); restore it from a copy, or "
+                            "delete it and run the study again")
         if version is None or version[0] != SCHEMA_VERSION:
             raise UserError(f"{path}: study store of another format ({version and version[0]}; expected {SCHEMA_VERSION})")
         return cls(path, db)

@@ -35,7 +35,7 @@ def test_one_record_as_json():
                 "--response", "sizing.*", "--json")
     assert proc.returncode == 0, proc.stderr
     rec = json.loads(proc.stdout)
-    assert rec["schema"] == "certkit.design-record/1"
+    assert rec["schema"] == "certkit.design-record/2"
     assert rec["variables"]["geometry.horizontal_tail.area"] == pytest.approx(1200 * 0.3048**2)
     assert set(rec["responses"]) >= {"rule.25.171.margin", "sizing.ht_group_mass_kg", "sizing.iterations"}
     assert not any(k.startswith("objective.cruise") for k in rec["responses"])  # the mission was not asked for

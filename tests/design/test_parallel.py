@@ -2,7 +2,7 @@
 
 from certkit.design.evaluate import evaluate_design
 from certkit.design.parallel import shares
-from certkit.engine.registry import DiscoveryOptions, discover
+from certkit.engine.registry import DiscoveryOptions, discover, producers
 from certkit.study.worker import canonical_json
 
 
@@ -18,7 +18,7 @@ def test_two_processes_give_the_same_record():
 
 def test_shares_balance_the_declared_costs():
     """Longest-processing-time order: heaviest first into the lighter group (costs 8, 5, 5, 4, 2: 8 + 4 and 5 + 5 + 2)."""
-    loads = [r for r in discover(DiscoveryOptions()) if "horizontal_tail" in r.loads_surfaces]
+    loads = producers(discover(DiscoveryOptions()), "horizontal_tail")
     groups = shares(loads, 2)
     sums = sorted(sum(r.cost for r in g) for g in groups)
     assert sorted(r.id for g in groups for r in g) == sorted(r.id for r in loads)

@@ -1,7 +1,7 @@
 """The design structure's loop on the baseline and a redesigned tail (issue 13).
 
 References: the baseline's declared horizontal-tail group (5,800 lb, aircraft/lta.yaml, "5.2 lb/ft² composite
-stabiliser") within 10 %; the sized box is fully stressed, so the §25.331(c) tail-load margins against its own
+stabiliser") within 3 % (the calibrated non-optimum factor); the sized box is fully stressed, so the §25.331(c) tail-load margins against its own
 capability are ≥ 0 and the smallest is close to zero; OEW bookkeeping by hand.
 """
 
@@ -32,14 +32,32 @@ def test_converges_and_reports_its_history(baseline):
     assert baseline["responses"]["sizing.iterations"] == len(h)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "finding (issue 11): with the §25.331(c) manoeuvres deflecting the elevator to its −30° stop (travel) instead of "
-    "the −21.8° design limit, and no control-force model in the baseline to apply the §25.397 pilot-effort limit, "
-    "the sized stabiliser structure is 3,254 kg (7,173 lb), 24 % above the declared 5,800 lb group (was 6,063 lb, "
-    "+4.5 %). The band is kept; the baseline needs a control_forces.elevator model or a revisited declared mass."))
-def test_baseline_tail_group_within_10_percent_of_declared(baseline):
+def test_baseline_tail_group_within_3_percent_of_declared(baseline):
+    """The calibration that cannot go stale: the design loop sizes the baseline's tail group from today's Subpart C
+    loads with the declared non-optimum factor and must give the declared 5,800 lb horizontal tail (aircraft/lta.yaml;
+    the 777 AMM 27-41-00 gives the stabiliser assembly as about 6,100 lb with elevators and PCUs, i.e. about 5,860 lb
+    without the 240 lb of PCUs the loop sizes) within 3 %. A change in the loads that moves the group further fails here:
+    re-run ``certkit calibrate --tail aircraft/lta.yaml`` and update the factor and docs/baseline-sources.md §11."""
     structure = baseline["responses"]["sizing.ht_structure_mass_kg"]
-    assert structure == pytest.approx(5800 * LB, rel=0.10)
+    assert structure == pytest.approx(5800 * LB, rel=0.03)
+
+
+def test_declared_non_optimum_factor_is_the_solved_one(baseline):
+    """The factor the calibration's secant step (at fixed loads: the sized mass is linear in the factor) finds from
+    this sizing equals the declared one within 0.01, i.e. within 0.3 % of the group's mass."""
+    from certkit.aircraft import load_aircraft
+    from certkit.design.calibration import mass_per_factor
+
+    factor = load_aircraft(BASELINE).model.sizing.horizontal_tail.non_optimum_factor
+    details = baseline["details"]["sizing"]
+    m = baseline["responses"]["sizing.ht_structure_mass_kg"]
+    solved = factor + (5800 * LB - m) / mass_per_factor(details, factor)
+    assert solved == pytest.approx(factor, abs=0.01)
+    # what `certkit calibrate --tail` prints for the documentation is this sizing's
+    from certkit.design.calibration import sizing_summary
+
+    summary = sizing_summary(details)
+    assert summary[0].startswith(f"sized group {m:,.1f} kg") and "covers" in summary[0]
 
 
 def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):

@@ -23,6 +23,16 @@ def test_trim_at_a_corner_converges_within_limits(cli):
     assert d["condition"]["altitude_m"] == pytest.approx(31000 * 0.3048)
 
 
+def test_trim_names_how_the_corner_was_built(cli):
+    """The fwd_light corner cannot be reached with the declared empty airplane: the text output says it was built from
+    the declared items with the empty airplane moved, and at what height; a reachable corner names its fuel and
+    payload."""
+    light = cli("trim", BASELINE, "--corner", "fwd_light", "--altitude", "10000 ft", "--speed", "250 kn CAS").output
+    assert "loading built from declared items, empty airplane moved" in light and "height -1.06 m" in light
+    mrw = cli("trim", BASELINE, *CRUISE).output
+    assert "loading built from declared items: empty airplane (" in mrw and "kg fuel in its tanks" in mrw
+
+
 def test_modes_present_with_the_expected_signs(cli):
     """All five modes; short period, phugoid and Dutch roll oscillatory (positive frequency) and stable (negative
     real part); the roll mode a stable real root; the short period faster than the phugoid."""

@@ -1,4 +1,5 @@
-"""The README's commands are the ones CI runs, and its rule table is current."""
+"""The README's commands are the ones CI runs, the documented examples run verbatim, and the rule table of
+docs/rules.md is current."""
 
 import re
 
@@ -24,15 +25,19 @@ def test_quickstart_has_exactly_two_setup_commands_and_ci_runs_the_test_one():
 
 def test_rule_table_is_current():
     table = CliRunner().invoke(main, ["rules", "--markdown"]).output.strip()
-    assert table in (ROOT / "README.md").read_text()
+    assert table in (ROOT / "docs" / "rules.md").read_text()
+
+
+DOCUMENTED = ("README.md", "docs/usage.md")
 
 
 def sh_blocks():
-    return re.findall(r"```sh\n(.*?)\n```", (ROOT / "README.md").read_text(), flags=re.S)
+    return [block for name in DOCUMENTED
+            for block in re.findall(r"```sh\n(.*?)\n```", (ROOT / name).read_text(), flags=re.S)]
 
 
 def test_every_readme_example_runs_verbatim(tmp_path):
-    """Each line of the README's `sh` blocks, run by bash from the repository root as written: exit 0, or 1/3 for a
+    """Each line of the `sh` blocks of the README and the usage page, run by bash from the repository root as written: exit 0, or 1/3 for a
     check or diff whose verdict is a failure or something not evaluated; never a usage error or a traceback."""
     import os
     import subprocess

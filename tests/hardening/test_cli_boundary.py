@@ -74,7 +74,7 @@ def test_bad_output_refused_before_the_evaluation(tmp_path, out):
 
 def test_dev_zero_is_a_user_error(tmp_path):
     result = _certkit("check", "/dev/zero", "--out", tmp_path / "out")
-    assert result.returncode == 2 and "larger than" in result.stderr and "Traceback" not in result.stderr
+    assert result.returncode == 2 and "not a regular file" in result.stderr and "Traceback" not in result.stderr
 
 
 def test_evaluate_checks_the_overrides_too(tmp_path):

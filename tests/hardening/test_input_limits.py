@@ -9,7 +9,7 @@ import time
 import pytest
 
 from certkit.aircraft import load_aircraft, validate_aircraft_data
-from certkit.aircraft.yaml_source import MAX_DEPTH, MAX_NODES
+from certkit.aircraft.yaml_source import MAX_DEPTH, MAX_FILE_BYTES, MAX_NODES
 from certkit.errors import InputError
 from certkit.units import LB, to_si
 
@@ -55,7 +55,7 @@ def test_unreadable_or_non_finite_numbers_are_located_errors(path, value, words)
 
 
 def test_bare_number_string_is_si():
-    """README: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of kilograms."""
+    """docs/aircraft-file.md: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of kilograms."""
     assert to_si("3e5", "mass") == 3e5
     found = _problems(with_value("mass.MTOW", "3e5"))
     assert list(found) == ["mass.MRW"]  # only the relation with the ramp weight (657,000 lb > 300 t) remains
@@ -109,9 +109,13 @@ def test_alias_bomb_refused_before_expansion(tmp_path, levels):
     assert f"{MAX_NODES:,}" in problem.message and problem.line is not None
 
 
-def test_dev_zero_and_folders_refused():
-    assert "larger than" in _load_problems("/dev/zero")[0].message
+def test_dev_zero_and_folders_refused(tmp_path):
+    assert "not a regular file" in _load_problems("/dev/zero")[0].message
     assert "folder" in _load_problems("/tmp")[0].message
+    huge = tmp_path / "huge.yaml"
+    with huge.open("wb") as f:  # sparse: no disk space used
+        f.truncate(MAX_FILE_BYTES + 1)
+    assert "larger than" in _load_problems(huge)[0].message
 
 
 def test_huge_integer_literal_refused(tmp_path):

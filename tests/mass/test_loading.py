@@ -31,10 +31,56 @@ def test_reachable_corners_use_real_payload_and_fuel(corners):
     assert sum(r.fuel_by_tank.values()) == pytest.approx(r.fuel)
 
 
-def test_unreachable_corners_say_how_they_were_built(corners):
-    """The light corners lie far from the OEW CG: no distribution reaches them, and the result says so."""
+def test_unreachable_corners_are_built_from_the_declared_items(baseline, corners):
+    """The light corners (310,000 lb at 6 % and 38 % MAC) lie beyond what 2,500 kg of fuel and payload can move the
+    declared empty CG (22.1 % MAC): they are built from the declared items with the empty airplane moved as a whole,
+    and say so. The CG height is then the moment balance of the items' heights (hand sum over the file's component
+    table: the OEW CG is 3.47 ft below the datum, docs/baseline-sources.md §2), not the datum."""
+    a = baseline.model
+    oew = sum(c.mass for c in a.mass.components)
+    z_oew = sum(c.mass * c.cg.z for c in a.mass.components) / oew
+    assert z_oew / FT == pytest.approx(-3.465, abs=0.01)  # hand sum of the YAML table in lb·ft: -1,055,072 / 304,488
     for name in ("fwd_light", "aft_light"):
-        assert corners[name].notes and "cannot be built" in corners[name].notes[-1]
+        r = corners[name]
+        assert "moved" in r.notes[-1] and "empty airplane moved" in r.construction
+        tank_z = {t.name: t.cg.z for t in a.mass.fuel_tanks}
+        moment_z = oew * z_oew + sum(m * tank_z[t] for t, m in r.fuel_by_tank.items())  # payload zones at height 0
+        assert r.properties.cg[2] == pytest.approx(moment_z / r.properties.mass, abs=1e-6)
+        assert r.properties.cg[2] / FT < -3.0
+
+
+def test_moved_empty_airplane_keeps_the_inertia_about_the_cg(baseline, corners):
+    """Moving every item by the same distance leaves the inertia about the CG unchanged (parallel-axis theorem): the
+    light corner's tensor is that of its unmoved items, so it follows mass.inertia_used like any loading."""
+    from certkit.models.mass.properties import MassComponent, combine
+    r = corners["fwd_light"]
+    shift = r.properties.cg[0] - sum(c.mass * c.cg[0] for c in r.items) / r.properties.mass  # 0 by construction
+    assert abs(shift) < 1e-9
+    dx = 3.0  # move the whole set: the inertia about the CG must not change
+    moved = [MassComponent(c.name, c.mass, (c.cg[0] + dx, c.cg[1], c.cg[2]), c.inertia) for c in r.items]
+    np.testing.assert_allclose(combine(moved).inertia, r.properties.inertia, rtol=1e-9)
+    declared = baseline.model.model_copy(update={"mass": baseline.model.mass.model_copy(update={"inertia_used": "declared"})})
+    c = next(c for c in CgCorners().loadings(declared) if c.name == "fwd_light")
+    d = solve_loading(declared, c.mass, c.x_cg, c.name)
+    assert d.properties.Iyy == pytest.approx(baseline.model.mass.inertia.Iyy * 310_000 / 656_000, rel=1e-6)
+    assert d.properties.cg[2] == pytest.approx(r.properties.cg[2], abs=1e-9)
+
+
+def test_every_loading_names_how_it_was_built(corners):
+    assert corners["fwd_mlw"].construction.startswith("declared items: empty airplane (")
+    assert "ballast" in corners["aft_mrw"].construction
+
+
+def test_point_mass_empty_airplane_sits_at_its_declared_height(baseline):
+    """Without a component table the empty airplane is one item at mass.oew_cg, height included."""
+    a = baseline.model
+    oew_cg = a.mass.oew_cg.model_copy(update={"z": -1.0})
+    plain = a.model_copy(update={"mass": a.mass.model_copy(update={"components": None, "oew_cg": oew_cg})})
+    r = solve_loading(plain, 140_000, 28.0, "light")
+    assert r.properties.cg[0] == pytest.approx(28.0, abs=1e-6)
+    empty = a.mass.OEW
+    assert r.properties.cg[2] == pytest.approx((empty * -1.0 + sum(
+        m * next(t.cg.z for t in a.mass.fuel_tanks if t.name == k) for k, m in r.fuel_by_tank.items())) / 140_000, abs=1e-6)
 
 
 def test_inertia_at_mtow_against_radii_of_gyration(baseline):
@@ -66,3 +112,17 @@ def test_fuel_never_moves_the_cg_sideways(baseline, corners):
     for r in corners.values():
         assert abs(r.properties.cg[1]) < 1e-9
         assert abs(r.properties.inertia[0, 1]) < 1e-6 * r.properties.Ixx
+
+
+def test_report_provenance_names_how_each_loading_was_built(baseline):
+    """The report's loadings table (Context.provenance, column "Built from") carries the construction of each loading
+    solved, the moved empty airplane of a light corner included."""
+    from certkit.engine.context import Context
+
+    ctx = Context(baseline)
+    for c in CgCorners().loadings(baseline.model):
+        if c.name in ("fwd_light", "fwd_mlw"):
+            ctx.loading(c.mass, c.x_cg, c.name)
+    rows = {r["name"]: r for r in ctx.provenance()["loadings"]}
+    assert "empty airplane moved" in rows["fwd_light"]["built"]
+    assert rows["fwd_mlw"]["built"].startswith("declared items: empty airplane (")

@@ -36,16 +36,26 @@ def phase(profile, name):
     return next(p for p in profile.phases if p.name == name)
 
 
-def test_design_range_against_published_777_200er(result):
-    """Boeing quotes the 777-200ER at 7,065 nmi with 301 three-class passengers (Boeing 777 technical
-    specifications, as tabulated in Wikipedia's Boeing 777 article) and D6-58329 (Airplane Characteristics for
-    Airport Planning, §3.2 payload–range) puts the 656,000 lb design point near 7,500 nmi; the seed study gives
-    7,530 nmi for 305 passengers. Band: 7,065 nmi −10 % … 7,530 nmi +25 % (the model's drag build-up is about
-    6 % below the research estimate of the baseline's cruise drag and the declared TSFC is the uninstalled cycle
-    value: docs/baseline-sources.md §12). A unit slip (km for nmi, lb for kg) or a lost logarithm falls outside."""
-    r = result.design_range_m / NMI
-    assert 0.9 * 7065 <= r <= 1.25 * 7530
+def test_design_range_meets_the_declared_target_within_1_percent(result, baseline):
+    """The calibrated baseline flies its declared design range — 7,530 nmi with 305 passengers (68,625 lb) from
+    MTOW, the seed study's sized baseline [given] — within 1 % (the calibration's declared tolerance). The drag
+    factor was solved for it by ``certkit calibrate``; a model change that moves the range by more than 1 % must
+    be followed by a re-calibration (docs/baseline-sources.md §7a), not a wider band."""
+    cal = baseline.model.calibration
+    assert cal.target.range == pytest.approx(7530 * NMI) and cal.target.tolerance == 0.01
+    assert result.design.payload_kg == pytest.approx(68625 * LB)
+    assert result.design_range_m / NMI == pytest.approx(7530, rel=0.01)
     assert result.range_margin_m == pytest.approx(result.design_range_m - 7530 * NMI)
+    assert result.calibration["drag_factor"] == cal.drag_factor
+
+
+def test_design_range_against_boeing_published_figure(result):
+    """Boeing quotes the 777-200ER at 7,065 nmi with 301 three-class passengers (Boeing 777 technical
+    specifications; Boeing's own payload and reserve rules, not public). The declared 7,530 nmi with 305
+    passengers is 6.6 % longer; the calibrated model lies within 10 % of Boeing's figure, and above it, as the
+    declared target is (docs/baseline-sources.md §7a)."""
+    r = result.design_range_m / NMI
+    assert 7065 <= r <= 1.10 * 7065
 
 
 def test_cruise_segment_against_breguet(result, base_ctx):
@@ -66,15 +76,11 @@ def test_cruise_segment_against_breguet(result, base_ctx):
     assert phase(d, "cruise").distance_m == pytest.approx(closed, rel=0.04)
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "finding (issue 12): trimmed with the movable stabiliser (elevator at 0° instead of 4.6°) the cruise drag at "
-    "M 0.84, 35,000 ft falls 1 % (CD 0.02176 → 0.02153, the lattice's linear control-drag terms) and L/D rises from "
-    "19.82 to 20.02, 0.1 % above the class band 17–20 (docs/baseline-sources.md §7: Breguet-implied 17.7, test target "
-    "18.5 ± 1). The band is kept; the drag build-up's optimism (§7) is the open question, not the trim."))
 def test_cruise_drag_condition(result):
     """Trimmed cruise at M 0.84, 35,000 ft, mid-cruise weight: CL = W/(q S) within 2 % (the tail's trim load and
-    the thrust's lift component are the difference), L/D 18.5 ± 1.5 (the research recommendation for the
-    777-200ER class, docs/baseline-sources.md §7, widened by the build-up's 6 % optimism)."""
+    the thrust's lift component are the difference); L/D 17.7 ± 1 — the Breguet-implied mission-average L/D of the
+    777-200ER (R 7,530 nmi, V 482 kt, installed TSFC 0.545 lb/lbf/h, W0/W1 643,000/398,000 lb:
+    docs/baseline-sources.md §7) with the ±1 of the research recommendation."""
     c = result.cruise_drag
     from certkit import atmosphere as isa
 
@@ -82,7 +88,7 @@ def test_cruise_drag_condition(result):
     assert c.converged
     assert c.altitude_m == pytest.approx(35000 * FT) and c.mach == 0.84
     assert c.CL == pytest.approx(c.mass_kg * 9.80665 / (q * 457.76), rel=0.02)
-    assert 17.0 <= c.lift_to_drag <= 20.0
+    assert 16.7 <= c.lift_to_drag <= 18.7
 
 
 def test_nominal_block_fuel_band(result):
@@ -148,13 +154,17 @@ def test_oew_increase_costs_range_as_breguet_predicts(result, base_ctx):
 
 
 def test_tail_change_shows_in_cruise_drag_and_fuel(result, baseline):
-    """A 25 % larger horizontal tail (more wetted area, a different trim load): cruise CD and block fuel rise."""
+    """A 25 % larger horizontal tail (more wetted area, a different trim load): cruise CD and block fuel rise, the
+    design range falls, and the declared calibration factors in force are the baseline's."""
     a = baseline.model
     ht = a.geometry.horizontal_tail.model_copy(update={"area": 1.25 * a.geometry.horizontal_tail.area})
     bigger = a.model_copy(update={"geometry": a.geometry.model_copy(update={"horizontal_tail": ht})})
     other = fly_missions(bigger)
     assert other.cruise_drag.CD > result.cruise_drag.CD
     assert other.nominal.block_fuel_kg > result.nominal.block_fuel_kg
+    # the design is flown against the baseline's declared calibration, not re-calibrated: the same factors, less range
+    assert other.calibration == result.calibration and other.calibration["drag_factor"] == a.calibration.drag_factor
+    assert other.design_range_m < result.design_range_m
 
 
 def test_one_mission_after_warm_up_is_fast(base_ctx):

@@ -1,6 +1,7 @@
 """--output-format junit|sarif|github: JUnit XML with the structure of the Ant/Jenkins JUnit schema, SARIF valid
-against the SARIF 2.1.0 constraints (tests/report/sarif-2.1.0-subset.schema.json, written from the OASIS
-standard's text), GitHub workflow commands as GitHub's toolkit writes them."""
+against the official SARIF 2.1.0 JSON schema (tests/report/sarif-schema-2.1.0.json: OASIS SARIF TC,
+github.com/oasis-tcs/sarif-spec, sarif-2.1/schema/sarif-schema-2.1.0.json at commit e0583813, the errata01 schema),
+GitHub workflow commands as GitHub's toolkit writes them; each result located at the YAML line of its datum."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
-from jsonschema import Draft202012Validator, FormatChecker
+from jsonschema import Draft4Validator, FormatChecker
 
 from certkit.report.ci_formats import subpart
 from certkit.report.links import ecfr_url
@@ -28,6 +29,8 @@ JUNIT = {
                    "disabled"}, {"testcase", "properties", "system-out", "system-err"}),
     "testcase": ({"name", "classname"}, {"name", "classname", "time", "assertions", "status", "file", "line"},
                  {"skipped", "error", "failure", "system-out", "system-err", "properties"}),
+    "properties": (set(), set(), {"property"}),
+    "property": ({"name", "value"}, {"name", "value"}, set()),
     "failure": (set(), {"message", "type"}, set()),
     "skipped": (set(), {"message"}, set()),
     "system-out": (set(), set(), set()),
@@ -74,7 +77,9 @@ def test_junit_follows_the_schema_and_counts_the_statuses(outputs):
     suite = root.find("testsuite")
     s = data["summary"]
     assert int(suite.get("tests")) == s["rules"] and int(suite.get("failures")) == s["fails"]
-    assert int(suite.get("skipped")) == s["not_evaluated"]
+    assert int(suite.get("skipped")) == s["not_evaluated"] + s["complies_partial"]  # both make certkit exit 3
+    assert suite.find("properties/property[@name='exit_code']").get("value") == str(code)
+    assert all(c.get("file") == "aircraft/lta.yaml" and int(c.get("line")) >= 1 for c in suite.iter("testcase"))
     failed = [c.get("name") for c in suite if c.find("failure") is not None]
     assert failed == [f"§{r['id']} {r['title']}" for r in data["rules"] if r["status"] == "fails"]
     assert code == 1
@@ -92,8 +97,8 @@ def test_junit_checker_can_fail():
 def test_sarif_is_valid_and_names_the_failing_paragraphs(outputs):
     (text, code), data = outputs[0]["sarif"], outputs[1]
     log = json.loads(text)
-    schema = json.loads((Path(__file__).parent / "sarif-2.1.0-subset.schema.json").read_text())
-    errors = list(Draft202012Validator(schema, format_checker=FormatChecker()).iter_errors(log))
+    schema = json.loads((Path(__file__).parent / "sarif-schema-2.1.0.json").read_text())
+    errors = list(Draft4Validator(schema, format_checker=FormatChecker()).iter_errors(log))
     assert not errors, [e.message for e in errors]
     by_rule = {r["ruleId"]: r for r in log["runs"][0]["results"]}
     for r in data["rules"]:
@@ -101,13 +106,14 @@ def test_sarif_is_valid_and_names_the_failing_paragraphs(outputs):
         assert (by_rule[r["id"]]["level"] if r["id"] in by_rule else None) == expected
     helps = {d["id"]: d["helpUri"] for d in log["runs"][0]["tool"]["driver"]["rules"]}
     assert helps["25.121(b)"].endswith("/part-25/section-25.121#p-25.121(b)")
-    assert code == 1
+    assert log["runs"][0]["invocations"][0]["exitCode"] == code == 1
+    assert all(r["locations"][0]["physicalLocation"]["region"]["startLine"] > 1 for r in log["runs"][0]["results"])
 
 
 def test_github_annotations(outputs):
     (text, _), data = outputs[0]["github"], outputs[1]
     lines = text.splitlines()
-    pattern = re.compile(r"^::(error|warning|notice) file=aircraft/lta\.yaml,line=1,title=[^:,\n]+::[^\n]+$")
+    pattern = re.compile(r"^::(error|warning|notice) file=aircraft/lta\.yaml,line=\d+,title=[^:,\n]+::[^\n]+$")
     assert lines and all(pattern.match(ln) for ln in lines), lines
     errors = [ln for ln in lines if ln.startswith("::error")]
     assert len(errors) == data["summary"]["fails"]
@@ -120,3 +126,71 @@ def test_subparts_and_ecfr_links():
     assert ecfr_url("25.121(b)") == ("https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/"
                                      "section-25.121#p-25.121(b)")
     assert ecfr_url("25.337") == "https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/section-25.337"
+
+
+def test_the_schema_check_can_fail():
+    schema = json.loads((Path(__file__).parent / "sarif-schema-2.1.0.json").read_text())
+    bad = {"version": "2.1.0", "runs": [{"tool": {"driver": {"name": "certkit"}}, "results": [
+        {"ruleId": "25.335(a)", "level": "fatal", "message": {"text": "x"},
+         "locations": [{"physicalLocation": {"region": {"startLine": 0}}}]}]}]}
+    messages = " ".join(e.message for e in Draft4Validator(schema).iter_errors(bad))
+    assert "'fatal' is not one of" in messages and "0 is less than the minimum of 1" in messages
+
+
+#: a line-number fixture: the baseline with a criterion override appended at known lines, a required speed removed
+OVERRIDE = """
+criteria:
+  "25.335(a)":
+    justification: a stricter gust allowance for a line-number test
+    values:
+      gust_factor: 1.40
+"""
+
+
+@pytest.fixture(scope="module")
+def located(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("located")
+    text = BASELINE.read_text(encoding="utf-8")
+    assert "\ncriteria:" not in text
+    text = text.rstrip("\n") + "\n" + OVERRIDE
+    override_line = text.splitlines().index("      gust_factor: 1.40") + 1
+    vd_line = next(i for i, ln in enumerate(text.splitlines(), 1) if ln.startswith("  VD:"))
+    speeds_line = next(i for i, ln in enumerate(text.splitlines(), 1) if ln.startswith("speeds:"))
+    text = text.replace(text.splitlines()[vd_line - 1] + "\n", "  # VD removed\n")
+    (folder / "sub").mkdir()
+    aircraft = folder / "aircraft.yaml"
+    aircraft.write_text(text, encoding="utf-8")
+    out = {}
+    for fmt in ("sarif", "github", "junit"):
+        proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(aircraft), "--out", str(folder / fmt),
+                               "--select", "25.335(a),25.335(b),25.335(c)", "--output-format", fmt, "-j", "1"],
+                              capture_output=True, text=True, cwd=folder / "sub")
+        assert proc.returncode in (1, 3), proc.stderr
+        out[fmt] = proc.stdout
+    return out, override_line, speeds_line
+
+
+def test_sarif_locates_the_override_and_the_missing_input(located):
+    out, override_line, speeds_line = located
+    log = json.loads(out["sarif"])
+    by_rule = {r["ruleId"]: r for r in log["runs"][0]["results"]}
+    primary = by_rule["25.335(a)"]["locations"][0]
+    assert primary["physicalLocation"]["region"]["startLine"] == override_line
+    assert primary["message"]["text"] == "criteria.25.335(a).values.gust_factor"
+    related = {loc["message"]["text"]: loc["physicalLocation"]["region"]["startLine"]
+               for loc in by_rule["25.335(a)"].get("relatedLocations", [])}
+    assert set(related) == {"speeds.VC", "speeds.VB"}
+    # §25.335(b) needs VD, which the file lacks: located at the speeds section
+    assert by_rule["25.335(b)"]["locations"][0]["physicalLocation"]["region"]["startLine"] == speeds_line
+    uris = {loc["physicalLocation"]["artifactLocation"]["uri"] for r in by_rule.values() for loc in r["locations"]}
+    assert uris == {"../aircraft.yaml"}  # relative to the working folder, even outside it
+
+
+def test_github_and_junit_use_the_same_lines(located):
+    out, override_line, speeds_line = located
+    lines = {m[2]: int(m[1]) for m in re.finditer(r"line=(\d+),title=§(\S+)", out["github"])}
+    assert lines["25.335(a)"] == override_line and lines["25.335(b)"] == speeds_line
+    assert "file=../aircraft.yaml," in out["github"]
+    cases = {c.get("name").split()[0]: c for c in ET.fromstring(out["junit"]).iter("testcase")}
+    assert int(cases["§25.335(a)"].get("line")) == override_line
+    assert int(cases["§25.335(b)"].get("line")) == speeds_line

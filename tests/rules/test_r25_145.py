@@ -60,15 +60,6 @@ def test_hand_calculation_speeds_idle_glide_and_margin(base, shared145):
     assert math.radians(f.details["end_flight_path_deg"]) == pytest.approx(gamma, abs=0.002)
 
 
-def test_on_the_limit(tmp_path, base):
-    """Elevator-up design limit set to the landing-flap idle trim elevator at fwd_mlw: the (b)(1) margin is 0."""
-    f = finding(base, "fwd_mlw", "(b)(1)")
-    end = -21.8 + f.margin  # the end elevator, exactly (details are rounded)
-    ctx = edited_context(tmp_path, [(LIMITS, f"design_limits: {{min: {end:.12f} deg, max: 16.8 deg}}")])
-    g = finding(evaluate_part("25.145(b)", ctx, lambda c: c.loading == "fwd_mlw"), "fwd_mlw", "(b)(1)")
-    assert g.margin == pytest.approx(0.0, abs=1e-6) and g.status == "complies"
-
-
 def test_sign_more_flap_more_nose_up_and_thrust_below_cg_needs_nose_down(base):
     """At forward CG, extending the flaps further needs more trailing-edge-up elevator (the flap's nose-down
     moment); setting go-around thrust needs trailing-edge-down elevator at every corner (thrust line 9 ft below

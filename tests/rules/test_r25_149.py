@@ -2,9 +2,8 @@
 
 Hand calculation of the grid crossing (linear interpolation where the control usage |δ|/δ_limit crosses 1),
 the rule on the baseline: VMCA against 1.13 VSR, with VSR = √(2W/(ρ0 S CLmax)) in lb, ft, slug (656,000 lb,
-4927.3 ft², takeoff CLmax of the model) to 0.1 %; and the secant search against the former 33-point grid
-(0.6–1.4 VSR, 2.5 % VSR steps, linear interpolation): the same VMCA within the grid's interpolation error
-(0.5 kn), and within 0.1 kn of a fine grid (0.2 kn steps) around it.
+4927.3 ft², takeoff CLmax of the model) to 0.1 %; and each bank's VMCA checked by trims on either side of it
+against what limits it (a control at its design limit, or the lift maximum).
 """
 
 import math
@@ -15,7 +14,6 @@ import pytest
 from certkit.models.flight import control_limits
 from certkit.units import KN
 from certkit_rules.part25.support.control_speeds import control_usage, vmca_from_grid
-from certkit_rules.part25.subpart_b.r25_171 import trims_at_throttle
 
 from .helpers import own, run_rule
 
@@ -74,31 +72,32 @@ def test_not_evaluated_without_takeoff_clmax(tmp_path):
     assert r.status == "not_evaluated" and "configurations.takeoff.CLmax" in own(r)[0].reason
 
 
-def _grid_vmca(ctx, cond, vsr, factors, gammas=(-0.08, -0.04)):
-    """The former rule's VMCA: one batch of full-throttle OEI trims over the grid, at 5° bank toward the operating
-    engine and wings level, the better usage per speed, linear interpolation of the crossing."""
-    n = len(factors)
-    grid = [cond.with_(speed=float(f * vsr), speed_kind="CAS") for f in factors] * 2
-    banks = np.concatenate([np.full(n, np.radians(5.0)), np.zeros(n)])  # left engine out: bank right
-    res = trims_at_throttle(ctx, grid, np.full(2 * n, 0.99), gammas=gammas, kind="oei", bank=banks,
-                            inoperative="left")
-    use = np.array([control_usage(r, control_limits(ctx.aircraft)) for r in res]).reshape(2, n).min(axis=0)
-    return vmca_from_grid(np.asarray(factors) * vsr, use)
+def test_vmca_brackets_where_the_limiting_control_runs_out(result, ctx):
+    """Independent of the search: at each bank's VMCA the named limit holds. Rudder- or aileron-limited: that control
+    is at its design limit (0.5 %), a trim 0.5 kn faster needs less than its limits and 0.5 kn slower more.
+    Stall-limited: the trim 0.5 kn faster is within limits, 0.5 kn slower has no steady solution, and its lift-curve
+    slope is below a quarter of CL_α (the lift maximum). No bank ends on a trim failure."""
+    from certkit_rules.part25.support.control_speeds import at_lift_maximum
 
-
-def test_search_agrees_with_the_former_grid(result, ctx):
-    """The former 33-point grid and the secant search agree within 0.5 kn (measured 0.36 kn: the grid's single
-    secant step from probe trims at γ = −0.08/−0.04 ends at throttle 0.978, not 0.99, which moves its VMCA up by
-    0.3 kn); a fine grid (0.2 kn steps over ±1 kn) whose probes sit near the full-throttle path (γ = −0.02/0,
-    throttle 0.989) agrees with the search within 0.1 kn."""
+    limits = control_limits(ctx.aircraft)
     c = next(f for f in own(result) if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
-    by_bank = c.details["vmca_by_bank_kn"]
-    # the former grid searched only 5° and wings level: compare with the search's rows at those banks
-    vsr, vmca = c.details["VSR"], min(by_bank["5 deg"], by_bank["0 deg"]) * KN
-    old = _grid_vmca(ctx, c.condition, vsr, np.linspace(0.6, 1.4, 33))
-    assert old / KN == pytest.approx(vmca / KN, abs=0.5)
-    fine = _grid_vmca(ctx, c.condition, vsr, (vmca + np.arange(-1.0, 1.01, 0.2) * KN) / vsr, gammas=(-0.02, 0.0))
-    assert fine / KN == pytest.approx(vmca / KN, abs=0.1)
+    base = c.condition
+    for bank, what in c.details["limited_by_bank"].items():
+        assert what in ("rudder", "aileron", "stall")
+        v = c.details["vmca_by_bank_kn"][bank] * KN
+        phi = math.radians(float(bank.split()[0]))
+        conds = [base.with_(speed=v + dv * KN, speed_kind="CAS") for dv in (0.5, -0.5)]
+        fast, slow = ctx.trim(conds, kind="oei", bank=phi, inoperative="left", throttle=0.99).results
+        assert control_usage(fast, limits) < 1.0
+        if what == "stall":
+            assert not slow.converged and at_lift_maximum(ctx, base.configuration, slow)
+        else:
+            assert control_usage(slow, limits) > 1.0
+            at = ctx.trim([base.with_(speed=v, speed_kind="CAS")], kind="oei", bank=phi, inoperative="left",
+                          throttle=0.99).results[0]
+            lo, hi = limits[what]
+            d = at.controls[what]
+            assert (d / hi if d >= 0 else d / lo) == pytest.approx(1.0, abs=0.005)
 
 
 def test_vmca_is_the_least_over_the_banks_allowed(result):
@@ -142,3 +141,38 @@ def test_vmca_mirror_symmetric_and_stable(result, ctx):
     moved, *_ = vmca_search(ctx, rows["conds"], rows["engines"], rows["banks"], rows["vsr"], crit.throttle,
                             crit.grid_low, crit.grid_high, crit.speed_tolerance_kn * KN, start=1.2 * (1 + 1e-6))
     assert np.allclose(moved / KN, rows["vmca"] / KN, atol=0.05, rtol=0)
+
+
+def test_a_fin_forty_percent_smaller_fails(result, tmp_path):
+    """A deficient airplane by geometry: the vertical tail's area cut by 40 % (527.84 → 316.70 ft², aspect ratio,
+    taper and sweep kept, so its span shrinks too). The rudder's yawing moment falls with the fin while the
+    engine-out moment does not: the rudder (or the aileron holding the sideslip the weaker fin needs) now runs out
+    above 1.13 VSR at every bank — VMCA is control-limited, not stall-limited, and (c) fails for either engine."""
+    r = run_rule("25.149", tmp_path, edits=[("    area: 527.84 ft^2          # [given]", "    area: 316.70 ft^2")])
+    small = [f for f in own(r) if f.check.startswith("(c)")]
+    assert len(small) == 2 and all(f.status == "fails" and f.value > f.limit for f in small)
+    for f in small:
+        assert set(f.details["limited_by_bank"].values()) <= {"rudder", "aileron"}
+    base = min(f.value for f in own(result) if f.check.startswith("(c)"))
+    assert min(f.value for f in small) > base + 20 * KN
+
+
+def test_with_roll_control_to_spare_vmca_falls_with_bank(tmp_path):
+    """The directional model against the classical static result behind §25.149(b)'s 5° of bank (FAA AC 25-7D's VMCA
+    flight tests are flown with it): banking toward the operating engine lowers VMCA, the weight component then
+    supplying the side force the rudder and the sideslip otherwise must. On the baseline the
+    declared roll control (ailerons only, 17 % chord over 78–98 % span; the 777's roll spoilers are not declared)
+    runs out first at 4° and 5° of bank, holding the sideslip of 6.6–8.5° the weak side force needs. With the roll
+    power doubled (Cl_δa −0.14/rad, standing for the spoilers) the rudder-limited VMCA falls at every step of bank
+    until straight flight reaches the lift maximum, and no bank is aileron-limited."""
+    block = ("aerodynamics:\n  overrides_source: test, roll spoilers\n  overrides:\n    takeoff: {Cl_aileron: -0.14}\n"
+             "sources:")
+    r = run_rule("25.149", tmp_path, edits=[("\nsources:", "\n" + block)])
+    c = next(f for f in own(r) if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
+    by_bank = [c.details["vmca_by_bank_kn"][f"{b} deg"] for b in range(6)]
+    limits = [c.details["limited_by_bank"][f"{b} deg"] for b in range(6)]
+    assert "aileron" not in limits
+    rudder = [v for v, what in zip(by_bank, limits) if what == "rudder"]
+    assert len(rudder) >= 3 and all(a > b for a, b in zip(rudder, rudder[1:]))
+    assert all(what == "stall" for what in limits[len(rudder):])
+    assert c.details["vmca_limited_by"].startswith("the stall")

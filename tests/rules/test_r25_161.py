@@ -145,3 +145,20 @@ def test_narrow_flaps_extended_limits_fail_at_the_takeoff_flaps(tmp_path, declar
     before = {f.condition.loading: (f.status, f.value, f.limit) for f in declared.findings if f.check == CLEAN_CLIMB}
     after = {f.condition.loading: (f.status, f.value, f.limit) for f in r.findings if f.check == CLEAN_CLIMB}
     assert after == before
+
+
+def test_a_horizontal_tail_a_quarter_smaller_fails(tmp_path):
+    """A deficient airplane by geometry: the horizontal tail's area cut by 25 % (1119.2 → 839.4 ft², aspect ratio,
+    taper, sweep and position kept: V_H 0.72 → 0.54). The tail's trimming moment per degree of stabiliser falls with
+    its area while the moments to trim (flaps, thrust, CG) do not, so the declared stabiliser trim limits no longer
+    suffice: (c)(1) fails in the climb at the aft corners (nose-down stop +2.25° reached) and (c)(2) in the 3°
+    approach at the forward corners (nose-up stop −10.25°) — the baseline complies at the first and fails the second
+    by less than 0.4° at two forward corners only."""
+    r = run_rule("25.161", tmp_path, [("    area: 1119.2 ft^2          # [given]", "    area: 839.4 ft^2")])
+    fails = [f for f in r.findings if f.status == "fails"]
+    climb = {f.condition.loading for f in fails if f.condition.get("case") == "climb" and "stabiliser" in f.check}
+    glide = [f for f in fails if f.condition.get("case") == "glide" and "stabiliser" in f.check]
+    assert r.status == "fails"
+    assert {"aft_mlw", "aft_light"} <= climb
+    assert {f.condition.loading for f in glide} >= {"fwd_light", "fwd_mlw", "fwd_mid"}
+    assert min(f.margin for f in glide) < -2.0  # deg of stabiliser beyond the nose-up stop

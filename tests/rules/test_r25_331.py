@@ -213,11 +213,11 @@ def test_baseline_load_factors_reached(checked):
     2.5 g says so. (On the limit is how the input is built: the rule reports the load factor reached as a detail of
     the tail's finding, not as a compliance; this test checks the search and the report against the simulation.)"""
     run = checked.run
-    nz, valid = run["sim"]["n_z"], run["valid"]
+    nz, valid = run.records["n_z"], run.valid
     lf = {f.condition: f for f in structural(checked)}  # the load factor reached: details of the tail's finding
     beyond = {f.condition: f for f in own(checked) if LOAD_FACTOR in f.check}
-    assert len(lf) == len(run["conditions"])
-    for i, c in enumerate(run["conditions"]):
+    assert len(lf) == len(run.conditions)
+    for i, c in enumerate(run.conditions):
         f = lf[c]
         window = nz[:, i][valid[:, i]]
         up = c.get("direction") == "nose up"

@@ -116,13 +116,13 @@ def test_sign_up_gust_loads_the_wing_up(gust_run):
     (After a long gust the rigid airplane overshoots the other way: the extremes of a condition need not
     come from the gust of the same sign.)"""
     result, run = gust_run
-    conds = run["conditions"]
+    conds = run.conditions
     i_up = next(i for i, c in enumerate(conds) if c.get("gust") == "up")
     i_down = next(i for i, c in enumerate(conds) if c.get("gust") == "down" and c.loading == conds[i_up].loading
                   and c.altitude == conds[i_up].altitude and c.get("speed_point") == conds[i_up].get("speed_point"))
     for i, sign in ((i_up, 1.0), (i_down, -1.0)):
-        for j, H in enumerate(run["gradients"]):
-            (_, _, r), = run["replay"]([(i, j)])
+        for j, H in enumerate(run.gradients):
+            (_, _, r), = run.replay([(i, j)])
             k = int(np.argmin(np.abs(r.sim.t - H / r.sim["V"][0, 0])))
             wing = r.loads["wing"][:, 0]
             assert sign * (wing[k, 0, 0] - wing[0, 0, 0]) > 0 and sign * (wing[k, 1, 0] - wing[0, 1, 0]) > 0

@@ -45,7 +45,7 @@ def test_one_lateral_finding_per_entry_with_margins_by_hand(result):
         norm, margin, _ = hand_margin(f.all_details(), caps)
         assert f.normalized_margin == pytest.approx(norm, abs=5e-5)
     assert all(f.status == "complies" for f in lateral)  # the fin is sized by §25.351 on the baseline
-    env = res.run["lateral_envelope"] if res.run else None
+    env = res.run.lateral_envelope if res.run else None
     assert env is None or set(env.peaks) == {"vertical_tail"}
 
 

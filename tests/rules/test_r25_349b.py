@@ -69,8 +69,8 @@ def test_rolling_moment_arm_against_lifting_line(shared, baseline):
     _, _, findings, run, _ = shared
     w = baseline.model.geometry.wing
     semispan = 0.5 * np.sqrt(w.aspect_ratio * w.area) / np.cos(w.dihedral)  # in the plane of the wing, as the arm
-    masses = run["runs"].batch.model.mass
-    index = {c: i for i, c in enumerate(run["conditions"])}
+    masses = run.runs.batch.model.mass
+    index = {c: i for i, c in enumerate(run.conditions)}
     for f in _evaluated(findings):
         d = f.all_details()
         i = index[f.condition]
@@ -84,8 +84,8 @@ def test_roll_acceleration_from_the_loading_inertia(shared):
     """ṗ = ΔL / I_xx with the condition's roll inertia (mass properties of the loading, body axes); details rounded
     to 0.001 MN·m and 0.01 deg/s² (tolerance 0.2 %)."""
     _, _, findings, run, _ = shared
-    J = run["runs"].batch.model.inertia
-    index = {c: i for i, c in enumerate(run["conditions"])}
+    J = run.runs.batch.model.inertia
+    index = {c: i for i, c in enumerate(run.conditions)}
     for f in _evaluated(findings):
         d = f.all_details()
         expected = np.degrees(d["peak_unbalanced_rolling_moment_MNm"] * 1e6 / J[index[f.condition], 0, 0])
@@ -99,7 +99,7 @@ def test_margins_by_hand_against_the_declared_wing_capability(shared, baseline):
     ctx, _, findings, run, _ = shared
     caps = declared_capabilities(ctx, "wing")
     evaluated = _evaluated(findings)
-    assert len(evaluated) == 2 * len(run["conditions"])
+    assert len(evaluated) == 2 * len(run.conditions)
     assert {f.check.rsplit(", ", 1)[1].split(":")[0] for f in evaluated} == {"100% side", "80% side"}
     for f in evaluated:
         normalized, _, _ = hand_margin(f.all_details(), caps)

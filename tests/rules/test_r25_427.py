@@ -35,14 +35,14 @@ def test_split_by_hand_from_the_symmetric_balanced_run(result):
     the removed 20 % of the air load's moment about the plane of symmetry: 0.2 (B_A + S_A y_root) with B_A, S_A the
     air load's root bending and shear (statics of the two cantilevered halves)."""
     ctx, res, sym = result
-    tail = sym["loads"]["horizontal_tail"]
-    aero, inertia = sym["tail_parts"]
+    tail = sym.loads["horizontal_tail"]
+    aero, inertia = sym.tail_parts
     by_label = {f.condition.label().replace(" · source 25.331(b)", ""): f for f in res.findings
                 if f.condition.get("source") == "25.331(b)" and "80% side" in f.check}
     full = {f.condition.label().replace(" · source 25.331(b)", ""): f for f in res.findings
             if f.condition.get("source") == "25.331(b)" and "100% side" in f.check}
-    assert len(by_label) == len(sym["conditions"]) > 0
-    for i, c in enumerate(sym["conditions"]):
+    assert len(by_label) == len(sym.conditions) > 0
+    for i, c in enumerate(sym.conditions):
         f80, f100 = by_label[c.label()], full[c.label()]
         s_a, b_a, s_i = aero[i, 0, 0], aero[i, 1, 0], inertia[i, 0, 0]
         assert f100.all_details()["root shear max/min (kN)"][0] == pytest.approx((s_a + s_i) / 1e3, abs=0.06)

@@ -1,6 +1,6 @@
 """Small deterministic evaluators for the study runner's tests (named with the hidden --evaluator option).
 
-Each returns a record of the design-record contract (certkit.design-record/1) computed from the variables
+Each returns a record of the design-record contract (certkit.design-record/2) computed from the variables
 alone, so that two runs, two executors or an interrupted and resumed run must give the same bytes.
 """
 
@@ -28,7 +28,7 @@ def analytic(aircraft_path, values, responses):
     with open(aircraft_path, "rb") as f:
         sha = hashlib.sha256(f.read()).hexdigest()
     return {
-        "schema": "certkit.design-record/1",
+        "schema": "certkit.design-record/2",
         "certkit_version": "0.1.0",
         "aircraft": {"name": "test", "sha256": sha},
         "variables": dict(values),

@@ -26,7 +26,27 @@ def test_seed_study_in_si():
     assert v["area"].baseline == pytest.approx(1119 * 0.3048**2, rel=1e-12)  # 1 ft = 0.3048 m (exact)
     assert v["span_start"].bounds == (0.0, 0.20) and v["span_start"].baseline == 0.0
     assert study.aircraft == str((ROOT / "aircraft" / "lta.yaml").resolve())
-    assert [c.max for c in study.constraints if c.name.startswith("elevator")] == [0.70, 0.70]
+    controls = [c for c in study.constraints if c.response.startswith(("travel.", "control."))]
+    assert len(controls) > 30 and all(c.max == 0.70 and c.min is None for c in controls)
+
+
+def test_seed_study_constrains_every_subpart_b_and_c_rule():
+    """The certification-driven study: a margin constraint (≥ 0) on every registered rule of Subparts B and C
+    (§§25.101–25.255, 25.301–25.459), the §25.143(h) cases' controls and §25.125's touchdown rate of descent."""
+    from certkit.engine.registry import DiscoveryOptions, discover
+
+    study = load_study(ROOT / "studies" / "ht-redesign.yaml")
+    margins = {c.response: c.min for c in study.constraints if c.response.startswith("rule.")}
+    ids = [r.id for r in discover(DiscoveryOptions())
+           if 101 <= int(r.id.split(".")[1].split("(")[0].rstrip("abcdefgh")) <= 459]
+    assert ids and all(margins.get(f"rule.{rid}.margin") == 0 for rid in ids)
+    responses = {c.response for c in study.constraints}
+    assert {f"control.25.143(h).{case}.{c}" for case in ("takeoff_oei_v2_30deg", "takeoff_aeo_v2_xx_40deg",
+                                                          "en_route_oei_vfto_40deg", "landing_aeo_vref_40deg")
+            for c in ("elevator", "aileron", "rudder")} <= responses
+    assert "subcheck.25.125.touchdown_rate_of_descent.margin" in responses
+    relaxed = [r.responses for r in study.analysis.level_relaxation]
+    assert "level.phugoid.*.takeoff" in relaxed and any(c.startswith("level.phugoid.") for c in responses)
 
 
 def test_percent_bounds(small_study):

@@ -40,13 +40,13 @@ def _root_load(quantity: str) -> Axis:
 
 
 def _critical_indices(run, surface) -> list[int]:
-    env = run["envelope"]
+    env = run.envelope
     picks = []
     for sense in ("max", "min"):
         _, i = env.extreme(surface, "shear", 0, sense)
         if i >= 0 and i not in picks:
             picks.append(i)
-    kind = run.get("kind")
+    kind = run.kind
     if kind is not None:
         for k in (0, 1, 2):
             idx = np.flatnonzero(kind == k)
@@ -67,22 +67,23 @@ def _peak_point(series: Series, label: str = "critical") -> list[Point]:
 
 
 def time_history(run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None) -> Chart:
-    """Control, the two response signals and the root shear of the critical conditions, each curve ending where the
-    paragraph stops considering loads (the run's valid mask); the critical condition (largest root shear) bold."""
-    sim, hist, valid = run["sim"], run["loads"][surface], run["valid"]
+    """Control, the two response signals and the root shear of the critical conditions of a manoeuvre's run (its
+    records, ``loads`` and ``kind``), each curve ending where the paragraph stops considering loads (the run's valid
+    mask); the critical condition (largest root shear) bold."""
+    sim, hist, valid = run.records, run.loads[surface], run.valid
     picks = _critical_indices(run, surface)
     j = list(sim.control_names).index(control)
-    kind = run.get("kind")
+    kind = run.kind
     lines: list[list[Series]] = [[], [], [], []]
     for rank, i in enumerate(picks):
         m = valid[:, i]
-        label = run["conditions"][i].label() + (f" [{_KIND[int(kind[i])]}]" if kind is not None else "")
+        label = run.conditions[i].label() + (f" [{_KIND[int(kind[i])]}]" if kind is not None else "")
         t, crit = sim.t[m], rank == 0
         lines[0].append(Series(label, t, sim.controls[m, i, j], critical=crit))
         lines[1].append(Series(label, t, sim[signals[0]][m, i], critical=crit))
         lines[2].append(Series(label, t, sim[signals[1]][m, i], critical=crit))
         lines[3].append(Series(label, t, hist[m, i, 0, 0], critical=crit))
-    root = (allow or {}).get(surface, {}).get((run["envelope"].stations[surface][0], "shear"))
+    root = (allow or {}).get(surface, {}).get((run.envelope.stations[surface][0], "shear"))
     shear_limits = [Limit(root[0], "allowable (−)", kind="allowable"), Limit(root[1], "allowable (+)", kind="allowable")] if root else []
     panels = [Panel(Axis(control, "rad"), lines[0]),
               Panel(Axis("load factor" if signals[0] == "n_z" else signals[0], "g" if signals[0] == "n_z" else ""), lines[1]),
@@ -137,10 +138,10 @@ def _critical_station(hi, lo, x, quantity, stations, allow) -> list[Point]:
     return [Point(float(x[s]), float(v), "critical (nearest its allowable)" if has_cap else "largest load")]
 
 
-def case_table(run, surface: str, env=None, allow: dict | None = None, gradients=None, which=None) -> Table:
-    """The envelope's critical cases of ``surface``: station, quantity, sense, limit load (kN, kN·m), the governing
-    allowable where declared, condition and time; with ``gradients`` and ``which`` the gust gradient H of each."""
-    env = env if env is not None else run["envelope"]
+def case_table(env, surface: str, allow: dict | None = None, gradients=None, which=None) -> Table:
+    """The critical cases of ``surface`` in the load envelope ``env``: station, quantity, sense, limit load (kN,
+    kN·m), the governing allowable where declared, condition and time; with ``gradients`` and ``which`` the gust
+    gradient H of each."""
     cases = [c for c in env.critical_cases() if c.surface == surface]
     # a "critical" load of zero (nothing loads the surface in that sense) has no critical condition: which of the
     # zero loads came first is round-off, so it is not named
@@ -175,7 +176,7 @@ def not_simulated(failed) -> list[Evidence]:
 
 def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None) -> list[Evidence]:
     name = surface.replace("_", " ")
-    env = run["envelope"]
+    env = run.envelope
     return [
         Evidence(f"Critical conditions: {control}, load factor, pitch rate and {name} root shear",
                  time_history(run, surface, control, signals, allow),
@@ -187,7 +188,7 @@ def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q"), all
                  "Maximum and minimum over every condition and time (limit loads); triangles: the governing allowable "
                  "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of safety, §25.303)."),
         Evidence(f"Critical-case table, {name}", caption="Critical condition and time of every station and quantity.",
-                 table=case_table(run, surface, allow=allow)),
+                 table=case_table(env, surface, allow=allow)),
     ] + not_simulated([(env.labels[i], r) for i, r in env.failed])
 
 
@@ -195,7 +196,7 @@ def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q"), all
 
 def _gust_picks(run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the extreme wing root bending and tail root shear, both senses."""
-    env, which = run["envelope"], run["which"]
+    env, which = run.envelope, run.which
     picks = []
     for surface, quantity in (("wing", "bending"), ("horizontal_tail", "shear")):
         q = QUANTITIES.index(quantity)
@@ -232,10 +233,10 @@ def gust_time_history(replays, conditions, allow: dict | None = None, stations=N
 
 
 def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
-    env = run["envelope"]
-    replays = run["replay"](_gust_picks(run))
+    env = run.envelope
+    replays = run.replay(_gust_picks(run))
     out = [Evidence("Critical discrete-gust conditions: gust angle, load factor, wing root bending, tail root shear",
-                    gust_time_history(replays, run["conditions"], allow, env.stations),
+                    gust_time_history(replays, run.conditions, allow, env.stations),
                     "The conditions and gradients with the largest positive and negative wing root bending and tail "
                     "root shear; the gust reaches the tail a tail arm / V after the wing; dash-dot lines: governing "
                     "allowables at the root.")]
@@ -247,7 +248,7 @@ def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
                          "the governing allowable limit load."),
                 Evidence(f"Critical-case table, {name} (discrete gust)", caption="Critical condition, gradient and time "
                          "of every station and quantity.",
-                         table=case_table(run, surface, allow=allow, gradients=run["gradients"], which=run["which"][surface]))]
+                         table=case_table(env, surface, allow=allow, gradients=run.gradients, which=run.which[surface]))]
     return out
 
 
@@ -255,7 +256,7 @@ def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
 
 def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the largest root bending on each side and of the largest rolling moment."""
-    env, which = run["envelope"], run["which"]
+    env, which = run.envelope, run.which
     b = QUANTITIES.index("bending")
     picks = []
     for side in env.peaks:
@@ -263,7 +264,7 @@ def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
             _, i = env.extreme(side, "bending", 0, sense)
             if i >= 0 and (i, int(which[side][i, 1 if sense == "max" else 0, b, 0])) not in picks:
                 picks.append((i, int(which[side][i, 1 if sense == "max" else 0, b, 0])))
-    roll = np.abs(run["roll"])
+    roll = np.abs(run.roll)
     j, i = np.unravel_index(int(np.argmax(roll)), roll.shape)
     if (int(i), int(j)) not in picks:
         picks.append((int(i), int(j)))
@@ -273,13 +274,13 @@ def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
 def unsymmetrical_time_history(run, picks) -> Chart:
     from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 
-    runs, (full, reduced) = run["runs"], run["fractions"]
+    runs, (full, reduced) = run.runs, run.fractions
     lines: list[list[Series]] = [[], [], [], []]
     for k, (i, H, r) in enumerate(runs.replay(picks)):
         aero, inertia = r.parts["wing"]
         m = runs.batch.model.subset([i])
         u = unsymmetrical_wing(runs.loads["wing"], aero, inertia, m.mass, m.cg, m.inertia, full, reduced,
-                               trim_aero=aero[0] if run["basis"] == "increment" else None)
+                               trim_aero=aero[0] if run.basis == "increment" else None)
         t = r.sim.t
         label = f"{runs.conditions[i].label()} · H {H / FT:.0f} ft"
         lines[0] += [Series(label, t, u.full[:, 0, 1, 0], colour=k, critical=k == 0),
@@ -297,8 +298,8 @@ def unsymmetrical_time_history(run, picks) -> Chart:
 
 
 def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
-    full, reduced = run["fractions"]
-    env, sym = run["envelope"], run["symmetric"]
+    full, reduced = run.fractions
+    env, sym = run.envelope, run.symmetric
     stations = env.stations[next(iter(env.peaks))]
     peaks = {side: env.peaks[side] for side in env.peaks} | {"symmetric §25.341(a)": sym.peaks["wing"]}
     wing_allow = (allow or {}).get("wing")
@@ -306,7 +307,7 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
                     "sides, unbalanced rolling moment, roll acceleration and load factor",
                     unsymmetrical_time_history(run, _unsymmetrical_picks(run)),
                     "The §25.341(a) responses with the largest root bending on either side and with the largest "
-                    f"unbalanced rolling moment; the wing air load is {'the gust increment' if run['basis'] == 'increment' else 'the whole air load'} "
+                    f"unbalanced rolling moment; the wing air load is {'the gust increment' if run.basis == 'increment' else 'the whole air load'} "
                     f"× {full:.0%} on one side and × {reduced:.0%} on the other, the unbalance reacted by the rigid "
                     "airplane's vertical, roll and pitch accelerations."),
            Evidence("Unsymmetrical-gust load envelopes along the wing span", envelope_chart(peaks, stations, wing_allow),
@@ -315,17 +316,17 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
     for side in env.peaks:
         out.append(Evidence(f"Critical-case table, {side} (unsymmetrical gust)",
                             caption="Critical condition, gradient and time of every station and quantity.",
-                            table=case_table(run, side, gradients=run["gradients"], which=run["which"][side],
+                            table=case_table(env, side, gradients=run.gradients, which=run.which[side],
                                              allow={side: wing_allow} if wing_allow else None)))
     return out
 
 
 # --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
 
-def envelope_evidence(run, surfaces, what: str, plot: bool = True, allow: dict | None = None) -> list[Evidence]:
-    """The critical-case table of each of ``surfaces`` (skipping a surface with no computed load) and, with ``plot``,
-    its load envelope along the span (the tables alone where the rule's own plots already show the case)."""
-    env = run["envelope"]
+def envelope_evidence(env, surfaces, what: str, plot: bool = True, allow: dict | None = None) -> list[Evidence]:
+    """The critical-case table of each of ``surfaces`` in the load envelope ``env`` (skipping a surface with no
+    computed load) and, with ``plot``, its load envelope along the span (the tables alone where the rule's own plots
+    already show the case)."""
     out = []
     for surface in surfaces:
         if surface not in env.peaks or not np.any(np.isfinite(env.peaks[surface])):
@@ -338,5 +339,5 @@ def envelope_evidence(run, surfaces, what: str, plot: bool = True, allow: dict |
                                 "Maximum and minimum over every condition (limit loads); triangles: the governing "
                                 "allowable limit load."))
         out.append(Evidence(f"Critical-case table, {name} ({what})", caption="Critical condition of every station, "
-                            "quantity and sense.", table=case_table(run, surface, allow=allow)))
+                            "quantity and sense.", table=case_table(env, surface, allow=allow)))
     return out

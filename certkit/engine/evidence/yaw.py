@@ -12,14 +12,14 @@ from certkit.engine.results import Evidence
 
 def critical_condition(run) -> int:
     """Index of the condition with the largest |vertical-tail root shear| over both simulation phases."""
-    held, back = run["held_loads"][:, :, 0, 0], run["returned_loads"][:, :, 0, 0]
+    held, back = run.held_loads[:, :, 0, 0], run.returned_loads[:, :, 0, 0]
     peak = np.fmax(np.nanmax(np.abs(held), axis=0), np.nanmax(np.abs(back), axis=0))
     return int(np.nanargmax(peak))
 
 
 def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
     """The held phase up to the settled sideslip, then the return to neutral, as one curve per quantity."""
-    r, jr = run["run"], run["rudder_index"]
+    r, jr = run.yaw, run.rudder_index
     t1 = r.held.t
     live = t1 <= r.t_steady[i] + 1e-9
     t = np.concatenate([t1[live], r.returned.t + r.t_steady[i]])
@@ -30,8 +30,8 @@ def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
     events = [Limit(float(r.t_full), "(a) full rudder", axis="x", kind="event"),
               Limit(float(r.t_overswing[i]), "(b) overswing", axis="x", kind="event"),
               Limit(float(r.t_steady[i]), "(c) settled, (d) returned", axis="x", kind="event")]
-    shear = Series("fin root shear", t, joined(run["held_loads"][:, i, 0, 0], run["returned_loads"][:, i, 0, 0]), colour=0)
-    root = run["envelope"].stations["vertical_tail"][0]
+    shear = Series("fin root shear", t, joined(run.held_loads[:, i, 0, 0], run.returned_loads[:, i, 0, 0]), colour=0)
+    root = run.envelope.stations["vertical_tail"][0]
     cap = (allow or {}).get("vertical_tail", {}).get((root, "shear"))
     lims = [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")] if cap else []
     panels = [Panel(Axis("rudder", "rad"), [Series("rudder", t, joined(r.held.controls[:, i, jr], r.returned.controls[:, i, jr]),
@@ -39,7 +39,7 @@ def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
               Panel(Axis("sideslip β", "rad"), [Series("sideslip β", t, joined(r.held["beta"][:, i], r.returned["beta"][:, i]),
                                                        colour=2)], events),
               Panel(Axis("fin root shear", "N", "kN"), [shear], events + lims, _peak_point(shear))]
-    return Chart(Axis("time", "s"), panels, title=run["conditions"][i].label())
+    return Chart(Axis("time", "s"), panels, title=run.conditions[i].label())
 
 
 def yaw_evidence(run, allow: dict | None = None) -> list[Evidence]:
@@ -48,4 +48,4 @@ def yaw_evidence(run, allow: dict | None = None) -> list[Evidence]:
                      caption="Phases (a) rudder applied, (b) overswing, (c) settled sideslip (dotted lines), then (d) "
                              "rudder returned to neutral; roll held wings level by the ailerons."),
             Evidence("Vertical-tail critical cases (condition — phase)",
-                     table=case_table(run, "vertical_tail", allow=allow))] + not_simulated(run.get("failed"))
+                     table=case_table(run.envelope, "vertical_tail", allow=allow))] + not_simulated(run.failed)

@@ -214,7 +214,17 @@ def drag_terms(aircraft, machs) -> tuple[list[float], list[float], list[str]]:
     b = drag_buildup(aircraft, machs, schedule_altitude(aircraft, machs), DESIGN_CL)
     k = 1.0 / (np.pi * aircraft.geometry.wing.aspect_ratio * b.oswald_efficiency)
     notes = [f"CD0 includes wave drag at CL {DESIGN_CL} (Korn/Lock); Reynolds number on the 300 KCAS climb schedule"]
-    return list(b.CD0 + b.CD_wave), list(k), notes
+    factor = drag_factor(aircraft)
+    if factor != 1.0:
+        notes.append(f"zero-lift drag of the build-up (parasite and wave) × {factor:.4f}: the declared performance "
+                     f"calibration ({aircraft.calibration.source})")
+    return list(factor * (b.CD0 + b.CD_wave)), list(k), notes
+
+
+def drag_factor(aircraft) -> float:
+    """The declared calibration's factor on the build-up's zero-lift drag (1 without a ``calibration:`` section)."""
+    cal = getattr(aircraft, "calibration", None)
+    return 1.0 if cal is None else float(cal.drag_factor)
 
 
 def fuselage_terms(aircraft) -> dict[str, float]:

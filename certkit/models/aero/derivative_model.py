@@ -59,6 +59,7 @@ import numpy as np
 
 from certkit.models.aero.derivative_kernel import BASE_TERMS, CONTROL_PREFIXES, coefficients_batch
 from certkit.models.aero.interface import AeroReference, AeroState, Coefficients
+from certkit.models.compiled import kernel_array
 
 _BASE_TERMS = BASE_TERMS
 _CONTROL_PREFIXES = CONTROL_PREFIXES
@@ -236,7 +237,7 @@ class StabilityDerivativeModel:
             np.shape(state.alpha), np.shape(state.beta), np.shape(state.p_hat), np.shape(state.q_hat),
             np.shape(state.r_hat), np.shape(state.mach), *[np.shape(v) for v in state.controls.values()],
         )
-        flat = [np.ascontiguousarray(np.broadcast_to(np.asarray(a, dtype=float), shape)).reshape(-1)
+        flat = [kernel_array(np.broadcast_to(np.asarray(a, dtype=float), shape)).reshape(-1)
                 for a in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)]
         ctrl = np.zeros((flat[0].size, len(self.control_names)))
         for j, name in enumerate(self.control_names):

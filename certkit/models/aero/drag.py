@@ -16,8 +16,10 @@ Methods and sources
                        π D L (1 − 2/λ)^(2/3) (1 + 1/λ²), D = √(w h), λ = L/D; nacelles a cylinder.
     Interference Q     Raymer §12.5.5: wing and fuselage 1.0, conventional tail 1.04, a nacelle
                        less than one diameter from the wing 1.3.
-    Miscellaneous      leakage and protuberances, 3 % of the component sum (Raymer §12.5.9: 2–5 %
-                       for transports).
+    Upsweep            aft-fuselage upsweep, D/q = 3.83 u^2.5 A_max (Raymer eq. 12.36, u in rad), when the
+                       file declares ``geometry.fuselage.upsweep``.
+    Miscellaneous      leakage and protuberances, 3 % of the component sum and the upsweep term (Raymer
+                       §12.5.9: 2–5 % for transports).
     Wave drag          Korn equation with Shevell's sweep extension and Lock's fourth-power rise
                        (Malone & Mason, J. Aircraft 32(2), 1995; Gur, Mason & Schetz, J. Aircraft
                        47(4), 2010).
@@ -262,6 +264,19 @@ def airframe_components(
     return parts
 
 
+def upsweep_drag_area(upsweep, max_cross_section):
+    """Raymer eq. 12.36: the aft fuselage's upsweep drag area D/q = 3.83 u^2.5 A_max (u in radians, A_max m²)."""
+    return 3.83 * np.asarray(upsweep, dtype=float) ** 2.5 * np.asarray(max_cross_section, dtype=float)
+
+
+def fuselage_upsweep_drag(geometry: Geometry, reference_area: float) -> float:
+    """ΔCD0 of the declared fuselage upsweep (zero when none is declared); A_max of the elliptic section w × h."""
+    fus = geometry.fuselage
+    if fus.upsweep is None:
+        return 0.0
+    return float(upsweep_drag_area(fus.upsweep, np.pi / 4.0 * fus.width * fus.height)) / reference_area
+
+
 # --- parasite drag ----------------------------------------------------------------------------
 
 @dataclass
@@ -277,12 +292,13 @@ class ComponentDrag:
 
 @dataclass
 class ParasiteDrag:
-    """CD0 = (1 + misc) Σ Cf FF Q S_wet / S_ref, per condition, with the per-component terms."""
+    """CD0 = (1 + misc) (Σ Cf FF Q S_wet / S_ref + ΔCD_upsweep), per condition, with the per-component terms."""
 
     components: list[ComponentDrag]
     miscellaneous: np.ndarray
     CD0: np.ndarray
     reference_area: float
+    upsweep: float = 0.0
 
     def breakdown(self, index=()) -> "pandas.DataFrame":  # noqa: F821 (pandas imported lazily)
         """Rows name, count, S_wet (m², all of them), Re, Cf, FF, Q, CD0 at condition ``index``."""
@@ -295,6 +311,9 @@ class ParasiteDrag:
             "FF": float(np.asarray(c.form_factor)[index]), "Q": c.component.interference,
             "CD0": float(np.asarray(c.CD0)[index]),
         } for c in self.components]
+        if self.upsweep:
+            rows.append({"name": "fuselage upsweep", "count": 1, "S_wet": np.nan, "Re": np.nan, "Cf": np.nan,
+                         "FF": np.nan, "Q": np.nan, "CD0": self.upsweep})
         rows.append({"name": "leakage and protuberances", "count": 1, "S_wet": np.nan, "Re": np.nan,
                      "Cf": np.nan, "FF": np.nan, "Q": np.nan, "CD0": float(np.asarray(self.miscellaneous)[index])})
         table = pd.DataFrame(rows)
@@ -333,9 +352,10 @@ def parasite_drag(
         ff = np.broadcast_to(c.form_factor(mach), re.shape)
         cd = cf * ff * c.interference * c.wetted_area * c.count / reference.area
         terms.append(ComponentDrag(c, re, cf, ff, cd))
-    total = sum(t.CD0 for t in terms)
+    upsweep = fuselage_upsweep_drag(geometry, reference.area)
+    total = sum(t.CD0 for t in terms) + upsweep
     misc = miscellaneous_fraction * total
-    return ParasiteDrag(terms, misc, total + misc, reference.area)
+    return ParasiteDrag(terms, misc, total + misc, reference.area, upsweep)
 
 
 # --- compressibility drag ---------------------------------------------------------------------
@@ -537,6 +557,7 @@ __all__ = [
     "thickness_form_factor", "lifting_surface_form_factor", "fuselage_form_factor", "nacelle_form_factor",
     "Trapezoid", "surface_planform", "exposed_planform", "lifting_surface_wetted_area", "equivalent_diameter",
     "fuselage_wetted_area", "nacelle_wetted_area", "Component", "airframe_components",
+    "upsweep_drag_area", "fuselage_upsweep_drag",
     "ComponentDrag", "ParasiteDrag", "parasite_drag",
     "drag_divergence_mach", "critical_mach", "wave_drag",
     "planform_span_efficiency", "oswald_efficiency", "induced_drag",

@@ -47,6 +47,7 @@ import numpy as np
 
 from certkit.models.aero.ground_effect import induced_drag_factor_table
 from certkit.models.aero.interface import AeroModel, AeroState
+from certkit.models.compiled import kernel_array
 from certkit.models.dynamics import kernel
 from certkit.models.propulsion.engine import WindmillDrag
 from certkit.units import G0
@@ -412,9 +413,9 @@ class AircraftModel:
         integration step); by default they are computed at the state. ``rows`` (int array) says
         which condition each row of ``x`` belongs to (default: row i is condition i), so a subset
         of the batch, or several states per condition, are evaluated in one call."""
-        X = np.ascontiguousarray(x, dtype=float)
-        U = np.ascontiguousarray(controls, dtype=float)
-        idx = np.arange(X.shape[0]) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+        X = kernel_array(x)
+        U = kernel_array(controls)
+        idx = np.arange(X.shape[0]) if rows is None else kernel_array(rows, np.int64)
         air = None
         if thrust is None or not self._use_table:
             air = kernel.air_data(X)
@@ -423,7 +424,7 @@ class AircraftModel:
                                           np.ascontiguousarray(self.failed_thrust_fraction, dtype=float), self._windmill)
         elif thrust is None:
             thrust = self.thrust_forces(air, U, rows)
-        thrust = np.ascontiguousarray(thrust, dtype=float)
+        thrust = kernel_array(thrust)
         xd, out, gear = kernel.derivatives(X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U),
                                            *self._kernel_args)
         return xd, out, gear, thrust
@@ -450,7 +451,7 @@ class AircraftModel:
         cols, lo, hi = stops if stops is not None else (np.zeros(0, dtype=np.int64), np.zeros((0, n)), np.zeros((0, n)))
         stop_step = np.full(n, -1, dtype=np.int64)
         stop_which = np.full(n, -1, dtype=np.int64)
-        irec = kernel.integrate_open_loop(x13, U_all, dts, record_every, self._turbofan, self.throttle_slice.start,
+        irec = kernel.integrate_open_loop(kernel_array(x13), kernel_array(U_all), kernel_array(dts), record_every, self._turbofan, self.throttle_slice.start,
                                           len(self.engines), np.empty((n, 8)), *self._kernel_args, cols, lo, hi,
                                           out_rec, x_rec, u_rec, stop_step, stop_which)
         return int(irec), stop_step, stop_which
@@ -463,12 +464,12 @@ class AircraftModel:
         """One RK4 step of the quaternion-state batch (controls and thrust held over the step) of ``dt``, one
         for all or one per condition (n,); the conditions not ``active`` keep their state. Returns the new state."""
         X = np.array(x, dtype=float, order="C")
-        U = np.ascontiguousarray(controls, dtype=float)
-        thrust = np.ascontiguousarray(thrust, dtype=float)
-        act = np.ascontiguousarray(active, dtype=np.bool_)
+        U = kernel_array(controls)
+        thrust = kernel_array(thrust)
+        act = kernel_array(active, np.bool_)
         if self._use_table:
-            dts = np.full(X.shape[0], dt) if np.ndim(dt) == 0 else np.ascontiguousarray(dt, dtype=float)
-            kernel.rk4_step(X, np.ascontiguousarray(xd1, dtype=float), act, dts, U, thrust,
+            dts = np.full(X.shape[0], dt) if np.ndim(dt) == 0 else kernel_array(dt)
+            kernel.rk4_step(X, kernel_array(xd1), act, dts, U, thrust,
                             np.empty((X.shape[0], 8)), *self._kernel_args)
             return X
         dt = np.asarray(dt, dtype=float)[..., None] if np.ndim(dt) else dt

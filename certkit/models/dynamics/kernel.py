@@ -40,6 +40,7 @@ from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import _row, coefficients_one, mach_weights
 from certkit.models.aero.ground_effect import H_OVER_B_MAX, N_TABLE, induced_drag_factor_at, lift_ratio
 from certkit.models.aero.tail_ground_effect import downwash_ratio_one
+from certkit.models.compiled import copy_row
 from certkit.models.propulsion.engine import turbofan_row_thrust, windmill_drag_one
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
@@ -366,6 +367,7 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
     Returns the number recorded."""
     n = X.shape[0]
     rows = np.arange(n)
+    quaternion_state = X.shape[1] == 13  # a bool, not the literal True: the kernel compiled once for both callers
     thrust = np.empty((n, n_engines))
     active = np.ones(n, dtype=np.bool_)
     n_active = n
@@ -377,7 +379,7 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
             air = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
             turbofan_row_thrust(air[0], air[4], U[i, throttle_start:throttle_start + n_engines], turbofan[0],
                                 turbofan[1], turbofan[2], thrust[i])
-        xd, out, gear = derivatives(X, rows, True, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
+        xd, out, gear = derivatives(X, rows, quaternion_state, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
                                     after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
                                     brake_index)
         for c in range(stop_cols.shape[0]):
@@ -392,13 +394,13 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
         if k % record_every == 0:
             for i in range(n):
                 if irec == 0 or active[i] or n_active == n:
-                    out_rec[irec, i] = out[i]
-                    x_rec[irec, i] = X[i]
-                    u_rec[irec, i] = U[i]
+                    copy_row(out_rec[irec, i], out[i])
+                    copy_row(x_rec[irec, i], X[i])
+                    copy_row(u_rec[irec, i], U[i])
                 else:  # a stopped condition keeps its last record
-                    out_rec[irec, i] = out_rec[irec - 1, i]
-                    x_rec[irec, i] = x_rec[irec - 1, i]
-                    u_rec[irec, i] = u_rec[irec - 1, i]
+                    copy_row(out_rec[irec, i], out_rec[irec - 1, i])
+                    copy_row(x_rec[irec, i], x_rec[irec - 1, i])
+                    copy_row(u_rec[irec, i], u_rec[irec - 1, i])
             irec += 1
         if k == nsteps or n_active == 0:
             break

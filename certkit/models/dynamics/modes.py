@@ -130,3 +130,15 @@ def identify_all(lin: Linearization) -> list[dict[str, Mode]]:
 
 
 __all__ = ["Mode", "identify_modes", "identify_all"]
+
+
+def load_factor_per_alpha(lin: Linearization) -> np.ndarray:
+    """n/α (g per rad) of each condition of ``lin``: the normal load factor per unit angle of attack at constant
+    speed and pitch rate, −Z_w V / g with Z_w = ∂ẇ/∂w of the linearised body-axis equations and V the trim's
+    airspeed (Etkin & Reid §4.9: Z_w ≈ −(C_Lα + C_D) q̄S/(mV), so n/α ≈ q̄ S C_Lα / (m g)). Used with the short period's
+    frequency for the control anticipation parameter ω²/(n/α)."""
+    from certkit.units import G0
+
+    iu, iv, iw = (lin.state_names.index(s) for s in ("u", "v", "w"))
+    speed = np.sqrt(lin.x0[:, iu] ** 2 + lin.x0[:, iv] ** 2 + lin.x0[:, iw] ** 2)
+    return -lin.A[:, iw, iw] * speed / G0

@@ -43,6 +43,7 @@ from typing import Mapping
 import numpy as np
 from numba import njit
 
+from certkit.models.compiled import copy_row
 from certkit.models.dynamics.eom import AircraftModel
 
 KINDS = ("straight", "turn", "oei", "sideslip")
@@ -206,7 +207,7 @@ def _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, thr
         for k in range(4):
             vals[k] = given[c, k] if sources[k] < 0 else z[i, sources[k]]
         _state_row(V[c], h[c], z[i, 0], vals[0], vals[1], vals[3], vals[2], 0.0, X[i])
-        U[i] = u0[c]
+        copy_row(U[i], u0[c])
         for k in range(control_cols.shape[0]):
             U[i, control_cols[k, 0]] = z[i, control_cols[k, 1]]
         if throttle_col >= 0:
@@ -251,7 +252,7 @@ def _perturbed(z, idx, hstep):
     rows = np.empty(k * na, dtype=np.int64)
     for j in range(k):
         for i in range(na):
-            zp[j * na + i] = z[idx[i]]
+            copy_row(zp[j * na + i], z[idx[i]])
             zp[j * na + i, j] += hstep[j]
             rows[j * na + i] = idx[i]
     return zp, rows
@@ -265,7 +266,7 @@ def _jacobian(rp, r, idx, hstep):
     J = np.empty((na, r.shape[1], k))
     ra = np.empty((na, r.shape[1]))
     for i in range(na):
-        ra[i] = r[idx[i]]
+        copy_row(ra[i], r[idx[i]])
         for j in range(k):
             for e in range(r.shape[1]):
                 J[i, e, j] = (rp[j * na + i, e] - ra[i, e]) / hstep[j]
@@ -326,8 +327,8 @@ def _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoi
     for a in range(idx.size):
         i = idx[a]
         stalls[i] = stalls[i] + 1 if bad[a] else 0
-        z[i] = z_try[a]
-        r[i] = r_try[a]
+        copy_row(z[i], z_try[a])
+        copy_row(r[i], r_try[a])
         rnorm[i] = rn_try[a] if math.isfinite(rn_try[a]) else np.inf
         if iters[i] % window == 0 and iters[i] > window:
             if not (rnorm[i] * factor < checkpoint[i]):

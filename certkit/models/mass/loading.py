@@ -10,7 +10,13 @@ of each one. For a target mass W and CG station x:
 
 Among the payload/fuel splits with zero-fuel mass ≤ MZFW and fuel ≤ capacity, the one with the
 most payload whose required payload CG is reachable is taken, and the zone fill is solved for the
-exact CG. The inertia follows from the parallel-axis theorem over every item
+exact CG. A corner no split reaches (an envelope corner drawn for a fleet, whose empty airplanes
+differ from the declared one, e.g. a light corner a few per cent of MAC from the declared OEW CG)
+is built from the same items: the payload as ballast at a station inside the fuselage, or else
+the split and fill nearest the corner with the empty airplane moved fore or aft as a whole
+(another operating empty CG, at the empty airplane's own height); never a point at the datum.
+Each loading names how it was built (:attr:`Loading.construction`). The inertia follows from the
+parallel-axis theorem over every item
 (:func:`certkit.models.mass.properties.combine`). When the file has no component table, the empty
 airplane is a point mass at ``oew_cg`` and the whole-airplane inertia is scaled from the declared
 tensor with constant radii of gyration (I ∝ m), which the result states in its notes.
@@ -45,6 +51,7 @@ class Loading:
     properties: MassProperties
     items: tuple[MassComponent, ...] = field(default=())
     notes: tuple[str, ...] = field(default=())
+    construction: str = ""
 
     def table(self) -> list[dict]:
         """Component table for the report: mass, CG and share of the total mass of every item."""
@@ -81,8 +88,14 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
         return items, notes
     if m.OEW is None:
         return [], ["no component table and no OEW: the airplane is flown as a whole (mass.MTOW, mass.inertia)"]
-    x = m.oew_cg.x if m.oew_cg is not None else aircraft.reference.moment_point.x
-    return [_item("operating empty airplane", m.OEW, x)], ["no component table: the empty airplane is a point mass at its CG"]
+    if m.oew_cg is None:
+        p = aircraft.reference.moment_point
+        return [_item("operating empty airplane", m.OEW, p.x, 0.0, p.z)], [
+            "no component table and no mass.oew_cg: the empty airplane is a point mass at the reference moment point "
+            f"(x {p.x:.3f} m, height {p.z:.3f} m)"]
+    c = m.oew_cg
+    return [_item("operating empty airplane", m.OEW, c.x, c.y, c.z)], [
+        f"no component table: the empty airplane is a point mass at mass.oew_cg (x {c.x:.3f} m, height {c.z:.3f} m)"]
 
 
 def tank_groups(tanks) -> list[list]:
@@ -224,7 +237,7 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
     p_min = max(0.0, useful - fuel_cap)
     if p_max < p_min - 1e-9:
         raise LoadingError(f"{mass:.0f} kg cannot be reached: needs more fuel than the tanks hold with payload ≤ {p_max:.0f} kg")
-    best = None
+    best, nearest = None, None
     payloads = np.linspace(p_max, p_min, samples)
     ranges = zip(*_payload_cg_ranges(zones, payloads))
     groups = tank_groups(m.fuel_tanks)
@@ -235,29 +248,46 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
             if abs(rest) <= 1e-6 * mass * max(x_cg, 1.0):
                 best = (fuel, [])
                 break
+            miss = rest  # the moment (kg·m) the empty airplane would have to supply
+            if nearest is None or abs(miss) < abs(nearest[0]) - 1e-9:
+                nearest = (miss, payload, fuel, None)
             continue
         x_needed = rest / payload
         if lo - 1e-9 <= x_needed <= hi + 1e-9:
             best = (fuel, _payload_items(zones, payload, x_needed))
             break
+        x_reached = float(np.clip(x_needed, lo, hi))
+        miss = payload * (x_needed - x_reached)
+        if nearest is None or abs(miss) < abs(nearest[0]) - 1e-9:
+            nearest = (miss, payload, fuel, x_reached)
     if best is None:
-        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes, useful - p_max)
+        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes, useful - p_max,
+                                 nearest=None if nearest is None else (nearest, zones, groups))
     fuel, payload_items = best
     return _assemble(aircraft, name, mass, x_cg, empty, _fuel_items(aircraft, fuel, groups), payload_items, notes)
 
 
-def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes) -> Loading:
+def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, notes, construction="") -> Loading:
     items = empty + fuel_items + payload_items
     props = _whole_airplane_if_declared(aircraft, items)
     payload = {c.name.removeprefix("payload: "): c.mass for c in payload_items}
     fuel = {c.name.removeprefix("fuel: "): c.mass for c in fuel_items}
-    return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items), tuple(notes))
+    if not construction:
+        construction = (f"declared items: empty airplane {_empty_kind(empty)}, {sum(fuel.values()):.0f} kg fuel in its "
+                        f"tanks, {sum(payload.values()):.0f} kg payload in its zones")
+    return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items),
+                   tuple(notes), construction)
 
 
-def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading:
-    """A corner no declared distribution reaches (envelope limits need not be reachable in service).
-    First: the fuel in its tanks and the payload as ballast at the station giving the CG (keeps the
-    wing-fuel roll inertia). Else: the whole-airplane inertia scaled from the declared tensor."""
+def _empty_kind(empty) -> str:
+    return f"({len(empty)} components)" if len(empty) > 1 else "(one item)"
+
+
+def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel, nearest=None) -> Loading:
+    """A corner no declared distribution reaches (envelope limits are drawn for a fleet and need not be reachable
+    with the declared empty airplane). First: the fuel in its tanks and the payload as ballast at the station giving
+    the CG, inside the fuselage (keeps the wing-fuel roll inertia). Else (:func:`_moved_empty_loading`): the nearest
+    split and fill, with the empty airplane moved as a whole to reach the CG."""
     oew_moment = sum(c.mass * c.cg[0] for c in empty)
     oew = sum(c.mass for c in empty)
     fuel_items = _fuel_items(aircraft, fuel) if aircraft.mass.fuel_tanks and fuel > 0 else []
@@ -268,16 +298,45 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel) -> Loading
         if 0.0 <= x <= length:
             note = (f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m: "
                     f"fuel in its tanks and {ballast:.0f} kg of payload as ballast at station {x:.2f} m")
-            return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, [_item("payload: ballast", ballast, x)], notes + [note])
-    return _scaled_loading(aircraft, mass, x_cg, name, notes + [
-        f"{mass:.0f} kg at CG {x_cg:.3f} m cannot be built from the declared items: whole-airplane inertia "
-        "scaled from the declared tensor at constant radii of gyration"])
+            built = (f"declared items with ballast: empty airplane {_empty_kind(empty)}, "
+                     f"{sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, {ballast:.0f} kg payload at station {x:.2f} m")
+            return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, [_item("payload: ballast", ballast, x)],
+                             notes + [note], built)
+    return _moved_empty_loading(aircraft, mass, x_cg, name, empty, notes, nearest, fuel_items)
+
+
+def _moved_empty_loading(aircraft, mass, x_cg, name, empty, notes, nearest, fuel_items) -> Loading:
+    """The corner built from the declared items with the empty airplane moved fore or aft as a whole: the fuel in its
+    tanks and the payload in its zones of the split nearest the corner (``nearest`` from :func:`solve_loading`:
+    (moment missed, payload, fuel, payload CG), zones, tank groups), and every empty-airplane item shifted by the
+    distance that brings the CG to the corner. The CG height and the inertia about the CG are those of real items
+    (the inertia follows ``mass.inertia_used`` as for any loading); only the empty CG station differs from the
+    declared one, as an operator's empty airplane does."""
+    payload_items = []
+    if nearest is not None:
+        (_, payload, fuel, x_payload), zones, groups = nearest
+        fuel_items = _fuel_items(aircraft, fuel, groups) if fuel > 0 else []
+        payload_items = _payload_items(zones, payload, x_payload) if payload > 1e-9 else []
+    oew = sum(c.mass for c in empty)
+    moment = sum(c.mass * c.cg[0] for c in empty + fuel_items + payload_items)
+    shift = (mass * x_cg - moment) / oew
+    moved = [MassComponent(c.name, c.mass, (c.cg[0] + shift, c.cg[1], c.cg[2]), c.inertia) for c in empty]
+    x_empty = sum(c.mass * c.cg[0] for c in moved) / oew
+    z_empty = sum(c.mass * c.cg[2] for c in moved) / oew
+    direction = "aft" if shift > 0 else "forward"
+    built = (f"declared items, empty airplane moved {abs(shift):.2f} m {direction} (empty CG station {x_empty:.2f} m, "
+             f"height {z_empty:.2f} m): {sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, "
+             f"{sum(c.mass for c in payload_items):.0f} kg payload in its zones")
+    note = (f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m with the "
+            f"declared empty airplane: it is moved {abs(shift):.2f} m {direction} as a whole (another operating empty CG)")
+    return _assemble(aircraft, name, mass, x_cg, moved, fuel_items, payload_items, notes + [note], built)
 
 
 def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
     z = aircraft.mass.cg.z if aircraft.mass.cg is not None else 0.0  # the declared whole-airplane CG height
     props = MassProperties(float(mass), np.array([x_cg, 0.0, z]), whole_airplane_inertia(aircraft, mass))
-    return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes))
+    return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes),
+                   f"whole airplane: one mass at the CG, height {z:.2f} m (mass.cg.z), declared inertia scaled with mass")
 
 
 def _declared_inertia(aircraft) -> np.ndarray | None:
@@ -336,3 +395,32 @@ def inertia_comparison(aircraft) -> str | None:
         "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
     return (f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
             f"{'; '.join(off)}. The dynamics uses {used}")
+
+
+def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float, float] | None:
+    """The most forward and most aft CG stations (m) the airplane's own loading reaches at ``mass`` (kg): the
+    operating empty airplane (its components), fuel in the declared tank order and payload filled forward-first or
+    aft-first (:func:`_payload_cg_ranges`), over every payload/fuel split with zero-fuel mass ≤ MZFW, fuel ≤ the tanks'
+    capacity and payload ≤ the zones' capacity and the maximum payload. None when the file declares no tanks or zones,
+    or no split reaches ``mass``."""
+    m = aircraft.mass
+    if not (m.fuel_tanks and m.payload_zones):
+        return None
+    empty, _ = empty_airplane(aircraft)
+    oew = sum(c.mass for c in empty)
+    oew_moment = sum(c.mass * c.cg[0] for c in empty)
+    zones = bays(m.payload_zones)
+    useful = mass - oew
+    p_max = min(useful, m.MZFW - oew, sum(z.capacity for z in zones), m.max_payload if m.max_payload else np.inf)
+    p_min = max(0.0, useful - sum(t.capacity for t in m.fuel_tanks))
+    if useful < 0 or p_max < p_min - 1e-9:
+        return None
+    payloads = np.linspace(p_max, max(p_min, 0.0), samples)
+    fwd, aft = _payload_cg_ranges(zones, payloads)
+    groups = tank_groups(m.fuel_tanks)
+    base = np.array([oew_moment + sum(share * float(t.cg.x) for t, share in _fuel_shares(groups, useful - p))
+                     for p in payloads])
+    with np.errstate(invalid="ignore"):
+        x_fwd = (base + np.where(payloads > 0, payloads * fwd, 0.0)) / mass
+        x_aft = (base + np.where(payloads > 0, payloads * aft, 0.0)) / mass
+    return float(np.nanmin(x_fwd)), float(np.nanmax(x_aft))

@@ -9,7 +9,9 @@ describes a 1980s engine; ``mission.tsfc`` declares the cruise TSFC of the real 
 altitude, and the whole TSFC model is scaled by one factor so that it gives that value there (the shape in Mach
 and altitude is kept). Without a declaration the factor is 1 and the result says so. TSFC is taken independent
 of the throttle setting (part-power TSFC rises somewhat at low settings: idle descent and taxi fuel are
-therefore estimates on the low side). A declared deck's fuel-flow table is not used here.
+therefore estimates on the low side). A declared deck's fuel-flow table is not used here. The declared performance
+calibration's ``fuel_flow_factor`` (installation losses: customer bleed and power off-take, which an uninstalled
+cycle TSFC leaves out) multiplies the result.
 """
 
 from __future__ import annotations
@@ -45,13 +47,19 @@ class EngineFuel:
         thrust, source = thrust_function(aircraft)
         n = len(aircraft.propulsion.engines)
         cal = aircraft.mission.tsfc if aircraft.mission is not None else None
+        installed = getattr(aircraft, "calibration", None)
+        loss = 1.0 if installed is None else float(installed.fuel_flow_factor)
+        extra = [] if loss == 1.0 else [
+            f"fuel flow × {loss:.4f}: installation losses of the declared performance calibration "
+            f"({installed.fuel_flow_source or installed.source})"]
         if cal is None:
-            return cls(thrust, n, 1.0, [f"thrust: {source}; TSFC: Mattingly's high-bypass model, not calibrated "
-                                        "(declare mission.tsfc)"])
+            return cls(thrust, n, loss, [f"thrust: {source}; TSFC: Mattingly's high-bypass model, not calibrated "
+                                         "(declare mission.tsfc)", *extra])
         factor = float(cal.value / mattingly_tsfc(cal.altitude, cal.mach))
-        return cls(thrust, n, factor, [
+        return cls(thrust, n, factor * loss, [
             f"thrust: {source}; TSFC: Mattingly's Mach/altitude variation scaled by {factor:.3f} to "
-            f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft ({cal.source})"])
+            f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft ({cal.source})",
+            *extra])
 
     def thrust(self, throttle, h, mach) -> np.ndarray:
         return self.engines * np.asarray(self.engine_thrust(throttle, h, mach), dtype=float)

@@ -23,8 +23,9 @@ Outputs (:class:`MissionResult`)
     at MTOW, design payload at MTOW, maximum fuel at MTOW, ferry with maximum fuel and no payload), block fuel
     and block time of the nominal mission (its still-air distance with the design payload; the takeoff weight
     is solved so that the reserves remain on landing), the trimmed cruise drag coefficient at the declared
-    design cruise condition (by default the design mission's mid-cruise weight), and the range constraint
-    (design range − required range, ≥ 0 met).
+    design cruise condition (by default the design mission's mid-cruise weight), the range constraint
+    (design range − required range, ≥ 0 met) and the declared performance calibration in force (drag and
+    fuel-flow factors, ``calibration:``; solved by ``certkit calibrate``, fixed for every design).
 
 The distance of a mission is counted from brake release to touchdown: climb, cruise and descent plus the
 airborne allowances (takeoff and approach) at their speed. Bad input (no ``mission:`` section, a payload above
@@ -123,6 +124,8 @@ class MissionResult:
     oew_kg: float
     notes: list[str]
     timings: dict[str, float]
+    #: the declared performance calibration in force (factors, target, source); empty without one
+    calibration: dict = field(default_factory=dict)
 
     @property
     def design_range_m(self) -> float:
@@ -442,7 +445,21 @@ def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache:
     notes += _speed_notes(aircraft)
     t4 = time.perf_counter()
     timings = {"tables_s": t1 - t0, "range_s": t2 - t1, "nominal_s": t3 - t2, "drag_s": t4 - t3, "total_s": t4 - t0}
-    return MissionResult(design, nominal, points, drag, m.range_requirement, oew, notes, timings)
+    return MissionResult(design, nominal, points, drag, m.range_requirement, oew, notes, timings,
+                         calibration_in_force(aircraft))
+
+
+def calibration_in_force(aircraft) -> dict:
+    """The declared performance calibration as plain data (SI), for the report and the design record."""
+    cal = getattr(aircraft, "calibration", None)
+    if cal is None:
+        return {}
+    out = {"drag_factor": cal.drag_factor, "fuel_flow_factor": cal.fuel_flow_factor,
+           "fuel_flow_source": cal.fuel_flow_source, "source": cal.source}
+    if cal.target is not None:
+        out["target"] = {"range_m": cal.target.range, "payload_kg": cal.target.payload,
+                         "tolerance": cal.target.tolerance, "source": cal.target.source}
+    return out
 
 
 def cruise_drag(aircraft, aero, x_cg: float, mass_kg: float) -> CruiseDrag:
@@ -479,5 +496,5 @@ def _speed_notes(aircraft) -> list[str]:
     return notes
 
 
-__all__ = ["fly_missions", "MissionResult", "MissionProfile", "PayloadRangePoint", "CruiseDrag", "Phase", "StepClimb",
+__all__ = ["fly_missions", "calibration_in_force", "MissionResult", "MissionProfile", "PayloadRangePoint", "CruiseDrag", "Phase", "StepClimb",
            "MissionFlyer", "cruise_drag", "NMI"]

@@ -41,6 +41,16 @@ def _profile(p) -> list[str]:
     return lines
 
 
+def _calibration(cal: dict) -> list[str]:
+    if not cal:
+        return ["calibration: none declared (drag and fuel flow as modelled)"]
+    line = f"calibration: zero-lift drag x {cal['drag_factor']:.4f}, fuel flow x {cal['fuel_flow_factor']:.4f} ({cal['source']})"
+    t = cal.get("target")
+    if t:
+        line += f"; target {t['range_m'] / NMI:,.0f} nmi within {100 * t['tolerance']:g} % ({t['source']})"
+    return [line]
+
+
 def mission_table(result) -> str:
     d, n, c = result.design, result.nominal, result.cruise_drag
     margin = result.range_margin_m
@@ -51,7 +61,8 @@ def mission_table(result) -> str:
              f"cruise drag at M {c.mach:.2f}, {c.altitude_m / FT:,.0f} ft, {c.mass_kg / LB:,.0f} lb: CD {c.CD:.5f}, CL {c.CL:.4f}, "
              f"L/D {c.lift_to_drag:.2f}, alpha {math.degrees(c.alpha):.2f} deg, elevator {math.degrees(c.elevator):.2f} deg"
              + ("" if c.converged else " (trim NOT converged)"),
-             f"OEW {result.oew_kg / LB:,.0f} lb", "", "payload-range (reserves on landing):",
+             f"OEW {result.oew_kg / LB:,.0f} lb", *_calibration(result.calibration), "",
+             "payload-range (reserves on landing):",
              f"  {'point':<24}{'payload lb':>12}{'ramp fuel lb':>14}{'takeoff lb':>12}{'range nmi':>11}"]
     for p in result.payload_range:
         lines.append(f"  {p.name:<24}{p.payload_kg / LB:>12,.0f}{p.ramp_fuel_kg / LB:>14,.0f}{p.takeoff_weight_kg / LB:>12,.0f}"

@@ -10,6 +10,7 @@ import re
 import numpy as np
 
 from certkit.report.plots import figure_to_svg, subplots
+from certkit.study.analysis.labels import response_axis, response_label
 from certkit.study.analysis.montecarlo import ConstraintOutcome, MonteCarloResult
 from certkit.study.analysis.planform import Planform
 from certkit.study.analysis.surrogates import Surrogate
@@ -68,20 +69,21 @@ def cdf_svg(o: ConstraintOutcome) -> str:
     c = o.constraint
     fig, ax = subplots(figsize=(4.6, 2.6), left=0.7, top=0.3)
     x, f = o.histogram.cdf()
-    ax.step(x, f, where="post", color="#2f6db5", lw=1.2)
-    lo, hi = float(o.histogram.edges[0]), float(o.histogram.edges[-1])
+    k = response_label(c.response)[2]  # SI per shown unit: the axis in the response's aviation unit
+    ax.step(x / k, f, where="post", color="#2f6db5", lw=1.2)
+    lo, hi = float(o.histogram.edges[0]) / k, float(o.histogram.edges[-1]) / k
     shift = 0.5 if c.is_level else 0.0
     if c.min is not None:
-        ax.axvspan(lo, c.min - shift, color="#c0392b", alpha=0.15, lw=0)
-        ax.axvline(c.min - shift, color="#c0392b", lw=1.0)
+        ax.axvspan(lo, c.min / k - shift, color="#c0392b", alpha=0.15, lw=0)
+        ax.axvline(c.min / k - shift, color="#c0392b", lw=1.0)
     if c.max is not None:
-        ax.axvspan(c.max + shift, hi, color="#c0392b", alpha=0.15, lw=0)
-        ax.axvline(c.max + shift, color="#c0392b", lw=1.0)
+        ax.axvspan(c.max / k + shift, hi, color="#c0392b", alpha=0.15, lw=0)
+        ax.axvline(c.max / k + shift, color="#c0392b", lw=1.0)
     if o.relaxed_max is not None:
-        ax.axvline(o.relaxed_max + shift, color="#8a6100", lw=1.0, ls="--")
+        ax.axvline(o.relaxed_max / k + shift, color="#8a6100", lw=1.0, ls="--")
     ax.set_xlim(lo, hi)
     ax.set_ylim(0, 1)
-    ax.set_xlabel(c.response)
+    ax.set_xlabel(response_axis(c.response))
     ax.set_ylabel("fraction ≤ value")
     ax.grid(True, alpha=0.3)
     ax.set_title(f"{c.name}: P(success) = {o.p:.4f} ± {o.se:.4f}", fontsize=9)

@@ -12,15 +12,18 @@ import json
 import numpy as np
 
 from certkit.study.analysis.export import export_surrogate
-from certkit.study.spec import Study
+from certkit.study.analysis.labels import display_factor, response_label
 from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.spec import Study
 
 OVERHANG = 0.1
 
 
 def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None) -> dict:
     """Everything the page needs: variables with bounds and slider range, the responses' exported models
-    with their thresholds and flags, and the starting point (the baseline unless given)."""
+    with their thresholds and flags, and the starting point (the baseline unless given). Values are SI; each
+    variable and response carries the ``factor`` (SI per shown unit) and ``unit`` it is shown in, a response its
+    words (``title``)."""
     start = study.baseline if start is None else np.asarray(start, dtype=float)
     limits = {c.response: (c.min, c.max) for c in study.constraints}
     names = [o.response for o in study.objectives] + study.profiled_constraints()
@@ -30,14 +33,15 @@ def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndar
             continue
         s = surrogates[name]
         lo, hi = limits.get(name, (None, None))
+        words, unit, factor = response_label(name)
         responses.append({"name": name, "model": export_surrogate(s), "min": lo, "max": hi,
-                          "flagged": s.flagged, "label": s.kept.label})
+                          "flagged": s.flagged, "label": s.kept.label, "title": words, "unit": unit, "factor": factor})
     variables = []
     for v, x0 in zip(study.variables, start):
         span = v.upper - v.lower
         variables.append({"path": v.path, "label": v.short, "lower": v.lower, "upper": v.upper,
                           "from": v.lower - OVERHANG * span, "to": v.upper + OVERHANG * span, "value": float(x0),
-                          "unit": v.unit_label})
+                          "unit": v.unit_label, "factor": display_factor(v.unit_label)})
     return {"variables": variables, "responses": responses}
 
 

@@ -48,7 +48,7 @@ import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit_rules.part25.support.reference_speeds import declared_cas
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.units import FT, KN
 from certkit_rules.part25.support.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
@@ -67,6 +67,9 @@ def _design_margin(values_deg, lo_deg, hi_deg):
 @rule
 class TakeoffPath(Rule):
     id = "25.111"
+    #: the extreme elevator and rudder of the engine-out takeoff (``control.25.111.takeoff_oei_vef.<control>``)
+    offers = (ControlResponses((ControlCase("takeoff OEI VEF", "(a) ", ("elevator", "rudder"),
+                                            ("{control}_min_deg", "{control}_max_deg")),)),)
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "takeoff-path"
     title = "Takeoff path with the critical engine failed at VEF (simulated to 35 ft and a climb-out)"

@@ -44,7 +44,7 @@ from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits
 from certkit.models.performance.wat import Ambient, envelope_corners
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support.reference_speeds import declared_cas, reference_stall_speed
 from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
@@ -260,6 +260,7 @@ _COMMON_LIMITS = """
 @rule
 class ClimbOEITakeoffGearDown(Rule):
     id = "25.121(a)"
+    offers = (ControlResponses((ControlCase("first segment gear down", "(a) "),)),)
     symbol = "oei-climb-takeoff-gear-down"
     title = "Climb OEI: takeoff, landing gear extended"
     amendment = AMDT
@@ -319,6 +320,7 @@ def gear_up_credit(ctx, configuration: str) -> tuple[float, str]:
 @rule
 class ClimbOEITakeoffGearUp(Rule):
     id = "25.121(b)"
+    offers = (ControlResponses((ControlCase("second segment gear up", "(b) "),)),)
     symbol = "oei-climb-takeoff-gear-up"
     title = "Climb OEI: takeoff, landing gear retracted"
     amendment = AMDT
@@ -367,6 +369,7 @@ class ClimbOEITakeoffGearUp(Rule):
 @rule
 class ClimbOEIFinalTakeoff(Rule):
     id = "25.121(c)"
+    offers = (ControlResponses((ControlCase("final takeoff en route", "(c) "),)),)
     symbol = "oei-climb-final-takeoff"
     title = "Climb OEI: final takeoff"
     amendment = AMDT
@@ -411,6 +414,7 @@ class ClimbOEIFinalTakeoff(Rule):
 @rule
 class ClimbOEIApproach(Rule):
     id = "25.121(d)"
+    offers = (ControlResponses((ControlCase("approach", "(d) "),)),)
     symbol = "oei-climb-approach"
     title = "Climb OEI: approach"
     amendment = AMDT

@@ -28,7 +28,7 @@ import numpy as np
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.models.dynamics.trim import held_stabilizer
 from certkit.models.flight import control_limits, stabilizer_trim
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support.reference_speeds import declared_cas, stall_warning_cl
 from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
@@ -38,6 +38,10 @@ from certkit_rules.part25.support.control_checks import control_findings
 from certkit_rules.part25.support.turns import turn_details
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
+#: each case's control deflections as design responses (``control.25.143(h).<name>.<control>``), named after the
+#: table's row: configuration, engines, speed and bank
+CASE_RESPONSES = {"takeoff V2": "takeoff OEI V2 30deg", "takeoff V2+XX": "takeoff AEO V2+XX 40deg",
+                  "en route VFTO": "en route OEI VFTO 40deg", "landing VREF": "landing AEO VREF 40deg"}
 _UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
                "EASA AMC 25.143(h); docs/regulation-notes.md)")
 
@@ -56,6 +60,7 @@ def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative
 @rule
 class ManeuveringCapability(Rule):
     id = "25.143(h)"
+    offers = (ControlResponses(tuple(ControlCase(name, f"(h) {case} ") for case, name in CASE_RESPONSES.items())),)
     cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "maneuvering-capability"
     title = "Controllability: manoeuvring capability in coordinated turns"

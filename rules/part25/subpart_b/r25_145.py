@@ -25,7 +25,7 @@ import numpy as np
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.units import LBF
 from certkit_rules.part25.support.reference_speeds import reference_stall_speed
@@ -49,9 +49,18 @@ def manoeuvres(flap: str):
 CLEAN_MANOEUVRES = (("(b)(4)", "set go-around thrust, flaps retracted", ("clean", IDLE), ("clean", GO_AROUND)),)
 
 
+def control_responses() -> ControlResponses:
+    """The elevator at the end of each change as a design response (``control.25.145(b).<change>.elevator``)."""
+    plan = list(CLEAN_MANOEUVRES) + [m for f in FLAPS for m in manoeuvres(f)]
+    return ControlResponses(tuple(ControlCase(f"{para} {what}", f"{para} elevator change", ("elevator",),
+                                              ("end_{control}_deg",), (("manoeuvre", f"{para} {what}"),))
+                                  for para, what, _, _ in plan))
+
+
 @rule
 class LongitudinalControlConfigurationChanges(Rule):
     id = "25.145(b)"
+    offers = (control_responses(),)
     symbol = "longitudinal-control-configuration-changes"
     title = "Longitudinal control: flap and thrust changes without re-trimming"
     amendment = "25-84"

@@ -47,7 +47,9 @@ class MinimumControlSpeed(Rule):
     implementation = "partial"
     limitations = """
         Static (steady) VMCA: the dynamic recovery of (d) (heading change ≤ 20°) is not simulated. VMCA is where the
-        rudder or aileron reaches its design limit; the 150 lbf of (d) is a separate finding at that VMCA (the pedal
+        rudder or aileron reaches its design limit, or, where straight flight at a bank reaches the lift maximum with
+        the controls within their limits, stall-limited (below that speed; reported as such); a trim failing above the
+        stall is not evaluated; the 150 lbf of (d) is a separate finding at that VMCA (the pedal
         force of the steady trim, rudder trim neutral), evaluated only with control_forces.rudder; the speed at which
         the force reaches 150 lbf is reported with it. The
         baseline's takeoff configuration has the gear down (more drag, steeper flight path only; the moments are
@@ -81,14 +83,26 @@ class MinimumControlSpeed(Rule):
                       "sideslip_deg": round(float(np.degrees(h["trim"].beta)), 2), "converged": h["trim"].converged}
                      for j in pair for h in rows["history"][j]]
             limit = crit.vmc_over_vsr_max * vsr
-            limited_by = ("a control at its design limit" if r is not None and r.converged else
-                          "the steady trim ceasing to exist (near the stall: stall-limited)")
+            what = rows["limited_by"][best]
+            limited_by = {"rudder": "the rudder at its design limit", "aileron": "the aileron at its design limit",
+                          "stall": ("the stall: at this bank the rudder and aileron hold straight flight down to the "
+                                    "speed where the lift reaches its maximum (no steady flight below); the control-"
+                                    "limited VMCA lies below the stall")}.get(what, what)
             common = dict(VSR=vsr, search=table, bank_at_vmca_deg=round(float(np.degrees(rows["banks"][best])), 1),
                           vmca_limited_by=limited_by,
                           vmca_by_bank_kn={f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2)
                                            for j in pair},
+                          limited_by_bank={f"{np.degrees(rows['banks'][j]):.0f} deg": rows["limited_by"][j] for j in pair},
                           force_model=("rudder at its design limit; the 150 lbf of (d) is a separate finding"
                                        if rudder else "none declared: rudder at its design limit, not 150 lbf"))
+            if "trim failure" in [rows["limited_by"][j] for j in pair]:
+                bad = [f"{np.degrees(rows['banks'][j]):.0f}°" for j in pair if rows["limited_by"][j] == "trim failure"]
+                why = (f"the straight one-engine-inoperative trim failed above the stall at bank {', '.join(bad)} "
+                       "(neither a control limit nor the lift maximum): VMCA is not determined")
+                out += [Finding.not_evaluated(cond, check, why, **common) for check in (
+                    "(c) VMCA ≤ 1.13 VSR", f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf",
+                    "(b) declared VMC ≥ computed VMCA")]
+                continue
             if below:
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
                 out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", vmca, limit, at_least=False, unit="m/s",
@@ -98,10 +112,14 @@ class MinimumControlSpeed(Rule):
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
                 top = all(rows["pinned_high"][j] for j in pair)
                 why = "; ".join(e.message for e in r.limits_exceeded) if r is not None else ""
+                reason = (f"controls beyond their design limits up to {crit.grid_high} VSR (VMCA above the search "
+                          f"range): {why}") if top else ""
+                if what == "stall":
+                    reason = (f"stall-limited: VMCA is below {vmca / KN:.1f} kn CAS, where straight flight at "
+                              f"{np.degrees(rows['banks'][best]):.0f}° bank reaches the lift maximum with the controls "
+                              "within their limits")
                 out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", vmca, limit, at_least=False, unit="m/s",
-                                           reason=(f"controls beyond their design limits up to {crit.grid_high} VSR "
-                                                   f"(VMCA above the search range): {why}") if top else "",
-                                           VMCA_over_VSR=vmca / vsr, **common))
+                                           reason=reason, VMCA_over_VSR=vmca / vsr, **common))
             ordered = sorted((h["speed"], h["trim"]) for h in rows["history"][best] if np.isfinite(h["usage"]))
             out.append(self._force_finding(ctx, found, vmca, [v for v, _ in ordered], [t for _, t in ordered], crit))
             declared = ctx.aircraft.speeds.VMC

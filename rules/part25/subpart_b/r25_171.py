@@ -12,7 +12,8 @@ from certkit.models.dynamics.trim import held_stabilizer
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, by_configuration,
+                                                             flight_described, refine_speeds, steady_flight_trims)
 
 
 def static_margin(ctx, configuration: str, x_cg, mach) -> np.ndarray:
@@ -70,26 +71,20 @@ class StabilityGeneral(Rule):
         return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
 
 
-def trims_at_throttle(ctx, conds, throttle, gammas=(0.0, 0.02), **trim_args):
-    """Trims of ``conds`` with the throttle held at ``throttle`` (one value per condition): the flight-path angle
-    is found by a secant step between two probe trims at ``gammas`` (throttle is nearly linear in sin γ,
-    T = D + W sin γ; the probes must need less than full throttle). Returns the final trim results."""
-    t = np.asarray(throttle, dtype=float)
-    th = lambda res: np.array([r.controls[next(k for k in r.controls if k.startswith("throttle"))] for r in res])  # noqa: E731
-    g0, g1 = gammas
-    t0 = th(ctx.trim(conds, gamma=g0, **trim_args).results)
-    t1 = th(ctx.trim(conds, gamma=g1, **trim_args).results)
-    slope = np.where(np.abs(t1 - t0) > 1e-9, (t1 - t0) / (g1 - g0), np.inf)
-    gamma = np.clip(g0 + (t - t0) / slope, -0.3, 0.3)
-    return ctx.trim(conds, gamma=gamma, **trim_args).results
+def trims_at_throttle(ctx, conds, throttle, **trim_args):
+    """Trims of ``conds`` with the throttle held at ``throttle`` (one value per condition): the flight-path angle is
+    an unknown of the trim (it floats), so any throttle from idle to full is a steady climb or descent."""
+    return ctx.trim(conds, throttle=np.asarray(throttle, dtype=float), **trim_args).results
 
 
 def speed_step_trims(ctx, refined, k: float):
     """Per configuration: (conditions, trims at V₀, their throttles, trims at V₀(1 − k) then V₀(1 + k) with the
-    throttle held) — the trims §25.173(a) and the stick-force rules share (memoised in the Context)."""
+    throttle held, the flight path floating) — the trims §25.173(a) and the stick-force rules share (memoised in the
+    Context). V₀ is trimmed in level flight, or beyond the weight's level-flight ceiling in the steady descent at full
+    thrust (:func:`steady_flight_trims`)."""
     for idx in by_configuration(refined).values():
         conds = [refined[i] for i in idx]
-        trim0 = ctx.trim(conds).results
+        trim0, _ = steady_flight_trims(ctx, conds)
         t0 = [next(v for n, v in r.controls.items() if n.startswith("throttle")) for r in trim0]
         side = [c.with_(speed=c.speed * (1 - k)) for c in conds] + [c.with_(speed=c.speed * (1 + k)) for c in conds]
         held = held_stabilizer(trim0)  # a movable stabiliser stays at its V₀ trim; the elevator holds the speed change
@@ -130,8 +125,9 @@ class SpeedStability(Rule):
                                      "(declared, or the least §25.253(b) allows).")
     limitations = """
         Elevator-fixed reading of a stick-force requirement (§25.173(c) needs a control-force model); trim in level
-        flight at the power for level flight, not the §25.175 climb power or idle-power landing; the free-return
-        (§25.173(b)) is not simulated.
+        flight at the power for level flight (beyond the level-flight ceiling of the weight, in the steady descent at
+        full thrust), not the §25.175 climb power or idle-power landing; the speed steps hold that throttle and the
+        flight path floats; the free-return (§25.173(b)) is not simulated.
     """
 
     implementation = "partial"
@@ -159,7 +155,9 @@ class SpeedStability(Rule):
                 reason = "; ".join(e.message for r in (trim0[i], lo, hi) for e in r.limits_exceeded if e.control == "elevator")
                 out.append(Finding.compare(cond, check, float(grad), crit.gradient_min, at_least=True, unit="deg/kt",
                                            reason=reason, elevator_trim_deg=float(np.degrees(trim0[i].controls["elevator"])),
-                                           throttle=float(t0[i]), gamma_low_deg=float(np.degrees(lo.gamma)),
+                                           throttle=float(t0[i]),
+                                           trim_flight=flight_described(trim0[i], None if trim0[i].gamma == 0.0 else t0[i]),
+                                           gamma_low_deg=float(np.degrees(lo.gamma)),
                                            gamma_high_deg=float(np.degrees(hi.gamma))))
         return out
 

@@ -1,19 +1,25 @@
 """§25.181 Dynamic stability, with the MIL-F-8785C Level of every rigid-body mode as a reference reading.
 
-The modes are those of the linearised six-degree-of-freedom model about the level-flight trim of each
-condition (``ctx.modes``): every CG corner × (takeoff, cruise, landing) × altitude band × three speeds
-from 1.13 VSR to the configuration's maximum allowable speed.
+The modes are those of the linearised six-degree-of-freedom model about the trim of each condition
+(``ctx.modes``): every CG corner × (takeoff, cruise, landing) × altitude band × three speeds from 1.13 VSR to the
+configuration's maximum allowable speed. The trim is level flight, or, where the weight is beyond its level-flight
+thrust ceiling at that altitude and speed, the steady descent at full thrust the airplane can hold there; each
+finding says which (``flight``).
 """
 
 from __future__ import annotations
 
+import math
+
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.units import FT
-from certkit.engine.registry import Criterion, Rule, rule
+from certkit.models.dynamics.modes import load_factor_per_alpha
+from certkit.engine.registry import Criterion, ModeResponses, Rule, rule
 from certkit.engine.results import Finding
 from certkit_rules.part25.support import handling_levels as hq
 from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, SPEED_POINTS,
-                                                             by_configuration, refine_speeds)
+                                                             by_configuration, flight_described, refine_speeds,
+                                                             steady_flight_trims)
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
 #: how the short-period criterion reads each configuration's flight phase (MIL-F-8785C 1.5 flight-phase categories)
@@ -21,14 +27,13 @@ PHASE_READING = {"cruise": "B (en route: climb, cruise, descent), Level 1 ζ_sp 
                  "terminal": "C (terminal: takeoff, approach, landing), Level 1 ζ_sp ≥ 0.35"}
 
 
-def categories(configuration: str) -> tuple[str, ...]:
-    """MIL-F-8785C flight-phase categories read for a configuration: clean is both cruise manoeuvring (A)
-    and cruise (B); flaps/gear extended are terminal phases (C)."""
-    return ("A", "B") if hq.CATEGORY.get(configuration, "B") == "B" else ("C",)
+categories = hq.categories_of
 
 
-def mode_levels(modes: dict, configuration: str) -> dict:
-    """{mode: {ζ, ωn, eigenvalue, level per category, reason}} for the classical modes present."""
+def mode_levels(modes: dict, configuration: str, n_alpha: float | None = None) -> dict:
+    """{mode: {ζ, ωn, eigenvalue, period, times to half and double, level per category, reason}} for the classical
+    modes present; the short period's control anticipation parameter ω²/(n/α) ((rad/s²)/g, MIL-F-8785C 3.2.2.1.1)
+    with the condition's n/α (g/rad)."""
     out = {}
     for name in MODES:
         m = modes.get(name)
@@ -38,7 +43,12 @@ def mode_levels(modes: dict, configuration: str) -> dict:
         row = {"zeta": round(m.damping_ratio, 5), "wn_rad_s": round(m.natural_frequency, 5),
                "eigenvalue": [round(m.eigenvalue.real, 6), round(m.eigenvalue.imag, 6)],
                "tau_s": None if q["tau"] == float("inf") else round(float(q["tau"]), 3),
-               "t_double_s": None if q["t_double"] == float("inf") else round(float(q["t_double"]), 2)}
+               "t_double_s": None if q["t_double"] == float("inf") else round(float(q["t_double"]), 2),
+               "period_s": None if m.period is None else round(m.period, 3),
+               "t_half_s": None if m.time_to_half is None else round(m.time_to_half, 3)}
+        if name == "short_period" and n_alpha is not None and n_alpha > 0:
+            row["cap"] = round(m.natural_frequency ** 2 / n_alpha, 5)
+            row["n_alpha_g_rad"] = round(float(n_alpha), 4)
         for cat in categories(configuration):
             level, why = hq.level_of(name, m, cat)
             row[f"level_{cat}"] = level
@@ -70,6 +80,7 @@ class DynamicStability(Rule):
         Part 25 requirement and does not set the status.
     """
     references = ("25.171", "25.103")
+    offers = (ModeResponses(MODES),)
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
         "short_period_damping_min_cruise": Criterion(
@@ -88,7 +99,8 @@ class DynamicStability(Rule):
     }
     conditions = ConditionSpace(loading=CgCorners(), configurations=tuple(PHASES.values()),
                                 altitudes=Altitudes((0.0, 20000 * FT, 37000 * FT)), extra=(("speed_point", SPEED_POINTS),),
-                                note="Speeds in CAS, level flight at the power for level flight; flaps only up to the flap altitude limit.")
+                                note="Speeds in CAS, level flight at the power for level flight (beyond the level-flight thrust "
+                                     "ceiling, the steady descent at full thrust); flaps only up to the flap altitude limit.")
     implementation = "partial"
     limitations = """
         Controls-fixed modes only: no hinge-moment or control-system model, so 'controls free' (§25.181(a)(1), (b)) is
@@ -106,24 +118,34 @@ class DynamicStability(Rule):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a), (b) modes")
         for config, idx in by_configuration(refined).items():
             conds = [refined[i] for i in idx]
-            for cond, modes in zip(conds, ctx.modes(conds)):
+            trims, stops = steady_flight_trims(ctx, conds)
+            modes_of = dict(zip(range(len(conds)), ctx.modes(conds)))
+            n_alpha = dict(enumerate(load_factor_per_alpha(ctx.linearization(conds))))
+            held = [i for i, s in enumerate(stops) if s is not None]
+            if held:  # beyond the level-flight ceiling: the modes of the steady descent (climb) at the throttle stop
+                held_conds, held_throttle = [conds[i] for i in held], [stops[i] for i in held]
+                modes_of.update(zip(held, ctx.modes(held_conds, throttle=held_throttle)))
+                n_alpha.update(zip(held, load_factor_per_alpha(ctx.linearization(held_conds, throttle=held_throttle))))
+            for i, cond in enumerate(conds):
+                modes, res = modes_of[i], trims[i]
+                flight = flight_described(res, stops[i])
+                path = {} if stops[i] is None else {"flight_path_deg": math.degrees(res.gamma)}
                 if modes is None:
-                    res = ctx.trim(conds)[conds.index(cond)]
-                    out.append(Finding.not_evaluated(cond, "(a), (b) modes", "level-flight trim did not converge "
+                    out.append(Finding.not_evaluated(cond, "(a), (b) modes", f"trim in {flight} did not converge "
                                                      f"(|r| = {res.residual_norm:.1e}) "
                                                      + "; ".join(e.message for e in res.limits_exceeded)))
                     continue
-                levels = mode_levels(modes, config)
+                levels = mode_levels(modes, config, float(n_alpha[i]))
                 phase = "cruise" if hq.CATEGORY.get(config, "B") == "B" else "terminal"
                 for name, check, key in (("short_period", "(a) short period heavily damped", f"short_period_damping_min_{phase}"),
                                          ("dutch_roll", "(b) Dutch roll positively damped", "dutch_roll_damping_min")):
                     m = modes.get(name)
                     if m is None:
                         out.append(Finding.not_evaluated(cond, check, f"no {name.replace('_', ' ')} mode identified "
-                                                         "among the eigenvalues", modes=levels))
+                                                         "among the eigenvalues", modes=levels, flight=flight, **path))
                         continue
                     out.append(Finding.compare(cond, check, m.damping_ratio, crit[key], at_least=True, unit="",
-                                               natural_frequency_rad_s=m.natural_frequency, modes=levels,
+                                               natural_frequency_rad_s=m.natural_frequency, modes=levels, flight=flight, **path,
                                                **({"category": PHASE_READING[phase]} if name == "short_period" else {})))
         return out
 

@@ -20,6 +20,8 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -31,8 +33,8 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
-from certkit.engine.registry import Criterion, Rule, SimulationRule, rule
-from certkit.engine.results import Finding
+from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
                                                              force_limited_deflection, maneuver_limit_load_factor)
@@ -57,6 +59,22 @@ def _effort_note(limited, i) -> str:
 
 #: the surfaces whose loads the §25.331(c) manoeuvres compute (the tail's window of time also bounds the wing's)
 LOADED = ("horizontal_tail", "wing")
+#: … their station loads, and the elevator's hinge moments along the manoeuvre (the elevator actuators' design case)
+PRODUCED = tuple(Loads(s) for s in LOADED) + (Loads("elevator", HINGE_MOMENT),)
+
+
+@dataclass
+class PitchManeuverRun(LoadsRun):
+    """A pitch manoeuvre's run: the batch's records with the station loads of :data:`LOADED` along them (``loads``:
+    surface → (n_t, n, 3, S), NaN outside the considered window), the input kind of each condition (``kind``:
+    0 scaled sinusoid, 1 held input, 2 maximal held input; None for a single kind) and the tail's station names."""
+
+    loads: dict = field(default_factory=dict)
+    kind: object = None
+    stations: tuple = ()
+
+
+NOTHING_TRIMMED = "no condition could be trimmed (see the findings)"
 
 
 WING_STALL_NOTE = ("wing loads considered while the airplane's linear lift is below CLmax: the strip loads are linear "
@@ -100,7 +118,7 @@ def _label(cond) -> str:
 @rule
 class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
-    loads_surfaces = LOADED
+    produces = PRODUCED
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "checked-pitch-maneuver"
     title = "Checked pitch manoeuvre between VA and VD"
@@ -156,22 +174,22 @@ class CheckedPitchManeuver(SimulationRule):
         return checked_maneuver(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        return pitch_evidence(getattr(self, "run", None), ctx, crit, "checked manoeuvre")
+        return pitch_evidence(self.run, ctx, crit, "checked manoeuvre")
 
 
-def pitch_evidence(run, ctx, crit, what: str) -> list:
+def pitch_evidence(run: PitchManeuverRun | None, ctx, crit, what: str) -> list:
     """Evidence of a pitch manoeuvre run: the tail's critical time histories, envelope and table, the wing's table,
     each against the declared allowables."""
     from certkit.engine.evidence.loads import allowables, envelope_evidence, maneuver_evidence
 
-    if not run:
+    if run is None or not run.simulated:
         return []
     allow = allowables(ctx, crit.ultimate_factor)
     return (maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow)
-            + envelope_evidence(run, ("wing",), what, plot=False, allow=allow))
+            + envelope_evidence(run.envelope, ("wing",), what, plot=False, allow=allow))
 
 
-def checked_maneuver(ctx, conditions, crit) -> dict:
+def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     """Batch simulation of every checked-manoeuvre condition; returns findings, the envelope and the
     histories of the final inputs (for evidence)."""
     n_lim = ctx.aircraft.envelope.limit_load_factors.positive
@@ -188,7 +206,7 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
         conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries])
     findings = refusal_findings(refused, lambda c: ["(c)(2) checked manoeuvre"])
     if not rows.size:
-        return {"findings": findings, "envelope": None}
+        return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
     omega_sp = _modes_frequency(batch)[rows]
     model = batch.model.subset(rows)
     x0, u0 = batch.x[rows], batch.u[rows]
@@ -273,8 +291,8 @@ def checked_maneuver(ctx, conditions, crit) -> dict:
                                      bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
         if beyond is not None:
             findings.append(beyond)
-    return {"findings": findings, "envelope": env, "sim": sim, "valid": valid, "loads": hist, "conditions": sim_conds,
-            "kind": np.where(reach, 0, np.where(held_short, 2, 1)), "stations": stations}
+    return PitchManeuverRun(findings, sim_conds, sim, valid, envelope=env, loads=hist,
+                            kind=np.where(reach, 0, np.where(held_short, 2, 1)), stations=stations)
 
 
 def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
@@ -303,9 +321,9 @@ def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
 # --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
 
 @rule
-class MaximumPitchControlDisplacement(Rule):
+class MaximumPitchControlDisplacement(SimulationRule):
     id = "25.331(c)(1)"
-    loads_surfaces = LOADED
+    produces = PRODUCED
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "maximum-pitch-control-displacement"
     title = "Maximum pitch control displacement at VA"
@@ -343,14 +361,14 @@ class MaximumPitchControlDisplacement(Rule):
                          "loads only)"),
     )
 
-    def evaluate(self, ctx, conditions, crit):
+    def simulate(self, ctx, conditions, crit):
         n_lim = ctx.aircraft.envelope.limit_load_factors.positive
         entries = [c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
                    for c in conditions]
         batch = trimmed_batch(ctx, entries)
         findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
         if not batch.n:
-            return findings
+            return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
         lim = control_stops(ctx, "elevator")
         # to the nose-up (trailing edge up) stop, or as far as the pilot effort moves it
         target, effort_limited = force_limited_deflection(ctx, "elevator", batch.conditions, batch.control("elevator"),
@@ -386,12 +404,10 @@ class MaximumPitchControlDisplacement(Rule):
                    if "stabilizer" in batch.model.control_names else {})))
             findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit,
                                          bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
-        self.run = {"envelope": env, "sim": sim, "valid": valid, "loads": hist,  # kept for evidence()
-                    "conditions": batch.conditions, "stations": stations}
-        return findings
+        return PitchManeuverRun(findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations)
 
     def evidence(self, ctx, findings, crit):
-        return pitch_evidence(getattr(self, "run", None), ctx, crit, "maximum pitch control displacement")
+        return pitch_evidence(self.run, ctx, crit, "maximum pitch control displacement")
 
 
 def _ramp(ramp: float, amplitude):

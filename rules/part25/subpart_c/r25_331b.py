@@ -18,7 +18,7 @@ deflection (the lattice is the clean wing), so the wing's loads flaps extended a
 
 from __future__ import annotations
 
-from certkit.engine.registry import SimulationRule, rule
+from certkit.engine.registry import Loads, SimulationRule, rule
 from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
                                                           SURFACES, balanced_runs)
 
@@ -26,7 +26,7 @@ from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BAL
 @rule
 class BalancedManeuver(SimulationRule):
     id = "25.331(b)"
-    loads_surfaces = SURFACES
+    produces = tuple(Loads(s) for s in SURFACES)
     cost = 2
     run_with = "discrete-gust"  # §25.427(b) splits these balanced states' tail loads: one process computes them once
     symbol = "balanced-maneuver"
@@ -65,7 +65,6 @@ class BalancedManeuver(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import allowables, envelope_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("envelope") is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return envelope_evidence(run, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))
+        return envelope_evidence(self.run.envelope, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))

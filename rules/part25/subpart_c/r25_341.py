@@ -19,6 +19,8 @@ the gust's peak n_z goes beyond it — information only: since Amdt. 25-86 §25.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from certkit_rules.part25.support.loads_conditions import refusal_findings
@@ -26,7 +28,8 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES
 from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.response import LoadEnvelope
-from certkit.engine.registry import SimulationRule, rule
+from certkit.engine.registry import Loads, SimulationRule, rule
+from certkit.engine.results import LoadsRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
                                                       gust_runs)
@@ -36,7 +39,7 @@ from certkit_rules.part25.support.structural_checks import SAFETY, capability_fi
 @rule
 class DiscreteGust(SimulationRule):
     id = "25.341(a)"
-    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
+    produces = (Loads("wing"), Loads("horizontal_tail"), Loads("vertical_tail"))
     cost = 8  # relative evaluation time (orders work over --jobs processes)
     run_with = "discrete-gust"  # §25.349(b) modifies these gust runs: one process simulates them once
     symbol = "discrete-gust"
@@ -78,22 +81,38 @@ class DiscreteGust(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import allowables, envelope_evidence, gust_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("envelope") is None:
+        run = self.run
+        if run is None or not run.simulated:
             return []
         allow = allowables(ctx, crit.ultimate_factor)
-        lateral = run.get("lateral_envelope")
-        table = (envelope_evidence({"envelope": lateral}, (FIN,), "lateral gust", plot=False, allow=allow)
+        lateral = run.lateral_envelope
+        table = (envelope_evidence(lateral, (FIN,), "lateral gust", plot=False, allow=allow)
                  if lateral is not None else [])
         return gust_evidence(run, allow) + table
 
 
-def discrete_gusts(ctx, conditions, crit) -> dict:
+@dataclass
+class GustRun(LoadsRun):
+    """The discrete gusts: per condition, sense, quantity and station the gradient that set each extreme
+    (``which``: surface → (n, 2, 3, S) indices into ``gradients``, m), a ``replay`` of chosen (condition, gradient)
+    pairs with their time histories, the loads model and the lateral gusts' fin envelope."""
+
+    which: dict | None = None
+    gradients: object = None
+    replay: object = None
+    loads: object = None
+    lateral_envelope: object = None
+
+    def envelopes(self) -> list:
+        return [e for e in (self.envelope, self.lateral_envelope) if e is not None]
+
+
+def discrete_gusts(ctx, conditions, crit) -> GustRun:
     runs = gust_runs(ctx, conditions, crit)
     findings = refusal_findings(runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"
                                                          for s in SURFACES])
     if not runs.conditions:
-        return {"findings": findings, "envelope": None}
+        return GustRun(findings, reason="no condition could be trimmed (see the findings)")
     sim_conds, H, up = runs.conditions, runs.gradients, runs.up
     env, which = runs.symmetric
     nz_hi, nz_lo, uds_all, u_ref, f_g, v_eas, alt = runs.nz_hi, runs.nz_lo, runs.uds, runs.u_ref, runs.f_g, runs.v_eas, runs.altitude
@@ -116,8 +135,8 @@ def discrete_gusts(ctx, conditions, crit) -> dict:
                     (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
                 tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
     lateral, lateral_env = lateral_gusts(ctx, runs, crit)
-    return {"findings": findings + lateral, "envelope": env, "which": which, "gradients": H, "conditions": sim_conds,
-            "replay": runs.replay, "loads": runs.loads, "lateral_envelope": lateral_env}
+    return GustRun(findings + lateral, sim_conds, envelope=env, which=which, gradients=H, replay=runs.replay,
+                   loads=runs.loads, lateral_envelope=lateral_env)
 
 
 def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]:

@@ -23,6 +23,8 @@ gust), the literal text; the criterion ``airload_basis: increment`` applies the 
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -33,8 +35,8 @@ from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
-from certkit.engine.registry import Criterion, SimulationRule, rule
-from certkit.engine.results import Finding
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.units import FT, KN
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, control_stops, entry_speeds
@@ -59,7 +61,7 @@ PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: 
 @rule
 class RollingConditions(SimulationRule):
     id = "25.349(a)"
-    loads_surfaces = ("wing", "horizontal_tail", "vertical_tail")
+    produces = (Loads("wing"), Loads("horizontal_tail"), Loads("vertical_tail"))
     cost = 5  # relative evaluation time (orders work over --jobs processes)
     symbol = "rolling-conditions"
     title = "Rolling conditions: sudden aileron at VA, VC and VD at load factors 0 and 2/3 n"
@@ -119,10 +121,9 @@ class RollingConditions(SimulationRule):
         from certkit.engine.evidence.loads import allowables
         from certkit.engine.evidence.roll import roll_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("sim") is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return roll_evidence(run, allowables(ctx, crit.ultimate_factor))
+        return roll_evidence(self.run, allowables(ctx, crit.ultimate_factor))
 
 
 def target_load_factor(ctx, cond, crit) -> float:
@@ -187,7 +188,26 @@ def _deg(x, nd=2):
     return round(float(np.degrees(x)), nd)
 
 
-def rolling_maneuvers(ctx, conditions, crit) -> dict:
+@dataclass
+class RollingRun(SimulationRun):
+    """The rolling manoeuvres: the records (rolling right), the loads of each surface along them on the right and
+    (mirror image) left halves (``right``, ``left``: surface → (n_t, n, 3, S)), the wing and tailplane halves'
+    envelope (``env_sides``: right conditions then left), the fin's (``env_fin``), the aileron's index among the
+    controls, the fraction of the aileron stop applied and the end of the considered window (s) of each condition."""
+
+    right: dict = field(default_factory=dict)
+    left: dict = field(default_factory=dict)
+    env_sides: object = None
+    env_fin: object = None
+    aileron_index: int = -1
+    fraction: object = None
+    t_end: object = None
+
+    def envelopes(self) -> list:
+        return [e for e in (self.env_sides, self.env_fin) if e is not None]
+
+
+def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     """Batch simulation of every rolling condition; findings, load envelopes and histories for the evidence."""
     entries, key_of = [], {}
     for c in conditions:
@@ -202,7 +222,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
     findings = refusal_findings(refused, lambda c: [f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}"
                                                     for s in SURFACES])
     if not rows.size:
-        return {"findings": findings, "sim": None}
+        return RollingRun(findings, reason="no condition could be trimmed (see the findings)")
     model = batch.model.subset(rows)
     n_target = np.array([target_load_factor(ctx, c, crit) for c in sim_conds])
     st = symmetric_manoeuvre_state(model, batch.x[rows], batch.u[rows], n_target, batch.gamma[rows])
@@ -235,7 +255,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
                          for s in SURFACES]
     idx = np.flatnonzero(ok)
     if not idx.size:
-        return {"findings": findings, "sim": None}
+        return RollingRun(findings, reason="no symmetric manoeuvre could be set up (see the findings)")
     conds = [sim_conds[i] for i in idx]
     model = model.subset(idx)
     x0, u0 = st.x[idx], st.u[idx]
@@ -308,10 +328,10 @@ def rolling_maneuvers(ctx, conditions, crit) -> dict:
                 peaks, extra, stations = env_fin.peaks[s][i], {}, env_fin.stations[s]
             findings.append(capability_finding(c, f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}", s, peaks, stations, caps[s],
                                                crit.ultimate_factor, **common, **extra))
-    return {"findings": findings, "sim": sim, "conditions": conds, "right": right, "left": left,
-            "env_sides": env_sides, "env_fin": env_fin, "aileron_index": ja, "fraction": frac, "t_end": t_end,
-            "failed": [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"
-                       and f.reason and "structural capability" not in f.reason][::len(SURFACES)]}
+    failed = [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"
+              and f.reason and "structural capability" not in f.reason][::len(SURFACES)]
+    return RollingRun(findings, conds, sim, failed=failed, right=right, left=left, env_sides=env_sides, env_fin=env_fin,
+                      aileron_index=ja, fraction=frac, t_end=t_end)
 
 
 # --------------------------------------------------------------------------- (b) unsymmetrical gusts
@@ -323,7 +343,7 @@ AIRLOAD_BASES = ("total", "increment")
 @rule
 class UnsymmetricalGust(SimulationRule):
     id = "25.349(b)"
-    loads_surfaces = ("wing",)
+    produces = (Loads("wing"),)
     cost = 2  # relative evaluation time beyond the §25.341(a) gust runs it shares (run_with)
     run_with = "discrete-gust"
     symbol = "unsymmetrical-gust"
@@ -372,10 +392,9 @@ class UnsymmetricalGust(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import allowables, unsymmetrical_gust_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("envelope") is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return unsymmetrical_gust_evidence(run, allowables(ctx, crit.ultimate_factor))
+        return unsymmetrical_gust_evidence(self.run, allowables(ctx, crit.ultimate_factor))
 
 
 def _airload_basis(crit) -> str:
@@ -389,7 +408,25 @@ def _airload_basis(crit) -> str:
     return basis
 
 
-def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
+@dataclass
+class UnsymmetricalGustRun(LoadsRun):
+    """The unsymmetrical gusts: per side the gradient that set each extreme (``which``), the gust runs they split
+    (``runs``: :class:`certkit_rules.part25.subpart_c.gust_runs.GustRuns`), the peak unbalanced rolling moment per
+    gradient and condition (``roll``, N·m), the sides' fractions, the air-load basis and the symmetric envelope."""
+
+    which: dict | None = None
+    gradients: object = None
+    runs: object = None
+    roll: object = None
+    fractions: tuple = (1.0, 1.0)
+    basis: str = ""
+    symmetric: object = None
+
+    def envelopes(self) -> list:
+        return [e for e in (self.envelope, self.symmetric) if e is not None]
+
+
+def unsymmetrical_gusts(ctx, conditions, crit) -> UnsymmetricalGustRun:
     """§25.349(b) from the memoised §25.341(a) gust runs: per gust gradient the wing's air load split 100/80 % at
     every instant (:func:`certkit.models.loads.unsymmetrical.unsymmetrical_wing`), envelopes per side."""
     basis = _airload_basis(crit)
@@ -404,7 +441,7 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
     runs = gust_runs(ctx, conditions, crit)
     findings = refusal_findings(runs.refused, lambda c: [check(c, s) for s in (full_side, reduced_side)])
     if not runs.conditions:
-        return {"findings": findings, "envelope": None}
+        return UnsymmetricalGustRun(findings, reason="no condition could be trimmed (see the findings)")
     wing, model, n = runs.loads["wing"], runs.batch.model, len(runs.conditions)
     labels = [c.label() for c in runs.conditions]
     per_side: dict[str, list] = {full_side: [], reduced_side: []}
@@ -440,6 +477,5 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> dict:
             findings.append(capability_finding(c, check(c, side), "wing", peaks[side][i], stations[side], caps,
                                                crit.ultimate_factor, critical_H_root_bending_ft=round(float(runs.gradients[jb] / FT), 0),
                                                **common))
-    return {"findings": findings, "envelope": envelope, "which": which, "gradients": runs.gradients,
-            "conditions": runs.conditions, "runs": runs, "roll": roll, "fractions": (full, reduced), "basis": basis,
-            "symmetric": sym}
+    return UnsymmetricalGustRun(findings, runs.conditions, envelope=envelope, which=which, gradients=runs.gradients,
+                                runs=runs, roll=roll, fractions=(full, reduced), basis=basis, symmetric=sym)

@@ -13,6 +13,8 @@ modelled); the airplane is symmetric, so one rudder direction is simulated; rigi
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -22,7 +24,8 @@ from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
                                                              force_limited_deflection)
@@ -49,7 +52,7 @@ def pedal_force_limit(v, va, vc, crit) -> float:
 @rule
 class YawManeuver(SimulationRule):
     id = "25.351"
-    loads_surfaces = ("vertical_tail",)
+    produces = (Loads("vertical_tail"),)
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "yaw-maneuver"
     title = "Yaw manoeuvre: sudden rudder, overswing, steady sideslip, rudder returned"
@@ -107,10 +110,9 @@ class YawManeuver(SimulationRule):
         from certkit.engine.evidence.loads import allowables
         from certkit.engine.evidence.yaw import yaw_evidence
 
-        run = getattr(self, "run", None)
-        if not run or run.get("envelope") is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return yaw_evidence(run, allowables(ctx, crit.ultimate_factor))
+        return yaw_evidence(self.run, allowables(ctx, crit.ultimate_factor))
 
 
 def yaw_speed(ctx, cond, crit) -> float:
@@ -121,12 +123,24 @@ def yaw_speed(ctx, cond, crit) -> float:
     return entry_speeds(ctx, cond.altitude, [name])[name]
 
 
-def yaw_maneuvers(ctx, conditions, crit) -> dict:
+@dataclass
+class YawRun(LoadsRun):
+    """The yaw manoeuvres: the held and returned simulations (``yaw``:
+    :class:`certkit.models.loads.yaw.YawRuns`), the fin's loads along each ((n_t, n, 3, S)) and the rudder's index
+    among the controls."""
+
+    yaw: object = None
+    held_loads: object = None
+    returned_loads: object = None
+    rudder_index: int = -1
+
+
+def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
     conds = [c.with_(speed=yaw_speed(ctx, c, crit), speed_kind="EAS") for c in conditions]
     batch = trimmed_batch(ctx, conds)
     findings = refusal_findings(batch.refusals(conds), lambda c: [f"({p}) {name}" for p, name in PHASES])
     if not batch.n:
-        return {"findings": findings, "envelope": None}
+        return YawRun(findings, reason="no condition could be trimmed (see the findings)")
     lim = control_stops(ctx, "rudder")
     va = float(ctx.design_speed_eas("VA", 0.0)[0])
     vc = float(ctx.design_speed_eas("VC", 0.0)[0])
@@ -191,7 +205,6 @@ def yaw_maneuvers(ctx, conditions, crit) -> dict:
         for p, name in PHASES:
             findings.append(capability_finding(c, f"({p}) {name}", SURFACE, peaks[p][i], stations, caps,
                                                crit.ultimate_factor, **common))
-    return {"findings": findings, "envelope": env, "run": run, "conditions": batch.conditions, "held_loads": held,
-            "returned_loads": back, "rudder_index": jr,
-            "failed": [(conds[i].label(), r) for i, r in batch.failed]}
+    return YawRun(findings, batch.conditions, failed=[(conds[i].label(), r) for i, r in batch.failed], envelope=env,
+                  yaw=run, held_loads=held, returned_loads=back, rudder_index=jr)
 

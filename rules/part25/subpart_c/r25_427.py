@@ -27,7 +27,7 @@ from certkit.engine.conditions import ConditionSpace
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 from certkit.engine.registry import Criterion, SimulationRule, rule
-from certkit.engine.results import Condition, Finding
+from certkit.engine.results import Condition, Finding, LoadsRun
 from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
                                                           balanced_runs)
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
@@ -45,6 +45,14 @@ NO_FUSELAGE = ("no fuselage capability can be declared (the aircraft file's stru
 LIMITATIONS = ("Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
                "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
                "(tail roll inertia relief neglected); no fuselage capability to compare the torsion with.")
+
+
+@dataclass
+class TailSplitRun(LoadsRun):
+    """The split tail loads: the 100 % and reduced sides' envelopes and the largest fuselage torsion at the tail
+    (N·m, with the label of its condition)."""
+
+    largest_fuselage_torsion: tuple = (0.0, None)
 
 
 @dataclass(frozen=True)
@@ -112,11 +120,10 @@ class UnsymmetricalTailLoads(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import allowables, envelope_evidence
 
-        run = getattr(self, "run", None)
-        env = run.get("envelope") if run else None
-        if env is None:
+        if self.run is None or not self.run.simulated:
             return []
-        return envelope_evidence(run, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor))
+        env = self.run.envelope
+        return envelope_evidence(env, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor))
 
 
 def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
@@ -128,9 +135,9 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
     parts = []  # (source, aero (T, n, 3, S), inertia, refined conditions)
     if "25.331(b)" in by_source:
         run = balanced_runs(ctx, by_source["25.331(b)"], crit)
-        if run.get("envelope") is not None:
-            aero, inertia = run["tail_parts"]
-            parts.append(("25.331(b)", aero[None], inertia[None], run["conditions"]))
+        if run.simulated:
+            aero, inertia = run.tail_parts
+            parts.append(("25.331(b)", aero[None], inertia[None], run.conditions))
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)
         if runs.conditions:  # every gradient's time history one after the other
@@ -144,7 +151,7 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
     return out
 
 
-def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
+def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
     from certkit.models.loads.model import airplane_loads
     from certkit.models.loads.response import LoadEnvelope
 
@@ -183,8 +190,8 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> dict:
         findings.append(Finding.not_evaluated(Condition(), "(b) fuselage torsion at the tail", NO_FUSELAGE,
                                               largest_torsion_kNm=round(worst[0] / 1e3, 1), critical_condition=worst[1]))
     if not labels:
-        return {"findings": findings, "envelope": None}
+        return TailSplitRun(findings, reason="no symmetric loads to split (see the findings)")
     stations = {s: tail.station_names for s in peaks}
     P = {s: np.stack(v) for s, v in peaks.items()}  # (n, 2, 3, S)
     env = LoadEnvelope(stations, P, {s: np.zeros_like(v) for s, v in P.items()}, labels)
-    return {"findings": findings, "envelope": env, "largest_fuselage_torsion": worst}
+    return TailSplitRun(findings, envelope=env, largest_fuselage_torsion=worst)

@@ -6,7 +6,7 @@ the batched balanced states and loads, memoised in the context so that the rules
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -20,7 +20,7 @@ from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
 from certkit.models.loads.vn_envelope import envelope
 from certkit.engine.registry import Criterion
-from certkit.engine.results import Finding
+from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
 from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
@@ -31,6 +31,16 @@ CLEAN_POINTS = ("A", "VC at n+", "D", "E", "F", "H")
 FLAP_POINTS = ("VF at n flaps", "VF at 0")
 NO_FLAP_STRIPS = ("the strip loads model has no flap deflection (clean lattice): the wing's lift increment of the "
                   "flaps is not distributed on its strips, so its loads flaps extended are not computed")
+
+
+@dataclass
+class BalancedRun(LoadsRun):
+    """The balanced manoeuvres: the balanced states (``state``: name → (n,)), the airplane's loads model and the
+    right half tailplane's (aerodynamic, inertial) loads (``tail_parts``: (n, 3, S) each)."""
+
+    state: dict = field(default_factory=dict)
+    loads: object = None
+    tail_parts: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -98,14 +108,14 @@ BALANCED_REQUIRES = ("speeds.VA", "speeds.VC", "speeds.VD", "envelope.limit_load
                      "configurations.clean.CLmin", "geometry.horizontal_tail")
 
 
-def balanced_runs(ctx, conditions, crit) -> dict:
+def balanced_runs(ctx, conditions, crit) -> BalancedRun:
     """:func:`balanced_maneuvers` memoised on the conditions and the criteria that define them (§25.331(b) and
     §25.427(b), evaluated in one process, balance once)."""
     key = ("balanced_maneuvers", tuple(conditions), tuple((k, str(crit[k])) for k in BALANCE_CRITERIA))
     return ctx.memo(key, lambda: balanced_maneuvers(ctx, conditions, crit))
 
 
-def balanced_maneuvers(ctx, conditions, crit) -> dict:
+def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
     """Balanced states and loads of every condition (batched per configuration); findings, envelope, states."""
     findings, parts, labels, done, states, tail_parts = [], [], [], [], [], []
     by_cfg: dict[str, list] = {}
@@ -181,13 +191,12 @@ def balanced_maneuvers(ctx, conditions, crit) -> dict:
         labels += [c.label() for c in refined]
         done += refined
     if not parts:
-        return {"findings": findings, "envelope": None}
+        return BalancedRun(findings, reason="no condition could be balanced (see the findings)")
     hist = {s: np.concatenate([p[s] for p in parts])[None] for s in SURFACES}
     env = LoadEnvelope.from_histories(loads, hist, np.zeros(1), labels, keys=done)
     state = {k: np.concatenate([p[k] for p in states]) for k in states[0]}
     tail = tuple(np.concatenate([p[k] for p in tail_parts]) for k in (0, 1))
-    return {"findings": findings, "envelope": env, "conditions": done, "state": state, "loads": loads,
-            "tail_parts": tail}  # (aerodynamic, inertial) loads of the right half tailplane, (n, 3, S) each
+    return BalancedRun(findings, done, envelope=env, state=state, loads=loads, tail_parts=tail)
 
 
 def _check(cond, surface: str) -> str:

@@ -45,16 +45,21 @@ def vsr_cas(ctx, configuration: str, mass: float, h: float = 0.0) -> float:
 BANK_FRACTIONS = np.linspace(1.0, 0.0, 6)
 
 
+def _usages(res, limits) -> dict[str, float]:
+    """|deflection| / design limit (on the deflected side) of the rudder and the aileron of a trim."""
+    use = {}
+    for name in ("rudder", "aileron"):
+        d = res.controls[name]
+        lo, hi = limits[name]
+        use[name] = d / hi if d >= 0 else d / lo
+    return use
+
+
 def control_usage(res, limits) -> float:
     """Largest |deflection| / design limit of rudder and aileron (∞ when the trim did not converge)."""
     if not res.converged:
         return np.inf
-    use = []
-    for name in ("rudder", "aileron"):
-        d = res.controls[name]
-        lo, hi = limits[name]
-        use.append(d / hi if d >= 0 else d / lo)
-    return max(use)
+    return max(_usages(res, limits).values())
 
 
 def throttle_of(res) -> float:
@@ -140,6 +145,32 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
     return v, pinned_low, pinned_high, hist, last
 
 
+#: a trim whose lift-curve slope at its angle of attack is below this fraction of the linear slope is at the lift
+#: maximum: there is no steady flight at a lower speed whatever the controls (the stall limits, not the controls)
+STALL_SLOPE_FRACTION = 0.25
+
+
+def at_lift_maximum(ctx, configuration: str, res, step: float = np.radians(0.25)) -> bool:
+    """Whether the trim ``res`` (converged or its last iterate) is at the maximum of the lift curve of
+    ``configuration``: dCL/dα at its angle of attack, sideslip, Mach and controls below :data:`STALL_SLOPE_FRACTION`
+    of the linear slope CL_α — where a steady trim ceases to exist because the wing cannot give more lift."""
+    from certkit.atmosphere import speed_of_sound
+    from certkit.models.aero.interface import AeroState
+
+    model = ctx.aero(configuration).model
+    mach = float(res.V / speed_of_sound(res.h))
+    controls = {k: v for k, v in res.controls.items() if k in model.control_names}
+    cl = [float(np.asarray(model.coefficients(AeroState(alpha=res.alpha + d, beta=res.beta, mach=mach,
+                                                         controls=controls)).CL)) for d in (-step, step)]
+    return (cl[1] - cl[0]) / (2 * step) < STALL_SLOPE_FRACTION * float(model.derivative("CL_alpha", mach))
+
+
+def limiting_control(res, limits) -> str:
+    """The control at (or nearest) its design limit in the converged trim ``res``: 'rudder' or 'aileron'."""
+    use = _usages(res, limits)
+    return max(use, key=use.get)
+
+
 def vmca_from_grid(speeds, usage) -> float | None:
     """Highest speed where the control usage crosses 1 going down in speed (linear interpolation);
     None when the controls stay within their limits at every grid speed."""
@@ -177,8 +208,19 @@ def vmc_rows(ctx, conditions, *, bank_deg: float, throttle: float, low: float, h
                 vsr.append(v)
         banks = np.array(banks)
         vmca, lo, hi, hist, last = vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tolerance_kn * KN)
+        limits = control_limits(ctx.aircraft)
+        limited_by = []
+        for c, r, pinned in zip(conds, last, lo):
+            if pinned:
+                limited_by.append("none: controls within limits down to the search's lowest speed")
+            elif r is None:
+                limited_by.append("none found")
+            elif r.converged:
+                limited_by.append(limiting_control(r, limits))
+            else:  # the row ends where no steady trim exists below: the stall, or a trim that failed
+                limited_by.append("stall" if at_lift_maximum(ctx, c.configuration, r) else "trim failure")
         return {"vmca": vmca, "pinned_low": lo, "pinned_high": hi, "history": hist, "last": last, "banks": banks,
-                "vsr": vsr, "engines": engines, "conds": conds}
+                "vsr": vsr, "engines": engines, "conds": conds, "limited_by": limited_by}
 
     key = ("vmc rows", tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.get("inoperative")) for c in conditions),
            bank_deg, throttle, low, high, tolerance_kn)

@@ -108,9 +108,49 @@ def quantities(mode) -> dict[str, float]:
     }
 
 
-def _meets(lim: Limit, q: dict[str, float]) -> bool:
+def _meets(lim: Limit, q: dict):
+    """Whether the quantities ``q`` (scalars or arrays) meet the boundary ``lim`` (boolean, or an array of them)."""
     value = q[lim.quantity]
     return value >= lim.value if lim.bound == "min" else value <= lim.value
+
+
+def categories_of(configuration: str) -> tuple[str, ...]:
+    """MIL-F-8785C flight-phase categories read for a configuration: clean is both cruise manoeuvring (A) and
+    cruise (B); flaps or gear extended are terminal phases (C)."""
+    return ("A", "B") if CATEGORY.get(configuration, "B") == "B" else ("C",)
+
+
+def _time(value) -> np.ndarray:
+    """A time to half or double amplitude as an array: None or NaN (the mode does not converge, or diverge) → ∞."""
+    out = np.asarray(np.nan if value is None else value, dtype=float)
+    return np.where(np.isfinite(out), out, np.inf)
+
+
+def level_from_quantities(mode_name: str, category: str, *, zeta, wn, t_half=None, t_double=None):
+    """The MIL-F-8785C Level (1 best, 3 worst, 4 worse than Level 3) of a mode from its quantities — the damping
+    ratio ``zeta``, undamped natural frequency ``wn`` (rad/s), time to half amplitude ``t_half`` (s; None, NaN or
+    ∞ when the mode does not converge) and time to double ``t_double`` (s; likewise when it does not diverge) —
+    in flight-phase ``category``: the best Level whose every boundary of :data:`LIMITS` they meet (the roll-mode
+    time constant is t_half / ln 2). Scalars give an int; arrays (e.g. surrogate predictions of the quantities)
+    an int array of their broadcast shape."""
+    zeta, wn = np.asarray(zeta, dtype=float), np.asarray(wn, dtype=float)
+    q = {"zeta": zeta, "wn": wn, "zeta_wn": zeta * wn, "tau": _time(t_half) / np.log(2.0), "t_double": _time(t_double)}
+    shape = np.broadcast_shapes(*(np.shape(v) for v in q.values()))
+    level = np.full(shape, 4)
+    for lv in (3, 2, 1):
+        met = np.ones(shape, dtype=bool)
+        for lim in limits_for(mode_name, category, lv):
+            met &= np.asarray(_meets(lim, q), dtype=bool)
+        level = np.where(met, lv, level)
+    return int(level) if level.ndim == 0 else level
+
+
+def configuration_level(mode_name: str, configuration: str, **quantities):
+    """The worst of :func:`level_from_quantities` over the flight-phase categories a configuration is read in
+    (:func:`categories_of`): the level a design record gives for ``level.<mode>.<corner>.<configuration>``."""
+    levels = [level_from_quantities(mode_name, cat, **quantities) for cat in categories_of(configuration)]
+    out = np.maximum.reduce([np.asarray(v) for v in levels])
+    return int(out) if np.ndim(out) == 0 else out
 
 
 def level_of(mode_name: str, mode, category: str) -> tuple[int, str]:

@@ -6,7 +6,10 @@ condition's ``speed_point`` into a calibrated airspeed and the flap altitude lim
 
 from __future__ import annotations
 
+import math
 from collections import defaultdict
+
+import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit_rules.part25.support.control_speeds import vsr_cas
@@ -62,6 +65,40 @@ def speed_at_point(ctx, cond, point: str, low_factor: float = 1.13) -> tuple[flo
     named = {"1.13 VSR": low, "mid": 0.5 * (low + high), "max allowable": high}
     v = named[point] if point in named else float(point.split()[0]) * low / low_factor  # "1.3 VSR"
     return v, low, high
+
+
+def _throttle_limited(result) -> bool:
+    return not result.converged and any(e.control == "throttle" for e in result.limits_exceeded)
+
+
+def steady_flight_trims(ctx, conds):
+    """Trims of ``conds`` (one configuration) in the steady flight the airplane can hold at each condition: level
+    flight, or, where level flight needs more than full thrust (beyond the weight's level-flight ceiling), the steady
+    descent at full thrust, or where it needs less than idle, the steady climb at idle — the flight path solved by the
+    trim. A level trim that ran into a throttle stop does not say reliably which one (its iterate may end at either
+    bound), so full thrust is tried first and kept where it descends, then idle where it climbs. Returns (trim results,
+    throttle per condition: None for level flight, else the stop held)."""
+    results = list(ctx.trim(conds).results)
+    stops: list[float | None] = [None] * len(conds)
+    for stop, keep in ((1.0, lambda r: r.gamma <= 0.0), (0.0, lambda r: r.gamma >= 0.0)):
+        rows = [i for i, r in enumerate(results) if stops[i] is None and _throttle_limited(r)]
+        if not rows:
+            break
+        redo = ctx.trim([conds[i] for i in rows], throttle=stop).results
+        for i, r in zip(rows, redo):
+            if r.converged and keep(r):
+                results[i], stops[i] = r, stop
+    return results, stops
+
+
+def flight_described(result, stop) -> str:
+    """'level flight', or the steady descent/climb at a throttle stop with its flight-path angle."""
+    if stop is None:
+        return "level flight"
+    gamma = math.degrees(result.gamma)
+    path = "descent" if gamma < 0 else "climb"
+    return (f"steady {path} at {'full' if stop >= 1.0 else 'idle'} thrust, flight path {gamma:+.2f}° (level flight "
+            f"needs {'more than full' if stop >= 1.0 else 'less than idle'} thrust)")
 
 
 def by_configuration(conditions) -> dict[str, list[int]]:

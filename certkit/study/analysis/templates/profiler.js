@@ -95,6 +95,7 @@
     name.className = "pred" + (r.flagged ? " flagged" : "");
     name.id = "presp-" + j;
     name.setAttribute("data-response", r.name);
+    name.title = r.name;
     return vars.map(function () { return tr.insertCell(); });
   });
 
@@ -141,16 +142,17 @@
   function update() {
     vars.forEach(function (v, i) {
       var out = document.getElementById("pvalue-" + i);
-      out.textContent = fmt(x[i]) + (v.unit ? " " + v.unit : "") + ((x[i] < v.lower || x[i] > v.upper) ? " (outside the sampled region)" : "");
+      out.textContent = fmt(x[i] / (v.factor || 1)) + (v.unit ? " " + v.unit : "") + ((x[i] < v.lower || x[i] > v.upper) ? " (outside the sampled region)" : "");
     });
     resp.forEach(function (r, j) {
       var y0 = evaluate(r.model, x);
       var cell = document.getElementById("presp-" + j);
       cell.setAttribute("data-value", String(y0));
       var lim = [];
-      if (r.min !== null && r.min !== undefined) { lim.push("≥ " + fmt(r.min)); }
-      if (r.max !== null && r.max !== undefined) { lim.push("≤ " + fmt(r.max)); }
-      cell.textContent = r.name + " = " + fmt(y0) + (lim.length ? " (" + lim.join(", ") + ")" : "") +
+      var k = r.factor || 1, unit = r.unit ? " " + r.unit : "";
+      if (r.min !== null && r.min !== undefined) { lim.push("≥ " + fmt(r.min / k) + unit); }
+      if (r.max !== null && r.max !== undefined) { lim.push("≤ " + fmt(r.max / k) + unit); }
+      cell.textContent = (r.title || r.name) + " = " + fmt(y0 / k) + unit + (lim.length ? " (" + lim.join(", ") + ")" : "") +
         (r.flagged ? " — surrogate flagged (R² below threshold)" : "");
       drawRow(r, j, y0);
     });

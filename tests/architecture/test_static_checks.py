@@ -1,0 +1,17 @@
+"""Static checks run with the tests: mypy, strict, over the modules pyproject.toml lists under [tool.mypy]."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import tomllib
+
+from ..conftest import ROOT
+
+
+def test_the_listed_modules_pass_strict_mypy():
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["mypy"]
+    assert config["strict"] is True and config["files"], "the strict set is declared"
+    proc = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental"], cwd=ROOT, capture_output=True, text=True,
+                          timeout=600)
+    assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]

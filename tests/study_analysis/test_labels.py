@@ -1,0 +1,79 @@
+"""The study report in the study's declared units with response names in words: the profiler's sliders show the
+variables in their declared unit (ft², deg, not the SI number beside an aviation unit), its predictions and the
+CDF axes name the response in words in an aviation unit (block fuel in lb, range margin in nmi).
+
+References: exact unit definitions (1 lb = 0.45359237 kg, 1 nmi = 1852 m, 1 ft = 0.3048 m, 1 deg = π/180 rad)."""
+
+from __future__ import annotations
+
+import math
+import re
+from functools import lru_cache
+
+import pytest
+
+from certkit.study.analysis.labels import display_factor, response_axis, response_label
+from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
+from tests.study_analysis.synthetic import DEG, FT2, store_frame, study_dict, study_of
+
+
+def test_response_words_and_aviation_units():
+    assert response_label("objective.block_fuel_kg") == ("block fuel", "lb", pytest.approx(0.45359237, rel=1e-12))
+    assert response_label("constraint.range_margin_m") == ("range margin", "nmi", pytest.approx(1852.0, rel=1e-12))
+    assert response_label("objective.block_time_s") == ("block time", "h", pytest.approx(3600.0, rel=1e-12))
+    assert response_label("objective.cruise_CD") == ("cruise CD", "", 1.0)
+    assert response_label("subcheck.25.335(a).margin_m_s")[:2] == ("§25.335(a) margin", "kn")
+    assert response_axis("objective.OEW_kg") == "OEW (lb)"
+
+
+def test_declared_units_of_the_variables():
+    assert display_factor("ft^2") == pytest.approx(0.3048 ** 2, rel=1e-12)
+    assert display_factor("deg") == pytest.approx(math.pi / 180, rel=1e-12)
+    assert display_factor("") == 1.0 and display_factor("no-such-unit") == 1.0
+
+
+@lru_cache(maxsize=1)
+def _declared_units_report():
+    from certkit.study.analysis.report import analyse, render
+
+    study = study_dict(gp_max_cases=150)
+    for v in study["variables"]:
+        v["unit_label"] = {"rad": "deg", "m^2": "ft^2"}.get(v["unit_label"], v["unit_label"])
+    analysis = analyse(study_of(study), store_frame(n_train=200, n_val=60), samples=20_000, check=False)
+    return analysis, render(analysis)
+
+
+def test_cdf_axes_name_the_response_in_aviation_units():
+    analysis, html = _declared_units_report()
+    names = [c.response for c in analysis.view.constraints if c.response.endswith(("_kg", "_m", "_m_s"))]
+    assert names
+    cdfs = [svg for svg in re.findall(r"<svg.*?</svg>", html, re.S) if "P(success)" in svg]
+    assert cdfs
+    for name in names:
+        assert any(response_axis(name) in svg for svg in cdfs), name
+    assert not any(re.search(r"(constraint|objective)\.\w+", svg) for svg in cdfs)  # no internal key on an axis
+
+
+@MARKS[0]
+@MARKS[1]
+def test_profiler_shows_declared_units_and_response_words(browser, tmp_path):
+    analysis, html = _declared_units_report()
+    path = tmp_path / "index.html"
+    path.write_text(html, encoding="utf-8")
+    page, problems = open_page(browser, path, 1200, ready='#profiler[data-ready="1"]')
+    for i, v in enumerate(analysis.view.variables):
+        shown = page.text_content(f"#pvalue-{i}")
+        x = float(page.eval_on_selector(f"#pslider-{i}", "e => e.value"))
+        if v.unit_label == "ft^2":
+            assert shown.endswith(" ft^2") and float(shown.split()[0]) == pytest.approx(x / FT2, rel=1e-3)
+            assert 800 < float(shown.split()[0]) < 1500  # square feet, not the square metres of the SI value
+        if v.unit_label == "deg":
+            assert shown.endswith(" deg") and float(shown.split()[0]) == pytest.approx(x / DEG, rel=1e-3)
+    cells = page.eval_on_selector_all("td.pred", "els => els.map(e => [e.dataset.response, e.textContent])")
+    for key, text in cells:
+        words, unit, _ = response_label(key)
+        assert text.startswith(f"{words} = ") and key not in text
+        if unit:
+            assert f" {unit}" in text
+    assert problems == []
+    page.close()
