@@ -9,7 +9,7 @@ import pytest
 from certkit.study.analysis.cases import cases
 from certkit.study.analysis.montecarlo import run_monte_carlo
 from certkit.study.analysis.optimise import optimise
-from certkit.study.analysis.ranking import active_constraints, show_stoppers
+from certkit.study.analysis.ranking import active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.surrogates import fit_response
 from certkit.study.spec import Study
 
@@ -65,3 +65,22 @@ def test_active_constraints_at_the_constrained_optimum():
     assert constrained.x == pytest.approx([0.5, 1.0, 0.0], abs=1e-4)
     active = active_constraints(study, sur, optima)
     assert "f (constrained)" in active["sum"] and "cap" not in active
+
+
+def test_stages_and_optima_are_those_of_the_attainable_constraints():
+    """With x0 ≥ 2 unattainable every design fails the joint requirement; the stages are then those of the other
+    constraint (P(x0 + x1 + x2 ≤ 1.5) = 1/2 by symmetry about 1.5), the ranking keeps both."""
+    study = _study([{"name": "sum", "response": "s", "max": 1.5}, {"name": "never", "response": "a", "min": 2.0}])
+    _, sur = _setup(study)
+
+    def run(s):
+        return run_monte_carlo(s, sur, n=40_000, chunk=20_000, seed=4)
+
+    mc = run(study)
+    assert mc.stage_counts["constrained"] == 0
+    rest, stages = without_unattainable(study, sur, mc, run)
+    assert [c.name for c in rest.constraints] == ["sum"]
+    assert [o.constraint.name for o in stages.constraints] == ["sum", "never"]
+    p, se = stages.stage_p("constrained")
+    assert p == pytest.approx(0.5, abs=3 * se) and p == stages.constraints[0].p
+    assert [o.stage for o in stages.optima if o.objective == "f"].count("constrained") == 1

@@ -36,6 +36,26 @@ def _limits(study: Study, c) -> list[float]:
             if t is not None]
 
 
+def unattainable(mc: MonteCarloResult) -> list[str]:
+    """Names of the constraints no possible sample satisfies (P = 0, the level relaxation included)."""
+    return [o.constraint.name for o in mc.constraints
+            if not (o.relaxed_successes if o.relaxed_successes is not None else o.successes)]
+
+
+def without_unattainable(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run) -> tuple:
+    """(study without the show-stoppers, Monte Carlo result of its stages): with a constraint no design meets,
+    every design fails the joint requirement, so the stages, fronts and optima are those of the other
+    constraints (the show-stoppers are reported apart). ``run(study)`` repeats the Monte Carlo (same samples);
+    the per-constraint outcomes of the full run are kept."""
+    names = unattainable(mc)
+    if not names or len(names) == len(mc.constraints):
+        return study, mc
+    rest = study.model_copy(update={"constraints": [c for c in study.constraints if c.name not in names]})
+    stages = run(rest)
+    stages.constraints = mc.constraints
+    return rest, stages
+
+
 def show_stoppers(study: Study, mc: MonteCarloResult, cases: Cases, not_fitted: dict[str, str]) -> list[ShowStopper]:
     out = []
     for o in mc.constraints:

@@ -23,7 +23,7 @@ from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.planform import planform_from
-from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers
+from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_all
@@ -74,11 +74,12 @@ def _in_unit(value: float, unit: str) -> float:
         return value
 
 
-def _run_checks(usable: Study, store, surrogates, mc, optima) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
+def _run_checks(usable: Study, every: Study, store, surrogates, mc, optima
+                ) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
     check = direct_check(usable, store, surrogates, mc)
-    checked = reevaluate_optima(usable, store, surrogates, optima)
+    checked = reevaluate_optima(every, store, surrogates, optima)
     return check, checked, ""
 
 
@@ -99,6 +100,9 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     validity = fit_validity(frame, view)
     log(f"possible designs: {validity.note}")
     mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk, valid=validity.valid)
+    every = usable  # show-stoppers are ranked and reported; the stages, fronts and optima are of the rest
+    usable, mc = without_unattainable(usable, surrogates, mc, lambda rest: run_monte_carlo(
+        rest, surrogates, n=samples, chunk=chunk, valid=validity.valid))
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")
     t = time.perf_counter()
@@ -114,17 +118,17 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     checked, direct, check_note = [], None, "not run (--no-check)"
     if check:
         t = time.perf_counter()
-        direct, checked, check_note = _run_checks(usable, store, surrogates, mc, points)
+        direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
         checked = [CheckedOptimum(o, "not evaluated", check_note, {}, {
-            r: float(surrogates[r].predict(o.x[None, :])[0]) for r in usable.analysed_responses()
+            r: float(surrogates[r].predict(o.x[None, :])[0]) for r in every.analysed_responses()
             if r in surrogates}) for o in points]
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
     return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
-                    check_note, checked[:len(optima)], profiler_data(usable, surrogates), timings, validity, nsga,
-                    checked[len(optima):], show_stoppers(usable, mc, cs, not_fitted),
+                    check_note, checked[:len(optima)], profiler_data(every, surrogates), timings, validity, nsga,
+                    checked[len(optima):], show_stoppers(every, mc, cs, not_fitted),
                     active_constraints(usable, surrogates, optima))
 
 
