@@ -239,6 +239,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     warning = inertia_comparison(loaded.model)
     if warning:
         click.echo(f"warning: {warning}", err=True)
+    if not quiet and output_format == "text":
+        from certkit.models.compiled import kernels_cached
+
+        if not kernels_cached():
+            click.echo("compiling certkit's numba kernels (once after an install; cached for later runs)…", err=True)
     progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
         # the missions are flown in this process while the workers evaluate the rules

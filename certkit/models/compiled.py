@@ -13,6 +13,8 @@ element, the same values, with nothing to check.
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import numpy.typing as npt
 from numba import njit
@@ -29,3 +31,15 @@ def copy_row(destination, source):  # type: ignore[no-untyped-def]
     """``destination[:] = source`` for two 1-D arrays of the same length, element by element."""
     for k in range(source.shape[0]):
         destination[k] = source[k]
+
+
+def kernels_cached() -> bool:
+    """Does numba's cache hold the compiled equations of motion (False at the first run after an install, when the
+    kernels are compiled: the command says so before it goes quiet for a while)?"""
+    from certkit.models.dynamics import kernel
+
+    try:
+        index = kernel.derivatives._cache._cache_file._index_path  # numba's cache layout, not a public API
+    except AttributeError:
+        return True  # another numba: say nothing rather than guess
+    return os.path.exists(index)
