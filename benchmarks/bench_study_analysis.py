@@ -18,10 +18,11 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from certkit.study.analysis.inputs import cases, study_view  # noqa: E402
+from certkit.study.analysis.cases import cases  # noqa: E402
 from certkit.study.analysis.montecarlo import run_monte_carlo  # noqa: E402
-from certkit.study.analysis.report import _fit_all, write_study_report  # noqa: E402
-from tests.study_analysis.synthetic import frame_of, sample, study_dict, unit  # noqa: E402
+from certkit.study.analysis.report import write_study_report  # noqa: E402
+from certkit.study.analysis.surrogates import fit_all  # noqa: E402
+from tests.study_analysis.synthetic import frame_of, sample, study_dict, study_of, unit  # noqa: E402
 
 EXTRA_RULES = ["25.331(c)(1)", "25.331(c)(2)", "25.333", "25.349(b)", "25.143(h)", "25.111", "25.125", "25.145(a)"]
 
@@ -29,6 +30,7 @@ EXTRA_RULES = ["25.331(c)(1)", "25.331(c)(2)", "25.333", "25.349(b)", "25.143(h)
 def seed_sized_study():
     study = study_dict(level_relaxation=[{"responses": "level.*.cg2*.*", "max_level": 2}],
                        uncertainty=[{"responses": "rule.25.331*", "percent": 10, "distribution": "uniform"}])
+    study["constraints"] += [{"name": f"§{r}", "response": f"rule.{r}.margin", "min": 0.0} for r in EXTRA_RULES]
     frames = []
     for x, block, role, seed in ((sample(793, 1), "ccd+lhs", "training", 1), (sample(200, 2), "random", "validation", 2)):
         df = frame_of(x, block, role, fail_every=40, noise=0.002, seed=seed)
@@ -38,10 +40,9 @@ def seed_sized_study():
             df[f"resp:rule.{rule}.margin"] = 0.1 + 0.15 * u @ w / 4 + 0.05 * u[:, k % 8] ** 2
             df.loc[df["status"] == "failed", f"resp:rule.{rule}.margin"] = np.nan
         frames.append(df)
-    study["constraints"] += [{"name": f"§{r}", "response": f"rule.{r}.margin", "min": 0.0} for r in EXTRA_RULES]
     import pandas as pd
 
-    return study, pd.concat(frames, ignore_index=True)
+    return study_of(study), pd.concat(frames, ignore_index=True)
 
 
 def main() -> None:
@@ -50,9 +51,9 @@ def main() -> None:
     ap.add_argument("--report", action="store_true", help="also write the whole report (to /tmp)")
     args = ap.parse_args()
     study, frame = seed_sized_study()
-    view = study_view(study)
+    view = study
     t0 = time.perf_counter()
-    surrogates, not_fitted = _fit_all(view, cases(frame, view), lambda m: None)
+    surrogates, not_fitted = fit_all(view, cases(frame, view), lambda m: None)
     t_fit = time.perf_counter() - t0
     kinds = {}
     for s in surrogates.values():

@@ -147,10 +147,24 @@ def status(target, store):
 @_store_option
 @click.option("--format", "fmt", type=click.Choice(["csv", "parquet"]), default="csv", show_default=True)
 @click.option("--out", type=click.Path(dir_okay=False), help="Output file (default: the store's name, .csv/.parquet).")
-def export(target, store, fmt, out):
-    """Write one row per case (variables in SI, responses, status, error, wall time, worker) as CSV or Parquet."""
+@click.option("--surrogates", "surrogates_out", type=click.Path(dir_okay=False), default=None,
+              help="Instead of the cases: fit the study's surrogates and write them to this JSON file "
+                   "(read by `certkit study predict` and certkit.study.load_surrogates; TARGET: the study file).")
+def export(target, store, fmt, out, surrogates_out):
+    """Write one row per case (variables in SI, responses, status, error, wall time, worker) as CSV or Parquet,
+    or (--surrogates) the study's fitted surrogates."""
     from certkit.study.store import Store, export as write
 
+    if surrogates_out:
+        from certkit.errors import UserError
+        from certkit.study.analysis.cli import export_surrogates
+
+        if not _is_study_file(target):
+            raise UserError(f"{target}: --surrogates needs the study file (its objectives and constraints)")
+        written = export_surrogates(Path(target), Path(store) if store else None, Path(surrogates_out),
+                                    log=lambda msg: click.echo(msg, err=True))
+        click.echo(f"exported: {written}")
+        return
     path = _store_of(target, store)
     with Store.open(path) as db:
         written = write(db, Path(out) if out else path.with_suffix(f".{fmt}"), fmt)
@@ -166,9 +180,10 @@ def schema():
 
 
 def _register_report() -> None:
-    from certkit.study.analysis.cli import report_command
+    from certkit.study.analysis.cli import predict_command, refine_command, report_command
 
-    study.add_command(report_command)
+    for command in (report_command, refine_command, predict_command):
+        study.add_command(command)
 
 
 _register_report()

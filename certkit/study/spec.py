@@ -13,6 +13,8 @@ from fnmatch import fnmatchcase
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
+import numpy as np
+
 from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, ValidationInfo,
                       WithJsonSchema, field_validator, model_validator)
 
@@ -77,6 +79,12 @@ class Variable(_Model):
     @property
     def upper(self) -> float:
         return self.bounds[1]
+
+    @property
+    def short(self) -> str:
+        """The last words of the path, enough to tell the variables apart in tables and plots."""
+        parts = self.path.split(".")
+        return ".".join(parts[-2:]) if parts[-2] in ("elevator",) else parts[-1]
 
     @model_validator(mode="before")
     @classmethod
@@ -187,6 +195,9 @@ class Objective(_Model):
     sense: Literal["min", "max"] = "min"
 
 
+LEVEL_PREFIX = "level."
+
+
 class Constraint(_Model):
     """Feasible when ``min <= response <= max`` (either side optional, SI units)."""
 
@@ -203,6 +214,85 @@ class Constraint(_Model):
             raise ValueError(f"min ({self.min:g}) is above max ({self.max:g})")
         return self
 
+    @property
+    def is_level(self) -> bool:
+        """A MIL-F-8785C handling-quality level (1 best) rather than a continuous quantity."""
+        return self.response.startswith(LEVEL_PREFIX)
+
+    def feasible(self, values: np.ndarray, max_override: float | None = None) -> np.ndarray:
+        """Boolean mask of feasible values. A level (an integer 1..3, or a regression of it) counts as level L
+        where the value is below L + 0.5; ``max_override`` replaces the declared maximum (level relaxation)."""
+        lo, hi = self.min, self.max if max_override is None else max_override
+        if self.is_level:
+            lo = None if lo is None else lo - 0.5
+            hi = None if hi is None else hi + 0.5
+        values = np.asarray(values, dtype=float)
+        ok = np.isfinite(values)
+        if lo is not None:
+            ok &= values >= lo
+        if hi is not None:
+            ok &= values <= hi
+        return ok
+
+    def describe(self) -> str:
+        if self.min is not None and self.max is not None:
+            return f"{self.min:g} ≤ {self.response} ≤ {self.max:g}"
+        if self.min is not None:
+            return f"{self.response} ≥ {self.min:g}"
+        return f"{self.response} ≤ {self.max:g}"
+
+
+class LevelRelaxation(_Model):
+    """Level constraints whose response matches ``responses`` accept ``max_level`` in the constrained stage."""
+
+    responses: str = Field(description="glob pattern of level constraint responses, e.g. level.*.cg2*.*")
+    max_level: int = Field(ge=1, le=3, description="the worst MIL-F-8785C level accepted (1, 2 or 3)")
+
+    @property
+    def pattern(self) -> str:
+        return self.responses
+
+
+class Uncertainty(_Model):
+    """Relative model uncertainty on the surrogate outputs of the constraint responses matching ``responses``:
+    value × (1 + δ), δ ~ U(−p, +p) for ``uniform`` or N(0, p²) for ``normal``, p = percent / 100."""
+
+    responses: str = Field(description="glob pattern of constraint responses, e.g. travel.*")
+    percent: float = Field(ge=0, description="p in percent (one standard deviation for normal)")
+    distribution: Literal["uniform", "normal"] = "uniform"
+
+    @property
+    def pattern(self) -> str:
+        return self.responses
+
+
+class AnalysisOptions(_Model):
+    """Options of ``certkit study report`` (the study file's ``analysis:`` mapping)."""
+
+    r2_threshold: float = Field(0.9, le=1.0, description="R² (cross-validated, or on validation) below which a "
+                                                         "surrogate is flagged")
+    level_relaxation: list[LevelRelaxation] = Field(default_factory=list)
+    uncertainty: list[Uncertainty] = Field(default_factory=list)
+    profiler: list[str] | None = Field(None, description="constraint responses shown in the profiler "
+                                                         "(default: every constraint's)")
+    gp_max_cases: int = Field(600, ge=0, description="a Gaussian process is fitted on at most this many training "
+                                                     "cases (a maximin subsample of them above it; 0: no Gaussian "
+                                                     "process)")
+
+    def relaxed_max(self, constraint: Constraint) -> float | None:
+        """The maximum level the constrained stage accepts for ``constraint`` (None: the declared one)."""
+        if not constraint.is_level:
+            return None
+        levels = [r.max_level for r in self.level_relaxation if fnmatchcase(constraint.response, r.responses)]
+        return float(max(levels)) if levels else None
+
+    def uncertainty_for(self, response: str) -> Uncertainty | None:
+        return next((u for u in self.uncertainty if fnmatchcase(response, u.responses)), None)
+
+
+def _no_analysis(value: object) -> object:
+    return {} if value is None else value
+
 
 class Study(_Model):
     """A design study: variables with bounds, designs of experiments, and what each case records."""
@@ -218,8 +308,8 @@ class Study(_Model):
                                  "records (e.g. objective.*, rule.*.margin); empty = every response")
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
-    analysis: dict | None = Field(None, description="options of `certkit study report` (r2_threshold, level_relaxation, "
-                                                    "uncertainty, profiler, gp_max_cases; see docs/design-studies.md)")
+    analysis: Annotated[AnalysisOptions, BeforeValidator(_no_analysis)] = Field(
+        default_factory=AnalysisOptions, description="options of `certkit study report` (see docs/design-studies.md)")
 
     def variable_paths(self) -> list[str]:
         return [v.path for v in self.variables]
@@ -227,6 +317,26 @@ class Study(_Model):
     def requested(self, response: str) -> bool:
         """True when ``response`` is matched by one of the study's response patterns (every one if none)."""
         return not self.responses or any(fnmatchcase(response, p) for p in self.responses)
+
+    @property
+    def bounds(self) -> np.ndarray:
+        """(n_variables, 2) array of lower and upper bounds (SI)."""
+        return np.array([[v.lower, v.upper] for v in self.variables], dtype=float)
+
+    @property
+    def baseline(self) -> np.ndarray:
+        return np.array([v.baseline for v in self.variables], dtype=float)
+
+    def analysed_responses(self) -> list[str]:
+        """Responses the analysis fits surrogates for: objectives, constraints and profiled responses."""
+        names = [o.response for o in self.objectives] + [c.response for c in self.constraints]
+        names += list(self.analysis.profiler or ())
+        return list(dict.fromkeys(names))
+
+    def profiled_constraints(self) -> list[str]:
+        if self.analysis.profiler is not None:
+            return list(self.analysis.profiler)
+        return list(dict.fromkeys(c.response for c in self.constraints))
 
 
 _MIN_FACTORS = {"ccd": 2, "box-behnken": 3}
@@ -258,6 +368,28 @@ def relation_problems(study: Study) -> list[Found]:
             if not study.requested(item.response):
                 found.append(((section, i, "response"), "not recorded: no pattern of `responses:` matches it",
                               item.response))
+    found += _analysis_problems(study)
+    return found
+
+
+def _analysis_problems(study: Study) -> list[Found]:
+    """Analysis options that would silently do nothing: an uncertainty or relaxation pattern matching no
+    constraint (a level constraint for a relaxation), a profiled response the study does not record."""
+    found: list[Found] = []
+    options = study.analysis
+    responses = [c.response for c in study.constraints]
+    levels = [c.response for c in study.constraints if c.is_level]
+    for i, u in enumerate(options.uncertainty):
+        if not any(fnmatchcase(r, u.responses) for r in responses):
+            found.append((("analysis", "uncertainty", i, "responses"),
+                          "matches no constraint's response (the uncertainty applies to constraints)", u.responses))
+    for i, r in enumerate(options.level_relaxation):
+        if not any(fnmatchcase(name, r.responses) for name in levels):
+            found.append((("analysis", "level_relaxation", i, "responses"), "matches no level constraint's response",
+                          r.responses))
+    for i, name in enumerate(options.profiler or ()):
+        if not study.requested(name):
+            found.append((("analysis", "profiler", i), "not recorded: no pattern of `responses:` matches it", name))
     return found
 
 

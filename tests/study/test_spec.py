@@ -45,7 +45,7 @@ def test_seed_study_constrains_every_subpart_b_and_c_rule():
                                                           "en_route_oei_vfto_40deg", "landing_aeo_vref_40deg")
             for c in ("elevator", "aileron", "rudder")} <= responses
     assert "subcheck.25.125.touchdown_rate_of_descent.margin" in responses
-    relaxed = [r["responses"] for r in study.analysis["level_relaxation"]]
+    relaxed = [r.responses for r in study.analysis.level_relaxation]
     assert "level.phugoid.*.takeoff" in relaxed and any(c.startswith("level.phugoid.") for c in responses)
 
 

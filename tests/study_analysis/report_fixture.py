@@ -6,7 +6,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from certkit.study.analysis.report import analyse, render
-from tests.study_analysis.synthetic import store_frame, study_dict
+from tests.study_analysis.synthetic import store_frame, synthetic_study
 
 OPTIONS = {"level_relaxation": [{"responses": "level.*.cg2*.*", "max_level": 2}],
            "uncertainty": [{"responses": "subcheck.*", "percent": 5, "distribution": "normal"}],
@@ -16,7 +16,7 @@ OPTIONS = {"level_relaxation": [{"responses": "level.*.cg2*.*", "max_level": 2}]
 @lru_cache(maxsize=1)
 def small_report():
     """(analysis, html) of a synthetic study: 200 training and 60 validation cases, 1 in 25 failed."""
-    analysis = analyse(study_dict(**OPTIONS), store_frame(n_train=200, n_val=60), samples=20_000, check=False)
+    analysis = analyse(synthetic_study(**OPTIONS), store_frame(n_train=200, n_val=60), samples=20_000, check=False)
     return analysis, render(analysis)
 
 

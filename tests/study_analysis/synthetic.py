@@ -13,6 +13,8 @@ import math
 import numpy as np
 import pandas as pd
 
+from certkit.study.spec import Study
+
 FT2 = 0.09290304
 DEG = math.pi / 180.0
 HT = "geometry.horizontal_tail."
@@ -32,9 +34,13 @@ VARIABLES = [
 
 
 def study_dict(**analysis) -> dict:
+    """The study file's data (before validation); the aircraft file is never read by the analysis."""
     return {
         "name": "synthetic-ht",
-        "variables": VARIABLES,
+        "aircraft": "lta.yaml",
+        "variables": [{"path": v["path"], "baseline": v["baseline"], "bounds": [v["lower"], v["upper"]],
+                       "unit_label": v["unit_label"]} for v in VARIABLES],
+        "designs": [{"name": "lhs", "generator": "lhs", "n": 10, "seed": 1}],
         "objectives": [{"response": "objective.cruise_CD"}, {"response": "objective.OEW_kg"},
                        {"response": "objective.block_fuel_kg"}],
         "constraints": [
@@ -45,6 +51,15 @@ def study_dict(**analysis) -> dict:
         ],
         "analysis": analysis or None,
     }
+
+
+def study_of(data: dict) -> Study:
+    """The validated study model of ``data``."""
+    return Study.model_validate(data)
+
+
+def synthetic_study(**analysis) -> Study:
+    return study_of(study_dict(**analysis))
 
 
 def unit(x: np.ndarray) -> np.ndarray:

@@ -34,7 +34,9 @@ def test_profiler_follows_the_sliders_as_the_surrogates_do(browser, tmp_path):
         assert x[i] == pytest.approx(target, rel=1e-12)
         shown = page.eval_on_selector_all("td.pred", "els => els.map(e => parseFloat(e.dataset.value))")
         expected = [float(analysis.surrogates[r].predict(x[None, :])[0]) for r in names]
-        np.testing.assert_allclose(shown, expected, rtol=1e-9, atol=1e-12)
+        # 1e-9, or 1e-7 for a near-interpolating Gaussian process (weights α of ±3·10⁴ summed to 10⁵ in another order)
+        rtol = np.array([1e-7 if analysis.surrogates[r].kept.family == "Gaussian process" else 1e-9 for r in names])
+        assert np.all(np.abs(np.array(shown) - expected) <= rtol * np.abs(expected) + 1e-12), (shown, expected)
         # the slope indicator of the first response against the moved variable: a central difference
         slope = float(page.eval_on_selector(f"#presp-0 ~ td:nth-of-type({i + 2}) svg", "s => s.dataset.slope"))
         h = 1e-4 * (v.upper - v.lower)

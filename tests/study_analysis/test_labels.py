@@ -14,7 +14,7 @@ import pytest
 
 from certkit.study.analysis.labels import display_factor, response_axis, response_label
 from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
-from tests.study_analysis.synthetic import DEG, FT2, VARIABLES, store_frame, study_dict
+from tests.study_analysis.synthetic import DEG, FT2, store_frame, study_dict, study_of
 
 
 def test_response_words_and_aviation_units():
@@ -36,12 +36,10 @@ def test_declared_units_of_the_variables():
 def _declared_units_report():
     from certkit.study.analysis.report import analyse, render
 
-    variables = [dict(v) for v in VARIABLES]
-    for v in variables:
-        v["unit_label"] = {"rad": "deg", "m^2": "ft^2"}.get(v["unit_label"], v["unit_label"])
     study = study_dict(gp_max_cases=150)
-    study["variables"] = variables
-    analysis = analyse(study, store_frame(n_train=200, n_val=60), samples=20_000, check=False)
+    for v in study["variables"]:
+        v["unit_label"] = {"rad": "deg", "m^2": "ft^2"}.get(v["unit_label"], v["unit_label"])
+    analysis = analyse(study_of(study), store_frame(n_train=200, n_val=60), samples=20_000, check=False)
     return analysis, render(analysis)
 
 

@@ -4,18 +4,17 @@ the direct check through a monkeypatched study runner."""
 from __future__ import annotations
 
 import math
-import sys
 import tracemalloc
-import types
 
 import numpy as np
 import pandas as pd
 import pytest
 
+from certkit.study.analysis import checks
 from certkit.study.analysis.checks import direct_check, reevaluate_optima
-from certkit.study.analysis.inputs import study_view
 from certkit.study.analysis.montecarlo import run_monte_carlo
 from certkit.study.analysis.surrogates import fit_response
+from certkit.study.spec import Study
 
 D = 8
 
@@ -27,11 +26,10 @@ def irwin_hall_cdf(t: float, n: int) -> float:
 
 
 def _view(constraints, objectives=(), **analysis):
-    return study_view({"name": "unit-box",
-                       "variables": [{"path": f"x{i}", "lower": 0.0, "upper": 1.0, "baseline": 0.5}
-                                     for i in range(D)],
-                       "objectives": [{"response": o} for o in objectives], "constraints": constraints,
-                       "analysis": analysis or None})
+    return Study.model_validate({
+        "name": "unit-box", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+        "objectives": [{"response": o} for o in objectives], "constraints": constraints, "analysis": analysis or None})
 
 
 def _exact(name, fn, n=60, seed=0):
@@ -102,10 +100,10 @@ def _install_runner(monkeypatch, true_fn, fail=lambda x: np.zeros(len(x), dtype=
     calls = []
 
     def run_study_cases(study, store, points, *, block, role, **kw):
-        x = np.array([[p[f"x{i}"] for i in range(D)] for p in points])
+        x = np.array([[p[f"v.x{i}"] for i in range(D)] for p in points])
         calls.append((block, role, len(points)))
         bad = fail(x)
-        df = pd.DataFrame({f"var:x{i}": x[:, i] for i in range(D)})
+        df = pd.DataFrame({f"var:v.x{i}": x[:, i] for i in range(D)})
         for name, vals in true_fn(x).items():
             df[f"resp:{name}"] = np.where(bad, np.nan, vals)
         df["key"] = [f"k{block}{i}" for i in range(len(x))]
@@ -114,12 +112,7 @@ def _install_runner(monkeypatch, true_fn, fail=lambda x: np.zeros(len(x), dtype=
         df["error"] = np.where(bad, "sizing loop diverged", None)
         return df.iloc[::-1]  # in another order than asked: the analysis must match them up
 
-    module = types.ModuleType("certkit.study.runner")
-    module.run_study_cases = run_study_cases
-    monkeypatch.setitem(sys.modules, "certkit.study.runner", module)
-    import certkit.study
-
-    monkeypatch.setattr(certkit.study, "runner", module, raising=False)
+    monkeypatch.setattr(checks.runner, "run_study_cases", run_study_cases)
     return calls
 
 
@@ -130,7 +123,7 @@ def test_direct_check_and_optima_through_the_runner(monkeypatch):
     mc = run_monte_carlo(view, sur, n=50_000, chunk=25_000, seed=4)
     calls = _install_runner(monkeypatch, lambda x: {"s": x.sum(axis=1), "a": x[:, 0] - x[:, 1]},
                             fail=lambda x: x[:, 7] > 0.9)
-    check = direct_check({}, object(), view, sur, mc, n=400, seed=5)
+    check = direct_check(view, object(), sur, mc, n=400, seed=5)
     assert calls[0] == ("check", "check", 400)
     assert 0 < check.n_failed < 80 and check.n_ok + check.n_failed == 400
     assert all(err == "sizing loop diverged" for _, err in check.failures)
@@ -144,7 +137,7 @@ def test_direct_check_and_optima_through_the_runner(monkeypatch):
     assert k.p_mc == pytest.approx(irwin_hall_cdf(t, D), abs=3 * k.se_mc)
     assert check.joint.p_true == k.p_true
     optima = [o for o in mc.optima if o.objective == "a"]
-    checked = reevaluate_optima({}, object(), view, sur, optima)
+    checked = reevaluate_optima(view, object(), sur, optima)
     assert calls[1] == ("optima", "check", len(optima))
     for c in checked:
         assert c.status == "ok"

@@ -13,7 +13,7 @@ from click.testing import CliRunner
 from certkit.study.analysis import cli as analysis_cli
 from certkit.study.analysis.export import evaluate_export
 from tests.study_analysis.report_fixture import small_report
-from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, study_dict
+from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, synthetic_study
 
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
 
@@ -57,7 +57,7 @@ def test_html_is_well_formed_and_self_contained():
 
 def test_report_content():
     analysis, html = small_report()
-    assert analysis.view.sha256 in html
+    assert analysis.sha256 in html
     assert "trim did not converge at 25.331(c)(2) condition 3" in html
     n_failed = int((store_frame(n_train=200, n_val=60)["status"] == "failed").sum())
     assert f"{n_failed} failed cases, excluded from fitting" in html
@@ -81,8 +81,11 @@ def test_profiler_data_reproduces_the_surrogates():
     assert [v["path"] for v in data["variables"]] == [v["path"] for v in VARIABLES]
     x = sample(10, 9)
     for r in data["responses"]:
+        # a near-interpolating Gaussian process sums weights α of ±3·10⁴ to values of 10⁵: the page's loop and
+        # scikit-learn's matrix product, adding in other orders, agree to ~10⁻⁸ (1e-9 where no such cancellation)
+        gp = r["model"]["kind"] == "gp"
         np.testing.assert_allclose(evaluate_export(r["model"], x), analysis.surrogates[r["name"]].predict(x),
-                                   rtol=1e-9, atol=1e-12)
+                                   rtol=1e-7 if gp else 1e-9, atol=1e-12)
 
 
 def test_report_command(tmp_path, monkeypatch):
@@ -95,7 +98,7 @@ def test_report_command(tmp_path, monkeypatch):
         seen.update(kw, study=study_def, frame=frame_, out=out)
         return out / "index.html"
 
-    monkeypatch.setattr(analysis_cli, "open_study", lambda path, store_path: (study_dict(), "STORE", frame, None))
+    monkeypatch.setattr(analysis_cli, "open_study", lambda path, store_path: (synthetic_study(), "STORE", frame))
     monkeypatch.setattr("certkit.study.analysis.report.write_study_report", write_study_report)
     result = CliRunner().invoke(analysis_cli.report_command,
                                 [str(study), "--out", str(tmp_path / "out"), "--samples", "2e4", "--no-check"])
@@ -109,13 +112,35 @@ def test_report_command(tmp_path, monkeypatch):
     assert bad.exit_code == 2 and "whole number" in bad.output
 
 
-def test_bad_analysis_option_is_a_user_error(tmp_path, monkeypatch):
-    study = tmp_path / "study.yaml"
-    study.write_text("name: x\n")
-    frame = store_frame(n_train=40, n_val=0)
-    monkeypatch.setattr(analysis_cli, "open_study", lambda p, s: (
-        study_dict(level_relaxation=[{"responses": "level.*", "max_level": 5}]), None, frame, None))
-    result = CliRunner().invoke(analysis_cli.report_command, [str(study), "--out", str(tmp_path / "o")])
-    assert result.exit_code == 2
-    assert "analysis.level_relaxation[0].max_level: MIL-F-8785C levels are 1, 2 or 3, got 5" in result.output
+def test_bad_analysis_options_are_errors_with_their_lines(tmp_path, cli):
+    """An analysis option out of range, and an uncertainty or relaxation entry that matches no constraint (it
+    would silently do nothing), are errors of the study file: YAML path and line, exit 2, no traceback."""
+    from tests.study.conftest import write_study
+
+    options = """\
+  - {name: sp, response: level.short_period.fwd_mrw.clean, max: 1}
+analysis:
+  level_relaxation:
+    - {responses: "level.*", max_level: LEVEL}
+    - {responses: "level.phugoid.*", max_level: 2}
+  uncertainty:
+    - {responses: "rule.25.331*", percent: 10}
+    - {responses: "constraint.*", percent: 5, distribution: normal}
+"""
+    path = write_study(tmp_path, extra=options.replace("LEVEL", "5"))
+    path.write_text(path.read_text().replace("subcheck.*]", "subcheck.*, level.*]"))
+    result = cli("study", "report", path, "--out", tmp_path / "o")
+    assert result.exit_code == 2, result.output
+    assert "small.yaml:17: analysis.level_relaxation.0.max_level" in result.output, result.output
+    path = write_study(tmp_path, extra=options.replace("LEVEL", "2"))
+    path.write_text(path.read_text().replace("subcheck.*]", "subcheck.*, level.*]"))
+    result = cli("study", "report", path, "--out", tmp_path / "o")
+    assert result.exit_code == 2, result.output
     assert "Traceback" not in result.output
+    found = dict(re.findall(r"small\.yaml:(\d+): (\S+): ", result.output))
+    assert found.get("18") == "analysis.level_relaxation.1.responses", result.output
+    assert "matches no level constraint" in result.output
+    assert found.get("20") == "analysis.uncertainty.0.responses", result.output
+    assert "matches no constraint's response" in result.output and "rule.25.331*" in result.output
+    assert "analysis.uncertainty.1" not in result.output  # constraint.* matches the range constraint
+    assert "analysis.level_relaxation.0" not in result.output

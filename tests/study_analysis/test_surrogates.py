@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from certkit.study.analysis.export import evaluate_export, export_surrogate
-from certkit.study.analysis.inputs import cases, study_view
+from certkit.study.analysis.cases import cases
 from certkit.study.analysis.surrogates import fit_response, n_polynomial_terms
-from tests.study_analysis.synthetic import VARIABLES, store_frame, study_dict
+from tests.study_analysis.synthetic import VARIABLES, store_frame, synthetic_study
 
 D = 8
 BOX = np.array([[-1.0, 1.0]] * D)
@@ -72,7 +72,7 @@ def test_log_transform_chosen_for_a_multiplicative_response_only():
 
 def test_failed_cases_excluded_and_counted_and_noise_flagged():
     frame = store_frame(n_train=100, n_val=40, fail_every=10)
-    view = study_view(study_dict())
+    view = synthetic_study()
     cs = cases(frame, view)
     x, y, missing = cs.xy("training", "objective.cruise_CD")
     assert len(y) == 90 and missing == 0 and np.isfinite(y).all()

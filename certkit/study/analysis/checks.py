@@ -9,22 +9,23 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from certkit.study.analysis.inputs import RESP_PREFIX, VAR_PREFIX, Constraint, StudyView
+from certkit.study import runner
+from certkit.study.analysis.cases import RESP_PREFIX, VAR_PREFIX
+from certkit.study.analysis.intervals import wilson
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, binomial_se
 from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.spec import Constraint, Study
 
 
-def run_true_model(study, store, view: StudyView, x: np.ndarray, *, block: str, role: str = "check") -> pd.DataFrame:
+def run_true_model(study: Study, store, x: np.ndarray, *, block: str, role: str = "check") -> pd.DataFrame:
     """Evaluate the designs ``x`` (rows, SI, in the order of the study's variables) with the true model through
     the study runner; returns the cases in the store's frame format, in the order of ``x``."""
-    from certkit.study import runner  # the study runner (branch "study"); imported when a check is asked for
-
-    points = [{v.path: float(val) for v, val in zip(view.variables, row)} for row in np.atleast_2d(x)]
+    points = [{v.path: float(val) for v, val in zip(study.variables, row)} for row in np.atleast_2d(x)]
     frame = runner.run_study_cases(study, store, points, block=block, role=role)
     if not isinstance(frame, pd.DataFrame):
         frame = store.frame()
         frame = frame[frame["block"] == block]
-    columns = [VAR_PREFIX + v.path for v in view.variables]
+    columns = [VAR_PREFIX + v.path for v in study.variables]
     # match the returned cases to the requested points (a resumed check may return them in another order)
     table = frame[columns].to_numpy(dtype=float)
     rows = []
@@ -47,6 +48,11 @@ class CheckedConstraint:
     se_mc: float
 
     @property
+    def interval_true(self) -> tuple[float, float]:
+        """95 % Wilson interval of the true model's probability of success on its n designs."""
+        return wilson(round(self.p_true * self.n), self.n)
+
+    @property
     def difference(self) -> float:
         return self.p_true - self.p_mc
 
@@ -65,44 +71,44 @@ class DirectCheck:
     joint: CheckedConstraint | None
 
 
-def _feasible_all(view: StudyView, values: dict[str, np.ndarray], n: int) -> np.ndarray:
+def _feasible_all(study: Study, values: dict[str, np.ndarray], n: int) -> np.ndarray:
     ok = np.ones(n, dtype=bool)
-    for c in view.constraints:
-        ok &= c.feasible(values[c.response], view.options.relaxed_max(c))
+    for c in study.constraints:
+        ok &= c.feasible(values[c.response], study.analysis.relaxed_max(c))
     return ok
 
 
-def direct_check(study, store, view: StudyView, surrogates: dict[str, Surrogate], mc: MonteCarloResult, *,
+def direct_check(study: Study, store, surrogates: dict[str, Surrogate], mc: MonteCarloResult, *,
                  n: int = 100, seed: int = 7) -> DirectCheck:
     """Draw ``n`` fresh uniform designs (a seed other than the Monte Carlo's), evaluate them with the true model
     and compare each constraint's probability of success (and the joint one) with the Monte Carlo estimate."""
-    bounds = view.bounds
+    bounds = study.bounds
     rng = np.random.default_rng([seed, mc.seed])
     x = bounds[:, 0] + (bounds[:, 1] - bounds[:, 0]) * rng.random((n, len(bounds)))
-    frame = run_true_model(study, store, view, x, block="check", role="check")
+    frame = run_true_model(study, store, x, block="check", role="check")
     ok = (frame["status"] == "ok").to_numpy()
     failures = [(str(r.get("key", "")), str(r.get("error", ""))) for _, r in frame[~ok].iterrows()]
     x_ok = x[ok]
     truth = {c.response: frame.loc[ok, RESP_PREFIX + c.response].to_numpy(dtype=float)
              if RESP_PREFIX + c.response in frame.columns else np.full(int(ok.sum()), np.nan)
-             for c in view.constraints}
+             for c in study.constraints}
     predicted = {r: surrogates[r].predict(x_ok) for r in truth}
     k = int(ok.sum())
     checked = []
     by_name = {o.constraint.name: o for o in mc.constraints}
-    for c in view.constraints:
-        relaxed = view.options.relaxed_max(c)
+    for c in study.constraints:
+        relaxed = study.analysis.relaxed_max(c)
         p_true = float(np.mean(c.feasible(truth[c.response], relaxed))) if k else float("nan")
         p_same = float(np.mean(c.feasible(predicted[c.response], relaxed))) if k else float("nan")
         out = by_name[c.name]
         p_mc = out.p_relaxed if out.p_relaxed is not None else out.p
         checked.append(CheckedConstraint(c, k, p_true, p_same, p_mc, binomial_se(p_true, k), binomial_se(p_mc, mc.n)))
     joint = None
-    if view.constraints and k:
-        p_true = float(np.mean(_feasible_all(view, truth, k)))
-        p_same = float(np.mean(_feasible_all(view, predicted, k)))
+    if study.constraints and k:
+        p_true = float(np.mean(_feasible_all(study, truth, k)))
+        p_same = float(np.mean(_feasible_all(study, predicted, k)))
         p_mc, se_mc = mc.stage_p("constrained")
-        joint = CheckedConstraint(Constraint("all constraints", "joint"), k, p_true, p_same, p_mc,
+        joint = CheckedConstraint(Constraint.model_construct(name="all constraints", response="joint", min=None, max=None), k, p_true, p_same, p_mc,
                                   binomial_se(p_true, k), se_mc)
     return DirectCheck(n, k, len(frame) - k, failures, checked, joint)
 
@@ -116,15 +122,15 @@ class CheckedOptimum:
     predicted: dict[str, float]
 
 
-def reevaluate_optima(study, store, view: StudyView, surrogates: dict[str, Surrogate],
+def reevaluate_optima(study: Study, store, surrogates: dict[str, Surrogate],
                       optima: list[Optimum]) -> list[CheckedOptimum]:
     """Evaluate each optimum's design with the true model; objectives and constraint responses, predicted and
     true, side by side."""
     if not optima:
         return []
     x = np.array([o.x for o in optima])
-    frame = run_true_model(study, store, view, x, block="optima", role="check")
-    names = view.analysed_responses()
+    frame = run_true_model(study, store, x, block="optima", role="check")
+    names = study.analysed_responses()
     out = []
     for i, opt in enumerate(optima):
         row = frame.iloc[i]

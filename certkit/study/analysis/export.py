@@ -48,6 +48,7 @@ def export_surrogate(surrogate: Surrogate) -> dict:
         doc.update(kind="mlp", weights=[_floats(w) for w in net.coefs_], biases=[_floats(b) for b in net.intercepts_],
                    mean=float(scaler.mean_[0]), scale=float(scaler.scale_[0]))
     elif family == "Gaussian process":
+        inner = getattr(inner, "gp_", inner)  # the GP of a subsampled fit
         kernel = inner.kernel_
         const, rbf = kernel.k1.k1, kernel.k1.k2
         doc.update(kind="gp", x=_floats(inner.X_train_), alpha=_floats(np.ravel(inner.alpha_)),

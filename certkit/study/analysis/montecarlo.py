@@ -1,8 +1,8 @@
 """Monte Carlo feasibility on the surrogates: uniform samples over the design box, evaluated chunk by chunk.
 
 For N independent uniform samples the probability of success p of a constraint is estimated by the fraction
-k/N of samples that satisfy it, with the binomial standard error √(p(1−p)/N) (e.g. Rubinstein & Kroese,
-*Simulation and the Monte Carlo Method*, 3rd ed., §4.2). Nothing of size N is kept: per chunk the samples are
+k/N of samples that satisfy it, with its 95 % Wilson score interval (:mod:`.intervals`; never of zero width at
+k = 0 or N, as the binomial standard error √(p(1−p)/N) would be). Nothing of size N is kept: per chunk the samples are
 drawn, every surrogate evaluated, counts and fixed-bin histograms (for the CDFs) updated, the Pareto fronts
 and the per-stage optima merged, and the first ``cloud`` samples stored for plotting.
 
@@ -23,7 +23,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.study.analysis.inputs import Constraint, StudyView
+from certkit.study.analysis.intervals import interval_se, wilson
+from certkit.study.spec import Constraint, Study
 from certkit.study.analysis.pareto import FrontAccumulator, objective_subsets
 from certkit.study.analysis.surrogates import Surrogate
 
@@ -32,7 +33,8 @@ HIST_BINS = 2000
 
 
 def binomial_se(p: float, n: int) -> float:
-    return float(np.sqrt(max(p * (1.0 - p), 0.0) / n)) if n else float("nan")
+    """The standard error of a fraction p of n trials, read from its Wilson interval (positive at p = 0 or 1)."""
+    return interval_se(round(p * n), n) if n else float("nan")
 
 
 @dataclass
@@ -76,6 +78,8 @@ class ConstraintOutcome:
     flagged: bool
     uncertain_successes: int | None = None
     adverse_successes: int | None = None
+    least_violation: float = float("nan")  # over the samples, on the surrogate (0 where some sample satisfies it)
+    best_value: float = float("nan")  # the sample value of least violation
 
     @property
     def p(self) -> float:
@@ -83,7 +87,16 @@ class ConstraintOutcome:
 
     @property
     def se(self) -> float:
-        return binomial_se(self.p, self.n)
+        return interval_se(self.successes, self.n)
+
+    @property
+    def interval(self) -> tuple[float, float]:
+        """95 % Wilson interval of the probability of success."""
+        return wilson(self.successes, self.n)
+
+    @property
+    def interval_relaxed(self) -> tuple[float, float] | None:
+        return None if self.relaxed_successes is None else wilson(self.relaxed_successes, self.n)
 
     @property
     def p_relaxed(self) -> float | None:
@@ -100,10 +113,13 @@ class ConstraintOutcome:
 
 @dataclass
 class Optimum:
+    """An optimum of ``objective`` in ``stage`` (or a front point: ``objective`` then names the front)."""
+
     objective: str
     stage: str
     value: float
     x: np.ndarray
+    method: str = "best Monte Carlo sample"
 
 
 @dataclass
@@ -123,15 +139,36 @@ class MonteCarloResult:
     cloud_f: np.ndarray
     cloud_stage: np.ndarray
     flagged_responses: list[str] = field(default_factory=list)
+    n_drawn: int = 0  # samples drawn; n of them were possible designs (the others masked)
+
+    @property
+    def masked(self) -> int:
+        return max(self.n_drawn - self.n, 0)
 
     def stage_p(self, stage: str) -> tuple[float, float]:
-        p = self.stage_counts[stage] / self.n
-        return p, binomial_se(p, self.n)
+        """(fraction of samples in ``stage``, its standard error from the Wilson interval)."""
+        return self.stage_counts[stage] / self.n, interval_se(self.stage_counts[stage], self.n)
+
+    def stage_interval(self, stage: str) -> tuple[float, float]:
+        return wilson(self.stage_counts[stage], self.n)
 
     def ranked(self) -> list[ConstraintOutcome]:
         """Constraints by activity: the least probability of success first (show-stoppers at the top), ties
         broken by how many samples fail that constraint alone."""
         return sorted(self.constraints, key=lambda c: (c.p, -c.sole_violations))
+
+
+def violation(constraint: Constraint, values: np.ndarray, max_override: float | None = None) -> np.ndarray:
+    """How far each value lies outside the constraint's limits (0 inside; a level L counts up to L + ½);
+    NaN where the value is not finite."""
+    upper = constraint.max if max_override is None else max_override
+    half = 0.5 if constraint.is_level else 0.0
+    out = np.zeros(len(values))
+    if constraint.min is not None:
+        out = np.maximum(out, (constraint.min - half) - values)
+    if upper is not None:
+        out = np.maximum(out, values - (upper + half))
+    return np.where(np.isfinite(values), out, np.nan)
 
 
 def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.ndarray:
@@ -145,18 +182,20 @@ def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.
     return np.where(values >= mid, values + shift, values - shift)
 
 
-def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
-                    seed: int = 20240615, cloud: int = 20_000) -> MonteCarloResult:
-    """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective."""
+def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
+                    seed: int = 20240615, cloud: int = 20_000, valid=None) -> MonteCarloResult:
+    """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective.
+    ``valid``: a function of the samples (rows, SI) → mask of possible designs; the others are masked before any
+    count, front or optimum (probabilities are then among possible designs)."""
     t0 = time.perf_counter()
-    bounds = view.bounds
+    bounds = study.bounds
     lo, width = bounds[:, 0], bounds[:, 1] - bounds[:, 0]
     rng = np.random.default_rng(seed)
     unc_rng = np.random.default_rng([seed, 1])
-    opts = view.options
-    constraints = list(view.constraints)
-    objectives = [o.response for o in view.objectives]
-    maximise = tuple(o.sense == "max" for o in view.objectives)
+    opts = study.analysis
+    constraints = list(study.constraints)
+    objectives = [o.response for o in study.objectives]
+    maximise = tuple(o.sense == "max" for o in study.objectives)
     sign = np.array([-1.0 if m else 1.0 for m in maximise])
     relaxed = [opts.relaxed_max(c) for c in constraints]
     levels = [i for i, c in enumerate(constraints) if c.is_level]
@@ -175,6 +214,8 @@ def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int
     stage_counts = dict.fromkeys(STAGES, 0)
     joint_unc = joint_adv = 0
     hists: list[Histogram | None] = [None] * len(constraints)
+    least = np.full(len(constraints), np.inf)
+    least_value = np.full(len(constraints), np.nan)
     subsets = objective_subsets(len(objectives)) if len(objectives) >= 2 else []
     fronts = {(stage, cols): FrontAccumulator(len(lo), cols, tuple(maximise[c] for c in cols))
               for stage in STAGES for cols in subsets}
@@ -182,9 +223,17 @@ def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int
     cloud_x, cloud_f, cloud_stage = [], [], []
     kept = 0
     done = 0
+    n_valid = 0
     while done < n:
         m = min(chunk, n - done)
+        done += m
         x = lo + width * rng.random((m, len(lo)))
+        if valid is not None:
+            x = x[valid(x)]
+            m = len(x)
+            if not m:
+                continue
+        n_valid += m
         values = {r: surrogates[r].predict(x) for r in needed}
         ok_relaxed = np.ones((len(constraints), m), dtype=bool)
         level1 = np.ones(m, dtype=bool)
@@ -199,6 +248,10 @@ def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int
             succ[i] += int(ok.sum())
             ok_r = c.feasible(v, relaxed[i]) if relaxed[i] is not None else ok
             succ_relaxed[i] += int(ok_r.sum())
+            miss = violation(c, v, relaxed[i])
+            j = int(np.nanargmin(miss)) if np.isfinite(miss).any() else -1
+            if j >= 0 and miss[j] < least[i]:
+                least[i], least_value[i] = miss[j], v[j]
             ok_relaxed[i] = ok_r
             if i in levels:
                 level1 &= c.feasible(v, 1.0)
@@ -245,15 +298,16 @@ def run_monte_carlo(view: StudyView, surrogates: dict[str, Surrogate], *, n: int
             cloud_f.append(f[:take])
             cloud_stage.append(np.where(preferred[:take], 2, np.where(constrained[:take], 1, 0)))
             kept += take
-        done += m
-    outcomes = [ConstraintOutcome(c, int(succ[i]), n, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
+    if not n_valid:
+        raise ValueError(f"every one of the {n} samples was classed as an impossible design")
+    outcomes = [ConstraintOutcome(c, int(succ[i]), n_valid, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
                                   else None, int(sole[i]), hists[i], surrogates[c.response].flagged,
                                   int(succ_unc[i]) if uncertainty else None,
-                                  int(succ_adv[i]) if uncertainty else None)
+                                  int(succ_adv[i]) if uncertainty else None, float(least[i]), float(least_value[i]))
                 for i, c in enumerate(constraints)]
     optima = [Optimum(objectives[o], s, float(sign[o] * v), xb) for (o, s), (v, xb) in best.items() if xb is not None]
     flagged = [r for r in needed if surrogates[r].flagged]
-    return MonteCarloResult(n, chunk, seed, time.perf_counter() - t0, outcomes, stage_counts,
+    return MonteCarloResult(n_valid, chunk, seed, time.perf_counter() - t0, outcomes, stage_counts,
                             joint_unc if uncertainty else None, joint_adv if uncertainty else None, objectives, fronts,
                             optima, np.concatenate(cloud_x), np.concatenate(cloud_f), np.concatenate(cloud_stage),
-                            flagged)
+                            flagged, n_drawn=n)

@@ -12,21 +12,21 @@ import json
 import numpy as np
 
 from certkit.study.analysis.export import export_surrogate
-from certkit.study.analysis.inputs import StudyView
 from certkit.study.analysis.labels import display_factor, response_label
 from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.spec import Study
 
 OVERHANG = 0.1
 
 
-def profiler_data(view: StudyView, surrogates: dict[str, Surrogate], start: np.ndarray | None = None) -> dict:
+def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None) -> dict:
     """Everything the page needs: variables with bounds and slider range, the responses' exported models
     with their thresholds and flags, and the starting point (the baseline unless given). Values are SI; each
     variable and response carries the ``factor`` (SI per shown unit) and ``unit`` it is shown in, a response its
     words (``title``)."""
-    start = view.baseline if start is None else np.asarray(start, dtype=float)
-    limits = {c.response: (c.min, c.max) for c in view.constraints}
-    names = [o.response for o in view.objectives] + view.profiled_constraints()
+    start = study.baseline if start is None else np.asarray(start, dtype=float)
+    limits = {c.response: (c.min, c.max) for c in study.constraints}
+    names = [o.response for o in study.objectives] + study.profiled_constraints()
     responses = []
     for name in dict.fromkeys(names):
         if name not in surrogates:
@@ -37,7 +37,7 @@ def profiler_data(view: StudyView, surrogates: dict[str, Surrogate], start: np.n
         responses.append({"name": name, "model": export_surrogate(s), "min": lo, "max": hi,
                           "flagged": s.flagged, "label": s.kept.label, "title": words, "unit": unit, "factor": factor})
     variables = []
-    for v, x0 in zip(view.variables, start):
+    for v, x0 in zip(study.variables, start):
         span = v.upper - v.lower
         variables.append({"path": v.path, "label": v.short, "lower": v.lower, "upper": v.upper,
                           "from": v.lower - OVERHANG * span, "to": v.upper + OVERHANG * span, "value": float(x0),

@@ -7,9 +7,7 @@ fills the template; :func:`write_study_report` does both and writes ``index.html
 
 from __future__ import annotations
 
-import dataclasses
 import json
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,22 +19,29 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 from certkit import __version__
 from certkit.study.analysis import figures
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
-from certkit.study.analysis.inputs import StudyView, cases, study_view
+from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
+from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.planform import planform_from
+from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.profiler import profiler_data, profiler_json
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
-from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_response
+from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_all
+from certkit.study.analysis.validity import Validity, fit_validity
+from certkit.study.spec import Study
 
 #: failed cases listed one by one in the report (the count is always given)
 FAILED_SHOWN = 200
 #: Pareto points listed per front table
 FRONT_SHOWN = 50
+#: points of each NSGA-II front re-evaluated with the true model
+FRONT_CHECKED = 5
 
 
 @dataclass
 class Analysis:
-    view: StudyView
+    view: Study
+    sha256: str
     counts: pd.DataFrame
     failed: pd.DataFrame
     n_cases: dict[str, int]
@@ -50,6 +55,11 @@ class Analysis:
     optima: list[CheckedOptimum]
     profiler: dict
     timings: dict[str, float] = field(default_factory=dict)
+    validity: Validity | None = None
+    nsga_fronts: list[dict] = field(default_factory=list)
+    front_checks: list[CheckedOptimum] = field(default_factory=list)
+    show_stoppers: list[ShowStopper] = field(default_factory=list)
+    active: dict[str, list[str]] = field(default_factory=dict)
 
 
 def _in_unit(value: float, unit: str) -> float:
@@ -64,81 +74,62 @@ def _in_unit(value: float, unit: str) -> float:
         return value
 
 
-def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
-    (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
-    try:
-        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
-                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
-    except ValueError as exc:
-        return name, None, str(exc)
-
-
-def _fit_all(view: StudyView, cs, log) -> tuple[dict[str, Surrogate], dict[str, str]]:
-    """One surrogate per analysed response, the responses fitted in parallel over the cores (each fit is seeded:
-    the same models whatever the number of processes)."""
-    from joblib import Parallel, delayed
-
-    names = view.analysed_responses()
-    data = {n: (cs.xy("training", n), cs.xy("validation", n)) for n in names}
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
-    done = Parallel(n_jobs=min(cores, len(names)) or 1)(
-        delayed(_fit_one)(n, view.bounds, data[n], view.options) for n in names)
-    surrogates, not_fitted = {}, {}
-    for name, surrogate, error in done:
-        if surrogate is None:
-            not_fitted[name] = error
-        else:
-            surrogates[name] = surrogate
-            log(f"surrogate {name}: {surrogate.kept.label}")
-    return surrogates, not_fitted
-
-
-def _run_checks(study, store, view, surrogates, mc, optima) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
-    try:
-        from certkit.study import runner  # noqa: F401
-    except ImportError as exc:
-        return None, [], f"not run: the study runner is not available ({exc})"
+def _run_checks(usable: Study, every: Study, store, surrogates, mc, optima
+                ) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
-    check = direct_check(study, store, view, surrogates, mc)
-    checked = reevaluate_optima(study, store, view, surrogates, optima)
+    check = direct_check(usable, store, surrogates, mc)
+    checked = reevaluate_optima(every, store, surrogates, optima)
     return check, checked, ""
 
 
-def analyse(study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
-            sha256: str | None = None, analysis=None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
+def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
+            sha256: str | None = None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
     """Run every analysis of the study report on the store's ``frame``."""
     timings = {}
     t = time.perf_counter()
-    view = study_view(study, sha256, analysis)
+    view = study
     cs = cases(frame, view)
-    surrogates, not_fitted = _fit_all(view, cs, log)
+    surrogates, not_fitted = fit_all(view, cs, log)
     timings["surrogates_s"] = time.perf_counter() - t
-    usable = dataclasses.replace(
-        view, objectives=tuple(o for o in view.objectives if o.response in surrogates),
-        constraints=tuple(c for c in view.constraints if c.response in surrogates))
+    usable = view.model_copy(update={
+        "objectives": [o for o in view.objectives if o.response in surrogates],
+        "constraints": [c for c in view.constraints if c.response in surrogates]})
     mc_note = "; ".join(f"{r} left out: {not_fitted[r]}" for r in not_fitted)
     t = time.perf_counter()
-    mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk)
+    validity = fit_validity(frame, view)
+    log(f"possible designs: {validity.note}")
+    mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk, valid=validity.valid)
+    every = usable  # show-stoppers are ranked and reported; the stages, fronts and optima are of the rest
+    usable, mc = without_unattainable(usable, surrogates, mc, lambda rest: run_monte_carlo(
+        rest, surrogates, n=samples, chunk=chunk, valid=validity.valid))
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")
     t = time.perf_counter()
     sobol = [sobol_indices(view, surrogates[r]) for r in view.analysed_responses() if r in surrogates]
     timings["sobol_s"] = time.perf_counter() - t
-    optima = sorted(mc.optima, key=lambda o: (mc.objectives.index(o.objective), STAGES.index(o.stage)))
+    t = time.perf_counter()
+    margin = validity.margin if validity.estimator is not None else None
+    optima = optimise(usable, surrogates, mc, margin)
+    nsga = pareto_fronts(usable, surrogates, margin)
+    points = optima + front_points(nsga, FRONT_CHECKED)
+    timings["optimiser_s"] = time.perf_counter() - t
+    log(f"optimiser: {len(optima)} optima, {len(nsga)} NSGA-II fronts in {timings['optimiser_s']:.1f} s")
     checked, direct, check_note = [], None, "not run (--no-check)"
     if check:
         t = time.perf_counter()
-        direct, checked, check_note = _run_checks(study, store, usable, surrogates, mc, optima)
+        direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
         checked = [CheckedOptimum(o, "not evaluated", check_note, {}, {
-            r: float(surrogates[r].predict(o.x[None, :])[0]) for r in usable.analysed_responses()
-            if r in surrogates}) for o in optima]
+            r: float(surrogates[r].predict(o.x[None, :])[0]) for r in every.analysed_responses()
+            if r in surrogates}) for o in points]
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
-    return Analysis(view, counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
-                    check_note, checked, profiler_data(usable, surrogates), timings)
+    return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
+                    check_note, checked[:len(optima)], profiler_data(every, surrogates), timings, validity, nsga,
+                    checked[len(optima):], show_stoppers(every, mc, cs, not_fitted),
+                    active_constraints(usable, surrogates, optima))
 
 
 def _num(value, digits: int = 4) -> str:
@@ -156,6 +147,7 @@ def _environment() -> Environment:
     env.filters["num"] = _num
     env.filters["in_unit"] = _in_unit
     env.filters["pct"] = lambda p: "—" if p is None else f"{100 * p:.2f} %"
+    env.filters["ci"] = lambda iv: "—" if iv is None else f"{100 * iv[0]:.2f} – {100 * iv[1]:.2f} %"
     return env
 
 
@@ -182,7 +174,8 @@ def render(a: Analysis) -> str:
     stage_rows = []
     for stage in STAGES:
         p, se = mc.stage_p(stage)
-        stage_rows.append({"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se})
+        stage_rows.append({"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se,
+                           "interval": mc.stage_interval(stage)})
     fronts = []
     for (stage, cols), acc in mc.fronts.items():
         f, x = acc.front()
@@ -190,13 +183,16 @@ def render(a: Analysis) -> str:
                        "rows": [list(fr) + list(xr) for fr, xr in zip(f[:FRONT_SHOWN], x[:FRONT_SHOWN])]})
     context = {
         "a": a, "view": a.view, "mc": mc, "version": __version__, "created": time.strftime("%Y-%m-%d %H:%M:%S"),
-        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN,
+        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN, "front_checked": FRONT_CHECKED,
+        "nsga": [{"objectives": f["objectives"], "size": len(f["f"]),
+                  "checks": [c for c in a.front_checks if c.optimum.objective == " × ".join(f["objectives"])]}
+                 for f in a.nsga_fronts],
         "fits": [{"s": s, "svg": figures.fit_svg(s)} for s in a.surrogates.values()],
         "cdfs": [{"o": o, "svg": figures.cdf_svg(o)} for o in mc.ranked()],
         "matrix": figures.scatter_matrix_svg(mc, mc.objectives) if len(mc.objectives) >= 2 else "",
         "planforms": _planform_figures(a),
         "failed_rows": a.failed.head(FAILED_SHOWN), "failed_shown": FAILED_SHOWN,
-        "definition": json.dumps(a.view.definition, indent=2, default=str),
+        "definition": json.dumps(a.view.model_dump(mode="json"), indent=2, default=str),
         "profiler_json": profiler_json(a.profiler),
         "profiler_js": env.loader.get_source(env, "profiler.js")[0],
         "flagged": [r for r, s in a.surrogates.items() if s.flagged],

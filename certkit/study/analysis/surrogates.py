@@ -9,25 +9,30 @@ bounds to [−1, 1]:
   is positive (a multiplicative response is linear in its logarithm);
 - a neural network: ``MLPRegressor`` (two tanh layers of 16, L-BFGS) with the outputs standardised
   (``TransformedTargetRegressor`` + ``StandardScaler``) on the transform the best polynomial chose;
-- a Gaussian process (constant × anisotropic RBF + white noise, ``normalize_y``) when the training cases do
-  not exceed ``gp_max_cases`` (its fit is O(n³) and its prediction O(n) per point).
+- a Gaussian process (constant × anisotropic RBF + white noise, ``normalize_y``); above ``gp_max_cases``
+  training cases it is fitted on a space-filling subsample of that many (greedy maximin, farthest-point
+  selection from the case nearest the centre; the fit is O(n³) and its prediction O(n) per point).
 
-The candidate with the least RMSE on the held-out validation cases is kept (5-fold cross-validation RMSE on
-the training cases when fewer than ``MIN_VALIDATION`` validation cases exist); the others are reported.
-Goodness of fit (R², RMSE, maximum error) is given on training and validation cases and by k-fold
-cross-validation of the kept model, as in a DoE/RSM fit table (Myers, Montgomery & Anderson-Cook,
-*Response Surface Methodology*, 4th ed., §2.5 and §7.4).
+The candidate with the least k-fold cross-validation RMSE on the training cases is kept; the others are
+reported. The validation block never takes part in the choice: it only scores the kept model, so its R² is a
+held-out estimate (Hastie, Tibshirani & Friedman, *The Elements of Statistical Learning*, 2nd ed., §7.2 and
+§7.10: a set that selects the model no longer estimates its error). Validation cases whose inputs repeat a
+training case's are a leak: they are counted and left out of the validation score. Goodness of fit (R², RMSE,
+maximum error) is given on training and validation cases and by the kept model's cross-validation, as in a
+DoE/RSM fit table (Myers, Montgomery & Anderson-Cook, *Response Surface Methodology*, 4th ed., §2.5 and §7.4).
 """
 
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+from joblib import Parallel, delayed
 from scipy.optimize import minimize
-from sklearn.base import clone
+from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.compose import TransformedTargetRegressor
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.gaussian_process import GaussianProcessRegressor
@@ -38,7 +43,7 @@ from sklearn.neural_network import MLPRegressor
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import PolynomialFeatures, StandardScaler
 
-#: fewer validation cases than this: candidates are compared by k-fold cross-validation instead
+#: fewer validation cases than this: the flag is judged on the cross-validated R² instead
 MIN_VALIDATION = 10
 K_FOLDS = 5
 MAX_DEGREE = 4
@@ -77,6 +82,38 @@ def _gp(n_inputs: int) -> object:
     kernel = (ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3))
               + WhiteKernel(1e-4, (1e-10, 1e0)))
     return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=_gp_optimizer, random_state=0)
+
+
+def maximin_subsample(u: np.ndarray, m: int) -> np.ndarray:
+    """Indices of ``m`` rows of ``u`` chosen greedily far apart (farthest-point selection, started at the row
+    nearest the centre of the box): a space-filling subsample, deterministic for given cases."""
+    n = len(u)
+    if m >= n:
+        return np.arange(n)
+    chosen = [int(np.argmin(np.sum(u**2, axis=1)))]
+    dist = np.sum((u - u[chosen[0]]) ** 2, axis=1)
+    for _ in range(m - 1):
+        j = int(np.argmax(dist))
+        chosen.append(j)
+        dist = np.minimum(dist, np.sum((u - u[j]) ** 2, axis=1))
+    return np.sort(np.array(chosen))
+
+
+class SubsampledGP(BaseEstimator, RegressorMixin):
+    """A Gaussian process fitted on at most ``max_cases`` of the cases it is given (a maximin subsample)."""
+
+    def __init__(self, n_inputs: int = 1, max_cases: int = 600):
+        self.n_inputs = n_inputs
+        self.max_cases = max_cases
+
+    def fit(self, u, y):
+        keep = maximin_subsample(np.asarray(u, dtype=float), self.max_cases)
+        self.gp_ = _gp(self.n_inputs).fit(np.asarray(u)[keep], np.asarray(y)[keep])
+        self.n_fitted_ = len(keep)
+        return self
+
+    def predict(self, u):
+        return self.gp_.predict(u)
 
 
 def n_polynomial_terms(n_inputs: int, degree: int) -> int:
@@ -119,6 +156,7 @@ class Candidate:
     selection_rmse: float | None = None
     selection_r2: float | None = None
     note: str = ""
+    cv: Fit | None = None
 
     def predict_unit(self, u: np.ndarray) -> np.ndarray:
         with np.errstate(over="ignore", invalid="ignore"):
@@ -142,6 +180,7 @@ class Surrogate:
     n_validation: int
     n_missing: int
     plot_data: dict = field(default_factory=dict, repr=False)
+    n_leaked: int = 0  # validation cases that repeat a training case (left out of the validation score)
 
     @property
     def r2_judged(self) -> float | None:
@@ -171,18 +210,26 @@ class Surrogate:
         return out
 
 
-def _score(candidate: Candidate, u_tr, y_tr, u_val, y_val, use_validation: bool) -> None:
-    """Fit the candidate and record its selection error (validation RMSE, or k-fold CV RMSE)."""
+def _score(candidate: Candidate, u_tr, y_tr) -> None:
+    """Record the candidate's selection error (k-fold cross-validation on the training cases), then fit it on
+    every training case."""
+    fit = _cross_validated(candidate.estimator, u_tr, y_tr)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         warnings.simplefilter("ignore", RuntimeWarning)
-        if use_validation:
-            candidate.estimator.fit(u_tr, y_tr)
-            fit = Fit.of(y_val, candidate.predict_unit(u_val))
-        else:
-            fit = _cross_validated(candidate.estimator, u_tr, y_tr)
-            candidate.estimator.fit(u_tr, y_tr)
+        candidate.estimator.fit(u_tr, y_tr)
+    candidate.cv = fit
     candidate.selection_rmse, candidate.selection_r2 = fit.rmse, fit.r2
+
+
+def leaked(u_train: np.ndarray, u_val: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+    """Mask of validation rows whose inputs repeat a training row's (within ``tol`` on the [−1, 1] scale)."""
+    if not len(u_train) or not len(u_val):
+        return np.zeros(len(u_val), dtype=bool)
+    from scipy.spatial import cKDTree
+
+    dist, _ = cKDTree(u_train).query(u_val, k=1, p=np.inf)
+    return dist <= tol
 
 
 def _cross_validated(estimator, u, y) -> Fit:
@@ -203,15 +250,17 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
                  x_val: np.ndarray, y_val: np.ndarray, *, r2_threshold: float = 0.9, gp_max_cases: int = 600,
                  n_missing: int = 0, families: tuple[str, ...] = ("polynomial", "neural network",
                                                                    "Gaussian process")) -> Surrogate:
-    """Fit every candidate family to one response and keep the best by validation error."""
+    """Fit every candidate family to one response and keep the best by cross-validation on the training cases;
+    the validation cases (those not repeating a training case) only score the kept model."""
     bounds = np.asarray(bounds, dtype=float)
     n_in = bounds.shape[0]
     if len(y_train) < n_in + 2:
         raise ValueError(f"{response}: {len(y_train)} training cases with a value; at least {n_in + 2} needed")
     u_tr, u_val = to_unit(x_train, bounds), to_unit(x_val, bounds)
-    use_validation = len(y_val) >= MIN_VALIDATION
-    selection = (f"validation RMSE ({len(y_val)} cases)" if use_validation
-                 else f"{K_FOLDS}-fold cross-validation RMSE (only {len(y_val)} validation cases)")
+    leak = leaked(u_tr, u_val)
+    u_val, y_val = u_val[~leak], np.asarray(y_val)[~leak]
+    folds = min(K_FOLDS, len(y_train))
+    selection = f"{folds}-fold cross-validation RMSE on the {len(y_train)} training cases"
     positive = bool(np.all(y_train > 0))
     candidates: list[Candidate] = []
     if "polynomial" in families:
@@ -221,29 +270,59 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
             for log in ((False, True) if positive else (False,)):
                 label = f"polynomial degree {degree}" + (", log response" if log else "")
                 c = Candidate("polynomial", label, _log_target(_polynomial(degree), log), log, degree)
-                _score(c, u_tr, y_train, u_val, y_val, use_validation)
+                _score(c, u_tr, y_train)
                 candidates.append(c)
     best_poly = min((c for c in candidates if c.family == "polynomial"), key=_rank_key, default=None)
     log = bool(best_poly.log) if best_poly else False
     if "neural network" in families:
         c = Candidate("neural network", "MLP 16-16 tanh" + (", log response" if log else ""),
                       _log_target(_mlp(), log), log)
-        _score(c, u_tr, y_train, u_val, y_val, use_validation)
+        _score(c, u_tr, y_train)
         candidates.append(c)
-    if "Gaussian process" in families:
+    if "Gaussian process" in families and gp_max_cases > 0:
         label = "Gaussian process RBF" + (", log response" if log else "")
-        if len(y_train) <= gp_max_cases:
-            c = Candidate("Gaussian process", label, _log_target(_gp(n_in), log), log)
-            _score(c, u_tr, y_train, u_val, y_val, use_validation)
-        else:
-            c = Candidate("Gaussian process", label, None, log,
-                          note=f"not fitted: {len(y_train)} training cases exceed the limit of {gp_max_cases}")
+        note = ""
+        if len(y_train) > gp_max_cases:
+            note = (f"fitted on a maximin subsample of {gp_max_cases} of the {len(y_train)} training cases "
+                    f"(of each fold's cases in cross-validation)")
+            label += f" ({gp_max_cases}-case subsample)"
+        c = Candidate("Gaussian process", label, _log_target(SubsampledGP(n_in, gp_max_cases), log), log, note=note)
+        _score(c, u_tr, y_train)
         candidates.append(c)
     fitted = [c for c in candidates if c.estimator is not None]
     kept = min(fitted, key=_rank_key)
     train_pred = kept.predict_unit(u_tr)
     val_pred = kept.predict_unit(u_val) if len(y_val) else np.empty(0)
-    cv = _cross_validated(kept.estimator, u_tr, y_train)
+    cv = kept.cv
     return Surrogate(response, bounds, kept, candidates, Fit.of(y_train, train_pred), Fit.of(y_val, val_pred), cv,
                      selection, r2_threshold, len(y_train), len(y_val), n_missing,
-                     plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)})
+                     plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)},
+                     n_leaked=int(leak.sum()))
+
+
+def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
+    (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
+    try:
+        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
+                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
+    except ValueError as exc:
+        return name, None, str(exc)
+
+
+def fit_all(study, cases, log=lambda msg: None) -> tuple[dict[str, Surrogate], dict[str, str]]:
+    """One surrogate per analysed response of ``study`` from ``cases`` (:class:`.cases.Cases`), the responses
+    fitted in parallel over the cores (each fit is seeded: the same models whatever the number of processes);
+    (surrogates, reasons of the responses none could be fitted for)."""
+    names = study.analysed_responses()
+    data = {n: (cases.xy("training", n), cases.xy("validation", n)) for n in names}
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+    done = Parallel(n_jobs=min(cores, len(names)) or 1)(
+        delayed(_fit_one)(n, study.bounds, data[n], study.analysis) for n in names)
+    surrogates, not_fitted = {}, {}
+    for name, surrogate, error in done:
+        if surrogate is None:
+            not_fitted[name] = error
+        else:
+            surrogates[name] = surrogate
+            log(f"surrogate {name}: {surrogate.kept.label}")
+    return surrogates, not_fitted

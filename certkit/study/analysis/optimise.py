@@ -1,0 +1,224 @@
+"""Constrained optimisation on the surrogates: local optima of each objective and Pareto fronts.
+
+Single objectives: SLSQP (Kraft 1988, scipy ``minimize``) on the inputs mapped to [−1, 1] (forward-difference gradients, the
+n + 1 points of a gradient predicted in one batch), multi-started from
+the best feasible Monte Carlo samples of the stage and from spread random points; the best solution the
+surrogates find feasible is kept (the best sample itself when no start improves on it). Fronts: NSGA-II (Deb
+et al. 2002, *IEEE Trans. Evol. Comput.* 6(2): 182–197; pymoo) with the constraints as inequalities.
+
+Every constraint becomes g(x) ≥ 0, scaled by the spread of its response over the samples: ``min ≤ y`` →
+(y − min)/s, ``y ≤ max`` → (max − y)/s; a handling-quality level L counts up to L + ½ (as in the Monte Carlo),
+with the stage's relaxation. Impossible designs are kept out by the validity classifier's margin (≥ 0).
+A design the optimiser returns is re-checked with ``Constraint.feasible`` on the surrogates before it is kept.
+"""
+
+from __future__ import annotations
+
+import warnings
+import numpy as np
+from scipy.optimize import minimize
+
+from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, Optimum
+from certkit.study.analysis.surrogates import Surrogate, to_unit
+from certkit.study.spec import Study
+
+#: starts per objective and stage (the best samples of the stage first, then random points)
+STARTS = 4
+#: forward-difference step of the gradients, on the [−1, 1] scale (every surrogate evaluated once per batch)
+FD_STEP = 1e-6
+NSGA_POPULATION = 80
+NSGA_GENERATIONS = 120
+
+
+def from_unit(u: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+    lo, hi = bounds[:, 0], bounds[:, 1]
+    return lo + (np.asarray(u, dtype=float) + 1.0) * 0.5 * (hi - lo)
+
+
+class SurrogateProblem:
+    """Objectives and constraints of a study stage on the surrogates, on inputs u ∈ [−1, 1]ⁿ."""
+
+    def __init__(self, study: Study, surrogates: dict[str, Surrogate], stage: str, valid_margin=None,
+                 scales: dict[str, float] | None = None):
+        self.study, self.surrogates, self.stage = study, surrogates, stage
+        self.bounds = study.bounds
+        self.valid_margin = valid_margin
+        self.limits = []  # (response, threshold, sign, scale)
+        if stage != "unconstrained":
+            for c in study.constraints:
+                lower, upper = c.min, c.max
+                if c.is_level:
+                    relaxed = study.analysis.relaxed_max(c)
+                    upper = upper if relaxed is None else relaxed
+                    if stage == "preferred":
+                        upper = 1.0 if upper is None else min(upper, 1.0)
+                    upper = None if upper is None else upper + 0.5
+                    lower = None if lower is None else lower - 0.5
+                scale = (scales or {}).get(c.response, 1.0) or 1.0
+                if lower is not None:
+                    self.limits.append((c.response, lower, 1.0, scale))
+                if upper is not None:
+                    self.limits.append((c.response, upper, -1.0, scale))
+
+    def x(self, u: np.ndarray) -> np.ndarray:
+        return from_unit(u, self.bounds)
+
+    def objective(self, name: str, u: np.ndarray, sense: str = "min") -> np.ndarray:
+        y = self.surrogates[name].predict(self.x(np.atleast_2d(u)))
+        return -y if sense == "max" else y
+
+    def constraints(self, u: np.ndarray) -> np.ndarray:
+        """(n, m) values g ≥ 0 where feasible (constraint limits, then the validity margin)."""
+        x = self.x(np.atleast_2d(u))
+        cols = [sign * (self.surrogates[r].predict(x) - t) / s for r, t, sign, s in self.limits]
+        if self.valid_margin is not None:
+            cols.append(self.valid_margin(x))
+        return np.column_stack(cols) if cols else np.empty((len(x), 0))
+
+    def feasible(self, x: np.ndarray) -> np.ndarray:
+        """Feasibility of designs ``x`` (SI) exactly as the Monte Carlo judges it."""
+        x = np.atleast_2d(x)
+        ok = np.ones(len(x), dtype=bool)
+        if self.stage != "unconstrained":
+            for c in self.study.constraints:
+                y = self.surrogates[c.response].predict(x)
+                ok &= c.feasible(y, self.study.analysis.relaxed_max(c))
+                if self.stage == "preferred" and c.is_level:
+                    ok &= c.feasible(y, 1.0)
+        if self.valid_margin is not None:
+            ok &= self.valid_margin(x) >= 0
+        return ok
+
+
+def local_optimum(problem: SurrogateProblem, objective: str, sense: str, starts: np.ndarray,
+                  fallback: np.ndarray | None = None) -> Optimum | None:
+    """The best feasible SLSQP solution from ``starts`` (rows, SI); the fallback design when none improves."""
+    n = problem.bounds.shape[0]
+    best_u, best_f = None, np.inf
+    if fallback is not None and problem.feasible(fallback[None, :])[0]:
+        best_u = to_unit(fallback[None, :], problem.bounds)[0]
+        best_f = float(problem.objective(objective, best_u, sense)[0])
+    method = "best Monte Carlo sample"
+    steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
+
+    def objective_and_gradient(u):
+        f = problem.objective(objective, u[None, :] + steps, sense)
+        return float(f[0]), (f[1:] - f[0]) / FD_STEP
+
+    def constraint_jacobian(u):
+        g = problem.constraints(u[None, :] + steps)
+        return ((g[1:] - g[0]) / FD_STEP).T
+
+    cons = [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0], "jac": constraint_jacobian}] \
+        if problem.limits or problem.valid_margin is not None else []
+    for start in np.atleast_2d(starts):
+        u0 = np.clip(to_unit(start[None, :], problem.bounds)[0], -1.0, 1.0)
+        with warnings.catch_warnings(), np.errstate(all="ignore"):
+            warnings.simplefilter("ignore")
+            res = minimize(objective_and_gradient, u0, method="SLSQP", jac=True, bounds=[(-1.0, 1.0)] * n,
+                           constraints=cons, options={"maxiter": 100, "ftol": 1e-10})
+        u = np.clip(res.x, -1.0, 1.0)
+        f = float(problem.objective(objective, u, sense)[0])
+        better = best_u is None or f < best_f - 1e-12 * max(1.0, abs(best_f))
+        if np.isfinite(f) and better and problem.feasible(problem.x(u[None, :]))[0]:
+            best_u, best_f, method = u, f, "SLSQP on the surrogates"
+    if best_u is None:
+        return None
+    value = -best_f if sense == "max" else best_f
+    return Optimum(objective, problem.stage, value, problem.x(best_u[None, :])[0], method)
+
+
+def nsga2_front(problem: SurrogateProblem, objectives: list[tuple[str, str]], *, seed: int = 1,
+                population: int = NSGA_POPULATION, generations: int = NSGA_GENERATIONS
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """(objective values, designs in SI) of the feasible non-dominated set NSGA-II finds, sorted by the first."""
+    from pymoo.algorithms.moo.nsga2 import NSGA2
+    from pymoo.core.problem import Problem
+    from pymoo.optimize import minimize as pymoo_minimize
+
+    n = problem.bounds.shape[0]
+    n_constr = problem.constraints(np.zeros((1, n))).shape[1]
+
+    class _Problem(Problem):
+        def __init__(self):
+            super().__init__(n_var=n, n_obj=len(objectives), n_ieq_constr=n_constr, xl=-1.0, xu=1.0)
+
+        def _evaluate(self, u, out, *args, **kwargs):
+            with np.errstate(all="ignore"):
+                out["F"] = np.column_stack([problem.objective(o, u, s) for o, s in objectives])
+                if n_constr:
+                    out["G"] = -problem.constraints(u)
+
+    result = pymoo_minimize(_Problem(), NSGA2(pop_size=population), ("n_gen", generations), seed=seed,
+                            verbose=False)
+    if result.X is None:
+        return np.empty((0, len(objectives))), np.empty((0, n))
+    u = np.atleast_2d(result.X)
+    x = problem.x(u)
+    keep = problem.feasible(x)
+    f = np.column_stack([problem.surrogates[o].predict(x[keep]) for o, _ in objectives])
+    order = np.argsort(f[:, 0])
+    return f[order], x[keep][order]
+
+
+def front_sample(f: np.ndarray, k: int) -> np.ndarray:
+    """Indices of up to ``k`` front points spread along the first objective (its ends included)."""
+    if len(f) <= k:
+        return np.arange(len(f))
+    return np.unique(np.round(np.linspace(0, len(f) - 1, k)).astype(int))
+
+
+def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
+    """Each constraint response's spread over its training cases (the constraints' common scale)."""
+    out = {}
+    for c in study.constraints:
+        y = surrogates[c.response].plot_data.get("train", (np.empty(0),))[0]
+        out[c.response] = float(np.std(y)) if len(y) > 1 and np.std(y) > 0 else 1.0
+    return out
+
+
+def optimise(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, valid_margin=None, *,
+             seed: int = 3) -> list[Optimum]:
+    """The optimum of every objective in every stage: SLSQP started from the stage's best Monte Carlo samples
+    (the stage's best sample itself kept when no start improves on it)."""
+    rng = np.random.default_rng(seed)
+    scales = _scales(study, surrogates)
+    out = []
+    for k, objective in enumerate(study.objectives):
+        sign = -1.0 if objective.sense == "max" else 1.0
+        for si, stage in enumerate(STAGES):
+            sampled = next((o for o in mc.optima if o.objective == objective.response and o.stage == stage), None)
+            if sampled is None:
+                continue
+            problem = SurrogateProblem(study, surrogates, stage, valid_margin, scales)
+            in_stage = mc.cloud_stage >= si
+            order = np.argsort(sign * mc.cloud_f[in_stage, k])[: STARTS // 2]
+            starts = np.vstack([sampled.x[None, :], mc.cloud_x[in_stage][order],
+                                from_unit(rng.uniform(-1, 1, (STARTS // 2, len(study.variables))), study.bounds)])
+            best = local_optimum(problem, objective.response, objective.sense, starts, fallback=sampled.x)
+            out.append(best or sampled)
+    return out
+
+
+def pareto_fronts(study: Study, surrogates: dict[str, Surrogate], valid_margin=None, *, seed: int = 1
+                  ) -> list[dict]:
+    """The constrained front of every pair of objectives by NSGA-II: objectives, values, designs."""
+    problem = SurrogateProblem(study, surrogates, "constrained", valid_margin, _scales(study, surrogates))
+    objectives = list(study.objectives)
+    fronts = []
+    for i in range(len(objectives)):
+        for j in range(i + 1, len(objectives)):
+            pair = [(objectives[i].response, objectives[i].sense), (objectives[j].response, objectives[j].sense)]
+            f, x = nsga2_front(problem, pair, seed=seed)
+            fronts.append({"objectives": [o for o, _ in pair], "f": f, "x": x})
+    return fronts
+
+
+def front_points(fronts: list[dict], k: int) -> list[Optimum]:
+    """Up to ``k`` points of each front, spread along it, as designs to re-evaluate with the true model."""
+    out = []
+    for front in fronts:
+        name = " × ".join(front["objectives"])
+        for i in front_sample(front["f"], k):
+            out.append(Optimum(name, "constrained", float(front["f"][i, 0]), front["x"][i], "NSGA-II front point"))
+    return out

@@ -1,0 +1,97 @@
+"""What limits the design: show-stoppers (constraints no possible design satisfies) with their reasons, and the
+constraints active at the constrained optima.
+
+A constraint is a show-stopper when no possible Monte Carlo sample satisfies it on its surrogate (P = 0, the
+level relaxation included); the reason gives the least violation over the samples and the best value, and how
+many of the study's computed cases satisfy it (the true model's word). A constraint whose response has no
+surrogate (never computed, too few cases) is listed too, with the reason it could not be judged. A constraint
+is active at an optimum when the optimum's predicted response lies within the surrogate's cross-validated
+RMSE of a limit (or 10⁻⁶ of its magnitude): the optimum sits on that boundary.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.study.analysis.cases import Cases
+from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, violation
+from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.spec import Study
+
+
+@dataclass
+class ShowStopper:
+    name: str
+    requirement: str
+    reason: str
+
+
+def _limits(study: Study, c) -> list[float]:
+    relaxed = study.analysis.relaxed_max(c)
+    upper = c.max if relaxed is None else relaxed
+    half = 0.5 if c.is_level else 0.0
+    return [t for t in (None if c.min is None else c.min - half, None if upper is None else upper + half)
+            if t is not None]
+
+
+def unattainable(mc: MonteCarloResult) -> list[str]:
+    """Names of the constraints no possible sample satisfies (P = 0, the level relaxation included)."""
+    return [o.constraint.name for o in mc.constraints
+            if not (o.relaxed_successes if o.relaxed_successes is not None else o.successes)]
+
+
+def without_unattainable(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run) -> tuple:
+    """(study without the show-stoppers, Monte Carlo result of its stages): with a constraint no design meets,
+    every design fails the joint requirement, so the stages, fronts and optima are those of the other
+    constraints (the show-stoppers are reported apart). ``run(study)`` repeats the Monte Carlo (same samples);
+    the per-constraint outcomes of the full run are kept."""
+    names = unattainable(mc)
+    if not names or len(names) == len(mc.constraints):
+        return study, mc
+    rest = study.model_copy(update={"constraints": [c for c in study.constraints if c.name not in names]})
+    stages = run(rest)
+    stages.constraints = mc.constraints
+    return rest, stages
+
+
+def show_stoppers(study: Study, mc: MonteCarloResult, cases: Cases, not_fitted: dict[str, str]) -> list[ShowStopper]:
+    out = []
+    for o in mc.constraints:
+        c = o.constraint
+        successes = o.relaxed_successes if o.relaxed_successes is not None else o.successes
+        if successes:
+            continue
+        relaxed = study.analysis.relaxed_max(c)
+        values = np.concatenate([cases.xy(role, c.response)[1] for role in ("training", "validation")])
+        ok = int(np.sum(c.feasible(values, relaxed)))
+        best = values[np.nanargmin(violation(c, values, relaxed))] if len(values) else None
+        reason = (f"no possible design of the {mc.n} samples satisfies it on the surrogate (least violation "
+                  f"{o.least_violation:.4g}, at the value {o.best_value:.4g}); {ok} of the {len(values)} computed "
+                  f"cases satisfy it" + (f" (the best case: {best:.4g})" if best is not None else ""))
+        out.append(ShowStopper(c.name, c.describe(), reason))
+    for c in study.constraints:
+        if c.response in not_fitted:
+            out.append(ShowStopper(c.name, c.describe(), f"not judged: no surrogate ({not_fitted[c.response]})"))
+    return out
+
+
+def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: list[Optimum]) -> dict[str, list[str]]:
+    """Constraint name → the objectives whose constrained (or preferred) optimum lies on its boundary."""
+    out: dict[str, list[str]] = {}
+    for opt in optima:
+        if opt.stage == "unconstrained":
+            continue
+        for c in study.constraints:
+            s = surrogates.get(c.response)
+            if s is None:
+                continue
+            y = float(s.predict(opt.x[None, :])[0])
+            tol = max(s.cv.rmse or 0.0, 1e-6 * max(1.0, abs(y)))
+            if any(abs(y - t) <= tol for t in _limits(study, c)):
+                label = f"{opt.objective} ({opt.stage})"
+                out.setdefault(c.name, [])
+                if label not in out[c.name]:
+                    out[c.name].append(label)
+    return out

@@ -1,0 +1,153 @@
+"""The study's surrogates in a file of their own (JSON), for use outside the report.
+
+``certkit study export STUDY.yaml --surrogates FILE`` writes it, ``certkit study predict FILE`` and
+:func:`certkit.study.load_surrogates` read it. Each response's kept model is stored in the report page's export
+format (:mod:`.export`: polynomial, MLP or Gaussian process with its input bounds), with its goodness of fit;
+the possible-design classifier (logistic regression on polynomial features, :mod:`.validity`) is stored as its
+powers, scaling and coefficients. Evaluation here is vectorised numpy with the same arithmetic.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from certkit.errors import UserError
+from certkit.study.analysis.export import export_surrogate
+from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.analysis.validity import Validity
+from certkit.study.spec import Study
+
+FORMAT = "certkit-surrogates"
+VERSION = 1
+
+
+def _validity_doc(validity: Validity | None) -> dict | None:
+    if validity is None or validity.estimator is None:
+        return None
+    features, scaler, logistic = (step for _, step in validity.estimator.steps)
+    return {"lo": validity.bounds[:, 0].tolist(), "hi": validity.bounds[:, 1].tolist(),
+            "powers": features.powers_.tolist(), "mean": scaler.mean_.tolist(), "scale": scaler.scale_.tolist(),
+            "coef": np.ravel(logistic.coef_).tolist(), "intercept": float(np.ravel(logistic.intercept_)[0]),
+            "note": validity.note}
+
+
+def surrogates_document(study: Study, surrogates: dict[str, Surrogate], validity: Validity | None = None,
+                        sha256: str = "") -> dict:
+    """The file's content: the study's variables, objectives and constraints, every kept model and its fit."""
+    responses = {}
+    for name, s in surrogates.items():
+        responses[name] = {"model": export_surrogate(s), "label": s.kept.label, "selection": s.selection,
+                           "cv_r2": s.cv.r2, "cv_rmse": s.cv.rmse, "validation_r2": s.validation.r2,
+                           "validation_rmse": s.validation.rmse, "n_training": s.n_training,
+                           "n_validation": s.n_validation, "flagged": s.flagged}
+    return {"format": FORMAT, "version": VERSION, "study": study.name, "sha256": sha256,
+            "variables": [{"path": v.path, "lower": v.lower, "upper": v.upper, "baseline": v.baseline,
+                           "unit_label": v.unit_label} for v in study.variables],
+            "objectives": [o.model_dump() for o in study.objectives],
+            "constraints": [c.model_dump() for c in study.constraints],
+            "responses": responses, "validity": _validity_doc(validity)}
+
+
+def write_surrogates(path: str | Path, document: dict) -> Path:
+    path = Path(path)
+    path.write_text(json.dumps(document, indent=1, allow_nan=True), encoding="utf-8")
+    return path
+
+
+def _unit(doc: dict, x: np.ndarray) -> np.ndarray:
+    lo, hi = np.asarray(doc["lo"]), np.asarray(doc["hi"])
+    return (x - lo) * (2.0 / (hi - lo)) - 1.0
+
+
+def evaluate_model(doc: dict, x: np.ndarray) -> np.ndarray:
+    """An exported model (:mod:`.export` format) at the rows of ``x`` (SI), vectorised."""
+    u = _unit(doc, np.atleast_2d(np.asarray(x, dtype=float)))
+    kind = doc["kind"]
+    if kind == "polynomial":
+        y = np.full(len(u), doc["intercept"])
+        for coef, term in zip(doc["coef"], doc["terms"]):
+            prod = np.full(len(u), coef)
+            for i, p in term:
+                prod = prod * u[:, i] ** p
+            y = y + prod
+    elif kind == "mlp":
+        h = u
+        for k, (w, b) in enumerate(zip(doc["weights"], doc["biases"])):
+            z = h @ np.asarray(w) + np.asarray(b)
+            h = np.tanh(z) if k < len(doc["weights"]) - 1 else z
+        y = h[:, 0] * doc["scale"] + doc["mean"]
+    elif kind == "gp":
+        d = (u[:, None, :] - np.asarray(doc["x"])[None, :, :]) / np.asarray(doc["length_scale"])
+        y = doc["mean"] + doc["std"] * (np.exp(-0.5 * np.sum(d**2, axis=2)) * doc["constant"]) @ np.asarray(doc["alpha"])
+    else:
+        raise ValueError(f"unknown model kind {kind!r}")
+    return np.exp(y) if doc["log"] else y
+
+
+@dataclass
+class SurrogateSet:
+    """Surrogates read from a file: ``predict`` the responses at designs, ``possible`` the validity classifier."""
+
+    document: dict
+
+    @property
+    def variables(self) -> list[str]:
+        return [v["path"] for v in self.document["variables"]]
+
+    @property
+    def responses(self) -> list[str]:
+        return list(self.document["responses"])
+
+    def inputs(self, points) -> np.ndarray:
+        """Rows in the variables' order (SI) from an array, or a mapping / list of mappings {path: value}
+        (a variable not given takes its baseline)."""
+        if isinstance(points, dict):
+            points = [points]
+        if isinstance(points, list) and points and isinstance(points[0], dict):
+            unknown = sorted({k for p in points for k in p} - set(self.variables))
+            if unknown:
+                raise UserError(f"not a variable of these surrogates: {', '.join(unknown)} "
+                                f"(variables: {', '.join(self.variables)})")
+            base = {v["path"]: v["baseline"] for v in self.document["variables"]}
+            return np.array([[float(p.get(path, base[path])) for path in self.variables] for p in points])
+        x = np.atleast_2d(np.asarray(points, dtype=float))
+        if x.shape[1] != len(self.variables):
+            raise UserError(f"expected {len(self.variables)} values per design ({', '.join(self.variables)}), "
+                            f"got {x.shape[1]}")
+        return x
+
+    def predict(self, points, responses: list[str] | None = None) -> dict[str, np.ndarray]:
+        x = self.inputs(points)
+        names = responses or self.responses
+        unknown = [r for r in names if r not in self.document["responses"]]
+        if unknown:
+            raise UserError(f"no surrogate for {', '.join(unknown)} (responses: {', '.join(self.responses)})")
+        return {r: evaluate_model(self.document["responses"][r]["model"], x) for r in names}
+
+    def possible(self, points) -> np.ndarray:
+        """Designs classed as possible aircraft (every design when the study had no impossible case)."""
+        x = self.inputs(points)
+        doc = self.document.get("validity")
+        if not doc:
+            return np.ones(len(x), dtype=bool)
+        u = _unit(doc, x)
+        features = np.column_stack([np.prod(u ** np.asarray(p), axis=1) for p in doc["powers"]])
+        z = (features - np.asarray(doc["mean"])) / np.asarray(doc["scale"])
+        return z @ np.asarray(doc["coef"]) + doc["intercept"] <= 0.0
+
+
+def load_surrogates(path: str | Path) -> SurrogateSet:
+    """Read a surrogates file written by ``certkit study export --surrogates``."""
+    try:
+        document = json.loads(Path(path).read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise UserError(f"{path}: cannot read a surrogates file ({exc})") from None
+    if not isinstance(document, dict) or document.get("format") != FORMAT:
+        raise UserError(f"{path}: not a certkit surrogates file (written by `certkit study export --surrogates`)")
+    if document.get("version") != VERSION:
+        raise UserError(f"{path}: surrogates file version {document.get('version')!r}; this certkit reads {VERSION}")
+    return SurrogateSet(document)
