@@ -1,5 +1,7 @@
 """Run one rule on the baseline or on an edited copy of it."""
 
+import re
+
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.engine.registry import discover, select
@@ -9,9 +11,10 @@ from ..conftest import BASELINE
 
 
 def _structure_section(text: str) -> str:
-    """The baseline's ``structure:`` section (from its key to the next top-level key), newline-terminated."""
+    """The baseline's ``structure:`` section, from its key to the next top-level key (the sections after it — sizing,
+    mission, calibration — stay), newline-terminated."""
     start = text.index("\nstructure:\n") + 1
-    end = text.index("\nsources:\n", start) + 1
+    end = re.compile(r"^[a-z_]+:", re.M).search(text, start + 1).start()
     return text[start:end]
 
 
