@@ -1,5 +1,5 @@
 """Benchmark: fuzz the aircraft loader with the strategies of tests/hardening/fuzz.py for a long budget and report
-counts (issue 17; target 0 unexpected exceptions in 10^4 variants). Every variant is classified: loads, user error
+counts (target 0 unexpected exceptions in 10^4 variants). Every variant is classified: loads, user error
 (certkit.errors.UserError, exit 2) or unexpected (any other exception, or a non-finite number accepted); each
 unexpected one is printed with its first message. A slow variant (over 2 s) is counted too.
 

@@ -106,7 +106,7 @@ class HighLiftDevice(_Section):
 
 class MovableStabilizer(_Section):
     """A trimmable (movable) horizontal stabiliser: the whole tail's incidence is the long-term pitch trim and the
-    elevator is left for manoeuvring (issue 12). Angles are the stabiliser incidence to the body x axis, positive
+    elevator is left for manoeuvring. Angles are the stabiliser incidence to the body x axis, positive
     leading edge up (airplane nose-down trim), as ``horizontal_tail.incidence``, which is the datum the
     aerodynamic model is built at. Every steady trim solves for the stabiliser with the elevator at
     ``elevator_trim``; where the stabiliser reaches its limit, the elevator carries the rest."""
@@ -927,7 +927,7 @@ class ActuatorSizingData(_Section):
 
 
 class Sizing(_Section):
-    """Structural sizing data for design studies (issue 13): the horizontal-tail group, the loop's tolerance and
+    """Structural sizing data for design studies: the horizontal-tail group, the loop's tolerance and
     the elevator actuators."""
 
     horizontal_tail: TailStructureSizing | None = None

@@ -1,4 +1,4 @@
-"""The lattice without numba and scipy.interpolate (issue 16: `certkit derivatives FILE.avl` start-up), giving the
+"""The lattice without numba and scipy.interpolate (`certkit derivatives FILE.avl` start-up), giving the
 same bits as the compiled loops and scipy's spline.
 
 * The Biot–Savart sums: numpy blocks against the numba loops on the lattice of examples/lta-clean.avl (compressible

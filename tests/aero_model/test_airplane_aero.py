@@ -116,7 +116,7 @@ def test_derivatives_command_bad_input_exit_2(tmp_path):
 
 
 def test_report_lists_every_override(tmp_path):
-    """Issue 3: the report lists every coefficient the aircraft file overrides (models.aerodynamics)."""
+    """The report lists every coefficient the aircraft file overrides (models.aerodynamics)."""
     from certkit.report.html import render_html
     from certkit.engine.registry import discover
     from certkit.engine.scheduler import _merge_provenance

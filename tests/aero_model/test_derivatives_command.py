@@ -1,4 +1,4 @@
-"""`certkit derivatives` (issue 18): the model's neutral point for aircraft files, control signs true to each input
+"""`certkit derivatives`: the model's neutral point for aircraft files, control signs true to each input
 kind, the induced drag labelled by its method, strict JSON, the drag-axis convention stated.
 
 References: stock AVL 3.52 output for AVL's B737 sample (shared reference data, b737_avl352_dermats.st:

@@ -1,4 +1,4 @@
-"""The design structure's loop on the baseline and a redesigned tail (issue 13).
+"""The design structure's loop on the baseline and a redesigned tail.
 
 References: the baseline's declared horizontal-tail group (5,800 lb, aircraft/lta.yaml, "5.2 lb/ft² composite
 stabiliser") within 3 % (the calibrated non-optimum factor); the sized box is fully stressed, so the §25.331(c) tail-load margins against its own

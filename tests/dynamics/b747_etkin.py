@@ -41,7 +41,7 @@ LON_PHUGOID = complex(-0.003289, 0.06723)  # Etkin & Reid §6.2
 LAT_ROLL = -0.562  # Etkin & Reid §6.8 ("the true value −0.562")
 LAT_SPIRAL_APPROX = -0.00734  # Etkin & Reid §6.8, McRuer approximation, "within about 1 %" of the true root
 # Not quoted: the book's Dutch-roll pair and exact spiral root (§6.8). No reachable copy of §6.8 or faithful
-# transcription was found (issue 18 search, 2026-12-02: MIT 16.333 and other course scripts, GitHub transcriptions,
+# transcription was found (search of 2026-12-02: MIT 16.333 and other course scripts, GitHub transcriptions,
 # web-page and documentation corpora); the Dutch roll is checked against Etkin's linear equations instead.
 
 

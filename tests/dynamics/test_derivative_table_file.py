@@ -1,4 +1,4 @@
-"""Derivative-table aircraft files (issue 18): only mass, inertia, reference, derivatives and a flight condition.
+"""Derivative-table aircraft files: only mass, inertia, reference, derivatives and a flight condition.
 
 References
 - Etkin & Reid, *Dynamics of Flight: Stability and Control*, 3rd ed., Wiley 1996: the 747 at 40 000 ft, M 0.8

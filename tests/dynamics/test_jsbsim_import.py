@@ -1,4 +1,4 @@
-"""`certkit import jsbsim` (issue 18) on JSBSim's shipped B747 and 737, against JSBSim itself in this process.
+"""`certkit import jsbsim` on JSBSim's shipped B747 and 737, against JSBSim itself in this process.
 
 Both tools fly the same cruise point: 35 000 ft, Mach 0.8, gear up, fuel frozen. certkit's trim of the imported
 file against JSBSim's own trim (do_simple_trim): α, θ and elevator within 0.1°. Short period, roll subsidence and

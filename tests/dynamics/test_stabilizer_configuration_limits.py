@@ -1,4 +1,4 @@
-"""Per-configuration trim limits of a movable stabiliser (``design_limits_by_configuration``, issue 12 follow-up).
+"""Per-configuration trim limits of a movable stabiliser (``design_limits_by_configuration``).
 
 Reference: 777 AMM 27-41-00, "Horizontal stabilizer control — trim limits" (D633W101-BEJ, p. 69–70): with the flaps
 retracted the PFCs limit the stabiliser to +2.25° nose down / −10.25° nose up; with the flaps not retracted the

@@ -1,4 +1,4 @@
-"""Movable horizontal stabiliser (issue 12): lattice effectiveness against thin-aerofoil theory, trims that solve for
+"""Movable horizontal stabiliser: lattice effectiveness against thin-aerofoil theory, trims that solve for
 the stabiliser with the elevator at its trim setting, the stop, and airplanes without the declaration."""
 
 import math
@@ -50,7 +50,7 @@ def test_elevator_per_stabiliser_effectiveness_matches_thin_aerofoil_theory(ctx)
     table = ctx.aero("clean").table
     ratio = table["Cm_elevator"][0] / table["Cm_stabilizer"][0]  # lowest Mach breakpoint (0.2)
     assert ratio == pytest.approx(expected, rel=0.10)
-    # and "each degree of stabiliser relieves about 2° of elevator" (issue 12): 1/ratio between 1.6 and 2.4
+    # and "each degree of stabiliser relieves about 2° of elevator": 1/ratio between 1.6 and 2.4
     assert 1.6 < 1.0 / ratio < 2.4
 
 

@@ -1,4 +1,4 @@
-"""Bad loads input (issue 11): stops inside the design limits, a flap limit factor above the clean one, a capability
+"""Bad loads input: stops inside the design limits, a flap limit factor above the clean one, a capability
 at a station no load is computed at — each reported with its YAML path and line, all together, exit code 2."""
 
 from ..conftest import BASELINE

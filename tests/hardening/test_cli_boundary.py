@@ -1,4 +1,4 @@
-"""Issue 17, the CLI boundary: user errors exit 2 with a message, anything unexpected is an internal error (exit 70)
+"""The CLI boundary: user errors exit 2 with a message, anything unexpected is an internal error (exit 70)
 with a bug-report hint and a traceback only with --debug; bad outputs are refused before the evaluation."""
 
 import subprocess

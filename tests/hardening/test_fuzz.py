@@ -1,4 +1,4 @@
-"""Issue 17: property-based fuzzing of the aircraft file (Hypothesis, fixed seed, bounded budget).
+"""Property-based fuzzing of the aircraft file (Hypothesis, fixed seed, bounded budget).
 
 Property: every mutated variant of aircraft/lta.yaml (data: values, types, keys, structure; text: lines and YAML
 tokens) either loads, with finite numbers only, or raises certkit's UserError. benchmarks/bench_fuzz.py runs the

@@ -1,4 +1,4 @@
-"""Issue 17, input: every reproducer either loads or is a located InputError, fast, with the value as written.
+"""Input: every reproducer either loads or is a located InputError, fast, with the value as written.
 
 References: the issue's reproducer list; the limits are certkit's own (yaml_source.MAX_*, units.MAX_QUANTITY_CHARS).
 """

@@ -1,4 +1,4 @@
-"""Issue 17: Ctrl-C exits 130 leaving the previous report whole; worker processes end with the coordinator, also when
+"""Ctrl-C exits 130 leaving the previous report whole; worker processes end with the coordinator, also when
 it is killed (reproducers: SIGINT exited 1; workers were alive 111 s after the coordinator's SIGKILL)."""
 
 import os

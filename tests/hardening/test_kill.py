@@ -1,4 +1,4 @@
-"""Issue 17: SIGKILL at random moments leaves the report folder holding the previous complete set or the new one.
+"""SIGKILL at random moments leaves the report folder holding the previous complete set or the new one.
 
 A set is complete when both files exist, results.json is strict JSON, and index.html has a section for exactly the
 rules results.json lists (certkit.report.html.slug ids). Two levels: the set writer killed many times while it

@@ -1,4 +1,4 @@
-"""Issue 17, outputs: one consistent set replaced in one step, no symlink followed, paths checked first, folder names
+"""Outputs: one consistent set replaced in one step, no symlink followed, paths checked first, folder names
 distinct per aircraft name."""
 
 import json

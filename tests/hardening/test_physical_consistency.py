@@ -1,4 +1,4 @@
-"""Issue 17, physical consistency: CG envelope ahead of the main gear, stations on the airplane, inertia within the
+"""Physical consistency: CG envelope ahead of the main gear, stations on the airplane, inertia within the
 bounds the mass distribution allows. The baseline (a certificated airplane) passes every check."""
 
 import pytest

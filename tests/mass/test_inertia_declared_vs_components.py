@@ -1,4 +1,4 @@
-"""Declared whole-airplane inertia vs the component build-up (issue 18): a warning naming both values, and the file
+"""Declared whole-airplane inertia vs the component build-up: a warning naming both values, and the file
 says which one the dynamics uses (``mass.inertia_used``).
 
 Reference values: the baseline declares Iyy = 31.4e6 slug·ft² at MTOW (aircraft/lta.yaml); 1 slug·ft² =

@@ -1,4 +1,4 @@
-"""The check report carries the aircraft file's missions (issue 13: the payload–range diagram drawn in the report)."""
+"""The check report carries the aircraft file's missions (the payload–range diagram drawn in the report)."""
 
 import json
 import subprocess

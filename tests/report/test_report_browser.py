@@ -27,8 +27,8 @@ def _open(browser, path, width):
 
 def test_clean_page_and_every_anchor_resolves(chromium, small_check):
     page, problems = _open(chromium, small_check[0] / "index.html", 1280)
-    # the report's own ids are unique (the ids inside matplotlib's SVG are the evidence drawing's: issue 16, evidence
-    # as data, makes them deterministic and unique)
+    # the report's own ids are unique (the ids inside matplotlib's SVG are the evidence drawing's: evidence
+    # as data makes them deterministic and unique)
     ids = page.eval_on_selector_all("[id]", "els => els.filter(e => !e.closest('svg')).map(e => e.id)")
     assert [i for i, n in Counter(ids).items() if n > 1] == []
     targets = page.eval_on_selector_all('a[href^="#"]', "els => els.map(e => e.getAttribute('href').slice(1))")

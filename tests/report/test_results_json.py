@@ -96,7 +96,7 @@ def test_jobs_do_not_change_the_report(small_check, small_check_two_jobs):
 
 def test_two_runs_give_the_same_report(small_check, tmp_path):
     """The HTML report of two runs of the same input and options: equal once the run line (time stamp, duration)
-    is left out. SVG ids are matplotlib's until evidence is drawn deterministically (issue 16, evidence as data),
+    is left out. SVG ids are matplotlib's until evidence is drawn deterministically (evidence as data),
     so the SVG elements are compared apart."""
     from tests.report.report_run import checked
 

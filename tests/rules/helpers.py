@@ -30,7 +30,7 @@ def _stabilizer_block(text: str) -> str:
 
 
 #: edit removing the baseline's movable stabiliser: the airplane trims with the elevator, the stabiliser fixed at its
-#: declared incidence (the behaviour before issue 12)
+#: declared incidence (the behaviour without a movable stabiliser)
 NO_STABILIZER = (_stabilizer_block(BASELINE.read_text()), "")
 
 

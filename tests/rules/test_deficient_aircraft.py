@@ -1,4 +1,4 @@
-"""Every rule can fail (issue 11): the baseline made deficient in one respect at a time — speeds below the §25.335
+"""Every rule can fail: the baseline made deficient in one respect at a time — speeds below the §25.335
 minima, a limit load factor below §25.337(b), half the thrust, a horizontal tail or a fin too small, control design
 limits of ±2°, structure at 5 % of its declared capability — and each rule whose inputs the deficiency affects is run
 (``--select`` style subsets) and must report "fails". The thresholds are the paragraphs' own (cited per case); the

@@ -4,7 +4,7 @@ Hand references: VREF 136 KCAS is 136 × 1.0022 = 136.3 kn TAS at 150 ft (ISA σ
 approach sink rate is 136.3 × 1.68781 × sin 3° = 12.04 ft/s and the flare time constant
 τ = (15 m + 1 m)/(3.670 m/s) = 4.36 s (exponential flare, Stevens & Lewis §4.7); the criterion is
 6 ft/s (§25.473(a)(2)(ii)); the elevator design limit −21.8°. These run on the baseline without its movable
-stabiliser (the elevator trims, as before issue 12); the last test flies the baseline as declared.
+stabiliser (the elevator trims, as without a movable stabiliser); the last test flies the baseline as declared.
 """
 
 import pytest
@@ -69,7 +69,7 @@ def test_a_steeper_approach_lands_harder_at_the_aft_cg_and_on_average(result, st
 
 def test_sign_forward_cg_needs_more_elevator_and_a_larger_limit_helps(result, tmp_path):
     """The forward CG needs the most nose-up elevator (smallest margin; at MLW it trims on the path at −19.5° —
-    −22.6° before the tail-on flap moment of issue 12, the flap's downwash at the tail pitching nose-up — and the
+    −22.6° before the tail-on flap moment was modelled, the flap's downwash at the tail pitching nose-up — and the
     flare takes it past the −21.8° design limit: fails); a −30° design limit raises every elevator margin by
     exactly 8.2°."""
     m = [_by(result, c, "elevator").margin for c in ("MLW forward", "MLW reference", "MLW aft")]

@@ -105,7 +105,7 @@ def test_stall_warning_by_hand_and_the_vfto_turn_finding(base):
     """Without a declared warning onset the latest §25.207(c) allows is used: VSW = VSR + max(5 kn, 5 %) = 1.05 VSR,
     so the warning CL is CLmax/1.05² = 1.26984 clean. The 40° turn at VFTO = 198 kn (1.1814 VSR) needs
     CL/CLmax ≈ (1/cos 40°)/1.1814² = 0.935 (the flight path of the WAT-limited climb changes it by < 0.2 %): above
-    0.907, so the en-route case fails (issue 12's reading: the VFTO turns fly inside any warning that meets
+    0.907, so the en-route case fails (the reading: the VFTO turns fly inside any warning that meets
     §25.207(c) with the stall identified at VSR). The landing turn at VREF needs 0.864 CLmax: free of warning."""
     hand = (1 / math.cos(math.radians(40))) / (198 / VSR_CLEAN_KN) ** 2
     for f in warning(base, "en route VFTO", "MTOW forward"):

@@ -233,7 +233,7 @@ def test_baseline_load_factors_reached(checked):
             assert (peak <= 2.5 + 0.02) if up else (peak >= f.all_details()["limit_load_factor"] - 0.02)
         if f.all_details()["input"].startswith("held at full deflection for the longest hold"):
             # below the target; the note only when it falls short by more than the search tolerance (since the
-            # downwash-lag terms of issue 12 one longest hold peaks at 2.495 g: on the limit within tolerance)
+            # downwash-lag terms one longest hold peaks at 2.495 g: on the limit within tolerance)
             assert peak < 2.5
             assert ("not reached" in f.all_details().get("load_factor_note", "")) == (peak < 2.5 - 0.02)
     assert all(f.status == "not_evaluated" for f in beyond.values())  # a converged search stays on the limit

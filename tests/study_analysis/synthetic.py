@@ -1,7 +1,7 @@
 """Synthetic study stores in the documented frame format (INTERFACES.md), built directly as DataFrames.
 
 The responses are made-up smooth functions of the eight horizontal-tail variables of the seed study (bounds
-from issue 14's ``studies/ht-redesign.yaml`` description), with the shapes the analysis must handle: a
+from the ``studies/ht-redesign.yaml`` description), with the shapes the analysis must handle: a
 quadratic, a multiplicative (log-linear) response, a margin, integer handling-quality levels, failed cases.
 """
 

@@ -1,3 +1,3 @@
 """Structural sizing models: idealised box sections of lifting surfaces, the horizontal-tail group built
-around its sized box, and the elevator actuators (issue 13). Pure physics: loads and allowables in,
+around its sized box, and the elevator actuators. Pure physics: loads and allowables in,
 gauges, masses and mass properties out; nothing here knows the regulations."""
