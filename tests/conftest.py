@@ -1,4 +1,4 @@
-"""Shared fixtures: the bundled baseline and a CLI runner."""
+"""Shared fixtures: the bundled baseline, a CLI runner and (tests/browser.py) the headless browser."""
 
 from pathlib import Path
 
@@ -8,6 +8,9 @@ from click.testing import CliRunner
 from certkit.aircraft import load_aircraft
 from certkit.cli.main import main
 from certkit.engine.context import Context
+
+#: the headless-browser fixture (``browser``) of the report tests
+pytest_plugins = ["tests.browser"]
 
 ROOT = Path(__file__).resolve().parents[1]
 BASELINE = ROOT / "aircraft" / "lta.yaml"

@@ -196,7 +196,7 @@ def hinge_critical_conditions(ctx, results, fraction: float) -> dict:
     runs = _hinge_moments(ctx, results)
     top = max(float(np.max(np.abs(H))) for _, H, *_ in runs if H.size)
     out: dict = {}
-    for rid, H, where, *_, conds, t, coef, ref in runs:
+    for rid, H, where, *_, conds, _t, _coef, _ref in runs:
         if conds is None:
             out[rid] = None
             continue

@@ -264,7 +264,7 @@ def chart_svg(chart: Chart, prefix: str) -> str:
             cv.text(WIDTH / 2, 6 + k * 14, line, FONT + 1.5, anchor="middle", baseline="hanging")
     colours: dict[str, int] = {}
     handles: dict[str, tuple] = {}
-    for k, (frame, panel, (pfx, fy, xlim, ylim, yt, ylabel)) in enumerate(zip(frames, chart.panels, scales)):
+    for k, (frame, panel, (pfx, fy, xlim, _ylim, yt, ylabel)) in enumerate(zip(frames, chart.panels, scales)):
         _axis_y(cv, frame, yt, ylabel, frame.left - _tick_width(yt) - 8 - FONT - ylabel.count("\n") * (FONT + 2))
         last = not column or k == n - 1
         _axis_x(cv, frame, nice_ticks(xlim[0], xlim[1], 7) if not cats else None, cats, labels=last)

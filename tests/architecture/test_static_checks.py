@@ -1,4 +1,5 @@
-"""Static checks run with the tests: mypy, strict, over the modules pyproject.toml lists under [tool.mypy]."""
+"""Static checks run with the tests: mypy, strict, over the modules pyproject.toml lists under [tool.mypy]; ruff with
+the lint rules it selects."""
 
 from __future__ import annotations
 
@@ -14,4 +15,11 @@ def test_the_listed_modules_pass_strict_mypy():
     assert config["strict"] is True and config["files"], "the strict set is declared"
     proc = subprocess.run([sys.executable, "-m", "mypy", "--no-incremental"], cwd=ROOT, capture_output=True, text=True,
                           timeout=600)
+    assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]
+
+
+def test_ruff_finds_nothing():
+    """ruff with the rules pyproject.toml selects ([tool.ruff.lint]) over the whole repository."""
+    proc = subprocess.run([sys.executable, "-m", "ruff", "check", "--no-cache", "."], cwd=ROOT, capture_output=True,
+                          text=True, timeout=600)
     assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]

@@ -5,7 +5,6 @@ one 5 cm beyond is not); the moment balance (a heavier tail aft of every corner 
 so the most forward CG the loading reaches moves aft); the declared envelope bounds every corner.
 """
 
-import pytest
 
 from certkit.aircraft import load_aircraft
 from certkit.aircraft.model import Sizing

@@ -88,7 +88,7 @@ def build_737(fdm, n: int = 1):
     S = float(met.find("wingarea").text) * FT * FT
     b = float(met.find("wingspan").text) * FT
     c = float(met.find("chord").text) * FT
-    arp = [l for l in met.findall("location") if l.get("name") == "AERORP"][0]
+    arp = [loc for loc in met.findall("location") if loc.get("name") == "AERORP"][0]
     x_ref, z_ref = float(arp.find("x").text) * IN, float(arp.find("z").text) * IN
     a0 = fdm["aero/alpha-rad"]
     de0 = fdm["fcs/elevator-pos-rad"]

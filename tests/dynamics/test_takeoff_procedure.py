@@ -52,7 +52,7 @@ def test_ground_roll_against_raymer_closed_form(setup):
     theta0 = run.x0[0, 10]
     c = model.aero.coefficients(AeroState(alpha=np.array([theta0]), mach=np.array([0.5 * v_f / a_sound])))
     CL, CD = float(np.ravel(c.CL)[0]), float(np.ravel(c.CD)[0])
-    T, machs = model.aero.kernel_data[0], model.aero.kernel_data[1]
+    T, _machs = model.aero.kernel_data[0], model.aero.kernel_data[1]
     k, cl_min = float(T[5, 0]), float(T[6, 0])  # the polar's drag-due-to-lift, lowest Mach breakpoint
     wing = model.ground.wing
     dcm = euler_to_dcm(0.0, theta0, 0.0)

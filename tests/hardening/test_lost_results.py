@@ -9,7 +9,6 @@ usage error, 3 not evaluated, 70 internal error) and the bounds the aircraft fil
 from __future__ import annotations
 
 import json
-import math
 import os
 import sqlite3
 import subprocess

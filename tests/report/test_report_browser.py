@@ -11,7 +11,7 @@ from collections import Counter
 import pytest
 
 from tests.report.report_run import results
-from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
+from tests.browser import MARKS, open_page
 
 pytestmark = MARKS  # skipped with the reason when Playwright or Chromium is missing
 

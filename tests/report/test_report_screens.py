@@ -13,7 +13,7 @@ import re
 
 import pytest
 
-from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
+from tests.browser import MARKS, open_page
 from tests.report.report_run import results
 
 pytestmark = MARKS  # skipped with the reason when Playwright or Chromium is missing

@@ -23,7 +23,7 @@ from certkit.units import KN, LB
 from ..conftest import BASELINE
 
 from .test_r25_121 import mattingly_thrust_n
-from .test_r25_143 import LIMITS, edited_context, evaluate_part, rule_class
+from .test_r25_143 import edited_context, evaluate_part, rule_class
 from .helpers import own
 
 G = 9.80665

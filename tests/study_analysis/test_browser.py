@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
+from tests.browser import MARKS, open_page
 from tests.study_analysis.report_fixture import small_report, write_small_report
 
 pytestmark = MARKS
@@ -24,7 +24,7 @@ def test_profiler_follows_the_sliders_as_the_surrogates_do(browser, tmp_path):
     assert names and set(names) <= set(analysis.surrogates)
     n_var = len(analysis.view.variables)
     rng = np.random.default_rng(4)
-    for step in range(3):
+    for _step in range(3):
         i = int(rng.integers(n_var))
         v = analysis.view.variables[i]
         target = v.lower + (v.upper - v.lower) * float(rng.random())

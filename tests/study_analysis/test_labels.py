@@ -13,7 +13,7 @@ from functools import lru_cache
 import pytest
 
 from certkit.study.analysis.labels import display_factor, response_axis, response_label
-from tests.browser import MARKS, browser, open_page  # noqa: F401 (browser: the fixture)
+from tests.browser import MARKS, open_page
 from tests.study_analysis.synthetic import DEG, FT2, store_frame, study_dict, study_of
 
 

@@ -7,7 +7,6 @@ import re
 from html.parser import HTMLParser
 
 import numpy as np
-import pytest
 from click.testing import CliRunner
 
 from certkit.study.analysis import cli as analysis_cli

@@ -119,7 +119,7 @@ def mass_properties(root, path, unmapped: list[str]) -> tuple[float, np.ndarray,
     if mb is None:
         raise _fail(path, "<mass_balance> is missing")
     empty = _quantity(mb.find("emptywt"), path, "mass_balance/emptywt", _MASS, "LBS")
-    cg_el = next((l for l in mb.findall("location") if l.get("name") == "CG"), None)
+    cg_el = next((loc for loc in mb.findall("location") if loc.get("name") == "CG"), None)
     items = [("empty airplane", empty, _location(cg_el, path, "mass_balance/location CG"))]
     for pm in mb.findall("pointmass"):
         items.append((f"point mass {pm.get('name', '')}".strip(),
@@ -389,7 +389,7 @@ def derivative_table(model: _Aero, induced, alpha0, de0, V, machs) -> dict[str, 
         base = _state(mach, alpha=alpha0)
 
         def d(var, axis, at=None):
-            s0 = dict(base, **(at or {}))
+            s0 = dict(base, **(at or {}))  # noqa: B023  (called within this iteration)
             plus, minus = dict(s0), dict(s0)
             plus[var] += _STEP
             minus[var] -= _STEP
@@ -455,7 +455,7 @@ def import_jsbsim(path: str | Path, mach: float = 0.8, altitude: float = 35_000 
     S = _quantity(met.find("wingarea"), path, "metrics/wingarea", _AREA, "FT2")
     b = _quantity(met.find("wingspan"), path, "metrics/wingspan", _LENGTH, "FT")
     c = _quantity(met.find("chord"), path, "metrics/chord", _LENGTH, "FT")
-    arp_el = next((l for l in met.findall("location") if l.get("name") == "AERORP"), None)
+    arp_el = next((loc for loc in met.findall("location") if loc.get("name") == "AERORP"), None)
     arp = _location(arp_el, path, "metrics/location AERORP")
     mass, cg, J, notes = mass_properties(root, path, unmapped)
     g = G0 * (EARTH_RADIUS / (EARTH_RADIUS + altitude)) ** 2

@@ -200,7 +200,7 @@ def schedule_altitude(aircraft, machs) -> np.ndarray:
     top = aircraft.envelope.ceiling
     out = []
     for m in machs:
-        f = lambda h: float(cas_to_mach(SCHEDULE_CAS, h)) - m  # noqa: E731  (Mach rises with altitude at fixed CAS)
+        f = lambda h, m=m: float(cas_to_mach(SCHEDULE_CAS, h)) - m  # noqa: E731  (Mach rises with altitude at fixed CAS)
         out.append(0.0 if f(0.0) >= 0 else top if f(top) <= 0 else brentq(f, 0.0, top))
     return np.array(out)
 

@@ -271,13 +271,13 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
                 kw[name] = value
             elif name in controls:
                 ctrl[name] = value
-            return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")
+            return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")  # noqa: B023  (called within this iteration)
 
         def state(name, value):
             if solutions is None:
                 f_all, g = solve(name, value)
             else:
-                key = (float(m), name, value)
+                key = (float(m), name, value)  # noqa: B023  (called within this iteration)
                 if key not in solutions:
                     solutions[key] = solve(name, value)
                 f_all, g = solutions[key]

@@ -260,7 +260,7 @@ class LoadEnvelope:
     def critical_cases(self) -> list[CriticalCase]:
         """For every surface, station, quantity and sense: the critical condition and time."""
         out = []
-        for name, P in self.peaks.items():
+        for name, _P in self.peaks.items():
             for s, station in enumerate(self.stations[name]):
                 for q, quantity in enumerate(QUANTITIES):
                     for sense in ("max", "min"):

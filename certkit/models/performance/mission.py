@@ -232,7 +232,7 @@ class MissionFlyer:
             dv = float(lv.speed[i] - s.speed[k])
             if reached and dv > 1e-6:  # crossover above the level: accelerate at the level
                 acc = fly_path(np.full(2, lv.altitude[i]), np.array([s.speed[k], lv.speed[i]]), [w],
-                               lambda jj, ww: lv.required_thrust(i, ww), np.full(2, lv.climb_thrust[i]),
+                               lambda jj, ww: lv.required_thrust(i, ww), np.full(2, lv.climb_thrust[i]),  # noqa: B023
                                np.full(2, lv.climb_fuel_flow[i]))
                 reached = bool(acc.reached[0, -1])
                 t, f, x = t + float(acc.time[0, -1]), f + float(acc.fuel[0, -1]), x + float(acc.distance[0, -1])

@@ -106,7 +106,7 @@ class StaticLateralDirectionalStability(Rule):
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a)-(c)")
         limits = control_limits(ctx.aircraft)
         rudder_force = control_force_model(ctx.aircraft, "rudder")
-        for config, idx in by_configuration(refined).items():
+        for _config, idx in by_configuration(refined).items():
             conds = [refined[i] for i in idx]
             for cond in conds:
                 cn, cl = derivatives_at_cg(ctx, cond)

@@ -113,7 +113,7 @@ class OutOfTrim(Rule):
         elevator = control_force_model(ac, "elevator")
         out = []
         model = batch.model
-        js, je = model.control_index("stabilizer"), model.control_index("elevator")
+        js, _je = model.control_index("stabilizer"), model.control_index("elevator")
         h = np.array([c.altitude or 0.0 for c in conds])
         for sense, sign in (("nose-up", -1.0), ("nose-down", 1.0)):
             u = batch.u.copy()

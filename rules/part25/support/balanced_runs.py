@@ -174,7 +174,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             continue
         batch = trimmed_batch(ctx, entries)
         todo = list(target)
-        rows, refined, refused = batch.distribute(todo, lambda c: target[c][0], [e.speed for e in entries])
+        rows, refined, refused = batch.distribute(todo, lambda c: target[c][0], [e.speed for e in entries])  # noqa: B023  (called within this iteration)
         findings += refusal_findings(refused, lambda c: [_check(c, s) for s in SURFACES])
         if not rows.size:
             continue
@@ -230,7 +230,8 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
                     peaks = np.stack([wing_states[:, i], wing_states[:, i]], axis=1)  # one state each: min = max
                     findings.append(critical_state_finding(
                         c, check, s, peaks, loads[s].station_names, caps[s], crit.ultimate_factor,
-                        lambda j, i=i: fuel_detail(state_names[i], fuel[i], loads["wing"].tank_names, j), **details))
+                        lambda j, i=i, names=state_names, fuel=fuel: fuel_detail(names[i], fuel[i], loads["wing"].tank_names, j),
+                        **details))
                 else:
                     peaks = np.stack([total[s][i], total[s][i]])  # one state: min = max
                     findings.append(capability_finding(c, check, s, peaks, loads[s].station_names, caps[s],

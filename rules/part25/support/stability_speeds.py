@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 
-import numpy as np
 
 from certkit.atmosphere import convert_speed
 from certkit_rules.part25.support.control_speeds import vsr_cas
