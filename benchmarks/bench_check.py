@@ -30,8 +30,11 @@ def check_subprocess(*args: str, repeats: int = 3) -> list[float]:
     with tempfile.TemporaryDirectory() as out:
         for _ in range(repeats):
             t0 = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "certkit.cli", "check", BASELINE, "--out", out, *args],
-                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            subprocess.run(
+                [sys.executable, "-m", "certkit.cli", "check", BASELINE, "--out", out, *args],
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+            )
             times.append(time.perf_counter() - t0)
     return times
 
@@ -57,12 +60,17 @@ def subpart_c_selection() -> tuple[str, ...]:
 def main():
     check_subprocess(repeats=1)  # compiles the kernels or loads them from the cache
     sub_c = subpart_c_selection()
-    for label, args in (("all rules, default --jobs", ()), ("all rules, --jobs 1", ("--jobs", "1")),
-                        ("Subpart B (--select 25.1)", ("--select", "25.1")),
-                        (f"Subpart C ({' '.join(sub_c)}), target 6 s", sub_c)):
+    for label, args in (
+        ("all rules, default --jobs", ()),
+        ("all rules, --jobs 1", ("--jobs", "1")),
+        ("Subpart B (--select 25.1)", ("--select", "25.1")),
+        (f"Subpart C ({' '.join(sub_c)}), target 6 s", sub_c),
+    ):
         times = check_subprocess(*args)
-        print(f"certkit check aircraft/lta.yaml, {label}: best {min(times):.2f} s of "
-              f"{', '.join(f'{t:.2f}' for t in times)}")
+        print(
+            f"certkit check aircraft/lta.yaml, {label}: best {min(times):.2f} s of "
+            f"{', '.join(f'{t:.2f}' for t in times)}"
+        )
     rows = rules_in_process()
     print(f"\n{'rule':<16}{'wall s':>9}  status")
     for rid, t, status in rows:

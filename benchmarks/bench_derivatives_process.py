@@ -56,12 +56,24 @@ def main() -> None:
     parser.add_argument("--mach", type=float, default=0.7)
     parser.add_argument("--alpha", type=float, default=1.9)
     parser.add_argument("--repeats", type=int, default=5)
-    parser.add_argument("--inherit-bytecode", action="store_true",
-                        help="keep the caller's PYTHONDONTWRITEBYTECODE / PYTHONPYCACHEPREFIX (default: one fresh cache)")
+    parser.add_argument(
+        "--inherit-bytecode",
+        action="store_true",
+        help="keep the caller's PYTHONDONTWRITEBYTECODE / PYTHONPYCACHEPREFIX (default: one fresh cache)",
+    )
     args = parser.parse_args()
     env = {**os.environ, "OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
-    ours = [sys.executable, "-m", "certkit.cli", "derivatives", args.file, "--mach", str(args.mach), "--alpha",
-            str(args.alpha)]
+    ours = [
+        sys.executable,
+        "-m",
+        "certkit.cli",
+        "derivatives",
+        args.file,
+        "--mach",
+        str(args.mach),
+        "--alpha",
+        str(args.alpha),
+    ]
     avl = [sys.executable, "-c", AVL_SCRIPT, args.file, str(args.mach), str(args.alpha)]
     commands = {"certkit derivatives": ours, "AVL (optvl) process": avl}
     with tempfile.TemporaryDirectory(prefix="bench-pycache-") as cache:

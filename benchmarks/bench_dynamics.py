@@ -37,7 +37,9 @@ def jsbsim_run():
     t0 = time.perf_counter()
     for k in range(n):
         t = k * DT
-        fdm["fcs/elevator-cmd-norm"] = (1.0 if 1.0 <= t < 2.0 else -1.0 if 2.0 <= t < 3.0 else 0.0) * np.radians(1) / 0.3
+        fdm["fcs/elevator-cmd-norm"] = (
+            (1.0 if 1.0 <= t < 2.0 else -1.0 if 2.0 <= t < 3.0 else 0.0) * np.radians(1) / 0.3
+        )
         fdm["fcs/aileron-cmd-norm"] = (np.radians(2) / 0.35) if 4.0 <= t < 5.0 else 0.0
         fdm.run()
     return time.perf_counter() - t0, fdm
@@ -74,10 +76,14 @@ def main():
     thr_js = T_END / t_js
     thr_ck = T_END * n / t_sim
     print(f"JSBSim 737, one condition: {T_END:.0f} s simulated in {t_js:.3f} s wall -> {thr_js:,.0f} sim-s/s")
-    print(f"certkit, {n} conditions: trim {t_trim:.3f} s ({int(tb.converged.sum())}/{n} converged), "
-          f"RK4 {T_END:.0f} s at {1 / DT:.0f} Hz in {t_sim:.3f} s -> {thr_ck:,.0f} condition-sim-s/s")
-    print(f"ratio certkit/JSBSim: {thr_ck / thr_js:.1f}x (target >= 10x); trim target < 1 s: "
-          f"{'met' if t_trim < 1.0 else 'NOT met'}")
+    print(
+        f"certkit, {n} conditions: trim {t_trim:.3f} s ({int(tb.converged.sum())}/{n} converged), "
+        f"RK4 {T_END:.0f} s at {1 / DT:.0f} Hz in {t_sim:.3f} s -> {thr_ck:,.0f} condition-sim-s/s"
+    )
+    print(
+        f"ratio certkit/JSBSim: {thr_ck / thr_js:.1f}x (target >= 10x); trim target < 1 s: "
+        f"{'met' if t_trim < 1.0 else 'NOT met'}"
+    )
     print(f"peak n_z over the batch {res['n_z'].max():.3f}, min {res['n_z'].min():.3f}")
 
 

@@ -23,10 +23,16 @@ BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 DESIGNS = [
     {},
     {"geometry.horizontal_tail.area": "1000 ft^2", "geometry.horizontal_tail.aspect_ratio": 4.2},
-    {"geometry.horizontal_tail.area": "1250 ft^2", "geometry.horizontal_tail.sweep_quarter_chord": "32 deg",
-     "geometry.horizontal_tail.controls.elevator.chord_ratio": 0.32},
-    {"geometry.horizontal_tail.taper": 0.28, "geometry.horizontal_tail.thickness_ratio": 0.1,
-     "geometry.horizontal_tail.controls.elevator.span_end": 0.98},
+    {
+        "geometry.horizontal_tail.area": "1250 ft^2",
+        "geometry.horizontal_tail.sweep_quarter_chord": "32 deg",
+        "geometry.horizontal_tail.controls.elevator.chord_ratio": 0.32,
+    },
+    {
+        "geometry.horizontal_tail.taper": 0.28,
+        "geometry.horizontal_tail.thickness_ratio": 0.1,
+        "geometry.horizontal_tail.controls.elevator.span_end": 0.98,
+    },
 ]
 
 
@@ -34,8 +40,12 @@ def command(repeats: int = 3) -> list[float]:
     times = []
     for _ in range(repeats):
         t0 = time.perf_counter()
-        subprocess.run([sys.executable, "-m", "certkit.cli", "evaluate", BASELINE, "--json"],
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
+        subprocess.run(
+            [sys.executable, "-m", "certkit.cli", "evaluate", BASELINE, "--json"],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            check=True,
+        )
         times.append(time.perf_counter() - t0)
     return times
 
@@ -51,9 +61,11 @@ def in_process():
         wall = time.perf_counter() - t0
         t = rec["timings"]
         its = ", ".join(f"{s:.2f}" for s in t.get("sizing_iteration_s", []))
-        print(f"{wall:6.2f} s  set-up {t['setup_s']:.2f} | sizing {t['sizing_s']:.2f} ({its}; aero models "
-              f"{t['aero_setup_s']:.2f}) | other rules "
-              f"{t['rules_s']:.2f} | mission {t.get('mission_s', 0.0):.2f}   {values or 'baseline'}")
+        print(
+            f"{wall:6.2f} s  set-up {t['setup_s']:.2f} | sizing {t['sizing_s']:.2f} ({its}; aero models "
+            f"{t['aero_setup_s']:.2f}) | other rules "
+            f"{t['rules_s']:.2f} | mission {t.get('mission_s', 0.0):.2f}   {values or 'baseline'}"
+        )
 
 
 def main():

@@ -16,8 +16,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from certkit.aircraft import load_aircraft  # noqa: E402
 from certkit.engine.context import Context  # noqa: E402
 from certkit.engine.registry import discover  # noqa: E402
-from certkit.report.figures import figure_prefix, render_evidence  # noqa: E402
 from certkit.engine.scheduler import criteria_for  # noqa: E402
+from certkit.report.figures import figure_prefix, render_evidence  # noqa: E402
 
 BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 

@@ -25,9 +25,24 @@ def run_check(tree: str, rules_path: str, cache: str, jobs: int) -> tuple[float,
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:
-        subprocess.run([sys.executable, "-m", "certkit.cli", "check", os.path.join(tree, "aircraft", "lta.yaml"),
-                        "--out", out, "--jobs", str(jobs), "--quiet"], env=env, cwd=tree,
-                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "certkit.cli",
+                "check",
+                os.path.join(tree, "aircraft", "lta.yaml"),
+                "--out",
+                out,
+                "--jobs",
+                str(jobs),
+                "--quiet",
+            ],
+            env=env,
+            cwd=tree,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)

@@ -26,8 +26,9 @@ def fuzz(strategy, n: int, random_seed: int) -> tuple[Counter, list[str], int, f
     slow = [0, 0.0]
 
     @seed(random_seed)
-    @settings(max_examples=n, database=None, deadline=None, phases=["generate"],
-              suppress_health_check=list(HealthCheck))
+    @settings(
+        max_examples=n, database=None, deadline=None, phases=["generate"], suppress_health_check=list(HealthCheck)
+    )
     @given(strategy)
     def run(variant):
         start = time.perf_counter()
@@ -51,9 +52,11 @@ def main() -> None:
         counts, unexpected, n_slow, worst = fuzz(strategy, int(n * share), random_seed)
         took = time.perf_counter() - start
         total += counts
-        print(f"{name:5} {sum(counts.values()):6d} variants in {took:7.1f} s: "
-              + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
-              + f"; slowest {worst * 1e3:.0f} ms, {n_slow} over 2 s")
+        print(
+            f"{name:5} {sum(counts.values()):6d} variants in {took:7.1f} s: "
+            + ", ".join(f"{k} {v}" for k, v in sorted(counts.items()))
+            + f"; slowest {worst * 1e3:.0f} ms, {n_slow} over 2 s"
+        )
         for u in unexpected:
             print("   ", u)
     print(f"total {sum(total.values())} variants: " + ", ".join(f"{k} {v}" for k, v in sorted(total.items())))

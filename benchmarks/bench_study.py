@@ -49,8 +49,16 @@ def sample(study, evaluator: str, n: int, seed: int = 50) -> list[dict[str, floa
 def measure(study, points, executor: str, workers: int, evaluator: str, folder: Path) -> dict:
     with Store.open(folder / f"{executor}.sqlite", create=True) as store:
         start = time.perf_counter()
-        rows = run_study_cases(study, store, points, block="bench", executor=executor, workers=workers,
-                               evaluator=evaluator, progress=sys.stdout)
+        rows = run_study_cases(
+            study,
+            store,
+            points,
+            block="bench",
+            executor=executor,
+            workers=workers,
+            evaluator=evaluator,
+            progress=sys.stdout,
+        )
         elapsed = time.perf_counter() - start
     return {"rows": rows, "elapsed": elapsed, "workers": workers}
 
@@ -65,20 +73,28 @@ def report(label: str, run: dict, plan_size: int) -> None:
         by_worker[r["worker"]].append(r["wall_s"])
     steady = [w for walls in by_worker.values() for w in walls[1:]]
     first = [walls[0] for walls in by_worker.values()]
-    print(f"\n{label}: {len(rows)} cases ({failed} failed) in {run['elapsed']:.1f} s on {run['workers']} workers: "
-          f"{len(rows) / run['elapsed']:.3g} cases/s")
-    print(f"  {per_core:.2f} s per design per core (end to end); mean case {sum(steady) / max(1, len(steady)):.2f} s "
-          f"after each worker's first (first cases: {', '.join(f'{w:.1f}' for w in first)} s)")
+    print(
+        f"\n{label}: {len(rows)} cases ({failed} failed) in {run['elapsed']:.1f} s on {run['workers']} workers: "
+        f"{len(rows) / run['elapsed']:.3g} cases/s"
+    )
+    print(
+        f"  {per_core:.2f} s per design per core (end to end); mean case {sum(steady) / max(1, len(steady)):.2f} s "
+        f"after each worker's first (first cases: {', '.join(f'{w:.1f}' for w in first)} s)"
+    )
     cores = available_cores()
-    print(f"  projection of the {plan_size}-case plan: {plan_size * per_core / cores / 60:.1f} min on {cores} cores, "
-          f"{plan_size * per_core / 2 / 60:.1f} min on 2 (target {TARGET_S_PER_DESIGN_CORE:.2f} s/design/core: "
-          f"{'met' if per_core <= TARGET_S_PER_DESIGN_CORE else 'NOT met'})")
+    print(
+        f"  projection of the {plan_size}-case plan: {plan_size * per_core / cores / 60:.1f} min on {cores} cores, "
+        f"{plan_size * per_core / 2 / 60:.1f} min on 2 (target {TARGET_S_PER_DESIGN_CORE:.2f} s/design/core: "
+        f"{'met' if per_core <= TARGET_S_PER_DESIGN_CORE else 'NOT met'})"
+    )
     # a whole plan pays each worker's start-up (its first case's excess over the mean case) once, not every 50 cases
     startup = sum(first) - len(first) * sum(steady) / max(1, len(steady))
     steady_per_core = (run["elapsed"] * run["workers"] - startup) / len(rows)
-    print(f"  without the workers' start-up ({startup:.1f} s in all): {steady_per_core:.2f} s per design per core; the "
-          f"{plan_size}-case plan on 2 cores, start-up paid once per worker: "
-          f"{(plan_size * steady_per_core + startup) / 2 / 60:.1f} min")
+    print(
+        f"  without the workers' start-up ({startup:.1f} s in all): {steady_per_core:.2f} s per design per core; the "
+        f"{plan_size}-case plan on 2 cores, start-up paid once per worker: "
+        f"{(plan_size * steady_per_core + startup) / 2 / 60:.1f} min"
+    )
     parts = defaultdict(float)
     for r in ok:
         for name, value in (r["timings"] or {}).items():
@@ -86,8 +102,10 @@ def report(label: str, run: dict, plan_size: int) -> None:
                 parts[name] += value
     cpu = parts.pop("cpu_s", None)
     if cpu is not None and ok:
-        print(f"  CPU time per design {cpu / len(ok):.2f} s (the evaluating process's own; on a loaded machine the wall "
-              f"time above grows, this does not)")
+        print(
+            f"  CPU time per design {cpu / len(ok):.2f} s (the evaluating process's own; on a loaded machine the wall "
+            f"time above grows, this does not)"
+        )
     if parts:
         total = parts.get("total_s") or sum(parts.values())
         print("  cost split (records' timings, mean per design):")

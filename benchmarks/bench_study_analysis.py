@@ -28,11 +28,16 @@ EXTRA_RULES = ["25.331(c)(1)", "25.331(c)(2)", "25.333", "25.349(b)", "25.143(h)
 
 
 def seed_sized_study():
-    study = study_dict(level_relaxation=[{"responses": "level.*.cg2*.*", "max_level": 2}],
-                       uncertainty=[{"responses": "rule.25.331*", "percent": 10, "distribution": "uniform"}])
+    study = study_dict(
+        level_relaxation=[{"responses": "level.*.cg2*.*", "max_level": 2}],
+        uncertainty=[{"responses": "rule.25.331*", "percent": 10, "distribution": "uniform"}],
+    )
     study["constraints"] += [{"name": f"§{r}", "response": f"rule.{r}.margin", "min": 0.0} for r in EXTRA_RULES]
     frames = []
-    for x, block, role, seed in ((sample(793, 1), "ccd+lhs", "training", 1), (sample(200, 2), "random", "validation", 2)):
+    for x, block, role, seed in (
+        (sample(793, 1), "ccd+lhs", "training", 1),
+        (sample(200, 2), "random", "validation", 2),
+    ):
         df = frame_of(x, block, role, fail_every=40, noise=0.002, seed=seed)
         u = unit(x)
         for k, rule in enumerate(EXTRA_RULES):  # smooth margins with different active variables
@@ -63,8 +68,10 @@ def main() -> None:
     mc = run_monte_carlo(view, surrogates, n=int(args.samples))
     t_mc = time.perf_counter() - t0
     p, se = mc.stage_p("constrained")
-    print(f"Monte Carlo: {mc.n} samples × {len(surrogates)} surrogates in {t_mc:.1f} s (target < 30 s); "
-          f"joint P {p:.4f} ± {se:.4f}")
+    print(
+        f"Monte Carlo: {mc.n} samples × {len(surrogates)} surrogates in {t_mc:.1f} s (target < 30 s); "
+        f"joint P {p:.4f} ± {se:.4f}"
+    )
     if args.report:
         t0 = time.perf_counter()
         path = write_study_report(study, frame, "/tmp/bench_study_report", samples=int(args.samples), check=False)

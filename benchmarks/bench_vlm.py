@@ -78,7 +78,9 @@ def main() -> None:
     cases = []
     tmp = Path(tempfile.mkdtemp(prefix="bench_vlm_"))
     if (REFERENCE / "b737.avl").is_file():
-        cases.append(("b737.avl (AVL sample)", read_avl(REFERENCE / "b737.avl"), (REFERENCE / "b737.avl").resolve(), 0.7))
+        cases.append(
+            ("b737.avl (AVL sample)", read_avl(REFERENCE / "b737.avl"), (REFERENCE / "b737.avl").resolve(), 0.7)
+        )
     tr = transport(mach=0.6, scale=1)
     for s in tr.surfaces:  # refine to about 1000 vortices
         s.n_chord = int(s.n_chord * 1.3)
@@ -92,13 +94,22 @@ def main() -> None:
         n = build_lattice(cfg).n_vortices
         t_full = best_of(lambda: ours_full(cfg, mach, alpha), args.repeats)  # noqa: B023  (called within this iteration)
         vl = ours_full(cfg, mach, alpha)
-        state = AeroState(alpha=rng.uniform(-0.1, 0.2, 1000), beta=rng.uniform(-0.1, 0.1, 1000), p_hat=rng.uniform(-0.05, 0.05, 1000),
-                          q_hat=0.01, r_hat=0.0, mach=mach, controls={vl.control_names[0]: rng.uniform(-0.2, 0.2, 1000)})
+        state = AeroState(
+            alpha=rng.uniform(-0.1, 0.2, 1000),
+            beta=rng.uniform(-0.1, 0.1, 1000),
+            p_hat=rng.uniform(-0.05, 0.05, 1000),
+            q_hat=0.01,
+            r_hat=0.0,
+            mach=mach,
+            controls={vl.control_names[0]: rng.uniform(-0.2, 0.2, 1000)},
+        )
         t_batch = best_of(lambda: vl.coefficients(state), args.repeats)  # noqa: B023  (called within this iteration)
         t_avl = optvl_full(Path(path), mach, math.degrees(alpha), args.repeats)
         rows.append((label, n, t_full, t_batch, t_avl))
 
-    print(f"{'geometry':<24} {'vortices':>8} {'ours full (s)':>14} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15} {'AVL/ours':>9}")
+    print(
+        f"{'geometry':<24} {'vortices':>8} {'ours full (s)':>14} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15} {'AVL/ours':>9}"
+    )
     for label, n, t_full, t_batch, t_avl in rows:
         ratio = f"{t_avl / t_full:9.2f}" if t_avl else "      n/a"
         avl = f"{t_avl:15.3f}" if t_avl else "            n/a"

@@ -129,6 +129,7 @@ def density_ratio(h: Values) -> FloatArray:
 
 # --- airspeed conversions -------------------------------------------------------------------
 
+
 def eas_to_tas(eas: Values, h: Values) -> FloatArray:
     return np.asarray(eas, dtype=float) / np.sqrt(density_ratio(h))
 

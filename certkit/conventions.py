@@ -55,17 +55,21 @@ Load factor
 """
 
 #: the drag-axis convention in one line, for outputs
-DRAG_AXIS = ("CD along the stability x axis (relative wind projected on the plane of symmetry; no side component "
-             "with sideslip); JSBSim's drag acts along the relative wind (−D sin β side force)")
+DRAG_AXIS = (
+    "CD along the stability x axis (relative wind projected on the plane of symmetry; no side component "
+    "with sideslip); JSBSim's drag acts along the relative wind (−D sin β side force)"
+)
 
 #: the control sign convention of each input kind of ``certkit derivatives``
 CONTROL_SIGNS = {
     "aircraft": "certkit's (Etkin & Reid): a positive deflection gives a negative moment — elevator trailing edge "
-                "down, right aileron trailing edge down, rudder trailing edge left",
+    "down, right aileron trailing edge down, rudder trailing edge left",
     "avl": "the AVL file's own: a positive deflection turns the surface right-handedly about its CONTROL hinge "
-           "vector (SgnDup on the mirrored half), as AVL prints them (certkit per radian, AVL per degree)",
+    "vector (SgnDup on the mirrored half), as AVL prints them (certkit per radian, AVL per degree)",
 }
 
 #: what ``certkit derivatives`` calls the induced drag
-INDUCED_DRAG = ("Trefftz-plane induced drag (AVL's CDff); AVL's near-field CDi (surface-force integration) is not "
-                "computed and differs by a few per cent")
+INDUCED_DRAG = (
+    "Trefftz-plane induced drag (AVL's CDff); AVL's near-field CDi (surface-force integration) is not "
+    "computed and differs by a few per cent"
+)

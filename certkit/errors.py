@@ -45,7 +45,9 @@ class InputError(UserError):
         head = f"{source}: {n} problem{'s' if n != 1 else ''} found"
         super().__init__("\n".join([head] + [f"  - {p}" for p in self.problems]))
 
-    def __reduce__(self) -> tuple[type[InputError], tuple[str, list[Problem]]]:  # raised in a worker, re-raised in the parent
+    def __reduce__(
+        self,
+    ) -> tuple[type[InputError], tuple[str, list[Problem]]]:  # raised in a worker, re-raised in the parent
         return (InputError, (self.source, self.problems))
 
 

@@ -59,7 +59,6 @@ DIMENSIONS: dict[str, str] = {
     "areal_density": "kg/m**2",  # mass per unit planform area (structural sizing)
     "angular_rate": "rad/s",
     "mass_per_energy": "kg/J",  # actuator mass per unit work capacity (stall force × stroke)
-
     "specific_fuel_consumption": "kg/N/s",  # thrust-specific fuel consumption ("0.52 lb/lbf/h")
     "dimensionless": "",
 }
@@ -84,8 +83,10 @@ MAX_UNIT_EXPONENT = 4
 _NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d{1,4})?"
 _QUANTITY = re.compile(rf"^({_NUMBER})\s*(.*)$")
 #: one token of a unit expression: a unit name, an integer exponent, a product, a quotient or a bracket
-_UNIT_TOKEN = re.compile(r"\s*(?:(?P<name>[A-Za-zµμ°Ωℓ_][A-Za-z0-9µμ°Ωℓ_]*)|(?P<power>(?:\^|\*\*)\s*[+-]?\d+)"
-                         r"|(?P<op>[*/])|(?P<bracket>[()]))")
+_UNIT_TOKEN = re.compile(
+    r"\s*(?:(?P<name>[A-Za-zµμ°Ωℓ_][A-Za-z0-9µμ°Ωℓ_]*)|(?P<power>(?:\^|\*\*)\s*[+-]?\d+)"
+    r"|(?P<op>[*/])|(?P<bracket>[()]))"
+)
 
 
 def _unit_expression(text: str) -> str:
@@ -154,16 +155,19 @@ def finite_number(value: float, what: object) -> float:
 def physical(value: float, what: object) -> float:
     """``value`` (SI) if finite and within ±:data:`MAX_SI_MAGNITUDE`, else a :class:`UnitError`."""
     if abs(finite_number(value, what)) > MAX_SI_MAGNITUDE:
-        raise UnitError(f"{what!r} is beyond any physical value certkit takes (magnitude above {MAX_SI_MAGNITUDE:.0e} "
-                        "in SI units)")
+        raise UnitError(
+            f"{what!r} is beyond any physical value certkit takes (magnitude above {MAX_SI_MAGNITUDE:.0e} in SI units)"
+        )
     return value
 
 
 @lru_cache(maxsize=4096)
 def _parse_string(text: str, dimension: str) -> float:
     if len(text) > MAX_QUANTITY_CHARS:
-        raise UnitError(f"quantity text of {len(text)} characters is too long (at most {MAX_QUANTITY_CHARS}): "
-                        "write a number and a unit, e.g. '4927.3 ft^2'")
+        raise UnitError(
+            f"quantity text of {len(text)} characters is too long (at most {MAX_QUANTITY_CHARS}): "
+            "write a number and a unit, e.g. '4927.3 ft^2'"
+        )
     m = _QUANTITY.match(text)
     if m is None:
         raise UnitError(f"cannot read {text!r} as a quantity: expected a number and a unit, e.g. '97300 lbf'")
@@ -171,8 +175,10 @@ def _parse_string(text: str, dimension: str) -> float:
     if not m[2]:
         return physical(number, text)  # a bare number is SI, as a number would be
     if m[2][0] in "*^0123456789.":
-        raise UnitError(f"cannot read {text!r}: write one decimal number then the unit (e.g. '3.87e8 lb'); "
-                        "arithmetic is not evaluated")
+        raise UnitError(
+            f"cannot read {text!r}: write one decimal number then the unit (e.g. '3.87e8 lb'); "
+            "arithmetic is not evaluated"
+        )
     unit = _unit_of(m[2])
     if unit.dimensionality != _si_unit(dimension).dimensionality:
         expected = DIMENSIONS[dimension] or "no unit"

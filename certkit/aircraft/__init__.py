@@ -38,12 +38,15 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
     :class:`InputError` with every problem found."""
     path = source.path if source else "<data>"
     if not isinstance(data, dict):
-        raise InputError(path, [Problem("", "the file must be a mapping of sections (name:, reference:, ...)",
-                                        type(data).__name__)])
+        raise InputError(
+            path, [Problem("", "the file must be a mapping of sections (name:, reference:, ...)", type(data).__name__)]
+        )
     found = []
     sections: dict[str, object] = {}
     fields = Aircraft.model_fields
-    found += [((key,), pydantic_messages("certkit schema")["extra_forbidden"], None) for key in data if key not in fields]
+    found += [
+        ((key,), pydantic_messages("certkit schema")["extra_forbidden"], None) for key in data if key not in fields
+    ]
     for name, info in fields.items():
         if name not in data:
             if info.is_required():
@@ -60,8 +63,10 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
             sections.pop(name, None)
             reported = {loc for loc, _, _ in found}
             found += [f for f in extreme if f[0] not in reported]
-    found += [(split_path(p.path), p.message, raw_at(data, split_path(p.path), p.value))
-              for p in consistency_problems(sections)]
+    found += [
+        (split_path(p.path), p.message, raw_at(data, split_path(p.path), p.value))
+        for p in consistency_problems(sections)
+    ]
     if found:
         raise InputError(path, located(found, source))
     try:

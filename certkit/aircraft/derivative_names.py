@@ -74,11 +74,22 @@ DIMENSIONAL: dict[str, tuple[str, str]] = {
     "CD0": ("drag coefficient in the flight condition (non-dimensional; needed to recover CL_alpha from Z_w)", "1"),
 }
 
-NONDIMENSIONAL_CONTROL = {"CL": "lift", "CD": "drag", "CY": "side-force", "Cl": "rolling-moment",
-                          "Cm": "pitching-moment", "Cn": "yawing-moment"}
-DIMENSIONAL_CONTROL = {"X": ("x force", "N/rad"), "Y": ("side force", "N/rad"), "Z": ("z force", "N/rad"),
-                       "L": ("rolling moment", "N m/rad"), "M": ("pitching moment", "N m/rad"),
-                       "N": ("yawing moment", "N m/rad")}
+NONDIMENSIONAL_CONTROL = {
+    "CL": "lift",
+    "CD": "drag",
+    "CY": "side-force",
+    "Cl": "rolling-moment",
+    "Cm": "pitching-moment",
+    "Cn": "yawing-moment",
+}
+DIMENSIONAL_CONTROL = {
+    "X": ("x force", "N/rad"),
+    "Y": ("side force", "N/rad"),
+    "Z": ("z force", "N/rad"),
+    "L": ("rolling moment", "N m/rad"),
+    "M": ("pitching moment", "N m/rad"),
+    "N": ("yawing moment", "N m/rad"),
+}
 #: control names a table may use without listing them in ``controls:`` (others must be listed, so that a misspelt
 #: derivative such as X_uu is an error, not a control named "uu")
 #: the control of a movable horizontal stabiliser in the flight models (deflection from the declared tail incidence)
@@ -113,8 +124,10 @@ def schema_description() -> str:
     """Every accepted name with its meaning and unit, for ``certkit schema``."""
     lines = ["Non-dimensional form (form: nondimensional):"]
     lines += [f"  {n}: {m} [{u}]" for n, (m, u) in NONDIMENSIONAL.items()]
-    lines += ["  <CL|CD|CY|Cl|Cm|Cn>_<control>: control derivative per rad (e.g. Cm_elevator)",
-              "Dimensional form (form: dimensional; SI, stability axes at the flight condition):"]
+    lines += [
+        "  <CL|CD|CY|Cl|Cm|Cn>_<control>: control derivative per rad (e.g. Cm_elevator)",
+        "Dimensional form (form: dimensional; SI, stability axes at the flight condition):",
+    ]
     lines += [f"  {n}: {m} [{u}]" for n, (m, u) in DIMENSIONAL.items()]
     lines += ["  <X|Y|Z|L|M|N>_<control>: control derivative, N/rad or N m/rad (e.g. M_elevator)"]
     return "\n".join(lines)
@@ -125,6 +138,8 @@ def schema_properties() -> dict:
     props = {}
     for table in (NONDIMENSIONAL, DIMENSIONAL):
         for name, (meaning, unit) in table.items():
-            props[name] = {"anyOf": [{"type": "number"}, {"type": "array", "items": {"type": "number"}}],
-                           "description": f"{meaning} [{unit}]"}
+            props[name] = {
+                "anyOf": [{"type": "number"}, {"type": "array", "items": {"type": "number"}}],
+                "description": f"{meaning} [{unit}]",
+            }
     return props

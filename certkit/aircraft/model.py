@@ -9,18 +9,37 @@ are checked in :mod:`certkit.aircraft.consistency` so that all problems are repo
 from __future__ import annotations
 
 import math
-
 from typing import Annotated, Literal
 
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from certkit.aircraft import derivative_names
-from certkit.aircraft.quantities import _converter as _quantity_converter
 from certkit.aircraft.quantities import (
-    Acceleration, Angle, AngularRate, ArealDensity, Density, Force, Fraction, Gearing, Inertia, Length, Mass, MassPerEnergy,
-    PositiveArea, PositiveForce, PositiveLength, PositiveMass, Pressure, SpecificFuelConsumption, Speed, SpeedValue,
-    Stiffness, Temperature, Time,
+    Acceleration,
+    Angle,
+    AngularRate,
+    ArealDensity,
+    Density,
+    Force,
+    Fraction,
+    Gearing,
+    Inertia,
+    Length,
+    Mass,
+    MassPerEnergy,
+    PositiveArea,
+    PositiveForce,
+    PositiveLength,
+    PositiveMass,
+    Pressure,
+    SpecificFuelConsumption,
+    Speed,
+    SpeedValue,
+    Stiffness,
+    Temperature,
+    Time,
 )
+from certkit.aircraft.quantities import _converter as _quantity_converter
 
 
 class _Section(BaseModel):
@@ -28,6 +47,7 @@ class _Section(BaseModel):
 
 
 # --- reference -----------------------------------------------------------------------------
+
 
 class Point(_Section):
     """A point in the airplane frame (X aft of the nose, Y right, Z up)."""
@@ -47,6 +67,7 @@ class Reference(_Section):
 
 
 # --- geometry ------------------------------------------------------------------------------
+
 
 class Limits(_Section):
     """Deflection limits (rad): ``min`` ≤ δ ≤ ``max`` in the sign convention of the surface."""
@@ -84,8 +105,10 @@ class ControlSurface(_Section):
         d, t = self.design_limits, self.travel
         if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
             deg = 180.0 / math.pi
-            raise ValueError(f"design_limits ({d.min * deg:.1f}° to {d.max * deg:.1f}°) must lie within the travel to the "
-                             f"control-system stops ({t.min * deg:.1f}° to {t.max * deg:.1f}°): a stop inside a design limit")
+            raise ValueError(
+                f"design_limits ({d.min * deg:.1f}° to {d.max * deg:.1f}°) must lie within the travel to the "
+                f"control-system stops ({t.min * deg:.1f}° to {t.max * deg:.1f}°): a stop inside a design limit"
+            )
         return self
 
 
@@ -112,14 +135,18 @@ class MovableStabilizer(_Section):
     ``elevator_trim``; where the stabiliser reaches its limit, the elevator carries the rest."""
 
     travel: Limits = Field(description="incidence range to the structural stops (min: nose-up trim, leading edge down)")
-    design_limits: Limits | None = Field(None, description="range the trim system allows (the trims are solved within "
-                                                           "it); the travel when omitted")
+    design_limits: Limits | None = Field(
+        None, description="range the trim system allows (the trims are solved within it); the travel when omitted"
+    )
     design_limits_by_configuration: dict[str, Limits] = Field(
-        default_factory=dict, description="trim range of a configuration (a name under configurations) where it differs "
-                                          "from design_limits, e.g. a nose-down limit that widens with the flaps extended; "
-                                          "configurations not named use design_limits")
-    rate: Annotated[AngularRate, Field(gt=0)] | None = Field(None, description="trim rate of the stabiliser "
-                                                                                 "('0.5 deg/s'), for out-of-trim cases")
+        default_factory=dict,
+        description="trim range of a configuration (a name under configurations) where it differs "
+        "from design_limits, e.g. a nose-down limit that widens with the flaps extended; "
+        "configurations not named use design_limits",
+    )
+    rate: Annotated[AngularRate, Field(gt=0)] | None = Field(
+        None, description="trim rate of the stabiliser ('0.5 deg/s'), for out-of-trim cases"
+    )
     elevator_trim: Angle = Field(0.0, description="elevator deflection at which the airplane is trimmed (default 0)")
     source: str = Field("", description="where the travel and rate come from")
 
@@ -146,8 +173,14 @@ class LiftingSurface(_Section):
 
     area: PositiveArea
     aspect_ratio: Annotated[float, Field(gt=0.0, description="b²/S (for a fin: height²/S)")]
-    taper: Annotated[float, Field(ge=0.02, le=1.0, description="tip chord / root chord (from 0.02: a pointed tip is "
-                                                               "outside the trapezoidal-panel model)")]
+    taper: Annotated[
+        float,
+        Field(
+            ge=0.02,
+            le=1.0,
+            description="tip chord / root chord (from 0.02: a pointed tip is outside the trapezoidal-panel model)",
+        ),
+    ]
     sweep_quarter_chord: Annotated[Angle, Field(gt=-1.2, lt=1.2)]
     dihedral: Annotated[Angle, Field(gt=-0.8, lt=0.8)] = 0.0
     thickness_ratio: Annotated[float, Field(gt=0.0, lt=0.4)] = 0.12
@@ -158,17 +191,31 @@ class LiftingSurface(_Section):
     controls: dict[str, ControlSurface] = Field(default_factory=dict)
     flaps: HighLiftDevice | None = None
     slats: HighLiftDevice | None = None
-    stabilizer: MovableStabilizer | None = Field(None, description="horizontal tail only: the whole tail's incidence "
-                                                                    "moves to trim (travel, rate, elevator trim setting)")
+    stabilizer: MovableStabilizer | None = Field(
+        None,
+        description="horizontal tail only: the whole tail's incidence "
+        "moves to trim (travel, rate, elevator trim setting)",
+    )
 
 
 class Fuselage(_Section):
     length: PositiveLength
     width: PositiveLength
     height: PositiveLength
-    upsweep: Annotated[Angle, Field(ge=0.0, le=0.5, description=(
-        "upsweep of the aft fuselage's centre line, rad ('6 deg'): its drag by Raymer eq. 12.36 "
-        "(none: no upsweep drag)"))] | None = None
+    upsweep: (
+        Annotated[
+            Angle,
+            Field(
+                ge=0.0,
+                le=0.5,
+                description=(
+                    "upsweep of the aft fuselage's centre line, rad ('6 deg'): its drag by Raymer eq. 12.36 "
+                    "(none: no upsweep drag)"
+                ),
+            ),
+        ]
+        | None
+    ) = None
 
 
 class Nacelle(_Section):
@@ -182,9 +229,11 @@ class LandingGear(_Section):
     main: Point
     nose: Point
     tail_strike_attitude: Annotated[Angle, Field(gt=0.0, lt=math.radians(30.0))] | None = Field(
-        None, description="pitch attitude at which the aft fuselage touches the runway with the main gear on it "
-                          "(struts extended, e.g. the manufacturer's flight crew training manual); the simulated "
-                          "takeoff rotation stays below it while the gear carries load")
+        None,
+        description="pitch attitude at which the aft fuselage touches the runway with the main gear on it "
+        "(struts extended, e.g. the manufacturer's flight crew training manual); the simulated "
+        "takeoff rotation stays below it while the gear carries load",
+    )
 
 
 class Geometry(_Section):
@@ -197,6 +246,7 @@ class Geometry(_Section):
 
 
 # --- mass ----------------------------------------------------------------------------------
+
 
 class InertiaTensor(_Section):
     """Moments and products of inertia (kg m²) at the CG of the item, in the axes ``axes`` names.
@@ -215,8 +265,14 @@ class InertiaTensor(_Section):
     Ixy: Inertia = 0.0
     Iyz: Inertia = 0.0
     axes: Literal["body", "stability", "principal"] = "body"
-    axes_angle: Annotated[Angle, Field(ge=-0.8, le=0.8, description="angle of the declared x axis above the body "
-                                                                    "x axis (rotation about y, nose-up positive)")] = 0.0
+    axes_angle: Annotated[
+        Angle,
+        Field(
+            ge=-0.8,
+            le=0.8,
+            description="angle of the declared x axis above the body x axis (rotation about y, nose-up positive)",
+        ),
+    ] = 0.0
 
     @model_validator(mode="after")
     def _principal(self):
@@ -230,7 +286,9 @@ class MassComponent(_Section):
     mass: PositiveMass
     cg: Point
     inertia: InertiaTensor | None = None
-    group: Literal["structure", "propulsion", "systems", "furnishings", "operator", "payload", "fuel", "other"] = "other"
+    group: Literal["structure", "propulsion", "systems", "furnishings", "operator", "payload", "fuel", "other"] = (
+        "other"
+    )
     source: str | None = None
 
 
@@ -249,8 +307,10 @@ class FuelTank(_Section):
     def _bay(self):
         a, b = self.y_inboard, self.y_outboard
         if a is not None and b is not None and not a < abs(self.cg.y) < b:
-            raise ValueError(f"the tank's centroid |y| = {abs(self.cg.y):.3f} m must lie between y_inboard "
-                             f"{a:.3f} m and y_outboard {b:.3f} m")
+            raise ValueError(
+                f"the tank's centroid |y| = {abs(self.cg.y):.3f} m must lie between y_inboard "
+                f"{a:.3f} m and y_outboard {b:.3f} m"
+            )
         return self
 
 
@@ -277,16 +337,26 @@ class MassProperties(_Section):
     max_payload: PositiveMass | None = None
     passengers: Annotated[int, Field(ge=0, le=10_000, strict=True, description="seats: a whole number")] | None = None
     oew_cg: Point | None = None
-    cg: Point | None = Field(None, description="CG of the whole airplane at MTOW (a file without components, tanks "
-                                               "or zones; default: the CG envelope's reference, else the moment point)")
-    inertia: InertiaTensor | None = Field(None, description="whole-airplane inertia at MTOW (used without components, "
-                                                            "or with them when inertia_used is 'declared')")
+    cg: Point | None = Field(
+        None,
+        description="CG of the whole airplane at MTOW (a file without components, tanks "
+        "or zones; default: the CG envelope's reference, else the moment point)",
+    )
+    inertia: InertiaTensor | None = Field(
+        None,
+        description="whole-airplane inertia at MTOW (used without components, "
+        "or with them when inertia_used is 'declared')",
+    )
     inertia_used: Literal["components", "declared"] = Field(
-        "components", description="with both components and a declared inertia: which one the dynamics uses (the "
-                                  "other is compared with it; a difference beyond inertia_tolerance is a warning)")
+        "components",
+        description="with both components and a declared inertia: which one the dynamics uses (the "
+        "other is compared with it; a difference beyond inertia_tolerance is a warning)",
+    )
     inertia_tolerance: Annotated[float, Field(gt=0.0, lt=1.0)] = Field(
-        0.10, description="relative difference of a moment of inertia (build-up at MTOW vs declared) beyond which "
-                          "certkit warns")
+        0.10,
+        description="relative difference of a moment of inertia (build-up at MTOW vs declared) beyond which "
+        "certkit warns",
+    )
     components: list[MassComponent] = Field(default_factory=list)
     fuel_tanks: list[FuelTank] = Field(default_factory=list)
     payload_zones: list[PayloadZone] = Field(default_factory=list)
@@ -306,6 +376,7 @@ class CgEnvelope(_Section):
 
 
 # --- propulsion ----------------------------------------------------------------------------
+
 
 class Engine(_Section):
     name: str
@@ -336,12 +407,16 @@ class Propulsion(_Section):
     bypass_ratio: Annotated[float, Field(gt=0)] = 8.0
     deck: EngineDeck | None = None
     failure_decay_time: Annotated[Time, Field(gt=0.0)] | None = Field(
-        None, description="time constant of the first-order decay of a failed engine's thrust to its windmilling "
-                          "drag (fuel cut); without it a failed engine windmills at once")
+        None,
+        description="time constant of the first-order decay of a failed engine's thrust to its windmilling "
+        "drag (fuel cut); without it a failed engine windmills at once",
+    )
     flat_rating_temperature: Annotated[Temperature, Field(gt=200.0, lt=350.0)] | None = Field(
-        None, description="ambient temperature up to which takeoff thrust is held at sea level static (the engine "
-                          "type certificate's 'flat rating ambient temperature', e.g. '30 degC'); above it thrust "
-                          "lapses with Mattingly's high-bypass law. Needed for off-standard days (takeoff_landing_envelope)")
+        None,
+        description="ambient temperature up to which takeoff thrust is held at sea level static (the engine "
+        "type certificate's 'flat rating ambient temperature', e.g. '30 degC'); above it thrust "
+        "lapses with Mattingly's high-bypass law. Needed for off-standard days (takeoff_landing_envelope)",
+    )
 
 
 class TakeoffPilot(_Section):
@@ -354,17 +429,23 @@ class TakeoffPilot(_Section):
     without anticipating the failure), full pedal in about a second (30 deg/s), no nose-wheel steering declared."""
 
     rudder_reaction_time: Annotated[Time, Field(ge=0.0, le=5.0)] = Field(
-        1.0, description="time from the engine failure to the pilot's first rudder-pedal input, s (0 to 5 s)")
+        1.0, description="time from the engine failure to the pilot's first rudder-pedal input, s (0 to 5 s)"
+    )
     rudder_rate: Annotated[AngularRate, Field(gt=0.0, le=math.radians(200.0))] = Field(
-        math.radians(30.0), description="largest rate at which the pilot moves the rudder, e.g. '30 deg/s' "
-                                        "(greater than 0, at most 200 deg/s)")
+        math.radians(30.0),
+        description="largest rate at which the pilot moves the rudder, e.g. '30 deg/s' "
+        "(greater than 0, at most 200 deg/s)",
+    )
     nose_wheel_steering: Annotated[Angle, Field(ge=0.0, le=math.radians(80.0))] | None = Field(
-        None, description="nose-wheel angle at full rudder pedal (pedal steering, e.g. '7 deg'), used on the runway "
-                          "where the procedure allows it; without it the nose wheel stays straight")
+        None,
+        description="nose-wheel angle at full rudder pedal (pedal steering, e.g. '7 deg'), used on the runway "
+        "where the procedure allows it; without it the nose wheel stays straight",
+    )
     source: str | None = None
 
 
 # --- aerodynamics: calibration and declared data ------------------------------------------
+
 
 class DerivativeTable(_Section):
     """Stability and control derivatives of one configuration (wind tunnel, CFD or published data).
@@ -381,15 +462,26 @@ class DerivativeTable(_Section):
 
     form: Literal["nondimensional", "dimensional"] = "nondimensional"
     mach: Annotated[list[Annotated[float, Field(ge=0.0, lt=1.0)]], Field(min_length=1)] | None = Field(
-        None, description="Mach breakpoints (default: the flight condition's Mach number)")
+        None, description="Mach breakpoints (default: the flight condition's Mach number)"
+    )
     derivatives: dict[str, float | list[float]] = Field(
-        description="derivative name → value (or one value per Mach breakpoint):\n" + derivative_names.schema_description(),
-        json_schema_extra={"properties": derivative_names.schema_properties(),
-                           "patternProperties": {r"^(CL|CD|CY|Cl|Cm|Cn|X|Y|Z|L|M|N)_[A-Za-z][A-Za-z0-9_]*$": {
-                               "description": "control derivative <prefix>_<control>, per rad"}}})
-    controls: list[str] | None = Field(None, description="control surfaces the control terms (Cm_elevator …) refer "
-                                                         "to (default: those of elevator, aileron, rudder, stabilizer, "
-                                                         "spoiler, flap, slat the terms name)")
+        description="derivative name → value (or one value per Mach breakpoint):\n"
+        + derivative_names.schema_description(),
+        json_schema_extra={
+            "properties": derivative_names.schema_properties(),
+            "patternProperties": {
+                r"^(CL|CD|CY|Cl|Cm|Cn|X|Y|Z|L|M|N)_[A-Za-z][A-Za-z0-9_]*$": {
+                    "description": "control derivative <prefix>_<control>, per rad"
+                }
+            },
+        },
+    )
+    controls: list[str] | None = Field(
+        None,
+        description="control surfaces the control terms (Cm_elevator …) refer "
+        "to (default: those of elevator, aileron, rudder, stabilizer, "
+        "spoiler, flap, slat the terms name)",
+    )
     source: Annotated[str, Field(min_length=3)]
 
     @property
@@ -413,14 +505,17 @@ class LatticeResolution(_Section):
 
 class Aerodynamics(_Section):
     derivative_tables: dict[str, DerivativeTable] = Field(
-        default_factory=dict, description="configuration name → declared derivatives (replace the lattice)")
+        default_factory=dict, description="configuration name → declared derivatives (replace the lattice)"
+    )
     overrides: dict[str, dict[str, float]] = Field(
-        default_factory=dict, description="configuration name → coefficient name → value (e.g. a measured CD0)")
+        default_factory=dict, description="configuration name → coefficient name → value (e.g. a measured CD0)"
+    )
     overrides_source: str | None = None
     lattice: LatticeResolution = Field(default_factory=LatticeResolution)
 
 
 # --- configurations, speeds, envelope, criteria --------------------------------------------
+
 
 class FlightCondition(_Section):
     """The flight condition of published data: where dimensional and speed derivatives were taken, and the default
@@ -428,12 +523,14 @@ class FlightCondition(_Section):
     ('235.9 m/s TAS', '250 kn EAS') or a Mach number; the gravitational acceleration the source used."""
 
     altitude: Length | None = Field(None, description="pressure altitude (ISA); or give density")
-    density: Annotated[Density, Field(gt=0.0)] | None = Field(None, description="air density; the ISA altitude with this "
-                                                                                "density is flown")
+    density: Annotated[Density, Field(gt=0.0)] | None = Field(
+        None, description="air density; the ISA altitude with this density is flown"
+    )
     speed: Speed | None = Field(None, description="airspeed with its kind; or give mach")
     mach: Annotated[float, Field(gt=0.0, lt=1.0)] | None = None
     gravity: Annotated[Acceleration, Field(gt=9.7, lt=9.9)] = Field(
-        9.80665, description="gravitational acceleration of the equations of motion (standard 9.80665 m/s²)")
+        9.80665, description="gravitational acceleration of the equations of motion (standard 9.80665 m/s²)"
+    )
     source: str | None = None
 
     @model_validator(mode="after")
@@ -453,15 +550,19 @@ class StallWarning(_Section):
     warning speed VSW as a ratio to VSR. One of the two, with its source."""
 
     CL: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(
-        None, description="trimmed 1-g lift coefficient at which stall warning begins")
+        None, description="trimmed 1-g lift coefficient at which stall warning begins"
+    )
     speed_ratio: Annotated[float, Field(gt=1.0, lt=2.0)] | None = Field(
-        None, description="VSW/VSR, the stall-warning speed over the reference stall speed (CAS)")
+        None, description="VSW/VSR, the stall-warning speed over the reference stall speed (CAS)"
+    )
     source: str | None = None
 
     @model_validator(mode="after")
     def _one(self):
         if (self.CL is None) == (self.speed_ratio is None):
-            raise ValueError("declare exactly one of CL (lift coefficient at the warning onset) and speed_ratio (VSW/VSR)")
+            raise ValueError(
+                "declare exactly one of CL (lift coefficient at the warning onset) and speed_ratio (VSW/VSR)"
+            )
         return self
 
 
@@ -471,36 +572,48 @@ class TailFlapIncrement(_Section):
     with and without the tail), on the reference area and chord, moment about the moment point."""
 
     delta_CL: Annotated[float, Field(gt=-1.0, lt=1.0)] = Field(description="tail lift change, usually negative")
-    delta_Cm: Annotated[float, Field(gt=-2.0, lt=2.0)] = Field(description="tail pitching-moment change, usually nose-up")
+    delta_Cm: Annotated[float, Field(gt=-2.0, lt=2.0)] = Field(
+        description="tail pitching-moment change, usually nose-up"
+    )
     source: str = Field(description="where the increments come from")
 
 
 class Configuration(_Section):
-    flap: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="flap deflection, 0 (retracted) to "
-                                                                          "70 deg")] = 0.0
-    slat: Annotated[Angle, Field(ge=0.0, le=math.radians(70.0), description="slat deflection, 0 (retracted) to "
-                                                                          "70 deg")] = 0.0
+    flap: Annotated[
+        Angle, Field(ge=0.0, le=math.radians(70.0), description="flap deflection, 0 (retracted) to 70 deg")
+    ] = 0.0
+    slat: Annotated[
+        Angle, Field(ge=0.0, le=math.radians(70.0), description="slat deflection, 0 (retracted) to 70 deg")
+    ] = 0.0
     gear: Literal["up", "down"] = "up"
-    CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(None, description="trimmed 1-g maximum lift coefficient")
+    CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(
+        None, description="trimmed 1-g maximum lift coefficient"
+    )
     CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
     delta_CL0: float = Field(0.0, description="tail-off (wing-body) lift increment of the high-lift devices")
     delta_CD0: Annotated[float, Field(ge=0.0, lt=0.3)] = Field(
-        0.0, description="zero-lift drag increment of the high-lift devices and gear, 0 to 0.3 (landing flaps with the "
-                         "gear down are about 0.07-0.10: Roskam, Airplane Design Part I, Table 3.6)")
+        0.0,
+        description="zero-lift drag increment of the high-lift devices and gear, 0 to 0.3 (landing flaps with the "
+        "gear down are about 0.07-0.10: Roskam, Airplane Design Part I, Table 3.6)",
+    )
     delta_Cm0: float = Field(0.0, description="tail-off (wing-body) pitching-moment increment of the high-lift devices")
     tail_flap_increment: TailFlapIncrement | None = Field(
-        None, description="the horizontal tail's share of the flap increments (change of downwash at the tail); "
-                          "without it the vortex lattice estimates it for a file with geometry")
+        None,
+        description="the horizontal tail's share of the flap increments (change of downwash at the tail); "
+        "without it the vortex lattice estimates it for a file with geometry",
+    )
     stall_warning: StallWarning | None = Field(
-        None, description="stall-warning onset (§25.207); without it the rules use the latest warning §25.207(c) allows")
+        None, description="stall-warning onset (§25.207); without it the rules use the latest warning §25.207(c) allows"
+    )
     source: str | None = None
 
     @model_validator(mode="after")
     def _warning_below_stall(self):
         w = self.stall_warning
         if w is not None and w.CL is not None and self.CLmax is not None and w.CL >= self.CLmax:
-            raise ValueError(f"stall_warning.CL ({w.CL:g}) must be below CLmax ({self.CLmax:g}): warning begins before "
-                             "the stall")
+            raise ValueError(
+                f"stall_warning.CL ({w.CL:g}) must be below CLmax ({self.CLmax:g}): warning begins before the stall"
+            )
         return self
 
 
@@ -525,8 +638,11 @@ class Speeds(_Section):
     MD: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
     VMO: Speed | None = None
     MMO: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
-    VFC: Speed | None = Field(None, description="maximum speed for stability characteristics (§25.253(b)); without it "
-                              "the stability rules use the least §25.253(b) allows, midway between VMO and VD")
+    VFC: Speed | None = Field(
+        None,
+        description="maximum speed for stability characteristics (§25.253(b)); without it "
+        "the stability rules use the least §25.253(b) allows, midway between VMO and VD",
+    )
     MFC: Annotated[float, Field(gt=0.0, lt=3.0)] | None = Field(None, description="Mach counterpart of VFC")
     VFE: dict[str, Speed] = Field(default_factory=dict, description="flap-extended speed per configuration")
     VLE: Speed | None = None
@@ -552,10 +668,12 @@ class WatLimit(_Section):
 
     pressure_altitude: Length = Field(description="airport pressure altitude")
     temperature: Annotated[Temperature, Field(gt=180.0, lt=360.0)] = Field(description="ambient temperature")
-    takeoff_weight: PositiveMass | None = Field(None, description="maximum takeoff weight there (§25.121(a)–(c) are "
-                                                                  "checked at the lower of it and MTOW)")
-    landing_weight: PositiveMass | None = Field(None, description="maximum landing weight there (§25.121(d) is checked "
-                                                                  "at the lower of it and MLW)")
+    takeoff_weight: PositiveMass | None = Field(
+        None, description="maximum takeoff weight there (§25.121(a)–(c) are checked at the lower of it and MTOW)"
+    )
+    landing_weight: PositiveMass | None = Field(
+        None, description="maximum landing weight there (§25.121(d) is checked at the lower of it and MLW)"
+    )
     source: str | None = None
 
 
@@ -564,17 +682,23 @@ class TakeoffLandingEnvelope(_Section):
     flight manual's takeoff and landing envelope); §25.121 is evaluated over it (weight–altitude–temperature)."""
 
     pressure_altitude_min: Annotated[Length, Field(ge=-610.0)] = Field(
-        description="lowest airport pressure altitude (at least -2000 ft)")
+        description="lowest airport pressure altitude (at least -2000 ft)"
+    )
     pressure_altitude_max: Annotated[Length, Field(le=6000.0)] = Field(description="highest airport pressure altitude")
     temperature_min: Annotated[Temperature, Field(gt=180.0)] = Field(description="coldest ambient temperature")
     temperature_max: Annotated[Temperature, Field(lt=360.0)] = Field(description="hottest ambient temperature")
     isa_deviation_max: Annotated[Temperature, Field(gt=0.0, le=60.0)] | None = Field(
-        None, description="hot limit as a deviation from ISA (K, e.g. '40 delta_degC'); the hot limit at an altitude "
-                          "is the lower of this line and temperature_max")
+        None,
+        description="hot limit as a deviation from ISA (K, e.g. '40 delta_degC'); the hot limit at an altitude "
+        "is the lower of this line and temperature_max",
+    )
     altitude_points: Annotated[int, Field(ge=2, le=10)] = Field(
-        3, description="pressure altitudes evaluated, evenly from the lowest to the highest (sea level added)")
-    wat_limits: list[WatLimit] = Field(default_factory=list, description=(
-        "declared flight-manual WAT limit weights; §25.121 is also checked at each point at that weight"))
+        3, description="pressure altitudes evaluated, evenly from the lowest to the highest (sea level added)"
+    )
+    wat_limits: list[WatLimit] = Field(
+        default_factory=list,
+        description=("declared flight-manual WAT limit weights; §25.121 is also checked at each point at that weight"),
+    )
     source: str | None = None
 
 
@@ -582,9 +706,11 @@ class Performance(_Section):
     """Declared (flight-test or handbook) performance figures the rules match their simulations to."""
 
     takeoff_field_length: PositiveLength | None = Field(
-        None, description="takeoff field length at MTOW, sea level, standard day (§25.113(a): the greater of the "
-                          "one-engine-inoperative distance to 35 ft and 1.15 × the all-engines distance to 35 ft); "
-                          "§25.113 checks the simulated takeoff distance against it")
+        None,
+        description="takeoff field length at MTOW, sea level, standard day (§25.113(a): the greater of the "
+        "one-engine-inoperative distance to 35 ft and 1.15 × the all-engines distance to 35 ft); "
+        "§25.113 checks the simulated takeoff distance against it",
+    )
     source: str | None = None
 
 
@@ -640,11 +766,21 @@ class Mission(_Section):
     climb_speed: Speed = Field(description="climb and descent CAS above speed_limit_altitude, up to the cruise Mach")
     low_altitude_speed: Speed = Field(description="climb and descent speed below speed_limit_altitude")
     speed_limit_altitude: Annotated[Length, Field(ge=0.0)]
-    climb_throttle: Fraction = Field(1.0, description="maximum-climb rating as a fraction of the engine model's maximum")
-    residual_climb_rate: Annotated[SpeedValue, Field(ge=0.0, description="rate of climb that a cruise level must "
-                                                                         "still allow at maximum-climb thrust")]
-    buffet_onset_CL: Annotated[float, Field(gt=0.0, lt=2.0, description="1-g initial-buffet lift coefficient at the "
-                                                                          "cruise Mach (trimmed, reference area)")]
+    climb_throttle: Fraction = Field(
+        1.0, description="maximum-climb rating as a fraction of the engine model's maximum"
+    )
+    residual_climb_rate: Annotated[
+        SpeedValue,
+        Field(ge=0.0, description="rate of climb that a cruise level must still allow at maximum-climb thrust"),
+    ]
+    buffet_onset_CL: Annotated[
+        float,
+        Field(
+            gt=0.0,
+            lt=2.0,
+            description="1-g initial-buffet lift coefficient at the cruise Mach (trimmed, reference area)",
+        ),
+    ]
     buffet_load_factor: Annotated[float, Field(ge=1.0, le=2.0)] = 1.3
     design_payload: PositiveMass
     cruise_cg: Length | None = Field(None, description="CG station of the mission's trims (none: the reference CG)")
@@ -675,11 +811,25 @@ class PerformanceCalibration(_Section):
     performance (FLOPS's drag and fuel-flow factors): fixed for every design of a study, shown in the report.
     ``certkit calibrate`` solves ``drag_factor`` for ``target`` with ``fuel_flow_factor`` as declared."""
 
-    drag_factor: Annotated[float, Field(ge=0.7, le=1.5, description=(
-        "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; the "
-        "induced drag, declared configuration increments and derivative tables are not scaled"))] = 1.0
-    fuel_flow_factor: Annotated[float, Field(ge=0.8, le=1.3, description=(
-        "multiplies the engine model's TSFC: installation losses (customer bleed, power off-take)"))] = 1.0
+    drag_factor: Annotated[
+        float,
+        Field(
+            ge=0.7,
+            le=1.5,
+            description=(
+                "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; the "
+                "induced drag, declared configuration increments and derivative tables are not scaled"
+            ),
+        ),
+    ] = 1.0
+    fuel_flow_factor: Annotated[
+        float,
+        Field(
+            ge=0.8,
+            le=1.3,
+            description=("multiplies the engine model's TSFC: installation losses (customer bleed, power off-take)"),
+        ),
+    ] = 1.0
     fuel_flow_source: Annotated[str, Field(min_length=3)] | None = None
     target: RangeTarget | None = None
     source: Annotated[str, Field(min_length=3)]
@@ -756,6 +906,7 @@ class Structure(_Section):
 
 # --- control forces ----------------------------------------------------------------------
 
+
 class HingeMoment(_Section):
     """Hinge-moment derivatives of a control surface, per radian: C_h = Ch_0 + Ch_alpha α_s + Ch_delta δ, with
     α_s the local angle of attack of the surface it is hinged to (tailplane, fin or wing) and δ its deflection,
@@ -763,13 +914,21 @@ class HingeMoment(_Section):
 
     Ch_0: float = 0.0
     Ch_alpha: float
-    Ch_delta: Annotated[float, Field(lt=0.0, description="restoring (negative): a surface with Ch_delta ≥ 0 is "
-                                                         "overbalanced and cannot be flown reversible")]
+    Ch_delta: Annotated[
+        float,
+        Field(
+            lt=0.0,
+            description="restoring (negative): a surface with Ch_delta ≥ 0 is "
+            "overbalanced and cannot be flown reversible",
+        ),
+    ]
 
 
 #: fields that only one type of control-force model takes
-_TYPE_FIELDS = {"reversible": ("hinge_moment", "chord", "area", "span", "downwash_gradient"),
-                "artificial_feel": ("gradient", "q_feel_reference")}
+_TYPE_FIELDS = {
+    "reversible": ("hinge_moment", "chord", "area", "span", "downwash_gradient"),
+    "artificial_feel": ("gradient", "q_feel_reference"),
+}
 
 
 class ControlFeel(_Section):
@@ -793,24 +952,38 @@ class ControlFeel(_Section):
     wheel_gearing: Annotated[float, Field(gt=0.0)] | None = None
     wheel_diameter: PositiveLength | None = None
     friction: Annotated[Force, Field(ge=0.0)] | None = Field(
-        None, description="friction force at the cockpit control, for the free return of §25.173(b)")
+        None, description="friction force at the cockpit control, for the free return of §25.173(b)"
+    )
     # reversible
     hinge_moment: HingeMoment | None = None
     chord: PositiveLength | None = None
     area: PositiveArea | None = None
     span: PositiveLength | None = None
-    hinge_moment_fraction: Annotated[float, Field(gt=0.0, le=1.0, description="share of the hinge moment the pilot "
-                                                                                 "carries: 1 unboosted, 1/(1+B) with a boost ratio B")] = 1.0
-    dynamic_pressure_ratio: Annotated[float, Field(gt=0.0, le=1.2, description="η = q at the surface / free-stream q")] = 1.0
+    hinge_moment_fraction: Annotated[
+        float,
+        Field(
+            gt=0.0,
+            le=1.0,
+            description="share of the hinge moment the pilot carries: 1 unboosted, 1/(1+B) with a boost ratio B",
+        ),
+    ] = 1.0
+    dynamic_pressure_ratio: Annotated[
+        float, Field(gt=0.0, le=1.2, description="η = q at the surface / free-stream q")
+    ] = 1.0
     downwash_gradient: Annotated[float, Field(ge=0.0, lt=1.0)] | None = Field(
-        None, description="dε/dα at the tailplane (elevator) or dσ/dβ at the fin (rudder); default: elevator "
-                          "2 a_w/(π A) from the wing, rudder 0")
+        None,
+        description="dε/dα at the tailplane (elevator) or dσ/dβ at the fin (rudder); default: elevator "
+        "2 a_w/(π A) from the wing, rudder 0",
+    )
     downwash_at_zero_alpha: Angle = Field(0.0, description="ε at zero body angle of attack (elevator only)")
     # artificial feel
     preload: Annotated[Force, Field(ge=0.0)] = Field(0.0, description="breakout force")
-    gradient: Annotated[Stiffness, Field(gt=0.0)] | None = Field(None, description="force per cockpit travel ('20 lbf/in')")
+    gradient: Annotated[Stiffness, Field(gt=0.0)] | None = Field(
+        None, description="force per cockpit travel ('20 lbf/in')"
+    )
     q_feel_reference: Annotated[Pressure, Field(gt=0.0)] | None = Field(
-        None, description="dynamic pressure at which the gradient is as declared (q-feel); none: constant gradient")
+        None, description="dynamic pressure at which the gradient is as declared (q-feel); none: constant gradient"
+    )
     source: str | None = None
 
     @model_validator(mode="after")
@@ -820,18 +993,24 @@ class ControlFeel(_Section):
         if self.gearing is not None and wheel:
             problems.append("give either gearing (column or pedals) or wheel_gearing with wheel_diameter, not both")
         elif self.gearing is None and not (self.wheel_gearing is not None and self.wheel_diameter is not None):
-            problems.append("needs gearing (surface angle per cockpit travel, e.g. '0.9 deg/in') or wheel_gearing "
-                            "with wheel_diameter")
+            problems.append(
+                "needs gearing (surface angle per cockpit travel, e.g. '0.9 deg/in') or wheel_gearing "
+                "with wheel_diameter"
+            )
         other = "artificial_feel" if self.type == "reversible" else "reversible"
         stray = [f for f in _TYPE_FIELDS[other] if getattr(self, f) is not None]
         if stray:
-            problems.append(f"{', '.join(stray)} belong{'s' if len(stray) == 1 else ''} to type {other}, not {self.type}")
+            problems.append(
+                f"{', '.join(stray)} belong{'s' if len(stray) == 1 else ''} to type {other}, not {self.type}"
+            )
         if self.type == "reversible":
             missing = [f for f in ("hinge_moment", "chord") if getattr(self, f) is None]
             if missing:
                 problems.append(f"type reversible needs {' and '.join(missing)}")
             if (self.area is None) == (self.span is None):
-                problems.append("type reversible needs the surface's area aft of the hinge line or its span (one of the two)")
+                problems.append(
+                    "type reversible needs the surface's area aft of the hinge line or its span (one of the two)"
+                )
         elif self.gradient is None:
             problems.append("type artificial_feel needs gradient (force per cockpit travel, e.g. '20 lbf/in')")
         if problems:
@@ -854,6 +1033,7 @@ class ControlForces(_Section):
 
 # --- structural sizing (design loop) ----------------------------------------------------
 
+
 class LaminateAllowables(_Section):
     """Material of a sized box: a laminate linear to failure, allowable stress = modulus × design ultimate strain
     (:class:`certkit.models.structure.box.BoxMaterial`)."""
@@ -864,7 +1044,9 @@ class LaminateAllowables(_Section):
     web_shear_modulus: Annotated[Pressure, Field(gt=0, description="G_xy of the spar-web laminate")]
     design_strain: Annotated[float, Field(gt=0, lt=0.05, description="design ultimate direct strain of the covers")]
     design_shear_strain: Annotated[float, Field(gt=0, lt=0.1, description="design ultimate shear strain")]
-    skin_fraction: Annotated[float, Field(gt=0, le=1, description="skin share of the smeared cover (carries the torsion)")]
+    skin_fraction: Annotated[
+        float, Field(gt=0, le=1, description="skin share of the smeared cover (carries the torsion)")
+    ]
     source: Annotated[str, Field(min_length=3)]
 
 
@@ -896,9 +1078,17 @@ class TailStructureSizing(_Section):
     material: LaminateAllowables
     minimum_gauge: MinimumGauges
     areal_weights: ArealWeights
-    fittings_fraction: Annotated[float, Field(ge=0, lt=1, description="fittings and attachments, fraction of box + ribs")]
-    non_optimum_factor: Annotated[float, Field(ge=1, le=3, description="sized (ideal) cover and web mass × factor = "
-                                                                       "built box mass (joints, fasteners, cut-outs)")]
+    fittings_fraction: Annotated[
+        float, Field(ge=0, lt=1, description="fittings and attachments, fraction of box + ribs")
+    ]
+    non_optimum_factor: Annotated[
+        float,
+        Field(
+            ge=1,
+            le=3,
+            description="sized (ideal) cover and web mass × factor = built box mass (joints, fasteners, cut-outs)",
+        ),
+    ]
     source: Annotated[str, Field(min_length=3, description="where the factors come from and how they were calibrated")]
 
 
@@ -918,8 +1108,15 @@ class ActuatorSizingData(_Section):
     pressure: Annotated[Pressure, Field(gt=0, description="hydraulic supply pressure ('3000 psi')")]
     arm: Annotated[Length, Field(gt=0, description="moment arm of the actuator about the hinge line (horn)")]
     margin: Annotated[float, Field(ge=1, le=3, description="stall force over the design force")]
-    share: Annotated[float, Field(gt=0, le=1, description="fraction of the panel hinge moment one actuator must react "
-                                                          "(1: each actuator holds the panel alone)")]
+    share: Annotated[
+        float,
+        Field(
+            gt=0,
+            le=1,
+            description="fraction of the panel hinge moment one actuator must react "
+            "(1: each actuator holds the panel alone)",
+        ),
+    ]
     surface_rate: Annotated[AngularRate, Field(gt=0, description="design surface rate ('40 deg/s')")]
     mass_per_work: Annotated[MassPerEnergy, Field(ge=0, description="actuator mass per unit stall force × stroke")]
     fixed_mass: Annotated[Mass, Field(ge=0, description="mass independent of size (servo valve, manifold, sensors)")]
@@ -934,15 +1131,19 @@ class Sizing(_Section):
     loop: SizingLoop | None = None
     elevator_actuators: ActuatorSizingData | None = None
     cg_envelope: Literal["declared", "loading"] = Field(
-        "declared", description="the weight–CG corners a design is evaluated at: 'declared' (cg_envelope as written) "
+        "declared",
+        description="the weight–CG corners a design is evaluated at: 'declared' (cg_envelope as written) "
         "or 'loading' (each corner moved to the CG the design's own loading reaches at its weight — OEW and its CG "
-        "with the sized tail, payload zones and fuel tanks — with the declared corner as the bound)")
+        "with the sized tail, payload zones and fuel tanks — with the declared corner as the bound)",
+    )
 
 
 def _printable(name: str) -> str:
     if not name.isprintable():
-        raise ValueError("the name must be one line of printable characters (no control characters such as a "
-                         "newline or NUL): it names the report folder and heads the report")
+        raise ValueError(
+            "the name must be one line of printable characters (no control characters such as a "
+            "newline or NUL): it names the report folder and heads the report"
+        )
     return name
 
 
@@ -958,26 +1159,38 @@ class Aircraft(_Section):
     geometry: Geometry | None = Field(None, description="needed unless every configuration has derivative tables")
     mass: MassProperties
     cg_envelope: CgEnvelope | None = Field(None, description="needed by the rules (their CG corners)")
-    propulsion: Propulsion | None = Field(None, description="without it: an ideal thrust along the body x axis "
-                                                             "through the moment point, constant with speed unless "
-                                                             "the derivative table gives T_u / CT_u")
+    propulsion: Propulsion | None = Field(
+        None,
+        description="without it: an ideal thrust along the body x axis "
+        "through the moment point, constant with speed unless "
+        "the derivative table gives T_u / CT_u",
+    )
     configurations: dict[str, Configuration] = Field(default_factory=lambda: {"clean": Configuration()})
     speeds: Speeds = Field(default_factory=Speeds)
     envelope: Envelope | None = Field(None, description="needed by the rules (altitudes, ceiling, load factors)")
     flight_condition: FlightCondition | None = Field(
-        None, description="condition of published derivatives; default condition of trim and modes")
+        None, description="condition of published derivatives; default condition of trim and modes"
+    )
     aerodynamics: Aerodynamics = Field(default_factory=Aerodynamics)
     structure: Structure | None = Field(None, description="declared structural capabilities (allowable loads)")
     performance: Performance | None = Field(None, description="declared performance figures (takeoff field length)")
-    takeoff_pilot: TakeoffPilot = Field(default_factory=TakeoffPilot, description="the pilot of the simulated takeoff "
-                                        "runs: reaction to an engine failure, rudder rate, nose-wheel steering")
+    takeoff_pilot: TakeoffPilot = Field(
+        default_factory=TakeoffPilot,
+        description="the pilot of the simulated takeoff "
+        "runs: reaction to an engine failure, rudder rate, nose-wheel steering",
+    )
     takeoff_landing_envelope: TakeoffLandingEnvelope | None = Field(
-        None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature")
+        None, description="airport altitude and temperature range: §25.121 over weight–altitude–temperature"
+    )
     mission: Mission | None = Field(None, description="mission definition for range, payload-range and block fuel")
     calibration: PerformanceCalibration | None = Field(
-        None, description="declared drag and fuel-flow factors reproducing published performance (certkit calibrate)")
-    control_forces: ControlForces | None = Field(None, description="cockpit control-force models (hinge moments or feel)")
-    sizing: Sizing | None = Field(None, description="structural sizing data for design studies (horizontal tail, actuators)")
+        None, description="declared drag and fuel-flow factors reproducing published performance (certkit calibrate)"
+    )
+    control_forces: ControlForces | None = Field(
+        None, description="cockpit control-force models (hinge moments or feel)"
+    )
+    sizing: Sizing | None = Field(
+        None, description="structural sizing data for design studies (horizontal tail, actuators)"
+    )
     criteria: dict[RuleId, CriterionOverride] = Field(default_factory=dict)
     sources: dict[str, str] = Field(default_factory=dict, description="citations used in the file")
-

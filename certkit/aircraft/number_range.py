@@ -11,8 +11,10 @@ import math
 
 from certkit.units import MAX_SI_MAGNITUDE
 
-_MESSAGE = (f"number beyond any physical value certkit takes (magnitude above {MAX_SI_MAGNITUDE:.0e}; NaN and "
-            "infinities are refused too)")
+_MESSAGE = (
+    f"number beyond any physical value certkit takes (magnitude above {MAX_SI_MAGNITUDE:.0e}; NaN and "
+    "infinities are refused too)"
+)
 
 
 def scalars(data: object, prefix: tuple = ()):
@@ -30,8 +32,11 @@ def scalars(data: object, prefix: tuple = ()):
 
 def extreme_numbers(data: object, prefix: tuple = ()) -> list[tuple[tuple, str, object]]:
     """(location, message, value) of every number in ``data`` that is not finite or exceeds the range."""
-    return [(loc, _MESSAGE, node) for loc, node in scalars(data, prefix)
-            if isinstance(node, (int, float, str)) and not isinstance(node, bool) and _extreme(node)]
+    return [
+        (loc, _MESSAGE, node)
+        for loc, node in scalars(data, prefix)
+        if isinstance(node, (int, float, str)) and not isinstance(node, bool) and _extreme(node)
+    ]
 
 
 def _extreme(value: int | float | str) -> bool:

@@ -22,8 +22,9 @@ def pydantic_messages(schema_command: str) -> dict[str, str]:
     }
 
 
-def found_in(err: ValidationError, prefix: tuple = (), schema_command: str = "certkit schema",
-             data: object = None) -> list[Found]:
+def found_in(
+    err: ValidationError, prefix: tuple = (), schema_command: str = "certkit schema", data: object = None
+) -> list[Found]:
     """Every error of ``err`` as (location below ``prefix``, message, value as written).
 
     With ``data`` (the raw data ``prefix`` starts from), pydantic's own steps in a location (``constrained-float``,
@@ -35,8 +36,11 @@ def found_in(err: ValidationError, prefix: tuple = (), schema_command: str = "ce
     raw_root = _descend(data, prefix) if data is not None else None
     entries = []
     for e in err.errors(include_url=False):
-        loc, tagged = _yaml_path(raw_root, tuple(e["loc"]), keep_last=e["type"] == "missing") if data is not None \
+        loc, tagged = (
+            _yaml_path(raw_root, tuple(e["loc"]), keep_last=e["type"] == "missing")
+            if data is not None
             else (tuple(e["loc"]), False)
+        )
         message = messages.get(e["type"], e["msg"]).removeprefix("Value error, ")
         value = None if e["type"] == "missing" else e.get("input")
         if data is not None and e["type"] != "missing":
@@ -86,7 +90,7 @@ def _merge_union_members(entries: list) -> list[Found]:
     locs = [loc for loc, *_ in entries]
     kept: dict[tuple, list] = {}
     for loc, message, value, tagged in entries:
-        if tagged and any(len(other) > len(loc) and other[:len(loc)] == loc for other in locs):
+        if tagged and any(len(other) > len(loc) and other[: len(loc)] == loc for other in locs):
             continue
         kept.setdefault(loc, [[], value])[0].append(message)
     found = []
@@ -118,7 +122,12 @@ def raw_at(data: object, loc: tuple, default: object) -> object:
 def located(found: list[Found], source: YamlSource | None) -> list[Problem]:
     """Problems with the file and line of each location (the nearest existing parent's line for a missing key)."""
     return [
-        Problem(".".join(map(str, loc)), message, value,
-                source.line_of(loc) if source else None, source.path if source else None)
+        Problem(
+            ".".join(map(str, loc)),
+            message,
+            value,
+            source.line_of(loc) if source else None,
+            source.path if source else None,
+        )
         for loc, message, value in found
     ]

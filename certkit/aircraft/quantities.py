@@ -27,8 +27,10 @@ def _quantity_schema(dimension: str) -> dict:
 def _converter(dimension: str):
     def convert(value: object) -> object:
         if isinstance(value, bool):
-            raise ValueError(f"expected a {dimension} (a number in {DIMENSIONS[dimension] or 'no unit'} or a string "
-                             f"with a unit), not a yes/no value")
+            raise ValueError(
+                f"expected a {dimension} (a number in {DIMENSIONS[dimension] or 'no unit'} or a string "
+                f"with a unit), not a yes/no value"
+            )
         if isinstance(value, (str, int, float)):
             try:
                 return to_si(value, dimension)
@@ -72,15 +74,27 @@ PositiveForce = Annotated[Force, Field(gt=0)]
 Fraction = Annotated[float, Field(ge=0.0, le=1.0)]
 
 SpeedKind = Literal["EAS", "CAS", "TAS"]
-_KIND_SUFFIXES = {"EAS": ("EAS", None), "CAS": ("CAS", None), "TAS": ("TAS", None),
-                  "KEAS": ("EAS", "kn"), "KCAS": ("CAS", "kn"), "KTAS": ("TAS", "kn")}
+_KIND_SUFFIXES = {
+    "EAS": ("EAS", None),
+    "CAS": ("CAS", None),
+    "TAS": ("TAS", None),
+    "KEAS": ("EAS", "kn"),
+    "KCAS": ("CAS", "kn"),
+    "KTAS": ("TAS", "kn"),
+}
 
 
 class Speed(BaseModel):
     """An airspeed in m/s with its kind (EAS, CAS or TAS)."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False, json_schema_extra={
-        "description": 'a speed with its kind: "340 kn EAS", "340 KEAS" or {value: "340 kn", kind: EAS}'})
+    model_config = ConfigDict(
+        extra="forbid",
+        frozen=True,
+        allow_inf_nan=False,
+        json_schema_extra={
+            "description": 'a speed with its kind: "340 kn EAS", "340 KEAS" or {value: "340 kn", kind: EAS}'
+        },
+    )
 
     value: Annotated[SpeedValue, Field(gt=0)]
     kind: SpeedKind
@@ -103,7 +117,29 @@ class Speed(BaseModel):
 
 
 __all__ = [
-    "Length", "Area", "Mass", "Force", "Moment", "Angle", "Inertia", "Time", "SpeedValue", "Pressure", "Gearing", "Stiffness",
-    "Density", "ArealDensity", "AngularRate", "Acceleration", "MassPerEnergy", "PositiveLength",
-    "PositiveArea", "PositiveMass", "PositiveForce", "Fraction", "Speed", "SpeedKind", "quantity",
+    "Length",
+    "Area",
+    "Mass",
+    "Force",
+    "Moment",
+    "Angle",
+    "Inertia",
+    "Time",
+    "SpeedValue",
+    "Pressure",
+    "Gearing",
+    "Stiffness",
+    "Density",
+    "ArealDensity",
+    "AngularRate",
+    "Acceleration",
+    "MassPerEnergy",
+    "PositiveLength",
+    "PositiveArea",
+    "PositiveMass",
+    "PositiveForce",
+    "Fraction",
+    "Speed",
+    "SpeedKind",
+    "quantity",
 ]

@@ -36,8 +36,12 @@ class YamlSource:
         from certkit.aircraft.number_range import scalars
 
         plain = (str, int, float, bool)
-        return dict(sorted((".".join(map(str, loc)), v if v is None or isinstance(v, plain) else str(v))
-                           for loc, v in scalars(self.data)))
+        return dict(
+            sorted(
+                (".".join(map(str, loc)), v if v is None or isinstance(v, plain) else str(v))
+                for loc, v in scalars(self.data)
+            )
+        )
 
     def line_of(self, loc: tuple) -> int | None:
         """Line of ``loc``, or of its nearest existing parent (a missing key points at its parent)."""
@@ -71,14 +75,19 @@ def _structure_problem(text: str, loader) -> tuple[str, int | None] | None:
         if kind in (yaml.ScalarEvent, yaml.AliasEvent, yaml.SequenceStartEvent, yaml.MappingStartEvent):
             if kind is yaml.AliasEvent:
                 if any(anchor == event.anchor for anchor, _ in open_nodes):
-                    return f"the alias *{event.anchor} refers to a node that contains it (recursive data)", event.start_mark.line + 1
+                    return (
+                        f"the alias *{event.anchor} refers to a node that contains it (recursive data)",
+                        event.start_mark.line + 1,
+                    )
                 size = sizes.get(event.anchor, 1)
             else:
                 size = 1
             total += size
             if total > MAX_NODES:
-                return (f"more than {MAX_NODES:,} values once aliases are expanded (an aircraft file has a few "
-                        "thousand): refused without expanding them"), event.start_mark.line + 1
+                return (
+                    f"more than {MAX_NODES:,} values once aliases are expanded (an aircraft file has a few "
+                    "thousand): refused without expanding them"
+                ), event.start_mark.line + 1
             if kind in (yaml.SequenceStartEvent, yaml.MappingStartEvent):
                 open_nodes.append([event.anchor, 1])
                 if len(open_nodes) > MAX_DEPTH:
@@ -134,8 +143,14 @@ def _record(node: yaml.Node, loc: tuple, lines: dict, problems: list[Problem], p
         for key_node, value_node in node.value:
             key = key_node.value if isinstance(key_node, yaml.ScalarNode) else str(key_node.value)
             if key in seen:
-                problems.append(Problem(".".join(map(str, loc + (key,))), f"duplicate key (first at line {seen[key]})",
-                                        line=key_node.start_mark.line + 1, file=path))
+                problems.append(
+                    Problem(
+                        ".".join(map(str, loc + (key,))),
+                        f"duplicate key (first at line {seen[key]})",
+                        line=key_node.start_mark.line + 1,
+                        file=path,
+                    )
+                )
             seen[key] = key_node.start_mark.line + 1
             _record(value_node, loc + (key,), lines, problems, path)
             lines[loc + (key,)] = seen[key]  # a section is where its key is, not its first value
@@ -163,8 +178,17 @@ class NotRegularFile(OSError):
 
 
 def _kind(mode: int) -> str:
-    return ("named pipe (FIFO)" if stat.S_ISFIFO(mode) else "character device" if stat.S_ISCHR(mode) else
-            "block device" if stat.S_ISBLK(mode) else "socket" if stat.S_ISSOCK(mode) else "special file")
+    return (
+        "named pipe (FIFO)"
+        if stat.S_ISFIFO(mode)
+        else "character device"
+        if stat.S_ISCHR(mode)
+        else "block device"
+        if stat.S_ISBLK(mode)
+        else "socket"
+        if stat.S_ISSOCK(mode)
+        else "special file"
+    )
 
 
 def _read(path: Path) -> str:
@@ -180,12 +204,16 @@ def _read(path: Path) -> str:
     except OSError as exc:
         raise InputError(str(path), [Problem("", f"cannot read the file: {exc.strerror or exc}")]) from None
     if len(raw) > MAX_FILE_BYTES:  # also checked by source_from_text, but /dev/zero must not be read whole
-        raise InputError(str(path), [Problem("", f"file larger than {MAX_FILE_BYTES // 1024 ** 2} MB (an aircraft "
-                                                 "file is tens of kilobytes)")])
+        raise InputError(
+            str(path),
+            [Problem("", f"file larger than {MAX_FILE_BYTES // 1024**2} MB (an aircraft file is tens of kilobytes)")],
+        )
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(str(path), [Problem("", f"not UTF-8 text (byte {exc.start}: {raw[exc.start:exc.start + 1]!r})")]) from None
+        raise InputError(
+            str(path), [Problem("", f"not UTF-8 text (byte {exc.start}: {raw[exc.start : exc.start + 1]!r})")]
+        ) from None
 
 
 def load_yaml(path: str | Path) -> YamlSource:
@@ -197,7 +225,7 @@ def source_from_text(text: str, path: str | Path = "<text>") -> YamlSource:
     """The :class:`YamlSource` of YAML ``text`` (``path`` names it in messages), within the limits above."""
     path = Path(path)
     if len(text) > MAX_FILE_BYTES:
-        raise InputError(str(path), [Problem("", f"text larger than {MAX_FILE_BYTES // 1024 ** 2} MB")])
+        raise InputError(str(path), [Problem("", f"text larger than {MAX_FILE_BYTES // 1024**2} MB")])
     try:
         node, data = _parse(text, str(path))
     except yaml.YAMLError as exc:
@@ -206,8 +234,10 @@ def source_from_text(text: str, path: str | Path = "<text>") -> YamlSource:
         what = getattr(exc, "problem", None) or str(exc)
         raise InputError(str(path), [Problem("", f"not valid YAML: {what}", line=line, file=str(path))]) from None
     except (RecursionError, MemoryError, OverflowError, ValueError) as exc:  # the parser's own limits and numbers
-        raise InputError(str(path), [Problem("", f"cannot read the YAML: {exc.__class__.__name__}: {str(exc)[:120]}",
-                                             file=str(path))]) from None
+        raise InputError(
+            str(path),
+            [Problem("", f"cannot read the YAML: {exc.__class__.__name__}: {str(exc)[:120]}", file=str(path))],
+        ) from None
     lines: dict[tuple, int] = {}
     problems: list[Problem] = []
     if node is not None:

@@ -31,7 +31,9 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
 
             ctx = Context(load_aircraft(path))
             if configuration not in ctx.aircraft.configurations:
-                raise UserError(f"--config {configuration!r}: not declared (declared: {', '.join(ctx.aircraft.configurations)})")
+                raise UserError(
+                    f"--config {configuration!r}: not declared (declared: {', '.join(ctx.aircraft.configurations)})"
+                )
             from certkit.models.aero.airplane import lattice_configuration
 
             source = f"aircraft file {path}, configuration {configuration}"
@@ -43,14 +45,19 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
             aero = ctx.aero(configuration)
             model_column = {name: float(aero.model.derivative(name, mach)) for name in aero.table}
             model_point = _model_neutral_point(model_column, ctx.aircraft.reference)
-            notes = list(aero.notes) + [f"override {k}: {v['value']} (estimate {v['estimate']})" for k, v in aero.overrides.items()]
+            notes = list(aero.notes) + [
+                f"override {k}: {v['value']} (estimate {v['estimate']})" for k, v in aero.overrides.items()
+            ]
             if ctx.aircraft.geometry is None:  # a derivative-table airplane: its table is all there is
-                return _model_only(source, mach, alpha_deg, beta_deg, ctx.aircraft.reference, model_column,
-                                   model_point, notes)
+                return _model_only(
+                    source, mach, alpha_deg, beta_deg, ctx.aircraft.reference, model_column, model_point, notes
+                )
             config = lattice_configuration(ctx.aircraft, configuration)
         if not 0.0 <= mach < 1.0:
             raise UserError(f"--mach {mach}: the vortex lattice needs 0 <= Mach < 1")
-        der = VortexLattice(config, mach=mach).stability_derivatives(alpha=math.radians(alpha_deg), beta=math.radians(beta_deg))
+        der = VortexLattice(config, mach=mach).stability_derivatives(
+            alpha=math.radians(alpha_deg), beta=math.radians(beta_deg)
+        )
     except (AvlFileError, GeometryError) as exc:
         raise UserError(str(exc)) from None
     sol = der.solution
@@ -64,16 +71,30 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
             lattice[f"{coef}_delta_{name}"] = der[f"{coef}_delta_{name}"]
     lattice_np = der.neutral_point
     report = {
-        "source": source, "input_kind": kind, "mach": mach, "alpha_deg": alpha_deg, "beta_deg": beta_deg,
+        "source": source,
+        "input_kind": kind,
+        "mach": mach,
+        "alpha_deg": alpha_deg,
+        "beta_deg": beta_deg,
         "conventions": _conventions(kind),
         "reference": {"area": ref.area, "chord": ref.chord, "span": ref.span, "x_ref": ref.x_ref, "z_ref": ref.z_ref},
-        "totals": {"CL": sol.CL, "CD_induced_trefftz": sol.CD_induced, "span_efficiency": sol.span_efficiency,
-                   "CY": sol.CY, "Cl": sol.Cl, "Cm": sol.Cm, "Cn": sol.Cn},
+        "totals": {
+            "CL": sol.CL,
+            "CD_induced_trefftz": sol.CD_induced,
+            "span_efficiency": sol.span_efficiency,
+            "CY": sol.CY,
+            "Cl": sol.Cl,
+            "Cm": sol.Cm,
+            "Cn": sol.Cn,
+        },
         "induced_drag_method": INDUCED_DRAG,
         "neutral_point": lattice_np if model_point is None else model_point,
         "static_margin": ((lattice_np if model_point is None else model_point) - ref.x_ref) / ref.chord,
-        "neutral_point_source": ("vortex lattice" if model_point is None else
-                                 "model: lattice + fuselage term + overrides, x_ref − c̄ Cm_alpha/CL_alpha"),
+        "neutral_point_source": (
+            "vortex lattice"
+            if model_point is None
+            else "model: lattice + fuselage term + overrides, x_ref − c̄ Cm_alpha/CL_alpha"
+        ),
         "lattice_neutral_point": lattice_np,
         "lattice_static_margin": (lattice_np - ref.x_ref) / ref.chord,
         "lattice": lattice,
@@ -85,25 +106,42 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
 
 
 def _conventions(kind: str) -> dict:
-    return {"axes": "per radian; stability axes; p̂=pb/2V, q̂=qc/2V, r̂=rb/2V", "controls": CONTROL_SIGNS[kind],
-            "drag": DRAG_AXIS}
+    return {
+        "axes": "per radian; stability axes; p̂=pb/2V, q̂=qc/2V, r̂=rb/2V",
+        "controls": CONTROL_SIGNS[kind],
+        "drag": DRAG_AXIS,
+    }
 
 
 def _model_only(source, mach, alpha_deg, beta_deg, reference, model, model_point, notes) -> dict:
     """The report of an aircraft file without geometry: the declared table (made non-dimensional), no lattice."""
     return {
-        "source": source, "input_kind": "aircraft", "mach": mach, "alpha_deg": alpha_deg, "beta_deg": beta_deg,
+        "source": source,
+        "input_kind": "aircraft",
+        "mach": mach,
+        "alpha_deg": alpha_deg,
+        "beta_deg": beta_deg,
         "conventions": _conventions("aircraft"),
-        "reference": {"area": reference.area, "chord": reference.mean_chord, "span": reference.span,
-                      "x_ref": reference.moment_point.x, "z_ref": reference.moment_point.z},
-        "totals": None, "induced_drag_method": None,
+        "reference": {
+            "area": reference.area,
+            "chord": reference.mean_chord,
+            "span": reference.span,
+            "x_ref": reference.moment_point.x,
+            "z_ref": reference.moment_point.z,
+        },
+        "totals": None,
+        "induced_drag_method": None,
         "neutral_point": model_point,
-        "static_margin": None if model_point is None else (model_point - reference.moment_point.x) / reference.mean_chord,
+        "static_margin": None
+        if model_point is None
+        else (model_point - reference.moment_point.x) / reference.mean_chord,
         "neutral_point_source": "model: the declared derivative table, x_ref − c̄ Cm_alpha/CL_alpha",
-        "lattice_neutral_point": None, "lattice_static_margin": None,
-        "lattice": None, "model": model,
-        "notes": notes + ["no geometry: no vortex lattice; the declared table at this Mach (α and β do not enter a "
-                          "linear table)"],
+        "lattice_neutral_point": None,
+        "lattice_static_margin": None,
+        "lattice": None,
+        "model": model,
+        "notes": notes
+        + ["no geometry: no vortex lattice; the declared table at this Mach (α and β do not enter a linear table)"],
     }
 
 

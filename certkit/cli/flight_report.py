@@ -9,7 +9,6 @@ climb or descent at a flight-path angle, coordinated turn at a bank angle, one e
 from __future__ import annotations
 
 import math
-
 from dataclasses import dataclass
 
 import numpy as np
@@ -67,8 +66,9 @@ def parse_speed(text: str) -> tuple[float, str]:
     raise UserError(f"--speed {text!r}: give a value with its kind, e.g. '250 kn EAS', '280 kn CAS', 'M0.84'")
 
 
-def condition_from_options(aircraft, corner, weight, cg, configuration, altitude, speed, kind, gamma_deg, bank_deg,
-                           beta_deg, inoperative) -> FlightCondition:
+def condition_from_options(
+    aircraft, corner, weight, cg, configuration, altitude, speed, kind, gamma_deg, bank_deg, beta_deg, inoperative
+) -> FlightCondition:
     if configuration not in aircraft.configurations:
         raise UserError(f"--config {configuration!r}: not declared (declared: {', '.join(aircraft.configurations)})")
     if corner and aircraft.cg_envelope is None:
@@ -89,7 +89,9 @@ def condition_from_options(aircraft, corner, weight, cg, configuration, altitude
                 raise UserError(f"--weight: {exc}") from None
             x_cg = x_cg if cg else min(max(x_cg, fwd), aft)
             if not (fwd - 1e-6 <= x_cg <= aft + 1e-6):
-                raise UserError(f"--cg {x_cg:.3f} m is outside the CG envelope at {mass:.0f} kg ({fwd:.3f} to {aft:.3f} m)")
+                raise UserError(
+                    f"--cg {x_cg:.3f} m is outside the CG envelope at {mass:.0f} kg ({fwd:.3f} to {aft:.3f} m)"
+                )
         name = f"{mass:.0f} kg at {x_cg:.3f} m"
     h, tas = _altitude_and_speed(aircraft, altitude, speed)
     if kind not in KINDS:
@@ -97,8 +99,19 @@ def condition_from_options(aircraft, corner, weight, cg, configuration, altitude
     engines = [e.name for e in aircraft.propulsion.engines] if aircraft.propulsion is not None else []
     if kind == "oei" and inoperative not in engines:
         raise UserError(f"--inoperative: name the failed engine ({', '.join(engines)})")
-    return FlightCondition(name, mass, x_cg, configuration, h, tas, KINDS[kind], np.radians(gamma_deg),
-                           np.radians(bank_deg), np.radians(beta_deg), inoperative)
+    return FlightCondition(
+        name,
+        mass,
+        x_cg,
+        configuration,
+        h,
+        tas,
+        KINDS[kind],
+        np.radians(gamma_deg),
+        np.radians(bank_deg),
+        np.radians(beta_deg),
+        inoperative,
+    )
 
 
 DEFAULT_ALTITUDE, DEFAULT_SPEED = "35000 ft", "M0.84"
@@ -136,9 +149,18 @@ def trim_condition(ctx, fc: FlightCondition):
     if fc.inoperative:
         operative = np.array([[e.name != fc.inoperative for e in aircraft.propulsion.engines]])
     model = flight_model(aircraft, ctx.aero(fc.configuration).model, [loading], operative=operative)
-    batch = trim(model, fc.tas, fc.altitude, kind=fc.kind, gamma=fc.gamma, bank=fc.bank, beta=fc.beta,
-                 limits=control_limits(aircraft, True, fc.configuration), roles=ROLES,
-                 stabilizer=model_stabilizer(aircraft, model, True, fc.configuration))
+    batch = trim(
+        model,
+        fc.tas,
+        fc.altitude,
+        kind=fc.kind,
+        gamma=fc.gamma,
+        bank=fc.bank,
+        beta=fc.beta,
+        limits=control_limits(aircraft, True, fc.configuration),
+        roles=ROLES,
+        stabilizer=model_stabilizer(aircraft, model, True, fc.configuration),
+    )
     return batch, model, loading
 
 
@@ -150,9 +172,11 @@ def trim_report(ctx, fc: FlightCondition) -> dict:
     return out
 
 
-_NO_PITCH_CONTROL = ("the aerodynamics have no pitch control (no elevator terms), so the pitching moment must vanish "
-                     "at the trim angle of attack by itself: declare elevator terms (CL_elevator, Cm_elevator) or a "
-                     "condition at which the table is trimmed")
+_NO_PITCH_CONTROL = (
+    "the aerodynamics have no pitch control (no elevator terms), so the pitching moment must vanish "
+    "at the trim angle of attack by itself: declare elevator terms (CL_elevator, Cm_elevator) or a "
+    "condition at which the table is trimmed"
+)
 
 
 def _no_pitch_control(model) -> bool:
@@ -163,27 +187,51 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
     r = batch.results[0]
     warning = ctx.inertia_warning()
     out = {
-        "condition": {"loading": fc.loading_name, "mass_kg": fc.mass, "x_cg_m": fc.x_cg, "configuration": fc.configuration,
-                      "altitude_m": fc.altitude, "tas_m_s": fc.tas, "kind": fc.kind, "gamma_deg": np.degrees(fc.gamma),
-                      "bank_deg": np.degrees(fc.bank), "beta_deg": np.degrees(fc.beta), "inoperative": fc.inoperative},
-        "converged": r.converged, "residual_norm": r.residual_norm, "iterations": r.iterations,
-        "alpha_deg": np.degrees(r.alpha), "beta_deg": np.degrees(r.beta), "theta_deg": np.degrees(r.theta),
+        "condition": {
+            "loading": fc.loading_name,
+            "mass_kg": fc.mass,
+            "x_cg_m": fc.x_cg,
+            "configuration": fc.configuration,
+            "altitude_m": fc.altitude,
+            "tas_m_s": fc.tas,
+            "kind": fc.kind,
+            "gamma_deg": np.degrees(fc.gamma),
+            "bank_deg": np.degrees(fc.bank),
+            "beta_deg": np.degrees(fc.beta),
+            "inoperative": fc.inoperative,
+        },
+        "converged": r.converged,
+        "residual_norm": r.residual_norm,
+        "iterations": r.iterations,
+        "alpha_deg": np.degrees(r.alpha),
+        "beta_deg": np.degrees(r.beta),
+        "theta_deg": np.degrees(r.theta),
         "phi_deg": np.degrees(r.phi),
         "controls": {k: (v if k.startswith("throttle") else float(np.degrees(v))) for k, v in r.controls.items()},
         "controls_unit": "deg (throttle 0-1)",
         "thrust_N": r.thrust,
         "limits_exceeded": [{"message": lim.message, "hint": lim.hint} for lim in r.limits_exceeded],
-        "inertia_kg_m2": {"Ixx": loading.properties.Ixx, "Iyy": loading.properties.Iyy, "Izz": loading.properties.Izz,
-                          "Ixz": loading.properties.Ixz},
+        "inertia_kg_m2": {
+            "Ixx": loading.properties.Ixx,
+            "Iyy": loading.properties.Iyy,
+            "Izz": loading.properties.Izz,
+            "Ixz": loading.properties.Ixz,
+        },
         "loading_built": loading.construction,
         "loading_notes": list(loading.notes),
         "warnings": [warning] if warning else [],
     }
-    if r.stabilizer is not None:  # a movable stabiliser: its incidence (the controls give its deflection from the datum)
+    if (
+        r.stabilizer is not None
+    ):  # a movable stabiliser: its incidence (the controls give its deflection from the datum)
         lim, basis = ctx.aircraft.geometry.horizontal_tail.stabilizer.trim_limits(fc.configuration)
-        out["stabilizer"] = {"incidence_deg": float(np.degrees(r.stabilizer)),
-                             "required_deg": float(np.degrees(r.stabilizer_required)), "at_stop": r.stabilizer_at_stop,
-                             "limits_deg": [float(np.degrees(lim.min)), float(np.degrees(lim.max))], "limits": basis}
+        out["stabilizer"] = {
+            "incidence_deg": float(np.degrees(r.stabilizer)),
+            "required_deg": float(np.degrees(r.stabilizer_required)),
+            "at_stop": r.stabilizer_at_stop,
+            "limits_deg": [float(np.degrees(lim.min)), float(np.degrees(lim.max))],
+            "limits": basis,
+        }
     return out
 
 
@@ -200,7 +248,15 @@ def modes_report(ctx, fc: FlightCondition, density_gradient: bool = True) -> dic
         raise UserError("the condition does not trim: " + batch.results[0].summary() + hint)
     modes = identify_modes(linearize(model, batch.x, batch.u), 0, density_gradient=density_gradient)
     out["density_gradient"] = density_gradient
-    out["modes"] = {name: {"eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag], "natural_frequency_rad_s": m.natural_frequency,
-                           "damping_ratio": m.damping_ratio, "period_s": m.period, "time_to_half_s": m.time_to_half,
-                           "time_to_double_s": m.time_to_double} for name, m in modes.items()}
+    out["modes"] = {
+        name: {
+            "eigenvalue": [m.eigenvalue.real, m.eigenvalue.imag],
+            "natural_frequency_rad_s": m.natural_frequency,
+            "damping_ratio": m.damping_ratio,
+            "period_s": m.period,
+            "time_to_half_s": m.time_to_half,
+            "time_to_double_s": m.time_to_double,
+        }
+        for name, m in modes.items()
+    }
     return out

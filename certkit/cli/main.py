@@ -21,8 +21,8 @@ from pathlib import Path
 import click
 
 from certkit import __version__
-from certkit.errors import UserError
 from certkit.engine.worker_processes import one_blas_thread
+from certkit.errors import UserError
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 70  # EX_SOFTWARE of sysexits(3)
@@ -66,10 +66,13 @@ class _Group(click.Group):
 
                 traceback.print_exc()
             detail = str(exc).splitlines()[0][:300] if str(exc) else ""
-            click.echo(f"internal error: {exc.__class__.__name__}{': ' + detail if detail else ''}\n"
-                       f"This is a bug in certkit {__version__}, not a mistake in your input. Please report it to the "
-                       "certkit developers with the command, the input files and this message"
-                       f"{'' if _DEBUG['on'] else ' (run `certkit --debug ...` for the traceback)'}.", err=True)
+            click.echo(
+                f"internal error: {exc.__class__.__name__}{': ' + detail if detail else ''}\n"
+                f"This is a bug in certkit {__version__}, not a mistake in your input. Please report it to the "
+                "certkit developers with the command, the input files and this message"
+                f"{'' if _DEBUG['on'] else ' (run `certkit --debug ...` for the traceback)'}.",
+                err=True,
+            )
             sys.exit(EXIT_INTERNAL)
 
 
@@ -160,8 +163,10 @@ def _patterns(option: str, values: tuple[str, ...]) -> tuple[str, ...]:
     for value in values:
         parts = [p.strip() for p in value.split(",") if p.strip()]
         if not parts:
-            raise UserError(f"{option} {value!r}: names no rule (give a rule id prefix or a symbol, e.g. {option} 25.3; "
-                            "see `certkit rules`)")
+            raise UserError(
+                f"{option} {value!r}: names no rule (give a rule id prefix or a symbol, e.g. {option} 25.3; "
+                "see `certkit rules`)"
+            )
         found += parts
     return tuple(found)
 
@@ -180,14 +185,23 @@ def _check_output_file(output_file: str | None) -> None:
         raise UserError(f"--output-file {output_file!r}: not writable (permission denied)")
 
 
-_rules_option = click.option("--rules", "rules_dirs", multiple=True, type=click.Path(file_okay=False),
-                             help="Folder of your own rule modules (repeatable).")
+_rules_option = click.option(
+    "--rules",
+    "rules_dirs",
+    multiple=True,
+    type=click.Path(file_okay=False),
+    help="Folder of your own rule modules (repeatable).",
+)
 
 
 @click.group(cls=_Group, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="certkit")
-@click.option("--debug", is_flag=True, envvar="CERTKIT_DEBUG",
-              help="Show the traceback of an internal error and numerical warnings.")
+@click.option(
+    "--debug",
+    is_flag=True,
+    envvar="CERTKIT_DEBUG",
+    help="Show the traceback of an internal error and numerical warnings.",
+)
 def main(debug):
     """certkit — compliance engine for transport aircraft against 14 CFR Part 25."""
     _DEBUG["on"] = debug
@@ -198,15 +212,27 @@ def main(debug):
 
 @main.command()
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
-@click.option("--out", "out_dir", type=click.Path(file_okay=False), help="Report folder (default reports/<aircraft name>/).")
+@click.option(
+    "--out", "out_dir", type=click.Path(file_okay=False), help="Report folder (default reports/<aircraft name>/)."
+)
 @click.option("--select", multiple=True, help="Rule id prefix or symbol to run (repeatable, comma-separated).")
 @click.option("--ignore", multiple=True, help="Rule id prefix or symbol to skip (repeatable, comma-separated).")
-@click.option("--jobs", "-j", default=None, type=int,
-              help="Parallel processes (default: the CPU cores available, at most 4; results do not depend on it).")
-@click.option("--output-format", "output_format", default="text", show_default=True,
-              type=click.Choice(["text", "json", "junit", "sarif", "github"]),
-              help="What to print on standard output: the rule table, results.json, JUnit XML, SARIF 2.1.0 or GitHub "
-                   "Actions annotations.")
+@click.option(
+    "--jobs",
+    "-j",
+    default=None,
+    type=int,
+    help="Parallel processes (default: the CPU cores available, at most 4; results do not depend on it).",
+)
+@click.option(
+    "--output-format",
+    "output_format",
+    default="text",
+    show_default=True,
+    type=click.Choice(["text", "json", "junit", "sarif", "github"]),
+    help="What to print on standard output: the rule table, results.json, JUnit XML, SARIF 2.1.0 or GitHub "
+    "Actions annotations.",
+)
 @click.option("--output-file", type=click.Path(dir_okay=False), help="Write that output to a file instead.")
 @click.option("--json", "as_json", is_flag=True, help="Same as --output-format json.")
 @click.option("--quiet", "-q", is_flag=True, help="No progress and no rule table: the summary line only.")
@@ -218,12 +244,11 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     with _long_lived_objects():
         from certkit.aircraft import load_aircraft
         from certkit.engine.registry import select as select_rules
+        from certkit.engine.scheduler import check_overrides, run
         from certkit.report.figures import render_result
         from certkit.report.html import write_report
-
         from certkit.report.output import prepare_output, report_folder_name
         from certkit.report.terminal import Progress
-        from certkit.engine.scheduler import check_overrides, run
 
         start = time.perf_counter()
         loaded = load_aircraft(aircraft_file)
@@ -247,12 +272,23 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
         # the missions are flown in this process while the workers evaluate the rules
-        result = run(loaded, chosen, jobs=jobs, options=options, finish=render_result, progress=progress,
-                     alongside={"mission": lambda: _mission_for_report(loaded.model)})
+        result = run(
+            loaded,
+            chosen,
+            jobs=jobs,
+            options=options,
+            finish=render_result,
+            progress=progress,
+            alongside={"mission": lambda: _mission_for_report(loaded.model)},
+        )
         progress.close()
-        result.selection = {"select": list(select), "ignore": list(ignore),
-                            "partial": len(chosen) < len(rules), "rules_selected": len(chosen),
-                            "rules_registered": len(rules)}
+        result.selection = {
+            "select": list(select),
+            "ignore": list(ignore),
+            "partial": len(chosen) < len(rules),
+            "rules_selected": len(chosen),
+            "rules_registered": len(rules),
+        }
         result.options = {"rules_dirs": [str(d) for d in rules_dirs], "plugins": options.plugins}
         result.environment = _environment()
         result.jobs = jobs
@@ -281,14 +317,17 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
     if output_format != "text":
         from certkit.report.ci_formats import render
 
-        text = (json_path.read_text(encoding="utf-8") if output_format == "json"
-                else render(output_format, result, lines))
+        text = (
+            json_path.read_text(encoding="utf-8") if output_format == "json" else render(output_format, result, lines)
+        )
         if output_file:
             try:
                 Path(output_file).write_text(text, encoding="utf-8")
             except OSError as exc:
-                raise UserError(f"--output-file {output_file!r}: cannot write ({exc.strerror or exc}); the report was "
-                                f"written to {json_path.parent}") from None
+                raise UserError(
+                    f"--output-file {output_file!r}: cannot write ({exc.strerror or exc}); the report was "
+                    f"written to {json_path.parent}"
+                ) from None
         else:
             click.echo(text, nl=False)
         return
@@ -299,11 +338,16 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
             click.echo(line)
         click.echo()
     s = result.summary()
-    scope = (f" (a partial selection: {s['rules']} of {result.selection['rules_registered']} registered rules)"
-             if result.selection.get("partial") else "")
-    click.echo(f"{s['rules']} rules{scope}: {s['complies']} comply, {s['complies_partial']} comply in part "
-               f"(sub-paragraphs not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
-               f"({seconds:.2f} s)")
+    scope = (
+        f" (a partial selection: {s['rules']} of {result.selection['rules_registered']} registered rules)"
+        if result.selection.get("partial")
+        else ""
+    )
+    click.echo(
+        f"{s['rules']} rules{scope}: {s['complies']} comply, {s['complies_partial']} comply in part "
+        f"(sub-paragraphs not evaluated), {s['fails']} fail, {s['not_evaluated']} not evaluated "
+        f"({seconds:.2f} s)"
+    )
     if not quiet:
         click.echo(f"report: {html_path}\nresults: {json_path}")
 
@@ -312,8 +356,13 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
 @click.argument("old", type=click.Path(dir_okay=False))
 @click.argument("new", type=click.Path(dir_okay=False))
 @click.option("--html", "html_file", type=click.Path(dir_okay=False), help="Also write the comparison as an HTML page.")
-@click.option("--tolerance", default=1e-6, show_default=True, type=NON_NEGATIVE,
-              help="Margin changes below tolerance × max(1, |limit|) are not listed.")
+@click.option(
+    "--tolerance",
+    default=1e-6,
+    show_default=True,
+    type=NON_NEGATIVE,
+    help="Margin changes below tolerance × max(1, |limit|) are not listed.",
+)
 def diff_command(old, new, html_file, tolerance):
     """Compare two results.json: status flips and margin changes per rule and condition. Exit 1 when a rule got
     worse (complies → fails or not evaluated...), else 0."""
@@ -398,17 +447,25 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
         click.echo(json.dumps(report, indent=2, allow_nan=False))
         return
     ref, tot = report["reference"], report["totals"]
-    click.echo(f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg")
+    click.echo(
+        f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg"
+    )
     click.echo(f"Sref {ref['area']:.5g}  Cref {ref['chord']:.5g}  Bref {ref['span']:.5g}  Xref {ref['x_ref']:.5g}")
     if tot is not None:
-        click.echo(f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
-                   f"Cm {tot['Cm']:.5f}")
+        click.echo(
+            f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
+            f"Cm {tot['Cm']:.5f}"
+        )
     if report["neutral_point"] is not None:
-        click.echo(f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
-                   f"({report['neutral_point_source']})")
+        click.echo(
+            f"neutral point Xnp {report['neutral_point']:.5g}  static margin {report['static_margin']:+.4f} c  "
+            f"({report['neutral_point_source']})"
+        )
     if report.get("model") is not None and report["lattice"] is not None:
-        click.echo(f"lattice alone: Xnp {report['lattice_neutral_point']:.5g}  static margin "
-                   f"{report['lattice_static_margin']:+.4f} c")
+        click.echo(
+            f"lattice alone: Xnp {report['lattice_neutral_point']:.5g}  static margin "
+            f"{report['lattice_static_margin']:+.4f} c"
+        )
     for key in ("controls", "drag"):
         click.echo(f"{key}: {report['conventions'][key]}")
     columns = [c for c in ("lattice", "model") if report.get(c) is not None]
@@ -422,17 +479,31 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
 
 def _condition_options(f):
     options = [
-        click.option("--corner", help="Named CG-envelope corner (default: --weight/--cg, else MTOW at the reference CG)."),
+        click.option(
+            "--corner", help="Named CG-envelope corner (default: --weight/--cg, else MTOW at the reference CG)."
+        ),
         click.option("--weight", help="Mass with unit, e.g. '600000 lb'."),
         click.option("--cg", help="CG station with unit, e.g. '97.25 ft'."),
         click.option("--config", "configuration", default="clean", show_default=True),
-        click.option("--altitude", default=None, help="Altitude with unit (default: the file's flight_condition, "
-                                                       "else 35000 ft)."),
-        click.option("--speed", default=None, help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84' (default: the "
-                                                    "file's flight_condition, else M0.84)."),
-        click.option("--maneuver", "kind", default="straight", show_default=True,
-                     help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta)."),
-        click.option("--gamma", "gamma_deg", type=FINITE, default=0.0, show_default=True, help="Flight-path angle, deg."),
+        click.option(
+            "--altitude", default=None, help="Altitude with unit (default: the file's flight_condition, else 35000 ft)."
+        ),
+        click.option(
+            "--speed",
+            default=None,
+            help="'250 kn EAS', '280 kn CAS', '490 kn TAS' or 'M0.84' (default: the "
+            "file's flight_condition, else M0.84).",
+        ),
+        click.option(
+            "--maneuver",
+            "kind",
+            default="straight",
+            show_default=True,
+            help="straight, climb (with --gamma), turn (--bank), oei (--inoperative, --bank), sideslip (--beta).",
+        ),
+        click.option(
+            "--gamma", "gamma_deg", type=FINITE, default=0.0, show_default=True, help="Flight-path angle, deg."
+        ),
         click.option("--bank", "bank_deg", type=FINITE, default=0.0, show_default=True, help="Bank angle, deg."),
         click.option("--beta", "beta_deg", type=FINITE, default=0.0, show_default=True, help="Sideslip, deg."),
         click.option("--inoperative", help="Failed engine name (oei)."),
@@ -445,8 +516,8 @@ def _condition_options(f):
 
 def _flight(aircraft_file, **kw):
     from certkit.aircraft import load_aircraft
-    from certkit.engine.context import Context
     from certkit.cli.flight_report import condition_from_options
+    from certkit.engine.context import Context
 
     ctx = Context(load_aircraft(aircraft_file))
     as_json = kw.pop("as_json")
@@ -473,7 +544,11 @@ def _beside(given: str | None, aviation: str) -> str:
     value used, in the aviation unit)."""
     if not given:
         return aviation
-    return given if given.strip().endswith(aviation.rsplit(" ", 1)[-1]) and given[:1].isdigit() else f"{given} ({aviation})"
+    return (
+        given
+        if given.strip().endswith(aviation.rsplit(" ", 1)[-1]) and given[:1].isdigit()
+        else f"{given} ({aviation})"
+    )
 
 
 def _print_trim(r, given: dict):
@@ -482,21 +557,34 @@ def _print_trim(r, given: dict):
 
     c = r["condition"]
     cg = f" · CG {given['cg']}" if given.get("cg") else f" · CG {c['x_cg_m'] / FT:.2f} ft"
-    manoeuvre = c["kind"] + "".join(f" {k} {given[v]:g} deg" for k, v in (("γ", "gamma_deg"), ("bank", "bank_deg"),
-                                                                          ("β", "beta_deg")) if given[v])
+    manoeuvre = c["kind"] + "".join(
+        f" {k} {given[v]:g} deg" for k, v in (("γ", "gamma_deg"), ("bank", "bank_deg"), ("β", "beta_deg")) if given[v]
+    )
     if c.get("inoperative"):
         manoeuvre += f", {c['inoperative']} engine inoperative"
     mass = _beside(given["corner"] or given["weight"], f"{c['mass_kg'] / LB:,.0f} lb")
     altitude = _beside(given["altitude"], f"{c['altitude_m'] / FT:,.0f} ft")
-    speed = f"{given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn)" if given.get("speed") else f"TAS {c['tas_m_s'] / KN:.1f} kn"
+    speed = (
+        f"{given['speed']} (TAS {c['tas_m_s'] / KN:.1f} kn)"
+        if given.get("speed")
+        else f"TAS {c['tas_m_s'] / KN:.1f} kn"
+    )
     click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {speed} · {manoeuvre}")
-    click.echo(f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)")
-    click.echo(f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg")
+    click.echo(
+        f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)"
+    )
+    click.echo(
+        f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg"
+    )
     st = r.get("stabilizer")
     for name, value in r["controls"].items():
         if name == "stabilizer" and st:  # the incidence, not the model's deflection from the datum
-            stop = (f" (at its {st['at_stop']} stop; needs {st['required_deg']:.2f} deg; limits "
-                    f"{st['limits_deg'][0]:.2f} to {st['limits_deg'][1]:.2f} deg, {st['limits']})" if st["at_stop"] else "")
+            stop = (
+                f" (at its {st['at_stop']} stop; needs {st['required_deg']:.2f} deg; limits "
+                f"{st['limits_deg'][0]:.2f} to {st['limits_deg'][1]:.2f} deg, {st['limits']})"
+                if st["at_stop"]
+                else ""
+            )
             click.echo(f"  {'stabilizer':<18} {st['incidence_deg']:10.4f} deg incidence{stop}")
             continue
         click.echo(f"  {name:<18} {value:10.4f} {'' if name.startswith('throttle') else 'deg'}")
@@ -519,9 +607,12 @@ def _print_trim(r, given: dict):
 @main.command(name="modes")
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
 @_condition_options
-@click.option("--no-density-gradient", is_flag=True,
-              help="Leave the altitude out of the linear model: the textbook four longitudinal equations (Etkin & "
-                   "Reid eq. 4.9,18), whose phugoid lacks the density gradient's stiffening.")
+@click.option(
+    "--no-density-gradient",
+    is_flag=True,
+    help="Leave the altitude out of the linear model: the textbook four longitudinal equations (Etkin & "
+    "Reid eq. 4.9,18), whose phugoid lacks the density gradient's stiffening.",
+)
 def modes_command(aircraft_file, no_density_gradient, **kw):
     """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double.
     The linear model includes the altitude (the density gradient and the thrust lapse with height, which raise the
@@ -534,12 +625,16 @@ def modes_command(aircraft_file, no_density_gradient, **kw):
         click.echo(json.dumps(report, indent=2, default=float))
         return
     _print_trim(report, given)
-    click.echo(f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}")
+    click.echo(
+        f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}"
+    )
     fmt = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
     for name, m in report["modes"].items():
         re, im = m["eigenvalue"]
-        click.echo(f"{name:<14}{re:>12.5f} {im:+11.5f}j{m['natural_frequency_rad_s']:>15.4f}{m['damping_ratio']:>9.4f}"
-                   f"{fmt(m['period_s']):>10}{fmt(m['time_to_half_s']):>10}{fmt(m['time_to_double_s']):>11}")
+        click.echo(
+            f"{name:<14}{re:>12.5f} {im:+11.5f}j{m['natural_frequency_rad_s']:>15.4f}{m['damping_ratio']:>9.4f}"
+            f"{fmt(m['period_s']):>10}{fmt(m['time_to_half_s']):>10}{fmt(m['time_to_double_s']):>11}"
+        )
 
 
 @main.command(name="mission")
@@ -560,7 +655,9 @@ def mission_command(aircraft_file, oew, svg_path, as_json):
         from certkit.report.mission_plots import payload_range_svg
 
         try:
-            Path(svg_path).write_text(payload_range_svg(result.payload_range, result.range_requirement_m), encoding="utf-8")
+            Path(svg_path).write_text(
+                payload_range_svg(result.payload_range, result.range_requirement_m), encoding="utf-8"
+            )
         except OSError as exc:
             raise UserError(f"--svg {svg_path!r}: cannot write ({exc.strerror or exc})") from None
     click.echo(json.dumps(mission_json(result), indent=2) if as_json else mission_table(result))
@@ -570,7 +667,9 @@ def mission_command(aircraft_file, oew, svg_path, as_json):
 @click.argument("rule_id")
 @click.option("--symbol", required=True, help="Kebab-case symbol, e.g. 'stall-speed'.")
 @click.option("--title", required=True, help="Short title.")
-@click.option("--subpart", type=click.Choice(["b", "c", "d"]), default=None, help="Subpart (default from the paragraph number).")
+@click.option(
+    "--subpart", type=click.Choice(["b", "c", "d"]), default=None, help="Subpart (default from the paragraph number)."
+)
 @click.option("--root", type=click.Path(file_okay=False), default=".", show_default=True, help="Repository root.")
 def new_rule(rule_id, symbol, title, subpart, root):
     """Scaffold a rule module under rules/part25/subpart_X/ and its test under tests/rules/."""
@@ -582,13 +681,27 @@ def new_rule(rule_id, symbol, title, subpart, root):
 
 @main.command(name="evaluate")
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
-@click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
-              help='Design variable, e.g. --set geometry.horizontal_tail.area="1250 ft^2" (repeatable).')
-@click.option("--response", "responses", multiple=True, metavar="NAME",
-              help="Response name or glob pattern to compute (repeatable; default: all).")
-@click.option("--jobs", "-j", default=None, type=int,
-              help="Processes sharing the rules (default: the CPU cores available, at most 4; the record does not "
-                   "depend on it).")
+@click.option(
+    "--set",
+    "settings",
+    multiple=True,
+    metavar="PATH=VALUE",
+    help='Design variable, e.g. --set geometry.horizontal_tail.area="1250 ft^2" (repeatable).',
+)
+@click.option(
+    "--response",
+    "responses",
+    multiple=True,
+    metavar="NAME",
+    help="Response name or glob pattern to compute (repeatable; default: all).",
+)
+@click.option(
+    "--jobs",
+    "-j",
+    default=None,
+    type=int,
+    help="Processes sharing the rules (default: the CPU cores available, at most 4; the record does not depend on it).",
+)
 @click.option("--json", "as_json", is_flag=True, help="Print the whole record as JSON.")
 def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
     """Evaluate one design: size the horizontal tail from its loads, run every rule and the mission, print one
@@ -596,13 +709,14 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
     jobs = _default_jobs(jobs)
     from certkit.design.evaluate import evaluate_design
     from certkit.design.report import print_record
-    from certkit.design.variables import parse_setting
-
     from certkit.design.sizing_loop import SizingNotConverged
+    from certkit.design.variables import parse_setting
     from certkit.models.structure.box import StructuralSizingError
 
     try:
-        record = evaluate_design(aircraft_file, [parse_setting(s) for s in settings], list(responses) or None, jobs=jobs)
+        record = evaluate_design(
+            aircraft_file, [parse_setting(s) for s in settings], list(responses) or None, jobs=jobs
+        )
     except (SizingNotConverged, StructuralSizingError) as exc:  # the design is possible but cannot be sized
         click.echo(f"error: the design could not be evaluated: {exc}", err=True)
         sys.exit(1)
@@ -614,8 +728,12 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
 
 @main.command(name="calibrate")
 @click.argument("aircraft_file", type=click.Path(dir_okay=False))
-@click.option("--tail", is_flag=True, help="Solve the horizontal tail's non-optimum factor (the declared tail group "
-                                          "from today's loads) instead of the performance calibration.")
+@click.option(
+    "--tail",
+    is_flag=True,
+    help="Solve the horizontal tail's non-optimum factor (the declared tail group "
+    "from today's loads) instead of the performance calibration.",
+)
 def calibrate_command(aircraft_file, tail):
     """Solve the declared calibration factors from their targets and print them for the aircraft file: the drag
     factor that flies calibration.target (fuel-flow factor as declared), or with --tail the non-optimum factor whose
@@ -628,8 +746,11 @@ def calibrate_command(aircraft_file, tail):
     def progress(f, v):
         click.echo(f"  factor {f:.5f}: {'%.1f kg' % v if tail else '%.1f nmi' % (v / 1852.0)}", err=True)
 
-    result = solve_tail_factor(aircraft_file, loaded.model, progress=progress) if tail else \
-        solve_drag_factor(loaded.model, progress=progress)
+    result = (
+        solve_tail_factor(aircraft_file, loaded.model, progress=progress)
+        if tail
+        else solve_drag_factor(loaded.model, progress=progress)
+    )
     click.echo(calibration_text(result))
 
 
@@ -640,15 +761,17 @@ def import_group():
 
 @import_group.command(name="jsbsim")
 @click.argument("fdm_file", type=click.Path(dir_okay=False))
-@click.option("--out", "out_path", type=click.Path(dir_okay=False), help="Aircraft file to write (default: standard output).")
+@click.option(
+    "--out", "out_path", type=click.Path(dir_okay=False), help="Aircraft file to write (default: standard output)."
+)
 @click.option("--mach", type=FINITE, default=0.8, show_default=True, help="Mach number the α tables are linearised at.")
 @click.option("--altitude", default="35000 ft", show_default=True, help="Altitude of that point, with unit.")
 def import_jsbsim_command(fdm_file, out_path, mach, altitude):
     """A certkit aircraft file from a JSBSim FDM (AIRCRAFT.xml): mass, inertia, engines and thrust deck, and the
     aerodynamic functions as a derivative table linearised at level flight at --mach/--altitude; what could not
     be mapped is listed in the file's header and on standard error."""
-    from certkit.cli.flight_report import _quantity
     from certkit.aircraft.jsbsim_import.importer import import_jsbsim, to_yaml
+    from certkit.cli.flight_report import _quantity
 
     result = import_jsbsim(fdm_file, mach=mach, altitude=_quantity(altitude, "length", "--altitude"))
     text = to_yaml(result)
@@ -679,4 +802,3 @@ def entry() -> None:
         if interrupts.requested() and exc.code == EXIT_INTERRUPTED:
             interrupts.leave(EXIT_INTERRUPTED)
         raise
-

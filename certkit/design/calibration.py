@@ -73,7 +73,9 @@ def target_range(aircraft, lattice=None) -> float:
 
     mass, target = aircraft.mass, aircraft.calibration.target
     payload = aircraft.mission.design_payload if target.payload is None else target.payload
-    aero = build_airplane_aero(aircraft, "clean", lattice=lattice if lattice is not None else lattice_derivatives(aircraft))
+    aero = build_airplane_aero(
+        aircraft, "clean", lattice=lattice if lattice is not None else lattice_derivatives(aircraft)
+    )
     tables = build_tables(aircraft, aero, (0.8 * mass.OEW, 1.05 * mass.MTOW))
     flyer = MissionFlyer(aircraft, tables, float(mass.OEW))
     w = mass.MTOW
@@ -89,8 +91,10 @@ def solve_drag_factor(aircraft, *, progress=None) -> CalibrationResult:
 
     cal = aircraft.calibration
     if cal is None or cal.target is None or aircraft.mission is None:
-        raise UserError("calibration.target: the performance calibration needs a calibration: section with a target "
-                        "(range, payload, tolerance, source) and a mission: section; see aircraft/lta.yaml")
+        raise UserError(
+            "calibration.target: the performance calibration needs a calibration: section with a target "
+            "(range, payload, tolerance, source) and a mission: section; see aircraft/lta.yaml"
+        )
     goal = float(cal.target.range)
     lattice = lattice_derivatives(aircraft)
     f = float(cal.drag_factor)
@@ -122,8 +126,16 @@ def solve_drag_factor(aircraft, *, progress=None) -> CalibrationResult:
         if progress:
             progress(declared, r)
     last = history[-1]
-    return CalibrationResult("drag factor", "calibration.drag_factor", last.factor, goal, last.value, "m", history,
-                             [f"fuel-flow factor held at {cal.fuel_flow_factor:.4f} ({cal.fuel_flow_source or cal.source})"])
+    return CalibrationResult(
+        "drag factor",
+        "calibration.drag_factor",
+        last.factor,
+        goal,
+        last.value,
+        "m",
+        history,
+        [f"fuel-flow factor held at {cal.fuel_flow_factor:.4f} ({cal.fuel_flow_source or cal.source})"],
+    )
 
 
 def tail_group_mass(source, factor: float | None = None) -> tuple[float, dict]:
@@ -141,8 +153,10 @@ def declared_tail_mass(aircraft) -> float:
     for c in aircraft.mass.components:
         if c.name == "horizontal tail":
             return float(c.mass)
-    raise UserError("mass.components: the tail calibration needs a component named 'horizontal tail' (the declared "
-                    "group mass it reproduces)")
+    raise UserError(
+        "mass.components: the tail calibration needs a component named 'horizontal tail' (the declared "
+        "group mass it reproduces)"
+    )
 
 
 def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
@@ -164,13 +178,31 @@ def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
         f_new = f + (goal - m) / slope
         if f_new < 1.0:
             history.append(Iteration(1.0, np.nan))
-            return CalibrationResult("non-optimum factor", "sizing.horizontal_tail.non_optimum_factor", 1.0, goal, m,
-                                     "kg", history, [f"no factor ≥ 1 reaches the declared mass: at {f:.4f} the group "
-                                                     f"is {m:.0f} kg and would need {f_new:.3f}"])
+            return CalibrationResult(
+                "non-optimum factor",
+                "sizing.horizontal_tail.non_optimum_factor",
+                1.0,
+                goal,
+                m,
+                "kg",
+                history,
+                [
+                    f"no factor ≥ 1 reaches the declared mass: at {f:.4f} the group "
+                    f"is {m:.0f} kg and would need {f_new:.3f}"
+                ],
+            )
         f = round(f_new, DECIMALS)  # evaluated as the file will hold it
     last = history[-1]
-    return CalibrationResult("non-optimum factor", "sizing.horizontal_tail.non_optimum_factor", last.factor, goal,
-                             last.value, "kg", history, sizing_summary(details))
+    return CalibrationResult(
+        "non-optimum factor",
+        "sizing.horizontal_tail.non_optimum_factor",
+        last.factor,
+        goal,
+        last.value,
+        "kg",
+        history,
+        sizing_summary(details),
+    )
 
 
 def sizing_summary(details: dict) -> list[str]:
@@ -182,14 +214,16 @@ def sizing_summary(details: dict) -> list[str]:
     loads = env["limit_loads"]
     inertia = g["inertia_kg_m2"]
     hinge = g.get("hinge_moment") or {}
-    lines = [f"sized group {g['structure_mass_kg']:,.1f} kg ({g['structure_mass_kg'] / 0.45359237:,.0f} lb): {items}",
-             f"CG x {g['cg_m'][0]:.2f} m, z {g['cg_m'][2]:.2f} m; own inertia Ixx {inertia['Ixx']:.2g}, Iyy "
-             f"{inertia['Iyy']:.2g}, Izz {inertia['Izz']:.2g} kg·m²",
-             f"limit envelope at the root: shear {loads['shear'][root] / 1e3:,.0f} kN, bending "
-             f"{loads['bending'][root] / 1e3:,.0f} kN·m, torsion {loads['torsion'][root] / 1e3:,.0f} kN·m (× 1.5 ultimate)",
-             f"elevator actuators {g['actuator_mass_kg']:,.0f} kg for {hinge.get('design_hinge_moment_Nm', float('nan')) / 1e3:,.0f} kN·m "
-             f"({hinge.get('rule', '?')}, elevator {hinge.get('elevator_deg', float('nan')):.1f} deg)",
-             f"loop iterations {len(details['history'])}"]
+    lines = [
+        f"sized group {g['structure_mass_kg']:,.1f} kg ({g['structure_mass_kg'] / 0.45359237:,.0f} lb): {items}",
+        f"CG x {g['cg_m'][0]:.2f} m, z {g['cg_m'][2]:.2f} m; own inertia Ixx {inertia['Ixx']:.2g}, Iyy "
+        f"{inertia['Iyy']:.2g}, Izz {inertia['Izz']:.2g} kg·m²",
+        f"limit envelope at the root: shear {loads['shear'][root] / 1e3:,.0f} kN, bending "
+        f"{loads['bending'][root] / 1e3:,.0f} kN·m, torsion {loads['torsion'][root] / 1e3:,.0f} kN·m (× 1.5 ultimate)",
+        f"elevator actuators {g['actuator_mass_kg']:,.0f} kg for {hinge.get('design_hinge_moment_Nm', float('nan')) / 1e3:,.0f} kN·m "
+        f"({hinge.get('rule', '?')}, elevator {hinge.get('elevator_deg', float('nan')):.1f} deg)",
+        f"loop iterations {len(details['history'])}",
+    ]
     return lines
 
 
@@ -206,12 +240,30 @@ def calibration_text(result: CalibrationResult) -> str:
     """What ``certkit calibrate`` prints: the factor as the file's YAML line, the target and what it gives."""
     scale, unit = (1852.0, "nmi") if result.unit == "m" else (0.45359237, "lb")
     leaf = result.path.rsplit(".", 1)[-1]
-    lines = [f"{result.name}: {result.factor:.4f}   ({result.path})",
-             f"target {result.target / scale:,.0f} {unit}; with it {result.achieved / scale:,.0f} {unit} "
-             f"({100 * result.error:+.2f} %) after {len(result.iterations)} evaluation(s)",
-             *result.notes, "", "for the aircraft file:", f"  {leaf}: {result.factor:.4f}"]
+    lines = [
+        f"{result.name}: {result.factor:.4f}   ({result.path})",
+        f"target {result.target / scale:,.0f} {unit}; with it {result.achieved / scale:,.0f} {unit} "
+        f"({100 * result.error:+.2f} %) after {len(result.iterations)} evaluation(s)",
+        *result.notes,
+        "",
+        "for the aircraft file:",
+        f"  {leaf}: {result.factor:.4f}",
+    ]
     return "\n".join(lines)
 
 
-__all__ = ["calibration_text", "CalibrationResult", "Iteration", "with_drag_factor", "target_range", "solve_drag_factor",
-           "tail_group_mass", "declared_tail_mass", "solve_tail_factor", "mass_per_factor", "sizing_summary", "RANGE_TOLERANCE", "MASS_TOLERANCE"]
+__all__ = [
+    "calibration_text",
+    "CalibrationResult",
+    "Iteration",
+    "with_drag_factor",
+    "target_range",
+    "solve_drag_factor",
+    "tail_group_mass",
+    "declared_tail_mass",
+    "solve_tail_factor",
+    "mass_per_factor",
+    "sizing_summary",
+    "RANGE_TOLERANCE",
+    "MASS_TOLERANCE",
+]

@@ -34,8 +34,15 @@ def loading_corners(design, declared) -> list[dict]:
         x = v.x
         if reach is not None:
             x = min(max(v.x, reach[0]), aft) if abs(v.x - fwd) <= abs(v.x - aft) else max(min(v.x, reach[1]), fwd)
-        out.append({"name": v.name or f"corner {i + 1}", "mass": float(v.mass), "x": float(x), "declared_x": float(v.x),
-                    "reachable_x": None if reach is None else [reach[0], reach[1]]})
+        out.append(
+            {
+                "name": v.name or f"corner {i + 1}",
+                "mass": float(v.mass),
+                "x": float(x),
+                "declared_x": float(v.x),
+                "reachable_x": None if reach is None else [reach[0], reach[1]],
+            }
+        )
     return out
 
 

@@ -105,12 +105,20 @@ def mission_needed(patterns: Sequence[str] | None) -> bool:
     if patterns is None:
         return True
     names = MISSION_OBJECTIVES + ("mission.name", "constraint.name")
-    return any(p.startswith(("mission.", "constraint.")) or fnmatch.fnmatchcase(n, _literal_brackets(p))
-               for p in patterns for n in names)
+    return any(
+        p.startswith(("mission.", "constraint.")) or fnmatch.fnmatchcase(n, _literal_brackets(p))
+        for p in patterns
+        for n in names
+    )
 
 
-def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Setting] | None = None,
-                    responses: Sequence[str] | None = None, *, jobs: int = 1) -> dict:
+def evaluate_design(
+    aircraft_path: str,
+    values: Mapping[str, object] | list[Setting] | None = None,
+    responses: Sequence[str] | None = None,
+    *,
+    jobs: int = 1,
+) -> dict:
     """Evaluate one design of ``aircraft_path`` with the design ``values`` ({path: SI number or "value unit"}).
 
     ``responses``: names or glob patterns of the responses wanted (None: all); rules no response needs are skipped
@@ -122,8 +130,8 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     {name: float | None}, "statuses": {name: status}, "details": {...}, "timings": {...}}`` (JSON-safe: no NaN).
     """
     from certkit.aircraft import LoadedAircraft
-    from certkit.design.record import offered_responses, rule_responses
     from certkit.design.parallel import evaluate_rules
+    from certkit.design.record import offered_responses, rule_responses
     from certkit.design.sizing_loop import size_horizontal_tail_loop
     from certkit.engine.scheduler import check_overrides
 
@@ -157,8 +165,15 @@ def evaluate_design(aircraft_path: str, values: Mapping[str, object] | list[Sett
     results.sort(key=lambda r: order.get(r.id, len(order)))
     timings["rules_s"] = time.perf_counter() - t
 
-    travel = {name: (c.travel.min, c.travel.max) for surface in ("wing", "horizontal_tail", "vertical_tail")
-              for name, c in getattr(loop.aircraft.geometry, surface).controls.items()} if loop.aircraft.geometry else {}
+    travel = (
+        {
+            name: (c.travel.min, c.travel.max)
+            for surface in ("wing", "horizontal_tail", "vertical_tail")
+            for name, c in getattr(loop.aircraft.geometry, surface).controls.items()
+        }
+        if loop.aircraft.geometry
+        else {}
+    )
     out, statuses = rule_responses(results, travel)
     out.update(offered_responses(results, rules, travel))
     out.update(loop.responses())
@@ -199,8 +214,11 @@ def _si_value(aircraft, path: str) -> float | None:
     """The validated (SI) value at ``path`` of the design's aircraft."""
     node: object = aircraft
     for part in path.split("."):
-        node = node.get(part) if isinstance(node, dict) else (node[int(part)] if isinstance(node, (list, tuple))
-                                                             else getattr(node, part, None))
+        node = (
+            node.get(part)
+            if isinstance(node, dict)
+            else (node[int(part)] if isinstance(node, (list, tuple)) else getattr(node, part, None))
+        )
         if node is None:
             return None
     return float(node) if isinstance(node, (int, float)) else None

@@ -58,8 +58,12 @@ def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
         return [evaluate_rule(r, ctx, only=select.get(r.id), **kw) for r in rules]
     groups = shares(rules, min(jobs, len(rules)))
     _SHARED.update(ctx=ctx, rules={r.id: r for r in rules}, kw=kw, select=select)
-    pool = ProcessPoolExecutor(len(groups), mp_context=multiprocessing.get_context("fork"),
-                               initializer=die_with_parent, initargs=(os.getpid(),))
+    pool = ProcessPoolExecutor(
+        len(groups),
+        mp_context=multiprocessing.get_context("fork"),
+        initializer=die_with_parent,
+        initargs=(os.getpid(),),
+    )
     try:
         done = [res for part in pool.map(_work, [tuple(r.id for r in g) for g in groups]) for res in part]
     except BaseException:  # Ctrl-C or a failure: the workers end now (they also end with this process)

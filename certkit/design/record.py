@@ -118,8 +118,14 @@ def offered_responses(results, rules, travel: dict[str, tuple[float, float]] | N
 #: column each comes from: damping ratio, undamped natural frequency (rad/s), period (s, oscillatory modes), times to
 #: half and to double amplitude (s, convergent or divergent modes), the short period's control anticipation
 #: parameter ω²/(n/α) ((rad/s²)/g)
-MODE_QUANTITIES = {"zeta": "zeta", "wn_rad_s": "wn_rad_s", "period_s": "period_s", "t_half_s": "t_half_s",
-                   "t_double_s": "t_double_s", "cap": "cap"}
+MODE_QUANTITIES = {
+    "zeta": "zeta",
+    "wn_rad_s": "wn_rad_s",
+    "period_s": "period_s",
+    "t_half_s": "t_half_s",
+    "t_double_s": "t_double_s",
+    "cap": "cap",
+}
 
 
 def offered_prefixes(rule) -> tuple[str, ...]:

@@ -30,13 +30,18 @@ def print_record(record: dict, echo) -> None:
         echo("\nDesign variables (SI)")
         for path, v in record["variables"].items():
             echo(f"  {path:<58} {v:.6g}")
-    groups = [("Objectives", "objective."), ("Mission", "mission."), ("Constraints", "constraint."), ("Sizing", "sizing.")]
+    groups = [
+        ("Objectives", "objective."),
+        ("Mission", "mission."),
+        ("Constraints", "constraint."),
+        ("Sizing", "sizing."),
+    ]
     for title, prefix in groups:
         rows = [(k, v) for k, v in r.items() if k.startswith(prefix)]
         if rows:
             echo(f"\n{title}")
             for k, v in rows:
-                echo(f"  {k[len(prefix):]:<40} {_fmt(k, v)}")
+                echo(f"  {k[len(prefix) :]:<40} {_fmt(k, v)}")
     rules = [(k[5:-7], v) for k, v in r.items() if k.startswith("rule.") and k.endswith(".margin")]
     if rules:
         echo("\nRules (normalised minimum margin, ≥ 0 complies)")
@@ -57,7 +62,12 @@ def print_record(record: dict, echo) -> None:
         echo("  " + ", ".join(f"{m} {lv}" for m, lv in worst.items()))
     n_sub = sum(1 for k in r if k.startswith("subcheck.") and k.endswith(".margin"))
     failing = [k for k, s in st.items() if k.startswith("subcheck.") and s == "fails"]
-    echo(f"\n{n_sub} named sub-checks ({len(failing)} failing{': ' + ', '.join(failing[:6]) if failing else ''}"
-         f"{' …' if len(failing) > 6 else ''}); --json lists them all")
+    echo(
+        f"\n{n_sub} named sub-checks ({len(failing)} failing{': ' + ', '.join(failing[:6]) if failing else ''}"
+        f"{' …' if len(failing) > 6 else ''}); --json lists them all"
+    )
     t = record["timings"]
-    echo("Timings: " + ", ".join(f"{k[:-2]} {v:.2f} s" for k, v in t.items() if k.endswith("_s") and isinstance(v, float)))
+    echo(
+        "Timings: "
+        + ", ".join(f"{k[:-2]} {v:.2f} s" for k, v in t.items() if k.endswith("_s") and isinstance(v, float))
+    )

@@ -24,8 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
 from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
+from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
 from certkit.design.variables import design_aircraft
 
 TAIL_COMPONENT = "horizontal tail"
@@ -92,22 +92,36 @@ class LoopResult:
 
     def responses(self) -> dict:
         g = self.group
-        out = {"sizing.ht_group_mass_kg": g.total_mass, "sizing.ht_structure_mass_kg": g.structure_mass,
-               "sizing.ht_box_mass_kg": g.box_mass, "sizing.actuator_mass_kg": g.actuator_mass,
-               "sizing.iterations": float(len(self.history)), "objective.OEW_kg": self.oew_kg,
-               "sizing.design_hinge_moment_Nm": g.hinge.get("design_hinge_moment_Nm")}
+        out = {
+            "sizing.ht_group_mass_kg": g.total_mass,
+            "sizing.ht_structure_mass_kg": g.structure_mass,
+            "sizing.ht_box_mass_kg": g.box_mass,
+            "sizing.actuator_mass_kg": g.actuator_mass,
+            "sizing.iterations": float(len(self.history)),
+            "objective.OEW_kg": self.oew_kg,
+            "sizing.design_hinge_moment_Nm": g.hinge.get("design_hinge_moment_Nm"),
+        }
         if g.actuators is not None:
             out["sizing.hydraulic_flow_m3_s"] = g.actuators.total_flow
         return out
 
     def details(self) -> dict:
         extra = {} if self.cg_corners is None else {"cg_envelope": self.cg_corners}
-        return {**extra, "history": self.history, "group": self.group.as_dict(), "envelope": self.envelope.as_dict(),
-                "oew_kg": self.oew_kg, "declared_tail_component_kg": self.baseline_tail_kg,
-                "baseline_actuators": {"mass_kg": self.baseline_actuators.mass, "centroid_m": list(self.baseline_actuators.centroid),
-                                       "hinge_moment": self.baseline_actuators.hinge},
-                "oew_basis": "declared OEW − declared horizontal-tail component + sized structure + sized elevator "
-                             "actuators − the baseline's elevator actuators (sized alike; inside the declared flight controls)"}
+        return {
+            **extra,
+            "history": self.history,
+            "group": self.group.as_dict(),
+            "envelope": self.envelope.as_dict(),
+            "oew_kg": self.oew_kg,
+            "declared_tail_component_kg": self.baseline_tail_kg,
+            "baseline_actuators": {
+                "mass_kg": self.baseline_actuators.mass,
+                "centroid_m": list(self.baseline_actuators.centroid),
+                "hinge_moment": self.baseline_actuators.hinge,
+            },
+            "oew_basis": "declared OEW − declared horizontal-tail component + sized structure + sized elevator "
+            "actuators − the baseline's elevator actuators (sized alike; inside the declared flight controls)",
+        }
 
 
 def _index(data: dict, name: str) -> int | None:
@@ -120,7 +134,9 @@ def _index(data: dict, name: str) -> int | None:
 def _tail_component_index(data: dict) -> int:
     i = _index(data, TAIL_COMPONENT)
     if i is None:
-        raise ValueError(f"the aircraft file has no mass component named {TAIL_COMPONENT!r} for the sized tail to replace")
+        raise ValueError(
+            f"the aircraft file has no mass component named {TAIL_COMPONENT!r} for the sized tail to replace"
+        )
     return i
 
 
@@ -138,8 +154,10 @@ def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oe
         fc = aircraft.mass.components[j]
         m = fc.mass - baseline.mass
         if m <= 0:
-            raise ValueError(f"the baseline's elevator actuators ({baseline.mass:.0f} kg) outweigh the declared "
-                             f"{FLIGHT_CONTROLS!r} component ({fc.mass:.0f} kg)")
+            raise ValueError(
+                f"the baseline's elevator actuators ({baseline.mass:.0f} kg) outweigh the declared "
+                f"{FLIGHT_CONTROLS!r} component ({fc.mass:.0f} kg)"
+            )
         cg = [(fc.mass * a - baseline.mass * b) / m for a, b in zip((fc.cg.x, fc.cg.y, fc.cg.z), baseline.centroid)]
         comps[j] = {**comps[j], "mass": m, "cg": {"x": cg[0], "y": cg[1], "z": cg[2]}}
     if group.actuator_mass > 0:
@@ -211,8 +229,12 @@ def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActua
         else:
             ctx = Context(loaded_of(base_aircraft))
             chosen = sizing_rules(rules)
-            value = _baseline_value(base_aircraft, ctx, [evaluate_rule(r, ctx, evidence=False, keep_loads=True)
-                                                         for r in chosen.rules], chosen)
+            value = _baseline_value(
+                base_aircraft,
+                ctx,
+                [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in chosen.rules],
+                chosen,
+            )
         _remember(source, value)
     return _BASELINE[source.sha256]
 
@@ -222,14 +244,15 @@ def _remember(source, value: BaselineActuators) -> None:
     _BASELINE[source.sha256] = value
 
 
-def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, rules, loaded_of,
-                              jobs: int = 1) -> LoopResult:
+def size_horizontal_tail_loop(
+    source, settings, data, aircraft, base_aircraft, rules, loaded_of, jobs: int = 1
+) -> LoopResult:
     """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
     declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine;
     ``jobs`` processes share the loads rules of an iteration (:mod:`certkit.design.parallel`)."""
-    from certkit.engine.context import Context
-    from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
     from certkit.design.parallel import evaluate_rules
+    from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
+    from certkit.engine.context import Context
     from certkit.models.loads.model import airplane_loads
 
     start = time.perf_counter()
@@ -249,7 +272,9 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
     known = _BASELINE.get(source.sha256)
     if known is None and settings:  # without settings, iteration 0 flies the declared airplane: sized from it below
         known = baseline_actuators(source, base_aircraft, rules, loaded_of)
-    ctx = known.ctx if same_geometry and known is not None else None  # the declared lattice serves an unchanged geometry
+    ctx = (
+        known.ctx if same_geometry and known is not None else None
+    )  # the declared lattice serves an unchanged geometry
     base_act = known
     # a changed design's first iteration flies the declared airplane's near-critical points, the next ones every
     # condition until the mass settles with the loads inside the sized box (only that ends the loop)
@@ -269,8 +294,9 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         t_aero = time.perf_counter()
         ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
         aero_seconds += time.perf_counter() - t_aero
-        results = evaluate_rules(loads_rules, ctx, jobs, evidence=False, keep_loads=True,
-                                 select=base_act.critical if partial else None)
+        results = evaluate_rules(
+            loads_rules, ctx, jobs, evidence=False, keep_loads=True, select=base_act.critical if partial else None
+        )
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results, chosen)
             _remember(source, base_act)
@@ -280,19 +306,44 @@ def size_horizontal_tail_loop(source, settings, data, aircraft, base_aircraft, r
         sized = size_tail_group(current, ctx, union, chosen.hinge_results(results), allowance=LOAD_ALLOWANCE)
         change = sized.total_mass - group.total_mass
         seconds.append(time.perf_counter() - t)
-        history.append({"iteration": k, "group_mass_kg": round(group.total_mass, 3), "sized_mass_kg": round(sized.total_mass, 3),
-                        "change_kg": round(change, 3), "loads_within_sized": bool(within),
-                        "conditions": "near-critical" if partial else "all"})
+        history.append(
+            {
+                "iteration": k,
+                "group_mass_kg": round(group.total_mass, 3),
+                "sized_mass_kg": round(sized.total_mass, 3),
+                "change_kg": round(change, 3),
+                "loads_within_sized": bool(within),
+                "conditions": "near-critical" if partial else "all",
+            }
+        )
         if partial:
             partial = False
         elif k > 0 and abs(change) < spec.tolerance_kg and within:
             for r in results:
                 r.run = None  # the simulations are not needed any more
-            return LoopResult(current, ctx, results, history, group, union, oew, declared.mass, base_act,
-                              time.perf_counter() - start, seconds, aero_seconds,
-                              corners if follows_loading(current) else None)
+            return LoopResult(
+                current,
+                ctx,
+                results,
+                history,
+                group,
+                union,
+                oew,
+                declared.mass,
+                base_act,
+                time.perf_counter() - start,
+                seconds,
+                aero_seconds,
+                corners if follows_loading(current) else None,
+            )
         group = sized
     raise SizingNotConverged(
         f"horizontal-tail sizing did not converge in {spec.max_iterations} iterations (tolerance "
-        f"{spec.tolerance_kg:g} kg): " + "; ".join(f"#{h['iteration']} {h['group_mass_kg']:.1f} → {h['sized_mass_kg']:.1f} kg"
-                                                  f"{'' if h['loads_within_sized'] else ' (loads grew)'}" for h in history), history)
+        f"{spec.tolerance_kg:g} kg): "
+        + "; ".join(
+            f"#{h['iteration']} {h['group_mass_kg']:.1f} → {h['sized_mass_kg']:.1f} kg"
+            f"{'' if h['loads_within_sized'] else ' (loads grew)'}"
+            for h in history
+        ),
+        history,
+    )

@@ -35,8 +35,10 @@ def declared_sizing(aircraft) -> SizingSpec:
     if s is None or s.horizontal_tail is None or s.loop is None:
         from certkit.errors import UserError
 
-        raise UserError("a design evaluation sizes the horizontal tail: the aircraft file needs the sizing section "
-                        "(sizing.horizontal_tail and sizing.loop; see aircraft/lta.yaml)")
+        raise UserError(
+            "a design evaluation sizes the horizontal tail: the aircraft file needs the sizing section "
+            "(sizing.horizontal_tail and sizing.loop; see aircraft/lta.yaml)"
+        )
     return SizingSpec(float(s.loop.mass_tolerance), int(s.loop.max_iterations))
 
 
@@ -61,10 +63,15 @@ class TailGroup:
 
     def component(self) -> dict:
         Ixx, Iyy, Izz, Ixz = self.inertia
-        return {"group": "structure", "mass": self.structure_mass, "cg": {"x": self.cg[0], "y": self.cg[1], "z": self.cg[2]},
-                "inertia": {"Ixx": Ixx, "Iyy": Iyy, "Izz": Izz, "Ixz": Ixz},
-                "source": "sized from the Subpart C loads (certkit.design)" if self.sized is not None else
-                          "declared, scaled with the planform area (sizing loop start)"}
+        return {
+            "group": "structure",
+            "mass": self.structure_mass,
+            "cg": {"x": self.cg[0], "y": self.cg[1], "z": self.cg[2]},
+            "inertia": {"Ixx": Ixx, "Iyy": Iyy, "Izz": Izz, "Ixz": Ixz},
+            "source": "sized from the Subpart C loads (certkit.design)"
+            if self.sized is not None
+            else "declared, scaled with the planform area (sizing loop start)",
+        }
 
     def actuator_component(self, name: str) -> dict:
         """The actuators as one component: their total mass at their centroid with the point masses' inertia."""
@@ -76,25 +83,41 @@ class TailGroup:
         Iyy = m * float(np.sum(d[:, 0] ** 2 + d[:, 2] ** 2))
         Izz = m * float(np.sum(d[:, 0] ** 2 + d[:, 1] ** 2))
         Ixz = m * float(np.sum(d[:, 0] * d[:, 2]))
-        return {"name": name, "group": "systems", "mass": self.actuator_mass,
-                "cg": {"x": float(c[0]), "y": float(c[1]), "z": float(c[2])},
-                "inertia": {"Ixx": Ixx, "Iyy": max(Iyy, 1e-9), "Izz": max(Izz, 1e-9), "Ixz": Ixz},
-                "source": f"{len(p)} elevator actuators sized for {self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m"}
+        return {
+            "name": name,
+            "group": "systems",
+            "mass": self.actuator_mass,
+            "cg": {"x": float(c[0]), "y": float(c[1]), "z": float(c[2])},
+            "inertia": {"Ixx": Ixx, "Iyy": max(Iyy, 1e-9), "Izz": max(Izz, 1e-9), "Ixz": Ixz},
+            "source": f"{len(p)} elevator actuators sized for {self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m",
+        }
 
     def capabilities(self) -> list:
         out = []
         for station, values in self.capability.items():
             for q, v in zip(QUANTITIES, values):
-                out.append({"station": station, "quantity": q, "limit": float(v), "ultimate": float(v),
-                            "source": "sized box (certkit.design.tail_group): ultimate capability at its gauges"})
+                out.append(
+                    {
+                        "station": station,
+                        "quantity": q,
+                        "limit": float(v),
+                        "ultimate": float(v),
+                        "source": "sized box (certkit.design.tail_group): ultimate capability at its gauges",
+                    }
+                )
         return out
 
     def as_dict(self) -> dict:
-        out = {"structure_mass_kg": self.structure_mass, "actuator_mass_kg": self.actuator_mass,
-               "total_mass_kg": self.total_mass, "box_mass_kg": self.box_mass,
-               "cg_m": list(self.cg), "inertia_kg_m2": dict(zip(("Ixx", "Iyy", "Izz", "Ixz"), self.inertia)),
-               "capability_ultimate": {str(k): dict(zip(QUANTITIES, v)) for k, v in self.capability.items()},
-               "hinge_moment": self.hinge}
+        out = {
+            "structure_mass_kg": self.structure_mass,
+            "actuator_mass_kg": self.actuator_mass,
+            "total_mass_kg": self.total_mass,
+            "box_mass_kg": self.box_mass,
+            "cg_m": list(self.cg),
+            "inertia_kg_m2": dict(zip(("Ixx", "Iyy", "Izz", "Ixz"), self.inertia)),
+            "capability_ultimate": {str(k): dict(zip(QUANTITIES, v)) for k, v in self.capability.items()},
+            "hinge_moment": self.hinge,
+        }
         if self.sized is not None:
             out["items_kg"] = dict(self.sized.masses)
             out["stations"] = self.sized.station_table()
@@ -111,8 +134,9 @@ def initial_group(aircraft, base_aircraft, component) -> TailGroup:
     ratio = aircraft.geometry.horizontal_tail.area / base_aircraft.geometry.horizontal_tail.area
     inertia = component.inertia
     tensor = (0.0, 0.0, 0.0, 0.0) if inertia is None else (inertia.Ixx, inertia.Iyy, inertia.Izz, inertia.Ixz)
-    return TailGroup(component.mass * ratio, (component.cg.x, component.cg.y, component.cg.z),
-                     tuple(v * ratio ** 2 for v in tensor))
+    return TailGroup(
+        component.mass * ratio, (component.cg.x, component.cg.y, component.cg.z), tuple(v * ratio**2 for v in tensor)
+    )
 
 
 def _file_station(name: str):
@@ -130,14 +154,18 @@ def box_capability(aircraft, sized, station_names, station_span) -> dict:
     cos = np.cos(b.sweep)
     t, h, w = b.t_cover, b.depth, b.width
     webs = b.front_spar_height + b.rear_spar_height
-    bending = mat.cover_stress * w * cos ** 2 * t * (h - t)
+    bending = mat.cover_stress * w * cos**2 * t * (h - t)
     shear_design = np.abs(b.loads.shear)
     q_t = np.abs(b.loads.torsion) / (2.0 * h * w * cos)
-    torsion = np.minimum(2.0 * h * w * cos * t * mat.cover_shear * mat.skin_fraction,
-                         2.0 * h * w * cos * np.maximum(b.t_web * mat.web_shear - shear_design / webs, 0.0))
+    torsion = np.minimum(
+        2.0 * h * w * cos * t * mat.cover_shear * mat.skin_fraction,
+        2.0 * h * w * cos * np.maximum(b.t_web * mat.web_shear - shear_design / webs, 0.0),
+    )
     shear = np.maximum(b.t_web * mat.web_shear - q_t, 0.0) * webs
-    return {_file_station(name): tuple(float(np.interp(s, b.span, v)) for v in (shear, bending, torsion))
-            for name, s in zip(station_names, station_span)}
+    return {
+        _file_station(name): tuple(float(np.interp(s, b.span, v)) for v in (shear, bending, torsion))
+        for name, s in zip(station_names, station_span)
+    }
 
 
 def _hinge_moments(ctx, results) -> list:
@@ -156,14 +184,28 @@ def _hinge_moments(ctx, results) -> list:
         h = sim.history
         de = sim.controls[:, :, list(sim.control_names).index("elevator")]
         mask = np.ones(de.shape, dtype=bool) if valid is None else np.asarray(valid, dtype=bool)
-        samples.append((res.id, h["qbar"][mask], h["mach"][mask], h["alpha"][mask], de[mask],
-                        np.argwhere(mask), run.conditions, sim.t))
+        samples.append(
+            (
+                res.id,
+                h["qbar"][mask],
+                h["mach"][mask],
+                h["alpha"][mask],
+                de[mask],
+                np.argwhere(mask),
+                run.conditions,
+                sim.t,
+            )
+        )
     if not samples:
-        raise ValueError("no rule produced elevator hinge moments (a pitch-manoeuvre history) to size the actuators from")
+        raise ValueError(
+            "no rule produced elevator hinge moments (a pitch-manoeuvre history) to size the actuators from"
+        )
     aero = ctx.aero("clean")
     grid = np.asarray(aero.mach, dtype=float)  # the Mach breakpoints the loads model has already solved
-    derivs = ctx.memo(("aero", "clean", "elevator hinge-moment derivatives"),  # geometry only: shared by the loop
-                      lambda: [hinge_moment_derivatives(aero.lattice.at_mach(float(m)), "elevator") for m in grid])
+    derivs = ctx.memo(
+        ("aero", "clean", "elevator hinge-moment derivatives"),  # geometry only: shared by the loop
+        lambda: [hinge_moment_derivatives(aero.lattice.at_mach(float(m)), "elevator") for m in grid],
+    )
     table = {k: np.array([getattr(d, k) for d in derivs]) for k in ("Ch_0", "Ch_alpha", "Ch_delta")}
     ref = derivs[0]
     out = []
@@ -181,12 +223,21 @@ def design_hinge_moment(ctx, results) -> dict:
         i = int(np.argmax(np.abs(H)))
         if best is None or abs(H[i]) > abs(best["design_hinge_moment_Nm"]):
             k, c = where[i]
-            best = {"design_hinge_moment_Nm": float(abs(H[i])), "signed_Nm": float(H[i]), "rule": rid,
-                    "condition": conds[c].label() if conds is not None and c < len(conds) else str(c),
-                    "time_s": float(t[k]), "mach": float(m[i]), "qbar_Pa": float(qbar[i]),
-                    "alpha_deg": float(np.degrees(alpha[i])), "elevator_deg": float(np.degrees(de[i])),
-                    "Ch_alpha_per_rad": float(coef["Ch_alpha"][i]), "Ch_delta_per_rad": float(coef["Ch_delta"][i]),
-                    "elevator_area_m2": ref.area, "elevator_chord_m": ref.chord}
+            best = {
+                "design_hinge_moment_Nm": float(abs(H[i])),
+                "signed_Nm": float(H[i]),
+                "rule": rid,
+                "condition": conds[c].label() if conds is not None and c < len(conds) else str(c),
+                "time_s": float(t[k]),
+                "mach": float(m[i]),
+                "qbar_Pa": float(qbar[i]),
+                "alpha_deg": float(np.degrees(alpha[i])),
+                "elevator_deg": float(np.degrees(de[i])),
+                "Ch_alpha_per_rad": float(coef["Ch_alpha"][i]),
+                "Ch_delta_per_rad": float(coef["Ch_delta"][i]),
+                "elevator_area_m2": ref.area,
+                "elevator_chord_m": ref.chord,
+            }
     return best
 
 
@@ -225,9 +276,15 @@ def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) ->
     actuators = None
     if aircraft.sizing.elevator_actuators is not None:
         actuators = size_elevator_actuators(aircraft, hinge["design_hinge_moment_Nm"])
-    return TailGroup(sized.mass, (float(p.cg[0]), float(p.cg[1]), float(p.cg[2])), (p.Ixx, p.Iyy, p.Izz, p.Ixz),
-                     box_mass=sized.masses["covers"] + sized.masses["webs"],
-                     actuator_mass=actuators.total_mass if actuators else 0.0,
-                     actuator_positions=actuators.positions if actuators else (),
-                     capability=box_capability(aircraft, sized, tail.station_names, tail.station_span),
-                     sized=sized, actuators=actuators, hinge=hinge)
+    return TailGroup(
+        sized.mass,
+        (float(p.cg[0]), float(p.cg[1]), float(p.cg[2])),
+        (p.Ixx, p.Iyy, p.Izz, p.Ixz),
+        box_mass=sized.masses["covers"] + sized.masses["webs"],
+        actuator_mass=actuators.total_mass if actuators else 0.0,
+        actuator_positions=actuators.positions if actuators else (),
+        capability=box_capability(aircraft, sized, tail.station_names, tail.station_span),
+        sized=sized,
+        actuators=actuators,
+        hinge=hinge,
+    )

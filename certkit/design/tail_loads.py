@@ -45,15 +45,24 @@ class TailLoadEnvelope:
             return self
         take_self = self.limit >= other.limit
         crit = [c for c in self.critical if take_self[QUANTITIES.index(c.quantity), self.stations.index(c.station)]]
-        crit += [c for c in other.critical if not take_self[QUANTITIES.index(c.quantity), other.stations.index(c.station)]]
-        return TailLoadEnvelope(self.stations, np.where(take_self, self.limit, other.limit), crit,
-                                tuple(sorted(set(self.rules) | set(other.rules))))
+        crit += [
+            c for c in other.critical if not take_self[QUANTITIES.index(c.quantity), other.stations.index(c.station)]
+        ]
+        return TailLoadEnvelope(
+            self.stations,
+            np.where(take_self, self.limit, other.limit),
+            crit,
+            tuple(sorted(set(self.rules) | set(other.rules))),
+        )
 
     def as_dict(self) -> dict:
-        return {"stations": list(self.stations),
-                "limit_loads": {q: [float(v) for v in self.limit[i]] for i, q in enumerate(QUANTITIES)},
-                "units": {"shear": "N", "bending": "N·m", "torsion": "N·m"},
-                "critical": [vars(c) for c in self.critical], "rules": list(self.rules)}
+        return {
+            "stations": list(self.stations),
+            "limit_loads": {q: [float(v) for v in self.limit[i]] for i, q in enumerate(QUANTITIES)},
+            "units": {"shear": "N", "bending": "N·m", "torsion": "N·m"},
+            "critical": [vars(c) for c in self.critical],
+            "rules": list(self.rules),
+        }
 
 
 def tail_load_envelope(results) -> TailLoadEnvelope:
@@ -78,11 +87,18 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
                     i, sense = np.unravel_index(int(np.argmax(flat)), flat.shape)
                     if flat[i, sense] > best[q, s]:
                         best[q, s] = flat[i, sense]
-                        crit[(q, s)] = CriticalLoad(QUANTITIES[q], stations[s], float(P[i, sense, q, s]), res.id,
-                                                    env.labels[i] if i < len(env.labels) else str(i))
+                        crit[(q, s)] = CriticalLoad(
+                            QUANTITIES[q],
+                            stations[s],
+                            float(P[i, sense, q, s]),
+                            res.id,
+                            env.labels[i] if i < len(env.labels) else str(i),
+                        )
     if stations is None:
-        raise ValueError("no loads rule computed horizontal-tail loads (the rules that declare them were not "
-                         "evaluated or could not trim any condition)")
+        raise ValueError(
+            "no loads rule computed horizontal-tail loads (the rules that declare them were not "
+            "evaluated or could not trim any condition)"
+        )
     return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)))
 
 

@@ -24,6 +24,7 @@ from certkit.aircraft import Aircraft, validate_aircraft_data
 from certkit.aircraft.yaml_source import YamlSource
 from certkit.errors import InfeasibleDesign, InputError, UserError
 
+
 class DesignError(UserError):
     """A design variable that cannot be applied: unknown path, wrong value, or an impossible aircraft."""
 
@@ -47,7 +48,7 @@ def parse_setting(text: str) -> Setting:
     path, sep, raw = text.partition("=")
     path = path.strip()
     if not sep or not path or not raw.strip():
-        raise DesignError(f"--set {text!r}: expected PATH=VALUE, e.g. geometry.horizontal_tail.area=\"1250 ft^2\"")
+        raise DesignError(f'--set {text!r}: expected PATH=VALUE, e.g. geometry.horizontal_tail.area="1250 ft^2"')
     try:
         value = yaml.safe_load(raw)
     except yaml.YAMLError:
@@ -79,7 +80,9 @@ def set_value(data: dict, setting: Setting) -> None:
         try:
             child = node[key]  # type: ignore[index]
         except (KeyError, IndexError, TypeError):
-            raise DesignError(f"design variable {setting.path}: {where} has no {key!r} (it has: {_known_keys(node)})") from None
+            raise DesignError(
+                f"design variable {setting.path}: {where} has no {key!r} (it has: {_known_keys(node)})"
+            ) from None
         if last:
             if isinstance(child, (dict, list)):
                 raise DesignError(f"design variable {setting.path}: names a section, not a value")
@@ -120,13 +123,18 @@ def design_aircraft(source: YamlSource, settings: list[Setting], data: dict | No
     except InputError as err:
         lines, related = [], 0
         for p in err.problems:
-            owners = [s for s in settings if p.path == s.path or p.path.startswith(s.path + ".")
-                      or s.path.startswith(p.path + ".")]
+            owners = [
+                s
+                for s in settings
+                if p.path == s.path or p.path.startswith(s.path + ".") or s.path.startswith(p.path + ".")
+            ]
             if owners:
                 related += 1
                 names = ", ".join(map(str, owners)) if len(owners) == 1 else ", ".join(o.path for o in owners)
-                lines.append(f"  - design variable{'s' if len(owners) > 1 else ''} {names}: {p.path}: {p.message}"
-                             + ("" if p.value is None or len(owners) > 1 else f" (got {p.value!r})"))
+                lines.append(
+                    f"  - design variable{'s' if len(owners) > 1 else ''} {names}: {p.path}: {p.message}"
+                    + ("" if p.value is None or len(owners) > 1 else f" (got {p.value!r})")
+                )
             else:
                 lines.append(f"  - {p}")
         shown = ", ".join(map(str, settings)) if len(settings) <= 3 else f"{len(settings)} design variables"

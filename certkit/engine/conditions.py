@@ -16,11 +16,11 @@ import numpy as np
 
 from certkit.aircraft.model import Aircraft
 from certkit.atmosphere import from_tas, to_tas
-from certkit.models.mass.loading import reference_cg
 from certkit.engine.results import Condition
-
+from certkit.models.mass.loading import reference_cg
 
 # --- CG envelope ---------------------------------------------------------------------------
+
 
 def cg_limits_at(aircraft: Aircraft, mass: float) -> tuple[float, float]:
     """Forward and aft CG limits (m) of the envelope polygon at ``mass`` (kg)."""
@@ -51,6 +51,7 @@ def inside_envelope(aircraft: Aircraft, mass: float, x_cg: float, tol: float = 1
 
 
 # --- axes ----------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Loading:
@@ -180,12 +181,19 @@ class ConditionSpace:
         extra_values = [values for _, values in self.extra]
         out = []
         for ld, cfg, h, sp, *ex in itertools.product(loadings, configs, alts, speeds, *extra_values):
-            out.append(Condition(
-                loading=ld.name if ld else None, mass=ld.mass if ld else None, x_cg=ld.x_cg if ld else None,
-                configuration=cfg, altitude=None if h is None else float(h),
-                speed=sp[1] if sp else None, speed_kind=sp[2] if sp else None, speed_name=sp[0] if sp else None,
-                extra=tuple(zip(extra_names, ex)),
-            ))
+            out.append(
+                Condition(
+                    loading=ld.name if ld else None,
+                    mass=ld.mass if ld else None,
+                    x_cg=ld.x_cg if ld else None,
+                    configuration=cfg,
+                    altitude=None if h is None else float(h),
+                    speed=sp[1] if sp else None,
+                    speed_kind=sp[2] if sp else None,
+                    speed_name=sp[0] if sp else None,
+                    extra=tuple(zip(extra_names, ex)),
+                )
+            )
         return out
 
     def describe(self) -> str:

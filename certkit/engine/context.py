@@ -59,21 +59,47 @@ class Context:
         aero, loadings = {}, {}
         for key, value in self._memo.items():
             if isinstance(value, AirplaneAero):
-                aero[value.configuration] = {"source": value.source, "mach": list(value.mach),
-                                             "overrides": value.overrides, "notes": value.notes}
+                aero[value.configuration] = {
+                    "source": value.source,
+                    "mach": list(value.mach),
+                    "overrides": value.overrides,
+                    "notes": value.notes,
+                }
             elif isinstance(value, Loading):
                 p = value.properties
                 names = self._loading_names.get(key) or {value.name}
-                loadings[key] = {"name": " / ".join(sorted(names)), "mass_kg": p.mass, "x_cg_m": float(p.cg[0]), "payload_kg": value.payload,
-                                 "fuel_kg": value.fuel, "Ixx": p.Ixx, "Iyy": p.Iyy, "Izz": p.Izz, "Ixz": p.Ixz,
-                                 "built": value.construction, "notes": list(value.notes)}
+                loadings[key] = {
+                    "name": " / ".join(sorted(names)),
+                    "mass_kg": p.mass,
+                    "x_cg_m": float(p.cg[0]),
+                    "payload_kg": value.payload,
+                    "fuel_kg": value.fuel,
+                    "Ixx": p.Ixx,
+                    "Iyy": p.Iyy,
+                    "Izz": p.Izz,
+                    "Ixz": p.Ixz,
+                    "built": value.construction,
+                    "notes": list(value.notes),
+                }
         components, notes = empty_airplane(self.aircraft)
         warning = self.inertia_warning()
         notes = notes + ([f"warning: {warning}"] if warning else [])
-        return {"aerodynamics": aero, "loadings": [loadings[k] for k in sorted(loadings)],
-                "components": [{"item": c.name, "mass_kg": c.mass, "x_m": c.cg[0], "y_m": c.cg[1], "z_m": c.cg[2],
-                                "own_inertia": c.inertia is not None} for c in components],
-                "component_notes": notes}
+        return {
+            "aerodynamics": aero,
+            "loadings": [loadings[k] for k in sorted(loadings)],
+            "components": [
+                {
+                    "item": c.name,
+                    "mass_kg": c.mass,
+                    "x_m": c.cg[0],
+                    "y_m": c.cg[1],
+                    "z_m": c.cg[2],
+                    "own_inertia": c.inertia is not None,
+                }
+                for c in components
+            ],
+            "component_notes": notes,
+        }
 
     def inertia_warning(self) -> str | None:
         """Declared inertia vs component build-up beyond the file's tolerance (:func:`inertia_comparison`), once."""
@@ -122,8 +148,12 @@ class Context:
 
         w = self.aircraft.geometry.wing
         key = ("wing_lift_slope", round(float(mach), 4))
-        return self.memo(key, lambda: lift_curve_slope(
-            w.aspect_ratio, sweep_at(0.5, w.sweep_quarter_chord, w.aspect_ratio, w.taper), float(mach)))
+        return self.memo(
+            key,
+            lambda: lift_curve_slope(
+                w.aspect_ratio, sweep_at(0.5, w.sweep_quarter_chord, w.aspect_ratio, w.taper), float(mach)
+            ),
+        )
 
     def design_speed_eas(self, name: str, altitude) -> tuple[np.ndarray, np.ndarray]:
         """Declared design speed ``name`` (VC, VD, VMO, VB, VA …) as EAS (m/s) at ``altitude``, limited by
@@ -154,8 +184,21 @@ class Context:
             self._loading_names.setdefault(key, set()).add(name)
         return self.memo(key, lambda: solve_loading(self.aircraft, mass, x_cg, name))
 
-    def trim(self, conditions, kind: str = "straight", *, gamma=0.0, bank=0.0, beta=0.0, inoperative: str | None = None,
-             configuration: str | None = None, design_limits: bool = True, throttle=None, stabilizer=None, initial=None):
+    def trim(
+        self,
+        conditions,
+        kind: str = "straight",
+        *,
+        gamma=0.0,
+        bank=0.0,
+        beta=0.0,
+        inoperative: str | None = None,
+        configuration: str | None = None,
+        design_limits: bool = True,
+        throttle=None,
+        stabilizer=None,
+        initial=None,
+    ):
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
@@ -177,19 +220,59 @@ class Context:
         config = configs.pop()
         tas = np.array([speed_as(c, "TAS") for c in conds])
         h = np.array([c.altitude or 0.0 for c in conds])
-        key = ("trim", config, tuple((c.mass, c.x_cg) for c in conds), tuple(np.round(tas, 6)), tuple(h), kind,
-               _hashable(gamma), _hashable(bank), _hashable(beta),
-               inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative), design_limits,
-               None if throttle is None else _hashable(throttle))
+        key = (
+            "trim",
+            config,
+            tuple((c.mass, c.x_cg) for c in conds),
+            tuple(np.round(tas, 6)),
+            tuple(h),
+            kind,
+            _hashable(gamma),
+            _hashable(bank),
+            _hashable(beta),
+            inoperative if inoperative is None or isinstance(inoperative, str) else tuple(inoperative),
+            design_limits,
+            None if throttle is None else _hashable(throttle),
+        )
         if stabilizer is not None:
             key += ("stabilizer", _hashable(stabilizer))
         if initial is not None:
             key += ("initial",) + tuple((k, _hashable(v)) for k, v in sorted(initial.items()))
-        return self.memo(key, lambda: self._trim(conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits,
-                                                 throttle, stabilizer, initial))
+        return self.memo(
+            key,
+            lambda: self._trim(
+                conds,
+                config,
+                tas,
+                h,
+                kind,
+                gamma,
+                bank,
+                beta,
+                inoperative,
+                design_limits,
+                throttle,
+                stabilizer,
+                initial,
+            ),
+        )
 
-    def _trim(self, conds, config, tas, h, kind, gamma, bank, beta, inoperative, design_limits, throttle=None,
-              stabilizer=None, initial=None):
+    def _trim(
+        self,
+        conds,
+        config,
+        tas,
+        h,
+        kind,
+        gamma,
+        bank,
+        beta,
+        inoperative,
+        design_limits,
+        throttle=None,
+        stabilizer=None,
+        initial=None,
+    ):
         from certkit.models.dynamics.trim import trim
         from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
 
@@ -203,9 +286,21 @@ class Context:
             operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
         st = model_stabilizer(self.aircraft, model, design_limits, config)
-        return trim(model, tas, h, kind=kind, gamma=gamma, bank=bank, beta=beta, throttle=throttle,
-                    limits=control_limits(self.aircraft, design_limits, config), roles=ROLES, stabilizer=st,
-                    stabilizer_setting=None if st is None else stabilizer, initial=initial)
+        return trim(
+            model,
+            tas,
+            h,
+            kind=kind,
+            gamma=gamma,
+            bank=bank,
+            beta=beta,
+            throttle=throttle,
+            limits=control_limits(self.aircraft, design_limits, config),
+            roles=ROLES,
+            stabilizer=st,
+            stabilizer_setting=None if st is None else stabilizer,
+            initial=initial,
+        )
 
     def modes(self, conditions, throttle=None):
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each

@@ -130,8 +130,12 @@ class ControlCase:
                 values = [float(v) for v in values if isinstance(v, (int, float)) and math.isfinite(v)]
                 if values:
                     out[control] = max(values, key=abs)
-            elif control in finding.check and finding.unit == "deg" and finding.value is not None \
-                    and math.isfinite(finding.value):
+            elif (
+                control in finding.check
+                and finding.unit == "deg"
+                and finding.value is not None
+                and math.isfinite(finding.value)
+            ):
                 out[control] = float(finding.value)
         return out
 
@@ -232,8 +236,15 @@ class Rule:
     @classmethod
     def documentation(cls) -> str:
         """The text ``certkit explain`` prints."""
-        lines = [f"§{cls.id}  {cls.title}  [{cls.symbol}]", f"Amendment: {cls.amendment}    Implementation: {cls.implementation}",
-                 "", "Requirement", _indent(cls.requirement), "", "Criterion"]
+        lines = [
+            f"§{cls.id}  {cls.title}  [{cls.symbol}]",
+            f"Amendment: {cls.amendment}    Implementation: {cls.implementation}",
+            "",
+            "Requirement",
+            _indent(cls.requirement),
+            "",
+            "Criterion",
+        ]
         for name, c in cls.criteria.items():
             unit = f" {c.unit}" if c.unit else ""
             lines.append(f"  {name} = {c.value}{unit} — {c.description} (source: {c.source})")
@@ -291,7 +302,9 @@ def validate_rule_class(cls: type, origin: str) -> None:
     if isinstance(cls.cost, bool) or not isinstance(cls.cost, (int, float)) or not cls.cost > 0:
         raise PluginError(f"{where}: field 'cost' = {cls.cost!r} must be a positive number (relative evaluation time)")
     if not isinstance(cls.run_with, str):
-        raise PluginError(f"{where}: field 'run_with' = {cls.run_with!r} must be a string (a key shared with other rules)")
+        raise PluginError(
+            f"{where}: field 'run_with' = {cls.run_with!r} must be a string (a key shared with other rules)"
+        )
     _validate_declarations(cls, where)
     for ref in cls.references:
         if not isinstance(ref, str) or not RULE_ID.match(ref):
@@ -309,13 +322,18 @@ def validate_rule_class(cls: type, origin: str) -> None:
 
 def _validate_declarations(cls, where: str) -> None:
     """``produces`` holds :class:`Loads` of a known kind, ``offers`` response declarations."""
-    if not isinstance(cls.produces, tuple) or not all(isinstance(p, Loads) and p.kind in LOAD_KINDS and p.surface
-                                                      for p in cls.produces):
-        raise PluginError(f"{where}: field 'produces' = {cls.produces!r} must be a tuple of certkit.engine.registry.Loads "
-                          f"(a surface and a kind among {LOAD_KINDS})")
+    if not isinstance(cls.produces, tuple) or not all(
+        isinstance(p, Loads) and p.kind in LOAD_KINDS and p.surface for p in cls.produces
+    ):
+        raise PluginError(
+            f"{where}: field 'produces' = {cls.produces!r} must be a tuple of certkit.engine.registry.Loads "
+            f"(a surface and a kind among {LOAD_KINDS})"
+        )
     if not isinstance(cls.offers, tuple) or not all(isinstance(o, RESPONSE_KINDS) for o in cls.offers):
-        raise PluginError(f"{where}: field 'offers' = {cls.offers!r} must be a tuple of "
-                          + " or ".join(k.__name__ for k in RESPONSE_KINDS))
+        raise PluginError(
+            f"{where}: field 'offers' = {cls.offers!r} must be a tuple of "
+            + " or ".join(k.__name__ for k in RESPONSE_KINDS)
+        )
 
 
 def producers(rules, surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
@@ -329,14 +347,24 @@ def _validate_unevaluated(cls, where: str) -> None:
     if not isinstance(entries, tuple):
         raise PluginError(f"{where}: field 'unevaluated' must be a tuple of (paragraph, reason) pairs")
     for entry in entries:
-        if not (isinstance(entry, tuple) and len(entry) == 2 and isinstance(entry[0], str) and RULE_ID.match(entry[0])
-                and isinstance(entry[1], str) and entry[1].strip()):
+        if not (
+            isinstance(entry, tuple)
+            and len(entry) == 2
+            and isinstance(entry[0], str)
+            and RULE_ID.match(entry[0])
+            and isinstance(entry[1], str)
+            and entry[1].strip()
+        ):
             raise PluginError(f"{where}: field 'unevaluated' holds {entry!r}, not a (paragraph id, reason) pair")
     if cls.implementation == "partial" and not entries:
-        raise PluginError(f"{where}: implementation 'partial' needs the sub-paragraphs it does not evaluate in 'unevaluated'")
+        raise PluginError(
+            f"{where}: implementation 'partial' needs the sub-paragraphs it does not evaluate in 'unevaluated'"
+        )
     if cls.implementation == "implemented" and entries:
-        raise PluginError(f"{where}: lists sub-paragraphs in 'unevaluated' but declares implementation 'implemented' "
-                          "(declare 'partial')")
+        raise PluginError(
+            f"{where}: lists sub-paragraphs in 'unevaluated' but declares implementation 'implemented' "
+            "(declare 'partial')"
+        )
 
 
 def rule(cls: type) -> type:
@@ -427,8 +455,10 @@ def discover(options: DiscoveryOptions = DiscoveryOptions()) -> list[type[Rule]]
     by_id: dict[str, type[Rule]] = {}
     for cls in rules:
         if cls.id in by_id and by_id[cls.id] is not cls:
-            raise PluginError(f"rule id {cls.id} is declared twice: by {by_id[cls.id].origin} "
-                              f"({by_id[cls.id].__name__}) and by {cls.origin} ({cls.__name__})")
+            raise PluginError(
+                f"rule id {cls.id} is declared twice: by {by_id[cls.id].origin} "
+                f"({by_id[cls.id].__name__}) and by {cls.origin} ({cls.__name__})"
+            )
         by_id[cls.id] = cls
     return sorted(by_id.values(), key=lambda c: paragraph_key(c.id))
 

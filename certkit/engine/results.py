@@ -26,8 +26,12 @@ NOT_EVALUATED: Status = "not_evaluated"
 #: rule-level only: what was computed complies, something was not evaluated
 COMPLIES_PARTIAL = "complies_partial"
 #: how each status reads in the terminal and the report
-STATUS_LABEL = {COMPLIES: "complies", COMPLIES_PARTIAL: "complies, partial", FAILS: "fails",
-                NOT_EVALUATED: "not evaluated"}
+STATUS_LABEL = {
+    COMPLIES: "complies",
+    COMPLIES_PARTIAL: "complies, partial",
+    FAILS: "fails",
+    NOT_EVALUATED: "not evaluated",
+}
 #: ``details`` key of the finding that stands for a sub-paragraph the rule does not evaluate
 SCOPE_KEY = "not_evaluated_by_rule"
 
@@ -36,14 +40,14 @@ SCOPE_KEY = "not_evaluated_by_rule"
 class Condition:
     """One point of a rule's condition space (§25.21(a): weight and CG, configuration, flight condition)."""
 
-    loading: str | None = None          # CG-envelope corner or loading name
-    mass: float | None = None           # kg
-    x_cg: float | None = None           # m, airplane frame (aft of the nose)
+    loading: str | None = None  # CG-envelope corner or loading name
+    mass: float | None = None  # kg
+    x_cg: float | None = None  # m, airplane frame (aft of the nose)
     configuration: str | None = None
-    altitude: float | None = None       # m
-    speed: float | None = None          # m/s
-    speed_kind: str | None = None       # EAS, CAS, TAS or MACH
-    speed_name: str | None = None       # VC, VD, … when the speed is a declared one
+    altitude: float | None = None  # m
+    speed: float | None = None  # m/s
+    speed_kind: str | None = None  # EAS, CAS, TAS or MACH
+    speed_name: str | None = None  # VC, VD, … when the speed is a declared one
     extra: tuple[tuple[str, object], ...] = ()
 
     def get(self, key: str, default=None):
@@ -73,7 +77,8 @@ class Condition:
         if (self.loading, self.configuration) != (scheduled.loading, scheduled.configuration):
             return False
         if (self.altitude is None) != (scheduled.altitude is None) or (
-                self.altitude is not None and abs(self.altitude - scheduled.altitude) > 1e-6):
+            self.altitude is not None and abs(self.altitude - scheduled.altitude) > 1e-6
+        ):
             return False
         if scheduled.speed_name is not None and self.speed_name != scheduled.speed_name:
             return False
@@ -127,9 +132,18 @@ class Condition:
 
 
 #: scheduled condition fields (``extra``) as a reviewer reads them: name → text with ``{}`` for the value
-_FIELD_WORDS = {"speed_point": "at {}", "entry_speed": "entry at {}", "bank_deg": "{}° bank", "inoperative":
-                "{} engine inoperative", "gust": "gust {}", "direction": "{}", "load_factor": "n = {}", "case": "{}",
-                "point": "{}", "delta_isa_K": "ISA {:+g} °C"}
+_FIELD_WORDS = {
+    "speed_point": "at {}",
+    "entry_speed": "entry at {}",
+    "bank_deg": "{}° bank",
+    "inoperative": "{} engine inoperative",
+    "gust": "gust {}",
+    "direction": "{}",
+    "load_factor": "n = {}",
+    "case": "{}",
+    "point": "{}",
+    "delta_isa_K": "ISA {:+g} °C",
+}
 
 
 def field_words(name: str, value) -> str:
@@ -176,8 +190,19 @@ class Finding:
         return self.margin / scale
 
     @classmethod
-    def compare(cls, condition: Condition, check: str, value: float, limit: float, *, at_least: bool,
-                unit: str = "", reason: str = "", tolerance: float | None = None, **details) -> "Finding":
+    def compare(
+        cls,
+        condition: Condition,
+        check: str,
+        value: float,
+        limit: float,
+        *,
+        at_least: bool,
+        unit: str = "",
+        reason: str = "",
+        tolerance: float | None = None,
+        **details,
+    ) -> "Finding":
         """A finding for ``value ≥ limit`` (``at_least``) or ``value ≤ limit``; margin ≥ 0 complies.
 
         ``tolerance`` (in the margin's unit; default 1e-9 × |limit|) absorbs round-off when a value sits
@@ -204,8 +229,9 @@ class Finding:
     @classmethod
     def outside_scope(cls, paragraph: str, reason: str) -> "Finding":
         """The whole-airplane ``not_evaluated`` finding of a sub-paragraph the rule does not evaluate."""
-        return cls(Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason,
-                   details={SCOPE_KEY: paragraph})
+        return cls(
+            Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason, details={SCOPE_KEY: paragraph}
+        )
 
     def as_dict(self) -> dict:
         return {
@@ -349,7 +375,7 @@ class RuleResult:
         evaluated = [f for f in self.findings if f.margin is not None]
         if not evaluated:
             return None
-        return min(evaluated, key=lambda f: (f.normalized_margin if f.normalized_margin is not None else f.margin))
+        return min(evaluated, key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
 
     def as_dict(self) -> dict:
         crit = self.critical
@@ -404,9 +430,13 @@ class RunResult:
 
     def summary(self) -> dict:
         statuses = [r.status for r in self.rules]
-        return {"rules": len(self.rules), "complies": statuses.count(COMPLIES),
-                "complies_partial": statuses.count(COMPLIES_PARTIAL), "fails": statuses.count(FAILS),
-                "not_evaluated": statuses.count(NOT_EVALUATED)}
+        return {
+            "rules": len(self.rules),
+            "complies": statuses.count(COMPLIES),
+            "complies_partial": statuses.count(COMPLIES_PARTIAL),
+            "fails": statuses.count(FAILS),
+            "not_evaluated": statuses.count(NOT_EVALUATED),
+        }
 
     def as_dict(self, rules=None) -> dict:
         """The run as plain data (``results.json``); ``rules`` stands in for the list of rule dicts. The last key,
@@ -414,16 +444,22 @@ class RunResult:
         return {
             "schema_version": SCHEMA_VERSION,
             "certkit_version": self.certkit_version,
-            "aircraft": {"name": self.aircraft_name, "source_sha256": self.source_sha256, "source": self.source_path,
-                         **({"inputs": self.inputs} if self.inputs else {})},
+            "aircraft": {
+                "name": self.aircraft_name,
+                "source_sha256": self.source_sha256,
+                "source": self.source_path,
+                **({"inputs": self.inputs} if self.inputs else {}),
+            },
             "selection": self.selection,
             "options": self.options,
             "environment": self.environment,
             "precision": {"significant_digits": SIGNIFICANT_DIGITS, "non_finite": None},
             "summary": self.summary(),
             "rules": [r.as_dict() for r in self.rules] if rules is None else rules,
-            "models": {k: ({kk: vv for kk, vv in v.items() if kk != "svg"} if isinstance(v, dict) else v)
-                       for k, v in self.models.items()},
+            "models": {
+                k: ({kk: vv for kk, vv in v.items() if kk != "svg"} if isinstance(v, dict) else v)
+                for k, v in self.models.items()
+            },
             VOLATILE_KEY: {"created": self.created, "duration_s": self.duration_s, "jobs": self.jobs},
         }
 
@@ -440,10 +476,15 @@ class RunResult:
         head, n_head = clean(self.as_dict(rules=_RULES_MARK))
         non_finite += n_head
         if non_finite:  # strict JSON has no NaN or Infinity: null, and the reason said once
-            head = {**{k: v for k, v in head.items() if k != VOLATILE_KEY},
-                    "non_finite_numbers": {"count": non_finite, "written_as": None, "reason":
-                                           "a computed value was NaN or infinite (not computable there); JSON has no "
-                                           "such numbers"}, VOLATILE_KEY: head[VOLATILE_KEY]}
+            head = {
+                **{k: v for k, v in head.items() if k != VOLATILE_KEY},
+                "non_finite_numbers": {
+                    "count": non_finite,
+                    "written_as": None,
+                    "reason": "a computed value was NaN or infinite (not computable there); JSON has no such numbers",
+                },
+                VOLATILE_KEY: head[VOLATILE_KEY],
+            }
         rules = "[\n" + ",\n".join("    " + p for p in parts) + "\n  ]" if parts else "[]"
         return encode(head).replace(json.dumps(_RULES_MARK), rules, 1)
 

@@ -84,8 +84,10 @@ def encode(data: object, depth: int = 0) -> str:
         return _compact(data)
     pad, close = "  " * (depth + 1), "  " * depth
     if isinstance(data, dict):
-        items = [f"{pad}{_key(k)}: {_compact(v) if k == VOLATILE_KEY and depth == 0 else encode(v, depth + 1)}"
-                 for k, v in data.items()]
+        items = [
+            f"{pad}{_key(k)}: {_compact(v) if k == VOLATILE_KEY and depth == 0 else encode(v, depth + 1)}"
+            for k, v in data.items()
+        ]
         return "{\n" + ",\n".join(items) + "\n" + close + "}"
     return "[\n" + ",\n".join(pad + encode(v, depth + 1) for v in data) + "\n" + close + "]"
 
@@ -99,5 +101,7 @@ def schema() -> dict[str, Any]:
     """The JSON Schema of results.json shipped with certkit."""
     from importlib.resources import files
 
-    loaded: dict[str, Any] = json.loads(files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8"))
+    loaded: dict[str, Any] = json.loads(
+        files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8")
+    )
     return loaded

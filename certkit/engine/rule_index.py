@@ -84,8 +84,10 @@ def rule_metadata(rules_dirs: tuple[str, ...] = ()) -> list[RuleMetadata]:
 def _from_rules(rules_dirs: tuple[str, ...]) -> list[RuleMetadata]:
     from certkit.engine.registry import DiscoveryOptions, discover
 
-    return [{**{f: getattr(r, f) for f in FIELDS}, "documentation": r.documentation()}
-            for r in discover(DiscoveryOptions(rules_dirs=tuple(rules_dirs)))]
+    return [
+        {**{f: getattr(r, f) for f in FIELDS}, "documentation": r.documentation()}
+        for r in discover(DiscoveryOptions(rules_dirs=tuple(rules_dirs)))
+    ]
 
 
 def find(metadata: list[RuleMetadata], query: str) -> list[RuleMetadata]:

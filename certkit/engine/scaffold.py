@@ -9,8 +9,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from certkit.errors import UserError
 from certkit.engine.registry import RULE_ID, SYMBOL
+from certkit.errors import UserError
 
 #: Part 25 subparts by paragraph number range
 SUBPARTS = (("b", 1, 255), ("c", 301, 581))
@@ -79,8 +79,10 @@ def subpart_of(rule_id: str) -> str:
     for name, lo, hi in SUBPARTS:
         if lo <= number <= hi:
             return name
-    raise UserError(f"{rule_id}: built-in rules cover Subparts B (25.1-25.255) and C (25.301-25.581); "
-                    "put other paragraphs in a plugin or a --rules folder")
+    raise UserError(
+        f"{rule_id}: built-in rules cover Subparts B (25.1-25.255) and C (25.301-25.581); "
+        "put other paragraphs in a plugin or a --rules folder"
+    )
 
 
 def scaffold_rule(root: Path, rule_id: str, symbol: str, title: str, subpart: str | None = None) -> tuple[Path, Path]:
@@ -100,8 +102,14 @@ def scaffold_rule(root: Path, rule_id: str, symbol: str, title: str, subpart: st
         if path.exists():
             raise UserError(f"{path} exists already; not overwritten")
     class_name = "".join(part.capitalize() for part in symbol.split("-"))
-    fields = dict(rule_id=rule_id, title=title.replace('"', "'"), symbol=symbol, class_name=class_name,
-                  package=f"certkit_rules.part25.subpart_{subpart}.{stem}", func=symbol.replace("-", "_"))
+    fields = dict(
+        rule_id=rule_id,
+        title=title.replace('"', "'"),
+        symbol=symbol,
+        class_name=class_name,
+        package=f"certkit_rules.part25.subpart_{subpart}.{stem}",
+        func=symbol.replace("-", "_"),
+    )
     module.write_text(MODULE.format(**fields), encoding="utf-8")
     test_dir.mkdir(parents=True, exist_ok=True)
     test.write_text(TEST.format(**fields), encoding="utf-8")

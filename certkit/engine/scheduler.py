@@ -14,18 +14,18 @@ import inspect
 import math
 import os
 import re
-import traceback
 import time
+import traceback
 from concurrent.futures import ProcessPoolExecutor, as_completed
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
 from certkit.engine.context import Context
-from certkit.errors import InputError, Problem, UserError
 from certkit.engine.registry import Criteria, DiscoveryOptions, PluginError, Rule, discover, exit_called
 from certkit.engine.results import Condition, Finding, RuleResult, RunResult, SimulationRun
-from certkit.units import UnitError, to_unit
 from certkit.engine.worker_processes import die_with_parent, stop_pool
+from certkit.errors import InputError, Problem, UserError
+from certkit.units import UnitError, to_unit
 
 
 def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
@@ -50,11 +50,18 @@ def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> di
     basis and the file's justification beside it), meaning, and whether the aircraft file overrode it."""
     out = {}
     for name, c in rule.criteria.items():
-        entry = {"value": values[name], "unit": c.unit or "1", "source": c.source, "basis": c.basis,
-                 "description": c.description, "overridden": name in overrides}
+        entry = {
+            "value": values[name],
+            "unit": c.unit or "1",
+            "source": c.source,
+            "basis": c.basis,
+            "description": c.description,
+            "overridden": name in overrides,
+        }
         if name in overrides:
-            entry.update(basis="override", default=c.value, default_basis=c.basis,
-                         justification=overrides[name]["justification"])
+            entry.update(
+                basis="override", default=c.value, default_basis=c.basis, justification=overrides[name]["justification"]
+            )
         out[name] = entry
     return out
 
@@ -113,8 +120,15 @@ def override_problems(loaded: LoadedAircraft, rules: list[type[Rule]]) -> list[P
         loc = ("criteria", rule_id)
         if rule_id not in by_id:
             close = [r for r in by_id if r.split("(")[0] == rule_id.split("(")[0]] or sorted(by_id)
-            found.append(Problem(".".join(loc), f"no rule {rule_id} (known: {', '.join(close)})", rule_id,
-                                 source.line_of(loc), source.path))
+            found.append(
+                Problem(
+                    ".".join(loc),
+                    f"no rule {rule_id} (known: {', '.join(close)})",
+                    rule_id,
+                    source.line_of(loc),
+                    source.path,
+                )
+            )
             continue
         for name, given in override.values.items():
             _, problem = _override_value(by_id[rule_id], name, given)
@@ -141,8 +155,9 @@ def _describe_exception(exc: BaseException) -> str:
     return f"{exc.__class__.__name__}: {exc}"
 
 
-def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False,
-                  only=None) -> RuleResult:
+def evaluate_rule(
+    rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False, only=None
+) -> RuleResult:
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
     evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
     (conditions, e.g. of another airplane) restricts the evaluation to the scheduled conditions that are the same
@@ -160,15 +175,29 @@ def evaluate_rule(rule: type[Rule], ctx: Context, *, evidence: bool = True, keep
 def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only=None) -> RuleResult:
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
-    result = RuleResult(rule.id, rule.symbol, rule.title, [], overrides=overrides, implementation=rule.implementation,
-                        limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
-                        unevaluated=[list(u) for u in rule.unevaluated], amendment=rule.amendment,
-                        references=list(rule.references), criteria=criteria_metadata(rule, criteria, overrides))
+    result = RuleResult(
+        rule.id,
+        rule.symbol,
+        rule.title,
+        [],
+        overrides=overrides,
+        implementation=rule.implementation,
+        limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
+        unevaluated=[list(u) for u in rule.unevaluated],
+        amendment=rule.amendment,
+        references=list(rule.references),
+        criteria=criteria_metadata(rule, criteria, overrides),
+    )
     missing = ctx.missing(tuple(dict.fromkeys(RULE_SECTIONS + tuple(rule.requires))))
     if missing:
-        result.findings.append(Finding.not_evaluated(
-            Condition(), "inputs", "needs " + ", ".join(missing),
-            hint=f"declare {', '.join(missing)} in the aircraft file"))
+        result.findings.append(
+            Finding.not_evaluated(
+                Condition(),
+                "inputs",
+                "needs " + ", ".join(missing),
+                hint=f"declare {', '.join(missing)} in the aircraft file",
+            )
+        )
         return result
     try:
         conditions = rule.conditions.expand(ctx.aircraft)
@@ -179,7 +208,11 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
         conditions = [c for c in conditions if any(k.same_point(c) for k in only)]
         result.notes.append(f"partial evaluation: {len(conditions)} selected conditions")
     if not conditions:
-        result.findings.append(Finding.not_evaluated(Condition(), "conditions", "no condition applies (configurations or speeds not declared)"))
+        result.findings.append(
+            Finding.not_evaluated(
+                Condition(), "conditions", "no condition applies (configurations or speeds not declared)"
+            )
+        )
         return result
     try:
         findings = instance.evaluate(ctx, conditions, criteria)
@@ -193,8 +226,11 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
             except UserError:
                 raise
             except Exception as exc:
-                findings.append(Finding.not_evaluated(cond, "computation", _describe_exception(exc),
-                                                      traceback=traceback.format_exc(limit=3)))
+                findings.append(
+                    Finding.not_evaluated(
+                        cond, "computation", _describe_exception(exc), traceback=traceback.format_exc(limit=3)
+                    )
+                )
     for cond in _uncovered(conditions, findings):
         findings.append(Finding.not_evaluated(cond, "computation", "the rule returned no finding for this condition"))
     if overrides:
@@ -247,8 +283,9 @@ def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
     return result
 
 
-def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None,
-                   progress=None) -> tuple[list[RuleResult], dict]:
+def _evaluate_many(
+    loaded: LoadedAircraft, rules: list[type[Rule]], finish=None, progress=None
+) -> tuple[list[RuleResult], dict]:
     ctx = Context(loaded)
     results = []
     for r in rules:
@@ -262,8 +299,12 @@ def _evaluate_many(loaded: LoadedAircraft, rules: list[type[Rule]], finish=None,
 
 def _merge_provenance(parts: list[dict]) -> dict:
     """One provenance from several workers' (same inputs give the same entries; keep one of each)."""
-    merged = {"aerodynamics": {}, "loadings": [], "components": parts[0]["components"] if parts else [],
-              "component_notes": parts[0]["component_notes"] if parts else []}
+    merged = {
+        "aerodynamics": {},
+        "loadings": [],
+        "components": parts[0]["components"] if parts else [],
+        "component_notes": parts[0]["component_notes"] if parts else [],
+    }
     seen: dict = {}
     for p in parts:
         merged["aerodynamics"].update(p["aerodynamics"])
@@ -326,9 +367,17 @@ def _collect(futures, units, workers: int, progress) -> list:
     return [part for f in futures for part in f.result()]
 
 
-def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
-        options: DiscoveryOptions = DiscoveryOptions(), now: _dt.datetime | None = None, finish=None,
-        alongside: dict | None = None, progress=None) -> RunResult:
+def run(
+    loaded: LoadedAircraft,
+    rules: list[type[Rule]],
+    *,
+    jobs: int = 1,
+    options: DiscoveryOptions = DiscoveryOptions(),
+    now: _dt.datetime | None = None,
+    finish=None,
+    alongside: dict | None = None,
+    progress=None,
+) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
@@ -346,8 +395,9 @@ def run(loaded: LoadedAircraft, rules: list[type[Rule]], *, jobs: int = 1,
     else:
         units = work_units(rules)
         workers = min(jobs, len(units))
-        pool = ProcessPoolExecutor(max_workers=workers, initializer=_worker_init,
-                                   initargs=(loaded, options, os.getpid(), finish))
+        pool = ProcessPoolExecutor(
+            max_workers=workers, initializer=_worker_init, initargs=(loaded, options, os.getpid(), finish)
+        )
         try:
             futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
             if progress:

@@ -128,9 +128,17 @@ def control_force_model(aircraft, name: str) -> ControlForceModel | None:
     common = dict(name=name, kind=decl.type, gearing=float(gearing), friction=decl.friction)
     if decl.type == "reversible":
         h = decl.hinge_moment
-        return ControlForceModel(**common, Ch_0=h.Ch_0, Ch_alpha=h.Ch_alpha, Ch_delta=h.Ch_delta, area=decl.surface_area,
-                                 chord=decl.chord, fraction=decl.hinge_moment_fraction, eta=decl.dynamic_pressure_ratio,
-                                 pair=(name == "aileron"))
+        return ControlForceModel(
+            **common,
+            Ch_0=h.Ch_0,
+            Ch_alpha=h.Ch_alpha,
+            Ch_delta=h.Ch_delta,
+            area=decl.surface_area,
+            chord=decl.chord,
+            fraction=decl.hinge_moment_fraction,
+            eta=decl.dynamic_pressure_ratio,
+            pair=(name == "aileron"),
+        )
     return ControlForceModel(**common, preload=decl.preload, gradient=decl.gradient, q_reference=decl.q_feel_reference)
 
 

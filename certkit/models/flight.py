@@ -28,7 +28,6 @@ from certkit.aircraft.derivative_names import STABILIZER
 from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundEffectWing, GroundModel
 from certkit.models.propulsion.engine import EngineDeck, ParametricTurbofan, windmill_drag
 
-
 #: the aero control that moves each trim axis
 ROLES = {"pitch": "elevator", "roll": "aileron", "yaw": "rudder"}
 
@@ -38,9 +37,15 @@ def thrust_function(aircraft):
     p = aircraft.propulsion
     if p.deck is not None:
         d = p.deck
-        deck = EngineDeck(d.altitude, d.mach, d.throttle, np.array(d.thrust, dtype=float),
-                          None if d.fuel_flow is None else np.array(d.fuel_flow, dtype=float),
-                          allow_extrapolation=d.allow_extrapolation, name="propulsion.deck")
+        deck = EngineDeck(
+            d.altitude,
+            d.mach,
+            d.throttle,
+            np.array(d.thrust, dtype=float),
+            None if d.fuel_flow is None else np.array(d.fuel_flow, dtype=float),
+            allow_extrapolation=d.allow_extrapolation,
+            name="propulsion.deck",
+        )
         return deck.thrust, "declared engine deck"
     engine = ParametricTurbofan(p.static_thrust)
     return engine.thrust, "parametric high-bypass turbofan scaled to the declared static thrust (Mattingly lapse)"
@@ -89,7 +94,11 @@ def engines(aircraft) -> list[Engine]:
     out = []
     for e in aircraft.propulsion.engines:
         ct, st = np.cos(e.thrust_angle), np.sin(e.thrust_angle)
-        direction = (ct * np.cos(e.toe_angle), ct * np.sin(e.toe_angle), -st)  # body axes, thrust line tilted up by thrust_angle
+        direction = (
+            ct * np.cos(e.toe_angle),
+            ct * np.sin(e.toe_angle),
+            -st,
+        )  # body axes, thrust line tilted up by thrust_angle
         out.append(Engine(e.name, thrust, (e.position.x, e.position.y, e.position.z), direction, drag))
     return out
 
@@ -123,8 +132,13 @@ def stabilizer_trim(aircraft, design: bool = True, configuration: str | None = N
     if g is None or g.horizontal_tail.stabilizer is None:
         return None
     st = g.horizontal_tail.stabilizer
-    return StabilizerTrim(control_limits(aircraft, design, configuration)[STABILIZER], datum=g.horizontal_tail.incidence,
-                          elevator_trim=st.elevator_trim, control=STABILIZER, elevator=ROLES["pitch"])
+    return StabilizerTrim(
+        control_limits(aircraft, design, configuration)[STABILIZER],
+        datum=g.horizontal_tail.incidence,
+        elevator_trim=st.elevator_trim,
+        control=STABILIZER,
+        elevator=ROLES["pitch"],
+    )
 
 
 def model_stabilizer(aircraft, model, design: bool = True, configuration: str | None = None):
@@ -143,8 +157,9 @@ def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundM
     inertia = np.array([ld.properties.inertia for ld in loadings])
     from certkit.models.reference_condition import gravity
 
-    return AircraftModel(aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground,
-                         g=gravity(aircraft))
+    return AircraftModel(
+        aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground, g=gravity(aircraft)
+    )
 
 
 def gear_static_loads(aircraft, mass: float, x_cg: float, g: float = 9.80665) -> tuple[float, float]:
@@ -156,9 +171,18 @@ def gear_static_loads(aircraft, mass: float, x_cg: float, g: float = 9.80665) ->
     return nose, main
 
 
-def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None, elevation: float = 0.0,
-                 static_stroke: float = 0.30, damping_ratio: float = 0.5, rolling_friction: float = 0.02,
-                 brake_friction: float = 0.4, side_friction: float = 0.6, nose_wheel: str = "straight") -> GroundModel:
+def ground_model(
+    aircraft,
+    mass: float | None = None,
+    x_cg: float | None = None,
+    elevation: float = 0.0,
+    static_stroke: float = 0.30,
+    damping_ratio: float = 0.5,
+    rolling_friction: float = 0.02,
+    brake_friction: float = 0.4,
+    side_friction: float = 0.6,
+    nose_wheel: str = "straight",
+) -> GroundModel:
     """Spring–damper legs from ``geometry.landing_gear`` (module docstring); ``mass``/``x_cg`` the sizing
     loading (default MTOW at the reference CG). ``nose_wheel``: "straight" (held straight, side friction as the
     mains'), "steered" (turned by the model's ``nose_wheel_steering`` control) or "castering" (steering disengaged:
@@ -173,7 +197,9 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
     x_cg = reference_cg(aircraft) if x_cg is None else x_cg
     nose_load, main_load = gear_static_loads(aircraft, mass, x_cg)
     if nose_load <= 0 or main_load <= 0:
-        raise ValueError(f"the CG at {x_cg:.2f} m is not between the nose ({lg.nose.x:.2f} m) and main gear ({lg.main.x:.2f} m)")
+        raise ValueError(
+            f"the CG at {x_cg:.2f} m is not between the nose ({lg.nose.x:.2f} m) and main gear ({lg.main.x:.2f} m)"
+        )
 
     if nose_wheel not in ("straight", "steered", "castering"):
         raise ValueError(f"nose_wheel must be 'straight', 'steered' or 'castering', not {nose_wheel!r}")
@@ -181,15 +207,26 @@ def ground_model(aircraft, mass: float | None = None, x_cg: float | None = None,
     def leg(name, pos, load, braked, side=side_friction, steered=False):
         k = load / static_stroke
         c = damping_ratio * 2.0 * np.sqrt(k * load / 9.80665)
-        return GearLeg(name, pos, k, c, rolling_friction=rolling_friction, side_friction=side, braked=braked,
-                       steered=steered)
+        return GearLeg(
+            name, pos, k, c, rolling_friction=rolling_friction, side_friction=side, braked=braked, steered=steered
+        )
 
     main_y = abs(lg.main.y)
-    legs = [leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
-            leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
-            leg("nose", (lg.nose.x, lg.nose.y, lg.nose.z), nose_load, False,
-                side=0.0 if nose_wheel == "castering" else side_friction, steered=nose_wheel == "steered")]
-    return GroundModel(legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing, g.horizontal_tail))
+    legs = [
+        leg("main left", (lg.main.x, -main_y, lg.main.z), main_load, True),
+        leg("main right", (lg.main.x, main_y, lg.main.z), main_load, True),
+        leg(
+            "nose",
+            (lg.nose.x, lg.nose.y, lg.nose.z),
+            nose_load,
+            False,
+            side=0.0 if nose_wheel == "castering" else side_friction,
+            steered=nose_wheel == "steered",
+        ),
+    ]
+    return GroundModel(
+        legs, elevation=elevation, brake_friction=brake_friction, wing=ground_effect_wing(g.wing, g.horizontal_tail)
+    )
 
 
 def ground_effect_wing(wing, horizontal_tail=None) -> GroundEffectWing:
@@ -202,9 +239,13 @@ def ground_effect_wing(wing, horizontal_tail=None) -> GroundEffectWing:
     line = lifting_line(wing)
     point = (line.reference[0], 0.0, line.reference[1])
     lines = None if horizontal_tail is None else (line, lifting_line(horizontal_tail))
-    return GroundEffectWing(point, float(planform.span(wing.area, wing.aspect_ratio)), float(wing.aspect_ratio),
-                            float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)),
-                            lines)
+    return GroundEffectWing(
+        point,
+        float(planform.span(wing.area, wing.aspect_ratio)),
+        float(wing.aspect_ratio),
+        float(planform.sweep_at(0.5, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)),
+        lines,
+    )
 
 
 def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name: str = ""):
@@ -223,6 +264,12 @@ def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name
             solved[m] = solve_loading(aircraft, m, float(x_cg), loading_name)
     model = flight_model(aircraft, aero.model, [solved[m] for m in masses])
     config = aero.configuration
-    return trim(model, np.asarray(tas, dtype=float), np.asarray(altitude, dtype=float), kind="straight",
-                limits=control_limits(aircraft, True, config), roles=ROLES,
-                stabilizer=model_stabilizer(aircraft, model, True, config))
+    return trim(
+        model,
+        np.asarray(tas, dtype=float),
+        np.asarray(altitude, dtype=float),
+        kind="straight",
+        limits=control_limits(aircraft, True, config),
+        roles=ROLES,
+        stabilizer=model_stabilizer(aircraft, model, True, config),
+    )

@@ -21,7 +21,7 @@ class ReferenceCondition:
 
     @property
     def dynamic_pressure(self) -> float:
-        return 0.5 * self.density * self.tas ** 2
+        return 0.5 * self.density * self.tas**2
 
 
 def altitude_of_density(rho: float) -> float:
@@ -29,8 +29,10 @@ def altitude_of_density(rho: float) -> float:
     lo, hi = -600.0, 20_000.0
     f = lambda h: float(isa.density(h)) - rho  # noqa: E731
     if f(lo) < 0 or f(hi) > 0:
-        raise ValueError(f"density {rho:.4g} kg/m³ lies outside the ISA atmosphere of certkit (−600 m to 20 km: "
-                         f"{float(isa.density(hi)):.4g} to {float(isa.density(lo)):.4g} kg/m³)")
+        raise ValueError(
+            f"density {rho:.4g} kg/m³ lies outside the ISA atmosphere of certkit (−600 m to 20 km: "
+            f"{float(isa.density(hi)):.4g} to {float(isa.density(lo)):.4g} kg/m³)"
+        )
     return brentq(f, lo, hi, xtol=1e-6)
 
 

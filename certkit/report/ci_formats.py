@@ -21,9 +21,9 @@ import json
 from xml.sax.saxutils import escape, quoteattr
 
 from certkit import __version__
+from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, RunResult
 from certkit.report.links import ecfr_url
 from certkit.report.reasons import margin_text, reason_line
-from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, RunResult
 
 FORMATS = ("junit", "sarif", "github")
 #: first section of each subpart of Part 25 (A 25.1, B 25.21, C 25.301, D 25.601, E 25.901, F 25.1301, G 25.1501)
@@ -47,33 +47,49 @@ def junit(run: RunResult, lines: dict | None = None) -> str:
     uri = artifact_path(run.source_path)
     for r in run.rules:
         t = f"{r.seconds:.3f}" if r.seconds is not None else "0"
-        head = (f"    <testcase classname={quoteattr('part25.subpart_' + subpart(r.id))} "
-                f"name={quoteattr('§' + r.id + ' ' + r.title)} time=\"{t}\" file={quoteattr(uri)} "
-                f"line=\"{_primary(lines, r.id)[1]}\"")
+        head = (
+            f"    <testcase classname={quoteattr('part25.subpart_' + subpart(r.id))} "
+            f'name={quoteattr("§" + r.id + " " + r.title)} time="{t}" file={quoteattr(uri)} '
+            f'line="{_primary(lines, r.id)[1]}"'
+        )
         text = message(r)
         if r.status == FAILS:
             counts["failures"] += 1
-            cases.append(f"{head}>\n      <failure message={quoteattr(text)} type=\"fails\">{escape(_failed_lines(r))}"
-                         f"</failure>\n    </testcase>")
+            cases.append(
+                f'{head}>\n      <failure message={quoteattr(text)} type="fails">{escape(_failed_lines(r))}'
+                f"</failure>\n    </testcase>"
+            )
         elif r.status in (NOT_EVALUATED, COMPLIES_PARTIAL):  # certkit exits 3 for either: not a pass
             counts["skipped"] += 1
             word = STATUS_WORD[r.status]
-            cases.append(f"{head}>\n      <skipped message={quoteattr(word + ': ' + text)}/>\n"
-                         f"      <system-out>{escape(text)}</system-out>\n    </testcase>")
+            cases.append(
+                f"{head}>\n      <skipped message={quoteattr(word + ': ' + text)}/>\n"
+                f"      <system-out>{escape(text)}</system-out>\n    </testcase>"
+            )
         else:
             cases.append(f"{head}/>")
     total = sum(r.seconds or 0.0 for r in run.rules)
-    suite = (f"  <testsuite name={quoteattr('certkit ' + run.aircraft_name)} tests=\"{len(run.rules)}\" "
-             f"failures=\"{counts['failures']}\" errors=\"0\" skipped=\"{counts['skipped']}\" time=\"{total:.3f}\">\n"
-             f"    <properties>\n      <property name=\"exit_code\" value=\"{run.exit_code()}\"/>\n"
-             f"    </properties>")
-    return ("<?xml version=\"1.0\" encoding=\"utf-8\"?>\n<testsuites>\n" + suite + "\n" + "\n".join(cases)
-            + "\n  </testsuite>\n</testsuites>\n")
+    suite = (
+        f'  <testsuite name={quoteattr("certkit " + run.aircraft_name)} tests="{len(run.rules)}" '
+        f'failures="{counts["failures"]}" errors="0" skipped="{counts["skipped"]}" time="{total:.3f}">\n'
+        f'    <properties>\n      <property name="exit_code" value="{run.exit_code()}"/>\n'
+        f"    </properties>"
+    )
+    return (
+        '<?xml version="1.0" encoding="utf-8"?>\n<testsuites>\n'
+        + suite
+        + "\n"
+        + "\n".join(cases)
+        + "\n  </testsuite>\n</testsuites>\n"
+    )
 
 
 def _failed_lines(result) -> str:
-    return "\n".join(f"{f.check} at {f.condition.label()}: margin {margin_text(f.margin, f.unit)}"
-                     for f in result.findings if f.status == FAILS)
+    return "\n".join(
+        f"{f.check} at {f.condition.label()}: margin {margin_text(f.margin, f.unit)}"
+        for f in result.findings
+        if f.status == FAILS
+    )
 
 
 _LEVEL = {FAILS: "error", NOT_EVALUATED: "warning", COMPLIES_PARTIAL: "note"}
@@ -128,19 +144,45 @@ def sarif(run: RunResult, lines: dict | None = None) -> str:
         if r.status not in _LEVEL:
             continue
         found = (lines or {}).get(r.id) or [("", 1)]
-        result = {"ruleId": r.id, "level": _LEVEL[r.status], "message": {"text": message(r)},
-                  "locations": [_location(uri, *found[0])], "properties": {"status": r.status}}
+        result = {
+            "ruleId": r.id,
+            "level": _LEVEL[r.status],
+            "message": {"text": message(r)},
+            "locations": [_location(uri, *found[0])],
+            "properties": {"status": r.status},
+        }
         if len(found) > 1:
             result["relatedLocations"] = [_location(uri, p, n, i) for i, (p, n) in enumerate(found[1:])]
         results.append(result)
-    rules = [{"id": r.id, "name": r.symbol, "shortDescription": {"text": r.title}, "helpUri": ecfr_url(r.id),
-              "properties": {"implementation": r.implementation}} for r in run.rules]
-    log = {"$schema": "https://json.schemastore.org/sarif-2.1.0.json", "version": "2.1.0",
-           "runs": [{"tool": {"driver": {"name": "certkit", "version": __version__,
-                                         "informationUri": "https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25",
-                                         "rules": rules}},
-                     "invocations": [{"executionSuccessful": True, "exitCode": run.exit_code()}],
-                     "artifacts": [{"location": {"uri": uri}}], "results": results}]}
+    rules = [
+        {
+            "id": r.id,
+            "name": r.symbol,
+            "shortDescription": {"text": r.title},
+            "helpUri": ecfr_url(r.id),
+            "properties": {"implementation": r.implementation},
+        }
+        for r in run.rules
+    ]
+    log = {
+        "$schema": "https://json.schemastore.org/sarif-2.1.0.json",
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {
+                    "driver": {
+                        "name": "certkit",
+                        "version": __version__,
+                        "informationUri": "https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25",
+                        "rules": rules,
+                    }
+                },
+                "invocations": [{"executionSuccessful": True, "exitCode": run.exit_code()}],
+                "artifacts": [{"location": {"uri": uri}}],
+                "results": results,
+            }
+        ],
+    }
     return json.dumps(log, indent=2, ensure_ascii=False) + "\n"
 
 
@@ -152,9 +194,11 @@ def github(run: RunResult, lines: dict | None = None) -> str:
     out = []
     for r in run.rules:
         if r.status in kind:
-            out.append(f"::{kind[r.status]} file={_gh_property(artifact_path(run.source_path))},"
-                       f"line={_primary(lines, r.id)[1]},"
-                       f"title={_gh_property('§' + r.id + ' ' + STATUS_WORD[r.status])}::{_gh_data(message(r))}")
+            out.append(
+                f"::{kind[r.status]} file={_gh_property(artifact_path(run.source_path))},"
+                f"line={_primary(lines, r.id)[1]},"
+                f"title={_gh_property('§' + r.id + ' ' + STATUS_WORD[r.status])}::{_gh_data(message(r))}"
+            )
     return "\n".join(out) + ("\n" if out else "")
 
 

@@ -16,12 +16,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from certkit.aircraft.yaml_source import read_regular_file
+from certkit.engine.results_json import SCHEMA_VERSION
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
-from certkit.engine.results_json import SCHEMA_VERSION
 
 #: the largest results.json read (a full check writes about 10 MB)
-MAX_RESULTS_BYTES = 512 * 1024 ** 2
+MAX_RESULTS_BYTES = 512 * 1024**2
 
 #: how bad a status is: a change to a larger rank is a regression
 RANK = {"complies": 0, "complies_partial": 1, "not_evaluated": 2, "fails": 3, None: -1}
@@ -76,23 +76,35 @@ def load(path: str | Path) -> dict:
     except OSError as exc:
         raise UserError(f"{p}: cannot be read ({exc.strerror or exc})") from None
     if len(raw) > MAX_RESULTS_BYTES:
-        raise UserError(f"{p}: larger than {MAX_RESULTS_BYTES // 1024 ** 2} MB, not a results.json of certkit")
+        raise UserError(f"{p}: larger than {MAX_RESULTS_BYTES // 1024**2} MB, not a results.json of certkit")
     try:
         data = json.loads(raw.decode("utf-8"))
     except UnicodeDecodeError as exc:
-        raise UserError(f"{p}: not a results.json (not UTF-8 text: byte {exc.start} is "
-                        f"{raw[exc.start:exc.start + 1]!r}); give the results.json a `certkit check` wrote") from None
+        raise UserError(
+            f"{p}: not a results.json (not UTF-8 text: byte {exc.start} is "
+            f"{raw[exc.start : exc.start + 1]!r}); give the results.json a `certkit check` wrote"
+        ) from None
     except json.JSONDecodeError as exc:
         raise UserError(f"{p}: not JSON (line {exc.lineno}: {exc.msg})") from None
     version = data.get("schema_version") if isinstance(data, dict) else None
     if not isinstance(version, str) or version.split(".")[0] != SCHEMA_VERSION.split(".")[0]:
-        raise UserError(f"{p}: schema_version {version!r}, expected {SCHEMA_VERSION.split('.')[0]}.x "
-                        "(a results.json written by this certkit version; rerun `certkit check`)")
+        raise UserError(
+            f"{p}: schema_version {version!r}, expected {SCHEMA_VERSION.split('.')[0]}.x "
+            "(a results.json written by this certkit version; rerun `certkit check`)"
+        )
     return data
 
 
-_SI_FIELDS = {"loading": "loading", "mass_kg": "mass", "x_cg_m": "x_cg", "configuration": "configuration",
-              "altitude_m": "altitude", "speed_m_s": "speed", "speed_kind": "speed_kind", "speed_name": "speed_name"}
+_SI_FIELDS = {
+    "loading": "loading",
+    "mass_kg": "mass",
+    "x_cg_m": "x_cg",
+    "configuration": "configuration",
+    "altitude_m": "altitude",
+    "speed_m_s": "speed",
+    "speed_kind": "speed_kind",
+    "speed_name": "speed_name",
+}
 
 
 def _label(condition: dict) -> str:
@@ -105,8 +117,13 @@ def _label(condition: dict) -> str:
 
 
 #: status words of a diff (as the report writes them; "absent" for a rule or finding one run lacks)
-STATUS_WORDS = {"complies": "complies", "complies_partial": "complies in part", "not_evaluated": "not evaluated",
-                "fails": "fails", None: "absent"}
+STATUS_WORDS = {
+    "complies": "complies",
+    "complies_partial": "complies in part",
+    "not_evaluated": "not evaluated",
+    "fails": "fails",
+    None: "absent",
+}
 
 
 @dataclass
@@ -133,8 +150,16 @@ def criteria_changes(old: dict, new: dict) -> list[CriterionChange]:
         for name, c in (r.get("criteria") or {}).items():
             b = before.get(name)
             if b is not None and (b["value"] != c["value"] or b.get("overridden") != c.get("overridden")):
-                out.append(CriterionChange(r["id"], name, b["value"], c["value"], c.get("unit", "1"),
-                                           bool(c.get("overridden") or b.get("overridden"))))
+                out.append(
+                    CriterionChange(
+                        r["id"],
+                        name,
+                        b["value"],
+                        c["value"],
+                        c.get("unit", "1"),
+                        bool(c.get("overridden") or b.get("overridden")),
+                    )
+                )
     return out
 
 
@@ -170,23 +195,48 @@ def compare(old: dict, new: dict, tolerance: float = 1e-6) -> list[RuleChange]:
     changes = []
     for rid in order:
         a, b = old_rules.get(rid), new_rules.get(rid)
-        change = RuleChange(rid, (b or a)["title"], a and a["status"], b and b["status"], a and a["min_margin"],
-                            b and b["min_margin"], (b or a)["unit"] or "")
+        change = RuleChange(
+            rid,
+            (b or a)["title"],
+            a and a["status"],
+            b and b["status"],
+            a and a["min_margin"],
+            b and b["min_margin"],
+            (b or a)["unit"] or "",
+        )
         fa, fb = (_findings(a), _findings(b)) if a and b else ({}, {})  # a rule added or removed is one line
         for key in list(fb) + [k for k in fa if k not in fb]:
             x, y = fa.get(key), fb.get(key)
             ref = y or x
-            limit = max(abs(v["limit"]) for v in (x, y) if v and v["limit"] is not None) if any(
-                v and v["limit"] is not None for v in (x, y)) else 1.0
-            fc = FindingChange(ref["check"], _label(ref["condition"]), x and x["status"], y and y["status"],
-                               x and x["margin"], y and y["margin"], ref["unit"] or "")
+            limit = (
+                max(abs(v["limit"]) for v in (x, y) if v and v["limit"] is not None)
+                if any(v and v["limit"] is not None for v in (x, y))
+                else 1.0
+            )
+            fc = FindingChange(
+                ref["check"],
+                _label(ref["condition"]),
+                x and x["status"],
+                y and y["status"],
+                x and x["margin"],
+                y and y["margin"],
+                ref["unit"] or "",
+            )
             moved = fc.delta is not None and abs(fc.delta) > tolerance * max(1.0, limit)
             appeared = (x is None) != (y is None) or (fc.old_margin is None) != (fc.new_margin is None)
             if fc.flipped or moved or appeared:
                 change.findings.append(fc)
-        margin_moved = (change.old_margin is not None and change.new_margin is not None and
-                        abs(change.new_margin - change.old_margin) > tolerance * max(1.0, abs(change.old_margin)))
-        if change.flipped or margin_moved or change.findings or (change.old_margin is None) != (change.new_margin is None):
+        margin_moved = (
+            change.old_margin is not None
+            and change.new_margin is not None
+            and abs(change.new_margin - change.old_margin) > tolerance * max(1.0, abs(change.old_margin))
+        )
+        if (
+            change.flipped
+            or margin_moved
+            or change.findings
+            or (change.old_margin is None) != (change.new_margin is None)
+        ):
             changes.append(change)
     return changes
 
@@ -198,8 +248,11 @@ def text_lines(changes: list[RuleChange], old: dict, new: dict, limit: int = 20)
     criteria = criteria_changes(old, new)
     if criteria:
         lines.append("criteria changed:")
-        lines += [f"  {c.path}: {_criterion_value(c.old, c.unit)} → {_criterion_value(c.new, c.unit)}"
-                  + ("" if c.overridden else f" (§{c.rule_id} {c.name})") for c in criteria]
+        lines += [
+            f"  {c.path}: {_criterion_value(c.old, c.unit)} → {_criterion_value(c.new, c.unit)}"
+            + ("" if c.overridden else f" (§{c.rule_id} {c.name})")
+            for c in criteria
+        ]
     inputs = input_changes(old, new)
     if inputs:
         lines.append("inputs changed:")
@@ -211,19 +264,24 @@ def text_lines(changes: list[RuleChange], old: dict, new: dict, limit: int = 20)
     if not changes:
         return lines + [f"no change in the results of {len(new['rules'])} rules"]
     for c in changes:
-        status = (f"{STATUS_WORDS[c.old_status]} → {STATUS_WORDS[c.new_status]}" if c.flipped
-                  else STATUS_WORDS[c.new_status])
+        status = (
+            f"{STATUS_WORDS[c.old_status]} → {STATUS_WORDS[c.new_status]}" if c.flipped else STATUS_WORDS[c.new_status]
+        )
         margin = f"{margin_text(c.old_margin, c.unit)} → {margin_text(c.new_margin, c.unit)}"
         lines.append(f"§{c.id:<13} {status:<32} critical margin {margin}")
         for f in c.findings[:limit]:
-            what = (f"{STATUS_WORDS[f.old_status]} → {STATUS_WORDS[f.new_status]}" if f.flipped
-                    else f"margin {margin_text(f.old_margin, f.unit)} → {margin_text(f.new_margin, f.unit)}")
+            what = (
+                f"{STATUS_WORDS[f.old_status]} → {STATUS_WORDS[f.new_status]}"
+                if f.flipped
+                else f"margin {margin_text(f.old_margin, f.unit)} → {margin_text(f.new_margin, f.unit)}"
+            )
             lines.append(f"    {what}: {f.check} at {f.condition}")
         if len(c.findings) > limit:
             lines.append(f"    … {len(c.findings) - limit} more changed findings (see --html)")
     flips = sum(c.flipped for c in changes)
-    lines.append(f"\n{len(changes)} rules changed, {flips} changed status, "
-                 f"{sum(c.regression for c in changes)} got worse")
+    lines.append(
+        f"\n{len(changes)} rules changed, {flips} changed status, {sum(c.regression for c in changes)} got worse"
+    )
     return lines
 
 
@@ -238,10 +296,21 @@ def _input(value) -> str:
 def render_html(changes: list[RuleChange], old: dict, new: dict, old_path: str, new_path: str) -> str:
     from jinja2 import Environment, PackageLoader, select_autoescape
 
-    env = Environment(loader=PackageLoader("certkit.report", "templates"), autoescape=select_autoescape(["html"]),
-                      trim_blocks=True, lstrip_blocks=True)
+    env = Environment(
+        loader=PackageLoader("certkit.report", "templates"),
+        autoescape=select_autoescape(["html"]),
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
     env.filters["margin"] = margin_text
     env.filters["status"] = lambda status: STATUS_WORDS.get(status, status)
-    return env.get_template("diff.html").render(changes=changes, old=old, new=new, old_path=old_path,
-                                                 new_path=new_path, criteria=criteria_changes(old, new),
-                                                 inputs=input_changes(old, new), value=_criterion_value)
+    return env.get_template("diff.html").render(
+        changes=changes,
+        old=old,
+        new=new,
+        old_path=old_path,
+        new_path=new_path,
+        criteria=criteria_changes(old, new),
+        inputs=input_changes(old, new),
+        value=_criterion_value,
+    )

@@ -15,14 +15,41 @@ from certkit.units import FT, G0, LB, LBF
 
 KN = 1852.0 / 3600.0
 #: SI (or stated) unit → (unit shown, factor: shown = value / factor); units not listed are shown as they are
-DEFAULT = {"m/s": ("kn", KN), "m": ("ft", FT), "kg": ("lb", LB), "N": ("lbf", LBF), "N·m": ("kN·m", 1e3),
-           "N*m": ("kN·m", 1e3), "rad": ("deg", math.pi / 180.0), "rad/s": ("deg/s", math.pi / 180.0),
-           "rad/s²": ("deg/s²", math.pi / 180.0), "m/s²": ("g", G0), "gradient": ("%", 0.01)}
+DEFAULT = {
+    "m/s": ("kn", KN),
+    "m": ("ft", FT),
+    "kg": ("lb", LB),
+    "N": ("lbf", LBF),
+    "N·m": ("kN·m", 1e3),
+    "N*m": ("kN·m", 1e3),
+    "rad": ("deg", math.pi / 180.0),
+    "rad/s": ("deg/s", math.pi / 180.0),
+    "rad/s²": ("deg/s²", math.pi / 180.0),
+    "m/s²": ("g", G0),
+    "gradient": ("%", 0.01),
+}
 #: explicit display units (``display=`` of an axis or column) → (SI unit, factor)
-EXPLICIT = {"kN": ("N", 1e3), "kN·m": ("N·m", 1e3), "MN·m": ("N·m", 1e6), "ft/s": ("m/s", FT), "ft/min": ("m/s", FT / 60),
-            "kn": ("m/s", KN), "ft": ("m", FT), "lb": ("kg", LB), "lbf": ("N", LBF), "deg": ("rad", math.pi / 180.0),
-            "deg/s": ("rad/s", math.pi / 180.0), "1,000 lb": ("kg", 1000 * LB), "nmi": ("m", 1852.0), "%": ("gradient", 0.01),
-            "m/s": ("m/s", 1.0), "N": ("N", 1.0), "m": ("m", 1.0), "kg": ("kg", 1.0), "g": ("m/s²", G0)}
+EXPLICIT = {
+    "kN": ("N", 1e3),
+    "kN·m": ("N·m", 1e3),
+    "MN·m": ("N·m", 1e6),
+    "ft/s": ("m/s", FT),
+    "ft/min": ("m/s", FT / 60),
+    "kn": ("m/s", KN),
+    "ft": ("m", FT),
+    "lb": ("kg", LB),
+    "lbf": ("N", LBF),
+    "deg": ("rad", math.pi / 180.0),
+    "deg/s": ("rad/s", math.pi / 180.0),
+    "1,000 lb": ("kg", 1000 * LB),
+    "nmi": ("m", 1852.0),
+    "%": ("gradient", 0.01),
+    "m/s": ("m/s", 1.0),
+    "N": ("N", 1.0),
+    "m": ("m", 1.0),
+    "kg": ("kg", 1.0),
+    "g": ("m/s²", G0),
+}
 SIGNIFICANT = 4
 DASH = "—"
 

@@ -28,8 +28,12 @@ from certkit.report.svg import Canvas, Frame, data_range, log_ticks, nice_ticks,
 PALETTE = ("#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#D55E00", "#000000", "#999933")
 FAIL, PASS, NOT_EVALUATED = "#D55E00", "#0072B2", "#e8e8e8"
 #: (colour, width pt, SVG dash pattern) of each kind of reference line
-LINE_STYLE = {"limit": ("#000000", 0.9, "5,3"), "allowable": ("#D55E00", 1.2, "7,2.5,1.5,2.5"),
-              "event": ("#777777", 0.8, "1.5,2"), "reference": ("#777777", 0.7, "4,3")}
+LINE_STYLE = {
+    "limit": ("#000000", 0.9, "5,3"),
+    "allowable": ("#D55E00", 1.2, "7,2.5,1.5,2.5"),
+    "event": ("#777777", 0.8, "1.5,2"),
+    "reference": ("#777777", 0.7, "4,3"),
+}
 DASH = {"-": "", "--": "5,3", ":": "1.5,2", "-.": "7,2.5,1.5,2.5"}
 #: points per series kept at most: two per bucket, about one bucket per pixel column of the widest axes
 MAX_POINTS = 1000
@@ -70,7 +74,6 @@ def render(figure, prefix: str) -> str:
     if isinstance(figure, Heatmap):
         return heatmap_svg(figure, prefix)
     raise TypeError(f"no renderer for {type(figure).__name__}")
-
 
 
 # ----------------------------------------------------------------------------------------------------- helpers
@@ -121,7 +124,6 @@ def _unit_of(axis: Axis) -> str:
     return (f" × {unit}" if unit[:1].isdigit() else f" {unit}") if unit else ""
 
 
-
 # ----------------------------------------------------------------------------------------------------- charts
 def _limit_labels_y(cv: Canvas, frame: Frame, limits, factor: float) -> None:
     """Labels of horizontal lines right of the axes, in order of value, pushed apart by a text height."""
@@ -142,8 +144,15 @@ def _limit_labels_x(cv: Canvas, frame: Frame, limits, factor: float) -> None:
         if placed and x < placed[-1] + FONT + 1.5:
             x = placed[-1] + FONT + 1.5
         placed.append(x)
-        cv.text(x + 0.35 * FONT, frame.top - 4, lim.label, FONT, colour=LINE_STYLE[lim.kind][0], rotate=90.0,
-                baseline="alphabetic")
+        cv.text(
+            x + 0.35 * FONT,
+            frame.top - 4,
+            lim.label,
+            FONT,
+            colour=LINE_STYLE[lim.kind][0],
+            rotate=90.0,
+            baseline="alphabetic",
+        )
 
 
 def _lines(cv: Canvas, frame: Frame, limits, fx: float, fy: float) -> None:
@@ -171,7 +180,7 @@ def _axis_y(cv: Canvas, frame: Frame, ticks, label: str, label_x: float) -> None
         lo, hi = frame.ylim
         for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi))):
             for m in range(2, 10):
-                v = m * 10.0 ** k
+                v = m * 10.0**k
                 if lo < v < hi:
                     y = float(frame.y(v))
                     cv.line(frame.left, y, frame.right, y, GRID, 0.4)
@@ -225,8 +234,9 @@ def chart_svg(chart: Chart, prefix: str) -> str:
         pfx = _scaled(panel.x)[1] if panel.x is not None else fx
         ylabel, fy = _scaled(panel.y)
         xlim, ylim = _panel_range(panel, pfx, fy, cats)
-        scales.append((pfx, fy, xlim, ylim, _ticks(ylim, panel.y.log, 5),
-                       textwrap.fill(ylabel, 26) if column else ylabel))
+        scales.append(
+            (pfx, fy, xlim, ylim, _ticks(ylim, panel.y.log, 5), textwrap.fill(ylabel, 26) if column else ylabel)
+        )
     if column:  # one x range for the stack
         lo = min(s[2][0] for s in scales)
         hi = max(s[2][1] for s in scales)
@@ -237,8 +247,11 @@ def chart_svg(chart: Chart, prefix: str) -> str:
     xlines = [lim for panel in chart.panels for lim in panel.limits if lim.axis == "x" and lim.label]
     ylines = [lim for panel in chart.panels for lim in panel.limits if lim.axis == "y" and lim.label]
     right = max([text_width(lim.label, FONT) + 10 for lim in ylines] + [14.0])
-    top = 8 + (14 * (title.count("\n") + 1) if title else 0) + (
-        max(text_width(lim.label, FONT) for lim in xlines) + 8 if xlines else 0)
+    top = (
+        8
+        + (14 * (title.count("\n") + 1) if title else 0)
+        + (max(text_width(lim.label, FONT) for lim in xlines) + 8 if xlines else 0)
+    )
     lefts = [s[5].count("\n") * (FONT + 2) + FONT + 10 + _tick_width(s[4]) + 8 for s in scales]
     x_depth = (0.643 * max(text_width(c, FONT) for c in cats) + 12) if cats else FONT + 8
     bottom = x_depth + FONT + 10 + legend_h
@@ -246,8 +259,10 @@ def chart_svg(chart: Chart, prefix: str) -> str:
         left = max(lefts)
         ph, gap = 112.0, 12.0
         height = top + n * ph + (n - 1) * gap + bottom
-        frames = [Frame(left, top + k * (ph + gap), WIDTH - left - right, ph, s[2], s[3], ylog=chart.panels[k].y.log)
-                  for k, s in enumerate(scales)]
+        frames = [
+            Frame(left, top + k * (ph + gap), WIDTH - left - right, ph, s[2], s[3], ylog=chart.panels[k].y.log)
+            for k, s in enumerate(scales)
+        ]
     else:
         ph, gap = 160.0, 14.0 + (right - 14.0)  # room for the labels right of each panel
         height = top + ph + bottom
@@ -269,8 +284,14 @@ def chart_svg(chart: Chart, prefix: str) -> str:
         last = not column or k == n - 1
         _axis_x(cv, frame, nice_ticks(xlim[0], xlim[1], 7) if not cats else None, cats, labels=last)
         if last:
-            cv.text(frame.left + frame.width / 2, frame.bottom + x_depth + 2,
-                    _scaled(panel.x)[0] if panel.x is not None else xlabel, FONT + 1, anchor="middle", baseline="hanging")
+            cv.text(
+                frame.left + frame.width / 2,
+                frame.bottom + x_depth + 2,
+                _scaled(panel.x)[0] if panel.x is not None else xlabel,
+                FONT + 1,
+                anchor="middle",
+                baseline="hanging",
+            )
         _lines(cv, frame, panel.limits, pfx, fy)
         if panel.band is not None:
             a, b = (panel.series[i] for i in panel.band)
@@ -290,7 +311,9 @@ def chart_svg(chart: Chart, prefix: str) -> str:
                 for u, v in zip(px.tolist(), py.tolist()):
                     cv.marker(u, v, s.marker, 5.0, c, "#333333" if s.style == "none" else c, 0.4)
             if s.label:
-                handles.setdefault(s.label + (" (critical)" if s.critical else ""), ("line", c, width, s.style, s.marker))
+                handles.setdefault(
+                    s.label + (" (critical)" if s.critical else ""), ("line", c, width, s.style, s.marker)
+                )
         for pt in panel.points:
             x, y = float(frame.x(pt.x / pfx)), float(frame.y(pt.y / fy))
             if pt.kind == "corner":
@@ -307,8 +330,7 @@ def chart_svg(chart: Chart, prefix: str) -> str:
     if column:
         unique = list({(lim.value, lim.label): lim for lim in xlines}.values())
         _limit_labels_x(cv, frames[0], unique, fx)
-    _legend(cv, [(lab, handles[lab]) for lab in labels if lab in handles], wrapped, ncol, left,
-            height - legend_h + 4)
+    _legend(cv, [(lab, handles[lab]) for lab in labels if lab in handles], wrapped, ncol, left, height - legend_h + 4)
     return cv.svg()
 
 
@@ -388,7 +410,9 @@ def bars_svg(bars: Bars, prefix: str) -> str:
         cv.text(WIDTH / 2, 4, bars.title, FONT + 1, anchor="middle", baseline="hanging")
     if bars.horizontal:
         _axis_x(cv, frame, ticks)
-        cv.text(frame.left + frame.width / 2, frame.bottom + FONT + 9, label, FONT + 1, anchor="middle", baseline="hanging")
+        cv.text(
+            frame.left + frame.width / 2, frame.bottom + FONT + 9, label, FONT + 1, anchor="middle", baseline="hanging"
+        )
         for k, (name, v, fails) in enumerate(zip(names, values, bars.failing)):
             y = float(frame.y(n - 1 - k))
             x0, x1 = sorted((float(frame.x(0.0)), float(frame.x(v))))
@@ -411,8 +435,15 @@ def bars_svg(bars: Bars, prefix: str) -> str:
         _lines(cv, frame, [lim], factor, factor)
         if bars.horizontal:  # one label, written level above its line
             colour = LINE_STYLE[lim.kind][0]
-            cv.text(float(frame.x(lim.value / factor)), frame.top - 4, lim.label, FONT, anchor="middle", colour=colour,
-                    baseline="alphabetic")
+            cv.text(
+                float(frame.x(lim.value / factor)),
+                frame.top - 4,
+                lim.label,
+                FONT,
+                anchor="middle",
+                colour=colour,
+                baseline="alphabetic",
+            )
         else:
             _limit_labels_y(cv, frame, [lim], factor)
     cv.rect(frame.left, frame.top, frame.width, frame.height, stroke="#333333", width=0.8)
@@ -422,7 +453,7 @@ def bars_svg(bars: Bars, prefix: str) -> str:
 
 
 # ----------------------------------------------------------------------------------------------------- heatmaps
-_STOPS = ((0.0, (0x7a, 0x1c, 0x00)), (0.4999, (0xD5, 0x5E, 0x00)), (0.5, (0xc6, 0xdb, 0xef)), (1.0, (0x08, 0x30, 0x6b)))
+_STOPS = ((0.0, (0x7A, 0x1C, 0x00)), (0.4999, (0xD5, 0x5E, 0x00)), (0.5, (0xC6, 0xDB, 0xEF)), (1.0, (0x08, 0x30, 0x6B)))
 
 
 def _cmap(t: float) -> str:
@@ -477,13 +508,26 @@ def heatmap_svg(hm: Heatmap, prefix: str) -> str:
                 cv.rect(x, y, cw, ch, fill=f"url(#{hatch})")
                 tw = text_width(f"{v:+.2f}", FONT)
                 cv.rect(x + cw / 2 - tw / 2 - 2, y + ch / 2 - FONT / 2 - 2, tw + 4, FONT + 4, fill="#7a1c00")
-            cv.text(x + cw / 2, y + ch / 2, f"{v:+.2f}".replace("-", "\u2212"), FONT, anchor="middle",
-                    colour="#ffffff" if failing or t > 0.8 else "#000000", weight="bold" if failing else "normal")
+            cv.text(
+                x + cw / 2,
+                y + ch / 2,
+                f"{v:+.2f}".replace("-", "\u2212"),
+                FONT,
+                anchor="middle",
+                colour="#ffffff" if failing or t > 0.8 else "#000000",
+                weight="bold" if failing else "normal",
+            )
     for j, c in enumerate(cols):
         cv.text(left + (j + 0.5) * cw, top + ch * len(rows) + 5, c, FONT, anchor="middle", baseline="hanging")
     if hm.column_label:
-        cv.text(left + cw * len(cols) / 2, top + ch * len(rows) + FONT + 12, hm.column_label, FONT + 1, anchor="middle",
-                baseline="hanging")
+        cv.text(
+            left + cw * len(cols) / 2,
+            top + ch * len(rows) + FONT + 12,
+            hm.column_label,
+            FONT + 1,
+            anchor="middle",
+            baseline="hanging",
+        )
     if hm.row_label:
         cv.text(8, top + ch * len(rows) / 2, hm.row_label, FONT + 1, anchor="middle", rotate=90.0, baseline="hanging")
     # the colour bar: 64 slices from lo (bottom) to hi (top), the threshold as a black line
@@ -502,5 +546,15 @@ def heatmap_svg(hm: Heatmap, prefix: str) -> str:
     return cv.svg()
 
 
-__all__ = ["render_result", "figure_prefix", "render_evidence", "render", "decimate", "chart_svg", "bars_svg",
-           "heatmap_svg", "PALETTE", "FAIL"]
+__all__ = [
+    "render_result",
+    "figure_prefix",
+    "render_evidence",
+    "render",
+    "decimate",
+    "chart_svg",
+    "bars_svg",
+    "heatmap_svg",
+    "PALETTE",
+    "FAIL",
+]

@@ -16,20 +16,24 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 from markupsafe import Markup, escape
 
 from certkit.engine.registry import Rule
+from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 from certkit.report.ci_formats import subpart
-from certkit.report.display import format_value as format_number, in_display_units, unit_and_factor
+from certkit.report.display import format_value as format_number
+from certkit.report.display import in_display_units, unit_and_factor
 from certkit.report.figures import render_result
 from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
 from certkit.report.reasons import reason_condition, reason_line
 from certkit.report.tables import formatted
-from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
 
 #: order of the summary: what needs a reviewer first
 STATUS_ORDER = {FAILS: 0, NOT_EVALUATED: 1, COMPLIES_PARTIAL: 2, COMPLIES: 3}
 #: criterion bases that earn a rule a badge (the verdict may rest on them)
-FLAGGED_BASES = {"unverified": "unverified criterion", "project": "project-chosen criterion",
-                 "override": "criterion overridden"}
+FLAGGED_BASES = {
+    "unverified": "unverified criterion",
+    "project": "project-chosen criterion",
+    "override": "criterion overridden",
+}
 #: a paragraph of Part 25 cited in a text ("§25.335(a)", "14 CFR 25.1505"): only Part 25 links to its eCFR page or
 #: rule (a textbook's "§16.3", Raymer's chapter, is not a CFR section)
 _REFERENCE = re.compile(r"(§§?\s?|14 CFR\s|CFR\s)(25\.\d+[a-z]?(?:\([a-z0-9]+\))*)")
@@ -56,8 +60,12 @@ def margin_value(value, unit: str, limit) -> str:
 
 
 def _environment(rule_ids) -> Environment:
-    env = Environment(loader=PackageLoader("certkit.report", "templates"), autoescape=select_autoescape(["html"]),
-                      trim_blocks=True, lstrip_blocks=True)
+    env = Environment(
+        loader=PackageLoader("certkit.report", "templates"),
+        autoescape=select_autoescape(["html"]),
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
     env.filters["value"] = format_value
     env.filters["margin"] = margin_value
     env.filters["slug"] = slug
@@ -86,7 +94,7 @@ def titled_svg(svg: str | None, title: str) -> Markup:
     if closing == "/>":
         return Markup(svg)
     head = re.sub(r'\s(role|aria-label)="[^"]*"', "", head)
-    return Markup(f'{svg[:start]}{head} role="img" aria-label="{name}"><title>{name}</title>{svg[end + 1:]}')
+    return Markup(f'{svg[:start]}{head} role="img" aria-label="{name}"><title>{name}</title>{svg[end + 1 :]}')
 
 
 def linkify(text, rule_ids) -> Markup:
@@ -118,24 +126,48 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
                 flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
         for name, o in result.overrides.items():
             flags.setdefault("override", []).append(f"{name} {o['default']} → {o['value']}: {o['justification']}")
-        sections.append({
-            "result": result, "rule": cls, "critical": result.critical, "subpart": subpart(result.id).upper(),
-            "rank": STATUS_ORDER[result.status],
-            "reason": reason_line(result), "where": reason_condition(result),
-            "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
-            "requirement": _paragraphs(cls.requirement), "margin": in_display_units(_paragraphs(cls.margin)),
-            "conditions": cls.conditions.describe(),
-            "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
-            "referenced_by": referenced_by.get(result.id, []),
-            "criteria": [{"name": k, "criterion": c, "override": result.overrides.get(k)} for k, c in cls.criteria.items()],
-        })
-    order = sorted(sections, key=lambda s: (STATUS_ORDER[s["result"].status],
-                                            s["critical"].normalized_margin if s["critical"] and
-                                            s["critical"].normalized_margin is not None else float("inf")))
+        sections.append(
+            {
+                "result": result,
+                "rule": cls,
+                "critical": result.critical,
+                "subpart": subpart(result.id).upper(),
+                "rank": STATUS_ORDER[result.status],
+                "reason": reason_line(result),
+                "where": reason_condition(result),
+                "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
+                "requirement": _paragraphs(cls.requirement),
+                "margin": in_display_units(_paragraphs(cls.margin)),
+                "conditions": cls.conditions.describe(),
+                "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
+                "referenced_by": referenced_by.get(result.id, []),
+                "criteria": [
+                    {"name": k, "criterion": c, "override": result.overrides.get(k)} for k, c in cls.criteria.items()
+                ],
+            }
+        )
+    order = sorted(
+        sections,
+        key=lambda s: (
+            STATUS_ORDER[s["result"].status],
+            s["critical"].normalized_margin
+            if s["critical"] and s["critical"].normalized_margin is not None
+            else float("inf"),
+        ),
+    )
     overrides = [(r.id, k, v) for r in run.rules for k, v in r.overrides.items()]
-    return pack_tables(_environment(by_id).get_template("report.html").render(
-        run=run, summary=run.summary(), sections=sections, triage=order, overrides=overrides,
-        subparts=sorted({s["subpart"] for s in sections})))
+    return pack_tables(
+        _environment(by_id)
+        .get_template("report.html")
+        .render(
+            run=run,
+            summary=run.summary(),
+            sections=sections,
+            triage=order,
+            overrides=overrides,
+            subparts=sorted({s["subpart"] for s in sections}),
+        )
+    )
 
 
 #: a table larger than this (bytes of HTML) is stored compressed in the report and drawn when shown
@@ -157,10 +189,12 @@ def pack_tables(html: str, threshold: int = PACK_THRESHOLD) -> str:
             return table
         rows = table.count("<tr") - table.count("<thead><tr")
         data = base64.b64encode(zlib.compress(table.encode("utf-8"), 6)).decode("ascii")
-        return (f'<div class="packed" data-rows="{rows}"><p class="meta packed-note">A table of {rows} rows, stored '
-                'compressed in this file: it opens with its section<noscript> when scripts are enabled (every value '
-                'is also in results.json)</noscript>.</p>'
-                f'<script type="application/x-certkit-table">{data}</script></div>')
+        return (
+            f'<div class="packed" data-rows="{rows}"><p class="meta packed-note">A table of {rows} rows, stored '
+            "compressed in this file: it opens with its section<noscript> when scripts are enabled (every value "
+            "is also in results.json)</noscript>.</p>"
+            f'<script type="application/x-certkit-table">{data}</script></div>'
+        )
 
     parts, at = [], 0
     while (start := html.find(_TABLE_OPEN, at)) >= 0:

@@ -17,12 +17,17 @@ def payload_range_chart(points, requirement_m: float | None = None) -> Chart:
     """Payload (1,000 lb) against still-air range (nmi) with reserves: the outline, the design point (starred) and
     the required design range."""
     x, y = payload_range_outline(points)
-    marks = [Point(p.range_m, p.payload_kg, f"design point at {p.range_m / 1852:,.0f} nmi") for p in points
-             if p.name == "design payload"]
+    marks = [
+        Point(p.range_m, p.payload_kg, f"design point at {p.range_m / 1852:,.0f} nmi")
+        for p in points
+        if p.name == "design payload"
+    ]
     limits = [Limit(requirement_m, f"required {requirement_m / 1852:,.0f} nmi", axis="x")] if requirement_m else []
     outline = Series("payload–range outline", x, y, marker="o", colour=0)
-    return Chart(Axis("range, still air, reserves on landing", "m", "nmi"),
-                 [Panel(Axis("payload", "kg", "1,000 lb"), [outline], limits, marks)])
+    return Chart(
+        Axis("range, still air, reserves on landing", "m", "nmi"),
+        [Panel(Axis("payload", "kg", "1,000 lb"), [outline], limits, marks)],
+    )
 
 
 def payload_range_svg(points, requirement_m: float | None = None) -> str:

@@ -22,9 +22,8 @@ import tempfile
 import unicodedata
 from pathlib import Path
 
-from certkit.interrupts import raise_if_requested
-
 from certkit.errors import UserError
+from certkit.interrupts import raise_if_requested
 
 #: the files of one report set, in the order they are replaced when the folder cannot be swapped
 REPORT_FILES = ("results.json", "index.html")
@@ -84,9 +83,11 @@ def _refuse_foreign_entries(given: Path, target: Path) -> None:
         entry = target / name
         if entry.exists() and not entry.is_symlink() and not entry.is_file():
             kind = "a folder" if entry.is_dir() else "not a regular file"
-            raise UserError(f"--out {str(given)!r}: {str(entry)!r} is {kind}, not a report file; certkit writes "
-                            f"{' and '.join(REPORT_FILES)} there and will not delete it (move it, or choose another "
-                            "--out)")
+            raise UserError(
+                f"--out {str(given)!r}: {str(entry)!r} is {kind}, not a report file; certkit writes "
+                f"{' and '.join(REPORT_FILES)} there and will not delete it (move it, or choose another "
+                "--out)"
+            )
 
 
 def write_set(out: Path, files: dict[str, str]) -> None:

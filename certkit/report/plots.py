@@ -25,26 +25,38 @@ from matplotlib.text import Text  # noqa: E402
 from matplotlib.textpath import TextToPath  # noqa: E402
 from matplotlib.ticker import FixedLocator  # noqa: E402
 
-
 # legend.loc "best" searches every plotted vertex for the emptiest corner: seconds on long time histories
 # svg.hashsalt: matplotlib's SVG ids are hashes of their content salted with this (else a random salt per figure)
-plt.rcParams.update({"svg.fonttype": "none", "font.size": 9, "figure.dpi": 100, "legend.loc": "upper right",
-                     "svg.hashsalt": "certkit"})
+plt.rcParams.update(
+    {"svg.fonttype": "none", "font.size": 9, "figure.dpi": 100, "legend.loc": "upper right", "svg.hashsalt": "certkit"}
+)
 
 _TEXT = TextToPath()
 #: white space kept around texts that reach beyond the figure (inches)
 PAD = 0.1
 
 
-def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], left: float = 0.8, bottom: float = 0.5,
-             right: float = 0.2, top: float = 0.15, hspace: float | None = None, wspace: float | None = None, **kw):
+def subplots(
+    nrows: int = 1,
+    ncols: int = 1,
+    *,
+    figsize: tuple[float, float],
+    left: float = 0.8,
+    bottom: float = 0.5,
+    right: float = 0.2,
+    top: float = 0.15,
+    hspace: float | None = None,
+    wspace: float | None = None,
+    **kw,
+):
     """``plt.subplots`` with the axes placed by fixed margins (inches from each figure edge); the defaults
     leave room for numeric tick labels, an axis label on the left and below, and no title (give ``top`` about
     0.4 for one). ``hspace``/``wspace`` as in ``subplots_adjust`` (fractions of an axes)."""
     fig, axes = plt.subplots(nrows, ncols, figsize=figsize, **kw)
     w, h = figsize
-    fig.subplots_adjust(left=left / w, right=1.0 - right / w, bottom=bottom / h, top=1.0 - top / h,
-                        hspace=hspace, wspace=wspace)
+    fig.subplots_adjust(
+        left=left / w, right=1.0 - right / w, bottom=bottom / h, top=1.0 - top / h, hspace=hspace, wspace=wspace
+    )
     return fig, axes
 
 
@@ -86,7 +98,7 @@ def figure_to_svg(fig, prefix: str = "") -> str:
     fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     plt.close(fig)
     svg = buf.getvalue()
-    svg = svg[svg.index("<svg"):]
+    svg = svg[svg.index("<svg") :]
     svg = re.sub(r'(<svg[^>]*?) width="[^"]*" height="[^"]*"', r"\1", svg, count=1)
     if (x0, y0, x1, y1) != (0.0, 0.0, w, h):  # SVG user units are points, y down from the top
         box = f"{x0 * 72:.2f} {(h - y1) * 72:.2f} {(x1 - x0) * 72:.2f} {(y1 - y0) * 72:.2f}"

@@ -3,8 +3,8 @@ sub-paragraphs a partial rule leaves out, or the critical check of a rule that c
 
 from __future__ import annotations
 
-from certkit.report.display import format_value, unit_and_factor
 from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, SCOPE_KEY
+from certkit.report.display import format_value, unit_and_factor
 
 
 def margin_text(value, unit: str) -> str:

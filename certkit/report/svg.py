@@ -53,8 +53,11 @@ def nice_ticks(lo: float, hi: float, target: int = 5) -> list[float]:
 
 def log_ticks(lo: float, hi: float) -> list[float]:
     """Decades inside [lo, hi] (lo > 0)."""
-    return [10.0 ** k for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1)
-            if lo * (1 - 1e-9) <= 10.0 ** k <= hi * (1 + 1e-9)]
+    return [
+        10.0**k
+        for k in range(math.floor(math.log10(lo)), math.ceil(math.log10(hi)) + 1)
+        if lo * (1 - 1e-9) <= 10.0**k <= hi * (1 + 1e-9)
+    ]
 
 
 def tick_label(v: float) -> str:
@@ -86,10 +89,14 @@ class Canvas:
         self.parts.append(element)
 
     def line(self, x0, y0, x1, y1, colour="#000000", width=1.0, dash: str = "", opacity: float = 1.0, clip: str = ""):
-        extra = (f' stroke-dasharray="{dash}"' if dash else "") + (f' stroke-opacity="{opacity}"' if opacity < 1 else "")
+        extra = (f' stroke-dasharray="{dash}"' if dash else "") + (
+            f' stroke-opacity="{opacity}"' if opacity < 1 else ""
+        )
         extra += f' clip-path="url(#{clip})"' if clip else ""
-        self.add(f'<line x1="{f2(x0)}" y1="{f2(y0)}" x2="{f2(x1)}" y2="{f2(y1)}" stroke="{colour}" '
-                 f'stroke-width="{width}"{extra}/>')
+        self.add(
+            f'<line x1="{f2(x0)}" y1="{f2(y0)}" x2="{f2(x1)}" y2="{f2(y1)}" stroke="{colour}" '
+            f'stroke-width="{width}"{extra}/>'
+        )
 
     def polyline(self, xs, ys, colour, width=1.0, dash: str = "", clip: str = "") -> None:
         """A line through the points, broken at non-finite values."""
@@ -108,8 +115,10 @@ class Canvas:
         if not d:
             return
         extra = (f' stroke-dasharray="{dash}"' if dash else "") + (f' clip-path="url(#{clip})"' if clip else "")
-        self.add(f'<path d="{d}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"'
-                 f' stroke-linecap="round"{extra}/>')
+        self.add(
+            f'<path d="{d}" fill="none" stroke="{colour}" stroke-width="{width}" stroke-linejoin="round"'
+            f' stroke-linecap="round"{extra}/>'
+        )
 
     def polygon(self, xs, ys, colour, opacity=1.0, clip: str = "") -> None:
         pts = " ".join(f"{x:.2f},{y:.2f}" for x, y in zip(xs, ys) if math.isfinite(x) and math.isfinite(y))
@@ -118,18 +127,32 @@ class Canvas:
             self.add(f'<polygon points="{pts}" fill="{colour}" fill-opacity="{opacity}" stroke="none"{extra}/>')
 
     def rect(self, x, y, w, h, fill="none", stroke="none", width=1.0, extra: str = "") -> None:
-        self.add(f'<rect x="{f2(x)}" y="{f2(y)}" width="{f2(w)}" height="{f2(h)}" fill="{fill}" stroke="{stroke}" '
-                 f'stroke-width="{width}"{extra}/>')
+        self.add(
+            f'<rect x="{f2(x)}" y="{f2(y)}" width="{f2(w)}" height="{f2(h)}" fill="{fill}" stroke="{stroke}" '
+            f'stroke-width="{width}"{extra}/>'
+        )
 
-    def text(self, x, y, text: str, size: float, anchor: str = "start", colour: str = "#000000", rotate: float = 0.0,
-             baseline: str = "middle", weight: str = "normal") -> None:
+    def text(
+        self,
+        x,
+        y,
+        text: str,
+        size: float,
+        anchor: str = "start",
+        colour: str = "#000000",
+        rotate: float = 0.0,
+        baseline: str = "middle",
+        weight: str = "normal",
+    ) -> None:
         """Text at (x, y): ``anchor`` start/middle/end, ``baseline`` middle (centred), hanging (top) or
         alphabetic (bottom); rotated by ``rotate`` degrees counter-clockwise about the anchor."""
         dy = {"middle": 0.35 * size, "hanging": 0.8 * size, "alphabetic": 0.0}[baseline]
         transform = f' transform="rotate({f2(-rotate)} {f2(x)} {f2(y)})"' if rotate else ""
         bold = ' font-weight="bold"' if weight == "bold" else ""
-        self.add(f'<text x="{f2(x)}" y="{f2(y + dy)}" font-size="{size:g}" text-anchor="{anchor}" fill="{colour}"'
-                 f'{bold}{transform}>{escape(str(text), quote=False)}</text>')
+        self.add(
+            f'<text x="{f2(x)}" y="{f2(y + dy)}" font-size="{size:g}" text-anchor="{anchor}" fill="{colour}"'
+            f"{bold}{transform}>{escape(str(text), quote=False)}</text>"
+        )
 
     def marker(self, x, y, shape: str, size: float, fill: str, edge: str = "none", edge_width: float = 0.5) -> None:
         """A marker centred on (x, y), ``size`` pt across: o circle, s square, ^ v triangles, D diamond, * star."""
@@ -149,28 +172,39 @@ class Canvas:
         elif shape == "D":
             pts = [(0, -r), (r, 0), (0, r), (-r, 0)]
         else:  # five-pointed star
-            pts = [((r if k % 2 == 0 else r * 0.45) * math.sin(k * math.pi / 5),
-                    -(r if k % 2 == 0 else r * 0.45) * math.cos(k * math.pi / 5)) for k in range(10)]
+            pts = [
+                (
+                    (r if k % 2 == 0 else r * 0.45) * math.sin(k * math.pi / 5),
+                    -(r if k % 2 == 0 else r * 0.45) * math.cos(k * math.pi / 5),
+                )
+                for k in range(10)
+            ]
         d = "M" + " L".join(f"{x + px:.2f},{y + py:.2f}" for px, py in pts) + " Z"
         self.add(f'<path d="{d}" {style}/>')
 
     def clip(self, x, y, w, h) -> str:
         cid = self.new_id("clip")
-        self.defs.append(f'<clipPath id="{cid}"><rect x="{f2(x)}" y="{f2(y)}" width="{f2(w)}" height="{f2(h)}"/></clipPath>')
+        self.defs.append(
+            f'<clipPath id="{cid}"><rect x="{f2(x)}" y="{f2(y)}" width="{f2(w)}" height="{f2(h)}"/></clipPath>'
+        )
         return cid
 
     def hatch(self, colour: str = "#ffffff") -> str:
         """A diagonal hatch pattern (for failing cells and bars, legible without colour)."""
         pid = self.new_id("hatch")
-        self.defs.append(f'<pattern id="{pid}" patternUnits="userSpaceOnUse" width="6" height="6" '
-                         f'patternTransform="rotate(45)"><line x1="0" y1="0" x2="0" y2="6" stroke="{colour}" '
-                         f'stroke-width="1.6"/></pattern>')
+        self.defs.append(
+            f'<pattern id="{pid}" patternUnits="userSpaceOnUse" width="6" height="6" '
+            f'patternTransform="rotate(45)"><line x1="0" y1="0" x2="0" y2="6" stroke="{colour}" '
+            f'stroke-width="1.6"/></pattern>'
+        )
         return pid
 
     def svg(self) -> str:
         defs = f"<defs>{''.join(self.defs)}</defs>" if self.defs else ""
-        return (f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {f2(self.width)} {f2(self.height)}" '
-                f'font-family="{FONT_FAMILY}">{defs}' + "\n".join(self.parts) + "</svg>\n")
+        return (
+            f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 {f2(self.width)} {f2(self.height)}" '
+            f'font-family="{FONT_FAMILY}">{defs}' + "\n".join(self.parts) + "</svg>\n"
+        )
 
 
 class Frame:

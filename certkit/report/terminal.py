@@ -13,8 +13,8 @@ import shutil
 import sys
 import time
 
-from certkit.report.reasons import margin_text, not_evaluated_reason
 from certkit.engine.results import STATUS_LABEL
+from certkit.report.reasons import margin_text, not_evaluated_reason
 
 _COLOURS = {"complies": "green", "complies_partial": "cyan", "fails": "red", "not_evaluated": "yellow"}
 
@@ -72,11 +72,19 @@ class Progress:
         self._bar = None
         if self.live:
             from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress as Bar, TextColumn, TimeElapsedColumn
+            from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeElapsedColumn
+            from rich.progress import Progress as Bar
 
-            self._bar = Bar(TextColumn("checking"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
-                            TextColumn("{task.fields[eta]}"), TextColumn("{task.fields[running]}"),
-                            console=Console(file=self.stream), transient=True)
+            self._bar = Bar(
+                TextColumn("checking"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TimeElapsedColumn(),
+                TextColumn("{task.fields[eta]}"),
+                TextColumn("{task.fields[running]}"),
+                console=Console(file=self.stream),
+                transient=True,
+            )
             self._task = self._bar.add_task("check", total=self.n, eta="", running="")
             self._bar.start()
 
@@ -99,10 +107,14 @@ class Progress:
             if self.quiet:
                 continue
             eta = self.eta()
-            line = (f"[{self.done:>{len(str(self.n))}}/{self.n}] §{r.id:<13} {STATUS_LABEL[r.status]:<17} "
-                    f"{r.seconds or 0.0:6.1f} s" + (f"  ETA {eta:.0f} s" if eta is not None and self.done < self.n else ""))
+            line = (
+                f"[{self.done:>{len(str(self.n))}}/{self.n}] §{r.id:<13} {STATUS_LABEL[r.status]:<17} "
+                f"{r.seconds or 0.0:6.1f} s" + (f"  ETA {eta:.0f} s" if eta is not None and self.done < self.n else "")
+            )
             if self._bar is not None:
-                self._bar.console.print(line, highlight=False, style=_COLOURS[r.status] if r.status == "fails" else None)
+                self._bar.console.print(
+                    line, highlight=False, style=_COLOURS[r.status] if r.status == "fails" else None
+                )
             else:
                 print(line, file=self.stream, flush=True)
         self._refresh()
@@ -111,8 +123,12 @@ class Progress:
         if self._bar is None:
             return
         eta = self.eta()
-        self._bar.update(self._task, completed=self.done, eta=f"ETA {eta:.0f} s" if eta is not None else "",
-                         running=", ".join("§" + i for i in self.running[:3]))
+        self._bar.update(
+            self._task,
+            completed=self.done,
+            eta=f"ETA {eta:.0f} s" if eta is not None else "",
+            running=", ".join("§" + i for i in self.running[:3]),
+        )
 
     def close(self) -> None:
         if self._bar is not None:

@@ -26,8 +26,9 @@ def _store_of(target: str, store: str | None) -> Path:
     return Path(store) if store else (default_store(target) if _is_study_file(target) else Path(target))
 
 
-_store_option = click.option("--store", type=click.Path(dir_okay=False),
-                             help="Store file (default: the study file with the suffix .sqlite).")
+_store_option = click.option(
+    "--store", type=click.Path(dir_okay=False), help="Store file (default: the study file with the suffix .sqlite)."
+)
 
 
 class _StudyGroup(click.Group):
@@ -41,8 +42,10 @@ class _StudyGroup(click.Group):
         try:
             return super().invoke(ctx)
         except sqlite3.DatabaseError as exc:
-            raise UserError(f"the study store could not be read (SQLite: {exc}): a damaged file; restore it from a "
-                            "copy, or delete it and run the study again") from None
+            raise UserError(
+                f"the study store could not be read (SQLite: {exc}): a damaged file; restore it from a "
+                "copy, or delete it and run the study again"
+            ) from None
 
 
 @click.group(name="study", cls=_StudyGroup)
@@ -52,15 +55,25 @@ def study():
 
 @study.command()
 @click.argument("study_file", type=click.Path(dir_okay=False))
-@click.option("--executor", type=click.Choice(["local", "dask", "serial"]), default="local", show_default=True,
-              help="local: worker processes on this machine; dask: dask.distributed; serial: in this process.")
+@click.option(
+    "--executor",
+    type=click.Choice(["local", "dask", "serial"]),
+    default="local",
+    show_default=True,
+    help="local: worker processes on this machine; dask: dask.distributed; serial: in this process.",
+)
 @click.option("--workers", type=int, default=None, help="Worker processes (default: the cores available).")
 @click.option("--scheduler", default=None, help="Address of a running dask scheduler (tcp://host:8786).")
 @_store_option
 @click.option("--retry-failed", is_flag=True, help="Evaluate the failed cases again.")
 @click.option("--evaluator", default=None, hidden=True, help="Dotted name of the evaluator (tests).")
-@click.option("--progress-interval", type=float, default=10.0, hidden=True,
-              help="Seconds between progress lines when the output is not a terminal.")
+@click.option(
+    "--progress-interval",
+    type=float,
+    default=10.0,
+    hidden=True,
+    help="Seconds between progress lines when the output is not a terminal.",
+)
 def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator, progress_interval):
     """Evaluate every case of STUDY_FILE without a result yet (run it again to resume)."""
     from certkit import interrupts
@@ -74,19 +87,33 @@ def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator
     signal.signal(signal.SIGTERM, interrupts.on_interrupt)  # `kill` stops as Ctrl-C does: workers first
     try:
         with Store.open(path, create=True) as db:
-            summary = run_study(spec, db, executor, workers, scheduler, evaluator or DEFAULT_EVALUATOR,
-                                retry_failed, progress=sys.stdout, interval=progress_interval)
+            summary = run_study(
+                spec,
+                db,
+                executor,
+                workers,
+                scheduler,
+                evaluator or DEFAULT_EVALUATOR,
+                retry_failed,
+                progress=sys.stdout,
+                interval=progress_interval,
+            )
             counts = Counter()
             for _block, _role, status, n in db.counts():
                 counts[status] += n
     except KeyboardInterrupt:
         click.echo(f"\ninterrupted: every finished case is saved in {path}; run the same command to resume", err=True)
         sys.exit(EXIT_INTERRUPTED)
-    rate = f", {summary.elapsed_s * summary.workers / summary.submitted:.3g} s per case per worker" \
-        if summary.submitted else ""
-    click.echo(f"{spec.name}: {summary.total} cases — {counts['ok']} ok, {counts['failed']} failed, "
-               f"{counts['pending']} pending; this run evaluated {summary.submitted} "
-               f"in {summary.elapsed_s:.1f} s on {summary.workers} worker{'s' if summary.workers != 1 else ''}{rate}")
+    rate = (
+        f", {summary.elapsed_s * summary.workers / summary.submitted:.3g} s per case per worker"
+        if summary.submitted
+        else ""
+    )
+    click.echo(
+        f"{spec.name}: {summary.total} cases — {counts['ok']} ok, {counts['failed']} failed, "
+        f"{counts['pending']} pending; this run evaluated {summary.submitted} "
+        f"in {summary.elapsed_s:.1f} s on {summary.workers} worker{'s' if summary.workers != 1 else ''}{rate}"
+    )
     if summary.duplicates:
         click.echo(f"({summary.duplicates} points repeated an earlier block's and were evaluated once)")
     click.echo(f"store: {path}")
@@ -124,22 +151,30 @@ def status(target, store):
         for (block, role), c in table.items():
             c["cases"] = sum(c.values())
             total.update(c)
-            click.echo(f"{block:<16}{role:<12}{c['cases']:>7}{c['ok']:>7}{c['failed']:>8}{c['pending']:>9}{c['new']:>6}")
-        click.echo(f"{'total':<28}{total['cases']:>7}{total['ok']:>7}{total['failed']:>8}{total['pending']:>9}"
-                   f"{total['new']:>6}")
+            click.echo(
+                f"{block:<16}{role:<12}{c['cases']:>7}{c['ok']:>7}{c['failed']:>8}{c['pending']:>9}{c['new']:>6}"
+            )
+        click.echo(
+            f"{'total':<28}{total['cases']:>7}{total['ok']:>7}{total['failed']:>8}{total['pending']:>9}"
+            f"{total['new']:>6}"
+        )
         walls = sorted(row["wall_s"] for row in rows if row["status"] == "ok")
         if walls:
             workers = {row["worker"] for row in rows if row["worker"]}
-            click.echo(f"\nwall time per ok case: mean {sum(walls) / len(walls):.3g} s, median {walls[len(walls) // 2]:.3g} s, "
-                       f"max {walls[-1]:.3g} s; {len(workers)} worker process{'es' if len(workers) != 1 else ''}")
+            click.echo(
+                f"\nwall time per ok case: mean {sum(walls) / len(walls):.3g} s, median {walls[len(walls) // 2]:.3g} s, "
+                f"max {walls[-1]:.3g} s; {len(workers)} worker process{'es' if len(workers) != 1 else ''}"
+            )
         reasons = Counter(row["error"] for row in rows if row["status"] == "failed")
         if reasons:
             click.echo("\nfailures:")
             for reason, n in reasons.most_common(8):
                 click.echo(f"  {n:>5} × {reason}")
         if db.stale():
-            click.echo(f"\n{db.stale()} rows kept from earlier plans, aircraft files, versions or responses "
-                       "(not part of the study)")
+            click.echo(
+                f"\n{db.stale()} rows kept from earlier plans, aircraft files, versions or responses "
+                "(not part of the study)"
+            )
 
 
 @study.command()
@@ -147,13 +182,19 @@ def status(target, store):
 @_store_option
 @click.option("--format", "fmt", type=click.Choice(["csv", "parquet"]), default="csv", show_default=True)
 @click.option("--out", type=click.Path(dir_okay=False), help="Output file (default: the store's name, .csv/.parquet).")
-@click.option("--surrogates", "surrogates_out", type=click.Path(dir_okay=False), default=None,
-              help="Instead of the cases: fit the study's surrogates and write them to this JSON file "
-                   "(read by `certkit study predict` and certkit.study.load_surrogates; TARGET: the study file).")
+@click.option(
+    "--surrogates",
+    "surrogates_out",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Instead of the cases: fit the study's surrogates and write them to this JSON file "
+    "(read by `certkit study predict` and certkit.study.load_surrogates; TARGET: the study file).",
+)
 def export(target, store, fmt, out, surrogates_out):
     """Write one row per case (variables in SI, responses, status, error, wall time, worker) as CSV or Parquet,
     or (--surrogates) the study's fitted surrogates."""
-    from certkit.study.store import Store, export as write
+    from certkit.study.store import Store
+    from certkit.study.store import export as write
 
     if surrogates_out:
         from certkit.errors import UserError
@@ -161,8 +202,12 @@ def export(target, store, fmt, out, surrogates_out):
 
         if not _is_study_file(target):
             raise UserError(f"{target}: --surrogates needs the study file (its objectives and constraints)")
-        written = export_surrogates(Path(target), Path(store) if store else None, Path(surrogates_out),
-                                    log=lambda msg: click.echo(msg, err=True))
+        written = export_surrogates(
+            Path(target),
+            Path(store) if store else None,
+            Path(surrogates_out),
+            log=lambda msg: click.echo(msg, err=True),
+        )
         click.echo(f"exported: {written}")
         return
     path = _store_of(target, store)

@@ -64,14 +64,20 @@ class LocalExecutor:
         from certkit.engine.worker_processes import die_with_parent, one_blas_thread
 
         one_blas_thread()  # inherited by the spawned workers
-        self._pool = ProcessPoolExecutor(self.workers, mp_context=multiprocessing.get_context("spawn"),
-                                         initializer=die_with_parent, initargs=(os.getpid(),))
+        self._pool = ProcessPoolExecutor(
+            self.workers,
+            mp_context=multiprocessing.get_context("spawn"),
+            initializer=die_with_parent,
+            initargs=(os.getpid(),),
+        )
         try:  # a pool whose workers cannot start is the machine's problem, not the cases': stop, blame no case
             self._pool.submit(os.getpid).result()
         except BrokenProcessPool:
             self._stop()
-            raise UserError("the local worker processes die on start-up (see the messages above); "
-                            "--executor serial runs the cases in this process") from None
+            raise UserError(
+                "the local worker processes die on start-up (see the messages above); "
+                "--executor serial runs the cases in this process"
+            ) from None
 
     def _stop(self) -> None:
         if self._pool is None:
@@ -170,8 +176,13 @@ class DaskExecutor:
             # cases it cost about a third of the CPU (seed-study sample: 5.99 → 5.47 s CPU per design, local 3.35–4.02).
             # The worker processes inherit this from the environment (a user's own setting is kept).
             os.environ.setdefault("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", "False")
-            self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1, processes=True,
-                                         dashboard_address=None, silence_logs=logging.ERROR)
+            self._cluster = LocalCluster(
+                n_workers=self.workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=logging.ERROR,
+            )
             self._client = Client(self._cluster)
         return self
 

@@ -76,8 +76,9 @@ def block_points(study: Study, block) -> list[dict[str, float]]:
     try:
         values = doe.scale(doe.unit_points(block, len(study.variables)), study.variables)
     except ValueError as exc:  # e.g. a design the library cannot build for this many variables
-        raise UserError(f"design block {block.name!r} ({block.generator}, {len(study.variables)} variables): "
-                        f"{exc}") from None
+        raise UserError(
+            f"design block {block.name!r} ({block.generator}, {len(study.variables)} variables): {exc}"
+        ) from None
     paths = study.variable_paths()
     return [dict(zip(paths, map(float, row))) for row in np.asarray(values)]
 

@@ -36,8 +36,7 @@ class _Counts:
         return _duration((self.total - self.done) / rate) if rate > 0 else "?"
 
     def line(self) -> str:
-        return (f"{self.done}/{self.total} done, {self.failed} failed · {self.rate():.3g} cases/s · "
-                f"ETA {self.eta()}")
+        return f"{self.done}/{self.total} done, {self.failed} failed · {self.rate():.3g} cases/s · ETA {self.eta()}"
 
 
 class PlainProgress:
@@ -74,9 +73,15 @@ class LiveProgress:
         from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
         self.counts = _Counts(total, done, failed)
-        self._bar = Progress(TextColumn("[bold]{task.description}"), BarColumn(), MofNCompleteColumn(),
-                             TextColumn("{task.fields[detail]}"), TimeElapsedColumn(),
-                             console=Console(file=stream or sys.stdout), transient=False)
+        self._bar = Progress(
+            TextColumn("[bold]{task.description}"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("{task.fields[detail]}"),
+            TimeElapsedColumn(),
+            console=Console(file=stream or sys.stdout),
+            transient=False,
+        )
         self._task = self._bar.add_task(label, total=total, completed=done, detail=self._detail())
 
     def _detail(self) -> str:

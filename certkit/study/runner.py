@@ -44,9 +44,18 @@ def _check_evaluator(name: str) -> None:
         raise UserError(f"the evaluator {name!r} cannot be found (no module {module!r})")
 
 
-def execute(store: Store, context: CaseContext, cases: Sequence[Case], executor: str = "local",
-            workers: int | None = None, scheduler: str | None = None, progress=None, label: str = "study",
-            total: int | None = None, interval: float = 10.0) -> RunSummary:
+def execute(
+    store: Store,
+    context: CaseContext,
+    cases: Sequence[Case],
+    executor: str = "local",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress=None,
+    label: str = "study",
+    total: int | None = None,
+    interval: float = 10.0,
+) -> RunSummary:
     """Evaluate ``cases`` and commit each as it finishes. ``progress``: a stream for the progress display
     (None: no display). A case that reports a user error stops the run (its case stays pending)."""
     summary = RunSummary(total=total if total is not None else len(cases), submitted=len(cases))
@@ -56,8 +65,11 @@ def execute(store: Store, context: CaseContext, cases: Sequence[Case], executor:
     tasks = (Task(c.key, context.evaluator, context.aircraft_path, c.values, context.responses) for c in cases)
     done_before = summary.total - len(cases)
     start = time.monotonic()
-    display = make_progress(summary.total, done_before, _failed_count(store), label, progress, interval) \
-        if progress is not None else None
+    display = (
+        make_progress(summary.total, done_before, _failed_count(store), label, progress, interval)
+        if progress is not None
+        else None
+    )
     with make_executor(executor, workers, scheduler) as pool:
         summary.workers = pool.workers
         if display is not None:
@@ -82,9 +94,17 @@ def _failed_count(store: Store) -> int:
     return sum(n for _block, _role, status, n in store.counts() if status == "failed")
 
 
-def run_study(study: Study, store: Store, executor: str = "local", workers: int | None = None,
-              scheduler: str | None = None, evaluator: str = DEFAULT_EVALUATOR, retry_failed: bool = False,
-              progress=None, interval: float = 10.0) -> RunSummary:
+def run_study(
+    study: Study,
+    store: Store,
+    executor: str = "local",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    evaluator: str = DEFAULT_EVALUATOR,
+    retry_failed: bool = False,
+    progress=None,
+    interval: float = 10.0,
+) -> RunSummary:
     """Plan ``study``, record the plan in ``store`` and evaluate every case without a result."""
     _check_evaluator(evaluator)
     context = CaseContext.of(study, evaluator)
@@ -94,16 +114,35 @@ def run_study(study: Study, store: Store, executor: str = "local", workers: int 
         if retry_failed:
             store.reset_failed()
         cases = store.pending()
-        summary = execute(store, context, cases, executor, workers, scheduler, progress, study.name,
-                          total=len(plan.cases), interval=interval)
+        summary = execute(
+            store,
+            context,
+            cases,
+            executor,
+            workers,
+            scheduler,
+            progress,
+            study.name,
+            total=len(plan.cases),
+            interval=interval,
+        )
     summary.total = len(plan.cases)
     summary.duplicates = sum(plan.duplicates.values())
     return summary
 
 
-def run_study_cases(study: Study, store: Store, points: Sequence[Mapping[str, float]], block: str = "check",
-                    role: str = "check", executor: str = "local", workers: int | None = None,
-                    scheduler: str | None = None, evaluator: str | None = None, progress=None) -> list[dict]:
+def run_study_cases(
+    study: Study,
+    store: Store,
+    points: Sequence[Mapping[str, float]],
+    block: str = "check",
+    role: str = "check",
+    executor: str = "local",
+    workers: int | None = None,
+    scheduler: str | None = None,
+    evaluator: str | None = None,
+    progress=None,
+) -> list[dict]:
     """Evaluate extra points (``{path: SI value}``, e.g. a fresh random sample to check a surrogate) with the
     study's aircraft, responses and evaluator, record them in ``store`` as block ``block``, and return one row
     per point, in order (see :meth:`Store.rows`). Points the store already has are not evaluated again."""

@@ -14,9 +14,17 @@ from pathlib import Path
 from typing import Annotated, Literal, Union
 
 import numpy as np
-
-from pydantic import (BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, ValidationInfo,
-                      WithJsonSchema, field_validator, model_validator)
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    ValidationError,
+    ValidationInfo,
+    WithJsonSchema,
+    field_validator,
+    model_validator,
+)
 
 from certkit.aircraft.pydantic_problems import Found, found_in, located
 from certkit.aircraft.yaml_source import load_yaml
@@ -50,9 +58,16 @@ def _si(value: object) -> object:
     return parse_quantity(value)[0]
 
 
-Quantity = Annotated[float, BeforeValidator(_si), WithJsonSchema({
-    "anyOf": [{"type": "number"}, {"type": "string"}],
-    "description": "a number in SI units or a string with a unit, e.g. \"1119 ft^2\", \"34.82 deg\""})]
+Quantity = Annotated[
+    float,
+    BeforeValidator(_si),
+    WithJsonSchema(
+        {
+            "anyOf": [{"type": "number"}, {"type": "string"}],
+            "description": 'a number in SI units or a string with a unit, e.g. "1119 ft^2", "34.82 deg"',
+        }
+    ),
+]
 
 
 class _Model(BaseModel):
@@ -64,13 +79,26 @@ class Variable(_Model):
 
     path: str = Field(pattern=_PATH, description="aircraft-file path, e.g. geometry.horizontal_tail.area")
     baseline: Quantity = Field(description="the baseline design's value")
-    bounds: Annotated[tuple[float, float], WithJsonSchema({
-        "anyOf": [{"type": "array", "minItems": 2, "maxItems": 2,
-                   "items": {"anyOf": [{"type": "number"}, {"type": "string"}]}},
-                  {"type": "string", "pattern": "^\\s*(±|\\+-|\\+/-)"}],
-        "description": "[lower, upper] (numbers in SI or strings with a unit), or \"±20 %\" of the baseline"})]
-    unit_label: str = Field("", description="unit to show values in (default: the unit written for the baseline "
-                                            "or bounds; empty for SI)")
+    bounds: Annotated[
+        tuple[float, float],
+        WithJsonSchema(
+            {
+                "anyOf": [
+                    {
+                        "type": "array",
+                        "minItems": 2,
+                        "maxItems": 2,
+                        "items": {"anyOf": [{"type": "number"}, {"type": "string"}]},
+                    },
+                    {"type": "string", "pattern": "^\\s*(±|\\+-|\\+/-)"},
+                ],
+                "description": '[lower, upper] (numbers in SI or strings with a unit), or "±20 %" of the baseline',
+            }
+        ),
+    ]
+    unit_label: str = Field(
+        "", description="unit to show values in (default: the unit written for the baseline or bounds; empty for SI)"
+    )
 
     @property
     def lower(self) -> float:
@@ -156,8 +184,10 @@ class CcdBlock(_Block):
 
     generator: Literal["ccd"]
     fraction: Literal["resolution-v", "full"] = Field(
-        "resolution-v", description="factorial part: smallest fraction of resolution V or more (pydoe "
-                                    "fracfact_by_res), or the full 2^k factorial")
+        "resolution-v",
+        description="factorial part: smallest fraction of resolution V or more (pydoe "
+        "fracfact_by_res), or the full 2^k factorial",
+    )
     center: int = Field(1, ge=0, description="centre points (repeats of one point count once)")
 
 
@@ -269,15 +299,21 @@ class Uncertainty(_Model):
 class AnalysisOptions(_Model):
     """Options of ``certkit study report`` (the study file's ``analysis:`` mapping)."""
 
-    r2_threshold: float = Field(0.9, le=1.0, description="R² (cross-validated, or on validation) below which a "
-                                                         "surrogate is flagged")
+    r2_threshold: float = Field(
+        0.9, le=1.0, description="R² (cross-validated, or on validation) below which a surrogate is flagged"
+    )
     level_relaxation: list[LevelRelaxation] = Field(default_factory=list)
     uncertainty: list[Uncertainty] = Field(default_factory=list)
-    profiler: list[str] | None = Field(None, description="constraint responses shown in the profiler "
-                                                         "(default: every constraint's)")
-    gp_max_cases: int = Field(600, ge=0, description="a Gaussian process is fitted on at most this many training "
-                                                     "cases (a maximin subsample of them above it; 0: no Gaussian "
-                                                     "process)")
+    profiler: list[str] | None = Field(
+        None, description="constraint responses shown in the profiler (default: every constraint's)"
+    )
+    gp_max_cases: int = Field(
+        600,
+        ge=0,
+        description="a Gaussian process is fitted on at most this many training "
+        "cases (a maximin subsample of them above it; 0: no Gaussian "
+        "process)",
+    )
 
     def relaxed_max(self, constraint: Constraint) -> float | None:
         """The maximum level the constrained stage accepts for ``constraint`` (None: the declared one)."""
@@ -300,16 +336,21 @@ class Study(_Model):
     model_config = ConfigDict(extra="forbid", frozen=True, json_schema_extra={"title": "certkit study file"})
 
     name: str = Field("", description="study name (default: the file name)")
-    aircraft: str = Field(description="the base aircraft file, relative to the study file "
-                                      "(held as an absolute path once loaded)")
+    aircraft: str = Field(
+        description="the base aircraft file, relative to the study file (held as an absolute path once loaded)"
+    )
     variables: list[Variable] = Field(min_length=1)
     designs: list[DesignBlock] = Field(min_length=1)
-    responses: list[str] = Field(default_factory=list, description="response names or glob patterns each case "
-                                 "records (e.g. objective.*, rule.*.margin); empty = every response")
+    responses: list[str] = Field(
+        default_factory=list,
+        description="response names or glob patterns each case "
+        "records (e.g. objective.*, rule.*.margin); empty = every response",
+    )
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
     analysis: Annotated[AnalysisOptions, BeforeValidator(_no_analysis)] = Field(
-        default_factory=AnalysisOptions, description="options of `certkit study report` (see docs/design-studies.md)")
+        default_factory=AnalysisOptions, description="options of `certkit study report` (see docs/design-studies.md)"
+    )
 
     def variable_paths(self) -> list[str]:
         return [v.path for v in self.variables]
@@ -361,13 +402,19 @@ def relation_problems(study: Study) -> list[Found]:
     for i, block in enumerate(study.designs):
         need = _MIN_FACTORS.get(block.generator, 1)
         if len(study.variables) < need:
-            found.append((("designs", i, "generator"), f"{block.generator} needs at least {need} variables "
-                          f"(the study has {len(study.variables)})", block.generator))
+            found.append(
+                (
+                    ("designs", i, "generator"),
+                    f"{block.generator} needs at least {need} variables (the study has {len(study.variables)})",
+                    block.generator,
+                )
+            )
     for section, items in (("objectives", study.objectives), ("constraints", study.constraints)):
         for i, item in enumerate(items):
             if not study.requested(item.response):
-                found.append(((section, i, "response"), "not recorded: no pattern of `responses:` matches it",
-                              item.response))
+                found.append(
+                    ((section, i, "response"), "not recorded: no pattern of `responses:` matches it", item.response)
+                )
     found += _analysis_problems(study)
     return found
 
@@ -381,12 +428,22 @@ def _analysis_problems(study: Study) -> list[Found]:
     levels = [c.response for c in study.constraints if c.is_level]
     for i, u in enumerate(options.uncertainty):
         if not any(fnmatchcase(r, u.responses) for r in responses):
-            found.append((("analysis", "uncertainty", i, "responses"),
-                          "matches no constraint's response (the uncertainty applies to constraints)", u.responses))
+            found.append(
+                (
+                    ("analysis", "uncertainty", i, "responses"),
+                    "matches no constraint's response (the uncertainty applies to constraints)",
+                    u.responses,
+                )
+            )
     for i, r in enumerate(options.level_relaxation):
         if not any(fnmatchcase(name, r.responses) for name in levels):
-            found.append((("analysis", "level_relaxation", i, "responses"), "matches no level constraint's response",
-                          r.responses))
+            found.append(
+                (
+                    ("analysis", "level_relaxation", i, "responses"),
+                    "matches no level constraint's response",
+                    r.responses,
+                )
+            )
     for i, name in enumerate(options.profiler or ()):
         if not study.requested(name):
             found.append((("analysis", "profiler", i), "not recorded: no pattern of `responses:` matches it", name))
@@ -408,12 +465,20 @@ def validate_study(data: object, source=None, base_dir: Path | None = None) -> S
     given). The aircraft path is resolved against ``base_dir`` and must name an existing file."""
     path = source.path if source else "<data>"
     if not isinstance(data, dict):
-        raise InputError(path, [Problem("", "the study file must be a mapping (aircraft:, variables:, designs:, ...)",
-                                        type(data).__name__)])
+        raise InputError(
+            path,
+            [
+                Problem(
+                    "", "the study file must be a mapping (aircraft:, variables:, designs:, ...)", type(data).__name__
+                )
+            ],
+        )
     try:
         study = Study.model_validate(data)
     except ValidationError as err:
-        found = [(_without_tag(loc), message, value) for loc, message, value in found_in(err, schema_command=SCHEMA_COMMAND)]
+        found = [
+            (_without_tag(loc), message, value) for loc, message, value in found_in(err, schema_command=SCHEMA_COMMAND)
+        ]
         raise InputError(path, located(found, source)) from None
     found = relation_problems(study)
     aircraft = Path(study.aircraft).expanduser()

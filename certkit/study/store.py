@@ -73,13 +73,19 @@ class Store:
             version = db.execute("SELECT value FROM meta WHERE name = 'schema'").fetchone()
             damage = [row[0] for row in db.execute("PRAGMA quick_check(3)")]
         except sqlite3.DatabaseError as exc:
-            raise UserError(f"{path}: not a certkit study store, or a damaged one (SQLite: {exc}); restore it from a "
-                            "copy, or delete it and run the study again") from None
+            raise UserError(
+                f"{path}: not a certkit study store, or a damaged one (SQLite: {exc}); restore it from a "
+                "copy, or delete it and run the study again"
+            ) from None
         if damage != ["ok"]:
-            raise UserError(f"{path}: damaged study store (SQLite: {'; '.join(damage)}); restore it from a copy, or "
-                            "delete it and run the study again")
+            raise UserError(
+                f"{path}: damaged study store (SQLite: {'; '.join(damage)}); restore it from a copy, or "
+                "delete it and run the study again"
+            )
         if version is None or version[0] != SCHEMA_VERSION:
-            raise UserError(f"{path}: study store of another format ({version and version[0]}; expected {SCHEMA_VERSION})")
+            raise UserError(
+                f"{path}: study store of another format ({version and version[0]}; expected {SCHEMA_VERSION})"
+            )
         return cls(path, db)
 
     def close(self) -> None:
@@ -134,8 +140,11 @@ class Store:
                 "VALUES (?, ?, ?, ?, ?, 'design', 1, ?, ?, 'pending') ON CONFLICT (key) DO UPDATE SET "
                 "seq = excluded.seq, block = excluded.block, role = excluded.role, idx = excluded.idx, "
                 "origin = 'design', in_plan = 1",
-                [(c.key, seq, c.block, c.role, c.index, context.digest, json.dumps(c.values))
-                 for seq, c in enumerate(plan.cases)])
+                [
+                    (c.key, seq, c.block, c.role, c.index, context.digest, json.dumps(c.values))
+                    for seq, c in enumerate(plan.cases)
+                ],
+            )
             db.execute("UPDATE cases SET in_plan = (context = ?) WHERE origin = 'extra'", (context.digest,))
 
     def add_cases(self, context: CaseContext, cases: list[Case]) -> None:
@@ -148,8 +157,11 @@ class Store:
                 "VALUES (?, ?, ?, ?, ?, 'extra', 1, ?, ?, 'pending') ON CONFLICT (key) DO UPDATE SET "
                 "origin = 'extra', in_plan = 1, seq = excluded.seq, block = excluded.block, role = excluded.role, "
                 "idx = excluded.idx WHERE in_plan = 0",
-                [(c.key, start + i, c.block, c.role, c.index, context.digest, json.dumps(c.values))
-                 for i, c in enumerate(cases)])
+                [
+                    (c.key, start + i, c.block, c.role, c.index, context.digest, json.dumps(c.values))
+                    for i, c in enumerate(cases)
+                ],
+            )
 
     def commit(self, result: CaseResult, finished_at: float) -> bool:
         """Write one finished case (its own transaction); False if it was no longer pending."""
@@ -157,15 +169,26 @@ class Store:
             cursor = db.execute(
                 "UPDATE cases SET status = ?, error = ?, wall_s = ?, worker = ?, record = ?, timings = ?, "
                 "finished_at = ? WHERE key = ? AND status = 'pending'",
-                (result.status, result.error, result.wall_s, result.worker, result.record, result.timings,
-                 finished_at, result.key))
+                (
+                    result.status,
+                    result.error,
+                    result.wall_s,
+                    result.worker,
+                    result.record,
+                    result.timings,
+                    finished_at,
+                    result.key,
+                ),
+            )
             return cursor.rowcount == 1
 
     def reset_failed(self) -> int:
         """Failed cases of the current study back to pending (an explicit retry)."""
         with self._transaction() as db:
-            return db.execute("UPDATE cases SET status = 'pending', error = NULL, record = NULL, timings = NULL "
-                              "WHERE status = 'failed' AND in_plan = 1").rowcount
+            return db.execute(
+                "UPDATE cases SET status = 'pending', error = NULL, record = NULL, timings = NULL "
+                "WHERE status = 'failed' AND in_plan = 1"
+            ).rowcount
 
     # -- reading ---------------------------------------------------------------------------------------------
 
@@ -184,7 +207,8 @@ class Store:
         """Cases of the current study (or of ``keys``) still without a result, in plan order."""
         rows = self._db.execute(
             "SELECT key, block, role, idx, variables FROM cases WHERE status = 'pending' AND in_plan = 1 "
-            "ORDER BY origin = 'extra', seq").fetchall()
+            "ORDER BY origin = 'extra', seq"
+        ).fetchall()
         if keys is not None:
             wanted = set(keys)
             rows = [r for r in rows if r[0] in wanted]
@@ -194,7 +218,8 @@ class Store:
         """(block, role, status, cases) of the current study, blocks in plan order."""
         return self._db.execute(
             "SELECT block, role, status, COUNT(*) FROM cases WHERE in_plan = 1 GROUP BY block, role, status "
-            "ORDER BY MIN(origin = 'extra'), MIN(seq), status").fetchall()
+            "ORDER BY MIN(origin = 'extra'), MIN(seq), status"
+        ).fetchall()
 
     def stale(self) -> int:
         """Rows kept in the file but outside the current study (another plan, aircraft, version or responses)."""
@@ -205,7 +230,8 @@ class Store:
         where = "" if include_stale else "WHERE in_plan = 1"
         cursor = self._db.execute(
             "SELECT key, block, role, status, error, wall_s, worker, variables, record, timings, finished_at "
-            f"FROM cases {where} ORDER BY origin = 'extra', seq")
+            f"FROM cases {where} ORDER BY origin = 'extra', seq"
+        )
         names = [d[0] for d in cursor.description]
         out = []
         wanted = set(keys) if keys is not None else None
@@ -243,8 +269,11 @@ class Store:
             found = (row["record"] or {}).get("responses", {})
             out.update({f"resp:{n}": math.nan if found.get(n) is None else float(found[n]) for n in responses})
             table.append(out)
-        columns = ["key", "block", "role", "status", "error", "wall_s", "worker"] + \
-            [f"var:{p}" for p in paths] + [f"resp:{n}" for n in responses]
+        columns = (
+            ["key", "block", "role", "status", "error", "wall_s", "worker"]
+            + [f"var:{p}" for p in paths]
+            + [f"resp:{n}" for n in responses]
+        )
         return pd.DataFrame(table, columns=columns)
 
 

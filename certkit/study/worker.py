@@ -102,8 +102,9 @@ def _run_case(task: Task) -> CaseResult:
         record = dict(evaluate(task.aircraft_path, dict(task.values), list(task.responses) if task.responses else None))
         timings = record.pop("timings", None)
         text = canonical_json(record)
-        return CaseResult(task.key, "ok", None, elapsed(), worker_id(), text,
-                          None if timings is None else canonical_json(timings))
+        return CaseResult(
+            task.key, "ok", None, elapsed(), worker_id(), text, None if timings is None else canonical_json(timings)
+        )
     except InfeasibleDesign as exc:  # this design's values make an impossible aircraft: a failed case
         return CaseResult(task.key, "failed", f"infeasible design: {exc}", elapsed(), worker_id())
     except UserError as exc:

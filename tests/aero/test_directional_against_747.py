@@ -24,8 +24,14 @@ S_747, B_747, SV_747 = 5500.0, 196.0, 829.5  # ft²; ft; ft² (JSBSim B747 vtail
 SV_BASE, S_BASE = 527.84, 4927.3  # ft², aircraft/lta.yaml
 BAND = 0.30
 
-APPROACH_747 = {"CY_beta": -1.08, "Cn_beta": 0.184, "Cl_beta": -0.281, "Cn_rudder": -0.113, "CY_rudder": 0.179,
-                "Cl_aileron": 0.053}
+APPROACH_747 = {
+    "CY_beta": -1.08,
+    "Cn_beta": 0.184,
+    "Cl_beta": -0.281,
+    "Cn_rudder": -0.113,
+    "CY_rudder": 0.179,
+    "Cl_aileron": 0.053,
+}
 CRUISE_747 = {"CY_beta": -0.877, "Cn_beta": 0.195, "Cl_beta": -0.280, "Cn_rudder": -0.1257, "CY_rudder": 0.1146}
 PER_FIN_AREA = ("CY_beta", "Cn_beta", "Cn_rudder", "CY_rudder")
 
@@ -62,10 +68,13 @@ def test_fin_derivatives_per_fin_area_at_cruise(model, name):
     assert ratio(model, "clean", 0.8, name, CRUISE_747) == pytest.approx(1.0, abs=BAND)
 
 
-@pytest.mark.xfail(strict=True, reason="CY_δr per fin area 1.48 × the 747's at approach (2.85 × at M 0.8, where the "
-                   "747's rudder ratio changer limits it): the lattice is inviscid (no DATCOM viscous factor ≈ 0.8 on "
-                   "the flap effectiveness) and the rudder's side force sits on a shorter lever (0.44 b against the "
-                   "747's 0.63 b) — its yawing moment per fin area, Cn_δr, matches: docs/baseline-sources.md §14")
+@pytest.mark.xfail(
+    strict=True,
+    reason="CY_δr per fin area 1.48 × the 747's at approach (2.85 × at M 0.8, where the "
+    "747's rudder ratio changer limits it): the lattice is inviscid (no DATCOM viscous factor ≈ 0.8 on "
+    "the flap effectiveness) and the rudder's side force sits on a shorter lever (0.44 b against the "
+    "747's 0.63 b) — its yawing moment per fin area, Cn_δr, matches: docs/baseline-sources.md §14",
+)
 def test_rudder_side_force_per_fin_area(model):
     assert ratio(model, "takeoff", 0.2, "CY_rudder", APPROACH_747) == pytest.approx(1.0, abs=BAND)
 
@@ -76,28 +85,37 @@ def test_dihedral_effect_at_cruise(model):
     assert ratio(model, "clean", 0.8, "Cl_beta", CRUISE_747) == pytest.approx(1.0, abs=BAND)
 
 
-@pytest.mark.xfail(strict=True, reason="Cl_β at approach 0.57 × the 747's (−0.159 against −0.281 at CL 1.76): the "
-                   "model's Cl_β is the lattice's at one angle of attack and does not grow with the lift coefficient "
-                   "as a swept wing's does (ΔCl_β/CL ∝ sin 2Λ): a named model limit, docs/baseline-sources.md §14")
+@pytest.mark.xfail(
+    strict=True,
+    reason="Cl_β at approach 0.57 × the 747's (−0.159 against −0.281 at CL 1.76): the "
+    "model's Cl_β is the lattice's at one angle of attack and does not grow with the lift coefficient "
+    "as a swept wing's does (ΔCl_β/CL ∝ sin 2Λ): a named model limit, docs/baseline-sources.md §14",
+)
 def test_dihedral_effect_at_approach(model):
     assert ratio(model, "takeoff", 0.2, "Cl_beta", APPROACH_747) == pytest.approx(1.0, abs=BAND)
 
 
-@pytest.mark.xfail(strict=True, reason="Cl_δa 1.34 × the 747's 0.053 per rad at approach: the lattice's control "
-                   "effectiveness is inviscid (DATCOM's viscous factor ≈ 0.8 would give about 1.07): a named model "
-                   "limit, docs/baseline-sources.md §14")
+@pytest.mark.xfail(
+    strict=True,
+    reason="Cl_δa 1.34 × the 747's 0.053 per rad at approach: the lattice's control "
+    "effectiveness is inviscid (DATCOM's viscous factor ≈ 0.8 would give about 1.07): a named model "
+    "limit, docs/baseline-sources.md §14",
+)
 def test_roll_control_power(model):
     assert ratio(model, "takeoff", 0.2, "Cl_aileron", APPROACH_747) == pytest.approx(1.0, abs=BAND)
 
 
-@pytest.mark.xfail(strict=True, reason="Cm_α̇ at M 0.8: −9.94 against the 747's −6.41 (1.55 ×), at M 0.2 −6.20 against "
-                   "−3.3 (1.9 ×). The method is the textbook quasi-steady downwash lag (Etkin & Reid ch. 5, Roskam Part "
-                   "I ch. 4), implemented as written; the same formula with the 747's own tail (JSBSim B747: S_t "
-                   "1,469.6 ft², l_t 106.6 ft; a_t ≈ 3.9/rad and dε/dα ≈ 0.45 estimated, η 0.9–1) gives −13 to −14 at M 0.8, twice the 747's "
-                   "published value: the gap is the quasi-steady theory's against flight-derived data (the wing's own "
-                   "α̇ lift and the bound vorticity's unlagged share of the tail downwash are not in it), not an error "
-                   "of the implementation; §25.181 does not depend on it (tests/rules/test_r25_181.py). "
-                   "docs/baseline-sources.md §5a")
+@pytest.mark.xfail(
+    strict=True,
+    reason="Cm_α̇ at M 0.8: −9.94 against the 747's −6.41 (1.55 ×), at M 0.2 −6.20 against "
+    "−3.3 (1.9 ×). The method is the textbook quasi-steady downwash lag (Etkin & Reid ch. 5, Roskam Part "
+    "I ch. 4), implemented as written; the same formula with the 747's own tail (JSBSim B747: S_t "
+    "1,469.6 ft², l_t 106.6 ft; a_t ≈ 3.9/rad and dε/dα ≈ 0.45 estimated, η 0.9–1) gives −13 to −14 at M 0.8, twice the 747's "
+    "published value: the gap is the quasi-steady theory's against flight-derived data (the wing's own "
+    "α̇ lift and the bound vorticity's unlagged share of the tail downwash are not in it), not an error "
+    "of the implementation; §25.181 does not depend on it (tests/rules/test_r25_181.py). "
+    "docs/baseline-sources.md §5a",
+)
 @pytest.mark.parametrize("mach, published", [(0.8, -6.41), (0.2, -3.3)])
 def test_downwash_lag_pitch_damping(model, mach, published):
     """Cm_α̇ (per unit α̇c̄/2V) against the 747's (Heffley & Jewell, CR-2144: −6.41 at M 0.8; −3.3 in power approach),

@@ -38,7 +38,9 @@ def handbook_cy_dr(ac, mach=0.2, viscous=0.8):
     a_eff = 1.5 * v.aspect_ratio
     sweep_half = planform.sweep_at(0.5, v.sweep_quarter_chord, 2 * v.aspect_ratio, v.taper)  # fin = half wing
     beta2 = 1 - mach**2
-    a_v = 2 * math.pi * a_eff / (2 + math.sqrt(4 + a_eff**2 * beta2 / 0.95**2 * (1 + math.tan(sweep_half) ** 2 / beta2)))
+    a_v = (
+        2 * math.pi * a_eff / (2 + math.sqrt(4 + a_eff**2 * beta2 / 0.95**2 * (1 + math.tan(sweep_half) ** 2 / beta2)))
+    )
     theta_f = math.acos(2 * rud.chord_ratio - 1)
     tau = (1 - (theta_f - math.sin(theta_f)) / math.pi) * viscous * 1.1
     return a_v * tau * 0.95 * 0.95 * v.area / ac.reference.area
@@ -56,8 +58,10 @@ def fin_arm(ac, x_cg):
 def test_rudder_side_force_against_datcom(rudder):
     ac, model, cy_dr, cn_dr = rudder
     low, high = handbook_cy_dr(ac), handbook_cy_dr(ac, viscous=1.0)
-    print(f"CY_δr lattice {cy_dr:.4f}/rad, handbook {low:.4f} (viscous) – {high:.4f} (inviscid)/rad; "
-          f"Cn_δr lattice {cn_dr:.4f}/rad")
+    print(
+        f"CY_δr lattice {cy_dr:.4f}/rad, handbook {low:.4f} (viscous) – {high:.4f} (inviscid)/rad; "
+        f"Cn_δr lattice {cn_dr:.4f}/rad"
+    )
     assert 0.97 * low <= cy_dr <= 1.03 * high
 
 

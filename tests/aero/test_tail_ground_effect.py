@@ -9,8 +9,17 @@ import numpy as np
 import pytest
 
 from certkit.models.aero import planform
-from certkit.models.aero.tail_ground_effect import (LiftingLine, downwash_ratio, downwash_table, induced_upwash,
-                                                    lifting_line, mirror, span_load, vertical_velocity, wing_horseshoes)
+from certkit.models.aero.tail_ground_effect import (
+    LiftingLine,
+    downwash_ratio,
+    downwash_table,
+    induced_upwash,
+    lifting_line,
+    mirror,
+    span_load,
+    vertical_velocity,
+    wing_horseshoes,
+)
 
 
 def hand_horseshoe_downwash(l, z, s):

@@ -66,7 +66,18 @@ def test_symmetry_no_lateral_output(transport_lattice):
     CY, Cl, Cn vanish (tolerance 1e-10) and lateral-by-longitudinal derivatives too."""
     d = transport_lattice.stability_derivatives(alpha=0.06, q_hat=0.01, controls={"elevator": -0.02})
     sol = d.solution
-    for value in (sol.CY, sol.Cl, sol.Cn, sol.Cl_body, sol.Cn_body, d["CY_alpha"], d["Cl_alpha"], d["Cn_q"], d["CL_beta"], d["Cm_p"]):
+    for value in (
+        sol.CY,
+        sol.Cl,
+        sol.Cn,
+        sol.Cl_body,
+        sol.Cn_body,
+        d["CY_alpha"],
+        d["Cl_alpha"],
+        d["Cn_q"],
+        d["CL_beta"],
+        d["Cm_p"],
+    ):
         assert abs(value) < 1e-10
     y = sol.strips.for_surface("wing").c_cn
     y_mirror = sol.strips.for_surface("wing (YDUP)").c_cn
@@ -94,10 +105,18 @@ def test_derivatives_match_finite_differences(transport_lattice):
     """Reference: central finite differences of ``solve`` (step 1e-5). The analytic (superposition)
     derivatives must agree to 1e-5 relative / 1e-7 absolute, in stability and body axes."""
     vl = transport_lattice
-    base = dict(alpha=0.04, beta=0.02, p_hat=0.01, q_hat=0.005, r_hat=-0.01, controls={"elevator": 0.01, "aileron": 0.02})
+    base = dict(
+        alpha=0.04, beta=0.02, p_hat=0.01, q_hat=0.005, r_hat=-0.01, controls={"elevator": 0.01, "aileron": 0.02}
+    )
     for axes in ("stability", "body"):
         d = vl.stability_derivatives(**base, axes=axes)
-        for var, arg in (("alpha", "alpha"), ("beta", "beta"), ("p", "p_hat"), ("r", "r_hat"), ("delta_aileron", "aileron")):
+        for var, arg in (
+            ("alpha", "alpha"),
+            ("beta", "beta"),
+            ("p", "p_hat"),
+            ("r", "r_hat"),
+            ("delta_aileron", "aileron"),
+        ):
             h = 1e-5
             vals = []
             for sgn in (1, -1):
@@ -125,7 +144,12 @@ def test_batch_coefficients_match_solve(transport_lattice):
     c = vl.coefficients(AeroState(alpha=alpha, beta=beta, p_hat=p, q_hat=0.01, controls={"elevator": de}))
     for i in range(7):
         s = vl.solve(alpha[i], beta[i], p[i], 0.01, 0.0, {"elevator": de[i]}, rate_axes="body")
-        np.testing.assert_allclose([c.CL[i], c.CD[i], c.CY[i], c.Cl[i], c.Cm[i], c.Cn[i]], [s.CL, s.CD, s.CY, s.Cl_body, s.Cm, s.Cn_body], rtol=1e-10, atol=1e-12)
+        np.testing.assert_allclose(
+            [c.CL[i], c.CD[i], c.CY[i], c.Cl[i], c.Cm[i], c.Cn[i]],
+            [s.CL, s.CD, s.CY, s.Cl_body, s.Cm, s.Cn_body],
+            rtol=1e-10,
+            atol=1e-12,
+        )
 
 
 def test_spanwise_loading_integrates_to_total(transport_lattice):

@@ -31,7 +31,9 @@ REFERENCE = Path(__file__).parents[2] / ".." / "shared" / "reference" / "avl-b73
 B737 = REFERENCE / "b737.avl"
 STOCK = REFERENCE / "stock_avl_outputs" / "b737_avl352_dermats.st"
 
-needs_reference = pytest.mark.skipif(not (B737.is_file() and STOCK.is_file()), reason=f"AVL reference data not found in {REFERENCE.resolve()}")
+needs_reference = pytest.mark.skipif(
+    not (B737.is_file() and STOCK.is_file()), reason=f"AVL reference data not found in {REFERENCE.resolve()}"
+)
 
 # our key -> (AVL .st name, optvl stability-derivative key)
 STABILITY = {
@@ -45,7 +47,13 @@ STABILITY = {
     "Cl_p": ("Clp", "dCl'/dp'"),
     "Cn_r": ("Cnr", "dCn'/dr'"),
 }
-CONTROL_COEFFICIENTS = {"CL": ("CLd", "CL"), "CY": ("CYd", "CY"), "Cl": ("Cld", "Cl'"), "Cm": ("Cmd", "Cm"), "Cn": ("Cnd", "Cn'")}
+CONTROL_COEFFICIENTS = {
+    "CL": ("CLd", "CL"),
+    "CY": ("CYd", "CY"),
+    "Cl": ("Cld", "Cl'"),
+    "Cm": ("Cmd", "Cm"),
+    "Cn": ("Cnd", "Cn'"),
+}
 CONTROLS = ("elevator", "aileron", "rudder")
 
 
@@ -105,7 +113,12 @@ def b737_optvl(b737_stock):
     solver.set_constraint("alpha", "CL", 0.544438)
     solver.set_constraint("elevator", "Cm", 0.0)
     solver.execute_run()
-    return solver.get_stab_derivs(), solver.get_control_stab_derivs(), solver.get_total_forces(), solver.get_reference_data()
+    return (
+        solver.get_stab_derivs(),
+        solver.get_control_stab_derivs(),
+        solver.get_total_forces(),
+        solver.get_reference_data(),
+    )
 
 
 @needs_reference

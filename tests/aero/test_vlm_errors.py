@@ -37,10 +37,22 @@ def wing(sections, **kw):
     "sections, fragment",
     [
         ([Section((0, 0, 0), 1.0), Section((0.5, 0, 0), 1.0)], "sections 1 and 2: no span"),
-        ([Section((0, 0, 0), 1.0), Section((0, 5, 0), 1.0), Section((0, 2, 0), 1.0)], "section 2: the surface folds back"),
+        (
+            [Section((0, 0, 0), 1.0), Section((0, 5, 0), 1.0), Section((0, 2, 0), 1.0)],
+            "section 2: the surface folds back",
+        ),
         ([Section((0, 0, 0), 1.0), Section((0, 5, 0), 0.0)], "section 2: chord 0.0"),
-        ([Section((0, 0, 0), 1.0, controls=[ControlSurface("flap", 0.7)]), Section((0, 5, 0), 1.0)], "section 1: control 'flap' is on no neighbouring section"),
-        ([Section((0, 0, 0), 1.0, controls=[ControlSurface("flap", 1.7)]), Section((0, 5, 0), 1.0, controls=[ControlSurface("flap", 1.7)])], "hinge x/c 1.7 outside the chord"),
+        (
+            [Section((0, 0, 0), 1.0, controls=[ControlSurface("flap", 0.7)]), Section((0, 5, 0), 1.0)],
+            "section 1: control 'flap' is on no neighbouring section",
+        ),
+        (
+            [
+                Section((0, 0, 0), 1.0, controls=[ControlSurface("flap", 1.7)]),
+                Section((0, 5, 0), 1.0, controls=[ControlSurface("flap", 1.7)]),
+            ],
+            "hinge x/c 1.7 outside the chord",
+        ),
         ([Section((0, 0, 0), 1.0)], "needs at least two sections"),
     ],
 )
@@ -64,7 +76,9 @@ def test_too_few_spanwise_vortices_for_sections():
 def test_trapezoid_control_outside_surface():
     """Reference: the trapezoid helper's contract: control span fractions within [0, 1]."""
     with pytest.raises(GeometryError, match="surface 'wing': control 'aileron' span fractions"):
-        trapezoidal_surface("wing", area=10, aspect_ratio=8, taper=0.5, controls=[ControlSpan("aileron", 0.8, 1.2, 0.25)])
+        trapezoidal_surface(
+            "wing", area=10, aspect_ratio=8, taper=0.5, controls=[ControlSpan("aileron", 0.8, 1.2, 0.25)]
+        )
     with pytest.raises(GeometryError, match="surface 'wing': aspect ratio must be positive"):
         trapezoidal_surface("wing", area=10, aspect_ratio=0.0, taper=0.5)
 
@@ -84,8 +98,16 @@ def test_nearly_coincident_surfaces(gap):
     apart (1e-5 of the span) must be solved with the single wing's CL_α (to 1e-6); at 1e-9 m the two rows
     agree to rounding (condition number ~1e20, above the 1e12 limit) and the solver must refuse, naming the copy."""
     w = trapezoidal_surface("wing", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1)
-    w2 = trapezoidal_surface("wing copy", area=10, aspect_ratio=8, taper=0.5, n_chord=4, n_span=8, component=1,
-                             root_leading_edge=(0.0, 0.0, gap))
+    w2 = trapezoidal_surface(
+        "wing copy",
+        area=10,
+        aspect_ratio=8,
+        taper=0.5,
+        n_chord=4,
+        n_span=8,
+        component=1,
+        root_leading_edge=(0.0, 0.0, gap),
+    )
     if gap < 1e-6:
         with pytest.raises(SingularLatticeError, match=r"singular near vortex \d+ \(surface 'wing copy'\)"):
             VortexLattice(config(w, w2))
@@ -149,7 +171,8 @@ def test_body_skipped_with_warning_and_comments(tmp_path):
     """Reference: AVL file format (BODY blocks, ``#``/``!`` comments, keywords by 4 letters). A BODY
     is skipped with a warning that says so; the surface around it still reads."""
     path = tmp_path / "body.avl"
-    path.write_text(avl_text("""\
+    path.write_text(
+        avl_text("""\
         # comment line
         BODY
         fuselage
@@ -170,7 +193,8 @@ def test_body_skipped_with_warning_and_comments(tmp_path):
         0 5 0 1 0
         CDCL
         0 0.01 0.5 0.008 1.0 0.02
-        """))
+        """)
+    )
     with pytest.warns(UserWarning, match="BODY 'fuselage' skipped"):
         cfg = read_avl(path)
     (s,) = cfg.surfaces
@@ -183,9 +207,17 @@ def test_control_edge_closer_to_the_tip_than_one_strip():
     """A control ending 0.13 % of the semispan short of the tip (a design study's corner) gets a narrow strip of its
     own instead of an error; its effectiveness is continuous with the control that reaches the tip (within 1 %: the
     shifted strip edges change the discretisation by about 0.2 %) and above that of a control ending at 0.98."""
+
     def cl_delta(eta_out):
-        s = trapezoidal_surface("tail", area=100.0, aspect_ratio=4.5, taper=0.35, sweep_quarter_chord=0.6, n_span=20,
-                                controls=[ControlSpan("elevator", 0.002, eta_out, 0.3)])
+        s = trapezoidal_surface(
+            "tail",
+            area=100.0,
+            aspect_ratio=4.5,
+            taper=0.35,
+            sweep_quarter_chord=0.6,
+            n_span=20,
+            controls=[ControlSpan("elevator", 0.002, eta_out, 0.3)],
+        )
         vl = VortexLattice(Configuration([s], AeroReference(100.0, math.sqrt(450.0), 5.0, 0.0)), mach=0.3)
         d = 1e-3
         return (vl.solve(controls={"elevator": d}).CL - vl.solve(controls={"elevator": -d}).CL) / (2 * d)

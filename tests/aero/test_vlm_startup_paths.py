@@ -40,8 +40,12 @@ def lattice_args():
     rng = np.random.default_rng(0)
     own = np.arange(m, dtype=np.int64)
     own[::3] = -1
-    return lat, coords, own, (np.ascontiguousarray(rng.random((1, n)) * 1e-3),
-                              np.ascontiguousarray(rng.random((m, n)) * 1e-3))
+    return (
+        lat,
+        coords,
+        own,
+        (np.ascontiguousarray(rng.random((1, n)) * 1e-3), np.ascontiguousarray(rng.random((m, n)) * 1e-3)),
+    )
 
 
 def test_numpy_biot_savart_equals_the_compiled_loops_bit_for_bit(lattice_args):
@@ -80,7 +84,7 @@ def test_spline_equals_scipys_on_random_knots(n):
 def test_spline_reproduces_polynomials_of_its_degree(n):
     """Not-a-knot reproduces a cubic (n ≥ 4), the parabola through 3 points, the line through 2."""
     x = np.sort(np.random.default_rng(7).random(n)) * 2.0 - 0.5
-    coef = [0.3, -1.2, 0.7, 2.0][-min(n, 4):]
+    coef = [0.3, -1.2, 0.7, 2.0][-min(n, 4) :]
     y, dy = np.polyval(coef, x), np.polyder(coef)
     xq = np.linspace(-0.6, 1.6, 50)
     assert np.allclose(NotAKnotSpline(x, y).derivative(xq), np.polyval(dy, xq), rtol=0, atol=1e-9)
@@ -93,8 +97,10 @@ NOT_LOADED = ("numba", "scipy", "numpy.ma", "certkit.study.cli")
 
 
 def test_derivatives_process_imports_nothing_it_does_not_need():
-    code = ("import sys\nfrom certkit.cli.main import main\nsys.argv = ['certkit', 'derivatives', sys.argv[1]]\n"
-            "try:\n    main()\nexcept SystemExit:\n    pass\n"
-            f"print('LOADED', [m for m in {NOT_LOADED!r} if m in sys.modules])")
+    code = (
+        "import sys\nfrom certkit.cli.main import main\nsys.argv = ['certkit', 'derivatives', sys.argv[1]]\n"
+        "try:\n    main()\nexcept SystemExit:\n    pass\n"
+        f"print('LOADED', [m for m in {NOT_LOADED!r} if m in sys.modules])"
+    )
     out = subprocess.run([sys.executable, "-c", code, str(AVL)], capture_output=True, text=True, cwd=ROOT).stdout
     assert out.strip().splitlines()[-1] == "LOADED []"

@@ -32,8 +32,12 @@ def test_sign_conventions_of_the_baseline(clean):
 def test_batch_of_500_states_in_one_call(clean):
     rng = np.random.default_rng(1)
     n = 500
-    state = AeroState(alpha=rng.uniform(-0.05, 0.15, n), beta=rng.uniform(-0.05, 0.05, n), mach=rng.uniform(0.2, 0.85, n),
-                      controls={"elevator": rng.uniform(-0.2, 0.2, n)})
+    state = AeroState(
+        alpha=rng.uniform(-0.05, 0.15, n),
+        beta=rng.uniform(-0.05, 0.05, n),
+        mach=rng.uniform(0.2, 0.85, n),
+        controls={"elevator": rng.uniform(-0.2, 0.2, n)},
+    )
     c = clean.model.coefficients(state)
     assert c.CL.shape == (n,) and np.all(np.isfinite(c.Cm))
     # linear region: lift follows CL0 + CL_alpha alpha at each Mach
@@ -68,12 +72,15 @@ def test_declared_tables_replace_the_lattice_without_geometry(tmp_path):
 
 def test_overrides_replace_estimates_and_are_recorded(tmp_path):
     f = tmp_path / "o.yaml"
-    f.write_text(BASELINE.read_text() + textwrap.dedent("""
+    f.write_text(
+        BASELINE.read_text()
+        + textwrap.dedent("""
         aerodynamics:
           overrides_source: wind-tunnel entry WT-42 (test)
           overrides:
             clean: {Cm_alpha: -1.5, CD0: 0.0175}
-    """))
+    """)
+    )
     aero = Context(load_aircraft(f)).aero("clean")
     assert float(aero.model.derivative("Cm_alpha", 0.5)) == -1.5
     assert aero.overrides["Cm_alpha"]["value"] == -1.5 and len(aero.overrides["Cm_alpha"]["estimate"]) == len(aero.mach)
@@ -111,24 +118,29 @@ def test_derivatives_command_bad_input_exit_2(tmp_path):
 
     bad = tmp_path / "bad.avl"
     bad.write_text("title\n0.5\n0 0 0\n-1 1 1\n0 0 0\n")
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "derivatives", str(bad)], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "certkit.cli", "derivatives", str(bad)], capture_output=True, text=True
+    )
     assert proc.returncode == 2 and "Traceback" not in proc.stderr and "bad.avl" in proc.stderr
 
 
 def test_report_lists_every_override(tmp_path):
     """The report lists every coefficient the aircraft file overrides (models.aerodynamics)."""
-    from certkit.report.html import render_html
     from certkit.engine.registry import discover
-    from certkit.engine.scheduler import _merge_provenance
     from certkit.engine.results import RunResult
+    from certkit.engine.scheduler import _merge_provenance
+    from certkit.report.html import render_html
 
     f = tmp_path / "o.yaml"
-    f.write_text(BASELINE.read_text() + textwrap.dedent("""
+    f.write_text(
+        BASELINE.read_text()
+        + textwrap.dedent("""
         aerodynamics:
           overrides_source: flight-test polar FT-7 (test)
           overrides:
             clean: {CD0: 0.0171}
-    """))
+    """)
+    )
     ctx = Context(load_aircraft(f))
     ctx.aero("clean")
     ctx.loading(ctx.aircraft.mass.MTOW, 29.0, "test loading")

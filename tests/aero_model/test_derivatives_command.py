@@ -18,8 +18,14 @@ from click.testing import CliRunner
 from certkit.cli.main import main
 from tests.conftest import BASELINE, SHARED_REFERENCE
 
-AVL = next((p for p in (SHARED_REFERENCE / "avl-b737" / "b737.avl", Path("/work/shared/reference/avl-b737/b737.avl"))
-            if p.exists()), None)
+AVL = next(
+    (
+        p
+        for p in (SHARED_REFERENCE / "avl-b737" / "b737.avl", Path("/work/shared/reference/avl-b737/b737.avl"))
+        if p.exists()
+    ),
+    None,
+)
 
 
 def _json(*args):

@@ -15,8 +15,9 @@ from ..conftest import BASELINE
 def _tail_off(aircraft, configuration, cl_alpha):
     """Raymer's tail-off flap increments (eq. 12.22 and the centre of the flap load at half chord)."""
     w, r = aircraft.geometry.wing, aircraft.reference
-    return lift_and_moment_increment(w, w.flaps, aircraft.configurations[configuration].flap, cl_alpha,
-                                     r.moment_point.x, r.mean_chord)
+    return lift_and_moment_increment(
+        w, w.flaps, aircraft.configurations[configuration].flap, cl_alpha, r.moment_point.x, r.mean_chord
+    )
 
 
 @pytest.fixture(scope="module")
@@ -46,7 +47,8 @@ def test_declared_tail_share_replaces_the_lattice_estimate(tmp_path):
     """configurations.<name>.tail_flap_increment (e.g. wind-tunnel tail-on minus tail-off) is added as declared."""
     text = BASELINE.read_text().replace(
         "    delta_CD0: 0.0120\n",
-        "    delta_CD0: 0.0120\n    tail_flap_increment: {delta_CL: -0.02, delta_Cm: 0.05, source: test entry}\n")
+        "    delta_CD0: 0.0120\n    tail_flap_increment: {delta_CL: -0.02, delta_Cm: 0.05, source: test entry}\n",
+    )
     f = tmp_path / "declared.yaml"
     f.write_text(text)
     ctx = Context(load_aircraft(f))
@@ -64,12 +66,15 @@ def test_alpha_dot_terms_reach_the_model_and_can_be_overridden(tmp_path, baselin
     cl_ad, cm_ad = model.alpha_dot_derivatives(0.5)
     assert cl_ad > 0 > cm_ad
     f = tmp_path / "o.yaml"
-    f.write_text(BASELINE.read_text() + textwrap.dedent("""
+    f.write_text(
+        BASELINE.read_text()
+        + textwrap.dedent("""
         aerodynamics:
           overrides_source: flight-test match (test)
           overrides:
             clean: {Cm_alphadot: -4.0, CL_alphadot: 1.5}
-    """))
+    """)
+    )
     aero = Context(load_aircraft(f)).aero("clean")
     assert tuple(float(v) for v in aero.model.alpha_dot_derivatives(0.5)) == (1.5, -4.0)
     assert aero.overrides["Cm_alphadot"]["estimate"] is not None
@@ -80,14 +85,18 @@ def test_declared_derivative_tables_keep_their_alpha_dot_terms(tmp_path):
     text = BASELINE.read_text()
     start, end = text.index("geometry:\n"), text.index("mass:\n")
     f = tmp_path / "tables.yaml"
-    f.write_text(text[:start] + text[end:] + textwrap.dedent("""
+    f.write_text(
+        text[:start]
+        + text[end:]
+        + textwrap.dedent("""
         aerodynamics:
           derivative_tables:
             clean:
               source: test data
               mach: [0.25, 0.9]
               derivatives: {CL0: 0.3, CL_alpha: 5.0, Cm_alpha: -1.2, Cm_q: -20.0, CD0: 0.018, k: 0.045}
-    """))
+    """)
+    )
     model = Context(load_aircraft(f)).aero("clean").model
     assert np.allclose(model.alpha_dot_derivatives(0.5), 0.0)
 
@@ -99,8 +108,12 @@ def test_tail_share_without_flaps_is_an_input_error(tmp_path):
 
     text = BASELINE.read_text().replace(
         '    source: "[given]"\n',
-        '    source: "[given]"\n    tail_flap_increment: {delta_CL: -0.02, delta_Cm: 0.05, source: test entry}\n', 1)
+        '    source: "[given]"\n    tail_flap_increment: {delta_CL: -0.02, delta_Cm: 0.05, source: test entry}\n',
+        1,
+    )
     f = tmp_path / "clean_share.yaml"
     f.write_text(text)
-    with pytest.raises(InputError, match=r"clean_share.yaml:\d+: configurations\.clean\.tail_flap_increment: .*flap 0 deg"):
+    with pytest.raises(
+        InputError, match=r"clean_share.yaml:\d+: configurations\.clean\.tail_flap_increment: .*flap 0 deg"
+    ):
         load_aircraft(f)

@@ -28,8 +28,12 @@ def test_delta_clmax_and_zero_lift_shift_by_hand(baseline):
     flaps = wing.flaps
     ratio = hl.flapped_area_ratio(wing, flaps)
     hinge = planform.sweep_at(1 - flaps.chord_ratio, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)
-    assert hl.delta_clmax(wing, flaps, math.radians(40)) == pytest.approx(0.9 * 1.3 * ratio * math.cos(hinge), rel=1e-12)
-    assert hl.delta_clmax(wing, flaps, math.radians(20)) == pytest.approx(0.5 * hl.delta_clmax(wing, flaps, math.radians(40)))
+    assert hl.delta_clmax(wing, flaps, math.radians(40)) == pytest.approx(
+        0.9 * 1.3 * ratio * math.cos(hinge), rel=1e-12
+    )
+    assert hl.delta_clmax(wing, flaps, math.radians(20)) == pytest.approx(
+        0.5 * hl.delta_clmax(wing, flaps, math.radians(40))
+    )
     d_cl, d_cm = hl.lift_and_moment_increment(wing, flaps, math.radians(40), 5.0, 29.64, 8.37)
     assert d_cl == pytest.approx(-5.0 * math.radians(-15) * ratio * math.cos(hinge), rel=1e-12)
     assert d_cm < 0  # flap load aft of the reference point: nose down

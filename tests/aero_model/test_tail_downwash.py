@@ -41,8 +41,16 @@ def _elliptic_wing(flap: bool) -> Surface:
 
 
 def _far_tail(height: float) -> Surface:
-    return trapezoidal_surface("horizontal_tail", area=0.02 * S_ELL, aspect_ratio=5.0, taper=1.0,
-                               root_leading_edge=(10 * B_ELL, 0.0, height), n_chord=4, n_span=10, component=2)
+    return trapezoidal_surface(
+        "horizontal_tail",
+        area=0.02 * S_ELL,
+        aspect_ratio=5.0,
+        taper=1.0,
+        root_leading_edge=(10 * B_ELL, 0.0, height),
+        n_chord=4,
+        n_span=10,
+        component=2,
+    )
 
 
 def _elliptic_sheet_factor(y, h, s):
@@ -91,7 +99,11 @@ def _datcom_downwash_gradient(aircraft) -> float:
         c_root = 2 * s.area / (b * (1 + s.taper))
         c_mac = 2 / 3 * c_root * (1 + s.taper + s.taper**2) / (1 + s.taper)
         x_root_quarter = s.root_leading_edge.x + 0.25 * c_root
-        return x_root_quarter + y * math.tan(s.sweep_quarter_chord), s.root_leading_edge.z + y * math.tan(s.dihedral), c_mac
+        return (
+            x_root_quarter + y * math.tan(s.sweep_quarter_chord),
+            s.root_leading_edge.z + y * math.tan(s.dihedral),
+            c_mac,
+        )
 
     A, lam, b = w.aspect_ratio, w.taper, math.sqrt(w.area * w.aspect_ratio)
     xw, zw, _ = mac_quarter_point(w)

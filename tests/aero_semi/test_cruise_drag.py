@@ -98,8 +98,14 @@ def test_flight_reynolds_lowers_skin_friction_drag(baseline):
     unsourced), so that guess is not used as a criterion here (an open point of the report)."""
     ac = baseline.model
     parts = [c for c in drag.airframe_components(ac.geometry) if c.name in {"wing", "fuselage", "horizontal tail"}]
-    tunnel = drag.parasite_drag(ac.geometry, ac.reference, 0.85, H_CRUISE, components=parts,
-                                reynolds_per_metre_override=5.0e6 / ac.reference.mean_chord)
+    tunnel = drag.parasite_drag(
+        ac.geometry,
+        ac.reference,
+        0.85,
+        H_CRUISE,
+        components=parts,
+        reynolds_per_metre_override=5.0e6 / ac.reference.mean_chord,
+    )
     flight = drag.parasite_drag(ac.geometry, ac.reference, 0.85, H_CRUISE, components=parts)
     for t, f in zip(tunnel.components, flight.components):
         assert f.CD0 / t.CD0 == pytest.approx(f.skin_friction / t.skin_friction, rel=1e-12)

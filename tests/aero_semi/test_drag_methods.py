@@ -113,14 +113,21 @@ def test_oswald_efficiency_in_a_sane_band(baseline):
     the band of jet transports in their paper; the planform factor is ≤ 1 and highest near the
     optimum taper of an unswept wing, λ ≈ 0.45 (their Δλ at Λ = 0)."""
     g, ref = baseline.model.geometry, baseline.model.reference
-    e = drag.oswald_efficiency(g.wing.aspect_ratio, g.wing.taper, g.wing.sweep_quarter_chord,
-                               drag.equivalent_diameter(g.fuselage.width, g.fuselage.height), ref.span)
+    e = drag.oswald_efficiency(
+        g.wing.aspect_ratio,
+        g.wing.taper,
+        g.wing.sweep_quarter_chord,
+        drag.equivalent_diameter(g.fuselage.width, g.fuselage.height),
+        ref.span,
+    )
     assert 0.75 < e < 0.90
     tapers = np.linspace(0.05, 1.0, 96)
     e_theo = drag.planform_span_efficiency(10.0, tapers, 0.0)
     assert np.all(e_theo <= 1.0)
     assert tapers[np.argmax(e_theo)] == pytest.approx(0.45, abs=0.02)
-    assert drag.oswald_efficiency(9, 0.3, 0.5, 6, 60, inviscid_span_efficiency=0.98) == pytest.approx(0.98 * drag.K_E_CD0_JET)
+    assert drag.oswald_efficiency(9, 0.3, 0.5, 6, 60, inviscid_span_efficiency=0.98) == pytest.approx(
+        0.98 * drag.K_E_CD0_JET
+    )
 
 
 def test_induced_drag_elliptic_case():

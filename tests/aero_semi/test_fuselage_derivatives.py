@@ -58,6 +58,8 @@ def test_scaling_laws():
     b = fz.cm_alpha_fuselage(60.0, 12.0, 21.0, 400.0, 8.0)
     assert b / a == pytest.approx(4.0, rel=1e-12)
     assert fz.cn_beta_fuselage(2000.0, 6, 6, 400, 60) / fz.cn_beta_fuselage(1000.0, 6, 6, 400, 60) == pytest.approx(2.0)
+
+
 def test_cy_beta_body_by_hand(baseline):
     """DATCOM 5.2.1.1 with K_i = 1: ΔCY_β = −2 (π/4 W D)/S; baseline 20.76 × 20.23 ft on 4927.3 ft²."""
     import math

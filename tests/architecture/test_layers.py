@@ -16,8 +16,18 @@ ROOT = Path(__file__).resolve().parents[2]
 
 #: (layer name, the packages or modules it holds), bottom first. A module belongs to the longest prefix that names it.
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
-    ("base", ("certkit.units", "certkit.atmosphere", "certkit.errors", "certkit.conventions", "certkit.interrupts",
-              "certkit.user_cache", "certkit")),
+    (
+        "base",
+        (
+            "certkit.units",
+            "certkit.atmosphere",
+            "certkit.errors",
+            "certkit.conventions",
+            "certkit.interrupts",
+            "certkit.user_cache",
+            "certkit",
+        ),
+    ),
     ("aircraft file", ("certkit.aircraft",)),
     ("models", ("certkit.models",)),
     ("engine", ("certkit.engine",)),
@@ -30,11 +40,15 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 
 #: (importing module, imported module): why it is not an upward dependency.
 ALLOWED_UPWARD: dict[tuple[str, str], str] = {
-    ("certkit.engine.registry", "certkit_rules"):
-        "discovery: the registry loads the built-in rules package by name, as it loads plugins' entry points",
-    ("certkit.study.analysis.figures", "certkit.report.plots"):
-        "the study report's figures use the report's SVG primitives; the study report's drawing is to join the "
-        "report package, its analysis staying in the study",
+    (
+        "certkit.engine.registry",
+        "certkit_rules",
+    ): "discovery: the registry loads the built-in rules package by name, as it loads plugins' entry points",
+    (
+        "certkit.study.analysis.figures",
+        "certkit.report.plots",
+    ): "the study report's figures use the report's SVG primitives; the study report's drawing is to join the "
+    "report package, its analysis staying in the study",
 }
 
 #: The source folders and the package each holds.
@@ -71,7 +85,7 @@ def imports(path: Path, module: str):
             base = node.module or ""
             if node.level:
                 anchor = package.split(".")
-                anchor = anchor[:len(anchor) - (node.level - 1)]
+                anchor = anchor[: len(anchor) - (node.level - 1)]
                 base = ".".join(anchor + ([base] if base else []))
             for alias in node.names:  # from certkit import report
                 yield node.lineno, (f"{base}.{alias.name}", base)
@@ -90,8 +104,10 @@ def upward_imports(sources=SOURCES) -> list[str]:
                     continue
                 if any(module == m and (name == a or name.startswith(a + ".")) for m, a in ALLOWED_UPWARD):
                     continue
-                found.append(f"{path.relative_to(path.parents[len(path.relative_to(folder).parts)])}:{line}: "
-                             f"{module} ({LAYERS[own][0]}) imports {name} ({LAYERS[target][0]})")
+                found.append(
+                    f"{path.relative_to(path.parents[len(path.relative_to(folder).parts)])}:{line}: "
+                    f"{module} ({LAYERS[own][0]}) imports {name} ({LAYERS[target][0]})"
+                )
     return sorted(set(found))
 
 
@@ -109,12 +125,15 @@ def test_the_tree_shows_the_layers():
     assert packages <= declared, f"packages in no declared layer: {sorted(packages - declared)}"
 
 
-@pytest.mark.parametrize("source, expected", [
-    ("from certkit.engine.results import Finding\n", "(models) imports certkit.engine.results.Finding (engine)"),
-    ("def f():\n    from certkit.report import figures\n", "imports certkit.report.figures (report)"),
-    ("from certkit import cli\n", "imports certkit.cli (cli)"),
-    ("import certkit_rules.part25\n", "imports certkit_rules.part25 (rules)"),
-])
+@pytest.mark.parametrize(
+    "source, expected",
+    [
+        ("from certkit.engine.results import Finding\n", "(models) imports certkit.engine.results.Finding (engine)"),
+        ("def f():\n    from certkit.report import figures\n", "imports certkit.report.figures (report)"),
+        ("from certkit import cli\n", "imports certkit.cli (cli)"),
+        ("import certkit_rules.part25\n", "imports certkit_rules.part25 (rules)"),
+    ],
+)
 def test_a_deliberately_wrong_import_is_found(tmp_path, source, expected):
     """The scan itself: a models module importing upward, lazily or not, in each import form, is reported."""
     folder = tmp_path / "certkit"
@@ -136,7 +155,10 @@ def test_a_relative_import_is_resolved(tmp_path):
 def test_evidence_data_draws_nothing():
     """Rules return evidence as data; only the report draws: the evidence package imports no plotting library."""
     folder = ROOT / "certkit" / "engine" / "evidence"
-    drawing = [f"{path.name}:{line}: {names[0]}" for path in sorted(folder.rglob("*.py"))
-               for line, names in imports(path, module_name(path, ROOT / "certkit", "certkit"))
-               if names[0].split(".")[0] == "matplotlib" or names[-1].split(".")[0] == "matplotlib"]
+    drawing = [
+        f"{path.name}:{line}: {names[0]}"
+        for path in sorted(folder.rglob("*.py"))
+        for line, names in imports(path, module_name(path, ROOT / "certkit", "certkit"))
+        if names[0].split(".")[0] == "matplotlib" or names[-1].split(".")[0] == "matplotlib"
+    ]
     assert list(folder.rglob("*.py")) and drawing == []

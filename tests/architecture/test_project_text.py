@@ -32,8 +32,12 @@ def test_no_development_history_in_the_project_text():
 
 def test_the_scan_finds_planted_wording(tmp_path):
     (tmp_path / "docs").mkdir()
-    (tmp_path / "docs" / "a.md").write_text("ok\nas measured in session 9\n(EASA TCDS IM.A.003, Issue 16 (30 Jul 2020))\n")
+    (tmp_path / "docs" / "a.md").write_text(
+        "ok\nas measured in session 9\n(EASA TCDS IM.A.003, Issue 16 (30 Jul 2020))\n"
+    )
     (tmp_path / "certkit").mkdir()
     (tmp_path / "certkit" / "b.py").write_text('"""The pipeline (issue 13)."""\n')
-    assert development_wording(tmp_path) == ["docs/a.md:2: as measured in session 9",
-                                              'certkit/b.py:1: """The pipeline (issue 13)."""']
+    assert development_wording(tmp_path) == [
+        "docs/a.md:2: as measured in session 9",
+        'certkit/b.py:1: """The pipeline (issue 13)."""',
+    ]

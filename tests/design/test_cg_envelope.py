@@ -5,14 +5,12 @@ one 5 cm beyond is not); the moment balance (a heavier tail aft of every corner 
 so the most forward CG the loading reaches moves aft); the declared envelope bounds every corner.
 """
 
-
 from certkit.aircraft import load_aircraft
 from certkit.aircraft.model import Sizing
 from certkit.design.cg_envelope import follows_loading, loading_corners
 from certkit.engine.conditions import cg_limits_at
 from certkit.models.mass.loading import reachable_cg_range, solve_loading
 from certkit.units import LB
-
 from tests.rules.helpers import edited_baseline
 
 TAIL = "- {name: horizontal tail, group: structure, mass: 5800 lb,"

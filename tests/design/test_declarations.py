@@ -8,8 +8,16 @@ import pytest
 from certkit.design import evaluate
 from certkit.design.sizing_loop import sizing_rules
 from certkit.engine.conditions import CgCorners, ConditionSpace
-from certkit.engine.registry import (DiscoveryOptions, Loads, ModeResponses, PluginError, Rule, SimulationRule,
-                                     discover, rule)
+from certkit.engine.registry import (
+    DiscoveryOptions,
+    Loads,
+    ModeResponses,
+    PluginError,
+    Rule,
+    SimulationRule,
+    discover,
+    rule,
+)
 from certkit.engine.results import Condition, Finding, LoadsRun
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope
@@ -38,11 +46,16 @@ class TailBuffetLoads(SimulationRule):
         peaks = np.zeros((len(conditions), 2, len(QUANTITIES), len(stations)))
         peaks[:, 0, QUANTITIES.index("torsion"), stations.index("75% span")] = -BUFFET_TORSION
         peaks[:, 1, QUANTITIES.index("torsion"), stations.index("75% span")] = BUFFET_TORSION
-        env = LoadEnvelope({"horizontal_tail": stations}, {"horizontal_tail": peaks},
-                           {"horizontal_tail": np.zeros_like(peaks)}, [c.label() for c in conditions],
-                           keys=list(conditions))
-        findings = [Finding.compare(c, "buffet torsion", BUFFET_TORSION, 1e9, at_least=False, unit="N·m")
-                    for c in conditions]
+        env = LoadEnvelope(
+            {"horizontal_tail": stations},
+            {"horizontal_tail": peaks},
+            {"horizontal_tail": np.zeros_like(peaks)},
+            [c.label() for c in conditions],
+            keys=list(conditions),
+        )
+        findings = [
+            Finding.compare(c, "buffet torsion", BUFFET_TORSION, 1e9, at_least=False, unit="N·m") for c in conditions
+        ]
         return LoadsRun(findings, list(conditions), envelope=env)
 
 
@@ -71,8 +84,14 @@ def test_declarations_choose_the_sizing_rules():
     chosen = sizing_rules(rules)
     assert TailBuffetLoads in chosen.rules and PitchDamperModes not in chosen.rules
     # the built-in rules that declare tail station loads, and the pitch manoeuvres' elevator hinge moments
-    assert {r.id for r in chosen.rules} == {"25.331(b)", "25.331(c)(1)", "25.331(c)(2)", "25.341(a)", "25.349(a)",
-                                            "25.251(b)"}
+    assert {r.id for r in chosen.rules} == {
+        "25.331(b)",
+        "25.331(c)(1)",
+        "25.331(c)(2)",
+        "25.341(a)",
+        "25.349(a)",
+        "25.251(b)",
+    }
     assert chosen.hinge == {"25.331(c)(1)", "25.331(c)(2)"}
 
 

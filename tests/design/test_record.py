@@ -15,13 +15,20 @@ TRAVEL = {"elevator": (math.radians(-30.0), math.radians(25.0)), "rudder": (math
 
 def _result():
     c1, c2 = Condition(loading="fwd_mrw"), Condition(loading="aft_mrw")
-    return RuleResult("25.143(h)", "maneuvering-capability", "t", [
-        Finding.compare(c1, "(h) takeoff V2 elevator within design limit", -20.0, -21.8, at_least=True, unit="deg"),
-        Finding.compare(c2, "(h) takeoff V2 elevator within design limit", -21.0, -21.8, at_least=True, unit="deg"),
-        Finding.compare(c1, "(h) takeoff V2 rudder within design limit", 24.0, 23.2, at_least=False, unit="deg"),
-        Finding.not_evaluated(c2, "(h) takeoff V2 rudder within design limit", "trim did not converge"),
-        Finding.compare(c1, "(a) gust, wing: ultimate bending at root (max)", 9.0, 10.0, at_least=False, unit="N·m"),
-    ])
+    return RuleResult(
+        "25.143(h)",
+        "maneuvering-capability",
+        "t",
+        [
+            Finding.compare(c1, "(h) takeoff V2 elevator within design limit", -20.0, -21.8, at_least=True, unit="deg"),
+            Finding.compare(c2, "(h) takeoff V2 elevator within design limit", -21.0, -21.8, at_least=True, unit="deg"),
+            Finding.compare(c1, "(h) takeoff V2 rudder within design limit", 24.0, 23.2, at_least=False, unit="deg"),
+            Finding.not_evaluated(c2, "(h) takeoff V2 rudder within design limit", "trim did not converge"),
+            Finding.compare(
+                c1, "(a) gust, wing: ultimate bending at root (max)", 9.0, 10.0, at_least=False, unit="N·m"
+            ),
+        ],
+    )
 
 
 def test_rule_and_subcheck_responses():
@@ -45,8 +52,14 @@ def test_travel_fractions_by_direction():
 
 def test_levels_worst_per_mode_corner_configuration():
     c = Condition(loading="fwd_mrw", configuration="clean")
-    mk = lambda lv: Finding.compare(c, "(a) short period heavily damped", 0.5, 0.35, at_least=True,  # noqa: E731
-                                    modes={"short_period": {"level_A": 1, "level_B": lv, "level_B_limited_by": "x"}})
+    mk = lambda lv: Finding.compare(  # noqa: E731
+        c,
+        "(a) short period heavily damped",
+        0.5,
+        0.35,
+        at_least=True,
+        modes={"short_period": {"level_A": 1, "level_B": lv, "level_B_limited_by": "x"}},
+    )
     rules = [_rule("25.181", ModeResponses(("short_period",)))]
     levels = offered_responses([RuleResult("25.181", "dynamic-stability", "t", [mk(1), mk(2)])], rules)
     assert {k: v for k, v in levels.items() if k.startswith("level.")} == {"level.short_period.fwd_mrw.clean": 2}
@@ -59,26 +72,32 @@ def _rule(rid, *offers):
 
 
 def test_check_name_slug():
-    assert check_name("(c)(2) checked manoeuvre, nose up: ultimate bending at root (min)") == "c_2_checked_manoeuvre_nose_up"
+    assert (
+        check_name("(c)(2) checked manoeuvre, nose up: ultimate bending at root (min)")
+        == "c_2_checked_manoeuvre_nose_up"
+    )
 
 
 MODES = ModeResponses(("short_period", "phugoid"))
 
 
-@pytest.mark.parametrize("patterns, rid, offers, needed", [
-    (None, "25.103", (), True),
-    (["rule.25.331(c)(2).margin"], "25.331(c)(2)", (), True),
-    (["rule.25.331(c)(2).margin"], "25.331(c)(1)", (), False),
-    (["subcheck.25.143(h).*"], "25.143(h)", (), True),
-    (["level.*"], "25.181", (MODES,), True),
-    (["level.phugoid.fwd_mrw.clean"], "25.181", (MODES,), True),
-    (["level.*.fwd_mrw.*"], "25.181", (MODES,), True),
-    (["level.dutch_roll.*"], "25.181", (MODES,), False),
-    (["level.*"], "25.171", (), False),
-    (["travel.elevator"], "25.171", (), True),
-    (["objective.*"], "25.171", (), False),
-    (["*"], "25.171", (), True),
-])
+@pytest.mark.parametrize(
+    "patterns, rid, offers, needed",
+    [
+        (None, "25.103", (), True),
+        (["rule.25.331(c)(2).margin"], "25.331(c)(2)", (), True),
+        (["rule.25.331(c)(2).margin"], "25.331(c)(1)", (), False),
+        (["subcheck.25.143(h).*"], "25.143(h)", (), True),
+        (["level.*"], "25.181", (MODES,), True),
+        (["level.phugoid.fwd_mrw.clean"], "25.181", (MODES,), True),
+        (["level.*.fwd_mrw.*"], "25.181", (MODES,), True),
+        (["level.dutch_roll.*"], "25.181", (MODES,), False),
+        (["level.*"], "25.171", (), False),
+        (["travel.elevator"], "25.171", (), True),
+        (["objective.*"], "25.171", (), False),
+        (["*"], "25.171", (), True),
+    ],
+)
 def test_rules_needed_by_responses(patterns, rid, offers, needed):
     assert rule_needed(_rule(rid, *offers), patterns) is needed
 
@@ -92,10 +111,16 @@ def test_mission_needed():
 def test_not_evaluated_first_then_evaluated():
     """A check whose first finding could not be evaluated still takes the margin of a later evaluated one."""
     c = Condition(loading="fwd_mrw")
-    r = RuleResult("25.149", "minimum-control-speed", "t", [
-        Finding.not_evaluated(c, "(c) VMCA ≤ 1.13 VSR", "trim did not converge"),
-        Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 70.0, 80.0, at_least=False, unit="m/s"),
-        Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 75.0, 80.0, at_least=False, unit="m/s")])
+    r = RuleResult(
+        "25.149",
+        "minimum-control-speed",
+        "t",
+        [
+            Finding.not_evaluated(c, "(c) VMCA ≤ 1.13 VSR", "trim did not converge"),
+            Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 70.0, 80.0, at_least=False, unit="m/s"),
+            Finding.compare(c, "(c) VMCA ≤ 1.13 VSR", 75.0, 80.0, at_least=False, unit="m/s"),
+        ],
+    )
     out, st = rule_responses([r], {})
     assert out["subcheck.25.149.c_vmca_1_13_vsr.margin"] == pytest.approx(5.0 / 80.0)
     assert st["subcheck.25.149.c_vmca_1_13_vsr"] == "not_evaluated"
@@ -104,10 +129,22 @@ def test_not_evaluated_first_then_evaluated():
 def test_mode_quantities_of_the_condition_that_sets_the_level():
     """The record's mode.* quantities are those of the worst-level condition (lowest ζ among equal levels)."""
     c = Condition(loading="fwd_mrw", configuration="clean")
-    row = lambda z, lv: {"short_period": {"zeta": z, "wn_rad_s": 1.1, "period_s": 6.0, "t_half_s": 2.0,  # noqa: E731
-                                          "t_double_s": None, "cap": 0.4, "level_A": lv, "level_B": lv}}
-    fs = [Finding.compare(c, "(a) short period heavily damped", z, 0.3, at_least=True, modes=row(z, lv))
-          for z, lv in ((0.5, 1), (0.27, 2), (0.22, 2))]
+    row = lambda z, lv: {  # noqa: E731
+        "short_period": {
+            "zeta": z,
+            "wn_rad_s": 1.1,
+            "period_s": 6.0,
+            "t_half_s": 2.0,
+            "t_double_s": None,
+            "cap": 0.4,
+            "level_A": lv,
+            "level_B": lv,
+        }
+    }
+    fs = [
+        Finding.compare(c, "(a) short period heavily damped", z, 0.3, at_least=True, modes=row(z, lv))
+        for z, lv in ((0.5, 1), (0.27, 2), (0.22, 2))
+    ]
     out = offered_responses([RuleResult("25.181", "d", "t", fs)], [_rule("25.181", ModeResponses(("short_period",)))])
     assert out["level.short_period.fwd_mrw.clean"] == 2
     assert out["mode.short_period.zeta.fwd_mrw.clean"] == 0.22
@@ -118,11 +155,23 @@ def test_mode_quantities_of_the_condition_that_sets_the_level():
 def test_control_responses_per_case_as_fractions_of_travel():
     """control.<rule>.<case>.<control>: the largest fraction of the travel over the case's findings (by hand: 21/30
     of the −30° elevator stop, 24/27.3 of the rudder's); a case's prefix does not take another case's findings."""
-    case = ControlResponses((ControlCase("takeoff OEI V2 30deg", "(h) takeoff V2 "),
-                             ControlCase("takeoff AEO V2+XX 40deg", "(h) takeoff V2+XX ")))
+    case = ControlResponses(
+        (
+            ControlCase("takeoff OEI V2 30deg", "(h) takeoff V2 "),
+            ControlCase("takeoff AEO V2+XX 40deg", "(h) takeoff V2+XX "),
+        )
+    )
     res = _result()
-    res.findings.append(Finding.compare(Condition(loading="fwd_mrw"), "(h) takeoff V2+XX elevator within design limit",
-                                        -3.0, -21.8, at_least=True, unit="deg"))
+    res.findings.append(
+        Finding.compare(
+            Condition(loading="fwd_mrw"),
+            "(h) takeoff V2+XX elevator within design limit",
+            -3.0,
+            -21.8,
+            at_least=True,
+            unit="deg",
+        )
+    )
     out = offered_responses([res], [_rule("25.143(h)", case)], TRAVEL)
     assert out["control.25.143(h).takeoff_oei_v2_30deg.elevator"] == pytest.approx(21.0 / 30.0)
     assert out["control.25.143(h).takeoff_oei_v2_30deg.rudder"] == pytest.approx(24.0 / 27.3)

@@ -64,9 +64,11 @@ def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):
     """Capability = the sized box's; the critical station of the tail sized for these loads sits at zero margin."""
     for rec in (baseline, bigger):
         r = rec["responses"]
-        m = [r["subcheck.25.331(c)(1).c_1_maximum_pitch_control_displacement.margin"],  # the tail's (not the wing's)
-             r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_up.margin"],
-             r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_down.margin"]]
+        m = [
+            r["subcheck.25.331(c)(1).c_1_maximum_pitch_control_displacement.margin"],  # the tail's (not the wing's)
+            r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_up.margin"],
+            r["subcheck.25.331(c)(2).c_2_checked_manoeuvre_nose_down.margin"],
+        ]
         assert min(m) >= 0.0
         # fully stressed somewhere (covers or webs governed by the load, not a minimum gauge): the box is sized for the
         # union of the loop's envelopes + 2 %, so its critical station sits near 1.02 − 1 (the tail's own findings; the
@@ -80,8 +82,12 @@ def test_sized_box_is_fully_stressed_and_carries_its_loads(baseline, bigger):
 def test_oew_bookkeeping(baseline):
     """OEW = declared OEW − declared tail component + sized structure + sized actuators − baseline actuators."""
     r, d = baseline["responses"], baseline["details"]["sizing"]
-    expected = (304500 - 5800) * LB + r["sizing.ht_structure_mass_kg"] + r["sizing.actuator_mass_kg"] \
+    expected = (
+        (304500 - 5800) * LB
+        + r["sizing.ht_structure_mass_kg"]
+        + r["sizing.actuator_mass_kg"]
         - d["baseline_actuators"]["mass_kg"]
+    )
     assert r["objective.OEW_kg"] == pytest.approx(expected, abs=1e-6)
 
 
@@ -96,10 +102,17 @@ def test_actuators_sized_from_the_pitch_manoeuvre_hinge_moment(baseline):
     hm = baseline["details"]["sizing"]["group"]["hinge_moment"]
     assert hm["rule"].startswith("25.331(c)")
     # H = q̄ S_e c_e (Ch_0 + Ch_α α + Ch_δ δ): the δ term dominates at the stop; hand check of its size
-    by_hand = hm["qbar_Pa"] * hm["elevator_area_m2"] * hm["elevator_chord_m"] * abs(hm["Ch_delta_per_rad"] * hm["elevator_deg"] * 3.14159265 / 180)
+    by_hand = (
+        hm["qbar_Pa"]
+        * hm["elevator_area_m2"]
+        * hm["elevator_chord_m"]
+        * abs(hm["Ch_delta_per_rad"] * hm["elevator_deg"] * 3.14159265 / 180)
+    )
     assert hm["design_hinge_moment_Nm"] == pytest.approx(by_hand, rel=0.25)
     act = baseline["details"]["sizing"]["group"]["actuators"]
-    assert act["count"] == 4 and act["design_hinge_moment_kNm"] == pytest.approx(hm["design_hinge_moment_Nm"] / 1e3, rel=1e-3)
+    assert act["count"] == 4 and act["design_hinge_moment_kNm"] == pytest.approx(
+        hm["design_hinge_moment_Nm"] / 1e3, rel=1e-3
+    )
 
 
 def test_a_loop_that_does_not_converge_is_an_error_with_its_history():
@@ -119,5 +132,9 @@ def test_changed_design_starts_on_the_near_critical_points(bigger, monkeypatch):
     everything = parallel.evaluate_rules
     monkeypatch.setattr(parallel, "evaluate_rules", lambda *a, select=None, **kw: everything(*a, **kw))
     full = evaluate_design(BASELINE, {"geometry.horizontal_tail.area": "1300 ft^2"}, responses=LOADS_ONLY)
-    assert bigger["responses"]["sizing.ht_group_mass_kg"] == pytest.approx(full["responses"]["sizing.ht_group_mass_kg"], abs=0.5)
-    assert bigger["responses"]["rule.25.341(a).margin"] == pytest.approx(full["responses"]["rule.25.341(a).margin"], abs=1e-4)
+    assert bigger["responses"]["sizing.ht_group_mass_kg"] == pytest.approx(
+        full["responses"]["sizing.ht_group_mass_kg"], abs=0.5
+    )
+    assert bigger["responses"]["rule.25.341(a).margin"] == pytest.approx(
+        full["responses"]["rule.25.341(a).margin"], abs=1e-4
+    )

@@ -33,8 +33,12 @@ def test_value_with_unit_and_si_number(source):
 def test_planform_regenerated_in_the_lattice(source):
     """The tail's lattice follows the variables: semispan √(A S)/2 and root chord 2S/(b(1+λ)) (trapezoid), the
     root leading edge stays at the declared station; the elevator's hinge at 1 − c_e/c."""
-    values = {"geometry.horizontal_tail.area": "1300 ft^2", "geometry.horizontal_tail.aspect_ratio": 5.0,
-              "geometry.horizontal_tail.taper": 0.3, "geometry.horizontal_tail.controls.elevator.chord_ratio": 0.25}
+    values = {
+        "geometry.horizontal_tail.area": "1300 ft^2",
+        "geometry.horizontal_tail.aspect_ratio": 5.0,
+        "geometry.horizontal_tail.taper": 0.3,
+        "geometry.horizontal_tail.controls.elevator.chord_ratio": 0.25,
+    }
     a = design_aircraft(source, settings_from(values))
     tail = next(s for s in lattice_configuration(a).surfaces if s.name == "horizontal_tail")
     S, A, lam = 1300 * FT**2, 5.0, 0.3
@@ -60,12 +64,15 @@ def test_section_is_not_a_value(source):
         _design(source, geometry__horizontal_tail__controls=1.0)
 
 
-@pytest.mark.parametrize("path, value, expected", [
-    ("geometry.horizontal_tail.taper", 1.2, "less than or equal to 1"),
-    ("geometry.horizontal_tail.area", "-5 ft^2", "greater than 0"),
-    ("geometry.horizontal_tail.thickness_ratio", "thin", "thin"),
-    ("geometry.horizontal_tail.controls.elevator.span_end", 0.01, "outboard of span_start"),
-])
+@pytest.mark.parametrize(
+    "path, value, expected",
+    [
+        ("geometry.horizontal_tail.taper", 1.2, "less than or equal to 1"),
+        ("geometry.horizontal_tail.area", "-5 ft^2", "greater than 0"),
+        ("geometry.horizontal_tail.thickness_ratio", "thin", "thin"),
+        ("geometry.horizontal_tail.controls.elevator.span_end", 0.01, "outboard of span_start"),
+    ],
+)
 def test_impossible_values_are_errors_naming_the_variable(source, path, value, expected):
     with pytest.raises(DesignError) as err:
         design_aircraft(source, settings_from({path: value}))
@@ -76,8 +83,12 @@ def test_impossible_values_are_errors_naming_the_variable(source, path, value, e
 def test_tip_behind_the_fuselage_end(source):
     """A 1,343 ft², aspect-ratio 5.54 tail swept 41.78° from the declared root station puts its tip leading edge at
     x ≈ 168 + 0.5·86.3·(tan 41.78° + 0.43/(5.54·1.26)) ≈ 213 ft, behind the 206.5 ft fuselage."""
-    values = {"geometry.horizontal_tail.area": "1343 ft^2", "geometry.horizontal_tail.aspect_ratio": 5.54,
-              "geometry.horizontal_tail.taper": 0.26, "geometry.horizontal_tail.sweep_quarter_chord": "41.78 deg"}
+    values = {
+        "geometry.horizontal_tail.area": "1343 ft^2",
+        "geometry.horizontal_tail.aspect_ratio": 5.54,
+        "geometry.horizontal_tail.taper": 0.26,
+        "geometry.horizontal_tail.sweep_quarter_chord": "41.78 deg",
+    }
     with pytest.raises(DesignError) as err:
         design_aircraft(source, settings_from(values))
     text = str(err.value)

@@ -68,12 +68,19 @@ def build(n: int = 1, mach_effects: bool = True, cd: float | None = None):
         "CL_alphadot": -ZWD * 2 * U0 / (K * CBAR),
         "Cm_alphadot": MWD * 2 * U0 / (K * CBAR * CBAR),
         "CY_beta": YV / K,
-        "Cl_beta": LV / (K * B), "Cn_beta": NV / (K * B),
-        "Cl_p": LP / (K * B * B / 2), "Cl_r": LR / (K * B * B / 2),
-        "Cn_p": NP / (K * B * B / 2), "Cn_r": NR / (K * B * B / 2),
-        "CL_elevator": CL_DE, "Cm_elevator": CM_DE,
-        "Cl_aileron": CL_DA, "Cn_aileron": CN_DA,
-        "CY_rudder": CY_DR, "Cl_rudder": CL_DR, "Cn_rudder": CN_DR,
+        "Cl_beta": LV / (K * B),
+        "Cn_beta": NV / (K * B),
+        "Cl_p": LP / (K * B * B / 2),
+        "Cl_r": LR / (K * B * B / 2),
+        "Cn_p": NP / (K * B * B / 2),
+        "Cn_r": NR / (K * B * B / 2),
+        "CL_elevator": CL_DE,
+        "Cm_elevator": CM_DE,
+        "Cl_aileron": CL_DA,
+        "Cn_aileron": CN_DA,
+        "CY_rudder": CY_DR,
+        "Cl_rudder": CL_DR,
+        "Cn_rudder": CN_DR,
     }
     # speed derivatives through the Mach dependence: X_u = K(−2 CD − M CD_M), Z_u = K(−2 CL − M CL_M),
     # M_u = K c M Cm_M (Cm = 0 in trim)
@@ -86,10 +93,12 @@ def build(n: int = 1, mach_effects: bool = True, cd: float | None = None):
     d["CL0"] = CL + CL_M * (mach - M0)
     d["CD0"] = (CD_TRIM if cd is None else cd) + CD_M * (mach - M0)
     d["Cm0"] = Cm_M * (mach - M0)
-    aero = StabilityDerivativeModel(AeroReference(S, B, CBAR, x_ref=30.0), d, mach=mach,
-                                    control_names=("elevator", "aileron", "rudder"))
+    aero = StabilityDerivativeModel(
+        AeroReference(S, B, CBAR, x_ref=30.0), d, mach=mach, control_names=("elevator", "aileron", "rudder")
+    )
     thrust_max = 4 * 2.0e5
     engine = Engine("all", thrust=lambda thr, hh, m: thr * thrust_max, position=(30.0, 0.0, 0.0))
-    model = AircraftModel(aero, mass=W / G, cg=(30.0, 0.0, 0.0), inertia=inertia_tensor(IX, IY, IZ, IZX),
-                          engines=[engine], g=G, n=n)
+    model = AircraftModel(
+        aero, mass=W / G, cg=(30.0, 0.0, 0.0), inertia=inertia_tensor(IX, IY, IZ, IZX), engines=[engine], g=G, n=n
+    )
     return model, h

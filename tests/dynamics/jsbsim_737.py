@@ -102,8 +102,12 @@ def build_737(fdm, n: int = 1):
     cda = (cd_tab[j + 1, 1] - cd_tab[j, 1]) / (cd_tab[j + 1, 0] - cd_tab[j, 0])
     cd0 = cd_tab[j, 1] - cda * cd_tab[j, 0]
     # configuration increments at their JSBSim positions (cruise_init leaves the gear down)
-    cd0 += (_value(root, "CDgear") * fdm["gear/gear-pos-norm"] + _value(root, "CDflap") * fdm["fcs/flap-pos-norm"]
-            + _value(root, "CDsb") * fdm["fcs/speedbrake-pos-norm"] + _value(root, "CDsp") * fdm["fcs/spoiler-pos-norm"])
+    cd0 += (
+        _value(root, "CDgear") * fdm["gear/gear-pos-norm"]
+        + _value(root, "CDflap") * fdm["fcs/flap-pos-norm"]
+        + _value(root, "CDsb") * fdm["fcs/speedbrake-pos-norm"]
+        + _value(root, "CDsp") * fdm["fcs/spoiler-pos-norm"]
+    )
     cl0 += _value(root, "dCLflap") * fdm["fcs/flap-pos-norm"]
     clda = _table(root, "Clda")  # vs Mach
     cmde = _table(root, "Cmde")
@@ -121,19 +125,32 @@ def build_737(fdm, n: int = 1):
     rud = vec(_value(root, "Cldr"), _value(root, "Cndr"))
     ail = np.array([vec(-v, 0.0) for v in clda[:, 1]])  # Etkin aileron = −JSBSim left aileron
     d = {
-        "CL0": cl0, "CL_alpha": cla, "CL_elevator": _value(root, "CLde"),
-        "CD0": cd0, "CD_alpha": cda, "k": _value(root, "CDi"),
+        "CL0": cl0,
+        "CL_alpha": cla,
+        "CL_elevator": _value(root, "CLde"),
+        "CD0": cd0,
+        "CD_alpha": cda,
+        "k": _value(root, "CDi"),
         "CD_elevator": _value(root, "CDde") * np.sign(de0),
         "CY_beta": _value(root, "CYb"),
-        "Cl_beta": beta[0], "Cn_beta": beta[1],
-        "Cl_p": rate[0, 0], "Cl_r": rate[0, 1], "Cn_p": rate[1, 0], "Cn_r": rate[1, 1],
-        "Cl_aileron": ail[:, 0], "Cn_aileron": ail[:, 1],
-        "Cl_rudder": rud[0], "Cn_rudder": rud[1],
-        "Cm_alpha": _value(root, "Cmalpha"), "Cm_elevator": cmde[:, 1],
-        "Cm_q": _value(root, "Cmq"), "Cm_alphadot": _value(root, "Cmadot"),
+        "Cl_beta": beta[0],
+        "Cn_beta": beta[1],
+        "Cl_p": rate[0, 0],
+        "Cl_r": rate[0, 1],
+        "Cn_p": rate[1, 0],
+        "Cn_r": rate[1, 1],
+        "Cl_aileron": ail[:, 0],
+        "Cn_aileron": ail[:, 1],
+        "Cl_rudder": rud[0],
+        "Cn_rudder": rud[1],
+        "Cm_alpha": _value(root, "Cmalpha"),
+        "Cm_elevator": cmde[:, 1],
+        "Cm_q": _value(root, "Cmq"),
+        "Cm_alphadot": _value(root, "Cmadot"),
     }
-    aero = StabilityDerivativeModel(AeroReference(S, b, c, x_ref, z_ref), d, mach=mach,
-                                    control_names=("elevator", "aileron", "rudder"))
+    aero = StabilityDerivativeModel(
+        AeroReference(S, b, c, x_ref, z_ref), d, mach=mach, control_names=("elevator", "aileron", "rudder")
+    )
 
     thr0 = fdm["fcs/throttle-pos-norm[0]"]
     engines = []
@@ -142,11 +159,22 @@ def build_737(fdm, n: int = 1):
         pos = [float(loc.find(a).text) * IN for a in ("x", "y", "z")]
         per_unit = fdm[f"propulsion/engine[{k}]/thrust-lbs"] * LBF / thr0
         engines.append(Engine(f"e{k + 1}", thrust=lambda thr, h, m, t=per_unit: thr * t, position=pos))
-    J = inertia_tensor(fdm["inertia/ixx-slugs_ft2"] * SLUGFT2, fdm["inertia/iyy-slugs_ft2"] * SLUGFT2,
-                       fdm["inertia/izz-slugs_ft2"] * SLUGFT2, -fdm["inertia/ixz-slugs_ft2"] * SLUGFT2)
+    J = inertia_tensor(
+        fdm["inertia/ixx-slugs_ft2"] * SLUGFT2,
+        fdm["inertia/iyy-slugs_ft2"] * SLUGFT2,
+        fdm["inertia/izz-slugs_ft2"] * SLUGFT2,
+        -fdm["inertia/ixz-slugs_ft2"] * SLUGFT2,
+    )
     cg = (fdm["inertia/cg-x-in"] * IN, fdm["inertia/cg-y-in"] * IN, fdm["inertia/cg-z-in"] * IN)
-    model = AircraftModel(aero, mass=fdm["inertia/mass-slugs"] * SLUG, cg=cg, inertia=J, engines=engines,
-                          g=fdm["accelerations/gravity-ft_sec2"] * FT, n=n)
+    model = AircraftModel(
+        aero,
+        mass=fdm["inertia/mass-slugs"] * SLUG,
+        cg=cg,
+        inertia=J,
+        engines=engines,
+        g=fdm["accelerations/gravity-ft_sec2"] * FT,
+        n=n,
+    )
     rho = fdm["atmosphere/rho-slugs_ft3"] * SLUG / FT**3
     h = brentq(lambda hh: float(isa.density(hh)) - rho, 0.0, 15_000.0)
     return model, fdm["velocities/vt-fps"] * FT, h

@@ -63,23 +63,30 @@ def _etkin_textbook_matrices():
     derivatives — an independent formulation of the same physics."""
     m = ref.W / ref.G
     g, u0 = ref.G, ref.U0
-    Alon = np.array([
-        [ref.XU / m, ref.XW / m, 0.0, -g],
-        [ref.ZU / (m - ref.ZWD), ref.ZW / (m - ref.ZWD), (ref.ZQ + m * u0) / (m - ref.ZWD), 0.0],
-        [(ref.MU + ref.MWD * ref.ZU / (m - ref.ZWD)) / ref.IY,
-         (ref.MW + ref.MWD * ref.ZW / (m - ref.ZWD)) / ref.IY,
-         (ref.MQ + ref.MWD * (ref.ZQ + m * u0) / (m - ref.ZWD)) / ref.IY, 0.0],
-        [0.0, 0.0, 1.0, 0.0],
-    ])
+    Alon = np.array(
+        [
+            [ref.XU / m, ref.XW / m, 0.0, -g],
+            [ref.ZU / (m - ref.ZWD), ref.ZW / (m - ref.ZWD), (ref.ZQ + m * u0) / (m - ref.ZWD), 0.0],
+            [
+                (ref.MU + ref.MWD * ref.ZU / (m - ref.ZWD)) / ref.IY,
+                (ref.MW + ref.MWD * ref.ZW / (m - ref.ZWD)) / ref.IY,
+                (ref.MQ + ref.MWD * (ref.ZQ + m * u0) / (m - ref.ZWD)) / ref.IY,
+                0.0,
+            ],
+            [0.0, 0.0, 1.0, 0.0],
+        ]
+    )
     Ix, Iz, Izx = ref.IX, ref.IZ, ref.IZX
     D = Ix * Iz - Izx**2
     Ixp, Izp, Izxp = D / Iz, D / Ix, Izx / D
-    Alat = np.array([
-        [ref.YV / m, 0.0, -u0, g],
-        [ref.LV / Ixp + Izxp * ref.NV, ref.LP / Ixp + Izxp * ref.NP, ref.LR / Ixp + Izxp * ref.NR, 0.0],
-        [Izxp * ref.LV + ref.NV / Izp, Izxp * ref.LP + ref.NP / Izp, Izxp * ref.LR + ref.NR / Izp, 0.0],
-        [0.0, 1.0, 0.0, 0.0],
-    ])
+    Alat = np.array(
+        [
+            [ref.YV / m, 0.0, -u0, g],
+            [ref.LV / Ixp + Izxp * ref.NV, ref.LP / Ixp + Izxp * ref.NP, ref.LR / Ixp + Izxp * ref.NR, 0.0],
+            [Izxp * ref.LV + ref.NV / Izp, Izxp * ref.LP + ref.NP / Izp, Izxp * ref.LR + ref.NR / Izp, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+        ]
+    )
     return Alon, Alat
 
 
@@ -96,7 +103,9 @@ def test_matches_textbook_linear_equations(b747):
         assert abs(nearest - lam) < 1e-4 * abs(lam) + 1e-7
     # state-space objects (python-control) carry the same poles
     lon = lin.longitudinal(0)
-    assert np.allclose(np.sort_complex(lon.poles()), np.sort_complex(np.linalg.eigvals(lin.select(0, ("u", "w", "q", "theta"))[0])))
+    assert np.allclose(
+        np.sort_complex(lon.poles()), np.sort_complex(np.linalg.eigvals(lin.select(0, ("u", "w", "q", "theta"))[0]))
+    )
 
 
 def test_modes_identified_by_content_not_order(b747):

@@ -49,11 +49,17 @@ def test_modes_present_with_the_expected_signs(cli):
     assert r.exit_code == 0 and "short" in r.output.lower()
 
 
-@pytest.mark.parametrize("args, words", [
-    (("--corner", "nope"), ("nope", "fwd_mrw")),
-    (("--corner", "fwd_mrw", "--altitude", "50000 ft"), ("ceiling",)),
-    (("--maneuver", "oei", "--inoperative", "middle", "--speed", "M0.5", "--altitude", "10000 ft"), ("left", "right")),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (("--corner", "nope"), ("nope", "fwd_mrw")),
+        (("--corner", "fwd_mrw", "--altitude", "50000 ft"), ("ceiling",)),
+        (
+            ("--maneuver", "oei", "--inoperative", "middle", "--speed", "M0.5", "--altitude", "10000 ft"),
+            ("left", "right"),
+        ),
+    ],
+)
 @pytest.mark.parametrize("command", ["trim", "modes"])
 def test_bad_input_exits_2_with_a_clear_message(cli, command, args, words):
     if command == "modes" and "--maneuver" in args:

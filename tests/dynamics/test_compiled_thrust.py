@@ -51,8 +51,10 @@ def test_compiled_thrust_equals_the_python_engine_path(model):
         model.failed_thrust_fraction = np.zeros((n, 2))
 
 
-@pytest.mark.parametrize("kind, extra", [("oei", {"bank": np.radians(3.0)}), ("sideslip", {"beta": np.radians(4.0)}),
-                                         ("turn", {"bank": np.radians(25.0)})])
+@pytest.mark.parametrize(
+    "kind, extra",
+    [("oei", {"bank": np.radians(3.0)}), ("sideslip", {"beta": np.radians(4.0)}), ("turn", {"bank": np.radians(25.0)})],
+)
 def test_trims_equal_with_the_python_engine_path(model, baseline, kind, extra):
     n = model.n
     args = dict(kind=kind, limits=control_limits(baseline.model), roles=ROLES, **extra)
@@ -68,4 +70,9 @@ def test_trims_equal_with_the_python_engine_path(model, baseline, kind, extra):
     np.testing.assert_array_equal(fast.x, slow.x)
     np.testing.assert_array_equal(fast.u, slow.u)
     for a, b in zip(fast.results, slow.results):
-        assert (a.iterations, a.residual_norm, a.thrust, a.converged) == (b.iterations, b.residual_norm, b.thrust, b.converged)
+        assert (a.iterations, a.residual_norm, a.thrust, a.converged) == (
+            b.iterations,
+            b.residual_norm,
+            b.thrust,
+            b.converged,
+        )

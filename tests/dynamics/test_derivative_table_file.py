@@ -74,11 +74,16 @@ def test_lateral_modes_published(etkin):
 
 def _textbook_longitudinal(m, u0, g, Xu, Xw, Zu, Zw, Zq, Mu, Mw, Mq, Iy):
     """Etkin & Reid eq. (4.9,18), θ0 = 0, no ẇ terms."""
-    return np.linalg.eigvals(np.array([
-        [Xu / m, Xw / m, 0.0, -g],
-        [Zu / m, Zw / m, (Zq + m * u0) / m, 0.0],
-        [Mu / Iy, Mw / Iy, Mq / Iy, 0.0],
-        [0.0, 0.0, 1.0, 0.0]]))
+    return np.linalg.eigvals(
+        np.array(
+            [
+                [Xu / m, Xw / m, 0.0, -g],
+                [Zu / m, Zw / m, (Zq + m * u0) / m, 0.0],
+                [Mu / Iy, Mw / Iy, Mq / Iy, 0.0],
+                [0.0, 0.0, 1.0, 0.0],
+            ]
+        )
+    )
 
 
 def test_speed_derivatives_and_thrust_speed(tmp_path):
@@ -88,24 +93,53 @@ def test_speed_derivatives_and_thrust_speed(tmp_path):
     K = ½ρu0S; tolerance 1e-3 of |λ|. Removing the speed derivatives changes the phugoid damping by more than half."""
     h, mach, g, m, S, c, Iy = 11_000.0, 0.8, 9.81, 250_000.0, 500.0, 8.0, 4.0e7
     u0 = mach * float(isa.speed_of_sound(h))
-    q = 0.5 * float(isa.density(h)) * u0 ** 2
+    q = 0.5 * float(isa.density(h)) * u0**2
     CL, CD = m * g / (q * S), 0.03
-    d = {"CL0": CL, "CL_alpha": 5.0, "CD0": CD, "Cm_alpha": -1.2, "Cm_q": -22.0, "CL_q": 6.0,
-         "CL_u": 0.25, "CD_u": 0.02, "Cm_u": -0.05, "CT_u": -0.04, "CL_elevator": 0.35, "Cm_elevator": -1.4,
-         "CY_beta": -0.9, "Cl_beta": -0.15, "Cn_beta": 0.16, "Cl_p": -0.4, "Cn_r": -0.3}
-    text = (f"name: speed derivatives\nreference: {{area: {S}, span: 60, mean_chord: {c}, moment_point: {{x: 30}}}}\n"
-            f"mass:\n  MTOW: {m}\n  inertia: {{Ixx: 2.0e7, Iyy: {Iy}, Izz: 5.8e7}}\n"
-            f"flight_condition: {{altitude: {h} m, mach: {mach}, gravity: {g}}}\n"
-            "aerodynamics:\n  derivative_tables:\n    clean:\n      source: test case\n      derivatives:\n"
-            + "".join(f"        {k}: {v!r}\n" for k, v in d.items()))
+    d = {
+        "CL0": CL,
+        "CL_alpha": 5.0,
+        "CD0": CD,
+        "Cm_alpha": -1.2,
+        "Cm_q": -22.0,
+        "CL_q": 6.0,
+        "CL_u": 0.25,
+        "CD_u": 0.02,
+        "Cm_u": -0.05,
+        "CT_u": -0.04,
+        "CL_elevator": 0.35,
+        "Cm_elevator": -1.4,
+        "CY_beta": -0.9,
+        "Cl_beta": -0.15,
+        "Cn_beta": 0.16,
+        "Cl_p": -0.4,
+        "Cn_r": -0.3,
+    }
+    text = (
+        f"name: speed derivatives\nreference: {{area: {S}, span: 60, mean_chord: {c}, moment_point: {{x: 30}}}}\n"
+        f"mass:\n  MTOW: {m}\n  inertia: {{Ixx: 2.0e7, Iyy: {Iy}, Izz: 5.8e7}}\n"
+        f"flight_condition: {{altitude: {h} m, mach: {mach}, gravity: {g}}}\n"
+        "aerodynamics:\n  derivative_tables:\n    clean:\n      source: test case\n      derivatives:\n"
+        + "".join(f"        {k}: {v!r}\n" for k, v in d.items())
+    )
     path = tmp_path / "nd.yaml"
     path.write_text(text)
     r = _modes(path, "--no-density-gradient")  # Etkin's equations have no altitude state
     assert r["converged"] and abs(r["alpha_deg"]) < 1e-6
     K = q * S / u0
-    book = _textbook_longitudinal(m, u0, g, Xu=-K * (2 * CD + d["CD_u"]) + K * d["CT_u"], Xw=K * (CL - 0.0),
-                                  Zu=-K * (2 * CL + d["CL_u"]), Zw=-K * (d["CL_alpha"] + CD), Zq=-K * c / 2 * d["CL_q"],
-                                  Mu=K * c * d["Cm_u"], Mw=K * c * d["Cm_alpha"], Mq=K * c * c / 2 * d["Cm_q"], Iy=Iy)
+    book = _textbook_longitudinal(
+        m,
+        u0,
+        g,
+        Xu=-K * (2 * CD + d["CD_u"]) + K * d["CT_u"],
+        Xw=K * (CL - 0.0),
+        Zu=-K * (2 * CL + d["CL_u"]),
+        Zw=-K * (d["CL_alpha"] + CD),
+        Zq=-K * c / 2 * d["CL_q"],
+        Mu=K * c * d["Cm_u"],
+        Mw=K * c * d["Cm_alpha"],
+        Mq=K * c * c / 2 * d["Cm_q"],
+        Iy=Iy,
+    )
     for name in ("short_period", "phugoid"):
         lam = _eig(r, name)
         assert np.min(np.abs(book - lam)) < 1e-3 * abs(lam), (name, lam, book)
@@ -153,12 +187,18 @@ def test_rules_not_evaluated_naming_the_missing_sections():
     assert own and all(s in own[0].reason for s in ("cg_envelope", "envelope", "propulsion", "mass.MLW"))
 
 
-@pytest.mark.parametrize("edit, where", [
-    (lambda t: t.replace("flight_condition:", "unused_condition:"), "unused_condition"),
-    (lambda t: t.replace("        X_u:", "        X_uu:"), "derivatives.X_uu"),
-    (lambda t: t.replace("        CD0: 0.043", "        CL_alpha: 4.9"), "CD0"),
-    (lambda t: t.replace("  density: 0.3045 kg/m^3", "  density: 0.3045 kg/m^3\n  altitude: 40000 ft"), "flight_condition"),
-])
+@pytest.mark.parametrize(
+    "edit, where",
+    [
+        (lambda t: t.replace("flight_condition:", "unused_condition:"), "unused_condition"),
+        (lambda t: t.replace("        X_u:", "        X_uu:"), "derivatives.X_uu"),
+        (lambda t: t.replace("        CD0: 0.043", "        CL_alpha: 4.9"), "CD0"),
+        (
+            lambda t: t.replace("  density: 0.3045 kg/m^3", "  density: 0.3045 kg/m^3\n  altitude: 40000 ft"),
+            "flight_condition",
+        ),
+    ],
+)
 def test_bad_input_is_located(tmp_path, edit, where):
     """Bad derivative-table input: exit 2, the YAML path, no traceback."""
     path = tmp_path / "bad.yaml"
@@ -191,14 +231,17 @@ def test_check_on_a_derivative_table_file_reports_not_evaluated(tmp_path):
     """`certkit check` on the example: every rule not evaluated with its reason (exit 3), a report, no crash."""
     res = CliRunner().invoke(main, ["check", str(EXAMPLE), "--out", str(tmp_path / "r"), "-j", "1", "--json"])
     assert res.exit_code == 3, res.output
-    data = json.loads(res.output[res.output.index("{"):])
+    data = json.loads(res.output[res.output.index("{") :])
     statuses = {r["status"] for r in data["rules"]}
     assert statuses == {"not_evaluated"}
 
 
 def test_speed_derivatives_at_another_mach_than_the_condition_is_an_error(tmp_path):
-    text = EXAMPLE.read_text().replace("      form: dimensional\n", "      form: dimensional\n      mach: [0.7]\n").replace(
-        "  speed: 235.9 m/s TAS     # [etkin] u0 (M 0.8)", "  mach: 0.8")
+    text = (
+        EXAMPLE.read_text()
+        .replace("      form: dimensional\n", "      form: dimensional\n      mach: [0.7]\n")
+        .replace("  speed: 235.9 m/s TAS     # [etkin] u0 (M 0.8)", "  mach: 0.8")
+    )
     path = tmp_path / "bad.yaml"
     path.write_text(text)
     res = CliRunner().invoke(main, ["modes", str(path)])

@@ -20,8 +20,11 @@ from certkit.units import FT, KN
 
 def sink_rate(x13):
     q0, q1, q2, q3 = x13[:, 9:13].T
-    return 2 * (q1 * q3 - q0 * q2) * x13[:, 3] + 2 * (q2 * q3 + q0 * q1) * x13[:, 4] + \
-        (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * x13[:, 5]
+    return (
+        2 * (q1 * q3 - q0 * q2) * x13[:, 3]
+        + 2 * (q2 * q3 + q0 * q1) * x13[:, 4]
+        + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * x13[:, 5]
+    )
 
 
 @pytest.fixture(scope="module")
@@ -33,10 +36,17 @@ def landing(baseline):
     assert tb.converged.all()
     m = flight_model(ac, ctx.aero("landing").model, [ctx.loading(cond.mass, cond.x_cg)], ground=ground_model(ac))
     u0 = np.zeros((1, len(m.control_names)))
-    u0[:, :tb.u.shape[1]] = tb.u
+    u0[:, : tb.u.shape[1]] = tb.u
     tecs = TECSApproach(m, tb.x, u0, limits=control_limits(ac, design=False)["elevator"])
-    res = simulate(m, tb.x, u0, 60.0, 0.05, controllers=[tecs, WingsLevel(m, u0)],
-                   stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)])
+    res = simulate(
+        m,
+        tb.x,
+        u0,
+        60.0,
+        0.05,
+        controllers=[tecs, WingsLevel(m, u0)],
+        stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)],
+    )
     return m, tb, tecs, res
 
 
@@ -63,7 +73,9 @@ def test_approach_tracks_the_glide_path_then_flares_to_a_soft_touchdown(landing)
     hdot3 = (res["h"][k3 + 1, 0] - res["h"][k3 - 1, 0]) / 0.1
     assert -hdot3 / FT == pytest.approx(136 * 1.68781 * np.sin(np.radians(3.0)), abs=0.6)
     thr = res.controls[:, 0, m.throttle_slice.start]
-    assert np.all(thr[tecs.flaring[0] & (np.arange(res.t.size) > np.argmax(res["h"][:, 0] - tecs.h_gear[0] < 15.0))] == 0.0)
+    assert np.all(
+        thr[tecs.flaring[0] & (np.arange(res.t.size) > np.argmax(res["h"][:, 0] - tecs.h_gear[0] < 15.0))] == 0.0
+    )
     td_sink = sink_rate(res.final_state)[0] / FT
     assert 0.0 < td_sink < 3.0
     _, out = m.derivatives_quat(res.final_state, res.controls[-1], with_outputs=True)

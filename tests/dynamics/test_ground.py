@@ -27,8 +27,9 @@ def setup(baseline):
 
     ctx = Context(baseline)
     ac = ctx.aircraft
-    conds = ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")),
-                           configurations=("takeoff",)).expand(ac)
+    conds = ConditionSpace(
+        loading=DesignWeight("MTOW", ("forward", "reference", "aft")), configurations=("takeoff",)
+    ).expand(ac)
     loadings = [ctx.loading(c.mass, c.x_cg) for c in conds]
     return ctx, conds, loadings
 
@@ -36,8 +37,9 @@ def setup(baseline):
 def _glider(ctx, loadings, ground):
     """The baseline without engines (no idle thrust), so that only gear, weight and aero act."""
     mp = [ld.properties for ld in loadings]
-    return AircraftModel(ctx.aero("takeoff").model, [p.mass for p in mp], [p.cg for p in mp],
-                         [p.inertia for p in mp], (), ground=ground)
+    return AircraftModel(
+        ctx.aero("takeoff").model, [p.mass for p in mp], [p.cg for p in mp], [p.inertia for p in mp], (), ground=ground
+    )
 
 
 def test_static_reactions_split_the_weight_by_the_lever_rule(setup):

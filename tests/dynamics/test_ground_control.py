@@ -20,9 +20,9 @@ import pytest
 
 from certkit.atmosphere import convert_speed
 from certkit.models.dynamics.eom import STEERING
+from certkit.models.dynamics.ground import ground_equilibrium
 from certkit.models.dynamics.ground_control import engine_cut_runs, ground_minimum_control_speed
 from certkit.models.dynamics.simulate import simulate
-from certkit.models.dynamics.ground import ground_equilibrium
 from certkit.models.flight import control_limits, flight_model, ground_model
 from certkit.units import FT, KN
 
@@ -43,8 +43,9 @@ def test_pilot_holds_for_the_reaction_time_then_moves_at_the_rate(heavy, ctx):
     ac, loading = heavy
     model = flight_model(ac, ctx.aero("takeoff").model, [loading], ground=ground_model(ac, nose_wheel="castering"))
     rate, reaction = np.radians(20.0), 1.5
-    runs = engine_cut_runs(model, _tas(140.0), "left", reaction, rate, decay_time=1.5,
-                           lateral_limits=control_limits(ac, design=False))
+    runs = engine_cut_runs(
+        model, _tas(140.0), "left", reaction, rate, decay_time=1.5, lateral_limits=control_limits(ac, design=False)
+    )
     sim = runs.sim
     dr = sim.controls[:, 0, sim.control_names.index("rudder")]
     k_fail = int(np.argmax(sim["V"][:, 0] >= runs.failure_speed[0]))
@@ -95,9 +96,18 @@ def test_vmcg_against_the_rudder_moment_balance(ctx):
     assert r0[0] < 0.0 < r_full[-1]  # the dead left engine yaws the nose left; full right rudder wins at speed
     v_static = float(np.interp(0.0, r_full, kns))
     ground = flight_model(ac, aero, [loading], ground=ground_model(ac, nose_wheel="castering"))
-    found = ground_minimum_control_speed(ground, "left", _tas(60.0), _tas(155.0), 30.0 * FT, 1.0, np.radians(30.0),
-                                         decay_time=ac.propulsion.failure_decay_time, lateral_limits=travel,
-                                         elevator_limits=travel["elevator"])
+    found = ground_minimum_control_speed(
+        ground,
+        "left",
+        _tas(60.0),
+        _tas(155.0),
+        30.0 * FT,
+        1.0,
+        np.radians(30.0),
+        decay_time=ac.propulsion.failure_decay_time,
+        lateral_limits=travel,
+        elevator_limits=travel["elevator"],
+    )
     vmcg = float(convert_speed(found.speed[0], "TAS", "CAS", 0.0)) / KN
     assert not (found.below[0] or found.above[0])
     assert vmcg == pytest.approx(v_static, rel=0.10)
@@ -115,9 +125,21 @@ def test_takeoff_run_steers_with_the_pedals_on_the_ground_only(heavy, ctx):
     ac, loading = heavy
     model = flight_model(ac, ctx.aero("takeoff").model, [loading], ground=ground_model(ac, nose_wheel="steered"))
     travel = control_limits(ac, design=False)
-    run = takeoff_run(model, _tas(155.0), np.radians(8.0), climb_speed=_tas(161.0), lateral="pilot",
-                      lateral_limits=travel, failed_engine="left", failure_speed=_tas(147.0), failure_decay_time=1.5,
-                      reaction_time=1.0, rudder_rate=np.radians(30.0), steering=np.radians(7.0), dt=0.1)
+    run = takeoff_run(
+        model,
+        _tas(155.0),
+        np.radians(8.0),
+        climb_speed=_tas(161.0),
+        lateral="pilot",
+        lateral_limits=travel,
+        failed_engine="left",
+        failure_speed=_tas(147.0),
+        failure_decay_time=1.5,
+        reaction_time=1.0,
+        rudder_rate=np.radians(30.0),
+        steering=np.radians(7.0),
+        dt=0.1,
+    )
     sim = run.sim
     dr = sim.controls[:, 0, sim.control_names.index("rudder")]
     nw = sim.controls[:, 0, sim.control_names.index(STEERING)]

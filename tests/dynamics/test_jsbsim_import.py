@@ -23,9 +23,9 @@ from click.testing import CliRunner
 jsbsim = pytest.importorskip("jsbsim")
 
 from certkit.aircraft import load_aircraft  # noqa: E402
+from certkit.cli.flight_report import condition_from_options, trim_condition  # noqa: E402
 from certkit.cli.main import main  # noqa: E402
 from certkit.engine.context import Context  # noqa: E402
-from certkit.cli.flight_report import condition_from_options, trim_condition  # noqa: E402
 from certkit.models.dynamics.linearize import linearize  # noqa: E402
 from certkit.models.dynamics.modes import identify_modes  # noqa: E402
 from certkit.models.dynamics.simulate import simulate  # noqa: E402
@@ -83,7 +83,9 @@ def case(request, tmp_path_factory):
     jeig = np.linalg.eigvals(np.array(jsbsim.FGLinearization(fdm).system_matrix))
     out = tmp_path_factory.mktemp(name) / f"{name}.yaml"
     xml = os.path.join(jsbsim_root(), "aircraft", name, f"{name}.xml")
-    res = CliRunner().invoke(main, ["import", "jsbsim", xml, "--out", str(out), "--mach", "0.8", "--altitude", "35000 ft"])
+    res = CliRunner().invoke(
+        main, ["import", "jsbsim", xml, "--out", str(out), "--mach", "0.8", "--altitude", "35000 ft"]
+    )
     assert res.exit_code == 0, res.output
     ctx = Context(load_aircraft(out))
     fc = condition_from_options(ctx.aircraft, None, None, None, "clean", None, None, "straight", 0, 0, 0, None)
@@ -186,13 +188,18 @@ def test_report_of_what_was_not_mapped(case):
     assert text.startswith("# certkit aircraft file imported from a JSBSim FDM")
 
 
-@pytest.mark.parametrize("content, expected", [
-    (None, "no such JSBSim aircraft file"),
-    ("<fdm_config><metrics>\n<wingarea> 10 </wingarea>\n</oops>", ":3:"),
-    ("<aircraft/>", "expected <fdm_config>"),
-    ("<fdm_config name='x'><metrics><wingarea unit='FT2'> lots </wingarea></metrics></fdm_config>",
-     "metrics/wingarea: 'lots' is not a number"),
-])
+@pytest.mark.parametrize(
+    "content, expected",
+    [
+        (None, "no such JSBSim aircraft file"),
+        ("<fdm_config><metrics>\n<wingarea> 10 </wingarea>\n</oops>", ":3:"),
+        ("<aircraft/>", "expected <fdm_config>"),
+        (
+            "<fdm_config name='x'><metrics><wingarea unit='FT2'> lots </wingarea></metrics></fdm_config>",
+            "metrics/wingarea: 'lots' is not a number",
+        ),
+    ],
+)
 def test_bad_input_is_a_clear_error(tmp_path, content, expected):
     path = tmp_path / "model.xml"
     if content is not None:

@@ -32,7 +32,9 @@ class Opaque:
 
 
 def _engine_747(model):
-    return [Engine(name, lambda thr, h, m: 2.0e5 * thr, position=(20.0, y, -2.0)) for name, y in (("l", -12.0), ("r", 12.0))]
+    return [
+        Engine(name, lambda thr, h, m: 2.0e5 * thr, position=(20.0, y, -2.0)) for name, y in (("l", -12.0), ("r", 12.0))
+    ]
 
 
 def test_table_and_protocol_paths_agree():
@@ -40,8 +42,7 @@ def test_table_and_protocol_paths_agree():
     coefficients fed to the same kernel) for random states, one engine failed: 1e-10 relative."""
     base, h = ref.build(n=5)
     engines = _engine_747(base)
-    kw = dict(mass=base.mass, cg=base.cg, inertia=base.inertia, engines=engines,
-              operative=[[True, False]] * 5, n=5)
+    kw = dict(mass=base.mass, cg=base.cg, inertia=base.inertia, engines=engines, operative=[[True, False]] * 5, n=5)
     fast = AircraftModel(base.aero, **kw)
     slow = AircraftModel(Opaque(base.aero), **kw)
     assert fast._use_table and not slow._use_table
@@ -52,7 +53,8 @@ def test_table_and_protocol_paths_agree():
     x[:, 6:9] = rng.normal(size=(5, 3)) * 0.05
     x[:, 9:12] = rng.normal(size=(5, 3)) * 0.2
     u = rng.normal(size=(5, len(fast.control_names))) * 0.05 + 0.5 * np.isin(
-        np.arange(len(fast.control_names)), np.arange(fast.throttle_slice.start, fast.throttle_slice.stop))
+        np.arange(len(fast.control_names)), np.arange(fast.throttle_slice.start, fast.throttle_slice.stop)
+    )
     for state in (x, euler_state_to_quat_state(x)):
         a = fast.evaluate(state, u)
         b = slow.evaluate(state, u)
@@ -71,7 +73,9 @@ def test_rows_evaluate_subsets_and_stacks():
     idx = np.array([3, 1])
     sub = model.derivatives_euler(tb.x[idx] + 0.01, tb.u[idx], rows=idx)
     np.testing.assert_array_equal(sub, full[idx])
-    two = model.derivatives_euler(np.vstack([tb.x, tb.x]) + 0.01, np.vstack([tb.u, tb.u]), rows=np.tile(np.arange(4), 2))
+    two = model.derivatives_euler(
+        np.vstack([tb.x, tb.x]) + 0.01, np.vstack([tb.u, tb.u]), rows=np.tile(np.arange(4), 2)
+    )
     np.testing.assert_array_equal(two, np.vstack([full, full]))
 
 
@@ -95,8 +99,9 @@ def test_after_stall_control_lift_is_linear():
     from certkit.models.aero.interface import AeroReference
 
     ref_ = AeroReference(100.0, 30.0, 4.0, 10.0)
-    base = StabilityDerivativeModel(ref_, {"CL_alpha": 5.0, "CD0": 0.02, "k": 0.05, "CL_flap": 1.0},
-                                    stall=StallModel(CLmax=1.2))
+    base = StabilityDerivativeModel(
+        ref_, {"CL_alpha": 5.0, "CD0": 0.02, "k": 0.05, "CL_flap": 1.0}, stall=StallModel(CLmax=1.2)
+    )
     gust = base.with_control_terms({"CL_gust": 5.0}, after_stall=("gust",))
     alpha = np.array([0.05, 0.2, 0.3])
     d = 0.1
@@ -115,8 +120,12 @@ def test_declared_clmax_is_the_peak_of_the_lift_curve():
     from certkit.models.aero.interface import AeroReference
 
     ref_ = AeroReference(400.0, 60.0, 7.0, 30.0)
-    m = StabilityDerivativeModel(ref_, {"CL0": 0.2, "CL_alpha": [5.5, 6.0, 7.5], "CD0": 0.02, "k": 0.04},
-                                 mach=[0.2, 0.5, 0.8], stall=StallModel(CLmax=[1.5, 1.45, 1.3]))
+    m = StabilityDerivativeModel(
+        ref_,
+        {"CL0": 0.2, "CL_alpha": [5.5, 6.0, 7.5], "CD0": 0.02, "k": 0.04},
+        mach=[0.2, 0.5, 0.8],
+        stall=StallModel(CLmax=[1.5, 1.45, 1.3]),
+    )
     alpha = np.radians(np.arange(0.0, 30.0, 0.01))
     for mach, clmax in zip((0.2, 0.5, 0.8), (1.5, 1.45, 1.3)):
         cl = m.coefficients(AeroState(alpha=alpha, mach=mach)).CL
@@ -134,8 +143,13 @@ def test_a_copy_with_further_controls_keeps_the_calibrated_clmax():
     terms = {"CL0": 0.2, "CL_alpha": [5.5, 6.0, 7.5], "CD0": 0.02, "k": 0.04, "CL_flap": 0.8}
     m = StabilityDerivativeModel(ref_, terms, mach=[0.2, 0.5, 0.8], stall=StallModel(CLmax=[1.5, 1.45, 1.3]))
     copy = m.with_control_terms({"CL_gust": [4.0, 4.5, 5.0]}, after_stall=("gust",))
-    fresh = StabilityDerivativeModel(ref_, {**terms, "CL_gust": [4.0, 4.5, 5.0]}, mach=[0.2, 0.5, 0.8],
-                                     stall=StallModel(CLmax=[1.5, 1.45, 1.3]), after_stall=("gust",))
+    fresh = StabilityDerivativeModel(
+        ref_,
+        {**terms, "CL_gust": [4.0, 4.5, 5.0]},
+        mach=[0.2, 0.5, 0.8],
+        stall=StallModel(CLmax=[1.5, 1.45, 1.3]),
+        after_stall=("gust",),
+    )
     np.testing.assert_array_equal(copy.kernel_data[2], fresh.kernel_data[2])
     assert not np.array_equal(copy.kernel_data[2], [1.5, 1.45, 1.3])  # calibrated above the declared values
     alpha = np.radians(np.arange(0.0, 30.0, 0.01))

@@ -16,8 +16,9 @@ def _assert_same_run(compiled, loop):
     np.testing.assert_array_equal(compiled.t, loop.t)
     np.testing.assert_array_equal(compiled.controls, loop.controls)
     for key, ref in loop.history.items():
-        np.testing.assert_allclose(compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())),
-                                   err_msg=key)
+        np.testing.assert_allclose(
+            compiled.history[key], ref, rtol=1e-9, atol=1e-9 * max(1.0, float(np.abs(ref).max())), err_msg=key
+        )
     np.testing.assert_allclose(compiled.final_state, loop.final_state, rtol=1e-9, atol=1e-9)
 
 
@@ -29,8 +30,9 @@ def batch(baseline):
     n = 6
     loadings = [ctx.loading(float(baseline.model.mass.MTOW) * f, 29.5, "x") for f in np.linspace(0.7, 1.0, n)]
     model = flight_model(baseline.model, ctx.aero("clean").model, loadings)
-    trims = trim(model, np.linspace(150, 250, n), np.linspace(0, 10000, n), limits=control_limits(baseline.model),
-                 roles=ROLES)
+    trims = trim(
+        model, np.linspace(150, 250, n), np.linspace(0, 10000, n), limits=control_limits(baseline.model), roles=ROLES
+    )
     return model, trims, {"elevator": Function(lambda t: 0.02 * np.sin(t) * np.ones(n))}
 
 
@@ -57,8 +59,11 @@ def test_compiled_run_with_bound_stops_equals_the_python_loop(batch):
     n = trims.x.shape[0]
     pull = {"elevator": Function(lambda t: -0.08 * np.minimum(t, 1.0) * np.ones(n))}  # a pull: n_z rises
     nz_cap = np.array([1.3, 1.5, np.inf, 1.4, np.inf, 1.6])
-    stops = [Bound("n_z cap", "n_z", upper=nz_cap), Bound("alpha floor", "alpha", lower=np.full(n, -1.0)),
-             Bound("t_max", "t", upper=np.array([9.0, 9.0, 1.2, 9.0, 2.0, 9.0]))]
+    stops = [
+        Bound("n_z cap", "n_z", upper=nz_cap),
+        Bound("alpha floor", "alpha", lower=np.full(n, -1.0)),
+        Bound("t_max", "t", upper=np.array([9.0, 9.0, 1.2, 9.0, 2.0, 9.0])),
+    ]
     compiled = simulate(model, trims.x, trims.u, 3.0, 0.01, inputs=pull, stop=stops)
     saved, model._turbofan = model._turbofan, None
     try:

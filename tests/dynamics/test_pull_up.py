@@ -15,8 +15,9 @@ from certkit.units import FT, KN, LB
 def trimmed(baseline):
     ctx = Context(baseline)
     ref = ctx.aircraft.reference.moment_point.x  # CG on the moment point: the table's Cm needs no transfer
-    cond = Condition(mass=500000 * LB, x_cg=ref, configuration="clean", altitude=10000 * FT, speed=300 * KN,
-                     speed_kind="CAS")
+    cond = Condition(
+        mass=500000 * LB, x_cg=ref, configuration="clean", altitude=10000 * FT, speed=300 * KN, speed_kind="CAS"
+    )
     return ctx, ctx.trim([cond])
 
 
@@ -44,11 +45,11 @@ def test_elevator_per_g_matches_the_linear_balance(trimmed):
     rho = 1.225 * (1 - 2.25577e-5 * r.h) ** 4.25588
     mach = r.V / (340.294 * math.sqrt(1 - 2.25577e-5 * r.h))
     d = lambda name: float(np.asarray(aero.derivative(name, mach)))  # noqa: E731
-    qbar = 0.5 * rho * r.V ** 2
+    qbar = 0.5 * rho * r.V**2
     cw = 500000 * LB * 9.80665 / (qbar * ref.area)
     A = np.array([[d("CL_alpha"), d("CL_elevator")], [d("Cm_alpha"), d("Cm_elevator")]])
     for n in (1.5, 0.0):
-        qhat = (n - 1) * 9.80665 * ref.mean_chord / (2 * r.V ** 2)
+        qhat = (n - 1) * 9.80665 * ref.mean_chord / (2 * r.V**2)
         dalpha, ddelta = np.linalg.solve(A, [(n - 1) * cw - d("CL_q") * qhat, -d("Cm_q") * qhat])
         p = symmetric_pull_up(batch.model, r.V, r.h, n, batch.u)
         assert p.converged[0]

@@ -5,8 +5,17 @@ a time step per condition, including the schedules written with branches on t (D
 import numpy as np
 import pytest
 
-from certkit.models.dynamics.simulate import (CheckedManeuver, Doublet, Function, Hold, Pulse, Ramp, RudderKick, Step,
-                                              simulate)
+from certkit.models.dynamics.simulate import (
+    CheckedManeuver,
+    Doublet,
+    Function,
+    Hold,
+    Pulse,
+    Ramp,
+    RudderKick,
+    Step,
+    simulate,
+)
 from certkit.models.loads.gust import one_minus_cosine
 from certkit.models.loads.inputs import SinusoidHold
 
@@ -61,7 +70,9 @@ def test_a_compiled_run_is_the_same_with_the_grid_or_step_by_step(baseline):
         return 0.05 * one_minus_cosine(V * t, 40.0, np.ones(N))
 
     dt = np.linspace(0.008, 0.012, N)
-    runs = [simulate(model, trims.x, trims.u, 1.0, dt, inputs={"elevator": Function(gust, time_grid=g)})
-            for g in (True, False)]
+    runs = [
+        simulate(model, trims.x, trims.u, 1.0, dt, inputs={"elevator": Function(gust, time_grid=g)})
+        for g in (True, False)
+    ]
     np.testing.assert_array_equal(runs[0].controls, runs[1].controls)
     np.testing.assert_array_equal(runs[0].final_state, runs[1].final_state)

@@ -49,7 +49,11 @@ def test_round_trip_through_plain_data(baseline):
     """The validated model written out as plain data (SI) and read back is the same airplane."""
     again = validate_aircraft_data(baseline.model.model_dump(mode="json"))
     assert again.geometry.horizontal_tail.stabilizer == baseline.model.geometry.horizontal_tail.stabilizer
-    assert set(again.geometry.horizontal_tail.stabilizer.design_limits_by_configuration) == {"takeoff", "approach", "landing"}
+    assert set(again.geometry.horizontal_tail.stabilizer.design_limits_by_configuration) == {
+        "takeoff",
+        "approach",
+        "landing",
+    }
 
 
 def test_unknown_configuration_is_refused_with_its_path():
@@ -60,8 +64,9 @@ def test_unknown_configuration_is_refused_with_its_path():
 
 def test_limits_outside_the_travel_or_off_the_datum_are_refused():
     """Travel −11°…+4° (structural stops); the datum incidence −2° must lie inside every trim range."""
-    data = with_value(FIELD, {"takeoff": {"min": "-10.25 deg", "max": "4.5 deg"},
-                              "landing": {"min": "0 deg", "max": "3.75 deg"}})
+    data = with_value(
+        FIELD, {"takeoff": {"min": "-10.25 deg", "max": "4.5 deg"}, "landing": {"min": "0 deg", "max": "3.75 deg"}}
+    )
     problems = _problems(data)
     assert "travel" in problems[f"{FIELD}.takeoff"] and "4.50°" in problems[f"{FIELD}.takeoff"]
     assert "datum" in problems[f"{FIELD}.landing"]
@@ -78,15 +83,18 @@ def test_cli_exits_2_on_an_unknown_configuration(tmp_path, cli):
 
 def _aft_light(config, kcas):
     """Lightest weight at the aft CG limit (310,000 lb, 100.82 ft), sea level."""
-    return Condition(mass=310000 * LB, x_cg=100.82 * FT, configuration=config, altitude=0.0, speed=kcas * KN,
-                     speed_kind="CAS")
+    return Condition(
+        mass=310000 * LB, x_cg=100.82 * FT, configuration=config, altitude=0.0, speed=kcas * KN, speed_kind="CAS"
+    )
 
 
 def _without_field(loaded):
     g = loaded.model.geometry
     st = g.horizontal_tail.stabilizer.model_copy(update={"design_limits_by_configuration": {}})
     tail = g.horizontal_tail.model_copy(update={"stabilizer": st})
-    return replace(loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})}))
+    return replace(
+        loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})})
+    )
 
 
 @pytest.fixture(scope="module")
@@ -133,8 +141,21 @@ def test_cli_trim_names_the_limits_at_the_stop(tmp_path, cli):
     +1°; ``certkit trim`` names the range and the field it comes from."""
     data = with_value(f"{FIELD}.takeoff", {"min": "-10.25 deg", "max": "1 deg"})
     path = write_yaml(tmp_path, data)
-    out = cli("trim", path, "--weight", "310000 lb", "--cg", "100.82 ft", "--config", "takeoff", "--speed", "200 kn CAS",
-              "--altitude", "0 ft").output
+    out = cli(
+        "trim",
+        path,
+        "--weight",
+        "310000 lb",
+        "--cg",
+        "100.82 ft",
+        "--config",
+        "takeoff",
+        "--speed",
+        "200 kn CAS",
+        "--altitude",
+        "0 ft",
+    ).output
     line = next(ln for ln in out.splitlines() if ln.strip().startswith("stabilizer"))
-    assert "nose-down stop" in line and "-10.25 to 1.00 deg" in line and "design_limits_by_configuration.takeoff" in line
-
+    assert (
+        "nose-down stop" in line and "-10.25 to 1.00 deg" in line and "design_limits_by_configuration.takeoff" in line
+    )

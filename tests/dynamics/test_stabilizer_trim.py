@@ -15,16 +15,23 @@ from certkit.units import FT, KN, LB
 def _without_stabilizer(loaded):
     g = loaded.model.geometry
     tail = g.horizontal_tail.model_copy(update={"stabilizer": None})
-    return replace(loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})}))
+    return replace(
+        loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})})
+    )
 
 
 def _with_travel(loaded, lo_deg, hi_deg):
     g = loaded.model.geometry
     st = g.horizontal_tail.stabilizer
     from certkit.aircraft.model import Limits
+
     lim = Limits(min=math.radians(lo_deg), max=math.radians(hi_deg))
-    tail = g.horizontal_tail.model_copy(update={"stabilizer": st.model_copy(update={"travel": lim, "design_limits": lim})})
-    return replace(loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})}))
+    tail = g.horizontal_tail.model_copy(
+        update={"stabilizer": st.model_copy(update={"travel": lim, "design_limits": lim})}
+    )
+    return replace(
+        loaded, model=loaded.model.model_copy(update={"geometry": g.model_copy(update={"horizontal_tail": tail})})
+    )
 
 
 @pytest.fixture(scope="module")
@@ -45,7 +52,9 @@ def test_elevator_per_stabiliser_effectiveness_matches_thin_aerofoil_theory(ctx)
     share = lambda eta: 2.0 / math.pi * (eta * math.sqrt(1.0 - eta * eta) + math.asin(eta))  # noqa: E731
     kb = share(e.span_end) - share(e.span_start)
     x_hinge = 1.0 - e.chord_ratio
-    tan_h = math.tan(el.sweep_quarter_chord) - 4.0 * (x_hinge - 0.25) * (1.0 - el.taper) / (el.aspect_ratio * (1.0 + el.taper))
+    tan_h = math.tan(el.sweep_quarter_chord) - 4.0 * (x_hinge - 0.25) * (1.0 - el.taper) / (
+        el.aspect_ratio * (1.0 + el.taper)
+    )
     expected = tau * kb * math.cos(math.atan(tan_h))
     table = ctx.aero("clean").table
     ratio = table["Cm_elevator"][0] / table["Cm_stabilizer"][0]  # lowest Mach breakpoint (0.2)
@@ -64,8 +73,14 @@ def test_other_derivatives_are_unchanged_by_the_stabiliser_control(ctx, baseline
 
 
 def _cond(mass_lb, cg_ft, config, kcas, altitude_ft=0.0):
-    return Condition(mass=mass_lb * LB, x_cg=cg_ft * FT, configuration=config, altitude=altitude_ft * FT,
-                     speed=kcas * KN, speed_kind="CAS")
+    return Condition(
+        mass=mass_lb * LB,
+        x_cg=cg_ft * FT,
+        configuration=config,
+        altitude=altitude_ft * FT,
+        speed=kcas * KN,
+        speed_kind="CAS",
+    )
 
 
 def test_trim_solves_the_stabiliser_with_the_elevator_at_its_setting(ctx):
@@ -117,8 +132,9 @@ def test_declaration_relations_are_checked_together(tmp_path):
 
     from ..rules.helpers import edited_baseline
 
-    path = edited_baseline(tmp_path, [("incidence: -2.0 deg", "incidence: 3.0 deg"),
-                                      ("elevator_trim: 0 deg", "elevator_trim: 20 deg")])
+    path = edited_baseline(
+        tmp_path, [("incidence: -2.0 deg", "incidence: 3.0 deg"), ("elevator_trim: 0 deg", "elevator_trim: 20 deg")]
+    )
     with pytest.raises(InputError) as err:
         load_aircraft(path)
     text = str(err.value)
@@ -146,7 +162,8 @@ def test_cruise_trims_lie_within_the_published_trim_range(ctx):
 def test_cli_trim_prints_the_incidence_and_the_stop(cli):
     from ..conftest import BASELINE
 
-    out = cli("trim", BASELINE, "--corner", "fwd_mlw", "--config", "landing", "--speed", "140 kn CAS",
-              "--altitude", "0 ft").output
+    out = cli(
+        "trim", BASELINE, "--corner", "fwd_mlw", "--config", "landing", "--speed", "140 kn CAS", "--altitude", "0 ft"
+    ).output
     line = next(ln for ln in out.splitlines() if ln.strip().startswith("stabilizer"))
     assert "-10.2500 deg incidence" in line and "nose-up stop" in line

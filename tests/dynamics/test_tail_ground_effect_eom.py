@@ -28,11 +28,17 @@ def ctx(baseline):
 
 def _models(ctx, configuration, loading_names, design_weight):
     ac = ctx.aircraft
-    conds = ConditionSpace(loading=DesignWeight(design_weight, loading_names), configurations=(configuration,)).expand(ac)
+    conds = ConditionSpace(loading=DesignWeight(design_weight, loading_names), configurations=(configuration,)).expand(
+        ac
+    )
     loadings = [ctx.loading(c.mass, c.x_cg) for c in conds]
     aero = ctx.aero(configuration).model
-    return (conds, flight_model(ac, aero, loadings, ground=ground_model(ac)),
-            flight_model(ac, aero, loadings, ground=_without_tail(ac)), flight_model(ac, aero, loadings))
+    return (
+        conds,
+        flight_model(ac, aero, loadings, ground=ground_model(ac)),
+        flight_model(ac, aero, loadings, ground=_without_tail(ac)),
+        flight_model(ac, aero, loadings),
+    )
 
 
 def _level(n, h, theta, speed):
@@ -53,7 +59,7 @@ def test_unchanged_far_from_the_runway(ctx):
         x = _level(2, h, np.radians(8.0), 85.0)
         xd = with_tail.evaluate(x, u)[0]
         assert np.array_equal(xd, wing_only.evaluate(x, u)[0])
-        assert np.array_equal(xd, free.evaluate(x, u[:, :len(free.control_names)])[0])
+        assert np.array_equal(xd, free.evaluate(x, u[:, : len(free.control_names)])[0])
 
 
 def test_nose_down_moment_on_the_runway_worth_several_degrees_of_elevator(ctx):
@@ -96,10 +102,17 @@ def flares(ctx):
     for name, gm in (("with", ground_model(ac)), ("without", _without_tail(ac))):
         m = flight_model(ac, ctx.aero("landing").model, [ctx.loading(cond.mass, cond.x_cg)], ground=gm)
         u0 = np.zeros((1, len(m.control_names)))
-        u0[:, :tb.u.shape[1]] = tb.u
+        u0[:, : tb.u.shape[1]] = tb.u
         tecs = TECSApproach(m, tb.x, u0, limits=control_limits(ac, design=False)["elevator"])
-        res = simulate(m, tb.x, u0, 60.0, 0.05, controllers=[tecs, WingsLevel(m, u0)],
-                       stop=[stop_when("touchdown", lambda t, x, o: o.gear_load.sum(axis=1) > 0.0)])
+        res = simulate(
+            m,
+            tb.x,
+            u0,
+            60.0,
+            0.05,
+            controllers=[tecs, WingsLevel(m, u0)],
+            stop=[stop_when("touchdown", lambda t, x, o: o.gear_load.sum(axis=1) > 0.0)],
+        )
         out[name] = (m, res)
     return out
 

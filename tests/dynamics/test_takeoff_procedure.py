@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from certkit.atmosphere import density, speed_of_sound
-from certkit.models.aero.interface import AeroState
 from certkit.models.aero.ground_effect import induced_drag_factor_at, induced_drag_factor_table, lift_ratio
+from certkit.models.aero.interface import AeroState
 from certkit.models.dynamics.eom import airplane_to_body, euler_to_dcm
 from certkit.models.dynamics.procedures import takeoff_run
 from certkit.models.flight import control_limits, flight_model, ground_model
@@ -43,12 +43,13 @@ def test_ground_roll_against_raymer_closed_form(setup):
     run = takeoff_run(model, rotation_speed=1e3, theta_target=0.0, t_end=50.0, dt=0.1)
     V, x = run.sim["V"][:, 0], run.sim["x_N"][:, 0] - run.x0[0, 0]
     k = int(np.argmax(V >= v_f))
-    s_sim = np.interp(v_f, V[k - 1:k + 1], x[k - 1:k + 1])
+    s_sim = np.interp(v_f, V[k - 1 : k + 1], x[k - 1 : k + 1])
 
     rho, a_sound = float(density(0.0)), float(speed_of_sound(0.0))
     W = model.mass[0] * model.g
-    thrust = sum(float(e.thrust(np.array([1.0]), np.array([0.0]), np.array([0.7 * v_f / a_sound]))[0])
-                 for e in model.engines)
+    thrust = sum(
+        float(e.thrust(np.array([1.0]), np.array([0.0]), np.array([0.7 * v_f / a_sound]))[0]) for e in model.engines
+    )
     theta0 = run.x0[0, 10]
     c = model.aero.coefficients(AeroState(alpha=np.array([theta0]), mach=np.array([0.5 * v_f / a_sound])))
     CL, CD = float(np.ravel(c.CL)[0]), float(np.ravel(c.CD)[0])
@@ -58,16 +59,20 @@ def test_ground_roll_against_raymer_closed_form(setup):
     dcm = euler_to_dcm(0.0, theta0, 0.0)
     r_wing = airplane_to_body(np.array(wing.point), model.cg[0])
     hb = (run.x0[0, 2] - model.ground.elevation - (dcm[2] @ r_wing)) / wing.span
-    raymer = 33 * hb ** 1.5 / (1 + 33 * hb ** 1.5)
-    CL_ge = CL * lift_ratio(induced_drag_factor_at(induced_drag_factor_table(), hb), wing.aspect_ratio,
-                            np.tan(wing.sweep_half_chord), 0.5 * v_f / a_sound)
+    raymer = 33 * hb**1.5 / (1 + 33 * hb**1.5)
+    CL_ge = CL * lift_ratio(
+        induced_drag_factor_at(induced_drag_factor_table(), hb),
+        wing.aspect_ratio,
+        np.tan(wing.sweep_half_chord),
+        0.5 * v_f / a_sound,
+    )
     CD = CD + k * (raymer * (CL_ge - cl_min) ** 2 - (CL - cl_min) ** 2)
     print(f"wing h/b at rest {hb:.3f}, Raymer's K_eff/K {raymer:.3f}, CL {CL:.3f} -> {CL_ge:.3f}")
     CL = CL_ge
     mu, S = 0.02, model.S
     K_T = thrust / W - mu
     K_A = rho / (2 * W / S) * (mu * CL - CD)
-    s_raymer = np.log((K_T + K_A * v_f ** 2) / K_T) / (2 * model.g * K_A)
+    s_raymer = np.log((K_T + K_A * v_f**2) / K_T) / (2 * model.g * K_A)
     print(f"ground roll to 140 kn: simulated {s_sim:.1f} m, Raymer {s_raymer:.1f} m")
     assert s_sim == pytest.approx(s_raymer, rel=0.03)
 
@@ -75,8 +80,16 @@ def test_ground_roll_against_raymer_closed_form(setup):
 def test_rotation_rate_within_the_pilot_limit(setup):
     ac, model = setup
     travel = control_limits(ac, design=False)
-    run = takeoff_run(model, 155 * KN, np.radians(10.1), climb_speed=171 * KN, rotation_rate=np.radians(2.5),
-                      elevator_limits=travel["elevator"], dt=0.1, t_end=90.0)
+    run = takeoff_run(
+        model,
+        155 * KN,
+        np.radians(10.1),
+        climb_speed=171 * KN,
+        rotation_rate=np.radians(2.5),
+        elevator_limits=travel["elevator"],
+        dt=0.1,
+        t_end=90.0,
+    )
     assert run.reached[0]
     assert 1.5 <= np.degrees(run.pitch_rate_max[0]) <= 3.3
     assert np.degrees(run.pitch_on_ground_max[0]) < 12.1

@@ -75,12 +75,15 @@ def test_cli_exit_2_without_traceback(bad_file):
     assert "geometry.wing.taper" in proc.stderr and f"{bad_file}:4" in proc.stderr
 
 
-@pytest.mark.parametrize("text,path,words", [
-    ("name: x\nname: y\n", "name", "duplicate key"),
-    ("!!python/object/apply:os.system ['echo hi']\n", "", "not valid YAML"),
-    ("- a\n- b\n", "", "mapping of sections"),
-    ("name: [unclosed\n", "", "not valid YAML"),
-])
+@pytest.mark.parametrize(
+    "text,path,words",
+    [
+        ("name: x\nname: y\n", "name", "duplicate key"),
+        ("!!python/object/apply:os.system ['echo hi']\n", "", "not valid YAML"),
+        ("- a\n- b\n", "", "mapping of sections"),
+        ("name: [unclosed\n", "", "not valid YAML"),
+    ],
+)
 def test_unsafe_or_malformed_yaml(tmp_path, text, path, words):
     f = tmp_path / "a.yaml"
     f.write_text(text)
@@ -148,15 +151,21 @@ def test_takeoff_pilot_defaults_and_bad_values(baseline, tmp_path):
     text = BASELINE.read_text().replace(
         "\nconfigurations:\n",
         "\ntakeoff_pilot:\n  rudder_reaction_time: 7 s\n  rudder_rate: -5 deg/s\n  nose_wheel_steering: 95 deg\n"
-        "\nconfigurations:\n", 1)
+        "\nconfigurations:\n",
+        1,
+    )
     f = tmp_path / "a.yaml"
     f.write_text(text)
-    line = text[:text.index("takeoff_pilot:")].count("\n") + 1
+    line = text[: text.index("takeoff_pilot:")].count("\n") + 1
     with pytest.raises(InputError) as info:
         load_aircraft(f)
     by_path = {p.path: p for p in info.value.problems}
-    for k, (path, words) in enumerate((("takeoff_pilot.rudder_reaction_time", "less than or equal to 5"),
-                                       ("takeoff_pilot.rudder_rate", "greater than 0"),
-                                       ("takeoff_pilot.nose_wheel_steering", "less than or equal to"))):
+    for k, (path, words) in enumerate(
+        (
+            ("takeoff_pilot.rudder_reaction_time", "less than or equal to 5"),
+            ("takeoff_pilot.rudder_rate", "greater than 0"),
+            ("takeoff_pilot.nose_wheel_steering", "less than or equal to"),
+        )
+    ):
         assert path in by_path, list(by_path)
         assert words in by_path[path].message and by_path[path].line == line + 1 + k

@@ -5,17 +5,32 @@ import pytest
 
 from certkit.engine.evidence import Bars
 from certkit.engine.evidence.performance import climb_gradient_evidence, margins_evidence
-from certkit.report.figures import render_evidence
 from certkit.engine.results import Condition, Finding
+from certkit.report.figures import render_evidence
 
 
 def _findings():
     c = Condition(loading="MTOW aft", configuration="takeoff", altitude=0.0, speed_name="V2")
     return [
-        Finding.compare(c, "(b) gradient at V2, gear up", 0.031, 0.024, at_least=True, unit="gradient",
-                        rudder_deg=-12.5, elevator_deg=-3.0),
-        Finding.compare(c.with_(loading="MTOW forward"), "(b) gradient at V2, gear up", 0.020, 0.024, at_least=True,
-                        unit="gradient", rudder_deg=-12.0),
+        Finding.compare(
+            c,
+            "(b) gradient at V2, gear up",
+            0.031,
+            0.024,
+            at_least=True,
+            unit="gradient",
+            rudder_deg=-12.5,
+            elevator_deg=-3.0,
+        ),
+        Finding.compare(
+            c.with_(loading="MTOW forward"),
+            "(b) gradient at V2, gear up",
+            0.020,
+            0.024,
+            at_least=True,
+            unit="gradient",
+            rudder_deg=-12.0,
+        ),
         Finding.compare(c, "(b) rudder within design limit", -25.0, -23.2, at_least=True, unit="deg"),
         Finding.not_evaluated(c, "(b) something", "needs speeds.VMC"),
     ]

@@ -20,8 +20,10 @@ def _line_of(lines, needle):
 
 def test_stop_inside_design_limit_and_flap_factor(cli, tmp_path):
     """The elevator stop at −20° inside its −21.8° design limit; flaps-extended 2.8 g above the clean 2.5 g."""
-    path, lines = _edited(tmp_path, [(ELEVATOR_TRAVEL, ELEVATOR_TRAVEL.replace("-30 deg", "-20 deg")),
-                                     (FLAPS_FACTOR, "    flaps_extended: 2.8")])
+    path, lines = _edited(
+        tmp_path,
+        [(ELEVATOR_TRAVEL, ELEVATOR_TRAVEL.replace("-30 deg", "-20 deg")), (FLAPS_FACTOR, "    flaps_extended: 2.8")],
+    )
     out = cli("check", path, "--select", "25.337", "--out", tmp_path / "rep")
     assert out.exit_code == 2 and "Traceback" not in out.output
     assert "2 problems" in out.output

@@ -7,14 +7,14 @@ import textwrap
 import pytest
 
 from certkit.aircraft import load_aircraft
-from certkit.errors import UserError
 from certkit.engine.registry import PluginError, discover, folder_rules, select
 from certkit.engine.results_json import stable_lines
 from certkit.engine.scheduler import run, work_units
+from certkit.errors import UserError
 
 from ..conftest import BASELINE
 
-USER_RULE = textwrap.dedent('''
+USER_RULE = textwrap.dedent("""
     from certkit.engine.conditions import CgCorners, ConditionSpace
     from certkit.engine.registry import Criterion, Rule, rule
     from certkit.engine.results import Finding
@@ -37,7 +37,7 @@ USER_RULE = textwrap.dedent('''
                     raise RuntimeError("solver diverged at this corner")
                 out.append(Finding.compare(c, "mass", c.mass, crit.scale * ctx.aircraft.mass.MRW, at_least=False, unit="kg"))
             return out
-''')
+""")
 
 
 def write_rule(folder, explode="none"):
@@ -55,8 +55,19 @@ def test_check_writes_results_json_with_stable_keys(cli, tmp_path):
     ids = [r["id"] for r in data["rules"]]
     assert {"25.333", "25.335(c)", "25.337"} <= set(ids)
     for r in data["rules"]:
-        assert set(r) >= {"id", "symbol", "title", "status", "min_margin", "unit", "critical_condition", "findings",
-                          "implementation", "limitations", "unevaluated"}
+        assert set(r) >= {
+            "id",
+            "symbol",
+            "title",
+            "status",
+            "min_margin",
+            "unit",
+            "critical_condition",
+            "findings",
+            "implementation",
+            "limitations",
+            "unevaluated",
+        }
         assert (r["implementation"] == "partial") == bool(r["unevaluated"])
         for f in r["findings"]:
             assert set(f) >= {"condition", "value", "limit", "margin", "normalized_margin", "unit", "status", "reason"}
@@ -147,7 +158,9 @@ def test_cli_plugin_error_exit_2(cli, tmp_path):
     folder = tmp_path / "broken"
     folder.mkdir()
     (folder / "bad_rule.py").write_text(USER_RULE.replace('symbol = "user-corner-mass"', 'symbol = "Bad Symbol"'))
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "rules", "--rules", str(folder)], capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "certkit.cli", "rules", "--rules", str(folder)], capture_output=True, text=True
+    )
     assert proc.returncode == 2 and "field 'symbol'" in proc.stderr and "Traceback" not in proc.stderr
 
 

@@ -56,5 +56,7 @@ def test_long_texts_widen_the_view_box(where):
 
 
 def test_text_width_is_the_widest_label():
-    assert text_width(["a", "a much longer label"], 9) > text_width(["a much longer label"], 7) > text_width(["a"], 9) > 0
+    assert (
+        text_width(["a", "a much longer label"], 9) > text_width(["a much longer label"], 7) > text_width(["a"], 9) > 0
+    )
     assert text_width([], 9) == 0.0

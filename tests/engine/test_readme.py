@@ -32,8 +32,11 @@ DOCUMENTED = ("README.md", "docs/usage.md")
 
 
 def sh_blocks():
-    return [block for name in DOCUMENTED
-            for block in re.findall(r"```sh\n(.*?)\n```", (ROOT / name).read_text(), flags=re.S)]
+    return [
+        block
+        for name in DOCUMENTED
+        for block in re.findall(r"```sh\n(.*?)\n```", (ROOT / name).read_text(), flags=re.S)
+    ]
 
 
 def test_every_readme_example_runs_verbatim(tmp_path):
@@ -50,7 +53,9 @@ def test_every_readme_example_runs_verbatim(tmp_path):
     from concurrent.futures import ThreadPoolExecutor
 
     def run(line):
-        return line, subprocess.run(["bash", "-c", line], cwd=ROOT, env=env, capture_output=True, text=True, timeout=300)
+        return line, subprocess.run(
+            ["bash", "-c", line], cwd=ROOT, env=env, capture_output=True, text=True, timeout=300
+        )
 
     later = [ln for ln in lines if ln.startswith("certkit diff")]  # reads what the checks before it wrote
     with ThreadPoolExecutor(max_workers=2) as pool:  # two at a time: the machine's cores

@@ -44,7 +44,8 @@ def test_airspeed_conversions_are_consistent():
     assert np.all(isa.convert_speed(v, "EAS", "CAS", h) > v)
     for kind in ("EAS", "CAS", "MACH"):
         assert isa.from_tas(isa.to_tas(v / 300 if kind == "MACH" else v, kind, h), kind, h) == pytest.approx(
-            v / 300 if kind == "MACH" else v, rel=1e-7)
+            v / 300 if kind == "MACH" else v, rel=1e-7
+        )
     assert isa.cas_to_mach(isa.mach_to_cas(1.3, h), h) == pytest.approx(1.3, rel=1e-6)
 
 

@@ -23,28 +23,118 @@ from .mutate import baseline_data
 TEXT = BASELINE.read_text(encoding="utf-8")
 LINES = TEXT.splitlines()
 
-HOSTILE_TEXT = ["nan ft", "inf ft", "-inf kg", "1e400 ft", "-1e400 m", "9**9**9 lb", "10**1000 lb", "3e5", "0 ft",
-                "-5 kg", "1 furlong", "kg", "", " ", "1e-320 m", "340 kn EAS", "340 KEAS", "M0.84", "1 m^99", "1 (((m)))",
-                "1 m/(s", "ft^2", "1e308 lbf*ft", "9" * 400 + " lb", "root", "side_of_body", "clean", "EAS", "1 m m m",
-                "1 / / s", "2 ** 3 m", "1e5 slug*ft^2", "12 degC", "1 m^-4", "0x1F m", "1_000 m", "½ m", "1 µm",
-                "日本語", "a\x00b", "a\nb", "1" * 90, "25.999", "..", "%", "1 %"]
-UNITS = ["ft", "lb", "kg*m^2", "deg", "kn EAS", "lbf", "ft^2", "m/s", "psi", "slug*ft^2", "rad/m", "kg/m^3", "lb/lbf/h",
-         "N*m", "s", "K", "", "kn", "nmi", "deg/s"]
+HOSTILE_TEXT = [
+    "nan ft",
+    "inf ft",
+    "-inf kg",
+    "1e400 ft",
+    "-1e400 m",
+    "9**9**9 lb",
+    "10**1000 lb",
+    "3e5",
+    "0 ft",
+    "-5 kg",
+    "1 furlong",
+    "kg",
+    "",
+    " ",
+    "1e-320 m",
+    "340 kn EAS",
+    "340 KEAS",
+    "M0.84",
+    "1 m^99",
+    "1 (((m)))",
+    "1 m/(s",
+    "ft^2",
+    "1e308 lbf*ft",
+    "9" * 400 + " lb",
+    "root",
+    "side_of_body",
+    "clean",
+    "EAS",
+    "1 m m m",
+    "1 / / s",
+    "2 ** 3 m",
+    "1e5 slug*ft^2",
+    "12 degC",
+    "1 m^-4",
+    "0x1F m",
+    "1_000 m",
+    "½ m",
+    "1 µm",
+    "日本語",
+    "a\x00b",
+    "a\nb",
+    "1" * 90,
+    "25.999",
+    "..",
+    "%",
+    "1 %",
+]
+UNITS = [
+    "ft",
+    "lb",
+    "kg*m^2",
+    "deg",
+    "kn EAS",
+    "lbf",
+    "ft^2",
+    "m/s",
+    "psi",
+    "slug*ft^2",
+    "rad/m",
+    "kg/m^3",
+    "lb/lbf/h",
+    "N*m",
+    "s",
+    "K",
+    "",
+    "kn",
+    "nmi",
+    "deg/s",
+]
 SPECIAL_FLOATS = [math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, 0.0, -0.0, 1e-12, 1e12]
 
 scalars = st.one_of(
-    st.none(), st.booleans(),
-    st.integers(min_value=-10**6, max_value=10**6), st.integers(min_value=10**300, max_value=10**400),
-    st.floats(allow_nan=True, allow_infinity=True), st.sampled_from(SPECIAL_FLOATS),
-    st.text(max_size=20), st.sampled_from(HOSTILE_TEXT),
-    st.builds(lambda n, u: f"{n} {u}".strip(),
-              st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(), st.sampled_from(["1e400", "nan"])),
-              st.sampled_from(UNITS)),
+    st.none(),
+    st.booleans(),
+    st.integers(min_value=-(10**6), max_value=10**6),
+    st.integers(min_value=10**300, max_value=10**400),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from(SPECIAL_FLOATS),
+    st.text(max_size=20),
+    st.sampled_from(HOSTILE_TEXT),
+    st.builds(
+        lambda n, u: f"{n} {u}".strip(),
+        st.one_of(st.floats(allow_nan=True, allow_infinity=True), st.integers(), st.sampled_from(["1e400", "nan"])),
+        st.sampled_from(UNITS),
+    ),
 )
-keys = st.one_of(st.text(max_size=12), st.sampled_from(["name", "x", "y", "z", "mass", "inertia", "Ixx", "clean", "VD",
-                                                        "25.337", "25.999", "values", "station", "<<", "kind"]))
-values = st.recursive(scalars, lambda kids: st.lists(kids, max_size=4) | st.dictionaries(keys, kids, max_size=4),
-                      max_leaves=8)
+keys = st.one_of(
+    st.text(max_size=12),
+    st.sampled_from(
+        [
+            "name",
+            "x",
+            "y",
+            "z",
+            "mass",
+            "inertia",
+            "Ixx",
+            "clean",
+            "VD",
+            "25.337",
+            "25.999",
+            "values",
+            "station",
+            "<<",
+            "kind",
+        ]
+    ),
+)
+values = st.recursive(
+    scalars, lambda kids: st.lists(kids, max_size=4) | st.dictionaries(keys, kids, max_size=4), max_leaves=8
+)
 
 
 def _paths(node, prefix=()):
@@ -94,8 +184,23 @@ def mutate(draw, data) -> None:
         current = parent[key]
     except (KeyError, IndexError, TypeError):
         return  # an earlier change removed this path
-    op = draw(st.sampled_from(["replace", "replace", "replace", "scale", "delete", "rename", "add_key", "wrap",
-                               "to_list", "duplicate", "empty"]))
+    op = draw(
+        st.sampled_from(
+            [
+                "replace",
+                "replace",
+                "replace",
+                "scale",
+                "delete",
+                "rename",
+                "add_key",
+                "wrap",
+                "to_list",
+                "duplicate",
+                "empty",
+            ]
+        )
+    )
     if op == "replace":
         parent[key] = draw(values)
     elif op == "scale":
@@ -124,9 +229,47 @@ def data_variants(draw):
     return data
 
 
-TOKENS = ["&a ", "*a", "[", "]", "{", "}", ":", "- ", "\t", "!!python/object:os.system ", "<<: *a", "\x00", "\ufeff",
-          "? ", "|", ">", "'", '"', "#", "%YAML 1.1\n", "---\n", "...\n", "!!float ", ".nan", ".inf", "9" * 400, "&b [*b]",
-          "&x [1, 2, 3]", "1e400", "0o777", "0x1F", "2001-12-14", "null", "~", "yes", "NO", "=", "!!binary ", "\\"]
+TOKENS = [
+    "&a ",
+    "*a",
+    "[",
+    "]",
+    "{",
+    "}",
+    ":",
+    "- ",
+    "\t",
+    "!!python/object:os.system ",
+    "<<: *a",
+    "\x00",
+    "\ufeff",
+    "? ",
+    "|",
+    ">",
+    "'",
+    '"',
+    "#",
+    "%YAML 1.1\n",
+    "---\n",
+    "...\n",
+    "!!float ",
+    ".nan",
+    ".inf",
+    "9" * 400,
+    "&b [*b]",
+    "&x [1, 2, 3]",
+    "1e400",
+    "0o777",
+    "0x1F",
+    "2001-12-14",
+    "null",
+    "~",
+    "yes",
+    "NO",
+    "=",
+    "!!binary ",
+    "\\",
+]
 
 
 @st.composite
@@ -164,7 +307,7 @@ def _finite_everywhere(value) -> bool:
 
 
 def outcome(variant) -> str:
-    """"loads", "user_error", or "unexpected: <what>" for a data (dict) or text (str) variant."""
+    """ "loads", "user_error", or "unexpected: <what>" for a data (dict) or text (str) variant."""
     try:
         if isinstance(variant, str):
             source = source_from_text(variant, "fuzz.yaml")

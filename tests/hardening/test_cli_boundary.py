@@ -16,8 +16,9 @@ from .mutate import with_value, write_yaml
 
 
 def _certkit(*args, cwd=None, timeout=120):
-    return subprocess.run([sys.executable, "-m", "certkit.cli", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "certkit.cli", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=timeout
+    )
 
 
 @pytest.fixture
@@ -41,9 +42,15 @@ def test_debug_shows_the_traceback(broken_schema):
     assert "Traceback" in result.output
 
 
-@pytest.mark.parametrize("path, value", [("mass.MTOW", "10**1000 lb"), ("mass.inertia.Ixz", float("nan")),
-                                         ("mass.components.0.inertia.Iyy", "inf kg*m^2"),
-                                         ("criteria", {"25.999": {"justification": "no such rule here", "values": {"x": 1}}})])
+@pytest.mark.parametrize(
+    "path, value",
+    [
+        ("mass.MTOW", "10**1000 lb"),
+        ("mass.inertia.Ixz", float("nan")),
+        ("mass.components.0.inertia.Iyy", "inf kg*m^2"),
+        ("criteria", {"25.999": {"justification": "no such rule here", "values": {"x": 1}}}),
+    ],
+)
 def test_reproducers_exit_2_without_traceback(tmp_path, path, value):
     result = _certkit("check", write_yaml(tmp_path, with_value(path, value)), "--out", tmp_path / "out", "-j", "1")
     assert result.returncode == 2, result.stderr
@@ -53,8 +60,13 @@ def test_reproducers_exit_2_without_traceback(tmp_path, path, value):
 
 
 def test_unknown_rule_in_criteria_names_the_known_ones(tmp_path):
-    data = with_value("criteria", {"25.999": {"justification": "no such rule here", "values": {"x": 1}},
-                                   "25.337": {"justification": "an unknown criterion", "values": {"nope": 1.0}}})
+    data = with_value(
+        "criteria",
+        {
+            "25.999": {"justification": "no such rule here", "values": {"x": 1}},
+            "25.337": {"justification": "an unknown criterion", "values": {"nope": 1.0}},
+        },
+    )
     result = _certkit("check", write_yaml(tmp_path, data), "--out", tmp_path / "out")
     assert result.returncode == 2
     assert "no rule 25.999" in result.stderr and "25.337" in result.stderr

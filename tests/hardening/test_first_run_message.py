@@ -12,9 +12,12 @@ from ..conftest import ROOT
 
 
 def test_an_empty_kernel_cache_is_seen_as_cold(tmp_path):
-    probe = subprocess.run([sys.executable, "-c", "from certkit.models.compiled import kernels_cached; "
-                            "print(kernels_cached())"], capture_output=True, text=True,
-                           env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)})
+    probe = subprocess.run(
+        [sys.executable, "-c", "from certkit.models.compiled import kernels_cached; print(kernels_cached())"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)},
+    )
     assert probe.stdout.strip() == "False", probe.stderr
 
 

@@ -9,8 +9,13 @@ from hypothesis import HealthCheck, given, settings
 
 from .fuzz import data_variants, outcome, text_variants
 
-_BOUNDED = settings(max_examples=250, derandomize=True, database=None, deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large])
+_BOUNDED = settings(
+    max_examples=250,
+    derandomize=True,
+    database=None,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+)
 
 
 @_BOUNDED

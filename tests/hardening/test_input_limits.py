@@ -30,21 +30,24 @@ def _load_problems(path) -> list:
     return err.value.problems
 
 
-@pytest.mark.parametrize("path, value, words", [
-    ("mass.MTOW", "10**1000 lb", "arithmetic is not evaluated"),
-    ("mass.MTOW", "9**9**9 lb", "arithmetic is not evaluated"),
-    ("mass.MTOW", int("9" * 400), "400 digits"),
-    ("mass.inertia.Izz", "10**1000 kg*m^2", "arithmetic is not evaluated"),
-    ("mass.inertia.Ixz", math.nan, "finite"),
-    ("mass.components.0.inertia.Iyy", "inf kg*m^2", "cannot read"),
-    ("geometry.fuselage.length", "nan ft", "cannot read"),
-    ("geometry.fuselage.length", "1e400 ft", "finite"),
-    ("envelope.ceiling", math.inf, "finite"),
-    ("cg_envelope.vertices.0.x", math.nan, "finite"),
-    ("geometry.wing.taper", math.nan, "finite"),
-    ("mass.MTOW", "1" * 20000 + " lb", "too long"),
-    ("mass.MTOW", True, "yes/no"),
-])
+@pytest.mark.parametrize(
+    "path, value, words",
+    [
+        ("mass.MTOW", "10**1000 lb", "arithmetic is not evaluated"),
+        ("mass.MTOW", "9**9**9 lb", "arithmetic is not evaluated"),
+        ("mass.MTOW", int("9" * 400), "400 digits"),
+        ("mass.inertia.Izz", "10**1000 kg*m^2", "arithmetic is not evaluated"),
+        ("mass.inertia.Ixz", math.nan, "finite"),
+        ("mass.components.0.inertia.Iyy", "inf kg*m^2", "cannot read"),
+        ("geometry.fuselage.length", "nan ft", "cannot read"),
+        ("geometry.fuselage.length", "1e400 ft", "finite"),
+        ("envelope.ceiling", math.inf, "finite"),
+        ("cg_envelope.vertices.0.x", math.nan, "finite"),
+        ("geometry.wing.taper", math.nan, "finite"),
+        ("mass.MTOW", "1" * 20000 + " lb", "too long"),
+        ("mass.MTOW", True, "yes/no"),
+    ],
+)
 def test_unreadable_or_non_finite_numbers_are_located_errors(path, value, words):
     start = time.perf_counter()
     found = _problems(with_value(path, value))
@@ -76,8 +79,9 @@ def test_limit_message_shows_the_text_and_its_si_reading():
 
 
 def test_nan_criteria_override_is_rejected():
-    data = with_value("criteria", {"25.337": {"justification": "a test of a NaN override",
-                                               "values": {"n_positive_floor": math.nan}}})
+    data = with_value(
+        "criteria", {"25.337": {"justification": "a test of a NaN override", "values": {"n_positive_floor": math.nan}}}
+    )
     found = _problems(data)
     assert "finite" in found["criteria.25.337.values.n_positive_floor"].message
 
@@ -136,8 +140,8 @@ def test_written_baseline_variant_round_trips(tmp_path):
 
 @pytest.mark.parametrize("text", ["nan", "inf", "1e999", "9**9**9 lb", "nan lb"])
 def test_command_line_quantities_refuse_non_finite_and_arithmetic(text):
-    from certkit.errors import UserError
     from certkit.cli.flight_report import _quantity, parse_speed
+    from certkit.errors import UserError
 
     with pytest.raises(UserError):
         _quantity(text, "mass", "--weight")

@@ -35,9 +35,25 @@ def _alive(pid: int) -> bool:
 
 
 def _started_check(out):
-    proc = subprocess.Popen([sys.executable, "-m", "certkit.cli", "check", str(BASELINE), "--select", "25.33,25.34",
-                             "-j", "2", "--out", str(out)], cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True)
+    proc = subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "check",
+            str(BASELINE),
+            "--select",
+            "25.33,25.34",
+            "-j",
+            "2",
+            "--out",
+            str(out),
+        ],
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     deadline = time.monotonic() + 90
     while time.monotonic() < deadline and len(_workers(proc.pid)) < 2 and proc.poll() is None:
         time.sleep(0.1)

@@ -64,8 +64,12 @@ def _rule_set(out) -> tuple:
 
 
 def _check(out, select):
-    return subprocess.Popen([sys.executable, "-m", "certkit.cli", "check", str(BASELINE), "--select", select, "-j", "1",
-                             "--out", str(out)], cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return subprocess.Popen(
+        [sys.executable, "-m", "certkit.cli", "check", str(BASELINE), "--select", select, "-j", "1", "--out", str(out)],
+        cwd=ROOT,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
 
 
 def test_kill_certkit_check_keeps_a_complete_set(tmp_path):

@@ -26,7 +26,7 @@ from certkit.report.output import prepare_output, write_set
 from ..conftest import BASELINE
 from .mutate import with_value, write_yaml
 
-EXITING_RULE = textwrap.dedent('''
+EXITING_RULE = textwrap.dedent("""
     import sys
 
     from certkit.engine.conditions import CgCorners, ConditionSpace
@@ -46,12 +46,13 @@ EXITING_RULE = textwrap.dedent('''
 
         def evaluate(self, ctx, conditions, crit):
             sys.exit(0)
-''')
+""")
 
 
 def _certkit(*args, cwd=None, timeout=120):
-    return subprocess.run([sys.executable, "-m", "certkit.cli", *map(str, args)], capture_output=True, text=True,
-                          cwd=cwd, timeout=timeout)
+    return subprocess.run(
+        [sys.executable, "-m", "certkit.cli", *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=timeout
+    )
 
 
 def _user_error(result, *words):
@@ -62,6 +63,7 @@ def _user_error(result, *words):
 
 
 # --- a rule plugin that calls sys.exit -----------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("jobs", ["1", "2"])
 def test_rule_calling_sys_exit_is_an_error_naming_the_rule(tmp_path, jobs):
@@ -83,6 +85,7 @@ def test_rule_module_calling_sys_exit_on_import_is_an_error_naming_the_file(tmp_
 
 # --- certkit diff ---------------------------------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("tolerance", ["nan", "-1e-6", "inf"])
 def test_diff_refuses_a_tolerance_that_hides_or_invents_changes(tmp_path, tolerance):
     results = tmp_path / "results.json"
@@ -97,6 +100,7 @@ def test_diff_of_a_binary_file_is_a_user_error(tmp_path):
 
 
 # --- the report folder ----------------------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("name", ["results.json", "index.html"])
 def test_user_folder_named_like_a_report_file_is_never_deleted(tmp_path, name):
@@ -122,21 +126,33 @@ def test_user_folder_appearing_during_the_evaluation_is_not_deleted(tmp_path):
 
 # --- ordinary mistakes: exit 2 with a message -----------------------------------------------------------------------
 
+
 def test_evaluate_on_a_missing_file(tmp_path):
     _user_error(_certkit("evaluate", tmp_path / "missing.yaml"), "missing.yaml", "not found")
 
 
 def test_output_file_into_a_missing_folder_is_refused_before_the_evaluation(tmp_path):
     start = time.perf_counter()
-    result = _certkit("check", BASELINE, "--out", tmp_path / "out", "--output-format", "sarif", "--output-file",
-                      tmp_path / "nowhere" / "certkit.sarif", "-j", "1")
+    result = _certkit(
+        "check",
+        BASELINE,
+        "--out",
+        tmp_path / "out",
+        "--output-format",
+        "sarif",
+        "--output-file",
+        tmp_path / "nowhere" / "certkit.sarif",
+        "-j",
+        "1",
+    )
     _user_error(result, "--output-file", "nowhere", "does not exist")
     assert time.perf_counter() - start < 90  # a full check at -j 1 takes minutes
     assert not (tmp_path / "out").exists()  # nothing was evaluated nor written
 
 
-@pytest.mark.parametrize("option, value", [("--alpha", "inf"), ("--alpha", "nan"), ("--beta", "-inf"),
-                                           ("--mach", "nan")])
+@pytest.mark.parametrize(
+    "option, value", [("--alpha", "inf"), ("--alpha", "nan"), ("--beta", "-inf"), ("--mach", "nan")]
+)
 def test_derivatives_refuses_non_finite_angles(option, value):
     _user_error(_certkit("derivatives", BASELINE, option, value), option, "finite")
 
@@ -183,7 +199,7 @@ def test_study_store_with_a_malformed_page_is_a_user_error(tmp_path, page):
     connection.close()
     raw = bytearray(store.read_bytes())
     start = (page - 1) * page_size + 8  # past the page header: its cell pointers
-    raw[start:start + 256] = b"\xff" * 256
+    raw[start : start + 256] = b"\xff" * 256
     store.write_bytes(bytes(raw))
     for command in (["study", "status", store], ["study", "export", store, "--format", "csv"]):
         _user_error(_certkit(*command), str(store), "restore it from a copy")
@@ -191,16 +207,20 @@ def test_study_store_with_a_malformed_page_is_a_user_error(tmp_path, page):
 
 # --- values the loader accepted that distort results: refused with their bounds -------------------------------------
 
-@pytest.mark.parametrize("path, value, words", [
-    ("geometry.wing.taper", 1e-30, "greater than or equal to 0.02"),
-    ("geometry.horizontal_tail.taper", 0.0, "greater than or equal to 0.02"),
-    ("configurations.takeoff.delta_CD0", -12000, "greater than or equal to 0"),
-    ("configurations.landing.delta_CD0", 12.0, "less than 0.3"),
-    ("configurations.approach.flap", "-20 deg", "greater than or equal to 0"),
-    ("configurations.landing.flap", "120 deg", "less than or equal to 1.22"),
-    ("mass.passengers", -0.0, "integer"),
-    ("mass.passengers", 305.5, "integer"),
-])
+
+@pytest.mark.parametrize(
+    "path, value, words",
+    [
+        ("geometry.wing.taper", 1e-30, "greater than or equal to 0.02"),
+        ("geometry.horizontal_tail.taper", 0.0, "greater than or equal to 0.02"),
+        ("configurations.takeoff.delta_CD0", -12000, "greater than or equal to 0"),
+        ("configurations.landing.delta_CD0", 12.0, "less than 0.3"),
+        ("configurations.approach.flap", "-20 deg", "greater than or equal to 0"),
+        ("configurations.landing.flap", "120 deg", "less than or equal to 1.22"),
+        ("mass.passengers", -0.0, "integer"),
+        ("mass.passengers", 305.5, "integer"),
+    ],
+)
 def test_physically_meaningless_values_are_located_errors(tmp_path, path, value, words):
     data = with_value(path, value)
     text = write_yaml(tmp_path, data).read_text()
@@ -223,4 +243,3 @@ def test_the_schema_documents_the_bounds():
     assert "0 (retracted) to 70 deg" in flap["description"]  # a quantity with a unit: its bounds in words
     assert defs["LiftingSurface"]["properties"]["taper"]["minimum"] == 0.02
     assert "whole number" in json.dumps(defs["MassProperties"]["properties"]["passengers"])
-

@@ -6,9 +6,9 @@ import os
 
 import pytest
 
+from certkit.engine.results import Condition, Finding, RuleResult, RunResult
 from certkit.errors import UserError
 from certkit.report.output import prepare_output, report_folder_name, write_set
-from certkit.engine.results import Condition, Finding, RuleResult, RunResult
 
 
 def _set(tag: str) -> dict:
@@ -59,12 +59,15 @@ def test_stale_temporary_folders_of_dead_runs_are_removed(tmp_path):
     assert not stale.exists()
 
 
-@pytest.mark.parametrize("make, words", [
-    (lambda t: (t / "dangling").symlink_to(t / "nowhere") or t / "dangling", "does not exist"),
-    (lambda t: t / ("x" * 300), "too long"),
-    (lambda t: (t / "file").write_text("") or t / "file" / "out", "is a file"),
-    (lambda t: (t / "file2").write_text("") or t / "file2", "not a folder"),
-])
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda t: (t / "dangling").symlink_to(t / "nowhere") or t / "dangling", "does not exist"),
+        (lambda t: t / ("x" * 300), "too long"),
+        (lambda t: (t / "file").write_text("") or t / "file" / "out", "is a file"),
+        (lambda t: (t / "file2").write_text("") or t / "file2", "not a folder"),
+    ],
+)
 def test_bad_output_paths_are_user_errors(tmp_path, make, words):
     with pytest.raises(UserError, match=words):
         prepare_output(make(tmp_path))
@@ -78,8 +81,14 @@ def test_symlink_to_a_folder_is_honoured(tmp_path):
     assert (tmp_path / "link").is_symlink() and _read(real)[0] == "one"
 
 
-@pytest.mark.parametrize("names", [("日本語", "中文", ".", "..", ""), ("a\x00b", "a\nb", "a b", "a_b", "a/b"),
-                                   ("LTA 777", "LTA-777", "lta_777", "x" * 300, "x" * 301)])
+@pytest.mark.parametrize(
+    "names",
+    [
+        ("日本語", "中文", ".", "..", ""),
+        ("a\x00b", "a\nb", "a b", "a_b", "a/b"),
+        ("LTA 777", "LTA-777", "lta_777", "x" * 300, "x" * 301),
+    ],
+)
 def test_folder_names_are_distinct_and_safe(names):
     slugs = [report_folder_name(n) for n in names]
     assert len(set(slugs)) == len(slugs), slugs
@@ -94,7 +103,9 @@ def test_plain_names_are_kept_as_they_are():
 
 
 def test_results_json_has_no_nan_or_infinity():
-    finding = Finding(Condition(mass=float("nan")), "c", "not_evaluated", value=float("inf"), details={"x": [float("nan")]})
+    finding = Finding(
+        Condition(mass=float("nan")), "c", "not_evaluated", value=float("inf"), details={"x": [float("nan")]}
+    )
     run = RunResult("v", "n", "s", "p", "c", [RuleResult("1", "s", "t", [finding])], models={"m": {"v": float("-inf")}})
     text = run.to_json()
 

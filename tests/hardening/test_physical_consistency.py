@@ -28,8 +28,10 @@ def test_nose_gear_behind_the_main_gear_is_refused():
     assert "geometry.landing_gear.nose.x" in _paths(with_value("geometry.landing_gear.nose.x", "120 ft"))
 
 
-@pytest.mark.parametrize("path", ["mass.components.0.cg.x", "mass.fuel_tanks.0.cg.x", "mass.payload_zones.0.x_end",
-                                  "geometry.landing_gear.main.x"])
+@pytest.mark.parametrize(
+    "path",
+    ["mass.components.0.cg.x", "mass.fuel_tanks.0.cg.x", "mass.payload_zones.0.x_end", "geometry.landing_gear.main.x"],
+)
 def test_stations_far_outside_the_fuselage_are_refused(path):
     assert path in _paths(with_value(path, "900 ft"))  # fuselage 206.5 ft long
 

@@ -13,8 +13,13 @@ PROBE = "from certkit.units import to_si; print(to_si('1000 ft', 'length'))"
 
 
 def _run(cache):
-    return subprocess.Popen([sys.executable, "-c", PROBE], env={**os.environ, "XDG_CACHE_HOME": str(cache)},
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen(
+        [sys.executable, "-c", PROBE],
+        env={**os.environ, "XDG_CACHE_HOME": str(cache)},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def _ok(proc):

@@ -37,8 +37,15 @@ def outboard_moment(y, w, station: float) -> float:
     return float(np.trapezoid(w[keep] * (y[keep] - station), y[keep]))
 
 
-def bending_at(station: float, half_wing_air_load: float, n: float, wing: dict, wing_mass_half: float,
-               point_masses=(), dihedral: float = 0.0) -> float:
+def bending_at(
+    station: float,
+    half_wing_air_load: float,
+    n: float,
+    wing: dict,
+    wing_mass_half: float,
+    point_masses=(),
+    dihedral: float = 0.0,
+) -> float:
     """Limit bending (N·m) at |y| ``station`` of one half wing at load factor n: the air load spread by Schrenk, the
     wing's own mass spread in proportion to the chord, point masses (kg, |y|) — engines, fuel tanks' centroids."""
     y, ell = schrenk(**wing)
@@ -66,8 +73,9 @@ def _segment_w(p, a, b):
     return cross[..., 2] * k / (4 * np.pi)
 
 
-def weissinger(area: float, aspect_ratio: float, taper: float, sweep_quarter_chord: float, mach: float = 0.0,
-               panels: int = 80):
+def weissinger(
+    area: float, aspect_ratio: float, taper: float, sweep_quarter_chord: float, mach: float = 0.0, panels: int = 80
+):
     """Additional span load (per unit angle of attack, shape only) of a swept tapered wing by Weissinger's
     three-quarter-chord method: one horseshoe vortex per spanwise panel bound on the quarter-chord line, trailing
     legs streamwise, flow tangency at the panel's three-quarter-chord point (Bertin & Cummings §7.5; Katz & Plotkin,

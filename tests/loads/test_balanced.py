@@ -26,11 +26,20 @@ A_WB, A_T, TAU, L_T, CM0 = 5.0, 0.6, 0.5, 15.0, -0.08  # wing-body slope, tail s
 def two_surface(x_cg, stall=None):
     """Wing-body at its aerodynamic centre X = 10 m (the moment reference), tail lift a_t (α + τ δe + q l_t/V) on S at
     L_T behind it; no downwash, no engines. Derivatives per radian and per q̂ = q c̄ / 2V."""
-    d = {"CL_alpha": A_WB + A_T, "CL_elevator": A_T * TAU, "CL_q": 2 * A_T * L_T / C,
-         "Cm0": CM0, "Cm_alpha": -A_T * L_T / C, "Cm_elevator": -A_T * TAU * L_T / C, "Cm_q": -2 * A_T * (L_T / C) ** 2,
-         "CD0": 0.02, "k": 0.04}
-    aero = StabilityDerivativeModel(AeroReference(S, B, C, x_ref=10.0, z_ref=0.0), d, control_names=("elevator",),
-                                    stall=stall)
+    d = {
+        "CL_alpha": A_WB + A_T,
+        "CL_elevator": A_T * TAU,
+        "CL_q": 2 * A_T * L_T / C,
+        "Cm0": CM0,
+        "Cm_alpha": -A_T * L_T / C,
+        "Cm_elevator": -A_T * TAU * L_T / C,
+        "Cm_q": -2 * A_T * (L_T / C) ** 2,
+        "CD0": 0.02,
+        "k": 0.04,
+    }
+    aero = StabilityDerivativeModel(
+        AeroReference(S, B, C, x_ref=10.0, z_ref=0.0), d, control_names=("elevator",), stall=stall
+    )
     mass = np.array([40000.0, 40000.0])
     return AircraftModel(aero, mass, np.array([[x_cg, 0.0, 0.0]] * 2), np.diag([1e6, 2e6, 3e6]))
 

@@ -32,7 +32,6 @@ from certkit.models.structure.section import laminate_moduli as _laminate_moduli
 from certkit.models.structure.section import naca_thickness
 from certkit.units import FT, LB
 
-
 MPA = 1e6
 
 # --------------------------------------------------------------------------- documented inputs (§10)
@@ -93,12 +92,33 @@ class Surface:
 
 FUSELAGE_HALF_WIDTH_FT = 20.76 / 2
 SURFACES = (
-    Surface("wing", 4927.3, 8.81, 0.18, 0.11, 72000.0, 2, 0.15, 0.60, "aluminium",
-            (("root", 0.0), ("side_of_body", FUSELAGE_HALF_WIDTH_FT / (math.sqrt(8.81 * 4927.3) / 2)))),
-    Surface("horizontal_tail", 1119.2, 4.62, 0.33, 0.088, 5800.0, 2, 0.15, 0.65, "cfrp",
-            (("root", 0.0), ("side_of_body", FUSELAGE_HALF_WIDTH_FT / (math.sqrt(4.62 * 1119.2) / 2)))),
-    Surface("vertical_tail", 527.84, 1.84, 0.30, 0.10, 3800.0, 1, 0.15, 0.65, "cfrp",
-            (("root", 0.0), ("0.5", 0.5))),
+    Surface(
+        "wing",
+        4927.3,
+        8.81,
+        0.18,
+        0.11,
+        72000.0,
+        2,
+        0.15,
+        0.60,
+        "aluminium",
+        (("root", 0.0), ("side_of_body", FUSELAGE_HALF_WIDTH_FT / (math.sqrt(8.81 * 4927.3) / 2))),
+    ),
+    Surface(
+        "horizontal_tail",
+        1119.2,
+        4.62,
+        0.33,
+        0.088,
+        5800.0,
+        2,
+        0.15,
+        0.65,
+        "cfrp",
+        (("root", 0.0), ("side_of_body", FUSELAGE_HALF_WIDTH_FT / (math.sqrt(4.62 * 1119.2) / 2))),
+    ),
+    Surface("vertical_tail", 527.84, 1.84, 0.30, 0.10, 3800.0, 1, 0.15, 0.65, "cfrp", (("root", 0.0), ("0.5", 0.5))),
 )
 
 # --------------------------------------------------------------------------- the arithmetic
@@ -156,15 +176,32 @@ def box_sizing(surf: Surface, n: int = 4001) -> dict:
     t_cov = np.zeros(n)
     for _ in range(30):
         lever = mean_depth - t_cov
-        area = _budget(moment / lever, MIN_COVER[surf.material] * width, surf.semispan,
-                       COVER_FRACTION * m / (2 * surf.halves * density))
+        area = _budget(
+            moment / lever,
+            MIN_COVER[surf.material] * width,
+            surf.semispan,
+            COVER_FRACTION * m / (2 * surf.halves * density),
+        )
         t_cov = area / width
     web_height = h_fs + h_rs
     # webs: volume per unit span = t_web (h_fs + h_rs); fully stressed t_web ∝ V/(h_fs + h_rs)
-    web_area = _budget(shear, MIN_WEB[surf.material] * web_height, surf.semispan, WEB_FRACTION * m / (surf.halves * density))
+    web_area = _budget(
+        shear, MIN_WEB[surf.material] * web_height, surf.semispan, WEB_FRACTION * m / (surf.halves * density)
+    )
     t_web = web_area / web_height
-    return dict(eta=eta, chord=c, width=width, mean_depth=mean_depth, h_fs=h_fs, h_rs=h_rs, lever=mean_depth - t_cov,
-                cover_area=t_cov * width, t_cover=t_cov, t_skin=SKIN_FRACTION * t_cov, t_web=t_web)
+    return dict(
+        eta=eta,
+        chord=c,
+        width=width,
+        mean_depth=mean_depth,
+        h_fs=h_fs,
+        h_rs=h_rs,
+        lever=mean_depth - t_cov,
+        cover_area=t_cov * width,
+        t_cover=t_cov,
+        t_skin=SKIN_FRACTION * t_cov,
+        t_web=t_web,
+    )
 
 
 def station_allowables(surf: Surface, eta_s: float, box: dict | None = None) -> dict:
@@ -174,15 +211,26 @@ def station_allowables(surf: Surface, eta_s: float, box: dict | None = None) -> 
     area, lever = at["cover_area"], at["lever"]
     webs = at["h_fs"] + at["h_rs"]
     enclosed = at["mean_depth"] * at["width"]
-    out = dict(chord=at["chord"], width=at["width"], depth=at["mean_depth"], lever=lever, t_cover=at["t_cover"],
-               t_skin=at["t_skin"], t_web=at["t_web"], h_fs=at["h_fs"], h_rs=at["h_rs"])
+    out = dict(
+        chord=at["chord"],
+        width=at["width"],
+        depth=at["mean_depth"],
+        lever=lever,
+        t_cover=at["t_cover"],
+        t_skin=at["t_skin"],
+        t_web=at["t_web"],
+        h_fs=at["h_fs"],
+        h_rs=at["h_rs"],
+    )
     if surf.material == "aluminium":
         up, low, web = AL["7055-T7751 (upper cover)"], AL["2324-T39 (lower cover)"], AL["7050-T7451 (spar webs)"]
         # Farrar: a panel at its own strength σ = F² E t / L (σ = F √(N E / L) with N = σ t)
         panel = {k: FARRAR_F**2 * AL_E * at["t_cover"] / RIB_PITCH for k in ("upper", "lower")}
         comp_up, comp_low = min(up["Fcy"], panel["upper"]), min(low["Fcy"], panel["lower"])
-        sig = {"limit": {"positive": min(up["Fcy"], comp_up, low["Fty"]), "negative": min(up["Fty"], comp_low)},
-               "ultimate": {"positive": min(comp_up, low["Ftu"]), "negative": min(up["Ftu"], comp_low)}}
+        sig = {
+            "limit": {"positive": min(up["Fcy"], comp_up, low["Fty"]), "negative": min(up["Fty"], comp_low)},
+            "ultimate": {"positive": min(comp_up, low["Ftu"]), "negative": min(up["Ftu"], comp_low)},
+        }
         tau_web = {"limit": SHEAR_YIELD * web["Fty"], "ultimate": web["Fsu"]}
         tau_skin = {"limit": SHEAR_YIELD * min(up["Fty"], low["Fty"]), "ultimate": min(up["Fsu"], low["Fsu"])}
         out["panel_stress_MPa"] = panel
@@ -228,8 +276,11 @@ def test_inputs_match_the_aircraft_file(baseline):
     """The documented planform, thickness ratios and structural masses are the aircraft file's."""
     a = baseline.model
     g, comps = a.geometry, {c.name: c.mass for c in a.mass.components}
-    for surf, geo, comp in ((SURFACES[0], g.wing, "wing"), (SURFACES[1], g.horizontal_tail, "horizontal tail"),
-                            (SURFACES[2], g.vertical_tail, "vertical tail")):
+    for surf, geo, comp in (
+        (SURFACES[0], g.wing, "wing"),
+        (SURFACES[1], g.horizontal_tail, "horizontal tail"),
+        (SURFACES[2], g.vertical_tail, "vertical tail"),
+    ):
         assert geo.area == pytest.approx(surf.area_ft2 * FT**2, rel=1e-6)
         assert geo.aspect_ratio == pytest.approx(surf.aspect_ratio) and geo.taper == pytest.approx(surf.taper)
         assert geo.thickness_ratio == pytest.approx(surf.thickness_ratio)
@@ -286,8 +337,12 @@ def test_declared_capability_matches_the_derivation(baseline, derived):
             a = derived[(surface, station)]
             for which in ("limit", "ultimate"):
                 expected, declared = a[which][cap.quantity], getattr(cap, which)
-                expected = (expected["negative"], expected["positive"]) if isinstance(expected, dict) else (expected,) * 2
-                declared = (declared.negative, declared.positive) if hasattr(declared, "negative") else (float(declared),) * 2
+                expected = (
+                    (expected["negative"], expected["positive"]) if isinstance(expected, dict) else (expected,) * 2
+                )
+                declared = (
+                    (declared.negative, declared.positive) if hasattr(declared, "negative") else (float(declared),) * 2
+                )
                 assert declared == pytest.approx(expected, rel=0.01), (surface, station, cap.quantity, which)
             assert "[research §10]" in cap.source
             seen.add((surface, station, cap.quantity))
@@ -305,15 +360,19 @@ def _fmt(v, unit):
 
 def main():
     d = derived_capabilities()
-    print("| surface | station | chord m | box w × d m | lever m | cover t mm (skin) | web t mm | "
-          "shear kN lim / ult | bending kN·m lim (−/+) | bending kN·m ult (−/+) | torsion kN·m lim / ult |")
+    print(
+        "| surface | station | chord m | box w × d m | lever m | cover t mm (skin) | web t mm | "
+        "shear kN lim / ult | bending kN·m lim (−/+) | bending kN·m ult (−/+) | torsion kN·m lim / ult |"
+    )
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for (surface, station), a in d.items():
-        print(f"| {surface} | {station} | {a['chord']:.2f} | {a['width']:.2f} × {a['depth']:.3f} | {a['lever']:.3f} | "
-              f"{a['t_cover'] * 1e3:.1f} ({a['t_skin'] * 1e3:.1f}) | {a['t_web'] * 1e3:.1f} | "
-              f"{a['limit']['shear'] / 1e3:,.0f} / {a['ultimate']['shear'] / 1e3:,.0f} | "
-              f"{_fmt(a['limit']['bending'], 1e3)} | {_fmt(a['ultimate']['bending'], 1e3)} | "
-              f"{a['limit']['torsion'] / 1e3:,.0f} / {a['ultimate']['torsion'] / 1e3:,.0f} |")
+        print(
+            f"| {surface} | {station} | {a['chord']:.2f} | {a['width']:.2f} × {a['depth']:.3f} | {a['lever']:.3f} | "
+            f"{a['t_cover'] * 1e3:.1f} ({a['t_skin'] * 1e3:.1f}) | {a['t_web'] * 1e3:.1f} | "
+            f"{a['limit']['shear'] / 1e3:,.0f} / {a['ultimate']['shear'] / 1e3:,.0f} | "
+            f"{_fmt(a['limit']['bending'], 1e3)} | {_fmt(a['ultimate']['bending'], 1e3)} | "
+            f"{a['limit']['torsion'] / 1e3:,.0f} / {a['ultimate']['torsion'] / 1e3:,.0f} |"
+        )
     for (surface, station), a in d.items():
         extra = a.get("panel_stress_MPa") or {"panel strain": a.get("panel_strain"), **a.get("laminate_MPa", {})}
         print(surface, station, {k: round(float(v), 4) for k, v in extra.items()})

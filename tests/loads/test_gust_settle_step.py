@@ -6,10 +6,10 @@ at VC, sea level and 32,250 ft, agree within 0.1 % of each station's largest loa
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
-from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.gust_response import gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
@@ -22,8 +22,10 @@ def runs(baseline):
     corners = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=None).expand(baseline.model)
     heavy = max(corners, key=lambda c: (c.mass, -c.x_cg))
     vc = baseline.model.speeds.VC
-    conds = [heavy.with_(altitude=h * FT, speed=float(ctx.design_speed_eas("VC", h * FT)[0]), speed_kind="EAS")
-             for h in (0.0, 32_250.0)]
+    conds = [
+        heavy.with_(altitude=h * FT, speed=float(ctx.design_speed_eas("VC", h * FT)[0]), speed_kind="EAS")
+        for h in (0.0, 32_250.0)
+    ]
     batch = trimmed_batch(ctx, conds)
     assert not batch.failed and vc
     loads = airplane_loads(ctx)

@@ -16,9 +16,9 @@ result), so the test checks the airplane's dynamic response to the fin's gust fo
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
-from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.lateral_gust import lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.units import FT, G0

@@ -34,10 +34,18 @@ def pull_up_state(ctx, mass, x_cg, n, v_eas):
     qbar = 0.5 * density(0.0) * v_eas**2
     qh = (n - 1) * G0 / v_eas * c / (2 * v_eas)
     arm = (x_cg - xref) / c  # lift at the reference point, ahead of the CG: nose up
-    A = np.array([[d("CL_alpha"), d("CL_elevator")],
-                  [d("Cm_alpha") + d("CL_alpha") * arm, d("Cm_elevator") + d("CL_elevator") * arm]])
-    rhs = np.array([n * mass * G0 / (qbar * S) - d("CL0") - d("CL_q") * qh,
-                    -(d("Cm0") + d("CL0") * arm + (d("Cm_q") + d("CL_q") * arm) * qh)])
+    A = np.array(
+        [
+            [d("CL_alpha"), d("CL_elevator")],
+            [d("Cm_alpha") + d("CL_alpha") * arm, d("Cm_elevator") + d("CL_elevator") * arm],
+        ]
+    )
+    rhs = np.array(
+        [
+            n * mass * G0 / (qbar * S) - d("CL0") - d("CL_q") * qh,
+            -(d("Cm0") + d("CL0") * arm + (d("Cm_q") + d("CL_q") * arm) * qh),
+        ]
+    )
     alpha, de = np.linalg.solve(A, rhs)
     return qbar, {"alpha": alpha, "q_hat": qh, "elevator": de}
 
@@ -92,6 +100,8 @@ def test_inertia_terms(setup):
     x_cg = 29.5
     qdot = ht.inertia_loads({"qdot_xcg": 0.1 * x_cg, "qdot": 0.1})
     # tail aft of the CG: nose-up acceleration moves it down, inertial force up on the structure
-    assert qdot[0, 0] == pytest.approx(ht.structural_mass * 0.1 * (np.average(ht.strip_x, weights=ht.strip_mass) - x_cg)
-                                      * np.cos(np.radians(7.0)), rel=1e-6)
+    assert qdot[0, 0] == pytest.approx(
+        ht.structural_mass * 0.1 * (np.average(ht.strip_x, weights=ht.strip_mass) - x_cg) * np.cos(np.radians(7.0)),
+        rel=1e-6,
+    )
     assert ht.structural_mass * 2 == pytest.approx(5800 * LB, rel=1e-9)

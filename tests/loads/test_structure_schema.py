@@ -44,7 +44,7 @@ def test_values_in_si_and_capabilities(tmp_path):
     assert ht[1].ultimate.negative == pytest.approx(700e3) and ht[1].ultimate.positive == pytest.approx(500e3)
     caps = declared_capabilities(Context(load_aircraft(with_structure(tmp_path))), "horizontal_tail")
     assert [(c.station, c.quantity) for c in caps] == [("root", "shear"), ("60% span", "bending")]
-    assert caps[1].allowable("ultimate", "min") == pytest.approx(700e3)   # negative sense: download
+    assert caps[1].allowable("ultimate", "min") == pytest.approx(700e3)  # negative sense: download
     assert caps[1].allowable("ultimate", "max") == pytest.approx(500e3)
     fin = declared_capabilities(Context(load_aircraft(with_structure(tmp_path))), "vertical_tail")
     assert fin[0].limit == (pytest.approx(1e6), pytest.approx(1.2e6))
@@ -52,7 +52,10 @@ def test_values_in_si_and_capabilities(tmp_path):
     bare.write_text(BASELINE.read_text().replace(NO_STRUCTURE[0], "", 1))
     assert load_aircraft(bare).model.structure is None
     assert declared_capabilities(Context(load_aircraft(bare)), "wing") == []
-    assert {c.station for c in declared_capabilities(Context(load_aircraft(BASELINE)), "wing")} == {"root", "side of body"}
+    assert {c.station for c in declared_capabilities(Context(load_aircraft(BASELINE)), "wing")} == {
+        "root",
+        "side of body",
+    }
 
 
 def test_problems_reported_with_paths(tmp_path):
@@ -74,7 +77,9 @@ def test_problems_reported_with_paths(tmp_path):
     assert "not a moment" in paths["structure.wing.0.limit"]
     assert any(p.startswith("structure.wing.1.station") for p in paths)
     # relations between fields need the section valid on its own: fix the wing and ask again
-    fixed = bad.replace("limit: 100 kN, ultimate: 200 kN, source: \"wrong unit\"", "limit: 1 MN*m, ultimate: 2 MN*m, source: \"fixed\"")
+    fixed = bad.replace(
+        'limit: 100 kN, ultimate: 200 kN, source: "wrong unit"', 'limit: 1 MN*m, ultimate: 2 MN*m, source: "fixed"'
+    )
     fixed = fixed.replace("station: 1.5", "station: 0.5")
     with pytest.raises(InputError) as info:
         load_aircraft(with_structure(tmp_path, fixed))
@@ -104,14 +109,18 @@ def test_pitch_rule_compares_with_declared_tail_capability(tmp_path):
         d = f.all_details()
         assert "60% span bending max/min (kN·m)" in d
         candidates = []
-        for key, lim, ult, unit in (("root shear max/min (kN)", (250e3, 250e3), (400e3, 400e3), "shear at root"),
-                                    ("60% span bending max/min (kN·m)", (bend_lim, bend_lim), (700e3, 500e3), "bending at 60% span")):
+        for key, lim, ult, unit in (
+            ("root shear max/min (kN)", (250e3, 250e3), (400e3, 400e3), "shear at root"),
+            ("60% span bending max/min (kN·m)", (bend_lim, bend_lim), (700e3, 500e3), "bending at 60% span"),
+        ):
             hi, lo = d[key]
             for sense, load, k in (("max", hi * 1e3, 1), ("min", lo * 1e3, 0)):
                 if (sense == "max" and load <= 0) or (sense == "min" and load >= 0):
                     continue
                 candidates.append(((lim[k] - abs(load)) / lim[k], lim[k] - abs(load), f"limit {unit} ({sense})"))
-                candidates.append(((ult[k] - 1.5 * abs(load)) / ult[k], ult[k] - 1.5 * abs(load), f"ultimate {unit} ({sense})"))
+                candidates.append(
+                    ((ult[k] - 1.5 * abs(load)) / ult[k], ult[k] - 1.5 * abs(load), f"ultimate {unit} ({sense})")
+                )
         _, margin, check = min(candidates)
         assert f.margin == pytest.approx(margin, abs=300.0)
         assert check in f.check
@@ -122,9 +131,9 @@ def test_not_evaluated_without_capability_for_the_surface(tmp_path):
     """A capability declared for the fin only leaves the tailplane findings not evaluated, with the reason
     (the rule path without any ``structure`` section is tests/rules/test_r25_331.py)."""
     import numpy as np
+    from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding
 
     from certkit.engine.results import Condition
-    from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding
 
     structure = "structure:\n  vertical_tail:" + STRUCTURE.split("  vertical_tail:")[1]
     ctx = Context(load_aircraft(with_structure(tmp_path, structure)))

@@ -4,11 +4,11 @@ applicable with the lift coefficient computed by hand."""
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 
 from certkit.atmosphere import density
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.units import FT, G0, KN
 
 

@@ -2,13 +2,13 @@
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support.fuel_states import fuel_range, fuel_states
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.models.loads.fuel import tank_strip_shares
 from certkit.models.loads.model import airplane_loads
 from certkit.units import G0
-from certkit_rules.part25.support.fuel_states import fuel_range, fuel_states
 
 from ..conftest import BASELINE
 
@@ -28,7 +28,9 @@ def test_rectangular_wing_bay_by_closed_form():
     share, note = tank_strip_shares(y1, y2, c, tank_y=12.0, side_of_body=3.0)
     assert note is None and share.sum() == pytest.approx(1.0)
     mid = 0.5 * (y1 + y2)
-    assert mid[share > 0].min() == pytest.approx(3.0, abs=0.04) and mid[share > 0].max() == pytest.approx(21.0, abs=0.04)
+    assert mid[share > 0].min() == pytest.approx(3.0, abs=0.04) and mid[share > 0].max() == pytest.approx(
+        21.0, abs=0.04
+    )
     assert np.sum(share * mid) == pytest.approx(12.0, abs=1e-3)
 
 
@@ -126,9 +128,16 @@ def test_a_tank_bay_that_does_not_hold_its_centroid_is_an_input_error(tmp_path, 
 
     from ..rules.helpers import edited_baseline
 
-    bad = edited_baseline(tmp_path, [("{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}}",
-                                      "{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}, "
-                                      "y_inboard: 50 ft, y_outboard: 90 ft}")])
+    bad = edited_baseline(
+        tmp_path,
+        [
+            (
+                "{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}}",
+                "{name: right main, capacity: 64050 lb, cg: {x: 104.7 ft, y: 43.8 ft, z: -2.0 ft}, "
+                "y_inboard: 50 ft, y_outboard: 90 ft}",
+            )
+        ],
+    )
     with pytest.raises(InputError) as info:
         load_aircraft(bad)
     (p,) = [p for p in info.value.problems if p.path.startswith("mass.fuel_tanks.1")]

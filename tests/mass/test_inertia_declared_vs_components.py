@@ -18,7 +18,7 @@ from certkit.cli.main import main
 from certkit.models.mass.loading import inertia_comparison, reference_cg, solve_loading
 
 BASELINE = Path(__file__).resolve().parents[2] / "aircraft" / "lta.yaml"
-SLUG_FT2 = 14.593903 * 0.3048 ** 2
+SLUG_FT2 = 14.593903 * 0.3048**2
 IYY_DECLARED = 31.4e6 * SLUG_FT2
 
 

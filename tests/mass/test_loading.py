@@ -53,13 +53,16 @@ def test_moved_empty_airplane_keeps_the_inertia_about_the_cg(baseline, corners):
     """Moving every item by the same distance leaves the inertia about the CG unchanged (parallel-axis theorem): the
     light corner's tensor is that of its unmoved items, so it follows mass.inertia_used like any loading."""
     from certkit.models.mass.properties import MassComponent, combine
+
     r = corners["fwd_light"]
     shift = r.properties.cg[0] - sum(c.mass * c.cg[0] for c in r.items) / r.properties.mass  # 0 by construction
     assert abs(shift) < 1e-9
     dx = 3.0  # move the whole set: the inertia about the CG must not change
     moved = [MassComponent(c.name, c.mass, (c.cg[0] + dx, c.cg[1], c.cg[2]), c.inertia) for c in r.items]
     np.testing.assert_allclose(combine(moved).inertia, r.properties.inertia, rtol=1e-9)
-    declared = baseline.model.model_copy(update={"mass": baseline.model.mass.model_copy(update={"inertia_used": "declared"})})
+    declared = baseline.model.model_copy(
+        update={"mass": baseline.model.mass.model_copy(update={"inertia_used": "declared"})}
+    )
     c = next(c for c in CgCorners().loadings(declared) if c.name == "fwd_light")
     d = solve_loading(declared, c.mass, c.x_cg, c.name)
     assert d.properties.Iyy == pytest.approx(baseline.model.mass.inertia.Iyy * 310_000 / 656_000, rel=1e-6)
@@ -79,8 +82,14 @@ def test_point_mass_empty_airplane_sits_at_its_declared_height(baseline):
     r = solve_loading(plain, 140_000, 28.0, "light")
     assert r.properties.cg[0] == pytest.approx(28.0, abs=1e-6)
     empty = a.mass.OEW
-    assert r.properties.cg[2] == pytest.approx((empty * -1.0 + sum(
-        m * next(t.cg.z for t in a.mass.fuel_tanks if t.name == k) for k, m in r.fuel_by_tank.items())) / 140_000, abs=1e-6)
+    assert r.properties.cg[2] == pytest.approx(
+        (
+            empty * -1.0
+            + sum(m * next(t.cg.z for t in a.mass.fuel_tanks if t.name == k) for k, m in r.fuel_by_tank.items())
+        )
+        / 140_000,
+        abs=1e-6,
+    )
 
 
 def test_inertia_at_mtow_against_radii_of_gyration(baseline):

@@ -29,8 +29,13 @@ def test_upsweep_drag_is_raymer_eq_12_36(baseline):
     allowance on it): 0.1047 rad, A_max = π/4 · 20.76 · 20.23 ft² = 30.64 m² → D/q 0.416 m², ΔCD0 = 0.00094 on
     457.76 m² (hand values to 2 %); no term without a declared upsweep."""
     ac = baseline.model
-    flat = ac.model_copy(update={"geometry": ac.geometry.model_copy(update={
-        "fuselage": ac.geometry.fuselage.model_copy(update={"upsweep": None})})})
+    flat = ac.model_copy(
+        update={
+            "geometry": ac.geometry.model_copy(
+                update={"fuselage": ac.geometry.fuselage.model_copy(update={"upsweep": None})}
+            )
+        }
+    )
     with_up = drag.parasite_drag(ac.geometry, ac.reference, 0.84, 35000 * FT)
     without = drag.parasite_drag(flat.geometry, flat.reference, 0.84, 35000 * FT)
     assert without.upsweep == 0.0

@@ -41,8 +41,10 @@ def test_weight_after_inverts_the_breguet_distance():
 
 def constant_power_path(ps, h, v, thrust=2.0e5, ff=2.0):
     """Required thrust chosen so that (T − D) V / (W g) = ps at every point and weight."""
+
     def required(k, w):
         return thrust - ps * np.asarray(w) * G0 / v[k]
+
     K = len(h)
     return fly_path(h, v, [250e3, 180e3], required, np.full(K, thrust), np.full(K, ff))
 

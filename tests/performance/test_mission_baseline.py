@@ -109,7 +109,9 @@ def test_payload_range_points(result, baseline):
     design payload at MTOW, maximum fuel at MTOW, ferry with full tanks and no payload, ranges increasing."""
     m = baseline.model.mass
     pts = {p.name: p for p in result.payload_range}
-    ranges = [pts[n].range_m for n in ("maximum payload", "design payload", "maximum fuel at MTOW", "ferry (no payload)")]
+    ranges = [
+        pts[n].range_m for n in ("maximum payload", "design payload", "maximum fuel at MTOW", "ferry (no payload)")
+    ]
     assert np.all(np.diff(ranges) > 0)
     assert pts["maximum payload"].payload_kg == pytest.approx(m.max_payload)
     assert pts["maximum fuel at MTOW"].takeoff_weight_kg == pytest.approx(m.MTOW)
@@ -137,8 +139,9 @@ def test_profile_bookkeeping_and_limits(result):
 def test_oew_increase_costs_range_as_breguet_predicts(result, base_ctx):
     """+1,000 kg of OEW at fixed takeoff weight and payload: the range falls by about V (L/D)/(c g) × ΔW/W_end
     (Breguet differentiated at the end weight), within 25 % (steps and reserves shift), and block fuel rises."""
-    heavier = fly_missions(base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES,
-                           oew_kg=base_ctx.aircraft.mass.OEW + 1000.0)
+    heavier = fly_missions(
+        base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES, oew_kg=base_ctx.aircraft.mass.OEW + 1000.0
+    )
     c = result.cruise_drag
     from certkit import atmosphere as isa
     from certkit.models.performance.fuel_flow import EngineFuel
@@ -170,5 +173,7 @@ def test_tail_change_shows_in_cruise_drag_and_fuel(result, baseline):
 def test_one_mission_after_warm_up_is_fast(base_ctx):
     """The design study runs this thousands of times: well under 1 s once the tables are trimmed."""
     start = time.perf_counter()
-    fly_missions(base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES, oew_kg=base_ctx.aircraft.mass.OEW + 10.0)
+    fly_missions(
+        base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES, oew_kg=base_ctx.aircraft.mass.OEW + 10.0
+    )
     assert time.perf_counter() - start < 1.0

@@ -17,7 +17,9 @@ from ..conftest import BASELINE
 def aero_memo(baseline):
     ctx = Context(baseline)
     ctx.aero("clean")
-    return {k: v for k, v in ctx._memo.items() if k == "lattice_derivatives" or (isinstance(k, tuple) and k[0] == "aero")}
+    return {
+        k: v for k, v in ctx._memo.items() if k == "lattice_derivatives" or (isinstance(k, tuple) and k[0] == "aero")
+    }
 
 
 def variant(tmp_path, old, new):
@@ -52,7 +54,9 @@ def test_fuel_capacity_above_the_tanks(tmp_path):
 def test_unreachable_first_cruise_level(tmp_path, aero_memo):
     path = variant(tmp_path, "initial_altitude: 31000 ft", "initial_altitude: 43000 ft")
     ctx = context(path, aero_memo)
-    with pytest.raises(UserError, match=r"mission\.initial_altitude: .*cannot reach the first cruise level 43000 ft \(thrust"):
+    with pytest.raises(
+        UserError, match=r"mission\.initial_altitude: .*cannot reach the first cruise level 43000 ft \(thrust"
+    ):
         fly_missions(ctx.aircraft, ctx.aero("clean"))
 
 
@@ -93,8 +97,13 @@ def test_cli_exit_codes_and_json(cli, tmp_path):
     assert out.exit_code == 0, out.output
     data = json.loads(out.output)
     assert data["schema"] == "certkit.mission/1"
-    assert set(data["responses"]) == {"objective.cruise_CD", "objective.block_fuel_kg", "objective.block_time_s",
-                                      "mission.design_range_m", "constraint.range_margin_m"}
+    assert set(data["responses"]) == {
+        "objective.cruise_CD",
+        "objective.block_fuel_kg",
+        "objective.block_time_s",
+        "mission.design_range_m",
+        "constraint.range_margin_m",
+    }
     assert svg.read_text().startswith("<svg") and "payload" in svg.read_text()
     schema = json.loads(cli("schema").output)
     assert "mission" in schema["properties"]

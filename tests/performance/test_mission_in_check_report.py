@@ -11,8 +11,21 @@ from certkit.models.performance.mission import fly_missions
 
 
 def test_check_report_has_the_mission_and_payload_range(tmp_path):
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", "aircraft/lta.yaml", "--select", "25.103",
-                           "--out", str(tmp_path)], capture_output=True, text=True)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "check",
+            "aircraft/lta.yaml",
+            "--select",
+            "25.103",
+            "--out",
+            str(tmp_path),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode in (0, 1, 3), proc.stderr
     data = json.loads((tmp_path / "results.json").read_text())
     m = data["models"]["mission"]

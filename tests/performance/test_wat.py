@@ -70,8 +70,13 @@ def test_thrust_lapse_above_the_flat_rating_matches_the_published_band():
 def test_envelope_corners_hand_values():
     """−1,000…8,400 ft, −40…50 °C, ISA+40 line: at 8,400 ft the hot limit is −1.6 + 40 = 38.4 °C (ISA lapse
     1.98 °C/1,000 ft), at sea level 50 °C (the ISA+40 line, 55 °C, is above it); sea level is added."""
-    env = TakeoffLandingEnvelope(pressure_altitude_min="-1000 ft", pressure_altitude_max="8400 ft",
-                                 temperature_min="-40 degC", temperature_max="50 degC", isa_deviation_max="40 delta_degC")
+    env = TakeoffLandingEnvelope(
+        pressure_altitude_min="-1000 ft",
+        pressure_altitude_max="8400 ft",
+        temperature_min="-40 degC",
+        temperature_max="50 degC",
+        isa_deviation_max="40 delta_degC",
+    )
     assert hot_limit(env, 8400 * FT) - 273.15 == pytest.approx(-1.6 + 40.0, abs=0.05)
     assert hot_limit(env, 0.0) == pytest.approx(323.15)
     corners = envelope_corners(env)
@@ -103,4 +108,6 @@ def test_envelope_without_flat_rating_and_inverted_range_are_reported_together(t
     with pytest.raises(InputError) as err:
         load_aircraft(path)
     message = str(err.value)
-    assert "propulsion.flat_rating_temperature" in message and "takeoff_landing_envelope.pressure_altitude_max" in message
+    assert (
+        "propulsion.flat_rating_temperature" in message and "takeoff_landing_envelope.pressure_altitude_max" in message
+    )

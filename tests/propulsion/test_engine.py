@@ -42,7 +42,9 @@ def test_turbofan_lapse():
     formula; tolerance 1 %). Thrust falls with altitude and with Mach at sea level."""
     e = ParametricTurbofan(static_thrust=1.2e5)
     assert e.thrust(1.0, 0.0, 0.0) == pytest.approx(1.2e5, rel=1e-9)
-    assert e.lapse(11000.0, 0.8) == pytest.approx(0.2234 * (1 + 0.2 * 0.64) ** 3.5 * (1 - 0.49 * np.sqrt(0.8)), rel=0.01)
+    assert e.lapse(11000.0, 0.8) == pytest.approx(
+        0.2234 * (1 + 0.2 * 0.64) ** 3.5 * (1 - 0.49 * np.sqrt(0.8)), rel=0.01
+    )
     assert e.thrust(1.0, 0.0, 0.3) < e.thrust(1.0, 0.0, 0.0)
     assert e.fuel_flow(1.0, 0.0, 0.0) == pytest.approx(1.2e5 * 0.4 / 3600 / 9.80665, rel=1e-9)
 

@@ -18,8 +18,25 @@ SELECTION = "25.335,25.181,25.173,25.121(b),25.161"
 @functools.lru_cache(maxsize=None)
 def checked(folder: str, jobs: int = 1, select: str = SELECTION) -> tuple[Path, int]:
     """``certkit check`` of the baseline into ``folder`` (a subprocess, as a user runs it); (folder, exit code)."""
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(BASELINE), "--out", folder, "--select",
-                           select, "--jobs", str(jobs), "--quiet"], capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "check",
+            str(BASELINE),
+            "--out",
+            folder,
+            "--select",
+            select,
+            "--jobs",
+            str(jobs),
+            "--quiet",
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert proc.returncode in (0, 1, 3), proc.stderr
     return Path(folder), proc.returncode
 

@@ -24,11 +24,28 @@ from tests.report.report_run import SELECTION, results
 #: attributes, allowed attributes, allowed children)
 JUNIT = {
     "testsuites": (set(), {"name", "tests", "failures", "errors", "skipped", "time", "disabled"}, {"testsuite"}),
-    "testsuite": ({"name", "tests", "failures", "errors"},
-                  {"name", "tests", "failures", "errors", "skipped", "time", "timestamp", "hostname", "id", "package",
-                   "disabled"}, {"testcase", "properties", "system-out", "system-err"}),
-    "testcase": ({"name", "classname"}, {"name", "classname", "time", "assertions", "status", "file", "line"},
-                 {"skipped", "error", "failure", "system-out", "system-err", "properties"}),
+    "testsuite": (
+        {"name", "tests", "failures", "errors"},
+        {
+            "name",
+            "tests",
+            "failures",
+            "errors",
+            "skipped",
+            "time",
+            "timestamp",
+            "hostname",
+            "id",
+            "package",
+            "disabled",
+        },
+        {"testcase", "properties", "system-out", "system-err"},
+    ),
+    "testcase": (
+        {"name", "classname"},
+        {"name", "classname", "time", "assertions", "status", "file", "line"},
+        {"skipped", "error", "failure", "system-out", "system-err", "properties"},
+    ),
     "properties": (set(), set(), {"property"}),
     "property": ({"name", "value"}, {"name", "value"}, set()),
     "failure": (set(), {"message", "type"}, set()),
@@ -59,8 +76,24 @@ def _junit_problems(element, path="") -> list[str]:
 
 
 def _output(folder: Path, fmt: str) -> tuple[str, int]:
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(BASELINE), "--out", str(folder),
-                           "--select", SELECTION, "--output-format", fmt], capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "check",
+            str(BASELINE),
+            "--out",
+            str(folder),
+            "--select",
+            SELECTION,
+            "--output-format",
+            fmt,
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     return proc.stdout, proc.returncode
 
 
@@ -86,11 +119,18 @@ def test_junit_follows_the_schema_and_counts_the_statuses(outputs):
 
 
 def test_junit_checker_can_fail():
-    bad = ET.fromstring('<testsuites><testsuite name="x" tests="a" failures="0"><testcase name="n">'
-                        '<failure/><skipped/></testcase><bogus/></testsuite></testsuites>')
+    bad = ET.fromstring(
+        '<testsuites><testsuite name="x" tests="a" failures="0"><testcase name="n">'
+        "<failure/><skipped/></testcase><bogus/></testsuite></testsuites>"
+    )
     problems = "\n".join(_junit_problems(bad))
-    for expected in ("missing attribute errors", "tests='a'", "missing attribute classname", "more than one outcome",
-                     "child bogus"):
+    for expected in (
+        "missing attribute errors",
+        "tests='a'",
+        "missing attribute classname",
+        "more than one outcome",
+        "child bogus",
+    ):
         assert expected in problems
 
 
@@ -121,18 +161,39 @@ def test_github_annotations(outputs):
 
 
 def test_subparts_and_ecfr_links():
-    assert [subpart(p) for p in ("25.21", "25.181", "25.255", "25.301", "25.581", "25.601", "25.1309")] == \
-        ["b", "b", "b", "c", "c", "d", "f"]
-    assert ecfr_url("25.121(b)") == ("https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/"
-                                     "section-25.121#p-25.121(b)")
+    assert [subpart(p) for p in ("25.21", "25.181", "25.255", "25.301", "25.581", "25.601", "25.1309")] == [
+        "b",
+        "b",
+        "b",
+        "c",
+        "c",
+        "d",
+        "f",
+    ]
+    assert ecfr_url("25.121(b)") == (
+        "https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/section-25.121#p-25.121(b)"
+    )
     assert ecfr_url("25.337") == "https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/section-25.337"
 
 
 def test_the_schema_check_can_fail():
     schema = json.loads((Path(__file__).parent / "sarif-schema-2.1.0.json").read_text())
-    bad = {"version": "2.1.0", "runs": [{"tool": {"driver": {"name": "certkit"}}, "results": [
-        {"ruleId": "25.335(a)", "level": "fatal", "message": {"text": "x"},
-         "locations": [{"physicalLocation": {"region": {"startLine": 0}}}]}]}]}
+    bad = {
+        "version": "2.1.0",
+        "runs": [
+            {
+                "tool": {"driver": {"name": "certkit"}},
+                "results": [
+                    {
+                        "ruleId": "25.335(a)",
+                        "level": "fatal",
+                        "message": {"text": "x"},
+                        "locations": [{"physicalLocation": {"region": {"startLine": 0}}}],
+                    }
+                ],
+            }
+        ],
+    }
     messages = " ".join(e.message for e in Draft4Validator(schema).iter_errors(bad))
     assert "'fatal' is not one of" in messages and "0 is less than the minimum of 1" in messages
 
@@ -162,9 +223,26 @@ def located(tmp_path_factory):
     aircraft.write_text(text, encoding="utf-8")
     out = {}
     for fmt in ("sarif", "github", "junit"):
-        proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(aircraft), "--out", str(folder / fmt),
-                               "--select", "25.335(a),25.335(b),25.335(c)", "--output-format", fmt, "-j", "1"],
-                              capture_output=True, text=True, cwd=folder / "sub")
+        proc = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "certkit.cli",
+                "check",
+                str(aircraft),
+                "--out",
+                str(folder / fmt),
+                "--select",
+                "25.335(a),25.335(b),25.335(c)",
+                "--output-format",
+                fmt,
+                "-j",
+                "1",
+            ],
+            capture_output=True,
+            text=True,
+            cwd=folder / "sub",
+        )
         assert proc.returncode in (1, 3), proc.stderr
         out[fmt] = proc.stdout
     return out, override_line, speeds_line
@@ -177,8 +255,10 @@ def test_sarif_locates_the_override_and_the_missing_input(located):
     primary = by_rule["25.335(a)"]["locations"][0]
     assert primary["physicalLocation"]["region"]["startLine"] == override_line
     assert primary["message"]["text"] == "criteria.25.335(a).values.gust_factor"
-    related = {loc["message"]["text"]: loc["physicalLocation"]["region"]["startLine"]
-               for loc in by_rule["25.335(a)"].get("relatedLocations", [])}
+    related = {
+        loc["message"]["text"]: loc["physicalLocation"]["region"]["startLine"]
+        for loc in by_rule["25.335(a)"].get("relatedLocations", [])
+    }
     assert set(related) == {"speeds.VC", "speeds.VB"}
     # §25.335(b) needs VD, which the file lacks: located at the speeds section
     assert by_rule["25.335(b)"]["locations"][0]["physicalLocation"]["region"]["startLine"] == speeds_line

@@ -35,9 +35,16 @@ def test_flips_and_margin_changes_are_listed_per_condition(small_check, tmp_path
     assert [c.id for c in changes] == ["25.335(a)"]
     c = changes[0]
     assert (c.old_status, c.new_status, c.regression) == ("complies", "fails", True)
-    assert [(f.flipped, round(f.delta, 6)) for f in c.findings] == [(True, round(-1.0 - old["rules"][
-        [r["id"] for r in old["rules"]].index("25.335(a)")]["findings"][0]["margin"], 6)), (False, 0.5)]
-    out = cli("diff", _write(tmp_path, "old.json", old), _write(tmp_path, "new.json", new), "--html", tmp_path / "d.html")
+    assert [(f.flipped, round(f.delta, 6)) for f in c.findings] == [
+        (
+            True,
+            round(-1.0 - old["rules"][[r["id"] for r in old["rules"]].index("25.335(a)")]["findings"][0]["margin"], 6),
+        ),
+        (False, 0.5),
+    ]
+    out = cli(
+        "diff", _write(tmp_path, "old.json", old), _write(tmp_path, "new.json", new), "--html", tmp_path / "d.html"
+    )
     assert out.exit_code == 1
     assert "complies → fails: (a)(2)" in out.output
     assert sum(line.strip().startswith("margin +") and " kn → +" in line for line in out.output.splitlines()) == 1

@@ -9,21 +9,30 @@ import numpy as np
 import pytest
 
 from certkit.engine.evidence import Axis, Bars, Chart, Column, Heatmap, Limit, Panel, Point, Series, Table
+from certkit.engine.results import Evidence
 from certkit.report.figures import FAIL, decimate, render, render_evidence
 from certkit.report.tables import formatted
-from certkit.engine.results import Evidence
 
 
 def _chart():
     t = np.linspace(0.0, 10.0, 4001)
-    return Chart(Axis("time", "s"), [
-        Panel(Axis("elevator", "rad"), [Series("run A", t, 0.1 * np.sin(t), critical=True),
-                                        Series("run B", t, 0.1 * np.cos(t), end=6.0)],
-              [Limit(-0.2, "design limit", kind="allowable")]),
-        Panel(Axis("root shear", "N", "kN"), [Series("run A", t, 1e6 * np.sin(t)), Series("run B", t, 1e6 * np.cos(t))],
-              [Limit(1.5e6, "allowable (+)", kind="allowable"), Limit(3.0, "(c) settled", axis="x", kind="event")],
-              [Point(np.pi / 2, 1e6)]),
-    ], title="test chart")
+    return Chart(
+        Axis("time", "s"),
+        [
+            Panel(
+                Axis("elevator", "rad"),
+                [Series("run A", t, 0.1 * np.sin(t), critical=True), Series("run B", t, 0.1 * np.cos(t), end=6.0)],
+                [Limit(-0.2, "design limit", kind="allowable")],
+            ),
+            Panel(
+                Axis("root shear", "N", "kN"),
+                [Series("run A", t, 1e6 * np.sin(t)), Series("run B", t, 1e6 * np.cos(t))],
+                [Limit(1.5e6, "allowable (+)", kind="allowable"), Limit(3.0, "(c) settled", axis="x", kind="event")],
+                [Point(np.pi / 2, 1e6)],
+            ),
+        ],
+        title="test chart",
+    )
 
 
 def _ids(svg: str) -> list[str]:
@@ -50,8 +59,16 @@ def test_ids_prefixed_unique_and_resolved():
 
 def test_conventions_in_a_chart():
     svg = render(_chart(), "c")
-    for text in ("design limit", "allowable (+)", "(c) settled", "run A (critical)", "critical: root shear 1,000 kN",
-                 "root shear (kN)", "elevator (deg)", "time (s)"):
+    for text in (
+        "design limit",
+        "allowable (+)",
+        "(c) settled",
+        "run A (critical)",
+        "critical: root shear 1,000 kN",
+        "root shear (kN)",
+        "elevator (deg)",
+        "time (s)",
+    ):
         assert text in svg, text
     sizes = [float(s) for s in re.findall(r'font-size="([0-9.]+)"', svg)]
     assert sizes and min(sizes) >= 8.0  # no 6 px labels
@@ -80,30 +97,49 @@ def test_decimation_keeps_extremes_and_breaks():
 
 
 def test_heatmap_has_colour_bar_and_distinct_failing_cells():
-    hm = Heatmap(["fwd", "aft"], ["clean", "flaps"], np.array([[0.3, -0.01], [np.nan, 0.5]]),
-                 Axis("smallest normalised margin"), "CG corner", "configuration")
+    hm = Heatmap(
+        ["fwd", "aft"],
+        ["clean", "flaps"],
+        np.array([[0.3, -0.01], [np.nan, 0.5]]),
+        Axis("smallest normalised margin"),
+        "CG corner",
+        "configuration",
+    )
     svg = render(hm, "h")
     assert "smallest normalised margin (&lt; 0 fails)" in svg or "smallest normalised margin (< 0 fails)" in svg
-    fills = {tuple(int(c[i:i + 2], 16) for i in (0, 2, 4)) for c in re.findall(r'fill="#([0-9a-fA-F]{6})"', svg)}
+    fills = {tuple(int(c[i : i + 2], 16) for i in (0, 2, 4)) for c in re.findall(r'fill="#([0-9a-fA-F]{6})"', svg)}
     # the barely failing cell (−0.01) is a strong vermillion (the palette's failing colour), not a pale one
-    fail = tuple(int(FAIL[i:i + 2], 16) for i in (1, 3, 5))
+    fail = tuple(int(FAIL[i : i + 2], 16) for i in (1, 3, 5))
     assert any(sum(abs(a - b) for a, b in zip(f, fail)) < 30 for f in fills)
-    assert '<pattern' in svg  # and hatched
+    assert "<pattern" in svg  # and hatched
     assert "—" in svg  # not evaluated
     assert len(re.findall(r'<rect [^>]*height="[0-9.]+" fill="#', svg)) >= 64 + 3  # the cells and the colour bar
 
 
 def test_bars_fail_and_limit():
-    b = Bars(["a", "b"], [0.01, 0.03], Axis("steady climb gradient", "gradient"), [True, False],
-             Limit(0.024, "minimum 2.4 %"), horizontal=False)
+    b = Bars(
+        ["a", "b"],
+        [0.01, 0.03],
+        Axis("steady climb gradient", "gradient"),
+        [True, False],
+        Limit(0.024, "minimum 2.4 %"),
+        horizontal=False,
+    )
     svg = render(b, "b")
     assert "steady climb gradient (%)" in svg and "minimum 2.4 %" in svg and "fails" in svg and "complies" in svg
 
 
 def test_tables_in_aviation_units_without_noise():
-    t = Table([Column("v", "speed", "m/s"), Column("mach", "Mach"), Column("f", "thrust", "N"), Column("n", "note", kind="text"),
-               Column("bank_x", "bank", "deg")],
-              [[100.0, 5.551e-17, 4448.2216152605, None, -0.0], [51.444, 0.84, None, "ok", 12.5]])
+    t = Table(
+        [
+            Column("v", "speed", "m/s"),
+            Column("mach", "Mach"),
+            Column("f", "thrust", "N"),
+            Column("n", "note", kind="text"),
+            Column("bank_x", "bank", "deg"),
+        ],
+        [[100.0, 5.551e-17, 4448.2216152605, None, -0.0], [51.444, 0.84, None, "ok", 12.5]],
+    )
     out = formatted(t)
     assert out["headers"] == ["speed (kn)", "Mach", "thrust (lbf)", "note", "bank (deg)"]
     (v1, m1, f1, n1, b1), (v2, m2, f2, n2, b2) = [[text for text, _ in row] for row in out["rows"]]
@@ -130,8 +166,8 @@ def test_a_rules_evidence_is_the_same_bytes_twice(baseline):
     """Two evaluations of §25.333 on fresh contexts draw byte-identical evidence (no random ids, no date)."""
     from certkit.engine.context import Context
     from certkit.engine.registry import discover
-    from certkit.report.figures import render_result
     from certkit.engine.scheduler import evaluate_rule
+    from certkit.report.figures import render_result
 
     rule = next(r for r in discover() if r.id == "25.333")
     svgs = []
@@ -145,8 +181,16 @@ def test_a_rules_evidence_is_the_same_bytes_twice(baseline):
 def test_close_vertical_lines_get_separate_labels():
     """VA and VC a few knots apart (the V–n diagram): their labels are pushed apart by at least a text height."""
     v = np.linspace(0.0, 180.0, 50)
-    chart = Chart(Axis("equivalent airspeed", "m/s", "kn"), [Panel(Axis("load factor n", "g"), [Series("W", v, v / 70.0)],
-                  [Limit(136.8, "VA", axis="x", kind="reference"), Limit(139.9, "VC", axis="x", kind="reference")])])
+    chart = Chart(
+        Axis("equivalent airspeed", "m/s", "kn"),
+        [
+            Panel(
+                Axis("load factor n", "g"),
+                [Series("W", v, v / 70.0)],
+                [Limit(136.8, "VA", axis="x", kind="reference"), Limit(139.9, "VC", axis="x", kind="reference")],
+            )
+        ],
+    )
     svg = render(chart, "v")
     xs = [float(m) for m in re.findall(r'<text x="([0-9.]+)"[^>]*rotate\(-90[^>]*>V[AC]<', svg)]
     assert len(xs) == 2 and abs(xs[1] - xs[0]) >= 8.0
@@ -154,7 +198,9 @@ def test_close_vertical_lines_get_separate_labels():
 
 def test_mixed_unit_columns_convert_per_row():
     """A findings table (value, limit, margin in each row's unit): m/s rows read in kn, deg rows stay."""
-    t = Table([Column("value", "value", unit_key="unit"), Column("unit", "unit", kind="text")],
-              [[77.1666, "m/s"], [12.5, "deg"]])
+    t = Table(
+        [Column("value", "value", unit_key="unit"), Column("unit", "unit", kind="text")],
+        [[77.1666, "m/s"], [12.5, "deg"]],
+    )
     rows = [[text for text, _ in row] for row in formatted(t)["rows"]]
     assert rows == [["150.0", "kn"], ["12.5", "deg"]]  # 77.1666 m/s = 150.0 kn; one decimal for the column

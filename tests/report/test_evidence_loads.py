@@ -53,8 +53,10 @@ def test_a_zero_critical_load_names_no_condition():
     from certkit.engine.evidence.loads import case_table
     from certkit.models.loads.response import CriticalCase
 
-    cases = [CriticalCase("vertical_tail", "root", "shear", "max", 0.0, "N", 1, 0.0),
-             CriticalCase("vertical_tail", "root", "shear", "min", -131.1e3, "N", 0, 2.1)]
+    cases = [
+        CriticalCase("vertical_tail", "root", "shear", "max", 0.0, "N", 1, 0.0),
+        CriticalCase("vertical_tail", "root", "shear", "min", -131.1e3, "N", 0, 2.1),
+    ]
     env = SimpleNamespace(critical_cases=lambda: cases, labels=["A", "B"], stations={"vertical_tail": ("root",)})
     rows = case_table(env, "vertical_tail").as_dicts()
     assert rows[0]["condition"].startswith("none") and rows[0]["time"] is None

@@ -37,9 +37,26 @@ def test_check_text_takes_the_value_in_force():
 
 
 def _check(folder, aircraft, fmt="text"):
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "check", str(aircraft), "--out", str(folder),
-                           "--select", "25.335(a)", "-j", "1", "--output-format", fmt], capture_output=True,
-                          text=True, cwd=ROOT)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "check",
+            str(aircraft),
+            "--out",
+            str(folder),
+            "--select",
+            "25.335(a)",
+            "-j",
+            "1",
+            "--output-format",
+            fmt,
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert proc.returncode in (0, 1, 3), proc.stderr
     return proc.stdout
 
@@ -63,8 +80,11 @@ def test_results_json_names_the_override(runs):
     assert c["justification"] == "a stricter gust allowance" and c["overridden"] is True
     checks = {f["check"] for f in rule["findings"] if "U_ref" in f["check"]}
     assert checks == {"(a)(2) VC ≥ VB + 1.4 U_ref"}
-    assert all(f["details"]["check_default"] == "(a)(2) VC ≥ VB + 1.32 U_ref"
-               for f in rule["findings"] if "U_ref" in f["check"])
+    assert all(
+        f["details"]["check_default"] == "(a)(2) VC ≥ VB + 1.32 U_ref"
+        for f in rule["findings"]
+        if "U_ref" in f["check"]
+    )
     base = json.loads((folder / "base" / "results.json").read_text())
     assert base["rules"][0]["criteria"]["gust_factor"]["basis"] == "regulation"
     assert "1.32 U_ref" in json.dumps(base["rules"][0]["findings"])
@@ -74,7 +94,7 @@ def test_terminal_and_report_show_a_badge(runs):
     folder, base_text, over_text = runs
     assert "[override]" in over_text and "[override]" not in base_text
     html = (folder / "over" / "index.html").read_text()
-    summary = html[html.index('id="summary"'):html.index('id="rules"')]
+    summary = html[html.index('id="summary"') : html.index('id="rules"')]
     assert 'title="gust_factor 1.32 → 1.4: a stricter gust allowance">criterion overridden</span>' in summary
     assert "override (default: regulation)" in html
     assert "gust_factor 1.32 →" not in (folder / "base" / "index.html").read_text()
@@ -82,9 +102,21 @@ def test_terminal_and_report_show_a_badge(runs):
 
 def test_diff_names_the_criterion_and_the_input_before_the_margins(runs):
     folder, _, _ = runs
-    proc = subprocess.run([sys.executable, "-m", "certkit.cli", "diff", str(folder / "base" / "results.json"),
-                           str(folder / "over" / "results.json"), "--html", str(folder / "d.html")],
-                          capture_output=True, text=True, cwd=ROOT)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "diff",
+            str(folder / "base" / "results.json"),
+            str(folder / "over" / "results.json"),
+            "--html",
+            str(folder / "d.html"),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
     assert proc.returncode in (0, 1), proc.stderr
     out = proc.stdout
     assert "criteria.25.335(a).values.gust_factor: 1.32 → 1.4" in out

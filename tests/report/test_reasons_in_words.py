@@ -15,10 +15,23 @@ from certkit.report.html import render_html
 from certkit.report.reasons import reason_condition, reason_line
 from certkit.units import FT, KN, LB
 
-CONDITION = Condition(loading="aft_light", mass=200_000 * LB, x_cg=100 * FT, configuration="clean",
-                      altitude=20_000 * FT, speed=250 * KN, speed_kind="EAS", speed_name="VC",
-                      extra=(("speed_point", "1.3 VSR"), ("bank_deg", 30), ("delta_isa_K", 15),
-                             ("entry_speed", "VA"), ("inoperative", "left")))
+CONDITION = Condition(
+    loading="aft_light",
+    mass=200_000 * LB,
+    x_cg=100 * FT,
+    configuration="clean",
+    altitude=20_000 * FT,
+    speed=250 * KN,
+    speed_kind="EAS",
+    speed_name="VC",
+    extra=(
+        ("speed_point", "1.3 VSR"),
+        ("bank_deg", 30),
+        ("delta_isa_K", 15),
+        ("entry_speed", "VA"),
+        ("inoperative", "left"),
+    ),
+)
 
 
 def test_scheduled_fields_read_as_words():
@@ -45,8 +58,10 @@ def test_one_line_cause_leaves_the_numbers_of_the_loading_to_the_tooltip():
 
 
 def test_margin_descriptions_in_the_shown_units():
-    assert in_display_units("VC − (VB + 1.32 U_ref), m/s EAS, at each altitude") == \
-        "VC − (VB + 1.32 U_ref), kn EAS, at each altitude"
+    assert (
+        in_display_units("VC − (VB + 1.32 U_ref), m/s EAS, at each altitude")
+        == "VC − (VB + 1.32 U_ref), kn EAS, at each altitude"
+    )
     assert in_display_units("(c) 1.13 VSR − VMCA (m/s CAS)") == "(c) 1.13 VSR − VMCA (kn CAS)"
     assert in_display_units("peak acceleration, m/s²; rate in rad/s") == "peak acceleration, g; rate in rad/s"
 
@@ -54,12 +69,13 @@ def test_margin_descriptions_in_the_shown_units():
 def test_a_rule_with_knot_and_mach_margins_shows_one_table_per_unit():
     rules = [r for r in discover() if r.id == "25.335(b)"]
     knots = Finding.compare(CONDITION, "(b) VC/MC ≤ 0.8 VD/MD", 280 * KN, 272 * KN, at_least=True, unit="m/s")
-    mach = Finding.compare(Condition(altitude=35_000 * FT), "(b)(2) MD − M(VC) ≥ Mach margin", 0.08, 0.07,
-                           at_least=True, unit="Mach")
+    mach = Finding.compare(
+        Condition(altitude=35_000 * FT), "(b)(2) MD − M(VC) ≥ Mach margin", 0.08, 0.07, at_least=True, unit="Mach"
+    )
     run = RunResult("x", "test airplane", "0" * 64, "a.yaml", "now", [_result([knots, mach])])
     html = render_html(run, rules)
-    body = html[html.index('<section class="rule"'):]
-    findings = body[body.index("All 2 findings"):body.index("</section>")]
+    body = html[html.index('<section class="rule"') :]
+    findings = body[body.index("All 2 findings") : body.index("</section>")]
     tables = re.findall(r"<table>.*?</table>", findings, re.S)
     assert len(tables) == 2
     units = [set(re.findall(r"\d (kn|Mach)</td>", t)) for t in tables]

@@ -10,8 +10,8 @@ from collections import Counter
 
 import pytest
 
-from tests.report.report_run import results
 from tests.browser import MARKS, open_page
+from tests.report.report_run import results
 
 pytestmark = MARKS  # skipped with the reason when Playwright or Chromium is missing
 
@@ -34,12 +34,16 @@ def test_clean_page_and_every_anchor_resolves(chromium, small_check):
     targets = page.eval_on_selector_all('a[href^="#"]', "els => els.map(e => e.getAttribute('href').slice(1))")
     assert targets and [t for t in set(targets) if t not in set(ids)] == []
     external = page.eval_on_selector_all('a[href^="http"]', "els => els.map(e => e.href)")
-    assert external and all(u.startswith("https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/section-25.")
-                            for u in external)
+    assert external and all(
+        u.startswith("https://www.ecfr.gov/current/title-14/chapter-I/subchapter-C/part-25/section-25.")
+        for u in external
+    )
     # §25.121(b) links to its own section, not to (a); a reference to §25.121 itself goes to the eCFR page
     assert page.eval_on_selector_all('a[href="#r25-121-b"]', "els => els.length") >= 2
     # failing and unevaluated rules are expanded, those that comply collapsed
-    opened = dict(page.eval_on_selector_all("section.rule", "els => els.map(s => [s.id, s.querySelector('details').open])"))
+    opened = dict(
+        page.eval_on_selector_all("section.rule", "els => els.map(s => [s.id, s.querySelector('details').open])")
+    )
     data = results(small_check[0])
     for r in data["rules"]:
         slug = "r" + re.sub(r"[^0-9a-z]+", "-", r["id"]).strip("-")
@@ -61,15 +65,21 @@ def test_summary_order_and_filters(chromium, small_check):
     assert "complies" not in shown and len(shown) == len(statuses) - statuses.count("complies")
     page.check('#filters input[value="complies"]')
     page.select_option("#filter-subpart", "C")
-    shown = page.eval_on_selector_all("#triage tbody tr:not([hidden]) td:first-child", "els => els.map(e => e.textContent)")
+    shown = page.eval_on_selector_all(
+        "#triage tbody tr:not([hidden]) td:first-child", "els => els.map(e => e.textContent)"
+    )
     assert shown and all(s.startswith("§25.3") for s in shown)
     page.select_option("#filter-subpart", "")
     page.fill("#filter-text", "dynamic stability")
-    shown = page.eval_on_selector_all("#triage tbody tr:not([hidden]) td:first-child", "els => els.map(e => e.textContent)")
+    shown = page.eval_on_selector_all(
+        "#triage tbody tr:not([hidden]) td:first-child", "els => els.map(e => e.textContent)"
+    )
     assert shown == ["§25.181"]
     # not-evaluated rules show their reason, not a margin
-    reasons = page.eval_on_selector_all('#triage tr[data-status="not_evaluated"]',
-                                        "els => els.map(e => [e.cells[5].textContent, e.cells[7].textContent])")
+    reasons = page.eval_on_selector_all(
+        '#triage tr[data-status="not_evaluated"]',
+        "els => els.map(e => [e.cells[5].textContent, e.cells[7].textContent])",
+    )
     assert reasons and all(m == "—" and r.startswith("not evaluated: ") for m, r in reasons)
     assert problems == []
     page.close()
@@ -107,8 +117,9 @@ def test_printed_pdf_contains_every_finding(chromium, small_check, tmp_path, scr
     text = re.sub(r"\s+", "", unicodedata.normalize("NFKC", "".join(p.extract_text() for p in reader.pages)))
     data = results(small_check[0])
     slug = lambda rid: "r" + re.sub(r"[^0-9a-z]+", "-", rid).strip("-")  # noqa: E731
-    wanted = Counter(re.sub(r"\s+", "", f["check"]) for r in data["rules"] if slug(r["id"]) not in packed
-                     for f in r["findings"])
+    wanted = Counter(
+        re.sub(r"\s+", "", f["check"]) for r in data["rules"] if slug(r["id"]) not in packed for f in r["findings"]
+    )
     missing = {c: n for c, n in wanted.items() if text.count(c) < n}
     assert missing == {}
     assert text.count("storedcompressedinthisfile") >= len(packed)

@@ -18,13 +18,16 @@ def test_textbook_sections_are_not_cfr_links():
 
 
 def test_figures_get_an_accessible_name():
-    svg = str(titled_svg('<?xml version="1.0"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="4"><g/></svg>',
-                         "V–n diagram <clean>"))
+    svg = str(
+        titled_svg(
+            '<?xml version="1.0"?>\n<svg xmlns="http://www.w3.org/2000/svg" width="4"><g/></svg>', "V–n diagram <clean>"
+        )
+    )
     assert 'role="img" aria-label="V–n diagram &lt;clean&gt;"><title>V–n diagram &lt;clean&gt;</title><g/>' in svg
 
 
 def test_big_tables_are_packed_losslessly_and_small_ones_kept():
-    rows = "".join(f"<tr><td>condition {i}</td><td class=\"num\">{i}.0 kn</td></tr>" for i in range(400))
+    rows = "".join(f'<tr><td>condition {i}</td><td class="num">{i}.0 kn</td></tr>' for i in range(400))
     big = f'<div class="table-wrap"><table><thead><tr><th>C</th><th>M</th></tr></thead><tbody>{rows}</tbody></table></div>'
     small = '<div class="table-wrap"><table><tr><td>one</td></tr></table></div>'
     packed = pack_tables(f"<p>a</p>{big}<p>b</p>{small}")

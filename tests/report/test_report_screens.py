@@ -92,11 +92,16 @@ def test_keyboard_reaches_the_skip_link_and_the_sort_buttons_with_a_visible_focu
             break
     else:
         pytest.fail("no sort button reached by Tab")
-    style = page.evaluate("(() => { const s = getComputedStyle(document.activeElement); "
-                          "return [s.outlineStyle, parseFloat(s.outlineWidth)]; })()")
+    style = page.evaluate(
+        "(() => { const s = getComputedStyle(document.activeElement); "
+        "return [s.outlineStyle, parseFloat(s.outlineWidth)]; })()"
+    )
     assert style[0] != "none" and style[1] >= 2
     page.keyboard.press("Enter")
-    assert page.evaluate("document.activeElement.parentElement.getAttribute('aria-sort')") in ("ascending", "descending")
+    assert page.evaluate("document.activeElement.parentElement.getAttribute('aria-sort')") in (
+        "ascending",
+        "descending",
+    )
     assert problems == []
     page.close()
 
@@ -112,8 +117,9 @@ def _luminance(rgb):
 
 def test_status_marks_are_shapes_with_contrast_and_figures_are_named(chromium, small_check):
     page, problems = open_page(chromium, small_check[0] / "index.html", 1400)
-    marks = page.eval_on_selector_all("#toc .status-mark", "els => els.map(e => [e.className, e.textContent, "
-                                                           "getComputedStyle(e).color])")
+    marks = page.eval_on_selector_all(
+        "#toc .status-mark", "els => els.map(e => [e.className, e.textContent, getComputedStyle(e).color])"
+    )
     by_status = {}
     for cls, text, colour in marks:
         status = cls.split("mark-")[1]
@@ -123,9 +129,12 @@ def test_status_marks_are_shapes_with_contrast_and_figures_are_named(chromium, s
     shapes = {s: next(iter(t)) for s, t in by_status.items()}
     assert all(len(t) == 1 for t in by_status.values()) and len(set(shapes.values())) == len(shapes)
     assert {"fails", "complies"} <= set(shapes) or {"fails", "complies_partial"} <= set(shapes)
-    figures = page.eval_on_selector_all(".evidence svg", "els => els.map(e => [e.getAttribute('role'), "
-                                                          "e.getAttribute('aria-label'), e.querySelector('title') && "
-                                                          "e.querySelector('title').textContent])")
+    figures = page.eval_on_selector_all(
+        ".evidence svg",
+        "els => els.map(e => [e.getAttribute('role'), "
+        "e.getAttribute('aria-label'), e.querySelector('title') && "
+        "e.querySelector('title').textContent])",
+    )
     assert figures and all(role == "img" and label and title == label for role, label, title in figures)
     assert problems == []
     page.close()
@@ -166,8 +175,7 @@ def test_printed_summary_header_is_not_blank(chromium, small_check, tmp_path):
     pdf = tmp_path / "summary.pdf"
     page.pdf(path=str(pdf), format="A4", print_background=True)
     second = PdfReader(str(pdf)).pages[1].extract_text()
-    top = second[:second.index("§")]  # the repeated header, before the first rule row of the page
+    top = second[: second.index("§")]  # the repeated header, before the first rule row of the page
     assert "Rule" in top and "Status" in top and "Title" in top, top
     assert problems == []
     page.close()
-

@@ -25,8 +25,13 @@ def test_results_validate_against_the_shipped_schema(small_check):
     assert not errors, "\n".join(f"{list(e.path)}: {e.message}" for e in errors[:10])
     assert data["schema_version"] == SCHEMA_VERSION
     # the partial selection is recorded, so that "4 rules comply" is never read as the whole airplane
-    assert data["selection"]["partial"] is True and data["selection"]["select"] == ["25.335", "25.181", "25.173",
-                                                                                      "25.121(b)", "25.161"]
+    assert data["selection"]["partial"] is True and data["selection"]["select"] == [
+        "25.335",
+        "25.181",
+        "25.173",
+        "25.121(b)",
+        "25.161",
+    ]
     assert data["selection"]["rules_selected"] == len(data["rules"]) < data["selection"]["rules_registered"]
     statuses = {r["status"] for r in data["rules"]}
     assert statuses == {"fails", "complies", "complies_partial", "not_evaluated"}  # the fixture covers them all
@@ -57,8 +62,9 @@ def test_numbers_are_rounded_and_strict():
 
 
 def test_one_finding_per_line_and_the_volatile_line_last():
-    finding = Finding(Condition(loading="fwd", mass=1000.0), "c", "complies", 2.0, 1.0, 1.0, "m/s",
-                      details={"x_m": [1.0, 2.0]})
+    finding = Finding(
+        Condition(loading="fwd", mass=1000.0), "c", "complies", 2.0, 1.0, 1.0, "m/s", details={"x_m": [1.0, 2.0]}
+    )
     run = RunResult("v", "n", "0" * 64, "p", "2026-01-01T00:00:00+00:00", [RuleResult("25.1", "s", "t", [finding] * 3)])
     text = run.to_json()
     lines = text.splitlines()
@@ -102,7 +108,9 @@ def test_two_runs_give_the_same_report(small_check, tmp_path):
 
     again, _ = checked(str(tmp_path / "again"), 1)
     assert _stable_html(small_check[0]) == _stable_html(again)
-    assert stable_lines((small_check[0] / "results.json").read_text()) == stable_lines((again / "results.json").read_text())
+    assert stable_lines((small_check[0] / "results.json").read_text()) == stable_lines(
+        (again / "results.json").read_text()
+    )
 
 
 @pytest.mark.parametrize("volatile", ["created", "duration_s", "jobs"])

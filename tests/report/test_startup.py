@@ -23,8 +23,9 @@ finally:
 
 def _loaded(args, cache) -> tuple[list[str], str]:
     env = {**os.environ, "XDG_CACHE_HOME": str(cache)}
-    proc = subprocess.run([sys.executable, "-c", PROBE.format(heavy=HEAVY), *args], capture_output=True, text=True,
-                          cwd=ROOT, env=env)
+    proc = subprocess.run(
+        [sys.executable, "-c", PROBE.format(heavy=HEAVY), *args], capture_output=True, text=True, cwd=ROOT, env=env
+    )
     assert proc.returncode == 0, proc.stderr
     return json.loads(proc.stderr.strip().splitlines()[-1]), proc.stdout
 

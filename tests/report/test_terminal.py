@@ -21,8 +21,15 @@ def _result(rid, status, seconds=1.0):
         f = Finding.not_evaluated(Condition(), "inputs", "needs speeds.VMC (declare it in the aircraft file)")
     else:
         margin = 1.0 if status == "complies" else -1.0
-        f = Finding(Condition(loading="fwd_mrw", mass=298_000.0, altitude=9000.0), "(a) a very long check name " * 3,
-                    status, 10.0, 10.0 - margin, margin, "m/s")
+        f = Finding(
+            Condition(loading="fwd_mrw", mass=298_000.0, altitude=9000.0),
+            "(a) a very long check name " * 3,
+            status,
+            10.0,
+            10.0 - margin,
+            margin,
+            "m/s",
+        )
     r = RuleResult(rid, "s", "A title long enough to be cut at a narrow terminal width", [f])
     r.seconds = seconds
     return r

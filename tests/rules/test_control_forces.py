@@ -16,12 +16,11 @@ import pytest
 from certkit.aircraft import load_aircraft
 from certkit.aircraft.model import ControlForces
 from certkit.engine.context import Context
-from certkit.errors import InputError
-from certkit.models.control_force import (control_force_model, downwash_gradient, local_angle,
-                                          stick_free_neutral_point)
 from certkit.engine.registry import discover, select
 from certkit.engine.results import Condition
 from certkit.engine.scheduler import criteria_for
+from certkit.errors import InputError
+from certkit.models.control_force import control_force_model, downwash_gradient, local_angle, stick_free_neutral_point
 from certkit.units import LBF
 
 from .helpers import edited_baseline, own, run_rule
@@ -69,7 +68,9 @@ def forces_ctx(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def feel_ctx(tmp_path_factory):
-    return Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("feel"), [("\nsources:", "\n" + ELEVATOR_FEEL)])))
+    return Context(
+        load_aircraft(edited_baseline(tmp_path_factory.mktemp("feel"), [("\nsources:", "\n" + ELEVATOR_FEEL)]))
+    )
 
 
 def _rule(rule_id):
@@ -92,8 +93,16 @@ def test_reversible_stick_force_hand_calculation():
     """F = −G f η q S_e c_e C_h at 200 ft/s sea level: S_e 35 ft², c_e 1.5 ft, G 0.6 rad/ft, f 1, η 0.9;
     Ch_α −0.1, Ch_δ −0.25 /rad, α_t 2°, δ −5°: C_h = 0.018326, q = 47.538 lb/ft², F = −24.70 lb (a pull of
     24.70 lb holds the trailing edge 5° up). Tolerance 1e-4 (unit constants)."""
-    ac = _section(elevator={"type": "reversible", "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
-                            "chord": "1.5 ft", "area": "35 ft^2", "gearing": "0.6 rad/ft", "dynamic_pressure_ratio": 0.9})
+    ac = _section(
+        elevator={
+            "type": "reversible",
+            "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
+            "chord": "1.5 ft",
+            "area": "35 ft^2",
+            "gearing": "0.6 rad/ft",
+            "dynamic_pressure_ratio": 0.9,
+        }
+    )
     m = control_force_model(ac, "elevator")
     ch = -0.1 * math.radians(2) - 0.25 * math.radians(-5)
     q_psf = 0.5 * RHO0_SLUG * 200.0**2
@@ -104,11 +113,24 @@ def test_reversible_stick_force_hand_calculation():
     assert force == pytest.approx(f_lb, rel=1e-4)
     # the inverse gives the deflection back, and trimmed at that state the force is zero
     assert m.deflection_at_force(force * LBF, q_si, math.radians(2)) == pytest.approx(math.radians(-5), rel=1e-9)
-    assert m.force(q_si, math.radians(2), math.radians(-5), trim=(math.radians(-5), math.radians(2))) == pytest.approx(0.0, abs=1e-9)
+    assert m.force(q_si, math.radians(2), math.radians(-5), trim=(math.radians(-5), math.radians(2))) == pytest.approx(
+        0.0, abs=1e-9
+    )
     # a 4:1 boost (pilot share 1/5) divides the force by 5; the span form (area = span × chord) is the same surface
-    boosted = control_force_model(_section(elevator={"type": "reversible", "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
-                                                     "chord": "1.5 ft", "span": "23.333333 ft", "gearing": "0.6 rad/ft",
-                                                     "dynamic_pressure_ratio": 0.9, "hinge_moment_fraction": 0.2}), "elevator")
+    boosted = control_force_model(
+        _section(
+            elevator={
+                "type": "reversible",
+                "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
+                "chord": "1.5 ft",
+                "span": "23.333333 ft",
+                "gearing": "0.6 rad/ft",
+                "dynamic_pressure_ratio": 0.9,
+                "hinge_moment_fraction": 0.2,
+            }
+        ),
+        "elevator",
+    )
     assert boosted.force(q_si, math.radians(2), math.radians(-5)) / LBF == pytest.approx(f_lb / 5, rel=1e-5)
 
 
@@ -116,10 +138,23 @@ def test_artificial_feel_and_wheel_hand_calculation():
     """Feel: F = 5 + 30 lbf/in × (15/10 q-feel) × 5 in = 230 lbf for 10° of elevator at 2°/in, q = 15 kPa.
     Aileron wheel (reversible pair): rim force = −(dδ/dθ)/(D/2) · q S c · 2 Ch_δ δ; D = 16 in, 0.5 rad/rad,
     S 20 ft², c 2 ft, Ch_δ −0.3, δ 10°, q = 100 lb/ft² → 2 × 0.3 × 0.17453 × 100 × 20 × 2 × 0.5/(8/12) = 62.83 lb."""
-    ac = _section(elevator={"type": "artificial_feel", "preload": "5 lbf", "gradient": "30 lbf/in", "gearing": "2 deg/in",
-                            "q_feel_reference": "10 kPa"},
-                  aileron={"type": "reversible", "hinge_moment": {"Ch_0": 0.01, "Ch_alpha": -0.2, "Ch_delta": -0.3},
-                           "chord": "2 ft", "area": "20 ft^2", "wheel_gearing": 0.5, "wheel_diameter": "16 in"})
+    ac = _section(
+        elevator={
+            "type": "artificial_feel",
+            "preload": "5 lbf",
+            "gradient": "30 lbf/in",
+            "gearing": "2 deg/in",
+            "q_feel_reference": "10 kPa",
+        },
+        aileron={
+            "type": "reversible",
+            "hinge_moment": {"Ch_0": 0.01, "Ch_alpha": -0.2, "Ch_delta": -0.3},
+            "chord": "2 ft",
+            "area": "20 ft^2",
+            "wheel_gearing": 0.5,
+            "wheel_diameter": "16 in",
+        },
+    )
     feel = control_force_model(ac, "elevator")
     assert feel.force(15e3, 0.3, math.radians(-10)) / LBF == pytest.approx(-(5 + 30 * 1.5 * 5), rel=1e-9)
     assert feel.force(15e3, 0.3, math.radians(2), trim=(math.radians(2), 0.0)) == 0.0
@@ -135,10 +170,25 @@ def test_artificial_feel_and_wheel_hand_calculation():
 
 def test_local_angles():
     """Tailplane α(1 − dε/dα) + i_t − ε₀ with the declared dε/dα; fin −β(1 − dσ/dβ)."""
-    ac = _section(elevator={"type": "reversible", "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25}, "chord": "1 m",
-                            "area": "2 m^2", "gearing": "1 rad/m", "downwash_gradient": 0.4, "downwash_at_zero_alpha": "1 deg"},
-                  rudder={"type": "reversible", "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25}, "chord": "1 m",
-                          "area": "2 m^2", "gearing": "1 rad/m", "downwash_gradient": 0.2})
+    ac = _section(
+        elevator={
+            "type": "reversible",
+            "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
+            "chord": "1 m",
+            "area": "2 m^2",
+            "gearing": "1 rad/m",
+            "downwash_gradient": 0.4,
+            "downwash_at_zero_alpha": "1 deg",
+        },
+        rudder={
+            "type": "reversible",
+            "hinge_moment": {"Ch_alpha": -0.1, "Ch_delta": -0.25},
+            "chord": "1 m",
+            "area": "2 m^2",
+            "gearing": "1 rad/m",
+            "downwash_gradient": 0.2,
+        },
+    )
     ac.geometry = SimpleNamespace(horizontal_tail=SimpleNamespace(incidence=math.radians(-2)), wing=None)
     assert local_angle(ac, "elevator", 0.1, 0.0, 0.5) == pytest.approx(0.06 - math.radians(3), rel=1e-12)
     assert local_angle(ac, "rudder", 0.1, 0.05, 0.5) == pytest.approx(-0.04, rel=1e-12)
@@ -149,18 +199,22 @@ def test_stick_force_gradient_sign_and_zero_at_the_stick_free_neutral_point(forc
     positive (a pull below the trim speed) ahead of the stick-free neutral point, negative behind it, and
     crosses zero within 2.5 % MAC of x_np′ = x_ref − c̄ Cm_α′/CL_α′ (the textbook formula omits the thrust
     line and the Mach change over ±5 %)."""
-    from certkit.engine.conditions import speed_as
     from certkit_rules.part25.subpart_b.r25_171 import stick_force_curves
+
+    from certkit.engine.conditions import speed_as
 
     ctx = forces_ctx
     model = ctx.aero("clean").model
     chord = model.reference.chord
-    base = Condition(loading="test", mass=200_000.0, x_cg=30.0, configuration="clean", altitude=0.0, speed=150.0,
-                     speed_kind="CAS")
+    base = Condition(
+        loading="test", mass=200_000.0, x_cg=30.0, configuration="clean", altitude=0.0, speed=150.0, speed_kind="CAS"
+    )
     mach = speed_as(base, "MACH")
     elevator = control_force_model(ctx.aircraft, "elevator")
     x_np = float(stick_free_neutral_point(model, elevator, mach, downwash_gradient(ctx.aircraft, mach)))
-    x_fixed = model.reference.x_ref - chord * float(model.derivative("Cm_alpha", mach) / model.derivative("CL_alpha", mach))
+    x_fixed = model.reference.x_ref - chord * float(
+        model.derivative("Cm_alpha", mach) / model.derivative("CL_alpha", mach)
+    )
     assert x_np < x_fixed  # a floating elevator (Ch_α < 0) moves the neutral point forward
     xs = x_np + chord * np.array([-0.10, -0.02, 0.02])
     curves = stick_force_curves(ctx, [base.with_(x_cg=float(x)) for x in xs], 0.05)
@@ -178,16 +232,38 @@ def test_stick_force_gradient_sign_and_zero_at_the_stick_free_neutral_point(forc
 # --------------------------------------------------------------------------- the aircraft-file section
 
 
-@pytest.mark.parametrize("block, path, message", [
-    ("  elevator:\n    type: reversible\n    hinge_moment: {Ch_alpha: -0.1, Ch_delta: 0.25}\n    chord: 1 m\n"
-     "    area: 2 m^2\n    gearing: 1 rad/m\n", "control_forces.elevator.hinge_moment.Ch_delta", "less than 0"),
-    ("  rudder:\n    type: artificial_feel\n    gradient: 30 lbf\n    gearing: 2 deg/in\n",
-     "control_forces.rudder.gradient", "not a stiffness"),
-    ("  elevator:\n    type: artificial_feel\n    gradient: 30 lbf/in\n", "control_forces.elevator", "needs gearing"),
-    ("  elevator:\n    type: reversible\n    hinge_moment: {Ch_alpha: -0.1, Ch_delta: -0.25}\n    chord: 1 m\n"
-     "    gearing: 1 rad/m\n    gradient: 30 lbf/in\n", "control_forces.elevator", "gradient belongs to type artificial_feel"),
-    ("  aileron:\n    type: springy\n    gearing: 1 rad/m\n", "control_forces.aileron.type", "'reversible' or 'artificial_feel'"),
-])
+@pytest.mark.parametrize(
+    "block, path, message",
+    [
+        (
+            "  elevator:\n    type: reversible\n    hinge_moment: {Ch_alpha: -0.1, Ch_delta: 0.25}\n    chord: 1 m\n"
+            "    area: 2 m^2\n    gearing: 1 rad/m\n",
+            "control_forces.elevator.hinge_moment.Ch_delta",
+            "less than 0",
+        ),
+        (
+            "  rudder:\n    type: artificial_feel\n    gradient: 30 lbf\n    gearing: 2 deg/in\n",
+            "control_forces.rudder.gradient",
+            "not a stiffness",
+        ),
+        (
+            "  elevator:\n    type: artificial_feel\n    gradient: 30 lbf/in\n",
+            "control_forces.elevator",
+            "needs gearing",
+        ),
+        (
+            "  elevator:\n    type: reversible\n    hinge_moment: {Ch_alpha: -0.1, Ch_delta: -0.25}\n    chord: 1 m\n"
+            "    gearing: 1 rad/m\n    gradient: 30 lbf/in\n",
+            "control_forces.elevator",
+            "gradient belongs to type artificial_feel",
+        ),
+        (
+            "  aileron:\n    type: springy\n    gearing: 1 rad/m\n",
+            "control_forces.aileron.type",
+            "'reversible' or 'artificial_feel'",
+        ),
+    ],
+)
 def test_schema_errors_name_the_path_and_line(tmp_path, block, path, message):
     text = "control_forces:\n" + block + "sources:"
     with pytest.raises(InputError) as err:
@@ -216,7 +292,9 @@ def test_stick_force_gradient_rule(forces_ctx):
     assert done and all(f.unit == "lbf/kt" for f in done)
     for f in done:
         dv = 0.1 * f.condition.speed / (1852 / 3600)
-        assert f.value == pytest.approx((f.details["pull_force_low_speed_lbf"] - f.details["pull_force_high_speed_lbf"]) / dv, abs=2e-3)
+        assert f.value == pytest.approx(
+            (f.details["pull_force_low_speed_lbf"] - f.details["pull_force_high_speed_lbf"]) / dv, abs=2e-3
+        )
         assert f.limit == pytest.approx(1 / 6)
     fwd = [f for f in done if f.condition.loading.startswith("fwd")]
     assert all(f.value > 0 for f in fwd)
@@ -240,7 +318,9 @@ def test_configuration_change_force_rule(forces_ctx):
     change = [f for f in findings if "elevator change" in f.check]
     assert len(force) == len(change) > 0
     assert all(f.unit == "lbf" and f.limit == 50.0 for f in force)
-    assert all(f.value == pytest.approx(abs(f.details["pull_force_lbf"]), abs=0.006) for f in force if f.margin is not None)
+    assert all(
+        f.value == pytest.approx(abs(f.details["pull_force_lbf"]), abs=0.006) for f in force if f.margin is not None
+    )
     # extending the flaps at idle (b)(1) needs a pull at the forward CG with this elevator (speed lower, nose-down flaps)
     ext = [f for f in force if f.check.startswith("(b)(1)") and f.margin is not None]
     assert ext and all(f.details["pull_force_lbf"] > 0 for f in ext)
@@ -287,7 +367,9 @@ def test_force_limited_deflections_of_the_loads_rules(forces_ctx, feel_ctx):
     defl, limited = force_limited_deflection(forces_ctx, "rudder", [slow], [0.0], stop, 300.0)
     assert defl[0] == stop and not limited[0]  # the stop comes first at low speed
     up = Condition(speed=136.3, speed_kind="EAS", altitude=3000.0)
-    defl, limited = force_limited_deflection(feel_ctx, "elevator", [up], [math.radians(1.0)], math.radians(-21.8), 300.0)
+    defl, limited = force_limited_deflection(
+        feel_ctx, "elevator", [up], [math.radians(1.0)], math.radians(-21.8), 300.0
+    )
     step = (300 - 5) / (30 * 0.5 * 1.225 * 136.3**2 / 1e4) * 2
     assert math.degrees(defl[0]) == pytest.approx(1.0 - step, rel=1e-6) and limited[0]
     # without a model the stop is returned, flagged as not force-limited (None)
@@ -304,10 +386,13 @@ def test_loads_rules_use_the_pilot_effort(feel_ctx):
     assert "pilot effort" in f.details["pilot_effort"]
 
 
-@pytest.mark.parametrize("rule_id, check, reason", [
-    ("25.173(c)", "(c) stick-force gradient", "control_forces.elevator"),
-    ("25.173(b)", "(b) free return", "control_forces.elevator"),
-])
+@pytest.mark.parametrize(
+    "rule_id, check, reason",
+    [
+        ("25.173(c)", "(c) stick-force gradient", "control_forces.elevator"),
+        ("25.173(b)", "(b) free return", "control_forces.elevator"),
+    ],
+)
 def test_not_evaluated_without_a_model(rule_id, check, reason):
     r = run_rule(rule_id)
     assert r.status == "not_evaluated"
@@ -319,7 +404,10 @@ def test_force_parts_not_evaluated_without_a_model(ctx):
     evaluated, naming the missing section; §25.173(b) needs the friction too."""
     findings, _ = _evaluate("25.145(b)", ctx, lambda c: c.loading == "fwd_mlw")
     assert [f.reason for f in findings if "control force" in f.check] and all(
-        f.status == "not_evaluated" and "control_forces.elevator" in f.reason for f in findings if "control force" in f.check)
+        f.status == "not_evaluated" and "control_forces.elevator" in f.reason
+        for f in findings
+        if "control force" in f.check
+    )
     findings, _ = _evaluate("25.147(a)", ctx, lambda c: True)
     pedal = [f for f in findings if "pedal force" in f.check]
     assert len(pedal) == 3 and all(f.status == "not_evaluated" and "control_forces.rudder" in f.reason for f in pedal)
@@ -335,7 +423,10 @@ def test_free_return_needs_friction(tmp_path):
 
 def test_a_force_model_needs_its_control_surface(tmp_path):
     """A force model of a control the geometry does not declare is an input error at the control's line."""
-    edits = [("\nsources:", "\n" + ELEVATOR_FEEL), ("      elevator:\n        span_start: 0.07", "      elevatorx:\n        span_start: 0.07")]
+    edits = [
+        ("\nsources:", "\n" + ELEVATOR_FEEL),
+        ("      elevator:\n        span_start: 0.07", "      elevatorx:\n        span_start: 0.07"),
+    ]
     with pytest.raises(InputError) as err:
         load_aircraft(edited_baseline(tmp_path, edits))
     (problem,) = [p for p in err.value.problems if p.path == "control_forces.elevator"]

@@ -30,14 +30,19 @@ def _scaled_structure(text: str, factor: float) -> str:
     """The baseline's ``structure:`` allowables (kN, kN*m) times ``factor``."""
     start = text.index("\nstructure:\n")
     end = text.index("\nsources:\n", start)
-    section = re.sub(r"(\d+(?:\.\d+)?) (kN\*m|kN)\b", lambda m: f"{float(m.group(1)) * factor:.1f} {m.group(2)}",
-                     text[start:end])
+    section = re.sub(
+        r"(\d+(?:\.\d+)?) (kN\*m|kN)\b", lambda m: f"{float(m.group(1)) * factor:.1f} {m.group(2)}", text[start:end]
+    )
     return text[:start] + section + text[end:]
 
 
-SPEEDS = [("  VA: 266 kn EAS", "  VA: 200 kn EAS"), ("  VB: 226 kn EAS", "  VB: 180 kn EAS"),
-          ("  VD: 340 kn EAS", "  VD: 330 kn EAS"), ("  V2: 161 kn CAS", "  V2: 155 kn CAS"),
-          ("  VREF: 136 kn CAS", "  VREF: 136 kn CAS\n  VSR: {takeoff: 141 kn CAS}")]
+SPEEDS = [
+    ("  VA: 266 kn EAS", "  VA: 200 kn EAS"),
+    ("  VB: 226 kn EAS", "  VB: 180 kn EAS"),
+    ("  VD: 340 kn EAS", "  VD: 330 kn EAS"),
+    ("  V2: 161 kn CAS", "  V2: 155 kn CAS"),
+    ("  VREF: 136 kn CAS", "  VREF: 136 kn CAS\n  VSR: {takeoff: 141 kn CAS}"),
+]
 
 #: case: (edits, whether the structure is scaled to 5 %, the rules that must fail). Deficiencies that do not interact
 #: share one aircraft (one aerodynamic model each) to keep the file affordable.
@@ -47,25 +52,51 @@ CASES = {
     # §25.107(b)(1) V2 ≥ 1.13 VSR (155 < 1.13 × 141 = 159.3 kn); §25.337(b) n₊ ≥ 2.5 (2.3 declared);
     # §25.305 the structure at 5 % of its declared allowables, far below every limit load
     "speeds, load factor and structure below the paragraphs' minima": (
-        SPEEDS + [("    positive: 2.5 ", "    positive: 2.3 ")], True,
-        ("25.103", "25.107", "25.333", "25.335(b)", "25.335(c)", "25.335(d)", "25.337",
-         "25.331(b)", "25.331(c)(1)", "25.331(c)(2)", "25.341(a)", "25.349(a)", "25.349(b)", "25.351", "25.427(b)")),
+        SPEEDS + [("    positive: 2.5 ", "    positive: 2.3 ")],
+        True,
+        (
+            "25.103",
+            "25.107",
+            "25.333",
+            "25.335(b)",
+            "25.335(c)",
+            "25.335(d)",
+            "25.337",
+            "25.331(b)",
+            "25.331(c)(1)",
+            "25.331(c)(2)",
+            "25.341(a)",
+            "25.349(a)",
+            "25.349(b)",
+            "25.351",
+            "25.427(b)",
+        ),
+    ),
     # §25.335(a) VC ≥ VB + 1.32 U_ref: 272 < 240 + 43.8
     "VB too close to VC": ([("  VB: 226 kn EAS", "  VB: 240 kn EAS")], False, ("25.335(a)",)),
     # §25.121: half the thrust, one engine out, cannot hold the minimum gradients; a 450 ft² stabiliser (from
     # 1,119.2): the neutral point moves ahead of the aft CG limit (§25.171, §25.173(a))
     "half the thrust and a horizontal tail too small": (
-        [("  static_thrust: 97300 lbf", "  static_thrust: 48650 lbf"), ("    area: 1119.2 ft^2 ", "    area: 450 ft^2 ")],
-        False, ("25.121(a)", "25.121(b)", "25.121(c)", "25.121(d)", "25.171", "25.173(a)")),
+        [
+            ("  static_thrust: 97300 lbf", "  static_thrust: 48650 lbf"),
+            ("    area: 1119.2 ft^2 ", "    area: 450 ft^2 "),
+        ],
+        False,
+        ("25.121(a)", "25.121(b)", "25.121(c)", "25.121(d)", "25.171", "25.173(a)"),
+    ),
     # a 150 ft² fin (from 527.84): directionally unstable (§25.177), VMCA above 1.13 VSR (§25.149); ±2° design
     # limits on elevator and rudder: the trims of §25.145(b) and §25.147 need more, and so do §25.255's 1.5 g pull-ups
     # and 0 g push-overs out of trim (with a stabiliser trim rate of 0.5 deg/s declared, a test value)
     "a fin too small and control design limits of ±2°": (
-        [("    area: 527.84 ft^2 ", "    area: 150 ft^2 "),
-         ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -2 deg, max: 2 deg}"),
-         ("design_limits: {min: -23.2 deg, max: 23.2 deg}", "design_limits: {min: -2 deg, max: 2 deg}"),
-         ("      elevator_trim: 0 deg ", "      rate: 0.5 deg/s\n      elevator_trim: 0 deg ")],
-        False, ("25.177", "25.149", "25.145(b)", "25.147(a)", "25.147(c)", "25.255")),
+        [
+            ("    area: 527.84 ft^2 ", "    area: 150 ft^2 "),
+            ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -2 deg, max: 2 deg}"),
+            ("design_limits: {min: -23.2 deg, max: 23.2 deg}", "design_limits: {min: -2 deg, max: 2 deg}"),
+            ("      elevator_trim: 0 deg ", "      rate: 0.5 deg/s\n      elevator_trim: 0 deg "),
+        ],
+        False,
+        ("25.177", "25.149", "25.145(b)", "25.147(a)", "25.147(c)", "25.255"),
+    ),
 }
 
 RULES = {r.id: r for r in discover()}

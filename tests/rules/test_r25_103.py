@@ -20,8 +20,11 @@ def vs_kn(w_lb, clmax):
 
 
 def finding(result, configuration, lb=None):
-    return next(f for f in result.findings if f.condition.configuration == configuration
-                and (lb is None or abs(f.condition.mass / 0.45359237 - lb) < 1))
+    return next(
+        f
+        for f in result.findings
+        if f.condition.configuration == configuration and (lb is None or abs(f.condition.mass / 0.45359237 - lb) < 1)
+    )
 
 
 def test_hand_calculation_takeoff_and_landing():
@@ -34,8 +37,9 @@ def test_hand_calculation_takeoff_and_landing():
     assert finding(r, "landing").value / KN == pytest.approx(vs_kn(460_000, 2.25), abs=0.01)
     assert finding(r, "clean", 310_000).value / KN == pytest.approx(vs_kn(310_000, 1.4), abs=0.01)
     own = [f for f in r.findings if f.check.startswith("(a)")]
-    assert own and all(f.status == "not_evaluated" and f.margin is None and "no declared speeds.VSR" in f.reason
-                       for f in own)
+    assert own and all(
+        f.status == "not_evaluated" and f.margin is None and "no declared speeds.VSR" in f.reason for f in own
+    )
     assert r.status == "not_evaluated" and r.critical is None
 
 

@@ -35,7 +35,9 @@ def test_sign_higher_v1_reduces_margin_and_higher_v2_adds_margin(tmp_path):
     """V1 raised to VR (155 kn) puts (e)(1)(i) on its limit (margin 0); the file loader already rejects
     VR < V1, so the check cannot be driven below zero from a valid file. V2 165 kn adds V2/VSR margin."""
     on = run_rule("25.107", tmp_path, [("V1: 150 kn CAS", "V1: 155 kn CAS")])
-    assert check(on, "(e)(1)(i)").margin == pytest.approx(0.0, abs=1e-12) and check(on, "(e)(1)(i)").status == "complies"
+    assert (
+        check(on, "(e)(1)(i)").margin == pytest.approx(0.0, abs=1e-12) and check(on, "(e)(1)(i)").status == "complies"
+    )
     faster = run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 165 kn CAS")])
     assert check(faster, "(b)(1)").margin == pytest.approx(165 / VSR_KN - 1.13, abs=1e-4)
     assert check(faster, "(b)(1)").margin > check(run_rule("25.107"), "(b)(1)").margin
@@ -68,8 +70,9 @@ def test_vef_against_a_declared_vmcg(tmp_path):
     ok = check(run_rule("25.107", tmp_path, [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMCG: 130 kn CAS")]), "(a)")
     assert ok.status == "complies" and lo / 130 <= ok.value <= hi / 130 and "declared VMCG" in ok.details["basis"]
     (tmp_path / "high").mkdir()
-    high = check(run_rule("25.107", tmp_path / "high", [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMCG: 149 kn CAS")]),
-                 "(a)")
+    high = check(
+        run_rule("25.107", tmp_path / "high", [("V2: 161 kn CAS", "V2: 161 kn CAS\n  VMCG: 149 kn CAS")]), "(a)"
+    )
     assert high.status == "fails" and lo / 149 <= high.value <= hi / 149
 
 

@@ -14,19 +14,20 @@ Hand references (lb, ft, s; the baseline's GE90-94B class static thrust 97,300 l
 """
 
 import numpy as np
-
 import pytest
 
 from certkit.models.dynamics.procedures import runway_acceleration
 from certkit.models.flight import flight_model, ground_model
 from certkit.units import FT
 
-from .helpers import finding_by as _by, own
-from .helpers import run_rule
+from .helpers import finding_by as _by
+from .helpers import own, run_rule
 
-GEAR = ("    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
-        "    nose: {x: 22.1 ft, y: 0 ft, z: -18.5 ft}\n"
-        "    tail_strike_attitude: 12.1 deg   # 777-200, wheels on the runway, struts extended, flaps 5/15/20 [b777-fctm]\n")
+GEAR = (
+    "    main: {x: 107.0 ft, y: 18.0 ft, z: -18.5 ft}   # main gear track 36 ft, wheelbase 84.9 ft [b777-apd]\n"
+    "    nose: {x: 22.1 ft, y: 0 ft, z: -18.5 ft}\n"
+    "    tail_strike_attitude: 12.1 deg   # 777-200, wheels on the runway, struts extended, flaps 5/15/20 [b777-fctm]\n"
+)
 LOADINGS = ("MTOW forward", "MTOW reference", "MTOW aft")
 
 
@@ -44,8 +45,12 @@ def _static_rudder_deg(ctx, cas_kn):
     from certkit.units import KN
 
     ac = ctx.aircraft
-    model = flight_model(ac, ctx.aero("takeoff").model, [ctx.loading(ac.mass.MTOW, reference_cg(ac), "r")],
-                         operative=np.array([[False, True]]))
+    model = flight_model(
+        ac,
+        ctx.aero("takeoff").model,
+        [ctx.loading(ac.mass.MTOW, reference_cg(ac), "r")],
+        operative=np.array([[False, True]]),
+    )
     u = np.zeros((1, len(model.control_names)))
     u[:, model.throttle_slice] = 1.0
     x = np.zeros((1, 12))
@@ -81,8 +86,9 @@ def test_the_rudder_peak_beyond_the_design_limit_is_the_airplane_not_the_pilot(r
         f = _by(result, loading, "(a) rudder")
         assert f.status == "fails" and f.limit == pytest.approx(-23.2)
         assert -27.3 - 1e-6 <= f.details["rudder_min_deg"] < -23.2
-    cut = run_rule("25.107", tmp_path, [("travel: {min: -27.3 deg, max: 27.3 deg}",
-                                         "travel: {min: -23.2 deg, max: 23.2 deg}")])
+    cut = run_rule(
+        "25.107", tmp_path, [("travel: {min: -27.3 deg, max: 27.3 deg}", "travel: {min: -23.2 deg, max: 23.2 deg}")]
+    )
     vef = next(f for f in own(cut) if f.check.startswith("(a)"))
     assert vef.status == "fails" and "VMCG computed" in vef.details["basis"]
 
@@ -92,7 +98,9 @@ def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
     after the failure at VEF is V1 within 0.5 kn; the (c)(2) limit is V2 = 161 kn; lift-off after VR."""
     ac = ctx.aircraft
     c = _by(result, "MTOW reference", "(c)(2)").condition
-    model = flight_model(ac, ctx.aero("takeoff").model, [ctx.loading(c.mass, c.x_cg, c.loading)], ground=ground_model(ac))
+    model = flight_model(
+        ac, ctx.aero("takeoff").model, [ctx.loading(c.mass, c.x_cg, c.loading)], ground=ground_model(ac)
+    )
     a_oei = runway_acceleration(model, 0.0, operative=np.array([[False, True]]))
     assert a_oei[0] / FT == pytest.approx(32.174 * 97300 / 656000, rel=5e-3)
     for loading in LOADINGS:
@@ -114,13 +122,15 @@ def test_a_smaller_rudder_design_limit_fails_the_engine_out_takeoff(result, tmp_
     the rudder over its travel, so the run is the same) fails (a)'s rudder check at every CG, by |δr| − 15°."""
     fwd = _by(result, "MTOW forward", "(a) rudder")
     assert fwd.limit == pytest.approx(-23.2) and fwd.value < -15.0
-    edited = run_rule("25.111", tmp_path, [("design_limits: {min: -23.2 deg, max: 23.2 deg}",
-                                            "design_limits: {min: -15 deg, max: 15 deg}")])
+    edited = run_rule(
+        "25.111",
+        tmp_path,
+        [("design_limits: {min: -23.2 deg, max: 23.2 deg}", "design_limits: {min: -15 deg, max: 15 deg}")],
+    )
     for loading in LOADINGS:
         f = _by(edited, loading, "(a) rudder")
         assert f.status == "fails" and f.limit == pytest.approx(-15.0)
     assert _by(edited, "MTOW forward", "(a) rudder").value == pytest.approx(fwd.value, abs=1e-6)
-
 
 
 def test_sign_cg_and_engine_failure(result, tmp_path):
@@ -165,8 +175,9 @@ def test_pilot_rotation_below_tail_strike_and_distances(result):
         assert d["max_pitch_on_ground_deg"] < 12.1
         assert d["accelerate_go_distance_ft"] == pytest.approx(d["distance_to_35ft_ft"], abs=1.0)
         assert d["all_engines_distance_x1.15_ft"] == pytest.approx(1.15 * d["all_engines_distance_to_35ft_ft"], abs=1.5)
-        assert d["takeoff_distance_ft"] == pytest.approx(max(d["accelerate_go_distance_ft"],
-                                                             d["all_engines_distance_x1.15_ft"]), abs=1.5)
+        assert d["takeoff_distance_ft"] == pytest.approx(
+            max(d["accelerate_go_distance_ft"], d["all_engines_distance_x1.15_ft"]), abs=1.5
+        )
         assert "tail strike" in d["rotation_basis"] and "τ = 1.5 s" in d["spool_down_basis"]
         # the pitch flies V2 once airborne: the 35-ft speed within the band of a representative run, 0 to 10 kn above
         # V2 (§25.111(c)(2) "not less than V2 … as close as practical"; the 10 kn of the rule's criteria)
@@ -180,8 +191,10 @@ def test_too_little_elevator_never_complies(tmp_path):
     run is not evaluated with the late lift-off as its reason. (With −8°, the cut before ground effect, the airplane
     now rotates to 10.6° and lifts off 7 kn after VR: ground effect's lift helps, and its nose-down moment at the
     tail is not modelled — docs/baseline-sources.md §14.)"""
-    cut = [("travel: {min: -30 deg, max: 25 deg}", "travel: {min: 0 deg, max: 25 deg}"),
-           ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: 0 deg, max: 16.8 deg}")]
+    cut = [
+        ("travel: {min: -30 deg, max: 25 deg}", "travel: {min: 0 deg, max: 25 deg}"),
+        ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: 0 deg, max: 16.8 deg}"),
+    ]
     r = run_rule("25.111", tmp_path, cut)
     assert all(f.status != "complies" for f in own(r))
     f = _by(r, "MTOW forward", "(c)(2)")

@@ -25,8 +25,9 @@ def test_distances_checked_against_a_declared_field_length(tmp_path):
     weak = run_rule("25.113", tmp_path / "b", _edits(("static_thrust: 97300 lbf", "static_thrust: 68000 lbf")))
     for f in own(base):
         d = f.details
-        assert d["takeoff_distance_ft"] == pytest.approx(max(d["accelerate_go_distance_ft"],
-                                                             d["all_engines_distance_x1.15_ft"]), abs=1.5)
+        assert d["takeoff_distance_ft"] == pytest.approx(
+            max(d["accelerate_go_distance_ft"], d["all_engines_distance_x1.15_ft"]), abs=1.5
+        )
         assert d["all_engines_distance_x1.15_ft"] == pytest.approx(1.15 * d["all_engines_distance_to_35ft_ft"], abs=1.5)
         assert f.status == "complies" and f.limit == pytest.approx(10000.0) and f.unit == "ft"
     assert all(f.status == "fails" for f in own(weak))  # 13,900–14,300 ft against 10,000 ft
@@ -53,14 +54,21 @@ def test_representativeness_bounds():
     from certkit_rules.part25.support.takeoff import REPRESENTATIVE_CRITERIA, unrepresentative
 
     crit = SimpleNamespace(**{k: c.value for k, c in REPRESENTATIVE_CRITERIA.items()})
-    good = {"vr_kn": 155.0, "v2_kn": 161.0, "vlof_kn": 163.0, "v35_kn": 165.0, "max_lateral_deviation_on_ground_ft": 12.0,
-            "max_pitch_on_ground_deg": 10.5}
+    good = {
+        "vr_kn": 155.0,
+        "v2_kn": 161.0,
+        "vlof_kn": 163.0,
+        "v35_kn": 165.0,
+        "max_lateral_deviation_on_ground_ft": 12.0,
+        "max_pitch_on_ground_deg": 10.5,
+    }
     assert unrepresentative(good, crit, tail_strike_deg=12.1) == []
     assert unrepresentative({**good, "vlof_kn": 170.5}, crit) == ["VLOF 170.5 kn is 15.5 kn above VR (at most 15 kn)"]
     assert unrepresentative({**good, "vlof_kn": 170.5}, crit, vlof_declared_kn=160.0) == []
     assert unrepresentative({**good, "v35_kn": 171.5}, crit) == ["V35 171.5 kn is 10.5 kn above V2 (at most 10 kn)"]
     assert unrepresentative({**good, "v35_kn": 171.5}, crit, engine_out=False) == []
     assert unrepresentative({**good, "max_lateral_deviation_on_ground_ft": 31.0}, crit) == [
-        "the ground run deviates 31 ft from the centreline (at most 30 ft)"]
+        "the ground run deviates 31 ft from the centreline (at most 30 ft)"
+    ]
     assert "tail-strike" in unrepresentative({**good, "max_pitch_on_ground_deg": 12.2}, crit, tail_strike_deg=12.1)[0]
     assert unrepresentative({**good, "vlof_kn": None}, crit) == ["the airplane did not lift off"]

@@ -67,14 +67,14 @@ def test_too_little_thrust_fails(tmp_path, base_b):
     assert gradient(weak).status == "fails" and gradient(weak).value < 0.024
 
 
-
 def test_sign_more_thrust_more_gradient_and_rudder_margin(tmp_path, base_b):
     """10 % more static thrust raises the gradient by about ΔT/W ≈ 0.0114 (hand: 0.1·T_avail/W)."""
     more = run_rule("25.121(b)", tmp_path, [("static_thrust: 97300 lbf", "static_thrust: 107030 lbf")])
     d = gradient(more).value - gradient(base_b).value
     assert d == pytest.approx(0.1 * mattingly_thrust_n(161 * KN) / (656_000 * LB * G), rel=0.1)
-    rud = lambda r: next(f for f in own(r) if f.check.endswith("rudder within design limit")  # noqa: E731
-                         and f.condition.loading == "MTOW reference")
+    rud = lambda r: next(  # noqa: E731
+        f for f in own(r) if f.check.endswith("rudder within design limit") and f.condition.loading == "MTOW reference"
+    )
     assert rud(more).margin < rud(base_b).margin  # more asymmetric thrust needs more rudder
 
 

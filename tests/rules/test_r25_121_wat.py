@@ -47,9 +47,13 @@ def base_b():
 
 
 def gradients(result, airport_prefix=None):
-    return [f for f in own(result) if f.unit == "gradient"
-            and (f.condition.get("airport") or "").startswith(airport_prefix or "")
-            and (airport_prefix is not None or f.condition.get("airport") is None)]
+    return [
+        f
+        for f in own(result)
+        if f.unit == "gradient"
+        and (f.condition.get("airport") or "").startswith(airport_prefix or "")
+        and (airport_prefix is not None or f.condition.get("airport") is None)
+    ]
 
 
 def limitation(result, airport_prefix):
@@ -75,9 +79,10 @@ def own_gradient(cond, delta_isa, static=97_300 * LBF):
     flight-path angle γ0 = atan 2.4 % (critical engine left windmilling, zero sideslip, the thrust solved for); then
     sin γ = sin γ0 + (T − T0 + ΔD_gear)/W with T the hand thrust of the day, T0 the trim's and ΔD_gear the rule's
     gear_up_credit ΔCD0 at q̄ = ½ γ p M² (the drag the gear-up segment does not carry)."""
+    from certkit_rules.part25.subpart_b.r25_121 import gear_up_credit
+
     from certkit.aircraft import load_aircraft
     from certkit.engine.context import Context
-    from certkit_rules.part25.subpart_b.r25_121 import gear_up_credit
 
     ctx = Context(load_aircraft(BASELINE))
     gamma0 = math.atan(0.024)
@@ -100,10 +105,20 @@ def test_sea_level_complies_and_hot_and_high_is_weight_limited(base_b):
     assert f.status == "complies" and f.limit == pytest.approx(310_000 * LB) and f.margin == f.value - f.limit
     assert 310_000 * LB < f.value < 656_000 * LB and f.value == pytest.approx(f.details["wat_limit_mass_kg"], abs=0.1)
     assert f.condition.mass == f.value and "takeoff weight limited to" in f.reason and "§25.1533(a)" in f.reason
-    mtow = [g for g in own(base_b) if g.condition.get("airport", "").startswith("8,400 ft, +38.4")
-            and g.check.endswith(", WAT") and g.condition.loading.startswith("MTOW")]
-    assert len(mtow) == 3 and all(g.status == "complies" and g.margin is None and "not applicable" in g.reason
-                                  and g.details["gradient_at_design_weight"] < 0.024 for g in mtow)
+    mtow = [
+        g
+        for g in own(base_b)
+        if g.condition.get("airport", "").startswith("8,400 ft, +38.4")
+        and g.check.endswith(", WAT")
+        and g.condition.loading.startswith("MTOW")
+    ]
+    assert len(mtow) == 3 and all(
+        g.status == "complies"
+        and g.margin is None
+        and "not applicable" in g.reason
+        and g.details["gradient_at_design_weight"] < 0.024
+        for g in mtow
+    )
 
 
 def test_the_limit_weight_gives_the_minimum_gradient_by_an_own_trim(base_b):
@@ -136,8 +151,13 @@ def test_hot_day_thrust_and_gradient_by_hand(base_b):
     h = 8400 * FT
 
     def at_mtow(prefix):
-        return next(f for f in own(base_b) if f.condition.get("airport", "").startswith(prefix)
-                    and f.condition.loading == "MTOW reference" and f.check.endswith(", WAT"))
+        return next(
+            f
+            for f in own(base_b)
+            if f.condition.get("airport", "").startswith(prefix)
+            and f.condition.loading == "MTOW reference"
+            and f.check.endswith(", WAT")
+        )
 
     std, hot = at_mtow("8,400 ft, -1.6"), at_mtow("8,400 ft, +38.4")
     t_std = std.details["thrust_available_N"]
@@ -152,8 +172,16 @@ def test_cold_day_equals_the_standard_day(base_b):
     """Below the flat rating the thrust is the standard day's, and so is the climb (same CAS, same q̄ and Mach): the
     cold corner is reported with the standard day's trim, and says so (at 3,700 ft both are weight-limited: the same
     WAT limit weight)."""
-    cold = {f.check + f.condition.loading: f for f in own(base_b) if f.condition.get("airport", "").startswith("3,700 ft, -40")}
-    std = {f.check + f.condition.loading: f for f in own(base_b) if f.condition.get("airport", "").startswith("3,700 ft, +7.7")}
+    cold = {
+        f.check + f.condition.loading: f
+        for f in own(base_b)
+        if f.condition.get("airport", "").startswith("3,700 ft, -40")
+    }
+    std = {
+        f.check + f.condition.loading: f
+        for f in own(base_b)
+        if f.condition.get("airport", "").startswith("3,700 ft, +7.7")
+    }
     assert cold.keys() == std.keys() and any(f.unit == "kg" for f in cold.values())
     assert all(cold[k].value == std[k].value and cold[k].status == std[k].status for k in std)
     assert all("the trim of 3,700 ft, +7.7" in f.reason for f in cold.values())
@@ -163,8 +191,11 @@ def test_cold_day_equals_the_standard_day(base_b):
 def test_a_low_airport_envelope_complies(tmp_path):
     """−500…500 ft, up to ISA+10 (below the flat rating at V2): the gradient stays above 2.4 % (about 2.6 % at
     500 ft from the 0.35 %/1,000 ft fall of the baseline's corners): every WAT finding complies."""
-    edits = [(ENVELOPE[0], "  pressure_altitude_min: -500 ft"), (ENVELOPE[1], "  pressure_altitude_max: 500 ft"),
-             ("  isa_deviation_max: 40 delta_degC", "  isa_deviation_max: 10 delta_degC")]
+    edits = [
+        (ENVELOPE[0], "  pressure_altitude_min: -500 ft"),
+        (ENVELOPE[1], "  pressure_altitude_max: 500 ft"),
+        ("  isa_deviation_max: 40 delta_degC", "  isa_deviation_max: 10 delta_degC"),
+    ]
     r = run_rule("25.121(b)", tmp_path, edits)
     wat = [f for f in own(r) if f.condition.get("airport")]
     assert wat and all(f.status == "complies" for f in wat)
@@ -174,7 +205,7 @@ def test_without_an_envelope_only_sea_level_isa(tmp_path, base_b):
     """No takeoff_landing_envelope: the sea-level ISA findings only, unchanged."""
     src = BASELINE.read_text()
     start = src.index("\ntakeoff_landing_envelope:") + 1
-    block = src[start:src.index("\n\n", start) + 2]
+    block = src[start : src.index("\n\n", start) + 2]
     r = run_rule("25.121(b)", tmp_path, [(block, "")])
     mine = [(f.check, f.condition.loading, f.value, f.status) for f in own(r)]
     theirs = [(f.check, f.condition.loading, f.value, f.status) for f in own(base_b) if not f.condition.get("airport")]
@@ -204,9 +235,11 @@ def test_a_declared_wat_limit_is_checked_at_its_weight(tmp_path):
     """Declared flight-manual takeoff limits: 475,000 lb at 8,400 ft, 38.4 °C is above the weight where the own trim
     gives 2.4 % (460,789 lb; 3 % heavier loses about 0.35 %) and fails; 495,000 lb at 3,700 ft, 47.7 °C is below that
     corner's (508,400 lb) and complies. A landing-only row does not enter (b)."""
-    rows = ("pressure_altitude: 8400 ft, temperature: 38.4 degC, takeoff_weight: 475000 lb, source: AFM test",
-            "pressure_altitude: 3700 ft, temperature: 47.7 degC, takeoff_weight: 495000 lb",
-            "pressure_altitude: 0 ft, temperature: 50 degC, landing_weight: 400000 lb")
+    rows = (
+        "pressure_altitude: 8400 ft, temperature: 38.4 degC, takeoff_weight: 475000 lb, source: AFM test",
+        "pressure_altitude: 3700 ft, temperature: 47.7 degC, takeoff_weight: 495000 lb",
+        "pressure_altitude: 0 ft, temperature: 50 degC, landing_weight: 400000 lb",
+    )
     r = run_rule("25.121(b)", tmp_path, [declared_rows(*rows)])
     declared = [f for f in own(r) if f.check.endswith("declared WAT limit") and f.unit == "gradient"]
     hot = [f for f in declared if f.condition.get("airport").startswith("8,400 ft")]
@@ -226,8 +259,15 @@ def test_a_declared_wat_limit_outside_the_envelope_is_an_input_error(tmp_path):
 
     from .helpers import edited_baseline
 
-    path = edited_baseline(tmp_path, [declared_rows("pressure_altitude: 9000 ft, temperature: 20 degC, takeoff_weight: 1 lb",
-                                                    "pressure_altitude: 0 ft, temperature: 20 degC")])
+    path = edited_baseline(
+        tmp_path,
+        [
+            declared_rows(
+                "pressure_altitude: 9000 ft, temperature: 20 degC, takeoff_weight: 1 lb",
+                "pressure_altitude: 0 ft, temperature: 20 degC",
+            )
+        ],
+    )
     with pytest.raises(InputError) as err:
         load_aircraft(path)
     message = str(err.value)

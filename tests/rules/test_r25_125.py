@@ -9,8 +9,8 @@ stabiliser (the elevator trims, as without a movable stabiliser); the last test 
 
 import pytest
 
-from .helpers import finding_by as _by, own
-from .helpers import NO_STABILIZER, run_rule
+from .helpers import NO_STABILIZER, own, run_rule
+from .helpers import finding_by as _by
 
 
 @pytest.fixture(scope="module")
@@ -31,8 +31,9 @@ def test_hand_calculation_approach_sink_and_flare_constant(result):
 
 @pytest.fixture(scope="module")
 def steep(tmp_path_factory):
-    block = ('criteria:\n  "25.125":\n    justification: a steeper approach\n'
-             '    values: {glide_slope: -4.5}\n\nsources:\n')
+    block = (
+        'criteria:\n  "25.125":\n    justification: a steeper approach\n    values: {glide_slope: -4.5}\n\nsources:\n'
+    )
     return run_rule("25.125", tmp_path_factory.mktemp("steep"), [NO_STABILIZER, ("\nsources:\n", "\n" + block)])
 
 
@@ -54,9 +55,12 @@ def test_a_steeper_approach_lands_harder(result, steep):
     assert sinks[0][1] > sinks[0][0]
 
 
-@pytest.mark.xfail(strict=True, reason="since the tail's ground effect (tail_ground_effect.py) the TECS flare's tracking, "
-                   "not the approach angle, sets the touchdown sink at the reference and aft CG: the −4.5° flare "
-                   "over-rotates and floats (aft CG 0.23 against 1.46 ft/s; sum of the three 3.96 against 4.55)")
+@pytest.mark.xfail(
+    strict=True,
+    reason="since the tail's ground effect (tail_ground_effect.py) the TECS flare's tracking, "
+    "not the approach angle, sets the touchdown sink at the reference and aft CG: the −4.5° flare "
+    "over-rotates and floats (aft CG 0.23 against 1.46 ft/s; sum of the three 3.96 against 4.55)",
+)
 def test_a_steeper_approach_lands_harder_at_the_aft_cg_and_on_average(result, steep):
     """The same at the aft CG and on average over the three CGs (held before the tail's ground effect: at the
     reference CG the 3° run's flare already lagged its law more than the steep one's, 1.42 against 1.18 ft/s, both
@@ -76,8 +80,14 @@ def test_sign_forward_cg_needs_more_elevator_and_a_larger_limit_helps(result, tm
     assert m[0] < m[1] < m[2]
     fwd = _by(result, "MLW forward", "elevator")
     assert fwd.status == "fails" and fwd.value < -21.8 < fwd.details["trim_elevator_deg"]
-    wider = run_rule("25.125", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                           "design_limits: {min: -30 deg, max: 16.8 deg}")])
+    wider = run_rule(
+        "25.125",
+        tmp_path,
+        [
+            NO_STABILIZER,
+            ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -30 deg, max: 16.8 deg}"),
+        ],
+    )
     assert _by(wider, "MLW forward", "elevator").margin == pytest.approx(fwd.margin + 8.2, abs=1e-6)
 
 

@@ -58,8 +58,14 @@ def landing(c):
 
 def control(result, case, loading, name, turn=None):
     findings = result if isinstance(result, list) else result.findings
-    return next(f for f in findings if f.condition.get("case") == case and f.condition.loading == loading
-                and f.check.endswith(f"{name} within design limit") and (turn is None or f.condition.get("turn") == turn))
+    return next(
+        f
+        for f in findings
+        if f.condition.get("case") == case
+        and f.condition.loading == loading
+        and f.check.endswith(f"{name} within design limit")
+        and (turn is None or f.condition.get("turn") == turn)
+    )
 
 
 def test_hand_calculation_load_factor_lift_and_margin(base):
@@ -69,7 +75,9 @@ def test_hand_calculation_load_factor_lift_and_margin(base):
     assert f.details["load_factor"] == pytest.approx(n, abs=1e-4)
     assert f.details["CL"] == pytest.approx(n * 460_000 / (q * 4927.3), abs=1e-3)
     assert f.details["CL_over_CLmax"] == pytest.approx(n * 460_000 / (q * 4927.3) / 2.25, abs=1e-3)
-    assert f.details["flight_path_deg"] == pytest.approx(-3.0) and f.details["bank_deg"] == pytest.approx(40.0, abs=1e-6)
+    assert f.details["flight_path_deg"] == pytest.approx(-3.0) and f.details["bank_deg"] == pytest.approx(
+        40.0, abs=1e-6
+    )
     limit = 16.8 if f.value >= 0 else -21.8
     assert f.margin == pytest.approx(abs(limit) - abs(f.value), abs=1e-9)
     g = control(base, "takeoff V2+XX", "MTOW reference", "elevator")
@@ -94,8 +102,14 @@ def test_too_little_elevator_authority_fails(tmp_path, base):
 
 def warning(result, case, loading, turn=None):
     findings = result if isinstance(result, list) else result.findings
-    return [f for f in findings if f.condition.get("case") == case and f.condition.loading == loading
-            and f.check.endswith("free of stall warning") and (turn is None or f.condition.get("turn") == turn)]
+    return [
+        f
+        for f in findings
+        if f.condition.get("case") == case
+        and f.condition.loading == loading
+        and f.check.endswith("free of stall warning")
+        and (turn is None or f.condition.get("turn") == turn)
+    ]
 
 
 VSR_CLEAN_KN = 167.598  # 1-g stall, MTOW 656,000 lb, clean CLmax 1.4, S 4927.3 ft² (Anderson eq. 6.47)
@@ -120,13 +134,19 @@ def test_a_declared_stall_warning_onset_is_used(tmp_path):
     """A declared clean warning onset at CL 1.33 (or VSW = 1.03 VSR, the least of §25.207(d): CL = 1.4/1.03² = 1.3196)
     puts the VFTO turns (CL ≈ 1.31) below it: free of warning, with the declared basis named."""
     clean = "    CLmax: 1.4                 # [given]\n"
-    for line, limit in (("    stall_warning: {CL: 1.33, source: test}\n", 1.33),
-                        ("    stall_warning: {speed_ratio: 1.03, source: test}\n", 1.4 / 1.03**2)):
+    for line, limit in (
+        ("    stall_warning: {CL: 1.33, source: test}\n", 1.33),
+        ("    stall_warning: {speed_ratio: 1.03, source: test}\n", 1.4 / 1.03**2),
+    ):
         ctx = edited_context(tmp_path, [(clean, clean + line)])
         r = evaluate_part("25.143(h)", ctx, lambda c: c.get("case") == "en route VFTO")
         found = warning(r, "en route VFTO", "MTOW reference")
-        assert found and all(f.limit == pytest.approx(limit, rel=1e-6) and f.status == "complies"
-                             and "declared" in f.details["stall_warning_basis"] for f in found)
+        assert found and all(
+            f.limit == pytest.approx(limit, rel=1e-6)
+            and f.status == "complies"
+            and "declared" in f.details["stall_warning_basis"]
+            for f in found
+        )
 
 
 def test_bad_stall_warning_declarations_are_input_errors(tmp_path):
@@ -134,8 +154,10 @@ def test_bad_stall_warning_declarations_are_input_errors(tmp_path):
     from certkit.errors import UserError
 
     clean = "    CLmax: 1.4                 # [given]\n"
-    for line, words in (("    stall_warning: {CL: 1.45}\n", "below CLmax"),
-                        ("    stall_warning: {CL: 1.3, speed_ratio: 1.05}\n", "exactly one")):
+    for line, words in (
+        ("    stall_warning: {CL: 1.45}\n", "below CLmax"),
+        ("    stall_warning: {CL: 1.3, speed_ratio: 1.05}\n", "exactly one"),
+    ):
         with pytest.raises(UserError) as err:
             load_aircraft(edited_baseline(tmp_path, [(clean, clean + line)]))
         assert words in str(err.value) and "configurations.clean" in str(err.value)
@@ -145,10 +167,14 @@ def test_sign_less_bank_more_margin_forward_cg_more_nose_up_and_rudder(shared, b
     """A 30° instead of a 40° landing turn needs less nose-up elevator; forward CG needs more than aft; the
     V2 turn toward the operating engine needs rudder against the asymmetric thrust (left engine out: δr < 0)."""
     r = evaluate_part("25.143(h)", shared, landing, bank_deg=30.0)
-    assert control(r, "landing VREF", "MLW reference", "elevator").margin > \
-        control(base, "landing VREF", "MLW reference", "elevator").margin
-    assert control(base, "landing VREF", "MLW forward", "elevator").value < \
-        control(base, "landing VREF", "MLW aft", "elevator").value
+    assert (
+        control(r, "landing VREF", "MLW reference", "elevator").margin
+        > control(base, "landing VREF", "MLW reference", "elevator").margin
+    )
+    assert (
+        control(base, "landing VREF", "MLW forward", "elevator").value
+        < control(base, "landing VREF", "MLW aft", "elevator").value
+    )
     rud = control(base, "takeoff V2", "MTOW reference", "rudder", "toward the operating engine")
     assert rud.value < 0 and rud.condition.get("bank_deg") == 30.0
 
@@ -171,11 +197,14 @@ def test_wat_limited_thrust_gives_the_minimum_gradient(shared):
     trimming at that thrust and reading the flight path back (Anderson eq. 5.12 path; tolerance 1e-4 in tan γ).
     At 80 % of MTOW it is below the takeoff thrust (at MTOW the baseline's gear-down takeoff configuration is close
     to the limit: capped at the takeoff thrust at some CGs)."""
-    from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
     from certkit_rules.part25.subpart_b.r25_143 import wat_limited_thrust
+    from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
 
-    conds = [c for c in evaluate_part("25.143(h)", shared, lambda c: c.get("case") == "takeoff V2")
-             if c.condition.get("turn") == "toward the operating engine" and c.check.endswith("elevator within design limit")]
+    conds = [
+        c
+        for c in evaluate_part("25.143(h)", shared, lambda c: c.get("case") == "takeoff V2")
+        if c.condition.get("turn") == "toward the operating engine" and c.check.endswith("elevator within design limit")
+    ]
     dead = "left"
     conds = [f.condition.with_(bank_deg=0.0, mass=0.8 * f.condition.mass) for f in conds]
     aim, capped = wat_limited_thrust(shared, conds, 0.024, 1.0, dead)

@@ -21,10 +21,9 @@ from certkit.engine.scheduler import evaluate_rule
 from certkit.units import KN, LB
 
 from ..conftest import BASELINE
-
+from .helpers import own
 from .test_r25_121 import mattingly_thrust_n
 from .test_r25_143 import edited_context, evaluate_part, rule_class
-from .helpers import own
 
 G = 9.80665
 
@@ -41,8 +40,13 @@ def base(shared145):
 
 def finding(findings, loading, para, flap="landing"):
     findings = findings if isinstance(findings, list) else own(findings)
-    return next(f for f in findings if f.condition.loading == loading and (f.condition.get("manoeuvre") or "").startswith(para)
-                and (flap in f.condition.get("manoeuvre") or para == "(b)(4)"))
+    return next(
+        f
+        for f in findings
+        if f.condition.loading == loading
+        and (f.condition.get("manoeuvre") or "").startswith(para)
+        and (flap in f.condition.get("manoeuvre") or para == "(b)(4)")
+    )
 
 
 def test_hand_calculation_speeds_idle_glide_and_margin(base, shared145):
@@ -50,7 +54,9 @@ def test_hand_calculation_speeds_idle_glide_and_margin(base, shared145):
     vsr = lambda cl: math.sqrt(2 * 460_000 / (0.0023769 * 4927.3 * cl)) / 1.6878099  # noqa: E731
     assert f.condition.speed / KN == pytest.approx(1.3 * vsr(2.25), abs=0.01)
     assert f.details["start_speed_m_s"] / KN == pytest.approx(1.3 * vsr(1.4), abs=0.01)
-    assert f.details["direction"] == "trailing edge up" and f.details["end_throttle:left"] == pytest.approx(0.003, abs=2e-4)
+    assert f.details["direction"] == "trailing edge up" and f.details["end_throttle:left"] == pytest.approx(
+        0.003, abs=2e-4
+    )
     assert f.margin == pytest.approx(f.details["end_elevator_deg"] + 21.8, abs=1e-3)
     assert f.value == pytest.approx(abs(f.details["end_elevator_deg"] - f.details["start_elevator_deg"]), abs=1e-3)
     level = shared145.trim([f.condition], kind="straight").results[0]

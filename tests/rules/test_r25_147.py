@@ -32,8 +32,13 @@ def base():
 
 
 def control(result, loading, name, turn=None):
-    return next(f for f in result.findings if f.condition.loading == loading and f.check.endswith(f"{name} within design limit")
-                and (turn is None or f.condition.get("turn") == turn))
+    return next(
+        f
+        for f in result.findings
+        if f.condition.loading == loading
+        and f.check.endswith(f"{name} within design limit")
+        and (turn is None or f.condition.get("turn") == turn)
+    )
 
 
 def test_hand_calculation_speed_lift_and_margin(base):
@@ -47,7 +52,9 @@ def test_hand_calculation_speed_lift_and_margin(base):
     assert c.condition.speed / KN == pytest.approx(v, abs=0.05)
     n = math.cos(math.radians(c.details["flight_path_deg"])) / math.cos(math.radians(20))
     q = 0.5 * RHO0 * (v * KT) ** 2
-    assert abs(c.details["bank_deg"]) == pytest.approx(20.0, abs=1e-6) and c.details["beta_deg"] == pytest.approx(0, abs=1e-6)
+    assert abs(c.details["bank_deg"]) == pytest.approx(20.0, abs=1e-6) and c.details["beta_deg"] == pytest.approx(
+        0, abs=1e-6
+    )
     assert c.details["CL_over_CLmax"] == pytest.approx(n * 656_000 / (q * S * 1.4), abs=1e-3)
     assert c.margin == pytest.approx(23.2 - abs(c.value), abs=1e-9)
     assert all(f.status != "fails" for r in base.values() for f in r.findings)
@@ -61,8 +68,9 @@ def test_a_smaller_rudder_design_limit_fails_and_does_not_change_the_trim(base, 
     edited = run_rule("25.147(a)", tmp_path, [(RUDDER, "design_limits: {min: -12 deg, max: 12 deg}")])
     for loading in ("MLW forward", "MLW reference", "MLW aft"):
         f = control(edited, loading, "rudder")
-        assert f.status == "fails" and f.value == pytest.approx(control(base["25.147(a)"], loading, "rudder").value, abs=1e-6)
-
+        assert f.status == "fails" and f.value == pytest.approx(
+            control(base["25.147(a)"], loading, "rudder").value, abs=1e-6
+        )
 
 
 def test_sign_turn_away_from_the_dead_engine_needs_more_rudder(base):

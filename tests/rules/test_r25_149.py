@@ -10,10 +10,10 @@ import math
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support.control_speeds import control_usage, vmca_from_grid
 
 from certkit.models.flight import control_limits
 from certkit.units import KN
-from certkit_rules.part25.support.control_speeds import control_usage, vmca_from_grid
 
 from .helpers import own, run_rule
 
@@ -60,8 +60,11 @@ def test_a_small_rudder_raises_vmca_beyond_the_limit(result, tmp_path):
     so the static VMCA grows about as √(23.2/12) = 1.39 (139 → ≈ 193 kn, the bank and aileron help aside), beyond
     1.13 VSR = 160.5 kn: (c) fails, at every engine failed."""
     base = next(f for f in own(result) if f.check.startswith("(c)"))
-    r = run_rule("25.149", tmp_path, edits=[("design_limits: {min: -23.2 deg, max: 23.2 deg}",
-                                             "design_limits: {min: -12 deg, max: 12 deg}")])
+    r = run_rule(
+        "25.149",
+        tmp_path,
+        edits=[("design_limits: {min: -23.2 deg, max: 23.2 deg}", "design_limits: {min: -12 deg, max: 12 deg}")],
+    )
     small = [f for f in own(r) if f.check.startswith("(c)")]
     assert small and all(f.status == "fails" for f in small)
     assert all(1.2 < f.value / base.value < 1.5 for f in small)
@@ -93,8 +96,9 @@ def test_vmca_brackets_where_the_limiting_control_runs_out(result, ctx):
             assert not slow.converged and at_lift_maximum(ctx, base.configuration, slow)
         else:
             assert control_usage(slow, limits) > 1.0
-            at = ctx.trim([base.with_(speed=v, speed_kind="CAS")], kind="oei", bank=phi, inoperative="left",
-                          throttle=0.99).results[0]
+            at = ctx.trim(
+                [base.with_(speed=v, speed_kind="CAS")], kind="oei", bank=phi, inoperative="left", throttle=0.99
+            ).results[0]
             lo, hi = limits[what]
             d = at.controls[what]
             assert (d / hi if d >= 0 else d / lo) == pytest.approx(1.0, abs=0.005)
@@ -108,8 +112,9 @@ def test_vmca_is_the_least_over_the_banks_allowed(result):
         by_bank = c.details["vmca_by_bank_kn"]
         assert len(by_bank) == 6
         assert c.value / KN == pytest.approx(min(by_bank.values()), abs=0.01)
-        assert min(by_bank.values()) < min(by_bank["5 deg" if "5 deg" in by_bank else "-5 deg"],
-                                           by_bank["0 deg" if "0 deg" in by_bank else "-0 deg"])
+        assert min(by_bank.values()) < min(
+            by_bank["5 deg" if "5 deg" in by_bank else "-5 deg"], by_bank["0 deg" if "0 deg" in by_bank else "-0 deg"]
+        )
         assert 0 < abs(c.details["bank_at_vmca_deg"]) < 5
         assert c.details["vmca_limited_by"]
 
@@ -123,9 +128,9 @@ def test_vmca_mirror_symmetric_and_stable(result, ctx):
     from types import SimpleNamespace
 
     from certkit_rules.part25.support.control_speeds import vmca_search
+    from certkit_rules.part25.support.minimum_control import VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_RULE_ID, vmca_rows
+
     from certkit.engine.scheduler import criteria_for
-    from certkit_rules.part25.support.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_RULE_ID,
-                                                                 vmca_rows)
 
     by_engine = {f.condition.get("inoperative"): f.value for f in own(result) if f.check.startswith("(c)")}
     assert set(by_engine) == {"left", "right"}
@@ -138,8 +143,18 @@ def test_vmca_mirror_symmetric_and_stable(result, ctx):
     assert [rows["engines"][0], rows["engines"][nb]] == ["left", "right"]
     assert np.allclose(left / KN, right / KN, atol=0.05, rtol=0)  # every bank, not only the least
     assert min(left) / KN == pytest.approx(by_engine["left"] / KN, abs=0.05)
-    moved, *_ = vmca_search(ctx, rows["conds"], rows["engines"], rows["banks"], rows["vsr"], crit.throttle,
-                            crit.grid_low, crit.grid_high, crit.speed_tolerance_kn * KN, start=1.2 * (1 + 1e-6))
+    moved, *_ = vmca_search(
+        ctx,
+        rows["conds"],
+        rows["engines"],
+        rows["banks"],
+        rows["vsr"],
+        crit.throttle,
+        crit.grid_low,
+        crit.grid_high,
+        crit.speed_tolerance_kn * KN,
+        start=1.2 * (1 + 1e-6),
+    )
     assert np.allclose(moved / KN, rows["vmca"] / KN, atol=0.05, rtol=0)
 
 
@@ -165,8 +180,10 @@ def test_with_roll_control_to_spare_vmca_falls_with_bank(tmp_path):
     runs out first at 4° and 5° of bank, holding the sideslip of 6.6–8.5° the weak side force needs. With the roll
     power doubled (Cl_δa −0.14/rad, standing for the spoilers) the rudder-limited VMCA falls at every step of bank
     until straight flight reaches the lift maximum, and no bank is aileron-limited."""
-    block = ("aerodynamics:\n  overrides_source: test, roll spoilers\n  overrides:\n    takeoff: {Cl_aileron: -0.14}\n"
-             "sources:")
+    block = (
+        "aerodynamics:\n  overrides_source: test, roll spoilers\n  overrides:\n    takeoff: {Cl_aileron: -0.14}\n"
+        "sources:"
+    )
     r = run_rule("25.149", tmp_path, edits=[("\nsources:", "\n" + block)])
     c = next(f for f in own(r) if f.check.startswith("(c)") and f.condition.get("inoperative") == "left")
     by_bank = [c.details["vmca_by_bank_kn"][f"{b} deg"] for b in range(6)]
@@ -174,7 +191,7 @@ def test_with_roll_control_to_spare_vmca_falls_with_bank(tmp_path):
     assert "aileron" not in limits
     rudder = [v for v, what in zip(by_bank, limits) if what == "rudder"]
     assert len(rudder) >= 3 and all(a > b for a, b in zip(rudder, rudder[1:]))
-    assert all(what == "stall" for what in limits[len(rudder):])
+    assert all(what == "stall" for what in limits[len(rudder) :])
     assert c.details["vmca_limited_by"].startswith("the stall")
 
 
@@ -202,8 +219,9 @@ def test_vmcg_over_the_weight_cg_corners(result):
     worst = max(found, key=lambda f: f.value)
     assert worst.condition.mass > 600_000 * 0.4536
     declared = next(f for f in own(result) if f.check.startswith("(e) declared"))
-    assert declared.status == "not_evaluated" and declared.details["computed_VMCG_kn_cas"] == pytest.approx(worst.value,
-                                                                                                            abs=0.1)
+    assert declared.status == "not_evaluated" and declared.details["computed_VMCG_kn_cas"] == pytest.approx(
+        worst.value, abs=0.1
+    )
 
 
 def test_declared_vmcg_checked_against_the_computed_one(result, tmp_path):
@@ -211,8 +229,11 @@ def test_declared_vmcg_checked_against_the_computed_one(result, tmp_path):
     worst = max(f.value for f in _vmcg(result))
     for offset in (5.0, -5.0):
         (tmp_path / str(offset)).mkdir()
-        r = run_rule("25.149", tmp_path / str(offset),
-                     [("  V2: 161 kn CAS", f"  V2: 161 kn CAS\n  VMCG: {worst + offset:.2f} kn CAS")])
+        r = run_rule(
+            "25.149",
+            tmp_path / str(offset),
+            [("  V2: 161 kn CAS", f"  V2: 161 kn CAS\n  VMCG: {worst + offset:.2f} kn CAS")],
+        )
         f = next(f for f in own(r) if f.check.startswith("(e) declared"))
         assert f.margin == pytest.approx(offset, abs=0.02) and f.status == ("complies" if offset > 0 else "fails")
 

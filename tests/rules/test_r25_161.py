@@ -22,8 +22,14 @@ def base(tmp_path_factory):
 
 
 def finding(result, loading, case, check="(c)(1) climb, clean elevator"):
-    return next(f for f in result.findings if f.condition.loading == loading and f.condition.get("case") == case
-                and f.margin is not None and f.check.startswith(check))
+    return next(
+        f
+        for f in result.findings
+        if f.condition.loading == loading
+        and f.condition.get("case") == case
+        and f.margin is not None
+        and f.check.startswith(check)
+    )
 
 
 def test_hand_calculation_climb_speed_and_margin(base):
@@ -40,18 +46,31 @@ def test_a_smaller_elevator_design_limit_fails(tmp_path, base):
     about 9.7°): §25.161(c)(1) fails there, with the trim's message; the forward corners (nose-up elevator) still comply."""
     f = finding(base, "aft_light", "climb")
     assert f.value > 5.0
-    r = run_rule("25.161", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                                      "design_limits: {min: -21.8 deg, max: 5 deg}")])
+    r = run_rule(
+        "25.161",
+        tmp_path,
+        [
+            NO_STABILIZER,
+            ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -21.8 deg, max: 5 deg}"),
+        ],
+    )
     g = finding(r, "aft_light", "climb")
     assert g.status == "fails" and g.value > 5.0
     assert finding(r, "fwd_mrw", "climb").status == "complies"
 
 
-
 def test_sign_larger_design_limit_more_margin_and_aft_cg_more_trailing_edge_down(tmp_path, base):
-    r = run_rule("25.161", tmp_path, [NO_STABILIZER, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                                      "design_limits: {min: -21.8 deg, max: 18.8 deg}")])
-    assert finding(r, "aft_light", "climb").margin == pytest.approx(finding(base, "aft_light", "climb").margin + 2, abs=1e-6)
+    r = run_rule(
+        "25.161",
+        tmp_path,
+        [
+            NO_STABILIZER,
+            ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -21.8 deg, max: 18.8 deg}"),
+        ],
+    )
+    assert finding(r, "aft_light", "climb").margin == pytest.approx(
+        finding(base, "aft_light", "climb").margin + 2, abs=1e-6
+    )
     # aft CG needs less nose-up (more trailing-edge-down) elevator than forward CG at the same weight
     assert finding(base, "aft_mrw", "climb").value > finding(base, "fwd_mrw", "climb").value
 
@@ -62,10 +81,17 @@ def test_cases_of_the_paragraph(base):
     the baseline's approach configuration has its gear up), level flight
     at 1.3 VSR1 and VMO/MMO at both altitudes, and the engine-out climb with its three controls and bank."""
     checks = {f.check for f in base.findings}
-    for c in ("(c)(1) climb, clean elevator", "(c)(1) climb, takeoff elevator", "(c)(2) power-off glide elevator",
-              "(c)(2) 3° approach, landing elevator", "(c)(3) level flight elevator",
-              "(d) engine-out climb elevator", "(d) engine-out climb rudder", "(d) engine-out climb aileron",
-              "(d) engine-out climb bank within 5°"):
+    for c in (
+        "(c)(1) climb, clean elevator",
+        "(c)(1) climb, takeoff elevator",
+        "(c)(2) power-off glide elevator",
+        "(c)(2) 3° approach, landing elevator",
+        "(c)(3) level flight elevator",
+        "(d) engine-out climb elevator",
+        "(d) engine-out climb rudder",
+        "(d) engine-out climb aileron",
+        "(d) engine-out climb bank within 5°",
+    ):
         assert any(k.startswith(c) for k in checks), c
     glide = finding(base, "fwd_mrw", "glide", "(c)(2) power-off glide")
     assert glide.details["throttle:left"] == 0.0 and glide.details["flight_path_deg"] < -1.0
@@ -82,9 +108,15 @@ def test_cases_of_the_paragraph(base):
 
 def test_not_evaluated_without_takeoff_configuration(tmp_path):
     """No takeoff configuration: the (c)(1) flaps-in-takeoff-position climb is not evaluated, with the reason."""
-    r = run_rule("25.161", tmp_path, [("  takeoff:\n    flap: 15 deg", "  takeoff_alt:\n    flap: 15 deg"),
-                                       ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS"),
-                                       ("        takeoff: {min: -10.25", "        takeoff_alt: {min: -10.25")])
+    r = run_rule(
+        "25.161",
+        tmp_path,
+        [
+            ("  takeoff:\n    flap: 15 deg", "  takeoff_alt:\n    flap: 15 deg"),
+            ("    takeoff: 215 kn CAS", "    takeoff_alt: 215 kn CAS"),
+            ("        takeoff: {min: -10.25", "        takeoff_alt: {min: -10.25"),
+        ],
+    )
     f = [f for f in r.findings if f.check == "(c)(1) climb"]
     assert f and all(x.status == "not_evaluated" and x.reason == "needs configurations.takeoff" for x in f)
 
@@ -103,13 +135,18 @@ def test_too_little_stabiliser_travel_fails_on_trim_authority(tmp_path, declared
     check = "(c)(3) level flight stabiliser within its trim limits"
 
     def most_nose_up(result):
-        return min((f for f in result.findings if f.condition.loading == "fwd_light" and f.check == check),
-                   key=lambda f: f.value)
+        return min(
+            (f for f in result.findings if f.condition.loading == "fwd_light" and f.check == check),
+            key=lambda f: f.value,
+        )
 
     ok = most_nose_up(declared)
     assert ok.status == "complies" and -10.25 < ok.value < -4.0
-    r = run_rule("25.161", tmp_path, [("design_limits: {min: -10.25 deg, max: 2.25 deg}",
-                                       "design_limits: {min: -4 deg, max: 1 deg}")])
+    r = run_rule(
+        "25.161",
+        tmp_path,
+        [("design_limits: {min: -10.25 deg, max: 2.25 deg}", "design_limits: {min: -4 deg, max: 1 deg}")],
+    )
     f = most_nose_up(r)
     assert f.status == "fails" and f.limit == pytest.approx(-4.0) and f.value < -4.0
     assert "nose-up stop" in f.reason and f.details["stabilizer_deg"] == pytest.approx(-4.0, abs=1e-6)

@@ -30,8 +30,15 @@ def grad():
 
 
 def _at(result, loading, configuration, point, altitude=0.0):
-    return next(f for f in own(result) if f.condition.loading == loading and f.condition.configuration == configuration
-                and f.condition.get("speed_point") == point and f.condition.altitude == altitude and f.margin is not None)
+    return next(
+        f
+        for f in own(result)
+        if f.condition.loading == loading
+        and f.condition.configuration == configuration
+        and f.condition.get("speed_point") == point
+        and f.condition.altitude == altitude
+        and f.margin is not None
+    )
 
 
 def test_static_margin_hand_calculation(sm, ctx):
@@ -58,12 +65,23 @@ def test_a_horizontal_tail_moved_forward_fails(sm, tmp_path):
     arm 87 → 67 ft). The tail's contribution to the stability about the CG falls with its arm, so the neutral point
     moves forward and the aft corners' stick-fixed static margin drops below the 5 % MAC minimum: §25.171 fails at
     aft_mid and aft_mlw, and every condition's margin is smaller than the baseline's."""
-    r = run_rule("25.171", tmp_path, edits=[("root_leading_edge: {x: 168.0 ft, y: 0 ft, z: 2.0 ft}",
-                                             "root_leading_edge: {x: 148.0 ft, y: 0 ft, z: 2.0 ft}")])
+    r = run_rule(
+        "25.171",
+        tmp_path,
+        edits=[
+            (
+                "root_leading_edge: {x: 168.0 ft, y: 0 ft, z: 2.0 ft}",
+                "root_leading_edge: {x: 148.0 ft, y: 0 ft, z: 2.0 ft}",
+            )
+        ],
+    )
     assert r.status == "fails"
     assert {f.condition.loading for f in own(r) if f.status == "fails"} >= {"aft_mid", "aft_mlw"}
-    before = {(f.condition.loading, f.condition.configuration, f.condition.altitude, f.condition.get("speed_point")): f.value
-              for f in own(sm) if f.value is not None}
+    before = {
+        (f.condition.loading, f.condition.configuration, f.condition.altitude, f.condition.get("speed_point")): f.value
+        for f in own(sm)
+        if f.value is not None
+    }
     for f in own(r):
         if f.value is not None:
             key = (f.condition.loading, f.condition.configuration, f.condition.altitude, f.condition.get("speed_point"))
@@ -130,16 +148,19 @@ def test_top_of_the_stability_range_vfc(ctx, tmp_path, grad):
     between VMO and VD: (272 + 340)/2 = 306 kn EAS, = CAS at sea level (hand). A declared VFC (320 kn CAS) is used
     as given. Extended configurations end at VFE/VLE, so their "VFC" point is not applicable. The §25.173(a) top
     point is trimmed at VFC/1.05 so that its faster step reaches VFC (the speed in the condition, 291.4 kn)."""
+    from certkit_rules.part25.support.stability_speeds import VFC_FLOOR, stability_limit_cas
+
     from certkit.aircraft import load_aircraft
     from certkit.engine.context import Context
-    from certkit_rules.part25.support.stability_speeds import VFC_FLOOR, stability_limit_cas
 
     from .helpers import edited_baseline
 
     v, basis = stability_limit_cas(ctx, "clean", 0.0)
     assert v / KN == pytest.approx(306.0, abs=0.05) and basis == VFC_FLOOR
     assert stability_limit_cas(ctx, "landing", 0.0)[1].startswith("VFE/VLE")
-    declared = Context(load_aircraft(edited_baseline(tmp_path, [("  VMO: 272 kn EAS", "  VFC: 320 kn CAS\n  VMO: 272 kn EAS")])))
+    declared = Context(
+        load_aircraft(edited_baseline(tmp_path, [("  VMO: 272 kn EAS", "  VFC: 320 kn CAS\n  VMO: 272 kn EAS")]))
+    )
     v, basis = stability_limit_cas(declared, "clean", 0.0)
     assert v / KN == pytest.approx(320.0, abs=1e-6) and basis == "declared VFC/MFC"
     top = [f for f in own(grad) if f.condition.get("speed_point") == "VFC"]

@@ -26,8 +26,15 @@ def result():
 
 
 def _at(result, loading, configuration, point, check_start, altitude=0.0):
-    return next(f for f in own(result) if f.condition.loading == loading and f.condition.configuration == configuration
-                and f.condition.get("speed_point") == point and f.condition.altitude == altitude and f.check.startswith(check_start))
+    return next(
+        f
+        for f in own(result)
+        if f.condition.loading == loading
+        and f.condition.configuration == configuration
+        and f.condition.get("speed_point") == point
+        and f.condition.altitude == altitude
+        and f.check.startswith(check_start)
+    )
 
 
 def test_hand_calculation_sideslip_and_cn_beta(result, ctx):
@@ -64,8 +71,16 @@ def test_aileron_design_limit_on_the_limit(result, tmp_path):
     the deflections do not move): smallest aileron margin 0."""
     aileron = [f for f in own(result) if "aileron within" in f.check and f.value is not None]
     limit = f"{max(f.value for f in aileron):.6f}"
-    r = run_rule(RULE, tmp_path, edits=[("design_limits: {min: -25 deg, max: 25 deg}",  # the aileron's (baseline)
-                                         f"design_limits: {{min: -{limit} deg, max: {limit} deg}}")])
+    r = run_rule(
+        RULE,
+        tmp_path,
+        edits=[
+            (
+                "design_limits: {min: -25 deg, max: 25 deg}",  # the aileron's (baseline)
+                f"design_limits: {{min: -{limit} deg, max: {limit} deg}}",
+            )
+        ],
+    )
     edited = [f for f in own(r) if "aileron within" in f.check and f.margin is not None]
     assert min(f.margin for f in edited) == pytest.approx(0.0, abs=1e-4)
 
@@ -77,16 +92,22 @@ def test_sideslip_sweep_stable_and_beyond(result):
     assert steps and all(len(f.details["gradients"]) == 4 and f.status == "complies" for f in steps)
     beyond = [f for f in own(result) if f.check.startswith("(d)")]
     assert beyond and all(f.status == "complies" for f in beyond)
-    assert any(f.margin is not None and f.details["largest_sideslip_deg"] > f.details["sideslip_range_deg"] for f in beyond)
+    assert any(
+        f.margin is not None and f.details["largest_sideslip_deg"] > f.details["sideslip_range_deg"] for f in beyond
+    )
 
 
 def test_pedal_force_bounds_the_range(tmp_path):
     """With a stiff q-feel rudder (F = 10 lbf + 200 lbf/in × q/10 kPa × δr / (6 °/in)) the 180 lbf bound is the
     lesser at VMO: its range ends where the pedal force is 180 lbf (the feel law by hand, 3 %)."""
-    feel = ("control_forces:\n  rudder:\n    type: artificial_feel\n    preload: 10 lbf\n    gradient: 200 lbf/in\n"
-            "    gearing: 6 deg/in\n    q_feel_reference: 10 kPa\nsources:")
+    feel = (
+        "control_forces:\n  rudder:\n    type: artificial_feel\n    preload: 10 lbf\n    gradient: 200 lbf/in\n"
+        "    gearing: 6 deg/in\n    q_feel_reference: 10 kPa\nsources:"
+    )
     r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + feel)])
-    bounded = [f for f in own(r) if "rudder within" in f.check and f.details.get("range_bound") == "180 lbf pedal force"]
+    bounded = [
+        f for f in own(r) if "rudder within" in f.check and f.details.get("range_bound") == "180 lbf pedal force"
+    ]
     assert bounded
     for f in bounded:
         v = f.condition.speed  # CAS, m/s; q from EAS ≈ CAS at these speeds only at sea level

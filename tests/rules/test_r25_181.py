@@ -12,11 +12,11 @@ import math
 
 import numpy as np
 import pytest
+from certkit_rules.part25.support import handling_levels as hq
 
 from certkit.atmosphere import density
 from certkit.engine.conditions import speed_as
 from certkit.models.dynamics.modes import Mode
-from certkit_rules.part25.support import handling_levels as hq
 
 from .helpers import own, run_rule
 
@@ -29,9 +29,15 @@ def result():
 
 
 def _sp(result, loading, configuration, point, altitude=0.0):
-    return next(f for f in own(result) if f.condition.loading == loading and f.condition.configuration == configuration
-                and f.condition.get("speed_point") == point and f.condition.altitude == altitude
-                and f.check.startswith("(a) short"))
+    return next(
+        f
+        for f in own(result)
+        if f.condition.loading == loading
+        and f.condition.configuration == configuration
+        and f.condition.get("speed_point") == point
+        and f.condition.altitude == altitude
+        and f.check.startswith("(a) short")
+    )
 
 
 def test_short_period_hand_calculation(result, ctx):
@@ -72,9 +78,11 @@ def test_short_period_minimum_follows_the_flight_phase_category(result):
 def test_a_poorly_damped_airplane_fails(result, tmp_path):
     """A deficient airplane: pitch damping Cm_q −2 and no downwash lag in every configuration (table: −22 to −29)
     leaves the short period below its category minimum at some condition: §25.181(a) fails there."""
-    block = ("aerodynamics:\n  overrides_source: test\n  overrides:\n"
-             + "".join(f"    {c}: {{Cm_q: -2.0, Cm_alphadot: 0.0}}\n" for c in ("clean", "takeoff", "approach", "landing"))
-             + "sources:")
+    block = (
+        "aerodynamics:\n  overrides_source: test\n  overrides:\n"
+        + "".join(f"    {c}: {{Cm_q: -2.0, Cm_alphadot: 0.0}}\n" for c in ("clean", "takeoff", "approach", "landing"))
+        + "sources:"
+    )
     r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + block)])
     sp = [f for f in own(r) if f.check.startswith("(a) short") and f.value is not None]
     assert any(f.status == "fails" and f.value < f.limit for f in sp)
@@ -87,10 +95,14 @@ def test_the_verdict_does_not_hang_on_the_downwash_lag_estimate(result, tmp_path
     747's values put in instead (−6.41 clean, −3.3 with flaps), every short period is still heavily damped by the
     category minimum: the least ζ_sp falls from 0.319 to 0.310 clean (≥ 0.30) and from 0.407 to 0.378 with flaps
     (≥ 0.35), so the §25.181 verdict on the baseline does not depend on the estimate."""
-    block = ("aerodynamics:\n  overrides_source: 747 published (Heffley & Jewell, NASA CR-2144)\n  overrides:\n"
-             + "".join(f"    {c}: {{Cm_alphadot: {v}}}\n" for c, v in (("clean", -6.41), ("takeoff", -3.3),
-                                                                        ("approach", -3.3), ("landing", -3.3)))
-             + "sources:")
+    block = (
+        "aerodynamics:\n  overrides_source: 747 published (Heffley & Jewell, NASA CR-2144)\n  overrides:\n"
+        + "".join(
+            f"    {c}: {{Cm_alphadot: {v}}}\n"
+            for c, v in (("clean", -6.41), ("takeoff", -3.3), ("approach", -3.3), ("landing", -3.3))
+        )
+        + "sources:"
+    )
     r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + block)])
     sp = [f for f in own(r) if f.check.startswith("(a) short") and f.value is not None]
     base = [f for f in own(result) if f.check.startswith("(a) short") and f.value is not None]
@@ -104,8 +116,11 @@ def test_the_verdict_does_not_hang_on_the_downwash_lag_estimate(result, tmp_path
 def test_sign_more_pitch_damping_raises_short_period_margin(result, tmp_path):
     """A pitch-damping derivative Cm_q of −40 (table: −22 to −29) in every configuration raises ζ_sp."""
     base = _sp(result, "fwd_mrw", "takeoff", "mid").margin
-    block = ("aerodynamics:\n  overrides_source: test\n  overrides:\n"
-             + "".join(f"    {c}: {{Cm_q: -40.0}}\n" for c in ("clean", "takeoff", "approach", "landing")) + "sources:")
+    block = (
+        "aerodynamics:\n  overrides_source: test\n  overrides:\n"
+        + "".join(f"    {c}: {{Cm_q: -40.0}}\n" for c in ("clean", "takeoff", "approach", "landing"))
+        + "sources:"
+    )
     r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + block)])
     assert _sp(r, "fwd_mrw", "takeoff", "mid").margin > base + 0.02
 
@@ -153,7 +168,9 @@ def test_level_table_boundaries():
     """Levels from the table: Dutch roll ζ 0.1, ωn 2 rad/s (ζωn 0.2) is Level 1 in category C (0.08, 0.15, 0.4)
     but Level 2 in category A (ζ ≥ 0.19); roll τ = 2 s is Level 2 (Table VII 1.4 / 3.0)."""
     dr = Mode("dutch_roll", complex(-0.2, 2 * math.sqrt(1 - 0.01)), 2.0, 0.1, None, None, None, None)
-    assert hq.level_of("dutch_roll", Mode("dutch_roll", complex(-0.1, 1.0), 1.0, 0.1, None, None, None, None), "C")[0] == 2
+    assert (
+        hq.level_of("dutch_roll", Mode("dutch_roll", complex(-0.1, 1.0), 1.0, 0.1, None, None, None, None), "C")[0] == 2
+    )
     assert hq.level_of("dutch_roll", dr, "C")[0] == 1
     assert hq.level_of("dutch_roll", dr, "A")[0] == 2
     roll = Mode("roll", complex(-0.5, 0.0), 0.5, 1.0, None, math.log(2) / 0.5, None, None)
@@ -185,14 +202,16 @@ def test_level_from_quantities_on_the_table_boundaries():
     sp = hq.level_from_quantities("short_period", "C", zeta=[0.36, 0.34, 0.26, 0.24, 0.14], wn=1.5)
     assert sp.tolist() == [1, 2, 2, 3, 4]
     assert hq.level_from_quantities("short_period", "B", zeta=0.31, wn=1.5) == 1
-    ph = hq.level_from_quantities("phugoid", "B", zeta=[0.05, 0.01, -0.02, -0.02], wn=0.08,
-                                  t_double=[None, None, 60.0, 50.0])
+    ph = hq.level_from_quantities(
+        "phugoid", "B", zeta=[0.05, 0.01, -0.02, -0.02], wn=0.08, t_double=[None, None, 60.0, 50.0]
+    )
     assert ph.tolist() == [1, 2, 3, 4]
     ln2 = math.log(2)
     roll = hq.level_from_quantities("roll", "A", zeta=1.0, wn=1.0, t_half=[1.0 * ln2, 2.0 * ln2, 5.0 * ln2, 12.0 * ln2])
     assert roll.tolist() == [1, 2, 3, 4]
-    spiral = hq.level_from_quantities("spiral", "B", zeta=1.0, wn=0.01, t_half=[None, None, None, None, 50.0],
-                                      t_double=[25.0, 15.0, 5.0, 3.0, None])
+    spiral = hq.level_from_quantities(
+        "spiral", "B", zeta=1.0, wn=0.01, t_half=[None, None, None, None, 50.0], t_double=[25.0, 15.0, 5.0, 3.0, None]
+    )
     assert spiral.tolist() == [1, 2, 3, 4, 1]
     # clean is read in categories A and B: the worse of the two (Dutch roll ζ 0.1: Level 1 in B, 2 in A)
     assert hq.configuration_level("dutch_roll", "clean", zeta=0.1, wn=2.0) == 2
@@ -206,8 +225,9 @@ def test_levels_follow_from_the_recorded_quantities(result):
     for f in own(result):
         for mode, row in (f.details.get("modes") or {}).items():
             for cat in hq.categories_of(f.condition.configuration):
-                level = hq.level_from_quantities(mode, cat, zeta=row["zeta"], wn=row["wn_rad_s"],
-                                                 t_half=row["t_half_s"], t_double=row["t_double_s"])
+                level = hq.level_from_quantities(
+                    mode, cat, zeta=row["zeta"], wn=row["wn_rad_s"], t_half=row["t_half_s"], t_double=row["t_double_s"]
+                )
                 assert level == row[f"level_{cat}"], (f.condition.label(), mode, cat, row)
                 checked += 1
     assert checked > 500

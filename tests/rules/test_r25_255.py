@@ -50,9 +50,16 @@ def test_control_margin_arithmetic_and_sense(rated):
             assert f.limit == pytest.approx(limit) and f.margin == pytest.approx(abs(limit) - abs(f.value), abs=1e-9)
         else:
             assert f.value > 0.0 and f.status == "complies"
-    up = [f for f in checks if "push" in f.check and "design limit" in f.check and "nose-up" in f.condition.get("manoeuvre")]
-    down = {(f.condition.loading, f.condition.altitude, f.condition.speed_name): f for f in checks
-            if "push" in f.check and "design limit" in f.check and "nose-down" in f.condition.get("manoeuvre")}
+    up = [
+        f
+        for f in checks
+        if "push" in f.check and "design limit" in f.check and "nose-up" in f.condition.get("manoeuvre")
+    ]
+    down = {
+        (f.condition.loading, f.condition.altitude, f.condition.speed_name): f
+        for f in checks
+        if "push" in f.check and "design limit" in f.check and "nose-down" in f.condition.get("manoeuvre")
+    }
     for f in up:
         assert f.value > down[(f.condition.loading, f.condition.altitude, f.condition.speed_name)].value
 
@@ -62,8 +69,11 @@ def test_too_little_nose_down_elevator_fails_the_push(tmp_path, rated):
     push-overs to 0 g at VDF/MDF need (about 4°): those fail; the pulls still comply."""
     need = max(f.value for f in own(rated) if f.check.startswith("push") and "design limit" in f.check)
     assert need > 3.0
-    r = run_rule("25.255", tmp_path, [RATE, ("design_limits: {min: -21.8 deg, max: 16.8 deg}",
-                                             "design_limits: {min: -21.8 deg, max: 3 deg}")])
+    r = run_rule(
+        "25.255",
+        tmp_path,
+        [RATE, ("design_limits: {min: -21.8 deg, max: 16.8 deg}", "design_limits: {min: -21.8 deg, max: 3 deg}")],
+    )
     pushes = [f for f in own(r) if f.check.startswith("push") and "design limit" in f.check]
     assert any(f.status == "fails" and f.value > 3.0 for f in pushes)
     assert all(f.status == "complies" for f in own(r) if f.check.startswith("pull") and "design limit" in f.check)
@@ -76,17 +86,21 @@ def test_stick_forces_with_an_artificial_feel_elevator(tmp_path):
     mistrim leaves a push at 1 g and at 1.5 g — and the pull holding 1.5 g at VDF/MDF is within 125 lbf ((f))."""
     import math
 
-    feel = ("\nsources:", "\ncontrol_forces:\n  elevator:\n    type: artificial_feel\n    preload: 5 lbf\n"
-                          "    gradient: 30 lbf/in\n    gearing: 2 deg/in\n    q_feel_reference: 10 kPa\nsources:")
+    feel = (
+        "\nsources:",
+        "\ncontrol_forces:\n  elevator:\n    type: artificial_feel\n    preload: 5 lbf\n"
+        "    gradient: 30 lbf/in\n    gearing: 2 deg/in\n    q_feel_reference: 10 kPa\nsources:",
+    )
     r = run_rule("25.255", tmp_path, [RATE, feel])
     slopes = [f for f in own(r) if "stick force per g" in f.check]
     assert slopes and all(f.status == "complies" for f in slopes)
     for f in slopes:
-        q = 0.5 * 1.225 * f.condition.speed ** 2
+        q = 0.5 * 1.225 * f.condition.speed**2
         for key, angle in (("pull_force_pull_lbf", "elevator_pull_deg"), ("pull_force_push_lbf", "elevator_push_deg")):
             d = f.details[angle]
             assert f.details[key] == pytest.approx(-math.copysign(5.0, d) - 30.0 * q / 10e3 * d / 2.0, abs=0.05)
     assert any(f.details["pull_force_pull_lbf"] < 0 for f in slopes)  # a push still at 1.5 g (nose-up mistrim)
     recovery = [f for f in own(r) if f.check.startswith("(f)")]
-    assert recovery and all(f.condition.speed_name == "VDF/MDF" and f.limit == 125.0 and f.status == "complies"
-                            for f in recovery)
+    assert recovery and all(
+        f.condition.speed_name == "VDF/MDF" and f.limit == 125.0 and f.status == "complies" for f in recovery
+    )

@@ -10,14 +10,14 @@ import math
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_331 import load_factor_reached
+from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
 
+from certkit.engine.results import Condition
 from certkit.models.dynamics.simulate import CheckedManeuver
 from certkit.models.loads.capability import Capability
 from certkit.models.loads.inputs import SinusoidHold
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_331 import load_factor_reached
-from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
-from certkit.engine.results import Condition
 
 from .helpers import MACH_RANGE, NO_STRUCTURE, hand_margin, in_mach_range, own, run_rule
 
@@ -42,13 +42,13 @@ def test_input_generator_against_the_paragraph():
     w, d1 = 2.0, -0.1
     plain = SinusoidHold(d1, w)
     assert float(plain.t_max) == pytest.approx(3 * math.pi / (2 * w))
-    assert float(plain(math.pi / (2 * w))) == pytest.approx(d1)          # peak at t₁ = π/(2ω)
-    assert float(plain(math.pi / w)) == pytest.approx(0.0, abs=1e-12)   # back through zero
-    assert float(plain(float(plain.t_max))) == pytest.approx(-d1)       # checked: opposite peak at t_max
+    assert float(plain(math.pi / (2 * w))) == pytest.approx(d1)  # peak at t₁ = π/(2ω)
+    assert float(plain(math.pi / w)) == pytest.approx(0.0, abs=1e-12)  # back through zero
+    assert float(plain(float(plain.t_max))) == pytest.approx(-d1)  # checked: opposite peak at t_max
     assert float(plain(float(plain.t_max) + 0.1)) == 0.0
     held = SinusoidHold(d1, w, hold=1.5)
     t1, t2 = math.pi / (2 * w), math.pi / (2 * w) + 1.5
-    assert float(held.t_max) == pytest.approx(t2 + math.pi / w)         # t_max = t₂ + π/ω
+    assert float(held.t_max) == pytest.approx(t2 + math.pi / w)  # t_max = t₂ + π/ω
     for t in np.linspace(t1, t2, 5):
         assert float(held(t)) == pytest.approx(d1)
     # agrees with the dynamics package's single-hold schedule; holds may differ per condition
@@ -87,8 +87,16 @@ def test_scaling_frequency_floor_and_reason(checked):
 
 def test_sign_nose_up_loads_the_tail_down(checked):
     """The nose-up input (trailing edge up) gives the largest tail download; the nose-down one does not."""
-    up = [f.all_details()["root shear max/min (kN)"][1] for f in structural(checked) if f.condition.get("direction") == "nose up"]
-    down = [f.all_details()["root shear max/min (kN)"][1] for f in structural(checked) if f.condition.get("direction") == "nose down"]
+    up = [
+        f.all_details()["root shear max/min (kN)"][1]
+        for f in structural(checked)
+        if f.condition.get("direction") == "nose up"
+    ]
+    down = [
+        f.all_details()["root shear max/min (kN)"][1]
+        for f in structural(checked)
+        if f.condition.get("direction") == "nose down"
+    ]
     assert min(up) < min(down) < 0
 
 

@@ -2,13 +2,17 @@
 wing capability, the wing considered up to the airplane's stall (linear strip loads), and a deficient wing fails."""
 
 import pytest
+from certkit_rules.part25.subpart_c.r25_331 import (
+    WING_STALL_NOTE,
+    CheckedPitchManeuver,
+    MaximumPitchControlDisplacement,
+)
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
-from certkit.models.loads.capability import declared_capabilities
 from certkit.engine.scheduler import evaluate_rule
-from certkit_rules.part25.subpart_c.r25_331 import WING_STALL_NOTE, CheckedPitchManeuver, MaximumPitchControlDisplacement
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
+from certkit.models.loads.capability import declared_capabilities
 
 from .helpers import edited_baseline, hand_margin, in_mach_range
 
@@ -18,7 +22,9 @@ TWO_ALTITUDES = [("altitude_points: 5", "altitude_points: 2")]
 @pytest.fixture(scope="module")
 def results(tmp_path_factory):
     ctx = Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("c_wing"), TWO_ALTITUDES)))
-    return ctx, {r.id: evaluate_rule(r, ctx) for r in (MaximumPitchControlDisplacement, CheckedPitchManeuver, BalancedManeuver)}
+    return ctx, {
+        r.id: evaluate_rule(r, ctx) for r in (MaximumPitchControlDisplacement, CheckedPitchManeuver, BalancedManeuver)
+    }
 
 
 def _wing(result):
@@ -78,17 +84,27 @@ def test_checked_manoeuvre_wing_load_near_the_balanced_one(results):
     less download than the balancing load and the wing no more than n W plus it (5 % allowed for the load-factor
     tolerance and the rate terms); and not far less, the tail load being a small part of n W (≥ 80 %)."""
     _, res = results
-    balanced = {(f.condition.loading, f.condition.altitude): f for f in res["25.331(b)"].findings
-                if f.condition.get("point") == "VC at n+" and "wing:" in f.check}
+    balanced = {
+        (f.condition.loading, f.condition.altitude): f
+        for f in res["25.331(b)"].findings
+        if f.condition.get("point") == "VC at n+" and "wing:" in f.check
+    }
     compared = 0
     for f in _wing(res["25.331(c)(2)"]):
         c = f.condition
-        if c.get("entry_speed") != "VC" or c.get("direction") != "nose up" or abs(f.all_details()["peak_n_z"] - 2.5) > 0.03:
+        if (
+            c.get("entry_speed") != "VC"
+            or c.get("direction") != "nose up"
+            or abs(f.all_details()["peak_n_z"] - 2.5) > 0.03
+        ):
             continue
         b = balanced[(c.loading, c.altitude)]
         if b.all_details()["n"] != 2.5:
             continue
-        ratio = f.all_details()["side of body bending max/min (kN·m)"][0] / b.all_details()["side of body bending max/min (kN·m)"][0]
+        ratio = (
+            f.all_details()["side of body bending max/min (kN·m)"][0]
+            / b.all_details()["side of body bending max/min (kN·m)"][0]
+        )
         assert 0.8 <= ratio <= 1.05, c.label()
         compared += 1
     assert compared >= 4

@@ -3,14 +3,14 @@ the declared capability, and deficient airplanes that must fail."""
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
+from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
-from certkit.models.loads.capability import declared_capabilities
 from certkit.engine.scheduler import criteria_for, evaluate_rule
+from certkit.models.loads.capability import declared_capabilities
 from certkit.units import G0
-from certkit_rules.part25.support.balanced_runs import NO_FLAP_STRIPS
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
 
 from .helpers import NO_STABILIZER, NO_STRUCTURE, edited_baseline, failures_with, hand_margin
 
@@ -27,9 +27,15 @@ def run(tmp_path_factory):
 
 
 def _one(findings, loading, point, surface, altitude=0.0, configuration="clean"):
-    return next(f for f in findings if f.condition.loading == loading and f.condition.get("point") == point
-                and f.condition.altitude == altitude and f.condition.configuration == configuration
-                and f.check.split(":")[0].endswith(surface))
+    return next(
+        f
+        for f in findings
+        if f.condition.loading == loading
+        and f.condition.get("point") == point
+        and f.condition.altitude == altitude
+        and f.condition.configuration == configuration
+        and f.check.split(":")[0].endswith(surface)
+    )
 
 
 def test_every_point_weight_and_configuration_is_scheduled(run):
@@ -45,7 +51,16 @@ def test_load_factor_and_pull_up_rate_of_each_point(run):
     """n on the flight path as the point asks (n₊ = 2.5 at A, VC, D; 0 at E; n₋ = −1 at F, H; 2.0 flaps extended at
     VF, §25.345(a)(1)), and the pitch rate of a pull-up q = g (n − 1)/V (Etkin & Reid §6.7, level path)."""
     ctx, findings, _ = run
-    expected = {"A": 2.5, "VC at n+": 2.5, "D": 2.5, "E": 0.0, "F": -1.0, "H": -1.0, "VF at n flaps": 2.0, "VF at 0": 0.0}
+    expected = {
+        "A": 2.5,
+        "VC at n+": 2.5,
+        "D": 2.5,
+        "E": 0.0,
+        "F": -1.0,
+        "H": -1.0,
+        "VF at n flaps": 2.0,
+        "VF at 0": 0.0,
+    }
     for f in findings:
         if not f.all_details() or "n" not in f.all_details():
             continue
@@ -103,8 +118,9 @@ def test_wing_air_load_balances_the_weight_and_the_tail(run):
     ctx, findings, r = run
     f = _one(findings, "fwd_mrw", "VC at n+", "wing")
     d = f.all_details()
-    assert 1e3 * d["wing_air_load_kN"] == pytest.approx(d["n"] * f.condition.mass * G0 - 1e3 * d["tail_balancing_load_kN"],
-                                                         rel=0.03)
+    assert 1e3 * d["wing_air_load_kN"] == pytest.approx(
+        d["n"] * f.condition.mass * G0 - 1e3 * d["tail_balancing_load_kN"], rel=0.03
+    )
 
 
 def test_side_of_body_bending_against_a_schrenk_hand_load_with_the_wing_fuel(run):
@@ -144,7 +160,9 @@ def test_margins_by_hand_and_the_critical_wing_case(run):
     wing = [f for f in findings if f.status in ("complies", "fails") and "wing:" in f.check]
     worst = min(wing, key=lambda f: f.margin / f.limit)
     assert worst.condition.loading == "fwd_mrw" and worst.condition.get("point") in ("A", "VC at n+", "D")
-    assert worst.all_details()["n"] > 2.0  # on the n₊ line, or on the stall line just below it (Mach-limited VD at altitude)
+    assert (
+        worst.all_details()["n"] > 2.0
+    )  # on the n₊ line, or on the stall line just below it (Mach-limited VD at altitude)
     assert "ultimate bending at side of body" in worst.check
     assert worst.status == "complies" and "fuel_state" in worst.all_details()
 
@@ -156,8 +174,11 @@ def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_pat
     edits = FAST + [("capacity: 64050 lb", "capacity: 500 lb"), ("capacity: 174870 lb", "capacity: 301900 lb")]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
     crit, _ = criteria_for(BalancedManeuver, ctx)
-    conds = [c for c in BalancedManeuver.conditions.expand(ctx.aircraft) if c.loading == "fwd_mrw" and c.altitude == 0.0
-             and c.configuration == "clean" and c.get("point") == "VC at n+"]
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
+    ]
     findings = BalancedManeuver().evaluate(ctx, conds, crit)
     f = _one(findings, "fwd_mrw", "VC at n+", "wing")
     assert f.status == "fails" and "ultimate bending at side of body" in f.check
@@ -176,8 +197,11 @@ def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
     _, findings, _ = run
     flap = [f for f in findings if f.condition.configuration != "clean" and STOP not in (f.reason or "")]
     assert flap
-    assert all(f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS for f in flap if "wing:" in f.check
-               or f.check.endswith("wing"))
+    assert all(
+        f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS
+        for f in flap
+        if "wing:" in f.check or f.check.endswith("wing")
+    )
     tail = [f for f in flap if "horizontal tail" in f.check]
     assert tail and all(f.status in ("complies", "fails") for f in tail)
 
@@ -194,8 +218,11 @@ def test_envelope_is_kept_for_the_sizing_loop(run):
 def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(BalancedManeuver, ctx)
-    clean = [f for f in result.findings if f.condition.configuration == "clean" and STOP not in (f.reason or "")
-             and MACH not in (f.reason or "")]
+    clean = [
+        f
+        for f in result.findings
+        if f.condition.configuration == "clean" and STOP not in (f.reason or "") and MACH not in (f.reason or "")
+    ]
     assert clean and all(f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in clean)
     assert all("root bending max/min (kN·m)" in f.all_details() for f in clean)
 
@@ -203,8 +230,12 @@ def test_not_evaluated_without_structural_capability(tmp_path):
 def test_a_weak_tailplane_fails(tmp_path):
     """Deficient airplane: the tailplane root bending allowable cut to 100 kN·m (its balancing loads bend it by several
     hundred kN·m): the tail findings fail against exactly that allowable."""
-    weak = FAST + [("quantity: bending, limit: 7366 kN*m, ultimate: 7366 kN*m",
-                    "quantity: bending, limit: 100 kN*m, ultimate: 100 kN*m")]
+    weak = FAST + [
+        (
+            "quantity: bending, limit: 7366 kN*m, ultimate: 7366 kN*m",
+            "quantity: bending, limit: 100 kN*m, ultimate: 100 kN*m",
+        )
+    ]
     tail = failures_with(tmp_path, BalancedManeuver, weak, "horizontal tail")
     assert tail and all(f.limit == pytest.approx(100e3) and "bending at root" in f.check for f in tail)
 
@@ -228,8 +259,11 @@ def test_no_balanced_state_beyond_the_elevator_stop_complies(run):
     computed compliance: with the baseline's movable stabiliser held at its 1 g trim it is not evaluated, with the
     deflection in the reason (point H at the forward CG needs about +31°)."""
     _, findings, _ = run
-    beyond = [f for f in findings if "elevator_deg" in f.all_details()
-              and not -30.0 <= f.all_details()["elevator_deg"] <= 25.0]
+    beyond = [
+        f
+        for f in findings
+        if "elevator_deg" in f.all_details() and not -30.0 <= f.all_details()["elevator_deg"] <= 25.0
+    ]
     assert beyond
     assert all(f.status == "not_evaluated" and "beyond the control-system stop" in f.reason for f in beyond)
 
@@ -239,8 +273,11 @@ def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):
     fails, its margin the stop minus the deflection needed (degrees)."""
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STABILIZER])))
     crit, _ = criteria_for(BalancedManeuver, ctx)
-    conds = [c for c in BalancedManeuver.conditions.expand(ctx.aircraft) if c.loading == "fwd_mrw" and c.altitude == 0.0
-             and c.configuration == "clean" and c.get("point") in ("H", "F")]
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") in ("H", "F")
+    ]
     findings = BalancedManeuver().evaluate(ctx, conds, crit)
     beyond = [f for f in findings if not -30.0 <= f.all_details().get("elevator_deg", 0.0) <= 25.0]
     assert beyond
@@ -273,8 +310,11 @@ def test_design_flap_speed_is_the_larger_of_the_placard_and_the_335e_minima(run)
     211.3 kn (195); landing, CLmax 2.25 → 199.2 kn (170). Each flaps-extended point flies at that speed (0.2 kn)."""
     ctx, findings, _ = run
     expected = {}
-    for cfg, lb, clmax, factor in (("takeoff", 656000, 1.95, 1.6), ("approach", 460000, 2.00, 1.8),
-                                   ("landing", 460000, 2.25, 1.8)):
+    for cfg, lb, clmax, factor in (
+        ("takeoff", 656000, 1.95, 1.6),
+        ("approach", 460000, 2.00, 1.8),
+        ("landing", 460000, 2.25, 1.8),
+    ):
         vs1 = np.sqrt(2 * lb * 0.45359237 * G0 / (1.225 * 4927.3 * 0.3048**2 * clmax))
         expected[cfg] = factor * vs1 / 0.514444
     assert expected["takeoff"] == pytest.approx(227.2, abs=0.3) and expected["landing"] == pytest.approx(199.2, abs=0.3)

@@ -15,8 +15,11 @@ def test_corners_hand_calculation():
     """310,000 lb, sea level: +stall VS = √(2W/(ρ₀ S 1.40)) = 115.21 kn, A = VS·√2.5 = 182.17 kn; −stall with
     CLmin −0.80: 152.41 kn, H = that × √1 = 152.41 kn; D = (VD 340, 2.5), E = (340, 0), F = (VC 272, −1)."""
     r = run_rule("25.333")
-    f = next(f for f in r.findings if f.check.startswith("A") and f.condition.altitude == 0.0
-             and abs(f.condition.mass / 0.45359237 - 310_000) < 1)
+    f = next(
+        f
+        for f in r.findings
+        if f.check.startswith("A") and f.condition.altitude == 0.0 and abs(f.condition.mass / 0.45359237 - 310_000) < 1
+    )
     assert math.sqrt(2 * 310_000 / (RHO0_SLUG * S_FT2 * 1.4)) / KT_FT == pytest.approx(115.21, abs=0.01)
     corners = f.details["corners"]
     assert corners["A"][0] / KN == pytest.approx(182.17, abs=0.01) and corners["A"][1] == 2.5
@@ -29,8 +32,11 @@ def test_corners_hand_calculation():
 def test_corner_a_at_mrw_against_the_declared_va(tmp_path):
     """657,000 lb: A = √(2W/(ρ₀ S 1.40))·√2.5 = 265.20 kn; VA 266 closes the envelope (+0.80 kn), 265 does not."""
     r = run_rule("25.333")
-    f = next(f for f in r.findings if f.check.startswith("A") and f.condition.altitude == 0.0
-             and abs(f.condition.mass / 0.45359237 - 657_000) < 1)
+    f = next(
+        f
+        for f in r.findings
+        if f.check.startswith("A") and f.condition.altitude == 0.0 and abs(f.condition.mass / 0.45359237 - 657_000) < 1
+    )
     assert f.details["corners"]["A"][0] / KN == pytest.approx(265.20, abs=0.01)
     assert f.margin / KN == pytest.approx(0.80, abs=0.01)
     low = run_rule("25.333", tmp_path, [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])

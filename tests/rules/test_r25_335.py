@@ -24,7 +24,9 @@ def vs1_kn(w_lb, cn_over_cl=1.0):
 
 
 def by_mass(result, lb, altitude_m=0.0):
-    return next(f for f in result.findings if abs(f.condition.mass / 0.45359237 - lb) < 1 and f.condition.altitude == altitude_m)
+    return next(
+        f for f in result.findings if abs(f.condition.mass / 0.45359237 - lb) < 1 and f.condition.altitude == altitude_m
+    )
 
 
 def test_va_hand_calculation():

@@ -1,19 +1,22 @@
 """§25.337 against hand calculation of 2.1 + 24,000/(W + 10,000) bounded to [2.5, 3.8]."""
 
 import pytest
+from certkit_rules.part25.subpart_c.r25_337 import required_positive_load_factor
 
 from certkit.units import LB
-from certkit_rules.part25.subpart_c.r25_337 import required_positive_load_factor
 
 from .helpers import run_rule
 
 
-@pytest.mark.parametrize("w_lb,expected", [
-    (656_000, 2.5),                          # 2.1 + 24000/666000 = 2.136 -> floor 2.5
-    (5_000, 2.1 + 24000 / 15000),            # 3.7, inside the bounds
-    (3_000, 3.8),                            # 3.946 -> cap 3.8
-    (50_000, 2.5),                           # exactly 2.5 at 50,000 lb
-])
+@pytest.mark.parametrize(
+    "w_lb,expected",
+    [
+        (656_000, 2.5),  # 2.1 + 24000/666000 = 2.136 -> floor 2.5
+        (5_000, 2.1 + 24000 / 15000),  # 3.7, inside the bounds
+        (3_000, 3.8),  # 3.946 -> cap 3.8
+        (50_000, 2.5),  # exactly 2.5 at 50,000 lb
+    ],
+)
 def test_formula_hand_values(w_lb, expected):
     assert required_positive_load_factor(w_lb * LB, 2.1, 24000, 10000, 2.5, 3.8) == pytest.approx(expected, rel=1e-12)
 
@@ -35,5 +38,14 @@ def test_sign_lower_factors_fail(tmp_path):
 
 
 def test_not_evaluated_without_load_factors(tmp_path):
-    r = run_rule("25.337", tmp_path, [("  limit_load_factors:\n    positive: 2.5              # [given]\n    negative: -1.0\n    flaps_extended: 2.0\n", "")])
+    r = run_rule(
+        "25.337",
+        tmp_path,
+        [
+            (
+                "  limit_load_factors:\n    positive: 2.5              # [given]\n    negative: -1.0\n    flaps_extended: 2.0\n",
+                "",
+            )
+        ],
+    )
     assert r.status == "not_evaluated" and "envelope.limit_load_factors" in r.findings[0].reason

@@ -5,24 +5,23 @@ declared wing capability and the not-evaluated path. The rule runs on the baseli
 ceiling with gradients 30 and 350 ft (criteria override) to stay fast.
 """
 
-
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
+from certkit_rules.part25.support.gust_runs import design_gust_velocity, flight_profile_alleviation
 
 from certkit.atmosphere import density
+from certkit.engine.registry import Criteria
 from certkit.models.aero.derivative_model import StabilityDerivativeModel
 from certkit.models.aero.interface import AeroReference
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.loads.gust import gust_aero
 from certkit.models.loads.gust_response import GustBatch, simulate_gust
-from certkit.engine.registry import Criteria
 from certkit.units import FT, G0
-from certkit_rules.part25.support.gust_runs import design_gust_velocity, flight_profile_alleviation
-from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 
-from ..loads.test_gust_response import A, MASS, S, V, closed_form
+from ..loads.test_gust_response import MASS, A, S, V, closed_form
 from .helpers import MACH_RANGE, NO_STRUCTURE, hand_margin, in_mach_range, own, run_rule
 
 BEND_LIMIT = 25e6  # N·m, a wing root bending allowable near the baseline's gust loads
@@ -37,7 +36,10 @@ sources:
 """
 FAST = [("altitude_points: 5", "altitude_points: 2"), NO_STRUCTURE, ("\nsources:\n", "\n" + STRUCTURE)]
 #: the baseline with its declared capability (docs/baseline-sources.md §10), sea level and ceiling, 2 gradients
-FAST_BASELINE = [("altitude_points: 5", "altitude_points: 2"), ("\nsources:\n", "\ncriteria:\n" + STRUCTURE.split("criteria:\n", 1)[1])]
+FAST_BASELINE = [
+    ("altitude_points: 5", "altitude_points: 2"),
+    ("\nsources:\n", "\ncriteria:\n" + STRUCTURE.split("criteria:\n", 1)[1]),
+]
 
 
 @pytest.fixture(scope="module")
@@ -90,15 +92,22 @@ def test_two_phase_heave_against_closed_form(H_ft):
     of tests/loads/test_gust_response.py: Δn within 2 % of the peak of the closed-form quasi-steady solution
     while the gust acts; after it, the response decays (Δn → 0 within the settle time)."""
     ref = AeroReference(S, 60.0, 7.0, 30.0, 0.0)
-    aero = gust_aero(StabilityDerivativeModel(ref, {"CL_alpha": A}), np.array([0.0, 1.0]), np.array([A, A]),
-                    np.zeros(2), np.zeros(2), np.zeros(2))
+    aero = gust_aero(
+        StabilityDerivativeModel(ref, {"CL_alpha": A}),
+        np.array([0.0, 1.0]),
+        np.array([A, A]),
+        np.zeros(2),
+        np.zeros(2),
+        np.zeros(2),
+    )
     model = AircraftModel(aero, MASS, (30.0, 0.0, 0.0), np.diag([1e7, 1e7, 1e7]))
     qbar = 0.5 * density(0.0) * V**2
     alpha0 = MASS * G0 / (qbar * S * A)
     x0 = np.array([[0, 0, 0.0, V * np.cos(alpha0), 0, V * np.sin(alpha0), 0, 0, 0, 0, alpha0, 0]])
     H, Uds = H_ft * FT, 15.0
-    run = simulate_gust(None, GustBatch(model, x0, np.zeros((1, 2)), np.array([V]), 0.0), H, Uds / V, 200, 2.0,
-                        surfaces=())
+    run = simulate_gust(
+        None, GustBatch(model, x0, np.zeros((1, 2)), np.array([V]), 0.0), H, Uds / V, 200, 2.0, surfaces=()
+    )
     tau = MASS * V / (qbar * S * A)
     t = run.sim.t
     during = t <= 2 * H / V
@@ -118,11 +127,17 @@ def test_sign_up_gust_loads_the_wing_up(gust_run):
     result, run = gust_run
     conds = run.conditions
     i_up = next(i for i, c in enumerate(conds) if c.get("gust") == "up")
-    i_down = next(i for i, c in enumerate(conds) if c.get("gust") == "down" and c.loading == conds[i_up].loading
-                  and c.altitude == conds[i_up].altitude and c.get("speed_point") == conds[i_up].get("speed_point"))
+    i_down = next(
+        i
+        for i, c in enumerate(conds)
+        if c.get("gust") == "down"
+        and c.loading == conds[i_up].loading
+        and c.altitude == conds[i_up].altitude
+        and c.get("speed_point") == conds[i_up].get("speed_point")
+    )
     for i, sign in ((i_up, 1.0), (i_down, -1.0)):
         for j, H in enumerate(run.gradients):
-            (_, _, r), = run.replay([(i, j)])
+            ((_, _, r),) = run.replay([(i, j)])
             k = int(np.argmin(np.abs(r.sim.t - H / r.sim["V"][0, 0])))
             wing = r.loads["wing"][:, 0]
             assert sign * (wing[k, 0, 0] - wing[0, 0, 0]) > 0 and sign * (wing[k, 1, 0] - wing[0, 1, 0]) > 0
@@ -171,14 +186,23 @@ def test_baseline_margins_against_the_declared_capability(tmp_path):
 
     result = run_rule("25.341(a)", tmp_path, FAST_BASELINE)
     ctx = Context(load_aircraft(BASELINE))
-    caps = {"wing": declared_capabilities(ctx, "wing"), "horizontal tail": declared_capabilities(ctx, "horizontal_tail"),
-            "vertical tail": declared_capabilities(ctx, "vertical_tail")}
+    caps = {
+        "wing": declared_capabilities(ctx, "wing"),
+        "horizontal tail": declared_capabilities(ctx, "horizontal_tail"),
+        "vertical tail": declared_capabilities(ctx, "vertical_tail"),
+    }
     evaluated = [f for f in own(result) if f.status != "not_evaluated" and f.margin is not None]
-    assert evaluated and all("no trim" in f.reason or MACH_RANGE in f.reason for f in own(result)
-                             if f.status == "not_evaluated")
+    assert evaluated and all(
+        "no trim" in f.reason or MACH_RANGE in f.reason for f in own(result) if f.status == "not_evaluated"
+    )
     for f in evaluated:
-        surface = ("wing" if f.check.endswith(", wing") or ", wing:" in f.check else
-                   "vertical tail" if "vertical tail" in f.check else "horizontal tail")
+        surface = (
+            "wing"
+            if f.check.endswith(", wing") or ", wing:" in f.check
+            else "vertical tail"
+            if "vertical tail" in f.check
+            else "horizontal tail"
+        )
         normalized, margin, check = hand_margin(f.all_details(), caps[surface])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
         # information: the manoeuvring envelope's n at the speed (§25.337: n+ 2.5; n- -1.0 to VC, 0 at VD)
@@ -200,8 +224,11 @@ def test_wing_findings_name_the_critical_fuel_state(gusts):
     is critical with the least wing fuel, 15,000 lb a side (smallest inertia relief), a down-bending one (min) with the
     most (64,050 lb)."""
     lb = 0.45359237
-    wing = [f for f in in_mach_range(own(gusts)) if f.check.split(":")[0].endswith(", wing")
-            and f.status in ("complies", "fails")]
+    wing = [
+        f
+        for f in in_mach_range(own(gusts))
+        if f.check.split(":")[0].endswith(", wing") and f.status in ("complies", "fails")
+    ]
     assert wing and all("fuel_state" in f.all_details() for f in wing)
     assert any(f.condition.loading in ("fwd_mlw", "aft_mlw") for f in wing)
     for f in wing:

@@ -6,18 +6,18 @@ capability declared) and a limit/ultimate comparison with a wing capability edit
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
 from certkit.atmosphere import eas_to_tas, tas_to_mach
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
+from certkit.engine.scheduler import evaluate_rule
 from certkit.models.dynamics.simulate import Controller
-from certkit_rules.part25.support.loads_conditions import trimmed_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import response_loads
 from certkit.models.loads.roll import mirror, simulate_roll, symmetric_manoeuvre_state
-from certkit.engine.scheduler import evaluate_rule
 from certkit.units import FT, KN, LB
-from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
 
 from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
@@ -84,13 +84,24 @@ def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, s
         assert d["peak_roll_rate_deg_s"] >= d["target_roll_rate_deg_s"] - 0.011
         if d["aileron_fraction_of_stop"] < 1.0:
             assert d["peak_roll_rate_deg_s"] <= 1.03 * d["target_roll_rate_deg_s"] + 0.011
-        va = next((c for c in found if c.loading == cond.loading and c.altitude == cond.altitude
-                   and c.get("load_factor") == cond.get("load_factor") and c.get("speed_point") == "VA"), None)
+        va = next(
+            (
+                c
+                for c in found
+                if c.loading == cond.loading
+                and c.altitude == cond.altitude
+                and c.get("load_factor") == cond.get("load_factor")
+                and c.get("speed_point") == "VA"
+            ),
+            None,
+        )
         if sp == "VC" and va is not None and cond.speed > va.speed + 1.0:
             h = cond.altitude
             v_c, v_a = eas_to_tas(cond.speed, h), eas_to_tas(va.speed, h)
-            k = [float(aero.derivative("Cl_aileron", m) / aero.derivative("Cl_p", m)) for m in
-                 (tas_to_mach(v_a, h), tas_to_mach(v_c, h))]
+            k = [
+                float(aero.derivative("Cl_aileron", m) / aero.derivative("Cl_p", m))
+                for m in (tas_to_mach(v_a, h), tas_to_mach(v_c, h))
+            ]
             expected = (d["peak_roll_rate_deg_s"] / d["roll_rate_VA_deg_s"]) * (v_a / v_c) * (k[0] / k[1])
             assert d["aileron_fraction_of_stop"] == pytest.approx(expected, rel=0.08), cond
             checked += 1
@@ -118,8 +129,16 @@ def test_steady_roll_rate_closed_form(entry):
     within 2 % of the closed form (Cl_r r b/2V, the small yaw rate of the turn entry, is what remains)."""
     ctx, batch = entry
     model = batch.model.subset([0])
-    sim = simulate_roll(model, batch.x[:1], batch.u[:1], np.radians(-10.0), 3.0, 0.01, 0.1,
-                        controllers=[_SideslipHold(model, batch.u[:1])])
+    sim = simulate_roll(
+        model,
+        batch.x[:1],
+        batch.u[:1],
+        np.radians(-10.0),
+        3.0,
+        0.01,
+        0.1,
+        controllers=[_SideslipHold(model, batch.u[:1])],
+    )
     assert np.max(np.abs(sim["beta"][:, 0])) < np.radians(0.05)
     aero = ctx.aero("clean").model
     mach, V = sim["mach"][0, 0], sim["V"][0, 0]
@@ -188,11 +207,16 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     the loads of each condition's critical fuel state)."""
     (tmp_path / "bare").mkdir()
     bare = run_rule("25.349(a)", tmp_path / "bare", edits=[NO_STRUCTURE])
-    L = 1e3 * max(max(abs(v) for v in f.all_details()[ROOT_BENDING]) for f in own(bare)
-                  if _surface(f) == "wing" and ROOT_BENDING in f.all_details())
-    structure = ("structure:\n  wing:\n"
-                 f"    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: \"test\"}}\n"
-                 "sources:\n")
+    L = 1e3 * max(
+        max(abs(v) for v in f.all_details()[ROOT_BENDING])
+        for f in own(bare)
+        if _surface(f) == "wing" and ROOT_BENDING in f.all_details()
+    )
+    structure = (
+        "structure:\n  wing:\n"
+        f'    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: "test"}}\n'
+        "sources:\n"
+    )
     result = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
     wing = [f for f in own(result) if ": wing" in f.check and f.margin is not None]
     assert len(wing) == 96

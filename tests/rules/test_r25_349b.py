@@ -5,15 +5,15 @@ declared wing capability, the not-evaluated path, the increment reading, and a b
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
+from certkit_rules.part25.subpart_c.r25_349 import UnsymmetricalGust
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
+from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.errors import UserError
 from certkit.models.loads.capability import declared_capabilities
-from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.units import G0
-from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
-from certkit_rules.part25.subpart_c.r25_349 import UnsymmetricalGust
 
 from .helpers import NO_STRUCTURE, edited_baseline, hand_margin, own
 
@@ -120,14 +120,18 @@ def test_increment_basis_has_a_smaller_unbalance_for_up_gusts(shared):
     assert ups
     for f in ups:
         t = total[(f.condition, f.check.split(":")[0])]
-        assert abs(f.all_details()["peak_unbalanced_rolling_moment_MNm"]) < abs(t.all_details()["peak_unbalanced_rolling_moment_MNm"])
+        assert abs(f.all_details()["peak_unbalanced_rolling_moment_MNm"]) < abs(
+            t.all_details()["peak_unbalanced_rolling_moment_MNm"]
+        )
         assert f.all_details()["airload_basis"] == "increment"
 
 
 def test_bad_airload_basis_is_a_user_error(shared):
     ctx, _, _, _, crit = shared
     crit = type(crit)({**crit, "airload_basis": "half"})
-    with pytest.raises(UserError, match=r"criteria\.25\.349\(b\)\.values\.airload_basis: 'half' is not one of total, increment"):
+    with pytest.raises(
+        UserError, match=r"criteria\.25\.349\(b\)\.values\.airload_basis: 'half' is not one of total, increment"
+    ):
         UnsymmetricalGust().evaluate(ctx, UnsymmetricalGust.conditions.expand(ctx.aircraft), crit)
 
 
@@ -135,8 +139,9 @@ def test_not_evaluated_without_structural_capability(tmp_path):
     ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [NO_STRUCTURE])))
     result = evaluate_rule(UnsymmetricalGust, ctx)
     evaluated = _evaluated(own(result))
-    assert evaluated and all(f.status == "not_evaluated" and f.reason == "no structural capability declared"
-                             for f in evaluated)
+    assert evaluated and all(
+        f.status == "not_evaluated" and f.reason == "no structural capability declared" for f in evaluated
+    )
     assert all("root bending max/min (kN·m)" in f.all_details() for f in evaluated)  # the loads are still reported
     assert result.status == "not_evaluated"
 
@@ -144,8 +149,10 @@ def test_not_evaluated_without_structural_capability(tmp_path):
 def test_a_weak_wing_fails(tmp_path):
     """A deficient airplane: the side-of-body positive bending allowables cut to 15/20 MN·m (the baseline's gust
     bending there is about 33 MN·m ultimate): the up-gust conditions fail against exactly that allowable."""
-    weak = FAST + [("positive: 38494 kN*m}", "positive: 15000 kN*m}"),
-                   ("positive: 46624 kN*m}", "positive: 20000 kN*m}")]
+    weak = FAST + [
+        ("positive: 38494 kN*m}", "positive: 15000 kN*m}"),
+        ("positive: 46624 kN*m}", "positive: 20000 kN*m}"),
+    ]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, weak)))
     result = evaluate_rule(UnsymmetricalGust, ctx)
     failing = [f for f in own(result) if f.status == "fails"]

@@ -5,14 +5,14 @@ comparison with a vertical-tail capability declared to sit exactly on the comput
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_351 import YawManeuver
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
-from certkit_rules.part25.support.loads_conditions import trimmed_batch
-from certkit.models.loads.yaw import simulate_yaw
 from certkit.engine.scheduler import evaluate_rule
+from certkit.models.loads.yaw import simulate_yaw
 from certkit.units import KN
-from certkit_rules.part25.subpart_c.r25_351 import YawManeuver
 
 from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
 
@@ -42,8 +42,9 @@ def test_steady_sideslip_by_hand(baseline):
     model = batch.model
     jr, ja = model.control_index("rudder"), model.control_index("aileron")
     d_rudder = np.radians(-10.0)
-    run = simulate_yaw(model, batch.x, batch.u, d_rudder, dt=0.04, t_max=90.0, window=6.0, tolerance=0.002,
-                       aileron_limits=(-1.5, 1.5))
+    run = simulate_yaw(
+        model, batch.x, batch.u, d_rudder, dt=0.04, t_max=90.0, window=6.0, tolerance=0.002, aileron_limits=(-1.5, 1.5)
+    )
     assert run.settled[0]
     h = run.held
     mach, qbar, V, alpha = h["mach"][-1, 0], h["qbar"][-1, 0], h["V"][-1, 0], h["alpha"][-1, 0]
@@ -63,9 +64,13 @@ def test_steady_sideslip_by_hand(baseline):
     def cl(k):
         return d("Cl_" + k) - cy(k) * zb / b
 
-    A = np.array([[cy("beta"), cy("r") * b / (2 * V) - m * V * np.cos(alpha) / (qbar * S), cy("aileron")],
-                  [cn("beta"), cn("r") * b / (2 * V), cn("aileron")],
-                  [cl("beta"), cl("r") * b / (2 * V), cl("aileron")]])
+    A = np.array(
+        [
+            [cy("beta"), cy("r") * b / (2 * V) - m * V * np.cos(alpha) / (qbar * S), cy("aileron")],
+            [cn("beta"), cn("r") * b / (2 * V), cn("aileron")],
+            [cl("beta"), cl("r") * b / (2 * V), cl("aileron")],
+        ]
+    )
     beta, r, d_aileron = np.linalg.solve(A, -d_rudder * np.array([cy("rudder"), cn("rudder"), cl("rudder")]))
     assert h["beta"][-1, 0] == pytest.approx(beta, rel=0.01)
     assert h.controls[-1, 0, ja] - batch.u[0, ja] == pytest.approx(d_aileron, rel=0.01)
@@ -134,9 +139,11 @@ def test_capability_on_the_limit(yaw, tmp_path):
     to 0.1, so the declared value is within 50 N); every other condition has a positive margin."""
     peak_kn = max(max(abs(v) for v in f.all_details()[ROOT_SHEAR]) for f in own(yaw))
     limit = peak_kn * 1e3
-    structure = ("structure:\n  vertical_tail:\n"
-                 f"    - {{station: root, quantity: shear, limit: {limit}, ultimate: {1.5 * limit}, source: \"test\"}}\n"
-                 "sources:\n")
+    structure = (
+        "structure:\n  vertical_tail:\n"
+        f'    - {{station: root, quantity: shear, limit: {limit}, ultimate: {1.5 * limit}, source: "test"}}\n'
+        "sources:\n"
+    )
     result = run_rule("25.351", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
     margins = [f.margin for f in own(result) if f.margin is not None]
     assert len(margins) == len(own(yaw))

@@ -5,20 +5,25 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
+from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, NOT_SHARED, UnsymmetricalTailLoads
+from certkit_rules.part25.support.balanced_runs import balanced_maneuvers
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.engine.scheduler import criteria_for, evaluate_rule
-from certkit_rules.part25.support.balanced_runs import balanced_maneuvers
-from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
-from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, NOT_SHARED, UnsymmetricalTailLoads
 
 from .helpers import edited_baseline, failures_with
 
-FAST = [("altitude_points: 5", "altitude_points: 2"),
-        ("\nsources:\n", '\ncriteria:\n  "25.427(b)":\n    justification: "two gradients keep the test fast"\n'
-                         '    values: {gradients: "30 350"}\n  "25.341(a)":\n    justification: "the same gust runs"\n'
-                         '    values: {gradients: "30 350"}\nsources:\n')]
+FAST = [
+    ("altitude_points: 5", "altitude_points: 2"),
+    (
+        "\nsources:\n",
+        '\ncriteria:\n  "25.427(b)":\n    justification: "two gradients keep the test fast"\n'
+        '    values: {gradients: "30 350"}\n  "25.341(a)":\n    justification: "the same gust runs"\n'
+        '    values: {gradients: "30 350"}\nsources:\n',
+    ),
+]
 
 
 @pytest.fixture(scope="module")
@@ -46,17 +51,25 @@ def test_split_by_hand_from_the_balancing_load(result):
     from tests.loads.hand_span_load import planform
 
     ctx, res, sym = result
-    key = next(c for c in sym.conditions if c.loading == "fwd_mrw" and c.get("point") == "VC at n+"
-               and c.altitude == 0.0 and c.configuration == "clean")
+    key = next(
+        c
+        for c in sym.conditions
+        if c.loading == "fwd_mrw" and c.get("point") == "VC at n+" and c.altitude == 0.0 and c.configuration == "clean"
+    )
     bal = next(f for f in sym.findings if f.condition == key and "horizontal tail" in f.check)
     d = bal.all_details()
     s_a = 0.5e3 * d["tail_balancing_load_kN"]
     ht = ctx.aircraft.geometry.horizontal_tail
     s_i = -0.5 * 5800 * LB * 9.80665 * d["n_z_body"] * np.cos(ht.dihedral)
-    split = {("100%" if "100% side" in f.check else "80%"): f for f in res.findings
-             if f.condition.get("source") == "25.331(b)" and f.condition.loading == "fwd_mrw"
-             and f.condition.get("point") == "VC at n+" and f.condition.altitude == 0.0
-             and f.condition.configuration == "clean"}
+    split = {
+        ("100%" if "100% side" in f.check else "80%"): f
+        for f in res.findings
+        if f.condition.get("source") == "25.331(b)"
+        and f.condition.loading == "fwd_mrw"
+        and f.condition.get("point") == "VC at n+"
+        and f.condition.altitude == 0.0
+        and f.condition.configuration == "clean"
+    }
     assert split["100%"].all_details()["root shear max/min (kN)"][0] == pytest.approx((s_a + s_i) / 1e3, rel=0.01)
     assert split["80%"].all_details()["root shear max/min (kN)"][0] == pytest.approx((0.8 * s_a + s_i) / 1e3, rel=0.01)
     semispan, _, _ = planform(ht.area, ht.aspect_ratio, ht.taper)
@@ -84,8 +97,11 @@ def test_full_side_of_a_gust_is_its_symmetric_loading(result):
     ctx, res, _ = result
     from certkit_rules.part25.subpart_c.r25_341 import DiscreteGust
 
-    sym = {f.condition: f for f in evaluate_rule(DiscreteGust, ctx).findings if "gust, up, horizontal tail" in f.check
-           or "gust, down, horizontal tail" in f.check}
+    sym = {
+        f.condition: f
+        for f in evaluate_rule(DiscreteGust, ctx).findings
+        if "gust, up, horizontal tail" in f.check or "gust, down, horizontal tail" in f.check
+    }
     compared = 0
     for f in res.findings:
         if f.condition.get("source") == "25.341(a)" and "100% side" in f.check:
@@ -99,17 +115,25 @@ def test_full_side_of_a_gust_is_its_symmetric_loading(result):
 def test_a_weak_tailplane_fails(tmp_path):
     """Deficient airplane: the tailplane root torsion allowable cut to 50 kN·m (its balancing and gust loads twist it
     by hundreds of kN·m): the 100 % side fails against exactly that allowable."""
-    weak = FAST + [("quantity: torsion, limit: 5204 kN*m, ultimate: 5204 kN*m",
-                    "quantity: torsion, limit: 50 kN*m, ultimate: 50 kN*m")]
+    weak = FAST + [
+        (
+            "quantity: torsion, limit: 5204 kN*m, ultimate: 5204 kN*m",
+            "quantity: torsion, limit: 50 kN*m, ultimate: 50 kN*m",
+        )
+    ]
     failing = failures_with(tmp_path, UnsymmetricalTailLoads, weak, "100% side")
     assert failing and all(f.limit == pytest.approx(50e3) and "torsion at root" in f.check for f in failing)
 
 
 def _with_fuselage(limit_knm: float):
     """The baseline with a declared fuselage torsion capability at the tail (a test value)."""
-    return FAST + [("  vertical_tail:\n    - {station: root, quantity: shear",
-                    f"  fuselage:\n    - {{station: tail, quantity: torsion, limit: {limit_knm} kN*m, ultimate: "
-                    f"{limit_knm} kN*m, source: \"test value\"}}\n  vertical_tail:\n    - {{station: root, quantity: shear")]
+    return FAST + [
+        (
+            "  vertical_tail:\n    - {station: root, quantity: shear",
+            f"  fuselage:\n    - {{station: tail, quantity: torsion, limit: {limit_knm} kN*m, ultimate: "
+            f'{limit_knm} kN*m, source: "test value"}}\n  vertical_tail:\n    - {{station: root, quantity: shear',
+        )
+    ]
 
 
 def test_fuselage_torsion_against_a_declared_capability(tmp_path):

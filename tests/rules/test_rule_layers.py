@@ -12,11 +12,15 @@ import pkgutil
 from pathlib import Path
 
 import certkit_rules
+
 from certkit.engine.registry import _rules_in_module
 
+
 def _modules() -> dict[str, object]:
-    return {info.name: importlib.import_module(info.name)
-            for info in pkgutil.walk_packages(certkit_rules.__path__, prefix="certkit_rules.")}
+    return {
+        info.name: importlib.import_module(info.name)
+        for info in pkgutil.walk_packages(certkit_rules.__path__, prefix="certkit_rules.")
+    }
 
 
 def _rule_modules(modules) -> set[str]:
@@ -41,8 +45,12 @@ def _imports(module) -> list[tuple[str, set[str]]]:
 def _rule_imports(modules) -> list[tuple[str, str, set[str]]]:
     """(importer, imported rule module, names) for every module of the package importing a rule module."""
     rules = _rule_modules(modules)
-    return [(name, target, names) for name in sorted(modules) for target, names in _imports(modules[name])
-            if target in rules and target != name]
+    return [
+        (name, target, names)
+        for name in sorted(modules)
+        for target, names in _imports(modules[name])
+        if target in rules and target != name
+    ]
 
 
 def test_rule_modules_are_found():
@@ -59,13 +67,18 @@ def test_shared_modules_declare_no_rule():
     rules = _rule_modules(modules)
     assert all(name.rsplit(".", 1)[1].startswith("r25_") for name in rules)
     shared = {name for name, m in modules.items() if not hasattr(m, "__path__")} - rules
-    assert {"certkit_rules.part25.support.structural_checks", "certkit_rules.part25.support.gust_runs",
-            "certkit_rules.part25.support.climb_checks", "certkit_rules.part25.support.control_checks"} <= shared
+    assert {
+        "certkit_rules.part25.support.structural_checks",
+        "certkit_rules.part25.support.gust_runs",
+        "certkit_rules.part25.support.climb_checks",
+        "certkit_rules.part25.support.control_checks",
+    } <= shared
 
 
 def test_no_module_imports_a_rule_module():
     """No module of the rules package imports a rule module (§25.121's included: what it shares lives in
     ``support/climb_checks.py``, ``support/control_checks.py`` and ``rules/part25/support/thrust_trims.py``)."""
     found = _rule_imports(_modules())
-    assert not found, "modules importing rule modules (move what they share to a module without rules):\n" + \
-        "\n".join(f"  {who} imports {target} {sorted(names)}" for who, target, names in found)
+    assert not found, "modules importing rule modules (move what they share to a module without rules):\n" + "\n".join(
+        f"  {who} imports {target} {sorted(names)}" for who, target, names in found
+    )

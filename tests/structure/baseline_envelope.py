@@ -63,9 +63,11 @@ def station_span(aircraft, station: str) -> float:
 
 def main(path: str) -> None:
     env = extract(json.loads(Path(path).read_text()))
-    out = {"source": "certkit check aircraft/lta.yaml --select 25.331,25.341,25.349,25.351 (limit loads, kN and kN·m "
-                     "in the findings, stored here in N and N·m)",
-           "stations": {s: {q: [round(v[0] * 1e3, 1), v[1]] for q, v in qs.items()} for s, qs in env.items()}}
+    out = {
+        "source": "certkit check aircraft/lta.yaml --select 25.331,25.341,25.349,25.351 (limit loads, kN and kN·m "
+        "in the findings, stored here in N and N·m)",
+        "stations": {s: {q: [round(v[0] * 1e3, 1), v[1]] for q, v in qs.items()} for s, qs in env.items()},
+    }
     DATA.write_text(json.dumps(out, indent=1) + "\n")
     print(f"wrote {DATA}")
 

@@ -16,8 +16,15 @@ import pytest
 from certkit.models.structure.box import BoxMaterial, BoxStations, StructuralSizingError, UltimateLoads, size_box
 from certkit.models.structure.section import depth_factors
 
-MAT = BoxMaterial(density=1600.0, cover_stress=300e6, cover_shear=180e6, web_shear=250e6, skin_fraction=0.6,
-                  min_cover=1e-4, min_web=1e-4)
+MAT = BoxMaterial(
+    density=1600.0,
+    cover_stress=300e6,
+    cover_shear=180e6,
+    web_shear=250e6,
+    skin_fraction=0.6,
+    min_cover=1e-4,
+    min_web=1e-4,
+)
 
 
 def rectangular(length=5.0, chord=4.0, tc=0.1, n=11, sweep=0.0):

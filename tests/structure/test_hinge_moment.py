@@ -17,8 +17,14 @@ from certkit.models.aero.vlm.avl_file import read_avl
 from ..conftest import ROOT, SHARED_REFERENCE
 
 # the checkout's sibling shared/ folder, or (from a git worktree one level deeper) its parent's
-REFERENCE = next((p / "avl-b737" for p in (SHARED_REFERENCE, ROOT.parents[1] / "shared" / "reference")
-                  if (p / "avl-b737" / "b737.avl").is_file()), SHARED_REFERENCE / "avl-b737")
+REFERENCE = next(
+    (
+        p / "avl-b737"
+        for p in (SHARED_REFERENCE, ROOT.parents[1] / "shared" / "reference")
+        if (p / "avl-b737" / "b737.avl").is_file()
+    ),
+    SHARED_REFERENCE / "avl-b737",
+)
 STATES = ((0.0, 0.0), (2.0, 0.0), (0.0, 2.0), (3.0, -2.0))  # (α, elevator) in degrees
 pytestmark = pytest.mark.skipif(not (REFERENCE / "b737.avl").is_file(), reason="AVL b737 sample not found")
 

@@ -61,8 +61,12 @@ def test_more_bending_and_more_area_are_heavier(baseline, envelope, sized):
     heavier (more secondary area, more minimum-gauge material)."""
     double = UltimateLoads(envelope.span, envelope.shear, 2 * envelope.bending, envelope.torsion)
     assert size_horizontal_tail(baseline.model, double).masses["covers"] > 1.5 * sized.masses["covers"]
-    ht = baseline.model.geometry.horizontal_tail.model_copy(update={"area": 1.2 * baseline.model.geometry.horizontal_tail.area})
-    bigger = baseline.model.model_copy(update={"geometry": baseline.model.geometry.model_copy(update={"horizontal_tail": ht})})
+    ht = baseline.model.geometry.horizontal_tail.model_copy(
+        update={"area": 1.2 * baseline.model.geometry.horizontal_tail.area}
+    )
+    bigger = baseline.model.model_copy(
+        update={"geometry": baseline.model.geometry.model_copy(update={"horizontal_tail": ht})}
+    )
     assert size_horizontal_tail(bigger, envelope).mass > sized.mass
 
 

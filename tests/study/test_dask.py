@@ -8,7 +8,6 @@ import pytest
 from certkit.study.runner import run_study
 from certkit.study.spec import load_study
 from certkit.study.store import Store
-
 from tests.study.conftest import EVALUATORS
 
 pytest.importorskip("distributed")
@@ -22,8 +21,7 @@ def test_dask_local_cluster_equals_local_processes(small_study, tmp_path):
             summary = run_study(study, store, executor, workers=2, evaluator=f"{EVALUATORS}:flaky")
             assert summary.submitted == 15 and summary.workers == 2
             frame = store.frame()
-            results[executor] = (store.raw_records(), dict(zip(frame.key, frame.error.fillna(""))),
-                                 set(frame.worker))
+            results[executor] = (store.raw_records(), dict(zip(frame.key, frame.error.fillna(""))), set(frame.worker))
     (local_records, local_errors, _), (dask_records, dask_errors, dask_workers) = results["local"], results["dask"]
     assert dask_records == local_records  # JSON text of every record, byte for byte
     assert dask_errors == local_errors  # failures with the same reasons

@@ -91,8 +91,12 @@ def test_seed_plan_counts_and_roles(ht_plan):
     for case in ht_plan.cases:
         by_block.setdefault((case.block, case.role), 0)
         by_block[case.block, case.role] += 1
-    assert by_block == {("ccd", "training"): 81, ("box-behnken", "training"): 112, ("lhs", "training"): 600,
-                        ("validation", "validation"): 200}
+    assert by_block == {
+        ("ccd", "training"): 81,
+        ("box-behnken", "training"): 112,
+        ("lhs", "training"): 600,
+        ("validation", "validation"): 200,
+    }
     assert len(ht_plan.cases) == 993
     assert len({c.key for c in ht_plan.cases}) == 993
     assert ht_plan.duplicates == {}

@@ -17,7 +17,6 @@ import pytest
 from certkit.study.runner import run_study
 from certkit.study.spec import load_study
 from certkit.study.store import Store
-
 from tests.study.conftest import EVALUATORS, write_study
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -26,15 +25,35 @@ pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="re
 
 def _start(study: Path, evaluator: str, env: dict | None = None) -> subprocess.Popen:
     return subprocess.Popen(
-        [sys.executable, "-m", "certkit.cli", "study", "run", str(study), "--workers", "2",
-         "--evaluator", f"{EVALUATORS}:{evaluator}", "--progress-interval", "0"],
-        cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env={**os.environ, **(env or {})})
+        [
+            sys.executable,
+            "-m",
+            "certkit.cli",
+            "study",
+            "run",
+            str(study),
+            "--workers",
+            "2",
+            "--evaluator",
+            f"{EVALUATORS}:{evaluator}",
+            "--progress-interval",
+            "0",
+        ],
+        cwd=ROOT,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env={**os.environ, **(env or {})},
+    )
 
 
 def _by_values(store: Store) -> dict[str, str]:
     """Record text of each ok case, keyed by its variables (the keys differ between evaluators)."""
-    return {json.dumps(r["variables"], sort_keys=True): json.dumps(r["record"], sort_keys=True)
-            for r in store.rows() if r["status"] == "ok"}
+    return {
+        json.dumps(r["variables"], sort_keys=True): json.dumps(r["record"], sort_keys=True)
+        for r in store.rows()
+        if r["status"] == "ok"
+    }
 
 
 def _ok_records(path: Path) -> dict[str, str]:
@@ -56,8 +75,12 @@ def test_killed_at_random_moments_then_resumed_equals_an_uninterrupted_run(tmp_p
     progress = []
     # the first kill falls anywhere in the start-up (imports, plan, store, worker spawn), the others after a
     # random number of committed cases plus a random fraction of a case (between commits or during one)
-    for sig, lines in ((signal.SIGKILL, 0), (signal.SIGKILL, rng.randint(2, 4)), (signal.SIGINT, rng.randint(2, 4)),
-                       (signal.SIGKILL, rng.randint(2, 4))):
+    for sig, lines in (
+        (signal.SIGKILL, 0),
+        (signal.SIGKILL, rng.randint(2, 4)),
+        (signal.SIGINT, rng.randint(2, 4)),
+        (signal.SIGKILL, rng.randint(2, 4)),
+    ):
         process = _start(study, "sleepy")
         if lines == 0:
             time.sleep(rng.uniform(0.3, 2.0))

@@ -13,7 +13,6 @@ from certkit.errors import UserError
 from certkit.study.runner import run_study, run_study_cases
 from certkit.study.spec import load_study
 from certkit.study.store import Store
-
 from tests.study import evaluators
 from tests.study.conftest import EVALUATORS, write_study
 
@@ -36,8 +35,14 @@ def test_failed_case_recorded_with_its_reason_and_study_continues(small_study, t
     failed = frame[frame.status == "failed"]
     ok = frame[frame.status == "ok"]
     assert len(failed) == (frame[f"var:{AREA}"] > 104.0).sum() > 0 and len(ok) > 0
-    assert all(re.fullmatch(r"RuntimeError: trim did not converge at area 1\d\d\.\d{3} m\^2 "
-                            r"\(at evaluators\.py:\d+ in flaky\)", e) for e in failed.error)
+    assert all(
+        re.fullmatch(
+            r"RuntimeError: trim did not converge at area 1\d\d\.\d{3} m\^2 "
+            r"\(at evaluators\.py:\d+ in flaky\)",
+            e,
+        )
+        for e in failed.error
+    )
     assert failed["resp:objective.cruise_CD"].isna().all() and ok["resp:objective.cruise_CD"].notna().all()
     # not retried on resume ...
     assert _run(small_study, db, FLAKY).submitted == 0
@@ -49,8 +54,10 @@ def test_resume_runs_only_cases_without_result(small_study, tmp_path):
     db = tmp_path / "s.sqlite"
     _run(small_study, db)
     with Store.open(db) as store:  # as a coordinator killed mid-run leaves them: 5 cases pending
-        store._db.execute("UPDATE cases SET status = 'pending', record = NULL WHERE rowid IN "
-                          "(SELECT rowid FROM cases ORDER BY seq DESC LIMIT 5)")
+        store._db.execute(
+            "UPDATE cases SET status = 'pending', record = NULL WHERE rowid IN "
+            "(SELECT rowid FROM cases ORDER BY seq DESC LIMIT 5)"
+        )
     evaluators.CALLS.clear()
     summary = _run(small_study, db)
     assert summary.submitted == len(evaluators.CALLS) == 5
@@ -62,9 +69,11 @@ def test_adding_a_validation_block_runs_only_its_points(tmp_path):
     study = write_study(tmp_path)
     db = tmp_path / "s.sqlite"
     _run(study, db)
-    text = study.read_text().replace("  - {name: lhs, generator: lhs, n: 6, seed: 3}\n",
-                                     "  - {name: lhs, generator: lhs, n: 6, seed: 3}\n"
-                                     "  - {name: check, generator: random, n: 4, seed: 9, role: validation}\n")
+    text = study.read_text().replace(
+        "  - {name: lhs, generator: lhs, n: 6, seed: 3}\n",
+        "  - {name: lhs, generator: lhs, n: 6, seed: 3}\n"
+        "  - {name: check, generator: random, n: 4, seed: 9, role: validation}\n",
+    )
     study.write_text(text)
     evaluators.CALLS.clear()
     summary = _run(study, db)
@@ -100,8 +109,17 @@ def test_frame_and_study_as_the_analysis_reads_them(small_study, tmp_path):
     with Store.open(db) as store:
         frame = store.frame()
         study = store.study()
-    assert list(frame.columns[:9]) == ["key", "block", "role", "status", "error", "wall_s", "worker",
-                                       f"var:{AREA}", f"var:{evaluators.SWEEP}"]
+    assert list(frame.columns[:9]) == [
+        "key",
+        "block",
+        "role",
+        "status",
+        "error",
+        "wall_s",
+        "worker",
+        f"var:{AREA}",
+        f"var:{evaluators.SWEEP}",
+    ]
     assert {"resp:objective.cruise_CD", "resp:constraint.range_margin_m"} <= set(frame.columns)
     assert frame["resp:level.short_period.fwd_mrw.clean"].isna().all()  # None in the record → NaN
     assert study == load_study(small_study)
@@ -146,8 +164,11 @@ def test_export_csv_and_parquet(small_study, tmp_path, cli):
 
 def test_status(small_study, tmp_path, cli):
     cli("study", "run", small_study, "--executor", "serial", "--evaluator", FLAKY)
-    small_study.write_text(small_study.read_text().replace("n: 6, seed: 3", "n: 6, seed: 3}\n  - {name: v, "
-                                                           "generator: random, n: 3, seed: 1, role: validation"))
+    small_study.write_text(
+        small_study.read_text().replace(
+            "n: 6, seed: 3", "n: 6, seed: 3}\n  - {name: v, generator: random, n: 3, seed: 1, role: validation"
+        )
+    )
     out = cli("study", "status", small_study).output
     lines = {line.split()[0]: line.split()[1:] for line in out.splitlines() if line.strip()}
     n_failed = int(lines["ccd"][3]) + int(lines["lhs"][3])
@@ -159,8 +180,7 @@ def test_status(small_study, tmp_path, cli):
 
 
 def test_progress_lines_when_not_a_terminal(small_study, tmp_path, cli):
-    result = cli("study", "run", small_study, "--executor", "serial", "--evaluator", FLAKY,
-                 "--progress-interval", "0")
+    result = cli("study", "run", small_study, "--executor", "serial", "--evaluator", FLAKY, "--progress-interval", "0")
     lines = [line for line in result.output.splitlines() if line.startswith("[")]
     pattern = r"\[\d\d:\d\d:\d\d\] small: (\d+)/15 done, (\d+) failed · [0-9.e+]+ cases/s · ETA \S+"
     assert all(re.fullmatch(pattern, line) for line in lines), lines

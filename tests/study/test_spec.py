@@ -11,7 +11,6 @@ import pytest
 
 from certkit.errors import InputError
 from certkit.study.spec import load_study
-
 from tests.study.conftest import write_study
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -37,13 +36,23 @@ def test_seed_study_constrains_every_subpart_b_and_c_rule():
 
     study = load_study(ROOT / "studies" / "ht-redesign.yaml")
     margins = {c.response: c.min for c in study.constraints if c.response.startswith("rule.")}
-    ids = [r.id for r in discover(DiscoveryOptions())
-           if 101 <= int(r.id.split(".")[1].split("(")[0].rstrip("abcdefgh")) <= 459]
+    ids = [
+        r.id
+        for r in discover(DiscoveryOptions())
+        if 101 <= int(r.id.split(".")[1].split("(")[0].rstrip("abcdefgh")) <= 459
+    ]
     assert ids and all(margins.get(f"rule.{rid}.margin") == 0 for rid in ids)
     responses = {c.response for c in study.constraints}
-    assert {f"control.25.143(h).{case}.{c}" for case in ("takeoff_oei_v2_30deg", "takeoff_aeo_v2_xx_40deg",
-                                                          "en_route_oei_vfto_40deg", "landing_aeo_vref_40deg")
-            for c in ("elevator", "aileron", "rudder")} <= responses
+    assert {
+        f"control.25.143(h).{case}.{c}"
+        for case in (
+            "takeoff_oei_v2_30deg",
+            "takeoff_aeo_v2_xx_40deg",
+            "en_route_oei_vfto_40deg",
+            "landing_aeo_vref_40deg",
+        )
+        for c in ("elevator", "aileron", "rudder")
+    } <= responses
     assert "subcheck.25.125.touchdown_rate_of_descent.margin" in responses
     relaxed = [r.responses for r in study.analysis.level_relaxation]
     assert "level.phugoid.*.takeoff" in relaxed and any(c.startswith("level.phugoid.") for c in responses)
@@ -105,8 +114,12 @@ def test_every_problem_with_its_line(tmp_path):
 
 
 def test_relations_checked_with_lines(tmp_path):
-    text = BAD.split("designs:")[0].replace("[1343 ft^2, 895.4 ft^2]", "[895.4 ft^2, 1343 ft^2]") \
-        .replace("[30 blargs, 40 deg]", "[30 deg, 40 furlongs]").replace("baseline: 0.5", "baseline: 0.3")
+    text = (
+        BAD.split("designs:")[0]
+        .replace("[1343 ft^2, 895.4 ft^2]", "[895.4 ft^2, 1343 ft^2]")
+        .replace("[30 blargs, 40 deg]", "[30 deg, 40 furlongs]")
+        .replace("baseline: 0.5", "baseline: 0.3")
+    )
     text += """\
 designs:
   - {name: a, generator: box-behnken}
@@ -117,8 +130,10 @@ objectives:
 aircraft_typo: x
 """
     message = _errors(tmp_path, text)
-    assert "bad.yaml:6: variables.1: baseline and bounds are written in units of different kinds (angle, length)" \
+    assert (
+        "bad.yaml:6: variables.1: baseline and bounds are written in units of different kinds (angle, length)"
         in message
+    )
     assert "aircraft_typo: unknown field (check the spelling; `certkit study schema` lists the fields)" in message
     (tmp_path / "bad.yaml").write_text(text.replace("aircraft_typo: x\n", "").replace("40 furlongs", "40 deg"))
     with pytest.raises(InputError) as err:

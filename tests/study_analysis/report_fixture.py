@@ -8,9 +8,11 @@ from pathlib import Path
 from certkit.study.analysis.report import analyse, render
 from tests.study_analysis.synthetic import store_frame, synthetic_study
 
-OPTIONS = {"level_relaxation": [{"responses": "level.*.cg2*.*", "max_level": 2}],
-           "uncertainty": [{"responses": "subcheck.*", "percent": 5, "distribution": "normal"}],
-           "gp_max_cases": 150}
+OPTIONS = {
+    "level_relaxation": [{"responses": "level.*.cg2*.*", "max_level": 2}],
+    "uncertainty": [{"responses": "subcheck.*", "percent": 5, "distribution": "normal"}],
+    "gp_max_cases": 150,
+}
 
 
 @lru_cache(maxsize=1)

@@ -24,8 +24,13 @@ VARIABLES = [
     {"path": HT + "aspect_ratio", "lower": 3.70, "upper": 5.54, "baseline": 4.62, "unit_label": ""},
     {"path": HT + "taper", "lower": 0.26, "upper": 0.40, "baseline": 0.33, "unit_label": ""},
     {"path": HT + "thickness_ratio", "lower": 0.071, "upper": 0.106, "baseline": 0.088, "unit_label": ""},
-    {"path": HT + "sweep_quarter_chord", "lower": 27.86 * DEG, "upper": 41.78 * DEG, "baseline": 34.82 * DEG,
-     "unit_label": "rad"},
+    {
+        "path": HT + "sweep_quarter_chord",
+        "lower": 27.86 * DEG,
+        "upper": 41.78 * DEG,
+        "baseline": 34.82 * DEG,
+        "unit_label": "rad",
+    },
     {"path": HT + "area", "lower": 895.4 * FT2, "upper": 1343.0 * FT2, "baseline": 1119.0 * FT2, "unit_label": "m^2"},
     {"path": EL + "span_start", "lower": 0.0, "upper": 0.20, "baseline": 0.0, "unit_label": ""},
     {"path": EL + "span_end", "lower": 0.80, "upper": 1.00, "baseline": 0.93, "unit_label": ""},
@@ -38,11 +43,21 @@ def study_dict(**analysis) -> dict:
     return {
         "name": "synthetic-ht",
         "aircraft": "lta.yaml",
-        "variables": [{"path": v["path"], "baseline": v["baseline"], "bounds": [v["lower"], v["upper"]],
-                       "unit_label": v["unit_label"]} for v in VARIABLES],
+        "variables": [
+            {
+                "path": v["path"],
+                "baseline": v["baseline"],
+                "bounds": [v["lower"], v["upper"]],
+                "unit_label": v["unit_label"],
+            }
+            for v in VARIABLES
+        ],
         "designs": [{"name": "lhs", "generator": "lhs", "n": 10, "seed": 1}],
-        "objectives": [{"response": "objective.cruise_CD"}, {"response": "objective.OEW_kg"},
-                       {"response": "objective.block_fuel_kg"}],
+        "objectives": [
+            {"response": "objective.cruise_CD"},
+            {"response": "objective.OEW_kg"},
+            {"response": "objective.block_fuel_kg"},
+        ],
         "constraints": [
             {"name": "range", "response": "constraint.range_margin_m", "min": 0.0},
             {"name": "elevator travel", "response": "subcheck.25.111.elevator_fraction_of_travel.value", "max": 0.7},
@@ -71,17 +86,22 @@ def true_responses(x: np.ndarray) -> dict[str, np.ndarray]:
     """The synthetic 'true model'."""
     u = unit(x)
     ar, tap, tc, sw, area, e0, e1, cr = u.T
-    cd = 0.0262 + 0.0004 * area - 0.00015 * ar + 0.0002 * tc + 0.0001 * sw ** 2 + 0.00005 * area * tc
+    cd = 0.0262 + 0.0004 * area - 0.00015 * ar + 0.0002 * tc + 0.0001 * sw**2 + 0.00005 * area * tc
     oew = 138_000 * np.exp(0.012 * area + 0.006 * ar - 0.004 * tc + 0.003 * sw)
     fuel = 61_000 + 900 * (cd - 0.0262) / 0.0004 + 0.15 * (oew - 138_000)
     rng_margin = 150_000 - 4.0e6 * (cd - 0.0262) - 3.0 * (oew - 138_000) + 20_000 * tap
-    elev = 0.62 - 0.08 * area - 0.05 * cr - 0.03 * (e1 - e0) + 0.02 * sw + 0.01 * area ** 2
+    elev = 0.62 - 0.08 * area - 0.05 * cr - 0.03 * (e1 - e0) + 0.02 * sw + 0.01 * area**2
     sp = 1.0 + (0.6 * (-area) + 0.3 * sw + 0.9 > 1.2) + (0.6 * (-area) + 0.3 * sw > 0.7)
     sp2 = 1.0 + (0.5 * (-area) - 0.2 * ar + 0.6 > 0.5) + (0.5 * (-area) - 0.2 * ar > 0.6)
-    return {"objective.cruise_CD": cd, "objective.OEW_kg": oew, "objective.block_fuel_kg": fuel,
-            "constraint.range_margin_m": rng_margin, "subcheck.25.111.elevator_fraction_of_travel.value": elev,
-            "level.short_period.fwd_mrw.clean": sp.astype(float),
-            "level.short_period.cg2_mlw.landing": sp2.astype(float)}
+    return {
+        "objective.cruise_CD": cd,
+        "objective.OEW_kg": oew,
+        "objective.block_fuel_kg": fuel,
+        "constraint.range_margin_m": rng_margin,
+        "subcheck.25.111.elevator_fraction_of_travel.value": elev,
+        "level.short_period.fwd_mrw.clean": sp.astype(float),
+        "level.short_period.cg2_mlw.landing": sp2.astype(float),
+    }
 
 
 def sample(n: int, seed: int) -> np.ndarray:
@@ -89,8 +109,9 @@ def sample(n: int, seed: int) -> np.ndarray:
     return b[:, 0] + (b[:, 1] - b[:, 0]) * np.random.default_rng(seed).random((n, len(b)))
 
 
-def frame_of(x: np.ndarray, block: str, role: str, *, fail_every: int = 0, noise: float = 0.0,
-             seed: int = 0) -> pd.DataFrame:
+def frame_of(
+    x: np.ndarray, block: str, role: str, *, fail_every: int = 0, noise: float = 0.0, seed: int = 0
+) -> pd.DataFrame:
     """Cases in the store's format; every ``fail_every``-th case failed (no responses, an error text)."""
     rng = np.random.default_rng(seed)
     resp = true_responses(x)
@@ -117,5 +138,10 @@ def frame_of(x: np.ndarray, block: str, role: str, *, fail_every: int = 0, noise
 
 
 def store_frame(n_train: int = 300, n_val: int = 80, fail_every: int = 25) -> pd.DataFrame:
-    return pd.concat([frame_of(sample(n_train, 1), "lhs", "training", fail_every=fail_every),
-                      frame_of(sample(n_val, 2), "random", "validation", fail_every=fail_every)], ignore_index=True)
+    return pd.concat(
+        [
+            frame_of(sample(n_train, 1), "lhs", "training", fail_every=fail_every),
+            frame_of(sample(n_val, 2), "random", "validation", fail_every=fail_every),
+        ],
+        ignore_index=True,
+    )

@@ -3,7 +3,6 @@ in-page surrogate values follow the sliders exactly as the Python surrogates do,
 
 from __future__ import annotations
 
-
 import numpy as np
 import pytest
 
@@ -28,8 +27,9 @@ def test_profiler_follows_the_sliders_as_the_surrogates_do(browser, tmp_path):
         i = int(rng.integers(n_var))
         v = analysis.view.variables[i]
         target = v.lower + (v.upper - v.lower) * float(rng.random())
-        page.eval_on_selector(f"#pslider-{i}", "(el, t) => { el.value = t; el.dispatchEvent(new Event('input')); }",
-                              target)
+        page.eval_on_selector(
+            f"#pslider-{i}", "(el, t) => { el.value = t; el.dispatchEvent(new Event('input')); }", target
+        )
         x = np.array(page.eval_on_selector_all("input[type=range]", "els => els.map(e => parseFloat(e.value))"))
         assert x[i] == pytest.approx(target, rel=1e-12)
         shown = page.eval_on_selector_all("td.pred", "els => els.map(e => parseFloat(e.dataset.value))")

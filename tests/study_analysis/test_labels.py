@@ -27,7 +27,7 @@ def test_response_words_and_aviation_units():
 
 
 def test_declared_units_of_the_variables():
-    assert display_factor("ft^2") == pytest.approx(0.3048 ** 2, rel=1e-12)
+    assert display_factor("ft^2") == pytest.approx(0.3048**2, rel=1e-12)
     assert display_factor("deg") == pytest.approx(math.pi / 180, rel=1e-12)
     assert display_factor("") == 1.0 and display_factor("no-such-unit") == 1.0
 

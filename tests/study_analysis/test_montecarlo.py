@@ -26,10 +26,17 @@ def irwin_hall_cdf(t: float, n: int) -> float:
 
 
 def _view(constraints, objectives=(), **analysis):
-    return Study.model_validate({
-        "name": "unit-box", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
-        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
-        "objectives": [{"response": o} for o in objectives], "constraints": constraints, "analysis": analysis or None})
+    return Study.model_validate(
+        {
+            "name": "unit-box",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+            "objectives": [{"response": o} for o in objectives],
+            "constraints": constraints,
+            "analysis": analysis or None,
+        }
+    )
 
 
 def _exact(name, fn, n=60, seed=0):
@@ -57,8 +64,10 @@ def test_half_space_probability_matches_irwin_hall():
 
 def test_level_relaxation_and_preferred_stage():
     # a continuous 'level' 1 + 2·x0: Level 1 where < 1.5 (x0 < 0.25), Level ≤ 2 where < 2.5 (x0 < 0.75)
-    view = _view([{"name": "sp", "response": "level.short_period.cg2.clean", "max": 1}],
-                 level_relaxation=[{"responses": "level.*.cg2.*", "max_level": 2}])
+    view = _view(
+        [{"name": "sp", "response": "level.short_period.cg2.clean", "max": 1}],
+        level_relaxation=[{"responses": "level.*.cg2.*", "max_level": 2}],
+    )
     sur = {"level.short_period.cg2.clean": _exact("level.short_period.cg2.clean", lambda x: 1 + 2 * x[:, 0])}
     mc = run_monte_carlo(view, sur, n=100_000, chunk=25_000, seed=2)
     (o,) = mc.constraints
@@ -70,8 +79,10 @@ def test_level_relaxation_and_preferred_stage():
 
 def test_probability_under_uniform_model_uncertainty():
     # x0·(1 + δ) ≤ 0.5, δ ~ U(−0.2, 0.2): P = (1/0.4)∫ 0.5/(1 + δ) dδ = 1.25 ln 1.5; adverse bound x0 ≤ 0.5/1.2
-    view = _view([{"name": "c", "response": "y", "max": 0.5}],
-                 uncertainty=[{"responses": "y", "percent": 20, "distribution": "uniform"}])
+    view = _view(
+        [{"name": "c", "response": "y", "max": 0.5}],
+        uncertainty=[{"responses": "y", "percent": 20, "distribution": "uniform"}],
+    )
     mc = run_monte_carlo(view, {"y": _exact("y", lambda x: x[:, 0])}, n=200_000, chunk=50_000, seed=3)
     (o,) = mc.constraints
     se = math.sqrt(0.25 / mc.n)
@@ -83,8 +94,11 @@ def test_probability_under_uniform_model_uncertainty():
 
 def test_memory_bounded_by_the_chunk():
     view = _view([{"name": "sum", "response": "s", "max": 4.0}], objectives=("a", "b"))
-    sur = {"s": _exact("s", _sum), "a": _exact("a", lambda x: x[:, 0] + x[:, 1]),
-           "b": _exact("b", lambda x: 2 - x[:, 0] + 0.5 * x[:, 2])}
+    sur = {
+        "s": _exact("s", _sum),
+        "a": _exact("a", lambda x: x[:, 0] + x[:, 1]),
+        "b": _exact("b", lambda x: 2 - x[:, 0] + 0.5 * x[:, 2]),
+    }
     peaks = []
     for n in (100_000, 400_000):
         tracemalloc.start()
@@ -121,8 +135,9 @@ def test_direct_check_and_optima_through_the_runner(monkeypatch):
     view = _view([{"name": "sum", "response": "s", "max": t}], objectives=("a",))
     sur = {"s": _exact("s", _sum), "a": _exact("a", lambda x: x[:, 0] - x[:, 1])}
     mc = run_monte_carlo(view, sur, n=50_000, chunk=25_000, seed=4)
-    calls = _install_runner(monkeypatch, lambda x: {"s": x.sum(axis=1), "a": x[:, 0] - x[:, 1]},
-                            fail=lambda x: x[:, 7] > 0.9)
+    calls = _install_runner(
+        monkeypatch, lambda x: {"s": x.sum(axis=1), "a": x[:, 0] - x[:, 1]}, fail=lambda x: x[:, 7] > 0.9
+    )
     check = direct_check(view, object(), sur, mc, n=400, seed=5)
     assert calls[0] == ("check", "check", 400)
     assert 0 < check.n_failed < 80 and check.n_ok + check.n_failed == 400

@@ -14,10 +14,16 @@ D = 4
 
 
 def _study(constraints, objectives) -> Study:
-    return Study.model_validate({
-        "name": "analytic", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
-        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
-        "objectives": [{"response": o} for o in objectives], "constraints": constraints})
+    return Study.model_validate(
+        {
+            "name": "analytic",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+            "objectives": [{"response": o} for o in objectives],
+            "constraints": constraints,
+        }
+    )
 
 
 def _exact(name, fn):
@@ -32,8 +38,10 @@ def test_slsqp_finds_the_constrained_minimum_of_a_quadratic():
     (the gradient parallel to the constraint's normal at the active constraint) x0 = x1 = 0.5, x2 = 0.3, x3 free,
     f = 0.18. Multi-started SLSQP reaches it to 10⁻⁴; the best of 2000 Monte Carlo samples does not."""
     study = _study([{"name": "sum", "response": "g", "max": 1.0}], ["f"])
-    sur = {"f": _exact("f", lambda x: (x[:, 0] - 0.8) ** 2 + (x[:, 1] - 0.8) ** 2 + (x[:, 2] - 0.3) ** 2),
-           "g": _exact("g", lambda x: x[:, 0] + x[:, 1])}
+    sur = {
+        "f": _exact("f", lambda x: (x[:, 0] - 0.8) ** 2 + (x[:, 1] - 0.8) ** 2 + (x[:, 2] - 0.3) ** 2),
+        "g": _exact("g", lambda x: x[:, 0] + x[:, 1]),
+    }
     mc = run_monte_carlo(study, sur, n=2000, chunk=2000, seed=5)
     sampled = next(o for o in mc.optima if o.stage == "constrained")
     problem = SurrogateProblem(study, sur, "constrained")
@@ -52,8 +60,10 @@ def test_slsqp_keeps_out_of_an_impossible_region():
     """The same problem with the corner x0 > 0.4 impossible (a validity margin 0.4 − x0): the optimum moves to
     x0 = 0.4, x1 = 0.6 (the sum constraint still active: minimise (0.4 − 0.8)² + (x1 − 0.8)² with x1 ≤ 0.6)."""
     study = _study([{"name": "sum", "response": "g", "max": 1.0}], ["f"])
-    sur = {"f": _exact("f", lambda x: (x[:, 0] - 0.8) ** 2 + (x[:, 1] - 0.8) ** 2 + (x[:, 2] - 0.3) ** 2),
-           "g": _exact("g", lambda x: x[:, 0] + x[:, 1])}
+    sur = {
+        "f": _exact("f", lambda x: (x[:, 0] - 0.8) ** 2 + (x[:, 1] - 0.8) ** 2 + (x[:, 2] - 0.3) ** 2),
+        "g": _exact("g", lambda x: x[:, 0] + x[:, 1]),
+    }
     problem = SurrogateProblem(study, sur, "constrained", valid_margin=lambda x: 0.4 - x[:, 0])
     best = local_optimum(problem, "f", "min", np.random.default_rng(3).random((5, D)) * 0.4)
     assert best.x[:3] == pytest.approx([0.4, 0.6, 0.3], abs=1e-4)

@@ -18,10 +18,16 @@ FUNCTIONS = {"s": lambda x: x.sum(axis=1), "a": lambda x: x[:, 0], "f": lambda x
 
 
 def _study(constraints) -> Study:
-    return Study.model_validate({
-        "name": "analytic", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
-        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
-        "objectives": [{"response": "f"}], "constraints": constraints})
+    return Study.model_validate(
+        {
+            "name": "analytic",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+            "objectives": [{"response": "f"}],
+            "constraints": constraints,
+        }
+    )
 
 
 def _setup(study):
@@ -29,17 +35,30 @@ def _setup(study):
     frame = pd.DataFrame({f"var:v.x{i}": x[:, i] for i in range(D)})
     for name, fn in FUNCTIONS.items():
         frame[f"resp:{name}"] = fn(x)
-    frame["key"], frame["block"], frame["role"], frame["status"], frame["error"] = range(60), "lhs", "training", "ok", None
-    sur = {n: fit_response(n, study.bounds, x, fn(x), x[:0], np.empty(0), families=("polynomial",))
-           for n, fn in FUNCTIONS.items()}
+    frame["key"], frame["block"], frame["role"], frame["status"], frame["error"] = (
+        range(60),
+        "lhs",
+        "training",
+        "ok",
+        None,
+    )
+    sur = {
+        n: fit_response(n, study.bounds, x, fn(x), x[:0], np.empty(0), families=("polynomial",))
+        for n, fn in FUNCTIONS.items()
+    }
     return cases(frame, study), sur
 
 
 def test_a_constraint_no_design_meets_is_a_show_stopper_with_its_reason():
     """x0 ≥ 2 on the unit cube: P = 0; the least violation over the samples is 2 − max x0 ≈ 1 and no case meets
     it. A constraint whose response has no surrogate is listed as not judged, with the reason."""
-    study = _study([{"name": "sum", "response": "s", "max": 1.5}, {"name": "never", "response": "a", "min": 2.0},
-                    {"name": "unknown", "response": "u", "max": 1.0}])
+    study = _study(
+        [
+            {"name": "sum", "response": "s", "max": 1.5},
+            {"name": "never", "response": "a", "min": 2.0},
+            {"name": "unknown", "response": "u", "max": 1.0},
+        ]
+    )
     cs, sur = _setup(study)
     usable = study.model_copy(update={"constraints": study.constraints[:2]})
     mc = run_monte_carlo(usable, sur, n=20_000, chunk=20_000, seed=1)

@@ -25,10 +25,15 @@ def _true(x):
 
 
 def _study() -> Study:
-    return Study.model_validate({
-        "name": "boundary", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
-        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
-        "constraints": [{"name": "y", "response": "y", "max": LIMIT}]})
+    return Study.model_validate(
+        {
+            "name": "boundary",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+            "constraints": [{"name": "y", "response": "y", "max": LIMIT}],
+        }
+    )
 
 
 def _near_boundary_rmse(s, rng):
@@ -38,8 +43,9 @@ def _near_boundary_rmse(s, rng):
 
 
 def _fit(x):
-    return fit_response("y", np.array([[0.0, 1.0]] * D), x, _true(x), x[:0], np.empty(0),
-                        families=("Gaussian process",))
+    return fit_response(
+        "y", np.array([[0.0, 1.0]] * D), x, _true(x), x[:0], np.empty(0), families=("Gaussian process",)
+    )
 
 
 def test_refinement_reduces_the_error_near_a_known_boundary():
@@ -83,8 +89,12 @@ def _frame(x, block, role):
 
 def test_refine_runs_the_true_model_and_reports_the_probabilities():
     rng = np.random.default_rng(2)
-    store = _Store(pd.concat([_frame(rng.random((30, D)), "lhs", "training"),
-                              _frame(rng.random((10, D)), "validation", "validation")], ignore_index=True))
+    store = _Store(
+        pd.concat(
+            [_frame(rng.random((30, D)), "lhs", "training"), _frame(rng.random((10, D)), "validation", "validation")],
+            ignore_index=True,
+        )
+    )
     calls = []
 
     def run_cases(study, store_, points, *, block, role):
@@ -99,8 +109,9 @@ def test_refine_runs_the_true_model_and_reports_the_probabilities():
     # P(sin 5x₀ + x₁² ≤ 0.8) by quadrature on a fine grid: the refined estimate is nearer it or within its interval
     g = (np.arange(2000) + 0.5) / 2000
     exact = float(np.mean(np.sin(5 * g[:, None]) + g[None, :] ** 2 <= LIMIT))
-    assert m.interval_after[0] - 0.01 <= exact <= m.interval_after[1] + 0.01 or \
-        abs(m.p_after - exact) < abs(m.p_before - exact)
+    assert m.interval_after[0] - 0.01 <= exact <= m.interval_after[1] + 0.01 or abs(m.p_after - exact) < abs(
+        m.p_before - exact
+    )
     assert result.joint.p_after == m.p_after
     assert refine(_study(), store, 4, samples=10_000, run_cases=run_cases).block == "refine-2"
 
@@ -112,8 +123,10 @@ def test_surrogates_file_api_and_predict_command(tmp_path):
     study = _study()
     x = rng.random((120, D))
     y = _true(x)
-    sur = {f"y_{fam[:3]}": fit_response(f"y_{fam[:3]}", study.bounds, x, y, x[:0], y[:0], families=(fam,))
-           for fam in ("polynomial", "neural network", "Gaussian process")}
+    sur = {
+        f"y_{fam[:3]}": fit_response(f"y_{fam[:3]}", study.bounds, x, y, x[:0], y[:0], families=(fam,))
+        for fam in ("polynomial", "neural network", "Gaussian process")
+    }
     frame = _frame(x, "lhs", "training")
     impossible = x[:, 0] + x[:, 1] > 1.5
     frame.loc[impossible, "status"] = "failed"

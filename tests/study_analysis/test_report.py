@@ -60,8 +60,16 @@ def test_report_content():
     assert "trim did not converge at 25.331(c)(2) condition 3" in html
     n_failed = int((store_frame(n_train=200, n_val=60)["status"] == "failed").sum())
     assert f"{n_failed} failed cases, excluded from fitting" in html
-    for heading in ("Surrogates and goodness of fit", "Constraints ranked by activity", "Joint probability by stage",
-                    "Pareto fronts", "Optima", "Prediction profiler", "Global sensitivity", "Provenance"):
+    for heading in (
+        "Surrogates and goodness of fit",
+        "Constraints ranked by activity",
+        "Joint probability by stage",
+        "Pareto fronts",
+        "Optima",
+        "Prediction profiler",
+        "Global sensitivity",
+        "Provenance",
+    ):
         assert heading in html
     assert "Direct check not run (--no-check)" in html
     # every analysed response has a surrogate; the ranking puts the least probable constraint first
@@ -75,16 +83,21 @@ def test_report_content():
 
 def test_profiler_data_reproduces_the_surrogates():
     analysis, html = small_report()
-    data = json.loads(re.search(r'<script type="application/json" id="profiler-data">(.*?)</script>', html,
-                                re.S).group(1))
+    data = json.loads(
+        re.search(r'<script type="application/json" id="profiler-data">(.*?)</script>', html, re.S).group(1)
+    )
     assert [v["path"] for v in data["variables"]] == [v["path"] for v in VARIABLES]
     x = sample(10, 9)
     for r in data["responses"]:
         # a near-interpolating Gaussian process sums weights α of ±3·10⁴ to values of 10⁵: the page's loop and
         # scikit-learn's matrix product, adding in other orders, agree to ~10⁻⁸ (1e-9 where no such cancellation)
         gp = r["model"]["kind"] == "gp"
-        np.testing.assert_allclose(evaluate_export(r["model"], x), analysis.surrogates[r["name"]].predict(x),
-                                   rtol=1e-7 if gp else 1e-9, atol=1e-12)
+        np.testing.assert_allclose(
+            evaluate_export(r["model"], x),
+            analysis.surrogates[r["name"]].predict(x),
+            rtol=1e-7 if gp else 1e-9,
+            atol=1e-12,
+        )
 
 
 def test_report_command(tmp_path, monkeypatch):
@@ -99,8 +112,9 @@ def test_report_command(tmp_path, monkeypatch):
 
     monkeypatch.setattr(analysis_cli, "open_study", lambda path, store_path: (synthetic_study(), "STORE", frame))
     monkeypatch.setattr("certkit.study.analysis.report.write_study_report", write_study_report)
-    result = CliRunner().invoke(analysis_cli.report_command,
-                                [str(study), "--out", str(tmp_path / "out"), "--samples", "2e4", "--no-check"])
+    result = CliRunner().invoke(
+        analysis_cli.report_command, [str(study), "--out", str(tmp_path / "out"), "--samples", "2e4", "--no-check"]
+    )
     assert result.exit_code == 0, result.output
     assert seen["samples"] == 20_000 and seen["check"] is False and seen["store"] == "STORE"
     assert seen["out"] == tmp_path / "out" and seen["frame"] is frame

@@ -51,10 +51,16 @@ def _irwin_hall(t: float, n: int) -> float:
 
 
 def _unit_study(constraints, objectives=()) -> Study:
-    return Study.model_validate({
-        "name": "unit-box", "aircraft": "a.yaml", "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
-        "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
-        "objectives": [{"response": o} for o in objectives], "constraints": constraints})
+    return Study.model_validate(
+        {
+            "name": "unit-box",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(D)],
+            "objectives": [{"response": o} for o in objectives],
+            "constraints": constraints,
+        }
+    )
 
 
 def _exact(name, fn):
@@ -70,13 +76,20 @@ def test_wilson_intervals_cover_closed_form_probabilities():
     probability in 91–99 % of the runs (3 binomial standard deviations of 300 runs around 95 %), and never be of
     zero width. The Wald interval p ± 1.96√(p(1−p)/N) covers P = 0.02 in under 90 % of the runs (Brown, Cai &
     DasGupta 2001, Fig. 1): the test can tell the two apart."""
-    constraints = [{"name": "rare", "response": "a", "max": 0.02}, {"name": "triangle", "response": "b", "max": 0.5},
-                   {"name": "sum", "response": "c", "max": 2.2}, {"name": "always", "response": "a", "min": -1.0},
-                   {"name": "never", "response": "a", "min": 2.0}]
+    constraints = [
+        {"name": "rare", "response": "a", "max": 0.02},
+        {"name": "triangle", "response": "b", "max": 0.5},
+        {"name": "sum", "response": "c", "max": 2.2},
+        {"name": "always", "response": "a", "min": -1.0},
+        {"name": "never", "response": "a", "min": 2.0},
+    ]
     exact = {"rare": 0.02, "triangle": 0.125, "sum": _irwin_hall(2.2, 3), "always": 1.0, "never": 0.0}
     study = _unit_study(constraints)
-    sur = {"a": _exact("a", lambda x: x[:, 0]), "b": _exact("b", lambda x: x[:, 0] + x[:, 1]),
-           "c": _exact("c", lambda x: x.sum(axis=1))}
+    sur = {
+        "a": _exact("a", lambda x: x[:, 0]),
+        "b": _exact("b", lambda x: x[:, 0] + x[:, 1]),
+        "c": _exact("c", lambda x: x.sum(axis=1)),
+    }
     runs, n = 300, 150
     covered = dict.fromkeys(exact, 0)
     wald_covered = 0
@@ -131,8 +144,11 @@ def test_impossible_designs_masked_before_monte_carlo_and_optima():
     ok = frame["status"] == "ok"
     x = frame.loc[ok, [f"var:{v.path}" for v in study.variables]].to_numpy()
     y = frame.loc[ok, "resp:objective.cruise_CD"].to_numpy()
-    sur = {"objective.cruise_CD": fit_response("objective.cruise_CD", study.bounds, x, y, x[:0], y[:0],
-                                               families=("polynomial",))}
+    sur = {
+        "objective.cruise_CD": fit_response(
+            "objective.cruise_CD", study.bounds, x, y, x[:0], y[:0], families=("polynomial",)
+        )
+    }
     plain = run_monte_carlo(study, sur, n=40_000, chunk=20_000, seed=3)
     masked = run_monte_carlo(study, sur, n=40_000, chunk=20_000, seed=3, valid=validity.valid)
     assert masked.n_drawn == 40_000 and masked.masked / masked.n_drawn == pytest.approx(1 / 8, abs=0.01)

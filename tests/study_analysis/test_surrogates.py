@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from certkit.study.analysis.export import evaluate_export, export_surrogate
 from certkit.study.analysis.cases import cases
+from certkit.study.analysis.export import evaluate_export, export_surrogate
 from certkit.study.analysis.surrogates import fit_response, n_polynomial_terms
 from tests.study_analysis.synthetic import VARIABLES, store_frame, synthetic_study
 
@@ -81,13 +81,16 @@ def test_failed_cases_excluded_and_counted_and_noise_flagged():
     _, y, missing = cases(frame, view).xy("training", "objective.OEW_kg")
     assert missing == 5 and len(y) == 85
     rng = np.random.default_rng(0)
-    noise = fit_response("noise", view.bounds, x, rng.normal(size=len(x)), x[:20], rng.normal(size=20),
-                         families=("polynomial",))
+    noise = fit_response(
+        "noise", view.bounds, x, rng.normal(size=len(x)), x[:20], rng.normal(size=20), families=("polynomial",)
+    )
     assert noise.flagged
 
 
-@pytest.mark.parametrize("families,log", [(("polynomial",), False), (("polynomial",), True),
-                                          (("neural network",), False), (("Gaussian process",), True)])
+@pytest.mark.parametrize(
+    "families,log",
+    [(("polynomial",), False), (("polynomial",), True), (("neural network",), False), (("Gaussian process",), True)],
+)
 def test_exported_model_reproduces_sklearn(families, log):
     rng = np.random.default_rng(2)
     bounds = np.array([[v["lower"], v["upper"]] for v in VARIABLES])

@@ -41,7 +41,10 @@ def table_arrays(table: ET.Element) -> tuple[list[str], np.ndarray, np.ndarray |
         return names, arr[:, 0], None, arr[:, 1]
     cols = np.array(rows[0])
     body = np.array(rows[1:])
-    order = {v.get("lookup", "row" if i == 0 else "column"): n for i, (v, n) in enumerate(zip(table.findall("independentVar"), names))}
+    order = {
+        v.get("lookup", "row" if i == 0 else "column"): n
+        for i, (v, n) in enumerate(zip(table.findall("independentVar"), names))
+    }
     return [order["row"], order["column"]], body[:, 0], cols, body[:, 1:]
 
 

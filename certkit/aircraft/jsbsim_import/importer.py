@@ -34,8 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from certkit import atmosphere as isa
-from certkit.errors import UserError
 from certkit.aircraft.jsbsim_import.functions import Unsupported, evaluate, properties_used, table_arrays
+from certkit.errors import UserError
 from certkit.units import FT, G0, LB, LBF
 
 IN = 0.0254
@@ -89,8 +89,10 @@ def _location(el, path, what: str) -> np.ndarray:
     unit = (el.get("unit") or "IN").upper()
     if unit not in _LENGTH:
         raise _fail(path, f"{what}: unit {unit!r} not understood")
-    return np.array([_number(el.find(a), path, f"{what}/{a}") if el.find(a) is not None else 0.0
-                     for a in ("x", "y", "z")]) * _LENGTH[unit]
+    return (
+        np.array([_number(el.find(a), path, f"{what}/{a}") if el.find(a) is not None else 0.0 for a in ("x", "y", "z")])
+        * _LENGTH[unit]
+    )
 
 
 def read_xml(path: str | Path) -> ET.Element:
@@ -109,6 +111,7 @@ def read_xml(path: str | Path) -> ET.Element:
 
 # --- mass --------------------------------------------------------------------------------------------------------
 
+
 def _point_tensor(mass: float, d_body: np.ndarray) -> np.ndarray:
     return mass * (float(d_body @ d_body) * np.eye(3) - np.outer(d_body, d_body))
 
@@ -122,28 +125,40 @@ def mass_properties(root, path, unmapped: list[str]) -> tuple[float, np.ndarray,
     cg_el = next((loc for loc in mb.findall("location") if loc.get("name") == "CG"), None)
     items = [("empty airplane", empty, _location(cg_el, path, "mass_balance/location CG"))]
     for pm in mb.findall("pointmass"):
-        items.append((f"point mass {pm.get('name', '')}".strip(),
-                      _quantity(pm.find("weight"), path, "pointmass/weight", _MASS, "LBS"),
-                      _location(pm.find("location"), path, "pointmass/location")))
+        items.append(
+            (
+                f"point mass {pm.get('name', '')}".strip(),
+                _quantity(pm.find("weight"), path, "pointmass/weight", _MASS, "LBS"),
+                _location(pm.find("location"), path, "pointmass/location"),
+            )
+        )
     prop = root.find("propulsion")
     for i, tank in enumerate(prop.findall("tank") if prop is not None else []):
         contents = tank.find("contents")
         if contents is not None:
             m = _quantity(contents, path, f"tank {i} contents", _MASS, "LBS")
             if m > 0:
-                items.append((f"tank {i} ({tank.get('type', 'FUEL').lower()})", m,
-                              _location(tank.find("location"), path, f"tank {i} location")))
+                items.append(
+                    (
+                        f"tank {i} ({tank.get('type', 'FUEL').lower()})",
+                        m,
+                        _location(tank.find("location"), path, f"tank {i} location"),
+                    )
+                )
         if tank.find("radius") is not None:
             unmapped.append(f"tank {i}: its radius (own inertia of the fuel) is not modelled; the fuel is a point mass")
     total = sum(m for _, m, _ in items)
     cg = sum(m * x for _, m, x in items) / total
-    get = lambda tag: _quantity(mb.find(tag), path, f"mass_balance/{tag}", _INERTIA, "SLUG*FT2") if mb.find(tag) is not None else 0.0  # noqa: E731
+    get = lambda tag: (  # noqa: E731
+        _quantity(mb.find(tag), path, f"mass_balance/{tag}", _INERTIA, "SLUG*FT2") if mb.find(tag) is not None else 0.0
+    )
     ixx, iyy, izz, ixy, ixz, iyz = (get(t) for t in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"))
     if mb.get("negated_crossproduct_inertia", "true").lower() == "false":  # the products ∫xy dm … themselves
         J = np.array([[ixx, -ixy, -ixz], [-ixy, iyy, -iyz], [-ixz, -iyz, izz]])
     else:  # JSBSim's default: the tensor's elements, given in the structural frame (xy, yz change sign in body axes)
         J = np.array([[ixx, -ixy, ixz], [-ixy, iyy, -iyz], [ixz, -iyz, izz]]) * np.array(
-            [[1, -1, 1], [-1, 1, -1], [1, -1, 1]])
+            [[1, -1, 1], [-1, 1, -1], [1, -1, 1]]
+        )
     for _, m, x in items:
         d = (x - cg) * np.array([-1.0, 1.0, -1.0])  # airplane frame → body axes (x forward, z down)
         J = J + _point_tensor(m, d)
@@ -153,10 +168,15 @@ def mass_properties(root, path, unmapped: list[str]) -> tuple[float, np.ndarray,
 
 # --- propulsion --------------------------------------------------------------------------------------------------
 
+
 def _engine_file(path: Path, name: str) -> Path | None:
     here = path.parent
-    for candidate in (here / "Engines" / f"{name}.xml", here / "engine" / f"{name}.xml", here / f"{name}.xml",
-                      here.parent.parent / "engine" / f"{name}.xml"):
+    for candidate in (
+        here / "Engines" / f"{name}.xml",
+        here / "engine" / f"{name}.xml",
+        here / f"{name}.xml",
+        here.parent.parent / "engine" / f"{name}.xml",
+    ):
         if candidate.is_file():
             return candidate
     return None
@@ -166,8 +186,10 @@ def _turbine_deck(engine_path: Path, unmapped: list[str]) -> tuple[dict, float, 
     """(deck dict, military thrust N, bypass ratio) of a JSBSim turbine engine file, None if not a turbine."""
     root = ET.parse(engine_path).getroot()
     if root.tag != "turbine_engine":
-        unmapped.append(f"engine {engine_path.name}: <{root.tag}> is not a turbine engine; not mapped (certkit's "
-                        "ideal thrust is used)")
+        unmapped.append(
+            f"engine {engine_path.name}: <{root.tag}> is not a turbine engine; not mapped (certkit's "
+            "ideal thrust is used)"
+        )
         return None
     mil = _quantity(root.find("milthrust"), engine_path, "milthrust", {"LBS": LBF, "N": 1.0}, "LBS")
     bleed = float(root.findtext("bleed", "0") or 0)
@@ -198,10 +220,14 @@ def _turbine_deck(engine_path: Path, unmapped: list[str]) -> tuple[dict, float, 
             gain = (mil - idle_thrust) * bilinear(mm, am, milt, m, a)
             per_mach.append([(idle_thrust + gain * t * t) * (1.0 - bleed) for t in throttles])
         thrust.append(per_mach)
-    deck = {"altitude": [float(a * FT) for a in alts_ft], "mach": [float(m) for m in machs],
-            "throttle": [float(t) for t in throttles], "thrust": thrust,
-            "source": f"JSBSim turbine engine {engine_path.name}: (idle + (mil − idle) MilThrust(M, h) throttle²)"
-                      f"(1 − bleed {bleed:g}), density altitude read as ISA altitude"}
+    deck = {
+        "altitude": [float(a * FT) for a in alts_ft],
+        "mach": [float(m) for m in machs],
+        "throttle": [float(t) for t in throttles],
+        "thrust": thrust,
+        "source": f"JSBSim turbine engine {engine_path.name}: (idle + (mil − idle) MilThrust(M, h) throttle²)"
+        f"(1 − bleed {bleed:g}), density altitude read as ISA altitude",
+    }
     return deck, mil, bypass
 
 
@@ -222,12 +248,20 @@ def propulsion(root, path: Path, unmapped: list[str]) -> dict | None:
             unit = math.pi / 180 if (orient.get("unit") or "RAD").upper() == "DEG" else 1.0
             pitch = float(orient.findtext("pitch", "0")) * unit
             yaw = float(orient.findtext("yaw", "0")) * unit
-        engines.append({"name": f"engine {k + 1}", "position": {"x": float(loc[0]), "y": float(loc[1]), "z": float(loc[2])},
-                        "thrust_angle": pitch, "toe_angle": yaw})
+        engines.append(
+            {
+                "name": f"engine {k + 1}",
+                "position": {"x": float(loc[0]), "y": float(loc[1]), "z": float(loc[2])},
+                "thrust_angle": pitch,
+                "toe_angle": yaw,
+            }
+        )
         file = _engine_file(path, e.get("file", ""))
         if file is None:
-            unmapped.append(f"engine {k + 1}: engine file {e.get('file')!r} not found next to the aircraft or in "
-                            "the JSBSim engine folder")
+            unmapped.append(
+                f"engine {k + 1}: engine file {e.get('file')!r} not found next to the aircraft or in "
+                "the JSBSim engine folder"
+            )
             decks.append(None)
             continue
         if thruster.get("file", "direct") != "direct":
@@ -246,15 +280,39 @@ def propulsion(root, path: Path, unmapped: list[str]) -> dict | None:
 # --- aerodynamics ------------------------------------------------------------------------------------------------
 
 _KNOWN = {
-    "aero/qbar-psf", "metrics/Sw-sqft", "metrics/bw-ft", "metrics/cbarw-ft", "velocities/mach", "aero/alpha-rad",
-    "aero/beta-rad", "aero/bi2vel", "aero/ci2vel", "velocities/p-aero-rad_sec", "velocities/q-aero-rad_sec",
-    "velocities/r-aero-rad_sec", "aero/alphadot-rad_sec", "fcs/elevator-pos-rad", "fcs/left-aileron-pos-rad",
-    "fcs/right-aileron-pos-rad", "fcs/rudder-pos-rad", "fcs/mag-elevator-pos-rad", "aero/cl-squared",
-    "aero/h_b-mac-ft", "aero/h_b-cg-ft", "aero/alpha-deg", "aero/beta-deg", "aero/mag-beta-rad",
+    "aero/qbar-psf",
+    "metrics/Sw-sqft",
+    "metrics/bw-ft",
+    "metrics/cbarw-ft",
+    "velocities/mach",
+    "aero/alpha-rad",
+    "aero/beta-rad",
+    "aero/bi2vel",
+    "aero/ci2vel",
+    "velocities/p-aero-rad_sec",
+    "velocities/q-aero-rad_sec",
+    "velocities/r-aero-rad_sec",
+    "aero/alphadot-rad_sec",
+    "fcs/elevator-pos-rad",
+    "fcs/left-aileron-pos-rad",
+    "fcs/right-aileron-pos-rad",
+    "fcs/rudder-pos-rad",
+    "fcs/mag-elevator-pos-rad",
+    "aero/cl-squared",
+    "aero/h_b-mac-ft",
+    "aero/h_b-cg-ft",
+    "aero/alpha-deg",
+    "aero/beta-deg",
+    "aero/mag-beta-rad",
 }
 #: configuration properties held at zero (retracted) in the imported clean table
-_CONFIG = {"fcs/flap-pos-deg": "flaps", "fcs/flap-pos-norm": "flaps", "gear/gear-pos-norm": "landing gear",
-           "fcs/speedbrake-pos-norm": "speedbrake", "fcs/spoiler-pos-norm": "spoilers"}
+_CONFIG = {
+    "fcs/flap-pos-deg": "flaps",
+    "fcs/flap-pos-norm": "flaps",
+    "gear/gear-pos-norm": "landing gear",
+    "fcs/speedbrake-pos-norm": "speedbrake",
+    "fcs/spoiler-pos-norm": "spoilers",
+}
 _NORMALISE = {"DRAG": "S", "SIDE": "S", "LIFT": "S", "ROLL": "b", "PITCH": "c", "YAW": "b"}
 
 
@@ -272,18 +330,32 @@ class _Aero:
         alpha, beta = state["alpha"], state["beta"]
         b_ft, c_ft = self.b / FT, self.c / FT
         V_fps = V / FT
-        p = {"aero/qbar-psf": q, "metrics/Sw-sqft": self.S / (FT * FT), "metrics/bw-ft": b_ft,
-             "metrics/cbarw-ft": c_ft, "velocities/mach": state["mach"], "aero/alpha-rad": alpha,
-             "aero/alpha-deg": math.degrees(alpha), "aero/beta-rad": beta, "aero/beta-deg": math.degrees(beta),
-             "aero/mag-beta-rad": abs(beta), "aero/bi2vel": b_ft / (2 * V_fps), "aero/ci2vel": c_ft / (2 * V_fps),
-             "velocities/p-aero-rad_sec": state["p"] * 2 * V_fps / b_ft,
-             "velocities/q-aero-rad_sec": state["q"] * 2 * V_fps / c_ft,
-             "velocities/r-aero-rad_sec": state["r"] * 2 * V_fps / b_ft,
-             "aero/alphadot-rad_sec": state["alphadot"] * 2 * V_fps / c_ft,
-             "fcs/elevator-pos-rad": state["elevator"], "fcs/mag-elevator-pos-rad": abs(state["elevator"]),
-             "fcs/left-aileron-pos-rad": -state["aileron"], "fcs/right-aileron-pos-rad": state["aileron"],
-             "fcs/rudder-pos-rad": state["rudder"], "aero/cl-squared": state.get("cl2", 0.0),
-             "aero/h_b-mac-ft": 1e3, "aero/h_b-cg-ft": 1e3}
+        p = {
+            "aero/qbar-psf": q,
+            "metrics/Sw-sqft": self.S / (FT * FT),
+            "metrics/bw-ft": b_ft,
+            "metrics/cbarw-ft": c_ft,
+            "velocities/mach": state["mach"],
+            "aero/alpha-rad": alpha,
+            "aero/alpha-deg": math.degrees(alpha),
+            "aero/beta-rad": beta,
+            "aero/beta-deg": math.degrees(beta),
+            "aero/mag-beta-rad": abs(beta),
+            "aero/bi2vel": b_ft / (2 * V_fps),
+            "aero/ci2vel": c_ft / (2 * V_fps),
+            "velocities/p-aero-rad_sec": state["p"] * 2 * V_fps / b_ft,
+            "velocities/q-aero-rad_sec": state["q"] * 2 * V_fps / c_ft,
+            "velocities/r-aero-rad_sec": state["r"] * 2 * V_fps / b_ft,
+            "aero/alphadot-rad_sec": state["alphadot"] * 2 * V_fps / c_ft,
+            "fcs/elevator-pos-rad": state["elevator"],
+            "fcs/mag-elevator-pos-rad": abs(state["elevator"]),
+            "fcs/left-aileron-pos-rad": -state["aileron"],
+            "fcs/right-aileron-pos-rad": state["aileron"],
+            "fcs/rudder-pos-rad": state["rudder"],
+            "aero/cl-squared": state.get("cl2", 0.0),
+            "aero/h_b-mac-ft": 1e3,
+            "aero/h_b-cg-ft": 1e3,
+        }
         p.update({k: 0.0 for k in _CONFIG})
         for h in self.helpers:
             p[h.get("name")] = evaluate(h, p)
@@ -317,18 +389,27 @@ def _aero_model(root, path, S, b, c, unmapped) -> tuple[_Aero, list]:
             unknown = used - _KNOWN - set(_CONFIG)
             short = fn.get("name", "?").split("/")[-1]
             if unknown:
-                unmapped.append(f"{name} {short}: reads {', '.join(sorted(unknown))}, which the importer does not "
-                                "model: not mapped")
+                unmapped.append(
+                    f"{name} {short}: reads {', '.join(sorted(unknown))}, which the importer does not model: not mapped"
+                )
                 continue
             config = used & set(_CONFIG)
             if config:
-                unmapped.append(f"{name} {short}: {', '.join(sorted({_CONFIG[c] for c in config}))} increment; the "
-                                "imported table is the clean airplane (flaps, gear, speedbrake, spoilers retracted)")
+                unmapped.append(
+                    f"{name} {short}: {', '.join(sorted({_CONFIG[c] for c in config}))} increment; the "
+                    "imported table is the clean airplane (flaps, gear, speedbrake, spoilers retracted)"
+                )
                 continue
             if "aero/cl-squared" in used:
                 induced.append(fn)
-            if any(v.text.strip() in ("aero/beta-rad", "aero/mag-beta-rad") for t in fn.iter("table")
-                   for v in t.findall("independentVar")) or "aero/mag-beta-rad" in used:
+            if (
+                any(
+                    v.text.strip() in ("aero/beta-rad", "aero/mag-beta-rad")
+                    for t in fn.iter("table")
+                    for v in t.findall("independentVar")
+                )
+                or "aero/mag-beta-rad" in used
+            ):
                 unmapped.append(f"{name} {short}: tabulated in |β| (no linear term at β = 0): not mapped")
                 continue
             axes.setdefault(name, []).append(fn)
@@ -344,6 +425,7 @@ def _reference_trim(model: _Aero, induced, mass, g, q, V, mach) -> tuple[float, 
     CL_needed = mass * g / (q * model.S)
     x = np.array([0.03, 0.0])
     for _ in range(30):
+
         def f(z):
             st = _state(mach, alpha=z[0], elevator=z[1])
             c = model.coefficients(st, V)
@@ -359,8 +441,18 @@ def _reference_trim(model: _Aero, induced, mass, g, q, V, mach) -> tuple[float, 
 
 
 def _state(mach, **kw) -> dict:
-    s = {"mach": mach, "alpha": 0.0, "beta": 0.0, "p": 0.0, "q": 0.0, "r": 0.0, "alphadot": 0.0,
-         "elevator": 0.0, "aileron": 0.0, "rudder": 0.0}
+    s = {
+        "mach": mach,
+        "alpha": 0.0,
+        "beta": 0.0,
+        "p": 0.0,
+        "q": 0.0,
+        "r": 0.0,
+        "alphadot": 0.0,
+        "elevator": 0.0,
+        "aileron": 0.0,
+        "rudder": 0.0,
+    }
     s.update(kw)
     return s
 
@@ -439,6 +531,7 @@ def _mach_breakpoints(model: _Aero, mach_ref: float) -> list[float]:
 
 # --- the whole file ----------------------------------------------------------------------------------------------
 
+
 def import_jsbsim(path: str | Path, mach: float = 0.8, altitude: float = 35_000 * FT) -> ImportResult:
     """The certkit aircraft data of the JSBSim FDM at ``path`` (module docstring), linearised in α at level
     flight at ``mach`` and ``altitude`` (m)."""
@@ -469,20 +562,25 @@ def import_jsbsim(path: str | Path, mach: float = 0.8, altitude: float = 35_000 
     except (Unsupported, np.linalg.LinAlgError) as exc:
         raise UserError(f"{path}: the aerodynamics cannot be evaluated ({exc})") from None
     lo, hi = _alpha_validity(model, alpha0)
-    notes.append(f"α tables linearised at α_ref = {math.degrees(alpha0):.3f}° (level flight at Mach {mach:g}, "
-                 f"{altitude:.0f} m, δe {math.degrees(de0):.3f}°): exact for α in [{math.degrees(lo):.2f}°, "
-                 f"{math.degrees(hi):.2f}°]")
+    notes.append(
+        f"α tables linearised at α_ref = {math.degrees(alpha0):.3f}° (level flight at Mach {mach:g}, "
+        f"{altitude:.0f} m, δe {math.degrees(de0):.3f}°): exact for α in [{math.degrees(lo):.2f}°, "
+        f"{math.degrees(hi):.2f}°]"
+    )
     if induced:
         notes.append("aero/cl-squared terms: the polar's k")
     if table.get("CD_elevator"):
         notes.append("drag of |δe|: linear with the sign of the reference elevator")
     fcs = root.find("flight_control")
     if fcs is not None and list(fcs.iter()):
-        unmapped.append(f"flight control system {fcs.get('name', '')!r} (yaw damper, trims, surface scaling): not "
-                        "imported; certkit flies the surfaces directly (close such loops yourself)")
+        unmapped.append(
+            f"flight control system {fcs.get('name', '')!r} (yaw damper, trims, surface scaling): not "
+            "imported; certkit flies the surfaces directly (close such loops yourself)"
+        )
     if root.find("ground_reactions") is not None:
-        unmapped.append("ground reactions (gear contacts): not mapped (certkit's landing gear needs the geometry "
-                        "section)")
+        unmapped.append(
+            "ground reactions (gear contacts): not mapped (certkit's landing gear needs the geometry section)"
+        )
     for section in ("system", "autopilot", "external_reactions", "buoyant_forces"):
         if root.find(section) is not None:
             unmapped.append(f"<{section}>: not mapped")
@@ -490,17 +588,41 @@ def import_jsbsim(path: str | Path, mach: float = 0.8, altitude: float = 35_000 
     data = {
         "name": f"{root.get('name', path.stem)} (imported from JSBSim)",
         "description": f"Imported by certkit from {path.name}: derivative table linearised at Mach {mach:g}, "
-                       f"{altitude:.0f} m (see the header for what was not mapped)",
-        "reference": {"area": S, "span": b, "mean_chord": c,
-                      "moment_point": {"x": float(arp[0]), "y": float(arp[1]), "z": float(arp[2])}},
-        "mass": {"MTOW": mass, "cg": {"x": float(cg[0]), "y": float(cg[1]), "z": float(cg[2])},
-                 "inertia": {"Ixx": float(J[0, 0]), "Iyy": float(J[1, 1]), "Izz": float(J[2, 2]), "Ixz": Ixz,
-                             "Ixy": -float(J[0, 1]), "Iyz": -float(J[1, 2])}},
-        "flight_condition": {"altitude": altitude, "mach": mach, "gravity": g,
-                             "source": "import point; gravity at that altitude (inverse square, 1976 standard atmosphere radius)"},
-        "aerodynamics": {"derivative_tables": {"clean": {
-            "mach": machs, "derivatives": {k: (v if len(v) > 1 else v[0]) for k, v in table.items()},
-            "controls": ["elevator", "aileron", "rudder"], "source": f"JSBSim {path.name}, imported by certkit"}}},
+        f"{altitude:.0f} m (see the header for what was not mapped)",
+        "reference": {
+            "area": S,
+            "span": b,
+            "mean_chord": c,
+            "moment_point": {"x": float(arp[0]), "y": float(arp[1]), "z": float(arp[2])},
+        },
+        "mass": {
+            "MTOW": mass,
+            "cg": {"x": float(cg[0]), "y": float(cg[1]), "z": float(cg[2])},
+            "inertia": {
+                "Ixx": float(J[0, 0]),
+                "Iyy": float(J[1, 1]),
+                "Izz": float(J[2, 2]),
+                "Ixz": Ixz,
+                "Ixy": -float(J[0, 1]),
+                "Iyz": -float(J[1, 2]),
+            },
+        },
+        "flight_condition": {
+            "altitude": altitude,
+            "mach": mach,
+            "gravity": g,
+            "source": "import point; gravity at that altitude (inverse square, 1976 standard atmosphere radius)",
+        },
+        "aerodynamics": {
+            "derivative_tables": {
+                "clean": {
+                    "mach": machs,
+                    "derivatives": {k: (v if len(v) > 1 else v[0]) for k, v in table.items()},
+                    "controls": ["elevator", "aileron", "rudder"],
+                    "source": f"JSBSim {path.name}, imported by certkit",
+                }
+            }
+        },
         "sources": {"jsbsim": f"JSBSim aircraft model {path.name} ({root.get('name', '')})"},
     }
     prop = propulsion(root, path, unmapped)

@@ -12,8 +12,18 @@ Layer: engine (rules build these; the report imports them; this package imports 
 
 from __future__ import annotations
 
-from certkit.engine.evidence.data import (Axis, Bars, Chart, Column, Heatmap, Limit, Panel, Point, Series, Table,
-                                   column_for_key)
+from certkit.engine.evidence.data import (
+    Axis,
+    Bars,
+    Chart,
+    Column,
+    Heatmap,
+    Limit,
+    Panel,
+    Point,
+    Series,
+    Table,
+    column_for_key,
+)
 
-__all__ = ["Axis", "Bars", "Chart", "Column", "Heatmap", "Limit", "Panel", "Point", "Series", "Table",
-           "column_for_key"]
+__all__ = ["Axis", "Bars", "Chart", "Column", "Heatmap", "Limit", "Panel", "Point", "Series", "Table", "column_for_key"]

@@ -133,8 +133,10 @@ class Heatmap:
     def __post_init__(self):
         self.values = np.asarray(self.values, dtype=float)
         if self.values.shape != (len(self.rows), len(self.columns)):
-            raise ValueError(f"heatmap {self.title!r}: values {self.values.shape} for {len(self.rows)} rows × "
-                             f"{len(self.columns)} columns")
+            raise ValueError(
+                f"heatmap {self.title!r}: values {self.values.shape} for {len(self.rows)} rows × "
+                f"{len(self.columns)} columns"
+            )
 
 
 @dataclass(frozen=True)
@@ -178,22 +180,52 @@ class Table:
 
 #: internal key → (header, unit) where the key's own words are not what a reviewer reads
 _NAMES = {
-    "CL_over_CLmax": ("CL / CLmax", ""), "alpha_deg": ("angle of attack α", "deg"), "beta_deg": ("sideslip β", "deg"),
-    "bank_deg": ("bank φ", "deg"), "phi_deg": ("bank φ", "deg"), "zeta": ("damping ratio ζ", ""),
-    "wn_rad_s": ("natural frequency ωn", "rad/s"), "tau_s": ("time constant τ", "s"),
-    "t_double_s": ("time to double", "s"), "time_s": ("time", "s"), "H_ft": ("gust gradient H", "ft"),
-    "speed_kn_cas": ("speed (CAS)", "kn"), "altitude_ft": ("altitude", "ft"), "mach": ("Mach", ""),
-    "n_z": ("load factor n", "g"), "thrust_available_N": ("thrust available", "N"),
-    "thrust_at_trim_N": ("thrust at trim", "N"), "x_cg_pct_mac": ("CG", "% MAC"),
-    "gamma_deg": ("flight-path angle γ", "deg"), "flight_path_deg": ("flight-path angle γ", "deg"),
-    "load_factor": ("load factor n", "g"), "control_usage": ("control usage", ""), "throttle": ("throttle", ""),
+    "CL_over_CLmax": ("CL / CLmax", ""),
+    "alpha_deg": ("angle of attack α", "deg"),
+    "beta_deg": ("sideslip β", "deg"),
+    "bank_deg": ("bank φ", "deg"),
+    "phi_deg": ("bank φ", "deg"),
+    "zeta": ("damping ratio ζ", ""),
+    "wn_rad_s": ("natural frequency ωn", "rad/s"),
+    "tau_s": ("time constant τ", "s"),
+    "t_double_s": ("time to double", "s"),
+    "time_s": ("time", "s"),
+    "H_ft": ("gust gradient H", "ft"),
+    "speed_kn_cas": ("speed (CAS)", "kn"),
+    "altitude_ft": ("altitude", "ft"),
+    "mach": ("Mach", ""),
+    "n_z": ("load factor n", "g"),
+    "thrust_available_N": ("thrust available", "N"),
+    "thrust_at_trim_N": ("thrust at trim", "N"),
+    "x_cg_pct_mac": ("CG", "% MAC"),
+    "gamma_deg": ("flight-path angle γ", "deg"),
+    "flight_path_deg": ("flight-path angle γ", "deg"),
+    "load_factor": ("load factor n", "g"),
+    "control_usage": ("control usage", ""),
+    "throttle": ("throttle", ""),
 }
 #: the unit a key's value is shown in: the key's own unit (it was chosen for the reader), SI ones in aviation units
 _SHOWN = {"N": "lbf", "m": "ft", "kg": "lb", "m/s": "kn"}
 #: key suffix → unit (the value is in this unit)
-_SUFFIXES = (("_rad_s", "rad/s"), ("_m_s", "m/s"), ("_ft_s", "ft/s"), ("_fpm", "ft/min"), ("_deg_s", "deg/s"), ("_deg", "deg"),
-             ("_kn", "kn"), ("_ft", "ft"), ("_kN", "kN"), ("_lbf", "lbf"), ("_lb", "lb"), ("_kg", "kg"), ("_N", "N"),
-             ("_pct", "%"), ("_m", "m"), ("_s", "s"), ("_g", "g"))
+_SUFFIXES = (
+    ("_rad_s", "rad/s"),
+    ("_m_s", "m/s"),
+    ("_ft_s", "ft/s"),
+    ("_fpm", "ft/min"),
+    ("_deg_s", "deg/s"),
+    ("_deg", "deg"),
+    ("_kn", "kn"),
+    ("_ft", "ft"),
+    ("_kN", "kN"),
+    ("_lbf", "lbf"),
+    ("_lb", "lb"),
+    ("_kg", "kg"),
+    ("_N", "N"),
+    ("_pct", "%"),
+    ("_m", "m"),
+    ("_s", "s"),
+    ("_g", "g"),
+)
 
 
 def column_for_key(key: str, values=()) -> Column:

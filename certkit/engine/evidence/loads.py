@@ -7,9 +7,9 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.engine.evidence.data import Axis, Chart, Column, Limit, Panel, Point, Series, Table
+from certkit.engine.results import Evidence
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES
-from certkit.engine.results import Evidence
 
 _KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
 #: palette entries of the maximum and minimum of each envelope drawn (entry 5, vermillion, is the allowables')
@@ -84,11 +84,17 @@ def time_history(run, surface: str, control: str, signals=("n_z", "q"), allow: d
         lines[2].append(Series(label, t, sim[signals[1]][m, i], critical=crit))
         lines[3].append(Series(label, t, hist[m, i, 0, 0], critical=crit))
     root = (allow or {}).get(surface, {}).get((run.envelope.stations[surface][0], "shear"))
-    shear_limits = [Limit(root[0], "allowable (−)", kind="allowable"), Limit(root[1], "allowable (+)", kind="allowable")] if root else []
-    panels = [Panel(Axis(control, "rad"), lines[0]),
-              Panel(Axis("load factor" if signals[0] == "n_z" else signals[0], "g" if signals[0] == "n_z" else ""), lines[1]),
-              Panel(Axis("pitch rate" if signals[1] == "q" else signals[1], "rad/s"), lines[2]),
-              Panel(_root_load("shear"), lines[3], shear_limits, _peak_point(lines[3][0]) if lines[3] else [])]
+    shear_limits = (
+        [Limit(root[0], "allowable (−)", kind="allowable"), Limit(root[1], "allowable (+)", kind="allowable")]
+        if root
+        else []
+    )
+    panels = [
+        Panel(Axis(control, "rad"), lines[0]),
+        Panel(Axis("load factor" if signals[0] == "n_z" else signals[0], "g" if signals[0] == "n_z" else ""), lines[1]),
+        Panel(Axis("pitch rate" if signals[1] == "q" else signals[1], "rad/s"), lines[2]),
+        Panel(_root_load("shear"), lines[3], shear_limits, _peak_point(lines[3][0]) if lines[3] else []),
+    ]
     return Chart(Axis("time", "s"), panels)
 
 
@@ -107,17 +113,23 @@ def envelope_chart(peaks: dict, stations, allow: dict | None = None, title: str 
                 lo = np.nanmin(P[:, 0, q, :], axis=0) if P.shape[0] else np.full(len(stations), np.nan)
             style = "-" if k == 0 else ":"
             c_hi, c_lo = _PAIRS[k % len(_PAIRS)]
-            series += [Series(f"{name} max" if len(peaks) > 1 else "max", x, hi, marker="o", style=style, colour=c_hi),
-                       Series(f"{name} min" if len(peaks) > 1 else "min", x, lo, marker="s", style=style, colour=c_lo)]
+            series += [
+                Series(f"{name} max" if len(peaks) > 1 else "max", x, hi, marker="o", style=style, colour=c_hi),
+                Series(f"{name} min" if len(peaks) > 1 else "min", x, lo, marker="s", style=style, colour=c_lo),
+            ]
         points = _critical_station(series[0].y, series[1].y, x, quantity, stations, allow)
         caps = [(s, (allow or {}).get((st, quantity))) for s, st in enumerate(stations)]
         caps = [(s, c) for s, c in caps if c]
         if caps:
             xs = np.array([float(s) for s, _ in caps])
-            series += [Series("allowable limit load", xs, np.array([c[1] for _, c in caps]), style="none", marker="v",
-                              colour=5),
-                       Series("allowable limit load", xs, np.array([c[0] for _, c in caps]), style="none", marker="^",
-                              colour=5)]
+            series += [
+                Series(
+                    "allowable limit load", xs, np.array([c[1] for _, c in caps]), style="none", marker="v", colour=5
+                ),
+                Series(
+                    "allowable limit load", xs, np.array([c[0] for _, c in caps]), style="none", marker="^", colour=5
+                ),
+            ]
         panels.append(Panel(Axis(quantity, si, shown), series, points=points, band=(0, 1)))
     return Chart(Axis("station", categories=list(stations)), panels, title=title, arrangement="row")
 
@@ -150,17 +162,28 @@ def case_table(env, surface: str, allow: dict | None = None, gradients=None, whi
     for c in cases:
         cap = (allow or {}).get(surface, {}).get((c.station, c.quantity))
         loaded = abs(c.value) > max(1e-9 * scale, 1e-6)
-        row = [c.station, c.quantity, c.sense, c.value / 1e3,
-               (cap[1] if c.sense == "max" else cap[0]) / 1e3 if cap else None,
-               env.labels[c.condition] if loaded else "none (no load in this sense)", c.time if loaded else None]
+        row = [
+            c.station,
+            c.quantity,
+            c.sense,
+            c.value / 1e3,
+            (cap[1] if c.sense == "max" else cap[0]) / 1e3 if cap else None,
+            env.labels[c.condition] if loaded else "none (no load in this sense)",
+            c.time if loaded else None,
+        ]
         if gradients is not None:
             q, s = QUANTITIES.index(c.quantity), env.stations[surface].index(c.station)
             row.append(float(gradients[which[c.condition, 1 if c.sense == "max" else 0, q, s]]) if loaded else None)
         rows.append(row)
-    columns = [Column("station", "station", kind="text"), Column("quantity", "quantity", kind="text"),
-               Column("sense", "sense", kind="text"), Column("load", "limit load", "kN | kN·m"),
-               Column("allowable", "allowable limit load", "kN | kN·m"), Column("condition", "condition", kind="text"),
-               Column("time", "time", "s")]
+    columns = [
+        Column("station", "station", kind="text"),
+        Column("quantity", "quantity", kind="text"),
+        Column("sense", "sense", kind="text"),
+        Column("load", "limit load", "kN | kN·m"),
+        Column("allowable", "allowable limit load", "kN | kN·m"),
+        Column("condition", "condition", kind="text"),
+        Column("time", "time", "s"),
+    ]
     if gradients is not None:
         columns.append(Column("H", "gust gradient H", "m"))
     return Table(columns, rows)
@@ -169,30 +192,46 @@ def case_table(env, surface: str, allow: dict | None = None, gradients=None, whi
 def not_simulated(failed) -> list[Evidence]:
     if not failed:
         return []
-    return [Evidence("Conditions not simulated", table=Table([Column("condition", "condition", kind="text"),
-                                                              Column("reason", "reason", kind="text")],
-                                                             [[c, r] for c, r in failed]))]
+    return [
+        Evidence(
+            "Conditions not simulated",
+            table=Table(
+                [Column("condition", "condition", kind="text"), Column("reason", "reason", kind="text")],
+                [[c, r] for c, r in failed],
+            ),
+        )
+    ]
 
 
-def maneuver_evidence(run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None) -> list[Evidence]:
+def maneuver_evidence(
+    run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None
+) -> list[Evidence]:
     name = surface.replace("_", " ")
     env = run.envelope
     return [
-        Evidence(f"Critical conditions: {control}, load factor, pitch rate and {name} root shear",
-                 time_history(run, surface, control, signals, allow),
-                 "The conditions with the largest positive and negative root shear and, for each input kind, the one "
-                 "with the largest root load; curves end where the paragraph stops considering loads; the star marks "
-                 "the critical root shear, dash-dot lines the governing allowables."),
-        Evidence(f"Load envelope along the {name} span", envelope_chart({"envelope": env.peaks[surface]},
-                                                                        env.stations[surface], (allow or {}).get(surface)),
-                 "Maximum and minimum over every condition and time (limit loads); triangles: the governing allowable "
-                 "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of safety, §25.303)."),
-        Evidence(f"Critical-case table, {name}", caption="Critical condition and time of every station and quantity.",
-                 table=case_table(env, surface, allow=allow)),
+        Evidence(
+            f"Critical conditions: {control}, load factor, pitch rate and {name} root shear",
+            time_history(run, surface, control, signals, allow),
+            "The conditions with the largest positive and negative root shear and, for each input kind, the one "
+            "with the largest root load; curves end where the paragraph stops considering loads; the star marks "
+            "the critical root shear, dash-dot lines the governing allowables.",
+        ),
+        Evidence(
+            f"Load envelope along the {name} span",
+            envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface], (allow or {}).get(surface)),
+            "Maximum and minimum over every condition and time (limit loads); triangles: the governing allowable "
+            "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of safety, §25.303).",
+        ),
+        Evidence(
+            f"Critical-case table, {name}",
+            caption="Critical condition and time of every station and quantity.",
+            table=case_table(env, surface, allow=allow),
+        ),
     ] + not_simulated([(env.labels[i], r) for i, r in env.failed])
 
 
 # --------------------------------------------------------------------------- discrete gusts (§25.341(a))
+
 
 def _gust_picks(run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the extreme wing root bending and tail root shear, both senses."""
@@ -222,37 +261,58 @@ def gust_time_history(replays, conditions, allow: dict | None = None, stations=N
 
     def root_limits(surface, quantity):
         cap = (allow or {}).get(surface, {}).get((stations[surface][0], quantity)) if stations else None
-        return [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")] if cap else []
+        return (
+            [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")]
+            if cap
+            else []
+        )
 
-    panels = [Panel(Axis("gust angle at the wing", "rad"), lines[0]),
-              Panel(Axis("load factor", "g"), lines[1]),
-              Panel(Axis("wing root bending", "N·m", "kN·m"), lines[2], root_limits("wing", "bending"),
-                    _peak_point(lines[2][0]) if lines[2] else []),
-              Panel(Axis("tail root shear", "N", "kN"), lines[3], root_limits("horizontal_tail", "shear"))]
+    panels = [
+        Panel(Axis("gust angle at the wing", "rad"), lines[0]),
+        Panel(Axis("load factor", "g"), lines[1]),
+        Panel(
+            Axis("wing root bending", "N·m", "kN·m"),
+            lines[2],
+            root_limits("wing", "bending"),
+            _peak_point(lines[2][0]) if lines[2] else [],
+        ),
+        Panel(Axis("tail root shear", "N", "kN"), lines[3], root_limits("horizontal_tail", "shear")),
+    ]
     return Chart(Axis("time", "s"), panels)
 
 
 def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
     env = run.envelope
     replays = run.replay(_gust_picks(run))
-    out = [Evidence("Critical discrete-gust conditions: gust angle, load factor, wing root bending, tail root shear",
-                    gust_time_history(replays, run.conditions, allow, env.stations),
-                    "The conditions and gradients with the largest positive and negative wing root bending and tail "
-                    "root shear; the gust reaches the tail a tail arm / V after the wing; dash-dot lines: governing "
-                    "allowables at the root.")]
+    out = [
+        Evidence(
+            "Critical discrete-gust conditions: gust angle, load factor, wing root bending, tail root shear",
+            gust_time_history(replays, run.conditions, allow, env.stations),
+            "The conditions and gradients with the largest positive and negative wing root bending and tail "
+            "root shear; the gust reaches the tail a tail arm / V after the wing; dash-dot lines: governing "
+            "allowables at the root.",
+        )
+    ]
     for surface in ("wing", "horizontal_tail"):
         name = surface.replace("_", " ")
-        out += [Evidence(f"Gust load envelope along the {name} span",
-                         envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface], (allow or {}).get(surface)),
-                         "Maximum and minimum over every condition, gust gradient and time (limit loads); triangles: "
-                         "the governing allowable limit load."),
-                Evidence(f"Critical-case table, {name} (discrete gust)", caption="Critical condition, gradient and time "
-                         "of every station and quantity.",
-                         table=case_table(env, surface, allow=allow, gradients=run.gradients, which=run.which[surface]))]
+        out += [
+            Evidence(
+                f"Gust load envelope along the {name} span",
+                envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface], (allow or {}).get(surface)),
+                "Maximum and minimum over every condition, gust gradient and time (limit loads); triangles: "
+                "the governing allowable limit load.",
+            ),
+            Evidence(
+                f"Critical-case table, {name} (discrete gust)",
+                caption="Critical condition, gradient and time of every station and quantity.",
+                table=case_table(env, surface, allow=allow, gradients=run.gradients, which=run.which[surface]),
+            ),
+        ]
     return out
 
 
 # --------------------------------------------------------------------------- unsymmetrical gusts (§25.349(b))
+
 
 def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the largest root bending on each side and of the largest rolling moment."""
@@ -279,21 +339,34 @@ def unsymmetrical_time_history(run, picks) -> Chart:
     for k, (i, H, r) in enumerate(runs.replay(picks)):
         aero, inertia = r.parts["wing"]
         m = runs.batch.model.subset([i])
-        u = unsymmetrical_wing(runs.loads["wing"], aero, inertia, m.mass, m.cg, m.inertia, full, reduced,
-                               trim_aero=aero[0] if run.basis == "increment" else None)
+        u = unsymmetrical_wing(
+            runs.loads["wing"],
+            aero,
+            inertia,
+            m.mass,
+            m.cg,
+            m.inertia,
+            full,
+            reduced,
+            trim_aero=aero[0] if run.basis == "increment" else None,
+        )
         t = r.sim.t
         label = f"{runs.conditions[i].label()} · H {H / FT:.0f} ft"
-        lines[0] += [Series(label, t, u.full[:, 0, 1, 0], colour=k, critical=k == 0),
-                     Series("", t, u.reduced[:, 0, 1, 0], colour=k, style="--"),
-                     Series("", t, (aero + inertia)[:, 0, 1, 0], colour=k, style=":")]
+        lines[0] += [
+            Series(label, t, u.full[:, 0, 1, 0], colour=k, critical=k == 0),
+            Series("", t, u.reduced[:, 0, 1, 0], colour=k, style="--"),
+            Series("", t, (aero + inertia)[:, 0, 1, 0], colour=k, style=":"),
+        ]
         lines[1].append(Series(label, t, u.rolling_moment[:, 0], colour=k))
         lines[2].append(Series(label, t, u.pdot[:, 0], colour=k))
         lines[3].append(Series(label, t, r.sim["n_z"][:, 0] + u.delta_n_z[:, 0], colour=k))
     sides = f"wing root bending: — {full:.0%}, -- {reduced:.0%}, ·· symmetric"
-    panels = [Panel(Axis(sides, "N·m", "kN·m"), lines[0], points=_peak_point(lines[0][0]) if lines[0] else []),
-              Panel(Axis("unbalanced rolling moment", "N·m", "kN·m"), lines[1]),
-              Panel(Axis("roll acceleration", "rad/s²"), lines[2]),
-              Panel(Axis("load factor, air load removed", "g"), lines[3])]
+    panels = [
+        Panel(Axis(sides, "N·m", "kN·m"), lines[0], points=_peak_point(lines[0][0]) if lines[0] else []),
+        Panel(Axis("unbalanced rolling moment", "N·m", "kN·m"), lines[1]),
+        Panel(Axis("roll acceleration", "rad/s²"), lines[2]),
+        Panel(Axis("load factor, air load removed", "g"), lines[3]),
+    ]
     return Chart(Axis("time", "s"), panels)
 
 
@@ -303,25 +376,42 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
     stations = env.stations[next(iter(env.peaks))]
     peaks = {side: env.peaks[side] for side in env.peaks} | {"symmetric §25.341(a)": sym.peaks["wing"]}
     wing_allow = (allow or {}).get("wing")
-    out = [Evidence(f"Critical unsymmetrical-gust conditions: wing root bending on the {full:.0%} and {reduced:.0%} "
-                    "sides, unbalanced rolling moment, roll acceleration and load factor",
-                    unsymmetrical_time_history(run, _unsymmetrical_picks(run)),
-                    "The §25.341(a) responses with the largest root bending on either side and with the largest "
-                    f"unbalanced rolling moment; the wing air load is {'the gust increment' if run.basis == 'increment' else 'the whole air load'} "
-                    f"× {full:.0%} on one side and × {reduced:.0%} on the other, the unbalance reacted by the rigid "
-                    "airplane's vertical, roll and pitch accelerations."),
-           Evidence("Unsymmetrical-gust load envelopes along the wing span", envelope_chart(peaks, stations, wing_allow),
-                    "Maximum (circles) and minimum (squares) over every condition, gust gradient and time (limit "
-                    "loads), each side against the symmetric gust (dotted); triangles: the governing allowable limit load.")]
+    out = [
+        Evidence(
+            f"Critical unsymmetrical-gust conditions: wing root bending on the {full:.0%} and {reduced:.0%} "
+            "sides, unbalanced rolling moment, roll acceleration and load factor",
+            unsymmetrical_time_history(run, _unsymmetrical_picks(run)),
+            "The §25.341(a) responses with the largest root bending on either side and with the largest "
+            f"unbalanced rolling moment; the wing air load is {'the gust increment' if run.basis == 'increment' else 'the whole air load'} "
+            f"× {full:.0%} on one side and × {reduced:.0%} on the other, the unbalance reacted by the rigid "
+            "airplane's vertical, roll and pitch accelerations.",
+        ),
+        Evidence(
+            "Unsymmetrical-gust load envelopes along the wing span",
+            envelope_chart(peaks, stations, wing_allow),
+            "Maximum (circles) and minimum (squares) over every condition, gust gradient and time (limit "
+            "loads), each side against the symmetric gust (dotted); triangles: the governing allowable limit load.",
+        ),
+    ]
     for side in env.peaks:
-        out.append(Evidence(f"Critical-case table, {side} (unsymmetrical gust)",
-                            caption="Critical condition, gradient and time of every station and quantity.",
-                            table=case_table(env, side, gradients=run.gradients, which=run.which[side],
-                                             allow={side: wing_allow} if wing_allow else None)))
+        out.append(
+            Evidence(
+                f"Critical-case table, {side} (unsymmetrical gust)",
+                caption="Critical condition, gradient and time of every station and quantity.",
+                table=case_table(
+                    env,
+                    side,
+                    gradients=run.gradients,
+                    which=run.which[side],
+                    allow={side: wing_allow} if wing_allow else None,
+                ),
+            )
+        )
     return out
 
 
 # --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
+
 
 def envelope_evidence(env, surfaces, what: str, plot: bool = True, allow: dict | None = None) -> list[Evidence]:
     """The critical-case table of each of ``surfaces`` in the load envelope ``env`` (skipping a surface with no
@@ -333,11 +423,19 @@ def envelope_evidence(env, surfaces, what: str, plot: bool = True, allow: dict |
             continue
         name = surface.replace("_", " ")
         if plot:
-            out.append(Evidence(f"Load envelope along the {name} span ({what})",
-                                envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface],
-                                               (allow or {}).get(surface)),
-                                "Maximum and minimum over every condition (limit loads); triangles: the governing "
-                                "allowable limit load."))
-        out.append(Evidence(f"Critical-case table, {name} ({what})", caption="Critical condition of every station, "
-                            "quantity and sense.", table=case_table(env, surface, allow=allow)))
+            out.append(
+                Evidence(
+                    f"Load envelope along the {name} span ({what})",
+                    envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface], (allow or {}).get(surface)),
+                    "Maximum and minimum over every condition (limit loads); triangles: the governing "
+                    "allowable limit load.",
+                )
+            )
+        out.append(
+            Evidence(
+                f"Critical-case table, {name} ({what})",
+                caption="Critical condition of every station, quantity and sense.",
+                table=case_table(env, surface, allow=allow),
+            )
+        )
     return out

@@ -30,8 +30,16 @@ def time_histories(t, panels, labels, critical: int = 0, ends=None, title: str =
     out = []
     for axis, values, limits, points in panels:
         values = np.asarray(values, dtype=float)
-        series = [Series(lab, t if t.ndim == 1 else t[:, i], values[:, i], critical=i == critical,
-                         end=None if ends is None else float(ends[i])) for i, lab in enumerate(labels)]
+        series = [
+            Series(
+                lab,
+                t if t.ndim == 1 else t[:, i],
+                values[:, i],
+                critical=i == critical,
+                end=None if ends is None else float(ends[i]),
+            )
+            for i, lab in enumerate(labels)
+        ]
         out.append(Panel(axis, series, list(limits or ()), list(points or ())))
     return Chart(Axis("time", "s"), out, title=title)
 
@@ -74,38 +82,92 @@ def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evide
     t = sim.t[k0:]
     rudder = sim.controls[k0:, cols, jr]
     panels = [
-        (Axis("airspeed V", "m/s"), sim["V"][k0:, cols],
-         [Limit(d["vef_kn"] * KN, "VEF", kind="reference"), Limit(d["vr_kn"] * KN, "VR", kind="reference"),
-          Limit(d["v2_kn"] * KN, "V2", kind="reference")], []),
-        (Axis("wheel height", "m"), run.wheel_height[k0:, cols],
-         [Limit(crit.screen_height * FT, f"screen {crit.screen_height:.0f} ft")], []),
-        (Axis("elevator", "rad"), sim.controls[k0:, cols, je], [Limit(lim["elevator"][0], "design limit", kind="allowable")], []),
-        (Axis("rudder", "rad"), rudder, [Limit(lim["rudder"][0], "design limit", kind="allowable"),
-                                         Limit(lim["rudder"][1], "design limit", kind="allowable")],
-         _extreme_point(t, rudder[:, k], "min", "critical: rudder extreme") if worst.check.startswith("(a) rudder") else []),
+        (
+            Axis("airspeed V", "m/s"),
+            sim["V"][k0:, cols],
+            [
+                Limit(d["vef_kn"] * KN, "VEF", kind="reference"),
+                Limit(d["vr_kn"] * KN, "VR", kind="reference"),
+                Limit(d["v2_kn"] * KN, "V2", kind="reference"),
+            ],
+            [],
+        ),
+        (
+            Axis("wheel height", "m"),
+            run.wheel_height[k0:, cols],
+            [Limit(crit.screen_height * FT, f"screen {crit.screen_height:.0f} ft")],
+            [],
+        ),
+        (
+            Axis("elevator", "rad"),
+            sim.controls[k0:, cols, je],
+            [Limit(lim["elevator"][0], "design limit", kind="allowable")],
+            [],
+        ),
+        (
+            Axis("rudder", "rad"),
+            rudder,
+            [
+                Limit(lim["rudder"][0], "design limit", kind="allowable"),
+                Limit(lim["rudder"][1], "design limit", kind="allowable"),
+            ],
+            _extreme_point(t, rudder[:, k], "min", "critical: rudder extreme")
+            if worst.check.startswith("(a) rudder")
+            else [],
+        ),
         (Axis("heading ψ", "rad"), sim["psi"][k0:, cols], [], []),
         (Axis("lateral deviation", "m"), sim["y_E"][k0:, cols] - sim["y_E"][:1, cols], [], []),
         (Axis("bank φ", "rad"), sim["phi"][k0:, cols], [Limit(crit.bank_deg * DEG, f"{crit.bank_deg:g}°")], []),
     ]
-    chart = time_histories(t, panels, labels, critical=k, ends=np.asarray(sim.stop_time)[cols],
-                           title=f"§25.111 takeoff, {engine} engine failed at VEF")
+    chart = time_histories(
+        t,
+        panels,
+        labels,
+        critical=k,
+        ends=np.asarray(sim.stop_time)[cols],
+        title=f"§25.111 takeoff, {engine} engine failed at VEF",
+    )
     rows = []
     for f in findings:
         if f.check.startswith("(a) rudder") and f.margin is not None:
             dd = f.details
-            rows.append([f.condition.loading, dd["vef_kn"], dd["v_recognition_kn"], dd["vlof_kn"], dd["v35_kn"],
-                         dd["v2_kn"], dd["rudder_min_deg"], f.limit, dd["max_heading_deviation_deg"],
-                         dd["lateral_deviation_at_35ft_ft"], dd["mean_gradient_after_35ft_pct"]])
-    table = Table([Column("condition", "condition", kind="text"), Column("vef", "VEF", "kn"),
-                   Column("v_rec", "V at recognition", "kn"), Column("vlof", "VLOF", "kn"), Column("v35", "V at 35 ft", "kn"),
-                   Column("v2", "V2", "kn"), Column("rudder_min", "rudder minimum", "deg"),
-                   Column("rudder_limit", "rudder design limit", "deg"), Column("heading", "largest heading deviation", "deg"),
-                   Column("lateral", "lateral deviation at 35 ft", "ft"),
-                   Column("gradient", "mean gradient after 35 ft", "%")], rows)
-    caption = (f"Critical condition {conds[k].loading} ({worst.check}: margin {worst.margin:.2f} {worst.unit}) with its "
-               f"neighbours, {engine} engine failed at VEF (from 5 s before the failure); the last line is the critical "
-               "loading with all engines; each line ends where its run ended. The rudder holds the runway heading over "
-               "its full travel; dash-dot lines are the design limits; the star marks the critical rudder deflection.")
+            rows.append(
+                [
+                    f.condition.loading,
+                    dd["vef_kn"],
+                    dd["v_recognition_kn"],
+                    dd["vlof_kn"],
+                    dd["v35_kn"],
+                    dd["v2_kn"],
+                    dd["rudder_min_deg"],
+                    f.limit,
+                    dd["max_heading_deviation_deg"],
+                    dd["lateral_deviation_at_35ft_ft"],
+                    dd["mean_gradient_after_35ft_pct"],
+                ]
+            )
+    table = Table(
+        [
+            Column("condition", "condition", kind="text"),
+            Column("vef", "VEF", "kn"),
+            Column("v_rec", "V at recognition", "kn"),
+            Column("vlof", "VLOF", "kn"),
+            Column("v35", "V at 35 ft", "kn"),
+            Column("v2", "V2", "kn"),
+            Column("rudder_min", "rudder minimum", "deg"),
+            Column("rudder_limit", "rudder design limit", "deg"),
+            Column("heading", "largest heading deviation", "deg"),
+            Column("lateral", "lateral deviation at 35 ft", "ft"),
+            Column("gradient", "mean gradient after 35 ft", "%"),
+        ],
+        rows,
+    )
+    caption = (
+        f"Critical condition {conds[k].loading} ({worst.check}: margin {worst.margin:.2f} {worst.unit}) with its "
+        f"neighbours, {engine} engine failed at VEF (from 5 s before the failure); the last line is the critical "
+        "loading with all engines; each line ends where its run ended. The rudder holds the runway heading over "
+        "its full travel; dash-dot lines are the design limits; the star marks the critical rudder deflection."
+    )
     return [Evidence("Engine-out takeoff time histories", chart, caption, table)]
 
 
@@ -122,24 +184,41 @@ def vmca_evidence(findings, rows, limits) -> list[Evidence]:
     for name in ("rudder", "aileron"):
         series = []
         for k, j in enumerate(idx):
-            pts = sorted((h["speed"], h["trim"].controls["rudder"], h["trim"].controls["aileron"])
-                         for h in rows["history"][j] if h["trim"].converged and np.isfinite(h["usage"]))
+            pts = sorted(
+                (h["speed"], h["trim"].controls["rudder"], h["trim"].controls["aileron"])
+                for h in rows["history"][j]
+                if h["trim"].converged and np.isfinite(h["usage"])
+            )
             if not pts:
                 continue
             v, dr, da = map(np.array, zip(*pts))
-            series.append(Series(f"bank {np.degrees(rows['banks'][j]):.0f}°", v, dr if name == "rudder" else da,
-                                 marker="o", colour=k))
+            series.append(
+                Series(
+                    f"bank {np.degrees(rows['banks'][j]):.0f}°", v, dr if name == "rudder" else da, marker="o", colour=k
+                )
+            )
         lo, hi = limits[name]
-        lims = [Limit(lo, "design limit", kind="allowable"), Limit(hi, "design limit", kind="allowable"),
-                Limit(worst.value, f"VMCA {worst.value / KN:.1f} kn", axis="x", kind="limit"),
-                Limit(worst.limit, f"1.13 VSR {worst.limit / KN:.1f} kn", axis="x", kind="reference")]
+        lims = [
+            Limit(lo, "design limit", kind="allowable"),
+            Limit(hi, "design limit", kind="allowable"),
+            Limit(worst.value, f"VMCA {worst.value / KN:.1f} kn", axis="x", kind="limit"),
+            Limit(worst.limit, f"1.13 VSR {worst.limit / KN:.1f} kn", axis="x", kind="reference"),
+        ]
         panels.append(Panel(Axis(name, "rad"), series, lims, x=Axis("calibrated airspeed", "m/s")))
-    chart = Chart(Axis("calibrated airspeed", "m/s"), panels, title=f"§25.149 straight flight, {engine} engine inoperative",
-                  arrangement="row")
-    caption = (f"Rudder and aileron of the one-engine-inoperative straight trims visited by the VMCA search (operating engine "
-               f"at full throttle, {worst.condition.loading}), wings level to 5° banked toward the operating engine; dash-dot: "
-               "design limits. VMCA is the lowest over the banks of the speed where a control reaches its limit.")
-    return [Evidence("VMCA: controls against speed", chart, caption, [dict(r) for r in worst.details.get("search", [])])]
+    chart = Chart(
+        Axis("calibrated airspeed", "m/s"),
+        panels,
+        title=f"§25.149 straight flight, {engine} engine inoperative",
+        arrangement="row",
+    )
+    caption = (
+        f"Rudder and aileron of the one-engine-inoperative straight trims visited by the VMCA search (operating engine "
+        f"at full throttle, {worst.condition.loading}), wings level to 5° banked toward the operating engine; dash-dot: "
+        "design limits. VMCA is the lowest over the banks of the speed where a control reaches its limit."
+    )
+    return [
+        Evidence("VMCA: controls against speed", chart, caption, [dict(r) for r in worst.details.get("search", [])])
+    ]
 
 
 # ---------------------------------------------------------------------------------------------- generic
@@ -162,7 +241,9 @@ def _scaled(v, unit):
     return None if v is None else float(v) * 100 if unit == "gradient" else float(v)
 
 
-def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: int = 24, plot: bool = False) -> list[Evidence]:
+def margins_evidence(
+    findings, title: str, caption: str, detail_keys=(), worst: int = 24, plot: bool = False
+) -> list[Evidence]:
     """Generic evidence of a trim-based rule: a table of every evaluated finding with its value, limit, margin and the
     trim's ``detail_keys``, worst first; with ``plot`` also the ``worst`` findings by normalised margin as bars
     (failing in vermillion, hatched)."""
@@ -173,24 +254,42 @@ def margins_evidence(findings, title: str, caption: str, detail_keys=(), worst: 
     shown = ev[:worst]
     figure = None
     if plot:
-        figure = Bars([f"{f.check[:40]} · {condition_label(f.condition)}" for f in shown],
-                      [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown],
-                      Axis("normalised margin (margin / |limit|)"), [f.status == "fails" for f in shown],
-                      Limit(0.0, "0: complies at or above"), title=title)
+        figure = Bars(
+            [f"{f.check[:40]} · {condition_label(f.condition)}" for f in shown],
+            [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown],
+            Axis("normalised margin (margin / |limit|)"),
+            [f.status == "fails" for f in shown],
+            Limit(0.0, "0: complies at or above"),
+            title=title,
+        )
     keys = [k for k in detail_keys if any(f.details.get(k) is not None for f in ev)]
     rows = []
     for f in ev:
-        row = {"condition": condition_label(f.condition), "check": f.check, "value": _scaled(f.value, f.unit),
-               "limit": _scaled(f.limit, f.unit), "margin": _scaled(f.margin, f.unit), "unit": _shown_unit(f.unit),
-               "status": f.status.replace("_", " ")}
+        row = {
+            "condition": condition_label(f.condition),
+            "check": f.check,
+            "value": _scaled(f.value, f.unit),
+            "limit": _scaled(f.limit, f.unit),
+            "margin": _scaled(f.margin, f.unit),
+            "unit": _shown_unit(f.unit),
+            "status": f.status.replace("_", " "),
+        }
         for k in keys:
             v = f.details.get(k)
             row[k] = float(v) if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool) else v
         rows.append(row)
-    table = Table.from_dicts(rows, [Column("condition", "condition", kind="text"), Column("check", "check", kind="text"),
-                                    Column("value", "value", unit_key="unit"), Column("limit", "limit", unit_key="unit"),
-                                    Column("margin", "margin", unit_key="unit"), Column("unit", "unit", kind="text"),
-                                    Column("status", "status", kind="text")])
+    table = Table.from_dicts(
+        rows,
+        [
+            Column("condition", "condition", kind="text"),
+            Column("check", "check", kind="text"),
+            Column("value", "value", unit_key="unit"),
+            Column("limit", "limit", unit_key="unit"),
+            Column("margin", "margin", unit_key="unit"),
+            Column("unit", "unit", kind="text"),
+            Column("status", "status", kind="text"),
+        ],
+    )
     more = f" The {len(shown)} smallest margins of {len(ev)} are drawn." if plot and len(ev) > len(shown) else ""
     return [Evidence(title, figure, caption + more, table)]
 
@@ -201,16 +300,38 @@ def climb_gradient_evidence(findings, title: str) -> list[Evidence]:
     grads = [f for f in findings if f.unit == "gradient" and f.value is not None]
     out = []
     if grads:
-        bars = Bars([condition_label(f.condition) for f in grads], [f.value for f in grads],
-                    Axis("steady climb gradient", "gradient"), [f.status == "fails" for f in grads],
-                    Limit(grads[0].limit, f"minimum {grads[0].limit * 100:.1f} %"), title=title, horizontal=False)
-        out.append(Evidence(title + ": gradients", bars,
-                            "Steady gradient with the critical engine inoperative (trim at the gradient the thrust gives) "
-                            "per condition, against the segment's minimum."))
-    out += margins_evidence(findings, title + ": trims", "Controls of the one-engine-inoperative climb trims against their "
-                            "design limits, and the gradients.",
-                            ("alpha_deg", "beta_deg", "bank_deg", "elevator_deg", "aileron_deg", "rudder_deg",
-                             "thrust_available_N", "thrust_at_trim_N"))
+        bars = Bars(
+            [condition_label(f.condition) for f in grads],
+            [f.value for f in grads],
+            Axis("steady climb gradient", "gradient"),
+            [f.status == "fails" for f in grads],
+            Limit(grads[0].limit, f"minimum {grads[0].limit * 100:.1f} %"),
+            title=title,
+            horizontal=False,
+        )
+        out.append(
+            Evidence(
+                title + ": gradients",
+                bars,
+                "Steady gradient with the critical engine inoperative (trim at the gradient the thrust gives) "
+                "per condition, against the segment's minimum.",
+            )
+        )
+    out += margins_evidence(
+        findings,
+        title + ": trims",
+        "Controls of the one-engine-inoperative climb trims against their design limits, and the gradients.",
+        (
+            "alpha_deg",
+            "beta_deg",
+            "bank_deg",
+            "elevator_deg",
+            "aileron_deg",
+            "rudder_deg",
+            "thrust_available_N",
+            "thrust_at_trim_N",
+        ),
+    )
     return out + wat_limit_evidence(findings, title)
 
 
@@ -220,13 +341,35 @@ def wat_limit_evidence(findings, title: str) -> list[Evidence]:
     limited = [f for f in findings if f.unit == "kg" and f.check.endswith("WAT limit weight")]
     if not limited:
         return []
-    table = Table([Column("corner", "airport pressure altitude, temperature", kind="text"),
-                   Column("limit", "WAT limit weight", "kg"), Column("lowest", "lowest operating weight", "kg"),
-                   Column("status", "status", kind="text"), Column("cg", "most unfavourable CG", kind="text"),
-                   Column("gradient", "gradient at the design weight", "")],
-                  [[f.condition.get("airport"), f.value, f.limit, f.status, f.details.get("most_unfavourable_cg"),
-                    f.details.get("design_weight_gradient")] for f in limited])
-    return [Evidence(title + ": WAT limit weights", None, "Corners of the takeoff and landing envelope where the "
-                     "minimum gradient is not met at the design weight: the weight at which it is met (a weight "
-                     "limitation the flight manual must carry, §25.1533(a)), against the lightest declared weight; "
-                     "a corner fails when no operating weight meets the gradient.", table)]
+    table = Table(
+        [
+            Column("corner", "airport pressure altitude, temperature", kind="text"),
+            Column("limit", "WAT limit weight", "kg"),
+            Column("lowest", "lowest operating weight", "kg"),
+            Column("status", "status", kind="text"),
+            Column("cg", "most unfavourable CG", kind="text"),
+            Column("gradient", "gradient at the design weight", ""),
+        ],
+        [
+            [
+                f.condition.get("airport"),
+                f.value,
+                f.limit,
+                f.status,
+                f.details.get("most_unfavourable_cg"),
+                f.details.get("design_weight_gradient"),
+            ]
+            for f in limited
+        ],
+    )
+    return [
+        Evidence(
+            title + ": WAT limit weights",
+            None,
+            "Corners of the takeoff and landing envelope where the "
+            "minimum gradient is not met at the design weight: the weight at which it is met (a weight "
+            "limitation the flight manual must carry, §25.1533(a)), against the lightest declared weight; "
+            "a corner fails when no operating weight meets the gradient.",
+            table,
+        )
+    ]

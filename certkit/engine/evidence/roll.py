@@ -12,8 +12,10 @@ from certkit.engine.results import Evidence
 
 def critical_condition(run) -> int:
     """Index of the condition with the largest |wing root bending| over both halves and the time history."""
-    bend = np.fmax(np.nanmax(np.abs(run.right["wing"][:, :, 1, 0]), axis=0),
-                   np.nanmax(np.abs(run.left["wing"][:, :, 1, 0]), axis=0))
+    bend = np.fmax(
+        np.nanmax(np.abs(run.right["wing"][:, :, 1, 0]), axis=0),
+        np.nanmax(np.abs(run.left["wing"][:, :, 1, 0]), axis=0),
+    )
     return int(np.nanargmax(bend))
 
 
@@ -26,28 +28,47 @@ def roll_history(run, i: int, allow: dict | None = None) -> Chart:
     caps = (allow or {}).get("wing", {})
 
     def side_panel(q, name, quantity):
-        lines = [Series(lab, t, loads["wing"][:, i, q, 0], critical=k == 0, colour=k) for k, (lab, loads) in enumerate(halves)]
+        lines = [
+            Series(lab, t, loads["wing"][:, i, q, 0], critical=k == 0, colour=k)
+            for k, (lab, loads) in enumerate(halves)
+        ]
         cap = caps.get((root, quantity))
-        lims = [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")] if cap else []
-        return Panel(Axis(name, "N·m", "kN·m"), lines, steady + lims, _peak_point(max(lines, key=lambda s: np.nanmax(np.abs(s.y)))))
+        lims = (
+            [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")]
+            if cap
+            else []
+        )
+        return Panel(
+            Axis(name, "N·m", "kN·m"),
+            lines,
+            steady + lims,
+            _peak_point(max(lines, key=lambda s: np.nanmax(np.abs(s.y)))),
+        )
 
-    panels = [Panel(Axis("aileron", "rad"), [Series("aileron", t, sim.controls[:, i, ja], colour=6)], steady),
-              Panel(Axis("roll rate p", "rad/s"), [Series("roll rate p", t, sim["p"][:, i], colour=2)], steady),
-              Panel(Axis("sideslip β", "rad"), [Series("sideslip β", t, sim["beta"][:, i], colour=3)], steady),
-              side_panel(1, "wing root bending", "bending"), side_panel(2, "wing root torsion", "torsion")]
+    panels = [
+        Panel(Axis("aileron", "rad"), [Series("aileron", t, sim.controls[:, i, ja], colour=6)], steady),
+        Panel(Axis("roll rate p", "rad/s"), [Series("roll rate p", t, sim["p"][:, i], colour=2)], steady),
+        Panel(Axis("sideslip β", "rad"), [Series("sideslip β", t, sim["beta"][:, i], colour=3)], steady),
+        side_panel(1, "wing root bending", "bending"),
+        side_panel(2, "wing root torsion", "torsion"),
+    ]
     return Chart(Axis("time", "s"), panels, title=run.conditions[i].label())
 
 
 def roll_evidence(run, allow: dict | None = None) -> list[Evidence]:
     i = critical_condition(run)
     sides, fin = run.env_sides, run.env_fin
-    return [Evidence("Critical rolling manoeuvre: aileron, roll rate, sideslip, wing-root bending and torsion of both halves",
-                     roll_history(run, i, allow),
-                     caption="Aileron ramped to its deflection from a steady symmetric manoeuvre; loads are considered up "
-                             "to the steady rolling velocity (dotted line, where the roll rate first stops growing); the left "
-                             "half's loads are those of the right half in the mirror-image response."),
-            Evidence("Wing critical cases (condition — half)", table=case_table(sides, "wing", allow=allow)),
-            Evidence("Horizontal-tail critical cases (condition — half)",
-                     table=case_table(sides, "horizontal_tail", allow=allow)),
-            Evidence("Vertical-tail critical cases", table=case_table(fin, "vertical_tail", allow=allow)),
-            ] + not_simulated(run.failed)
+    return [
+        Evidence(
+            "Critical rolling manoeuvre: aileron, roll rate, sideslip, wing-root bending and torsion of both halves",
+            roll_history(run, i, allow),
+            caption="Aileron ramped to its deflection from a steady symmetric manoeuvre; loads are considered up "
+            "to the steady rolling velocity (dotted line, where the roll rate first stops growing); the left "
+            "half's loads are those of the right half in the mirror-image response.",
+        ),
+        Evidence("Wing critical cases (condition — half)", table=case_table(sides, "wing", allow=allow)),
+        Evidence(
+            "Horizontal-tail critical cases (condition — half)", table=case_table(sides, "horizontal_tail", allow=allow)
+        ),
+        Evidence("Vertical-tail critical cases", table=case_table(fin, "vertical_tail", allow=allow)),
+    ] + not_simulated(run.failed)

@@ -39,16 +39,35 @@ def margin_matrix_evidence(findings, title: str) -> list[Evidence]:
     corners, configs, mat, checks = margin_matrix(findings)
     if not corners:
         return []
-    rows = [[ld, cfg, float(mat[i, j]) if math.isfinite(mat[i, j]) else None, checks.get((ld, cfg), "")]
-            for i, ld in enumerate(corners) for j, cfg in enumerate(configs)]
-    table = Table([Column("corner", "CG corner", kind="text"), Column("configuration", "configuration", kind="text"),
-                   Column("margin", "smallest normalised margin"), Column("check", "critical check", kind="text")], rows)
-    heatmap = Heatmap(corners, configs, mat, Axis("smallest normalised margin"), row_label="CG corner",
-                      column_label="configuration")
-    return [Evidence(title, heatmap, caption=(
-        "Smallest normalised margin (margin / |limit|, or the margin itself where the limit is zero) of every check "
-        "at each CG corner and configuration, over the speeds and altitudes evaluated; ≥ 0 complies. Failing cells "
-        "are vermillion and hatched; grey cells were not evaluated."), table=table)]
+    rows = [
+        [ld, cfg, float(mat[i, j]) if math.isfinite(mat[i, j]) else None, checks.get((ld, cfg), "")]
+        for i, ld in enumerate(corners)
+        for j, cfg in enumerate(configs)
+    ]
+    table = Table(
+        [
+            Column("corner", "CG corner", kind="text"),
+            Column("configuration", "configuration", kind="text"),
+            Column("margin", "smallest normalised margin"),
+            Column("check", "critical check", kind="text"),
+        ],
+        rows,
+    )
+    heatmap = Heatmap(
+        corners, configs, mat, Axis("smallest normalised margin"), row_label="CG corner", column_label="configuration"
+    )
+    return [
+        Evidence(
+            title,
+            heatmap,
+            caption=(
+                "Smallest normalised margin (margin / |limit|, or the margin itself where the limit is zero) of every check "
+                "at each CG corner and configuration, over the speeds and altitudes evaluated; ≥ 0 complies. Failing cells "
+                "are vermillion and hatched; grey cells were not evaluated."
+            ),
+            table=table,
+        )
+    ]
 
 
 _MARKERS = {"short_period": "o", "phugoid": "s", "dutch_roll": "^"}
@@ -65,8 +84,18 @@ def damping_frequency_chart(points: list[dict], boundaries: list[tuple[str, floa
     series = []
     for (mode, level), xy in sorted(groups.items()):
         z, w = np.array(xy).T
-        series.append(Series(f"{mode.replace('_', ' ')} — Level {level if level < 4 else '>3'}", z, w, style="none",
-                             marker=_MARKERS[mode], colour=_LEVEL_COLOUR[level]))
+        series.append(
+            Series(
+                f"{mode.replace('_', ' ')} — Level {level if level < 4 else '>3'}",
+                z,
+                w,
+                style="none",
+                marker=_MARKERS[mode],
+                colour=_LEVEL_COLOUR[level],
+            )
+        )
     limits = [Limit(zeta, label, axis="x", kind="reference") for label, zeta, _ in boundaries]
     limits.append(Limit(0.0, "ζ = 0", axis="x", kind="limit"))
-    return Chart(Axis("damping ratio ζ"), [Panel(Axis("natural frequency ωn", "rad/s", "rad/s", log=True), series, limits)])
+    return Chart(
+        Axis("damping ratio ζ"), [Panel(Axis("natural frequency ωn", "rad/s", "rad/s", log=True), series, limits)]
+    )

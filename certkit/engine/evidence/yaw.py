@@ -27,25 +27,46 @@ def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
     def joined(a, b):
         return np.concatenate([a[live], b])
 
-    events = [Limit(float(r.t_full), "(a) full rudder", axis="x", kind="event"),
-              Limit(float(r.t_overswing[i]), "(b) overswing", axis="x", kind="event"),
-              Limit(float(r.t_steady[i]), "(c) settled, (d) returned", axis="x", kind="event")]
+    events = [
+        Limit(float(r.t_full), "(a) full rudder", axis="x", kind="event"),
+        Limit(float(r.t_overswing[i]), "(b) overswing", axis="x", kind="event"),
+        Limit(float(r.t_steady[i]), "(c) settled, (d) returned", axis="x", kind="event"),
+    ]
     shear = Series("fin root shear", t, joined(run.held_loads[:, i, 0, 0], run.returned_loads[:, i, 0, 0]), colour=0)
     root = run.envelope.stations["vertical_tail"][0]
     cap = (allow or {}).get("vertical_tail", {}).get((root, "shear"))
-    lims = [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")] if cap else []
-    panels = [Panel(Axis("rudder", "rad"), [Series("rudder", t, joined(r.held.controls[:, i, jr], r.returned.controls[:, i, jr]),
-                                                   colour=6)], events),
-              Panel(Axis("sideslip β", "rad"), [Series("sideslip β", t, joined(r.held["beta"][:, i], r.returned["beta"][:, i]),
-                                                       colour=2)], events),
-              Panel(Axis("fin root shear", "N", "kN"), [shear], events + lims, _peak_point(shear))]
+    lims = (
+        [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")]
+        if cap
+        else []
+    )
+    panels = [
+        Panel(
+            Axis("rudder", "rad"),
+            [Series("rudder", t, joined(r.held.controls[:, i, jr], r.returned.controls[:, i, jr]), colour=6)],
+            events,
+        ),
+        Panel(
+            Axis("sideslip β", "rad"),
+            [Series("sideslip β", t, joined(r.held["beta"][:, i], r.returned["beta"][:, i]), colour=2)],
+            events,
+        ),
+        Panel(Axis("fin root shear", "N", "kN"), [shear], events + lims, _peak_point(shear)),
+    ]
     return Chart(Axis("time", "s"), panels, title=run.conditions[i].label())
 
 
 def yaw_evidence(run, allow: dict | None = None) -> list[Evidence]:
     i = critical_condition(run)
-    return [Evidence("Critical yaw manoeuvre: rudder, sideslip and fin root shear", yaw_history(run, i, allow),
-                     caption="Phases (a) rudder applied, (b) overswing, (c) settled sideslip (dotted lines), then (d) "
-                             "rudder returned to neutral; roll held wings level by the ailerons."),
-            Evidence("Vertical-tail critical cases (condition — phase)",
-                     table=case_table(run.envelope, "vertical_tail", allow=allow))] + not_simulated(run.failed)
+    return [
+        Evidence(
+            "Critical yaw manoeuvre: rudder, sideslip and fin root shear",
+            yaw_history(run, i, allow),
+            caption="Phases (a) rudder applied, (b) overswing, (c) settled sideslip (dotted lines), then (d) "
+            "rudder returned to neutral; roll held wings level by the ailerons.",
+        ),
+        Evidence(
+            "Vertical-tail critical cases (condition — phase)",
+            table=case_table(run.envelope, "vertical_tail", allow=allow),
+        ),
+    ] + not_simulated(run.failed)

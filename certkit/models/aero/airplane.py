@@ -42,8 +42,21 @@ FLAP_TAIL_TERMS = ("tail_CL_per_flap_CL", "tail_Cm_per_flap_CL")
 #: the table's entry holding the free-air downwash at the tail (not a model term; lowest Mach breakpoint)
 FREE_AIR_DOWNWASH = "free_air_downwash"
 #: lattice derivatives carried into the flight model (the others are zero by symmetry or not used)
-CARRIED = ("CL_alpha", "CL_q", "CY_beta", "CY_p", "CY_r", "Cl_beta", "Cl_p", "Cl_r", "Cm_alpha", "Cm_q",
-           "Cn_beta", "Cn_p", "Cn_r")
+CARRIED = (
+    "CL_alpha",
+    "CL_q",
+    "CY_beta",
+    "CY_p",
+    "CY_r",
+    "Cl_beta",
+    "Cl_p",
+    "Cl_r",
+    "Cm_alpha",
+    "Cm_q",
+    "Cn_beta",
+    "Cn_p",
+    "Cn_r",
+)
 
 
 def aero_reference(aircraft) -> AeroReference:
@@ -66,17 +79,34 @@ def _surface(name: str, s, resolution, *, vertical: bool = False, component: int
             # incidence from its declared datum (the control's deflection δs = i_h − incidence)
             controls.append(ControlSpan(STABILIZER, 0.0, 1.0, 1.0, hinge_vector=(0.0, 1.0, 0.0)))
     surface = trapezoidal_surface(
-        name, area=s.area, aspect_ratio=s.aspect_ratio, taper=s.taper, sweep_quarter_chord=s.sweep_quarter_chord,
-        dihedral=s.dihedral, root_leading_edge=(s.root_leading_edge.x, s.root_leading_edge.y, s.root_leading_edge.z),
-        incidence=s.incidence, thickness_ratio=s.thickness_ratio, camber=_camber_digits(s.airfoil), vertical=vertical,
-        controls=controls, n_chord=resolution.chordwise, n_span=resolution.spanwise, chord_spacing=1.0,
-        span_spacing=1.0, component=component)
+        name,
+        area=s.area,
+        aspect_ratio=s.aspect_ratio,
+        taper=s.taper,
+        sweep_quarter_chord=s.sweep_quarter_chord,
+        dihedral=s.dihedral,
+        root_leading_edge=(s.root_leading_edge.x, s.root_leading_edge.y, s.root_leading_edge.z),
+        incidence=s.incidence,
+        thickness_ratio=s.thickness_ratio,
+        camber=_camber_digits(s.airfoil),
+        vertical=vertical,
+        controls=controls,
+        n_chord=resolution.chordwise,
+        n_span=resolution.spanwise,
+        chord_spacing=1.0,
+        span_spacing=1.0,
+        component=component,
+    )
     if s.tip_twist and not vertical:
         root_y = surface.sections[0].leading_edge[1]
         semi = surface.sections[-1].leading_edge[1] - root_y
-        surface = replace(surface, sections=[
-            replace(sec, incidence=sec.incidence + s.tip_twist * (sec.leading_edge[1] - root_y) / semi)
-            for sec in surface.sections])
+        surface = replace(
+            surface,
+            sections=[
+                replace(sec, incidence=sec.incidence + s.tip_twist * (sec.leading_edge[1] - root_y) / semi)
+                for sec in surface.sections
+            ],
+        )
     return surface
 
 
@@ -103,9 +133,11 @@ def lattice_configuration(aircraft, name: str = "") -> LatticeConfiguration:
         raise ValueError("the vortex lattice needs the geometry section (or declare aerodynamics.derivative_tables)")
     res = aircraft.aerodynamics.lattice
     fin = _surface("vertical_tail", g.vertical_tail, res, vertical=True, component=2)
-    surfaces = [_surface("wing", g.wing, res, component=1),
-                _surface("horizontal_tail", g.horizontal_tail, res, component=2),
-                with_carry_through(fin, 0.0)]
+    surfaces = [
+        _surface("wing", g.wing, res, component=1),
+        _surface("horizontal_tail", g.horizontal_tail, res, component=2),
+        with_carry_through(fin, 0.0),
+    ]
     return LatticeConfiguration(surfaces, aero_reference(aircraft), name=name)
 
 
@@ -129,8 +161,10 @@ def downwash_configurations(aircraft) -> tuple[LatticeConfiguration, LatticeConf
     wing = _surface("wing", g.wing, res.model_copy(update={"spanwise": strips}), component=1, controls=flap)
     tail = _surface("horizontal_tail", g.horizontal_tail, res, component=2, controls=[])
     ref = aero_reference(aircraft)
-    return (LatticeConfiguration([wing, tail], ref, name="wing and horizontal tail (downwash)"),
-            LatticeConfiguration([tail], ref, name="horizontal tail alone"))
+    return (
+        LatticeConfiguration([wing, tail], ref, name="wing and horizontal tail (downwash)"),
+        LatticeConfiguration([tail], ref, name="horizontal tail alone"),
+    )
 
 
 @dataclass
@@ -216,8 +250,10 @@ def drag_terms(aircraft, machs) -> tuple[list[float], list[float], list[str]]:
     notes = [f"CD0 includes wave drag at CL {DESIGN_CL} (Korn/Lock); Reynolds number on the 300 KCAS climb schedule"]
     factor = drag_factor(aircraft)
     if factor != 1.0:
-        notes.append(f"zero-lift drag of the build-up (parasite and wave) × {factor:.4f}: the declared performance "
-                     f"calibration ({aircraft.calibration.source})")
+        notes.append(
+            f"zero-lift drag of the build-up (parasite and wave) × {factor:.4f}: the declared performance "
+            f"calibration ({aircraft.calibration.source})"
+        )
     return list(factor * (b.CD0 + b.CD_wave)), list(k), notes
 
 
@@ -235,8 +271,9 @@ def fuselage_terms(aircraft) -> dict[str, float]:
     return {"Cm_alpha": f.Cm_alpha, "Cn_beta": f.Cn_beta, "CY_beta": f.CY_beta}
 
 
-def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=drag_terms, fuselage=fuselage_terms,
-                        lattice=None) -> AirplaneAero:
+def build_airplane_aero(
+    aircraft, configuration: str, machs=DEFAULT_MACHS, drag=drag_terms, fuselage=fuselage_terms, lattice=None
+) -> AirplaneAero:
     """The model of ``configuration``: declared tables if any, else the lattice estimate
     (``lattice``: the result of :func:`lattice_derivatives`, shared between configurations).
 
@@ -264,7 +301,9 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
         nd = nondimensional_table(declared, aircraft, reference_condition(aircraft))
         table, machs, controls = nd.derivatives, nd.mach, nd.controls
         notes += nd.notes
-        result = AirplaneAero(configuration, None, tuple(machs), table, f"declared table: {declared.source}", notes=notes)
+        result = AirplaneAero(
+            configuration, None, tuple(machs), table, f"declared table: {declared.source}", notes=notes
+        )
     else:
         table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
         controls = vl.control_names
@@ -272,8 +311,17 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
         table = {k: list(v) for k, v in table.items() if k != FREE_AIR_DOWNWASH}
         flap_tail = [table.pop(k, None) for k in FLAP_TAIL_TERMS]
         machs = tuple(machs)
-        result = AirplaneAero(configuration, None, tuple(machs), table, "vortex lattice (certkit.models.aero.vlm)",
-                              neutral_point=xnp, span_efficiency=e, notes=notes, lattice=vl)
+        result = AirplaneAero(
+            configuration,
+            None,
+            tuple(machs),
+            table,
+            "vortex lattice (certkit.models.aero.vlm)",
+            neutral_point=xnp,
+            span_efficiency=e,
+            notes=notes,
+            lattice=vl,
+        )
         if fuselage is not None:
             for key, delta in fuselage(aircraft).items():
                 table[key] = [v + delta for v in table[key]]
@@ -291,8 +339,9 @@ def build_airplane_aero(aircraft, configuration: str, machs=DEFAULT_MACHS, drag=
         table[key] = value
         result.overrides[key] = {"estimate": estimate, "value": value, "source": aircraft.aerodynamics.overrides_source}
     try:
-        result.model = StabilityDerivativeModel(ref, table, mach=machs, control_names=controls, stall=stall,
-                                                tail_downwash=tail_downwash)
+        result.model = StabilityDerivativeModel(
+            ref, table, mach=machs, control_names=controls, stall=stall, tail_downwash=tail_downwash
+        )
     except KeyError as exc:
         raise ValueError(f"aerodynamics of configuration {configuration!r}: {exc.args[0]}") from None
     return result
@@ -312,19 +361,27 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> flo
         d_cm = [cfg.delta_Cm0] * len(table["CL0"])
     elif wing.flaps is not None:
         ref = aircraft.reference
-        pairs = [lift_and_moment_increment(wing, wing.flaps, cfg.flap, a, ref.moment_point.x, ref.mean_chord)
-                 for a in table["CL_alpha"]]
+        pairs = [
+            lift_and_moment_increment(wing, wing.flaps, cfg.flap, a, ref.moment_point.x, ref.mean_chord)
+            for a in table["CL_alpha"]
+        ]
         d_cl, d_cm = [p[0] for p in pairs], [p[1] for p in pairs]
-        notes.append(f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22; "
-                     f"ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach breakpoint)")
+        notes.append(
+            f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22; "
+            f"ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach breakpoint)"
+        )
     elif flap_cl is not None:
         d_cl = [d * cfg.flap for d in flap_cl]
         d_cm = [d * cfg.flap for d in flap_cm]
-        notes.append(f"configuration {name}: flap increments from the lattice (linear theory; overestimates large deflections)")
+        notes.append(
+            f"configuration {name}: flap increments from the lattice (linear theory; overestimates large deflections)"
+        )
     else:
         d_cl = d_cm = [0.0] * len(table["CL0"])
-        notes.append(f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
-                     "no flap on the wing: lift and moment increments not modelled")
+        notes.append(
+            f"configuration {name}: flap {np.degrees(cfg.flap):.0f} deg has no declared increments and "
+            "no flap on the wing: lift and moment increments not modelled"
+        )
     tail_off = bool(cfg.delta_CL0 or cfg.delta_Cm0) or wing.flaps is not None  # declared or Raymer: tail-off
     tail_cl = 0.0
     if cfg.flap > 0 and tail_off:
@@ -349,16 +406,22 @@ def _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes):
     (:func:`certkit.models.aero.tail_downwash.flap_at_tail`) times the wing's ΔCL0."""
     declared = cfg.tail_flap_increment
     if declared is not None:
-        notes.append(f"configuration {name}: tail share of the flap increments declared (ΔCL {declared.delta_CL:+.4f}, "
-                     f"ΔCm {declared.delta_Cm:+.4f}; {declared.source})")
+        notes.append(
+            f"configuration {name}: tail share of the flap increments declared (ΔCL {declared.delta_CL:+.4f}, "
+            f"ΔCm {declared.delta_Cm:+.4f}; {declared.source})"
+        )
         return [d + declared.delta_CL for d in d_cl], [d + declared.delta_Cm for d in d_cm]
     per_cl, per_cm = flap_tail
     if per_cl is None:
-        notes.append(f"configuration {name}: no flap on the lattice's wing: the change of downwash at the tail with "
-                     "the flaps down is not modelled (the flap increments are tail-off)")
+        notes.append(
+            f"configuration {name}: no flap on the lattice's wing: the change of downwash at the tail with "
+            "the flaps down is not modelled (the flap increments are tail-off)"
+        )
         return d_cl, d_cm
     t_cl = [r * d for r, d in zip(per_cl, d_cl)]
     t_cm = [r * d for r, d in zip(per_cm, d_cl)]
-    notes.append(f"configuration {name}: tail share of the flap increments from the change of downwash in the vortex "
-                 f"lattice with the flap deflected (ΔCL {t_cl[0]:+.4f}, ΔCm {t_cm[0]:+.4f} at the lowest Mach breakpoint)")
+    notes.append(
+        f"configuration {name}: tail share of the flap increments from the change of downwash in the vortex "
+        f"lattice with the flap deflected (ΔCL {t_cl[0]:+.4f}, ΔCm {t_cm[0]:+.4f} at the lowest Mach breakpoint)"
+    )
     return [a + b for a, b in zip(d_cl, t_cl)], [a + b for a, b in zip(d_cm, t_cm)]

@@ -29,8 +29,14 @@ from certkit.aircraft.derivative_names import SPEED_TERMS
 #: half-width of the Mach interval carrying the speed derivatives (the table is linear in Mach)
 MACH_HALF_WIDTH = 0.05
 
-_CONTROL_MAP = {"X": ("CD", -1.0, "S"), "Z": ("CL", -1.0, "S"), "Y": ("CY", 1.0, "S"),
-                "L": ("Cl", 1.0, "b"), "M": ("Cm", 1.0, "c"), "N": ("Cn", 1.0, "b")}
+_CONTROL_MAP = {
+    "X": ("CD", -1.0, "S"),
+    "Z": ("CL", -1.0, "S"),
+    "Y": ("CY", 1.0, "S"),
+    "L": ("Cl", 1.0, "b"),
+    "M": ("Cm", 1.0, "c"),
+    "N": ("Cn", 1.0, "b"),
+}
 
 
 @dataclass
@@ -51,14 +57,25 @@ def _dimensional(d: dict, cond, ref, mass: float) -> dict:
     T_u = float(d.get("T_u", 0.0))
     get = lambda name: float(d.get(name, 0.0))  # noqa: E731
     out = {
-        "CL0": CL, "CD0": CD, "Cm0": 0.0,
-        "CL_alpha": -get("Z_w") / K - CD, "CD_alpha": CL - get("X_w") / K,
-        "CL_q": -get("Z_q") / (K * c / 2), "CL_alphadot": -2 * u0 * get("Z_wdot") / (K * c),
-        "Cm_alpha": get("M_w") / (K * c), "Cm_q": get("M_q") / (K * c * c / 2),
+        "CL0": CL,
+        "CD0": CD,
+        "Cm0": 0.0,
+        "CL_alpha": -get("Z_w") / K - CD,
+        "CD_alpha": CL - get("X_w") / K,
+        "CL_q": -get("Z_q") / (K * c / 2),
+        "CL_alphadot": -2 * u0 * get("Z_wdot") / (K * c),
+        "Cm_alpha": get("M_w") / (K * c),
+        "Cm_q": get("M_q") / (K * c * c / 2),
         "Cm_alphadot": 2 * u0 * get("M_wdot") / (K * c * c),
-        "CY_beta": get("Y_v") / K, "CY_p": get("Y_p") / (K * b / 2), "CY_r": get("Y_r") / (K * b / 2),
-        "Cl_beta": get("L_v") / (K * b), "Cl_p": get("L_p") / (K * b * b / 2), "Cl_r": get("L_r") / (K * b * b / 2),
-        "Cn_beta": get("N_v") / (K * b), "Cn_p": get("N_p") / (K * b * b / 2), "Cn_r": get("N_r") / (K * b * b / 2),
+        "CY_beta": get("Y_v") / K,
+        "CY_p": get("Y_p") / (K * b / 2),
+        "CY_r": get("Y_r") / (K * b / 2),
+        "Cl_beta": get("L_v") / (K * b),
+        "Cl_p": get("L_p") / (K * b * b / 2),
+        "Cl_r": get("L_r") / (K * b * b / 2),
+        "Cn_beta": get("N_v") / (K * b),
+        "Cn_p": get("N_p") / (K * b * b / 2),
+        "Cn_r": get("N_r") / (K * b * b / 2),
     }
     if "Z_u" in d:
         out["CL_u"] = -get("Z_u") / K - 2 * CL
@@ -71,8 +88,12 @@ def _dimensional(d: dict, cond, ref, mass: float) -> dict:
     lengths = {"S": 1.0, "b": b, "c": c}
     for name, value in d.items():
         prefix, _, control = name.partition("_")
-        if prefix in _CONTROL_MAP and name not in out and name not in ("T_u",) and control not in (
-                "u", "v", "w", "p", "q", "r", "wdot"):
+        if (
+            prefix in _CONTROL_MAP
+            and name not in out
+            and name not in ("T_u",)
+            and control not in ("u", "v", "w", "p", "q", "r", "wdot")
+        ):
             coef, sign, length = _CONTROL_MAP[prefix]
             out[f"{coef}_{control}"] = sign * float(value) / (q * S * lengths[length])
     return out
@@ -86,8 +107,10 @@ def nondimensional_table(table, aircraft, cond) -> NondimensionalTable:
     d = dict(table.derivatives)
     if table.form == "dimensional":
         d = _dimensional(d, cond, aircraft.reference, aircraft.mass.MTOW)
-        notes.append(f"dimensional derivatives made non-dimensional at the flight condition (ρ {cond.density:.4g} "
-                     f"kg/m³, u0 {cond.tas:.4g} m/s, CL {d['CL0']:.4f} from MTOW × g {cond.gravity:.5g} m/s²)")
+        notes.append(
+            f"dimensional derivatives made non-dimensional at the flight condition (ρ {cond.density:.4g} "
+            f"kg/m³, u0 {cond.tas:.4g} m/s, CL {d['CL0']:.4f} from MTOW × g {cond.gravity:.5g} m/s²)"
+        )
     mach = list(table.mach) if table.mach is not None else [cond.mach]
     thrust_speed = 0.0
     if "CT_u" in d:
@@ -105,8 +128,10 @@ def nondimensional_table(table, aircraft, cond) -> NondimensionalTable:
         for name, value in list(d.items()):
             if name not in (n.removesuffix("_u") + "0" for n in speed):
                 d[name] = [float(value)] * 2 if not isinstance(value, list) else value * 2
-        notes.append(f"speed derivatives {', '.join(speed)} carried as Mach slopes (C_u / M0, M0 = {m0:.4f}) "
-                     f"between Mach {lo:.3f} and {hi:.3f}")
+        notes.append(
+            f"speed derivatives {', '.join(speed)} carried as Mach slopes (C_u / M0, M0 = {m0:.4f}) "
+            f"between Mach {lo:.3f} and {hi:.3f}"
+        )
     return NondimensionalTable(mach, d, table.control_names, thrust_speed, notes)
 
 

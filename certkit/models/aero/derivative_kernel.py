@@ -21,12 +21,28 @@ import numpy as np
 from numba import njit
 
 BASE_TERMS = (
-    "CL0", "CL_alpha", "CL_q", "CL_alphadot",
-    "CD0", "k", "CL_minD", "CD_alpha", "CD_alpha2",
-    "CY_beta", "CY_p", "CY_r",
-    "Cl_beta", "Cl_p", "Cl_r",
-    "Cm0", "Cm_alpha", "Cm_q", "Cm_alphadot",
-    "Cn_beta", "Cn_p", "Cn_r",
+    "CL0",
+    "CL_alpha",
+    "CL_q",
+    "CL_alphadot",
+    "CD0",
+    "k",
+    "CL_minD",
+    "CD_alpha",
+    "CD_alpha2",
+    "CY_beta",
+    "CY_p",
+    "CY_r",
+    "Cl_beta",
+    "Cl_p",
+    "Cl_r",
+    "Cm0",
+    "Cm_alpha",
+    "Cm_q",
+    "Cm_alphadot",
+    "Cn_beta",
+    "Cn_p",
+    "Cn_r",
 )
 CONTROL_PREFIXES = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
 N_BASE = len(BASE_TERMS)
@@ -55,8 +71,9 @@ def _row(T, k, i0, i1, w):
 
 
 @njit(cache=True, error_model="numpy", fastmath=True, inline="always")
-def coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach,
-                     ctrl, out):
+def coefficients_one(
+    T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach, ctrl, out
+):
     """Coefficients of one state into ``out`` (length :data:`N_OUT`); ``ctrl`` the deflections
     (rad) in the table's control order."""
     i0, i1, w = mach_weights(machs, mach)
@@ -114,12 +131,27 @@ def coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha,
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
-def coefficients_batch(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach,
-                       ctrl):
+def coefficients_batch(
+    T, machs, clmax_row, stall, alpha_drag, after_stall, alpha, beta, p_hat, q_hat, r_hat, mach, ctrl
+):
     """:func:`coefficients_one` over flat arrays of n states; ``ctrl`` (n, n_controls). Returns (n, 8)."""
     n = alpha.shape[0]
     out = np.empty((n, N_OUT))
     for i in range(n):
-        coefficients_one(T, machs, clmax_row, stall, alpha_drag, after_stall, alpha[i], beta[i], p_hat[i], q_hat[i],
-                         r_hat[i], mach[i], ctrl[i], out[i])
+        coefficients_one(
+            T,
+            machs,
+            clmax_row,
+            stall,
+            alpha_drag,
+            after_stall,
+            alpha[i],
+            beta[i],
+            p_hat[i],
+            q_hat[i],
+            r_hat[i],
+            mach[i],
+            ctrl[i],
+            out[i],
+        )
     return out

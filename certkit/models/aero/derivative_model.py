@@ -132,10 +132,13 @@ class StabilityDerivativeModel:
         for name in derivatives:
             ctrl = name.partition("_")[2]
             if name not in _BASE_TERMS and ctrl not in self.control_names:
-                raise KeyError(f"unknown derivative {name!r}: neither a stability derivative nor a term of a "
-                               f"control in {self.control_names}")
-        self.uses_alpha_drag = (alpha_drag if alpha_drag is not None
-                                else "CD_alpha" in derivatives or "CD_alpha2" in derivatives)
+                raise KeyError(
+                    f"unknown derivative {name!r}: neither a stability derivative nor a term of a "
+                    f"control in {self.control_names}"
+                )
+        self.uses_alpha_drag = (
+            alpha_drag if alpha_drag is not None else "CD_alpha" in derivatives or "CD_alpha2" in derivatives
+        )
         unknown = [c for c in after_stall if c not in self.control_names]
         if unknown:
             raise KeyError(f"after_stall names unknown controls {unknown}")
@@ -150,7 +153,9 @@ class StabilityDerivativeModel:
             elif v.shape == (nm,):
                 table[self._index[name]] = v
             else:
-                raise ValueError(f"{name}: expected a float or {nm} values (one per Mach breakpoint), got shape {v.shape}")
+                raise ValueError(
+                    f"{name}: expected a float or {nm} values (one per Mach breakpoint), got shape {v.shape}"
+                )
         self._table = table
         self.stall = stall
         self._clmax = np.zeros(nm)
@@ -163,9 +168,14 @@ class StabilityDerivativeModel:
             stall_params[:] = (1.0, stall.rounding, stall.break_delta, stall.break_width, stall.CD90)
         #: the compiled evaluator's arguments (table, Mach breakpoints, CLmax, stall parameters,
         #: α-drag flag, after-stall flags) — see :mod:`certkit.models.aero.derivative_kernel`
-        self.kernel_data = (np.ascontiguousarray(table), self.mach, self._clmax, stall_params,
-                            bool(self.uses_alpha_drag),
-                            np.array([c in self.after_stall for c in self.control_names], dtype=np.bool_))
+        self.kernel_data = (
+            np.ascontiguousarray(table),
+            self.mach,
+            self._clmax,
+            stall_params,
+            bool(self.uses_alpha_drag),
+            np.array([c in self.after_stall for c in self.control_names], dtype=np.bool_),
+        )
         self._clmax_declared = self._clmax.copy()
         if stall is not None and calibrated_clmax is not None:  # a copy with other controls: the same calibration
             self._clmax[:] = calibrated_clmax
@@ -185,8 +195,18 @@ class StabilityDerivativeModel:
                 alpha_s = (internal[k] - cl0) / cla
                 alpha = np.linspace(alpha_s - 0.2, alpha_s + self.stall.break_delta + 4 * self.stall.break_width, 801)
                 z = np.zeros_like(alpha)
-                peak = float(coefficients_batch(*self.kernel_data, alpha, z, z, z, z, np.full_like(alpha, mach),
-                                                np.zeros((alpha.size, len(self.control_names))))[:, 0].max())
+                peak = float(
+                    coefficients_batch(
+                        *self.kernel_data,
+                        alpha,
+                        z,
+                        z,
+                        z,
+                        z,
+                        np.full_like(alpha, mach),
+                        np.zeros((alpha.size, len(self.control_names))),
+                    )[:, 0].max()
+                )
                 if abs(peak - self._clmax_declared[k]) < 1e-5:
                     break
                 internal[k] *= self._clmax_declared[k] / peak
@@ -234,11 +254,18 @@ class StabilityDerivativeModel:
     # ------------------------------------------------------------------ protocol
     def coefficients(self, state: AeroState) -> Coefficients:
         shape = np.broadcast_shapes(
-            np.shape(state.alpha), np.shape(state.beta), np.shape(state.p_hat), np.shape(state.q_hat),
-            np.shape(state.r_hat), np.shape(state.mach), *[np.shape(v) for v in state.controls.values()],
+            np.shape(state.alpha),
+            np.shape(state.beta),
+            np.shape(state.p_hat),
+            np.shape(state.q_hat),
+            np.shape(state.r_hat),
+            np.shape(state.mach),
+            *[np.shape(v) for v in state.controls.values()],
         )
-        flat = [kernel_array(np.broadcast_to(np.asarray(a, dtype=float), shape)).reshape(-1)
-                for a in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)]
+        flat = [
+            kernel_array(np.broadcast_to(np.asarray(a, dtype=float), shape)).reshape(-1)
+            for a in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)
+        ]
         ctrl = np.zeros((flat[0].size, len(self.control_names)))
         for j, name in enumerate(self.control_names):
             d = state.controls.get(name)
@@ -256,12 +283,19 @@ class StabilityDerivativeModel:
         """A copy with linear lift (no stall model): for balanced load states on the V–n envelope's stall line,
         whose lift coefficient C_N,max the rounded stall model does not reach."""
         derivs = self._nonzero_terms()
-        return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=self.control_names,
-                                        after_stall=self.after_stall, alpha_drag=self.uses_alpha_drag,
-                                        tail_downwash=self.tail_downwash)
+        return StabilityDerivativeModel(
+            self.reference,
+            derivs,
+            mach=self.mach,
+            control_names=self.control_names,
+            after_stall=self.after_stall,
+            alpha_drag=self.uses_alpha_drag,
+            tail_downwash=self.tail_downwash,
+        )
 
-    def with_control_terms(self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()
-                           ) -> "StabilityDerivativeModel":
+    def with_control_terms(
+        self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()
+    ) -> "StabilityDerivativeModel":
         """A copy with further control terms (``<coef>_<control>``, one value per Mach breakpoint
         or a float); controls named in ``after_stall`` add their lift after the stall model and
         outside the induced drag (pseudo-controls such as a gust angle). A base term (``CL_alpha`` …) is refused:
@@ -277,7 +311,14 @@ class StabilityDerivativeModel:
         derivs = self._nonzero_terms()
         derivs.update(terms)
         # the CLmax calibration (controls neutral) sees only the base terms: unchanged, it is this model's
-        return StabilityDerivativeModel(self.reference, derivs, mach=self.mach, control_names=names, stall=self.stall,
-                                        after_stall=tuple(self.after_stall) + tuple(after_stall),
-                                        alpha_drag=self.uses_alpha_drag, tail_downwash=self.tail_downwash,
-                                        calibrated_clmax=self._clmax)
+        return StabilityDerivativeModel(
+            self.reference,
+            derivs,
+            mach=self.mach,
+            control_names=names,
+            stall=self.stall,
+            after_stall=tuple(self.after_stall) + tuple(after_stall),
+            alpha_drag=self.uses_alpha_drag,
+            tail_downwash=self.tail_downwash,
+            calibrated_clmax=self._clmax,
+        )

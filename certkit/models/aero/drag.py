@@ -96,6 +96,7 @@ def cutoff_reynolds(length, roughness):
 
 # --- form factors -----------------------------------------------------------------------------
 
+
 def thickness_form_factor(thickness_ratio, x_max_thickness=0.4):
     """The thickness part of Raymer eq. 12.30: 1 + 0.6/(x/c)_m · t/c + 100 (t/c)⁴ (→ 1 as t/c → 0)."""
     tc = np.asarray(thickness_ratio, dtype=float)
@@ -124,6 +125,7 @@ def nacelle_form_factor(fineness):
 
 
 # --- wetted areas -----------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Trapezoid:
@@ -187,6 +189,7 @@ def nacelle_wetted_area(length, diameter):
 
 # --- components -------------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class Component:
     """One wetted component: its wetted area, Reynolds length, form factor (a function of Mach),
@@ -202,8 +205,14 @@ class Component:
 
 
 #: Default interference factors, Raymer §12.5.5.
-INTERFERENCE = {"wing": 1.0, "fuselage": 1.0, "horizontal tail": 1.04, "vertical tail": 1.04,
-                "nacelle": 1.3, "pylon": 1.0}
+INTERFERENCE = {
+    "wing": 1.0,
+    "fuselage": 1.0,
+    "horizontal tail": 1.04,
+    "vertical tail": 1.04,
+    "nacelle": 1.3,
+    "pylon": 1.0,
+}
 
 #: Pylon planform assumed from the nacelle (no schema field): chord = nacelle length, exposed height
 #: = 0.3 nacelle diameter, t/c 0.15 — a three-view estimate for under-wing pods.
@@ -212,13 +221,20 @@ PYLON_HEIGHT_PER_NACELLE_DIAMETER = 0.3
 PYLON_THICKNESS_RATIO = 0.15
 
 
-def _lifting_component(name, surface: LiftingSurface, plan: Trapezoid, x_max_thickness, q, laminar,
-                       fin: bool = False) -> Component:
+def _lifting_component(
+    name, surface: LiftingSurface, plan: Trapezoid, x_max_thickness, q, laminar, fin: bool = False
+) -> Component:
     tc = surface.thickness_ratio
     sweep_m = plan.sweep_at(x_max_thickness)
     wetted = float(lifting_surface_wetted_area(plan.area / (2.0 if fin else 1.0), tc))
-    return Component(name, wetted, plan.mean_chord,
-                     lambda m: lifting_surface_form_factor(tc, sweep_m, m, x_max_thickness), q, laminar)
+    return Component(
+        name,
+        wetted,
+        plan.mean_chord,
+        lambda m: lifting_surface_form_factor(tc, sweep_m, m, x_max_thickness),
+        q,
+        laminar,
+    )
 
 
 def airframe_components(
@@ -241,26 +257,62 @@ def airframe_components(
     wing_exposed = exposed_planform(geometry.wing, fus.width)
     parts = [
         _lifting_component("wing", geometry.wing, wing_exposed, x_max_thickness, q["wing"], lam.get("wing", 0.0)),
-        _lifting_component("horizontal tail", geometry.horizontal_tail, surface_planform(geometry.horizontal_tail),
-                           x_max_thickness, q["horizontal tail"], lam.get("horizontal tail", 0.0)),
-        _lifting_component("vertical tail", geometry.vertical_tail, surface_planform(geometry.vertical_tail, fin=True),
-                           x_max_thickness, q["vertical tail"], lam.get("vertical tail", 0.0), fin=True),
+        _lifting_component(
+            "horizontal tail",
+            geometry.horizontal_tail,
+            surface_planform(geometry.horizontal_tail),
+            x_max_thickness,
+            q["horizontal tail"],
+            lam.get("horizontal tail", 0.0),
+        ),
+        _lifting_component(
+            "vertical tail",
+            geometry.vertical_tail,
+            surface_planform(geometry.vertical_tail, fin=True),
+            x_max_thickness,
+            q["vertical tail"],
+            lam.get("vertical tail", 0.0),
+            fin=True,
+        ),
     ]
     fineness = fus.length / float(equivalent_diameter(fus.width, fus.height))
-    parts.append(Component("fuselage", float(fuselage_wetted_area(fus.length, fus.width, fus.height)), fus.length,
-                           lambda m: fuselage_form_factor(fineness), q["fuselage"],
-                           lam.get("fuselage", 0.0)))
+    parts.append(
+        Component(
+            "fuselage",
+            float(fuselage_wetted_area(fus.length, fus.width, fus.height)),
+            fus.length,
+            lambda m: fuselage_form_factor(fineness),
+            q["fuselage"],
+            lam.get("fuselage", 0.0),
+        )
+    )
     nac = geometry.nacelle
     if nac is not None and n_nacelles > 0:
         f_nac = nac.length / nac.diameter
-        parts.append(Component("nacelle", float(nacelle_wetted_area(nac.length, nac.diameter)), nac.length,
-                               lambda m: nacelle_form_factor(f_nac), q["nacelle"],
-                               lam.get("nacelle", 0.0), n_nacelles))
+        parts.append(
+            Component(
+                "nacelle",
+                float(nacelle_wetted_area(nac.length, nac.diameter)),
+                nac.length,
+                lambda m: nacelle_form_factor(f_nac),
+                q["nacelle"],
+                lam.get("nacelle", 0.0),
+                n_nacelles,
+            )
+        )
         chord = PYLON_CHORD_PER_NACELLE_LENGTH * nac.length
         exposed = chord * PYLON_HEIGHT_PER_NACELLE_DIAMETER * nac.diameter
-        parts.append(Component("pylon", float(lifting_surface_wetted_area(exposed, PYLON_THICKNESS_RATIO)), chord,
-                               lambda m: lifting_surface_form_factor(PYLON_THICKNESS_RATIO, 0.0, m, x_max_thickness),
-                               q["pylon"], lam.get("pylon", 0.0), n_nacelles))
+        parts.append(
+            Component(
+                "pylon",
+                float(lifting_surface_wetted_area(exposed, PYLON_THICKNESS_RATIO)),
+                chord,
+                lambda m: lifting_surface_form_factor(PYLON_THICKNESS_RATIO, 0.0, m, x_max_thickness),
+                q["pylon"],
+                lam.get("pylon", 0.0),
+                n_nacelles,
+            )
+        )
     return parts
 
 
@@ -278,6 +330,7 @@ def fuselage_upsweep_drag(geometry: Geometry, reference_area: float) -> float:
 
 
 # --- parasite drag ----------------------------------------------------------------------------
+
 
 @dataclass
 class ComponentDrag:
@@ -304,18 +357,44 @@ class ParasiteDrag:
         """Rows name, count, S_wet (m², all of them), Re, Cf, FF, Q, CD0 at condition ``index``."""
         import pandas as pd
 
-        rows = [{
-            "name": c.component.name, "count": c.component.count,
-            "S_wet": c.component.wetted_area * c.component.count,
-            "Re": float(np.asarray(c.reynolds)[index]), "Cf": float(np.asarray(c.skin_friction)[index]),
-            "FF": float(np.asarray(c.form_factor)[index]), "Q": c.component.interference,
-            "CD0": float(np.asarray(c.CD0)[index]),
-        } for c in self.components]
+        rows = [
+            {
+                "name": c.component.name,
+                "count": c.component.count,
+                "S_wet": c.component.wetted_area * c.component.count,
+                "Re": float(np.asarray(c.reynolds)[index]),
+                "Cf": float(np.asarray(c.skin_friction)[index]),
+                "FF": float(np.asarray(c.form_factor)[index]),
+                "Q": c.component.interference,
+                "CD0": float(np.asarray(c.CD0)[index]),
+            }
+            for c in self.components
+        ]
         if self.upsweep:
-            rows.append({"name": "fuselage upsweep", "count": 1, "S_wet": np.nan, "Re": np.nan, "Cf": np.nan,
-                         "FF": np.nan, "Q": np.nan, "CD0": self.upsweep})
-        rows.append({"name": "leakage and protuberances", "count": 1, "S_wet": np.nan, "Re": np.nan,
-                     "Cf": np.nan, "FF": np.nan, "Q": np.nan, "CD0": float(np.asarray(self.miscellaneous)[index])})
+            rows.append(
+                {
+                    "name": "fuselage upsweep",
+                    "count": 1,
+                    "S_wet": np.nan,
+                    "Re": np.nan,
+                    "Cf": np.nan,
+                    "FF": np.nan,
+                    "Q": np.nan,
+                    "CD0": self.upsweep,
+                }
+            )
+        rows.append(
+            {
+                "name": "leakage and protuberances",
+                "count": 1,
+                "S_wet": np.nan,
+                "Re": np.nan,
+                "Cf": np.nan,
+                "FF": np.nan,
+                "Q": np.nan,
+                "CD0": float(np.asarray(self.miscellaneous)[index]),
+            }
+        )
         table = pd.DataFrame(rows)
         table["share"] = table["CD0"] / table["CD0"].sum()
         return table
@@ -340,8 +419,11 @@ def parasite_drag(
     """
     mach = np.asarray(mach, dtype=float)
     altitude = np.asarray(altitude, dtype=float)
-    unit_re = reynolds_per_metre(mach, altitude) if reynolds_per_metre_override is None else \
-        np.broadcast_to(np.asarray(reynolds_per_metre_override, dtype=float), np.broadcast(mach, altitude).shape)
+    unit_re = (
+        reynolds_per_metre(mach, altitude)
+        if reynolds_per_metre_override is None
+        else np.broadcast_to(np.asarray(reynolds_per_metre_override, dtype=float), np.broadcast(mach, altitude).shape)
+    )
     parts = airframe_components(geometry) if components is None else components
     terms = []
     for c in parts:
@@ -378,7 +460,9 @@ def critical_mach(m_dd):
 
 def wave_drag(mach, CL, thickness_ratio, sweep, kappa_a=KAPPA_SUPERCRITICAL):
     """Lock's fourth-power law: CD_wave = 20 (M − M_crit)⁴ above M_crit, zero below."""
-    excess = np.maximum(np.asarray(mach, dtype=float) - critical_mach(drag_divergence_mach(CL, thickness_ratio, sweep, kappa_a)), 0.0)
+    excess = np.maximum(
+        np.asarray(mach, dtype=float) - critical_mach(drag_divergence_mach(CL, thickness_ratio, sweep, kappa_a)), 0.0
+    )
     return 20.0 * excess**4
 
 
@@ -397,8 +481,9 @@ def planform_span_efficiency(aspect_ratio, taper, sweep_quarter_chord):
     return 1.0 / (1.0 + f * np.asarray(aspect_ratio, dtype=float))
 
 
-def oswald_efficiency(aspect_ratio, taper, sweep_quarter_chord, fuselage_diameter, span,
-                      k_cd0=K_E_CD0_JET, inviscid_span_efficiency=None):
+def oswald_efficiency(
+    aspect_ratio, taper, sweep_quarter_chord, fuselage_diameter, span, k_cd0=K_E_CD0_JET, inviscid_span_efficiency=None
+):
     """Oswald e after Nita & Scholz: e_theo · (1 − 2 (d_F/b)²) · k_e,D0.
 
     With ``inviscid_span_efficiency`` (a vortex-lattice Trefftz-plane e, which already contains the
@@ -444,7 +529,9 @@ def configuration_drag_increment(configuration: Configuration, **flap_options) -
     else flaps by Raymer eq. 12.61 plus gear by Roskam Part I; slats add no estimated increment."""
     if configuration.delta_CD0 != 0.0:
         return configuration.delta_CD0, True
-    estimate = float(flap_drag_increment(configuration.flap, **flap_options)) + landing_gear_drag_increment(configuration.gear)
+    estimate = float(flap_drag_increment(configuration.flap, **flap_options)) + landing_gear_drag_increment(
+        configuration.gear
+    )
     return estimate, False
 
 
@@ -464,6 +551,7 @@ def spoiler_drag_increment(deflection, spoiler_area, reference_area, normal_forc
 
 
 # --- the build-up -----------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class DragOverrides:
@@ -536,8 +624,17 @@ def drag_buildup(
         overridden.append("oswald_efficiency")
     else:
         d_fus = float(equivalent_diameter(g.fuselage.width, g.fuselage.height))
-        e = np.broadcast_to(oswald_efficiency(wing.aspect_ratio, wing.taper, wing.sweep_quarter_chord, d_fus,
-                                              ref.span, inviscid_span_efficiency=inviscid_span_efficiency), mach.shape)
+        e = np.broadcast_to(
+            oswald_efficiency(
+                wing.aspect_ratio,
+                wing.taper,
+                wing.sweep_quarter_chord,
+                d_fus,
+                ref.span,
+                inviscid_span_efficiency=inviscid_span_efficiency,
+            ),
+            mach.shape,
+        )
 
     if ov.delta_CD0 is not None:
         delta, declared = ov.delta_CD0, True
@@ -547,21 +644,58 @@ def drag_buildup(
         if declared:
             overridden.append(f"delta_CD0 ({configuration}, aircraft file)")
 
-    return DragBuildUp(CL, cd0, cd_wave, induced_drag(CL, wing.aspect_ratio, e), np.full_like(mach, delta), e,
-                       parasite, tuple(overridden))
+    return DragBuildUp(
+        CL,
+        cd0,
+        cd_wave,
+        induced_drag(CL, wing.aspect_ratio, e),
+        np.full_like(mach, delta),
+        e,
+        parasite,
+        tuple(overridden),
+    )
 
 
 __all__ = [
-    "ROUGHNESS", "INTERFERENCE", "KAPPA_SUPERCRITICAL", "KAPPA_CONVENTIONAL",
-    "reynolds_per_metre", "turbulent_skin_friction", "laminar_skin_friction", "skin_friction", "cutoff_reynolds",
-    "thickness_form_factor", "lifting_surface_form_factor", "fuselage_form_factor", "nacelle_form_factor",
-    "Trapezoid", "surface_planform", "exposed_planform", "lifting_surface_wetted_area", "equivalent_diameter",
-    "fuselage_wetted_area", "nacelle_wetted_area", "Component", "airframe_components",
-    "upsweep_drag_area", "fuselage_upsweep_drag",
-    "ComponentDrag", "ParasiteDrag", "parasite_drag",
-    "drag_divergence_mach", "critical_mach", "wave_drag",
-    "planform_span_efficiency", "oswald_efficiency", "induced_drag",
-    "flap_drag_increment", "landing_gear_drag_increment", "configuration_drag_increment",
-    "windmilling_drag_coefficient", "spoiler_drag_increment",
-    "DragOverrides", "DragBuildUp", "drag_buildup",
+    "ROUGHNESS",
+    "INTERFERENCE",
+    "KAPPA_SUPERCRITICAL",
+    "KAPPA_CONVENTIONAL",
+    "reynolds_per_metre",
+    "turbulent_skin_friction",
+    "laminar_skin_friction",
+    "skin_friction",
+    "cutoff_reynolds",
+    "thickness_form_factor",
+    "lifting_surface_form_factor",
+    "fuselage_form_factor",
+    "nacelle_form_factor",
+    "Trapezoid",
+    "surface_planform",
+    "exposed_planform",
+    "lifting_surface_wetted_area",
+    "equivalent_diameter",
+    "fuselage_wetted_area",
+    "nacelle_wetted_area",
+    "Component",
+    "airframe_components",
+    "upsweep_drag_area",
+    "fuselage_upsweep_drag",
+    "ComponentDrag",
+    "ParasiteDrag",
+    "parasite_drag",
+    "drag_divergence_mach",
+    "critical_mach",
+    "wave_drag",
+    "planform_span_efficiency",
+    "oswald_efficiency",
+    "induced_drag",
+    "flap_drag_increment",
+    "landing_gear_drag_increment",
+    "configuration_drag_increment",
+    "windmilling_drag_coefficient",
+    "spoiler_drag_increment",
+    "DragOverrides",
+    "DragBuildUp",
+    "drag_buildup",
 ]

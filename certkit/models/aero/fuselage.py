@@ -28,18 +28,54 @@ from certkit.aircraft.model import Geometry, Reference
 from certkit.models.aero import planform
 
 #: Raymer Fig. 16.14: root quarter-chord station / body length → K_f (per degree).
-K_F_STATION = np.array([0.0976, 0.1374, 0.1910, 0.2415, 0.2919, 0.3236, 0.3496, 0.3797, 0.4049, 0.4366,
-                        0.4683, 0.5065, 0.5537, 0.5894, 0.6211])
-K_F_PER_DEG = np.array([0.00492, 0.00541, 0.00631, 0.00787, 0.00992, 0.01172, 0.01361, 0.01623, 0.01869,
-                        0.02238, 0.02656, 0.03213, 0.03992, 0.04615, 0.05230])
+K_F_STATION = np.array(
+    [
+        0.0976,
+        0.1374,
+        0.1910,
+        0.2415,
+        0.2919,
+        0.3236,
+        0.3496,
+        0.3797,
+        0.4049,
+        0.4366,
+        0.4683,
+        0.5065,
+        0.5537,
+        0.5894,
+        0.6211,
+    ]
+)
+K_F_PER_DEG = np.array(
+    [
+        0.00492,
+        0.00541,
+        0.00631,
+        0.00787,
+        0.00992,
+        0.01172,
+        0.01361,
+        0.01623,
+        0.01869,
+        0.02238,
+        0.02656,
+        0.03213,
+        0.03992,
+        0.04615,
+        0.05230,
+    ]
+)
 
 
 def pitching_moment_factor(station_fraction):
     """K_f (per degree) of Raymer Fig. 16.14; outside the figure's 10–62 % it is an error."""
     x = np.asarray(station_fraction, dtype=float)
     if np.any(x < K_F_STATION[0] - 1e-9) or np.any(x > K_F_STATION[-1] + 1e-9):
-        raise ValueError(f"wing root quarter chord at {np.min(x):.3f}–{np.max(x):.3f} of the body length: "
-                         f"Raymer Fig. 16.14 covers {K_F_STATION[0]:.2f}–{K_F_STATION[-1]:.2f}")
+        raise ValueError(
+            f"wing root quarter chord at {np.min(x):.3f}–{np.max(x):.3f} of the body length: "
+            f"Raymer Fig. 16.14 covers {K_F_STATION[0]:.2f}–{K_F_STATION[-1]:.2f}"
+        )
     return np.interp(x, K_F_STATION, K_F_PER_DEG)
 
 
@@ -102,5 +138,15 @@ def fuselage_derivatives(geometry: Geometry, reference: Reference) -> FuselageDe
     )
 
 
-__all__ = ["K_F_STATION", "K_F_PER_DEG", "pitching_moment_factor", "cm_alpha_fuselage", "fuselage_volume",
-           "cn_beta_fuselage", "cy_beta_fuselage", "FuselageDerivatives", "wing_root_quarter_chord_station", "fuselage_derivatives"]
+__all__ = [
+    "K_F_STATION",
+    "K_F_PER_DEG",
+    "pitching_moment_factor",
+    "cm_alpha_fuselage",
+    "fuselage_volume",
+    "cn_beta_fuselage",
+    "cy_beta_fuselage",
+    "FuselageDerivatives",
+    "wing_root_quarter_chord_station",
+    "fuselage_derivatives",
+]

@@ -20,8 +20,15 @@ import numpy as np
 
 from certkit.models.aero import planform
 
-DELTA_CLMAX_SECTION = {"plain": 0.9, "split": 0.9, "slotted": 1.3, "double_slotted": 1.6, "fowler": 1.3,
-                       "slat": 0.4, "krueger": 0.3}
+DELTA_CLMAX_SECTION = {
+    "plain": 0.9,
+    "split": 0.9,
+    "slotted": 1.3,
+    "double_slotted": 1.6,
+    "fowler": 1.3,
+    "slat": 0.4,
+    "krueger": 0.3,
+}
 #: types whose Δc_lmax multiplies the extended-chord ratio c'/c (Raymer Table 12.2)
 CHORD_SCALED = {"double_slotted", "fowler", "slat"}
 LANDING_DEFLECTION = np.radians(40.0)
@@ -64,7 +71,13 @@ def delta_clmax(wing, device, deflection: float) -> float:
     if device.type in CHORD_SCALED:
         base *= 1.0 + device.chord_ratio  # c'/c with the extension about equal to the device chord
     trailing = device.type not in ("slat", "krueger")
-    return 0.9 * base * flapped_area_ratio(wing, device) * np.cos(hinge_sweep(wing, device, trailing)) * _deflection_scale(deflection)
+    return (
+        0.9
+        * base
+        * flapped_area_ratio(wing, device)
+        * np.cos(hinge_sweep(wing, device, trailing))
+        * _deflection_scale(deflection)
+    )
 
 
 def lift_and_moment_increment(wing, flaps, flap_deflection: float, cl_alpha: float, x_ref: float, mean_chord: float):
@@ -79,12 +92,17 @@ def lift_and_moment_increment(wing, flaps, flap_deflection: float, cl_alpha: flo
     eta = 0.5 * (flaps.span_start + flaps.span_end)
     y = eta * semi
     chord = c_root * (1 - (1 - wing.taper) * eta)
-    x_le = wing.root_leading_edge.x + y * np.tan(planform.sweep_at(0.0, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper))
+    x_le = wing.root_leading_edge.x + y * np.tan(
+        planform.sweep_at(0.0, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)
+    )
     x_flap = x_le + 0.5 * chord
     return float(d_cl), float(-d_cl * (x_flap - x_ref) / mean_chord)
 
 
 def estimated_clmax(wing, configuration) -> float:
     """C_Lmax of a configuration: clean estimate plus the flap and slat increments."""
-    return (clean_clmax(wing) + delta_clmax(wing, wing.flaps, configuration.flap)
-            + delta_clmax(wing, wing.slats, configuration.slat))
+    return (
+        clean_clmax(wing)
+        + delta_clmax(wing, wing.flaps, configuration.flap)
+        + delta_clmax(wing, wing.slats, configuration.slat)
+    )

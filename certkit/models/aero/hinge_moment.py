@@ -48,7 +48,12 @@ class HingeMomentDerivatives:
 
     def moment(self, qbar, alpha, delta):
         """Hinge moment (N·m) at dynamic pressure ``qbar`` (Pa), angle of attack and deflection (rad)."""
-        return qbar * self.area * self.chord * (self.Ch_0 + self.Ch_alpha * np.asarray(alpha) + self.Ch_delta * np.asarray(delta))
+        return (
+            qbar
+            * self.area
+            * self.chord
+            * (self.Ch_0 + self.Ch_alpha * np.asarray(alpha) + self.Ch_delta * np.asarray(delta))
+        )
 
 
 def control_reference(lattice, control: str) -> tuple[float, float]:

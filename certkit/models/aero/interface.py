@@ -56,7 +56,9 @@ class Coefficients:
     Cm: np.ndarray
     Cn: np.ndarray
 
-    def body_forces(self, alpha: np.ndarray, beta: np.ndarray | float = 0.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def body_forces(
+        self, alpha: np.ndarray, beta: np.ndarray | float = 0.0
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Body-axis force coefficients (CX forward, CY right, CZ down) from lift, drag and side
         force, rotating stability axes by alpha (beta enters through CY, drag along the wind in
         the plane of symmetry: the small-sideslip form used by AVL's CX/CZ output)."""

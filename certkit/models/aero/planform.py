@@ -41,4 +41,9 @@ def lift_curve_slope(aspect_ratio, sweep_half_chord, mach, airfoil_efficiency=0.
     if np.any(beta2 <= 0):
         raise ValueError("the DATCOM lift-curve slope applies to subsonic Mach numbers only")
     a = aspect_ratio
-    return 2 * np.pi * a / (2 + np.sqrt(4 + a**2 * beta2 / airfoil_efficiency**2 * (1 + np.tan(sweep_half_chord) ** 2 / beta2)))
+    return (
+        2
+        * np.pi
+        * a
+        / (2 + np.sqrt(4 + a**2 * beta2 / airfoil_efficiency**2 * (1 + np.tan(sweep_half_chord) ** 2 / beta2)))
+    )

@@ -86,8 +86,12 @@ def lifting_line(surface) -> LiftingLine:
     x0 = le.x + 0.25 * cr
     t_sweep, t_dih = float(np.tan(surface.sweep_quarter_chord)), float(np.tan(surface.dihedral))
     y_mac = float(planform.mac_spanwise_position(surface.area, surface.aspect_ratio, surface.taper))
-    return LiftingLine((x0, le.z), (x0 + semi * t_sweep, semi, le.z + semi * t_dih), (cr, cr * surface.taper),
-                       (x0 + y_mac * t_sweep, le.z + y_mac * t_dih))
+    return LiftingLine(
+        (x0, le.z),
+        (x0 + semi * t_sweep, semi, le.z + semi * t_dih),
+        (cr, cr * surface.taper),
+        (x0 + y_mac * t_sweep, le.z + y_mac * t_dih),
+    )
 
 
 def induced_upwash(points, a, b, core) -> np.ndarray:
@@ -224,8 +228,9 @@ def downwash_ratio_one(h_over_b, dz, ratio, root_start, root_step, dz_start, dz_
     v = min(max((dz - dz_start) / dz_step, 0.0), nz - 1.000001)
     i, j = int(u), int(v)
     f, g = u - i, v - j
-    return ((ratio[i, j] * (1.0 - g) + ratio[i, j + 1] * g) * (1.0 - f)
-            + (ratio[i + 1, j] * (1.0 - g) + ratio[i + 1, j + 1] * g) * f)
+    return (ratio[i, j] * (1.0 - g) + ratio[i, j + 1] * g) * (1.0 - f) + (
+        ratio[i + 1, j] * (1.0 - g) + ratio[i + 1, j + 1] * g
+    ) * f
 
 
 def downwash_ratio(table: DownwashTable, h_over_b, dz) -> np.ndarray:
@@ -233,11 +238,24 @@ def downwash_ratio(table: DownwashTable, h_over_b, dz) -> np.ndarray:
     hb, d = np.broadcast_arrays(np.asarray(h_over_b, dtype=float), np.asarray(dz, dtype=float))
     out = np.empty(hb.shape)
     for k in np.ndindex(hb.shape):
-        out[k] = downwash_ratio_one(hb[k], d[k], table.ratio, table.root_start, table.root_step, table.dz_start,
-                                    table.dz_step)
+        out[k] = downwash_ratio_one(
+            hb[k], d[k], table.ratio, table.root_start, table.root_step, table.dz_start, table.dz_step
+        )
     return out
 
 
-__all__ = ["LiftingLine", "lifting_line", "induced_upwash", "vertical_velocity", "mirror", "wing_horseshoes", "span_load",
-           "tail_stations", "mean_downwash", "DownwashTable", "downwash_table", "downwash_ratio",
-           "downwash_ratio_one"]
+__all__ = [
+    "LiftingLine",
+    "lifting_line",
+    "induced_upwash",
+    "vertical_velocity",
+    "mirror",
+    "wing_horseshoes",
+    "span_load",
+    "tail_stations",
+    "mean_downwash",
+    "DownwashTable",
+    "downwash_table",
+    "downwash_ratio",
+    "downwash_ratio_one",
+]

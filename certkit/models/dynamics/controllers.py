@@ -64,9 +64,18 @@ def _pitch_law(u, j, de0, theta, theta_cmd, q, k_theta, k_q, limits):
 
 
 class PitchAttitudeHold(Controller):
-    def __init__(self, model: AircraftModel, u0: np.ndarray, rotation_speed, theta_target,
-                 rotation_rate: float = np.radians(3.0), k_theta: float = 2.0, k_q: float = 1.0,
-                 elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+    def __init__(
+        self,
+        model: AircraftModel,
+        u0: np.ndarray,
+        rotation_speed,
+        theta_target,
+        rotation_rate: float = np.radians(3.0),
+        k_theta: float = 2.0,
+        k_q: float = 1.0,
+        elevator: str = "elevator",
+        limits=(-np.radians(30), np.radians(20)),
+    ):
         self.j = model.control_index(elevator)
         self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
         self.vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (model.n,))
@@ -88,11 +97,29 @@ class PitchAttitudeHold(Controller):
 
 
 class TECSApproach(Controller):
-    def __init__(self, model: AircraftModel, x0: np.ndarray, u0: np.ndarray, glide: float = np.radians(-3.0),
-                 flare_height: float = 15.0, aim_below: float = 1.0, runway_elevation: float | None = None,
-                 k_e: float = 2.0, k_i: float = 0.3, k_d: float = 0.5, k_theta: float = 2.0, k_q: float = 1.0,
-                 k_v: float = 0.1, k_p: float = 1.5, elevator: str = "elevator", limits=(-np.radians(30), np.radians(20)),
-                 gear_height=None, k_p_flare: float = 4.0, k_d_flare: float = 1.0, k_gdot_flare: float = 2.0):
+    def __init__(
+        self,
+        model: AircraftModel,
+        x0: np.ndarray,
+        u0: np.ndarray,
+        glide: float = np.radians(-3.0),
+        flare_height: float = 15.0,
+        aim_below: float = 1.0,
+        runway_elevation: float | None = None,
+        k_e: float = 2.0,
+        k_i: float = 0.3,
+        k_d: float = 0.5,
+        k_theta: float = 2.0,
+        k_q: float = 1.0,
+        k_v: float = 0.1,
+        k_p: float = 1.5,
+        elevator: str = "elevator",
+        limits=(-np.radians(30), np.radians(20)),
+        gear_height=None,
+        k_p_flare: float = 4.0,
+        k_d_flare: float = 1.0,
+        k_gdot_flare: float = 2.0,
+    ):
         self.model = model
         self.k_p_flare, self.k_d_flare, self.k_gdot_flare = k_p_flare, k_d_flare, k_gdot_flare
         self.prev_gamma = None
@@ -124,7 +151,9 @@ class TECSApproach(Controller):
             return x[:, 2] - self.h_rwy - self.h_gear
         q0, q1, q2, q3 = (x[:, 9 + k, None] for k in range(4))
         rx, ry, rz = (self.model.r_gear[:, :, k] for k in range(3))
-        down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
+        down = (
+            2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
+        )
         return x[:, 2] - self.h_rwy - down.max(axis=1)
 
     def update(self, t, x, out, u, dt):
@@ -170,9 +199,18 @@ class TECSApproach(Controller):
 
 
 class WingsLevel(Controller):
-    def __init__(self, model: AircraftModel, u0: np.ndarray, k_phi: float = 2.0, k_p: float = 1.0,
-                 k_beta: float = 3.0, k_r: float = 2.0, aileron: str = "aileron", rudder: str = "rudder",
-                 limits: dict | None = None):
+    def __init__(
+        self,
+        model: AircraftModel,
+        u0: np.ndarray,
+        k_phi: float = 2.0,
+        k_p: float = 1.0,
+        k_beta: float = 3.0,
+        k_r: float = 2.0,
+        aileron: str = "aileron",
+        rudder: str = "rudder",
+        limits: dict | None = None,
+    ):
         self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
         u0 = np.asarray(u0, dtype=float)
         self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
@@ -228,9 +266,22 @@ class HeadingHold(Controller):
         δa = δa0 + K_φ (φ − φ_cmd) + K_p p,
     both clipped to ``limits`` (positive deflections give negative moments, :mod:`certkit.conventions`)."""
 
-    def __init__(self, model: AircraftModel, u0: np.ndarray, k_psi: float = 3.0, k_i: float = 1.0, k_r: float = 3.0,
-                 k_phi: float = 2.0, k_p: float = 1.0, bank=0.0, aileron: str = "aileron", rudder: str = "rudder",
-                 limits: dict | None = None, k_y: float = 0.0, max_correction: float = np.radians(3.0)):
+    def __init__(
+        self,
+        model: AircraftModel,
+        u0: np.ndarray,
+        k_psi: float = 3.0,
+        k_i: float = 1.0,
+        k_r: float = 3.0,
+        k_phi: float = 2.0,
+        k_p: float = 1.0,
+        bank=0.0,
+        aileron: str = "aileron",
+        rudder: str = "rudder",
+        limits: dict | None = None,
+        k_y: float = 0.0,
+        max_correction: float = np.radians(3.0),
+    ):
         self.ja, self.jr = model.control_index(aileron), model.control_index(rudder)
         u0 = np.asarray(u0, dtype=float)
         self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()

@@ -88,7 +88,9 @@ def _shared_thrust(engines) -> Callable | None:
         return None
     first = fns[0].__self__
     try:
-        same = all(f.__self__ is first or (type(f.__self__) is type(first) and bool(f.__self__ == first)) for f in fns[1:])
+        same = all(
+            f.__self__ is first or (type(f.__self__) is type(first) and bool(f.__self__ == first)) for f in fns[1:]
+        )
     except (ValueError, TypeError):  # objects whose equality is not a single truth value (array fields)
         return None
     return fns[0] if same else None
@@ -157,12 +159,15 @@ def euler_to_quat(phi, theta, psi) -> np.ndarray:
     cphi, sphi = np.cos(phi / 2), np.sin(phi / 2)
     cth, sth = np.cos(theta / 2), np.sin(theta / 2)
     cpsi, spsi = np.cos(psi / 2), np.sin(psi / 2)
-    return np.stack([
-        cphi * cth * cpsi + sphi * sth * spsi,
-        sphi * cth * cpsi - cphi * sth * spsi,
-        cphi * sth * cpsi + sphi * cth * spsi,
-        cphi * cth * spsi - sphi * sth * cpsi,
-    ], axis=-1)
+    return np.stack(
+        [
+            cphi * cth * cpsi + sphi * sth * spsi,
+            sphi * cth * cpsi - cphi * sth * spsi,
+            cphi * sth * cpsi + sphi * cth * spsi,
+            cphi * cth * spsi - sphi * sth * cpsi,
+        ],
+        axis=-1,
+    )
 
 
 def quat_to_euler(quat) -> np.ndarray:
@@ -176,30 +181,41 @@ def quat_to_euler(quat) -> np.ndarray:
 def quat_to_dcm(quat) -> np.ndarray:
     """Body-to-earth (NED) direction cosine matrix, shape (..., 3, 3)."""
     q0, q1, q2, q3 = (quat[..., i] for i in range(4))
-    return np.stack([
-        np.stack([1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)], -1),
-        np.stack([2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 - q0 * q1)], -1),
-        np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), 1 - 2 * (q1 * q1 + q2 * q2)], -1),
-    ], -2)
+    return np.stack(
+        [
+            np.stack([1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)], -1),
+            np.stack([2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 - q0 * q1)], -1),
+            np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), 1 - 2 * (q1 * q1 + q2 * q2)], -1),
+        ],
+        -2,
+    )
 
 
 def euler_to_dcm(phi, theta, psi) -> np.ndarray:
     cf, sf, ct, st, cp, sp = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta), np.cos(psi), np.sin(psi)
-    return np.stack([
-        np.stack([ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp], -1),
-        np.stack([ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp], -1),
-        np.stack([-st, sf * ct, cf * ct], -1),
-    ], -2)
+    return np.stack(
+        [
+            np.stack([ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp], -1),
+            np.stack([ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp], -1),
+            np.stack([-st, sf * ct, cf * ct], -1),
+        ],
+        -2,
+    )
 
 
 def inertia_tensor(Ixx, Iyy, Izz, Ixz=0.0, Ixy=0.0, Iyz=0.0) -> np.ndarray:
     """Inertia tensor (…, 3, 3) from moments and products (products ∫xz dm etc., body axes)."""
-    Ixx, Iyy, Izz, Ixz, Ixy, Iyz = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (Ixx, Iyy, Izz, Ixz, Ixy, Iyz)))
-    return np.stack([
-        np.stack([Ixx, -Ixy, -Ixz], -1),
-        np.stack([-Ixy, Iyy, -Iyz], -1),
-        np.stack([-Ixz, -Iyz, Izz], -1),
-    ], -2)
+    Ixx, Iyy, Izz, Ixz, Ixy, Iyz = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (Ixx, Iyy, Izz, Ixz, Ixy, Iyz))
+    )
+    return np.stack(
+        [
+            np.stack([Ixx, -Ixy, -Ixz], -1),
+            np.stack([-Ixy, Iyy, -Iyz], -1),
+            np.stack([-Ixz, -Iyz, Izz], -1),
+        ],
+        -2,
+    )
 
 
 @dataclass
@@ -240,15 +256,28 @@ class AircraftModel:
     ground model and ``nose_wheel_steering`` when a leg is steered.
     """
 
-    def __init__(self, aero: AeroModel, mass, cg, inertia, engines: Sequence[Engine] = (), operative=None,
-                 ground: GroundModel | None = None, g: float = G0, n: int | None = None) -> None:
+    def __init__(
+        self,
+        aero: AeroModel,
+        mass,
+        cg,
+        inertia,
+        engines: Sequence[Engine] = (),
+        operative=None,
+        ground: GroundModel | None = None,
+        g: float = G0,
+        n: int | None = None,
+    ) -> None:
         self.aero = aero
         mass = np.asarray(mass, dtype=float)
         cg = np.asarray(cg, dtype=float)
         inertia = np.asarray(inertia, dtype=float)
         if n is None:
-            n = max(mass.size if mass.ndim else 1, cg.shape[0] if cg.ndim == 2 else 1,
-                    inertia.shape[0] if inertia.ndim == 3 else 1)
+            n = max(
+                mass.size if mass.ndim else 1,
+                cg.shape[0] if cg.ndim == 2 else 1,
+                inertia.shape[0] if inertia.ndim == 3 else 1,
+            )
         self.n = n
         self.mass = np.broadcast_to(mass, (n,)).copy()
         self.cg = np.broadcast_to(cg, (n, 3)).copy()
@@ -256,7 +285,11 @@ class AircraftModel:
         self.inertia_inv = np.linalg.inv(self.inertia)
         self.engines = tuple(engines)
         ne = len(self.engines)
-        op = np.ones((n, ne), dtype=bool) if operative is None else np.broadcast_to(np.asarray(operative, dtype=bool), (n, ne)).copy()
+        op = (
+            np.ones((n, ne), dtype=bool)
+            if operative is None
+            else np.broadcast_to(np.asarray(operative, dtype=bool), (n, ne)).copy()
+        )
         self.operative = op
         #: share of its running thrust a failed engine still gives (n, n_engines): 0 windmills at once; a spool-down
         #: (:class:`~certkit.models.dynamics.controllers.EngineFailure`) lets it decay from 1
@@ -308,8 +341,17 @@ class AircraftModel:
     def subset(self, idx) -> "AircraftModel":
         """The model restricted to conditions ``idx`` (index array or boolean mask)."""
         idx = np.arange(self.n)[idx]
-        return AircraftModel(self.aero, self.mass[idx], self.cg[idx], self.inertia[idx], self.engines,
-                             self.operative[idx], self.ground, self.g, n=idx.size)
+        return AircraftModel(
+            self.aero,
+            self.mass[idx],
+            self.cg[idx],
+            self.inertia[idx],
+            self.engines,
+            self.operative[idx],
+            self.ground,
+            self.g,
+            n=idx.size,
+        )
 
     # ------------------------------------------------------------------ core
     def _pack(self) -> None:
@@ -331,15 +373,40 @@ class AircraftModel:
         gm = self.ground
         if gm is not None:
             r_gear = np.ascontiguousarray(self.r_gear)
-            legs = np.array([[leg.stiffness, leg.damping, leg.rolling_friction, leg.side_friction, float(leg.braked),
-                              float(leg.steered)] for leg in gm.legs], dtype=float).reshape(-1, 6)
-            gparams = np.concatenate([[gm.elevation, gm.brake_friction, gm.slip_speed],
-                                      self._ground_effect_params(gm.wing)])
+            legs = np.array(
+                [
+                    [
+                        leg.stiffness,
+                        leg.damping,
+                        leg.rolling_friction,
+                        leg.side_friction,
+                        float(leg.braked),
+                        float(leg.steered),
+                    ]
+                    for leg in gm.legs
+                ],
+                dtype=float,
+            ).reshape(-1, 6)
+            gparams = np.concatenate(
+                [[gm.elevation, gm.brake_friction, gm.slip_speed], self._ground_effect_params(gm.wing)]
+            )
         else:
             r_gear, legs, gparams = np.zeros((n, 0, 3)), np.zeros((0, 6)), np.zeros(9)
-        self._kernel_args = (props, np.array([self.b, self.c, self.S, self.g]), *table, len(self.aero_controls),
-                             self._use_table, r_eng, d_eng, gm is not None, r_gear, legs, gparams,
-                             -1 if self._brake_index is None else self._brake_index, self._steer_index)
+        self._kernel_args = (
+            props,
+            np.array([self.b, self.c, self.S, self.g]),
+            *table,
+            len(self.aero_controls),
+            self._use_table,
+            r_eng,
+            d_eng,
+            gm is not None,
+            r_gear,
+            legs,
+            gparams,
+            -1 if self._brake_index is None else self._brake_index,
+            self._steer_index,
+        )
 
     def _ground_effect_params(self, wing: "GroundEffectWing | None") -> np.ndarray:
         """gparams[3:] of the kernel (layout in :mod:`certkit.models.dynamics.kernel`): span (0: none), aspect ratio,
@@ -361,11 +428,29 @@ class AircraftModel:
             line, tail_line = wing.lines
             r = downwash_table(line, tail_line, wing.span, H_OVER_B_MAX)
             dt = np.array([tail_line.reference[0], 0.0, tail_line.reference[1]]) - origin
-            tail[:] = (-dt[0], dt[1], -dt[2], free_air.epsilon0, free_air.gradient, free_air.lift_slope,
-                       free_air.moment_slope, r.root_start, r.root_step, r.dz_start, r.dz_step, *r.ratio.shape)
+            tail[:] = (
+                -dt[0],
+                dt[1],
+                -dt[2],
+                free_air.epsilon0,
+                free_air.gradient,
+                free_air.lift_slope,
+                free_air.moment_slope,
+                r.root_start,
+                r.root_step,
+                r.dz_start,
+                r.dz_step,
+                *r.ratio.shape,
+            )
             table = r.ratio.ravel()
-        return np.concatenate([[wing.span, wing.aspect_ratio, np.tan(wing.sweep_half_chord), -d[0], d[1], -d[2]],
-                               tail, induced_drag_factor_table(), table])
+        return np.concatenate(
+            [
+                [wing.span, wing.aspect_ratio, np.tan(wing.sweep_half_chord), -d[0], d[1], -d[2]],
+                tail,
+                induced_drag_factor_table(),
+                table,
+            ]
+        )
 
     def thrust_forces(self, air: np.ndarray, controls: np.ndarray, rows=None) -> np.ndarray:
         """Force of each engine along its thrust line (n, n_engines), N, from the air data
@@ -402,10 +487,17 @@ class AircraftModel:
             return np.empty((n, 8))  # scratch space for the kernel
         Vs = np.maximum(air[:, 1], 1e-3)
         b, c = self.b, self.c
-        coef = self.aero.coefficients(AeroState(
-            alpha=air[:, 2], beta=air[:, 3], p_hat=X[:, 6] * (b / 2) / Vs, q_hat=X[:, 7] * (c / 2) / Vs,
-            r_hat=X[:, 8] * (b / 2) / Vs, mach=air[:, 4],
-            controls={name: controls[:, i] for i, name in enumerate(self.aero_controls)}))
+        coef = self.aero.coefficients(
+            AeroState(
+                alpha=air[:, 2],
+                beta=air[:, 3],
+                p_hat=X[:, 6] * (b / 2) / Vs,
+                q_hat=X[:, 7] * (c / 2) / Vs,
+                r_hat=X[:, 8] * (b / 2) / Vs,
+                mach=air[:, 4],
+                controls={name: controls[:, i] for i, name in enumerate(self.aero_controls)},
+            )
+        )
         out = np.zeros((n, 8))
         for k, name in enumerate(("CL", "CD", "CY", "Cl", "Cm", "Cn")):
             out[:, k] = np.broadcast_to(getattr(coef, name), (n,))
@@ -427,13 +519,22 @@ class AircraftModel:
         if thrust is None or not self._use_table:
             air = kernel.air_data(X)
         if thrust is None and self.thrust_compiled:
-            thrust = kernel.engine_forces(air, U, idx, self._turbofan, self.throttle_slice.start, self.operative,
-                                          np.ascontiguousarray(self.failed_thrust_fraction, dtype=float), self._windmill)
+            thrust = kernel.engine_forces(
+                air,
+                U,
+                idx,
+                self._turbofan,
+                self.throttle_slice.start,
+                self.operative,
+                np.ascontiguousarray(self.failed_thrust_fraction, dtype=float),
+                self._windmill,
+            )
         elif thrust is None:
             thrust = self.thrust_forces(air, U, rows)
         thrust = kernel_array(thrust)
-        xd, out, gear = kernel.derivatives(X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U),
-                                           *self._kernel_args)
+        xd, out, gear = kernel.derivatives(
+            X, idx, X.shape[1] == 13, U, thrust, self._coefficients(X, air, U), *self._kernel_args
+        )
         return xd, out, gear, thrust
 
     @property
@@ -458,9 +559,25 @@ class AircraftModel:
         cols, lo, hi = stops if stops is not None else (np.zeros(0, dtype=np.int64), np.zeros((0, n)), np.zeros((0, n)))
         stop_step = np.full(n, -1, dtype=np.int64)
         stop_which = np.full(n, -1, dtype=np.int64)
-        irec = kernel.integrate_open_loop(kernel_array(x13), kernel_array(U_all), kernel_array(dts), record_every, self._turbofan, self.throttle_slice.start,
-                                          len(self.engines), np.empty((n, 8)), *self._kernel_args, cols, lo, hi,
-                                          out_rec, x_rec, u_rec, stop_step, stop_which)
+        irec = kernel.integrate_open_loop(
+            kernel_array(x13),
+            kernel_array(U_all),
+            kernel_array(dts),
+            record_every,
+            self._turbofan,
+            self.throttle_slice.start,
+            len(self.engines),
+            np.empty((n, 8)),
+            *self._kernel_args,
+            cols,
+            lo,
+            hi,
+            out_rec,
+            x_rec,
+            u_rec,
+            stop_step,
+            stop_which,
+        )
         return int(irec), stop_step, stop_which
 
     def make_outputs(self, out, gear, thrust) -> Outputs:
@@ -476,8 +593,7 @@ class AircraftModel:
         act = kernel_array(active, np.bool_)
         if self._use_table:
             dts = np.full(X.shape[0], dt) if np.ndim(dt) == 0 else kernel_array(dt)
-            kernel.rk4_step(X, kernel_array(xd1), act, dts, U, thrust,
-                            np.empty((X.shape[0], 8)), *self._kernel_args)
+            kernel.rk4_step(X, kernel_array(xd1), act, dts, U, thrust, np.empty((X.shape[0], 8)), *self._kernel_args)
             return X
         dt = np.asarray(dt, dtype=float)[..., None] if np.ndim(dt) else dt
         k2 = self.evaluate(X + 0.5 * dt * xd1, U, thrust)[0]
@@ -516,7 +632,20 @@ def energy(model: AircraftModel, x13) -> np.ndarray:
 
 
 __all__ = [
-    "QUAT_STATE", "EULER_STATE", "Engine", "GearLeg", "GroundModel", "AircraftModel", "Outputs",
-    "inertia_tensor", "airplane_to_body", "euler_to_quat", "quat_to_euler", "quat_to_dcm", "euler_to_dcm",
-    "euler_state_to_quat_state", "quat_state_to_euler_state", "energy",
+    "QUAT_STATE",
+    "EULER_STATE",
+    "Engine",
+    "GearLeg",
+    "GroundModel",
+    "AircraftModel",
+    "Outputs",
+    "inertia_tensor",
+    "airplane_to_body",
+    "euler_to_quat",
+    "quat_to_euler",
+    "quat_to_dcm",
+    "euler_to_dcm",
+    "euler_state_to_quat_state",
+    "quat_state_to_euler_state",
+    "energy",
 ]

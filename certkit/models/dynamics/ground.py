@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from certkit.models.dynamics.eom import AircraftModel, quat_to_dcm, euler_to_quat
+from certkit.models.dynamics.eom import AircraftModel, euler_to_quat, quat_to_dcm
 
 
 def gear_heights(model: AircraftModel, x12: np.ndarray) -> np.ndarray:

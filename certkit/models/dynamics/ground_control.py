@@ -51,32 +51,44 @@ _SWING = np.radians(0.02)
 
 @dataclass
 class EngineCutRuns:
-    failure_speed: np.ndarray   # (n,) m/s TAS
-    deviation: np.ndarray       # (n,) m, largest |y| from the failure to the recovery (inf: not recovered)
-    recovered: np.ndarray       # (n,) bool
-    heading_swing: np.ndarray   # (n,) rad, largest |ψ| after the failure
-    rudder_peak: np.ndarray     # (n,) rad, largest |δr|
-    recovery_time: np.ndarray   # (n,) s after the failure (nan: not recovered)
-    airborne: np.ndarray        # (n,) bool: the gear left the runway before the recovery (deviation up to then)
+    failure_speed: np.ndarray  # (n,) m/s TAS
+    deviation: np.ndarray  # (n,) m, largest |y| from the failure to the recovery (inf: not recovered)
+    recovered: np.ndarray  # (n,) bool
+    heading_swing: np.ndarray  # (n,) rad, largest |ψ| after the failure
+    rudder_peak: np.ndarray  # (n,) rad, largest |δr|
+    recovery_time: np.ndarray  # (n,) s after the failure (nan: not recovered)
+    airborne: np.ndarray  # (n,) bool: the gear left the runway before the recovery (deviation up to then)
     sim: SimulationResult
 
 
 @dataclass
 class GroundControlSpeed:
-    speed: np.ndarray           # (n,) m/s TAS, the failure speed at which the deviation equals the bound
-    below: np.ndarray           # (n,) bool: within the bound at the lowest speed searched
-    above: np.ndarray           # (n,) bool: beyond the bound at the highest speed searched
-    speeds: list                # per condition, the failure speeds run (sorted)
-    deviations: list            # per condition, their deviations (m)
-    runs: list                  # the EngineCutRuns of each pass
-    balance_speed: np.ndarray   # (n,) m/s TAS, the static rudder-moment balance the search started from (NaN: none)
+    speed: np.ndarray  # (n,) m/s TAS, the failure speed at which the deviation equals the bound
+    below: np.ndarray  # (n,) bool: within the bound at the lowest speed searched
+    above: np.ndarray  # (n,) bool: beyond the bound at the highest speed searched
+    speeds: list  # per condition, the failure speeds run (sorted)
+    deviations: list  # per condition, their deviations (m)
+    runs: list  # the EngineCutRuns of each pass
+    balance_speed: np.ndarray  # (n,) m/s TAS, the static rudder-moment balance the search started from (NaN: none)
 
 
-def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_time: float, rudder_rate: float,
-                    decay_time: float | None = None, throttle: float = 1.0, settings=None, lateral_limits=None,
-                    lead_time: float = 3.0, after: float = 15.0, dt: float = 0.1,
-                    centreline_gain: float = 0.004, departure: float = 60.0,
-                    elevator_limits=(-np.radians(30), np.radians(20))) -> EngineCutRuns:
+def engine_cut_runs(
+    model: AircraftModel,
+    failure_speed,
+    engine: str,
+    reaction_time: float,
+    rudder_rate: float,
+    decay_time: float | None = None,
+    throttle: float = 1.0,
+    settings=None,
+    lateral_limits=None,
+    lead_time: float = 3.0,
+    after: float = 15.0,
+    dt: float = 0.1,
+    centreline_gain: float = 0.004,
+    departure: float = 60.0,
+    elevator_limits=(-np.radians(30), np.radians(20)),
+) -> EngineCutRuns:
     """The engine-cut runs of the batch (module docstring); ``departure`` (m) off the centreline ends a row early."""
     n = model.n
     vf = np.broadcast_to(np.asarray(failure_speed, dtype=float), (n,)).copy()
@@ -90,8 +102,9 @@ def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_t
     # the column holds the attitude of rest: the nose wheel stays on the runway (no rotation)
     pitch = PitchAttitudeHold(model, u, 0.0, x0[:, 10], limits=elevator_limits)
     failure = EngineFailure(model, engine, vf, decay_time=decay_time)
-    pilot = DirectionalPilot(model, u, failure, reaction_time, rudder_rate, None, limits=lateral_limits,
-                             k_y=centreline_gain)
+    pilot = DirectionalPilot(
+        model, u, failure, reaction_time, rudder_rate, None, limits=lateral_limits, k_y=centreline_gain
+    )
     y0 = x0[:, 1].copy()
     swing_sign = np.zeros(n)
     recovered = np.zeros(n, dtype=bool)
@@ -128,10 +141,16 @@ def engine_cut_runs(model: AircraftModel, failure_speed, engine: str, reaction_t
     return EngineCutRuns(vf, dev, recovered, swing, rudder, t_rec, airborne, sim)
 
 
-
-
-def rudder_balance_speed(model: AircraftModel, engine: str, rudder_limits, low: float, high: float, settings=None,
-                         throttle: float = 1.0, points: int = 25) -> np.ndarray:
+def rudder_balance_speed(
+    model: AircraftModel,
+    engine: str,
+    rudder_limits,
+    low: float,
+    high: float,
+    settings=None,
+    throttle: float = 1.0,
+    points: int = 25,
+) -> np.ndarray:
     """The speed (m/s TAS, one per condition; NaN where none between ``low`` and ``high``) at which the rudder on its
     stop balances the yawing moment of ``engine`` failed (windmilling) and the others at ``throttle``: straight,
     wings level, no sideslip, no rates, clear of the runway — the static rudder-moment balance, where the search of
@@ -171,9 +190,20 @@ def rudder_balance_speed(model: AircraftModel, engine: str, rudder_limits, low: 
     return out
 
 
-def ground_minimum_control_speed(model: AircraftModel, engine: str, low: float, high: float, deviation_limit: float,
-                                 reaction_time: float, rudder_rate: float, grid: int = 9, extend: int = 4,
-                                 window=(0.85, 1.15), settings=None, **runs) -> GroundControlSpeed:
+def ground_minimum_control_speed(
+    model: AircraftModel,
+    engine: str,
+    low: float,
+    high: float,
+    deviation_limit: float,
+    reaction_time: float,
+    rudder_rate: float,
+    grid: int = 9,
+    extend: int = 4,
+    window=(0.85, 1.15),
+    settings=None,
+    **runs,
+) -> GroundControlSpeed:
     """The failure speed of each condition at which the deviation equals ``deviation_limit`` (module docstring),
     searched from ``low`` to ``high`` (m/s TAS): ``grid`` failure speeds across ``window`` × the static rudder-moment
     balance speed (:func:`rudder_balance_speed`, the rudder at its stop in ``runs["lateral_limits"]``; the whole range
@@ -235,4 +265,10 @@ def ground_minimum_control_speed(model: AircraftModel, engine: str, low: float, 
     return GroundControlSpeed(speed, below, above, speeds, devs, passes, guess)
 
 
-__all__ = ["engine_cut_runs", "ground_minimum_control_speed", "rudder_balance_speed", "EngineCutRuns", "GroundControlSpeed"]
+__all__ = [
+    "engine_cut_runs",
+    "ground_minimum_control_speed",
+    "rudder_balance_speed",
+    "EngineCutRuns",
+    "GroundControlSpeed",
+]

@@ -88,15 +88,31 @@ def _dcm(x, quat):
         q0, q1, q2, q3 = x[9], x[10], x[11], x[12]
         q00, q11, q22, q33 = q0 * q0, q1 * q1, q2 * q2, q3 * q3
         q01, q02, q03, q12, q13, q23 = q0 * q1, q0 * q2, q0 * q3, q1 * q2, q1 * q3, q2 * q3
-        return (q00 + q11 - q22 - q33, 2 * (q12 - q03), 2 * (q13 + q02),
-                2 * (q12 + q03), q00 - q11 + q22 - q33, 2 * (q23 - q01),
-                2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33)
+        return (
+            q00 + q11 - q22 - q33,
+            2 * (q12 - q03),
+            2 * (q13 + q02),
+            2 * (q12 + q03),
+            q00 - q11 + q22 - q33,
+            2 * (q23 - q01),
+            2 * (q13 - q02),
+            2 * (q23 + q01),
+            q00 - q11 - q22 + q33,
+        )
     sf, cf = math.sin(x[9]), math.cos(x[9])
     st, ct = math.sin(x[10]), math.cos(x[10])
     sp, cp = math.sin(x[11]), math.cos(x[11])
-    return (ct * cp, sf * st * cp - cf * sp, cf * st * cp + sf * sp,
-            ct * sp, sf * st * sp + cf * cp, cf * st * sp - sf * cp,
-            -st, sf * ct, cf * ct)
+    return (
+        ct * cp,
+        sf * st * cp - cf * sp,
+        cf * st * cp + sf * sp,
+        ct * sp,
+        sf * st * sp + cf * cp,
+        cf * st * sp - sf * cp,
+        -st,
+        sf * ct,
+        cf * ct,
+    )
 
 
 @njit(cache=True, error_model="numpy", fastmath=True, inline="always")
@@ -128,8 +144,15 @@ def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alph
         tx, ty, tz = props_i[13] + gparams[9], props_i[14] + gparams[10], props_i[15] + gparams[11]
         dz = C31 * (wx - tx) + C32 * (wy - ty) + C33 * (wz - tz)  # the tail's height over the wing point
         nr, nz = int(gparams[20]), int(gparams[21])
-        keep = lam * downwash_ratio_one(hb, dz, gparams[_RATIO:_RATIO + nr * nz].reshape((nr, nz)), gparams[16],
-                                        gparams[17], gparams[18], gparams[19])
+        keep = lam * downwash_ratio_one(
+            hb,
+            dz,
+            gparams[_RATIO : _RATIO + nr * nz].reshape((nr, nz)),
+            gparams[16],
+            gparams[17],
+            gparams[18],
+            gparams[19],
+        )
         d_alpha = (gparams[12] + gparams[13] * alpha) * (1.0 - keep)
         coef[0] += gparams[14] * d_alpha
         coef[4] += gparams[15] * d_alpha
@@ -140,9 +163,35 @@ def _ground_effect(C31, C32, C33, height, props_i, gparams, T, machs, mach, alph
 # inlined (numba IR) where it is called: a call passing ~15 arrays costs as much as the arithmetic (a study's
 # simulations run ~0.8 → 0.4 µs per evaluation); the RK4 step calls it from one site to keep the compile short
 @njit(cache=True, error_model="numpy", fastmath=True, inline="always")
-def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                   n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index, xd,
-                   out, gear):
+def derivative_one(
+    i,
+    x,
+    quat,
+    ctrl,
+    thrust_i,
+    coef_i,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+    xd,
+    out,
+    gear,
+):
     """State derivative of condition ``i`` (state ``x``, 13 quaternion or 12 Euler components) into
     ``xd``; outputs into ``out`` (:data:`OUTPUTS`) and gear loads into ``gear``."""
     h, u, v, w, p, q, r = x[2], x[3], x[4], x[5], x[6], x[7], x[8]
@@ -153,8 +202,22 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
     b, c, S, g = consts[0], consts[1], consts[2], consts[3]
     coef = coef_i
     if use_table:  # coef_i is scratch space, else it holds the coefficients computed in Python
-        coefficients_one(T, machs, clmax, stall, alpha_drag, after_stall, alpha, beta, p * (b / 2) / Vs,
-                         q * (c / 2) / Vs, r * (b / 2) / Vs, mach, ctrl[:n_aero], coef)
+        coefficients_one(
+            T,
+            machs,
+            clmax,
+            stall,
+            alpha_drag,
+            after_stall,
+            alpha,
+            beta,
+            p * (b / 2) / Vs,
+            q * (c / 2) / Vs,
+            r * (b / 2) / Vs,
+            mach,
+            ctrl[:n_aero],
+            coef,
+        )
         if has_ground and gparams[3] > 0.0:
             _ground_effect(C31, C32, C33, h - gparams[0], props[i], gparams, T, machs, mach, alpha, coef)
     CL, CD = coef[0], coef[1]
@@ -171,8 +234,9 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
     for j in range(thrust_i.shape[0]):
         t = thrust_i[j]
         fx, fy, fz = t * d_eng[j, 0], t * d_eng[j, 1], t * d_eng[j, 2]
-        Fx, Fy, Fz, Mx, My, Mz = _add_force(Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz,
-                                            r_eng[i, j, 0], r_eng[i, j, 1], r_eng[i, j, 2])
+        Fx, Fy, Fz, Mx, My, Mz = _add_force(
+            Fx, Fy, Fz, Mx, My, Mz, fx, fy, fz, r_eng[i, j, 0], r_eng[i, j, 1], r_eng[i, j, 2]
+        )
     if has_ground:
         # spring–damper legs; friction along and across the wheel heading (body x projected on
         # the horizontal plane), smooth saturation tanh(v / slip speed)
@@ -273,8 +337,32 @@ def derivative_one(i, x, quat, ctrl, thrust_i, coef_i, props, consts, T, machs, 
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
-def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index):
+def derivatives(
+    X,
+    rows,
+    quat,
+    U,
+    thrust,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+):
     """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
     Returns ẋ (rows, states), outputs (rows, 11), gear loads (rows, nl)."""
     n, ns = X.shape
@@ -282,9 +370,35 @@ def derivatives(X, rows, quat, U, thrust, coef, props, consts, T, machs, clmax, 
     out = np.empty((n, len(OUTPUTS)))
     gear = np.zeros((n, legs.shape[0]))
     for i in range(n):
-        derivative_one(rows[i], X[i], quat, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
-                       after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
-                       steer_index, xd[i], out[i], gear[i])
+        derivative_one(
+            rows[i],
+            X[i],
+            quat,
+            U[i],
+            thrust[i],
+            coef[i],
+            props,
+            consts,
+            T,
+            machs,
+            clmax,
+            stall,
+            alpha_drag,
+            after_stall,
+            n_aero,
+            use_table,
+            r_eng,
+            d_eng,
+            has_ground,
+            r_gear,
+            legs,
+            gparams,
+            brake_index,
+            steer_index,
+            xd[i],
+            out[i],
+            gear[i],
+        )
     return xd, out, gear
 
 
@@ -317,8 +431,9 @@ def engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, w
     thrust = np.empty((n, ne))
     for i in range(n):
         hc, mach, qbar, c = air[i, 0], air[i, 4], air[i, 5], rows[i]
-        turbofan_row_thrust(hc, mach, U[i, throttle_start:throttle_start + ne], turbofan[0], turbofan[1], turbofan[2],
-                            thrust[i])
+        turbofan_row_thrust(
+            hc, mach, U[i, throttle_start : throttle_start + ne], turbofan[0], turbofan[1], turbofan[2], thrust[i]
+        )
         for j in range(ne):
             if not operative[c, j]:
                 dead = 0.0 if math.isnan(windmill[j, 0]) else -windmill_drag_one(qbar, mach, windmill[j])
@@ -327,8 +442,33 @@ def engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, w
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
-def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-             n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index):
+def rk4_step(
+    X,
+    XD1,
+    active,
+    dts,
+    U,
+    thrust,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+):
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
     classical RK4 step of ``dts[i]`` each, controls and thrust held; ``XD1`` the derivative at the
     step's start. The quaternion is renormalised after the step."""
@@ -347,9 +487,35 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
             h = dt if stage == 2 else 0.5 * dt
             for s in range(ns):
                 xs[s] = x[s] + h * prev[s]
-            derivative_one(i, xs, True, U[i], thrust[i], coef[i], props, consts, T, machs, clmax, stall, alpha_drag,
-                           after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index,
-                           steer_index, k[stage], out, gear)
+            derivative_one(
+                i,
+                xs,
+                True,
+                U[i],
+                thrust[i],
+                coef[i],
+                props,
+                consts,
+                T,
+                machs,
+                clmax,
+                stall,
+                alpha_drag,
+                after_stall,
+                n_aero,
+                use_table,
+                r_eng,
+                d_eng,
+                has_ground,
+                r_gear,
+                legs,
+                gparams,
+                brake_index,
+                steer_index,
+                k[stage],
+                out,
+                gear,
+            )
         for s in range(ns):
             x[s] = x[s] + dt / 6.0 * (k1[s] + 2.0 * k[0, s] + 2.0 * k[1, s] + k[2, s])
         nq = math.sqrt(x[9] * x[9] + x[10] * x[10] + x[11] * x[11] + x[12] * x[12])
@@ -358,10 +524,42 @@ def rk4_step(X, XD1, active, dts, U, thrust, coef, props, consts, T, machs, clma
 
 
 @njit(cache=True, error_model="numpy", fastmath=True)
-def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n_engines, coef, props, consts, T, machs,
-                        clmax, stall, alpha_drag, after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear,
-                        legs, gparams, brake_index, steer_index, stop_cols, stop_lo, stop_hi, out_rec, x_rec, u_rec,
-                        stop_step, stop_which):
+def integrate_open_loop(
+    X,
+    U_all,
+    dts,
+    record_every,
+    turbofan,
+    throttle_start,
+    n_engines,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+    stop_cols,
+    stop_lo,
+    stop_hi,
+    out_rec,
+    x_rec,
+    u_rec,
+    stop_step,
+    stop_which,
+):
     """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
     the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
     parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of each step from
@@ -385,11 +583,41 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
         U = U_all[k]
         for i in range(n):
             air = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
-            turbofan_row_thrust(air[0], air[4], U[i, throttle_start:throttle_start + n_engines], turbofan[0],
-                                turbofan[1], turbofan[2], thrust[i])
-        xd, out, gear = derivatives(X, rows, quaternion_state, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag,
-                                    after_stall, n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams,
-                                    brake_index, steer_index)
+            turbofan_row_thrust(
+                air[0],
+                air[4],
+                U[i, throttle_start : throttle_start + n_engines],
+                turbofan[0],
+                turbofan[1],
+                turbofan[2],
+                thrust[i],
+            )
+        xd, out, gear = derivatives(
+            X,
+            rows,
+            quaternion_state,
+            U,
+            thrust,
+            coef,
+            props,
+            consts,
+            T,
+            machs,
+            clmax,
+            stall,
+            alpha_drag,
+            after_stall,
+            n_aero,
+            use_table,
+            r_eng,
+            d_eng,
+            has_ground,
+            r_gear,
+            legs,
+            gparams,
+            brake_index,
+            steer_index,
+        )
         for c in range(stop_cols.shape[0]):
             for i in range(n):
                 if active[i]:
@@ -412,7 +640,31 @@ def integrate_open_loop(X, U_all, dts, record_every, turbofan, throttle_start, n
             irec += 1
         if k == nsteps or n_active == 0:
             break
-        rk4_step(X, xd, active, dts, U, thrust, coef, props, consts, T, machs, clmax, stall, alpha_drag, after_stall,
-                 n_aero, use_table, r_eng, d_eng, has_ground, r_gear, legs, gparams, brake_index, steer_index)
+        rk4_step(
+            X,
+            xd,
+            active,
+            dts,
+            U,
+            thrust,
+            coef,
+            props,
+            consts,
+            T,
+            machs,
+            clmax,
+            stall,
+            alpha_drag,
+            after_stall,
+            n_aero,
+            use_table,
+            r_eng,
+            d_eng,
+            has_ground,
+            r_gear,
+            legs,
+            gparams,
+            brake_index,
+            steer_index,
+        )
     return irec
-

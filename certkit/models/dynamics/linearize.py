@@ -48,9 +48,15 @@ class Linearization:
         import control
 
         A, B = self.select(i, states, inputs)
-        return control.ss(A, B, np.eye(A.shape[0]), np.zeros((A.shape[0], B.shape[1])),
-                          states=list(states or self.state_names), inputs=list(inputs or self.control_names),
-                          outputs=list(states or self.state_names))
+        return control.ss(
+            A,
+            B,
+            np.eye(A.shape[0]),
+            np.zeros((A.shape[0], B.shape[1])),
+            states=list(states or self.state_names),
+            inputs=list(inputs or self.control_names),
+            outputs=list(states or self.state_names),
+        )
 
     def longitudinal(self, i: int, inputs: Sequence[str] | None = None):
         return self.statespace(i, LONGITUDINAL, inputs)

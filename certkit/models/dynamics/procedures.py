@@ -50,42 +50,45 @@ from certkit.models.dynamics.takeoff_pilot import DirectionalPilot, RotationPilo
 
 def _hdot(x13):
     q0, q1, q2, q3 = x13[:, 9:13].T
-    return -(2 * (q1 * q3 - q0 * q2) * x13[:, 3] + 2 * (q2 * q3 + q0 * q1) * x13[:, 4]
-             + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * x13[:, 5])
+    return -(
+        2 * (q1 * q3 - q0 * q2) * x13[:, 3]
+        + 2 * (q2 * q3 + q0 * q1) * x13[:, 4]
+        + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * x13[:, 5]
+    )
 
 
 @dataclass
 class TakeoffResult:
     sim: SimulationResult
-    x0: np.ndarray                 # rest state (n, 12)
+    x0: np.ndarray  # rest state (n, 12)
     initial_acceleration: np.ndarray  # m/s² along the runway at brake release
-    reached: np.ndarray            # bool (n,): screen height reached
-    v_lof: np.ndarray              # m/s TAS (nan if no lift-off)
-    x_lof: np.ndarray              # m from brake release
-    v_screen: np.ndarray           # m/s at the screen height (nan if not reached)
+    reached: np.ndarray  # bool (n,): screen height reached
+    v_lof: np.ndarray  # m/s TAS (nan if no lift-off)
+    x_lof: np.ndarray  # m from brake release
+    v_screen: np.ndarray  # m/s at the screen height (nan if not reached)
     x_screen: np.ndarray
     t_screen: np.ndarray
-    elevator_min: np.ndarray       # rad, most nose-up elevator
+    elevator_min: np.ndarray  # rad, most nose-up elevator
     elevator_max: np.ndarray
-    wheel_height: np.ndarray       # (nt, n) lowest gear point above the runway
-    gradient: np.ndarray | None = None   # (nt-1, n) climb gradient between records, airborne (nan on the ground)
+    wheel_height: np.ndarray  # (nt, n) lowest gear point above the runway
+    gradient: np.ndarray | None = None  # (nt-1, n) climb gradient between records, airborne (nan on the ground)
     climb_gradient: np.ndarray | None = None  # (n,) mean gradient from the screen height to the end of the run
-    screen_index: np.ndarray | None = None    # (n,) record index at the screen height
+    screen_index: np.ndarray | None = None  # (n,) record index at the screen height
     pitch_on_ground_max: np.ndarray | None = None  # (n,) rad, largest attitude with a gear leg on the runway
-    pitch_rate_max: np.ndarray | None = None       # (n,) rad/s, largest pitch rate from VR to lift-off
+    pitch_rate_max: np.ndarray | None = None  # (n,) rad/s, largest pitch rate from VR to lift-off
     lateral_on_ground_max: np.ndarray | None = None  # (n,) m, largest |y − y0| on the ground
 
 
 @dataclass
 class LandingResult:
     sim: SimulationResult
-    touched_down: np.ndarray       # bool (n,)
-    sink_rate: np.ndarray          # m/s at touchdown (positive down)
-    speed: np.ndarray              # m/s TAS at touchdown
+    touched_down: np.ndarray  # bool (n,)
+    sink_rate: np.ndarray  # m/s at touchdown (positive down)
+    speed: np.ndarray  # m/s TAS at touchdown
     elevator_min: np.ndarray
     elevator_max: np.ndarray
-    tau: np.ndarray                # flare time constant (s)
-    approach_sink: np.ndarray      # m/s on the glide path
+    tau: np.ndarray  # flare time constant (s)
+    approach_sink: np.ndarray  # m/s on the glide path
 
 
 def _elevator_extremes(sim: SimulationResult, j: int):
@@ -93,14 +96,34 @@ def _elevator_extremes(sim: SimulationResult, j: int):
     return e.min(axis=0), e.max(axis=0)
 
 
-def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=None, throttle: float = 1.0,
-                elevator0=0.0, settings=None, elevator_ff=None, tail_strike=None, tail_margin: float = np.radians(2.0),
-                rotation_rate: float = np.radians(2.5), screen_height: float = 35 * 0.3048,
-                elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
-                failed_engine: str | None = None, failure_speed=None, failure_decay_time: float | None = None,
-                t_end: float = 120.0, dt: float = 0.05, lateral: str = "wings level", bank_airborne=0.0,
-                climb_out: float = 0.0, centreline_gain: float = 0.004, reaction_time: float = 0.0,
-                rudder_rate: float | None = None, steering: float | None = None) -> TakeoffResult:
+def takeoff_run(
+    model: AircraftModel,
+    rotation_speed,
+    theta_target,
+    climb_speed=None,
+    throttle: float = 1.0,
+    elevator0=0.0,
+    settings=None,
+    elevator_ff=None,
+    tail_strike=None,
+    tail_margin: float = np.radians(2.0),
+    rotation_rate: float = np.radians(2.5),
+    screen_height: float = 35 * 0.3048,
+    elevator_limits=(-np.radians(30), np.radians(25)),
+    lateral_limits=None,
+    failed_engine: str | None = None,
+    failure_speed=None,
+    failure_decay_time: float | None = None,
+    t_end: float = 120.0,
+    dt: float = 0.05,
+    lateral: str = "wings level",
+    bank_airborne=0.0,
+    climb_out: float = 0.0,
+    centreline_gain: float = 0.004,
+    reaction_time: float = 0.0,
+    rudder_rate: float | None = None,
+    steering: float | None = None,
+) -> TakeoffResult:
     n = model.n
     u = np.zeros((n, len(model.control_names)))
     for name, value in (settings or {}).items():
@@ -114,17 +137,38 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=
     xd = model.derivatives_euler(x0, u)
     th = x0[:, 10]
     a0 = np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
-    ctrls = [RotationPilot(model, u, rotation_speed, theta_target, np.nan if climb_speed is None else climb_speed,
-                           rotation_rate=rotation_rate, elevator_ff=elevator_ff, tail_strike=tail_strike,
-                           tail_margin=tail_margin, limits=elevator_limits),
-             WingsLevel(model, u, limits=lateral_limits) if lateral == "wings level"
-             else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain)]
+    ctrls = [
+        RotationPilot(
+            model,
+            u,
+            rotation_speed,
+            theta_target,
+            np.nan if climb_speed is None else climb_speed,
+            rotation_rate=rotation_rate,
+            elevator_ff=elevator_ff,
+            tail_strike=tail_strike,
+            tail_margin=tail_margin,
+            limits=elevator_limits,
+        ),
+        WingsLevel(model, u, limits=lateral_limits)
+        if lateral == "wings level"
+        else HeadingHold(model, u, bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain),
+    ]
     failure = None
     if failed_engine is not None:
         failure = EngineFailure(model, failed_engine, failure_speed, decay_time=failure_decay_time)
     if lateral == "pilot":
-        ctrls[1] = DirectionalPilot(model, u, failure, reaction_time, rudder_rate or np.inf, steering,
-                                    bank=bank_airborne, limits=lateral_limits, k_y=centreline_gain)
+        ctrls[1] = DirectionalPilot(
+            model,
+            u,
+            failure,
+            reaction_time,
+            rudder_rate or np.inf,
+            steering,
+            bank=bank_airborne,
+            limits=lateral_limits,
+            k_y=centreline_gain,
+        )
     if failure is not None:
         ctrls.append(failure)
     elevation = model.ground.elevation
@@ -157,15 +201,19 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=
     x_scr = np.where(reached, sim["x_N"][k_scr, cols] - x0[:, 0], np.nan)
     t_scr = np.where(reached, t_scr, np.nan)
     # climb gradient (height gained per horizontal distance) between successive records, airborne only
-    s_path = np.concatenate([np.zeros((1, n)), np.cumsum(np.hypot(np.diff(sim["x_N"], axis=0),
-                                                                   np.diff(sim["y_E"], axis=0)), axis=0)])
+    s_path = np.concatenate(
+        [np.zeros((1, n)), np.cumsum(np.hypot(np.diff(sim["x_N"], axis=0), np.diff(sim["y_E"], axis=0)), axis=0)]
+    )
     with np.errstate(invalid="ignore", divide="ignore"):
         grad = np.diff(sim["h"], axis=0) / np.diff(s_path, axis=0)
     grad = np.where(airborne[1:] & airborne[:-1], grad, np.nan)
     k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time - 1e-9), nt - 1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        climb = np.where(reached & (k_end > k_scr), (sim["h"][k_end, cols] - sim["h"][k_scr, cols])
-                         / (s_path[k_end, cols] - s_path[k_scr, cols]), np.nan)
+        climb = np.where(
+            reached & (k_end > k_scr),
+            (sim["h"][k_end, cols] - sim["h"][k_scr, cols]) / (s_path[k_end, cols] - s_path[k_scr, cols]),
+            np.nan,
+        )
     emin, emax = _elevator_extremes(sim, je)
     on_ground = ~airborne & (np.arange(nt)[:, None] <= k_end[None, :])
     vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (n,))
@@ -174,9 +222,26 @@ def takeoff_run(model: AircraftModel, rotation_speed, theta_target, climb_speed=
         pitch_ground = np.where(on_ground, sim["theta"], -np.inf).max(axis=0)
         rate_max = np.where(before_lof, sim["q"], -np.inf).max(axis=0)
     lateral_ground = np.where(on_ground, np.abs(sim["y_E"] - sim["y_E"][0]), 0.0).max(axis=0)
-    return TakeoffResult(sim, x0, a0, reached, v_lof, x_lof - x0[:, 0], v_scr, x_scr, t_scr, emin, emax, wheel,
-                         grad, climb, k_scr, pitch_ground, np.where(np.isfinite(rate_max), rate_max, np.nan),
-                         lateral_ground)
+    return TakeoffResult(
+        sim,
+        x0,
+        a0,
+        reached,
+        v_lof,
+        x_lof - x0[:, 0],
+        v_scr,
+        x_scr,
+        t_scr,
+        emin,
+        emax,
+        wheel,
+        grad,
+        climb,
+        k_scr,
+        pitch_ground,
+        np.where(np.isfinite(rate_max), rate_max, np.nan),
+        lateral_ground,
+    )
 
 
 def runway_acceleration(model: AircraftModel, speed, throttle: float = 1.0, operative=None) -> np.ndarray:
@@ -201,8 +266,9 @@ def runway_acceleration(model: AircraftModel, speed, throttle: float = 1.0, oper
     return np.cos(th) * xd[:, 3] + np.sin(th) * xd[:, 5]
 
 
-def engine_failure_speed(model: AircraftModel, v1: float, engine: str, recognition_time: float,
-                         decay_time: float | None = None) -> tuple[np.ndarray, str]:
+def engine_failure_speed(
+    model: AircraftModel, v1: float, engine: str, recognition_time: float, decay_time: float | None = None
+) -> tuple[np.ndarray, str]:
     """VEF (m/s TAS, one per condition) such that V1 is reached ``recognition_time`` after the failure of ``engine``
     (§25.107(a)(2)), at the runway accelerations of :func:`runway_acceleration` at V1 (``v1``, m/s TAS): engine out,
     or, with the failed engine's thrust decaying as e^(−t/τ) (``decay_time`` τ), from the all-engines value to it;
@@ -215,8 +281,10 @@ def engine_failure_speed(model: AircraftModel, v1: float, engine: str, recogniti
         return v1 - a * recognition_time, f"V1 less {recognition_time:g} s of the engine-out acceleration at V1"
     a_all = runway_acceleration(model, v1)
     gain = a * recognition_time + (a_all - a) * decay_time * (1.0 - np.exp(-recognition_time / decay_time))
-    return v1 - gain, (f"V1 less the speed gained over {recognition_time:g} s after the failure at V1's "
-                       f"accelerations (engine-out, plus the decaying thrust of the failed engine, τ = {decay_time:g} s)")
+    return v1 - gain, (
+        f"V1 less the speed gained over {recognition_time:g} s after the failure at V1's "
+        f"accelerations (engine-out, plus the decaying thrust of the failed engine, τ = {decay_time:g} s)"
+    )
 
 
 def _lowest_point_below_cg(model, x13):
@@ -226,17 +294,33 @@ def _lowest_point_below_cg(model, x13):
     return down.max(axis=1)
 
 
-def approach_and_landing(model: AircraftModel, x0: np.ndarray, u0: np.ndarray, glide: float = np.radians(-3.0),
-                         flare_height: float = 15.0, aim_below: float = 1.0,
-                         elevator_limits=(-np.radians(30), np.radians(25)), lateral_limits=None,
-                         t_end: float = 90.0, dt: float = 0.05) -> LandingResult:
+def approach_and_landing(
+    model: AircraftModel,
+    x0: np.ndarray,
+    u0: np.ndarray,
+    glide: float = np.radians(-3.0),
+    flare_height: float = 15.0,
+    aim_below: float = 1.0,
+    elevator_limits=(-np.radians(30), np.radians(25)),
+    lateral_limits=None,
+    t_end: float = 90.0,
+    dt: float = 0.05,
+) -> LandingResult:
     u = np.zeros((model.n, len(model.control_names)))
     u0 = np.asarray(u0, dtype=float)
-    u[:, :u0.shape[1]] = u0
-    tecs = TECSApproach(model, x0, u, glide=glide, flare_height=flare_height, aim_below=aim_below,
-                        limits=elevator_limits)
-    sim = simulate(model, x0, u, t_end, dt, controllers=[tecs, WingsLevel(model, u, limits=lateral_limits)],
-                   stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)])
+    u[:, : u0.shape[1]] = u0
+    tecs = TECSApproach(
+        model, x0, u, glide=glide, flare_height=flare_height, aim_below=aim_below, limits=elevator_limits
+    )
+    sim = simulate(
+        model,
+        x0,
+        u,
+        t_end,
+        dt,
+        controllers=[tecs, WingsLevel(model, u, limits=lateral_limits)],
+        stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)],
+    )
     touched = np.array([r == "touchdown" for r in sim.stop_reason])
     sink = np.where(touched, -_hdot(sim.final_state), np.nan)
     speed = np.where(touched, np.linalg.norm(sim.final_state[:, 3:6], axis=1), np.nan)

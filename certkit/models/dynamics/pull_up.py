@@ -30,8 +30,17 @@ class PullUp:
     residual: np.ndarray
 
 
-def symmetric_pull_up(model: AircraftModel, V, h, n, u: np.ndarray, pitch: str = "elevator", alpha0=0.03,
-                      tol: float = 1e-8, max_iter: int = 30) -> PullUp:
+def symmetric_pull_up(
+    model: AircraftModel,
+    V,
+    h,
+    n,
+    u: np.ndarray,
+    pitch: str = "elevator",
+    alpha0=0.03,
+    tol: float = 1e-8,
+    max_iter: int = 30,
+) -> PullUp:
     """Solve the manoeuvre point of every condition of ``model`` at true airspeed ``V`` (m/s), altitude ``h`` (m) and
     load factor ``n`` (scalars or (n,) arrays); ``u`` (conditions, controls) gives every control and throttle, the
     ``pitch`` control's column being the first guess. Newton with a forward-difference Jacobian, steps limited to

@@ -215,7 +215,11 @@ class Bound:
     def arrays(self, n: int) -> tuple[int, np.ndarray, np.ndarray]:
         """(output column or −1 for the time, lower (n,), upper (n,)) for the compiled run."""
         col = -1 if self.quantity == "t" else OUTPUTS.index(self.quantity)
-        return col, np.broadcast_to(np.asarray(self.lower, dtype=float), (n,)), np.broadcast_to(np.asarray(self.upper, dtype=float), (n,))
+        return (
+            col,
+            np.broadcast_to(np.asarray(self.lower, dtype=float), (n,)),
+            np.broadcast_to(np.asarray(self.upper, dtype=float), (n,)),
+        )
 
 
 def altitude_below(h_min) -> StopCriterion:
@@ -262,14 +266,41 @@ class SimulationResult:
         return self.history[key]
 
 
-RECORDED = ("V", "alpha", "beta", "p", "q", "r", "phi", "theta", "psi", "h", "x_N", "y_E",
-            "n_x", "n_y", "n_z", "mach", "qbar", "alpha_dot", "CL")
+RECORDED = (
+    "V",
+    "alpha",
+    "beta",
+    "p",
+    "q",
+    "r",
+    "phi",
+    "theta",
+    "psi",
+    "h",
+    "x_N",
+    "y_E",
+    "n_x",
+    "n_y",
+    "n_z",
+    "mach",
+    "qbar",
+    "alpha_dot",
+    "CL",
+)
 
 
-def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: float, dt: float = 0.01,
-             inputs: Mapping[str, Schedule] | None = None, controllers: Sequence[Controller] = (),
-             stop: Sequence[StopCriterion] = (), record_every: int = 1,
-             limits: Mapping[str, tuple[float, float]] | None = None) -> SimulationResult:
+def simulate(
+    model: AircraftModel,
+    x0: np.ndarray,
+    u_trim: np.ndarray,
+    t_end: float,
+    dt: float = 0.01,
+    inputs: Mapping[str, Schedule] | None = None,
+    controllers: Sequence[Controller] = (),
+    stop: Sequence[StopCriterion] = (),
+    record_every: int = 1,
+    limits: Mapping[str, tuple[float, float]] | None = None,
+) -> SimulationResult:
     """Integrate the batch from ``x0`` (Euler (n, 12) — e.g. a trim's ``x`` — or quaternion
     (n, 13)) with controls ``u_trim`` (n, m) plus the scheduled ``inputs`` (control name →
     schedule), the ``controllers`` and the control ``limits`` (name → (min, max), clipped).
@@ -312,11 +343,21 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
             U_all[:, :, j] += s.over(times)
         x = np.ascontiguousarray(x)
         bounds = [c.arrays(n) for c in stop]
-        stops = (np.array([b[0] for b in bounds], dtype=np.int64), np.array([b[1] for b in bounds]).reshape(len(stop), n),
-                 np.array([b[2] for b in bounds]).reshape(len(stop), n))
+        stops = (
+            np.array([b[0] for b in bounds], dtype=np.int64),
+            np.array([b[1] for b in bounds]).reshape(len(stop), n),
+            np.array([b[2] for b in bounds]).reshape(len(stop), n),
+        )
         compiled, stop_step, stop_which = model.open_loop_run(
-            x, U_all, np.ascontiguousarray(np.broadcast_to(dt, (n,)), dtype=float), record_every, out_rec, x_rec,
-            ctrl_hist, stops)
+            x,
+            U_all,
+            np.ascontiguousarray(np.broadcast_to(dt, (n,)), dtype=float),
+            record_every,
+            out_rec,
+            x_rec,
+            ctrl_hist,
+            stops,
+        )
         for i in np.flatnonzero(stop_step >= 0):
             stop_time[i] = stop_step[i] * dt
             stop_reason[i] = stop[stop_which[i]].__name__
@@ -365,12 +406,36 @@ def simulate(model: AircraftModel, x0: np.ndarray, u_trim: np.ndarray, t_end: fl
     hist.update({name: x_rec[:, :, j] for j, name in enumerate(QUAT_STATE[:9]) if name in RECORDED})
     hist.update(phi=eul[:, :, 0], theta=eul[:, :, 1], psi=eul[:, :, 2])
     hist = {key: hist[key] for key in RECORDED}
-    return SimulationResult(t=t_rec[:irec], history=hist, controls=ctrl_hist[:irec], control_names=names,
-                            stop_time=stop_time, stop_reason=stop_reason, final_state=x)
+    return SimulationResult(
+        t=t_rec[:irec],
+        history=hist,
+        controls=ctrl_hist[:irec],
+        control_names=names,
+        stop_time=stop_time,
+        stop_reason=stop_reason,
+        final_state=x,
+    )
 
 
 __all__ = [
-    "Schedule", "Hold", "Step", "Ramp", "Doublet", "Pulse", "CheckedManeuver", "RudderKick", "Function",
-    "StopCriterion", "Bound", "stop_when", "altitude_below", "load_factor_beyond", "alpha_beyond", "airborne_above",
-    "Controller", "SimulationResult", "simulate", "RECORDED",
+    "Schedule",
+    "Hold",
+    "Step",
+    "Ramp",
+    "Doublet",
+    "Pulse",
+    "CheckedManeuver",
+    "RudderKick",
+    "Function",
+    "StopCriterion",
+    "Bound",
+    "stop_when",
+    "altitude_below",
+    "load_factor_beyond",
+    "alpha_beyond",
+    "airborne_above",
+    "Controller",
+    "SimulationResult",
+    "simulate",
+    "RECORDED",
 ]

@@ -50,11 +50,26 @@ from certkit.models.dynamics.simulate import Controller
 
 
 class RotationPilot(Controller):
-    def __init__(self, model: AircraftModel, u0: np.ndarray, rotation_speed, theta_ground, climb_speed,
-                 rotation_rate: float = np.radians(2.5), elevator_ff=None, tail_strike=None,
-                 tail_margin: float = np.radians(2.0), k_theta: float = 3.0, k_i: float = 0.5, k_q: float = 6.0,
-                 k_v: float = np.radians(1.0), k_vi: float = np.radians(0.1), lead_time: float = 0.5,
-                 elevator: str = "elevator", limits=(-np.radians(30), np.radians(20))):
+    def __init__(
+        self,
+        model: AircraftModel,
+        u0: np.ndarray,
+        rotation_speed,
+        theta_ground,
+        climb_speed,
+        rotation_rate: float = np.radians(2.5),
+        elevator_ff=None,
+        tail_strike=None,
+        tail_margin: float = np.radians(2.0),
+        k_theta: float = 3.0,
+        k_i: float = 0.5,
+        k_q: float = 6.0,
+        k_v: float = np.radians(1.0),
+        k_vi: float = np.radians(0.1),
+        lead_time: float = 0.5,
+        elevator: str = "elevator",
+        limits=(-np.radians(30), np.radians(20)),
+    ):
         n = model.n
         self.j = model.control_index(elevator)
         self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
@@ -81,7 +96,9 @@ class RotationPilot(Controller):
         theta = np.arcsin(np.clip(2.0 * (q0 * q2 - q3 * q1), -1.0, 1.0))
         rotating = self.rotating
         rotating |= out.V >= self.vr
-        if self.theta_cmd is None or not rotating.any():  # the ground roll before VR: elevator at its takeoff setting, command on the attitude
+        if (
+            self.theta_cmd is None or not rotating.any()
+        ):  # the ground roll before VR: elevator at its takeoff setting, command on the attitude
             self.theta_cmd = theta
             u[:, self.j] = np.where(rotating, self.de_ff, self.de0)
             return u
@@ -94,15 +111,17 @@ class RotationPilot(Controller):
         if airborne.any():
             dv = np.where(self.climb_free, 0.0, V - self.v_climb)  # no climb speed: hold the lift-off attitude
             self.speed_integral += np.where(airborne, dv, 0.0) * dt
-            target = np.where(airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral,
-                              self.theta_ground)
+            target = np.where(
+                airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral, self.theta_ground
+            )
         else:
             target = self.theta_ground
         previous = self.theta_cmd
         dr = self.rate * dt / self.lead_time  # the commanded rate's largest change over the step
         rem = target - previous  # approach the target at a rate that can still stop on it
-        wanted = np.sign(rem) * np.minimum(np.minimum(np.abs(rem) / dt, self.rate),
-                                           np.sqrt(2.0 * self.rate / self.lead_time * np.abs(rem)))
+        wanted = np.sign(rem) * np.minimum(
+            np.minimum(np.abs(rem) / dt, self.rate), np.sqrt(2.0 * self.rate / self.lead_time * np.abs(rem))
+        )
         step = np.clip(wanted, self.rate_cmd - dr, self.rate_cmd + dr) * dt
         cmd = np.where(rotating, np.minimum(previous + step, theta + self.lead), theta)
         self.theta_cmd = cmd
@@ -116,13 +135,20 @@ class RotationPilot(Controller):
         return u
 
 
-
-
-
 class DirectionalPilot(HeadingHold):
-    def __init__(self, model: AircraftModel, u0: np.ndarray, failure=None, reaction_time: float = 1.0,
-                 rudder_rate: float = np.radians(30.0), steering: float | None = None, k_psi: float = 15.0,
-                 k_i: float = 2.0, k_r: float = 10.0, **law):
+    def __init__(
+        self,
+        model: AircraftModel,
+        u0: np.ndarray,
+        failure=None,
+        reaction_time: float = 1.0,
+        rudder_rate: float = np.radians(30.0),
+        steering: float | None = None,
+        k_psi: float = 15.0,
+        k_i: float = 2.0,
+        k_r: float = 10.0,
+        **law,
+    ):
         super().__init__(model, u0, k_psi=k_psi, k_i=k_i, k_r=k_r, **law)
         self.failure, self.reaction, self.rate = failure, float(reaction_time), float(rudder_rate)
         self.pedal = self.dr0.copy()

@@ -106,15 +106,21 @@ class TrimResult:
     def start(self) -> dict[str, float]:
         """This trim as the warm start (``initial``) of a nearby one: α, β, the controls and the throttle."""
         thr = [v for k, v in self.controls.items() if k.startswith("throttle")]
-        return {"alpha": self.alpha, "beta": self.beta, **{k: v for k, v in self.controls.items() if not k.startswith("throttle")},
-                **({"throttle": thr[0]} if thr else {})}
+        return {
+            "alpha": self.alpha,
+            "beta": self.beta,
+            **{k: v for k, v in self.controls.items() if not k.startswith("throttle")},
+            **({"throttle": thr[0]} if thr else {}),
+        }
 
     def summary(self) -> str:
         d = np.degrees
-        s = (f"[{self.index}] {self.kind} {'converged' if self.converged else 'NOT converged'} "
-             f"(|r|={self.residual_norm:.1e}, {self.iterations} it): V={self.V:.1f} m/s h={self.h:.0f} m "
-             f"α={d(self.alpha):.2f}° β={d(self.beta):.2f}° θ={d(self.theta):.2f}° φ={d(self.phi):.2f}° "
-             + " ".join(f"{k}={d(v) if not k.startswith('throttle') else v:.3g}" for k, v in self.controls.items()))
+        s = (
+            f"[{self.index}] {self.kind} {'converged' if self.converged else 'NOT converged'} "
+            f"(|r|={self.residual_norm:.1e}, {self.iterations} it): V={self.V:.1f} m/s h={self.h:.0f} m "
+            f"α={d(self.alpha):.2f}° β={d(self.beta):.2f}° θ={d(self.theta):.2f}° φ={d(self.phi):.2f}° "
+            + " ".join(f"{k}={d(v) if not k.startswith('throttle') else v:.3g}" for k, v in self.controls.items())
+        )
         if self.stabilizer is not None:
             s += f" stabiliser {d(self.stabilizer):.2f}°" + (" (held)" if self.stabilizer_frozen else "")
             if self.stabilizer_at_stop:
@@ -211,12 +217,13 @@ def _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, thr
         for k in range(control_cols.shape[0]):
             U[i, control_cols[k, 0]] = z[i, control_cols[k, 1]]
         if throttle_col >= 0:
-            U[i, throttles[0]:throttles[0] + throttles[1]] = z[i, throttle_col]
+            U[i, throttles[0] : throttles[0] + throttles[1]] = z[i, throttle_col]
     return X, U
 
 
 # The Newton iteration's bookkeeping, compiled (fastmath off: the arithmetic of the numpy expressions it replaces, bit
 # for bit); the residuals (the model's evaluation) and the linear solves stay with their numpy callers.
+
 
 @njit(cache=True, fastmath=False)
 def _norms(r, scale):
@@ -343,12 +350,23 @@ _GIVEN = ("beta", "phi", "turn_rate", "gamma")
 SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
 
 
-def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
-           controls: Mapping[str, float | np.ndarray] | None = None,
-           limits: Mapping[str, tuple[float, float]] | None = None,
-           roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-           tol: float = 1e-9, max_iter: int = 40, throttle=None,
-           initial: Mapping[str, float | np.ndarray] | None = None) -> TrimBatch:
+def _solve(
+    model: AircraftModel,
+    V,
+    h,
+    kind: str = "straight",
+    gamma=0.0,
+    bank=0.0,
+    beta=0.0,
+    controls: Mapping[str, float | np.ndarray] | None = None,
+    limits: Mapping[str, tuple[float, float]] | None = None,
+    roles: Mapping[str, str] | None = None,
+    initial_alpha=0.05,
+    tol: float = 1e-9,
+    max_iter: int = 40,
+    throttle=None,
+    initial: Mapping[str, float | np.ndarray] | None = None,
+) -> TrimBatch:
     """The trim of :func:`trim` with the given pitch, roll and yaw controls (no stabiliser logic)."""
     if kind not in KINDS:
         raise ValueError(f"unknown trim kind {kind!r}; one of {KINDS}")
@@ -398,18 +416,33 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
         elif name == "beta":
             z[:, j] = beta_in if kind == "sideslip" else 0.0
 
-    for key, val in (initial or {}).items():  # warm start: an unknown by its name or its control's, NaN keeps the default
+    for key, val in (
+        initial or {}
+    ).items():  # warm start: an unknown by its name or its control's, NaN keeps the default
         col = [j for j, name in enumerate(unknowns) if key == name or key == roles.get(name)]
         if col:
             v = bc(val)
             z[:, col[0]] = np.where(np.isfinite(v), v, z[:, col[0]])
 
     j_thr = unknowns.index("throttle") if "throttle" in unknowns else None
-    given = np.stack([beta_in if kind == "sideslip" else np.zeros(n), bank if kind in ("turn", "oei") else np.zeros(n),
-                      np.zeros(n), gamma], axis=1)  # β, φ, ψ̇, γ where they are not unknowns
+    given = np.stack(
+        [
+            beta_in if kind == "sideslip" else np.zeros(n),
+            bank if kind in ("turn", "oei") else np.zeros(n),
+            np.zeros(n),
+            gamma,
+        ],
+        axis=1,
+    )  # β, φ, ψ̇, γ where they are not unknowns
     sources = np.array([unknowns.index(name) if name in unknowns else -1 for name in _GIVEN])
-    control_cols = np.array([(names.index(roles[name]), j) for j, name in enumerate(unknowns)
-                             if name not in _GIVEN and name not in ("alpha", "throttle")], dtype=np.int64).reshape(-1, 2)
+    control_cols = np.array(
+        [
+            (names.index(roles[name]), j)
+            for j, name in enumerate(unknowns)
+            if name not in _GIVEN and name not in ("alpha", "throttle")
+        ],
+        dtype=np.int64,
+    ).reshape(-1, 2)
     throttles = np.array([model.throttle_slice.start, thr_idx.size])
     layout = (V, h, given, sources, u0, control_cols, -1 if j_thr is None else j_thr, throttles)
 
@@ -420,10 +453,28 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
         x, u = _iterates(z, idx, *layout)
         return model.derivatives_euler(x, u, rows=idx)[:, eq_cols]
 
-    steps = {"alpha": 1e-6, "beta": 1e-6, "phi": 1e-6, "turn_rate": 1e-7, "gamma": 1e-6,
-             "pitch": 1e-6, "roll": 1e-6, "yaw": 1e-6, "throttle": 1e-6}
-    max_step = {"alpha": 0.1, "beta": 0.1, "phi": 0.2, "turn_rate": 0.05, "gamma": 0.05,
-                "pitch": 0.2, "roll": 0.2, "yaw": 0.2, "throttle": 0.5}
+    steps = {
+        "alpha": 1e-6,
+        "beta": 1e-6,
+        "phi": 1e-6,
+        "turn_rate": 1e-7,
+        "gamma": 1e-6,
+        "pitch": 1e-6,
+        "roll": 1e-6,
+        "yaw": 1e-6,
+        "throttle": 1e-6,
+    }
+    max_step = {
+        "alpha": 0.1,
+        "beta": 0.1,
+        "phi": 0.2,
+        "turn_rate": 0.05,
+        "gamma": 0.05,
+        "pitch": 0.2,
+        "roll": 0.2,
+        "yaw": 0.2,
+        "throttle": 0.5,
+    }
     hstep = np.array([steps[u] for u in unknowns])
     smax = np.array([max_step[u] for u in unknowns])
     # the engine models saturate outside throttle [0, 1]: an iterate beyond has a flat Jacobian column and
@@ -470,8 +521,12 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
     if unsolved:  # a model without (say) a pitch control trims only where that moment is zero by itself
         left = model.derivatives_euler(x, u)[:, 3:9][:, unsolved]
         rnorm = np.maximum(rnorm, np.max(np.abs(left), axis=1))
-    lim = {roles["pitch"]: (-np.radians(30), np.radians(30)), roles["roll"]: (-np.radians(30), np.radians(30)),
-           roles["yaw"]: (-np.radians(30), np.radians(30)), "throttle": (0.0, 1.0)}
+    lim = {
+        roles["pitch"]: (-np.radians(30), np.radians(30)),
+        roles["roll"]: (-np.radians(30), np.radians(30)),
+        roles["yaw"]: (-np.radians(30), np.radians(30)),
+        "throttle": (0.0, 1.0),
+    }
     lim.update(limits or {})
     _, out = model.derivatives_euler(x, u, with_outputs=True)
     # rows as lists of Python floats (the values of float(a[i, j]), without a conversion per element)
@@ -488,18 +543,41 @@ def _solve(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0
         if j_thr is not None:
             tval = zl[i][j_thr]
             lo, hi = lim["throttle"]
-            found += _check("throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False)
+            found += _check(
+                "throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False
+            )
             if rnorm[i] > tol and not found and (tval >= _THROTTLE_BOX[1] or tval <= _THROTTLE_BOX[0]):
                 high = tval >= _THROTTLE_BOX[1]
-                found.append(LimitExceedance(
-                    control="throttle", required=tval, limit=hi if high else lo, excess=0.0,
-                    message=f"needs {'more than full' if high else 'less than idle'} throttle",
-                    hint=_HINTS["throttle_high" if high else "throttle_low"]))
-        results.append(TrimResult(
-            index=i, kind=kind, converged=bool(rnorm[i] <= tol), residual_norm=float(rnorm[i]),
-            iterations=int(iters[i]), V=float(V[i]), h=float(h[i]), alpha=vl["alpha"][i], beta=vl["beta"][i],
-            theta=x10[i], phi=x9[i], gamma=vl["gamma"][i], turn_rate=vl["turn_rate"][i], controls=ctrl,
-            thrust=dict(zip(engine_names, thrust[i])), limits_exceeded=found))
+                found.append(
+                    LimitExceedance(
+                        control="throttle",
+                        required=tval,
+                        limit=hi if high else lo,
+                        excess=0.0,
+                        message=f"needs {'more than full' if high else 'less than idle'} throttle",
+                        hint=_HINTS["throttle_high" if high else "throttle_low"],
+                    )
+                )
+        results.append(
+            TrimResult(
+                index=i,
+                kind=kind,
+                converged=bool(rnorm[i] <= tol),
+                residual_norm=float(rnorm[i]),
+                iterations=int(iters[i]),
+                V=float(V[i]),
+                h=float(h[i]),
+                alpha=vl["alpha"][i],
+                beta=vl["beta"][i],
+                theta=x10[i],
+                phi=x9[i],
+                gamma=vl["gamma"][i],
+                turn_rate=vl["turn_rate"][i],
+                controls=ctrl,
+                thrust=dict(zip(engine_names, thrust[i])),
+                limits_exceeded=found,
+            )
+        )
     return TrimBatch(model=model, x=x, u=u, results=results)
 
 
@@ -516,12 +594,25 @@ class StabilizerTrim:
     elevator: str = "elevator"
 
 
-def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0, beta=0.0,
-         controls: Mapping[str, float | np.ndarray] | None = None,
-         limits: Mapping[str, tuple[float, float]] | None = None,
-         roles: Mapping[str, str] | None = None, initial_alpha=0.05,
-         tol: float = 1e-9, max_iter: int = 40, throttle=None, stabilizer: StabilizerTrim | None = None,
-         stabilizer_setting=None, initial: Mapping[str, float | np.ndarray] | None = None) -> TrimBatch:
+def trim(
+    model: AircraftModel,
+    V,
+    h,
+    kind: str = "straight",
+    gamma=0.0,
+    bank=0.0,
+    beta=0.0,
+    controls: Mapping[str, float | np.ndarray] | None = None,
+    limits: Mapping[str, tuple[float, float]] | None = None,
+    roles: Mapping[str, str] | None = None,
+    initial_alpha=0.05,
+    tol: float = 1e-9,
+    max_iter: int = 40,
+    throttle=None,
+    stabilizer: StabilizerTrim | None = None,
+    stabilizer_setting=None,
+    initial: Mapping[str, float | np.ndarray] | None = None,
+) -> TrimBatch:
     """Trim every condition of ``model`` (n conditions) at true airspeed ``V`` (m/s) and altitude
     ``h`` (m); scalars or (n,) arrays.
 
@@ -543,8 +634,18 @@ def trim(model: AircraftModel, V, h, kind: str = "straight", gamma=0.0, bank=0.0
     role controls 0 and the throttle 0.5 — far from a trim near the stall or the control limits, where Newton from
     there may fail or land on another solution; a nearby converged trim is the better start.
     """
-    plain = dict(kind=kind, gamma=gamma, bank=bank, beta=beta, limits=limits, initial_alpha=initial_alpha, tol=tol,
-                 max_iter=max_iter, throttle=throttle, initial=initial)
+    plain = dict(
+        kind=kind,
+        gamma=gamma,
+        bank=bank,
+        beta=beta,
+        limits=limits,
+        initial_alpha=initial_alpha,
+        tol=tol,
+        max_iter=max_iter,
+        throttle=throttle,
+        initial=initial,
+    )
     if stabilizer is None:
         return _solve(model, V, h, controls=controls, roles=roles, **plain)
     n = model.n
@@ -612,8 +713,26 @@ def _check(name, value, bounds, hint, angle):
         return []
     lim = hi if value > hi else lo
     f = (lambda a: f"{np.degrees(a):.1f}°") if angle else (lambda a: f"{a:.2f}")
-    return [LimitExceedance(control=name, required=float(value), limit=float(lim), excess=float(value - lim),
-                            message=f"needs {f(value)} {name}, limit {f(lim)}", hint=hint)]
+    return [
+        LimitExceedance(
+            control=name,
+            required=float(value),
+            limit=float(lim),
+            excess=float(value - lim),
+            message=f"needs {f(value)} {name}, limit {f(lim)}",
+            hint=hint,
+        )
+    ]
 
 
-__all__ = ["trim", "StabilizerTrim", "held_stabilizer", "TrimBatch", "TrimResult", "LimitExceedance", "theta_from_gamma", "assemble_state", "KINDS"]
+__all__ = [
+    "trim",
+    "StabilizerTrim",
+    "held_stabilizer",
+    "TrimBatch",
+    "TrimResult",
+    "LimitExceedance",
+    "theta_from_gamma",
+    "assemble_state",
+    "KINDS",
+]

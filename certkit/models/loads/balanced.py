@@ -54,8 +54,17 @@ def linear_lift(model: AircraftModel) -> AircraftModel:
     aero = model.aero
     if getattr(aero, "stall", None) is None or not hasattr(aero, "without_stall"):
         return model
-    return AircraftModel(aero.without_stall(), model.mass, model.cg, model.inertia, model.engines, model.operative,
-                         model.ground, model.g, n=model.n)
+    return AircraftModel(
+        aero.without_stall(),
+        model.mass,
+        model.cg,
+        model.inertia,
+        model.engines,
+        model.operative,
+        model.ground,
+        model.g,
+        n=model.n,
+    )
 
 
 def _entry(x_entry):
@@ -65,8 +74,16 @@ def _entry(x_entry):
     return np.hypot(u, w), x_entry[:, 2], alpha, x_entry[:, 10] - alpha
 
 
-def balanced_states(model, x_entry, u_entry, load_factor, pitch_control: str = "elevator", g: float = 9.80665,
-                    tol: float = 1e-9, max_iter: int = 30) -> BalancedStates:
+def balanced_states(
+    model,
+    x_entry,
+    u_entry,
+    load_factor,
+    pitch_control: str = "elevator",
+    g: float = 9.80665,
+    tol: float = 1e-9,
+    max_iter: int = 30,
+) -> BalancedStates:
     """The balanced manoeuvre of every condition of ``model`` (n) entered from its steady state ``x_entry`` /
     ``u_entry`` (straight trims: the speed, altitude, flight-path angle and the controls kept) at the path-normal
     load factors ``load_factor`` (scalar or (n,)). Conditions that do not converge are flagged, not raised."""
@@ -105,8 +122,13 @@ def balanced_states(model, x_entry, u_entry, load_factor, pitch_control: str = "
         jac = np.stack([(rp[0] - ra) / step[0], (rp[1] - ra) / step[1]], axis=-1)  # (m, eq, unknown)
         det = jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0]
         det = np.where(np.abs(det) > 1e-300, det, 1e-300)
-        dz = -np.stack([jac[:, 1, 1] * ra[:, 0] - jac[:, 0, 1] * ra[:, 1],
-                        -jac[:, 1, 0] * ra[:, 0] + jac[:, 0, 0] * ra[:, 1]], axis=1) / det[:, None]
+        dz = (
+            -np.stack(
+                [jac[:, 1, 1] * ra[:, 0] - jac[:, 0, 1] * ra[:, 1], -jac[:, 1, 0] * ra[:, 0] + jac[:, 0, 0] * ra[:, 1]],
+                axis=1,
+            )
+            / det[:, None]
+        )
         dz = np.where(np.isfinite(dz), dz, 0.0)
         dz /= np.maximum(np.max(np.abs(dz) / max_step, axis=1), 1.0)[:, None]
         z[idx] = za + dz
@@ -136,7 +158,21 @@ def steady_fuel_units(loads, model, x, u, outputs, surface: str = "wing") -> np.
 def _steady_record(model, x, u, outputs):
     """A one-instant simulation record of the steady states (angular accelerations zero)."""
     o = outputs
-    history = {"V": o.V, "alpha": o.alpha, "beta": o.beta, "mach": o.mach, "qbar": o.qbar, "n_z": o.n_z,
-               "n_y": o.n_y, "p": x[:, 6], "q": x[:, 7], "r": x[:, 8]}
-    return SimpleNamespace(history={k: np.asarray(v, dtype=float)[None, :] for k, v in history.items()},
-                           t=np.zeros(1), controls=np.asarray(u, dtype=float)[None], control_names=model.control_names)
+    history = {
+        "V": o.V,
+        "alpha": o.alpha,
+        "beta": o.beta,
+        "mach": o.mach,
+        "qbar": o.qbar,
+        "n_z": o.n_z,
+        "n_y": o.n_y,
+        "p": x[:, 6],
+        "q": x[:, 7],
+        "r": x[:, 8],
+    }
+    return SimpleNamespace(
+        history={k: np.asarray(v, dtype=float)[None, :] for k, v in history.items()},
+        t=np.zeros(1),
+        controls=np.asarray(u, dtype=float)[None],
+        control_names=model.control_names,
+    )

@@ -54,14 +54,21 @@ class LoadMargin:
 def _table(capabilities: tuple, surface: str, stations: tuple):
     """The capabilities of ``surface`` at ``stations`` as arrays: the rows, their station and quantity indices and the
     allowables (R, 4) in the order max limit, max ultimate, min limit, min ultimate (one table per capability set)."""
-    rows = [(cap, stations.index(cap.station), QUANTITIES.index(cap.quantity)) for cap in capabilities
-            if cap.surface == surface and cap.station in stations]
+    rows = [
+        (cap, stations.index(cap.station), QUANTITIES.index(cap.quantity))
+        for cap in capabilities
+        if cap.surface == surface and cap.station in stations
+    ]
     if not rows:
         return None
     s = np.array([r[1] for r in rows])
     q = np.array([r[2] for r in rows])
-    allow = np.array([[cap.allowable(check, sense) for sense in ("max", "min") for check in ("limit", "ultimate")]
-                      for cap, *_ in rows])
+    allow = np.array(
+        [
+            [cap.allowable(check, sense) for sense in ("max", "min") for check in ("limit", "ultimate")]
+            for cap, *_ in rows
+        ]
+    )
     return tuple(r[0] for r in rows), q, s, allow, 1.0 / np.maximum(np.abs(allow), 1e-9)
 
 
@@ -112,9 +119,12 @@ def declared_capabilities(ctx, surface: str) -> list[Capability]:
     """The capabilities of ``surface`` declared in the aircraft file (empty when none are)."""
     st = getattr(ctx.aircraft, "structure", None)
     out = []
-    for c in (getattr(st, surface) if st is not None else ()):
+    for c in getattr(st, surface) if st is not None else ():
+
         def value(v):
             return (float(v.negative), float(v.positive)) if hasattr(v, "negative") else float(v)
 
-        out.append(Capability(surface, station_label(c.station), c.quantity, value(c.limit), value(c.ultimate), c.source))
+        out.append(
+            Capability(surface, station_label(c.station), c.quantity, value(c.limit), value(c.ultimate), c.source)
+        )
     return out

@@ -33,8 +33,9 @@ def _centroid(y1, y2, chord, a, b) -> float:
     return float(np.sum(w * centre) / np.sum(w)) if np.sum(w) > 0 else a
 
 
-def tank_strip_shares(y1, y2, chord, tank_y: float, side_of_body: float, y_inboard: float | None = None,
-                      y_outboard: float | None = None) -> tuple[np.ndarray, str | None]:
+def tank_strip_shares(
+    y1, y2, chord, tank_y: float, side_of_body: float, y_inboard: float | None = None, y_outboard: float | None = None
+) -> tuple[np.ndarray, str | None]:
     """Fraction of one tank's fuel on each strip of the right half of the wing (strips between |y| ``y1`` and ``y2``,
     chord ``chord``), and a note when the declared centroid cannot be honoured. The fractions sum to 1 for a tank
     on the right, ½ for a centre tank, 0 for a tank on the left."""
@@ -58,13 +59,17 @@ def tank_strip_shares(y1, y2, chord, tank_y: float, side_of_body: float, y_inboa
             for _ in range(60):  # the centroid grows with the inboard end: bisection
                 mid = 0.5 * (lo + hi)
                 lo, hi = (mid, hi) if _centroid(y1, y2, chord, mid, tip) < tank_y else (lo, mid)
-            note = (f"a bay from the side of body ({a:.2f} m) to the tip has its centroid at "
-                    f"{_centroid(y1, y2, chord, a, tip):.2f} m, inboard of the declared {tank_y:.2f} m: the bay is "
-                    f"taken from {0.5 * (lo + hi):.2f} m to the tip")
+            note = (
+                f"a bay from the side of body ({a:.2f} m) to the tip has its centroid at "
+                f"{_centroid(y1, y2, chord, a, tip):.2f} m, inboard of the declared {tank_y:.2f} m: the bay is "
+                f"taken from {0.5 * (lo + hi):.2f} m to the tip"
+            )
             a = 0.5 * (lo + hi)
         else:
-            note = (f"the declared centroid |y| {tank_y:.2f} m is outboard of the bay from {a:.2f} m to the tip "
-                    f"(centroid {_centroid(y1, y2, chord, a, tip):.2f} m): the tank fills the bay to the tip")
+            note = (
+                f"the declared centroid |y| {tank_y:.2f} m is outboard of the bay from {a:.2f} m to the tip "
+                f"(centroid {_centroid(y1, y2, chord, a, tip):.2f} m): the tank fills the bay to the tip"
+            )
     else:
         lo, hi = tank_y, tip
         for _ in range(60):  # the centroid grows with the outboard end: bisection

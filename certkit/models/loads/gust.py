@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import numpy as np
 
-
 GUST_CONTROLS = ("gust_wing", "gust_tail")
 
 
@@ -36,8 +35,15 @@ def gust_aero(base, mach, cl_wing, cm_wing, cl_tail, cm_tail):
     gust angles)."""
     m = np.asarray(base.mach, dtype=float)
     f = lambda table: np.interp(m, np.asarray(mach, dtype=float), np.asarray(table, dtype=float))  # noqa: E731
-    return base.with_control_terms({"CL_gust_wing": f(cl_wing), "Cm_gust_wing": f(cm_wing),
-                                    "CL_gust_tail": f(cl_tail), "Cm_gust_tail": f(cm_tail)}, after_stall=GUST_CONTROLS)
+    return base.with_control_terms(
+        {
+            "CL_gust_wing": f(cl_wing),
+            "Cm_gust_wing": f(cm_wing),
+            "CL_gust_tail": f(cl_tail),
+            "Cm_gust_tail": f(cm_tail),
+        },
+        after_stall=GUST_CONTROLS,
+    )
 
 
 def gust_tables(loads, reference) -> dict[str, np.ndarray]:

@@ -57,8 +57,9 @@ class GustBatch:
 def with_aero(base_model: AircraftModel, aero, u0) -> tuple[AircraftModel, np.ndarray]:
     """The flight model ``base_model`` (same masses, CGs, inertias, engines) around the aerodynamics ``aero`` (the base
     model's with pseudo-controls added), and the controls ``u0`` in its order (the added ones zero)."""
-    model = AircraftModel(aero, base_model.mass, base_model.cg, base_model.inertia, base_model.engines,
-                          base_model.operative)
+    model = AircraftModel(
+        aero, base_model.mass, base_model.cg, base_model.inertia, base_model.engines, base_model.operative
+    )
     old = list(base_model.control_names)
     u = np.zeros((np.shape(u0)[0], len(model.control_names)))
     for j, name in enumerate(model.control_names):
@@ -88,8 +89,18 @@ class GustRun:
     fuel_units: dict[str, tuple] = field(default_factory=dict)
 
 
-def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: float, settle: float,
-                  max_step: float = 0.05, settle_step: float = 0.04, surfaces=SURFACES, split=()) -> GustRun:
+def simulate_gust(
+    loads,
+    gb: GustBatch,
+    H: float,
+    alpha_peak,
+    steps_per_gust: float,
+    settle: float,
+    max_step: float = 0.05,
+    settle_step: float = 0.04,
+    surfaces=SURFACES,
+    split=(),
+) -> GustRun:
     """One gust gradient ``H`` (m) for the whole batch; ``alpha_peak`` (n,) the peak gust angle
     U_ds/V (signed: positive = upward gust), in the two phases of :func:`two_phase_run`. For the
     surfaces in ``split`` the aerodynamic and inertial loads are also kept apart (``GustRun.parts``)."""
@@ -104,8 +115,9 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
         return one_minus_cosine(v * (t - lag), H, a)
 
     gusts = {"gust_wing": Function(wing, time_grid=True), "gust_tail": Function(tail, time_grid=True)}
-    parts, sim, dt = two_phase_run(gb.model, gb.x0, gb.u0, H, v, lag, gusts,
-                                   steps_per_gust, settle, max_step, settle_step)
+    parts, sim, dt = two_phase_run(
+        gb.model, gb.x0, gb.u0, H, v, lag, gusts, steps_per_gust, settle, max_step, settle_step
+    )
     t = _per_condition(sim.t)
     alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
     hist: dict[str, list] = {}
@@ -114,7 +126,9 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         tp = phase_times(parts, k)
         extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
-        L = response_load_parts(loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra})
+        L = response_load_parts(
+            loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}
+        )
         for s, (aero, inertia) in L.items():
             keep = slice(None) if k == 0 else slice(1, None)
             hist.setdefault(s, []).append((aero + inertia)[keep])
@@ -123,13 +137,19 @@ def simulate_gust(loads, gb: GustBatch, H: float, alpha_peak, steps_per_gust: fl
                 terms = loads[s].fuel_term_tables(inertia_terms(part, gb.model))
                 if terms is not None:
                     fuel.setdefault(s, []).append((terms[0][keep], terms[1]))
-    return GustRun(sim, {s: np.concatenate(v_) for s, v_ in hist.items()}, alpha, dt,
-                   {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
-                   {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()})
+    return GustRun(
+        sim,
+        {s: np.concatenate(v_) for s, v_ in hist.items()},
+        alpha,
+        dt,
+        {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
+        {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()},
+    )
 
 
-def two_phase_run(model, x0, u0, H: float, v, lag, inputs, steps_per_gust: float, settle: float, max_step: float,
-                  settle_step: float):
+def two_phase_run(
+    model, x0, u0, H: float, v, lag, inputs, steps_per_gust: float, settle: float, max_step: float, settle_step: float
+):
     """A gust run in two phases: while the gust of gradient ``H`` crosses the airplane (reaching its last surface
     ``lag`` (n,) s after the first), each condition resolving the gust in its own length 2H/V in ``steps_per_gust``
     steps (at most ``max_step``; the same number of steps for all); then ``settle`` seconds of free response at
@@ -165,11 +185,14 @@ def _concatenate(parts):
         return parts[0]
     n = parts[0].stop_time.shape[0]
     if any(p.t.ndim == 2 for p in parts):  # a time step per condition in some phase: every grid (nt, n)
+
         def grid(p):
             return np.broadcast_to(_per_condition(p.t), (p.t.shape[0], n))
     else:
+
         def grid(p):
             return p.t
+
     t, hist, ctrl = [grid(parts[0])], {k: [v] for k, v in parts[0].history.items()}, [parts[0].controls]
     offset = grid(parts[0])[-1]
     for p in parts[1:]:
@@ -179,5 +202,12 @@ def _concatenate(parts):
         ctrl.append(p.controls[1:])
         offset = offset + grid(p)[-1]
     last = parts[-1]
-    return SimulationResult(np.concatenate(t), {k: np.concatenate(v) for k, v in hist.items()}, np.concatenate(ctrl),
-                            parts[0].control_names, parts[0].stop_time, parts[0].stop_reason, last.final_state)
+    return SimulationResult(
+        np.concatenate(t),
+        {k: np.concatenate(v) for k, v in hist.items()},
+        np.concatenate(ctrl),
+        parts[0].control_names,
+        parts[0].stop_time,
+        parts[0].stop_reason,
+        last.final_state,
+    )

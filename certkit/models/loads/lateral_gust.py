@@ -40,8 +40,12 @@ def fin_gust_tables(loads, reference) -> dict[str, np.ndarray]:
     x_cp = x_axis - torsion / safe
     z_cp = fin.station_y[0] + bending / safe  # the fin's span is upward from its root
     S, b = reference.area, reference.span
-    return {"mach": fin.mach, "CY": side / S, "Cl": side * (z_cp - reference.z_ref) / (S * b),
-            "Cn": -side * (x_cp - reference.x_ref) / (S * b)}
+    return {
+        "mach": fin.mach,
+        "CY": side / S,
+        "Cl": side * (z_cp - reference.z_ref) / (S * b),
+        "Cn": -side * (x_cp - reference.x_ref) / (S * b),
+    }
 
 
 @dataclass
@@ -62,16 +66,34 @@ def lateral_gust_batch(loads, base_model, x0, u0) -> LateralGustBatch:
     return LateralGustBatch(model, np.asarray(x0, dtype=float), u, v)
 
 
-def simulate_lateral_gust(loads, lb: LateralGustBatch, H: float, beta_peak, steps_per_gust: float, settle: float,
-                          max_step: float = 0.05, settle_step: float = 0.04):
+def simulate_lateral_gust(
+    loads,
+    lb: LateralGustBatch,
+    H: float,
+    beta_peak,
+    steps_per_gust: float,
+    settle: float,
+    max_step: float = 0.05,
+    settle_step: float = 0.04,
+):
     """One gust gradient ``H`` (m) for the batch; ``beta_peak`` (n,) the peak gust sideslip U_ds/V (signed), in the
     two phases of :func:`certkit.models.loads.gust_response.two_phase_run`. Returns (simulation, fin station loads
     (nt, n, 3, S), gust sideslip felt (nt, n))."""
     a = np.asarray(beta_peak, dtype=float) * np.ones(lb.x0.shape[0])
     v = lb.v_tas
-    parts, sim, _ = two_phase_run(lb.model, lb.x0, lb.u0, H, v, np.zeros_like(v),
-                                  {CONTROL: Function(lambda t: one_minus_cosine(v * t, H, a), time_grid=True)}, steps_per_gust, settle,
-                                  max_step, settle_step)
+    parts, sim, _ = two_phase_run(
+        lb.model,
+        lb.x0,
+        lb.u0,
+        H,
+        v,
+        np.zeros_like(v),
+        {CONTROL: Function(lambda t: one_minus_cosine(v * t, H, a), time_grid=True)},
+        steps_per_gust,
+        settle,
+        max_step,
+        settle_step,
+    )
     hist = []
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         beta_g = one_minus_cosine(v * phase_times(parts, k), H, a)

@@ -47,8 +47,11 @@ QUANTITIES = ("shear", "bending", "torsion")
 UNITS = {"shear": "N", "bending": "N·m", "torsion": "N·m"}
 RATE_INPUTS = ("alpha", "beta", "p_hat", "q_hat", "r_hat")
 #: structural component names that carry each surface's mass
-SURFACE_COMPONENTS = {"wing": ("wing",), "horizontal_tail": ("horizontal tail", "horizontal_tail", "stabilizer", "stabiliser"),
-                      "vertical_tail": ("vertical tail", "vertical_tail", "fin")}
+SURFACE_COMPONENTS = {
+    "wing": ("wing",),
+    "horizontal_tail": ("horizontal tail", "horizontal_tail", "stabilizer", "stabiliser"),
+    "vertical_tail": ("vertical tail", "vertical_tail", "fin"),
+}
 #: terms of the inertial force, see :meth:`SurfaceLoads.inertia_terms`
 INERTIA_TERMS = ("n_z", "qdot_xcg", "qdot", "n_y", "rdot_xcg", "rdot", "pdot_zcg", "pdot")
 EPS = 1e-3
@@ -99,7 +102,9 @@ class SurfaceLoads:
         interpolates), over the inputs given (the others are zero; ``one`` is implied)."""
         qbar = np.asarray(qbar, dtype=float)
         i, w = self._mach_weights(mach)
-        shape = np.broadcast_shapes(qbar.shape, np.shape(i), *(np.shape(inputs[n]) for n in self.inputs[1:] if n in inputs))
+        shape = np.broadcast_shapes(
+            qbar.shape, np.shape(i), *(np.shape(inputs[n]) for n in self.inputs[1:] if n in inputs)
+        )
         cols = [0] + [k for k, name in enumerate(self.inputs[1:], start=1) if name in inputs]
         x = np.empty((len(cols), int(np.prod(shape, dtype=int))))
         x[0] = 1.0
@@ -107,10 +112,15 @@ class SurfaceLoads:
             x[r] = np.broadcast_to(np.asarray(inputs[self.inputs[k]], dtype=float), shape).ravel()
         flat = np.ascontiguousarray(table.reshape(table.shape[0], table.shape[1], -1))
         out = np.empty((x.shape[1], flat.shape[2]))
-        _superpose_kernel(np.ascontiguousarray(np.broadcast_to(qbar, shape).ravel()),
-                          np.ascontiguousarray(np.broadcast_to(i, shape).ravel(), dtype=np.int64),
-                          np.ascontiguousarray(np.broadcast_to(w, shape).ravel(), dtype=float), x,
-                          np.array(cols, dtype=np.int64), flat, out)
+        _superpose_kernel(
+            np.ascontiguousarray(np.broadcast_to(qbar, shape).ravel()),
+            np.ascontiguousarray(np.broadcast_to(i, shape).ravel(), dtype=np.int64),
+            np.ascontiguousarray(np.broadcast_to(w, shape).ravel(), dtype=float),
+            x,
+            np.array(cols, dtype=np.int64),
+            flat,
+            out,
+        )
         return out.reshape(shape + table.shape[2:])
 
     def aero_loads(self, qbar, mach, inputs: dict[str, np.ndarray]) -> np.ndarray:
@@ -149,8 +159,11 @@ class SurfaceLoads:
         the small tables with the states first. None for a surface without tanks."""
         if self.fuel_inertia is None or not len(self.tank_names):
             return None
-        present = [(t, np.asarray(terms[name], dtype=float)) for t, name in enumerate(INERTIA_TERMS)
-                   if name in terms and np.any(self.fuel_inertia[:, t])]
+        present = [
+            (t, np.asarray(terms[name], dtype=float))
+            for t, name in enumerate(INERTIA_TERMS)
+            if name in terms and np.any(self.fuel_inertia[:, t])
+        ]
         if not present:
             return None
         shape = np.broadcast_shapes(*(v.shape for _, v in present))
@@ -211,9 +224,18 @@ def _station_matrices(s1, s2, x_axis_strip, x_axis_station, stations):
     return frac, frac * arm
 
 
-def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 0.4,
-                        station_fractions=(0.0, 0.25, 0.5, 0.75), side_of_body: float | None = None,
-                        point_masses=(), solutions: dict | None = None, aircraft=None) -> SurfaceLoads:
+def build_surface_loads(
+    vl,
+    surface: str,
+    machs,
+    masses,
+    axis_fraction: float = 0.4,
+    station_fractions=(0.0, 0.25, 0.5, 0.75),
+    side_of_body: float | None = None,
+    point_masses=(),
+    solutions: dict | None = None,
+    aircraft=None,
+) -> SurfaceLoads:
     """Unit load tables of ``surface`` (lattice surface name; the right half for mirrored surfaces).
 
     ``masses``: total structural mass of the surface (both halves for a mirrored one), kg.
@@ -227,7 +249,11 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     vertical = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
     sign = np.sign(lat.ensy[idx]) if vertical else np.sign(lat.ensz[idx])
     ny, nz = lat.ensy[idx] * sign, lat.ensz[idx] * sign  # normal up (or right for the fin)
-    root = lat.rle1[idx[0]] if abs(lat.rle1[idx[0], 1]) + abs(lat.rle1[idx[0], 2]) <= abs(lat.rle2[idx[0], 1]) + abs(lat.rle2[idx[0], 2]) else lat.rle2[idx[0]]
+    root = (
+        lat.rle1[idx[0]]
+        if abs(lat.rle1[idx[0], 1]) + abs(lat.rle1[idx[0], 2]) <= abs(lat.rle2[idx[0], 1]) + abs(lat.rle2[idx[0], 2])
+        else lat.rle2[idx[0]]
+    )
 
     def span_of(p):
         return np.hypot(p[..., 1] - root[1], p[..., 2] - root[2])
@@ -253,7 +279,9 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
         """force (..., J), x_load (..., J) → (..., 3, S)."""
         shear = np.einsum("...j,sj->...s", force, shear_m)
         bend = np.einsum("...j,sj->...s", force, bend_m)
-        tors = np.einsum("...j,sj->...s", force, shear_m) * x_axis_station - np.einsum("...j,sj->...s", force * x_load, shear_m)
+        tors = np.einsum("...j,sj->...s", force, shear_m) * x_axis_station - np.einsum(
+            "...j,sj->...s", force * x_load, shear_m
+        )
         return np.stack([shear, bend, tors], axis=-2)
 
     # --- unit aerodynamic solutions ---------------------------------------------------------
@@ -294,8 +322,11 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
         a_n, a_g, _ = state(loading_angle, EPS)
         am_n, am_g, _ = state(loading_angle, -EPS)
         # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force)
-        ratio = np.where(np.abs(a_g - am_g) > 1e-14, (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
-                         2 * lat.width[idx])
+        ratio = np.where(
+            np.abs(a_g - am_g) > 1e-14,
+            (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
+            2 * lat.width[idx],
+        )
         unit_n, unit_m = [base_n], [ratio * base_gx]
         for name in inputs[1:]:
             pn, pg, pgx = state(name, EPS)
@@ -330,11 +361,18 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
     mass = strip_mass + extra_force_mass
 
     def inertia_table(mass, x_mass, y_mass, z_mass):
-        terms = np.array([
-            -mass * G0 * nz, -mass * nz, mass * nz * x_mass,
-            -mass * G0 * ny, -mass * ny, mass * ny * x_mass,
-            mass * ny, -mass * ny * z_mass + mass * nz * y_mass,
-        ])
+        terms = np.array(
+            [
+                -mass * G0 * nz,
+                -mass * nz,
+                mass * nz * x_mass,
+                -mass * G0 * ny,
+                -mass * ny,
+                mass * ny * x_mass,
+                mass * ny,
+                -mass * ny * z_mass + mass * nz * y_mass,
+            ]
+        )
         return integrate(terms, np.broadcast_to(x_mass, terms.shape))
 
     inertia = inertia_table(mass, x_mass, y_mass, z_mass)
@@ -344,17 +382,33 @@ def build_surface_loads(vl, surface: str, machs, masses, axis_fraction: float = 
         from certkit.models.loads.fuel import wing_tank_shares
 
         y_strip = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
-        tank_names, shares, tank_notes = wing_tank_shares(aircraft, np.abs(lat.rle1[idx, 1]), np.abs(lat.rle2[idx, 1]),
-                                                          chord, side_of_body or 0.0)
+        tank_names, shares, tank_notes = wing_tank_shares(
+            aircraft, np.abs(lat.rle1[idx, 1]), np.abs(lat.rle2[idx, 1]), chord, side_of_body or 0.0
+        )
         notes += tank_notes
         z_strip = lat.rle[idx, 2]
         fuel_inertia = np.array([inertia_table(share, x_axis, y_strip, z_strip) for share in shares])
     if masses <= 0:
         notes.append(f"{surface}: no structural mass declared; inertial loads are zero")
-    return SurfaceLoads(surface, inputs, np.asarray(machs, dtype=float), names, stations,
-                        np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical else lat.rle[idx, 1])),
-                        s_mid, x_axis, mass, np.array(aero), inertia, np.array(strip_aero), axis_fraction, notes,
-                        tank_names, fuel_inertia, shares)
+    return SurfaceLoads(
+        surface,
+        inputs,
+        np.asarray(machs, dtype=float),
+        names,
+        stations,
+        np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical else lat.rle[idx, 1])),
+        s_mid,
+        x_axis,
+        mass,
+        np.array(aero),
+        inertia,
+        np.array(strip_aero),
+        axis_fraction,
+        notes,
+        tank_names,
+        fuel_inertia,
+        shares,
+    )
 
 
 def surface_mass(aircraft, surface: str) -> float:
@@ -369,8 +423,11 @@ def surface_mass(aircraft, surface: str) -> float:
 
 def wing_point_masses(aircraft) -> list[tuple[float, float, float, float]]:
     """Propulsion components off the plane of symmetry (engines, nacelles) as wing point masses."""
-    return [(c.mass, c.cg.x, c.cg.y, c.cg.z) for c in aircraft.mass.components
-            if c.group == "propulsion" and abs(c.cg.y) > 0.0]
+    return [
+        (c.mass, c.cg.x, c.cg.y, c.cg.z)
+        for c in aircraft.mass.components
+        if c.group == "propulsion" and abs(c.cg.y) > 0.0
+    ]
 
 
 @dataclass
@@ -390,12 +447,17 @@ DEFAULT_STATIONS = (0.0, 0.25, 0.5, 0.75)
 def declared_station_fractions(aircraft, surface: str) -> tuple[float, ...]:
     """The default station fractions plus those of the declared capabilities (``structure`` section)."""
     st = getattr(aircraft, "structure", None)
-    extra = [float(c.station) for c in (getattr(st, surface) if st is not None else ())
-             if not isinstance(c.station, str) and float(c.station) < 1.0]
+    extra = [
+        float(c.station)
+        for c in (getattr(st, surface) if st is not None else ())
+        if not isinstance(c.station, str) and float(c.station) < 1.0
+    ]
     return tuple(sorted(set(DEFAULT_STATIONS) | set(extra)))
 
 
-def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4, solutions: dict | None = None) -> AirplaneLoads:
+def build_airplane_loads(
+    aircraft, vl, machs, axis_fraction: float = 0.4, solutions: dict | None = None
+) -> AirplaneLoads:
     """Wing, horizontal tail and fin loads models from the lattice ``vl`` at the Mach breakpoints
     (stations: :data:`DEFAULT_STATIONS` and those of the declared capabilities); the three surfaces share the
     lattice's unit solutions (``solutions``: a store kept with the lattice, see :func:`build_surface_loads`)."""
@@ -403,27 +465,40 @@ def build_airplane_loads(aircraft, vl, machs, axis_fraction: float = 0.4, soluti
     g = aircraft.geometry
     sob = 0.5 * g.fuselage.width if g is not None and g.fuselage is not None else None
     out = {}
-    notes = ["strip loads from unit vortex-lattice solutions (linear superposition, quasi-steady)",
-             f"torsion about the {axis_fraction:.0%} chord line; strip masses at that line",
-             "wing fuel: one inertial table per declared tank (volume-weighted over its bay); the loads rules add the "
-             "fuel state they evaluate"]
+    notes = [
+        "strip loads from unit vortex-lattice solutions (linear superposition, quasi-steady)",
+        f"torsion about the {axis_fraction:.0%} chord line; strip masses at that line",
+        "wing fuel: one inertial table per declared tank (volume-weighted over its bay); the loads rules add the "
+        "fuel state they evaluate",
+    ]
     for name in ("wing", "horizontal_tail", "vertical_tail"):
         pm = wing_point_masses(aircraft) if name == "wing" else ()
-        out[name] = build_surface_loads(vl, name, machs, surface_mass(aircraft, name), axis_fraction,
-                                        station_fractions=declared_station_fractions(aircraft, name),
-                                        side_of_body=None if name == "vertical_tail" else sob, point_masses=pm,
-                                        solutions=solutions, aircraft=aircraft if name == "wing" else None)
+        out[name] = build_surface_loads(
+            vl,
+            name,
+            machs,
+            surface_mass(aircraft, name),
+            axis_fraction,
+            station_fractions=declared_station_fractions(aircraft, name),
+            side_of_body=None if name == "vertical_tail" else sob,
+            point_masses=pm,
+            solutions=solutions,
+            aircraft=aircraft if name == "wing" else None,
+        )
         notes += out[name].notes
     return AirplaneLoads(out, notes)
 
 
 def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
     """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared)."""
+
     def build():
         aero = ctx.aero(configuration)
         if aero.lattice is None:
-            raise ValueError(f"configuration {configuration!r} uses declared derivative tables: the strip loads "
-                             "model needs the geometry's vortex lattice")
+            raise ValueError(
+                f"configuration {configuration!r} uses declared derivative tables: the strip loads "
+                "model needs the geometry's vortex lattice"
+            )
         # the unit solutions belong to the lattice: kept under an "aero" key, a Context that shares the aerodynamics
         # (the sizing loop's next airplane, same geometry) shares them too
         solutions = ctx.memo(("aero", "loads unit solutions", configuration, id(aero.lattice)), dict)

@@ -36,8 +36,9 @@ def times_at(t, k) -> np.ndarray:
     return t[k, cols]
 
 
-def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
-                        extra_beta=None) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+def response_load_parts(
+    loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None, extra_beta=None
+) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Aerodynamic and inertial station loads, each (nt, n, 3, n_stations), of each of ``surfaces`` along the
     simulation ``sim`` of the flight model ``model`` (its CGs and reference lengths).
 
@@ -53,8 +54,14 @@ def response_load_parts(loads: AirplaneLoads, sim, model, surfaces=("horizontal_
     for name in surfaces:
         s = loads[name]
         alpha = h["alpha"] + (extra_alpha or {}).get(name, 0.0)
-        inputs = {"alpha": alpha, "beta": h["beta"] + (extra_beta or {}).get(name, 0.0), "p_hat": h["p"] * b / (2 * V), "q_hat": h["q"] * c / (2 * V),
-                  "r_hat": h["r"] * b / (2 * V), **controls}
+        inputs = {
+            "alpha": alpha,
+            "beta": h["beta"] + (extra_beta or {}).get(name, 0.0),
+            "p_hat": h["p"] * b / (2 * V),
+            "q_hat": h["q"] * c / (2 * V),
+            "r_hat": h["r"] * b / (2 * V),
+            **controls,
+        }
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
     return out
 
@@ -65,8 +72,16 @@ def inertia_terms(sim, model) -> dict[str, np.ndarray]:
     h, t = sim.history, sim.t
     qdot, pdot, rdot = _rates_dot(t, h["q"]), _rates_dot(t, h["p"]), _rates_dot(t, h["r"])
     xcg, zcg = model.cg[:, 0][None, :], model.cg[:, 2][None, :]
-    return {"n_z": h["n_z"], "qdot_xcg": qdot * xcg, "qdot": qdot, "n_y": h["n_y"], "rdot_xcg": rdot * xcg,
-            "rdot": rdot, "pdot_zcg": pdot * zcg, "pdot": pdot}
+    return {
+        "n_z": h["n_z"],
+        "qdot_xcg": qdot * xcg,
+        "qdot": qdot,
+        "n_y": h["n_y"],
+        "rdot_xcg": rdot * xcg,
+        "rdot": rdot,
+        "pdot_zcg": pdot * zcg,
+        "pdot": pdot,
+    }
 
 
 def fuel_load_units(loads: AirplaneLoads, sim, model, surface: str = "wing") -> tuple[np.ndarray, np.ndarray] | None:
@@ -84,8 +99,9 @@ def with_fuel_states(total: np.ndarray, units: np.ndarray | None, fuel: np.ndarr
     return np.asarray(total)[None] + np.einsum("...nkqs,nmk->m...nqs", units, fuel)
 
 
-def fuel_state_peaks(total: np.ndarray, fuel_terms: tuple[np.ndarray, np.ndarray] | None,
-                     fuel: np.ndarray | None) -> np.ndarray:
+def fuel_state_peaks(
+    total: np.ndarray, fuel_terms: tuple[np.ndarray, np.ndarray] | None, fuel: np.ndarray | None
+) -> np.ndarray:
     """Per fuel state, the minimum and maximum over time of station loads: (M, n, 2, 3, S) from the loads without
     fuel ``total`` (nt, n, 3, S), the fuel's inertial loading ``fuel_terms`` — the terms (nt, n, J) and their
     per-kilogram tables (K, J, 3, S), :func:`fuel_load_units` — and the fuel states ``fuel`` (n, M, K) kg. The states
@@ -99,9 +115,12 @@ def fuel_state_peaks(total: np.ndarray, fuel_terms: tuple[np.ndarray, np.ndarray
     q = int(np.prod(total.shape[2:]))
     per_state = np.einsum("nmk,kjq->nmjq", fuel, tables.reshape(tables.shape[0], tables.shape[1], q))
     out = np.empty((fuel.shape[1], n, 2, q))
-    _fuel_state_peaks(np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
-                      np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])), dtype=float),
-                      np.ascontiguousarray(per_state), out)
+    _fuel_state_peaks(
+        np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
+        np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])), dtype=float),
+        np.ascontiguousarray(per_state),
+        out,
+    )
     return out.reshape((fuel.shape[1], n, 2) + total.shape[2:])
 
 
@@ -132,8 +151,9 @@ def _fuel_state_peaks(total, terms, per_state, out):
                     out[m, i, 1, j] = np.nan
 
 
-def response_loads(loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None,
-                   valid=None) -> dict[str, np.ndarray]:
+def response_loads(
+    loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None, valid=None
+) -> dict[str, np.ndarray]:
     """Station loads (nt, n, 3, n_stations) of each of ``surfaces`` along the simulation ``sim``: the sum of
     :func:`response_load_parts`. ``valid``: (nt, n) booleans; loads outside are set to NaN (times after a stop
     criterion or beyond the time the paragraph asks to consider)."""
@@ -160,8 +180,15 @@ def below_stall(model, sim) -> np.ndarray | None:
     V = np.maximum(h["V"], 1e-3)
     names = list(sim.control_names)
     controls = {n: sim.controls[:, :, names.index(n)] for n in aero.control_names if n in names}
-    state = AeroState(alpha=h["alpha"], beta=h["beta"], p_hat=h["p"] * model.b / (2 * V), q_hat=h["q"] * model.c / (2 * V),
-                      r_hat=h["r"] * model.b / (2 * V), mach=h["mach"], controls=controls)
+    state = AeroState(
+        alpha=h["alpha"],
+        beta=h["beta"],
+        p_hat=h["p"] * model.b / (2 * V),
+        q_hat=h["q"] * model.c / (2 * V),
+        r_hat=h["r"] * model.b / (2 * V),
+        mach=h["mach"],
+        controls=controls,
+    )
     return aero.without_stall().coefficients(state).CL <= aero.clmax(h["mach"])
 
 
@@ -195,8 +222,9 @@ class LoadEnvelope:
     keys: list = field(default_factory=list)
 
     @classmethod
-    def from_histories(cls, loads: AirplaneLoads, histories: dict[str, np.ndarray], t: np.ndarray, labels,
-                       failed=(), keys=None) -> "LoadEnvelope":
+    def from_histories(
+        cls, loads: AirplaneLoads, histories: dict[str, np.ndarray], t: np.ndarray, labels, failed=(), keys=None
+    ) -> "LoadEnvelope":
         peaks, times = {}, {}
         for name, L in histories.items():
             filled_lo = np.where(np.isnan(L), np.inf, L)
@@ -206,8 +234,14 @@ class LoadEnvelope:
             hi = np.take_along_axis(L, ihi[None], axis=0)[0]
             peaks[name] = np.stack([lo, hi], axis=1)
             times[name] = np.stack([times_at(t, ilo), times_at(t, ihi)], axis=1)
-        return cls({k: loads[k].station_names for k in histories}, peaks, times, list(labels), list(failed),
-                   list(keys) if keys is not None else [])
+        return cls(
+            {k: loads[k].station_names for k in histories},
+            peaks,
+            times,
+            list(labels),
+            list(failed),
+            list(keys) if keys is not None else [],
+        )
 
     @classmethod
     def merge(cls, parts: list["LoadEnvelope"]) -> "LoadEnvelope":
@@ -226,9 +260,14 @@ class LoadEnvelope:
                 times.setdefault(k, []).append(p.times[k])
                 stations[k] = p.stations[k]
         keyed = all(len(p.keys) == len(p.labels) for p in parts)
-        return cls(stations, {k: np.concatenate(v) for k, v in peaks.items()},
-                   {k: np.concatenate(v) for k, v in times.items()}, labels, failed,
-                   [key for p in parts for key in p.keys] if keyed else [])
+        return cls(
+            stations,
+            {k: np.concatenate(v) for k, v in peaks.items()},
+            {k: np.concatenate(v) for k, v in times.items()},
+            labels,
+            failed,
+            [key for p in parts for key in p.keys] if keyed else [],
+        )
 
     @classmethod
     def worst_of(cls, parts: list["LoadEnvelope"]) -> tuple["LoadEnvelope", dict[str, np.ndarray]]:
@@ -277,8 +316,17 @@ class LoadEnvelope:
         for c in self.critical_cases():
             if surface and c.surface != surface:
                 continue
-            rows.append({"surface": c.surface, "station": c.station, "quantity": c.quantity, "sense": c.sense,
-                         "value": _fmt(c.value, c.unit), "condition": self.labels[c.condition], "time_s": round(c.time, 3)})
+            rows.append(
+                {
+                    "surface": c.surface,
+                    "station": c.station,
+                    "quantity": c.quantity,
+                    "sense": c.sense,
+                    "value": _fmt(c.value, c.unit),
+                    "condition": self.labels[c.condition],
+                    "time_s": round(c.time, 3),
+                }
+            )
         return rows
 
 

@@ -50,8 +50,9 @@ def _state(V, h, alpha, gamma, q, psi=0.0):
     return x
 
 
-def symmetric_manoeuvre_state(model, x_trim, u_trim, n_target, gamma, pitch: str = "elevator",
-                              tol: float = 1e-8, max_iter: int = 30) -> ManoeuvreStates:
+def symmetric_manoeuvre_state(
+    model, x_trim, u_trim, n_target, gamma, pitch: str = "elevator", tol: float = 1e-8, max_iter: int = 30
+) -> ManoeuvreStates:
     """The instant of a steady wings-level pull-up (n > 1) or push-over (n < 1) at CG normal load factor
     ``n_target`` from the trimmed states ``x_trim`` (n, 12), ``u_trim`` on flight paths ``gamma`` (rad).
 
@@ -95,14 +96,22 @@ def symmetric_manoeuvre_state(model, x_trim, u_trim, n_target, gamma, pitch: str
     return ManoeuvreStates(x, u, out.n_z, z[:, 1], z[:, 0], np.max(np.abs(r), axis=1) <= 1e-6)
 
 
-def simulate_roll(model, x0, u0, amplitude, duration: float, dt: float = 0.02, ramp: float = 0.1,
-                  aileron: str = "aileron", controllers=()):
+def simulate_roll(
+    model,
+    x0,
+    u0,
+    amplitude,
+    duration: float,
+    dt: float = 0.02,
+    ramp: float = 0.1,
+    aileron: str = "aileron",
+    controllers=(),
+):
     """The roll control ``aileron`` ramped by ``amplitude`` (rad, per condition) over ``ramp`` s from t = 0
     and held to ``duration`` s; the other controls held at ``u0`` unless ``controllers`` move them."""
     n = np.asarray(x0).shape[0]
     amplitude = np.broadcast_to(np.asarray(amplitude, dtype=float), (n,)).copy()
-    return simulate(model, x0, u0, duration, dt, inputs={aileron: Ramp(0.0, ramp, amplitude)},
-                    controllers=controllers)
+    return simulate(model, x0, u0, duration, dt, inputs={aileron: Ramp(0.0, ramp, amplitude)}, controllers=controllers)
 
 
 def mirror(sim, controls=ANTISYMMETRIC_CONTROLS):

@@ -46,8 +46,10 @@ def _require_root_station(loads: SurfaceLoads, name: str, what: str) -> None:
     """The unbalanced moments of an unsymmetrical loading are taken at the root: refuse a surface without a root
     station (``what``: "moment needs" or "moments need", for the message)."""
     if loads.station_span[0] > 1e-9:
-        raise ValueError(f"the {name}'s first load station is {loads.station_span[0]:.3f} m from its root: the "
-                         f"unbalanced {what} the root station")
+        raise ValueError(
+            f"the {name}'s first load station is {loads.station_span[0]:.3f} m from its root: the "
+            f"unbalanced {what} the root station"
+        )
 
 
 def half_wing_moment(wing: SurfaceLoads, loads: np.ndarray) -> np.ndarray:
@@ -55,9 +57,17 @@ def half_wing_moment(wing: SurfaceLoads, loads: np.ndarray) -> np.ndarray:
     return loads[..., 1, 0] + loads[..., 0, 0] * wing.station_y[0]
 
 
-def unsymmetrical_wing(wing: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, mass, cg, inertia_tensor,
-                       full: float = 1.0, reduced: float = 0.8, trim_aero: np.ndarray | None = None
-                       ) -> UnsymmetricalLoads:
+def unsymmetrical_wing(
+    wing: SurfaceLoads,
+    aero: np.ndarray,
+    inertia: np.ndarray,
+    mass,
+    cg,
+    inertia_tensor,
+    full: float = 1.0,
+    reduced: float = 0.8,
+    trim_aero: np.ndarray | None = None,
+) -> UnsymmetricalLoads:
     """The full- and reduced-side loads of one half wing from a symmetric condition.
 
     ``aero``, ``inertia``: (…, n, 3, S) aerodynamic and inertial station loads of the symmetric condition (any
@@ -100,20 +110,23 @@ class UnsymmetricalTail:
     fuselage_torsion: np.ndarray  # N·m about the X axis, positive when the full side is the right half pushed up
 
 
-def unsymmetrical_tail(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0,
-                       reduced: float = 0.8) -> UnsymmetricalTail:
+def unsymmetrical_tail(
+    tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0, reduced: float = 0.8
+) -> UnsymmetricalTail:
     """A symmetric tail loading split ``full`` on one half and ``reduced`` on the other (§25.427(b)): each half's air
     load A scaled by its fraction, its inertial load I unchanged (the airplane's state is the symmetric one); the
     unbalanced rolling moment of the two halves' air loads about the plane of symmetry — each half's root bending +
     root shear × root Y (:func:`half_wing_moment`) — goes into the fuselage as torsion at the tail (the tail's own
     roll inertia relief neglected, conservative). ``aero``, ``inertia``: (…, 3, S) of the right half."""
     _require_root_station(tail, "tailplane", "moment needs")
-    return UnsymmetricalTail(full * aero + inertia, reduced * aero + inertia,
-                             (full - reduced) * half_wing_moment(tail, aero))
+    return UnsymmetricalTail(
+        full * aero + inertia, reduced * aero + inertia, (full - reduced) * half_wing_moment(tail, aero)
+    )
 
 
-def unsymmetrical_tail_peaks(tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0,
-                             reduced: float = 0.8):
+def unsymmetrical_tail_peaks(
+    tail: SurfaceLoads, aero: np.ndarray, inertia: np.ndarray, full: float = 1.0, reduced: float = 0.8
+):
     """The extremes over the leading (time) axis of :func:`unsymmetrical_tail`'s loads, NaN entries ignored:
     (full-side peaks (…, 2, 3, S) min then max, reduced-side peaks, fuselage torsion min (…), max (…)), without
     keeping the split histories (one work array)."""

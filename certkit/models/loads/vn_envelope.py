@@ -22,21 +22,26 @@ class VnEnvelope:
     vs1_neg: float
     n_pos: float
     n_neg: float
-    v_a: float   # positive stall line meets n_pos (point A)
+    v_a: float  # positive stall line meets n_pos (point A)
     v_c: float
     v_d: float
-    v_h: float   # negative stall line meets n_neg (point H)
+    v_h: float  # negative stall line meets n_neg (point H)
 
     def corners(self) -> dict[str, tuple[float, float]]:
-        return {"A": (self.v_a, self.n_pos), "D": (self.v_d, self.n_pos), "E": (self.v_d, 0.0),
-                "F": (self.v_c, self.n_neg), "H": (self.v_h, self.n_neg)}
+        return {
+            "A": (self.v_a, self.n_pos),
+            "D": (self.v_d, self.n_pos),
+            "E": (self.v_d, 0.0),
+            "F": (self.v_c, self.n_neg),
+            "H": (self.v_h, self.n_neg),
+        }
 
     def outline(self, samples: int = 60) -> tuple[np.ndarray, np.ndarray]:
         """Closed outline: stall line to A, A–D, D–E, E–F, F–H, negative stall line back to 0."""
         vp = np.linspace(0.0, self.v_a, samples)
         vn = np.linspace(self.v_h, 0.0, samples)
         v = np.concatenate([vp, [self.v_d, self.v_d, self.v_c], vn])
-        n = np.concatenate([(vp / self.vs1_pos) ** 2, [self.n_pos, 0.0, self.n_neg], -(vn / self.vs1_neg) ** 2])
+        n = np.concatenate([(vp / self.vs1_pos) ** 2, [self.n_pos, 0.0, self.n_neg], -((vn / self.vs1_neg) ** 2)])
         return v, n
 
 
@@ -50,5 +55,13 @@ def envelope(ctx, mass: float, altitude: float, cn_over_cl: float) -> VnEnvelope
     vs_neg = float(stall_speed_eas(mass, a.reference.area, cn_over_cl * clean.CLmin))
     vc, _ = ctx.design_speed_eas("VC", altitude)
     vd, _ = ctx.design_speed_eas("VD", altitude)
-    return VnEnvelope(vs_pos, vs_neg, lf.positive, lf.negative, vs_pos * np.sqrt(lf.positive), float(vc), float(vd),
-                      vs_neg * np.sqrt(abs(lf.negative)))
+    return VnEnvelope(
+        vs_pos,
+        vs_neg,
+        lf.positive,
+        lf.negative,
+        vs_pos * np.sqrt(lf.positive),
+        float(vc),
+        float(vd),
+        vs_neg * np.sqrt(abs(lf.negative)),
+    )

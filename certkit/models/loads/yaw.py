@@ -26,8 +26,17 @@ class RollHold(Controller):
     negative rolling moment, :mod:`certkit.conventions`); the integral removes the steady bank the
     proportional hold would leave in a steady sideslip. The rudder is left to the schedules."""
 
-    def __init__(self, model, u0, k_phi: float = 2.0, k_p: float = 1.0, k_i: float = 1.0, aileron: str = "aileron",
-                 limits=(-np.radians(25), np.radians(25)), integral=None):
+    def __init__(
+        self,
+        model,
+        u0,
+        k_phi: float = 2.0,
+        k_p: float = 1.0,
+        k_i: float = 1.0,
+        aileron: str = "aileron",
+        limits=(-np.radians(25), np.radians(25)),
+        integral=None,
+    ):
         self.j = model.control_index(aileron)
         self.da0 = np.asarray(u0, dtype=float)[:, self.j].copy()
         self.k_phi, self.k_p, self.k_i, self.limits = k_phi, k_p, k_i, limits
@@ -36,7 +45,9 @@ class RollHold(Controller):
     def update(self, t, x, out, u, dt):
         phi = quat_to_euler(x[:, 9:13])[:, 0]
         self.integral += phi * dt
-        u[:, self.j] = np.clip(self.da0 + self.k_phi * phi + self.k_i * self.integral + self.k_p * x[:, 6], *self.limits)
+        u[:, self.j] = np.clip(
+            self.da0 + self.k_phi * phi + self.k_i * self.integral + self.k_p * x[:, 6], *self.limits
+        )
         return u
 
 
@@ -73,16 +84,35 @@ class YawRun:
     u_steady: np.ndarray  # (n, m) controls at the end of phase 1
 
 
-def simulate_yaw(model, x0, u0, amplitude, dt: float = 0.02, ramp: float = 0.2, t_max: float = 20.0,
-                 window: float = 4.0, tolerance: float = 0.02, return_time: float = 3.0, rudder: str = "rudder",
-                 aileron_limits=(-np.radians(25), np.radians(25))) -> YawRun:
+def simulate_yaw(
+    model,
+    x0,
+    u0,
+    amplitude,
+    dt: float = 0.02,
+    ramp: float = 0.2,
+    t_max: float = 20.0,
+    window: float = 4.0,
+    tolerance: float = 0.02,
+    return_time: float = 3.0,
+    rudder: str = "rudder",
+    aileron_limits=(-np.radians(25), np.radians(25)),
+) -> YawRun:
     n = x0.shape[0]
     amplitude = np.broadcast_to(np.asarray(amplitude, dtype=float), (n,)).copy()
     jr = model.control_index(rudder)
     settle = SideslipSettled(n, dt, window, tolerance, t_min=ramp + window)
     roll = RollHold(model, u0, limits=aileron_limits)
-    held = simulate(model, x0, u0, t_max, dt, inputs={rudder: Ramp(0.0, ramp, amplitude)}, controllers=[roll],
-                    stop=[stop_when(settle.__name__, settle)])
+    held = simulate(
+        model,
+        x0,
+        u0,
+        t_max,
+        dt,
+        inputs={rudder: Ramp(0.0, ramp, amplitude)},
+        controllers=[roll],
+        stop=[stop_when(settle.__name__, settle)],
+    )
     beta = held["beta"]
     live = held.t[:, None] <= held.stop_time[None, :] + 1e-9
     t_over = held.t[np.argmax(np.where(live, np.abs(beta), -1.0), axis=0)]
@@ -95,7 +125,9 @@ def simulate_yaw(model, x0, u0, amplitude, dt: float = 0.02, ramp: float = 0.2, 
     u2 = u_end.copy()
     back = -(u_end[:, jr] - np.asarray(u0)[:, jr])
     roll2 = RollHold(model, u0, limits=aileron_limits, integral=roll.integral)
-    returned = simulate(model, held.final_state, u2, return_time, dt, inputs={rudder: Ramp(0.0, ramp, back)},
-                        controllers=[roll2])
-    return YawRun(held, returned, ramp, t_over, held.stop_time.copy(), np.array([r != "" for r in held.stop_reason]),
-                  band, u_end)
+    returned = simulate(
+        model, held.final_state, u2, return_time, dt, inputs={rudder: Ramp(0.0, ramp, back)}, controllers=[roll2]
+    )
+    return YawRun(
+        held, returned, ramp, t_over, held.stop_time.copy(), np.array([r != "" for r in held.stop_reason]), band, u_end
+    )

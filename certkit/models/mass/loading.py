@@ -29,8 +29,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from certkit.models.mass.properties import (MassComponent, MassProperties, body_axis_tensor, combine,
-                                            inertia_from_radii)
+from certkit.models.mass.properties import MassComponent, MassProperties, body_axis_tensor, combine, inertia_from_radii
 
 
 class LoadingError(ValueError):
@@ -55,8 +54,17 @@ class Loading:
 
     def table(self) -> list[dict]:
         """Component table for the report: mass, CG and share of the total mass of every item."""
-        return [{"item": c.name, "mass_kg": round(c.mass, 1), "x_m": round(c.cg[0], 3), "y_m": round(c.cg[1], 3),
-                 "z_m": round(c.cg[2], 3), "share": f"{100 * c.mass / self.properties.mass:.1f} %"} for c in self.items]
+        return [
+            {
+                "item": c.name,
+                "mass_kg": round(c.mass, 1),
+                "x_m": round(c.cg[0], 3),
+                "y_m": round(c.cg[1], 3),
+                "z_m": round(c.cg[2], 3),
+                "share": f"{100 * c.mass / self.properties.mass:.1f} %",
+            }
+            for c in self.items
+        ]
 
 
 def reference_cg(aircraft) -> float:
@@ -84,7 +92,9 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
         total = sum(c.mass for c in m.components)
         notes = []
         if m.OEW is not None and abs(total - m.OEW) > 0.005 * m.OEW:
-            notes.append(f"component masses sum to {total:.0f} kg, not the declared OEW {m.OEW:.0f} kg; the components are used")
+            notes.append(
+                f"component masses sum to {total:.0f} kg, not the declared OEW {m.OEW:.0f} kg; the components are used"
+            )
         return items, notes
     if m.OEW is None:
         return [], ["no component table and no OEW: the airplane is flown as a whole (mass.MTOW, mass.inertia)"]
@@ -92,10 +102,12 @@ def empty_airplane(aircraft) -> tuple[list[MassComponent], list[str]]:
         p = aircraft.reference.moment_point
         return [_item("operating empty airplane", m.OEW, p.x, 0.0, p.z)], [
             "no component table and no mass.oew_cg: the empty airplane is a point mass at the reference moment point "
-            f"(x {p.x:.3f} m, height {p.z:.3f} m)"]
+            f"(x {p.x:.3f} m, height {p.z:.3f} m)"
+        ]
     c = m.oew_cg
     return [_item("operating empty airplane", m.OEW, c.x, c.y, c.z)], [
-        f"no component table: the empty airplane is a point mass at mass.oew_cg (x {c.x:.3f} m, height {c.z:.3f} m)"]
+        f"no component table: the empty airplane is a point mass at mass.oew_cg (x {c.x:.3f} m, height {c.z:.3f} m)"
+    ]
 
 
 def tank_groups(tanks) -> list[list]:
@@ -219,7 +231,9 @@ def _payload_items(zones, payload: float, x_target: float) -> list[MassComponent
         # each loaded bay is a uniform line load: its own pitch/yaw inertia is m L²/12
         mass = sum(load for _, load in parts)
         x = sum(load * 0.5 * (z.x_start + z.x_end) for z, load in parts) / mass
-        own = sum(load * ((z.x_end - z.x_start) ** 2 / 12 + (0.5 * (z.x_start + z.x_end) - x) ** 2) for z, load in parts)
+        own = sum(
+            load * ((z.x_end - z.x_start) ** 2 / 12 + (0.5 * (z.x_start + z.x_end) - x) ** 2) for z, load in parts
+        )
         items.append(_item(f"payload: {name}", mass, x, inertia=np.diag([1e-9 * mass, own, own])))
     return items
 
@@ -228,18 +242,34 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
     """The payload/fuel distribution reaching ``mass`` (kg) at CG station ``x_cg`` (m), with its inertia."""
     m = aircraft.mass
     if not (m.components or m.fuel_tanks or m.payload_zones):
-        return _scaled_loading(aircraft, mass, x_cg, name, [
-            "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the declared "
-            "tensor (at MTOW) at constant radii of gyration"])
+        return _scaled_loading(
+            aircraft,
+            mass,
+            x_cg,
+            name,
+            [
+                "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the declared "
+                "tensor (at MTOW) at constant radii of gyration"
+            ],
+        )
     empty, notes = empty_airplane(aircraft)
     oew = sum(c.mass for c in empty)
     oew_moment = sum(c.mass * c.cg[0] for c in empty)
     if mass < oew * (1 - 1e-9):
-        return _scaled_loading(aircraft, mass, x_cg, name, notes + [
-            f"{mass:.0f} kg is below the operating empty mass {oew:.0f} kg: inertia scaled from the declared tensor"])
+        return _scaled_loading(
+            aircraft,
+            mass,
+            x_cg,
+            name,
+            notes
+            + [
+                f"{mass:.0f} kg is below the operating empty mass {oew:.0f} kg: inertia scaled from the declared tensor"
+            ],
+        )
     if not (m.fuel_tanks and m.payload_zones):
-        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes + [
-            "no fuel tanks or payload zones declared"], 0.0)
+        return _fallback_loading(
+            aircraft, mass, x_cg, name, empty, notes + ["no fuel tanks or payload zones declared"], 0.0
+        )
     zones = bays(m.payload_zones)
     fuel_cap = sum(t.capacity for t in m.fuel_tanks)
     zone_cap = sum(z.capacity for z in zones)
@@ -247,7 +277,9 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
     p_max = min(useful, m.MZFW - oew, zone_cap, m.max_payload if m.max_payload else np.inf)
     p_min = max(0.0, useful - fuel_cap)
     if p_max < p_min - 1e-9:
-        raise LoadingError(f"{mass:.0f} kg cannot be reached: needs more fuel than the tanks hold with payload ≤ {p_max:.0f} kg")
+        raise LoadingError(
+            f"{mass:.0f} kg cannot be reached: needs more fuel than the tanks hold with payload ≤ {p_max:.0f} kg"
+        )
     best, nearest = None, None
     payloads = np.linspace(p_max, p_min, samples)
     ranges = zip(*_payload_cg_ranges(zones, payloads))
@@ -272,8 +304,16 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
         if nearest is None or abs(miss) < abs(nearest[0]) - 1e-9:
             nearest = (miss, payload, fuel, x_reached)
     if best is None:
-        return _fallback_loading(aircraft, mass, x_cg, name, empty, notes, useful - p_max,
-                                 nearest=None if nearest is None else (nearest, zones, groups))
+        return _fallback_loading(
+            aircraft,
+            mass,
+            x_cg,
+            name,
+            empty,
+            notes,
+            useful - p_max,
+            nearest=None if nearest is None else (nearest, zones, groups),
+        )
     fuel, payload_items = best
     return _assemble(aircraft, name, mass, x_cg, empty, _fuel_items(aircraft, fuel, groups), payload_items, notes)
 
@@ -284,10 +324,23 @@ def _assemble(aircraft, name, mass, x_cg, empty, fuel_items, payload_items, note
     payload = {c.name.removeprefix("payload: "): c.mass for c in payload_items}
     fuel = {c.name.removeprefix("fuel: "): c.mass for c in fuel_items}
     if not construction:
-        construction = (f"declared items: empty airplane {_empty_kind(empty)}, {sum(fuel.values()):.0f} kg fuel in its "
-                        f"tanks, {sum(payload.values()):.0f} kg payload in its zones")
-    return Loading(name, mass, x_cg, sum(payload.values()), sum(fuel.values()), payload, fuel, props, tuple(items),
-                   tuple(notes), construction)
+        construction = (
+            f"declared items: empty airplane {_empty_kind(empty)}, {sum(fuel.values()):.0f} kg fuel in its "
+            f"tanks, {sum(payload.values()):.0f} kg payload in its zones"
+        )
+    return Loading(
+        name,
+        mass,
+        x_cg,
+        sum(payload.values()),
+        sum(fuel.values()),
+        payload,
+        fuel,
+        props,
+        tuple(items),
+        tuple(notes),
+        construction,
+    )
 
 
 def _empty_kind(empty) -> str:
@@ -307,12 +360,25 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel, nearest=No
     if ballast > 1e-6 * mass:
         x = (mass * x_cg - oew_moment - sum(c.mass * c.cg[0] for c in fuel_items)) / ballast
         if 0.0 <= x <= length:
-            note = (f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m: "
-                    f"fuel in its tanks and {ballast:.0f} kg of payload as ballast at station {x:.2f} m")
-            built = (f"declared items with ballast: empty airplane {_empty_kind(empty)}, "
-                     f"{sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, {ballast:.0f} kg payload at station {x:.2f} m")
-            return _assemble(aircraft, name, mass, x_cg, empty, fuel_items, [_item("payload: ballast", ballast, x)],
-                             notes + [note], built)
+            note = (
+                f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m: "
+                f"fuel in its tanks and {ballast:.0f} kg of payload as ballast at station {x:.2f} m"
+            )
+            built = (
+                f"declared items with ballast: empty airplane {_empty_kind(empty)}, "
+                f"{sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, {ballast:.0f} kg payload at station {x:.2f} m"
+            )
+            return _assemble(
+                aircraft,
+                name,
+                mass,
+                x_cg,
+                empty,
+                fuel_items,
+                [_item("payload: ballast", ballast, x)],
+                notes + [note],
+                built,
+            )
     return _moved_empty_loading(aircraft, mass, x_cg, name, empty, notes, nearest, fuel_items)
 
 
@@ -335,19 +401,34 @@ def _moved_empty_loading(aircraft, mass, x_cg, name, empty, notes, nearest, fuel
     x_empty = sum(c.mass * c.cg[0] for c in moved) / oew
     z_empty = sum(c.mass * c.cg[2] for c in moved) / oew
     direction = "aft" if shift > 0 else "forward"
-    built = (f"declared items, empty airplane moved {abs(shift):.2f} m {direction} (empty CG station {x_empty:.2f} m, "
-             f"height {z_empty:.2f} m): {sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, "
-             f"{sum(c.mass for c in payload_items):.0f} kg payload in its zones")
-    note = (f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m with the "
-            f"declared empty airplane: it is moved {abs(shift):.2f} m {direction} as a whole (another operating empty CG)")
+    built = (
+        f"declared items, empty airplane moved {abs(shift):.2f} m {direction} (empty CG station {x_empty:.2f} m, "
+        f"height {z_empty:.2f} m): {sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, "
+        f"{sum(c.mass for c in payload_items):.0f} kg payload in its zones"
+    )
+    note = (
+        f"no distribution of the declared fuel and payload reaches {mass:.0f} kg at CG {x_cg:.3f} m with the "
+        f"declared empty airplane: it is moved {abs(shift):.2f} m {direction} as a whole (another operating empty CG)"
+    )
     return _assemble(aircraft, name, mass, x_cg, moved, fuel_items, payload_items, notes + [note], built)
 
 
 def _scaled_loading(aircraft, mass, x_cg, name, notes) -> Loading:
     z = aircraft.mass.cg.z if aircraft.mass.cg is not None else 0.0  # the declared whole-airplane CG height
     props = MassProperties(float(mass), np.array([x_cg, 0.0, z]), whole_airplane_inertia(aircraft, mass))
-    return Loading(name, mass, x_cg, 0.0, 0.0, {}, {}, props, (), tuple(notes),
-                   f"whole airplane: one mass at the CG, height {z:.2f} m (mass.cg.z), declared inertia scaled with mass")
+    return Loading(
+        name,
+        mass,
+        x_cg,
+        0.0,
+        0.0,
+        {},
+        {},
+        props,
+        (),
+        tuple(notes),
+        f"whole airplane: one mass at the CG, height {z:.2f} m (mass.cg.z), declared inertia scaled with mass",
+    )
 
 
 def _declared_inertia(aircraft) -> np.ndarray | None:
@@ -402,10 +483,15 @@ def inertia_comparison(aircraft) -> str | None:
             off.append(f"{name} {b:.4g} kg·m² from the components vs {d:.4g} kg·m² declared ({(b - d) / d:+.0%})")
     if not off:
         return None
-    used = "the declared tensor (mass.inertia_used: declared)" if m.inertia_used == "declared" else \
-        "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
-    return (f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
-            f"{'; '.join(off)}. The dynamics uses {used}")
+    used = (
+        "the declared tensor (mass.inertia_used: declared)"
+        if m.inertia_used == "declared"
+        else "the component build-up (mass.inertia_used: components; set 'declared' to use the declared tensor)"
+    )
+    return (
+        f"declared inertia and component build-up disagree beyond {m.inertia_tolerance:.0%} at MTOW: "
+        f"{'; '.join(off)}. The dynamics uses {used}"
+    )
 
 
 def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float, float] | None:
@@ -429,8 +515,9 @@ def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float
     payloads = np.linspace(p_max, max(p_min, 0.0), samples)
     fwd, aft = _payload_cg_ranges(zones, payloads)
     groups = tank_groups(m.fuel_tanks)
-    base = np.array([oew_moment + sum(share * float(t.cg.x) for t, share in _fuel_shares(groups, useful - p))
-                     for p in payloads])
+    base = np.array(
+        [oew_moment + sum(share * float(t.cg.x) for t, share in _fuel_shares(groups, useful - p)) for p in payloads]
+    )
     with np.errstate(invalid="ignore"):
         x_fwd = (base + np.where(payloads > 0, payloads * fwd, 0.0)) / mass
         x_aft = (base + np.where(payloads > 0, payloads * aft, 0.0)) / mass

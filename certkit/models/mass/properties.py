@@ -101,11 +101,13 @@ def combine(components: Sequence[MassComponent]) -> MassProperties:
     return MassProperties(mass=float(total), cg=cg, inertia=J)
 
 
-def inertia_from_radii(mass: float, span: float, length: float, Rx: float = 0.31, Ry: float = 0.35,
-                       Rz: float = 0.47, Ixz: float = 0.0) -> np.ndarray:
+def inertia_from_radii(
+    mass: float, span: float, length: float, Rx: float = 0.31, Ry: float = 0.35, Rz: float = 0.47, Ixz: float = 0.0
+) -> np.ndarray:
     """Body-axis inertia tensor from non-dimensional radii of gyration (module docstring)."""
-    J = inertia_tensor(mass * (span * Rx / 2) ** 2, mass * (length * Ry / 2) ** 2,
-                       mass * ((span + length) / 2 * Rz / 2) ** 2, Ixz)
+    J = inertia_tensor(
+        mass * (span * Rx / 2) ** 2, mass * (length * Ry / 2) ** 2, mass * ((span + length) / 2 * Rz / 2) ** 2, Ixz
+    )
     check_inertia(J)
     return J
 
@@ -120,12 +122,16 @@ def check_inertia(J, name: str = "inertia tensor") -> np.ndarray:
         raise InertiaError(f"{name} is not symmetric")
     eig = np.linalg.eigvalsh(J)
     if eig[0] <= 0:
-        raise InertiaError(f"{name} is not positive definite (principal moments {', '.join(f'{e:.4g}' for e in eig)} kg m²): "
-                           "check the signs of the products of inertia and the units")
+        raise InertiaError(
+            f"{name} is not positive definite (principal moments {', '.join(f'{e:.4g}' for e in eig)} kg m²): "
+            "check the signs of the products of inertia and the units"
+        )
     tol = 1e-9 * eig.sum()
     if eig[0] + eig[1] < eig[2] - tol:
-        raise InertiaError(f"{name} violates the triangle inequality: principal moments {eig[0]:.4g} + {eig[1]:.4g} < "
-                           f"{eig[2]:.4g} kg m², which no mass distribution can produce")
+        raise InertiaError(
+            f"{name} violates the triangle inequality: principal moments {eig[0]:.4g} + {eig[1]:.4g} < "
+            f"{eig[2]:.4g} kg m², which no mass distribution can produce"
+        )
     return J
 
 

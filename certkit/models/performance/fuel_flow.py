@@ -49,17 +49,35 @@ class EngineFuel:
         cal = aircraft.mission.tsfc if aircraft.mission is not None else None
         installed = getattr(aircraft, "calibration", None)
         loss = 1.0 if installed is None else float(installed.fuel_flow_factor)
-        extra = [] if loss == 1.0 else [
-            f"fuel flow × {loss:.4f}: installation losses of the declared performance calibration "
-            f"({installed.fuel_flow_source or installed.source})"]
+        extra = (
+            []
+            if loss == 1.0
+            else [
+                f"fuel flow × {loss:.4f}: installation losses of the declared performance calibration "
+                f"({installed.fuel_flow_source or installed.source})"
+            ]
+        )
         if cal is None:
-            return cls(thrust, n, loss, [f"thrust: {source}; TSFC: Mattingly's high-bypass model, not calibrated "
-                                         "(declare mission.tsfc)", *extra])
+            return cls(
+                thrust,
+                n,
+                loss,
+                [
+                    f"thrust: {source}; TSFC: Mattingly's high-bypass model, not calibrated (declare mission.tsfc)",
+                    *extra,
+                ],
+            )
         factor = float(cal.value / mattingly_tsfc(cal.altitude, cal.mach))
-        return cls(thrust, n, factor * loss, [
-            f"thrust: {source}; TSFC: Mattingly's Mach/altitude variation scaled by {factor:.3f} to "
-            f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft ({cal.source})",
-            *extra])
+        return cls(
+            thrust,
+            n,
+            factor * loss,
+            [
+                f"thrust: {source}; TSFC: Mattingly's Mach/altitude variation scaled by {factor:.3f} to "
+                f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft ({cal.source})",
+                *extra,
+            ],
+        )
 
     def thrust(self, throttle, h, mach) -> np.ndarray:
         return self.engines * np.asarray(self.engine_thrust(throttle, h, mach), dtype=float)

@@ -31,7 +31,9 @@ from certkit.units import G0
 
 def breguet_range(speed, lift_to_drag, tsfc, w_start, w_end):
     """Closed-form Breguet range (m): V (L/D) / (c g) · ln(W₀/W₁); ``tsfc`` in kg/(N s)."""
-    return speed * lift_to_drag / (tsfc * G0) * np.log(np.asarray(w_start, dtype=float) / np.asarray(w_end, dtype=float))
+    return (
+        speed * lift_to_drag / (tsfc * G0) * np.log(np.asarray(w_start, dtype=float) / np.asarray(w_end, dtype=float))
+    )
 
 
 @dataclass
@@ -86,8 +88,9 @@ class PathResult:
     reached: np.ndarray
 
 
-def fly_path(altitude, speed, w_start, required_thrust: Callable[[int, np.ndarray], np.ndarray], thrust,
-             fuel_flow) -> PathResult:
+def fly_path(
+    altitude, speed, w_start, required_thrust: Callable[[int, np.ndarray], np.ndarray], thrust, fuel_flow
+) -> PathResult:
     """Energy-method integration along the schedule points ``altitude``, ``speed`` (K,) from ``w_start`` (n,
     kg; every weight flown at once). ``required_thrust(k, W)`` is the level-flight thrust (N, drag) at point k
     for weights W (n,); ``thrust`` (K,) the thrust set along the path (maximum climb, or idle for a descent)

@@ -137,9 +137,13 @@ class MissionResult:
 
     def responses(self) -> dict[str, float]:
         """The flat responses of a design record (SI)."""
-        return {"objective.cruise_CD": self.cruise_drag.CD, "objective.block_fuel_kg": self.nominal.block_fuel_kg,
-                "objective.block_time_s": self.nominal.block_time_s, "mission.design_range_m": self.design_range_m,
-                "constraint.range_margin_m": self.range_margin_m}
+        return {
+            "objective.cruise_CD": self.cruise_drag.CD,
+            "objective.block_fuel_kg": self.nominal.block_fuel_kg,
+            "objective.block_time_s": self.nominal.block_time_s,
+            "mission.design_range_m": self.design_range_m,
+            "constraint.range_margin_m": self.range_margin_m,
+        }
 
     def as_dict(self) -> dict:
         out = asdict(self)
@@ -154,7 +158,9 @@ class MissionFlyer:
         self.aircraft, self.t, self.oew = aircraft, tables, oew
         self.m = m = aircraft.mission
         fuel = tables.fuel
-        self.allowance = {name: fuel.allowance_fuel(getattr(m, name)) for name in ("taxi_out", "takeoff", "approach", "taxi_in")}
+        self.allowance = {
+            name: fuel.allowance_fuel(getattr(m, name)) for name in ("taxi_out", "takeoff", "approach", "taxi_in")
+        }
         s, lv = tables.schedule, tables.levels
         self.k_terminal = s.index(s.altitude[0])
         self.k_level = [s.index(h) for h in lv.altitude]
@@ -172,7 +178,9 @@ class MissionFlyer:
         s = self.t.schedule
         thrust = s.climb_thrust if climb else s.idle_thrust
         ff = s.climb_fuel_flow if climb else s.idle_fuel_flow
-        return fly_path(s.altitude[idx], s.speed[idx], weights, lambda j, w: s.required_thrust(idx[j], w), thrust[idx], ff[idx])
+        return fly_path(
+            s.altitude[idx], s.speed[idx], weights, lambda j, w: s.required_thrust(idx[j], w), thrust[idx], ff[idx]
+        )
 
     def _airborne_allowance(self, name: str) -> Phase:
         a = getattr(self.m, name)
@@ -190,8 +198,9 @@ class MissionFlyer:
         down = self._path(np.arange(s.last_index(r.alternate_altitude), self.k_terminal - 1, -1), w_top, climb=False)
         # the descent's fuel depends little on the weight: its value at the top-of-climb weight is used
         cruise_d = np.maximum(r.alternate_distance - up.distance[:, -1] - down.distance[:, -1], 0.0)
-        level = LevelCruise.from_fuel_flow(float(s.speed[k_alt]), s.weights,
-                                           fuel.tsfc(s.altitude[k_alt], s.mach[k_alt]) * s.required[:, k_alt])
+        level = LevelCruise.from_fuel_flow(
+            float(s.speed[k_alt]), s.weights, fuel.tsfc(s.altitude[k_alt], s.mach[k_alt]) * s.required[:, k_alt]
+        )
         w_tod = np.array([level.weight_after(float(a), float(d)) for a, d in zip(w_top, cruise_d)])
         alternate = (np.asarray(weights) - w_tod) + down.fuel[:, -1] + self.allowance["approach"]
         hold = self._hold_fuel(np.asarray(weights) - alternate)
@@ -211,8 +220,14 @@ class MissionFlyer:
     def _step(self, i: int, weight: float):
         """Step climb from level i to i + 1 at ``weight``: (fuel, time, distance), energy method at the cruise Mach."""
         lv = self.t.levels
-        res = fly_path(lv.altitude[i:i + 2], lv.speed[i:i + 2], [weight], lambda j, w: lv.required_thrust(i + j, w),
-                       lv.climb_thrust[i:i + 2], lv.climb_fuel_flow[i:i + 2])
+        res = fly_path(
+            lv.altitude[i : i + 2],
+            lv.speed[i : i + 2],
+            [weight],
+            lambda j, w: lv.required_thrust(i + j, w),
+            lv.climb_thrust[i : i + 2],
+            lv.climb_fuel_flow[i : i + 2],
+        )
         return float(res.fuel[0, -1]), float(res.time[0, -1]), float(res.distance[0, -1])
 
     # --- one mission ----------------------------------------------------------------------------------------
@@ -231,9 +246,14 @@ class MissionFlyer:
             w = w0 - f if reached else np.nan
             dv = float(lv.speed[i] - s.speed[k])
             if reached and dv > 1e-6:  # crossover above the level: accelerate at the level
-                acc = fly_path(np.full(2, lv.altitude[i]), np.array([s.speed[k], lv.speed[i]]), [w],
-                               lambda jj, ww: lv.required_thrust(i, ww), np.full(2, lv.climb_thrust[i]),  # noqa: B023
-                               np.full(2, lv.climb_fuel_flow[i]))
+                acc = fly_path(
+                    np.full(2, lv.altitude[i]),
+                    np.array([s.speed[k], lv.speed[i]]),
+                    [w],
+                    lambda jj, ww: lv.required_thrust(i, ww),  # noqa: B023 (called within this iteration)
+                    np.full(2, lv.climb_thrust[i]),
+                    np.full(2, lv.climb_fuel_flow[i]),
+                )
                 reached = bool(acc.reached[0, -1])
                 t, f, x = t + float(acc.time[0, -1]), f + float(acc.fuel[0, -1]), x + float(acc.distance[0, -1])
                 w = w0 - f
@@ -250,12 +270,18 @@ class MissionFlyer:
                     best, best_sar = i, sar
         if best is None:
             h0 = self.m.initial_altitude
-            why = ("buffet" if tocs[0][0] and tocs[0][1] > lv.buffet_weight[0] else
-                   "thrust: the residual climb rate at maximum-climb thrust is too small" if tocs[0][0] else
-                   "thrust: the climb stalls before the level")
-            raise UserError(f"mission.initial_altitude: at a takeoff weight of {w_release:.0f} kg the airplane cannot reach "
-                            f"the first cruise level {h0 / FT:.0f} ft ({why}); expected a level the airplane can climb to "
-                            "and hold with the declared residual climb rate and buffet margin")
+            why = (
+                "buffet"
+                if tocs[0][0] and tocs[0][1] > lv.buffet_weight[0]
+                else "thrust: the residual climb rate at maximum-climb thrust is too small"
+                if tocs[0][0]
+                else "thrust: the climb stalls before the level"
+            )
+            raise UserError(
+                f"mission.initial_altitude: at a takeoff weight of {w_release:.0f} kg the airplane cannot reach "
+                f"the first cruise level {h0 / FT:.0f} ft ({why}); expected a level the airplane can climb to "
+                "and hold with the declared residual climb rate and buffet margin"
+            )
         return best
 
     def _cruise_plan(self, i0: int, w_toc: float):
@@ -315,7 +341,9 @@ class MissionFlyer:
 
         def surplus(w_tod):
             w_land = landing(w_tod)
-            reserve = m.reserves.contingency_fraction * (w_release - w_land) + np.interp(w_land, self.reserve_grid, self.reserve_fuel)
+            reserve = m.reserves.contingency_fraction * (w_release - w_land) + np.interp(
+                w_land, self.reserve_grid, self.reserve_fuel
+            )
             return w_land - zfw - reserve
 
         notes = []
@@ -327,21 +355,42 @@ class MissionFlyer:
         x_cr, t_cr, i_end, steps = self._cruise_to(plan, w_tod)
         f_desc, t_desc, x_desc = self._descent(i_end, w_tod)
         takeoff, approach = self._airborne_allowance("takeoff"), self._airborne_allowance("approach")
-        phases = [Phase("taxi_out", m.taxi_out.time, self.allowance["taxi_out"], 0.0), takeoff,
-                  Phase("climb", t_climb, f_climb, x_climb), Phase("cruise", t_cr, w_toc - w_tod, x_cr),
-                  Phase("descent", t_desc, f_desc, x_desc), approach,
-                  Phase("taxi_in", m.taxi_in.time, self.allowance["taxi_in"], 0.0)]
+        phases = [
+            Phase("taxi_out", m.taxi_out.time, self.allowance["taxi_out"], 0.0),
+            takeoff,
+            Phase("climb", t_climb, f_climb, x_climb),
+            Phase("cruise", t_cr, w_toc - w_tod, x_cr),
+            Phase("descent", t_desc, f_desc, x_desc),
+            approach,
+            Phase("taxi_in", m.taxi_in.time, self.allowance["taxi_in"], 0.0),
+        ]
         airborne = phases[1:6]
         w_land = w_tod - f_desc - self.allowance["approach"]
         trip_fuel = w_release - w_land
-        reserve = {"contingency": m.reserves.contingency_fraction * trip_fuel,
-                   **{k: float(np.interp(w_land, self.reserve_grid, v)) for k, v in self.reserve_parts.items()}}
+        reserve = {
+            "contingency": m.reserves.contingency_fraction * trip_fuel,
+            **{k: float(np.interp(w_land, self.reserve_grid, v)) for k, v in self.reserve_parts.items()},
+        }
         ramp_fuel = w_release - zfw + self.allowance["taxi_out"]
         return MissionProfile(
-            name, payload, zfw, w_release, ramp_fuel, w_land, sum(p.distance_m for p in airborne), trip_fuel,
-            sum(p.time_s for p in airborne), trip_fuel + self.allowance["taxi_out"] + self.allowance["taxi_in"],
-            sum(p.time_s for p in phases), float(self.t.levels.altitude[i0]), 0.5 * (w_toc + w_tod), phases, reserve,
-            steps, notes)
+            name,
+            payload,
+            zfw,
+            w_release,
+            ramp_fuel,
+            w_land,
+            sum(p.distance_m for p in airborne),
+            trip_fuel,
+            sum(p.time_s for p in airborne),
+            trip_fuel + self.allowance["taxi_out"] + self.allowance["taxi_in"],
+            sum(p.time_s for p in phases),
+            float(self.t.levels.altitude[i0]),
+            0.5 * (w_toc + w_tod),
+            phases,
+            reserve,
+            steps,
+            notes,
+        )
 
     def fly_distance(self, name: str, payload: float, distance: float, w_max: float) -> MissionProfile:
         """The mission of ``distance`` (m) with ``payload``: the brake-release weight solved (≤ ``w_max``)."""
@@ -353,9 +402,11 @@ class MissionFlyer:
 
         if short(w_max) < 0:
             best = self.fly(name, payload, w_max)
-            raise UserError(f"mission.nominal_distance: {distance / NMI:.0f} nmi cannot be flown with the design payload "
-                            f"below {w_max:.0f} kg takeoff weight (range there {best.distance_m / NMI:.0f} nmi); "
-                            "expected a distance within the airplane's range")
+            raise UserError(
+                f"mission.nominal_distance: {distance / NMI:.0f} nmi cannot be flown with the design payload "
+                f"below {w_max:.0f} kg takeoff weight (range there {best.distance_m / NMI:.0f} nmi); "
+                "expected a distance within the airplane's range"
+            )
         w = brentq(short, lo, w_max, xtol=0.5)
         return self.fly(name, payload, w)
 
@@ -383,16 +434,20 @@ def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache:
     t0 = time.perf_counter()
     m = aircraft.mission
     if m is None:
-        raise UserError("the aircraft file has no mission: section (cruise Mach, levels, payload, reserves); "
-                        "see aircraft/lta.yaml for an example")
+        raise UserError(
+            "the aircraft file has no mission: section (cruise Mach, levels, payload, reserves); "
+            "see aircraft/lta.yaml for an example"
+        )
     mass = aircraft.mass
     oew = float(mass.OEW if oew_kg is None else oew_kg)
     if not (0 < oew < mass.MZFW):
         raise UserError(f"OEW {oew:.0f} kg: expected a positive mass below MZFW ({mass.MZFW:.0f} kg)")
     max_payload = min(mass.max_payload if mass.max_payload is not None else np.inf, mass.MZFW - oew)
     if m.design_payload > max_payload * (1 + 1e-9):
-        raise UserError(f"mission.design_payload: {m.design_payload:.0f} kg exceeds the maximum payload {max_payload:.0f} kg "
-                        f"(min of mass.max_payload and MZFW − OEW with OEW {oew:.0f} kg)")
+        raise UserError(
+            f"mission.design_payload: {m.design_payload:.0f} kg exceeds the maximum payload {max_payload:.0f} kg "
+            f"(min of mass.max_payload and MZFW − OEW with OEW {oew:.0f} kg)"
+        )
     capacity = fuel_capacity(aircraft)
     aero = clean_aero(aircraft) if aero is None else aero
     lo = 0.8 * (mass.OEW if oew >= 0.85 * mass.OEW else oew)  # one table for every OEW near the declared one
@@ -416,26 +471,38 @@ def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache:
     if design_w < mass.MTOW:
         notes.append(f"design mission: the fuel capacity limits the takeoff weight to {design_w:.0f} kg (< MTOW)")
     design = flyer.fly("design range", m.design_payload, design_w)
-    points = [PayloadRangePoint("maximum payload", max_payload, 0.0, 0.0, 0.0),
-              PayloadRangePoint("design payload", m.design_payload, design.ramp_fuel_kg, design_w, design.distance_m)]
+    points = [
+        PayloadRangePoint("maximum payload", max_payload, 0.0, 0.0, 0.0),
+        PayloadRangePoint("design payload", m.design_payload, design.ramp_fuel_kg, design_w, design.distance_m),
+    ]
     mp = flyer.fly("maximum payload", max_payload, release_weight(max_payload))
     points[0] = PayloadRangePoint("maximum payload", max_payload, mp.ramp_fuel_kg, mp.takeoff_weight_kg, mp.distance_m)
     if capacity is not None:
         p_full = mass.MTOW - oew - (capacity - taxi)
         if 0 < p_full < max_payload:
             f = flyer.fly("maximum fuel", p_full, mass.MTOW)
-            points.append(PayloadRangePoint("maximum fuel at MTOW", p_full, f.ramp_fuel_kg, f.takeoff_weight_kg, f.distance_m))
+            points.append(
+                PayloadRangePoint("maximum fuel at MTOW", p_full, f.ramp_fuel_kg, f.takeoff_weight_kg, f.distance_m)
+            )
         ferry = flyer.fly("ferry", 0.0, release_weight(0.0))
-        points.append(PayloadRangePoint("ferry (no payload)", 0.0, ferry.ramp_fuel_kg, ferry.takeoff_weight_kg, ferry.distance_m))
+        points.append(
+            PayloadRangePoint("ferry (no payload)", 0.0, ferry.ramp_fuel_kg, ferry.takeoff_weight_kg, ferry.distance_m)
+        )
     else:
-        notes.append("no fuel capacity declared (mass.max_fuel or fuel tanks): the fuel-limited payload–range points are not computed")
+        notes.append(
+            "no fuel capacity declared (mass.max_fuel or fuel tanks): the fuel-limited payload–range points are not computed"
+        )
     t2 = time.perf_counter()
     nominal = flyer.fly_distance("nominal", m.design_payload, m.nominal_distance, 1.05 * mass.MTOW)
     if capacity is not None and nominal.ramp_fuel_kg > capacity * (1 + 1e-6):
-        raise UserError(f"mission.nominal_distance: {m.nominal_distance / NMI:.0f} nmi needs {nominal.ramp_fuel_kg:.0f} kg of "
-                        f"fuel, above the fuel capacity {capacity:.0f} kg")
+        raise UserError(
+            f"mission.nominal_distance: {m.nominal_distance / NMI:.0f} nmi needs {nominal.ramp_fuel_kg:.0f} kg of "
+            f"fuel, above the fuel capacity {capacity:.0f} kg"
+        )
     if nominal.takeoff_weight_kg > mass.MTOW:
-        notes.append(f"nominal mission: takeoff weight {nominal.takeoff_weight_kg:.0f} kg exceeds MTOW ({mass.MTOW:.0f} kg)")
+        notes.append(
+            f"nominal mission: takeoff weight {nominal.takeoff_weight_kg:.0f} kg exceeds MTOW ({mass.MTOW:.0f} kg)"
+        )
     for p in (design, nominal):
         if p.landing_weight_kg > mass.MLW:
             notes.append(f"{p.name}: landing weight {p.landing_weight_kg:.0f} kg exceeds MLW ({mass.MLW:.0f} kg)")
@@ -445,8 +512,9 @@ def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache:
     notes += _speed_notes(aircraft)
     t4 = time.perf_counter()
     timings = {"tables_s": t1 - t0, "range_s": t2 - t1, "nominal_s": t3 - t2, "drag_s": t4 - t3, "total_s": t4 - t0}
-    return MissionResult(design, nominal, points, drag, m.range_requirement, oew, notes, timings,
-                         calibration_in_force(aircraft))
+    return MissionResult(
+        design, nominal, points, drag, m.range_requirement, oew, notes, timings, calibration_in_force(aircraft)
+    )
 
 
 def calibration_in_force(aircraft) -> dict:
@@ -454,11 +522,19 @@ def calibration_in_force(aircraft) -> dict:
     cal = getattr(aircraft, "calibration", None)
     if cal is None:
         return {}
-    out = {"drag_factor": cal.drag_factor, "fuel_flow_factor": cal.fuel_flow_factor,
-           "fuel_flow_source": cal.fuel_flow_source, "source": cal.source}
+    out = {
+        "drag_factor": cal.drag_factor,
+        "fuel_flow_factor": cal.fuel_flow_factor,
+        "fuel_flow_source": cal.fuel_flow_source,
+        "source": cal.source,
+    }
     if cal.target is not None:
-        out["target"] = {"range_m": cal.target.range, "payload_kg": cal.target.payload,
-                         "tolerance": cal.target.tolerance, "source": cal.target.source}
+        out["target"] = {
+            "range_m": cal.target.range,
+            "payload_kg": cal.target.payload,
+            "tolerance": cal.target.tolerance,
+            "source": cal.target.source,
+        }
     return out
 
 
@@ -468,13 +544,24 @@ def cruise_drag(aircraft, aero, x_cg: float, mass_kg: float) -> CruiseDrag:
 
     m = aircraft.mission
     h = m.drag_condition.altitude
-    batch = level_trims(aircraft, aero, [mass_kg], x_cg, [float(h)], [float(isa.mach_to_tas(m.cruise_mach, h))],
-                        "mission")
+    batch = level_trims(
+        aircraft, aero, [mass_kg], x_cg, [float(h)], [float(isa.mach_to_tas(m.cruise_mach, h))], "mission"
+    )
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     r = batch.results[0]
     cl, cd = float(out.CL[0]), float(out.CD[0])
-    return CruiseDrag(float(h), m.cruise_mach, float(mass_kg), cl, cd, cl / cd, r.alpha, r.controls.get("elevator", np.nan),
-                      float(out.thrust[0].sum()), r.ok)
+    return CruiseDrag(
+        float(h),
+        m.cruise_mach,
+        float(mass_kg),
+        cl,
+        cd,
+        cl / cd,
+        r.alpha,
+        r.controls.get("elevator", np.nan),
+        float(out.thrust[0].sum()),
+        r.ok,
+    )
 
 
 def _speed_notes(aircraft) -> list[str]:
@@ -488,13 +575,28 @@ def _speed_notes(aircraft) -> list[str]:
         eas = float(isa.convert_speed(m.cruise_mach, "MACH", "EAS", h))
         vmo = float(isa.convert_speed(sp.VMO.value, sp.VMO.kind, "EAS", h))
         if eas > vmo:
-            notes.append(f"M {m.cruise_mach:.2f} at {h / FT:.0f} ft is {eas / 0.514444:.0f} KEAS, above the declared VMO "
-                         f"({vmo / 0.514444:.0f} KEAS): the mission flies the declared schedule regardless")
+            notes.append(
+                f"M {m.cruise_mach:.2f} at {h / FT:.0f} ft is {eas / 0.514444:.0f} KEAS, above the declared VMO "
+                f"({vmo / 0.514444:.0f} KEAS): the mission flies the declared schedule regardless"
+            )
         climb = float(isa.convert_speed(m.climb_speed.value, m.climb_speed.kind, "EAS", m.speed_limit_altitude))
         if climb > float(isa.convert_speed(sp.VMO.value, sp.VMO.kind, "EAS", m.speed_limit_altitude)):
-            notes.append(f"the climb speed exceeds the declared VMO above {m.speed_limit_altitude / FT:.0f} ft: flown as declared")
+            notes.append(
+                f"the climb speed exceeds the declared VMO above {m.speed_limit_altitude / FT:.0f} ft: flown as declared"
+            )
     return notes
 
 
-__all__ = ["fly_missions", "calibration_in_force", "MissionResult", "MissionProfile", "PayloadRangePoint", "CruiseDrag", "Phase", "StepClimb",
-           "MissionFlyer", "cruise_drag", "NMI"]
+__all__ = [
+    "fly_missions",
+    "calibration_in_force",
+    "MissionResult",
+    "MissionProfile",
+    "PayloadRangePoint",
+    "CruiseDrag",
+    "Phase",
+    "StepClimb",
+    "MissionFlyer",
+    "cruise_drag",
+    "NMI",
+]

@@ -146,7 +146,9 @@ def _schedule_points(m, levels, alternate_altitude, ceiling) -> tuple[np.ndarray
     hs = sorted(h for h in hs if TERMINAL_ALTITUDE - 1e-6 <= h <= top + 1e-6)
     alt, tas = [], []
     v_low_sl = _speed_tas(m.low_altitude_speed, m.speed_limit_altitude)
-    v_high_sl = min(_cas_to_tas(climb_cas, m.speed_limit_altitude), isa.mach_to_tas(m.cruise_mach, m.speed_limit_altitude))
+    v_high_sl = min(
+        _cas_to_tas(climb_cas, m.speed_limit_altitude), isa.mach_to_tas(m.cruise_mach, m.speed_limit_altitude)
+    )
     for h in hs:
         if h < m.speed_limit_altitude - 1e-6:
             alt.append(h), tas.append(_speed_tas(m.low_altitude_speed, h))
@@ -197,30 +199,46 @@ def build_tables(aircraft, aero, weight_range: tuple[float, float]) -> MissionTa
     level_v = isa.mach_to_tas(m.cruise_mach, levels)
     hold_h = m.reserves.hold_altitude
     hold_v = isa.eas_to_tas(HOLD_EAS, hold_h)
-    per_weight = [(h, v) for h, v in zip(sched_h, sched_v)] + [(h, v) for h, v in zip(levels, level_v)] + \
-                 [(hold_h, v) for v in hold_v]
+    per_weight = (
+        [(h, v) for h, v in zip(sched_h, sched_v)]
+        + [(h, v) for h, v in zip(levels, level_v)]
+        + [(hold_h, v) for v in hold_v]
+    )
     conds = [(float(w), float(h), float(v)) for w in weights for h, v in per_weight]
-    batch = level_trims(aircraft, aero, [c[0] for c in conds], x_cg, [c[1] for c in conds],
-                        [c[2] for c in conds], "mission")
+    batch = level_trims(
+        aircraft, aero, [c[0] for c in conds], x_cg, [c[1] for c in conds], [c[2] for c in conds], "mission"
+    )
     _, out = batch.model.derivatives_euler(batch.x, batch.u, with_outputs=True)
     shape = (N_WEIGHTS, len(per_weight))
     thrust = out.thrust.sum(axis=1).reshape(shape)
     cl = np.asarray(out.CL).reshape(shape)
-    ok = np.array([r.converged and not any(e.control == "throttle" for e in r.limits_exceeded)
-                   for r in batch.results]).reshape(shape)
+    ok = np.array(
+        [r.converged and not any(e.control == "throttle" for e in r.limits_exceeded) for r in batch.results]
+    ).reshape(shape)
     thrust = _fill_failed(weights, thrust, ok)
     notes = list(fuel.notes)
     if not ok.all():
-        notes.append(f"{int((~ok).sum())} of {ok.size} mission trims need more than full throttle (heavy, high): "
-                     "their thrust required is extrapolated and those conditions are infeasible")
+        notes.append(
+            f"{int((~ok).sum())} of {ok.size} mission trims need more than full throttle (heavy, high): "
+            "their thrust required is extrapolated and those conditions are infeasible"
+        )
     K, L = sched_h.size, levels.size
-    sched_req, level_req, hold_req = thrust[:, :K], thrust[:, K:K + L], thrust[:, K + L:]
+    sched_req, level_req, hold_req = thrust[:, :K], thrust[:, K : K + L], thrust[:, K + L :]
 
     climb_thr = fuel.thrust(m.climb_throttle, sched_h, sched_m)
     idle_thr = fuel.thrust(0.0, sched_h, sched_m)
-    schedule = Schedule(sched_h, sched_v, sched_m, weights, sched_req, climb_thr, fuel.fuel_flow(climb_thr, sched_h, sched_m),
-                        idle_thr, fuel.fuel_flow(idle_thr, sched_h, sched_m))
-    levels_table = _levels(m, aircraft, fuel, levels, level_v, weights, level_req, cl[:, K:K + L])
+    schedule = Schedule(
+        sched_h,
+        sched_v,
+        sched_m,
+        weights,
+        sched_req,
+        climb_thr,
+        fuel.fuel_flow(climb_thr, sched_h, sched_m),
+        idle_thr,
+        fuel.fuel_flow(idle_thr, sched_h, sched_m),
+    )
+    levels_table = _levels(m, aircraft, fuel, levels, level_v, weights, level_req, cl[:, K : K + L])
     hold = _hold(aircraft, fuel, hold_h, hold_v, weights, hold_req)
     return MissionTables(schedule, levels_table, hold, fuel, float(x_cg), len(conds), notes)
 
@@ -265,7 +283,9 @@ def _levels(m, aircraft, fuel, levels, speed, weights, required, cl) -> CruiseLe
         elif j < fine.size:
             w_hi = min(max_w[i + 1], fine[j])
         step[i] = w_hi
-    return CruiseLevels(levels, speed, mach, weights, required, cl, climb_thr, ff_climb, cruise, buffet_w, thrust_w, step)
+    return CruiseLevels(
+        levels, speed, mach, weights, required, cl, climb_thr, ff_climb, cruise, buffet_w, thrust_w, step
+    )
 
 
 def _hold(aircraft, fuel, h, tas, weights, required) -> HoldTable:

@@ -22,5 +22,11 @@ def stall_speed_eas(mass, area, cn_max):
 
 def stall_load_factor(speed_eas, mass, area, cn):
     """Load factor reachable at ``speed_eas`` with normal-force coefficient ``cn`` (signed)."""
-    return 0.5 * RHO0 * np.asarray(speed_eas, dtype=float) ** 2 * area * np.asarray(cn, dtype=float) / (
-        np.asarray(mass, dtype=float) * G0)
+    return (
+        0.5
+        * RHO0
+        * np.asarray(speed_eas, dtype=float) ** 2
+        * area
+        * np.asarray(cn, dtype=float)
+        / (np.asarray(mass, dtype=float) * G0)
+    )

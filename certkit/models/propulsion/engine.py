@@ -50,8 +50,16 @@ class EngineDeck:
     """Tabulated engine: ``altitude`` (m), ``mach``, ``throttle`` grids (increasing), ``thrust``
     (N) and ``fuel_flow`` (kg/s) arrays of shape (n_alt, n_mach, n_throttle)."""
 
-    def __init__(self, altitude, mach, throttle, thrust, fuel_flow=None, allow_extrapolation: bool = False,
-                 name: str = "engine deck"):
+    def __init__(
+        self,
+        altitude,
+        mach,
+        throttle,
+        thrust,
+        fuel_flow=None,
+        allow_extrapolation: bool = False,
+        name: str = "engine deck",
+    ):
         self.grid = tuple(np.asarray(g, dtype=float) for g in (altitude, mach, throttle))
         shape = tuple(g.size for g in self.grid)
         for g, label in zip(self.grid, ("altitude", "Mach", "throttle")):
@@ -82,7 +90,8 @@ class EngineDeck:
                 raise DeckRangeError(
                     f"{self.name}: altitude {b[0]:.0f} m, Mach {b[1]:.3f}, throttle {b[2]:.3f} is outside the table "
                     f"(altitude {lo[0]:.0f}–{hi[0]:.0f} m, Mach {lo[1]:.2f}–{hi[1]:.2f}, throttle {lo[2]:.2f}–{hi[2]:.2f}); "
-                    "extend the deck or build it with allow_extrapolation=True")
+                    "extend the deck or build it with allow_extrapolation=True"
+                )
         return pts
 
     def thrust(self, throttle, h, mach):
@@ -124,8 +133,18 @@ class ParametricTurbofan:
         thr = np.ascontiguousarray(throttle, dtype=float)
         h = np.ascontiguousarray(h, dtype=float)
         out = np.empty(thr.shape)
-        if _turbofan_thrust_rows(thr, h, np.ascontiguousarray(mach, dtype=float), self.static_thrust,
-                                 self.throttle_ratio, self.idle_fraction, out) >= 0:
+        if (
+            _turbofan_thrust_rows(
+                thr,
+                h,
+                np.ascontiguousarray(mach, dtype=float),
+                self.static_thrust,
+                self.throttle_ratio,
+                self.idle_fraction,
+                out,
+            )
+            >= 0
+        ):
             isa._check_range(h)  # raises, naming the altitude
         return out
 
@@ -188,7 +207,9 @@ def _turbofan_thrust(throttle, h, mach, static_thrust, throttle_ratio, idle_frac
     out = np.empty(h.shape[0])
     for i in range(h.shape[0]):
         thr = min(max(throttle[i], 0.0), 1.0)
-        out[i] = static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
+        out[i] = (
+            static_thrust * _lapse_scalar(h[i], mach[i], throttle_ratio) * (idle_fraction + (1.0 - idle_fraction) * thr)
+        )
     return out
 
 
@@ -252,4 +273,11 @@ def windmill_drag(inlet_diameter: float, velocity_ratio: float = 0.42) -> Windmi
     return WindmillDrag(float(inlet_diameter), float(velocity_ratio))
 
 
-__all__ = ["EngineDeck", "DeckRangeError", "ParametricTurbofan", "temperature_thrust_ratio", "windmill_drag", "WindmillDrag"]
+__all__ = [
+    "EngineDeck",
+    "DeckRangeError",
+    "ParametricTurbofan",
+    "temperature_thrust_ratio",
+    "windmill_drag",
+    "WindmillDrag",
+]

@@ -64,11 +64,18 @@ class ActuatorSizing:
         return [MassComponent(f"elevator actuator {i + 1}", self.mass, p) for i, p in enumerate(self.positions)]
 
     def summary(self) -> dict:
-        values = {"design_hinge_moment_kNm": (self.design_hinge_moment / 1e3, 2), "stall_force_kN": (self.stall_force / 1e3, 2),
-                  "piston_area_cm2": (self.piston_area * 1e4, 2), "bore_mm": (self.bore * 1e3, 1),
-                  "stroke_mm": (self.stroke * 1e3, 1), "mass_kg_each": (self.mass, 2), "total_mass_kg": (self.total_mass, 2),
-                  "flow_l_per_min_each": (self.flow_l_per_min, 2), "flow_gpm_each": (self.flow_gpm, 2),
-                  "total_flow_gpm": (self.count * self.flow_gpm, 2)}
+        values = {
+            "design_hinge_moment_kNm": (self.design_hinge_moment / 1e3, 2),
+            "stall_force_kN": (self.stall_force / 1e3, 2),
+            "piston_area_cm2": (self.piston_area * 1e4, 2),
+            "bore_mm": (self.bore * 1e3, 1),
+            "stroke_mm": (self.stroke * 1e3, 1),
+            "mass_kg_each": (self.mass, 2),
+            "total_mass_kg": (self.total_mass, 2),
+            "flow_l_per_min_each": (self.flow_l_per_min, 2),
+            "flow_gpm_each": (self.flow_gpm, 2),
+            "total_flow_gpm": (self.count * self.flow_gpm, 2),
+        }
         return {"count": self.count, **{k: round(float(v), n) for k, (v, n) in values.items()}}
 
 
@@ -106,5 +113,16 @@ def size_elevator_actuators(aircraft, hinge_moment_Nm: float) -> ActuatorSizing:
     stroke = data.arm * (math.sin(travel.max) - math.sin(travel.min))
     mass = data.fixed_mass + data.mass_per_work * stall * stroke
     flow = area * data.arm * data.surface_rate
-    return ActuatorSizing(2 * data.per_panel, hinge_moment_Nm, force, stall, area, math.sqrt(4.0 * area / math.pi), stroke,
-                          data.arm, mass, flow, hinge_line_positions(aircraft, data.per_panel))
+    return ActuatorSizing(
+        2 * data.per_panel,
+        hinge_moment_Nm,
+        force,
+        stall,
+        area,
+        math.sqrt(4.0 * area / math.pi),
+        stroke,
+        data.arm,
+        mass,
+        flow,
+        hinge_line_positions(aircraft, data.per_panel),
+    )

@@ -53,11 +53,29 @@ class BoxMaterial:
     min_web: float
 
     @classmethod
-    def from_strains(cls, *, density, cover_modulus, cover_shear_modulus, web_shear_modulus, strain, shear_strain,
-                     skin_fraction, min_cover, min_web) -> "BoxMaterial":
+    def from_strains(
+        cls,
+        *,
+        density,
+        cover_modulus,
+        cover_shear_modulus,
+        web_shear_modulus,
+        strain,
+        shear_strain,
+        skin_fraction,
+        min_cover,
+        min_web,
+    ) -> "BoxMaterial":
         """A laminate linear to failure: allowable stress = modulus × design ultimate strain."""
-        return cls(density, cover_modulus * strain, cover_shear_modulus * shear_strain, web_shear_modulus * shear_strain,
-                   skin_fraction, min_cover, min_web)
+        return cls(
+            density,
+            cover_modulus * strain,
+            cover_shear_modulus * shear_strain,
+            web_shear_modulus * shear_strain,
+            skin_fraction,
+            min_cover,
+            min_web,
+        )
 
 
 @dataclass(frozen=True)
@@ -151,8 +169,9 @@ def box_sweep(stations: BoxStations, mid_fraction: float) -> np.ndarray:
     return np.arctan(np.tan(stations.sweep_quarter_chord) + (mid_fraction - 0.25) * dc)
 
 
-def size_box(stations: BoxStations, loads: UltimateLoads, material: BoxMaterial, front_spar: float,
-             rear_spar: float) -> BoxSizing:
+def size_box(
+    stations: BoxStations, loads: UltimateLoads, material: BoxMaterial, front_spar: float, rear_spar: float
+) -> BoxSizing:
     """Cover and web thicknesses at each station for the ultimate ``loads`` (given at the same stations)."""
     if not np.allclose(loads.span, stations.span):
         raise ValueError("size_box: the loads must be given at the box stations (use UltimateLoads.interpolate)")
@@ -170,7 +189,8 @@ def size_box(stations: BoxStations, loads: UltimateLoads, material: BoxMaterial,
         raise StructuralSizingError(
             f"box at {stations.span[i]:.3f} m from the root: ultimate bending {m[i] / 1e3:.1f} kN·m exceeds what a "
             f"{h[i]:.3f} m deep, {w[i]:.3f} m wide box can carry at {material.cover_stress / 1e6:.0f} MPa "
-            f"(at most {material.cover_stress * w[i] * cos[i] ** 2 * h[i] ** 2 / 4e3:.1f} kN·m)")
+            f"(at most {material.cover_stress * w[i] * cos[i] ** 2 * h[i] ** 2 / 4e3:.1f} kN·m)"
+        )
     t_bend = 0.5 * (h - np.sqrt(np.maximum(disc, 0.0)))
     q_t = np.abs(loads.torsion) / (2.0 * h * w * cos)
     t_tors = q_t / (material.cover_shear * material.skin_fraction)
@@ -183,5 +203,19 @@ def size_box(stations: BoxStations, loads: UltimateLoads, material: BoxMaterial,
     t_web = web_options.max(axis=0)
     web_governs = tuple(("shear and torsion", "minimum gauge")[i] for i in web_options.argmax(axis=0))
     rho = material.density
-    return BoxSizing(stations.span, w, h, h_fs, h_rs, sweep, h - t_cover, t_cover, t_web, cover_governs, web_governs,
-                     2.0 * rho * t_cover * w, rho * t_web * (h_fs + h_rs) / cos, loads)
+    return BoxSizing(
+        stations.span,
+        w,
+        h,
+        h_fs,
+        h_rs,
+        sweep,
+        h - t_cover,
+        t_cover,
+        t_web,
+        cover_governs,
+        web_governs,
+        2.0 * rho * t_cover * w,
+        rho * t_web * (h_fs + h_rs) / cos,
+        loads,
+    )

@@ -48,7 +48,9 @@ class TailPlanform:
     def leading_edge_x(self) -> np.ndarray:
         """X of the leading edge at each station (the trapezoid of :func:`certkit.models.aero.vlm.trapezoidal_surface`)."""
         y = self.span * math.cos(self.dihedral)
-        return self.root_leading_edge[0] + y * math.tan(self.sweep_quarter_chord) + 0.25 * (self.root_chord - self.chord)
+        return (
+            self.root_leading_edge[0] + y * math.tan(self.sweep_quarter_chord) + 0.25 * (self.root_chord - self.chord)
+        )
 
 
 def tail_planform(surface, n: int = 121) -> TailPlanform:
@@ -59,17 +61,25 @@ def tail_planform(surface, n: int = 121) -> TailPlanform:
     s = np.linspace(0.0, tip, n)
     chord = c_root * (1.0 - (1.0 - surface.taper) * s / tip)
     p = surface.root_leading_edge
-    return TailPlanform(s, chord, tip, c_root, (p.x, p.y, p.z), surface.sweep_quarter_chord, surface.dihedral,
-                        surface.thickness_ratio)
+    return TailPlanform(
+        s, chord, tip, c_root, (p.x, p.y, p.z), surface.sweep_quarter_chord, surface.dihedral, surface.thickness_ratio
+    )
 
 
 def box_material(data) -> BoxMaterial:
     """The box material of the aircraft file's ``sizing.horizontal_tail``."""
     m, g = data.material, data.minimum_gauge
-    return BoxMaterial.from_strains(density=m.density, cover_modulus=m.cover_modulus, cover_shear_modulus=m.cover_shear_modulus,
-                                    web_shear_modulus=m.web_shear_modulus, strain=m.design_strain,
-                                    shear_strain=m.design_shear_strain, skin_fraction=m.skin_fraction,
-                                    min_cover=g.cover, min_web=g.web)
+    return BoxMaterial.from_strains(
+        density=m.density,
+        cover_modulus=m.cover_modulus,
+        cover_shear_modulus=m.cover_shear_modulus,
+        web_shear_modulus=m.web_shear_modulus,
+        strain=m.design_strain,
+        shear_strain=m.design_shear_strain,
+        skin_fraction=m.skin_fraction,
+        min_cover=g.cover,
+        min_web=g.web,
+    )
 
 
 @dataclass(frozen=True)
@@ -91,23 +101,37 @@ class HorizontalTailSizing:
 
     def component(self, name: str = "horizontal tail"):
         """The group as an aircraft-file mass component (to replace the declared one)."""
-        from certkit.aircraft.model import InertiaTensor, MassComponent as FileComponent, Point
+        from certkit.aircraft.model import InertiaTensor, Point
+        from certkit.aircraft.model import MassComponent as FileComponent
 
         p = self.properties
-        return FileComponent(name=name, group="structure", mass=p.mass, cg=Point(x=p.cg[0], y=p.cg[1], z=p.cg[2]),
-                             inertia=InertiaTensor(Ixx=p.Ixx, Iyy=p.Iyy, Izz=p.Izz, Ixz=p.Ixz),
-                             source=f"sized from the ultimate loads (non-optimum factor {self.non_optimum_factor:g})")
+        return FileComponent(
+            name=name,
+            group="structure",
+            mass=p.mass,
+            cg=Point(x=p.cg[0], y=p.cg[1], z=p.cg[2]),
+            inertia=InertiaTensor(Ixx=p.Ixx, Iyy=p.Iyy, Izz=p.Izz, Ixz=p.Ixz),
+            source=f"sized from the ultimate loads (non-optimum factor {self.non_optimum_factor:g})",
+        )
 
     def station_table(self) -> list[dict]:
         """Per-station gauges (mm) and governing criteria of the box, every tenth station and the tip."""
         b = self.box
         rows = []
         for i in sorted(set(range(0, b.span.size, max(1, b.span.size // 10))) | {b.span.size - 1}):
-            rows.append({"span_m": round(float(b.span[i]), 3), "chord_m": round(float(self.planform.chord[i]), 3),
-                         "bending_kNm": round(float(b.loads.bending[i]) / 1e3, 1), "shear_kN": round(float(b.loads.shear[i]) / 1e3, 1),
-                         "torsion_kNm": round(float(b.loads.torsion[i]) / 1e3, 1),
-                         "cover_mm": round(float(b.t_cover[i]) * 1e3, 2), "cover_governs": b.cover_governs[i],
-                         "web_mm": round(float(b.t_web[i]) * 1e3, 2), "web_governs": b.web_governs[i]})
+            rows.append(
+                {
+                    "span_m": round(float(b.span[i]), 3),
+                    "chord_m": round(float(self.planform.chord[i]), 3),
+                    "bending_kNm": round(float(b.loads.bending[i]) / 1e3, 1),
+                    "shear_kN": round(float(b.loads.shear[i]) / 1e3, 1),
+                    "torsion_kNm": round(float(b.loads.torsion[i]) / 1e3, 1),
+                    "cover_mm": round(float(b.t_cover[i]) * 1e3, 2),
+                    "cover_governs": b.cover_governs[i],
+                    "web_mm": round(float(b.t_web[i]) * 1e3, 2),
+                    "web_governs": b.web_governs[i],
+                }
+            )
         return rows
 
 
@@ -123,9 +147,12 @@ def _band_fractions(planform: TailPlanform, data, elevator):
     else:
         inside, hinge = np.zeros(n, dtype=bool), 1.0
     te_end = np.where(inside, hinge, 1.0)
-    return {"leading_edge": (np.zeros(n), np.full(n, f)), "ribs": (np.full(n, f), np.full(n, r)),
-            "trailing_edge": (np.full(n, r), te_end),
-            "elevator": (np.where(inside, hinge, 1.0), np.ones(n))}, inside
+    return {
+        "leading_edge": (np.zeros(n), np.full(n, f)),
+        "ribs": (np.full(n, f), np.full(n, r)),
+        "trailing_edge": (np.full(n, r), te_end),
+        "elevator": (np.where(inside, hinge, 1.0), np.ones(n)),
+    }, inside
 
 
 def size_horizontal_tail(aircraft, loads: UltimateLoads, *, n_stations: int = 121) -> HorizontalTailSizing:
@@ -134,20 +161,27 @@ def size_horizontal_tail(aircraft, loads: UltimateLoads, *, n_stations: int = 12
     ``SurfaceLoads.station_span``; interpolated monotonically, zero at the tip)."""
     data = aircraft.sizing.horizontal_tail if aircraft.sizing is not None else None
     if data is None:
-        raise UserError("horizontal-tail sizing needs the aircraft file's sizing.horizontal_tail section "
-                        "(material allowables, spar positions, minimum gauges, areal weights, non-optimum factor)")
+        raise UserError(
+            "horizontal-tail sizing needs the aircraft file's sizing.horizontal_tail section "
+            "(material allowables, spar positions, minimum gauges, areal weights, non-optimum factor)"
+        )
     surface = aircraft.geometry.horizontal_tail
     elevator = surface.controls.get("elevator")
     plan = tail_planform(surface, n_stations)
     sweep_in_plane = math.atan(math.tan(surface.sweep_quarter_chord) * math.cos(surface.dihedral))
     stations = BoxStations(plan.span, plan.chord, surface.thickness_ratio, sweep_in_plane)
-    box = size_box(stations, loads.interpolate(plan.span, plan.tip), box_material(data), data.front_spar, data.rear_spar)
+    box = size_box(
+        stations, loads.interpolate(plan.span, plan.tip), box_material(data), data.front_spar, data.rear_spar
+    )
     bands, inside = _band_fractions(plan, data, elevator)
     w = data.areal_weights
     areal = {"ribs": w.ribs, "leading_edge": w.leading_edge, "trailing_edge": w.trailing_edge, "elevator": w.elevator}
     # mass per unit span of one half, by item, and the chordwise band each item occupies
-    per_span = {"covers": box.cover_mass_per_span, "webs": box.web_mass_per_span,
-                "non_optimum": (data.non_optimum_factor - 1.0) * (box.cover_mass_per_span + box.web_mass_per_span)}
+    per_span = {
+        "covers": box.cover_mass_per_span,
+        "webs": box.web_mass_per_span,
+        "non_optimum": (data.non_optimum_factor - 1.0) * (box.cover_mass_per_span + box.web_mass_per_span),
+    }
     band_of = {"covers": bands["ribs"], "webs": bands["ribs"], "non_optimum": bands["ribs"]}
     for item, (start, end) in bands.items():
         per_span[item] = areal[item] * (end - start) * plan.chord
@@ -157,11 +191,13 @@ def size_horizontal_tail(aircraft, loads: UltimateLoads, *, n_stations: int = 12
     band_of["fittings"] = bands["ribs"]
     masses = {k: 2.0 * float(np.trapezoid(per_span[k], plan.span)) for k in ITEMS}
     properties = _mass_properties(plan, per_span, band_of)
-    notes = [f"box sized at {n_stations} stations (root to tip, in the plane of the surface); covers governed by "
-             f"bending at {box.cover_governs.count('bending')}, torsion at {box.cover_governs.count('torsion')} and the "
-             f"minimum gauge at {box.cover_governs.count('minimum gauge')} stations",
-             "streamwise torsion taken as box torsion; the bending–torsion coupling of the swept box (M sin Λ) is "
-             "reacted at the root rib and not sized"]
+    notes = [
+        f"box sized at {n_stations} stations (root to tip, in the plane of the surface); covers governed by "
+        f"bending at {box.cover_governs.count('bending')}, torsion at {box.cover_governs.count('torsion')} and the "
+        f"minimum gauge at {box.cover_governs.count('minimum gauge')} stations",
+        "streamwise torsion taken as box torsion; the bending–torsion coupling of the swept box (M sin Λ) is "
+        "reacted at the root rib and not sized",
+    ]
     if elevator is None:
         notes.append("no elevator declared: the whole trailing edge aft of the rear spar is fixed trailing edge")
     return HorizontalTailSizing(masses, box, plan, properties, data.non_optimum_factor, notes)
@@ -185,6 +221,12 @@ def _mass_properties(plan: TailPlanform, per_span: dict, band_of: dict) -> MassP
         for j in np.flatnonzero(m > 0):
             own = np.diag([0.0, 1.0, 1.0]) * m[j] * length[j] ** 2 / 12.0
             for side in (1.0, -1.0):
-                items.append(MassComponent(name, float(m[j]), (float(x[j]), float(side * y[j] + plan.root_leading_edge[1]),
-                                                               float(z[j])), own))
+                items.append(
+                    MassComponent(
+                        name,
+                        float(m[j]),
+                        (float(x[j]), float(side * y[j] + plan.root_leading_edge[1]), float(z[j])),
+                        own,
+                    )
+                )
     return combine(items)

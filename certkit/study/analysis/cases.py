@@ -48,7 +48,7 @@ class Cases:
 
     def counts(self) -> pd.DataFrame:
         """Cases per block, role and status (the DoE summary)."""
-        return (self.frame.groupby(["block", "role", "status"]).size().rename("cases").reset_index())
+        return self.frame.groupby(["block", "role", "status"]).size().rename("cases").reset_index()
 
     def failed(self) -> pd.DataFrame:
         df = self.frame[self.frame["status"] == "failed"]
@@ -60,6 +60,8 @@ def cases(frame: pd.DataFrame, study: Study) -> Cases:
     needed = ["key", "block", "role", "status", "error"] + [VAR_PREFIX + v.path for v in study.variables]
     missing = [c for c in needed if c not in frame.columns]
     if missing:
-        raise UserError(f"study store: column(s) {', '.join(missing)} missing; the store does not match the study "
-                        f"definition (variables {', '.join(v.path for v in study.variables)})")
+        raise UserError(
+            f"study store: column(s) {', '.join(missing)} missing; the store does not match the study "
+            f"definition (variables {', '.join(v.path for v in study.variables)})"
+        )
     return Cases(frame, tuple(VAR_PREFIX + v.path for v in study.variables))

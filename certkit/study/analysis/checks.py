@@ -32,8 +32,11 @@ def run_true_model(study: Study, store, x: np.ndarray, *, block: str, role: str 
     for point in np.atleast_2d(x):
         scale = np.maximum(np.abs(point), 1e-12)
         hits = np.flatnonzero(np.all(np.abs(table - point) <= 1e-9 * scale, axis=1))
-        rows.append(frame.iloc[hits[0]] if hits.size else
-                    pd.Series({"status": "missing", "error": "the runner returned no case for this point"}))
+        rows.append(
+            frame.iloc[hits[0]]
+            if hits.size
+            else pd.Series({"status": "missing", "error": "the runner returned no case for this point"})
+        )
     return pd.DataFrame(rows).reset_index(drop=True)
 
 
@@ -78,8 +81,9 @@ def _feasible_all(study: Study, values: dict[str, np.ndarray], n: int) -> np.nda
     return ok
 
 
-def direct_check(study: Study, store, surrogates: dict[str, Surrogate], mc: MonteCarloResult, *,
-                 n: int = 100, seed: int = 7) -> DirectCheck:
+def direct_check(
+    study: Study, store, surrogates: dict[str, Surrogate], mc: MonteCarloResult, *, n: int = 100, seed: int = 7
+) -> DirectCheck:
     """Draw ``n`` fresh uniform designs (a seed other than the Monte Carlo's), evaluate them with the true model
     and compare each constraint's probability of success (and the joint one) with the Monte Carlo estimate."""
     bounds = study.bounds
@@ -89,9 +93,12 @@ def direct_check(study: Study, store, surrogates: dict[str, Surrogate], mc: Mont
     ok = (frame["status"] == "ok").to_numpy()
     failures = [(str(r.get("key", "")), str(r.get("error", ""))) for _, r in frame[~ok].iterrows()]
     x_ok = x[ok]
-    truth = {c.response: frame.loc[ok, RESP_PREFIX + c.response].to_numpy(dtype=float)
-             if RESP_PREFIX + c.response in frame.columns else np.full(int(ok.sum()), np.nan)
-             for c in study.constraints}
+    truth = {
+        c.response: frame.loc[ok, RESP_PREFIX + c.response].to_numpy(dtype=float)
+        if RESP_PREFIX + c.response in frame.columns
+        else np.full(int(ok.sum()), np.nan)
+        for c in study.constraints
+    }
     predicted = {r: surrogates[r].predict(x_ok) for r in truth}
     k = int(ok.sum())
     checked = []
@@ -108,8 +115,15 @@ def direct_check(study: Study, store, surrogates: dict[str, Surrogate], mc: Mont
         p_true = float(np.mean(_feasible_all(study, truth, k)))
         p_same = float(np.mean(_feasible_all(study, predicted, k)))
         p_mc, se_mc = mc.stage_p("constrained")
-        joint = CheckedConstraint(Constraint.model_construct(name="all constraints", response="joint", min=None, max=None), k, p_true, p_same, p_mc,
-                                  binomial_se(p_true, k), se_mc)
+        joint = CheckedConstraint(
+            Constraint.model_construct(name="all constraints", response="joint", min=None, max=None),
+            k,
+            p_true,
+            p_same,
+            p_mc,
+            binomial_se(p_true, k),
+            se_mc,
+        )
     return DirectCheck(n, k, len(frame) - k, failures, checked, joint)
 
 
@@ -122,8 +136,9 @@ class CheckedOptimum:
     predicted: dict[str, float]
 
 
-def reevaluate_optima(study: Study, store, surrogates: dict[str, Surrogate],
-                      optima: list[Optimum]) -> list[CheckedOptimum]:
+def reevaluate_optima(
+    study: Study, store, surrogates: dict[str, Surrogate], optima: list[Optimum]
+) -> list[CheckedOptimum]:
     """Evaluate each optimum's design with the true model; objectives and constraint responses, predicted and
     true, side by side."""
     if not optima:
@@ -135,9 +150,16 @@ def reevaluate_optima(study: Study, store, surrogates: dict[str, Surrogate],
     for i, opt in enumerate(optima):
         row = frame.iloc[i]
         ok = row.get("status") == "ok"
-        true = {r: (float(row[RESP_PREFIX + r]) if ok and RESP_PREFIX + r in row.index
-                    and np.isfinite(row[RESP_PREFIX + r]) else None) for r in names}
+        true = {
+            r: (
+                float(row[RESP_PREFIX + r])
+                if ok and RESP_PREFIX + r in row.index and np.isfinite(row[RESP_PREFIX + r])
+                else None
+            )
+            for r in names
+        }
         predicted = {r: float(surrogates[r].predict(opt.x[None, :])[0]) for r in names if r in surrogates}
-        out.append(CheckedOptimum(opt, str(row.get("status")), "" if ok else str(row.get("error") or ""), true,
-                                  predicted))
+        out.append(
+            CheckedOptimum(opt, str(row.get("status")), "" if ok else str(row.get("error") or ""), true, predicted)
+        )
     return out

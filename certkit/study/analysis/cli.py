@@ -32,30 +32,46 @@ def open_study(study_path: Path, store_path: Path | None):
     from certkit.study.spec import load_study  # here, not at the top: `certkit --help` stays fast
     from certkit.study.store import Store
 
-    study = load_study(study_path)  # the file as it is now: objectives, constraints and options may be edited after a run
+    study = load_study(
+        study_path
+    )  # the file as it is now: objectives, constraints and options may be edited after a run
     if store_path is None:
         default = getattr(Store, "default_path", None)
         store_path = Path(default(study_path)) if default else study_path.with_suffix(".sqlite")
     if not store_path.exists():
-        raise UserError(f"{study_path}: no study store at {store_path}; run `certkit study run {study_path}` first "
-                        f"or give --store")
+        raise UserError(
+            f"{study_path}: no study store at {store_path}; run `certkit study run {study_path}` first or give --store"
+        )
     store = Store.open(store_path)
     stored = {v.path for v in store.study().variables}
     if {v.path for v in study.variables} != stored:
-        raise UserError(f"{study_path}: its variables differ from those the store {store_path} was run with "
-                        f"({', '.join(sorted(stored))}); run the study again or give --store")
+        raise UserError(
+            f"{study_path}: its variables differ from those the store {store_path} was run with "
+            f"({', '.join(sorted(stored))}); run the study again or give --store"
+        )
     return study, store, store.frame()
 
 
 @click.command("report")
 @click.argument("study_file", metavar="STUDY.yaml", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--out", "out_dir", type=click.Path(file_okay=False, path_type=Path), default=None,
-              help="Folder for index.html (default: <study>-report next to the study file).")
-@click.option("--store", "store_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="The study store (default: the study's own store).")
+@click.option(
+    "--out",
+    "out_dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="Folder for index.html (default: <study>-report next to the study file).",
+)
+@click.option(
+    "--store",
+    "store_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="The study store (default: the study's own store).",
+)
 @click.option("--no-check", is_flag=True, help="Skip the true-model re-evaluations (direct check and optima).")
-@click.option("--samples", default="1e6", callback=_samples, show_default=True,
-              help="Monte Carlo samples over the design box.")
+@click.option(
+    "--samples", default="1e6", callback=_samples, show_default=True, help="Monte Carlo samples over the design box."
+)
 def report_command(study_file: Path, out_dir: Path | None, store_path: Path | None, no_check: bool, samples: int):
     """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity."""
     from certkit.study.analysis.report import write_study_report
@@ -64,8 +80,16 @@ def report_command(study_file: Path, out_dir: Path | None, store_path: Path | No
         study, store, frame = open_study(study_file, store_path)
         sha = hashlib.sha256(study_file.read_bytes()).hexdigest()
         out = out_dir or study_file.with_name(study_file.stem + "-report")
-        path = write_study_report(study, frame, out, store=store, samples=samples, check=not no_check, sha256=sha,
-                                  log=lambda msg: click.echo(msg, err=True))
+        path = write_study_report(
+            study,
+            frame,
+            out,
+            store=store,
+            samples=samples,
+            check=not no_check,
+            sha256=sha,
+            log=lambda msg: click.echo(msg, err=True),
+        )
     except UserError as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(EXIT_USAGE)
@@ -89,16 +113,31 @@ def export_surrogates(study_path: Path, store_path: Path | None, out: Path, log=
 
 @click.command("refine")
 @click.argument("study_file", metavar="STUDY.yaml", type=click.Path(exists=True, dir_okay=False, path_type=Path))
-@click.option("--cases", "n", type=click.IntRange(1, 10_000), default=20, show_default=True,
-              help="New training cases to add where constraint boundaries and fronts are least certain.")
-@click.option("--store", "store_path", type=click.Path(dir_okay=False, path_type=Path), default=None,
-              help="The study store (default: the study's own store).")
-@click.option("--samples", default="2e5", callback=_samples, show_default=True,
-              help="Monte Carlo samples for the probabilities before and after.")
+@click.option(
+    "--cases",
+    "n",
+    type=click.IntRange(1, 10_000),
+    default=20,
+    show_default=True,
+    help="New training cases to add where constraint boundaries and fronts are least certain.",
+)
+@click.option(
+    "--store",
+    "store_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="The study store (default: the study's own store).",
+)
+@click.option(
+    "--samples",
+    default="2e5",
+    callback=_samples,
+    show_default=True,
+    help="Monte Carlo samples for the probabilities before and after.",
+)
 @click.option("--executor", type=click.Choice(["local", "dask", "serial"]), default="local", show_default=True)
 @click.option("--workers", type=int, default=None, help="Worker processes (default: the cores available).")
-def refine_command(study_file: Path, n: int, store_path: Path | None, samples: int, executor: str,
-                   workers: int | None):
+def refine_command(study_file: Path, n: int, store_path: Path | None, samples: int, executor: str, workers: int | None):
     """Add cases where the surrogates are least sure, evaluate them, refit, and show how the probabilities moved."""
     from certkit.study.analysis.refine import refine
     from certkit.study.runner import run_study_cases
@@ -106,29 +145,46 @@ def refine_command(study_file: Path, n: int, store_path: Path | None, samples: i
     study, store, _ = open_study(study_file, store_path)
 
     def run_cases(study_, store_, points, *, block, role):
-        return run_study_cases(study_, store_, points, block=block, role=role, executor=executor, workers=workers,
-                               progress=sys.stderr)
+        return run_study_cases(
+            study_, store_, points, block=block, role=role, executor=executor, workers=workers, progress=sys.stderr
+        )
 
     result = refine(study, store, n, samples=samples, run_cases=run_cases, log=lambda msg: click.echo(msg, err=True))
-    click.echo(f"{result.added} cases added in block {result.block} ({result.ok} ok); probability of success "
-               f"(95 % Wilson interval), before → after:")
+    click.echo(
+        f"{result.added} cases added in block {result.block} ({result.ok} ok); probability of success "
+        f"(95 % Wilson interval), before → after:"
+    )
     width = max([len(m.name) for m in result.movements + [result.joint]])
     for m in result.movements + [result.joint]:
-        click.echo(f"  {m.name:<{width}}  {100 * m.p_before:6.2f} % [{100 * m.interval_before[0]:.2f}, "
-                   f"{100 * m.interval_before[1]:.2f}] → {100 * m.p_after:6.2f} % [{100 * m.interval_after[0]:.2f}, "
-                   f"{100 * m.interval_after[1]:.2f}]  ({100 * (m.p_after - m.p_before):+.2f} points)")
+        click.echo(
+            f"  {m.name:<{width}}  {100 * m.p_before:6.2f} % [{100 * m.interval_before[0]:.2f}, "
+            f"{100 * m.interval_before[1]:.2f}] → {100 * m.p_after:6.2f} % [{100 * m.interval_after[0]:.2f}, "
+            f"{100 * m.interval_after[1]:.2f}]  ({100 * (m.p_after - m.p_before):+.2f} points)"
+        )
 
 
 @click.command("predict")
-@click.argument("surrogates_file", metavar="SURROGATES.json", type=click.Path(exists=True, dir_okay=False,
-                                                                              path_type=Path))
-@click.option("--set", "settings", multiple=True, metavar="PATH=VALUE",
-              help="A variable's value (SI, or a quantity with a unit); the others take their baseline.")
-@click.option("--points", "points_csv", type=click.Path(exists=True, dir_okay=False, path_type=Path), default=None,
-              help="A CSV of designs, one column per variable path (SI values); one output row per design.")
+@click.argument(
+    "surrogates_file", metavar="SURROGATES.json", type=click.Path(exists=True, dir_okay=False, path_type=Path)
+)
+@click.option(
+    "--set",
+    "settings",
+    multiple=True,
+    metavar="PATH=VALUE",
+    help="A variable's value (SI, or a quantity with a unit); the others take their baseline.",
+)
+@click.option(
+    "--points",
+    "points_csv",
+    type=click.Path(exists=True, dir_okay=False, path_type=Path),
+    default=None,
+    help="A CSV of designs, one column per variable path (SI values); one output row per design.",
+)
 @click.option("--response", "responses", multiple=True, help="Responses to predict (default: every one).")
-def predict_command(surrogates_file: Path, settings: tuple[str, ...], points_csv: Path | None,
-                    responses: tuple[str, ...]):
+def predict_command(
+    surrogates_file: Path, settings: tuple[str, ...], points_csv: Path | None, responses: tuple[str, ...]
+):
     """Predict responses with exported surrogates, as CSV: the variables, each response, and `possible`."""
     import csv
 
@@ -160,5 +216,8 @@ def predict_command(surrogates_file: Path, settings: tuple[str, ...], points_csv
     writer = csv.writer(sys.stdout, lineterminator="\n")
     writer.writerow(model.variables + list(values) + ["possible"])
     for i in range(len(x)):
-        writer.writerow([repr(float(v)) for v in x[i]] + [repr(float(values[r][i])) for r in values]
-                        + [str(bool(np.asarray(possible)[i])).lower()])
+        writer.writerow(
+            [repr(float(v)) for v in x[i]]
+            + [repr(float(values[r][i])) for r in values]
+            + [str(bool(np.asarray(possible)[i])).lower()]
+        )

@@ -34,8 +34,12 @@ def _floats(a) -> list:
 def export_surrogate(surrogate: Surrogate) -> dict:
     """JSON-serialisable description of the kept model of ``surrogate``."""
     inner, log = _unwrap_log(surrogate.kept.estimator)
-    doc = {"response": surrogate.response, "log": log, "lo": _floats(surrogate.bounds[:, 0]),
-           "hi": _floats(surrogate.bounds[:, 1])}
+    doc = {
+        "response": surrogate.response,
+        "log": log,
+        "lo": _floats(surrogate.bounds[:, 0]),
+        "hi": _floats(surrogate.bounds[:, 1]),
+    }
     family = surrogate.kept.family
     if family == "polynomial":
         features, ridge = inner.steps[0][1], inner.steps[-1][1]
@@ -45,15 +49,26 @@ def export_surrogate(surrogate: Surrogate) -> dict:
         net, scaler = inner.regressor_, inner.transformer_
         if net.activation != "tanh" or net.out_activation_ != "identity":
             raise ValueError(f"export supports tanh hidden layers and an identity output, got {net.activation}")
-        doc.update(kind="mlp", weights=[_floats(w) for w in net.coefs_], biases=[_floats(b) for b in net.intercepts_],
-                   mean=float(scaler.mean_[0]), scale=float(scaler.scale_[0]))
+        doc.update(
+            kind="mlp",
+            weights=[_floats(w) for w in net.coefs_],
+            biases=[_floats(b) for b in net.intercepts_],
+            mean=float(scaler.mean_[0]),
+            scale=float(scaler.scale_[0]),
+        )
     elif family == "Gaussian process":
         inner = getattr(inner, "gp_", inner)  # the GP of a subsampled fit
         kernel = inner.kernel_
         const, rbf = kernel.k1.k1, kernel.k1.k2
-        doc.update(kind="gp", x=_floats(inner.X_train_), alpha=_floats(np.ravel(inner.alpha_)),
-                   constant=float(const.constant_value), length_scale=_floats(np.atleast_1d(rbf.length_scale)),
-                   mean=float(np.ravel(inner._y_train_mean)[0]), std=float(np.ravel(inner._y_train_std)[0]))
+        doc.update(
+            kind="gp",
+            x=_floats(inner.X_train_),
+            alpha=_floats(np.ravel(inner.alpha_)),
+            constant=float(const.constant_value),
+            length_scale=_floats(np.atleast_1d(rbf.length_scale)),
+            mean=float(np.ravel(inner._y_train_mean)[0]),
+            std=float(np.ravel(inner._y_train_std)[0]),
+        )
     else:
         raise ValueError(f"no export for model family {family!r}")
     return doc

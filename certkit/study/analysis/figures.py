@@ -42,8 +42,7 @@ def fit_svg(s: Surrogate) -> str:
     for (label, (actual, pred)), colour, marker in zip(s.plot_data.items(), ("0.55", "#c0392b"), ("o", "^")):
         if len(actual) == 0:
             continue
-        a1.scatter(pred, actual, s=7, c=colour, marker=marker, label=f"{label} ({len(actual)})", rasterized=True,
-                   lw=0)
+        a1.scatter(pred, actual, s=7, c=colour, marker=marker, label=f"{label} ({len(actual)})", rasterized=True, lw=0)
         a2.scatter(pred, actual - pred, s=7, c=colour, marker=marker, rasterized=True, lw=0)
     both = np.concatenate([np.concatenate(v) for v in s.plot_data.values()])
     both = both[np.isfinite(both)]
@@ -95,8 +94,9 @@ def scatter_matrix_svg(mc: MonteCarloResult, labels: list[str]) -> str:
     Pareto front of each pair drawn as a line, the histogram of each objective on the diagonal."""
     k = len(labels)
     size = 2.3 * k
-    fig, axes = subplots(k, k, figsize=(size + 0.6, size + 0.5), left=0.8, bottom=0.6, top=0.45, wspace=0.35,
-                         hspace=0.35, squeeze=False)
+    fig, axes = subplots(
+        k, k, figsize=(size + 0.6, size + 0.5), left=0.8, bottom=0.6, top=0.45, wspace=0.35, hspace=0.35, squeeze=False
+    )
     rng = np.random.default_rng(0)
     for i in range(k):
         for j in range(k):
@@ -112,8 +112,15 @@ def scatter_matrix_svg(mc: MonteCarloResult, labels: list[str]) -> str:
                     idx = np.flatnonzero(mc.cloud_stage == stage)
                     if idx.size > SCATTER_POINTS:
                         idx = rng.choice(idx, SCATTER_POINTS, replace=False)
-                    ax.scatter(mc.cloud_f[idx, j], mc.cloud_f[idx, i], s=2, c=STAGE_COLOURS[stage], lw=0,
-                               rasterized=True, label=STAGE_LABELS[stage] if (i, j) == (0, 1) else None)
+                    ax.scatter(
+                        mc.cloud_f[idx, j],
+                        mc.cloud_f[idx, i],
+                        s=2,
+                        c=STAGE_COLOURS[stage],
+                        lw=0,
+                        rasterized=True,
+                        label=STAGE_LABELS[stage] if (i, j) == (0, 1) else None,
+                    )
                 acc = mc.fronts.get(("constrained", (min(i, j), max(i, j))))
                 if acc is not None and len(acc.f):
                     f, _ = acc.front()

@@ -9,8 +9,15 @@ import re
 from certkit.units import from_si
 
 #: a response key's unit suffix → (SI unit, unit shown); distances of a mission in nautical miles, its times in hours
-_SUFFIXES = (("_m_s", "m/s", "kn"), ("_kg", "kg", "lb"), ("_N", "N", "lbf"), ("_rad", "rad", "deg"),
-             ("_m", "m", "ft"), ("_s", "s", "s"), ("_deg", "deg", "deg"))
+_SUFFIXES = (
+    ("_m_s", "m/s", "kn"),
+    ("_kg", "kg", "lb"),
+    ("_N", "N", "lbf"),
+    ("_rad", "rad", "deg"),
+    ("_m", "m", "ft"),
+    ("_s", "s", "s"),
+    ("_deg", "deg", "deg"),
+)
 _MISSION_WORDS = ("range", "distance")
 _KINDS = ("objective.", "constraint.", "mission.", "subcheck.", "handling.", "rule.")
 
@@ -32,7 +39,7 @@ def response_label(name: str) -> tuple[str, str, float]:
     stem = name
     for kind in _KINDS:
         if stem.startswith(kind):
-            stem = stem[len(kind):]
+            stem = stem[len(kind) :]
             break
     for suffix, si_unit, shown in _SUFFIXES:
         if stem.endswith(suffix):

@@ -24,9 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from certkit.study.analysis.intervals import interval_se, wilson
-from certkit.study.spec import Constraint, Study
 from certkit.study.analysis.pareto import FrontAccumulator, objective_subsets
 from certkit.study.analysis.surrogates import Surrogate
+from certkit.study.spec import Constraint, Study
 
 STAGES = ("unconstrained", "constrained", "preferred")
 HIST_BINS = 2000
@@ -182,8 +182,16 @@ def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.
     return np.where(values >= mid, values + shift, values - shift)
 
 
-def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 1_000_000, chunk: int = 100_000,
-                    seed: int = 20240615, cloud: int = 20_000, valid=None) -> MonteCarloResult:
+def run_monte_carlo(
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    *,
+    n: int = 1_000_000,
+    chunk: int = 100_000,
+    seed: int = 20240615,
+    cloud: int = 20_000,
+    valid=None,
+) -> MonteCarloResult:
     """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective.
     ``valid``: a function of the samples (rows, SI) → mask of possible designs; the others are masked before any
     count, front or optimum (probabilities are then among possible designs)."""
@@ -217,8 +225,11 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
     least = np.full(len(constraints), np.inf)
     least_value = np.full(len(constraints), np.nan)
     subsets = objective_subsets(len(objectives)) if len(objectives) >= 2 else []
-    fronts = {(stage, cols): FrontAccumulator(len(lo), cols, tuple(maximise[c] for c in cols))
-              for stage in STAGES for cols in subsets}
+    fronts = {
+        (stage, cols): FrontAccumulator(len(lo), cols, tuple(maximise[c] for c in cols))
+        for stage in STAGES
+        for cols in subsets
+    }
     best = {(o, s): (np.inf, None) for o in range(len(objectives)) for s in STAGES}
     cloud_x, cloud_f, cloud_stage = [], [], []
     kept = 0
@@ -259,7 +270,7 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
             if u is not None or uncertainty:
                 if u is not None:
                     p = u.percent / 100.0
-                    delta = (unc_rng.uniform(-p, p, m) if u.distribution == "uniform" else unc_rng.normal(0.0, p, m))
+                    delta = unc_rng.uniform(-p, p, m) if u.distribution == "uniform" else unc_rng.normal(0.0, p, m)
                     v_unc = v * (1.0 + delta)
                     v_adv = _adverse(v, c, p if u.distribution == "uniform" else 2.0 * p)
                 else:
@@ -300,14 +311,40 @@ def run_monte_carlo(study: Study, surrogates: dict[str, Surrogate], *, n: int = 
             kept += take
     if not n_valid:
         raise ValueError(f"every one of the {n} samples was classed as an impossible design")
-    outcomes = [ConstraintOutcome(c, int(succ[i]), n_valid, relaxed[i], int(succ_relaxed[i]) if relaxed[i] is not None
-                                  else None, int(sole[i]), hists[i], surrogates[c.response].flagged,
-                                  int(succ_unc[i]) if uncertainty else None,
-                                  int(succ_adv[i]) if uncertainty else None, float(least[i]), float(least_value[i]))
-                for i, c in enumerate(constraints)]
+    outcomes = [
+        ConstraintOutcome(
+            c,
+            int(succ[i]),
+            n_valid,
+            relaxed[i],
+            int(succ_relaxed[i]) if relaxed[i] is not None else None,
+            int(sole[i]),
+            hists[i],
+            surrogates[c.response].flagged,
+            int(succ_unc[i]) if uncertainty else None,
+            int(succ_adv[i]) if uncertainty else None,
+            float(least[i]),
+            float(least_value[i]),
+        )
+        for i, c in enumerate(constraints)
+    ]
     optima = [Optimum(objectives[o], s, float(sign[o] * v), xb) for (o, s), (v, xb) in best.items() if xb is not None]
     flagged = [r for r in needed if surrogates[r].flagged]
-    return MonteCarloResult(n_valid, chunk, seed, time.perf_counter() - t0, outcomes, stage_counts,
-                            joint_unc if uncertainty else None, joint_adv if uncertainty else None, objectives, fronts,
-                            optima, np.concatenate(cloud_x), np.concatenate(cloud_f), np.concatenate(cloud_stage),
-                            flagged, n_drawn=n)
+    return MonteCarloResult(
+        n_valid,
+        chunk,
+        seed,
+        time.perf_counter() - t0,
+        outcomes,
+        stage_counts,
+        joint_unc if uncertainty else None,
+        joint_adv if uncertainty else None,
+        objectives,
+        fronts,
+        optima,
+        np.concatenate(cloud_x),
+        np.concatenate(cloud_f),
+        np.concatenate(cloud_stage),
+        flagged,
+        n_drawn=n,
+    )

@@ -15,6 +15,7 @@ A design the optimiser returns is re-checked with ``Constraint.feasible`` on the
 from __future__ import annotations
 
 import warnings
+
 import numpy as np
 from scipy.optimize import minimize
 
@@ -38,8 +39,14 @@ def from_unit(u: np.ndarray, bounds: np.ndarray) -> np.ndarray:
 class SurrogateProblem:
     """Objectives and constraints of a study stage on the surrogates, on inputs u ∈ [−1, 1]ⁿ."""
 
-    def __init__(self, study: Study, surrogates: dict[str, Surrogate], stage: str, valid_margin=None,
-                 scales: dict[str, float] | None = None):
+    def __init__(
+        self,
+        study: Study,
+        surrogates: dict[str, Surrogate],
+        stage: str,
+        valid_margin=None,
+        scales: dict[str, float] | None = None,
+    ):
         self.study, self.surrogates, self.stage = study, surrogates, stage
         self.bounds = study.bounds
         self.valid_margin = valid_margin
@@ -90,8 +97,9 @@ class SurrogateProblem:
         return ok
 
 
-def local_optimum(problem: SurrogateProblem, objective: str, sense: str, starts: np.ndarray,
-                  fallback: np.ndarray | None = None) -> Optimum | None:
+def local_optimum(
+    problem: SurrogateProblem, objective: str, sense: str, starts: np.ndarray, fallback: np.ndarray | None = None
+) -> Optimum | None:
     """The best feasible SLSQP solution from ``starts`` (rows, SI); the fallback design when none improves."""
     n = problem.bounds.shape[0]
     best_u, best_f = None, np.inf
@@ -109,14 +117,24 @@ def local_optimum(problem: SurrogateProblem, objective: str, sense: str, starts:
         g = problem.constraints(u[None, :] + steps)
         return ((g[1:] - g[0]) / FD_STEP).T
 
-    cons = [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0], "jac": constraint_jacobian}] \
-        if problem.limits or problem.valid_margin is not None else []
+    cons = (
+        [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0], "jac": constraint_jacobian}]
+        if problem.limits or problem.valid_margin is not None
+        else []
+    )
     for start in np.atleast_2d(starts):
         u0 = np.clip(to_unit(start[None, :], problem.bounds)[0], -1.0, 1.0)
         with warnings.catch_warnings(), np.errstate(all="ignore"):
             warnings.simplefilter("ignore")
-            res = minimize(objective_and_gradient, u0, method="SLSQP", jac=True, bounds=[(-1.0, 1.0)] * n,
-                           constraints=cons, options={"maxiter": 100, "ftol": 1e-10})
+            res = minimize(
+                objective_and_gradient,
+                u0,
+                method="SLSQP",
+                jac=True,
+                bounds=[(-1.0, 1.0)] * n,
+                constraints=cons,
+                options={"maxiter": 100, "ftol": 1e-10},
+            )
         u = np.clip(res.x, -1.0, 1.0)
         f = float(problem.objective(objective, u, sense)[0])
         better = best_u is None or f < best_f - 1e-12 * max(1.0, abs(best_f))
@@ -128,9 +146,14 @@ def local_optimum(problem: SurrogateProblem, objective: str, sense: str, starts:
     return Optimum(objective, problem.stage, value, problem.x(best_u[None, :])[0], method)
 
 
-def nsga2_front(problem: SurrogateProblem, objectives: list[tuple[str, str]], *, seed: int = 1,
-                population: int = NSGA_POPULATION, generations: int = NSGA_GENERATIONS
-                ) -> tuple[np.ndarray, np.ndarray]:
+def nsga2_front(
+    problem: SurrogateProblem,
+    objectives: list[tuple[str, str]],
+    *,
+    seed: int = 1,
+    population: int = NSGA_POPULATION,
+    generations: int = NSGA_GENERATIONS,
+) -> tuple[np.ndarray, np.ndarray]:
     """(objective values, designs in SI) of the feasible non-dominated set NSGA-II finds, sorted by the first."""
     from pymoo.algorithms.moo.nsga2 import NSGA2
     from pymoo.core.problem import Problem
@@ -149,8 +172,7 @@ def nsga2_front(problem: SurrogateProblem, objectives: list[tuple[str, str]], *,
                 if n_constr:
                     out["G"] = -problem.constraints(u)
 
-    result = pymoo_minimize(_Problem(), NSGA2(pop_size=population), ("n_gen", generations), seed=seed,
-                            verbose=False)
+    result = pymoo_minimize(_Problem(), NSGA2(pop_size=population), ("n_gen", generations), seed=seed, verbose=False)
     if result.X is None:
         return np.empty((0, len(objectives))), np.empty((0, n))
     u = np.atleast_2d(result.X)
@@ -177,8 +199,9 @@ def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
     return out
 
 
-def optimise(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, valid_margin=None, *,
-             seed: int = 3) -> list[Optimum]:
+def optimise(
+    study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, valid_margin=None, *, seed: int = 3
+) -> list[Optimum]:
     """The optimum of every objective in every stage: SLSQP started from the stage's best Monte Carlo samples
     (the stage's best sample itself kept when no start improves on it)."""
     rng = np.random.default_rng(seed)
@@ -193,15 +216,19 @@ def optimise(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResul
             problem = SurrogateProblem(study, surrogates, stage, valid_margin, scales)
             in_stage = mc.cloud_stage >= si
             order = np.argsort(sign * mc.cloud_f[in_stage, k])[: STARTS // 2]
-            starts = np.vstack([sampled.x[None, :], mc.cloud_x[in_stage][order],
-                                from_unit(rng.uniform(-1, 1, (STARTS // 2, len(study.variables))), study.bounds)])
+            starts = np.vstack(
+                [
+                    sampled.x[None, :],
+                    mc.cloud_x[in_stage][order],
+                    from_unit(rng.uniform(-1, 1, (STARTS // 2, len(study.variables))), study.bounds),
+                ]
+            )
             best = local_optimum(problem, objective.response, objective.sense, starts, fallback=sampled.x)
             out.append(best or sampled)
     return out
 
 
-def pareto_fronts(study: Study, surrogates: dict[str, Surrogate], valid_margin=None, *, seed: int = 1
-                  ) -> list[dict]:
+def pareto_fronts(study: Study, surrogates: dict[str, Surrogate], valid_margin=None, *, seed: int = 1) -> list[dict]:
     """The constrained front of every pair of objectives by NSGA-II: objectives, values, designs."""
     problem = SurrogateProblem(study, surrogates, "constrained", valid_margin, _scales(study, surrogates))
     objectives = list(study.objectives)

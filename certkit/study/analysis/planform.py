@@ -85,8 +85,10 @@ def planform_from(values: dict[str, float]) -> tuple[Planform | None, str]:
     """The planform of a design given by variable path → SI value; (None, reason) when a value is missing."""
     missing = [p for p in PLANFORM_VARIABLES if p not in values]
     if missing:
-        return None, (f"planform not drawn: {', '.join(missing)} not a study variable (its value lives in the "
-                      f"aircraft file, which the analysis does not read)")
+        return None, (
+            f"planform not drawn: {', '.join(missing)} not a study variable (its value lives in the "
+            f"aircraft file, which the analysis does not read)"
+        )
     elevator = tuple(values[p] for p in ELEVATOR_VARIABLES) if all(p in values for p in ELEVATOR_VARIABLES) else None
     note = "" if elevator else "elevator not drawn: its span fractions and chord ratio are not all study variables"
     return Planform(*(values[p] for p in PLANFORM_VARIABLES), elevator=elevator), note

@@ -34,14 +34,35 @@ def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndar
         s = surrogates[name]
         lo, hi = limits.get(name, (None, None))
         words, unit, factor = response_label(name)
-        responses.append({"name": name, "model": export_surrogate(s), "min": lo, "max": hi,
-                          "flagged": s.flagged, "label": s.kept.label, "title": words, "unit": unit, "factor": factor})
+        responses.append(
+            {
+                "name": name,
+                "model": export_surrogate(s),
+                "min": lo,
+                "max": hi,
+                "flagged": s.flagged,
+                "label": s.kept.label,
+                "title": words,
+                "unit": unit,
+                "factor": factor,
+            }
+        )
     variables = []
     for v, x0 in zip(study.variables, start):
         span = v.upper - v.lower
-        variables.append({"path": v.path, "label": v.short, "lower": v.lower, "upper": v.upper,
-                          "from": v.lower - OVERHANG * span, "to": v.upper + OVERHANG * span, "value": float(x0),
-                          "unit": v.unit_label, "factor": display_factor(v.unit_label)})
+        variables.append(
+            {
+                "path": v.path,
+                "label": v.short,
+                "lower": v.lower,
+                "upper": v.upper,
+                "from": v.lower - OVERHANG * span,
+                "to": v.upper + OVERHANG * span,
+                "value": float(x0),
+                "unit": v.unit_label,
+                "factor": display_factor(v.unit_label),
+            }
+        )
     return {"variables": variables, "responses": responses}
 
 

@@ -32,14 +32,18 @@ def _limits(study: Study, c) -> list[float]:
     relaxed = study.analysis.relaxed_max(c)
     upper = c.max if relaxed is None else relaxed
     half = 0.5 if c.is_level else 0.0
-    return [t for t in (None if c.min is None else c.min - half, None if upper is None else upper + half)
-            if t is not None]
+    return [
+        t for t in (None if c.min is None else c.min - half, None if upper is None else upper + half) if t is not None
+    ]
 
 
 def unattainable(mc: MonteCarloResult) -> list[str]:
     """Names of the constraints no possible sample satisfies (P = 0, the level relaxation included)."""
-    return [o.constraint.name for o in mc.constraints
-            if not (o.relaxed_successes if o.relaxed_successes is not None else o.successes)]
+    return [
+        o.constraint.name
+        for o in mc.constraints
+        if not (o.relaxed_successes if o.relaxed_successes is not None else o.successes)
+    ]
 
 
 def without_unattainable(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run) -> tuple:
@@ -67,9 +71,11 @@ def show_stoppers(study: Study, mc: MonteCarloResult, cases: Cases, not_fitted: 
         values = np.concatenate([cases.xy(role, c.response)[1] for role in ("training", "validation")])
         ok = int(np.sum(c.feasible(values, relaxed)))
         best = values[np.nanargmin(violation(c, values, relaxed))] if len(values) else None
-        reason = (f"no possible design of the {mc.n} samples satisfies it on the surrogate (least violation "
-                  f"{o.least_violation:.4g}, at the value {o.best_value:.4g}); {ok} of the {len(values)} computed "
-                  f"cases satisfy it" + (f" (the best case: {best:.4g})" if best is not None else ""))
+        reason = (
+            f"no possible design of the {mc.n} samples satisfies it on the surrogate (least violation "
+            f"{o.least_violation:.4g}, at the value {o.best_value:.4g}); {ok} of the {len(values)} computed "
+            f"cases satisfy it" + (f" (the best case: {best:.4g})" if best is not None else "")
+        )
         out.append(ShowStopper(c.name, c.describe(), reason))
     for c in study.constraints:
         if c.response in not_fitted:

@@ -46,9 +46,17 @@ def misclassification(study: Study, surrogates: dict[str, Surrogate], x: np.ndar
     return score
 
 
-def refinement_points(study: Study, surrogates: dict[str, Surrogate], existing: np.ndarray, n: int, *,
-                      valid=None, front_x: np.ndarray | None = None, seed: int = 0,
-                      candidates: int = CANDIDATES) -> np.ndarray:
+def refinement_points(
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    existing: np.ndarray,
+    n: int,
+    *,
+    valid=None,
+    front_x: np.ndarray | None = None,
+    seed: int = 0,
+    candidates: int = CANDIDATES,
+) -> np.ndarray:
     """``n`` new designs (rows, SI) where the constraint boundaries and the fronts are least certain."""
     bounds = study.bounds
     rng = np.random.default_rng(seed)
@@ -97,9 +105,12 @@ class Refinement:
 def _state(study: Study, frame, samples: int, log):
     """Surrogates, validity, the Monte Carlo result and the fronts' designs of the cases in ``frame``."""
     surrogates, not_fitted = fit_all(study, cases(frame, study), log)
-    usable = study.model_copy(update={
-        "objectives": [o for o in study.objectives if o.response in surrogates],
-        "constraints": [c for c in study.constraints if c.response in surrogates]})
+    usable = study.model_copy(
+        update={
+            "objectives": [o for o in study.objectives if o.response in surrogates],
+            "constraints": [c for c in study.constraints if c.response in surrogates],
+        }
+    )
     validity = fit_validity(frame, study)
     mc = run_monte_carlo(usable, surrogates, n=samples, chunk=min(samples, 100_000), valid=validity.valid)
     margin = validity.margin if validity.estimator is not None else None
@@ -122,8 +133,13 @@ def refine(study: Study, store, n: int, *, samples: int = 200_000, run_cases=Non
     rounds = {b for b in frame["block"].unique() if str(b).startswith("refine-")}
     block = f"refine-{len(rounds) + 1}"
     log(f"refine: {len(x)} new training cases in block {block}")
-    rows = run_cases(study, store, [{v.path: float(val) for v, val in zip(study.variables, row)} for row in x],
-                     block=block, role="training")
+    rows = run_cases(
+        study,
+        store,
+        [{v.path: float(val) for v, val in zip(study.variables, row)} for row in x],
+        block=block,
+        role="training",
+    )
     ok = sum(1 for r in rows if (r.get("status") if isinstance(r, dict) else None) == "ok")
     after_usable, _, _, after, _ = _state(study, store.frame(), samples, log)
     moved = []
@@ -131,6 +147,11 @@ def refine(study: Study, store, n: int, *, samples: int = 200_000, run_cases=Non
         a = next((c for c in after.constraints if c.constraint.name == o.constraint.name), None)
         if a is not None:
             moved.append(Movement(o.constraint.name, o.p, o.interval, a.p, a.interval))
-    joint = Movement("all constraints", mc.stage_counts["constrained"] / mc.n, mc.stage_interval("constrained"),
-                     after.stage_counts["constrained"] / after.n, after.stage_interval("constrained"))
+    joint = Movement(
+        "all constraints",
+        mc.stage_counts["constrained"] / mc.n,
+        mc.stage_interval("constrained"),
+        after.stage_counts["constrained"] / after.n,
+        after.stage_interval("constrained"),
+    )
     return Refinement(block, len(x), ok, moved, joint)

@@ -18,13 +18,13 @@ from jinja2 import Environment, PackageLoader, select_autoescape
 
 from certkit import __version__
 from certkit.study.analysis import figures
-from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
 from certkit.study.analysis.cases import cases, study_hash
+from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.planform import planform_from
-from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.profiler import profiler_data, profiler_json
+from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import K_FOLDS, Surrogate, fit_all
 from certkit.study.analysis.validity import Validity, fit_validity
@@ -74,8 +74,9 @@ def _in_unit(value: float, unit: str) -> float:
         return value
 
 
-def _run_checks(usable: Study, every: Study, store, surrogates, mc, optima
-                ) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
+def _run_checks(
+    usable: Study, every: Study, store, surrogates, mc, optima
+) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
     check = direct_check(usable, store, surrogates, mc)
@@ -83,8 +84,17 @@ def _run_checks(usable: Study, every: Study, store, surrogates, mc, optima
     return check, checked, ""
 
 
-def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_000_000, check: bool = True,
-            sha256: str | None = None, chunk: int = 100_000, log=lambda msg: None) -> Analysis:
+def analyse(
+    study: Study,
+    frame: pd.DataFrame,
+    *,
+    store=None,
+    samples: int = 1_000_000,
+    check: bool = True,
+    sha256: str | None = None,
+    chunk: int = 100_000,
+    log=lambda msg: None,
+) -> Analysis:
     """Run every analysis of the study report on the store's ``frame``."""
     timings = {}
     t = time.perf_counter()
@@ -92,17 +102,24 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
     cs = cases(frame, view)
     surrogates, not_fitted = fit_all(view, cs, log)
     timings["surrogates_s"] = time.perf_counter() - t
-    usable = view.model_copy(update={
-        "objectives": [o for o in view.objectives if o.response in surrogates],
-        "constraints": [c for c in view.constraints if c.response in surrogates]})
+    usable = view.model_copy(
+        update={
+            "objectives": [o for o in view.objectives if o.response in surrogates],
+            "constraints": [c for c in view.constraints if c.response in surrogates],
+        }
+    )
     mc_note = "; ".join(f"{r} left out: {not_fitted[r]}" for r in not_fitted)
     t = time.perf_counter()
     validity = fit_validity(frame, view)
     log(f"possible designs: {validity.note}")
     mc = run_monte_carlo(usable, surrogates, n=samples, chunk=chunk, valid=validity.valid)
     every = usable  # show-stoppers are ranked and reported; the stages, fronts and optima are of the rest
-    usable, mc = without_unattainable(usable, surrogates, mc, lambda rest: run_monte_carlo(
-        rest, surrogates, n=samples, chunk=chunk, valid=validity.valid))
+    usable, mc = without_unattainable(
+        usable,
+        surrogates,
+        mc,
+        lambda rest: run_monte_carlo(rest, surrogates, n=samples, chunk=chunk, valid=validity.valid),
+    )
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")
     t = time.perf_counter()
@@ -121,15 +138,44 @@ def analyse(study: Study, frame: pd.DataFrame, *, store=None, samples: int = 1_0
         direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
-        checked = [CheckedOptimum(o, "not evaluated", check_note, {}, {
-            r: float(surrogates[r].predict(o.x[None, :])[0]) for r in every.analysed_responses()
-            if r in surrogates}) for o in points]
+        checked = [
+            CheckedOptimum(
+                o,
+                "not evaluated",
+                check_note,
+                {},
+                {
+                    r: float(surrogates[r].predict(o.x[None, :])[0])
+                    for r in every.analysed_responses()
+                    if r in surrogates
+                },
+            )
+            for o in points
+        ]
     counts = cs.counts()
     n_cases = {"total": len(frame), **frame["status"].value_counts().to_dict()}
-    return Analysis(view, sha256 or study_hash(view), counts, cs.failed(), n_cases, surrogates, not_fitted, mc, mc_note, sobol, direct,
-                    check_note, checked[:len(optima)], profiler_data(every, surrogates), timings, validity, nsga,
-                    checked[len(optima):], show_stoppers(every, mc, cs, not_fitted),
-                    active_constraints(usable, surrogates, optima))
+    return Analysis(
+        view,
+        sha256 or study_hash(view),
+        counts,
+        cs.failed(),
+        n_cases,
+        surrogates,
+        not_fitted,
+        mc,
+        mc_note,
+        sobol,
+        direct,
+        check_note,
+        checked[: len(optima)],
+        profiler_data(every, surrogates),
+        timings,
+        validity,
+        nsga,
+        checked[len(optima) :],
+        show_stoppers(every, mc, cs, not_fitted),
+        active_constraints(usable, surrogates, optima),
+    )
 
 
 def _num(value, digits: int = 4) -> str:
@@ -142,8 +188,12 @@ def _num(value, digits: int = 4) -> str:
 
 
 def _environment() -> Environment:
-    env = Environment(loader=PackageLoader("certkit.study.analysis", "templates"),
-                      autoescape=select_autoescape(["html"]), trim_blocks=True, lstrip_blocks=True)
+    env = Environment(
+        loader=PackageLoader("certkit.study.analysis", "templates"),
+        autoescape=select_autoescape(["html"]),
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
     env.filters["num"] = _num
     env.filters["in_unit"] = _in_unit
     env.filters["pct"] = lambda p: "—" if p is None else f"{100 * p:.2f} %"
@@ -174,24 +224,45 @@ def render(a: Analysis) -> str:
     stage_rows = []
     for stage in STAGES:
         p, se = mc.stage_p(stage)
-        stage_rows.append({"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se,
-                           "interval": mc.stage_interval(stage)})
+        stage_rows.append(
+            {"stage": stage, "count": mc.stage_counts[stage], "p": p, "se": se, "interval": mc.stage_interval(stage)}
+        )
     fronts = []
     for (stage, cols), acc in mc.fronts.items():
         f, x = acc.front()
-        fronts.append({"stage": stage, "objectives": [mc.objectives[c] for c in cols], "size": len(f),
-                       "rows": [list(fr) + list(xr) for fr, xr in zip(f[:FRONT_SHOWN], x[:FRONT_SHOWN])]})
+        fronts.append(
+            {
+                "stage": stage,
+                "objectives": [mc.objectives[c] for c in cols],
+                "size": len(f),
+                "rows": [list(fr) + list(xr) for fr, xr in zip(f[:FRONT_SHOWN], x[:FRONT_SHOWN])],
+            }
+        )
     context = {
-        "a": a, "view": a.view, "mc": mc, "version": __version__, "created": time.strftime("%Y-%m-%d %H:%M:%S"),
-        "stage_rows": stage_rows, "k_folds": K_FOLDS, "fronts": fronts, "front_shown": FRONT_SHOWN, "front_checked": FRONT_CHECKED,
-        "nsga": [{"objectives": f["objectives"], "size": len(f["f"]),
-                  "checks": [c for c in a.front_checks if c.optimum.objective == " × ".join(f["objectives"])]}
-                 for f in a.nsga_fronts],
+        "a": a,
+        "view": a.view,
+        "mc": mc,
+        "version": __version__,
+        "created": time.strftime("%Y-%m-%d %H:%M:%S"),
+        "stage_rows": stage_rows,
+        "k_folds": K_FOLDS,
+        "fronts": fronts,
+        "front_shown": FRONT_SHOWN,
+        "front_checked": FRONT_CHECKED,
+        "nsga": [
+            {
+                "objectives": f["objectives"],
+                "size": len(f["f"]),
+                "checks": [c for c in a.front_checks if c.optimum.objective == " × ".join(f["objectives"])],
+            }
+            for f in a.nsga_fronts
+        ],
         "fits": [{"s": s, "svg": figures.fit_svg(s)} for s in a.surrogates.values()],
         "cdfs": [{"o": o, "svg": figures.cdf_svg(o)} for o in mc.ranked()],
         "matrix": figures.scatter_matrix_svg(mc, mc.objectives) if len(mc.objectives) >= 2 else "",
         "planforms": _planform_figures(a),
-        "failed_rows": a.failed.head(FAILED_SHOWN), "failed_shown": FAILED_SHOWN,
+        "failed_rows": a.failed.head(FAILED_SHOWN),
+        "failed_shown": FAILED_SHOWN,
         "definition": json.dumps(a.view.model_dump(mode="json"), indent=2, default=str),
         "profiler_json": profiler_json(a.profiler),
         "profiler_js": env.loader.get_source(env, "profiler.js")[0],

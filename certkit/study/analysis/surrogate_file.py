@@ -29,27 +29,50 @@ def _validity_doc(validity: Validity | None) -> dict | None:
     if validity is None or validity.estimator is None:
         return None
     features, scaler, logistic = (step for _, step in validity.estimator.steps)
-    return {"lo": validity.bounds[:, 0].tolist(), "hi": validity.bounds[:, 1].tolist(),
-            "powers": features.powers_.tolist(), "mean": scaler.mean_.tolist(), "scale": scaler.scale_.tolist(),
-            "coef": np.ravel(logistic.coef_).tolist(), "intercept": float(np.ravel(logistic.intercept_)[0]),
-            "note": validity.note}
+    return {
+        "lo": validity.bounds[:, 0].tolist(),
+        "hi": validity.bounds[:, 1].tolist(),
+        "powers": features.powers_.tolist(),
+        "mean": scaler.mean_.tolist(),
+        "scale": scaler.scale_.tolist(),
+        "coef": np.ravel(logistic.coef_).tolist(),
+        "intercept": float(np.ravel(logistic.intercept_)[0]),
+        "note": validity.note,
+    }
 
 
-def surrogates_document(study: Study, surrogates: dict[str, Surrogate], validity: Validity | None = None,
-                        sha256: str = "") -> dict:
+def surrogates_document(
+    study: Study, surrogates: dict[str, Surrogate], validity: Validity | None = None, sha256: str = ""
+) -> dict:
     """The file's content: the study's variables, objectives and constraints, every kept model and its fit."""
     responses = {}
     for name, s in surrogates.items():
-        responses[name] = {"model": export_surrogate(s), "label": s.kept.label, "selection": s.selection,
-                           "cv_r2": s.cv.r2, "cv_rmse": s.cv.rmse, "validation_r2": s.validation.r2,
-                           "validation_rmse": s.validation.rmse, "n_training": s.n_training,
-                           "n_validation": s.n_validation, "flagged": s.flagged}
-    return {"format": FORMAT, "version": VERSION, "study": study.name, "sha256": sha256,
-            "variables": [{"path": v.path, "lower": v.lower, "upper": v.upper, "baseline": v.baseline,
-                           "unit_label": v.unit_label} for v in study.variables],
-            "objectives": [o.model_dump() for o in study.objectives],
-            "constraints": [c.model_dump() for c in study.constraints],
-            "responses": responses, "validity": _validity_doc(validity)}
+        responses[name] = {
+            "model": export_surrogate(s),
+            "label": s.kept.label,
+            "selection": s.selection,
+            "cv_r2": s.cv.r2,
+            "cv_rmse": s.cv.rmse,
+            "validation_r2": s.validation.r2,
+            "validation_rmse": s.validation.rmse,
+            "n_training": s.n_training,
+            "n_validation": s.n_validation,
+            "flagged": s.flagged,
+        }
+    return {
+        "format": FORMAT,
+        "version": VERSION,
+        "study": study.name,
+        "sha256": sha256,
+        "variables": [
+            {"path": v.path, "lower": v.lower, "upper": v.upper, "baseline": v.baseline, "unit_label": v.unit_label}
+            for v in study.variables
+        ],
+        "objectives": [o.model_dump() for o in study.objectives],
+        "constraints": [c.model_dump() for c in study.constraints],
+        "responses": responses,
+        "validity": _validity_doc(validity),
+    }
 
 
 def write_surrogates(path: str | Path, document: dict) -> Path:
@@ -82,7 +105,9 @@ def evaluate_model(doc: dict, x: np.ndarray) -> np.ndarray:
         y = h[:, 0] * doc["scale"] + doc["mean"]
     elif kind == "gp":
         d = (u[:, None, :] - np.asarray(doc["x"])[None, :, :]) / np.asarray(doc["length_scale"])
-        y = doc["mean"] + doc["std"] * (np.exp(-0.5 * np.sum(d**2, axis=2)) * doc["constant"]) @ np.asarray(doc["alpha"])
+        y = doc["mean"] + doc["std"] * (np.exp(-0.5 * np.sum(d**2, axis=2)) * doc["constant"]) @ np.asarray(
+            doc["alpha"]
+        )
     else:
         raise ValueError(f"unknown model kind {kind!r}")
     return np.exp(y) if doc["log"] else y
@@ -110,14 +135,16 @@ class SurrogateSet:
         if isinstance(points, list) and points and isinstance(points[0], dict):
             unknown = sorted({k for p in points for k in p} - set(self.variables))
             if unknown:
-                raise UserError(f"not a variable of these surrogates: {', '.join(unknown)} "
-                                f"(variables: {', '.join(self.variables)})")
+                raise UserError(
+                    f"not a variable of these surrogates: {', '.join(unknown)} (variables: {', '.join(self.variables)})"
+                )
             base = {v["path"]: v["baseline"] for v in self.document["variables"]}
             return np.array([[float(p.get(path, base[path])) for path in self.variables] for p in points])
         x = np.atleast_2d(np.asarray(points, dtype=float))
         if x.shape[1] != len(self.variables):
-            raise UserError(f"expected {len(self.variables)} values per design ({', '.join(self.variables)}), "
-                            f"got {x.shape[1]}")
+            raise UserError(
+                f"expected {len(self.variables)} values per design ({', '.join(self.variables)}), got {x.shape[1]}"
+            )
         return x
 
     def predict(self, points, responses: list[str] | None = None) -> dict[str, np.ndarray]:

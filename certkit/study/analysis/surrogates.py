@@ -58,8 +58,11 @@ def to_unit(x: np.ndarray, bounds: np.ndarray) -> np.ndarray:
 
 
 def _log_target(estimator, log: bool):
-    return TransformedTargetRegressor(regressor=estimator, func=np.log, inverse_func=np.exp,
-                                      check_inverse=False) if log else estimator
+    return (
+        TransformedTargetRegressor(regressor=estimator, func=np.log, inverse_func=np.exp, check_inverse=False)
+        if log
+        else estimator
+    )
 
 
 def _polynomial(degree: int) -> object:
@@ -67,8 +70,9 @@ def _polynomial(degree: int) -> object:
 
 
 def _mlp() -> object:
-    net = MLPRegressor(hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=1000,
-                       random_state=0)
+    net = MLPRegressor(
+        hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=1000, random_state=0
+    )
     return TransformedTargetRegressor(regressor=net, transformer=StandardScaler())
 
 
@@ -79,8 +83,7 @@ def _gp_optimizer(obj_func, initial_theta, bounds):
 
 
 def _gp(n_inputs: int) -> object:
-    kernel = (ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3))
-              + WhiteKernel(1e-4, (1e-10, 1e0)))
+    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
     return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=_gp_optimizer, random_state=0)
 
 
@@ -140,8 +143,9 @@ class Fit:
         ss_tot = float(np.sum((actual - actual.mean()) ** 2))
         r2 = 1.0 - ss_res / ss_tot if ss_tot > 0 and np.all(np.isfinite(err)) else None
         finite = np.all(np.isfinite(err))
-        return Fit(n, r2, float(np.sqrt(ss_res / n)) if finite else None,
-                   float(np.max(np.abs(err))) if finite else None)
+        return Fit(
+            n, r2, float(np.sqrt(ss_res / n)) if finite else None, float(np.max(np.abs(err))) if finite else None
+        )
 
 
 @dataclass
@@ -246,10 +250,19 @@ def _rank_key(c: Candidate) -> float:
     return math.inf if c.selection_rmse is None or not math.isfinite(c.selection_rmse) else c.selection_rmse
 
 
-def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train: np.ndarray,
-                 x_val: np.ndarray, y_val: np.ndarray, *, r2_threshold: float = 0.9, gp_max_cases: int = 600,
-                 n_missing: int = 0, families: tuple[str, ...] = ("polynomial", "neural network",
-                                                                   "Gaussian process")) -> Surrogate:
+def fit_response(
+    response: str,
+    bounds: np.ndarray,
+    x_train: np.ndarray,
+    y_train: np.ndarray,
+    x_val: np.ndarray,
+    y_val: np.ndarray,
+    *,
+    r2_threshold: float = 0.9,
+    gp_max_cases: int = 600,
+    n_missing: int = 0,
+    families: tuple[str, ...] = ("polynomial", "neural network", "Gaussian process"),
+) -> Surrogate:
     """Fit every candidate family to one response and keep the best by cross-validation on the training cases;
     the validation cases (those not repeating a training case) only score the kept model."""
     bounds = np.asarray(bounds, dtype=float)
@@ -267,7 +280,7 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
         for degree in range(1, MAX_DEGREE + 1):
             if n_polynomial_terms(n_in, degree) >= len(y_train) / 2:
                 break
-            for log in ((False, True) if positive else (False,)):
+            for log in (False, True) if positive else (False,):
                 label = f"polynomial degree {degree}" + (", log response" if log else "")
                 c = Candidate("polynomial", label, _log_target(_polynomial(degree), log), log, degree)
                 _score(c, u_tr, y_train)
@@ -275,16 +288,19 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
     best_poly = min((c for c in candidates if c.family == "polynomial"), key=_rank_key, default=None)
     log = bool(best_poly.log) if best_poly else False
     if "neural network" in families:
-        c = Candidate("neural network", "MLP 16-16 tanh" + (", log response" if log else ""),
-                      _log_target(_mlp(), log), log)
+        c = Candidate(
+            "neural network", "MLP 16-16 tanh" + (", log response" if log else ""), _log_target(_mlp(), log), log
+        )
         _score(c, u_tr, y_train)
         candidates.append(c)
     if "Gaussian process" in families and gp_max_cases > 0:
         label = "Gaussian process RBF" + (", log response" if log else "")
         note = ""
         if len(y_train) > gp_max_cases:
-            note = (f"fitted on a maximin subsample of {gp_max_cases} of the {len(y_train)} training cases "
-                    f"(of each fold's cases in cross-validation)")
+            note = (
+                f"fitted on a maximin subsample of {gp_max_cases} of the {len(y_train)} training cases "
+                f"(of each fold's cases in cross-validation)"
+            )
             label += f" ({gp_max_cases}-case subsample)"
         c = Candidate("Gaussian process", label, _log_target(SubsampledGP(n_in, gp_max_cases), log), log, note=note)
         _score(c, u_tr, y_train)
@@ -294,17 +310,42 @@ def fit_response(response: str, bounds: np.ndarray, x_train: np.ndarray, y_train
     train_pred = kept.predict_unit(u_tr)
     val_pred = kept.predict_unit(u_val) if len(y_val) else np.empty(0)
     cv = kept.cv
-    return Surrogate(response, bounds, kept, candidates, Fit.of(y_train, train_pred), Fit.of(y_val, val_pred), cv,
-                     selection, r2_threshold, len(y_train), len(y_val), n_missing,
-                     plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)},
-                     n_leaked=int(leak.sum()))
+    return Surrogate(
+        response,
+        bounds,
+        kept,
+        candidates,
+        Fit.of(y_train, train_pred),
+        Fit.of(y_val, val_pred),
+        cv,
+        selection,
+        r2_threshold,
+        len(y_train),
+        len(y_val),
+        n_missing,
+        plot_data={"train": (y_train, train_pred), "validation": (y_val, val_pred)},
+        n_leaked=int(leak.sum()),
+    )
 
 
 def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
     (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
     try:
-        return name, fit_response(name, bounds, x_tr, y_tr, x_val, y_val, r2_threshold=options.r2_threshold,
-                                  gp_max_cases=options.gp_max_cases, n_missing=miss_tr + miss_val), ""
+        return (
+            name,
+            fit_response(
+                name,
+                bounds,
+                x_tr,
+                y_tr,
+                x_val,
+                y_val,
+                r2_threshold=options.r2_threshold,
+                gp_max_cases=options.gp_max_cases,
+                n_missing=miss_tr + miss_val,
+            ),
+            "",
+        )
     except ValueError as exc:
         return name, None, str(exc)
 
@@ -317,7 +358,8 @@ def fit_all(study, cases, log=lambda msg: None) -> tuple[dict[str, Surrogate], d
     data = {n: (cases.xy("training", n), cases.xy("validation", n)) for n in names}
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     done = Parallel(n_jobs=min(cores, len(names)) or 1)(
-        delayed(_fit_one)(n, study.bounds, data[n], study.analysis) for n in names)
+        delayed(_fit_one)(n, study.bounds, data[n], study.analysis) for n in names
+    )
     surrogates, not_fitted = {}, {}
     for name, surrogate, error in done:
         if surrogate is None:

@@ -68,8 +68,11 @@ def infeasible_mask(frame: pd.DataFrame) -> np.ndarray:
 
 
 def _classifier(degree: int, folds: int):
-    return make_pipeline(PolynomialFeatures(degree, include_bias=False), StandardScaler(),
-                         LogisticRegressionCV(Cs=np.logspace(-1, 4, 6), cv=folds, max_iter=2000, scoring="neg_log_loss"))
+    return make_pipeline(
+        PolynomialFeatures(degree, include_bias=False),
+        StandardScaler(),
+        LogisticRegressionCV(Cs=np.logspace(-1, 4, 6), cv=folds, max_iter=2000, scoring="neg_log_loss"),
+    )
 
 
 def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
@@ -80,9 +83,12 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
     y = infeasible_mask(done).astype(int)
     n_bad = int(y.sum())
     if n_bad < MIN_INFEASIBLE or n_bad == len(y):
-        note = ("no impossible design among the cases: nothing masked" if n_bad == 0 else
-                f"{n_bad} impossible design{'s' if n_bad != 1 else ''} among {len(y)} cases, too few to learn a "
-                f"boundary from: nothing masked")
+        note = (
+            "no impossible design among the cases: nothing masked"
+            if n_bad == 0
+            else f"{n_bad} impossible design{'s' if n_bad != 1 else ''} among {len(y)} cases, too few to learn a "
+            f"boundary from: nothing masked"
+        )
         return Validity(bounds, None, len(y), n_bad, note=note)
     u = to_unit(x, bounds)
     folds = min(5, n_bad)
@@ -93,15 +99,18 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
         for degree in DEGREES:
             if math.comb(u.shape[1] + degree, degree) > len(y) / 2:
                 break
-            predicted = cross_val_predict(_classifier(degree, folds), u, y,
-                                          cv=StratifiedKFold(folds, shuffle=True, random_state=0))
+            predicted = cross_val_predict(
+                _classifier(degree, folds), u, y, cv=StratifiedKFold(folds, shuffle=True, random_state=0)
+            )
             errors = int(np.sum(predicted != y))
             if best is None or errors < best[1]:
                 best = (degree, errors, predicted)
         degree, _, predicted = best
         estimator = _classifier(degree, folds).fit(u, y)
     missed, alarms = int(np.sum((y == 1) & (predicted == 0))), int(np.sum((y == 0) & (predicted == 1)))
-    note = (f"logistic regression on a degree-{degree} polynomial of the variables (degree by cross-validation), "
-            f"learnt from {n_bad} impossible designs among {len(y)} cases; {folds}-fold cross-validation: {missed} "
-            f"impossible taken as possible, {alarms} possible taken as impossible")
+    note = (
+        f"logistic regression on a degree-{degree} polynomial of the variables (degree by cross-validation), "
+        f"learnt from {n_bad} impossible designs among {len(y)} cases; {folds}-fold cross-validation: {missed} "
+        f"impossible taken as possible, {alarms} possible taken as impossible"
+    )
     return Validity(bounds, estimator, len(y), n_bad, missed, alarms, note)

@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import math
 
+from certkit_rules.part25.support.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
+
 from certkit.engine.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
 from certkit.engine.registry import Criterion, Rule, rule
-from certkit_rules.part25.support.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
 from certkit.engine.results import NOT_EVALUATED, Finding
 from certkit.units import KN
 
 AMDT = "25-121"
+
 
 def _weights(ctx, configuration: str) -> list[tuple[str, float, float]]:
     """(loading name, kg, forward CG) at which ``configuration`` is used."""
@@ -51,11 +53,15 @@ class StallSpeed(Rule):
     references = ("25.107", "25.121", "25.125", "25.143", "25.145")
     requires = ("mass.MTOW",)
     criteria = {
-        "load_factor": Criterion(1.0, "", "14 CFR 25.103(a)", "normal load factor nZW at which the 1-g stall speed is taken"),
+        "load_factor": Criterion(
+            1.0, "", "14 CFR 25.103(a)", "normal load factor nZW at which the 1-g stall speed is taken"
+        ),
     }
-    conditions = ConditionSpace(configurations=("clean", "takeoff", "approach", "landing"),
-                                note="Weights per configuration: MTOW for takeoff, MLW for approach and landing, "
-                                     "every envelope weight for clean; forward CG (declared CLmax is the trimmed value).")
+    conditions = ConditionSpace(
+        configurations=("clean", "takeoff", "approach", "landing"),
+        note="Weights per configuration: MTOW for takeoff, MLW for approach and landing, "
+        "every envelope weight for clean; forward CG (declared CLmax is the trimmed value).",
+    )
     limitations = """
         CLmax is the declared trimmed 1-g value (taken at the forward CG); the (c) deceleration manoeuvre,
         the nZW correction and the stick-pusher margin (d) are not simulated.
@@ -63,10 +69,16 @@ class StallSpeed(Rule):
 
     implementation = "partial"
     unevaluated = (
-        ("25.103(c)", "the 1-g stall manoeuvre (trim at 1.13–1.3 VSR, deceleration ≤ 1 kt/s, nZW-corrected CL first "
-                      "maximum) is not simulated: the declared trimmed CLmax stands for it"),
-        ("25.103(d)", "stick-pusher margin (VSR ≥ the pusher speed + 2 kt or 2 %) not evaluated: no pusher speed in "
-                      "the aircraft file"),
+        (
+            "25.103(c)",
+            "the 1-g stall manoeuvre (trim at 1.13–1.3 VSR, deceleration ≤ 1 kt/s, nZW-corrected CL first "
+            "maximum) is not simulated: the declared trimmed CLmax stands for it",
+        ),
+        (
+            "25.103(d)",
+            "stick-pusher margin (VSR ≥ the pusher speed + 2 kt or 2 %) not evaluated: no pusher speed in "
+            "the aircraft file",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -82,20 +94,41 @@ class StallSpeed(Rule):
                 v_1g = computed_stall_speed(ctx, cfg, mass) * math.sqrt(crit.load_factor)
                 here = cond.with_(loading=name, mass=mass, x_cg=x_cg, altitude=0.0)
                 if declared is None:
-                    out.append(Finding(
-                        here.with_(speed=v_1g, speed_kind="CAS", speed_name="VSR"), check, NOT_EVALUATED, value=v_1g,
-                        unit="m/s", reason=f"no declared speeds.VSR.{cfg} to compare with the 1-g stall speed "
-                                           f"({v_1g / KN:.1f} kn CAS from CLmax {ctx.clmax(cfg):g}); the other rules "
-                                           "use that computed speed as VSR", details={"CLmax": ctx.clmax(cfg)}))
+                    out.append(
+                        Finding(
+                            here.with_(speed=v_1g, speed_kind="CAS", speed_name="VSR"),
+                            check,
+                            NOT_EVALUATED,
+                            value=v_1g,
+                            unit="m/s",
+                            reason=f"no declared speeds.VSR.{cfg} to compare with the 1-g stall speed "
+                            f"({v_1g / KN:.1f} kn CAS from CLmax {ctx.clmax(cfg):g}); the other rules "
+                            "use that computed speed as VSR",
+                            details={"CLmax": ctx.clmax(cfg)},
+                        )
+                    )
                     continue
                 vsr, source = reference_stall_speed(ctx, cfg, mass)
-                out.append(Finding.compare(here.with_(speed=vsr, speed_kind="CAS", speed_name="VSR"), check, vsr, v_1g,
-                                           at_least=True, unit="m/s", CLmax=ctx.clmax(cfg), VSR_source=source))
+                out.append(
+                    Finding.compare(
+                        here.with_(speed=vsr, speed_kind="CAS", speed_name="VSR"),
+                        check,
+                        vsr,
+                        v_1g,
+                        at_least=True,
+                        unit="m/s",
+                        CLmax=ctx.clmax(cfg),
+                        VSR_source=source,
+                    )
+                )
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import margins_evidence
 
-        return margins_evidence(findings, "§25.103 reference stall speeds",
-                                "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",
-                                ("CLmax",))
+        return margins_evidence(
+            findings,
+            "§25.103 reference stall speeds",
+            "VSR of each configuration and weight against the 1-g stall speed from the declared CLmax.",
+            ("CLmax",),
+        )

@@ -10,12 +10,11 @@ recognition interval after the critical engine's failure); the VMU part is ``not
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
-from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check
-from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
@@ -44,20 +43,38 @@ class TakeoffSpeeds(Rule):
     references = ("25.103", "25.111", "25.121(b)", "25.143(h)", "25.149")
     requires = ("speeds.V2", "configurations.takeoff")
     criteria = {
-        "v2_over_vsr": Criterion(1.13, "", "14 CFR 25.107(b)(1)(ii)",
-                                 "V2MIN/VSR, turbojet without power-on stall-speed reduction provisions "
-                                 "(1.08 under (b)(2)(ii): override with the justification)"),
+        "v2_over_vsr": Criterion(
+            1.13,
+            "",
+            "14 CFR 25.107(b)(1)(ii)",
+            "V2MIN/VSR, turbojet without power-on stall-speed reduction provisions "
+            "(1.08 under (b)(2)(ii): override with the justification)",
+        ),
         "v2_over_vmc": Criterion(1.10, "", "14 CFR 25.107(b)(3)", "V2MIN/VMC"),
         "vr_over_v1": Criterion(1.0, "", "14 CFR 25.107(e)(1)(i)", "VR may not be less than V1"),
         "vr_over_vmc": Criterion(1.05, "", "14 CFR 25.107(e)(1)(ii)", "VR/VMC"),
-        "v1_over_vmcg": Criterion(1.0, "", "14 CFR 25.107(a)(1)-(2)",
-                                  "VEF/VMCG, VEF ≥ VMCG (VEF from V1 less the recognition interval's speed gain)"),
-        "vfto_over_vsr": Criterion(1.18, "", "14 CFR 25.107(g)(1)", "VFTO/VSR, VSR of the en-route (clean) configuration"),
-        "vlof_over_vmu": Criterion(1.10, "", "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, "
-                                   "docs/regulation-notes.md)", "VLOF/VMU, all engines operating"),
+        "v1_over_vmcg": Criterion(
+            1.0,
+            "",
+            "14 CFR 25.107(a)(1)-(2)",
+            "VEF/VMCG, VEF ≥ VMCG (VEF from V1 less the recognition interval's speed gain)",
+        ),
+        "vfto_over_vsr": Criterion(
+            1.18, "", "14 CFR 25.107(g)(1)", "VFTO/VSR, VSR of the en-route (clean) configuration"
+        ),
+        "vlof_over_vmu": Criterion(
+            1.10,
+            "",
+            "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, docs/regulation-notes.md)",
+            "VLOF/VMU, all engines operating",
+        ),
     }
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", ("reference",)), configurations=(TAKEOFF,), altitudes=None,
-                                note="VSR from the declared trimmed CLmax is not CG-sensitive here, so the reference CG.")
+    conditions = ConditionSpace(
+        loading=DesignWeight("MTOW", ("reference",)),
+        configurations=(TAKEOFF,),
+        altitudes=None,
+        note="VSR from the declared trimmed CLmax is not CG-sensitive here, so the reference CG.",
+    )
     limitations = """
         V2 ≥ VR + the increment to 35 ft (c)(2), VR giving V2 by 35 ft (e)(1)(iii) and the VR − 5 kt abuse case
         (e)(3) need the takeoff-path simulation of §25.111 and are not evaluated; the OEI VLOF ≥ 1.05 VMU part of
@@ -68,10 +85,16 @@ class TakeoffSpeeds(Rule):
     unevaluated = (
         ("25.107(c)(2)", "V2 ≥ VR + the speed increment to 35 ft needs the §25.111(c)(2) takeoff path: not evaluated"),
         ("25.107(e)(1)(iii)", "VR allowing V2 to be reached by 35 ft (§25.111(c)(2)) not evaluated"),
-        ("25.107(e)(1)(iv)", "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
-                             "(one VLOF is declared)"),
+        (
+            "25.107(e)(1)(iv)",
+            "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
+            "(one VLOF is declared)",
+        ),
         ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
-        ("25.107(g)(2)", "the §25.143(h) manoeuvring capability at VFTO is not judged here (§25.143(h) flies its turns)"),
+        (
+            "25.107(g)(2)",
+            "the §25.143(h) manoeuvring capability at VFTO is not judged here (§25.143(h) flies its turns)",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -90,13 +113,22 @@ class TakeoffSpeeds(Rule):
                 vmc_basis = "VMCA computed by §25.149 (no VMC declared)"
             out += [
                 ratio_check(cond, "(b)(1), (c)(1) V2 ≥ 1.13 VSR", speeds, "V2", "VSR", crit.v2_over_vsr, basis=source),
-                ratio_check(cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc, basis=vmc_basis),
+                ratio_check(
+                    cond, "(b)(3), (c)(1) V2 ≥ 1.10 VMC", speeds, "V2", "VMC", crit.v2_over_vmc, basis=vmc_basis
+                ),
                 ratio_check(cond, "(e)(1)(i) VR ≥ V1", speeds, "VR", "V1", crit.vr_over_v1),
                 ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc, basis=vmc_basis),
                 self._vef_check(ctx, cond, speeds, crit),
                 ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
-                ratio_check(cond.with_(configuration="clean"), "(g)(1) VFTO ≥ 1.18 VSR (en route)", speeds, "VFTO",
-                            "VSR clean", crit.vfto_over_vsr, basis=clean_source),
+                ratio_check(
+                    cond.with_(configuration="clean"),
+                    "(g)(1) VFTO ≥ 1.18 VSR (en route)",
+                    speeds,
+                    "VFTO",
+                    "VSR clean",
+                    crit.vfto_over_vsr,
+                    basis=clean_source,
+                ),
             ]
         return out
 
@@ -121,15 +153,26 @@ class TakeoffSpeeds(Rule):
             return Finding.not_evaluated(cond, check, vef_basis)
         speeds["VEF"] = vef
         if not np.isfinite(speeds["VMCG"]):
-            return Finding.compare(cond.with_(speed=vef, speed_kind="CAS", speed_name="VEF"), check, 0.0, 1.0,
-                                   at_least=True, unit="ratio", VEF=vef, basis=basis, vef_basis=vef_basis,
-                                   reason="§25.149(e) finds no VMCG on the runway (below VR)")
-        return ratio_check(cond, check, speeds, "VEF", "VMCG", crit.v1_over_vmcg,
-                           basis=f"{basis}; VEF: {vef_basis}")
+            return Finding.compare(
+                cond.with_(speed=vef, speed_kind="CAS", speed_name="VEF"),
+                check,
+                0.0,
+                1.0,
+                at_least=True,
+                unit="ratio",
+                VEF=vef,
+                basis=basis,
+                vef_basis=vef_basis,
+                reason="§25.149(e) finds no VMCG on the runway (below VR)",
+            )
+        return ratio_check(cond, check, speeds, "VEF", "VMCG", crit.v1_over_vmcg, basis=f"{basis}; VEF: {vef_basis}")
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import margins_evidence
 
-        return margins_evidence(findings, "§25.107 takeoff speed ratios",
-                                "Declared takeoff speeds as ratios against their §25.107 factors.",
-                                ("V1", "VR", "V2", "VSR", "VMC", "VMCG", "VLOF", "VMU"))
+        return margins_evidence(
+            findings,
+            "§25.107 takeoff speed ratios",
+            "Declared takeoff speeds as ratios against their §25.107 factors.",
+            ("V1", "VR", "V2", "VSR", "VMC", "VMCG", "VLOF", "VMU"),
+        )

@@ -45,14 +45,22 @@ not evaluated, with the reason.
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.reference_speeds import declared_cas
+from certkit_rules.part25.support.takeoff import (
+    PROCEDURE_CRITERIA,
+    REPRESENTATIVE_CRITERIA,
+    TAKEOFF_REQUIRES,
+    distances,
+    run_summary,
+    simulated_takeoffs,
+    takeoff_conditions,
+    unrepresentative,
+)
 
 from certkit.atmosphere import convert_speed
-from certkit_rules.part25.support.reference_speeds import declared_cas
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.support.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
-                                          run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 SOURCE = "14 CFR 25.111 (text from memory, not in docs/regulation-notes.md: unverified)"
 
@@ -68,8 +76,15 @@ def _design_margin(values_deg, lo_deg, hi_deg):
 class TakeoffPath(Rule):
     id = "25.111"
     #: the extreme elevator and rudder of the engine-out takeoff (``control.25.111.takeoff_oei_vef.<control>``)
-    offers = (ControlResponses((ControlCase("takeoff OEI VEF", "(a) ", ("elevator", "rudder"),
-                                            ("{control}_min_deg", "{control}_max_deg")),)),)
+    offers = (
+        ControlResponses(
+            (
+                ControlCase(
+                    "takeoff OEI VEF", "(a) ", ("elevator", "rudder"), ("{control}_min_deg", "{control}_max_deg")
+                ),
+            )
+        ),
+    )
     cost = 4  # relative evaluation time (orders work over --jobs processes)
     symbol = "takeoff-path"
     title = "Takeoff path with the critical engine failed at VEF (simulated to 35 ft and a climb-out)"
@@ -112,7 +127,9 @@ class TakeoffPath(Rule):
     requires = TAKEOFF_REQUIRES
     criteria = {
         **PROCEDURE_CRITERIA,
-        "gradient_min": Criterion(0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"),
+        "gradient_min": Criterion(
+            0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"
+        ),
         **REPRESENTATIVE_CRITERIA,
     }
     conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
@@ -141,70 +158,123 @@ class TakeoffPath(Rule):
         for i, cond in enumerate(conditions):
             c0 = cond.with_(altitude=0.0, thrust="takeoff", inoperative=engine)
             tr = trims.results[i]
-            checks = ("(a) elevator within its design limits, engine failed at VEF",
-                      "(a) rudder within its design limits, engine failed at VEF",
-                      "(c)(1) airborne path slope positive", f"(c)(2) speed at {crit.screen_height:.0f} ft at least V2")
+            checks = (
+                "(a) elevator within its design limits, engine failed at VEF",
+                "(a) rudder within its design limits, engine failed at VEF",
+                "(c)(1) airborne path slope positive",
+                f"(c)(2) speed at {crit.screen_height:.0f} ft at least V2",
+            )
             if not tr.converged:
-                out += [Finding.not_evaluated(c0, ch, f"no 1-g trim at V2 for the target attitude: {tr.summary()}")
-                        for ch in checks]
+                out += [
+                    Finding.not_evaluated(c0, ch, f"no 1-g trim at V2 for the target attitude: {tr.summary()}")
+                    for ch in checks
+                ]
                 continue
             if not run.reached[i]:
-                out += [Finding.not_evaluated(c0, ch, f"the simulated engine-out takeoff did not reach {crit.screen_height:.0f} ft "
-                                              f"within the run (stop: {sim.stop_reason[i] or 'time limit'})") for ch in checks]
+                out += [
+                    Finding.not_evaluated(
+                        c0,
+                        ch,
+                        f"the simulated engine-out takeoff did not reach {crit.screen_height:.0f} ft "
+                        f"within the run (stop: {sim.stop_reason[i] or 'time limit'})",
+                    )
+                    for ch in checks
+                ]
                 continue
             k_end = min(int(np.searchsorted(sim.t, sim.stop_time[i] - 1e-9)), sim.t.size - 1)
             k_scr = int(run.screen_index[i])
-            ground = run.wheel_height[:k_end + 1, i] <= 0.0
+            ground = run.wheel_height[: k_end + 1, i] <= 0.0
             k_fail = int(np.argmax(sim["V"][:, i] >= vef[i]))
             t_rec = sim.t[k_fail] + crit.recognition_time
-            v_rec = float(np.interp(t_rec, sim.t[:k_end + 1], sim["V"][:k_end + 1, i]))
-            y = sim["y_E"][:k_end + 1, i] - sim["y_E"][0, i]
+            v_rec = float(np.interp(t_rec, sim.t[: k_end + 1], sim["V"][: k_end + 1, i]))
+            y = sim["y_E"][: k_end + 1, i] - sim["y_E"][0, i]
             k_lof = int(np.argmax(~ground)) if (~ground).any() else k_end
             a = n + i  # the all-engines twin
             details = dict(
-                critical_engine=engine, vef_basis=to.vef_basis, vef_kn=round(cas(vef[i]), 2), v1_kn=v1_kn,
-                v_recognition_kn=round(cas(v_rec), 2), **run_summary(to, i, vr_kn, v2_kn),
-                liftoff_distance_ft=round(run.x_lof[i] / FT, 0), distance_to_35ft_ft=round(run.x_screen[i] / FT, 0),
+                critical_engine=engine,
+                vef_basis=to.vef_basis,
+                vef_kn=round(cas(vef[i]), 2),
+                v1_kn=v1_kn,
+                v_recognition_kn=round(cas(v_rec), 2),
+                **run_summary(to, i, vr_kn, v2_kn),
+                liftoff_distance_ft=round(run.x_lof[i] / FT, 0),
+                distance_to_35ft_ft=round(run.x_screen[i] / FT, 0),
                 **distances(to, i, n),
                 time_to_35ft_s=round(float(run.t_screen[i]), 2),
                 initial_acceleration_m_s2=round(float(run.initial_acceleration[i]), 4),
-                target_pitch_deg=round(float(np.degrees(to.theta_target[i])), 2), rotation_basis=to.basis["rotation"],
-                tail_strike_basis=to.basis["tail_strike"], spool_down_basis=to.basis["spool_down"],
+                target_pitch_deg=round(float(np.degrees(to.theta_target[i])), 2),
+                rotation_basis=to.basis["rotation"],
+                tail_strike_basis=to.basis["tail_strike"],
+                spool_down_basis=to.basis["spool_down"],
                 pilot_basis=to.basis["pilot"],
-                max_heading_deviation_deg=round(float(np.degrees(np.abs(sim["psi"][:k_end + 1, i]).max())), 2),
+                max_heading_deviation_deg=round(float(np.degrees(np.abs(sim["psi"][: k_end + 1, i]).max())), 2),
                 lateral_deviation_at_liftoff_ft=round(float(y[k_lof] / FT), 1),
                 lateral_deviation_at_35ft_ft=round(float(y[k_scr] / FT), 1),
-                max_bank_deg=round(float(np.degrees(np.abs(sim["phi"][:k_end + 1, i]).max())), 2),
+                max_bank_deg=round(float(np.degrees(np.abs(sim["phi"][: k_end + 1, i]).max())), 2),
                 mean_gradient_after_35ft_pct=round(float(run.climb_gradient[i]) * 100, 3),
                 all_engines_vlof_kn=round(cas(run.v_lof[a]), 2),
                 all_engines_v35_kn=round(cas(run.v_screen[a]), 2) if run.reached[a] else None,
-                all_engines_elevator_min_deg=round(float(np.degrees(run.elevator_min[a])), 2))
+                all_engines_elevator_min_deg=round(float(np.degrees(run.elevator_min[a])), 2),
+            )
             c35 = c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS", speed_name="V35")
             why = unrepresentative(details, crit, vlof_declared, tail_strike_deg=to.basis["tail_strike_deg"])
             if why:
-                out += [Finding.not_evaluated(c35, ch, "the simulated takeoff does not represent one a pilot flies: "
-                                              + "; ".join(why), **details) for ch in checks]
+                out += [
+                    Finding.not_evaluated(
+                        c35,
+                        ch,
+                        "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why),
+                        **details,
+                    )
+                    for ch in checks
+                ]
                 continue
             for name, j, check in (("elevator", je, checks[0]), ("rudder", jr, checks[1])):
-                defl = np.degrees(sim.controls[:k_end + 1, i, j])
+                defl = np.degrees(sim.controls[: k_end + 1, i, j])
                 value, limit, at_least = _design_margin(defl, *design[name])
                 air = ~ground & (np.arange(k_end + 1) >= k_lof)
-                out.append(Finding.compare(
-                    c35, check, value, limit, at_least=at_least, unit="deg",
-                    **{f"{name}_min_deg": round(float(defl.min()), 2), f"{name}_max_deg": round(float(defl.max()), 2),
-                       f"{name}_extreme_on_ground_deg": round(float(defl[ground][np.argmax(np.abs(defl[ground]))]), 2),
-                       f"{name}_extreme_airborne_deg": round(float(defl[air][np.argmax(np.abs(defl[air]))]), 2)
-                       if air.any() else None,
-                       f"{name}_design_limits_deg": [round(float(d), 2) for d in design[name]]}, **details))
+                out.append(
+                    Finding.compare(
+                        c35,
+                        check,
+                        value,
+                        limit,
+                        at_least=at_least,
+                        unit="deg",
+                        **{
+                            f"{name}_min_deg": round(float(defl.min()), 2),
+                            f"{name}_max_deg": round(float(defl.max()), 2),
+                            f"{name}_extreme_on_ground_deg": round(
+                                float(defl[ground][np.argmax(np.abs(defl[ground]))]), 2
+                            ),
+                            f"{name}_extreme_airborne_deg": round(float(defl[air][np.argmax(np.abs(defl[air]))]), 2)
+                            if air.any()
+                            else None,
+                            f"{name}_design_limits_deg": [round(float(d), 2) for d in design[name]],
+                        },
+                        **details,
+                    )
+                )
             grad = run.gradient[k_scr:k_end, i]
             grad = grad[np.isfinite(grad)]
             if grad.size == 0:
-                out.append(Finding.not_evaluated(c35, checks[2], "no airborne record after the screen height "
-                                                 "(climb_out_s too short for the record interval)", **details))
+                out.append(
+                    Finding.not_evaluated(
+                        c35,
+                        checks[2],
+                        "no airborne record after the screen height (climb_out_s too short for the record interval)",
+                        **details,
+                    )
+                )
             else:
-                out.append(Finding.compare(c35, checks[2], float(grad.min()) * 100, crit.gradient_min, at_least=True,
-                                           unit="%", **details))
-            out.append(Finding.compare(c35, checks[3], cas(run.v_screen[i]), v2_kn, at_least=True, unit="kn", **details))
+                out.append(
+                    Finding.compare(
+                        c35, checks[2], float(grad.min()) * 100, crit.gradient_min, at_least=True, unit="%", **details
+                    )
+                )
+            out.append(
+                Finding.compare(c35, checks[3], cas(run.v_screen[i]), v2_kn, at_least=True, unit="kn", **details)
+            )
         return out
 
     def evidence(self, ctx, findings, crit):

@@ -19,13 +19,21 @@ the runway) earns no verdict.
 from __future__ import annotations
 
 import numpy as np
-
 from certkit_rules.part25.support.reference_speeds import declared_cas
+from certkit_rules.part25.support.takeoff import (
+    PROCEDURE_CRITERIA,
+    REPRESENTATIVE_CRITERIA,
+    TAKEOFF_REQUIRES,
+    distances,
+    run_summary,
+    simulated_takeoffs,
+    takeoff_conditions,
+    unrepresentative,
+)
+
 from certkit.engine.registry import Rule, rule
 from certkit.engine.results import Finding
 from certkit.units import FT, KN
-from certkit_rules.part25.support.takeoff import (PROCEDURE_CRITERIA, REPRESENTATIVE_CRITERIA, TAKEOFF_REQUIRES, distances,
-                                          run_summary, simulated_takeoffs, takeoff_conditions, unrepresentative)
 
 
 @rule
@@ -71,33 +79,84 @@ class TakeoffDistance(Rule):
         out = []
         for i, cond in enumerate(conditions):
             c0 = cond.with_(altitude=0.0, thrust="takeoff")
-            details = {**distances(to, i, n), "engine_out": run_summary(to, i, vr_kn, v2_kn),
-                       "all_engines": run_summary(to, n + i, vr_kn, v2_kn), "critical_engine": to.engine,
-                       "rotation_basis": to.basis["rotation"], "spool_down_basis": to.basis["spool_down"]}
+            details = {
+                **distances(to, i, n),
+                "engine_out": run_summary(to, i, vr_kn, v2_kn),
+                "all_engines": run_summary(to, n + i, vr_kn, v2_kn),
+                "critical_engine": to.engine,
+                "rotation_basis": to.basis["rotation"],
+                "spool_down_basis": to.basis["spool_down"],
+            }
             if details["takeoff_distance_ft"] is None:
                 run_ft = details["engine_out_run_length_ft"]
                 if field is not None and to.run.reached[n + i] and run_ft > float(field) / FT:
                     # the engine-out takeoff had not reached 35 ft when it had rolled past the field length
-                    out.append(Finding.compare(c0, check, run_ft, round(float(field) / FT, 0), at_least=False,
-                                               unit="ft", reason=f"the engine-out takeoff had not reached "
-                                               f"{crit.screen_height:.0f} ft after {run_ft:,.0f} ft (a lower bound of "
-                                               "its distance)", **details))
+                    out.append(
+                        Finding.compare(
+                            c0,
+                            check,
+                            run_ft,
+                            round(float(field) / FT, 0),
+                            at_least=False,
+                            unit="ft",
+                            reason=f"the engine-out takeoff had not reached "
+                            f"{crit.screen_height:.0f} ft after {run_ft:,.0f} ft (a lower bound of "
+                            "its distance)",
+                            **details,
+                        )
+                    )
                 else:
-                    out.append(Finding.not_evaluated(c0, check, "a simulated takeoff did not reach "
-                                                     f"{crit.screen_height:.0f} ft within the run", **details))
+                    out.append(
+                        Finding.not_evaluated(
+                            c0,
+                            check,
+                            f"a simulated takeoff did not reach {crit.screen_height:.0f} ft within the run",
+                            **details,
+                        )
+                    )
                 continue
-            why = [f"engine out: {w}" for w in unrepresentative(details["engine_out"], crit, vlof,
-                                                                   tail_strike_deg=to.basis["tail_strike_deg"])]
-            why += [f"all engines: {w}" for w in unrepresentative(details["all_engines"], crit, vlof, engine_out=False,
-                                                                     tail_strike_deg=to.basis["tail_strike_deg"])]
+            why = [
+                f"engine out: {w}"
+                for w in unrepresentative(
+                    details["engine_out"], crit, vlof, tail_strike_deg=to.basis["tail_strike_deg"]
+                )
+            ]
+            why += [
+                f"all engines: {w}"
+                for w in unrepresentative(
+                    details["all_engines"], crit, vlof, engine_out=False, tail_strike_deg=to.basis["tail_strike_deg"]
+                )
+            ]
             if why:
-                out.append(Finding.not_evaluated(c0, check, "the simulated takeoff does not represent one a pilot "
-                                                 "flies: " + "; ".join(why), **details))
+                out.append(
+                    Finding.not_evaluated(
+                        c0,
+                        check,
+                        "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why),
+                        **details,
+                    )
+                )
             elif field is None:
-                out.append(Finding.not_evaluated(c0, check, "no performance.takeoff_field_length declared: takeoff "
-                                                 f"distance {details['takeoff_distance_ft']:,.0f} ft reported, not "
-                                                 "checked", **details))
+                out.append(
+                    Finding.not_evaluated(
+                        c0,
+                        check,
+                        "no performance.takeoff_field_length declared: takeoff "
+                        f"distance {details['takeoff_distance_ft']:,.0f} ft reported, not "
+                        "checked",
+                        **details,
+                    )
+                )
             else:
-                out.append(Finding.compare(c0, check, float(np.float64(details["takeoff_distance_ft"])),
-                                           round(float(field) / FT, 0), at_least=False, unit="ft", **details))
+                out.append(
+                    Finding.compare(
+                        c0,
+                        check,
+                        float(np.float64(details["takeoff_distance_ft"])),
+                        round(float(field) / FT, 0),
+                        at_least=False,
+                        unit="ft",
+                        **details,
+                    )
+                )
         return out

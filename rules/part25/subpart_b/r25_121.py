@@ -39,18 +39,18 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
+from certkit_rules.part25.support.climb_checks import CGS
+from certkit_rules.part25.support.control_checks import control_findings, trim_details
+from certkit_rules.part25.support.reference_speeds import declared_cas, reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
 from certkit.models.flight import control_limits
 from certkit.models.performance.wat import Ambient, envelope_corners
-from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
-from certkit.engine.results import Finding
-from certkit_rules.part25.support.reference_speeds import declared_cas, reference_stall_speed
-from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
 from certkit.units import FT, LB
-from certkit_rules.part25.support.climb_checks import CGS
-from certkit_rules.part25.support.control_checks import control_findings, trim_details
 
 AMDT = "25-140"  # the last amendment in the section's bracket [CFR 1-1-24 p. 217]
 #: a WAT limit weight is reported when a trim there gives the minimum gradient within this (about 0.5 % in weight)
@@ -65,37 +65,68 @@ def engine_count_criterion(ctx, crit, stem: str) -> tuple[float, int]:
 
 def gradient_criteria(paragraph: str, two: float, three: float, four: float) -> dict[str, Criterion]:
     src = f"14 CFR 25.121({paragraph})"
-    return {f"gradient_{k}": Criterion(v, "", src, f"minimum steady climb gradient, {k}-engine airplanes")
-            for k, v in (("two", two), ("three", three), ("four", four))}
+    return {
+        f"gradient_{k}": Criterion(v, "", src, f"minimum steady climb gradient, {k}-engine airplanes")
+        for k, v in (("two", two), ("three", three), ("four", four))
+    }
 
 
-def climb_findings(ctx, conds, check: str, required: float, n_engines: int, *, thrust_fraction=1.0, drag_credit=None,
-                   notes: str = "") -> list[Finding]:
+def climb_findings(
+    ctx, conds, check: str, required: float, n_engines: int, *, thrust_fraction=1.0, drag_credit=None, notes: str = ""
+) -> list[Finding]:
     grads, batch, info = oei_climb(ctx, conds, thrust_fraction, drag_credit)
     limits = control_limits(ctx.aircraft)
     out = []
     for i, cond in enumerate(conds):
         r = batch.results[i]
-        here = cond.with_(thrust=f"critical engine ({info['inoperative']}) inoperative, "
-                                 f"{'maximum continuous' if thrust_fraction < 1 else 'takeoff'} thrust on the others")
+        here = cond.with_(
+            thrust=f"critical engine ({info['inoperative']}) inoperative, "
+            f"{'maximum continuous' if thrust_fraction < 1 else 'takeoff'} thrust on the others"
+        )
         if not r.converged:
-            out.append(Finding.not_evaluated(here, check, f"one-engine-inoperative trim did not converge "
-                                                          f"(residual {r.residual_norm:.1e}); "
-                                             + "; ".join(m.message for m in r.limits_exceeded)))
+            out.append(
+                Finding.not_evaluated(
+                    here,
+                    check,
+                    f"one-engine-inoperative trim did not converge "
+                    f"(residual {r.residual_norm:.1e}); " + "; ".join(m.message for m in r.limits_exceeded),
+                )
+            )
             continue
-        details = dict(trim_details(r), thrust_available_N=float(info["available"][i]),
-                       thrust_at_trim_N=float(info["needed"][i]), gear_drag_credit_N=float(info["credit"][i]),
-                       gradient_residual=float(info["residual"][i]), engines=n_engines,
-                       thrust_model=info["thrust_source"], method="trim at the thrust, flight-path angle solved")
-        out.append(Finding.compare(here, check, float(grads[i]), required, at_least=True,
-                                   unit="gradient", reason=notes, **details))
+        details = dict(
+            trim_details(r),
+            thrust_available_N=float(info["available"][i]),
+            thrust_at_trim_N=float(info["needed"][i]),
+            gear_drag_credit_N=float(info["credit"][i]),
+            gradient_residual=float(info["residual"][i]),
+            engines=n_engines,
+            thrust_model=info["thrust_source"],
+            method="trim at the thrust, flight-path angle solved",
+        )
+        out.append(
+            Finding.compare(
+                here, check, float(grads[i]), required, at_least=True, unit="gradient", reason=notes, **details
+            )
+        )
         out += control_findings(here, check.split(" ")[0], r, limits)
     return out
 
 
-def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_at, *, altitude_offset: float = 0.0,
-                 thrust_fraction=1.0, drag_credit: float = 0.0, notes: str = "", iterations: int = 5,
-                 declared: str = "takeoff_weight") -> list[Finding]:
+def wat_findings(
+    ctx,
+    conds,
+    check: str,
+    required: float,
+    n_engines: int,
+    speed_at,
+    *,
+    altitude_offset: float = 0.0,
+    thrust_fraction=1.0,
+    drag_credit: float = 0.0,
+    notes: str = "",
+    iterations: int = 5,
+    declared: str = "takeoff_weight",
+) -> list[Finding]:
     """The paragraph at every corner of the declared takeoff and landing envelope (none without one), at the
     conditions' weight and CGs; ``speed_at(condition, mass)`` gives the CAS flown at another weight, and the climb is
     ``altitude_offset`` above the airport (the ISA deviation kept). A corner whose lowest gradient is below the minimum
@@ -106,8 +137,11 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
     if env is None:
         return []
     corners = [a for a in envelope_corners(env) if a.pressure_altitude != 0.0 or abs(a.delta_isa) > 1e-9]
-    grid = [c.with_(altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3), airport=a.label())
-            for a in corners for c in conds]
+    grid = [
+        c.with_(altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3), airport=a.label())
+        for a in corners
+        for c in conds
+    ]
     full = full_thrust(ctx, grid)[3]
     first: dict[tuple, int] = {}  # the corner nearest the standard day stands for those it equals
     for k in sorted(range(len(grid)), key=lambda k: abs(grid[k].get("delta_isa_K"))):
@@ -115,8 +149,16 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
         first.setdefault((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, full[k]), k)
     same = [first[(c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind, t)] for c, t in zip(grid, full)]
     trimmed = [grid[k] for k in sorted(set(same))]
-    out = climb_findings(ctx, trimmed, f"{check}, WAT", required, n_engines, thrust_fraction=thrust_fraction,
-                         drag_credit=np.full(len(trimmed), drag_credit), notes=notes)
+    out = climb_findings(
+        ctx,
+        trimmed,
+        f"{check}, WAT",
+        required,
+        n_engines,
+        thrust_fraction=thrust_fraction,
+        drag_credit=np.full(len(trimmed), drag_credit),
+        notes=notes,
+    )
     out = _weight_limited(ctx, out, check, required, speed_at, thrust_fraction, drag_credit, iterations)
     by_corner: dict[str, list[Finding]] = {}
     for f in out:
@@ -129,17 +171,29 @@ def wat_findings(ctx, conds, check: str, required: float, n_engines: int, speed_
             if twin.get("airport") == label:
                 expanded.append(f)
                 continue
-            copy = replace(f, condition=f.condition.with_(airport=label, delta_isa_K=round(a.delta_isa, 3)),
-                           details=dict(f.details))
-            copy.reason = "; ".join(x for x in (f.reason, f"the trim of {twin.get('airport')} (flat-rated thrust, "
-                                                          "the same forces at this CAS and pressure altitude)") if x)
+            copy = replace(
+                f,
+                condition=f.condition.with_(airport=label, delta_isa_K=round(a.delta_isa, 3)),
+                details=dict(f.details),
+            )
+            copy.reason = "; ".join(
+                x
+                for x in (
+                    f.reason,
+                    f"the trim of {twin.get('airport')} (flat-rated thrust, "
+                    "the same forces at this CAS and pressure altitude)",
+                )
+                if x
+            )
             expanded.append(copy)
-    return expanded + _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset,
-                                       thrust_fraction, drag_credit, notes)
+    return expanded + _declared_limits(
+        ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset, thrust_fraction, drag_credit, notes
+    )
 
 
-def _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset, thrust_fraction,
-                     drag_credit, notes) -> list[Finding]:
+def _declared_limits(
+    ctx, conds, check, required, n_engines, speed_at, declared, altitude_offset, thrust_fraction, drag_credit, notes
+) -> list[Finding]:
     """The paragraph at each flight-manual WAT limit the envelope declares (``declared``: its ``takeoff_weight`` or
     ``landing_weight``), at its pressure altitude and temperature and the lower of that weight and the conditions'
     (the design weight), each CG moved inside the envelope: the declared limit complies only where the gradient is
@@ -152,15 +206,28 @@ def _declared_limits(ctx, conds, check, required, n_engines, speed_at, declared,
         a = Ambient(w.pressure_altitude, w.temperature)
         for c in conds:
             at = at_mass(ctx, c, limit, lowest_operating_mass(ctx)[0], speed_at) if limit < c.mass else c
-            grid.append(at.with_(loading=f"declared WAT limit {limit / LB:,.0f} lb, {c.loading}",
-                                 altitude=a.pressure_altitude + altitude_offset, delta_isa_K=round(a.delta_isa, 3),
-                                 airport=a.label()))
+            grid.append(
+                at.with_(
+                    loading=f"declared WAT limit {limit / LB:,.0f} lb, {c.loading}",
+                    altitude=a.pressure_altitude + altitude_offset,
+                    delta_isa_K=round(a.delta_isa, 3),
+                    airport=a.label(),
+                )
+            )
     if not grid:
         return []
     source = "; ".join(dict.fromkeys(w.source for w in ctx.aircraft.takeoff_landing_envelope.wat_limits if w.source))
     note = "; ".join(x for x in (notes, f"declared flight-manual WAT limit ({source or 'no source given'})") if x)
-    return climb_findings(ctx, grid, f"{check}, declared WAT limit", required, n_engines,
-                          thrust_fraction=thrust_fraction, drag_credit=np.full(len(grid), drag_credit), notes=note)
+    return climb_findings(
+        ctx,
+        grid,
+        f"{check}, declared WAT limit",
+        required,
+        n_engines,
+        thrust_fraction=thrust_fraction,
+        drag_credit=np.full(len(grid), drag_credit),
+        notes=note,
+    )
 
 
 def lowest_operating_mass(ctx) -> tuple[float, str]:
@@ -170,7 +237,9 @@ def lowest_operating_mass(ctx) -> tuple[float, str]:
     return v.mass, f"the CG envelope's lightest weight{f' ({v.name})' if v.name else ''}"
 
 
-def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, drag_credit, iterations) -> list[Finding]:
+def _weight_limited(
+    ctx, findings, check, required, speed_at, thrust_fraction, drag_credit, iterations
+) -> list[Finding]:
     """Corners where a gradient at the design weight is below the minimum are weight–altitude–temperature limited
     (§25.1533(a)(1)/(2): the maximum takeoff and landing weights are those at which §25.121 is met, for altitudes and
     ambient temperatures). At such a corner the design-weight gradients become not applicable (the weight is above
@@ -192,11 +261,16 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
     for f in findings:
         key = f.condition.get("airport")
         if key in worst and f.unit == "gradient" and f.value is not None:
-            f = Finding.not_applicable(f.condition, f.check, (
-                f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most unfavourable "
-                f"CG, {worst[key].condition.loading}): gradient here {f.value:.2%} against {required:.1%}"),
+            f = Finding.not_applicable(
+                f.condition,
+                f.check,
+                (
+                    f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most unfavourable "
+                    f"CG, {worst[key].condition.loading}): gradient here {f.value:.2%} against {required:.1%}"
+                ),
                 gradient_at_design_weight=round(f.value, 6),
-                **{k: v for k, v in f.details.items() if k != "hint"})
+                **{k: v for k, v in f.details.items() if k != "hint"},
+            )
         out.append(f)
     paragraph = check.split(" ")[0]
     for key, f in worst.items():
@@ -204,46 +278,102 @@ def _weight_limited(ctx, findings, check, required, speed_at, thrust_fraction, d
         here = cond.with_(loading=f"WAT limit, {f.condition.loading}")
         name = f"{check}, WAT limit weight"
         landing = paragraph == "(d)"
-        where = (f"{'landing' if landing else 'takeoff'} weight limited to {{:,.0f}} lb at {key} by "
-                 f"§25.121{paragraph}")
-        base = dict(lowest_operating_weight=what, design_weight_gradient=round(f.value, 6),
-                    most_unfavourable_cg=f.condition.loading)
+        where = f"{'landing' if landing else 'takeoff'} weight limited to {{:,.0f}} lb at {key} by §25.121{paragraph}"
+        base = dict(
+            lowest_operating_weight=what,
+            design_weight_gradient=round(f.value, 6),
+            most_unfavourable_cg=f.condition.loading,
+        )
         if trim is not None and trim.converged and abs(grad - required) < WAT_GRADIENT_TOLERANCE:
-            out.append(Finding.compare(here, name, cond.mass, lowest, at_least=True, unit="kg", reason=(
-                where.format(cond.mass / LB) + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"),
-                wat_limit_mass_kg=round(cond.mass, 1), wat_limit_speed_CAS_m_s=round(cond.speed, 3),
-                wat_limit_gradient=round(float(grad), 5), **base, **trim_details(trim)))
+            out.append(
+                Finding.compare(
+                    here,
+                    name,
+                    cond.mass,
+                    lowest,
+                    at_least=True,
+                    unit="kg",
+                    reason=(
+                        where.format(cond.mass / LB)
+                        + f": §25.1533(a)({2 if landing else 1}) — the AFM must carry this limit"
+                    ),
+                    wat_limit_mass_kg=round(cond.mass, 1),
+                    wat_limit_speed_CAS_m_s=round(cond.speed, 3),
+                    wat_limit_gradient=round(float(grad), 5),
+                    **base,
+                    **trim_details(trim),
+                )
+            )
             out += control_findings(here, paragraph, trim, limits)
         elif trim is not None and trim.converged and grad < required and cond.mass <= lowest * (1 + 1e-9):
-            out.append(Finding.compare(here, name, estimate, lowest, at_least=True, unit="kg", reason=(
-                f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient is "
-                f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that trim "
-                "(0 when none); the declared envelope includes a corner the airplane cannot operate at"),
-                gradient_at_lowest_weight=round(float(grad), 5), **base))
+            out.append(
+                Finding.compare(
+                    here,
+                    name,
+                    estimate,
+                    lowest,
+                    at_least=True,
+                    unit="kg",
+                    reason=(
+                        f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient is "
+                        f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that trim "
+                        "(0 when none); the declared envelope includes a corner the airplane cannot operate at"
+                    ),
+                    gradient_at_lowest_weight=round(float(grad), 5),
+                    **base,
+                )
+            )
         else:
-            out.append(Finding.not_evaluated(here, name, (
-                f"WAT limit weight not found at {key}: the trims between {what} and {f.condition.mass / LB:,.0f} lb "
-                f"did not converge to the minimum gradient (last {grad:.3%} at {cond.mass / LB:,.0f} lb)"), **base))
+            out.append(
+                Finding.not_evaluated(
+                    here,
+                    name,
+                    (
+                        f"WAT limit weight not found at {key}: the trims between {what} and {f.condition.mass / LB:,.0f} lb "
+                        f"did not converge to the minimum gradient (last {grad:.3%} at {cond.mass / LB:,.0f} lb)"
+                    ),
+                    **base,
+                )
+            )
     return out
 
 
 def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
     """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate) for the
     findings ``failing`` (the lowest gradient of each corner): :func:`certkit_rules.part25.support.thrust_trims.wat_limit_search`."""
-    found = wat_limit_search(ctx, [f.condition for f in failing], np.array([f.value for f in failing]),
-                             np.array([f.details["thrust_available_N"] for f in failing]), required, speed_at,
-                             lowest_operating_mass(ctx)[0], thrust_fraction=thrust_fraction, drag_credit=drag_credit,
-                             iterations=iterations, tolerance=WAT_GRADIENT_TOLERANCE)
+    found = wat_limit_search(
+        ctx,
+        [f.condition for f in failing],
+        np.array([f.value for f in failing]),
+        np.array([f.details["thrust_available_N"] for f in failing]),
+        required,
+        speed_at,
+        lowest_operating_mass(ctx)[0],
+        thrust_fraction=thrust_fraction,
+        drag_credit=drag_credit,
+        iterations=iterations,
+        tolerance=WAT_GRADIENT_TOLERANCE,
+    )
     return {f.condition.get("airport"): row for f, row in zip(failing, found)}
 
 
 def refined(conds, speed: float, name: str, altitude: float = 0.0, configuration: str | None = None):
-    return [c.with_(speed=speed, speed_kind="CAS", speed_name=name, altitude=altitude,
-                    **({"configuration": configuration} if configuration else {})) for c in conds]
+    return [
+        c.with_(
+            speed=speed,
+            speed_kind="CAS",
+            speed_name=name,
+            altitude=altitude,
+            **({"configuration": configuration} if configuration else {}),
+        )
+        for c in conds
+    ]
 
 
-WAT_MARGIN = (" At a weight-limited corner of the takeoff and landing envelope: its WAT limit weight − the CG envelope's "
-              "lightest weight (kg).")
+WAT_MARGIN = (
+    " At a weight-limited corner of the takeoff and landing envelope: its WAT limit weight − the CG envelope's "
+    "lightest weight (kg)."
+)
 
 _COMMON_LIMITS = """
     Steady-state trim (no ground effect, no transient); the critical engine windmills with the flight model's
@@ -270,14 +400,19 @@ class ClimbOEITakeoffGearDown(Rule):
         with the critical engine inoperative, the remaining engines at the thrust available when gear retraction
         begins, and the weight existing then.
     """
-    margin = ("Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
-              + WAT_MARGIN)
+    margin = (
+        "Steady OEI gradient − minimum (0 for twins), at VLOF (VR when VLOF is not declared); ≥ 0 complies."
+        + WAT_MARGIN
+    )
     references = ("25.107", "25.111", "25.121(b)")
     requires = ("speeds.VR", "configurations.takeoff")
     criteria = gradient_criteria("a", 0.0, 0.003, 0.005)
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("takeoff",),
-                                note="sea level ISA, takeoff thrust; VLOF, or VR when VLOF is not declared; and the corners of the "
-                                     "takeoff_landing_envelope when declared")
+    conditions = ConditionSpace(
+        loading=DesignWeight("MTOW", CGS),
+        configurations=("takeoff",),
+        note="sea level ISA, takeoff thrust; VLOF, or VR when VLOF is not declared; and the corners of the "
+        "takeoff_landing_envelope when declared",
+    )
     limitations = _COMMON_LIMITS + " VLOF ≈ VR when VLOF is not declared (a lower speed, so conservative)."
 
     def evaluate(self, ctx, conditions, crit):
@@ -312,8 +447,10 @@ def gear_up_credit(ctx, configuration: str) -> tuple[float, str]:
     if cfg.delta_CD0:
         flaps = float(flap_drag_increment(cfg.flap))
         credit = max(0.0, min(gear, cfg.delta_CD0 - flaps))
-        return credit, (f"declared ΔCD0 {cfg.delta_CD0:.4f} less the flap estimate {flaps:.4f} (Raymer 12.61), "
-                        f"capped at the gear increment {gear:.3f} (Roskam Part I Table 3.6)")
+        return credit, (
+            f"declared ΔCD0 {cfg.delta_CD0:.4f} less the flap estimate {flaps:.4f} (Raymer 12.61), "
+            f"capped at the gear increment {gear:.3f} (Roskam Part I Table 3.6)"
+        )
     return gear, f"gear increment {gear:.3f} (Roskam Part I Table 3.6)"
 
 
@@ -330,24 +467,34 @@ class ClimbOEITakeoffGearUp(Rule):
         critical engine inoperative and the remaining engines at takeoff thrust, at the weight when the gear is
         fully retracted; in non-icing and icing conditions.
     """
-    margin = ("Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)."
-              + WAT_MARGIN)
+    margin = (
+        "Steady OEI gradient at V2 − 0.024 (twins); each trim control's design limit − |deflection| (deg)." + WAT_MARGIN
+    )
     references = ("25.107", "25.111", "25.121(a)")
     requires = ("speeds.V2", "configurations.takeoff")
-    criteria = {**gradient_criteria("b)(1", 0.024, 0.027, 0.030),
-                "configuration": Criterion("takeoff", "", "14 CFR 25.121(b): the takeoff configuration",
-                                           "configuration flown; its extended gear drag is removed (gear retracted)")}
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("takeoff",),
-                                note="sea level ISA, takeoff thrust, V2; and the corners of the takeoff_landing_envelope "
-                                     "when declared")
-    limitations = _COMMON_LIMITS + """ The gear is retracted by removing its drag increment from the takeoff
+    criteria = {
+        **gradient_criteria("b)(1", 0.024, 0.027, 0.030),
+        "configuration": Criterion(
+            "takeoff",
+            "",
+            "14 CFR 25.121(b): the takeoff configuration",
+            "configuration flown; its extended gear drag is removed (gear retracted)",
+        ),
+    }
+    conditions = ConditionSpace(
+        loading=DesignWeight("MTOW", CGS),
+        configurations=("takeoff",),
+        note="sea level ISA, takeoff thrust, V2; and the corners of the takeoff_landing_envelope when declared",
+    )
+    limitations = (
+        _COMMON_LIMITS
+        + """ The gear is retracted by removing its drag increment from the takeoff
         configuration's (see gear_up_credit); the gear's small pitching moment is kept. Icing (b)(2)(ii) is not
         evaluated."""
+    )
 
     implementation = "partial"
-    unevaluated = (
-        ("25.121(b)(2)(ii)", "icing conditions (takeoff ice accretion) not evaluated"),
-    )
+    unevaluated = (("25.121(b)(2)(ii)", "icing conditions (takeoff ice accretion) not evaluated"),)
 
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
@@ -355,10 +502,11 @@ class ClimbOEITakeoffGearUp(Rule):
         credit, how = gear_up_credit(ctx, cfg)
         conds = refined(conditions, declared_cas(ctx, "V2"), "V2", configuration=cfg)
         note = f"gear retracted: ΔCD0 {credit:.4f} removed, {how}"
-        return (climb_findings(ctx, conds, "(b) gradient at V2, gear up", required, n,
-                               drag_credit=np.full(len(conds), credit), notes=note)
-                + wat_findings(ctx, conds, "(b) gradient at V2, gear up", required, n, scaled_speed, drag_credit=credit,
-                               notes=note))
+        return climb_findings(
+            ctx, conds, "(b) gradient at V2, gear up", required, n, drag_credit=np.full(len(conds), credit), notes=note
+        ) + wat_findings(
+            ctx, conds, "(b) gradient at V2, gear up", required, n, scaled_speed, drag_credit=credit, notes=note
+        )
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import climb_gradient_evidence
@@ -378,32 +526,48 @@ class ClimbOEIFinalTakeoff(Rule):
         climb gradient at VFTO may not be less than 1.2 % for two-engine airplanes (1.5 % three, 1.7 % four), with
         the critical engine inoperative and the remaining engines at maximum continuous thrust.
     """
-    margin = ("Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
-              + WAT_MARGIN)
+    margin = (
+        "Steady OEI gradient at VFTO − 0.012 (twins); each trim control's design limit − |deflection| (deg)."
+        + WAT_MARGIN
+    )
     references = ("25.111", "25.121(b)")
     requires = ("speeds.VFTO", "configurations.clean")
-    criteria = {**gradient_criteria("c", 0.012, 0.015, 0.017),
-                "mct_over_takeoff_thrust": Criterion(
-                    0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
-                    "maximum continuous over takeoff thrust, used when the engine model has one (takeoff) rating")}
-    conditions = ConditionSpace(loading=DesignWeight("MTOW", CGS), configurations=("clean",),
-                                note="1500 ft (end of the takeoff path), ISA, maximum continuous thrust, VFTO; and "
-                                     "1500 ft above each corner of the takeoff_landing_envelope when declared")
+    criteria = {
+        **gradient_criteria("c", 0.012, 0.015, 0.017),
+        "mct_over_takeoff_thrust": Criterion(
+            0.96,
+            "",
+            "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
+            "maximum continuous over takeoff thrust, used when the engine model has one (takeoff) rating",
+        ),
+    }
+    conditions = ConditionSpace(
+        loading=DesignWeight("MTOW", CGS),
+        configurations=("clean",),
+        note="1500 ft (end of the takeoff path), ISA, maximum continuous thrust, VFTO; and "
+        "1500 ft above each corner of the takeoff_landing_envelope when declared",
+    )
 
     limitations = _COMMON_LIMITS
 
     implementation = "partial"
-    unevaluated = (
-        ("25.121(c)(2)(ii)", "icing conditions (final takeoff ice accretion) not evaluated"),
-    )
+    unevaluated = (("25.121(c)(2)(ii)", "icing conditions (final takeoff ice accretion) not evaluated"),)
 
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
         conds = refined(conditions, declared_cas(ctx, "VFTO"), "VFTO", altitude=1500 * FT)
-        return (climb_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n,
-                               thrust_fraction=crit.mct_over_takeoff_thrust)
-                + wat_findings(ctx, conds, "(c) gradient at VFTO, en route", required, n, scaled_speed,
-                               altitude_offset=1500 * FT, thrust_fraction=crit.mct_over_takeoff_thrust))
+        return climb_findings(
+            ctx, conds, "(c) gradient at VFTO, en route", required, n, thrust_fraction=crit.mct_over_takeoff_thrust
+        ) + wat_findings(
+            ctx,
+            conds,
+            "(c) gradient at VFTO, en route",
+            required,
+            n,
+            scaled_speed,
+            altitude_offset=1500 * FT,
+            thrust_fraction=crit.mct_over_takeoff_thrust,
+        )
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import climb_gradient_evidence
@@ -425,23 +589,28 @@ class ClimbOEIApproach(Rule):
         climb speed of the normal landing procedure not exceeding 1.4 VSR (verified, [CFR 1-1-24] p. 217:
         docs/regulation-notes.md).
     """
-    margin = """Steady OEI gradient at 1.4 VSR(approach) − 0.021 (twins); 1.10 − VSR(approach)/VSR(landing);
-        each trim control's design limit − |deflection| (deg).""" + WAT_MARGIN
+    margin = (
+        """Steady OEI gradient at 1.4 VSR(approach) − 0.021 (twins); 1.10 − VSR(approach)/VSR(landing);
+        each trim control's design limit − |deflection| (deg)."""
+        + WAT_MARGIN
+    )
     references = ("25.103", "25.119", "25.125")
     requires = ("configurations.approach", "mass.MLW")
-    criteria = {**gradient_criteria("d", 0.021, 0.024, 0.027),
-                "speed_over_vsr": Criterion(1.4, "", "14 CFR 25.121(d)", "climb speed, at most this × VSR"),
-                "vsr_ratio": Criterion(1.10, "", "14 CFR 25.121(d)",
-                                       "VSR(approach) / VSR(landing), at most")}
-    conditions = ConditionSpace(loading=DesignWeight("MLW", CGS), configurations=("approach",),
-                                note="sea level ISA, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach "
-                                     "configuration; and the corners of the takeoff_landing_envelope when declared")
+    criteria = {
+        **gradient_criteria("d", 0.021, 0.024, 0.027),
+        "speed_over_vsr": Criterion(1.4, "", "14 CFR 25.121(d)", "climb speed, at most this × VSR"),
+        "vsr_ratio": Criterion(1.10, "", "14 CFR 25.121(d)", "VSR(approach) / VSR(landing), at most"),
+    }
+    conditions = ConditionSpace(
+        loading=DesignWeight("MLW", CGS),
+        configurations=("approach",),
+        note="sea level ISA, go-around thrust (throttle 1), gear up, 1.4 VSR of the approach "
+        "configuration; and the corners of the takeoff_landing_envelope when declared",
+    )
     limitations = _COMMON_LIMITS + " Evaluated at 1.4 VSR, the largest speed allowed (no procedure speed is declared)."
 
     implementation = "partial"
-    unevaluated = (
-        ("25.121(d)(2)(ii)", "icing conditions (approach ice accretion) not evaluated"),
-    )
+    unevaluated = (("25.121(d)(2)(ii)", "icing conditions (approach ice accretion) not evaluated"),)
 
     def evaluate(self, ctx, conditions, crit):
         required, n = engine_count_criterion(ctx, crit, "gradient")
@@ -452,12 +621,27 @@ class ClimbOEIApproach(Rule):
             conds.append(c.with_(speed=crit.speed_over_vsr * vsr, speed_kind="CAS", speed_name="1.4 VSR", altitude=0.0))
             if "landing" in ctx.aircraft.configurations and ctx.clmax("landing") is not None:
                 vsr_l, _ = reference_stall_speed(ctx, "landing", c.mass)
-                out.append(Finding.compare(conds[-1], "(d) VSR approach ≤ 1.10 VSR landing", vsr / vsr_l, crit.vsr_ratio,
-                                           at_least=False, unit="ratio", VSR_approach=vsr, VSR_landing=vsr_l, basis=src))
+                out.append(
+                    Finding.compare(
+                        conds[-1],
+                        "(d) VSR approach ≤ 1.10 VSR landing",
+                        vsr / vsr_l,
+                        crit.vsr_ratio,
+                        at_least=False,
+                        unit="ratio",
+                        VSR_approach=vsr,
+                        VSR_landing=vsr_l,
+                        basis=src,
+                    )
+                )
         at_mass = lambda c, m: crit.speed_over_vsr * reference_stall_speed(ctx, "approach", m)[0]  # noqa: E731
-        return (out + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
-                + wat_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass,
-                               declared="landing_weight"))
+        return (
+            out
+            + climb_findings(ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n)
+            + wat_findings(
+                ctx, conds, "(d) gradient at ≤ 1.4 VSR, approach", required, n, at_mass, declared="landing_weight"
+            )
+        )
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import climb_gradient_evidence

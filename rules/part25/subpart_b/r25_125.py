@@ -22,14 +22,13 @@ calibrated airspeed of not less than VREF, must be maintained down to the 50-foo
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Evidence, Finding
-from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check
 from certkit.units import FT, KN
-from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 START_HEIGHT = 150 * FT  # m, CG height above the runway at the start of the simulated approach
 
@@ -41,14 +40,22 @@ def _landing(ctx, conditions, crit):
     def compute():
         ac = ctx.aircraft
         vref = ac.speeds.VREF
-        on_path = [c.with_(altitude=START_HEIGHT, speed=vref.value, speed_kind=vref.kind, speed_name="VREF")
-                   for c in conditions]
+        on_path = [
+            c.with_(altitude=START_HEIGHT, speed=vref.value, speed_kind=vref.kind, speed_name="VREF")
+            for c in conditions
+        ]
         trims = ctx.trim(on_path, gamma=np.radians(crit.glide_slope))
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         model = flight_model(ac, ctx.aero("landing").model, loadings, ground=ground_model(ac))
         travel = control_limits(ac, design=False)
-        run = approach_and_landing(model, trims.x, trims.u, glide=np.radians(crit.glide_slope),
-                                   elevator_limits=travel["elevator"], lateral_limits=travel)
+        run = approach_and_landing(
+            model,
+            trims.x,
+            trims.u,
+            glide=np.radians(crit.glide_slope),
+            elevator_limits=travel["elevator"],
+            lateral_limits=travel,
+        )
         return trims, run
 
     key = ("25.125 landing", tuple((c.mass, c.x_cg) for c in conditions), crit.glide_slope)
@@ -95,22 +102,39 @@ class LandingTouchdown(Rule):
     requires = ("speeds.VREF", "mass.MLW", "geometry.landing_gear", "geometry.horizontal_tail.controls.elevator")
     criteria = {
         "touchdown_sink_rate": Criterion(
-            6.0, "ft/s", "14 CFR 25.473(a)(2)(ii) limit descent velocity at the design takeoff weight (text from memory, "
+            6.0,
+            "ft/s",
+            "14 CFR 25.473(a)(2)(ii) limit descent velocity at the design takeoff weight (text from memory, "
             "unverified); quantifies 25.125's 'without excessive vertical acceleration'",
-            "maximum rate of descent at touchdown"),
-        "vref_over_vsr0": Criterion(1.23, "", "14 CFR 25.125(b)(2)(i)(A)", "VREF/VSR0, VSR0 of the landing configuration"),
-        "glide_slope": Criterion(-3.0, "deg", "14 CFR 25.125 / AC 25-7 (the standard stabilised approach path; "
-                                 "the -3 deg of 25.143(h)'s landing row)", "flight-path angle of the stabilised approach"),
+            "maximum rate of descent at touchdown",
+        ),
+        "vref_over_vsr0": Criterion(
+            1.23, "", "14 CFR 25.125(b)(2)(i)(A)", "VREF/VSR0, VSR0 of the landing configuration"
+        ),
+        "glide_slope": Criterion(
+            -3.0,
+            "deg",
+            "14 CFR 25.125 / AC 25-7 (the standard stabilised approach path; the -3 deg of 25.143(h)'s landing row)",
+            "flight-path angle of the stabilised approach",
+        ),
     }
-    conditions = ConditionSpace(loading=DesignWeight("MLW", ("forward", "reference", "aft")), configurations=("landing",),
-                                note="ISA, sea-level runway, −3° approach at VREF from 150 ft, flare to touchdown.")
+    conditions = ConditionSpace(
+        loading=DesignWeight("MLW", ("forward", "reference", "aft")),
+        configurations=("landing",),
+        note="ISA, sea-level runway, −3° approach at VREF from 150 ft, flare to touchdown.",
+    )
 
     unevaluated = (
         ("25.125(a)", "the landing distance from 50 ft to a full stop (non-icing and icing) is not computed"),
-        ("25.125(b)(2)(i)(B)", "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined (the static search "
-                               "does not converge in the landing configuration at go-around thrust)"),
-        ("25.125(b)(2)(i)(C)", "the §25.143(h) manoeuvring capability at VREF is not judged here (§25.143(h) flies its "
-                               "turns)"),
+        (
+            "25.125(b)(2)(i)(B)",
+            "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined (the static search "
+            "does not converge in the landing configuration at go-around thrust)",
+        ),
+        (
+            "25.125(b)(2)(i)(C)",
+            "the §25.143(h) manoeuvring capability at VREF is not judged here (§25.143(h) flies its turns)",
+        ),
         ("25.125(b)(2)(ii)", "the VREF minima with the landing ice accretion are not checked"),
     )
 
@@ -122,29 +146,73 @@ class LandingTouchdown(Rule):
         out = []
         for i, cond in enumerate(conditions):
             vsr0, source = reference_stall_speed(ctx, "landing", cond.mass)
-            out.append(ratio_check(cond.with_(altitude=0.0), "(b)(2)(i)(A) VREF ≥ 1.23 VSR0",
-                                   {"VREF": declared_cas(ctx, "VREF"), "VSR0": vsr0}, "VREF", "VSR0", crit.vref_over_vsr0,
-                                   basis=source))
-            c0 = cond.with_(altitude=0.0, speed=ac.speeds.VREF.value, speed_kind=ac.speeds.VREF.kind,
-                            speed_name="VREF", thrust="idle from the flare")
+            out.append(
+                ratio_check(
+                    cond.with_(altitude=0.0),
+                    "(b)(2)(i)(A) VREF ≥ 1.23 VSR0",
+                    {"VREF": declared_cas(ctx, "VREF"), "VSR0": vsr0},
+                    "VREF",
+                    "VSR0",
+                    crit.vref_over_vsr0,
+                    basis=source,
+                )
+            )
+            c0 = cond.with_(
+                altitude=0.0,
+                speed=ac.speeds.VREF.value,
+                speed_kind=ac.speeds.VREF.kind,
+                speed_name="VREF",
+                thrust="idle from the flare",
+            )
             tr = trims.results[i]
             if not tr.converged:
-                out.append(Finding.not_evaluated(c0, "touchdown rate of descent", f"no trim on the approach path: {tr.summary()}"))
+                out.append(
+                    Finding.not_evaluated(
+                        c0, "touchdown rate of descent", f"no trim on the approach path: {tr.summary()}"
+                    )
+                )
                 continue
             reason = "; ".join(e.message for e in tr.limits_exceeded)
-            details = dict(approach_sink_fps=round(float(run.approach_sink[i]) / FT, 3), flare_tau_s=round(float(run.tau[i]), 3),
-                           trim_elevator_deg=round(float(np.degrees(tr.controls["elevator"])), 2),
-                           vref_kn=vref_kn)
-            out.append(Finding.compare(c0, "elevator during the approach and flare within its design limit",
-                                       np.degrees(run.elevator_min[i]), lo, at_least=True, unit="deg",
-                                       reason=f"the approach trim already {reason}" if reason else "", **details))
+            details = dict(
+                approach_sink_fps=round(float(run.approach_sink[i]) / FT, 3),
+                flare_tau_s=round(float(run.tau[i]), 3),
+                trim_elevator_deg=round(float(np.degrees(tr.controls["elevator"])), 2),
+                vref_kn=vref_kn,
+            )
+            out.append(
+                Finding.compare(
+                    c0,
+                    "elevator during the approach and flare within its design limit",
+                    np.degrees(run.elevator_min[i]),
+                    lo,
+                    at_least=True,
+                    unit="deg",
+                    reason=f"the approach trim already {reason}" if reason else "",
+                    **details,
+                )
+            )
             if not run.touched_down[i]:
-                out.append(Finding.not_evaluated(c0, "touchdown rate of descent",
-                                                 "the simulated approach did not reach the runway within the run"))
+                out.append(
+                    Finding.not_evaluated(
+                        c0,
+                        "touchdown rate of descent",
+                        "the simulated approach did not reach the runway within the run",
+                    )
+                )
                 continue
             touchdown_kn = float(convert_speed(run.speed[i], "TAS", "CAS", 0.0)) / KN
-            out.append(Finding.compare(c0, "touchdown rate of descent", run.sink_rate[i] / FT, crit.touchdown_sink_rate,
-                                       at_least=False, unit="ft/s", touchdown_speed_kn=round(touchdown_kn, 2), **details))
+            out.append(
+                Finding.compare(
+                    c0,
+                    "touchdown rate of descent",
+                    run.sink_rate[i] / FT,
+                    crit.touchdown_sink_rate,
+                    at_least=False,
+                    unit="ft/s",
+                    touchdown_speed_kn=round(touchdown_kn, 2),
+                    **details,
+                )
+            )
         return out
 
     def evidence(self, ctx, findings, crit):
@@ -161,14 +229,34 @@ class LandingTouchdown(Rule):
         sim = run.sim
         hdot = np.gradient(sim["h"], sim.t, axis=0) if sim.t.size > 1 else np.zeros_like(sim["h"])
         je = sim.control_names.index("elevator")
-        chart = time_histories(sim.t, [
-            (Axis("true airspeed V", "m/s"), sim["V"], [], []),
-            (Axis("CG height", "m"), sim["h"], [], []),
-            (Axis("rate of descent", "m/s", "ft/s"), -hdot,
-             [Limit(crit.touchdown_sink_rate * FT, f"{crit.touchdown_sink_rate:g} ft/s")], []),
-            (Axis("elevator", "rad"), sim.controls[:, :, je],
-             [Limit(np.radians(_elevator_design_min(ctx.aircraft)), "design limit", kind="allowable")], []),
-        ], [c.loading for c in conds], critical=k, ends=sim.stop_time, title="§25.125 approach, flare and touchdown")
-        return [Evidence("Approach and landing time histories", chart,
-                         f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours; "
-                         "each line ends at its touchdown.")]
+        chart = time_histories(
+            sim.t,
+            [
+                (Axis("true airspeed V", "m/s"), sim["V"], [], []),
+                (Axis("CG height", "m"), sim["h"], [], []),
+                (
+                    Axis("rate of descent", "m/s", "ft/s"),
+                    -hdot,
+                    [Limit(crit.touchdown_sink_rate * FT, f"{crit.touchdown_sink_rate:g} ft/s")],
+                    [],
+                ),
+                (
+                    Axis("elevator", "rad"),
+                    sim.controls[:, :, je],
+                    [Limit(np.radians(_elevator_design_min(ctx.aircraft)), "design limit", kind="allowable")],
+                    [],
+                ),
+            ],
+            [c.loading for c in conds],
+            critical=k,
+            ends=sim.stop_time,
+            title="§25.125 approach, flare and touchdown",
+        )
+        return [
+            Evidence(
+                "Approach and landing time histories",
+                chart,
+                f"Critical condition {conds[k].loading} (touchdown {worst.value:.2f} ft/s) and its neighbours; "
+                "each line ends at its touchdown.",
+            )
+        ]

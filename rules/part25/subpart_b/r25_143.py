@@ -24,30 +24,36 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-from certkit.engine.conditions import ConditionSpace, DesignWeight
-from certkit.models.dynamics.trim import held_stabilizer
-from certkit.models.flight import control_limits, stabilizer_trim
-from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
-from certkit.engine.results import Finding
-from certkit_rules.part25.support.reference_speeds import declared_cas, stall_warning_cl
-from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
-from certkit.units import FT, KN
 from certkit_rules.part25.support.climb_checks import CGS
 from certkit_rules.part25.support.control_checks import control_findings
+from certkit_rules.part25.support.reference_speeds import declared_cas, stall_warning_cl
+from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
 from certkit_rules.part25.support.turns import turn_details
+
+from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit.models.dynamics.trim import held_stabilizer
+from certkit.models.flight import control_limits, stabilizer_trim
+from certkit.units import FT, KN
 
 CASES = ("takeoff V2", "takeoff V2+XX", "en route VFTO", "landing VREF")
 #: each case's control deflections as design responses (``control.25.143(h).<name>.<control>``), named after the
 #: table's row: configuration, engines, speed and bank
-CASE_RESPONSES = {"takeoff V2": "takeoff OEI V2 30deg", "takeoff V2+XX": "takeoff AEO V2+XX 40deg",
-                  "en route VFTO": "en route OEI VFTO 40deg", "landing VREF": "landing AEO VREF 40deg"}
-_UNVERIFIED = ("14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
-               "EASA AMC 25.143(h); docs/regulation-notes.md)")
+CASE_RESPONSES = {
+    "takeoff V2": "takeoff OEI V2 30deg",
+    "takeoff V2+XX": "takeoff AEO V2+XX 40deg",
+    "en route VFTO": "en route OEI VFTO 40deg",
+    "landing VREF": "landing AEO VREF 40deg",
+}
+_UNVERIFIED = (
+    "14 CFR 25.143(h) table (rows verified, GPO print 1-1-14 p. 385; footnotes not read, 'WAT-limited' per "
+    "EASA AMC 25.143(h); docs/regulation-notes.md)"
+)
 
 
 def wat_limited_thrust(ctx, conds, gradient: float, fraction: float, inoperative: str):
-    """"Asymmetric WAT-limited thrust" (§25.143(h) footnote, read with EASA AMC 25.143(h)): the operating engine's
+    """ "Asymmetric WAT-limited thrust" (§25.143(h) footnote, read with EASA AMC 25.143(h)): the operating engine's
     thrust that gives exactly the minimum §25.121 gradient in straight flight at zero sideslip with the critical
     engine out, capped at the thrust available (``fraction`` of takeoff thrust). Returns (thrust N, capped)."""
     available = operating_thrust(ctx, conds, 1.0, fraction, inoperative)
@@ -81,26 +87,48 @@ class ManeuveringCapability(Rule):
     references = ("25.107", "25.121", "25.125", "25.147")
     requires = ("mass.MTOW", "configurations.takeoff")
     criteria = {
-        "bank_v2_deg": Criterion(30.0, "deg", _UNVERIFIED, "bank of the coordinated turn at V2, takeoff, critical engine inoperative"),
+        "bank_v2_deg": Criterion(
+            30.0, "deg", _UNVERIFIED, "bank of the coordinated turn at V2, takeoff, critical engine inoperative"
+        ),
         "bank_deg": Criterion(40.0, "deg", _UNVERIFIED, "bank at V2 + XX, at VFTO and at VREF"),
         "v2_increment_kt": Criterion(
-            10.0, "kt", _UNVERIFIED + "; XX is the all-engines initial-climb speed, not stated in the notes: V2 + 10 kt "
-                                      "assumed, override with the approved speed", "XX of V2 + XX (CAS)"),
+            10.0,
+            "kt",
+            _UNVERIFIED + "; XX is the all-engines initial-climb speed, not stated in the notes: V2 + 10 kt "
+            "assumed, override with the approved speed",
+            "XX of V2 + XX (CAS)",
+        ),
         "landing_path_deg": Criterion(-3.0, "deg", _UNVERIFIED, "flight-path angle of the landing-configuration turn"),
-        "wat_gradient_takeoff": Criterion(0.024, "", "14 CFR 25.121(b) (two engines), the WAT limit of the V2 case",
-                                          "straight-flight climb gradient the asymmetric WAT-limited thrust gives at V2"),
-        "wat_gradient_enroute": Criterion(0.012, "", "14 CFR 25.121(c) (two engines), the WAT limit of the VFTO case",
-                                          "straight-flight climb gradient the asymmetric WAT-limited thrust gives at VFTO"),
-        "enroute_altitude_ft": Criterion(1500.0, "ft", "14 CFR 25.111 end of the takeoff path (25.121(c)), as for VFTO",
-                                         "second altitude of the en-route case (also at sea level)"),
+        "wat_gradient_takeoff": Criterion(
+            0.024,
+            "",
+            "14 CFR 25.121(b) (two engines), the WAT limit of the V2 case",
+            "straight-flight climb gradient the asymmetric WAT-limited thrust gives at V2",
+        ),
+        "wat_gradient_enroute": Criterion(
+            0.012,
+            "",
+            "14 CFR 25.121(c) (two engines), the WAT limit of the VFTO case",
+            "straight-flight climb gradient the asymmetric WAT-limited thrust gives at VFTO",
+        ),
+        "enroute_altitude_ft": Criterion(
+            1500.0,
+            "ft",
+            "14 CFR 25.111 end of the takeoff path (25.121(c)), as for VFTO",
+            "second altitude of the en-route case (also at sea level)",
+        ),
         "mct_over_takeoff_thrust": Criterion(
-            0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
-            "maximum continuous (en route, WAT-limited) over takeoff thrust of the engine model"),
+            0.96,
+            "",
+            "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
+            "maximum continuous (en route, WAT-limited) over takeoff thrust of the engine model",
+        ),
     }
     conditions = ConditionSpace(
         extra=(("case", CASES),),
         note="MTOW (takeoff and en-route cases) or MLW (landing case) at the forward, reference and aft CG; sea level "
-             "(and 1500 ft en route); turns toward and away from the inoperative (critical) engine for the asymmetric cases")
+        "(and 1500 ft en route); turns toward and away from the inoperative (critical) engine for the asymmetric cases",
+    )
     implementation = "partial"
     limitations = """
         The footnotes of the (h) table were not read. Without a declared stall-warning onset the warning is taken at
@@ -115,8 +143,11 @@ class ManeuveringCapability(Rule):
     """
 
     unevaluated = (
-        ("25.143(h)", "characteristics other than stall warning that might interfere with normal manoeuvring (buffet "
-                      "onset) are not evaluated"),
+        (
+            "25.143(h)",
+            "characteristics other than stall warning that might interfere with normal manoeuvring (buffet "
+            "onset) are not evaluated",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -126,15 +157,46 @@ class ManeuveringCapability(Rule):
         dead_y = next(e.position.y for e in ac.propulsion.engines if e.name == dead)
         toward_dead = -1.0 if dead_y < 0 else 1.0  # positive bank is right wing down
         specs = {
-            "takeoff V2": dict(config="takeoff", weight="MTOW", speed="V2", bank=crit.bank_v2_deg, oei=True, fraction=1.0,
-                               wat=crit.wat_gradient_takeoff, thrust="asymmetric WAT-limited thrust"),
-            "takeoff V2+XX": dict(config="takeoff", weight="MTOW", speed="V2", increment=crit.v2_increment_kt,
-                                  bank=crit.bank_deg, oei=False, fraction=1.0, thrust="takeoff thrust, all engines"),
-            "en route VFTO": dict(config="clean", weight="MTOW", speed="VFTO", bank=crit.bank_deg, oei=True,
-                                  fraction=crit.mct_over_takeoff_thrust, altitudes=(0.0, crit.enroute_altitude_ft * FT),
-                                  wat=crit.wat_gradient_enroute, thrust="asymmetric WAT-limited thrust (at most MCT)"),
-            "landing VREF": dict(config="landing", weight="MLW", speed="VREF", bank=crit.bank_deg, oei=False, fraction=None,
-                                 thrust=f"all engines, for a {crit.landing_path_deg:g}° path"),
+            "takeoff V2": dict(
+                config="takeoff",
+                weight="MTOW",
+                speed="V2",
+                bank=crit.bank_v2_deg,
+                oei=True,
+                fraction=1.0,
+                wat=crit.wat_gradient_takeoff,
+                thrust="asymmetric WAT-limited thrust",
+            ),
+            "takeoff V2+XX": dict(
+                config="takeoff",
+                weight="MTOW",
+                speed="V2",
+                increment=crit.v2_increment_kt,
+                bank=crit.bank_deg,
+                oei=False,
+                fraction=1.0,
+                thrust="takeoff thrust, all engines",
+            ),
+            "en route VFTO": dict(
+                config="clean",
+                weight="MTOW",
+                speed="VFTO",
+                bank=crit.bank_deg,
+                oei=True,
+                fraction=crit.mct_over_takeoff_thrust,
+                altitudes=(0.0, crit.enroute_altitude_ft * FT),
+                wat=crit.wat_gradient_enroute,
+                thrust="asymmetric WAT-limited thrust (at most MCT)",
+            ),
+            "landing VREF": dict(
+                config="landing",
+                weight="MLW",
+                speed="VREF",
+                bank=crit.bank_deg,
+                oei=False,
+                fraction=None,
+                thrust=f"all engines, for a {crit.landing_path_deg:g}° path",
+            ),
         }
         out = []
         for cond in conditions:
@@ -145,24 +207,44 @@ class ManeuveringCapability(Rule):
     def _case(self, ctx, cond, spec, limits, dead, toward_dead, crit):
         ac = ctx.aircraft
         check = f"(h) {cond.get('case')}"
-        missing = [p for p, ok in ((f"configurations.{spec['config']}", spec["config"] in ac.configurations),
-                                   (f"speeds.{spec['speed']}", getattr(ac.speeds, spec["speed"]) is not None),
-                                   (f"mass.{spec['weight']}", getattr(ac.mass, spec["weight"]) is not None)) if not ok]
+        missing = [
+            p
+            for p, ok in (
+                (f"configurations.{spec['config']}", spec["config"] in ac.configurations),
+                (f"speeds.{spec['speed']}", getattr(ac.speeds, spec["speed"]) is not None),
+                (f"mass.{spec['weight']}", getattr(ac.mass, spec["weight"]) is not None),
+            )
+            if not ok
+        ]
         if missing:
             return [Finding.not_evaluated(cond, f"{check} trim", "needs " + ", ".join(missing))]
         v = declared_cas(ctx, spec["speed"]) + spec.get("increment", 0.0) * KN
         name = spec["speed"] + (f" + {spec['increment']:g} kt" if spec.get("increment") else "")
         bank = math.radians(spec["bank"])
-        directions = (("toward the operating engine", -toward_dead), ("toward the inoperative engine", toward_dead)) \
-            if spec["oei"] else (("right", 1.0),)
+        directions = (
+            (("toward the operating engine", -toward_dead), ("toward the inoperative engine", toward_dead))
+            if spec["oei"]
+            else (("right", 1.0),)
+        )
         conds, banks = [], []
         for ld in DesignWeight(spec["weight"], CGS).loadings(ac):
             for h in spec.get("altitudes", (0.0,)):
                 for label, sign in directions:
-                    conds.append(cond.with_(loading=ld.name, mass=ld.mass, x_cg=ld.x_cg, configuration=spec["config"],
-                                            altitude=h, speed=v, speed_kind="CAS", speed_name=name,
-                                            thrust=(f"critical engine ({dead}) inoperative, " if spec["oei"] else "")
-                                            + spec["thrust"], bank_deg=spec["bank"], turn=label))
+                    conds.append(
+                        cond.with_(
+                            loading=ld.name,
+                            mass=ld.mass,
+                            x_cg=ld.x_cg,
+                            configuration=spec["config"],
+                            altitude=h,
+                            speed=v,
+                            speed_kind="CAS",
+                            speed_name=name,
+                            thrust=(f"critical engine ({dead}) inoperative, " if spec["oei"] else "") + spec["thrust"],
+                            bank_deg=spec["bank"],
+                            turn=label,
+                        )
+                    )
                     banks.append(sign * bank)
         banks = np.array(banks)
         inop = dead if spec["oei"] else None
@@ -181,33 +263,67 @@ class ManeuveringCapability(Rule):
             else:
                 aim = operating_thrust(ctx, conds, 1.0, spec["fraction"], inop)
             held = held_stabilizer(trim_at_thrust(ctx, conds, aim, inoperative=inop)[0]) if movable else None
-            results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=inop,
-                                                      stabilizer=held)
+            results, gamma, residual = trim_at_thrust(
+                ctx, conds, aim, kind="turn", bank=banks, inoperative=inop, stabilizer=held
+            )
         out = []
         for i, c in enumerate(conds):
             r = results[i]
-            details = dict(turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i]))
+            details = dict(
+                turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i])
+            )
             if "wat" in spec:
                 details["wat_thrust_capped_at_available"] = bool(capped[i])
             if not r.converged:
-                lift = (f"; the turn needs n = {details['load_factor']:.3f}, CL = {details['CL']:.2f}"
-                        + (f" ({details['CL_over_CLmax']:.0%} of CLmax: the model's lift near stall may not hold it)"
-                           if "CL_over_CLmax" in details else ""))
-                out.append(Finding.not_evaluated(c, f"{check} trim", f"coordinated-turn trim did not converge "
-                                                 f"(residual {r.residual_norm:.1e}){lift}"
-                                                 + "".join(f"; {m.message}" for m in r.limits_exceeded), **details))
+                lift = f"; the turn needs n = {details['load_factor']:.3f}, CL = {details['CL']:.2f}" + (
+                    f" ({details['CL_over_CLmax']:.0%} of CLmax: the model's lift near stall may not hold it)"
+                    if "CL_over_CLmax" in details
+                    else ""
+                )
+                out.append(
+                    Finding.not_evaluated(
+                        c,
+                        f"{check} trim",
+                        f"coordinated-turn trim did not converge "
+                        f"(residual {r.residual_norm:.1e}){lift}"
+                        + "".join(f"; {m.message}" for m in r.limits_exceeded),
+                        **details,
+                    )
+                )
                 continue
             for f in control_findings(c, check, r, limits):
                 f.details.update(details)
                 out.append(f)
             cl_sw, basis = stall_warning_cl(ctx, c.configuration, c.mass)
-            out.append(Finding.compare(c, f"{check} free of stall warning", details["CL"], cl_sw, at_least=False, unit="",
-                                       stall_warning_CL=round(cl_sw, 4), stall_warning_basis=basis, **details))
+            out.append(
+                Finding.compare(
+                    c,
+                    f"{check} free of stall warning",
+                    details["CL"],
+                    cl_sw,
+                    at_least=False,
+                    unit="",
+                    stall_warning_CL=round(cl_sw, 4),
+                    stall_warning_basis=basis,
+                    **details,
+                )
+            )
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import margins_evidence
 
-        return margins_evidence(findings, "§25.143(h) manoeuvring capability",
-                                "Coordinated-turn trims: controls against their design limits.",
-                                ("bank_deg", "load_factor", "CL_over_CLmax", "flight_path_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
+        return margins_evidence(
+            findings,
+            "§25.143(h) manoeuvring capability",
+            "Coordinated-turn trims: controls against their design limits.",
+            (
+                "bank_deg",
+                "load_factor",
+                "CL_over_CLmax",
+                "flight_path_deg",
+                "elevator_deg",
+                "aileron_deg",
+                "rudder_deg",
+            ),
+        )

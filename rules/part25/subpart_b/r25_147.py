@@ -26,22 +26,26 @@ from __future__ import annotations
 import math
 
 import numpy as np
-
-from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
-from certkit.models.control_force import control_force_model
-from certkit.models.flight import control_limits
-from certkit.engine.registry import Criterion, Rule, rule
-from certkit.engine.results import Finding
-from certkit_rules.part25.support.reference_speeds import reference_stall_speed
-from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
 from certkit_rules.part25.support.climb_checks import CGS
 from certkit_rules.part25.support.control_checks import control_findings, pedal_force_finding, trim_details
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
 from certkit_rules.part25.support.turns import turn_details
+
+from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
+from certkit.models.control_force import control_force_model
+from certkit.models.flight import control_limits
 
 SOURCE = "14 CFR 25.147 (Amdt. 25-108; verified, docs/regulation-notes.md)"
 AMDT = "25-108"
-_MCT = Criterion(0.96, "", "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
-                 "maximum continuous over takeoff thrust of the engine model (as in 25.121(c))")
+_MCT = Criterion(
+    0.96,
+    "",
+    "FAA TCDS E00049EN, GE90-90B: maximum continuous 90,580 lbf / takeoff 94,000 lbf at SL static",
+    "maximum continuous over takeoff thrust of the engine model (as in 25.121(c))",
+)
 
 
 def _speed_criterion(paragraph: str) -> Criterion:
@@ -50,8 +54,12 @@ def _speed_criterion(paragraph: str) -> Criterion:
 
 def _space(weight: str, configuration: str, note: str) -> ConditionSpace:
     """``weight`` at the forward, reference and aft CG, one configuration, sea level."""
-    return ConditionSpace(loading=DesignWeight(weight, cgs=CGS), configurations=(configuration,),
-                          altitudes=Altitudes((0.0,)), note=f"{weight} at the forward, reference and aft CG; {note}")
+    return ConditionSpace(
+        loading=DesignWeight(weight, cgs=CGS),
+        configurations=(configuration,),
+        altitudes=Altitudes((0.0,)),
+        note=f"{weight} at the forward, reference and aft CG; {note}",
+    )
 
 
 def _speed(ctx, conds):
@@ -71,9 +79,16 @@ def _refine(ctx, conds, crit, dead, thrust):
     vsr, why = _speed(ctx, conds)
     if vsr is None:
         return None, why
-    return [c.with_(speed=crit.speed_over_vsr * v, speed_kind="CAS", speed_name=f"{crit.speed_over_vsr:g} VSR1",
-                    altitude=0.0, thrust=f"critical engine ({dead}) inoperative, {thrust}")
-            for c, (v, s) in zip(conds, vsr)], ""
+    return [
+        c.with_(
+            speed=crit.speed_over_vsr * v,
+            speed_kind="CAS",
+            speed_name=f"{crit.speed_over_vsr:g} VSR1",
+            altitude=0.0,
+            thrust=f"critical engine ({dead}) inoperative, {thrust}",
+        )
+        for c, (v, s) in zip(conds, vsr)
+    ], ""
 
 
 @rule
@@ -98,11 +113,16 @@ class DirectionalControlOEI(Rule):
     requires = ("mass.MLW", "configurations.approach")
     criteria = {
         "speed_over_vsr": _speed_criterion("a"),
-        "pedal_force_lbf": Criterion(150.0, "lbf", SOURCE + " (a)", "rudder pedal force at which the heading change may stop"),
+        "pedal_force_lbf": Criterion(
+            150.0, "lbf", SOURCE + " (a)", "rudder pedal force at which the heading change may stop"
+        ),
         "mct_over_takeoff_thrust": _MCT,
     }
-    conditions = _space("MLW", "approach", "flaps approach, gear up; sea level; wings level; power for level "
-                                           "flight, at most maximum continuous")
+    conditions = _space(
+        "MLW",
+        "approach",
+        "flaps approach, gear up; sea level; wings level; power for level flight, at most maximum continuous",
+    )
     implementation = "partial"
     limitations = """
         Steady straight flight only: the 15° heading change (dynamic) is reported not evaluated; the 150 lbf is
@@ -112,8 +132,11 @@ class DirectionalControlOEI(Rule):
     """
 
     unevaluated = (
-        ("25.147(a)", "the reasonably sudden 15° heading change toward the inoperative engine (dynamic) is not "
-                      "simulated; only the steady wings-level engine-out trim is checked"),
+        (
+            "25.147(a)",
+            "the reasonably sudden 15° heading change toward the inoperative engine (dynamic) is not "
+            "simulated; only the steady wings-level engine-out trim is checked",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -122,12 +145,21 @@ class DirectionalControlOEI(Rule):
         rudder = control_force_model(ctx.aircraft, "rudder")
         out = []
         if _engines(ctx) >= 4:
-            out += [Finding.not_evaluated(c, "(b) two critical engines inoperative",
-                                          "four-engine case of (b) is not implemented") for c in conditions]
+            out += [
+                Finding.not_evaluated(
+                    c, "(b) two critical engines inoperative", "four-engine case of (b) is not implemented"
+                )
+                for c in conditions
+            ]
         else:
-            out += [Finding.not_applicable(c, "(b) two critical engines inoperative",
-                                           f"(b) applies to airplanes with four or more engines ({_engines(ctx)} here)")
-                    for c in conditions]
+            out += [
+                Finding.not_applicable(
+                    c,
+                    "(b) two critical engines inoperative",
+                    f"(b) applies to airplanes with four or more engines ({_engines(ctx)} here)",
+                )
+                for c in conditions
+            ]
         conds, why = _refine(ctx, list(conditions), crit, dead, "power for level flight (at most maximum continuous)")
         if conds is None:
             return out + [Finding.not_evaluated(c, "(a) wings-level trim", why) for c in conditions]
@@ -147,12 +179,23 @@ class DirectionalControlOEI(Rule):
             r = results[i]
             thrust = "maximum continuous thrust" if i in over else "level-flight thrust"
             here = c.with_(thrust=f"critical engine ({dead}) inoperative, {thrust} on the others")
-            details = dict(trim_details(r), flight_path_deg=round(math.degrees(gamma[i]), 3),
-                           thrust_level_flight_N=float(needed[i]), thrust_mct_N=float(mct[i]))
+            details = dict(
+                trim_details(r),
+                flight_path_deg=round(math.degrees(gamma[i]), 3),
+                thrust_level_flight_N=float(needed[i]),
+                thrust_mct_N=float(mct[i]),
+            )
             if not r.converged:
-                out.append(Finding.not_evaluated(here, "(a) wings-level trim", f"one-engine-inoperative trim did not "
-                                                 f"converge (residual {r.residual_norm:.1e})"
-                                                 + "".join(f"; {m.message}" for m in r.limits_exceeded), **details))
+                out.append(
+                    Finding.not_evaluated(
+                        here,
+                        "(a) wings-level trim",
+                        f"one-engine-inoperative trim did not "
+                        f"converge (residual {r.residual_norm:.1e})"
+                        + "".join(f"; {m.message}" for m in r.limits_exceeded),
+                        **details,
+                    )
+                )
             else:
                 for f in control_findings(here, "(a) wings level,", r, limits):
                     f.details.update(details)
@@ -163,9 +206,12 @@ class DirectionalControlOEI(Rule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import margins_evidence
 
-        return margins_evidence(findings, "§25.147(a) directional control, one engine inoperative",
-                                "One-engine-inoperative trims: controls against their design limits.",
-                                ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
+        return margins_evidence(
+            findings,
+            "§25.147(a) directional control, one engine inoperative",
+            "One-engine-inoperative trims: controls against their design limits.",
+            ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"),
+        )
 
 
 @rule
@@ -187,11 +233,16 @@ class LateralControlOEI(Rule):
     requires = ("mass.MTOW", "configurations.clean")
     criteria = {
         "speed_over_vsr": _speed_criterion("c"),
-        "bank_deg": Criterion(20.0, "deg", SOURCE + " (c)", "bank of the turns with and against the inoperative engine"),
+        "bank_deg": Criterion(
+            20.0, "deg", SOURCE + " (c)", "bank of the turns with and against the inoperative engine"
+        ),
         "mct_over_takeoff_thrust": _MCT,
     }
-    conditions = _space("MTOW", "clean", "flaps up (most favourable climb position); sea level; turns toward and "
-                                         "away from the inoperative engine")
+    conditions = _space(
+        "MTOW",
+        "clean",
+        "flaps up (most favourable climb position); sea level; turns toward and away from the inoperative engine",
+    )
     implementation = "partial"
     limitations = """
         Steady coordinated turns (zero sideslip), not the roll into them. Flaps up is taken as the most favourable
@@ -201,10 +252,15 @@ class LateralControlOEI(Rule):
     """
 
     unevaluated = (
-        ("25.147(c)", "the roll into the 20° banked turns and the gear-extended case are not flown (steady "
-                      "coordinated turns, gear up)"),
-        ("25.147(d)", "roll capability with one engine inoperative (a roll-response handling quality) is not "
-                      "evaluated"),
+        (
+            "25.147(c)",
+            "the roll into the 20° banked turns and the gear-extended case are not flown (steady "
+            "coordinated turns, gear up)",
+        ),
+        (
+            "25.147(d)",
+            "roll capability with one engine inoperative (a roll-response handling quality) is not evaluated",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -216,14 +272,22 @@ class LateralControlOEI(Rule):
         out = []
         for c in conditions:
             if _engines(ctx) < 4:
-                out.append(Finding.not_applicable(c, "(e) 20° turns, two engines inoperative",
-                                                  f"(e) applies to airplanes with four or more engines ({_engines(ctx)} here)"))
+                out.append(
+                    Finding.not_applicable(
+                        c,
+                        "(e) 20° turns, two engines inoperative",
+                        f"(e) applies to airplanes with four or more engines ({_engines(ctx)} here)",
+                    )
+                )
         base, why = _refine(ctx, list(conditions), crit, dead, "maximum continuous thrust on the others")
         if base is None:
             return out + [Finding.not_evaluated(c, "(c) 20° turn trim", why) for c in conditions]
         conds, banks = [], []
         for c in base:
-            for label, sign in (("toward the inoperative engine", toward_dead), ("away from the inoperative engine", -toward_dead)):
+            for label, sign in (
+                ("toward the inoperative engine", toward_dead),
+                ("away from the inoperative engine", -toward_dead),
+            ):
                 conds.append(c.with_(bank_deg=crit.bank_deg, turn=label))
                 banks.append(sign * math.radians(crit.bank_deg))
         banks = np.array(banks)
@@ -231,11 +295,19 @@ class LateralControlOEI(Rule):
         results, gamma, residual = trim_at_thrust(ctx, conds, aim, kind="turn", bank=banks, inoperative=dead)
         for i, c in enumerate(conds):
             r = results[i]
-            details = dict(turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i]))
+            details = dict(
+                turn_details(ctx, c, r, float(gamma[i]), float(banks[i])), thrust_residual=float(residual[i])
+            )
             if not r.converged:
-                out.append(Finding.not_evaluated(c, "(c) 20° turn trim", f"coordinated-turn trim did not converge "
-                                                 f"(residual {r.residual_norm:.1e})"
-                                                 + "".join(f"; {m.message}" for m in r.limits_exceeded), **details))
+                out.append(
+                    Finding.not_evaluated(
+                        c,
+                        "(c) 20° turn trim",
+                        f"coordinated-turn trim did not converge "
+                        f"(residual {r.residual_norm:.1e})" + "".join(f"; {m.message}" for m in r.limits_exceeded),
+                        **details,
+                    )
+                )
                 continue
             for f in control_findings(c, "(c) 20° turn", r, limits):
                 f.details.update(details)
@@ -245,8 +317,9 @@ class LateralControlOEI(Rule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.performance import margins_evidence
 
-        return margins_evidence(findings, "§25.147(c) lateral control, one engine inoperative",
-                                "Turns toward and away from the inoperative engine: controls against their design limits.",
-                                ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"))
-
-
+        return margins_evidence(
+            findings,
+            "§25.147(c) lateral control, one engine inoperative",
+            "Turns toward and away from the inoperative engine: controls against their design limits.",
+            ("bank_deg", "beta_deg", "elevator_deg", "aileron_deg", "rudder_deg"),
+        )

@@ -10,17 +10,23 @@ The search is :func:`certkit_rules.part25.support.control_speeds.vmca_search`.
 from __future__ import annotations
 
 import numpy as np
-
+from certkit_rules.part25.support.control_checks import pedal_force_finding
 from certkit_rules.part25.support.control_speeds import BANK_FRACTIONS, throttle_of, vmca_from_grid
-from certkit.models.control_force import control_force_model, trim_state
-from certkit.models.flight import control_limits
+from certkit_rules.part25.support.ground_control import VMCG_CONDITIONS, VMCG_CRITERIA, VMCG_REQUIRES, vmcg_runs
+from certkit_rules.part25.support.minimum_control import (
+    VMCA_CONDITIONS,
+    VMCA_CRITERIA,
+    VMCA_REQUIRES,
+    VMCA_RULE_ID,
+    condition_vmca,
+    vmca_rows,
+)
+
 from certkit.engine.registry import Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.control_force import control_force_model, trim_state
+from certkit.models.flight import control_limits
 from certkit.units import KN, LBF
-from certkit_rules.part25.support.control_checks import pedal_force_finding
-from certkit_rules.part25.support.ground_control import VMCG_CONDITIONS, VMCG_CRITERIA, VMCG_REQUIRES, vmcg_runs
-from certkit_rules.part25.support.minimum_control import (VMCA_CONDITIONS, VMCA_CRITERIA, VMCA_REQUIRES, VMCA_RULE_ID,
-                                                              condition_vmca, vmca_rows)
 
 
 @rule
@@ -73,10 +79,16 @@ class MinimumControlSpeed(Rule):
     """
 
     unevaluated = (
-        ("25.149(d)", "the dynamic recovery after the sudden engine failure (heading change ≤ 20°) is not simulated:"
-                      " VMCA is the static one"),
-        ("25.149(f)", "VMCL (landing, all engines) is not determined: in the landing configuration at go-around thrust "
-                      "the static search finds a control usage nearly independent of speed and does not converge"),
+        (
+            "25.149(d)",
+            "the dynamic recovery after the sudden engine failure (heading change ≤ 20°) is not simulated:"
+            " VMCA is the static one",
+        ),
+        (
+            "25.149(f)",
+            "VMCL (landing, all engines) is not determined: in the landing configuration at go-around thrust "
+            "the static search finds a control usage nearly independent of speed and does not converge",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -101,29 +113,52 @@ class MinimumControlSpeed(Rule):
         worst, worst_cond = -np.inf, None
         for i, c in enumerate(conds):
             c0 = c.with_(altitude=0.0, thrust="takeoff", inoperative=res.engine)
-            table = [{"failure_speed_kn_cas": round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1),
-                      "max_lateral_deviation_ft": (round(d / 0.3048, 1) if np.isfinite(d) else None)}
-                     for v, d in zip(res.search.speeds[i], res.search.deviations[i])]
+            table = [
+                {
+                    "failure_speed_kn_cas": round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1),
+                    "max_lateral_deviation_ft": (round(d / 0.3048, 1) if np.isfinite(d) else None),
+                }
+                for v, d in zip(res.search.speeds[i], res.search.deviations[i])
+            ]
             details = dict(search=table, **res.basis)
             vmcg = res.speed_cas[i]
             if not np.isfinite(vmcg):
-                out.append(Finding.not_evaluated(c0, check, "every engine-cut run left the runway before the heading "
-                                                 "recovered (the airplane lifts off at the ground attitude)", **details))
+                out.append(
+                    Finding.not_evaluated(
+                        c0,
+                        check,
+                        "every engine-cut run left the runway before the heading "
+                        "recovered (the airplane lifts off at the ground attitude)",
+                        **details,
+                    )
+                )
                 continue
             found = c0.with_(speed=float(vmcg), speed_kind="CAS", speed_name="VMCG")
             reason = ""
             if res.above[i]:
                 at_vr = res.search.deviations[i][-1] / 0.3048
-                reason = (f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
-                          f"VR ({res.high_cas / KN:.1f} kn; at VR "
-                          + (f"{at_vr:.0f} ft" if np.isfinite(at_vr) else "the heading does not recover") +
-                          "): no VMCG on the runway (value shown as VR + 1 kn)")
+                reason = (
+                    f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
+                    f"VR ({res.high_cas / KN:.1f} kn; at VR "
+                    + (f"{at_vr:.0f} ft" if np.isfinite(at_vr) else "the heading does not recover")
+                    + "): no VMCG on the runway (value shown as VR + 1 kn)"
+                )
                 vmcg = np.inf
             elif res.below[i]:
                 reason = f"within the bound from the lowest speed searched ({crit.vmcg_low_kn:g} kn): VMCG no higher"
             value = float(vmcg) / KN if np.isfinite(vmcg) else float(res.high_cas) / KN + 1.0
-            out.append(Finding.compare(found, check, value, round(res.high_cas / KN, 2), at_least=False, unit="kn",
-                                       reason=reason, **details))
+            out.append(
+                Finding.compare(
+                    found,
+                    check,
+                    value,
+                    round(res.high_cas / KN, 2),
+                    at_least=False,
+                    unit="kn",
+                    reason=reason,
+                    **details,
+                )
+            )
             if vmcg > worst:
                 worst, worst_cond = vmcg, found
         declared = ctx.aircraft.speeds.VMCG
@@ -135,9 +170,18 @@ class MinimumControlSpeed(Rule):
             else:
                 vmcg_decl = float(convert_speed(declared.value, declared.kind, "CAS", 0.0)) / KN
                 limit = worst / KN if np.isfinite(worst) else res.high_cas / KN
-                out.append(Finding.compare(worst_cond, dcheck, vmcg_decl, round(limit, 2), at_least=True, unit="kn",
-                                           computed_VMCG_kn_cas=shown,
-                                           reason="" if np.isfinite(worst) else "no VMCG on the runway (limit: VR)"))
+                out.append(
+                    Finding.compare(
+                        worst_cond,
+                        dcheck,
+                        vmcg_decl,
+                        round(limit, 2),
+                        at_least=True,
+                        unit="kn",
+                        computed_VMCG_kn_cas=shown,
+                        reason="" if np.isfinite(worst) else "no VMCG on the runway (limit: VR)",
+                    )
+                )
         return out
 
     def _vmca(self, ctx, conditions, crit):
@@ -149,62 +193,127 @@ class MinimumControlSpeed(Rule):
             vsr, pair = rows["vsr"][nb * k], tuple(range(nb * k, nb * k + nb))
             vmca, best, below = condition_vmca(rows, k, crit)
             r = rows["last"][best]
-            table = [{"bank_deg": round(float(np.degrees(rows["banks"][j])), 1), "speed_kn_cas": round(h["speed"] / KN, 2),
-                      "control_usage": round(h["usage"], 4) if np.isfinite(h["usage"]) else None,
-                      "rudder_deg": round(float(np.degrees(h["trim"].controls["rudder"])), 2),
-                      "aileron_deg": round(float(np.degrees(h["trim"].controls["aileron"])), 2),
-                      "throttle": round(throttle_of(h["trim"]), 4), "gamma_deg": round(float(np.degrees(h["gamma"])), 2),
-                      "sideslip_deg": round(float(np.degrees(h["trim"].beta)), 2), "converged": h["trim"].converged}
-                     for j in pair for h in rows["history"][j]]
+            table = [
+                {
+                    "bank_deg": round(float(np.degrees(rows["banks"][j])), 1),
+                    "speed_kn_cas": round(h["speed"] / KN, 2),
+                    "control_usage": round(h["usage"], 4) if np.isfinite(h["usage"]) else None,
+                    "rudder_deg": round(float(np.degrees(h["trim"].controls["rudder"])), 2),
+                    "aileron_deg": round(float(np.degrees(h["trim"].controls["aileron"])), 2),
+                    "throttle": round(throttle_of(h["trim"]), 4),
+                    "gamma_deg": round(float(np.degrees(h["gamma"])), 2),
+                    "sideslip_deg": round(float(np.degrees(h["trim"].beta)), 2),
+                    "converged": h["trim"].converged,
+                }
+                for j in pair
+                for h in rows["history"][j]
+            ]
             limit = crit.vmc_over_vsr_max * vsr
             what = rows["limited_by"][best]
-            limited_by = {"rudder": "the rudder at its design limit", "aileron": "the aileron at its design limit",
-                          "stall": ("the stall: at this bank the rudder and aileron hold straight flight down to the "
-                                    "speed where the lift reaches its maximum (no steady flight below); the control-"
-                                    "limited VMCA lies below the stall")}.get(what, what)
-            common = dict(VSR=vsr, search=table, bank_at_vmca_deg=round(float(np.degrees(rows["banks"][best])), 1),
-                          vmca_limited_by=limited_by,
-                          vmca_by_bank_kn={f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2)
-                                           for j in pair},
-                          limited_by_bank={f"{np.degrees(rows['banks'][j]):.0f} deg": rows["limited_by"][j] for j in pair},
-                          force_model=("rudder at its design limit; the 150 lbf of (d) is a separate finding"
-                                       if rudder else "none declared: rudder at its design limit, not 150 lbf"))
+            limited_by = {
+                "rudder": "the rudder at its design limit",
+                "aileron": "the aileron at its design limit",
+                "stall": (
+                    "the stall: at this bank the rudder and aileron hold straight flight down to the "
+                    "speed where the lift reaches its maximum (no steady flight below); the control-"
+                    "limited VMCA lies below the stall"
+                ),
+            }.get(what, what)
+            common = dict(
+                VSR=vsr,
+                search=table,
+                bank_at_vmca_deg=round(float(np.degrees(rows["banks"][best])), 1),
+                vmca_limited_by=limited_by,
+                vmca_by_bank_kn={
+                    f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2) for j in pair
+                },
+                limited_by_bank={f"{np.degrees(rows['banks'][j]):.0f} deg": rows["limited_by"][j] for j in pair},
+                force_model=(
+                    "rudder at its design limit; the 150 lbf of (d) is a separate finding"
+                    if rudder
+                    else "none declared: rudder at its design limit, not 150 lbf"
+                ),
+            )
             if "trim failure" in [rows["limited_by"][j] for j in pair]:
                 bad = [f"{np.degrees(rows['banks'][j]):.0f}°" for j in pair if rows["limited_by"][j] == "trim failure"]
-                why = (f"the straight one-engine-inoperative trim failed above the stall at bank {', '.join(bad)} "
-                       "(neither a control limit nor the lift maximum): VMCA is not determined")
-                out += [Finding.not_evaluated(cond, check, why, **common) for check in (
-                    "(c) VMCA ≤ 1.13 VSR", f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf",
-                    "(b) declared VMC ≥ computed VMCA")]
+                why = (
+                    f"the straight one-engine-inoperative trim failed above the stall at bank {', '.join(bad)} "
+                    "(neither a control limit nor the lift maximum): VMCA is not determined"
+                )
+                out += [
+                    Finding.not_evaluated(cond, check, why, **common)
+                    for check in (
+                        "(c) VMCA ≤ 1.13 VSR",
+                        f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf",
+                        "(b) declared VMC ≥ computed VMCA",
+                    )
+                ]
                 continue
             if below:
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
-                out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", vmca, limit, at_least=False, unit="m/s",
-                                           reason=f"controls within limits down to {crit.grid_low} VSR: VMCA is below "
-                                           "the search range (stall-limited)", **common))
+                out.append(
+                    Finding.compare(
+                        found,
+                        "(c) VMCA ≤ 1.13 VSR",
+                        vmca,
+                        limit,
+                        at_least=False,
+                        unit="m/s",
+                        reason=f"controls within limits down to {crit.grid_low} VSR: VMCA is below "
+                        "the search range (stall-limited)",
+                        **common,
+                    )
+                )
             else:
                 found = cond.with_(speed=vmca, speed_kind="CAS", speed_name="VMCA")
                 top = all(rows["pinned_high"][j] for j in pair)
                 why = "; ".join(e.message for e in r.limits_exceeded) if r is not None else ""
-                reason = (f"controls beyond their design limits up to {crit.grid_high} VSR (VMCA above the search "
-                          f"range): {why}") if top else ""
+                reason = (
+                    (
+                        f"controls beyond their design limits up to {crit.grid_high} VSR (VMCA above the search "
+                        f"range): {why}"
+                    )
+                    if top
+                    else ""
+                )
                 if what == "stall":
-                    reason = (f"stall-limited: VMCA is below {vmca / KN:.1f} kn CAS, where straight flight at "
-                              f"{np.degrees(rows['banks'][best]):.0f}° bank reaches the lift maximum with the controls "
-                              "within their limits")
-                out.append(Finding.compare(found, "(c) VMCA ≤ 1.13 VSR", vmca, limit, at_least=False, unit="m/s",
-                                           reason=reason, VMCA_over_VSR=vmca / vsr, **common))
+                    reason = (
+                        f"stall-limited: VMCA is below {vmca / KN:.1f} kn CAS, where straight flight at "
+                        f"{np.degrees(rows['banks'][best]):.0f}° bank reaches the lift maximum with the controls "
+                        "within their limits"
+                    )
+                out.append(
+                    Finding.compare(
+                        found,
+                        "(c) VMCA ≤ 1.13 VSR",
+                        vmca,
+                        limit,
+                        at_least=False,
+                        unit="m/s",
+                        reason=reason,
+                        VMCA_over_VSR=vmca / vsr,
+                        **common,
+                    )
+                )
             ordered = sorted((h["speed"], h["trim"]) for h in rows["history"][best] if np.isfinite(h["usage"]))
             out.append(self._force_finding(ctx, found, vmca, [v for v, _ in ordered], [t for _, t in ordered], crit))
             declared = ctx.aircraft.speeds.VMC
             if declared is None:
-                out.append(Finding.not_evaluated(found, "(b) declared VMC ≥ computed VMCA", "needs speeds.VMC",
-                                                 computed_VMCA_kn_cas=round(vmca / KN, 1)))
+                out.append(
+                    Finding.not_evaluated(
+                        found,
+                        "(b) declared VMC ≥ computed VMCA",
+                        "needs speeds.VMC",
+                        computed_VMCA_kn_cas=round(vmca / KN, 1),
+                    )
+                )
             else:
                 from certkit.atmosphere import convert_speed
 
                 vmc = float(convert_speed(declared.value, declared.kind, "CAS", cond.altitude or 0.0))
-                out.append(Finding.compare(found, "(b) declared VMC ≥ computed VMCA", vmc, vmca, at_least=True, unit="m/s"))
+                out.append(
+                    Finding.compare(found, "(b) declared VMC ≥ computed VMCA", vmc, vmca, at_least=True, unit="m/s")
+                )
         return out
 
     def evidence(self, ctx, findings, crit):
@@ -231,7 +340,14 @@ class MinimumControlSpeed(Rule):
             return Finding.not_evaluated(found, check, "no trim of the search converged")
         at_vmca = float(np.interp(vmca, np.asarray(speeds)[ok], force[ok]))
         limited = vmca_from_grid(speeds, usage)
-        return Finding.compare(found, check, at_vmca, crit.rudder_force_lbf, at_least=False, unit="lbf",
-                               force_model=rudder.kind,
-                               force_limited_VMCA_kn_cas=None if limited is None else round(limited / KN, 1),
-                               pedal_force_grid_lbf=[None if not np.isfinite(f) else round(float(f), 1) for f in force])
+        return Finding.compare(
+            found,
+            check,
+            at_vmca,
+            crit.rudder_force_lbf,
+            at_least=False,
+            unit="lbf",
+            force_model=rudder.kind,
+            force_limited_VMCA_kn_cas=None if limited is None else round(limited / KN, 1),
+            pedal_force_grid_lbf=[None if not np.isfinite(f) else round(float(f), 1) for f in force],
+        )

@@ -6,14 +6,20 @@ shares with §§25.177 and 25.181 are in :mod:`certkit_rules.part25.support.stab
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.stability_speeds import (
+    FLAP_ALTITUDE_SOURCE,
+    PHASES,
+    by_configuration,
+    flight_described,
+    refine_speeds,
+    steady_flight_trims,
+)
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
-from certkit.models.dynamics.trim import held_stabilizer
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.dynamics.trim import held_stabilizer
 from certkit.units import FT, KN
-from certkit_rules.part25.support.stability_speeds import (FLAP_ALTITUDE_SOURCE, PHASES, by_configuration,
-                                                             flight_described, refine_speeds, steady_flight_trims)
 
 
 def static_margin(ctx, configuration: str, x_cg, mach) -> np.ndarray:
@@ -26,7 +32,9 @@ def static_margin(ctx, configuration: str, x_cg, mach) -> np.ndarray:
 
 
 VERIFIED_171_175 = "§§25.171–25.175 text verified (docs/regulation-notes.md §§ 25.171–25.175)"
-_STABILITY_SPACE = dict(loading=CgCorners(), configurations=tuple(PHASES.values()), altitudes=Altitudes((0.0, 35000 * FT)))
+_STABILITY_SPACE = dict(
+    loading=CgCorners(), configurations=tuple(PHASES.values()), altitudes=Altitudes((0.0, 35000 * FT))
+)
 _FLAP_ALT = Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations")
 
 
@@ -45,15 +53,22 @@ class StabilityGeneral(Rule):
     references = ("25.173", "25.175", "25.177")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
-        "static_margin_min": Criterion(0.05, "MAC", "project choice: Raymer, Aircraft Design: A Conceptual Approach "
-                                       "(6th ed.), §16.3 — transports typically 5 to 10 % MAC stick-fixed; the lower "
-                                       "end is the minimum (Part 25 states no number)",
-                                       "minimum stick-fixed static margin"),
+        "static_margin_min": Criterion(
+            0.05,
+            "MAC",
+            "project choice: Raymer, Aircraft Design: A Conceptual Approach "
+            "(6th ed.), §16.3 — transports typically 5 to 10 % MAC stick-fixed; the lower "
+            "end is the minimum (Part 25 states no number)",
+            "minimum stick-fixed static margin",
+        ),
         "low_speed_factor": Criterion(1.13, "", "§25.177 / §25.181 speed range from 1.13 VSR", "low end of the speeds"),
         "flap_altitude_max": _FLAP_ALT,
     }
-    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.13 VSR", "max allowable")),),
-                                note="Neutral point x_np = x_ref − c·Cm_α/CL_α of the configuration's model at the Mach number.")
+    conditions = ConditionSpace(
+        **_STABILITY_SPACE,
+        extra=(("speed_point", ("1.13 VSR", "max allowable")),),
+        note="Neutral point x_np = x_ref − c·Cm_α/CL_α of the configuration's model at the Mach number.",
+    )
     limitations = "Stick-fixed only (no hinge-moment model for the stick-free neutral point); rigid airplane."
 
     def evaluate(self, ctx, conditions, crit):
@@ -61,14 +76,25 @@ class StabilityGeneral(Rule):
         for cond in refined:
             mach = speed_as(cond, "MACH")
             sm = float(static_margin(ctx, cond.configuration, cond.x_cg, mach))
-            out.append(Finding.compare(cond, "stick-fixed static margin ≥ minimum", sm, crit.static_margin_min,
-                                       at_least=True, unit="MAC", mach=round(float(mach), 4)))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "stick-fixed static margin ≥ minimum",
+                    sm,
+                    crit.static_margin_min,
+                    at_least=True,
+                    unit="MAC",
+                    mach=round(float(mach), 4),
+                )
+            )
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.stability import margin_matrix_evidence
 
-        return margin_matrix_evidence(findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations")
+        return margin_matrix_evidence(
+            findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations"
+        )
 
 
 def trims_at_throttle(ctx, conds, throttle, **trim_args):
@@ -109,20 +135,36 @@ class SpeedStability(Rule):
     references = ("25.175", "25.171", "25.173(c)")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
-        "gradient_min": Criterion(0.0, "deg/kt", "§25.173(a) stable sense (" + VERIFIED_171_175 + ")",
-                                  "smallest elevator-per-speed gradient (> 0 stable)"),
-        "speed_step": Criterion(0.05, "", "project choice: ±5 % about the trim speed, inside the §25.175 ranges",
-                                "relative speed step of the central difference"),
-        "low_speed_factor": Criterion(1.13, "", "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
-                                      "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets "
-                                      "the lowest speed point checked)", "low end of the speeds"),
+        "gradient_min": Criterion(
+            0.0,
+            "deg/kt",
+            "§25.173(a) stable sense (" + VERIFIED_171_175 + ")",
+            "smallest elevator-per-speed gradient (> 0 stable)",
+        ),
+        "speed_step": Criterion(
+            0.05,
+            "",
+            "project choice: ±5 % about the trim speed, inside the §25.175 ranges",
+            "relative speed step of the central difference",
+        ),
+        "low_speed_factor": Criterion(
+            1.13,
+            "",
+            "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
+            "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets "
+            "the lowest speed point checked)",
+            "low end of the speeds",
+        ),
         "flap_altitude_max": _FLAP_ALT,
     }
-    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable", "VFC")),),
-                                note="Trim speeds 1.3 VSR (§25.175 climb, approach and landing trims), the "
-                                     "configuration's maximum allowable speed (VMO clean, VFE/VLE extended) and, clean, "
-                                     "VFC/(1 + step) so that the faster step reaches VFC/MFC, the top of the (a) range "
-                                     "(declared, or the least §25.253(b) allows).")
+    conditions = ConditionSpace(
+        **_STABILITY_SPACE,
+        extra=(("speed_point", ("1.3 VSR", "max allowable", "VFC")),),
+        note="Trim speeds 1.3 VSR (§25.175 climb, approach and landing trims), the "
+        "configuration's maximum allowable speed (VMO clean, VFE/VLE extended) and, clean, "
+        "VFC/(1 + step) so that the faster step reaches VFC/MFC, the top of the (a) range "
+        "(declared, or the least §25.253(b) allows).",
+    )
     limitations = """
         Elevator-fixed reading of a stick-force requirement (§25.173(c) needs a control-force model); trim in level
         flight at the power for level flight (beyond the level-flight ceiling of the weight, in the steady descent at
@@ -132,11 +174,16 @@ class SpeedStability(Rule):
 
     implementation = "partial"
     unevaluated = (
-        ('25.173(a)', "the stick-force reading of (a) (pull below the trim speed, push above) is read elevator-fixed; the force itself is §25.173(c)'s"),
+        (
+            "25.173(a)",
+            "the stick-force reading of (a) (pull below the trim speed, push above) is read elevator-fixed; the force itself is §25.173(c)'s",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
-        refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a) speed stability")
+        refined, out = refine_speeds(
+            ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, "(a) speed stability"
+        )
         k = crit.speed_step
         # the top point is trimmed below VFC so that its faster step reaches VFC and not beyond
         refined = [c.with_(speed=c.speed / (1 + k)) if c.get("speed_point") == "VFC" else c for c in refined]
@@ -147,28 +194,49 @@ class SpeedStability(Rule):
                 check = "(a) elevator-fixed speed stability dδe/dV > 0"
                 bad = [r for r in (trim0[i], lo, hi) if not r.converged]
                 if bad:
-                    out.append(Finding.not_evaluated(cond, check, "trim did not converge: "
-                                                     + "; ".join(e.message for r in bad for e in r.limits_exceeded)))
+                    out.append(
+                        Finding.not_evaluated(
+                            cond,
+                            check,
+                            "trim did not converge: " + "; ".join(e.message for r in bad for e in r.limits_exceeded),
+                        )
+                    )
                     continue
                 dv = 2 * k * cond.speed / KN
                 grad = np.degrees(hi.controls["elevator"] - lo.controls["elevator"]) / dv
-                reason = "; ".join(e.message for r in (trim0[i], lo, hi) for e in r.limits_exceeded if e.control == "elevator")
-                out.append(Finding.compare(cond, check, float(grad), crit.gradient_min, at_least=True, unit="deg/kt",
-                                           reason=reason, elevator_trim_deg=float(np.degrees(trim0[i].controls["elevator"])),
-                                           throttle=float(t0[i]),
-                                           trim_flight=flight_described(trim0[i], None if trim0[i].gamma == 0.0 else t0[i]),
-                                           gamma_low_deg=float(np.degrees(lo.gamma)),
-                                           gamma_high_deg=float(np.degrees(hi.gamma))))
+                reason = "; ".join(
+                    e.message for r in (trim0[i], lo, hi) for e in r.limits_exceeded if e.control == "elevator"
+                )
+                out.append(
+                    Finding.compare(
+                        cond,
+                        check,
+                        float(grad),
+                        crit.gradient_min,
+                        at_least=True,
+                        unit="deg/kt",
+                        reason=reason,
+                        elevator_trim_deg=float(np.degrees(trim0[i].controls["elevator"])),
+                        throttle=float(t0[i]),
+                        trim_flight=flight_described(trim0[i], None if trim0[i].gamma == 0.0 else t0[i]),
+                        gamma_low_deg=float(np.degrees(lo.gamma)),
+                        gamma_high_deg=float(np.degrees(hi.gamma)),
+                    )
+                )
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.stability import margin_matrix_evidence
 
-        return margin_matrix_evidence(findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations")
+        return margin_matrix_evidence(
+            findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations"
+        )
 
 
-NO_FORCE_MODEL = ("needs a control-force model (control_forces.elevator: hinge moments and gearing, or an artificial-feel "
-                  "unit): the aircraft file declares none; the elevator-fixed gradient is checked by §25.173(a)")
+NO_FORCE_MODEL = (
+    "needs a control-force model (control_forces.elevator: hinge moments and gearing, or an artificial-feel "
+    "unit): the aircraft file declares none; the elevator-fixed gradient is checked by §25.173(a)"
+)
 _VERIFIED_173 = "14 CFR 25.173 (Amdt. 25-7; verified, docs/regulation-notes.md)"
 
 
@@ -190,21 +258,43 @@ def stick_force_curves(ctx, refined, k: float):
         for i, cond in enumerate(conds):
             bad = [r for r in (trim0[i], res[i], res[n + i]) if not r.converged]
             if bad:
-                out.append((cond, "trim did not converge: " + "; ".join(e.message for r in bad for e in r.limits_exceeded)))
+                out.append(
+                    (cond, "trim did not converge: " + "; ".join(e.message for r in bad for e in r.limits_exceeded))
+                )
                 continue
             dv = 2 * k * cond.speed / KN
-            out.append((cond, dict(pull_low=float(pull[i]), pull_high=float(pull[n + i]),
-                                   gradient=float((pull[i] - pull[n + i]) / dv), dv_kt=dv,
-                                   elevator_trim_deg=float(np.degrees(d0[i])), model=elevator.kind)))
+            out.append(
+                (
+                    cond,
+                    dict(
+                        pull_low=float(pull[i]),
+                        pull_high=float(pull[n + i]),
+                        gradient=float((pull[i] - pull[n + i]) / dv),
+                        dv_kt=dv,
+                        elevator_trim_deg=float(np.degrees(d0[i])),
+                        model=elevator.kind,
+                    ),
+                )
+            )
     return out
 
 
 _FORCE_CRITERIA = {
-    "speed_step": Criterion(0.05, "", "project choice: ±5 % about the trim speed, inside the §25.175 ranges "
-                            "(±15 % or ±50 kt, docs/regulation-notes.md)", "relative speed step of the average gradient"),
-    "low_speed_factor": Criterion(1.13, "", "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
-                                  "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets the "
-                                  "lowest speed point checked)", "low end of the speeds"),
+    "speed_step": Criterion(
+        0.05,
+        "",
+        "project choice: ±5 % about the trim speed, inside the §25.175 ranges "
+        "(±15 % or ±50 kt, docs/regulation-notes.md)",
+        "relative speed step of the average gradient",
+    ),
+    "low_speed_factor": Criterion(
+        1.13,
+        "",
+        "project choice: the §25.177/§25.181 low end 1.13 VSR also for the "
+        "§25.173 points (§25.175 itself trims at 1.3 VSR1 or more; the factor only sets the "
+        "lowest speed point checked)",
+        "low end of the speeds",
+    ),
     "flap_altitude_max": _FLAP_ALT,
 }
 
@@ -225,12 +315,21 @@ class StickForceGradient(Rule):
         pull below the trim speed) − 1 lbf / 6 kt; not evaluated without control_forces.elevator."""
     references = ("25.173(a)", "25.173(b)", "25.175")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
-    criteria = {"force_gradient_min": Criterion(1.0 / 6.0, "lbf/kt", _VERIFIED_173 + " (c): 1 pound for each 6 knots",
-                                                "smallest average stick-force gradient"),
-                **_FORCE_CRITERIA}
-    conditions = ConditionSpace(**_STABILITY_SPACE, extra=(("speed_point", ("1.3 VSR", "max allowable")),),
-                                note="The trims of §25.173(a): 1.3 VSR and the maximum allowable speed of each configuration, "
-                                     "level flight, thrust held; needs control_forces.elevator.")
+    criteria = {
+        "force_gradient_min": Criterion(
+            1.0 / 6.0,
+            "lbf/kt",
+            _VERIFIED_173 + " (c): 1 pound for each 6 knots",
+            "smallest average stick-force gradient",
+        ),
+        **_FORCE_CRITERIA,
+    }
+    conditions = ConditionSpace(
+        **_STABILITY_SPACE,
+        extra=(("speed_point", ("1.3 VSR", "max allowable")),),
+        note="The trims of §25.173(a): 1.3 VSR and the maximum allowable speed of each configuration, "
+        "level flight, thrust held; needs control_forces.elevator.",
+    )
     implementation = "partial"
     limitations = """
         Local average over ±5 % of the trim speed, not the whole §25.175 range (±15 % or ±50 kt plus the free-return
@@ -241,8 +340,11 @@ class StickForceGradient(Rule):
     """
 
     unevaluated = (
-        ("25.173(c)", "the average gradient is taken over ±5 % of the trim speed, not the whole §25.175 speed range,"
-                      " at level-flight thrust, not the §25.175 climb or idle power"),
+        (
+            "25.173(c)",
+            "the average gradient is taken over ±5 % of the trim speed, not the whole §25.175 speed range,"
+            " at level-flight thrust, not the §25.175 climb or idle power",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -254,10 +356,20 @@ class StickForceGradient(Rule):
             if isinstance(r, str):
                 out.append(Finding.not_evaluated(cond, check, r))
                 continue
-            out.append(Finding.compare(cond, check, r["gradient"], crit.force_gradient_min, at_least=True, unit="lbf/kt",
-                                       pull_force_low_speed_lbf=round(r["pull_low"], 2),
-                                       pull_force_high_speed_lbf=round(r["pull_high"], 2),
-                                       elevator_trim_deg=round(r["elevator_trim_deg"], 3), force_model=r["model"]))
+            out.append(
+                Finding.compare(
+                    cond,
+                    check,
+                    r["gradient"],
+                    crit.force_gradient_min,
+                    at_least=True,
+                    unit="lbf/kt",
+                    pull_force_low_speed_lbf=round(r["pull_low"], 2),
+                    pull_force_high_speed_lbf=round(r["pull_high"], 2),
+                    elevator_trim_deg=round(r["elevator_trim_deg"], 3),
+                    force_model=r["model"],
+                )
+            )
         return out
 
 
@@ -279,11 +391,18 @@ class FreeReturn(Rule):
         control_forces.elevator.friction."""
     references = ("25.173(a)", "25.173(c)", "25.175")
     requires = ("configurations.clean.CLmax", "speeds.VMO")
-    criteria = {"return_fraction": Criterion(0.10, "", _VERIFIED_173 + " (b): climb, approach and landing",
-                                             "largest speed band left after release, fraction of the trim speed"),
-                "return_fraction_cruise": Criterion(0.075, "", _VERIFIED_173 + " (b): cruise",
-                                                    "the same, flaps retracted (cruise)"),
-                **_FORCE_CRITERIA}
+    criteria = {
+        "return_fraction": Criterion(
+            0.10,
+            "",
+            _VERIFIED_173 + " (b): climb, approach and landing",
+            "largest speed band left after release, fraction of the trim speed",
+        ),
+        "return_fraction_cruise": Criterion(
+            0.075, "", _VERIFIED_173 + " (b): cruise", "the same, flaps retracted (cruise)"
+        ),
+        **_FORCE_CRITERIA,
+    }
     conditions = StickForceGradient.conditions
     implementation = "partial"
     limitations = """
@@ -293,8 +412,11 @@ class FreeReturn(Rule):
     """
 
     unevaluated = (
-        ("25.173(b)", "the slow release of the control force is not simulated: the quasi-static return from the "
-                      "local force gradient stands for it"),
+        (
+            "25.173(b)",
+            "the slow release of the control force is not simulated: the quasi-static return from the "
+            "local force gradient stands for it",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -305,8 +427,15 @@ class FreeReturn(Rule):
         if decl is None:
             return [Finding.not_evaluated(c, check, NO_FORCE_MODEL) for c in conditions]
         if decl.friction is None:
-            return [Finding.not_evaluated(c, check, "needs control_forces.elevator.friction (the friction of the elevator "
-                                          "control sets the free-return speed band)") for c in conditions]
+            return [
+                Finding.not_evaluated(
+                    c,
+                    check,
+                    "needs control_forces.elevator.friction (the friction of the elevator "
+                    "control sets the free-return speed band)",
+                )
+                for c in conditions
+            ]
         refined, out = refine_speeds(ctx, conditions, crit.flap_altitude_max, crit.low_speed_factor, check)
         friction = decl.friction / LBF
         for cond, r in stick_force_curves(ctx, refined, crit.speed_step):
@@ -318,8 +447,18 @@ class FreeReturn(Rule):
             stable = r["gradient"] > 0
             # an unstable or neutral slope does not return: the band is taken as the whole trim speed
             band = min(friction / (r["gradient"] * v_kt), 1.0) if stable else 1.0
-            out.append(Finding.compare(cond, check, float(band), allowed, at_least=False, unit="fraction of V_trim",
-                                       reason="" if stable else "unstable or neutral stick-force slope: the speed does not return",
-                                       friction_lbf=round(friction, 2), gradient_lbf_per_kt=round(r["gradient"], 4),
-                                       return_band_kt=round(float(band * v_kt), 2)))
+            out.append(
+                Finding.compare(
+                    cond,
+                    check,
+                    float(band),
+                    allowed,
+                    at_least=False,
+                    unit="fraction of V_trim",
+                    reason="" if stable else "unstable or neutral stick-force slope: the speed does not return",
+                    friction_lbf=round(friction, 2),
+                    gradient_lbf_per_kt=round(r["gradient"], 4),
+                    return_band_kt=round(float(band * v_kt), 2),
+                )
+            )
         return out

@@ -17,14 +17,14 @@ configuration's maximum allowable speed, at sea level and 35,000 ft (clean only 
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
-from certkit.models.control_force import control_force_model, trim_state
-from certkit.models.flight import control_limits
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.control_force import control_force_model, trim_state
+from certkit.models.flight import control_limits
 from certkit.units import FT, LBF
-from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
 
 SOURCE = "14 CFR 25.177, Amdt. 25-135 (verified, docs/regulation-notes.md)"
 #: sweep of (c) and (d), fractions of the (c) range
@@ -38,7 +38,10 @@ def derivatives_at_cg(ctx, cond) -> tuple[float, float]:
     M_cg = M_ref + r_ref × F, the reference point lying (x_cg − x_ref) ahead of the CG in body x)."""
     m = ctx.aero(cond.configuration).model
     mach = speed_as(cond, "MACH")
-    cn = float(m.derivative("Cn_beta", mach) + m.derivative("CY_beta", mach) * (cond.x_cg - m.reference.x_ref) / m.reference.span)
+    cn = float(
+        m.derivative("Cn_beta", mach)
+        + m.derivative("CY_beta", mach) * (cond.x_cg - m.reference.x_ref) / m.reference.span
+    )
     return cn, float(m.derivative("Cl_beta", mach))
 
 
@@ -69,23 +72,35 @@ class StaticLateralDirectionalStability(Rule):
     references = ("25.171", "25.147")
     requires = ("configurations.clean.CLmax",)
     criteria = {
-        "rudder_fraction": Criterion(0.5, "", SOURCE + " (c)(1)", "share of the available rudder that bounds the (c) range"),
-        "pedal_force_lbf": Criterion(180.0, "lbf", SOURCE + " (c)(2), (d)", "rudder force that bounds the (c) and (d) ranges"),
-        "reference_sideslip_deg": Criterion(5.0, "deg", "certkit numerical choice", "sideslip of the first trim, from "
-                                            "which the (c) range is scaled"),
+        "rudder_fraction": Criterion(
+            0.5, "", SOURCE + " (c)(1)", "share of the available rudder that bounds the (c) range"
+        ),
+        "pedal_force_lbf": Criterion(
+            180.0, "lbf", SOURCE + " (c)(2), (d)", "rudder force that bounds the (c) and (d) ranges"
+        ),
+        "reference_sideslip_deg": Criterion(
+            5.0, "deg", "certkit numerical choice", "sideslip of the first trim, from which the (c) range is scaled"
+        ),
         "low_speed_factor": Criterion(1.13, "", SOURCE + " (a), (b)", "low end of the speed range, multiple of VSR"),
-        "descent_deg": Criterion(3.0, "deg", "project choice: a descent at reduced power where level flight in the "
-                                 "sideslip needs more than full thrust (§25.177(a): symmetric power conditions)",
-                                 "flight-path angle of the sideslip trims that cannot be held level"),
+        "descent_deg": Criterion(
+            3.0,
+            "deg",
+            "project choice: a descent at reduced power where level flight in the "
+            "sideslip needs more than full thrust (§25.177(a): symmetric power conditions)",
+            "flight-path angle of the sideslip trims that cannot be held level",
+        ),
         "flap_altitude_max": Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations"),
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=tuple(PHASES.values()),
-                                altitudes=Altitudes((0.0, 35000 * FT)),
-                                extra=(("speed_point", ("1.13 VSR", "max allowable", "VFC")),),
-                                note="Speeds in CAS: 1.13 VSR1, the maximum allowable speed (VMO/MMO clean, VFE/VLE "
-                                     "extended) and, clean, VFC/MFC (declared, or the least §25.253(b) allows): (a) and "
-                                     "(c) up to VFC/MFC, (b)(1) to VMO/MMO, (b)(2) beyond; flaps and gear only up to the "
-                                     "flap altitude limit.")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=tuple(PHASES.values()),
+        altitudes=Altitudes((0.0, 35000 * FT)),
+        extra=(("speed_point", ("1.13 VSR", "max allowable", "VFC")),),
+        note="Speeds in CAS: 1.13 VSR1, the maximum allowable speed (VMO/MMO clean, VFE/VLE "
+        "extended) and, clean, VFC/MFC (declared, or the least §25.253(b) allows): (a) and "
+        "(c) up to VFC/MFC, (b)(1) to VMO/MMO, (b)(2) beyond; flaps and gear only up to the "
+        "flap altitude limit.",
+    )
     limitations = """
         Rudder-free (a) and aileron-free (b) are read with the controls fixed; sideslip to the right only (the
         airplane is symmetric); the 180 lbf bound and the force reversal of (d) need control_forces.rudder (without
@@ -97,8 +112,11 @@ class StaticLateralDirectionalStability(Rule):
 
     implementation = "partial"
     unevaluated = (
-        ("25.177(a)", "rudder-free directional stability is read with the rudder fixed; not every symmetric power "
-                      "condition is flown"),
+        (
+            "25.177(a)",
+            "rudder-free directional stability is read with the rudder fixed; not every symmetric power "
+            "condition is flown",
+        ),
         ("25.177(b)", "aileron-free lateral stability is read with the ailerons fixed"),
     )
 
@@ -114,13 +132,22 @@ class StaticLateralDirectionalStability(Rule):
                 if cond.get("speed_point") != "VFC":
                     out.append(Finding.compare(cond, "(b) Cl_β < 0", cl, 0.0, at_least=False, unit="1/rad"))
                 elif cl < 0:
-                    out.append(Finding.compare(cond, "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC", cl, 0.0,
-                                               at_least=False, unit="1/rad"))
+                    out.append(
+                        Finding.compare(
+                            cond, "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC", cl, 0.0, at_least=False, unit="1/rad"
+                        )
+                    )
                 else:
-                    out.append(Finding.not_evaluated(
-                        cond, "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC", "negative effective dihedral above VMO/MMO: "
-                        "(b)(2) accepts it if the divergence is gradual, easily recognizable and easily controllable by "
-                        "the pilot — qualitative, not assessed", Cl_beta_per_rad=float(cl)))
+                    out.append(
+                        Finding.not_evaluated(
+                            cond,
+                            "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC",
+                            "negative effective dihedral above VMO/MMO: "
+                            "(b)(2) accepts it if the divergence is gradual, easily recognizable and easily controllable by "
+                            "the pilot — qualitative, not assessed",
+                            Cl_beta_per_rad=float(cl),
+                        )
+                    )
             out += self._sideslips(ctx, conds, crit, limits, rudder_force)
         return out
 
@@ -128,10 +155,16 @@ class StaticLateralDirectionalStability(Rule):
         """Steady-heading sideslip trims of ``conds`` at ``betas`` (rad, per condition); level flight, or a
         shallow descent where level flight needs more than full thrust."""
         results = list(ctx.trim(conds, kind="sideslip", beta=betas).results)
-        short = [k for k, r in enumerate(results) if any(e.control == "throttle" and e.limit > 0 for e in r.limits_exceeded)]
+        short = [
+            k for k, r in enumerate(results) if any(e.control == "throttle" and e.limit > 0 for e in r.limits_exceeded)
+        ]
         if short:
-            retry = ctx.trim([conds[k] for k in short], kind="sideslip", beta=np.asarray(betas)[short],
-                             gamma=-np.radians(crit.descent_deg))
+            retry = ctx.trim(
+                [conds[k] for k in short],
+                kind="sideslip",
+                beta=np.asarray(betas)[short],
+                gamma=-np.radians(crit.descent_deg),
+            )
             for k, r in zip(short, retry.results):
                 results[k] = r
         return results
@@ -158,24 +191,38 @@ class StaticLateralDirectionalStability(Rule):
         fr = np.array(FRACTIONS_C + FRACTIONS_D)
         ok = np.isfinite(beta_c)
         rows = [(k, j) for k in np.flatnonzero(ok) for j in range(fr.size)]
-        sweep = self._trims(ctx, [conds[k] for k, _ in rows], np.array([fr[j] * beta_c[k] for k, j in rows]), crit) \
-            if rows else []
+        sweep = (
+            self._trims(ctx, [conds[k] for k, _ in rows], np.array([fr[j] * beta_c[k] for k, j in rows]), crit)
+            if rows
+            else []
+        )
         at = {kj: sweep[m] for m, kj in enumerate(rows)}
         out = []
         for k, cond in enumerate(conds):
             check = "(c) steady sideslips"
             if not ok[k]:
                 r = first[k]
-                out.append(Finding.not_evaluated(cond, check, f"the {crit.reference_sideslip_deg:g}° sideslip trim did not "
-                                                 f"converge (|r| = {r.residual_norm:.1e}) "
-                                                 + "; ".join(e.message for e in r.limits_exceeded)))
+                out.append(
+                    Finding.not_evaluated(
+                        cond,
+                        check,
+                        f"the {crit.reference_sideslip_deg:g}° sideslip trim did not "
+                        f"converge (|r| = {r.residual_norm:.1e}) " + "; ".join(e.message for e in r.limits_exceeded),
+                    )
+                )
                 continue
             pts = [at[(k, j)] for j in range(fr.size)]
-            c_pts = pts[:len(FRACTIONS_C)]
+            c_pts = pts[: len(FRACTIONS_C)]
             if not all(r.converged for r in c_pts):
                 bad = next(r for r in c_pts if not r.converged)
-                out.append(Finding.not_evaluated(cond, check, "a sideslip trim of the (c) range did not converge "
-                                                 f"(|r| = {bad.residual_norm:.1e}) " + "; ".join(e.message for e in bad.limits_exceeded)))
+                out.append(
+                    Finding.not_evaluated(
+                        cond,
+                        check,
+                        "a sideslip trim of the (c) range did not converge "
+                        f"(|r| = {bad.residual_norm:.1e}) " + "; ".join(e.message for e in bad.limits_exceeded),
+                    )
+                )
                 continue
             end = c_pts[-1]
             here = cond.with_(flight_path_deg=round(float(np.degrees(end.gamma)), 2)) if end.gamma < 0 else cond
@@ -184,19 +231,37 @@ class StaticLateralDirectionalStability(Rule):
                 dlt = end.controls[name]
                 lo, hi = limits[name]
                 lim = hi if dlt >= 0 else lo
-                out.append(Finding.compare(here, f"{check}: {name} within design limit at the end of the range",
-                                           abs(np.degrees(dlt)), abs(np.degrees(lim)), at_least=False, unit="deg",
-                                           reason="; ".join(e.message for e in end.limits_exceeded),
-                                           deflection_deg=float(np.degrees(dlt)), bank_deg=float(np.degrees(end.phi)), **info))
-            betas = np.concatenate([[0.0], fr[:len(FRACTIONS_C)] * beta_c[k]])
+                out.append(
+                    Finding.compare(
+                        here,
+                        f"{check}: {name} within design limit at the end of the range",
+                        abs(np.degrees(dlt)),
+                        abs(np.degrees(lim)),
+                        at_least=False,
+                        unit="deg",
+                        reason="; ".join(e.message for e in end.limits_exceeded),
+                        deflection_deg=float(np.degrees(dlt)),
+                        bank_deg=float(np.degrees(end.phi)),
+                        **info,
+                    )
+                )
+            betas = np.concatenate([[0.0], fr[: len(FRACTIONS_C)] * beta_c[k]])
             for name, sign, label in (("rudder", 1.0, "δr"), ("aileron", -1.0, "−δa")):
                 defl = np.concatenate([[0.0], [sign * r.controls[name] for r in c_pts]])
                 grad = np.diff(defl) / np.diff(betas)
-                out.append(Finding.compare(here, f"{check}: {name} in the stable sense at every step (Δ{label}/Δβ ≥ 0)",
-                                           float(grad.min()), 0.0, at_least=True, unit="deg/deg",
-                                           gradients=[round(float(g), 4) for g in grad],
-                                           proportionality_ratio=round(float(grad.max() / grad.min()), 3)
-                                           if grad.min() > 0 else None, **info))
+                out.append(
+                    Finding.compare(
+                        here,
+                        f"{check}: {name} in the stable sense at every step (Δ{label}/Δβ ≥ 0)",
+                        float(grad.min()),
+                        0.0,
+                        at_least=True,
+                        unit="deg/deg",
+                        gradients=[round(float(g), 4) for g in grad],
+                        proportionality_ratio=round(float(grad.max() / grad.min()), 3) if grad.min() > 0 else None,
+                        **info,
+                    )
+                )
             out += self._beyond(ctx, here, pts, fr, beta_c[k], limits, rudder_force, crit, info)
         return out
 
@@ -206,8 +271,12 @@ class StaticLateralDirectionalStability(Rule):
         lo_r, hi_r = limits["rudder"]
         lo_a, hi_a = limits["aileron"]
         used = [(fr[len(FRACTIONS_C) - 1] * beta_c, pts[len(FRACTIONS_C) - 1])]
-        for f, r in zip(fr[len(FRACTIONS_C):], pts[len(FRACTIONS_C):]):
-            if not r.converged or not (lo_r <= r.controls["rudder"] <= hi_r) or not (lo_a <= r.controls["aileron"] <= hi_a):
+        for f, r in zip(fr[len(FRACTIONS_C) :], pts[len(FRACTIONS_C) :]):
+            if (
+                not r.converged
+                or not (lo_r <= r.controls["rudder"] <= hi_r)
+                or not (lo_a <= r.controls["aileron"] <= hi_a)
+            ):
                 break  # full rudder or full lateral control reached: no steady sideslip needs to be held beyond
             if rudder_force is not None:
                 q, a, d = trim_state(ctx.aircraft, "rudder", [r])
@@ -216,23 +285,50 @@ class StaticLateralDirectionalStability(Rule):
             used.append((f * beta_c, r))
         check = "(d) beyond the (c) range: more rudder for more sideslip (Δδr/Δβ ≥ 0)"
         if len(used) < 2:
-            return [Finding.not_applicable(cond, check, "full rudder, full lateral control or the force bound is reached at "
-                                           "the end of the (c) range", **info)]
+            return [
+                Finding.not_applicable(
+                    cond,
+                    check,
+                    "full rudder, full lateral control or the force bound is reached at the end of the (c) range",
+                    **info,
+                )
+            ]
         b = np.array([u[0] for u in used])
         dr = np.array([u[1].controls["rudder"] for u in used])
         grad = np.diff(dr) / np.diff(b)
-        out = [Finding.compare(cond, check, float(grad.min()), 0.0, at_least=True, unit="deg/deg",
-                               largest_sideslip_deg=round(float(np.degrees(b[-1])), 3),
-                               gradients=[round(float(g), 4) for g in grad], **info)]
+        out = [
+            Finding.compare(
+                cond,
+                check,
+                float(grad.min()),
+                0.0,
+                at_least=True,
+                unit="deg/deg",
+                largest_sideslip_deg=round(float(np.degrees(b[-1])), 3),
+                gradients=[round(float(g), 4) for g in grad],
+                **info,
+            )
+        ]
         if rudder_force is not None:
             q, a, d = trim_state(ctx.aircraft, "rudder", [u[1] for u in used])
             force = np.abs(rudder_force.force(q, a, d)) / LBF
-            out.append(Finding.compare(cond, "(d) rudder force does not reverse (ΔF/Δβ ≥ 0)",
-                                       float((np.diff(force) / np.degrees(np.diff(b))).min()), 0.0, at_least=True,
-                                       unit="lbf/deg", forces_lbf=[round(float(x), 2) for x in force], **info))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "(d) rudder force does not reverse (ΔF/Δβ ≥ 0)",
+                    float((np.diff(force) / np.degrees(np.diff(b))).min()),
+                    0.0,
+                    at_least=True,
+                    unit="lbf/deg",
+                    forces_lbf=[round(float(x), 2) for x in force],
+                    **info,
+                )
+            )
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.stability import margin_matrix_evidence
 
-        return margin_matrix_evidence(findings, "§25.177 static lateral-directional margins (normalised) over CG corners × configurations")
+        return margin_matrix_evidence(
+            findings, "§25.177 static lateral-directional margins (normalised) over CG corners × configurations"
+        )

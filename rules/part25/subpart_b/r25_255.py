@@ -28,16 +28,18 @@ import numpy as np
 
 from certkit.atmosphere import convert_speed, speed_of_sound
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.engine.registry import Criterion, Rule, rule
+from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model, dynamic_pressure, local_angle
 from certkit.models.dynamics.pull_up import symmetric_pull_up
 from certkit.models.flight import control_limits
-from certkit.engine.registry import Criterion, Rule, rule
-from certkit.engine.results import Finding
 from certkit.units import FT, KN, LBF
 
 SOURCE = "14 CFR 25.255 ([CFR 2003] GPO text of (a)-(c); (f) from memory, docs/regulation-notes.md)"
-_NO_FORCE = ("no control-force model (control_forces.elevator: hinge moments and gearing, or artificial feel): the "
-             "stick force is not computed; the elevator-fixed sense and the control margin are checked instead")
+_NO_FORCE = (
+    "no control-force model (control_forces.elevator: hinge moments and gearing, or artificial feel): the "
+    "stick force is not computed; the elevator-fixed sense and the control margin are checked instead"
+)
 
 
 def test_speeds(ctx, h: float) -> dict[str, float]:
@@ -72,13 +74,20 @@ class OutOfTrim(Rule):
     requires = ("configurations.clean", "speeds.VMO", "speeds.VD")
     criteria = {
         "mistrim_seconds": Criterion(3.0, "s", SOURCE + " (a)(1)", "trim-system movement time at its normal rate"),
-        "pull_load_factor": Criterion(1.5, "", SOURCE + " (c)(2) range 0 to 2.0 g; (f) 1.5 g recovery",
-                                      "load factor of the pull-up"),
+        "pull_load_factor": Criterion(
+            1.5, "", SOURCE + " (c)(2) range 0 to 2.0 g; (f) 1.5 g recovery", "load factor of the pull-up"
+        ),
         "push_load_factor": Criterion(0.0, "", SOURCE + " (c)(2) range 0 to 2.0 g", "load factor of the push-over"),
-        "recovery_force_lbf": Criterion(125.0, "lbf", SOURCE + " (f)", "largest force for the 1.5 g recovery at VDF/MDF"),
+        "recovery_force_lbf": Criterion(
+            125.0, "lbf", SOURCE + " (f)", "largest force for the 1.5 g recovery at VDF/MDF"
+        ),
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=Altitudes((0.0, 35000 * FT)),
-                                note="clean, trimmed level at VMO/MMO at sea level and 35,000 ft, every CG corner")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=("clean",),
+        altitudes=Altitudes((0.0, 35000 * FT)),
+        note="clean, trimmed level at VMO/MMO at sea level and 35,000 ft, every CG corner",
+    )
     implementation = "partial"
     limitations = """
         Steady manoeuvre points (instantaneous pull-up / push-over, the speed not held), not the flight-test dive;
@@ -95,10 +104,19 @@ class OutOfTrim(Rule):
     def evaluate(self, ctx, conditions, crit):
         ac = ctx.aircraft
         st = ac.geometry.horizontal_tail.stabilizer if ac.geometry is not None else None
-        why = ("no movable stabiliser declared (geometry.horizontal_tail.stabilizer): the equivalent out-of-trim of an "
-               "airplane without a power-operated trim system is not modelled") if st is None else (
-            "needs geometry.horizontal_tail.stabilizer.rate (the trim system's normal rate; (a)(1) three seconds of "
-            "it)" if st.rate is None else "")
+        why = (
+            (
+                "no movable stabiliser declared (geometry.horizontal_tail.stabilizer): the equivalent out-of-trim of an "
+                "airplane without a power-operated trim system is not modelled"
+            )
+            if st is None
+            else (
+                "needs geometry.horizontal_tail.stabilizer.rate (the trim system's normal rate; (a)(1) three seconds of "
+                "it)"
+                if st.rate is None
+                else ""
+            )
+        )
         if why:
             return [Finding.not_evaluated(c, "out-of-trim manoeuvre", why) for c in conditions]
         conds = []
@@ -125,35 +143,91 @@ class OutOfTrim(Rule):
                 pull = symmetric_pull_up(model, tas, h, crit.pull_load_factor, u)
                 push = symmetric_pull_up(model, tas, h, crit.push_load_factor, u)
                 for i, c in enumerate(conds):
-                    here = c.with_(manoeuvre=f"mistrim {sense} {math.degrees(delta):.2f}°, at {speed_name}",
-                                   speed=float(eas[i]), speed_kind="EAS", speed_name=speed_name)
-                    out += self._findings(here, i, batch.results[i], u[i, js], one, pull, push, (e_lo, e_hi), crit,
-                                          elevator, ac, tas[i], h[i], speed_name)
+                    here = c.with_(
+                        manoeuvre=f"mistrim {sense} {math.degrees(delta):.2f}°, at {speed_name}",
+                        speed=float(eas[i]),
+                        speed_kind="EAS",
+                        speed_name=speed_name,
+                    )
+                    out += self._findings(
+                        here,
+                        i,
+                        batch.results[i],
+                        u[i, js],
+                        one,
+                        pull,
+                        push,
+                        (e_lo, e_hi),
+                        crit,
+                        elevator,
+                        ac,
+                        tas[i],
+                        h[i],
+                        speed_name,
+                    )
         return out
 
     @staticmethod
     def _findings(here, i, trim, stab, one, pull, push, limits, crit, elevator, ac, tas, h, speed_name):
         if not trim.converged or not (one.converged[i] and pull.converged[i] and push.converged[i]):
-            return [Finding.not_evaluated(here, "out-of-trim manoeuvre", "the trim at VMO/MMO or a manoeuvre point did "
-                                          f"not converge (trim residual {trim.residual_norm:.1e})")]
+            return [
+                Finding.not_evaluated(
+                    here,
+                    "out-of-trim manoeuvre",
+                    "the trim at VMO/MMO or a manoeuvre point did "
+                    f"not converge (trim residual {trim.residual_norm:.1e})",
+                )
+            ]
         datum = trim.stabilizer - trim.controls["stabilizer"]
-        details = dict(stabilizer_trim_deg=round(math.degrees(trim.stabilizer), 3),
-                       stabilizer_mistrim_deg=round(math.degrees(datum + stab), 3),
-                       elevator_1g_deg=round(math.degrees(one.elevator[i]), 3),
-                       elevator_pull_deg=round(math.degrees(pull.elevator[i]), 3),
-                       elevator_push_deg=round(math.degrees(push.elevator[i]), 3), tas_kn=round(tas / KN, 2))
+        details = dict(
+            stabilizer_trim_deg=round(math.degrees(trim.stabilizer), 3),
+            stabilizer_mistrim_deg=round(math.degrees(datum + stab), 3),
+            elevator_1g_deg=round(math.degrees(one.elevator[i]), 3),
+            elevator_pull_deg=round(math.degrees(pull.elevator[i]), 3),
+            elevator_push_deg=round(math.degrees(push.elevator[i]), 3),
+            tas_kn=round(tas / KN, 2),
+        )
         e_lo, e_hi = limits
         out = []
-        for label, d in ((f"pull to {crit.pull_load_factor:g} g", pull.elevator[i]),
-                         (f"push to {crit.push_load_factor:g} g", push.elevator[i])):
+        for label, d in (
+            (f"pull to {crit.pull_load_factor:g} g", pull.elevator[i]),
+            (f"push to {crit.push_load_factor:g} g", push.elevator[i]),
+        ):
             limit, at_least = (e_lo, True) if d < 0 else (e_hi, False)
-            out.append(Finding.compare(here, f"{label}: elevator within its design limit", math.degrees(d),
-                                       math.degrees(limit), at_least=at_least, unit="deg", **details))
+            out.append(
+                Finding.compare(
+                    here,
+                    f"{label}: elevator within its design limit",
+                    math.degrees(d),
+                    math.degrees(limit),
+                    at_least=at_least,
+                    unit="deg",
+                    **details,
+                )
+            )
         para = "(b)(1) positive slope" if speed_name == "VFC/MFC" else "(b)(2) no reversal"
-        out.append(Finding.compare(here, f"{para}: more trailing-edge-up elevator to pull", math.degrees(one.elevator[i] - pull.elevator[i]),
-                                   0.0, at_least=True, unit="deg", **details))
-        out.append(Finding.compare(here, f"{para}: more trailing-edge-down elevator to push", math.degrees(push.elevator[i] - one.elevator[i]),
-                                   0.0, at_least=True, unit="deg", **details))
+        out.append(
+            Finding.compare(
+                here,
+                f"{para}: more trailing-edge-up elevator to pull",
+                math.degrees(one.elevator[i] - pull.elevator[i]),
+                0.0,
+                at_least=True,
+                unit="deg",
+                **details,
+            )
+        )
+        out.append(
+            Finding.compare(
+                here,
+                f"{para}: more trailing-edge-down elevator to push",
+                math.degrees(push.elevator[i] - one.elevator[i]),
+                0.0,
+                at_least=True,
+                unit="deg",
+                **details,
+            )
+        )
         if elevator is None:
             out.append(Finding.not_evaluated(here, f"{para}: stick force", _NO_FORCE))
             return out
@@ -164,15 +238,49 @@ class OutOfTrim(Rule):
         force = lambda a, d: float(-elevator.force(q, local_angle(ac, "elevator", a, 0.0, mach), d, trim=trim_at) / LBF)  # noqa: E731
         f_one = force(one.alpha[i], one.elevator[i])
         f_pull, f_push = force(pull.alpha[i], pull.elevator[i]), force(push.alpha[i], push.elevator[i])
-        forces = dict(pull_force_1g_lbf=round(f_one, 2), pull_force_pull_lbf=round(f_pull, 2),
-                      pull_force_push_lbf=round(f_push, 2), force_model=elevator.kind)
+        forces = dict(
+            pull_force_1g_lbf=round(f_one, 2),
+            pull_force_pull_lbf=round(f_pull, 2),
+            pull_force_push_lbf=round(f_push, 2),
+            force_model=elevator.kind,
+        )
         # (b): the pull force rises with g — from 1 g to the pull-up and from the push-over to 1 g (a pilot holding
         # a push at 1 g out of trim pulls by pushing less); positive: the stable sense
-        out.append(Finding.compare(here, f"{para}: stick force per g, 1 g to {crit.pull_load_factor:g} g", f_pull - f_one,
-                                   0.0, at_least=True, unit="lbf", **forces, **details))
-        out.append(Finding.compare(here, f"{para}: stick force per g, {crit.push_load_factor:g} g to 1 g", f_one - f_push,
-                                   0.0, at_least=True, unit="lbf", **forces, **details))
+        out.append(
+            Finding.compare(
+                here,
+                f"{para}: stick force per g, 1 g to {crit.pull_load_factor:g} g",
+                f_pull - f_one,
+                0.0,
+                at_least=True,
+                unit="lbf",
+                **forces,
+                **details,
+            )
+        )
+        out.append(
+            Finding.compare(
+                here,
+                f"{para}: stick force per g, {crit.push_load_factor:g} g to 1 g",
+                f_one - f_push,
+                0.0,
+                at_least=True,
+                unit="lbf",
+                **forces,
+                **details,
+            )
+        )
         if speed_name == "VDF/MDF":  # (f): the pull that holds 1.5 g (a push there needs no pull at all)
-            out.append(Finding.compare(here, f"(f) {crit.pull_load_factor:g} g recovery pull force", f_pull,
-                                       crit.recovery_force_lbf, at_least=False, unit="lbf", **forces, **details))
+            out.append(
+                Finding.compare(
+                    here,
+                    f"(f) {crit.pull_load_factor:g} g recovery pull force",
+                    f_pull,
+                    crit.recovery_force_lbf,
+                    at_least=False,
+                    unit="lbf",
+                    **forces,
+                    **details,
+                )
+            )
         return out

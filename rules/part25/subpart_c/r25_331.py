@@ -24,40 +24,58 @@ from dataclasses import dataclass, field
 from functools import partial
 
 import numpy as np
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, fuelled_wing_envelope
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.structural_checks import (
+    SAFETY,
+    beyond_mach_range,
+    capability_finding,
+    condition_mach,
+    control_stops,
+    critical_state_finding,
+    entry_speeds,
+    force_limited_deflection,
+    maneuver_limit_load_factor,
+    set_aside_finding,
+)
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import Finding, LoadsRun
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Bound, Step, simulate
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
-from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
-from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
-from certkit_rules.part25.support.fuel_states import (fuel_detail, fuel_tank_names, fuelled_wing,
-                                                    fuelled_wing_envelope)
-from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
-                                                           condition_mach, control_stops, critical_state_finding,
-                                                           entry_speeds, force_limited_deflection,
-                                                           maneuver_limit_load_factor, set_aside_finding)
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
-PILOT_EFFORT_NOTE = ("no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
-                     "(300 lbf elevator wheel) cannot reduce the deflection; the control-system stop (travel) bounds it")
-PILOT_EFFORT = {"pilot_effort_lbf": Criterion(
-    300.0, "lbf", "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
-    "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
-    "data (§25.397(b))", "limit pilot force on the pitch control (used with control_forces.elevator)")}
+PILOT_EFFORT_NOTE = (
+    "no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
+    "(300 lbf elevator wheel) cannot reduce the deflection; the control-system stop (travel) bounds it"
+)
+PILOT_EFFORT = {
+    "pilot_effort_lbf": Criterion(
+        300.0,
+        "lbf",
+        "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
+        "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
+        "data (§25.397(b))",
+        "limit pilot force on the pitch control (used with control_forces.elevator)",
+    )
+}
 
 
 def _effort_note(limited, i) -> str:
     if limited is None:
         return PILOT_EFFORT_NOTE
-    return ("deflection limited by the pilot effort (control_forces.elevator)" if limited[i]
-            else "control-system stop (travel) reached below the pilot-effort force")
+    return (
+        "deflection limited by the pilot effort (control_forces.elevator)"
+        if limited[i]
+        else "control-system stop (travel) reached below the pilot-effort force"
+    )
 
 
 # --------------------------------------------------------------------------- wing loads
@@ -82,8 +100,10 @@ class PitchManeuverRun(LoadsRun):
 NOTHING_TRIMMED = "no condition could be trimmed (see the findings)"
 
 
-WING_STALL_NOTE = ("wing loads considered while the airplane's linear lift is below CLmax: the strip loads are linear "
-                   "in α, past the stall they overstate the wing's lift (which the airplane model rounds onto CLmax)")
+WING_STALL_NOTE = (
+    "wing loads considered while the airplane's linear lift is below CLmax: the strip loads are linear "
+    "in α, past the stall they overstate the wing's lift (which the airplane model rounds onto CLmax)"
+)
 
 
 def wing_before_stall(hist, model, sim) -> np.ndarray | None:
@@ -102,9 +122,17 @@ def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: boo
     if stalled:
         details["wing_window"] = WING_STALL_NOTE
     peaks, names, fuel = fuelled
-    return critical_state_finding(cond, f"{check}, wing", "wing", peaks[:, i], env.stations["wing"],
-                                  declared_capabilities(ctx, "wing"), crit.ultimate_factor,
-                                  partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)), **details)
+    return critical_state_finding(
+        cond,
+        f"{check}, wing",
+        "wing",
+        peaks[:, i],
+        env.stations["wing"],
+        declared_capabilities(ctx, "wing"),
+        crit.ultimate_factor,
+        partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)),
+        **details,
+    )
 
 
 def _modes_frequency(batch) -> np.ndarray:
@@ -122,6 +150,7 @@ def _label(cond) -> str:
 
 
 # --------------------------------------------------------------------------- (c)(2) checked manoeuvre
+
 
 @rule
 class CheckedPitchManeuver(SimulationRule):
@@ -152,34 +181,58 @@ class CheckedPitchManeuver(SimulationRule):
     references = ("25.331(c)(1)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VD", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
     criteria = {
-        "omega_floor_factor": Criterion(0.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
-                                        "ω ≥ factor × π V/VA (rad/s), i.e. πV/(2VA)"),
-        "t_max_periods": Criterion(1.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
-                                   "t_max = factor × π/ω without hold (3π/(2ω))"),
+        "omega_floor_factor": Criterion(
+            0.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")", "ω ≥ factor × π V/VA (rad/s), i.e. πV/(2VA)"
+        ),
+        "t_max_periods": Criterion(
+            1.5,
+            "",
+            "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
+            "t_max = factor × π/ω without hold (3π/(2ω))",
+        ),
         "max_hold": Criterion(5.0, "s", "14 CFR 25.331(c)(2)(iii) (verified fragment)", "longest hold Δt at the peak"),
         "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
         "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
         "search_steps": Criterion(10, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
-        "load_factor_tolerance": Criterion(0.02, "", "certkit numerical choice", "|n_peak − n_target| accepted "
-                                           "(also the allowance on the §25.337 limit of the load-factor check)"),
+        "load_factor_tolerance": Criterion(
+            0.02,
+            "",
+            "certkit numerical choice",
+            "|n_peak − n_target| accepted (also the allowance on the §25.337 limit of the load-factor check)",
+        ),
         **SAFETY,
         **PILOT_EFFORT,
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
-                                extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
-                                note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).")
-    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
-                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
-                   "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=("clean",),
+        altitudes=EnvelopeAltitudes(),
+        extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
+        note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).",
+    )
+    limitations = (
+        "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
+        "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
+        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ("25.331(c)(2)", "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
-                         "tail loads only)"),
-        ("25.331(a)(2)", "out-of-trim loads are not computed: the manoeuvres start from the 1 g trim, not from the "
-                         "§25.255 mistrim (stabiliser trimmed for the adjacent speed); no rule evaluates them"),
-        ("25.331(c)", "a condition beyond the aerodynamic model's Mach range (its highest breakpoint) is not evaluated, "
-                      "its loads would be extrapolated"),
+        (
+            "25.331(c)(2)",
+            "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
+            "tail loads only)",
+        ),
+        (
+            "25.331(a)(2)",
+            "out-of-trim loads are not computed: the manoeuvres start from the 1 g trim, not from the "
+            "§25.255 mistrim (stabiliser trimmed for the adjacent speed); no rule evaluates them",
+        ),
+        (
+            "25.331(c)",
+            "a condition beyond the aerodynamic model's Mach range (its highest breakpoint) is not evaluated, "
+            "its loads would be extrapolated",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -197,8 +250,9 @@ def pitch_evidence(run: PitchManeuverRun | None, ctx, crit, what: str) -> list:
     if run is None or not run.simulated:
         return []
     allow = allowables(ctx, crit.ultimate_factor)
-    return (maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow)
-            + envelope_evidence(run.envelope, ("wing",), what, plot=False, allow=allow))
+    return maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow) + envelope_evidence(
+        run.envelope, ("wing",), what, plot=False, allow=allow
+    )
 
 
 def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
@@ -215,7 +269,8 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None))
     batch = trimmed_batch(ctx, [e.with_() for e in entries])
     rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries])
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries]
+    )
     findings = refusal_findings(refused, lambda c: ["(c)(2) checked manoeuvre"])
     if not rows.size:
         return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
@@ -229,7 +284,9 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     lim = control_stops(ctx, "elevator")
     de_trim = u0[:, model.control_names.index("elevator")]
     stop = np.where(nose_up, lim[0], lim[1])
-    reach_to, effort_limited = force_limited_deflection(ctx, "elevator", sim_conds, de_trim, stop, crit.pilot_effort_lbf)
+    reach_to, effort_limited = force_limited_deflection(
+        ctx, "elevator", sim_conds, de_trim, stop, crit.pilot_effort_lbf
+    )
     available = np.abs(reach_to - de_trim)
     sign = np.where(nose_up, -1.0, 1.0)
     target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
@@ -242,32 +299,49 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         up = nose_up[idx]
         sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
         t_max = 2 * crit.t_max_periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
-        stop = [Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
-                Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
-                Bound("t_max", "t", upper=t_max + 1e-9)]
+        stop = [
+            Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
+            Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
+            Bound("t_max", "t", upper=t_max + 1e-9),
+        ]
         sub = model if idx.size == len(rows) else model.subset(idx)
         sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
         nz = sim["n_z"]
         valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
         resp = np.full(len(rows), np.nan)
-        resp[idx] = np.where(up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0))
+        resp[idx] = np.where(
+            up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0)
+        )
         return (resp, sim, valid, t_max) if record else resp
 
     max_hold = float(crit.max_hold)
     r_full = simulate_inputs(available, np.zeros(len(rows)))
     reach = r_full >= target
-    r_held = np.where(reach, r_full, simulate_inputs(available, np.full(len(rows), max_hold), ~reach)) if (~reach).any() else r_full
+    r_held = (
+        np.where(reach, r_full, simulate_inputs(available, np.full(len(rows), max_hold), ~reach))
+        if (~reach).any()
+        else r_full
+    )
     held_short = ~reach & (r_held < target)  # even the longest hold does not reach the load factor: maximal input
 
     def inputs_of(p):
         """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
         hold fraction of the longest hold (full deflection)."""
-        return np.where(reach, p * available, available), np.where(reach | held_short, 0.0, p * max_hold) + held_short * max_hold
+        return np.where(reach, p * available, available), np.where(
+            reach | held_short, 0.0, p * max_hold
+        ) + held_short * max_hold
 
     search = ~held_short
-    p, r_p, p_lo, _, p_hi, _ = bisect_batch(lambda p, mask: simulate_inputs(*inputs_of(p), mask), np.zeros(len(rows)), np.ones(len(rows)), target,
-                                 steps=int(crit.search_steps), tol=float(crit.load_factor_tolerance),
-                                 f_lo=np.where(reach, 0.0, r_full), f_hi=np.where(reach, r_full, r_held))
+    p, r_p, p_lo, _, p_hi, _ = bisect_batch(
+        lambda p, mask: simulate_inputs(*inputs_of(p), mask),
+        np.zeros(len(rows)),
+        np.ones(len(rows)),
+        target,
+        steps=int(crit.search_steps),
+        tol=float(crit.load_factor_tolerance),
+        f_lo=np.where(reach, 0.0, r_full),
+        f_hi=np.where(reach, r_full, r_held),
+    )
     # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
     # amplitude search that did not converge (a response that jumps across the target near stall) takes the
     # largest amplitude found that does not exceed the load factor, as the paragraph scales the input down
@@ -280,41 +354,100 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     unstalled = wing_before_stall(hist, model, sim)
     stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
     fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
-    env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds],
-                                                            keys=sim_conds), fuelled[0])
+    env = fuelled_wing_envelope(
+        LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds), fuelled[0]
+    )
     stations = loads["horizontal_tail"].station_names
     caps = declared_capabilities(ctx, "horizontal_tail")
     for i, c in enumerate(sim_conds):
         converged = abs(resp[i] - target[i]) <= float(crit.load_factor_tolerance)
-        kind = (("sinusoid, amplitude scaled to the load factor" if converged else
-                 f"sinusoid, the largest amplitude found below the load factor (search not converged in "
-                 f"{int(crit.search_steps)} steps)" if resp[i] < target[i] else
-                 f"sinusoid, amplitude search not converged in {int(crit.search_steps)} steps") if reach[i] else
-                "held at full deflection for the longest hold (load factor not reached)" if held_short[i] else
-                "held at full deflection, minimum hold to the load factor")
-        peak_nz = float(np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan)) if nose_up[i]
-                        else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan)))
+        kind = (
+            (
+                "sinusoid, amplitude scaled to the load factor"
+                if converged
+                else f"sinusoid, the largest amplitude found below the load factor (search not converged in "
+                f"{int(crit.search_steps)} steps)"
+                if resp[i] < target[i]
+                else f"sinusoid, amplitude search not converged in {int(crit.search_steps)} steps"
+            )
+            if reach[i]
+            else "held at full deflection for the longest hold (load factor not reached)"
+            if held_short[i]
+            else "held at full deflection, minimum hold to the load factor"
+        )
+        peak_nz = float(
+            np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
+            if nose_up[i]
+            else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
+        )
         reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
         beyond_mach = beyond_mach_range(loads, condition_mach(c))
         if beyond_mach:
-            findings += [set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}", beyond_mach,
-                                           env.peaks["horizontal_tail"][i], stations, peak_n_z=round(peak_nz, 4),
-                                           input=kind),
-                         set_aside_finding(c, f"(c)(2) checked manoeuvre, {c.get('direction')}, wing", beyond_mach,
-                                           fuelled[0][:, i], env.stations["wing"], peak_n_z=round(peak_nz, 4))]
+            findings += [
+                set_aside_finding(
+                    c,
+                    f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                    beyond_mach,
+                    env.peaks["horizontal_tail"][i],
+                    stations,
+                    peak_n_z=round(peak_nz, 4),
+                    input=kind,
+                ),
+                set_aside_finding(
+                    c,
+                    f"(c)(2) checked manoeuvre, {c.get('direction')}, wing",
+                    beyond_mach,
+                    fuelled[0][:, i],
+                    env.stations["wing"],
+                    peak_n_z=round(peak_nz, 4),
+                ),
+            ]
             continue
-        findings.append(capability_finding(
-            c, f"(c)(2) checked manoeuvre, {c.get('direction')}", "horizontal_tail", env.peaks["horizontal_tail"][i],
-            stations, caps, crit.ultimate_factor, delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
-            omega_rad_s=round(float(omega[i]), 4), omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
-            hold_s=round(float(hold[i]), 3), t_max_s=round(float(t_max[i]), 3), stop=sim.stop_reason[i] or "end",
-            pilot_effort=_effort_note(effort_limited, i), **reached))
-        findings.append(wing_finding(ctx, c, f"(c)(2) checked manoeuvre, {c.get('direction')}", env, i, crit, fuelled,
-                                     bool(stalled[i]), input=kind, peak_n_z=round(peak_nz, 4)))
+        findings.append(
+            capability_finding(
+                c,
+                f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                "horizontal_tail",
+                env.peaks["horizontal_tail"][i],
+                stations,
+                caps,
+                crit.ultimate_factor,
+                delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
+                omega_rad_s=round(float(omega[i]), 4),
+                omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
+                hold_s=round(float(hold[i]), 3),
+                t_max_s=round(float(t_max[i]), 3),
+                stop=sim.stop_reason[i] or "end",
+                pilot_effort=_effort_note(effort_limited, i),
+                **reached,
+            )
+        )
+        findings.append(
+            wing_finding(
+                ctx,
+                c,
+                f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                env,
+                i,
+                crit,
+                fuelled,
+                bool(stalled[i]),
+                input=kind,
+                peak_n_z=round(peak_nz, 4),
+            )
+        )
         if beyond is not None:
             findings.append(beyond)
-    return PitchManeuverRun(findings, sim_conds, sim, valid, envelope=env, loads=hist,
-                            kind=np.where(reach, 0, np.where(held_short, 2, 1)), stations=stations)
+    return PitchManeuverRun(
+        findings,
+        sim_conds,
+        sim,
+        valid,
+        envelope=env,
+        loads=hist,
+        kind=np.where(reach, 0, np.where(held_short, 2, 1)),
+        stations=stations,
+    )
 
 
 def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
@@ -327,20 +460,28 @@ def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
     tol = float(crit.load_factor_tolerance)
     details = dict(peak_n_z=round(peak_nz, 4), limit_load_factor=round(n_lim, 4), search_tolerance=tol, input=kind)
     if nose_up and peak_nz < n_lim - tol:
-        details["load_factor_note"] = ("the positive limit load factor is not reached with the available elevator and "
-                                       "the longest hold (§25.331(c)(2)(iii) maximal input)")
+        details["load_factor_note"] = (
+            "the positive limit load factor is not reached with the available elevator and "
+            "the longest hold (§25.331(c)(2)(iii) maximal input)"
+        )
     limit = n_lim + tol if nose_up else n_lim - tol
     if not (peak_nz > limit if nose_up else peak_nz < limit):
         return details, None
     check = f"(c)(2) load factor beyond the §25.337 limit, {cond.get('direction')}"
     if not settled:
-        return details, Finding.not_evaluated(cond, check, f"amplitude search not converged: peak n_z {peak_nz:.3f} is "
-                                              f"beyond the §25.337 limit {n_lim:.3f} (loads of this condition are "
-                                              "conservative)", **details)
+        return details, Finding.not_evaluated(
+            cond,
+            check,
+            f"amplitude search not converged: peak n_z {peak_nz:.3f} is "
+            f"beyond the §25.337 limit {n_lim:.3f} (loads of this condition are "
+            "conservative)",
+            **details,
+        )
     return details, Finding.compare(cond, check, peak_nz, limit, at_least=not nose_up, unit="g", **details)
 
 
 # --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
+
 
 @rule
 class MaximumPitchControlDisplacement(SimulationRule):
@@ -364,45 +505,70 @@ class MaximumPitchControlDisplacement(SimulationRule):
     references = ("25.331(c)(2)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
     criteria = {
-        "ramp_time": Criterion(0.1, "s", "certkit assumption: 'suddenly' with no declared actuator rate",
-                               "time to reach the full deflection"),
+        "ramp_time": Criterion(
+            0.1,
+            "s",
+            "certkit assumption: 'suddenly' with no declared actuator rate",
+            "time to reach the full deflection",
+        ),
         "duration": Criterion(4.0, "s", "certkit numerical choice", "longest simulated time"),
         "time_step": Criterion(0.02, "s", "certkit numerical choice", "simulation step"),
         **SAFETY,
         **PILOT_EFFORT,
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
-                                note="At VA (EAS), capped at the Mach-limited VC at altitude.")
-    limitations = ("Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
-                   "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
-                   "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section.")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=("clean",),
+        altitudes=EnvelopeAltitudes(),
+        note="At VA (EAS), capped at the Mach-limited VC at altitude.",
+    )
+    limitations = (
+        "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
+        "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
+        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ("25.331(c)(1)", "fuselage and vertical-tail loads of the manoeuvre are not reported (wing and horizontal-tail "
-                         "loads only)"),
-        ("25.391", "the elevator's hinge-line loads of this manoeuvre (§25.391, §25.395 control system, §25.397 pilot "
-                   "effort, §25.415 ground gusts) are not computed; no rule evaluates control-surface and control-system "
-                   "loads"),
+        (
+            "25.331(c)(1)",
+            "fuselage and vertical-tail loads of the manoeuvre are not reported (wing and horizontal-tail loads only)",
+        ),
+        (
+            "25.391",
+            "the elevator's hinge-line loads of this manoeuvre (§25.391, §25.395 control system, §25.397 pilot "
+            "effort, §25.415 ground gusts) are not computed; no rule evaluates control-surface and control-system "
+            "loads",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
         n_lim = ctx.aircraft.envelope.limit_load_factors.positive
-        entries = [c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
-                   for c in conditions]
+        entries = [
+            c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
+            for c in conditions
+        ]
         batch = trimmed_batch(ctx, entries)
         findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
         if not batch.n:
             return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
         lim = control_stops(ctx, "elevator")
         # to the nose-up (trailing edge up) stop, or as far as the pilot effort moves it
-        target, effort_limited = force_limited_deflection(ctx, "elevator", batch.conditions, batch.control("elevator"),
-                                                          lim[0], crit.pilot_effort_lbf)
+        target, effort_limited = force_limited_deflection(
+            ctx, "elevator", batch.conditions, batch.control("elevator"), lim[0], crit.pilot_effort_lbf
+        )
         step = target - batch.control("elevator")
         dt, ramp = float(crit.time_step), float(crit.ramp_time)
         sched = Step(0.0, step) if ramp <= 0 else _ramp(ramp, step)
-        sim = simulate(batch.model, batch.x, batch.u, float(crit.duration), dt, inputs={"elevator": sched},
-                       stop=[Bound("n_z > limit", "n_z", upper=n_lim)])
+        sim = simulate(
+            batch.model,
+            batch.x,
+            batch.u,
+            float(crit.duration),
+            dt,
+            inputs={"elevator": sched},
+            stop=[Bound("n_z > limit", "n_z", upper=n_lim)],
+        )
         loads = airplane_loads(ctx)
         hist = response_loads(loads, sim, batch.model, LOADED)
         # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
@@ -413,30 +579,79 @@ class MaximumPitchControlDisplacement(SimulationRule):
         unstalled = wing_before_stall(hist, batch.model, sim)
         stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
         fuelled = fuelled_wing(ctx, loads, sim, batch.model, hist["wing"], batch.conditions)
-        env = fuelled_wing_envelope(LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions],
-                                                                keys=batch.conditions), fuelled[0])
+        env = fuelled_wing_envelope(
+            LoadEnvelope.from_histories(
+                loads, hist, sim.t, [_label(c) for c in batch.conditions], keys=batch.conditions
+            ),
+            fuelled[0],
+        )
         stations = loads["horizontal_tail"].station_names
         caps = declared_capabilities(ctx, "horizontal_tail")
         for i, c in enumerate(batch.conditions):
             beyond_mach = beyond_mach_range(loads, condition_mach(c))
             if beyond_mach:
-                findings += [set_aside_finding(c, "(c)(1) maximum pitch control displacement", beyond_mach,
-                                               env.peaks["horizontal_tail"][i], stations),
-                             set_aside_finding(c, "(c)(1) maximum pitch control displacement, wing", beyond_mach,
-                                               fuelled[0][:, i], env.stations["wing"])]
+                findings += [
+                    set_aside_finding(
+                        c,
+                        "(c)(1) maximum pitch control displacement",
+                        beyond_mach,
+                        env.peaks["horizontal_tail"][i],
+                        stations,
+                    ),
+                    set_aside_finding(
+                        c,
+                        "(c)(1) maximum pitch control displacement, wing",
+                        beyond_mach,
+                        fuelled[0][:, i],
+                        env.stations["wing"],
+                    ),
+                ]
                 continue
-            findings.append(capability_finding(
-                c, "(c)(1) maximum pitch control displacement", "horizontal_tail", env.peaks["horizontal_tail"][i],
-                stations, caps, crit.ultimate_factor, elevator_step_deg=round(float(np.degrees(step[i])), 3),
-                considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3), stop=sim.stop_reason[i] or "end",
-                VA_kn_EAS=round(float(c.speed / KN), 1), pilot_effort=_effort_note(effort_limited, i),
-                elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
-                elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3),
-                **({"stabilizer_trim_deg": round(float(np.degrees(batch.control("stabilizer")[i]
-                                                                  + ctx.aircraft.geometry.horizontal_tail.incidence)), 3)}
-                   if "stabilizer" in batch.model.control_names else {})))
-            findings.append(wing_finding(ctx, c, "(c)(1) maximum pitch control displacement", env, i, crit, fuelled,
-                                         bool(stalled[i]), considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3)))
+            findings.append(
+                capability_finding(
+                    c,
+                    "(c)(1) maximum pitch control displacement",
+                    "horizontal_tail",
+                    env.peaks["horizontal_tail"][i],
+                    stations,
+                    caps,
+                    crit.ultimate_factor,
+                    elevator_step_deg=round(float(np.degrees(step[i])), 3),
+                    considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
+                    stop=sim.stop_reason[i] or "end",
+                    VA_kn_EAS=round(float(c.speed / KN), 1),
+                    pilot_effort=_effort_note(effort_limited, i),
+                    elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
+                    elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3),
+                    **(
+                        {
+                            "stabilizer_trim_deg": round(
+                                float(
+                                    np.degrees(
+                                        batch.control("stabilizer")[i] + ctx.aircraft.geometry.horizontal_tail.incidence
+                                    )
+                                ),
+                                3,
+                            )
+                        }
+                        if "stabilizer" in batch.model.control_names
+                        else {}
+                    ),
+                )
+            )
+            findings.append(
+                wing_finding(
+                    ctx,
+                    c,
+                    "(c)(1) maximum pitch control displacement",
+                    env,
+                    i,
+                    crit,
+                    fuelled,
+                    bool(stalled[i]),
+                    considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
+                )
+            )
         return PitchManeuverRun(findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations)
 
     def evidence(self, ctx, findings, crit):

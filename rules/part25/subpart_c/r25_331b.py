@@ -19,9 +19,15 @@ evaluated; the tail's are, without the flaps' downwash.
 
 from __future__ import annotations
 
+from certkit_rules.part25.support.balanced_runs import (
+    BALANCED_CONDITIONS,
+    BALANCED_REQUIRES,
+    BALANCED_RUN_CRITERIA,
+    SURFACES,
+    balanced_runs,
+)
+
 from certkit.engine.registry import Loads, SimulationRule, rule
-from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
-                                                          SURFACES, balanced_runs)
 
 
 @rule
@@ -49,22 +55,30 @@ class BalancedManeuver(SimulationRule):
     requires = BALANCED_REQUIRES
     criteria = dict(BALANCED_RUN_CRITERIA)
     conditions = BALANCED_CONDITIONS
-    limitations = ("Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
-                   "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
-                   "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
-                   "model, no flap downwash at the tail) and VF is the larger of the placard VFE and the §25.335(e)(3) "
-                   "minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
-                   "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
-                   "finding.")
+    limitations = (
+        "Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
+        "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
+        "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
+        "model, no flap downwash at the tail) and VF is the larger of the placard VFE and the §25.335(e)(3) "
+        "minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
+        "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
+        "finding."
+    )
     implementation = "partial"
     unevaluated = (
         ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
         ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
-        ("25.345(a)", "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
-                      "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
-                      "evaluated"),
-        ("25.333", "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at "
-                   "altitude; conditions beyond the aerodynamic model's highest Mach breakpoint are not evaluated"),
+        (
+            "25.345(a)",
+            "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
+            "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
+            "evaluated",
+        ),
+        (
+            "25.333",
+            "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at "
+            "altitude; conditions beyond the aerodynamic model's highest Mach breakpoint are not evaluated",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -75,4 +89,6 @@ class BalancedManeuver(SimulationRule):
 
         if self.run is None or not self.run.simulated:
             return []
-        return envelope_evidence(self.run.envelope, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor))
+        return envelope_evidence(
+            self.run.envelope, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor)
+        )

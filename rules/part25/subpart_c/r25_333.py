@@ -9,12 +9,13 @@ it. The strength check on the envelope belongs to the loads rules (§25.331, §2
 
 from __future__ import annotations
 
-from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
-from certkit.models.loads.vn_envelope import envelope
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.reference_speeds import declared_eas
+
+from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.engine.registry import Rule, rule
 from certkit.engine.results import Evidence, Finding
-from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
+from certkit.models.loads.vn_envelope import envelope
 
 
 @rule
@@ -35,17 +36,28 @@ class FlightManeuveringEnvelope(Rule):
         VD − VC (the envelope has a positive width). ≥ 0 complies.
     """
     references = ("25.335(c)", "25.337", "25.331", "25.1501")
-    requires = ("speeds.VA", "speeds.VC", "speeds.VD", "configurations.clean.CLmax", "configurations.clean.CLmin",
-                "envelope.limit_load_factors")
+    requires = (
+        "speeds.VA",
+        "speeds.VC",
+        "speeds.VD",
+        "configurations.clean.CLmax",
+        "configurations.clean.CLmin",
+        "envelope.limit_load_factors",
+    )
     criteria = dict(CN_OVER_CL)
     conditions = ConditionSpace(loading=EnvelopeWeights(), altitudes=EnvelopeAltitudes())
-    limitations = ("Strength on the envelope is checked by the loads rules; this rule defines the envelope and "
-                   "checks that the declared speeds close it.")
+    limitations = (
+        "Strength on the envelope is checked by the loads rules; this rule defines the envelope and "
+        "checks that the declared speeds close it."
+    )
 
     implementation = "partial"
     unevaluated = (
-        ("25.333(a)", "strength at each point of the envelope is not checked by this rule (the loads rules check "
-                      "their own points); the flaps-extended envelope of §25.345 is not drawn"),
+        (
+            "25.333(a)",
+            "strength at each point of the envelope is not checked by this rule (the loads rules check "
+            "their own points); the flaps-extended envelope of §25.345 is not drawn",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -54,34 +66,58 @@ class FlightManeuveringEnvelope(Rule):
             env = envelope(ctx, cond.mass, cond.altitude, crit.cn_over_cl)
             corners = {k: [round(v, 3), round(n, 3)] for k, (v, n) in env.corners().items()}
             va = declared_eas(ctx, "VA", cond.altitude)
-            out.append(Finding.compare(cond, "A: +C_Nmax line reaches n₊ at or below VA", va, env.v_a, at_least=True,
-                                       unit="m/s", corners=corners))
-            out.append(Finding.compare(cond, "H: −C_Nmax line reaches n₋ at or below VC", env.v_c, env.v_h,
-                                       at_least=True, unit="m/s"))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "A: +C_Nmax line reaches n₊ at or below VA",
+                    va,
+                    env.v_a,
+                    at_least=True,
+                    unit="m/s",
+                    corners=corners,
+                )
+            )
+            out.append(
+                Finding.compare(
+                    cond, "H: −C_Nmax line reaches n₋ at or below VC", env.v_c, env.v_h, at_least=True, unit="m/s"
+                )
+            )
             out.append(Finding.compare(cond, "D–E: VD above VC", env.v_d, env.v_c, at_least=True, unit="m/s"))
         return out
 
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
 
-        conds = sorted({f.condition for f in findings if f.condition.mass is not None},
-                       key=lambda c: (c.altitude, c.mass))
+        conds = sorted(
+            {f.condition for f in findings if f.condition.mass is not None}, key=lambda c: (c.altitude, c.mass)
+        )
         if not conds:
             return []
         h0 = min(c.altitude for c in conds)
         sea = [c for c in conds if c.altitude == h0]
         picks = [sea[0], sea[-1]] if len(sea) > 1 else sea
         envs = [(c.loading or f"{c.mass:.0f} kg", envelope(ctx, c.mass, c.altitude, crit.cn_over_cl)) for c in picks]
-        speeds = {name: declared_eas(ctx, name, h0) for name in ("VA", "VB", "VC", "VD") if getattr(ctx.aircraft.speeds, name)}
+        speeds = {
+            name: declared_eas(ctx, name, h0) for name in ("VA", "VB", "VC", "VD") if getattr(ctx.aircraft.speeds, name)
+        }
         series, corners = [], []
         for k, (label, env) in enumerate(envs):
             v, n = env.outline()
             series.append(Series(label, v, n, colour=k))
             corners += [Point(vc, nc, name, kind="corner", colour=k) for name, (vc, nc) in env.corners().items()]
         lf = ctx.aircraft.envelope.limit_load_factors
-        limits = ([Limit(value, name, axis="x", kind="reference") for name, value in speeds.items()]
-                  + [Limit(lf.positive, f"n = {lf.positive:g}"), Limit(lf.negative, f"n = {lf.negative:g}")])
-        chart = Chart(Axis("equivalent airspeed", "m/s", "kn"), [Panel(Axis("load factor n", "g"), series, limits, corners)])
-        return [Evidence("V–n manoeuvring envelope, lightest and heaviest weight, lowest altitude (speeds in kn EAS)",
-                         chart, "Stall lines from ±C_Nmax; corners A, D, E, F, H; declared speeds dashed; limit "
-                         "manoeuvring load factors (§25.337) dashed black.")]
+        limits = [Limit(value, name, axis="x", kind="reference") for name, value in speeds.items()] + [
+            Limit(lf.positive, f"n = {lf.positive:g}"),
+            Limit(lf.negative, f"n = {lf.negative:g}"),
+        ]
+        chart = Chart(
+            Axis("equivalent airspeed", "m/s", "kn"), [Panel(Axis("load factor n", "g"), series, limits, corners)]
+        )
+        return [
+            Evidence(
+                "V–n manoeuvring envelope, lightest and heaviest weight, lowest altitude (speeds in kn EAS)",
+                chart,
+                "Stall lines from ±C_Nmax; corners A, D, E, F, H; declared speeds dashed; limit "
+                "manoeuvring load factors (§25.337) dashed black.",
+            )
+        ]

@@ -8,17 +8,17 @@ One rule per sub-paragraph, each over its own conditions:
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
+from certkit_rules.part25.support.gust import SOURCE as GUST_SOURCE
+from certkit_rules.part25.support.gust import reference_gust_velocity
+from certkit_rules.part25.support.reference_speeds import declared_eas
 
 from certkit.atmosphere import RHO0, convert_speed, density
 from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
-from certkit.models.performance.stall import stall_speed_eas
-from certkit_rules.part25.support.reference_speeds import declared_eas
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.performance.stall import stall_speed_eas
 from certkit.units import G0
-from certkit_rules.part25.support.gust import SOURCE as GUST_SOURCE
-from certkit_rules.part25.support.gust import reference_gust_velocity
-from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 
 AMDT = "25-91"
 
@@ -69,12 +69,27 @@ class DesignCruisingSpeed(Rule):
             h = cond.altitude
             vc, mach_limited = ctx.design_speed_eas("VC", h)
             if bool(mach_limited):
-                out.append(Finding.not_applicable(cond, "(a)(2) VC ≥ VB + 1.32 U_ref",
-                                                  "VC is limited by MC at this altitude (§25.335(a)(3), (d)(2))"))
+                out.append(
+                    Finding.not_applicable(
+                        cond,
+                        "(a)(2) VC ≥ VB + 1.32 U_ref",
+                        "VC is limited by MC at this altitude (§25.335(a)(3), (d)(2))",
+                    )
+                )
                 continue
             limit = declared_eas(ctx, "VB", h) + crit.gust_factor * float(reference_gust_velocity(h))
-            out.append(Finding.compare(cond, "(a)(2) VC ≥ VB + 1.32 U_ref", float(vc), limit, at_least=True, unit="m/s",
-                                       U_ref=float(reference_gust_velocity(h)), U_ref_source=GUST_SOURCE))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "(a)(2) VC ≥ VB + 1.32 U_ref",
+                    float(vc),
+                    limit,
+                    at_least=True,
+                    unit="m/s",
+                    U_ref=float(reference_gust_velocity(h)),
+                    U_ref_source=GUST_SOURCE,
+                )
+            )
         return out
 
 
@@ -98,16 +113,23 @@ class DesignDiveSpeed(Rule):
     requires = ("speeds.VD",)
     criteria = {
         "vc_over_vd_max": Criterion(0.8, "", "14 CFR 25.335(b)", "largest VC/VD (and MC/MD) ratio"),
-        "mach_margin": Criterion(0.07, "", "14 CFR 25.335(b)(2)", "minimum MD − MC where MC is compressibility-limited"),
-        "mach_margin_floor": Criterion(0.05, "", "14 CFR 25.335(b)(2)", "never less than this, even with a rational analysis"),
+        "mach_margin": Criterion(
+            0.07, "", "14 CFR 25.335(b)(2)", "minimum MD − MC where MC is compressibility-limited"
+        ),
+        "mach_margin_floor": Criterion(
+            0.05, "", "14 CFR 25.335(b)(2)", "never less than this, even with a rational analysis"
+        ),
     }
     conditions = ConditionSpace(altitudes=EnvelopeAltitudes())
     limitations = "The upset-manoeuvre margin of (b)(1) is not simulated; the Mach-margin route uses (b)(2)."
 
     implementation = "partial"
     unevaluated = (
-        ("25.335(b)(1)", "the upset-manoeuvre speed increase (20° nose-down upset from VC, 1.5 g recovery) is not "
-                         "simulated: only the 0.8 ratio and the (b)(2) Mach margin are checked"),
+        (
+            "25.335(b)(1)",
+            "the upset-manoeuvre speed increase (20° nose-down upset from VC, 1.5 g recovery) is not "
+            "simulated: only the 0.8 ratio and the (b)(2) Mach margin are checked",
+        ),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -116,15 +138,24 @@ class DesignDiveSpeed(Rule):
             h = cond.altitude
             vc, _ = ctx.design_speed_eas("VC", h)
             vd, vd_mach = ctx.design_speed_eas("VD", h)
-            ratio = Finding.compare(cond, "(b) VC/MC ≤ 0.8 VD/MD", crit.vc_over_vd_max * float(vd), float(vc),
-                                    at_least=True, unit="m/s")
+            ratio = Finding.compare(
+                cond, "(b) VC/MC ≤ 0.8 VD/MD", crit.vc_over_vd_max * float(vd), float(vc), at_least=True, unit="m/s"
+            )
             if ratio.status == "complies" or not bool(vd_mach):
                 out.append(ratio)
                 continue
             m_c, m_d = (float(convert_speed(v, "EAS", "MACH", h)) for v in (vc, vd))
             required = max(crit.mach_margin, crit.mach_margin_floor)
-            mach = Finding.compare(cond, "(b)(2) MD − M(VC) ≥ Mach margin", m_d - m_c, required, at_least=True,
-                                   unit="Mach", M_C=m_c, M_D=m_d)
+            mach = Finding.compare(
+                cond,
+                "(b)(2) MD − M(VC) ≥ Mach margin",
+                m_d - m_c,
+                required,
+                at_least=True,
+                unit="Mach",
+                M_C=m_c,
+                M_D=m_d,
+            )
             out.append(mach if (mach.normalized_margin or 0) >= (ratio.normalized_margin or 0) else ratio)
         return out
 
@@ -155,8 +186,19 @@ class DesignManeuveringSpeed(Rule):
             v_s1 = float(vs1(ctx, cond.mass, crit.cn_over_cl))
             vc, _ = ctx.design_speed_eas("VC", h)
             required = min(v_s1 * np.sqrt(n), float(vc))
-            out.append(Finding.compare(cond, "(c) VA ≥ min(VS1·√n, VC)", declared_eas(ctx, "VA", h), required,
-                                       at_least=True, unit="m/s", VS1=v_s1, n=n, VC=float(vc)))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "(c) VA ≥ min(VS1·√n, VC)",
+                    declared_eas(ctx, "VA", h),
+                    required,
+                    at_least=True,
+                    unit="m/s",
+                    VS1=v_s1,
+                    n=n,
+                    VC=float(vc),
+                )
+            )
         return out
 
 
@@ -180,8 +222,10 @@ class DesignSpeedMaximumGust(Rule):
         "kg_b": Criterion(5.3, "", "14 CFR 25.335(d)(1)", "gust alleviation factor K_g = a μ/(b + μ): b"),
     }
     conditions = ConditionSpace(loading=EnvelopeWeights(), altitudes=EnvelopeAltitudes())
-    limitations = ("a is the wing lift-curve slope (DATCOM/Polhamus) at the Mach number of VC, not the whole "
-                   "airplane's C_Nα; the vortex-lattice value replaces it when the aerodynamics model is wired in.")
+    limitations = (
+        "a is the wing lift-curve slope (DATCOM/Polhamus) at the Mach number of VC, not the whole "
+        "airplane's C_Nα; the vortex-lattice value replaces it when the aerodynamics model is wired in."
+    )
 
     def evaluate(self, ctx, conditions, crit):
         out = []
@@ -189,10 +233,23 @@ class DesignSpeedMaximumGust(Rule):
             h = cond.altitude
             v_s1 = float(vs1(ctx, cond.mass, crit.cn_over_cl))
             vc, vc_mach = ctx.design_speed_eas("VC", h)
-            n_g, info = gust_load_factor(ctx, cond.mass, h, float(vc), float(reference_gust_velocity(h)), crit.kg_a, crit.kg_b)
+            n_g, info = gust_load_factor(
+                ctx, cond.mass, h, float(vc), float(reference_gust_velocity(h)), crit.kg_a, crit.kg_b
+            )
             required = v_s1 * np.sqrt(n_g)
             if bool(vc_mach):
                 required = min(required, float(vc))
-            out.append(Finding.compare(cond, "(d)(1) VB ≥ VS1·√n_g", declared_eas(ctx, "VB", h), required,
-                                       at_least=True, unit="m/s", VS1=v_s1, n_g=float(n_g), **info))
+            out.append(
+                Finding.compare(
+                    cond,
+                    "(d)(1) VB ≥ VS1·√n_g",
+                    declared_eas(ctx, "VB", h),
+                    required,
+                    at_least=True,
+                    unit="m/s",
+                    VS1=v_s1,
+                    n_g=float(n_g),
+                    **info,
+                )
+            )
         return out

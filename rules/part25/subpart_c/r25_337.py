@@ -49,17 +49,35 @@ class LimitManeuveringLoadFactors(Rule):
         "n_positive_cap": Criterion(3.8, "", SOURCE, "positive factor need not be greater than"),
         "n_negative": Criterion(-1.0, "", "14 CFR 25.337(c)(1)", "negative factor at speeds up to VC"),
     }
-    conditions = ConditionSpace(loading=EnvelopeWeights(),
-                                note="The required factor uses the design MTOW, as the paragraph says.")
+    conditions = ConditionSpace(
+        loading=EnvelopeWeights(), note="The required factor uses the design MTOW, as the paragraph says."
+    )
 
     def evaluate(self, ctx, conditions, crit):
         n = ctx.aircraft.envelope.limit_load_factors
-        required = required_positive_load_factor(ctx.aircraft.mass.MTOW, crit.n_formula_a, crit.n_formula_b,
-                                                 crit.n_formula_c, crit.n_positive_floor, crit.n_positive_cap)
+        required = required_positive_load_factor(
+            ctx.aircraft.mass.MTOW,
+            crit.n_formula_a,
+            crit.n_formula_b,
+            crit.n_formula_c,
+            crit.n_positive_floor,
+            crit.n_positive_cap,
+        )
         findings = []
         for cond in conditions:
-            findings.append(Finding.compare(cond, "(b) positive limit load factor", n.positive, required,
-                                            at_least=True, mtow_lb=ctx.aircraft.mass.MTOW / LB))
-            findings.append(Finding.compare(cond, "(c)(1) negative limit load factor up to VC", n.negative,
-                                            crit.n_negative, at_least=False))
+            findings.append(
+                Finding.compare(
+                    cond,
+                    "(b) positive limit load factor",
+                    n.positive,
+                    required,
+                    at_least=True,
+                    mtow_lb=ctx.aircraft.mass.MTOW / LB,
+                )
+            )
+            findings.append(
+                Finding.compare(
+                    cond, "(c)(1) negative limit load factor up to VC", n.negative, crit.n_negative, at_least=False
+                )
+            )
         return findings

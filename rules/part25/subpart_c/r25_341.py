@@ -23,21 +23,32 @@ from dataclasses import dataclass
 from functools import partial
 
 import numpy as np
-
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuelled_wing_envelope
+from certkit_rules.part25.support.gust_runs import (
+    GUST_CONDITIONS,
+    GUST_REQUIRES,
+    GUST_RUN_CRITERIA,
+    GustRuns,
+    gust_runs,
+)
 from certkit_rules.part25.support.loads_conditions import refusal_findings
+from certkit_rules.part25.support.structural_checks import (
+    SAFETY,
+    beyond_mach_range,
+    capability_finding,
+    condition_mach,
+    critical_state_finding,
+    maneuver_limit_load_factor,
+    set_aside_finding,
+)
+
+from certkit.engine.registry import Loads, SimulationRule, rule
+from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES
 from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch, simulate_lateral_gust
 from certkit.models.loads.response import LoadEnvelope
-from certkit.engine.registry import Loads, SimulationRule, rule
-from certkit.engine.results import LoadsRun
 from certkit.units import FT, KN
-from certkit_rules.part25.support.gust_runs import (GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, GustRuns,
-                                                      gust_runs)
-from certkit_rules.part25.support.fuel_states import fuel_detail, fuelled_wing_envelope
-from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
-                                                            condition_mach, critical_state_finding,
-                                                            maneuver_limit_load_factor, set_aside_finding)
 
 
 @rule
@@ -68,14 +79,19 @@ class DiscreteGust(SimulationRule):
     requires = GUST_REQUIRES
     criteria = {**GUST_RUN_CRITERIA, **SAFETY}
     conditions = GUST_CONDITIONS
-    limitations = ("Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag); the lateral "
-                   "gust loads the fin alone (the fuselage's and wing's share of it not modelled); U_ds and F_g formulas "
-                   "unverified against the CFR (AC 25.341-1).")
+    limitations = (
+        "Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag); the lateral "
+        "gust loads the fin alone (the fuselage's and wing's share of it not modelled); U_ds and F_g formulas "
+        "unverified against the CFR (AC 25.341-1)."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ("25.341(a)", "the dynamic analysis is of the rigid airplane (no structural modes); the lateral gust acts on "
-                      "the fin alone (the fuselage's and wing's share is not modelled)"),
+        (
+            "25.341(a)",
+            "the dynamic analysis is of the rigid airplane (no structural modes); the lateral gust acts on "
+            "the fin alone (the fuselage's and wing's share is not modelled)",
+        ),
         ("25.341(b)", "continuous turbulence not modelled (no rule evaluates it)"),
     )
 
@@ -90,8 +106,9 @@ class DiscreteGust(SimulationRule):
             return []
         allow = allowables(ctx, crit.ultimate_factor)
         lateral = run.lateral_envelope
-        table = (envelope_evidence(lateral, (FIN,), "lateral gust", plot=False, allow=allow)
-                 if lateral is not None else [])
+        table = (
+            envelope_evidence(lateral, (FIN,), "lateral gust", plot=False, allow=allow) if lateral is not None else []
+        )
         return gust_evidence(run, allow) + table
 
 
@@ -113,17 +130,29 @@ class GustRun(LoadsRun):
 
 def discrete_gusts(ctx, conditions, crit) -> GustRun:
     runs = gust_runs(ctx, conditions, crit)
-    findings = refusal_findings(runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}"
-                                                         for s in SURFACES])
+    findings = refusal_findings(
+        runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}" for s in SURFACES]
+    )
     if not runs.conditions:
         return GustRun(findings, reason="no condition could be trimmed (see the findings)")
     sim_conds, H, up = runs.conditions, runs.gradients, runs.up
     env, which = runs.symmetric
-    nz_hi, nz_lo, uds_all, u_ref, f_g, v_eas, alt = runs.nz_hi, runs.nz_lo, runs.uds, runs.u_ref, runs.f_g, runs.v_eas, runs.altitude
+    nz_hi, nz_lo, uds_all, u_ref, f_g, v_eas, alt = (
+        runs.nz_hi,
+        runs.nz_lo,
+        runs.uds,
+        runs.u_ref,
+        runs.f_g,
+        runs.v_eas,
+        runs.altitude,
+    )
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     # information, not a criterion: the §25.333 manoeuvring envelope's load factor at each speed (§25.337), to
     # show where gusts load the airplane beyond the manoeuvres (since Amdt. 25-86 there is no gust V–n envelope)
-    n_env = [round(maneuver_limit_load_factor(ctx, float(v_eas[i]), float(alt[i]), bool(up[i])), 4) for i in range(len(sim_conds))]
+    n_env = [
+        round(maneuver_limit_load_factor(ctx, float(v_eas[i]), float(alt[i]), bool(up[i])), 4)
+        for i in range(len(sim_conds))
+    ]
     for i, c in enumerate(sim_conds):
         sense = 1 if up[i] else 0
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
@@ -131,30 +160,65 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
         for s in SURFACES:
             jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
             if beyond_mach:
-                check = partial(_not_evaluated, beyond_mach, peaks=(runs.wing_fuel_peaks[:, i] if s == "wing"
-                                                                    else env.peaks[s][i]))
+                check = partial(
+                    _not_evaluated, beyond_mach, peaks=(runs.wing_fuel_peaks[:, i] if s == "wing" else env.peaks[s][i])
+                )
             elif s == "wing":  # the wing in each fuel state (§25.343), the critical one named
-                check = partial(critical_state_finding, peaks_by_state=runs.wing_fuel_peaks[:, i],
-                                state_details=partial(fuel_detail, runs.fuel_names[i], runs.fuel[i],
-                                                      runs.loads["wing"].tank_names))
+                check = partial(
+                    critical_state_finding,
+                    peaks_by_state=runs.wing_fuel_peaks[:, i],
+                    state_details=partial(fuel_detail, runs.fuel_names[i], runs.fuel[i], runs.loads["wing"].tank_names),
+                )
             else:
                 check = partial(capability_finding, peaks=env.peaks[s][i])
-            findings.append(check(
-                c, f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}", s, stations=env.stations[s],
-                capabilities=caps[s], ultimate_factor=crit.ultimate_factor, U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2), F_g=round(float(f_g[i]), 4),
-                critical_H_root_bending_ft=round(float(H[jb] / FT), 0), U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
-                peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
-                critical_H_n_z_ft=round(float(H[j_nz] / FT), 0), V_kn_EAS=round(float(v_eas[i] / KN), 1),
-                maneuver_envelope_n_z=n_env[i], beyond_maneuver_envelope=bool(
-                    (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])),
-                tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4)))
+            findings.append(
+                check(
+                    c,
+                    f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}",
+                    s,
+                    stations=env.stations[s],
+                    capabilities=caps[s],
+                    ultimate_factor=crit.ultimate_factor,
+                    U_ref_ft_s_EAS=round(float(u_ref[i] / FT), 2),
+                    F_g=round(float(f_g[i]), 4),
+                    critical_H_root_bending_ft=round(float(H[jb] / FT), 0),
+                    U_ds_ft_s_EAS=round(float(uds_all[jb, i] / FT), 2),
+                    peak_n_z=round(float(nz_hi[j_nz, i] if up[i] else nz_lo[j_nz, i]), 4),
+                    critical_H_n_z_ft=round(float(H[j_nz] / FT), 0),
+                    V_kn_EAS=round(float(v_eas[i] / KN), 1),
+                    maneuver_envelope_n_z=n_env[i],
+                    beyond_maneuver_envelope=bool(
+                        (nz_hi[j_nz, i] > n_env[i]) if up[i] else (nz_lo[j_nz, i] < n_env[i])
+                    ),
+                    tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4),
+                )
+            )
     lateral, lateral_env = lateral_gusts(ctx, runs, crit)
-    return GustRun(findings + lateral, sim_conds, envelope=fuelled_wing_envelope(env, runs.wing_fuel_peaks), which=which,
-                   gradients=H, replay=runs.replay, loads=runs.loads, lateral_envelope=lateral_env)
+    return GustRun(
+        findings + lateral,
+        sim_conds,
+        envelope=fuelled_wing_envelope(env, runs.wing_fuel_peaks),
+        which=which,
+        gradients=H,
+        replay=runs.replay,
+        loads=runs.loads,
+        lateral_envelope=lateral_env,
+    )
 
 
-def _not_evaluated(reason, cond, check, surface, peaks=None, stations=(), capabilities=None, ultimate_factor=None,
-                   peaks_by_state=None, state_details=None, **details):
+def _not_evaluated(
+    reason,
+    cond,
+    check,
+    surface,
+    peaks=None,
+    stations=(),
+    capabilities=None,
+    ultimate_factor=None,
+    peaks_by_state=None,
+    state_details=None,
+    **details,
+):
     """A not-evaluated finding in place of :func:`capability_finding` (same call), with ``reason`` and the loads."""
     return set_aside_finding(cond, check, reason, peaks if peaks is not None else peaks_by_state, stations, **details)
 
@@ -172,10 +236,14 @@ def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]
     labels = [c.label() for c in conds]
     envelopes, ny = [], []
     for j, H in enumerate(runs.gradients):
-        sim, fin, _ = simulate_lateral_gust(runs.loads, lb, H, runs.uds[j, idx] / runs.v_eas[idx],
-                                            float(crit.steps_per_gust), float(crit.settle_time))
-        envelopes.append(LoadEnvelope.from_histories(runs.loads, {FIN: np.concatenate([fin, -fin])},
-                                                     np.concatenate([sim.t, sim.t]), labels))
+        sim, fin, _ = simulate_lateral_gust(
+            runs.loads, lb, H, runs.uds[j, idx] / runs.v_eas[idx], float(crit.steps_per_gust), float(crit.settle_time)
+        )
+        envelopes.append(
+            LoadEnvelope.from_histories(
+                runs.loads, {FIN: np.concatenate([fin, -fin])}, np.concatenate([sim.t, sim.t]), labels
+            )
+        )
         ny.append(np.abs(sim["n_y"]).max(axis=0))
     env, which = LoadEnvelope.worst_of(envelopes)
     caps = declared_capabilities(ctx, FIN)
@@ -184,11 +252,23 @@ def lateral_gusts(ctx, runs: GustRuns, crit) -> tuple[list, LoadEnvelope | None]
         jb = int(which[FIN][k, 1, 0, 0])  # gradient of the largest root shear
         i = idx[k]
         beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
-        findings.append((partial(_not_evaluated, beyond_mach) if beyond_mach else capability_finding)(
-            c, "(a) discrete lateral gust, vertical tail", FIN, env.peaks[FIN][k], env.stations[FIN], caps,
-            crit.ultimate_factor, U_ref_ft_s_EAS=round(float(runs.u_ref[i] / FT), 2), F_g=round(float(runs.f_g[i]), 4),
-            critical_H_root_shear_ft=round(float(runs.gradients[jb] / FT), 0),
-            U_ds_ft_s_EAS=round(float(runs.uds[jb, i] / FT), 2), V_kn_EAS=round(float(runs.v_eas[i] / KN), 1),
-            peak_gust_sideslip_deg=round(float(np.degrees(runs.uds[jb, i] / runs.v_eas[i])), 3),
-            peak_n_y=round(float(max(v[k] for v in ny)), 4), direction="from the right and (mirror image) the left"))
+        findings.append(
+            (partial(_not_evaluated, beyond_mach) if beyond_mach else capability_finding)(
+                c,
+                "(a) discrete lateral gust, vertical tail",
+                FIN,
+                env.peaks[FIN][k],
+                env.stations[FIN],
+                caps,
+                crit.ultimate_factor,
+                U_ref_ft_s_EAS=round(float(runs.u_ref[i] / FT), 2),
+                F_g=round(float(runs.f_g[i]), 4),
+                critical_H_root_shear_ft=round(float(runs.gradients[jb] / FT), 0),
+                U_ds_ft_s_EAS=round(float(runs.uds[jb, i] / FT), 2),
+                V_kn_EAS=round(float(runs.v_eas[i] / KN), 1),
+                peak_gust_sideslip_deg=round(float(np.degrees(runs.uds[jb, i] / runs.v_eas[i])), 3),
+                peak_n_y=round(float(max(v[k] for v in ny)), 4),
+                direction="from the right and (mirror image) the left",
+            )
+        )
     return findings, env

@@ -27,38 +27,54 @@ from dataclasses import dataclass, field, replace
 from functools import partial
 
 import numpy as np
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, state_envelope
+from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.structural_checks import (
+    SAFETY,
+    capability_finding,
+    control_stops,
+    critical_state_finding,
+    entry_speeds,
+)
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.errors import UserError
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
 from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
-from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
-from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.units import FT, KN
-from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRES, GUST_RUN_CRITERIA, gust_runs
-from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, state_envelope
-from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops,
-                                                           critical_state_finding, entry_speeds)
 
 REG = "14 CFR 25.349(a) (secondary copy of the CFR text, docs/regulation-notes.md §25.349)"
 SPEEDS = ("VA", "VC", "VD")
 LOAD_FACTORS = ("zero", "two-thirds")
 SURFACES = ("wing", "horizontal_tail", "vertical_tail")
 MIRRORED = ("wing", "horizontal_tail")
-PARAGRAPH = {"VA": "(a)(2) VA, sudden aileron to the stop", "VC": "(a)(3) VC, roll rate ≥ that at VA",
-             "VD": "(a)(4) VD, roll rate ≥ 1/3 of that at VA"}
-EFFORT_NOTE = ("no control-force model is declared: pilot effort (§25.349(a), §25.397) cannot reduce the deflection; "
-               "the aileron stop (travel) bounds it")
-FLEX_NOTE = ("rigid wing: the torsional flexibility that §25.349(a) asks to consider in finding the aileron deflections "
-             "(aileron effectiveness loss) is not modelled")
-NO_VA_NOTE = ("the VA roll rate of (a)(2) is not available for this loading, altitude and load factor (the VA condition "
-              "could not be set up): full aileron, conservative")
-PROXY_NOTE = ("the VA pull-up at this load factor is beyond the lift available: the VA roll rate of (a)(2) is taken at "
-              "the {} load factor of the same loading and altitude")
+PARAGRAPH = {
+    "VA": "(a)(2) VA, sudden aileron to the stop",
+    "VC": "(a)(3) VC, roll rate ≥ that at VA",
+    "VD": "(a)(4) VD, roll rate ≥ 1/3 of that at VA",
+}
+EFFORT_NOTE = (
+    "no control-force model is declared: pilot effort (§25.349(a), §25.397) cannot reduce the deflection; "
+    "the aileron stop (travel) bounds it"
+)
+FLEX_NOTE = (
+    "rigid wing: the torsional flexibility that §25.349(a) asks to consider in finding the aileron deflections "
+    "(aileron effectiveness loss) is not modelled"
+)
+NO_VA_NOTE = (
+    "the VA roll rate of (a)(2) is not available for this loading, altitude and load factor (the VA condition "
+    "could not be set up): full aileron, conservative"
+)
+PROXY_NOTE = (
+    "the VA pull-up at this load factor is beyond the lift available: the VA roll rate of (a)(2) is taken at "
+    "the {} load factor of the same loading and altitude"
+)
 
 
 @rule
@@ -92,29 +108,51 @@ class RollingConditions(SimulationRule):
         "load_factor_low": Criterion(0.0, "", REG, "the other airplane load factor (zero)"),
         "vc_roll_rate_ratio": Criterion(1.0, "", "14 CFR 25.349(a)(3)", "roll rate at VC ≥ ratio × roll rate at VA"),
         "vd_roll_rate_ratio": Criterion(1 / 3, "", "14 CFR 25.349(a)(4)", "roll rate at VD ≥ ratio × roll rate at VA"),
-        "ramp_time": Criterion(0.1, "s", "certkit assumption: 'sudden' with no declared actuator rate",
-                               "time to reach the aileron deflection"),
-        "duration": Criterion(4.0, "s", "certkit numerical choice: past the steady rolling velocity (first roll-rate "
-                              "peak, ≤ 3.1 s) at every baseline condition", "time simulated from the aileron input"),
-        "time_step": Criterion(0.02, "s", "certkit numerical choice (0.04 s changes the peak roll rate by < 0.5 %)",
-                               "simulation step"),
-        "roll_rate_tolerance": Criterion(0.03, "", "certkit numerical choice",
-                                         "VC/VD roll rate accepted within [target, (1 + tolerance) × target]"),
-        "search_steps": Criterion(4, "", "certkit numerical choice", "proportional corrections of the VC/VD deflection"),
+        "ramp_time": Criterion(
+            0.1,
+            "s",
+            "certkit assumption: 'sudden' with no declared actuator rate",
+            "time to reach the aileron deflection",
+        ),
+        "duration": Criterion(
+            4.0,
+            "s",
+            "certkit numerical choice: past the steady rolling velocity (first roll-rate "
+            "peak, ≤ 3.1 s) at every baseline condition",
+            "time simulated from the aileron input",
+        ),
+        "time_step": Criterion(
+            0.02, "s", "certkit numerical choice (0.04 s changes the peak roll rate by < 0.5 %)", "simulation step"
+        ),
+        "roll_rate_tolerance": Criterion(
+            0.03, "", "certkit numerical choice", "VC/VD roll rate accepted within [target, (1 + tolerance) × target]"
+        ),
+        "search_steps": Criterion(
+            4, "", "certkit numerical choice", "proportional corrections of the VC/VD deflection"
+        ),
         **SAFETY,
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(2),
-                                extra=(("speed_point", SPEEDS), ("load_factor", LOAD_FACTORS)),
-                                note="VA (≤ VC), VC and VD in EAS, Mach-limited at altitude; from a steady wings-level "
-                                     "pull-up (2/3 n) or push-over (n = 0) set up on the trimmed flight path; aileron to "
-                                     "the larger stop (travel) rolling right (the left wing is the mirror image).")
-    limitations = (EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
-                   "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b).")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=("clean",),
+        altitudes=EnvelopeAltitudes(2),
+        extra=(("speed_point", SPEEDS), ("load_factor", LOAD_FACTORS)),
+        note="VA (≤ VC), VC and VD in EAS, Mach-limited at altitude; from a steady wings-level "
+        "pull-up (2/3 n) or push-over (n = 0) set up on the trimmed flight path; aileron to "
+        "the larger stop (travel) rolling right (the left wing is the mirror image).",
+    )
+    limitations = (
+        EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
+        "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b)."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ("25.349(a)", "the wing torsional flexibility that (a) says must be considered in finding the aileron "
-                      "deflections is not modelled (rigid wing); spoilers are not modelled"),
+        (
+            "25.349(a)",
+            "the wing torsional flexibility that (a) says must be considered in finding the aileron "
+            "deflections is not modelled (rigid wing); spoilers are not modelled",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -221,9 +259,11 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, load_factor=None))
     batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
-    findings = refusal_findings(refused, lambda c: [f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}"
-                                                    for s in SURFACES])
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries]
+    )
+    findings = refusal_findings(
+        refused, lambda c: [f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}" for s in SURFACES]
+    )
     if not rows.size:
         return RollingRun(findings, reason="no condition could be trimmed (see the findings)")
     model = batch.model.subset(rows)
@@ -240,22 +280,32 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                 # computed: CLmax q S / W at the speed and Mach is below the load factor — the point lies beyond the
                 # stall line of the V–n envelope (§25.333), not a flight condition
                 ok[i] = False
-                findings += [Finding.not_applicable(
-                    c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}",
-                    f"n = {n_target[i]:.2f} at this speed lies beyond the stall line of the V–n envelope: CLmax q S / W = "
-                    f"{n_stall[i]:.2f} (the pull-up reached n {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)")
-                    for s in SURFACES]
+                findings += [
+                    Finding.not_applicable(
+                        c,
+                        f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}",
+                        f"n = {n_target[i]:.2f} at this speed lies beyond the stall line of the V–n envelope: CLmax q S / W = "
+                        f"{n_stall[i]:.2f} (the pull-up reached n {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)",
+                    )
+                    for s in SURFACES
+                ]
                 continue
-            reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre cannot be set up at this speed (the lift is short of "
-                      f"it: n reached {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)")
+            reason = (
+                f"the n = {n_target[i]:.2f} symmetric manoeuvre cannot be set up at this speed (the lift is short of "
+                f"it: n reached {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)"
+            )
         elif not e_lo - 1e-9 <= st.u[i, je] <= e_hi + 1e-9:
             lim = e_lo if st.u[i, je] < e_lo else e_hi
-            reason = (f"the n = {n_target[i]:.2f} symmetric manoeuvre needs {np.degrees(st.u[i, je]):.1f}° elevator, "
-                      f"stop {np.degrees(lim):.1f}°")
+            reason = (
+                f"the n = {n_target[i]:.2f} symmetric manoeuvre needs {np.degrees(st.u[i, je]):.1f}° elevator, "
+                f"stop {np.degrees(lim):.1f}°"
+            )
         if reason:
             ok[i] = False
-            findings += [Finding.not_evaluated(c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}", reason)
-                         for s in SURFACES]
+            findings += [
+                Finding.not_evaluated(c, f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}", reason)
+                for s in SURFACES
+            ]
     idx = np.flatnonzero(ok)
     if not idx.size:
         return RollingRun(findings, reason="no symmetric manoeuvre could be set up (see the findings)")
@@ -275,7 +325,9 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     speed_point = [c.get("speed_point") for c in conds]
     scaled = np.array([sp != "VA" and r >= 0 for sp, r in zip(speed_point, ref)])
     # VA rows are simulated at full deflection in the first run: their peak roll rates are the references
-    sim_full = simulate_roll(model, x0, u0, amplitude, float(crit.duration), float(crit.time_step), float(crit.ramp_time))
+    sim_full = simulate_roll(
+        model, x0, u0, amplitude, float(crit.duration), float(crit.time_step), float(crit.ramp_time)
+    )
     p_full = peak_roll_rate(sim_full)[0]
     p_va = np.where(ref >= 0, p_full[np.maximum(ref, 0)], np.nan)
     target = np.where(scaled, p_va * np.array([ratio[s] for s in speed_point]), 0.0)
@@ -289,32 +341,50 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     right = response_loads(loads, sim, model, SURFACES, valid=valid)
     left = response_loads(loads, mirror(sim), model, MIRRORED, valid=valid)
     labels = [c.label() for c in conds]
-    env_sides = LoadEnvelope.merge([
-        LoadEnvelope.from_histories(loads, {s: right[s] for s in MIRRORED}, sim.t, [f"{lab} — right (down-going wing)" for lab in labels],
-                                    keys=conds),
-        LoadEnvelope.from_histories(loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels], keys=conds)])
+    env_sides = LoadEnvelope.merge(
+        [
+            LoadEnvelope.from_histories(
+                loads,
+                {s: right[s] for s in MIRRORED},
+                sim.t,
+                [f"{lab} — right (down-going wing)" for lab in labels],
+                keys=conds,
+            ),
+            LoadEnvelope.from_histories(
+                loads, left, sim.t, [f"{lab} — left (up-going wing)" for lab in labels], keys=conds
+            ),
+        ]
+    )
     env_fin = LoadEnvelope.from_histories(loads, {"vertical_tail": right["vertical_tail"]}, sim.t, labels)
     n = len(conds)
     # the wing in each fuel state of §25.343, each side with its own roll acceleration (the fuel's roll inertia relief)
     fuel_r, names, fuel = fuelled_wing(ctx, loads, sim, model, right["wing"], conds)
     fuel_l, _, _ = fuelled_wing(ctx, loads, mirror(sim), model, left["wing"], conds)
-    wing_states = np.stack([np.fmin(fuel_r[:, :, 0], fuel_l[:, :, 0]), np.fmax(fuel_r[:, :, 1], fuel_l[:, :, 1])],
-                           axis=2)  # (M, n, 2, 3, S)
-    env_sides = replace(env_sides, peaks={**env_sides.peaks, "wing": np.concatenate([state_envelope(fuel_r),
-                                                                                   state_envelope(fuel_l)])})
+    wing_states = np.stack(
+        [np.fmin(fuel_r[:, :, 0], fuel_l[:, :, 0]), np.fmax(fuel_r[:, :, 1], fuel_l[:, :, 1])], axis=2
+    )  # (M, n, 2, 3, S)
+    env_sides = replace(
+        env_sides, peaks={**env_sides.peaks, "wing": np.concatenate([state_envelope(fuel_r), state_envelope(fuel_l)])}
+    )
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     pdot = np.gradient(sim["p"], sim.t, axis=0)
     for i, c in enumerate(conds):
         sp = speed_point[i]
         common = dict(
-            V_kn_EAS=round(float(c.speed / KN), 1), load_factor=round(float(st.n_z[idx[i]]), 4),
-            pitch_rate_deg_s=_deg(st.pitch_rate[idx[i]], 3), elevator_deg=_deg(u0[i, je]),
-            aileron_deg=_deg(u0[i, ja] + frac[i] * amplitude[i]), aileron_fraction_of_stop=round(float(frac[i]), 4),
-            peak_roll_rate_deg_s=_deg(p_peak[i]), loads_considered_until_s=round(float(t_end[i]), 2),
+            V_kn_EAS=round(float(c.speed / KN), 1),
+            load_factor=round(float(st.n_z[idx[i]]), 4),
+            pitch_rate_deg_s=_deg(st.pitch_rate[idx[i]], 3),
+            elevator_deg=_deg(u0[i, je]),
+            aileron_deg=_deg(u0[i, ja] + frac[i] * amplitude[i]),
+            aileron_fraction_of_stop=round(float(frac[i]), 4),
+            peak_roll_rate_deg_s=_deg(p_peak[i]),
+            loads_considered_until_s=round(float(t_end[i]), 2),
             peak_roll_acceleration_deg_s2=_deg(np.nanmax(np.abs(pdot[valid[:, i], i])), 1),
             bank_at_end_deg=_deg(sim["phi"][k_peak[i], i], 1),
             peak_sideslip_deg=_deg(np.nanmax(np.abs(sim["beta"][valid[:, i], i]))),
-            pilot_effort=EFFORT_NOTE, wing_flexibility=FLEX_NOTE)
+            pilot_effort=EFFORT_NOTE,
+            wing_flexibility=FLEX_NOTE,
+        )
         if sp != "VA":
             if scaled[i]:
                 common.update(roll_rate_VA_deg_s=_deg(p_va[i]), target_roll_rate_deg_s=_deg(target[i]))
@@ -332,21 +402,58 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                 for q in ("bending", "torsion"):
                     jq = QUANTITIES.index(q)
                     extra[f"root {q} down-going/up-going side max/min (kN·m)"] = [
-                        [round(float(P[1, jq, 0]) / 1e3, 1), round(float(P[0, jq, 0]) / 1e3, 1)] for P in (R, L)]
+                        [round(float(P[1, jq, 0]) / 1e3, 1), round(float(P[0, jq, 0]) / 1e3, 1)] for P in (R, L)
+                    ]
                 stations = env_sides.stations[s]
             else:
                 peaks, extra, stations = env_fin.peaks[s][i], {}, env_fin.stations[s]
             if s == "wing":
-                findings.append(critical_state_finding(
-                    c, f"{PARAGRAPH[sp]}: wing", s, wing_states[:, i], stations, caps[s], crit.ultimate_factor,
-                    partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)), **common, **extra))
+                findings.append(
+                    critical_state_finding(
+                        c,
+                        f"{PARAGRAPH[sp]}: wing",
+                        s,
+                        wing_states[:, i],
+                        stations,
+                        caps[s],
+                        crit.ultimate_factor,
+                        partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)),
+                        **common,
+                        **extra,
+                    )
+                )
                 continue
-            findings.append(capability_finding(c, f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}", s, peaks, stations, caps[s],
-                                               crit.ultimate_factor, **common, **extra))
-    failed = [(f.condition.label(), f.reason) for f in findings if f.status == "not_evaluated"
-              and f.reason and "structural capability" not in f.reason][::len(SURFACES)]
-    return RollingRun(findings, conds, sim, failed=failed, right=right, left=left, env_sides=env_sides, env_fin=env_fin,
-                      aileron_index=ja, fraction=frac, t_end=t_end)
+            findings.append(
+                capability_finding(
+                    c,
+                    f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}",
+                    s,
+                    peaks,
+                    stations,
+                    caps[s],
+                    crit.ultimate_factor,
+                    **common,
+                    **extra,
+                )
+            )
+    failed = [
+        (f.condition.label(), f.reason)
+        for f in findings
+        if f.status == "not_evaluated" and f.reason and "structural capability" not in f.reason
+    ][:: len(SURFACES)]
+    return RollingRun(
+        findings,
+        conds,
+        sim,
+        failed=failed,
+        right=right,
+        left=left,
+        env_sides=env_sides,
+        env_fin=env_fin,
+        aileron_index=ja,
+        fraction=frac,
+        t_end=t_end,
+    )
 
 
 # --------------------------------------------------------------------------- (b) unsymmetrical gusts
@@ -385,20 +492,29 @@ class UnsymmetricalGust(SimulationRule):
         **GUST_RUN_CRITERIA,
         "full_side_fraction": Criterion(1.0, "", REG_B, "fraction of the wing air load on the more loaded side"),
         "reduced_side_fraction": Criterion(0.8, "", REG_B, "fraction of the wing air load on the other side"),
-        "airload_basis": Criterion("total", "", "certkit reading of 'the wing air load' of 14 CFR 25.349(b) "
-                                   "(docs/regulation-notes.md §25.349)", "'total': the fractions apply to the whole wing "
-                                   "air load (1 g trim + gust); 'increment': to the gust increment over the 1 g trim"),
+        "airload_basis": Criterion(
+            "total",
+            "",
+            "certkit reading of 'the wing air load' of 14 CFR 25.349(b) (docs/regulation-notes.md §25.349)",
+            "'total': the fractions apply to the whole wing "
+            "air load (1 g trim + gust); 'increment': to the gust increment over the 1 g trim",
+        ),
         **SAFETY,
     }
     conditions = GUST_CONDITIONS
-    limitations = ("The §25.341(a) response it modifies is that of the rigid airplane with quasi-steady aerodynamics "
-                   "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
-                   "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
-                   "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b)).")
+    limitations = (
+        "The §25.341(a) response it modifies is that of the rigid airplane with quasi-steady aerodynamics "
+        "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
+        "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
+        "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b))."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ('25.349(b)', "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal tail's unsymmetrical loads (§25.427(b)) are not in it"),
+        (
+            "25.349(b)",
+            "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal tail's unsymmetrical loads (§25.427(b)) are not in it",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -415,8 +531,10 @@ class UnsymmetricalGust(SimulationRule):
 def _airload_basis(crit) -> str:
     basis = str(crit.airload_basis).strip().lower()
     if basis not in AIRLOAD_BASES:
-        raise UserError(f"criteria.25.349(b).values.airload_basis: {crit.airload_basis!r} is not one of "
-                        f"{', '.join(AIRLOAD_BASES)} (the whole wing air load, or its gust increment over the 1 g trim)")
+        raise UserError(
+            f"criteria.25.349(b).values.airload_basis: {crit.airload_basis!r} is not one of "
+            f"{', '.join(AIRLOAD_BASES)} (the whole wing air load, or its gust increment over the 1 g trim)"
+        )
     for name in ("full_side_fraction", "reduced_side_fraction"):
         if not 0.0 <= float(crit[name]) <= 1.0:
             raise UserError(f"criteria.25.349(b).values.{name}: {crit[name]!r} must lie between 0 and 1")
@@ -463,17 +581,36 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> UnsymmetricalGustRun:
     roll = np.zeros((len(runs.wing), n))
     pdot, dnz, t_roll = np.zeros_like(roll), np.zeros_like(roll), np.zeros_like(roll)
     for j, (t, aero, inertia) in enumerate(runs.wing):
-        u = unsymmetrical_wing(wing, aero, inertia, model.mass, model.cg, model.inertia, full, reduced,
-                               trim_aero=aero[0] if basis == "increment" else None)
+        u = unsymmetrical_wing(
+            wing,
+            aero,
+            inertia,
+            model.mass,
+            model.cg,
+            model.inertia,
+            full,
+            reduced,
+            trim_aero=aero[0] if basis == "increment" else None,
+        )
         per_side[full_side].append(LoadEnvelope.from_histories(runs.loads, {"wing": u.full}, t, labels))
         per_side[reduced_side].append(LoadEnvelope.from_histories(runs.loads, {"wing": u.reduced}, t, labels))
         k = np.argmax(np.abs(u.rolling_moment), axis=0)
         cols = np.arange(n)
-        roll[j], pdot[j], dnz[j], t_roll[j] = u.rolling_moment[k, cols], u.pdot[k, cols], u.delta_n_z[k, cols], times_at(t, k)
+        roll[j], pdot[j], dnz[j], t_roll[j] = (
+            u.rolling_moment[k, cols],
+            u.pdot[k, cols],
+            u.delta_n_z[k, cols],
+            times_at(t, k),
+        )
     stations, peaks, times, which = {}, {}, {}, {}
     for side, parts in per_side.items():
         env, w = LoadEnvelope.worst_of(parts)
-        stations[side], peaks[side], times[side], which[side] = env.stations["wing"], env.peaks["wing"], env.times["wing"], w["wing"]
+        stations[side], peaks[side], times[side], which[side] = (
+            env.stations["wing"],
+            env.peaks["wing"],
+            env.times["wing"],
+            w["wing"],
+        )
     envelope = LoadEnvelope(stations, peaks, times, labels)
     j_roll = np.argmax(np.abs(roll), axis=0)
     caps = declared_capabilities(ctx, "wing")
@@ -481,16 +618,42 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> UnsymmetricalGustRun:
     b = QUANTITIES.index("bending")
     for i, c in enumerate(runs.conditions):
         jr = int(j_roll[i])
-        common = dict(airload_basis=basis, critical_H_rolling_moment_ft=round(float(runs.gradients[jr] / FT), 0),
-                      peak_unbalanced_rolling_moment_MNm=round(float(roll[jr, i]) / 1e6, 3),
-                      roll_acceleration_deg_s2=round(float(np.degrees(pdot[jr, i])), 2),
-                      load_factor_change=round(float(dnz[jr, i]), 4), at_time_s=round(float(t_roll[jr, i]), 3),
-                      symmetric_root_bending_max_min_kNm=[round(float(sym.peaks["wing"][i, 1, b, 0]) / 1e3, 1),
-                                                          round(float(sym.peaks["wing"][i, 0, b, 0]) / 1e3, 1)])
+        common = dict(
+            airload_basis=basis,
+            critical_H_rolling_moment_ft=round(float(runs.gradients[jr] / FT), 0),
+            peak_unbalanced_rolling_moment_MNm=round(float(roll[jr, i]) / 1e6, 3),
+            roll_acceleration_deg_s2=round(float(np.degrees(pdot[jr, i])), 2),
+            load_factor_change=round(float(dnz[jr, i]), 4),
+            at_time_s=round(float(t_roll[jr, i]), 3),
+            symmetric_root_bending_max_min_kNm=[
+                round(float(sym.peaks["wing"][i, 1, b, 0]) / 1e3, 1),
+                round(float(sym.peaks["wing"][i, 0, b, 0]) / 1e3, 1),
+            ],
+        )
         for side in (full_side, reduced_side):
             jb = int(which[side][i, 1 if runs.up[i] else 0, b, 0])
-            findings.append(capability_finding(c, check(c, side), "wing", peaks[side][i], stations[side], caps,
-                                               crit.ultimate_factor, critical_H_root_bending_ft=round(float(runs.gradients[jb] / FT), 0),
-                                               **common))
-    return UnsymmetricalGustRun(findings, runs.conditions, envelope=envelope, which=which, gradients=runs.gradients,
-                                runs=runs, roll=roll, fractions=(full, reduced), basis=basis, symmetric=sym)
+            findings.append(
+                capability_finding(
+                    c,
+                    check(c, side),
+                    "wing",
+                    peaks[side][i],
+                    stations[side],
+                    caps,
+                    crit.ultimate_factor,
+                    critical_H_root_bending_ft=round(float(runs.gradients[jb] / FT), 0),
+                    **common,
+                )
+            )
+    return UnsymmetricalGustRun(
+        findings,
+        runs.conditions,
+        envelope=envelope,
+        which=which,
+        gradients=runs.gradients,
+        runs=runs,
+        roll=roll,
+        fractions=(full, reduced),
+        basis=basis,
+        symmetric=sym,
+    )

@@ -16,26 +16,38 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.structural_checks import (
+    SAFETY,
+    capability_finding,
+    control_stops,
+    entry_speeds,
+    force_limited_deflection,
+)
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
+from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.models.loads.yaw import simulate_yaw
 from certkit.models.performance.stall import stall_speed_eas
-from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
-from certkit.engine.results import LoadsRun
 from certkit.units import KN
-from certkit_rules.part25.support.structural_checks import (SAFETY, capability_finding, control_stops, entry_speeds,
-                                                             force_limited_deflection)
 
 REG = "14 CFR 25.351(a)(2) (verified, docs/regulation-notes.md §25.351)"
 SPEEDS = ("low", "VA", "VC", "VD")
-PHASES = (("a", "sudden rudder"), ("b", "overswing sideslip"), ("c", "steady sideslip"), ("d", "rudder returned to neutral"))
+PHASES = (
+    ("a", "sudden rudder"),
+    ("b", "overswing sideslip"),
+    ("c", "steady sideslip"),
+    ("d", "rudder returned to neutral"),
+)
 SURFACE = "vertical_tail"
-PEDAL_NOTE = ("no control-force model is declared (control_forces.rudder): the pedal-force limit of §25.351(a)(2) cannot "
-              "reduce the deflection; the rudder stop (travel: §25.351(a)(1), control system stops) bounds it")
+PEDAL_NOTE = (
+    "no control-force model is declared (control_forces.rudder): the pedal-force limit of §25.351(a)(2) cannot "
+    "reduce the deflection; the rudder stop (travel: §25.351(a)(1), control system stops) bounds it"
+)
 VMC_NOTE = "VMC is not declared: the lowest speed is 1.13 VSR clean at the condition's weight"
 
 
@@ -75,32 +87,51 @@ class YawManeuver(SimulationRule):
     criteria = {
         "pedal_force_low": Criterion(300.0, "lbf", REG, "limit pilot force from VMC to VA"),
         "pedal_force_high": Criterion(200.0, "lbf", REG, "limit pilot force from VC/MC to VD/MD (linear VA→VC)"),
-        "lowest_speed_factor": Criterion(1.13, "", "certkit assumption: VMC not declared; 1.13 VSR clean",
-                                         "lowest speed / VSR (clean, 1 g, CLmax)"),
-        "ramp_time": Criterion(0.2, "s", "certkit assumption: 'suddenly' with no declared actuator rate",
-                               "time to reach the rudder deflection (and to return it)"),
+        "lowest_speed_factor": Criterion(
+            1.13, "", "certkit assumption: VMC not declared; 1.13 VSR clean", "lowest speed / VSR (clean, 1 g, CLmax)"
+        ),
+        "ramp_time": Criterion(
+            0.2,
+            "s",
+            "certkit assumption: 'suddenly' with no declared actuator rate",
+            "time to reach the rudder deflection (and to return it)",
+        ),
         "settle_tolerance": Criterion(0.02, "", "certkit numerical choice", "sideslip settled: within this × |β|"),
         "settle_window": Criterion(4.0, "s", "certkit numerical choice", "time the sideslip stays within the band"),
         "max_time": Criterion(20.0, "s", "certkit numerical choice (Dutch roll ζ 0.06–0.14)", "longest hold"),
         "return_time": Criterion(3.0, "s", "certkit numerical choice", "time simulated after the return"),
-        "time_step": Criterion(0.04, "s", "certkit numerical choice (0.02 s changes peak β by < 0.05 %)",
-                               "simulation step"),
+        "time_step": Criterion(
+            0.04, "s", "certkit numerical choice (0.02 s changes peak β by < 0.05 %)", "simulation step"
+        ),
         **SAFETY,
     }
-    conditions = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(2),
-                                extra=(("speed_point", SPEEDS),),
-                                note="1.13 VSR clean (VMC not declared), VA (≤ VC), VC and VD in EAS, Mach-limited at "
-                                     "altitude; rudder to its negative stop (travel) (nose-right yaw) only: the airplane is "
-                                     "symmetric, the other direction mirrors the loads.")
-    limitations = ("Pedal-force limit of (a)(2) applied with control_forces.rudder at the initial zero-yaw state (the "
-                   "deflection is then held as the sideslip builds); " + PEDAL_NOTE + "; " + VMC_NOTE + "; roll held wings level by the ailerons as an idealised restraint "
-                   "(deflection reported, not limited; spoilers not modelled); one rudder direction (symmetric airplane); "
-                   "rigid airplane, quasi-steady strip aerodynamics.")
+    conditions = ConditionSpace(
+        loading=CgCorners(),
+        configurations=("clean",),
+        altitudes=EnvelopeAltitudes(2),
+        extra=(("speed_point", SPEEDS),),
+        note="1.13 VSR clean (VMC not declared), VA (≤ VC), VC and VD in EAS, Mach-limited at "
+        "altitude; rudder to its negative stop (travel) (nose-right yaw) only: the airplane is "
+        "symmetric, the other direction mirrors the loads.",
+    )
+    limitations = (
+        "Pedal-force limit of (a)(2) applied with control_forces.rudder at the initial zero-yaw state (the "
+        "deflection is then held as the sideslip builds); "
+        + PEDAL_NOTE
+        + "; "
+        + VMC_NOTE
+        + "; roll held wings level by the ailerons as an idealised restraint "
+        "(deflection reported, not limited; spoilers not modelled); one rudder direction (symmetric airplane); "
+        "rigid airplane, quasi-steady strip aerodynamics."
+    )
     implementation = "partial"
 
     unevaluated = (
-        ("25.351", "roll is held wings level by an idealised restraint (spoilers not modelled); one rudder direction"
-                   " (symmetric airplane); rigid airplane"),
+        (
+            "25.351",
+            "roll is held wings level by an idealised restraint (spoilers not modelled); one rudder direction"
+            " (symmetric airplane); rigid airplane",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -145,13 +176,24 @@ def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
     va = float(ctx.design_speed_eas("VA", 0.0)[0])
     vc = float(ctx.design_speed_eas("VC", 0.0)[0])
     pedal_limit = np.array([pedal_force_limit(c.speed, va, vc, crit) for c in batch.conditions])
-    target, force_limited = force_limited_deflection(ctx, "rudder", batch.conditions, batch.control("rudder"), lim[0],
-                                                     pedal_limit)
+    target, force_limited = force_limited_deflection(
+        ctx, "rudder", batch.conditions, batch.control("rudder"), lim[0], pedal_limit
+    )
     amplitude = target - batch.control("rudder")
     dt = float(crit.time_step)
-    run = simulate_yaw(batch.model, batch.x, batch.u, amplitude, dt=dt, ramp=float(crit.ramp_time),
-                       t_max=float(crit.max_time), window=float(crit.settle_window), tolerance=float(crit.settle_tolerance),
-                       return_time=float(crit.return_time), aileron_limits=(-np.pi, np.pi))
+    run = simulate_yaw(
+        batch.model,
+        batch.x,
+        batch.u,
+        amplitude,
+        dt=dt,
+        ramp=float(crit.ramp_time),
+        t_max=float(crit.max_time),
+        window=float(crit.settle_window),
+        tolerance=float(crit.settle_tolerance),
+        return_time=float(crit.return_time),
+        aileron_limits=(-np.pi, np.pi),
+    )
     loads = airplane_loads(ctx)
     held = response_loads(loads, run.held, batch.model, (SURFACE,))[SURFACE]
     back = response_loads(loads, run.returned, batch.model, (SURFACE,))[SURFACE]
@@ -178,33 +220,59 @@ def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
             pk = np.stack([inst[p], inst[p]], axis=1)
             tm = np.broadcast_to(times[p][:, None, None, None], pk.shape).copy()
         peaks[p] = pk
-        parts.append(LoadEnvelope({SURFACE: loads[SURFACE].station_names}, {SURFACE: pk}, {SURFACE: tm},
-                                  [f"{lab} — ({p}) {name}" for lab in labels]))
+        parts.append(
+            LoadEnvelope(
+                {SURFACE: loads[SURFACE].station_names},
+                {SURFACE: pk},
+                {SURFACE: tm},
+                [f"{lab} — ({p}) {name}" for lab in labels],
+            )
+        )
     env = LoadEnvelope.merge(parts)
     stations = loads[SURFACE].station_names
     caps = declared_capabilities(ctx, SURFACE)
     beta, jr = run.held["beta"], batch.model.control_index("rudder")
     ja = batch.model.control_index("aileron")
-    aileron_peak = np.nanmax(np.abs(np.concatenate([run.held.controls[:, :, ja], run.returned.controls[:, :, ja]])), axis=0)
+    aileron_peak = np.nanmax(
+        np.abs(np.concatenate([run.held.controls[:, :, ja], run.returned.controls[:, :, ja]])), axis=0
+    )
     k_over = np.minimum(np.searchsorted(t, run.t_overswing - 1e-9), len(t) - 1)
     k_end = np.minimum(np.searchsorted(t, run.t_steady - 1e-9), len(t) - 1)
     for i, c in enumerate(batch.conditions):
-        common = dict(V_kn_EAS=round(float(c.speed / KN), 1), rudder_deg=round(float(np.degrees(amplitude[i] + batch.u[i, jr])), 2),
-                      pedal_force_limit_lbf=round(float(pedal_limit[i]), 1),
-                      pilot_effort=PEDAL_NOTE if force_limited is None else (
-                          "rudder limited by the pedal force (control_forces.rudder)" if force_limited[i]
-                          else "rudder at its stop (travel, control system stops) below the pedal-force limit"),
-                      overswing_beta_deg=round(float(np.degrees(beta[k_over[i], i])), 3),
-                      overswing_time_s=round(float(run.t_overswing[i]), 2),
-                      steady_beta_deg=round(float(np.degrees(beta[k_end[i], i])), 3),
-                      steady_time_s=round(float(run.t_steady[i]), 2), settled=bool(run.settled[i]),
-                      steady_beta_band_deg=round(float(np.degrees(run.beta_band[i])), 3),
-                      roll_hold_aileron_peak_deg=round(float(np.degrees(aileron_peak[i])), 1))
+        common = dict(
+            V_kn_EAS=round(float(c.speed / KN), 1),
+            rudder_deg=round(float(np.degrees(amplitude[i] + batch.u[i, jr])), 2),
+            pedal_force_limit_lbf=round(float(pedal_limit[i]), 1),
+            pilot_effort=PEDAL_NOTE
+            if force_limited is None
+            else (
+                "rudder limited by the pedal force (control_forces.rudder)"
+                if force_limited[i]
+                else "rudder at its stop (travel, control system stops) below the pedal-force limit"
+            ),
+            overswing_beta_deg=round(float(np.degrees(beta[k_over[i], i])), 3),
+            overswing_time_s=round(float(run.t_overswing[i]), 2),
+            steady_beta_deg=round(float(np.degrees(beta[k_end[i], i])), 3),
+            steady_time_s=round(float(run.t_steady[i]), 2),
+            settled=bool(run.settled[i]),
+            steady_beta_band_deg=round(float(np.degrees(run.beta_band[i])), 3),
+            roll_hold_aileron_peak_deg=round(float(np.degrees(aileron_peak[i])), 1),
+        )
         if c.get("speed_point") == "low":
             common["lowest_speed"] = VMC_NOTE
         for p, name in PHASES:
-            findings.append(capability_finding(c, f"({p}) {name}", SURFACE, peaks[p][i], stations, caps,
-                                               crit.ultimate_factor, **common))
-    return YawRun(findings, batch.conditions, failed=[(conds[i].label(), r) for i, r in batch.failed], envelope=env,
-                  yaw=run, held_loads=held, returned_loads=back, rudder_index=jr)
-
+            findings.append(
+                capability_finding(
+                    c, f"({p}) {name}", SURFACE, peaks[p][i], stations, caps, crit.ultimate_factor, **common
+                )
+            )
+    return YawRun(
+        findings,
+        batch.conditions,
+        failed=[(conds[i].label(), r) for i, r in batch.failed],
+        envelope=env,
+        yaw=run,
+        held_loads=held,
+        returned_loads=back,
+        rudder_index=jr,
+    )

@@ -23,30 +23,40 @@ import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
-
-from certkit.engine.conditions import ConditionSpace
-from certkit.models.loads.capability import declared_capabilities
-from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
-from certkit.engine.registry import Criterion, SimulationRule, rule
-from certkit.engine.results import Condition, Finding, LoadsRun
-from certkit_rules.part25.support.balanced_runs import (BALANCED_CONDITIONS, BALANCED_REQUIRES, BALANCED_RUN_CRITERIA,
-                                                          balanced_runs)
+from certkit_rules.part25.support.balanced_runs import (
+    BALANCED_CONDITIONS,
+    BALANCED_REQUIRES,
+    BALANCED_RUN_CRITERIA,
+    balanced_runs,
+)
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
+
+from certkit.engine.conditions import ConditionSpace
+from certkit.engine.registry import Criterion, SimulationRule, rule
+from certkit.engine.results import Condition, Finding, LoadsRun
+from certkit.models.loads.capability import declared_capabilities
+from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 
 TAIL = "horizontal_tail"
 #: the condition spaces of the symmetric loads rules whose tail loads are split
 SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
 REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
-NOT_SHARED = ("the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
-              "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads")
-NO_FUSELAGE = ("no fuselage torsion capability at the tail is declared (structure.fuselage, station tail, quantity "
-               "torsion): the fuselage torsion at the tail is reported, not compared")
+NOT_SHARED = (
+    "the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
+    "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads"
+)
+NO_FUSELAGE = (
+    "no fuselage torsion capability at the tail is declared (structure.fuselage, station tail, quantity "
+    "torsion): the fuselage torsion at the tail is reported, not compared"
+)
 
-LIMITATIONS = ("Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
-               "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
-               "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
-               "at the tail is declared.")
+LIMITATIONS = (
+    "Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
+    "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
+    "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
+    "at the tail is declared."
+)
 
 
 @dataclass
@@ -113,7 +123,10 @@ class UnsymmetricalTailLoads(SimulationRule):
     limitations = LIMITATIONS
     implementation = "partial"
     unevaluated = (
-        ("25.427(b)(1)", "the §25.331(c) pitch-manoeuvre tail loads are not split (balanced manoeuvres and gusts only)"),
+        (
+            "25.427(b)(1)",
+            "the §25.331(c) pitch-manoeuvre tail loads are not split (balanced manoeuvres and gusts only)",
+        ),
     )
 
     def simulate(self, ctx, conditions, crit):
@@ -125,7 +138,9 @@ class UnsymmetricalTailLoads(SimulationRule):
         if self.run is None or not self.run.simulated:
             return []
         env = self.run.envelope
-        return envelope_evidence(env, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor))
+        return envelope_evidence(
+            env, env.peaks, "100/80 % split", plot=False, allow=allowables(ctx, crit.ultimate_factor)
+        )
 
 
 def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> dict:
@@ -143,8 +158,14 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)
         if runs.conditions:  # every gradient's time history one after the other
-            parts.append(("25.341(a)", np.concatenate([a for _, a, _ in runs.tail]),
-                          np.concatenate([i for _, _, i in runs.tail]), runs.conditions))
+            parts.append(
+                (
+                    "25.341(a)",
+                    np.concatenate([a for _, a, _ in runs.tail]),
+                    np.concatenate([i for _, _, i in runs.tail]),
+                    runs.conditions,
+                )
+            )
     out = {}
     for source, aero, inertia, conds in parts:
         p_full, p_red, t_lo, t_hi = unsymmetrical_tail_peaks(tail, aero, inertia, full, reduced)  # (n, 2, 3, S), (n,)
@@ -167,8 +188,15 @@ def fuselage_torsion_finding(cond, capabilities, t_lo: float, t_hi: float, ultim
             if best is None or norm < best[0]:
                 best = (norm, which, design, allowable)
     _, which, design, allowable = best
-    return Finding.compare(cond, f"(b) fuselage torsion at the tail: {which} ({sense})", design, allowable,
-                           at_least=False, unit="N·m", **details)
+    return Finding.compare(
+        cond,
+        f"(b) fuselage torsion at the tail: {which} ({sense})",
+        design,
+        allowable,
+        at_least=False,
+        unit="N·m",
+        **details,
+    )
 
 
 def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
@@ -191,28 +219,43 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
         hit = sym.get((source,) + _key(c, source))
         checks = [f"(b)(1) {full:.0%} side, horizontal tail", f"(b)(2) {reduced:.0%} side, horizontal tail"]
         if hit is None or not np.isfinite(hit[0]).any():
-            findings += [Finding.not_evaluated(c, k, f"no symmetric loads of this condition (§{source} could not trim or "
-                                                     "balance it)") for k in checks]
+            findings += [
+                Finding.not_evaluated(
+                    c, k, f"no symmetric loads of this condition (§{source} could not trim or balance it)"
+                )
+                for k in checks
+            ]
             continue
         p_full, p_red, (t_lo, t_hi), refined = hit
         cond = refined.with_(source=source)
         if max(abs(t_lo), abs(t_hi)) > worst[0]:
             worst = (max(abs(t_lo), abs(t_hi)), cond.label())
-        details = {"fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
-                   "source": f"§{source}"}
+        details = {
+            "fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
+            "source": f"§{source}",
+        }
         if fuselage:
             findings.append(fuselage_torsion_finding(cond, fuselage, t_lo, t_hi, crit.ultimate_factor, **details))
-        findings.append(capability_finding(cond, checks[0], TAIL, p_full, tail.station_names, caps, crit.ultimate_factor,
-                                           **details))
-        findings.append(capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor,
-                                           **details))
+        findings.append(
+            capability_finding(cond, checks[0], TAIL, p_full, tail.station_names, caps, crit.ultimate_factor, **details)
+        )
+        findings.append(
+            capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor, **details)
+        )
         labels.append(cond.label())
         peaks["100 % side"].append(p_full)
         peaks["80 % side"].append(p_red)
     findings.append(Finding.not_evaluated(Condition(), "(b) symmetric loadings of §25.331(c)", NOT_SHARED))
     if worst[1] is not None and not fuselage:
-        findings.append(Finding.not_evaluated(Condition(), "(b) fuselage torsion at the tail", NO_FUSELAGE,
-                                              largest_torsion_kNm=round(worst[0] / 1e3, 1), critical_condition=worst[1]))
+        findings.append(
+            Finding.not_evaluated(
+                Condition(),
+                "(b) fuselage torsion at the tail",
+                NO_FUSELAGE,
+                largest_torsion_kNm=round(worst[0] / 1e3, 1),
+                critical_condition=worst[1],
+            )
+        )
     if not labels:
         return TailSplitRun(findings, reason="no symmetric loads to split (see the findings)")
     stations = {s: tail.station_names for s in peaks}

@@ -9,30 +9,37 @@ from __future__ import annotations
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
+from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.structural_checks import (
+    SAFETY,
+    beyond_mach_range,
+    capability_finding,
+    critical_state_finding,
+    set_aside_finding,
+)
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit.engine.registry import Criterion
+from certkit.engine.results import Finding, LoadsRun
 from certkit.models.flight import control_limits
 from certkit.models.loads.balanced import balanced_states, linear_lift, steady_fuel_units, steady_load_parts
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, with_fuel_states
 from certkit.models.loads.vn_envelope import envelope
-from certkit.engine.registry import Criterion
-from certkit.engine.results import Finding, LoadsRun
 from certkit.units import KN
-from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
-from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
-from certkit_rules.part25.support.structural_checks import (SAFETY, beyond_mach_range, capability_finding,
-                                                           critical_state_finding, set_aside_finding)
 
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
 CLEAN_POINTS = ("A", "VC at n+", "D", "E", "F", "H")
 FLAP_POINTS = ("VF at n flaps", "VF at 0")
-NO_FLAP_STRIPS = ("the strip loads model has no flap deflection (clean lattice): the wing's lift increment of the "
-                  "flaps is not distributed on its strips, so its loads flaps extended are not computed")
+NO_FLAP_STRIPS = (
+    "the strip loads model has no flap deflection (clean lattice): the wing's lift increment of the "
+    "flaps is not distributed on its strips, so its loads flaps extended are not computed"
+)
 
 
 @dataclass
@@ -58,13 +65,18 @@ class BalancedPoints(ConditionSpace):
         return out
 
     def describe(self):
-        return ("every corner of the weight–CG envelope; altitudes from the envelope minimum to the ceiling; clean: "
-                f"points {', '.join(CLEAN_POINTS)}; each flap configuration: {', '.join(FLAP_POINTS)}. " + self.note)
+        return (
+            "every corner of the weight–CG envelope; altitudes from the envelope minimum to the ceiling; clean: "
+            f"points {', '.join(CLEAN_POINTS)}; each flap configuration: {', '.join(FLAP_POINTS)}. " + self.note
+        )
 
 
 #: the conditions of the balanced manoeuvres (§25.331(b); §25.427(b) splits their tail loads)
-BALANCED_CONDITIONS = BalancedPoints(loading=CgCorners(), altitudes=EnvelopeAltitudes(),
-                                     note="Speeds in EAS, VC and VD Mach-limited at altitude (A and H at most VC).")
+BALANCED_CONDITIONS = BalancedPoints(
+    loading=CgCorners(),
+    altitudes=EnvelopeAltitudes(),
+    note="Speeds in EAS, VC and VD Mach-limited at altitude (A and H at most VC).",
+)
 
 
 def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
@@ -76,8 +88,14 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
         n = float(lf.flaps_extended if lf.flaps_extended is not None else crit.flaps_load_factor)
         return v, (n if point == FLAP_POINTS[0] else 0.0), note
     env = envelope(ctx, cond.mass, h, crit.cn_over_cl)
-    table = {"A": (env.v_a, env.n_pos), "VC at n+": (env.v_c, env.n_pos), "D": (env.v_d, env.n_pos),
-             "E": (env.v_d, 0.0), "F": (env.v_c, env.n_neg), "H": (env.v_h, env.n_neg)}
+    table = {
+        "A": (env.v_a, env.n_pos),
+        "VC at n+": (env.v_c, env.n_pos),
+        "D": (env.v_d, env.n_pos),
+        "E": (env.v_d, 0.0),
+        "F": (env.v_c, env.n_neg),
+        "H": (env.v_h, env.n_neg),
+    }
     v, n = table[point]
     note = ""
     if point in ("A", "H") and v > env.v_c:
@@ -86,8 +104,10 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
     # a speed below the stall line's (Mach-limited VC at altitude): the envelope's boundary there is the stall line
     stall_n = (v / env.vs1_pos) ** 2 if n > 0 else -((v / env.vs1_neg) ** 2)
     if abs(stall_n) < abs(n) * (1.0 - 1e-9):
-        note = (note + "; " if note else "") + (f"{v / KN:.1f} kn EAS is below the stall line's speed at n = {n:g}: "
-                                                f"the point is on the ±C_N,max line at n = {stall_n:.3f}")
+        note = (note + "; " if note else "") + (
+            f"{v / KN:.1f} kn EAS is below the stall line's speed at n = {n:g}: "
+            f"the point is on the ±C_N,max line at n = {stall_n:.3f}"
+        )
         n = stall_n
     return float(v), float(n), note
 
@@ -114,30 +134,52 @@ def design_flap_speed(ctx, configuration: str, h: float, crit) -> tuple[float, s
     vs1 = float(np.sqrt(2 * mass * G0 / (RHO0 * ac.reference.area * clmax)))
     minimum = factor * vs1
     if minimum > placard:
-        return minimum, (f"VF = {factor:g} VS1 at {'MTOW' if takeoff else 'MLW'} = {minimum / KN:.1f} kn EAS "
-                         f"(§25.335(e)(3)), above the placard VFE {placard / KN:.1f} kn EAS")
-    return placard, (f"VF = the placard VFE {placard / KN:.1f} kn EAS, above the §25.335(e)(3) minimum "
-                     f"{factor:g} VS1 = {minimum / KN:.1f} kn EAS")
+        return minimum, (
+            f"VF = {factor:g} VS1 at {'MTOW' if takeoff else 'MLW'} = {minimum / KN:.1f} kn EAS "
+            f"(§25.335(e)(3)), above the placard VFE {placard / KN:.1f} kn EAS"
+        )
+    return placard, (
+        f"VF = the placard VFE {placard / KN:.1f} kn EAS, above the §25.335(e)(3) minimum "
+        f"{factor:g} VS1 = {minimum / KN:.1f} kn EAS"
+    )
 
 
 #: the criteria that define the balanced states (shared by §25.427(b), which splits their tail loads)
 BALANCED_RUN_CRITERIA = {
     "cn_over_cl": CN_OVER_CL["cn_over_cl"],
-    "flaps_load_factor": Criterion(2.0, "", "14 CFR 25.345(a)(1) (wording checked against CS 25.345(a) only, "
-                                   "docs/regulation-notes.md §3)", "positive limit load factor flaps extended, "
-                                   "used when envelope.limit_load_factors.flaps_extended is not declared"),
-    "vf_takeoff_factor": Criterion(1.6, "", "14 CFR 25.335(e)(3)(i) (text recalled, not re-verified)",
-                                   "VF ≥ this × VS1, flaps in the takeoff position, at the maximum takeoff weight"),
-    "vf_landing_factor": Criterion(1.8, "", "14 CFR 25.335(e)(3)(ii)-(iii) (text recalled, not re-verified)",
-                                   "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum "
-                                   "landing weight"),
+    "flaps_load_factor": Criterion(
+        2.0,
+        "",
+        "14 CFR 25.345(a)(1) (wording checked against CS 25.345(a) only, docs/regulation-notes.md §3)",
+        "positive limit load factor flaps extended, "
+        "used when envelope.limit_load_factors.flaps_extended is not declared",
+    ),
+    "vf_takeoff_factor": Criterion(
+        1.6,
+        "",
+        "14 CFR 25.335(e)(3)(i) (text recalled, not re-verified)",
+        "VF ≥ this × VS1, flaps in the takeoff position, at the maximum takeoff weight",
+    ),
+    "vf_landing_factor": Criterion(
+        1.8,
+        "",
+        "14 CFR 25.335(e)(3)(ii)-(iii) (text recalled, not re-verified)",
+        "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum landing weight",
+    ),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
     **SAFETY,
 }
 BALANCE_CRITERIA = tuple(BALANCED_RUN_CRITERIA)
 #: what the balanced manoeuvres need from the aircraft file
-BALANCED_REQUIRES = ("speeds.VA", "speeds.VC", "speeds.VD", "envelope.limit_load_factors", "configurations.clean.CLmax",
-                     "configurations.clean.CLmin", "geometry.horizontal_tail")
+BALANCED_REQUIRES = (
+    "speeds.VA",
+    "speeds.VC",
+    "speeds.VD",
+    "envelope.limit_load_factors",
+    "configurations.clean.CLmax",
+    "configurations.clean.CLmin",
+    "geometry.horizontal_tail",
+)
 
 
 def balanced_runs(ctx, conditions, crit) -> BalancedRun:
@@ -187,8 +229,9 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel)
         state_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in kept])
         units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if cfg == "clean" else None
-        wing_states = np.array(np.broadcast_to(with_fuel_states(total["wing"], units, fuel),
-                                               (fuel.shape[1],) + total["wing"].shape))
+        wing_states = np.array(
+            np.broadcast_to(with_fuel_states(total["wing"], units, fuel), (fuel.shape[1],) + total["wing"].shape)
+        )
         if cfg != "clean":
             wing_states[:] = np.nan
         bad = ~st.converged
@@ -199,15 +242,24 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         tail_load = 2.0 * sl["horizontal_tail"][0][:, 0, 0]  # both halves' aerodynamic root shear
         wing_lift = 2.0 * sl["wing"][0][:, 0, 0]
         for i, c in enumerate(refined):
-            details = dict(point=c.get("point"), n=round(float(n[i]), 3), V_kn_EAS=round(float(c.speed / KN), 1),
-                           n_z_body=round(float(st.outputs.n_z[i]), 4), alpha_deg=round(float(np.degrees(st.alpha[i])), 3),
-                           CL=round(float(st.outputs.CL[i]), 4), elevator_deg=round(float(np.degrees(de[i])), 3),
-                           pitch_rate_deg_s=round(float(np.degrees(st.pitch_rate[i])), 3),
-                           tail_balancing_load_kN=round(float(tail_load[i] / 1e3), 1),
-                           wing_air_load_kN=round(float(wing_lift[i] / 1e3), 1), mach=round(float(st.outputs.mach[i]), 3))
+            details = dict(
+                point=c.get("point"),
+                n=round(float(n[i]), 3),
+                V_kn_EAS=round(float(c.speed / KN), 1),
+                n_z_body=round(float(st.outputs.n_z[i]), 4),
+                alpha_deg=round(float(np.degrees(st.alpha[i])), 3),
+                CL=round(float(st.outputs.CL[i]), 4),
+                elevator_deg=round(float(np.degrees(de[i])), 3),
+                pitch_rate_deg_s=round(float(np.degrees(st.pitch_rate[i])), 3),
+                tail_balancing_load_kN=round(float(tail_load[i] / 1e3), 1),
+                wing_air_load_kN=round(float(wing_lift[i] / 1e3), 1),
+                mach=round(float(st.outputs.mach[i]), 3),
+            )
             if not lim[0] <= de[i] <= lim[1]:
-                details["elevator_note"] = (f"the balance needs {np.degrees(de[i]):.1f}° elevator, beyond the design "
-                                            f"limits {np.degrees(lim[0]):.1f}…{np.degrees(lim[1]):.1f}°")
+                details["elevator_note"] = (
+                    f"the balance needs {np.degrees(de[i]):.1f}° elevator, beyond the design "
+                    f"limits {np.degrees(lim[0]):.1f}…{np.degrees(lim[1]):.1f}°"
+                )
             if notes[kept[i]]:
                 details["speed_note"] = notes[kept[i]]
             past_stop = not stops[0] <= de[i] <= stops[1]
@@ -215,33 +267,67 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             for s in SURFACES:
                 check = _check(c, s)
                 if beyond_mach:
-                    findings.append(set_aside_finding(
-                        c, check, beyond_mach, np.stack([wing_states[:, i]] * 2, axis=1) if s == "wing"
-                        else np.stack([total[s][i]] * 2), loads[s].station_names, **details))
+                    findings.append(
+                        set_aside_finding(
+                            c,
+                            check,
+                            beyond_mach,
+                            np.stack([wing_states[:, i]] * 2, axis=1) if s == "wing" else np.stack([total[s][i]] * 2),
+                            loads[s].station_names,
+                            **details,
+                        )
+                    )
                 elif past_stop and not bad[i]:
-                    findings.append(beyond_stop_finding(c, check, float(de[i]), stops, "stabilizer" in model.control_names,
-                                                        **details))
+                    findings.append(
+                        beyond_stop_finding(
+                            c, check, float(de[i]), stops, "stabilizer" in model.control_names, **details
+                        )
+                    )
                 elif bad[i]:
-                    findings.append(Finding.not_evaluated(c, check, f"balanced state not found (residual "
-                                                          f"{st.residual[i]:.2e})", **details))
+                    findings.append(
+                        Finding.not_evaluated(
+                            c, check, f"balanced state not found (residual {st.residual[i]:.2e})", **details
+                        )
+                    )
                 elif s == "wing" and cfg != "clean":
                     findings.append(Finding.not_evaluated(c, check, NO_FLAP_STRIPS, **details))
                 elif s == "wing":
                     peaks = np.stack([wing_states[:, i], wing_states[:, i]], axis=1)  # one state each: min = max
-                    findings.append(critical_state_finding(
-                        c, check, s, peaks, loads[s].station_names, caps[s], crit.ultimate_factor,
-                        lambda j, i=i, names=state_names, fuel=fuel: fuel_detail(names[i], fuel[i], loads["wing"].tank_names, j),
-                        **details))
+                    findings.append(
+                        critical_state_finding(
+                            c,
+                            check,
+                            s,
+                            peaks,
+                            loads[s].station_names,
+                            caps[s],
+                            crit.ultimate_factor,
+                            lambda j, i=i, names=state_names, fuel=fuel: fuel_detail(
+                                names[i], fuel[i], loads["wing"].tank_names, j
+                            ),
+                            **details,
+                        )
+                    )
                 else:
                     peaks = np.stack([total[s][i], total[s][i]])  # one state: min = max
-                    findings.append(capability_finding(c, check, s, peaks, loads[s].station_names, caps[s],
-                                                       crit.ultimate_factor, **details))
+                    findings.append(
+                        capability_finding(
+                            c, check, s, peaks, loads[s].station_names, caps[s], crit.ultimate_factor, **details
+                        )
+                    )
         parts.append({"wing": wing_states, "horizontal_tail": total["horizontal_tail"]})
         tail_parts.append(tuple(np.where(bad[:, None, None], np.nan, x) for x in sl["horizontal_tail"]))
         names = list(model.control_names)
-        states.append({"n_z": st.outputs.n_z, "qbar": st.outputs.qbar, "mach": st.outputs.mach, "alpha": st.alpha,
-                       "q_hat": st.pitch_rate * model.c / (2 * st.outputs.V),
-                       **{k: st.u[:, names.index(k)] for k in names if ":" not in k}})
+        states.append(
+            {
+                "n_z": st.outputs.n_z,
+                "qbar": st.outputs.qbar,
+                "mach": st.outputs.mach,
+                "alpha": st.alpha,
+                "q_hat": st.pitch_rate * model.c / (2 * st.outputs.V),
+                **{k: st.u[:, names.index(k)] for k in names if ":" not in k},
+            }
+        )
         labels += [c.label() for c in refined]
         done += refined
     if not parts:
@@ -262,13 +348,27 @@ def beyond_stop_finding(cond, check: str, elevator: float, stops, movable_stabil
     exist and is not computed: not evaluated, with the deflection; without one the condition fails (margin in
     degrees, the stop − the deflection needed). Its loads stay in the envelope (conservative for sizing)."""
     stop = stops[1] if elevator > stops[1] else stops[0]
-    what = (f"the balance needs {np.degrees(elevator):+.1f}° elevator, beyond the control-system stop "
-            f"{np.degrees(stop):+.1f}°")
+    what = (
+        f"the balance needs {np.degrees(elevator):+.1f}° elevator, beyond the control-system stop "
+        f"{np.degrees(stop):+.1f}°"
+    )
     if movable_stabilizer:
-        return Finding.not_evaluated(cond, check, what + " with the stabiliser held at its 1 g trim; a balance with the "
-                                     "stabiliser retrimmed is not computed", **details)
-    return Finding.compare(cond, f"{check}: elevator within its stop", abs(np.degrees(elevator)), abs(np.degrees(stop)),
-                           at_least=False, unit="deg", reason=what, **details)
+        return Finding.not_evaluated(
+            cond,
+            check,
+            what + " with the stabiliser held at its 1 g trim; a balance with the stabiliser retrimmed is not computed",
+            **details,
+        )
+    return Finding.compare(
+        cond,
+        f"{check}: elevator within its stop",
+        abs(np.degrees(elevator)),
+        abs(np.degrees(stop)),
+        at_least=False,
+        unit="deg",
+        reason=what,
+        **details,
+    )
 
 
 def _check(cond, surface: str) -> str:

@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import math
 
-from certkit.models.control_force import trim_state
 from certkit.engine.results import Finding
+from certkit.models.control_force import trim_state
 from certkit.units import LBF
 
-_NO_FORCE = ("no control-force model in the aircraft file (control_forces.rudder: hinge moments and gearing, or "
-             "artificial feel): the rudder pedal force is not computed")
+_NO_FORCE = (
+    "no control-force model in the aircraft file (control_forces.rudder: hinge moments and gearing, or "
+    "artificial feel): the rudder pedal force is not computed"
+)
 #: the trim controls checked against their design limits and reported in a trim's details
 CONTROLS = ("elevator", "aileron", "rudder")
 
@@ -26,9 +28,19 @@ def pedal_force_finding(ctx, rudder, cond, result, limit_lbf, check=None, **deta
         return Finding.not_evaluated(cond, check, "the trim did not converge: no rudder deflection to hold", **details)
     q, a, d = trim_state(ctx.aircraft, "rudder", [result])
     force = float(rudder.force(q, a, d)[0] / LBF)
-    return Finding.compare(cond, check, abs(force), limit_lbf, at_least=False, unit="lbf",
-                           pedal="left" if force >= 0 else "right", rudder_deg=round(math.degrees(d[0]), 3),
-                           fin_alpha_deg=round(math.degrees(a[0]), 3), force_model=rudder.kind, **details)
+    return Finding.compare(
+        cond,
+        check,
+        abs(force),
+        limit_lbf,
+        at_least=False,
+        unit="lbf",
+        pedal="left" if force >= 0 else "right",
+        rudder_deg=round(math.degrees(d[0]), 3),
+        fin_alpha_deg=round(math.degrees(a[0]), 3),
+        force_model=rudder.kind,
+        **details,
+    )
 
 
 def control_findings(cond, prefix: str, result, limits) -> list[Finding]:
@@ -44,19 +56,38 @@ def control_findings(cond, prefix: str, result, limits) -> list[Finding]:
         hint = next((m.hint for m in result.limits_exceeded if m.control == name), "")
         extra = {"hint": hint} if hint else {}
         if d >= 0:
-            f = Finding.compare(cond, f"{prefix} {name} within design limit", math.degrees(d), math.degrees(hi),
-                                at_least=False, unit="deg", reason=message, **extra)
+            f = Finding.compare(
+                cond,
+                f"{prefix} {name} within design limit",
+                math.degrees(d),
+                math.degrees(hi),
+                at_least=False,
+                unit="deg",
+                reason=message,
+                **extra,
+            )
         else:
-            f = Finding.compare(cond, f"{prefix} {name} within design limit", math.degrees(d), math.degrees(lo),
-                                at_least=True, unit="deg", reason=message, **extra)
+            f = Finding.compare(
+                cond,
+                f"{prefix} {name} within design limit",
+                math.degrees(d),
+                math.degrees(lo),
+                at_least=True,
+                unit="deg",
+                reason=message,
+                **extra,
+            )
         out.append(f)
     return out
 
 
 def trim_details(result) -> dict:
     """A trim's angles and controls (deg, 3 decimals), throttles (4 decimals) and stabiliser, as a finding's details."""
-    return {"alpha_deg": round(math.degrees(result.alpha), 3), "bank_deg": round(math.degrees(result.phi), 3),
-            "beta_deg": round(math.degrees(result.beta), 3),
-            **{f"{k}_deg": round(math.degrees(v), 3) for k, v in result.controls.items() if k in CONTROLS},
-            **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")},
-            **({} if result.stabilizer is None else {"stabilizer_deg": round(math.degrees(result.stabilizer), 3)})}
+    return {
+        "alpha_deg": round(math.degrees(result.alpha), 3),
+        "bank_deg": round(math.degrees(result.phi), 3),
+        "beta_deg": round(math.degrees(result.beta), 3),
+        **{f"{k}_deg": round(math.degrees(v), 3) for k, v in result.controls.items() if k in CONTROLS},
+        **{k: round(v, 4) for k, v in result.controls.items() if k.startswith("throttle")},
+        **({} if result.stabilizer is None else {"stabilizer_deg": round(math.degrees(result.stabilizer), 3)}),
+    }

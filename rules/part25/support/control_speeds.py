@@ -27,10 +27,10 @@ checks the mirror symmetry, the stability under a 1e-9 change of the mass, and t
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
 from certkit.atmosphere import convert_speed
 from certkit.models.flight import control_limits
-from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 from certkit.units import KN
 
 
@@ -82,8 +82,15 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
 
     def step(speeds):
         cs = [c.with_(speed=float(v), speed_kind="CAS") for c, v in zip(conds, speeds)]
-        res = ctx.trim(cs, kind="oei", gamma=warm.get("gamma", np.zeros(n)), bank=banks, inoperative=list(engines),
-                       throttle=np.full(n, throttle), initial={k: a.copy() for k, a in warm.items()}).results
+        res = ctx.trim(
+            cs,
+            kind="oei",
+            gamma=warm.get("gamma", np.zeros(n)),
+            bank=banks,
+            inoperative=list(engines),
+            throttle=np.full(n, throttle),
+            initial={k: a.copy() for k, a in warm.items()},
+        ).results
         for i, r in enumerate(res):
             if r.converged:
                 for k, val in r.start().items():
@@ -93,10 +100,12 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
     v = np.clip(start * vsr, v_lo, v_hi)
     res, use = step(v)
     hist = [[{"speed": float(v[i]), "usage": float(use[i]), "gamma": res[i].gamma, "trim": res[i]}] for i in range(n)]
-    below = np.where(use > 1.0, v, np.nan)    # highest speed known with usage > 1 (or no trim)
-    above = np.where(use <= 1.0, v, np.nan)   # lowest speed known with usage ≤ 1
-    end_trim = {"below": [r if u > 1.0 else None for r, u in zip(res, use)],
-                "above": [r if u <= 1.0 else None for r, u in zip(res, use)]}
+    below = np.where(use > 1.0, v, np.nan)  # highest speed known with usage > 1 (or no trim)
+    above = np.where(use <= 1.0, v, np.nan)  # lowest speed known with usage ≤ 1
+    end_trim = {
+        "below": [r if u > 1.0 else None for r, u in zip(res, use)],
+        "above": [r if u <= 1.0 else None for r, u in zip(res, use)],
+    }
     prev = [None] * n
     cur = [(v[i], use[i]) for i in range(n)]
     done = np.zeros(n, dtype=bool)
@@ -109,13 +118,13 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
             hi_b = above[i] if np.isfinite(above[i]) else v_hi[i]
             cand = np.nan
             if np.isfinite(u1) and prev[i] is None:
-                cand = v1 * np.clip(np.sqrt(u1), 0.85, 1.15)   # u ∝ 1/V²: the first step, at most 15 %
+                cand = v1 * np.clip(np.sqrt(u1), 0.85, 1.15)  # u ∝ 1/V²: the first step, at most 15 %
             elif np.isfinite(u1) and np.isfinite(prev[i][1]) and abs(u1 - prev[i][1]) > 1e-12:
-                s0, s1 = prev[i][0] ** -2, v1 ** -2
+                s0, s1 = prev[i][0] ** -2, v1**-2
                 s_new = s1 + (1.0 - u1) * (s1 - s0) / (u1 - prev[i][1])
-                cand = s_new ** -0.5 if s_new > 0 else np.nan
+                cand = s_new**-0.5 if s_new > 0 else np.nan
             if not (np.isfinite(cand) and lo_b <= cand <= hi_b):
-                cand = (0.5 * (lo_b ** -2 + hi_b ** -2)) ** -0.5   # bisection in 1/V² inside the bracket
+                cand = (0.5 * (lo_b**-2 + hi_b**-2)) ** -0.5  # bisection in 1/V² inside the bracket
             new[i] = cand
         res, use = step(new)
         for i in np.flatnonzero(~done):
@@ -139,7 +148,7 @@ def vmca_search(ctx, conds, engines, banks, vsr, throttle, low, high, tol, start
             # the bracket (or, still searching, the lowest speed known to be controllable)
             v[i], last[i] = above[i], end_trim["above"][i]
             if not end_trim["below"][i].converged:
-                last[i] = end_trim["below"][i]   # no trim just below, the controls within limits above: stall-limited
+                last[i] = end_trim["below"][i]  # no trim just below, the controls within limits above: stall-limited
     pinned_low = ~np.isfinite(below) & (v <= v_lo * (1 + 1e-9))
     pinned_high = ~np.isfinite(above) & (v >= v_hi * (1 - 1e-9))
     return v, pinned_low, pinned_high, hist, last
@@ -160,8 +169,14 @@ def at_lift_maximum(ctx, configuration: str, res, step: float = np.radians(0.25)
     model = ctx.aero(configuration).model
     mach = float(res.V / speed_of_sound(res.h))
     controls = {k: v for k, v in res.controls.items() if k in model.control_names}
-    cl = [float(np.asarray(model.coefficients(AeroState(alpha=res.alpha + d, beta=res.beta, mach=mach,
-                                                         controls=controls)).CL)) for d in (-step, step)]
+    cl = [
+        float(
+            np.asarray(
+                model.coefficients(AeroState(alpha=res.alpha + d, beta=res.beta, mach=mach, controls=controls)).CL
+            )
+        )
+        for d in (-step, step)
+    ]
     return (cl[1] - cl[0]) / (2 * step) < STALL_SLOPE_FRACTION * float(model.derivative("CL_alpha", mach))
 
 
@@ -192,6 +207,7 @@ def vmc_rows(ctx, conditions, *, bank_deg: float, throttle: float, low: float, h
     engine per condition, wings level included (the minimum control speed is the least over the banks the paragraph
     allows: an intermediate bank can balance the rudder's and the aileron's needs); each condition names its
     ``inoperative`` engine. Memoised on the Context (the rules and the evidence share it)."""
+
     def compute():
         y = {e.name: e.position.y for e in ctx.aircraft.propulsion.engines}
         conds, engines, banks, vsr = [], [], [], []
@@ -219,11 +235,28 @@ def vmc_rows(ctx, conditions, *, bank_deg: float, throttle: float, low: float, h
                 limited_by.append(limiting_control(r, limits))
             else:  # the row ends where no steady trim exists below: the stall, or a trim that failed
                 limited_by.append("stall" if at_lift_maximum(ctx, c.configuration, r) else "trim failure")
-        return {"vmca": vmca, "pinned_low": lo, "pinned_high": hi, "history": hist, "last": last, "banks": banks,
-                "vsr": vsr, "engines": engines, "conds": conds, "limited_by": limited_by}
+        return {
+            "vmca": vmca,
+            "pinned_low": lo,
+            "pinned_high": hi,
+            "history": hist,
+            "last": last,
+            "banks": banks,
+            "vsr": vsr,
+            "engines": engines,
+            "conds": conds,
+            "limited_by": limited_by,
+        }
 
-    key = ("vmc rows", tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.get("inoperative")) for c in conditions),
-           bank_deg, throttle, low, high, tolerance_kn)
+    key = (
+        "vmc rows",
+        tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.get("inoperative")) for c in conditions),
+        bank_deg,
+        throttle,
+        low,
+        high,
+        tolerance_kn,
+    )
     return ctx.memo(key, compute)
 
 

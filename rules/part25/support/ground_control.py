@@ -18,54 +18,81 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 
 import numpy as np
+from certkit_rules.part25.support.thrust_trims import critical_engine
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.engine.registry import Criterion
-from certkit_rules.part25.support.thrust_trims import critical_engine
 from certkit.units import FT, KN
 
 VMCG_RULE_ID = "25.149"
 SOURCE = "14 CFR 25.149(e) (Amdt. 25-108; verified, docs/regulation-notes.md)"
 VMCG_CRITERIA = {
-    "vmcg_deviation_max_ft": Criterion(30.0, "ft", SOURCE, "largest lateral deviation from the centreline between "
-                                       "the engine failure and the recovery to a parallel direction"),
-    "vmcg_reaction_time_s": Criterion(1.0, "s", "AC 25-7D §25.149 VMCG test technique: the engine is cut without "
-                                      "warning and the pilot recovers with normal piloting skill, no anticipation; "
-                                      "1 s from the failure to the first rudder input, the recognition interval of "
-                                      "§25.107(a)(2) practice (the AC's own wording not retrieved: unverified)",
-                                      "time from the engine cut to the pilot's first rudder input"),
-    "vmcg_departure_factor": Criterion(3.0, "", "project choice: a run three times the bound off the centreline is "
-                                       "beyond it and ends there (the search needs only which side of the bound a "
-                                       "failure speed lies near VMCG; saves a third of the simulated time)",
-                                       "deviation, in multiples of the bound, at which an engine-cut run ends"),
-    "vmcg_low_kn": Criterion(60.0, "kn", "project choice: the search starts at 60 KCAS (below any transport's VMCG)",
-                             "lowest failure speed searched (CAS)"),
+    "vmcg_deviation_max_ft": Criterion(
+        30.0,
+        "ft",
+        SOURCE,
+        "largest lateral deviation from the centreline between "
+        "the engine failure and the recovery to a parallel direction",
+    ),
+    "vmcg_reaction_time_s": Criterion(
+        1.0,
+        "s",
+        "AC 25-7D §25.149 VMCG test technique: the engine is cut without "
+        "warning and the pilot recovers with normal piloting skill, no anticipation; "
+        "1 s from the failure to the first rudder input, the recognition interval of "
+        "§25.107(a)(2) practice (the AC's own wording not retrieved: unverified)",
+        "time from the engine cut to the pilot's first rudder input",
+    ),
+    "vmcg_departure_factor": Criterion(
+        3.0,
+        "",
+        "project choice: a run three times the bound off the centreline is "
+        "beyond it and ends there (the search needs only which side of the bound a "
+        "failure speed lies near VMCG; saves a third of the simulated time)",
+        "deviation, in multiples of the bound, at which an engine-cut run ends",
+    ),
+    "vmcg_low_kn": Criterion(
+        60.0,
+        "kn",
+        "project choice: the search starts at 60 KCAS (below any transport's VMCG)",
+        "lowest failure speed searched (CAS)",
+    ),
 }
 #: what the VMCG procedure needs from the aircraft file
-VMCG_REQUIRES = ("speeds.VR", "speeds.V2", "geometry.landing_gear", "geometry.vertical_tail.controls.rudder",
-                 "cg_envelope")
-VMCG_CONDITIONS = ConditionSpace(loading=CgCorners(), configurations=("takeoff",), altitudes=Altitudes((0.0,)),
-                                 note="Sea level ISA, maximum takeoff thrust, the critical engine cut; every corner of "
-                                      "the weight–CG envelope (the most unfavourable weight and CG).")
+VMCG_REQUIRES = (
+    "speeds.VR",
+    "speeds.V2",
+    "geometry.landing_gear",
+    "geometry.vertical_tail.controls.rudder",
+    "cg_envelope",
+)
+VMCG_CONDITIONS = ConditionSpace(
+    loading=CgCorners(),
+    configurations=("takeoff",),
+    altitudes=Altitudes((0.0,)),
+    note="Sea level ISA, maximum takeoff thrust, the critical engine cut; every corner of "
+    "the weight–CG envelope (the most unfavourable weight and CG).",
+)
 
 
 @dataclass
 class Vmcg:
-    speed_cas: np.ndarray   # (n,) m/s CAS per condition (nan: no run stayed on the runway)
-    below: np.ndarray       # (n,) within the bound at the lowest speed searched: VMCG no higher
-    above: np.ndarray       # (n,) beyond the bound at the highest speed searched (VR): no VMCG on the runway
-    search: object          # GroundControlSpeed
+    speed_cas: np.ndarray  # (n,) m/s CAS per condition (nan: no run stayed on the runway)
+    below: np.ndarray  # (n,) within the bound at the lowest speed searched: VMCG no higher
+    above: np.ndarray  # (n,) beyond the bound at the highest speed searched (VR): no VMCG on the runway
+    search: object  # GroundControlSpeed
     engine: str
-    high_cas: float         # m/s CAS, the highest failure speed searched (VR)
+    high_cas: float  # m/s CAS, the highest failure speed searched (VR)
     basis: dict
 
 
 def vmcg_runs(ctx, conditions, crit) -> Vmcg:
     """The memoised VMCG search of ``conditions`` with the criteria ``crit`` (module docstring)."""
+    from certkit_rules.part25.support.takeoff import takeoff_trim
+
     from certkit.models.dynamics.ground_control import ground_minimum_control_speed
     from certkit.models.flight import control_limits, flight_model, ground_model
-    from certkit_rules.part25.support.takeoff import takeoff_trim
 
     def compute():
         ac = ctx.aircraft
@@ -80,17 +107,33 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
         n = len(conditions)
         travel = control_limits(ac, design=False)
         search = ground_minimum_control_speed(
-            model, engine, tas(crit.vmcg_low_kn * KN), tas(vr_cas), crit.vmcg_deviation_max_ft * FT,
-            crit.vmcg_reaction_time_s, pilot.rudder_rate, decay_time=ac.propulsion.failure_decay_time,
-            lateral_limits=travel, elevator_limits=travel["elevator"], settings=settings,
-            departure=crit.vmcg_departure_factor * crit.vmcg_deviation_max_ft * FT)
+            model,
+            engine,
+            tas(crit.vmcg_low_kn * KN),
+            tas(vr_cas),
+            crit.vmcg_deviation_max_ft * FT,
+            crit.vmcg_reaction_time_s,
+            pilot.rudder_rate,
+            decay_time=ac.propulsion.failure_decay_time,
+            lateral_limits=travel,
+            elevator_limits=travel["elevator"],
+            settings=settings,
+            departure=crit.vmcg_departure_factor * crit.vmcg_deviation_max_ft * FT,
+        )
         cas = np.array([float(convert_speed(v, "TAS", "CAS", 0.0)) if np.isfinite(v) else np.nan for v in search.speed])
-        basis = {"engine": engine, "nose_wheel": "castering (no nose-wheel steering)",
-                 "reaction_time_s": crit.vmcg_reaction_time_s,
-                 "rudder_rate_deg_s": round(float(np.degrees(pilot.rudder_rate)), 1),
-                 "spool_down": (f"τ = {ac.propulsion.failure_decay_time:g} s" if ac.propulsion.failure_decay_time
-                                else "windmilling at once"),
-                 "held_settings": sorted(settings) or None, "conditions": n}
+        basis = {
+            "engine": engine,
+            "nose_wheel": "castering (no nose-wheel steering)",
+            "reaction_time_s": crit.vmcg_reaction_time_s,
+            "rudder_rate_deg_s": round(float(np.degrees(pilot.rudder_rate)), 1),
+            "spool_down": (
+                f"τ = {ac.propulsion.failure_decay_time:g} s"
+                if ac.propulsion.failure_decay_time
+                else "windmilling at once"
+            ),
+            "held_settings": sorted(settings) or None,
+            "conditions": n,
+        }
         return Vmcg(cas, search.below, search.above, search, engine, vr_cas, basis)
 
     key = ("vmcg", tuple((c.mass, c.x_cg) for c in conditions), tuple(float(getattr(crit, k)) for k in VMCG_CRITERIA))

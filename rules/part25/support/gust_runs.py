@@ -10,17 +10,17 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
+from certkit_rules.part25.support.fuel_states import fuel_state_table
+from certkit_rules.part25.support.gust import SOURCE as UREF_SOURCE
+from certkit_rules.part25.support.gust import reference_gust_velocity
+from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit_rules.part25.support.loads_conditions import trimmed_batch
+from certkit.engine.registry import Criterion
 from certkit.models.loads.gust_response import SURFACES, gust_batch, simulate_gust
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, fuel_state_peaks
-from certkit.engine.registry import Criterion
 from certkit.units import FT
-from certkit_rules.part25.support.gust import SOURCE as UREF_SOURCE
-from certkit_rules.part25.support.gust import reference_gust_velocity
-from certkit_rules.part25.support.fuel_states import fuel_state_table
 
 AC = "FAA AC 25.341-1 via secondary sources; formula UNVERIFIED against the CFR (docs/regulation-notes.md §4)"
 SPEEDS = ("VB", "VC", "VD")
@@ -47,39 +47,54 @@ def gradients(crit) -> np.ndarray:
     """The gust gradients H (m) of the criterion, each within 30–350 ft."""
     values = np.array([float(v) for v in str(crit.gradients).replace(",", " ").split()])
     if values.size == 0 or values.min() < crit.gradient_min - 1e-9 or values.max() > crit.gradient_max + 1e-9:
-        raise ValueError(f"gust gradients {values.tolist()} ft must lie within {crit.gradient_min}–{crit.gradient_max} ft")
+        raise ValueError(
+            f"gust gradients {values.tolist()} ft must lie within {crit.gradient_min}–{crit.gradient_max} ft"
+        )
     return values * FT
 
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:
     """EAS (m/s) of VB, VC, VD at altitude h, Mach-limited; VB capped at VC."""
     vc = float(ctx.design_speed_eas("VC", h)[0])
-    return {"VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc), "VC": vc, "VD": float(ctx.design_speed_eas("VD", h)[0])}
+    return {
+        "VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc),
+        "VC": vc,
+        "VD": float(ctx.design_speed_eas("VD", h)[0]),
+    }
 
 
 #: the criteria that define the gust runs (shared by §25.349(b), which modifies the §25.341(a) conditions, and by
 #: §25.427(b), which splits their tail loads)
 GUST_RUN_CRITERIA = {
-    "gradients": Criterion("30 60 100 150 200 250 300 350", "ft", "14 CFR 25.341(a)(3) (verified: 'a sufficient "
-                           "number … in the range 30 feet to 350 feet')", "gust gradient distances H investigated"),
+    "gradients": Criterion(
+        "30 60 100 150 200 250 300 350",
+        "ft",
+        "14 CFR 25.341(a)(3) (verified: 'a sufficient number … in the range 30 feet to 350 feet')",
+        "gust gradient distances H investigated",
+    ),
     "gradient_min": Criterion(30.0, "ft", "14 CFR 25.341(a)(3)", "shortest gust gradient"),
     "gradient_max": Criterion(350.0, "ft", "14 CFR 25.341(a)(3)", "longest gust gradient"),
     "gradient_reference": Criterion(350.0, "ft", "14 CFR 25.341(a)(4), " + AC, "H of U_ds = U_ref F_g"),
     "gradient_exponent": Criterion(1 / 6, "", "14 CFR 25.341(a)(4), " + AC, "exponent of H/350"),
     "fgz_altitude": Criterion(250_000.0, "ft", "14 CFR 25.341(a)(6), " + AC, "F_gz = 1 − Z_mo / this"),
     "vd_factor": Criterion(0.5, "", "14 CFR 25.341(a)(5)(ii) (wording UNVERIFIED)", "U_ref at VD / U_ref (a)(5)(i)"),
-    "steps_per_gust": Criterion(20, "", "certkit numerical choice (zero-order hold of the gust)",
-                                "simulation steps per gust length 2H/V"),
+    "steps_per_gust": Criterion(
+        20, "", "certkit numerical choice (zero-order hold of the gust)", "simulation steps per gust length 2H/V"
+    ),
     "settle_time": Criterion(1.5, "s", "certkit numerical choice", "time simulated after the gust leaves the tail"),
 }
 GUST_CRITERIA = tuple(GUST_RUN_CRITERIA)
 #: what the gust runs need from the aircraft file
 GUST_REQUIRES = ("speeds.VB", "speeds.VC", "speeds.VD", "geometry.horizontal_tail")
 #: the conditions of the gust runs (§25.341(a), and §25.349(b) which modifies them)
-GUST_CONDITIONS = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(),
-                                 extra=(("speed_point", SPEEDS), ("gust", ("up", "down"))),
-                                 note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude; U_ref "
-                                      "by altitude (" + UREF_SOURCE + "), F_g from the ceiling as Z_mo.")
+GUST_CONDITIONS = ConditionSpace(
+    loading=CgCorners(),
+    configurations=("clean",),
+    altitudes=EnvelopeAltitudes(),
+    extra=(("speed_point", SPEEDS), ("gust", ("up", "down"))),
+    note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude; U_ref "
+    "by altitude (" + UREF_SOURCE + "), F_g from the ceiling as Z_mo.",
+)
 
 
 @dataclass
@@ -124,8 +139,21 @@ class GustRuns:
         for i, j in picks:
             H = self.gradients[j]
             alpha = (1.0 if self.up[i] else -1.0) * self.uds[j, i] / self.v_eas[i]
-            out.append((i, H, simulate_gust(self.loads, self.batch.subset([i]), H, alpha, self.steps_per_gust,
-                                            self.settle_time, split=("wing",))))
+            out.append(
+                (
+                    i,
+                    H,
+                    simulate_gust(
+                        self.loads,
+                        self.batch.subset([i]),
+                        H,
+                        alpha,
+                        self.steps_per_gust,
+                        self.settle_time,
+                        split=("wing",),
+                    ),
+                )
+            )
         return out
 
 
@@ -147,7 +175,8 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
     batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries])
+        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries]
+    )
     empty = np.zeros((len(H), 0))
     if not rows.size:
         return GustRuns(list(refused), [], H, [], empty, empty, empty, [])
@@ -165,17 +194,49 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     fuel_peaks = None
     for h_gust in H:
         uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
-        run = simulate_gust(loads, gb, h_gust, np.where(up, 1.0, -1.0) * uds / v_eas, float(crit.steps_per_gust),
-                            float(crit.settle_time), split=SURFACES)
+        run = simulate_gust(
+            loads,
+            gb,
+            h_gust,
+            np.where(up, 1.0, -1.0) * uds / v_eas,
+            float(crit.steps_per_gust),
+            float(crit.settle_time),
+            split=SURFACES,
+        )
         envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
         uds_all.append(uds)
         wing.append((run.sim.t, *run.parts["wing"]))
         peaks = fuel_state_peaks(run.loads["wing"], run.fuel_units.get("wing"), fuel)
-        fuel_peaks = peaks if fuel_peaks is None else np.stack([np.fmin(fuel_peaks[:, :, 0], peaks[:, :, 0]),
-                                                                np.fmax(fuel_peaks[:, :, 1], peaks[:, :, 1])], axis=2)
+        fuel_peaks = (
+            peaks
+            if fuel_peaks is None
+            else np.stack(
+                [np.fmin(fuel_peaks[:, :, 0], peaks[:, :, 0]), np.fmax(fuel_peaks[:, :, 1], peaks[:, :, 1])], axis=2
+            )
+        )
         tail.append((run.sim.t, *run.parts["horizontal_tail"]))
-    return GustRuns(list(refused), sim_conds, H, envelopes, np.array(nz_hi), np.array(nz_lo), np.array(uds_all), wing,
-                    u_ref, f_g, v_eas, up, alt, gb, loads, float(crit.steps_per_gust), float(crit.settle_time), tail,
-                    fuel_peaks, fuel_names, fuel)
+    return GustRuns(
+        list(refused),
+        sim_conds,
+        H,
+        envelopes,
+        np.array(nz_hi),
+        np.array(nz_lo),
+        np.array(uds_all),
+        wing,
+        u_ref,
+        f_g,
+        v_eas,
+        up,
+        alt,
+        gb,
+        loads,
+        float(crit.steps_per_gust),
+        float(crit.settle_time),
+        tail,
+        fuel_peaks,
+        fuel_names,
+        fuel,
+    )

@@ -22,8 +22,10 @@ from functools import lru_cache
 
 import numpy as np
 
-SOURCE = ("MIL-F-8785C (1980), Class III, as reproduced in Nelson, Flight Stability and Automatic Control, "
-          "Tables 10.1-10.3, and docs/regulation-notes.md §6 (UNVERIFIED against the specification)")
+SOURCE = (
+    "MIL-F-8785C (1980), Class III, as reproduced in Nelson, Flight Stability and Automatic Control, "
+    "Tables 10.1-10.3, and docs/regulation-notes.md §6 (UNVERIFIED against the specification)"
+)
 
 #: flight-phase category of each certkit configuration
 CATEGORY = {"takeoff": "C", "approach": "C", "landing": "C", "clean": "B"}
@@ -34,10 +36,10 @@ class Limit:
     """One boundary of one Level: ``quantity`` of ``mode`` must be ≥ (``bound`` "min") or ≤ ("max") ``value``."""
 
     mode: str
-    quantity: str          # zeta, zeta_wn (rad/s), wn (rad/s), tau (s), t_double (s)
-    categories: str        # the categories it applies to, e.g. "AC"
+    quantity: str  # zeta, zeta_wn (rad/s), wn (rad/s), tau (s), t_double (s)
+    categories: str  # the categories it applies to, e.g. "AC"
     level: int
-    bound: str             # "min" or "max"
+    bound: str  # "min" or "max"
     value: float
     unit: str
     paragraph: str
@@ -74,7 +76,17 @@ LIMITS: tuple[Limit, ...] = (
     Limit("dutch_roll", "zeta", "ABC", 2, "min", 0.02, "", _T6),
     Limit("dutch_roll", "zeta_wn", "ABC", 2, "min", 0.05, "rad/s", _T6),
     Limit("dutch_roll", "wn", "ABC", 2, "min", 0.4, "rad/s", _T6),
-    Limit("dutch_roll", "zeta", "ABC", 3, "min", 0.0, "", _T6, note="mem; Nelson's reproduction is ambiguous (may read 0.02)"),
+    Limit(
+        "dutch_roll",
+        "zeta",
+        "ABC",
+        3,
+        "min",
+        0.0,
+        "",
+        _T6,
+        note="mem; Nelson's reproduction is ambiguous (may read 0.02)",
+    ),
     Limit("dutch_roll", "wn", "ABC", 3, "min", 0.4, "rad/s", _T6),
     # roll-mode time constant, Table VII (Nelson Table 10.1)
     Limit("roll", "tau", "ABC", 1, "max", 1.4, "s", _T7),
@@ -165,13 +177,27 @@ def level_of(mode_name: str, mode, category: str) -> tuple[int, str]:
             return level, missed
         if not missed:
             lim = failed[0]
-            missed = (f"Level {level} needs {lim.quantity} {'≥' if lim.bound == 'min' else '≤'} {lim.value:g}"
-                      f"{' ' + lim.unit if lim.unit else ''} (MIL-F-8785C {lim.paragraph}), has {q[lim.quantity]:.3g}")
+            missed = (
+                f"Level {level} needs {lim.quantity} {'≥' if lim.bound == 'min' else '≤'} {lim.value:g}"
+                f"{' ' + lim.unit if lim.unit else ''} (MIL-F-8785C {lim.paragraph}), has {q[lim.quantity]:.3g}"
+            )
     return 4, missed
 
 
 def table_rows() -> list[dict]:
     """The limits as report rows."""
-    return [{"mode": lim.mode, "quantity": lim.quantity, "categories": lim.categories, "level": lim.level,
-             "bound": lim.bound, "value": lim.value, "unit": lim.unit, "paragraph": f"MIL-F-8785C {lim.paragraph}",
-             "verified": lim.verified, "note": lim.note} for lim in LIMITS]
+    return [
+        {
+            "mode": lim.mode,
+            "quantity": lim.quantity,
+            "categories": lim.categories,
+            "level": lim.level,
+            "bound": lim.bound,
+            "value": lim.value,
+            "unit": lim.unit,
+            "paragraph": f"MIL-F-8785C {lim.paragraph}",
+            "verified": lim.verified,
+            "note": lim.note,
+        }
+        for lim in LIMITS
+    ]

@@ -19,14 +19,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from certkit.models.flight import flight_model
 from certkit.engine.results import Finding
+from certkit.models.flight import flight_model
 from certkit.units import G0
 
 #: flight-path angles (rad) tried in turn where neither level flight nor the full/idle-thrust path trims
 FALLBACK_PATHS = (-0.05, -0.10, -0.15, 0.03, 0.06)
-BELOW_STALL = ("no steady flight at this weight, altitude and speed: the 1 g lift coefficient W/(q̄S) = {cl:.3f} "
-               "exceeds CLmax = {clmax:.3f} at M {mach:.3f} (below the 1 g stall speed, outside the flight envelope)")
+BELOW_STALL = (
+    "no steady flight at this weight, altitude and speed: the 1 g lift coefficient W/(q̄S) = {cl:.3f} "
+    "exceeds CLmax = {clmax:.3f} at M {mach:.3f} (below the 1 g stall speed, outside the flight envelope)"
+)
 
 
 @dataclass
@@ -140,10 +142,21 @@ def trimmed_batch(ctx, conditions, gammas=FALLBACK_PATHS) -> TrimmedBatch:
     cfg = conds[0].configuration
     loadings = [ctx.loading(conds[i].mass, conds[i].x_cg, conds[i].loading or "") for i in ok]
     model = flight_model(ctx.aircraft, ctx.aero(cfg).model, loadings)
-    refined = [conds[i].with_(flight_path_deg=round(float(np.degrees(gamma[i])), 2)) if abs(gamma[i]) > 1e-9 else conds[i]
-               for i in ok]
-    return TrimmedBatch(refined, ok, model, np.array([x[i] for i in ok]), np.array([u[i] for i in ok]), gamma[ok],
-                        [trims[i] for i in ok], failed, outside)
+    refined = [
+        conds[i].with_(flight_path_deg=round(float(np.degrees(gamma[i])), 2)) if abs(gamma[i]) > 1e-9 else conds[i]
+        for i in ok
+    ]
+    return TrimmedBatch(
+        refined,
+        ok,
+        model,
+        np.array([x[i] for i in ok]),
+        np.array([u[i] for i in ok]),
+        gamma[ok],
+        [trims[i] for i in ok],
+        failed,
+        outside,
+    )
 
 
 def below_stall(ctx, cond) -> str | None:

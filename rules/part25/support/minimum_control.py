@@ -7,8 +7,9 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
 from certkit_rules.part25.support.control_speeds import condition_vmc, vmc_rows
+
+from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion
 
 #: the paragraph whose criteria (and aircraft-file overrides, ``criteria."25.149"``) the search uses
@@ -19,23 +20,43 @@ VMCA_REQUIRES = ("configurations.takeoff.CLmax",)
 VMCA_CRITERIA = {
     "vmc_over_vsr_max": Criterion(1.13, "", SOURCE + " (c)", "largest VMC / VSR"),
     "bank_deg": Criterion(5.0, "deg", SOURCE + " (b)", "bank toward the operating engine"),
-    "throttle": Criterion(0.99, "", "project choice: 99 % of the throttle range stands for maximum takeoff thrust "
-                          "(the trim cannot converge on the throttle stop itself)", "throttle of the operating engine"),
+    "throttle": Criterion(
+        0.99,
+        "",
+        "project choice: 99 % of the throttle range stands for maximum takeoff thrust "
+        "(the trim cannot converge on the throttle stop itself)",
+        "throttle of the operating engine",
+    ),
     "grid_low": Criterion(0.6, "", "project choice: search from 0.6 VSR", "lowest speed searched, multiple of VSR"),
     "grid_high": Criterion(1.4, "", "project choice: search to 1.4 VSR", "highest speed searched, multiple of VSR"),
-    "speed_tolerance_kn": Criterion(0.05, "kn", "project choice: secant step at which the search stops (VMCA to "
-                                    "0.1 kn)", "speed step of the VMCA search"),
+    "speed_tolerance_kn": Criterion(
+        0.05,
+        "kn",
+        "project choice: secant step at which the search stops (VMCA to 0.1 kn)",
+        "speed step of the VMCA search",
+    ),
     "rudder_force_lbf": Criterion(150.0, "lbf", SOURCE + " (d)", "largest rudder force to maintain control at VMC"),
 }
-VMCA_CONDITIONS = ConditionSpace(loading=DesignWeight("MTOW", cgs=("aft",)), configurations=("takeoff",),
-                                 altitudes=Altitudes((0.0,)), extra=(("inoperative", ("left", "right")),),
-                                 note="Operating engine at full throttle; bank toward it; sea level, standard day.")
+VMCA_CONDITIONS = ConditionSpace(
+    loading=DesignWeight("MTOW", cgs=("aft",)),
+    configurations=("takeoff",),
+    altitudes=Altitudes((0.0,)),
+    extra=(("inoperative", ("left", "right")),),
+    note="Operating engine at full throttle; bank toward it; sea level, standard day.",
+)
 
 
 def vmca_rows(ctx, conditions, crit):
     """The VMCA search of the rule's conditions with its criteria (:func:`certkit_rules.part25.support.control_speeds.vmc_rows`)."""
-    return vmc_rows(ctx, conditions, bank_deg=crit.bank_deg, throttle=crit.throttle, low=crit.grid_low,
-                    high=crit.grid_high, tolerance_kn=crit.speed_tolerance_kn)
+    return vmc_rows(
+        ctx,
+        conditions,
+        bank_deg=crit.bank_deg,
+        throttle=crit.throttle,
+        low=crit.grid_low,
+        high=crit.grid_high,
+        tolerance_kn=crit.speed_tolerance_kn,
+    )
 
 
 def condition_vmca(rows, k: int, crit) -> tuple[float, int, bool]:

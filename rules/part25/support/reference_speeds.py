@@ -15,8 +15,8 @@ from __future__ import annotations
 import math
 
 from certkit.atmosphere import convert_speed
-from certkit.models.performance.stall import stall_speed_eas
 from certkit.engine.results import Finding
+from certkit.models.performance.stall import stall_speed_eas
 
 
 def declared_cas(ctx, name: str) -> float | None:
@@ -31,10 +31,16 @@ def ratio_check(cond, check, speeds, numerator, denominator, factor, *, basis=""
     if missing:
         return Finding.not_evaluated(cond, check, "needs " + ", ".join(f"speeds.{m}" for m in missing))
     value = speeds[numerator] / speeds[denominator]
-    return Finding.compare(cond.with_(speed=speeds[numerator], speed_kind="CAS", speed_name=numerator), check, value,
-                           factor, at_least=True, unit="ratio", **{numerator: speeds[numerator],
-                                                                   denominator: speeds[denominator]},
-                           **({"basis": basis} if basis else {}))
+    return Finding.compare(
+        cond.with_(speed=speeds[numerator], speed_kind="CAS", speed_name=numerator),
+        check,
+        value,
+        factor,
+        at_least=True,
+        unit="ratio",
+        **{numerator: speeds[numerator], denominator: speeds[denominator]},
+        **({"basis": basis} if basis else {}),
+    )
 
 
 #: the weight at which a declared VSR of each configuration is read (the weight the configuration is used at)
@@ -91,8 +97,10 @@ def stall_warning_cl(ctx, configuration: str, mass) -> tuple[float, str]:
         vsw, how = declared.speed_ratio * vsr, (f"declared VSW = {declared.speed_ratio:g} VSR ({basis})")
     else:
         vsw = max(vsr + max(kn * KN, frac * vsr) for kn, frac, _ in WARNING_MARGINS)
-        how = (f"no stall warning declared: the latest §25.207(c) allows, VSW = VSR + max(5 kn, 5 %) = {vsw / KN:.1f} kn "
-               f"with the stall identified at VSR ({basis})")
+        how = (
+            f"no stall warning declared: the latest §25.207(c) allows, VSW = VSR + max(5 kn, 5 %) = {vsw / KN:.1f} kn "
+            f"with the stall identified at VSR ({basis})"
+        )
     return float(mass * G0 / (0.5 * RHO0 * vsw**2 * ctx.aircraft.reference.area)), how
 
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 
+from certkit_rules.part25.support.control_speeds import vsr_cas
 
 from certkit.atmosphere import convert_speed
-from certkit_rules.part25.support.control_speeds import vsr_cas
 from certkit.engine.results import Finding
 
 #: certkit configuration of each flight phase the stability paragraphs name
@@ -35,14 +35,19 @@ def max_allowable_cas(ctx, configuration: str, h: float = 0.0) -> float:
     return min(limits)
 
 
-VFC_FLOOR = ("VFC/MFC not declared: the least §25.253(b) allows, midway between VMO/MMO and VDF/MDF, with VD/MD "
-             "for VDF/MDF (which may not exceed them), each Mach-limited at the altitude")
+VFC_FLOOR = (
+    "VFC/MFC not declared: the least §25.253(b) allows, midway between VMO/MMO and VDF/MDF, with VD/MD "
+    "for VDF/MDF (which may not exceed them), each Mach-limited at the altitude"
+)
 
 
 def stability_limit_cas(ctx, configuration: str, h: float = 0.0) -> tuple[float, str]:
     """Top of the §25.173(a) and §25.177(a), (c) speed ranges (m/s CAS) and its basis: VFE/VLE for an extended
     configuration (its maximum allowable speed); clean, VFC/MFC where declared, else :data:`VFC_FLOOR`."""
-    if configuration in ctx.aircraft.speeds.VFE or getattr(ctx.aircraft.configurations[configuration], "gear", "up") == "down":
+    if (
+        configuration in ctx.aircraft.speeds.VFE
+        or getattr(ctx.aircraft.configurations[configuration], "gear", "up") == "down"
+    ):
         return max_allowable_cas(ctx, configuration, h), "VFE/VLE of the configuration"
     sp = ctx.aircraft.speeds
     if sp.VFC is not None or sp.MFC is not None:
@@ -96,8 +101,10 @@ def flight_described(result, stop) -> str:
         return "level flight"
     gamma = math.degrees(result.gamma)
     path = "descent" if gamma < 0 else "climb"
-    return (f"steady {path} at {'full' if stop >= 1.0 else 'idle'} thrust, flight path {gamma:+.2f}° (level flight "
-            f"needs {'more than full' if stop >= 1.0 else 'less than idle'} thrust)")
+    return (
+        f"steady {path} at {'full' if stop >= 1.0 else 'idle'} thrust, flight path {gamma:+.2f}° (level flight "
+        f"needs {'more than full' if stop >= 1.0 else 'less than idle'} thrust)"
+    )
 
 
 def by_configuration(conditions) -> dict[str, list[int]]:
@@ -108,8 +115,10 @@ def by_configuration(conditions) -> dict[str, list[int]]:
     return groups
 
 
-FLAP_ALTITUDE_SOURCE = ("project choice: flaps and gear are not extended above 20,000 ft (Boeing 777 FCOM limitation, "
-                        "the baseline's class); flap configurations are evaluated below it")
+FLAP_ALTITUDE_SOURCE = (
+    "project choice: flaps and gear are not extended above 20,000 ft (Boeing 777 FCOM limitation, "
+    "the baseline's class); flap configurations are evaluated below it"
+)
 
 
 def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float = 1.13, check: str = "speed range"):
@@ -120,17 +129,34 @@ def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float =
         cfg = ctx.aircraft.configurations[cond.configuration]
         extended = cond.configuration != "clean" and (getattr(cfg, "flap", 0) or getattr(cfg, "gear", "up") == "down")
         if extended and (cond.altitude or 0.0) > flap_altitude_max + 1e-6:
-            findings.append(Finding.not_applicable(cond, check, f"{cond.configuration} configuration above "
-                                                   f"{flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)"))
+            findings.append(
+                Finding.not_applicable(
+                    cond,
+                    check,
+                    f"{cond.configuration} configuration above "
+                    f"{flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)",
+                )
+            )
             continue
         if cond.get("speed_point") == "VFC":
             v, basis = stability_limit_cas(ctx, cond.configuration, cond.altitude or 0.0)
             if basis.startswith("VFE/VLE"):
-                findings.append(Finding.not_applicable(cond, check, f"the {cond.configuration} configuration's range ends "
-                                                       "at its VFE/VLE, the 'max allowable' speed point"))
+                findings.append(
+                    Finding.not_applicable(
+                        cond,
+                        check,
+                        f"the {cond.configuration} configuration's range ends "
+                        "at its VFE/VLE, the 'max allowable' speed point",
+                    )
+                )
                 continue
-            refined.append(cond.with_(speed=v, speed_kind="CAS", VFC="declared" if basis == "declared VFC/MFC"
-                                      else "§25.253(b) least: (VMO + VD)/2"))
+            refined.append(
+                cond.with_(
+                    speed=v,
+                    speed_kind="CAS",
+                    VFC="declared" if basis == "declared VFC/MFC" else "§25.253(b) least: (VMO + VD)/2",
+                )
+            )
             continue
         v, _, _ = speed_at_point(ctx, cond, cond.get("speed_point", "mid"), low_factor)
         refined.append(cond.with_(speed=v, speed_kind="CAS"))

@@ -9,11 +9,11 @@ from functools import lru_cache, partial
 
 import numpy as np
 
+from certkit.engine.registry import Criterion
+from certkit.engine.results import Finding
 from certkit.models.flight import control_limits
 from certkit.models.loads.capability import worst_margin
 from certkit.models.loads.model import QUANTITIES
-from certkit.engine.registry import Criterion
-from certkit.engine.results import Finding
 
 NO_CAPABILITY = "no structural capability declared"
 SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
@@ -46,12 +46,16 @@ def station_summary(loads_peaks: np.ndarray, stations) -> dict:
 @lru_cache(maxsize=64)
 def _summary_keys(stations: tuple) -> tuple:
     """The :func:`station_summary` keys, station by station."""
-    return tuple(f"{station} {quantity} max/min (kN{'·m' if q else ''})"
-                 for station in stations for q, quantity in enumerate(QUANTITIES))
+    return tuple(
+        f"{station} {quantity} max/min (kN{'·m' if q else ''})"
+        for station in stations
+        for q, quantity in enumerate(QUANTITIES)
+    )
 
 
-def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor,
-                       **details) -> Finding:
+def capability_finding(
+    cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor, **details
+) -> Finding:
     """One finding per condition: the smallest margin of the limit and ultimate loads against the
     capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
     worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
@@ -61,21 +65,46 @@ def capability_finding(cond, check: str, surface: str, peaks: np.ndarray, statio
     else:
         m, cap = worst
         unit = "N" if cap.quantity == "shear" else "N·m"
-        finding = Finding.compare(cond, f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})", m.load,
-                                  m.allowable, at_least=False, unit=unit, **details)
+        finding = Finding.compare(
+            cond,
+            f"{check}: {m.check} {cap.quantity} at {cap.station} ({m.sense})",
+            m.load,
+            m.allowable,
+            at_least=False,
+            unit=unit,
+            **details,
+        )
     finding.written_details = partial(station_summary, np.array(peaks, dtype=float), tuple(stations))
     return finding
 
 
-def critical_state_finding(cond, check: str, surface: str, peaks_by_state: np.ndarray, stations, capabilities,
-                           ultimate_factor, state_details, **details) -> Finding:
+def critical_state_finding(
+    cond,
+    check: str,
+    surface: str,
+    peaks_by_state: np.ndarray,
+    stations,
+    capabilities,
+    ultimate_factor,
+    state_details,
+    **details,
+) -> Finding:
     """:func:`capability_finding` of the state (e.g. the fuel state) with the smallest normalised margin among
     ``peaks_by_state`` (M, 2, 3, S); ``state_details(j)`` → the details naming state j. Without a capability, the
     loads reported are the envelope over the states (and no state is named)."""
     peaks_by_state = np.asarray(peaks_by_state, dtype=float)
     if len(peaks_by_state) == 1:
-        return capability_finding(cond, check, surface, peaks_by_state[0], stations, capabilities, ultimate_factor,
-                                  **details, **state_details(0))
+        return capability_finding(
+            cond,
+            check,
+            surface,
+            peaks_by_state[0],
+            stations,
+            capabilities,
+            ultimate_factor,
+            **details,
+            **state_details(0),
+        )
     best, worst = None, np.inf
     for j, peaks in enumerate(peaks_by_state):
         w = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
@@ -90,8 +119,17 @@ def critical_state_finding(cond, check: str, surface: str, peaks_by_state: np.nd
     if best is None:
         envelope = np.stack([np.fmin.reduce(peaks_by_state[:, 0]), np.fmax.reduce(peaks_by_state[:, 1])])
         return capability_finding(cond, check, surface, envelope, stations, capabilities, ultimate_factor, **details)
-    return capability_finding(cond, check, surface, peaks_by_state[best], stations, capabilities, ultimate_factor,
-                              **details, **state_details(best))
+    return capability_finding(
+        cond,
+        check,
+        surface,
+        peaks_by_state[best],
+        stations,
+        capabilities,
+        ultimate_factor,
+        **details,
+        **state_details(best),
+    )
 
 
 def beyond_mach_range(loads, mach: float) -> str | None:
@@ -101,8 +139,10 @@ def beyond_mach_range(loads, mach: float) -> str | None:
     top = float(np.max(loads["wing"].mach))
     if mach <= top + 1e-3:
         return None
-    return (f"M {mach:.3f} is beyond the aerodynamic and strip loads model's Mach range (up to M {top:.2f}): its lift "
-            f"and loads would be extrapolated, not computed")
+    return (
+        f"M {mach:.3f} is beyond the aerodynamic and strip loads model's Mach range (up to M {top:.2f}): its lift "
+        f"and loads would be extrapolated, not computed"
+    )
 
 
 def set_aside_finding(cond, check: str, reason: str, peaks=None, stations=(), **details) -> Finding:

@@ -29,60 +29,110 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from certkit_rules.part25.support.thrust_trims import critical_engine
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion
-from certkit_rules.part25.support.thrust_trims import critical_engine
 from certkit.units import FT, KN
 
 #: criteria shared by the rules that use the simulated takeoff (same defaults: one memoised run serves them all)
 PROCEDURE_CRITERIA = {
-    "screen_height": Criterion(35.0, "ft", "14 CFR 25.111(c)(2), 25.113(a)", "height above the takeoff surface of the "
-                               "takeoff path's 35-ft point"),
-    "recognition_time": Criterion(1.0, "s", "project choice after §25.107(a)(2) (VEF to V1 is the speed gained over "
-                                  "the recognition interval; 1 s is the usual demonstrated interval, AC 25-7 practice, "
-                                  "unverified); 0 fails the engine at V1", "recognition interval from VEF to V1"),
-    "bank_deg": Criterion(5.0, "deg", "project choice: the §25.149(b) allowance of not more than 5° of bank toward the "
-                          "operating engine, flown once airborne", "bank toward the operating engine in the air"),
-    "climb_out_s": Criterion(10.0, "s", "project choice: climb-out simulated past 35 ft for the gradient",
-                             "time simulated after the screen height"),
-    "rotation_rate_deg_s": Criterion(2.5, "deg/s", "Boeing Flight Operations Review 'The importance of proper rotation "
-                                     "technique' (14 Mar 1986): typically 2–3°/s, not more than 3°/s (secondary copy)",
-                                     "commanded rotation rate"),
-    "tail_clearance_deg": Criterion(2.0, "deg", "Boeing Flight Operations Review (14 Mar 1986): lift-off attitude about "
-                                    "2–4° below the tail-strike attitude (the least of the range; secondary copy)",
-                                    "attitude kept below the tail-strike attitude with a gear leg on the runway"),
-    "all_engines_speed_increment_kn": Criterion(10.0, "kn", "project choice: all engines, the pitch flies V2 + 10 kn "
-                                                "(the 777 FCTM's all-engines initial climb speed is V2 + 15 to "
-                                                "V2 + 25, secondary copy; 10 kn keeps the run near the scheduled "
-                                                "speeds)", "all-engines climb speed above V2 (CAS)"),
+    "screen_height": Criterion(
+        35.0,
+        "ft",
+        "14 CFR 25.111(c)(2), 25.113(a)",
+        "height above the takeoff surface of the takeoff path's 35-ft point",
+    ),
+    "recognition_time": Criterion(
+        1.0,
+        "s",
+        "project choice after §25.107(a)(2) (VEF to V1 is the speed gained over "
+        "the recognition interval; 1 s is the usual demonstrated interval, AC 25-7 practice, "
+        "unverified); 0 fails the engine at V1",
+        "recognition interval from VEF to V1",
+    ),
+    "bank_deg": Criterion(
+        5.0,
+        "deg",
+        "project choice: the §25.149(b) allowance of not more than 5° of bank toward the "
+        "operating engine, flown once airborne",
+        "bank toward the operating engine in the air",
+    ),
+    "climb_out_s": Criterion(
+        10.0,
+        "s",
+        "project choice: climb-out simulated past 35 ft for the gradient",
+        "time simulated after the screen height",
+    ),
+    "rotation_rate_deg_s": Criterion(
+        2.5,
+        "deg/s",
+        "Boeing Flight Operations Review 'The importance of proper rotation "
+        "technique' (14 Mar 1986): typically 2–3°/s, not more than 3°/s (secondary copy)",
+        "commanded rotation rate",
+    ),
+    "tail_clearance_deg": Criterion(
+        2.0,
+        "deg",
+        "Boeing Flight Operations Review (14 Mar 1986): lift-off attitude about "
+        "2–4° below the tail-strike attitude (the least of the range; secondary copy)",
+        "attitude kept below the tail-strike attitude with a gear leg on the runway",
+    ),
+    "all_engines_speed_increment_kn": Criterion(
+        10.0,
+        "kn",
+        "project choice: all engines, the pitch flies V2 + 10 kn "
+        "(the 777 FCTM's all-engines initial climb speed is V2 + 15 to "
+        "V2 + 25, secondary copy; 10 kn keeps the run near the scheduled "
+        "speeds)",
+        "all-engines climb speed above V2 (CAS)",
+    ),
 }
 
 #: what the simulated takeoffs need from the aircraft file (§25.111 and §25.113 fly the same runs)
-TAKEOFF_REQUIRES = ("speeds.V1", "speeds.VR", "speeds.V2", "geometry.landing_gear",
-                    "geometry.horizontal_tail.controls.elevator", "geometry.vertical_tail.controls.rudder")
+TAKEOFF_REQUIRES = (
+    "speeds.V1",
+    "speeds.VR",
+    "speeds.V2",
+    "geometry.landing_gear",
+    "geometry.horizontal_tail.controls.elevator",
+    "geometry.vertical_tail.controls.rudder",
+)
 
 
 def takeoff_conditions(note: str) -> ConditionSpace:
     """The runs' conditions: MTOW at the forward, reference and aft CG, takeoff configuration."""
-    return ConditionSpace(loading=DesignWeight("MTOW", ("forward", "reference", "aft")), configurations=("takeoff",),
-                          note=note)
+    return ConditionSpace(
+        loading=DesignWeight("MTOW", ("forward", "reference", "aft")), configurations=("takeoff",), note=note
+    )
 
 
 #: the representativeness bounds of a simulated takeoff (:func:`unrepresentative`)
 REPRESENTATIVE_CRITERIA = {
-    "vlof_above_vr_max": Criterion(15.0, "kn", "project choice: a rotation at 2–3°/s lifts the airplane off a few "
-                                   "seconds after VR (777 FCTM: lift-off about 3–4 s after VR, secondary copy); more "
-                                   "means the simulated airplane or procedure does not represent the scheduled takeoff; "
-                                   "with a declared VLOF the bound is taken about it instead of VR",
-                                   "largest V_LOF − VR (or − declared VLOF) of a representative run (CAS)"),
-    "v35_above_v2_max": Criterion(10.0, "kn", "project choice after §25.111(c)(2) ('as close as practical to, but not "
-                                  "less than, V2'; V2 is chosen to be reached at 35 ft, §25.107(c)(2))",
-                                  "largest V35 − V2 of a representative engine-out run (CAS)"),
-    "lateral_deviation_max": Criterion(30.0, "ft", "the §25.149(e) bound on the deviation from the runway centreline "
-                                       "after an engine failure on the ground (a certificated airplane meets it at VMCG)",
-                                       "largest lateral deviation on the ground of a representative run"),
+    "vlof_above_vr_max": Criterion(
+        15.0,
+        "kn",
+        "project choice: a rotation at 2–3°/s lifts the airplane off a few "
+        "seconds after VR (777 FCTM: lift-off about 3–4 s after VR, secondary copy); more "
+        "means the simulated airplane or procedure does not represent the scheduled takeoff; "
+        "with a declared VLOF the bound is taken about it instead of VR",
+        "largest V_LOF − VR (or − declared VLOF) of a representative run (CAS)",
+    ),
+    "v35_above_v2_max": Criterion(
+        10.0,
+        "kn",
+        "project choice after §25.111(c)(2) ('as close as practical to, but not "
+        "less than, V2'; V2 is chosen to be reached at 35 ft, §25.107(c)(2))",
+        "largest V35 − V2 of a representative engine-out run (CAS)",
+    ),
+    "lateral_deviation_max": Criterion(
+        30.0,
+        "ft",
+        "the §25.149(e) bound on the deviation from the runway centreline "
+        "after an engine failure on the ground (a certificated airplane meets it at VMCG)",
+        "largest lateral deviation on the ground of a representative run",
+    ),
 }
 
 
@@ -93,19 +143,21 @@ def takeoff_trim(ctx, conditions):
     at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
     trims = ctx.trim(at_v2)
     pilot = {"elevator", "aileron", "rudder"}
-    names = sorted({k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot))
+    names = sorted(
+        {k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot)
+    )
     return trims, {k: np.array([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results]) for k in names}
 
 
 @dataclass
 class Takeoffs:
-    trims: object              # 1-g trims at V2 (one per loading)
-    run: object                # TakeoffResult, 2n rows: engine failed, then all engines
-    engine: str                # the failed (critical) engine
-    vef: np.ndarray            # m/s TAS (inf on the all-engines rows)
+    trims: object  # 1-g trims at V2 (one per loading)
+    run: object  # TakeoffResult, 2n rows: engine failed, then all engines
+    engine: str  # the failed (critical) engine
+    vef: np.ndarray  # m/s TAS (inf on the all-engines rows)
     vef_basis: str
-    theta_target: np.ndarray   # rad, ground rotation target per loading (after the tail-strike limit)
-    basis: dict                # how the procedure was set up (rotation, tail strike, spool-down)
+    theta_target: np.ndarray  # rad, ground rotation target per loading (after the tail-strike limit)
+    basis: dict  # how the procedure was set up (rotation, tail strike, spool-down)
 
 
 def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
@@ -127,11 +179,16 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         pilot = ac.takeoff_pilot
         steering = pilot.nose_wheel_steering or None
-        model = flight_model(ac, ctx.aero("takeoff").model, loadings + loadings,
-                             ground=ground_model(ac, nose_wheel="steered" if steering else "straight"))
+        model = flight_model(
+            ac,
+            ctx.aero("takeoff").model,
+            loadings + loadings,
+            ground=ground_model(ac, nose_wheel="steered" if steering else "straight"),
+        )
         engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
-        vef, vef_basis = engine_failure_speed(model, tas(sp.V1), engine, crit.recognition_time,
-                                              ac.propulsion.failure_decay_time)
+        vef, vef_basis = engine_failure_speed(
+            model, tas(sp.V1), engine, crit.recognition_time, ac.propulsion.failure_decay_time
+        )
         from certkit_rules.part25.support.ground_control import computed_vmcg
 
         vmcg, _, _ = computed_vmcg(ctx)  # the failure is never scheduled below VMCG (§25.107(a)(1))
@@ -144,8 +201,14 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         y = {e.name: e.position.y for e in ac.propulsion.engines}
         toward_live = -np.sign(y[engine]) if y[engine] != 0 else 1.0  # bank right (+) when the left engine is dead
         bank = np.concatenate([np.full(n, toward_live * np.radians(crit.bank_deg)), np.zeros(n)])
-        v_aeo = float(convert_speed(float(convert_speed(v2, "TAS", "CAS", 0.0)) + crit.all_engines_speed_increment_kn * KN,
-                                    "CAS", "TAS", 0.0))
+        v_aeo = float(
+            convert_speed(
+                float(convert_speed(v2, "TAS", "CAS", 0.0)) + crit.all_engines_speed_increment_kn * KN,
+                "CAS",
+                "TAS",
+                0.0,
+            )
+        )
         climb = np.concatenate([np.full(n, v2), np.full(n, v_aeo)])
         strike = ac.geometry.landing_gear.tail_strike_attitude
         margin = np.radians(crit.tail_clearance_deg)
@@ -154,35 +217,71 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         travel = control_limits(ac, design=False)
         # RK4 at 10 Hz: against 20 Hz the extreme elevator moves by < 0.1° and V35 by < 0.1 kn (measured on
         # the baseline, all engines), at 40 % of the cost
-        run = takeoff_run(model, vr, np.concatenate([target, target]), climb_speed=climb, settings=settings,
-                          elevator_ff=np.concatenate([de_ff, de_ff]), tail_strike=None,
-                          rotation_rate=np.radians(crit.rotation_rate_deg_s), screen_height=crit.screen_height * FT,
-                          elevator_limits=travel["elevator"], lateral_limits=travel, dt=0.1,
-                          failed_engine=engine, failure_speed=vef, failure_decay_time=decay, lateral="pilot",
-                          bank_airborne=bank, climb_out=crit.climb_out_s, reaction_time=pilot.rudder_reaction_time,
-                          rudder_rate=pilot.rudder_rate, steering=steering)
+        run = takeoff_run(
+            model,
+            vr,
+            np.concatenate([target, target]),
+            climb_speed=climb,
+            settings=settings,
+            elevator_ff=np.concatenate([de_ff, de_ff]),
+            tail_strike=None,
+            rotation_rate=np.radians(crit.rotation_rate_deg_s),
+            screen_height=crit.screen_height * FT,
+            elevator_limits=travel["elevator"],
+            lateral_limits=travel,
+            dt=0.1,
+            failed_engine=engine,
+            failure_speed=vef,
+            failure_decay_time=decay,
+            lateral="pilot",
+            bank_airborne=bank,
+            climb_out=crit.climb_out_s,
+            reaction_time=pilot.rudder_reaction_time,
+            rudder_rate=pilot.rudder_rate,
+            steering=steering,
+        )
         basis = {
-            "rotation": (f"rotation at {crit.rotation_rate_deg_s:g}°/s from VR toward the 1-g V2 attitude"
-                         + ("" if strike is None else f", at most {np.degrees(strike):.1f}° tail strike − "
-                                                      f"{crit.tail_clearance_deg:g}° on the runway")
-                         + f"; airborne to V2 (engine out) / V2 + {crit.all_engines_speed_increment_kn:g} kn (all engines)"),
-            "tail_strike": ("declared geometry.landing_gear.tail_strike_attitude" if strike is not None else
-                            "no tail-strike attitude declared (geometry.landing_gear.tail_strike_attitude): the "
-                            "rotation is limited by the V2 attitude only"),
-            "pilot": (f"rudder held {pilot.rudder_reaction_time:g} s after the failure, then at most "
-                      f"{np.degrees(pilot.rudder_rate):g}°/s (takeoff_pilot); "
-                      + (f"pedal nose-wheel steering {np.degrees(steering):g}° at full pedal" if steering else
-                         "no nose-wheel steering declared (the nose wheel held straight)")),
-            "spool_down": (f"first-order thrust decay, τ = {decay:g} s (propulsion.failure_decay_time)" if decay else
-                           "no propulsion.failure_decay_time declared: the failed engine windmills at once"),
+            "rotation": (
+                f"rotation at {crit.rotation_rate_deg_s:g}°/s from VR toward the 1-g V2 attitude"
+                + (
+                    ""
+                    if strike is None
+                    else f", at most {np.degrees(strike):.1f}° tail strike − {crit.tail_clearance_deg:g}° on the runway"
+                )
+                + f"; airborne to V2 (engine out) / V2 + {crit.all_engines_speed_increment_kn:g} kn (all engines)"
+            ),
+            "tail_strike": (
+                "declared geometry.landing_gear.tail_strike_attitude"
+                if strike is not None
+                else "no tail-strike attitude declared (geometry.landing_gear.tail_strike_attitude): the "
+                "rotation is limited by the V2 attitude only"
+            ),
+            "pilot": (
+                f"rudder held {pilot.rudder_reaction_time:g} s after the failure, then at most "
+                f"{np.degrees(pilot.rudder_rate):g}°/s (takeoff_pilot); "
+                + (
+                    f"pedal nose-wheel steering {np.degrees(steering):g}° at full pedal"
+                    if steering
+                    else "no nose-wheel steering declared (the nose wheel held straight)"
+                )
+            ),
+            "spool_down": (
+                f"first-order thrust decay, τ = {decay:g} s (propulsion.failure_decay_time)"
+                if decay
+                else "no propulsion.failure_decay_time declared: the failed engine windmills at once"
+            ),
             "tail_strike_deg": None if strike is None else round(float(np.degrees(strike)), 2),
-            "held_settings": ({k: [round(float(np.degrees(v)), 2) for v in vals[:n]] for k, vals in settings.items()}
-                              or None),
+            "held_settings": (
+                {k: [round(float(np.degrees(v)), 2) for v in vals[:n]] for k, vals in settings.items()} or None
+            ),
         }
         return Takeoffs(trims, run, engine, vef, vef_basis, target, basis)
 
-    key = ("simulated takeoffs", tuple((c.mass, c.x_cg) for c in conditions),
-           tuple(float(getattr(crit, k)) for k in PROCEDURE_CRITERIA))
+    key = (
+        "simulated takeoffs",
+        tuple((c.mass, c.x_cg) for c in conditions),
+        tuple(float(getattr(crit, k)) for k in PROCEDURE_CRITERIA),
+    )
     return ctx.memo(key, compute)
 
 
@@ -200,8 +299,12 @@ def failure_speed_at_v1(ctx, cond, recognition_time: float | None = None):
 
     def compute():
         v1 = float(convert_speed(ac.speeds.V1.value, ac.speeds.V1.kind, "TAS", 0.0))
-        model = flight_model(ac, ctx.aero("takeoff").model, [ctx.loading(cond.mass, cond.x_cg, cond.loading or "")],
-                             ground=ground_model(ac))
+        model = flight_model(
+            ac,
+            ctx.aero("takeoff").model,
+            [ctx.loading(cond.mass, cond.x_cg, cond.loading or "")],
+            ground=ground_model(ac),
+        )
         vef, basis = engine_failure_speed(model, v1, critical_engine(ctx), dt, ac.propulsion.failure_decay_time)
         return float(convert_speed(float(vef[0]), "TAS", "CAS", 0.0)), basis
 
@@ -216,26 +319,40 @@ def distances(to: Takeoffs, i: int, n: int) -> dict:
     run = to.run
     ft = lambda v: round(float(v) / FT, 0) if np.isfinite(v) else None  # noqa: E731
     oei, aeo = run.x_screen[i], run.x_screen[n + i]
-    return {"accelerate_go_distance_ft": ft(oei), "all_engines_distance_to_35ft_ft": ft(aeo),
-            "all_engines_distance_x1.15_ft": ft(1.15 * aeo),
-            "takeoff_distance_ft": ft(max(oei, 1.15 * aeo)) if np.isfinite(oei) and np.isfinite(aeo) else None,
-            "all_engines_liftoff_distance_ft": ft(run.x_lof[n + i]),
-            "engine_out_run_length_ft": ft(run.sim["x_N"][-1, i] - run.x0[i, 0])}
+    return {
+        "accelerate_go_distance_ft": ft(oei),
+        "all_engines_distance_to_35ft_ft": ft(aeo),
+        "all_engines_distance_x1.15_ft": ft(1.15 * aeo),
+        "takeoff_distance_ft": ft(max(oei, 1.15 * aeo)) if np.isfinite(oei) and np.isfinite(aeo) else None,
+        "all_engines_liftoff_distance_ft": ft(run.x_lof[n + i]),
+        "engine_out_run_length_ft": ft(run.sim["x_N"][-1, i] - run.x0[i, 0]),
+    }
 
 
 def run_summary(to: Takeoffs, i: int, vr_kn: float, v2_kn: float) -> dict:
     """Representativeness figures of row ``i`` of the run (CAS kn, ft, deg)."""
     run = to.run
     cas = lambda v: round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 2) if np.isfinite(v) else None  # noqa: E731
-    return {"vr_kn": vr_kn, "v2_kn": v2_kn, "vlof_kn": cas(run.v_lof[i]), "v35_kn": cas(run.v_screen[i]),
-            "max_lateral_deviation_on_ground_ft": round(float(run.lateral_on_ground_max[i]) / FT, 1),
-            "max_pitch_on_ground_deg": round(float(np.degrees(run.pitch_on_ground_max[i])), 2),
-            "max_pitch_rate_before_liftoff_deg_s": (round(float(np.degrees(run.pitch_rate_max[i])), 2)
-                                                    if np.isfinite(run.pitch_rate_max[i]) else None)}
+    return {
+        "vr_kn": vr_kn,
+        "v2_kn": v2_kn,
+        "vlof_kn": cas(run.v_lof[i]),
+        "v35_kn": cas(run.v_screen[i]),
+        "max_lateral_deviation_on_ground_ft": round(float(run.lateral_on_ground_max[i]) / FT, 1),
+        "max_pitch_on_ground_deg": round(float(np.degrees(run.pitch_on_ground_max[i])), 2),
+        "max_pitch_rate_before_liftoff_deg_s": (
+            round(float(np.degrees(run.pitch_rate_max[i])), 2) if np.isfinite(run.pitch_rate_max[i]) else None
+        ),
+    }
 
 
-def unrepresentative(summary: dict, crit, vlof_declared_kn: float | None = None, engine_out: bool = True,
-                     tail_strike_deg: float | None = None) -> list[str]:
+def unrepresentative(
+    summary: dict,
+    crit,
+    vlof_declared_kn: float | None = None,
+    engine_out: bool = True,
+    tail_strike_deg: float | None = None,
+) -> list[str]:
     """Why a simulated takeoff does not stand for the takeoff a pilot flies (empty: it does): lift-off too long after
     VR (or the declared VLOF), the screen height passed too far above V2 (engine out), the run wandering
     off the centreline beyond the bounds, the tail on the runway. Such a run earns no verdict."""
@@ -245,15 +362,23 @@ def unrepresentative(summary: dict, crit, vlof_declared_kn: float | None = None,
     ref, name = (vlof_declared_kn, "the declared VLOF") if vlof_declared_kn is not None else (summary["vr_kn"], "VR")
     late = summary["vlof_kn"] - ref
     if late > crit.vlof_above_vr_max:
-        out.append(f"VLOF {summary['vlof_kn']:.1f} kn is {late:.1f} kn above {name} (at most {crit.vlof_above_vr_max:g} kn)")
+        out.append(
+            f"VLOF {summary['vlof_kn']:.1f} kn is {late:.1f} kn above {name} (at most {crit.vlof_above_vr_max:g} kn)"
+        )
     if engine_out and summary["v35_kn"] is not None:
         fast = summary["v35_kn"] - summary["v2_kn"]
         if fast > crit.v35_above_v2_max:
-            out.append(f"V35 {summary['v35_kn']:.1f} kn is {fast:.1f} kn above V2 (at most {crit.v35_above_v2_max:g} kn)")
+            out.append(
+                f"V35 {summary['v35_kn']:.1f} kn is {fast:.1f} kn above V2 (at most {crit.v35_above_v2_max:g} kn)"
+            )
     wide = summary["max_lateral_deviation_on_ground_ft"]
     if wide > crit.lateral_deviation_max:
-        out.append(f"the ground run deviates {wide:.0f} ft from the centreline (at most {crit.lateral_deviation_max:g} ft)")
+        out.append(
+            f"the ground run deviates {wide:.0f} ft from the centreline (at most {crit.lateral_deviation_max:g} ft)"
+        )
     if tail_strike_deg is not None and summary["max_pitch_on_ground_deg"] >= tail_strike_deg:
-        out.append(f"the attitude on the runway reaches {summary['max_pitch_on_ground_deg']:.1f}°, at or past the "
-                   f"{tail_strike_deg:.1f}° tail-strike attitude")
+        out.append(
+            f"the attitude on the runway reaches {summary['max_pitch_on_ground_deg']:.1f}°, at or past the "
+            f"{tail_strike_deg:.1f}° tail-strike attitude"
+        )
     return out

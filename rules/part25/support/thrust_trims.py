@@ -50,8 +50,9 @@ def operating_thrust(ctx, conds, throttle: float = 1.0, fraction: float = 1.0, i
     return len(live) * np.clip(fraction * per_engine(throttle), lo, hi)
 
 
-def trim_at_thrust(ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None,
-                   stabilizer=None):
+def trim_at_thrust(
+    ctx, conds, thrust_aim, *, kind: str = "straight", bank=0.0, inoperative: str | None = None, stabilizer=None
+):
     """Trim ``conds`` (one configuration) at the flight-path angle the operating engines' total thrust
     ``thrust_aim`` (N, per condition) gives: each operating engine's throttle is set where it gives its share at the
     condition's altitude and Mach (:func:`~certkit.models.flight.throttle_for_thrust`), and the trim solves the
@@ -116,8 +117,15 @@ def oei_climb(ctx, conds, thrust_fraction: float = 1.0, drag_credit=None, engine
     needed = np.array([sum(r.thrust[n] for n in live) for r in batch.results])
     residual = (available - needed) / weight
     gamma = gamma + credit / weight  # drag the configuration carries but the segment does not (sin γ = (T − D)/W)
-    info = {"inoperative": dead, "thrust_source": thrust_source, "available": available, "needed": needed,
-            "credit": credit, "residual": residual, "weight": weight}
+    info = {
+        "inoperative": dead,
+        "thrust_source": thrust_source,
+        "available": available,
+        "needed": needed,
+        "credit": credit,
+        "residual": residual,
+        "weight": weight,
+    }
     return np.tan(gamma), batch, info
 
 
@@ -134,8 +142,20 @@ def at_mass(ctx, cond, mass: float, lightest: float, speed_at):
     return cond.with_(mass=mass, x_cg=min(max(cond.x_cg, fwd), aft), speed=speed_at(cond, mass))
 
 
-def wat_limit_search(ctx, conds, grads, available, required: float, speed_at, lightest: float, *, thrust_fraction,
-                     drag_credit, iterations: int, tolerance: float) -> list[tuple]:
+def wat_limit_search(
+    ctx,
+    conds,
+    grads,
+    available,
+    required: float,
+    speed_at,
+    lightest: float,
+    *,
+    thrust_fraction,
+    drag_credit,
+    iterations: int,
+    tolerance: float,
+) -> list[tuple]:
     """The weight at which the engine-out climb of each condition (gradient ``grads`` and thrust ``available`` (N) at
     its own weight) has the gradient ``required``: two constant-CL steps (:func:`weight_for_gradient`), then secant
     steps through the last two trims, the weight kept between ``lightest`` and the condition's; at most
@@ -143,8 +163,10 @@ def wat_limit_search(ctx, conds, grads, available, required: float, speed_at, li
     (condition at the last weight tried, its gradient, its trim, the constant-CL weight estimate there (kg, ≥ 0))."""
     weight = np.array([c.mass for c in conds]) * G0
     history = [(weight / G0, grads)]
-    cur = [at_mass(ctx, b, m, lightest, speed_at)
-           for b, m in zip(conds, weight_for_gradient(weight, available, grads, required) / G0)]
+    cur = [
+        at_mass(ctx, b, m, lightest, speed_at)
+        for b, m in zip(conds, weight_for_gradient(weight, available, grads, required) / G0)
+    ]
     for k in range(iterations):
         grads, batch, info = oei_climb(ctx, cur, thrust_fraction, np.full(len(cur), drag_credit))
         if k == iterations - 1 or np.all(np.abs(grads - required) < tolerance):

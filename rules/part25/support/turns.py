@@ -5,10 +5,11 @@ from __future__ import annotations
 
 import math
 
+from certkit_rules.part25.support.control_checks import trim_details
+
 from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.conditions import speed_as
 from certkit.units import G0
-from certkit_rules.part25.support.control_checks import trim_details
 
 
 def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
@@ -16,7 +17,9 @@ def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
     n = math.cos(gamma) / math.cos(bank)
     veas = float(convert_speed(speed_as(cond, "TAS"), "TAS", "EAS", cond.altitude or 0.0))
     cl = n * cond.mass * G0 / (0.5 * RHO0 * veas**2 * ctx.aircraft.reference.area)
-    out = dict(trim_details(result), flight_path_deg=round(math.degrees(gamma), 3), load_factor=round(n, 4), CL=round(cl, 4))
+    out = dict(
+        trim_details(result), flight_path_deg=round(math.degrees(gamma), 3), load_factor=round(n, 4), CL=round(cl, 4)
+    )
     clmax = ctx.clmax(cond.configuration)
     if clmax:
         out["CL_over_CLmax"] = round(cl / clmax, 4)

@@ -134,7 +134,10 @@ def read_avl(path: str | Path, *, with_extras: bool = False):
             surfaces.append(_read_surface(rd, extras))
         elif line.key == "BODY":
             name = rd.next("the body name").text
-            warnings.warn(f"{path}: line {line.number}: BODY {name!r} skipped (the vortex lattice models lifting surfaces only)", stacklevel=2)
+            warnings.warn(
+                f"{path}: line {line.number}: BODY {name!r} skipped (the vortex lattice models lifting surfaces only)",
+                stacklevel=2,
+            )
             while (nxt := rd.peek()) is not None and not (_is_keyword(nxt) and nxt.key in _TOP_KEYS):
                 rd.pos += 1
         else:
@@ -148,7 +151,9 @@ def read_avl(path: str | Path, *, with_extras: bool = False):
         for s in surfaces:
             if s.y_duplicate is None:
                 s.y_duplicate = 0.0
-    config = Configuration(surfaces, AeroReference(sref, bref, cref, xref, zref), mach=mach, y_ref=yref, cd0=cdp, name=title)
+    config = Configuration(
+        surfaces, AeroReference(sref, bref, cref, xref, zref), mach=mach, y_ref=yref, cd0=cdp, name=title
+    )
     return (config, extras) if with_extras else config
 
 
@@ -207,12 +212,14 @@ def _read_surface(rd: _Reader, extras: AvlExtras) -> Surface:
                 _, xy = rd.numbers("airfoil x y", 2, 2)
                 pts.append(xy)
             try:
-                section.camber = CamberLine.from_coordinates([p[0] for p in pts], [p[1] for p in pts], f"{name} AIRFOIL")
+                section.camber = CamberLine.from_coordinates(
+                    [p[0] for p in pts], [p[1] for p in pts], f"{name} AIRFOIL"
+                )
             except GeometryError as exc:
                 raise rd.fail(line, str(exc)) from None
         elif key == "AFIL":
             fname = rd.next("an airfoil file name")
-            target = (rd.path.parent / fname.text.split()[0].strip('"'))
+            target = rd.path.parent / fname.text.split()[0].strip('"')
             if not target.is_file():
                 raise rd.fail(fname, f"airfoil file {target} not found")
             try:
@@ -253,8 +260,14 @@ def write_avl(config: Configuration, path: str | Path) -> Path:
     camber line."""
     path = Path(path)
     ref = config.reference
-    out = [config.name or "certkit configuration", _fmt(config.mach), "0  0  0.0", _fmt(ref.area, ref.chord, ref.span),
-           _fmt(ref.x_ref, config.y_ref, ref.z_ref), _fmt(config.cd0)]
+    out = [
+        config.name or "certkit configuration",
+        _fmt(config.mach),
+        "0  0  0.0",
+        _fmt(ref.area, ref.chord, ref.span),
+        _fmt(ref.x_ref, config.y_ref, ref.z_ref),
+        _fmt(config.cd0),
+    ]
     for s in config.surfaces:
         out += ["#" + "-" * 60, "SURFACE", s.name]
         nspan = f"  {s.n_span}  {_space(s.span_spacing)}" if s.n_span else ""

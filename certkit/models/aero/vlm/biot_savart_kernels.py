@@ -9,7 +9,6 @@ from numba import njit
 
 from .biot_savart_pair import pair
 
-
 #: one point–horseshoe pair (:func:`certkit.models.aero.vlm.biot_savart_pair.pair`), compiled and inlined
 _pair = njit(cache=True, error_model="numpy", inline="always")(pair)
 
@@ -56,5 +55,3 @@ def _velocity(px, py, pz, ax, ay, az, bx, by, bz, rc4, inv_beta, own_vortex, out
             u_row[j] -= cx * inv_beta
             v_row[j] -= cy
             w_row[j] -= cz
-
-

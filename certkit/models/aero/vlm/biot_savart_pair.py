@@ -42,7 +42,9 @@ def pair(px, py, pz, ax, ay, az, bx, by, bz, rc4):
     cz = cz * t
     # semi-infinite legs along +x: from infinity into A, from B out to infinity
     fa = (ax / np.maximum(np.sqrt(asq), 1e-300) - 1.0) / np.sqrt(ryz_a * ryz_a + rc4)
-    fb = (bx / np.maximum(np.sqrt(bsq), 1e-300) - 1.0) / np.sqrt(ryz_b * ryz_b + rc4)  # = −(factor of the leg leaving B)
+    fb = (bx / np.maximum(np.sqrt(bsq), 1e-300) - 1.0) / np.sqrt(
+        ryz_b * ryz_b + rc4
+    )  # = −(factor of the leg leaving B)
     vy = cy + az * fa - bz * fb
     vz = cz - ay * fa + by * fb
     return cx, cy, cz, vy, vz

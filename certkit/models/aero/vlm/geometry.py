@@ -39,7 +39,9 @@ def spacing_parameter(spacing: float | str) -> float:
         try:
             return _SPACING_NAMES[spacing.strip().lower()]
         except KeyError:
-            raise GeometryError(f"unknown spacing {spacing!r}; use one of {sorted(_SPACING_NAMES)} or a number in [-3, 3]") from None
+            raise GeometryError(
+                f"unknown spacing {spacing!r}; use one of {sorted(_SPACING_NAMES)} or a number in [-3, 3]"
+            ) from None
     value = float(spacing)
     if not -3.0 <= value <= 3.0:
         raise GeometryError(f"spacing parameter {value} outside [-3, 3]")

@@ -14,7 +14,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .geometry import CamberLine, Configuration, GeometryError, Surface, chord_fractions, span_fractions, spacing_parameter
+from .geometry import (
+    CamberLine,
+    Configuration,
+    GeometryError,
+    Surface,
+    chord_fractions,
+    spacing_parameter,
+    span_fractions,
+)
 
 
 @dataclass(frozen=True)
@@ -118,7 +126,9 @@ def _spanwise_nodes(surface: Surface, yzlen: np.ndarray) -> tuple[np.ndarray, np
     for k in range(nsec - 1):
         sec = surface.sections[k]
         if sec.n_span < 1:
-            raise GeometryError(f"{where}, section {k + 1}: no spanwise vortices (give the surface or this section an n_span)")
+            raise GeometryError(
+                f"{where}, section {k + 1}: no spanwise vortices (give the surface or this section an n_span)"
+            )
         f = span_fractions(2 * sec.n_span + 1, spacing_parameter(sec.span_spacing))
         start, d = ypt_list[-1], yzlen[k + 1] - yzlen[k]
         ycp_list.extend(start + d * f[1::2])
@@ -142,7 +152,9 @@ def _check_sections(surface: Surface, le: np.ndarray, chords: np.ndarray) -> Non
     length = np.hypot(seg[:, 0], seg[:, 1])
     for k, ln in enumerate(length):
         if ln <= 1e-9 * max(1.0, float(np.max(chords))):
-            raise GeometryError(f"{where}, sections {k + 1} and {k + 2}: no span between them in the y-z plane (zero span)")
+            raise GeometryError(
+                f"{where}, sections {k + 1} and {k + 2}: no span between them in the y-z plane (zero span)"
+            )
     for k in range(len(seg) - 1):
         if float(seg[k] @ seg[k + 1]) < 0.0:
             raise GeometryError(f"{where}, section {k + 2}: the surface folds back on itself here (sections cross)")
@@ -150,7 +162,9 @@ def _check_sections(surface: Surface, le: np.ndarray, chords: np.ndarray) -> Non
         names = [c.name for c in sec.controls]
         for c in sec.controls:
             if not (0.0 <= abs(c.hinge_x_over_c) <= 1.0):
-                raise GeometryError(f"{where}, section {k + 1}: control {c.name!r} hinge x/c {c.hinge_x_over_c} outside the chord")
+                raise GeometryError(
+                    f"{where}, section {k + 1}: control {c.name!r} hinge x/c {c.hinge_x_over_c} outside the chord"
+                )
             neighbours = [surface.sections[j] for j in (k - 1, k + 1) if 0 <= j < len(surface.sections)]
             if not any(c.name in [d.name for d in nb.controls] for nb in neighbours):
                 raise GeometryError(
@@ -179,7 +193,27 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
     cambers = [s.camber or CamberLine.flat() for s in surface.sections]
     claf = np.array([s.claf for s in surface.sections], float)
 
-    out: dict[str, list] = {k: [] for k in ("rle1", "rle2", "rle", "chord1", "chord2", "chord", "width", "ainc", "xpt", "xvr", "xcp", "slope", "dcontrol", "hinge", "dupsign", "hinge_point")}
+    out: dict[str, list] = {
+        k: []
+        for k in (
+            "rle1",
+            "rle2",
+            "rle",
+            "chord1",
+            "chord2",
+            "chord",
+            "width",
+            "ainc",
+            "xpt",
+            "xvr",
+            "xcp",
+            "slope",
+            "dcontrol",
+            "hinge",
+            "dupsign",
+            "hinge_point",
+        )
+    }
     for k in range(len(surface.sections) - 1):
         lo, hi = iptloc[k], iptloc[k + 1]
         span_lo, span_hi = ypt[lo], ypt[hi]
@@ -239,13 +273,19 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
             vh = np.asarray(cl_.hinge_vector, float) * scale
             if not np.any(vh):
                 raw_l, raw_r = le_raw[k], le_raw[k + 1]
-                vh = np.array(
-                    [
-                        raw_r[0] + abs(surface.sections[k + 1].chord * cr_.hinge_x_over_c) - raw_l[0] - abs(surface.sections[k].chord * cl_.hinge_x_over_c),
-                        raw_r[1] - raw_l[1],
-                        raw_r[2] - raw_l[2],
-                    ]
-                ) * scale
+                vh = (
+                    np.array(
+                        [
+                            raw_r[0]
+                            + abs(surface.sections[k + 1].chord * cr_.hinge_x_over_c)
+                            - raw_l[0]
+                            - abs(surface.sections[k].chord * cl_.hinge_x_over_c),
+                            raw_r[1] - raw_l[1],
+                            raw_r[2] - raw_l[2],
+                        ]
+                    )
+                    * scale
+                )
             hinge[n] = vh / np.linalg.norm(vh)
             dups[n] = cl_.duplicate_sign
         out["dcontrol"].append(dcontrol)
@@ -253,7 +293,10 @@ def _panel_surface(surface: Surface, control_index: dict[str, int]) -> dict[str,
         out["dupsign"].append(dups)
         out["hinge_point"].append(hinge_point)
 
-    strips = {k: np.concatenate(v, axis=(1 if k in ("dcontrol", "hinge", "dupsign", "hinge_point") else 0)) for k, v in out.items()}
+    strips = {
+        k: np.concatenate(v, axis=(1 if k in ("dcontrol", "hinge", "dupsign", "hinge_point") else 0))
+        for k, v in out.items()
+    }
     x_ = np.array([1.0, 0.0, 0.0])
     strips["rv1"] = strips["rle1"][:, None, :] + (strips["xvr"] * strips["chord1"][:, None])[..., None] * x_
     strips["rv2"] = strips["rle2"][:, None, :] + (strips["xvr"] * strips["chord2"][:, None])[..., None] * x_
@@ -319,12 +362,29 @@ def build_lattice(config: Configuration) -> Lattice:
             images.append((_mirror(strips, surface.y_duplicate), True))
         for data, mirrored in images:
             js, nc = data["chord"].shape[0], data["xvr"].shape[1]
-            n, nd, ensy, ensz = _normals(data["rv1"], data["rv2"], data["slope"], data["ainc"], data["dcontrol"], data["hinge"])
-            blocks.append(dict(data, normal=n, normal_control=nd, ensy=ensy, ensz=ensz, component=np.full(js, comp),
-                               wake=np.full(js, surface.wake), alpha_beta=np.full(js, surface.alpha_beta), load=np.full(js, surface.load),
-                               count=np.full(js, nc)))
+            n, nd, ensy, ensz = _normals(
+                data["rv1"], data["rv2"], data["slope"], data["ainc"], data["dcontrol"], data["hinge"]
+            )
+            blocks.append(
+                dict(
+                    data,
+                    normal=n,
+                    normal_control=nd,
+                    ensy=ensy,
+                    ensz=ensz,
+                    component=np.full(js, comp),
+                    wake=np.full(js, surface.wake),
+                    alpha_beta=np.full(js, surface.alpha_beta),
+                    load=np.full(js, surface.load),
+                    count=np.full(js, nc),
+                )
+            )
             label = surface.name + (" (YDUP)" if mirrored else "")
-            patches.append(SurfacePatch(label, slice(n_strips, n_strips + js), slice(n_vort, n_vort + js * nc), nc, surface.load, mirrored))
+            patches.append(
+                SurfacePatch(
+                    label, slice(n_strips, n_strips + js), slice(n_vort, n_vort + js * nc), nc, surface.load, mirrored
+                )
+            )
             n_strips += js
             n_vort += js * nc
 
@@ -337,15 +397,41 @@ def build_lattice(config: Configuration) -> Lattice:
     count = cat_strip("count")
     mirror, mirror_sign = _mirror_map(config, patches, blocks)
     first = np.concatenate([[0], np.cumsum(count)[:-1]])
-    nd = np.concatenate([b["normal_control"].reshape(len(names), b["normal"].shape[0] * b["normal"].shape[1], 3) for b in blocks], axis=1)
+    nd = np.concatenate(
+        [b["normal_control"].reshape(len(names), b["normal"].shape[0] * b["normal"].shape[1], 3) for b in blocks],
+        axis=1,
+    )
     return Lattice(
-        rv1=cat_vort("rv1"), rv2=cat_vort("rv2"), rv=cat_vort("rv"), rc=cat_vort("rc"), normal=cat_vort("normal"), normal_control=nd,
-        vortex_strip=np.repeat(np.arange(len(count)), count), dx=cat_vort("dx"),
-        rle1=cat_strip("rle1"), rle2=cat_strip("rle2"), rle=cat_strip("rle"), chord1=cat_strip("chord1"), chord2=cat_strip("chord2"),
-        chord=cat_strip("chord"), width=cat_strip("width"), ensy=cat_strip("ensy"), ensz=cat_strip("ensz"), first=first, count=count,
-        component=cat_strip("component"), wake=cat_strip("wake"), alpha_beta=cat_strip("alpha_beta"), load=cat_strip("load"),
-        patches=patches, control_names=names, mirror=mirror, mirror_sign=mirror_sign,
-        control_fraction=np.concatenate([b["dcontrol"].reshape(len(names), b["xvr"].shape[0] * b["xvr"].shape[1]) for b in blocks], axis=1),
+        rv1=cat_vort("rv1"),
+        rv2=cat_vort("rv2"),
+        rv=cat_vort("rv"),
+        rc=cat_vort("rc"),
+        normal=cat_vort("normal"),
+        normal_control=nd,
+        vortex_strip=np.repeat(np.arange(len(count)), count),
+        dx=cat_vort("dx"),
+        rle1=cat_strip("rle1"),
+        rle2=cat_strip("rle2"),
+        rle=cat_strip("rle"),
+        chord1=cat_strip("chord1"),
+        chord2=cat_strip("chord2"),
+        chord=cat_strip("chord"),
+        width=cat_strip("width"),
+        ensy=cat_strip("ensy"),
+        ensz=cat_strip("ensz"),
+        first=first,
+        count=count,
+        component=cat_strip("component"),
+        wake=cat_strip("wake"),
+        alpha_beta=cat_strip("alpha_beta"),
+        load=cat_strip("load"),
+        patches=patches,
+        control_names=names,
+        mirror=mirror,
+        mirror_sign=mirror_sign,
+        control_fraction=np.concatenate(
+            [b["dcontrol"].reshape(len(names), b["xvr"].shape[0] * b["xvr"].shape[1]) for b in blocks], axis=1
+        ),
         hinge_axis=np.concatenate([b["hinge"] for b in blocks], axis=1),
         hinge_point=np.concatenate([b["hinge_point"] for b in blocks], axis=1),
     )
@@ -368,7 +454,9 @@ def _mirror_map(config: Configuration, patches: list[SurfacePatch], blocks: list
             k += 2
         else:
             b = blocks[k]
-            if not (np.all(b["rv1"][..., 1] == 0.0) and np.all(b["rv2"][..., 1] == 0.0) and np.all(b["rc"][..., 1] == 0.0)):
+            if not (
+                np.all(b["rv1"][..., 1] == 0.0) and np.all(b["rv2"][..., 1] == 0.0) and np.all(b["rc"][..., 1] == 0.0)
+            ):
                 return None, None
             sign[patch.vortices] = -1.0
             k += 1

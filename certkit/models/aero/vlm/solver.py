@@ -155,7 +155,11 @@ class StabilityDerivatives(Mapping[str, float]):
 
 def _cross(a, b):
     return np.stack(
-        [a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1], a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2], a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]],
+        [
+            a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1],
+            a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+            a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0],
+        ],
         axis=-1,
     )
 
@@ -184,7 +188,14 @@ class VortexLattice:
     Mach number get their own lattice, built on first use and cached.
     """
 
-    def __init__(self, config: Configuration, mach: float | None = None, *, lattice: Lattice | None = None, trailing_leg_forces: bool = False):
+    def __init__(
+        self,
+        config: Configuration,
+        mach: float | None = None,
+        *,
+        lattice: Lattice | None = None,
+        trailing_leg_forces: bool = False,
+    ):
         self.config = config
         self.trailing_leg_forces = trailing_leg_forces
         self.mach = float(config.mach if mach is None else mach)
@@ -206,7 +217,10 @@ class VortexLattice:
         vortex_comp = lat.component[lat.vortex_strip]
         width = np.hypot(lat.rv2[:, 1] - lat.rv1[:, 1], lat.rv2[:, 2] - lat.rv1[:, 2])
         same = (CORE_SAME_COMPONENT * width) ** 4
-        other = np.maximum(CORE_OTHER_COMPONENT_CHORD * lat.chord[lat.vortex_strip], CORE_OTHER_COMPONENT_WIDTH * width) ** 4
+        other = (
+            np.maximum(CORE_OTHER_COMPONENT_CHORD * lat.chord[lat.vortex_strip], CORE_OTHER_COMPONENT_WIDTH * width)
+            ** 4
+        )
         if target_component.size and np.all(target_component == target_component[0]):
             return np.where(vortex_comp == target_component[0], same, other)[None, :]
         return np.where(target_component[:, None] == vortex_comp[None, :], same[None, :], other[None, :])
@@ -252,13 +266,17 @@ class VortexLattice:
         # velocity at bound-leg midpoints for every unit solution (induced part never stored N×N)
         if images.size:
             flipped = gam[lat.mirror] * lat.mirror_sign[:, None]
-            both = horseshoe_velocity(lat.rv[rows], lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=np.hstack([gam, flipped]))
+            both = horseshoe_velocity(
+                lat.rv[rows], lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=np.hstack([gam, flipped])
+            )
             induced = np.empty((3, n, gam.shape[1]))
             induced[:, rows] = both[:, :, : gam.shape[1]]
             pos = np.searchsorted(rows, images)
-            induced[:, lat.mirror[images]] = both[:, pos, gam.shape[1]:] * np.array([1.0, -1.0, 1.0])[:, None, None]
+            induced[:, lat.mirror[images]] = both[:, pos, gam.shape[1] :] * np.array([1.0, -1.0, 1.0])[:, None, None]
         else:
-            induced = horseshoe_velocity(lat.rv, lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=gam)  # (3, N, K)
+            induced = horseshoe_velocity(
+                lat.rv, lat.rv1, lat.rv2, core, beta, own_vortex=rows, out_rhs=gam
+            )  # (3, N, K)
         vel = np.moveaxis(induced, 0, -1).copy()  # (N, K, 3)
         vel[:, :6, :] += _unit_velocities(lat.rv, self._ref_point)
         self.unit_bound_velocity = vel
@@ -297,7 +315,9 @@ class VortexLattice:
         worst = int(np.argmin(np.abs(np.diag(lu))))
         vortex = int(index[worst]) if index is not None else worst
         strip = self.lattice.vortex_strip[min(vortex, self.lattice.n_vortices - 1)]
-        raise SingularLatticeError(f"influence matrix is singular near vortex {vortex} (surface {self._surface_of_strip(strip)!r})")
+        raise SingularLatticeError(
+            f"influence matrix is singular near vortex {vortex} (surface {self._surface_of_strip(strip)!r})"
+        )
 
     def _solve_symmetric(self, aic_rows: np.ndarray, rows: np.ndarray, rhs: np.ndarray) -> np.ndarray:
         """Solve a mirror-symmetric system from its rows at one half (R) and the symmetry plane (Z).
@@ -315,7 +335,9 @@ class VortexLattice:
         a_rr, a_rl, a_rz = a_r[:, r_idx], a_r[:, l_idx], a_r[:, z_idx]
         a = self._solve_checked(a_rr + a_rl, 0.5 * (rhs[r_idx] + rhs[l_idx]), r_idx)
         anti = np.block([[a_rr - a_rl, a_rz], [2.0 * a_z[:, r_idx], a_z[:, z_idx]]])
-        bz = self._solve_checked(anti, np.vstack([0.5 * (rhs[r_idx] - rhs[l_idx]), rhs[z_idx]]), np.concatenate([r_idx, z_idx]))
+        bz = self._solve_checked(
+            anti, np.vstack([0.5 * (rhs[r_idx] - rhs[l_idx]), rhs[z_idx]]), np.concatenate([r_idx, z_idx])
+        )
         b = bz[: r_idx.size]
         gam = np.empty_like(rhs)
         gam[r_idx] = a + b
@@ -345,7 +367,9 @@ class VortexLattice:
             fl = _cross(_unit_velocities(pts, self._ref_point), leg[:, None, :])  # (N, 6, 3)
             zl = np.concatenate([fl, _cross((pts - self._ref_point)[:, None, :], fl)], axis=-1)
             t[:, :6, :] += 2.0 * np.tensordot(g, zl, axes=(0, 0))
-        self.force_tensor = np.ascontiguousarray(np.moveaxis(t, -1, 0)) / s  # (6, K, K): FX, FY, FZ, MX, MY, MZ (geometry)
+        self.force_tensor = (
+            np.ascontiguousarray(np.moveaxis(t, -1, 0)) / s
+        )  # (6, K, K): FX, FY, FZ, MX, MY, MZ (geometry)
         self._n_inputs = k
 
     def _leg_geometry(self):
@@ -365,7 +389,9 @@ class VortexLattice:
 
     def _inputs(self, alpha, beta, p, q, r, deltas, axes: str):
         """Input vector ũ (K, B) and its derivatives dũ/dx (K, 5 + m, B) for x = (α, β, p̂, q̂, r̂, δ…)."""
-        alpha, beta, p, q, r = np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, float)) for v in (alpha, beta, p, q, r)))
+        alpha, beta, p, q, r = np.broadcast_arrays(
+            *(np.atleast_1d(np.asarray(v, float)) for v in (alpha, beta, p, q, r))
+        )
         b = alpha.shape[0]
         m = len(self.control_names)
         dl = np.zeros((m, b)) if deltas is None else np.broadcast_to(deltas, (m, b)).astype(float)
@@ -411,7 +437,9 @@ class VortexLattice:
         unknown = set(controls) - set(self.control_names)
         if unknown:
             raise KeyError(f"unknown control(s) {sorted(unknown)}; this lattice has {list(self.control_names)}")
-        return np.array([np.asarray(controls.get(n, 0.0), float) * np.ones(shape or ()) for n in self.control_names]).reshape(m, -1)
+        return np.array(
+            [np.asarray(controls.get(n, 0.0), float) * np.ones(shape or ()) for n in self.control_names]
+        ).reshape(m, -1)
 
     def _outputs(self, c6: np.ndarray, alpha: np.ndarray):
         """Stability/body coefficients from geometry-axis totals c6 (6, …) at angle of attack alpha."""
@@ -438,7 +466,9 @@ class VortexLattice:
         """The lattice at another Mach number (same paneling), cached."""
         key = round(float(mach), 6)
         if key not in self._others:
-            self._others[key] = VortexLattice(self.config, key, lattice=self.lattice, trailing_leg_forces=self.trailing_leg_forces)
+            self._others[key] = VortexLattice(
+                self.config, key, lattice=self.lattice, trailing_leg_forces=self.trailing_leg_forces
+            )
             self._others[key]._others = self._others
         return self._others[key]
 
@@ -471,8 +501,18 @@ class VortexLattice:
         cl_ff, cy_ff, cd_ff = self._trefftz(gam)
         ar = self.reference.span**2 / s
         e = (cl_ff**2 + cy_ff**2) / (math.pi * ar * cd_ff) if cd_ff > 0 else float("nan")
-        return FlowSolution(float(alpha), float(beta), self.mach, *(float(out[k]) for k in ("CL", "CD", "CY", "Cl", "Cm", "Cn", "Cl_body", "Cn_body", "CX", "CZ")),
-                            cl_ff, cy_ff, cd_ff, e, strips, gam)
+        return FlowSolution(
+            float(alpha),
+            float(beta),
+            self.mach,
+            *(float(out[k]) for k in ("CL", "CD", "CY", "Cl", "Cm", "Cn", "Cl_body", "Cn_body", "CX", "CZ")),
+            cl_ff,
+            cy_ff,
+            cd_ff,
+            e,
+            strips,
+            gam,
+        )
 
     def _vortex_forces(self, ut: np.ndarray):
         """Circulation (per unit V∞) and the force parts of each vortex (bound legs, then the trailing legs when
@@ -488,9 +528,17 @@ class VortexLattice:
             rpts.append(pts)
         return gam, fparts, rpts
 
-    def strip_forces(self, alpha: float = 0.0, beta: float = 0.0, p_hat: float = 0.0, q_hat: float = 0.0,
-                     r_hat: float = 0.0, controls: Mapping[str, float] | None = None, *,
-                     rate_axes: str = "stability") -> tuple[np.ndarray, np.ndarray]:
+    def strip_forces(
+        self,
+        alpha: float = 0.0,
+        beta: float = 0.0,
+        p_hat: float = 0.0,
+        q_hat: float = 0.0,
+        r_hat: float = 0.0,
+        controls: Mapping[str, float] | None = None,
+        *,
+        rate_axes: str = "stability",
+    ) -> tuple[np.ndarray, np.ndarray]:
         """Only the spanwise loading of :meth:`solve` (for the loads model, which needs no coefficients or
         Trefftz-plane values): each strip's force per unit q∞ (J, 3; as ``StripLoads.force_over_q``) and the
         circulation of every vortex (per unit V∞)."""
@@ -498,9 +546,17 @@ class VortexLattice:
         gam, fparts, _ = self._vortex_forces(ut[:, 0])
         return np.add.reduceat(sum(fparts), self.lattice.first, axis=0), gam
 
-    def vortex_forces(self, alpha: float = 0.0, beta: float = 0.0, p_hat: float = 0.0, q_hat: float = 0.0,
-                      r_hat: float = 0.0, controls: Mapping[str, float] | None = None, *,
-                      rate_axes: str = "stability") -> np.ndarray:
+    def vortex_forces(
+        self,
+        alpha: float = 0.0,
+        beta: float = 0.0,
+        p_hat: float = 0.0,
+        q_hat: float = 0.0,
+        r_hat: float = 0.0,
+        controls: Mapping[str, float] | None = None,
+        *,
+        rate_axes: str = "stability",
+    ) -> np.ndarray:
         """Kutta–Joukowski force of every bound leg per unit q∞ (N, 3; geometry axes), the forces AVL sums for
         control hinge moments."""
         ut, _, _ = self._inputs(alpha, beta, p_hat, q_hat, r_hat, self._deltas(controls), rate_axes)
@@ -521,8 +577,19 @@ class VortexLattice:
         names = np.empty(lat.n_strips, dtype=object)
         for p in lat.patches:
             names[p.strips] = p.name
-        return StripLoads(names, lat.rle[:, 1].copy(), lat.rle[:, 2].copy(), lat.chord.copy(), lat.width.copy(), area,
-                          lat.chord * cn, cl, cn, fs, np.add.reduceat(gam, lat.first))
+        return StripLoads(
+            names,
+            lat.rle[:, 1].copy(),
+            lat.rle[:, 2].copy(),
+            lat.chord.copy(),
+            lat.width.copy(),
+            area,
+            lat.chord * cn,
+            cl,
+            cn,
+            fs,
+            np.add.reduceat(gam, lat.first),
+        )
 
     def _trefftz(self, gam: np.ndarray) -> tuple[float, float, float]:
         """Lift, side force and induced drag coefficients from the far wake (Trefftz plane): the
@@ -547,8 +614,17 @@ class VortexLattice:
         cd = float(np.sum(g * (d[:, 1] * v[:, 0] - d[:, 0] * v[:, 1]))) / s
         return cl, cy, cd
 
-    def stability_derivatives(self, alpha: float = 0.0, beta: float = 0.0, p_hat: float = 0.0, q_hat: float = 0.0, r_hat: float = 0.0,
-                              controls: Mapping[str, float] | None = None, *, axes: str = "stability") -> StabilityDerivatives:
+    def stability_derivatives(
+        self,
+        alpha: float = 0.0,
+        beta: float = 0.0,
+        p_hat: float = 0.0,
+        q_hat: float = 0.0,
+        r_hat: float = 0.0,
+        controls: Mapping[str, float] | None = None,
+        *,
+        axes: str = "stability",
+    ) -> StabilityDerivatives:
         """Every derivative of CL, CD, CY, Cl, Cm, Cn w.r.t. α, β, p̂, q̂, r̂ and each control, per
         radian, at the given state. ``axes="stability"`` (AVL's stability-axis table: rates p', r'
         and moments Cl', Cn' about stability axes) or ``"body"`` (body rates and moments)."""
@@ -563,13 +639,20 @@ class VortexLattice:
         ca, sa = math.cos(a[0]), math.sin(a[0])
         fx, fy, fz, mx, my, mz = c6
         clb, cnb = -mx / self.reference.span, -mz / self.reference.span
-        extra = {"CL": -fx * ca - fz * sa, "CD": -fx * sa + fz * ca, "Cl": -clb * sa + cnb * ca, "Cn": -cnb * sa - clb * ca}
+        extra = {
+            "CL": -fx * ca - fz * sa,
+            "CD": -fx * sa + fz * ca,
+            "Cl": -clb * sa + cnb * ca,
+            "Cn": -cnb * sa - clb * ca,
+        }
         names = list(VARIABLES) + [f"delta_{n}" for n in self.control_names]
         values: dict[str, float] = {}
         for coef in COEFFICIENTS:
             key = f"{coef}_body" if (axes == "body" and coef in ("Cl", "Cn")) else coef
             for i, var in enumerate(names):
-                values[f"{coef}_{var}"] = float(dout[key][i]) + (float(extra[key]) if var == "alpha" and key in extra else 0.0)
+                values[f"{coef}_{var}"] = float(dout[key][i]) + (
+                    float(extra[key]) if var == "alpha" and key in extra else 0.0
+                )
         xnp = self.reference.x_ref - self.reference.chord * values["Cm_alpha"] / values["CL_alpha"]
         sol = self.solve(alpha, beta, p_hat, q_hat, r_hat, controls, rate_axes=axes)
         return StabilityDerivatives(values, axes, xnp, sol)
@@ -577,8 +660,10 @@ class VortexLattice:
     def coefficients(self, state: AeroState) -> Coefficients:
         """AeroModel protocol: coefficients for a batch of states (body rates p̂, q̂, r̂; moments in
         body axes about the reference point; CL, CD in stability axes, CD near-field + cd0)."""
-        shape = np.broadcast_shapes(*(np.shape(x) for x in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)),
-                                    *(np.shape(v) for v in state.controls.values()))
+        shape = np.broadcast_shapes(
+            *(np.shape(x) for x in (state.alpha, state.beta, state.p_hat, state.q_hat, state.r_hat, state.mach)),
+            *(np.shape(v) for v in state.controls.values()),
+        )
         bc = lambda x: np.broadcast_to(np.asarray(x, float), shape).ravel()  # noqa: E731
         mach = bc(state.mach)
         res = {k: np.empty(mach.size) for k in ("CL", "CD", "CY", "Cl_body", "Cm", "Cn_body")}
@@ -587,7 +672,15 @@ class VortexLattice:
             sel = mach == m
             vl = self if m == self.mach else self.at_mach(m)
             deltas = vl._deltas({n: v[sel] for n, v in controls.items()}, shape=(int(sel.sum()),))
-            ut, _, a = vl._inputs(bc(state.alpha)[sel], bc(state.beta)[sel], bc(state.p_hat)[sel], bc(state.q_hat)[sel], bc(state.r_hat)[sel], deltas, "body")
+            ut, _, a = vl._inputs(
+                bc(state.alpha)[sel],
+                bc(state.beta)[sel],
+                bc(state.p_hat)[sel],
+                bc(state.q_hat)[sel],
+                bc(state.r_hat)[sel],
+                deltas,
+                "body",
+            )
             c6 = np.einsum("can,an->cn", vl.force_tensor @ ut, ut)
             out = vl._outputs(c6, a)
             for k in res:
