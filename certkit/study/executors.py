@@ -162,6 +162,7 @@ class DaskExecutor:
         import logging
 
         try:
+            import dask
             from distributed import Client, LocalCluster
         except ImportError:
             raise UserError("--executor dask needs dask.distributed: pip install 'dask[distributed]'") from None
@@ -176,13 +177,17 @@ class DaskExecutor:
             # cases it cost about a third of the CPU (seed-study sample: 5.99 → 5.47 s CPU per design, local 3.35–4.02).
             # The worker processes inherit this from the environment (a user's own setting is kept).
             os.environ.setdefault("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", "False")
-            self._cluster = LocalCluster(
-                n_workers=self.workers,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-                silence_logs=logging.ERROR,
-            )
+            # dask's nannies start their workers with MALLOC_TRIM_THRESHOLD_=65536; setting it switches off glibc's
+            # dynamic mmap threshold, so every large numpy temporary is a fresh mmap and its page faults: one baseline
+            # design cost 1.2x the CPU with it (docs/performance.md). A user's own MALLOC_TRIM_THRESHOLD_ is kept.
+            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+                self._cluster = LocalCluster(
+                    n_workers=self.workers,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                    silence_logs=logging.ERROR,
+                )
             self._client = Client(self._cluster)
         return self
 

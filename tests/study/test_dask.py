@@ -27,3 +27,28 @@ def test_dask_local_cluster_equals_local_processes(small_study, tmp_path):
     assert dask_errors == local_errors  # failures with the same reasons
     assert sum(v is not None for v in dask_records.values()) > 0 and any(dask_errors.values())
     assert len(dask_workers) >= 1 and all(w.rsplit(":", 1)[1].isdigit() for w in dask_workers)
+
+
+def _malloc_environment():
+    import os
+
+    return os.environ.get("MALLOC_TRIM_THRESHOLD_"), os.environ.get("OMP_NUM_THREADS")
+
+
+def test_local_cluster_workers_keep_glibcs_dynamic_malloc(monkeypatch):
+    """dask's nannies would start the workers with MALLOC_TRIM_THRESHOLD_=65536 (its pre-spawn environment), which
+    switches off glibc's dynamic mmap threshold (mallopt(3): setting M_TRIM_THRESHOLD disables the dynamic
+    adjustment): certkit's LocalCluster workers start without it, one BLAS thread each; a user's own setting wins."""
+    import dask
+
+    from certkit.study.executors import DaskExecutor
+
+    assert (
+        dask.config.get("distributed.nanny.pre-spawn-environ")["MALLOC_TRIM_THRESHOLD_"] is not None
+    )  # dask's default
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    with DaskExecutor(1) as executor:
+        assert list(executor._client.run(_malloc_environment).values()) == [(None, "1")]
+    monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "1048576")
+    with DaskExecutor(1) as executor:
+        assert list(executor._client.run(_malloc_environment).values()) == [("1048576", "1")]
