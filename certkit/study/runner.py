@@ -151,6 +151,8 @@ def run_study_cases(
     with store.writer():
         store.add_cases(context, cases)
         todo = store.pending([c.key for c in cases])
-        execute(store, context, todo, executor, workers, scheduler, progress, f"{study.name}: {block}")
+        execute(
+            store, context, todo, executor, workers, scheduler, progress, f"{study.name}: {block}", total=len(cases)
+        )
     rows = {row["key"]: row for row in store.rows([c.key for c in cases])}
     return [rows[context.key({k: float(v) for k, v in p.items()})] for p in points]

@@ -17,11 +17,15 @@ from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
 
 
-def run_true_model(study: Study, store, x: np.ndarray, *, block: str, role: str = "check") -> pd.DataFrame:
+def run_true_model(
+    study: Study, store, x: np.ndarray, *, block: str, role: str = "check", run_cases=None
+) -> pd.DataFrame:
     """Evaluate the designs ``x`` (rows, SI, in the order of the study's variables) with the true model through
-    the study runner; returns the cases in the store's frame format, in the order of ``x``."""
+    the study runner; returns the cases in the store's frame format, in the order of ``x``. ``run_cases``: the
+    runner call with the study's executor and progress display (default: local processes, no display); designs
+    the store already holds are not evaluated again."""
     points = [{v.path: float(val) for v, val in zip(study.variables, row)} for row in np.atleast_2d(x)]
-    frame = runner.run_study_cases(study, store, points, block=block, role=role)
+    frame = (run_cases or runner.run_study_cases)(study, store, points, block=block, role=role)
     if not isinstance(frame, pd.DataFrame):
         frame = store.frame()
         frame = frame[frame["block"] == block]
@@ -82,14 +86,21 @@ def _feasible_all(study: Study, values: dict[str, np.ndarray], n: int) -> np.nda
 
 
 def direct_check(
-    study: Study, store, surrogates: dict[str, Surrogate], mc: MonteCarloResult, *, n: int = 100, seed: int = 7
+    study: Study,
+    store,
+    surrogates: dict[str, Surrogate],
+    mc: MonteCarloResult,
+    *,
+    n: int = 100,
+    seed: int = 7,
+    run_cases=None,
 ) -> DirectCheck:
     """Draw ``n`` fresh uniform designs (a seed other than the Monte Carlo's), evaluate them with the true model
     and compare each constraint's probability of success (and the joint one) with the Monte Carlo estimate."""
     bounds = study.bounds
     rng = np.random.default_rng([seed, mc.seed])
     x = bounds[:, 0] + (bounds[:, 1] - bounds[:, 0]) * rng.random((n, len(bounds)))
-    frame = run_true_model(study, store, x, block="check", role="check")
+    frame = run_true_model(study, store, x, block="check", role="check", run_cases=run_cases)
     ok = (frame["status"] == "ok").to_numpy()
     failures = [(str(r.get("key", "")), str(r.get("error", ""))) for _, r in frame[~ok].iterrows()]
     x_ok = x[ok]
@@ -137,14 +148,14 @@ class CheckedOptimum:
 
 
 def reevaluate_optima(
-    study: Study, store, surrogates: dict[str, Surrogate], optima: list[Optimum]
+    study: Study, store, surrogates: dict[str, Surrogate], optima: list[Optimum], *, run_cases=None
 ) -> list[CheckedOptimum]:
     """Evaluate each optimum's design with the true model; objectives and constraint responses, predicted and
     true, side by side."""
     if not optima:
         return []
     x = np.array([o.x for o in optima])
-    frame = run_true_model(study, store, x, block="optima", role="check")
+    frame = run_true_model(study, store, x, block="optima", role="check", run_cases=run_cases)
     names = study.analysed_responses()
     out = []
     for i, opt in enumerate(optima):

@@ -23,6 +23,44 @@ def _samples(ctx, param, value) -> int:
     return int(n)
 
 
+def executor_options(command):
+    """--executor, --workers and --scheduler: where the commands that evaluate true-model cases run them."""
+    command = click.option(
+        "--scheduler", default=None, help="Address of a running dask scheduler (tcp://host:8786), with --executor dask."
+    )(command)
+    command = click.option(
+        "--workers", type=int, default=None, help="Worker processes (default: the cores available)."
+    )(command)
+    return click.option(
+        "--executor", type=click.Choice(["local", "dask", "serial"]), default="local", show_default=True
+    )(command)
+
+
+def case_runner(executor: str, workers: int | None, scheduler: str | None):
+    """The study runner with the command's executor, showing its progress on stderr."""
+    from certkit.study.runner import run_study_cases  # here, not at the top: `certkit --help` stays fast
+
+    if scheduler and executor != "dask":
+        raise UserError("--scheduler is for --executor dask")
+    if workers is not None and workers < 1:
+        raise UserError(f"--workers must be 1 or more (got {workers})")
+
+    def run_cases(study, store, points, *, block, role):
+        return run_study_cases(
+            study,
+            store,
+            points,
+            block=block,
+            role=role,
+            executor=executor,
+            workers=workers,
+            scheduler=scheduler,
+            progress=sys.stderr,
+        )
+
+    return run_cases
+
+
 def open_study(study_path: Path, store_path: Path | None):
     """(study definition, store, store frame) for ``study_path``.
 
@@ -72,8 +110,20 @@ def open_study(study_path: Path, store_path: Path | None):
 @click.option(
     "--samples", default="1e6", callback=_samples, show_default=True, help="Monte Carlo samples over the design box."
 )
-def report_command(study_file: Path, out_dir: Path | None, store_path: Path | None, no_check: bool, samples: int):
-    """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity."""
+@executor_options
+def report_command(
+    study_file: Path,
+    out_dir: Path | None,
+    store_path: Path | None,
+    no_check: bool,
+    samples: int,
+    executor: str,
+    workers: int | None,
+    scheduler: str | None,
+):
+    """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity. The
+    true-model checks run on the given executor, with their progress on stderr; designs already in the store
+    (a report made before) are not evaluated again."""
     from certkit.study.analysis.report import write_study_report
 
     try:
@@ -89,6 +139,7 @@ def report_command(study_file: Path, out_dir: Path | None, store_path: Path | No
             check=not no_check,
             sha256=sha,
             log=lambda msg: click.echo(msg, err=True),
+            run_cases=case_runner(executor, workers, scheduler),
         )
     except UserError as exc:
         click.echo(f"error: {exc}", err=True)
@@ -135,20 +186,21 @@ def export_surrogates(study_path: Path, store_path: Path | None, out: Path, log=
     show_default=True,
     help="Monte Carlo samples for the probabilities before and after.",
 )
-@click.option("--executor", type=click.Choice(["local", "dask", "serial"]), default="local", show_default=True)
-@click.option("--workers", type=int, default=None, help="Worker processes (default: the cores available).")
-def refine_command(study_file: Path, n: int, store_path: Path | None, samples: int, executor: str, workers: int | None):
+@executor_options
+def refine_command(
+    study_file: Path,
+    n: int,
+    store_path: Path | None,
+    samples: int,
+    executor: str,
+    workers: int | None,
+    scheduler: str | None,
+):
     """Add cases where the surrogates are least sure, evaluate them, refit, and show how the probabilities moved."""
     from certkit.study.analysis.refine import refine
-    from certkit.study.runner import run_study_cases
 
     study, store, _ = open_study(study_file, store_path)
-
-    def run_cases(study_, store_, points, *, block, role):
-        return run_study_cases(
-            study_, store_, points, block=block, role=role, executor=executor, workers=workers, progress=sys.stderr
-        )
-
+    run_cases = case_runner(executor, workers, scheduler)
     result = refine(study, store, n, samples=samples, run_cases=run_cases, log=lambda msg: click.echo(msg, err=True))
     click.echo(
         f"{result.added} cases added in block {result.block} ({result.ok} ok); probability of success "

@@ -75,12 +75,12 @@ def _in_unit(value: float, unit: str) -> float:
 
 
 def _run_checks(
-    usable: Study, every: Study, store, surrogates, mc, optima
+    usable: Study, every: Study, store, surrogates, mc, optima, run_cases
 ) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
-    check = direct_check(usable, store, surrogates, mc)
-    checked = reevaluate_optima(every, store, surrogates, optima)
+    check = direct_check(usable, store, surrogates, mc, run_cases=run_cases)
+    checked = reevaluate_optima(every, store, surrogates, optima, run_cases=run_cases)
     return check, checked, ""
 
 
@@ -94,8 +94,10 @@ def analyse(
     sha256: str | None = None,
     chunk: int = 100_000,
     log=lambda msg: None,
+    run_cases=None,
 ) -> Analysis:
-    """Run every analysis of the study report on the store's ``frame``."""
+    """Run every analysis of the study report on the store's ``frame``. ``run_cases``: how the true-model checks
+    run (see :func:`~certkit.study.analysis.checks.run_true_model`)."""
     timings = {}
     t = time.perf_counter()
     view = study
@@ -135,7 +137,7 @@ def analyse(
     checked, direct, check_note = [], None, "not run (--no-check)"
     if check:
         t = time.perf_counter()
-        direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points)
+        direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points, run_cases)
         timings["true_model_s"] = time.perf_counter() - t
     if not checked:
         checked = [
