@@ -23,9 +23,10 @@ S, B, C = 100.0, 30.0, 3.5
 A_WB, A_T, TAU, L_T, CM0 = 5.0, 0.6, 0.5, 15.0, -0.08  # wing-body slope, tail slope (on S), elevator τ, arm (m), Cm₀
 
 
-def two_surface(x_cg, stall=None):
+def two_surface(x_cg, stall=None, stabilizer=False):
     """Wing-body at its aerodynamic centre X = 10 m (the moment reference), tail lift a_t (α + τ δe + q l_t/V) on S at
-    L_T behind it; no downwash, no engines. Derivatives per radian and per q̂ = q c̄ / 2V."""
+    L_T behind it; no downwash, no engines. Derivatives per radian and per q̂ = q c̄ / 2V. With ``stabilizer`` the
+    tail's incidence i_s is a control too, adding a_t i_s to the tail's lift."""
     d = {
         "CL_alpha": A_WB + A_T,
         "CL_elevator": A_T * TAU,
@@ -37,8 +38,12 @@ def two_surface(x_cg, stall=None):
         "CD0": 0.02,
         "k": 0.04,
     }
+    controls = ("elevator",)
+    if stabilizer:
+        d.update({"CL_stabilizer": A_T, "Cm_stabilizer": -A_T * L_T / C})
+        controls += ("stabilizer",)
     aero = StabilityDerivativeModel(
-        AeroReference(S, B, C, x_ref=10.0, z_ref=0.0), d, control_names=("elevator",), stall=stall
+        AeroReference(S, B, C, x_ref=10.0, z_ref=0.0), d, control_names=controls, stall=stall
     )
     mass = np.array([40000.0, 40000.0])
     return AircraftModel(aero, mass, np.array([[x_cg, 0.0, 0.0]] * 2), np.diag([1e6, 2e6, 3e6]))
@@ -81,3 +86,42 @@ def test_linear_lift_reaches_cn_max_a_rounded_stall_does_not():
     assert not rounded.converged.any()
     assert linear.converged.all()
     assert linear.outputs.CL[0] == pytest.approx(1.32, rel=0.01)
+
+
+def test_a_balance_beyond_the_elevator_stop_retrims_the_stabiliser():
+    """Where the elevator alone would pass its stop the stabiliser is retrimmed; the tail's balancing lift is set by
+    the moment balance (Megson §14.1), not by the control that makes it, so the stabiliser does what the elevator
+    would have: i_s = τ δe with the elevator back at its trim, i_s = τ (δe − δe_stop) with the elevator at its stop
+    when the stabiliser alone would pass its own stop. A state beyond both stops is returned as it is."""
+    from certkit.models.loads.balanced import (
+        ELEVATOR_ALONE,
+        ELEVATOR_AT_STOP,
+        STABILIZER_RETRIMMED,
+        balanced_within_stops,
+    )
+
+    model = two_surface(10.6, stabilizer=True)
+    V = np.array([120.0, 120.0])
+    x0 = assemble_state(V, np.zeros(2), 0.05, 0.0, 0.0, 0.0, 0.0)
+    u0 = np.zeros((2, 2))
+    free, _ = balanced_within_stops(model, x0, u0, -1.0, {"elevator": (-1.0, 1.0)})
+    de = free.u[0, 0]
+    assert de > np.radians(2.0)  # the push-over needs trailing edge down elevator
+
+    wide = {"elevator": (-0.5 * de, 0.5 * de), "stabilizer": (-1.0, 1.0)}
+    st, scheme = balanced_within_stops(model, x0, u0, -1.0, wide)
+    assert (scheme == STABILIZER_RETRIMMED).all() and st.converged.all()
+    np.testing.assert_allclose(st.u[:, 0], 0.0, atol=1e-12)
+    np.testing.assert_allclose(st.u[:, 1], TAU * de, rtol=1e-5)
+    np.testing.assert_allclose(st.alpha, free.alpha, rtol=1e-6)
+
+    narrow = {"elevator": (-0.5 * de, 0.5 * de), "stabilizer": (-1.0, 0.4 * TAU * de)}
+    st, scheme = balanced_within_stops(model, x0, u0, -1.0, narrow)
+    assert (scheme == ELEVATOR_AT_STOP).all()
+    np.testing.assert_allclose(st.u[:, 0], 0.5 * de, rtol=1e-12)
+    np.testing.assert_allclose(st.u[:, 1], TAU * 0.5 * de, rtol=1e-5)
+    assert (st.u[:, 1] > narrow["stabilizer"][1]).all()  # beyond the stabiliser's stop: the caller fails it
+
+    within, scheme = balanced_within_stops(model, x0, u0, -1.0, {**wide, "elevator": (-2 * de, 2 * de)})
+    assert (scheme == ELEVATOR_ALONE).all()
+    np.testing.assert_allclose(within.u[:, 1], 0.0)

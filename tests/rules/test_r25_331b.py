@@ -254,18 +254,48 @@ def test_flap_load_factor_above_the_clean_one_is_an_input_error(tmp_path, cli):
     assert cli("check", bad, "--select", "25.331(b)", "--out", tmp_path / "out").exit_code == 2
 
 
-def test_no_balanced_state_beyond_the_elevator_stop_complies(run):
-    """A balance that needs the elevator beyond its control-system stop (aircraft/lta.yaml travel −30…+25°) is not a
-    computed compliance: with the baseline's movable stabiliser held at its 1 g trim it is not evaluated, with the
-    deflection in the reason (point H at the forward CG needs about +31°)."""
+def test_balances_beyond_the_elevator_stop_retrim_the_stabiliser(run):
+    """Point H at the forward corners needs up to about +43° elevator with the stabiliser held at its 1 g trim
+    (aircraft/lta.yaml travel −30…+25°): the stabiliser is retrimmed (elevator at its +25° stop, stabiliser within
+    its −11…+4° travel from the AMM), and the condition is judged on its loads, never set aside by the procedure."""
     _, findings, _ = run
-    beyond = [
-        f
-        for f in findings
-        if "elevator_deg" in f.all_details() and not -30.0 <= f.all_details()["elevator_deg"] <= 25.0
+    retrimmed = [f for f in findings if "pitch_trim" in f.all_details()]
+    assert {f.condition.get("point") for f in retrimmed} == {"H"}
+    assert {f.condition.loading for f in retrimmed} >= {"fwd_light", "fwd_mrw"}
+    for f in retrimmed:
+        d = f.all_details()
+        assert -30.0 <= d["elevator_deg"] <= 25.0
+        assert -11.0 <= d["stabilizer_deg"] + (-2.0) <= 4.0  # deflection from the datum incidence −2°
+        assert f.status in ("complies", "fails") and STOP not in (f.reason or "")
+    assert not any(STOP in (f.reason or "") for f in findings)
+
+
+def test_a_stabiliser_without_nose_down_travel_fails_point_h(tmp_path):
+    """Deficient airplane: the stabiliser's nose-down travel cut to its cruise setting (−2°, no leading-edge-up
+    travel): point H at the forward heavy corner cannot be balanced even with the elevator at its stop and fails,
+    its margin in degrees of stabiliser; the points the elevator holds are unaffected."""
+    cut = FAST + [
+        ("travel: {min: -11 deg, max: 4 deg}", "travel: {min: -11 deg, max: -2 deg}"),
+        ("design_limits: {min: -10.25 deg, max: 2.25 deg}", "design_limits: {min: -10.25 deg, max: -2.0 deg}"),
+        ("{min: -10.25 deg, max: 3.75 deg}", "{min: -10.25 deg, max: -2.0 deg}"),
     ]
-    assert beyond
-    assert all(f.status == "not_evaluated" and "beyond the control-system stop" in f.reason for f in beyond)
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, cut)))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_light"
+        and c.altitude == 0.0
+        and c.configuration == "clean"
+        and c.get("point") in ("H", "A")
+    ]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    h = [f for f in findings if f.condition.get("point") == "H"]
+    assert h and all(f.status == "fails" and "stabiliser within its stop" in f.check for f in h)
+    for f in h:
+        assert f.all_details()["elevator_deg"] == pytest.approx(25.0)
+        assert f.margin == pytest.approx(-f.all_details()["stabilizer_deg"], abs=2e-3)  # stop 0° from the datum
+    assert not any("within its stop" in f.check for f in findings if f.condition.get("point") == "A")
 
 
 def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):

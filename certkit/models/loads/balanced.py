@@ -139,6 +139,48 @@ def balanced_states(
     return BalancedStates(x, u, out, nz, res <= tol * 10, res)
 
 
+#: how a balanced state holds its pitching moment (:func:`balanced_within_stops`)
+ELEVATOR_ALONE, STABILIZER_RETRIMMED, ELEVATOR_AT_STOP = 0, 1, 2
+
+
+def balanced_within_stops(
+    model, x_entry, u_entry, load_factor, stops, tol: float = 1e-9
+) -> tuple[BalancedStates, np.ndarray]:
+    """Balanced states (:func:`balanced_states`) whose pitch controls stay within their stops where the airplane
+    allows it, and the scheme of each (``ELEVATOR_ALONE``, ``STABILIZER_RETRIMMED``, ``ELEVATOR_AT_STOP``).
+
+    The elevator balances first, the stabiliser held at the entry trim's setting. Where that needs the elevator
+    beyond its stop (``stops``: control name → (min, max) rad) and the model has a movable stabiliser, the
+    stabiliser is retrimmed with the elevator back at its entry (trimmed) deflection, as a pilot or a
+    stabiliser auto-trim unloads the column in a held manoeuvre; where the stabiliser would then pass its own stop,
+    the elevator is held at its stop in the direction needed and the stabiliser balances the rest. A state still
+    beyond a stop after that is returned as it is (the caller reads the deflections against ``stops``): the
+    airplane cannot hold the condition."""
+    x_entry, u_entry = np.asarray(x_entry, dtype=float), np.asarray(u_entry, dtype=float)
+    st = balanced_states(model, x_entry, u_entry, load_factor, "elevator", tol=tol)
+    scheme = np.full(st.x.shape[0], ELEVATOR_ALONE)
+    names = list(model.control_names)
+    if "stabilizer" not in names or "elevator" not in stops:
+        return st, scheme
+    je, js = names.index("elevator"), names.index("stabilizer")
+    lo, hi = stops["elevator"]
+    s_lo, s_hi = stops.get("stabilizer", (-np.inf, np.inf))
+    nz = st.load_factor
+    x, u, conv, res = st.x.copy(), st.u.copy(), st.converged.copy(), st.residual.copy()
+    rows = np.flatnonzero((u[:, je] < lo) | (u[:, je] > hi))
+    for code in (STABILIZER_RETRIMMED, ELEVATOR_AT_STOP):
+        if not rows.size:
+            break
+        entry_u = u_entry[rows].copy()
+        if code == ELEVATOR_AT_STOP:
+            entry_u[:, je] = np.where(st.u[rows, je] > hi, hi, lo)  # the stop the elevator alone went past
+        sub = balanced_states(model.subset(rows), x_entry[rows], entry_u, nz[rows], "stabilizer", tol=tol)
+        x[rows], u[rows], conv[rows], res[rows], scheme[rows] = sub.x, sub.u, sub.converged, sub.residual, code
+        rows = rows[(sub.u[:, js] < s_lo) | (sub.u[:, js] > s_hi)]
+    _, out = model.derivatives_euler(x, u, with_outputs=True)
+    return BalancedStates(x, u, out, nz, conv, res), scheme
+
+
 def steady_load_parts(loads, model, x, u, outputs, surfaces) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Aerodynamic and inertial station loads, each (n, 3, S), of ``surfaces`` in the steady states ``x``/``u``
     (outputs of the flight model there): the strip loads of :func:`response_load_parts` at one instant, with the

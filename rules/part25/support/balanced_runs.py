@@ -25,7 +25,13 @@ from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitud
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding, LoadsRun
 from certkit.models.flight import control_limits
-from certkit.models.loads.balanced import balanced_states, linear_lift, steady_fuel_units, steady_load_parts
+from certkit.models.loads.balanced import (
+    ELEVATOR_ALONE,
+    balanced_within_stops,
+    linear_lift,
+    steady_fuel_units,
+    steady_load_parts,
+)
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, with_fuel_states
@@ -198,8 +204,8 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
     loads = airplane_loads(ctx)  # the lattice is shared by every configuration
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     lim = control_limits(ctx.aircraft)["elevator"]
-    stops = control_limits(ctx.aircraft, design=False)["elevator"]
     for cfg, conds in by_cfg.items():
+        stops = {k: v for k, v in control_limits(ctx.aircraft, False, cfg).items() if k in ("elevator", "stabilizer")}
         entries, key_of, target, notes = [], {}, {}, {}
         for c in conds:
             try:
@@ -223,7 +229,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         kept = [c for c in todo if target[c][0] not in dict(batch.failed)]
         n = np.array([target[c][1] for c in kept])
         model = linear_lift(batch.model.subset(rows))
-        st = balanced_states(model, batch.x[rows], batch.u[rows], n, tol=float(crit.convergence))
+        st, scheme = balanced_within_stops(model, batch.x[rows], batch.u[rows], n, stops, tol=float(crit.convergence))
         sl = steady_load_parts(loads, model, st.x, st.u, st.outputs, SURFACES)
         total = {s: a + i for s, (a, i) in sl.items()}
         # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel)
@@ -239,6 +245,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             total[s][bad] = np.nan
         wing_states[:, bad] = np.nan
         de = st.u[:, list(model.control_names).index("elevator")]
+        ds = st.u[:, list(model.control_names).index("stabilizer")] if "stabilizer" in stops else None
         tail_load = 2.0 * sl["horizontal_tail"][0][:, 0, 0]  # both halves' aerodynamic root shear
         wing_lift = 2.0 * sl["wing"][0][:, 0, 0]
         for i, c in enumerate(refined):
@@ -262,7 +269,10 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
                 )
             if notes[kept[i]]:
                 details["speed_note"] = notes[kept[i]]
-            past_stop = not stops[0] <= de[i] <= stops[1]
+            if scheme[i] != ELEVATOR_ALONE:
+                details["stabilizer_deg"] = round(float(np.degrees(ds[i])), 3)
+                details["pitch_trim"] = PITCH_TRIM_NOTES[scheme[i]]
+            past_stop = beyond_stops(st.u[i], model.control_names, stops)
             beyond_mach = beyond_mach_range(loads, float(st.outputs.mach[i]))
             for s in SURFACES:
                 check = _check(c, s)
@@ -278,11 +288,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
                         )
                     )
                 elif past_stop and not bad[i]:
-                    findings.append(
-                        beyond_stop_finding(
-                            c, check, float(de[i]), stops, "stabilizer" in model.control_names, **details
-                        )
-                    )
+                    findings.append(beyond_stop_finding(c, check, past_stop, **details))
                 elif bad[i]:
                     findings.append(
                         Finding.not_evaluated(
@@ -342,27 +348,41 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
     return BalancedRun(findings, done, envelope=env, state=state, loads=loads, tail_parts=tail)
 
 
-def beyond_stop_finding(cond, check: str, elevator: float, stops, movable_stabilizer: bool, **details) -> Finding:
-    """The finding of a balanced state that needs the elevator beyond its control-system stop (``travel``): the
-    airplane cannot hold it with the elevator. With a movable stabiliser held at its 1 g trim a retrimmed balance may
-    exist and is not computed: not evaluated, with the deflection; without one the condition fails (margin in
-    degrees, the stop − the deflection needed). Its loads stay in the envelope (conservative for sizing)."""
-    stop = stops[1] if elevator > stops[1] else stops[0]
+#: how the balance holds its pitching moment when the elevator alone would pass its stop
+PITCH_TRIM_NOTES = {
+    1: "stabiliser retrimmed, elevator at its 1 g trim (the elevator alone would pass its stop)",
+    2: "elevator at its stop, stabiliser retrimmed (neither alone holds the balance)",
+}
+
+
+def beyond_stops(u, control_names, stops) -> tuple[str, float, float] | None:
+    """The first pitch control of a balanced state ``u`` beyond its control-system stop: (name, deflection, the
+    stop passed) in radians; None within every stop."""
+    names = list(control_names)
+    for name in ("stabilizer", "elevator"):
+        if name in stops and name in names:
+            d, (lo, hi) = float(u[names.index(name)]), stops[name]
+            if not lo <= d <= hi:
+                return name, d, hi if d > hi else lo
+    return None
+
+
+def beyond_stop_finding(cond, check: str, past: tuple[str, float, float], **details) -> Finding:
+    """The finding of a balanced state that needs a pitch control beyond its control-system stop, after the
+    stabiliser (if movable) was retrimmed (:func:`certkit.models.loads.balanced.balanced_within_stops`): the
+    airplane cannot hold the condition, which fails; margin in degrees, the stop − the deflection needed. Its loads
+    stay in the envelope (conservative for sizing)."""
+    name, needed, stop = past
+    word = "stabiliser" if name == "stabilizer" else name
     what = (
-        f"the balance needs {np.degrees(elevator):+.1f}° elevator, beyond the control-system stop "
-        f"{np.degrees(stop):+.1f}°"
+        f"the balance needs {np.degrees(needed):+.1f}° {word}, beyond its control-system stop {np.degrees(stop):+.1f}°"
     )
-    if movable_stabilizer:
-        return Finding.not_evaluated(
-            cond,
-            check,
-            what + " with the stabiliser held at its 1 g trim; a balance with the stabiliser retrimmed is not computed",
-            **details,
-        )
+    if name == "stabilizer":
+        what += " with the elevator at its stop"
     return Finding.compare(
         cond,
-        f"{check}: elevator within its stop",
-        abs(np.degrees(elevator)),
+        f"{check}: {word} within its stop",
+        abs(np.degrees(needed)),
         abs(np.degrees(stop)),
         at_least=False,
         unit="deg",
