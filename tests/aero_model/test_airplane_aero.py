@@ -149,3 +149,27 @@ def test_report_lists_every_override(tmp_path):
     assert models["loadings"][0]["name"] == "test loading"
     html = render_html(RunResult("0", "x", "0" * 64, str(f), "now", [], models), discover())
     assert "flight-test polar FT-7 (test)" in html and "CD0: 0.0171" in html
+
+
+def test_the_lattice_reaches_the_declared_md(clean, baseline):
+    """The baseline's MD (0.94) lies beyond the default breakpoints (up to 0.90): the lattice is solved there too, and
+    its lift-curve slope grows from M 0.2 to MD as the DATCOM/Helmbold swept-wing slope does (USAF DATCOM §4.1.3.2:
+    a = 2πA / (2 + √(A²β²(1 + tan²Λ½/β²) + 4)), κ = 1), within 10 % (the lattice holds the tail's share too)."""
+    from certkit.models.aero.airplane import DEFAULT_MACHS, MAX_MACH_BREAKPOINT, mach_breakpoints
+
+    assert clean.mach[-1] == pytest.approx(0.94) and tuple(clean.mach[:-1]) == DEFAULT_MACHS
+    assert any("lattice solved up to MD" in n for n in clean.notes)
+    ac = baseline.model
+    w = ac.geometry.wing
+    tan_half = np.tan(w.sweep_quarter_chord) - 4 / w.aspect_ratio * 0.25 * (1 - w.taper) / (1 + w.taper)
+
+    def datcom(m):
+        b2 = 1 - m * m
+        return 2 * np.pi * w.aspect_ratio / (2 + np.sqrt(w.aspect_ratio**2 * (b2 + tan_half**2) + 4))
+
+    lattice = np.asarray(clean.table["CL_alpha"])
+    assert lattice[-1] / lattice[0] == pytest.approx(datcom(0.94) / datcom(0.2), rel=0.10)
+    # MD at or below the last default breakpoint, or beyond the highest one solved: the defaults
+    for md, expected in ((0.90, DEFAULT_MACHS), (MAX_MACH_BREAKPOINT + 0.02, DEFAULT_MACHS)):
+        changed = ac.model_copy(update={"speeds": ac.speeds.model_copy(update={"MD": md})})
+        assert mach_breakpoints(changed) == expected

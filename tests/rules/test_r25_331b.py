@@ -317,12 +317,30 @@ def test_without_a_movable_stabilizer_a_balance_beyond_the_stop_fails(tmp_path):
         assert f.margin == pytest.approx((25.0 if de > 0 else 30.0) - abs(de), abs=2e-3)
 
 
-def test_conditions_beyond_the_model_mach_range_are_not_evaluated(run):
-    """Beyond the highest Mach breakpoint of the aerodynamic and strip tables (0.9; MD is 0.94) nothing is
-    extrapolated silently: each such balanced point is not evaluated with its Mach in the reason, and every evaluated
-    one lies within the range."""
-    ctx, findings, r = run
-    top = float(max(r.loads["wing"].mach))
+def test_the_tables_reach_md_and_nothing_is_set_aside_for_mach(run):
+    """The lattice, aerodynamic and strip tables are solved up to the declared MD (M 0.94, beyond the default 0.90
+    breakpoint): every balanced point, the VD ones at altitude included, is computed."""
+    _, findings, r = run
+    assert float(max(r.loads["wing"].mach)) == pytest.approx(0.94)
+    assert not any(MACH in (f.reason or "") for f in findings)
+    assert any(f.all_details().get("mach", 0.0) > 0.93 and f.status in ("complies", "fails") for f in findings)
+
+
+def test_conditions_beyond_the_model_mach_range_are_not_evaluated(tmp_path):
+    """A declared MD beyond the highest breakpoint the lattice is solved at (M 0.97 > 0.95): nothing is extrapolated
+    silently; each balanced point beyond the tables' Mach range is not evaluated with its Mach in the reason, and
+    every evaluated one lies within the range."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [("MD: 0.94", "MD: 0.97")])))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.configuration == "clean" and c.get("point") in ("D", "E")
+    ]
+    rule = BalancedManeuver()
+    findings = rule.evaluate(ctx, conds, crit)
+    top = float(max(rule.run.loads["wing"].mach))
+    assert top == pytest.approx(0.90)
     assert any(MACH in (f.reason or "") for f in findings)
     for f in findings:
         m = f.all_details().get("mach")

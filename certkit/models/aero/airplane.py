@@ -32,6 +32,24 @@ from certkit.models.aero.vlm import ControlSpan, VortexLattice, trapezoidal_surf
 
 #: Mach breakpoints at which the lattice is solved; the model interpolates between them
 DEFAULT_MACHS = (0.2, 0.4, 0.6, 0.75, 0.84, 0.9)
+#: the highest breakpoint added for a declared MD beyond them: the Prandtl–Glauert stretch is 1/β = 3.2 at M 0.95
+#: (the normal Mach of a 30°-swept wing 0.82); a higher MD stays beyond the model's range (its conditions set aside)
+MAX_MACH_BREAKPOINT = 0.95
+
+
+def mach_breakpoints(aircraft) -> tuple[float, ...]:
+    """The Mach breakpoints of the aircraft's lattice: :data:`DEFAULT_MACHS`, and its declared MD where that lies
+    beyond them (up to :data:`MAX_MACH_BREAKPOINT`), so that the dive Mach number's loads and handling are
+    computed rather than extrapolated. Above the drag-divergence Mach number the linear (Prandtl–Glauert) lattice
+    over-states the lift slope and misses the shock-induced changes of the moment (Mach tuck): a named model limit,
+    written in the model's notes."""
+    speeds = getattr(aircraft, "speeds", None)
+    md = getattr(speeds, "MD", None) if speeds is not None else None
+    if md is None or md <= DEFAULT_MACHS[-1] + 1e-3 or md > MAX_MACH_BREAKPOINT:
+        return DEFAULT_MACHS
+    return (*DEFAULT_MACHS, round(float(md), 4))
+
+
 #: lift coefficient at which the wave drag is folded into CD0(M) (transport design CL, as the CRM's)
 DESIGN_CL = 0.5
 #: calibrated airspeed of the climb schedule that fixes the Reynolds number at each Mach breakpoint
@@ -183,8 +201,9 @@ class AirplaneAero:
     lattice: VortexLattice | None = field(default=None, repr=False)
 
 
-def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
-    """Derivatives at α = 0 for each Mach number: (table name → values, neutral points, e, lattice).
+def lattice_derivatives(aircraft, machs=None):
+    """Derivatives at α = 0 for each Mach number (None: :func:`mach_breakpoints`): (table name → values, neutral
+    points, e, lattice).
 
     The table also holds the downwash-lag derivatives CL_alphadot, Cm_alphadot at each Mach number, for a
     wing with flaps the tail's flap ratios :data:`FLAP_TAIL_TERMS` at the lowest one, and the free-air downwash at the
@@ -192,6 +211,7 @@ def lattice_derivatives(aircraft, machs=DEFAULT_MACHS):
     (:mod:`certkit.models.aero.tail_downwash`)."""
     from certkit.models.aero.tail_downwash import WING, downwash_lag, flap_at_tail, free_air_downwash, slopes
 
+    machs = mach_breakpoints(aircraft) if machs is None else machs
     vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
     on, alone = downwash_configurations(aircraft)
     wing_tail, tail = VortexLattice(on, mach=machs[0]), VortexLattice(alone, mach=machs[0])
@@ -272,10 +292,11 @@ def fuselage_terms(aircraft) -> dict[str, float]:
 
 
 def build_airplane_aero(
-    aircraft, configuration: str, machs=DEFAULT_MACHS, drag=drag_terms, fuselage=fuselage_terms, lattice=None
+    aircraft, configuration: str, machs=None, drag=drag_terms, fuselage=fuselage_terms, lattice=None
 ) -> AirplaneAero:
-    """The model of ``configuration``: declared tables if any, else the lattice estimate
-    (``lattice``: the result of :func:`lattice_derivatives`, shared between configurations).
+    """The model of ``configuration``: declared tables if any, else the lattice estimate at ``machs`` (None:
+    :func:`mach_breakpoints`; ``lattice``: the result of :func:`lattice_derivatives` at the same Mach numbers, shared
+    between configurations).
 
     ``drag(aircraft, machs) -> (CD0 list, k list, notes)`` and ``fuselage(aircraft) -> {"Cm_alpha": Δ,
     "Cn_beta": Δ}`` supply the semi-empirical terms (None leaves them out).
@@ -310,7 +331,14 @@ def build_airplane_aero(
         free_air = table.get(FREE_AIR_DOWNWASH)
         table = {k: list(v) for k, v in table.items() if k != FREE_AIR_DOWNWASH}
         flap_tail = [table.pop(k, None) for k in FLAP_TAIL_TERMS]
-        machs = tuple(machs)
+        machs = tuple(mach_breakpoints(aircraft) if machs is None else machs)
+        if len(machs) != len(table["CL0"]):
+            raise ValueError(f"the lattice's tables hold {len(table['CL0'])} Mach numbers, not the {len(machs)} asked")
+        if machs[-1] > DEFAULT_MACHS[-1] + 1e-3:
+            notes.append(
+                f"lattice solved up to MD = M {machs[-1]:g} (Prandtl–Glauert): beyond drag divergence it over-states "
+                "the lift slope and has no shock-induced moment change (Mach tuck)"
+            )
         result = AirplaneAero(
             configuration,
             None,
