@@ -258,8 +258,8 @@ def hinge_critical_conditions(ctx, results, fraction: float) -> dict:
 
 
 def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) -> TailGroup:
-    """Size the structure for the limit-load envelope × 1.5 (§25.303) × (1 + ``allowance``) and the actuators for
-    the design hinge moment."""
+    """Size the structure for the limit-load envelope × its factor of safety (the loads rules' ``ultimate_factor``
+    in force) × (1 + ``allowance``) and the actuators for the design hinge moment."""
     from certkit.models.loads.model import airplane_loads
     from certkit.models.structure.actuators import size_elevator_actuators
     from certkit.models.structure.box import UltimateLoads
@@ -268,8 +268,10 @@ def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) ->
     tail = airplane_loads(ctx)["horizontal_tail"]
     if tuple(tail.station_names) != tuple(envelope.stations):
         raise ValueError(f"load stations {envelope.stations} differ from the loads model's {tail.station_names}")
-    lim = envelope.limit * (1.0 + allowance)
-    ult = UltimateLoads(np.asarray(tail.station_span, dtype=float), 1.5 * lim[0], 1.5 * lim[1], 1.5 * lim[2])
+    if envelope.ultimate_factor is None:
+        raise ValueError("the tail's load envelope carries no factor of safety (ultimate_factor)")
+    ult_lim = envelope.limit * (1.0 + allowance) * envelope.ultimate_factor
+    ult = UltimateLoads(np.asarray(tail.station_span, dtype=float), ult_lim[0], ult_lim[1], ult_lim[2])
     sized = size_horizontal_tail(aircraft, ult)
     p = sized.properties
     hinge = design_hinge_moment(ctx, results)

@@ -26,6 +26,10 @@ class CriticalLoad:
     condition: str
 
 
+#: the criterion by which a loads rule states its factor of safety (ultimate load / limit load)
+ULTIMATE_FACTOR = "ultimate_factor"
+
+
 @dataclass
 class TailLoadEnvelope:
     """Largest limit-load magnitudes (3, n_stations) at the tail's stations over every loads rule's conditions."""
@@ -34,6 +38,9 @@ class TailLoadEnvelope:
     limit: np.ndarray
     critical: list[CriticalLoad] = field(default_factory=list)
     rules: tuple[str, ...] = ()
+    #: the factor of safety (ultimate / limit) the structure is sized with: the largest the rules that computed
+    #: these loads hold in force (their ``ultimate_factor`` criterion, overridable in the aircraft file)
+    ultimate_factor: float | None = None
 
     def exceeds(self, other: "TailLoadEnvelope", rtol: float = 1e-9) -> bool:
         """True when any load of this envelope is larger than ``other``'s (same stations)."""
@@ -53,6 +60,7 @@ class TailLoadEnvelope:
             np.where(take_self, self.limit, other.limit),
             crit,
             tuple(sorted(set(self.rules) | set(other.rules))),
+            max(self.ultimate_factor or 0.0, other.ultimate_factor or 0.0) or None,
         )
 
     def as_dict(self) -> dict:
@@ -62,6 +70,7 @@ class TailLoadEnvelope:
             "units": {"shear": "N", "bending": "N·m", "torsion": "N·m"},
             "critical": [vars(c) for c in self.critical],
             "rules": list(self.rules),
+            "ultimate_factor": self.ultimate_factor,
         }
 
 
@@ -69,11 +78,18 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
     """Reduce the kept envelopes of evaluated loads rules (:class:`certkit.engine.results.RuleResult` with
     ``load_envelopes``) to the tail's limit-load magnitudes. Raises ``ValueError`` when no rule computed tail loads
     (the structure cannot be sized: the caller reports why)."""
-    stations, best, crit, rules = None, None, {}, set()
+    stations, best, crit, rules, factors = None, None, {}, set(), []
     for res in results:
         for env in res.load_envelopes:
             if SURFACE not in env.peaks:
                 continue
+            factor = (res.criteria.get(ULTIMATE_FACTOR) or {}).get("value")
+            if factor is None:
+                raise ValueError(
+                    f"rule {res.id} computes horizontal-tail loads but declares no {ULTIMATE_FACTOR!r} criterion: "
+                    "the factor of safety its loads are to be carried with is unknown"
+                )
+            factors.append(float(factor))
             P = env.peaks[SURFACE]  # (n, 2, 3, S): min [0] / max [1] over time
             if stations is None:
                 stations, best = tuple(env.stations[SURFACE]), np.zeros((len(QUANTITIES), P.shape[-1]))
@@ -99,7 +115,7 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
             "no loads rule computed horizontal-tail loads (the rules that declare them were not "
             "evaluated or could not trim any condition)"
         )
-    return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)))
+    return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)), max(factors))
 
 
 def near_critical_conditions(results, fraction: float, own_fraction: float = 1.0) -> dict:

@@ -138,3 +138,25 @@ def test_changed_design_starts_on_the_near_critical_points(bigger, monkeypatch):
     assert bigger["responses"]["rule.25.341(a).margin"] == pytest.approx(
         full["responses"]["rule.25.341(a).margin"], abs=1e-4
     )
+
+
+def test_the_factor_of_safety_in_force_sizes_the_box(baseline, tmp_path):
+    """The box is sized for the limit loads × the factor of safety the loads rules hold in force (§25.303's 1.5 by
+    default, their ``ultimate_factor`` criterion): raised to 1.65 for every rule that computes tail loads, the
+    covers and webs carry 10 % more ultimate load and the box gets heavier (by less than 10 %: minimum gauges)."""
+    env = baseline["details"]["sizing"]["envelope"]
+    assert env["ultimate_factor"] == 1.5
+    text = (
+        open(BASELINE).read()
+        + "\ncriteria:\n"
+        + "".join(
+            f'  "{rid}": {{justification: "test: a higher factor of safety", values: {{ultimate_factor: 1.65}}}}\n'
+            for rid in env["rules"]
+        )
+    )
+    path = tmp_path / "fs.yaml"
+    path.write_text(text)
+    raised = evaluate_design(str(path), {}, responses=LOADS_ONLY)
+    assert raised["details"]["sizing"]["envelope"]["ultimate_factor"] == 1.65
+    box, box_raised = (r["responses"]["sizing.ht_box_mass_kg"] for r in (baseline, raised))
+    assert 1.02 * box < box_raised < 1.10 * box

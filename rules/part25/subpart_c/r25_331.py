@@ -230,8 +230,8 @@ class CheckedPitchManeuver(SimulationRule):
         ),
         (
             "25.331(c)",
-            "a condition beyond the aerodynamic model's Mach range (its highest breakpoint) is not evaluated, "
-            "its loads would be extrapolated",
+            "C_N,max does not vary with Mach: the wing loads' window is bounded by the low-speed CLmax, so at high "
+            "Mach the manoeuvre reaches lift coefficients beyond buffet onset and maximum lift there",
         ),
     )
 

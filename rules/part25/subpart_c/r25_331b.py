@@ -76,8 +76,7 @@ class BalancedManeuver(SimulationRule):
         ),
         (
             "25.333",
-            "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at "
-            "altitude; conditions beyond the aerodynamic model's highest Mach breakpoint are not evaluated",
+            "C_N,max does not vary with Mach and no buffet-onset boundary limits the manoeuvring envelope at altitude",
         ),
     )
 
