@@ -39,7 +39,8 @@ class TailLoadEnvelope:
     critical: list[CriticalLoad] = field(default_factory=list)
     rules: tuple[str, ...] = ()
     #: the factor of safety (ultimate / limit) the structure is sized with: the largest the rules that computed
-    #: these loads hold in force (their ``ultimate_factor`` criterion, overridable in the aircraft file)
+    #: these loads hold in force (their ``ultimate_factor`` criterion, overridable in the aircraft file; a rule
+    #: that declares none has its loads carried with the others')
     ultimate_factor: float | None = None
 
     def exceeds(self, other: "TailLoadEnvelope", rtol: float = 1e-9) -> bool:
@@ -84,12 +85,8 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
             if SURFACE not in env.peaks:
                 continue
             factor = (res.criteria.get(ULTIMATE_FACTOR) or {}).get("value")
-            if factor is None:
-                raise ValueError(
-                    f"rule {res.id} computes horizontal-tail loads but declares no {ULTIMATE_FACTOR!r} criterion: "
-                    "the factor of safety its loads are to be carried with is unknown"
-                )
-            factors.append(float(factor))
+            if factor is not None:
+                factors.append(float(factor))
             P = env.peaks[SURFACE]  # (n, 2, 3, S): min [0] / max [1] over time
             if stations is None:
                 stations, best = tuple(env.stations[SURFACE]), np.zeros((len(QUANTITIES), P.shape[-1]))
@@ -114,6 +111,11 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
         raise ValueError(
             "no loads rule computed horizontal-tail loads (the rules that declare them were not "
             "evaluated or could not trim any condition)"
+        )
+    if not factors:
+        raise ValueError(
+            f"no rule computing horizontal-tail loads ({', '.join(sorted(rules))}) declares an {ULTIMATE_FACTOR!r} "
+            "criterion: the factor of safety the structure is to carry them with is unknown"
         )
     return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)), max(factors))
 

@@ -200,6 +200,14 @@ class CheckedPitchManeuver(SimulationRule):
             "certkit numerical choice",
             "|n_peak − n_target| accepted (also the allowance on the §25.337 limit of the load-factor check)",
         ),
+        "search_resolution": Criterion(
+            0.002,
+            "",
+            "certkit numerical choice",
+            "the input search ends within this of the load factor: near the stall line the peak load factor is "
+            "nearly flat in the amplitude, and a search stopped anywhere within the tolerance would pick inputs "
+            "(and tail loads) that jump from one design to the next",
+        ),
         **SAFETY,
         **PILOT_EFFORT,
     }
@@ -336,9 +344,9 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         lambda p, mask: simulate_inputs(*inputs_of(p), mask),
         np.zeros(len(rows)),
         np.ones(len(rows)),
-        target,
+        target - 0.5 * float(crit.load_factor_tolerance),
         steps=int(crit.search_steps),
-        tol=float(crit.load_factor_tolerance),
+        tol=float(crit.search_resolution),
         f_lo=np.where(reach, 0.0, r_full),
         f_hi=np.where(reach, r_full, r_held),
     )
