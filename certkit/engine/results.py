@@ -198,16 +198,23 @@ class Finding:
         limit: float,
         *,
         at_least: bool,
-        unit: str = "",
+        unit: str,
         reason: str = "",
         tolerance: float | None = None,
         **details,
     ) -> "Finding":
         """A finding for ``value ≥ limit`` (``at_least``) or ``value ≤ limit``; margin ≥ 0 complies.
 
+        ``unit``: the unit of value, limit and margin; a dimensionless one names its quantity ("ratio", "g" for a
+        load factor, "C_L", "ζ" for a damping ratio), so that no margin is printed without a unit word.
         ``tolerance`` (in the margin's unit; default 1e-9 × |limit|) absorbs round-off when a value sits
         exactly on its limit, as declared speeds derived from each other do.
         """
+        if not unit or unit == "1":
+            raise ValueError(
+                f"{check!r}: Finding.compare needs the unit of its value and limit (a dimensionless quantity names "
+                "itself: 'ratio', 'g', 'C_L', 'ζ')"
+            )
         value, limit = float(value), float(limit)
         if not (math.isfinite(value) and math.isfinite(limit)):
             return cls.not_evaluated(condition, check, f"non-finite value ({value}) or limit ({limit})")

@@ -76,7 +76,9 @@ class PitchDamperModes(Rule):
     def evaluate(self, ctx, conditions, crit):
         c = Condition(loading="damper_off", configuration="clean")
         row = {"short_period": {"zeta": 0.16, "wn_rad_s": 1.2, "level_B": 3}}
-        return [Finding.compare(c, "short period damper off", 0.16, 0.15, at_least=True, damper_off_modes=row)]
+        return [
+            Finding.compare(c, "short period damper off", 0.16, 0.15, at_least=True, unit="ζ", damper_off_modes=row)
+        ]
 
 
 def test_declarations_choose_the_sizing_rules():

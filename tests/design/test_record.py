@@ -58,6 +58,7 @@ def test_levels_worst_per_mode_corner_configuration():
         0.5,
         0.35,
         at_least=True,
+        unit="ζ",
         modes={"short_period": {"level_A": 1, "level_B": lv, "level_B_limited_by": "x"}},
     )
     rules = [_rule("25.181", ModeResponses(("short_period",)))]
@@ -142,7 +143,7 @@ def test_mode_quantities_of_the_condition_that_sets_the_level():
         }
     }
     fs = [
-        Finding.compare(c, "(a) short period heavily damped", z, 0.3, at_least=True, modes=row(z, lv))
+        Finding.compare(c, "(a) short period heavily damped", z, 0.3, at_least=True, unit="ζ", modes=row(z, lv))
         for z, lv in ((0.5, 1), (0.27, 2), (0.22, 2))
     ]
     out = offered_responses([RuleResult("25.181", "d", "t", fs)], [_rule("25.181", ModeResponses(("short_period",)))])

@@ -240,3 +240,14 @@ def test_refined_conditions_cover_their_origin():
     assert base.with_(speed=70.0, speed_kind="EAS", thrust="idle").refines(base)
     assert not base.with_(mass=1e5).refines(base)
     assert not Condition(loading="aft_mlw", mass=2e5, x_cg=28.0).refines(base)
+
+
+def test_a_margin_without_a_unit_is_refused():
+    """Every margin carries a unit word: a dimensionless comparison names its quantity (ratio, g, C_L, ζ)."""
+    from certkit.engine.results import Condition, Finding
+
+    with pytest.raises(ValueError, match="needs the unit"):
+        Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="")
+    with pytest.raises(ValueError, match="needs the unit"):
+        Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="1")
+    assert Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="g").unit == "g"

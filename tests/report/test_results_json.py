@@ -42,6 +42,21 @@ def test_results_validate_against_the_shipped_schema(small_check):
     assert all(c["source"] for c in r181["criteria"].values())
 
 
+def test_every_margin_has_a_unit_word(small_check):
+    """No margin is printed without its unit: §25.181's damping ratios read ζ (they had none)."""
+    data = results(small_check[0])
+    bare = [
+        (r["id"], f["check"])
+        for r in data["rules"]
+        for f in r["findings"]
+        if f["margin"] is not None and f["unit"] in (None, "", "1")
+    ]
+    assert not bare, bare[:5]
+    assert {
+        f["unit"] for r in data["rules"] if r["id"] == "25.181" for f in r["findings"] if f["margin"] is not None
+    } == {"ζ"}
+
+
 def test_a_schema_violation_is_caught(small_check):
     """The schema can fail: a finding with an empty unit string or a status outside the enum is refused."""
     data = results(small_check[0])

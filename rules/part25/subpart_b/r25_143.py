@@ -302,7 +302,7 @@ class ManeuveringCapability(Rule):
                     details["CL"],
                     cl_sw,
                     at_least=False,
-                    unit="",
+                    unit="C_L",
                     stall_warning_CL=round(cl_sw, 4),
                     stall_warning_basis=basis,
                     **details,

@@ -196,7 +196,7 @@ class DynamicStability(Rule):
                             m.damping_ratio,
                             crit[key],
                             at_least=True,
-                            unit="",
+                            unit="ζ",
                             natural_frequency_rad_s=m.natural_frequency,
                             modes=levels,
                             flight=flight,

@@ -72,12 +72,18 @@ class LimitManeuveringLoadFactors(Rule):
                     n.positive,
                     required,
                     at_least=True,
+                    unit="g",
                     mtow_lb=ctx.aircraft.mass.MTOW / LB,
                 )
             )
             findings.append(
                 Finding.compare(
-                    cond, "(c)(1) negative limit load factor up to VC", n.negative, crit.n_negative, at_least=False
+                    cond,
+                    "(c)(1) negative limit load factor up to VC",
+                    n.negative,
+                    crit.n_negative,
+                    at_least=False,
+                    unit="g",
                 )
             )
         return findings
