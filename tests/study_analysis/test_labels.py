@@ -77,3 +77,27 @@ def test_profiler_shows_declared_units_and_response_words(browser, tmp_path):
             assert f" {unit}" in text
     assert problems == []
     page.close()
+
+
+def test_fit_figures_and_planforms_speak_aviation():
+    """A surrogate's fit figure names its response in words and aviation units (block fuel in lb: the predicted
+    100,000 kg is drawn at 220,462 lb), never the key; planforms are drawn in feet."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from certkit.study.analysis.figures import fit_svg, planforms_svg
+    from certkit.study.analysis.planform import Planform
+
+    kg = np.array([9.0e4, 1.0e5, 1.1e5])
+    s = SimpleNamespace(
+        response="objective.block_fuel_kg",
+        plot_data={"training": (kg, kg * 1.01), "validation": (kg, kg * 0.99)},
+        kept=SimpleNamespace(label="quadratic"),
+    )
+    svg = fit_svg(s)
+    assert "block fuel: quadratic" in svg and "predicted (lb)" in svg and "actual − predicted (lb)" in svg
+    assert "objective." not in svg and "block_fuel" not in svg
+    p = Planform(1119.2 * FT2, 4.62, 0.33, 34.82 * DEG, (0.07, 0.94, 0.29))
+    plan = planforms_svg([("baseline", p)])
+    assert "span position y (ft)" in plan and "(m" not in plan

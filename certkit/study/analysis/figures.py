@@ -14,6 +14,7 @@ from certkit.study.analysis.labels import response_axis, response_label
 from certkit.study.analysis.montecarlo import ConstraintOutcome, MonteCarloResult
 from certkit.study.analysis.planform import Planform
 from certkit.study.analysis.surrogates import Surrogate
+from certkit.units import FT
 
 STAGE_COLOURS = ("#b8bec7", "#2f6db5", "#2e9d4a")
 STAGE_LABELS = ("unconstrained", "constrained", "Level-1 preferred")
@@ -37,28 +38,34 @@ def _svg(fig) -> str:
 
 
 def fit_svg(s: Surrogate) -> str:
-    """Actual vs predicted and residual vs predicted, training and validation cases."""
+    """Actual vs predicted and residual vs predicted, training and validation cases, in the response's words and
+    aviation unit (:func:`~certkit.study.analysis.labels.response_label`)."""
+    words, unit, k = response_label(s.response)
+    shown = f" ({unit})" if unit else ""
     fig, (a1, a2) = subplots(1, 2, figsize=(7.2, 3.0), left=0.75, wspace=0.45, top=0.3)
-    for (label, (actual, pred)), colour, marker in zip(s.plot_data.items(), ("0.55", "#c0392b"), ("o", "^")):
+    data = {
+        label: (np.asarray(a, dtype=float) / k, np.asarray(p, dtype=float) / k) for label, (a, p) in s.plot_data.items()
+    }
+    for (label, (actual, pred)), colour, marker in zip(data.items(), ("0.55", "#c0392b"), ("o", "^")):
         if len(actual) == 0:
             continue
         a1.scatter(pred, actual, s=7, c=colour, marker=marker, label=f"{label} ({len(actual)})", rasterized=True, lw=0)
         a2.scatter(pred, actual - pred, s=7, c=colour, marker=marker, rasterized=True, lw=0)
-    both = np.concatenate([np.concatenate(v) for v in s.plot_data.values()])
+    both = np.concatenate([np.concatenate(v) for v in data.values()])
     both = both[np.isfinite(both)]
     if both.size:
         lo, hi = float(both.min()), float(both.max())
         a1.plot([lo, hi], [lo, hi], color="0.2", lw=0.8)
     a2.axhline(0.0, color="0.2", lw=0.8)
-    a1.set_xlabel("predicted")
-    a1.set_ylabel("actual")
-    a2.set_xlabel("predicted")
-    a2.set_ylabel("actual − predicted")
+    a1.set_xlabel(f"predicted{shown}")
+    a1.set_ylabel(f"actual{shown}")
+    a2.set_xlabel(f"predicted{shown}")
+    a2.set_ylabel(f"actual − predicted{shown}")
     for a in (a1, a2):
         a.grid(True, alpha=0.3)
         a.ticklabel_format(axis="both", style="sci", scilimits=(-3, 4))
     a1.legend(loc="upper left", fontsize=7)
-    fig.suptitle(f"{s.response}: {s.kept.label}", fontsize=9, y=0.98)
+    fig.suptitle(f"{words}: {s.kept.label}", fontsize=9, y=0.98)
     return _svg(fig)
 
 
@@ -138,20 +145,21 @@ def scatter_matrix_svg(mc: MonteCarloResult, labels: list[str]) -> str:
 
 
 def planforms_svg(items: list[tuple[str, Planform]]) -> str:
-    """Horizontal-tail planforms (and elevators) drawn to the same scale, aligned at the aerodynamic centre."""
+    """Horizontal-tail planforms (and elevators) drawn to the same scale in feet, aligned at the aerodynamic
+    centre."""
     fig, ax = subplots(figsize=(6.8, 3.6), left=0.7, bottom=0.55, top=0.15)
     colours = ["0.35", "#2f6db5", "#2e9d4a", "#c0392b", "#8e44ad", "#d35400", "#16a085", "#7f8c8d"]
     for n, (label, p) in enumerate(items):
         col = colours[n % len(colours)]
-        o = p.outline()
+        o = p.outline() / FT
         ax.plot(o[:, 1], -o[:, 0], color=col, lw=1.4 if n else 1.0, ls="--" if n == 0 else "-", label=label)
         for e in p.elevator_outlines():
-            ax.fill(e[:, 1], -e[:, 0], color=col, alpha=0.25, lw=0)
+            ax.fill(e[:, 1] / FT, -e[:, 0] / FT, color=col, alpha=0.25, lw=0)
     ax.plot([0], [0], marker="+", color="k", ms=10)
     ax.annotate("aerodynamic centre", (0, 0), textcoords="offset points", xytext=(6, 6), fontsize=7)
     ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("span position y (m)")
-    ax.set_ylabel("x from a.c. (m, aft down)")
+    ax.set_xlabel("span position y (ft)")
+    ax.set_ylabel("aft of the aerodynamic centre (ft, downward)")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="lower left", fontsize=7, bbox_to_anchor=(1.01, 0.0))
     return _svg(fig)
