@@ -39,7 +39,12 @@ def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
             if problem:
                 raise UserError(f"criteria.{rule.id}.values.{name}: {problem}")
             default = rule.criteria[name].value
-            applied[name] = {"default": default, "value": value, "justification": override.justification}
+            applied[name] = {
+                "default": default,
+                "value": value,
+                "unit": rule.criteria[name].unit,
+                "justification": override.justification,
+            }
             values[name] = value
     return values, applied
 
@@ -66,15 +71,25 @@ def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> di
     return out
 
 
-def check_in_force(check: str, overrides: dict) -> str:
+def check_in_force(check: str, overrides: dict, name_the_rest: bool = False) -> str:
     """A check text as the criteria in force make it: a default value an override replaced, written as a number in
     the text ("VC ≥ VB + 1.32 U_ref"), becomes the value in force ("VC ≥ VB + 1.4 U_ref"). Paragraph labels such
-    as "(2)" are never numbers here."""
-    for o in overrides.values():
+    as "(2)" are never numbers here. With ``name_the_rest`` the overrides the text does not show are named after it
+    ("… [override: ultimate_factor 1.65]"), so that a verdict computed with an override never reads as the
+    regulation's."""
+    hidden = []
+    for name, o in overrides.items():
         default, value = o["default"], o["value"]
         if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (default, value)):
+            hidden.append(f"{name} {value}")
             continue
-        check = re.sub(rf"(?<![\d.(]){re.escape(f'{default:g}')}(?![\d)])", f"{value:g}", check)
+        pattern = rf"(?<![\d.(]){re.escape(f'{default:g}')}(?![\d)])"
+        if re.search(pattern, check):
+            check = re.sub(pattern, f"{value:g}", check)
+        else:
+            hidden.append(f"{name} {value:g}{' ' + o['unit'] if o.get('unit') not in (None, '', '1') else ''}")
+    if name_the_rest and hidden:
+        check += f" [override: {', '.join(hidden)}]"
     return check
 
 
@@ -82,7 +97,7 @@ def _show_overrides(findings: list[Finding], overrides: dict) -> None:
     """Check texts formed from the criteria in force; the text with the defaults kept as ``check_default`` (what
     ``certkit diff`` pairs findings of two runs by)."""
     for f in findings:
-        shown = check_in_force(f.check, overrides)
+        shown = check_in_force(f.check, overrides, name_the_rest=f.margin is not None)
         if shown != f.check:
             f.details = {**f.details, "check_default": f.check}
             f.check = shown

@@ -136,3 +136,42 @@ def test_diff_prints_a_round_off_margin_as_zero():
 
     assert margin_text(5.551e-17, "Mach") == "+0 Mach"
     assert margin_text(-2.0e-3, "Mach") == "-0.002000 Mach"
+
+
+def test_an_override_the_check_text_does_not_show_is_named_after_it():
+    """A criterion the check's words do not write as a number (the factor of safety of a loads check, a damping
+    minimum) is named after the text of every computed finding, so the verdict never reads as the regulation's."""
+    o = {
+        "ultimate_factor": {"default": 1.5, "value": 1.65, "unit": "", "justification": "x"},
+        "gust_factor": {"default": 1.32, "value": 1.4, "unit": "", "justification": "x"},
+    }
+    text = "(a) discrete gust, up, wing: ultimate bending at side of body (max)"
+    assert check_in_force(text, o, name_the_rest=True) == text + " [override: ultimate_factor 1.65, gust_factor 1.4]"
+    assert check_in_force(text, o) == text  # not-evaluated rows keep their words
+    shown = check_in_force("(a)(2) VC ≥ VB + 1.32 U_ref", o, name_the_rest=True)
+    assert shown == "(a)(2) VC ≥ VB + 1.4 U_ref [override: ultimate_factor 1.65]"
+    speed = {"max_hold": {"default": 5.0, "value": 4.0, "unit": "s", "justification": "x"}}
+    assert check_in_force("held input", speed, name_the_rest=True) == "held input [override: max_hold 4 s]"
+
+
+def test_every_overridden_criterion_shows_in_the_checks_it_computes(tmp_path):
+    """Each numeric criterion of §25.335(a) overridden in turn (to 1.1 × its default): every computed finding's
+    text states the value in force, in its words or after them."""
+    from certkit.aircraft import load_aircraft
+    from certkit.engine.context import Context
+    from certkit.engine.registry import discover
+    from certkit.engine.scheduler import evaluate_rule
+
+    (rule,) = [r for r in discover() if r.id == "25.335(a)"]
+    for name, c in rule.criteria.items():
+        if isinstance(c.value, bool) or not isinstance(c.value, (int, float)) or c.value == 0:
+            continue
+        value = round(1.1 * c.value, 6)
+        path = tmp_path / f"{name}.yaml"
+        path.write_text(
+            BASELINE.read_text()
+            + f'\ncriteria:\n  "25.335(a)":\n    justification: a test of the override text\n    values:\n      {name}: {value}\n'
+        )
+        res = evaluate_rule(rule, Context(load_aircraft(path)))
+        computed = [f for f in res.findings if f.margin is not None]
+        assert computed and all(f"{value:g}" in f.check for f in computed), (name, [f.check for f in computed])
