@@ -16,7 +16,7 @@ Names (all numbers SI, normalised margins ≥ 0 comply):
   lowest damping among equal levels): ``zeta``, ``wn_rad_s``, ``period_s``, ``t_half_s``, ``t_double_s`` (None where
   the mode has none) and, for the short period, ``cap`` (ω²/(n/α), (rad/s²)/g). The level follows from them:
   ``certkit_rules.part25.support.handling_levels.configuration_level(mode, configuration, zeta=…, wn=…, t_half=…,
-  t_double=…)`` (MIL-F-8785C tables), so a study can derive it from surrogates of the quantities;
+  t_double=…, cap=…)`` (MIL-F-8785C tables), so a study can derive it from surrogates of the quantities;
 * ``control.<rule id>.<case>.<control>`` — per case a rule offers (:class:`certkit.engine.registry.ControlResponses`:
   §25.143(h)'s four manoeuvring cases, §25.145(b)'s changes, §25.121's segments, §25.111's engine-out takeoff), the
   largest fraction of the control's mechanical travel (in the deflection's direction) over the case's conditions.

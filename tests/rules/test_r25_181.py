@@ -213,6 +213,13 @@ def test_level_from_quantities_on_the_table_boundaries():
         "spiral", "B", zeta=1.0, wn=0.01, t_half=[None, None, None, None, 50.0], t_double=[25.0, 15.0, 5.0, 3.0, None]
     )
     assert spiral.tolist() == [1, 2, 3, 4, 1]
+    # the control anticipation parameter (3.2.2.1.1): Level 1 0.16-3.6 in category C, Level 2 0.096-10, Level 3 unbounded;
+    # category B's Level 1 floor 0.085, A's 0.28; not read without it
+    cap = hq.level_from_quantities("short_period", "C", zeta=0.5, wn=1.5, cap=[0.2, 0.12, 0.05, 4.0, 12.0])
+    assert cap.tolist() == [1, 2, 3, 2, 3]
+    assert hq.level_from_quantities("short_period", "B", zeta=0.5, wn=1.5, cap=0.1) == 1
+    assert hq.level_from_quantities("short_period", "A", zeta=0.5, wn=1.5, cap=0.1) == 3
+    assert hq.level_from_quantities("short_period", "A", zeta=0.5, wn=1.5) == 1
     # clean is read in categories A and B: the worse of the two (Dutch roll ζ 0.1: Level 1 in B, 2 in A)
     assert hq.configuration_level("dutch_roll", "clean", zeta=0.1, wn=2.0) == 2
     assert hq.configuration_level("dutch_roll", "landing", zeta=0.1, wn=2.0) == 1
@@ -226,7 +233,13 @@ def test_levels_follow_from_the_recorded_quantities(result):
         for mode, row in (f.details.get("modes") or {}).items():
             for cat in hq.categories_of(f.condition.configuration):
                 level = hq.level_from_quantities(
-                    mode, cat, zeta=row["zeta"], wn=row["wn_rad_s"], t_half=row["t_half_s"], t_double=row["t_double_s"]
+                    mode,
+                    cat,
+                    zeta=row["zeta"],
+                    wn=row["wn_rad_s"],
+                    t_half=row["t_half_s"],
+                    t_double=row["t_double_s"],
+                    cap=row.get("cap"),
                 )
                 assert level == row[f"level_{cat}"], (f.condition.label(), mode, cat, row)
                 checked += 1

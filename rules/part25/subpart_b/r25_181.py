@@ -62,7 +62,7 @@ def mode_levels(modes: dict, configuration: str, n_alpha: float | None = None) -
             row["cap"] = round(m.natural_frequency**2 / n_alpha, 5)
             row["n_alpha_g_rad"] = round(float(n_alpha), 4)
         for cat in categories(configuration):
-            level, why = hq.level_of(name, m, cat)
+            level, why = hq.level_of(name, m, cat, n_alpha if name == "short_period" else None)
             row[f"level_{cat}"] = level
             if why:
                 row[f"level_{cat}_limited_by"] = why

@@ -36,7 +36,7 @@ class Limit:
     """One boundary of one Level: ``quantity`` of ``mode`` must be ≥ (``bound`` "min") or ≤ ("max") ``value``."""
 
     mode: str
-    quantity: str  # zeta, zeta_wn (rad/s), wn (rad/s), tau (s), t_double (s)
+    quantity: str  # zeta, zeta_wn (rad/s), wn (rad/s), tau (s), t_double (s), cap ((rad/s²)/g)
     categories: str  # the categories it applies to, e.g. "AC"
     level: int
     bound: str  # "min" or "max"
@@ -52,6 +52,9 @@ _T6 = "3.3.1.1 Table VI"
 _T7 = "3.3.1.2 Table VII"
 _T8 = "3.3.1.3 Table VIII"
 _PH = "3.2.1.2"
+_CAP = "3.2.2.1.1 (Figs. 1-3, lines of constant ω²/(n/α))"
+#: the unit of the control anticipation parameter ω_sp²/(n/α)
+CAP_UNIT = "(rad/s²)/g"
 
 LIMITS: tuple[Limit, ...] = (
     # short-period damping ratio, Table IV (mem)
@@ -63,6 +66,16 @@ LIMITS: tuple[Limit, ...] = (
     Limit("short_period", "zeta", "B", 2, "min", 0.20, "", _T4, note="mem"),
     Limit("short_period", "zeta", "ABC", 2, "max", 2.00, "", _T4, note="mem"),
     Limit("short_period", "zeta", "ABC", 3, "min", 0.15, "", _T4, note="mem"),
+    # short-period frequency as the control anticipation parameter, 3.2.2.1.1 (mem); read only where the condition's
+    # n/α is known (the rule's trim), never from a surrogate of ω alone
+    Limit("short_period", "cap", "A", 1, "min", 0.28, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "B", 1, "min", 0.085, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "C", 1, "min", 0.16, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "ABC", 1, "max", 3.6, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "A", 2, "min", 0.16, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "B", 2, "min", 0.038, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "C", 2, "min", 0.096, CAP_UNIT, _CAP, note="mem"),
+    Limit("short_period", "cap", "ABC", 2, "max", 10.0, CAP_UNIT, _CAP, note="mem"),
     # phugoid, 3.2.1.2 (mem)
     Limit("phugoid", "zeta", "ABC", 1, "min", 0.04, "", _PH, note="mem"),
     Limit("phugoid", "zeta", "ABC", 2, "min", 0.0, "", _PH, note="mem"),
@@ -105,23 +118,30 @@ def limits_for(mode: str, category: str, level: int) -> tuple[Limit, ...]:
     return tuple(lim for lim in LIMITS if lim.mode == mode and category in lim.categories and lim.level == level)
 
 
-def quantities(mode) -> dict[str, float]:
-    """The quantities the tables bound, from a :class:`certkit.models.dynamics.modes.Mode`.
+def quantities(mode, n_alpha: float | None = None) -> dict[str, float]:
+    """The quantities the tables bound, from a :class:`certkit.models.dynamics.modes.Mode` (and, for the control
+    anticipation parameter ω²/(n/α), the condition's ``n_alpha`` in g/rad; without it the CAP is not read).
 
     An unstable (divergent) mode has an infinite time constant and a finite time to double; a
     convergent one an infinite time to double."""
     sigma = mode.eigenvalue.real
-    return {
+    out = {
         "zeta": mode.damping_ratio,
         "wn": mode.natural_frequency,
         "zeta_wn": mode.damping_ratio * mode.natural_frequency,
         "tau": 1.0 / -sigma if sigma < 0 else np.inf,
         "t_double": mode.time_to_double if mode.time_to_double is not None else np.inf,
     }
+    if n_alpha is not None and n_alpha > 0:
+        out["cap"] = mode.natural_frequency**2 / n_alpha
+    return out
 
 
 def _meets(lim: Limit, q: dict):
-    """Whether the quantities ``q`` (scalars or arrays) meet the boundary ``lim`` (boolean, or an array of them)."""
+    """Whether the quantities ``q`` (scalars or arrays) meet the boundary ``lim`` (boolean, or an array of them);
+    a quantity ``q`` does not hold (the CAP without n/α) bounds nothing."""
+    if lim.quantity not in q:
+        return True
     value = q[lim.quantity]
     return value >= lim.value if lim.bound == "min" else value <= lim.value
 
@@ -138,15 +158,18 @@ def _time(value) -> np.ndarray:
     return np.where(np.isfinite(out), out, np.inf)
 
 
-def level_from_quantities(mode_name: str, category: str, *, zeta, wn, t_half=None, t_double=None):
+def level_from_quantities(mode_name: str, category: str, *, zeta, wn, t_half=None, t_double=None, cap=None):
     """The MIL-F-8785C Level (1 best, 3 worst, 4 worse than Level 3) of a mode from its quantities — the damping
     ratio ``zeta``, undamped natural frequency ``wn`` (rad/s), time to half amplitude ``t_half`` (s; None, NaN or
     ∞ when the mode does not converge) and time to double ``t_double`` (s; likewise when it does not diverge) —
     in flight-phase ``category``: the best Level whose every boundary of :data:`LIMITS` they meet (the roll-mode
-    time constant is t_half / ln 2). Scalars give an int; arrays (e.g. surrogate predictions of the quantities)
+    time constant is t_half / ln 2) and, given, the short period's control anticipation parameter ``cap``
+    ((rad/s²)/g; None: not read). Scalars give an int; arrays (e.g. surrogate predictions of the quantities)
     an int array of their broadcast shape."""
     zeta, wn = np.asarray(zeta, dtype=float), np.asarray(wn, dtype=float)
     q = {"zeta": zeta, "wn": wn, "zeta_wn": zeta * wn, "tau": _time(t_half) / np.log(2.0), "t_double": _time(t_double)}
+    if cap is not None:
+        q["cap"] = np.asarray(cap, dtype=float)
     shape = np.broadcast_shapes(*(np.shape(v) for v in q.values()))
     level = np.full(shape, 4)
     for lv in (3, 2, 1):
@@ -165,10 +188,10 @@ def configuration_level(mode_name: str, configuration: str, **quantities):
     return int(out) if np.ndim(out) == 0 else out
 
 
-def level_of(mode_name: str, mode, category: str) -> tuple[int, str]:
+def level_of(mode_name: str, mode, category: str, n_alpha: float | None = None) -> tuple[int, str]:
     """(level, reason): the best Level whose every boundary the mode meets (4 = worse than Level 3),
-    and the first boundary it misses at the next better Level."""
-    q = quantities(mode)
+    and the first boundary it misses at the next better Level (the CAP read with the condition's ``n_alpha``)."""
+    q = quantities(mode, n_alpha)
     missed = ""
     for level in (1, 2, 3):
         bounds = limits_for(mode_name, category, level)
