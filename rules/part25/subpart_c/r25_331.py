@@ -46,7 +46,7 @@ from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Bound, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
-from certkit.models.loads.inputs import SinusoidHold, bisect_batch
+from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
 from certkit.units import KN
@@ -298,65 +298,23 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     available = np.abs(reach_to - de_trim)
     sign = np.where(nose_up, -1.0, 1.0)
     target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
-    dt = float(crit.time_step)
-
-    def simulate_inputs(amp, hold, mask=None, record=False):
-        """Simulate the conditions of ``mask`` (all by default); the response (peak n_z − 1 nose up,
-        1 − lowest n_z nose down) for the whole batch, NaN outside the mask."""
-        idx = np.flatnonzero(np.ones(len(rows), dtype=bool) if mask is None else mask)
-        up = nose_up[idx]
-        sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
-        t_max = 2 * crit.t_max_periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
-        stop = [
-            Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
-            Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
-            Bound("t_max", "t", upper=t_max + 1e-9),
-        ]
-        sub = model if idx.size == len(rows) else model.subset(idx)
-        sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
-        nz = sim["n_z"]
-        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
-        resp = np.full(len(rows), np.nan)
-        resp[idx] = np.where(
-            up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0)
-        )
-        return (resp, sim, valid, t_max) if record else resp
-
-    max_hold = float(crit.max_hold)
-    r_full = simulate_inputs(available, np.zeros(len(rows)))
-    reach = r_full >= target
-    r_held = (
-        np.where(reach, r_full, simulate_inputs(available, np.full(len(rows), max_hold), ~reach))
-        if (~reach).any()
-        else r_full
-    )
-    held_short = ~reach & (r_held < target)  # even the longest hold does not reach the load factor: maximal input
-
-    def inputs_of(p):
-        """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
-        hold fraction of the longest hold (full deflection)."""
-        return np.where(reach, p * available, available), np.where(
-            reach | held_short, 0.0, p * max_hold
-        ) + held_short * max_hold
-
-    search = ~held_short
-    p, r_p, p_lo, _, p_hi, _ = bisect_batch(
-        lambda p, mask: simulate_inputs(*inputs_of(p), mask),
-        np.zeros(len(rows)),
-        np.ones(len(rows)),
-        target - 0.5 * float(crit.load_factor_tolerance),
+    trims = (model, x0, u0)
+    found = checked_maneuver_inputs(
+        *trims,
+        nose_up,
+        omega,
+        available,
+        target,
+        n_limit=n_lim,
+        max_hold=float(crit.max_hold),
+        dt=float(crit.time_step),
+        periods=float(crit.t_max_periods),
         steps=int(crit.search_steps),
-        tol=float(crit.search_resolution),
-        f_lo=np.where(reach, 0.0, r_full),
-        f_hi=np.where(reach, r_full, r_held),
+        tolerance=float(crit.load_factor_tolerance),
+        resolution=float(crit.search_resolution),
     )
-    # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
-    # amplitude search that did not converge (a response that jumps across the target near stall) takes the
-    # largest amplitude found that does not exceed the load factor, as the paragraph scales the input down
-    over = reach & (np.abs(r_p - target) > float(crit.load_factor_tolerance)) & (r_p > target)
-    p = np.where(search & ~reach, p_hi, np.where(search, np.where(over, p_lo, p), 1.0))
-    amp, hold = inputs_of(p)
-    resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
+    amp, hold, reach, held_short = found.amplitude, found.hold, found.reach, found.held_short
+    resp, sim, valid, t_max = found.response, found.sim, found.valid, found.t_max
     loads = airplane_loads(ctx)
     hist = response_loads(loads, sim, model, LOADED, valid=valid)
     unstalled = wing_before_stall(hist, model, sim)

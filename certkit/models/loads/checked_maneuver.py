@@ -1,0 +1,123 @@
+"""The checked pitch manoeuvre's input (14 CFR 25.331(c)(2) as certkit reads it, docs/regulation-notes.md): the
+elevator δ(t) = δ₁ sin ωt from the trim, held at its peak for Δt when the full sinusoid does not reach the load
+factor, found per condition of a batch so that the peak load factor reaches a target — the procedure only; which
+target, frequency and deflection the paragraph asks for are the caller's.
+
+For each condition: the sinusoid at the full ``available`` amplitude (no hold) is run first; if it reaches the
+target, the amplitude is searched (``reach``); if not, the hold at full amplitude is searched up to ``max_hold``
+(``held_short`` when even that does not reach the target: the maximal input). The search (:func:`bisect_batch`,
+regula falsi) aims at the target less half the ``tolerance`` and ends within ``resolution`` of it: the smallest input
+that reaches the load factor, so that near the stall line, where the peak is nearly flat in the amplitude, the input
+does not jump between neighbouring conditions. An amplitude search that did not converge and ends above the target
+takes the largest amplitude found below it; a hold takes the bracket end at or above it.
+
+Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, over the manoeuvre's window (until t_max = ``periods`` ×
+π/(2ω) + Δt, n_z < 0 nose up or n_z > ``n_limit`` nose down end a run).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from certkit.models.dynamics.simulate import Bound, SimulationResult, simulate
+from certkit.models.loads.inputs import SinusoidHold, bisect_batch
+
+
+@dataclass
+class CheckedManeuverInputs:
+    """The inputs found and their recorded simulation: amplitude (rad, magnitude) and hold (s) per condition, which
+    search each took, the response reached, the records, their window and t_max."""
+
+    amplitude: np.ndarray
+    hold: np.ndarray
+    reach: np.ndarray  # the full sinusoid reaches the target: the amplitude was searched
+    held_short: np.ndarray  # even the longest hold does not reach it: the maximal input
+    response: np.ndarray
+    sim: SimulationResult
+    valid: np.ndarray  # (T, n) within each run's window
+    t_max: np.ndarray
+
+
+def checked_maneuver_inputs(
+    model,
+    x0,
+    u0,
+    nose_up,
+    omega,
+    available,
+    target,
+    *,
+    n_limit: float,
+    max_hold: float,
+    dt: float,
+    periods: float,
+    steps: int,
+    tolerance: float,
+    resolution: float,
+) -> CheckedManeuverInputs:
+    """The checked manoeuvre's input of every condition of ``model`` (n) from its trim ``x0``/``u0`` (module
+    docstring): ``nose_up`` (n,) bool, ``omega`` (n,) rad/s, ``available`` (n,) rad of elevator from the trim to the
+    stop the pilot can reach, ``target`` (n,) response to reach."""
+    nose_up = np.asarray(nose_up, dtype=bool)
+    omega, available, target = (np.asarray(a, dtype=float) for a in (omega, available, target))
+    n = nose_up.size
+    sign = np.where(nose_up, -1.0, 1.0)
+    n_lim, periods = float(n_limit), float(periods)
+
+    def simulate_inputs(amp, hold, mask=None, record=False):
+        """Simulate the conditions of ``mask`` (all by default); the response for the whole batch, NaN outside."""
+        idx = np.flatnonzero(np.ones(n, dtype=bool) if mask is None else mask)
+        up = nose_up[idx]
+        sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
+        t_max = 2 * periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
+        stop = [
+            Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
+            Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
+            Bound("t_max", "t", upper=t_max + 1e-9),
+        ]
+        sub = model if idx.size == n else model.subset(idx)
+        sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
+        nz = sim["n_z"]
+        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
+        resp = np.full(n, np.nan)
+        resp[idx] = np.where(
+            up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0)
+        )
+        return (resp, sim, valid, t_max) if record else resp
+
+    max_hold = float(max_hold)
+    r_full = simulate_inputs(available, np.zeros(n))
+    reach = r_full >= target
+    r_held = (
+        np.where(reach, r_full, simulate_inputs(available, np.full(n, max_hold), ~reach)) if (~reach).any() else r_full
+    )
+    held_short = ~reach & (r_held < target)  # even the longest hold does not reach the load factor: maximal input
+
+    def inputs_of(p):
+        """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
+        hold fraction of the longest hold (full deflection)."""
+        return np.where(reach, p * available, available), np.where(
+            reach | held_short, 0.0, p * max_hold
+        ) + held_short * max_hold
+
+    search = ~held_short
+    p, r_p, p_lo, _, p_hi, _ = bisect_batch(
+        lambda p, mask: simulate_inputs(*inputs_of(p), mask),
+        np.zeros(n),
+        np.ones(n),
+        target - 0.5 * float(tolerance),
+        steps=int(steps),
+        tol=float(resolution),
+        f_lo=np.where(reach, 0.0, r_full),
+        f_hi=np.where(reach, r_full, r_held),
+    )
+    # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
+    # amplitude search that did not converge (a response that jumps across the target near stall) takes the
+    # largest amplitude found that does not exceed the load factor, as the paragraph scales the input down
+    over = reach & (np.abs(r_p - target) > float(tolerance)) & (r_p > target)
+    p = np.where(search & ~reach, p_hi, np.where(search, np.where(over, p_lo, p), 1.0))
+    amp, hold = inputs_of(p)
+    resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
+    return CheckedManeuverInputs(amp, hold, reach, held_short, resp, sim, valid, t_max)

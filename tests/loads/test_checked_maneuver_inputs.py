@@ -1,0 +1,45 @@
+"""The checked manoeuvre's input search (certkit.models.loads.checked_maneuver) on the two-surface airplane of
+tests/loads/test_balanced.py: it finds the smallest sinusoid amplitude whose peak load factor reaches the target
+(less half the tolerance, to the resolution) — 1 % less amplitude falls short — and holds the full deflection when
+the full sinusoid does not reach it. The airplane's response is linear in the amplitude here (linear lift, no stall),
+so the peak increment of the found amplitude is the target's share of the full-amplitude peak (superposition)."""
+
+import numpy as np
+import pytest
+
+from certkit.models.dynamics.trim import assemble_state
+from certkit.models.loads.balanced import balanced_states
+from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
+
+from .test_balanced import two_surface
+
+
+def _run(target, available):
+    model = two_surface(10.6)
+    V = np.array([120.0, 120.0])
+    x0 = assemble_state(V, np.zeros(2), 0.0, 0.0, 0.0, 0.0, 0.0)
+    st = balanced_states(model, x0, np.zeros((2, 1)), 1.0)  # the 1 g trim
+    args = dict(n_limit=2.5, max_hold=5.0, dt=0.02, periods=1.5, steps=30, tolerance=0.02, resolution=0.001)
+    return (
+        model,
+        st,
+        checked_maneuver_inputs(
+            model, st.x, st.u, [True, True], [2.0, 2.0], [available, available], [target, target], **args
+        ),
+    )
+
+
+def test_the_smallest_amplitude_that_reaches_the_load_factor():
+    _, _, full = _run(1.5, np.radians(20.0))
+    assert full.reach.all() and (full.amplitude < np.radians(20.0)).all() and (full.hold == 0).all()
+    assert full.response == pytest.approx(1.5 - 0.01, abs=0.001)
+    # 1 % less amplitude available: the sinusoid alone no longer reaches, the input is held at it
+    _, _, less = _run(1.5, 0.99 * float(full.amplitude[0]))
+    assert not less.reach.any() and (less.hold > 0).all()
+
+
+def test_a_sinusoid_that_cannot_reach_is_held():
+    _, _, small = _run(1.5, np.radians(0.5))
+    assert not small.reach.any()
+    assert small.amplitude == pytest.approx(np.radians(0.5))
+    assert (small.hold > 0).all()
