@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from certkit_rules.part25.subpart_c.r25_331 import load_factor_reached
+from certkit_rules.part25.support.pitch_runs import load_factor_reached
 from certkit_rules.part25.support.structural_checks import NO_CAPABILITY, capability_finding, maneuver_limit_load_factor
 
 from certkit.engine.results import Condition
@@ -254,7 +254,8 @@ def test_the_input_near_the_stall_line_does_not_jump_between_neighbouring_design
     elevator amplitude. Two tails 0.5 % apart in area need nearly the same input and carry nearly the same loads:
     the search takes the smallest input that reaches the load factor (within its resolution), not any input the
     ±0.02 g tolerance admits (which gave −22.7° at one and the −30° stop at the other, tail root bending 38 % apart)."""
-    from certkit_rules.part25.subpart_c.r25_331 import CheckedPitchManeuver, checked_maneuver
+    from certkit_rules.part25.subpart_c.r25_331 import CheckedPitchManeuver
+    from certkit_rules.part25.support.pitch_runs import checked_maneuver
 
     from certkit.aircraft import load_aircraft
     from certkit.engine.context import Context

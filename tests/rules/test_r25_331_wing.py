@@ -2,12 +2,9 @@
 wing capability, the wing considered up to the airplane's stall (linear strip loads), and a deficient wing fails."""
 
 import pytest
-from certkit_rules.part25.subpart_c.r25_331 import (
-    WING_STALL_NOTE,
-    CheckedPitchManeuver,
-    MaximumPitchControlDisplacement,
-)
+from certkit_rules.part25.subpart_c.r25_331 import CheckedPitchManeuver, MaximumPitchControlDisplacement
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
+from certkit_rules.part25.support.pitch_runs import WING_STALL_NOTE
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context

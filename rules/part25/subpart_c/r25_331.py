@@ -20,136 +20,41 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from functools import partial
-
 import numpy as np
-from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, fuelled_wing_envelope
+from certkit_rules.part25.support.fuel_states import fuelled_wing, fuelled_wing_envelope
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.pitch_runs import (
+    CHECKED_CONDITIONS,
+    CHECKED_CRITERIA,
+    LOADED,
+    NOTHING_TRIMMED,
+    PILOT_EFFORT,
+    PRODUCED,
+    PitchManeuverRun,
+    _effort_note,
+    _label,
+    checked_runs,
+    wing_before_stall,
+    wing_finding,
+)
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
     beyond_mach_range,
     capability_finding,
     condition_mach,
     control_stops,
-    critical_state_finding,
     entry_speeds,
     force_limited_deflection,
-    maneuver_limit_load_factor,
     set_aside_finding,
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads, SimulationRule, rule
-from certkit.engine.results import Finding, LoadsRun
-from certkit.models.dynamics.linearize import linearize
-from certkit.models.dynamics.modes import identify_modes
+from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.models.dynamics.simulate import Bound, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
-from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
+from certkit.models.loads.response import LoadEnvelope, response_loads
 from certkit.units import KN
-
-REG_NOTES = "docs/regulation-notes.md §25.331(c)"
-PILOT_EFFORT_NOTE = (
-    "no control-force model is declared (control_forces.elevator): the pilot-effort limit of §25.397 "
-    "(300 lbf elevator wheel) cannot reduce the deflection; the control-system stop (travel) bounds it"
-)
-PILOT_EFFORT = {
-    "pilot_effort_lbf": Criterion(
-        300.0,
-        "lbf",
-        "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
-        "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
-        "data (§25.397(b))",
-        "limit pilot force on the pitch control (used with control_forces.elevator)",
-    )
-}
-
-
-def _effort_note(limited, i) -> str:
-    if limited is None:
-        return PILOT_EFFORT_NOTE
-    return (
-        "deflection limited by the pilot effort (control_forces.elevator)"
-        if limited[i]
-        else "control-system stop (travel) reached below the pilot-effort force"
-    )
-
-
-# --------------------------------------------------------------------------- wing loads
-
-#: the surfaces whose loads the §25.331(c) manoeuvres compute (the tail's window of time also bounds the wing's)
-LOADED = ("horizontal_tail", "wing")
-#: … their station loads, and the elevator's hinge moments along the manoeuvre (the elevator actuators' design case)
-PRODUCED = tuple(Loads(s) for s in LOADED) + (Loads("elevator", HINGE_MOMENT),)
-
-
-@dataclass
-class PitchManeuverRun(LoadsRun):
-    """A pitch manoeuvre's run: the batch's records with the station loads of :data:`LOADED` along them (``loads``:
-    surface → (n_t, n, 3, S), NaN outside the considered window), the input kind of each condition (``kind``:
-    0 scaled sinusoid, 1 held input, 2 maximal held input; None for a single kind) and the tail's station names."""
-
-    loads: dict = field(default_factory=dict)
-    kind: object = None
-    stations: tuple = ()
-
-
-NOTHING_TRIMMED = "no condition could be trimmed (see the findings)"
-
-
-WING_STALL_NOTE = (
-    "wing loads considered while the airplane's linear lift is below CLmax: the strip loads are linear "
-    "in α, past the stall they overstate the wing's lift (which the airplane model rounds onto CLmax)"
-)
-
-
-def wing_before_stall(hist, model, sim) -> np.ndarray | None:
-    """Blank the wing's loads of ``hist`` where the airplane is past its stall (:func:`below_stall`); returns the
-    (nt, n) mask of the times kept (None without a stall model)."""
-    keep = below_stall(model, sim)
-    if keep is not None:
-        hist["wing"] = np.where(keep[:, :, None, None], hist["wing"], np.nan)
-    return keep
-
-
-def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: bool = False, **details) -> Finding:
-    """The wing's finding of condition ``i`` of a manoeuvre's envelope (its loads in the same time window as the
-    tail's, up to the stall) against the declared wing capability, in the critical fuel state (``fuelled``:
-    :func:`fuelled_wing`'s peaks, names and fuel)."""
-    if stalled:
-        details["wing_window"] = WING_STALL_NOTE
-    peaks, names, fuel = fuelled
-    return critical_state_finding(
-        cond,
-        f"{check}, wing",
-        "wing",
-        peaks[:, i],
-        env.stations["wing"],
-        declared_capabilities(ctx, "wing"),
-        crit.ultimate_factor,
-        partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)),
-        **details,
-    )
-
-
-def _modes_frequency(batch) -> np.ndarray:
-    lin = linearize(batch.model, batch.x, batch.u)
-    out = np.full(batch.n, np.nan)
-    for i in range(batch.n):
-        sp = identify_modes(lin, i).get("short_period")
-        if sp is not None and np.isfinite(sp.natural_frequency):
-            out[i] = sp.natural_frequency
-    return out
-
-
-def _label(cond) -> str:
-    return cond.label()
-
-
-# --------------------------------------------------------------------------- (c)(2) checked manoeuvre
 
 
 @rule
@@ -180,44 +85,8 @@ class CheckedPitchManeuver(SimulationRule):
     """
     references = ("25.331(c)(1)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VD", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
-    criteria = {
-        "omega_floor_factor": Criterion(
-            0.5, "", "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")", "ω ≥ factor × π V/VA (rad/s), i.e. πV/(2VA)"
-        ),
-        "t_max_periods": Criterion(
-            1.5,
-            "",
-            "14 CFR 25.331(c)(2) (UNVERIFIED, " + REG_NOTES + ")",
-            "t_max = factor × π/ω without hold (3π/(2ω))",
-        ),
-        "max_hold": Criterion(5.0, "s", "14 CFR 25.331(c)(2)(iii) (verified fragment)", "longest hold Δt at the peak"),
-        "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
-        "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
-        "search_steps": Criterion(10, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
-        "load_factor_tolerance": Criterion(
-            0.02,
-            "",
-            "certkit numerical choice",
-            "|n_peak − n_target| accepted (also the allowance on the §25.337 limit of the load-factor check)",
-        ),
-        "search_resolution": Criterion(
-            0.002,
-            "",
-            "certkit numerical choice",
-            "the input search ends within this of the load factor: near the stall line the peak load factor is "
-            "nearly flat in the amplitude, and a search stopped anywhere within the tolerance would pick inputs "
-            "(and tail loads) that jump from one design to the next",
-        ),
-        **SAFETY,
-        **PILOT_EFFORT,
-    }
-    conditions = ConditionSpace(
-        loading=CgCorners(),
-        configurations=("clean",),
-        altitudes=EnvelopeAltitudes(),
-        extra=(("entry_speed", ("VA", "VC", "VD")), ("direction", ("nose up", "nose down"))),
-        note="Entry speeds VA, VC and VD in EAS, each Mach-limited at altitude (VA ≤ VC).",
-    )
+    criteria = CHECKED_CRITERIA
+    conditions = CHECKED_CONDITIONS
     limitations = (
         "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
         "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
@@ -244,7 +113,7 @@ class CheckedPitchManeuver(SimulationRule):
     )
 
     def simulate(self, ctx, conditions, crit):
-        return checked_maneuver(ctx, conditions, crit)
+        return checked_runs(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
         return pitch_evidence(self.run, ctx, crit, "checked manoeuvre")
@@ -261,192 +130,6 @@ def pitch_evidence(run: PitchManeuverRun | None, ctx, crit, what: str) -> list:
     return maneuver_evidence(run, "horizontal_tail", "elevator", allow=allow) + envelope_evidence(
         run.envelope, ("wing",), what, plot=False, allow=allow
     )
-
-
-def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
-    """Batch simulation of every checked-manoeuvre condition; returns findings, the envelope and the
-    histories of the final inputs (for evidence)."""
-    n_lim = ctx.aircraft.envelope.limit_load_factors.positive
-    va_decl = float(ctx.design_speed_eas("VA", 0.0)[0])
-    entries, key_of = [], {}
-    for c in conditions:
-        key = (c.loading, c.altitude, c.get("entry_speed"))
-        if key not in key_of:
-            v = entry_speeds(ctx, c.altitude, [c.get("entry_speed")])[c.get("entry_speed")]
-            key_of[key] = len(entries)
-            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None))
-    batch = trimmed_batch(ctx, [e.with_() for e in entries])
-    rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries]
-    )
-    findings = refusal_findings(refused, lambda c: ["(c)(2) checked manoeuvre"])
-    if not rows.size:
-        return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
-    omega_sp = _modes_frequency(batch)[rows]
-    model = batch.model.subset(rows)
-    x0, u0 = batch.x[rows], batch.u[rows]
-    nose_up = np.array([c.get("direction") == "nose up" for c in sim_conds])
-    v_eas = np.array([c.speed for c in sim_conds])
-    omega_floor = crit.omega_floor_factor * np.pi * v_eas / va_decl
-    omega = np.fmax(np.nan_to_num(omega_sp, nan=0.0), omega_floor)
-    lim = control_stops(ctx, "elevator")
-    de_trim = u0[:, model.control_names.index("elevator")]
-    stop = np.where(nose_up, lim[0], lim[1])
-    reach_to, effort_limited = force_limited_deflection(
-        ctx, "elevator", sim_conds, de_trim, stop, crit.pilot_effort_lbf
-    )
-    available = np.abs(reach_to - de_trim)
-    sign = np.where(nose_up, -1.0, 1.0)
-    target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
-    trims = (model, x0, u0)
-    found = checked_maneuver_inputs(
-        *trims,
-        nose_up,
-        omega,
-        available,
-        target,
-        n_limit=n_lim,
-        max_hold=float(crit.max_hold),
-        dt=float(crit.time_step),
-        periods=float(crit.t_max_periods),
-        steps=int(crit.search_steps),
-        tolerance=float(crit.load_factor_tolerance),
-        resolution=float(crit.search_resolution),
-    )
-    amp, hold, reach, held_short = found.amplitude, found.hold, found.reach, found.held_short
-    resp, sim, valid, t_max = found.response, found.sim, found.valid, found.t_max
-    loads = airplane_loads(ctx)
-    hist = response_loads(loads, sim, model, LOADED, valid=valid)
-    unstalled = wing_before_stall(hist, model, sim)
-    stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-    fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
-    env = fuelled_wing_envelope(
-        LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in sim_conds], keys=sim_conds), fuelled[0]
-    )
-    stations = loads["horizontal_tail"].station_names
-    caps = declared_capabilities(ctx, "horizontal_tail")
-    for i, c in enumerate(sim_conds):
-        converged = abs(resp[i] - target[i]) <= float(crit.load_factor_tolerance)
-        kind = (
-            (
-                "sinusoid, amplitude scaled to the load factor"
-                if converged
-                else f"sinusoid, the largest amplitude found below the load factor (search not converged in "
-                f"{int(crit.search_steps)} steps)"
-                if resp[i] < target[i]
-                else f"sinusoid, amplitude search not converged in {int(crit.search_steps)} steps"
-            )
-            if reach[i]
-            else "held at full deflection for the longest hold (load factor not reached)"
-            if held_short[i]
-            else "held at full deflection, minimum hold to the load factor"
-        )
-        peak_nz = float(
-            np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
-            if nose_up[i]
-            else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
-        )
-        reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
-        beyond_mach = beyond_mach_range(loads, condition_mach(c))
-        if beyond_mach:
-            findings += [
-                set_aside_finding(
-                    c,
-                    f"(c)(2) checked manoeuvre, {c.get('direction')}",
-                    beyond_mach,
-                    env.peaks["horizontal_tail"][i],
-                    stations,
-                    peak_n_z=round(peak_nz, 4),
-                    input=kind,
-                ),
-                set_aside_finding(
-                    c,
-                    f"(c)(2) checked manoeuvre, {c.get('direction')}, wing",
-                    beyond_mach,
-                    fuelled[0][:, i],
-                    env.stations["wing"],
-                    peak_n_z=round(peak_nz, 4),
-                ),
-            ]
-            continue
-        findings.append(
-            capability_finding(
-                c,
-                f"(c)(2) checked manoeuvre, {c.get('direction')}",
-                "horizontal_tail",
-                env.peaks["horizontal_tail"][i],
-                stations,
-                caps,
-                crit.ultimate_factor,
-                delta1_deg=round(float(np.degrees(sign[i] * amp[i])), 3),
-                omega_rad_s=round(float(omega[i]), 4),
-                omega_short_period=round(float(np.nan_to_num(omega_sp[i])), 4),
-                hold_s=round(float(hold[i]), 3),
-                t_max_s=round(float(t_max[i]), 3),
-                stop=sim.stop_reason[i] or "end",
-                pilot_effort=_effort_note(effort_limited, i),
-                **reached,
-            )
-        )
-        findings.append(
-            wing_finding(
-                ctx,
-                c,
-                f"(c)(2) checked manoeuvre, {c.get('direction')}",
-                env,
-                i,
-                crit,
-                fuelled,
-                bool(stalled[i]),
-                input=kind,
-                peak_n_z=round(peak_nz, 4),
-            )
-        )
-        if beyond is not None:
-            findings.append(beyond)
-    return PitchManeuverRun(
-        findings,
-        sim_conds,
-        sim,
-        valid,
-        envelope=env,
-        loads=hist,
-        kind=np.where(reach, 0, np.where(held_short, 2, 1)),
-        stations=stations,
-    )
-
-
-def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
-    """The load factor the checked manoeuvre reached (highest nose up, lowest nose down, within the loads' window)
-    against the §25.337 limit at its speed, as details of the condition's findings (the input is scaled to reach that
-    limit: being on it is how the manoeuvre is built, not a verdict). A finding only when the peak goes beyond the
-    limit + the search tolerance: "fails" after a converged search, not evaluated when the search did not converge
-    (its loads are conservative, the manoeuvre is not the paragraph's). Returns (details, finding or None)."""
-    n_lim = maneuver_limit_load_factor(ctx, cond.speed, cond.altitude, nose_up)
-    tol = float(crit.load_factor_tolerance)
-    details = dict(peak_n_z=round(peak_nz, 4), limit_load_factor=round(n_lim, 4), search_tolerance=tol, input=kind)
-    if nose_up and peak_nz < n_lim - tol:
-        details["load_factor_note"] = (
-            "the positive limit load factor is not reached with the available elevator and "
-            "the longest hold (§25.331(c)(2)(iii) maximal input)"
-        )
-    limit = n_lim + tol if nose_up else n_lim - tol
-    if not (peak_nz > limit if nose_up else peak_nz < limit):
-        return details, None
-    check = f"(c)(2) load factor beyond the §25.337 limit, {cond.get('direction')}"
-    if not settled:
-        return details, Finding.not_evaluated(
-            cond,
-            check,
-            f"amplitude search not converged: peak n_z {peak_nz:.3f} is "
-            f"beyond the §25.337 limit {n_lim:.3f} (loads of this condition are "
-            "conservative)",
-            **details,
-        )
-    return details, Finding.compare(cond, check, peak_nz, limit, at_least=not nose_up, unit="g", **details)
-
-
-# --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
 
 
 @rule
