@@ -62,6 +62,7 @@ class CheckedPitchManeuver(SimulationRule):
     id = "25.331(c)(2)"
     produces = PRODUCED
     cost = 5  # relative evaluation time (orders work over --jobs processes)
+    run_with = "discrete-gust"  # §25.427(b) splits these runs' tail loads: one process simulates them once
     symbol = "checked-pitch-maneuver"
     title = "Checked pitch manoeuvre between VA and VD"
     amendment = "25-141"

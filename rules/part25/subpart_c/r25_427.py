@@ -11,9 +11,10 @@ separately on the surface on one side of the plane of symmetry; and (2) 80 perce
 other side." Every symmetric condition is split (the maximum loading is among them); the fractions apply to the
 air load, the inertial load of each half stays (:func:`certkit.models.loads.unsymmetrical.unsymmetrical_tail`).
 
-Sources of the symmetric loadings: the §25.331(b) balanced manoeuvres and the §25.341(a) gusts (the same runs, shared
-in one process with §25.341(a) and §25.349(b)). The §25.331(c) pitch manoeuvres are not included (their runs are not
-shared with this rule): said by a not-evaluated finding. The fuselage torsion at the tail is compared with a declared
+Sources of the symmetric loadings: the §25.331(b) balanced manoeuvres, the §25.331(c)(2) checked manoeuvres and the
+§25.341(a) gusts (the same runs, shared in one process with §25.331(b), §25.331(c)(2), §25.341(a) and §25.349(b)),
+each along the time window its paragraph considers. The §25.331(c)(1) maximum pitch control displacement is not
+included: said by a not-evaluated finding. The fuselage torsion at the tail is compared with a declared
 ``structure.fuselage`` capability (station ``tail``, quantity ``torsion``); without one it is reported, not evaluated.
 """
 
@@ -30,21 +31,25 @@ from certkit_rules.part25.support.balanced_runs import (
     balanced_runs,
 )
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
+from certkit_rules.part25.support.pitch_runs import CHECKED_CONDITIONS, CHECKED_CRITERIA, checked_runs
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
 
 from certkit.engine.conditions import ConditionSpace
 from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.engine.results import Condition, Finding, LoadsRun
 from certkit.models.loads.capability import declared_capabilities
+from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 
 TAIL = "horizontal_tail"
 #: the condition spaces of the symmetric loads rules whose tail loads are split
-SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
+SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.331(c)(2)": CHECKED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
+#: the condition axes that name a condition of each source beside its loading, configuration and altitude
+KEY_AXES = {"25.331(b)": ("point",), "25.331(c)(2)": ("entry_speed", "direction"), "25.341(a)": ("speed_point", "gust")}
 REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
 NOT_SHARED = (
-    "the §25.331(c)(1) and (c)(2) pitch manoeuvres' tail loads are not among the symmetric loadings split "
-    "here (their runs are not shared with this rule); on the baseline §25.331(c)(2) gives the largest tail loads"
+    "the §25.331(c)(1) maximum pitch control displacement's tail loads are not among the symmetric loadings split "
+    "here (its runs are not shared with this rule)"
 )
 NO_FUSELAGE = (
     "no fuselage torsion capability at the tail is declared (structure.fuselage, station tail, quantity "
@@ -52,7 +57,7 @@ NO_FUSELAGE = (
 )
 
 LIMITATIONS = (
-    "Symmetric loadings from §25.331(b) and §25.341(a) only (not §25.331(c)); every symmetric condition is "
+    "Symmetric loadings from §25.331(b), §25.331(c)(2) and §25.341(a) (not §25.331(c)(1)); every symmetric condition is "
     "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
     "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
     "at the tail is declared."
@@ -86,8 +91,7 @@ def _untag(c: Condition) -> Condition:
 
 
 def _key(c: Condition, source: str):
-    axis = ("point",) if source == "25.331(b)" else ("speed_point", "gust")
-    return (c.loading, c.configuration, c.altitude) + tuple(c.get(a) for a in axis)
+    return (c.loading, c.configuration, c.altitude) + tuple(c.get(a) for a in KEY_AXES[source])
 
 
 @rule
@@ -114,6 +118,7 @@ class UnsymmetricalTailLoads(SimulationRule):
     requires = BALANCED_REQUIRES + ("speeds.VB",)
     criteria = {
         **BALANCED_RUN_CRITERIA,
+        **CHECKED_CRITERIA,
         **GUST_RUN_CRITERIA,
         "full_side_fraction": Criterion(1.0, "", REG + " (b)(1)", "fraction of the tail air load on one side"),
         "reduced_side_fraction": Criterion(0.8, "", REG + " (b)(2)", "fraction of the tail air load on the other side"),
@@ -125,7 +130,7 @@ class UnsymmetricalTailLoads(SimulationRule):
     unevaluated = (
         (
             "25.427(b)(1)",
-            "the §25.331(c) pitch-manoeuvre tail loads are not split (balanced manoeuvres and gusts only)",
+            "the §25.331(c)(1) maximum pitch control displacement's tail loads are not split",
         ),
     )
 
@@ -155,6 +160,11 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
         if run.simulated:
             aero, inertia = run.tail_parts
             parts.append(("25.331(b)", aero[None], inertia[None], run.conditions))
+    if "25.331(c)(2)" in by_source:
+        run = checked_runs(ctx, by_source["25.331(c)(2)"], crit)
+        if run.simulated:
+            aero, inertia = run.tail_parts(airplane_loads(ctx))
+            parts.append(("25.331(c)(2)", aero, inertia, run.conditions))
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)
         if runs.conditions:  # every gradient's time history one after the other
@@ -200,7 +210,6 @@ def fuselage_torsion_finding(cond, capabilities, t_lo: float, t_hi: float, ultim
 
 
 def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
-    from certkit.models.loads.model import airplane_loads
     from certkit.models.loads.response import LoadEnvelope
 
     loads = airplane_loads(ctx)

@@ -33,7 +33,7 @@ from certkit.models.dynamics.modes import identify_modes
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, below_stall, response_loads
+from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts, response_loads
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 PILOT_EFFORT_NOTE = (
@@ -79,6 +79,14 @@ class PitchManeuverRun(LoadsRun):
     loads: dict = field(default_factory=dict)
     kind: object = None
     stations: tuple = ()
+    model: object = None  # the flight model of the simulated conditions (their CGs, inertia, reference lengths)
+
+    def tail_parts(self, loads) -> tuple[np.ndarray, np.ndarray]:
+        """The right half tailplane's (aerodynamic, inertial) station loads along the runs, each (n_t, n, 3, S),
+        NaN outside the window the paragraph considers (what §25.427(b) splits)."""
+        aero, inertia = response_load_parts(loads, self.records, self.model, ("horizontal_tail",))["horizontal_tail"]
+        keep = np.asarray(self.valid, dtype=bool)[:, :, None, None]
+        return np.where(keep, aero, np.nan), np.where(keep, inertia, np.nan)
 
 
 NOTHING_TRIMMED = "no condition could be trimmed (see the findings)"
@@ -325,6 +333,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         loads=hist,
         kind=np.where(reach, 0, np.where(held_short, 2, 1)),
         stations=stations,
+        model=model,
     )
 
 
