@@ -54,7 +54,7 @@ def test_justified_cn_factor_override(tmp_path):
     r = run_rule("25.335(c)", tmp_path, [("\nsources:\n", "\n" + override + "sources:\n")])
     f = by_mass(r, 657_000)
     assert f.limit / KN == pytest.approx(252.86, abs=0.01)
-    assert r.overrides["cn_over_cl"] == {"default": 1.0, "value": 1.1, "justification": why}
+    assert r.overrides["cn_over_cl"] == {"default": 1.0, "value": 1.1, "unit": "", "justification": why}
 
 
 def test_vb_hand_calculation_with_the_498_formula(ctx):
