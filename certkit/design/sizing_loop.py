@@ -8,9 +8,10 @@ tail group for the union of the envelopes seen so far (so the structure carries 
 The sized group (box, secondary structure, elevator and actuators) replaces the tail's component in the mass table
 and its box becomes the tail's declared structural capability at every station.
 
-A changed design's first iteration evaluates the declared airplane's near-critical conditions only (those whose tail
-load or elevator hinge moment reaches :data:`START_FRACTION` of its largest); the later ones evaluate every
-condition. The loop ends, after an iteration over every condition, when the group mass changes by less than the
+A changed design's first iterations evaluate the declared airplane's near-critical conditions only (those whose tail
+load or elevator hinge moment reaches :data:`START_FRACTION` of its largest), until the group's mass moves by less
+than the tolerance (each such pass costs about a third of a full one: the first takes the mass most of the way, the
+second the load–mass coupling's 5–15 kg); the later ones evaluate every condition. The loop ends, after an iteration over every condition, when the group mass changes by less than the
 declared tolerance and the loads of the airplane carrying it stay within what it was sized for (the box is sized
 for the envelope × (1 + LOAD_ALLOWANCE)); then the loads rules' results of that last iteration are final. A loop
 that does not converge within the declared number of iterations raises :class:`SizingNotConverged` with its
@@ -317,7 +318,9 @@ def size_horizontal_tail_loop(
             }
         )
         if partial:
-            partial = False
+            # the near-critical passes go on while the group's mass still moves by more than the tolerance (each
+            # costs a third of a full pass); a full pass follows at the mass they settle on
+            partial = abs(change) >= spec.tolerance_kg
         elif k > 0 and abs(change) < spec.tolerance_kg and within:
             for r in results:
                 r.run = None  # the simulations are not needed any more
