@@ -141,6 +141,13 @@ def test_impossible_designs_masked_before_monte_carlo_and_optima():
     validity = fit_validity(frame, study)
     assert validity.n_infeasible == int((frame["status"] == "failed").sum()) > 20
     assert validity.missed + validity.false_alarms <= 0.03 * validity.n_cases
+    # the classifier as the profiler page evaluates it: the same log-odds as scikit-learn's, the same verdicts
+    from certkit.study.analysis.validity import validity_log_odds
+
+    probe = study.bounds[:, 0] + (study.bounds[:, 1] - study.bounds[:, 0]) * np.random.default_rng(9).random((500, 8))
+    z = validity_log_odds(validity.export(), probe)
+    np.testing.assert_allclose(z, -validity.margin(probe), rtol=1e-9, atol=1e-9)
+    assert ((z <= 0) == validity.valid(probe)).all() and (z > 0).any() and (z <= 0).any()
     ok = frame["status"] == "ok"
     x = frame.loc[ok, [f"var:{v.path}" for v in study.variables]].to_numpy()
     y = frame.loc[ok, "resp:objective.cruise_CD"].to_numpy()

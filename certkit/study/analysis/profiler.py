@@ -19,11 +19,14 @@ from certkit.study.spec import Study
 OVERHANG = 0.1
 
 
-def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None) -> dict:
+def profiler_data(
+    study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None, validity=None
+) -> dict:
     """Everything the page needs: variables with bounds and slider range, the responses' exported models
-    with their thresholds and flags, and the starting point (the baseline unless given). Values are SI; each
-    variable and response carries the ``factor`` (SI per shown unit) and ``unit`` it is shown in, a response its
-    words (``title``)."""
+    with their thresholds and flags, the classifier of possible designs (``validity``,
+    :meth:`certkit.study.analysis.validity.Validity.export`; None when nothing is masked) and the starting point
+    (the baseline unless given). Values are SI; each variable and response carries the ``factor`` (SI per shown
+    unit) and ``unit`` it is shown in, a response its words (``title``)."""
     start = study.baseline if start is None else np.asarray(start, dtype=float)
     limits = {c.response: (c.min, c.max) for c in study.constraints}
     names = [o.response for o in study.objectives] + study.profiled_constraints()
@@ -63,7 +66,8 @@ def profiler_data(study: Study, surrogates: dict[str, Surrogate], start: np.ndar
                 "factor": display_factor(v.unit_label),
             }
         )
-    return {"variables": variables, "responses": responses}
+    classifier = validity.export() if validity is not None else None
+    return {"variables": variables, "responses": responses, "validity": classifier}
 
 
 def profiler_json(data: dict) -> str:

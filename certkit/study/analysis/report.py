@@ -170,7 +170,7 @@ def analyse(
         direct,
         check_note,
         checked[: len(optima)],
-        profiler_data(every, surrogates),
+        profiler_data(every, surrogates, validity=validity),
         timings,
         validity,
         nsga,

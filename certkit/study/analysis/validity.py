@@ -52,6 +52,24 @@ class Validity:
             return np.ones(len(x), dtype=bool)
         return self.estimator.predict(to_unit(x, self.bounds)) == 0
 
+    def export(self) -> dict | None:
+        """The classifier as data the profiler page evaluates (None: every design taken as possible): the inputs
+        mapped to [−1, 1] over ``lo``/``hi``, the polynomial ``terms`` ([[variable, power], …] per feature), the
+        scaler's ``mean``/``scale`` and the logistic ``coef``/``intercept``; the log-odds of impossible is
+        intercept + Σ coef (feature − mean) / scale, impossible where it is positive (:func:`validity_log_odds`)."""
+        if self.estimator is None:
+            return None
+        poly, scaler, logistic = (step for _, step in self.estimator.steps)
+        return {
+            "lo": [float(v) for v in self.bounds[:, 0]],
+            "hi": [float(v) for v in self.bounds[:, 1]],
+            "terms": [[[int(i), int(p)] for i, p in enumerate(row) if p] for row in poly.powers_],
+            "mean": [float(v) for v in scaler.mean_],
+            "scale": [float(v) for v in scaler.scale_],
+            "coef": [float(v) for v in logistic.coef_[0]],
+            "intercept": float(logistic.intercept_[0]),
+        }
+
     def margin(self, x: np.ndarray) -> np.ndarray:
         """A smooth margin, ≥ 0 where the design is classed as possible (minus the classifier's log-odds of
         impossible): the optimiser's constraint."""
@@ -114,3 +132,18 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
         f"impossible taken as possible, {alarms} possible taken as impossible"
     )
     return Validity(bounds, estimator, len(y), n_bad, missed, alarms, note)
+
+
+def validity_log_odds(doc: dict, x: np.ndarray) -> np.ndarray:
+    """The log-odds of impossible of an exported classifier (:meth:`Validity.export`) at the rows of ``x`` (SI),
+    with the arithmetic of the profiler page."""
+    x = np.atleast_2d(np.asarray(x, dtype=float))
+    lo, hi = np.asarray(doc["lo"]), np.asarray(doc["hi"])
+    u = (x - lo) * (2.0 / (hi - lo)) - 1.0
+    out = np.full(len(x), doc["intercept"])
+    for k, term in enumerate(doc["terms"]):
+        feature = np.ones(len(x))
+        for i, p in term:
+            feature = feature * u[:, i] ** p
+        out += doc["coef"][k] * (feature - doc["mean"][k]) / doc["scale"][k]
+    return out

@@ -139,7 +139,35 @@
       "data-slope": String(slope)}, body);
   }
 
+  // the classifier of possible designs (a logistic regression on a polynomial of the variables), as
+  // certkit.study.analysis.validity.validity_log_odds evaluates it
+  function logOdds(doc, point) {
+    var s = doc.intercept, i, k;
+    for (k = 0; k < doc.coef.length; k++) {
+      var f = 1.0, term = doc.terms[k];
+      for (i = 0; i < term.length; i++) {
+        var u = (point[term[i][0]] - doc.lo[term[i][0]]) * (2.0 / (doc.hi[term[i][0]] - doc.lo[term[i][0]])) - 1.0;
+        f *= Math.pow(u, term[i][1]);
+      }
+      s += doc.coef[k] * (f - doc.mean[k]) / doc.scale[k];
+    }
+    return s;
+  }
+  var possible = document.createElement("p");
+  possible.id = "pvalid";
+  root.insertBefore(possible, root.firstChild);
+
   function update() {
+    if (data.validity) {
+      var z = logOdds(data.validity, x), p = 1.0 / (1.0 + Math.exp(-z));
+      possible.setAttribute("data-impossible", z > 0 ? "1" : "0");
+      possible.textContent = (z > 0 ? "Impossible planform at this point" : "Possible aircraft at this point") +
+        " (classifier of the study's infeasible cases: P(impossible) = " + p.toFixed(3) + ")" +
+        (z > 0 ? ": the predictions below are not a design." : ".");
+    } else {
+      possible.setAttribute("data-impossible", "0");
+      possible.textContent = "No impossible design among the cases: every point is taken as a possible aircraft.";
+    }
     vars.forEach(function (v, i) {
       var out = document.getElementById("pvalue-" + i);
       out.textContent = fmt(x[i] / (v.factor || 1)) + (v.unit ? " " + v.unit : "") + ((x[i] < v.lower || x[i] > v.upper) ? " (outside the sampled region)" : "");
