@@ -123,7 +123,8 @@ def evaluate_design(
 
     ``responses``: names or glob patterns of the responses wanted (None: all); rules no response needs are skipped
     (the horizontal-tail loads rules always run: the sizing needs them). ``jobs`` > 1 spreads each pass of rules
-    over that many forked processes (the record is the same; a study runs one design per core instead). Raises :class:`DesignError` (a user error)
+    over that many forked processes (the record is the same; a study runs one design per core instead). Raises
+    :class:`DesignError` (a user error)
     for an unknown path, a wrong value or an impossible planform; any other exception is a failure of this design.
 
     Returns ``{"schema", "certkit_version", "aircraft": {name, sha256}, "variables": {path: SI}, "responses":

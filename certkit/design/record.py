@@ -56,7 +56,8 @@ def _worse(status_a: str | None, status_b: str) -> str:
 
 
 def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dict, dict]:
-    """(responses, statuses) of rule results (:class:`certkit.engine.results.RuleResult`); ``travel`` maps a control name
+    """(responses, statuses) of rule results (:class:`certkit.engine.results.RuleResult`); ``travel`` maps a control
+    name
     to its mechanical (min, max) deflection in rad."""
     responses: dict[str, float | None] = {}
     statuses: dict[str, str] = {}

@@ -11,7 +11,8 @@ and its box becomes the tail's declared structural capability at every station.
 A changed design's first iterations evaluate the declared airplane's near-critical conditions only (those whose tail
 load or elevator hinge moment reaches :data:`START_FRACTION` of its largest), until the group's mass moves by less
 than the tolerance (each such pass costs about a third of a full one: the first takes the mass most of the way, the
-second the load–mass coupling's 5–15 kg); the later ones evaluate every condition. The loop ends, after an iteration over every condition, when the group mass changes by less than the
+second the load–mass coupling's 5–15 kg); the later ones evaluate every condition. The loop ends, after an iteration
+over every condition, when the group mass changes by less than the
 declared tolerance and the loads of the airplane carrying it stay within what it was sized for (the box is sized
 for the envelope × (1 + LOAD_ALLOWANCE)); then the loads rules' results of that last iteration are final. A loop
 that does not converge within the declared number of iterations raises :class:`SizingNotConverged` with its

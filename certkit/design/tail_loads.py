@@ -1,7 +1,8 @@
 """The horizontal-tail load envelope the structure is sized for, from the Subpart C rules' own runs.
 
 Every rule that declares it produces station loads of the ``horizontal_tail`` (``Rule.produces``; the pitch
-manoeuvres, discrete gusts and rolling conditions of the built-in rules) keeps the load envelopes of its conditions; this module reduces them to the largest
+manoeuvres, discrete gusts and rolling conditions of the built-in rules) keeps the load envelopes of its conditions;
+this module reduces them to the largest
 limit-load magnitude of each quantity (shear, bending, torsion) at each station of the tail, with the rule and
 condition that set it (the loads engineer's critical-case list). Ultimate = 1.5 × limit (§25.303).
 """

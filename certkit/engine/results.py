@@ -262,8 +262,10 @@ class Finding:
 @dataclass
 class Evidence:
     """A figure and/or a table attached to a rule result, as data (:mod:`certkit.engine.evidence`): ``figure`` a
-    :class:`~certkit.engine.evidence.Chart`, :class:`~certkit.engine.evidence.Bars` or :class:`~certkit.engine.evidence.Heatmap`,
-    ``table`` a :class:`~certkit.engine.evidence.Table` (a list of dicts is turned into one). The report draws the figure
+    :class:`~certkit.engine.evidence.Chart`, :class:`~certkit.engine.evidence.Bars` or
+    :class:`~certkit.engine.evidence.Heatmap`,
+    ``table`` a :class:`~certkit.engine.evidence.Table` (a list of dicts is turned into one). The report draws the
+    figure
     into ``svg`` (:func:`certkit.report.figures.render_evidence`)."""
 
     title: str

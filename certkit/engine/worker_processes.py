@@ -1,6 +1,7 @@
 """Worker processes that end with the process that started them.
 
-A worker of a process pool (:mod:`certkit.engine.scheduler`, :mod:`certkit.design.parallel`) calls :func:`die_with_parent`
+A worker of a process pool (:mod:`certkit.engine.scheduler`, :mod:`certkit.design.parallel`) calls
+:func:`die_with_parent`
 first: on Linux the kernel sends it SIGKILL when its parent ends, however it ends (``prctl(PR_SET_PDEATHSIG)``,
 see prctl(2)); elsewhere a daemon thread checks the parent every second. Workers ignore SIGINT: Ctrl-C reaches the
 whole foreground process group, and the coordinator alone answers it (it stops the pool with :func:`stop_pool` and

@@ -252,7 +252,8 @@ def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name
     """Straight, wings-level trims of one batch in the configuration of ``aero`` (an
     :class:`certkit.models.aero.airplane.AirplaneAero`) at the masses (kg), one CG station (m), altitudes (m) and true
     airspeeds (m/s), with the design control limits of that configuration: the trims a
-    :class:`certkit.engine.context.Context` would make for the same conditions, for models that hold no Context (the mission).
+    :class:`certkit.engine.context.Context` would make for the same conditions, for models that hold no Context (the
+    mission).
     Each distinct mass is loaded once."""
     from certkit.models.dynamics.trim import trim
     from certkit.models.mass.loading import solve_loading

@@ -1,4 +1,5 @@
-"""Draw evidence data (:mod:`certkit.engine.evidence`) as inline SVG (:mod:`certkit.report.svg`), every figure with the same
+"""Draw evidence data (:mod:`certkit.engine.evidence`) as inline SVG (:mod:`certkit.report.svg`), every figure with the
+same
 conventions:
 
 - colours from the Okabe–Ito palette (distinguishable with the common colour-vision deficiencies); failing bars and
@@ -48,7 +49,8 @@ def figure_prefix(rule_id: str) -> str:
 
 
 def render_result(result) -> None:
-    """Draw the figures of a :class:`~certkit.engine.results.RuleResult`'s evidence (in the process that evaluated it: see
+    """Draw the figures of a :class:`~certkit.engine.results.RuleResult`'s evidence (in the process that evaluated it:
+    see
     :func:`certkit.engine.scheduler.run`); a figure that cannot be drawn is dropped with a note, never fails the run."""
     try:
         render_evidence(result.evidence, figure_prefix(result.id))

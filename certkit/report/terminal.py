@@ -20,7 +20,8 @@ _COLOURS = {"complies": "green", "complies_partial": "cyan", "fails": "red", "no
 
 
 def rule_rows(results, width: int | None = None, colour: bool = False) -> list[str]:
-    """One line per rule, at most ``width`` characters (default: the terminal's; not cut when piped): status, §, title, critical margin, and the critical
+    """One line per rule, at most ``width`` characters (default: the terminal's; not cut when piped): status, §, title,
+    critical margin, and the critical
     condition or, for a rule without a margin (not evaluated), its reason."""
     if width is None and (sys.stdout.isatty() or os.environ.get("COLUMNS")):
         width = shutil.get_terminal_size().columns

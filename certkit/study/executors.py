@@ -46,7 +46,8 @@ class SerialExecutor:
 class LocalExecutor:
     """A pool of ``workers`` spawned processes (spawn: no state inherited by forking a threaded process).
 
-    The workers ignore Ctrl-C and die with the coordinator (see :func:`~certkit.engine.worker_processes.die_with_parent`).
+    The workers ignore Ctrl-C and die with the coordinator (see
+    :func:`~certkit.engine.worker_processes.die_with_parent`).
     A worker that dies in a case (a crash, the kernel's OOM killer) breaks the pool: the pool is restarted and
     the cases that were in flight are run again one at a time, so that the case that kills its worker is
     recorded as failed — once, not retried forever — and the others are not blamed.

@@ -68,7 +68,8 @@ def test_far_wake_downwash_of_an_elliptic_wing(height_over_semispan):
     over the tail's span (lifting-line far field, Prandtl; e.g. Anderson, Fundamentals of Aerodynamics, §5.3:
     w = C_L V/(π A) at the wing, twice that far behind). Tolerance 4 % for α (found 2-3 %: the lattice's discrete
     wake legs and the tail's finite chord), 7 % for the flap (found 4-6 %: the lattice's flap loading falls below
-    the ellipse over the narrow tip chords, span efficiency 0.986, which leaves more downwash at the centre). Closer to the sheet the discrete legs raise the downwash (+5 % at 0.1 s,
+    the ellipse over the narrow tip chords, span efficiency 0.986, which leaves more downwash at the centre). Closer to
+    the sheet the discrete legs raise the downwash (+5 % at 0.1 s,
     +14 % at 0.05 s with strips about 0.03 s wide), why the airplane's downwash lattice uses narrow wing strips."""
     s = B_ELL / 2
     h = height_over_semispan * s
@@ -116,7 +117,8 @@ def _datcom_downwash_gradient(aircraft) -> float:
 
 def test_baseline_downwash_gradient_against_datcom(baseline):
     """The lattice's dε/dα at the baseline's tail (0.374) against DATCOM's empirical gradient (0.343 for this
-    geometry). Tolerance 20 % (found +9 %): DATCOM's correlation scatter is of the order of ±10 % and the lattice has neither
+    geometry). Tolerance 20 % (found +9 %): DATCOM's correlation scatter is of the order of ±10 % and the lattice has
+    neither
     fuselage nor wake displacement (its wake leaves the trailing edge along the body axis, somewhat closer to the
     tail than at a flying angle of attack, which raises the downwash)."""
     on, alone = ap.downwash_configurations(baseline)

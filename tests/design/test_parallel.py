@@ -17,7 +17,8 @@ def test_two_processes_give_the_same_record():
 
 
 def test_shares_balance_the_declared_costs():
-    """Longest-processing-time order: heaviest first into the lighter group (costs 8, 5, 5, 4, 2: 8 + 4 and 5 + 5 + 2)."""
+    """Longest-processing-time order: heaviest first into the lighter group (costs 8, 5, 5, 4, 2: 8 + 4 and 5 + 5 +
+    2)."""
     loads = producers(discover(DiscoveryOptions()), "horizontal_tail")
     groups = shares(loads, 2)
     sums = sorted(sum(r.cost for r in g) for g in groups)

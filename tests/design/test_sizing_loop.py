@@ -1,7 +1,8 @@
 """The design structure's loop on the baseline and a redesigned tail.
 
 References: the baseline's declared horizontal-tail group (5,800 lb, aircraft/lta.yaml, "5.2 lb/ft² composite
-stabiliser") within 3 % (the calibrated non-optimum factor); the sized box is fully stressed, so the §25.331(c) tail-load margins against its own
+stabiliser") within 3 % (the calibrated non-optimum factor); the sized box is fully stressed, so the §25.331(c)
+tail-load margins against its own
 capability are ≥ 0 and the smallest is close to zero; OEW bookkeeping by hand.
 """
 
@@ -36,7 +37,8 @@ def test_baseline_tail_group_within_3_percent_of_declared(baseline):
     """The calibration that cannot go stale: the design loop sizes the baseline's tail group from today's Subpart C
     loads with the declared non-optimum factor and must give the declared 5,800 lb horizontal tail (aircraft/lta.yaml;
     the 777 AMM 27-41-00 gives the stabiliser assembly as about 6,100 lb with elevators and PCUs, i.e. about 5,860 lb
-    without the 240 lb of PCUs the loop sizes) within 3 %. A change in the loads that moves the group further fails here:
+    without the 240 lb of PCUs the loop sizes) within 3 %. A change in the loads that moves the group further fails
+    here:
     re-run ``certkit calibrate --tail aircraft/lta.yaml`` and update the factor and docs/baseline-sources.md §11."""
     structure = baseline["responses"]["sizing.ht_structure_mass_kg"]
     assert structure == pytest.approx(5800 * LB, rel=0.03)

@@ -51,7 +51,8 @@ def landing(baseline):
 
 
 def test_flare_time_constant_from_the_approach_sink_rate(landing):
-    """τ = (15 + 1)/(V sin 3°) = 4.36 s at 136 KCAS (70.12 m/s TAS at 150 ft, σ = 0.9956); commanded touchdown sink 0.75 ft/s."""
+    """τ = (15 + 1)/(V sin 3°) = 4.36 s at 136 KCAS (70.12 m/s TAS at 150 ft, σ = 0.9956); commanded touchdown sink
+    0.75 ft/s."""
     m, tb, tecs, res = landing
     V = np.linalg.norm(tb.x[0, 3:6])
     sigma = (1 - 2.25577e-5 * 150 * 0.3048) ** 4.25588  # ISA density ratio at 150 ft

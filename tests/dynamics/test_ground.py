@@ -108,7 +108,8 @@ def test_takeoff_rotates_about_the_main_gear_lifts_off_and_reaches_35_ft(takeoff
     """Ground roll, rotation and lift-off: the nose gear leaves the runway only once V ≥ VR; while the
     nose rises by more than 2 m the main-gear contact points stay on the runway (their struts extend
     by at most the 0.3 m static stroke as lift builds) and the nose rises relative to them by the
-    wheelbase (84.9 ft) × (sin θ − sin θ₀) — a rotation about the main gear; lift-off (no gear load) at VLOF > VR; 35 ft reached climbing and accelerating, the pitch rate
+    wheelbase (84.9 ft) × (sin θ − sin θ₀) — a rotation about the main gear; lift-off (no gear load) at VLOF > VR; 35
+    ft reached climbing and accelerating, the pitch rate
     below 5°/s (commanded 3°/s: no over-rotation), the attitude at most 3° short of (never above) the target."""
     m, x0, res, trim_v2, h35 = takeoff
     assert res.stop_reason[0].startswith("airborne")

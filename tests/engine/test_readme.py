@@ -40,7 +40,8 @@ def sh_blocks():
 
 
 def test_every_readme_example_runs_verbatim(tmp_path):
-    """Each line of the `sh` blocks of the README and the usage page, run by bash from the repository root as written: exit 0, or 1/3 for a
+    """Each line of the `sh` blocks of the README and the usage page, run by bash from the repository root as written:
+    exit 0, or 1/3 for a
     check or diff whose verdict is a failure or something not evaluated; never a usage error or a traceback."""
     import os
     import subprocess

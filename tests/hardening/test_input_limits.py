@@ -58,7 +58,8 @@ def test_unreadable_or_non_finite_numbers_are_located_errors(path, value, words)
 
 
 def test_bare_number_string_is_si():
-    """docs/aircraft-file.md: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of kilograms."""
+    """docs/aircraft-file.md: a bare number is SI. '3e5' is a string to YAML 1.1 (no dot), still a number of
+    kilograms."""
     assert to_si("3e5", "mass") == 3e5
     found = _problems(with_value("mass.MTOW", "3e5"))
     assert list(found) == ["mass.MRW"]  # only the relation with the ramp weight (657,000 lb > 300 t) remains

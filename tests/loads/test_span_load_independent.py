@@ -1,6 +1,7 @@
 """The wing strips' span load against an independent one: Weissinger's three-quarter-chord method written in the
 test helper (tests/loads/hand_span_load.py, from Bertin & Cummings §7.5 and Katz & Plotkin §12.2, compressibility by
-the Göthert rule), itself checked against the textbook's worked example and the lifting-line limit. The strips come from certkit's multi-panel
+the Göthert rule), itself checked against the textbook's worked example and the lifting-line limit. The strips come
+from certkit's multi-panel
 vortex lattice with dihedral and the fuselage-crossing root: a wrong span load, a wrong Mach dependence or a
 strip-to-station mistake moves the centroid of the additional load, which sets the wing's bending per unit lift."""
 

@@ -1,4 +1,5 @@
-"""Set-up of the loads conditions (certkit_rules.part25.support.loads_conditions): a condition short of thrust in level flight flies
+"""Set-up of the loads conditions (certkit_rules.part25.support.loads_conditions): a condition short of thrust in level
+flight flies
 on the full-thrust path (the steady flight nearest to level), and a condition below the 1 g stall speed is not
 applicable with the lift coefficient computed by hand."""
 

@@ -1,4 +1,5 @@
-"""The allowables a load envelope is drawn against (certkit/engine/evidence/loads.py): per sense, the smaller of the declared
+"""The allowables a load envelope is drawn against (certkit/engine/evidence/loads.py): per sense, the smaller of the
+declared
 allowable limit load and the allowable ultimate load ÷ the §25.303 factor of safety — the load at which the first of
 the two margins of certkit/models/loads/capability.py reaches zero. Reference: the baseline's declared wing and tail
 capabilities (aircraft/lta.yaml `structure`, docs/baseline-sources.md §10) and 14 CFR 25.303 (factor 1.5)."""

@@ -321,7 +321,8 @@ def test_configuration_change_force_rule(forces_ctx):
     assert all(
         f.value == pytest.approx(abs(f.details["pull_force_lbf"]), abs=0.006) for f in force if f.margin is not None
     )
-    # extending the flaps at idle (b)(1) needs a pull at the forward CG with this elevator (speed lower, nose-down flaps)
+    # extending the flaps at idle (b)(1) needs a pull at the forward CG with this elevator (speed lower, nose-down
+    # flaps)
     ext = [f for f in force if f.check.startswith("(b)(1)") and f.margin is not None]
     assert ext and all(f.details["pull_force_lbf"] > 0 for f in ext)
 

@@ -45,7 +45,8 @@ def test_reported_but_not_checked_without_a_field_length(tmp_path):
 
 
 def test_representativeness_bounds():
-    """The bounds of a representative run (rules/part25/support/takeoff.py): VLOF ≤ VR + 15 kn (about a declared VLOF when
+    """The bounds of a representative run (rules/part25/support/takeoff.py): VLOF ≤ VR + 15 kn (about a declared VLOF
+    when
     there is one), V35 ≤ V2 + 10 kn with an engine out (§25.111(c)(2) 'as close as practical to V2'), ≤ 30 ft off the
     centreline on the ground (§25.149(e)), the attitude on the runway below the tail-strike attitude; each reason
     quotes the run's number and the bound. A run inside every bound has no reason."""

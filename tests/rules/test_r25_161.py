@@ -43,7 +43,8 @@ def test_hand_calculation_climb_speed_and_margin(base):
 
 def test_a_smaller_elevator_design_limit_fails(tmp_path, base):
     """A deficient airplane: the elevator's trailing-edge-down design limit cut to 5° (the aft_light climb trims need
-    about 9.7°): §25.161(c)(1) fails there, with the trim's message; the forward corners (nose-up elevator) still comply."""
+    about 9.7°): §25.161(c)(1) fails there, with the trim's message; the forward corners (nose-up elevator) still
+    comply."""
     f = finding(base, "aft_light", "climb")
     assert f.value > 5.0
     r = run_rule(

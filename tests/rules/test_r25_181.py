@@ -213,7 +213,8 @@ def test_level_from_quantities_on_the_table_boundaries():
         "spiral", "B", zeta=1.0, wn=0.01, t_half=[None, None, None, None, 50.0], t_double=[25.0, 15.0, 5.0, 3.0, None]
     )
     assert spiral.tolist() == [1, 2, 3, 4, 1]
-    # the control anticipation parameter (3.2.2.1.1): Level 1 0.16-3.6 in category C, Level 2 0.096-10, Level 3 unbounded;
+    # the control anticipation parameter (3.2.2.1.1): Level 1 0.16-3.6 in category C, Level 2 0.096-10, Level 3
+    # unbounded;
     # category B's Level 1 floor 0.085, A's 0.28; not read without it
     cap = hq.level_from_quantities("short_period", "C", zeta=0.5, wn=1.5, cap=[0.2, 0.12, 0.05, 4.0, 12.0])
     assert cap.tolist() == [1, 2, 3, 2, 3]

@@ -168,7 +168,8 @@ def test_margins_by_hand_and_the_critical_wing_case(run):
 
 
 def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_path):
-    """Deficient by mass: the same airplane with its main (wing) tanks cut to 500 lb each and the centre tank holding the
+    """Deficient by mass: the same airplane with its main (wing) tanks cut to 500 lb each and the centre tank holding
+    the
     rest — at MRW the wing carries no fuel relief. §25.331(b) must fail at side-of-body ultimate bending, with the
     normalised margin within 0.04 of the hand estimate without main-tank fuel (Schrenk, as above; about −7 %)."""
     edits = FAST + [("capacity: 64050 lb", "capacity: 500 lb"), ("capacity: 174870 lb", "capacity: 301900 lb")]
@@ -193,7 +194,8 @@ MACH = "beyond the aerodynamic and strip loads model's Mach range"
 
 
 def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
-    """Flaps extended (balances within the elevator's stops): the tail is evaluated, the wing is not (no flap strips)."""
+    """Flaps extended (balances within the elevator's stops): the tail is evaluated, the wing is not (no flap
+    strips)."""
     _, findings, _ = run
     flap = [f for f in findings if f.condition.configuration != "clean" and STOP not in (f.reason or "")]
     assert flap

@@ -60,7 +60,8 @@ def test_load_factors_and_aileron_deflections_by_the_paragraph(roll, baseline, s
     than one third of it — and not more than 3 % above (the rule's tolerance; the details are rounded to 0.01°/s).
     Hand estimate of the VC deflection (rigid single-degree-of-freedom roll, Nelson, Flight Stability and Automatic
     Control, 2nd ed., ch. 5 "pure rolling motion"; Etkin & Reid, Dynamics of Flight, 3rd ed., roll-mode
-    approximation: p ∝ (Cl_δa/Cl_p) V δa): δa_VC / δa_VA = (p_VC/p_VA) (V_A/V_C)_TAS (k_A/k_C), k = Cl_δa/Cl_p at each Mach —
+    approximation: p ∝ (Cl_δa/Cl_p) V δa): δa_VC / δa_VA = (p_VC/p_VA) (V_A/V_C)_TAS (k_A/k_C), k = Cl_δa/Cl_p at each
+    Mach —
     within 8 % (the 6-DOF peak differs from the closed form by the sideslip that builds during the roll)."""
     n_lim = baseline.model.envelope.limit_load_factors.positive
     assert n_lim == 2.5
@@ -124,7 +125,8 @@ class _SideslipHold(Controller):
 
 def test_steady_roll_rate_closed_form(entry):
     """Single-degree-of-freedom roll (Nelson, Flight Stability and Automatic Control, 2nd ed., ch. 5 "pure rolling
-    motion"; Etkin & Reid, Dynamics of Flight, 3rd ed., roll-mode approximation): p_ss = −(Cl_δa Δδa / Cl_p)(2V/b). fwd_light at 250 kn EAS, sea level,
+    motion"; Etkin & Reid, Dynamics of Flight, 3rd ed., roll-mode approximation): p_ss = −(Cl_δa Δδa / Cl_p)(2V/b).
+    fwd_light at 250 kn EAS, sea level,
     Δδa = −10°, the sideslip held at zero by the rudder (test controller): the simulated roll rate after 3 s is
     within 2 % of the closed form (Cl_r r b/2V, the small yaw rate of the turn entry, is what remains)."""
     ctx, batch = entry

@@ -1,7 +1,8 @@
 """The developers' guide: "rules return findings and evidence data; physics procedures live in models, not in rule
 modules; rules do not import each other". Every module of the built-in rules package is read (its import statements,
 at module level and inside functions) and must not name a module that declares a rule (other than itself): what rules
-share lives in modules that declare none (``rules/part25/support/gust.py``, ``support/structural_checks.py`` …), and those
+share lives in modules that declare none (``rules/part25/support/gust.py``, ``support/structural_checks.py`` …), and
+those
 depend on no rule either."""
 
 from __future__ import annotations

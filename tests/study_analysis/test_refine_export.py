@@ -49,7 +49,8 @@ def _fit(x):
 
 
 def test_refinement_reduces_the_error_near_a_known_boundary():
-    """y = sin 5x₀ + x₁² ≤ 0.8 on the unit square (a curved boundary in two branches). From 12 random cases, 12 cases chosen by
+    """y = sin 5x₀ + x₁² ≤ 0.8 on the unit square (a curved boundary in two branches). From 12 random cases, 12 cases
+    chosen by
     refinement bring the surrogate's RMSE within 0.05 of the boundary down to less than half, and below that of
     12 more random cases."""
     study = _study()

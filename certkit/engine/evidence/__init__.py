@@ -1,6 +1,7 @@
 """Evidence as data: what a rule shows a reviewer, in SI, for :mod:`certkit.report` to draw and format.
 
-A rule's :meth:`~certkit.engine.registry.Rule.evidence` returns :class:`certkit.engine.results.Evidence` items whose ``figure`` is
+A rule's :meth:`~certkit.engine.registry.Rule.evidence` returns :class:`certkit.engine.results.Evidence` items whose
+``figure`` is
 one of the kinds below and whose ``table`` is a :class:`Table` of typed columns. Nothing here draws: the report
 renders each kind with the same conventions (limits and allowables drawn and labelled, critical point marked,
 colour bars, colour-blind-safe palette, legends outside the data, aviation units first). Values are SI; an axis or

@@ -1,4 +1,5 @@
-"""The evidence kinds (see :mod:`certkit.engine.evidence`): charts of series, bar charts, heatmaps, and tables with typed
+"""The evidence kinds (see :mod:`certkit.engine.evidence`): charts of series, bar charts, heatmaps, and tables with
+typed
 columns. Plain dataclasses of numbers and strings (numpy arrays for series), picklable between processes."""
 
 from __future__ import annotations

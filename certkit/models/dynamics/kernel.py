@@ -15,7 +15,8 @@ Arguments are packed by :class:`~certkit.models.dynamics.eom.AircraftModel` (``_
                     coefficients are given per condition in ``coef`` (n, 8), computed in Python by a
                     model that is not a derivative table)
     r_eng (n, ne, 3), d_eng (ne, 3); thrust (n, ne) N along each thrust line, from Python (engines are
-                    Python models) or, for the parametric turbofan, from :func:`engine_forces`; held over an RK4 step like the controls
+                    Python models) or, for the parametric turbofan, from :func:`engine_forces`; held over an RK4 step
+                    like the controls
     ground          has_ground, r_gear (n, nl, 3), legs (nl, 6) = stiffness, damping, rolling and side
                     friction, braked, steered (the wheel turned by the steering control, positive toward body +y:
                     nose right); gparams = runway elevation, brake friction, slip speed, then the

@@ -1,6 +1,7 @@
 """The manoeuvring envelope (V–n diagram) of §25.333(b) at one weight and altitude: the stall lines
 n = ±(V / V_S1)², V_S1 = √(2 W / (ρ₀ S C_N)) EAS from ±C_N,max (the 1-g stall speed at that normal-force
-coefficient, :func:`certkit.models.performance.stall.stall_speed_eas`), bounded by the limit load factors n₊ (A to D) and n₋ (F to H), VD (D to E) and the line E–F.
+coefficient, :func:`certkit.models.performance.stall.stall_speed_eas`), bounded by the limit load factors n₊ (A to D)
+and n₋ (F to H), VD (D to E) and the line E–F.
 Corners A (the +C_N,max line at n₊), D (VD, n₊), E (VD, 0), F (VC, n₋), H (the −C_N,max line at n₋); speeds in
 m/s EAS, VC and VD Mach-limited at the altitude (:meth:`certkit.engine.context.Context.design_speed_eas`).
 """

@@ -46,7 +46,8 @@ class TailPlanform:
     thickness_ratio: float
 
     def leading_edge_x(self) -> np.ndarray:
-        """X of the leading edge at each station (the trapezoid of :func:`certkit.models.aero.vlm.trapezoidal_surface`)."""
+        """X of the leading edge at each station (the trapezoid of
+        :func:`certkit.models.aero.vlm.trapezoidal_surface`)."""
         y = self.span * math.cos(self.dihedral)
         return (
             self.root_leading_edge[0] + y * math.tan(self.sweep_quarter_chord) + 0.25 * (self.root_chord - self.chord)

@@ -1,6 +1,7 @@
 """Constrained optimisation on the surrogates: local optima of each objective and Pareto fronts.
 
-Single objectives: SLSQP (Kraft 1988, scipy ``minimize``) on the inputs mapped to [−1, 1] (forward-difference gradients, the
+Single objectives: SLSQP (Kraft 1988, scipy ``minimize``) on the inputs mapped to [−1, 1] (forward-difference
+gradients, the
 n + 1 points of a gradient predicted in one batch), multi-started from
 the best feasible Monte Carlo samples of the stage and from spread random points; the best solution the
 surrogates find feasible is kept (the best sample itself when no start improves on it). Fronts: NSGA-II (Deb

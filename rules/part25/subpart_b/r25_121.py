@@ -340,7 +340,8 @@ def _weight_limited(
 
 def _wat_limit_search(ctx, failing, required, speed_at, thrust_fraction, drag_credit, iterations) -> dict:
     """corner → (condition at the last weight tried, its gradient, its trim, constant-CL weight estimate) for the
-    findings ``failing`` (the lowest gradient of each corner): :func:`certkit_rules.part25.support.thrust_trims.wat_limit_search`."""
+    findings ``failing`` (the lowest gradient of each corner):
+    :func:`certkit_rules.part25.support.thrust_trims.wat_limit_search`."""
     found = wat_limit_search(
         ctx,
         [f.condition for f in failing],

@@ -14,7 +14,8 @@ given, turn rate, α and the three controls solved for) — with the critical en
 asymmetric cases (the windmilling engine and the asymmetric thrust are in the flight model), in both
 directions. ``kind="oei"`` is not used: it trims *straight* flight at a bank (|φ| ≤ 5°, §25.149), which at
 30° needs a sideslip of some 36°. Where the table gives a thrust rather than a path, the turn is trimmed at
-the flight-path angle that thrust gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, the energy relation sin γ = (T − D)/W of
+the flight-path angle that thrust gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, the energy
+relation sin γ = (T − D)/W of
 Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12, iterated on the thrust the trim needs).
 The elevator, aileron and rudder of each trim are reported against their design limits.
 """

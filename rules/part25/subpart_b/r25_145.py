@@ -1,6 +1,7 @@
 """§25.145(b) Longitudinal control: flap and thrust changes without re-trimming.
 
-Text ([CFR 2003]; the lead-in and (b)(1) verified against [CFR 1-1-19] p. 221, docs/regulation-notes.md): with the landing gear
+Text ([CFR 2003]; the lead-in and (b)(1) verified against [CFR 1-1-19] p. 221, docs/regulation-notes.md): with the
+landing gear
 extended, no change in trim control, or exertion of more than 50 lbf control force, may be required for:
 (1) power off, flaps retracted, trimmed at 1.3 VSR1: extend the flaps as rapidly as possible, keeping about
 1.3 × the reference stall speed existing at each instant; (2) as (1), flaps extended then retracted; (3) as
@@ -9,7 +10,8 @@ thrust at the same airspeed; (5) as (4) with the flaps extended; (6) [not retrie
 
 With a control-force model declared (``control_forces.elevator``, :mod:`certkit.models.control_force`) the 50 lbf
 is evaluated: the force that holds the end trim with the trim device left at the start setting (zero force at
-the start trim). Without one the force is not evaluated. In both cases certkit checks the premise under it: the stabiliser (trim control) stays where it was, so the elevator must move
+the start trim). Without one the force is not evaluated. In both cases certkit checks the premise under it: the
+stabiliser (trim control) stays where it was, so the elevator must move
 from its trim at the start of each manoeuvre to its trim at the end, and that change must fit in the elevator
 authority left on that side of the start position (design limits). Each state is a steady trim at 1.3 VSR of
 its configuration: idle ("power off") in the glide that idle thrust gives, go-around thrust in the climb it

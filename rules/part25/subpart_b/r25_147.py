@@ -7,14 +7,16 @@ paragraph starts from or manoeuvres to:
   inoperative (windmilling), wings level, straight flight (``ctx.trim(kind="oei")``: bank given, sideslip,
   α, the three controls and the throttle solved for) at the power for level flight (γ = 0); where that
   power is more than maximum continuous, the trim is flown at maximum continuous thrust on the flight path
-  it gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, Anderson, *Aircraft Performance and Design*, 1999, eq. 5.12).
+  it gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`, Anderson, *Aircraft Performance and
+  Design*, 1999, eq. 5.12).
   The reasonably sudden 15° heading change is a dynamic manoeuvre: a not-evaluated finding. The 150 lbf rudder
   pedal force is read in the steady wings-level condition the heading change starts from: the pedal force that
   holds the trim's rudder with the rudder trim at neutral (:mod:`certkit.models.control_force`), which must leave
   room under 150 lbf; without ``control_forces.rudder`` it is not evaluated.
 * (c) lateral control — 20° banked coordinated turns (zero sideslip, ``kind="turn"``) toward and away from
   the inoperative engine at 1.3 VSR1 and MTOW, the operating engine at maximum continuous thrust, in the most
-  favourable climb configuration (flaps up), on the flight path that thrust gives (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`).
+  favourable climb configuration (flaps up), on the flight path that thrust gives
+  (:func:`certkit_rules.part25.support.thrust_trims.trim_at_thrust`).
 
 The margin of each finding is a control's design limit on the side it is deflected minus |deflection|
 (deg, :func:`control_findings`). (b) and (e) apply to airplanes with four or more engines; (d) (roll

@@ -6,7 +6,8 @@ every CG corner in each case (one batch per configuration) and checks that the t
 controls within their design range. Without a movable stabiliser the stabiliser is fixed at its declared
 setting and the elevator carries it all; with one (``geometry.horizontal_tail.stabilizer``) each trim solves for
 the stabiliser with the elevator at its trim setting and the trim authority is reported as the stabiliser's margin to
-its configuration's trim limit (a trim needing more has the stabiliser at its stop and the elevator holding the rest — not trimmed):
+its configuration's trim limit (a trim needing more has the stabiliser at its stop and the elevator holding the rest —
+not trimmed):
 
     (c)(1) climb, maximum continuous thrust, 1.3 VSR1, gear up, flaps (i) retracted and (ii) takeoff;
     (c)(2) glide with power off (idle) at 1.3 VSR1, flaps retracted; and the approach alternative on a

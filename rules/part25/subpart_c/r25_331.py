@@ -9,7 +9,8 @@ t_max = t₂ + π/ω and Δt ≤ 5 s are verified; the sinusoid δ₁ sin ωt, t
 Each condition's horizontal-tail limit loads are compared with the capabilities declared in the aircraft
 file's ``structure.horizontal_tail`` (limit, and 1.5 × limit against ultimate, §25.303/§25.305); without
 one the condition reports its loads and is not evaluated with the reason "no structural capability declared". The
-structural checks it shares with §§25.341, 25.349 and 25.351 are in :mod:`certkit_rules.part25.support.structural_checks`.
+structural checks it shares with §§25.341, 25.349 and 25.351 are in
+:mod:`certkit_rules.part25.support.structural_checks`.
 
 (c)(2) reports the load factor each manoeuvre reaches and the §25.337 limit at its speed (n₊ nose up; nose
 down n₋ = −1.0 up to VC, linearly to 0 at VD) in the details: the input is scaled to reach that limit, so being

@@ -1,7 +1,8 @@
 """§25.427(b) Unsymmetrical loads on the horizontal tail: 100 % of the loading of the symmetrical manoeuvre
 conditions of §25.331 and of the vertical gusts of §25.341(a) on the surface on one side of the plane of symmetry,
 80 % on the other; the stabiliser root loads of each side against the declared tailplane capability and the torsion
-the unbalance puts into the fuselage at the tail, against the declared fuselage capability there (``structure.fuselage``,
+the unbalance puts into the fuselage at the tail, against the declared fuselage capability there
+(``structure.fuselage``,
 station ``tail``, quantity ``torsion``).
 
 Text verified against an eCFR mirror of Amdt. 25-86 (pilotfriend.com, Sec. 25.427): "(b) The horizontal tail must

@@ -1,7 +1,8 @@
 """The §25.331(b) balanced manoeuvres shared by §25.331(b) and §25.427(b) (regulation content, no rule here): the
 envelope points of the condition space, their speeds and load factors (§25.333(b), §25.345(a)), the criteria and
 the batched balanced states and loads, memoised in the context so that the rules evaluated in one process
-(``run_with = "discrete-gust"``) balance once. Sources and verification status: :mod:`certkit_rules.part25.subpart_c.r25_331b`.
+(``run_with = "discrete-gust"``) balance once. Sources and verification status:
+:mod:`certkit_rules.part25.subpart_c.r25_331b`.
 """
 
 from __future__ import annotations

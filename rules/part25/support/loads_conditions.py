@@ -6,7 +6,8 @@ loads rule (the shared physics it calls stays in :mod:`certkit.models`).
 Level flight at high speed may need more thrust than the engines give (VD is reached in a dive): such
 conditions fly the path that full thrust holds (a shallow descent), those with too much thrust even at
 idle (a light airplane at low speed) the idle-thrust climb, and the path angle is recorded; conditions
-without any of these trims are tried on the fallback paths ``gammas``. Conditions that still do not trim, or need a control beyond its design limit, are returned with the trim's message as the reason;
+without any of these trims are tried on the fallback paths ``gammas``. Conditions that still do not trim, or need a
+control beyond its design limit, are returned with the trim's message as the reason;
 the others form one :class:`AircraftModel` batch ready to simulate. One policy for every loads rule
 (:func:`refusal_findings`): a condition whose 1 g lift coefficient exceeds CLmax has no steady flight at
 any thrust — not applicable, with that computed reason; any other refusal is not evaluated with the

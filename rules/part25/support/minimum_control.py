@@ -47,7 +47,8 @@ VMCA_CONDITIONS = ConditionSpace(
 
 
 def vmca_rows(ctx, conditions, crit):
-    """The VMCA search of the rule's conditions with its criteria (:func:`certkit_rules.part25.support.control_speeds.vmc_rows`)."""
+    """The VMCA search of the rule's conditions with its criteria
+    (:func:`certkit_rules.part25.support.control_speeds.vmc_rows`)."""
     return vmc_rows(
         ctx,
         conditions,
@@ -60,7 +61,8 @@ def vmca_rows(ctx, conditions, crit):
 
 
 def condition_vmca(rows, k: int, crit) -> tuple[float, int, bool]:
-    """VMCA (m/s CAS) of scheduled condition ``k`` (:func:`certkit_rules.part25.support.control_speeds.condition_vmc`)."""
+    """VMCA (m/s CAS) of scheduled condition ``k``
+    (:func:`certkit_rules.part25.support.control_speeds.condition_vmc`)."""
     return condition_vmc(rows, k, crit.grid_low)
 
 

@@ -4,7 +4,8 @@ One batched six-degree-of-freedom run (:func:`certkit.models.dynamics.procedures
 sea level ISA, takeoff thrust from brake release: rows 0..n−1 with the critical engine failed at VEF (§25.111(a)(2)),
 rows n..2n−1 with all engines operating (the §25.113(a)(2) distance). The procedure a pilot flies (§25.101(f)):
   * aerodynamic controls other than the pilot's (a movable stabiliser) held at their V2-trim values throughout (the
-    takeoff trim); elevator at its takeoff setting (neutral) to VR, then the rotation of :class:`~certkit.models.dynamics.takeoff_pilot.
+    takeoff trim); elevator at its takeoff setting (neutral) to VR, then the rotation of
+    :class:`~certkit.models.dynamics.takeoff_pilot.
     RotationPilot`: attitude command at ``rotation_rate_deg_s`` (2.5°/s: Boeing Flight Operations Review, 14 March
     1986, "typically 2–3 degrees per second … should not exceed 3"; the 777 FCTM the same) toward the attitude of
     the 1-g trim at V2, at most the declared tail-strike attitude (``geometry.landing_gear.tail_strike_attitude``)

@@ -2,7 +2,8 @@
 (§25.121, §25.143(h), §25.145(b), §25.147, §25.161): the critical engine, the full thrust of one engine (on an
 off-standard day too), the operating engines' total thrust at a throttle setting, the trim at the flight-path angle
 that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircraft Performance and Design*, 1999,
-eq. 5.12, the trim solving the flight-path angle at the throttle that gives the thrust) and the steady climb at a thrust with the critical engine
+eq. 5.12, the trim solving the flight-path angle at the throttle that gives the thrust) and the steady climb at a
+thrust with the critical engine
 inoperative (the flight-path angle solved by the trim), and the weight at which that climb has a given gradient
 (the WAT limit weight search of §25.121).
 """

@@ -12,7 +12,8 @@ import numpy as np
 
 from .biot_savart_pair import pair as _pair
 
-#: pairs per block: 400 kB per temporary, the working set stays in cache (50,000 pairs: 60 ms for 400 × 800, 250,000: 90 ms)
+#: pairs per block: 400 kB per temporary, the working set stays in cache (50,000 pairs: 60 ms for 400 × 800, 250,000:
+#: 90 ms)
 _BLOCK_PAIRS = 50_000
 
 
