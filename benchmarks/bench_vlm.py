@@ -108,7 +108,8 @@ def main() -> None:
         rows.append((label, n, t_full, t_batch, t_avl))
 
     print(
-        f"{'geometry':<24} {'vortices':>8} {'ours full (s)':>14} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15} {'AVL/ours':>9}"
+        f"{'geometry':<24} {'vortices':>8} {'ours full (s)':>14} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15} "
+        f"{'AVL/ours':>9}"
     )
     for label, n, t_full, t_batch, t_avl in rows:
         ratio = f"{t_avl / t_full:9.2f}" if t_avl else "      n/a"

@@ -63,7 +63,8 @@ def _check_range(h: Values) -> None:
     i = _first_out_of_range(np.ascontiguousarray(h).reshape(-1))
     if i >= 0:
         raise AtmosphereRangeError(
-            f"altitude {h.flat[i]:.0f} m is outside the standard atmosphere modelled here ({H_MIN:.0f} m to {H_MAX:.0f} m)"
+            f"altitude {h.flat[i]:.0f} m is outside the standard atmosphere modelled here ({H_MIN:.0f} m to "
+            f"{H_MAX:.0f} m)"
         )
 
 

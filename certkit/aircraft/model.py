@@ -817,7 +817,8 @@ class PerformanceCalibration(_Section):
             ge=0.7,
             le=1.5,
             description=(
-                "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; the "
+                "multiplies the zero-lift drag of the build-up (parasite and wave drag, CD0) of every configuration; "
+                "the "
                 "induced drag, declared configuration increments and derivative tables are not scaled"
             ),
         ),

@@ -448,12 +448,14 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
         return
     ref, tot = report["reference"], report["totals"]
     click.echo(
-        f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta {report['beta_deg']:.3f} deg"
+        f"{report['source']}  Mach {report['mach']:.3f}  alpha {report['alpha_deg']:.3f} deg  beta "
+        f"{report['beta_deg']:.3f} deg"
     )
     click.echo(f"Sref {ref['area']:.5g}  Cref {ref['chord']:.5g}  Bref {ref['span']:.5g}  Xref {ref['x_ref']:.5g}")
     if tot is not None:
         click.echo(
-            f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e {tot['span_efficiency']:.4f}  "
+            f"CL {tot['CL']:.5f}  CDff (Trefftz plane) {tot['CD_induced_trefftz']:.6f}  e "
+            f"{tot['span_efficiency']:.4f}  "
             f"Cm {tot['Cm']:.5f}"
         )
     if report["neutral_point"] is not None:
@@ -571,10 +573,12 @@ def _print_trim(r, given: dict):
     )
     click.echo(f"{mass}{cg} · {c['configuration']} · {altitude} · {speed} · {manoeuvre}")
     click.echo(
-        f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} iterations)"
+        f"{'converged' if r['converged'] else 'NOT CONVERGED'} (residual {r['residual_norm']:.1e}, {r['iterations']} "
+        "iterations)"
     )
     click.echo(
-        f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi {r['phi_deg']:.3f} deg"
+        f"alpha {r['alpha_deg']:.3f} deg  beta {r['beta_deg']:.3f} deg  theta {r['theta_deg']:.3f} deg  phi "
+        f"{r['phi_deg']:.3f} deg"
     )
     st = r.get("stabilizer")
     for name, value in r["controls"].items():
@@ -626,7 +630,8 @@ def modes_command(aircraft_file, no_density_gradient, **kw):
         return
     _print_trim(report, given)
     click.echo(
-        f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}{'period s':>10}{'T_half s':>10}{'T_double s':>11}"
+        f"\n{'mode':<14}{'eigenvalue':>26}{'omega_n rad/s':>15}{'zeta':>9}"
+        f"{'period s':>10}{'T_half s':>10}{'T_double s':>11}"
     )
     fmt = lambda v: "—" if v is None else f"{v:.3f}"  # noqa: E731
     for name, m in report["modes"].items():

@@ -220,7 +220,8 @@ def sizing_summary(details: dict) -> list[str]:
         f"{inertia['Iyy']:.2g}, Izz {inertia['Izz']:.2g} kg·m²",
         f"limit envelope at the root: shear {loads['shear'][root] / 1e3:,.0f} kN, bending "
         f"{loads['bending'][root] / 1e3:,.0f} kN·m, torsion {loads['torsion'][root] / 1e3:,.0f} kN·m (× 1.5 ultimate)",
-        f"elevator actuators {g['actuator_mass_kg']:,.0f} kg for {hinge.get('design_hinge_moment_Nm', float('nan')) / 1e3:,.0f} kN·m "
+        f"elevator actuators {g['actuator_mass_kg']:,.0f} kg for "
+        f"{hinge.get('design_hinge_moment_Nm', float('nan')) / 1e3:,.0f} kN·m "
         f"({hinge.get('rule', '?')}, elevator {hinge.get('elevator_deg', float('nan')):.1f} deg)",
         f"loop iterations {len(details['history'])}",
     ]

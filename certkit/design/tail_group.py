@@ -89,7 +89,8 @@ class TailGroup:
             "mass": self.actuator_mass,
             "cg": {"x": float(c[0]), "y": float(c[1]), "z": float(c[2])},
             "inertia": {"Ixx": Ixx, "Iyy": max(Iyy, 1e-9), "Izz": max(Izz, 1e-9), "Ixz": Ixz},
-            "source": f"{len(p)} elevator actuators sized for {self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m",
+            "source": f"{len(p)} elevator actuators sized for "
+            f"{self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m",
         }
 
     def capabilities(self) -> list:

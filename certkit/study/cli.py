@@ -162,7 +162,8 @@ def status(target, store):
         if walls:
             workers = {row["worker"] for row in rows if row["worker"]}
             click.echo(
-                f"\nwall time per ok case: mean {sum(walls) / len(walls):.3g} s, median {walls[len(walls) // 2]:.3g} s, "
+                f"\nwall time per ok case: mean {sum(walls) / len(walls):.3g} s, median {walls[len(walls) // 2]:.3g} "
+                "s, "
                 f"max {walls[-1]:.3g} s; {len(workers)} worker process{'es' if len(workers) != 1 else ''}"
             )
         reasons = Counter(row["error"] for row in rows if row["status"] == "failed")

@@ -35,7 +35,8 @@ USER_RULE = textwrap.dedent("""
             for c in conditions:
                 if c.loading == "{explode}":
                     raise RuntimeError("solver diverged at this corner")
-                out.append(Finding.compare(c, "mass", c.mass, crit.scale * ctx.aircraft.mass.MRW, at_least=False, unit="kg"))
+                limit = crit.scale * ctx.aircraft.mass.MRW
+                out.append(Finding.compare(c, "mass", c.mass, limit, at_least=False, unit="kg"))
             return out
 """)
 

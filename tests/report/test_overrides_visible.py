@@ -170,7 +170,8 @@ def test_every_overridden_criterion_shows_in_the_checks_it_computes(tmp_path):
         path = tmp_path / f"{name}.yaml"
         path.write_text(
             BASELINE.read_text()
-            + f'\ncriteria:\n  "25.335(a)":\n    justification: a test of the override text\n    values:\n      {name}: {value}\n'
+            + '\ncriteria:\n  "25.335(a)":\n    justification: a test of the override text\n'
+            + f"    values:\n      {name}: {value}\n"
         )
         res = evaluate_rule(rule, Context(load_aircraft(path)))
         computed = [f for f in res.findings if f.margin is not None]

@@ -28,7 +28,10 @@ def test_figures_get_an_accessible_name():
 
 def test_big_tables_are_packed_losslessly_and_small_ones_kept():
     rows = "".join(f'<tr><td>condition {i}</td><td class="num">{i}.0 kn</td></tr>' for i in range(400))
-    big = f'<div class="table-wrap"><table><thead><tr><th>C</th><th>M</th></tr></thead><tbody>{rows}</tbody></table></div>'
+    big = (
+        '<div class="table-wrap"><table><thead><tr><th>C</th><th>M</th></tr></thead>'
+        f"<tbody>{rows}</tbody></table></div>"
+    )
     small = '<div class="table-wrap"><table><tr><td>one</td></tr></table></div>'
     packed = pack_tables(f"<p>a</p>{big}<p>b</p>{small}")
     assert small in packed and big not in packed and 'data-rows="400"' in packed

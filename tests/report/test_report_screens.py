@@ -166,7 +166,9 @@ def test_printed_summary_header_is_not_blank(chromium, small_check, tmp_path):
 
     page, problems = open_page(chromium, small_check[0] / "index.html", 1400)
     page.evaluate("""() => { const body = document.querySelector('#triage tbody'), rows = [...body.rows];
-                             for (let k = 0; k < 20; k++) { rows.forEach(r => body.appendChild(r.cloneNode(true))); } }""")
+                             for (let k = 0; k < 20; k++) {
+                               rows.forEach(r => body.appendChild(r.cloneNode(true)));
+                             } }""")
     page.emulate_media(media="print")
     headers = page.eval_on_selector_all("#triage thead th", "els => els.map(e => e.innerText.trim())")
     assert headers and all(headers), headers

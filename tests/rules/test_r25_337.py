@@ -43,7 +43,8 @@ def test_not_evaluated_without_load_factors(tmp_path):
         tmp_path,
         [
             (
-                "  limit_load_factors:\n    positive: 2.5              # [given]\n    negative: -1.0\n    flaps_extended: 2.0\n",
+                "  limit_load_factors:\n    positive: 2.5              # [given]\n    negative: -1.0\n    "
+                "flaps_extended: 2.0\n",
                 "",
             )
         ],

@@ -220,7 +220,8 @@ def maneuver_evidence(
             f"Load envelope along the {name} span",
             envelope_chart({"envelope": env.peaks[surface]}, env.stations[surface], (allow or {}).get(surface)),
             "Maximum and minimum over every condition and time (limit loads); triangles: the governing allowable "
-            "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of safety, §25.303).",
+            "limit load (the smaller of the allowable limit load and the allowable ultimate load ÷ the factor of "
+            "safety, §25.303).",
         ),
         Evidence(
             f"Critical-case table, {name}",
@@ -382,7 +383,8 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
             "sides, unbalanced rolling moment, roll acceleration and load factor",
             unsymmetrical_time_history(run, _unsymmetrical_picks(run)),
             "The §25.341(a) responses with the largest root bending on either side and with the largest "
-            f"unbalanced rolling moment; the wing air load is {'the gust increment' if run.basis == 'increment' else 'the whole air load'} "
+            "unbalanced rolling moment; the wing air load is "
+            f"{'the gust increment' if run.basis == 'increment' else 'the whole air load'} "
             f"× {full:.0%} on one side and × {reduced:.0%} on the other, the unbalance reacted by the rigid "
             "airplane's vertical, roll and pitch accelerations.",
         ),

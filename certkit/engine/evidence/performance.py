@@ -213,7 +213,8 @@ def vmca_evidence(findings, rows, limits) -> list[Evidence]:
     )
     caption = (
         f"Rudder and aileron of the one-engine-inoperative straight trims visited by the VMCA search (operating engine "
-        f"at full throttle, {worst.condition.loading}), wings level to 5° banked toward the operating engine; dash-dot: "
+        f"at full throttle, {worst.condition.loading}), wings level to 5° banked toward the operating engine; "
+        "dash-dot: "
         "design limits. VMCA is the lowest over the banks of the speed where a control reaches its limit."
     )
     return [

@@ -61,8 +61,10 @@ def margin_matrix_evidence(findings, title: str) -> list[Evidence]:
             title,
             heatmap,
             caption=(
-                "Smallest normalised margin (margin / |limit|, or the margin itself where the limit is zero) of every check "
-                "at each CG corner and configuration, over the speeds and altitudes evaluated; ≥ 0 complies. Failing cells "
+                "Smallest normalised margin (margin / |limit|, or the margin itself where the limit is zero) of every "
+                "check "
+                "at each CG corner and configuration, over the speeds and altitudes evaluated; ≥ 0 complies. Failing "
+                "cells "
                 "are vermillion and hatched; grey cells were not evaluated."
             ),
             table=table,

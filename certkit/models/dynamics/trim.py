@@ -51,11 +51,19 @@ KINDS = ("straight", "turn", "oei", "sideslip")
 DEFAULT_ROLES = {"pitch": "elevator", "roll": "aileron", "yaw": "rudder"}
 
 _HINTS = {
-    "pitch": "pitch control authority is insufficient here: check the CG against its limits, the speed, and the stabilizer/trim setting",
+    "pitch": (
+        "pitch control authority is insufficient here: check the CG against its limits, the speed, and the "
+        "stabilizer/trim setting"
+    ),
     "roll": "roll control authority is insufficient: raise the speed or reduce the rolling asymmetry",
-    "yaw": "directional control is insufficient (below VMC for this thrust?): raise the speed, bank toward the live engine, or reduce the asymmetric thrust",
+    "yaw": (
+        "directional control is insufficient (below VMC for this thrust?): raise the speed, bank toward the live "
+        "engine, or reduce the asymmetric thrust"
+    ),
     "throttle_high": "not enough thrust for this flight-path gradient at this weight and altitude",
-    "throttle_low": "less than idle thrust needed: the descent is too steep for a clean configuration (use drag devices)",
+    "throttle_low": (
+        "less than idle thrust needed: the descent is too steep for a clean configuration (use drag devices)"
+    ),
 }
 
 

@@ -248,7 +248,8 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
             x_cg,
             name,
             [
-                "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the declared "
+                "no components, tanks or payload zones: whole-airplane mass at the CG, inertia scaled from the "
+                "declared "
                 "tensor (at MTOW) at constant radii of gyration"
             ],
         )
@@ -366,7 +367,8 @@ def _fallback_loading(aircraft, mass, x_cg, name, empty, notes, fuel, nearest=No
             )
             built = (
                 f"declared items with ballast: empty airplane {_empty_kind(empty)}, "
-                f"{sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, {ballast:.0f} kg payload at station {x:.2f} m"
+                f"{sum(c.mass for c in fuel_items):.0f} kg fuel in its tanks, {ballast:.0f} kg payload at station "
+                f"{x:.2f} m"
             )
             return _assemble(
                 aircraft,

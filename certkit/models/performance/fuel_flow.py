@@ -74,7 +74,8 @@ class EngineFuel:
             factor * loss,
             [
                 f"thrust: {source}; TSFC: Mattingly's Mach/altitude variation scaled by {factor:.3f} to "
-                f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft ({cal.source})",
+                f"{cal.value * 3600 * G0:.3f} lb/lbf/h at M {cal.mach:.2f}, {cal.altitude / 0.3048:.0f} ft "
+                f"({cal.source})",
                 *extra,
             ],
         )

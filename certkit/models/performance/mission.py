@@ -490,7 +490,8 @@ def fly_missions(aircraft, aero=None, oew_kg: float | None = None, tables_cache:
         )
     else:
         notes.append(
-            "no fuel capacity declared (mass.max_fuel or fuel tanks): the fuel-limited payload–range points are not computed"
+            "no fuel capacity declared (mass.max_fuel or fuel tanks): the fuel-limited payload–range points are not "
+            "computed"
         )
     t2 = time.perf_counter()
     nominal = flyer.fly_distance("nominal", m.design_payload, m.nominal_distance, 1.05 * mass.MTOW)
@@ -582,7 +583,8 @@ def _speed_notes(aircraft) -> list[str]:
         climb = float(isa.convert_speed(m.climb_speed.value, m.climb_speed.kind, "EAS", m.speed_limit_altitude))
         if climb > float(isa.convert_speed(sp.VMO.value, sp.VMO.kind, "EAS", m.speed_limit_altitude)):
             notes.append(
-                f"the climb speed exceeds the declared VMO above {m.speed_limit_altitude / FT:.0f} ft: flown as declared"
+                f"the climb speed exceeds the declared VMO above {m.speed_limit_altitude / FT:.0f} ft: flown as "
+                "declared"
             )
     return notes
 

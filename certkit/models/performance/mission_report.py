@@ -48,7 +48,10 @@ def _profile(p) -> list[str]:
 def _calibration(cal: dict) -> list[str]:
     if not cal:
         return ["calibration: none declared (drag and fuel flow as modelled)"]
-    line = f"calibration: zero-lift drag x {cal['drag_factor']:.4f}, fuel flow x {cal['fuel_flow_factor']:.4f} ({cal['source']})"
+    line = (
+        f"calibration: zero-lift drag x {cal['drag_factor']:.4f}, fuel flow x {cal['fuel_flow_factor']:.4f} "
+        f"({cal['source']})"
+    )
     t = cal.get("target")
     if t:
         line += f"; target {t['range_m'] / NMI:,.0f} nmi within {100 * t['tolerance']:g} % ({t['source']})"
@@ -63,7 +66,8 @@ def mission_table(result) -> str:
         f"{'met' if margin >= 0 else 'NOT met'}, margin {margin / NMI:+,.0f} nmi)",
         f"nominal mission {n.distance_m / NMI:,.0f} nmi: block fuel {n.block_fuel_kg / LB:,.0f} lb "
         f"({n.block_fuel_kg:,.0f} kg), block time {n.block_time_s / 3600:.2f} h",
-        f"cruise drag at M {c.mach:.2f}, {c.altitude_m / FT:,.0f} ft, {c.mass_kg / LB:,.0f} lb: CD {c.CD:.5f}, CL {c.CL:.4f}, "
+        f"cruise drag at M {c.mach:.2f}, {c.altitude_m / FT:,.0f} ft, {c.mass_kg / LB:,.0f} lb: CD {c.CD:.5f}, CL "
+        f"{c.CL:.4f}, "
         f"L/D {c.lift_to_drag:.2f}, alpha {math.degrees(c.alpha):.2f} deg, elevator {math.degrees(c.elevator):.2f} deg"
         + ("" if c.converged else " (trim NOT converged)"),
         f"OEW {result.oew_kg / LB:,.0f} lb",

@@ -32,7 +32,10 @@ class Ambient:
         return self.temperature - float(isa.temperature(self.pressure_altitude))
 
     def label(self) -> str:
-        return f"{self.pressure_altitude / 0.3048:,.0f} ft, {self.temperature - 273.15:+.1f} °C (ISA{self.delta_isa:+.1f} K)"
+        return (
+            f"{self.pressure_altitude / 0.3048:,.0f} ft, {self.temperature - 273.15:+.1f} °C "
+            f"(ISA{self.delta_isa:+.1f} K)"
+        )
 
 
 def hot_limit(env, h: float) -> float:

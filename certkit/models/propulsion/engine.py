@@ -89,7 +89,8 @@ class EngineDeck:
                 b = pts[bad][0]
                 raise DeckRangeError(
                     f"{self.name}: altitude {b[0]:.0f} m, Mach {b[1]:.3f}, throttle {b[2]:.3f} is outside the table "
-                    f"(altitude {lo[0]:.0f}–{hi[0]:.0f} m, Mach {lo[1]:.2f}–{hi[1]:.2f}, throttle {lo[2]:.2f}–{hi[2]:.2f}); "
+                    f"(altitude {lo[0]:.0f}–{hi[0]:.0f} m, Mach {lo[1]:.2f}–{hi[1]:.2f}, throttle "
+                    f"{lo[2]:.2f}–{hi[2]:.2f}); "
                     "extend the deck or build it with allow_extrapolation=True"
                 )
         return pts

@@ -111,12 +111,14 @@ class TakeoffPath(Rule):
         of about 2° of elevator at the ground attitude and 8–9° at the rotation attitude; not modelled: the wake's
         displacement near the ground, the flaps' own span load, the tail's own ground effect (the rotation's
         elevator is an estimate, not a bound); nose-wheel steering only as the aircraft file's takeoff_pilot
-        declares it (pedal steering; without it the nose wheel is held straight); no spool-up (takeoff thrust at brake release); the failed engine's thrust decays as a first-order lag with
+        declares it (pedal steering; without it the nose wheel is held straight); no spool-up (takeoff thrust at brake
+        release); the failed engine's thrust decays as a first-order lag with
         the declared propulsion.failure_decay_time (windmilling at once without it); the pilot (rotation at
         2.5°/s to the V2 attitude below the declared tail-strike attitude less 2°, speed on pitch once airborne;
         the pedals on heading and centreline, held for takeoff_pilot.rudder_reaction_time after the failure and then
         moved at most at takeoff_pilot.rudder_rate, ≤ 5° bank toward the live engine in the air) stands for a pilot;
-        VEF from V1 by a quasi-steady engine-out acceleration, never below the VMCG §25.149(e) computes; the path beyond the climb-out,
+        VEF from V1 by a quasi-steady engine-out acceleration, never below the VMCG §25.149(e) computes; the path
+        beyond the climb-out,
         (c)(3) 1.2 % from 400 ft and (c)(4) configuration changes are not computed. A run that lifts off more
         than 15 kn after VR (or the declared VLOF), passes 35 ft more than 10 kn above V2, deviates more than 30
         ft from the centreline on the ground or reaches the tail-strike attitude on the runway does not

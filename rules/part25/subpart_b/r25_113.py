@@ -53,8 +53,10 @@ class TakeoffDistance(Rule):
     margin = "Declared takeoff field length minus the takeoff distance (ft; ≥ 0 complies)."
     limitations = """
         Dry runway only ((b) wet runway and (c)-(d) takeoff run with clearway are not computed); sea level ISA at MTOW;
-        ground effect on the wing and on the tail's downwash as in §25.111; the pilot and engine models of §25.111 (rotation at 2.5°/s below the tail-strike attitude,
-        the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs outside the §25.111
+        ground effect on the wing and on the tail's downwash as in §25.111; the pilot and engine models of §25.111
+        (rotation at 2.5°/s below the tail-strike attitude,
+        the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs
+        outside the §25.111
         representativeness bounds are not evaluated. The paragraph's text is from memory (not in
         docs/regulation-notes.md).
     """

@@ -265,7 +265,8 @@ def _weight_limited(
                 f.condition,
                 f.check,
                 (
-                    f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most unfavourable "
+                    f"{f.condition.mass / LB:,.0f} lb is above this corner's WAT limit weight (set by the most "
+                    "unfavourable "
                     f"CG, {worst[key].condition.loading}): gradient here {f.value:.2%} against {required:.1%}"
                 ),
                 gradient_at_design_weight=round(f.value, 6),
@@ -315,8 +316,10 @@ def _weight_limited(
                     at_least=True,
                     unit="kg",
                     reason=(
-                        f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient is "
-                        f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that trim "
+                        f"no weight meets §25.121{paragraph} at {key}: at {what} ({lowest / LB:,.0f} lb) the gradient "
+                        "is "
+                        f"{grad:.2%} < {required:.1%}; the value is the weight extrapolated at constant CL from that "
+                        "trim "
                         "(0 when none); the declared envelope includes a corner the airplane cannot operate at"
                     ),
                     gradient_at_lowest_weight=round(float(grad), 5),
@@ -329,7 +332,8 @@ def _weight_limited(
                     here,
                     name,
                     (
-                        f"WAT limit weight not found at {key}: the trims between {what} and {f.condition.mass / LB:,.0f} lb "
+                        f"WAT limit weight not found at {key}: the trims between {what} and "
+                        f"{f.condition.mass / LB:,.0f} lb "
                         f"did not converge to the minimum gradient (last {grad:.3%} at {cond.mass / LB:,.0f} lb)"
                     ),
                     **base,

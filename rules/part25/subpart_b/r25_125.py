@@ -95,7 +95,8 @@ class LandingTouchdown(Rule):
         plane), which takes 2.5–6° more nose-up elevator in the baseline's flare; not modelled: the wake's
         displacement near the ground, the flaps' own span load, the tail's own ground effect, the lower stall angle
         in ground effect; the approach starts from a free-air trim at 150 ft (h/b ≈ 0.7, already slightly inside
-        both ground effects); the flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway); the 6 ft/s
+        both ground effects); the flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway);
+        the 6 ft/s
         criterion is from § 25.473 (text from memory).
     """
     references = ("25.473", "25.143", "25.149")

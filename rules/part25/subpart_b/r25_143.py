@@ -73,7 +73,8 @@ class ManeuveringCapability(Rule):
     title = "Controllability: manoeuvring capability in coordinated turns"
     amendment = "25-140"  # (h) came with 25-108; the section was last amended by 25-140 (2014)
     requirement = """
-        (Table rows verified against the GPO print; footnotes not read.) The manoeuvring capabilities in a constant-speed coordinated turn at
+        (Table rows verified against the GPO print; footnotes not read.) The manoeuvring capabilities in a
+        constant-speed coordinated turn at
         forward CG must be free of stall warning or other characteristics that might interfere with normal
         manoeuvring: takeoff configuration, V2, 30° bank, asymmetric WAT-limited thrust; takeoff, V2 + XX (the
         all-engines initial-climb speed), 40°, all-engines climb thrust; en route, VFTO, 40°, asymmetric

@@ -113,10 +113,12 @@ class LongitudinalControlConfigurationChanges(Rule):
     implementation = "partial"
     limitations = """
         The 50 lbf limit needs control_forces.elevator (without it one not_evaluated finding per corner); the force
-        is the steady one at the end trim (the flap-dependent downwash change at the tail is not modelled). Steady trims at the start and end
+        is the steady one at the end trim (the flap-dependent downwash change at the tail is not modelled). Steady
+        trims at the start and end
         of each manoeuvre (no transient, no pitch-rate or speed-change dynamics). The gear is as declared for each
         configuration (the clean configuration is gear up, (b) asks gear down; the gear's pitching moment is not
-        modelled). A movable stabiliser (geometry.horizontal_tail.stabilizer) stays where the start trim set it — that is
+        modelled). A movable stabiliser (geometry.horizontal_tail.stabilizer) stays where the start trim set it — that
+        is
         what "without re-trimming" means — and the elevator takes the change; without one the stabiliser is fixed at its
         declared incidence. (b)(6) is not evaluated (text not retrieved).
     """
@@ -165,7 +167,8 @@ class LongitudinalControlConfigurationChanges(Rule):
                     Finding.not_evaluated(
                         cond.with_(configuration="clean"),
                         f"(b) control force ≤ {crit.control_force_lbf:g} lbf",
-                        "no control-force model (control_forces.elevator: hinge moments and gearing, or artificial feel): the "
+                        "no control-force model (control_forces.elevator: hinge moments and gearing, or artificial "
+                        "feel): the "
                         "force is not computed; the elevator change against the remaining authority is checked instead",
                     )
                 )
@@ -250,7 +253,8 @@ class LongitudinalControlConfigurationChanges(Rule):
         return margins_evidence(
             findings,
             "§25.145(b) elevator to trim configuration and thrust changes",
-            "Elevator change between the start and end trims of each flap/thrust change against the elevator authority left at the start trim.",
+            "Elevator change between the start and end trims of each flap/thrust change against the elevator "
+            "authority left at the start trim.",
             (
                 "direction",
                 "start_elevator_deg",

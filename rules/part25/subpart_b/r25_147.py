@@ -129,8 +129,10 @@ class DirectionalControlOEI(Rule):
     limitations = """
         Steady straight flight only: the 15° heading change (dynamic) is reported not evaluated; the 150 lbf is
         compared with the steady pedal force of the wings-level trim (rudder trim neutral), not the force during the
-        heading change, and needs control_forces.rudder. The critical engine windmills (flight model drag); a movable stabiliser
-        trims (elevator at its trim setting), else the stabiliser is fixed at its declared incidence. Evaluated at sea level, standard day.
+        heading change, and needs control_forces.rudder. The critical engine windmills (flight model drag); a movable
+        stabiliser
+        trims (elevator at its trim setting), else the stabiliser is fixed at its declared incidence. Evaluated at sea
+        level, standard day.
     """
 
     unevaluated = (

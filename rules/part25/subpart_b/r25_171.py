@@ -176,7 +176,8 @@ class SpeedStability(Rule):
     unevaluated = (
         (
             "25.173(a)",
-            "the stick-force reading of (a) (pull below the trim speed, push above) is read elevator-fixed; the force itself is §25.173(c)'s",
+            "the stick-force reading of (a) (pull below the trim speed, push above) is read elevator-fixed; the force "
+            "itself is §25.173(c)'s",
         ),
     )
 
@@ -386,8 +387,8 @@ class FreeReturn(Rule):
         control, the released airplane settles where the stick force no longer exceeds the friction: ΔV = F_f / (dF/dV)
         with the stick-force gradient of §25.173(c).
     """
-    margin = """(allowed fraction of the trim speed) − F_f / (gradient · V_trim) (fraction of the trim speed); an unstable or
-        zero gradient does not return (band taken as the whole trim speed) and fails; not evaluated without
+    margin = """(allowed fraction of the trim speed) − F_f / (gradient · V_trim) (fraction of the trim speed); an
+        unstable or zero gradient does not return (band taken as the whole trim speed) and fails; not evaluated without
         control_forces.elevator.friction."""
     references = ("25.173(a)", "25.173(c)", "25.175")
     requires = ("configurations.clean.CLmax", "speeds.VMO")

@@ -143,7 +143,8 @@ class StaticLateralDirectionalStability(Rule):
                             cond,
                             "(b)(2) Cl_β < 0 between VMO/MMO and VFC/MFC",
                             "negative effective dihedral above VMO/MMO: "
-                            "(b)(2) accepts it if the divergence is gradual, easily recognizable and easily controllable by "
+                            "(b)(2) accepts it if the divergence is gradual, easily recognizable and easily "
+                            "controllable by "
                             "the pilot — qualitative, not assessed",
                             Cl_beta_per_rad=float(cl),
                         )

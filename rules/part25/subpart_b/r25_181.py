@@ -86,7 +86,8 @@ class DynamicStability(Rule):
     """
     margin = """
         ζ_sp − ζ_sp,min (short period, "heavily damped" read as MIL-F-8785C's Level 1 minimum of the flight phase's
-        category: 0.30 for the clean configuration (category B, en route), 0.35 with flaps (category C, terminal)) and ζ_dr − ζ_dr,min (Dutch roll,
+        category: 0.30 for the clean configuration (category B, en route), 0.35 with flaps (category C, terminal)) and
+        ζ_dr − ζ_dr,min (Dutch roll,
         "positively damped": ζ_dr > 0), dimensionless, at every condition. The MIL-F-8785C Level of every mode
         (short period, phugoid, Dutch roll, roll, spiral) is reported in the details and the evidence; it is not a
         Part 25 requirement and does not set the status.
@@ -252,7 +253,8 @@ class DynamicStability(Rule):
                     "Modes over CG corners × configurations × speeds × altitudes, with MIL-F-8785C levels",
                     damping_frequency_chart(points, boundaries),
                     caption=(
-                        "Damping ratio and natural frequency of the oscillatory modes, coloured by MIL-F-8785C Class III "
+                        "Damping ratio and natural frequency of the oscillatory modes, coloured by MIL-F-8785C Class "
+                        "III "
                         "Level (category C with flaps, B clean); dotted lines are the damping boundaries "
                         "(Table IV short period, Table VI Dutch roll, 3.2.1.2 phugoid; unverified values). "
                         "The table lists, per corner, configuration and mode, the worst condition."

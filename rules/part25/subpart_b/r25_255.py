@@ -106,12 +106,14 @@ class OutOfTrim(Rule):
         st = ac.geometry.horizontal_tail.stabilizer if ac.geometry is not None else None
         why = (
             (
-                "no movable stabiliser declared (geometry.horizontal_tail.stabilizer): the equivalent out-of-trim of an "
+                "no movable stabiliser declared (geometry.horizontal_tail.stabilizer): the equivalent out-of-trim of "
+                "an "
                 "airplane without a power-operated trim system is not modelled"
             )
             if st is None
             else (
-                "needs geometry.horizontal_tail.stabilizer.rate (the trim system's normal rate; (a)(1) three seconds of "
+                "needs geometry.horizontal_tail.stabilizer.rate (the trim system's normal rate; (a)(1) three seconds "
+                "of "
                 "it)"
                 if st.rate is None
                 else ""

@@ -92,7 +92,8 @@ class CheckedPitchManeuver(SimulationRule):
     limitations = (
         "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
         "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
-        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section."
+        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft "
+        "file's `structure` section."
     )
     implementation = "partial"
 
@@ -176,7 +177,8 @@ class MaximumPitchControlDisplacement(SimulationRule):
     limitations = (
         "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
         "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
-        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft file's `structure` section."
+        "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft "
+        "file's `structure` section."
     )
     implementation = "partial"
 

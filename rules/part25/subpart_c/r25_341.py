@@ -70,7 +70,8 @@ class DiscreteGust(SimulationRule):
         structure carries them (limit) and 1.5 × them (ultimate), §25.303/§25.305.
     """
     margin = """
-        Per condition and surface (wing, horizontal tail; the fin in lateral gusts): the smallest of (allowable limit load − |limit
+        Per condition and surface (wing, horizontal tail; the fin in lateral gusts): the smallest of (allowable limit
+        load − |limit
         load|) and (allowable ultimate load − 1.5 × |limit load|) over the declared stations and quantities,
         the limit load the extreme over all gust gradients; without a declared structural capability the
         condition is not evaluated and reports its loads.

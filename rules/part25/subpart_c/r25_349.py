@@ -143,7 +143,8 @@ class RollingConditions(SimulationRule):
     )
     limitations = (
         EFFORT_NOTE + "; " + FLEX_NOTE + "; spoilers not modelled; elevator and rudder held at their "
-        "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical gust, is rule 25.349(b)."
+        "manoeuvre values (no coordination); rigid airplane, quasi-steady strip aerodynamics; (b), the unsymmetrical "
+        "gust, is rule 25.349(b)."
     )
     implementation = "partial"
 
@@ -284,7 +285,8 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                     Finding.not_applicable(
                         c,
                         f"{PARAGRAPH[c.get('speed_point')]}: {s.replace('_', ' ')}",
-                        f"n = {n_target[i]:.2f} at this speed lies beyond the stall line of the V–n envelope: CLmax q S / W = "
+                        f"n = {n_target[i]:.2f} at this speed lies beyond the stall line of the V–n envelope: CLmax q "
+                        "S / W = "
                         f"{n_stall[i]:.2f} (the pull-up reached n {st.n_z[i]:.2f} at α {np.degrees(st.alpha[i]):.1f}°)",
                     )
                     for s in SURFACES
@@ -458,7 +460,10 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
 
 # --------------------------------------------------------------------------- (b) unsymmetrical gusts
 
-REG_B = "14 CFR 25.349(b) (secondary copy of the CFR text, end of (b) completed from EASA CS 25.349(b); docs/regulation-notes.md)"
+REG_B = (
+    "14 CFR 25.349(b) (secondary copy of the CFR text, end of (b) completed from EASA CS 25.349(b); "
+    "docs/regulation-notes.md)"
+)
 AIRLOAD_BASES = ("total", "increment")
 
 
@@ -513,7 +518,8 @@ class UnsymmetricalGust(SimulationRule):
     unevaluated = (
         (
             "25.349(b)",
-            "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal tail's unsymmetrical loads (§25.427(b)) are not in it",
+            "the §25.341(a) response it modifies is the rigid airplane's (no structural modes), and the horizontal "
+            "tail's unsymmetrical loads (§25.427(b)) are not in it",
         ),
     )
 

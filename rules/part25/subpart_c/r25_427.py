@@ -58,7 +58,8 @@ NO_FUSELAGE = (
 )
 
 LIMITATIONS = (
-    "Symmetric loadings from §25.331(b), §25.331(c)(2) and §25.341(a) (not §25.331(c)(1)); every symmetric condition is "
+    "Symmetric loadings from §25.331(b), §25.331(c)(2) and §25.341(a) (not §25.331(c)(1)); every symmetric condition "
+    "is "
     "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
     "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
     "at the tail is declared."

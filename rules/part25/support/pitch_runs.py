@@ -45,7 +45,8 @@ PILOT_EFFORT = {
         300.0,
         "lbf",
         "14 CFR 25.397(c) table, elevator wheel (symmetrical), maximum (verified, docs/regulation-notes.md); "
-        "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable hinge-moment "
+        "§25.331(c) lead-in allows the deflection to be limited by it; two-thirds may be used with reliable "
+        "hinge-moment "
         "data (§25.397(b))",
         "limit pilot force on the pitch control (used with control_forces.elevator)",
     )

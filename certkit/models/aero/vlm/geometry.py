@@ -394,7 +394,8 @@ def trapezoidal_surface(
     for c in controls:
         if not (0.0 <= c.eta_inboard < c.eta_outboard <= 1.0):
             raise GeometryError(
-                f"{where}: control {c.name!r} span fractions ({c.eta_inboard}, {c.eta_outboard}) must satisfy 0 <= inboard < outboard <= 1"
+                f"{where}: control {c.name!r} span fractions ({c.eta_inboard}, {c.eta_outboard}) must satisfy 0 <= "
+                "inboard < outboard <= 1"
             )
         if not 0.0 < c.chord_ratio <= 1.0:  # 1: the whole chord turns (an all-moving surface's incidence)
             raise GeometryError(f"{where}: control {c.name!r} chord ratio {c.chord_ratio} must be in (0, 1]")

@@ -112,7 +112,8 @@ def _spanwise_nodes(surface: Surface, yzlen: np.ndarray) -> tuple[np.ndarray, np
             for lo, hi, anchor_lo in ((iptloc[k - 1], iptloc[k], True), (iptloc[k], iptloc[k + 1], False)):
                 if lo == hi:
                     raise GeometryError(
-                        f"{where}, section {k + 1}: too few spanwise vortices (n_span={nvs}) to put a strip edge on every section"
+                        f"{where}, section {k + 1}: too few spanwise vortices (n_span={nvs}) to put a strip edge on "
+                        "every section"
                     )
                 y1 = ypt[lo]
                 if anchor_lo:
@@ -168,7 +169,8 @@ def _check_sections(surface: Surface, le: np.ndarray, chords: np.ndarray) -> Non
             neighbours = [surface.sections[j] for j in (k - 1, k + 1) if 0 <= j < len(surface.sections)]
             if not any(c.name in [d.name for d in nb.controls] for nb in neighbours):
                 raise GeometryError(
-                    f"{where}, section {k + 1}: control {c.name!r} is on no neighbouring section, so it lies outside the surface (a control acts between two sections carrying it)"
+                    f"{where}, section {k + 1}: control {c.name!r} is on no neighbouring section, so it lies outside "
+                    "the surface (a control acts between two sections carrying it)"
                 )
         if len(set(names)) != len(names):
             raise GeometryError(f"{where}, section {k + 1}: a control is declared twice")
