@@ -32,10 +32,13 @@ from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_REQUIRE
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
+    beyond_mach_range,
     capability_finding,
+    condition_mach,
     control_stops,
     critical_state_finding,
     entry_speeds,
+    set_aside_finding,
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -396,6 +399,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                     common["roll_rate_shortfall"] = "the target roll rate is not reached with the aileron at its stop"
             else:
                 common["roll_rate_reference"] = NO_VA_NOTE
+        beyond_mach = beyond_mach_range(loads, condition_mach(c))
         for s in SURFACES:
             if s in MIRRORED:
                 R, L = env_sides.peaks[s][i], env_sides.peaks[s][n + i]
@@ -409,6 +413,11 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
                 stations = env_sides.stations[s]
             else:
                 peaks, extra, stations = env_fin.peaks[s][i], {}, env_fin.stations[s]
+            if beyond_mach:
+                check = f"{PARAGRAPH[sp]}: {s.replace('_', ' ')}"
+                state = wing_states[:, i] if s == "wing" else peaks
+                findings.append(set_aside_finding(c, check, beyond_mach, state, stations, **common, **extra))
+                continue
             if s == "wing":
                 findings.append(
                     critical_state_finding(
@@ -636,8 +645,14 @@ def unsymmetrical_gusts(ctx, conditions, crit) -> UnsymmetricalGustRun:
                 round(float(sym.peaks["wing"][i, 0, b, 0]) / 1e3, 1),
             ],
         )
+        beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
         for side in (full_side, reduced_side):
             jb = int(which[side][i, 1 if runs.up[i] else 0, b, 0])
+            if beyond_mach:
+                findings.append(
+                    set_aside_finding(c, check(c, side), beyond_mach, peaks[side][i], stations[side], **common)
+                )
+                continue
             findings.append(
                 capability_finding(
                     c,

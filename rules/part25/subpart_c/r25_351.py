@@ -19,10 +19,13 @@ import numpy as np
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
+    beyond_mach_range,
     capability_finding,
+    condition_mach,
     control_stops,
     entry_speeds,
     force_limited_deflection,
+    set_aside_finding,
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -260,9 +263,12 @@ def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
         )
         if c.get("speed_point") == "low":
             common["lowest_speed"] = VMC_NOTE
+        beyond_mach = beyond_mach_range(loads, condition_mach(c))
         for p, name in PHASES:
             findings.append(
-                capability_finding(
+                set_aside_finding(c, f"({p}) {name}", beyond_mach, peaks[p][i], stations, **common)
+                if beyond_mach
+                else capability_finding(
                     c, f"({p}) {name}", SURFACE, peaks[p][i], stations, caps, crit.ultimate_factor, **common
                 )
             )
