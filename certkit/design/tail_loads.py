@@ -2,17 +2,19 @@
 
 Every rule that declares it produces station loads of the ``horizontal_tail`` (``Rule.produces``; the pitch
 manoeuvres, discrete gusts and rolling conditions of the built-in rules) keeps the load envelopes of its conditions;
-this module reduces them to the largest
-limit-load magnitude of each quantity (shear, bending, torsion) at each station of the tail, with the rule and
-condition that set it (the loads engineer's critical-case list). Ultimate = 1.5 × limit (§25.303).
+this module reduces them to the largest limit-load magnitude of each quantity (shear, bending, torsion) at each
+station of the tail, with the rule and condition that set it (the loads engineer's critical-case list), and the factor
+of safety those rules hold in force (ultimate = factor × limit).
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from certkit.engine.results import Condition, RuleResult
 from certkit.models.loads.model import QUANTITIES
 
 SURFACE = "horizontal_tail"
@@ -65,7 +67,7 @@ class TailLoadEnvelope:
             max(self.ultimate_factor or 0.0, other.ultimate_factor or 0.0) or None,
         )
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, object]:
         return {
             "stations": list(self.stations),
             "limit_loads": {q: [float(v) for v in self.limit[i]] for i, q in enumerate(QUANTITIES)},
@@ -76,11 +78,15 @@ class TailLoadEnvelope:
         }
 
 
-def tail_load_envelope(results) -> TailLoadEnvelope:
+def tail_load_envelope(results: Iterable[RuleResult]) -> TailLoadEnvelope:
     """Reduce the kept envelopes of evaluated loads rules (:class:`certkit.engine.results.RuleResult` with
     ``load_envelopes``) to the tail's limit-load magnitudes. Raises ``ValueError`` when no rule computed tail loads
     (the structure cannot be sized: the caller reports why)."""
-    stations, best, crit, rules, factors = None, None, {}, set(), []
+    stations: tuple[str, ...] | None = None
+    best = np.zeros((0, 0))
+    crit: dict[tuple[int, int], CriticalLoad] = {}
+    rules: set[str] = set()
+    factors: list[float] = []
     for res in results:
         for env in res.load_envelopes:
             if SURFACE not in env.peaks:
@@ -121,7 +127,9 @@ def tail_load_envelope(results) -> TailLoadEnvelope:
     return TailLoadEnvelope(stations, best, [crit[k] for k in sorted(crit)], tuple(sorted(rules)), max(factors))
 
 
-def near_critical_conditions(results, fraction: float, own_fraction: float = 1.0) -> dict:
+def near_critical_conditions(
+    results: list[RuleResult], fraction: float, own_fraction: float = 1.0
+) -> dict[str, list[Condition] | None]:
     """Per loads rule id, the conditions whose tail load reaches ``fraction`` of the envelope over every rule
     (:func:`tail_load_envelope`), or ``own_fraction`` of the rule's own largest, at some station and quantity —
     as the rule's envelopes name them (their ``keys``); a rule whose envelopes do not name their conditions maps to
@@ -129,7 +137,7 @@ def near_critical_conditions(results, fraction: float, own_fraction: float = 1.0
     (:mod:`certkit.design.sizing_loop`): each rule's own critical cases stay in, as a changed tail can make a
     case critical that was not for the declared one."""
     best = tail_load_envelope(results).limit[None, None]  # (1, 1, 3, S)
-    out: dict = {}
+    out: dict[str, list[Condition] | None] = {}
     for res in results:
         envs = [e for e in res.load_envelopes if SURFACE in e.peaks]
         if not envs:
@@ -139,7 +147,8 @@ def near_critical_conditions(results, fraction: float, own_fraction: float = 1.0
             continue
         mags = [np.abs(np.nan_to_num(e.peaks[SURFACE], nan=0.0)) for e in envs]  # each (n, 2, 3, S)
         own = np.max([m.max(axis=(0, 1)) for m in mags], axis=0)[None, None]
-        chosen = out.setdefault(res.id, [])
+        chosen: list[Condition] = []
+        out[res.id] = chosen
         for env, mag in zip(envs, mags):
             near = np.any((mag >= fraction * best) | (mag >= own_fraction * own), axis=(1, 2, 3))
             chosen += [env.keys[i] for i in np.flatnonzero(near) if env.keys[i] not in chosen]

@@ -20,7 +20,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
+from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Bound, SimulationResult, simulate
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 
@@ -41,13 +43,13 @@ class CheckedManeuverInputs:
 
 
 def checked_maneuver_inputs(
-    model,
-    x0,
-    u0,
-    nose_up,
-    omega,
-    available,
-    target,
+    model: AircraftModel,
+    x0: np.ndarray,
+    u0: np.ndarray,
+    nose_up: ArrayLike,
+    omega: ArrayLike,
+    available: ArrayLike,
+    target: ArrayLike,
     *,
     n_limit: float,
     max_hold: float,
@@ -60,18 +62,20 @@ def checked_maneuver_inputs(
     """The checked manoeuvre's input of every condition of ``model`` (n) from its trim ``x0``/``u0`` (module
     docstring): ``nose_up`` (n,) bool, ``omega`` (n,) rad/s, ``available`` (n,) rad of elevator from the trim to the
     stop the pilot can reach, ``target`` (n,) response to reach."""
-    nose_up = np.asarray(nose_up, dtype=bool)
-    omega, available, target = (np.asarray(a, dtype=float) for a in (omega, available, target))
-    n = nose_up.size
-    sign = np.where(nose_up, -1.0, 1.0)
+    up_all = np.asarray(nose_up, dtype=bool)
+    omega_, available_, target_ = (np.asarray(a, dtype=float) for a in (omega, available, target))
+    n = up_all.size
+    sign = np.where(up_all, -1.0, 1.0)
     n_lim, periods = float(n_limit), float(periods)
+    Recorded = tuple[np.ndarray, SimulationResult, np.ndarray, np.ndarray]
 
-    def simulate_inputs(amp, hold, mask=None, record=False):
-        """Simulate the conditions of ``mask`` (all by default); the response for the whole batch, NaN outside."""
+    def run(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> Recorded:
+        """Simulate the conditions of ``mask`` (all by default): the response for the whole batch (NaN outside the
+        mask), the records, their window and t_max."""
         idx = np.flatnonzero(np.ones(n, dtype=bool) if mask is None else mask)
-        up = nose_up[idx]
-        sched = SinusoidHold(sign[idx] * amp[idx], omega[idx], hold[idx])
-        t_max = 2 * periods * np.pi / (2 * omega[idx]) + hold[idx]  # 3π/(2ω) + Δt
+        up = up_all[idx]
+        sched = SinusoidHold(sign[idx] * amp[idx], omega_[idx], hold[idx])
+        t_max = 2 * periods * np.pi / (2 * omega_[idx]) + hold[idx]  # 3π/(2ω) + Δt
         stop = [
             Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
             Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
@@ -85,29 +89,33 @@ def checked_maneuver_inputs(
         resp[idx] = np.where(
             up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0)
         )
-        return (resp, sim, valid, t_max) if record else resp
+        return resp, sim, valid, t_max
 
-    max_hold = float(max_hold)
-    r_full = simulate_inputs(available, np.zeros(n))
-    reach = r_full >= target
-    r_held = (
-        np.where(reach, r_full, simulate_inputs(available, np.full(n, max_hold), ~reach)) if (~reach).any() else r_full
-    )
-    held_short = ~reach & (r_held < target)  # even the longest hold does not reach the load factor: maximal input
+    def response(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
+        return run(amp, hold, mask)[0]
 
-    def inputs_of(p):
+    longest = float(max_hold)
+    r_full = response(available_, np.zeros(n))
+    reach = r_full >= target_
+    r_held = np.where(reach, r_full, response(available_, np.full(n, longest), ~reach)) if (~reach).any() else r_full
+    held_short = ~reach & (r_held < target_)  # even the longest hold does not reach the load factor: maximal input
+
+    def inputs_of(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
         hold fraction of the longest hold (full deflection)."""
-        return np.where(reach, p * available, available), np.where(
-            reach | held_short, 0.0, p * max_hold
-        ) + held_short * max_hold
+        amp = np.where(reach, p * available_, available_)
+        return amp, np.where(reach | held_short, 0.0, p * longest) + held_short * longest
+
+    def searched(p: np.ndarray, mask: np.ndarray) -> np.ndarray:
+        amp, hold = inputs_of(p)
+        return response(amp, hold, mask)
 
     search = ~held_short
     p, r_p, p_lo, _, p_hi, _ = bisect_batch(
-        lambda p, mask: simulate_inputs(*inputs_of(p), mask),
+        searched,
         np.zeros(n),
         np.ones(n),
-        target - 0.5 * float(tolerance),
+        target_ - 0.5 * float(tolerance),
         steps=int(steps),
         tol=float(resolution),
         f_lo=np.where(reach, 0.0, r_full),
@@ -116,8 +124,8 @@ def checked_maneuver_inputs(
     # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
     # amplitude search that did not converge (a response that jumps across the target near stall) takes the
     # largest amplitude found that does not exceed the load factor, as the paragraph scales the input down
-    over = reach & (np.abs(r_p - target) > float(tolerance)) & (r_p > target)
+    over = reach & (np.abs(r_p - target_) > float(tolerance)) & (r_p > target_)
     p = np.where(search & ~reach, p_hi, np.where(search, np.where(over, p_lo, p), 1.0))
     amp, hold = inputs_of(p)
-    resp, sim, valid, t_max = simulate_inputs(amp, hold, record=True)  # all conditions, recorded
+    resp, sim, valid, t_max = run(amp, hold)  # all conditions, recorded
     return CheckedManeuverInputs(amp, hold, reach, held_short, resp, sim, valid, t_max)
