@@ -115,3 +115,16 @@ def test_a_constant_response_is_reproduced_not_flagged():
     s = fit_response("level.x", bounds, x, np.full(40, 2.0), x[:0], np.empty(0), families=("polynomial",))
     assert s.constant and not s.flagged
     assert np.allclose(s.predict(rng.random((5, 3))), 2.0)
+
+
+def test_the_gaussian_process_mean_is_scikit_learns():
+    """SubsampledGP.predict evaluates the mean without scikit-learn's kernel matrices: equal to
+    GaussianProcessRegressor.predict to round-off, on rows spanning several blocks."""
+    from certkit.study.analysis import surrogates as sg
+
+    rng = np.random.default_rng(5)
+    u = rng.uniform(-1, 1, (150, 4))
+    y = np.sin(2 * u[:, 0]) + u[:, 1] * u[:, 2] + 0.3 * u[:, 3] ** 2
+    gp = sg.SubsampledGP(4, 120).fit(u, y)
+    z = rng.uniform(-1.1, 1.1, (2 * sg.GP_BLOCK + 7, 4))
+    np.testing.assert_allclose(gp.predict(z), gp.gp_.predict(z), rtol=1e-11, atol=1e-12)
