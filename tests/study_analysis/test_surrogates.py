@@ -117,6 +117,7 @@ def test_a_constant_response_is_reproduced_not_flagged():
     assert np.allclose(s.predict(rng.random((5, 3))), 2.0)
 
 
+@pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # a near-interpolating fit, on purpose
 def test_the_gaussian_process_mean_is_scikit_learns():
     """SubsampledGP.predict evaluates the mean without scikit-learn's kernel matrices: equal to
     GaussianProcessRegressor.predict to round-off, on rows spanning several blocks."""
