@@ -22,6 +22,23 @@ def _structure_section(text: str) -> str:
 NO_STRUCTURE = (_structure_section(BASELINE.read_text()), "")
 
 
+def _control_forces_section(text: str) -> str:
+    """The baseline's ``control_forces:`` section (its comment lines included), newline-terminated."""
+    start = text.index("\ncontrol_forces:") + 1
+    end = re.compile(r"^[a-z_]+:", re.M).search(text, start + 1).start()
+    return text[start:end]
+
+
+def control_forces_edit(section: str):
+    """Edit replacing the baseline's ``control_forces:`` section by ``section`` (a whole section, from its key,
+    newline-terminated; "" removes it)."""
+    return (_control_forces_section(BASELINE.read_text()), section)
+
+
+#: edit removing the baseline's declared control-force models
+NO_CONTROL_FORCES = control_forces_edit("")
+
+
 def _stabilizer_block(text: str) -> str:
     """The baseline's movable-stabiliser declaration (``geometry.horizontal_tail.stabilizer``), newline-terminated."""
     start = text.index("    stabilizer:")

@@ -23,7 +23,7 @@ from certkit.errors import InputError
 from certkit.models.control_force import control_force_model, downwash_gradient, local_angle, stick_free_neutral_point
 from certkit.units import LBF
 
-from .helpers import edited_baseline, own, run_rule
+from .helpers import NO_CONTROL_FORCES, control_forces_edit, edited_baseline, own, run_rule
 
 RHO0_SLUG = 0.0023769
 PSF_PER_KPA = 20.885434
@@ -45,7 +45,7 @@ FORCES = """control_forces:
     gradient: 40 lbf/in
     gearing: 6 deg/in
     q_feel_reference: 10 kPa
-sources:"""
+"""
 #: an artificial-feel elevator (for §25.331(c))
 ELEVATOR_FEEL = """control_forces:
   elevator:
@@ -54,7 +54,7 @@ ELEVATOR_FEEL = """control_forces:
     gradient: 30 lbf/in
     gearing: 2 deg/in
     q_feel_reference: 10 kPa
-sources:"""
+"""
 
 
 def _section(**controls):
@@ -63,13 +63,13 @@ def _section(**controls):
 
 @pytest.fixture(scope="module")
 def forces_ctx(tmp_path_factory):
-    return Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("cf"), [("\nsources:", "\n" + FORCES)])))
+    return Context(load_aircraft(edited_baseline(tmp_path_factory.mktemp("cf"), [control_forces_edit(FORCES)])))
 
 
 @pytest.fixture(scope="module")
 def feel_ctx(tmp_path_factory):
     return Context(
-        load_aircraft(edited_baseline(tmp_path_factory.mktemp("feel"), [("\nsources:", "\n" + ELEVATOR_FEEL)]))
+        load_aircraft(edited_baseline(tmp_path_factory.mktemp("feel"), [control_forces_edit(ELEVATOR_FEEL)]))
     )
 
 
@@ -265,20 +265,42 @@ def test_stick_force_gradient_sign_and_zero_at_the_stick_free_neutral_point(forc
     ],
 )
 def test_schema_errors_name_the_path_and_line(tmp_path, block, path, message):
-    text = "control_forces:\n" + block + "sources:"
+    edit = control_forces_edit("control_forces:\n" + block)
     with pytest.raises(InputError) as err:
-        load_aircraft(edited_baseline(tmp_path, [("\nsources:", "\n" + text)]))
+        load_aircraft(edited_baseline(tmp_path, [edit]))
     (problem,) = [p for p in err.value.problems if p.path == path]
     assert message in problem.message
-    lines = edited_baseline(tmp_path, [("\nsources:", "\n" + text)]).read_text().splitlines()
+    lines = edited_baseline(tmp_path, [edit]).read_text().splitlines()
     # a field's error points at its line; a whole-control error at the control's mapping (its key or first entry)
     key = path.split(".")[-1]
     assert problem.line is not None and (key in lines[problem.line - 1] or key in lines[problem.line - 2])
 
 
-def test_the_baseline_declares_no_control_forces(baseline):
-    """The 777 is fly-by-wire with artificial feel and no published feel data: the baseline has no section."""
-    assert baseline.model.control_forces is None
+def test_the_baseline_rudder_feel_is_the_777_amm_s(baseline):
+    """The baseline's pedal feel reproduces the 777 AMM 27-21-00 feel and centering mechanism (D633W101-BEJ, p. 24):
+    19.5 lb at breakout, 50 lb at full pedal (full rudder, 27.3°), at any speed (springs, not q-feel); to 0.01 lbf.
+    The column and wheel feel of the 777 are not public: no elevator or aileron model is declared."""
+    rudder = control_force_model(baseline.model, "rudder")
+    assert rudder.kind == "artificial_feel" and rudder.q_reference is None
+    stop = math.radians(27.3)
+    just_moved = rudder.force(5e3, 0.0, 1e-9) / LBF
+    full = rudder.force(np.array([5e3, 30e3]), 0.0, stop) / LBF
+    assert just_moved == pytest.approx(19.5, abs=0.01)
+    assert full == pytest.approx([50.0, 50.0], abs=0.01)
+    assert rudder.force(5e3, 0.0, -stop) / LBF == pytest.approx(-50.0, abs=0.01)
+    assert baseline.model.control_forces.elevator is None and baseline.model.control_forces.aileron is None
+
+
+def test_the_baseline_pedal_forces_lie_inside_the_published_feel(ctx):
+    """§25.147(a) and §25.149(d) on the baseline are computed from the AMM feel: each pedal force lies between the
+    breakout (19.5 lbf) and the full-pedal force (50 lbf), so both comply with their 150 lbf limits."""
+    findings, _ = _evaluate("25.147(a)", ctx, lambda c: True)
+    findings += _evaluate("25.149", ctx, lambda c: c.get("inoperative") == "left")[0]
+    pedal = [f for f in findings if "force" in f.check and "rudder" in f.check]
+    assert len(pedal) == 4
+    for f in pedal:
+        assert f.status == "complies" and f.unit == "lbf" and f.limit == 150.0
+        assert 19.5 < f.value < 50.0
 
 
 # --------------------------------------------------------------------------- the rules
@@ -400,9 +422,10 @@ def test_not_evaluated_without_a_model(rule_id, check, reason):
     assert all(f.check.startswith(check) and reason in f.reason for f in own(r))
 
 
-def test_force_parts_not_evaluated_without_a_model(ctx):
-    """On the baseline (no control_forces): §25.145(b), §25.147(a) and §25.149(d) keep their force parts not
-    evaluated, naming the missing section; §25.173(b) needs the friction too."""
+def test_force_parts_not_evaluated_without_a_model(tmp_path):
+    """Without control_forces: §25.145(b), §25.147(a) and §25.149(d) keep their force parts not evaluated, naming
+    the missing section; §25.173(b) needs the friction too."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, [NO_CONTROL_FORCES])))
     findings, _ = _evaluate("25.145(b)", ctx, lambda c: c.loading == "fwd_mlw")
     assert [f.reason for f in findings if "control force" in f.check] and all(
         f.status == "not_evaluated" and "control_forces.elevator" in f.reason
@@ -418,14 +441,14 @@ def test_force_parts_not_evaluated_without_a_model(ctx):
 
 
 def test_free_return_needs_friction(tmp_path):
-    r = run_rule("25.173(b)", tmp_path, edits=[("\nsources:", "\n" + FORCES.replace("    friction: 3 lbf\n", ""))])
+    r = run_rule("25.173(b)", tmp_path, edits=[control_forces_edit(FORCES.replace("    friction: 3 lbf\n", ""))])
     assert r.status == "not_evaluated" and "friction" in own(r)[0].reason
 
 
 def test_a_force_model_needs_its_control_surface(tmp_path):
     """A force model of a control the geometry does not declare is an input error at the control's line."""
     edits = [
-        ("\nsources:", "\n" + ELEVATOR_FEEL),
+        control_forces_edit(ELEVATOR_FEEL),
         ("      elevator:\n        span_start: 0.07", "      elevatorx:\n        span_start: 0.07"),
     ]
     with pytest.raises(InputError) as err:

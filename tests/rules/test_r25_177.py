@@ -15,7 +15,7 @@ import pytest
 
 from certkit.units import FT
 
-from .helpers import own, run_rule
+from .helpers import control_forces_edit, own, run_rule
 
 RULE = "25.177"
 
@@ -102,9 +102,9 @@ def test_pedal_force_bounds_the_range(tmp_path):
     lesser at VMO: its range ends where the pedal force is 180 lbf (the feel law by hand, 3 %)."""
     feel = (
         "control_forces:\n  rudder:\n    type: artificial_feel\n    preload: 10 lbf\n    gradient: 200 lbf/in\n"
-        "    gearing: 6 deg/in\n    q_feel_reference: 10 kPa\nsources:"
+        "    gearing: 6 deg/in\n    q_feel_reference: 10 kPa\n"
     )
-    r = run_rule(RULE, tmp_path, edits=[("\nsources:", "\n" + feel)])
+    r = run_rule(RULE, tmp_path, edits=[control_forces_edit(feel)])
     bounded = [
         f for f in own(r) if "rudder within" in f.check and f.details.get("range_bound") == "180 lbf pedal force"
     ]

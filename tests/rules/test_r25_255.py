@@ -7,7 +7,7 @@ the margins are the elevator design limits −21.8°/+16.8° minus the manoeuvre
 
 import pytest
 
-from .helpers import NO_STABILIZER, own, run_rule
+from .helpers import NO_STABILIZER, control_forces_edit, own, run_rule
 
 RATE = ("      elevator_trim: 0 deg ", "      rate: 0.5 deg/s\n      elevator_trim: 0 deg ")
 
@@ -86,10 +86,9 @@ def test_stick_forces_with_an_artificial_feel_elevator(tmp_path):
     mistrim leaves a push at 1 g and at 1.5 g — and the pull holding 1.5 g at VDF/MDF is within 125 lbf ((f))."""
     import math
 
-    feel = (
-        "\nsources:",
-        "\ncontrol_forces:\n  elevator:\n    type: artificial_feel\n    preload: 5 lbf\n"
-        "    gradient: 30 lbf/in\n    gearing: 2 deg/in\n    q_feel_reference: 10 kPa\nsources:",
+    feel = control_forces_edit(
+        "control_forces:\n  elevator:\n    type: artificial_feel\n    preload: 5 lbf\n"
+        "    gradient: 30 lbf/in\n    gearing: 2 deg/in\n    q_feel_reference: 10 kPa\n"
     )
     r = run_rule("25.255", tmp_path, [RATE, feel])
     slopes = [f for f in own(r) if "stick force per g" in f.check]

@@ -81,9 +81,9 @@ def test_steady_sideslip_by_hand(baseline):
 
 def test_overswing_exceeds_steady_and_load_signs(yaw):
     """Rudder to its negative stop (§25.351(a)(1) control system stops: the travel −27.3° of aircraft/lta.yaml, not
-    the −23.2° design limit; nose-right yaw: C_nδr < 0; no control-force model, so no pedal-force limit): the
-    sideslip is negative
-    (β = −C_nδr δr / C_nβ has the sign of δr), the overswing |β| exceeds the settled |β| at every condition,
+    the −23.2° design limit; nose-right yaw: C_nδr < 0; the 777 AMM pedal feel gives 50 lbf at the stop, below the
+    300 lbf limit of (a)(2)): the sideslip is negative (β = −C_nδr δr / C_nβ has the sign of δr), the overswing
+    |β| exceeds the settled |β| at every condition,
     and the fin root shear reverses between (a) (rudder force alone, C_Yδr δr < 0) and (b) (sideslip force
     C_Yβ β > 0 dominates)."""
     by = {}
@@ -92,7 +92,7 @@ def test_overswing_exceeds_steady_and_load_signs(yaw):
     assert len(by) == 64  # 8 CG corners × 2 altitudes × 4 speeds
     for cond, ph in by.items():
         d = ph["(b)"].all_details()
-        assert d["rudder_deg"] == pytest.approx(-27.3, abs=0.01) and "rudder stop (travel" in d["pilot_effort"]
+        assert d["rudder_deg"] == pytest.approx(-27.3, abs=0.01) and "rudder at its stop" in d["pilot_effort"]
         assert d["overswing_beta_deg"] < 0 and d["steady_beta_deg"] < 0
         assert abs(d["overswing_beta_deg"]) > abs(d["steady_beta_deg"]), cond
         assert ph["(a)"].all_details()[ROOT_SHEAR][0] < 0 < ph["(b)"].all_details()[ROOT_SHEAR][0], cond
