@@ -15,7 +15,7 @@ from certkit_rules.part25.support.control_speeds import control_usage, vmca_from
 from certkit.models.flight import control_limits
 from certkit.units import KN
 
-from .helpers import own, run_rule
+from .helpers import control_forces_edit, own, run_rule
 
 
 @pytest.fixture(scope="module")
@@ -249,3 +249,29 @@ def test_a_40_percent_smaller_fin_has_no_vmcg_on_the_runway(result, tmp_path):
     base = {f.condition.loading: f.value for f in _vmcg(result)}
     for f in _vmcg(r):
         assert f.status != "complies" or f.value > base[f.condition.loading]
+
+
+def test_the_baseline_rudder_reaches_its_stop_below_150_lbf(result):
+    """With the 777 AMM pedal feel (50 lbf at full pedal) the 150 lbf of (e) does not bind: the runs use the stops."""
+    for f in _vmcg(result):
+        assert f.details["rudder_limit"].startswith("the rudder's stops (pedal force there 50 lbf")
+
+
+def test_a_heavy_pedal_feel_limits_the_rudder_and_raises_vmcg(result, tmp_path):
+    """A deficient feel (springs, 20 lbf breakout + 40 lbf/in at 6 °/in: 150 lbf at (150 − 20)/40 × 6 = 19.5° of
+    rudder, against the 27.3° stop). The rudder the pilot can hold at 150 lbf is 71 % of the stop's, so the static
+    speed at which it balances the engine-out moment rises about as 1/√0.714 = 1.18 (the simulated VMCG more: the
+    rudder saturates sooner in the swing): VMCG rises at every corner by more than 5 kn, and where it passes
+    VR = 155 kn (the heavy corners, ≈ 136 kn × 1.18 ≈ 161 kn) (e) fails."""
+    feel = (
+        "control_forces:\n  rudder:\n    type: artificial_feel\n    preload: 20 lbf\n    gradient: 40 lbf/in\n"
+        "    gearing: 6 deg/in\n"
+    )
+    r = run_rule("25.149", tmp_path, [control_forces_edit(feel)])
+    heavy = _vmcg(r)
+    assert len(heavy) == 8
+    base = {f.condition.loading: f.value for f in _vmcg(result)}
+    for f in heavy:
+        assert f.details["rudder_limit"] == "150 lbf pedal force: rudder -19.5° / 19.5°"
+        assert f.value > base[f.condition.loading] + 5.0
+    assert any(f.status == "fails" for f in heavy if f.condition.mass > 600_000 * 0.4536)

@@ -74,7 +74,8 @@ class MinimumControlSpeed(Rule):
         runs 9 failure speeds from 0.85 to 1.15 times the static rudder-moment balance speed (more toward 60 KCAS or
         VR only where the crossing lies outside), VMCG interpolated linearly (spacing about 5 kn, within 0.6 kn of a
         finer search on the baseline).
-        The 150 lbf rudder force of (e) is not modelled (the rudder reaches its stop); sea level ISA, no wind;
+        The rudder is limited by the 150 lbf pedal force of (e) with control_forces.rudder (a q-feel or hinge-moment
+        force taken at VR and zero sideslip), else by its stops only; sea level ISA, no wind;
         the takeoff configuration named 'takeoff' only.
     """
 

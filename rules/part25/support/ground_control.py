@@ -52,6 +52,12 @@ VMCG_CRITERIA = {
         "failure speed lies near VMCG; saves a third of the simulated time)",
         "deviation, in multiples of the bound, at which an engine-cut run ends",
     ),
+    "vmcg_rudder_force_lbf": Criterion(
+        150.0,
+        "lbf",
+        SOURCE,
+        "rudder pedal force that limits the rudder in the VMCG runs (with control_forces.rudder)",
+    ),
     "vmcg_low_kn": Criterion(
         60.0,
         "kn",
@@ -106,6 +112,7 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
         engine = critical_engine(ctx)
         n = len(conditions)
         travel = control_limits(ac, design=False)
+        travel["rudder"], rudder_limit = _force_limited_rudder(ac, travel["rudder"], vr_cas, crit.vmcg_rudder_force_lbf)
         search = ground_minimum_control_speed(
             model,
             engine,
@@ -131,6 +138,7 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
                 if ac.propulsion.failure_decay_time
                 else "windmilling at once"
             ),
+            "rudder_limit": rudder_limit,
             "held_settings": sorted(settings) or None,
             "conditions": n,
         }
@@ -138,6 +146,32 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
 
     key = ("vmcg", tuple((c.mass, c.x_cg) for c in conditions), tuple(float(getattr(crit, k)) for k in VMCG_CRITERIA))
     return ctx.memo(key, compute)
+
+
+def _force_limited_rudder(aircraft, stops, vr_cas: float, force_lbf: float):
+    """The rudder travel of the VMCG runs, "as limited by 150 pounds of force" (§25.149(e)): each stop, or the
+    deflection the pedal force ``force_lbf`` holds from the neutral (rudder trim neutral), whichever is smaller; a
+    q-feel or hinge-moment force taken at VR, the highest speed of the search (where a given force holds the least
+    rudder), at zero sideslip. Returns ((low, high) rad, how the limit was set, for the report)."""
+    from certkit.atmosphere import RHO0
+    from certkit.models.control_force import control_force_model
+    from certkit.units import LBF
+
+    model = control_force_model(aircraft, "rudder")
+    if model is None:
+        return (
+            stops,
+            f"the rudder's stops; the {force_lbf:g} lbf pedal force is not modelled (no control_forces.rudder)",
+        )
+    qbar = 0.5 * RHO0 * float(convert_speed(vr_cas, "CAS", "EAS", 0.0)) ** 2
+    reach = [float(model.deflection_at_force(np.sign(s) * force_lbf * LBF, qbar, 0.0)) for s in stops]
+    limits = tuple(r if abs(r) < abs(s) else s for r, s in zip(reach, stops))
+    at_stop = [float(model.force(qbar, 0.0, s)) / LBF for s in stops]
+    if limits == tuple(stops):
+        how = f"the rudder's stops (pedal force there {max(abs(f) for f in at_stop):.0f} lbf < {force_lbf:g} lbf)"
+    else:
+        how = f"{force_lbf:g} lbf pedal force: rudder {np.degrees(limits[0]):.1f}° / {np.degrees(limits[1]):.1f}°"
+    return limits, how
 
 
 def computed_vmcg(ctx):
