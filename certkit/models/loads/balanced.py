@@ -24,7 +24,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.trim import assemble_state
-from certkit.models.loads.response import inertia_terms, response_load_parts
+from certkit.models.loads.response import inertia_terms, response_load_parts, with_fuel_states
 
 
 @dataclass
@@ -195,6 +195,45 @@ def steady_fuel_units(loads, model, x, u, outputs, surface: str = "wing") -> np.
     (:meth:`certkit.models.loads.model.SurfaceLoads.fuel_loads`); None without tanks."""
     units = loads[surface].fuel_loads(inertia_terms(_steady_record(model, x, u, outputs), model))
     return None if units is None else units[0]
+
+
+@dataclass
+class BalancedLoads:
+    """The balanced states of a batch and their station loads (:func:`balanced_loads`): the model with linear lift
+    they were solved on, the states, how each holds its pitching moment (``scheme``), the aerodynamic and inertial
+    parts of each surface's loads ((n, 3, S) each), their sums (NaN where the balance did not converge) and the
+    wing's loads in each fuel state ((M, n, 3, S); NaN for every state where ``fuel`` was not given)."""
+
+    model: AircraftModel
+    state: BalancedStates
+    scheme: np.ndarray
+    parts: dict
+    total: dict
+    wing_states: np.ndarray
+
+
+def balanced_loads(
+    loads, model, x_entry, u_entry, load_factor, stops, surfaces, *, tol: float, fuel, wing: bool = True
+) -> BalancedLoads:
+    """Balanced states at ``load_factor`` from the entry trims (:func:`balanced_within_stops`, on the model with
+    linear lift, :func:`linear_lift`) and the station loads of ``surfaces`` there; the wing's loads in the fuel
+    states ``fuel`` ((n, M, K) kg per condition, state and tank), all NaN where ``wing`` is False (a configuration
+    whose wing loads the strip model does not hold)."""
+    model = linear_lift(model)
+    st, scheme = balanced_within_stops(model, x_entry, u_entry, load_factor, stops, tol=tol)
+    parts = steady_load_parts(loads, model, st.x, st.u, st.outputs, surfaces)
+    total = {s: a + i for s, (a, i) in parts.items()}
+    units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if wing else None
+    wing_states = np.array(
+        np.broadcast_to(with_fuel_states(total["wing"], units, fuel), (fuel.shape[1],) + total["wing"].shape)
+    )
+    if not wing:
+        wing_states[:] = np.nan
+    bad = ~st.converged
+    for s in surfaces:
+        total[s][bad] = np.nan
+    wing_states[:, bad] = np.nan
+    return BalancedLoads(model, st, scheme, parts, total, wing_states)
 
 
 def _steady_record(model, x, u, outputs):

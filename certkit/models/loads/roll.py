@@ -11,7 +11,10 @@ The strip loads model holds one half of each mirrored surface (the right one). :
 response of the mirror-image airplane (β, p, r, n_y, φ, ψ and the antisymmetric controls reversed): the
 right-half loads along the mirrored response are the left-half loads along the original one.
 
-The regulation's numbers (the load factors, the speeds, the roll-rate ratios) belong to the rule.
+The regulation's numbers (the load factors, the speeds, the roll-rate ratios) belong to the rule. For a roll
+rate asked for as a fraction of another condition's, :func:`aileron_for_roll_rate` finds the fraction of the
+aileron deflection that reaches it; :func:`rolling_window` gives the part of a response whose loads belong to the
+manoeuvre; :func:`stall_line_load_factor` where a symmetric manoeuvre state lies beyond the lift available.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from certkit.atmosphere import density, speed_of_sound
 from certkit.models.dynamics.simulate import Ramp, simulate
 
 #: histories that change sign in the mirror image (Y ↔ −Y)
@@ -134,3 +138,68 @@ def peak_roll_rate(sim, p0=None) -> tuple[np.ndarray, np.ndarray]:
     stops = d[1:] <= d[:-1]  # (nt − 1, n): True where |p| no longer grows
     k = np.where(stops.any(axis=0), np.argmax(stops, axis=0), d.shape[0] - 1)
     return d[k, np.arange(d.shape[1])], k
+
+
+def rolling_window(sim) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The part of a roll response whose loads belong to the manoeuvre: from the aileron input to the steady rolling
+    velocity (where |p| first stops growing, :func:`peak_roll_rate`); beyond it the flight path departs from the
+    condition (bank growing, a push-over diving and gaining speed). Returns (the end time per condition (s), the
+    (n_t, n) mask of the window, the index of its last step)."""
+    _, k_peak = peak_roll_rate(sim)
+    t_end = sim.t[k_peak]
+    return t_end, sim.t[:, None] <= t_end[None, :] + 1e-9, k_peak
+
+
+def stall_line_load_factor(model, x) -> np.ndarray | None:
+    """The load factor on the stall line at each state's speed and altitude: CLmax(M) q̄ S / (m g) from the aero
+    model's stall CLmax (None when the model has no stall model)."""
+    clmax = getattr(model.aero, "clmax", None)
+    V = np.hypot(np.hypot(x[:, 3], x[:, 4]), x[:, 5])
+    values = clmax(V / speed_of_sound(x[:, 2])) if callable(clmax) else None
+    if values is None:
+        return None
+    qbar = 0.5 * density(x[:, 2]) * V**2
+    return values * qbar * model.S / (model.mass * model.g)
+
+
+#: where in the accepted roll-rate band [target, (1 + tol) target] the corrections aim: above its middle, as the
+#: roll rate grows slightly less than in proportion to the deflection (up to 1.5 % at VD on a large transport)
+AIM = 0.7
+
+
+def aileron_for_roll_rate(
+    model,
+    x0,
+    u0,
+    amplitude,
+    target,
+    scaled,
+    sim_full,
+    *,
+    duration: float,
+    dt: float,
+    ramp: float,
+    tolerance: float,
+    steps: int,
+):
+    """The fraction of the aileron ``amplitude`` (rad, per condition) whose peak roll rate (:func:`peak_roll_rate`)
+    lies in [target, (1 + tolerance) target] for the ``scaled`` conditions (the others keep the whole amplitude),
+    corrected proportionally from the full-amplitude response ``sim_full`` (the roll rate is nearly linear in the
+    deflection) at most ``steps`` times; a target beyond the whole amplitude keeps it. Returns the simulation of the
+    final fractions, its peak roll rates and the fractions."""
+    sim, (p, _) = sim_full, peak_roll_rate(sim_full)
+    simulated = np.ones(len(x0))
+    frac = np.where(scaled, np.clip(target * (1 + AIM * tolerance) / np.maximum(p, 1e-9), 0.0, 1.0), 1.0)
+    for _ in range(int(steps)):
+        if np.array_equal(frac, simulated):
+            break
+        sim = simulate_roll(model, x0, u0, frac * amplitude, duration, dt, ramp)
+        p, simulated = peak_roll_rate(sim)[0], frac.copy()
+        done = ~scaled | ((p >= target) & (p <= target * (1 + tolerance))) | ((frac >= 1.0) & (p < target))
+        if done.all():
+            break
+        frac = np.where(done, frac, np.clip(frac * target * (1 + AIM * tolerance) / np.maximum(p, 1e-9), 0.0, 1.0))
+    if not np.array_equal(frac, simulated):
+        sim = simulate_roll(model, x0, u0, frac * amplitude, duration, dt, ramp)
+        p = peak_roll_rate(sim)[0]
+    return sim, p, frac

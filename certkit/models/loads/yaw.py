@@ -131,3 +131,32 @@ def simulate_yaw(
     return YawRun(
         held, returned, ramp, t_over, held.stop_time.copy(), np.array([r != "" for r in held.stop_reason]), band, u_end
     )
+
+
+#: the instants and the interval of a yaw run whose loads are read (:func:`yaw_phase_loads`)
+YAW_PHASES = ("full", "overswing", "steady", "returned")
+
+
+def yaw_phase_loads(run: YawRun, held, returned) -> tuple[dict, dict]:
+    """The loads of a yaw run at its instants and over its return: ``held`` and ``returned`` are the loads
+    ((n_t, n, 3, S)) along ``run.held`` and ``run.returned``. "full" (rudder fully applied), "overswing" (the |β|
+    peak) and "steady" (end of the held phase) are the loads at that instant as a (min, max) pair of equal values;
+    "returned" is the envelope over the rudder's return. Returns (peaks: phase → (n, 2, 3, S), times: phase →
+    (n, 2, 3, S) s from the rudder input)."""
+    n = held.shape[1]
+    cols, t = np.arange(n), run.held.t
+
+    def at(times):
+        k = np.minimum(np.searchsorted(t, np.asarray(times) - 1e-9), len(t) - 1)
+        return held[k, cols]  # (n, 3, S)
+
+    peaks, times = {}, {}
+    for phase, when in (("full", np.full(n, run.t_full)), ("overswing", run.t_overswing), ("steady", run.t_steady)):
+        loads = at(when)
+        peaks[phase] = np.stack([loads, loads], axis=1)
+        times[phase] = np.broadcast_to(when[:, None, None, None], peaks[phase].shape).copy()
+    lo, hi = np.nanmin(returned, axis=0), np.nanmax(returned, axis=0)
+    t_lo = run.returned.t[np.nanargmin(returned, axis=0)] + run.t_steady[:, None, None]
+    t_hi = run.returned.t[np.nanargmax(returned, axis=0)] + run.t_steady[:, None, None]
+    peaks["returned"], times["returned"] = np.stack([lo, hi], axis=1), np.stack([t_lo, t_hi], axis=1)
+    return peaks, times

@@ -48,7 +48,15 @@ from certkit.errors import UserError
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES, airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads, times_at
-from certkit.models.loads.roll import mirror, peak_roll_rate, simulate_roll, symmetric_manoeuvre_state
+from certkit.models.loads.roll import (
+    aileron_for_roll_rate,
+    mirror,
+    peak_roll_rate,
+    rolling_window,
+    simulate_roll,
+    stall_line_load_factor,
+    symmetric_manoeuvre_state,
+)
 from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 from certkit.units import FT, KN
 
@@ -178,55 +186,11 @@ def target_load_factor(ctx, cond, crit) -> float:
     return float(crit.load_factor_fraction * ctx.aircraft.envelope.limit_load_factors.positive)
 
 
-def stall_load_factor(model, x) -> np.ndarray | None:
-    """The load factor on the stall line at each state's speed and altitude: CLmax(M) q̄ S / (m g) from the aero
-    model's stall CLmax (None when the model has no stall model)."""
-    from certkit.atmosphere import density, speed_of_sound
-
-    clmax = getattr(model.aero, "clmax", None)
-    V = np.hypot(np.hypot(x[:, 3], x[:, 4]), x[:, 5])
-    values = clmax(V / speed_of_sound(x[:, 2])) if callable(clmax) else None
-    if values is None:
-        return None
-    qbar = 0.5 * density(x[:, 2]) * V**2
-    return values * qbar * model.S / (model.mass * model.g)
-
-
 def full_aileron(ctx) -> float:
     """The aileron deflection (rad) to the stop rolling right: minus the larger magnitude of the control-system stops
     (travel; the airplane is symmetric, so rolling left to the positive stop is the mirror image)."""
     lo, hi = control_stops(ctx, "aileron")
     return -max(abs(lo), abs(hi))
-
-
-#: where in the accepted roll-rate band [target, (1 + tol) target] the corrections aim: above its middle, as the
-#: roll rate grows slightly less than in proportion to the deflection (up to 1.5 % at the baseline's VD conditions)
-AIM = 0.7
-
-
-def scale_ailerons(model, x0, u0, amplitude, target, scaled, sim_full, crit):
-    """From the full-deflection run ``sim_full``, correct the fraction of the deflection of the ``scaled``
-    conditions (proportionally: the roll rate is nearly linear in the deflection) until their peak roll rate lies
-    within [target, (1 + tol) target], or the stop is reached. Returns the simulation of the final fractions,
-    its peak roll rates and the fractions."""
-    dt, ramp, T = float(crit.time_step), float(crit.ramp_time), float(crit.duration)
-    tol = float(crit.roll_rate_tolerance)
-    sim, (p, _) = sim_full, peak_roll_rate(sim_full)
-    simulated = np.ones(len(x0))
-    frac = np.where(scaled, np.clip(target * (1 + AIM * tol) / np.maximum(p, 1e-9), 0.0, 1.0), 1.0)
-    for _ in range(int(crit.search_steps)):
-        if np.array_equal(frac, simulated):
-            break
-        sim = simulate_roll(model, x0, u0, frac * amplitude, T, dt, ramp)
-        p, simulated = peak_roll_rate(sim)[0], frac.copy()
-        done = ~scaled | ((p >= target) & (p <= target * (1 + tol))) | ((frac >= 1.0) & (p < target))
-        if done.all():
-            break
-        frac = np.where(done, frac, np.clip(frac * target * (1 + AIM * tol) / np.maximum(p, 1e-9), 0.0, 1.0))
-    if not np.array_equal(frac, simulated):
-        sim = simulate_roll(model, x0, u0, frac * amplitude, T, dt, ramp)
-        p = peak_roll_rate(sim)[0]
-    return sim, p, frac
 
 
 def _deg(x, nd=2):
@@ -276,7 +240,7 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     je, ja = model.control_index("elevator"), model.control_index("aileron")
     e_lo, e_hi = control_stops(ctx, "elevator")
     ok = np.ones(len(rows), dtype=bool)
-    n_stall = stall_load_factor(model, batch.x[rows])
+    n_stall = stall_line_load_factor(model, batch.x[rows])
     for i, c in enumerate(sim_conds):
         reason = None
         if not st.converged[i] or abs(st.n_z[i] - n_target[i]) > 1e-3:
@@ -330,18 +294,14 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     speed_point = [c.get("speed_point") for c in conds]
     scaled = np.array([sp != "VA" and r >= 0 for sp, r in zip(speed_point, ref)])
     # VA rows are simulated at full deflection in the first run: their peak roll rates are the references
-    sim_full = simulate_roll(
-        model, x0, u0, amplitude, float(crit.duration), float(crit.time_step), float(crit.ramp_time)
-    )
+    timing = dict(duration=float(crit.duration), dt=float(crit.time_step), ramp=float(crit.ramp_time))
+    sim_full = simulate_roll(model, x0, u0, amplitude, **timing)
     p_full = peak_roll_rate(sim_full)[0]
     p_va = np.where(ref >= 0, p_full[np.maximum(ref, 0)], np.nan)
     target = np.where(scaled, p_va * np.array([ratio[s] for s in speed_point]), 0.0)
-    sim, p_peak, frac = scale_ailerons(model, x0, u0, amplitude, target, scaled, sim_full, crit)
-    # loads from the aileron input to the steady rolling velocity (where |p| first stops growing): beyond it the
-    # flight path departs from the condition (bank growing, the n = 0 push-over diving and gaining speed)
-    _, k_peak = peak_roll_rate(sim)
-    t_end = sim.t[k_peak]
-    valid = sim.t[:, None] <= t_end[None, :] + 1e-9
+    search = dict(tolerance=float(crit.roll_rate_tolerance), steps=int(crit.search_steps), **timing)
+    sim, p_peak, frac = aileron_for_roll_rate(model, x0, u0, amplitude, target, scaled, sim_full, **search)
+    t_end, valid, k_peak = rolling_window(sim)
     loads = airplane_loads(ctx)
     right = response_loads(loads, sim, model, SURFACES, valid=valid)
     left = response_loads(loads, mirror(sim), model, MIRRORED, valid=valid)

@@ -34,7 +34,7 @@ from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, response_loads
-from certkit.models.loads.yaw import simulate_yaw
+from certkit.models.loads.yaw import YAW_PHASES, simulate_yaw, yaw_phase_loads
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.units import KN
 
@@ -200,34 +200,17 @@ def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
     loads = airplane_loads(ctx)
     held = response_loads(loads, run.held, batch.model, (SURFACE,))[SURFACE]
     back = response_loads(loads, run.returned, batch.model, (SURFACE,))[SURFACE]
-    n = batch.n
-    cols = np.arange(n)
     t = run.held.t
-
-    def at(times):
-        k = np.minimum(np.searchsorted(t, np.asarray(times) - 1e-9), len(t) - 1)
-        return held[k, cols]  # (n, 3, S)
-
-    inst = {"a": at(np.full(n, run.t_full)), "b": at(run.t_overswing), "c": at(run.t_steady)}
-    d_lo, d_hi = np.nanmin(back, axis=0), np.nanmax(back, axis=0)
-    d_time_lo = run.returned.t[np.nanargmin(back, axis=0)] + run.t_steady[:, None, None]
-    d_time_hi = run.returned.t[np.nanargmax(back, axis=0)] + run.t_steady[:, None, None]
-    times = {"a": np.full(n, run.t_full), "b": run.t_overswing, "c": run.t_steady}
+    phase_peaks, phase_times = yaw_phase_loads(run, held, back)
     labels = [c.label() for c in batch.conditions]
     parts, peaks = [], {}
-    for p, name in PHASES:
-        if p == "d":
-            pk = np.stack([d_lo, d_hi], axis=1)
-            tm = np.stack([d_time_lo, d_time_hi], axis=1)
-        else:
-            pk = np.stack([inst[p], inst[p]], axis=1)
-            tm = np.broadcast_to(times[p][:, None, None, None], pk.shape).copy()
-        peaks[p] = pk
+    for (p, name), phase in zip(PHASES, YAW_PHASES):
+        peaks[p] = phase_peaks[phase]
         parts.append(
             LoadEnvelope(
                 {SURFACE: loads[SURFACE].station_names},
-                {SURFACE: pk},
-                {SURFACE: tm},
+                {SURFACE: peaks[p]},
+                {SURFACE: phase_times[phase]},
                 [f"{lab} — ({p}) {name}" for lab in labels],
             )
         )

@@ -26,16 +26,10 @@ from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitud
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding, LoadsRun
 from certkit.models.flight import control_limits
-from certkit.models.loads.balanced import (
-    ELEVATOR_ALONE,
-    balanced_within_stops,
-    linear_lift,
-    steady_fuel_units,
-    steady_load_parts,
-)
+from certkit.models.loads.balanced import ELEVATOR_ALONE, balanced_loads
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, with_fuel_states
+from certkit.models.loads.response import LoadEnvelope
 from certkit.models.loads.vn_envelope import envelope
 from certkit.units import KN
 
@@ -229,22 +223,22 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             continue
         kept = [c for c in todo if target[c][0] not in dict(batch.failed)]
         n = np.array([target[c][1] for c in kept])
-        model = linear_lift(batch.model.subset(rows))
-        st, scheme = balanced_within_stops(model, batch.x[rows], batch.u[rows], n, stops, tol=float(crit.convergence))
-        sl = steady_load_parts(loads, model, st.x, st.u, st.outputs, SURFACES)
-        total = {s: a + i for s, (a, i) in sl.items()}
-        # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel)
+        # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel), clean only
         state_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in kept])
-        units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if cfg == "clean" else None
-        wing_states = np.array(
-            np.broadcast_to(with_fuel_states(total["wing"], units, fuel), (fuel.shape[1],) + total["wing"].shape)
+        bl = balanced_loads(
+            loads,
+            batch.model.subset(rows),
+            batch.x[rows],
+            batch.u[rows],
+            n,
+            stops,
+            SURFACES,
+            tol=float(crit.convergence),
+            fuel=fuel,
+            wing=cfg == "clean",
         )
-        if cfg != "clean":
-            wing_states[:] = np.nan
+        model, st, scheme, sl, total, wing_states = bl.model, bl.state, bl.scheme, bl.parts, bl.total, bl.wing_states
         bad = ~st.converged
-        for s in SURFACES:
-            total[s][bad] = np.nan
-        wing_states[:, bad] = np.nan
         de = st.u[:, list(model.control_names).index("elevator")]
         ds = st.u[:, list(model.control_names).index("stabilizer")] if "stabilizer" in stops else None
         tail_load = 2.0 * sl["horizontal_tail"][0][:, 0, 0]  # both halves' aerodynamic root shear
