@@ -9,14 +9,14 @@ A speed also states its kind: ``"340 kn EAS"``, ``"340 KEAS"``, ``{value: 340 kn
 
 from __future__ import annotations
 
-from typing import Annotated, Literal
+from typing import TYPE_CHECKING, Annotated, Callable, Literal, TypeAlias
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, model_validator
 
 from certkit.units import DIMENSIONS, UnitError, to_si
 
 
-def _quantity_schema(dimension: str) -> dict:
+def _quantity_schema(dimension: str) -> dict[str, object]:
     unit = DIMENSIONS[dimension] or "1"
     return {
         "anyOf": [{"type": "number"}, {"type": "string"}],
@@ -24,7 +24,7 @@ def _quantity_schema(dimension: str) -> dict:
     }
 
 
-def _converter(dimension: str):
+def _converter(dimension: str) -> Callable[[object], object]:
     def convert(value: object) -> object:
         if isinstance(value, bool):
             raise ValueError(
@@ -41,31 +41,51 @@ def _converter(dimension: str):
     return convert
 
 
-def quantity(dimension: str):
+def quantity(dimension: str) -> object:
     """``Annotated[float, ...]`` accepting a number in SI or a string with a unit of ``dimension``."""
     return Annotated[float, BeforeValidator(_converter(dimension)), WithJsonSchema(_quantity_schema(dimension))]
 
 
-Length = quantity("length")
-Area = quantity("area")
-Mass = quantity("mass")
-Force = quantity("force")
-Moment = quantity("moment")
-Angle = quantity("angle")
-Inertia = quantity("inertia")
-Time = quantity("time")
-SpeedValue = quantity("speed")
-Pressure = quantity("pressure")
-Gearing = quantity("gearing")
-Stiffness = quantity("stiffness")
-Density = quantity("density")
-ArealDensity = quantity("areal_density")
-AngularRate = quantity("angular_rate")
-Acceleration = quantity("acceleration")
-MassPerEnergy = quantity("mass_per_energy")
-Temperature = quantity("temperature")
-
-SpecificFuelConsumption = quantity("specific_fuel_consumption")
+if TYPE_CHECKING:  # a quantity is a float once validated: what a type checker should see
+    Length: TypeAlias = float
+    Area: TypeAlias = float
+    Mass: TypeAlias = float
+    Force: TypeAlias = float
+    Moment: TypeAlias = float
+    Angle: TypeAlias = float
+    Inertia: TypeAlias = float
+    Time: TypeAlias = float
+    SpeedValue: TypeAlias = float
+    Pressure: TypeAlias = float
+    Gearing: TypeAlias = float
+    Stiffness: TypeAlias = float
+    Density: TypeAlias = float
+    ArealDensity: TypeAlias = float
+    AngularRate: TypeAlias = float
+    Acceleration: TypeAlias = float
+    MassPerEnergy: TypeAlias = float
+    Temperature: TypeAlias = float
+    SpecificFuelConsumption: TypeAlias = float
+else:
+    Length = quantity("length")
+    Area = quantity("area")
+    Mass = quantity("mass")
+    Force = quantity("force")
+    Moment = quantity("moment")
+    Angle = quantity("angle")
+    Inertia = quantity("inertia")
+    Time = quantity("time")
+    SpeedValue = quantity("speed")
+    Pressure = quantity("pressure")
+    Gearing = quantity("gearing")
+    Stiffness = quantity("stiffness")
+    Density = quantity("density")
+    ArealDensity = quantity("areal_density")
+    AngularRate = quantity("angular_rate")
+    Acceleration = quantity("acceleration")
+    MassPerEnergy = quantity("mass_per_energy")
+    Temperature = quantity("temperature")
+    SpecificFuelConsumption = quantity("specific_fuel_consumption")
 
 PositiveLength = Annotated[Length, Field(gt=0)]
 PositiveArea = Annotated[Area, Field(gt=0)]

@@ -14,7 +14,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from certkit.aircraft.model import Aircraft
+from certkit.aircraft.model import Aircraft, CgEnvelope
 from certkit.atmosphere import from_tas, to_tas
 from certkit.engine.results import Condition
 from certkit.models.mass.loading import reference_cg
@@ -24,7 +24,7 @@ from certkit.models.mass.loading import reference_cg
 
 def cg_limits_at(aircraft: Aircraft, mass: float) -> tuple[float, float]:
     """Forward and aft CG limits (m) of the envelope polygon at ``mass`` (kg)."""
-    v = aircraft.cg_envelope.vertices
+    v = _envelope(aircraft).vertices
     xs, ms = np.array([p.x for p in v]), np.array([p.mass for p in v])
     crossings = []
     n = len(v)
@@ -40,6 +40,13 @@ def cg_limits_at(aircraft: Aircraft, mass: float) -> tuple[float, float]:
     if not crossings:
         raise ValueError(f"mass {mass:.0f} kg lies outside the CG envelope ({ms.min():.0f} to {ms.max():.0f} kg)")
     return min(crossings), max(crossings)
+
+
+def _envelope(aircraft: Aircraft) -> CgEnvelope:
+    """The declared weight–CG envelope (an input error names it where it is needed and absent)."""
+    if aircraft.cg_envelope is None:
+        raise ValueError("cg_envelope is not declared")
+    return aircraft.cg_envelope
 
 
 def inside_envelope(aircraft: Aircraft, mass: float, x_cg: float, tol: float = 1e-6) -> bool:
@@ -72,10 +79,11 @@ class LoadingAxis:
 class CgCorners(LoadingAxis):
     """Every vertex of the weight–CG envelope polygon."""
 
-    def loadings(self, aircraft):
-        return [Loading(v.name or f"corner {i + 1}", v.mass, v.x) for i, v in enumerate(aircraft.cg_envelope.vertices)]
+    def loadings(self, aircraft: Aircraft) -> list[Loading]:
+        vertices = _envelope(aircraft).vertices
+        return [Loading(v.name or f"corner {i + 1}", v.mass, v.x) for i, v in enumerate(vertices)]
 
-    def describe(self):
+    def describe(self) -> str:
         return "every corner of the weight–CG envelope"
 
 
@@ -83,16 +91,17 @@ class CgCorners(LoadingAxis):
 class EnvelopeWeights(LoadingAxis):
     """Every distinct weight of the envelope, at the forward CG limit for that weight."""
 
-    def loadings(self, aircraft):
-        masses = sorted({v.mass for v in aircraft.cg_envelope.vertices})
-        out = []
+    def loadings(self, aircraft: Aircraft) -> list[Loading]:
+        vertices = _envelope(aircraft).vertices
+        masses = sorted({v.mass for v in vertices})
+        out: list[Loading] = []
         for m in masses:
             fwd, _ = cg_limits_at(aircraft, m)
-            names = [v.name for v in aircraft.cg_envelope.vertices if v.mass == m and v.name]
+            names = [v.name for v in vertices if v.mass == m and v.name]
             out.append(Loading(f"W{len(out) + 1}" + (f" ({'/'.join(names)})" if names else ""), m, fwd))
         return out
 
-    def describe(self):
+    def describe(self) -> str:
         return "every distinct weight of the weight–CG envelope (forward CG)"
 
 
@@ -106,15 +115,15 @@ class DesignWeight(LoadingAxis):
     weight: str = "MTOW"
     cgs: tuple[str, ...] = ("reference",)
 
-    def loadings(self, aircraft):
+    def loadings(self, aircraft: Aircraft) -> list[Loading]:
         mass = getattr(aircraft.mass, self.weight)
         if mass is None:
             raise ValueError(f"mass.{self.weight} is not declared")
-        fwd, aft = cg_limits_at(aircraft, min(mass, max(v.mass for v in aircraft.cg_envelope.vertices)))
+        fwd, aft = cg_limits_at(aircraft, min(mass, max(v.mass for v in _envelope(aircraft).vertices)))
         where = {"forward": fwd, "aft": aft, "reference": min(max(reference_cg(aircraft), fwd), aft)}
         return [Loading(f"{self.weight} {c}", mass, where[c]) for c in self.cgs]
 
-    def describe(self):
+    def describe(self) -> str:
         return f"{self.weight} at the {', '.join(self.cgs)} CG"
 
 
@@ -124,11 +133,13 @@ class EnvelopeAltitudes:
 
     n: int | None = None
 
-    def values(self, aircraft):
+    def values(self, aircraft: Aircraft) -> list[float]:
         env = aircraft.envelope
-        return list(np.linspace(env.min_altitude, env.ceiling, self.n or env.altitude_points))
+        if env is None:
+            raise ValueError("envelope is not declared")
+        return [float(h) for h in np.linspace(env.min_altitude, env.ceiling, self.n or env.altitude_points)]
 
-    def describe(self):
+    def describe(self) -> str:
         return "altitudes from the envelope minimum to the ceiling" + (f" ({self.n} points)" if self.n else "")
 
 
@@ -136,10 +147,10 @@ class EnvelopeAltitudes:
 class Altitudes:
     values_m: tuple[float, ...]
 
-    def values(self, aircraft):
+    def values(self, aircraft: Aircraft) -> list[float]:
         return list(self.values_m)
 
-    def describe(self):
+    def describe(self) -> str:
         return "altitudes " + ", ".join(f"{h:.0f} m" for h in self.values_m)
 
 
@@ -149,7 +160,7 @@ class DeclaredSpeeds:
 
     names: tuple[str, ...]
 
-    def values(self, aircraft):
+    def values(self, aircraft: Aircraft) -> list[tuple[str, float, str]]:
         out = []
         for name in self.names:
             s = getattr(aircraft.speeds, name)
@@ -157,7 +168,7 @@ class DeclaredSpeeds:
                 out.append((name, s.value, s.kind))
         return out
 
-    def describe(self):
+    def describe(self) -> str:
         return "declared speeds " + ", ".join(self.names)
 
 
@@ -169,31 +180,34 @@ class ConditionSpace:
     configurations: tuple[str, ...] | None = None
     altitudes: EnvelopeAltitudes | Altitudes | None = None
     speeds: DeclaredSpeeds | None = None
-    extra: tuple[tuple[str, tuple], ...] = field(default=())
+    extra: tuple[tuple[str, tuple[object, ...]], ...] = field(default=())
     note: str = ""
 
     def expand(self, aircraft: Aircraft) -> list[Condition]:
-        loadings = self.loading.loadings(aircraft) if self.loading else [None]
-        configs = [c for c in self.configurations if c in aircraft.configurations] if self.configurations else [None]
-        alts = self.altitudes.values(aircraft) if self.altitudes else [None]
-        speeds = self.speeds.values(aircraft) if self.speeds else [None]
+        loadings: list[Loading | None] = [*self.loading.loadings(aircraft)] if self.loading else [None]
+        configs: list[str | None] = (
+            [c for c in self.configurations if c in aircraft.configurations] if self.configurations else [None]
+        )
+        alts: list[float | None] = [*self.altitudes.values(aircraft)] if self.altitudes else [None]
+        speeds: list[tuple[str, float, str] | None] = [*self.speeds.values(aircraft)] if self.speeds else [None]
         extra_names = [name for name, _ in self.extra]
         extra_values = [values for _, values in self.extra]
         out = []
-        for ld, cfg, h, sp, *ex in itertools.product(loadings, configs, alts, speeds, *extra_values):
-            out.append(
-                Condition(
-                    loading=ld.name if ld else None,
-                    mass=ld.mass if ld else None,
-                    x_cg=ld.x_cg if ld else None,
-                    configuration=cfg,
-                    altitude=None if h is None else float(h),
-                    speed=sp[1] if sp else None,
-                    speed_kind=sp[2] if sp else None,
-                    speed_name=sp[0] if sp else None,
-                    extra=tuple(zip(extra_names, ex)),
+        for ld, cfg, h, sp in itertools.product(loadings, configs, alts, speeds):
+            for ex in itertools.product(*extra_values):
+                out.append(
+                    Condition(
+                        loading=ld.name if ld else None,
+                        mass=ld.mass if ld else None,
+                        x_cg=ld.x_cg if ld else None,
+                        configuration=cfg,
+                        altitude=None if h is None else float(h),
+                        speed=sp[1] if sp else None,
+                        speed_kind=sp[2] if sp else None,
+                        speed_name=sp[0] if sp else None,
+                        extra=tuple(zip(extra_names, ex)),
+                    )
                 )
-            )
         return out
 
     def describe(self) -> str:
@@ -214,6 +228,8 @@ class ConditionSpace:
 
 def speed_as(condition: Condition, kind: str) -> float:
     """The condition's speed converted to ``kind`` at the condition's altitude (sea level if none)."""
+    if condition.speed is None or condition.speed_kind is None:
+        raise ValueError(f"the condition {condition.label()} has no speed")
     return _converted(float(condition.speed), condition.speed_kind, float(condition.altitude or 0.0), kind)
 
 

@@ -19,7 +19,8 @@ import sys
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 from pathlib import Path
-from typing import TYPE_CHECKING, ClassVar
+from types import ModuleType
+from typing import TYPE_CHECKING, Any, ClassVar, TypeVar
 
 from certkit.errors import UserError
 
@@ -29,6 +30,7 @@ if TYPE_CHECKING:
     from certkit.engine.results import Condition, Evidence, Finding, SimulationRun
 
 RULE_ID = re.compile(r"^\d+\.\d+[a-z]?(\([a-zA-Z0-9]+\))*$")  # §25.125(b)(2)(i)(A): capitals at the fifth level
+R = TypeVar("R", bound="Rule")
 SYMBOL = re.compile(r"^[a-z][a-z0-9]*(-[a-z0-9]+)*$")
 IMPLEMENTATION = ("implemented", "partial", "planned")
 ENTRY_POINT_GROUP = "certkit.rules"
@@ -119,15 +121,15 @@ class ControlCase:
     deflection: tuple[str, ...] = ()
     where: tuple[tuple[str, object], ...] = ()
 
-    def deflections(self, finding) -> dict[str, float]:
+    def deflections(self, finding: Finding) -> dict[str, float]:
         """control → deflection (deg) that ``finding`` reports for this case (empty when it is not one of its)."""
         if not finding.check.startswith(self.check) or any(finding.condition.get(k) != v for k, v in self.where):
             return {}
-        out = {}
+        out: dict[str, float] = {}
         for control in self.controls:
             if self.deflection:
-                values = [finding.details.get(k.format(control=control)) for k in self.deflection]
-                values = [float(v) for v in values if isinstance(v, (int, float)) and math.isfinite(v)]
+                given = [finding.details.get(k.format(control=control)) for k in self.deflection]
+                values = [float(v) for v in given if isinstance(v, (int, float)) and math.isfinite(v)]
                 if values:
                     out[control] = max(values, key=abs)
             elif (
@@ -151,10 +153,10 @@ class ControlResponses:
 RESPONSE_KINDS = (ModeResponses, ControlResponses)
 
 
-class Criteria(dict):
+class Criteria(dict[str, Any]):
     """The criteria in force for one run: the rule's defaults with the aircraft file's overrides."""
 
-    def __getattr__(self, name):
+    def __getattr__(self, name: str) -> Any:
         try:
             return self[name]
         except KeyError:
@@ -270,9 +272,10 @@ class SimulationRule(Rule):
     def simulate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> "SimulationRun":
         raise NotImplementedError
 
-    def evaluate(self, ctx, conditions, criteria):
-        self.run = self.simulate(ctx, conditions, criteria)
-        return self.run.findings
+    def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
+        run = self.simulate(ctx, conditions, criteria)
+        self.run = run
+        return run.findings
 
 
 def _indent(text: str) -> str:
@@ -320,7 +323,7 @@ def validate_rule_class(cls: type, origin: str) -> None:
         raise PluginError(f"{where}: method 'evaluate' is not implemented")
 
 
-def _validate_declarations(cls, where: str) -> None:
+def _validate_declarations(cls: type[Rule], where: str) -> None:
     """``produces`` holds :class:`Loads` of a known kind, ``offers`` response declarations."""
     if not isinstance(cls.produces, tuple) or not all(
         isinstance(p, Loads) and p.kind in LOAD_KINDS and p.surface for p in cls.produces
@@ -336,12 +339,12 @@ def _validate_declarations(cls, where: str) -> None:
         )
 
 
-def producers(rules, surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
+def producers(rules: list[type[Rule]], surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
     """The rules of ``rules`` that declare they produce ``kind`` loads of ``surface`` (:attr:`Rule.produces`)."""
     return [r for r in rules if Loads(surface, kind) in r.produces]
 
 
-def _validate_unevaluated(cls, where: str) -> None:
+def _validate_unevaluated(cls: type[Rule], where: str) -> None:
     """``unevaluated`` holds (paragraph id, reason) pairs and agrees with ``implementation``."""
     entries = cls.unevaluated
     if not isinstance(entries, tuple):
@@ -367,17 +370,18 @@ def _validate_unevaluated(cls, where: str) -> None:
         )
 
 
-def rule(cls: type) -> type:
+def rule(cls: type[R]) -> type[R]:
     """Class decorator declaring a rule; validates its metadata at import time."""
     validate_rule_class(cls, cls.__module__)
-    cls.__certkit_rule__ = True
+    cls.__certkit_rule__ = True  # type: ignore[attr-defined]  # the mark discovery reads (_rules_in_module)
     return cls
 
 
-def _rules_in_module(module, origin: str) -> list[type[Rule]]:
-    found = []
+def _rules_in_module(module: ModuleType, origin: str) -> list[type[Rule]]:
+    found: list[type[Rule]] = []
     for _, obj in inspect.getmembers(module, inspect.isclass):
-        if obj.__dict__.get("__certkit_rule__") and obj.__module__ == module.__name__:
+        declared = obj.__dict__.get("__certkit_rule__") and obj.__module__ == module.__name__
+        if declared and issubclass(obj, Rule):
             obj.origin = origin
             found.append(obj)
     return found
@@ -425,6 +429,8 @@ def folder_rules(folder: str | Path) -> list[type[Rule]]:
             continue
         name = f"certkit_user_rules.{path.stem}_{abs(hash(str(path.resolve()))) % 10**8}"
         spec = importlib.util.spec_from_file_location(name, path)
+        if spec is None or spec.loader is None:
+            raise PluginError(f"{path}: cannot be loaded as a Python module")
         module = importlib.util.module_from_spec(spec)
         sys.modules[name] = module
         try:
@@ -463,11 +469,13 @@ def discover(options: DiscoveryOptions = DiscoveryOptions()) -> list[type[Rule]]
     return sorted(by_id.values(), key=lambda c: paragraph_key(c.id))
 
 
-def paragraph_key(rule_id: str) -> tuple:
+def paragraph_key(rule_id: str) -> tuple[int, int, str, str]:
     """Sort key: 25.21 < 25.103 < 25.331(c)(1) < 25.331(c)(2)."""
     head, _, tail = rule_id.partition("(")
     part, _, para = head.partition(".")
     num = re.match(r"(\d+)([a-z]?)", para)
+    if num is None:
+        raise ValueError(f"{rule_id!r} is not a paragraph id such as '25.331(c)(2)'")
     return (int(part), int(num.group(1)), num.group(2), tail)
 
 
@@ -475,7 +483,7 @@ def select(rules: list[type[Rule]], select: tuple[str, ...] = (), ignore: tuple[
     """``--select``/``--ignore`` by id prefix, as ruff does (``25.1`` selects 25.103 … 25.181,
     ``25.331`` selects 25.331(c)(1) and (c)(2)) or by symbol. A pattern matching nothing is an error."""
 
-    def matches(cls, pattern: str) -> bool:
+    def matches(cls: type[Rule], pattern: str) -> bool:
         return pattern == cls.symbol or cls.id.startswith(pattern)
 
     for pattern in select + ignore:

@@ -15,7 +15,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field, replace
-from typing import Literal
+from typing import Any, Callable, Literal
 
 from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, VOLATILE_KEY, clean, encode
 
@@ -50,10 +50,10 @@ class Condition:
     speed_name: str | None = None  # VC, VD, … when the speed is a declared one
     extra: tuple[tuple[str, object], ...] = ()
 
-    def get(self, key: str, default=None):
+    def get(self, key: str, default: Any = None) -> Any:
         return dict(self.extra).get(key, default)
 
-    def with_(self, **changes) -> "Condition":
+    def with_(self, **changes: Any) -> "Condition":
         extra = dict(self.extra)
         for key in list(changes):
             if key not in self.__dataclass_fields__:
@@ -76,15 +76,19 @@ class Condition:
         altitude, named speed and scheduled fields. It finds one airplane's condition among another's schedule."""
         if (self.loading, self.configuration) != (scheduled.loading, scheduled.configuration):
             return False
-        if (self.altitude is None) != (scheduled.altitude is None) or (
-            self.altitude is not None and abs(self.altitude - scheduled.altitude) > 1e-6
+        if (self.altitude is None) != (scheduled.altitude is None):
+            return False
+        if (
+            self.altitude is not None
+            and scheduled.altitude is not None
+            and abs(self.altitude - scheduled.altitude) > 1e-6
         ):
             return False
         if scheduled.speed_name is not None and self.speed_name != scheduled.speed_name:
             return False
         return all(item in self.extra for item in scheduled.extra)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, object]:
         """JSON form (SI, with units in the key names)."""
         out: dict[str, object] = {}
         if self.loading is not None:
@@ -146,7 +150,7 @@ _FIELD_WORDS = {
 }
 
 
-def field_words(name: str, value) -> str:
+def field_words(name: str, value: object) -> str:
     """A scheduled condition field in words: ``speed_point`` 1.3 VSR → "at 1.3 VSR", ``delta_isa_K`` 15 → "ISA +15
     °C"; a field not listed reads "name value" with underscores as spaces."""
     template = _FIELD_WORDS.get(name)
@@ -172,11 +176,11 @@ class Finding:
     margin: float | None = None
     unit: str = ""
     reason: str = ""
-    details: dict = field(default_factory=dict)
+    details: dict[str, Any] = field(default_factory=dict)
     #: more details computed only when the finding is written (:meth:`as_dict`), placed before ``details``: a
     #: picklable callable returning a dict (a structural finding's per-station load table: a design study makes
     #: thousands of them per design and writes none)
-    written_details: object = field(default=None, repr=False, compare=False)
+    written_details: Callable[[], dict[str, Any]] | None = field(default=None, repr=False, compare=False)
 
     @property
     def has_number(self) -> bool:
@@ -201,7 +205,7 @@ class Finding:
         unit: str,
         reason: str = "",
         tolerance: float | None = None,
-        **details,
+        **details: Any,
     ) -> "Finding":
         """A finding for ``value ≥ limit`` (``at_least``) or ``value ≤ limit``; margin ≥ 0 complies.
 
@@ -225,12 +229,12 @@ class Finding:
         return cls(condition, check, status, value, limit, margin, unit, reason, details)
 
     @classmethod
-    def not_applicable(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+    def not_applicable(cls, condition: Condition, check: str, reason: str, **details: Any) -> "Finding":
         """The paragraph does not apply at this condition (computed, not assumed): complies, no margin."""
         return cls(condition, check, COMPLIES, reason="not applicable: " + reason, details=details)
 
     @classmethod
-    def not_evaluated(cls, condition: Condition, check: str, reason: str, **details) -> "Finding":
+    def not_evaluated(cls, condition: Condition, check: str, reason: str, **details: Any) -> "Finding":
         return cls(condition, check, NOT_EVALUATED, reason=reason, details=details)
 
     @classmethod
@@ -240,7 +244,7 @@ class Finding:
             Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason, details={SCOPE_KEY: paragraph}
         )
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         return {
             "condition": self.condition.as_dict(),
             "check": self.check,
@@ -254,7 +258,7 @@ class Finding:
             **({"details": details} if (details := self.all_details()) else {}),
         }
 
-    def all_details(self) -> dict:
+    def all_details(self) -> dict[str, Any]:
         """``details`` with the :attr:`written_details` before them."""
         return {**self.written_details(), **self.details} if self.written_details is not None else self.details
 
@@ -274,7 +278,7 @@ class Evidence:
     table: object = None
     svg: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         from certkit.engine.evidence import Table
 
         if isinstance(self.figure, str):
@@ -304,7 +308,7 @@ class SimulationRun:
         """True when the run holds simulated conditions (False: only refusals, see :attr:`reason`)."""
         return bool(self.conditions)
 
-    def envelopes(self) -> list:
+    def envelopes(self) -> list[Any]:
         """The load envelopes (:class:`certkit.models.loads.response.LoadEnvelope`) the run computed, in the rule's
         order; none for a run that computes no loads."""
         return []
@@ -325,8 +329,14 @@ class LoadsRun(SimulationRun):
     def simulated(self) -> bool:
         return self.envelope is not None
 
-    def envelopes(self) -> list:
+    def envelopes(self) -> list[Any]:
         return [] if self.envelope is None else [self.envelope]
+
+
+def _margin_key(f: Finding) -> float:
+    """Sort key of an evaluated finding: its normalised margin, else its margin."""
+    key = f.normalized_margin if f.normalized_margin is not None else f.margin
+    return math.inf if key is None else key
 
 
 @dataclass
@@ -336,24 +346,24 @@ class RuleResult:
     title: str
     findings: list[Finding]
     evidence: list[Evidence] = field(default_factory=list)
-    overrides: dict = field(default_factory=dict)
+    overrides: dict[str, Any] = field(default_factory=dict)
     notes: list[str] = field(default_factory=list)
     #: :meth:`to_json` as a worker process encoded it once the rule was evaluated (None: encoded when needed)
     encoded: str | None = field(default=None, repr=False, compare=False)
     #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.engine.scheduler.evaluate_rule`)
-    load_envelopes: list = field(default_factory=list, repr=False, compare=False)
+    load_envelopes: list[Any] = field(default_factory=list, repr=False, compare=False)
     #: what the rule simulated (:class:`SimulationRun`) when the load envelopes are kept; never written to results.json
     run: SimulationRun | None = field(default=None, repr=False, compare=False)
     #: the rule's implementation status (``implemented``, ``partial``, ``planned``) and modelling limitations
     implementation: str = "implemented"
     limitations: str = ""
     #: (paragraph, reason) of each sub-paragraph the rule does not evaluate
-    unevaluated: list = field(default_factory=list)
+    unevaluated: list[tuple[str, str]] = field(default_factory=list)
     #: the amendment the rule reflects, the paragraphs it cross-references, the criteria in force (name → value,
     #: unit, source, basis, description, overridden) — the rule's metadata for results.json and the report
     amendment: str = ""
-    references: list = field(default_factory=list)
-    criteria: dict = field(default_factory=dict)
+    references: list[str] = field(default_factory=list)
+    criteria: dict[str, Any] = field(default_factory=dict)
     #: wall time of the rule's evaluation, s (for the terminal; not in results.json, which is the same for every run)
     seconds: float | None = field(default=None, repr=False, compare=False)
     #: NaN or infinite numbers :meth:`to_json` wrote as null
@@ -384,9 +394,9 @@ class RuleResult:
         evaluated = [f for f in self.findings if f.margin is not None]
         if not evaluated:
             return None
-        return min(evaluated, key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
+        return min(evaluated, key=_margin_key)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         crit = self.critical
         return {
             "id": self.id,
@@ -424,20 +434,20 @@ class RunResult:
     source_path: str
     created: str
     rules: list[RuleResult]
-    models: dict = field(default_factory=dict)
+    models: dict[str, Any] = field(default_factory=dict)
     #: which rules ran: the --select/--ignore patterns, ``partial`` when they left registered rules out
-    selection: dict = field(default_factory=dict)
+    selection: dict[str, Any] = field(default_factory=dict)
     #: the options that change what is evaluated (rule folders, plugins) and the platform
-    options: dict = field(default_factory=dict)
-    environment: dict = field(default_factory=dict)
+    options: dict[str, Any] = field(default_factory=dict)
+    environment: dict[str, Any] = field(default_factory=dict)
     #: what varies between identical runs: wall time of the evaluation (s) and the processes used
     duration_s: float | None = None
     jobs: int | None = None
     #: the aircraft file's values by dotted YAML path, as written (:meth:`YamlSource.values_by_path`): what
     #: ``certkit diff`` compares to name the inputs that changed
-    inputs: dict = field(default_factory=dict)
+    inputs: dict[str, Any] = field(default_factory=dict)
 
-    def summary(self) -> dict:
+    def summary(self) -> dict[str, int]:
         statuses = [r.status for r in self.rules]
         return {
             "rules": len(self.rules),
@@ -447,7 +457,7 @@ class RunResult:
             "not_evaluated": statuses.count(NOT_EVALUATED),
         }
 
-    def as_dict(self, rules=None) -> dict:
+    def as_dict(self, rules: object = None) -> dict[str, Any]:
         """The run as plain data (``results.json``); ``rules`` stands in for the list of rule dicts. The last key,
         ``run``, holds what varies between identical runs (time stamp, duration, processes)."""
         return {
@@ -482,7 +492,8 @@ class RunResult:
                 r.encoded = r.to_json()
             parts.append(r.encoded)
             non_finite += r.non_finite
-        head, n_head = clean(self.as_dict(rules=_RULES_MARK))
+        cleaned, n_head = clean(self.as_dict(rules=_RULES_MARK))
+        head = cleaned if isinstance(cleaned, dict) else {}
         non_finite += n_head
         if non_finite:  # strict JSON has no NaN or Infinity: null, and the reason said once
             head = {
@@ -512,7 +523,7 @@ class RunResult:
 _RULES_MARK = "\x00certkit-rules\x00"
 
 
-def json_default(obj):
+def json_default(obj: object) -> object:
     """JSON of numpy scalars and arrays (their values); anything else as its ``str``."""
     import numpy as np
 
