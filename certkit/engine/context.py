@@ -7,12 +7,22 @@ know nothing of regulations.
 
 from __future__ import annotations
 
-from typing import Callable, Hashable, TypeVar
+from typing import TYPE_CHECKING, Any, Callable, Hashable, TypeVar
 
 import numpy as np
 
 from certkit.aircraft import Aircraft, LoadedAircraft
 from certkit.atmosphere import convert_speed
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Mapping
+
+    from certkit.engine.results import Condition
+    from certkit.models.aero.airplane import AirplaneAero
+    from certkit.models.dynamics.linearize import Linearization
+    from certkit.models.dynamics.modes import Mode
+    from certkit.models.dynamics.trim import TrimBatch
+    from certkit.models.mass.loading import Loading
 
 T = TypeVar("T")
 
@@ -49,14 +59,15 @@ class Context:
             if key == "lattice_derivatives" or (isinstance(key, tuple) and key[:1] == ("aero",)):
                 self._memo.setdefault(key, value)
 
-    def provenance(self) -> dict:
+    def provenance(self) -> dict[str, Any]:
         """What the shared models were built from, for the report: aerodynamic sources, overrides and
         notes per configuration, every loading solved (mass, CG, inertia, payload, fuel, notes), and the
         empty airplane's component table."""
         from certkit.models.aero.airplane import AirplaneAero
         from certkit.models.mass.loading import Loading, empty_airplane
 
-        aero, loadings = {}, {}
+        aero: dict[str, dict[str, Any]] = {}
+        loadings: dict[Any, dict[str, Any]] = {}
         for key, value in self._memo.items():
             if isinstance(value, AirplaneAero):
                 aero[value.configuration] = {
@@ -126,12 +137,12 @@ class Context:
 
     # --- shared models (each lazily built and memoised) ---------------------------------
 
-    def aero(self, configuration: str):
+    def aero(self, configuration: str) -> AirplaneAero:
         """The aerodynamic model of ``configuration`` (:mod:`certkit.models.aero.airplane`), built once;
         the vortex lattice is shared by every configuration."""
         from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
 
-        def build():
+        def build() -> AirplaneAero:
             declared = configuration in self.aircraft.aerodynamics.derivative_tables
             lattice = None if declared else self.memo("lattice_derivatives", lambda: lattice_derivatives(self.aircraft))
             return build_airplane_aero(self.aircraft, configuration, lattice=lattice)
@@ -146,16 +157,20 @@ class Context:
         """Wing lift-curve slope per radian (DATCOM/Polhamus; see :mod:`certkit.models.aero.planform`)."""
         from certkit.models.aero.planform import lift_curve_slope, sweep_at
 
+        if self.aircraft.geometry is None:
+            raise ValueError("geometry is not declared")
         w = self.aircraft.geometry.wing
         key = ("wing_lift_slope", round(float(mach), 4))
         return self.memo(
             key,
-            lambda: lift_curve_slope(
-                w.aspect_ratio, sweep_at(0.5, w.sweep_quarter_chord, w.aspect_ratio, w.taper), float(mach)
+            lambda: float(
+                lift_curve_slope(
+                    w.aspect_ratio, sweep_at(0.5, w.sweep_quarter_chord, w.aspect_ratio, w.taper), float(mach)
+                )
             ),
         )
 
-    def design_speed_eas(self, name: str, altitude) -> tuple[np.ndarray, np.ndarray]:
+    def design_speed_eas(self, name: str, altitude: Any) -> tuple[np.ndarray, np.ndarray]:
         """Declared design speed ``name`` (VC, VD, VMO, VB, VA …) as EAS (m/s) at ``altitude``, limited by
         its Mach counterpart (MC, MD, MMO) where declared; returns (speed, mach_limited). Memoised (the loads
         rules ask for the same speeds at the same altitudes for every condition); the arrays returned are copies."""
@@ -175,7 +190,7 @@ class Context:
 
     # --- flight: loadings, trims and modes of conditions (batched, memoised) --------------
 
-    def loading(self, mass: float, x_cg: float, name: str = ""):
+    def loading(self, mass: float, x_cg: float, name: str = "") -> Loading:
         """Payload/fuel distribution and inertia reaching (mass, x_cg) (:mod:`certkit.models.mass.loading`)."""
         from certkit.models.mass.loading import solve_loading
 
@@ -186,19 +201,19 @@ class Context:
 
     def trim(
         self,
-        conditions,
+        conditions: Iterable[Condition],
         kind: str = "straight",
         *,
-        gamma=0.0,
-        bank=0.0,
-        beta=0.0,
-        inoperative: str | None = None,
+        gamma: Any = 0.0,
+        bank: Any = 0.0,
+        beta: Any = 0.0,
+        inoperative: str | Iterable[str] | None = None,
         configuration: str | None = None,
         design_limits: bool = True,
-        throttle=None,
-        stabilizer=None,
-        initial=None,
-    ):
+        throttle: Any = None,
+        stabilizer: Any = None,
+        initial: Mapping[str, Any] | None = None,
+    ) -> TrimBatch:
         """Trim every condition (its loading, configuration, altitude and speed) in one batch.
 
         Returns a :class:`certkit.models.dynamics.trim.TrimBatch`; ``gamma``, ``bank``, ``beta`` are scalars or one
@@ -218,9 +233,10 @@ class Context:
         if len(configs) != 1 or None in configs:
             raise ValueError(f"a trim batch needs one configuration, got {sorted(map(str, configs))}")
         config = configs.pop()
+        assert config is not None  # checked above
         tas = np.array([speed_as(c, "TAS") for c in conds])
         h = np.array([c.altitude or 0.0 for c in conds])
-        key = (
+        key: tuple[Any, ...] = (
             "trim",
             config,
             tuple((c.mass, c.x_cg) for c in conds),
@@ -259,26 +275,28 @@ class Context:
 
     def _trim(
         self,
-        conds,
-        config,
-        tas,
-        h,
-        kind,
-        gamma,
-        bank,
-        beta,
-        inoperative,
-        design_limits,
-        throttle=None,
-        stabilizer=None,
-        initial=None,
-    ):
+        conds: tuple[Condition, ...],
+        config: str,
+        tas: np.ndarray,
+        h: np.ndarray,
+        kind: str,
+        gamma: Any,
+        bank: Any,
+        beta: Any,
+        inoperative: str | Iterable[str] | None,
+        design_limits: bool,
+        throttle: Any = None,
+        stabilizer: Any = None,
+        initial: Mapping[str, Any] | None = None,
+    ) -> TrimBatch:
         from certkit.models.dynamics.trim import trim
         from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
 
-        loadings = [self.loading(c.mass, c.x_cg, c.loading or "") for c in conds]
+        loadings = [self.loading(_number(c.mass), _number(c.x_cg), c.loading or "") for c in conds]
         operative = None
         if inoperative is not None:
+            if self.aircraft.propulsion is None:
+                raise ValueError("an inoperative engine needs the propulsion section")
             names = [e.name for e in self.aircraft.propulsion.engines]
             dead = [inoperative] * len(conds) if isinstance(inoperative, str) else list(inoperative)
             for d in set(dead) - set(names):
@@ -302,7 +320,7 @@ class Context:
             initial=initial,
         )
 
-    def modes(self, conditions, throttle=None):
+    def modes(self, conditions: Iterable[Condition], throttle: Any = None) -> list[dict[str, Mode] | None]:
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
         condition; None where the trim did not converge. ``throttle`` (a scalar or one per condition) fixes the
         throttles: the modes are then those of the steady climb or descent at that thrust (see :meth:`trim`)."""
@@ -310,14 +328,14 @@ class Context:
 
         conds = tuple(conditions)
 
-        def compute():
+        def compute() -> list[dict[str, Mode] | None]:
             batch = self.trim(conds, throttle=throttle)
             lin = self.linearization(conds, throttle=throttle)
             return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
 
         return self.memo(_key("modes", conds, throttle), compute)
 
-    def linearization(self, conditions, throttle=None):
+    def linearization(self, conditions: Iterable[Condition], throttle: Any = None) -> Linearization:
         """The linearised dynamics (:class:`certkit.models.dynamics.linearize.Linearization`) about the
         straight-flight trim of each condition (at the fixed ``throttle``, see :meth:`modes`), memoised (the one
         :meth:`modes` reads)."""
@@ -325,19 +343,26 @@ class Context:
 
         conds = tuple(conditions)
 
-        def compute():
+        def compute() -> Linearization:
             batch = self.trim(conds, throttle=throttle)
             return linearize(batch.model, batch.x, batch.u)
 
         return self.memo(_key("linearization", conds, throttle), compute)
 
 
-def _key(kind: str, conds, throttle) -> tuple:
+def _key(kind: str, conds: tuple[Condition, ...], throttle: Any) -> tuple[Any, ...]:
     """The memo key of conditions' flight points (loading, configuration, altitude, speed) and a fixed throttle."""
     key = (kind,) + tuple((c.mass, c.x_cg, c.configuration, c.altitude, c.speed, c.speed_kind) for c in conds)
     return key if throttle is None else key + ("throttle", _hashable(throttle))
 
 
-def _hashable(value):
+def _number(value: float | None) -> float:
+    """A condition's mass or CG, which a flight point needs."""
+    if value is None:
+        raise ValueError("a flight condition needs its mass and CG")
+    return value
+
+
+def _hashable(value: Any) -> float | tuple[float, ...]:
     arr = np.asarray(value, dtype=float)
     return float(arr) if arr.ndim == 0 else tuple(np.round(arr.ravel(), 9))

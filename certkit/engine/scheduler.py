@@ -16,7 +16,9 @@ import os
 import re
 import time
 import traceback
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from collections.abc import Callable, Iterable
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
+from typing import Any
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
@@ -27,12 +29,15 @@ from certkit.engine.worker_processes import die_with_parent, stop_pool
 from certkit.errors import InputError, Problem, UserError
 from certkit.units import UnitError, to_unit
 
+#: what runs on each result in the process that evaluated it (the report's drawing of the evidence)
+Finish = Callable[[RuleResult], object]
 
-def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
+
+def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict[str, Any]]:
     """The rule's criteria with the aircraft file's overrides (checked by :func:`override_problems`)."""
     values = Criteria({name: c.value for name, c in rule.criteria.items()})
     override = ctx.aircraft.criteria.get(rule.id)
-    applied: dict = {}
+    applied: dict[str, Any] = {}
     if override is not None:
         for name, given in override.values.items():
             value, problem = _override_value(rule, name, given)
@@ -49,7 +54,7 @@ def criteria_for(rule: type[Rule], ctx: Context) -> tuple[Criteria, dict]:
     return values, applied
 
 
-def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> dict:
+def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict[str, Any]) -> dict[str, Any]:
     """The criteria in force as results.json and the report state them: value, unit (``1`` without one), source,
     basis (:attr:`Criterion.basis`; ``override`` when the aircraft file set the value, with the rule's default, its
     basis and the file's justification beside it), meaning, and whether the aircraft file overrode it."""
@@ -71,7 +76,7 @@ def criteria_metadata(rule: type[Rule], values: Criteria, overrides: dict) -> di
     return out
 
 
-def check_in_force(check: str, overrides: dict, name_the_rest: bool = False) -> str:
+def check_in_force(check: str, overrides: dict[str, Any], name_the_rest: bool = False) -> str:
     """A check text as the criteria in force make it: a default value an override replaced, written as a number in
     the text ("VC ≥ VB + 1.32 U_ref"), becomes the value in force ("VC ≥ VB + 1.4 U_ref"). Paragraph labels such
     as "(2)" are never numbers here. With ``name_the_rest`` the overrides the text does not show are named after it
@@ -93,7 +98,7 @@ def check_in_force(check: str, overrides: dict, name_the_rest: bool = False) -> 
     return check
 
 
-def _show_overrides(findings: list[Finding], overrides: dict) -> None:
+def _show_overrides(findings: list[Finding], overrides: dict[str, Any]) -> None:
     """Check texts formed from the criteria in force; the text with the defaults kept as ``check_default`` (what
     ``certkit diff`` pairs findings of two runs by)."""
     for f in findings:
@@ -171,7 +176,12 @@ def _describe_exception(exc: BaseException) -> str:
 
 
 def evaluate_rule(
-    rule: type[Rule], ctx: Context, *, evidence: bool = True, keep_loads: bool = False, only=None
+    rule: type[Rule],
+    ctx: Context,
+    *,
+    evidence: bool = True,
+    keep_loads: bool = False,
+    only: list[Condition] | None = None,
 ) -> RuleResult:
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
     evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
@@ -187,7 +197,9 @@ def evaluate_rule(
     return result
 
 
-def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only=None) -> RuleResult:
+def _evaluate_own(
+    rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only: list[Condition] | None = None
+) -> RuleResult:
     instance = rule()
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(
@@ -198,7 +210,7 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
         overrides=overrides,
         implementation=rule.implementation,
         limitations=" ".join(inspect.cleandoc(rule.limitations).split()),
-        unevaluated=[list(u) for u in rule.unevaluated],
+        unevaluated=[list(u) for u in rule.unevaluated],  # type: ignore[misc]  # lists in results.json
         amendment=rule.amendment,
         references=list(rule.references),
         criteria=criteria_metadata(rule, criteria, overrides),
@@ -264,12 +276,12 @@ def _evaluate_own(rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bo
     return result
 
 
-def _uncovered(conditions, findings) -> list:
+def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Condition]:
     """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
     Findings are grouped by loading, configuration and altitude, which a refinement keeps, so each condition is
     compared with its own group only (a design's loads rules schedule thousands of conditions)."""
     covered = {f.condition for f in findings}
-    groups: dict = {}
+    groups: dict[tuple[object, ...], list[Condition]] = {}
     for c in covered:
         groups.setdefault((c.loading, c.configuration), []).append(c)
         groups.setdefault((c.loading, c.configuration, c.altitude), []).append(c)
@@ -277,18 +289,19 @@ def _uncovered(conditions, findings) -> list:
     for cond in conditions:
         if cond in covered:
             continue
+        candidates: Iterable[Condition]
         if cond.loading is None or cond.configuration is None:
             candidates = covered
         elif cond.altitude is None:
-            candidates = groups.get((cond.loading, cond.configuration), ())
+            candidates = groups.get((cond.loading, cond.configuration), [])
         else:
-            candidates = groups.get((cond.loading, cond.configuration, cond.altitude), ())
+            candidates = groups.get((cond.loading, cond.configuration, cond.altitude), [])
         if not any(c.refines(cond) for c in candidates):
             out.append(cond)
     return out
 
 
-def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
+def _timed(rule: type[Rule], ctx: Context, finish: Finish | None = None) -> RuleResult:
     """:func:`evaluate_rule` then ``finish`` (the report's drawing), with the wall time of both in ``seconds``."""
     start = time.perf_counter()
     result = evaluate_rule(rule, ctx)
@@ -299,8 +312,8 @@ def _timed(rule: type[Rule], ctx: Context, finish=None) -> RuleResult:
 
 
 def _evaluate_many(
-    loaded: LoadedAircraft, rules: list[type[Rule]], finish=None, progress=None
-) -> tuple[list[RuleResult], dict]:
+    loaded: LoadedAircraft, rules: list[type[Rule]], finish: Finish | None = None, progress: Any = None
+) -> tuple[list[RuleResult], dict[str, Any]]:
     ctx = Context(loaded)
     results = []
     for r in rules:
@@ -312,7 +325,7 @@ def _evaluate_many(
     return results, ctx.provenance()
 
 
-def _merge_provenance(parts: list[dict]) -> dict:
+def _merge_provenance(parts: list[dict[str, Any]]) -> dict[str, Any]:
     """One provenance from several workers' (same inputs give the same entries; keep one of each)."""
     merged = {
         "aerodynamics": {},
@@ -320,7 +333,7 @@ def _merge_provenance(parts: list[dict]) -> dict:
         "components": parts[0]["components"] if parts else [],
         "component_notes": parts[0]["component_notes"] if parts else [],
     }
-    seen: dict = {}
+    seen: dict[Any, Any] = {}
     for p in parts:
         merged["aerodynamics"].update(p["aerodynamics"])
         for row in p["loadings"]:
@@ -336,10 +349,12 @@ def _merge_provenance(parts: list[dict]) -> dict:
     return merged
 
 
-_WORKER: dict = {}
+_WORKER: dict[str, Any] = {}
 
 
-def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish=None) -> None:
+def _worker_init(
+    loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish: Finish | None = None
+) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.engine.worker_processes.die_with_parent`)."""
     die_with_parent(parent_pid)
@@ -348,7 +363,7 @@ def _worker_init(loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: 
     _WORKER["finish"] = finish
 
 
-def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
+def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict[str, Any]]]:
     """Rules in a worker process, one after the other on the worker's own Context (its models are reused by the
     next rules the worker takes), each encoded for ``results.json`` here, while other rules still run."""
     ctx = _WORKER["ctx"]
@@ -363,13 +378,18 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict]]:
 def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     """The rules grouped for the worker processes: rules sharing a :attr:`Rule.run_with` key form one unit (in
     registry order), every other rule its own; the heaviest units (summed :attr:`Rule.cost`) first."""
-    units: dict = {}
+    units: dict[object, list[type[Rule]]] = {}
     for r in rules:
         units.setdefault(r.run_with or ("", r.id), []).append(r)
     return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
-def _collect(futures, units, workers: int, progress) -> list:
+def _collect(
+    futures: list[Future[list[tuple[RuleResult, dict[str, Any]]]]],
+    units: list[tuple[type[Rule], ...]],
+    workers: int,
+    progress: Any,
+) -> list[tuple[RuleResult, dict[str, Any]]]:
     """Every unit's (result, provenance) pairs, in unit order, telling ``progress`` as units end (the first
     ``workers`` units were told started when submitted)."""
     if progress:
@@ -389,9 +409,9 @@ def run(
     jobs: int = 1,
     options: DiscoveryOptions = DiscoveryOptions(),
     now: _dt.datetime | None = None,
-    finish=None,
-    alongside: dict | None = None,
-    progress=None,
+    finish: Finish | None = None,
+    alongside: dict[str, Callable[[], Any]] | None = None,
+    progress: Any = None,
 ) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a

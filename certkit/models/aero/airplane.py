@@ -20,7 +20,9 @@ replacement is recorded so that the report lists it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -201,7 +203,12 @@ class AirplaneAero:
     lattice: VortexLattice | None = field(default=None, repr=False)
 
 
-def lattice_derivatives(aircraft, machs=None):
+#: what :func:`lattice_derivatives` returns: the table (name → one value per Mach number; two entries hold objects),
+#: the neutral points, the span efficiencies and the lattice
+LatticeDerivatives = tuple[dict[str, Any], list[float], list[float], VortexLattice]
+
+
+def lattice_derivatives(aircraft: Any, machs: Sequence[float] | None = None) -> LatticeDerivatives:
     """Derivatives at α = 0 for each Mach number (None: :func:`mach_breakpoints`): (table name → values, neutral
     points, e, lattice).
 
@@ -217,8 +224,10 @@ def lattice_derivatives(aircraft, machs=None):
     wing_tail, tail = VortexLattice(on, mach=machs[0]), VortexLattice(alone, mach=machs[0])
     free_air = free_air_downwash(wing_tail, tail)
     gradient_low = free_air.gradient
-    table: dict[str, list[float]] = {}
-    xnp, e, wing_slope = [], [], []
+    table: dict[str, Any] = {}
+    xnp: list[float] = []
+    e: list[float] = []
+    wing_slope: list[float] = []
     for m in machs:
         lat = vl.at_mach(m)
         d = lat.stability_derivatives(alpha=0.0)
