@@ -106,8 +106,15 @@ def maximin_subsample(u: np.ndarray, m: int) -> np.ndarray:
     return np.sort(np.array(chosen))
 
 
-#: rows of a GP prediction evaluated at once (a block of distances to 600 cases is 96 MB)
-GP_BLOCK = 20_000
+#: bytes of the distance block of a GP prediction evaluated at once: small enough that its four passes (distances,
+#: scaling, exponentials, product) stay in the processor's cache (2 MB: 416 rows of distances to 600 cases; 1.7× faster
+#: than 96 MB blocks on 10⁵ rows on the 2-core reference machine, 16 MB of L3)
+GP_BLOCK_BYTES = 2_000_000
+
+
+def gp_block_rows(n_cases: int) -> int:
+    """Rows per block of a GP prediction against ``n_cases`` training cases (:data:`GP_BLOCK_BYTES`)."""
+    return max(64, GP_BLOCK_BYTES // (8 * max(n_cases, 1)))
 
 
 class SubsampledGP(BaseEstimator, RegressorMixin):
@@ -136,15 +143,16 @@ class SubsampledGP(BaseEstimator, RegressorMixin):
         alpha = np.asarray(gp.alpha_, dtype=float).ravel()
         u = np.atleast_2d(np.asarray(u, dtype=float))
         out = np.empty(len(u))
+        rows = gp_block_rows(len(x_train))
 
         def block(start: int) -> None:
-            d = cdist(u[start : start + GP_BLOCK] / scale, x_train, "sqeuclidean")
+            d = cdist(u[start : start + rows] / scale, x_train, "sqeuclidean")
             np.multiply(d, -0.5, out=d)
             np.exp(d, out=d)
             np.multiply(d, constant, out=d)  # c K before the product with α, as scikit-learn orders it
-            out[start : start + GP_BLOCK] = d @ alpha
+            out[start : start + rows] = d @ alpha
 
-        starts = range(0, len(u), GP_BLOCK)
+        starts = range(0, len(u), rows)
         threads = min(len(starts), available_cores())
         if threads > 1:  # distances, exponentials and products release the GIL: blocks in parallel, same values
             with ThreadPoolExecutor(threads) as pool:
