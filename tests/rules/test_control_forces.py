@@ -378,7 +378,7 @@ def test_force_limited_deflections_of_the_loads_rules(forces_ctx, feel_ctx):
     """§25.351(a)(2) and §25.331(c) (pilot effort, §25.397): the deflection a force holds from the trim.
     Rudder at VD 340 KEAS (174.9 m/s), 200 lbf: x = (200 − 10)/(40 × 1.8736) in = 2.535 in → 15.21°.
     Elevator at 265 KEAS (136.3 m/s), 300 lbf pull: x = (300 − 5)/(30 × 1.1379) = 8.642 in → 17.28° up."""
-    from certkit_rules.part25.subpart_c.r25_331 import force_limited_deflection
+    from certkit_rules.part25.support.structural_checks import force_limited_deflection
 
     c = Condition(speed=174.9, speed_kind="EAS", altitude=0.0)
     stop = math.radians(-23.2)

@@ -6,7 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from certkit_rules.part25.subpart_c.r25_331b import BalancedManeuver
-from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, NOT_SHARED, UnsymmetricalTailLoads
+from certkit_rules.part25.subpart_c.r25_427 import NO_FUSELAGE, UnsymmetricalTailLoads
 from certkit_rules.part25.support.balanced_runs import balanced_maneuvers
 
 from certkit.aircraft import load_aircraft
@@ -86,8 +86,9 @@ def test_gust_conditions_split_and_the_rule_says_what_it_leaves_out(result):
     assert gust and all(f.status in ("complies", "fails") for f in gust)
     assert all("fuselage torsion at the tail max/min (kN·m)" in f.all_details() for f in gust)
     whole = {f.check: f for f in res.findings if f.condition.loading is None}
-    assert whole["(b) symmetric loadings of §25.331(c)"].reason == NOT_SHARED  # (c)(1) only
-    assert "(c)(1)" in NOT_SHARED and "(c)(2)" not in NOT_SHARED
+    assert "(b) symmetric loadings of §25.331(c)" not in whole  # (c)(1) and (c)(2) are both split
+    scoped = [f for f in res.findings if f.details.get("not_evaluated_by_rule") == "25.427(b)(1)"]
+    assert len(scoped) == 1 and "out-of-trim" in scoped[0].reason
     assert whole["(b) fuselage torsion at the tail"].reason == NO_FUSELAGE
     assert whole["(b) fuselage torsion at the tail"].all_details()["largest_torsion_kNm"] > 0
 
@@ -113,21 +114,29 @@ def test_full_side_of_a_gust_is_its_symmetric_loading(result):
     assert compared > 0
 
 
-def test_full_side_of_a_checked_manoeuvre_is_its_symmetric_loading(result):
-    """§25.427(b)(1) takes the §25.331 symmetric manoeuvres, the checked manoeuvre among them: the 100 % side of each
-    (c)(2) condition, rebuilt from the run's air and inertial parts over its window, has the extremes of the
-    §25.331(c)(2) finding's tail loads (its totals) for the same condition."""
+@pytest.mark.parametrize(
+    "source, rule_name, check, least",
+    [
+        ("25.331(c)(1)", "MaximumPitchControlDisplacement", "(c)(1) maximum pitch control displacement", 10),
+        ("25.331(c)(2)", "CheckedPitchManeuver", "(c)(2) checked manoeuvre", 40),
+    ],
+)
+def test_full_side_of_a_pitch_manoeuvre_is_its_symmetric_loading(result, source, rule_name, check, least):
+    """§25.427(b)(1) takes the §25.331 symmetric manoeuvres, the (c)(1) maximum pitch control displacement and the
+    (c)(2) checked manoeuvre among them: the 100 % side of each condition, rebuilt from the run's air and inertial
+    parts over its window, has the extremes of the §25.331(c) finding's tail loads (its totals) for the same
+    condition (to the 0.1 kN and kN·m the findings are rounded to)."""
     ctx, res, _ = result
-    from certkit_rules.part25.subpart_c.r25_331 import CheckedPitchManeuver
+    from certkit_rules.part25.subpart_c import r25_331
 
     sym = {
         f.condition: f
-        for f in evaluate_rule(CheckedPitchManeuver, ctx).findings
-        if f.check.startswith("(c)(2) checked manoeuvre") and ", wing" not in f.check and "load factor" not in f.check
+        for f in evaluate_rule(getattr(r25_331, rule_name), ctx).findings
+        if f.check.startswith(check) and ", wing" not in f.check and "load factor" not in f.check
     }
     compared = 0
     for f in res.findings:
-        if f.condition.get("source") == "25.331(c)(2)" and "100% side" in f.check:
+        if f.condition.get("source") == source and "100% side" in f.check:
             g = sym[replace(f.condition, extra=tuple((k, v) for k, v in f.condition.extra if k != "source"))]
             for key in (
                 "root shear max/min (kN)",
@@ -136,7 +145,7 @@ def test_full_side_of_a_checked_manoeuvre_is_its_symmetric_loading(result):
             ):
                 assert f.all_details()[key] == pytest.approx(g.all_details()[key], abs=0.11)
             compared += 1
-    assert compared >= 40
+    assert compared >= least
 
 
 def test_a_weak_tailplane_fails(tmp_path):

@@ -21,41 +21,18 @@ conservative). In (c)(1) the load factor may exceed the limit (loads after that 
 
 from __future__ import annotations
 
-import numpy as np
-from certkit_rules.part25.support.fuel_states import fuelled_wing, fuelled_wing_envelope
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit_rules.part25.support.pitch_runs import (
     CHECKED_CONDITIONS,
     CHECKED_CRITERIA,
-    LOADED,
-    NOTHING_TRIMMED,
-    PILOT_EFFORT,
+    DISPLACEMENT_CONDITIONS,
+    DISPLACEMENT_CRITERIA,
     PRODUCED,
     PitchManeuverRun,
-    _effort_note,
-    _label,
     checked_runs,
-    wing_before_stall,
-    wing_finding,
-)
-from certkit_rules.part25.support.structural_checks import (
-    SAFETY,
-    beyond_mach_range,
-    capability_finding,
-    condition_mach,
-    control_stops,
-    entry_speeds,
-    force_limited_deflection,
-    set_aside_finding,
+    displacement_runs,
 )
 
-from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
-from certkit.engine.registry import Criterion, SimulationRule, rule
-from certkit.models.dynamics.simulate import Bound, Step, simulate
-from certkit.models.loads.capability import declared_capabilities
-from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, response_loads
-from certkit.units import KN
+from certkit.engine.registry import SimulationRule, rule
 
 
 @rule
@@ -140,6 +117,7 @@ class MaximumPitchControlDisplacement(SimulationRule):
     id = "25.331(c)(1)"
     produces = PRODUCED
     cost = 4  # relative evaluation time (orders work over --jobs processes)
+    run_with = "discrete-gust"  # its runs are shared with §25.427(b), which splits their tail loads
     symbol = "maximum-pitch-control-displacement"
     title = "Maximum pitch control displacement at VA"
     amendment = "25-141"
@@ -156,24 +134,8 @@ class MaximumPitchControlDisplacement(SimulationRule):
     """
     references = ("25.331(c)(2)", "25.333", "25.337", "25.397", "25.303", "25.305")
     requires = ("speeds.VA", "speeds.VC", "envelope.limit_load_factors", "geometry.horizontal_tail")
-    criteria = {
-        "ramp_time": Criterion(
-            0.1,
-            "s",
-            "certkit assumption: 'suddenly' with no declared actuator rate",
-            "time to reach the full deflection",
-        ),
-        "duration": Criterion(4.0, "s", "certkit numerical choice", "longest simulated time"),
-        "time_step": Criterion(0.02, "s", "certkit numerical choice", "simulation step"),
-        **SAFETY,
-        **PILOT_EFFORT,
-    }
-    conditions = ConditionSpace(
-        loading=CgCorners(),
-        configurations=("clean",),
-        altitudes=EnvelopeAltitudes(),
-        note="At VA (EAS), capped at the Mach-limited VC at altitude.",
-    )
+    criteria = DISPLACEMENT_CRITERIA
+    conditions = DISPLACEMENT_CONDITIONS
     limitations = (
         "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
         "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
@@ -196,122 +158,7 @@ class MaximumPitchControlDisplacement(SimulationRule):
     )
 
     def simulate(self, ctx, conditions, crit):
-        n_lim = ctx.aircraft.envelope.limit_load_factors.positive
-        entries = [
-            c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
-            for c in conditions
-        ]
-        batch = trimmed_batch(ctx, entries)
-        findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
-        if not batch.n:
-            return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
-        lim = control_stops(ctx, "elevator")
-        # to the nose-up (trailing edge up) stop, or as far as the pilot effort moves it
-        target, effort_limited = force_limited_deflection(
-            ctx, "elevator", batch.conditions, batch.control("elevator"), lim[0], crit.pilot_effort_lbf
-        )
-        step = target - batch.control("elevator")
-        dt, ramp = float(crit.time_step), float(crit.ramp_time)
-        sched = Step(0.0, step) if ramp <= 0 else _ramp(ramp, step)
-        sim = simulate(
-            batch.model,
-            batch.x,
-            batch.u,
-            float(crit.duration),
-            dt,
-            inputs={"elevator": sched},
-            stop=[Bound("n_z > limit", "n_z", upper=n_lim)],
-        )
-        loads = airplane_loads(ctx)
-        hist = response_loads(loads, sim, batch.model, LOADED)
-        # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
-        root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
-        t_peak = sim.t[np.nanargmax(root, axis=0)]
-        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_peak)[None, :] + 1e-9
-        hist = {s: np.where(valid[:, :, None, None], h, np.nan) for s, h in hist.items()}
-        unstalled = wing_before_stall(hist, batch.model, sim)
-        stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
-        fuelled = fuelled_wing(ctx, loads, sim, batch.model, hist["wing"], batch.conditions)
-        env = fuelled_wing_envelope(
-            LoadEnvelope.from_histories(
-                loads, hist, sim.t, [_label(c) for c in batch.conditions], keys=batch.conditions
-            ),
-            fuelled[0],
-        )
-        stations = loads["horizontal_tail"].station_names
-        caps = declared_capabilities(ctx, "horizontal_tail")
-        for i, c in enumerate(batch.conditions):
-            beyond_mach = beyond_mach_range(loads, condition_mach(c))
-            if beyond_mach:
-                findings += [
-                    set_aside_finding(
-                        c,
-                        "(c)(1) maximum pitch control displacement",
-                        beyond_mach,
-                        env.peaks["horizontal_tail"][i],
-                        stations,
-                    ),
-                    set_aside_finding(
-                        c,
-                        "(c)(1) maximum pitch control displacement, wing",
-                        beyond_mach,
-                        fuelled[0][:, i],
-                        env.stations["wing"],
-                    ),
-                ]
-                continue
-            findings.append(
-                capability_finding(
-                    c,
-                    "(c)(1) maximum pitch control displacement",
-                    "horizontal_tail",
-                    env.peaks["horizontal_tail"][i],
-                    stations,
-                    caps,
-                    crit.ultimate_factor,
-                    elevator_step_deg=round(float(np.degrees(step[i])), 3),
-                    considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
-                    stop=sim.stop_reason[i] or "end",
-                    VA_kn_EAS=round(float(c.speed / KN), 1),
-                    pilot_effort=_effort_note(effort_limited, i),
-                    elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
-                    elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3),
-                    **(
-                        {
-                            "stabilizer_trim_deg": round(
-                                float(
-                                    np.degrees(
-                                        batch.control("stabilizer")[i] + ctx.aircraft.geometry.horizontal_tail.incidence
-                                    )
-                                ),
-                                3,
-                            )
-                        }
-                        if "stabilizer" in batch.model.control_names
-                        else {}
-                    ),
-                )
-            )
-            findings.append(
-                wing_finding(
-                    ctx,
-                    c,
-                    "(c)(1) maximum pitch control displacement",
-                    env,
-                    i,
-                    crit,
-                    fuelled,
-                    bool(stalled[i]),
-                    considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
-                )
-            )
-        return PitchManeuverRun(findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations)
+        return displacement_runs(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
         return pitch_evidence(self.run, ctx, crit, "maximum pitch control displacement")
-
-
-def _ramp(ramp: float, amplitude):
-    from certkit.models.dynamics.simulate import Ramp
-
-    return Ramp(0.0, ramp, amplitude)

@@ -32,7 +32,14 @@ from certkit_rules.part25.support.balanced_runs import (
     balanced_runs,
 )
 from certkit_rules.part25.support.gust_runs import GUST_CONDITIONS, GUST_RUN_CRITERIA, gust_runs
-from certkit_rules.part25.support.pitch_runs import CHECKED_CONDITIONS, CHECKED_CRITERIA, checked_runs
+from certkit_rules.part25.support.pitch_runs import (
+    CHECKED_CONDITIONS,
+    CHECKED_CRITERIA,
+    DISPLACEMENT_CONDITIONS,
+    DISPLACEMENT_CRITERIA,
+    checked_runs,
+    displacement_runs,
+)
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
 
 from certkit.engine.conditions import ConditionSpace
@@ -44,22 +51,27 @@ from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 
 TAIL = "horizontal_tail"
 #: the condition spaces of the symmetric loads rules whose tail loads are split
-SOURCES = {"25.331(b)": BALANCED_CONDITIONS, "25.331(c)(2)": CHECKED_CONDITIONS, "25.341(a)": GUST_CONDITIONS}
+SOURCES = {
+    "25.331(b)": BALANCED_CONDITIONS,
+    "25.331(c)(1)": DISPLACEMENT_CONDITIONS,
+    "25.331(c)(2)": CHECKED_CONDITIONS,
+    "25.341(a)": GUST_CONDITIONS,
+}
 #: the condition axes that name a condition of each source beside its loading, configuration and altitude
-KEY_AXES = {"25.331(b)": ("point",), "25.331(c)(2)": ("entry_speed", "direction"), "25.341(a)": ("speed_point", "gust")}
+KEY_AXES = {
+    "25.331(b)": ("point",),
+    "25.331(c)(1)": (),
+    "25.331(c)(2)": ("entry_speed", "direction"),
+    "25.341(a)": ("speed_point", "gust"),
+}
 REG = "14 CFR 25.427(b) (Amdt. 25-86; text from an eCFR mirror, pilotfriend.com)"
-NOT_SHARED = (
-    "the §25.331(c)(1) maximum pitch control displacement's tail loads are not among the symmetric loadings split "
-    "here (its runs are not shared with this rule)"
-)
 NO_FUSELAGE = (
     "no fuselage torsion capability at the tail is declared (structure.fuselage, station tail, quantity "
     "torsion): the fuselage torsion at the tail is reported, not compared"
 )
 
 LIMITATIONS = (
-    "Symmetric loadings from §25.331(b), §25.331(c)(2) and §25.341(a) (not §25.331(c)(1)); every symmetric condition "
-    "is "
+    "Symmetric loadings from §25.331(b), §25.331(c)(1), §25.331(c)(2) and §25.341(a); every symmetric condition is "
     "split, not only the maximum; each half's inertial load kept, the unbalanced moment taken by the fuselage "
     "(tail roll inertia relief neglected); the fuselage torsion compared only where a fuselage capability "
     "at the tail is declared."
@@ -121,6 +133,7 @@ class UnsymmetricalTailLoads(SimulationRule):
     criteria = {
         **BALANCED_RUN_CRITERIA,
         **CHECKED_CRITERIA,
+        **DISPLACEMENT_CRITERIA,
         **GUST_RUN_CRITERIA,
         "full_side_fraction": Criterion(1.0, "", REG + " (b)(1)", "fraction of the tail air load on one side"),
         "reduced_side_fraction": Criterion(0.8, "", REG + " (b)(2)", "fraction of the tail air load on the other side"),
@@ -132,7 +145,8 @@ class UnsymmetricalTailLoads(SimulationRule):
     unevaluated = (
         (
             "25.427(b)(1)",
-            "the §25.331(c)(1) maximum pitch control displacement's tail loads are not split",
+            "the out-of-trim symmetric manoeuvres are not split: §25.331(c)(2) does not compute them (its manoeuvres "
+            "start from the 1 g trim, not from the §25.255 mistrim)",
         ),
     )
 
@@ -162,11 +176,12 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
         if run.simulated:
             aero, inertia = run.tail_parts
             parts.append(("25.331(b)", aero[None], inertia[None], run.conditions))
-    if "25.331(c)(2)" in by_source:
-        run = checked_runs(ctx, by_source["25.331(c)(2)"], crit)
-        if run.simulated:
-            aero, inertia = run.tail_parts(airplane_loads(ctx))
-            parts.append(("25.331(c)(2)", aero, inertia, run.conditions))
+    for source, runs in (("25.331(c)(1)", displacement_runs), ("25.331(c)(2)", checked_runs)):
+        if source in by_source:
+            run = runs(ctx, by_source[source], crit)
+            if run.simulated:
+                aero, inertia = run.tail_parts(airplane_loads(ctx))
+                parts.append((source, aero, inertia, run.conditions))
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)
         if runs.conditions:  # every gradient's time history one after the other
@@ -256,7 +271,6 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
         labels.append(cond.label())
         peaks["100 % side"].append(p_full)
         peaks["80 % side"].append(p_red)
-    findings.append(Finding.not_evaluated(Condition(), "(b) symmetric loadings of §25.331(c)", NOT_SHARED))
     if worst[1] is not None and not fuselage:
         findings.append(
             Finding.not_evaluated(

@@ -1,6 +1,6 @@
-"""The §25.331(c) pitch manoeuvres' shared procedures and the (c)(2) checked manoeuvre's batched runs (regulation
-content, no rule here): the runs are memoised in the context so that §25.331(c)(2) and §25.427(b), which splits their
-tail loads, evaluated in one process (``run_with = "discrete-gust"``), simulate once. Paragraph text and
+"""The §25.331(c) pitch manoeuvres' shared procedures and batched runs, (c)(1) and (c)(2) (regulation content, no
+rule here): the runs are memoised in the context so that §25.331(c) and §25.427(b), which splits their tail loads,
+evaluated in one process (``run_with = "discrete-gust"``), simulate once. Paragraph text and
 verification status: :mod:`certkit_rules.part25.subpart_c.r25_331`.
 """
 
@@ -30,10 +30,12 @@ from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads
 from certkit.engine.results import Finding, LoadsRun
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
+from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts, response_loads
+from certkit.units import KN
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
 PILOT_EFFORT_NOTE = (
@@ -380,3 +382,151 @@ def checked_runs(ctx, conditions, crit) -> PitchManeuverRun:
     §25.427(b), evaluated in one process, simulate once)."""
     key = ("checked_maneuver", tuple(conditions), tuple((k, str(crit[k])) for k in CHECKED_RUN_CRITERIA))
     return ctx.memo(key, lambda: checked_maneuver(ctx, conditions, crit))
+
+
+# --------------------------------------------------------------------------- (c)(1) maximum displacement at VA
+
+DISPLACEMENT_CRITERIA = {
+    "displacement_ramp_time": Criterion(
+        0.1,
+        "s",
+        "certkit assumption: 'suddenly' with no declared actuator rate",
+        "(c)(1): time to reach the full deflection",
+    ),
+    "displacement_duration": Criterion(4.0, "s", "certkit numerical choice", "(c)(1): longest simulated time"),
+    "displacement_time_step": Criterion(0.02, "s", "certkit numerical choice", "(c)(1): simulation step"),
+    **SAFETY,
+    **PILOT_EFFORT,
+}
+DISPLACEMENT_CONDITIONS = ConditionSpace(
+    loading=CgCorners(),
+    configurations=("clean",),
+    altitudes=EnvelopeAltitudes(),
+    note="At VA (EAS), capped at the Mach-limited VC at altitude.",
+)
+
+
+def maximum_displacement(ctx, conditions, crit) -> PitchManeuverRun:
+    """Batch simulation of the (c)(1) sudden maximum nose-up pitch control at VA from level flight: the loads up to
+    the first of the positive limit load factor and the tail load's maximum; findings, the envelope and the runs."""
+    n_lim = ctx.aircraft.envelope.limit_load_factors.positive
+    entries = [
+        c.with_(speed=entry_speeds(ctx, c.altitude, ["VA"])["VA"], speed_kind="EAS", speed_name="VA")
+        for c in conditions
+    ]
+    batch = trimmed_batch(ctx, entries)
+    findings = refusal_findings(batch.refusals(entries), lambda c: ["(c)(1) maximum pitch control displacement"])
+    if not batch.n:
+        return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
+    lim = control_stops(ctx, "elevator")
+    # to the nose-up (trailing edge up) stop, or as far as the pilot effort moves it
+    target, effort_limited = force_limited_deflection(
+        ctx, "elevator", batch.conditions, batch.control("elevator"), lim[0], crit.pilot_effort_lbf
+    )
+    step = target - batch.control("elevator")
+    dt, ramp = float(crit.displacement_time_step), float(crit.displacement_ramp_time)
+    sched = Step(0.0, step) if ramp <= 0 else Ramp(0.0, ramp, step)
+    sim = simulate(
+        batch.model,
+        batch.x,
+        batch.u,
+        float(crit.displacement_duration),
+        dt,
+        inputs={"elevator": sched},
+        stop=[Bound("n_z > limit", "n_z", upper=n_lim)],
+    )
+    loads = airplane_loads(ctx)
+    hist = response_loads(loads, sim, batch.model, LOADED)
+    # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
+    root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
+    t_peak = sim.t[np.nanargmax(root, axis=0)]
+    valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_peak)[None, :] + 1e-9
+    hist = {s: np.where(valid[:, :, None, None], h, np.nan) for s, h in hist.items()}
+    unstalled = wing_before_stall(hist, batch.model, sim)
+    stalled = np.zeros(batch.n, dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
+    fuelled = fuelled_wing(ctx, loads, sim, batch.model, hist["wing"], batch.conditions)
+    env = fuelled_wing_envelope(
+        LoadEnvelope.from_histories(loads, hist, sim.t, [_label(c) for c in batch.conditions], keys=batch.conditions),
+        fuelled[0],
+    )
+    stations = loads["horizontal_tail"].station_names
+    caps = declared_capabilities(ctx, "horizontal_tail")
+    for i, c in enumerate(batch.conditions):
+        beyond_mach = beyond_mach_range(loads, condition_mach(c))
+        if beyond_mach:
+            findings += [
+                set_aside_finding(
+                    c,
+                    "(c)(1) maximum pitch control displacement",
+                    beyond_mach,
+                    env.peaks["horizontal_tail"][i],
+                    stations,
+                ),
+                set_aside_finding(
+                    c,
+                    "(c)(1) maximum pitch control displacement, wing",
+                    beyond_mach,
+                    fuelled[0][:, i],
+                    env.stations["wing"],
+                ),
+            ]
+            continue
+        findings.append(
+            capability_finding(
+                c,
+                "(c)(1) maximum pitch control displacement",
+                "horizontal_tail",
+                env.peaks["horizontal_tail"][i],
+                stations,
+                caps,
+                crit.ultimate_factor,
+                elevator_step_deg=round(float(np.degrees(step[i])), 3),
+                considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
+                stop=sim.stop_reason[i] or "end",
+                VA_kn_EAS=round(float(c.speed / KN), 1),
+                pilot_effort=_effort_note(effort_limited, i),
+                elevator_stop_deg=round(float(np.degrees(lim[0])), 2),
+                elevator_trim_deg=round(float(np.degrees(batch.control("elevator")[i])), 3),
+                **(
+                    {
+                        "stabilizer_trim_deg": round(
+                            float(
+                                np.degrees(
+                                    batch.control("stabilizer")[i] + ctx.aircraft.geometry.horizontal_tail.incidence
+                                )
+                            ),
+                            3,
+                        )
+                    }
+                    if "stabilizer" in batch.model.control_names
+                    else {}
+                ),
+            )
+        )
+        findings.append(
+            wing_finding(
+                ctx,
+                c,
+                "(c)(1) maximum pitch control displacement",
+                env,
+                i,
+                crit,
+                fuelled,
+                bool(stalled[i]),
+                considered_until_s=round(float(min(sim.stop_time[i], t_peak[i])), 3),
+            )
+        )
+    return PitchManeuverRun(
+        findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations, model=batch.model
+    )
+
+
+#: the criteria that define the (c)(1) runs (shared by §25.427(b), which splits their tail loads)
+DISPLACEMENT_RUN_CRITERIA = tuple(k for k in DISPLACEMENT_CRITERIA if k != "ultimate_factor")
+
+
+def displacement_runs(ctx, conditions, crit) -> PitchManeuverRun:
+    """:func:`maximum_displacement` memoised on the conditions and the criteria that define it (§25.331(c)(1) and
+    §25.427(b), evaluated in one process, simulate once)."""
+    key = ("maximum_displacement", tuple(conditions), tuple((k, str(crit[k])) for k in DISPLACEMENT_RUN_CRITERIA))
+    return ctx.memo(key, lambda: maximum_displacement(ctx, conditions, crit))
