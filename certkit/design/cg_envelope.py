@@ -12,22 +12,27 @@ nearer the declared forward limit at its weight than the aft one.
 
 from __future__ import annotations
 
+from typing import Any
+
+from certkit.aircraft import Aircraft
 from certkit.engine.conditions import cg_limits_at
 from certkit.models.mass.loading import reachable_cg_range
 
 FOLLOW_LOADING = "loading"
 
 
-def follows_loading(aircraft) -> bool:
+def follows_loading(aircraft: Aircraft) -> bool:
     """Does the aircraft file ask for corners that follow the design's loading?"""
     sizing = getattr(aircraft, "sizing", None)
     return sizing is not None and sizing.cg_envelope == FOLLOW_LOADING
 
 
-def loading_corners(design, declared) -> list[dict]:
+def loading_corners(design: Aircraft, declared: Aircraft) -> list[dict[str, Any]]:
     """The corners (name, mass kg, x m, declared x m, reachable range m) of ``design`` (the airplane with its sized
     tail group) within the declared envelope of ``declared`` (module doc)."""
-    out = []
+    out: list[dict[str, Any]] = []
+    if declared.cg_envelope is None:
+        return out
     for i, v in enumerate(declared.cg_envelope.vertices):
         fwd, aft = cg_limits_at(declared, v.mass)
         reach = reachable_cg_range(design, v.mass)
@@ -46,7 +51,7 @@ def loading_corners(design, declared) -> list[dict]:
     return out
 
 
-def with_loading_corners(data: dict, corners: list[dict]) -> dict:
+def with_loading_corners(data: dict[str, Any], corners: list[dict[str, Any]]) -> dict[str, Any]:
     """A copy of the aircraft data whose envelope vertices are ``corners`` (SI numbers; the rest shared)."""
     envelope = dict(data["cg_envelope"])
     envelope["vertices"] = [{"name": c["name"], "mass": c["mass"], "x": c["x"]} for c in corners]

@@ -4,10 +4,16 @@ constraint.range_margin_m (design range − required range, ≥ 0 feasible)."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from certkit.aircraft import Aircraft
+    from certkit.engine.context import Context
+
 from certkit.errors import InfeasibleDesign, UserError
 
 
-def mission_responses(aircraft, ctx, oew_kg: float) -> tuple[dict, dict]:
+def mission_responses(aircraft: Aircraft, ctx: Context, oew_kg: float) -> tuple[dict[str, Any], dict[str, Any]]:
     """(responses, details) of the design's missions. A mission the design cannot fly as declared (the design payload
     above MZFW − the sized OEW, the nominal distance beyond its fuel, no cruise level reachable) is an infeasible
     design with the mission's reason."""

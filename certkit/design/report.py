@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any
+
 from certkit.units import FT, LB, NMI
 
 _LB = ("_kg", LB, "lb")
 _NMI = ("_m", NMI, "nmi")
 
 
-def _fmt(name: str, value) -> str:
+def _fmt(name: str, value: float | None) -> str:
     if value is None:
         return "—"
     if name.endswith("_kg"):
@@ -22,7 +25,7 @@ def _fmt(name: str, value) -> str:
     return f"{value:.4g}"
 
 
-def print_record(record: dict, echo) -> None:
+def print_record(record: dict[str, Any], echo: Callable[[str], object]) -> None:
     r = record["responses"]
     st = record["statuses"]
     echo(f"{record['aircraft']['name']}  (certkit {record['certkit_version']})")
@@ -54,7 +57,7 @@ def print_record(record: dict, echo) -> None:
             echo(f"  {k[7:]:<14} {v:.1%}")
     levels = [(k, v) for k, v in r.items() if k.startswith("level.")]
     if levels:
-        worst = {}
+        worst: dict[str, int] = {}
         for k, v in levels:
             mode = k.split(".")[1]
             worst[mode] = max(worst.get(mode, 0), int(v))

@@ -15,8 +15,9 @@ value and what was expected.
 from __future__ import annotations
 
 import copy
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import yaml
 
@@ -58,7 +59,7 @@ def parse_setting(text: str) -> Setting:
     return Setting(path, value)
 
 
-def _split(path: str) -> list:
+def _split(path: str) -> list[str | int]:
     return [int(p) if p.isdigit() else p for p in path.split(".")]
 
 
@@ -70,7 +71,7 @@ def _known_keys(node: object) -> str:
     return "none (a value, not a section)"
 
 
-def set_value(data: dict, setting: Setting) -> None:
+def set_value(data: dict[str, Any], setting: Setting) -> None:
     """Put ``setting`` into the plain aircraft data (in place); the path must name an existing scalar."""
     parts = _split(setting.path)
     node: object = data
@@ -90,11 +91,11 @@ def set_value(data: dict, setting: Setting) -> None:
         node = child
 
 
-def _copy_along(data: dict, paths) -> dict:
+def _copy_along(data: dict[str, Any], paths: Iterable[str]) -> dict[str, Any]:
     """A copy of ``data`` in which the containers along ``paths`` are new (the rest is shared, never mutated)."""
     out = copy.copy(data)
     for path in paths:
-        node = out
+        node: Any = out
         for key in _split(path)[:-1]:
             try:
                 child = node[key]
@@ -107,15 +108,17 @@ def _copy_along(data: dict, paths) -> dict:
     return out
 
 
-def design_data(source: YamlSource, settings: list[Setting]) -> dict:
+def design_data(source: YamlSource, settings: list[Setting]) -> dict[str, Any]:
     """The aircraft file's data with the settings applied (the source is not changed)."""
+    if not isinstance(source.data, dict):
+        raise DesignError("the aircraft file is not a mapping of sections")
     data = _copy_along(source.data, [s.path for s in settings])
     for s in settings:
         set_value(data, s)
     return data
 
 
-def design_aircraft(source: YamlSource, settings: list[Setting], data: dict | None = None) -> Aircraft:
+def design_aircraft(source: YamlSource, settings: list[Setting], data: dict[str, Any] | None = None) -> Aircraft:
     """Validate the design's aircraft; a problem at or below a set path is reported against that variable."""
     data = design_data(source, settings) if data is None else data
     try:

@@ -14,7 +14,7 @@ import itertools
 
 import numpy as np
 
-from certkit.study.spec import BoxBehnkenBlock, CcdBlock, LhsBlock, RandomBlock, Variable
+from certkit.study.spec import BoxBehnkenBlock, CcdBlock, DesignBlock, LhsBlock, RandomBlock, Variable
 
 MIN_RESOLUTION = 5
 
@@ -72,7 +72,8 @@ def latin_hypercube(k: int, n: int, seed: int, criterion: str = "random-cd") -> 
     from scipy.stats import qmc
 
     optimization = None if criterion == "none" else criterion
-    return qmc.LatinHypercube(d=k, optimization=optimization, rng=np.random.default_rng(seed)).random(n)
+    points: np.ndarray = qmc.LatinHypercube(d=k, optimization=optimization, rng=np.random.default_rng(seed)).random(n)
+    return points
 
 
 def uniform_random(k: int, n: int, seed: int) -> np.ndarray:
@@ -80,7 +81,7 @@ def uniform_random(k: int, n: int, seed: int) -> np.ndarray:
     return np.random.default_rng(seed).random((n, k))
 
 
-def unit_points(block, k: int) -> np.ndarray:
+def unit_points(block: DesignBlock, k: int) -> np.ndarray:
     """Points of ``block`` in the unit cube [0, 1]^k (coded −1, 0, +1 → 0, ½, 1)."""
     if isinstance(block, CcdBlock):
         return (ccd_face_centred(k, block.fraction, block.center) + 1.0) / 2.0
@@ -97,4 +98,5 @@ def scale(unit: np.ndarray, variables: list[Variable]) -> np.ndarray:
     """Unit-cube points → SI values; 0 and 1 map exactly onto the bounds (convex combination, no rounding past)."""
     lower = np.array([v.lower for v in variables])
     upper = np.array([v.upper for v in variables])
-    return lower * (1.0 - unit) + upper * unit
+    values: np.ndarray = lower * (1.0 - unit) + upper * unit
+    return values

@@ -17,7 +17,7 @@ import numpy as np
 from certkit import __version__
 from certkit.errors import UserError
 from certkit.study import doe
-from certkit.study.spec import Study
+from certkit.study.spec import DesignBlock, Study
 
 DEFAULT_EVALUATOR = "certkit.design.evaluate:evaluate_design"
 
@@ -71,7 +71,7 @@ def cases_for_points(context: CaseContext, points: list[dict[str, float]], block
     return cases
 
 
-def block_points(study: Study, block) -> list[dict[str, float]]:
+def block_points(study: Study, block: DesignBlock) -> list[dict[str, float]]:
     """The block's points in SI, as {path: value} in the study's variable order."""
     try:
         values = doe.scale(doe.unit_points(block, len(study.variables)), study.variables)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import Any, TextIO
 
 from certkit.errors import UserError
 from certkit.study.executors import make_executor
@@ -51,7 +52,7 @@ def execute(
     executor: str = "local",
     workers: int | None = None,
     scheduler: str | None = None,
-    progress=None,
+    progress: TextIO | None = None,
     label: str = "study",
     total: int | None = None,
     interval: float = 10.0,
@@ -102,7 +103,7 @@ def run_study(
     scheduler: str | None = None,
     evaluator: str = DEFAULT_EVALUATOR,
     retry_failed: bool = False,
-    progress=None,
+    progress: TextIO | None = None,
     interval: float = 10.0,
 ) -> RunSummary:
     """Plan ``study``, record the plan in ``store`` and evaluate every case without a result."""
@@ -141,8 +142,8 @@ def run_study_cases(
     workers: int | None = None,
     scheduler: str | None = None,
     evaluator: str | None = None,
-    progress=None,
-) -> list[dict]:
+    progress: TextIO | None = None,
+) -> list[dict[str, Any]]:
     """Evaluate extra points (``{path: SI value}``, e.g. a fresh random sample to check a surrogate) with the
     study's aircraft, responses and evaluator, record them in ``store`` as block ``block``, and return one row
     per point, in order (see :meth:`Store.rows`). Points the store already has are not evaluated again."""

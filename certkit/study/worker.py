@@ -16,11 +16,13 @@ import os
 import socket
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 from certkit.errors import InfeasibleDesign, UserError
 
-_EVALUATORS: dict[str, object] = {}
+_EVALUATORS: dict[str, Callable[..., Any]] = {}
 
 
 @dataclass(frozen=True)
@@ -45,7 +47,7 @@ class Task:
     responses: tuple[str, ...] | None
 
 
-def resolve_evaluator(name: str):
+def resolve_evaluator(name: str) -> Callable[..., Any]:
     """``"pkg.module:function"`` (or ``"pkg.module.function"``) → the function, imported once per process."""
     if name not in _EVALUATORS:
         module, _, attr = name.partition(":") if ":" in name else name.rpartition(".")
@@ -96,7 +98,10 @@ def run_case(task: Task) -> CaseResult:
 
 def _run_case(task: Task) -> CaseResult:
     start = time.perf_counter()
-    elapsed = lambda: time.perf_counter() - start  # noqa: E731
+
+    def elapsed() -> float:
+        return time.perf_counter() - start
+
     try:
         evaluate = resolve_evaluator(task.evaluator)
         record = dict(evaluate(task.aircraft_path, dict(task.values), list(task.responses) if task.responses else None))

@@ -140,13 +140,13 @@ def test_invalid_plugin_metadata_names_plugin_and_field(tmp_path):
 
 
 def test_rules_that_share_work_form_one_unit():
-    """§25.341(a) and §25.349(b) share the gust runs, §25.331(b) and §25.427(b) the balanced states, §25.331(c)(2)
-    and §25.427(b) the checked manoeuvres, §25.427(b) the gust runs too (run_with): one process evaluates the five, in
-    registry order; every rule is in exactly one unit; units go heaviest first."""
+    """§25.341(a) and §25.349(b) share the gust runs, §25.331(b) and §25.427(b) the balanced states, §25.331(c)(1)
+    and (c)(2) and §25.427(b) the pitch manoeuvres, §25.427(b) the gust runs too (run_with): one process evaluates
+    the six, in registry order; every rule is in exactly one unit; units go heaviest first."""
     rules = discover()
     units = work_units(rules)
     (gust,) = [u for u in units if any(r.id == "25.341(a)" for r in u)]
-    assert [r.id for r in gust] == ["25.331(b)", "25.331(c)(2)", "25.341(a)", "25.349(b)", "25.427(b)"]
+    assert [r.id for r in gust] == ["25.331(b)", "25.331(c)(1)", "25.331(c)(2)", "25.341(a)", "25.349(b)", "25.427(b)"]
     assert sorted(r.id for u in units for r in u) == sorted(r.id for r in rules)
     costs = [sum(r.cost for r in u) for u in units]
     assert costs == sorted(costs, reverse=True)
