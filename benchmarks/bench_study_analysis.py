@@ -18,9 +18,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from certkit.report.study_report import write_study_report  # noqa: E402
 from certkit.study.analysis.cases import cases  # noqa: E402
 from certkit.study.analysis.montecarlo import run_monte_carlo  # noqa: E402
-from certkit.study.analysis.report import write_study_report  # noqa: E402
 from certkit.study.analysis.surrogates import fit_all  # noqa: E402
 from tests.study_analysis.synthetic import frame_of, sample, study_dict, study_of, unit  # noqa: E402
 

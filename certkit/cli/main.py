@@ -35,7 +35,7 @@ class _Group(click.Group):
     anything else is an internal error (exit 70) with a bug-report hint, its traceback only with ``--debug``.
     Command groups of their own package (``study``) are imported when named, not at every start."""
 
-    lazy_commands = {"study": ("certkit.study.cli", "study")}
+    lazy_commands = {"study": ("certkit.cli.study", "study")}
 
     def list_commands(self, ctx):
         return sorted({*super().list_commands(ctx), *self.lazy_commands})

@@ -294,14 +294,9 @@ def _input(value) -> str:
 
 
 def render_html(changes: list[RuleChange], old: dict, new: dict, old_path: str, new_path: str) -> str:
-    from jinja2 import Environment, PackageLoader, select_autoescape
+    from certkit.report.pages import page_environment  # jinja2 only when an HTML diff is asked for
 
-    env = Environment(
-        loader=PackageLoader("certkit.report", "templates"),
-        autoescape=select_autoescape(["html"]),
-        trim_blocks=True,
-        lstrip_blocks=True,
-    )
+    env = page_environment({})
     env.filters["margin"] = margin_text
     env.filters["status"] = lambda status: STATUS_WORDS.get(status, status)
     return env.get_template("diff.html").render(

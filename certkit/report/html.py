@@ -12,7 +12,7 @@ import inspect
 import re
 from pathlib import Path
 
-from jinja2 import Environment, PackageLoader, select_autoescape
+from jinja2 import Environment
 from markupsafe import Markup, escape
 
 from certkit.engine.registry import Rule
@@ -23,6 +23,7 @@ from certkit.report.display import in_display_units, unit_and_factor
 from certkit.report.figures import render_result
 from certkit.report.links import ecfr_url, resolve, slug
 from certkit.report.output import prepare_output, write_set
+from certkit.report.pages import page_environment
 from certkit.report.reasons import reason_condition, reason_line
 from certkit.report.tables import formatted
 
@@ -60,12 +61,7 @@ def margin_value(value, unit: str, limit) -> str:
 
 
 def _environment(rule_ids) -> Environment:
-    env = Environment(
-        loader=PackageLoader("certkit.report", "templates"),
-        autoescape=select_autoescape(["html"]),
-        trim_blocks=True,
-        lstrip_blocks=True,
-    )
+    env = page_environment({})
     env.filters["value"] = format_value
     env.filters["margin"] = margin_value
     env.filters["slug"] = slug

@@ -93,7 +93,7 @@ def test_spline_reproduces_polynomials_of_its_degree(n):
 #: what the `certkit derivatives FILE.avl` process must not load: numba and its cached kernels (0.3 s), scipy (its
 #: import, 0.15-0.25 s, cost more than the whole lattice solution), numpy.ma (np.unique imports it: 10 ms) and the
 #: study commands (5 ms)
-NOT_LOADED = ("numba", "scipy", "numpy.ma", "certkit.study.cli")
+NOT_LOADED = ("numba", "scipy", "numpy.ma", "certkit.cli.study")
 
 
 def test_derivatives_process_imports_nothing_it_does_not_need():

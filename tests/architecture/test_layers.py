@@ -44,11 +44,6 @@ ALLOWED_UPWARD: dict[tuple[str, str], str] = {
         "certkit.engine.registry",
         "certkit_rules",
     ): "discovery: the registry loads the built-in rules package by name, as it loads plugins' entry points",
-    (
-        "certkit.study.analysis.figures",
-        "certkit.report.plots",
-    ): "the study report's figures use the report's SVG primitives; the study report's drawing is to join the "
-    "report package, its analysis staying in the study",
 }
 
 #: The source folders and the package each holds.

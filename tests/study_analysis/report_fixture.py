@@ -5,7 +5,8 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-from certkit.study.analysis.report import analyse, render
+from certkit.report.study_report import render
+from certkit.study.analysis.analyse import analyse
 from tests.study_analysis.synthetic import store_frame, synthetic_study
 
 OPTIONS = {

@@ -104,7 +104,7 @@ def test_profiler_reads_the_classifier_of_possible_designs(browser, tmp_path):
         ],
         "validity": doc,
     }
-    js = (Path(__file__).resolve().parents[2] / "certkit/study/analysis/templates/profiler.js").read_text()
+    js = (Path(__file__).resolve().parents[2] / "certkit/report/templates/profiler.js").read_text()
     page_path = tmp_path / "p.html"
     page_path.write_text(
         '<!doctype html><html><body><div id="profiler"></div><script type="application/json" id="profiler-data">'

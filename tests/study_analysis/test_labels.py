@@ -34,7 +34,8 @@ def test_declared_units_of_the_variables():
 
 @lru_cache(maxsize=1)
 def _declared_units_report():
-    from certkit.study.analysis.report import analyse, render
+    from certkit.report.study_report import render
+    from certkit.study.analysis.analyse import analyse
 
     study = study_dict(gp_max_cases=150)
     for v in study["variables"]:
@@ -86,7 +87,7 @@ def test_fit_figures_and_planforms_speak_aviation():
 
     import numpy as np
 
-    from certkit.study.analysis.figures import fit_svg, planforms_svg
+    from certkit.report.study_figures import fit_svg, planforms_svg
     from certkit.study.analysis.planform import Planform
 
     kg = np.array([9.0e4, 1.0e5, 1.1e5])

@@ -8,8 +8,8 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
+from certkit.cli.study_analysis import predict_command
 from certkit.study import load_surrogates
-from certkit.study.analysis.cli import predict_command
 from certkit.study.analysis.refine import refine, refinement_points
 from certkit.study.analysis.surrogate_file import surrogates_document, write_surrogates
 from certkit.study.analysis.surrogates import fit_response

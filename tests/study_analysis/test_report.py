@@ -9,7 +9,7 @@ from html.parser import HTMLParser
 import numpy as np
 from click.testing import CliRunner
 
-from certkit.study.analysis import cli as analysis_cli
+from certkit.cli import study_analysis as analysis_cli
 from certkit.study.analysis.export import evaluate_export
 from tests.study_analysis.report_fixture import small_report
 from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, synthetic_study
@@ -111,7 +111,7 @@ def test_report_command(tmp_path, monkeypatch):
         return out / "index.html"
 
     monkeypatch.setattr(analysis_cli, "open_study", lambda path, store_path: (synthetic_study(), "STORE", frame))
-    monkeypatch.setattr("certkit.study.analysis.report.write_study_report", write_study_report)
+    monkeypatch.setattr("certkit.report.study_report.write_study_report", write_study_report)
     result = CliRunner().invoke(
         analysis_cli.report_command, [str(study), "--out", str(tmp_path / "out"), "--samples", "2e4", "--no-check"]
     )

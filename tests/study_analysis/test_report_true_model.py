@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from click.testing import CliRunner
 
-from certkit.study.analysis.cli import report_command
+from certkit.cli.study_analysis import report_command
 from certkit.study.runner import run_study
 from certkit.study.spec import load_study
 from certkit.study.store import Store

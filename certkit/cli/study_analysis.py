@@ -23,6 +23,16 @@ def _samples(ctx, param, value) -> int:
     return int(n)
 
 
+#: the study store of a command (default: the study's own)
+_store_path_option = click.option(
+    "--store",
+    "store_path",
+    type=click.Path(dir_okay=False, path_type=Path),
+    default=None,
+    help="The study store (default: the study's own store).",
+)
+
+
 def executor_options(command):
     """--executor, --workers and --scheduler: where the commands that evaluate true-model cases run them."""
     command = click.option(
@@ -99,13 +109,7 @@ def open_study(study_path: Path, store_path: Path | None):
     default=None,
     help="Folder for index.html (default: <study>-report next to the study file).",
 )
-@click.option(
-    "--store",
-    "store_path",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
-    help="The study store (default: the study's own store).",
-)
+@_store_path_option
 @click.option("--no-check", is_flag=True, help="Skip the true-model re-evaluations (direct check and optima).")
 @click.option(
     "--samples", default="1e6", callback=_samples, show_default=True, help="Monte Carlo samples over the design box."
@@ -124,7 +128,7 @@ def report_command(
     """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity. The
     true-model checks run on the given executor, with their progress on stderr; designs already in the store
     (a report made before) are not evaluated again."""
-    from certkit.study.analysis.report import write_study_report
+    from certkit.report.study_report import write_study_report
 
     try:
         study, store, frame = open_study(study_file, store_path)
@@ -172,13 +176,7 @@ def export_surrogates(study_path: Path, store_path: Path | None, out: Path, log=
     show_default=True,
     help="New training cases to add where constraint boundaries and fronts are least certain.",
 )
-@click.option(
-    "--store",
-    "store_path",
-    type=click.Path(dir_okay=False, path_type=Path),
-    default=None,
-    help="The study store (default: the study's own store).",
-)
+@_store_path_option
 @click.option(
     "--samples",
     default="2e5",

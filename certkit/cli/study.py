@@ -198,8 +198,8 @@ def export(target, store, fmt, out, surrogates_out):
     from certkit.study.store import export as write
 
     if surrogates_out:
+        from certkit.cli.study_analysis import export_surrogates
         from certkit.errors import UserError
-        from certkit.study.analysis.cli import export_surrogates
 
         if not _is_study_file(target):
             raise UserError(f"{target}: --surrogates needs the study file (its objectives and constraints)")
@@ -226,7 +226,7 @@ def schema():
 
 
 def _register_report() -> None:
-    from certkit.study.analysis.cli import predict_command, refine_command, report_command
+    from certkit.cli.study_analysis import predict_command, refine_command, report_command
 
     for command in (report_command, refine_command, predict_command):
         study.add_command(command)
