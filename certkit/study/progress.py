@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import sys
 import time
+from typing import Any, TextIO
 
 
 def _duration(seconds: float) -> str:
@@ -42,13 +43,15 @@ class _Counts:
 class PlainProgress:
     """A line at most every ``interval`` seconds (when a case finishes), and one at the end."""
 
-    def __init__(self, total: int, done: int, failed: int, label: str, stream=None, interval: float = 10.0):
+    def __init__(
+        self, total: int, done: int, failed: int, label: str, stream: TextIO | None = None, interval: float = 10.0
+    ):
         self.counts = _Counts(total, done, failed)
         self.label, self.interval = label, interval
         self.stream = stream or sys.stdout
         self._last = time.monotonic()
 
-    def __enter__(self):
+    def __enter__(self) -> PlainProgress:
         return self
 
     def advance(self, status: str) -> None:
@@ -61,14 +64,14 @@ class PlainProgress:
     def _print(self) -> None:
         print(f"[{time.strftime('%H:%M:%S')}] {self.label}: {self.counts.line()}", file=self.stream, flush=True)
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self._print()
 
 
 class LiveProgress:
     """rich's live bar: done/total, failed, rate, ETA."""
 
-    def __init__(self, total: int, done: int, failed: int, label: str, stream=None):
+    def __init__(self, total: int, done: int, failed: int, label: str, stream: TextIO | None = None):
         from rich.console import Console
         from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -88,7 +91,7 @@ class LiveProgress:
         c = self.counts
         return f"[red]{c.failed} failed[/] · {c.rate():.3g} cases/s · ETA {c.eta()}"
 
-    def __enter__(self):
+    def __enter__(self) -> LiveProgress:
         self._bar.__enter__()
         return self
 
@@ -96,11 +99,13 @@ class LiveProgress:
         self.counts.add(status)
         self._bar.update(self._task, completed=self.counts.done, detail=self._detail())
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: Any) -> None:
         self._bar.__exit__(*exc)
 
 
-def make_progress(total: int, done: int, failed: int, label: str, stream=None, interval: float = 10.0):
+def make_progress(
+    total: int, done: int, failed: int, label: str, stream: TextIO | None = None, interval: float = 10.0
+) -> PlainProgress | LiveProgress:
     stream = stream or sys.stdout
     if getattr(stream, "isatty", lambda: False)():
         return LiveProgress(total, done, failed, label, stream)

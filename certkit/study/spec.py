@@ -9,9 +9,10 @@ that a validated :class:`Study` holds SI floats only. ``certkit study schema`` p
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from fnmatch import fnmatchcase
 from pathlib import Path
-from typing import Annotated, Literal, Union
+from typing import Annotated, Any, Literal, Union
 
 import numpy as np
 from pydantic import (
@@ -27,7 +28,7 @@ from pydantic import (
 )
 
 from certkit.aircraft.pydantic_problems import Found, found_in, located
-from certkit.aircraft.yaml_source import load_yaml
+from certkit.aircraft.yaml_source import YamlSource, load_yaml
 from certkit.errors import InputError, Problem
 from certkit.units import DIMENSIONS, UnitError, to_si
 
@@ -124,14 +125,16 @@ class Variable(_Model):
         written = [data.get("baseline")]
         if isinstance(data.get("bounds"), (list, tuple)):
             written += list(data["bounds"])
-        dims, label = set(), ""
+        dims: set[str] = set()
+        label = ""
         for value in written:
             if isinstance(value, str) and not _PERCENT.match(value):
                 try:
                     _, dim = parse_quantity(value)
                 except ValueError:
                     continue  # reported on the field itself
-                dims.add(dim)
+                if dim is not None:
+                    dims.add(dim)
                 label = label or _unit_of(value)
         if len(dims) > 1:
             raise ValueError(f"baseline and bounds are written in units of different kinds ({', '.join(sorted(dims))})")
@@ -257,7 +260,7 @@ class Constraint(_Model):
             lo = None if lo is None else lo - 0.5
             hi = None if hi is None else hi + 0.5
         values = np.asarray(values, dtype=float)
-        ok = np.isfinite(values)
+        ok: np.ndarray = np.isfinite(values)
         if lo is not None:
             ok &= values >= lo
         if hi is not None:
@@ -349,7 +352,8 @@ class Study(_Model):
     objectives: list[Objective] = Field(default_factory=list)
     constraints: list[Constraint] = Field(default_factory=list)
     analysis: Annotated[AnalysisOptions, BeforeValidator(_no_analysis)] = Field(
-        default_factory=AnalysisOptions, description="options of `certkit study report` (see docs/design-studies.md)"
+        default_factory=AnalysisOptions,
+        description="options of `certkit study report` (see docs/design-studies.md)",
     )
 
     def variable_paths(self) -> list[str]:
@@ -388,7 +392,7 @@ def relation_problems(study: Study) -> list[Found]:
     objectives and constraints on responses the study does not record."""
     found: list[Found] = []
 
-    def unique(items, field: str, section: str):
+    def unique(items: Sequence[BaseModel], field: str, section: str) -> None:
         seen: dict[str, int] = {}
         for i, item in enumerate(items):
             value = getattr(item, field)
@@ -409,7 +413,11 @@ def relation_problems(study: Study) -> list[Found]:
                     block.generator,
                 )
             )
-    for section, items in (("objectives", study.objectives), ("constraints", study.constraints)):
+    responses: tuple[tuple[str, Sequence[Objective | Constraint]], ...] = (
+        ("objectives", study.objectives),
+        ("constraints", study.constraints),
+    )
+    for section, items in responses:
         for i, item in enumerate(items):
             if not study.requested(item.response):
                 found.append(
@@ -450,7 +458,7 @@ def _analysis_problems(study: Study) -> list[Found]:
     return found
 
 
-def _without_tag(loc: tuple) -> tuple:
+def _without_tag(loc: tuple[str | int, ...]) -> tuple[str | int, ...]:
     """pydantic puts the discriminating tag in an error's location (designs.2.lhs.seed): not a YAML path."""
     if len(loc) > 2 and loc[0] == "designs" and loc[2] in _GENERATORS:
         return loc[:2] + loc[3:]
@@ -460,7 +468,7 @@ def _without_tag(loc: tuple) -> tuple:
 _GENERATORS = ("ccd", "box-behnken", "lhs", "random")
 
 
-def validate_study(data: object, source=None, base_dir: Path | None = None) -> Study:
+def validate_study(data: object, source: YamlSource | None = None, base_dir: Path | None = None) -> Study:
     """Validate plain data; raise :class:`InputError` with every problem (path and line when ``source`` is
     given). The aircraft path is resolved against ``base_dir`` and must name an existing file."""
     path = source.path if source else "<data>"
@@ -498,7 +506,7 @@ def load_study(path: str | Path) -> Study:
     return study if study.name else study.model_copy(update={"name": Path(path).stem})
 
 
-def json_schema() -> dict:
+def json_schema() -> dict[str, Any]:
     schema = Study.model_json_schema()
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     return schema

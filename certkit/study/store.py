@@ -16,13 +16,18 @@ import json
 import math
 import os
 import sqlite3
+from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from certkit.errors import UserError
 from certkit.study.plan import Case, CaseContext, Plan
 from certkit.study.spec import Study
 from certkit.study.worker import CaseResult
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 SCHEMA_VERSION = "1"
 
@@ -94,11 +99,11 @@ class Store:
     def __enter__(self) -> "Store":
         return self
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
     @contextmanager
-    def writer(self):
+    def writer(self) -> Iterator[Store]:
         """Exclusive right to write, for one run: a second coordinator on the same store is refused. The lock
         (flock) dies with its process, so a killed coordinator never leaves the store locked."""
         import fcntl
@@ -115,7 +120,7 @@ class Store:
             os.close(fd)
 
     @contextmanager
-    def _transaction(self):
+    def _transaction(self) -> Iterator[sqlite3.Connection]:
         self._db.execute("BEGIN IMMEDIATE")
         try:
             yield self._db
@@ -180,15 +185,17 @@ class Store:
                     result.key,
                 ),
             )
-            return cursor.rowcount == 1
+            return bool(cursor.rowcount == 1)
 
     def reset_failed(self) -> int:
         """Failed cases of the current study back to pending (an explicit retry)."""
         with self._transaction() as db:
-            return db.execute(
-                "UPDATE cases SET status = 'pending', error = NULL, record = NULL, timings = NULL "
-                "WHERE status = 'failed' AND in_plan = 1"
-            ).rowcount
+            return int(
+                db.execute(
+                    "UPDATE cases SET status = 'pending', error = NULL, record = NULL, timings = NULL "
+                    "WHERE status = 'failed' AND in_plan = 1"
+                ).rowcount
+            )
 
     # -- reading ---------------------------------------------------------------------------------------------
 
@@ -223,9 +230,9 @@ class Store:
 
     def stale(self) -> int:
         """Rows kept in the file but outside the current study (another plan, aircraft, version or responses)."""
-        return self._db.execute("SELECT COUNT(*) FROM cases WHERE in_plan = 0").fetchone()[0]
+        return int(self._db.execute("SELECT COUNT(*) FROM cases WHERE in_plan = 0").fetchone()[0])
 
-    def rows(self, keys: list[str] | None = None, include_stale: bool = False) -> list[dict]:
+    def rows(self, keys: list[str] | None = None, include_stale: bool = False) -> list[dict[str, Any]]:
         """Rows as dicts (variables and record parsed), in plan order."""
         where = "" if include_stale else "WHERE in_plan = 1"
         cursor = self._db.execute(
@@ -249,7 +256,7 @@ class Store:
         """key → the record's stored JSON text (for byte-for-byte comparisons)."""
         return dict(self._db.execute("SELECT key, record FROM cases WHERE in_plan = 1"))
 
-    def frame(self, include_stale: bool = False):
+    def frame(self, include_stale: bool = False) -> pd.DataFrame:
         """One row per case: key, block, role, status, error, wall_s, worker, ``var:<path>`` (SI) for each
         variable, ``resp:<name>`` for each response recorded (NaN when absent or not computed)."""
         import pandas as pd
