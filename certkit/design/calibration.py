@@ -19,11 +19,21 @@ the values for the file; tests recompute them so that a model change that moves 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from certkit.errors import UserError
+
+if TYPE_CHECKING:
+    from certkit.aircraft import Aircraft
+    from certkit.models.aero.airplane import LatticeDerivatives
+
+#: told each iteration's (factor, achieved value) (``certkit calibrate`` prints them)
+Progress = Callable[[float, float], object]
 
 #: relative range error at which the drag-factor iteration stops
 RANGE_TOLERANCE = 1e-4
@@ -58,21 +68,32 @@ class CalibrationResult:
         return self.achieved / self.target - 1.0
 
 
-def with_drag_factor(aircraft, factor: float):
+_NEEDS_TARGET = (
+    "calibration.target: the performance calibration needs a calibration: section with a target "
+    "(range, payload, tolerance, source), a mission: section and mass.OEW and MTOW; see aircraft/lta.yaml"
+)
+
+
+def with_drag_factor(aircraft: Aircraft, factor: float) -> Aircraft:
     """``aircraft`` with its declared calibration's drag factor replaced."""
     cal = aircraft.calibration
+    if cal is None:
+        raise UserError("calibration: the aircraft file declares no calibration section")
     return aircraft.model_copy(update={"calibration": cal.model_copy(update={"drag_factor": float(factor)})})
 
 
-def target_range(aircraft, lattice=None) -> float:
+def target_range(aircraft: Aircraft, lattice: LatticeDerivatives | None = None) -> float:
     """The range (m) the mission model flies with the calibration target's payload from MTOW (fuel-capacity
     limited when the tanks are smaller), reserves on landing."""
     from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
     from certkit.models.performance.mission import MissionFlyer, fuel_capacity
     from certkit.models.performance.mission_tables import build_tables
 
-    mass, target = aircraft.mass, aircraft.calibration.target
-    payload = aircraft.mission.design_payload if target.payload is None else target.payload
+    cal, mission, mass = aircraft.calibration, aircraft.mission, aircraft.mass
+    if cal is None or cal.target is None or mission is None or mass.OEW is None or mass.MTOW is None:
+        raise UserError(_NEEDS_TARGET)
+    target = cal.target
+    payload = mission.design_payload if target.payload is None else target.payload
     aero = build_airplane_aero(
         aircraft, "clean", lattice=lattice if lattice is not None else lattice_derivatives(aircraft)
     )
@@ -85,16 +106,13 @@ def target_range(aircraft, lattice=None) -> float:
     return flyer.fly("calibration target", payload, w).distance_m
 
 
-def solve_drag_factor(aircraft, *, progress=None) -> CalibrationResult:
+def solve_drag_factor(aircraft: Aircraft, *, progress: Progress | None = None) -> CalibrationResult:
     """The drag factor that flies the declared target range (fuel-flow factor as declared)."""
     from certkit.models.aero.airplane import lattice_derivatives
 
     cal = aircraft.calibration
     if cal is None or cal.target is None or aircraft.mission is None:
-        raise UserError(
-            "calibration.target: the performance calibration needs a calibration: section with a target "
-            "(range, payload, tolerance, source) and a mission: section; see aircraft/lta.yaml"
-        )
+        raise UserError(_NEEDS_TARGET)
     goal = float(cal.target.range)
     lattice = lattice_derivatives(aircraft)
     f = float(cal.drag_factor)
@@ -138,7 +156,7 @@ def solve_drag_factor(aircraft, *, progress=None) -> CalibrationResult:
     )
 
 
-def tail_group_mass(source, factor: float | None = None) -> tuple[float, dict]:
+def tail_group_mass(source: str | Path, factor: float | None = None) -> tuple[float, dict[str, Any]]:
     """The horizontal-tail structure the design loop sizes for ``source`` (an aircraft file path) with the
     non-optimum factor replaced by ``factor`` (None: as declared): (mass kg, the sizing details)."""
     from certkit.design.evaluate import evaluate_design
@@ -148,7 +166,7 @@ def tail_group_mass(source, factor: float | None = None) -> tuple[float, dict]:
     return float(rec["responses"]["sizing.ht_structure_mass_kg"]), rec["details"]["sizing"]
 
 
-def declared_tail_mass(aircraft) -> float:
+def declared_tail_mass(aircraft: Aircraft) -> float:
     """The declared ``horizontal tail`` component mass (kg): the tail calibration's target."""
     for c in aircraft.mass.components:
         if c.name == "horizontal tail":
@@ -159,7 +177,7 @@ def declared_tail_mass(aircraft) -> float:
     )
 
 
-def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
+def solve_tail_factor(source: str | Path, aircraft: Aircraft, *, progress: Progress | None = None) -> CalibrationResult:
     """The non-optimum factor whose sized tail group equals the declared one, today's loads."""
     data = aircraft.sizing.horizontal_tail if aircraft.sizing is not None else None
     if data is None:
@@ -205,7 +223,7 @@ def solve_tail_factor(source, aircraft, *, progress=None) -> CalibrationResult:
     )
 
 
-def sizing_summary(details: dict) -> list[str]:
+def sizing_summary(details: dict[str, Any]) -> list[str]:
     """The numbers of the sized group the documentation quotes: items, CG, own inertia, the envelope at the root,
     the actuators' design hinge moment."""
     g, env = details["group"], details["envelope"]
@@ -228,13 +246,13 @@ def sizing_summary(details: dict) -> list[str]:
     return lines
 
 
-def mass_per_factor(details: dict, factor: float) -> float:
+def mass_per_factor(details: dict[str, Any], factor: float) -> float:
     """d(mass)/d(factor) of the sized group at fixed loads: the non-optimum increment per unit of (factor − 1),
     with the fittings' fraction of it (fittings are a fraction of box + ribs)."""
     items = details["group"]["items_kg"]
     ideal = items["covers"] + items["webs"]
     fittings_share = items["fittings"] / (items["covers"] + items["webs"] + items["non_optimum"] + items["ribs"])
-    return ideal * (1.0 + fittings_share)
+    return float(ideal * (1.0 + fittings_share))
 
 
 def calibration_text(result: CalibrationResult) -> str:

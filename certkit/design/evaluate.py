@@ -24,6 +24,7 @@ import os
 import re
 import time
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 from certkit import __version__
 from certkit.design.record import CONTROLS, offered_prefixes
@@ -113,7 +114,7 @@ def mission_needed(patterns: Sequence[str] | None) -> bool:
 
 
 def evaluate_design(
-    aircraft_path: str,
+    aircraft_path: str | Path,
     values: Mapping[str, object] | list[Setting] | None = None,
     responses: Sequence[str] | None = None,
     *,

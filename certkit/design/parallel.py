@@ -12,14 +12,21 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+from collections.abc import Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
+from typing import TYPE_CHECKING, Any
 
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 
-_SHARED: dict = {}
+if TYPE_CHECKING:
+    from certkit.engine.context import Context
+    from certkit.engine.registry import Rule
+    from certkit.engine.results import Condition, RuleResult
+
+_SHARED: dict[str, Any] = {}
 
 
-def _slim(result):
+def _slim(result: RuleResult) -> RuleResult:
     """What a design keeps of a loads rule's result: its findings, load envelopes and the run's records
     (:func:`certkit.design.tail_group.design_hinge_moment`)."""
     if result.run is not None:
@@ -28,16 +35,16 @@ def _slim(result):
     return result
 
 
-def _work(ids: tuple[str, ...]) -> list:
+def _work(ids: tuple[str, ...]) -> list[RuleResult]:
     from certkit.engine.scheduler import evaluate_rule
 
     ctx, rules, kw, select = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"], _SHARED["select"]
     return [_slim(evaluate_rule(rules[i], ctx, only=select.get(i), **kw)) for i in ids]
 
 
-def shares(rules, jobs: int) -> list[tuple]:
+def shares(rules: Sequence[type[Rule]], jobs: int) -> list[tuple[type[Rule], ...]]:
     """The rules in ``jobs`` groups of about equal summed cost (heaviest first into the lightest group)."""
-    groups: list[list] = [[] for _ in range(jobs)]
+    groups: list[list[type[Rule]]] = [[] for _ in range(jobs)]
     load = [0.0] * jobs
     for r in sorted(rules, key=lambda r: -r.cost):
         k = load.index(min(load))
@@ -46,7 +53,13 @@ def shares(rules, jobs: int) -> list[tuple]:
     return [tuple(g) for g in groups if g]
 
 
-def evaluate_rules(rules, ctx, jobs: int = 1, select=None, **kw) -> list:
+def evaluate_rules(
+    rules: Sequence[type[Rule]],
+    ctx: Context,
+    jobs: int = 1,
+    select: Mapping[str, list[Condition]] | None = None,
+    **kw: Any,
+) -> list[RuleResult]:
     """:func:`certkit.engine.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
     processes when more than one is asked for and the platform forks; in rule order. ``select`` (rule id →
     conditions) restricts those rules to the same points (``only``); a rule it maps to no condition is skipped."""

@@ -29,8 +29,13 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
 
 from certkit.engine.registry import ControlResponses, ModeResponses
+
+if TYPE_CHECKING:
+    from certkit.engine.results import RuleResult
 
 CONTROLS = ("elevator", "aileron", "rudder")
 _DEG = math.pi / 180.0
@@ -46,7 +51,7 @@ def check_name(check: str) -> str:
     return slug(check.split(": ", 1)[0])
 
 
-def _finite(x) -> float | None:
+def _finite(x: float | None) -> float | None:
     return float(x) if x is not None and math.isfinite(float(x)) else None
 
 
@@ -55,7 +60,9 @@ def _worse(status_a: str | None, status_b: str) -> str:
     return status_b if status_a is None or order[status_b] > order[status_a] else status_a
 
 
-def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dict, dict]:
+def rule_responses(
+    results: Iterable[RuleResult], travel: dict[str, tuple[float, float]]
+) -> tuple[dict[str, float | None], dict[str, str]]:
     """(responses, statuses) of rule results (:class:`certkit.engine.results.RuleResult`); ``travel`` maps a control
     name
     to its mechanical (min, max) deflection in rad."""
@@ -66,14 +73,15 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
         crit = r.critical
         responses[f"rule.{r.id}.margin"] = _finite(crit.normalized_margin) if crit else None
         statuses[f"rule.{r.id}"] = r.status
-        best: dict[str, tuple] = {}
+        best: dict[str, tuple[float | None, float | None]] = {}
         used: dict[str, float] = {}
         for f in r.findings:
             name = check_name(f.check)
             key = f"subcheck.{r.id}.{name}"
             statuses[key] = _worse(statuses.get(key), f.status)
             nm = f.normalized_margin
-            if nm is not None and math.isfinite(nm) and (best.get(key, (None,))[0] is None or nm < best[key][0]):
+            known = best.get(key, (None, None))[0]
+            if nm is not None and math.isfinite(nm) and (known is None or nm < known):
                 best[key] = (nm, f.value)
             else:
                 best.setdefault(key, (None, None))
@@ -93,12 +101,14 @@ def rule_responses(results, travel: dict[str, tuple[float, float]]) -> tuple[dic
     return responses, statuses
 
 
-def offered_responses(results, rules, travel: dict[str, tuple[float, float]] | None = None) -> dict[str, float]:
+def offered_responses(
+    results: Iterable[RuleResult], rules: Iterable[Any], travel: dict[str, tuple[float, float]] | None = None
+) -> dict[str, float | None]:
     """The responses the rules offer by declaration (``Rule.offers``), from their results (``rules``: the rule
     classes, or anything with their ``id`` and ``offers``; ``travel`` as in :func:`rule_responses`)."""
     offers = {r.id: r.offers for r in rules}
-    out: dict[str, float] = {}
-    worst: dict[str, tuple] = {}
+    out: dict[str, float | None] = {}
+    worst: dict[str, tuple[Any, ...]] = {}
     for res in results:
         for offer in offers.get(res.id, ()):
             if isinstance(offer, ModeResponses):
@@ -129,7 +139,7 @@ MODE_QUANTITIES = {
 }
 
 
-def offered_prefixes(rule) -> tuple[str, ...]:
+def offered_prefixes(rule: Any) -> tuple[str, ...]:
     """The beginnings of the response names a rule offers (``level.<mode>.``, ``mode.<mode>.``,
     ``control.<rule id>.<case>.``)."""
     out: list[str] = []
@@ -141,7 +151,9 @@ def offered_prefixes(rule) -> tuple[str, ...]:
     return tuple(out)
 
 
-def handling_levels(result, offer: ModeResponses, out: dict, worst: dict) -> None:
+def handling_levels(
+    result: RuleResult, offer: ModeResponses, out: dict[str, float | None], worst: dict[str, tuple[Any, ...]]
+) -> None:
     """``level.<mode>.<corner>.<configuration>`` into ``out`` from the mode tables of ``result``'s findings (the
     worst level, also over the levels already in ``out``); ``worst`` keeps, per level name, the row of the condition
     that sets it (the lowest damping among equal levels), whose quantities the record gives."""
@@ -158,13 +170,15 @@ def handling_levels(result, offer: ModeResponses, out: dict, worst: dict) -> Non
                 continue
             key = f"level.{mode}.{cond.loading}.{cond.configuration}"
             level = max(int(v) for v in levels)
-            out[key] = max(out.get(key, 0), level)
+            out[key] = max(out.get(key) or 0, level)
             rank = (level, -float(row.get("zeta", 0.0)))
             if key not in worst or rank > worst[key][:2]:
                 worst[key] = (*rank, mode, row)
 
 
-def control_responses(result, offer: ControlResponses, travel: dict, out: dict) -> None:
+def control_responses(
+    result: RuleResult, offer: ControlResponses, travel: dict[str, tuple[float, float]], out: dict[str, float | None]
+) -> None:
     """``control.<rule id>.<case>.<control>`` into ``out``: the largest fraction of the control's mechanical travel
     (in the deflection's direction) over the case's findings (:class:`certkit.engine.registry.ControlCase`)."""
     for case in offer.cases:
@@ -173,10 +187,10 @@ def control_responses(result, offer: ControlResponses, travel: dict, out: dict) 
                 frac = travel_fraction(control, deg, travel)
                 if frac is not None:
                     key = f"control.{result.id}.{slug(case.name)}.{control}"
-                    out[key] = max(out.get(key, 0.0), frac)
+                    out[key] = max(out.get(key) or 0.0, frac)
 
 
-def travel_fraction(control: str, deflection_deg: float, travel: dict) -> float | None:
+def travel_fraction(control: str, deflection_deg: float, travel: dict[str, tuple[float, float]]) -> float | None:
     """|deflection| over the mechanical stop on its side (None without the control's travel or a zero stop)."""
     if control not in travel:
         return None
