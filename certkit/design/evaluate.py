@@ -25,18 +25,24 @@ import re
 import time
 from collections.abc import Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 from certkit import __version__
 from certkit.design.record import CONTROLS, offered_prefixes
 from certkit.design.variables import Setting, design_aircraft, design_data, settings_from
 
+if TYPE_CHECKING:
+    from certkit.aircraft import Aircraft, LoadedAircraft
+    from certkit.aircraft.yaml_source import YamlSource
+    from certkit.engine.registry import Rule
+
 #: the record's format: 2 added ``mode.*`` and ``control.*`` responses (the other names unchanged since 1)
 SCHEMA = "certkit.design-record/2"
-_SOURCES: dict = {}
-_RULES: list = []
+_SOURCES: dict[object, Any] = {}
+_RULES: list[type[Rule]] = []
 
 
-def _source(path: str):
+def _source(path: str) -> YamlSource:
     """The parsed aircraft file, reused while the file is unchanged (one parse per process and file)."""
     from certkit.aircraft.yaml_source import load_yaml
 
@@ -48,18 +54,20 @@ def _source(path: str):
     if key not in _SOURCES:
         _SOURCES.clear()
         _SOURCES[key] = load_yaml(path)
-    return _SOURCES[key]
+    source: YamlSource = _SOURCES[key]
+    return source
 
 
-def _base_aircraft(source):
+def _base_aircraft(source: YamlSource) -> Aircraft:
     """The aircraft file as declared (validated once per process and file)."""
     key = ("base", source.sha256)
     if key not in _SOURCES:
         _SOURCES[key] = design_aircraft(source, [])
-    return _SOURCES[key]
+    base: Aircraft = _SOURCES[key]
+    return base
 
 
-def _rules():
+def _rules() -> list[type[Rule]]:
     if not _RULES:
         from certkit.engine.registry import DiscoveryOptions, discover
 
@@ -72,7 +80,7 @@ _KINDS = ("rule", "subcheck", "travel")
 MISSION_OBJECTIVES = ("objective.cruise_CD", "objective.block_fuel_kg", "objective.block_time_s")
 
 
-def rule_needed(rule, patterns: Sequence[str] | None) -> bool:
+def rule_needed(rule: type[Rule], patterns: Sequence[str] | None) -> bool:
     """Does any requested response name (or glob pattern) come from ``rule`` (a rule class: its ``id`` and the
     responses it ``offers``)? ``travel.<control>`` comes from every rule."""
     if patterns is None:
@@ -119,7 +127,7 @@ def evaluate_design(
     responses: Sequence[str] | None = None,
     *,
     jobs: int = 1,
-) -> dict:
+) -> dict[str, Any]:
     """Evaluate one design of ``aircraft_path`` with the design ``values`` ({path: SI number or "value unit"}).
 
     ``responses``: names or glob patterns of the responses wanted (None: all); rules no response needs are skipped
@@ -138,7 +146,7 @@ def evaluate_design(
     from certkit.engine.scheduler import check_overrides
 
     t0, c0 = time.perf_counter(), time.process_time()
-    timings: dict[str, float] = {}
+    timings: dict[str, float | list[float]] = {}
     source = _source(str(aircraft_path))
     settings = settings_from(values)
     data = design_data(source, settings)
@@ -146,7 +154,7 @@ def evaluate_design(
     variables = {s.path: _si_value(aircraft, s.path) for s in settings}
     rules = _rules()
 
-    def loaded_of(model):
+    def loaded_of(model: Aircraft) -> LoadedAircraft:
         return LoadedAircraft(model=model, path=str(aircraft_path), sha256=source.sha256, source=source)
 
     if aircraft.criteria:  # an override of an unknown rule or criterion, or of the wrong unit: a user error
@@ -205,14 +213,14 @@ def evaluate_design(
     }
 
 
-def _json_number(v):
+def _json_number(v: float | None) -> float | None:
     if v is None:
         return None
     v = float(v)
     return v if math.isfinite(v) else None
 
 
-def _si_value(aircraft, path: str) -> float | None:
+def _si_value(aircraft: Aircraft, path: str) -> float | None:
     """The validated (SI) value at ``path`` of the design's aircraft."""
     node: object = aircraft
     for part in path.split("."):

@@ -57,7 +57,7 @@ def evaluate_rules(
     rules: Sequence[type[Rule]],
     ctx: Context,
     jobs: int = 1,
-    select: Mapping[str, list[Condition]] | None = None,
+    select: Mapping[str, list[Condition] | None] | None = None,
     **kw: Any,
 ) -> list[RuleResult]:
     """:func:`certkit.engine.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
@@ -66,7 +66,7 @@ def evaluate_rules(
     from certkit.engine.scheduler import evaluate_rule
 
     select = dict(select or {})
-    rules = [r for r in rules if select.get(r.id) is None or len(select[r.id]) > 0]
+    rules = [r for r in rules if (chosen := select.get(r.id)) is None or len(chosen) > 0]
     if jobs <= 1 or len(rules) <= 1 or "fork" not in multiprocessing.get_all_start_methods():
         return [evaluate_rule(r, ctx, only=select.get(r.id), **kw) for r in rules]
     groups = shares(rules, min(jobs, len(rules)))

@@ -22,13 +22,26 @@ history — never a silent last value.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
 from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
-from certkit.design.variables import design_aircraft
+from certkit.design.variables import Setting, design_aircraft
+
+if TYPE_CHECKING:
+    from certkit.aircraft import Aircraft, LoadedAircraft
+    from certkit.aircraft.yaml_source import YamlSource
+    from certkit.design.tail_group import TailGroup
+    from certkit.engine.context import Context
+    from certkit.engine.registry import Rule
+    from certkit.engine.results import Condition, RuleResult
+
+    #: wraps a design's aircraft for the engine
+    LoadedOf = Callable[[Aircraft], LoadedAircraft]
 
 TAIL_COMPONENT = "horizontal tail"
 ACTUATOR_COMPONENT = "elevator actuators"
@@ -57,7 +70,7 @@ FLIGHT_CONTROLS = "flight controls"
 class SizingNotConverged(RuntimeError):
     """The sizing loop did not converge; ``history`` holds each iteration's mass (kg) and change."""
 
-    def __init__(self, message: str, history: list[dict]):
+    def __init__(self, message: str, history: list[dict[str, Any]]):
         super().__init__(message)
         self.history = history
 
@@ -69,19 +82,19 @@ class BaselineActuators:
 
     mass: float
     centroid: tuple[float, float, float]
-    hinge: dict
-    ctx: object = field(default=None, repr=False, compare=False)  # the declared aircraft's Context (its lattice)
+    hinge: dict[str, Any]
+    ctx: Context | None = field(default=None, repr=False, compare=False)  # the declared aircraft's (its lattice)
     #: rule id → the declared airplane's near-critical conditions (None: all), where a design's loop starts
-    critical: dict | None = field(default=None, repr=False, compare=False)
+    critical: dict[str, list[Condition] | None] | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass
 class LoopResult:
-    aircraft: object
-    ctx: object
-    results: list
-    history: list[dict]
-    group: object
+    aircraft: Aircraft
+    ctx: Context
+    results: list[RuleResult]
+    history: list[dict[str, Any]]
+    group: TailGroup
     envelope: TailLoadEnvelope
     oew_kg: float
     baseline_tail_kg: float
@@ -90,9 +103,9 @@ class LoopResult:
     iteration_seconds: list[float] = field(default_factory=list)
     aero_seconds: float = 0.0  # of which: lattice, aerodynamic and strip-loads models
     #: the weight–CG corners the design was evaluated at when they follow its loading (sizing.cg_envelope: loading)
-    cg_corners: list | None = None
+    cg_corners: list[dict[str, Any]] | None = None
 
-    def responses(self) -> dict:
+    def responses(self) -> dict[str, float | None]:
         g = self.group
         out = {
             "sizing.ht_group_mass_kg": g.total_mass,
@@ -107,7 +120,7 @@ class LoopResult:
             out["sizing.hydraulic_flow_m3_s"] = g.actuators.total_flow
         return out
 
-    def details(self) -> dict:
+    def details(self) -> dict[str, Any]:
         extra = {} if self.cg_corners is None else {"cg_envelope": self.cg_corners}
         return {
             **extra,
@@ -126,14 +139,14 @@ class LoopResult:
         }
 
 
-def _index(data: dict, name: str) -> int | None:
+def _index(data: dict[str, Any], name: str) -> int | None:
     for i, c in enumerate(data["mass"]["components"]):
         if str(c.get("name", "")).strip().lower() == name:
             return i
     return None
 
 
-def _tail_component_index(data: dict) -> int:
+def _tail_component_index(data: dict[str, Any]) -> int:
     i = _index(data, TAIL_COMPONENT)
     if i is None:
         raise ValueError(
@@ -142,7 +155,9 @@ def _tail_component_index(data: dict) -> int:
     return i
 
 
-def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oew_kg: float) -> dict:
+def with_tail_group(
+    data: dict[str, Any], aircraft: Aircraft, group: TailGroup, baseline: BaselineActuators, oew_kg: float
+) -> dict[str, Any]:
     """A copy of the aircraft data whose tail component, actuators, structural capability and OEW are the sized
     group's (SI numbers); the baseline's actuators leave the flight-controls component at their own positions. The
     rest of the data is shared, not copied."""
@@ -173,7 +188,9 @@ def with_tail_group(data: dict, aircraft, group, baseline: BaselineActuators, oe
     return out
 
 
-_BASELINE: dict = {}
+_BASELINE: dict[str, BaselineActuators] = {}
+#: no baseline actuators (an aircraft file without sizing.elevator_actuators; a loop's first iteration)
+NO_ACTUATORS = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
 
 
 @dataclass(frozen=True)
@@ -181,14 +198,14 @@ class SizingRules:
     """The rules the loop evaluates, as they declare it (``Rule.produces``): those producing horizontal-tail station
     loads or elevator hinge moments, in rule order, and the ids of the latter (the actuators' design cases)."""
 
-    rules: tuple
-    hinge: frozenset
+    rules: tuple[type[Rule], ...]
+    hinge: frozenset[str]
 
-    def hinge_results(self, results) -> list:
+    def hinge_results(self, results: Iterable[RuleResult]) -> list[RuleResult]:
         return [r for r in results if r.id in self.hinge]
 
 
-def sizing_rules(rules) -> SizingRules:
+def sizing_rules(rules: Sequence[type[Rule]]) -> SizingRules:
     from certkit.engine.registry import HINGE_MOMENT, producers
 
     tail = producers(rules, SURFACE)
@@ -196,17 +213,19 @@ def sizing_rules(rules) -> SizingRules:
     return SizingRules(tuple(r for r in rules if r in tail or r in hinge), frozenset(r.id for r in hinge))
 
 
-def _baseline_value(base_aircraft, ctx, results, chosen: SizingRules) -> BaselineActuators:
+def _baseline_value(
+    base_aircraft: Aircraft, ctx: Context, results: list[RuleResult], chosen: SizingRules
+) -> BaselineActuators:
     from certkit.design.tail_group import design_hinge_moment
     from certkit.models.structure.actuators import size_elevator_actuators
 
     hinge = design_hinge_moment(ctx, chosen.hinge_results(results))
     act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
-    c = tuple(float(v) for v in np.mean(act.positions, axis=0))
-    return BaselineActuators(act.total_mass, c, hinge, ctx, start_conditions(ctx, results, chosen))
+    x, y, z = (float(v) for v in np.mean(act.positions, axis=0))
+    return BaselineActuators(act.total_mass, (x, y, z), hinge, ctx, start_conditions(ctx, results, chosen))
 
 
-def start_conditions(ctx, results, chosen: SizingRules) -> dict:
+def start_conditions(ctx: Context, results: list[RuleResult], chosen: SizingRules) -> dict[str, list[Condition] | None]:
     """Rule id → the conditions where the declared airplane's tail loads or elevator hinge moment come within
     :data:`START_FRACTION` of their largest (None: all the rule's conditions)."""
     from certkit.design.tail_group import hinge_critical_conditions
@@ -219,7 +238,9 @@ def start_conditions(ctx, results, chosen: SizingRules) -> dict:
     return out
 
 
-def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActuators:
+def baseline_actuators(
+    source: YamlSource, base_aircraft: Aircraft, rules: Sequence[type[Rule]], loaded_of: LoadedOf
+) -> BaselineActuators:
     """The unmodified file's elevator actuators, sized from its own pitch manoeuvres, and its near-critical loads
     conditions (once per process and file)."""
     from certkit.engine.context import Context
@@ -227,7 +248,7 @@ def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActua
 
     if source.sha256 not in _BASELINE:
         if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
-            value = BaselineActuators(0.0, (0.0, 0.0, 0.0), {})
+            value = NO_ACTUATORS
         else:
             ctx = Context(loaded_of(base_aircraft))
             chosen = sizing_rules(rules)
@@ -241,13 +262,20 @@ def baseline_actuators(source, base_aircraft, rules, loaded_of) -> BaselineActua
     return _BASELINE[source.sha256]
 
 
-def _remember(source, value: BaselineActuators) -> None:
+def _remember(source: YamlSource, value: BaselineActuators) -> None:
     _BASELINE.clear()
     _BASELINE[source.sha256] = value
 
 
 def size_horizontal_tail_loop(
-    source, settings, data, aircraft, base_aircraft, rules, loaded_of, jobs: int = 1
+    source: YamlSource,
+    settings: list[Setting],
+    data: dict[str, Any],
+    aircraft: Aircraft,
+    base_aircraft: Aircraft,
+    rules: Sequence[type[Rule]],
+    loaded_of: LoadedOf,
+    jobs: int = 1,
 ) -> LoopResult:
     """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
     declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine;
@@ -263,10 +291,12 @@ def size_horizontal_tail_loop(
     loads_rules = list(chosen.rules)
     if not loads_rules:
         raise ValueError("no registered rule computes horizontal-tail loads: the tail cannot be sized")
+    if aircraft.mass.OEW is None:
+        raise ValueError("mass.OEW: the sized tail group replaces its share of the declared OEW")
     base_oew = float(aircraft.mass.OEW)
     declared = aircraft.mass.components[_tail_component_index(data)]
     group = initial_group(aircraft, base_aircraft, declared)
-    history: list[dict] = []
+    history: list[dict[str, Any]] = []
     seconds: list[float] = []
     aero_seconds = 0.0
     union: TailLoadEnvelope | None = None
@@ -281,11 +311,14 @@ def size_horizontal_tail_loop(
     # a changed design's first iteration flies the declared airplane's near-critical points, the next ones every
     # condition until the mass settles with the loads inside the sized box (only that ends the loop)
     partial = bool(settings) and known is not None and known.critical is not None
+    start_points = known.critical if partial and known is not None else None
     for k in range(spec.max_iterations):
         t = time.perf_counter()
-        actuators = group.actuator_mass - base_act.mass if k > 0 else 0.0
+        # iteration 0 carries no sized actuators, so the baseline's are not moved out yet (none may be known)
+        moved = base_act if base_act is not None else NO_ACTUATORS
+        actuators = group.actuator_mass - moved.mass if k > 0 else 0.0
         oew = base_oew - declared.mass + group.structure_mass + actuators
-        current_data = with_tail_group(data, aircraft, group, base_act, oew)
+        current_data = with_tail_group(data, aircraft, group, moved, oew)
         current = design_aircraft(source, settings, current_data)
         if follows_loading(current):  # the corners the design's own loading reaches (certkit.design.cg_envelope)
             corners = loading_corners(current, aircraft)
@@ -297,7 +330,7 @@ def size_horizontal_tail_loop(
         ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
         aero_seconds += time.perf_counter() - t_aero
         results = evaluate_rules(
-            loads_rules, ctx, jobs, evidence=False, keep_loads=True, select=base_act.critical if partial else None
+            loads_rules, ctx, jobs, evidence=False, keep_loads=True, select=start_points if partial else None
         )
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results, chosen)

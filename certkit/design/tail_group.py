@@ -17,11 +17,22 @@ the covers' 2 h w cos Λ · t G_s f_skin and the webs' 2 h w cos Λ (t_w τ_w �
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from certkit.models.loads.model import QUANTITIES
+
+if TYPE_CHECKING:
+    from certkit.aircraft import Aircraft
+    from certkit.aircraft.model import MassComponent
+    from certkit.design.tail_loads import TailLoadEnvelope
+    from certkit.engine.context import Context
+    from certkit.engine.results import Condition, RuleResult
+    from certkit.models.structure.actuators import ActuatorSizing
+    from certkit.models.structure.tail import HorizontalTailSizing
 
 
 @dataclass(frozen=True)
@@ -30,7 +41,7 @@ class SizingSpec:
     max_iterations: int
 
 
-def declared_sizing(aircraft) -> SizingSpec:
+def declared_sizing(aircraft: Aircraft) -> SizingSpec:
     s = getattr(aircraft, "sizing", None)
     if s is None or s.horizontal_tail is None or s.loop is None:
         from certkit.errors import UserError
@@ -51,17 +62,18 @@ class TailGroup:
     inertia: tuple[float, float, float, float]  # Ixx, Iyy, Izz, Ixz about its own CG
     box_mass: float = 0.0
     actuator_mass: float = 0.0
-    actuator_positions: tuple = ()
-    capability: dict = field(default_factory=dict)  # station (file form) → (shear, bending, torsion) ultimate
-    sized: object = None  # HorizontalTailSizing
-    actuators: object = None  # ActuatorSizing
-    hinge: dict = field(default_factory=dict)
+    actuator_positions: Any = ()  # (n, 3) m
+    #: station (file form) → (shear, bending, torsion) ultimate
+    capability: dict[str | float, tuple[float, float, float]] = field(default_factory=dict)
+    sized: HorizontalTailSizing | None = None
+    actuators: ActuatorSizing | None = None
+    hinge: dict[str, Any] = field(default_factory=dict)
 
     @property
     def total_mass(self) -> float:
         return self.structure_mass + self.actuator_mass
 
-    def component(self) -> dict:
+    def component(self) -> dict[str, Any]:
         Ixx, Iyy, Izz, Ixz = self.inertia
         return {
             "group": "structure",
@@ -73,7 +85,7 @@ class TailGroup:
             else "declared, scaled with the planform area (sizing loop start)",
         }
 
-    def actuator_component(self, name: str) -> dict:
+    def actuator_component(self, name: str) -> dict[str, Any]:
         """The actuators as one component: their total mass at their centroid with the point masses' inertia."""
         p = np.asarray(self.actuator_positions, dtype=float)
         m = self.actuator_mass / len(p)
@@ -93,7 +105,7 @@ class TailGroup:
             f"{self.hinge.get('design_hinge_moment_Nm', 0.0) / 1e3:.1f} kN·m",
         }
 
-    def capabilities(self) -> list:
+    def capabilities(self) -> list[dict[str, Any]]:
         out = []
         for station, values in self.capability.items():
             for q, v in zip(QUANTITIES, values):
@@ -108,8 +120,8 @@ class TailGroup:
                 )
         return out
 
-    def as_dict(self) -> dict:
-        out = {
+    def as_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {
             "structure_mass_kg": self.structure_mass,
             "actuator_mass_kg": self.actuator_mass,
             "total_mass_kg": self.total_mass,
@@ -128,28 +140,33 @@ class TailGroup:
         return out
 
 
-def initial_group(aircraft, base_aircraft, component) -> TailGroup:
+def initial_group(aircraft: Aircraft, base_aircraft: Aircraft, component: MassComponent) -> TailGroup:
     """The loop's start: the declared tail component, its mass and inertia scaled with the planform area of the
     design over the declared one (an areal-weight guess, inertia with the square of the ratio), and no structural
     capability: the tail-load margins of iteration 0 are not used."""
+    if aircraft.geometry is None or base_aircraft.geometry is None:
+        raise ValueError("the tail group is sized from the geometry section")
     ratio = aircraft.geometry.horizontal_tail.area / base_aircraft.geometry.horizontal_tail.area
     inertia = component.inertia
     tensor = (0.0, 0.0, 0.0, 0.0) if inertia is None else (inertia.Ixx, inertia.Iyy, inertia.Izz, inertia.Ixz)
-    return TailGroup(
-        component.mass * ratio, (component.cg.x, component.cg.y, component.cg.z), tuple(v * ratio**2 for v in tensor)
-    )
+    Ixx, Iyy, Izz, Ixz = (v * ratio**2 for v in tensor)
+    return TailGroup(component.mass * ratio, (component.cg.x, component.cg.y, component.cg.z), (Ixx, Iyy, Izz, Ixz))
 
 
-def _file_station(name: str):
+def _file_station(name: str) -> str | float:
     if name in ("root", "side of body"):
         return name.replace(" ", "_")
     return round(float(name.split("%")[0]) / 100.0, 6)
 
 
-def box_capability(aircraft, sized, station_names, station_span) -> dict:
+def box_capability(
+    aircraft: Aircraft, sized: HorizontalTailSizing, station_names: Sequence[str], station_span: Any
+) -> dict[str | float, tuple[float, float, float]]:
     """Ultimate shear (N), bending and torsion (N·m) the sized box carries at each load station (module doc)."""
     from certkit.models.structure.tail import box_material
 
+    if aircraft.sizing is None or aircraft.sizing.horizontal_tail is None:
+        raise ValueError("the box's capability needs sizing.horizontal_tail")
     mat = box_material(aircraft.sizing.horizontal_tail)
     b = sized.box
     cos = np.cos(b.sweep)
@@ -164,12 +181,16 @@ def box_capability(aircraft, sized, station_names, station_span) -> dict:
     )
     shear = np.maximum(b.t_web * mat.web_shear - q_t, 0.0) * webs
     return {
-        _file_station(name): tuple(float(np.interp(s, b.span, v)) for v in (shear, bending, torsion))
+        _file_station(name): (
+            float(np.interp(s, b.span, shear)),
+            float(np.interp(s, b.span, bending)),
+            float(np.interp(s, b.span, torsion)),
+        )
         for name, s in zip(station_names, station_span)
     }
 
 
-def _hinge_moments(ctx, results) -> list:
+def _hinge_moments(ctx: Context, results: Iterable[RuleResult]) -> list[tuple[Any, ...]]:
     """Per run of the rules that produce elevator hinge moments (their declaration, ``Rule.produces``; the caller
     passes their results): (rule id, hinge moments H (samples,) of the elevator, their (time, condition) indices,
     Mach, q̄, α, δ, conditions, times, derivatives)."""
@@ -178,9 +199,9 @@ def _hinge_moments(ctx, results) -> list:
     samples = []
     for res in results:
         run = res.run
-        sim = run.records if run is not None else None
-        if sim is None or "elevator" not in list(sim.control_names):
+        if run is None or run.records is None or "elevator" not in list(run.records.control_names):
             continue
+        sim = run.records
         valid = run.valid
         h = sim.history
         de = sim.controls[:, :, list(sim.control_names).index("elevator")]
@@ -202,10 +223,13 @@ def _hinge_moments(ctx, results) -> list:
             "no rule produced elevator hinge moments (a pitch-manoeuvre history) to size the actuators from"
         )
     aero = ctx.aero("clean")
+    lattice = aero.lattice
+    if lattice is None:
+        raise ValueError("the elevator's hinge moments need the vortex lattice (the aerodynamic tables are declared)")
     grid = np.asarray(aero.mach, dtype=float)  # the Mach breakpoints the loads model has already solved
     derivs = ctx.memo(
         ("aero", "clean", "elevator hinge-moment derivatives"),  # geometry only: shared by the loop
-        lambda: [hinge_moment_derivatives(aero.lattice.at_mach(float(m)), "elevator") for m in grid],
+        lambda: [hinge_moment_derivatives(lattice.at_mach(float(m)), "elevator") for m in grid],
     )
     table = {k: np.array([getattr(d, k) for d in derivs]) for k in ("Ch_0", "Ch_alpha", "Ch_delta")}
     ref = derivs[0]
@@ -217,9 +241,9 @@ def _hinge_moments(ctx, results) -> list:
     return out
 
 
-def design_hinge_moment(ctx, results) -> dict:
+def design_hinge_moment(ctx: Context, results: Iterable[RuleResult]) -> dict[str, Any]:
     """The largest elevator hinge moment over the pitch-manoeuvre histories the rules kept (module doc)."""
-    best = None
+    best: dict[str, Any] | None = None
     for rid, H, where, m, qbar, alpha, de, conds, t, coef, ref in _hinge_moments(ctx, results):
         i = int(np.argmax(np.abs(H)))
         if best is None or abs(H[i]) > abs(best["design_hinge_moment_Nm"]):
@@ -239,15 +263,19 @@ def design_hinge_moment(ctx, results) -> dict:
                 "elevator_area_m2": ref.area,
                 "elevator_chord_m": ref.chord,
             }
+    if best is None:
+        raise ValueError("no elevator hinge moment in the pitch-manoeuvre histories")
     return best
 
 
-def hinge_critical_conditions(ctx, results, fraction: float) -> dict:
+def hinge_critical_conditions(
+    ctx: Context, results: Iterable[RuleResult], fraction: float
+) -> dict[str, list[Condition] | None]:
     """Per rule id, the conditions of the kept pitch manoeuvres whose largest elevator hinge moment reaches
     ``fraction`` of the design hinge moment (rules whose runs do not name their conditions: None, all)."""
     runs = _hinge_moments(ctx, results)
     top = max(float(np.max(np.abs(H))) for _, H, *_ in runs if H.size)
-    out: dict = {}
+    out: dict[str, list[Condition] | None] = {}
     for rid, H, where, *_, conds, _t, _coef, _ref in runs:
         if conds is None:
             out[rid] = None
@@ -258,7 +286,13 @@ def hinge_critical_conditions(ctx, results, fraction: float) -> dict:
     return out
 
 
-def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) -> TailGroup:
+def size_tail_group(
+    aircraft: Aircraft,
+    ctx: Context,
+    envelope: TailLoadEnvelope,
+    results: Iterable[RuleResult],
+    allowance: float = 0.0,
+) -> TailGroup:
     """Size the structure for the limit-load envelope × its factor of safety (the loads rules' ``ultimate_factor``
     in force) × (1 + ``allowance``) and the actuators for the design hinge moment."""
     from certkit.models.loads.model import airplane_loads
@@ -277,7 +311,7 @@ def size_tail_group(aircraft, ctx, envelope, results, allowance: float = 0.0) ->
     p = sized.properties
     hinge = design_hinge_moment(ctx, results)
     actuators = None
-    if aircraft.sizing.elevator_actuators is not None:
+    if aircraft.sizing is not None and aircraft.sizing.elevator_actuators is not None:
         actuators = size_elevator_actuators(aircraft, hinge["design_hinge_moment_Nm"])
     return TailGroup(
         sized.mass,

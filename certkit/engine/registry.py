@@ -16,6 +16,7 @@ import math
 import pkgutil
 import re
 import sys
+from collections.abc import Sequence
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -339,7 +340,7 @@ def _validate_declarations(cls: type[Rule], where: str) -> None:
         )
 
 
-def producers(rules: list[type[Rule]], surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
+def producers(rules: Sequence[type[Rule]], surface: str, kind: str = STATION_LOADS) -> list[type[Rule]]:
     """The rules of ``rules`` that declare they produce ``kind`` loads of ``surface`` (:attr:`Rule.produces`)."""
     return [r for r in rules if Loads(surface, kind) in r.produces]
 

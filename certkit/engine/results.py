@@ -298,8 +298,8 @@ class SimulationRun:
 
     findings: list[Finding]
     conditions: list[Condition] = field(default_factory=list)
-    records: object = None
-    valid: object = None
+    records: Any = None  # SimulationResult, or a rule's own kind of history
+    valid: Any = None
     failed: list[tuple[str, str]] = field(default_factory=list)
     reason: str = ""
 
