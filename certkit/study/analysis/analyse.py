@@ -6,13 +6,15 @@ and returns them as data (:class:`Analysis`); :mod:`certkit.report.study_report`
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import pandas as pd
 
 from certkit.study.analysis.cases import cases, study_hash
-from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, direct_check, reevaluate_optima
-from certkit.study.analysis.montecarlo import MonteCarloResult, run_monte_carlo
+from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, RunCases, direct_check, reevaluate_optima
+from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.profiler import profiler_data
 from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
@@ -20,6 +22,7 @@ from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import Surrogate, fit_all
 from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.spec import Study
+from certkit.study.store import Store
 
 #: points of each NSGA-II front re-evaluated with the true model
 FRONT_CHECKED = 5
@@ -40,17 +43,23 @@ class Analysis:
     check: DirectCheck | None
     check_note: str
     optima: list[CheckedOptimum]
-    profiler: dict
+    profiler: dict[str, Any]
     timings: dict[str, float] = field(default_factory=dict)
     validity: Validity | None = None
-    nsga_fronts: list[dict] = field(default_factory=list)
+    nsga_fronts: list[dict[str, Any]] = field(default_factory=list)
     front_checks: list[CheckedOptimum] = field(default_factory=list)
     show_stoppers: list[ShowStopper] = field(default_factory=list)
     active: dict[str, list[str]] = field(default_factory=dict)
 
 
 def _run_checks(
-    usable: Study, every: Study, store, surrogates, mc, optima, run_cases
+    usable: Study,
+    every: Study,
+    store: Store | None,
+    surrogates: dict[str, Surrogate],
+    mc: MonteCarloResult,
+    optima: list[Optimum],
+    run_cases: RunCases | None,
 ) -> tuple[DirectCheck | None, list[CheckedOptimum], str]:
     if store is None:
         return None, [], "not run: no study store to record the true-model cases in"
@@ -63,17 +72,17 @@ def analyse(
     study: Study,
     frame: pd.DataFrame,
     *,
-    store=None,
+    store: Store | None = None,
     samples: int = 1_000_000,
     check: bool = True,
     sha256: str | None = None,
     chunk: int = 100_000,
-    log=lambda msg: None,
-    run_cases=None,
+    log: Callable[[str], object] = lambda msg: None,
+    run_cases: RunCases | None = None,
 ) -> Analysis:
     """Run every analysis of the study report on the store's ``frame``. ``run_cases``: how the true-model checks
     run (see :func:`~certkit.study.analysis.checks.run_true_model`)."""
-    timings = {}
+    timings: dict[str, float] = {}
     t = time.perf_counter()
     view = study
     cs = cases(frame, view)
@@ -109,7 +118,9 @@ def analyse(
     points = optima + front_points(nsga, FRONT_CHECKED)
     timings["optimiser_s"] = time.perf_counter() - t
     log(f"optimiser: {len(optima)} optima, {len(nsga)} NSGA-II fronts in {timings['optimiser_s']:.1f} s")
-    checked, direct, check_note = [], None, "not run (--no-check)"
+    checked: list[CheckedOptimum] = []
+    direct: DirectCheck | None = None
+    check_note = "not run (--no-check)"
     if check:
         t = time.perf_counter()
         direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points, run_cases)

@@ -4,6 +4,7 @@ sample of designs, and the re-evaluation of the optima. Both go through the stud
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -15,10 +16,20 @@ from certkit.study.analysis.intervals import wilson
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, binomial_se
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
+from certkit.study.store import Store
+
+#: how true-model cases run: (study, store, points, block=, role=) → the cases' frame (the study runner's call)
+RunCases = Callable[..., pd.DataFrame]
 
 
 def run_true_model(
-    study: Study, store, x: np.ndarray, *, block: str, role: str = "check", run_cases=None
+    study: Study,
+    store: Store,
+    x: np.ndarray,
+    *,
+    block: str,
+    role: str = "check",
+    run_cases: RunCases | None = None,
 ) -> pd.DataFrame:
     """Evaluate the designs ``x`` (rows, SI, in the order of the study's variables) with the true model through
     the study runner; returns the cases in the store's frame format, in the order of ``x``. ``run_cases``: the
@@ -87,13 +98,13 @@ def _feasible_all(study: Study, values: dict[str, np.ndarray], n: int) -> np.nda
 
 def direct_check(
     study: Study,
-    store,
+    store: Store,
     surrogates: dict[str, Surrogate],
     mc: MonteCarloResult,
     *,
     n: int = 100,
     seed: int = 7,
-    run_cases=None,
+    run_cases: RunCases | None = None,
 ) -> DirectCheck:
     """Draw ``n`` fresh uniform designs (a seed other than the Monte Carlo's), evaluate them with the true model
     and compare each constraint's probability of success (and the joint one) with the Monte Carlo estimate."""
@@ -148,7 +159,12 @@ class CheckedOptimum:
 
 
 def reevaluate_optima(
-    study: Study, store, surrogates: dict[str, Surrogate], optima: list[Optimum], *, run_cases=None
+    study: Study,
+    store: Store,
+    surrogates: dict[str, Surrogate],
+    optima: list[Optimum],
+    *,
+    run_cases: RunCases | None = None,
 ) -> list[CheckedOptimum]:
     """Evaluate each optimum's design with the true model; objectives and constraint responses, predicted and
     true, side by side."""

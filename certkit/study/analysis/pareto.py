@@ -45,7 +45,7 @@ class FrontAccumulator:
 
 def objective_subsets(n_objectives: int) -> list[tuple[int, ...]]:
     """Every pair of objectives, then all of them together (when there are more than two)."""
-    subsets = list(combinations(range(n_objectives), 2))
+    subsets: list[tuple[int, ...]] = list(combinations(range(n_objectives), 2))
     if n_objectives > 2:
         subsets.append(tuple(range(n_objectives)))
     return subsets

@@ -60,7 +60,7 @@ class Planform:
         """Closed outline (x, y) of both panels, x from the aerodynamic centre."""
         s = 0.5 * self.span
         y = np.array([0.0, s, s, 0.0, -s, -s, 0.0])
-        le = self.leading_edge(y)
+        le = np.asarray(self.leading_edge(y))
         x = np.array([le[0], le[1], le[2] + self.chord(s), self.root_chord, le[4] + self.chord(s), le[5], le[6]])
         return np.column_stack([x - self.x_ac, y])
 
@@ -73,8 +73,8 @@ class Planform:
         out = []
         for side in (1.0, -1.0):
             y = side * s * np.array([start, end])
-            te = self.leading_edge(y) + self.chord(y)
-            hinge = te - ratio * self.chord(y)
+            te = np.asarray(self.leading_edge(y) + self.chord(y))
+            hinge = te - ratio * np.asarray(self.chord(y))
             pts = np.array([[hinge[0], y[0]], [te[0], y[0]], [te[1], y[1]], [hinge[1], y[1]], [hinge[0], y[0]]])
             pts[:, 0] -= self.x_ac
             out.append(pts)
@@ -89,9 +89,13 @@ def planform_from(values: dict[str, float]) -> tuple[Planform | None, str]:
             f"planform not drawn: {', '.join(missing)} not a study variable (its value lives in the "
             f"aircraft file, which the analysis does not read)"
         )
-    elevator = tuple(values[p] for p in ELEVATOR_VARIABLES) if all(p in values for p in ELEVATOR_VARIABLES) else None
+    elevator: tuple[float, float, float] | None = None
+    if all(p in values for p in ELEVATOR_VARIABLES):
+        start, end, ratio = (values[p] for p in ELEVATOR_VARIABLES)
+        elevator = (start, end, ratio)
     note = "" if elevator else "elevator not drawn: its span fractions and chord ratio are not all study variables"
-    return Planform(*(values[p] for p in PLANFORM_VARIABLES), elevator=elevator), note
+    area, aspect_ratio, taper, sweep = (values[p] for p in PLANFORM_VARIABLES)
+    return Planform(area, aspect_ratio, taper, sweep, elevator=elevator), note
 
 
 def polygon_area(points: np.ndarray) -> float:

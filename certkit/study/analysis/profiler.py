@@ -8,6 +8,7 @@ outside the sampled region (extrapolation).
 from __future__ import annotations
 
 import json
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -16,12 +17,15 @@ from certkit.study.analysis.labels import display_factor, response_label
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Study
 
+if TYPE_CHECKING:
+    from certkit.study.analysis.validity import Validity
+
 OVERHANG = 0.1
 
 
 def profiler_data(
-    study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None, validity=None
-) -> dict:
+    study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None, validity: Validity | None = None
+) -> dict[str, Any]:
     """Everything the page needs: variables with bounds and slider range, the responses' exported models
     with their thresholds and flags, the classifier of possible designs (``validity``,
     :meth:`certkit.study.analysis.validity.Validity.export`; None when nothing is masked) and the starting point
@@ -70,6 +74,6 @@ def profiler_data(
     return {"variables": variables, "responses": responses, "validity": classifier}
 
 
-def profiler_json(data: dict) -> str:
+def profiler_json(data: dict[str, Any]) -> str:
     """JSON for a ``<script type="application/json">`` element (``</`` escaped so the element cannot close)."""
     return json.dumps(data, separators=(",", ":"), allow_nan=False).replace("</", "<\\/")
