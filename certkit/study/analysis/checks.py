@@ -6,6 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -18,8 +19,9 @@ from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
 from certkit.study.store import Store
 
-#: how true-model cases run: (study, store, points, block=, role=) → the cases' frame (the study runner's call)
-RunCases = Callable[..., pd.DataFrame]
+#: how true-model cases run: (study, store, points, block=, role=) → the cases as rows (the study runner's call) or
+#: as a frame
+RunCases = Callable[..., "pd.DataFrame | list[dict[str, Any]]"]
 
 
 def run_true_model(

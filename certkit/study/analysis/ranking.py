@@ -11,6 +11,7 @@ RMSE of a limit (or 10⁻⁶ of its magnitude): the optimum sits on that boundar
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,7 +19,7 @@ import numpy as np
 from certkit.study.analysis.cases import Cases
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, violation
 from certkit.study.analysis.surrogates import Surrogate
-from certkit.study.spec import Study
+from certkit.study.spec import Constraint, Study
 
 
 @dataclass
@@ -28,7 +29,7 @@ class ShowStopper:
     reason: str
 
 
-def _limits(study: Study, c) -> list[float]:
+def _limits(study: Study, c: Constraint) -> list[float]:
     relaxed = study.analysis.relaxed_max(c)
     upper = c.max if relaxed is None else relaxed
     half = 0.5 if c.is_level else 0.0
@@ -46,7 +47,9 @@ def unattainable(mc: MonteCarloResult) -> list[str]:
     ]
 
 
-def without_unattainable(study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run) -> tuple:
+def without_unattainable(
+    study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run: Callable[[Study], MonteCarloResult]
+) -> tuple[Study, MonteCarloResult]:
     """(study without the show-stoppers, Monte Carlo result of its stages): with a constraint no design meets,
     every design fails the joint requirement, so the stages, fronts and optima are those of the other
     constraints (the show-stoppers are reported apart). ``run(study)`` repeats the Monte Carlo (same samples);

@@ -12,17 +12,25 @@ a fixed distance from the study's cases and from the others chosen (so that they
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.special import ndtr
 
 from certkit.study.analysis.cases import VAR_PREFIX, cases
-from certkit.study.analysis.montecarlo import run_monte_carlo
+from certkit.study.analysis.montecarlo import MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import pareto_fronts
 from certkit.study.analysis.surrogates import Surrogate, fit_all, to_unit
-from certkit.study.analysis.validity import fit_validity
+from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.spec import Study
+from certkit.study.store import Store
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from certkit.study.analysis.checks import RunCases
 
 #: uniform candidates drawn per refinement
 CANDIDATES = 20_000
@@ -52,7 +60,7 @@ def refinement_points(
     existing: np.ndarray,
     n: int,
     *,
-    valid=None,
+    valid: Callable[[np.ndarray], np.ndarray] | None = None,
     front_x: np.ndarray | None = None,
     seed: int = 0,
     candidates: int = CANDIDATES,
@@ -71,15 +79,16 @@ def refinement_points(
     taken = to_unit(np.atleast_2d(existing), bounds) if len(existing) else np.empty((0, len(bounds)))
     # spacing: a fraction of the mean distance between n + existing points spread over the box
     spacing = 0.5 * 2.0 * (len(taken) + n) ** (-1.0 / len(bounds))
-    chosen = []
+    chosen: list[int] = []
     for i in np.argsort(-score, kind="stable"):
         if len(chosen) == n:
             break
         if len(taken) and np.min(np.max(np.abs(taken - u[i]), axis=1)) < spacing:
             continue
-        chosen.append(i)
+        chosen.append(int(i))
         taken = np.vstack([taken, u[i]])
-    return x[chosen]
+    points: np.ndarray = x[chosen]
+    return points
 
 
 @dataclass
@@ -102,7 +111,9 @@ class Refinement:
     joint: Movement
 
 
-def _state(study: Study, frame, samples: int, log):
+def _state(
+    study: Study, frame: pd.DataFrame, samples: int, log: Callable[[str], object]
+) -> tuple[Study, dict[str, Surrogate], Validity, MonteCarloResult, np.ndarray | None]:
     """Surrogates, validity, the Monte Carlo result and the fronts' designs of the cases in ``frame``."""
     surrogates, not_fitted = fit_all(study, cases(frame, study), log)
     usable = study.model_copy(
@@ -119,13 +130,22 @@ def _state(study: Study, frame, samples: int, log):
     return usable, surrogates, validity, mc, front_x
 
 
-def refine(study: Study, store, n: int, *, samples: int = 200_000, run_cases=None, log=lambda msg: None) -> Refinement:
+def refine(
+    study: Study,
+    store: Store,
+    n: int,
+    *,
+    samples: int = 200_000,
+    run_cases: RunCases | None = None,
+    log: Callable[[str], object] = lambda msg: None,
+) -> Refinement:
     """Add ``n`` training cases where the constraint boundaries and the fronts are least certain, evaluate them
     with the true model through the study runner (block ``refine-K``), refit, and report how each constraint's
     probability of success moved."""
     if run_cases is None:
-        from certkit.study.runner import run_study_cases as run_cases  # the runner's workers: only when refining
+        from certkit.study.runner import run_study_cases  # the runner's workers: only when refining
 
+        run_cases = run_study_cases
     frame = store.frame()
     usable, surrogates, validity, mc, front_x = _state(study, frame, samples, log)
     existing = frame[[VAR_PREFIX + v.path for v in study.variables]].to_numpy(dtype=float)
