@@ -184,3 +184,16 @@ def test_gaussian_process_on_a_maximin_subsample():
         return d[np.triu_indices(len(pts), 1)].min()
 
     assert min_gap(x[chosen]) > 2 * min_gap(x[rng.choice(150, 60, replace=False)])
+
+
+def test_too_few_cases_for_a_classifier_mask_nothing():
+    """Ten cases, three of them impossible, eight variables: a degree-1 classifier has 9 terms, more than half the
+    cases, so none is fitted; every design is taken as possible and the note says why (no failure)."""
+    x = sample(10, 4)
+    df = frame_of(x, "lhs", "training")
+    df.loc[:2, "status"] = "failed"
+    df.loc[:2, "error"] = "infeasible design: geometry.horizontal_tail: tip leading edge behind the fuselage end"
+    study = study_of(study_dict())
+    validity = fit_validity(df, study)
+    assert validity.estimator is None and validity.n_infeasible == 3
+    assert "too few" in validity.note and validity.valid(x).all()

@@ -14,13 +14,14 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pandas as pd
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.linear_model import LogisticRegressionCV
 from sklearn.model_selection import StratifiedKFold, cross_val_predict
-from sklearn.pipeline import make_pipeline
+from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import PolynomialFeatures, StandardScaler
 
 from certkit.study.analysis.cases import VAR_PREFIX
@@ -38,7 +39,7 @@ class Validity:
     """The classifier of possible designs (None: every design taken as possible) and how it scored."""
 
     bounds: np.ndarray
-    estimator: object | None
+    estimator: Pipeline | None
     n_cases: int
     n_infeasible: int
     missed: int = 0  # impossible cases the cross-validated classifier took as possible
@@ -50,9 +51,10 @@ class Validity:
         x = np.atleast_2d(np.asarray(x, dtype=float))
         if self.estimator is None:
             return np.ones(len(x), dtype=bool)
-        return self.estimator.predict(to_unit(x, self.bounds)) == 0
+        possible: np.ndarray = np.asarray(self.estimator.predict(to_unit(x, self.bounds))) == 0
+        return possible
 
-    def export(self) -> dict | None:
+    def export(self) -> dict[str, Any] | None:
         """The classifier as data the profiler page evaluates (None: every design taken as possible): the inputs
         mapped to [−1, 1] over ``lo``/``hi``, the polynomial ``terms`` ([[variable, power], …] per feature), the
         scaler's ``mean``/``scale`` and the logistic ``coef``/``intercept``; the log-odds of impossible is
@@ -76,16 +78,18 @@ class Validity:
         x = np.atleast_2d(np.asarray(x, dtype=float))
         if self.estimator is None:
             return np.ones(len(x))
-        return -self.estimator.decision_function(to_unit(x, self.bounds))
+        margin: np.ndarray = -np.asarray(self.estimator.decision_function(to_unit(x, self.bounds)), dtype=float)
+        return margin
 
 
 def infeasible_mask(frame: pd.DataFrame) -> np.ndarray:
     """Cases that failed because their variables make an impossible aircraft."""
     error = frame["error"].fillna("").astype(str)
-    return ((frame["status"] == "failed") & error.str.startswith(INFEASIBLE)).to_numpy()
+    mask: np.ndarray = ((frame["status"] == "failed") & error.str.startswith(INFEASIBLE)).to_numpy()
+    return mask
 
 
-def _classifier(degree: int, folds: int):
+def _classifier(degree: int, folds: int) -> Pipeline:
     return make_pipeline(
         PolynomialFeatures(degree, include_bias=False),
         StandardScaler(),
@@ -110,7 +114,7 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
         return Validity(bounds, None, len(y), n_bad, note=note)
     u = to_unit(x, bounds)
     folds = min(5, n_bad)
-    best = None
+    best: tuple[int, int, np.ndarray] | None = None
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
         warnings.simplefilter("ignore", FutureWarning)
@@ -123,6 +127,14 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
             errors = int(np.sum(predicted != y))
             if best is None or errors < best[1]:
                 best = (degree, errors, predicted)
+        if best is None:
+            return Validity(
+                bounds,
+                None,
+                len(y),
+                n_bad,
+                note=f"{len(y)} cases are too few for a linear classifier of {u.shape[1]} variables: nothing masked",
+            )
         degree, _, predicted = best
         estimator = _classifier(degree, folds).fit(u, y)
     missed, alarms = int(np.sum((y == 1) & (predicted == 0))), int(np.sum((y == 0) & (predicted == 1)))
@@ -134,7 +146,7 @@ def fit_validity(frame: pd.DataFrame, study: Study) -> Validity:
     return Validity(bounds, estimator, len(y), n_bad, missed, alarms, note)
 
 
-def validity_log_odds(doc: dict, x: np.ndarray) -> np.ndarray:
+def validity_log_odds(doc: dict[str, Any], x: np.ndarray) -> np.ndarray:
     """The log-odds of impossible of an exported classifier (:meth:`Validity.export`) at the rows of ``x`` (SI),
     with the arithmetic of the profiler page."""
     x = np.atleast_2d(np.asarray(x, dtype=float))
