@@ -19,6 +19,7 @@ direction.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -168,18 +169,19 @@ def violation(constraint: Constraint, values: np.ndarray, max_override: float | 
         out = np.maximum(out, (constraint.min - half) - values)
     if upper is not None:
         out = np.maximum(out, values - (upper + half))
-    return np.where(np.isfinite(values), out, np.nan)
+    result: np.ndarray = np.where(np.isfinite(values), out, np.nan)
+    return result
 
 
 def _adverse(values: np.ndarray, constraint: Constraint, fraction: float) -> np.ndarray:
     """Values moved by ``fraction`` of their magnitude towards the infeasible side of ``constraint``."""
-    shift = np.abs(values) * fraction
-    if constraint.max is not None and constraint.min is None:
-        return values + shift
-    if constraint.min is not None and constraint.max is None:
-        return values - shift
+    shift: np.ndarray = np.abs(values) * fraction
+    if constraint.min is None or constraint.max is None:
+        one_sided: np.ndarray = values - shift if constraint.max is None else values + shift
+        return one_sided
     mid = 0.5 * (constraint.min + constraint.max)
-    return np.where(values >= mid, values + shift, values - shift)
+    moved: np.ndarray = np.where(values >= mid, values + shift, values - shift)
+    return moved
 
 
 def run_monte_carlo(
@@ -190,7 +192,7 @@ def run_monte_carlo(
     chunk: int = 100_000,
     seed: int = 20240615,
     cloud: int = 20_000,
-    valid=None,
+    valid: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> MonteCarloResult:
     """Sample ``n`` uniform designs over the variables' bounds and evaluate every constraint and objective.
     ``valid``: a function of the samples (rows, SI) → mask of possible designs; the others are masked before any
@@ -230,7 +232,9 @@ def run_monte_carlo(
         for stage in STAGES
         for cols in subsets
     }
-    best = {(o, s): (np.inf, None) for o in range(len(objectives)) for s in STAGES}
+    best: dict[tuple[int, str], tuple[float, np.ndarray | None]] = {
+        (o, s): (np.inf, None) for o in range(len(objectives)) for s in STAGES
+    }
     cloud_x, cloud_f, cloud_stage = [], [], []
     kept = 0
     done = 0
@@ -248,13 +252,14 @@ def run_monte_carlo(
         values = {r: surrogates[r].predict(x) for r in needed}
         ok_relaxed = np.ones((len(constraints), m), dtype=bool)
         level1 = np.ones(m, dtype=bool)
-        ok_unc = np.ones(m, dtype=bool) if uncertainty else None
-        ok_adv = np.ones(m, dtype=bool) if uncertainty else None
+        ok_unc = np.ones(m, dtype=bool)  # counted only with uncertainty entries
+        ok_adv = np.ones(m, dtype=bool)
         for i, c in enumerate(constraints):
             v = values[c.response]
-            if hists[i] is None:
-                hists[i] = Histogram.around(v, [t for t in (c.min, c.max) if t is not None])
-            hists[i].add(v)
+            hist = hists[i]
+            if hist is None:
+                hist = hists[i] = Histogram.around(v, [t for t in (c.min, c.max) if t is not None])
+            hist.add(v)
             ok = c.feasible(v)
             succ[i] += int(ok.sum())
             ok_r = c.feasible(v, relaxed[i]) if relaxed[i] is not None else ok
@@ -281,7 +286,7 @@ def run_monte_carlo(
                 succ_adv[i] += int(ok_a.sum())
                 ok_unc &= ok_u
                 ok_adv &= ok_a
-        constrained = ok_relaxed.all(axis=0) if constraints else np.ones(m, dtype=bool)
+        constrained = np.asarray(ok_relaxed.all(axis=0)) if constraints else np.ones(m, dtype=bool)
         if constraints:
             fails = ~ok_relaxed
             only = fails.sum(axis=0) == 1
@@ -311,6 +316,7 @@ def run_monte_carlo(
             kept += take
     if not n_valid:
         raise ValueError(f"every one of the {n} samples was classed as an impossible design")
+    histograms = [h for h in hists if h is not None]  # every constraint has one once a sample was possible
     outcomes = [
         ConstraintOutcome(
             c,
@@ -319,7 +325,7 @@ def run_monte_carlo(
             relaxed[i],
             int(succ_relaxed[i]) if relaxed[i] is not None else None,
             int(sole[i]),
-            hists[i],
+            histograms[i],
             surrogates[c.response].flagged,
             int(succ_unc[i]) if uncertainty else None,
             int(succ_adv[i]) if uncertainty else None,
