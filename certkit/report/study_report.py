@@ -20,6 +20,7 @@ from certkit.study.analysis.analyse import FRONT_CHECKED, Analysis, analyse
 from certkit.study.analysis.montecarlo import STAGES
 from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_json
+from certkit.study.analysis.summary import study_summary
 from certkit.study.analysis.surrogates import K_FOLDS
 
 #: failed cases listed one by one in the report (the count is always given)
@@ -131,12 +132,15 @@ def render(a: Analysis) -> str:
 
 
 def write_study_report(study, frame: pd.DataFrame, out_dir: str | Path, **kw) -> Path:
-    """Analyse the study and write ``index.html`` into ``out_dir``; returns its path."""
+    """Analyse the study and write ``index.html`` and its headline as data, ``summary.json``
+    (:func:`certkit.study.analysis.summary.study_summary`), into ``out_dir``; returns the page's path."""
     analysis = analyse(study, frame, **kw)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     path = out / "index.html"
     path.write_text(render(analysis), encoding="utf-8")
+    summary = json.dumps(study_summary(analysis), indent=2, allow_nan=False, ensure_ascii=False)
+    (out / "summary.json").write_text(summary + "\n", encoding="utf-8")
     return path
 
 

@@ -7,6 +7,7 @@ import re
 from html.parser import HTMLParser
 
 import numpy as np
+import pytest
 from click.testing import CliRunner
 
 from certkit.cli import study_analysis as analysis_cli
@@ -157,3 +158,30 @@ analysis:
     assert "matches no constraint's response" in result.output and "rule.25.331*" in result.output
     assert "analysis.uncertainty.1" not in result.output  # constraint.* matches the range constraint
     assert "analysis.level_relaxation.0" not in result.output
+
+
+def test_summary_ranks_every_constraint_with_its_interval():
+    """summary.json's data (:func:`study_summary`) on the small synthetic study: every constraint once, least
+    probable first, each probability the Monte Carlo's count over its samples and inside its own 95 % interval; the
+    stages' joint probabilities likewise; JSON without NaN."""
+    import json
+
+    from certkit.study.analysis.summary import study_summary
+
+    analysis, _ = small_report()
+    s = study_summary(analysis)
+    json.dumps(s, allow_nan=False)
+    mc = analysis.mc
+    names = [c["name"] for c in s["constraints"]]
+    assert sorted(names) == sorted(c.name for c in analysis.view.constraints)
+    ps = [c["p"] for c in s["constraints"]]
+    assert ps == sorted(ps)
+    by_name = {o.constraint.name: o for o in mc.constraints}
+    for c in s["constraints"]:
+        o = by_name[c["name"]]
+        assert c["p"] == pytest.approx(o.successes / mc.n, rel=1e-5)
+        lo, hi = c["interval95"]
+        assert lo <= c["p"] <= hi
+    for stage, row in s["stages"].items():
+        assert row["p"] == pytest.approx(mc.stage_counts[stage] / mc.n, rel=1e-5)
+    assert s["cases"]["total"] == 260 and s["monte_carlo"]["samples"] == mc.n
