@@ -53,3 +53,29 @@ def test_scheduler_without_dask_is_refused_before_the_analysis(tmp_path):
     result = _report(study_file, tmp_path / "small.sqlite", tmp_path / "r", "--scheduler", "tcp://nowhere:8786")
     assert result.exit_code == 2 and "--scheduler is for --executor dask" in result.output
     assert not (tmp_path / "r").exists()
+
+
+def test_a_check_point_the_plan_already_holds_is_found_in_its_own_block():
+    """An optimum on a corner of the box is a case of the plan (a CCD corner): the runner returns that case, stored
+    in its own block, and the check reads its record there instead of reporting the design as missing."""
+    import numpy as np
+    import pandas as pd
+
+    from certkit.study.analysis.checks import run_true_model
+    from tests.study_analysis.synthetic import synthetic_study
+
+    study = synthetic_study()
+    corner = np.array([v.upper for v in study.variables])
+    columns = {f"var:{v.path}": [float(c)] for v, c in zip(study.variables, corner)}
+    stored = pd.DataFrame({"key": ["k-corner"], "block": ["ccd"], "status": ["ok"], **columns, "resp:x": [1.0]})
+
+    class Store:
+        def frame(self):
+            return stored
+
+    def run_cases(study_, store_, points, block, role):
+        assert block == "optima" and len(points) == 1
+        return [{"key": "k-corner", "block": "ccd", "status": "ok"}]
+
+    out = run_true_model(study, Store(), corner[None, :], block="optima", run_cases=run_cases)
+    assert list(out["status"]) == ["ok"] and out["resp:x"].iloc[0] == 1.0

@@ -39,9 +39,10 @@ def run_true_model(
     the store already holds are not evaluated again."""
     points = [{v.path: float(val) for v, val in zip(study.variables, row)} for row in np.atleast_2d(x)]
     frame = (run_cases or runner.run_study_cases)(study, store, points, block=block, role=role)
-    if not isinstance(frame, pd.DataFrame):
+    if not isinstance(frame, pd.DataFrame):  # the runner's rows: their cases in the store's frame, whatever block
+        keys = {row["key"] for row in frame}  # first held them (a design already in the plan is not run again)
         frame = store.frame()
-        frame = frame[frame["block"] == block]
+        frame = frame[frame["key"].isin(keys)]
     columns = [VAR_PREFIX + v.path for v in study.variables]
     # match the returned cases to the requested points (a resumed check may return them in another order)
     table = frame[columns].to_numpy(dtype=float)
