@@ -202,7 +202,7 @@ class BalancedLoads:
     """The balanced states of a batch and their station loads (:func:`balanced_loads`): the model with linear lift
     they were solved on, the states, how each holds its pitching moment (``scheme``), the aerodynamic and inertial
     parts of each surface's loads ((n, 3, S) each), their sums (NaN where the balance did not converge) and the
-    wing's loads in each fuel state ((M, n, 3, S); NaN for every state where ``fuel`` was not given)."""
+    wing's loads in each fuel state ((M, n, 3, S); all NaN for a configuration whose wing loads are not held)."""
 
     model: AircraftModel
     state: BalancedStates

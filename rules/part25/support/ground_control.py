@@ -18,9 +18,10 @@ from dataclasses import dataclass
 from types import SimpleNamespace
 
 import numpy as np
+from certkit_rules.part25.support.structural_checks import force_limited_deflection
 from certkit_rules.part25.support.thrust_trims import critical_engine
 
-from certkit.atmosphere import convert_speed
+from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.engine.registry import Criterion
 from certkit.units import FT, KN
@@ -112,7 +113,9 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
         engine = critical_engine(ctx)
         n = len(conditions)
         travel = control_limits(ac, design=False)
-        travel["rudder"], rudder_limit = _force_limited_rudder(ac, travel["rudder"], vr_cas, crit.vmcg_rudder_force_lbf)
+        travel["rudder"], rudder_limit = _force_limited_rudder(
+            ctx, travel["rudder"], vr_cas, crit.vmcg_rudder_force_lbf
+        )
         search = ground_minimum_control_speed(
             model,
             engine,
@@ -148,30 +151,30 @@ def vmcg_runs(ctx, conditions, crit) -> Vmcg:
     return ctx.memo(key, compute)
 
 
-def _force_limited_rudder(aircraft, stops, vr_cas: float, force_lbf: float):
+def _force_limited_rudder(ctx, stops, vr_cas: float, force_lbf: float):
     """The rudder travel of the VMCG runs, "as limited by 150 pounds of force" (§25.149(e)): each stop, or the
-    deflection the pedal force ``force_lbf`` holds from the neutral (rudder trim neutral), whichever is smaller; a
-    q-feel or hinge-moment force taken at VR, the highest speed of the search (where a given force holds the least
-    rudder), at zero sideslip. Returns ((low, high) rad, how the limit was set, for the report)."""
-    from certkit.atmosphere import RHO0
+    deflection the pedal force ``force_lbf`` holds from the neutral (rudder trim neutral), whichever is smaller
+    (:func:`~certkit_rules.part25.support.structural_checks.force_limited_deflection`); a q-feel or hinge-moment
+    force taken at VR, the highest speed of the search (where a given force holds the least rudder), at zero
+    sideslip. Returns ((low, high) rad, how the limit was set, for the report)."""
+    from certkit.engine.results import Condition
     from certkit.models.control_force import control_force_model
     from certkit.units import LBF
 
-    model = control_force_model(aircraft, "rudder")
-    if model is None:
+    at_vr = [Condition(speed=vr_cas, speed_kind="CAS", altitude=0.0)]
+    bounds = [force_limited_deflection(ctx, "rudder", at_vr, [0.0], stop, force_lbf) for stop in stops]
+    limits = (float(bounds[0][0][0]), float(bounds[1][0][0]))
+    if bounds[0][1] is None:
         return (
-            stops,
+            limits,
             f"the rudder's stops; the {force_lbf:g} lbf pedal force is not modelled (no control_forces.rudder)",
         )
-    qbar = 0.5 * RHO0 * float(convert_speed(vr_cas, "CAS", "EAS", 0.0)) ** 2
-    reach = [float(model.deflection_at_force(np.sign(s) * force_lbf * LBF, qbar, 0.0)) for s in stops]
-    limits = tuple(r if abs(r) < abs(s) else s for r, s in zip(reach, stops))
-    at_stop = [float(model.force(qbar, 0.0, s)) / LBF for s in stops]
-    if limits == tuple(stops):
-        how = f"the rudder's stops (pedal force there {max(abs(f) for f in at_stop):.0f} lbf < {force_lbf:g} lbf)"
-    else:
-        how = f"{force_lbf:g} lbf pedal force: rudder {np.degrees(limits[0]):.1f}° / {np.degrees(limits[1]):.1f}°"
-    return limits, how
+    if not any(bool(limited[0]) for _, limited in bounds):
+        model = control_force_model(ctx.aircraft, "rudder")
+        qbar = 0.5 * RHO0 * float(convert_speed(vr_cas, "CAS", "EAS", 0.0)) ** 2
+        at_stop = max(abs(float(model.force(qbar, 0.0, stop))) / LBF for stop in stops)
+        return limits, f"the rudder's stops (pedal force there {at_stop:.0f} lbf < {force_lbf:g} lbf)"
+    return limits, f"{force_lbf:g} lbf pedal force: rudder {np.degrees(limits[0]):.1f}° / {np.degrees(limits[1]):.1f}°"
 
 
 def computed_vmcg(ctx):
