@@ -6,9 +6,9 @@ surrogate and true values. What a reader of the README or a CI job needs without
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
+from certkit.engine.results_json import clean
 from certkit.study.analysis.analyse import Analysis
 from certkit.study.analysis.montecarlo import STAGES
 
@@ -16,18 +16,10 @@ from certkit.study.analysis.montecarlo import STAGES
 SUMMARY_SCHEMA = "certkit.study-summary/1"
 
 
-def _number(value: float | None, digits: int = 6) -> float | None:
-    if value is None or not math.isfinite(value):
-        return None
-    return float(f"{value:.{digits}g}")
-
-
-def _interval(iv: tuple[float, float] | None) -> list[float | None] | None:
-    return None if iv is None else [_number(iv[0]), _number(iv[1])]
-
-
 def study_summary(a: Analysis) -> dict[str, Any]:
-    """The summary of an analysis (module doc); probabilities are among possible designs (the masked ones apart)."""
+    """The summary of an analysis (module doc) as plain JSON data (numbers rounded, non-finite ones null, as in
+    results.json: :func:`certkit.engine.results_json.clean`); probabilities are among possible designs (the masked
+    ones apart)."""
     mc = a.mc
     stoppers = {s.name: s.reason for s in a.show_stoppers}
     summary: dict[str, Any] = {
@@ -39,20 +31,17 @@ def study_summary(a: Analysis) -> dict[str, Any]:
     if mc is None:
         summary["monte_carlo"] = None
         summary["note"] = a.mc_note
-        return summary
+        return _plain(summary)
     summary["monte_carlo"] = {"samples": mc.n, "drawn": mc.n_drawn, "masked_impossible": mc.masked}
-    summary["stages"] = {
-        stage: {"p": _number(mc.stage_p(stage)[0]), "interval95": _interval(mc.stage_interval(stage))}
-        for stage in STAGES
-    }
+    summary["stages"] = {stage: {"p": mc.stage_p(stage)[0], "interval95": mc.stage_interval(stage)} for stage in STAGES}
     summary["constraints"] = [
         {
             "name": o.constraint.name,
             "response": o.constraint.response,
-            "p": _number(o.p),
-            "interval95": _interval(o.interval),
-            "p_relaxed": _number(o.p_relaxed),
-            "interval95_relaxed": _interval(o.interval_relaxed),
+            "p": o.p,
+            "interval95": o.interval,
+            "p_relaxed": o.p_relaxed,
+            "interval95_relaxed": o.interval_relaxed,
             "fails_alone_samples": o.sole_violations,
             "active_for": a.active.get(o.constraint.name, []),
             "show_stopper": stoppers.get(o.constraint.name),
@@ -67,9 +56,9 @@ def study_summary(a: Analysis) -> dict[str, Any]:
             "joint": None
             if a.check.joint is None
             else {
-                "p_true": _number(a.check.joint.p_true),
-                "interval95_true": _interval(a.check.joint.interval_true),
-                "p_monte_carlo": _number(a.check.joint.p_mc),
+                "p_true": a.check.joint.p_true,
+                "interval95_true": a.check.joint.interval_true,
+                "p_monte_carlo": a.check.joint.p_mc,
             },
         }
     summary["optima"] = [
@@ -78,9 +67,16 @@ def study_summary(a: Analysis) -> dict[str, Any]:
             "stage": c.optimum.stage,
             "method": c.optimum.method,
             "status": c.status,
-            "predicted": {k: _number(v) for k, v in c.predicted.items()},
-            "true": {k: _number(v) for k, v in c.true.items()},
+            "predicted": dict(c.predicted),
+            "true": dict(c.true),
         }
         for c in a.optima
     ]
-    return summary
+    return _plain(summary)
+
+
+def _plain(summary: dict[str, Any]) -> dict[str, Any]:
+    """The summary with its numbers as results.json writes them (a mapping stays a mapping)."""
+    data, _ = clean(summary)
+    assert isinstance(data, dict)
+    return data
