@@ -82,9 +82,10 @@ def test_cli_exits_2_on_an_unknown_configuration(tmp_path, cli):
 
 
 def _aft_light(config, kcas):
-    """Lightest weight at the aft CG limit (310,000 lb, 100.82 ft), sea level."""
+    """Lightest weight (310,000 lb) with the CG 2.2 ft aft of the envelope's aft limit (100.82 ft), sea level: a trim
+    that asks for more nose-down stabiliser than the flaps-up limit (a test of the stops, not a certified loading)."""
     return Condition(
-        mass=310000 * LB, x_cg=100.82 * FT, configuration=config, altitude=0.0, speed=kcas * KN, speed_kind="CAS"
+        mass=310000 * LB, x_cg=103.0 * FT, configuration=config, altitude=0.0, speed=kcas * KN, speed_kind="CAS"
     )
 
 
@@ -99,9 +100,9 @@ def _without_field(loaded):
 
 @pytest.fixture(scope="module")
 def trims(baseline):
-    """Full-throttle climbs at the aft light corner that need more nose-down stabiliser than the flaps-up limit
-    (+2.25°): flaps 15 at 200 KCAS (about +2.7°), clean at 260 KCAS (about +2.4°) — on the baseline and without the
-    per-configuration field."""
+    """Full-throttle climbs light and aft that need more nose-down stabiliser than the flaps-up limit (+2.25°): flaps
+    15 at 200 KCAS (about +3.2°), clean at 260 KCAS (about +2.5°) — on the baseline and without the per-configuration
+    field."""
     cases = (("takeoff", 200, 1.0), ("clean", 260, 1.0))
     out = {}
     for label, aircraft in (("declared", baseline), ("single pair", _without_field(baseline))):

@@ -193,19 +193,62 @@ STOP = "beyond the control-system stop"
 MACH = "beyond the aerodynamic and strip loads model's Mach range"
 
 
-def test_flaps_extended_tail_is_evaluated_wing_is_not(run):
-    """Flaps extended (balances within the elevator's stops): the tail is evaluated, the wing is not (no flap
-    strips)."""
-    _, findings, _ = run
+def test_flaps_extended_wing_and_tail_are_evaluated_in_vertical_equilibrium(run):
+    """Flaps extended (balances within the elevator's stops): the wing (carrying the configuration's flap lift on its
+    strips) and the tail are evaluated, and at 2 g the wing's air load is n W − the tail's balancing load within 3 %
+    (Newton, as flaps retracted): without the flap lift on the strips the wing fell short by 1,070–1,300 kN."""
+    ctx, findings, _ = run
     flap = [f for f in findings if f.condition.configuration != "clean" and STOP not in (f.reason or "")]
-    assert flap
-    assert all(
-        f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS
-        for f in flap
-        if "wing:" in f.check or f.check.endswith("wing")
-    )
-    tail = [f for f in flap if "horizontal tail" in f.check]
-    assert tail and all(f.status in ("complies", "fails") for f in tail)
+    assert {f.condition.configuration for f in flap} == set(ctx.aircraft.configurations) - {"clean"}
+    assert all(f.status in ("complies", "fails") for f in flap)
+    for f in flap:
+        d = f.all_details()
+        if f.condition.get("point") == "VF at n flaps" and f.check.endswith("wing"):
+            air = d["n"] * f.condition.mass * G0 - 1e3 * d["tail_balancing_load_kN"]
+            assert 1e3 * d["wing_air_load_kN"] == pytest.approx(air, rel=0.03)
+
+
+def test_the_tail_load_flaps_extended_follows_the_moment_balance_not_the_downwash_split(run, tmp_path):
+    """In a balanced state the tail's load is what the wing-body's pitching moment about the CG asks for (Etkin &
+    Reid §2.3: the elevator adjusts; the tail's load does not depend on how the flap's increments are split between
+    wing and tail). So the 2 g landing-flap balance at VF gives the same strip-model tail load with the lattice's tail
+    share of the flap increments (downwash) and with a declared zero share, within 10 kN — while the share itself is
+    q̄ S ΔCL_tail ≈ 60 kN there. A strip tail that missed the downwash the flight model trims for was off by the
+    whole share."""
+    ctx, findings, _ = run
+    with_share = _one(findings, "fwd_mrw", "VF at n flaps", "horizontal tail", configuration="landing")
+    d = with_share.all_details()
+    share = 0.5 * 1.225 * (d["V_kn_EAS"] * 1852 / 3600) ** 2 * ctx.aircraft.reference.area
+    share *= float(ctx.aero("landing").model.flap_lift[1][0])
+    assert share < -40e3
+    edits = FAST + [
+        (
+            "    flap: 30 deg               # 777",
+            "    tail_flap_increment: {delta_CL: 0, delta_Cm: 0, source: test}\n    flap: 30 deg               # 777",
+        )
+    ]
+    ctx2 = Context(load_aircraft(edited_baseline(tmp_path, edits)))
+    crit, _ = criteria_for(BalancedManeuver, ctx2)
+    without = BalancedManeuver().evaluate(ctx2, [with_share.condition], crit)
+    no_share = _one(without, "fwd_mrw", "VF at n flaps", "horizontal tail", configuration="landing")
+    assert no_share.all_details()["tail_balancing_load_kN"] == pytest.approx(d["tail_balancing_load_kN"], abs=10.0)
+
+
+def test_a_wing_without_a_declared_flap_is_not_evaluated_flaps_extended(tmp_path):
+    """No flap in geometry.wing.flaps: the strip model cannot place the configurations' flap lift, so the wing's
+    flaps-extended findings are not evaluated with that reason (the tail's still are)."""
+    edits = FAST + [("    flaps: {span_start: 0.10, span_end: 0.75, chord_ratio: 0.30, type: slotted}", "")]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "takeoff"
+    ]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    wing = [f for f in findings if f.check.endswith("wing")]
+    assert wing and all(f.status == "not_evaluated" and f.reason == NO_FLAP_STRIPS for f in wing)
+    assert all(f.status in ("complies", "fails") for f in findings if "horizontal tail" in f.check)
 
 
 def test_envelope_is_kept_for_the_sizing_loop(run):

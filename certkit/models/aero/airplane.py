@@ -57,6 +57,9 @@ DESIGN_CL = 0.5
 #: calibrated airspeed of the climb schedule that fixes the Reynolds number at each Mach breakpoint
 SCHEDULE_CAS = 300 * 1852 / 3600
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
+#: the wing's flap as a lattice control, in the lattices of :func:`downwash_configurations` and :func:`loads_lattice`
+#: only (the flight model's flap increments are the configuration's, :func:`_high_lift`)
+FLAP_CONTROL = "flap"
 #: the lattice's tail lift and moment increments per unit flap lift increment of the wing (not model terms)
 FLAP_TAIL_TERMS = ("tail_CL_per_flap_CL", "tail_Cm_per_flap_CL")
 #: the table's entry holding the free-air downwash at the tail (not a model term; lowest Mach breakpoint)
@@ -89,15 +92,39 @@ def _camber_digits(airfoil: str) -> str | None:
     return digits if len(digits) == 4 and digits.isdigit() else None
 
 
-def _surface(name: str, s, resolution, *, vertical: bool = False, component: int | None = None, controls=None):
+#: span fractions of the extra sections of a twisted surface: the lattice interpolates the incidence between sections
+#: through the chord projections (as AVL does), which on a tapered surface keeps the larger inboard chord's angle
+#: over most of the interval; with sections every eighth of the span the declared linear twist is represented within
+#: 0.01° (with the control edges alone the baseline's wing had 0.8° more incidence at mid-semispan, and the lattice's
+#: zero-α lift depended on where the controls end)
+TWIST_SECTIONS = tuple(k / 8 for k in range(1, 8))
+
+
+def _flap_span(wing) -> list[ControlSpan]:
+    """The wing's trailing-edge flap as the lattice control :data:`FLAP_CONTROL` (none when no flap is declared)."""
+    f = wing.flaps
+    return [] if f is None else [ControlSpan(FLAP_CONTROL, f.span_start, f.span_end, f.chord_ratio, kind="symmetric")]
+
+
+def _surface(
+    name: str,
+    s,
+    resolution,
+    *,
+    vertical: bool = False,
+    component: int | None = None,
+    controls=None,
+    extra_controls=(),
+):
     """A lattice surface from an aircraft-file lifting surface, with its controls (or only ``controls``, a list of
-    :class:`ControlSpan`) and tip twist."""
+    :class:`ControlSpan`), ``extra_controls`` after them, and tip twist."""
     if controls is None:
         controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
         if s.stabilizer is not None and not vertical:
             # a movable stabiliser: the whole chord turns about the lateral (pitch) axis, i.e. a change of the tail's
             # incidence from its declared datum (the control's deflection δs = i_h − incidence)
             controls.append(ControlSpan(STABILIZER, 0.0, 1.0, 1.0, hinge_vector=(0.0, 1.0, 0.0)))
+    controls = list(controls) + list(extra_controls)
     surface = trapezoidal_surface(
         name,
         area=s.area,
@@ -116,6 +143,7 @@ def _surface(name: str, s, resolution, *, vertical: bool = False, component: int
         chord_spacing=1.0,
         span_spacing=1.0,
         component=component,
+        section_etas=TWIST_SECTIONS if s.tip_twist and not vertical else (),
     )
     if s.tip_twist and not vertical:
         root_y = surface.sections[0].leading_edge[1]
@@ -144,25 +172,25 @@ def with_carry_through(surface, z_axis: float):
     return replace(surface, sections=[base] + list(surface.sections))
 
 
-def lattice_configuration(aircraft, name: str = "") -> LatticeConfiguration:
+def lattice_configuration(aircraft, name: str = "", flap: bool = False) -> LatticeConfiguration:
     """Wing (component 1), horizontal tail and fin (component 2) as a lattice configuration; each
     surface reaches the fuselage axis (wing and tailplane through the plane of symmetry, the fin
-    down to z = 0 by :func:`with_carry_through`)."""
+    down to z = 0 by :func:`with_carry_through`). ``flap``: the wing's trailing-edge flap (when declared) as one
+    more control, :data:`FLAP_CONTROL` (the strip loads' lattice, :func:`loads_lattice`)."""
     g = aircraft.geometry
     if g is None:
         raise ValueError("the vortex lattice needs the geometry section (or declare aerodynamics.derivative_tables)")
     res = aircraft.aerodynamics.lattice
     fin = _surface("vertical_tail", g.vertical_tail, res, vertical=True, component=2)
+    flaps = _flap_span(g.wing) if flap else []
     surfaces = [
-        _surface("wing", g.wing, res, component=1),
+        _surface("wing", g.wing, res, component=1, extra_controls=flaps),
         _surface("horizontal_tail", g.horizontal_tail, res, component=2),
         with_carry_through(fin, 0.0),
     ]
     return LatticeConfiguration(surfaces, aero_reference(aircraft), name=name)
 
 
-#: the wing's flap as a lattice control, in the lattice of :func:`downwash_configurations` only
-FLAP_CONTROL = "flap"
 #: strips per half-wing and chordwise vortices of the lattice that gives the downwash at the tail (converged within
 #: about 2 % on the baseline, see :mod:`certkit.models.aero.tail_downwash`)
 DOWNWASH_WING_STRIPS = 64
@@ -175,16 +203,26 @@ def downwash_configurations(aircraft) -> tuple[LatticeConfiguration, LatticeConf
     (the fin carries no load in symmetric flow and is left out)."""
     g = aircraft.geometry
     res = aircraft.aerodynamics.lattice.model_copy(update={"chordwise": DOWNWASH_CHORDWISE})
-    f = g.wing.flaps
-    flap = [] if f is None else [ControlSpan(FLAP_CONTROL, f.span_start, f.span_end, f.chord_ratio, kind="symmetric")]
     strips = max(DOWNWASH_WING_STRIPS, res.spanwise)
-    wing = _surface("wing", g.wing, res.model_copy(update={"spanwise": strips}), component=1, controls=flap)
+    wing = _surface(
+        "wing", g.wing, res.model_copy(update={"spanwise": strips}), component=1, controls=_flap_span(g.wing)
+    )
     tail = _surface("horizontal_tail", g.horizontal_tail, res, component=2, controls=[])
     ref = aero_reference(aircraft)
     return (
         LatticeConfiguration([wing, tail], ref, name="wing and horizontal tail (downwash)"),
         LatticeConfiguration([tail], ref, name="horizontal tail alone"),
     )
+
+
+def loads_lattice(aircraft, mach: float) -> VortexLattice | None:
+    """The lattice of the strip loads model: the flight model's (:func:`lattice_configuration`) with the wing's flap as
+    the control :data:`FLAP_CONTROL`, whose unit solution spreads the configuration's flap lift on the wing's strips
+    and gives the change of downwash on the tail's; None for a wing without a declared flap (the flight model's
+    lattice serves)."""
+    if aircraft.geometry is None or aircraft.geometry.wing.flaps is None:
+        return None
+    return VortexLattice(lattice_configuration(aircraft, "strip loads", flap=True), mach=mach)
 
 
 @dataclass
@@ -324,6 +362,7 @@ def build_airplane_aero(
     stall = StallModel(clmax) if clmax else None
     ref = aero_reference(aircraft)
     tail_downwash = None  # the free-air downwash at the tail (lattice only): the ground effect at the tail needs it
+    flap_lift = None  # the flap lift increments on the wing and the tail (lattice only): the strip loads spread them
     if declared is not None:
         from certkit.models.aero.derivative_forms import nondimensional_table
         from certkit.models.reference_condition import reference_condition
@@ -368,7 +407,7 @@ def build_airplane_aero(
             table["CD0"], table["k"] = list(cd0), list(k)
             result.source += " + drag build-up"
             notes += drag_notes
-        tail_flap_cl = _high_lift(aircraft, configuration, cfg, table, notes, flap_tail)
+        tail_flap_cl, flap_lift = _high_lift(aircraft, configuration, cfg, table, notes, flap_tail)
         if free_air is not None:
             tail_downwash = free_air.with_flap(tail_flap_cl)
     for key, value in aircraft.aerodynamics.overrides.get(configuration, {}).items():
@@ -377,18 +416,26 @@ def build_airplane_aero(
         result.overrides[key] = {"estimate": estimate, "value": value, "source": aircraft.aerodynamics.overrides_source}
     try:
         result.model = StabilityDerivativeModel(
-            ref, table, mach=machs, control_names=controls, stall=stall, tail_downwash=tail_downwash
+            ref,
+            table,
+            mach=machs,
+            control_names=controls,
+            stall=stall,
+            tail_downwash=tail_downwash,
+            flap_lift=flap_lift,
         )
     except KeyError as exc:
         raise ValueError(f"aerodynamics of configuration {configuration!r}: {exc.args[0]}") from None
     return result
 
 
-def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> float:
+def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tuple[float, list[float] | None]:
     """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
     (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle (tail-on already);
     the first two are tail-off, so the tail's share (:func:`_tail_flap_share`) is added to them. Returns the tail's
-    lift share at the lowest Mach breakpoint (0 when none is added: its downwash change is then not known)."""
+    lift share at the lowest Mach breakpoint (0 when none is added: its downwash change is then not known) and the
+    lift increments on the wing (tail off) and on the tail, per Mach breakpoint, where the wing has a declared flap
+    to carry them (else None)."""
     from certkit.models.aero.high_lift import lift_and_moment_increment
 
     wing = aircraft.geometry.wing
@@ -421,10 +468,11 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> flo
         )
     tail_off = bool(cfg.delta_CL0 or cfg.delta_Cm0) or wing.flaps is not None  # declared or Raymer: tail-off
     tail_cl = 0.0
+    wing_cl = list(d_cl)
     if cfg.flap > 0 and tail_off:
-        wing_cl = d_cl[0]
         d_cl, d_cm = _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes)
-        tail_cl = d_cl[0] - wing_cl
+        tail_cl = d_cl[0] - wing_cl[0]
+    lift = [wing_cl, [t - w for t, w in zip(d_cl, wing_cl)]] if wing.flaps is not None and tail_off else None
     table["CL0"] = [v + d for v, d in zip(table["CL0"], d_cl)]
     table["Cm0"] = [v + d for v, d in zip(table["Cm0"], d_cm)]
     from certkit.models.aero.drag import configuration_drag_increment
@@ -434,7 +482,7 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> flo
         table["CD0"] = [v + delta for v in table.get("CD0", [0.0] * len(table["CL0"]))]
         if not declared:
             notes.append(f"configuration {name}: ΔCD0 {delta:.4f} estimated (flaps Raymer 12.61, gear Roskam Part I)")
-    return tail_cl
+    return tail_cl, lift
 
 
 def _tail_flap_share(name, cfg, d_cl, d_cm, flap_tail, notes):

@@ -99,6 +99,10 @@ class StabilityDerivativeModel:
         (:mod:`certkit.models.aero.tail_ground_effect`). None: no ground effect at the tail.
     calibrated_clmax : optional, the internal CLmax of a model with the same base terms and stall model, already
         calibrated (a copy with further control terms); None: calibrated here.
+    flap_lift : optional, per Mach breakpoint, the lift coefficient increments of the configuration's flaps on the
+        wing (tail off) and on the horizontal tail (its share from the change of downwash), shape (2, n_mach) — both
+        already in CL0; kept apart for the strip loads model, which spreads them on the surfaces
+        (:mod:`certkit.models.loads.response`). None: no flap lift to spread (flaps up, or not known).
     """
 
     def __init__(
@@ -112,6 +116,7 @@ class StabilityDerivativeModel:
         alpha_drag: bool | None = None,
         tail_downwash=None,
         calibrated_clmax: np.ndarray | None = None,
+        flap_lift: Sequence[float] | None = None,
     ) -> None:
         self.reference = reference
         self.tail_downwash = tail_downwash
@@ -119,6 +124,9 @@ class StabilityDerivativeModel:
         if self.mach.ndim != 1 or np.any(np.diff(self.mach) <= 0):
             raise ValueError("Mach breakpoints must be a strictly increasing 1-D sequence")
         nm = self.mach.size
+        self.flap_lift = (
+            None if flap_lift is None else np.broadcast_to(np.asarray(flap_lift, dtype=float), (2, nm)).copy()
+        )
         found: list[str] = []
         for name in derivatives:
             if name in _BASE_TERMS:
@@ -291,6 +299,7 @@ class StabilityDerivativeModel:
             after_stall=self.after_stall,
             alpha_drag=self.uses_alpha_drag,
             tail_downwash=self.tail_downwash,
+            flap_lift=self.flap_lift,
         )
 
     def with_control_terms(
@@ -321,4 +330,5 @@ class StabilityDerivativeModel:
             alpha_drag=self.uses_alpha_drag,
             tail_downwash=self.tail_downwash,
             calibrated_clmax=self._clmax,
+            flap_lift=self.flap_lift,
         )

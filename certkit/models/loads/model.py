@@ -84,10 +84,22 @@ class SurfaceLoads:
     tank_names: tuple[str, ...] = ()
     fuel_inertia: np.ndarray | None = None
     fuel_strip_share: np.ndarray | None = None  # (K, J) fraction of each tank's fuel on each strip
+    #: ``vertical_force[m, k]``: the surface's force along airplane Z (lift) per unit q̄ and unit input k at Mach
+    #: breakpoint m (the strips' normal forces times the Z component of their normals; zero for the fin)
+    vertical_force: np.ndarray | None = None
 
     @property
     def structural_mass(self) -> float:
         return float(self.strip_mass.sum())
+
+    def input_for_lift(self, name: str, lift_per_qbar, mach) -> np.ndarray:
+        """The value of input ``name`` whose force along airplane Z on this surface is ``lift_per_qbar`` (m², per unit
+        q̄; arrays broadcast with ``mach``), the unit tables interpolated in Mach as :meth:`aero_loads` does."""
+        k = self.inputs.index(name)
+        i, w = self._mach_weights(mach)
+        table = self.vertical_force[:, k]
+        per_unit = table[i] * (1 - w) + table[np.minimum(i + 1, table.size - 1)] * w
+        return np.asarray(lift_per_qbar, dtype=float) / per_unit
 
     def _mach_weights(self, mach):
         m = self.mach
@@ -246,8 +258,8 @@ def build_surface_loads(
     ``aircraft``: for the wing, the file whose ``mass.fuel_tanks`` are spread on its strips (fuel tables per tank)."""
     lat = vl.lattice
     idx = _strip_indices(lat, surface)
-    vertical = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
-    sign = np.sign(lat.ensy[idx]) if vertical else np.sign(lat.ensz[idx])
+    vertical_surface = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
+    sign = np.sign(lat.ensy[idx]) if vertical_surface else np.sign(lat.ensz[idx])
     ny, nz = lat.ensy[idx] * sign, lat.ensz[idx] * sign  # normal up (or right for the fin)
     root = (
         lat.rle1[idx[0]]
@@ -266,7 +278,7 @@ def build_surface_loads(
     names = [station_label(f) for f in station_fractions]
     stations = [f * semispan for f in station_fractions]
     if side_of_body is not None and 0.0 < side_of_body < semispan:
-        cos_dihedral = float(np.mean(np.abs(nz))) if not vertical else 1.0
+        cos_dihedral = float(np.mean(np.abs(nz))) if not vertical_surface else 1.0
         stations.append(side_of_body / max(cos_dihedral, 1e-6))
         names.append("side of body")
     order = np.argsort(stations)
@@ -288,7 +300,7 @@ def build_surface_loads(
     controls = tuple(vl.control_names)
     inputs = ("one",) + RATE_INPUTS + controls
     xv = lat.rv[:, 0]
-    aero, strip_aero = [], []
+    aero, strip_aero, vertical = [], [], []
     for m in machs:
         v = vl.at_mach(float(m))
 
@@ -327,16 +339,22 @@ def build_surface_loads(
             (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
             2 * lat.width[idx],
         )
-        unit_n, unit_m = [base_n], [ratio * base_gx]
+        # each unit solution's moment about the strip's reference axis, Σ γ (X − X_axis) × the force per unit
+        # circulation: taken about the axis, not the nose, so that the ratio (read from the loading angle's solution)
+        # scales a lever of a few metres and not the strip's whole X (a 1 % mismatch between inputs would otherwise
+        # move the load by 1 % of the distance from the nose)
+        unit_n, unit_m = [base_n], [ratio * (base_gx - x_axis * base_g)]
         for name in inputs[1:]:
             pn, pg, pgx = state(name, EPS)
             mn, mg, mgx = state(name, -EPS)
             unit_n.append((pn - mn) / (2 * EPS))
-            unit_m.append(ratio * (pgx - mgx) / (2 * EPS))
-        unit_n, unit_m = np.array(unit_n), np.array(unit_m)  # (K, J): force and force × X
-        x_load = np.where(np.abs(unit_n) > 1e-12, unit_m / np.where(np.abs(unit_n) > 1e-12, unit_n, 1.0), x_axis)
+            unit_m.append(ratio * ((pgx - mgx) - x_axis * (pg - mg)) / (2 * EPS))
+        unit_n, unit_m = np.array(unit_n), np.array(unit_m)  # (K, J): force and its moment about the axis
+        big = np.abs(unit_n) > 1e-12
+        x_load = x_axis + np.where(big, unit_m / np.where(big, unit_n, 1.0), 0.0)
         aero.append(integrate(unit_n, x_load))
         strip_aero.append(unit_n)
+        vertical.append(unit_n @ (np.zeros_like(nz) if vertical_surface else nz))
         del base_g
 
     # --- mass ------------------------------------------------------------------------------
@@ -378,7 +396,7 @@ def build_surface_loads(
     inertia = inertia_table(mass, x_mass, y_mass, z_mass)
     notes = []
     tank_names, fuel_inertia, shares = (), None, None
-    if aircraft is not None and aircraft.mass.fuel_tanks and not vertical:
+    if aircraft is not None and aircraft.mass.fuel_tanks and not vertical_surface:
         from certkit.models.loads.fuel import wing_tank_shares
 
         y_strip = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
@@ -396,7 +414,7 @@ def build_surface_loads(
         np.asarray(machs, dtype=float),
         names,
         stations,
-        np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical else lat.rle[idx, 1])),
+        np.interp(stations, s_mid, (lat.rle[idx, 2] if vertical_surface else lat.rle[idx, 1])),
         s_mid,
         x_axis,
         mass,
@@ -408,6 +426,7 @@ def build_surface_loads(
         tank_names,
         fuel_inertia,
         shares,
+        np.array(vertical),
     )
 
 
@@ -490,7 +509,9 @@ def build_airplane_loads(
 
 
 def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
-    """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared)."""
+    """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared), on the lattice of
+    :func:`certkit.models.aero.airplane.loads_lattice` (its ``flap`` input spreads a configuration's flap lift)."""
+    from certkit.models.aero.airplane import loads_lattice
 
     def build():
         aero = ctx.aero(configuration)
@@ -499,9 +520,12 @@ def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
                 f"configuration {configuration!r} uses declared derivative tables: the strip loads "
                 "model needs the geometry's vortex lattice"
             )
-        # the unit solutions belong to the lattice: kept under an "aero" key, a Context that shares the aerodynamics
-        # (the sizing loop's next airplane, same geometry) shares them too
-        solutions = ctx.memo(("aero", "loads unit solutions", configuration, id(aero.lattice)), dict)
-        return build_airplane_loads(ctx.aircraft, aero.lattice, aero.mach, solutions=solutions)
+        # the lattice (the flight model's with the wing's flap as a control) and its unit solutions belong to the
+        # flight model's lattice: kept under "aero" keys, a Context that shares the aerodynamics (the sizing loop's
+        # next airplane, same geometry) shares them too
+        key = (configuration, id(aero.lattice))
+        lattice = ctx.memo(("aero", "loads lattice", *key), lambda: loads_lattice(ctx.aircraft, aero.mach[0]))
+        solutions = ctx.memo(("aero", "loads unit solutions", *key), dict)
+        return build_airplane_loads(ctx.aircraft, lattice or aero.lattice, aero.mach, solutions=solutions)
 
     return ctx.memo(("airplane_loads", configuration), build)

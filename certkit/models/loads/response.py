@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from certkit.models.aero.airplane import FLAP_CONTROL
 from certkit.models.loads.model import QUANTITIES, UNITS, AirplaneLoads
 from certkit.units import G0
 
@@ -49,6 +50,7 @@ def response_load_parts(
     b, c = model.b, model.c
     names = list(sim.control_names)
     controls = {n: sim.controls[:, :, names.index(n)] for n in names if ":" not in n and n != "brake"}
+    flap = flap_deflection(loads, model, h["mach"])
     terms = inertia_terms(sim, model)
     out = {}
     for name in surfaces:
@@ -62,8 +64,43 @@ def response_load_parts(
             "r_hat": h["r"] * b / (2 * V),
             **controls,
         }
+        if name in flap:
+            inputs[FLAP_CONTROL] = flap[name]
         out[name] = (s.aero_loads(h["qbar"], h["mach"], inputs), s.inertia_loads(terms))
     return out
+
+
+def flap_deflection(loads: AirplaneLoads, model, mach) -> dict[str, np.ndarray]:
+    """The lattice flap deflection (rad, shaped like ``mach``) of each lifting surface's strips such that the wing
+    carries the flight model's flap lift increment (``model.aero.flap_lift``: tail off) and the horizontal tail its
+    share from the change of downwash: the lattice gives where on the span the flap lift acts and how the tail's load
+    is spread, the configuration's increments (declared, or Raymer's estimate and the finer downwash lattice of
+    :mod:`certkit.models.aero.airplane`) how much there is (linear theory over-states a large deflection's lift, and
+    the strip lattice's 20-odd wing strips over-state the flap's downwash at the tail by up to 60 %). Empty when the
+    model has no flap lift or the loads model no flap."""
+    aero = model.aero
+    lift = getattr(aero, "flap_lift", None)
+    wing = loads.surfaces.get("wing") if loads is not None else None
+    if lift is None or not np.any(lift) or wing is None or FLAP_CONTROL not in wing.inputs:
+        return {}
+    mach = np.asarray(mach, dtype=float)
+    out = {}
+    for name, row in (("wing", 0), ("horizontal_tail", 1)):
+        s = loads.surfaces.get(name)
+        if s is not None and FLAP_CONTROL in s.inputs:
+            half = 0.5 * np.interp(mach, aero.mach, lift[row]) * aero.reference.area
+            out[name] = s.input_for_lift(FLAP_CONTROL, half, mach) if np.any(half) else np.zeros_like(mach)
+    return out
+
+
+def holds_flap_lift(loads: AirplaneLoads, model) -> bool:
+    """Whether the strip model's wing carries the flight model's flap lift (:func:`flap_deflection`): none to carry,
+    or a wing flap in the loads model to spread it with."""
+    lift = getattr(model.aero, "flap_lift", None)
+    if lift is None:
+        return False
+    wing = loads.surfaces.get("wing")
+    return not np.any(lift) or (wing is not None and FLAP_CONTROL in wing.inputs)
 
 
 def inertia_terms(sim, model) -> dict[str, np.ndarray]:

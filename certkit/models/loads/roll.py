@@ -128,14 +128,23 @@ def mirror(sim, controls=ANTISYMMETRIC_CONTROLS):
     return replace(sim, history=hist, controls=c)
 
 
+#: the roll acceleration, as a fraction of its peak, below which the roll rate counts as steady: a first-order roll
+#: mode p = p_ss (1 − e^(−t/τ)) has ṗ/ṗ_max = e^(−t/τ), so the rate is then within 2 % of the steady rolling velocity
+#: (a plateau that keeps creeping up by a fraction of a degree per second, as the sideslip builds, is steady)
+STEADY_ROLL_ACCELERATION = 0.02
+
+
 def peak_roll_rate(sim, p0=None) -> tuple[np.ndarray, np.ndarray]:
-    """The roll rate |p − p0| of each condition where it first stops growing — the steady rolling velocity the
-    aileron input reaches, before the flight path departs from the condition (rad/s) — and the index of that
-    time step (the last one if |p − p0| grows throughout)."""
+    """The roll rate |p − p0| of each condition where it first stops growing, or first grows at less than
+    :data:`STEADY_ROLL_ACCELERATION` of its peak rate of growth after that peak — the steady rolling velocity the
+    aileron input reaches, before the flight path departs from the condition (rad/s) — and the index of that time
+    step (the last one if |p − p0| grows throughout)."""
     p = sim["p"]
     base = p[0] if p0 is None else np.asarray(p0)
     d = np.abs(p - base[None, :])
-    stops = d[1:] <= d[:-1]  # (nt − 1, n): True where |p| no longer grows
+    growth = d[1:] - d[:-1]  # (nt − 1, n)
+    after_peak = np.arange(growth.shape[0])[:, None] >= np.argmax(growth, axis=0)[None, :]
+    stops = (growth <= 0.0) | (after_peak & (growth < STEADY_ROLL_ACCELERATION * growth.max(axis=0)))
     k = np.where(stops.any(axis=0), np.argmax(stops, axis=0), d.shape[0] - 1)
     return d[k, np.arange(d.shape[1])], k
 

@@ -13,8 +13,9 @@ push-over at n, linear lift up to C_N,max).
 Flaps extended (every configuration other than ``clean``): n = the declared ``envelope.limit_load_factors.
 flaps_extended`` (else 2.0, §25.345(a)(1)) and n = 0 at the design flap speed VF: the larger of the declared placard
 VFE and the §25.335(e)(3) minimum (1.6 VS1 takeoff flaps at MTOW, 1.8 VS1 approach and landing flaps at MLW). The
-strip loads model has no flap deflection (the lattice is the clean wing), so the wing's loads flaps extended are not
-evaluated; the tail's are, without the flaps' downwash.
+strip loads model's lattice carries the wing's flap as a control: the configuration's flap lift (tail off) is spread
+on the wing's strips with the lattice's flap distribution and the tail's share (the change of downwash) on the
+tail's (:func:`certkit.models.loads.response.flap_deflection`), so both surfaces are evaluated flaps extended.
 """
 
 from __future__ import annotations
@@ -58,21 +59,19 @@ class BalancedManeuver(SimulationRule):
     limitations = (
         "Rigid airplane, quasi-steady linear strip aerodynamics (lift linear up to C_N,max); the §25.333(b) "
         "figure is unverified, its points C, G, I are not assumed (the VC point on the n₊ line is "
-        "evaluated); flaps extended only the horizontal tail is evaluated (no flap deflection in the strip "
-        "model, no flap downwash at the tail) and VF is the larger of the placard VFE and the §25.335(e)(3) "
-        "minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
+        "evaluated); flaps extended the flap lift is the configuration's increment (declared, or Raymer's "
+        "estimate) spread with the linear lattice's flap distribution (a slotted flap's chordwise extension and "
+        "its lift's X position are those of a plain flap), and VF is the larger of the placard VFE and the "
+        "§25.335(e)(3) minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
         "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
         "finding."
     )
     implementation = "partial"
     unevaluated = (
-        ("25.331(b)", "wing loads with flaps extended are not evaluated (the strip model has no flap deflection)"),
         ("25.333(b)", "points C, G and I of the manoeuvring envelope are not evaluated (the figure is unverified)"),
         (
             "25.345(a)",
-            "flaps extended the tail loads come from the clean lattice (no flap downwash on the tail, and the "
-            "strip model's wing does not carry the flap lift); the §25.345(a)(2) 25 ft/s flap gusts are not "
-            "evaluated",
+            "the §25.345(a)(2) 25 ft/s head-on and vertical flap gusts are not evaluated",
         ),
         (
             "25.333",

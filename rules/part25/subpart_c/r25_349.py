@@ -129,7 +129,7 @@ class RollingConditions(SimulationRule):
             4.0,
             "s",
             "certkit numerical choice: past the steady rolling velocity (first roll-rate "
-            "peak, ≤ 3.1 s) at every baseline condition",
+            "peak, ≤ 3.3 s) at every baseline condition",
             "time simulated from the aileron input",
         ),
         "time_step": Criterion(

@@ -29,7 +29,7 @@ from certkit.models.flight import control_limits
 from certkit.models.loads.balanced import ELEVATOR_ALONE, balanced_loads
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope
+from certkit.models.loads.response import LoadEnvelope, holds_flap_lift
 from certkit.models.loads.vn_envelope import envelope
 from certkit.units import KN
 
@@ -38,8 +38,8 @@ SURFACES = ("wing", "horizontal_tail")
 CLEAN_POINTS = ("A", "VC at n+", "D", "E", "F", "H")
 FLAP_POINTS = ("VF at n flaps", "VF at 0")
 NO_FLAP_STRIPS = (
-    "the strip loads model has no flap deflection (clean lattice): the wing's lift increment of the "
-    "flaps is not distributed on its strips, so its loads flaps extended are not computed"
+    "the strip loads model cannot spread this configuration's flap lift on the wing (no flap declared in "
+    "geometry.wing.flaps, or the aerodynamics are declared tables): its wing loads flaps extended are not computed"
 )
 
 
@@ -223,6 +223,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             continue
         kept = [c for c in todo if target[c][0] not in dict(batch.failed)]
         n = np.array([target[c][1] for c in kept])
+        wing_held = cfg == "clean" or holds_flap_lift(loads, batch.model)
         # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel), clean only
         state_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in kept])
         bl = balanced_loads(
@@ -235,7 +236,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             SURFACES,
             tol=float(crit.convergence),
             fuel=fuel,
-            wing=cfg == "clean",
+            wing=wing_held,
         )
         model, st, scheme, sl, total, wing_states = bl.model, bl.state, bl.scheme, bl.parts, bl.total, bl.wing_states
         bad = ~st.converged
@@ -290,7 +291,7 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
                             c, check, f"balanced state not found (residual {st.residual[i]:.2e})", **details
                         )
                     )
-                elif s == "wing" and cfg != "clean":
+                elif s == "wing" and not wing_held:
                     findings.append(Finding.not_evaluated(c, check, NO_FLAP_STRIPS, **details))
                 elif s == "wing":
                     peaks = np.stack([wing_states[:, i], wing_states[:, i]], axis=1)  # one state each: min = max

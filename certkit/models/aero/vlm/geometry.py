@@ -367,6 +367,7 @@ def trapezoidal_surface(
     chord_spacing: float | str = 1.0,
     span_spacing: float | str = 1.0,
     component: int | None = None,
+    section_etas: Sequence[float] = (),
 ) -> Surface:
     """A straight-tapered surface from planform parameters (area m², aspect ratio b²/S, taper
     c_tip/c_root, quarter-chord sweep and dihedral in rad). Horizontal surfaces are mirrored about
@@ -374,7 +375,8 @@ def trapezoidal_surface(
     (``vertical=True``) lies in the plane of symmetry, spans upward, is not mirrored, and its
     ``aspect_ratio`` is height²/area. ``camber`` is a NACA 4-digit mean-line designation's first two
     digits or a full designation ("24" or "2412"); the thickness ratio completes the designation and
-    does not enter the lattice. Sections are placed at the root, the tip and every control edge."""
+    does not enter the lattice. Sections are placed at the root, the tip, every control edge and the span
+    fractions ``section_etas``."""
     where = f"surface {name!r}"
     for label, value in (("area", area), ("aspect ratio", aspect_ratio), ("taper", taper)):
         if not (value > 0.0 and math.isfinite(value)):
@@ -390,7 +392,7 @@ def trapezoidal_surface(
             digits = f"{digits}{min(99, round(100 * thickness_ratio)):02d}"
         camber_line = CamberLine.naca(digits)
 
-    etas = {0.0, 1.0}
+    etas = {0.0, 1.0} | {float(e) for e in section_etas if 0.0 < e < 1.0}
     for c in controls:
         if not (0.0 <= c.eta_inboard < c.eta_outboard <= 1.0):
             raise GeometryError(
