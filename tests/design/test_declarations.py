@@ -91,6 +91,7 @@ def test_declarations_choose_the_sizing_rules():
         "25.331(c)(1)",
         "25.331(c)(2)",
         "25.341(a)",
+        "25.345(a)(2)",
         "25.349(a)",
         "25.251(b)",
     }

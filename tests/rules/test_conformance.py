@@ -16,7 +16,7 @@ RULES = discover()
 #: the reasons for which a rule may find on the baseline that its paragraph does not apply (regular expressions on
 #: the reason after "not applicable: "); anything else is a test failure, so a rule cannot pass a condition off as
 #: not applicable without it being declared and checked here
-FLAPS_ABOVE_20000 = r"^(takeoff|landing) configuration above 20,000 ft \(flap altitude limit\)$"
+FLAPS_ABOVE_20000 = r"^(takeoff|approach|landing) configuration above 20,000 ft \(flap altitude limit\)$"
 BEYOND_VFE = r"^the (takeoff|landing) configuration's range ends at its VFE/VLE"
 #: §25.121 at a weight–altitude–temperature corner where the design weight is above the WAT limit (§25.1533(a))
 WAT_LIMITED = r"^[\d,]+ lb is above this corner's WAT limit weight"
@@ -28,7 +28,9 @@ NOT_APPLICABLE = {
     "25.173(a)": [FLAPS_ABOVE_20000, BEYOND_VFE],
     "25.177": [FLAPS_ABOVE_20000, BEYOND_VFE, r"^full rudder, full lateral control or the force bound is reached"],
     "25.181": [FLAPS_ABOVE_20000],
+    "25.331(b)": [FLAPS_ABOVE_20000],
     "25.335(a)": [r"^VC is limited by MC at this altitude"],
+    "25.345(a)(2)": [FLAPS_ABOVE_20000],
     "25.349(a)": [r"lies beyond the stall line of the V–n envelope"],
 }
 
@@ -41,7 +43,11 @@ def _check_not_applicable(rule_id, f, ctx):
     if matched[0] == WAT_LIMITED:  # an envelope corner, whose own limitation finding is in the rule's findings
         assert f.condition.get("airport") and "gradient_at_design_weight" in f.details
     if matched[0] == FLAPS_ABOVE_20000:
-        assert f.condition.altitude > 20_000 * 0.3048 and f.condition.configuration in ("takeoff", "landing")
+        assert f.condition.altitude > 20_000 * 0.3048 and f.condition.configuration in (
+            "takeoff",
+            "approach",
+            "landing",
+        )
     if "four or more engines" in why:
         assert len(ctx.aircraft.propulsion.engines) == 2
     if rule_id == "25.335(a)":  # VC 272 KEAS reaches MC 0.87 at 36,090 ft (ISA): above it, Mach-limited

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 from certkit_rules.part25.support.stability_speeds import (
-    FLAP_ALTITUDE_SOURCE,
+    FLAP_ALTITUDE,
     PHASES,
     by_configuration,
     flight_described,
@@ -35,7 +35,6 @@ VERIFIED_171_175 = "§§25.171–25.175 text verified (docs/regulation-notes.md 
 _STABILITY_SPACE = dict(
     loading=CgCorners(), configurations=tuple(PHASES.values()), altitudes=Altitudes((0.0, 35000 * FT))
 )
-_FLAP_ALT = Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations")
 
 
 @rule
@@ -62,7 +61,7 @@ class StabilityGeneral(Rule):
             "minimum stick-fixed static margin",
         ),
         "low_speed_factor": Criterion(1.13, "", "§25.177 / §25.181 speed range from 1.13 VSR", "low end of the speeds"),
-        "flap_altitude_max": _FLAP_ALT,
+        "flap_altitude_max": FLAP_ALTITUDE,
     }
     conditions = ConditionSpace(
         **_STABILITY_SPACE,
@@ -155,7 +154,7 @@ class SpeedStability(Rule):
             "the lowest speed point checked)",
             "low end of the speeds",
         ),
-        "flap_altitude_max": _FLAP_ALT,
+        "flap_altitude_max": FLAP_ALTITUDE,
     }
     conditions = ConditionSpace(
         **_STABILITY_SPACE,
@@ -296,7 +295,7 @@ _FORCE_CRITERIA = {
         "lowest speed point checked)",
         "low end of the speeds",
     ),
-    "flap_altitude_max": _FLAP_ALT,
+    "flap_altitude_max": FLAP_ALTITUDE,
 }
 
 

@@ -17,7 +17,7 @@ configuration's maximum allowable speed, at sea level and 35,000 ft (clean only 
 from __future__ import annotations
 
 import numpy as np
-from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE_SOURCE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE, PHASES, by_configuration, refine_speeds
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
 from certkit.engine.registry import Criterion, Rule, rule
@@ -89,7 +89,7 @@ class StaticLateralDirectionalStability(Rule):
             "sideslip needs more than full thrust (§25.177(a): symmetric power conditions)",
             "flight-path angle of the sideslip trims that cannot be held level",
         ),
-        "flap_altitude_max": Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations"),
+        "flap_altitude_max": FLAP_ALTITUDE,
     }
     conditions = ConditionSpace(
         loading=CgCorners(),

@@ -13,7 +13,7 @@ import math
 
 from certkit_rules.part25.support import handling_levels as hq
 from certkit_rules.part25.support.stability_speeds import (
-    FLAP_ALTITUDE_SOURCE,
+    FLAP_ALTITUDE,
     PHASES,
     SPEED_POINTS,
     by_configuration,
@@ -119,7 +119,7 @@ class DynamicStability(Rule):
         "low_speed_factor": Criterion(
             1.13, "", "§25.181(a),(b): from 1.13 VSR", "low end of the speed range, multiple of VSR"
         ),
-        "flap_altitude_max": Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations"),
+        "flap_altitude_max": FLAP_ALTITUDE,
     }
     conditions = ConditionSpace(
         loading=CgCorners(),

@@ -145,6 +145,10 @@ class UnsymmetricalTailLoads(SimulationRule):
     unevaluated = (
         (
             "25.427(b)(1)",
+            "the §25.345(a)(2) flaps-extended gusts' tail loads are not split (§25.345(a)(2) reports them whole)",
+        ),
+        (
+            "25.427(b)(1)",
             "the out-of-trim symmetric manoeuvres are not split: §25.331(c)(2) does not compute them (its manoeuvres "
             "start from the 1 g trim, not from the §25.255 mistrim)",
         ),

@@ -13,6 +13,7 @@ import numpy as np
 from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE, flap_altitude_findings
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
     beyond_mach_range,
@@ -168,6 +169,7 @@ BALANCED_RUN_CRITERIA = {
         "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum landing weight",
     ),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
+    "flap_altitude_max": FLAP_ALTITUDE,
     **SAFETY,
 }
 BALANCE_CRITERIA = tuple(BALANCED_RUN_CRITERIA)
@@ -203,6 +205,10 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         stops = {k: v for k, v in control_limits(ctx.aircraft, False, cfg).items() if k in ("elevator", "stabilizer")}
         entries, key_of, target, notes = [], {}, {}, {}
         for c in conds:
+            high = flap_altitude_findings(ctx, c, float(crit.flap_altitude_max), [_check(c, s) for s in SURFACES])
+            if high:
+                findings += high
+                continue
             try:
                 v, n, note = point_speed_and_load_factor(ctx, c, crit)
             except LookupError as exc:

@@ -165,17 +165,44 @@ def gust_runs(ctx, conditions, crit) -> GustRuns:
 
 
 def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
-    H = gradients(crit)
+    """The §25.341(a) runs: each condition at its speed point, U_ds = U_ref F_g (H/350)^(1/6) at every gradient."""
+
+    def u_ref(conds):
+        at_vd = np.array([c.get("speed_point") == "VD" for c in conds])
+        return reference_gust_velocity(np.array([c.altitude for c in conds])) * np.where(at_vd, crit.vd_factor, 1.0)
+
+    def f_g(conds):
+        return np.array([flight_profile_alleviation(ctx.aircraft, c.altitude, crit) for c in conds])
+
+    runs = simulate_gust_set(
+        ctx,
+        conditions,
+        lambda c: gust_speeds(ctx, c.altitude)[c.get("speed_point")],
+        lambda conds, h_gust: design_gust_velocity(u_ref(conds), f_g(conds), h_gust, crit),
+        gradients(crit),
+        crit,
+    )
+    runs.u_ref, runs.f_g = u_ref(runs.conditions), f_g(runs.conditions)
+    return runs
+
+
+def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> GustRuns:
+    """The 1 − cos vertical gusts of ``conditions`` (one configuration), each trimmed in level flight at
+    ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocity
+    ``design_velocity(simulated conditions, H) -> (n,)`` (EAS, m/s), up or down as the condition's ``gust`` says;
+    ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
+    trim."""
     entries, key_of = [], {}
     for c in conditions:
-        key = (c.loading, c.altitude, c.get("speed_point"))
+        v = float(speed_of(c))
+        key = (c.loading, c.altitude, round(v, 6))
         if key not in key_of:
             key_of[key] = len(entries)
-            v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
+    speed = {c: round(float(speed_of(c)), 6) for c in conditions}
     batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("speed_point"))], [e.speed for e in entries]
+        conditions, lambda c: key_of[(c.loading, c.altitude, speed[c])], [e.speed for e in entries]
     )
     empty = np.zeros((len(H), 0))
     if not rows.size:
@@ -184,16 +211,13 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     gb = gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
     up = np.array([c.get("gust") == "up" for c in sim_conds])
     alt = np.array([c.altitude for c in sim_conds])
-    at_vd = np.array([c.get("speed_point") == "VD" for c in sim_conds])
-    u_ref = reference_gust_velocity(alt) * np.where(at_vd, crit.vd_factor, 1.0)
-    f_g = np.array([flight_profile_alleviation(ctx.aircraft, h, crit) for h in alt])
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
     envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
     fuel_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in sim_conds])
     fuel_peaks = None
     for h_gust in H:
-        uds = design_gust_velocity(u_ref, f_g, h_gust, crit)
+        uds = np.asarray(design_velocity(sim_conds, h_gust), dtype=float)
         run = simulate_gust(
             loads,
             gb,
@@ -226,8 +250,8 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
         np.array(nz_lo),
         np.array(uds_all),
         wing,
-        u_ref,
-        f_g,
+        None,
+        None,
         v_eas,
         up,
         alt,

@@ -12,6 +12,7 @@ from collections import defaultdict
 from certkit_rules.part25.support.control_speeds import vsr_cas
 
 from certkit.atmosphere import convert_speed
+from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding
 
 #: certkit configuration of each flight phase the stability paragraphs name
@@ -119,6 +120,24 @@ FLAP_ALTITUDE_SOURCE = (
     "project choice: flaps and gear are not extended above 20,000 ft (Boeing 777 FCOM limitation, "
     "the baseline's class); flap configurations are evaluated below it"
 )
+#: the criterion of the flap altitude limit (rules that evaluate flap or gear configurations)
+FLAP_ALTITUDE = Criterion(6096.0, "m", FLAP_ALTITUDE_SOURCE, "highest altitude of flap configurations")
+
+
+def above_flap_altitude(ctx, cond, flap_altitude_max: float) -> str | None:
+    """Why ``cond`` is not applicable — a flap or gear configuration above ``flap_altitude_max`` (m) — or None."""
+    cfg = ctx.aircraft.configurations[cond.configuration]
+    extended = cond.configuration != "clean" and (getattr(cfg, "flap", 0) or getattr(cfg, "gear", "up") == "down")
+    if extended and (cond.altitude or 0.0) > flap_altitude_max + 1e-6:
+        return f"{cond.configuration} configuration above {flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)"
+    return None
+
+
+def flap_altitude_findings(ctx, cond, flap_altitude_max: float, checks) -> list[Finding]:
+    """Not-applicable findings (one per check of ``checks``) of a flap or gear configuration above the flap altitude
+    limit (:func:`above_flap_altitude`); none where the condition applies."""
+    high = above_flap_altitude(ctx, cond, flap_altitude_max)
+    return [Finding.not_applicable(cond, check, high) for check in checks] if high else []
 
 
 def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float = 1.13, check: str = "speed range"):
@@ -126,17 +145,9 @@ def refine_speeds(ctx, conditions, flap_altitude_max: float, low_factor: float =
     finding for a flap/gear configuration above ``flap_altitude_max`` (m). Returns (refined, findings)."""
     refined, findings = [], []
     for cond in conditions:
-        cfg = ctx.aircraft.configurations[cond.configuration]
-        extended = cond.configuration != "clean" and (getattr(cfg, "flap", 0) or getattr(cfg, "gear", "up") == "down")
-        if extended and (cond.altitude or 0.0) > flap_altitude_max + 1e-6:
-            findings.append(
-                Finding.not_applicable(
-                    cond,
-                    check,
-                    f"{cond.configuration} configuration above "
-                    f"{flap_altitude_max / 0.3048:,.0f} ft (flap altitude limit)",
-                )
-            )
+        high = above_flap_altitude(ctx, cond, flap_altitude_max)
+        if high:
+            findings.append(Finding.not_applicable(cond, check, high))
             continue
         if cond.get("speed_point") == "VFC":
             v, basis = stability_limit_cas(ctx, cond.configuration, cond.altitude or 0.0)
