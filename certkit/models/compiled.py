@@ -9,15 +9,84 @@ contiguous or of another dtype; the values are the same).
 A row assigned as a whole inside a kernel (``a[i] = b[j]``) makes numba compile its shape check and the formatting
 of its error message (a few seconds per argument type at the first run); :func:`copy_row` copies element by
 element, the same values, with nothing to check.
+
+numba keys a cached kernel on its own source file only (path, modification time, size): a kernel that calls one
+defined in another module — the equations of motion inline the aerodynamic coefficients — keeps its machine code when
+only the other module changes, and then reads the new tables with the old layout (silently wrong numbers after an
+upgrade). :func:`refresh_stale_kernels`, run when this module is imported (every kernel module imports it before its
+kernels are first called), keeps a digest of all of certkit's kernel sources beside their cache and removes certkit's
+cached kernels when it changes; numba then compiles them once more.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 from numba import njit
+
+#: certkit's modules with kernels cached on disk (``njit(cache=True)``), relative to the package; a test checks the
+#: list against the package's sources
+KERNEL_MODULES = (
+    "atmosphere.py",
+    "models/compiled.py",
+    "models/dynamics/trim.py",
+    "models/dynamics/kernel.py",
+    "models/aero/tail_ground_effect.py",
+    "models/aero/derivative_kernel.py",
+    "models/aero/ground_effect.py",
+    "models/aero/vlm/biot_savart_kernels.py",
+    "models/propulsion/engine.py",
+    "models/loads/model.py",
+    "models/loads/response.py",
+    "models/loads/capability.py",
+)
+#: the file, in each kernel cache directory, holding the digest of the sources its kernels were compiled from
+DIGEST_FILE = "certkit-kernels.sha256"
+
+
+def kernel_cache_dirs(package: Path) -> dict[Path, list[str]]:
+    """numba's cache directory of each kernel module (as numba locates it: ``NUMBA_CACHE_DIR``, else the module's
+    ``__pycache__``, else the user-wide cache) → the module stems cached there."""
+    from numba.core.caching import CacheImpl
+
+    out: dict[Path, list[str]] = {}
+    for module in KERNEL_MODULES:
+        path = str(package / module)
+        for locator in CacheImpl._locator_classes:  # numba's own order of cache locations
+            found = locator.from_function(kernel_array, path)
+            if found is not None:
+                out.setdefault(Path(found.get_cache_path()), []).append(Path(module).stem)
+                break
+    return out
+
+
+def refresh_stale_kernels(package: Path | None = None) -> list[Path]:
+    """Remove certkit's cached kernels from every cache directory whose digest file does not hold the digest of the
+    current kernel sources (:data:`KERNEL_MODULES`), and write the digest there. Returns the files removed."""
+    package = Path(__file__).resolve().parents[1] if package is None else package
+    digest = hashlib.sha256(b"".join((package / m).read_bytes() for m in KERNEL_MODULES)).hexdigest()
+    removed: list[Path] = []
+    for directory, stems in kernel_cache_dirs(package).items():
+        stamp = directory / DIGEST_FILE
+        try:
+            if stamp.read_text() == digest:
+                continue
+        except OSError:
+            pass
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+            for entry in directory.iterdir():
+                if entry.suffix in (".nbi", ".nbc") and entry.name.split(".")[0] in stems:
+                    entry.unlink(missing_ok=True)
+                    removed.append(entry)
+            stamp.write_text(digest)
+        except OSError:  # a cache numba cannot write either: it compiles in memory
+            continue
+    return removed
 
 
 def kernel_array(values: npt.ArrayLike, dtype: npt.DTypeLike = float) -> np.ndarray:
@@ -43,3 +112,6 @@ def kernels_cached() -> bool:
     except AttributeError:
         return True  # another numba: say nothing rather than guess
     return os.path.exists(index)
+
+
+refresh_stale_kernels()

@@ -85,7 +85,9 @@ def test_rudder_side_force_per_fin_area(model):
     "(CL 0.20 with the declared linear twist) and does not grow with the lift coefficient; the lattice's own Cl_β "
     "grows by −0.087 per unit CL at M 0.8, which at the 747's cruise CL 0.654 (W/q̄S, Etkin & Reid Table 6.2) gives "
     "−0.231 (0.82); the baseline's 31° of sweep against the 747's 37.5° accounts for the rest (Roskam Part VI "
-    "§10.2.4.1). A named model limit, docs/baseline-sources.md §14",
+    "§10.2.4.1). A named model limit, docs/baseline-sources.md §14 (with that growth in the flight model the "
+    "declared roll control, the outboard aileron alone, cannot hold §25.177(c)'s sideslips: it waits for the "
+    "flaperons and spoilers)",
 )
 def test_dihedral_effect_at_cruise(model):
     """Cl_β at M 0.8 against the 747's −0.280 at its cruise lift coefficient."""
@@ -96,7 +98,8 @@ def test_dihedral_effect_at_cruise(model):
     strict=True,
     reason="Cl_β at approach 0.55 × the 747's (−0.154 against −0.281 at CL 1.76): the "
     "model's Cl_β is the lattice's at one angle of attack and does not grow with the lift coefficient "
-    "as a swept wing's does (ΔCl_β/CL ∝ sin 2Λ): a named model limit, docs/baseline-sources.md §14",
+    "as a swept wing's does (ΔCl_β/CL ∝ sin 2Λ; the lattice's −0.081 per unit CL at M 0.2 gives 1.01 × the "
+    "747's): a named model limit, docs/baseline-sources.md §14",
 )
 def test_dihedral_effect_at_approach(model):
     assert ratio(model, "takeoff", 0.2, "Cl_beta", APPROACH_747) == pytest.approx(1.0, abs=BAND)
