@@ -23,6 +23,7 @@ from __future__ import annotations
 import hashlib
 import os
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -56,7 +57,8 @@ def kernel_cache_dirs(package: Path) -> dict[Path, list[str]]:
     out: dict[Path, list[str]] = {}
     for module in KERNEL_MODULES:
         path = str(package / module)
-        for locator in CacheImpl._locator_classes:  # numba's own order of cache locations
+        locators: list[Any] = list(CacheImpl._locator_classes)  # numba's own order of cache locations
+        for locator in locators:
             found = locator.from_function(kernel_array, path)
             if found is not None:
                 out.setdefault(Path(found.get_cache_path()), []).append(Path(module).stem)
@@ -108,7 +110,8 @@ def kernels_cached() -> bool:
     from certkit.models.dynamics import kernel
 
     try:
-        index = kernel.derivatives._cache._cache_file._index_path  # numba's cache layout, not a public API
+        dispatcher: Any = kernel.derivatives
+        index = dispatcher._cache._cache_file._index_path  # numba's cache layout, not a public API
     except AttributeError:
         return True  # another numba: say nothing rather than guess
     return os.path.exists(index)

@@ -16,9 +16,14 @@
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from certkit.models.aero import planform
+
+if TYPE_CHECKING:
+    from certkit.aircraft.model import Configuration, HighLiftDevice, LiftingSurface
 
 DELTA_CLMAX_SECTION = {
     "plain": 0.9,
@@ -40,21 +45,24 @@ def section_clmax(thickness_ratio: float) -> float:
     return float(np.interp(thickness_ratio, [0.06, 0.09, 0.12, 0.15, 0.21], [1.0, 1.3, 1.6, 1.6, 1.4]))
 
 
-def clean_clmax(wing) -> float:
-    return 0.9 * section_clmax(wing.thickness_ratio) * np.cos(wing.sweep_quarter_chord)
+def clean_clmax(wing: LiftingSurface) -> float:
+    """Clean wing maximum lift, 0.9 c_lmax cos Λ_c/4 (Raymer eq. 12.15 form)."""
+    return float(0.9 * section_clmax(wing.thickness_ratio) * np.cos(wing.sweep_quarter_chord))
 
 
-def flapped_area_ratio(wing, device) -> float:
+def flapped_area_ratio(wing: LiftingSurface, device: HighLiftDevice) -> float:
     """S_flapped/S: the wing area between the device's spanwise ends (trapezoid, fractions of semispan)."""
     lam = wing.taper
 
-    def area_inboard_of(eta):  # fraction of the half-wing area inboard of eta
-        return (eta - 0.5 * (1 - lam) * eta**2) / (0.5 * (1 + lam))
+    def area_inboard_of(eta: float) -> float:  # fraction of the half-wing area inboard of eta
+        return float((eta - 0.5 * (1 - lam) * eta**2) / (0.5 * (1 + lam)))
 
     return area_inboard_of(device.span_end) - area_inboard_of(device.span_start)
 
 
-def hinge_sweep(wing, device, trailing: bool = True) -> float:
+def hinge_sweep(wing: LiftingSurface, device: HighLiftDevice, trailing: bool = True) -> float:
+    """Sweep of the device's hinge line (rad): the trailing-edge device's at 1 − its chord ratio, a leading-edge
+    device's at its chord ratio."""
     fraction = 1.0 - device.chord_ratio if trailing else device.chord_ratio
     return float(planform.sweep_at(fraction, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper))
 
@@ -63,7 +71,7 @@ def _deflection_scale(deflection: float) -> float:
     return float(min(max(deflection, 0.0) / LANDING_DEFLECTION, 1.0))
 
 
-def delta_clmax(wing, device, deflection: float) -> float:
+def delta_clmax(wing: LiftingSurface, device: HighLiftDevice | None, deflection: float) -> float:
     """ΔC_Lmax of one device at ``deflection`` (rad), Raymer eq. 12.21."""
     if device is None or deflection <= 0:
         return 0.0
@@ -71,7 +79,7 @@ def delta_clmax(wing, device, deflection: float) -> float:
     if device.type in CHORD_SCALED:
         base *= 1.0 + device.chord_ratio  # c'/c with the extension about equal to the device chord
     trailing = device.type not in ("slat", "krueger")
-    return (
+    return float(
         0.9
         * base
         * flapped_area_ratio(wing, device)
@@ -80,7 +88,14 @@ def delta_clmax(wing, device, deflection: float) -> float:
     )
 
 
-def lift_and_moment_increment(wing, flaps, flap_deflection: float, cl_alpha: float, x_ref: float, mean_chord: float):
+def lift_and_moment_increment(
+    wing: LiftingSurface,
+    flaps: HighLiftDevice | None,
+    flap_deflection: float,
+    cl_alpha: float,
+    x_ref: float,
+    mean_chord: float,
+) -> tuple[float, float]:
     """(ΔC_L0, ΔC_m0) of the trailing-edge flaps at ``flap_deflection`` (Raymer eq. 12.22 and the module notes)."""
     if flaps is None or flap_deflection <= 0:
         return 0.0, 0.0
@@ -99,7 +114,7 @@ def lift_and_moment_increment(wing, flaps, flap_deflection: float, cl_alpha: flo
     return float(d_cl), float(-d_cl * (x_flap - x_ref) / mean_chord)
 
 
-def estimated_clmax(wing, configuration) -> float:
+def estimated_clmax(wing: LiftingSurface, configuration: Configuration) -> float:
     """C_Lmax of a configuration: clean estimate plus the flap and slat increments."""
     return (
         clean_clmax(wing)

@@ -17,10 +17,19 @@ mirror of one on the right and loads the left half only.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
+import numpy.typing as npt
+
+if TYPE_CHECKING:
+    from certkit.aircraft.model import Aircraft
+
+Floats = npt.NDArray[np.float64]
 
 
-def _weights(y1, y2, chord, a, b):
+def _weights(y1: Floats, y2: Floats, chord: Floats, a: float, b: float) -> tuple[Floats, Floats]:
+    """Each strip's volume weight (chord² × its span inside [a, b]) and the centre of that part."""
     lo, hi = np.minimum(y1, y2), np.maximum(y1, y2)
     overlap = np.clip(np.minimum(hi, b) - np.maximum(lo, a), 0.0, None)
     w = chord**2 * overlap
@@ -28,18 +37,24 @@ def _weights(y1, y2, chord, a, b):
     return w, centre
 
 
-def _centroid(y1, y2, chord, a, b) -> float:
+def _centroid(y1: Floats, y2: Floats, chord: Floats, a: float, b: float) -> float:
     w, centre = _weights(y1, y2, chord, a, b)
     return float(np.sum(w * centre) / np.sum(w)) if np.sum(w) > 0 else a
 
 
 def tank_strip_shares(
-    y1, y2, chord, tank_y: float, side_of_body: float, y_inboard: float | None = None, y_outboard: float | None = None
-) -> tuple[np.ndarray, str | None]:
+    y1: npt.ArrayLike,
+    y2: npt.ArrayLike,
+    chord: npt.ArrayLike,
+    tank_y: float,
+    side_of_body: float,
+    y_inboard: float | None = None,
+    y_outboard: float | None = None,
+) -> tuple[Floats, str | None]:
     """Fraction of one tank's fuel on each strip of the right half of the wing (strips between |y| ``y1`` and ``y2``,
     chord ``chord``), and a note when the declared centroid cannot be honoured. The fractions sum to 1 for a tank
     on the right, ½ for a centre tank, 0 for a tank on the left."""
-    y1, y2, chord = (np.asarray(v, dtype=float) for v in (y1, y2, chord))
+    y1, y2, chord = (np.asarray(v, dtype=np.float64) for v in (y1, y2, chord))
     tip = float(np.max(np.maximum(y1, y2)))
     if tank_y < -1e-6:
         return np.zeros_like(chord), None
@@ -80,7 +95,9 @@ def tank_strip_shares(
     return w / w.sum(), note
 
 
-def wing_tank_shares(aircraft, y1, y2, chord, side_of_body: float) -> tuple[tuple[str, ...], np.ndarray, list[str]]:
+def wing_tank_shares(
+    aircraft: Aircraft, y1: npt.ArrayLike, y2: npt.ArrayLike, chord: npt.ArrayLike, side_of_body: float
+) -> tuple[tuple[str, ...], Floats, list[str]]:
     """Every declared tank's strip fractions (:func:`tank_strip_shares`): names, (K, J) array, notes."""
     names, rows, notes = [], [], []
     for t in aircraft.mass.fuel_tanks:
@@ -89,4 +106,4 @@ def wing_tank_shares(aircraft, y1, y2, chord, side_of_body: float) -> tuple[tupl
         rows.append(share)
         if note:
             notes.append(f"fuel tank {t.name}: {note}")
-    return tuple(names), np.array(rows).reshape(len(rows), len(chord)), notes
+    return tuple(names), np.array(rows).reshape(len(rows), np.size(chord)), notes
