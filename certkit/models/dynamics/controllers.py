@@ -258,8 +258,11 @@ class HeadingHold(Controller):
     yawing moment needs no standing heading error) with yaw-rate damping,
         δr = δr0 + K_ψ e + K_I ∫e dt + K_r r,   e = (ψ − ψ0) + c,   c = K_y (y − y0) limited to ± ``max_correction``,
     the integral frozen while the rudder is on its limit in the error's direction (anti-windup); with K_y > 0 the
-    ground run also tracks the centreline (a lateral outer loop: heading command ψ0 − c, back to the centreline
-    with a time constant of about 1/(V K_y), a crab of at most 3°), c held at its last ground value once airborne
+    ground run also tracks the centreline (a lateral outer loop: track command ψ0 − c, back to the centreline
+    with a time constant of about 1/(V K_y), a crab of at most 3°) and, on the ground, e steers the track ψ + β
+    rather than the nose (a pilot follows the runway: on lightly loaded wheels — a long rotated run — the rudder's
+    side force lets the airplane sideslip, and holding the nose alone would let it slide off the centreline),
+    c held at its last ground value once airborne
     (no step in the rudder at lift-off); no nose-wheel steering (the §25.149(e) VMCG
     demonstration uses the rudder alone). Aileron toward the commanded bank, wings level on the ground and
     ``bank`` (rad, per condition) once the gear carries no load (e.g. a few degrees toward the operating engine):
@@ -305,7 +308,8 @@ class HeadingHold(Controller):
         if self.k_y:  # the centreline's heading correction, limited, held at its last value on the ground once airborne
             ground = np.clip(self.k_y * (x[:, 1] - self.y0), -self.max_correction, self.max_correction)
             self.correction = np.where(airborne, self.correction, ground)
-            err = err + self.correction
+            # on the ground the track, not the nose, is steered back: the sideslip the tyres let through counts
+            err = err + self.correction + np.where(airborne, 0.0, out.beta)
         raw = self.dr0 + self.k_psi * err + self.k_i * self.integral + self.k_r * x[:, 8]
         lo, hi = self.lim_r
         self.integral += np.where(on_stop(raw, err, lo, hi), 0.0, err) * dt
