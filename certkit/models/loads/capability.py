@@ -16,10 +16,13 @@ fractions to its load stations, so a declared station is always one the loads ar
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
 from certkit.models.loads.model import QUANTITIES, station_label
@@ -50,8 +53,18 @@ class LoadMargin:
     margin: float
 
 
+#: a surface's capabilities as arrays (:func:`_table`): rows, quantity and station indices, allowables, 1/|allowable|
+CapabilityTable = tuple[
+    tuple["Capability", ...],
+    npt.NDArray[np.int64],
+    npt.NDArray[np.int64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]
+
+
 @lru_cache(maxsize=256)
-def _table(capabilities: tuple, surface: str, stations: tuple):
+def _table(capabilities: tuple[Capability, ...], surface: str, stations: tuple[str, ...]) -> CapabilityTable | None:
     """The capabilities of ``surface`` at ``stations`` as arrays: the rows, their station and quantity indices and the
     allowables (R, 4) in the order max limit, max ultimate, min limit, min ultimate (one table per capability set)."""
     rows = [
@@ -72,7 +85,13 @@ def _table(capabilities: tuple, surface: str, stations: tuple):
     return tuple(r[0] for r in rows), q, s, allow, 1.0 / np.maximum(np.abs(allow), 1e-9)
 
 
-def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultimate_factor: float):
+def worst_margin(
+    capabilities: Iterable[Capability],
+    surface: str,
+    stations: Sequence[str],
+    peaks: npt.ArrayLike,
+    ultimate_factor: float,
+) -> tuple[LoadMargin, Capability] | None:
     """The smallest normalised margin (margin / |allowable|) over the ``capabilities`` of ``surface`` at ``stations``
     for the loads ``peaks`` (2, 3, S: min and max), as (LoadMargin, Capability), or None when no capability applies.
     Each capability is compared in each loaded sense (max when the largest load is not ≤ 0, min when the smallest is
@@ -90,7 +109,7 @@ def worst_margin(capabilities, surface: str, stations, peaks: np.ndarray, ultima
 
 
 @njit(cache=True)
-def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):
+def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):  # type: ignore[no-untyped-def]
     """:func:`worst_margin`'s search in compiled code (a design study makes thousands per design): the row and column
     (max limit, max ultimate, min limit, min ultimate) of the first smallest normalised margin and its load, or
     (−1, −1, 0) when no capability is loaded."""
@@ -115,13 +134,13 @@ def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):
     return best_i, best_j, best_load
 
 
-def declared_capabilities(ctx, surface: str) -> list[Capability]:
+def declared_capabilities(ctx: Any, surface: str) -> list[Capability]:
     """The capabilities of ``surface`` declared in the aircraft file (empty when none are)."""
     st = getattr(ctx.aircraft, "structure", None)
     out = []
     for c in getattr(st, surface) if st is not None else ():
 
-        def value(v):
+        def value(v: Any) -> float | tuple[float, float]:
             return (float(v.negative), float(v.positive)) if hasattr(v, "negative") else float(v)
 
         out.append(
