@@ -2,6 +2,8 @@
 
 import re
 
+import pytest
+
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.engine.registry import discover, select
@@ -110,6 +112,18 @@ def hand_margin(details, capabilities, ultimate_factor=1.5):
                 if worst is None or margin / allowable < worst[0]:
                     worst = (margin / allowable, margin, f"{which} {cap.quantity} at {cap.station}")
     return worst
+
+
+def assert_margins_by_hand(findings, capabilities_by_surface):
+    """Every evaluated loads finding's margin equals :func:`hand_margin` of its reported loads against the declared
+    capabilities of its surface (the surface named at the end of the check before ":"), within the 0.1 kN rounding
+    of the reported loads: 0.2 kN (kN·m) plus 0.1 % of the allowable."""
+    for f in findings:
+        if f.status in ("complies", "fails") and f.margin is not None:
+            named = f.check.split(":")[0]
+            surface = next(s for s in capabilities_by_surface if named.endswith(s.replace("_", " ")))
+            _, margin, _ = hand_margin(f.all_details(), capabilities_by_surface[surface])
+            assert f.margin == pytest.approx(margin, abs=0.2e3 + 1e-3 * abs(f.limit))
 
 
 def failures_with(tmp_path, rule, edits, check_part):

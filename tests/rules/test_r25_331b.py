@@ -12,7 +12,13 @@ from certkit.engine.scheduler import criteria_for, evaluate_rule
 from certkit.models.loads.capability import declared_capabilities
 from certkit.units import G0
 
-from .helpers import NO_STABILIZER, NO_STRUCTURE, edited_baseline, failures_with, hand_margin
+from .helpers import (
+    NO_STABILIZER,
+    NO_STRUCTURE,
+    assert_margins_by_hand,
+    edited_baseline,
+    failures_with,
+)
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 
@@ -151,12 +157,7 @@ def test_margins_by_hand_and_the_critical_wing_case(run):
     critical wing case is the heaviest forward-CG airplane at the top of the envelope, side-of-body ultimate bending,
     and with the wing fuel of §25.343 it complies (docs/baseline-sources.md §10)."""
     ctx, findings, _ = run
-    caps = {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")}
-    for f in findings:
-        if f.status in ("complies", "fails") and f.margin is not None:
-            surface = "wing" if f.check.split(":")[0].endswith("wing") else "horizontal_tail"
-            norm, margin, _ = hand_margin(f.all_details(), caps[surface])
-            assert f.margin == pytest.approx(margin, abs=0.2e3 + 1e-3 * abs(f.limit))
+    assert_margins_by_hand(findings, {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")})
     wing = [f for f in findings if f.status in ("complies", "fails") and "wing:" in f.check]
     worst = min(wing, key=lambda f: f.margin / f.limit)
     assert worst.condition.loading == "fwd_mrw" and worst.condition.get("point") in ("A", "VC at n+", "D")

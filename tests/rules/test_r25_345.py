@@ -17,7 +17,7 @@ from certkit.engine.scheduler import criteria_for
 from certkit.models.loads.capability import declared_capabilities
 from certkit.units import FT, G0, KN
 
-from .helpers import NO_STRUCTURE, edited_baseline, hand_margin
+from .helpers import NO_STRUCTURE, assert_margins_by_hand, edited_baseline
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 
@@ -100,12 +100,7 @@ def test_peak_load_factor_against_pratt(run, configuration):
 def test_margins_by_hand(run):
     """Each evaluated finding's margin recomputed from its reported station loads and the declared capabilities."""
     ctx, findings, _ = run
-    caps = {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")}
-    for f in findings:
-        if f.status in ("complies", "fails") and f.margin is not None:
-            surface = "wing" if f.check.split(":")[0].endswith("wing") else "horizontal_tail"
-            _, margin, _ = hand_margin(f.all_details(), caps[surface])
-            assert f.margin == pytest.approx(margin, abs=0.2e3 + 1e-3 * abs(f.limit))
+    assert_margins_by_hand(findings, {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")})
 
 
 def test_not_evaluated_without_structural_capability(tmp_path):
@@ -128,8 +123,5 @@ def test_a_weak_tailplane_fails(tmp_path):
     ]
     ctx, findings, _ = _run(edited_baseline(tmp_path, weak), lambda c: c.loading == "fwd_mrw" and c.altitude == 0.0)
     tail = [f for f in findings if f.check.split(":")[0].endswith("horizontal tail")]
-    caps = declared_capabilities(ctx, "horizontal_tail")
     assert tail and all(f.status == "fails" for f in tail)
-    for f in tail:
-        _, margin, _ = hand_margin(f.all_details(), caps)
-        assert f.margin == pytest.approx(margin, abs=0.2e3 + 1e-3 * abs(f.limit))
+    assert_margins_by_hand(tail, {"horizontal_tail": declared_capabilities(ctx, "horizontal_tail")})

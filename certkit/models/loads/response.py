@@ -80,8 +80,7 @@ def flap_deflection(loads: AirplaneLoads, model, mach) -> dict[str, np.ndarray]:
     model has no flap lift or the loads model no flap."""
     aero = model.aero
     lift = getattr(aero, "flap_lift", None)
-    wing = loads.surfaces.get("wing") if loads is not None else None
-    if lift is None or not np.any(lift) or wing is None or FLAP_CONTROL not in wing.inputs:
+    if lift is None or not np.any(lift) or not _wing_has_flap(loads):
         return {}
     mach = np.asarray(mach, dtype=float)
     out = {}
@@ -97,10 +96,13 @@ def holds_flap_lift(loads: AirplaneLoads, model) -> bool:
     """Whether the strip model's wing carries the flight model's flap lift (:func:`flap_deflection`): none to carry,
     or a wing flap in the loads model to spread it with."""
     lift = getattr(model.aero, "flap_lift", None)
-    if lift is None:
-        return False
-    wing = loads.surfaces.get("wing")
-    return not np.any(lift) or (wing is not None and FLAP_CONTROL in wing.inputs)
+    return lift is not None and (not np.any(lift) or _wing_has_flap(loads))
+
+
+def _wing_has_flap(loads: AirplaneLoads | None) -> bool:
+    """Whether the loads model's wing has the lattice's flap as an input."""
+    wing = loads.surfaces.get("wing") if loads is not None else None
+    return wing is not None and FLAP_CONTROL in wing.inputs
 
 
 def inertia_terms(sim, model) -> dict[str, np.ndarray]:

@@ -31,6 +31,7 @@ from certkit_rules.part25.support.structural_checks import (
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun
+from certkit.models.aero import planform
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES
 from certkit.models.loads.response import LoadEnvelope
@@ -120,7 +121,7 @@ class FlapGusts(SimulationRule):
 def mean_geometric_chord(aircraft) -> float:
     """c̄ = S/b of the wing (m), the chord §25.345(a)(2)'s gradient refers to."""
     wing = aircraft.geometry.wing
-    return float(wing.area / np.sqrt(wing.area * wing.aspect_ratio))
+    return float(wing.area / planform.span(wing.area, wing.aspect_ratio))
 
 
 def _check(c, surface: str) -> str:
@@ -137,14 +138,15 @@ def flap_gusts(ctx, conditions, crit) -> LoadsRun:
     for c in conditions:
         by_cfg.setdefault(c.configuration, []).append(c)
     for cfg, conds in by_cfg.items():
-        speeds, ok = {}, []
+        vf, ok = {}, []  # altitude → (VF EAS, its note): VF depends on the configuration and altitude only
         for c in conds:
             high = flap_altitude_findings(ctx, c, float(crit.flap_altitude_max), [_check(c, s) for s in SURFACES])
             if high:
                 findings += high
                 continue
             try:
-                speeds[c] = design_flap_speed(ctx, cfg, c.altitude, crit)[0]
+                if c.altitude not in vf:
+                    vf[c.altitude] = design_flap_speed(ctx, cfg, c.altitude, crit)
             except LookupError as exc:
                 findings += [Finding.not_evaluated(c, _check(c, s), str(exc)) for s in SURFACES]
                 continue
@@ -154,7 +156,7 @@ def flap_gusts(ctx, conditions, crit) -> LoadsRun:
         runs = simulate_gust_set(
             ctx,
             ok,
-            lambda c: speeds[c],  # noqa: B023  (called within this iteration)
+            lambda c: vf[c.altitude][0],  # noqa: B023  (called within this iteration)
             lambda sim, h: np.full(len(sim), uds),
             np.array([H]),
             crit,
@@ -169,7 +171,7 @@ def flap_gusts(ctx, conditions, crit) -> LoadsRun:
                 U_ds_ft_s_EAS=round(uds / FT, 2),
                 H_ft=round(H / FT, 1),
                 peak_n_z=round(float(runs.nz_hi[0, i] if runs.up[i] else runs.nz_lo[0, i]), 4),
-                speed_note=design_flap_speed(ctx, cfg, c.altitude, crit)[1],
+                speed_note=vf[c.altitude][1],
             )
             for s in SURFACES:
                 if s == "wing":

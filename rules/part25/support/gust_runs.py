@@ -192,18 +192,16 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
     ``design_velocity(simulated conditions, H) -> (n,)`` (EAS, m/s), up or down as the condition's ``gust`` says;
     ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
     trim."""
-    entries, key_of = [], {}
+    entries, key_of, entry_of = [], {}, {}
     for c in conditions:
         v = float(speed_of(c))
         key = (c.loading, c.altitude, round(v, 6))
         if key not in key_of:
             key_of[key] = len(entries)
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
-    speed = {c: round(float(speed_of(c)), 6) for c in conditions}
+        entry_of[c] = key_of[key]
     batch = trimmed_batch(ctx, entries)
-    rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, speed[c])], [e.speed for e in entries]
-    )
+    rows, sim_conds, refused = batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries])
     empty = np.zeros((len(H), 0))
     if not rows.size:
         return GustRuns(list(refused), [], H, [], empty, empty, empty, [])
