@@ -114,6 +114,22 @@ def _mission_for_report(aircraft) -> dict | None:
     return out
 
 
+def _compile_kernels(jobs: int, announce: bool) -> None:
+    """At the first run after an install (numba's cache cold), compile certkit's kernels ahead in ``jobs`` processes
+    (:mod:`certkit.models.kernel_warmup`), saying so when ``announce``."""
+    from certkit.models.compiled import kernels_cached
+
+    if kernels_cached():
+        return
+    if announce:
+        click.echo("compiling certkit's numba kernels (once after an install; cached for later runs)…", err=True)
+    from certkit.models.kernel_warmup import compile_kernels
+
+    seconds = compile_kernels(jobs)
+    if announce and seconds:
+        click.echo(f"kernels compiled in {seconds:.0f} s", err=True)
+
+
 def _default_jobs(jobs: int | None) -> int:
     """The processes to use (default: the cores available, at most 4). Every process gets one BLAS/OpenMP thread (set
     before numpy loads; a user's own setting is kept): threaded BLAS in several processes oversubscribes the cores and
@@ -245,8 +261,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         from certkit.aircraft import load_aircraft
         from certkit.engine.registry import select as select_rules
         from certkit.engine.scheduler import check_overrides, run
-        from certkit.report.figures import render_result
-        from certkit.report.html import write_report
+        from certkit.report.html import ReportFinish, write_report
         from certkit.report.output import prepare_output, report_folder_name
         from certkit.report.terminal import Progress
 
@@ -264,11 +279,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     warning = inertia_comparison(loaded.model)
     if warning:
         click.echo(f"warning: {warning}", err=True)
-    if not quiet and output_format == "text":
-        from certkit.models.compiled import kernels_cached
-
-        if not kernels_cached():
-            click.echo("compiling certkit's numba kernels (once after an install; cached for later runs)…", err=True)
+    _compile_kernels(jobs, announce=not quiet and output_format == "text")
     progress = Progress(chosen, quiet=quiet or output_format != "text")
     try:
         # the missions are flown in this process while the workers evaluate the rules
@@ -277,7 +288,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             chosen,
             jobs=jobs,
             options=options,
-            finish=render_result,
+            finish=ReportFinish(chosen),
             progress=progress,
             alongside={"mission": lambda: _mission_for_report(loaded.model)},
         )
@@ -712,6 +723,7 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
     """Evaluate one design: size the horizontal tail from its loads, run every rule and the mission, print one
     record (design variables, objectives, rule margins, sub-checks, handling levels, sizing, timings)."""
     jobs = _default_jobs(jobs)
+    _compile_kernels(jobs, announce=not as_json)
     from certkit.design.evaluate import evaluate_design
     from certkit.design.report import print_record
     from certkit.design.sizing_loop import SizingNotConverged

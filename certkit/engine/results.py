@@ -350,6 +350,8 @@ class RuleResult:
     notes: list[str] = field(default_factory=list)
     #: :meth:`to_json` as a worker process encoded it once the rule was evaluated (None: encoded when needed)
     encoded: str | None = field(default=None, repr=False, compare=False)
+    #: the report's HTML section as the process that evaluated the rule rendered it (None: rendered when needed)
+    section: str | None = field(default=None, repr=False, compare=False)
     #: the load envelopes a loads rule computed, kept when asked (:func:`certkit.engine.scheduler.evaluate_rule`)
     load_envelopes: list[Any] = field(default_factory=list, repr=False, compare=False)
     #: what the rule simulated (:class:`SimulationRun`) when the load envelopes are kept; never written to results.json

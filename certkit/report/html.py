@@ -16,7 +16,15 @@ from jinja2 import Environment
 from markupsafe import Markup, escape
 
 from certkit.engine.registry import Rule
-from certkit.engine.results import COMPLIES, COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, STATUS_LABEL, RunResult
+from certkit.engine.results import (
+    COMPLIES,
+    COMPLIES_PARTIAL,
+    FAILS,
+    NOT_EVALUATED,
+    STATUS_LABEL,
+    RuleResult,
+    RunResult,
+)
 from certkit.report.ci_formats import subpart
 from certkit.report.display import format_value as format_number
 from certkit.report.display import in_display_units, unit_and_factor
@@ -104,7 +112,8 @@ def linkify(text, rule_ids) -> Markup:
     return Markup(_REFERENCE.sub(link, str(escape("" if text is None else text))))
 
 
-def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
+def _referenced_by(rules: list[type[Rule]]) -> dict[str, list[str]]:
+    """Rule id → the ids of the rules whose references resolve to it (the report's "Referenced by")."""
     by_id = {r.id: r for r in rules}
     referenced_by: dict[str, list[str]] = {}
     for cls in rules:
@@ -112,36 +121,75 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
             _, target = resolve(ref, by_id)
             if target and target != cls.id and cls.id not in referenced_by.setdefault(target, []):
                 referenced_by[target].append(cls.id)
+    return referenced_by
+
+
+def _section(result: RuleResult, by_id: dict[str, type[Rule]], referenced_by: dict[str, list[str]]) -> dict:
+    """What the report shows of one rule (its section and its line in the triage table)."""
+    cls = by_id[result.id]
+    flags: dict[str, list[str]] = {}
+    for name, c in cls.criteria.items():
+        if c.basis in FLAGGED_BASES and name not in result.overrides:
+            flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
+    for name, o in result.overrides.items():
+        flags.setdefault("override", []).append(f"{name} {o['default']} → {o['value']}: {o['justification']}")
+    return {
+        "result": result,
+        "rule": cls,
+        "critical": result.critical,
+        "subpart": subpart(result.id).upper(),
+        "rank": STATUS_ORDER[result.status],
+        "reason": reason_line(result),
+        "where": reason_condition(result),
+        "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
+        "requirement": _paragraphs(cls.requirement),
+        "margin": in_display_units(_paragraphs(cls.margin)),
+        "conditions": cls.conditions.describe(),
+        "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
+        "referenced_by": referenced_by.get(result.id, []),
+        "criteria": [{"name": k, "criterion": c, "override": result.overrides.get(k)} for k, c in cls.criteria.items()],
+    }
+
+
+class ReportFinish:
+    """The report's work on a rule's result where the rule was evaluated (a check's ``finish``,
+    :func:`certkit.engine.scheduler.run`): its figures drawn and its HTML section rendered, in parallel with the other
+    rules; the report then puts the sections together (the same page as rendering them there)."""
+
+    def __init__(self, rules: list[type[Rule]]):
+        self.rules = rules
+        self._by_id: dict[str, type[Rule]] | None = None
+        self._referenced_by: dict[str, list[str]] = {}
+        self._env: Environment | None = None
+
+    def __getstate__(self) -> dict:
+        return {"rules": self.rules, "_by_id": None, "_referenced_by": {}, "_env": None}
+
+    def section(self, result: RuleResult) -> dict:
+        if self._by_id is None:
+            self._by_id = {r.id: r for r in self.rules}
+            self._referenced_by = _referenced_by(self.rules)
+            self._env = _environment(self._by_id)
+        return _section(result, self._by_id, self._referenced_by)
+
+    def section_html(self, result: RuleResult, data: dict | None = None) -> str:
+        data = self.section(result) if data is None else data
+        assert self._env is not None
+        return pack_tables(self._env.get_template("rule_section.html").render(s=data))
+
+    def __call__(self, result: RuleResult) -> None:
+        render_result(result)
+        result.section = self.section_html(result)
+
+
+def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
+    finish = ReportFinish(rules)
     sections = []
     for result in run.rules:
         render_result(result)  # figures not drawn yet (those drawn by the workers of a check are kept)
-        cls = by_id[result.id]
-        flags = {}
-        for name, c in cls.criteria.items():
-            if c.basis in FLAGGED_BASES and name not in result.overrides:
-                flags.setdefault(c.basis, []).append(f"{name}: {c.source}")
-        for name, o in result.overrides.items():
-            flags.setdefault("override", []).append(f"{name} {o['default']} → {o['value']}: {o['justification']}")
-        sections.append(
-            {
-                "result": result,
-                "rule": cls,
-                "critical": result.critical,
-                "subpart": subpart(result.id).upper(),
-                "rank": STATUS_ORDER[result.status],
-                "reason": reason_line(result),
-                "where": reason_condition(result),
-                "flags": {FLAGGED_BASES[k]: v for k, v in flags.items()},
-                "requirement": _paragraphs(cls.requirement),
-                "margin": in_display_units(_paragraphs(cls.margin)),
-                "conditions": cls.conditions.describe(),
-                "references": [{"id": ref, "href": resolve(ref, by_id)[0]} for ref in cls.references],
-                "referenced_by": referenced_by.get(result.id, []),
-                "criteria": [
-                    {"name": k, "criterion": c, "override": result.overrides.get(k)} for k, c in cls.criteria.items()
-                ],
-            }
-        )
+        data = finish.section(result)
+        data["html"] = Markup(result.section if result.section is not None else finish.section_html(result, data))
+        sections.append(data)
     order = sorted(
         sections,
         key=lambda s: (
@@ -153,7 +201,7 @@ def render_html(run: RunResult, rules: list[type[Rule]]) -> str:
     )
     overrides = [(r.id, k, v) for r in run.rules for k, v in r.overrides.items()]
     return pack_tables(
-        _environment(by_id)
+        _environment({r.id: r for r in rules})
         .get_template("report.html")
         .render(
             run=run,
@@ -216,4 +264,4 @@ def write_report(run: RunResult, rules: list[type[Rule]], out_dir: str | Path) -
     return out / "results.json", out / "index.html"
 
 
-__all__ = ["render_html", "write_report", "format_value", "slug", "linkify"]
+__all__ = ["ReportFinish", "render_html", "write_report", "format_value", "slug", "linkify"]

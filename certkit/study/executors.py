@@ -27,6 +27,17 @@ def _died(task: Task, where: str) -> CaseResult:
     return CaseResult(task.key, "failed", f"the worker process died while evaluating this case ({where})", 0.0, "")
 
 
+def _compile_kernels(processes: int) -> None:
+    """At the first run after an install, compile certkit's numba kernels ahead in ``processes`` spawned processes
+    (:mod:`certkit.models.kernel_warmup`) rather than in every worker on its first case."""
+    from certkit.models.compiled import kernels_cached
+
+    if not kernels_cached():
+        from certkit.models.kernel_warmup import compile_kernels
+
+        compile_kernels(processes, context="spawn")
+
+
 class SerialExecutor:
     """Every case in this process, one after the other (debugging, profiling)."""
 
@@ -65,6 +76,7 @@ class LocalExecutor:
         from certkit.engine.worker_processes import die_with_parent, one_blas_thread
 
         one_blas_thread()  # inherited by the spawned workers
+        _compile_kernels(self.workers)
         self._pool = ProcessPoolExecutor(
             self.workers,
             mp_context=multiprocessing.get_context("spawn"),

@@ -1,0 +1,126 @@
+"""Compiling certkit's numba kernels before their first use, several modules at once in parallel processes.
+
+numba compiles a kernel the first time it is called with a new combination of argument types, in the process that
+calls it, and caches the machine code on disk. At the first run after an install every process of a
+``certkit check --jobs N`` (or of a study) would compile the kernels its rules call — the same kernels in each
+process, one after the other within a process. Here the kernels are compiled once, ahead, with the argument types
+the rules call them with (:data:`SIGNATURES_FILE`, one line per compiled kernel: module, function, argument types),
+one group of modules per process (:func:`groups`: the equations of motion, the largest, alone); the rules then load
+them from the cache.
+
+The list is a record of what certkit's rules compile; a test compares it with the kernels a check and a design
+evaluation compile (``tests/hardening/test_kernel_warmup.py``, which prints the new list when it differs). A kernel
+called with types the list lacks is still compiled where it is called: the list only moves work ahead.
+"""
+
+from __future__ import annotations
+
+import importlib
+import multiprocessing
+import sys
+import time
+from collections.abc import Iterable
+from concurrent.futures import ProcessPoolExecutor
+from pathlib import Path
+from typing import Any
+
+#: the kernels to compile ahead: ``module function (argument types)`` per line, as numba writes the types
+SIGNATURES_FILE = Path(__file__).with_name("kernel_signatures.txt")
+#: the module compiled in a process of its own (the equations of motion inline most of the others' work: about half
+#: of the compile time)
+LARGEST_MODULE = "certkit.models.dynamics.kernel"
+
+Entry = tuple[str, str, str]  # module, function, argument types (numba's text)
+
+
+def listed_signatures(path: Path = SIGNATURES_FILE) -> list[Entry]:
+    """The entries of the signatures file (blank lines and ``#`` comments skipped)."""
+    out = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        line = line.strip()
+        if line and not line.startswith("#"):
+            module, function, types = line.split(" ", 2)
+            out.append((module, function, types))
+    return out
+
+
+def used_signatures(modules: Iterable[str] | None = None) -> list[Entry]:
+    """The kernels this process has compiled or loaded, with their argument types, sorted (certkit's modules only)."""
+    from numba.core.registry import CPUDispatcher
+
+    names = sorted(sys.modules) if modules is None else sorted(modules)
+    out = []
+    for name in names:
+        module = sys.modules.get(name)
+        if module is None or not name.startswith("certkit"):
+            continue
+        for function, value in sorted(vars(module).items()):
+            if isinstance(value, CPUDispatcher) and value.__module__ == name:
+                out += [(name, function, str(sig)) for sig in value.signatures]
+    return sorted(set(out))
+
+
+def argument_types(text: str) -> tuple[Any, ...]:
+    """numba's argument types from their text (``(Array(float64, 2, 'C', False, aligned=True), int64)``)."""
+    from numba.core import types
+
+    names = {
+        "Array": types.Array,
+        "float64": types.float64,
+        "int64": types.int64,
+        "bool": types.boolean,
+        "False": False,
+        "True": True,
+    }
+    value = eval(text, {"__builtins__": {}}, names)  # noqa: S307 - the package's own file, names restricted
+    return value if isinstance(value, tuple) else (value,)
+
+
+def compile_group(entries: list[Entry]) -> float:
+    """Compile (or load from numba's cache) each entry's kernel for its argument types; the seconds taken."""
+    start = time.perf_counter()
+    for module, function, types in entries:
+        dispatcher = getattr(importlib.import_module(module), function)
+        dispatcher.compile(argument_types(types))
+    return time.perf_counter() - start
+
+
+def groups(entries: list[Entry], processes: int) -> list[list[Entry]]:
+    """The entries in at most ``processes`` groups of whole modules: :data:`LARGEST_MODULE` alone, the others dealt
+    in turn to the group with the fewest kernels (a kernel called by another module's compiles with it either way)."""
+    by_module: dict[str, list[Entry]] = {}
+    for e in entries:
+        by_module.setdefault(e[0], []).append(e)
+    if processes < 2 or len(by_module) < 2:
+        return [list(entries)] if entries else []
+    first = by_module.pop(LARGEST_MODULE, [])
+    rest: list[list[Entry]] = [[] for _ in range(processes - 1 if first else processes)]
+    for module in sorted(by_module, key=lambda m: -len(by_module[m])):
+        min(rest, key=len).extend(by_module[module])
+    return [g for g in ([first] if first else []) + rest if g]
+
+
+def compile_kernels(processes: int, entries: list[Entry] | None = None, context: str = "fork") -> float:
+    """Compile the listed kernels (:func:`listed_signatures`) in up to ``processes`` processes (started by the
+    multiprocessing ``context``; spawn for a caller with threads), each group of modules in its own, into numba's disk
+    cache; the wall seconds taken. One process: nothing is done ahead (the rules compile what they call as they go,
+    the same work)."""
+    entries = listed_signatures() if entries is None else entries
+    if processes < 2 or not entries:
+        return 0.0
+    start = time.perf_counter()
+    parts = groups(entries, processes)
+    with ProcessPoolExecutor(len(parts), mp_context=multiprocessing.get_context(context)) as pool:
+        list(pool.map(compile_group, parts))
+    return time.perf_counter() - start
+
+
+__all__ = [
+    "SIGNATURES_FILE",
+    "argument_types",
+    "compile_group",
+    "compile_kernels",
+    "groups",
+    "listed_signatures",
+    "used_signatures",
+]

@@ -1,0 +1,77 @@
+"""Compiling certkit's kernels ahead at the first run (certkit/models/kernel_warmup.py): the list of kernels is what
+the rules compile, every entry can be compiled from its text, and the groups keep modules whole."""
+
+import os
+import subprocess
+import sys
+
+from certkit.models.kernel_warmup import (
+    LARGEST_MODULE,
+    SIGNATURES_FILE,
+    argument_types,
+    compile_kernels,
+    groups,
+    listed_signatures,
+)
+
+from ..conftest import ROOT
+
+
+def test_the_list_is_what_a_check_and_a_design_evaluation_compile():
+    """Fails when a kernel gains, loses or changes an argument type (the first run would compile it in every process
+    again); the message holds the new list."""
+    done = subprocess.run(
+        [sys.executable, "-m", "tests.hardening.kernel_usage"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env={**os.environ, "OMP_NUM_THREADS": "1"},
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout == SIGNATURES_FILE.read_text(encoding="utf-8"), (
+        "certkit/models/kernel_signatures.txt is stale; rewrite it with "
+        "`python -m tests.hardening.kernel_usage > certkit/models/kernel_signatures.txt`:\n" + done.stdout
+    )
+
+
+def test_every_listed_signature_reads_as_numba_types():
+    from numba.core import types
+
+    entries = listed_signatures()
+    assert len(entries) >= 20
+    for module, function, text in entries:
+        parsed = argument_types(text)
+        assert parsed and all(isinstance(t, types.Type) for t in parsed), (module, function, text)
+        assert str(parsed) == text  # read back as written
+
+
+def test_groups_keep_each_module_whole_and_the_equations_of_motion_alone():
+    entries = [(m, f"f{k}", "()") for m, n in [(LARGEST_MODULE, 3), ("a", 4), ("b", 2), ("c", 1)] for k in range(n)]
+    parts = groups(entries, 3)
+    assert sorted(e for g in parts for e in g) == sorted(entries)  # nothing lost, nothing twice
+    assert [e[0] for e in parts[0]] == [LARGEST_MODULE] * 3
+    assert all(len({e[0] for e in g} & {"a", "b", "c"}) >= 1 for g in parts[1:])
+    for module in ("a", "b", "c"):
+        assert sum(any(e[0] == module for e in g) for g in parts) == 1
+    assert groups(entries, 1) == [entries]
+    assert len(groups(entries, 8)) == 4  # no empty group
+
+
+def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path):
+    """Two small kernels of two modules compiled by two processes land in an empty cache, where a new process finds
+    them (numba's index file per kernel)."""
+    script = (
+        "from certkit.models.kernel_warmup import compile_kernels, listed_signatures\n"
+        "entries = [e for e in listed_signatures() if e[1] in ('_first_out_of_range', '_worst')]\n"
+        "assert len({e[0] for e in entries}) == 2, entries\n"
+        "print(compile_kernels(2, entries) > 0)\n"
+    )
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, cwd=ROOT)
+    assert done.stdout.strip() == "True", done.stderr[-3000:]
+    indexes = sorted(p.name.split("-")[0] for p in tmp_path.rglob("*.nbi"))
+    assert indexes == ["atmosphere._first_out_of_range", "capability._worst"]
+
+
+def test_one_process_compiles_nothing_ahead():
+    assert compile_kernels(1) == 0.0
