@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Any, Callable, Literal
 
 from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, VOLATILE_KEY, clean, encode
@@ -54,11 +54,19 @@ class Condition:
         return dict(self.extra).get(key, default)
 
     def with_(self, **changes: Any) -> "Condition":
+        """This condition with fields changed; a name that is not a field sets (or replaces) an ``extra`` item."""
+        fields = self.__dataclass_fields__
         extra = dict(self.extra)
-        for key in list(changes):
-            if key not in self.__dataclass_fields__:
-                extra[key] = changes.pop(key)
-        return replace(self, extra=tuple(extra.items()), **changes)
+        values = dict(self.__dict__)
+        for key, value in changes.items():
+            if key in fields:
+                values[key] = value
+            else:
+                extra[key] = value
+        values["extra"] = tuple(extra.items())
+        new = object.__new__(type(self))  # frozen, no __post_init__: the fields set as __init__ would set them
+        new.__dict__.update(values)
+        return new
 
     def refines(self, other: "Condition") -> bool:
         """True when this condition is ``other`` with more fields set (a rule that computes, say, the

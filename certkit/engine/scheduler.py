@@ -232,7 +232,12 @@ def _evaluate_own(
         result.findings.append(Finding.not_evaluated(Condition(), "conditions", _describe_exception(exc)))
         return result
     if only is not None:
-        conditions = [c for c in conditions if any(k.same_point(c) for k in only)]
+        by_place: dict[tuple[str | None, str | None], list[Condition]] = {}
+        for k in only:  # same_point needs the same loading and configuration: only those are compared
+            by_place.setdefault((k.loading, k.configuration), []).append(k)
+        conditions = [
+            c for c in conditions if any(k.same_point(c) for k in by_place.get((c.loading, c.configuration), ()))
+        ]
         result.notes.append(f"partial evaluation: {len(conditions)} selected conditions")
     if not conditions:
         result.findings.append(

@@ -193,6 +193,7 @@ class DaskExecutor:
             # dask's nannies start their workers with MALLOC_TRIM_THRESHOLD_=65536; setting it switches off glibc's
             # dynamic mmap threshold, so every large numpy temporary is a fresh mmap and its page faults: one baseline
             # design cost 1.2x the CPU with it (docs/performance.md). A user's own MALLOC_TRIM_THRESHOLD_ is kept.
+            _compile_kernels(self.workers)  # at a first run: once, ahead, not in every worker
             with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
                 self._cluster = LocalCluster(
                     n_workers=self.workers,
