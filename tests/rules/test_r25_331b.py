@@ -190,6 +190,30 @@ def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_pat
     assert f.margin / abs(f.limit) == pytest.approx(hand_norm, abs=0.04)
 
 
+def test_a_stretched_wing_whose_box_was_not_resized_fails_by_the_hand_margin(tmp_path):
+    """Deficient by geometry: the wing's aspect ratio 8.81 → 12 at the same area (span 208 → 243 ft, chords 15 %
+    shorter), engines, tanks and the declared box allowables unchanged. The same lift acts further out: §25.331(b) must
+    fail at side-of-body ultimate bending (fwd_mrw, VC on the n₊ line, sea level), its normalised margin within 0.04 of
+    the Schrenk hand estimate of the stretched planform (about −10 %; +16 % for the baseline), and the strip bending
+    within 5 % of the hand bending (Schrenk against the lattice, as above)."""
+    edits = FAST + [("    aspect_ratio: 8.81         # [given]", "    aspect_ratio: 12")]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
+    assert ctx.aircraft.geometry.wing.aspect_ratio == 12
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
+    ]
+    f = _one(BalancedManeuver().evaluate(ctx, conds, crit), "fwd_mrw", "VC at n+", "wing")
+    assert f.status == "fails" and "ultimate bending at side of body" in f.check
+    hand = _hand_side_of_body_bending(ctx, f, [ENGINE, MAIN_TANK])
+    hand_norm = (46624e3 - 1.5 * hand) / 46624e3
+    assert hand_norm < -0.05
+    assert f.margin / abs(f.limit) == pytest.approx(hand_norm, abs=0.04)
+    assert 1e3 * f.all_details()["side of body bending max/min (kN·m)"][0] == pytest.approx(hand, rel=0.05)
+
+
 STOP = "beyond the control-system stop"
 MACH = "beyond the aerodynamic and strip loads model's Mach range"
 
