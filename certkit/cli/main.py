@@ -8,6 +8,7 @@ traceback with ``certkit --debug``), 130 interrupted (Ctrl-C; previous outputs a
 
 from __future__ import annotations
 
+import functools
 import gc
 import importlib
 import json
@@ -290,7 +291,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             options=options,
             finish=ReportFinish(chosen),
             progress=progress,
-            alongside={"mission": lambda: _mission_for_report(loaded.model)},
+            alongside={"mission": functools.partial(_mission_for_report, loaded.model)},
         )
         progress.close()
         result.selection = {

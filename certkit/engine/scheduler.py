@@ -421,8 +421,9 @@ def run(
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
-    evaluated it, so that work runs in parallel too. ``alongside`` (name → function of no argument, e.g. the report's
-    missions) runs in this process while the workers evaluate the rules; each result goes to ``models[name]``.
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → picklable function of no argument, e.g. the
+    report's missions) runs in the first worker free once the rules are handed out (in this process with one job);
+    each result goes to ``models[name]``.
     ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
     several processes a unit counts as started when a process becomes free for it: the processes take the units in
     order)."""
@@ -440,11 +441,13 @@ def run(
         )
         try:
             futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
+            # after the rules: the first process free takes them (its imports and compiled kernels already loaded)
+            extras = {name: pool.submit(fn) for name, fn in (alongside or {}).items()}
             if progress:
                 for unit in units[:workers]:
                     progress.started([r.id for r in unit])
-            extra = {name: fn() for name, fn in (alongside or {}).items()}
             parts = _collect(futures, units, workers, progress)
+            extra = {name: future.result() for name, future in extras.items()}
         except BaseException:  # Ctrl-C or a failure: the workers end now, not after their current rules
             stop_pool(pool)
             raise

@@ -252,3 +252,21 @@ def test_a_margin_without_a_unit_is_refused():
     with pytest.raises(ValueError, match="needs the unit"):
         Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="1")
     assert Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="g").unit == "g"
+
+
+def _process_id() -> int:
+    import os
+
+    return os.getpid()
+
+
+def test_work_alongside_the_rules_runs_in_a_worker_and_lands_in_the_models(baseline):
+    """``alongside`` (the report's missions): with several processes a worker runs it once the rules are handed out
+    (its result under ``models``); with one, this process."""
+    import os
+
+    rules = [r for r in discover() if r.id in ("25.333", "25.335(a)", "25.335(b)")]
+    two = run(baseline, rules, jobs=2, alongside={"pid": _process_id})
+    one = run(baseline, rules, jobs=1, alongside={"pid": _process_id})
+    assert two.models["pid"] != os.getpid() and one.models["pid"] == os.getpid()
+    assert [r.id for r in two.rules] == [r.id for r in one.rules]
