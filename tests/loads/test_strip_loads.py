@@ -153,3 +153,17 @@ def test_root_torsion_of_a_uniform_incidence_change(setup, surface, unit):
         normal = (f[mine, 1] * lat.ensy[strip] + f[mine, 2] * lat.ensz[strip]) * np.sign(lat.ensz[strip])
         solver = np.sum(normal * (x_axis_root - lat.rv[mine, 0]))
         assert s.aero[m, k, 2, 0] == pytest.approx(solver, rel=0.03)
+
+
+def test_a_point_mass_is_shared_between_the_strips_that_bracket_it():
+    """The shares keep the mass and its first moment (span × mass) exactly; at or beyond the outermost strip middles
+    the end strip takes it whole."""
+    from certkit.models.loads.model import bracketing_shares
+
+    s_mid = np.array([0.5, 2.0, 4.0, 7.0])[[2, 0, 3, 1]]  # strips in any order
+    for span in (0.2, 0.5, 1.1, 2.0, 3.3, 6.9, 7.0, 9.0):
+        shares = bracketing_shares(s_mid, span)
+        assert sum(w for _, w in shares) == pytest.approx(1.0)
+        assert all(w >= 0 for _, w in shares)
+        inside = min(max(span, 0.5), 7.0)
+        assert sum(w * s_mid[j] for j, w in shares) == pytest.approx(inside)

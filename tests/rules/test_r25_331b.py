@@ -214,6 +214,40 @@ def test_a_stretched_wing_whose_box_was_not_resized_fails_by_the_hand_margin(tmp
     assert 1e3 * f.all_details()["side of body bending max/min (kN·m)"][0] == pytest.approx(hand, rel=0.05)
 
 
+def test_a_heavier_engine_further_outboard_relieves_the_wing_by_the_hand_relief(run, tmp_path):
+    """A mass change whose sign a loads model must get right: each engine 25,494 → 40,000 lb and moved outboard
+    32.3 → 45 ft (mass items and thrust lines), the corner weights unchanged. Its inertia relieves the side-of-body
+    bending at the 2.5 g point (fwd_mrw, VC on the n₊ line, sea level) by about n g Δ(m (y − y_sob)) = 2.8 MN·m: the
+    strip model's bending must fall by the hand estimate's fall (Schrenk with both engines, as above) within 10 %, and
+    the margin must grow. (Computed 2.69 against 2.77 MN·m by hand; with each point mass on its nearest strip's middle,
+    0.8 m inboard of the engine, the fall was 2.34 MN·m, 16 % short: the model now shares a point mass between the
+    strips that bracket it, certkit.models.loads.model.bracketing_shares.)"""
+    edits = FAST + [
+        ("mass: 25494 lb, cg: {x: 79.0 ft, y: -32.3 ft", "mass: 40000 lb, cg: {x: 79.0 ft, y: -45 ft"),
+        ("mass: 25494 lb, cg: {x: 79.0 ft, y: 32.3 ft", "mass: 40000 lb, cg: {x: 79.0 ft, y: 45 ft"),
+        ("position: {x: 78.0 ft, y: -32.3 ft", "position: {x: 78.0 ft, y: -45 ft"),
+        ("position: {x: 78.0 ft, y: 32.3 ft", "position: {x: 78.0 ft, y: 45 ft"),
+    ]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
+    ]
+    heavy = _one(BalancedManeuver().evaluate(ctx, conds, crit), "fwd_mrw", "VC at n+", "wing")
+    base_ctx, findings, _ = run
+    base = _one(findings, "fwd_mrw", "VC at n+", "wing")
+    key = "side of body bending max/min (kN·m)"
+    fall = 1e3 * (base.all_details()[key][0] - heavy.all_details()[key][0])
+    hand_fall = _hand_side_of_body_bending(base_ctx, base, [ENGINE, MAIN_TANK]) - _hand_side_of_body_bending(
+        ctx, heavy, [(40000 * LB, 45 * FT), MAIN_TANK]
+    )
+    assert hand_fall > 2.0e6
+    assert fall == pytest.approx(hand_fall, rel=0.10)
+    assert heavy.margin / abs(heavy.limit) > base.margin / abs(base.limit)
+
+
 STOP = "beyond the control-system stop"
 MACH = "beyond the aerodynamic and strip loads model's Mach range"
 

@@ -366,16 +366,16 @@ def build_surface_loads(
     z_mass = lat.rle[idx, 2].copy()
     y_mass = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
     extra_force_mass = np.zeros_like(strip_mass)
-    for pm, px, py, pz in point_masses:
+    for p_mass, px, py, pz in point_masses:
         if mirrored and py < 0:
             continue
-        pspan = np.hypot(py - root[1], pz - root[2])
-        j = int(np.argmin(np.abs(s_mid - pspan)))
-        total = strip_mass[j] + extra_force_mass[j] + pm
-        x_mass[j] = (x_mass[j] * (strip_mass[j] + extra_force_mass[j]) + px * pm) / total
-        z_mass[j] = (z_mass[j] * (strip_mass[j] + extra_force_mass[j]) + pz * pm) / total
-        y_mass[j] = (y_mass[j] * (strip_mass[j] + extra_force_mass[j]) + py * pm) / total
-        extra_force_mass[j] += pm
+        for j, share in bracketing_shares(s_mid, float(np.hypot(py - root[1], pz - root[2]))):
+            pm = p_mass * share
+            total = strip_mass[j] + extra_force_mass[j] + pm
+            x_mass[j] = (x_mass[j] * (strip_mass[j] + extra_force_mass[j]) + px * pm) / total
+            z_mass[j] = (z_mass[j] * (strip_mass[j] + extra_force_mass[j]) + pz * pm) / total
+            y_mass[j] = (y_mass[j] * (strip_mass[j] + extra_force_mass[j]) + py * pm) / total
+            extra_force_mass[j] += pm
     mass = strip_mass + extra_force_mass
 
     def inertia_table(mass, x_mass, y_mass, z_mass):
@@ -438,6 +438,22 @@ def surface_mass(aircraft, surface: str) -> float:
         if c.name.strip().lower() in keys:
             total += c.mass
     return total
+
+
+def bracketing_shares(s_mid: np.ndarray, span: float) -> list[tuple[int, float]]:
+    """A point mass at ``span`` shared between the two strips whose middles bracket it, in inverse proportion to the
+    distance (all on the end strip beyond the outermost middles): its first moment about every station inboard of
+    both strips is the point's own (on the nearest strip alone, an engine 0.8 m from a strip's middle lost 8 % of its
+    relief of the side-of-body bending)."""
+    order = np.argsort(s_mid)
+    s = s_mid[order]
+    if span <= s[0]:
+        return [(int(order[0]), 1.0)]
+    if span >= s[-1]:
+        return [(int(order[-1]), 1.0)]
+    k = int(np.searchsorted(s, span))
+    w = float((span - s[k - 1]) / (s[k] - s[k - 1]))
+    return [(int(order[k - 1]), 1.0 - w), (int(order[k]), w)]
 
 
 def wing_point_masses(aircraft) -> list[tuple[float, float, float, float]]:
