@@ -117,6 +117,17 @@ def _hand_side_of_body_bending(ctx, f, point_masses):
     return bending_at(sob, 0.5 * air, d["n"], wing, 0.5 * 72000 * LB, point_masses, dihedral)
 
 
+def _critical_point_wing(ctx):
+    """The wing finding of §25.331(b) at the critical point: fwd_mrw, VC on the n₊ line, sea level, clean."""
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
+    ]
+    return _one(BalancedManeuver().evaluate(ctx, conds, crit), "fwd_mrw", "VC at n+", "wing")
+
+
 def test_wing_air_load_balances_the_weight_and_the_tail(run):
     """Vertical equilibrium of the balanced state (Newton): both wing halves' air load (twice the root shear of the
     aerodynamic strip forces) = n W − the tail's balancing load, within 3 % (thrust, fuselage lift and the dihedral's
@@ -175,14 +186,7 @@ def test_an_airplane_whose_wing_tanks_are_empty_fails_by_the_hand_margin(tmp_pat
     normalised margin within 0.04 of the hand estimate without main-tank fuel (Schrenk, as above; about −7 %)."""
     edits = FAST + [("capacity: 64050 lb", "capacity: 500 lb"), ("capacity: 174870 lb", "capacity: 301900 lb")]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
-    crit, _ = criteria_for(BalancedManeuver, ctx)
-    conds = [
-        c
-        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
-        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
-    ]
-    findings = BalancedManeuver().evaluate(ctx, conds, crit)
-    f = _one(findings, "fwd_mrw", "VC at n+", "wing")
+    f = _critical_point_wing(ctx)
     assert f.status == "fails" and "ultimate bending at side of body" in f.check
     hand = _hand_side_of_body_bending(ctx, f, [ENGINE, (500 * LB, 43.8 * FT)])
     hand_norm = (46624e3 - 1.5 * hand) / 46624e3
@@ -199,13 +203,7 @@ def test_a_stretched_wing_whose_box_was_not_resized_fails_by_the_hand_margin(tmp
     edits = FAST + [("    aspect_ratio: 8.81         # [given]", "    aspect_ratio: 12")]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
     assert ctx.aircraft.geometry.wing.aspect_ratio == 12
-    crit, _ = criteria_for(BalancedManeuver, ctx)
-    conds = [
-        c
-        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
-        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
-    ]
-    f = _one(BalancedManeuver().evaluate(ctx, conds, crit), "fwd_mrw", "VC at n+", "wing")
+    f = _critical_point_wing(ctx)
     assert f.status == "fails" and "ultimate bending at side of body" in f.check
     hand = _hand_side_of_body_bending(ctx, f, [ENGINE, MAIN_TANK])
     hand_norm = (46624e3 - 1.5 * hand) / 46624e3
@@ -229,13 +227,7 @@ def test_a_heavier_engine_further_outboard_relieves_the_wing_by_the_hand_relief(
         ("position: {x: 78.0 ft, y: 32.3 ft", "position: {x: 78.0 ft, y: 45 ft"),
     ]
     ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
-    crit, _ = criteria_for(BalancedManeuver, ctx)
-    conds = [
-        c
-        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
-        if c.loading == "fwd_mrw" and c.altitude == 0.0 and c.configuration == "clean" and c.get("point") == "VC at n+"
-    ]
-    heavy = _one(BalancedManeuver().evaluate(ctx, conds, crit), "fwd_mrw", "VC at n+", "wing")
+    heavy = _critical_point_wing(ctx)
     base_ctx, findings, _ = run
     base = _one(findings, "fwd_mrw", "VC at n+", "wing")
     key = "side of body bending max/min (kN·m)"
