@@ -82,3 +82,12 @@ def test_nsga2_front_on_the_analytic_front():
     assert f[:, 0].min() < 0.25 and f[:, 0].max() > 0.9
     picks = front_sample(f, 5)
     assert len(picks) == 5 and picks[0] == 0 and picks[-1] == len(f) - 1
+
+
+def test_non_dominated_points_by_hand():
+    """(1, 3), (2, 2), (3, 1) form the front; (2, 3) and (3, 3) are dominated; (1 + 1e-9, 4) is (1, 3)'s near-twin with
+    a worse second objective (dominated within the tolerance); a repeated point counts once."""
+    from certkit.study.analysis.optimise import non_dominated
+
+    f = np.array([[1, 3], [2, 3], [2, 2], [3, 1], [3, 3], [1 + 1e-9, 4], [2, 2]], dtype=float)
+    assert non_dominated(f).tolist() == [0, 2, 3]

@@ -28,6 +28,10 @@ from certkit.study.spec import Study
 STARTS = 4
 #: forward-difference step of the gradients, on the [−1, 1] scale (every surrogate evaluated once per batch)
 FD_STEP = 1e-6
+#: SLSQP keeps each scaled constraint this far inside its limit: an optimum on an active constraint lands within
+#: round-off of it, on either side (scipy's SLSQP since 1.16 returns such points a few 1e-12 outside), and the
+#: feasibility check that follows is exact (numerical choice: 1e-9 of the constraint's spread)
+CONSTRAINT_MARGIN = 1e-9
 NSGA_POPULATION = 80
 NSGA_GENERATIONS = 120
 
@@ -119,7 +123,7 @@ def local_optimum(
         return ((g[1:] - g[0]) / FD_STEP).T
 
     cons = (
-        [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0], "jac": constraint_jacobian}]
+        [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0] - CONSTRAINT_MARGIN, "jac": constraint_jacobian}]
         if problem.limits or problem.valid_margin is not None
         else []
     )
@@ -178,10 +182,29 @@ def nsga2_front(
         return np.empty((0, len(objectives))), np.empty((0, n))
     u = np.atleast_2d(result.X)
     x = problem.x(u)
-    keep = problem.feasible(x)
-    f = np.column_stack([problem.surrogates[o].predict(x[keep]) for o, _ in objectives])
-    order = np.argsort(f[:, 0])
-    return f[order], x[keep][order]
+    x = x[problem.feasible(x)]
+    values = np.column_stack([problem.surrogates[o].predict(x) for o, _ in objectives])
+    signed = np.column_stack([values[:, k] * (-1.0 if s == "max" else 1.0) for k, (_, s) in enumerate(objectives)])
+    keep = non_dominated(signed)  # the feasible points' own front (pymoo's set is judged with its tolerances)
+    order = np.argsort(values[keep, 0])
+    return values[keep][order], x[keep][order]
+
+
+def non_dominated(f: np.ndarray, tolerance: float = 1e-6) -> np.ndarray:
+    """Indices of the rows of ``f`` (n, k; every column minimised) that no other row dominates: no worse in every
+    objective and better in one, by more than ``tolerance`` × the column's spread (two designs the surrogates tell
+    apart by less are one point of the front: an NSGA-II population keeps such near-twins at a constraint's edge
+    with a worse second objective); of rows equal within it the first is kept."""
+    f = np.asarray(f, dtype=float)
+    tol = tolerance * np.maximum(np.ptp(f, axis=0), 1e-300) if len(f) else np.zeros(f.shape[1:])
+    keep = []
+    for i in range(len(f)):
+        no_worse = np.all(f <= f[i] + tol, axis=1)
+        better = np.any(f < f[i] - tol, axis=1)
+        twin_before = np.any(np.all(np.abs(f[:i] - f[i]) <= tol, axis=1))
+        if not np.any(no_worse & better) and not twin_before:
+            keep.append(i)
+    return np.array(keep, dtype=int)
 
 
 def front_sample(f: np.ndarray, k: int) -> np.ndarray:
