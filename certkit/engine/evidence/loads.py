@@ -415,6 +415,14 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
 # --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
 
 
+def run_envelope_evidence(run, ctx, ultimate_factor: float, surfaces, what: str) -> list[Evidence]:
+    """:func:`envelope_evidence` of a loads rule's run against the declared allowables; none when nothing was
+    simulated."""
+    if run is None or not run.simulated:
+        return []
+    return envelope_evidence(run.envelope, surfaces, what, allow=allowables(ctx, ultimate_factor))
+
+
 def envelope_evidence(env, surfaces, what: str, plot: bool = True, allow: dict | None = None) -> list[Evidence]:
     """The critical-case table of each of ``surfaces`` in the load envelope ``env`` (skipping a surface with no
     computed load) and, with ``plot``, its load envelope along the span (the tables alone where the rule's own plots

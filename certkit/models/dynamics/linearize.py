@@ -65,13 +65,11 @@ class Linearization:
         return self.statespace(i, LATERAL, inputs)
 
 
-def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> Linearization:
-    """Central-difference A, B of every condition about (x0 (n, 12), u0 (n, m))."""
-    x0 = np.asarray(x0, dtype=float)
-    u0 = np.asarray(u0, dtype=float)
+def _perturbed(x0: np.ndarray, u0: np.ndarray):
+    """Every ± perturbation of every condition in one batch (2 (ns + m) states per condition): the states and
+    controls (nb · n rows), the condition of each row, the steps and nb."""
     n, ns = x0.shape
     m = u0.shape[1]
-    # every ± perturbation of every condition in one batch: 2 (ns + m) states per condition
     nb = 2 * (ns + m)
     X = np.repeat(x0[None], nb, axis=0)
     U = np.repeat(u0[None], nb, axis=0)
@@ -81,13 +79,37 @@ def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> Lineariza
     for j in range(m):
         U[2 * (ns + j), :, j] += _CONTROL_STEP
         U[2 * (ns + j) + 1, :, j] -= _CONTROL_STEP
-    rows = np.tile(np.arange(n), nb)
-    F = model.derivatives_euler(X.reshape(nb * n, ns), U.reshape(nb * n, m), rows=rows).reshape(nb, n, ns)
     steps = np.concatenate([np.asarray(_STATE_STEP, dtype=float)[:ns], np.full(m, _CONTROL_STEP)])
+    return X.reshape(nb * n, ns), U.reshape(nb * n, m), np.tile(np.arange(n), nb), steps, nb
+
+
+def linearize(model: AircraftModel, x0: np.ndarray, u0: np.ndarray) -> Linearization:
+    """Central-difference A, B of every condition about (x0 (n, 12), u0 (n, m))."""
+    x0 = np.asarray(x0, dtype=float)
+    u0 = np.asarray(u0, dtype=float)
+    n, ns = x0.shape
+    X, U, rows, steps, nb = _perturbed(x0, u0)
+    F = model.derivatives_euler(X, U, rows=rows).reshape(nb, n, ns)
     D = (F[0::2] - F[1::2]) / (2 * steps[:, None, None])  # (ns + m, n, ns)
     A = np.moveaxis(D[:ns], 0, -1)
     B = np.moveaxis(D[ns:], 0, -1)
     return Linearization(A=A, B=B, x0=x0, u0=u0, state_names=EULER_STATE, control_names=model.control_names)
 
 
-__all__ = ["linearize", "Linearization", "LONGITUDINAL", "LATERAL"]
+def output_sensitivities(
+    model: AircraftModel, x0: np.ndarray, u0: np.ndarray, outputs: Sequence[str]
+) -> tuple[np.ndarray, np.ndarray]:
+    """C (n, k, 12) and D (n, k, m): the derivatives of the model's ``outputs`` (``V``, ``alpha``, ``n_z``, ``qbar``,
+    …, :meth:`AircraftModel.derivatives_euler`) with respect to the Euler state and the controls about (x0, u0), by
+    the central differences and steps of :func:`linearize`."""
+    x0 = np.asarray(x0, dtype=float)
+    u0 = np.asarray(u0, dtype=float)
+    n, ns = x0.shape
+    X, U, rows, steps, nb = _perturbed(x0, u0)
+    _, out = model.derivatives_euler(X, U, with_outputs=True, rows=rows)
+    Y = np.stack([np.asarray(getattr(out, k), dtype=float).reshape(nb, n) for k in outputs], axis=-1)  # (nb, n, k)
+    dY = (Y[0::2] - Y[1::2]) / (2 * steps[:, None, None])  # (ns + m, n, k)
+    return np.moveaxis(dY[:ns], 0, -1), np.moveaxis(dY[ns:], 0, -1)
+
+
+__all__ = ["linearize", "output_sensitivities", "Linearization", "LONGITUDINAL", "LATERAL"]

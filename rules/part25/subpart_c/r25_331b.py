@@ -83,10 +83,6 @@ class BalancedManeuver(SimulationRule):
         return balanced_runs(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables, envelope_evidence
+        from certkit.engine.evidence.loads import run_envelope_evidence
 
-        if self.run is None or not self.run.simulated:
-            return []
-        return envelope_evidence(
-            self.run.envelope, SURFACES, "balanced manoeuvres", allow=allowables(ctx, crit.ultimate_factor)
-        )
+        return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, SURFACES, "balanced manoeuvres")

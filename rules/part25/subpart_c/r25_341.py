@@ -93,7 +93,6 @@ class DiscreteGust(SimulationRule):
             "the dynamic analysis is of the rigid airplane (no structural modes); the lateral gust acts on "
             "the fin alone (the fuselage's and wing's share is not modelled)",
         ),
-        ("25.341(b)", "continuous turbulence not modelled (no rule evaluates it)"),
     )
 
     def simulate(self, ctx, conditions, crit):
