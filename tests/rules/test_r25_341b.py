@@ -1,5 +1,5 @@
-"""§25.341(b) continuous vertical turbulence, design-envelope analysis of the rigid airplane: the turbulence intensity
-by hand, the load factor's Ā against the plunge-only airplane integrated by quadrature, the margins by hand from the
+"""§25.341(b) continuous vertical and lateral turbulence, design-envelope analysis of the rigid airplane: the turbulence
+intensity by hand, the load factor's Ā against the plunge-only airplane integrated by quadrature, the margins by hand from the
 reported loads, and airplanes that must fail or cannot be evaluated."""
 
 import numpy as np
@@ -35,6 +35,10 @@ def test_the_baseline_complies_and_every_condition_is_evaluated(result):
     findings = own(result)
     assert findings and all(f.status == "complies" for f in findings)
     assert {f.condition.get("speed_point") for f in findings} == {"VB", "VC", "VD"}
+    for part in ("vertical, V", "lateral, V"):  # wing and tail in vertical turbulence, the fin in lateral
+        assert {f.check.split(":")[0].split(", ")[-1] for f in findings if part in f.check} == (
+            {"wing", "horizontal tail"} if part.startswith("vertical") else {"vertical tail"}
+        )
     worst = min(_evaluated(result), key=lambda f: f.margin / abs(f.limit))
     assert "wing: ultimate bending at side of body" in worst.check
     assert 0.0 < worst.margin / abs(worst.limit) < 0.6
@@ -86,7 +90,8 @@ def test_load_factor_rms_against_the_plunging_airplane(result, baseline):
 def test_margins_by_hand(result, baseline):
     """Each evaluated finding's margin recomputed from its reported P_1g ± U_σ Ā and the declared capability."""
     ctx = Context(baseline)
-    assert_margins_by_hand(_evaluated(result), {s: declared_capabilities(ctx, s) for s in ("wing", "horizontal_tail")})
+    surfaces = ("wing", "horizontal_tail", "vertical_tail")
+    assert_margins_by_hand(_evaluated(result), {s: declared_capabilities(ctx, s) for s in surfaces})
 
 
 def test_the_band_is_symmetric_about_the_steady_load(result):

@@ -35,6 +35,9 @@ from certkit.models.loads.gust import GUST_CONTROLS
 #: lightly damped with the controls fixed (ζ ≈ 0.03–0.04 on the baseline) and in service flown by the pilot or the
 #: autopilot, would otherwise put half the load factor's variance at its own frequency
 FREE_STATES = ("w", "q")
+#: … and in lateral turbulence sideslip (v), roll (p) and yaw (r): the Dutch roll and the roll subsidence; the spiral
+#: mode (bank and heading), slow and flown by the pilot, left out likewise
+LATERAL_FREE_STATES = ("v", "p", "r")
 #: von Kármán's constant of the normalised spectrum (Hoblit, *Gust Loads on Aircraft*, 1988, eq. 2.20)
 VON_KARMAN_K = 1.339
 #: the spectrum's high-frequency slope: Φ ∝ Ω^(−5/3)
@@ -128,70 +131,118 @@ def steady_loads(loads, gb, surfaces=("wing", "horizontal_tail")) -> SteadyLoads
     )
 
 
+def _states(lin, C, D, u: np.ndarray, w: np.ndarray, free: tuple[str, ...]):
+    """The states (nΩ, n, ns) and outputs (nΩ, n, k) answering the inputs ``u`` (nΩ, n, m) at the circular frequencies
+    ``w`` (nΩ, n) with only the ``free`` states moving (the others held at the trim)."""
+    idx = [lin.state_names.index(k) for k in free]
+    A = lin.A[:, idx][:, :, idx]
+    system = 1j * w[..., None, None] * np.eye(len(idx)) - A[None]
+    x_free = np.linalg.solve(system, np.einsum("nsm,wnm->wns", lin.B[:, idx], u)[..., None])[..., 0]
+    x = np.zeros(x_free.shape[:-1] + (lin.A.shape[-1],), dtype=complex)
+    x[..., idx] = x_free
+    return x, np.einsum("nks,wns->wnk", C, x) + np.einsum("nkm,wnm->wnk", D, u)
+
+
+def _surface(s, steady_aero, qbar0, mach0, increments: dict, terms: dict, d_qbar):
+    """One surface's station-load response (nΩ, n, 3, S) to the aerodynamic ``increments`` and inertial ``terms``
+    (each (nΩ, n), complex), the trimmed aerodynamic loads ``steady_aero`` (n, 3, S) scaled by the change of q̄; and
+    its loads per kilogram of each tank's fuel (None without tanks)."""
+    zero = s.aero_loads(qbar0, mach0, {})
+    keys, names = list(increments), list(terms)
+    term_stack = np.stack([terms[k] for k in names])
+
+    def aero(z: np.ndarray) -> np.ndarray:
+        return s.aero_loads(qbar0, mach0, dict(zip(keys, z))) - zero
+
+    def inertia(z: np.ndarray) -> np.ndarray:
+        return s.inertia_loads(dict(zip(names, z)))
+
+    def per_kg(z: np.ndarray) -> np.ndarray:
+        return s.fuel_loads(dict(zip(names, z)))
+
+    loads = (
+        _linear(aero, np.stack([increments[k] for k in keys]))
+        + (d_qbar / qbar0)[..., None, None] * steady_aero[None]  # linear in q̄ at the trim's Mach number
+        + _linear(inertia, term_stack)
+    )
+    fuel = None if s.fuel_loads({k: np.zeros(1) for k in names}) is None else _linear(per_kg, term_stack)
+    return loads, fuel
+
+
 def turbulence_response(loads, gb, steady: SteadyLoads, omega: np.ndarray) -> TurbulenceResponse:
     """The frequency responses (:class:`TurbulenceResponse`) of the gust batch ``gb``
     (:func:`certkit.models.loads.gust_response.gust_batch`) to a unit vertical gust on the spatial frequencies
     ``omega`` (rad/m), about its trimmed state ``steady`` (:func:`steady_loads`), for the surfaces ``steady``
-    holds."""
+    holds; the airplane free to plunge and pitch (:data:`FREE_STATES`)."""
     omega = np.asarray(omega, dtype=float)
     model = gb.model
     lin = linearize(model, gb.x0, gb.u0)
-    outputs = ("alpha", "n_z", "qbar")
-    C, D = output_sensitivities(model, gb.x0, gb.u0, outputs)
+    C, D = output_sensitivities(model, gb.x0, gb.u0, ("alpha", "n_z", "qbar"))
     names = list(lin.control_names)
     gw, gt = (names.index(c) for c in GUST_CONTROLS)
     v = gb.v_tas  # (n,)
-    tau = gb.tail_arm / v
     w = omega[:, None] * v[None, :]  # (nΩ, n) rad/s
     u = np.zeros(w.shape + (len(names),), dtype=complex)  # gust angles per unit gust velocity
     u[..., gw] = 1.0 / v
-    u[..., gt] = np.exp(-1j * w * tau[None, :]) / v
-    free = [lin.state_names.index(k) for k in FREE_STATES]  # the others held at the trim
-    A = lin.A[:, free][:, :, free]
-    system = 1j * w[..., None, None] * np.eye(len(free)) - A[None]
-    x_free = np.linalg.solve(system, np.einsum("nsm,wnm->wns", lin.B[:, free], u)[..., None])[..., 0]
-    x = np.zeros(x_free.shape[:-1] + (lin.A.shape[-1],), dtype=complex)  # (nΩ, n, ns)
-    x[..., free] = x_free
-    y = np.einsum("nks,wns->wnk", C, x) + np.einsum("nkm,wnm->wnk", D, u)
-    d_alpha, d_nz, d_qbar = (y[..., k] for k in range(len(outputs)))
+    u[..., gt] = np.exp(-1j * w * (gb.tail_arm / v)[None, :]) / v
+    x, y = _states(lin, C, D, u, w, FREE_STATES)
+    d_alpha, d_nz, d_qbar = y[..., 0], y[..., 1], y[..., 2]
     q = x[..., lin.state_names.index("q")]
     q_dot = 1j * w * q
     qbar0 = np.broadcast_to(steady.qbar[None, :], w.shape)
     mach0 = np.broadcast_to(steady.mach[None, :], w.shape)
     gust_alpha = {"wing": u[..., gw], "horizontal_tail": u[..., gt]}
     terms = {"n_z": d_nz, "qdot_xcg": q_dot * model.cg[:, 0][None, :], "qdot": q_dot}
-    term_stack = np.stack(list(terms.values()))
     out: dict[str, np.ndarray] = {}
     fuel: dict[str, np.ndarray | None] = {}
     for name in steady.aero:
-        s = loads[name]
-        zero = s.aero_loads(qbar0, mach0, {})
         increments = {"alpha": d_alpha + gust_alpha.get(name, 0.0), "q_hat": q * model.c / (2.0 * v[None, :])}
-        keys = list(increments)
-
-        def aero(z: np.ndarray, s=s, zero=zero, keys=keys) -> np.ndarray:
-            return s.aero_loads(qbar0, mach0, dict(zip(keys, z))) - zero
-
-        def inertia(z: np.ndarray, s=s) -> np.ndarray:
-            return s.inertia_loads(dict(zip(terms, z)))
-
-        air = _linear(aero, np.stack([increments[k] for k in keys]))
-        # a change of q̄ scales the trimmed state's aerodynamic loads (linear in q̄ at the trim's Mach number)
-        scaled = (d_qbar / qbar0)[..., None, None] * steady.aero[name][None]
-        out[name] = air + scaled + _linear(inertia, term_stack)
-        if steady.fuel_per_kg.get(name) is None:
-            fuel[name] = None
-        else:
-
-            def per_kg(z: np.ndarray, s=s) -> np.ndarray:
-                return s.fuel_loads(dict(zip(terms, z)))
-
-            fuel[name] = _linear(per_kg, term_stack)
+        out[name], fuel[name] = _surface(loads[name], steady.aero[name], qbar0, mach0, increments, terms, d_qbar)
     return TurbulenceResponse(omega, out, fuel, d_nz)
+
+
+def lateral_turbulence_response(loads, lb, steady: SteadyLoads, omega: np.ndarray) -> TurbulenceResponse:
+    """The fin's station-load response to a unit lateral gust (TAS, m/s: a sideslip v_g/V felt by the fin,
+    :mod:`certkit.models.loads.lateral_gust`) of the batch ``lb``, on the spatial frequencies ``omega`` (rad/m), about
+    its trimmed state ``steady``; the airplane free in sideslip, roll and yaw (:data:`LATERAL_FREE_STATES`).
+    ``n_z`` holds the lateral load factor n_y."""
+    from certkit.models.loads.lateral_gust import CONTROL, FIN
+
+    omega = np.asarray(omega, dtype=float)
+    model = lb.model
+    lin = linearize(model, lb.x0, lb.u0)
+    C, D = output_sensitivities(model, lb.x0, lb.u0, ("beta", "n_y", "qbar"))
+    names = list(lin.control_names)
+    v = lb.v_tas
+    w = omega[:, None] * v[None, :]
+    u = np.zeros(w.shape + (len(names),), dtype=complex)
+    u[..., names.index(CONTROL)] = 1.0 / v
+    x, y = _states(lin, C, D, u, w, LATERAL_FREE_STATES)
+    d_beta, d_ny, d_qbar = y[..., 0], y[..., 1], y[..., 2]
+    p, r = x[..., lin.state_names.index("p")], x[..., lin.state_names.index("r")]
+    p_dot, r_dot = 1j * w * p, 1j * w * r
+    increments = {
+        "beta": d_beta + u[..., names.index(CONTROL)],
+        "p_hat": p * model.b / (2.0 * v[None, :]),
+        "r_hat": r * model.b / (2.0 * v[None, :]),
+    }
+    terms = {
+        "n_y": d_ny,
+        "rdot_xcg": r_dot * model.cg[:, 0][None, :],
+        "rdot": r_dot,
+        "pdot_zcg": p_dot * model.cg[:, 2][None, :],
+        "pdot": p_dot,
+    }
+    qbar0 = np.broadcast_to(steady.qbar[None, :], w.shape)
+    mach0 = np.broadcast_to(steady.mach[None, :], w.shape)
+    fin, per_kg = _surface(loads[FIN], steady.aero[FIN], qbar0, mach0, increments, terms, d_qbar)
+    return TurbulenceResponse(omega, {FIN: fin}, {FIN: per_kg}, d_ny)
 
 
 __all__ = [
     "FREE_STATES",
+    "LATERAL_FREE_STATES",
+    "lateral_turbulence_response",
     "SteadyLoads",
     "TurbulenceResponse",
     "rms_per_unit",

@@ -1,7 +1,8 @@
-"""§25.341(b) Continuous turbulence design criteria, vertical turbulence, by design-envelope analysis of the rigid
-airplane: P_L = P_L-1g ± U_σ Ā at every station of the wing and the horizontal tail, Ā the rms load per unit rms
-gust velocity from the airplane's frequency response and von Kármán's spectrum
-(:mod:`certkit.models.loads.turbulence`), compared with the declared structural capability (§25.303, §25.305).
+"""§25.341(b) Continuous turbulence design criteria by design-envelope analysis of the rigid airplane: P_L = P_L-1g ±
+U_σ Ā at every station of the wing and the horizontal tail (vertical turbulence) and of the fin (lateral turbulence,
+felt by the fin alone as §25.341(a)'s lateral gust), Ā the rms load per unit rms gust velocity from the airplane's
+frequency response and von Kármán's spectrum (:mod:`certkit.models.loads.turbulence`), compared with the declared
+structural capability (§25.303, §25.305).
 
 Verification (docs/regulation-notes.md §4): the words of (b) and (b)(1) are verified (Amdt. 25-141); the spectrum of
 (b)(2) is printed as an image in the CFR and its scale L = 2,500 ft, the (b)(3) turbulence intensities (U_σref 90 ft/s
@@ -28,9 +29,16 @@ from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.gust_response import SURFACES, gust_batch
+from certkit.models.loads.lateral_gust import FIN, lateral_gust_batch
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope
-from certkit.models.loads.turbulence import rms_per_unit, spatial_frequencies, steady_loads, turbulence_response
+from certkit.models.loads.turbulence import (
+    lateral_turbulence_response,
+    rms_per_unit,
+    spatial_frequencies,
+    steady_loads,
+    turbulence_response,
+)
 from certkit.units import FT, KN
 
 SECONDARY = "14 CFR 25.341(b)(3), values from AC 25.341-1 / CS 25.341(b)(3) (secondary sources, UNVERIFIED)"
@@ -53,7 +61,7 @@ class ContinuousTurbulence(SimulationRule):
     id = "25.341(b)"
     cost = 4
     symbol = "continuous-turbulence"
-    title = "Continuous vertical turbulence, design-envelope analysis, rigid airplane"
+    title = "Continuous vertical and lateral turbulence, design-envelope analysis, rigid airplane"
     amendment = "25-141"
     requirement = """
         The dynamic response of the airplane to continuous turbulence is taken into account: limit loads
@@ -61,10 +69,12 @@ class ContinuousTurbulence(SimulationRule):
         to the rms turbulence velocity from the frequency response of the loads and the normalised von Kármán
         spectrum (scale 2,500 ft), U_σ the limit turbulence intensity (true airspeed): 90 ft/s at sea level to
         79 ft/s at 24,000 ft and above, times the flight-profile alleviation factor, at VC; 1.32 times that at VB,
-        half at VD. The structure carries the limit loads and 1.5 × them (ultimate), §25.303/§25.305.
+        half at VD; vertical and lateral turbulence. The structure carries the limit loads and 1.5 × them (ultimate),
+        §25.303/§25.305.
     """
     margin = """
-        Per condition and surface (wing in every fuel state of §25.343, horizontal tail): the smallest of (allowable
+        Per condition and surface (wing in every fuel state of §25.343, horizontal tail; the fin in lateral
+        turbulence): the smallest of (allowable
         limit load − |P_L|) and (allowable ultimate load − 1.5 × |P_L|) over the declared stations and quantities,
         with P_L = P_L-1g ± U_σ Ā of each station and quantity; without a declared capability the condition is not
         evaluated and reports its loads.
@@ -90,15 +100,16 @@ class ContinuousTurbulence(SimulationRule):
     )
     limitations = (
         "Rigid airplane (no structural modes: (b) asks for all significant ones), quasi-steady aerodynamics (no "
-        "Sears/Küssner lag: the high-frequency response is over-stated, conservative), controls fixed; vertical "
-        "turbulence only; U_σ, L and the speed factors from secondary sources (unverified)."
+        "Sears/Küssner lag: the high-frequency response is over-stated, conservative), controls fixed, the phugoid "
+        "and the spiral mode left out (flown by the pilot); lateral turbulence felt by the fin alone; U_σ, L and the "
+        "speed factors from secondary sources (unverified)."
     )
     implementation = "partial"
     unevaluated = (
         (
             "25.341(b)",
-            "lateral continuous turbulence (the fin) is not evaluated, nor the structural modes; the mission analysis "
-            "alternative of (b)(4)–(5) is not offered",
+            "the structural modes are not modelled (rigid airplane); in lateral turbulence the fuselage's and the "
+            "wing's share of the gust is not modelled (the fin alone); the alternatives of (b)(4)–(5) are not offered",
         ),
     )
 
@@ -108,11 +119,11 @@ class ContinuousTurbulence(SimulationRule):
     def evidence(self, ctx, findings, crit):
         from certkit.engine.evidence.loads import run_envelope_evidence
 
-        return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, SURFACES, "continuous turbulence")
+        return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, (*SURFACES, FIN), "continuous turbulence")
 
 
-def _check(c, surface: str) -> str:
-    return f"(b) continuous turbulence, {c.get('speed_point')}, {surface.replace('_', ' ')}"
+def _check(c, surface: str, direction: str = "vertical") -> str:
+    return f"(b) continuous turbulence, {direction}, {c.get('speed_point')}, {surface.replace('_', ' ')}"
 
 
 def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
@@ -128,7 +139,7 @@ def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
         entry_of[c] = key_of[key]
     batch = trimmed_batch(ctx, entries)
     rows, sim_conds, refused = batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries])
-    findings = refusal_findings(refused, lambda c: [_check(c, s) for s in SURFACES])
+    findings = refusal_findings(refused, lambda c: [_check(c, s) for s in SURFACES] + [_check(c, FIN, "lateral")])
     if not rows.size:
         return LoadsRun(findings, reason="no condition could be trimmed in level flight (see the findings)")
     loads = airplane_loads(ctx)
@@ -158,8 +169,14 @@ def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
         abar = rms_per_unit(np.abs(h) ** 2, omega, scale)  # (n, 3, S)
         band = u_sigma[:, None, None] * abar
         peaks[s] = np.stack([p1g - band, p1g + band], axis=1)  # (n, 2, 3, S)
-    stations = {s: loads[s].station_names for s in SURFACES}
-    caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
+    lb = lateral_gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
+    fin_steady = steady_loads(loads, lb, (FIN,))
+    lateral = lateral_turbulence_response(loads, lb, fin_steady, omega)
+    abar_ny = rms_per_unit(np.abs(lateral.n_z.T) ** 2, omega, scale)
+    band = u_sigma[:, None, None] * rms_per_unit(np.abs(np.moveaxis(lateral.loads[FIN], 0, -1)) ** 2, omega, scale)
+    peaks[FIN] = np.stack([fin_steady.total(FIN) - band, fin_steady.total(FIN) + band], axis=1)
+    stations = {s: loads[s].station_names for s in (*SURFACES, FIN)}
+    caps = {s: declared_capabilities(ctx, s) for s in (*SURFACES, FIN)}
     for i, c in enumerate(sim_conds):
         details = dict(
             V_kn_EAS=round(float(c.speed / KN), 1),
@@ -167,6 +184,23 @@ def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
             F_g=round(float(f_g[i]), 4),
             Abar_n_z_per_ft_s=round(float(abar_nz[i] * FT), 5),
             n_z_limit_band=round(float(u_sigma[i] * abar_nz[i]), 4),
+        )
+        lateral_details = dict(
+            {k: v for k, v in details.items() if k not in ("Abar_n_z_per_ft_s", "n_z_limit_band")},
+            Abar_n_y_per_ft_s=round(float(abar_ny[i] * FT), 5),
+            n_y_limit_band=round(float(u_sigma[i] * abar_ny[i]), 4),
+        )
+        findings.append(
+            capability_finding(
+                c,
+                _check(c, FIN, "lateral"),
+                FIN,
+                peaks[FIN][i],
+                stations[FIN],
+                caps[FIN],
+                crit.ultimate_factor,
+                **lateral_details,
+            )
         )
         for s in SURFACES:
             if s == "wing" and wing_states is not None:
