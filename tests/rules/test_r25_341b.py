@@ -1,6 +1,6 @@
-"""§25.341(b) continuous vertical and lateral turbulence, design-envelope analysis of the rigid airplane: the turbulence
-intensity by hand, the load factor's Ā against the plunge-only airplane integrated by quadrature, the margins by hand from the
-reported loads, and airplanes that must fail or cannot be evaluated."""
+"""§25.341(b) continuous vertical and lateral turbulence, design-envelope analysis of the rigid airplane: the
+turbulence intensity by hand, the load factor's Ā against the plunge-only airplane integrated by quadrature, the
+margins by hand from the reported loads, and airplanes that must fail or cannot be evaluated."""
 
 import numpy as np
 import pytest
