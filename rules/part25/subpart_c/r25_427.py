@@ -149,6 +149,11 @@ class UnsymmetricalTailLoads(SimulationRule):
         ),
         (
             "25.427(b)(1)",
+            "the §25.341(b) continuous-turbulence tail loads are not split (a design-envelope band per station, not a "
+            "loading with its air and inertial parts; on the baseline 20–42 % of the split cases' envelope)",
+        ),
+        (
+            "25.427(b)(1)",
             "the out-of-trim symmetric manoeuvres are not split: §25.331(c)(2) does not compute them (its manoeuvres "
             "start from the 1 g trim, not from the §25.255 mistrim)",
         ),
