@@ -124,7 +124,9 @@ class LocalExecutor:
             try:
                 in_flight[self._pool.submit(run_case, task)] = (task, alone)
                 return True
-            except BrokenProcessPool:  # broken since the last wait: the task never started
+            # broken since the last wait: the task never started. While a worker dies the pool may not yet know it is
+            # broken, and starting a replacement worker fails on the pool's closed pipe (OSError) — the same event
+            except (BrokenProcessPool, OSError):
                 suspects.appendleft(task)
                 return False
 

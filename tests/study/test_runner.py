@@ -225,3 +225,24 @@ def test_a_case_that_kills_its_worker_is_failed_once_and_the_others_run(small_st
     assert (frame[big].status == "failed").all() and (frame[~big].status == "ok").all()
     assert all(e.startswith("the worker process died while evaluating this case") for e in frame[big].error)
     assert summary.submitted == 15 and frame[~big].wall_s.notna().all()
+
+
+def test_a_pool_that_cannot_start_a_worker_is_restarted_and_no_case_is_lost(small_study, tmp_path, monkeypatch):
+    """While a worker dies the pool may not know yet that it is broken, and starting its replacement fails on the
+    pool's closed pipe (OSError from ``submit``): the local executor treats it as a broken pool — restarts it and runs
+    the task that never started — so every case still has its result."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    real, calls = ProcessPoolExecutor.submit, {"n": 0}
+
+    def failing_once(self, fn, *args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 4:  # after the start-up probe and two cases
+            raise OSError("handle is closed")
+        return real(self, fn, *args, **kwargs)
+
+    monkeypatch.setattr(ProcessPoolExecutor, "submit", failing_once)
+    summary = _run(small_study, tmp_path / "s.sqlite", executor="local", workers=2)
+    with Store.open(tmp_path / "s.sqlite") as store:
+        frame = store.frame()
+    assert calls["n"] > 4 and summary.total == len(frame) == 15 and (frame.status == "ok").all()
