@@ -14,27 +14,30 @@ Formats (``u`` = inputs mapped from their bounds ``lo``/``hi`` to [−1, 1]; ``l
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 from sklearn.compose import TransformedTargetRegressor
 
 from certkit.study.analysis.surrogates import Surrogate
 
 
-def _unwrap_log(estimator) -> tuple[object, bool]:
+def _unwrap_log(estimator: Any) -> tuple[Any, bool]:
+    """The regressor inside a log-transformed target (and whether it was), scikit-learn's untyped estimators."""
     if isinstance(estimator, TransformedTargetRegressor) and estimator.func is np.log:
         return estimator.regressor_, True
     return estimator, False
 
 
-def _floats(a) -> list:
-    return np.asarray(a, dtype=float).tolist()
+def _floats(a: npt.ArrayLike) -> list[Any]:
+    return list(np.asarray(a, dtype=float).tolist())
 
 
-def export_surrogate(surrogate: Surrogate) -> dict:
+def export_surrogate(surrogate: Surrogate) -> dict[str, Any]:
     """JSON-serialisable description of the kept model of ``surrogate``."""
     inner, log = _unwrap_log(surrogate.kept.estimator)
-    doc = {
+    doc: dict[str, Any] = {
         "response": surrogate.response,
         "log": log,
         "lo": _floats(surrogate.bounds[:, 0]),
@@ -74,7 +77,7 @@ def export_surrogate(surrogate: Surrogate) -> dict:
     return doc
 
 
-def _evaluate_one(doc: dict, x: list[float]) -> float:
+def _evaluate_one(doc: dict[str, Any], x: list[float]) -> float:
     """One point, written as the JavaScript evaluator is (plain loops, Math.pow/tanh/exp)."""
     u = [(x[i] - doc["lo"][i]) * (2.0 / (doc["hi"][i] - doc["lo"][i])) - 1.0 for i in range(len(x))]
     kind = doc["kind"]
@@ -109,9 +112,9 @@ def _evaluate_one(doc: dict, x: list[float]) -> float:
         y = doc["mean"] + doc["std"] * s
     else:
         raise ValueError(f"unknown exported model kind {kind!r}")
-    return math.exp(y) if doc["log"] else y
+    return float(math.exp(y) if doc["log"] else y)
 
 
-def evaluate_export(doc: dict, x: np.ndarray) -> np.ndarray:
+def evaluate_export(doc: dict[str, Any], x: np.ndarray) -> np.ndarray:
     """Evaluate an exported model at the rows of ``x`` (SI inputs) exactly as the page does."""
     return np.array([_evaluate_one(doc, [float(v) for v in row]) for row in np.atleast_2d(x)])

@@ -16,6 +16,8 @@ A design the optimiser returns is re-checked with ``Constraint.feasible`` on the
 from __future__ import annotations
 
 import warnings
+from collections.abc import Callable, Sequence
+from typing import Any
 
 import numpy as np
 from scipy.optimize import minimize
@@ -36,9 +38,13 @@ NSGA_POPULATION = 80
 NSGA_GENERATIONS = 120
 
 
+#: the validity classifier's margin of designs (rows, SI): ≥ 0 where the design is possible
+ValidMargin = Callable[[np.ndarray], np.ndarray]
+
+
 def from_unit(u: np.ndarray, bounds: np.ndarray) -> np.ndarray:
     lo, hi = bounds[:, 0], bounds[:, 1]
-    return lo + (np.asarray(u, dtype=float) + 1.0) * 0.5 * (hi - lo)
+    return np.asarray(lo + (np.asarray(u, dtype=float) + 1.0) * 0.5 * (hi - lo))
 
 
 class SurrogateProblem:
@@ -49,9 +55,9 @@ class SurrogateProblem:
         study: Study,
         surrogates: dict[str, Surrogate],
         stage: str,
-        valid_margin=None,
+        valid_margin: ValidMargin | None = None,
         scales: dict[str, float] | None = None,
-    ):
+    ) -> None:
         self.study, self.surrogates, self.stage = study, surrogates, stage
         self.bounds = study.bounds
         self.valid_margin = valid_margin
@@ -114,13 +120,13 @@ def local_optimum(
     method = "best Monte Carlo sample"
     steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
 
-    def objective_and_gradient(u):
+    def objective_and_gradient(u: np.ndarray) -> tuple[float, np.ndarray]:
         f = problem.objective(objective, u[None, :] + steps, sense)
         return float(f[0]), (f[1:] - f[0]) / FD_STEP
 
-    def constraint_jacobian(u):
+    def constraint_jacobian(u: np.ndarray) -> np.ndarray:
         g = problem.constraints(u[None, :] + steps)
-        return ((g[1:] - g[0]) / FD_STEP).T
+        return np.asarray((g[1:] - g[0]) / FD_STEP).T
 
     cons = (
         [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0] - CONSTRAINT_MARGIN, "jac": constraint_jacobian}]
@@ -153,7 +159,7 @@ def local_optimum(
 
 def nsga2_front(
     problem: SurrogateProblem,
-    objectives: list[tuple[str, str]],
+    objectives: Sequence[tuple[str, str]],
     *,
     seed: int = 1,
     population: int = NSGA_POPULATION,
@@ -167,11 +173,11 @@ def nsga2_front(
     n = problem.bounds.shape[0]
     n_constr = problem.constraints(np.zeros((1, n))).shape[1]
 
-    class _Problem(Problem):
-        def __init__(self):
+    class _Problem(Problem):  # type: ignore[misc]  # pymoo carries no types
+        def __init__(self) -> None:
             super().__init__(n_var=n, n_obj=len(objectives), n_ieq_constr=n_constr, xl=-1.0, xu=1.0)
 
-        def _evaluate(self, u, out, *args, **kwargs):
+        def _evaluate(self, u: np.ndarray, out: dict[str, Any], *args: Any, **kwargs: Any) -> None:
             with np.errstate(all="ignore"):
                 out["F"] = np.column_stack([problem.objective(o, u, s) for o, s in objectives])
                 if n_constr:
@@ -224,7 +230,12 @@ def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
 
 
 def optimise(
-    study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, valid_margin=None, *, seed: int = 3
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    mc: MonteCarloResult,
+    valid_margin: ValidMargin | None = None,
+    *,
+    seed: int = 3,
 ) -> list[Optimum]:
     """The optimum of every objective in every stage: SLSQP started from the stage's best Monte Carlo samples
     (the stage's best sample itself kept when no start improves on it)."""
@@ -252,7 +263,9 @@ def optimise(
     return out
 
 
-def pareto_fronts(study: Study, surrogates: dict[str, Surrogate], valid_margin=None, *, seed: int = 1) -> list[dict]:
+def pareto_fronts(
+    study: Study, surrogates: dict[str, Surrogate], valid_margin: ValidMargin | None = None, *, seed: int = 1
+) -> list[dict[str, Any]]:
     """The constrained front of every pair of objectives by NSGA-II: objectives, values, designs."""
     problem = SurrogateProblem(study, surrogates, "constrained", valid_margin, _scales(study, surrogates))
     objectives = list(study.objectives)
@@ -265,7 +278,7 @@ def pareto_fronts(study: Study, surrogates: dict[str, Surrogate], valid_margin=N
     return fronts
 
 
-def front_points(fronts: list[dict], k: int) -> list[Optimum]:
+def front_points(fronts: list[dict[str, Any]], k: int) -> list[Optimum]:
     """Up to ``k`` points of each front, spread along it, as designs to re-evaluate with the true model."""
     out = []
     for front in fronts:

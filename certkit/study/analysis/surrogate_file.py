@@ -10,8 +10,10 @@ powers, scaling and coefficients. Evaluation here is vectorised numpy with the s
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any, Union
 
 import numpy as np
 
@@ -21,11 +23,16 @@ from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.analysis.validity import Validity
 from certkit.study.spec import Study
 
+#: a JSON object of the file
+Document = dict[str, Any]
+#: designs: an array of rows (SI), one mapping {path: value} or a list of them
+Points = Union[np.ndarray, Sequence[Sequence[float]], Mapping[str, float], Sequence[Mapping[str, float]]]
+
 FORMAT = "certkit-surrogates"
 VERSION = 1
 
 
-def _validity_doc(validity: Validity | None) -> dict | None:
+def _validity_doc(validity: Validity | None) -> Document | None:
     if validity is None or validity.estimator is None:
         return None
     features, scaler, logistic = (step for _, step in validity.estimator.steps)
@@ -43,7 +50,7 @@ def _validity_doc(validity: Validity | None) -> dict | None:
 
 def surrogates_document(
     study: Study, surrogates: dict[str, Surrogate], validity: Validity | None = None, sha256: str = ""
-) -> dict:
+) -> Document:
     """The file's content: the study's variables, objectives and constraints, every kept model and its fit."""
     responses = {}
     for name, s in surrogates.items():
@@ -75,18 +82,18 @@ def surrogates_document(
     }
 
 
-def write_surrogates(path: str | Path, document: dict) -> Path:
+def write_surrogates(path: str | Path, document: Document) -> Path:
     path = Path(path)
     path.write_text(json.dumps(document, indent=1, allow_nan=True), encoding="utf-8")
     return path
 
 
-def _unit(doc: dict, x: np.ndarray) -> np.ndarray:
-    lo, hi = np.asarray(doc["lo"]), np.asarray(doc["hi"])
-    return (x - lo) * (2.0 / (hi - lo)) - 1.0
+def _unit(doc: Document, x: np.ndarray) -> np.ndarray:
+    lo, hi = np.asarray(doc["lo"], dtype=float), np.asarray(doc["hi"], dtype=float)
+    return np.asarray((x - lo) * (2.0 / (hi - lo)) - 1.0)
 
 
-def evaluate_model(doc: dict, x: np.ndarray) -> np.ndarray:
+def evaluate_model(doc: Document, x: np.ndarray) -> np.ndarray:
     """An exported model (:mod:`.export` format) at the rows of ``x`` (SI), vectorised."""
     u = _unit(doc, np.atleast_2d(np.asarray(x, dtype=float)))
     kind = doc["kind"]
@@ -110,14 +117,14 @@ def evaluate_model(doc: dict, x: np.ndarray) -> np.ndarray:
         )
     else:
         raise ValueError(f"unknown model kind {kind!r}")
-    return np.exp(y) if doc["log"] else y
+    return np.asarray(np.exp(y) if doc["log"] else y)
 
 
 @dataclass
 class SurrogateSet:
     """Surrogates read from a file: ``predict`` the responses at designs, ``possible`` the validity classifier."""
 
-    document: dict
+    document: Document
 
     @property
     def variables(self) -> list[str]:
@@ -127,12 +134,12 @@ class SurrogateSet:
     def responses(self) -> list[str]:
         return list(self.document["responses"])
 
-    def inputs(self, points) -> np.ndarray:
+    def inputs(self, points: Points) -> np.ndarray:
         """Rows in the variables' order (SI) from an array, or a mapping / list of mappings {path: value}
         (a variable not given takes its baseline)."""
-        if isinstance(points, dict):
+        if isinstance(points, Mapping):
             points = [points]
-        if isinstance(points, list) and points and isinstance(points[0], dict):
+        if isinstance(points, list) and points and isinstance(points[0], Mapping):
             unknown = sorted({k for p in points for k in p} - set(self.variables))
             if unknown:
                 raise UserError(
@@ -147,7 +154,7 @@ class SurrogateSet:
             )
         return x
 
-    def predict(self, points, responses: list[str] | None = None) -> dict[str, np.ndarray]:
+    def predict(self, points: Points, responses: list[str] | None = None) -> dict[str, np.ndarray]:
         x = self.inputs(points)
         names = responses or self.responses
         unknown = [r for r in names if r not in self.document["responses"]]
@@ -155,7 +162,7 @@ class SurrogateSet:
             raise UserError(f"no surrogate for {', '.join(unknown)} (responses: {', '.join(self.responses)})")
         return {r: evaluate_model(self.document["responses"][r]["model"], x) for r in names}
 
-    def possible(self, points) -> np.ndarray:
+    def possible(self, points: Points) -> np.ndarray:
         """Designs classed as possible aircraft (every design when the study had no impossible case)."""
         x = self.inputs(points)
         doc = self.document.get("validity")
@@ -164,7 +171,7 @@ class SurrogateSet:
         u = _unit(doc, x)
         features = np.column_stack([np.prod(u ** np.asarray(p), axis=1) for p in doc["powers"]])
         z = (features - np.asarray(doc["mean"])) / np.asarray(doc["scale"])
-        return z @ np.asarray(doc["coef"]) + doc["intercept"] <= 0.0
+        return np.asarray(z @ np.asarray(doc["coef"]) + doc["intercept"] <= 0.0)
 
 
 def load_surrogates(path: str | Path) -> SurrogateSet:
