@@ -11,6 +11,8 @@ from __future__ import annotations
 import os
 from collections import deque
 from collections.abc import Iterable, Iterator
+from concurrent.futures import Future, ProcessPoolExecutor
+from typing import Any
 
 from certkit.errors import UserError
 from certkit.study.worker import CaseResult, Task, run_case
@@ -43,10 +45,10 @@ class SerialExecutor:
 
     workers = 1
 
-    def __enter__(self):
+    def __enter__(self) -> SerialExecutor:
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         return None
 
     def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
@@ -66,11 +68,10 @@ class LocalExecutor:
 
     def __init__(self, workers: int):
         self.workers = max(1, workers)
-        self._pool = None
+        self._pool: ProcessPoolExecutor | None = None
 
     def _start(self) -> None:
         import multiprocessing
-        from concurrent.futures import ProcessPoolExecutor
         from concurrent.futures.process import BrokenProcessPool
 
         from certkit.engine.worker_processes import die_with_parent, one_blas_thread
@@ -104,25 +105,30 @@ class LocalExecutor:
             process.join(timeout=5)
         self._pool = None
 
-    def __enter__(self):
+    def __enter__(self) -> LocalExecutor:
         self._start()
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         self._stop()
+
+    def _running(self) -> ProcessPoolExecutor:
+        if self._pool is None:
+            raise RuntimeError("the local executor's pool is not running (outside its with-block)")
+        return self._pool
 
     def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
         from concurrent.futures import FIRST_COMPLETED, wait
         from concurrent.futures.process import BrokenProcessPool
 
         tasks = iter(tasks)
-        in_flight: dict = {}  # future → (task, run alone)
+        in_flight: dict[Future[CaseResult], tuple[Task, bool]] = {}  # future → (task, run alone)
         suspects: deque[Task] = deque()
         limit = IN_FLIGHT_PER_WORKER * self.workers
 
         def submit(task: Task, alone: bool) -> bool:
             try:
-                in_flight[self._pool.submit(run_case, task)] = (task, alone)
+                in_flight[self._running().submit(run_case, task)] = (task, alone)
                 return True
             # broken since the last wait: the task never started. While a worker dies the pool may not yet know it is
             # broken, and starting a replacement worker fails on the pool's closed pipe (OSError) — the same event
@@ -170,20 +176,20 @@ class DaskExecutor:
     def __init__(self, workers: int, scheduler: str | None = None):
         self.workers = max(1, workers)
         self.scheduler = scheduler
-        self._cluster = None
-        self._client = None
+        self._cluster: Any = None  # dask.distributed carries no types
+        self._client: Any = None
 
-    def __enter__(self):
+    def __enter__(self) -> DaskExecutor:
         import logging
 
         try:
             import dask
-            from distributed import Client, LocalCluster
+            import distributed
         except ImportError:
             raise UserError("--executor dask needs dask.distributed: pip install 'dask[distributed]'") from None
         if self.scheduler:
             try:
-                self._client = Client(self.scheduler, timeout="20s")
+                self._client = _untyped(distributed).Client(self.scheduler, timeout="20s")
             except (OSError, TimeoutError) as exc:
                 raise UserError(f"cannot reach the dask scheduler at {self.scheduler}: {exc}") from None
             self.workers = max(1, sum(self._client.nthreads().values()))
@@ -197,29 +203,29 @@ class DaskExecutor:
             # design cost 1.2x the CPU with it (docs/performance.md). A user's own MALLOC_TRIM_THRESHOLD_ is kept.
             _compile_kernels(self.workers)  # at a first run: once, ahead, not in every worker
             with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
-                self._cluster = LocalCluster(
+                self._cluster = _untyped(distributed).LocalCluster(
                     n_workers=self.workers,
                     threads_per_worker=1,
                     processes=True,
                     dashboard_address=None,
                     silence_logs=logging.ERROR,
                 )
-            self._client = Client(self._cluster)
+            self._client = _untyped(distributed).Client(self._cluster)
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, *exc: object) -> None:
         if self._client is not None:
             self._client.close()
         if self._cluster is not None:
             self._cluster.close()
 
     def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
-        from distributed import as_completed
+        import distributed
         from distributed.scheduler import KilledWorker
 
         tasks = iter(tasks)
-        running = as_completed()
-        by_future: dict = {}
+        running = _untyped(distributed).as_completed()
+        by_future: dict[str, Task] = {}
 
         def submit(n: int) -> None:
             for _ in range(n):
@@ -242,7 +248,14 @@ class DaskExecutor:
             submit(1)
 
 
-def make_executor(name: str, workers: int | None = None, scheduler: str | None = None):
+def _untyped(module: object) -> Any:
+    """A module whose API carries no types (dask.distributed), as such for the type checker."""
+    return module
+
+
+def make_executor(
+    name: str, workers: int | None = None, scheduler: str | None = None
+) -> SerialExecutor | LocalExecutor | DaskExecutor:
     if name not in EXECUTORS:
         raise UserError(f"unknown executor {name!r} (one of {', '.join(EXECUTORS)})")
     if scheduler and name != "dask":

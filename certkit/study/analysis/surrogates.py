@@ -27,10 +27,13 @@ from __future__ import annotations
 import math
 import os
 import warnings
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from joblib import Parallel, delayed
 from scipy.optimize import minimize
 from scipy.spatial.distance import cdist
@@ -47,6 +50,10 @@ from sklearn.preprocessing import PolynomialFeatures, StandardScaler
 
 from certkit.study.executors import available_cores
 
+if TYPE_CHECKING:
+    from certkit.study.analysis.cases import Cases
+    from certkit.study.spec import AnalysisOptions, Study
+
 #: fewer validation cases than this: the flag is judged on the cross-validated R² instead
 MIN_VALIDATION = 10
 K_FOLDS = 5
@@ -58,10 +65,11 @@ PREDICT_CHUNK = 20_000
 def to_unit(x: np.ndarray, bounds: np.ndarray) -> np.ndarray:
     """Map inputs from their bounds to [−1, 1] (column-wise)."""
     lo, hi = bounds[:, 0], bounds[:, 1]
-    return (np.asarray(x, dtype=float) - lo) * (2.0 / (hi - lo)) - 1.0
+    return np.asarray((np.asarray(x, dtype=float) - lo) * (2.0 / (hi - lo)) - 1.0)
 
 
-def _log_target(estimator, log: bool):
+# scikit-learn's estimators carry no types: they travel as Any
+def _log_target(estimator: Any, log: bool) -> Any:
     return (
         TransformedTargetRegressor(regressor=estimator, func=np.log, inverse_func=np.exp, check_inverse=False)
         if log
@@ -69,24 +77,26 @@ def _log_target(estimator, log: bool):
     )
 
 
-def _polynomial(degree: int) -> object:
+def _polynomial(degree: int) -> Any:
     return make_pipeline(PolynomialFeatures(degree, include_bias=False), RidgeCV(alphas=np.logspace(-10, 1, 12)))
 
 
-def _mlp() -> object:
+def _mlp() -> Any:
     net = MLPRegressor(
         hidden_layer_sizes=(16, 16), activation="tanh", solver="lbfgs", alpha=1e-4, max_iter=1000, random_state=0
     )
     return TransformedTargetRegressor(regressor=net, transformer=StandardScaler())
 
 
-def _gp_optimizer(obj_func, initial_theta, bounds):
+def _gp_optimizer(
+    obj_func: Callable[..., Any], initial_theta: np.ndarray, bounds: npt.ArrayLike
+) -> tuple[np.ndarray, float]:
     """L-BFGS-B on the log marginal likelihood with a bounded iteration count (keeps the fit time bounded)."""
     res = minimize(obj_func, initial_theta, method="L-BFGS-B", jac=True, bounds=bounds, options={"maxiter": 80})
-    return res.x, res.fun
+    return np.asarray(res.x), float(res.fun)
 
 
-def _gp(n_inputs: int) -> object:
+def _gp(n_inputs: int) -> Any:
     kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
     return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=_gp_optimizer, random_state=0)
 
@@ -117,20 +127,20 @@ def gp_block_rows(n_cases: int) -> int:
     return max(64, GP_BLOCK_BYTES // (8 * max(n_cases, 1)))
 
 
-class SubsampledGP(BaseEstimator, RegressorMixin):
+class SubsampledGP(BaseEstimator, RegressorMixin):  # type: ignore[misc]  # scikit-learn carries no types
     """A Gaussian process fitted on at most ``max_cases`` of the cases it is given (a maximin subsample)."""
 
     def __init__(self, n_inputs: int = 1, max_cases: int = 600):
         self.n_inputs = n_inputs
         self.max_cases = max_cases
 
-    def fit(self, u, y):
+    def fit(self, u: npt.ArrayLike, y: npt.ArrayLike) -> SubsampledGP:
         keep = maximin_subsample(np.asarray(u, dtype=float), self.max_cases)
         self.gp_ = _gp(self.n_inputs).fit(np.asarray(u)[keep], np.asarray(y)[keep])
         self.n_fitted_ = len(keep)
         return self
 
-    def predict(self, u):
+    def predict(self, u: npt.ArrayLike) -> np.ndarray:
         """The GP's mean at ``u``, as scikit-learn's ``predict`` gives it for this kernel (constant × RBF + white
         noise, the white term zero between distinct points), without building the sum and product kernels' full
         matrices: c exp(−½ |u − x|²/ℓ²) α in blocks of rows (about 4.7× faster on 10⁵ rows and 600 cases, equal to
@@ -160,7 +170,7 @@ class SubsampledGP(BaseEstimator, RegressorMixin):
         else:
             for start in starts:
                 block(start)
-        return out * gp._y_train_std + gp._y_train_mean
+        return np.asarray(out * gp._y_train_std + gp._y_train_mean)
 
 
 def n_polynomial_terms(n_inputs: int, degree: int) -> int:
@@ -198,7 +208,7 @@ class Candidate:
 
     family: str
     label: str
-    estimator: object | None
+    estimator: Any
     log: bool = False
     degree: int | None = None
     selection_rmse: float | None = None
@@ -227,7 +237,7 @@ class Surrogate:
     n_training: int
     n_validation: int
     n_missing: int
-    plot_data: dict = field(default_factory=dict, repr=False)
+    plot_data: dict[str, Any] = field(default_factory=dict, repr=False)
     n_leaked: int = 0  # validation cases that repeat a training case (left out of the validation score)
 
     @property
@@ -258,7 +268,7 @@ class Surrogate:
         return out
 
 
-def _score(candidate: Candidate, u_tr, y_tr) -> None:
+def _score(candidate: Candidate, u_tr: np.ndarray, y_tr: np.ndarray) -> None:
     """Record the candidate's selection error (k-fold cross-validation on the training cases), then fit it on
     every training case."""
     fit = _cross_validated(candidate.estimator, u_tr, y_tr)
@@ -277,10 +287,10 @@ def leaked(u_train: np.ndarray, u_val: np.ndarray, tol: float = 1e-9) -> np.ndar
     from scipy.spatial import cKDTree
 
     dist, _ = cKDTree(u_train).query(u_val, k=1, p=np.inf)
-    return dist <= tol
+    return np.asarray(dist <= tol)
 
 
-def _cross_validated(estimator, u, y) -> Fit:
+def _cross_validated(estimator: Any, u: np.ndarray, y: np.ndarray) -> Fit:
     folds = KFold(n_splits=min(K_FOLDS, len(y)), shuffle=True, random_state=0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ConvergenceWarning)
@@ -354,6 +364,8 @@ def fit_response(
     train_pred = kept.predict_unit(u_tr)
     val_pred = kept.predict_unit(u_val) if len(y_val) else np.empty(0)
     cv = kept.cv
+    if cv is None:
+        raise RuntimeError(f"{response}: the kept model {kept.label} was not cross-validated")
     return Surrogate(
         response,
         bounds,
@@ -372,7 +384,7 @@ def fit_response(
     )
 
 
-def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
+def _fit_one(name: str, bounds: np.ndarray, data: Any, options: AnalysisOptions) -> tuple[str, Surrogate | None, str]:
     (x_tr, y_tr, miss_tr), (x_val, y_val, miss_val) = data
     try:
         return (
@@ -394,7 +406,9 @@ def _fit_one(name, bounds, data, options) -> tuple[str, Surrogate | None, str]:
         return name, None, str(exc)
 
 
-def fit_all(study, cases, log=lambda msg: None) -> tuple[dict[str, Surrogate], dict[str, str]]:
+def fit_all(
+    study: Study, cases: Cases, log: Callable[[str], object] = lambda msg: None
+) -> tuple[dict[str, Surrogate], dict[str, str]]:
     """One surrogate per analysed response of ``study`` from ``cases`` (:class:`.cases.Cases`), the responses
     fitted in parallel over the cores (each fit is seeded: the same models whatever the number of processes);
     (surrogates, reasons of the responses none could be fitted for)."""
