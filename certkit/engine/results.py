@@ -341,7 +341,7 @@ class LoadsRun(SimulationRun):
         return [] if self.envelope is None else [self.envelope]
 
 
-def _margin_key(f: Finding) -> float:
+def margin_key(f: Finding) -> float:
     """Sort key of an evaluated finding: its normalised margin, else its margin."""
     key = f.normalized_margin if f.normalized_margin is not None else f.margin
     return math.inf if key is None else key
@@ -404,7 +404,7 @@ class RuleResult:
         evaluated = [f for f in self.findings if f.margin is not None]
         if not evaluated:
             return None
-        return min(evaluated, key=_margin_key)
+        return min(evaluated, key=margin_key)
 
     def as_dict(self) -> dict[str, Any]:
         crit = self.critical

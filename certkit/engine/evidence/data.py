@@ -5,7 +5,9 @@ columns. Plain dataclasses of numbers and strings (numpy arrays for series), pic
 from __future__ import annotations
 
 import re
+from collections.abc import Collection
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -40,7 +42,7 @@ class Series:
     colour: int | None = None
     end: float | None = None
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         self.x = np.asarray(self.x, dtype=float)
         self.y = np.asarray(self.y, dtype=float)
         if self.x.shape != self.y.shape or self.x.ndim != 1:
@@ -59,7 +61,7 @@ class Limit:
     axis: str = "y"
     kind: str = "limit"
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         if self.kind not in LINE_KINDS:
             raise ValueError(f"limit {self.label!r}: kind {self.kind!r} not one of {LINE_KINDS}")
         if self.axis not in ("x", "y"):
@@ -131,7 +133,7 @@ class Heatmap:
     title: str = ""
     threshold: float = 0.0
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         self.values = np.asarray(self.values, dtype=float)
         if self.values.shape != (len(self.rows), len(self.columns)):
             raise ValueError(
@@ -159,10 +161,10 @@ class Table:
     """Rows of values under typed columns (None or NaN: no value)."""
 
     columns: list[Column]
-    rows: list[list]
+    rows: list[list[Any]]
 
     @classmethod
-    def from_dicts(cls, rows: list[dict], columns: list[Column] | None = None) -> Table:
+    def from_dicts(cls, rows: list[dict[str, Any]], columns: list[Column] | None = None) -> Table:
         """A table of dict rows; ``columns`` names some keys (others named by :func:`column_for_key`), columns in
         the order of ``columns`` then of the keys' first appearance."""
         given = {c.key: c for c in columns or ()}
@@ -175,7 +177,7 @@ class Table:
     def __len__(self) -> int:
         return len(self.rows)
 
-    def as_dicts(self) -> list[dict]:
+    def as_dicts(self) -> list[dict[str, Any]]:
         return [{c.key: v for c, v in zip(self.columns, row)} for row in self.rows]
 
 
@@ -229,7 +231,7 @@ _SUFFIXES = (
 )
 
 
-def column_for_key(key: str, values=()) -> Column:
+def column_for_key(key: str, values: Collection[object] = ()) -> Column:
     """A column for an internal key: a known name, else the key's words with its unit suffix (``vef_kn`` →
     "vef" in kn, ``rudder_min_deg`` → "rudder min" in deg; a unit written as the key's last word, ``"VEF kn"``,
     likewise); text when every value is a string."""
@@ -249,5 +251,5 @@ def column_for_key(key: str, values=()) -> Column:
     return Column(key, words.replace("_", " "), unit, _SHOWN.get(unit, unit) if unit else None, kind=kind)
 
 
-def _is_number(v) -> bool:
+def _is_number(v: object) -> bool:
     return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)

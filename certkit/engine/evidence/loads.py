@@ -4,12 +4,24 @@ quantity and sense)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 
 from certkit.engine.evidence.data import Axis, Chart, Column, Limit, Panel, Point, Series, Table
 from certkit.engine.results import Evidence
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES
+
+if TYPE_CHECKING:
+    from certkit.engine.context import Context
+
+#: surface → {(station, quantity): (negative, positive) governing allowable limit loads}
+Allowables = dict[str, dict[tuple[str, str], tuple[float, float]]]
+#: a rule's run or load envelope (its own dataclass, defined with the rule or the loads model): the evidence reads its
+#: fields
+Run = Any
 
 _KIND = {0: "scaled sinusoid", 1: "held input", 2: "maximal held input"}
 #: palette entries of the maximum and minimum of each envelope drawn (entry 5, vermillion, is the allowables')
@@ -19,11 +31,13 @@ UNITS = {"shear": ("N", "kN"), "bending": ("N·m", "kN·m"), "torsion": ("N·m",
 FT = 0.3048
 
 
-def allowables(ctx, ultimate_factor: float, surfaces=("wing", "horizontal_tail", "vertical_tail")) -> dict:
+def allowables(
+    ctx: Context, ultimate_factor: float, surfaces: Sequence[str] = ("wing", "horizontal_tail", "vertical_tail")
+) -> Allowables:
     """surface → {(station, quantity): (negative, positive) governing allowable limit loads}: per sense the smaller
     of the allowable limit load and the allowable ultimate load ÷ the factor of safety (the load the two margins of
     :func:`certkit.models.loads.capability.worst_margin` reach zero at), signed."""
-    out = {}
+    out: Allowables = {}
     for surface in surfaces:
         caps = {}
         for cap in declared_capabilities(ctx, surface):
@@ -39,7 +53,7 @@ def _root_load(quantity: str) -> Axis:
     return Axis(f"root {quantity}", si, shown)
 
 
-def _critical_indices(run, surface) -> list[int]:
+def _critical_indices(run: Run, surface: str) -> list[int]:
     env = run.envelope
     picks = []
     for sense in ("max", "min"):
@@ -66,7 +80,9 @@ def _peak_point(series: Series, label: str = "critical") -> list[Point]:
     return [Point(float(series.x[k]), float(series.y[k]), label)]
 
 
-def time_history(run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None) -> Chart:
+def time_history(
+    run: Run, surface: str, control: str, signals: Sequence[str] = ("n_z", "q"), allow: Allowables | None = None
+) -> Chart:
     """Control, the two response signals and the root shear of the critical conditions of a manoeuvre's run (its
     records, ``loads`` and ``kind``), each curve ending where the paragraph stops considering loads (the run's valid
     mask); the critical condition (largest root shear) bold."""
@@ -98,7 +114,12 @@ def time_history(run, surface: str, control: str, signals=("n_z", "q"), allow: d
     return Chart(Axis("time", "s"), panels)
 
 
-def envelope_chart(peaks: dict, stations, allow: dict | None = None, title: str = "") -> Chart:
+def envelope_chart(
+    peaks: dict[str, np.ndarray],
+    stations: Sequence[str],
+    allow: dict[tuple[str, str], tuple[float, float]] | None = None,
+    title: str = "",
+) -> Chart:
     """Root-to-tip maximum and minimum of each quantity (``peaks``: name → (n, 2, 3, S) arrays, the first the
     envelope, others drawn for comparison), the governing allowables at the stations that declare one, and the
     critical point (the station and sense nearest its allowable, else the largest magnitude)."""
@@ -118,8 +139,8 @@ def envelope_chart(peaks: dict, stations, allow: dict | None = None, title: str 
                 Series(f"{name} min" if len(peaks) > 1 else "min", x, lo, marker="s", style=style, colour=c_lo),
             ]
         points = _critical_station(series[0].y, series[1].y, x, quantity, stations, allow)
-        caps = [(s, (allow or {}).get((st, quantity))) for s, st in enumerate(stations)]
-        caps = [(s, c) for s, c in caps if c]
+        found = [(s, (allow or {}).get((st, quantity))) for s, st in enumerate(stations)]
+        caps = [(s, c) for s, c in found if c is not None]
         if caps:
             xs = np.array([float(s) for s, _ in caps])
             series += [
@@ -134,7 +155,14 @@ def envelope_chart(peaks: dict, stations, allow: dict | None = None, title: str 
     return Chart(Axis("station", categories=list(stations)), panels, title=title, arrangement="row")
 
 
-def _critical_station(hi, lo, x, quantity, stations, allow) -> list[Point]:
+def _critical_station(
+    hi: np.ndarray,
+    lo: np.ndarray,
+    x: np.ndarray,
+    quantity: str,
+    stations: Sequence[str],
+    allow: dict[tuple[str, str], tuple[float, float]] | None,
+) -> list[Point]:
     best = None
     for s, st in enumerate(stations):
         cap = (allow or {}).get((st, quantity))
@@ -150,7 +178,9 @@ def _critical_station(hi, lo, x, quantity, stations, allow) -> list[Point]:
     return [Point(float(x[s]), float(v), "critical (nearest its allowable)" if has_cap else "largest load")]
 
 
-def case_table(env, surface: str, allow: dict | None = None, gradients=None, which=None) -> Table:
+def case_table(
+    env: Run, surface: str, allow: Allowables | None = None, gradients: Any = None, which: Any = None
+) -> Table:
     """The critical cases of ``surface`` in the load envelope ``env``: station, quantity, sense, limit load (kN,
     kN·m), the governing allowable where declared, condition and time; with ``gradients`` and ``which`` the gust
     gradient H of each."""
@@ -189,7 +219,7 @@ def case_table(env, surface: str, allow: dict | None = None, gradients=None, whi
     return Table(columns, rows)
 
 
-def not_simulated(failed) -> list[Evidence]:
+def not_simulated(failed: Sequence[tuple[Any, str]]) -> list[Evidence]:
     if not failed:
         return []
     return [
@@ -204,7 +234,7 @@ def not_simulated(failed) -> list[Evidence]:
 
 
 def maneuver_evidence(
-    run, surface: str, control: str, signals=("n_z", "q"), allow: dict | None = None
+    run: Run, surface: str, control: str, signals: Sequence[str] = ("n_z", "q"), allow: Allowables | None = None
 ) -> list[Evidence]:
     name = surface.replace("_", " ")
     env = run.envelope
@@ -234,7 +264,7 @@ def maneuver_evidence(
 # --------------------------------------------------------------------------- discrete gusts (§25.341(a))
 
 
-def _gust_picks(run) -> list[tuple[int, int]]:
+def _gust_picks(run: Run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the extreme wing root bending and tail root shear, both senses."""
     env, which = run.envelope, run.which
     picks = []
@@ -249,7 +279,9 @@ def _gust_picks(run) -> list[tuple[int, int]]:
     return picks
 
 
-def gust_time_history(replays, conditions, allow: dict | None = None, stations=None) -> Chart:
+def gust_time_history(
+    replays: Sequence[Any], conditions: Sequence[Any], allow: Allowables | None = None, stations: Any = None
+) -> Chart:
     lines: list[list[Series]] = [[], [], [], []]
     for rank, (i, H, r) in enumerate(replays):
         sim = r.sim
@@ -260,7 +292,7 @@ def gust_time_history(replays, conditions, allow: dict | None = None, stations=N
         lines[2].append(Series(label, sim.t, r.loads["wing"][:, 0, 1, 0], critical=crit))
         lines[3].append(Series(label, sim.t, r.loads["horizontal_tail"][:, 0, 0, 0], critical=crit))
 
-    def root_limits(surface, quantity):
+    def root_limits(surface: str, quantity: str) -> list[Limit]:
         cap = (allow or {}).get(surface, {}).get((stations[surface][0], quantity)) if stations else None
         return (
             [Limit(cap[0], "allowable (−)", kind="allowable"), Limit(cap[1], "allowable (+)", kind="allowable")]
@@ -282,7 +314,7 @@ def gust_time_history(replays, conditions, allow: dict | None = None, stations=N
     return Chart(Axis("time", "s"), panels)
 
 
-def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
+def gust_evidence(run: Run, allow: Allowables | None = None) -> list[Evidence]:
     env = run.envelope
     replays = run.replay(_gust_picks(run))
     out = [
@@ -315,7 +347,7 @@ def gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
 # --------------------------------------------------------------------------- unsymmetrical gusts (§25.349(b))
 
 
-def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
+def _unsymmetrical_picks(run: Run) -> list[tuple[int, int]]:
     """(condition, gradient index) of the largest root bending on each side and of the largest rolling moment."""
     env, which = run.envelope, run.which
     b = QUANTITIES.index("bending")
@@ -332,7 +364,7 @@ def _unsymmetrical_picks(run) -> list[tuple[int, int]]:
     return picks[:4]
 
 
-def unsymmetrical_time_history(run, picks) -> Chart:
+def unsymmetrical_time_history(run: Run, picks: Sequence[tuple[int, int]]) -> Chart:
     from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 
     runs, (full, reduced) = run.runs, run.fractions
@@ -371,7 +403,7 @@ def unsymmetrical_time_history(run, picks) -> Chart:
     return Chart(Axis("time", "s"), panels)
 
 
-def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence]:
+def unsymmetrical_gust_evidence(run: Run, allow: Allowables | None = None) -> list[Evidence]:
     full, reduced = run.fractions
     env, sym = run.envelope, run.symmetric
     stations = env.stations[next(iter(env.peaks))]
@@ -415,7 +447,9 @@ def unsymmetrical_gust_evidence(run, allow: dict | None = None) -> list[Evidence
 # --------------------------------------------------------------------------- steady load cases (§25.331(b), …)
 
 
-def run_envelope_evidence(run, ctx, ultimate_factor: float, surfaces, what: str) -> list[Evidence]:
+def run_envelope_evidence(
+    run: Run, ctx: Context, ultimate_factor: float, surfaces: Sequence[str], what: str
+) -> list[Evidence]:
     """:func:`envelope_evidence` of a loads rule's run against the declared allowables; none when nothing was
     simulated."""
     if run is None or not run.simulated:
@@ -423,7 +457,9 @@ def run_envelope_evidence(run, ctx, ultimate_factor: float, surfaces, what: str)
     return envelope_evidence(run.envelope, surfaces, what, allow=allowables(ctx, ultimate_factor))
 
 
-def envelope_evidence(env, surfaces, what: str, plot: bool = True, allow: dict | None = None) -> list[Evidence]:
+def envelope_evidence(
+    env: Run, surfaces: Iterable[str], what: str, plot: bool = True, allow: Allowables | None = None
+) -> list[Evidence]:
     """The critical-case table of each of ``surfaces`` in the load envelope ``env`` (skipping a surface with no
     computed load) and, with ``plot``, its load envelope along the span (the tables alone where the rule's own plots
     already show the case)."""

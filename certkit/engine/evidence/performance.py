@@ -4,25 +4,36 @@ computed (findings, memoised runs); nothing here computes physics."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping, Sequence
+from typing import Any
+
 import numpy as np
+import numpy.typing as npt
 
 from certkit.engine.evidence.data import Axis, Bars, Chart, Column, Limit, Panel, Point, Series, Table
-from certkit.engine.results import Evidence
+from certkit.engine.results import Condition, Evidence, Finding, margin_key
 
 KN = 1852.0 / 3600.0
 FT = 0.3048
 DEG = np.pi / 180.0
 
 
-def critical(findings):
+def critical(findings: Iterable[Finding]) -> Finding | None:
     """The evaluated finding with the smallest normalised margin, or None."""
     ev = [f for f in findings if f.margin is not None]
     if not ev:
         return None
-    return min(ev, key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
+    return min(ev, key=margin_key)
 
 
-def time_histories(t, panels, labels, critical: int = 0, ends=None, title: str = "") -> Chart:
+def time_histories(
+    t: npt.ArrayLike,
+    panels: Sequence[Any],
+    labels: Sequence[str],
+    critical: int = 0,
+    ends: Sequence[float] | np.ndarray | None = None,
+    title: str = "",
+) -> Chart:
     """Stacked panels sharing the time axis, one line per condition (the critical one bold), each line ending at its
     run's end (``ends`` (n,), s). ``t`` (nt,) or (nt, n); ``panels`` a list of (Axis, values (nt, n) SI, limits,
     points)."""
@@ -44,7 +55,7 @@ def time_histories(t, panels, labels, critical: int = 0, ends=None, title: str =
     return Chart(Axis("time", "s"), out, title=title)
 
 
-def _extreme_point(t, y, sense: str, label: str) -> list[Point]:
+def _extreme_point(t: np.ndarray, y: np.ndarray, sense: str, label: str) -> list[Point]:
     y = np.asarray(y, dtype=float)
     if not np.isfinite(y).any():
         return []
@@ -53,13 +64,15 @@ def _extreme_point(t, y, sense: str, label: str) -> list[Point]:
 
 
 # ---------------------------------------------------------------------------------------------- § 25.111
-def _time_at(V, t, speeds):
+def _time_at(V: np.ndarray, t: np.ndarray, speeds: npt.ArrayLike) -> np.ndarray:
     """First recorded time at which each run's airspeed V (nt, n) reaches ``speeds`` (n,) (m/s)."""
     reached = V >= np.asarray(speeds)[None, :]
     return np.where(reached.any(axis=0), t[np.argmax(reached, axis=0)], np.nan)
 
 
-def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evidence]:
+def takeoff_evidence(
+    ctx: Any, conds: Sequence[Any], findings: list[Finding], run: Any, engine: Any, vef: Any, crit: Any
+) -> list[Evidence]:
     """§25.111: time histories (speed, wheel height, elevator, rudder, heading, lateral deviation, bank) of the
     engine-out runs of every loading (the critical one bold) and of the critical loading with all engines; a
     table of the key speeds and deflections."""
@@ -172,11 +185,11 @@ def takeoff_evidence(ctx, conds, findings, run, engine, vef, crit) -> list[Evide
 
 
 # ---------------------------------------------------------------------------------------------- § 25.149
-def vmca_evidence(findings, rows, limits) -> list[Evidence]:
+def vmca_evidence(findings: list[Finding], rows: Mapping[str, Any], limits: Any) -> list[Evidence]:
     """§25.149: rudder and aileron of the straight OEI trims the VMCA search visited, against speed, for the
     critical condition's banks, with the design limits, the computed VMCA and 1.13 VSR."""
     worst = critical([f for f in findings if f.check.startswith("(c)")])
-    if worst is None:
+    if worst is None or worst.value is None or worst.limit is None:
         return []
     engine = worst.condition.get("inoperative")
     idx = [j for j, e in enumerate(rows["engines"]) if e == engine]
@@ -223,7 +236,7 @@ def vmca_evidence(findings, rows, limits) -> list[Evidence]:
 
 
 # ---------------------------------------------------------------------------------------------- generic
-def condition_label(c) -> str:
+def condition_label(c: Condition) -> str:
     parts = [c.loading or "", c.configuration or ""]
     if c.speed_name:
         parts.append(c.speed_name)
@@ -237,13 +250,18 @@ def _shown_unit(unit: str) -> str:
     return "%" if unit == "gradient" else unit
 
 
-def _scaled(v, unit):
+def _scaled(v: float | None, unit: str) -> float | None:
     """A finding's number in its table unit: gradients in percent."""
     return None if v is None else float(v) * 100 if unit == "gradient" else float(v)
 
 
 def margins_evidence(
-    findings, title: str, caption: str, detail_keys=(), worst: int = 24, plot: bool = False
+    findings: list[Finding],
+    title: str,
+    caption: str,
+    detail_keys: Sequence[str] = (),
+    worst: int = 24,
+    plot: bool = False,
 ) -> list[Evidence]:
     """Generic evidence of a trim-based rule: a table of every evaluated finding with its value, limit, margin and the
     trim's ``detail_keys``, worst first; with ``plot`` also the ``worst`` findings by normalised margin as bars
@@ -251,13 +269,13 @@ def margins_evidence(
     ev = [f for f in findings if f.margin is not None and f.value is not None]
     if not ev:
         return []
-    ev.sort(key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
+    ev.sort(key=margin_key)
     shown = ev[:worst]
     figure = None
     if plot:
         figure = Bars(
             [f"{f.check[:40]} · {condition_label(f.condition)}" for f in shown],
-            [f.normalized_margin if f.normalized_margin is not None else f.margin for f in shown],
+            [margin_key(f) for f in shown],
             Axis("normalised margin (margin / |limit|)"),
             [f.status == "fails" for f in shown],
             Limit(0.0, "0: complies at or above"),
@@ -295,18 +313,21 @@ def margins_evidence(
     return [Evidence(title, figure, caption + more, table)]
 
 
-def climb_gradient_evidence(findings, title: str) -> list[Evidence]:
+def climb_gradient_evidence(findings: list[Finding], title: str) -> list[Evidence]:
     """§25.121: the steady one-engine-inoperative gradient of each condition against the segment's minimum, and
     the trim table (controls at the gradient)."""
     grads = [f for f in findings if f.unit == "gradient" and f.value is not None]
     out = []
     if grads:
+        if grads[0].limit is None:
+            raise ValueError(f"the climb gradient finding {grads[0].check!r} has no minimum")
+        minimum = float(grads[0].limit)
         bars = Bars(
             [condition_label(f.condition) for f in grads],
-            [f.value for f in grads],
+            [float(f.value) for f in grads if f.value is not None],
             Axis("steady climb gradient", "gradient"),
             [f.status == "fails" for f in grads],
-            Limit(grads[0].limit, f"minimum {grads[0].limit * 100:.1f} %"),
+            Limit(minimum, f"minimum {minimum * 100:.1f} %"),
             title=title,
             horizontal=False,
         )
@@ -336,7 +357,7 @@ def climb_gradient_evidence(findings, title: str) -> list[Evidence]:
     return out + wat_limit_evidence(findings, title)
 
 
-def wat_limit_evidence(findings, title: str) -> list[Evidence]:
+def wat_limit_evidence(findings: list[Finding], title: str) -> list[Evidence]:
     """§25.121 over weight–altitude–temperature: per weight-limited corner of the takeoff and landing envelope, the
     WAT limit weight (the flight-manual weight limitation of §25.1533(a)) against the lowest operating weight."""
     limited = [f for f in findings if f.unit == "kg" and f.check.endswith("WAT limit weight")]

@@ -6,11 +6,11 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.engine.evidence.data import Axis, Chart, Limit, Panel, Series
-from certkit.engine.evidence.loads import _peak_point, case_table, not_simulated
+from certkit.engine.evidence.loads import Allowables, Run, _peak_point, case_table, not_simulated
 from certkit.engine.results import Evidence
 
 
-def critical_condition(run) -> int:
+def critical_condition(run: Run) -> int:
     """Index of the condition with the largest |wing root bending| over both halves and the time history."""
     bend = np.fmax(
         np.nanmax(np.abs(run.right["wing"][:, :, 1, 0]), axis=0),
@@ -19,7 +19,7 @@ def critical_condition(run) -> int:
     return int(np.nanargmax(bend))
 
 
-def roll_history(run, i: int, allow: dict | None = None) -> Chart:
+def roll_history(run: Run, i: int, allow: Allowables | None = None) -> Chart:
     sim, ja = run.records, run.aileron_index
     t = sim.t
     steady = [Limit(float(run.t_end[i]), "steady roll rate", axis="x", kind="event")]
@@ -27,7 +27,7 @@ def roll_history(run, i: int, allow: dict | None = None) -> Chart:
     root = run.env_sides.stations["wing"][0]
     caps = (allow or {}).get("wing", {})
 
-    def side_panel(q, name, quantity):
+    def side_panel(q: int, name: str, quantity: str) -> Panel:
         lines = [
             Series(lab, t, loads["wing"][:, i, q, 0], critical=k == 0, colour=k)
             for k, (lab, loads) in enumerate(halves)
@@ -55,7 +55,7 @@ def roll_history(run, i: int, allow: dict | None = None) -> Chart:
     return Chart(Axis("time", "s"), panels, title=run.conditions[i].label())
 
 
-def roll_evidence(run, allow: dict | None = None) -> list[Evidence]:
+def roll_evidence(run: Run, allow: Allowables | None = None) -> list[Evidence]:
     i = critical_condition(run)
     sides, fin = run.env_sides, run.env_fin
     return [

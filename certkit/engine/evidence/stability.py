@@ -4,29 +4,32 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 
 from certkit.engine.evidence.data import Axis, Chart, Column, Heatmap, Limit, Panel, Series, Table
-from certkit.engine.results import Evidence
+from certkit.engine.results import Evidence, Finding, margin_key
 
 
-def margin_matrix(findings) -> tuple[list[str], list[str], np.ndarray, dict]:
+def margin_matrix(findings: Iterable[Finding]) -> tuple[list[str], list[str], np.ndarray, dict[tuple[str, str], str]]:
     """(corners, configurations, matrix of the smallest normalised margin, critical check per cell).
     NaN where nothing was evaluated."""
-    corners, configs = [], []
+    corners: list[str] = []
+    configs: list[str] = []
     cells: dict[tuple[str, str], tuple[float, str]] = {}
     for f in findings:
-        if f.margin is None or f.condition.loading is None:
+        loading = f.condition.loading
+        if f.margin is None or loading is None:
             continue
-        c = f.condition
-        cfg = c.configuration or "—"
-        if c.loading not in corners:
-            corners.append(c.loading)
+        cfg = f.condition.configuration or "—"
+        if loading not in corners:
+            corners.append(loading)
         if cfg not in configs:
             configs.append(cfg)
-        m = f.normalized_margin if f.normalized_margin is not None else f.margin
-        key = (c.loading, cfg)
+        m = margin_key(f)
+        key = (loading, cfg)
         if key not in cells or m < cells[key][0]:
             cells[key] = (m, f.check)
     mat = np.full((len(corners), len(configs)), np.nan)
@@ -35,7 +38,7 @@ def margin_matrix(findings) -> tuple[list[str], list[str], np.ndarray, dict]:
     return corners, configs, mat, {k: v[1] for k, v in cells.items()}
 
 
-def margin_matrix_evidence(findings, title: str) -> list[Evidence]:
+def margin_matrix_evidence(findings: Iterable[Finding], title: str) -> list[Evidence]:
     corners, configs, mat, checks = margin_matrix(findings)
     if not corners:
         return []
@@ -76,7 +79,7 @@ _MARKERS = {"short_period": "o", "phugoid": "s", "dutch_roll": "^"}
 _LEVEL_COLOUR = {1: 0, 2: 1, 3: 3, 4: 5}  # palette entries: blue, orange, purple, vermillion
 
 
-def damping_frequency_chart(points: list[dict], boundaries: list[tuple[str, float, str]]) -> Chart:
+def damping_frequency_chart(points: list[dict[str, Any]], boundaries: list[tuple[str, float, str]]) -> Chart:
     """(damping ratio, natural frequency) of the oscillatory modes, one colour per Level and one marker per mode,
     with the damping-ratio boundaries (label, ζ, mode) as labelled limits and ζ = 0 (unstable left of it)."""
     groups: dict[tuple[str, int], list[tuple[float, float]]] = {}

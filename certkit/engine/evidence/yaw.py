@@ -6,25 +6,25 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.engine.evidence.data import Axis, Chart, Limit, Panel, Series
-from certkit.engine.evidence.loads import _peak_point, case_table, not_simulated
+from certkit.engine.evidence.loads import Allowables, Run, _peak_point, case_table, not_simulated
 from certkit.engine.results import Evidence
 
 
-def critical_condition(run) -> int:
+def critical_condition(run: Run) -> int:
     """Index of the condition with the largest |vertical-tail root shear| over both simulation phases."""
     held, back = run.held_loads[:, :, 0, 0], run.returned_loads[:, :, 0, 0]
     peak = np.fmax(np.nanmax(np.abs(held), axis=0), np.nanmax(np.abs(back), axis=0))
     return int(np.nanargmax(peak))
 
 
-def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
+def yaw_history(run: Run, i: int, allow: Allowables | None = None) -> Chart:
     """The held phase up to the settled sideslip, then the return to neutral, as one curve per quantity."""
     r, jr = run.yaw, run.rudder_index
     t1 = r.held.t
     live = t1 <= r.t_steady[i] + 1e-9
     t = np.concatenate([t1[live], r.returned.t + r.t_steady[i]])
 
-    def joined(a, b):
+    def joined(a: np.ndarray, b: np.ndarray) -> np.ndarray:
         return np.concatenate([a[live], b])
 
     events = [
@@ -56,7 +56,7 @@ def yaw_history(run, i: int, allow: dict | None = None) -> Chart:
     return Chart(Axis("time", "s"), panels, title=run.conditions[i].label())
 
 
-def yaw_evidence(run, allow: dict | None = None) -> list[Evidence]:
+def yaw_evidence(run: Run, allow: Allowables | None = None) -> list[Evidence]:
     i = critical_condition(run)
     return [
         Evidence(
