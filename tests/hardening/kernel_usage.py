@@ -1,8 +1,7 @@
 """The kernels a baseline check and a redesigned tail's evaluation compile, as the lines of
 ``certkit/models/kernel_signatures.txt``.
 
-Run from the repository root to rewrite the list:
-    python -m tests.hardening.kernel_usage > certkit/models/kernel_signatures.txt
+Run to rewrite the list:  python tests/hardening/kernel_usage.py > certkit/models/kernel_signatures.txt
 """
 
 from __future__ import annotations
@@ -12,7 +11,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 HEADER = (
     "# certkit's numba kernels compiled ahead at a first run (certkit/models/kernel_warmup.py): module, function,\n"
-    "# argument types. Written by `python -m tests.hardening.kernel_usage`; tests/hardening/test_kernel_warmup.py\n"
+    "# argument types. Written by `python tests/hardening/kernel_usage.py`; tests/hardening/test_kernel_warmup.py\n"
     "# compares it with what a check and a design evaluation compile.\n"
 )
 #: a design whose tail differs from the baseline's (the design layer's own code paths)

@@ -17,20 +17,21 @@ from certkit.models.kernel_warmup import (
 from ..conftest import ROOT
 
 
-def test_the_list_is_what_a_check_and_a_design_evaluation_compile():
+def test_the_list_is_what_a_check_and_a_design_evaluation_compile(tmp_path):
     """Fails when a kernel gains, loses or changes an argument type (the first run would compile it in every process
-    again); the message holds the new list."""
+    again); the message holds the new list. The script runs from another folder, so that it imports the certkit the
+    tests import (an installed copy's kernels are already compiled by the other tests)."""
     done = subprocess.run(
-        [sys.executable, "-m", "tests.hardening.kernel_usage"],
+        [sys.executable, str(ROOT / "tests" / "hardening" / "kernel_usage.py")],
         capture_output=True,
         text=True,
-        cwd=ROOT,
+        cwd=tmp_path,
         env={**os.environ, "OMP_NUM_THREADS": "1"},
     )
     assert done.returncode == 0, done.stderr[-3000:]
     assert done.stdout == SIGNATURES_FILE.read_text(encoding="utf-8"), (
         "certkit/models/kernel_signatures.txt is stale; rewrite it with "
-        "`python -m tests.hardening.kernel_usage > certkit/models/kernel_signatures.txt`:\n" + done.stdout
+        "`python tests/hardening/kernel_usage.py > certkit/models/kernel_signatures.txt`:\n" + done.stdout
     )
 
 
