@@ -13,7 +13,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.turbulence import von_karman
 from certkit.units import FT, G0
 
-from .helpers import NO_STRUCTURE, assert_margins_by_hand, own, run_rule
+from .helpers import BASELINE, NO_STRUCTURE, assert_margins_by_hand, own, run_rule
 
 FAST = [("altitude_points: 5", "altitude_points: 2")]
 RULE = "25.341(b)"
@@ -122,3 +122,14 @@ def test_without_a_declared_structure_nothing_is_evaluated(tmp_path):
     r = run_rule(RULE, tmp_path, edits=FAST + [NO_STRUCTURE])
     assert own(r) and all(f.status == "not_evaluated" for f in own(r))
     assert all("capability" in f.reason for f in own(r))
+
+
+def test_an_airplane_without_fuel_tanks_is_evaluated_without_fuel_states(tmp_path):
+    """No ``mass.fuel_tanks``: the wing has no fuel state to scan (the §25.343 states need tanks), and every condition is
+    still evaluated — the shared fuel-state table once failed on its empty tank axis, for §25.341(a) as well."""
+    text = BASELINE.read_text()
+    tanks = text[text.index("  fuel_tanks:") : text.index("  payload_zones:")]
+    r = run_rule(RULE, tmp_path, edits=FAST + [(tanks, "")])
+    wing = [f for f in own(r) if "wing" in f.check]
+    assert wing and all(f.status in ("complies", "fails") for f in own(r))
+    assert all("fuel_state" not in f.all_details() for f in wing)

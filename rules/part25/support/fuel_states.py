@@ -54,7 +54,9 @@ def fuel_state_table(aircraft, masses) -> tuple[list[tuple[str, ...]], np.ndarra
     for m in unique:
         unique[m] = fuel_states(aircraft, m)
     per = [unique[float(m)] for m in masses]
-    return [p[0] for p in per], np.array([p[1] for p in per]).reshape(len(per), -1, len(aircraft.mass.fuel_tanks))
+    k = len(aircraft.mass.fuel_tanks)
+    fuel = np.stack([np.asarray(p[1], dtype=float) for p in per]) if per else np.zeros((0, 1, k))
+    return [p[0] for p in per], fuel
 
 
 def fuel_tank_names(ctx) -> tuple[str, ...]:
