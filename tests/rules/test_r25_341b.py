@@ -125,8 +125,8 @@ def test_without_a_declared_structure_nothing_is_evaluated(tmp_path):
 
 
 def test_an_airplane_without_fuel_tanks_is_evaluated_without_fuel_states(tmp_path):
-    """No ``mass.fuel_tanks``: the wing has no fuel state to scan (the §25.343 states need tanks), and every condition is
-    still evaluated — the shared fuel-state table once failed on its empty tank axis, for §25.341(a) as well."""
+    """No ``mass.fuel_tanks``: the wing has no fuel state to scan (the §25.343 states need tanks), and every condition
+    is still evaluated — the shared fuel-state table once failed on its empty tank axis, for §25.341(a) as well."""
     text = BASELINE.read_text()
     tanks = text[text.index("  fuel_tanks:") : text.index("  payload_zones:")]
     r = run_rule(RULE, tmp_path, edits=FAST + [(tanks, "")])
