@@ -19,9 +19,14 @@ from __future__ import annotations
 from functools import partial
 
 import numpy as np
-from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table, fuelled_wing_envelope
-from certkit_rules.part25.support.gust_runs import GUST_RUN_CRITERIA, flight_profile_alleviation, gust_speeds
-from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table, state_envelope
+from certkit_rules.part25.support.gust_runs import (
+    GUST_RUN_CRITERIA,
+    flight_profile_alleviation,
+    gust_speeds,
+    level_flight_batch,
+)
+from certkit_rules.part25.support.loads_conditions import refusal_findings
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, critical_state_finding
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
@@ -129,16 +134,9 @@ def _check(c, surface: str, direction: str = "vertical") -> str:
 def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
     """Design-envelope loads of every condition: each trimmed in level flight at its speed point, linearised, its
     station loads' Ā integrated over von Kármán's spectrum, P_1g ± U_σ Ā per station, quantity and fuel state."""
-    entries, entry_of, key_of = [], {}, {}
-    for c in conditions:
-        v = gust_speeds(ctx, c.altitude)[c.get("speed_point")]
-        key = (c.loading, c.altitude, round(v, 6))
-        if key not in key_of:
-            key_of[key] = len(entries)
-            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None))
-        entry_of[c] = key_of[key]
-    batch = trimmed_batch(ctx, entries)
-    rows, sim_conds, refused = batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries])
+    batch, rows, sim_conds, refused = level_flight_batch(
+        ctx, conditions, lambda c: gust_speeds(ctx, c.altitude)[c.get("speed_point")]
+    )
     findings = refusal_findings(refused, lambda c: [_check(c, s) for s in SURFACES] + [_check(c, FIN, "lateral")])
     if not rows.size:
         return LoadsRun(findings, reason="no condition could be trimmed in level flight (see the findings)")
@@ -163,11 +161,11 @@ def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
             # each fuel state's 1-g load and frequency response: the fuel's inertia added per kilogram of each tank
             p1g_m = p1g[:, None] + np.einsum("nkqs,nmk->nmqs", steady.fuel_per_kg[s], fuel)
             h_m = h[:, None] + np.einsum("wnkqs,nmk->nmqsw", response.fuel_per_kg[s], fuel)  # (n, M, 3, S, nΩ)
-            abar = rms_per_unit(np.abs(h_m) ** 2, omega, scale)  # (n, M, 3, S)
-            band = u_sigma[:, None, None, None] * abar
+            band = u_sigma[:, None, None, None] * rms_per_unit(np.abs(h_m) ** 2, omega, scale)  # (n, M, 3, S)
             wing_states = np.moveaxis(np.stack([p1g_m - band, p1g_m + band], axis=2), 1, 0)  # (M, n, 2, 3, S)
-        abar = rms_per_unit(np.abs(h) ** 2, omega, scale)  # (n, 3, S)
-        band = u_sigma[:, None, None] * abar
+            peaks[s] = state_envelope(wing_states)  # the envelope over the fuel states
+            continue
+        band = u_sigma[:, None, None] * rms_per_unit(np.abs(h) ** 2, omega, scale)  # (n, 3, S)
         peaks[s] = np.stack([p1g - band, p1g + band], axis=1)  # (n, 2, 3, S)
     lb = lateral_gust_batch(loads, batch.model.subset(rows), batch.x[rows], batch.u[rows])
     fin_steady = steady_loads(loads, lb, (FIN,))
@@ -229,6 +227,4 @@ def continuous_turbulence(ctx, conditions, crit) -> LoadsRun:
         [c.label() for c in sim_conds],
         keys=list(sim_conds),
     )
-    if wing_states is not None:
-        envelope = fuelled_wing_envelope(envelope, wing_states)
     return LoadsRun(findings, sim_conds, envelope=envelope)

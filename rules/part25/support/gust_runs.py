@@ -186,12 +186,10 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     return runs
 
 
-def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> GustRuns:
-    """The 1 − cos vertical gusts of ``conditions`` (one configuration), each trimmed in level flight at
-    ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocity
-    ``design_velocity(simulated conditions, H) -> (n,)`` (EAS, m/s), up or down as the condition's ``gust`` says;
-    ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
-    trim."""
+def level_flight_batch(ctx, conditions, speed_of):
+    """``conditions`` (one configuration) trimmed in level flight at ``speed_of(condition)`` (EAS, m/s), those of one
+    loading, altitude and speed sharing a trim: (the trimmed batch, the batch rows of the conditions that trimmed, their
+    refined conditions, the :class:`Refusal` of the others), as :meth:`TrimmedBatch.distribute` gives them."""
     entries, key_of, entry_of = [], {}, {}
     for c in conditions:
         v = float(speed_of(c))
@@ -201,7 +199,16 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
             entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, gust=None))
         entry_of[c] = key_of[key]
     batch = trimmed_batch(ctx, entries)
-    rows, sim_conds, refused = batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries])
+    return (batch, *batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries]))
+
+
+def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> GustRuns:
+    """The 1 − cos vertical gusts of ``conditions`` (one configuration), each trimmed in level flight at
+    ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocity
+    ``design_velocity(simulated conditions, H) -> (n,)`` (EAS, m/s), up or down as the condition's ``gust`` says;
+    ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
+    trim."""
+    batch, rows, sim_conds, refused = level_flight_batch(ctx, conditions, speed_of)
     empty = np.zeros((len(H), 0))
     if not rows.size:
         return GustRuns(list(refused), [], H, [], empty, empty, empty, [])
