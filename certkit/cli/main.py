@@ -118,15 +118,12 @@ def _mission_for_report(aircraft) -> dict | None:
 def _compile_kernels(jobs: int, announce: bool) -> None:
     """At the first run after an install (numba's cache cold), compile certkit's kernels ahead in ``jobs`` processes
     (:mod:`certkit.models.kernel_warmup`), saying so when ``announce``."""
-    from certkit.models.compiled import kernels_cached
+    from certkit.models.kernel_warmup import compile_if_cold
 
-    if kernels_cached():
-        return
-    if announce:
+    def say() -> None:
         click.echo("compiling certkit's numba kernels (once after an install; cached for later runs)…", err=True)
-    from certkit.models.kernel_warmup import compile_kernels
 
-    seconds = compile_kernels(jobs)
+    seconds = compile_if_cold(jobs, starting=say if announce else None)
     if announce and seconds:
         click.echo(f"kernels compiled in {seconds:.0f} s", err=True)
 

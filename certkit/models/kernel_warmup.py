@@ -19,7 +19,7 @@ import importlib
 import multiprocessing
 import sys
 import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 from typing import Any
@@ -115,8 +115,21 @@ def compile_kernels(processes: int, entries: list[Entry] | None = None, context:
     return time.perf_counter() - start
 
 
+def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[], None] | None = None) -> float | None:
+    """At the first run after an install (numba's cache cold: :func:`certkit.models.compiled.kernels_cached`), call
+    ``starting`` (e.g. to say so) and :func:`compile_kernels`; its seconds, or None when the kernels are cached."""
+    from certkit.models import compiled
+
+    if compiled.kernels_cached():
+        return None
+    if starting is not None:
+        starting()
+    return compile_kernels(processes, context=context)
+
+
 __all__ = [
     "SIGNATURES_FILE",
+    "compile_if_cold",
     "argument_types",
     "compile_group",
     "compile_kernels",

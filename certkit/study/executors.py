@@ -32,12 +32,9 @@ def _died(task: Task, where: str) -> CaseResult:
 def _compile_kernels(processes: int) -> None:
     """At the first run after an install, compile certkit's numba kernels ahead in ``processes`` spawned processes
     (:mod:`certkit.models.kernel_warmup`) rather than in every worker on its first case."""
-    from certkit.models.compiled import kernels_cached
+    from certkit.models.kernel_warmup import compile_if_cold
 
-    if not kernels_cached():
-        from certkit.models.kernel_warmup import compile_kernels
-
-        compile_kernels(processes, context="spawn")
+    compile_if_cold(processes, context="spawn")
 
 
 class SerialExecutor:

@@ -1,5 +1,5 @@
-"""Rigid-airplane station loads in continuous vertical turbulence: frequency responses and the rms load per unit rms
-gust velocity, Ā.
+"""Rigid-airplane station loads in continuous vertical and lateral turbulence: frequency responses and the rms load
+per unit rms gust velocity, Ā.
 
 The trimmed airplane with the gust pseudo-controls of :mod:`certkit.models.loads.gust` (the gust angle at the wing,
 and the same gust at the tail a tail arm / V later) is linearised about its trim — ẋ = A x + B u and the outputs α,
@@ -15,10 +15,13 @@ spectrum Φ(Ω) (unit variance),
 
 the rms load per unit rms gust velocity of a design-envelope analysis (§25.341(b)(1)–(2): P = P_1g ± U_σ Ā).
 
+In lateral turbulence (:func:`lateral_turbulence_response`) the gust is a sideslip v_g/V felt by the fin alone
+(:mod:`certkit.models.loads.lateral_gust`), the airplane free in sideslip, roll and yaw.
+
 Limits (stated by the rules that use it): quasi-steady aerodynamics — the lift follows the angle of attack at once,
 no Sears or Küssner function, which over-states the response at high frequency (conservative); rigid airplane;
-controls fixed (no pilot or flight control system in the loop); the speed's small change (phugoid) is in the
-linear model, the Mach number's is not.
+controls fixed (no pilot or flight control system in the loop), so the phugoid and the spiral mode, which the pilot
+flies, are held out (:data:`FREE_STATES`, :data:`LATERAL_FREE_STATES`); the Mach number is held at the trim's.
 """
 
 from __future__ import annotations
