@@ -94,6 +94,23 @@ def test_gust_conditions_split_and_the_rule_says_what_it_leaves_out(result):
     assert whole["(b) fuselage torsion at the tail"].all_details()["largest_torsion_kNm"] > 0
 
 
+def test_flap_conditions_above_the_flap_altitude_do_not_apply(result):
+    """A flap configuration above the flap altitude limit is not applicable in §25.331(b) (nothing to split), so its
+    split is not applicable too — not "not evaluated" as if a trim had failed; the only conditions left not evaluated
+    are the whole-airplane ones (what the rule leaves out, the undeclared fuselage capability)."""
+    ctx, res, _ = result
+    limit = 20000 * 0.3048
+    high = [
+        f for f in res.findings if f.condition.configuration not in (None, "clean") and f.condition.altitude > limit
+    ]
+    assert high and all(f.status == "complies" and f.reason.startswith("not applicable") for f in high)
+    low = [
+        f for f in res.findings if f.condition.configuration not in (None, "clean") and f.condition.altitude <= limit
+    ]
+    assert low and all(f.margin is not None for f in low)
+    assert all(f.condition.loading is None for f in res.findings if f.status == "not_evaluated")
+
+
 def test_full_side_of_a_gust_is_its_symmetric_loading(result):
     """The 100 % side of a gust condition carries the symmetric §25.341(a) tail loads: its extremes over every gradient
     and time equal the §25.341(a) finding's of the same condition (the runs are the same, shared in one process)."""

@@ -40,6 +40,7 @@ from certkit_rules.part25.support.pitch_runs import (
     checked_runs,
     displacement_runs,
 )
+from certkit_rules.part25.support.stability_speeds import flap_altitude_findings
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
 
 from certkit.engine.conditions import ConditionSpace
@@ -253,6 +254,10 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
         source = c.get("source")
         hit = sym.get((source,) + _key(c, source))
         checks = [f"(b)(1) {full:.0%} side, horizontal tail", f"(b)(2) {reduced:.0%} side, horizontal tail"]
+        high = flap_altitude_findings(ctx, c, float(crit.flap_altitude_max), checks)
+        if high:  # the source's condition does not apply (a flap configuration above the flap altitude limit)
+            findings += high
+            continue
         if hit is None or not np.isfinite(hit[0]).any():
             findings += [
                 Finding.not_evaluated(
