@@ -1,15 +1,17 @@
 """§25.255 out-of-trim characteristics: the mistrim amount, the control margin, and the cases that cannot be evaluated.
 
-Hand references: with a trim rate of 0.5 deg/s (a test value; no public 777 rate was found) three seconds of trim
-movement is 1.5° (§25.255(a)(1)), limited by the trim system's stops (the baseline's +2.25° nose-down PFC limit);
-the margins are the elevator design limits −21.8°/+16.8° minus the manoeuvre deflections.
+Hand references: with a trim rate of 0.5 deg/s (a test value, twice the baseline's 0.25 deg/s from the 777 AMM's
+direct mode, so that the nose-down stop is reached more often) three seconds of trim movement is 1.5°
+(§25.255(a)(1)), limited by the trim system's stops (the baseline's +2.25° nose-down PFC limit); the margins are
+the elevator design limits −21.8°/+16.8° minus the manoeuvre deflections.
 """
 
 import pytest
 
 from .helpers import NO_STABILIZER, control_forces_edit, own, run_rule
 
-RATE = ("      elevator_trim: 0 deg ", "      rate: 0.5 deg/s\n      elevator_trim: 0 deg ")
+RATE = ("      rate: 0.25 deg/s ", "      rate: 0.5 deg/s ")
+NO_RATE = ("      rate: 0.25 deg/s ", "      # rate: 0.25 deg/s ")
 
 
 @pytest.fixture(scope="module")
@@ -18,7 +20,8 @@ def rated(tmp_path_factory):
 
 
 def test_without_a_rate_or_a_stabiliser_nothing_is_evaluated(tmp_path):
-    base = run_rule("25.255")
+    (tmp_path / "unrated").mkdir()
+    base = run_rule("25.255", tmp_path / "unrated", [NO_RATE])
     assert base.status == "not_evaluated"
     assert all(f.status == "not_evaluated" and "stabilizer.rate" in f.reason for f in own(base))
     (tmp_path / "plain").mkdir()
@@ -103,3 +106,20 @@ def test_stick_forces_with_an_artificial_feel_elevator(tmp_path):
     assert recovery and all(
         f.condition.speed_name == "VDF/MDF" and f.limit == 125.0 and f.status == "complies" for f in recovery
     )
+
+
+def test_baseline_mistrim_from_the_amm_rate():
+    """The baseline declares the 777 AMM's direct-mode rate, 0.25°/s (27-41-00 p. 64): 3 s of it is 0.75° nose up and
+    nose down, nose down no further than the +2.25° PFC trim limit (reached from the aft corners' trims at +1.56° to
+    +1.76°); the elevator-fixed checks are computed and the stick-force checks name the missing column feel."""
+    base = run_rule("25.255")
+    rated = [f for f in own(base) if f.margin is not None]
+    assert rated
+    for f in rated:
+        trim, mistrim = f.details["stabilizer_trim_deg"], f.details["stabilizer_mistrim_deg"]
+        if "nose-up" in f.condition.get("manoeuvre"):
+            assert mistrim - trim == pytest.approx(-0.75, abs=1e-3)
+        else:
+            assert mistrim - trim == pytest.approx(min(0.75, 2.25 - trim), abs=1e-3)
+    force = [f for f in own(base) if f.check.endswith("stick force")]
+    assert force and all(f.status == "not_evaluated" and "control_forces.elevator" in f.reason for f in force)

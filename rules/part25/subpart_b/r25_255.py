@@ -138,6 +138,7 @@ class OutOfTrim(Rule):
         for sense, sign in (("nose-up", -1.0), ("nose-down", 1.0)):
             u = batch.u.copy()
             u[:, js] = np.clip(u[:, js] + sign * delta, lo, hi)
+            moved = np.abs(u[:, js] - batch.u[:, js])
             for speed_name in ("VFC/MFC", "VDF/MDF"):
                 eas = np.array([test_speeds(ctx, hh)[speed_name] for hh in h])
                 tas = np.array([float(convert_speed(v, "EAS", "TAS", hh)) for v, hh in zip(eas, h)])
@@ -146,7 +147,9 @@ class OutOfTrim(Rule):
                 push = symmetric_pull_up(model, tas, h, crit.push_load_factor, u)
                 for i, c in enumerate(conds):
                     here = c.with_(
-                        manoeuvre=f"mistrim {sense} {math.degrees(delta):.2f}°, at {speed_name}",
+                        manoeuvre=f"mistrim {sense} {math.degrees(moved[i]):.2f}°"
+                        + (" (at the trim limit)" if moved[i] < delta - 1e-9 else "")
+                        + f", at {speed_name}",
                         speed=float(eas[i]),
                         speed_kind="EAS",
                         speed_name=speed_name,
