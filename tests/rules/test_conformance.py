@@ -29,6 +29,7 @@ NOT_APPLICABLE = {
     "25.177": [FLAPS_ABOVE_20000, BEYOND_VFE, r"^full rudder, full lateral control or the force bound is reached"],
     "25.181": [FLAPS_ABOVE_20000],
     "25.331(b)": [FLAPS_ABOVE_20000],
+    "25.427(b)": [FLAPS_ABOVE_20000],  # the split of a §25.331(b) condition that does not apply
     "25.335(a)": [r"^VC is limited by MC at this altitude"],
     "25.345(a)(2)": [FLAPS_ABOVE_20000],
     "25.349(a)": [r"lies beyond the stall line of the V–n envelope"],

@@ -40,6 +40,7 @@ def _one(findings, loading, point, surface, altitude=0.0, configuration="clean")
         and f.condition.get("point") == point
         and f.condition.altitude == altitude
         and f.condition.configuration == configuration
+        and f.condition.get("trim") is None
         and f.check.split(":")[0].endswith(surface)
     )
 
@@ -357,7 +358,7 @@ def test_balances_beyond_the_elevator_stop_retrim_the_stabiliser(run):
     (aircraft/lta.yaml travel −30…+25°): the stabiliser is retrimmed (elevator at its +25° stop, stabiliser within
     its −11…+4° travel from the AMM), and the condition is judged on its loads, never set aside by the procedure."""
     _, findings, _ = run
-    retrimmed = [f for f in findings if "pitch_trim" in f.all_details()]
+    retrimmed = [f for f in findings if "pitch_trim" in f.all_details() and f.condition.get("trim") is None]
     assert {f.condition.get("point") for f in retrimmed} == {"H"}
     assert {f.condition.loading for f in retrimmed} >= {"fwd_light", "fwd_mrw"}
     for f in retrimmed:
@@ -469,3 +470,77 @@ def test_design_flap_speed_is_the_larger_of_the_placard_and_the_335e_minima(run)
     for f in flap:
         assert f.all_details()["V_kn_EAS"] == pytest.approx(expected[f.condition.configuration], abs=0.2)
         assert "§25.335(e)(3)" in f.all_details()["speed_note"]
+
+
+def test_out_of_trim_balanced_manoeuvres(run):
+    """§25.331(a)(2): the §25.255 out-of-trim conditions at the points at VC and VD, nose up and nose down. The
+    stabiliser of each is that of a 1 g level trim at min(point speed, VMO/MMO) (trimmed again here, independently
+    of the rule's batch) moved by 3 s of the declared 0.25°/s, 0.75°, within the trim limits; the elevator balances.
+    Pitch equilibrium sets the tail's balancing load, not how the tail makes it: at the points at or below VMO (the
+    same reference trim in and out of trim, the mistrim alone) it stays within 3 % or 5 kN of the in-trim load (the
+    elevator's camber moment about the tail's own aerodynamic centre is the difference: thin-airfoil Cm_δ ≈ −0.64/rad
+    for a 30 % chord flap, × 1.4° × q̄ S_t c̄_t (12 kPa × 104 m² × 4.7 m at VC, sea level) / l_t ≈ 30 m ≈ 3 kN), while
+    the elevator moves against the stabiliser by more than the mistrim (an elevator is less effective than the whole
+    tailplane: thin-airfoil τ < 1).
+    At VD the reference trim is VMO's, not VD's, and the elevator moves 3–5°: not compared."""
+    from certkit.engine.results import Condition
+
+    ctx, findings, _ = run
+    out = [f for f in findings if f.condition.get("trim") is not None and "horizontal tail" in f.check]
+    assert {(f.condition.get("point"), f.condition.get("trim")) for f in out} == {
+        (p, t) for p in ("VC at n+", "D", "E", "F") for t in ("nose up", "nose down")
+    }
+    assert all(f.check.startswith("(a)(2) out-of-trim balanced manoeuvre") for f in out)
+    lo, hi = -10.25 - (-2.0), 2.25 - (-2.0)  # the clean trim limits as deflections from the datum incidence −2°
+    checked = 0
+    for f in out:
+        c, d = f.condition, f.all_details()
+        if c.altitude != 0.0 or c.loading not in ("fwd_mrw", "aft_light"):
+            continue
+        vmo = float(ctx.design_speed_eas("VMO", 0.0)[0])
+        ref = Condition(loading=c.loading, mass=c.mass, x_cg=c.x_cg, configuration="clean", altitude=0.0)
+        ref = ref.with_(speed=min(c.speed, vmo), speed_kind="EAS")
+        trim = ctx.trim([ref]).results[0]
+        stab = float(np.degrees(trim.controls["stabilizer"]))
+        sense = -1.0 if c.get("trim") == "nose up" else 1.0
+        assert d["stabilizer_deg"] == pytest.approx(np.clip(stab + sense * 0.75, lo, hi), abs=0.01)
+        if c.speed <= vmo + 1e-6:  # the same reference trim as the in-trim point: the mistrim alone
+            same = _one(findings, c.loading, c.get("point"), "horizontal tail").all_details()
+            assert d["tail_balancing_load_kN"] == pytest.approx(same["tail_balancing_load_kN"], rel=0.03, abs=5.0)
+            moved, shift = d["stabilizer_deg"] - stab, d["elevator_deg"] - same["elevator_deg"]
+            assert np.sign(shift) == -np.sign(moved) and abs(shift) > abs(moved)
+            checked += 1
+    assert checked >= 8
+
+
+def test_out_of_trim_needs_a_trim_rate(tmp_path):
+    """Without a declared stabiliser trim rate there is no mistrim: no out-of-trim condition is scheduled and the
+    rule names the missing datum."""
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, FAST + [("      rate: 0.25 deg/s ", "      # rate ")])))
+    conds = BalancedManeuver.conditions.expand(ctx.aircraft)
+    assert conds and all(c.get("trim") is None for c in conds)
+    res = evaluate_rule(BalancedManeuver, ctx)
+    scope = [f for f in res.findings if f.check == "§25.331(a)(2) not evaluated"]
+    assert len(scope) == 1 and "stabilizer.rate" in scope[0].reason
+
+
+def test_a_small_elevator_fails_out_of_trim(tmp_path):
+    """Deficient airplane by geometry: the elevator's chord cut from 29 % to 10 % of the tailplane's. In trim the
+    points at VC and VD are still held (the stabiliser retrims where the elevator alone would pass its stop); out of
+    trim the stabiliser stays mistrimmed (the mistrim is the condition), and the −1 g push at VC (point F, and the
+    2.5 g pull at VC at altitude) needs the small elevator past its stop: it fails, in degrees of elevator."""
+    small = FAST + [("        chord_ratio: 0.29      # [given]", "        chord_ratio: 0.10      # deficient")]
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, small)))
+    crit, _ = criteria_for(BalancedManeuver, ctx)
+    conds = [
+        c
+        for c in BalancedManeuver.conditions.expand(ctx.aircraft)
+        if c.configuration == "clean" and c.loading == "fwd_mrw" and c.get("point") in ("VC at n+", "D", "E", "F")
+    ]
+    findings = BalancedManeuver().evaluate(ctx, conds, crit)
+    in_trim = [f for f in findings if f.condition.get("trim") is None]
+    assert in_trim and all(f.status == "complies" for f in in_trim)
+    failed = [f for f in findings if f.status == "fails"]
+    assert failed and all(f.condition.get("trim") is not None for f in failed)
+    assert "F" in {f.condition.get("point") for f in failed}
+    assert all(f.check.endswith("elevator within its stop") and f.unit == "deg" for f in failed)

@@ -144,7 +144,7 @@ ELEVATOR_ALONE, STABILIZER_RETRIMMED, ELEVATOR_AT_STOP = 0, 1, 2
 
 
 def balanced_within_stops(
-    model, x_entry, u_entry, load_factor, stops, tol: float = 1e-9
+    model, x_entry, u_entry, load_factor, stops, tol: float = 1e-9, retrim=True
 ) -> tuple[BalancedStates, np.ndarray]:
     """Balanced states (:func:`balanced_states`) whose pitch controls stay within their stops where the airplane
     allows it, and the scheme of each (``ELEVATOR_ALONE``, ``STABILIZER_RETRIMMED``, ``ELEVATOR_AT_STOP``).
@@ -155,7 +155,8 @@ def balanced_within_stops(
     stabiliser auto-trim unloads the column in a held manoeuvre; where the stabiliser would then pass its own stop,
     the elevator is held at its stop in the direction needed and the stabiliser balances the rest. A state still
     beyond a stop after that is returned as it is (the caller reads the deflections against ``stops``): the
-    airplane cannot hold the condition."""
+    airplane cannot hold the condition. ``retrim`` (bool or (n,) bool) False keeps a condition's stabiliser where its
+    entry put it whatever the elevator needs (an out-of-trim condition, whose mistrim is the condition itself)."""
     x_entry, u_entry = np.asarray(x_entry, dtype=float), np.asarray(u_entry, dtype=float)
     st = balanced_states(model, x_entry, u_entry, load_factor, "elevator", tol=tol)
     scheme = np.full(st.x.shape[0], ELEVATOR_ALONE)
@@ -167,7 +168,8 @@ def balanced_within_stops(
     s_lo, s_hi = stops.get("stabilizer", (-np.inf, np.inf))
     nz = st.load_factor
     x, u, conv, res = st.x.copy(), st.u.copy(), st.converged.copy(), st.residual.copy()
-    rows = np.flatnonzero((u[:, je] < lo) | (u[:, je] > hi))
+    may_retrim = np.broadcast_to(np.asarray(retrim, dtype=bool), nz.shape)
+    rows = np.flatnonzero(((u[:, je] < lo) | (u[:, je] > hi)) & may_retrim)
     for code in (STABILIZER_RETRIMMED, ELEVATOR_AT_STOP):
         if not rows.size:
             break
@@ -213,14 +215,14 @@ class BalancedLoads:
 
 
 def balanced_loads(
-    loads, model, x_entry, u_entry, load_factor, stops, surfaces, *, tol: float, fuel, wing: bool = True
+    loads, model, x_entry, u_entry, load_factor, stops, surfaces, *, tol: float, fuel, wing: bool = True, retrim=True
 ) -> BalancedLoads:
     """Balanced states at ``load_factor`` from the entry trims (:func:`balanced_within_stops`, on the model with
-    linear lift, :func:`linear_lift`) and the station loads of ``surfaces`` there; the wing's loads in the fuel
-    states ``fuel`` ((n, M, K) kg per condition, state and tank), all NaN where ``wing`` is False (a configuration
-    whose wing loads the strip model does not hold)."""
+    linear lift, :func:`linear_lift`; ``retrim`` as there) and the station loads of ``surfaces`` there; the wing's
+    loads in the fuel states ``fuel`` ((n, M, K) kg per condition, state and tank), all NaN where ``wing`` is False
+    (a configuration whose wing loads the strip model does not hold)."""
     model = linear_lift(model)
-    st, scheme = balanced_within_stops(model, x_entry, u_entry, load_factor, stops, tol=tol)
+    st, scheme = balanced_within_stops(model, x_entry, u_entry, load_factor, stops, tol=tol, retrim=retrim)
     parts = steady_load_parts(loads, model, st.x, st.u, st.outputs, surfaces)
     total = {s: a + i for s, (a, i) in parts.items()}
     units = steady_fuel_units(loads, model, st.x, st.u, st.outputs, "wing") if wing else None

@@ -82,8 +82,8 @@ class CheckedPitchManeuver(SimulationRule):
         ),
         (
             "25.331(a)(2)",
-            "out-of-trim loads are not computed: the manoeuvres start from the 1 g trim, not from the "
-            "§25.255 mistrim (stabiliser trimmed for the adjacent speed); no rule evaluates them",
+            "the checked manoeuvres' out-of-trim loads are not computed: they start from the 1 g trim, not from the "
+            "§25.255 mistrim (§25.331(b) evaluates the balanced manoeuvres out of trim)",
         ),
         (
             "25.331(c)",

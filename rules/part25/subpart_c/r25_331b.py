@@ -16,6 +16,15 @@ VFE and the §25.335(e)(3) minimum (1.6 VS1 takeoff flaps at MTOW, 1.8 VS1 appro
 strip loads model's lattice carries the wing's flap as a control: the configuration's flap lift (tail off) is spread
 on the wing's strips with the lattice's flap distribution and the tail's share (the change of downwash) on the
 tail's (:func:`certkit.models.loads.response.flap_deflection`), so both surfaces are evaluated flaps extended.
+
+Out of trim (§25.331(a)(2): "The in-trim and out-of-trim flight conditions specified in § 25.255 must be considered";
+text from the current eCFR via law.cornell.edu, docs/regulation-notes.md): with a movable stabiliser and its trim
+rate declared, the clean points at VC and VD (VC on the n₊ line, D, E, F — the speeds of §25.255's manoeuvres) are
+evaluated again with the stabiliser of a 1 g trim at the lower of the point's speed and VMO/MMO (§25.255(a): trimmed at
+cruise speeds up to VMO/MMO) moved nose up and nose down by three seconds of the trim rate, within the trim limits
+(§25.255(a)(1)), and held there: the elevator balances, and a balance that needs it past its stop fails (the
+stabiliser is not retrimmed — the mistrim is the condition). Without a declared rate they are listed as not
+evaluated.
 """
 
 from __future__ import annotations
@@ -64,7 +73,8 @@ class BalancedManeuver(SimulationRule):
         "its lift's X position are those of a plain flap), and VF is the larger of the placard VFE and the "
         "§25.335(e)(3) minima; the wing is evaluated in each fuel state of the §25.343 range at the condition's weight "
         "and CG (tanks used in the reverse of the declared filling order), the critical one named in the "
-        "finding."
+        "finding. Out of trim (§25.331(a)(2)): the §25.255(a)(1) mistrim only (not the (a)(2) autopilot "
+        "mistrim), at the points at VC and VD; points A and H lie at speeds below the cruise speeds §25.255 trims at."
     )
     implementation = "partial"
     unevaluated = (

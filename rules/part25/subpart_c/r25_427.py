@@ -60,7 +60,7 @@ SOURCES = {
 }
 #: the condition axes that name a condition of each source beside its loading, configuration and altitude
 KEY_AXES = {
-    "25.331(b)": ("point",),
+    "25.331(b)": ("point", "trim"),
     "25.331(c)(1)": (),
     "25.331(c)(2)": ("entry_speed", "direction"),
     "25.341(a)": ("speed_point", "gust"),
@@ -155,8 +155,8 @@ class UnsymmetricalTailLoads(SimulationRule):
         ),
         (
             "25.427(b)(1)",
-            "the out-of-trim symmetric manoeuvres are not split: §25.331(c)(2) does not compute them (its manoeuvres "
-            "start from the 1 g trim, not from the §25.255 mistrim)",
+            "the out-of-trim checked manoeuvres are not split: §25.331(c)(2) does not compute them (its manoeuvres "
+            "start from the 1 g trim, not from the §25.255 mistrim; the out-of-trim balanced manoeuvres are split)",
         ),
     )
 

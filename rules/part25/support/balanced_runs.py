@@ -37,6 +37,10 @@ from certkit.units import KN
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
 CLEAN_POINTS = ("A", "VC at n+", "D", "E", "F", "H")
+#: the §25.331(a)(2) out-of-trim conditions: the clean points at VC and VD (the §25.255 speeds, trimmed at cruise
+#: speeds up to VMO/MMO), the stabiliser mistrimmed nose up and nose down
+OUT_OF_TRIM_POINTS = ("VC at n+", "D", "E", "F")
+MISTRIMS = {"nose up": -1.0, "nose down": 1.0}  # the sense of the stabiliser's movement (leading edge up positive)
 FLAP_POINTS = ("VF at n flaps", "VF at 0")
 NO_FLAP_STRIPS = (
     "the strip loads model cannot spread this configuration's flap lift on the wing (no flap declared in "
@@ -64,13 +68,31 @@ class BalancedPoints(ConditionSpace):
         for cfg in aircraft.configurations:
             points = CLEAN_POINTS if cfg == "clean" else FLAP_POINTS
             out += ConditionSpace.expand(replace(self, configurations=(cfg,), extra=(("point", points),)), aircraft)
+            if cfg == "clean" and mistrim_rate(aircraft) is not None:
+                extra = (("point", OUT_OF_TRIM_POINTS), ("trim", tuple(MISTRIMS)))
+                out += ConditionSpace.expand(replace(self, configurations=(cfg,), extra=extra), aircraft)
         return out
 
     def describe(self):
         return (
             "every corner of the weight–CG envelope; altitudes from the envelope minimum to the ceiling; clean: "
-            f"points {', '.join(CLEAN_POINTS)}; each flap configuration: {', '.join(FLAP_POINTS)}. " + self.note
+            f"points {', '.join(CLEAN_POINTS)}, and out of trim (§25.331(a)(2), with a declared stabiliser trim "
+            f"rate) points {', '.join(OUT_OF_TRIM_POINTS)} with the stabiliser mistrimmed nose up and nose down; "
+            f"each flap configuration: {', '.join(FLAP_POINTS)}. " + self.note
         )
+
+
+def mistrim_rate(aircraft) -> float | None:
+    """The movable stabiliser's declared trim rate (rad/s), None without one (no out-of-trim conditions)."""
+    g = aircraft.geometry
+    st = g.horizontal_tail.stabilizer if g is not None else None
+    return None if st is None or st.rate is None else float(st.rate)
+
+
+NO_MISTRIM = (
+    "the out-of-trim balanced manoeuvres (§25.331(a)(2), the §25.255 mistrim) are not evaluated: they need a movable "
+    "stabiliser with its trim rate (geometry.horizontal_tail.stabilizer.rate)"
+)
 
 
 #: the conditions of the balanced manoeuvres (§25.331(b); §25.427(b) splits their tail loads)
@@ -169,6 +191,12 @@ BALANCED_RUN_CRITERIA = {
         "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum landing weight",
     ),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
+    "mistrim_seconds": Criterion(
+        3.0,
+        "s",
+        "14 CFR 25.331(a)(2) (the out-of-trim conditions of §25.255), 25.255(a)(1) ([CFR 2003] GPO text)",
+        "out-of-trim stabiliser movement: this many seconds at the trim system's normal rate, within its trim limits",
+    ),
     "flap_altitude_max": FLAP_ALTITUDE,
     **SAFETY,
 }
@@ -201,9 +229,13 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
     loads = airplane_loads(ctx)  # the lattice is shared by every configuration
     caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
     lim = control_limits(ctx.aircraft)["elevator"]
+    if "clean" in by_cfg and mistrim_rate(ctx.aircraft) is None:
+        findings.append(Finding.outside_scope("25.331(a)(2)", NO_MISTRIM))
     for cfg, conds in by_cfg.items():
         stops = {k: v for k, v in control_limits(ctx.aircraft, False, cfg).items() if k in ("elevator", "stabilizer")}
-        entries, key_of, target, notes = [], {}, {}, {}
+        entries: list = []
+        key_of: dict = {}
+        target, notes, reference = {}, {}, {}
         for c in conds:
             high = flap_altitude_findings(ctx, c, float(crit.flap_altitude_max), [_check(c, s) for s in SURFACES])
             if high:
@@ -214,11 +246,9 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             except LookupError as exc:
                 findings += [Finding.not_evaluated(c, _check(c, s), str(exc)) for s in SURFACES]
                 continue
-            key = (c.loading, c.altitude, round(v, 6))
-            if key not in key_of:
-                key_of[key] = len(entries)
-                entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, point=None))
-            target[c], notes[c] = (key_of[key], n), note
+            target[c], notes[c] = (_entry(entries, key_of, c, v), n), note
+            if c.get("trim") is not None:  # trimmed at the speed up to VMO/MMO (§25.255(a)), then mistrimmed
+                reference[c] = _entry(entries, key_of, c, min(v, out_of_trim_speed(ctx, c.altitude or 0.0)))
         if not entries:
             continue
         batch = trimmed_batch(ctx, entries)
@@ -228,6 +258,13 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
         if not rows.size:
             continue
         kept = [c for c in todo if target[c][0] not in dict(batch.failed)]
+        mis = mistrimmed_entries(ctx, batch, rows, kept, reference, cfg, crit)
+        findings += [
+            Finding.not_evaluated(refined[i], _check(kept[i], s), why) for i, why in mis.refused for s in SURFACES
+        ]
+        rows, kept, refined = rows[mis.keep], [kept[i] for i in mis.keep], [refined[i] for i in mis.keep]
+        if not rows.size:
+            continue
         n = np.array([target[c][1] for c in kept])
         wing_held = cfg == "clean" or holds_flap_lift(loads, batch.model)
         # the wing in each fuel state of §25.343 at the condition's weight (linear in each tank's fuel), clean only
@@ -236,13 +273,14 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             loads,
             batch.model.subset(rows),
             batch.x[rows],
-            batch.u[rows],
+            mis.u[mis.keep],
             n,
             stops,
             SURFACES,
             tol=float(crit.convergence),
             fuel=fuel,
             wing=wing_held,
+            retrim=np.array([c.get("trim") is None for c in kept]),
         )
         model, st, scheme, sl, total, wing_states = bl.model, bl.state, bl.scheme, bl.parts, bl.total, bl.wing_states
         bad = ~st.converged
@@ -274,6 +312,15 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             if scheme[i] != ELEVATOR_ALONE:
                 details["stabilizer_deg"] = round(float(np.degrees(ds[i])), 3)
                 details["pitch_trim"] = PITCH_TRIM_NOTES[scheme[i]]
+            if c.get("trim") is not None:
+                j = mis.keep[i]
+                details["stabilizer_deg"] = round(float(np.degrees(ds[i])), 3)
+                details["pitch_trim"] = (
+                    f"out of trim {c.get('trim')}: the stabiliser of the 1 g trim at "
+                    f"{mis.trim_speed[j] / KN:.1f} kn EAS moved {np.degrees(mis.moved[j]):+.2f}° (§25.255(a)(1)"
+                    + (", stopped by the trim limit)" if mis.limited[j] else ")")
+                    + ", held; the elevator balances"
+                )
             past_stop = beyond_stops(st.u[i], model.control_names, stops)
             beyond_mach = beyond_mach_range(loads, float(st.outputs.mach[i]))
             for s in SURFACES:
@@ -393,5 +440,70 @@ def beyond_stop_finding(cond, check: str, past: tuple[str, float, float], **deta
     )
 
 
+def _entry(entries: list, key_of: dict, c, v: float) -> int:
+    """The position in ``entries`` of the 1 g trim of ``c``'s loading and altitude at EAS ``v``, added if new."""
+    key = (c.loading, c.altitude, round(v, 6))
+    if key not in key_of:
+        key_of[key] = len(entries)
+        plain = c.with_(speed=v, speed_kind="EAS", speed_name=None, point=None)
+        entries.append(plain if c.get("trim") is None else plain.with_(trim=None))
+    return key_of[key]
+
+
 def _check(cond, surface: str) -> str:
+    if cond.get("trim") is not None:
+        return f"(a)(2) out-of-trim balanced manoeuvre, point {cond.get('point')}, {surface.replace('_', ' ')}"
     return f"(b) balanced manoeuvre, point {cond.get('point')}, {surface.replace('_', ' ')}"
+
+
+def out_of_trim_speed(ctx, h: float) -> float:
+    """EAS (m/s) up to which §25.255(a) trims the airplane at ``h``: VMO/MMO, else VC/MC where VMO is not declared
+    (VMO may not exceed VC, §25.1505)."""
+    name = "VMO" if ctx.aircraft.speeds.VMO is not None else "VC"
+    return float(ctx.design_speed_eas(name, h)[0])
+
+
+@dataclass
+class MistrimmedEntries:
+    """The entry controls of a configuration's balanced conditions (``u``, (n, nc)): the 1 g trim's at the condition's
+    speed, and for an out-of-trim condition the stabiliser of the 1 g trim at its reference speed (``trim_speed``,
+    m/s EAS) moved by the mistrim (``moved``, rad; ``limited`` where the trim limit stopped it) with that trim's
+    elevator; ``keep``: the conditions with an entry; ``refused``: (index, reason) of those whose reference speed did
+    not trim."""
+
+    u: np.ndarray
+    keep: np.ndarray
+    refused: list
+    trim_speed: np.ndarray
+    moved: np.ndarray
+    limited: np.ndarray
+
+
+def mistrimmed_entries(ctx, batch, rows, kept, reference, configuration: str, crit) -> MistrimmedEntries:
+    """The §25.331(a)(2) out-of-trim entries of ``kept`` (batch ``rows``; ``reference``: condition → its reference
+    entry): 3 s (``mistrim_seconds``) of the declared trim rate, nose up or nose down, within the configuration's
+    stabiliser trim limits ("except as limited by stops in the trim system", §25.255(a)(1))."""
+    n = len(kept)
+    u = batch.u[rows].copy()
+    trim_speed, moved, limited = np.full(n, np.nan), np.zeros(n), np.zeros(n, dtype=bool)
+    refused, keep = [], []
+    out = [i for i, c in enumerate(kept) if c.get("trim") is not None]
+    if out:
+        names = list(batch.model.control_names)
+        js, je = names.index("stabilizer"), names.index("elevator")
+        lo, hi = control_limits(ctx.aircraft, configuration=configuration)["stabilizer"]
+        delta = float(crit.mistrim_seconds) * float(mistrim_rate(ctx.aircraft) or 0.0)
+        pos, failed = {int(e): k for k, e in enumerate(batch.index)}, dict(batch.failed)
+        for i in out:
+            e = reference[kept[i]]
+            if e not in pos:
+                refused.append((i, f"no 1 g trim at the out-of-trim reference speed (VMO/MMO): {failed.get(e, '')}"))
+                continue
+            ref = batch.u[pos[e]]
+            wanted = ref[js] + MISTRIMS[kept[i].get("trim")] * delta
+            u[i, js], u[i, je] = np.clip(wanted, lo, hi), ref[je]
+            moved[i], limited[i] = u[i, js] - ref[js], not lo <= wanted <= hi
+            trim_speed[i] = batch.conditions[pos[e]].speed
+    gone = {i for i, _ in refused}
+    keep = np.array([i for i in range(n) if i not in gone], dtype=int)
+    return MistrimmedEntries(u, keep, refused, trim_speed, moved, limited)
