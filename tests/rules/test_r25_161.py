@@ -200,3 +200,26 @@ def test_a_horizontal_tail_a_quarter_smaller_fails(tmp_path):
     assert {"aft_mlw", "aft_light"} <= climb
     assert {f.condition.loading for f in glide} >= {"fwd_light", "fwd_mlw", "fwd_mid"}
     assert min(f.margin for f in glide) < -2.0  # deg of stabiliser beyond the nose-up stop
+
+
+def test_beyond_the_level_flight_ceiling_the_steady_descent_at_full_thrust(declared):
+    """(c)(3) at MRW, 35,000 ft and 1.3 VSR1 (218 kn CAS): level flight needs more than full thrust (the level trim
+    alone does not converge), so the trim is judged in the steady descent at full thrust — the flight nearest to level
+    the airplane can hold — named in the finding, its path a fraction of a degree down (the thrust deficit over the
+    weight: at most the L/D ≈ 17 airplane's 1/17 rad = 3.4° if the engines gave nothing). Everywhere else level."""
+    from certkit.aircraft import load_aircraft
+    from certkit.engine.context import Context
+
+    from .helpers import BASELINE
+
+    level = [f for f in declared.findings if f.check.startswith("(c)(3) level flight") and f.margin is not None]
+    assert level and not any(f.check.startswith("(c)(3)") and f.status == "not_evaluated" for f in declared.findings)
+    held = [f for f in level if f.details["flight"] != "level flight"]
+    assert {f.condition.loading for f in held} == {"fwd_mrw", "aft_mrw"}
+    for f in held:
+        assert f.condition.altitude == pytest.approx(35000 * 0.3048)
+        assert f.details["flight"].startswith("steady descent at full thrust")
+        assert -1.0 < f.details["flight_path_deg"] < 0.0
+    cond = next(f.condition for f in held)
+    alone = Context(load_aircraft(BASELINE)).trim([cond], kind="straight").results[0]
+    assert not alone.converged and "more than full throttle" in "; ".join(e.message for e in alone.limits_exceeded)

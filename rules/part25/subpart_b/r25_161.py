@@ -12,7 +12,8 @@ not trimmed):
     (c)(1) climb, maximum continuous thrust, 1.3 VSR1, gear up, flaps (i) retracted and (ii) takeoff;
     (c)(2) glide with power off (idle) at 1.3 VSR1, flaps retracted; and the approach alternative on a
            3° glidepath at 1.3 VSR in each declared approach/landing configuration with the gear down;
-    (c)(3) level flight at 1.3 VSR1 and at VMO/MMO (sea level and the cruise altitude), gear and flaps up;
+    (c)(3) level flight at 1.3 VSR1 and at VMO/MMO (sea level and the cruise altitude), gear and flaps up —
+           where a weight cannot fly level there (more than full thrust), the steady descent at full thrust, named;
     (d)    climb at 1.3 VSR1 with the critical engine inoperative, the other at maximum continuous thrust,
            gear and flaps up, bank ≤ 5°: elevator, aileron and rudder within range and the bank within 5°.
 """
@@ -20,10 +21,12 @@ not trimmed):
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 from certkit_rules.part25.support.control_checks import control_findings, trim_details
 from certkit_rules.part25.support.reference_speeds import reference_stall_speed
+from certkit_rules.part25.support.stability_speeds import flight_described, steady_flight_trims
 from certkit_rules.part25.support.thrust_trims import oei_climb
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
@@ -247,7 +250,13 @@ class Trim(Rule):
                     )
                     for c in cases["level"]
                 ]
-            out += self._controls(ctx, conds, ctx.trim(conds, kind="straight"), "(c)(3) level flight", ("elevator",))
+            # beyond a weight's level-flight ceiling (MRW at the cruise altitude and 1.3 VSR1) the trim of the steady
+            # descent at full thrust, the flight nearest to level the airplane can hold there, named in the finding
+            results, stops = steady_flight_trims(ctx, conds)
+            flights = [flight_described(r, stop) for r, stop in zip(results, stops)]
+            out += self._controls(
+                ctx, conds, SimpleNamespace(results=results), "(c)(3) level flight", ("elevator",), flights=flights
+            )
         if cases["engine-out climb"]:
             conds = [
                 c.with_(
@@ -307,8 +316,9 @@ class Trim(Rule):
         return out
 
     @staticmethod
-    def _controls(ctx, conds, batch, check, controls, gradients=None):
-        """The trim findings of one batch (one configuration), against that configuration's design limits."""
+    def _controls(ctx, conds, batch, check, controls, gradients=None, flights=None):
+        """The trim findings of one batch (one configuration), against that configuration's design limits;
+        ``flights``: the steady flight each was trimmed in, where it is not the condition's own (a detail)."""
         out = []
         limits = control_limits(ctx.aircraft, configuration=conds[0].configuration) if conds else {}
         for i, cond in enumerate(conds):
@@ -332,6 +342,8 @@ class Trim(Rule):
                     f.details["flight_path_deg"] = round(math.degrees(r.gamma), 3)
                     if gradients is not None:
                         f.details["climb_gradient"] = float(np.asarray(gradients)[i])
+                    if flights is not None:
+                        f.details["flight"] = flights[i]
                     out.append(f)
         return out
 
