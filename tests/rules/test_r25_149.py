@@ -275,3 +275,62 @@ def test_a_heavy_pedal_feel_limits_the_rudder_and_raises_vmcg(result, tmp_path):
         assert f.details["rudder_limit"] == "150 lbf pedal force: rudder -19.5° / 19.5°"
         assert f.value > base[f.condition.loading] + 5.0
     assert any(f.status == "fails" for f in heavy if f.condition.mass > 600_000 * 0.4536)
+
+
+def test_vmcl_where_the_rudder_runs_out_and_its_pedal_force(result, ctx):
+    """(f) VMCL in the landing configuration (aft CG, MLW, go-around thrust, 5° bank toward the live engine):
+    independent trims 0.5 kn either side of it — within the limits faster, beyond them slower — and the rudder at its
+    23.2° design limit at VMCL (0.5 %). (h)(1) pedal force by hand from the AMM feel: 19.5 + 30.5 × 23.2/27.3 =
+    45.4 lbf (the feel's breakout plus its spring over the pedal travel), against 150 lbf."""
+    limits = control_limits(ctx.aircraft)
+    f = next(
+        f
+        for f in own(result)
+        if f.check.startswith("(h)(1)")
+        and f.condition.configuration == "landing"
+        and f.condition.get("inoperative") == "left"
+    )
+    d = f.details
+    assert d["vmcl_limited_by"] == "rudder" and d["bank_at_vmcl_deg"] == 5.0
+    v, phi = d["VMCL_kn_cas"] * KN, math.radians(5.0)
+    base = f.condition
+    fast, at, slow = ctx.trim(
+        [base.with_(speed=v + dv * KN, speed_kind="CAS") for dv in (0.5, 0.0, -0.5)],
+        kind="oei",
+        bank=phi,
+        inoperative="left",
+        throttle=0.99,
+    ).results
+    assert control_usage(fast, limits) < 1.0 < control_usage(slow, limits)
+    assert at.controls["rudder"] / limits["rudder"][0] == pytest.approx(1.0, abs=0.005)
+    assert f.value == pytest.approx(19.5 + 30.5 * 23.2 / 27.3, abs=0.2) and f.status == "complies"
+    assert {g.condition.configuration for g in own(result) if g.check.startswith("(h)(1)")} == {"approach", "landing"}
+
+
+def test_vmcl_follows_the_rudder_power_and_decides_vref(tmp_path):
+    """VMCL against the rudder's power, with §25.125's VREF ≥ VMCL. Deficient by geometry: the fin 40 % smaller — the
+    rudder's yawing power falls with it, so the speed at which it balances the live engine rises (∝ 1/√0.6 = 1.29 ×
+    for a rudder-limited VMCL) beyond the search's 1.4 VSR0, and VREF ≥ VMCL fails. The other way: the rudder's
+    design limit at its full 27.3° travel (the baseline declares 23.2°) lowers VMCL (rudder force ∝ δ q), where the
+    aileron may take over as the limit; VREF then clears it. Order: travel < baseline < small fin."""
+    check = "(b)(2)(i)(B) VREF ≥ VMCL"
+    (tmp_path / "fin").mkdir()
+    (tmp_path / "travel").mkdir()
+    runs = {
+        "small fin": run_rule("25.125", tmp_path / "fin", [FIN]),
+        "baseline": run_rule("25.125"),
+        "full travel": run_rule(
+            "25.125",
+            tmp_path / "travel",
+            [("design_limits: {min: -23.2 deg, max: 23.2 deg}", "design_limits: {min: -27.3 deg, max: 27.3 deg}")],
+        ),
+    }
+    found = {k: [f for f in r.findings if f.check == check] for k, r in runs.items()}
+    assert all(len(v) == 3 for v in found.values())
+    vmcl = {k: v[0].details["VMCL"] / KN for k, v in found.items()}
+    assert vmcl["full travel"] < vmcl["baseline"] < vmcl["small fin"]
+    assert vmcl["small fin"] >= 1.4 * 110.0 and all(f.status == "fails" for f in found["small fin"])
+    assert all(f.status == "complies" for f in found["full travel"])
+    vref = 136.0
+    for k, fs in found.items():  # the margin is VREF/VMCL − 1 at every CG (VMCL at the most unfavourable, aft)
+        assert all(f.margin == pytest.approx(vref / vmcl[k] - 1.0, abs=1e-6) for f in fs)

@@ -22,6 +22,7 @@ calibrated airspeed of not less than VREF, must be maintained down to the 50-foo
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.minimum_control import computed_vmcl
 from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
 
 from certkit.atmosphere import convert_speed
@@ -80,24 +81,24 @@ class LandingTouchdown(Rule):
         without excessive vertical acceleration. certkit flies a −3° approach at VREF in the landing
         configuration at MLW and flares to touchdown with the throttle at idle from the flare height, and
         checks the rate of descent at touchdown and that the elevator stays within its design limit.
-        VREF may not be less than 1.23 VSR0 ((b)(2)(i)(A)).
+        VREF may not be less than 1.23 VSR0 ((b)(2)(i)(A)) nor VMCL ((b)(2)(i)(B)).
     """
     margin = """
         Rate of descent: the criterion (6 ft/s) minus the rate of descent at touchdown (ft/s; ≥ 0 complies).
         Elevator: most nose-up elevator of the approach and flare minus its design limit (deg; ≥ 0 complies).
-        VREF: VREF/VSR0 − 1.23 (VSR0 of the landing configuration at the condition's weight, §25.103).
+        VREF: VREF/VSR0 − 1.23 (VSR0 of the landing configuration at the condition's weight, §25.103); VREF/VMCL − 1
+        (VMCL computed as §25.149(f) does, the landing configuration at MLW and the aft CG).
     """
     limitations = """
-        The landing distance (§ 25.125(a)), the VREF minima of (b)(2)(i)(B)-(C) (VMCL, § 25.143(h)) and icing
-        are not evaluated here; ground effect on the wing's lift and induced drag (image-vortex factor,
-        certkit/models/aero/ground_effect.py) and on the downwash at the tail (the wing's vortices and their image,
-        span load solved with the image, certkit/models/aero/tail_ground_effect.py; within 0.02 of AVL's ground
-        plane), which takes 2.5–6° more nose-up elevator in the baseline's flare; not modelled: the wake's
-        displacement near the ground, the flaps' own span load, the tail's own ground effect, the lower stall angle
-        in ground effect; the approach starts from a free-air trim at 150 ft (h/b ≈ 0.7, already slightly inside
-        both ground effects); the flare is the TECS pilot model's (flare height 15 m, aim point 1 m below the runway);
-        the 6 ft/s
-        criterion is from § 25.473 (text from memory).
+        The landing distance (§ 25.125(a)), the VREF minimum of (b)(2)(i)(C) (§ 25.143(h)) and icing are not
+        evaluated here; VMCL is the static one of §25.149's search; ground effect on the wing's lift and induced
+        drag (image-vortex factor, certkit/models/aero/ground_effect.py) and on the downwash at the tail (the wing's
+        vortices and their image, span load solved with the image, certkit/models/aero/tail_ground_effect.py; within
+        0.02 of AVL's ground plane), which takes 2.5–6° more nose-up elevator in the baseline's flare; not modelled:
+        the wake's displacement near the ground, the flaps' own span load, the tail's own ground effect, the lower
+        stall angle in ground effect; the approach starts from a free-air trim at 150 ft (h/b ≈ 0.7, already
+        slightly inside both ground effects); the flare is the TECS pilot model's (flare height 15 m, aim point 1 m
+        below the runway); the 6 ft/s criterion is from § 25.473 (text from memory).
     """
     references = ("25.473", "25.143", "25.149")
     requires = ("speeds.VREF", "mass.MLW", "geometry.landing_gear", "geometry.horizontal_tail.controls.elevator")
@@ -111,6 +112,9 @@ class LandingTouchdown(Rule):
         ),
         "vref_over_vsr0": Criterion(
             1.23, "", "14 CFR 25.125(b)(2)(i)(A)", "VREF/VSR0, VSR0 of the landing configuration"
+        ),
+        "vref_over_vmcl": Criterion(
+            1.0, "", "14 CFR 25.125(b)(2)(i)(B)", "VREF/VMCL, VMCL of the landing configuration (§25.149(f))"
         ),
         "glide_slope": Criterion(
             -3.0,
@@ -128,11 +132,6 @@ class LandingTouchdown(Rule):
     unevaluated = (
         ("25.125(a)", "the landing distance from 50 ft to a full stop (non-icing and icing) is not computed"),
         (
-            "25.125(b)(2)(i)(B)",
-            "VREF ≥ VMCL is not checked: VMCL (§25.149(f)) is not determined (the static search "
-            "does not converge in the landing configuration at go-around thrust)",
-        ),
-        (
             "25.125(b)(2)(i)(C)",
             "the §25.143(h) manoeuvring capability at VREF is not judged here (§25.143(h) flies its turns)",
         ),
@@ -144,8 +143,32 @@ class LandingTouchdown(Rule):
         trims, run = _landing(ctx, conditions, crit)
         lo = _elevator_design_min(ac)
         vref_kn = float(convert_speed(ac.speeds.VREF.value, ac.speeds.VREF.kind, "CAS", 0.0)) / KN
+        vmcl = computed_vmcl(ctx, "landing")
         out = []
         for i, cond in enumerate(conditions):
+            vmcl_check = "(b)(2)(i)(B) VREF ≥ VMCL"
+            if vmcl is None:
+                out.append(
+                    Finding.not_evaluated(
+                        cond.with_(altitude=0.0),
+                        vmcl_check,
+                        "VMCL (§25.149(f)) is not determined: a one-engine-inoperative trim of its search failed above "
+                        "the stall, or the landing configuration's inputs are missing",
+                    )
+                )
+            else:
+                out.append(
+                    ratio_check(
+                        cond.with_(altitude=0.0),
+                        vmcl_check,
+                        {"VREF": declared_cas(ctx, "VREF"), "VMCL": vmcl[0]},
+                        "VREF",
+                        "VMCL",
+                        crit.vref_over_vmcl,
+                        basis=f"VMCL computed as §25.149(f) does (aft CG at MLW, go-around thrust, bank ≤ 5°), "
+                        f"limited by {vmcl[1]}",
+                    )
+                )
             vsr0, source = reference_stall_speed(ctx, "landing", cond.mass)
             out.append(
                 ratio_check(

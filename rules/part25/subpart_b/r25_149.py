@@ -1,4 +1,5 @@
-"""§25.149 Minimum control speed: the computed VMCA against 1.13 VSR and against a declared VMC.
+"""§25.149 Minimum control speed: the computed VMCA against 1.13 VSR and against a declared VMC; VMCL (§25.149(f))
+computed in each approach and landing configuration with its (h)(1) rudder force; VMCG by simulation.
 
 VMCA is the speed at which, in straight one-engine-inoperative flight with the operating engine at full
 throttle (maximum takeoff thrust; the flight-path angle takes up the excess thrust), takeoff flaps, the most
@@ -18,8 +19,10 @@ from certkit_rules.part25.support.minimum_control import (
     VMCA_CRITERIA,
     VMCA_REQUIRES,
     VMCA_RULE_ID,
+    VMCL_CONDITIONS,
     condition_vmca,
     vmca_rows,
+    vmcl_rows,
 )
 
 from certkit.engine.registry import Rule, rule
@@ -34,7 +37,7 @@ class MinimumControlSpeed(Rule):
     id = VMCA_RULE_ID
     cost = 2  # relative evaluation time (orders work over --jobs processes)
     symbol = "minimum-control-speed"
-    title = "Minimum control speeds VMCA (in the air) and VMCG (on the ground, simulated)"
+    title = "Minimum control speeds VMCA (in the air), VMCL (approach and landing) and VMCG (on the ground, simulated)"
     amendment = "25-108"
     requirement = """
         (b) VMC is the calibrated airspeed at which, when the critical engine is suddenly made inoperative, it is
@@ -44,12 +47,17 @@ class MinimumControlSpeed(Rule):
         retracted, airborne with negligible ground effect. (d) The rudder force may not exceed 150 lbf. (e) VMCG is the
         calibrated airspeed on the takeoff run at which, the critical engine suddenly made inoperative, control can be
         kept with the rudder alone (no nose-wheel steering), the wings level, and the path from the failure to the
-        recovery to a direction parallel to the centreline deviates no more than 30 ft from the centreline.
+        recovery to a direction parallel to the centreline deviates no more than 30 ft from the centreline. (f) VMCL
+        is VMC during approach and landing with all engines operating, the critical engine failed at go-around
+        thrust, trimmed for approach, the most unfavourable CG and weight (or as a function of weight); (h)(1) the
+        rudder force in its demonstration may not exceed 150 lbf.
     """
     margin = """
         (c) 1.13 VSR − VMCA (m/s CAS), VMCA computed; (b) declared VMC − VMCA (m/s CAS), when VMC is declared;
-        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder; (e) VR − VMCG (kn CAS) per corner
-        of the weight–CG envelope, and declared VMCG − the highest computed VMCG (kn CAS) when VMCG is declared.
+        (d) 150 lbf − |rudder pedal force at VMCA| (lbf), with control_forces.rudder; (h)(1) the same at VMCL,
+        per approach and landing configuration and inoperative engine (VMCL in the finding); (e) VR − VMCG (kn CAS)
+        per corner of the weight–CG envelope, and declared VMCG − the highest computed VMCG (kn CAS) when VMCG is
+        declared.
     """
     references = ("25.103", "25.107", "25.147")
     requires = VMCA_REQUIRES
@@ -86,15 +94,66 @@ class MinimumControlSpeed(Rule):
             " VMCA is the static one",
         ),
         (
-            "25.149(f)",
-            "VMCL (landing, all engines) is not determined: in the landing configuration at go-around thrust "
-            "the static search finds a control usage nearly independent of speed and does not converge",
+            "25.149(h)",
+            "for VMCL, the roll through 20° away from the inoperative engine in 5 s ((h)(3)) and the dynamic "
+            "engine failure ((h)(2)) are not simulated: VMCL is the static one",
         ),
     )
 
     def evaluate(self, ctx, conditions, crit):
         out = self._vmca(ctx, conditions, crit)
-        return out + self._vmcg(ctx, crit)
+        return out + self._vmcl(ctx, crit) + self._vmcg(ctx, crit)
+
+    def _vmcl(self, ctx, crit):
+        """(f) VMCL in each declared approach and landing configuration (the VMCA search at go-around thrust, aft CG,
+        MLW), judged by (h)(1): the rudder pedal force at VMCL ≤ 150 lbf (with control_forces.rudder). VMCL itself
+        stands in each finding (speed, bank, what limits it) and §25.125 checks VREF against it."""
+        conds = VMCL_CONDITIONS.expand(ctx.aircraft)
+        check = f"(h)(1) rudder force at VMCL ≤ {crit.rudder_force_lbf:g} lbf"
+        if not conds or ctx.missing(("mass.MLW",)):
+            return [Finding.outside_scope("25.149(f)", "no approach or landing configuration (or no MLW) declared")]
+        nb = len(BANK_FRACTIONS)
+        out = []
+        for cfg in dict.fromkeys(c.configuration for c in conds):  # one trim batch per configuration
+            out += self._vmcl_of(ctx, [c for c in conds if c.configuration == cfg], crit, check, nb)
+        return out
+
+    def _vmcl_of(self, ctx, conds, crit, check, nb):
+        rows = vmcl_rows(ctx, conds, crit)
+        out = []
+        for k, cond in enumerate(conds):
+            pair = range(nb * k, nb * k + nb)
+            vmcl, best, below = condition_vmca(rows, k, crit)
+            vsr = rows["vsr"][best]
+            found = cond.with_(speed=vmcl, speed_kind="CAS", speed_name="VMCL", thrust="go-around")
+            details = dict(
+                VMCL_kn_cas=round(vmcl / KN, 2),
+                VMCL_over_VSR=round(vmcl / vsr, 4),
+                bank_at_vmcl_deg=round(float(np.degrees(rows["banks"][best])), 1),
+                vmcl_limited_by=rows["limited_by"][best],
+                vmcl_by_bank_kn={
+                    f"{np.degrees(rows['banks'][j]):.0f} deg": round(float(rows["vmca"][j]) / KN, 2) for j in pair
+                },
+            )
+            if any(rows["limited_by"][j] == "trim failure" for j in pair):
+                out.append(
+                    Finding.not_evaluated(
+                        found,
+                        check,
+                        "the straight one-engine-inoperative trim failed above the stall: VMCL is not determined",
+                        **details,
+                    )
+                )
+                continue
+            if below:
+                details["vmcl_note"] = f"controls within limits down to {crit.grid_low} VSR: VMCL is below it"
+            ordered = sorted((h["speed"], h["trim"]) for h in rows["history"][best] if np.isfinite(h["usage"]))
+            f = self._force_finding(
+                ctx, found, vmcl, [v for v, _ in ordered], [t for _, t in ordered], crit, check=check, name="VMCL"
+            )
+            f.details.update(details)
+            out.append(f)
+        return out
 
     @staticmethod
     def _vmcg(ctx, crit):
@@ -324,12 +383,13 @@ class MinimumControlSpeed(Rule):
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))
 
     @staticmethod
-    def _force_finding(ctx, found, vmca, speeds, results, crit):
-        """(d) rudder pedal force (lbf, rudder trim neutral) at the computed VMCA, interpolated between the trims the
-        search visited (its last iterate is at VMCA); with the highest of those speeds at which the force reaches the
-        limit (the force-limited VMCA, when the visited speeds bracket it). ``pedal_force_grid_lbf`` lists the forces
-        at the visited speeds (the name kept from the former grid)."""
-        check = f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf"
+    def _force_finding(ctx, found, vmca, speeds, results, crit, check=None, name="VMCA"):
+        """(d) rudder pedal force (lbf, rudder trim neutral) at the computed VMCA (or (h)(1) at VMCL: ``check``,
+        ``name``), interpolated between the trims the search visited (its last iterate is at the speed); with the
+        highest of those speeds at which the force reaches the limit (the force-limited speed, when the visited speeds
+        bracket it). ``pedal_force_grid_lbf`` lists the forces at the visited speeds (the name kept from the former
+        grid)."""
+        check = check or f"(d) rudder force at VMCA ≤ {crit.rudder_force_lbf:g} lbf"
         rudder = control_force_model(ctx.aircraft, "rudder")
         if rudder is None:
             return pedal_force_finding(ctx, None, found, None, crit.rudder_force_lbf, check)
@@ -349,6 +409,6 @@ class MinimumControlSpeed(Rule):
             at_least=False,
             unit="lbf",
             force_model=rudder.kind,
-            force_limited_VMCA_kn_cas=None if limited is None else round(limited / KN, 1),
+            **{f"force_limited_{name}_kn_cas": None if limited is None else round(limited / KN, 1)},
             pedal_force_grid_lbf=[None if not np.isfinite(f) else round(float(f), 1) for f in force],
         )

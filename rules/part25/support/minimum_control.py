@@ -1,6 +1,14 @@
-"""The §25.149 minimum control speed VMCA as the regulation's conditions define it, shared by §25.149 and by §25.107
-(which needs VMC when the aircraft file declares none): the criteria, the condition space and the search of
-:func:`certkit_rules.part25.support.control_speeds.vmc_rows` with them (regulation content, no rule here).
+"""The §25.149 minimum control speeds VMCA and VMCL as the regulation's conditions define them, shared by §25.149, by
+§25.107 (which needs VMC when the aircraft file declares none) and by §25.125 (VREF ≥ VMCL): the criteria, the
+condition spaces and the search of :func:`certkit_rules.part25.support.control_speeds.vmc_rows` with them
+(regulation content, no rule here).
+
+VMCL (§25.149(f); text read from a JAR/FAR quotation and CS 25 AMC 25.149(f), docs/regulation-notes.md): the same
+static search as VMCA — straight flight with at most 5° of bank, the critical engine inoperative, the rudder or the
+aileron at its design limit — in each approach and landing configuration declared, at the most unfavourable (aft) CG
+at the maximum landing weight, with go-around thrust on the operating engine (taken as the VMCA search's maximum
+takeoff thrust: certkit has no separate go-around rating), each speed trimmed as it is flown (the stabiliser solved
+with the elevator at its trim setting, as for VMCA).
 """
 
 from __future__ import annotations
@@ -78,3 +86,37 @@ def computed_vmca(ctx):
     conds = VMCA_CONDITIONS.expand(ctx.aircraft)
     rows = vmca_rows(ctx, conds, crit)
     return max(condition_vmca(rows, k, crit)[0] for k in range(len(conds)))
+
+
+#: the conditions of VMCL (§25.149(f)): each approach and landing configuration, the aft CG at MLW (as a function of
+#: weight, the option (f)(4) gives: the weight §25.125 checks VREF at), each engine inoperative
+VMCL_CONDITIONS = ConditionSpace(
+    loading=DesignWeight("MLW", cgs=("aft",)),
+    configurations=("approach", "landing"),
+    altitudes=Altitudes((0.0,)),
+    extra=(("inoperative", ("left", "right")),),
+    note="Operating engine at go-around (maximum) thrust; bank toward it; sea level, standard day.",
+)
+
+
+def vmcl_rows(ctx, conditions, crit):
+    """The VMCL search of ``conditions`` (:data:`VMCL_CONDITIONS`) with the VMCA criteria."""
+    return vmca_rows(ctx, conditions, crit)
+
+
+def computed_vmcl(ctx, configuration: str = "landing"):
+    """(VMCL in m/s CAS, how it is limited) of ``configuration`` as §25.149 computes it with its criteria: the highest
+    over the inoperative engines at the aft CG and MLW; None when the configuration or MLW is not declared, or when a
+    trim failed above the stall (not determined)."""
+    from certkit.engine.scheduler import criteria_for
+
+    if ctx.missing(VMCA_REQUIRES + ("mass.MLW",)) or configuration not in ctx.aircraft.configurations:
+        return None
+    crit, _ = criteria_for(SimpleNamespace(id=VMCA_RULE_ID, criteria=VMCA_CRITERIA), ctx)
+    conds = [c for c in VMCL_CONDITIONS.expand(ctx.aircraft) if c.configuration == configuration]
+    rows = vmcl_rows(ctx, conds, crit)
+    found = [condition_vmca(rows, k, crit) for k in range(len(conds))]
+    if any(rows["limited_by"][j] == "trim failure" for j in range(len(rows["limited_by"]))):
+        return None
+    speed, best, _ = max(found, key=lambda f: f[0])
+    return speed, rows["limited_by"][best]
