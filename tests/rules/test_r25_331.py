@@ -283,3 +283,54 @@ def test_the_input_near_the_stall_line_does_not_jump_between_neighbouring_design
     (d1, b1), (d2, b2) = out
     assert d1 == pytest.approx(d2, abs=1.0)
     assert np.asarray(b1) == pytest.approx(np.asarray(b2), rel=0.03)
+
+
+def test_out_of_trim_checked_manoeuvres(checked):
+    """§25.331(a)(2): from VC and VD (not VA) each direction is flown again from the §25.255 mistrim in its own sense.
+    The entry's stabiliser is that of a 1 g trim at min(entry speed, VMO/MMO), trimmed again here, moved by 3 s of
+    the declared 0.25°/s (0.75°) within the +2.25°/−10.25° trim limits; the elevator holds 1 g there, so a nose-up
+    mistrim leaves it more travel toward its −30° stop: where the in-trim pull is stop-limited (the full deflection
+    from its entry), the out-of-trim input is larger by the elevator's entry shift; its peak load factor is not lower
+    by more than the search tolerance (0.02 g) — at 43,000 ft the lift maximum, not the elevator, bounds the peak."""
+    from certkit.aircraft import load_aircraft
+    from certkit.engine.context import Context
+    from certkit.engine.results import Condition
+
+    from .helpers import BASELINE
+
+    loads = structural(checked)
+    out = [f for f in loads if f.condition.get("trim") is not None]
+    assert out and all(f.check.startswith("(a)(2) out-of-trim checked manoeuvre") for f in out)
+    assert {f.condition.get("entry_speed") for f in out} == {"VC", "VD"}
+    assert all(f.condition.get("trim") == f.condition.get("direction") for f in out)
+    ctx = Context(load_aircraft(BASELINE))
+    lo, hi = -10.25 + 2.0, 2.25 + 2.0  # trim limits as deflections from the −2° datum
+    checked_stab = 0
+    for f in out:
+        c, d = f.condition, f.all_details()
+        if c.altitude != 0.0 or c.loading != "fwd_mrw":
+            continue
+        vmo = float(ctx.design_speed_eas("VMO", 0.0)[0])
+        ref = Condition(loading=c.loading, mass=c.mass, x_cg=c.x_cg, configuration="clean", altitude=0.0)
+        trim = ctx.trim([ref.with_(speed=min(c.speed, vmo), speed_kind="EAS")]).results[0]
+        sense = -1.0 if c.get("trim") == "nose up" else 1.0
+        stab = float(np.degrees(trim.controls["stabilizer"]))
+        assert d["stabilizer_deg"] == pytest.approx(np.clip(stab + sense * 0.75, lo, hi), abs=0.01)
+        checked_stab += 1
+    assert checked_stab == 4  # VC and VD, nose up and nose down
+    in_trim = {
+        (f.condition.loading, f.condition.altitude, f.condition.get("entry_speed"), f.condition.get("direction")): f
+        for f in loads
+        if f.condition.get("trim") is None
+    }
+    stop_limited = 0
+    for f in out:
+        g = in_trim[
+            (f.condition.loading, f.condition.altitude, f.condition.get("entry_speed"), f.condition.get("direction"))
+        ]
+        a, b = f.all_details(), g.all_details()
+        if b["input"].startswith("held at full deflection") and f.condition.get("direction") == "nose up":
+            assert abs(a["delta1_deg"]) > abs(b["delta1_deg"])
+            assert a["peak_n_z"] >= b["peak_n_z"] - 0.02
+            stop_limited += 1
+    assert stop_limited >= 1

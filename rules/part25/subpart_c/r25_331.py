@@ -70,7 +70,11 @@ class CheckedPitchManeuver(SimulationRule):
         "Rigid airplane, quasi-steady strip aerodynamics; the pilot effort limits the deflection only with "
         "control_forces.elevator (force at the trim's angle of attack, at the instant of the input), else the "
         "elevator goes to its stop (travel); the structural comparison needs capabilities declared in the aircraft "
-        "file's `structure` section."
+        "file's `structure` section. Out of trim (§25.331(a)(2), with a declared stabiliser trim rate): from VC and VD "
+        "(the §25.255 speeds; VA lies below the cruise speeds §25.255 trims at), each direction from the mistrim in "
+        "its own sense — the 1 g entry trimmed with the stabiliser of the trim at the entry speed (at most VMO/MMO) "
+        "moved by 3 s of the rate within the trim limits and held, the elevator holding 1 g and making the input; the "
+        "opposite pairings leave the elevator less travel toward the manoeuvre's stop and are not flown."
     )
     implementation = "partial"
 
@@ -79,11 +83,6 @@ class CheckedPitchManeuver(SimulationRule):
             "25.331(c)(2)",
             "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
             "tail loads only)",
-        ),
-        (
-            "25.331(a)(2)",
-            "the checked manoeuvres' out-of-trim loads are not computed: they start from the 1 g trim, not from the "
-            "§25.255 mistrim (§25.331(b) evaluates the balanced manoeuvres out of trim)",
         ),
         (
             "25.331(c)",

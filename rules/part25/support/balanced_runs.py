@@ -13,6 +13,13 @@ import numpy as np
 from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_state_table
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.out_of_trim import (
+    MISTRIM_SECONDS,
+    MISTRIMS,
+    mistrim_rate,
+    no_mistrim,
+    out_of_trim_speed,
+)
 from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE, flap_altitude_findings
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
@@ -40,7 +47,6 @@ CLEAN_POINTS = ("A", "VC at n+", "D", "E", "F", "H")
 #: the §25.331(a)(2) out-of-trim conditions: the clean points at VC and VD (the §25.255 speeds, trimmed at cruise
 #: speeds up to VMO/MMO), the stabiliser mistrimmed nose up and nose down
 OUT_OF_TRIM_POINTS = ("VC at n+", "D", "E", "F")
-MISTRIMS = {"nose up": -1.0, "nose down": 1.0}  # the sense of the stabiliser's movement (leading edge up positive)
 FLAP_POINTS = ("VF at n flaps", "VF at 0")
 NO_FLAP_STRIPS = (
     "the strip loads model cannot spread this configuration's flap lift on the wing (no flap declared in "
@@ -82,17 +88,7 @@ class BalancedPoints(ConditionSpace):
         )
 
 
-def mistrim_rate(aircraft) -> float | None:
-    """The movable stabiliser's declared trim rate (rad/s), None without one (no out-of-trim conditions)."""
-    g = aircraft.geometry
-    st = g.horizontal_tail.stabilizer if g is not None else None
-    return None if st is None or st.rate is None else float(st.rate)
-
-
-NO_MISTRIM = (
-    "the out-of-trim balanced manoeuvres (§25.331(a)(2), the §25.255 mistrim) are not evaluated: they need a movable "
-    "stabiliser with its trim rate (geometry.horizontal_tail.stabilizer.rate)"
-)
+NO_MISTRIM = no_mistrim("balanced manoeuvres")
 
 
 #: the conditions of the balanced manoeuvres (§25.331(b); §25.427(b) splits their tail loads)
@@ -191,12 +187,7 @@ BALANCED_RUN_CRITERIA = {
         "VF ≥ this × VS1, flaps in the approach or landing position, at the maximum landing weight",
     ),
     "convergence": Criterion(1e-8, "rad/s", "certkit numerical choice", "largest |α̇|, |q̇| of a balanced state"),
-    "mistrim_seconds": Criterion(
-        3.0,
-        "s",
-        "14 CFR 25.331(a)(2) (the out-of-trim conditions of §25.255), 25.255(a)(1) ([CFR 2003] GPO text)",
-        "out-of-trim stabiliser movement: this many seconds at the trim system's normal rate, within its trim limits",
-    ),
+    "mistrim_seconds": MISTRIM_SECONDS,
     "flap_altitude_max": FLAP_ALTITUDE,
     **SAFETY,
 }
@@ -454,13 +445,6 @@ def _check(cond, surface: str) -> str:
     if cond.get("trim") is not None:
         return f"(a)(2) out-of-trim balanced manoeuvre, point {cond.get('point')}, {surface.replace('_', ' ')}"
     return f"(b) balanced manoeuvre, point {cond.get('point')}, {surface.replace('_', ' ')}"
-
-
-def out_of_trim_speed(ctx, h: float) -> float:
-    """EAS (m/s) up to which §25.255(a) trims the airplane at ``h``: VMO/MMO, else VC/MC where VMO is not declared
-    (VMO may not exceed VC, §25.1505)."""
-    name = "VMO" if ctx.aircraft.speeds.VMO is not None else "VC"
-    return float(ctx.design_speed_eas(name, h)[0])
 
 
 @dataclass

@@ -6,12 +6,13 @@ verification status: :mod:`certkit_rules.part25.subpart_c.r25_331`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import partial
 
 import numpy as np
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, fuelled_wing_envelope
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
+from certkit_rules.part25.support.out_of_trim import MISTRIM_SECONDS, MISTRIMS, mistrim_rate, out_of_trim_speed
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
     beyond_mach_range,
@@ -31,6 +32,7 @@ from certkit.engine.results import Finding, LoadsRun
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
+from certkit.models.flight import control_limits
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
@@ -155,6 +157,7 @@ CHECKED_CRITERIA = {
         "t_max = factor × π/ω without hold (3π/(2ω))",
     ),
     "max_hold": Criterion(5.0, "s", "14 CFR 25.331(c)(2)(iii) (verified fragment)", "longest hold Δt at the peak"),
+    "mistrim_seconds": MISTRIM_SECONDS,
     "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
     "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
     "search_steps": Criterion(10, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
@@ -177,7 +180,35 @@ CHECKED_CRITERIA = {
 }
 
 
-CHECKED_CONDITIONS = ConditionSpace(
+#: the entry speeds of the §25.331(a)(2) out-of-trim checked manoeuvres (the §25.255 speeds: trimmed at cruise speeds
+#: up to VMO/MMO; VA lies below them)
+OUT_OF_TRIM_ENTRIES = ("VC", "VD")
+
+
+@dataclass(frozen=True)
+class CheckedPoints(ConditionSpace):
+    """The checked manoeuvres' conditions and, with a declared stabiliser trim rate, the out-of-trim ones at VC and VD:
+    each direction from the mistrim in its own sense (nose-up pulls from the nose-up mistrim, nose-down pushes from the
+    nose-down one) — the mistrim that leaves the elevator more travel toward the manoeuvre's stop; the opposite one
+    leaves less, and the stabiliser's share of the tail load is already out of trim in the balanced manoeuvres."""
+
+    def expand(self, aircraft):
+        out = ConditionSpace.expand(self, aircraft)
+        if mistrim_rate(aircraft) is not None:
+            for sense in MISTRIMS:
+                extra = (("entry_speed", OUT_OF_TRIM_ENTRIES), ("direction", (sense,)), ("trim", (sense,)))
+                out += ConditionSpace.expand(replace(self, extra=extra), aircraft)
+        return out
+
+    def describe(self):
+        return (
+            ConditionSpace.describe(self)
+            + "; out of trim (§25.331(a)(2), with a declared stabiliser trim rate): from VC and VD, each direction "
+            "from the §25.255 mistrim in its own sense"
+        )
+
+
+CHECKED_CONDITIONS = CheckedPoints(
     loading=CgCorners(),
     configurations=("clean",),
     altitudes=EnvelopeAltitudes(),
@@ -191,18 +222,28 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     histories of the final inputs (for evidence)."""
     n_lim = ctx.aircraft.envelope.limit_load_factors.positive
     va_decl = float(ctx.design_speed_eas("VA", 0.0)[0])
-    entries, key_of = [], {}
+    entries, key_of, reference = [], {}, {}
     for c in conditions:
-        key = (c.loading, c.altitude, c.get("entry_speed"))
+        key = (c.loading, c.altitude, c.get("entry_speed"), c.get("trim"))
         if key not in key_of:
             v = entry_speeds(ctx, c.altitude, [c.get("entry_speed")])[c.get("entry_speed")]
             key_of[key] = len(entries)
-            entries.append(c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None))
+            plain = c.with_(speed=v, speed_kind="EAS", speed_name=None, direction=None)
+            entries.append(plain if c.get("trim") is None else plain.with_(trim=None))
+            if c.get("trim") is not None:  # trimmed at the speed up to VMO/MMO (§25.255(a)), then mistrimmed
+                ref = (c.loading, c.altitude, "reference", round(min(v, out_of_trim_speed(ctx, c.altitude or 0.0)), 6))
+                if ref not in key_of:
+                    key_of[ref] = len(entries)
+                    entries.append(plain.with_(trim=None, speed=ref[3]))
+                reference[key_of[key]] = (key_of[ref], c.get("trim"))
     batch = trimmed_batch(ctx, [e.with_() for e in entries])
+    mistrimmed = hold_mistrims(ctx, batch, entries, reference, crit)
     rows, sim_conds, refused = batch.distribute(
-        conditions, lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"))], [e.speed for e in entries]
+        conditions,
+        lambda c: key_of[(c.loading, c.altitude, c.get("entry_speed"), c.get("trim"))],
+        [e.speed for e in entries],
     )
-    findings = refusal_findings(refused, lambda c: ["(c)(2) checked manoeuvre"])
+    findings = refusal_findings(refused, lambda c: [_check(c)])
     if not rows.size:
         return PitchManeuverRun(findings, reason=NOTHING_TRIMMED)
     omega_sp = _modes_frequency(batch)[rows]
@@ -275,7 +316,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
             findings += [
                 set_aside_finding(
                     c,
-                    f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                    _check(c),
                     beyond_mach,
                     env.peaks["horizontal_tail"][i],
                     stations,
@@ -284,7 +325,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
                 ),
                 set_aside_finding(
                     c,
-                    f"(c)(2) checked manoeuvre, {c.get('direction')}, wing",
+                    _check(c) + ", wing",
                     beyond_mach,
                     fuelled[0][:, i],
                     env.stations["wing"],
@@ -295,7 +336,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         findings.append(
             capability_finding(
                 c,
-                f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                _check(c),
                 "horizontal_tail",
                 env.peaks["horizontal_tail"][i],
                 stations,
@@ -308,6 +349,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
                 t_max_s=round(float(t_max[i]), 3),
                 stop=sim.stop_reason[i] or "end",
                 pilot_effort=_effort_note(effort_limited, i),
+                **(mistrimmed.get(_mistrim_key(c), {}) if c.get("trim") is not None else {}),
                 **reached,
             )
         )
@@ -315,7 +357,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
             wing_finding(
                 ctx,
                 c,
-                f"(c)(2) checked manoeuvre, {c.get('direction')}",
+                _check(c),
                 env,
                 i,
                 crit,
@@ -375,6 +417,75 @@ def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool,
 
 #: the criteria that define the checked manoeuvre's runs (shared by §25.427(b), which splits their tail loads)
 CHECKED_RUN_CRITERIA = tuple(k for k in CHECKED_CRITERIA if k != "ultimate_factor")
+
+
+def _check(c) -> str:
+    if c.get("trim") is not None:
+        return f"(a)(2) out-of-trim checked manoeuvre, {c.get('direction')}"
+    return f"(c)(2) checked manoeuvre, {c.get('direction')}"
+
+
+def hold_mistrims(ctx, batch, entries, reference, crit) -> dict:
+    """Trim each out-of-trim entry of ``batch`` (``reference``: entry → (its reference entry, the mistrim's sense)) in
+    1 g flight with the stabiliser held at its reference trim's setting moved by 3 s (``mistrim_seconds``) of the
+    declared rate within the trim limits, the elevator solving (§25.255(a)(1)), in place of its own trim; an entry whose
+    held trim does not converge, or whose reference did not trim, is refused (added to ``batch.failed``). Returns the
+    finding details of each mistrim keyed by :func:`_mistrim_key`."""
+    if not reference:
+        return {}
+    names = list(batch.model.control_names)
+    js = names.index("stabilizer")
+    lo, hi = control_limits(ctx.aircraft, configuration="clean")["stabilizer"]
+    delta = float(crit.mistrim_seconds) * float(mistrim_rate(ctx.aircraft) or 0.0)
+    pos, failed = {int(e): k for k, e in enumerate(batch.index)}, dict(batch.failed)
+    todo, held, details = [], [], {}
+    for e, (r, sense) in reference.items():
+        if e not in pos:
+            continue
+        if r not in pos:
+            failed[e] = f"no 1 g trim at the out-of-trim reference speed (VMO/MMO): {failed.get(r, '')}"
+            continue
+        stab = float(batch.u[pos[r], js])
+        wanted = stab + MISTRIMS[sense] * delta
+        todo.append(e)
+        held.append(float(np.clip(wanted, lo, hi)))
+        details[_mistrim_key(entries[e], sense)] = {
+            "pitch_trim": (
+                f"out of trim {sense}: the stabiliser of the 1 g trim at {entries[r].speed / KN:.1f} kn EAS moved "
+                f"{np.degrees(held[-1] - stab):+.2f}° (§25.255(a)(1)"
+                + (", stopped by the trim limit)" if not lo <= wanted <= hi else ")")
+                + ", held; the elevator holds 1 g and makes the input"
+            ),
+            "stabilizer_deg": round(float(np.degrees(held[-1])), 3),
+        }
+    throttle = batch.u[:, batch.model.throttle_slice].mean(axis=1)
+    # level where the entry trimmed level; beyond the level-flight ceiling at the entry's own (full) throttle, the
+    # flight path solved (the steady flight nearest to level, as the entry's trim)
+    for level in (True, False):
+        group = [k for k, e in enumerate(todo) if (batch.gamma[pos[e]] == 0.0) == level]
+        if not group:
+            continue
+        conds = [batch.conditions[pos[todo[k]]] for k in group]
+        stab = np.array([held[k] for k in group])
+        if level:
+            again = ctx.trim(conds, stabilizer=stab)
+        else:
+            again = ctx.trim(conds, stabilizer=stab, throttle=np.array([throttle[pos[todo[k]]] for k in group]))
+        for j, k in enumerate(group):
+            e, r = todo[k], again.results[j]
+            if r.converged and not r.limits_exceeded:
+                batch.x[pos[e]], batch.u[pos[e]] = again.x[j], again.u[j]
+            else:
+                msg = "; ".join(m.message for m in r.limits_exceeded) or "trim did not converge"
+                failed[e] = f"no 1 g trim with the stabiliser mistrimmed (the elevator holding it): {msg}"
+    batch.failed = sorted(failed.items())
+    return details
+
+
+def _mistrim_key(c, sense=None) -> tuple:
+    """The key of an out-of-trim entry's details: its loading, altitude, entry speed and the mistrim's sense (the
+    scheduled condition's own ``trim`` when ``sense`` is not given)."""
+    return (c.loading, c.altitude, round(float(c.speed), 6), sense if sense is not None else c.get("trim"))
 
 
 def checked_runs(ctx, conditions, crit) -> PitchManeuverRun:
