@@ -283,13 +283,14 @@ def _evaluate_own(
 
 def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Condition]:
     """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
-    Findings are grouped by loading, configuration and altitude, which a refinement keeps, so each condition is
-    compared with its own group only (a design's loads rules schedule thousands of conditions)."""
+    A refinement keeps the scheduled condition's loading, configuration, altitude and extra items, so the findings'
+    conditions are indexed on those (per set of extra names the schedule uses) and each scheduled condition is
+    compared with its own bucket only (a design's loads rules schedule thousands of conditions)."""
     covered = {f.condition for f in findings}
-    groups: dict[tuple[object, ...], list[Condition]] = {}
+    broad: dict[tuple[object, ...], list[Condition]] = {}
     for c in covered:
-        groups.setdefault((c.loading, c.configuration), []).append(c)
-        groups.setdefault((c.loading, c.configuration, c.altitude), []).append(c)
+        broad.setdefault((c.loading, c.configuration), []).append(c)
+    index: dict[tuple[str, ...], dict[tuple[object, ...], list[Condition]]] = {}
     out = []
     for cond in conditions:
         if cond in covered:
@@ -298,12 +299,34 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
         if cond.loading is None or cond.configuration is None:
             candidates = covered
         elif cond.altitude is None:
-            candidates = groups.get((cond.loading, cond.configuration), [])
+            candidates = broad.get((cond.loading, cond.configuration), [])
         else:
-            candidates = groups.get((cond.loading, cond.configuration, cond.altitude), [])
+            names = tuple(k for k, _ in cond.extra)
+            table = index.get(names)
+            if table is None:
+                table = index[names] = _refinement_index(covered, names)
+            candidates = table.get(_place(cond, names, dict(cond.extra)), [])
         if not any(c.refines(cond) for c in candidates):
             out.append(cond)
     return out
+
+
+def _place(c: Condition, names: tuple[str, ...], extra: dict[str, object]) -> tuple[object, ...]:
+    return (c.loading, c.configuration, c.altitude) + tuple(extra.get(k, _ABSENT) for k in names)
+
+
+_ABSENT = object()  # an extra item a finding's condition does not carry (never equal to a scheduled value)
+
+
+def _refinement_index(
+    covered: Iterable[Condition], names: tuple[str, ...]
+) -> dict[tuple[object, ...], list[Condition]]:
+    """The findings' conditions keyed on what a refinement of a scheduled condition with extra items ``names`` keeps:
+    loading, configuration, altitude and those items' values."""
+    table: dict[tuple[object, ...], list[Condition]] = {}
+    for c in covered:
+        table.setdefault(_place(c, names, dict(c.extra)), []).append(c)
+    return table
 
 
 def _timed(rule: type[Rule], ctx: Context, finish: Finish | None = None) -> RuleResult:
