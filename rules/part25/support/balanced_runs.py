@@ -16,6 +16,8 @@ from certkit_rules.part25.support.loads_conditions import refusal_findings, trim
 from certkit_rules.part25.support.out_of_trim import (
     MISTRIM_SECONDS,
     MISTRIMS,
+    mistrim,
+    mistrim_note,
     mistrim_rate,
     no_mistrim,
     out_of_trim_speed,
@@ -306,11 +308,8 @@ def balanced_maneuvers(ctx, conditions, crit) -> BalancedRun:
             if c.get("trim") is not None:
                 j = mis.keep[i]
                 details["stabilizer_deg"] = round(float(np.degrees(ds[i])), 3)
-                details["pitch_trim"] = (
-                    f"out of trim {c.get('trim')}: the stabiliser of the 1 g trim at "
-                    f"{mis.trim_speed[j] / KN:.1f} kn EAS moved {np.degrees(mis.moved[j]):+.2f}° (§25.255(a)(1)"
-                    + (", stopped by the trim limit)" if mis.limited[j] else ")")
-                    + ", held; the elevator balances"
+                details["pitch_trim"] = mistrim_note(
+                    c.get("trim"), mis.trim_speed[j], mis.moved[j], bool(mis.limited[j]), "the elevator balances"
                 )
             past_stop = beyond_stops(st.u[i], model.control_names, stops)
             beyond_mach = beyond_mach_range(loads, float(st.outputs.mach[i]))
@@ -475,8 +474,6 @@ def mistrimmed_entries(ctx, batch, rows, kept, reference, configuration: str, cr
     if out:
         names = list(batch.model.control_names)
         js, je = names.index("stabilizer"), names.index("elevator")
-        lo, hi = control_limits(ctx.aircraft, configuration=configuration)["stabilizer"]
-        delta = float(crit.mistrim_seconds) * float(mistrim_rate(ctx.aircraft) or 0.0)
         pos, failed = {int(e): k for k, e in enumerate(batch.index)}, dict(batch.failed)
         for i in out:
             e = reference[kept[i]]
@@ -484,9 +481,8 @@ def mistrimmed_entries(ctx, batch, rows, kept, reference, configuration: str, cr
                 refused.append((i, f"no 1 g trim at the out-of-trim reference speed (VMO/MMO): {failed.get(e, '')}"))
                 continue
             ref = batch.u[pos[e]]
-            wanted = ref[js] + MISTRIMS[kept[i].get("trim")] * delta
-            u[i, js], u[i, je] = np.clip(wanted, lo, hi), ref[je]
-            moved[i], limited[i] = u[i, js] - ref[js], not lo <= wanted <= hi
+            u[i, js], limited[i] = mistrim(ctx, float(ref[js]), kept[i].get("trim"), configuration, crit)
+            u[i, je], moved[i] = ref[je], u[i, js] - ref[js]
             trim_speed[i] = batch.conditions[pos[e]].speed
     gone = {i for i, _ in refused}
     keep = np.array([i for i in range(n) if i not in gone], dtype=int)

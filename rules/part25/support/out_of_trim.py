@@ -8,7 +8,11 @@ manoeuvres.
 
 from __future__ import annotations
 
+import math
+
 from certkit.engine.registry import Criterion
+from certkit.models.flight import control_limits
+from certkit.units import KN
 
 #: the out-of-trim senses: the sign of the stabiliser's movement (leading edge up positive) — nose up is leading edge
 #: down; the same words as the checked manoeuvres' directions
@@ -42,3 +46,24 @@ def out_of_trim_speed(ctx, h: float) -> float:
     (VMO may not exceed VC, §25.1505)."""
     name = "VMO" if ctx.aircraft.speeds.VMO is not None else "VC"
     return float(ctx.design_speed_eas(name, h)[0])
+
+
+def mistrim(ctx, reference_stabilizer: float, sense: str, configuration: str, crit) -> tuple[float, bool]:
+    """(the held stabiliser deflection in rad, whether the trim limit stopped it): the reference trim's setting moved
+    by ``mistrim_seconds`` of the declared rate in the sense ``sense``, within ``configuration``'s trim limits."""
+    lo, hi = control_limits(ctx.aircraft, configuration=configuration)["stabilizer"]
+    wanted = reference_stabilizer + MISTRIMS[sense] * float(crit.mistrim_seconds) * float(
+        mistrim_rate(ctx.aircraft) or 0.0
+    )
+    return float(min(max(wanted, lo), hi)), not lo <= wanted <= hi
+
+
+def mistrim_note(sense: str, trim_speed_eas: float, moved: float, limited: bool, then: str) -> str:
+    """The finding's account of an out-of-trim condition: where the stabiliser was trimmed, how far it moved, and
+    ``then`` (what the elevator does)."""
+    return (
+        f"out of trim {sense}: the stabiliser of the 1 g trim at {trim_speed_eas / KN:.1f} kn EAS moved "
+        f"{math.degrees(moved):+.2f}° (§25.255(a)(1)"
+        + (", stopped by the trim limit)" if limited else ")")
+        + f", held; {then}"
+    )

@@ -12,7 +12,14 @@ from functools import partial
 import numpy as np
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, fuelled_wing_envelope
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
-from certkit_rules.part25.support.out_of_trim import MISTRIM_SECONDS, MISTRIMS, mistrim_rate, out_of_trim_speed
+from certkit_rules.part25.support.out_of_trim import (
+    MISTRIM_SECONDS,
+    MISTRIMS,
+    mistrim,
+    mistrim_note,
+    mistrim_rate,
+    out_of_trim_speed,
+)
 from certkit_rules.part25.support.structural_checks import (
     SAFETY,
     beyond_mach_range,
@@ -32,7 +39,6 @@ from certkit.engine.results import Finding, LoadsRun
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes
 from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
-from certkit.models.flight import control_limits
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
@@ -433,10 +439,7 @@ def hold_mistrims(ctx, batch, entries, reference, crit) -> dict:
     finding details of each mistrim keyed by :func:`_mistrim_key`."""
     if not reference:
         return {}
-    names = list(batch.model.control_names)
-    js = names.index("stabilizer")
-    lo, hi = control_limits(ctx.aircraft, configuration="clean")["stabilizer"]
-    delta = float(crit.mistrim_seconds) * float(mistrim_rate(ctx.aircraft) or 0.0)
+    js = list(batch.model.control_names).index("stabilizer")
     pos, failed = {int(e): k for k, e in enumerate(batch.index)}, dict(batch.failed)
     todo, held, details = [], [], {}
     for e, (r, sense) in reference.items():
@@ -446,17 +449,14 @@ def hold_mistrims(ctx, batch, entries, reference, crit) -> dict:
             failed[e] = f"no 1 g trim at the out-of-trim reference speed (VMO/MMO): {failed.get(r, '')}"
             continue
         stab = float(batch.u[pos[r], js])
-        wanted = stab + MISTRIMS[sense] * delta
+        value, limited = mistrim(ctx, stab, sense, "clean", crit)
         todo.append(e)
-        held.append(float(np.clip(wanted, lo, hi)))
+        held.append(value)
         details[_mistrim_key(entries[e], sense)] = {
-            "pitch_trim": (
-                f"out of trim {sense}: the stabiliser of the 1 g trim at {entries[r].speed / KN:.1f} kn EAS moved "
-                f"{np.degrees(held[-1] - stab):+.2f}° (§25.255(a)(1)"
-                + (", stopped by the trim limit)" if not lo <= wanted <= hi else ")")
-                + ", held; the elevator holds 1 g and makes the input"
+            "pitch_trim": mistrim_note(
+                sense, entries[r].speed, value - stab, limited, "the elevator holds 1 g and makes the input"
             ),
-            "stabilizer_deg": round(float(np.degrees(held[-1])), 3),
+            "stabilizer_deg": round(float(np.degrees(value)), 3),
         }
     throttle = batch.u[:, batch.model.throttle_slice].mean(axis=1)
     # level where the entry trimmed level; beyond the level-flight ceiling at the entry's own (full) throttle, the
