@@ -11,6 +11,7 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from certkit.aircraft.derivative_names import SPEED_TERMS, unknown_names
 from certkit.errors import Problem
 
 Check = Callable[[dict], Iterator[tuple[str, str, object]]]
@@ -124,8 +125,6 @@ def _aero_configurations(s):
 def _derivative_table(name, table, condition, propulsion):
     """Names of the table's form, one value per Mach breakpoint, what the dimensional form and the speed
     derivatives need (a flight condition, one Mach), thrust–speed only without a propulsion section."""
-    from certkit.aircraft.derivative_names import SPEED_TERMS, unknown_names
-
     at = f"aerodynamics.derivative_tables.{name}"
     mach = table.mach if table.mach is not None else [condition.mach if condition and condition.mach else 0.0]
     if table.mach is None and condition is None:
@@ -343,8 +342,6 @@ def _tail_on_fuselage(g):
     """The horizontal tail's root chord must end on the fuselage (it is attached there) and its tip must not lie
     wholly behind the fuselage end; trapezoid geometry: b = √(A S), c_r = 2S / (b (1 + λ)),
     tan Λ_LE = tan Λ_c/4 + (1 − λ) / (A (1 + λ))."""
-    import math
-
     t, length = g.horizontal_tail, g.fuselage.length
     b = math.sqrt(t.aspect_ratio * t.area)
     c_root = 2.0 * t.area / (b * (1.0 + t.taper))

@@ -16,6 +16,7 @@ from pathlib import Path
 
 import yaml
 
+from certkit.aircraft.number_range import scalars
 from certkit.errors import InputError, Problem
 
 
@@ -33,8 +34,6 @@ class YamlSource:
     def values_by_path(self) -> dict[str, object]:
         """Every scalar of the file by dotted path (list items by index), as written (a date or other YAML scalar as
         text): what two runs compare to name the inputs that changed."""
-        from certkit.aircraft.number_range import scalars
-
         plain = (str, int, float, bool)
         return dict(
             sorted(

@@ -7,15 +7,14 @@ from pathlib import Path
 
 from certkit.conventions import CONTROL_SIGNS, DRAG_AXIS, INDUCED_DRAG
 from certkit.errors import UserError
+from certkit.models.aero.vlm import GeometryError, VortexLattice
+from certkit.models.aero.vlm.avl_file import AvlFileError, read_avl
 
 VARIABLES = ("alpha", "beta", "p", "q", "r")
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
 
 
 def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg: float, configuration: str) -> dict:
-    from certkit.models.aero.vlm import GeometryError, VortexLattice
-    from certkit.models.aero.vlm.avl_file import AvlFileError, read_avl
-
     model_column = None
     model_point = None
     notes: list[str] = []
@@ -26,19 +25,23 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
             source = f"AVL geometry {path}"
             mach = config.mach if mach is None else mach
         else:
-            from certkit.aircraft import load_aircraft
-            from certkit.engine.context import Context
+            from certkit.aircraft import load_aircraft  # deferred: an .avl run loads no pint, scipy, numba
+            from certkit.engine.context import Context  # deferred: an .avl run loads no pint, scipy, numba
 
             ctx = Context(load_aircraft(path))
             if configuration not in ctx.aircraft.configurations:
                 raise UserError(
                     f"--config {configuration!r}: not declared (declared: {', '.join(ctx.aircraft.configurations)})"
                 )
-            from certkit.models.aero.airplane import lattice_configuration
+            from certkit.models.aero.airplane import (  # deferred: an .avl run loads no pint, scipy, numba
+                lattice_configuration,
+            )
 
             source = f"aircraft file {path}, configuration {configuration}"
             if mach is None:
-                from certkit.models.reference_condition import reference_condition
+                from certkit.models.reference_condition import (  # deferred: an .avl run loads no pint, scipy, numba
+                    reference_condition,
+                )
 
                 cond = reference_condition(ctx.aircraft)
                 mach = 0.2 if cond is None else cond.mach

@@ -16,6 +16,12 @@ import numpy as np
 from certkit.atmosphere import to_tas
 from certkit.engine.conditions import CgCorners, cg_limits_at, reference_cg
 from certkit.errors import UserError
+from certkit.models.dynamics.linearize import linearize
+from certkit.models.dynamics.modes import identify_modes
+from certkit.models.dynamics.trim import trim
+from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
+from certkit.models.mass.loading import solve_loading
+from certkit.models.reference_condition import declared_speed_at, reference_condition
 from certkit.units import UnitError, to_si
 
 KINDS = {"straight": "straight", "climb": "straight", "turn": "turn", "oei": "oei", "sideslip": "sideslip"}
@@ -120,8 +126,6 @@ DEFAULT_ALTITUDE, DEFAULT_SPEED = "35000 ft", "M0.84"
 def _altitude_and_speed(aircraft, altitude: str | None, speed: str | None) -> tuple[float, float]:
     """Altitude (m) and true airspeed (m/s) of the options; an option not given is the file's flight_condition
     (when declared), else 35 000 ft and M0.84."""
-    from certkit.models.reference_condition import declared_speed_at, reference_condition
-
     ref = reference_condition(aircraft)
     if altitude is None:
         h = ref.altitude if ref is not None else _quantity(DEFAULT_ALTITUDE, "length", "--altitude")
@@ -139,10 +143,6 @@ def _altitude_and_speed(aircraft, altitude: str | None, speed: str | None) -> tu
 
 def trim_condition(ctx, fc: FlightCondition):
     """Trim the condition; returns (trim batch, flight model)."""
-    from certkit.models.dynamics.trim import trim
-    from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
-    from certkit.models.mass.loading import solve_loading
-
     aircraft = ctx.aircraft
     loading = solve_loading(aircraft, fc.mass, fc.x_cg, fc.loading_name)
     operative = None
@@ -238,9 +238,6 @@ def _trim_dict(ctx, fc: FlightCondition, batch, loading) -> dict:
 def modes_report(ctx, fc: FlightCondition, density_gradient: bool = True) -> dict:
     """The trim and the modes about it; ``density_gradient``: the altitude state in the linear model
     (:mod:`certkit.models.dynamics.modes`)."""
-    from certkit.models.dynamics.linearize import linearize
-    from certkit.models.dynamics.modes import identify_modes
-
     batch, model, loading = trim_condition(ctx, fc)
     out = _trim_dict(ctx, fc, batch, loading)
     if not batch.results[0].converged:

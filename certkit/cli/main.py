@@ -12,16 +12,19 @@ import functools
 import gc
 import importlib
 import json
+import math
 import os
+import platform
 import sys
 import time
+import traceback
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
 import click
 
-from certkit import __version__
+from certkit import __version__, interrupts
 from certkit.engine.worker_processes import one_blas_thread
 from certkit.errors import UserError
 
@@ -63,8 +66,6 @@ class _Group(click.Group):
             raise
         except Exception as exc:  # noqa: BLE001 - the boundary: every other exception is a bug of certkit
             if _DEBUG["on"]:
-                import traceback
-
                 traceback.print_exc()
             detail = str(exc).splitlines()[0][:300] if str(exc) else ""
             click.echo(
@@ -78,7 +79,10 @@ class _Group(click.Group):
 
 
 def _discovery(rules_dirs):
-    from certkit.engine.registry import DiscoveryOptions, discover
+    from certkit.engine.registry import (  # deferred: CLI start-up: the registry loads importlib.metadata
+        DiscoveryOptions,
+        discover,
+    )
 
     options = DiscoveryOptions(rules_dirs=tuple(rules_dirs))
     return options, discover(options)
@@ -102,8 +106,12 @@ def _mission_for_report(aircraft) -> dict | None:
     why they could not be flown; None without a ``mission:`` section."""
     if aircraft.mission is None:
         return None
-    from certkit.models.performance.mission import fly_missions
-    from certkit.report.mission_plots import payload_range_svg
+    from certkit.models.performance.mission import (  # deferred: CLI start-up: the mission models load with the check
+        fly_missions,
+    )
+    from certkit.report.mission_plots import (  # deferred: CLI start-up: the report layer loads with the check
+        payload_range_svg,
+    )
 
     try:
         m = fly_missions(aircraft)
@@ -118,7 +126,9 @@ def _mission_for_report(aircraft) -> dict | None:
 def _compile_kernels(jobs: int, announce: bool) -> None:
     """At the first run after an install (numba's cache cold), compile certkit's kernels ahead in ``jobs`` processes
     (:mod:`certkit.models.kernel_warmup`), saying so when ``announce``."""
-    from certkit.models.kernel_warmup import compile_if_cold
+    from certkit.models.kernel_warmup import (  # deferred: CLI start-up: the kernels are compiled by a check only
+        compile_if_cold,
+    )
 
     def say() -> None:
         click.echo("compiling certkit's numba kernels (once after an install; cached for later runs)…", err=True)
@@ -150,8 +160,6 @@ class _Number(click.ParamType):
         self.minimum = minimum
 
     def convert(self, value, param, ctx):
-        import math
-
         if isinstance(value, float):
             number = value
         else:
@@ -256,12 +264,23 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
     jobs = _default_jobs(jobs)
     output_format = "json" if as_json else output_format
     with _long_lived_objects():
-        from certkit.aircraft import load_aircraft
-        from certkit.engine.registry import select as select_rules
-        from certkit.engine.scheduler import check_overrides, run
-        from certkit.report.html import ReportFinish, write_report
-        from certkit.report.output import prepare_output, report_folder_name
-        from certkit.report.terminal import Progress
+        from certkit.aircraft import load_aircraft  # deferred: CLI start-up: the check's layers load when it runs
+        from certkit.engine.registry import (  # deferred: CLI start-up: the check's layers load when it runs
+            select as select_rules,
+        )
+        from certkit.engine.scheduler import (  # deferred: CLI start-up: the check's layers load when it runs
+            check_overrides,
+            run,
+        )
+        from certkit.report.html import (  # deferred: CLI start-up: the check's layers load when it runs
+            ReportFinish,
+            write_report,
+        )
+        from certkit.report.output import (  # deferred: CLI start-up: the check's layers load when it runs
+            prepare_output,
+            report_folder_name,
+        )
+        from certkit.report.terminal import Progress  # deferred: CLI start-up: the check's layers load when it runs
 
         start = time.perf_counter()
         loaded = load_aircraft(aircraft_file)
@@ -272,7 +291,9 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         out = Path(out_dir) if out_dir else Path("reports") / report_folder_name(loaded.name)
         prepare_output(out)  # an output that cannot be written is an error before the evaluation, not after
         _check_output_file(output_file)
-    from certkit.models.mass.loading import inertia_comparison
+    from certkit.models.mass.loading import (  # deferred: CLI start-up: the check's layers load when it runs
+        inertia_comparison,
+    )
 
     warning = inertia_comparison(loaded.model)
     if warning:
@@ -309,7 +330,9 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         gc.unfreeze()
     lines = None
     if output_format in ("junit", "sarif", "github"):
-        from certkit.report.ci_formats import datum_lines
+        from certkit.report.ci_formats import (  # deferred: CLI start-up: the check's layers load when it runs
+            datum_lines,
+        )
 
         lines = datum_lines(loaded.source, chosen, result.rules)
     _print_check(result, output_format, output_file, quiet, json_path, html_path, time.perf_counter() - start, lines)
@@ -317,14 +340,12 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
 
 
 def _environment() -> dict:
-    import platform
-
     return {"platform": platform.platform(), "python": platform.python_version()}
 
 
 def _print_check(result, output_format, output_file, quiet, json_path, html_path, seconds, lines=None) -> None:
     if output_format != "text":
-        from certkit.report.ci_formats import render
+        from certkit.report.ci_formats import render  # deferred: CLI start-up: the check's layers load when it runs
 
         text = (
             json_path.read_text(encoding="utf-8") if output_format == "json" else render(output_format, result, lines)
@@ -340,7 +361,7 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
         else:
             click.echo(text, nl=False)
         return
-    from certkit.report.terminal import rule_rows
+    from certkit.report.terminal import rule_rows  # deferred: CLI start-up: the check's layers load when it runs
 
     if not quiet:
         for line in rule_rows(result.rules, colour=sys.stdout.isatty()):
@@ -375,7 +396,12 @@ def _print_check(result, output_format, output_file, quiet, json_path, html_path
 def diff_command(old, new, html_file, tolerance):
     """Compare two results.json: status flips and margin changes per rule and condition. Exit 1 when a rule got
     worse (complies → fails or not evaluated...), else 0."""
-    from certkit.report.diff import compare, load, render_html, text_lines
+    from certkit.report.diff import (  # deferred: CLI start-up: the diff's layers load when it runs
+        compare,
+        load,
+        render_html,
+        text_lines,
+    )
 
     a, b = load(old), load(new)
     changes = compare(a, b, tolerance)
@@ -392,7 +418,7 @@ def diff_command(old, new, html_file, tolerance):
 @click.option("--markdown", is_flag=True, help="Print a Markdown table (docs/rules.md holds it).")
 def list_rules(rules_dirs, markdown):
     """List the registered rules: id, symbol, title, implementation status."""
-    from certkit.engine.rule_index import rule_metadata
+    from certkit.engine.rule_index import rule_metadata  # deferred: CLI start-up: the rule index loads the registry
 
     rules = rule_metadata(tuple(rules_dirs))
     if markdown:
@@ -410,7 +436,10 @@ def list_rules(rules_dirs, markdown):
 def explain(rule, rules_dirs):
     """Print a rule's documentation (id — with or without §, e.g. "§25.337" — id prefix or symbol): requirement,
     criterion, conditions, margin."""
-    from certkit.engine.rule_index import find, rule_metadata
+    from certkit.engine.rule_index import (  # deferred: CLI start-up: the rule index loads the registry
+        find,
+        rule_metadata,
+    )
 
     matches = find(rule_metadata(tuple(rules_dirs)), rule)
     if not matches:
@@ -423,11 +452,13 @@ def explain(rule, rules_dirs):
 def schema(of_results):
     """Print the JSON Schema of the aircraft file (for editor autocompletion), or of results.json."""
     if of_results:
-        from certkit.engine.results_json import schema as results_schema
+        from certkit.engine.results_json import (  # deferred: CLI start-up: results_json loads numpy
+            schema as results_schema,
+        )
 
         click.echo(json.dumps(results_schema(), indent=2, ensure_ascii=False))
         return
-    from certkit.aircraft import json_schema
+    from certkit.aircraft import json_schema  # deferred: CLI start-up: the aircraft model loads pydantic and pint
 
     click.echo(json.dumps(json_schema(), indent=2))
 
@@ -449,7 +480,7 @@ def derivatives(model_file, mach, alpha_deg, beta_deg, configuration, as_json):
     the stability x axis (see certkit/conventions.py).
     """
     one_blas_thread()  # a threaded LU of a few thousand panels starts threads it cannot use (0.5-0.8 s -> 0.4 s)
-    from certkit.cli.aero_report import derivative_report
+    from certkit.cli.aero_report import derivative_report  # deferred: CLI start-up: the vortex lattice loads numpy
 
     report = derivative_report(model_file, mach, alpha_deg, beta_deg, configuration)
     if as_json:
@@ -526,9 +557,11 @@ def _condition_options(f):
 
 
 def _flight(aircraft_file, **kw):
-    from certkit.aircraft import load_aircraft
-    from certkit.cli.flight_report import condition_from_options
-    from certkit.engine.context import Context
+    from certkit.aircraft import load_aircraft  # deferred: CLI start-up: the physics loads with the command
+    from certkit.cli.flight_report import (  # deferred: CLI start-up: the physics loads with the command
+        condition_from_options,
+    )
+    from certkit.engine.context import Context  # deferred: CLI start-up: the physics loads with the command
 
     ctx = Context(load_aircraft(aircraft_file))
     as_json = kw.pop("as_json")
@@ -540,7 +573,7 @@ def _flight(aircraft_file, **kw):
 @_condition_options
 def trim_command(aircraft_file, **kw):
     """Trim one condition: angles, controls, thrust, and any control beyond its design limit."""
-    from certkit.cli.flight_report import trim_report
+    from certkit.cli.flight_report import trim_report  # deferred: CLI start-up: the physics loads with the command
 
     ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = trim_report(ctx, fc)
@@ -564,7 +597,7 @@ def _beside(given: str | None, aviation: str) -> str:
 
 def _print_trim(r, given: dict):
     """The trimmed state; the condition echoed in the units the user gave (with aviation units beside SI)."""
-    from certkit.units import FT, KN, LB, LBF
+    from certkit.units import FT, KN, LB, LBF  # deferred: CLI start-up: pint loads when the command runs
 
     c = r["condition"]
     cg = f" · CG {given['cg']}" if given.get("cg") else f" · CG {c['x_cg_m'] / FT:.2f} ft"
@@ -630,7 +663,7 @@ def modes_command(aircraft_file, no_density_gradient, **kw):
     """Dynamic modes about one trimmed condition: eigenvalue, frequency, damping, period, time to half/double.
     The linear model includes the altitude (the density gradient and the thrust lapse with height, which raise the
     phugoid frequency) unless --no-density-gradient."""
-    from certkit.cli.flight_report import modes_report
+    from certkit.cli.flight_report import modes_report  # deferred: CLI start-up: the physics loads with the command
 
     ctx, fc, as_json, given = _flight(aircraft_file, **kw)
     report = modes_report(ctx, fc, density_gradient=not no_density_gradient)
@@ -658,15 +691,22 @@ def modes_command(aircraft_file, no_density_gradient, **kw):
 @click.option("--json", "as_json", is_flag=True, help="Machine-readable output (SI).")
 def mission_command(aircraft_file, oew, svg_path, as_json):
     """Design range, payload-range, block fuel and time of the nominal mission, cruise drag (the mission: section)."""
-    from certkit.aircraft import load_aircraft
-    from certkit.cli.flight_report import _quantity
-    from certkit.models.performance.mission import fly_missions
-    from certkit.models.performance.mission_report import mission_json, mission_table
+    from certkit.aircraft import load_aircraft  # deferred: CLI start-up: the physics loads with the command
+    from certkit.cli.flight_report import _quantity  # deferred: CLI start-up: the physics loads with the command
+    from certkit.models.performance.mission import (  # deferred: CLI start-up: the physics loads with the command
+        fly_missions,
+    )
+    from certkit.models.performance.mission_report import (  # deferred: CLI start-up: the physics loads with it
+        mission_json,
+        mission_table,
+    )
 
     loaded = load_aircraft(aircraft_file)
     result = fly_missions(loaded.model, oew_kg=_quantity(oew, "mass", "--oew") if oew else None)
     if svg_path:
-        from certkit.report.mission_plots import payload_range_svg
+        from certkit.report.mission_plots import (  # deferred: CLI start-up: the report loads with the command
+            payload_range_svg,
+        )
 
         try:
             Path(svg_path).write_text(
@@ -687,7 +727,7 @@ def mission_command(aircraft_file, oew, svg_path, as_json):
 @click.option("--root", type=click.Path(file_okay=False), default=".", show_default=True, help="Repository root.")
 def new_rule(rule_id, symbol, title, subpart, root):
     """Scaffold a rule module under rules/part25/subpart_X/ and its test under tests/rules/."""
-    from certkit.engine.scaffold import scaffold_rule
+    from certkit.engine.scaffold import scaffold_rule  # deferred: CLI start-up: the scaffold loads the registry
 
     module, test = scaffold_rule(Path(root), rule_id, symbol, title, subpart)
     click.echo(f"created {module}\ncreated {test}")
@@ -722,11 +762,19 @@ def evaluate_command(aircraft_file, settings, responses, jobs, as_json):
     record (design variables, objectives, rule margins, sub-checks, handling levels, sizing, timings)."""
     jobs = _default_jobs(jobs)
     _compile_kernels(jobs, announce=not as_json)
-    from certkit.design.evaluate import evaluate_design
-    from certkit.design.report import print_record
-    from certkit.design.sizing_loop import SizingNotConverged
-    from certkit.design.variables import parse_setting
-    from certkit.models.structure.box import StructuralSizingError
+    from certkit.design.evaluate import (  # deferred: CLI start-up: the design layer loads with the command
+        evaluate_design,
+    )
+    from certkit.design.report import print_record  # deferred: CLI start-up: the design layer loads with the command
+    from certkit.design.sizing_loop import (  # deferred: CLI start-up: the design layer loads with the command
+        SizingNotConverged,
+    )
+    from certkit.design.variables import (  # deferred: CLI start-up: the design layer loads with the command
+        parse_setting,
+    )
+    from certkit.models.structure.box import (  # deferred: CLI start-up: the design layer loads with the command
+        StructuralSizingError,
+    )
 
     try:
         record = evaluate_design(
@@ -753,8 +801,12 @@ def calibrate_command(aircraft_file, tail):
     """Solve the declared calibration factors from their targets and print them for the aircraft file: the drag
     factor that flies calibration.target (fuel-flow factor as declared), or with --tail the non-optimum factor whose
     sized tail group equals the declared 'horizontal tail' component."""
-    from certkit.aircraft import load_aircraft
-    from certkit.design.calibration import calibration_text, solve_drag_factor, solve_tail_factor
+    from certkit.aircraft import load_aircraft  # deferred: CLI start-up: the design layer loads with the command
+    from certkit.design.calibration import (  # deferred: CLI start-up: the design layer loads with the command
+        calibration_text,
+        solve_drag_factor,
+        solve_tail_factor,
+    )
 
     loaded = load_aircraft(aircraft_file)
 
@@ -785,12 +837,17 @@ def import_jsbsim_command(fdm_file, out_path, mach, altitude):
     """A certkit aircraft file from a JSBSim FDM (AIRCRAFT.xml): mass, inertia, engines and thrust deck, and the
     aerodynamic functions as a derivative table linearised at level flight at --mach/--altitude; what could not
     be mapped is listed in the file's header and on standard error."""
-    from certkit.aircraft.jsbsim_import.importer import import_jsbsim, to_yaml
-    from certkit.cli.flight_report import _quantity
+    from certkit.aircraft.jsbsim_import.importer import (  # deferred: CLI start-up: the JSBSim reader loads with it
+        import_jsbsim,
+        to_yaml,
+    )
+    from certkit.cli.flight_report import _quantity  # deferred: CLI start-up: the physics loads with the command
 
     result = import_jsbsim(fdm_file, mach=mach, altitude=_quantity(altitude, "length", "--altitude"))
     text = to_yaml(result)
-    from certkit.aircraft import validate_aircraft_data
+    from certkit.aircraft import (  # deferred: CLI start-up: the aircraft model loads with the command
+        validate_aircraft_data,
+    )
 
     validate_aircraft_data(result.data)  # what is written must load
     for line in result.unmapped:
@@ -808,8 +865,6 @@ def import_jsbsim_command(fdm_file, out_path, mach, altitude):
 def entry() -> None:
     """The ``certkit`` program: :func:`main` with Ctrl-C recorded (:mod:`certkit.interrupts`); an interrupted run ends
     with exit code 130 at once, without the interpreter's shutdown."""
-    from certkit import interrupts
-
     interrupts.install()
     try:
         main()

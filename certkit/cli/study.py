@@ -10,6 +10,10 @@ from pathlib import Path
 
 import click
 
+from certkit import interrupts
+from certkit.cli.study_analysis import export_surrogates, predict_command, refine_command, report_command
+from certkit.errors import UserError
+
 EXIT_INTERRUPTED = 130
 
 
@@ -35,9 +39,7 @@ class _StudyGroup(click.Group):
     """A store found damaged while it is read (after :meth:`Store.open` checked it) is a message, not a bug."""
 
     def invoke(self, ctx):
-        import sqlite3
-
-        from certkit.errors import UserError
+        import sqlite3  # deferred: CLI start-up: `certkit --help` loads this module; sqlite3 loads with a study command
 
         try:
             return super().invoke(ctx)
@@ -76,11 +78,10 @@ def study():
 )
 def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator, progress_interval):
     """Evaluate every case of STUDY_FILE without a result yet (run it again to resume)."""
-    from certkit import interrupts
-    from certkit.study.plan import DEFAULT_EVALUATOR
-    from certkit.study.runner import run_study
-    from certkit.study.spec import load_study
-    from certkit.study.store import Store
+    from certkit.study.plan import DEFAULT_EVALUATOR  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.runner import run_study  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.spec import load_study  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.store import Store  # deferred: CLI start-up: `certkit --help` loads this module
 
     spec = load_study(study_file)
     path = _store_of(study_file, store)
@@ -124,9 +125,13 @@ def run(study_file, executor, workers, scheduler, store, retry_failed, evaluator
 @_store_option
 def status(target, store):
     """Cases per block (ok, failed, pending, new) of a study file or a store, wall times and failure reasons."""
-    from certkit.study.plan import DEFAULT_EVALUATOR, CaseContext, plan_study
-    from certkit.study.spec import load_study
-    from certkit.study.store import Store
+    from certkit.study.plan import (  # deferred: CLI start-up: `certkit --help` loads this module
+        DEFAULT_EVALUATOR,
+        CaseContext,
+        plan_study,
+    )
+    from certkit.study.spec import load_study  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.store import Store  # deferred: CLI start-up: `certkit --help` loads this module
 
     path = _store_of(target, store)
     new: Counter = Counter()
@@ -194,13 +199,10 @@ def status(target, store):
 def export(target, store, fmt, out, surrogates_out):
     """Write one row per case (variables in SI, responses, status, error, wall time, worker) as CSV or Parquet,
     or (--surrogates) the study's fitted surrogates."""
-    from certkit.study.store import Store
-    from certkit.study.store import export as write
+    from certkit.study.store import Store  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.store import export as write  # deferred: CLI start-up: `certkit --help` loads this module
 
     if surrogates_out:
-        from certkit.cli.study_analysis import export_surrogates
-        from certkit.errors import UserError
-
         if not _is_study_file(target):
             raise UserError(f"{target}: --surrogates needs the study file (its objectives and constraints)")
         written = export_surrogates(
@@ -220,14 +222,12 @@ def export(target, store, fmt, out, surrogates_out):
 @study.command()
 def schema():
     """Print the JSON Schema of the study file."""
-    from certkit.study.spec import json_schema
+    from certkit.study.spec import json_schema  # deferred: CLI start-up: `certkit --help` loads this module
 
     click.echo(json.dumps(json_schema(), indent=2))
 
 
 def _register_report() -> None:
-    from certkit.cli.study_analysis import predict_command, refine_command, report_command
-
     for command in (report_command, refine_command, predict_command):
         study.add_command(command)
 

@@ -48,7 +48,7 @@ def executor_options(command):
 
 def case_runner(executor: str, workers: int | None, scheduler: str | None):
     """The study runner with the command's executor, showing its progress on stderr."""
-    from certkit.study.runner import run_study_cases  # here, not at the top: `certkit --help` stays fast
+    from certkit.study.runner import run_study_cases  # deferred: CLI start-up: `certkit --help` loads this module
 
     if scheduler and executor != "dask":
         raise UserError("--scheduler is for --executor dask")
@@ -77,8 +77,8 @@ def open_study(study_path: Path, store_path: Path | None):
     The definition is the study file as it is now (objectives, constraints and analysis options may change after a
     run without changing a case); its variables must be those the store was run with."""
 
-    from certkit.study.spec import load_study  # here, not at the top: `certkit --help` stays fast
-    from certkit.study.store import Store
+    from certkit.study.spec import load_study  # deferred: CLI start-up: `certkit --help` loads this module
+    from certkit.study.store import Store  # deferred: CLI start-up: `certkit --help` loads this module
 
     study = load_study(
         study_path
@@ -128,7 +128,9 @@ def report_command(
     """Analyse a finished study: surrogates, feasibility, Pareto fronts, optima, profiler, sensitivity. The
     true-model checks run on the given executor, with their progress on stderr; designs already in the store
     (a report made before) are not evaluated again."""
-    from certkit.report.study_report import write_study_report
+    from certkit.report.study_report import (  # deferred: CLI start-up: the study report loads pandas, scikit-learn
+        write_study_report,
+    )
 
     try:
         study, store, frame = open_study(study_file, store_path)
@@ -153,10 +155,13 @@ def report_command(
 
 def export_surrogates(study_path: Path, store_path: Path | None, out: Path, log=lambda msg: None) -> Path:
     """Fit the study's surrogates (and the possible-design classifier) from its store and write them as JSON."""
-    from certkit.study.analysis.cases import cases
-    from certkit.study.analysis.surrogate_file import surrogates_document, write_surrogates
-    from certkit.study.analysis.surrogates import fit_all
-    from certkit.study.analysis.validity import fit_validity
+    from certkit.study.analysis.cases import cases  # deferred: CLI start-up: the surrogates load scikit-learn
+    from certkit.study.analysis.surrogate_file import (  # deferred: CLI start-up: the surrogates load scikit-learn
+        surrogates_document,
+        write_surrogates,
+    )
+    from certkit.study.analysis.surrogates import fit_all  # deferred: CLI start-up: the surrogates load scikit-learn
+    from certkit.study.analysis.validity import fit_validity  # deferred: CLI start-up: the surrogates load scikit-learn
 
     study, store, frame = open_study(study_path, store_path)
     surrogates, not_fitted = fit_all(study, cases(frame, study), log)
@@ -195,7 +200,7 @@ def refine_command(
     scheduler: str | None,
 ):
     """Add cases where the surrogates are least sure, evaluate them, refit, and show how the probabilities moved."""
-    from certkit.study.analysis.refine import refine
+    from certkit.study.analysis.refine import refine  # deferred: CLI start-up: the surrogates load scikit-learn
 
     study, store, _ = open_study(study_file, store_path)
     run_cases = case_runner(executor, workers, scheduler)
@@ -236,12 +241,14 @@ def predict_command(
     surrogates_file: Path, settings: tuple[str, ...], points_csv: Path | None, responses: tuple[str, ...]
 ):
     """Predict responses with exported surrogates, as CSV: the variables, each response, and `possible`."""
-    import csv
+    import csv  # deferred: CLI start-up: `certkit --help` loads this module
 
-    import numpy as np
+    import numpy as np  # deferred: CLI start-up: `certkit --help` loads this module
 
-    from certkit.study.analysis.surrogate_file import load_surrogates
-    from certkit.study.spec import parse_quantity
+    from certkit.study.analysis.surrogate_file import (  # deferred: CLI start-up: the surrogates load scikit-learn
+        load_surrogates,
+    )
+    from certkit.study.spec import parse_quantity  # deferred: CLI start-up: `certkit --help` loads this module
 
     model = load_surrogates(surrogates_file)
     if points_csv is not None:

@@ -27,6 +27,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from certkit.errors import UserError
+from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
+from certkit.models.performance.mission import MissionFlyer, fuel_capacity
+from certkit.models.performance.mission_tables import build_tables
 
 if TYPE_CHECKING:
     from certkit.aircraft import Aircraft
@@ -85,10 +88,6 @@ def with_drag_factor(aircraft: Aircraft, factor: float) -> Aircraft:
 def target_range(aircraft: Aircraft, lattice: LatticeDerivatives | None = None) -> float:
     """The range (m) the mission model flies with the calibration target's payload from MTOW (fuel-capacity
     limited when the tanks are smaller), reserves on landing."""
-    from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
-    from certkit.models.performance.mission import MissionFlyer, fuel_capacity
-    from certkit.models.performance.mission_tables import build_tables
-
     cal, mission, mass = aircraft.calibration, aircraft.mission, aircraft.mass
     if cal is None or cal.target is None or mission is None or mass.OEW is None or mass.MTOW is None:
         raise UserError(_NEEDS_TARGET)
@@ -108,8 +107,6 @@ def target_range(aircraft: Aircraft, lattice: LatticeDerivatives | None = None) 
 
 def solve_drag_factor(aircraft: Aircraft, *, progress: Progress | None = None) -> CalibrationResult:
     """The drag factor that flies the declared target range (fuel-flow factor as declared)."""
-    from certkit.models.aero.airplane import lattice_derivatives
-
     cal = aircraft.calibration
     if cal is None or cal.target is None or aircraft.mission is None:
         raise UserError(_NEEDS_TARGET)
@@ -159,7 +156,9 @@ def solve_drag_factor(aircraft: Aircraft, *, progress: Progress | None = None) -
 def tail_group_mass(source: str | Path, factor: float | None = None) -> tuple[float, dict[str, Any]]:
     """The horizontal-tail structure the design loop sizes for ``source`` (an aircraft file path) with the
     non-optimum factor replaced by ``factor`` (None: as declared): (mass kg, the sizing details)."""
-    from certkit.design.evaluate import evaluate_design
+    from certkit.design.evaluate import (  # deferred: only `certkit calibrate --tail` evaluates a design (+0.3 s)
+        evaluate_design,
+    )
 
     settings = {} if factor is None else {"sizing.horizontal_tail.non_optimum_factor": float(factor)}
     rec = evaluate_design(source, settings, responses=["sizing.*"])

@@ -28,11 +28,18 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from certkit import __version__
-from certkit.design.record import CONTROLS, offered_prefixes
+from certkit.aircraft import LoadedAircraft
+from certkit.aircraft.yaml_source import load_yaml
+from certkit.design.mission_responses import mission_responses
+from certkit.design.parallel import evaluate_rules
+from certkit.design.record import CONTROLS, offered_prefixes, offered_responses, rule_responses
+from certkit.design.sizing_loop import size_horizontal_tail_loop
 from certkit.design.variables import Setting, design_aircraft, design_data, settings_from
+from certkit.engine.registry import DiscoveryOptions, discover
+from certkit.engine.scheduler import check_overrides
 
 if TYPE_CHECKING:
-    from certkit.aircraft import Aircraft, LoadedAircraft
+    from certkit.aircraft import Aircraft
     from certkit.aircraft.yaml_source import YamlSource
     from certkit.engine.registry import Rule
 
@@ -44,8 +51,6 @@ _RULES: list[type[Rule]] = []
 
 def _source(path: str) -> YamlSource:
     """The parsed aircraft file, reused while the file is unchanged (one parse per process and file)."""
-    from certkit.aircraft.yaml_source import load_yaml
-
     try:
         st = os.stat(path)
     except OSError:  # missing, unreadable: load_yaml says so with the path (a user error)
@@ -69,8 +74,6 @@ def _base_aircraft(source: YamlSource) -> Aircraft:
 
 def _rules() -> list[type[Rule]]:
     if not _RULES:
-        from certkit.engine.registry import DiscoveryOptions, discover
-
         _RULES.extend(discover(DiscoveryOptions()))
     return list(_RULES)
 
@@ -139,12 +142,6 @@ def evaluate_design(
     Returns ``{"schema", "certkit_version", "aircraft": {name, sha256}, "variables": {path: SI}, "responses":
     {name: float | None}, "statuses": {name: status}, "details": {...}, "timings": {...}}`` (JSON-safe: no NaN).
     """
-    from certkit.aircraft import LoadedAircraft
-    from certkit.design.parallel import evaluate_rules
-    from certkit.design.record import offered_responses, rule_responses
-    from certkit.design.sizing_loop import size_horizontal_tail_loop
-    from certkit.engine.scheduler import check_overrides
-
     t0, c0 = time.perf_counter(), time.process_time()
     timings: dict[str, float | list[float]] = {}
     source = _source(str(aircraft_path))
@@ -191,7 +188,6 @@ def evaluate_design(
 
     if mission_needed(responses):
         t = time.perf_counter()
-        from certkit.design.mission_responses import mission_responses
 
         m_out, m_details = mission_responses(loop.aircraft, loop.ctx, loop.oew_kg)
         out.update(m_out)

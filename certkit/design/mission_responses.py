@@ -6,6 +6,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
+from certkit.models.performance.mission import fly_missions
+
 if TYPE_CHECKING:
     from certkit.aircraft import Aircraft
     from certkit.engine.context import Context
@@ -17,8 +19,6 @@ def mission_responses(aircraft: Aircraft, ctx: Context, oew_kg: float) -> tuple[
     """(responses, details) of the design's missions. A mission the design cannot fly as declared (the design payload
     above MZFW − the sized OEW, the nominal distance beyond its fuel, no cruise level reachable) is an infeasible
     design with the mission's reason."""
-    from certkit.models.performance.mission import fly_missions
-
     try:
         result = fly_missions(aircraft, ctx.aero("clean"), oew_kg)
     except InfeasibleDesign:

@@ -16,6 +16,7 @@ from collections.abc import Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from typing import TYPE_CHECKING, Any
 
+from certkit.engine.scheduler import evaluate_rule
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 
 if TYPE_CHECKING:
@@ -36,8 +37,6 @@ def _slim(result: RuleResult) -> RuleResult:
 
 
 def _work(ids: tuple[str, ...]) -> list[RuleResult]:
-    from certkit.engine.scheduler import evaluate_rule
-
     ctx, rules, kw, select = _SHARED["ctx"], _SHARED["rules"], _SHARED["kw"], _SHARED["select"]
     return [_slim(evaluate_rule(rules[i], ctx, only=select.get(i), **kw)) for i in ids]
 
@@ -63,8 +62,6 @@ def evaluate_rules(
     """:func:`certkit.engine.scheduler.evaluate_rule` of each rule on ``ctx`` (keywords passed on), in ``jobs`` forked
     processes when more than one is asked for and the platform forks; in rule order. ``select`` (rule id →
     conditions) restricts those rules to the same points (``only``); a rule it maps to no condition is skipped."""
-    from certkit.engine.scheduler import evaluate_rule
-
     select = dict(select or {})
     rules = [r for r in rules if (chosen := select.get(r.id)) is None or len(chosen) > 0]
     if jobs <= 1 or len(rules) <= 1 or "fork" not in multiprocessing.get_all_start_methods():

@@ -29,14 +29,26 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
-from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, tail_load_envelope
+from certkit.design.parallel import evaluate_rules
+from certkit.design.tail_group import (
+    declared_sizing,
+    design_hinge_moment,
+    hinge_critical_conditions,
+    initial_group,
+    size_tail_group,
+)
+from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, near_critical_conditions, tail_load_envelope
 from certkit.design.variables import Setting, design_aircraft
+from certkit.engine.context import Context
+from certkit.engine.registry import HINGE_MOMENT, producers
+from certkit.engine.scheduler import evaluate_rule
+from certkit.models.loads.model import airplane_loads
+from certkit.models.structure.actuators import size_elevator_actuators
 
 if TYPE_CHECKING:
     from certkit.aircraft import Aircraft, LoadedAircraft
     from certkit.aircraft.yaml_source import YamlSource
     from certkit.design.tail_group import TailGroup
-    from certkit.engine.context import Context
     from certkit.engine.registry import Rule
     from certkit.engine.results import Condition, RuleResult
 
@@ -206,8 +218,6 @@ class SizingRules:
 
 
 def sizing_rules(rules: Sequence[type[Rule]]) -> SizingRules:
-    from certkit.engine.registry import HINGE_MOMENT, producers
-
     tail = producers(rules, SURFACE)
     hinge = producers(rules, "elevator", HINGE_MOMENT)
     return SizingRules(tuple(r for r in rules if r in tail or r in hinge), frozenset(r.id for r in hinge))
@@ -216,9 +226,6 @@ def sizing_rules(rules: Sequence[type[Rule]]) -> SizingRules:
 def _baseline_value(
     base_aircraft: Aircraft, ctx: Context, results: list[RuleResult], chosen: SizingRules
 ) -> BaselineActuators:
-    from certkit.design.tail_group import design_hinge_moment
-    from certkit.models.structure.actuators import size_elevator_actuators
-
     hinge = design_hinge_moment(ctx, chosen.hinge_results(results))
     act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
     x, y, z = (float(v) for v in np.mean(act.positions, axis=0))
@@ -228,9 +235,6 @@ def _baseline_value(
 def start_conditions(ctx: Context, results: list[RuleResult], chosen: SizingRules) -> dict[str, list[Condition] | None]:
     """Rule id → the conditions where the declared airplane's tail loads or elevator hinge moment come within
     :data:`START_FRACTION` of their largest (None: all the rule's conditions)."""
-    from certkit.design.tail_group import hinge_critical_conditions
-    from certkit.design.tail_loads import near_critical_conditions
-
     out = near_critical_conditions(results, START_FRACTION, START_OWN_FRACTION)
     for rid, conds in hinge_critical_conditions(ctx, chosen.hinge_results(results), START_FRACTION).items():
         loads = out.get(rid, [])
@@ -243,9 +247,6 @@ def baseline_actuators(
 ) -> BaselineActuators:
     """The unmodified file's elevator actuators, sized from its own pitch manoeuvres, and its near-critical loads
     conditions (once per process and file)."""
-    from certkit.engine.context import Context
-    from certkit.engine.scheduler import evaluate_rule
-
     if source.sha256 not in _BASELINE:
         if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
             value = NO_ACTUATORS
@@ -280,11 +281,6 @@ def size_horizontal_tail_loop(
     """Run the loop for the design (``data``/``aircraft`` with the settings applied; ``base_aircraft`` the file as
     declared); ``rules`` the registered rule classes, ``loaded_of(aircraft)`` wraps an aircraft for the engine;
     ``jobs`` processes share the loads rules of an iteration (:mod:`certkit.design.parallel`)."""
-    from certkit.design.parallel import evaluate_rules
-    from certkit.design.tail_group import declared_sizing, initial_group, size_tail_group
-    from certkit.engine.context import Context
-    from certkit.models.loads.model import airplane_loads
-
     start = time.perf_counter()
     spec = declared_sizing(aircraft)
     chosen = sizing_rules(rules)

@@ -23,7 +23,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from certkit.models.loads.model import QUANTITIES
+from certkit.errors import UserError
+from certkit.models.aero.hinge_moment import hinge_moment_derivatives
+from certkit.models.loads.model import QUANTITIES, airplane_loads
+from certkit.models.structure.actuators import size_elevator_actuators
+from certkit.models.structure.box import UltimateLoads
+from certkit.models.structure.tail import box_material, size_horizontal_tail
 
 if TYPE_CHECKING:
     from certkit.aircraft import Aircraft
@@ -44,8 +49,6 @@ class SizingSpec:
 def declared_sizing(aircraft: Aircraft) -> SizingSpec:
     s = getattr(aircraft, "sizing", None)
     if s is None or s.horizontal_tail is None or s.loop is None:
-        from certkit.errors import UserError
-
         raise UserError(
             "a design evaluation sizes the horizontal tail: the aircraft file needs the sizing section "
             "(sizing.horizontal_tail and sizing.loop; see aircraft/lta.yaml)"
@@ -163,8 +166,6 @@ def box_capability(
     aircraft: Aircraft, sized: HorizontalTailSizing, station_names: Sequence[str], station_span: Any
 ) -> dict[str | float, tuple[float, float, float]]:
     """Ultimate shear (N), bending and torsion (N·m) the sized box carries at each load station (module doc)."""
-    from certkit.models.structure.tail import box_material
-
     if aircraft.sizing is None or aircraft.sizing.horizontal_tail is None:
         raise ValueError("the box's capability needs sizing.horizontal_tail")
     mat = box_material(aircraft.sizing.horizontal_tail)
@@ -194,8 +195,6 @@ def _hinge_moments(ctx: Context, results: Iterable[RuleResult]) -> list[tuple[An
     """Per run of the rules that produce elevator hinge moments (their declaration, ``Rule.produces``; the caller
     passes their results): (rule id, hinge moments H (samples,) of the elevator, their (time, condition) indices,
     Mach, q̄, α, δ, conditions, times, derivatives)."""
-    from certkit.models.aero.hinge_moment import hinge_moment_derivatives
-
     samples = []
     for res in results:
         run = res.run
@@ -295,11 +294,6 @@ def size_tail_group(
 ) -> TailGroup:
     """Size the structure for the limit-load envelope × its factor of safety (the loads rules' ``ultimate_factor``
     in force) × (1 + ``allowance``) and the actuators for the design hinge moment."""
-    from certkit.models.loads.model import airplane_loads
-    from certkit.models.structure.actuators import size_elevator_actuators
-    from certkit.models.structure.box import UltimateLoads
-    from certkit.models.structure.tail import size_horizontal_tail
-
     tail = airplane_loads(ctx)["horizontal_tail"]
     if tuple(tail.station_names) != tuple(envelope.stations):
         raise ValueError(f"load stations {envelope.stations} differ from the loads model's {tail.station_names}")

@@ -13,12 +13,13 @@ import numpy as np
 
 from certkit.aircraft import Aircraft, LoadedAircraft
 from certkit.atmosphere import convert_speed
+from certkit.models.aero.airplane import AirplaneAero, build_airplane_aero, lattice_derivatives
+from certkit.models.aero.planform import lift_curve_slope, sweep_at
 
 if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping
 
     from certkit.engine.results import Condition
-    from certkit.models.aero.airplane import AirplaneAero
     from certkit.models.dynamics.linearize import Linearization
     from certkit.models.dynamics.modes import Mode
     from certkit.models.dynamics.trim import TrimBatch
@@ -63,8 +64,10 @@ class Context:
         """What the shared models were built from, for the report: aerodynamic sources, overrides and
         notes per configuration, every loading solved (mass, CG, inertia, payload, fuel, notes), and the
         empty airplane's component table."""
-        from certkit.models.aero.airplane import AirplaneAero
-        from certkit.models.mass.loading import Loading, empty_airplane
+        from certkit.models.mass.loading import (  # deferred: mass model: `certkit derivatives` builds the aero only
+            Loading,
+            empty_airplane,
+        )
 
         aero: dict[str, dict[str, Any]] = {}
         loadings: dict[Any, dict[str, Any]] = {}
@@ -114,7 +117,9 @@ class Context:
 
     def inertia_warning(self) -> str | None:
         """Declared inertia vs component build-up beyond the file's tolerance (:func:`inertia_comparison`), once."""
-        from certkit.models.mass.loading import inertia_comparison
+        from certkit.models.mass.loading import (  # deferred: mass model: `certkit derivatives` builds the aero only
+            inertia_comparison,
+        )
 
         return self.memo("inertia_comparison", lambda: inertia_comparison(self.aircraft))
 
@@ -140,7 +145,6 @@ class Context:
     def aero(self, configuration: str) -> AirplaneAero:
         """The aerodynamic model of ``configuration`` (:mod:`certkit.models.aero.airplane`), built once;
         the vortex lattice is shared by every configuration."""
-        from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
 
         def build() -> AirplaneAero:
             declared = configuration in self.aircraft.aerodynamics.derivative_tables
@@ -155,8 +159,6 @@ class Context:
 
     def wing_lift_slope(self, mach: float) -> float:
         """Wing lift-curve slope per radian (DATCOM/Polhamus; see :mod:`certkit.models.aero.planform`)."""
-        from certkit.models.aero.planform import lift_curve_slope, sweep_at
-
         if self.aircraft.geometry is None:
             raise ValueError("geometry is not declared")
         w = self.aircraft.geometry.wing
@@ -192,7 +194,9 @@ class Context:
 
     def loading(self, mass: float, x_cg: float, name: str = "") -> Loading:
         """Payload/fuel distribution and inertia reaching (mass, x_cg) (:mod:`certkit.models.mass.loading`)."""
-        from certkit.models.mass.loading import solve_loading
+        from certkit.models.mass.loading import (  # deferred: mass model: `certkit derivatives` builds the aero only
+            solve_loading,
+        )
 
         key = ("loading", round(float(mass), 3), round(float(x_cg), 6))
         if name:  # one loading may be asked for under several names (a corner and a design weight's CG limit)
@@ -226,7 +230,9 @@ class Context:
         trimming, not where the stabiliser already is). ``initial`` warm-starts the trims (see
         :func:`certkit.models.dynamics.trim.trim`).
         """
-        from certkit.engine.conditions import speed_as
+        from certkit.engine.conditions import (  # deferred: mass model: `certkit derivatives` builds the aero only
+            speed_as,
+        )
 
         conds = tuple(conditions)
         configs = {configuration or c.configuration for c in conds}
@@ -289,8 +295,13 @@ class Context:
         stabilizer: Any = None,
         initial: Mapping[str, Any] | None = None,
     ) -> TrimBatch:
-        from certkit.models.dynamics.trim import trim
-        from certkit.models.flight import ROLES, control_limits, flight_model, model_stabilizer
+        from certkit.models.dynamics.trim import trim  # deferred: dynamics: `certkit derivatives` builds the aero only
+        from certkit.models.flight import (  # deferred: dynamics: `certkit derivatives` builds the aero only
+            ROLES,
+            control_limits,
+            flight_model,
+            model_stabilizer,
+        )
 
         loadings = [self.loading(_number(c.mass), _number(c.x_cg), c.loading or "") for c in conds]
         operative = None
@@ -324,7 +335,9 @@ class Context:
         """Modes (short period, phugoid, Dutch roll, roll, spiral) about the straight-flight trim of each
         condition; None where the trim did not converge. ``throttle`` (a scalar or one per condition) fixes the
         throttles: the modes are then those of the steady climb or descent at that thrust (see :meth:`trim`)."""
-        from certkit.models.dynamics.modes import identify_modes
+        from certkit.models.dynamics.modes import (  # deferred: dynamics: `certkit derivatives` builds the aero only
+            identify_modes,
+        )
 
         conds = tuple(conditions)
 
@@ -339,7 +352,9 @@ class Context:
         """The linearised dynamics (:class:`certkit.models.dynamics.linearize.Linearization`) about the
         straight-flight trim of each condition (at the fixed ``throttle``, see :meth:`modes`), memoised (the one
         :meth:`modes` reads)."""
-        from certkit.models.dynamics.linearize import linearize
+        from certkit.models.dynamics.linearize import (  # deferred: dynamics: `certkit derivatives` needs the aero only
+            linearize,
+        )
 
         conds = tuple(conditions)
 

@@ -316,7 +316,9 @@ def validate_rule_class(cls: type, origin: str) -> None:
     for key, c in cls.criteria.items():
         if not isinstance(c, Criterion) or not c.source:
             raise PluginError(f"{where}: field 'criteria.{key}' must be a Criterion with a source")
-    from certkit.engine.conditions import ConditionSpace
+    from certkit.engine.conditions import (  # deferred: `certkit rules` lists the rules without the physics
+        ConditionSpace,
+    )
 
     if not isinstance(getattr(cls, "conditions", None), ConditionSpace):
         raise PluginError(f"{where}: field 'conditions' must be a certkit.engine.conditions.ConditionSpace")
@@ -389,7 +391,7 @@ def _rules_in_module(module: ModuleType, origin: str) -> list[type[Rule]]:
 
 
 def builtin_rules() -> list[type[Rule]]:
-    import certkit_rules
+    import certkit_rules  # deferred: cycle and layer: the rules import this module; discovery loads them by name
 
     rules = []
     for info in pkgutil.walk_packages(certkit_rules.__path__, prefix="certkit_rules."):

@@ -17,7 +17,11 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Callable, Literal
 
+import numpy as np
+
+from certkit.engine.evidence import Table
 from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, VOLATILE_KEY, clean, encode
+from certkit.units import FT, KN, LB
 
 Status = Literal["complies", "fails", "not_evaluated"]
 COMPLIES: Status = "complies"
@@ -122,8 +126,6 @@ class Condition:
         """Human label: ``fwd_mrw · 655,000 lb · CG 94.23 ft · clean · 0 ft · VC = 272.0 kn EAS · at 1.3 VSR``; the
         scheduled fields in words (:func:`field_words`). ``numbers`` False leaves out the mass and CG (the loading
         names them): the short form of a one-line cause."""
-        from certkit.units import FT, KN, LB
-
         parts = []
         if self.loading:
             parts.append(self.loading)
@@ -287,8 +289,6 @@ class Evidence:
     svg: str = ""
 
     def __post_init__(self) -> None:
-        from certkit.engine.evidence import Table
-
         if isinstance(self.figure, str):
             raise TypeError(f"evidence {self.title!r}: a figure is data (certkit.engine.evidence), not drawn SVG")
         if isinstance(self.table, list):
@@ -535,8 +535,6 @@ _RULES_MARK = "\x00certkit-rules\x00"
 
 def json_default(obj: object) -> object:
     """JSON of numpy scalars and arrays (their values); anything else as its ``str``."""
-    import numpy as np
-
     if isinstance(obj, np.generic):
         return obj.item()
     if isinstance(obj, np.ndarray):

@@ -17,7 +17,10 @@ from __future__ import annotations
 
 import json
 import math
+from importlib.resources import files
 from typing import Any
+
+import numpy as np
 
 #: version of the results.json layout: the major number changes when a field is removed or changes meaning
 SCHEMA_VERSION = "1.0"
@@ -64,8 +67,6 @@ def clean(obj: object) -> tuple[object, int]:
 
 
 def _numpy(o: object) -> object:
-    import numpy as np
-
     if isinstance(o, np.bool_):
         return bool(o)
     if isinstance(o, np.integer):
@@ -99,8 +100,6 @@ def stable_lines(text: str) -> str:
 
 def schema() -> dict[str, Any]:
     """The JSON Schema of results.json shipped with certkit."""
-    from importlib.resources import files
-
     loaded: dict[str, Any] = json.loads(
         files("certkit").joinpath("data/results.schema.json").read_text(encoding="utf-8")
     )

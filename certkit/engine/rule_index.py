@@ -14,9 +14,12 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from importlib.metadata import entry_points
 from importlib.util import find_spec
 from pathlib import Path
 
+from certkit import __version__
+from certkit.engine.registry import ENTRY_POINT_GROUP, DiscoveryOptions, discover
 from certkit.user_cache import cache_folder
 
 FIELDS = ("id", "symbol", "title", "implementation", "amendment")
@@ -36,8 +39,6 @@ def _package_folders() -> list[Path]:
 
 def index_key() -> str:
     """A digest of the certkit version and every package file's path, size and modification time."""
-    from certkit import __version__
-
     h = hashlib.sha256(__version__.encode())
     for folder in _package_folders():
         for root, dirs, files in os.walk(folder):
@@ -50,10 +51,6 @@ def index_key() -> str:
 
 
 def _has_plugins() -> bool:
-    from importlib.metadata import entry_points
-
-    from certkit.engine.registry import ENTRY_POINT_GROUP
-
     return bool(list(entry_points(group=ENTRY_POINT_GROUP)))
 
 
@@ -82,8 +79,6 @@ def rule_metadata(rules_dirs: tuple[str, ...] = ()) -> list[RuleMetadata]:
 
 
 def _from_rules(rules_dirs: tuple[str, ...]) -> list[RuleMetadata]:
-    from certkit.engine.registry import DiscoveryOptions, discover
-
     return [
         {**{f: getattr(r, f) for f in FIELDS}, "documentation": r.documentation()}
         for r in discover(DiscoveryOptions(rules_dirs=tuple(rules_dirs)))

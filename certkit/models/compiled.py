@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 from numba import njit
+from numba.core.caching import CacheImpl
 
 #: certkit's modules with kernels cached on disk (``njit(cache=True)``), relative to the package; a test checks the
 #: list against the package's sources
@@ -52,8 +53,6 @@ DIGEST_FILE = "certkit-kernels.sha256"
 def kernel_cache_dirs(package: Path) -> dict[Path, list[str]]:
     """numba's cache directory of each kernel module (as numba locates it: ``NUMBA_CACHE_DIR``, else the module's
     ``__pycache__``, else the user-wide cache) → the module stems cached there."""
-    from numba.core.caching import CacheImpl
-
     out: dict[Path, list[str]] = {}
     for module in KERNEL_MODULES:
         path = str(package / module)
@@ -107,7 +106,7 @@ def copy_row(destination, source):  # type: ignore[no-untyped-def]
 def kernels_cached() -> bool:
     """Does numba's cache hold the compiled equations of motion (False at the first run after an install, when the
     kernels are compiled: the command says so before it goes quiet for a while)?"""
-    from certkit.models.dynamics import kernel
+    from certkit.models.dynamics import kernel  # deferred: cycle: certkit.models.dynamics.kernel imports this module
 
     try:
         dispatcher: Any = kernel.derivatives

@@ -47,7 +47,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from certkit.atmosphere import density
+from certkit.atmosphere import density, speed_of_sound
+from certkit.models.aero.planform import lift_curve_slope, sweep_at
 
 
 @dataclass(frozen=True)
@@ -150,8 +151,6 @@ def dynamic_pressure(tas, h):
 def downwash_gradient(aircraft, mach) -> np.ndarray:
     """dε/dα at the tailplane: the declared value, else 2 a_w/(π A) with the wing's DATCOM lift slope a_w
     (the elliptic-wing estimate ε = 2 C_Lw/(π A) of Nelson and Etkin & Reid, ch. 2)."""
-    from certkit.models.aero.planform import lift_curve_slope, sweep_at
-
     decl = getattr(getattr(aircraft, "control_forces", None), "elevator", None)
     mach = np.asarray(mach, dtype=float)
     if decl is not None and decl.type == "reversible" and decl.downwash_gradient is not None:
@@ -180,8 +179,6 @@ def local_angle(aircraft, name: str, alpha, beta, mach) -> np.ndarray:
 
 def trim_state(aircraft, name: str, results):
     """(q̄, α_s, δ) arrays of control ``name`` at each :class:`TrimResult` (NaN where not converged)."""
-    from certkit.atmosphere import speed_of_sound
-
     V = np.array([r.V for r in results], dtype=float)
     h = np.array([r.h for r in results], dtype=float)
     ok = np.array([r.converged for r in results])

@@ -25,8 +25,15 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.aircraft.derivative_names import STABILIZER
+from certkit.atmosphere import speed_of_sound
+from certkit.models.aero import planform
+from certkit.models.aero.derivative_forms import thrust_speed_derivative
+from certkit.models.aero.tail_ground_effect import lifting_line
 from certkit.models.dynamics.eom import AircraftModel, Engine, GearLeg, GroundEffectWing, GroundModel
+from certkit.models.dynamics.trim import StabilizerTrim, trim
+from certkit.models.mass.loading import reference_cg, solve_loading
 from certkit.models.propulsion.engine import EngineDeck, ParametricTurbofan, windmill_drag
+from certkit.models.reference_condition import gravity, reference_condition
 
 #: the aero control that moves each trim axis
 ROLES = {"pitch": "elevator", "roll": "aileron", "yaw": "rudder"}
@@ -67,10 +74,6 @@ def ideal_engine(aircraft) -> Engine:
     the moment point, up to MTOW × g at full throttle, constant with speed unless the derivative table declares
     ∂T/∂u (T_u, CT_u; :func:`certkit.models.aero.derivative_forms.thrust_speed_derivative`) — the textbook
     assumption of Etkin & Reid §4.4 (thrust line through the CG, T_u given or zero)."""
-    from certkit.atmosphere import speed_of_sound
-    from certkit.models.aero.derivative_forms import thrust_speed_derivative
-    from certkit.models.reference_condition import gravity, reference_condition
-
     cond = reference_condition(aircraft)
     full = aircraft.mass.MTOW * gravity(aircraft)
     t_u = thrust_speed_derivative(aircraft, cond) if cond is not None else 0.0
@@ -126,8 +129,6 @@ def stabilizer_trim(aircraft, design: bool = True, configuration: str | None = N
     """The movable stabiliser of the aircraft as a trim device
     (:class:`certkit.models.dynamics.trim.StabilizerTrim`) within the limits of ``configuration``, None without one
     (or without geometry, e.g. an airplane given by derivative tables, whose model has no stabiliser control)."""
-    from certkit.models.dynamics.trim import StabilizerTrim
-
     g = aircraft.geometry
     if g is None or g.horizontal_tail.stabilizer is None:
         return None
@@ -155,7 +156,6 @@ def flight_model(aircraft, aero_model, loadings, operative=None, ground: GroundM
     mass = np.array([ld.properties.mass for ld in loadings])
     cg = np.array([ld.properties.cg for ld in loadings])
     inertia = np.array([ld.properties.inertia for ld in loadings])
-    from certkit.models.reference_condition import gravity
 
     return AircraftModel(
         aero_model, mass, cg, inertia, engines(aircraft), operative=operative, ground=ground, g=gravity(aircraft)
@@ -187,8 +187,6 @@ def ground_model(
     loading (default MTOW at the reference CG). ``nose_wheel``: "straight" (held straight, side friction as the
     mains'), "steered" (turned by the model's ``nose_wheel_steering`` control) or "castering" (steering disengaged:
     the wheel trails freely, no side force). Raises ValueError when the gear is not declared."""
-    from certkit.models.mass.loading import reference_cg
-
     g = aircraft.geometry
     if g is None or g.landing_gear is None:
         raise ValueError("geometry.landing_gear is not declared (main and nose gear contact points)")
@@ -233,9 +231,6 @@ def ground_effect_wing(wing, horizontal_tail=None) -> GroundEffectWing:
     """The declared wing for ground effect: height taken at the MAC quarter chord (DATCOM §1.2.2 station,
     dihedral included), the wing's own span, aspect ratio and half-chord sweep; with ``horizontal_tail``, both
     quarter-chord lines for the downwash at the tail (:mod:`certkit.models.aero.tail_ground_effect`)."""
-    from certkit.models.aero import planform
-    from certkit.models.aero.tail_ground_effect import lifting_line
-
     line = lifting_line(wing)
     point = (line.reference[0], 0.0, line.reference[1])
     lines = None if horizontal_tail is None else (line, lifting_line(horizontal_tail))
@@ -255,9 +250,6 @@ def level_trims(aircraft, aero, masses, x_cg: float, altitude, tas, loading_name
     :class:`certkit.engine.context.Context` would make for the same conditions, for models that hold no Context (the
     mission).
     Each distinct mass is loaded once."""
-    from certkit.models.dynamics.trim import trim
-    from certkit.models.mass.loading import solve_loading
-
     masses = [float(m) for m in masses]
     solved: dict[float, object] = {}
     for m in masses:

@@ -46,7 +46,9 @@ def listed_signatures(path: Path = SIGNATURES_FILE) -> list[Entry]:
 
 def used_signatures(modules: Iterable[str] | None = None) -> list[Entry]:
     """The kernels this process has compiled or loaded, with their argument types, sorted (certkit's modules only)."""
-    from numba.core.registry import CPUDispatcher
+    from numba.core.registry import (  # deferred: numba only where kernels compile (study commands import this)
+        CPUDispatcher,
+    )
 
     names = sorted(sys.modules) if modules is None else sorted(modules)
     out = []
@@ -62,7 +64,7 @@ def used_signatures(modules: Iterable[str] | None = None) -> list[Entry]:
 
 def argument_types(text: str) -> tuple[Any, ...]:
     """numba's argument types from their text (``(Array(float64, 2, 'C', False, aligned=True), int64)``)."""
-    from numba.core import types
+    from numba.core import types  # deferred: numba only where kernels compile (study commands import this)
 
     names = {
         "Array": types.Array,
@@ -118,7 +120,7 @@ def compile_kernels(processes: int, entries: list[Entry] | None = None, context:
 def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[], None] | None = None) -> float | None:
     """At the first run after an install (numba's cache cold: :func:`certkit.models.compiled.kernels_cached`), call
     ``starting`` (e.g. to say so) and :func:`compile_kernels`; its seconds, or None when the kernels are cached."""
-    from certkit.models import compiled
+    from certkit.models import compiled  # deferred: numba only where kernels compile (study commands import this)
 
     if compiled.kernels_cached():
         return None

@@ -18,6 +18,8 @@ its parent section); line 1 only when the rule names nothing in the file. Paths 
 from __future__ import annotations
 
 import json
+import os
+from urllib.parse import quote
 from xml.sax.saxutils import escape, quoteattr
 
 from certkit import __version__
@@ -98,8 +100,6 @@ _LEVEL = {FAILS: "error", NOT_EVALUATED: "warning", COMPLIES_PARTIAL: "note"}
 def artifact_path(path: str) -> str:
     """The aircraft file as CI annotations locate it: relative to the working folder (the repository root in CI),
     ``../`` included when it lies beside it, with forward slashes; absolute only on another drive (Windows)."""
-    import os
-
     try:
         rel = os.path.relpath(os.path.abspath(path))
     except ValueError:
@@ -136,8 +136,6 @@ def _location(uri: str, path: str, line: int, index: int | None = None) -> dict:
 
 
 def sarif(run: RunResult, lines: dict | None = None) -> str:
-    from urllib.parse import quote
-
     uri = quote(artifact_path(run.source_path), safe="/:")
     results = []
     for r in run.rules:

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from certkit.aircraft.yaml_source import read_regular_file
+from certkit.engine.results import Condition
 from certkit.engine.results_json import SCHEMA_VERSION
 from certkit.errors import UserError
 from certkit.report.reasons import margin_text
@@ -109,8 +110,6 @@ _SI_FIELDS = {
 
 def _label(condition: dict) -> str:
     """The condition as the report labels it (aviation units), from its results.json form."""
-    from certkit.engine.results import Condition
-
     known = {_SI_FIELDS[k]: v for k, v in condition.items() if k in _SI_FIELDS}
     extra = tuple((k, v) for k, v in condition.items() if k not in _SI_FIELDS)
     return Condition(**known, extra=extra).label()
@@ -294,7 +293,7 @@ def _input(value) -> str:
 
 
 def render_html(changes: list[RuleChange], old: dict, new: dict, old_path: str, new_path: str) -> str:
-    from certkit.report.pages import page_environment  # jinja2 only when an HTML diff is asked for
+    from certkit.report.pages import page_environment  # deferred: jinja2 only when an HTML diff is asked for
 
     env = page_environment({})
     env.filters["margin"] = margin_text

@@ -8,8 +8,10 @@ units (:mod:`certkit.report.display`); results.json keeps SI.
 
 from __future__ import annotations
 
+import base64
 import inspect
 import re
+import zlib
 from pathlib import Path
 
 from jinja2 import Environment
@@ -225,8 +227,6 @@ def pack_tables(html: str, threshold: int = PACK_THRESHOLD) -> str:
     ``<script type="application/x-certkit-table">`` that the page's script inflates (``DecompressionStream``) when
     its section is opened, and every block in the background after loading, so that search and print see them.
     Deterministic: the same report gives the same bytes."""
-    import base64
-    import zlib
 
     def pack(table: str) -> str:
         if len(table) <= threshold:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
+from certkit.report.figures import render
 
 
 def payload_range_outline(points) -> tuple[list[float], list[float]]:
@@ -31,6 +32,4 @@ def payload_range_chart(points, requirement_m: float | None = None) -> Chart:
 
 
 def payload_range_svg(points, requirement_m: float | None = None) -> str:
-    from certkit.report.figures import render
-
     return render(payload_range_chart(points, requirement_m), "mission")

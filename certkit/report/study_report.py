@@ -22,6 +22,7 @@ from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_json
 from certkit.study.analysis.summary import study_summary
 from certkit.study.analysis.surrogates import K_FOLDS
+from certkit.units import from_si
 
 #: failed cases listed one by one in the report (the count is always given)
 FAILED_SHOWN = 200
@@ -33,7 +34,6 @@ def _in_unit(value: float, unit: str) -> float:
     """An SI value in the variable's display unit (``deg``, ``ft^2``); unchanged without one."""
     if not unit:
         return value
-    from certkit.units import from_si
 
     try:
         return from_si(value, unit)

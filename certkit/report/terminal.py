@@ -13,6 +13,8 @@ import shutil
 import sys
 import time
 
+import click
+
 from certkit.engine.results import STATUS_LABEL
 from certkit.report.reasons import margin_text, not_evaluated_reason
 
@@ -45,8 +47,6 @@ def rule_rows(results, width: int | None = None, colour: bool = False) -> list[s
         else:
             row = f"{head}{title:<44} {margin:>14}  {where}"
         if colour:
-            import click
-
             row = click.style(status.rjust(17), fg=_COLOURS[r.status], bold=r.status == "fails") + row[17:]
         lines.append(row)
     return lines
@@ -72,9 +72,14 @@ class Progress:
         self.live = not quiet and hasattr(self.stream, "isatty") and self.stream.isatty()
         self._bar = None
         if self.live:
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, TextColumn, TimeElapsedColumn
-            from rich.progress import Progress as Bar
+            from rich.console import Console  # deferred: rich only for a live progress bar (a terminal)
+            from rich.progress import (  # deferred: rich only for a live progress bar (a terminal)
+                BarColumn,
+                MofNCompleteColumn,
+                TextColumn,
+                TimeElapsedColumn,
+            )
+            from rich.progress import Progress as Bar  # deferred: rich only for a live progress bar (a terminal)
 
             self._bar = Bar(
                 TextColumn("checking"),

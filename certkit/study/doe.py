@@ -48,7 +48,7 @@ def _unique_rows(coded: np.ndarray) -> np.ndarray:
 
 def ccd_face_centred(k: int, fraction: str = "resolution-v", center: int = 1) -> np.ndarray:
     """Coded face-centred central composite design, factorial rows first, then axial, then centre."""
-    import pydoe
+    import pydoe  # deferred: pydoe loads scipy.stats (0.5 s): only for CCD blocks
 
     if fraction == "full":
         factorial = pydoe.ff2n(k)
@@ -63,13 +63,13 @@ def ccd_face_centred(k: int, fraction: str = "resolution-v", center: int = 1) ->
 
 
 def box_behnken(k: int, center: int = 0) -> np.ndarray:
-    import pydoe
+    import pydoe  # deferred: pydoe loads scipy.stats (0.5 s): only for Box–Behnken blocks
 
     return _unique_rows(np.asarray(pydoe.bbdesign(k, center=center), dtype=float))
 
 
 def latin_hypercube(k: int, n: int, seed: int, criterion: str = "random-cd") -> np.ndarray:
-    from scipy.stats import qmc
+    from scipy.stats import qmc  # deferred: scipy.stats (0.45 s) only for Latin hypercube blocks
 
     optimization = None if criterion == "none" else criterion
     points: np.ndarray = qmc.LatinHypercube(d=k, optimization=optimization, rng=np.random.default_rng(seed)).random(n)

@@ -8,13 +8,18 @@ study costs no memory up front). Leaving the context stops the workers.
 
 from __future__ import annotations
 
+import logging
+import multiprocessing
 import os
 from collections import deque
 from collections.abc import Iterable, Iterator
-from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
+from certkit.engine.worker_processes import die_with_parent, one_blas_thread
 from certkit.errors import UserError
+from certkit.models.kernel_warmup import compile_if_cold
 from certkit.study.worker import CaseResult, Task, run_case
 
 EXECUTORS = ("local", "dask", "serial")
@@ -32,8 +37,6 @@ def _died(task: Task, where: str) -> CaseResult:
 def _compile_kernels(processes: int) -> None:
     """At the first run after an install, compile certkit's numba kernels ahead in ``processes`` spawned processes
     (:mod:`certkit.models.kernel_warmup`) rather than in every worker on its first case."""
-    from certkit.models.kernel_warmup import compile_if_cold
-
     compile_if_cold(processes, context="spawn")
 
 
@@ -68,11 +71,6 @@ class LocalExecutor:
         self._pool: ProcessPoolExecutor | None = None
 
     def _start(self) -> None:
-        import multiprocessing
-        from concurrent.futures.process import BrokenProcessPool
-
-        from certkit.engine.worker_processes import die_with_parent, one_blas_thread
-
         one_blas_thread()  # inherited by the spawned workers
         _compile_kernels(self.workers)
         self._pool = ProcessPoolExecutor(
@@ -115,9 +113,6 @@ class LocalExecutor:
         return self._pool
 
     def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
-        from concurrent.futures import FIRST_COMPLETED, wait
-        from concurrent.futures.process import BrokenProcessPool
-
         tasks = iter(tasks)
         in_flight: dict[Future[CaseResult], tuple[Task, bool]] = {}  # future → (task, run alone)
         suspects: deque[Task] = deque()
@@ -177,11 +172,9 @@ class DaskExecutor:
         self._client: Any = None
 
     def __enter__(self) -> DaskExecutor:
-        import logging
-
         try:
-            import dask
-            import distributed
+            import dask  # deferred: dask (study extra, 0.25 s) only for --executor dask
+            import distributed  # deferred: dask (study extra, 0.25 s) only for --executor dask
         except ImportError:
             raise UserError("--executor dask needs dask.distributed: pip install 'dask[distributed]'") from None
         if self.scheduler:
@@ -217,8 +210,8 @@ class DaskExecutor:
             self._cluster.close()
 
     def map_unordered(self, tasks: Iterable[Task]) -> Iterator[CaseResult]:
-        import distributed
-        from distributed.scheduler import KilledWorker
+        import distributed  # deferred: dask (study extra, 0.25 s) only for --executor dask
+        from distributed.scheduler import KilledWorker  # deferred: dask (study extra, 0.25 s) only for --executor dask
 
         tasks = iter(tasks)
         running = _untyped(distributed).as_completed()

@@ -72,8 +72,14 @@ class LiveProgress:
     """rich's live bar: done/total, failed, rate, ETA."""
 
     def __init__(self, total: int, done: int, failed: int, label: str, stream: TextIO | None = None):
-        from rich.console import Console
-        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+        from rich.console import Console  # deferred: rich only for a live progress bar (a terminal)
+        from rich.progress import (  # deferred: rich only for a live progress bar (a terminal)
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+        )
 
         self.counts = _Counts(total, done, failed)
         self._bar = Progress(

@@ -7,6 +7,7 @@ writer and commits each case as it finishes.
 
 from __future__ import annotations
 
+import importlib.util
 import time
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -34,8 +35,6 @@ class RunSummary:
 
 def _check_evaluator(name: str) -> None:
     """Fail early (exit 2) on an evaluator that cannot be found, before any worker starts."""
-    import importlib.util
-
     module = name.partition(":")[0] if ":" in name else name.rpartition(".")[0]
     try:
         found = importlib.util.find_spec(module) is not None

@@ -127,12 +127,12 @@ def test_changed_design_starts_on_the_near_critical_points(bigger, monkeypatch):
     """A changed tail first iterates on the declared airplane's near-critical conditions, ends on iterations over
     every condition, and converges to the tail group of a loop that evaluates every condition throughout (0.5 kg,
     a tenth of the loop's tolerance)."""
-    import certkit.design.parallel as parallel
+    import certkit.design.sizing_loop as sizing_loop
 
     h = bigger["details"]["sizing"]["history"]
     assert h[0]["conditions"] == "near-critical" and h[-1]["conditions"] == "all"
-    everything = parallel.evaluate_rules
-    monkeypatch.setattr(parallel, "evaluate_rules", lambda *a, select=None, **kw: everything(*a, **kw))
+    everything = sizing_loop.evaluate_rules
+    monkeypatch.setattr(sizing_loop, "evaluate_rules", lambda *a, select=None, **kw: everything(*a, **kw))
     full = evaluate_design(BASELINE, {"geometry.horizontal_tail.area": "1300 ft^2"}, responses=LOADS_ONLY)
     assert bigger["responses"]["sizing.ht_group_mass_kg"] == pytest.approx(
         full["responses"]["sizing.ht_group_mass_kg"], abs=0.5

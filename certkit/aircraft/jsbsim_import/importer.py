@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from certkit import atmosphere as isa
 from certkit.aircraft.jsbsim_import.functions import Unsupported, evaluate, properties_used, table_arrays
@@ -633,8 +634,6 @@ def import_jsbsim(path: str | Path, mach: float = 0.8, altitude: float = 35_000 
 
 def to_yaml(result: ImportResult) -> str:
     """The aircraft file: a header (what was mapped, what was not) and the data (SI numbers)."""
-    import yaml
-
     head = ["# certkit aircraft file imported from a JSBSim FDM (certkit import jsbsim). SI units throughout."]
     head += [f"# note: {n}" for n in result.notes]
     head += [f"# not mapped: {u}" for u in result.unmapped]

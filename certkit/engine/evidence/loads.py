@@ -13,6 +13,7 @@ from certkit.engine.evidence.data import Axis, Chart, Column, Limit, Panel, Poin
 from certkit.engine.results import Evidence
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import QUANTITIES
+from certkit.models.loads.unsymmetrical import unsymmetrical_wing
 
 if TYPE_CHECKING:
     from certkit.engine.context import Context
@@ -365,8 +366,6 @@ def _unsymmetrical_picks(run: Run) -> list[tuple[int, int]]:
 
 
 def unsymmetrical_time_history(run: Run, picks: Sequence[tuple[int, int]]) -> Chart:
-    from certkit.models.loads.unsymmetrical import unsymmetrical_wing
-
     runs, (full, reduced) = run.runs, run.fractions
     lines: list[list[Series]] = [[], [], [], []]
     for k, (i, H, r) in enumerate(runs.replay(picks)):

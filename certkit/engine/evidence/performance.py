@@ -12,6 +12,7 @@ import numpy.typing as npt
 
 from certkit.engine.evidence.data import Axis, Bars, Chart, Column, Limit, Panel, Point, Series, Table
 from certkit.engine.results import Condition, Evidence, Finding, margin_key
+from certkit.models.flight import control_limits
 
 KN = 1852.0 / 3600.0
 FT = 0.3048
@@ -76,8 +77,6 @@ def takeoff_evidence(
     """§25.111: time histories (speed, wheel height, elevator, rudder, heading, lateral deviation, bank) of the
     engine-out runs of every loading (the critical one bold) and of the critical loading with all engines; a
     table of the key speeds and deflections."""
-    from certkit.models.flight import control_limits
-
     worst = critical(findings)
     if worst is None:
         return []

@@ -25,12 +25,20 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
+from scipy.optimize import brentq
 
 from certkit.aircraft.derivative_names import STABILIZER
+from certkit.atmosphere import cas_to_mach
+from certkit.models.aero.derivative_forms import nondimensional_table
 from certkit.models.aero.derivative_model import StabilityDerivativeModel, StallModel
+from certkit.models.aero.drag import configuration_drag_increment, drag_buildup
+from certkit.models.aero.fuselage import fuselage_derivatives
+from certkit.models.aero.high_lift import estimated_clmax, lift_and_moment_increment
 from certkit.models.aero.interface import AeroReference
+from certkit.models.aero.tail_downwash import WING, downwash_lag, flap_at_tail, free_air_downwash, slopes
 from certkit.models.aero.vlm import Configuration as LatticeConfiguration
 from certkit.models.aero.vlm import ControlSpan, VortexLattice, trapezoidal_surface
+from certkit.models.reference_condition import reference_condition
 
 #: Mach breakpoints at which the lattice is solved; the model interpolates between them
 DEFAULT_MACHS = (0.2, 0.4, 0.6, 0.75, 0.84, 0.9)
@@ -254,8 +262,6 @@ def lattice_derivatives(aircraft: Any, machs: Sequence[float] | None = None) -> 
     wing with flaps the tail's flap ratios :data:`FLAP_TAIL_TERMS` at the lowest one, and the free-air downwash at the
     tail there (:data:`FREE_AIR_DOWNWASH`, a :class:`~certkit.models.aero.tail_downwash.FreeAirDownwash`)
     (:mod:`certkit.models.aero.tail_downwash`)."""
-    from certkit.models.aero.tail_downwash import WING, downwash_lag, flap_at_tail, free_air_downwash, slopes
-
     machs = mach_breakpoints(aircraft) if machs is None else machs
     vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
     on, alone = downwash_configurations(aircraft)
@@ -294,10 +300,6 @@ def lattice_derivatives(aircraft: Any, machs: Sequence[float] | None = None) -> 
 def schedule_altitude(aircraft, machs) -> np.ndarray:
     """Altitude where the 300 KCAS climb schedule reaches each Mach number (sea level below it, the
     ceiling above it): the Reynolds number of the drag build-up at that Mach breakpoint."""
-    from scipy.optimize import brentq
-
-    from certkit.atmosphere import cas_to_mach
-
     top = aircraft.envelope.ceiling
     out = []
     for m in machs:
@@ -309,8 +311,6 @@ def schedule_altitude(aircraft, machs) -> np.ndarray:
 def drag_terms(aircraft, machs) -> tuple[list[float], list[float], list[str]]:
     """CD0(M) (parasite at the schedule's Reynolds number plus wave drag at the design CL) and the
     induced-drag factor k = 1/(π A e) (Oswald e of the drag build-up), clean configuration."""
-    from certkit.models.aero.drag import drag_buildup
-
     machs = np.asarray(machs, dtype=float)
     b = drag_buildup(aircraft, machs, schedule_altitude(aircraft, machs), DESIGN_CL)
     k = 1.0 / (np.pi * aircraft.geometry.wing.aspect_ratio * b.oswald_efficiency)
@@ -332,8 +332,6 @@ def drag_factor(aircraft) -> float:
 
 def fuselage_terms(aircraft) -> dict[str, float]:
     """Fuselage Cm_α (Gilruth & White), Cn_β (Raymer 16.50) and CY_β (DATCOM 5.2.1.1) increments, per radian."""
-    from certkit.models.aero.fuselage import fuselage_derivatives
-
     f = fuselage_derivatives(aircraft.geometry, aircraft.reference)
     return {"Cm_alpha": f.Cm_alpha, "Cn_beta": f.Cn_beta, "CY_beta": f.CY_beta}
 
@@ -353,8 +351,6 @@ def build_airplane_aero(
     notes: list[str] = []
     clmax = cfg.CLmax
     if clmax is None and aircraft.geometry is not None:
-        from certkit.models.aero.high_lift import estimated_clmax
-
         clmax = estimated_clmax(aircraft.geometry.wing, cfg)
         notes.append(f"configuration {configuration}: CLmax {clmax:.2f} estimated (Raymer eqs 12.15, 12.21)")
     elif clmax is None:
@@ -364,9 +360,6 @@ def build_airplane_aero(
     tail_downwash = None  # the free-air downwash at the tail (lattice only): the ground effect at the tail needs it
     flap_lift = None  # the flap lift increments on the wing and the tail (lattice only): the strip loads spread them
     if declared is not None:
-        from certkit.models.aero.derivative_forms import nondimensional_table
-        from certkit.models.reference_condition import reference_condition
-
         nd = nondimensional_table(declared, aircraft, reference_condition(aircraft))
         table, machs, controls = nd.derivatives, nd.mach, nd.controls
         notes += nd.notes
@@ -436,8 +429,6 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tup
     lift share at the lowest Mach breakpoint (0 when none is added: its downwash change is then not known) and the
     lift increments on the wing (tail off) and on the tail, per Mach breakpoint, where the wing has a declared flap
     to carry them (else None)."""
-    from certkit.models.aero.high_lift import lift_and_moment_increment
-
     wing = aircraft.geometry.wing
     flap_cl, flap_cm = table.get("CL_flap"), table.get("Cm_flap")
     if cfg.delta_CL0 or cfg.delta_Cm0 or not cfg.flap:
@@ -475,7 +466,6 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tup
     lift = [wing_cl, [t - w for t, w in zip(d_cl, wing_cl)]] if wing.flaps is not None and tail_off else None
     table["CL0"] = [v + d for v, d in zip(table["CL0"], d_cl)]
     table["Cm0"] = [v + d for v, d in zip(table["Cm0"], d_cm)]
-    from certkit.models.aero.drag import configuration_drag_increment
 
     delta, declared = configuration_drag_increment(cfg)
     if delta:

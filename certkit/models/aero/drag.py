@@ -355,7 +355,7 @@ class ParasiteDrag:
 
     def breakdown(self, index=()) -> "pandas.DataFrame":  # noqa: F821 (pandas imported lazily)
         """Rows name, count, S_wet (m², all of them), Re, Cf, FF, Q, CD0 at condition ``index``."""
-        import pandas as pd
+        import pandas as pd  # deferred: pandas only for a breakdown table: a check and its workers load no pandas
 
         rows = [
             {

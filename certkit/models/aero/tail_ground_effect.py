@@ -43,6 +43,8 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from certkit.models.aero import planform
+
 #: strips of the wing's load, tail stations
 N_WING, N_TAIL = 40, 12
 #: vortex core radius over the wing span (about a wing strip's width at the root)
@@ -78,8 +80,6 @@ class LiftingLine:
 def lifting_line(surface) -> LiftingLine:
     """The quarter-chord line of an aircraft-file lifting surface (trapezoidal half, root at y = 0) and its MAC
     quarter-chord point (DATCOM §1.2.2 station, dihedral included)."""
-    from certkit.models.aero import planform
-
     semi = float(planform.span(surface.area, surface.aspect_ratio)) / 2.0
     cr = float(planform.root_chord(surface.area, surface.aspect_ratio, surface.taper))
     le = surface.root_leading_edge

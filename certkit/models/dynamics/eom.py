@@ -45,8 +45,9 @@ from typing import Callable, Sequence
 
 import numpy as np
 
-from certkit.models.aero.ground_effect import induced_drag_factor_table
+from certkit.models.aero.ground_effect import H_OVER_B_MAX, induced_drag_factor_table
 from certkit.models.aero.interface import AeroModel, AeroState
+from certkit.models.aero.tail_ground_effect import downwash_table
 from certkit.models.compiled import kernel_array
 from certkit.models.dynamics import kernel
 from certkit.models.propulsion.engine import WindmillDrag
@@ -422,9 +423,6 @@ class AircraftModel:
         table = np.zeros(0)
         free_air = getattr(self.aero, "tail_downwash", None)
         if wing.lines is not None and free_air is not None:
-            from certkit.models.aero.ground_effect import H_OVER_B_MAX
-            from certkit.models.aero.tail_ground_effect import downwash_table
-
             line, tail_line = wing.lines
             r = downwash_table(line, tail_line, wing.span, H_OVER_B_MAX)
             dt = np.array([tail_line.reference[0], 0.0, tail_line.reference[1]]) - origin

@@ -45,7 +45,7 @@ class Linearization:
 
     def statespace(self, i: int, states: Sequence[str] | None = None, inputs: Sequence[str] | None = None):
         """A ``control.StateSpace`` of condition ``i`` (outputs: the selected states)."""
-        import control
+        import control  # deferred: python-control (0.4 s) only when a state-space object is asked for
 
         A, B = self.select(i, states, inputs)
         return control.ss(

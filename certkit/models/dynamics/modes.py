@@ -36,6 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.models.dynamics.linearize import Linearization
+from certkit.units import G0
 
 _SUB = ("u", "v", "w", "p", "q", "r", "phi", "theta", "h")
 _LON = np.array([True, False, True, False, True, False, False, True, True])
@@ -137,8 +138,6 @@ def load_factor_per_alpha(lin: Linearization) -> np.ndarray:
     speed and pitch rate, −Z_w V / g with Z_w = ∂ẇ/∂w of the linearised body-axis equations and V the trim's
     airspeed (Etkin & Reid §4.9: Z_w ≈ −(C_Lα + C_D) q̄S/(mV), so n/α ≈ q̄ S C_Lα / (m g)). Used with the short period's
     frequency for the control anticipation parameter ω²/(n/α)."""
-    from certkit.units import G0
-
     iu, iv, iw = (lin.state_names.index(s) for s in ("u", "v", "w"))
     speed = np.sqrt(lin.x0[:, iu] ** 2 + lin.x0[:, iv] ** 2 + lin.x0[:, iw] ** 2)
     return -lin.A[:, iw, iw] * speed / G0

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
-from certkit.models.dynamics.simulate import Function, simulate
+from certkit.models.dynamics.simulate import Function, SimulationResult, simulate
 from certkit.models.loads.gust import gust_aero, gust_tables, one_minus_cosine
 from certkit.models.loads.response import inertia_terms, response_load_parts
 
@@ -179,8 +179,6 @@ def _per_condition(t):
 def _concatenate(parts):
     """One :class:`SimulationResult` from consecutive runs (each after the first starts where the previous
     ended; its first record, a repeat, is dropped)."""
-    from certkit.models.dynamics.simulate import SimulationResult
-
     if len(parts) == 1:
         return parts[0]
     n = parts[0].stop_time.shape[0]

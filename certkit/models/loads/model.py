@@ -41,6 +41,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from certkit.models.aero.airplane import loads_lattice
+from certkit.models.loads.fuel import wing_tank_shares
 from certkit.units import G0
 
 QUANTITIES = ("shear", "bending", "torsion")
@@ -397,8 +399,6 @@ def build_surface_loads(
     notes = []
     tank_names, fuel_inertia, shares = (), None, None
     if aircraft is not None and aircraft.mass.fuel_tanks and not vertical_surface:
-        from certkit.models.loads.fuel import wing_tank_shares
-
         y_strip = 0.5 * (lat.rle1[idx, 1] + lat.rle2[idx, 1])
         tank_names, shares, tank_notes = wing_tank_shares(
             aircraft, np.abs(lat.rle1[idx, 1]), np.abs(lat.rle2[idx, 1]), chord, side_of_body or 0.0
@@ -527,7 +527,6 @@ def build_airplane_loads(
 def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
     """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared), on the lattice of
     :func:`certkit.models.aero.airplane.loads_lattice` (its ``flap`` input spreads a configuration's flap lift)."""
-    from certkit.models.aero.airplane import loads_lattice
 
     def build():
         aero = ctx.aero(configuration)

@@ -15,6 +15,7 @@ import numpy as np
 from numba import njit
 
 from certkit.models.aero.airplane import FLAP_CONTROL
+from certkit.models.aero.interface import AeroState
 from certkit.models.loads.model import QUANTITIES, UNITS, AirplaneLoads
 from certkit.units import G0
 
@@ -210,8 +211,6 @@ def below_stall(model, sim) -> np.ndarray | None:
     without the stall model) is at or below the stall model's CLmax — the times at which strip loads, linear in α,
     represent the airplane's lift; past the stall the airplane's lift is rounded onto CLmax and the linear strips
     overstate it. None when the aerodynamics have no stall model."""
-    from certkit.models.aero.interface import AeroState
-
     aero = model.aero
     if getattr(aero, "stall", None) is None or not hasattr(aero, "without_stall"):
         return None

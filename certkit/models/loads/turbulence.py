@@ -31,7 +31,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.models.dynamics.linearize import linearize, output_sensitivities
+from certkit.models.dynamics.simulate import simulate
 from certkit.models.loads.gust import GUST_CONTROLS
+from certkit.models.loads.lateral_gust import CONTROL, FIN
+from certkit.models.loads.response import inertia_terms, response_load_parts
 
 #: the airplane's degrees of freedom in turbulence: plunge (w) and pitch (q) at constant speed — the classical rigid
 #: airplane of gust-loads analysis (Hoblit, Gust Loads on Aircraft, ch. 3); the phugoid (speed, height, attitude),
@@ -116,9 +119,6 @@ class SteadyLoads:
 
 def steady_loads(loads, gb, surfaces=("wing", "horizontal_tail")) -> SteadyLoads:
     """The station loads of the trimmed state of the gust batch ``gb`` (the first record of a one-step run)."""
-    from certkit.models.dynamics.simulate import simulate
-    from certkit.models.loads.response import inertia_terms, response_load_parts
-
     dt = 0.01
     sim = simulate(gb.model, gb.x0, gb.u0, dt, dt)
     parts = response_load_parts(loads, sim, gb.model, surfaces)
@@ -211,8 +211,6 @@ def lateral_turbulence_response(loads, lb, steady: SteadyLoads, omega: np.ndarra
     :mod:`certkit.models.loads.lateral_gust`) of the batch ``lb``, on the spatial frequencies ``omega`` (rad/m), about
     its trimmed state ``steady``; the airplane free in sideslip, roll and yaw (:data:`LATERAL_FREE_STATES`).
     ``n_z`` holds the lateral load factor n_y."""
-    from certkit.models.loads.lateral_gust import CONTROL, FIN
-
     omega = np.asarray(omega, dtype=float)
     model = lb.model
     lin = linearize(model, lb.x0, lb.u0)

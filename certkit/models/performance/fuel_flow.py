@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from certkit import atmosphere as isa
+from certkit.models.flight import thrust_function
 from certkit.units import G0
 
 
@@ -42,8 +43,6 @@ class EngineFuel:
 
     @classmethod
     def of(cls, aircraft) -> "EngineFuel":
-        from certkit.models.flight import thrust_function
-
         thrust, source = thrust_function(aircraft)
         n = len(aircraft.propulsion.engines)
         cal = aircraft.mission.tsfc if aircraft.mission is not None else None

@@ -44,6 +44,8 @@ from scipy.optimize import brentq
 
 from certkit import atmosphere as isa
 from certkit.errors import UserError
+from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
+from certkit.models.flight import level_trims
 from certkit.models.performance.integrators import LevelCruise, fly_path
 from certkit.models.performance.mission_tables import MissionTables, build_tables
 from certkit.units import FT
@@ -413,8 +415,6 @@ class MissionFlyer:
 
 def clean_aero(aircraft):
     """The clean configuration's aerodynamic model (vortex lattice unless the file declares derivative tables)."""
-    from certkit.models.aero.airplane import build_airplane_aero, lattice_derivatives
-
     declared = "clean" in aircraft.aerodynamics.derivative_tables
     return build_airplane_aero(aircraft, "clean", lattice=None if declared else lattice_derivatives(aircraft))
 
@@ -541,8 +541,6 @@ def calibration_in_force(aircraft) -> dict:
 
 def cruise_drag(aircraft, aero, x_cg: float, mass_kg: float) -> CruiseDrag:
     """The trimmed level-flight drag coefficient at the declared design cruise condition and ``mass_kg``."""
-    from certkit.models.flight import level_trims
-
     m = aircraft.mission
     h = m.drag_condition.altitude
     batch = level_trims(

@@ -32,6 +32,8 @@ from scipy.interpolate import CubicSpline
 from scipy.optimize import brentq
 
 from certkit import atmosphere as isa
+from certkit.models.flight import level_trims
+from certkit.models.mass.loading import reference_cg
 from certkit.models.performance.fuel_flow import EngineFuel
 from certkit.models.performance.integrators import LevelCruise
 from certkit.units import FT, G0, KN
@@ -186,9 +188,6 @@ def cruise_levels(m, ceiling) -> np.ndarray:
 def build_tables(aircraft, aero, weight_range: tuple[float, float]) -> MissionTables:
     """Trim every mission condition for ``N_WEIGHTS`` weights spanning ``weight_range`` (kg) in one batch
     (``aero``: the clean configuration's :class:`certkit.models.aero.airplane.AirplaneAero`)."""
-    from certkit.models.flight import level_trims
-    from certkit.models.mass.loading import reference_cg
-
     m = aircraft.mission
     fuel = EngineFuel.of(aircraft)
     ceiling = aircraft.envelope.ceiling

@@ -20,6 +20,7 @@ import math
 from dataclasses import dataclass
 
 from certkit.errors import UserError
+from certkit.models.mass.properties import MassComponent
 
 US_GALLON = 3.785411784e-3  # m³
 
@@ -59,8 +60,6 @@ class ActuatorSizing:
 
     def components(self):
         """Concentrated masses (:class:`certkit.models.mass.properties.MassComponent`), one per actuator."""
-        from certkit.models.mass.properties import MassComponent
-
         return [MassComponent(f"elevator actuator {i + 1}", self.mass, p) for i, p in enumerate(self.positions)]
 
     def summary(self) -> dict:

@@ -24,6 +24,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from certkit.aircraft.model import InertiaTensor, Point
+from certkit.aircraft.model import MassComponent as FileComponent
 from certkit.errors import UserError
 from certkit.models.mass.properties import MassComponent, MassProperties, combine
 from certkit.models.structure.box import BoxMaterial, BoxSizing, BoxStations, UltimateLoads, size_box
@@ -102,9 +104,6 @@ class HorizontalTailSizing:
 
     def component(self, name: str = "horizontal tail"):
         """The group as an aircraft-file mass component (to replace the declared one)."""
-        from certkit.aircraft.model import InertiaTensor, Point
-        from certkit.aircraft.model import MassComponent as FileComponent
-
         p = self.properties
         return FileComponent(
             name=name,

@@ -20,6 +20,9 @@ from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
+from pymoo.algorithms.moo.nsga2 import NSGA2
+from pymoo.core.problem import Problem
+from pymoo.optimize import minimize as pymoo_minimize
 from scipy.optimize import minimize
 
 from certkit.study.analysis.montecarlo import STAGES, MonteCarloResult, Optimum
@@ -166,10 +169,6 @@ def nsga2_front(
     generations: int = NSGA_GENERATIONS,
 ) -> tuple[np.ndarray, np.ndarray]:
     """(objective values, designs in SI) of the feasible non-dominated set NSGA-II finds, sorted by the first."""
-    from pymoo.algorithms.moo.nsga2 import NSGA2
-    from pymoo.core.problem import Problem
-    from pymoo.optimize import minimize as pymoo_minimize
-
     n = problem.bounds.shape[0]
     n_constr = problem.constraints(np.zeros((1, n))).shape[1]
 

@@ -24,6 +24,7 @@ from certkit.study.analysis.montecarlo import MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import pareto_fronts
 from certkit.study.analysis.surrogates import Surrogate, fit_all, to_unit
 from certkit.study.analysis.validity import Validity, fit_validity
+from certkit.study.runner import run_study_cases
 from certkit.study.spec import Study
 from certkit.study.store import Store
 
@@ -143,8 +144,6 @@ def refine(
     with the true model through the study runner (block ``refine-K``), refit, and report how each constraint's
     probability of success moved."""
     if run_cases is None:
-        from certkit.study.runner import run_study_cases  # the runner's workers: only when refining
-
         run_cases = run_study_cases
     frame = store.frame()
     usable, surrogates, validity, mc, front_x = _state(study, frame, samples, log)

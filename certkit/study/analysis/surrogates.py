@@ -36,6 +36,7 @@ import numpy as np
 import numpy.typing as npt
 from joblib import Parallel, delayed
 from scipy.optimize import minimize
+from scipy.spatial import cKDTree
 from scipy.spatial.distance import cdist
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.compose import TransformedTargetRegressor
@@ -284,7 +285,6 @@ def leaked(u_train: np.ndarray, u_val: np.ndarray, tol: float = 1e-9) -> np.ndar
     """Mask of validation rows whose inputs repeat a training row's (within ``tol`` on the [−1, 1] scale)."""
     if not len(u_train) or not len(u_val):
         return np.zeros(len(u_val), dtype=bool)
-    from scipy.spatial import cKDTree
 
     dist, _ = cKDTree(u_train).query(u_val, k=1, p=np.inf)
     return np.asarray(dist <= tol)

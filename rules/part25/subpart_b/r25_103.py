@@ -15,6 +15,7 @@ import math
 from certkit_rules.part25.support.reference_speeds import computed_stall_speed, reference_stall_speed, reference_weight
 
 from certkit.engine.conditions import ConditionSpace, EnvelopeWeights, cg_limits_at
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import NOT_EVALUATED, Finding
 from certkit.units import KN
@@ -124,8 +125,6 @@ class StallSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.103 reference stall speeds",

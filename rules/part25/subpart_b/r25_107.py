@@ -10,9 +10,13 @@ recognition interval after the critical engine's failure); the VMU part is ``not
 from __future__ import annotations
 
 import numpy as np
+from certkit_rules.part25.support.ground_control import computed_vmcg
+from certkit_rules.part25.support.minimum_control import computed_vmca
 from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
+from certkit_rules.part25.support.takeoff import failure_speed_at_v1
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
 
@@ -107,8 +111,6 @@ class TakeoffSpeeds(Rule):
             speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
             if speeds["VMC"] is None:
-                from certkit_rules.part25.support.minimum_control import computed_vmca
-
                 speeds["VMC"] = computed_vmca(ctx)
                 vmc_basis = "VMCA computed by §25.149 (no VMC declared)"
             out += [
@@ -137,9 +139,6 @@ class TakeoffSpeeds(Rule):
         """(a) VEF ≥ VMCG: VEF the speed from which V1 is reached one recognition interval after the failure of the
         critical engine (the simulated takeoff's, at MTOW and the reference CG: V1 ≥ VEF by construction); VMCG the
         declared one, or where none is declared the highest §25.149(e) computes over the weight–CG corners."""
-        from certkit_rules.part25.support.ground_control import computed_vmcg
-        from certkit_rules.part25.support.takeoff import failure_speed_at_v1
-
         check = "(a) VEF ≥ VMCG (V1 ≥ VEF)"
         basis = "declared VMCG"
         if speeds["VMCG"] is None:
@@ -168,8 +167,6 @@ class TakeoffSpeeds(Rule):
         return ratio_check(cond, check, speeds, "VEF", "VMCG", crit.v1_over_vmcg, basis=f"{basis}; VEF: {vef_basis}")
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.107 takeoff speed ratios",

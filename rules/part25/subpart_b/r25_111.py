@@ -58,8 +58,10 @@ from certkit_rules.part25.support.takeoff import (
 )
 
 from certkit.atmosphere import convert_speed
+from certkit.engine.evidence.performance import takeoff_evidence
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.flight import control_limits
 from certkit.units import FT, KN
 
 SOURCE = "14 CFR 25.111 (text from memory, not in docs/regulation-notes.md: unverified)"
@@ -143,8 +145,6 @@ class TakeoffPath(Rule):
     )
 
     def evaluate(self, ctx, conditions, crit):
-        from certkit.models.flight import control_limits
-
         ac = ctx.aircraft
         to = simulated_takeoffs(ctx, conditions, crit)
         trims, run, engine, vef = to.trims, to.run, to.engine, to.vef
@@ -280,8 +280,6 @@ class TakeoffPath(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import takeoff_evidence
-
         conds = self.conditions.expand(ctx.aircraft)
         to = simulated_takeoffs(ctx, conds, crit)
         return takeoff_evidence(ctx, conds, findings, to.run, to.engine, to.vef, crit)

@@ -45,6 +45,7 @@ from certkit_rules.part25.support.reference_speeds import declared_cas, referenc
 from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.evidence.performance import climb_gradient_evidence
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.aero.drag import flap_drag_increment, landing_gear_drag_increment
@@ -430,8 +431,6 @@ class ClimbOEITakeoffGearDown(Rule):
         return [_positive(f, required) for f in out]
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import climb_gradient_evidence
-
         return climb_gradient_evidence(findings, "§25.121(a) OEI climb, takeoff, gear down")
 
 
@@ -514,8 +513,6 @@ class ClimbOEITakeoffGearUp(Rule):
         )
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import climb_gradient_evidence
-
         return climb_gradient_evidence(findings, "§25.121(b) OEI climb, takeoff, gear up")
 
 
@@ -575,8 +572,6 @@ class ClimbOEIFinalTakeoff(Rule):
         )
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import climb_gradient_evidence
-
         return climb_gradient_evidence(findings, "§25.121(c) OEI final takeoff climb")
 
 
@@ -649,6 +644,4 @@ class ClimbOEIApproach(Rule):
         )
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import climb_gradient_evidence
-
         return climb_gradient_evidence(findings, "§25.121(d) OEI approach climb")

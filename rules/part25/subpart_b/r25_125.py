@@ -27,17 +27,18 @@ from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_ch
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.evidence import Axis, Limit
+from certkit.engine.evidence.performance import time_histories
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Evidence, Finding
+from certkit.models.dynamics.procedures import approach_and_landing
+from certkit.models.flight import control_limits, flight_model, ground_model
 from certkit.units import FT, KN
 
 START_HEIGHT = 150 * FT  # m, CG height above the runway at the start of the simulated approach
 
 
 def _landing(ctx, conditions, crit):
-    from certkit.models.dynamics.procedures import approach_and_landing
-    from certkit.models.flight import control_limits, flight_model, ground_model
-
     def compute():
         ac = ctx.aircraft
         vref = ac.speeds.VREF
@@ -240,9 +241,6 @@ class LandingTouchdown(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence import Axis, Limit
-        from certkit.engine.evidence.performance import time_histories
-
         conds = self.conditions.expand(ctx.aircraft)
         sinks = [f for f in findings if f.check == "touchdown rate of descent" and f.margin is not None]
         if not sinks:

@@ -32,6 +32,7 @@ from certkit_rules.part25.support.thrust_trims import critical_engine, operating
 from certkit_rules.part25.support.turns import turn_details
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.dynamics.trim import held_stabilizer
@@ -313,8 +314,6 @@ class ManeuveringCapability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.143(h) manoeuvring capability",

@@ -28,6 +28,7 @@ from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model, trim_state
@@ -248,8 +249,6 @@ class LongitudinalControlConfigurationChanges(Rule):
         )
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.145(b) elevator to trim configuration and thrust changes",

@@ -35,6 +35,7 @@ from certkit_rules.part25.support.thrust_trims import critical_engine, operating
 from certkit_rules.part25.support.turns import turn_details
 
 from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model
@@ -208,8 +209,6 @@ class DirectionalControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.147(a) directional control, one engine inoperative",
@@ -319,8 +318,6 @@ class LateralControlOEI(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.147(c) lateral control, one engine inoperative",

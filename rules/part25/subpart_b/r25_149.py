@@ -25,6 +25,8 @@ from certkit_rules.part25.support.minimum_control import (
     vmcl_rows,
 )
 
+from certkit.atmosphere import convert_speed
+from certkit.engine.evidence.performance import vmca_evidence
 from certkit.engine.registry import Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model, trim_state
@@ -160,8 +162,6 @@ class MinimumControlSpeed(Rule):
         """(e) VMCG by simulation over the corners of the weight–CG envelope (:mod:`.ground_control`): per corner,
         VMCG no higher than VR (a speed on the runway at which the rudder alone holds the 30-ft band), and, with a
         declared speeds.VMCG, the declared value not below the highest computed one."""
-        from certkit.atmosphere import convert_speed
-
         conds = VMCG_CONDITIONS.expand(ctx.aircraft)
         check = f"(e) VMCG (rudder only, ≤ {crit.vmcg_deviation_max_ft:g} ft off the centreline) found below VR"
         missing = ctx.missing(VMCG_REQUIRES)
@@ -368,8 +368,6 @@ class MinimumControlSpeed(Rule):
                     )
                 )
             else:
-                from certkit.atmosphere import convert_speed
-
                 vmc = float(convert_speed(declared.value, declared.kind, "CAS", cond.altitude or 0.0))
                 out.append(
                     Finding.compare(found, "(b) declared VMC ≥ computed VMCA", vmc, vmca, at_least=True, unit="m/s")
@@ -377,8 +375,6 @@ class MinimumControlSpeed(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import vmca_evidence
-
         rows = vmca_rows(ctx, self.conditions.expand(ctx.aircraft), crit)
         return vmca_evidence(findings, rows, control_limits(ctx.aircraft))
 

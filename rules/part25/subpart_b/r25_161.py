@@ -30,6 +30,7 @@ from certkit_rules.part25.support.stability_speeds import flight_described, stea
 from certkit_rules.part25.support.thrust_trims import oei_climb
 
 from certkit.engine.conditions import CgCorners, ConditionSpace
+from certkit.engine.evidence.performance import margins_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.flight import control_limits
@@ -348,8 +349,6 @@ class Trim(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.performance import margins_evidence
-
         return margins_evidence(
             findings,
             "§25.161 trim",

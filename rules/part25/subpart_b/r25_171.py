@@ -16,10 +16,12 @@ from certkit_rules.part25.support.stability_speeds import (
 )
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
+from certkit.engine.evidence.stability import margin_matrix_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.dynamics.trim import held_stabilizer
-from certkit.units import FT, KN
+from certkit.units import FT, KN, LBF
 
 
 def static_margin(ctx, configuration: str, x_cg, mach) -> np.ndarray:
@@ -89,8 +91,6 @@ class StabilityGeneral(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.stability import margin_matrix_evidence
-
         return margin_matrix_evidence(
             findings, "§25.171 static margin − minimum (normalised) over CG corners × configurations"
         )
@@ -226,8 +226,6 @@ class SpeedStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.stability import margin_matrix_evidence
-
         return margin_matrix_evidence(
             findings, "§25.173(a) speed-stability gradient (normalised) over CG corners × configurations"
         )
@@ -245,9 +243,6 @@ def stick_force_curves(ctx, refined, k: float):
     the elevator trim device fixed at its V₀ setting (:mod:`certkit.models.control_force`), per condition:
     a list of (condition, dict) with ``pull_low``, ``pull_high``, ``gradient`` (lbf/kt, positive stable: the
     average slope (F_pull(V₀(1−k)) − F_pull(V₀(1+k))) / 2kV₀), or (condition, reason) where a trim failed."""
-    from certkit.models.control_force import control_force_model, trim_state
-    from certkit.units import LBF
-
     elevator = control_force_model(ctx.aircraft, "elevator")
     out = []
     for conds, trim0, _, res in speed_step_trims(ctx, refined, k):
@@ -420,8 +415,6 @@ class FreeReturn(Rule):
     )
 
     def evaluate(self, ctx, conditions, crit):
-        from certkit.units import LBF
-
         check = "(b) free return to the trim speed"
         decl = None if ctx.aircraft.control_forces is None else ctx.aircraft.control_forces.elevator
         if decl is None:

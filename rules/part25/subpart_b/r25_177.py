@@ -20,6 +20,7 @@ import numpy as np
 from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE, PHASES, by_configuration, refine_speeds
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
+from certkit.engine.evidence.stability import margin_matrix_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model, trim_state
@@ -328,8 +329,6 @@ class StaticLateralDirectionalStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.stability import margin_matrix_evidence
-
         return margin_matrix_evidence(
             findings, "§25.177 static lateral-directional margins (normalised) over CG corners × configurations"
         )

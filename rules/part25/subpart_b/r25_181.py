@@ -23,10 +23,11 @@ from certkit_rules.part25.support.stability_speeds import (
 )
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
+from certkit.engine.evidence.stability import damping_frequency_chart, margin_matrix_evidence
 from certkit.engine.registry import Criterion, ModeResponses, Rule, rule
-from certkit.engine.results import Finding
+from certkit.engine.results import Evidence, Finding
 from certkit.models.dynamics.modes import load_factor_per_alpha
-from certkit.units import FT
+from certkit.units import FT, KN
 
 MODES = ("short_period", "phugoid", "dutch_roll", "roll", "spiral")
 #: how the short-period criterion reads each configuration's flight phase (MIL-F-8785C 1.5 flight-phase categories)
@@ -208,10 +209,6 @@ class DynamicStability(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.stability import damping_frequency_chart, margin_matrix_evidence
-        from certkit.engine.results import Evidence
-        from certkit.units import KN
-
         points, worst = [], {}
         for f in findings:
             if not f.check.startswith("(a)") or "modes" not in f.details:

@@ -32,6 +32,7 @@ from certkit_rules.part25.support.pitch_runs import (
     displacement_runs,
 )
 
+from certkit.engine.evidence.loads import allowables, envelope_evidence, maneuver_evidence
 from certkit.engine.registry import SimulationRule, rule
 
 
@@ -101,8 +102,6 @@ class CheckedPitchManeuver(SimulationRule):
 def pitch_evidence(run: PitchManeuverRun | None, ctx, crit, what: str) -> list:
     """Evidence of a pitch manoeuvre run: the tail's critical time histories, envelope and table, the wing's table,
     each against the declared allowables."""
-    from certkit.engine.evidence.loads import allowables, envelope_evidence, maneuver_evidence
-
     if run is None or not run.simulated:
         return []
     allow = allowables(ctx, crit.ultimate_factor)

@@ -37,6 +37,7 @@ from certkit_rules.part25.support.balanced_runs import (
     balanced_runs,
 )
 
+from certkit.engine.evidence.loads import run_envelope_evidence
 from certkit.engine.registry import Loads, SimulationRule, rule
 
 
@@ -93,6 +94,4 @@ class BalancedManeuver(SimulationRule):
         return balanced_runs(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import run_envelope_evidence
-
         return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, SURFACES, "balanced manoeuvres")

@@ -13,6 +13,7 @@ from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.reference_speeds import declared_eas
 
 from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
+from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
 from certkit.engine.registry import Rule, rule
 from certkit.engine.results import Evidence, Finding
 from certkit.models.loads.vn_envelope import envelope
@@ -86,8 +87,6 @@ class FlightManeuveringEnvelope(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence import Axis, Chart, Limit, Panel, Point, Series
-
         conds = sorted(
             {f.condition for f in findings if f.condition.mass is not None}, key=lambda c: (c.altitude, c.mass)
         )

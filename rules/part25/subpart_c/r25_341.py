@@ -42,6 +42,7 @@ from certkit_rules.part25.support.structural_checks import (
     set_aside_finding,
 )
 
+from certkit.engine.evidence.loads import allowables, envelope_evidence, gust_evidence
 from certkit.engine.registry import Loads, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
@@ -99,8 +100,6 @@ class DiscreteGust(SimulationRule):
         return discrete_gusts(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables, envelope_evidence, gust_evidence
-
         run = self.run
         if run is None or not run.simulated:
             return []

@@ -30,6 +30,7 @@ from certkit_rules.part25.support.loads_conditions import refusal_findings
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding, critical_state_finding
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.evidence.loads import run_envelope_evidence
 from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
@@ -122,8 +123,6 @@ class ContinuousTurbulence(SimulationRule):
         return continuous_turbulence(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import run_envelope_evidence
-
         return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, (*SURFACES, FIN), "continuous turbulence")
 
 

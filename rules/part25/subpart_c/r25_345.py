@@ -29,6 +29,7 @@ from certkit_rules.part25.support.structural_checks import (
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.evidence.loads import run_envelope_evidence
 from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun
 from certkit.models.aero import planform
@@ -109,8 +110,6 @@ class FlapGusts(SimulationRule):
         return flap_gusts(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import run_envelope_evidence
-
         return run_envelope_evidence(self.run, ctx, crit.ultimate_factor, SURFACES, "flaps-extended gusts")
 
 

@@ -42,6 +42,8 @@ from certkit_rules.part25.support.structural_checks import (
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.evidence.loads import allowables, unsymmetrical_gust_evidence
+from certkit.engine.evidence.roll import roll_evidence
 from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import Finding, LoadsRun, SimulationRun
 from certkit.errors import UserError
@@ -171,9 +173,6 @@ class RollingConditions(SimulationRule):
         return rolling_maneuvers(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables
-        from certkit.engine.evidence.roll import roll_evidence
-
         if self.run is None or not self.run.simulated:
             return []
         return roll_evidence(self.run, allowables(ctx, crit.ultimate_factor))
@@ -496,8 +495,6 @@ class UnsymmetricalGust(SimulationRule):
         return unsymmetrical_gusts(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables, unsymmetrical_gust_evidence
-
         if self.run is None or not self.run.simulated:
             return []
         return unsymmetrical_gust_evidence(self.run, allowables(ctx, crit.ultimate_factor))

@@ -29,6 +29,8 @@ from certkit_rules.part25.support.structural_checks import (
 )
 
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+from certkit.engine.evidence.loads import allowables
+from certkit.engine.evidence.yaw import yaw_evidence
 from certkit.engine.registry import Criterion, Loads, SimulationRule, rule
 from certkit.engine.results import LoadsRun
 from certkit.models.loads.capability import declared_capabilities
@@ -141,9 +143,6 @@ class YawManeuver(SimulationRule):
         return yaw_maneuvers(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables
-        from certkit.engine.evidence.yaw import yaw_evidence
-
         if self.run is None or not self.run.simulated:
             return []
         return yaw_evidence(self.run, allowables(ctx, crit.ultimate_factor))

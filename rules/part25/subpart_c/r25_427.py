@@ -44,10 +44,12 @@ from certkit_rules.part25.support.stability_speeds import flap_altitude_findings
 from certkit_rules.part25.support.structural_checks import SAFETY, capability_finding
 
 from certkit.engine.conditions import ConditionSpace
+from certkit.engine.evidence.loads import allowables, envelope_evidence
 from certkit.engine.registry import Criterion, SimulationRule, rule
 from certkit.engine.results import Condition, Finding, LoadsRun
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
+from certkit.models.loads.response import LoadEnvelope
 from certkit.models.loads.unsymmetrical import unsymmetrical_tail_peaks
 
 TAIL = "horizontal_tail"
@@ -159,8 +161,6 @@ class UnsymmetricalTailLoads(SimulationRule):
         return unsymmetrical_tail_loads(ctx, conditions, crit)
 
     def evidence(self, ctx, findings, crit):
-        from certkit.engine.evidence.loads import allowables, envelope_evidence
-
         if self.run is None or not self.run.simulated:
             return []
         env = self.run.envelope
@@ -232,8 +232,6 @@ def fuselage_torsion_finding(cond, capabilities, t_lo: float, t_hi: float, ultim
 
 
 def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
-    from certkit.models.loads.response import LoadEnvelope
-
     loads = airplane_loads(ctx)
     tail = loads[TAIL]
     caps = declared_capabilities(ctx, TAIL)

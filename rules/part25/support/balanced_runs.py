@@ -31,7 +31,7 @@ from certkit_rules.part25.support.structural_checks import (
     set_aside_finding,
 )
 
-from certkit.atmosphere import convert_speed
+from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding, LoadsRun
@@ -41,7 +41,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, holds_flap_lift
 from certkit.models.loads.vn_envelope import envelope
-from certkit.units import KN
+from certkit.units import G0, KN
 
 SURFACES = ("wing", "horizontal_tail")
 #: flaps-retracted points (§25.333(b) figure, letters A, D, E, F, H as docs/regulation-notes.md §1 reconstructs them)
@@ -139,9 +139,6 @@ def design_flap_speed(ctx, configuration: str, h: float, crit) -> tuple[float, s
     VFE and the §25.335(e)(3) minimum — ``vf_takeoff_factor`` × VS1 at MTOW for the configuration named ``takeoff``,
     ``vf_landing_factor`` × VS1 at MLW for the others (approach and landing positions) — VS1 = √(2 W / (ρ₀ S CLmax))
     with the configuration's declared CLmax. Raises LookupError without a declared VFE."""
-    from certkit.atmosphere import RHO0
-    from certkit.units import G0
-
     ac = ctx.aircraft
     vfe = ac.speeds.VFE.get(configuration)
     if vfe is None:

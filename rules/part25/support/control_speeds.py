@@ -29,7 +29,8 @@ from __future__ import annotations
 import numpy as np
 from certkit_rules.part25.support.reference_speeds import reference_stall_speed
 
-from certkit.atmosphere import convert_speed
+from certkit.atmosphere import convert_speed, speed_of_sound
+from certkit.models.aero.interface import AeroState
 from certkit.models.flight import control_limits
 from certkit.units import KN
 
@@ -163,9 +164,6 @@ def at_lift_maximum(ctx, configuration: str, res, step: float = np.radians(0.25)
     """Whether the trim ``res`` (converged or its last iterate) is at the maximum of the lift curve of
     ``configuration``: dCL/dα at its angle of attack, sideslip, Mach and controls below :data:`STALL_SLOPE_FRACTION`
     of the linear slope CL_α — where a steady trim ceases to exist because the wing cannot give more lift."""
-    from certkit.atmosphere import speed_of_sound
-    from certkit.models.aero.interface import AeroState
-
     model = ctx.aero(configuration).model
     mach = float(res.V / speed_of_sound(res.h))
     controls = {k: v for k, v in res.controls.items() if k in model.control_names}

@@ -19,12 +19,18 @@ from types import SimpleNamespace
 
 import numpy as np
 from certkit_rules.part25.support.structural_checks import force_limited_deflection
+from certkit_rules.part25.support.takeoff import takeoff_trim
 from certkit_rules.part25.support.thrust_trims import critical_engine
 
 from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
 from certkit.engine.registry import Criterion
-from certkit.units import FT, KN
+from certkit.engine.results import Condition
+from certkit.engine.scheduler import criteria_for
+from certkit.models.control_force import control_force_model
+from certkit.models.dynamics.ground_control import ground_minimum_control_speed
+from certkit.models.flight import control_limits, flight_model, ground_model
+from certkit.units import FT, KN, LBF
 
 VMCG_RULE_ID = "25.149"
 SOURCE = "14 CFR 25.149(e) (Amdt. 25-108; verified, docs/regulation-notes.md)"
@@ -96,10 +102,6 @@ class Vmcg:
 
 def vmcg_runs(ctx, conditions, crit) -> Vmcg:
     """The memoised VMCG search of ``conditions`` with the criteria ``crit`` (module docstring)."""
-    from certkit_rules.part25.support.takeoff import takeoff_trim
-
-    from certkit.models.dynamics.ground_control import ground_minimum_control_speed
-    from certkit.models.flight import control_limits, flight_model, ground_model
 
     def compute():
         ac = ctx.aircraft
@@ -157,10 +159,6 @@ def _force_limited_rudder(ctx, stops, vr_cas: float, force_lbf: float):
     (:func:`~certkit_rules.part25.support.structural_checks.force_limited_deflection`); a q-feel or hinge-moment
     force taken at VR, the highest speed of the search (where a given force holds the least rudder), at zero
     sideslip. Returns ((low, high) rad, how the limit was set, for the report)."""
-    from certkit.engine.results import Condition
-    from certkit.models.control_force import control_force_model
-    from certkit.units import LBF
-
     at_vr = [Condition(speed=vr_cas, speed_kind="CAS", altitude=0.0)]
     bounds = [force_limited_deflection(ctx, "rudder", at_vr, [0.0], stop, force_lbf) for stop in stops]
     limits = (float(bounds[0][0][0]), float(bounds[1][0][0]))
@@ -180,8 +178,6 @@ def _force_limited_rudder(ctx, stops, vr_cas: float, force_lbf: float):
 def computed_vmcg(ctx):
     """(VMCG m/s CAS, the condition's loading name, the Vmcg) as §25.149 computes it with its criteria (and the file's
     overrides): the highest over its conditions; (None, None, None) when the inputs are missing."""
-    from certkit.engine.scheduler import criteria_for
-
     if ctx.missing(VMCG_REQUIRES):
         return None, None, None
     crit, _ = criteria_for(SimpleNamespace(id=VMCG_RULE_ID, criteria=VMCG_CRITERIA), ctx)

@@ -20,6 +20,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from certkit.atmosphere import density, speed_of_sound
+from certkit.engine.conditions import speed_as
 from certkit.engine.results import Finding
 from certkit.models.flight import flight_model
 from certkit.units import G0
@@ -164,9 +166,6 @@ def below_stall(ctx, cond) -> str | None:
     """The computed reason when the 1 g lift coefficient W/(q̄S) at the condition's speed exceeds the
     configuration's CLmax at its Mach (no steady flight at any thrust: the speed is below the 1 g stall speed at
     this weight and altitude), else None (also without a stall model)."""
-    from certkit.atmosphere import density, speed_of_sound
-    from certkit.engine.conditions import speed_as
-
     clmax = getattr(ctx.aero(cond.configuration).model, "clmax", None)
     tas, h = speed_as(cond, "TAS"), cond.altitude or 0.0
     mach = tas / float(speed_of_sound(h))

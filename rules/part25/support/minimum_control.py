@@ -19,6 +19,7 @@ from certkit_rules.part25.support.control_speeds import condition_vmc, vmc_rows
 
 from certkit.engine.conditions import Altitudes, ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion
+from certkit.engine.scheduler import criteria_for
 
 #: the paragraph whose criteria (and aircraft-file overrides, ``criteria."25.149"``) the search uses
 VMCA_RULE_ID = "25.149"
@@ -78,8 +79,6 @@ def computed_vmca(ctx):
     """The airplane's VMCA (m/s CAS) as §25.149 computes it with its criteria (and the aircraft file's overrides):
     the highest over its conditions (each engine inoperative, most unfavourable CG); None when the rule's inputs
     are missing. For the rules that need VMC when the aircraft file declares none (§25.107)."""
-    from certkit.engine.scheduler import criteria_for
-
     if ctx.missing(VMCA_REQUIRES):
         return None
     crit, _ = criteria_for(SimpleNamespace(id=VMCA_RULE_ID, criteria=VMCA_CRITERIA), ctx)  # with the file's overrides
@@ -108,8 +107,6 @@ def computed_vmcl(ctx, configuration: str = "landing"):
     """(VMCL in m/s CAS, how it is limited) of ``configuration`` as §25.149 computes it with its criteria: the highest
     over the inoperative engines at the aft CG and MLW; None when the configuration or MLW is not declared, or when a
     trim failed above the stall (not determined)."""
-    from certkit.engine.scheduler import criteria_for
-
     if ctx.missing(VMCA_REQUIRES + ("mass.MLW",)) or configuration not in ctx.aircraft.configurations:
         return None
     crit, _ = criteria_for(SimpleNamespace(id=VMCA_RULE_ID, criteria=VMCA_CRITERIA), ctx)

@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import math
 
-from certkit.atmosphere import convert_speed
+from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.results import Finding
 from certkit.models.performance.stall import stall_speed_eas
+from certkit.units import G0, KN
 
 
 def declared_cas(ctx, name: str) -> float | None:
@@ -86,9 +87,6 @@ def stall_warning_cl(ctx, configuration: str, mass) -> tuple[float, str]:
     basis: the declared ``stall_warning`` (a CL, or VSW as a ratio to VSR), else the latest warning §25.207 allows,
     VSW = VSR + max(5 kn, 5 %) (the stall identified at VSR, §25.207(c), which also meets (d)'s 3 kn / 3 %);
     CL = W / (½ ρ₀ VSW² S)."""
-    from certkit.atmosphere import RHO0
-    from certkit.units import G0, KN
-
     declared = getattr(ctx.aircraft.configurations.get(configuration), "stall_warning", None)
     if declared is not None and declared.CL is not None:
         return float(declared.CL), f"declared configurations.{configuration}.stall_warning.CL"

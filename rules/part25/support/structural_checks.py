@@ -9,11 +9,15 @@ from functools import lru_cache, partial
 
 import numpy as np
 
+from certkit.atmosphere import RHO0, speed_of_sound
+from certkit.engine.conditions import speed_as
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding
+from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.models.loads.capability import worst_margin
 from certkit.models.loads.model import QUANTITIES
+from certkit.units import LBF
 
 NO_CAPABILITY = "no structural capability declared"
 SAFETY = {"ultimate_factor": Criterion(1.5, "", "14 CFR 25.303", "factor of safety: ultimate load = 1.5 × limit load")}
@@ -159,9 +163,6 @@ def set_aside_finding(cond, check: str, reason: str, peaks=None, stations=(), **
 
 def condition_mach(cond) -> float:
     """Flight Mach number of a condition (its speed and altitude, standard atmosphere)."""
-    from certkit.atmosphere import speed_of_sound
-    from certkit.engine.conditions import speed_as
-
     return float(speed_as(cond, "TAS") / float(speed_of_sound(cond.altitude or 0.0)))
 
 
@@ -186,11 +187,6 @@ def force_limited_deflection(ctx, control: str, conditions, trim, stop, force_li
     trim ``trim`` (rad), whichever is smaller in magnitude. The local angle of attack is the trim's at the instant
     of the input, so its hinge-moment term cancels against the trim's; q̄ from each condition's EAS.
     Returns (deflection, force_limited flags) — the flags None without a model."""
-    from certkit.atmosphere import RHO0
-    from certkit.engine.conditions import speed_as
-    from certkit.models.control_force import control_force_model
-    from certkit.units import LBF
-
     trim = np.asarray(trim, dtype=float)
     stop = np.broadcast_to(np.asarray(stop, dtype=float), trim.shape)
     model = control_force_model(ctx.aircraft, control)

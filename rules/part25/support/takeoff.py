@@ -35,6 +35,8 @@ from certkit_rules.part25.support.thrust_trims import critical_engine
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.registry import Criterion
+from certkit.models.dynamics.procedures import engine_failure_speed, takeoff_run
+from certkit.models.flight import control_limits, flight_model, ground_model
 from certkit.units import FT, KN
 
 #: criteria shared by the rules that use the simulated takeoff (same defaults: one memoised run serves them all)
@@ -164,8 +166,6 @@ class Takeoffs:
 def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
     """The memoised engine-out and all-engines takeoffs of ``conditions`` (module docstring); ``crit`` holds the
     :data:`PROCEDURE_CRITERIA`."""
-    from certkit.models.dynamics.procedures import engine_failure_speed, takeoff_run
-    from certkit.models.flight import control_limits, flight_model, ground_model
 
     def compute():
         ac = ctx.aircraft
@@ -190,7 +190,9 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         vef, vef_basis = engine_failure_speed(
             model, tas(sp.V1), engine, crit.recognition_time, ac.propulsion.failure_decay_time
         )
-        from certkit_rules.part25.support.ground_control import computed_vmcg
+        from certkit_rules.part25.support.ground_control import (  # deferred: cycle: ground_control imports this module
+            computed_vmcg,
+        )
 
         vmcg, _, _ = computed_vmcg(ctx)  # the failure is never scheduled below VMCG (§25.107(a)(1))
         if vmcg is not None and np.isfinite(vmcg):
@@ -290,9 +292,6 @@ def failure_speed_at_v1(ctx, cond, recognition_time: float | None = None):
     """(VEF m/s CAS, how it was obtained) of the loading of ``cond`` at sea level: V1 less the speed gained over the
     recognition interval (:data:`PROCEDURE_CRITERIA`'s unless given) after the critical engine's failure, as the
     simulated takeoff fails it; (None, why) without V1 or the landing gear."""
-    from certkit.models.dynamics.procedures import engine_failure_speed
-    from certkit.models.flight import flight_model, ground_model
-
     ac = ctx.aircraft
     if ac.speeds.V1 is None or ctx.missing(("geometry.landing_gear",)):
         return None, "needs speeds.V1 and geometry.landing_gear (VEF from V1)"

@@ -20,7 +20,7 @@ import numpy as np
 
 from certkit.models.aero.interface import AeroReference
 
-from .geometry import CamberLine, Configuration, ControlSurface, GeometryError, Section, Surface
+from .geometry import CamberLine, Configuration, ControlSurface, GeometryError, Section, Surface, spacing_parameter
 
 
 class AvlFileError(ValueError):
@@ -300,6 +300,4 @@ def write_avl(config: Configuration, path: str | Path) -> Path:
 
 
 def _space(value: float | str) -> str:
-    from .geometry import spacing_parameter
-
     return _fmt(spacing_parameter(value))

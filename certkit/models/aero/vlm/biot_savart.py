@@ -19,6 +19,8 @@ import sys
 
 import numpy as np
 
+from . import biot_savart_numpy
+
 _FOUR_PI_INV = 1.0 / (4.0 * np.pi)
 #: point–vortex pairs above which the compiled loops are worth loading numba for (numpy: ~25 ns a pair; numba's
 #: import and cached kernels ~0.3 s)
@@ -28,12 +30,10 @@ COMPILED_ABOVE_PAIRS = 5_000_000
 def _kernels(pairs: int):
     """The compiled kernels when numba is already loaded or the sum is large, else the numpy blocks."""
     if "numba" in sys.modules or pairs > COMPILED_ABOVE_PAIRS:
-        from . import biot_savart_kernels as k
+        from . import biot_savart_kernels as k  # deferred: numba only when already loaded or the lattice is large
 
         return k._normalwash, k._velocity
-    from . import biot_savart_numpy as k
-
-    return k.normalwash, k.velocity
+    return biot_savart_numpy.normalwash, biot_savart_numpy.velocity
 
 
 def horseshoe_velocity(

@@ -20,6 +20,8 @@ import numpy as np
 
 from certkit.models.aero.interface import AeroReference
 
+from .cubic_spline import NotAKnotSpline
+
 
 class GeometryError(ValueError):
     """Degenerate or inconsistent lattice geometry; the message names the surface and section."""
@@ -112,8 +114,6 @@ class CamberLine:
 
     @cached_property
     def _spline(self):
-        from .cubic_spline import NotAKnotSpline
-
         return NotAKnotSpline(self.x, self.z)
 
     @classmethod
@@ -139,7 +139,7 @@ class CamberLine:
         surface, leading edge, lower surface, trailing edge), as AVL/XFOIL's GETCAM: the contour is
         splined in arc length, each point is paired with the point of equal x on the other side, the
         camber is their mean, measured from the leading-edge (minimum x) height."""
-        from scipy.interpolate import CubicSpline
+        from scipy.interpolate import CubicSpline  # deferred: scipy only for airfoil files: an .avl run loads no scipy
 
         x = np.asarray(x, float)
         z = np.asarray(z, float)

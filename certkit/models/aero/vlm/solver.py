@@ -307,7 +307,7 @@ class VortexLattice:
 
     def _raise_singular(self, matrix: np.ndarray, index: np.ndarray | None):
         """Name the vortex at the smallest pivot of the LU factors of a singular (sub)system."""
-        import scipy.linalg  # the rare path only: its import costs more than a `certkit derivatives` run
+        import scipy.linalg  # deferred: scipy.linalg only for a singular lattice: its import outlasts a derivatives run
 
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)  # an exactly zero pivot: named below
