@@ -21,7 +21,6 @@ cached kernels when it changes; numba then compiles them once more.
 from __future__ import annotations
 
 import hashlib
-import os
 from pathlib import Path
 from typing import Any
 
@@ -101,19 +100,6 @@ def copy_row(destination, source):  # type: ignore[no-untyped-def]
     """``destination[:] = source`` for two 1-D arrays of the same length, element by element."""
     for k in range(source.shape[0]):
         destination[k] = source[k]
-
-
-def kernels_cached() -> bool:
-    """Does numba's cache hold the compiled equations of motion (False at the first run after an install, when the
-    kernels are compiled: the command says so before it goes quiet for a while)?"""
-    from certkit.models.dynamics import kernel  # deferred: cycle: certkit.models.dynamics.kernel imports this module
-
-    try:
-        dispatcher: Any = kernel.derivatives
-        index = dispatcher._cache._cache_file._index_path  # numba's cache layout, not a public API
-    except AttributeError:
-        return True  # another numba: say nothing rather than guess
-    return os.path.exists(index)
 
 
 refresh_stale_kernels()

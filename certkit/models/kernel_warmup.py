@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import importlib
 import multiprocessing
+import os
 import sys
 import time
 from collections.abc import Callable, Iterable
@@ -110,19 +111,35 @@ def compile_kernels(processes: int, entries: list[Entry] | None = None, context:
     entries = listed_signatures() if entries is None else entries
     if processes < 2 or not entries:
         return 0.0
+    from certkit.models import compiled  # deferred: numba only where kernels compile (study commands)
+
     start = time.perf_counter()
+    # the stale-kernel refresh once, here, before the workers write into the cache: a worker that ran it first would
+    # find no digest beside a fresh cache and remove what the other had just compiled
+    compiled.refresh_stale_kernels()
     parts = groups(entries, processes)
     with ProcessPoolExecutor(len(parts), mp_context=multiprocessing.get_context(context)) as pool:
         list(pool.map(compile_group, parts))
     return time.perf_counter() - start
 
 
-def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[], None] | None = None) -> float | None:
-    """At the first run after an install (numba's cache cold: :func:`certkit.models.compiled.kernels_cached`), call
-    ``starting`` (e.g. to say so) and :func:`compile_kernels`; its seconds, or None when the kernels are cached."""
-    from certkit.models import compiled  # deferred: numba only where kernels compile (study commands import this)
+def kernels_cached() -> bool:
+    """Does numba's cache hold the compiled equations of motion (False at the first run after an install, when the
+    kernels are compiled: the command says so before it goes quiet for a while)?"""
+    from certkit.models.dynamics import kernel  # deferred: numba only where kernels compile (study commands)
 
-    if compiled.kernels_cached():
+    try:
+        dispatcher: Any = kernel.derivatives
+        index = dispatcher._cache._cache_file._index_path  # numba's cache layout, not a public API
+    except AttributeError:
+        return True  # another numba: say nothing rather than guess
+    return os.path.exists(index)
+
+
+def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[], None] | None = None) -> float | None:
+    """At the first run after an install (numba's cache cold: :func:`kernels_cached`), call ``starting`` (e.g. to say
+    so) and :func:`compile_kernels`; its seconds, or None when the kernels are cached."""
+    if kernels_cached():
         return None
     if starting is not None:
         starting()
@@ -132,6 +149,7 @@ def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[]
 __all__ = [
     "SIGNATURES_FILE",
     "compile_if_cold",
+    "kernels_cached",
     "argument_types",
     "compile_group",
     "compile_kernels",

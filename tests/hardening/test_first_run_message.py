@@ -13,7 +13,7 @@ from ..conftest import ROOT
 
 def test_an_empty_kernel_cache_is_seen_as_cold(tmp_path):
     probe = subprocess.run(
-        [sys.executable, "-c", "from certkit.models.compiled import kernels_cached; print(kernels_cached())"],
+        [sys.executable, "-c", "from certkit.models.kernel_warmup import kernels_cached; print(kernels_cached())"],
         capture_output=True,
         text=True,
         env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)},
@@ -22,7 +22,7 @@ def test_an_empty_kernel_cache_is_seen_as_cold(tmp_path):
 
 
 def test_a_cold_kernel_cache_is_announced(tmp_path, monkeypatch):
-    monkeypatch.setattr("certkit.models.compiled.kernels_cached", lambda: False)
+    monkeypatch.setattr("certkit.models.kernel_warmup.kernels_cached", lambda: False)
     args = ["check", str(ROOT / "aircraft" / "lta.yaml"), "--select", "25.335(a)", "--out", str(tmp_path / "out")]
     announced = CliRunner().invoke(main, args)
     assert "compiling certkit's numba kernels" in announced.output
