@@ -22,7 +22,6 @@ from certkit_rules.part25.support.minimum_control import (
     VMCL_CONDITIONS,
     condition_vmca,
     vmca_rows,
-    vmcl_rows,
 )
 
 from certkit.atmosphere import convert_speed
@@ -121,7 +120,7 @@ class MinimumControlSpeed(Rule):
         return out
 
     def _vmcl_of(self, ctx, conds, crit, check, nb):
-        rows = vmcl_rows(ctx, conds, crit)
+        rows = vmca_rows(ctx, conds, crit)  # the same search, at VMCL's conditions
         out = []
         for k, cond in enumerate(conds):
             pair = range(nb * k, nb * k + nb)

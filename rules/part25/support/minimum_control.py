@@ -98,11 +98,6 @@ VMCL_CONDITIONS = ConditionSpace(
 )
 
 
-def vmcl_rows(ctx, conditions, crit):
-    """The VMCL search of ``conditions`` (:data:`VMCL_CONDITIONS`) with the VMCA criteria."""
-    return vmca_rows(ctx, conditions, crit)
-
-
 def computed_vmcl(ctx, configuration: str = "landing"):
     """(VMCL in m/s CAS, how it is limited) of ``configuration`` as §25.149 computes it with its criteria: the highest
     over the inoperative engines at the aft CG and MLW; None when the configuration or MLW is not declared, or when a
@@ -111,7 +106,7 @@ def computed_vmcl(ctx, configuration: str = "landing"):
         return None
     crit, _ = criteria_for(SimpleNamespace(id=VMCA_RULE_ID, criteria=VMCA_CRITERIA), ctx)
     conds = [c for c in VMCL_CONDITIONS.expand(ctx.aircraft) if c.configuration == configuration]
-    rows = vmcl_rows(ctx, conds, crit)
+    rows = vmca_rows(ctx, conds, crit)
     found = [condition_vmca(rows, k, crit) for k in range(len(conds))]
     if any(rows["limited_by"][j] == "trim failure" for j in range(len(rows["limited_by"]))):
         return None
