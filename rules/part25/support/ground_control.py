@@ -19,8 +19,7 @@ from types import SimpleNamespace
 
 import numpy as np
 from certkit_rules.part25.support.structural_checks import force_limited_deflection
-from certkit_rules.part25.support.takeoff import takeoff_trim
-from certkit_rules.part25.support.thrust_trims import critical_engine
+from certkit_rules.part25.support.thrust_trims import critical_engine, takeoff_trim
 
 from certkit.atmosphere import RHO0, convert_speed
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace

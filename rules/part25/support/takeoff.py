@@ -30,7 +30,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from certkit_rules.part25.support.thrust_trims import critical_engine
+from certkit_rules.part25.support.ground_control import computed_vmcg
+from certkit_rules.part25.support.thrust_trims import critical_engine, takeoff_trim
 
 from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
@@ -139,19 +140,6 @@ REPRESENTATIVE_CRITERIA = {
 }
 
 
-def takeoff_trim(ctx, conditions):
-    """The 1-g trims at V2, sea level, of ``conditions`` (takeoff configuration) and the aerodynamic controls they set
-    besides the pilot's (e.g. a movable stabiliser), held at those values through a takeoff run: control → (n,)."""
-    sp = ctx.aircraft.speeds
-    at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
-    trims = ctx.trim(at_v2)
-    pilot = {"elevator", "aileron", "rudder"}
-    names = sorted(
-        {k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot)
-    )
-    return trims, {k: np.array([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results]) for k in names}
-
-
 @dataclass
 class Takeoffs:
     trims: object  # 1-g trims at V2 (one per loading)
@@ -190,10 +178,6 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         vef, vef_basis = engine_failure_speed(
             model, tas(sp.V1), engine, crit.recognition_time, ac.propulsion.failure_decay_time
         )
-        from certkit_rules.part25.support.ground_control import (  # deferred: cycle: ground_control imports this module
-            computed_vmcg,
-        )
-
         vmcg, _, _ = computed_vmcg(ctx)  # the failure is never scheduled below VMCG (§25.107(a)(1))
         if vmcg is not None and np.isfinite(vmcg):
             low = vef < float(convert_speed(vmcg, "CAS", "TAS", 0.0))

@@ -5,7 +5,8 @@ that thrust gives (the energy relation sin γ = (T − D)/W of Anderson, *Aircra
 eq. 5.12, the trim solving the flight-path angle at the throttle that gives the thrust) and the steady climb at a
 thrust with the critical engine
 inoperative (the flight-path angle solved by the trim), and the weight at which that climb has a given gradient
-(the WAT limit weight search of §25.121).
+(the WAT limit weight search of §25.121); and the 1-g takeoff trim at V2 whose aerodynamic settings (a movable
+stabiliser) a takeoff run holds (§25.107, §25.111, §25.149(e)).
 """
 
 from __future__ import annotations
@@ -184,3 +185,16 @@ def wat_limit_search(
         estimate = weight_for_gradient(info["weight"], info["available"], grads, required) / G0
     estimate = np.where(np.isfinite(estimate) & (estimate > 0.0), estimate, 0.0)
     return [(c, float(g), r, float(e)) for c, g, r, e in zip(cur, grads, batch.results, estimate)]
+
+
+def takeoff_trim(ctx, conditions):
+    """The 1-g trims at V2, sea level, of ``conditions`` (takeoff configuration) and the aerodynamic controls they set
+    besides the pilot's (e.g. a movable stabiliser), held at those values through a takeoff run: control → (n,)."""
+    sp = ctx.aircraft.speeds
+    at_v2 = [c.with_(altitude=0.0, speed=sp.V2.value, speed_kind=sp.V2.kind, speed_name="V2") for c in conditions]
+    trims = ctx.trim(at_v2)
+    pilot = {"elevator", "aileron", "rudder"}
+    names = sorted(
+        {k for r in trims.results for k in r.controls} & (set(ctx.aero("takeoff").model.control_names) - pilot)
+    )
+    return trims, {k: np.array([r.controls.get(k, 0.0) if r.converged else 0.0 for r in trims.results]) for k in names}
