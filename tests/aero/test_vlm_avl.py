@@ -225,3 +225,80 @@ def test_dermats_reader_sanity():
     st = read_dermats(STOCK)
     assert st["CLa"] == pytest.approx(7.299206, abs=1e-6)
     assert re.match(r"^[0-9.]+$", f"{st['Xnp']:.3f}")
+
+
+#: the lateral derivatives whose change with the lift coefficient the flight model carries (stability axes)
+LIFT_DEPENDENT = {
+    "Cl_beta": "dCl'/dbeta",
+    "Cn_beta": "dCn'/dbeta",
+    "Cl_p": "dCl'/dp'",
+    "Cn_p": "dCn'/dp'",
+    "Cl_r": "dCl'/dr'",
+    "Cn_r": "dCn'/dr'",
+}
+
+
+def test_lift_dependence_of_lateral_derivatives_vs_optvl(tmp_path):
+    """Reference: optvl 2.5.0 (AVL 3.52) on our transport at Mach 0.6, α = 0° and 6°. The change of Cl_β, Cn_β,
+    Cl_p, Cn_p, Cl_r, Cn_r per unit lift coefficient between the two (what the flight model's ``<name>_CL`` slopes
+    carry, :func:`certkit.models.aero.airplane.lattice_derivatives`) within 5 % or 0.005 absolute; Cn_p's and Cl_r's
+    slopes are the large ones (the tilt of the lift in a roll, the lift's asymmetry in a yaw: Etkin & Reid §5.4)."""
+    optvl = pytest.importorskip("optvl")
+    cfg = transport(mach=0.6)
+    path = write_avl(cfg, tmp_path / "transport.avl")
+    vl = VortexLattice(cfg)
+    solver = optvl.OVLSolver(geo_file=str(path))
+    solver.set_parameter("Mach", 0.6)
+    ours, theirs = [], []
+    for alpha_deg in (0.0, 6.0):
+        ours.append(vl.stability_derivatives(alpha=math.radians(alpha_deg)))
+        solver.set_constraint("alpha", "alpha", alpha_deg)
+        solver.execute_run()
+        theirs.append((solver.get_stab_derivs(), solver.get_total_forces()["CL"]))
+    d_cl_ours = ours[1].solution.CL - ours[0].solution.CL
+    d_cl_avl = theirs[1][1] - theirs[0][1]
+    assert d_cl_ours == pytest.approx(d_cl_avl, rel=1e-3)
+    for name, key in LIFT_DEPENDENT.items():
+        slope_ours = (ours[1][name] - ours[0][name]) / d_cl_ours
+        slope_avl = (theirs[1][0][key] - theirs[0][0][key]) / d_cl_avl
+        assert within(slope_ours, slope_avl, absolute=0.005), (name, slope_ours, slope_avl)
+    assert abs((theirs[1][0]["dCn'/dp'"] - theirs[0][0]["dCn'/dp'"]) / d_cl_avl) > 0.05  # a real lift dependence
+
+
+def test_control_in_two_segments_vs_optvl(tmp_path):
+    """Reference: optvl 2.5.0 (AVL 3.52). A roll control in two segments of one name — an outboard aileron and an
+    inboard flaperon moving 0.6 × as far, a gap of plain wing between them — written to an .avl file (each
+    segment's CONTROL lines on its own sections) at Mach 0.3, α = 4°: the control's derivatives within 5 % or
+    0.02 absolute per radian; and the gap does not move (the two-segment Cl_δ equals the sum of the segments'
+    alone within 1e-9 on the same sections: the lattice is linear in the deflections)."""
+    optvl = pytest.importorskip("optvl")
+    wing = dict(
+        area=124.6,
+        aspect_ratio=9.45,
+        taper=0.24,
+        sweep_quarter_chord=math.radians(25.0),
+        dihedral=math.radians(5.0),
+        camber="24",
+        n_chord=8,
+        n_span=24,
+    )
+    from certkit.models.aero.interface import AeroReference
+    from certkit.models.aero.vlm import Configuration, ControlSpan, trapezoidal_surface
+
+    def config(spans):
+        surface = trapezoidal_surface("wing", controls=spans, section_etas=(0.30, 0.38, 0.58, 0.78, 0.98), **wing)
+        return Configuration([surface], AeroReference(124.6, math.sqrt(124.6 * 9.45), 4.17, 3.0), name="wing", mach=0.3)
+
+    both = [ControlSpan("aileron", 0.78, 0.98, 0.17), ControlSpan("aileron", 0.30, 0.38, 0.25, gain=0.6)]
+    alpha = math.radians(4.0)
+    ours = VortexLattice(config(both)).stability_derivatives(alpha=alpha)
+    parts = [VortexLattice(config([span])).stability_derivatives(alpha=alpha) for span in both]
+    assert ours["Cl_delta_aileron"] == pytest.approx(sum(p["Cl_delta_aileron"] for p in parts), rel=1e-9)
+    path = write_avl(config(both), tmp_path / "two_segments.avl")
+    solver = optvl.OVLSolver(geo_file=str(path))
+    solver.set_parameter("Mach", 0.3)
+    solver.set_constraint("alpha", "alpha", 4.0)
+    solver.execute_run()
+    controls = solver.get_control_stab_derivs()
+    for coef, (_, key) in CONTROL_COEFFICIENTS.items():
+        assert within(ours[f"{coef}_delta_aileron"], controls[f"d{key}/daileron"] * 180 / math.pi), coef

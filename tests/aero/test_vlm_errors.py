@@ -225,3 +225,33 @@ def test_control_edge_closer_to_the_tip_than_one_strip():
     near, full, short = cl_delta(0.9987), cl_delta(1.0), cl_delta(0.98)
     assert near == pytest.approx(full, rel=0.01)
     assert short < near and short < full
+
+
+def test_control_in_two_segments_leaves_the_gap_undeflected():
+    """A control in two segments of one name (an outboard aileron and an inboard flaperon): a control acts between
+    two sections that both carry it, so a section without it sits in the gap; every interval between carrying
+    sections lies within a segment."""
+    spans = [ControlSpan("aileron", 0.78, 0.98, 0.17), ControlSpan("aileron", 0.30, 0.38, 0.25, gain=0.6)]
+    wing = trapezoidal_surface("wing", area=100.0, aspect_ratio=9.0, taper=0.3, controls=spans)
+    semi = math.sqrt(900.0) / 2.0
+    y = [s.leading_edge[1] / semi for s in wing.sections]
+    carries = [any(c.name == "aileron" for c in s.controls) for s in wing.sections]
+    for k in range(len(y) - 1):
+        if carries[k] and carries[k + 1]:
+            assert any(c.eta_inboard - 1e-9 <= y[k] and y[k + 1] <= c.eta_outboard + 1e-9 for c in spans), (
+                y[k],
+                y[k + 1],
+            )
+    assert any(0.38 < e < 0.78 and not c for e, c in zip(y, carries))
+
+
+@pytest.mark.parametrize(
+    "spans, fragment",
+    [
+        ([("aileron", 0.3, 0.5, 0.2), ("aileron", 0.4, 0.9, 0.2)], "overlapping segments"),
+        ([("aileron", 0.3, 0.5, 0.2), ("aileron", 0.5, 0.9, 0.3)], "abutting segments"),
+    ],
+)
+def test_control_segments_that_cannot_be_represented(spans, fragment):
+    with pytest.raises(GeometryError, match=fragment):
+        trapezoidal_surface("wing", area=100.0, aspect_ratio=9.0, taper=0.3, controls=[ControlSpan(*s) for s in spans])

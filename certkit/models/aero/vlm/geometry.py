@@ -326,7 +326,9 @@ class ControlSpan:
     """A control on a trapezoidal surface: spanwise extent as fractions of the semi-span (or fin
     height), ``chord_ratio`` = control chord / local chord. Sign follows :mod:`certkit.conventions`
     (Etkin): elevator and flap trailing edge down, aileron right trailing edge down, rudder trailing
-    edge left, when ``kind`` is left to be inferred from the name; ``gain`` scales it."""
+    edge left, when ``kind`` is left to be inferred from the name; ``gain`` scales it. Several spans of one name
+    are the segments of one control (e.g. an outboard aileron and an inboard flaperon on the roll command), each
+    moving ``gain`` × the control's deflection."""
 
     name: str
     eta_inboard: float
@@ -346,6 +348,33 @@ def _control_kind(spec: ControlSpan) -> str:
     if "rudder" in name:
         return "rudder"
     return "symmetric"
+
+
+def _segment_gaps(where: str, controls: Sequence[ControlSpan]) -> list[float]:
+    """A control of several spans (one name: the segments move together, each with its gain, as AVL's CONTROL
+    lines on several sections): the span fractions of a section in the middle of each gap between its segments,
+    which carries no part of it, so that the gap does not deflect (a control acts between two sections that
+    both carry it). Overlapping segments of one name are refused."""
+    out = []
+    by_name: dict[str, list[ControlSpan]] = {}
+    for c in controls:
+        by_name.setdefault(c.name, []).append(c)
+    for name, spans in by_name.items():
+        spans = sorted(spans, key=lambda c: c.eta_inboard)
+        for a, b in zip(spans, spans[1:]):
+            if b.eta_inboard < a.eta_outboard - 1e-12:
+                raise GeometryError(
+                    f"{where}: control {name!r} has overlapping segments ({a.eta_inboard}–{a.eta_outboard} and "
+                    f"{b.eta_inboard}–{b.eta_outboard})"
+                )
+            if b.eta_inboard > a.eta_outboard + 1e-12:
+                out.append(0.5 * (a.eta_outboard + b.eta_inboard))
+            elif (a.chord_ratio, a.gain) != (b.chord_ratio, b.gain):
+                raise GeometryError(
+                    f"{where}: control {name!r} has abutting segments at {a.eta_outboard} with different chord ratios "
+                    "or gains: one section cannot carry both (leave a gap between them)"
+                )
+    return out
 
 
 def trapezoidal_surface(
@@ -402,9 +431,14 @@ def trapezoidal_surface(
         if not 0.0 < c.chord_ratio <= 1.0:  # 1: the whole chord turns (an all-moving surface's incidence)
             raise GeometryError(f"{where}: control {c.name!r} chord ratio {c.chord_ratio} must be in (0, 1]")
         etas.update((c.eta_inboard, c.eta_outboard))
+    etas.update(_segment_gaps(where, controls))
     x0, y0, z0 = root_leading_edge
     sections: list[Section] = []
-    for eta in sorted(etas):
+    stations: list[float] = []
+    for eta in sorted(etas):  # one section per station: edges given twice within round-off are one
+        if not stations or eta > stations[-1] + 1e-9:
+            stations.append(eta)
+    for eta in stations:
         chord = c_root * (1.0 - (1.0 - taper) * eta)
         s = eta * semi
         x_le = x0 + s * tan_c4 + 0.25 * (c_root - chord)
@@ -413,8 +447,10 @@ def trapezoidal_surface(
         else:
             le = (x_le, y0 + s, z0 + s * math.tan(dihedral))
         sec_controls = []
+        named: set[str] = set()
         for c in controls:
-            if c.eta_inboard - 1e-12 <= eta <= c.eta_outboard + 1e-12:
+            if c.eta_inboard - 1e-12 <= eta <= c.eta_outboard + 1e-12 and c.name not in named:
+                named.add(c.name)
                 kind = _control_kind(c)
                 if kind == "antisymmetric":  # right trailing edge down positive, left up
                     sec_controls.append(ControlSurface(c.name, 1.0 - c.chord_ratio, c.gain, duplicate_sign=-1.0))
