@@ -82,6 +82,24 @@ class Limits(_Section):
         return self
 
 
+class ControlSegment(_Section):
+    """A further span of trailing-edge surface moving with a control, ``gain`` × its deflection (the same sign
+    convention): e.g. an inboard flaperon driven by the roll command with the outboard aileron."""
+
+    name: str = Field(min_length=1, description="what the segment is, e.g. 'flaperon'")
+    span_start: Fraction
+    span_end: Fraction
+    chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
+    gain: Annotated[float, Field(gt=0.0, le=2.0)] = 1.0
+    source: str | None = None
+
+    @model_validator(mode="after")
+    def _consistent(self):
+        if self.span_end <= self.span_start:
+            raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
+        return self
+
+
 class ControlSurface(_Section):
     """A trailing-edge control surface on a lifting surface.
 
@@ -97,11 +115,24 @@ class ControlSurface(_Section):
     chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
     travel: Limits
     design_limits: Limits | None = None
+    #: further spans moving with this control (each ``gain`` × its deflection); travel and limits are this
+    #: control's, the command's
+    segments: list[ControlSegment] = Field(default_factory=list)
 
     @model_validator(mode="after")
     def _consistent(self):
         if self.span_end <= self.span_start:
             raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
+        spans = sorted(
+            [("the control", self.span_start, self.span_end)]
+            + [(f"segment {s.name!r}", s.span_start, s.span_end) for s in self.segments],
+            key=lambda r: r[1],
+        )
+        for (a, _, a_end), (b, b_start, _) in zip(spans, spans[1:]):
+            if b_start <= a_end:
+                raise ValueError(
+                    f"{b} (from {b_start}) overlaps or abuts {a} (to {a_end}): segments of one control need a gap"
+                )
         d, t = self.design_limits, self.travel
         if d is not None and (d.min < t.min - 1e-12 or d.max > t.max + 1e-12):
             deg = 180.0 / math.pi

@@ -173,3 +173,26 @@ def test_the_lattice_reaches_the_declared_md(clean, baseline):
     for md, expected in ((0.90, DEFAULT_MACHS), (MAX_MACH_BREAKPOINT + 0.02, DEFAULT_MACHS)):
         changed = ac.model_copy(update={"speeds": ac.speeds.model_copy(update={"MD": md})})
         assert mach_breakpoints(changed) == expected
+
+
+def test_a_control_segment_moves_with_its_control(tmp_path):
+    """A flaperon declared as a segment of the aileron (``segments:``) adds roll power in proportion to its gain: the
+    lattice is linear in the deflections, so on one mesh (gains 0.5, 1.0, 1.5) Cl_δa changes by equal steps
+    (1e-6), and the segment adds to the aileron's own roll power (same sign, more than 5 %)."""
+    limits = "        design_limits: {min: -25 deg, max: 25 deg}  # estimate: 5 deg short of travel"
+
+    def cl_aileron(gain):
+        text = BASELINE.read_text()
+        if gain:
+            segment = (
+                "\n        segments: [{name: flaperon, span_start: 0.30, span_end: 0.38, chord_ratio: 0.25, "
+                f"gain: {gain}}}]"
+            )
+            text = text.replace(limits, limits + segment)
+        f = tmp_path / f"seg{gain}.yaml"
+        f.write_text(text)
+        return float(Context(load_aircraft(f)).aero("clean").model.derivative("Cl_aileron", 0.5))
+
+    alone, half, full, more = cl_aileron(0), cl_aileron(0.5), cl_aileron(1.0), cl_aileron(1.5)
+    assert (more - full) == pytest.approx(full - half, rel=1e-6)
+    assert (full - alone) / alone > 0.05

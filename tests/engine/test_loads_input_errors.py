@@ -55,3 +55,17 @@ def test_side_of_body_outside_a_small_tail(cli, tmp_path):
     out = cli("check", path, "--select", "25.337", "--out", tmp_path / "rep")
     assert out.exit_code == 2
     assert "structure.horizontal_tail." in out.output and "outside the horizontal tail semispan" in out.output
+
+
+AILERON_LIMITS = "        design_limits: {min: -25 deg, max: 25 deg}  # estimate: 5 deg short of travel"
+
+
+def test_overlapping_control_segments(cli, tmp_path):
+    """A flaperon segment declared over the aileron's own span: one problem naming the control's YAML path and both
+    spans, exit 2, no traceback."""
+    segment = "\n        segments: [{name: flaperon, span_start: 0.70, span_end: 0.80, chord_ratio: 0.25, gain: 0.6}]"
+    path, lines = _edited(tmp_path, [(AILERON_LIMITS, AILERON_LIMITS + segment)])
+    out = cli("check", path, "--select", "25.337", "--out", tmp_path / "rep")
+    assert out.exit_code == 2 and "Traceback" not in out.output
+    problem = next(line for line in out.output.splitlines() if "controls.aileron" in line)
+    assert "the control (from 0.78) overlaps or abuts segment 'flaperon' (to 0.8)" in problem

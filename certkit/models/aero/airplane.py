@@ -127,7 +127,12 @@ def _surface(
     """A lattice surface from an aircraft-file lifting surface, with its controls (or only ``controls``, a list of
     :class:`ControlSpan`), ``extra_controls`` after them, and tip twist."""
     if controls is None:
-        controls = [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio) for cname, c in s.controls.items()]
+        controls = [
+            span
+            for cname, c in s.controls.items()
+            for span in [ControlSpan(cname, c.span_start, c.span_end, c.chord_ratio)]
+            + [ControlSpan(cname, g.span_start, g.span_end, g.chord_ratio, gain=g.gain) for g in c.segments]
+        ]
         if s.stabilizer is not None and not vertical:
             # a movable stabiliser: the whole chord turns about the lateral (pitch) axis, i.e. a change of the tail's
             # incidence from its declared datum (the control's deflection δs = i_h − incidence)
