@@ -131,7 +131,6 @@ def test_root_torsion_of_a_uniform_incidence_change(setup, surface, unit):
     The strip model once scaled the whole X from the nose by a force-per-circulation ratio read from another
     input's solution: the tailplane's root torsion per unit stabiliser came out +285 kN·m per unit q̄ instead of
     about −500."""
-    from certkit.models.aero.airplane import loads_lattice
     from certkit.models.loads.model import _strip_indices
 
     ctx, loads = setup
@@ -140,7 +139,7 @@ def test_root_torsion_of_a_uniform_incidence_change(setup, surface, unit):
     assert s.station_span[0] == 0.0
     x_axis_root = np.interp(0.0, s.strip_span, s.strip_x)
     for m, mach in enumerate(s.mach[:4]):
-        vl = loads_lattice(ctx.aircraft, float(mach))
+        vl = ctx.aero("clean").lattice.at_mach(float(mach))
         lat = vl.lattice
         idx = _strip_indices(lat, surface)
         if m == 0:

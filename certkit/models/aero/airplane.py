@@ -65,8 +65,9 @@ DESIGN_CL = 0.5
 #: calibrated airspeed of the climb schedule that fixes the Reynolds number at each Mach breakpoint
 SCHEDULE_CAS = 300 * 1852 / 3600
 COEFFICIENTS = ("CL", "CD", "CY", "Cl", "Cm", "Cn")
-#: the wing's flap as a lattice control, in the lattices of :func:`downwash_configurations` and :func:`loads_lattice`
-#: only (the flight model's flap increments are the configuration's, :func:`_high_lift`)
+#: the wing's flap as a lattice control, in the airplane's lattice (:func:`lattice_derivatives`, shared with the strip
+#: loads) and :func:`downwash_configurations`' (the flight model's flap increments are the configuration's,
+#: :func:`_high_lift`: the flap is not a control of the flight model)
 FLAP_CONTROL = "flap"
 #: the lattice's tail lift and moment increments per unit flap lift increment of the wing (not model terms)
 FLAP_TAIL_TERMS = ("tail_CL_per_flap_CL", "tail_Cm_per_flap_CL")
@@ -189,7 +190,8 @@ def lattice_configuration(aircraft, name: str = "", flap: bool = False) -> Latti
     """Wing (component 1), horizontal tail and fin (component 2) as a lattice configuration; each
     surface reaches the fuselage axis (wing and tailplane through the plane of symmetry, the fin
     down to z = 0 by :func:`with_carry_through`). ``flap``: the wing's trailing-edge flap (when declared) as one
-    more control, :data:`FLAP_CONTROL` (the strip loads' lattice, :func:`loads_lattice`)."""
+    more control, :data:`FLAP_CONTROL` (the lattice of :func:`lattice_derivatives`, whose flap unit solution the strip
+    loads use)."""
     g = aircraft.geometry
     if g is None:
         raise ValueError("the vortex lattice needs the geometry section (or declare aerodynamics.derivative_tables)")
@@ -228,14 +230,10 @@ def downwash_configurations(aircraft) -> tuple[LatticeConfiguration, LatticeConf
     )
 
 
-def loads_lattice(aircraft, mach: float) -> VortexLattice | None:
-    """The lattice of the strip loads model: the flight model's (:func:`lattice_configuration`) with the wing's flap as
-    the control :data:`FLAP_CONTROL`, whose unit solution spreads the configuration's flap lift on the wing's strips
-    and gives the change of downwash on the tail's; None for a wing without a declared flap (the flight model's
-    lattice serves)."""
-    if aircraft.geometry is None or aircraft.geometry.wing.flaps is None:
-        return None
-    return VortexLattice(lattice_configuration(aircraft, "strip loads", flap=True), mach=mach)
+def flight_controls(vl: VortexLattice) -> tuple[str, ...]:
+    """The lattice's controls that are the flight model's: all but the wing's flap (:data:`FLAP_CONTROL`), whose unit
+    solution only the strip loads use."""
+    return tuple(c for c in vl.control_names if c != FLAP_CONTROL)
 
 
 @dataclass
@@ -268,7 +266,10 @@ def lattice_derivatives(aircraft: Any, machs: Sequence[float] | None = None) -> 
     tail there (:data:`FREE_AIR_DOWNWASH`, a :class:`~certkit.models.aero.tail_downwash.FreeAirDownwash`)
     (:mod:`certkit.models.aero.tail_downwash`)."""
     machs = mach_breakpoints(aircraft) if machs is None else machs
-    vl = VortexLattice(lattice_configuration(aircraft), mach=machs[0])
+    # one lattice for the flight model and the strip loads: the wing's flap is a control of it (the loads spread the
+    # configurations' flap lift with its unit solution), not a control of the flight model (the configurations'
+    # flap increments are :func:`_high_lift`'s)
+    vl = VortexLattice(lattice_configuration(aircraft, flap=True), mach=machs[0])
     on, alone = downwash_configurations(aircraft)
     wing_tail, tail = VortexLattice(on, mach=machs[0]), VortexLattice(alone, mach=machs[0])
     free_air = free_air_downwash(wing_tail, tail)
@@ -287,7 +288,7 @@ def lattice_derivatives(aircraft: Any, machs: Sequence[float] | None = None) -> 
         lag = downwash_lag(gradient_low * wing_slope[-1] / wing_slope[0], lat, tail.at_mach(m))
         table.setdefault("CL_alphadot", []).append(lag.CL_alphadot)
         table.setdefault("Cm_alphadot", []).append(lag.Cm_alphadot)
-        for cname in lat.control_names:
+        for cname in flight_controls(lat):
             for coef in COEFFICIENTS:
                 table.setdefault(f"{coef}_{cname}", []).append(d[f"{coef}_delta_{cname}"])
         table.setdefault("CL0", []).append(sol.CL)
@@ -373,7 +374,7 @@ def build_airplane_aero(
         )
     else:
         table, xnp, e, vl = lattice if lattice is not None else lattice_derivatives(aircraft, machs)
-        controls = vl.control_names
+        controls = flight_controls(vl)
         free_air = table.get(FREE_AIR_DOWNWASH)
         table = {k: list(v) for k, v in table.items() if k != FREE_AIR_DOWNWASH}
         flap_tail = [table.pop(k, None) for k in FLAP_TAIL_TERMS]

@@ -41,7 +41,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from certkit.models.aero.airplane import loads_lattice
 from certkit.models.loads.fuel import wing_tank_shares
 from certkit.units import G0
 
@@ -526,7 +525,8 @@ def build_airplane_loads(
 
 def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
     """The memoised loads model of ``configuration`` (needs the vortex lattice: geometry declared), on the lattice of
-    :func:`certkit.models.aero.airplane.loads_lattice` (its ``flap`` input spreads a configuration's flap lift)."""
+    :func:`certkit.models.aero.airplane.lattice_derivatives` (its ``flap`` control spreads a configuration's
+    flap lift)."""
 
     def build():
         aero = ctx.aero(configuration)
@@ -535,12 +535,9 @@ def airplane_loads(ctx, configuration: str = "clean") -> AirplaneLoads:
                 f"configuration {configuration!r} uses declared derivative tables: the strip loads "
                 "model needs the geometry's vortex lattice"
             )
-        # the lattice (the flight model's with the wing's flap as a control) and its unit solutions belong to the
-        # flight model's lattice: kept under "aero" keys, a Context that shares the aerodynamics (the sizing loop's
-        # next airplane, same geometry) shares them too
-        key = (configuration, id(aero.lattice))
-        lattice = ctx.memo(("aero", "loads lattice", *key), lambda: loads_lattice(ctx.aircraft, aero.mach[0]))
-        solutions = ctx.memo(("aero", "loads unit solutions", *key), dict)
-        return build_airplane_loads(ctx.aircraft, lattice or aero.lattice, aero.mach, solutions=solutions)
+        # the flight model's lattice (the wing's flap one of its controls) and its unit solutions: kept under "aero"
+        # keys, a Context that shares the aerodynamics (the sizing loop's next airplane, same geometry) shares them too
+        solutions = ctx.memo(("aero", "loads unit solutions", configuration, id(aero.lattice)), dict)
+        return build_airplane_loads(ctx.aircraft, aero.lattice, aero.mach, solutions=solutions)
 
     return ctx.memo(("airplane_loads", configuration), build)
