@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from typing import Annotated, Literal
 
+import numpy as np
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
 
 from certkit.aircraft import derivative_names
@@ -609,6 +610,27 @@ class TailFlapIncrement(_Section):
     source: str = Field(description="where the increments come from")
 
 
+class LiftLimitByMach(_Section):
+    """The maximum lift coefficient (trimmed, 1 g) against Mach number: the stall lines of the manoeuvring envelope
+    and the airplane model's stall at each Mach number (linear between the entries, held beyond them)."""
+
+    mach: list[Annotated[float, Field(ge=0.0, lt=1.0)]] = Field(min_length=2)
+    CLmax: list[Annotated[float, Field(gt=0.0, lt=5.0)]] = Field(min_length=2)
+    source: str = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _table(self):
+        if len(self.mach) != len(self.CLmax):
+            raise ValueError(f"{len(self.mach)} Mach numbers but {len(self.CLmax)} CLmax values: one per Mach number")
+        if any(b <= a for a, b in zip(self.mach, self.mach[1:])):
+            raise ValueError(f"mach {self.mach} must increase strictly")
+        return self
+
+    def at(self, mach):
+        """CLmax at ``mach`` (scalar or array), linear between the entries and held beyond them."""
+        return np.interp(mach, self.mach, self.CLmax)
+
+
 class Configuration(_Section):
     flap: Annotated[
         Angle, Field(ge=0.0, le=math.radians(70.0), description="flap deflection, 0 (retracted) to 70 deg")
@@ -619,6 +641,11 @@ class Configuration(_Section):
     gear: Literal["up", "down"] = "up"
     CLmax: Annotated[float, Field(gt=0.0, lt=5.0)] | None = Field(
         None, description="trimmed 1-g maximum lift coefficient"
+    )
+    CLmax_by_mach: LiftLimitByMach | None = Field(
+        None,
+        description="CLmax against Mach number (its value at the lowest Mach, at most 0.3, within 2 % of CLmax, "
+        "the low-speed value of the stall speeds); without it CLmax holds at every Mach number",
     )
     CLmin: Annotated[float, Field(lt=0.0, gt=-5.0)] | None = Field(None, description="negative stall lift coefficient")
     delta_CL0: float = Field(0.0, description="tail-off (wing-body) lift increment of the high-lift devices")
@@ -637,6 +664,28 @@ class Configuration(_Section):
         None, description="stall-warning onset (§25.207); without it the rules use the latest warning §25.207(c) allows"
     )
     source: str | None = None
+
+    @model_validator(mode="after")
+    def _lift_limit_table_meets_clmax(self):
+        t = self.CLmax_by_mach
+        if t is None:
+            return self
+        if self.CLmax is None:
+            raise ValueError("CLmax_by_mach needs CLmax (the low-speed value the table starts from)")
+        if t.mach[0] > 0.3 or abs(t.CLmax[0] - self.CLmax) > 0.02 * self.CLmax:
+            raise ValueError(
+                f"CLmax_by_mach starts at M {t.mach[0]:g} with {t.CLmax[0]:g}: it must start at a low Mach number "
+                f"(at most 0.3) within 2 % of CLmax ({self.CLmax:g}), the value of the stall speeds"
+            )
+        return self
+
+    def clmax_at(self, mach):
+        """CLmax at ``mach`` (scalar or array): the table's where one is declared, else CLmax; None without CLmax."""
+        if self.CLmax is None:
+            return None
+        if self.CLmax_by_mach is None:
+            return np.full(np.shape(mach), self.CLmax) if np.ndim(mach) else self.CLmax
+        return self.CLmax_by_mach.at(mach)
 
     @model_validator(mode="after")
     def _warning_below_stall(self):

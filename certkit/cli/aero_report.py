@@ -18,6 +18,7 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
     model_column = None
     model_point = None
     notes: list[str] = []
+    hidden: tuple[str, ...] = ()  # lattice controls that are not the flight model's
     kind = "avl" if Path(path).suffix.lower() == ".avl" else "aircraft"
     try:
         if kind == "avl":
@@ -34,8 +35,11 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
                     f"--config {configuration!r}: not declared (declared: {', '.join(ctx.aircraft.configurations)})"
                 )
             from certkit.models.aero.airplane import (  # deferred: an .avl run loads no pint, scipy, numba
+                FLAP_CONTROL,
                 lattice_configuration,
             )
+
+            hidden = (FLAP_CONTROL,)  # the airplane's lattice carries the wing flap for the strip loads only
 
             source = f"aircraft file {path}, configuration {configuration}"
             if mach is None:
@@ -55,7 +59,7 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
                 return _model_only(
                     source, mach, alpha_deg, beta_deg, ctx.aircraft.reference, model_column, model_point, notes
                 )
-            config = lattice_configuration(ctx.aircraft, configuration)
+            config = lattice_configuration(ctx.aircraft, configuration, flap=True)  # the model's own lattice
         if not 0.0 <= mach < 1.0:
             raise UserError(f"--mach {mach}: the vortex lattice needs 0 <= Mach < 1")
         der = VortexLattice(config, mach=mach).stability_derivatives(
@@ -69,7 +73,7 @@ def derivative_report(path: str, mach: float | None, alpha_deg: float, beta_deg:
     for coef in COEFFICIENTS:
         for var in VARIABLES:
             lattice[f"{coef}_{var}"] = der[f"{coef}_{var}"]
-    for name in config.control_names:
+    for name in (n for n in config.control_names if n not in hidden):
         for coef in COEFFICIENTS:
             lattice[f"{coef}_delta_{name}"] = der[f"{coef}_delta_{name}"]
     lattice_np = der.neutral_point

@@ -166,3 +166,19 @@ def test_a_point_mass_is_shared_between_the_strips_that_bracket_it():
         assert all(w >= 0 for _, w in shares)
         inside = min(max(span, 0.5), 7.0)
         assert sum(w * s_mid[j] for j, w in shares) == pytest.approx(inside)
+
+
+def test_the_flight_model_and_the_strip_loads_share_one_lattice(setup):
+    """One lattice per airplane: the strip loads' unit solutions come from the flight model's lattice, whose wing flap
+    (the loads spread the configurations' flap lift with it) is not a control of the flight model — so each design's
+    lattice is solved once per Mach number."""
+    from certkit.models.aero.airplane import FLAP_CONTROL
+
+    ctx, loads = setup
+    aero = ctx.aero("clean")
+    assert FLAP_CONTROL in aero.lattice.control_names
+    assert FLAP_CONTROL not in aero.model.control_names
+    assert FLAP_CONTROL in loads["wing"].inputs
+    assert ctx.aero("takeoff").lattice is aero.lattice
+    solutions = ctx._memo[("aero", "loads unit solutions", "clean", id(aero.lattice))]
+    assert solutions and {mach for mach, *_ in solutions} <= {float(m) for m in aero.mach}

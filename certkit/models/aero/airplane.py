@@ -362,6 +362,10 @@ def build_airplane_aero(
     elif clmax is None:
         notes.append(f"configurations.{configuration}.CLmax not declared: no stall model")
     stall = StallModel(clmax) if clmax else None
+    if cfg.CLmax_by_mach is not None and stall is not None:
+        notes.append(
+            f"configuration {configuration}: CLmax against Mach from CLmax_by_mach ({cfg.CLmax_by_mach.source})"
+        )
     ref = aero_reference(aircraft)
     tail_downwash = None  # the free-air downwash at the tail (lattice only): the ground effect at the tail needs it
     flap_lift = None  # the flap lift increments on the wing and the tail (lattice only): the strip loads spread them
@@ -419,7 +423,7 @@ def build_airplane_aero(
             table,
             mach=machs,
             control_names=controls,
-            stall=stall,
+            stall=stall if cfg.CLmax_by_mach is None or stall is None else replace(stall, CLmax=cfg.clmax_at(machs)),
             tail_downwash=tail_downwash,
             flap_lift=flap_lift,
         )

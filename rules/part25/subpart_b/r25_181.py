@@ -135,6 +135,10 @@ class DynamicStability(Rule):
         Controls-fixed modes only: no hinge-moment or control-system model, so 'controls free' (§25.181(a)(1), (b)) is
         read with the controls fixed. Rigid airplane. Controllability of the Dutch roll by normal use of the
         controls is not assessed. The MIL-F-8785C numbers are unverified secondary values (handling_levels.py).
+        The airplane model's lateral derivatives are the vortex lattice's at zero angle of attack: Cl_β and Cn_p do not
+        grow with the lift coefficient (at approach lift the lattice's own are within 2 % of the 747's, the model's
+        Cl_β is 0.55 of it and its Cn_p about zero), which makes the Dutch roll's damping optimistic at high lift;
+        no stability augmentation (yaw damper) is modelled (docs/baseline-sources.md §16).
     """
 
     unevaluated = (

@@ -87,8 +87,9 @@ class CheckedPitchManeuver(SimulationRule):
         ),
         (
             "25.331(c)",
-            "C_N,max does not vary with Mach: the wing loads' window is bounded by the low-speed CLmax, so at high "
-            "Mach the manoeuvre reaches lift coefficients beyond buffet onset and maximum lift there",
+            "without configurations.clean.CLmax_by_mach declared, C_N,max does not vary with Mach: the wing loads' "
+            "window is bounded by the low-speed CLmax, so at high Mach the manoeuvre reaches lift coefficients beyond "
+            "buffet onset and maximum lift there (the baseline declares no table: docs/baseline-sources.md Q11)",
         ),
     )
 

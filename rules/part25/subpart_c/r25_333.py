@@ -33,8 +33,8 @@ class FlightManeuveringEnvelope(Rule):
     """
     margin = """
         For each weight and altitude, three closure checks in m/s EAS: VA − V_A (the declared VA is at or
-        above where the +C_Nmax line reaches n₊), VC − V_H (the −C_Nmax line reaches n₋ before VC) and
-        VD − VC (the envelope has a positive width). ≥ 0 complies.
+        above where the +C_Nmax line reaches n₊, or VC where that lies beyond it, §25.335(c)(3)), VC − V_H (the
+        −C_Nmax line reaches n₋ before VC) and VD − VC (the envelope has a positive width). ≥ 0 complies.
     """
     references = ("25.335(c)", "25.337", "25.331", "25.1501")
     requires = (
@@ -67,15 +67,19 @@ class FlightManeuveringEnvelope(Rule):
             env = envelope(ctx, cond.mass, cond.altitude, crit.cn_over_cl)
             corners = {k: [round(v, 3), round(n, 3)] for k, (v, n) in env.corners().items()}
             va = declared_eas(ctx, "VA", cond.altitude)
+            capped = {}
+            if env.v_a > env.v_c:  # §25.335(c)(3): VA need not exceed VC (a C_N,max falling with Mach at altitude)
+                capped = {"stall_line_at_n_plus": "beyond VC at this altitude: VA need not exceed VC (§25.335(c)(3))"}
             out.append(
                 Finding.compare(
                     cond,
                     "A: +C_Nmax line reaches n₊ at or below VA",
                     va,
-                    env.v_a,
+                    min(env.v_a, env.v_c),
                     at_least=True,
                     unit="m/s",
                     corners=corners,
+                    **capped,
                 )
             )
             out.append(

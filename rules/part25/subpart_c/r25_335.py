@@ -17,6 +17,7 @@ from certkit.atmosphere import RHO0, convert_speed, density
 from certkit.engine.conditions import ConditionSpace, EnvelopeAltitudes, EnvelopeWeights
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.models.loads.vn_envelope import envelope, stall_line_speed
 from certkit.models.performance.stall import stall_speed_eas
 from certkit.units import G0
 
@@ -185,7 +186,8 @@ class DesignManeuveringSpeed(Rule):
             h = cond.altitude
             v_s1 = float(vs1(ctx, cond.mass, crit.cn_over_cl))
             vc, _ = ctx.design_speed_eas("VC", h)
-            required = min(v_s1 * np.sqrt(n), float(vc))
+            # VS1·√n, or where the stall line of a C_N,max varying with Mach reaches n at this altitude (§25.335(c)(2))
+            required = min(envelope(ctx, cond.mass, h, crit.cn_over_cl).v_a, float(vc))
             out.append(
                 Finding.compare(
                     cond,
@@ -237,6 +239,9 @@ class DesignSpeedMaximumGust(Rule):
                 ctx, cond.mass, h, float(vc), float(reference_gust_velocity(h)), crit.kg_a, crit.kg_b
             )
             required = v_s1 * np.sqrt(n_g)
+            line = envelope(ctx, cond.mass, h, crit.cn_over_cl).stall_pos
+            if line is not None:  # C_N,max varying with Mach: where the stall line at this altitude reaches n_g
+                required = stall_line_speed(line, n_g, required)
             if bool(vc_mach):
                 required = min(required, float(vc))
             out.append(

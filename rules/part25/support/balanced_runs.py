@@ -124,7 +124,7 @@ def point_speed_and_load_factor(ctx, cond, crit) -> tuple[float, float, str]:
         note = f"stall-line speed {v / KN:.1f} kn EAS above VC at this altitude: taken at VC"
         v = env.v_c
     # a speed below the stall line's (Mach-limited VC at altitude): the envelope's boundary there is the stall line
-    stall_n = (v / env.vs1_pos) ** 2 if n > 0 else -((v / env.vs1_neg) ** 2)
+    stall_n = float(env.n_stall_pos(v)) if n > 0 else -((v / env.vs1_neg) ** 2)
     if abs(stall_n) < abs(n) * (1.0 - 1e-9):
         note = (note + "; " if note else "") + (
             f"{v / KN:.1f} kn EAS is below the stall line's speed at n = {n:g}: "
