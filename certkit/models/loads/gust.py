@@ -8,8 +8,12 @@ the wing, U/V) and ``gust_tail`` (the same gust reaching the tail a tail-arm / V
 
 with the per-surface lift and moment of a unit uniform angle of attack taken from the strip loads model
 (the tail's value includes the wing's downwash, which convects with the gust and reaches the tail at
-the same time). Aerodynamics are quasi-steady (no Küssner/Wagner lag: conservative for short gusts).
-Inputs are held over each simulation step, so the step must resolve the gust (a few dozen per 2H/V).
+the same time). The lift of the gust builds up as each surface penetrates it (Küssner's function in R. T. Jones'
+approximation, ψ(σ) = 1 − 0.5 e^(−0.13 σ) − 0.5 e^(−σ), σ the distance travelled in semichords of the surface's mean
+chord: Bisplinghoff, Ashley & Halfman, *Aeroelasticity*, 1955, §5-7; incompressible and two-dimensional): the
+pseudo-controls carry the effective gust angle of :func:`penetration_lagged`, and a continuous gust the same lag in
+the frequency domain (:func:`penetration_transfer`). The lift of the airplane's own motion is quasi-steady (no Wagner
+lag). Inputs are held over each simulation step, so the step must resolve the gust (a few dozen per 2H/V).
 """
 
 from __future__ import annotations
@@ -23,6 +27,36 @@ def one_minus_cosine(s, H, Uds):
     """Gust velocity at penetration s (m, array) of a 1 − cos gust of gradient H (m), peak Uds."""
     s = np.asarray(s, dtype=float)
     return np.where((s >= 0) & (s <= 2 * H), 0.5 * Uds * (1 - np.cos(np.pi * s / H)), 0.0)
+
+
+#: R. T. Jones' approximation of Küssner's function: ψ(σ) = 1 − Σ A_k e^(−b_k σ), σ in semichords
+KUSSNER = ((0.5, 0.13), (0.5, 1.0))
+
+
+def penetration_lagged(s, H, Uds, chord):
+    """The effective gust velocity (the lift it gives over the lift-curve slope) at penetration ``s`` (m, array) of a
+    1 − cos gust of gradient ``H`` (m) and peak ``Uds`` for a surface of mean chord ``chord`` (m): the gust's slope
+    convolved with Küssner's function :data:`KUSSNER`, in closed form (each exponential is a first-order lag of the
+    slope, dy/dσ = −b y + dw/dσ, integrated exactly for the sine slope and decaying after the gust). Tends to
+    :func:`one_minus_cosine` as the gust grows long against the chord."""
+    sigma = 2.0 * np.asarray(s, dtype=float) / chord
+    w = np.pi * chord / (2.0 * H)  # the gust's angular frequency per semichord
+    end = 4.0 * H / chord
+    inside = np.clip(sigma, 0.0, end)
+    out = one_minus_cosine(s, H, Uds)
+    for a_k, b_k in KUSSNER:
+        lag = (b_k * np.sin(w * inside) - w * np.cos(w * inside) + w * np.exp(-b_k * inside)) / (b_k**2 + w**2)
+        lag = 0.5 * Uds * w * lag * np.exp(-b_k * np.maximum(sigma - end, 0.0))
+        out = out - a_k * np.where(sigma > 0.0, lag, 0.0)
+    return out
+
+
+def penetration_transfer(omega, chord):
+    """The same lag for a sinusoidal gust of spatial frequency ``omega`` (rad/m): the effective over the actual gust
+    velocity, 1 − Σ A_k iκ / (iκ + b_k), κ = Ω c/2 the frequency per semichord (the Fourier transform of the
+    derivative of Küssner's indicial response: a Sears-function approximation)."""
+    ik = 1j * np.asarray(omega, dtype=float) * chord / 2.0
+    return 1.0 - sum(a_k * ik / (ik + b_k) for a_k, b_k in KUSSNER)
 
 
 def gust_aero(base, mach, cl_wing, cm_wing, cl_tail, cm_tail):

@@ -20,7 +20,7 @@ import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.simulate import Function, SimulationResult, simulate
-from certkit.models.loads.gust import gust_aero, gust_tables, one_minus_cosine
+from certkit.models.loads.gust import gust_aero, gust_tables, penetration_lagged
 from certkit.models.loads.response import inertia_terms, response_load_parts
 
 SURFACES = ("wing", "horizontal_tail")
@@ -48,10 +48,13 @@ class GustBatch:
     u0: np.ndarray
     v_tas: np.ndarray  # m/s
     tail_arm: float  # m, wing to tail centre of pressure
+    chords: tuple[float, float] = (float("nan"), float("nan"))  # m, wing and tail mean chords (the penetration lag)
 
     def subset(self, idx) -> "GustBatch":
         idx = np.asarray(idx)
-        return GustBatch(self.model.subset(idx), self.x0[idx], self.u0[idx], self.v_tas[idx], self.tail_arm)
+        return GustBatch(
+            self.model.subset(idx), self.x0[idx], self.u0[idx], self.v_tas[idx], self.tail_arm, self.chords
+        )
 
 
 def with_aero(base_model: AircraftModel, aero, u0) -> tuple[AircraftModel, np.ndarray]:
@@ -74,7 +77,8 @@ def gust_batch(loads, base_model: AircraftModel, x0, u0) -> GustBatch:
     model, u = with_aero(base_model, gust_aero(base_model.aero, **tables), u0)
     v = np.hypot(np.hypot(x0[:, 3], x0[:, 4]), x0[:, 5])  # body velocity components u, v, w of the Euler state
     xc = pressure_centres(loads)
-    return GustBatch(model, np.asarray(x0, dtype=float), u, v, xc["horizontal_tail"] - xc["wing"])
+    chords = (loads["wing"].mean_chord, loads["horizontal_tail"].mean_chord)
+    return GustBatch(model, np.asarray(x0, dtype=float), u, v, xc["horizontal_tail"] - xc["wing"], chords)
 
 
 @dataclass
@@ -108,24 +112,26 @@ def simulate_gust(
     v = gb.v_tas
     lag = gb.tail_arm / v
 
+    c_wing, c_tail = gb.chords
+
     def wing(t):
-        return one_minus_cosine(v * t, H, a)
+        return penetration_lagged(v * t, H, a, c_wing)
 
     def tail(t):
-        return one_minus_cosine(v * (t - lag), H, a)
+        return penetration_lagged(v * (t - lag), H, a, c_tail)
 
     gusts = {"gust_wing": Function(wing, time_grid=True), "gust_tail": Function(tail, time_grid=True)}
     parts, sim, dt = two_phase_run(
         gb.model, gb.x0, gb.u0, H, v, lag, gusts, steps_per_gust, settle, max_step, settle_step
     )
     t = _per_condition(sim.t)
-    alpha = {"wing": one_minus_cosine(v * t, H, a), "horizontal_tail": one_minus_cosine(v * (t - lag), H, a)}
+    alpha = {"wing": wing(t), "horizontal_tail": tail(t)}
     hist: dict[str, list] = {}
     kept: dict[str, list] = {}
     fuel: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         tp = phase_times(parts, k)
-        extra = {"wing": one_minus_cosine(v * tp, H, a), "horizontal_tail": one_minus_cosine(v * (tp - lag), H, a)}
+        extra = {"wing": wing(tp), "horizontal_tail": tail(tp)}
         L = response_load_parts(
             loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}
         )
@@ -154,7 +160,10 @@ def two_phase_run(
     ``lag`` (n,) s after the first), each condition resolving the gust in its own length 2H/V in ``steps_per_gust``
     steps (at most ``max_step``; the same number of steps for all); then ``settle`` seconds of free response at
     ``settle_step`` (the longest gradients' own step: the short-period motion left, ω ≈ 1–3 rad/s, needs no finer;
-    tests/loads/test_gust_settle_step.py). Returns the phases, their concatenation and the smallest step."""
+    tests/loads/test_gust_settle_step.py), the inputs going on there on the run's clock, each held at its value in the
+    middle of the step (a gust whose lift lags, Küssner's function, still lifts after it has passed, decaying within a
+    few of the coarse steps: the midpoint keeps that hold second-order). Returns the phases, their concatenation and
+    the smallest step."""
     dt = np.minimum(max_step, 2 * H / v / steps_per_gust)
     steps = float(np.ceil(np.max((2 * H / v + lag) / dt)))
     if np.ptp(dt) == 0.0:
@@ -162,7 +171,12 @@ def two_phase_run(
     first = simulate(model, x0, u0, steps * dt, dt, inputs=inputs)
     parts = [first]
     if settle > 0:
-        parts.append(simulate(model, first.final_state, u0, settle, max(float(np.min(dt)), settle_step)))
+        step = max(float(np.min(dt)), settle_step)
+        mid = _per_condition(first.t)[-1] + 0.5 * step  # each input held at its value in the middle of the step
+        after = {
+            name: Function(lambda t, f=f: f(_per_condition(t) + mid), time_grid=True) for name, f in inputs.items()
+        }
+        parts.append(simulate(model, first.final_state, u0, settle, step, inputs=after))
     return parts, _concatenate(parts), float(np.min(dt))
 
 

@@ -7,8 +7,9 @@ yawing moments of the fin's own unit-sideslip loading in the strip loads model (
 pressure from the root torsion (X) and the root bending (height)). The airplane then responds in yaw, sideslip and
 roll to the fin's force alone — the dynamic model of the classical fin gust formula (Pratt-type: the fin's load
 alleviated by the airplane's yawing response, its mass ratio built with the yaw radius of gyration and the fin arm);
-the fuselage's and the wing's share of the gust are not modelled, and the aerodynamics are quasi-steady (no Küssner
-lag: conservative for short gusts). The gust front reaches the fin at t = 0; one simulation per gradient H, as for
+the fuselage's and the wing's share of the gust are not modelled; the gust's sideslip builds up on the fin with
+Küssner's function on its mean chord (:func:`certkit.models.loads.gust.penetration_lagged`), the motion's
+aerodynamics are quasi-steady. The gust front reaches the fin at t = 0; one simulation per gradient H, as for
 the vertical gusts (:mod:`certkit.models.loads.gust_response`), then ``settle`` seconds of free response.
 """
 
@@ -19,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.models.dynamics.simulate import Function
-from certkit.models.loads.gust import one_minus_cosine
+from certkit.models.loads.gust import penetration_lagged
 from certkit.models.loads.gust_response import phase_times, two_phase_run, with_aero
 from certkit.models.loads.response import response_load_parts
 
@@ -81,6 +82,11 @@ def simulate_lateral_gust(
     (nt, n, 3, S), gust sideslip felt (nt, n))."""
     a = np.asarray(beta_peak, dtype=float) * np.ones(lb.x0.shape[0])
     v = lb.v_tas
+    chord = loads[FIN].mean_chord
+
+    def felt(t):  # the fin's gust sideslip with Küssner's penetration lag
+        return penetration_lagged(v * t, H, a, chord)
+
     parts, sim, _ = two_phase_run(
         lb.model,
         lb.x0,
@@ -88,7 +94,7 @@ def simulate_lateral_gust(
         H,
         v,
         np.zeros_like(v),
-        {CONTROL: Function(lambda t: one_minus_cosine(v * t, H, a), time_grid=True)},
+        {CONTROL: Function(felt, time_grid=True)},
         steps_per_gust,
         settle,
         max_step,
@@ -96,7 +102,7 @@ def simulate_lateral_gust(
     )
     hist = []
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
-        beta_g = one_minus_cosine(v * phase_times(parts, k), H, a)
+        beta_g = felt(phase_times(parts, k))
         aero, inertia = response_load_parts(loads, part, lb.model, (FIN,), extra_beta={FIN: beta_g})[FIN]
         hist.append((aero + inertia)[slice(None) if k == 0 else slice(1, None)])
-    return sim, np.concatenate(hist), one_minus_cosine(v * phase_times([sim], 0), H, a)
+    return sim, np.concatenate(hist), felt(phase_times([sim], 0))

@@ -88,6 +88,8 @@ class SurfaceLoads:
     #: ``vertical_force[m, k]``: the surface's force along airplane Z (lift) per unit q̄ and unit input k at Mach
     #: breakpoint m (the strips' normal forces times the Z component of their normals; zero for the fin)
     vertical_force: np.ndarray | None = None
+    #: m, the surface's mean aerodynamic chord Σ c² Δs / Σ c Δs over its strips (the gust penetration lag's chord)
+    mean_chord: float = float("nan")
 
     @property
     def structural_mass(self) -> float:
@@ -426,6 +428,7 @@ def build_surface_loads(
         fuel_inertia,
         shares,
         np.array(vertical),
+        float(np.sum(chord**2 * lat.width[idx]) / np.sum(chord * lat.width[idx])),
     )
 
 

@@ -18,10 +18,12 @@ the rms load per unit rms gust velocity of a design-envelope analysis (§25.341(
 In lateral turbulence (:func:`lateral_turbulence_response`) the gust is a sideslip v_g/V felt by the fin alone
 (:mod:`certkit.models.loads.lateral_gust`), the airplane free in sideslip, roll and yaw.
 
-Limits (stated by the rules that use it): quasi-steady aerodynamics — the lift follows the angle of attack at once,
-no Sears or Küssner function, which over-states the response at high frequency (conservative); rigid airplane;
-controls fixed (no pilot or flight control system in the loop), so the phugoid and the spiral mode, which the pilot
-flies, are held out (:data:`FREE_STATES`, :data:`LATERAL_FREE_STATES`); the Mach number is held at the trim's.
+The gust's lift on each surface lags as Küssner's function gives
+(:func:`certkit.models.loads.gust.penetration_transfer`, a Sears-function approximation on the surface's mean
+chord). Limits (stated by the rules that use it): the lift of the airplane's own motion is quasi-steady (no Wagner
+function); rigid airplane; controls fixed (no pilot or flight control system in the loop), so the phugoid and the
+spiral mode, which the pilot flies, are held out (:data:`FREE_STATES`, :data:`LATERAL_FREE_STATES`); the Mach number
+is held at the trim's.
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ import numpy as np
 
 from certkit.models.dynamics.linearize import linearize, output_sensitivities
 from certkit.models.dynamics.simulate import simulate
-from certkit.models.loads.gust import GUST_CONTROLS
+from certkit.models.loads.gust import GUST_CONTROLS, penetration_transfer
 from certkit.models.loads.lateral_gust import CONTROL, FIN
 from certkit.models.loads.response import inertia_terms, response_load_parts
 
@@ -188,8 +190,9 @@ def turbulence_response(loads, gb, steady: SteadyLoads, omega: np.ndarray) -> Tu
     v = gb.v_tas  # (n,)
     w = omega[:, None] * v[None, :]  # (nΩ, n) rad/s
     u = np.zeros(w.shape + (len(names),), dtype=complex)  # gust angles per unit gust velocity
-    u[..., gw] = 1.0 / v
-    u[..., gt] = np.exp(-1j * w * (gb.tail_arm / v)[None, :]) / v
+    c_wing, c_tail = gb.chords  # Küssner's penetration lag of each surface (certkit.models.loads.gust)
+    u[..., gw] = penetration_transfer(omega, c_wing)[:, None] / v
+    u[..., gt] = penetration_transfer(omega, c_tail)[:, None] * np.exp(-1j * w * (gb.tail_arm / v)[None, :]) / v
     x, y = _states(lin, C, D, u, w, FREE_STATES)
     d_alpha, d_nz, d_qbar = y[..., 0], y[..., 1], y[..., 2]
     q = x[..., lin.state_names.index("q")]
@@ -219,7 +222,7 @@ def lateral_turbulence_response(loads, lb, steady: SteadyLoads, omega: np.ndarra
     v = lb.v_tas
     w = omega[:, None] * v[None, :]
     u = np.zeros(w.shape + (len(names),), dtype=complex)
-    u[..., names.index(CONTROL)] = 1.0 / v
+    u[..., names.index(CONTROL)] = penetration_transfer(omega, loads[FIN].mean_chord)[:, None] / v
     x, y = _states(lin, C, D, u, w, LATERAL_FREE_STATES)
     d_beta, d_ny, d_qbar = y[..., 0], y[..., 1], y[..., 2]
     p, r = x[..., lin.state_names.index("p")], x[..., lin.state_names.index("r")]

@@ -8,8 +8,9 @@ U_ds = U_ref F_g (H/350)^(1/6), F_g = 0.5 (F_gz + F_gm), F_gz = 1 − Z_mo/250 0
 are from FAA AC 25.341-1 via secondary sources and UNVERIFIED against the CFR; the (a)(5)(ii) half U_ref
 at VD is unverified wording. They are criteria here, overridable in the aircraft file.
 
-Limitations: rigid airplane (no structural modes, (a)(1) asks for all significant ones), quasi-steady
-aerodynamics (no Küssner/Wagner lift growth, conservative for short gusts). Lateral gusts (same gradients, U_ds
+Limitations: rigid airplane (no structural modes, (a)(1) asks for all significant ones); the gust's lift builds up
+with Küssner's function on each surface's mean chord (:mod:`certkit.models.loads.gust`), the airplane's own motion
+is quasi-steady (no Wagner lag). Lateral gusts (same gradients, U_ds
 and F_g) load the fin alone (:mod:`certkit.models.loads.lateral_gust`; the fuselage's and wing's share of the gust
 not modelled): fin shear, bending and torsion against the declared fin capability.
 
@@ -82,7 +83,9 @@ class DiscreteGust(SimulationRule):
     criteria = {**GUST_RUN_CRITERIA, **SAFETY}
     conditions = GUST_CONDITIONS
     limitations = (
-        "Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag); the lateral "
+        "Rigid airplane (no structural modes); the gust's lift builds up with Küssner's function (R. T. Jones' "
+        "approximation, 2-D incompressible, on each surface's mean chord), the motion's lift is quasi-steady (no "
+        "Wagner lag); the lateral "
         "gust loads the fin alone (the fuselage's and wing's share of it not modelled); U_ds and F_g formulas "
         "unverified against the CFR (AC 25.341-1)."
     )

@@ -105,8 +105,9 @@ class ContinuousTurbulence(SimulationRule):
         note="VB (capped at VC), VC and VD in EAS, each Mach-limited at altitude, in level flight; U_σ in TAS.",
     )
     limitations = (
-        "Rigid airplane (no structural modes: (b) asks for all significant ones), quasi-steady aerodynamics (no "
-        "Sears/Küssner lag: the high-frequency response is over-stated, conservative), controls fixed, the phugoid "
+        "Rigid airplane (no structural modes: (b) asks for all significant ones); the gust's lift lags as Küssner's "
+        "function gives in the frequency domain (a Sears-function approximation, 2-D incompressible, on each "
+        "surface's mean chord), the motion's lift is quasi-steady (no Wagner lag); controls fixed, the phugoid "
         "and the spiral mode left out (flown by the pilot); lateral turbulence felt by the fin alone; U_σ, L and the "
         "speed factors from secondary sources (unverified)."
     )

@@ -91,7 +91,8 @@ class FlapGusts(SimulationRule):
         note="each flap configuration at its VF (EAS): the larger of the placard VFE and the §25.335(e)(3) minima.",
     )
     limitations = (
-        "Rigid airplane (no structural modes), quasi-steady aerodynamics (no Küssner/Wagner lag), as §25.341(a); "
+        "Rigid airplane (no structural modes), Küssner's gust-penetration lag and quasi-steady motion (no Wagner "
+        "lag), as §25.341(a); "
         "the flap lift is the configuration's increment (declared, or Raymer's estimate) spread with the linear "
         "lattice's flap distribution; the flaps' own structure and supports are not modelled."
     )

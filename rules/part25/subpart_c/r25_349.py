@@ -476,8 +476,9 @@ class UnsymmetricalGust(SimulationRule):
     }
     conditions = GUST_CONDITIONS
     limitations = (
-        "The §25.341(a) response it modifies is that of the rigid airplane with quasi-steady aerodynamics "
-        "(see §25.341(a)); the modified air load is reacted by rigid-body vertical, roll and pitch "
+        "The §25.341(a) response it modifies is that of the rigid airplane with the gust's lift lagged by "
+        "Küssner's function and the motion's quasi-steady (see §25.341(a)); the modified air load is reacted by "
+        "rigid-body vertical, roll and pitch "
         "accelerations at the instant (products of inertia and the damping of the starting roll neglected); "
         "wing loads only (the horizontal tail's unsymmetrical loads are §25.427(b))."
     )
