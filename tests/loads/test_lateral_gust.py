@@ -8,9 +8,12 @@ load factor, NACA Report 1206, 1954): the fin limit load
 
 (U, V in EAS; K the yaw radius of gyration, l_vt the CG–fin centre of pressure distance, c̄_t the fin's mean chord)
 for a 1 − cos gust 25 fin chords long (H = 12.5 c̄_t) on an airplane free to yaw. The formula is recalled, not
-re-read from the old CFR text. Its 0.88 and 5.3 include the fin's unsteady lift growth, which the quasi-steady model
-lacks (more load), while the model's airplane also rolls and sideslips (the formula's yaws only): agreement within
-15 % is asked. The fin's a_vt S_vt and centre of pressure are the strip model's (the formula's inputs, not its
+re-read from the old CFR text. Its 0.88 and 5.3 carry both unsteady lags — the gust's (Küssner) and the motion's
+(Wagner) — on an airplane that only yaws. The model has the gust's lag alone, which on the heave analogue gives 0.98 ×
+Pratt–Walker (tests/loads/test_gust_response.py: Wagner's share is about 2 %), and its airplane also sideslips and
+rolls under the fin's force, which relieves the fin further: the fin load is asked within 0.80–1.02 × the formula
+(computed 0.84–0.90; the quasi-steady model, before the gust's lag was modelled, came within 15 % of it).
+The fin's a_vt S_vt and centre of pressure are the strip model's (the formula's inputs, not its
 result), so the test checks the airplane's dynamic response to the fin's gust force.
 """
 
@@ -60,18 +63,29 @@ def test_fin_load_against_the_closed_form_gust_formula(setup):
         k_gt = 0.88 * mu / (5.3 + mu)
         formula = k_gt * 0.5 * 1.225 * U * vc * a_s
         peak = np.abs(fin[:, i, 0, 0]).max()
-        assert peak == pytest.approx(formula, rel=0.15), batch.conditions[i].loading
+        assert 0.8 * formula < peak < 1.02 * formula, batch.conditions[i].loading
 
 
 def test_a_short_gust_is_bounded_by_the_unalleviated_load(setup):
-    """A 30 ft gust passes before the airplane yaws much: the fin's root shear reaches at most the load of the full
-    gust sideslip on a fixed airplane, q̄ a_vt S_vt U/V (the response can only relieve it while the gust acts), and
-    at least 80 % of it."""
+    """A 30 ft gust passes before the airplane yaws much: the fin's root shear reaches at most the load of the gust
+    sideslip it feels on a fixed airplane, q̄ a_vt S_vt U_eff/V (the response can only relieve it while the gust acts),
+    and at least 80 % of it; U_eff the peak of the gust as the fin's lift builds up in it (Küssner's function in
+    R. T. Jones' approximation on the fin's mean chord, convolved here numerically: 30 ft is about 1.7 fin chords, so
+    the fin feels about half the gust)."""
     ctx, batch, loads, lb, vc = setup
     sim, fin, beta_g = simulate_lateral_gust(loads, lb, 30 * FT, U / lb.v_tas, 20, 0.0)
+    chord, H = loads["vertical_tail"].mean_chord, 30 * FT
+    xs = np.linspace(0.0, 2 * H, 4001)
+    slope = 0.5 * U * np.pi / H * np.sin(np.pi * xs / H)
+    kussner = lambda s: 1.0 - 0.5 * np.exp(-0.13 * s) - 0.5 * np.exp(-s)  # noqa: E731
+    u_eff = max(
+        np.trapezoid(np.where(xs <= x, slope * kussner(2 * np.maximum(x - xs, 0.0) / chord), 0.0), xs)
+        for x in np.linspace(0.0, 2 * H + 3 * chord, 200)
+    )
+    assert 0.3 * U < u_eff < 0.7 * U
     for i in range(batch.n):
         a_s, _, _ = _fin_data(ctx, loads, float(sim["mach"][0, i]))
-        fixed = 0.5 * 1.225 * vc**2 * a_s * U / vc
+        fixed = 0.5 * 1.225 * vc**2 * a_s * u_eff / vc
         peak = -fin[:, i, 0, 0].min()  # wind from the right pushes the fin to the left: negative shear
         assert 0.8 * fixed <= peak <= 1.01 * fixed
 

@@ -61,10 +61,13 @@ def test_turbulence_intensity_by_hand(result, baseline):
 
 
 def test_load_factor_rms_against_the_plunging_airplane(result, baseline):
-    """Ā of the load factor against the airplane free to plunge only (quasi-steady, Hoblit ch. 3): H(ω) = K iωT/(1 +
-    iωT), K = ρ V S a / (2 m g), T = 2 m / (ρ V S a), a the airplane's lift-curve slope at the condition's Mach
-    number, integrated over von Kármán's spectrum by scipy's quadrature. Pitch freedom and the tail's lag move it:
-    within 0.9–1.5 × (computed 1.0–1.35); a spectrum dominated by the lightly damped phugoid gave up to 2 ×."""
+    """Ā of the load factor against the airplane free to plunge only (Hoblit ch. 3): H(ω) = K iωT/(1 + iωT) Φ(ω),
+    K = ρ V S a / (2 m g), T = 2 m / (ρ V S a), a the airplane's lift-curve slope at the condition's Mach number, Φ the
+    gust's penetration lag on the wing's mean aerodynamic chord c̄ (R. T. Jones' approximation of Küssner's function:
+    Φ = 1 − 0.5 iκ/(iκ + 0.13) − 0.5 iκ/(iκ + 1), κ = Ω c̄/2, Ω = ω/V; written here), integrated over von Kármán's
+    spectrum by scipy's quadrature. Pitch freedom and the tail's lag move it: within 0.9–1.5 × (1.0–1.35 against
+    the quasi-steady plunge before the lag was modelled); a spectrum dominated by the lightly damped phugoid gave up
+    to 2 ×."""
     ctx = Context(baseline)
     model = ctx.aero("clean").model
     S, L = baseline.model.geometry.wing.area, 2500 * FT
@@ -77,9 +80,13 @@ def test_load_factor_rms_against_the_plunging_airplane(result, baseline):
         a = float(model.derivative("CL_alpha", speed_as(c, "MACH")))
         K, T = rho * V * S * a / (2 * c.mass * G0), 2 * c.mass / (rho * V * S * a)
 
-        def power(w, K=K, T=T, V=V):
+        chord = baseline.model.reference.mean_chord
+
+        def power(w, K=K, T=T, V=V, chord=chord):
             x = (w * V * T) ** 2
-            return K**2 * x / (1 + x) * float(von_karman(w, L))
+            ik = 1j * w * chord / 2.0
+            lag = 1.0 - 0.5 * ik / (ik + 0.13) - 0.5 * ik / (ik + 1.0)
+            return K**2 * x / (1 + x) * abs(lag) ** 2 * float(von_karman(w, L))
 
         plunge = np.sqrt(quad(power, 0, 1e-3, limit=200)[0] + quad(power, 1e-3, np.inf, limit=400)[0])
         ratios.append(f.all_details()["Abar_n_z_per_ft_s"] / (plunge * FT))

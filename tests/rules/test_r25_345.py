@@ -79,8 +79,11 @@ def test_design_flap_speed_gust_and_gradient_by_hand(run):
 @pytest.mark.parametrize("configuration", ["takeoff", "landing"])
 def test_peak_load_factor_against_pratt(run, configuration):
     """Sea level, fwd_mrw: the up gust's Δn against Pratt–Walker with the flight model's lift-curve slope at the
-    condition's Mach, within 0.9–1.4 × (K_g carries the unsteady lift lag the quasi-steady response lacks, as in
-    tests/loads/test_gust_response.py); the down gust is its mirror image within 5 %."""
+    condition's Mach, within 0.80–1.02 ×: K_g carries both unsteady lags (the gust's and the motion's) on an airplane
+    that only plunges; the model has the gust's lag (Küssner's function) alone, 0.98 × Pratt on the plunging airplane
+    (tests/loads/test_gust_response.py; Wagner's share about 2 %), and its airplane also pitches, which relieves the
+    load factor (computed 0.84 / 0.87; 0.9–1.4 was asked of the quasi-steady response before the lag was modelled);
+    the down gust is its mirror image within 5 %."""
     ctx, findings, _ = run
     up = _of(findings, configuration, "wing").all_details()
     down = _of(findings, configuration, "wing", gust="down").all_details()
@@ -93,7 +96,7 @@ def test_peak_load_factor_against_pratt(run, configuration):
     ws = mass * G0 / S
     mu = 2 * ws / (density(0.0) * chord * a * G0)
     pratt = 0.88 * mu / (5.3 + mu) * 1.225 * 25 * FT * v * a / (2 * ws)
-    assert 0.9 < (up["peak_n_z"] - 1.0) / pratt < 1.4
+    assert 0.8 < (up["peak_n_z"] - 1.0) / pratt < 1.02
     assert (1.0 - down["peak_n_z"]) == pytest.approx(up["peak_n_z"] - 1.0, rel=0.05)
 
 
