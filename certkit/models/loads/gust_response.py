@@ -173,9 +173,15 @@ def two_phase_run(
     if settle > 0:
         step = max(float(np.min(dt)), settle_step)
         mid = _per_condition(first.t)[-1] + 0.5 * step  # each input held at its value in the middle of the step
-        after = {
-            name: Function(lambda t, f=f: f(_per_condition(t) + mid), time_grid=True) for name, f in inputs.items()
-        }
+
+        def later(f):
+            def at(t):  # a time, or a grid (nt,) or (nt, n), on the free phase's clock
+                t = np.asarray(t, dtype=float)
+                return f((t[:, None] if t.ndim == 1 else t) + mid)
+
+            return Function(at, time_grid=True)
+
+        after = {name: later(f) for name, f in inputs.items()}
         parts.append(simulate(model, first.final_state, u0, settle, step, inputs=after))
     return parts, _concatenate(parts), float(np.min(dt))
 
