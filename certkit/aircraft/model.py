@@ -9,7 +9,7 @@ are checked in :mod:`certkit.aircraft.consistency` so that all problems are repo
 from __future__ import annotations
 
 import math
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 import numpy as np
 from pydantic import AfterValidator, BaseModel, ConfigDict, Field, ValidationInfo, field_validator, model_validator
@@ -626,7 +626,7 @@ class LiftLimitByMach(_Section):
             raise ValueError(f"mach {self.mach} must increase strictly")
         return self
 
-    def at(self, mach):
+    def at(self, mach: Any) -> Any:
         """CLmax at ``mach`` (scalar or array), linear between the entries and held beyond them."""
         return np.interp(mach, self.mach, self.CLmax)
 
@@ -679,7 +679,7 @@ class Configuration(_Section):
             )
         return self
 
-    def clmax_at(self, mach):
+    def clmax_at(self, mach: Any) -> Any:
         """CLmax at ``mach`` (scalar or array): the table's where one is declared, else CLmax; None without CLmax."""
         if self.CLmax is None:
             return None

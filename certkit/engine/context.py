@@ -153,9 +153,13 @@ class Context:
 
         return self.memo(("aero", configuration), build)
 
-    def clmax(self, configuration: str) -> float | None:
+    def clmax(self, configuration: str, mach: float | None = None) -> float | None:
+        """The declared CLmax of ``configuration`` (the low-speed value of the stall speeds), or at ``mach`` where the
+        configuration declares it against Mach (``CLmax_by_mach``); None when not declared."""
         cfg = self.aircraft.configurations.get(configuration)
-        return None if cfg is None else cfg.CLmax
+        if cfg is None or cfg.CLmax is None:
+            return None
+        return cfg.CLmax if mach is None else float(cfg.clmax_at(mach))
 
     def wing_lift_slope(self, mach: float) -> float:
         """Wing lift-curve slope per radian (DATCOM/Polhamus; see :mod:`certkit.models.aero.planform`)."""

@@ -154,3 +154,30 @@ def test_va_required_at_altitude_follows_the_mach_stall_line(tmp_path):
         assert hand > f.details["VS1"] * math.sqrt(ac.envelope.limit_load_factors.positive) * 1.02
         below_vc += hand < f.details["VC"]
     assert below_vc  # the stall line's speed decides at some weight, not only the VC cap
+
+
+def test_the_checked_pull_s_wing_loads_stop_at_the_table_s_lift(tmp_path):
+    """§25.331(c)(2) nose-up from VD at 43,000 ft, fwd_mrw (the heaviest forward corner): the wing's loads count while
+    the airplane's linear lift is below C_Lmax at the run's Mach (the strips are linear in α). With the constant
+    C_Lmax 1.4 the wing fails there (by about 2 %: lift the airplane cannot make at M 0.89); with C_Lmax falling to 1.0
+    at M 0.9 its loads stop at the table's lift and comply — the loads follow the declared C_Lmax(M)."""
+    h = 13106.4  # m, 43,000 ft: the envelope's ceiling
+
+    def wing_pulls(result):
+        return [
+            f
+            for f in result.findings
+            if f.condition.loading == "fwd_mrw"
+            and f.condition.altitude == pytest.approx(h, abs=1.0)
+            and f.condition.get("entry_speed") == "VD"
+            and f.condition.get("direction") == "nose up"
+            and f.condition.get("trim") is None
+            and f.check.split(":")[0].endswith("wing")
+        ]
+
+    constant = wing_pulls(run_rule("25.331(c)(2)"))
+    falling = wing_pulls(run_rule("25.331(c)(2)", tmp_path, edits=[(CLEAN, CLEAN + _table_line(*TABLE))]))
+    assert constant and falling
+    assert any(f.status == "fails" for f in constant)
+    assert all(f.status == "complies" for f in falling)
+    assert min(f.normalized_margin for f in falling) > max(f.normalized_margin for f in constant) + 0.1

@@ -20,7 +20,7 @@ def turn_details(ctx, cond, result, gamma: float, bank: float) -> dict:
     out = dict(
         trim_details(result), flight_path_deg=round(math.degrees(gamma), 3), load_factor=round(n, 4), CL=round(cl, 4)
     )
-    clmax = ctx.clmax(cond.configuration)
+    clmax = ctx.clmax(cond.configuration, speed_as(cond, "MACH"))
     if clmax:
         out["CL_over_CLmax"] = round(cl / clmax, 4)
     return out
