@@ -83,25 +83,31 @@ class Limits(_Section):
         return self
 
 
-class ControlSegment(_Section):
-    """A further span of trailing-edge surface moving with a control, ``gain`` × its deflection (the same sign
-    convention): e.g. an inboard flaperon driven by the roll command with the outboard aileron."""
+class _Span(_Section):
+    """A spanwise extent on a lifting surface, as fractions of the semispan (or of the fin height), outboard end
+    beyond the inboard one."""
 
-    name: str = Field(min_length=1, description="what the segment is, e.g. 'flaperon'")
     span_start: Fraction
     span_end: Fraction
-    chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
-    gain: Annotated[float, Field(gt=0.0, le=2.0)] = 1.0
-    source: str | None = None
 
     @model_validator(mode="after")
-    def _consistent(self):
+    def _outboard(self):
         if self.span_end <= self.span_start:
             raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
         return self
 
 
-class ControlSurface(_Section):
+class ControlSegment(_Span):
+    """A further span of trailing-edge surface moving with a control, ``gain`` × its deflection (the same sign
+    convention): e.g. an inboard flaperon driven by the roll command with the outboard aileron."""
+
+    name: str = Field(min_length=1, description="what the segment is, e.g. 'flaperon'")
+    chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
+    gain: Annotated[float, Field(gt=0.0, le=2.0)] = 1.0
+    source: str | None = None
+
+
+class ControlSurface(_Span):
     """A trailing-edge control surface on a lifting surface.
 
     Span fractions are of the semispan (or of the fin height); ``travel`` is the mechanical
@@ -111,8 +117,6 @@ class ControlSurface(_Section):
     Signs: :mod:`certkit.conventions`.
     """
 
-    span_start: Fraction
-    span_end: Fraction
     chord_ratio: Annotated[float, Field(gt=0.0, lt=1.0)]
     travel: Limits
     design_limits: Limits | None = None
@@ -122,8 +126,6 @@ class ControlSurface(_Section):
 
     @model_validator(mode="after")
     def _consistent(self):
-        if self.span_end <= self.span_start:
-            raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
         spans = sorted(
             [("the control", self.span_start, self.span_end)]
             + [(f"segment {s.name!r}", s.span_start, s.span_end) for s in self.segments],
@@ -144,19 +146,11 @@ class ControlSurface(_Section):
         return self
 
 
-class HighLiftDevice(_Section):
+class HighLiftDevice(_Span):
     """A flap or slat: spanwise extent (fractions of the semispan), chord ratio and type."""
 
-    span_start: Fraction
-    span_end: Fraction
     chord_ratio: Annotated[float, Field(gt=0.0, lt=0.6)]
     type: Literal["plain", "split", "slotted", "double_slotted", "fowler", "slat", "krueger"] = "slotted"
-
-    @model_validator(mode="after")
-    def _consistent(self):
-        if self.span_end <= self.span_start:
-            raise ValueError(f"span_end ({self.span_end}) must be outboard of span_start ({self.span_start})")
-        return self
 
 
 class MovableStabilizer(_Section):

@@ -97,7 +97,17 @@ def hand_margin(details, capabilities, ultimate_factor=1.5):
     (§25.305: allowable limit − |limit load|; allowable ultimate − 1.5 |limit load|, §25.303), each sense
     against its own allowable. Returns (normalised margin, margin in N or N·m, "<limit|ultimate> <quantity> at
     <station>"); where two checks tie within rounding either may be the rule's."""
-    worst = None
+    checks = _hand_checks(details, capabilities, ultimate_factor)
+    if not checks:
+        return None
+    normalised, margin, label, _ = min(checks, key=lambda c: c[0])  # the first smallest, in the checks' order
+    return normalised, margin, label
+
+
+def _hand_checks(details, capabilities, ultimate_factor):
+    """Every (normalised margin, margin, "<limit|ultimate> <quantity> at <station>", load rounding over the allowable)
+    of the reported station loads against the capabilities, in capability, sense, limit-then-ultimate order."""
+    out = []
     for cap in capabilities:
         key = f"{cap.station} {cap.quantity} max/min (kN{'·m' if cap.quantity != 'shear' else ''})"
         if key not in details:
@@ -109,9 +119,9 @@ def hand_margin(details, capabilities, ultimate_factor=1.5):
             for which, factor in (("limit", 1.0), ("ultimate", ultimate_factor)):
                 allowable = cap.allowable(which, sense)
                 margin = allowable - factor * abs(load)
-                if worst is None or margin / allowable < worst[0]:
-                    worst = (margin / allowable, margin, f"{which} {cap.quantity} at {cap.station}")
-    return worst
+                label = f"{which} {cap.quantity} at {cap.station}"
+                out.append((margin / allowable, margin, label, 0.1e3 * factor / abs(allowable)))
+    return out
 
 
 def assert_margins_by_hand(findings, capabilities_by_surface):
@@ -130,24 +140,11 @@ def assert_margins_by_hand(findings, capabilities_by_surface):
 def tied_hand_margins(details, capabilities, ultimate_factor=1.5):
     """The margins (N or N·m) of every check whose normalised margin lies within the reported loads' rounding (0.1 kN,
     kN·m, times the factor, over the allowable) of :func:`hand_margin`'s smallest."""
-    worst = hand_margin(details, capabilities, ultimate_factor)
-    if worst is None:
+    checks = _hand_checks(details, capabilities, ultimate_factor)
+    if not checks:
         return []
-    out = []
-    for cap in capabilities:
-        key = f"{cap.station} {cap.quantity} max/min (kN{'·m' if cap.quantity != 'shear' else ''})"
-        if key not in details:
-            continue
-        hi, lo = (1e3 * v for v in details[key])
-        for sense, load in (("max", hi), ("min", lo)):
-            if (sense == "max" and load <= 0) or (sense == "min" and load >= 0):
-                continue
-            for which, factor in (("limit", 1.0), ("ultimate", ultimate_factor)):
-                allowable = cap.allowable(which, sense)
-                margin = allowable - factor * abs(load)
-                if margin / allowable <= worst[0] + 0.1e3 * factor / abs(allowable) + 1e-12:
-                    out.append(margin)
-    return out
+    worst = min(c[0] for c in checks)
+    return [margin for normalised, margin, _, rounding in checks if normalised <= worst + rounding + 1e-12]
 
 
 def failures_with(tmp_path, rule, edits, check_part):

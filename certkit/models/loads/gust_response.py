@@ -48,7 +48,7 @@ class GustBatch:
     u0: np.ndarray
     v_tas: np.ndarray  # m/s
     tail_arm: float  # m, wing to tail centre of pressure
-    chords: tuple[float, float] = (float("nan"), float("nan"))  # m, wing and tail mean chords (the penetration lag)
+    chords: tuple[float, float]  # m, wing and tail mean chords (the penetration lag)
 
     def subset(self, idx) -> "GustBatch":
         idx = np.asarray(idx)
