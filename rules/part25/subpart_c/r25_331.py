@@ -49,7 +49,9 @@ class CheckedPitchManeuver(SimulationRule):
         From unaccelerated flight at speeds from VA to VD the cockpit pitch control is moved as
         δ(t) = δ₁ sin ωt for 0 ≤ t ≤ t_max = 3π/(2ω), ω the undamped short-period frequency but not less
         than πV/(2VA); δ₁ such that the positive limit load factor (nose up) or 0 g (nose down) is reached
-        but not exceeded. Where the sinusoid at the available deflection does not reach it, the peak is
+        but not exceeded — nose up, where the entry speed lies below the +C_N,max line's speed at n₊, the
+        stall line's load factor at that speed, where the manoeuvring envelope ends (§25.333(b); as the
+        balanced points of §25.331(b)). Where the sinusoid at the available deflection does not reach it, the peak is
         held for Δt (the minimum time to reach it, at most 5 s) before returning (t_max = t₂ + π/ω).
         Loads after n_z < 0 (nose up) or n_z > the limit (nose down), or after t_max, need not be
         considered. The horizontal tail must carry the resulting loads (§25.303, §25.305), and the load

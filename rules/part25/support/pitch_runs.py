@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 from functools import partial
 
 import numpy as np
+from certkit_rules.part25.support.envelope_criteria import CN_OVER_CL
 from certkit_rules.part25.support.fuel_states import fuel_detail, fuel_tank_names, fuelled_wing, fuelled_wing_envelope
 from certkit_rules.part25.support.loads_conditions import refusal_findings, trimmed_batch
 from certkit_rules.part25.support.out_of_trim import (
@@ -43,6 +44,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
 from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts, response_loads
+from certkit.models.loads.vn_envelope import envelope as vn_envelope
 from certkit.units import KN
 
 REG_NOTES = "docs/regulation-notes.md §25.331(c)"
@@ -181,6 +183,7 @@ CHECKED_CRITERIA = {
         "nearly flat in the amplitude, and a search stopped anywhere within the tolerance would pick inputs "
         "(and tail loads) that jump from one design to the next",
     ),
+    **CN_OVER_CL,
     **SAFETY,
     **PILOT_EFFORT,
 }
@@ -267,7 +270,8 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     )
     available = np.abs(reach_to - de_trim)
     sign = np.where(nose_up, -1.0, 1.0)
-    target = np.where(nose_up, n_lim - 1.0, 1.0 - crit.n_nose_down)
+    stall_n = _stall_line_load_factors(ctx, sim_conds, v_eas, crit)
+    target = np.where(nose_up, np.minimum(n_lim, stall_n) - 1.0, 1.0 - crit.n_nose_down)
     trims = (model, x0, u0)
     found = checked_maneuver_inputs(
         *trims,
@@ -317,6 +321,12 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
             else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
         )
         reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
+        if nose_up[i] and stall_n[i] < n_lim:
+            reached["stall_line_load_factor"] = round(float(stall_n[i]), 4)
+            reached["load_factor_note"] = (
+                f"the entry speed lies below the +C_N,max line's speed at n = {n_lim:g} (C_N,max at the entry "
+                f"Mach number): the manoeuvre is flown to the stall line, n = {stall_n[i]:.3f}"
+            )
         beyond_mach = beyond_mach_range(loads, condition_mach(c))
         if beyond_mach:
             findings += [
@@ -386,6 +396,20 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         stations=stations,
         model=model,
     )
+
+
+def _stall_line_load_factors(ctx, conditions, v_eas, crit) -> np.ndarray:
+    """The load factor of the positive stall line (½ρ₀V²S C_N,max(M)/W, the manoeuvring envelope's boundary below point
+    A) at each condition's entry speed: where it lies below n₊ the checked manoeuvre's pull is bounded by it, as the
+    balanced points are (§25.333(b): the envelope ends at the stall line)."""
+    out = np.empty(len(conditions))
+    lines: dict = {}
+    for i, (c, v) in enumerate(zip(conditions, v_eas)):
+        key = (c.mass, c.altitude or 0.0)
+        if key not in lines:
+            lines[key] = vn_envelope(ctx, key[0], key[1], crit.cn_over_cl)
+        out[i] = float(lines[key].n_stall_pos(v))
+    return out
 
 
 def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
