@@ -35,6 +35,7 @@ from certkit.aircraft.quantities import (
     Pressure,
     SpecificFuelConsumption,
     Speed,
+    SpeedOrSchedule,
     SpeedValue,
     Stiffness,
     Temperature,
@@ -704,8 +705,12 @@ class Speeds(_Section):
     VLOF: Speed | None = None
     VREF: Speed | None = None
     VFTO: Speed | None = None
-    VA: Speed | None = None
-    VB: Speed | None = None
+    VA: SpeedOrSchedule | None = Field(
+        None, description="design manoeuvring speed: one speed, or a schedule with altitude (kind, altitude, speed)"
+    )
+    VB: SpeedOrSchedule | None = Field(
+        None, description="design speed for maximum gust intensity: one speed, or a schedule with altitude"
+    )
     VC: Speed | None = None
     MC: Annotated[float, Field(gt=0.0, lt=3.0)] | None = None
     VD: Speed | None = None

@@ -9,9 +9,10 @@ A speed also states its kind: ``"340 kn EAS"``, ``"340 KEAS"``, ``{value: 340 kn
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Annotated, Callable, Literal, TypeAlias
+from typing import TYPE_CHECKING, Annotated, Any, Callable, Literal, TypeAlias
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, WithJsonSchema, model_validator
+import numpy as np
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Discriminator, Field, Tag, WithJsonSchema, model_validator
 
 from certkit.units import DIMENSIONS, UnitError, to_si
 
@@ -135,6 +136,54 @@ class Speed(BaseModel):
             return {"value": number.strip(), "kind": kind}
         return data
 
+    def value_at(self, altitude: Any) -> Any:
+        """The speed (m/s, of its kind) at pressure ``altitude`` (m): the same at every altitude."""
+        return self.value + 0.0 * np.asarray(altitude, dtype=float)
+
+
+class SpeedSchedule(BaseModel):
+    """A design speed scheduled with altitude (§25.335(c)(2): VA "evaluated at the design weight and altitude"):
+    speeds of one kind at increasing pressure altitudes, linear between them and held beyond; ``value`` is the
+    lowest altitude's (the sea-level speed where the schedule starts there)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+    kind: SpeedKind
+    altitude: Annotated[list[Length], Field(min_length=2, description="pressure altitudes, increasing")]
+    speed: Annotated[list[Annotated[SpeedValue, Field(gt=0)]], Field(min_length=2, description="one per altitude")]
+    source: str = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _table(self) -> "SpeedSchedule":
+        if len(self.altitude) != len(self.speed):
+            raise ValueError(f"{len(self.altitude)} altitudes but {len(self.speed)} speeds: one speed per altitude")
+        if any(b <= a for a, b in zip(self.altitude, self.altitude[1:])):
+            raise ValueError(f"altitude {[round(h, 1) for h in self.altitude]} m must increase strictly")
+        return self
+
+    @property
+    def value(self) -> float:
+        """The lowest altitude's speed (m/s)."""
+        return float(self.speed[0])
+
+    def value_at(self, altitude: Any) -> Any:
+        """The speed (m/s, of its kind) at pressure ``altitude`` (m), linear in altitude between the entries."""
+        return np.interp(np.asarray(altitude, dtype=float), self.altitude, self.speed)
+
+
+def _speed_or_schedule(data: Any) -> str:
+    """A mapping with ``altitude`` is a schedule; anything else a single speed."""
+    if isinstance(data, dict):
+        return "schedule" if "altitude" in data else "speed"
+    return "schedule" if isinstance(data, SpeedSchedule) else "speed"
+
+
+#: a design speed: one speed, or a schedule with altitude (errors reported against the form given)
+SpeedOrSchedule = Annotated[
+    Annotated[Speed, Tag("speed")] | Annotated[SpeedSchedule, Tag("schedule")],
+    Discriminator(_speed_or_schedule),
+]
+
 
 __all__ = [
     "Length",
@@ -161,5 +210,7 @@ __all__ = [
     "Fraction",
     "Speed",
     "SpeedKind",
+    "SpeedSchedule",
+    "SpeedOrSchedule",
     "quantity",
 ]

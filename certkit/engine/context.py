@@ -188,7 +188,7 @@ class Context:
     def _design_speed_eas(self, name: str, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         speed = getattr(self.aircraft.speeds, name)
         mach = getattr(self.aircraft.speeds, MACH_OF.get(name, ""), None)
-        eas = np.full(h.shape, np.inf) if speed is None else convert_speed(speed.value, speed.kind, "EAS", h)
+        eas = np.full(h.shape, np.inf) if speed is None else convert_speed(speed.value_at(h), speed.kind, "EAS", h)
         eas_m = np.full(h.shape, np.inf) if mach is None else convert_speed(mach, "MACH", "EAS", h)
         if speed is None and mach is None:
             raise ValueError(f"speeds.{name} is not declared")

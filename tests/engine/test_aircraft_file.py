@@ -93,11 +93,31 @@ def test_unsafe_or_malformed_yaml(tmp_path, text, path, words):
 
 
 def test_speed_must_state_its_kind(tmp_path):
-    text = BASELINE.read_text().replace("VA: 266 kn EAS", "VA: 266 kn")
+    text = BASELINE.read_text().replace("VC: 272 kn EAS", "VC: 272 kn")
     f = tmp_path / "a.yaml"
     f.write_text(text)
-    with pytest.raises(InputError, match=r"speeds\.VA: .*end with its kind"):
+    with pytest.raises(InputError, match=r"speeds\.VC: .*end with its kind"):
         load_aircraft(f)
+
+
+@pytest.mark.parametrize(
+    "altitude, speed, words",
+    [
+        ("[0 ft, 10750 ft, 10750 ft]", "[269 kn, 272 kn, 272 kn]", "must increase strictly"),
+        ("[0 ft, 10750 ft]", "[269 kn, 272 kn, 275 kn]", "one speed per altitude"),
+        ("[0 ft, 10750 ft]", "[269 kn, -272 kn]", "greater than 0"),
+    ],
+)
+def test_a_speed_schedule_that_cannot_be_read_is_an_input_error(tmp_path, altitude, speed, words):
+    """speeds.VA as a schedule with altitude: increasing altitudes, one positive speed each (the YAML path named)."""
+    text = BASELINE.read_text()
+    text = text.replace("    altitude: [0 ft, 10750 ft]", f"    altitude: {altitude}", 1)
+    text = text.replace("    speed: [269 kn, 272 kn]", f"    speed: {speed}", 1)
+    f = tmp_path / "a.yaml"
+    f.write_text(text)
+    with pytest.raises(InputError) as info:
+        load_aircraft(f)
+    assert any(p.path.startswith("speeds.VA") and words in p.message for p in info.value.problems), info.value
 
 
 def test_missing_file_is_a_user_error(cli, tmp_path):

@@ -43,8 +43,9 @@ def test_short_of_thrust_flies_the_full_thrust_path(heavy):
 
 def test_below_the_stall_speed_is_not_applicable(heavy):
     """150 kn EAS at sea level at 657,000 lb: W/(q̄S) = 2.9225 MN / (½ × 1.225 kg/m³ × (77.167 m/s)² × 457.76 m²)
-    = 2.9225 MN / (3,647.3 Pa × 457.76 m²) = 1.7504 by hand, above the clean CLmax 1.40: no steady flight at any
-    thrust — not applicable, with the lift coefficient in the reason."""
+    = 2.9225 MN / (3,647.3 Pa × 457.76 m²) = 1.7504 by hand, above the clean CLmax at M 0.2268 (77.167 / 340.294 m/s):
+    1.40 − 0.03 × 0.0268 / 0.2 = 1.396 on the declared C_Lmax(M) (1.400 at M 0.2, 1.370 at 0.4): no steady flight at
+    any thrust — not applicable, with the lift coefficient in the reason."""
     ctx, corner = heavy
     cond = corner.with_(altitude=0.0, speed=150 * KN, speed_kind="EAS")
     batch = trimmed_batch(ctx, [cond])
@@ -52,6 +53,8 @@ def test_below_the_stall_speed_is_not_applicable(heavy):
     (refusal,) = batch.refusals([cond])
     cl = corner.mass * G0 / (0.5 * float(density(0.0)) * (150 * KN) ** 2 * ctx.aircraft.reference.area)
     assert cl == pytest.approx(1.7504, rel=1e-3)
-    assert refusal.outside_envelope and f"W/(q̄S) = {cl:.3f} exceeds CLmax = 1.400" in refusal.reason
+    clmax = 1.4 - 0.03 * (150 * KN / 340.294 - 0.2) / 0.2
+    assert clmax == pytest.approx(1.396, abs=5e-4)
+    assert refusal.outside_envelope and f"W/(q̄S) = {cl:.3f} exceeds CLmax = {clmax:.3f} at M 0.227" in refusal.reason
     (finding,) = refusal_findings([refusal], lambda c: ["check"])
     assert finding.status == "complies" and finding.reason.startswith("not applicable: no steady flight")

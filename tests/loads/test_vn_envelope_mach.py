@@ -13,7 +13,7 @@ from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
 from certkit.models.loads.vn_envelope import envelope
 
-from ..rules.helpers import edited_baseline, run_rule
+from ..rules.helpers import CONSTANT_CN_MAX, edited_baseline, run_rule
 
 CLEAN = "  clean:\n    CLmax: 1.4                 # [given]\n"
 H = 9829.8  # m: 32,250 ft, the third of the envelope altitudes of the baseline (EnvelopeAltitudes)
@@ -22,7 +22,7 @@ TABLE = "[0.2, 0.6, 0.9]", "[1.4, 1.3, 1.0]"
 
 def _with_table(tmp_path, mach, clmax, name="t"):
     table = f"    CLmax_by_mach: {{mach: {mach}, CLmax: {clmax}, source: test}}\n"
-    path = edited_baseline(tmp_path, [(CLEAN, CLEAN + table)])
+    path = edited_baseline(tmp_path, CONSTANT_CN_MAX + [(CLEAN, CLEAN + table)])
     return path.rename(tmp_path / f"{name}.yaml")
 
 
@@ -35,7 +35,7 @@ def _isa_mach_of_eas(v_eas, h):
 @pytest.fixture(scope="module")
 def contexts(tmp_path_factory):
     tmp = tmp_path_factory.mktemp("vn")
-    base = Context(load_aircraft(edited_baseline(tmp, [])))
+    base = Context(load_aircraft(edited_baseline(tmp, CONSTANT_CN_MAX)))
     flat = Context(load_aircraft(_with_table(tmp, "[0.2, 0.9]", "[1.4, 1.4]", "flat")))
     falling = Context(load_aircraft(_with_table(tmp, *TABLE, "falling")))
     return base, flat, falling
@@ -83,9 +83,9 @@ def test_the_balanced_point_at_vc_is_held_to_the_stall_line_where_cn_max_falls(t
             and "n" in f.details
         )
 
-    falling = vc_point(run_rule("25.331(b)", tmp_path, edits=[(CLEAN, CLEAN + _table_line(*TABLE))]))
-    constant = vc_point(run_rule("25.331(b)"))
-    ac = load_aircraft(edited_baseline(tmp_path, [])).model
+    falling = vc_point(run_rule("25.331(b)", tmp_path, edits=CONSTANT_CN_MAX + [(CLEAN, CLEAN + _table_line(*TABLE))]))
+    constant = vc_point(run_rule("25.331(b)", tmp_path, edits=CONSTANT_CN_MAX))
+    ac = load_aircraft(edited_baseline(tmp_path, CONSTANT_CN_MAX)).model
     mass = ac.mass.MRW
     v_c = falling["V_kn_EAS"] * 1852 / 3600
     cn = float(np.interp(_isa_mach_of_eas(v_c, H), [0.2, 0.6, 0.9], [1.4, 1.3, 1.0]))
@@ -124,13 +124,14 @@ def test_a_table_that_contradicts_clmax_is_an_input_error(cli, tmp_path, mach, c
     assert "configurations.clean" in out.output and fragment in out.output
 
 
-def _hand_stall_speed(ac, mass, n, h):
-    """EAS (m/s) where ½ ρ₀ V² S C_N,max(M(V)) / W reaches ``n`` with the falling table, by bisection on the ISA
-    closed forms of this module (independent of certkit's atmosphere and root finder)."""
+def _hand_stall_speed(ac, mass, n, h, table=([0.2, 0.6, 0.9], [1.4, 1.3, 1.0])):
+    """EAS (m/s) where ½ ρ₀ V² S C_N,max(M(V)) / W reaches ``n`` with the C_N,max ``table`` (the falling test table by
+    default), by bisection on the ISA closed forms of this module (troposphere; independent of certkit's atmosphere
+    and root finder)."""
     lo, hi = 50.0, 400.0
     for _ in range(80):
         v = 0.5 * (lo + hi)
-        cn = float(np.interp(_isa_mach_of_eas(v, h), [0.2, 0.6, 0.9], [1.4, 1.3, 1.0]))
+        cn = float(np.interp(_isa_mach_of_eas(v, h), *table))
         if 0.5 * 1.225 * v * v * ac.reference.area * cn / (mass * 9.80665) < n:
             lo = v
         else:
@@ -142,7 +143,7 @@ def test_va_required_at_altitude_follows_the_mach_stall_line(tmp_path):
     """§25.335(c): VA ≥ the speed where the stall line reaches n₊ at the altitude (§25.335(c)(2): VA and VS at the
     weight and altitude), at most VC; with C_N,max falling with Mach that speed is the hand one (bisection above), and
     above the constant-C_N,max VS1·√n₊. §25.333 and §25.335(c) agree on it."""
-    edits = [(CLEAN, CLEAN + _table_line(*TABLE))]
+    edits = CONSTANT_CN_MAX + [(CLEAN, CLEAN + _table_line(*TABLE))]
     result = run_rule("25.335(c)", tmp_path, edits=edits)
     ac = load_aircraft(edited_baseline(tmp_path, edits)).model
     rows = [f for f in result.findings if f.condition.altitude == pytest.approx(H, abs=1.0)]
@@ -154,6 +155,33 @@ def test_va_required_at_altitude_follows_the_mach_stall_line(tmp_path):
         assert hand > f.details["VS1"] * math.sqrt(ac.envelope.limit_load_factors.positive) * 1.02
         below_vc += hand < f.details["VC"]
     assert below_vc  # the stall line's speed decides at some weight, not only the VC cap
+
+
+def test_the_baseline_va_schedule_is_the_minimum_of_its_declared_cn_max(tmp_path):
+    """The baseline's VA schedule (269 KEAS at sea level, 272 from 10,750 ft) is §25.335(c)'s minimum at MRW on the
+    stall line of its declared C_Lmax(M) (docs/baseline-sources.md §6a, Q11), the next knot up: at 0 and 10,750 ft the
+    hand speed where ½ρ₀V²S C_N,max(M)/W reaches 2.5 (ISA closed forms, the table typed here from the aircraft file's
+    comment-free values) lies within 1 kn below it; at 21,500 ft VC (272 KEAS) is below the stall line's speed and VA
+    equals it. A table changed without its VA fails here."""
+    table = ([0.20, 0.40, 0.60, 0.75, 0.84, 0.90, 0.94], [1.400, 1.370, 1.303, 1.231, 1.138, 1.014, 0.901])
+    ac = load_aircraft(edited_baseline(tmp_path, [])).model
+    clean = ac.configurations["clean"].CLmax_by_mach
+    assert list(clean.mach) == table[0] and list(clean.CLmax) == table[1]
+    result = run_rule("25.335(c)")
+    kn = 1852.0 / 3600.0
+    for h, declared in ((0.0, 269.0), (3276.6, 272.0)):
+        hand = _hand_stall_speed(ac, ac.mass.MRW, 2.5, h, table) / kn
+        assert 0.0 < declared - hand < 1.0
+        f = next(
+            f
+            for f in result.findings
+            if f.condition.mass == pytest.approx(ac.mass.MRW) and f.condition.altitude == pytest.approx(h, abs=0.5)
+        )
+        assert f.value / kn == pytest.approx(declared, abs=1e-3) and f.limit / kn == pytest.approx(hand, abs=0.05)
+    assert _hand_stall_speed(ac, ac.mass.MRW, 2.5, 6553.2, table) / kn > 272.0
+    assert result.status == "complies"
+    for rule in ("25.335(a)", "25.335(d)", "25.333"):
+        assert run_rule(rule).status in ("complies", "complies_partial"), rule
 
 
 def test_the_checked_pull_stops_at_the_stall_line_of_its_mach(tmp_path):
@@ -186,8 +214,8 @@ def test_the_checked_pull_stops_at_the_stall_line_of_its_mach(tmp_path):
             and f.condition.get("trim") is None
         ]
 
-    constant = pulls(run_rule("25.331(c)(2)"))
-    falling = pulls(run_rule("25.331(c)(2)", tmp_path, edits=[(CLEAN, CLEAN + _table_line(*TABLE))]))
+    constant = pulls(run_rule("25.331(c)(2)", tmp_path, edits=CONSTANT_CN_MAX))
+    falling = pulls(run_rule("25.331(c)(2)", tmp_path, edits=CONSTANT_CN_MAX + [(CLEAN, CLEAN + _table_line(*TABLE))]))
     for found, clmax in ((constant, 1.4), (falling, 1.0)):
         tail = [f for f in found if not f.check.split(":")[0].endswith("wing")]
         assert len(tail) == 1 and tail[0].condition.mass == pytest.approx(mrw, rel=1e-6)

@@ -53,6 +53,27 @@ def _stabilizer_block(text: str) -> str:
 NO_STABILIZER = (_stabilizer_block(BASELINE.read_text()), "")
 
 
+def _block(key: str, indent: str) -> str:
+    """The baseline's text of the mapping ``key`` at ``indent`` (its line and the more indented lines under it)."""
+    lines = BASELINE.read_text().splitlines(keepends=True)
+    start = next(i for i, line in enumerate(lines) if line.startswith(f"{indent}{key}:"))
+    end = start + 1
+    while end < len(lines) and lines[end].startswith(indent + " ") and lines[end][len(indent) + 1] == " ":
+        end += 1
+    return "".join(lines[start:end])
+
+
+#: the baseline's C_Lmax-against-Mach table and its VA and VB schedules (docs/baseline-sources.md §6a, Q11)
+CN_MAX_TABLE, VA_SCHEDULE, VB_SCHEDULE = _block("CLmax_by_mach", "    "), _block("VA", "  "), _block("VB", "  ")
+#: the baseline with the low-speed C_N,max at every Mach number and the single VA and VB derived from it (266 and
+#: 226 KEAS, §6a): the closed-form envelope of the hand calculations
+CONSTANT_CN_MAX = [
+    (CN_MAX_TABLE, ""),
+    (VA_SCHEDULE, "  VA: 266 kn EAS\n"),
+    (VB_SCHEDULE, "  VB: 226 kn EAS\n"),
+]
+
+
 def edited_baseline(tmp_path, edits):
     """The baseline with each (old, new) text replacement applied, written to tmp_path/edited.yaml."""
     text = BASELINE.read_text()

@@ -402,11 +402,12 @@ def test_force_limited_deflections_of_the_loads_rules(forces_ctx, feel_ctx):
 
 
 def test_loads_rules_use_the_pilot_effort(feel_ctx):
-    """§25.331(c)(1) at the forward light corner, sea level: the elevator step is the 300 lbf one at VA 266 KEAS
-    (136.84 m/s, q = 11,470 Pa): x = (300 − 5)/(30 × 1.14695) = 8.573 in → 17.15° up, and the finding says so."""
+    """§25.331(c)(1) at the forward light corner, sea level: the elevator step is the 300 lbf one at VA 269 KEAS (the
+    schedule's sea-level value; 138.386 m/s, q = 11,730 Pa): x = (300 − 5)/(30 × 1.17296) = 8.383 in → 16.77° up, and
+    the finding says so."""
     findings, _ = _evaluate("25.331(c)(1)", feel_ctx, lambda c: c.loading == "fwd_light" and c.altitude == 0.0)
     (f,) = [f for f in findings if ", wing" not in f.check]  # the tail's finding (the wing's has no elevator details)
-    assert f.details["elevator_step_deg"] == pytest.approx(-17.15, abs=0.01)
+    assert f.details["elevator_step_deg"] == pytest.approx(-16.77, abs=0.01)
     assert "pilot effort" in f.details["pilot_effort"]
 
 

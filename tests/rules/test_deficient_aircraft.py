@@ -21,7 +21,7 @@ from certkit.engine.context import Context
 from certkit.engine.registry import discover
 from certkit.engine.scheduler import evaluate_rule
 
-from .helpers import edited_baseline, own
+from .helpers import VA_SCHEDULE, VB_SCHEDULE, edited_baseline, own
 
 TWO_ALTITUDES = ("altitude_points: 5", "altitude_points: 2")
 
@@ -37,8 +37,8 @@ def _scaled_structure(text: str, factor: float) -> str:
 
 
 SPEEDS = [
-    ("  VA: 266 kn EAS", "  VA: 200 kn EAS"),
-    ("  VB: 226 kn EAS", "  VB: 180 kn EAS"),
+    (VA_SCHEDULE, "  VA: 200 kn EAS\n"),
+    (VB_SCHEDULE, "  VB: 180 kn EAS\n"),
     ("  VD: 340 kn EAS", "  VD: 330 kn EAS"),
     ("  V2: 161 kn CAS", "  V2: 155 kn CAS"),
     ("  VREF: 136 kn CAS", "  VREF: 136 kn CAS\n  VSR: {takeoff: 141 kn CAS}"),
@@ -75,7 +75,7 @@ CASES = {
         ),
     ),
     # §25.335(a) VC ≥ VB + 1.32 U_ref: 272 < 240 + 43.8
-    "VB too close to VC": ([("  VB: 226 kn EAS", "  VB: 240 kn EAS")], False, ("25.335(a)",)),
+    "VB too close to VC": ([(VB_SCHEDULE, "  VB: 240 kn EAS\n")], False, ("25.335(a)",)),
     # §25.121: half the thrust, one engine out, cannot hold the minimum gradients; a 450 ft² stabiliser (from
     # 1,119.2): the neutral point moves ahead of the aft CG limit (§25.171, §25.173(a))
     "half the thrust and a horizontal tail too small": (

@@ -15,7 +15,7 @@ import pytest
 
 from certkit.units import FT
 
-from .helpers import control_forces_edit, own, run_rule
+from .helpers import CN_MAX_TABLE, control_forces_edit, own, run_rule
 
 RULE = "25.177"
 
@@ -129,7 +129,7 @@ def test_sign_larger_fin_raises_directional_margin(result, tmp_path):
 
 
 def test_not_evaluated_without_clean_clmax(tmp_path):
-    r = run_rule(RULE, tmp_path, edits=[("    CLmax: 1.4                 # [given]\n", "")])
+    r = run_rule(RULE, tmp_path, edits=[("    CLmax: 1.4                 # [given]\n", ""), (CN_MAX_TABLE, "")])
     assert r.status == "not_evaluated"
     assert own(r)[0].reason == "needs configurations.clean.CLmax"
 

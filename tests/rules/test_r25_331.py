@@ -19,9 +19,12 @@ from certkit.models.loads.capability import Capability
 from certkit.models.loads.inputs import SinusoidHold
 from certkit.units import KN
 
-from .helpers import MACH_RANGE, NO_STRUCTURE, hand_margin, in_mach_range, own, run_rule
+from .helpers import CONSTANT_CN_MAX, MACH_RANGE, NO_STRUCTURE, VA_SCHEDULE, hand_margin, in_mach_range, own, run_rule
 
-TWO_ALTITUDES = [("altitude_points: 5", "altitude_points: 2")]  # sea level and the ceiling
+#: sea level and the ceiling, on the baseline with the low-speed C_N,max at every Mach number and its single VA 266 /
+#: VB 226 KEAS (the hand calculations' closed-form stall line; the declared C_Lmax(M):
+#: tests/loads/test_vn_envelope_mach.py)
+TWO_ALTITUDES = CONSTANT_CN_MAX + [("altitude_points: 5", "altitude_points: 2")]
 
 
 LOAD_FACTOR = "load factor beyond"
@@ -116,9 +119,9 @@ def test_capability_margins_limit_and_ultimate():
 
 
 def test_not_evaluated_without_va(tmp_path):
-    r = run_rule("25.331(c)(2)", tmp_path, [("  VA: 266 kn EAS", "  # VA removed")])
+    r = run_rule("25.331(c)(2)", tmp_path, [(VA_SCHEDULE, "  # VA removed\n")])
     assert r.status == "not_evaluated" and "speeds.VA" in own(r)[0].reason
-    r1 = run_rule("25.331(c)(1)", tmp_path, [("  VA: 266 kn EAS", "  # VA removed")])
+    r1 = run_rule("25.331(c)(1)", tmp_path, [(VA_SCHEDULE, "  # VA removed\n")])
     assert r1.status == "not_evaluated" and "speeds.VA" in own(r1)[0].reason
 
 
@@ -281,7 +284,8 @@ def test_the_input_near_the_stall_line_does_not_jump_between_neighbouring_design
 
     out = []
     for area in areas:
-        ctx = Context(load_aircraft(edited_baseline(tmp_path, [("area: 1119.2 ft^2", f"area: {area} ft^2")])))
+        edits = CONSTANT_CN_MAX + [("area: 1119.2 ft^2", f"area: {area} ft^2")]
+        ctx = Context(load_aircraft(edited_baseline(tmp_path, edits)))
         crit, _ = criteria_for(CheckedPitchManeuver, ctx)
         conds = [
             c
@@ -301,7 +305,7 @@ def test_the_input_near_the_stall_line_does_not_jump_between_neighbouring_design
     assert np.asarray(b1) == pytest.approx(np.asarray(b2), rel=0.03)
 
 
-def test_out_of_trim_checked_manoeuvres(checked):
+def test_out_of_trim_checked_manoeuvres(checked, tmp_path):
     """§25.331(a)(2): from VC and VD (not VA) each direction is flown again from the §25.255 mistrim in its own sense.
     The entry's stabiliser is that of a 1 g trim at min(entry speed, VMO/MMO), trimmed again here, moved by 3 s of
     the declared 0.25°/s (0.75°) within the +2.25°/−10.25° trim limits; the elevator holds 1 g there, so a nose-up
@@ -313,14 +317,14 @@ def test_out_of_trim_checked_manoeuvres(checked):
     from certkit.engine.context import Context
     from certkit.engine.results import Condition
 
-    from .helpers import BASELINE
+    from .helpers import edited_baseline
 
     loads = structural(checked)
     out = [f for f in loads if f.condition.get("trim") is not None]
     assert out and all(f.check.startswith("(a)(2) out-of-trim checked manoeuvre") for f in out)
     assert {f.condition.get("entry_speed") for f in out} == {"VC", "VD"}
     assert all(f.condition.get("trim") == f.condition.get("direction") for f in out)
-    ctx = Context(load_aircraft(BASELINE))
+    ctx = Context(load_aircraft(edited_baseline(tmp_path, CONSTANT_CN_MAX)))
     lo, hi = -10.25 + 2.0, 2.25 + 2.0  # trim limits as deflections from the −2° datum
     checked_stab = 0
     for f in out:

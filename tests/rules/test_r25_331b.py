@@ -13,6 +13,7 @@ from certkit.models.loads.capability import declared_capabilities
 from certkit.units import G0
 
 from .helpers import (
+    CONSTANT_CN_MAX,
     NO_STABILIZER,
     NO_STRUCTURE,
     assert_margins_by_hand,
@@ -20,7 +21,9 @@ from .helpers import (
     failures_with,
 )
 
-FAST = [("altitude_points: 5", "altitude_points: 2")]
+#: sea level and the ceiling, the low-speed C_N,max at every Mach number (the closed-form stall lines of the hand
+#: values below; the declared C_Lmax(M): tests/loads/test_vn_envelope_mach.py)
+FAST = CONSTANT_CN_MAX + [("altitude_points: 5", "altitude_points: 2")]
 
 
 @pytest.fixture(scope="module")

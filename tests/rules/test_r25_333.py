@@ -7,14 +7,28 @@ import pytest
 
 from certkit.units import KN
 
-from .helpers import run_rule
+from .helpers import CONSTANT_CN_MAX, run_rule
 from .test_r25_335 import KT_FT, RHO0_SLUG, S_FT2
 
 
-def test_corners_hand_calculation():
-    """310,000 lb, sea level: +stall VS = √(2W/(ρ₀ S 1.40)) = 115.21 kn, A = VS·√2.5 = 182.17 kn; −stall with
-    CLmin −0.80: 152.41 kn, H = that × √1 = 152.41 kn; D = (VD 340, 2.5), E = (340, 0), F = (VC 272, −1)."""
-    r = run_rule("25.333")
+def test_corners_hand_calculation(tmp_path):
+    """310,000 lb, sea level, the low-speed C_N,max at every Mach number: +stall VS = √(2W/(ρ₀ S 1.40)) = 115.21 kn,
+    A = VS·√2.5 = 182.17 kn; −stall with CLmin −0.80: 152.41 kn, H = that × √1 = 152.41 kn; D = (VD 340, 2.5),
+    E = (340, 0), F = (VC 272, −1). (With the declared C_Lmax(M) — 1.400 at M 0.2, 1.370 at 0.4 — A is where the
+    stall line at its own Mach number reaches 2.5: 182.92 kn, M 0.277, C_Lmax 1.389, by fixed point.)"""
+    r = run_rule("25.333", tmp_path, CONSTANT_CN_MAX)
+    declared = run_rule("25.333")
+    a = next(
+        f
+        for f in declared.findings
+        if f.check.startswith("A") and f.condition.altitude == 0.0 and abs(f.condition.mass / 0.45359237 - 310_000) < 1
+    )
+    v = 182.17
+    for _ in range(30):
+        cl = 1.4 - 0.03 * (v * 0.514444 / 340.294 - 0.2) / 0.2
+        v = 182.17 * math.sqrt(1.4 / cl)
+    assert v == pytest.approx(182.92, abs=0.01)
+    assert a.details["corners"]["A"][0] / KN == pytest.approx(v, abs=0.01)
     f = next(
         f
         for f in r.findings
@@ -30,8 +44,9 @@ def test_corners_hand_calculation():
 
 
 def test_corner_a_at_mrw_against_the_declared_va(tmp_path):
-    """657,000 lb: A = √(2W/(ρ₀ S 1.40))·√2.5 = 265.20 kn; VA 266 closes the envelope (+0.80 kn), 265 does not."""
-    r = run_rule("25.333")
+    """657,000 lb, the low-speed C_N,max at every Mach number (the baseline before its C_Lmax(M) and VA schedule):
+    A = √(2W/(ρ₀ S 1.40))·√2.5 = 265.20 kn; VA 266 closes the envelope (+0.80 kn), 265 does not."""
+    r = run_rule("25.333", tmp_path, CONSTANT_CN_MAX)
     f = next(
         f
         for f in r.findings
@@ -39,7 +54,7 @@ def test_corner_a_at_mrw_against_the_declared_va(tmp_path):
     )
     assert f.details["corners"]["A"][0] / KN == pytest.approx(265.20, abs=0.01)
     assert f.margin / KN == pytest.approx(0.80, abs=0.01)
-    low = run_rule("25.333", tmp_path, [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])
+    low = run_rule("25.333", tmp_path, CONSTANT_CN_MAX + [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])
     assert low.status == "fails"
 
 

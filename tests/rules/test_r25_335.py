@@ -12,11 +12,18 @@ import pytest
 
 from certkit.units import KN
 
-from .helpers import run_rule
+from .helpers import CONSTANT_CN_MAX, VA_SCHEDULE, run_rule
 
 RHO0_SLUG, G_FT, KT_FT = 0.0023769, 32.174, 1.6878099
 S_FT2, CLMAX = 4927.3, 1.4
 SPAN_FT = 208.35
+
+
+def constant(rule_id, tmp_path, edits=()):
+    """``rule_id`` on the baseline with the low-speed C_N,max at every Mach number and its single VA 266 / VB 226 KEAS
+    (the closed-form envelope of these hand calculations; the declared C_Lmax(M) and the VA/VB schedules:
+    tests/loads/test_vn_envelope_mach.py)."""
+    return run_rule(rule_id, tmp_path, CONSTANT_CN_MAX + list(edits))
 
 
 def vs1_kn(w_lb, cn_over_cl=1.0):
@@ -29,11 +36,11 @@ def by_mass(result, lb, altitude_m=0.0):
     )
 
 
-def test_va_hand_calculation():
+def test_va_hand_calculation(tmp_path):
     """(c): VA ≥ min(VS1·√2.5, VC), VS1 = √(2W/(ρ₀ S CLmax)) at 657,000 lb (MRW) with C_Nmax = CLmax = 1.40:
     VS1 = 167.73 kn, VS1·√2.5 = 265.20 kn (below VC 272); declared VA 266 KEAS → margin +0.80 kn."""
     assert vs1_kn(657_000) == pytest.approx(167.73, abs=0.01)
-    r = run_rule("25.335(c)")
+    r = constant("25.335(c)", tmp_path)
     f = by_mass(r, 657_000)
     assert f.limit / KN == pytest.approx(265.20, abs=0.01)
     assert f.margin / KN == pytest.approx(266.0 - 265.20, abs=0.02)
@@ -42,7 +49,7 @@ def test_va_hand_calculation():
 
 def test_va_at_265_fails_by_the_conservative_stall(tmp_path):
     """The baseline's former VA, 265 KEAS (VS1·√2.5 at MTOW), is 0.20 kn below the MRW minimum: fails."""
-    r = run_rule("25.335(c)", tmp_path, [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])
+    r = constant("25.335(c)", tmp_path, [("  VA: 266 kn EAS", "  VA: 265 kn EAS")])
     assert r.status == "fails" and r.critical.margin / KN == pytest.approx(-0.20, abs=0.02)
 
 
@@ -51,15 +58,15 @@ def test_justified_cn_factor_override(tmp_path):
     the override and its justification travel with the result (the report prints them)."""
     why = "wind-tunnel C_N,max of the clean wing, test report X-123 (illustrative)"
     override = f'criteria:\n  "25.335(c)":\n    values: {{cn_over_cl: 1.1}}\n    justification: "{why}"\n'
-    r = run_rule("25.335(c)", tmp_path, [("\nsources:\n", "\n" + override + "sources:\n")])
+    r = constant("25.335(c)", tmp_path, [("\nsources:\n", "\n" + override + "sources:\n")])
     f = by_mass(r, 657_000)
     assert f.limit / KN == pytest.approx(252.86, abs=0.01)
     assert r.overrides["cn_over_cl"] == {"default": 1.0, "value": 1.1, "unit": "", "justification": why}
 
 
-def test_vb_hand_calculation_with_the_498_formula(ctx):
+def test_vb_hand_calculation_with_the_498_formula(tmp_path):
     """(d)(1): VB ≥ VS1·[1 + Kg Uref Vc a/(498 w)]^½, Kg = 0.88μ/(5.3+μ), μ = 2w/(ρ c a g), at sea level, 657,000 lb."""
-    r = run_rule("25.335(d)")
+    r = constant("25.335(d)", tmp_path)
     f = by_mass(r, 657_000)
     a = f.details["lift_slope"]
     w = 657_000 / S_FT2
@@ -76,10 +83,11 @@ def test_vb_hand_calculation_with_the_498_formula(ctx):
 
 
 def test_vc_hand_calculation():
-    """(a)(2) at sea level: VC − (VB + 1.32·56 ft/s) = 272 − (226 + 43.80) = 2.20 kn."""
+    """(a)(2) at sea level: VC − (VB + 1.32·56 ft/s) = 272 − (227 + 43.80) = 1.20 kn (VB's schedule starts at 227
+    KEAS)."""
     r = run_rule("25.335(a)")
     f = next(f for f in r.findings if f.condition.altitude == 0.0)
-    assert f.margin / KN == pytest.approx(2.20, abs=0.01)
+    assert f.margin / KN == pytest.approx(1.20, abs=0.01)
     high = next(f for f in r.findings if f.condition.altitude > 12000)
     assert high.reason.startswith("not applicable") and high.margin is None
 
@@ -103,11 +111,11 @@ def test_mach_margin_route_at_ceiling():
 
 
 def test_sign_more_clmax_lowers_required_va(tmp_path):
-    base = run_rule("25.335(c)").critical.margin
-    more = run_rule("25.335(c)", tmp_path, [("CLmax: 1.4 ", "CLmax: 1.6 ")]).critical.margin
+    base = constant("25.335(c)", tmp_path).critical.margin
+    more = constant("25.335(c)", tmp_path, [("CLmax: 1.4 ", "CLmax: 1.6 ")]).critical.margin
     assert more > base
 
 
 def test_not_evaluated_without_va(tmp_path):
-    r = run_rule("25.335(c)", tmp_path, [("  VA: 266 kn EAS ", "  # VA: 266 kn EAS ")])
+    r = run_rule("25.335(c)", tmp_path, [(VA_SCHEDULE, "  # VA removed\n")])
     assert r.status == "not_evaluated" and r.headline_reason == "needs speeds.VA"

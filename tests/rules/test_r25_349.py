@@ -9,6 +9,7 @@ import pytest
 from certkit_rules.part25.subpart_c.r25_349 import RollingConditions
 from certkit_rules.part25.support.loads_conditions import trimmed_batch
 
+from certkit.aircraft import load_aircraft
 from certkit.atmosphere import eas_to_tas, tas_to_mach
 from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
@@ -19,9 +20,17 @@ from certkit.models.loads.response import response_loads
 from certkit.models.loads.roll import mirror, simulate_roll, symmetric_manoeuvre_state
 from certkit.units import FT, KN, LB
 
-from .helpers import NO_STRUCTURE, hand_margin, own, run_rule
+from .helpers import CONSTANT_CN_MAX, NO_STRUCTURE, edited_baseline, hand_margin, own, run_rule
 
 ROOT_BENDING = "root bending max/min (kN·m)"
+
+
+@pytest.fixture(scope="module")
+def baseline(tmp_path_factory):
+    """The baseline with the low-speed C_N,max at every Mach number and its single VA 266 / VB 226 KEAS: every
+    condition of the paragraph lies inside the stall line, as the hand estimates below take it (with the declared
+    C_Lmax(M) some 2/3 n pull-ups at 43,000 ft lie beyond it and are not applicable)."""
+    return load_aircraft(edited_baseline(tmp_path_factory.mktemp("roll"), CONSTANT_CN_MAX))
 
 
 @pytest.fixture(scope="module")
@@ -190,7 +199,7 @@ def test_not_evaluated_without_capability(tmp_path):
     """Without the structure section every condition is not evaluated, either for want of a capability (the
     loads are reported in the details) or because the 2/3 n pull-up exceeds the lift available (VA = VC at
     43,000 ft, heavy)."""
-    roll = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE])
+    roll = run_rule("25.349(a)", tmp_path, edits=CONSTANT_CN_MAX + [NO_STRUCTURE])
     assert roll.status == "not_evaluated"
     reasons = {f.reason for f in own(roll)}
     assert "no structural capability declared" in reasons
@@ -208,7 +217,7 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
     without any capability, whose details are the envelope over the §25.343 fuel states (with a capability they are
     the loads of each condition's critical fuel state)."""
     (tmp_path / "bare").mkdir()
-    bare = run_rule("25.349(a)", tmp_path / "bare", edits=[NO_STRUCTURE])
+    bare = run_rule("25.349(a)", tmp_path / "bare", edits=CONSTANT_CN_MAX + [NO_STRUCTURE])
     L = 1e3 * max(
         max(abs(v) for v in f.all_details()[ROOT_BENDING])
         for f in own(bare)
@@ -219,7 +228,7 @@ def test_wing_capability_limit_and_ultimate(roll, tmp_path):
         f'    - {{station: root, quantity: bending, limit: {1.2 * L}, ultimate: {1.4 * L}, source: "test"}}\n'
         "sources:\n"
     )
-    result = run_rule("25.349(a)", tmp_path, edits=[NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
+    result = run_rule("25.349(a)", tmp_path, edits=CONSTANT_CN_MAX + [NO_STRUCTURE, ("\nsources:\n", "\n" + structure)])
     wing = [f for f in own(result) if ": wing" in f.check and f.margin is not None]
     assert len(wing) == 96
     worst = min(wing, key=lambda f: f.margin)

@@ -77,7 +77,9 @@ class CheckedPitchManeuver(SimulationRule):
         "(the §25.255 speeds; VA lies below the cruise speeds §25.255 trims at), each direction from the mistrim in "
         "its own sense — the 1 g entry trimmed with the stabiliser of the trim at the entry speed (at most VMO/MMO) "
         "moved by 3 s of the rate within the trim limits and held, the elevator holding 1 g and making the input; the "
-        "opposite pairings leave the elevator less travel toward the manoeuvre's stop and are not flown."
+        "opposite pairings leave the elevator less travel toward the manoeuvre's stop and are not flown. The pull is "
+        "bounded by C_N,max (the clean CLmax, against Mach where configurations.clean.CLmax_by_mach declares it; "
+        "without it the low-speed value holds at every Mach number), not by a buffet-onset boundary."
     )
     implementation = "partial"
 
@@ -86,12 +88,6 @@ class CheckedPitchManeuver(SimulationRule):
             "25.331(c)(2)",
             "fuselage and vertical-tail loads of the checked manoeuvre are not reported (wing and horizontal-"
             "tail loads only)",
-        ),
-        (
-            "25.331(c)",
-            "without configurations.clean.CLmax_by_mach declared, C_N,max does not vary with Mach: the wing loads' "
-            "window is bounded by the low-speed CLmax, so at high Mach the manoeuvre reaches lift coefficients beyond "
-            "buffet onset and maximum lift there (the baseline declares no table: docs/baseline-sources.md Q11)",
         ),
     )
 

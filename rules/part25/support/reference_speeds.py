@@ -105,4 +105,4 @@ def stall_warning_cl(ctx, configuration: str, mass) -> tuple[float, str]:
 def declared_eas(ctx, name: str, h: float) -> float:
     """A declared speed (m/s EAS at altitude ``h``)."""
     s = getattr(ctx.aircraft.speeds, name)
-    return float(convert_speed(s.value, s.kind, "EAS", h))
+    return float(convert_speed(s.value_at(h), s.kind, "EAS", h))
