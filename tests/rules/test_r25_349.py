@@ -250,3 +250,20 @@ def test_baseline_margins_against_the_declared_capability(roll, shared):
     for f in evaluated:
         normalized, _, _ = hand_margin(f.all_details(), caps[_surface(f)])
         assert f.normalized_margin == pytest.approx(normalized, abs=5e-5), f.check
+
+
+def test_a_pull_up_just_inside_the_stall_line_is_set_up_at_the_lift_maximum(tmp_path):
+    """With a C_Lmax(M) that keeps half the 747's loss (1.385 at M 0.4 … 1.151 at M 0.94), the 2/3 n₊ = 1.667 g rolling
+    pull-up at VA (= VC, M 0.87) at 43,000 ft and aft_mrw lies 0.3 % inside the stall line C_Lmax q̄ S / W, above the
+    airplane model's lift maximum with the pull-up's deflections (its lift is rounded onto C_Lmax): it is set up at
+    that maximum (within 2 % below 1.667 g, the finding says so) and evaluated, not left "cannot be set up"."""
+    table = "      CLmax: [1.400, 1.370, 1.303, 1.231, 1.138, 1.014, 0.901]"
+    half = "      CLmax: [1.400, 1.385, 1.351, 1.316, 1.269, 1.207, 1.151]"
+    result = run_rule("25.349(a)", tmp_path, edits=[(table, half)])
+    assert not any("cannot be set up" in (f.reason or "") for f in own(result))
+    moved = [f for f in own(result) if "load_factor_note" in f.all_details()]
+    assert moved and all(f.status in ("complies", "fails") for f in moved)
+    for f in moved:
+        assert f.condition.loading == "aft_mrw" and f.condition.altitude == pytest.approx(13106.4, abs=1.0)
+        assert 0.98 * 2 / 3 * 2.5 <= f.all_details()["load_factor"] < 2 / 3 * 2.5
+        assert "lift maximum" in f.all_details()["load_factor_note"]
