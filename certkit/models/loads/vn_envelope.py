@@ -63,7 +63,13 @@ class VnEnvelope:
 
 def envelope(ctx, mass: float, altitude: float, cn_over_cl: float) -> VnEnvelope:
     """The envelope at ``mass`` (kg) and ``altitude`` (m), the stall lines from ``cn_over_cl`` × the declared clean
-    C_Lmax and C_Lmin."""
+    C_Lmax and C_Lmin; memoised in the context (the loads rules ask for it at every condition of a weight and
+    altitude, and with C_Lmax against Mach its corners are root searches)."""
+    key = ("vn_envelope", float(mass), float(altitude), float(cn_over_cl))
+    return ctx.memo(key, lambda: _envelope(ctx, mass, altitude, cn_over_cl))
+
+
+def _envelope(ctx, mass: float, altitude: float, cn_over_cl: float) -> VnEnvelope:
     a = ctx.aircraft
     clean = a.configurations["clean"]
     lf = a.envelope.limit_load_factors
