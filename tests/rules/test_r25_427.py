@@ -90,6 +90,9 @@ def test_gust_conditions_split_and_the_rule_says_what_it_leaves_out(result):
     scoped = [f for f in res.findings if f.details.get("not_evaluated_by_rule") == "25.427(b)(1)"]
     named = ("flaps-extended gusts", "continuous-turbulence")
     assert len(scoped) == 2 and set(named) == {w for w in named for f in scoped if w in f.reason}
+    # the paragraph's other sub-paragraphs (14 CFR 25.427 (a), (c), (d)) are listed, not passed over
+    others = {f.details.get("not_evaluated_by_rule") for f in res.findings if f.status == "not_evaluated"}
+    assert {"25.427(a)", "25.427(c)", "25.427(d)"} <= others
     assert whole["(b) fuselage torsion at the tail"].reason == NO_FUSELAGE
     assert whole["(b) fuselage torsion at the tail"].all_details()["largest_torsion_kNm"] > 0
 

@@ -155,6 +155,19 @@ class UnsymmetricalTailLoads(SimulationRule):
             "the §25.341(b) continuous-turbulence tail loads are not split (a design-envelope band per station, not a "
             "loading with its air and inertial parts; on the baseline 20–42 % of the split cases' envelope)",
         ),
+        (
+            "25.427(a)",
+            "unsymmetrical empennage loads from slipstream and aerodynamic interference in the lateral gust, yaw and "
+            "roll manoeuvre conditions are not assessed as such: the fin and tailplane loads of §25.341(a), §25.349 "
+            "and §25.351 are the vortex lattice's (its wing–tail interference; no propeller slipstream)",
+        ),
+        (
+            "25.427(c)",
+            "gusts of §25.341(a) in any orientation normal to the flight path are not computed; (c) asks for them "
+            "where the tailplane has more than ±10° of dihedral or is carried by the fin (the baseline's, 7° on the "
+            "fuselage, is not)",
+        ),
+        ("25.427(d)", "unsymmetrical empennage loads in the buffet conditions of §25.305(e) are not computed"),
     )
 
     def simulate(self, ctx, conditions, crit):
