@@ -120,6 +120,7 @@ class RollingConditions(SimulationRule):
         "load_factor_fraction": Criterion(2 / 3, "", REG, "load factor = fraction × positive limit manoeuvring factor"),
         "load_factor_low": Criterion(0.0, "", REG, "the other airplane load factor (zero)"),
         "vc_roll_rate_ratio": Criterion(1.0, "", "14 CFR 25.349(a)(3)", "roll rate at VC ≥ ratio × roll rate at VA"),
+        "vd_roll_rate_ratio": Criterion(1 / 3, "", "14 CFR 25.349(a)(4)", "roll rate at VD ≥ ratio × roll rate at VA"),
         "stall_band": Criterion(
             0.02,
             "",
@@ -127,7 +128,6 @@ class RollingConditions(SimulationRule):
             "a pull-up within this fraction below the stall line's load factor that the airplane model's lift "
             "maximum does not reach is set up at that maximum",
         ),
-        "vd_roll_rate_ratio": Criterion(1 / 3, "", "14 CFR 25.349(a)(4)", "roll rate at VD ≥ ratio × roll rate at VA"),
         "ramp_time": Criterion(
             0.1,
             "s",
@@ -194,16 +194,17 @@ AT_MAXIMUM = (
 def _at_lift_maximum(model, batch, rows, st, n_target, n_stall, band):
     """The pull-ups whose load factor lies within ``band`` below the stall line (C_Lmax q̄ S / W) but beyond the
     lift maximum the airplane model reaches with the pull-up's deflections (its lift is rounded onto C_Lmax): set up
-    again at the load factor reached, less 0.002 (a steady state below the maximum); returns the states and which
-    rows were moved."""
+    again at the load factor reached, less 0.002 (a steady state below the maximum); returns the states, the load
+    factors they are set up at and which rows were moved."""
     moved = np.zeros(len(n_target), dtype=bool)
+    n_target = np.array(n_target, dtype=float, copy=True)
     if n_stall is None:
-        return st, moved
+        return st, n_target, moved
     short = (~st.converged | (np.abs(st.n_z - n_target) > 1e-3)) & (n_target <= n_stall)
     short &= (n_target >= (1.0 - band) * n_stall) & np.isfinite(st.n_z) & (st.n_z > 1.0)
     idx = np.flatnonzero(short)
     if not idx.size:
-        return st, moved
+        return st, n_target, moved
     again = symmetric_manoeuvre_state(
         model.subset(idx), batch.x[rows][idx], batch.u[rows][idx], st.n_z[idx] - 0.002, batch.gamma[rows][idx]
     )
@@ -215,7 +216,7 @@ def _at_lift_maximum(model, batch, rows, st, n_target, n_stall, band):
         fields[name] = value
     n_target[idx[ok]] = again.n_z[ok]
     moved[idx[ok]] = True
-    return replace(st, **fields), moved
+    return replace(st, **fields), n_target, moved
 
 
 def target_load_factor(ctx, cond, crit) -> float:
@@ -280,8 +281,8 @@ def rolling_maneuvers(ctx, conditions, crit) -> RollingRun:
     e_lo, e_hi = control_stops(ctx, "elevator")
     ok = np.ones(len(rows), dtype=bool)
     n_stall = stall_line_load_factor(model, batch.x[rows])
-    n_asked = n_target.copy()
-    st, at_maximum = _at_lift_maximum(model, batch, rows, st, n_target, n_stall, float(crit.stall_band))
+    n_asked = n_target
+    st, n_target, at_maximum = _at_lift_maximum(model, batch, rows, st, n_asked, n_stall, float(crit.stall_band))
     for i, c in enumerate(sim_conds):
         reason = None
         if not st.converged[i] or abs(st.n_z[i] - n_target[i]) > 1e-3:

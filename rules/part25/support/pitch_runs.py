@@ -402,14 +402,12 @@ def _stall_line_load_factors(ctx, conditions, v_eas, crit) -> np.ndarray:
     """The load factor of the positive stall line (½ρ₀V²S C_N,max(M)/W, the manoeuvring envelope's boundary below point
     A) at each condition's entry speed: where it lies below n₊ the checked manoeuvre's pull is bounded by it, as the
     balanced points are (§25.333(b): the envelope ends at the stall line)."""
-    out = np.empty(len(conditions))
-    lines: dict = {}
-    for i, (c, v) in enumerate(zip(conditions, v_eas)):
-        key = (c.mass, c.altitude or 0.0)
-        if key not in lines:
-            lines[key] = vn_envelope(ctx, key[0], key[1], crit.cn_over_cl)
-        out[i] = float(lines[key].n_stall_pos(v))
-    return out
+    return np.array(
+        [
+            float(vn_envelope(ctx, c.mass, c.altitude or 0.0, crit.cn_over_cl).n_stall_pos(v))
+            for c, v in zip(conditions, v_eas)
+        ]
+    )
 
 
 def load_factor_reached(ctx, cond, nose_up: bool, peak_nz: float, settled: bool, kind: str, crit):
