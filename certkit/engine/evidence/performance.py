@@ -183,6 +183,36 @@ def takeoff_evidence(
     return [Evidence("Engine-out takeoff time histories", chart, caption, table)]
 
 
+# ---------------------------------------------------------------------------------------------- § 25.107(e)(1)(iv)
+def unstick_evidence(findings: list[Finding], all_engines: Any, engine_out: Any) -> list[Evidence]:
+    """§25.107(e)(1)(iv): the unstick speed against the pitch attitude of each loading, all engines and engine out
+    (:class:`certkit.models.dynamics.unstick.Unstick`), with the lift-off speeds of the critical finding's runs."""
+    worst = critical(findings)
+    if worst is None or worst.value is None:
+        return []
+    labels = [f.condition.loading for f in findings if f.condition.get("inoperative") is None]
+    panels = []
+    for name, u, oei in (("all engines", all_engines, False), ("one engine inoperative", engine_out, True)):
+        series = [
+            Series(label or f"loading {i + 1}", u.attitudes, u.speeds[:, i], marker="o", colour=i)
+            for i, label in enumerate(labels[: u.speeds.shape[1]])
+        ]
+        mine = [f for f in findings if (f.condition.get("inoperative") is not None) == oei and f.value is not None]
+        lims = [Limit(f.details["VLOF"], f"VLOF {f.condition.loading}", kind="reference") for f in mine[:1]]
+        lims += [Limit(float(u.attitudes[0]), "tail strike", axis="x", kind="limit")]
+        panels.append(
+            Panel(Axis("unstick speed (CAS)", "m/s"), series, lims, title=name, x=Axis("pitch attitude", "rad"))
+        )
+    chart = Chart(Axis("pitch attitude", "rad"), panels, title="§25.107(e)(1)(iv) unstick speed", arrangement="row")
+    caption = (
+        "Speed at which lift and thrust carry the weight at each pitch attitude on the runway, the elevator holding "
+        "the attitude (gaps: beyond its travel); VMU is the lowest, at the tail-strike attitude on a "
+        "geometry-limited airplane. Horizontal line: the lift-off speed of the simulated takeoff rotated at the "
+        "maximum practicable rate at the loading with the least margin."
+    )
+    return [Evidence("Unstick speed against attitude", chart, caption)]
+
+
 # ---------------------------------------------------------------------------------------------- § 25.149
 def vmca_evidence(findings: list[Finding], rows: Mapping[str, Any], limits: Any) -> list[Evidence]:
     """§25.149: rudder and aileron of the straight OEI trims the VMCA search visited, against speed, for the

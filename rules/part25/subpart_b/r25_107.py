@@ -1,24 +1,45 @@
-"""§25.107 Takeoff speeds (Amdt. 25-121 era text). Declared V1, VR, V2, VLOF against VSR, VMC, VMCG, VMU.
+"""§25.107 Takeoff speeds (Amdt. 25-121 era text). Declared V1, VR, V2, VFTO against VSR, VMC, VMCG; and
+§25.107(e)(1)(iv), VLOF at the maximum practicable rotation rate against the computed VMU.
 
-Each sub-check is its own finding, so the rule reports what it can: the VSR parts are evaluated from
+Each sub-check of §25.107 is its own finding, so the rule reports what it can: the VSR parts are evaluated from
 §25.103's reference stall speed of the takeoff configuration at MTOW; the VMC parts use the declared VMC, or
 where none is declared the VMCA that §25.149 computes (the basis is named in the finding); the VMCG part the
 declared VMCG or the one §25.149(e) computes by simulation, against VEF (V1 less the speed gained over the
-recognition interval after the critical engine's failure); the VMU part is ``not_evaluated`` until VMU is declared.
+recognition interval after the critical engine's failure).
+
+§25.107(e)(1)(iv) is a rule of its own (its conditions are the takeoff runs' three CGs): VMU from
+:func:`certkit.models.dynamics.unstick.minimum_unstick_speed` (all engines, and with the critical engine windmilling:
+the one-engine-inoperative thrust-to-weight ratio), VLOF from the simulated takeoffs of §25.111 rotated at the
+maximum practicable rate, the factors those of the geometry-limited branch where VMU is reached at the tail-strike
+attitude.
 """
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 from certkit_rules.part25.support.ground_control import computed_vmcg
 from certkit_rules.part25.support.minimum_control import computed_vmca
 from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
-from certkit_rules.part25.support.takeoff import failure_speed_at_v1
+from certkit_rules.part25.support.takeoff import (
+    PROCEDURE_CRITERIA,
+    REPRESENTATIVE_CRITERIA,
+    TAKEOFF_REQUIRES,
+    failure_speed_at_v1,
+    run_summary,
+    simulated_takeoffs,
+    takeoff_conditions,
+    unrepresentative,
+)
+from certkit_rules.part25.support.unstick import unstick_speeds
 
+from certkit.atmosphere import convert_speed
 from certkit.engine.conditions import ConditionSpace, DesignWeight
-from certkit.engine.evidence.performance import margins_evidence
+from certkit.engine.evidence.performance import margins_evidence, unstick_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
+from certkit.units import KN
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
@@ -36,12 +57,12 @@ class TakeoffSpeeds(Rule):
         provisions for a significant reduction of the one-engine-inoperative power-on stall speed; 1.08 VSR for
         propeller airplanes with more than three engines and turbojets with such provisions) nor 1.10 VMC (b);
         V2 may not be less than V2MIN (c)(1). VEF may not be less than VMCG, V1 not less than VEF (a).
-        VR may not be less than V1 nor 1.05 VMC (e)(1)(i)-(ii), and must give a VLOF of not less than
-        110 % of VMU with all engines operating (e)(1)(iv).
+        VR may not be less than V1 nor 1.05 VMC (e)(1)(i)-(ii); the VLOF it gives against VMU ((e)(1)(iv)) is
+        rule 25.107(e)(1)(iv).
     """
     margin = """
         Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
-        VEF/VMCG − 1, VLOF/VMU − 1.10, VFTO/VSR − 1.18; VSR of the takeoff configuration (of the clean one for VFTO) at
+        VEF/VMCG − 1, VFTO/VSR − 1.18; VSR of the takeoff configuration (of the clean one for VFTO) at
         MTOW (§25.103), speeds CAS.
     """
     references = ("25.103", "25.111", "25.121(b)", "25.143(h)", "25.149")
@@ -66,12 +87,6 @@ class TakeoffSpeeds(Rule):
         "vfto_over_vsr": Criterion(
             1.18, "", "14 CFR 25.107(g)(1)", "VFTO/VSR, VSR of the en-route (clean) configuration"
         ),
-        "vlof_over_vmu": Criterion(
-            1.10,
-            "",
-            "14 CFR 25.107(e)(1)(iv) (text after 'not less than' unverified, docs/regulation-notes.md)",
-            "VLOF/VMU, all engines operating",
-        ),
     }
     conditions = ConditionSpace(
         loading=DesignWeight("MTOW", ("reference",)),
@@ -81,19 +96,13 @@ class TakeoffSpeeds(Rule):
     )
     limitations = """
         V2 ≥ VR + the increment to 35 ft (c)(2), VR giving V2 by 35 ft (e)(1)(iii) and the VR − 5 kt abuse case
-        (e)(3) need the takeoff-path simulation of §25.111 and are not evaluated; the OEI VLOF ≥ 1.05 VMU part of
-        (e)(1)(iv) is not separated from the all-engines one (one VLOF is declared).
+        (e)(3) need the takeoff-path simulation of §25.111 and are not evaluated.
     """
 
     implementation = "partial"
     unevaluated = (
         ("25.107(c)(2)", "V2 ≥ VR + the speed increment to 35 ft needs the §25.111(c)(2) takeoff path: not evaluated"),
         ("25.107(e)(1)(iii)", "VR allowing V2 to be reached by 35 ft (§25.111(c)(2)) not evaluated"),
-        (
-            "25.107(e)(1)(iv)",
-            "VLOF ≥ 105 % VMU at the one-engine-inoperative thrust-to-weight ratio not evaluated "
-            "(one VLOF is declared)",
-        ),
         ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
         (
             "25.107(g)(2)",
@@ -106,7 +115,7 @@ class TakeoffSpeeds(Rule):
         for cond in conditions:
             cond = cond.with_(altitude=0.0)
             vsr, source = reference_stall_speed(ctx, TAKEOFF, cond.mass)
-            speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VMU", "VLOF", "VFTO")}
+            speeds = {n: declared_cas(ctx, n) for n in ("V1", "VR", "V2", "VMC", "VMCG", "VFTO")}
             speeds["VSR"] = vsr
             speeds["VSR clean"], clean_source = reference_stall_speed(ctx, "clean", cond.mass)
             vmc_basis = "declared VMC"
@@ -121,7 +130,6 @@ class TakeoffSpeeds(Rule):
                 ratio_check(cond, "(e)(1)(i) VR ≥ V1", speeds, "VR", "V1", crit.vr_over_v1),
                 ratio_check(cond, "(e)(1)(ii) VR ≥ 1.05 VMC", speeds, "VR", "VMC", crit.vr_over_vmc, basis=vmc_basis),
                 self._vef_check(ctx, cond, speeds, crit),
-                ratio_check(cond, "(e)(1)(iv) VLOF ≥ 1.10 VMU", speeds, "VLOF", "VMU", crit.vlof_over_vmu),
                 ratio_check(
                     cond.with_(configuration="clean"),
                     "(g)(1) VFTO ≥ 1.18 VSR (en route)",
@@ -171,5 +179,152 @@ class TakeoffSpeeds(Rule):
             findings,
             "§25.107 takeoff speed ratios",
             "Declared takeoff speeds as ratios against their §25.107 factors.",
-            ("V1", "VR", "V2", "VSR", "VMC", "VMCG", "VLOF", "VMU"),
+            ("V1", "VR", "V2", "VSR", "VMC", "VMCG"),
+        )
+
+
+GEOMETRY_LIMITED = "attitude limit"
+
+
+@rule
+class LiftOffSpeedMargin(Rule):
+    id = "25.107(e)(1)(iv)"
+    run_with = "takeoff"  # the §25.111 takeoff runs' trims and VMCG, memoised in one process
+    symbol = "vlof-over-vmu"
+    title = "VLOF against VMU at the maximum practicable rotation rate (simulated), all engines and engine out"
+    amendment = AMDT
+    requirement = """
+        VR may not be less than a speed that, if the airplane is rotated at its maximum practicable rate, results
+        in a VLOF of not less than 110 % of VMU with all engines operating and 105 % of VMU at the
+        one-engine-inoperative thrust-to-weight ratio — 108 % and 104 % where VMU is limited by the airplane's
+        geometry (tail contact with the runway). VMU (§25.107(d)) is the speed at and above which the airplane can
+        safely lift off and continue the takeoff.
+    """
+    margin = """
+        VLOF/VMU less the factor (ratio; ≥ 0 complies), per loading, all engines and engine out: VLOF of the
+        simulated takeoff rotated at the maximum practicable rate (the critical engine failed at VEF for the engine-out
+        VLOF), VMU the quasi-static minimum unstick speed (certkit.models.dynamics.unstick) at that loading, all
+        engines and with the critical engine windmilling; speeds CAS, sea level.
+    """
+    references = ("25.107", "25.111")
+    requires = (*TAKEOFF_REQUIRES, "geometry.landing_gear.tail_strike_attitude")
+    criteria = {
+        **PROCEDURE_CRITERIA,
+        "lateral_deviation_max": REPRESENTATIVE_CRITERIA["lateral_deviation_max"],
+        "max_practicable_rotation_rate_deg_s": Criterion(
+            3.0,
+            "deg/s",
+            "project choice: the largest rate of the manufacturer's technique (Boeing Flight Operations Review, "
+            "14 Mar 1986: typically 2–3°/s, 'should not exceed 3°/s'; secondary copy); a faster rotation lifts off "
+            "earlier and is the §25.107(e)(4) over-rotation case",
+            "rotation rate of the (e)(1)(iv) takeoffs",
+        ),
+        "vlof_over_vmu": Criterion(
+            1.10, "", "14 CFR 25.107(e)(1)(iv)(A) (docs/regulation-notes.md, P)", "VLOF/VMU, all engines"
+        ),
+        "vlof_over_vmu_oei": Criterion(
+            1.05, "", "14 CFR 25.107(e)(1)(iv)(A) (docs/regulation-notes.md, P)", "VLOF/VMU, one engine inoperative"
+        ),
+        "vlof_over_vmu_geometry": Criterion(
+            1.08,
+            "",
+            "14 CFR 25.107(e)(1)(iv)(B); EASA AMC 25.107(e)(1)(iv) (docs/regulation-notes.md, P)",
+            "VLOF/VMU, all engines, VMU limited by tail contact",
+        ),
+        "vlof_over_vmu_geometry_oei": Criterion(
+            1.04,
+            "",
+            "14 CFR 25.107(e)(1)(iv)(B); EASA AMC 25.107(e)(1)(iv) (docs/regulation-notes.md, P)",
+            "VLOF/VMU, one engine inoperative, VMU limited by tail contact",
+        ),
+    }
+    conditions = takeoff_conditions("Sea level ISA, takeoff thrust; the §25.111 loadings.")
+    limitations = """
+        VMU is quasi-static (lift, thrust and weight in balance at the attitude, the pitch held by the elevator, the
+        model's ground effect; no pitch rate, no strut extension): free-air data in the sense of §25.107(d), not
+        verified by a ground test. The maximum practicable rotation rate is a criterion (3°/s), the rotation of the
+        §25.111 pilot at that rate toward the V2 attitude and at most the tail-strike attitude less the clearance. A
+        run that does not lift off, leaves the centreline by more than the §25.149(e) 30 ft or reaches the tail-strike
+        attitude on the runway earns no verdict.
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        n = len(conditions)
+        fast = SimpleNamespace(**{k: getattr(crit, k) for k in PROCEDURE_CRITERIA})
+        fast.rotation_rate_deg_s = crit.max_practicable_rotation_rate_deg_s
+        to = simulated_takeoffs(ctx, conditions, fast)
+        scheduled = simulated_takeoffs(ctx, conditions, crit)
+        vmu = unstick_speeds(ctx, conditions)
+        self.unstick = vmu
+        vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
+        strike = float(np.degrees(ctx.aircraft.geometry.landing_gear.tail_strike_attitude))
+        # a late lift-off is what this check measures, not a sign of an unrepresentative run: only a run that does not
+        # lift off, wanders off the centreline or puts the tail on the runway earns no verdict
+        bounds = SimpleNamespace(
+            vlof_above_vr_max=np.inf, v35_above_v2_max=np.inf, lateral_deviation_max=crit.lateral_deviation_max
+        )
+        cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0))  # noqa: E731
+        out = []
+        for engine_out, label in ((False, "all engines"), (True, "one engine inoperative")):
+            u = vmu.engine_out if engine_out else vmu.all_engines
+            speeds = vmu.vmu_cas(engine_out)
+            for i, cond in enumerate(conditions):
+                row = i if engine_out else n + i
+                geometry = u.limited_by[i] == GEOMETRY_LIMITED
+                name = ("vlof_over_vmu_geometry" if geometry else "vlof_over_vmu") + ("_oei" if engine_out else "")
+                factor = getattr(crit, name)
+                check = f"(e)(1)(iv) VLOF ≥ {factor:g} VMU, {label}"
+                c = cond.with_(altitude=0.0, **({"inoperative": vmu.engine} if engine_out else {}))
+                if not np.isfinite(speeds[i]):
+                    out.append(
+                        Finding.not_evaluated(
+                            c,
+                            check,
+                            f"no attitude up to the {strike:.1f}° tail-strike attitude lifts the airplane off below "
+                            "the search's upper speed with the elevator within its travel",
+                        )
+                    )
+                    continue
+                summary = run_summary(to, row, vr_kn, v2_kn)
+                why = unrepresentative(summary, bounds, engine_out=False, tail_strike_deg=strike)
+                details = {
+                    "VMU": speeds[i],
+                    "vmu_limited_by": u.limited_by[i],
+                    "vmu_attitude_deg": round(float(np.degrees(u.attitude[i])), 2),
+                    "vmu_elevator_deg": round(float(np.degrees(u.elevator[i])), 2),
+                    "vmu_lift_coefficient": round(float(u.lift_coefficient[i]), 4),
+                    "rotation_rate_deg_s": crit.max_practicable_rotation_rate_deg_s,
+                    "vlof_scheduled_rotation_kn": run_summary(scheduled, row, vr_kn, v2_kn)["vlof_kn"],
+                    **summary,
+                }
+                if why:
+                    out.append(
+                        Finding.not_evaluated(
+                            c, check, "the takeoff at the maximum practicable rate " + "; ".join(why), **details
+                        )
+                    )
+                    continue
+                vlof = cas(to.run.v_lof[row])
+                out.append(
+                    Finding.compare(
+                        c.with_(speed=vlof, speed_kind="CAS", speed_name="VLOF"),
+                        check,
+                        vlof / speeds[i],
+                        factor,
+                        at_least=True,
+                        unit="ratio",
+                        VLOF=vlof,
+                        **details,
+                    )
+                )
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        vmu = getattr(self, "unstick", None)
+        curves = [] if vmu is None else unstick_evidence(findings, vmu.all_engines, vmu.engine_out)
+        return curves + margins_evidence(
+            findings,
+            "§25.107(e)(1)(iv) VLOF against VMU",
+            "Lift-off speed at the maximum practicable rotation rate against the minimum unstick speed.",
+            ("VLOF", "VMU", "vmu_limited_by", "vlof_scheduled_rotation_kn"),
         )

@@ -88,6 +88,7 @@ class TakeoffPath(Rule):
         ),
     )
     cost = 4  # relative evaluation time (orders work over --jobs processes)
+    run_with = "takeoff"  # §25.111, §25.113 and §25.107(e)(1)(iv) fly the same runs: one process simulates them
     symbol = "takeoff-path"
     title = "Takeoff path with the critical engine failed at VEF (simulated to 35 ft and a climb-out)"
     amendment = "25-121"

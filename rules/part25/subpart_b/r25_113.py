@@ -40,6 +40,7 @@ from certkit.units import FT, KN
 class TakeoffDistance(Rule):
     id = "25.113"
     cost = 1  # the §25.111 run, memoised
+    run_with = "takeoff"  # §25.111, §25.113 and §25.107(e)(1)(iv) fly the same runs: one process simulates them
     symbol = "takeoff-distance"
     title = "Takeoff distance: engine-out and 115 % all-engines distances to 35 ft (simulated)"
     amendment = "25-121"

@@ -1,0 +1,105 @@
+"""§25.107(e)(1)(iv): VLOF at the maximum practicable rotation rate against the computed VMU.
+
+The factors are the regulation's (docs/regulation-notes.md, (e)(1)(iv) (A)/(B)); the minimum unstick speed itself is
+tested against the lift equation in tests/dynamics/test_unstick.py. Here: which branch applies, which way the
+airplane's geometry and the rotation rate move the margins, and that a deficient airplane (a lower tail-strike
+attitude: a longer aft body or shorter gear) fails.
+"""
+
+import pytest
+
+from certkit.units import KN
+
+from .helpers import run_rule
+
+RULE = "25.107(e)(1)(iv)"
+STRIKE = "tail_strike_attitude: 12.1 deg"
+
+
+@pytest.fixture(scope="module")
+def baseline_result():
+    return run_rule(RULE)
+
+
+def by(result, loading, engine_out):
+    return next(
+        f
+        for f in result.findings
+        if f.condition.loading == loading and (f.condition.get("inoperative") is not None) == engine_out
+    )
+
+
+LOADINGS = ("MTOW forward", "MTOW reference", "MTOW aft")
+
+
+def test_the_baseline_is_geometry_limited_with_the_108_and_104_percent_factors(baseline_result):
+    """VMU at the 12.1° tail-strike attitude at every loading, so (B)'s 1.08 (all engines) and 1.04 (engine out)."""
+    assert len(baseline_result.findings) == 6
+    for f in baseline_result.findings:
+        assert f.status in ("complies", "fails"), f.reason
+        assert f.details["vmu_limited_by"] == "attitude limit"
+        assert f.details["vmu_attitude_deg"] == pytest.approx(12.1)
+        assert f.limit == (1.04 if f.condition.get("inoperative") else 1.08)
+
+
+def test_less_thrust_and_a_forward_cg_raise_vmu(baseline_result):
+    """At the one-engine-inoperative thrust-to-weight ratio the thrust carries less of the weight (T sin θ), and a
+    forward CG needs more nose-up elevator (tail download): VMU rises with both."""
+    for loading in LOADINGS:
+        assert by(baseline_result, loading, True).details["VMU"] > by(baseline_result, loading, False).details["VMU"]
+    for engine_out in (False, True):
+        vmu = [by(baseline_result, loading, engine_out).details["VMU"] for loading in LOADINGS]
+        assert vmu[0] > vmu[1] > vmu[2]
+
+
+def test_a_lower_tail_strike_attitude_fails(baseline_result, tmp_path):
+    """An aft body that touches the runway at 11° (longer fuselage or shorter gear): VMU rises (less lift at the
+    limiting attitude) more than the lift-off speed does: every evaluated margin falls and the all-engines checks fail
+    at every CG. (The forward CG's engine-out run reaches 11° on the runway — the rotation toward the climb attitude
+    once the wheels first unload — and earns no verdict there.)"""
+    low = run_rule(RULE, tmp_path, [(STRIKE, "tail_strike_attitude: 11 deg")])
+    for loading in LOADINGS:
+        for engine_out in (False, True):
+            f = by(low, loading, engine_out)
+            if f.status != "not_evaluated":
+                assert f.margin < by(baseline_result, loading, engine_out).margin
+        assert by(low, loading, False).status == "fails"
+    assert low.status == "fails"
+
+
+def test_a_lift_maximum_below_the_tail_strike_uses_the_110_and_105_percent_factors(tmp_path):
+    """With a tail that would touch only at 20° the takeoff configuration reaches its lift maximum first: VMU is
+    lift-limited, below 20°, and (A)'s 1.10 and 1.05 apply."""
+    high = run_rule(RULE, tmp_path, [(STRIKE, "tail_strike_attitude: 20 deg")])
+    for f in high.findings:
+        assert f.details["vmu_limited_by"] == "lift maximum"
+        assert f.details["vmu_attitude_deg"] < 19.0
+        assert f.limit == (1.05 if f.condition.get("inoperative") else 1.10)
+
+
+def test_a_faster_rotation_lifts_off_earlier(baseline_result, tmp_path):
+    """Rotated at 4°/s instead of 3°/s the airplane reaches its lift-off attitude sooner: the all-engines VLOF falls
+    at every loading and so does the margin (VMU does not depend on the rotation)."""
+    why = "sensitivity of the lift-off speed to the rotation rate"
+    fast = run_rule(
+        RULE,
+        tmp_path,
+        [
+            (
+                "\nsources:\n",
+                f'\ncriteria:\n  "{RULE}":\n    values: {{max_practicable_rotation_rate_deg_s: 4.0}}\n'
+                f'    justification: "{why}"\n\nsources:\n',
+            )
+        ],
+    )
+    for loading in LOADINGS:
+        f, b = by(fast, loading, False), by(baseline_result, loading, False)
+        assert f.details["VLOF"] < b.details["VLOF"] - 1.0 * KN
+        assert f.details["VMU"] == pytest.approx(b.details["VMU"], rel=1e-9)
+        assert f.margin < b.margin
+
+
+def test_without_a_tail_strike_attitude_the_rule_is_not_evaluated(tmp_path):
+    r = run_rule(RULE, tmp_path, [("    " + STRIKE, "")])
+    assert r.status == "not_evaluated"
+    assert any("tail_strike_attitude" in (f.reason or "") for f in r.findings)
