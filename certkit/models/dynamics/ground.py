@@ -15,12 +15,14 @@ import numpy as np
 from certkit.models.dynamics.eom import AircraftModel, euler_to_quat, quat_to_dcm
 
 
-def gear_heights(model: AircraftModel, x12: np.ndarray) -> np.ndarray:
-    """Height (m) of each gear contact point above the runway, (n, n_legs), for Euler states (n, 12)."""
+def gear_heights(model: AircraftModel, x12: np.ndarray, rows=None) -> np.ndarray:
+    """Height (m) of each gear contact point above the runway, (n, n_legs), for Euler states (n, 12); ``rows`` says
+    which condition of the batch each state belongs to (default: state i is condition i)."""
     if model.ground is None:
         raise ValueError("the model has no ground model")
     dcm = quat_to_dcm(euler_to_quat(x12[:, 9], x12[:, 10], x12[:, 11]))
-    r_ned = np.einsum("nij,nlj->nli", dcm, model.r_gear)
+    r_gear = model.r_gear if rows is None else model.r_gear[rows]
+    r_ned = np.einsum("nij,nlj->nli", dcm, r_gear)
     return x12[:, 2:3] - model.ground.elevation - r_ned[:, :, 2]
 
 

@@ -32,7 +32,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from certkit.models.dynamics.eom import AircraftModel, euler_to_quat, quat_to_dcm
+from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.ground import gear_heights
 
 #: speed bracket of the bisection (m/s TAS)
 SPEED_RANGE = (20.0, 150.0)
@@ -57,17 +58,26 @@ class Unstick:
     def geometry_limited(self) -> np.ndarray:
         return np.array([s == "attitude limit" for s in self.limited_by])
 
+    def take(self, rows: slice) -> "Unstick":
+        """The conditions ``rows`` of the batch."""
+        return Unstick(
+            speed=self.speed[rows],
+            attitude=self.attitude[rows],
+            elevator=self.elevator[rows],
+            lift_coefficient=self.lift_coefficient[rows],
+            limited_by=self.limited_by[rows],
+            attitudes=self.attitudes,
+            speeds=self.speeds[:, rows],
+        )
+
 
 def _liftoff_states(model: AircraftModel, rows: np.ndarray, theta: np.ndarray, V) -> np.ndarray:
     """Euler states (m, 12) at attitude θ on a level runway, velocity along it, the lowest gear point touching."""
-    m = rows.size
-    x = np.zeros((m, 12))
+    x = np.zeros((rows.size, 12))
     x[:, 10] = theta
     x[:, 3] = V * np.cos(theta)
     x[:, 5] = V * np.sin(theta)
-    dcm = quat_to_dcm(euler_to_quat(np.zeros(m), theta, np.zeros(m)))
-    z_down = np.einsum("nj,nlj->nl", dcm[:, 2, :], model.r_gear[rows])  # NED depth of each contact below the CG
-    x[:, 2] = model.ground.elevation + z_down.max(axis=1) + 1e-3  # lowest contact 1 mm above the runway
+    x[:, 2] = 1e-3 - gear_heights(model, x, rows).min(axis=1)  # lowest contact 1 mm above the runway
     return x
 
 

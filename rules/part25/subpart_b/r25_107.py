@@ -183,9 +183,6 @@ class TakeoffSpeeds(Rule):
         )
 
 
-GEOMETRY_LIMITED = "attitude limit"
-
-
 @rule
 class LiftOffSpeedMargin(Rule):
     id = "25.107(e)(1)(iv)"
@@ -270,8 +267,9 @@ class LiftOffSpeedMargin(Rule):
             speeds = vmu.vmu_cas(engine_out)
             for i, cond in enumerate(conditions):
                 row = i if engine_out else n + i
-                geometry = u.limited_by[i] == GEOMETRY_LIMITED
-                name = ("vlof_over_vmu_geometry" if geometry else "vlof_over_vmu") + ("_oei" if engine_out else "")
+                name = ("vlof_over_vmu_geometry" if u.geometry_limited[i] else "vlof_over_vmu") + (
+                    "_oei" if engine_out else ""
+                )
                 factor = getattr(crit, name)
                 check = f"(e)(1)(iv) VLOF ≥ {factor:g} VMU, {label}"
                 c = cond.with_(altitude=0.0, **({"inoperative": vmu.engine} if engine_out else {}))

@@ -56,15 +56,6 @@ def unstick_speeds(ctx, conditions) -> UnstickSpeeds:
         result = minimum_unstick_speed(
             model, u, ac.geometry.landing_gear.tail_strike_attitude, limits, np.inf if cl_max is None else cl_max
         )
-        half = lambda rows: Unstick(  # noqa: E731
-            speed=result.speed[rows],
-            attitude=result.attitude[rows],
-            elevator=result.elevator[rows],
-            lift_coefficient=result.lift_coefficient[rows],
-            limited_by=tuple(result.limited_by[i] for i in range(2 * n)[rows]),
-            attitudes=result.attitudes,
-            speeds=result.speeds[:, rows],
-        )
-        return UnstickSpeeds(half(slice(0, n)), half(slice(n, 2 * n)), engine)
+        return UnstickSpeeds(result.take(slice(0, n)), result.take(slice(n, 2 * n)), engine)
 
     return ctx.memo(("unstick speeds", tuple((c.mass, c.x_cg) for c in conditions)), compute)
