@@ -7,9 +7,15 @@ attitude: a longer aft body or shorter gear) fails.
 """
 
 import pytest
+from certkit_rules.part25.support.takeoff import takeoff_conditions
+from certkit_rules.part25.support.unstick import unstick_speeds
 
+from certkit.aircraft import load_aircraft
+from certkit.engine.context import Context
+from certkit.engine.evidence.performance import unstick_evidence
 from certkit.units import KN
 
+from ..conftest import BASELINE
 from .helpers import run_rule
 
 RULE = "25.107(e)(1)(iv)"
@@ -103,3 +109,21 @@ def test_without_a_tail_strike_attitude_the_rule_is_not_evaluated(tmp_path):
     r = run_rule(RULE, tmp_path, [("    " + STRIKE, "")])
     assert r.status == "not_evaluated"
     assert any("tail_strike_attitude" in (f.reason or "") for f in r.findings)
+
+
+def test_the_evidence_marks_the_lift_off_speed_of_the_least_margin(baseline_result):
+    """The unstick-speed figure's horizontal line in each panel is the VLOF of the finding with the least margin there
+    (the forward CG, all engines and engine out, on the baseline), as its caption says, whatever the order of the
+    findings; one series per loading, named after it."""
+    ctx = Context(load_aircraft(BASELINE))
+    conditions = takeoff_conditions("").expand(ctx.aircraft)
+    vmu = unstick_speeds(ctx, conditions)
+    (ev,) = unstick_evidence(list(reversed(baseline_result.findings)), LOADINGS, vmu.all_engines, vmu.engine_out)
+    for panel, engine_out in zip(ev.figure.panels, (False, True)):
+        assert [s.label for s in panel.series] == list(LOADINGS)
+        (vlof,) = [lim for lim in panel.limits if lim.label.startswith("VLOF")]
+        forward = by(baseline_result, "MTOW forward", engine_out)
+        assert forward.margin == min(
+            f.margin for f in baseline_result.findings if (f.condition.get("inoperative") is not None) == engine_out
+        )
+        assert vlof.value == forward.details["VLOF"] and vlof.label == "VLOF MTOW forward"

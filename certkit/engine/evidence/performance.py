@@ -184,22 +184,24 @@ def takeoff_evidence(
 
 
 # ---------------------------------------------------------------------------------------------- § 25.107(e)(1)(iv)
-def unstick_evidence(findings: list[Finding], all_engines: Any, engine_out: Any) -> list[Evidence]:
-    """§25.107(e)(1)(iv): the unstick speed against the pitch attitude of each loading, all engines and engine out
-    (:class:`certkit.models.dynamics.unstick.Unstick`), with the lift-off speeds of the critical finding's runs."""
-    worst = critical(findings)
-    if worst is None or worst.value is None:
+def unstick_evidence(
+    findings: list[Finding], loadings: Sequence[str], all_engines: Any, engine_out: Any
+) -> list[Evidence]:
+    """§25.107(e)(1)(iv): the unstick speed against the pitch attitude of each loading (``loadings``: their names, in
+    the order of the :class:`certkit.models.dynamics.unstick.Unstick` columns), all engines and engine out, with the
+    lift-off speed of the least-margin finding of each."""
+    if critical(findings) is None:
         return []
-    labels = [f.condition.loading for f in findings if f.condition.get("inoperative") is None]
     panels = []
     for name, u, oei in (("all engines", all_engines, False), ("one engine inoperative", engine_out, True)):
         series = [
             Series(label or f"loading {i + 1}", u.attitudes, u.speeds[:, i], marker="o", colour=i)
-            for i, label in enumerate(labels[: u.speeds.shape[1]])
+            for i, label in enumerate(loadings)
         ]
-        mine = [f for f in findings if (f.condition.get("inoperative") is not None) == oei and f.value is not None]
-        lims = [Limit(f.details["VLOF"], f"VLOF {f.condition.loading}", kind="reference") for f in mine[:1]]
-        lims += [Limit(float(u.attitudes[0]), "tail strike", axis="x", kind="limit")]
+        least = critical([f for f in findings if (f.condition.get("inoperative") is not None) == oei])
+        lims = [Limit(float(u.attitudes[0]), "tail strike", axis="x", kind="limit")]
+        if least is not None:
+            lims.append(Limit(least.details["VLOF"], f"VLOF {least.condition.loading}", kind="reference"))
         panels.append(
             Panel(Axis("unstick speed (CAS)", "m/s"), series, lims, title=name, x=Axis("pitch attitude", "rad"))
         )

@@ -252,7 +252,7 @@ class LiftOffSpeedMargin(Rule):
         to = simulated_takeoffs(ctx, conditions, fast)
         scheduled = simulated_takeoffs(ctx, conditions, crit)
         vmu = unstick_speeds(ctx, conditions)
-        self.unstick = vmu
+        self.unstick = [c.loading or "" for c in conditions], vmu
         vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
         strike = float(np.degrees(ctx.aircraft.geometry.landing_gear.tail_strike_attitude))
         # a late lift-off is what this check measures, not a sign of an unrepresentative run: only a run that does not
@@ -318,8 +318,8 @@ class LiftOffSpeedMargin(Rule):
         return out
 
     def evidence(self, ctx, findings, crit):
-        vmu = getattr(self, "unstick", None)
-        curves = [] if vmu is None else unstick_evidence(findings, vmu.all_engines, vmu.engine_out)
+        kept = getattr(self, "unstick", None)
+        curves = [] if kept is None else unstick_evidence(findings, kept[0], kept[1].all_engines, kept[1].engine_out)
         return curves + margins_evidence(
             findings,
             "§25.107(e)(1)(iv) VLOF against VMU",
