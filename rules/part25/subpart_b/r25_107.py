@@ -255,11 +255,6 @@ class LiftOffSpeedMargin(Rule):
         self.unstick = [c.loading or "" for c in conditions], vmu
         vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
         strike = float(np.degrees(ctx.aircraft.geometry.landing_gear.tail_strike_attitude))
-        # a late lift-off is what this check measures, not a sign of an unrepresentative run: only a run that does not
-        # lift off, wanders off the centreline or puts the tail on the runway earns no verdict
-        bounds = SimpleNamespace(
-            vlof_above_vr_max=np.inf, v35_above_v2_max=np.inf, lateral_deviation_max=crit.lateral_deviation_max
-        )
         cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0))  # noqa: E731
         out = []
         for engine_out, label in ((False, "all engines"), (True, "one engine inoperative")):
@@ -284,7 +279,7 @@ class LiftOffSpeedMargin(Rule):
                     )
                     continue
                 summary = run_summary(to, row, vr_kn, v2_kn)
-                why = unrepresentative(summary, bounds, engine_out=False, tail_strike_deg=strike)
+                why = unrepresentative(summary, crit, tail_strike_deg=strike)
                 details = {
                     "VMU": speeds[i],
                     "vmu_limited_by": u.limited_by[i],

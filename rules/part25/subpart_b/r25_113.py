@@ -11,9 +11,9 @@ engine-out distance to 35 ft with the critical engine failed at VEF (the acceler
 distance to 35 ft and 115 % of it, and the takeoff distance, the greater. With a declared
 ``performance.takeoff_field_length`` the takeoff distance is checked against it (margin ft: field length − takeoff
 distance ≥ 0; an engine-out run that had not reached 35 ft when it had rolled past the field length fails on that
-lower bound); without one the distances are reported and the check is not evaluated. A run that does not represent
-a takeoff a pilot flies (the §25.111 bounds: lift-off too late after VR, ground track off the centreline, the tail on
-the runway) earns no verdict.
+lower bound); without one the distances are reported and the check is not evaluated. A run that is not a
+takeoff (the §25.111 bounds: no lift-off, ground track off the centreline, the tail on the runway) earns no verdict; a
+late lift-off lengthens the distance and is judged.
 """
 
 from __future__ import annotations
@@ -56,9 +56,9 @@ class TakeoffDistance(Rule):
         Dry runway only ((b) wet runway and (c)-(d) takeoff run with clearway are not computed); sea level ISA at MTOW;
         ground effect on the wing and on the tail's downwash as in §25.111; the pilot and engine models of §25.111
         (rotation at 2.5°/s below the tail-strike attitude,
-        the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs
-        outside the §25.111
-        representativeness bounds are not evaluated. The paragraph's text is from memory (not in
+        the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs that
+        are not takeoffs (§25.111: no lift-off, off the centreline, the tail on the runway) are not evaluated; a late
+        lift-off is judged. The paragraph's text is from memory (not in
         docs/regulation-notes.md).
     """
     references = ("25.111", "25.107", "25.109")
@@ -75,8 +75,6 @@ class TakeoffDistance(Rule):
         to = simulated_takeoffs(ctx, conditions, crit)
         n = len(conditions)
         vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
-        vlof = declared_cas(ctx, "VLOF")
-        vlof = None if vlof is None else vlof / KN
         field = ac.performance.takeoff_field_length if ac.performance is not None else None
         check = "(a) takeoff distance within the declared takeoff field length"
         out = []
@@ -120,15 +118,11 @@ class TakeoffDistance(Rule):
                 continue
             why = [
                 f"engine out: {w}"
-                for w in unrepresentative(
-                    details["engine_out"], crit, vlof, tail_strike_deg=to.basis["tail_strike_deg"]
-                )
+                for w in unrepresentative(details["engine_out"], crit, tail_strike_deg=to.basis["tail_strike_deg"])
             ]
             why += [
                 f"all engines: {w}"
-                for w in unrepresentative(
-                    details["all_engines"], crit, vlof, engine_out=False, tail_strike_deg=to.basis["tail_strike_deg"]
-                )
+                for w in unrepresentative(details["all_engines"], crit, tail_strike_deg=to.basis["tail_strike_deg"])
             ]
             if why:
                 out.append(
