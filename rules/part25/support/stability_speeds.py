@@ -76,16 +76,24 @@ def _throttle_limited(result) -> bool:
     return not result.converged and any(e.control == "throttle" for e in result.limits_exceeded)
 
 
+#: a flight path within this of level (rad; 0.006°, a gradient of 0.01 %) is level: a level trim that needs full thrust
+#: to within the trim's own tolerance can report "more than full throttle" while the full-thrust trim then climbs by
+#: 1e-6 rad — the condition is at the level-flight ceiling, and the full-thrust trim stands for it (numerical choice)
+LEVEL_PATH_TOLERANCE = 1e-4
+
+
 def steady_flight_trims(ctx, conds):
     """Trims of ``conds`` (one configuration) in the steady flight the airplane can hold at each condition: level
     flight, or, where level flight needs more than full thrust (beyond the weight's level-flight ceiling), the steady
     descent at full thrust, or where it needs less than idle, the steady climb at idle — the flight path solved by the
     trim. A level trim that ran into a throttle stop does not say reliably which one (its iterate may end at either
-    bound), so full thrust is tried first and kept where it descends, then idle where it climbs. Returns (trim results,
-    throttle per condition: None for level flight, else the stop held)."""
+    bound), so full thrust is tried first and kept where it descends, then idle where it climbs (each to within
+    :data:`LEVEL_PATH_TOLERANCE` of level: at the ceiling itself the stop's trim is level flight). Returns (trim
+    results, throttle per condition: None for level flight, else the stop held)."""
     results = list(ctx.trim(conds).results)
     stops: list[float | None] = [None] * len(conds)
-    for stop, keep in ((1.0, lambda r: r.gamma <= 0.0), (0.0, lambda r: r.gamma >= 0.0)):
+    tol = LEVEL_PATH_TOLERANCE
+    for stop, keep in ((1.0, lambda r: r.gamma <= tol), (0.0, lambda r: r.gamma >= -tol)):
         rows = [i for i, r in enumerate(results) if stops[i] is None and _throttle_limited(r)]
         if not rows:
             break
