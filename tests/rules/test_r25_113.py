@@ -63,6 +63,7 @@ def test_representativeness_bounds():
         "v35_kn": 165.0,
         "max_lateral_deviation_on_ground_ft": 12.0,
         "max_pitch_on_ground_deg": 10.5,
+        "max_pitch_to_liftoff_deg": 10.5,
     }
     assert unrepresentative(good, crit, tail_strike_deg=12.1) == []
     assert unrepresentative({**good, "vlof_kn": 185.0, "v35_kn": 195.0}, crit, tail_strike_deg=12.1) == []
@@ -71,6 +72,14 @@ def test_representativeness_bounds():
     ]
     assert "tail-strike" in unrepresentative({**good, "max_pitch_on_ground_deg": 12.2}, crit, tail_strike_deg=12.1)[0]
     assert unrepresentative({**good, "vlof_kn": None}, crit) == ["the airplane did not lift off"]
+    # a wheel set back down after the lift-off at 12.2°: the run is no takeoff for the path rules, while a check of
+    # the lift-off itself (§25.107(e)(1)(iv)) reads the attitude up to the lift-off only
+    after = {**good, "max_pitch_on_ground_deg": 12.2}
+    assert unrepresentative(after, crit, tail_strike_deg=12.1, to_liftoff=True) == []
+    assert (
+        "before the lift-off"
+        in unrepresentative({**after, "max_pitch_to_liftoff_deg": 12.2}, crit, tail_strike_deg=12.1, to_liftoff=True)[0]
+    )
 
 
 def test_an_airplane_that_rotates_late_needs_more_field(tmp_path):

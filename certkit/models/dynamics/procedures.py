@@ -77,6 +77,7 @@ class TakeoffResult:
     pitch_on_ground_max: np.ndarray | None = None  # (n,) rad, largest attitude with a gear leg on the runway
     pitch_rate_max: np.ndarray | None = None  # (n,) rad/s, largest pitch rate from VR to lift-off
     lateral_on_ground_max: np.ndarray | None = None  # (n,) m, largest |y − y0| on the ground
+    pitch_to_liftoff_max: np.ndarray | None = None  # (n,) rad, largest attitude up to the first lift-off
 
 
 @dataclass
@@ -221,6 +222,7 @@ def takeoff_run(
     with np.errstate(invalid="ignore"):
         pitch_ground = np.where(on_ground, sim["theta"], -np.inf).max(axis=0)
         rate_max = np.where(before_lof, sim["q"], -np.inf).max(axis=0)
+        pitch_to_lof = np.where(np.cumsum(airborne, axis=0) == 0, sim["theta"], -np.inf).max(axis=0)
     lateral_ground = np.where(on_ground, np.abs(sim["y_E"] - sim["y_E"][0]), 0.0).max(axis=0)
     return TakeoffResult(
         sim,
@@ -241,6 +243,7 @@ def takeoff_run(
         pitch_ground,
         np.where(np.isfinite(rate_max), rate_max, np.nan),
         lateral_ground,
+        pitch_to_lof,
     )
 
 

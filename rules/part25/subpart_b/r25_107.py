@@ -242,7 +242,8 @@ class LiftOffSpeedMargin(Rule):
         verified by a ground test. The maximum practicable rotation rate is a criterion (3°/s), the rotation of the
         §25.111 pilot at that rate toward the V2 attitude and at most the tail-strike attitude less the clearance. A
         run that does not lift off, leaves the centreline by more than the §25.149(e) 30 ft or reaches the tail-strike
-        attitude on the runway earns no verdict.
+        attitude on the runway before it lifts off earns no verdict (after the lift-off the VLOF is what it is: the
+        pilot model's rotation toward the climb attitude can set a wheel back down, which §25.111 judges).
     """
 
     def evaluate(self, ctx, conditions, crit):
@@ -279,7 +280,7 @@ class LiftOffSpeedMargin(Rule):
                     )
                     continue
                 summary = run_summary(to, row, vr_kn, v2_kn)
-                why = unrepresentative(summary, crit, tail_strike_deg=strike)
+                why = unrepresentative(summary, crit, tail_strike_deg=strike, to_liftoff=True)
                 details = {
                     "VMU": speeds[i],
                     "vmu_limited_by": u.limited_by[i],

@@ -314,17 +314,19 @@ def run_summary(to: Takeoffs, i: int, vr_kn: float, v2_kn: float) -> dict:
         "v35_above_v2_kn": None if v35 is None else round(v35 - v2_kn, 2),
         "max_lateral_deviation_on_ground_ft": round(float(run.lateral_on_ground_max[i]) / FT, 1),
         "max_pitch_on_ground_deg": round(float(np.degrees(run.pitch_on_ground_max[i])), 2),
+        "max_pitch_to_liftoff_deg": round(float(np.degrees(run.pitch_to_liftoff_max[i])), 2),
         "max_pitch_rate_before_liftoff_deg_s": (
             round(float(np.degrees(run.pitch_rate_max[i])), 2) if np.isfinite(run.pitch_rate_max[i]) else None
         ),
     }
 
 
-def unrepresentative(summary: dict, crit, tail_strike_deg: float | None = None) -> list[str]:
+def unrepresentative(summary: dict, crit, tail_strike_deg: float | None = None, to_liftoff: bool = False) -> list[str]:
     """Why a simulated run is not a takeoff a pilot flies (empty: it is): no lift-off, the ground run off the
-    centreline beyond the §25.149(e) bound, the tail on the runway. Such a run earns no verdict. How late the
-    airplane lifts off after VR, or how fast it passes 35 ft, is physics (its rotation capability with the scheduled
-    speeds), not a reason: :func:`run_summary` reports both."""
+    centreline beyond the §25.149(e) bound, the tail on the runway (with ``to_liftoff``, up to the lift-off only: what
+    a check of the lift-off itself needs). Such a run earns no verdict. How late the airplane lifts off after VR, or
+    how fast it passes 35 ft, is physics (its rotation capability with the scheduled speeds), not a reason:
+    :func:`run_summary` reports both."""
     if summary["vlof_kn"] is None:
         return ["the airplane did not lift off"]
     out = []
@@ -333,9 +335,10 @@ def unrepresentative(summary: dict, crit, tail_strike_deg: float | None = None) 
         out.append(
             f"the ground run deviates {wide:.0f} ft from the centreline (at most {crit.lateral_deviation_max:g} ft)"
         )
-    if tail_strike_deg is not None and summary["max_pitch_on_ground_deg"] >= tail_strike_deg:
+    pitch = summary["max_pitch_to_liftoff_deg" if to_liftoff else "max_pitch_on_ground_deg"]
+    if tail_strike_deg is not None and pitch >= tail_strike_deg:
         out.append(
-            f"the attitude on the runway reaches {summary['max_pitch_on_ground_deg']:.1f}°, at or past the "
-            f"{tail_strike_deg:.1f}° tail-strike attitude"
+            f"the attitude on the runway reaches {pitch:.1f}°{' before the lift-off' if to_liftoff else ''}, at or "
+            f"past the {tail_strike_deg:.1f}° tail-strike attitude"
         )
     return out
