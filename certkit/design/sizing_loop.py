@@ -10,7 +10,8 @@ and its box becomes the tail's declared structural capability at every station.
 
 A changed design's first iterations evaluate the declared airplane's near-critical conditions only (those whose tail
 load or elevator hinge moment reaches :data:`START_FRACTION` of its largest), until the group's mass moves by less
-than the tolerance (each such pass costs about a third of a full one: the first takes the mass most of the way, the
+than the tolerance, or the next pass would move it by less than half of it as foreseen from the last two changes
+(:func:`contraction`; each such pass costs about a third of a full one: the first takes the mass most of the way, the
 second the load–mass coupling's 5–15 kg); the later ones evaluate every condition. The loop ends, after an iteration
 over every condition, when the group mass changes by less than the
 declared tolerance and the loads of the airplane carrying it stay within what it was sized for (the box is sized
@@ -74,6 +75,9 @@ START_OWN_FRACTION = 0.9
 #: 0.7/0.9 six (the first iteration 0.49 → 0.54 s CPU, a design 3.75 → 3.61 s); 0.6/0.85 and 0.5/0.8 left the same six
 #: and cost more. Those six need it for the load–mass coupling itself: a change of 6–16 kg, or loads beyond the box by
 #: more than the allowance while the mass changes by < 5 kg. A converged design differs only within the tolerance.)
+#: the near-critical passes stop when the change they foresee for the next one is below this fraction of the loop's
+#: mass tolerance (numerical choice: half, so that a ratio misjudged by a factor of two still ends within it)
+FORESEEN = 0.5
 #: the declared component that carries the baseline's elevator actuators (they are moved out of it, at their own
 #: positions, so that the design's actuators replace them)
 FLIGHT_CONTROLS = "flight controls"
@@ -268,6 +272,14 @@ def _remember(source: YamlSource, value: BaselineActuators) -> None:
     _BASELINE[source.sha256] = value
 
 
+def contraction(history: Sequence[dict[str, Any]]) -> float:
+    """The ratio of the last two mass changes of the loop's history (the contraction of the fixed-point iteration
+    group mass → loads → sized mass); 1 (nothing foreseen) before two iterations or after a zero change."""
+    if len(history) < 2 or history[-2]["change_kg"] == 0.0:
+        return 1.0
+    return min(abs(float(history[-1]["change_kg"]) / float(history[-2]["change_kg"])), 1.0)
+
+
 def size_horizontal_tail_loop(
     source: YamlSource,
     settings: list[Setting],
@@ -348,9 +360,13 @@ def size_horizontal_tail_loop(
             }
         )
         if partial:
-            # the near-critical passes go on while the group's mass still moves by more than the tolerance (each
-            # costs a third of a full pass); a full pass follows at the mass they settle on
-            partial = abs(change) >= spec.tolerance_kg
+            # the near-critical passes go on while the group's mass would still move by more than the tolerance (each
+            # costs a third of a full pass); a full pass follows at the mass they settle on. After two passes the
+            # next change is foreseen from the last two (a fixed-point iteration contracts by about their ratio), so
+            # a pass that would only confirm the mass is not flown
+            partial = (
+                abs(change) >= spec.tolerance_kg and abs(change * contraction(history)) >= FORESEEN * spec.tolerance_kg
+            )
         elif k > 0 and abs(change) < spec.tolerance_kg and within:
             for r in results:
                 r.run = None  # the simulations are not needed any more

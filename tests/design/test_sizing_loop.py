@@ -9,7 +9,7 @@ capability are ≥ 0 and the smallest is close to zero; OEW bookkeeping by hand.
 import pytest
 
 from certkit.design.evaluate import evaluate_design
-from certkit.design.sizing_loop import SizingNotConverged
+from certkit.design.sizing_loop import SizingNotConverged, contraction
 from certkit.units import LB
 
 BASELINE = "aircraft/lta.yaml"
@@ -140,6 +140,17 @@ def test_changed_design_starts_on_the_near_critical_points(bigger, monkeypatch):
     assert bigger["responses"]["rule.25.341(a).margin"] == pytest.approx(
         full["responses"]["rule.25.341(a).margin"], abs=1e-4
     )
+
+
+def test_the_contraction_of_the_mass_iteration():
+    """The ratio of the last two mass changes (a fixed-point iteration x_{k+1} = g(x_k) near its root contracts by
+    |g'|, so change_{k+1} ≈ |g'| change_k): −107.5 kg then +12.1 kg gives 0.113, which foresees a next change of
+    1.4 kg; nothing is foreseen (ratio 1) from one change, after a zero change, or from a growing one."""
+    h = [{"change_kg": -107.459}, {"change_kg": 12.137}]
+    assert contraction(h) == pytest.approx(12.137 / 107.459)
+    assert contraction(h[:1]) == 1.0
+    assert contraction([{"change_kg": 0.0}, {"change_kg": 3.0}]) == 1.0
+    assert contraction([{"change_kg": 3.0}, {"change_kg": -6.0}]) == 1.0
 
 
 def test_the_factor_of_safety_in_force_sizes_the_box(baseline, tmp_path):
