@@ -43,3 +43,16 @@ def test_a_sinusoid_that_cannot_reach_is_held():
     assert not small.reach.any()
     assert small.amplitude == pytest.approx(np.radians(0.5))
     assert (small.hold > 0).all()
+
+
+def test_a_full_sinusoid_within_the_tolerance_below_the_target_is_not_held():
+    """The full sinusoid peaks between the search's aim (target − tolerance/2 = 1.49) and the target (1.50): it reaches
+    the load factor within the tolerance, so its amplitude is searched and no hold is added. (Judged against the
+    target itself, such a condition went to a hold search whose bracket did not hold the aim and ended at the longest
+    hold, 5 s at full deflection — far beyond the load factor; a §25.331(c)(2) condition of the baseline's and one
+    of a study design were flown so.)"""
+    _, _, full = _run(1.5, np.radians(20.0))
+    available = float(full.amplitude[0]) * 1.495 / float(full.response[0])  # linear: the full sinusoid peaks at 1.495
+    _, _, near = _run(1.5, available)
+    assert near.reach.all() and (near.hold == 0).all()
+    assert near.response == pytest.approx(1.49, abs=0.001)

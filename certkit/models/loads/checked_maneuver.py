@@ -4,12 +4,14 @@ factor, found per condition of a batch so that the peak load factor reaches a ta
 target, frequency and deflection the paragraph asks for are the caller's.
 
 For each condition: the sinusoid at the full ``available`` amplitude (no hold) is run first; if it reaches the
-target, the amplitude is searched (``reach``); if not, the hold at full amplitude is searched up to ``max_hold``
-(``held_short`` when even that does not reach the target: the maximal input). The search (:func:`bisect_batch`,
-regula falsi) aims at the target less half the ``tolerance`` and ends within ``resolution`` of it: the smallest input
-that reaches the load factor, so that near the stall line, where the peak is nearly flat in the amplitude, the input
-does not jump between neighbouring conditions. An amplitude search that did not converge and ends above the target
-takes the largest amplitude found below it; a hold takes the bracket end at or above it.
+search's aim, the target less half the ``tolerance``, the amplitude is searched (``reach``); if not, the hold at full
+amplitude is searched up to ``max_hold`` (``held_short`` when even that does not reach the aim: the maximal input).
+(A full sinusoid that ends between the aim and the target is within the tolerance: measured against the target
+itself it would start a hold search whose bracket does not hold the aim, and end at the longest hold, far beyond the
+load factor.) The search (:func:`bisect_batch`, regula falsi) aims there and ends within ``resolution`` of it: the
+smallest input that reaches the load factor, so that near the stall line, where the peak is nearly flat in the
+amplitude, the input does not jump between neighbouring conditions. An amplitude search that did not converge and
+ends above the target takes the largest amplitude found below it; a hold takes the bracket end at or above it.
 
 Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, over the manoeuvre's window (until t_max = ``periods`` ×
 π/(2ω) + Δt, n_z < 0 nose up or n_z > ``n_limit`` nose down end a run).
@@ -95,10 +97,11 @@ def checked_maneuver_inputs(
         return run(amp, hold, mask)[0]
 
     longest = float(max_hold)
+    aim = target_ - 0.5 * float(tolerance)  # what the search aims at: within the tolerance below the target counts
     r_full = response(available_, np.zeros(n))
-    reach = r_full >= target_
+    reach = r_full >= aim
     r_held = np.where(reach, r_full, response(available_, np.full(n, longest), ~reach)) if (~reach).any() else r_full
-    held_short = ~reach & (r_held < target_)  # even the longest hold does not reach the load factor: maximal input
+    held_short = ~reach & (r_held < aim)  # even the longest hold does not reach the load factor: maximal input
 
     def inputs_of(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
@@ -115,7 +118,7 @@ def checked_maneuver_inputs(
         searched,
         np.zeros(n),
         np.ones(n),
-        target_ - 0.5 * float(tolerance),
+        aim,
         steps=int(steps),
         tol=float(resolution),
         f_lo=np.where(reach, 0.0, r_full),
