@@ -114,7 +114,7 @@ def takeoff_conditions(note: str) -> ConditionSpace:
 
 #: the bounds within which a simulated run is a takeoff at all (:func:`unrepresentative`); a late lift-off or a fast
 #: screen-height speed is not among them: it is what the airplane does with the scheduled speeds, judged by the rules
-#: (§25.111(c)(2), §25.107(c)(2) and (e)(1)(iv), the §25.113 distances) and reported in every finding
+#: (§25.111(c)(2), §25.107(e)(1)(iv), the §25.113 distances) and reported in every finding
 REPRESENTATIVE_CRITERIA = {
     "lateral_deviation_max": Criterion(
         30.0,
