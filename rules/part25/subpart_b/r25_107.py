@@ -207,7 +207,7 @@ class LiftOffSpeedMargin(Rule):
     requires = (*TAKEOFF_REQUIRES, "geometry.landing_gear.tail_strike_attitude")
     criteria = {
         **PROCEDURE_CRITERIA,
-        "lateral_deviation_max": REPRESENTATIVE_CRITERIA["lateral_deviation_max"],
+        **REPRESENTATIVE_CRITERIA,
         "max_practicable_rotation_rate_deg_s": Criterion(
             3.0,
             "deg/s",
