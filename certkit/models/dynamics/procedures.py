@@ -218,11 +218,12 @@ def takeoff_run(
     emin, emax = _elevator_extremes(sim, je)
     on_ground = ~airborne & (np.arange(nt)[:, None] <= k_end[None, :])
     vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (n,))
-    before_lof = (sim["V"] >= vr[None, :]) & (np.cumsum(airborne, axis=0) == 0)
+    to_lof = np.cumsum(airborne, axis=0) == 0  # the records up to the first lift-off
+    before_lof = (sim["V"] >= vr[None, :]) & to_lof
     with np.errstate(invalid="ignore"):
         pitch_ground = np.where(on_ground, sim["theta"], -np.inf).max(axis=0)
         rate_max = np.where(before_lof, sim["q"], -np.inf).max(axis=0)
-        pitch_to_lof = np.where(np.cumsum(airborne, axis=0) == 0, sim["theta"], -np.inf).max(axis=0)
+        pitch_to_lof = np.where(to_lof, sim["theta"], -np.inf).max(axis=0)
     lateral_ground = np.where(on_ground, np.abs(sim["y_E"] - sim["y_E"][0]), 0.0).max(axis=0)
     return TakeoffResult(
         sim,

@@ -104,7 +104,7 @@ def checked_maneuver_inputs(
     held_short = ~reach & (r_held < aim)  # even the longest hold does not reach the load factor: maximal input
 
     def inputs_of(p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """One parameter per condition: the amplitude fraction (sinusoid reaches the target) or the
+        """One parameter per condition: the amplitude fraction (sinusoid reaches the aim) or the
         hold fraction of the longest hold (full deflection)."""
         amp = np.where(reach, p * available_, available_)
         return amp, np.where(reach | held_short, 0.0, p * longest) + held_short * longest
