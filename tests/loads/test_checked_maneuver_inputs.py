@@ -13,18 +13,21 @@ from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 
 from .test_balanced import two_surface
 
+ARGS = dict(
+    n_limit=2.5, max_hold=5.0, dt=0.02, periods=1.5, steps=30, tolerance=0.02, resolution=0.001, hold_resolution=0.005
+)
+
 
 def _run(target, available):
     model = two_surface(10.6)
     V = np.array([120.0, 120.0])
     x0 = assemble_state(V, np.zeros(2), 0.0, 0.0, 0.0, 0.0, 0.0)
     st = balanced_states(model, x0, np.zeros((2, 1)), 1.0)  # the 1 g trim
-    args = dict(n_limit=2.5, max_hold=5.0, dt=0.02, periods=1.5, steps=30, tolerance=0.02, resolution=0.001)
     return (
         model,
         st,
         checked_maneuver_inputs(
-            model, st.x, st.u, [True, True], [2.0, 2.0], [available, available], [target, target], **args
+            model, st.x, st.u, [True, True], [2.0, 2.0], [available, available], [target, target], **ARGS
         ),
     )
 
@@ -56,3 +59,23 @@ def test_a_full_sinusoid_within_the_tolerance_below_the_target_is_not_held():
     _, _, near = _run(1.5, available)
     assert near.reach.all() and (near.hold == 0).all()
     assert near.response == pytest.approx(1.49, abs=0.001)
+
+
+def test_the_minimum_hold_to_the_hold_resolution():
+    """Δt is "the minimum period of time necessary to allow the prescribed limit load factor to be achieved"
+    (§25.331(c)(2)(iii)): with 3 % less amplitude than the sinusoid needs, the hold found reaches the aim, and
+    the hold 5 ms (``hold_resolution``) shorter does not. The load factor grows slowly in the hold, so a search
+    stopped on the load factor's resolution alone would leave the hold loose by far more than that."""
+    model, st, full = _run(1.5, np.radians(20.0))
+    available = 0.97 * float(full.amplitude[0])
+    _, _, held = _run(1.5, available)
+    assert not held.reach.any() and (held.hold > 0).all()
+    hold = float(held.hold[0])
+
+    def peak(h):  # the response held for exactly h (target out of reach: the longest hold, set to h, is flown)
+        return checked_maneuver_inputs(
+            model, st.x, st.u, [True, True], [2.0, 2.0], [available] * 2, [9.0, 9.0], **{**ARGS, "max_hold": h}
+        ).response[0]
+
+    assert peak(hold) >= 1.49 - 1e-9
+    assert peak(hold - 0.005) < 1.49

@@ -226,12 +226,13 @@ def test_baseline_load_factors_reached(checked):
     exceeded" — nose up, where the entry speed lies below the stall line's speed at 2.5 g (the heavy corners at the
     ceiling: ½ρ₀V²S C_Lmax/W < 2.5, by hand), the stall line's load factor instead, as the manoeuvring envelope
     (§25.333(b)) ends there; the finding names it. Read from the simulated n_z histories the rule keeps (not from
-    its findings): within each condition's loads window the extreme n_z is the finding's peak_n_z (rounding 1e-4),
-    a scaled sinusoid reaches the target within the 0.02 g search tolerance, no condition whose search converged goes
-    beyond the §25.337 limit (only a search that did not converge may, and is then not evaluated), and a held input
-    that does not reach 2.5 g says so. (On the limit is how the input is built: the rule reports the load factor
-    reached as a detail of the tail's finding, not as a compliance; this test checks the search and the report
-    against the simulation.)"""
+    its findings): within each condition's loads window the finding's peak_n_z lies at or beyond the extreme
+    sample, by no more than a parabola through it can rise between the samples (rounding 1e-4), a scaled sinusoid
+    reaches the target within the 0.02 g search tolerance, no condition whose search converged goes beyond the
+    §25.337 limit (only a search that did not converge may, and is then not evaluated), and a held input that does
+    not reach 2.5 g says so. (On the limit is how the input is built: the rule reports the load factor reached as a
+    detail of the tail's finding, not as a compliance; this test checks the search and the report against the
+    simulation.)"""
     run = checked.run
     nz, valid = run.records["n_z"], run.valid
     lf = {f.condition: f for f in structural(checked)}  # the load factor reached: details of the tail's finding
@@ -245,8 +246,12 @@ def test_baseline_load_factors_reached(checked):
         f = lf[c]
         window = nz[:, i][valid[:, i]]
         up = c.get("direction") == "nose up"
-        peak = window.max() if up else window.min()
-        assert f.all_details()["peak_n_z"] == pytest.approx(peak, abs=1e-4)
+        sampled = window.max() if up else window.min()
+        # the peak between the samples: at or beyond the extreme sample, by no more than a parabola through
+        # it and its neighbours can rise, |Δ²n_z|/8 (the greatest second difference of the window)
+        peak = f.all_details()["peak_n_z"]
+        beyond_sample = (peak - sampled) if up else (sampled - peak)
+        assert -1e-4 <= beyond_sample <= np.abs(np.diff(window, 2)).max() / 8 + 1e-4
         target = min(2.5, _stall_line_n(c)) if up else 0.0
         if up and target < 2.5:
             on_stall_line += 1

@@ -13,7 +13,9 @@ smallest input that reaches the load factor, so that near the stall line, where 
 amplitude, the input does not jump between neighbouring conditions. An amplitude search that did not converge and
 ends above the target takes the largest amplitude found below it; a hold takes the bracket end at or above it.
 
-Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, over the manoeuvre's window (until t_max = ``periods`` ×
+Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the parabola through the extreme
+sample and its neighbours: the sampled extreme alone is not monotone in the input as the peak slides across the
+time grid), over the manoeuvre's window (until t_max = ``periods`` ×
 π/(2ω) + Δt, n_z < 0 nose up or n_z > ``n_limit`` nose down end a run).
 """
 
@@ -25,6 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from certkit.models.dynamics.eom import AircraftModel
+from certkit.models.dynamics.sampled_peak import peak_between_samples
 from certkit.models.dynamics.simulate import Bound, SimulationResult, simulate
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch
 
@@ -60,6 +63,7 @@ def checked_maneuver_inputs(
     steps: int,
     tolerance: float,
     resolution: float,
+    hold_resolution: float,
 ) -> CheckedManeuverInputs:
     """The checked manoeuvre's input of every condition of ``model`` (n) from its trim ``x0``/``u0`` (module
     docstring): ``nose_up`` (n,) bool, ``omega`` (n,) rad/s, ``available`` (n,) rad of elevator from the trim to the
@@ -88,9 +92,7 @@ def checked_maneuver_inputs(
         nz = sim["n_z"]
         valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
         resp = np.full(n, np.nan)
-        resp[idx] = np.where(
-            up, np.where(valid, nz, -np.inf).max(axis=0) - 1.0, 1.0 - np.where(valid, nz, np.inf).min(axis=0)
-        )
+        resp[idx] = np.where(up, peak_between_samples(nz, valid) - 1.0, 1.0 + peak_between_samples(-nz, valid))
         return resp, sim, valid, t_max
 
     def response(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
@@ -120,9 +122,10 @@ def checked_maneuver_inputs(
         np.ones(n),
         aim,
         steps=int(steps),
-        tol=float(resolution),
+        tol=np.where(reach, float(resolution), 0.0),
         f_lo=np.where(reach, 0.0, r_full),
         f_hi=np.where(reach, r_full, r_held),
+        x_tol=np.where(reach, 0.0, float(hold_resolution) / longest),
     )
     # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
     # amplitude search that did not converge (a response that jumps across the target near stall) takes the

@@ -45,12 +45,15 @@ class SinusoidHold(Schedule):
         return self.t0 + 1.5 * np.pi / w + np.asarray(self.hold, dtype=float)
 
 
-def bisect_batch(run, lo, hi, target, steps: int = 8, tol: float = 0.0, f_lo=None, f_hi=None):
+def bisect_batch(run, lo, hi, target, steps: int = 8, tol=0.0, f_lo=None, f_hi=None, x_tol=0.0):
     """Batched bracketing search of ``x`` in [lo, hi] (arrays) such that ``run(x, mask) ≈ target``,
     ``run`` increasing in x and evaluated at once for the conditions of ``mask`` (one simulation per
     step, only of the conditions not yet converged; it returns values for the whole batch, anything
     outside the mask). Regula falsi with the Illinois correction: a near-linear response converges in
-    two or three steps. ``f_lo``/``f_hi``: run at lo and hi when already known (else computed).
+    two or three steps. A condition has converged when its response is within ``tol`` of the target or
+    its bracket is narrower than ``x_tol`` (either may be per condition; ``x_tol`` is for a response
+    that flattens, where a small residual leaves x undetermined). ``f_lo``/``f_hi``: run at lo and hi
+    when already known (else computed).
     Returns (x, run(x)) of the last step and the bracket ends (lo, run(lo)) below and (hi, run(hi)) at or
     above the target. Conditions whose bracket does not hold the target are left at hi."""
     lo, hi = np.array(lo, dtype=float), np.array(hi, dtype=float)
@@ -60,7 +63,7 @@ def bisect_batch(run, lo, hi, target, steps: int = 8, tol: float = 0.0, f_lo=Non
     side = np.zeros(lo.shape)
     bracketed = (f_lo <= 0) & (f_hi >= 0)
     x, fx = hi.copy(), f_hi.copy()
-    active = bracketed & (np.abs(f_hi) > tol)
+    active = bracketed & (np.abs(f_hi) > tol) & (np.abs(hi - lo) > x_tol)
     for _ in range(steps):
         if not active.any():
             break
@@ -75,5 +78,5 @@ def bisect_batch(run, lo, hi, target, steps: int = 8, tol: float = 0.0, f_lo=Non
         f_hi = np.where(left & (side > 0), 0.5 * f_hi, f_hi)
         f_lo = np.where(right & (side < 0), 0.5 * f_lo, f_lo)
         side = np.where(left, 1.0, np.where(right, -1.0, side))
-        active = active & (np.abs(fx) > tol)
+        active = active & (np.abs(fx) > tol) & (np.abs(hi - lo) > x_tol)
     return x, fx + target, lo, f_lo + target, hi, f_hi + target

@@ -183,6 +183,14 @@ CHECKED_CRITERIA = {
         "nearly flat in the amplitude, and a search stopped anywhere within the tolerance would pick inputs "
         "(and tail loads) that jump from one design to the next",
     ),
+    "hold_resolution": Criterion(
+        0.005,
+        "s",
+        "certkit numerical choice",
+        "the hold search ends when the minimum hold is bracketed within this: the load factor flattens in the "
+        "hold (a few hundredths of g per second), so a search stopped on the load factor alone would leave the "
+        "hold, and the tail loads it sets, undetermined by a tenth of a second",
+    ),
     **CN_OVER_CL,
     **SAFETY,
     **PILOT_EFFORT,
@@ -286,6 +294,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         steps=int(crit.search_steps),
         tolerance=float(crit.load_factor_tolerance),
         resolution=float(crit.search_resolution),
+        hold_resolution=float(crit.hold_resolution),
     )
     amp, hold, reach, held_short = found.amplitude, found.hold, found.reach, found.held_short
     resp, sim, valid, t_max = found.response, found.sim, found.valid, found.t_max
@@ -315,11 +324,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
             if held_short[i]
             else "held at full deflection, minimum hold to the load factor"
         )
-        peak_nz = float(
-            np.nanmax(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
-            if nose_up[i]
-            else np.nanmin(np.where(valid[:, i], sim["n_z"][:, i], np.nan))
-        )
+        peak_nz = float(1.0 + resp[i] if nose_up[i] else 1.0 - resp[i])  # as the search read it, between samples
         reached, beyond = load_factor_reached(ctx, c, bool(nose_up[i]), peak_nz, converged, kind, crit)
         if nose_up[i] and stall_n[i] < n_lim:
             reached["stall_line_load_factor"] = round(float(stall_n[i]), 4)
