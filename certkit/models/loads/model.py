@@ -45,6 +45,9 @@ from certkit.models.loads.fuel import wing_tank_shares
 from certkit.units import G0
 
 QUANTITIES = ("shear", "bending", "torsion")
+#: a strip's force per unit circulation from the lattice is kept within this band of the freestream Kutta–Joukowski
+#: value (2 × strip width per unit q̄); outside it the quotient of two small differences is not the strip's
+RATIO_BAND = (0.2, 5.0)
 UNITS = {"shear": "N", "bending": "N·m", "torsion": "N·m"}
 RATE_INPUTS = ("alpha", "beta", "p_hat", "q_hat", "r_hat")
 #: structural component names that carry each surface's mass
@@ -336,12 +339,17 @@ def build_surface_loads(
         loading_angle = "beta" if np.mean(np.abs(ny)) > np.mean(np.abs(nz)) else "alpha"
         a_n, a_g, _ = state(loading_angle, EPS)
         am_n, am_g, _ = state(loading_angle, -EPS)
-        # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force)
-        ratio = np.where(
-            np.abs(a_g - am_g) > 1e-14,
-            (a_n - am_n) / np.where(np.abs(a_g - am_g) > 1e-14, a_g - am_g, 1.0),
-            2 * lat.width[idx],
-        )
+        # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force); where
+        # the strip's circulation hardly moves with the loading angle the quotient is ill-conditioned (a swept
+        # tail's root strip near M 0.94: 10⁴ × the Kutta–Joukowski value, or negative on its neighbours, which put
+        # tens of MN·m of torsion at the root) and the Kutta–Joukowski value stands in for it
+        d_g = a_g - am_g
+        quotient = (a_n - am_n) / np.where(np.abs(d_g) > 1e-14, d_g, 1.0)
+        # the circulation's sign against the surface's normal is the lattice's (a fin's quotient is negative)
+        kutta_joukowski = 2 * lat.width[idx] * (1.0 if np.median(quotient[np.abs(d_g) > 1e-14]) >= 0 else -1.0)
+        in_band = quotient / kutta_joukowski
+        conditioned = (np.abs(d_g) > 1e-14) & (in_band > RATIO_BAND[0]) & (in_band < RATIO_BAND[1])
+        ratio = np.where(conditioned, quotient, kutta_joukowski)
         # each unit solution's moment about the strip's reference axis, Σ γ (X − X_axis) × the force per unit
         # circulation: taken about the axis, not the nose, so that the ratio (read from the loading angle's solution)
         # scales a lever of a few metres and not the strip's whole X (a 1 % mismatch between inputs would otherwise
