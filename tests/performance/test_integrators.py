@@ -73,3 +73,22 @@ def test_energy_method_descent_and_unreachable_climb():
     assert down.time[0, -1] == pytest.approx(de.sum() / -12.0, rel=1e-9)
     up = constant_power_path(-3.0, h[::-1], v[::-1])  # drag above thrust: the climb never starts
     assert not up.reached[:, 1:].any() and np.isnan(up.time[:, -1]).all()
+
+
+def test_a_climb_stops_where_the_excess_power_falls_below_the_minimum():
+    """P_s = 2 m/s everywhere: with a minimum of 1.5 m/s the whole path is flown; with 2.5 m/s from the third point
+    on, the path ends at the second (the segment into a point below the minimum is not flown)."""
+    h = np.array([1000.0, 4000.0, 7000.0, 10000.0])
+    v = np.full(4, 200.0)
+    ps = 2.0
+
+    def path(minimum):
+        def required(k, w):
+            return 2.0e5 - ps * np.asarray(w) * G0 / v[k]
+
+        return fly_path(h, v, [250e3], required, np.full(4, 2.0e5), np.full(4, 2.0), np.asarray(minimum))
+
+    assert path([1.5] * 4).reached.all()
+    cut = path([0.0, 0.0, 2.5, 2.5])
+    assert cut.reached[0].tolist() == [True, True, False, False]
+    assert cut.time[0, 1] == pytest.approx(3000.0 / ps, rel=1e-9)

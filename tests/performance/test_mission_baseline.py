@@ -12,7 +12,7 @@ import pytest
 
 from certkit.engine.context import Context
 from certkit.models.performance.integrators import breguet_range
-from certkit.models.performance.mission import NMI, fly_missions
+from certkit.models.performance.mission import NMI, MissionFlyer, fly_missions
 from certkit.units import FT, LB
 
 
@@ -177,3 +177,20 @@ def test_one_mission_after_warm_up_is_fast(base_ctx):
         base_ctx.aircraft, base_ctx.aero("clean"), tables_cache=TABLES, oew_kg=base_ctx.aircraft.mass.OEW + 10.0
     )
     assert time.perf_counter() - start < 1.0
+
+
+def test_no_level_is_reached_by_crawling_above_the_thrust_ceiling(result, base_ctx):
+    """Above the first cruise level the climb holds at least the declared residual climb rate (300 ft/min, the
+    thrust-limited ceiling of the levels): from 85–105 % of MTOW every level the climb reaches is reached within
+    an hour of brake release. (Climbing on at any positive excess power, the 43,000-ft level was reached from 85 %
+    of MTOW after a climb burning 57 t — hours at a few feet per minute, the fuel burnt on the way making the level
+    "allowed" at the top; on a study design the nominal mission then had no cruise at all and 8 t more block
+    fuel.)"""
+    aircraft = base_ctx.aircraft
+    tables = next(iter(TABLES.values()))
+    flyer = MissionFlyer(aircraft, tables, aircraft.mass.OEW)
+    for w in np.linspace(0.85, 1.05, 9) * aircraft.mass.MTOW:
+        tocs = flyer.climb(w)
+        assert tocs[0][0]  # the first level is reached at every weight
+        for reached, _, time_s, *_ in tocs:
+            assert not reached or time_s < 3600.0

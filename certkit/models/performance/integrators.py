@@ -89,14 +89,21 @@ class PathResult:
 
 
 def fly_path(
-    altitude, speed, w_start, required_thrust: Callable[[int, np.ndarray], np.ndarray], thrust, fuel_flow
+    altitude,
+    speed,
+    w_start,
+    required_thrust: Callable[[int, np.ndarray], np.ndarray],
+    thrust,
+    fuel_flow,
+    min_excess_power=None,
 ) -> PathResult:
     """Energy-method integration along the schedule points ``altitude``, ``speed`` (K,) from ``w_start`` (n,
     kg; every weight flown at once). ``required_thrust(k, W)`` is the level-flight thrust (N, drag) at point k
     for weights W (n,); ``thrust`` (K,) the thrust set along the path (maximum climb, or idle for a descent)
     and ``fuel_flow`` (K,) its fuel flow (kg/s). The path may climb (P_s > 0) or descend (P_s < 0); where the
     excess power has the wrong sign for the energy change, the point and the rest of the path are not reached
-    (NaN)."""
+    (NaN). ``min_excess_power`` (K,) m/s, climbing only: a point where the specific excess power falls below it is
+    not reached either (the airplane does not climb through altitudes above its thrust-limited ceiling)."""
     h = np.asarray(altitude, dtype=float)
     v = np.asarray(speed, dtype=float)
     w = np.array(w_start, dtype=float, ndmin=1)
@@ -123,6 +130,8 @@ def fly_path(
         fuel = 0.5 * de * (fuel_flow[k] * ia + fuel_flow[k + 1] * ib)
         dist = 0.5 * de * (v[k] * ia + v[k + 1] * ib)
         ok = (de * ia > 0) & (de * ib > 0) & np.isfinite(dt)
+        if min_excess_power is not None:  # 1/P_s at or below 1/P_min (both positive) on the segment's two ends
+            ok &= (ia * min_excess_power[k] <= 1.0) & (ib * min_excess_power[k + 1] <= 1.0)
         alive &= ok
         w = np.where(alive, w - fuel, w)
         t_cum[:, k + 1] = np.where(alive, t_cum[:, k] + dt, np.nan)

@@ -176,12 +176,18 @@ class MissionFlyer:
         self.reserve_fuel, self.reserve_parts = self._reserves(grid)
 
     # --- path pieces --------------------------------------------------------------------------------------
-    def _path(self, idx, weights, climb: bool):
+    def _path(self, idx, weights, climb: bool, min_excess_power=None):
         s = self.t.schedule
         thrust = s.climb_thrust if climb else s.idle_thrust
         ff = s.climb_fuel_flow if climb else s.idle_fuel_flow
         return fly_path(
-            s.altitude[idx], s.speed[idx], weights, lambda j, w: s.required_thrust(idx[j], w), thrust[idx], ff[idx]
+            s.altitude[idx],
+            s.speed[idx],
+            weights,
+            lambda j, w: s.required_thrust(idx[j], w),
+            thrust[idx],
+            ff[idx],
+            min_excess_power,
         )
 
     def _airborne_allowance(self, name: str) -> Phase:
@@ -235,11 +241,16 @@ class MissionFlyer:
     # --- one mission ----------------------------------------------------------------------------------------
     def climb(self, w_release: float):
         """Climb from 1,500 ft at ``w_release − takeoff fuel``: per cruise level (reached, weight, time, fuel,
-        distance) at its top of climb, the acceleration to the cruise Mach at the level included."""
+        distance) at its top of climb, the acceleration to the cruise Mach at the level included. Above the first
+        cruise level the climb goes on only while it holds the residual climb rate: a level it would crawl up to
+        (hours at a few feet per minute, the weight burnt on the way making the level "allowed" at the top) is
+        above the airplane's thrust-limited ceiling on the way and is not reached."""
         s, lv = self.t.schedule, self.t.levels
         w0 = w_release - self.allowance["takeoff"]
         idx = np.arange(self.k_terminal, self.k_level[-1] + 1)
-        path = self._path(idx, [w0], climb=True)
+        above_first = s.altitude[idx] > lv.altitude[0]
+        residual = np.where(above_first, self.m.residual_climb_rate, 0.0)
+        path = self._path(idx, [w0], climb=True, min_excess_power=residual)
         out = []
         for i, k in enumerate(self.k_level):
             j = k - self.k_terminal
