@@ -13,9 +13,9 @@ smallest input that reaches the load factor, so that near the stall line, where 
 amplitude, the input does not jump between neighbouring conditions. An amplitude search that did not converge and
 ends above the target takes the largest amplitude found below it; a hold takes the bracket end at or above it.
 
-Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the parabola through the extreme
-sample and its neighbours: the sampled extreme alone is not monotone in the input as the peak slides across the
-time grid), over the manoeuvre's window (until t_max = ``periods`` ×
+Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the local cubic of
+:func:`~certkit.models.dynamics.sampled_peak.peak_between_samples`: the sampled extreme alone is not monotone in the
+input as the peak slides across the time grid), over the manoeuvre's window (until t_max = ``periods`` ×
 π/(2ω) + Δt, n_z < 0 nose up or n_z > ``n_limit`` nose down end a run).
 """
 

@@ -344,11 +344,12 @@ def build_surface_loads(
         # tail's root strip near M 0.94: 10⁴ × the Kutta–Joukowski value, or negative on its neighbours, which put
         # tens of MN·m of torsion at the root) and the Kutta–Joukowski value stands in for it
         d_g = a_g - am_g
-        quotient = (a_n - am_n) / np.where(np.abs(d_g) > 1e-14, d_g, 1.0)
+        moves = np.abs(d_g) > 1e-14
+        quotient = (a_n - am_n) / np.where(moves, d_g, 1.0)
         # the circulation's sign against the surface's normal is the lattice's (a fin's quotient is negative)
-        kutta_joukowski = 2 * lat.width[idx] * (1.0 if np.median(quotient[np.abs(d_g) > 1e-14]) >= 0 else -1.0)
+        kutta_joukowski = 2 * lat.width[idx] * (1.0 if np.median(quotient[moves]) >= 0 else -1.0)
         in_band = quotient / kutta_joukowski
-        conditioned = (np.abs(d_g) > 1e-14) & (in_band > RATIO_BAND[0]) & (in_band < RATIO_BAND[1])
+        conditioned = moves & (in_band > RATIO_BAND[0]) & (in_band < RATIO_BAND[1])
         ratio = np.where(conditioned, quotient, kutta_joukowski)
         # each unit solution's moment about the strip's reference axis, Σ γ (X − X_axis) × the force per unit
         # circulation: taken about the axis, not the nose, so that the ratio (read from the loading angle's solution)
