@@ -156,19 +156,21 @@ def report_command(
 def export_surrogates(study_path: Path, store_path: Path | None, out: Path, log=lambda msg: None) -> Path:
     """Fit the study's surrogates (and the possible-design classifier) from its store and write them as JSON."""
     from certkit.study.analysis.cases import cases  # deferred: CLI start-up: the surrogates load scikit-learn
+    from certkit.study.analysis.derived_levels import (  # deferred: CLI start-up: the surrogates load scikit-learn
+        fit_predictors,
+    )
     from certkit.study.analysis.surrogate_file import (  # deferred: CLI start-up: the surrogates load scikit-learn
         surrogates_document,
         write_surrogates,
     )
-    from certkit.study.analysis.surrogates import fit_all  # deferred: CLI start-up: the surrogates load scikit-learn
     from certkit.study.analysis.validity import fit_validity  # deferred: CLI start-up: the surrogates load scikit-learn
 
     study, store, frame = open_study(study_path, store_path)
-    surrogates, not_fitted = fit_all(study, cases(frame, study), log)
+    surrogates, levels, not_fitted = fit_predictors(study, cases(frame, study), log)
     for name, why in not_fitted.items():
         log(f"no surrogate for {name}: {why}")
     sha = hashlib.sha256(study_path.read_bytes()).hexdigest()
-    return write_surrogates(out, surrogates_document(study, surrogates, fit_validity(frame, study), sha))
+    return write_surrogates(out, surrogates_document(study, surrogates, fit_validity(frame, study), sha, levels))
 
 
 @click.command("refine")

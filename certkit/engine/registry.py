@@ -16,7 +16,7 @@ import math
 import pkgutil
 import re
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from importlib.metadata import entry_points
 from pathlib import Path
@@ -103,10 +103,15 @@ class Loads:
 class ModeResponses:
     """Rigid-body mode responses a rule offers (:attr:`Rule.offers`): each of its findings whose condition names a
     loading (CG corner) and a configuration and whose ``details[key]`` is a table {mode: row} holds, per mode of
-    ``modes``, the row's quantities (``zeta``, ``wn_rad_s``, …) and its MIL-F-8785C levels (``level_<category>``)."""
+    ``modes``, the row's quantities (``zeta``, ``wn_rad_s``, …) and its MIL-F-8785C levels (``level_<category>``).
+    ``level(mode, configuration, zeta=, wn=, cap=)`` gives the level from the quantities (arrays allowed) as the
+    row does, and ``level_margin(mode, configuration, level, zeta=, wn=, cap=)`` how far inside ``level`` they lie
+    (≥ 0 there, continuous): a study derives levels from surrogates of the quantities with them."""
 
     modes: tuple[str, ...]
     key: str = "modes"
+    level: Callable[..., Any] | None = None
+    level_margin: Callable[..., Any] | None = None
 
 
 @dataclass(frozen=True)

@@ -245,3 +245,41 @@ def test_levels_follow_from_the_recorded_quantities(result):
                 assert level == row[f"level_{cat}"], (f.condition.label(), mode, cat, row)
                 checked += 1
     assert checked > 500
+
+
+def test_damping_level_from_the_damping_ratio_and_frequency_alone():
+    """The times to half and double amplitude follow from σ = −ζω_n, so the level needs ζ, ω_n (and the short
+    period's CAP) only: a divergent phugoid of ζ −0.02 at ω_n 0.08 rad/s doubles in ln 2/0.0016 = 433 s (Level 3,
+    T2 ≥ 55 s, 3.2.1.2), at ω_n 0.8 rad/s in 43 s (worse than Level 3); a roll mode (a real root: ζ 1) of ω_n
+    1/1.2 s⁻¹ has τ 1.2 s (Level 1, τ ≤ 1.4 s, Table VII), of 1/2 s⁻¹ τ 2 s (Level 2)."""
+    ph = hq.damping_level("phugoid", "takeoff", zeta=[0.05, 0.01, -0.02, -0.02], wn=[0.08, 0.08, 0.08, 0.8])
+    assert ph.tolist() == [1, 2, 3, 4]
+    roll = hq.damping_level("roll", "landing", zeta=1.0, wn=[1 / 1.2, 1 / 2.0, 1 / 5.0, 1 / 12.0])
+    assert roll.tolist() == [1, 2, 3, 4]
+    # clean is read in categories A and B: CAP 0.2 is Level 1 in B (≥ 0.085) but Level 2 in A (≥ 0.28, ≥ 0.16)
+    assert hq.damping_level("short_period", "clean", zeta=0.5, wn=1.5, cap=0.2) == 2
+    assert hq.damping_level("short_period", "landing", zeta=0.5, wn=1.5, cap=0.2) == 1
+
+
+def test_level_margin_is_non_negative_exactly_inside_the_level():
+    """damping_level_margin(…, L) ≥ 0 ⇔ damping_level ≤ L, on random quantities around every boundary of the short
+    period, phugoid, Dutch roll and roll tables; and it is the relative distance to the boundary that binds
+    (phugoid Level 1 at ζ 0.05: (0.05 − 0.04)/0.04 = 0.25; short period landing Level 1 at CAP 0.20: the floor
+    0.16 gives 0.25, the damping ζ 0.5 against 0.35 gives 0.43 → 0.25)."""
+    rng = np.random.default_rng(7)
+    n = 20_000
+    cases = {
+        "short_period": dict(zeta=rng.uniform(0.0, 2.5, n), wn=rng.uniform(0.5, 3.0, n), cap=rng.uniform(0, 12, n)),
+        "phugoid": dict(zeta=rng.uniform(-0.1, 0.1, n), wn=rng.uniform(0.03, 0.3, n)),
+        "dutch_roll": dict(zeta=rng.uniform(-0.05, 0.4, n), wn=rng.uniform(0.2, 2.0, n)),
+        "roll": dict(zeta=np.ones(n), wn=rng.uniform(0.05, 2.0, n)),
+    }
+    for mode, q in cases.items():
+        for configuration in ("clean", "landing"):
+            level = hq.damping_level(mode, configuration, **q)
+            assert len(np.unique(level)) >= 2, (mode, configuration)
+            for allowed in (1, 2, 3):
+                margin = hq.damping_level_margin(mode, configuration, allowed, **q)
+                assert np.array_equal(margin >= 0, level <= allowed), (mode, configuration, allowed)
+    assert hq.damping_level_margin("phugoid", "takeoff", 1, zeta=0.05, wn=0.1) == pytest.approx(0.25)
+    assert hq.damping_level_margin("short_period", "landing", 1, zeta=0.5, wn=1.5, cap=0.2) == pytest.approx(0.25)

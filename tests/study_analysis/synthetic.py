@@ -2,7 +2,8 @@
 
 The responses are made-up smooth functions of the eight horizontal-tail variables of the seed study (bounds
 from the ``studies/ht-redesign.yaml`` description), with the shapes the analysis must handle: a
-quadratic, a multiplicative (log-linear) response, a margin, integer handling-quality levels, failed cases.
+quadratic, a multiplicative (log-linear) response, a margin, integer handling-quality levels (one regressed, one with
+its mode quantities, derived from them), failed cases.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ import math
 
 import numpy as np
 import pandas as pd
+from certkit_rules.part25.support import handling_levels as hq
 
 from certkit.study.spec import Study
 
@@ -92,7 +94,10 @@ def true_responses(x: np.ndarray) -> dict[str, np.ndarray]:
     rng_margin = 150_000 - 4.0e6 * (cd - 0.0262) - 3.0 * (oew - 138_000) + 20_000 * tap
     elev = 0.62 - 0.08 * area - 0.05 * cr - 0.03 * (e1 - e0) + 0.02 * sw + 0.01 * area**2
     sp = 1.0 + (0.6 * (-area) + 0.3 * sw + 0.9 > 1.2) + (0.6 * (-area) + 0.3 * sw > 0.7)
-    sp2 = 1.0 + (0.5 * (-area) - 0.2 * ar + 0.6 > 0.5) + (0.5 * (-area) - 0.2 * ar > 0.6)
+    # the landing short period at cg2 as a design record gives it: its quantities, and the level the rule's mode
+    # table gives them (category C: ζ ≥ 0.35 Level 1, ≥ 0.25 Level 2, ≥ 0.15 Level 3; the CAP inside Level 1)
+    zeta2, wn2, cap2 = 0.30 + 0.12 * area + 0.05 * ar, 1.2 + 0.2 * area, 0.5 + 0.2 * area
+    sp2 = hq.configuration_level("short_period", "landing", zeta=zeta2, wn=wn2, cap=cap2)
     return {
         "objective.cruise_CD": cd,
         "objective.OEW_kg": oew,
@@ -101,6 +106,9 @@ def true_responses(x: np.ndarray) -> dict[str, np.ndarray]:
         "subcheck.25.111.elevator_fraction_of_travel.value": elev,
         "level.short_period.fwd_mrw.clean": sp.astype(float),
         "level.short_period.cg2_mlw.landing": sp2.astype(float),
+        "mode.short_period.zeta.cg2_mlw.landing": zeta2,
+        "mode.short_period.wn_rad_s.cg2_mlw.landing": wn2,
+        "mode.short_period.cap.cg2_mlw.landing": cap2,
     }
 
 
@@ -118,7 +126,7 @@ def frame_of(
     df = pd.DataFrame({f"var:{v['path']}": x[:, i] for i, v in enumerate(VARIABLES)})
     for name, vals in resp.items():
         vals = vals.copy()
-        if noise and not name.startswith("level."):
+        if noise and not name.startswith(("level.", "mode.")):
             vals = vals * (1.0 + noise * rng.standard_normal(len(vals)))
         df[f"resp:{name}"] = vals
     df.insert(0, "key", [hashlib.sha256(f"{block}{r.tobytes().hex()}".encode()).hexdigest() for r in x])

@@ -73,8 +73,15 @@ def test_report_content():
     ):
         assert heading in html
     assert "Direct check not run (--no-check)" in html
-    # every analysed response has a surrogate; the ranking puts the least probable constraint first
-    assert set(analysis.surrogates) == set(analysis.view.analysed_responses())
+    # every analysed response has a surrogate or, a level whose mode quantities are recorded, is derived from
+    # theirs (and has none of its own); the ranking puts the least probable constraint first
+    derived = "level.short_period.cg2_mlw.landing"
+    assert set(analysis.levels) == {derived} and derived not in analysis.surrogates
+    assert set(analysis.surrogates) | set(analysis.levels) >= set(analysis.view.analysed_responses())
+    assert "mode.short_period.zeta.cg2_mlw.landing" in analysis.surrogates
+    assert "Handling-quality levels from the mode quantities" in html
+    d = analysis.levels[derived]
+    assert f"{d.n_agree} / {d.n_validation}" in html and d.n_reproduced == d.n_recorded
     ps = [o.p for o in analysis.mc.ranked()]
     assert ps == sorted(ps)
     # a flagged surrogate is named wherever it is used
@@ -185,3 +192,6 @@ def test_summary_ranks_every_constraint_with_its_interval():
     for stage, row in s["stages"].items():
         assert row["p"] == pytest.approx(mc.stage_counts[stage] / mc.n, rel=1e-5)
     assert s["cases"]["total"] == 260 and s["monte_carlo"]["samples"] == mc.n
+    (level,) = s["levels"]
+    assert level["response"] == "level.short_period.cg2_mlw.landing" and level["validation_agreement"] > 0.9
+    assert set(level["derived_from"]) == {"zeta", "wn", "cap"}

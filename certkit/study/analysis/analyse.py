@@ -14,12 +14,13 @@ import pandas as pd
 
 from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, RunCases, direct_check, reevaluate_optima
+from certkit.study.analysis.derived_levels import DerivedLevel, fit_predictors
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.profiler import profiler_data
 from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
-from certkit.study.analysis.surrogates import Surrogate, fit_all
+from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.spec import Study
 from certkit.study.store import Store
@@ -50,6 +51,7 @@ class Analysis:
     front_checks: list[CheckedOptimum] = field(default_factory=list)
     show_stoppers: list[ShowStopper] = field(default_factory=list)
     active: dict[str, list[str]] = field(default_factory=dict)
+    levels: dict[str, DerivedLevel] = field(default_factory=dict)
 
 
 def _run_checks(
@@ -86,7 +88,9 @@ def analyse(
     t = time.perf_counter()
     view = study
     cs = cases(frame, view)
-    surrogates, not_fitted = fit_all(view, cs, log)
+    fitted, levels, not_fitted = fit_predictors(view, cs, log)
+    # the levels derived from the mode quantities predict where a regressed level would
+    surrogates: dict[str, Any] = {**fitted, **levels}
     timings["surrogates_s"] = time.perf_counter() - t
     usable = view.model_copy(
         update={
@@ -109,7 +113,7 @@ def analyse(
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")
     t = time.perf_counter()
-    sobol = [sobol_indices(view, surrogates[r]) for r in view.analysed_responses() if r in surrogates]
+    sobol = [sobol_indices(view, fitted[r]) for r in view.analysed_responses() if r in fitted]
     timings["sobol_s"] = time.perf_counter() - t
     t = time.perf_counter()
     margin = validity.margin if validity.estimator is not None else None
@@ -148,7 +152,7 @@ def analyse(
         counts,
         cs.failed(),
         n_cases,
-        surrogates,
+        fitted,
         not_fitted,
         mc,
         mc_note,
@@ -156,13 +160,14 @@ def analyse(
         direct,
         check_note,
         checked[: len(optima)],
-        profiler_data(every, surrogates, validity=validity),
+        profiler_data(every, fitted, validity=validity),
         timings,
         validity,
         nsga,
         checked[len(optima) :],
         show_stoppers(every, mc, cs, not_fitted),
         active_constraints(usable, surrogates, optima),
+        levels,
     )
 
 

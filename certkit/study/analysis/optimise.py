@@ -8,8 +8,10 @@ surrogates find feasible is kept (the best sample itself when no start improves 
 et al. 2002, *IEEE Trans. Evol. Comput.* 6(2): 182–197; pymoo) with the constraints as inequalities.
 
 Every constraint becomes g(x) ≥ 0, scaled by the spread of its response over the samples: ``min ≤ y`` →
-(y − min)/s, ``y ≤ max`` → (max − y)/s; a handling-quality level L counts up to L + ½ (as in the Monte Carlo),
-with the stage's relaxation. Impossible designs are kept out by the validity classifier's margin (≥ 0).
+(y − min)/s, ``y ≤ max`` → (max − y)/s; a handling-quality level derived from the mode quantities
+(:mod:`.derived_levels`) is held by its continuous level margin, a regressed level L counts up to L + ½ (as in the
+Monte Carlo), each with the stage's relaxation. Impossible designs are kept out by the validity classifier's margin
+(≥ 0).
 A design the optimiser returns is re-checked with ``Constraint.feasible`` on the surrogates before it is kept.
 """
 
@@ -17,7 +19,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from pymoo.algorithms.moo.nsga2 import NSGA2
@@ -64,22 +66,26 @@ class SurrogateProblem:
         self.study, self.surrogates, self.stage = study, surrogates, stage
         self.bounds = study.bounds
         self.valid_margin = valid_margin
-        self.limits = []  # (response, threshold, sign, scale)
+        # (response, threshold, sign, scale, level: the worst level allowed, derived levels only)
+        self.limits: list[tuple[str, float, float, float, int | None]] = []
         if stage != "unconstrained":
             for c in study.constraints:
                 lower, upper = c.min, c.max
+                level = None
                 if c.is_level:
                     relaxed = study.analysis.relaxed_max(c)
                     upper = upper if relaxed is None else relaxed
                     if stage == "preferred":
                         upper = 1.0 if upper is None else min(upper, 1.0)
+                    if upper is not None and hasattr(surrogates[c.response], "level_margin"):
+                        level = int(upper)
                     upper = None if upper is None else upper + 0.5
                     lower = None if lower is None else lower - 0.5
                 scale = (scales or {}).get(c.response, 1.0) or 1.0
                 if lower is not None:
-                    self.limits.append((c.response, lower, 1.0, scale))
+                    self.limits.append((c.response, lower, 1.0, scale, None))
                 if upper is not None:
-                    self.limits.append((c.response, upper, -1.0, scale))
+                    self.limits.append((c.response, upper, -1.0, scale, level))
 
     def x(self, u: np.ndarray) -> np.ndarray:
         return from_unit(u, self.bounds)
@@ -91,7 +97,12 @@ class SurrogateProblem:
     def constraints(self, u: np.ndarray) -> np.ndarray:
         """(n, m) values g ≥ 0 where feasible (constraint limits, then the validity margin)."""
         x = self.x(np.atleast_2d(u))
-        cols = [sign * (self.surrogates[r].predict(x) - t) / s for r, t, sign, s in self.limits]
+        cols = [
+            cast(Any, self.surrogates[r]).level_margin(x, level)  # a DerivedLevel
+            if level is not None
+            else sign * (self.surrogates[r].predict(x) - t) / s
+            for r, t, sign, s, level in self.limits
+        ]
         if self.valid_margin is not None:
             cols.append(self.valid_margin(x))
         return np.column_stack(cols) if cols else np.empty((len(x), 0))

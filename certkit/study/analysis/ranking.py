@@ -6,7 +6,8 @@ level relaxation included); the reason gives the least violation over the sample
 many of the study's computed cases satisfy it (the true model's word). A constraint whose response has no
 surrogate (never computed, too few cases) is listed too, with the reason it could not be judged. A constraint
 is active at an optimum when the optimum's predicted response lies within the surrogate's cross-validated
-RMSE of a limit (or 10⁻⁶ of its magnitude): the optimum sits on that boundary.
+RMSE of a limit (or 10⁻⁶ of its magnitude), a derived handling-quality level when its level margin is within
+10⁻³ of zero: the optimum sits on that boundary.
 """
 
 from __future__ import annotations
@@ -27,6 +28,11 @@ class ShowStopper:
     name: str
     requirement: str
     reason: str
+
+
+#: a derived level is active where its level margin (a relative distance to the level's nearest boundary) is
+#: within this of zero
+LEVEL_ACTIVE = 1e-3
 
 
 def _limits(study: Study, c: Constraint) -> list[float]:
@@ -96,9 +102,19 @@ def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: l
             s = surrogates.get(c.response)
             if s is None:
                 continue
-            y = float(s.predict(opt.x[None, :])[0])
-            tol = max(s.cv.rmse or 0.0, 1e-6 * max(1.0, abs(y)))
-            if any(abs(y - t) <= tol for t in _limits(study, c)):
+            if hasattr(s, "level_margin"):
+                relaxed = study.analysis.relaxed_max(c)
+                allowed = c.max if relaxed is None else relaxed
+                if allowed is not None and opt.stage == "preferred":
+                    allowed = min(allowed, 1.0)
+                on_boundary = (
+                    allowed is not None and abs(float(s.level_margin(opt.x[None, :], int(allowed))[0])) <= LEVEL_ACTIVE
+                )
+            else:
+                y = float(s.predict(opt.x[None, :])[0])
+                tol = max(s.cv.rmse or 0.0, 1e-6 * max(1.0, abs(y)))
+                on_boundary = any(abs(y - t) <= tol for t in _limits(study, c))
+            if on_boundary:
                 label = f"{opt.objective} ({opt.stage})"
                 out.setdefault(c.name, [])
                 if label not in out[c.name]:

@@ -14,15 +14,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from scipy.special import ndtr
 
 from certkit.study.analysis.cases import VAR_PREFIX, cases
+from certkit.study.analysis.derived_levels import fit_predictors
 from certkit.study.analysis.montecarlo import MonteCarloResult, run_monte_carlo
 from certkit.study.analysis.optimise import pareto_fronts
-from certkit.study.analysis.surrogates import Surrogate, fit_all, to_unit
+from certkit.study.analysis.surrogates import Surrogate, to_unit
 from certkit.study.analysis.validity import Validity, fit_validity
 from certkit.study.runner import run_study_cases
 from certkit.study.spec import Study
@@ -37,6 +38,17 @@ if TYPE_CHECKING:
 CANDIDATES = 20_000
 
 
+def _relative_error(level: Any) -> float:
+    """The largest cross-validated RMSE of a derived level's quantities relative to their mean magnitude."""
+    out = 1e-12
+    for q in level.quantities.values():
+        y = q.plot_data.get("train", (np.empty(0),))[0]
+        scale = float(np.mean(np.abs(y))) if len(y) else 0.0
+        if q.cv.rmse and scale > 0:
+            out = max(out, q.cv.rmse / scale)
+    return out
+
+
 def misclassification(study: Study, surrogates: dict[str, Surrogate], x: np.ndarray) -> np.ndarray:
     """Per design, the largest chance over the constraints that the surrogate puts it on the wrong side."""
     score = np.zeros(len(x))
@@ -44,10 +56,15 @@ def misclassification(study: Study, surrogates: dict[str, Surrogate], x: np.ndar
         s = surrogates.get(c.response)
         if s is None:
             continue
-        y = s.predict(x)
-        sigma = max(s.cv.rmse or 0.0, 1e-12 * max(1.0, float(np.nanmax(np.abs(y)))))
         relaxed = study.analysis.relaxed_max(c)
         upper = c.max if relaxed is None else relaxed
+        if hasattr(s, "level_margin") and upper is not None:
+            # a derived level: its margin is a relative distance to the level's boundaries, uncertain by about the
+            # quantities' relative cross-validated error
+            score = np.maximum(score, ndtr(-np.abs(s.level_margin(x, int(upper))) / _relative_error(s)))
+            continue
+        y = s.predict(x)
+        sigma = max(s.cv.rmse or 0.0, 1e-12 * max(1.0, float(np.nanmax(np.abs(y)))))
         half = 0.5 if c.is_level else 0.0  # a level L counts up to L + ½
         for t in (None if c.min is None else c.min - half, None if upper is None else upper + half):
             if t is not None:
@@ -116,7 +133,8 @@ def _state(
     study: Study, frame: pd.DataFrame, samples: int, log: Callable[[str], object]
 ) -> tuple[Study, dict[str, Surrogate], Validity, MonteCarloResult, np.ndarray | None]:
     """Surrogates, validity, the Monte Carlo result and the fronts' designs of the cases in ``frame``."""
-    surrogates, not_fitted = fit_all(study, cases(frame, study), log)
+    fitted, levels, not_fitted = fit_predictors(study, cases(frame, study), log)
+    surrogates: dict[str, Any] = {**fitted, **levels}
     usable = study.model_copy(
         update={
             "objectives": [o for o in study.objectives if o.response in surrogates],

@@ -1,7 +1,8 @@
 """The headline of a study's analysis as plain data (``summary.json`` beside the study report): the cases, the
 probability of success of every constraint ranked (least first) with its 95 % Wilson interval and, where a level
 relaxation applies, the relaxed one; which constraints are active at the constrained optima; the show-stoppers
-with their reasons; the joint probabilities per stage; the true-model check of the probabilities; the optima with
+with their reasons; the joint probabilities per stage; the handling-quality levels derived from the mode quantities
+with their agreement; the true-model check of the probabilities; the optima with
 surrogate and true values. What a reader of the README or a CI job needs without opening the page."""
 
 from __future__ import annotations
@@ -61,6 +62,17 @@ def study_summary(a: Analysis) -> dict[str, Any]:
                 "p_monte_carlo": a.check.joint.p_mc,
             },
         }
+    summary["levels"] = [
+        {
+            "response": name,
+            "derived_from": dict(d.source.sources),
+            "validation_agreement": d.agreement,
+            "n_validation": d.n_validation,
+            "reproduced_from_record": [d.n_reproduced, d.n_recorded],
+            "flagged": d.flagged,
+        }
+        for name, d in a.levels.items()
+    ]
     summary["optima"] = [
         {
             "objective": c.optimum.objective,

@@ -4,7 +4,9 @@
 :func:`certkit.study.load_surrogates` read it. Each response's kept model is stored in the report page's export
 format (:mod:`.export`: polynomial, MLP or Gaussian process with its input bounds), with its goodness of fit;
 the possible-design classifier (logistic regression on polynomial features, :mod:`.validity`) is stored as its
-powers, scaling and coefficients. Evaluation here is vectorised numpy with the same arithmetic.
+powers, scaling and coefficients. Evaluation here is vectorised numpy with the same arithmetic. A handling-quality
+level derived from the mode quantities (:mod:`.derived_levels`; version 2) is stored as the responses it comes from,
+and read as the rule's level function of their predictions.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from typing import Any, Union
 import numpy as np
 
 from certkit.errors import UserError
+from certkit.study.analysis.derived_levels import DerivedLevel, mode_offers
 from certkit.study.analysis.export import export_surrogate
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.analysis.validity import Validity
@@ -29,7 +32,9 @@ Document = dict[str, Any]
 Points = Union[np.ndarray, Sequence[Sequence[float]], Mapping[str, float], Sequence[Mapping[str, float]]]
 
 FORMAT = "certkit-surrogates"
-VERSION = 1
+VERSION = 2
+#: versions this certkit reads (version 1 has no derived levels)
+READABLE = (1, 2)
 
 
 def _validity_doc(validity: Validity | None) -> Document | None:
@@ -49,10 +54,15 @@ def _validity_doc(validity: Validity | None) -> Document | None:
 
 
 def surrogates_document(
-    study: Study, surrogates: dict[str, Surrogate], validity: Validity | None = None, sha256: str = ""
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    validity: Validity | None = None,
+    sha256: str = "",
+    levels: dict[str, DerivedLevel] | None = None,
 ) -> Document:
-    """The file's content: the study's variables, objectives and constraints, every kept model and its fit."""
-    responses = {}
+    """The file's content: the study's variables, objectives and constraints, every kept model and its fit, the
+    derived levels."""
+    responses: Document = {}
     for name, s in surrogates.items():
         responses[name] = {
             "model": export_surrogate(s),
@@ -65,6 +75,14 @@ def surrogates_document(
             "n_training": s.n_training,
             "n_validation": s.n_validation,
             "flagged": s.flagged,
+        }
+    for name, d in (levels or {}).items():
+        responses[name] = {
+            "derived": {"mode": d.source.mode, "configuration": d.source.configuration, "from": d.source.sources},
+            "label": d.kept.label,
+            "validation_agreement": d.agreement,
+            "n_validation": d.n_validation,
+            "flagged": d.flagged,
         }
     return {
         "format": FORMAT,
@@ -160,7 +178,22 @@ class SurrogateSet:
         unknown = [r for r in names if r not in self.document["responses"]]
         if unknown:
             raise UserError(f"no surrogate for {', '.join(unknown)} (responses: {', '.join(self.responses)})")
-        return {r: evaluate_model(self.document["responses"][r]["model"], x) for r in names}
+        out = {}
+        for r in names:
+            entry = self.document["responses"][r]
+            if "derived" in entry:
+                out[r] = self._level(entry["derived"], x)
+            else:
+                out[r] = evaluate_model(entry["model"], x)
+        return out
+
+    def _level(self, derived: Document, x: np.ndarray) -> np.ndarray:
+        """A derived level: the rule's level function (:func:`.derived_levels.mode_offers`) of the predictions."""
+        offer = mode_offers().get(derived["mode"])
+        if offer is None or offer.level is None:
+            raise UserError(f"no installed rule gives the level of the mode {derived['mode']!r}")
+        q = {kw: evaluate_model(self.document["responses"][r]["model"], x) for kw, r in derived["from"].items()}
+        return np.asarray(offer.level(derived["mode"], derived["configuration"], **q), dtype=float).ravel()
 
     def possible(self, points: Points) -> np.ndarray:
         """Designs classed as possible aircraft (every design when the study had no impossible case)."""
@@ -182,6 +215,9 @@ def load_surrogates(path: str | Path) -> SurrogateSet:
         raise UserError(f"{path}: cannot read a surrogates file ({exc})") from None
     if not isinstance(document, dict) or document.get("format") != FORMAT:
         raise UserError(f"{path}: not a certkit surrogates file (written by `certkit study export --surrogates`)")
-    if document.get("version") != VERSION:
-        raise UserError(f"{path}: surrogates file version {document.get('version')!r}; this certkit reads {VERSION}")
+    if document.get("version") not in READABLE:
+        raise UserError(
+            f"{path}: surrogates file version {document.get('version')!r}; this certkit reads "
+            + ", ".join(map(str, READABLE))
+        )
     return SurrogateSet(document)

@@ -407,12 +407,14 @@ def _fit_one(name: str, bounds: np.ndarray, data: Any, options: AnalysisOptions)
 
 
 def fit_all(
-    study: Study, cases: Cases, log: Callable[[str], object] = lambda msg: None
+    study: Study, cases: Cases, log: Callable[[str], object] = lambda msg: None, names: list[str] | None = None
 ) -> tuple[dict[str, Surrogate], dict[str, str]]:
-    """One surrogate per analysed response of ``study`` from ``cases`` (:class:`.cases.Cases`), the responses
-    fitted in parallel over the cores (each fit is seeded: the same models whatever the number of processes);
-    (surrogates, reasons of the responses none could be fitted for)."""
-    names = study.analysed_responses()
+    """One surrogate per analysed response of ``study`` (or per response of ``names``) from ``cases``
+    (:class:`.cases.Cases`), the responses fitted in parallel over the cores (each fit is seeded: the same models
+    whatever the number of processes); (surrogates, reasons of the responses none could be fitted for)."""
+    names = study.analysed_responses() if names is None else names
+    if not names:
+        return {}, {}
     data = {n: (cases.xy("training", n), cases.xy("validation", n)) for n in names}
     cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
     done = Parallel(n_jobs=min(cores, len(names)) or 1)(

@@ -94,7 +94,7 @@ class DynamicStability(Rule):
         Part 25 requirement and does not set the status.
     """
     references = ("25.171", "25.103")
-    offers = (ModeResponses(MODES),)
+    offers = (ModeResponses(MODES, level=hq.damping_level, level_margin=hq.damping_level_margin),)
     requires = ("configurations.clean.CLmax", "speeds.VMO")
     criteria = {
         "short_period_damping_min_cruise": Criterion(

@@ -188,6 +188,56 @@ def configuration_level(mode_name: str, configuration: str, **quantities):
     return int(out) if np.ndim(out) == 0 else out
 
 
+def _times(zeta, wn) -> dict[str, np.ndarray]:
+    """Times to half and to double amplitude from the damping ratio and natural frequency: the root's real part is
+    σ = −ζ·ω_n for an oscillatory and a real root alike (:mod:`certkit.models.dynamics.modes`), so
+    t_half = ln 2/(ζω_n) when it converges, t_double = ln 2/(−ζω_n) when it diverges (∞ otherwise)."""
+    sigma = -np.asarray(zeta, dtype=float) * np.asarray(wn, dtype=float)
+    with np.errstate(divide="ignore"):
+        return {
+            "t_half": np.where(sigma < 0, np.log(2.0) / -sigma, np.inf),
+            "t_double": np.where(sigma > 0, np.log(2.0) / sigma, np.inf),
+        }
+
+
+def damping_level(mode_name: str, configuration: str, *, zeta, wn, cap=None):
+    """:func:`configuration_level` from the damping ratio ``zeta``, natural frequency ``wn`` (rad/s) and, for the
+    short period, the control anticipation parameter ``cap`` alone (the times to half and double follow from ζω_n):
+    the level a design record gives, from surrogates of the quantities it also records."""
+    return configuration_level(mode_name, configuration, zeta=zeta, wn=wn, cap=cap, **_times(zeta, wn))
+
+
+def damping_level_margin(mode_name: str, configuration: str, level: int, *, zeta, wn, cap=None) -> np.ndarray:
+    """How far a mode lies inside ``level`` in ``configuration``: over the configuration's flight-phase categories
+    the least, over the levels up to ``level`` the greatest, of the least relative distance to that level's
+    boundaries ((q − v)/|v| for a minimum, (v − q)/|v| for a maximum; the distance itself at v = 0). It is ≥ 0
+    exactly where :func:`damping_level` ≤ ``level`` and continuous in the quantities, so an optimiser can hold a
+    handling-quality level as an inequality (±∞ where a quantity is unbounded, e.g. no divergence)."""
+    zeta, wn = np.asarray(zeta, dtype=float), np.asarray(wn, dtype=float)
+    q = {"zeta": zeta, "wn": wn, "zeta_wn": zeta * wn}
+    times = _times(zeta, wn)
+    q["tau"], q["t_double"] = times["t_half"] / np.log(2.0), times["t_double"]
+    if cap is not None:
+        q["cap"] = np.asarray(cap, dtype=float)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in q.values()))
+    out = np.full(shape, np.inf)
+    for category in categories_of(configuration):
+        best = np.full(shape, -np.inf)
+        for lv in range(1, min(level, 3) + 1):
+            inside = np.full(shape, np.inf)
+            for lim in limits_for(mode_name, category, lv):
+                if lim.quantity not in q:
+                    continue
+                scale = abs(lim.value) or 1.0
+                d = q[lim.quantity] - lim.value if lim.bound == "min" else lim.value - q[lim.quantity]
+                inside = np.minimum(inside, d / scale)
+            best = np.maximum(best, inside)
+        if level >= 4:
+            best = np.full(shape, np.inf)
+        out = np.minimum(out, best)
+    return out
+
+
 def level_of(mode_name: str, mode, category: str, n_alpha: float | None = None) -> tuple[int, str]:
     """(level, reason): the best Level whose every boundary the mode meets (4 = worse than Level 3),
     and the first boundary it misses at the next better Level (the CAP read with the condition's ``n_alpha``)."""
