@@ -18,6 +18,7 @@ from certkit.report import study_figures as figures
 from certkit.report.pages import page_environment
 from certkit.study.analysis.analyse import FRONT_CHECKED, Analysis, analyse
 from certkit.study.analysis.montecarlo import STAGES
+from certkit.study.analysis.optimise import LEAST_VIOLATION
 from certkit.study.analysis.planform import planform_from
 from certkit.study.analysis.profiler import profiler_json
 from certkit.study.analysis.summary import study_summary
@@ -127,6 +128,7 @@ def render(a: Analysis) -> str:
         "profiler_json": profiler_json(a.profiler),
         "profiler_js": env.loader.get_source(env, "profiler.js")[0],
         "flagged": [r for r, s in a.surrogates.items() if s.flagged],
+        "least_violation": LEAST_VIOLATION,
     }
     return env.get_template("study_report.html").render(**context)
 

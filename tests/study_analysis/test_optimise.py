@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 
 from certkit.study.analysis.montecarlo import run_monte_carlo
-from certkit.study.analysis.optimise import SurrogateProblem, front_sample, local_optimum, nsga2_front
+from certkit.study.analysis.optimise import (
+    LEAST_VIOLATION,
+    SurrogateProblem,
+    front_sample,
+    local_optimum,
+    nsga2_front,
+    optimise,
+)
+from certkit.study.analysis.ranking import active_constraints, conflicting_constraints
 from certkit.study.analysis.surrogates import fit_response
 from certkit.study.spec import Study
 
@@ -91,3 +99,60 @@ def test_non_dominated_points_by_hand():
 
     f = np.array([[1, 3], [2, 3], [2, 2], [3, 1], [3, 3], [1 + 1e-9, 4], [2, 2]], dtype=float)
     assert non_dominated(f).tolist() == [0, 2, 3]
+
+
+def _analytic(constraints, objective="f"):
+    return Study.model_validate(
+        {
+            "name": "analytic-conflict",
+            "aircraft": "a.yaml",
+            "designs": [{"name": "r", "generator": "random", "n": 1, "seed": 0}],
+            "variables": [{"path": f"v.x{i}", "bounds": [0.0, 1.0], "baseline": 0.5} for i in range(3)],
+            "objectives": [{"response": objective}],
+            "constraints": constraints,
+        }
+    )
+
+
+def _linear_surrogates(study, functions):
+    x = np.random.default_rng(0).random((60, 3))
+    return {
+        n: fit_response(n, study.bounds, x, fn(x), x[:0], np.empty(0), families=("polynomial",))
+        for n, fn in functions.items()
+    }
+
+
+def test_conflicting_constraints_named_at_the_design_of_least_violation():
+    """x0 ≥ 0.6 and x0 ≤ 0.4 cannot both hold: no sample meets them, the design of least total squared violation
+    is x0 = 0.5 (each violated by 0.1), reported as the stage's optimum, and the two are named as the conflict;
+    x1 ≤ 0.9, met there, is not."""
+    study = _analytic(
+        [
+            {"name": "above", "response": "a", "min": 0.6},
+            {"name": "below", "response": "a", "max": 0.4},
+            {"name": "x1 small", "response": "b", "max": 0.9},
+        ]
+    )
+    sur = _linear_surrogates(study, {"a": lambda x: x[:, 0], "b": lambda x: x[:, 1], "f": lambda x: x.sum(axis=1)})
+    mc = run_monte_carlo(study, sur, n=20_000, chunk=20_000, seed=1)
+    assert mc.stage_counts["constrained"] == 0
+    optima = optimise(study, sur, mc)
+    (nearest,) = [o for o in optima if o.stage == "constrained"]
+    assert nearest.method == LEAST_VIOLATION
+    assert nearest.x[0] == pytest.approx(0.5, abs=1e-4) and nearest.x[1] <= 0.9
+    conflicts = conflicting_constraints(study, sur, optima)
+    assert set(conflicts) == {"above", "below"}
+    assert not active_constraints(study, sur, optima)
+
+
+def test_a_feasible_corner_the_samples_miss_is_found_and_optimised():
+    """x0, x1, x2 ≥ 0.999 together hold on 10⁻⁹ of the cube: 20,000 samples miss it, the least-violation search
+    finds it, and the least x0 + x1 + x2 there is its corner (2.997)."""
+    study = _analytic([{"name": f"x{i} large", "response": f"x{i}", "min": 0.999} for i in range(3)])
+    functions = {f"x{i}": (lambda x, i=i: x[:, i]) for i in range(3)}
+    sur = _linear_surrogates(study, {**functions, "f": lambda x: x.sum(axis=1)})
+    mc = run_monte_carlo(study, sur, n=20_000, chunk=20_000, seed=1)
+    assert mc.stage_counts["constrained"] == 0
+    (best,) = [o for o in optimise(study, sur, mc) if o.stage == "constrained"]
+    assert best.method == "SLSQP on the surrogates"
+    assert best.value == pytest.approx(2.997, abs=1e-5)

@@ -195,3 +195,21 @@ def test_summary_ranks_every_constraint_with_its_interval():
     (level,) = s["levels"]
     assert level["response"] == "level.short_period.cg2_mlw.landing" and level["validation_agreement"] > 0.9
     assert set(level["derived_from"]) == {"zeta", "wn", "cap"}
+
+
+def test_conflicting_constraints_are_shown_with_the_stage_none_meets():
+    """Where no design meets every constraint, the page names the stage and the constraints that fail at the
+    design of least violation (the analysis' ``conflicts``)."""
+    import dataclasses
+
+    from certkit.report.study_report import render
+    from certkit.study.analysis.optimise import LEAST_VIOLATION
+
+    analysis, _ = small_report()
+    first = analysis.optima[0]
+    nearest = dataclasses.replace(
+        first, optimum=dataclasses.replace(first.optimum, stage="constrained", method=LEAST_VIOLATION)
+    )
+    html = render(dataclasses.replace(analysis, optima=[nearest], conflicts={"range": ["constrained (-1.2e+04)"]}))
+    assert "No design meets every constraint of constrained on the surrogates" in html
+    assert "<b>range</b> (constrained (-1.2e+04))" in html

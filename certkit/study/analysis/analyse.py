@@ -18,7 +18,13 @@ from certkit.study.analysis.derived_levels import DerivedLevel, fit_predictors
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
 from certkit.study.analysis.profiler import profiler_data
-from certkit.study.analysis.ranking import ShowStopper, active_constraints, show_stoppers, without_unattainable
+from certkit.study.analysis.ranking import (
+    ShowStopper,
+    active_constraints,
+    conflicting_constraints,
+    show_stoppers,
+    without_unattainable,
+)
 from certkit.study.analysis.sensitivity import SobolTable, sobol_indices
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.analysis.validity import Validity, fit_validity
@@ -52,6 +58,7 @@ class Analysis:
     show_stoppers: list[ShowStopper] = field(default_factory=list)
     active: dict[str, list[str]] = field(default_factory=dict)
     levels: dict[str, DerivedLevel] = field(default_factory=dict)
+    conflicts: dict[str, list[str]] = field(default_factory=dict)
 
 
 def _run_checks(
@@ -168,6 +175,7 @@ def analyse(
         show_stoppers(every, mc, cs, not_fitted),
         active_constraints(usable, surrogates, optima),
         levels,
+        conflicting_constraints(usable, surrogates, optima),
     )
 
 

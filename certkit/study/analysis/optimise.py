@@ -122,6 +122,28 @@ class SurrogateProblem:
         return ok
 
 
+def _slsqp(
+    fun: Callable[[np.ndarray], tuple[float, np.ndarray]],
+    u0: np.ndarray,
+    cons: list[dict[str, Any]],
+    maxiter: int,
+    ftol: float,
+) -> np.ndarray:
+    """SLSQP (value and gradient from ``fun``) from ``u0`` on [−1, 1]ⁿ, its warnings silenced; the end point."""
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")
+        res = minimize(
+            fun,
+            np.clip(u0, -1.0, 1.0),
+            method="SLSQP",
+            jac=True,
+            bounds=[(-1.0, 1.0)] * len(u0),
+            constraints=cons,
+            options={"maxiter": maxiter, "ftol": ftol},
+        )
+    return np.asarray(np.clip(res.x, -1.0, 1.0))
+
+
 def local_optimum(
     problem: SurrogateProblem, objective: str, sense: str, starts: np.ndarray, fallback: np.ndarray | None = None
 ) -> Optimum | None:
@@ -148,19 +170,7 @@ def local_optimum(
         else []
     )
     for start in np.atleast_2d(starts):
-        u0 = np.clip(to_unit(start[None, :], problem.bounds)[0], -1.0, 1.0)
-        with warnings.catch_warnings(), np.errstate(all="ignore"):
-            warnings.simplefilter("ignore")
-            res = minimize(
-                objective_and_gradient,
-                u0,
-                method="SLSQP",
-                jac=True,
-                bounds=[(-1.0, 1.0)] * n,
-                constraints=cons,
-                options={"maxiter": 100, "ftol": 1e-10},
-            )
-        u = np.clip(res.x, -1.0, 1.0)
+        u = _slsqp(objective_and_gradient, to_unit(start[None, :], problem.bounds)[0], cons, 100, 1e-10)
         f = float(problem.objective(objective, u, sense)[0])
         better = best_u is None or f < best_f - 1e-12 * max(1.0, abs(best_f))
         if np.isfinite(f) and better and problem.feasible(problem.x(u[None, :]))[0]:
@@ -239,6 +249,48 @@ def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
     return out
 
 
+#: the method of an optimum that is the design of least violation of a stage no design meets on the surrogates
+LEAST_VIOLATION = "least violation: no design meets every constraint of the stage on the surrogates"
+
+
+def least_violation(problem: SurrogateProblem, starts: np.ndarray) -> np.ndarray | None:
+    """The design (SI) of least total violation of the stage's constraints, Σ min(g, 0)² over the scaled constraint
+    values g of :meth:`SurrogateProblem.constraints` (the validity margin held as a constraint, not traded): SLSQP
+    from each start, the best kept; None when no start ends at a possible design."""
+    n = problem.bounds.shape[0]
+    n_limits = len(problem.limits)
+    steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
+
+    def total(u: np.ndarray) -> tuple[float, np.ndarray]:
+        g = problem.constraints(u[None, :] + steps)[:, :n_limits]
+        v = np.sum(np.minimum(g, 0.0) ** 2, axis=1)
+        return float(v[0]), (v[1:] - v[0]) / FD_STEP
+
+    cons = []
+    if problem.valid_margin is not None:
+        margin = problem.valid_margin
+        cons = [{"type": "ineq", "fun": lambda u: margin(problem.x(u[None, :]))}]
+    best_u, best_v = None, np.inf
+    for start in np.atleast_2d(starts):
+        u = _slsqp(total, to_unit(start[None, :], problem.bounds)[0], cons, 200, 1e-14)
+        v = total(u)[0]
+        possible = problem.valid_margin is None or problem.valid_margin(problem.x(u[None, :]))[0] >= 0
+        if possible and np.isfinite(v) and v < best_v:
+            best_u, best_v = u, v
+    return None if best_u is None else problem.x(best_u[None, :])[0]
+
+
+def _least_violation_starts(problem: SurrogateProblem, mc: MonteCarloResult, rng: np.random.Generator) -> np.ndarray:
+    """The Monte Carlo cloud's samples of least total violation, then random points."""
+    random = from_unit(rng.uniform(-1, 1, (STARTS // 2, problem.bounds.shape[0])), problem.bounds)
+    cloud = mc.cloud_x
+    if not len(cloud):
+        return random
+    g = problem.constraints(to_unit(cloud, problem.bounds))[:, : len(problem.limits)]
+    order = np.argsort(np.sum(np.minimum(g, 0.0) ** 2, axis=1))[:STARTS]
+    return np.vstack([cloud[order], random])
+
+
 def optimise(
     study: Study,
     surrogates: dict[str, Surrogate],
@@ -248,17 +300,34 @@ def optimise(
     seed: int = 3,
 ) -> list[Optimum]:
     """The optimum of every objective in every stage: SLSQP started from the stage's best Monte Carlo samples
-    (the stage's best sample itself kept when no start improves on it)."""
+    (the stage's best sample itself kept when no start improves on it). A stage no sample meets is searched for its
+    design of least violation (:func:`least_violation`): where that design meets every constraint (a region the
+    samples missed) each objective is optimised from it, otherwise it is reported once per objective as the
+    stage's optimum with the method :data:`LEAST_VIOLATION` — the constraints it violates are those in conflict."""
     rng = np.random.default_rng(seed)
     scales = _scales(study, surrogates)
     out = []
+    nearest: dict[str, np.ndarray | None] = {}
     for k, objective in enumerate(study.objectives):
         sign = -1.0 if objective.sense == "max" else 1.0
         for si, stage in enumerate(STAGES):
             sampled = next((o for o in mc.optima if o.objective == objective.response and o.stage == stage), None)
-            if sampled is None:
-                continue
             problem = SurrogateProblem(study, surrogates, stage, valid_margin, scales)
+            if sampled is None:
+                if stage == "unconstrained" or not problem.limits:
+                    continue
+                if stage not in nearest:
+                    nearest[stage] = least_violation(problem, _least_violation_starts(problem, mc, rng))
+                x = nearest[stage]
+                if x is None:
+                    continue
+                value = float(surrogates[objective.response].predict(x[None, :])[0])
+                if problem.feasible(x[None, :])[0]:
+                    best = local_optimum(problem, objective.response, objective.sense, x[None, :], fallback=x)
+                    out.append(best or Optimum(objective.response, stage, value, x, "SLSQP on the surrogates"))
+                else:
+                    out.append(Optimum(objective.response, stage, value, x, LEAST_VIOLATION))
+                continue
             in_stage = mc.cloud_stage >= si
             order = np.argsort(sign * mc.cloud_f[in_stage, k])[: STARTS // 2]
             starts = np.vstack(

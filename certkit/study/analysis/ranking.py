@@ -1,5 +1,5 @@
 """What limits the design: show-stoppers (constraints no possible design satisfies) with their reasons, and the
-constraints active at the constrained optima.
+constraints active at the constrained optima, or — where no design meets every constraint — those that conflict.
 
 A constraint is a show-stopper when no possible Monte Carlo sample satisfies it on its surrogate (P = 0, the
 level relaxation included); the reason gives the least violation over the samples and the best value, and how
@@ -19,6 +19,7 @@ import numpy as np
 
 from certkit.study.analysis.cases import Cases
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, violation
+from certkit.study.analysis.optimise import LEAST_VIOLATION
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
 
@@ -96,7 +97,7 @@ def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: l
     """Constraint name → the objectives whose constrained (or preferred) optimum lies on its boundary."""
     out: dict[str, list[str]] = {}
     for opt in optima:
-        if opt.stage == "unconstrained":
+        if opt.stage == "unconstrained" or opt.method == LEAST_VIOLATION:
             continue
         for c in study.constraints:
             s = surrogates.get(c.response)
@@ -119,4 +120,29 @@ def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: l
                 out.setdefault(c.name, [])
                 if label not in out[c.name]:
                     out[c.name].append(label)
+    return out
+
+
+def conflicting_constraints(
+    study: Study, surrogates: dict[str, Surrogate], optima: list[Optimum]
+) -> dict[str, list[str]]:
+    """Constraint name → the stages whose design of least violation (an optimum of method
+    :data:`~.optimise.LEAST_VIOLATION`) it fails, with its predicted value there: where no design meets every
+    constraint, the ones that cannot be met together."""
+    out: dict[str, list[str]] = {}
+    seen = set()
+    for opt in optima:
+        if opt.method != LEAST_VIOLATION or opt.stage in seen:
+            continue
+        seen.add(opt.stage)
+        for c in study.constraints:
+            s = surrogates.get(c.response)
+            if s is None:
+                continue
+            y = s.predict(opt.x[None, :])
+            ok = c.feasible(y, study.analysis.relaxed_max(c))
+            if opt.stage == "preferred" and c.is_level:
+                ok &= c.feasible(y, 1.0)
+            if not ok[0]:
+                out.setdefault(c.name, []).append(f"{opt.stage} ({float(y[0]):.4g})")
     return out

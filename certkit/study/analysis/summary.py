@@ -1,9 +1,10 @@
 """The headline of a study's analysis as plain data (``summary.json`` beside the study report): the cases, the
 probability of success of every constraint ranked (least first) with its 95 % Wilson interval and, where a level
-relaxation applies, the relaxed one; which constraints are active at the constrained optima; the show-stoppers
-with their reasons; the joint probabilities per stage; the handling-quality levels derived from the mode quantities
-with their agreement; the true-model check of the probabilities; the optima with
-surrogate and true values. What a reader of the README or a CI job needs without opening the page."""
+relaxation applies, the relaxed one; which constraints are active at the constrained optima (or, where no design
+meets them all, which conflict at the design of least violation); the show-stoppers with their reasons; the joint
+probabilities per stage; the handling-quality levels derived from the mode quantities with their agreement; the
+true-model check of the probabilities; the optima with surrogate and true values. What a reader of the README or a
+CI job needs without opening the page."""
 
 from __future__ import annotations
 
@@ -62,6 +63,7 @@ def study_summary(a: Analysis) -> dict[str, Any]:
                 "p_monte_carlo": a.check.joint.p_mc,
             },
         }
+    summary["conflicts"] = dict(a.conflicts)
     summary["levels"] = [
         {
             "response": name,
