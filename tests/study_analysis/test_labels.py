@@ -24,6 +24,13 @@ def test_response_words_and_aviation_units():
     assert response_label("objective.cruise_CD") == ("cruise CD", "", 1.0)
     assert response_label("subcheck.25.335(a).margin_m_s")[:2] == ("§25.335(a) margin", "kn")
     assert response_axis("objective.OEW_kg") == "OEW (lb)"
+    # a mode quantity of the record: the mode, the quantity and where (SI: rad/s, and the CAP's own unit)
+    assert response_label("mode.short_period.wn_rad_s.fwd_mrw.clean") == (
+        "short period natural frequency ω_n, fwd_mrw clean",
+        "rad/s",
+        1.0,
+    )
+    assert response_label("mode.phugoid.zeta.aft_mid.takeoff")[0] == "phugoid damping ratio ζ, aft_mid takeoff"
 
 
 def test_declared_units_of_the_variables():

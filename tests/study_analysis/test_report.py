@@ -82,6 +82,9 @@ def test_report_content():
     assert "Handling-quality levels from the mode quantities" in html
     d = analysis.levels[derived]
     assert f"{d.n_agree} / {d.n_validation}" in html and d.n_reproduced == d.n_recorded
+    # the profiler shows the derived level as its quantities
+    profiled = {r["name"] for r in analysis.profiler["responses"]}
+    assert derived not in profiled and set(d.source.sources.values()) <= profiled
     ps = [o.p for o in analysis.mc.ranked()]
     assert ps == sorted(ps)
     # a flagged surrogate is named wherever it is used

@@ -167,7 +167,7 @@ def analyse(
         direct,
         check_note,
         checked[: len(optima)],
-        profiler_data(every, fitted, validity=validity),
+        profiler_data(every, fitted, validity=validity, levels=levels),
         timings,
         validity,
         nsga,

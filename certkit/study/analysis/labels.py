@@ -19,6 +19,15 @@ _SUFFIXES = (
     ("_deg", "deg", "deg"),
 )
 _MISSION_WORDS = ("range", "distance")
+#: a mode quantity of a design record (``mode.<mode>.<quantity>.<corner>.<configuration>``) → (words, unit, SI)
+_MODE_QUANTITIES = {
+    "zeta": ("damping ratio ζ", ""),
+    "wn_rad_s": ("natural frequency ω_n", "rad/s"),
+    "period_s": ("period", "s"),
+    "t_half_s": ("time to half amplitude", "s"),
+    "t_double_s": ("time to double amplitude", "s"),
+    "cap": ("CAP ω²/(n/α)", "(rad/s²)/g"),
+}
 _KINDS = ("objective.", "constraint.", "mission.", "subcheck.", "handling.", "rule.")
 
 
@@ -36,6 +45,10 @@ def response_label(name: str) -> tuple[str, str, float]:
     """(words, unit shown, factor) of a response key: ``objective.block_fuel_kg`` → ("block fuel", "lb", 0.4536),
     ``constraint.range_margin_m`` → ("range margin", "nmi", 1852), ``mission.block_time_s`` → ("block time", "h",
     3600); a key without a unit suffix keeps its words and no unit."""
+    mode = re.match(r"^mode\.([a-z_]+)\.([a-z_]+)\.([^.]+)\.([^.]+)$", name)
+    if mode and mode[2] in _MODE_QUANTITIES:
+        words, unit = _MODE_QUANTITIES[mode[2]]
+        return f"{mode[1].replace('_', ' ')} {words}, {mode[3]} {mode[4]}", unit, 1.0
     stem = name
     for kind in _KINDS:
         if stem.startswith(kind):

@@ -1,5 +1,6 @@
 """Data of the interactive prediction profiler: each objective and chosen constraint response against each
-variable through the current point, evaluated in the page from the exported surrogates (``profiler.js``).
+variable through the current point, evaluated in the page from the exported surrogates (``profiler.js``); a
+handling-quality level derived from its mode quantities is shown as those quantities (damping ratio, frequency, CAP).
 
 Slider ranges reach ``OVERHANG`` of each variable's range beyond its bounds; that part is drawn greyed, as
 outside the sampled region (extrapolation).
@@ -18,13 +19,18 @@ from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Study
 
 if TYPE_CHECKING:
+    from certkit.study.analysis.derived_levels import DerivedLevel
     from certkit.study.analysis.validity import Validity
 
 OVERHANG = 0.1
 
 
 def profiler_data(
-    study: Study, surrogates: dict[str, Surrogate], start: np.ndarray | None = None, validity: Validity | None = None
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    start: np.ndarray | None = None,
+    validity: Validity | None = None,
+    levels: dict[str, DerivedLevel] | None = None,
 ) -> dict[str, Any]:
     """Everything the page needs: variables with bounds and slider range, the responses' exported models
     with their thresholds and flags, the classifier of possible designs (``validity``,
@@ -33,7 +39,9 @@ def profiler_data(
     unit) and ``unit`` it is shown in, a response its words (``title``)."""
     start = study.baseline if start is None else np.asarray(start, dtype=float)
     limits = {c.response: (c.min, c.max) for c in study.constraints}
-    names = [o.response for o in study.objectives] + study.profiled_constraints()
+    names = [o.response for o in study.objectives]
+    for name in study.profiled_constraints():  # a derived level is shown as the quantities it comes from
+        names += list(levels[name].source.sources.values()) if levels and name in levels else [name]
     responses = []
     for name in dict.fromkeys(names):
         if name not in surrogates:
