@@ -103,3 +103,37 @@ def test_stages_and_optima_are_those_of_the_attainable_constraints():
     p, se = stages.stage_p("constrained")
     assert p == pytest.approx(0.5, abs=3 * se) and p == stages.constraints[0].p
     assert [o.stage for o in stages.optima if o.objective == "f"].count("constrained") == 1
+
+
+def test_a_region_no_computed_case_confirms_is_set_apart():
+    """x0 ≥ 0.9995 holds on 0.05 % of the cube: the surrogate finds it on about that share of the samples, fewer
+    than one in the 60 computed cases (1.7 %), and none of the cases meets it — a show-stopper, unconfirmed, set
+    apart from the stages; x0 ≥ 0.5, met by computed cases, stays."""
+    study = _study([{"name": "half", "response": "a", "min": 0.5}, {"name": "sliver", "response": "a", "min": 0.9995}])
+    cs, sur = _setup(study)
+    assert np.max(cs.xy("training", "a")[1]) < 0.9995
+
+    def run(s):
+        return run_monte_carlo(s, sur, n=200_000, chunk=100_000, seed=4)
+
+    mc = run(study)
+    sliver = next(o for o in mc.constraints if o.constraint.name == "sliver")
+    assert 0 < sliver.p < 1 / 60
+    (stopper,) = show_stoppers(study, mc, cs, {})
+    assert stopper.name == "sliver" and "unconfirmed" in stopper.reason
+    assert "0 of the 60 computed cases satisfy it" in stopper.reason
+    rest, stages = without_unattainable(study, sur, mc, run, cs)
+    assert [c.name for c in rest.constraints] == ["half"]
+    assert stages.stage_p("constrained")[0] == pytest.approx(0.5, abs=0.01)
+
+
+def test_a_response_no_design_moves_is_never_active():
+    """A constraint on a constant response (0 ≤ c, c ≡ 0: on its limit everywhere, as §25.335(b)'s VD = 1.25 VC
+    by declaration) binds no optimum; the sum constraint at the optimum still does."""
+    study = _study([{"name": "sum", "response": "s", "max": 1.5}, {"name": "declared", "response": "z", "min": 0.0}])
+    cs, sur = _setup(study)
+    x = np.random.default_rng(0).random((60, D))
+    sur["z"] = fit_response("z", study.bounds, x, np.zeros(60), x[:0], np.empty(0), families=("polynomial",))
+    mc = run_monte_carlo(study, sur, n=5000, chunk=5000, seed=2)
+    active = active_constraints(study, sur, optimise(study, sur, mc))
+    assert "sum" in active and "declared" not in active

@@ -116,6 +116,7 @@ def analyse(
         surrogates,
         mc,
         lambda rest: run_monte_carlo(rest, surrogates, n=samples, chunk=chunk, valid=validity.valid),
+        cs,
     )
     timings["monte_carlo_s"] = time.perf_counter() - t
     log(f"Monte Carlo: {samples} samples in {mc.seconds:.1f} s")

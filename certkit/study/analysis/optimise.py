@@ -253,6 +253,10 @@ def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
 LEAST_VIOLATION = "least violation: no design meets every constraint of the stage on the surrogates"
 
 
+#: the method of an optimum that is the least-violation search's design, feasible where no sample was
+FOUND_BY_LEAST_VIOLATION = "least-violation search: a design no Monte Carlo sample found, feasible on the surrogates"
+
+
 def least_violation(problem: SurrogateProblem, starts: np.ndarray) -> np.ndarray | None:
     """The design (SI) of least total violation of the stage's constraints, Σ min(g, 0)² over the scaled constraint
     values g of :meth:`SurrogateProblem.constraints` (the validity margin held as a constraint, not traded): SLSQP
@@ -324,7 +328,9 @@ def optimise(
                 value = float(surrogates[objective.response].predict(x[None, :])[0])
                 if problem.feasible(x[None, :])[0]:
                     best = local_optimum(problem, objective.response, objective.sense, x[None, :], fallback=x)
-                    out.append(best or Optimum(objective.response, stage, value, x, "SLSQP on the surrogates"))
+                    if best is None or best.method != "SLSQP on the surrogates":  # no start improved on it
+                        best = Optimum(objective.response, stage, value, x, FOUND_BY_LEAST_VIOLATION)
+                    out.append(best)
                 else:
                     out.append(Optimum(objective.response, stage, value, x, LEAST_VIOLATION))
                 continue

@@ -1,13 +1,14 @@
 """What limits the design: show-stoppers (constraints no possible design satisfies) with their reasons, and the
 constraints active at the constrained optima, or — where no design meets every constraint — those that conflict.
 
-A constraint is a show-stopper when no possible Monte Carlo sample satisfies it on its surrogate (P = 0, the
-level relaxation included); the reason gives the least violation over the samples and the best value, and how
-many of the study's computed cases satisfy it (the true model's word). A constraint whose response has no
-surrogate (never computed, too few cases) is listed too, with the reason it could not be judged. A constraint
-is active at an optimum when the optimum's predicted response lies within the surrogate's cross-validated
-RMSE of a limit (or 10⁻⁶ of its magnitude), a derived handling-quality level when its level margin is within
-10⁻³ of zero: the optimum sits on that boundary.
+A constraint is a show-stopper when no possible Monte Carlo sample satisfies it on its surrogate (P = 0, the level
+relaxation included), or when no computed case satisfies it and its samples that do are fewer than one in the number
+of computed cases (a region the cases could not have found and none confirms); the reason gives the least violation
+over the samples and the best value, and how many of the study's computed cases satisfy it (the true model's word).
+A constraint whose response has no surrogate (never computed, too few cases) is listed too, with the reason it could
+not be judged. A constraint is active at an optimum when the optimum's predicted response lies within the
+surrogate's cross-validated RMSE of a limit (or 10⁻⁶ of its magnitude), a derived handling-quality level when its
+level margin is within 10⁻³ of zero: the optimum sits on that boundary.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from certkit.study.analysis.cases import Cases
-from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, violation
+from certkit.study.analysis.montecarlo import ConstraintOutcome, MonteCarloResult, Optimum, violation
 from certkit.study.analysis.optimise import LEAST_VIOLATION
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.spec import Constraint, Study
@@ -45,23 +46,48 @@ def _limits(study: Study, c: Constraint) -> list[float]:
     ]
 
 
-def unattainable(mc: MonteCarloResult) -> list[str]:
-    """Names of the constraints no possible sample satisfies (P = 0, the level relaxation included)."""
+def _successes(o: ConstraintOutcome) -> int:
+    return o.relaxed_successes if o.relaxed_successes is not None else o.successes
+
+
+def _computed_successes(study: Study, c: Constraint, cases: Cases) -> tuple[int, np.ndarray]:
+    values = np.concatenate([cases.xy(role, c.response)[1] for role in ("training", "validation")])
+    return int(np.sum(c.feasible(values, study.analysis.relaxed_max(c)))), values
+
+
+def unconfirmed(study: Study, o: ConstraintOutcome, cases: Cases | None) -> bool:
+    """The surrogate has samples meeting the constraint, but no computed case does and they are fewer than one in
+    the number of computed cases (P < 1/N): a region so small that the study's own cases could not have found it,
+    which no case confirms — not evidence that a design meets it."""
+    if cases is None or not _successes(o):
+        return False
+    ok, values = _computed_successes(study, o.constraint, cases)
+    return ok == 0 and len(values) > 0 and _successes(o) / o.n < 1.0 / len(values)
+
+
+def unattainable(mc: MonteCarloResult, study: Study | None = None, cases: Cases | None = None) -> list[str]:
+    """Names of the constraints no possible sample satisfies (P = 0, the level relaxation included) and, given the
+    study and its cases, those whose successes on the surrogate no computed case confirms (:func:`unconfirmed`)."""
     return [
         o.constraint.name
         for o in mc.constraints
-        if not (o.relaxed_successes if o.relaxed_successes is not None else o.successes)
+        if not _successes(o) or (study is not None and unconfirmed(study, o, cases))
     ]
 
 
 def without_unattainable(
-    study: Study, surrogates: dict[str, Surrogate], mc: MonteCarloResult, run: Callable[[Study], MonteCarloResult]
+    study: Study,
+    surrogates: dict[str, Surrogate],
+    mc: MonteCarloResult,
+    run: Callable[[Study], MonteCarloResult],
+    cases: Cases | None = None,
 ) -> tuple[Study, MonteCarloResult]:
     """(study without the show-stoppers, Monte Carlo result of its stages): with a constraint no design meets,
     every design fails the joint requirement, so the stages, fronts and optima are those of the other
     constraints (the show-stoppers are reported apart). ``run(study)`` repeats the Monte Carlo (same samples);
-    the per-constraint outcomes of the full run are kept."""
-    names = unattainable(mc)
+    the per-constraint outcomes of the full run are kept. With ``cases``, a constraint whose successes no computed
+    case confirms (:func:`unconfirmed`) is set apart too."""
+    names = unattainable(mc, study, cases)
     if not names or len(names) == len(mc.constraints):
         return study, mc
     rest = study.model_copy(update={"constraints": [c for c in study.constraints if c.name not in names]})
@@ -74,17 +100,21 @@ def show_stoppers(study: Study, mc: MonteCarloResult, cases: Cases, not_fitted: 
     out = []
     for o in mc.constraints:
         c = o.constraint
-        successes = o.relaxed_successes if o.relaxed_successes is not None else o.successes
-        if successes:
+        successes = _successes(o)
+        if successes and not unconfirmed(study, o, cases):
             continue
         relaxed = study.analysis.relaxed_max(c)
-        values = np.concatenate([cases.xy(role, c.response)[1] for role in ("training", "validation")])
-        ok = int(np.sum(c.feasible(values, relaxed)))
+        ok, values = _computed_successes(study, c, cases)
         best = values[np.nanargmin(violation(c, values, relaxed))] if len(values) else None
-        reason = (
-            f"no possible design of the {mc.n} samples satisfies it on the surrogate (least violation "
-            f"{o.least_violation:.4g}, at the value {o.best_value:.4g}); {ok} of the {len(values)} computed "
-            f"cases satisfy it" + (f" (the best case: {best:.4g})" if best is not None else "")
+        surrogate = (
+            f"only {successes} of the {mc.n} possible samples ({successes / mc.n:.3%}) satisfy it on the surrogate, "
+            f"fewer than one in the {len(values)} computed cases, and none of those does: unconfirmed"
+            if successes
+            else f"no possible design of the {mc.n} samples satisfies it on the surrogate (least violation "
+            f"{o.least_violation:.4g}, at the value {o.best_value:.4g})"
+        )
+        reason = f"{surrogate}; {ok} of the {len(values)} computed cases satisfy it" + (
+            f" (the best case: {best:.4g})" if best is not None else ""
         )
         out.append(ShowStopper(c.name, c.describe(), reason))
     for c in study.constraints:
@@ -101,7 +131,7 @@ def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: l
             continue
         for c in study.constraints:
             s = surrogates.get(c.response)
-            if s is None:
+            if s is None or getattr(s, "constant", False):  # a response no design moves binds no optimum
                 continue
             if hasattr(s, "level_margin"):
                 relaxed = study.analysis.relaxed_max(c)
