@@ -16,7 +16,9 @@ Names (all numbers SI, normalised margins ≥ 0 comply):
   lowest damping among equal levels): ``zeta``, ``wn_rad_s``, ``period_s``, ``t_half_s``, ``t_double_s`` (None where
   the mode has none) and, for the short period, ``cap`` (ω²/(n/α), (rad/s²)/g). The level follows from them:
   ``certkit_rules.part25.support.handling_levels.configuration_level(mode, configuration, zeta=…, wn=…, t_half=…,
-  t_double=…, cap=…)`` (MIL-F-8785C tables), so a study can derive it from surrogates of the quantities;
+  t_double=…, cap=…)`` (MIL-F-8785C tables); and ``level1_margin``, ``level2_margin``, ``level3_margin``, the least
+  over the conditions of the offer's level margin (``ModeResponses.level_margin``, clipped to ±10): Level ≤ L exactly
+  where it is ≥ 0, continuous where the condition that sets the level changes — what a study derives the level from;
 * ``control.<rule id>.<case>.<control>`` — per case a rule offers (:class:`certkit.engine.registry.ControlResponses`:
   §25.143(h)'s four manoeuvring cases, §25.145(b)'s changes, §25.121's segments, §25.111's engine-out takeoff), the
   largest fraction of the control's mechanical travel (in the deflection's direction) over the case's conditions.
@@ -171,9 +173,32 @@ def handling_levels(
             key = f"level.{mode}.{cond.loading}.{cond.configuration}"
             level = max(int(v) for v in levels)
             out[key] = max(out.get(key) or 0, level)
+            _least_level_margins(offer, mode, cond.loading, cond.configuration, row, out)
             rank = (level, -float(row.get("zeta", 0.0)))
             if key not in worst or rank > worst[key][:2]:
                 worst[key] = (*rank, mode, row)
+
+
+#: the recorded level margins are clipped to ±this (a relative distance to a level's boundary; ∞ where unbounded)
+LEVEL_MARGIN_CLIP = 10.0
+
+
+def _least_level_margins(
+    offer: ModeResponses, mode: str, corner: str, configuration: str, row: dict[str, Any], out: dict[str, float | None]
+) -> None:
+    """``mode.<mode>.level<L>_margin.<corner>.<configuration>`` for L = 1, 2, 3 into ``out``: the least, over the
+    conditions, of the offer's level margin of the row's quantities (≥ 0 exactly where every condition is Level L or
+    better). Unlike the quantities of the condition that sets the level, it stays continuous where that condition
+    changes, so a study can fit it."""
+    zeta, wn = row.get("zeta"), row.get("wn_rad_s")
+    if offer.level_margin is None or zeta is None or wn is None:
+        return
+    for level in (1, 2, 3):
+        m = float(offer.level_margin(mode, configuration, level, zeta=zeta, wn=wn, cap=row.get("cap")))
+        m = min(max(m, -LEVEL_MARGIN_CLIP), LEVEL_MARGIN_CLIP)
+        key = f"mode.{mode}.level{level}_margin.{corner}.{configuration}"
+        previous = out.get(key)
+        out[key] = m if previous is None else min(previous, m)
 
 
 def control_responses(

@@ -178,3 +178,34 @@ def test_control_responses_per_case_as_fractions_of_travel():
     assert out["control.25.143(h).takeoff_oei_v2_30deg.rudder"] == pytest.approx(24.0 / 27.3)
     assert out["control.25.143(h).takeoff_aeo_v2_xx_40deg.elevator"] == pytest.approx(3.0 / 30.0)
     assert rule_needed(_rule("25.143(h)", case), ["control.25.143(h).takeoff_oei_v2_30deg.*"])
+
+
+def test_least_level_margins_over_the_conditions():
+    """mode.<mode>.level<L>_margin: the least over the conditions of the offer's level margin. Short period, clean
+    (categories A and B; Table IV: Level 1 ζ ≥ 0.35 in A; 3.2.2.1.1: CAP ≥ 0.28 in A), three conditions ζ 0.5 / 0.27
+    / 0.22 at CAP 0.4: Level 1 margin (0.22 − 0.35)/0.35 = −0.371 (the worst ζ), Level 2 (0.22 − 0.25)/0.25 = −0.12
+    (A's 0.25), Level 3 (0.22 − 0.15)/0.15 = +0.467: Level 3 exactly where the margins say so."""
+    from certkit_rules.part25.support import handling_levels as hq
+
+    c = Condition(loading="fwd_mrw", configuration="clean")
+    fs = [
+        Finding.compare(
+            c,
+            "(a) short period heavily damped",
+            z,
+            0.3,
+            at_least=True,
+            unit="ζ",
+            modes={"short_period": {"zeta": z, "wn_rad_s": 1.1, "cap": 0.4, "level_A": lv, "level_B": lv}},
+        )
+        for z, lv in ((0.5, 1), (0.27, 2), (0.22, 3))
+    ]
+    offer = ModeResponses(("short_period",), level=hq.damping_level, level_margin=hq.damping_level_margin)
+    out = offered_responses([RuleResult("25.181", "d", "t", fs)], [_rule("25.181", offer)])
+    assert out["mode.short_period.level1_margin.fwd_mrw.clean"] == pytest.approx((0.22 - 0.35) / 0.35)
+    assert out["mode.short_period.level2_margin.fwd_mrw.clean"] == pytest.approx((0.22 - 0.25) / 0.25)
+    assert out["mode.short_period.level3_margin.fwd_mrw.clean"] == pytest.approx((0.22 - 0.15) / 0.15)
+    assert out["level.short_period.fwd_mrw.clean"] == 3
+    # without the offer's margin function nothing is recorded
+    plain = offered_responses([RuleResult("25.181", "d", "t", fs)], [_rule("25.181", ModeResponses(("short_period",)))])
+    assert not any("_margin." in k for k in plain)

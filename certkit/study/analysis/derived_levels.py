@@ -1,17 +1,19 @@
 """Handling-quality levels derived from surrogates of the mode quantities, not regressed.
 
 A design record gives, per mode, CG corner and configuration, the MIL-F-8785C level
-(``level.<mode>.<corner>.<configuration>``, an integer) and the continuous quantities it comes from
-(``mode.<mode>.<quantity>.<corner>.<configuration>``: damping ratio, natural frequency, the short period's control
-anticipation parameter). An integer is a poor thing to regress: the level is instead the rule's own function of
-the quantities (:class:`certkit.engine.registry.ModeResponses` ``level``), evaluated on the quantities' surrogates.
-Its continuous companion ``level_margin`` (≥ 0 exactly inside a level) lets the optimiser hold a level as an
-inequality. How well it works is measured, not assumed: the derived level is compared with the recorded one on
-the validation cases (held out from every fit), and the rule's function is checked to reproduce every recorded
-level from the recorded quantities.
+(``level.<mode>.<corner>.<configuration>``, an integer, the worst over the conditions), the quantities of the
+condition that sets it (``mode.<mode>.<quantity>.…``: damping ratio, natural frequency, the short period's control
+anticipation parameter) and the least level margins over the conditions (``mode.<mode>.level<L>_margin.…``, L = 1,
+2, 3: ≥ 0 exactly where every condition is Level L or better). An integer is a poor thing to regress: the level is
+derived from surrogates of the margins — continuous where the condition that sets the level changes, as the
+quantities of that condition are not — or, in stores without them, as the rule's own function of the quantities'
+surrogates (:class:`certkit.engine.registry.ModeResponses` ``level``). The margins (or ``level_margin`` of the
+quantities) let the optimiser hold a level as an inequality. How well it works is measured, not assumed: the derived
+level is compared with the recorded one on the validation cases (held out from every fit), and the rule's function
+is checked to reproduce every recorded level from the recorded quantities.
 
-A level response keeps a regressed surrogate only where its quantities are not recorded or cannot be fitted
-(stores of older records); the report says which.
+A level response keeps a regressed surrogate only where its quantities are not recorded or cannot be fitted (stores
+of older records); the report says which.
 """
 
 from __future__ import annotations
@@ -47,6 +49,8 @@ class LevelSource:
     configuration: str
     sources: dict[str, str]
     offer: ModeResponses
+    #: "margins": the least level margins over the conditions (sources keyed "1", "2", "3"); "quantities": ζ, ω_n, CAP
+    kind: str = "quantities"
 
 
 @dataclass(frozen=True)
@@ -93,13 +97,26 @@ class DerivedLevel:
 
     def predict(self, x: np.ndarray) -> np.ndarray:
         s = self.source
+        if s.kind == "margins":
+            return level_of_margins(self._q(x))
         return np.asarray(s.offer.level(s.mode, s.configuration, **self._q(x)), dtype=float).ravel()
 
     def level_margin(self, x: np.ndarray, level: int) -> np.ndarray:
         """≥ 0 where the predicted level is ``level`` or better (clipped to ±:data:`MARGIN_CLIP`)."""
         s = self.source
+        if s.kind == "margins":
+            x = np.atleast_2d(x)
+            if level >= 4:
+                return np.full(len(x), MARGIN_CLIP)
+            return np.clip(self.quantities[str(level)].predict(x), -MARGIN_CLIP, MARGIN_CLIP)
         m = s.offer.level_margin(s.mode, s.configuration, int(level), **self._q(x))
         return np.clip(np.asarray(m, dtype=float).ravel(), -MARGIN_CLIP, MARGIN_CLIP)
+
+
+def level_of_margins(margins: dict[str, np.ndarray]) -> np.ndarray:
+    """The level from the least level margins {"1": m₁, "2": m₂, "3": m₃}: the best L with m_L ≥ 0, else 4."""
+    m1, m2, m3 = (np.asarray(margins[k], dtype=float).ravel() for k in ("1", "2", "3"))
+    return np.where(m1 >= 0, 1.0, np.where(m2 >= 0, 2.0, np.where(m3 >= 0, 3.0, 4.0)))
 
 
 def mode_offers(rules: list[Any] | None = None) -> dict[str, ModeResponses]:
@@ -119,14 +136,18 @@ def _recorded(cases: Cases, response: str) -> bool:
 
 
 def level_sources(study: Study, cases: Cases, offers: dict[str, ModeResponses]) -> dict[str, LevelSource]:
-    """The analysed level responses whose damping ratio and natural frequency the store records (and whose mode a
-    rule gives the level function of), with their quantity responses."""
+    """The analysed level responses whose least level margins (or else damping ratio and natural frequency) the store
+    records, and whose mode a rule gives the level function of, with the responses they come from."""
     out = {}
     for name in study.analysed_responses():
         parts = name.split(".")
         if not name.startswith(LEVEL_PREFIX) or len(parts) != 4 or parts[1] not in offers:
             continue
         _, mode, corner, configuration = parts
+        margins = {str(lv): f"mode.{mode}.level{lv}_margin.{corner}.{configuration}" for lv in (1, 2, 3)}
+        if all(_recorded(cases, r) for r in margins.values()):
+            out[name] = LevelSource(name, mode, configuration, margins, offers[mode], "margins")
+            continue
         sources = {kw: f"mode.{mode}.{q}.{corner}.{configuration}" for kw, q in LEVEL_INPUTS.items()}
         sources = {kw: r for kw, r in sources.items() if _recorded(cases, r)}
         if "zeta" in sources and "wn" in sources:
@@ -158,7 +179,11 @@ def derive(source: LevelSource, quantities: dict[str, Surrogate], cases: Cases, 
     values = np.vstack(recorded)
     if len(values):
         q = {k: values[:, i + 1] for i, k in enumerate(kws)}
-        again = np.asarray(source.offer.level(source.mode, source.configuration, **q), dtype=float).ravel()
+        again = (
+            level_of_margins(q)
+            if source.kind == "margins"
+            else np.asarray(source.offer.level(source.mode, source.configuration, **q), dtype=float).ravel()
+        )
         d.n_recorded, d.n_reproduced = len(values), int(np.sum(again == values[:, 0]))
     train = _rows(cases, "training", [source.response])[1]
     d.plot_data = {"train": (train[:, 0] if len(train) else np.empty(0),)}
