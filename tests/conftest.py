@@ -17,6 +17,18 @@ BASELINE = ROOT / "aircraft" / "lta.yaml"
 SHARED_REFERENCE = ROOT.parent / "shared" / "reference"
 
 
+def pytest_configure(config):
+    """At the first run after an install, compile certkit's numba kernels once, ahead, before the test processes
+    start (pytest-xdist's controller, or the lone process): the workers then load them from numba's cache instead of
+    each compiling the same kernels when a test first calls them (certkit.models.kernel_warmup). Tests of a cold
+    cache use a cache directory of their own."""
+    if hasattr(config, "workerinput"):
+        return
+    from certkit.models.kernel_warmup import compile_if_cold
+
+    compile_if_cold(processes=2)
+
+
 @pytest.fixture(scope="session")
 def baseline():
     return load_aircraft(BASELINE)
