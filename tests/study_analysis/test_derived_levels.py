@@ -156,12 +156,12 @@ def _two_condition_frame(n_train: int = 150, n_val: int = 200) -> pd.DataFrame:
     return frame
 
 
-def test_a_level_set_by_different_conditions_is_derived_from_its_least_margins():
+def test_a_level_set_by_different_conditions_is_derived_from_its_least_margins(tmp_path):
     """Where the least level margins are recorded they are preferred to the quantities: the level is the best L whose
     least margin is ≥ 0. P(Level 1) = ¼ (within 0.02: the margin's kink at x0 = x1 is a surrogate's hardest shape),
     the derived level agrees with the recorded one on ≥ 95 % of the held-out cases and reproduces it from the recorded
     margins, and the least x0 + x1 at Level 1 is 1 (to 0.05: the least margin's kink sits on that optimum, where a
-    smooth surrogate rounds it off — 1.023 found)."""
+    smooth surrogate rounds it off — 1.023 found); the surrogates file predicts the same levels."""
     study = _study()
     surrogates, levels, _ = fit_predictors(study, cases(_two_condition_frame(), study), offers=mode_offers())
     d = levels[LEVEL]
@@ -173,3 +173,9 @@ def test_a_level_set_by_different_conditions_is_derived_from_its_least_margins()
     assert mc.constraints[0].p == pytest.approx(0.25, abs=0.02)
     (best,) = [o for o in optimise(study, predictors, mc) if o.stage == "constrained"]
     assert best.value == pytest.approx(1.0, abs=0.05)
+    # the surrogates file predicts the same levels from the margins
+    from certkit.study.analysis.surrogate_file import load_surrogates, surrogates_document, write_surrogates
+
+    path = write_surrogates(tmp_path / "s.json", surrogates_document(study, surrogates, None, "", levels))
+    probe = np.random.default_rng(9).random((500, D))
+    np.testing.assert_array_equal(load_surrogates(path).predict(probe, [LEVEL])[LEVEL], d.predict(probe))

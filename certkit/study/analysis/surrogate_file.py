@@ -20,7 +20,7 @@ from typing import Any, Union
 import numpy as np
 
 from certkit.errors import UserError
-from certkit.study.analysis.derived_levels import DerivedLevel, mode_offers
+from certkit.study.analysis.derived_levels import DerivedLevel, level_of_margins, mode_offers
 from certkit.study.analysis.export import export_surrogate
 from certkit.study.analysis.surrogates import Surrogate
 from certkit.study.analysis.validity import Validity
@@ -78,7 +78,12 @@ def surrogates_document(
         }
     for name, d in (levels or {}).items():
         responses[name] = {
-            "derived": {"mode": d.source.mode, "configuration": d.source.configuration, "from": d.source.sources},
+            "derived": {
+                "mode": d.source.mode,
+                "configuration": d.source.configuration,
+                "kind": d.source.kind,
+                "from": d.source.sources,
+            },
             "label": d.kept.label,
             "validation_agreement": d.agreement,
             "n_validation": d.n_validation,
@@ -188,7 +193,12 @@ class SurrogateSet:
         return out
 
     def _level(self, derived: Document, x: np.ndarray) -> np.ndarray:
-        """A derived level: the rule's level function (:func:`.derived_levels.mode_offers`) of the predictions."""
+        """A derived level: the best level whose least margin is predicted ≥ 0 (kind "margins"), or the rule's level
+        function (:func:`.derived_levels.mode_offers`) of the predicted quantities."""
+        if derived.get("kind") == "margins":
+            return level_of_margins(
+                {lv: evaluate_model(self.document["responses"][r]["model"], x) for lv, r in derived["from"].items()}
+            )
         offer = mode_offers().get(derived["mode"])
         if offer is None or offer.level is None:
             raise UserError(f"no installed rule gives the level of the mode {derived['mode']!r}")
