@@ -34,6 +34,8 @@ import re
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from certkit.engine.registry import ControlResponses, ModeResponses
 
 if TYPE_CHECKING:
@@ -159,6 +161,7 @@ def handling_levels(
     """``level.<mode>.<corner>.<configuration>`` into ``out`` from the mode tables of ``result``'s findings (the
     worst level, also over the levels already in ``out``); ``worst`` keeps, per level name, the row of the condition
     that sets it (the lowest damping among equal levels), whose quantities the record gives."""
+    margins: dict[tuple[str, str, str, bool], list[dict[str, Any]]] = {}
     for f in result.findings:
         modes = f.details.get(offer.key) if f.details else None
         cond = f.condition
@@ -173,10 +176,14 @@ def handling_levels(
             key = f"level.{mode}.{cond.loading}.{cond.configuration}"
             level = max(int(v) for v in levels)
             out[key] = max(out.get(key) or 0, level)
-            _least_level_margins(offer, mode, cond.loading, cond.configuration, row, out)
+            if row.get("zeta") is not None and row.get("wn_rad_s") is not None:
+                group = (mode, cond.loading, cond.configuration, row.get("cap") is None)
+                margins.setdefault(group, []).append(row)
             rank = (level, -float(row.get("zeta", 0.0)))
             if key not in worst or rank > worst[key][:2]:
                 worst[key] = (*rank, mode, row)
+    for (mode, corner, configuration, _), rows in margins.items():
+        _least_level_margins(offer, mode, corner, configuration, rows, out)
 
 
 #: the recorded level margins are clipped to ±this (a relative distance to a level's boundary; ∞ where unbounded)
@@ -184,18 +191,26 @@ LEVEL_MARGIN_CLIP = 10.0
 
 
 def _least_level_margins(
-    offer: ModeResponses, mode: str, corner: str, configuration: str, row: dict[str, Any], out: dict[str, float | None]
+    offer: ModeResponses,
+    mode: str,
+    corner: str,
+    configuration: str,
+    rows: list[dict[str, Any]],
+    out: dict[str, float | None],
 ) -> None:
     """``mode.<mode>.level<L>_margin.<corner>.<configuration>`` for L = 1, 2, 3 into ``out``: the least, over the
-    conditions, of the offer's level margin of the row's quantities (≥ 0 exactly where every condition is Level L or
-    better). Unlike the quantities of the condition that sets the level, it stays continuous where that condition
-    changes, so a study can fit it."""
-    zeta, wn = row.get("zeta"), row.get("wn_rad_s")
-    if offer.level_margin is None or zeta is None or wn is None:
+    conditions (``rows``, each with its ``zeta`` and ``wn_rad_s``, all with or all without ``cap``), of the offer's
+    level margin of the row's quantities (≥ 0 exactly where every condition is Level L or better). Unlike the
+    quantities of the condition that sets the level, it stays continuous where that condition changes, so a study
+    can fit it."""
+    if offer.level_margin is None:
         return
+    zeta = np.array([float(r["zeta"]) for r in rows])
+    wn = np.array([float(r["wn_rad_s"]) for r in rows])
+    cap = None if rows[0].get("cap") is None else np.array([float(r["cap"]) for r in rows])
     for level in (1, 2, 3):
-        m = float(offer.level_margin(mode, configuration, level, zeta=zeta, wn=wn, cap=row.get("cap")))
-        m = min(max(m, -LEVEL_MARGIN_CLIP), LEVEL_MARGIN_CLIP)
+        margin = np.asarray(offer.level_margin(mode, configuration, level, zeta=zeta, wn=wn, cap=cap), dtype=float)
+        m = min(max(float(margin.min()), -LEVEL_MARGIN_CLIP), LEVEL_MARGIN_CLIP)
         key = f"mode.{mode}.level{level}_margin.{corner}.{configuration}"
         previous = out.get(key)
         out[key] = m if previous is None else min(previous, m)
