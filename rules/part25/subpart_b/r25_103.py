@@ -103,8 +103,9 @@ class StallSpeed(Rule):
                             value=v_1g,
                             unit="m/s",
                             reason=f"no declared speeds.VSR.{cfg} to compare with the 1-g stall speed "
-                            f"({v_1g / KN:.1f} kn CAS from CLmax {ctx.clmax(cfg):g}); the other rules "
-                            "use that computed speed as VSR",
+                            f"({v_1g / KN:.1f} kn CAS from CLmax {ctx.clmax(cfg):g}): a VSR is a flight-test "
+                            "value, and one derived from the declared CLmax would compare the model with itself; "
+                            "the other rules use that computed speed as VSR",
                             details={"CLmax": ctx.clmax(cfg)},
                         )
                     )
