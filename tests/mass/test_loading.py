@@ -92,14 +92,34 @@ def test_point_mass_empty_airplane_sits_at_its_declared_height(baseline):
     )
 
 
-def test_inertia_at_mtow_against_radii_of_gyration(baseline):
+#: the component build-up at MTOW against the radii-of-gyration estimate, on each axis
+_BUILT_AGAINST_RADII = [
+    "Ixx",
+    pytest.param(
+        "Iyy",
+        marks=pytest.mark.xfail(
+            strict=True,
+            reason="the build-up's Iyy at MTOW is 34 % below the Roskam-radius estimate and 23 % below the 747's "
+            "scaled (NASA CR-2144): R̄y 0.31 against the 747's 0.353; the component table lumps systems and operator "
+            "items at points near the CG — a named limit of the declared component table, docs/baseline-sources.md §3",
+        ),
+    ),
+    "Izz",
+]
+
+
+@pytest.mark.parametrize("axis", _BUILT_AGAINST_RADII)
+def test_inertia_at_mtow_against_radii_of_gyration(baseline, axis):
     """Component build-up vs Roskam Part V radii of gyration for jet transports (R̄x 0.28, R̄y 0.38, R̄z 0.46,
-    docs/baseline-sources.md §3, stated uncertainty ±25 %): agreement within 40 % on each axis."""
+    docs/baseline-sources.md §3), within their stated uncertainty, ±25 % (the declared tensor is that estimate)."""
     a = baseline.model
     p = solve_loading(a, 656_000 * LB, 95.5 * FT).properties
-    declared = a.mass.inertia
-    for built, roskam in ((p.Ixx, declared.Ixx), (p.Iyy, declared.Iyy), (p.Izz, declared.Izz)):
-        assert built == pytest.approx(roskam, rel=0.40)
+    assert getattr(p, axis) == pytest.approx(getattr(a.mass.inertia, axis), rel=0.25)
+
+
+def test_inertia_at_mtow_is_a_physical_tensor(baseline):
+    """The built tensor obeys the triangle inequality of a rigid body's principal moments (Izz < Ixx + Iyy)."""
+    p = solve_loading(baseline.model, 656_000 * LB, 95.5 * FT).properties
     assert p.Izz < p.Ixx + p.Iyy
 
 
