@@ -101,7 +101,8 @@ _BUILT_AGAINST_RADII = [
             strict=True,
             reason="the build-up's Iyy at MTOW is 34 % below the Roskam-radius estimate and 23 % below the 747's "
             "scaled (NASA CR-2144): R̄y 0.31 against the 747's 0.353; the component table lumps systems and operator "
-            "items at points near the CG — a named limit of the declared component table, docs/baseline-sources.md §3",
+            "items at points near the CG (spread over their extents they would add about 12 %, not the whole gap) — a "
+            "named limit of the declared component table, docs/baseline-sources.md §3",
         ),
     ),
     "Izz",
