@@ -7,6 +7,10 @@ For each geometry, best of several repeats of
 * optvl, full analysis: ``execute_run`` on a freshly loaded solver plus retrieval of the stability
   and control derivatives (same process, same geometry, fixed α).
 
+The influence sums have two implementations with the same bits (:mod:`certkit.models.aero.vlm.biot_savart`): numpy
+blocks while numba is not loaded (a lean ``certkit derivatives`` process) and numba loops once it is (a check, an
+evaluation, a study worker). "ours full" is timed both ways: first without numba, then after importing it.
+
 Run: ``python benchmarks/bench_vlm.py [--repeats 5]``.
 """
 
@@ -90,9 +94,11 @@ def main() -> None:
     alpha = math.radians(2.0)
     rng = np.random.default_rng(0)
     rows = []
+    rows_numpy: list[float] = []  # the full set with the numpy influence sums (numba not loaded)
     for label, cfg, path, mach in cases:
         n = build_lattice(cfg).n_vortices
         t_full = best_of(lambda: ours_full(cfg, mach, alpha), args.repeats)  # noqa: B023  (called within this iteration)
+        rows_numpy.append(t_full)
         vl = ours_full(cfg, mach, alpha)
         state = AeroState(
             alpha=rng.uniform(-0.1, 0.2, 1000),
@@ -107,14 +113,17 @@ def main() -> None:
         t_avl = optvl_full(Path(path), mach, math.degrees(alpha), args.repeats)
         rows.append((label, n, t_full, t_batch, t_avl))
 
+    import numba  # noqa: F401  (the compiled influence sums from here on)
+
+    rows_numba = [best_of(lambda: ours_full(cfg, mach, alpha), args.repeats) for _, cfg, _, mach in cases]  # noqa: B023
     print(
-        f"{'geometry':<24} {'vortices':>8} {'ours full (s)':>14} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15} "
-        f"{'AVL/ours':>9}"
+        f"{'geometry':<24} {'vortices':>8} {'ours full, numpy (s)':>21} {'AVL/ours':>9} {'ours full, numba (s)':>21} "
+        f"{'AVL/ours':>9} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15}"
     )
-    for label, n, t_full, t_batch, t_avl in rows:
-        ratio = f"{t_avl / t_full:9.2f}" if t_avl else "      n/a"
+    for (label, n, _, t_batch, t_avl), t_np, t_nb in zip(rows, rows_numpy, rows_numba):
+        ratio = lambda t: f"{t_avl / t:9.2f}" if t_avl else "      n/a"  # noqa: E731, B023
         avl = f"{t_avl:15.3f}" if t_avl else "            n/a"
-        print(f"{label:<24} {n:>8d} {t_full:>14.3f} {t_batch:>20.4f} {avl} {ratio}")
+        print(f"{label:<24} {n:>8d} {t_np:>21.3f} {ratio(t_np)} {t_nb:>21.3f} {ratio(t_nb)} {t_batch:>20.4f} {avl}")
 
 
 if __name__ == "__main__":
