@@ -94,11 +94,10 @@ def main() -> None:
     alpha = math.radians(2.0)
     rng = np.random.default_rng(0)
     rows = []
-    rows_numpy: list[float] = []  # the full set with the numpy influence sums (numba not loaded)
     for label, cfg, path, mach in cases:
         n = build_lattice(cfg).n_vortices
+        # numba not loaded yet: the full set with the numpy influence sums
         t_full = best_of(lambda: ours_full(cfg, mach, alpha), args.repeats)  # noqa: B023  (called within this iteration)
-        rows_numpy.append(t_full)
         vl = ours_full(cfg, mach, alpha)
         state = AeroState(
             alpha=rng.uniform(-0.1, 0.2, 1000),
@@ -120,10 +119,10 @@ def main() -> None:
         f"{'geometry':<24} {'vortices':>8} {'ours full, numpy (s)':>21} {'AVL/ours':>9} {'ours full, numba (s)':>21} "
         f"{'AVL/ours':>9} {'ours 1000 evals (s)':>20} {'optvl full (s)':>15}"
     )
-    for (label, n, _, t_batch, t_avl), t_np, t_nb in zip(rows, rows_numpy, rows_numba):
-        ratio = lambda t: f"{t_avl / t:9.2f}" if t_avl else "      n/a"  # noqa: E731, B023
+    for (label, n, t_np, t_batch, t_avl), t_nb in zip(rows, rows_numba):
+        r_np, r_nb = (f"{t_avl / t:9.2f}" if t_avl else "      n/a" for t in (t_np, t_nb))
         avl = f"{t_avl:15.3f}" if t_avl else "            n/a"
-        print(f"{label:<24} {n:>8d} {t_np:>21.3f} {ratio(t_np)} {t_nb:>21.3f} {ratio(t_nb)} {t_batch:>20.4f} {avl}")
+        print(f"{label:<24} {n:>8d} {t_np:>21.3f} {r_np} {t_nb:>21.3f} {r_nb} {t_batch:>20.4f} {avl}")
 
 
 if __name__ == "__main__":
