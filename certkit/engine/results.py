@@ -248,10 +248,24 @@ class Finding:
         return cls(condition, check, NOT_EVALUATED, reason=reason, details=details)
 
     @classmethod
-    def outside_scope(cls, paragraph: str, reason: str) -> "Finding":
-        """The whole-airplane ``not_evaluated`` finding of a sub-paragraph the rule does not evaluate."""
+    def outside_scope(
+        cls,
+        paragraph: str,
+        reason: str,
+        *,
+        condition: Condition | None = None,
+        check: str | None = None,
+        **details: Any,
+    ) -> "Finding":
+        """The ``not_evaluated`` finding of a sub-paragraph the rule does not evaluate, set apart from the rule's own
+        checks (it does not make the rule not evaluated): whole-airplane by default, or at ``condition`` under its own
+        ``check`` name with ``details`` (e.g. a comparison with a value the aircraft file does not declare)."""
         return cls(
-            Condition(), f"§{paragraph} not evaluated", NOT_EVALUATED, reason=reason, details={SCOPE_KEY: paragraph}
+            Condition() if condition is None else condition,
+            f"§{paragraph} not evaluated" if check is None else check,
+            NOT_EVALUATED,
+            reason=reason,
+            details={SCOPE_KEY: paragraph, **details},
         )
 
     def as_dict(self) -> dict[str, Any]:

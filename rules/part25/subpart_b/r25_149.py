@@ -27,17 +27,10 @@ from certkit_rules.part25.support.minimum_control import (
 from certkit.atmosphere import convert_speed
 from certkit.engine.evidence.performance import vmca_evidence
 from certkit.engine.registry import Rule, rule
-from certkit.engine.results import SCOPE_KEY, Finding
+from certkit.engine.results import Finding
 from certkit.models.control_force import control_force_model, trim_state
 from certkit.models.flight import control_limits
 from certkit.units import KN, LBF
-
-
-def _undeclared(cond, check: str, paragraph: str, reason: str, **details) -> Finding:
-    """The comparison of a declared minimum control speed with the computed one, when none is declared: not evaluated
-    and set apart as a sub-paragraph check (the computed speed stands for the undeclared one), so that the rule's
-    computed checks decide its status."""
-    return Finding.not_evaluated(cond, check, reason, **{SCOPE_KEY: paragraph}, **details)
 
 
 @rule
@@ -236,7 +229,12 @@ class MinimumControlSpeed(Rule):
                     "no speeds.VMCG declared: the highest computed VMCG stands for it (§25.107(a)(1), VEF ≥ VMCG in "
                     "the takeoff runs); a declared VMCG is checked against it"
                 )
-                out.append(_undeclared(worst_cond, dcheck, "25.149(e)", why, computed_VMCG_kn_cas=shown))
+                # set apart: the computed VMCG stands for the undeclared one, the computed checks decide the status
+                out.append(
+                    Finding.outside_scope(
+                        "25.149(e)", why, condition=worst_cond, check=dcheck, computed_VMCG_kn_cas=shown
+                    )
+                )
             else:
                 vmcg_decl = float(convert_speed(declared.value, declared.kind, "CAS", 0.0)) / KN
                 limit = worst / KN if np.isfinite(worst) else res.high_cas / KN
@@ -373,12 +371,12 @@ class MinimumControlSpeed(Rule):
                     "no speeds.VMC declared: the computed VMCA stands for VMC (§25.149(c) here, §25.107(b)(3) and "
                     "(e)(1)(ii)); a declared VMC is checked against it"
                 )
-                out.append(
-                    _undeclared(
-                        found,
-                        "(b) declared VMC ≥ computed VMCA",
+                out.append(  # set apart like the VMCG comparison above
+                    Finding.outside_scope(
                         "25.149(b)",
                         why,
+                        condition=found,
+                        check="(b) declared VMC ≥ computed VMCA",
                         computed_VMCA_kn_cas=round(vmca / KN, 1),
                     )
                 )
