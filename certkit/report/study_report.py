@@ -17,6 +17,7 @@ from certkit import __version__
 from certkit.report import study_figures as figures
 from certkit.report.pages import page_environment
 from certkit.study.analysis.analyse import FRONT_CHECKED, Analysis, analyse
+from certkit.study.analysis.confirm import MAX_STEPS
 from certkit.study.analysis.montecarlo import STAGES
 from certkit.study.analysis.optimise import LEAST_VIOLATION
 from certkit.study.analysis.planform import planform_from
@@ -129,6 +130,7 @@ def render(a: Analysis) -> str:
         "profiler_js": env.loader.get_source(env, "profiler.js")[0],
         "flagged": [r for r, s in a.surrogates.items() if s.flagged],
         "least_violation": LEAST_VIOLATION,
+        "confirm_steps": MAX_STEPS,
     }
     return env.get_template("study_report.html").render(**context)
 

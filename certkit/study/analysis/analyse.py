@@ -14,6 +14,7 @@ import pandas as pd
 
 from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, RunCases, direct_check, reevaluate_optima
+from certkit.study.analysis.confirm import CONFIRMED, Confirmation, confirm_optima
 from certkit.study.analysis.derived_levels import DerivedLevel, fit_predictors
 from certkit.study.analysis.montecarlo import MonteCarloResult, Optimum, run_monte_carlo
 from certkit.study.analysis.optimise import front_points, optimise, pareto_fronts
@@ -59,6 +60,8 @@ class Analysis:
     active: dict[str, list[str]] = field(default_factory=dict)
     levels: dict[str, DerivedLevel] = field(default_factory=dict)
     conflicts: dict[str, list[str]] = field(default_factory=dict)
+    #: the constrained and preferred optima searched again until the true model accepts a design
+    confirmations: list[Confirmation] = field(default_factory=list)
 
 
 def _run_checks(
@@ -131,12 +134,25 @@ def analyse(
     timings["optimiser_s"] = time.perf_counter() - t
     log(f"optimiser: {len(optima)} optima, {len(nsga)} NSGA-II fronts in {timings['optimiser_s']:.1f} s")
     checked: list[CheckedOptimum] = []
+    confirmations: list[Confirmation] = []
     direct: DirectCheck | None = None
     check_note = "not run (--no-check)"
     if check:
         t = time.perf_counter()
         direct, checked, check_note = _run_checks(usable, every, store, surrogates, mc, points, run_cases)
         timings["true_model_s"] = time.perf_counter() - t
+        if store is not None:
+            t = time.perf_counter()
+            confirmations = confirm_optima(
+                usable, store, surrogates, checked[: len(optima)], margin, run_cases=run_cases
+            )
+            timings["confirm_s"] = time.perf_counter() - t
+            n_ok = sum(c.status == CONFIRMED for c in confirmations)
+            runs = sum(max(c.evaluations - 1, 0) for c in confirmations)
+            log(
+                f"confirmation: {n_ok} of {len(confirmations)} constrained optima confirmed by the true model "
+                f"({runs} further designs evaluated) in {timings['confirm_s']:.1f} s"
+            )
     if not checked:
         checked = [
             CheckedOptimum(
@@ -177,6 +193,7 @@ def analyse(
         active_constraints(usable, surrogates, optima),
         levels,
         conflicting_constraints(usable, surrogates, optima),
+        confirmations,
     )
 
 

@@ -45,6 +45,8 @@ NSGA_GENERATIONS = 120
 
 #: the validity classifier's margin of designs (rows, SI): ≥ 0 where the design is possible
 ValidMargin = Callable[[np.ndarray], np.ndarray]
+#: lower and upper bounds of a search on the [−1, 1] scale (a trust region)
+Box = tuple[np.ndarray, np.ndarray]
 
 
 def from_unit(u: np.ndarray, bounds: np.ndarray) -> np.ndarray:
@@ -128,26 +130,35 @@ def _slsqp(
     cons: list[dict[str, Any]],
     maxiter: int,
     ftol: float,
+    box: Box | None = None,
 ) -> np.ndarray:
-    """SLSQP (value and gradient from ``fun``) from ``u0`` on [−1, 1]ⁿ, its warnings silenced; the end point."""
+    """SLSQP (value and gradient from ``fun``) from ``u0`` on [−1, 1]ⁿ (or within ``box``), its warnings silenced;
+    the end point."""
+    lo, hi = (np.full(len(u0), -1.0), np.full(len(u0), 1.0)) if box is None else box
     with warnings.catch_warnings(), np.errstate(all="ignore"):
         warnings.simplefilter("ignore")
         res = minimize(
             fun,
-            np.clip(u0, -1.0, 1.0),
+            np.clip(u0, lo, hi),
             method="SLSQP",
             jac=True,
-            bounds=[(-1.0, 1.0)] * len(u0),
+            bounds=list(zip(lo, hi)),
             constraints=cons,
             options={"maxiter": maxiter, "ftol": ftol},
         )
-    return np.asarray(np.clip(res.x, -1.0, 1.0))
+    return np.asarray(np.clip(res.x, lo, hi))
 
 
 def local_optimum(
-    problem: SurrogateProblem, objective: str, sense: str, starts: np.ndarray, fallback: np.ndarray | None = None
+    problem: SurrogateProblem,
+    objective: str,
+    sense: str,
+    starts: np.ndarray,
+    fallback: np.ndarray | None = None,
+    box: Box | None = None,
 ) -> Optimum | None:
-    """The best feasible SLSQP solution from ``starts`` (rows, SI); the fallback design when none improves."""
+    """The best feasible SLSQP solution from ``starts`` (rows, SI), within ``box`` (on the [−1, 1] scale) when given;
+    the fallback design when none improves."""
     n = problem.bounds.shape[0]
     best_u, best_f = None, np.inf
     if fallback is not None and problem.feasible(fallback[None, :])[0]:
@@ -170,7 +181,7 @@ def local_optimum(
         else []
     )
     for start in np.atleast_2d(starts):
-        u = _slsqp(objective_and_gradient, to_unit(start[None, :], problem.bounds)[0], cons, 100, 1e-10)
+        u = _slsqp(objective_and_gradient, to_unit(start[None, :], problem.bounds)[0], cons, 100, 1e-10, box)
         f = float(problem.objective(objective, u, sense)[0])
         better = best_u is None or f < best_f - 1e-12 * max(1.0, abs(best_f))
         if np.isfinite(f) and better and problem.feasible(problem.x(u[None, :]))[0]:
@@ -240,7 +251,7 @@ def front_sample(f: np.ndarray, k: int) -> np.ndarray:
     return np.unique(np.round(np.linspace(0, len(f) - 1, k)).astype(int))
 
 
-def _scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
+def constraint_scales(study: Study, surrogates: dict[str, Surrogate]) -> dict[str, float]:
     """Each constraint response's spread over its training cases (the constraints' common scale)."""
     out = {}
     for c in study.constraints:
@@ -257,10 +268,10 @@ LEAST_VIOLATION = "least violation: no design meets every constraint of the stag
 FOUND_BY_LEAST_VIOLATION = "least-violation search: a design no Monte Carlo sample found, feasible on the surrogates"
 
 
-def least_violation(problem: SurrogateProblem, starts: np.ndarray) -> np.ndarray | None:
+def least_violation(problem: SurrogateProblem, starts: np.ndarray, box: Box | None = None) -> np.ndarray | None:
     """The design (SI) of least total violation of the stage's constraints, Σ min(g, 0)² over the scaled constraint
     values g of :meth:`SurrogateProblem.constraints` (the validity margin held as a constraint, not traded): SLSQP
-    from each start, the best kept; None when no start ends at a possible design."""
+    from each start (within ``box`` when given), the best kept; None when no start ends at a possible design."""
     n = problem.bounds.shape[0]
     n_limits = len(problem.limits)
     steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
@@ -276,7 +287,7 @@ def least_violation(problem: SurrogateProblem, starts: np.ndarray) -> np.ndarray
         cons = [{"type": "ineq", "fun": lambda u: margin(problem.x(u[None, :]))}]
     best_u, best_v = None, np.inf
     for start in np.atleast_2d(starts):
-        u = _slsqp(total, to_unit(start[None, :], problem.bounds)[0], cons, 200, 1e-14)
+        u = _slsqp(total, to_unit(start[None, :], problem.bounds)[0], cons, 200, 1e-14, box)
         v = total(u)[0]
         possible = problem.valid_margin is None or problem.valid_margin(problem.x(u[None, :]))[0] >= 0
         if possible and np.isfinite(v) and v < best_v:
@@ -309,7 +320,7 @@ def optimise(
     samples missed) each objective is optimised from it, otherwise it is reported once per objective as the
     stage's optimum with the method :data:`LEAST_VIOLATION` — the constraints it violates are those in conflict."""
     rng = np.random.default_rng(seed)
-    scales = _scales(study, surrogates)
+    scales = constraint_scales(study, surrogates)
     out = []
     nearest: dict[str, np.ndarray | None] = {}
     for k, objective in enumerate(study.objectives):
@@ -352,7 +363,7 @@ def pareto_fronts(
     study: Study, surrogates: dict[str, Surrogate], valid_margin: ValidMargin | None = None, *, seed: int = 1
 ) -> list[dict[str, Any]]:
     """The constrained front of every pair of objectives by NSGA-II: objectives, values, designs."""
-    problem = SurrogateProblem(study, surrogates, "constrained", valid_margin, _scales(study, surrogates))
+    problem = SurrogateProblem(study, surrogates, "constrained", valid_margin, constraint_scales(study, surrogates))
     objectives = list(study.objectives)
     fronts = []
     for i in range(len(objectives)):
