@@ -29,7 +29,7 @@ from pydantic import (
 
 from certkit.aircraft.pydantic_problems import Found, found_in, located
 from certkit.aircraft.yaml_source import YamlSource, load_yaml
-from certkit.errors import InputError, Problem
+from certkit.errors import InputError, Problem, UserError
 from certkit.units import DIMENSIONS, UnitError, to_si
 
 SCHEMA_COMMAND = "certkit study schema"
@@ -231,21 +231,46 @@ class Objective(_Model):
 LEVEL_PREFIX = "level."
 
 
+#: the word that makes a constraint's bound the baseline design's own value of its response
+BASELINE = "baseline"
+
+
 class Constraint(_Model):
-    """Feasible when ``min <= response <= max`` (either side optional, SI units)."""
+    """Feasible when ``min <= response <= max`` (either side optional, SI units). A bound written ``baseline`` is the
+    baseline design's value of the response ("no worse than the baseline"): the analysis reads it from the baseline
+    design's case (evaluated once and kept in the store) before it uses the constraint
+    (:meth:`Study.with_baseline_bounds`)."""
 
     name: str
     response: str = Field(description="response name, e.g. subcheck.25.111.elevator_fraction_of_travel.value")
     min: Quantity | None = None
     max: Quantity | None = None
+    min_from_baseline: bool = Field(False, description="set by `min: baseline`: the bound is the baseline's value")
+    max_from_baseline: bool = Field(False, description="set by `max: baseline`: the bound is the baseline's value")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _baseline_bounds(cls, data: Any) -> Any:
+        if isinstance(data, dict):
+            data = dict(data)
+            for side in ("min", "max"):
+                if isinstance(data.get(side), str) and data[side].strip().lower() == BASELINE:
+                    data[side] = None
+                    data[f"{side}_from_baseline"] = True
+        return data
 
     @model_validator(mode="after")
     def _bounded(self) -> "Constraint":
-        if self.min is None and self.max is None:
-            raise ValueError("a constraint needs a min or a max (or both)")
+        if self.min is None and self.max is None and not (self.min_from_baseline or self.max_from_baseline):
+            raise ValueError("a constraint needs a min or a max (or both; `baseline` for the baseline's value)")
         if self.min is not None and self.max is not None and self.min > self.max:
             raise ValueError(f"min ({self.min:g}) is above max ({self.max:g})")
         return self
+
+    @property
+    def needs_baseline(self) -> bool:
+        """A bound is the baseline's value and has not been read yet."""
+        return (self.min_from_baseline and self.min is None) or (self.max_from_baseline and self.max is None)
 
     @property
     def is_level(self) -> bool:
@@ -255,6 +280,8 @@ class Constraint(_Model):
     def feasible(self, values: np.ndarray, max_override: float | None = None) -> np.ndarray:
         """Boolean mask of feasible values. A level (an integer 1..3, or a regression of it) counts as level L
         where the value is below L + 0.5; ``max_override`` replaces the declared maximum (level relaxation)."""
+        if self.needs_baseline:
+            raise ValueError(f"constraint {self.name!r}: its baseline bound has not been read (with_baseline_bounds)")
         lo, hi = self.min, self.max if max_override is None else max_override
         if self.is_level:
             lo = None if lo is None else lo - 0.5
@@ -268,11 +295,18 @@ class Constraint(_Model):
         return ok
 
     def describe(self) -> str:
-        if self.min is not None and self.max is not None:
-            return f"{self.min:g} ≤ {self.response} ≤ {self.max:g}"
-        if self.min is not None:
-            return f"{self.response} ≥ {self.min:g}"
-        return f"{self.response} ≤ {self.max:g}"
+        def bound(value: float | None, relative: bool) -> str:
+            if relative:
+                return BASELINE if value is None else f"{value:g} (the baseline's)"
+            return "" if value is None else f"{value:g}"
+
+        lo, hi = bound(self.min, self.min_from_baseline), bound(self.max, self.max_from_baseline)
+        has_lo, has_hi = self.min is not None or self.min_from_baseline, self.max is not None or self.max_from_baseline
+        if has_lo and has_hi:
+            return f"{lo} ≤ {self.response} ≤ {hi}"
+        if has_lo:
+            return f"{self.response} ≥ {lo}"
+        return f"{self.response} ≤ {hi}"
 
 
 class LevelRelaxation(_Model):
@@ -371,6 +405,30 @@ class Study(_Model):
     @property
     def baseline(self) -> np.ndarray:
         return np.array([v.baseline for v in self.variables], dtype=float)
+
+    @property
+    def needs_baseline(self) -> bool:
+        """Some constraint's bound is the baseline's value and has not been read yet."""
+        return any(c.needs_baseline for c in self.constraints)
+
+    def with_baseline_bounds(self, values: dict[str, float | None]) -> "Study":
+        """The study with every ``baseline`` bound set to the baseline design's value of its response (``values``:
+        response → that value); a value the baseline's case does not give is an error naming the constraint."""
+        constraints = []
+        for i, c in enumerate(self.constraints):
+            if not c.needs_baseline:
+                constraints.append(c)
+                continue
+            value = values.get(c.response)
+            if value is None or not np.isfinite(value):
+                raise UserError(
+                    f"study {self.name}: constraints[{i}] ({c.name}): its bound is the baseline's value of "
+                    f"{c.response}, which the baseline design's case does not give (got {value}; expected a finite "
+                    "value: the response is recorded and the baseline's case evaluates it)"
+                )
+            update = {side: float(value) for side in ("min", "max") if getattr(c, f"{side}_from_baseline")}
+            constraints.append(c.model_copy(update=update))
+        return self.model_copy(update={"constraints": constraints})
 
     def analysed_responses(self) -> list[str]:
         """Responses the analysis fits surrogates for: objectives, constraints and profiled responses."""

@@ -25,8 +25,13 @@ def test_seed_study_in_si():
     assert v["area"].baseline == pytest.approx(1119 * 0.3048**2, rel=1e-12)  # 1 ft = 0.3048 m (exact)
     assert v["span_start"].bounds == (0.0, 0.20) and v["span_start"].baseline == 0.0
     assert study.aircraft == str((ROOT / "aircraft" / "lta.yaml").resolve())
-    controls = [c for c in study.constraints if c.response.startswith(("travel.", "control."))]
+    absolute = [c for c in study.constraints if not (c.min_from_baseline or c.max_from_baseline)]
+    controls = [c for c in absolute if c.response.startswith(("travel.", "control."))]
     assert len(controls) > 30 and all(c.max == 0.70 and c.min is None for c in controls)
+    # "no worse than the baseline" beside the regulation's own bound, never instead of it
+    relative = [c for c in study.constraints if c.min_from_baseline or c.max_from_baseline]
+    assert relative and study.needs_baseline
+    assert all(any(a.response == c.response for a in absolute) for c in relative)
 
 
 def test_seed_study_constrains_every_subpart_b_and_c_rule():
@@ -35,7 +40,9 @@ def test_seed_study_constrains_every_subpart_b_and_c_rule():
     from certkit.engine.registry import DiscoveryOptions, discover
 
     study = load_study(ROOT / "studies" / "ht-redesign.yaml")
-    margins = {c.response: c.min for c in study.constraints if c.response.startswith("rule.")}
+    margins = {
+        c.response: c.min for c in study.constraints if c.response.startswith("rule.") and not c.min_from_baseline
+    }
     ids = [
         r.id
         for r in discover(DiscoveryOptions())

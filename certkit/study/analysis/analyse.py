@@ -12,6 +12,7 @@ from typing import Any
 
 import pandas as pd
 
+from certkit.study.analysis.baseline_bounds import with_baseline_bounds
 from certkit.study.analysis.cases import cases, study_hash
 from certkit.study.analysis.checks import CheckedOptimum, DirectCheck, RunCases, direct_check, reevaluate_optima
 from certkit.study.analysis.confirm import CONFIRMED, Confirmation, confirm_optima
@@ -96,7 +97,7 @@ def analyse(
     run (see :func:`~certkit.study.analysis.checks.run_true_model`)."""
     timings: dict[str, float] = {}
     t = time.perf_counter()
-    view = study
+    view = with_baseline_bounds(study, frame, store if check else None, run_cases=run_cases, log=log)
     cs = cases(frame, view)
     fitted, levels, not_fitted = fit_predictors(view, cs, log)
     # the levels derived from the mode quantities predict where a regressed level would

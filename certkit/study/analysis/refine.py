@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from scipy.special import ndtr
 
+from certkit.study.analysis.baseline_bounds import with_baseline_bounds
 from certkit.study.analysis.cases import VAR_PREFIX, cases
 from certkit.study.analysis.derived_levels import fit_predictors
 from certkit.study.analysis.montecarlo import MonteCarloResult, run_monte_carlo
@@ -163,6 +164,7 @@ def refine(
     probability of success moved."""
     if run_cases is None:
         run_cases = run_study_cases
+    study = with_baseline_bounds(study, store.frame(), store, run_cases=run_cases, log=log)
     frame = store.frame()
     usable, surrogates, validity, mc, front_x = _state(study, frame, samples, log)
     existing = frame[[VAR_PREFIX + v.path for v in study.variables]].to_numpy(dtype=float)
