@@ -101,6 +101,10 @@ def test_the_report_judges_designs_against_the_baseline_and_keeps_its_case(tmp_p
     assert p["range"] == pytest.approx((1.0e5 / 900.0 / FT2 - 1000.0) / 240.0, abs=0.015)
     with Store.open(store_path) as store:
         assert "baseline" in set(store.frame()["block"])
+    # the constrained optimum, re-evaluated, is confirmed (the analytic surrogates are near exact) and shown so
+    confirmed = summary["confirmed_optima"]
+    assert confirmed and all(c["status"] == "confirmed" and not c["design"]["violated"] for c in confirmed)
+    assert "Optima confirmed by the true model" in (tmp_path / "r1" / "index.html").read_text()
     evaluators.CALLS.clear()
     again = CliRunner().invoke(report_command, [*args, "--out", str(tmp_path / "r2"), "--no-check"])
     assert again.exit_code == 0, again.output
