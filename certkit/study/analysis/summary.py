@@ -101,6 +101,10 @@ def _confirmation(c: Confirmation, view: Study) -> dict[str, Any]:
         "status": c.status,
         "reason": c.reason,
         "true_model_evaluations": c.evaluations,
+        "steps": [
+            {"violated": list(s.violated), "violation": s.violation, "objective": s.true.get(c.optimum.objective)}
+            for s in c.steps
+        ],
         "surrogate_optimum": {
             "variables": _variables(c.optimum.x, view),
             "true": dict(c.steps[0].true) if c.steps else {},
