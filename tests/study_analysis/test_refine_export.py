@@ -151,3 +151,32 @@ def test_surrogates_file_api_and_predict_command(tmp_path):
     assert values["possible"] == "true"
     bad = CliRunner().invoke(predict_command, [str(path), "--set", "v.x9=1"])
     assert bad.exit_code != 0 and "not a variable of these surrogates: v.x9" in str(bad.exception or bad.output)
+
+
+def test_refine_reads_a_baseline_bound_from_the_baseline_case_it_runs():
+    """`y ≤ baseline`: the baseline design (0.5, 0.5) is evaluated once (block baseline) and its y,
+    sin 2.5 + 0.25 = 0.848, bounds the constraint; the refinement then runs as for a fixed limit."""
+    rng = np.random.default_rng(2)
+    store = _Store(
+        pd.concat(
+            [_frame(rng.random((30, D)), "lhs", "training"), _frame(rng.random((10, D)), "validation", "validation")],
+            ignore_index=True,
+        )
+    )
+    calls = []
+
+    def run_cases(study, store_, points, *, block, role):
+        x = np.array([[p["v.x0"], p["v.x1"]] for p in points])
+        calls.append((block, role, len(points)))
+        store_._frame = pd.concat([store_._frame, _frame(x, block, role)], ignore_index=True)
+        return [{"status": "ok", "key": f"{block}{i}"} for i in range(len(points))]  # as the study runner's rows
+
+    relative = _study().model_copy(
+        update={
+            "constraints": [_study().constraints[0].model_validate({"name": "y", "response": "y", "max": "baseline"})]
+        }
+    )
+    messages = []
+    result = refine(relative, store, 4, samples=10_000, run_cases=run_cases, log=messages.append)
+    assert calls == [("baseline", "check", 1), ("refine-1", "training", 4)] and result.ok == 4
+    assert any(f"y ≤ {np.sin(2.5) + 0.25:g} (the baseline's)" in m for m in messages)
