@@ -177,3 +177,17 @@ def test_a_derived_level_is_corrected_through_its_least_margins():
     assert conf.design.true[dl.LEVEL] == 1.0
     assert conf.design.x[0] >= 0.55 - 1e-9
     assert 1.05 - 1e-9 <= conf.design.true["f"] <= 1.10
+
+
+def test_optima_at_one_design_share_its_evaluations():
+    """Two optima at the same design (a stage met by one sample gives every objective that sample) propose the same
+    designs: each design is evaluated once, and both confirmations read it."""
+    study, sur, best = _surrogate_optimum()
+    calls = []
+    run = _true_model(lambda x: x[:, 0] + x[:, 1] + 0.1, calls)
+    twin = Optimum(best.objective, best.stage, best.value, best.x.copy(), best.method)
+    checked = reevaluate_optima(study, None, sur, [best, twin], run_cases=run)
+    first, second = confirm_optima(study, None, sur, checked, run_cases=run)
+    assert first.status == second.status == CONFIRMED
+    assert [s.x.tolist() for s in first.steps] == [s.x.tolist() for s in second.steps]
+    assert calls.count("confirm") == first.evaluations - 1

@@ -90,6 +90,8 @@ class Confirmation:
 
     @property
     def evaluations(self) -> int:
+        """The designs of its steps (one evaluation of the true model each, unless another optimum's search
+        proposed the same design)."""
         return len(self.steps)
 
 
@@ -260,10 +262,11 @@ def confirm_optima(
         if not moves:
             break
         state = [s for s, _ in moves]
-        frame = run_true_model(
-            study, store, np.array([x for _, x in moves]), block="confirm", role="check", run_cases=run_cases
-        )
-        for (s, x), (_, row) in zip(moves, frame.iterrows()):
+        # optima whose searches propose one design (a stage met by one sample, say) share its evaluation
+        unique, which = np.unique(np.array([x for _, x in moves]), axis=0, return_inverse=True)
+        frame = run_true_model(study, store, unique, block="confirm", role="check", run_cases=run_cases)
+        rows = [frame.iloc[int(i)] for i in np.ravel(which)]
+        for (s, x), row in zip(moves, rows):
             step = _step(s["problem"], surrogates, x, row)
             step.accepted = row.get("status") == "ok" and _better(s["conf"], step)
             s["conf"].steps.append(step)
