@@ -153,7 +153,7 @@ def analyse(
             designs = {tuple(np.round(s.x, 12)) for c in confirmations for s in c.steps[1:]}
             log(
                 f"confirmation: {n_ok} of {len(confirmations)} constrained optima confirmed by the true model "
-                f"({len(designs)} further designs) in {timings['confirm_s']:.1f} s"
+                f"({len(designs)} further designs, and their gradients) in {timings['confirm_s']:.1f} s"
             )
     if not checked:
         checked = [

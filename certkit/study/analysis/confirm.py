@@ -1,21 +1,25 @@
 """Optima confirmed by the true model: a surrogate optimum the true model finds outside a constraint of its stage is
 searched again on surrogates corrected by what the true model said, until a design the true model accepts is found.
 
-Each step makes the surrogates agree with the true model at the current design x_k (a zero-order-consistent additive
-correction, ŷ(x) + y(x_k) − ŷ(x_k), of every objective and constraint response and of the mode quantities a derived
-level is predicted from), then solves the stage's problem on the corrected surrogates within a trust region around
-x_k (the optimum of the objective, or where none is feasible the design of least violation), and evaluates that
-design with the true model. Until the true model accepts a design, a step that lowers the true violation
-(Σ min(g, 0)² of the scaled constraints, as in :func:`~certkit.study.analysis.optimise.least_violation`) moves x_k;
-after, a step moves it when the true model accepts the new design and finds its objective better. A step that does
-not move x_k shrinks the region to half the step; the search ends when the corrected problem's answer is x_k itself
-(within :data:`STILL` on the [−1, 1] scale) or after :data:`MAX_STEPS` evaluations. The model management of Alexandrov,
-Dennis, Lewis & Torczon (1998, *Structural Optimization* 15: 16–23), with the correction of order zero (Forrester &
-Keane 2009, *Progress in Aerospace Sciences* 45: 50–79, §6): it keeps the true model's feasibility, not its
-optimality conditions (the surrogates' gradients stand for the true ones), so the confirmed design is the best the
-true model accepted, not a proven optimum. The confirmed optimum is that design with the true model's values; where
-the true model accepted none, the design of least true violation and the constraints it still violates. A surrogate
-optimum the true model already accepts is confirmed as it is.
+Each step makes the surrogates agree with the true model at the current design x_k — in value and, by default, in
+slope: every objective and constraint response and every mode quantity a derived level is predicted from becomes
+ŷ(x) + [y(x_k) − ŷ(x_k)] + [∇y(x_k) − ∇ŷ(x_k)]·(x − x_k), the true model's gradient by forward differences
+(n designs at x_k + h eᵢ, h = :data:`PROBE_STEP` on the [−1, 1] scale) — then solves the stage's problem on the
+corrected surrogates within a trust region around x_k (the optimum of the objective, or where none is feasible the
+design of least violation), and evaluates that design with the true model. Until the true model accepts a design, a
+step that lowers the true violation (Σ min(g, 0)² of the scaled constraints, as in
+:func:`~certkit.study.analysis.optimise.least_violation`) moves x_k; after, a step moves it when the true model
+accepts the new design and finds its objective better. A step that does not move x_k shrinks the region to half
+the step; the search ends when the corrected problem's answer is x_k itself (within :data:`STILL` on the [−1, 1]
+scale) or after :data:`MAX_STEPS` steps. This is the first-order model management of Alexandrov, Dennis, Lewis &
+Torczon (1998, *Structural Optimization* 15: 16–23; corrections of order zero and one, Forrester & Keane 2009,
+*Progress in Aerospace Sciences* 45: 50–79, §6): on smooth responses it converges on the true problem's optimum; a
+least margin over several conditions has kinks where no correction is exact, and the true model's own numerical
+noise limits the finite differences, so the confirmed design is the best the true model accepted, not a proven
+optimum. The confirmed optimum is that design with the true model's values; where the true model accepted none, the
+design of least true violation and the constraints it still violates. A surrogate optimum the true model already
+accepts is confirmed as it is. ``gradients=False`` keeps the correction of order zero (values only: n times fewer
+evaluations, feasibility without the optimality conditions).
 """
 
 from __future__ import annotations
@@ -36,6 +40,7 @@ from certkit.study.analysis.optimise import (
     SurrogateProblem,
     ValidMargin,
     constraint_scales,
+    from_unit,
     least_violation,
     local_optimum,
 )
@@ -43,10 +48,14 @@ from certkit.study.analysis.surrogates import Surrogate, to_unit
 from certkit.study.spec import Study
 from certkit.study.store import Store
 
-#: true-model evaluations per optimum after the surrogate optimum's own (numerical choice: each costs one design)
+#: steps per optimum after the surrogate optimum's own (numerical choice: each costs one design, and n more for the
+#: gradient at each design the search moves to)
 MAX_STEPS = 6
 #: a search ends when the corrected problem's answer lies this close to the current design (on the [−1, 1] scale)
 STILL = 1e-3
+#: the forward-difference step of the true model's gradient, on the [−1, 1] scale (2.5 % of each variable's range:
+#: above the numerical noise of a sized, simulated design, within the trust region; numerical choice)
+PROBE_STEP = 0.05
 #: the trust region's first half-width on the [−1, 1] scale of every variable (a tenth of its range; numerical choice)
 TRUST_RADIUS = 0.2
 #: the stages whose optima are confirmed (the unconstrained one has no constraint to confirm)
@@ -77,6 +86,8 @@ class Confirmation:
     reason: str = ""
     steps: list[Step] = field(default_factory=list)
     sense: str = "min"
+    #: designs evaluated for the true model's gradient (n at each design the search stood on)
+    probes: int = 0
 
     @property
     def design(self) -> Step | None:
@@ -96,14 +107,20 @@ class Confirmation:
 
 
 @dataclass
-class _Shifted:
-    """A surrogate moved by a constant: ŷ(x) + shift (what the analysis reads of a surrogate, and nothing else)."""
+class _Corrected:
+    """A surrogate corrected to the true model at u₀: ŷ(x) + shift + slope·(u(x) − u₀), u the inputs on the [−1, 1]
+    scale (what the analysis reads of a surrogate, and nothing else)."""
 
     base: Any
     shift: float
+    slope: np.ndarray
+    u0: np.ndarray
+    bounds: np.ndarray
 
     def predict(self, x: np.ndarray) -> np.ndarray:
-        return np.asarray(self.base.predict(x), dtype=float) + self.shift
+        x = np.atleast_2d(x)
+        linear = (to_unit(x, self.bounds) - self.u0) @ self.slope
+        return np.asarray(self.base.predict(x), dtype=float) + self.shift + linear
 
     @property
     def response(self) -> str:
@@ -125,22 +142,58 @@ def _true_value(row: pd.Series, response: str) -> float | None:
     return v if np.isfinite(v) else None
 
 
-def _corrected(surrogates: dict[str, Any], names: set[str], x: np.ndarray, row: pd.Series) -> dict[str, Any]:
+def _corrected(
+    surrogates: dict[str, Any],
+    names: set[str],
+    x: np.ndarray,
+    row: pd.Series,
+    probes: Probes | None,
+    bounds: np.ndarray,
+) -> dict[str, Any]:
     """The surrogates ``names`` made equal to the true model's values at ``x`` (a derived level through its
-    quantities); a response the true model did not give keeps its surrogate."""
+    quantities) and, with ``probes`` (the true model at x + h eᵢ), to its forward-difference gradient; a response the
+    true model did not give keeps its surrogate, a gradient component it did not give keeps the surrogate's."""
+    u0 = to_unit(x[None, :], bounds)[0]
 
-    def shift(s: Any) -> Any:
+    def correct(s: Any) -> Any:
         t = _true_value(row, s.response)
-        return s if t is None else _Shifted(s, t - float(s.predict(x[None, :])[0]))
+        if t is None:
+            return s
+        shift = t - float(s.predict(x[None, :])[0])
+        slope = np.zeros(len(u0))
+        if probes is not None:
+            surrogate = np.asarray(s.predict(probes.x), dtype=float)
+            for i, (prow, h) in enumerate(zip(probes.rows, probes.h)):
+                tp = _true_value(prow, s.response)
+                if tp is not None and np.isfinite(surrogate[i]):
+                    slope[i] = ((tp - surrogate[i]) - shift) / h
+        return _Corrected(s, shift, slope, u0, bounds)
 
     out = dict(surrogates)
     for name in names:
         s = surrogates[name]
         if isinstance(s, DerivedLevel):
-            out[name] = dataclasses.replace(s, quantities={kw: shift(q) for kw, q in s.quantities.items()})
+            out[name] = dataclasses.replace(s, quantities={kw: correct(q) for kw, q in s.quantities.items()})
         else:
-            out[name] = shift(s)
+            out[name] = correct(s)
     return out
+
+
+@dataclass
+class Probes:
+    """The true model at the forward-difference points x + hᵢ eᵢ of a design (h on the [−1, 1] scale; backward
+    where the forward point would leave the box)."""
+
+    x: np.ndarray
+    h: np.ndarray
+    rows: list[pd.Series]
+
+
+def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
+    u = to_unit(x[None, :], bounds)[0]
+    h = np.where(u + step <= 1.0, step, -step)
+    points = np.repeat(u[None, :], len(u), axis=0) + np.diag(h)
+    return from_unit(points, bounds), h
 
 
 def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series) -> tuple[list[str], float]:
@@ -181,15 +234,14 @@ def _next_design(
     surrogates: dict[str, Any],
     optimum: Optimum,
     sense: str,
-    x: np.ndarray,
-    row: pd.Series,
-    radius: float,
+    state: dict[str, Any],
     valid_margin: ValidMargin | None,
 ) -> np.ndarray | None:
-    """The stage's optimum of the corrected surrogates within the trust region around ``x``, or there the design of
-    least violation; None when the search ends at no possible design."""
+    """The stage's optimum of the corrected surrogates within the trust region around the state's design, or there
+    the design of least violation; None when the search ends at no possible design."""
+    x, row, radius = state["x"], state["row"], state["radius"]
     names = {c.response for c in study.constraints} | {optimum.objective}
-    corrected = _corrected(surrogates, names & set(surrogates), x, row)
+    corrected = _corrected(surrogates, names & set(surrogates), x, row, state.get("probes"), study.bounds)
     problem = SurrogateProblem(study, corrected, optimum.stage, valid_margin, constraint_scales(study, surrogates))
     u = to_unit(x[None, :], study.bounds)[0]
     box = (np.maximum(u - radius, -1.0), np.minimum(u + radius, 1.0))
@@ -197,6 +249,22 @@ def _next_design(
     if best is not None:
         return np.asarray(best.x)
     return least_violation(problem, x[None, :], box=box)
+
+
+def _probe(study: Study, store: Store, states: list[dict[str, Any]], run_cases: RunCases | None) -> None:
+    """The true model at the forward-difference points of each state's design (one batch for all; a design two
+    states share is probed once), kept in the states as :class:`Probes`."""
+    if not states:
+        return
+    points = [_probe_points(s["x"], study.bounds, PROBE_STEP) for s in states]
+    stacked = np.vstack([p for p, _ in points])
+    unique, which = np.unique(stacked, axis=0, return_inverse=True)
+    frame = run_true_model(study, store, unique, block="confirm-gradient", role="check", run_cases=run_cases)
+    rows = [frame.iloc[int(i)] for i in np.ravel(which)]
+    n = len(study.variables)
+    for k, (s, (x, h)) in enumerate(zip(states, points)):
+        s["probes"] = Probes(x, h, rows[k * n : (k + 1) * n])
+        s["conf"].probes += n
 
 
 def _better(conf: Confirmation, step: Step) -> bool:
@@ -223,11 +291,14 @@ def confirm_optima(
     *,
     run_cases: RunCases | None = None,
     max_steps: int = MAX_STEPS,
+    gradients: bool = True,
 ) -> list[Confirmation]:
     """Confirm each constrained and preferred optimum of ``checked`` (re-evaluated with the true model) as the module
     says; the designs of each step run through the study runner together (block "confirm"), so the store keeps
     them and a later report reads them back. The optima of least violation (no design meets the stage on the
-    surrogates) are not searched again: their violations are the stage's conflicts."""
+    surrogates) are not searched again: their violations are the stage's conflicts. ``gradients``: the correction
+    of order one (the true model probed at n forward-difference points of each design a search stands on, block
+    ``confirm-gradient``); False: of order zero."""
     senses = {o.response: o.sense for o in study.objectives}
     out: list[Confirmation] = []
     state: list[dict[str, Any]] = []
@@ -252,10 +323,12 @@ def confirm_optima(
             if conf.steps[0].violated:  # an optimum the true model accepts is confirmed as it is
                 state.append({"conf": conf, "problem": problem, "x": o.x, "row": row, "radius": TRUST_RADIUS})
     for _ in range(max_steps):
+        if gradients:
+            _probe(study, store, [s for s in state if s.get("probes") is None], run_cases)
         moves = []
         for s in state:
             conf = s["conf"]
-            nxt = _next_design(study, surrogates, conf.optimum, conf.sense, s["x"], s["row"], s["radius"], valid_margin)
+            nxt = _next_design(study, surrogates, conf.optimum, conf.sense, s, valid_margin)
             u = to_unit(np.array([s["x"], nxt if nxt is not None else s["x"]]), study.bounds)
             if nxt is not None and float(np.max(np.abs(u[1] - u[0]))) > STILL:
                 moves.append((s, nxt))
@@ -271,7 +344,7 @@ def confirm_optima(
             step.accepted = row.get("status") == "ok" and _better(s["conf"], step)
             s["conf"].steps.append(step)
             if step.accepted:
-                s["x"], s["row"] = x, row
+                s["x"], s["row"], s["probes"] = x, row, None
             else:  # the region shrinks to half the rejected step (on the [−1, 1] scale)
                 u = to_unit(np.array([s["x"], x]), study.bounds)
                 s["radius"] = 0.5 * float(np.max(np.abs(u[1] - u[0])))

@@ -101,6 +101,7 @@ def _confirmation(c: Confirmation, view: Study) -> dict[str, Any]:
         "status": c.status,
         "reason": c.reason,
         "true_model_evaluations": c.evaluations,
+        "gradient_evaluations": c.probes,
         "steps": [
             {"violated": list(s.violated), "violation": s.violation, "objective": s.true.get(c.optimum.objective)}
             for s in c.steps
