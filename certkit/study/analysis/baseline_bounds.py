@@ -7,12 +7,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import numpy as np
 import pandas as pd
 
 from certkit.errors import UserError
 from certkit.study.analysis.cases import RESP_PREFIX, VAR_PREFIX
-from certkit.study.analysis.checks import RunCases, run_true_model
+from certkit.study.analysis.checks import RunCases, at_point, run_true_model
 from certkit.study.spec import Study
 from certkit.study.store import Store
 
@@ -22,9 +21,7 @@ def _held(frame: pd.DataFrame, study: Study) -> pd.Series | None:
     columns = [VAR_PREFIX + v.path for v in study.variables]
     if frame.empty or any(c not in frame.columns for c in columns):
         return None
-    table = frame[columns].to_numpy(dtype=float)
-    point = study.baseline
-    hits = np.all(np.abs(table - point) <= 1e-9 * np.maximum(np.abs(point), 1e-12), axis=1)
+    hits = at_point(frame[columns].to_numpy(dtype=float), study.baseline)
     ok = frame[hits & (frame["status"] == "ok").to_numpy()]
     return None if ok.empty else ok.iloc[0]
 

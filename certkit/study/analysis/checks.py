@@ -24,6 +24,11 @@ from certkit.study.store import Store
 RunCases = Callable[..., "pd.DataFrame | list[dict[str, Any]]"]
 
 
+def at_point(table: np.ndarray, point: np.ndarray) -> np.ndarray:
+    """Mask of the rows of ``table`` (cases' variables, SI) that are the design ``point`` (to 1e-9 relative)."""
+    return np.asarray(np.all(np.abs(table - point) <= 1e-9 * np.maximum(np.abs(point), 1e-12), axis=1))
+
+
 def run_true_model(
     study: Study,
     store: Store,
@@ -48,8 +53,7 @@ def run_true_model(
     table = frame[columns].to_numpy(dtype=float)
     rows = []
     for point in np.atleast_2d(x):
-        scale = np.maximum(np.abs(point), 1e-12)
-        hits = np.flatnonzero(np.all(np.abs(table - point) <= 1e-9 * scale, axis=1))
+        hits = np.flatnonzero(at_point(table, point))
         rows.append(
             frame.iloc[hits[0]]
             if hits.size

@@ -212,7 +212,6 @@ def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series
     total = 0.0
     for response, threshold, sign, scale, level in problem.limits:
         s = surrogates[response]
-        margin = None
         if level is not None and isinstance(s, DerivedLevel) and s.source.kind == "margins" and level < 4:
             margin = _true_value(row, s.quantities[str(level)].response)
             g = None if margin is None else float(np.clip(margin, -MARGIN_CLIP, MARGIN_CLIP))
