@@ -430,6 +430,25 @@ class Study(_Model):
             constraints.append(c.model_copy(update=update))
         return self.model_copy(update={"constraints": constraints})
 
+    def allowed_max(self, constraint: Constraint, stage: str = "constrained") -> float | None:
+        """The constraint's maximum as a stage of the analysis takes it: a level's relaxed maximum
+        (:meth:`AnalysisOptions.relaxed_max`), at most Level 1 in the preferred stage; else the declared one."""
+        if not constraint.is_level:
+            return constraint.max
+        relaxed = self.analysis.relaxed_max(constraint)
+        upper = constraint.max if relaxed is None else relaxed
+        if stage == "preferred":
+            upper = 1.0 if upper is None else min(upper, 1.0)
+        return upper
+
+    def holds(self, constraint: Constraint, values: np.ndarray, stage: str = "constrained") -> np.ndarray:
+        """Where ``values`` of ``constraint``'s response meet it as a stage of the analysis judges: the constrained
+        stage at the relaxed level (:meth:`AnalysisOptions.relaxed_max`), the preferred stage at Level 1 as well."""
+        ok = constraint.feasible(values, self.analysis.relaxed_max(constraint))
+        if stage == "preferred" and constraint.is_level:
+            ok &= constraint.feasible(values, 1.0)
+        return ok
+
     def analysed_responses(self) -> list[str]:
         """Responses the analysis fits surrogates for: objectives, constraints and profiled responses."""
         names = [o.response for o in self.objectives] + [c.response for c in self.constraints]

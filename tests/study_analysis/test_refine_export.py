@@ -88,22 +88,33 @@ def _frame(x, block, role):
     return df
 
 
-def test_refine_runs_the_true_model_and_reports_the_probabilities():
+def _trained_store() -> _Store:
+    """30 training and 10 validation cases of the true function."""
     rng = np.random.default_rng(2)
-    store = _Store(
+    return _Store(
         pd.concat(
             [_frame(rng.random((30, D)), "lhs", "training"), _frame(rng.random((10, D)), "validation", "validation")],
             ignore_index=True,
         )
     )
-    calls = []
+
+
+def _runner(calls: list):
+    """A stand-in study runner: evaluates the true function at the points into the store (rows as the study
+    runner's), noting (block, role, number of points) in ``calls``."""
 
     def run_cases(study, store_, points, *, block, role):
         x = np.array([[p["v.x0"], p["v.x1"]] for p in points])
         calls.append((block, role, len(points)))
         store_._frame = pd.concat([store_._frame, _frame(x, block, role)], ignore_index=True)
-        return [{"status": "ok"} for _ in points]
+        return [{"status": "ok", "key": f"{block}{i}"} for i in range(len(points))]
 
+    return run_cases
+
+
+def test_refine_runs_the_true_model_and_reports_the_probabilities():
+    store, calls = _trained_store(), []
+    run_cases = _runner(calls)
     result = refine(_study(), store, 8, samples=20_000, run_cases=run_cases)
     assert calls == [("refine-1", "training", 8)] and result.block == "refine-1" and result.ok == 8
     (m,) = result.movements
@@ -156,21 +167,8 @@ def test_surrogates_file_api_and_predict_command(tmp_path):
 def test_refine_reads_a_baseline_bound_from_the_baseline_case_it_runs():
     """`y ≤ baseline`: the baseline design (0.5, 0.5) is evaluated once (block baseline) and its y,
     sin 2.5 + 0.25 = 0.848, bounds the constraint; the refinement then runs as for a fixed limit."""
-    rng = np.random.default_rng(2)
-    store = _Store(
-        pd.concat(
-            [_frame(rng.random((30, D)), "lhs", "training"), _frame(rng.random((10, D)), "validation", "validation")],
-            ignore_index=True,
-        )
-    )
-    calls = []
-
-    def run_cases(study, store_, points, *, block, role):
-        x = np.array([[p["v.x0"], p["v.x1"]] for p in points])
-        calls.append((block, role, len(points)))
-        store_._frame = pd.concat([store_._frame, _frame(x, block, role)], ignore_index=True)
-        return [{"status": "ok", "key": f"{block}{i}"} for i in range(len(points))]  # as the study runner's rows
-
+    store, calls = _trained_store(), []
+    run_cases = _runner(calls)
     relative = _study().model_copy(
         update={
             "constraints": [_study().constraints[0].model_validate({"name": "y", "response": "y", "max": "baseline"})]

@@ -1,5 +1,5 @@
 // Prediction profiler of the study report: evaluates the exported surrogates in the page (no network).
-// The arithmetic mirrors certkit.study.analysis.export.evaluate_export point by point.
+// Its arithmetic mirrors, point by point, the Python evaluator of the exported surrogates (evaluate_export).
 (function () {
   "use strict";
   var holder = document.getElementById("profiler-data");

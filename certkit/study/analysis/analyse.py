@@ -1,6 +1,6 @@
 """Every analysis of a finished study: :func:`analyse` runs them on the store's frame (surrogates, Monte Carlo,
 Pareto fronts, optima, Sobol indices, and — unless switched off — the true-model checks through the study runner)
-and returns them as data (:class:`Analysis`); :mod:`certkit.report.study_report` draws the page.
+and returns them as data (:class:`Analysis`); the report layer draws the page.
 """
 
 from __future__ import annotations

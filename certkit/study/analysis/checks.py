@@ -99,7 +99,7 @@ class DirectCheck:
 def _feasible_all(study: Study, values: dict[str, np.ndarray], n: int) -> np.ndarray:
     ok = np.ones(n, dtype=bool)
     for c in study.constraints:
-        ok &= c.feasible(values[c.response], study.analysis.relaxed_max(c))
+        ok &= study.holds(c, values[c.response])
     return ok
 
 
@@ -133,9 +133,8 @@ def direct_check(
     checked = []
     by_name = {o.constraint.name: o for o in mc.constraints}
     for c in study.constraints:
-        relaxed = study.analysis.relaxed_max(c)
-        p_true = float(np.mean(c.feasible(truth[c.response], relaxed))) if k else float("nan")
-        p_same = float(np.mean(c.feasible(predicted[c.response], relaxed))) if k else float("nan")
+        p_true = float(np.mean(study.holds(c, truth[c.response]))) if k else float("nan")
+        p_same = float(np.mean(study.holds(c, predicted[c.response]))) if k else float("nan")
         out = by_name[c.name]
         p_mc = out.p_relaxed if out.p_relaxed is not None else out.p
         checked.append(CheckedConstraint(c, k, p_true, p_same, p_mc, binomial_se(p_true, k), binomial_se(p_mc, mc.n)))

@@ -189,6 +189,19 @@ class Probes:
     rows: list[pd.Series]
 
 
+@dataclass
+class _Search:
+    """One optimum's search: the design it stands on (its true-model row, its probes once taken) and the trust
+    region's radius on the [−1, 1] scale."""
+
+    conf: Confirmation
+    problem: SurrogateProblem
+    x: np.ndarray
+    row: pd.Series
+    radius: float = TRUST_RADIUS
+    probes: Probes | None = None
+
+
 def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
     u = to_unit(x[None, :], bounds)[0]
     h = np.where(u + step <= 1.0, step, -step)
@@ -204,10 +217,7 @@ def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series
     violated = []
     for c in study.constraints:
         t = _true_value(row, c.response)
-        ok = t is not None and bool(c.feasible(np.array([t]), study.analysis.relaxed_max(c))[0])
-        if ok and problem.stage == "preferred" and c.is_level:
-            ok = bool(c.feasible(np.array([t]), 1.0)[0])
-        if not ok:
+        if t is None or not study.holds(c, np.array([t]), problem.stage)[0]:
             violated.append(c.name)
     total = 0.0
     for response, threshold, sign, scale, level in problem.limits:
@@ -233,14 +243,14 @@ def _next_design(
     surrogates: dict[str, Any],
     optimum: Optimum,
     sense: str,
-    state: dict[str, Any],
+    search: _Search,
     valid_margin: ValidMargin | None,
 ) -> np.ndarray | None:
     """The stage's optimum of the corrected surrogates within the trust region around the state's design, or there
     the design of least violation; None when the search ends at no possible design."""
-    x, row, radius = state["x"], state["row"], state["radius"]
+    x, row, radius = search.x, search.row, search.radius
     names = {c.response for c in study.constraints} | {optimum.objective}
-    corrected = _corrected(surrogates, names & set(surrogates), x, row, state.get("probes"), study.bounds)
+    corrected = _corrected(surrogates, names & set(surrogates), x, row, search.probes, study.bounds)
     problem = SurrogateProblem(study, corrected, optimum.stage, valid_margin, constraint_scales(study, surrogates))
     u = to_unit(x[None, :], study.bounds)[0]
     box = (np.maximum(u - radius, -1.0), np.minimum(u + radius, 1.0))
@@ -250,20 +260,20 @@ def _next_design(
     return least_violation(problem, x[None, :], box=box)
 
 
-def _probe(study: Study, store: Store, states: list[dict[str, Any]], run_cases: RunCases | None) -> None:
+def _probe(study: Study, store: Store, states: list[_Search], run_cases: RunCases | None) -> None:
     """The true model at the forward-difference points of each state's design (one batch for all; a design two
     states share is probed once), kept in the states as :class:`Probes`."""
     if not states:
         return
-    points = [_probe_points(s["x"], study.bounds, PROBE_STEP) for s in states]
+    points = [_probe_points(s.x, study.bounds, PROBE_STEP) for s in states]
     stacked = np.vstack([p for p, _ in points])
     unique, which = np.unique(stacked, axis=0, return_inverse=True)
     frame = run_true_model(study, store, unique, block="confirm-gradient", role="check", run_cases=run_cases)
     rows = [frame.iloc[int(i)] for i in np.ravel(which)]
     n = len(study.variables)
     for k, (s, (x, h)) in enumerate(zip(states, points)):
-        s["probes"] = Probes(x, h, rows[k * n : (k + 1) * n])
-        s["conf"].probes += n
+        s.probes = Probes(x, h, rows[k * n : (k + 1) * n])
+        s.conf.probes += n
 
 
 def _better(conf: Confirmation, step: Step) -> bool:
@@ -300,7 +310,7 @@ def confirm_optima(
     ``confirm-gradient``); False: of order zero."""
     senses = {o.response: o.sense for o in study.objectives}
     out: list[Confirmation] = []
-    state: list[dict[str, Any]] = []
+    state: list[_Search] = []
     chosen = []
     for c in checked:
         o = c.optimum
@@ -320,15 +330,14 @@ def confirm_optima(
             conf = Confirmation(o, CONFIRMED, steps=[_step(problem, surrogates, o.x, row)], sense=sense)
             out.append(conf)
             if conf.steps[0].violated:  # an optimum the true model accepts is confirmed as it is
-                state.append({"conf": conf, "problem": problem, "x": o.x, "row": row, "radius": TRUST_RADIUS})
+                state.append(_Search(conf, problem, o.x, row))
     for _ in range(max_steps):
         if gradients:
-            _probe(study, store, [s for s in state if s.get("probes") is None], run_cases)
+            _probe(study, store, [s for s in state if s.probes is None], run_cases)
         moves = []
         for s in state:
-            conf = s["conf"]
-            nxt = _next_design(study, surrogates, conf.optimum, conf.sense, s, valid_margin)
-            u = to_unit(np.array([s["x"], nxt if nxt is not None else s["x"]]), study.bounds)
+            nxt = _next_design(study, surrogates, s.conf.optimum, s.conf.sense, s, valid_margin)
+            u = to_unit(np.array([s.x, nxt if nxt is not None else s.x]), study.bounds)
             if nxt is not None and float(np.max(np.abs(u[1] - u[0]))) > STILL:
                 moves.append((s, nxt))
         if not moves:
@@ -339,14 +348,14 @@ def confirm_optima(
         frame = run_true_model(study, store, unique, block="confirm", role="check", run_cases=run_cases)
         rows = [frame.iloc[int(i)] for i in np.ravel(which)]
         for (s, x), row in zip(moves, rows):
-            step = _step(s["problem"], surrogates, x, row)
-            step.accepted = row.get("status") == "ok" and _better(s["conf"], step)
-            s["conf"].steps.append(step)
+            step = _step(s.problem, surrogates, x, row)
+            step.accepted = row.get("status") == "ok" and _better(s.conf, step)
+            s.conf.steps.append(step)
             if step.accepted:
-                s["x"], s["row"], s["probes"] = x, row, None
+                s.x, s.row, s.probes = x, row, None
             else:  # the region shrinks to half the rejected step (on the [−1, 1] scale)
-                u = to_unit(np.array([s["x"], x]), study.bounds)
-                s["radius"] = 0.5 * float(np.max(np.abs(u[1] - u[0])))
+                u = to_unit(np.array([s.x, x]), study.bounds)
+                s.radius = 0.5 * float(np.max(np.abs(u[1] - u[0])))
     for conf in out:
         if conf.steps and conf.design is not None and conf.design.violated:
             conf.status = NOT_CONFIRMED

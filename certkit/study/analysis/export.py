@@ -1,8 +1,8 @@
 """Surrogates exported as plain JSON for evaluation in the report page (JavaScript, offline).
 
 :func:`export_surrogate` reads the fitted scikit-learn estimators' parameters; :func:`evaluate_export` is
-the Python mirror of the page's JavaScript evaluator (``profiler.js``), written with the same arithmetic
-point by point, so that a test can show the exported numbers reproduce scikit-learn's predictions.
+the Python mirror of the page's JavaScript evaluator (the profiler's script in the report templates), written with
+the same arithmetic point by point, so that a test can show the exported numbers reproduce scikit-learn's predictions.
 
 Formats (``u`` = inputs mapped from their bounds ``lo``/``hi`` to [−1, 1]; ``log``: the result is exp(·)):
 

@@ -75,10 +75,7 @@ class SurrogateProblem:
                 lower, upper = c.min, c.max
                 level = None
                 if c.is_level:
-                    relaxed = study.analysis.relaxed_max(c)
-                    upper = upper if relaxed is None else relaxed
-                    if stage == "preferred":
-                        upper = 1.0 if upper is None else min(upper, 1.0)
+                    upper = study.allowed_max(c, stage)
                     if upper is not None and hasattr(surrogates[c.response], "level_margin"):
                         level = int(upper)
                     upper = None if upper is None else upper + 0.5
@@ -115,10 +112,7 @@ class SurrogateProblem:
         ok = np.ones(len(x), dtype=bool)
         if self.stage != "unconstrained":
             for c in self.study.constraints:
-                y = self.surrogates[c.response].predict(x)
-                ok &= c.feasible(y, self.study.analysis.relaxed_max(c))
-                if self.stage == "preferred" and c.is_level:
-                    ok &= c.feasible(y, 1.0)
+                ok &= self.study.holds(c, self.surrogates[c.response].predict(x), self.stage)
         if self.valid_margin is not None:
             ok &= self.valid_margin(x) >= 0
         return ok

@@ -1,5 +1,5 @@
 """Data of the interactive prediction profiler: each objective and chosen constraint response against each
-variable through the current point, evaluated in the page from the exported surrogates (``profiler.js``); a
+variable through the current point, evaluated in the page from the exported surrogates (by the page's script); a
 handling-quality level derived from its mode quantities is shown as those quantities (damping ratio, frequency, CAP).
 
 Slider ranges reach ``OVERHANG`` of each variable's range beyond its bounds; that part is drawn greyed, as

@@ -38,8 +38,7 @@ LEVEL_ACTIVE = 1e-3
 
 
 def _limits(study: Study, c: Constraint) -> list[float]:
-    relaxed = study.analysis.relaxed_max(c)
-    upper = c.max if relaxed is None else relaxed
+    upper = study.allowed_max(c)
     half = 0.5 if c.is_level else 0.0
     return [
         t for t in (None if c.min is None else c.min - half, None if upper is None else upper + half) if t is not None
@@ -52,7 +51,7 @@ def _successes(o: ConstraintOutcome) -> int:
 
 def _computed_successes(study: Study, c: Constraint, cases: Cases) -> tuple[int, np.ndarray]:
     values = np.concatenate([cases.xy(role, c.response)[1] for role in ("training", "validation")])
-    return int(np.sum(c.feasible(values, study.analysis.relaxed_max(c)))), values
+    return int(np.sum(study.holds(c, values))), values
 
 
 def unconfirmed(study: Study, o: ConstraintOutcome, cases: Cases | None) -> bool:
@@ -134,10 +133,7 @@ def active_constraints(study: Study, surrogates: dict[str, Surrogate], optima: l
             if s is None or getattr(s, "constant", False):  # a response no design moves binds no optimum
                 continue
             if hasattr(s, "level_margin"):
-                relaxed = study.analysis.relaxed_max(c)
-                allowed = c.max if relaxed is None else relaxed
-                if allowed is not None and opt.stage == "preferred":
-                    allowed = min(allowed, 1.0)
+                allowed = study.allowed_max(c, opt.stage)
                 on_boundary = (
                     allowed is not None and abs(float(s.level_margin(opt.x[None, :], int(allowed))[0])) <= LEVEL_ACTIVE
                 )
@@ -170,9 +166,6 @@ def conflicting_constraints(
             if s is None:
                 continue
             y = s.predict(opt.x[None, :])
-            ok = c.feasible(y, study.analysis.relaxed_max(c))
-            if opt.stage == "preferred" and c.is_level:
-                ok &= c.feasible(y, 1.0)
-            if not ok[0]:
+            if not study.holds(c, y, opt.stage)[0]:
                 out.setdefault(c.name, []).append(f"{opt.stage} ({float(y[0]):.4g})")
     return out

@@ -57,8 +57,7 @@ def misclassification(study: Study, surrogates: dict[str, Surrogate], x: np.ndar
         s = surrogates.get(c.response)
         if s is None:
             continue
-        relaxed = study.analysis.relaxed_max(c)
-        upper = c.max if relaxed is None else relaxed
+        upper = study.allowed_max(c)
         if hasattr(s, "level_margin") and upper is not None:
             # a derived level: its margin is a relative distance to the level's boundaries, uncertain by about the
             # quantities' relative cross-validated error
