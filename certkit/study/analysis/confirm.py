@@ -2,24 +2,28 @@
 searched again on surrogates corrected by what the true model said, until a design the true model accepts is found.
 
 Each step makes the surrogates agree with the true model at the current design x_k — in value and, by default, in
-slope: every objective and constraint response and every mode quantity a derived level is predicted from becomes
-ŷ(x) + [y(x_k) − ŷ(x_k)] + [∇y(x_k) − ∇ŷ(x_k)]·(x − x_k), the true model's gradient by forward differences
-(n designs at x_k + h eᵢ, h = :data:`PROBE_STEP` on the [−1, 1] scale) — then solves the stage's problem on the
-corrected surrogates within a trust region around x_k (the optimum of the objective, or where none is feasible the
-design of least violation), and evaluates that design with the true model. Until the true model accepts a design, a
-step that lowers the true violation (Σ min(g, 0)² of the scaled constraints, as in
+slope: every objective and constraint response and every mode quantity a derived level is predicted from becomes ŷ(x)
++ [y(x_k) − ŷ(x_k)] + [∇y(x_k) − ∇ŷ(x_k)]·(x − x_k), the true model's gradient by forward differences (n designs at
+x_k + h eᵢ, h = :data:`PROBE_STEP` on the [−1, 1] scale) — then solves the stage's problem on the corrected
+surrogates within a trust region around x_k (the optimum of the objective, or where none is feasible the design of
+least violation), and evaluates that design with the true model. Until the true model accepts a design, a step that
+lowers the true violation (Σ min(g, 0)² of the scaled constraints, as in
 :func:`~certkit.study.analysis.optimise.least_violation`) moves x_k; after, a step moves it when the true model
-accepts the new design and finds its objective better. A step that does not move x_k shrinks the region to half
-the step; the search ends when the corrected problem's answer is x_k itself (within :data:`STILL` on the [−1, 1]
-scale) or after :data:`MAX_STEPS` steps. This is the first-order model management of Alexandrov, Dennis, Lewis &
-Torczon (1998, *Structural Optimization* 15: 16–23; corrections of order zero and one, Forrester & Keane 2009,
-*Progress in Aerospace Sciences* 45: 50–79, §6): on smooth responses it converges on the true problem's optimum; a
-least margin over several conditions has kinks where no correction is exact, and the true model's own numerical
-noise limits the finite differences, so the confirmed design is the best the true model accepted, not a proven
-optimum. The confirmed optimum is that design with the true model's values; where the true model accepted none, the
-design of least true violation and the constraints it still violates. A surrogate optimum the true model already
-accepts is confirmed as it is. ``gradients=False`` keeps the correction of order zero (values only: n times fewer
-evaluations, feasibility without the optimality conditions).
+accepts the new design and finds its objective better. A step that does not move x_k shrinks the region to half the
+step, and while x_k is outside a constraint the next step is a restoration: the nearest design the corrected
+surrogates find feasible, aimed as far inside (in scaled violation) as x_k is outside — the least move, where the
+correction is most nearly exact (the feasibility restoration of filter SQP, Fletcher & Leyffer 2002); an objective
+step that runs along a linearised boundary into a curved or kinked one is what the true model rejects. The search
+ends when the corrected problem's answer is x_k itself (within :data:`STILL` on the [−1, 1] scale) or after
+:data:`MAX_STEPS` steps. This is the first-order model management of Alexandrov, Dennis, Lewis & Torczon (1998,
+*Structural Optimization* 15: 16–23; corrections of order zero and one, Forrester & Keane 2009, *Progress in
+Aerospace Sciences* 45: 50–79, §6): on smooth responses it converges on the true problem's optimum; a least margin
+over several conditions has kinks where no correction is exact, and the true model's own numerical noise limits the
+finite differences, so the confirmed design is the best the true model accepted, not a proven optimum. The confirmed
+optimum is that design with the true model's values; where the true model accepted none, the design of least true
+violation and the constraints it still violates. A surrogate optimum the true model already accepts is confirmed as
+it is. ``gradients=False`` keeps the correction of order zero (values only: n times fewer evaluations, feasibility
+without the optimality conditions).
 """
 
 from __future__ import annotations
@@ -43,6 +47,7 @@ from certkit.study.analysis.optimise import (
     from_unit,
     least_violation,
     local_optimum,
+    nearest_feasible,
 )
 from certkit.study.analysis.surrogates import Surrogate, to_unit
 from certkit.study.spec import Study
@@ -200,6 +205,12 @@ class _Search:
     row: pd.Series
     radius: float = TRUST_RADIUS
     probes: Probes | None = None
+    #: the design it stands on is outside a constraint of the stage (the true model's judgement)
+    outside: bool = True
+    #: a step from that design was rejected: the next one restores feasibility by the least move
+    restore: bool = False
+    #: the design's total true violation Σ min(g, 0)² (scaled constraints)
+    violation: float = 0.0
 
 
 def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -246,17 +257,26 @@ def _next_design(
     search: _Search,
     valid_margin: ValidMargin | None,
 ) -> np.ndarray | None:
-    """The stage's optimum of the corrected surrogates within the trust region around the state's design, or there
-    the design of least violation; None when the search ends at no possible design."""
+    """The next design within the trust region around the search's design, on the corrected surrogates: the stage's
+    optimum, or — when that design is outside a constraint and a step from it was rejected — the nearest design they
+    find feasible (the restoration step); where they find none feasible, the design of least violation; None when
+    the search ends at no possible design."""
     x, row, radius = search.x, search.row, search.radius
     names = {c.response for c in study.constraints} | {optimum.objective}
     corrected = _corrected(surrogates, names & set(surrogates), x, row, search.probes, study.bounds)
     problem = SurrogateProblem(study, corrected, optimum.stage, valid_margin, constraint_scales(study, surrogates))
     u = to_unit(x[None, :], study.bounds)[0]
     box = (np.maximum(u - radius, -1.0), np.minimum(u + radius, 1.0))
-    best = local_optimum(problem, optimum.objective, sense, x[None, :], box=box)
-    if best is not None:
-        return np.asarray(best.x)
+    if search.outside and search.restore:
+        # aimed as far inside as the design is outside: the correction's own error at the design it proposes is of
+        # the order of the violation it corrects (a convex constraint would leave a boundary point just outside)
+        nearest = nearest_feasible(problem, x, box=box, inside=float(np.sqrt(search.violation)))
+        if nearest is not None:
+            return nearest
+    else:
+        best = local_optimum(problem, optimum.objective, sense, x[None, :], box=box)
+        if best is not None:
+            return np.asarray(best.x)
     return least_violation(problem, x[None, :], box=box)
 
 
@@ -330,7 +350,7 @@ def confirm_optima(
             conf = Confirmation(o, CONFIRMED, steps=[_step(problem, surrogates, o.x, row)], sense=sense)
             out.append(conf)
             if conf.steps[0].violated:  # an optimum the true model accepts is confirmed as it is
-                state.append(_Search(conf, problem, o.x, row))
+                state.append(_Search(conf, problem, o.x, row, violation=conf.steps[0].violation))
     for _ in range(max_steps):
         if gradients:
             _probe(study, store, [s for s in state if s.probes is None], run_cases)
@@ -352,10 +372,12 @@ def confirm_optima(
             step.accepted = row.get("status") == "ok" and _better(s.conf, step)
             s.conf.steps.append(step)
             if step.accepted:
-                s.x, s.row, s.probes = x, row, None
+                s.x, s.row, s.probes, s.outside, s.restore = x, row, None, bool(step.violated), False
+                s.violation = step.violation
             else:  # the region shrinks to half the rejected step (on the [−1, 1] scale)
                 u = to_unit(np.array([s.x, x]), study.bounds)
                 s.radius = 0.5 * float(np.max(np.abs(u[1] - u[0])))
+                s.restore = True
     for conf in out:
         if conf.steps and conf.design is not None and conf.design.violated:
             conf.status = NOT_CONFIRMED

@@ -118,6 +118,11 @@ class SurrogateProblem:
         return ok
 
 
+def _difference_points(n: int) -> np.ndarray:
+    """Offsets of a forward-difference gradient in n inputs: the point itself, then FD_STEP along each input."""
+    return np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
+
+
 def _slsqp(
     fun: Callable[[np.ndarray], tuple[float, np.ndarray]],
     u0: np.ndarray,
@@ -159,21 +164,13 @@ def local_optimum(
         best_u = to_unit(fallback[None, :], problem.bounds)[0]
         best_f = float(problem.objective(objective, best_u, sense)[0])
     method = "best Monte Carlo sample"
-    steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
+    steps = _difference_points(n)
 
     def objective_and_gradient(u: np.ndarray) -> tuple[float, np.ndarray]:
         f = problem.objective(objective, u[None, :] + steps, sense)
         return float(f[0]), (f[1:] - f[0]) / FD_STEP
 
-    def constraint_jacobian(u: np.ndarray) -> np.ndarray:
-        g = problem.constraints(u[None, :] + steps)
-        return np.asarray((g[1:] - g[0]) / FD_STEP).T
-
-    cons = (
-        [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0] - CONSTRAINT_MARGIN, "jac": constraint_jacobian}]
-        if problem.limits or problem.valid_margin is not None
-        else []
-    )
+    cons = _feasibility(problem)
     for start in np.atleast_2d(starts):
         u = _slsqp(objective_and_gradient, to_unit(start[None, :], problem.bounds)[0], cons, 100, 1e-10, box)
         f = float(problem.objective(objective, u, sense)[0])
@@ -184,6 +181,43 @@ def local_optimum(
         return None
     value = -best_f if sense == "max" else best_f
     return Optimum(objective, problem.stage, value, problem.x(best_u[None, :])[0], method)
+
+
+def _feasibility(problem: SurrogateProblem, inside: float = 0.0) -> list[dict[str, Any]]:
+    """SLSQP's inequality for the stage: every scaled constraint at least ``inside`` and the validity margin at least
+    0, each plus :data:`CONSTRAINT_MARGIN`, with the forward-difference Jacobian (none without constraints)."""
+    if not problem.limits and problem.valid_margin is None:
+        return []
+    steps = _difference_points(problem.bounds.shape[0])
+    least = CONSTRAINT_MARGIN + np.array(
+        [inside] * len(problem.limits) + ([0.0] if problem.valid_margin is not None else [])
+    )
+
+    def jacobian(u: np.ndarray) -> np.ndarray:
+        g = problem.constraints(u[None, :] + steps)
+        return np.asarray((g[1:] - g[0]) / FD_STEP).T
+
+    return [{"type": "ineq", "fun": lambda u: problem.constraints(u)[0] - least, "jac": jacobian}]
+
+
+def nearest_feasible(
+    problem: SurrogateProblem, x: np.ndarray, box: Box | None = None, inside: float = 0.0
+) -> np.ndarray | None:
+    """The design (SI) nearest ``x`` on the [−1, 1] scale that the stage's problem finds feasible, every scaled
+    constraint at least ``inside`` within its limit: SLSQP on |u − u(x)|² under the stage's constraints, from ``x``,
+    within ``box`` when given; None when the search ends at no such design. The restoration step of a trust-region
+    search standing on a design outside a constraint (the minimum-norm correction back into the feasible set, as in
+    the feasibility restoration of Fletcher & Leyffer's filter SQP, *Math. Programming* 91: 239–269, 2002): the least
+    move, where the model's correction is best."""
+    u0 = to_unit(np.atleast_2d(x), problem.bounds)[0]
+
+    def distance(u: np.ndarray) -> tuple[float, np.ndarray]:
+        d = u - u0
+        return float(d @ d), 2.0 * d
+
+    u = _slsqp(distance, u0, _feasibility(problem, inside), 100, 1e-12, box)
+    found = problem.x(u[None, :])[0]
+    return found if problem.feasible(found[None, :])[0] else None
 
 
 def nsga2_front(
@@ -268,7 +302,7 @@ def least_violation(problem: SurrogateProblem, starts: np.ndarray, box: Box | No
     from each start (within ``box`` when given), the best kept; None when no start ends at a possible design."""
     n = problem.bounds.shape[0]
     n_limits = len(problem.limits)
-    steps = np.vstack([np.zeros(n), FD_STEP * np.eye(n)])
+    steps = _difference_points(n)
 
     def total(u: np.ndarray) -> tuple[float, np.ndarray]:
         g = problem.constraints(u[None, :] + steps)[:, :n_limits]
