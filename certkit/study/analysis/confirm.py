@@ -209,8 +209,8 @@ class _Search:
     outside: bool = True
     #: a step from that design was rejected: the next one restores feasibility by the least move
     restore: bool = False
-    #: the design's total true violation Σ min(g, 0)² (scaled constraints)
-    violation: float = 0.0
+    #: by how much (scaled) the design falls short of each of the problem's limits (0 where within)
+    shortfall: np.ndarray | None = None
 
 
 def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -220,17 +220,10 @@ def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.nd
     return from_unit(points, bounds), h
 
 
-def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series) -> tuple[list[str], float]:
-    """The constraints of the problem's stage the true model's ``row`` violates (by name; a response it did not
-    give counts as violated) and the total scaled violation Σ min(g, 0)² (a derived level by its least level margin
-    where the record holds it)."""
-    study = problem.study
-    violated = []
-    for c in study.constraints:
-        t = _true_value(row, c.response)
-        if t is None or not study.holds(c, np.array([t]), problem.stage)[0]:
-            violated.append(c.name)
-    total = 0.0
+def _limit_values(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series) -> np.ndarray:
+    """The scaled constraint values g of the problem's limits (≥ 0 within) at the true model's ``row``, a derived level
+    by its least level margin where the record holds it; −:data:`MARGIN_CLIP` for a value the record does not give."""
+    out = []
     for response, threshold, sign, scale, level in problem.limits:
         s = surrogates[response]
         if level is not None and isinstance(s, DerivedLevel) and s.source.kind == "margins" and level < 4:
@@ -239,8 +232,20 @@ def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series
         else:
             t = _true_value(row, response)
             g = None if t is None else sign * (t - threshold) / scale
-        total += MARGIN_CLIP**2 if g is None else min(g, 0.0) ** 2
-    return violated, total
+        out.append(-MARGIN_CLIP if g is None else g)
+    return np.array(out, dtype=float)
+
+
+def _judge(problem: SurrogateProblem, surrogates: dict[str, Any], row: pd.Series) -> tuple[list[str], float]:
+    """The constraints of the problem's stage the true model's ``row`` violates (by name; a response it did not
+    give counts as violated) and the total scaled violation Σ min(g, 0)² over :func:`_limit_values`."""
+    study = problem.study
+    violated = []
+    for c in study.constraints:
+        t = _true_value(row, c.response)
+        if t is None or not study.holds(c, np.array([t]), problem.stage)[0]:
+            violated.append(c.name)
+    return violated, float(np.sum(np.minimum(_limit_values(problem, surrogates, row), 0.0) ** 2))
 
 
 def _step(problem: SurrogateProblem, surrogates: dict[str, Any], x: np.ndarray, row: pd.Series) -> Step:
@@ -268,9 +273,10 @@ def _next_design(
     u = to_unit(x[None, :], study.bounds)[0]
     box = (np.maximum(u - radius, -1.0), np.minimum(u + radius, 1.0))
     if search.outside and search.restore:
-        # aimed as far inside as the design is outside: the correction's own error at the design it proposes is of
-        # the order of the violation it corrects (a convex constraint would leave a boundary point just outside)
-        nearest = nearest_feasible(problem, x, box=box, inside=float(np.sqrt(search.violation)))
+        # each violated limit aimed as far inside as the design is outside it: the correction's own error at the
+        # design it proposes is of the order of the violation it corrects (a convex constraint would leave a
+        # boundary point just outside); the limits the design meets are held at their boundary
+        nearest = nearest_feasible(problem, x, box=box, inside=search.shortfall)
         if nearest is not None:
             return nearest
     else:
@@ -350,7 +356,8 @@ def confirm_optima(
             conf = Confirmation(o, CONFIRMED, steps=[_step(problem, surrogates, o.x, row)], sense=sense)
             out.append(conf)
             if conf.steps[0].violated:  # an optimum the true model accepts is confirmed as it is
-                state.append(_Search(conf, problem, o.x, row, violation=conf.steps[0].violation))
+                shortfall = np.maximum(-_limit_values(problem, surrogates, row), 0.0)
+                state.append(_Search(conf, problem, o.x, row, shortfall=shortfall))
     for _ in range(max_steps):
         if gradients:
             _probe(study, store, [s for s in state if s.probes is None], run_cases)
@@ -373,7 +380,7 @@ def confirm_optima(
             s.conf.steps.append(step)
             if step.accepted:
                 s.x, s.row, s.probes, s.outside, s.restore = x, row, None, bool(step.violated), False
-                s.violation = step.violation
+                s.shortfall = np.maximum(-_limit_values(s.problem, surrogates, row), 0.0)
             else:  # the region shrinks to half the rejected step (on the [−1, 1] scale)
                 u = to_unit(np.array([s.x, x]), study.bounds)
                 s.radius = 0.5 * float(np.max(np.abs(u[1] - u[0])))

@@ -183,15 +183,15 @@ def local_optimum(
     return Optimum(objective, problem.stage, value, problem.x(best_u[None, :])[0], method)
 
 
-def _feasibility(problem: SurrogateProblem, inside: float = 0.0) -> list[dict[str, Any]]:
-    """SLSQP's inequality for the stage: every scaled constraint at least ``inside`` and the validity margin at least
-    0, each plus :data:`CONSTRAINT_MARGIN`, with the forward-difference Jacobian (none without constraints)."""
+def _feasibility(problem: SurrogateProblem, inside: float | np.ndarray | None = None) -> list[dict[str, Any]]:
+    """SLSQP's inequality for the stage: each scaled constraint at least ``inside`` (one value, or one per limit;
+    0 when None) and the validity margin at least 0, each plus :data:`CONSTRAINT_MARGIN`, with the forward-difference
+    Jacobian (none without constraints)."""
     if not problem.limits and problem.valid_margin is None:
         return []
     steps = _difference_points(problem.bounds.shape[0])
-    least = CONSTRAINT_MARGIN + np.array(
-        [inside] * len(problem.limits) + ([0.0] if problem.valid_margin is not None else [])
-    )
+    targets = np.broadcast_to(0.0 if inside is None else np.asarray(inside, dtype=float), (len(problem.limits),))
+    least = CONSTRAINT_MARGIN + np.concatenate([targets, [0.0] if problem.valid_margin is not None else []])
 
     def jacobian(u: np.ndarray) -> np.ndarray:
         g = problem.constraints(u[None, :] + steps)
@@ -201,14 +201,14 @@ def _feasibility(problem: SurrogateProblem, inside: float = 0.0) -> list[dict[st
 
 
 def nearest_feasible(
-    problem: SurrogateProblem, x: np.ndarray, box: Box | None = None, inside: float = 0.0
+    problem: SurrogateProblem, x: np.ndarray, box: Box | None = None, inside: float | np.ndarray | None = None
 ) -> np.ndarray | None:
-    """The design (SI) nearest ``x`` on the [−1, 1] scale that the stage's problem finds feasible, every scaled
-    constraint at least ``inside`` within its limit: SLSQP on |u − u(x)|² under the stage's constraints, from ``x``,
-    within ``box`` when given; None when the search ends at no such design. The restoration step of a trust-region
-    search standing on a design outside a constraint (the minimum-norm correction back into the feasible set, as in
-    the feasibility restoration of Fletcher & Leyffer's filter SQP, *Math. Programming* 91: 239–269, 2002): the least
-    move, where the model's correction is best."""
+    """The design (SI) nearest ``x`` on the [−1, 1] scale that the stage's problem finds feasible, each scaled
+    constraint at least ``inside`` within its limit (one value, or one per limit): SLSQP on |u − u(x)|² under the
+    stage's constraints, from ``x``, within ``box`` when given; None when the search ends at no such design. The
+    restoration step of a trust-region search standing on a design outside a constraint (the minimum-norm correction
+    back into the feasible set, as in the feasibility restoration of Fletcher & Leyffer's filter SQP, *Math.
+    Programming* 91: 239–269, 2002): the least move, where the model's correction is best."""
     u0 = to_unit(np.atleast_2d(x), problem.bounds)[0]
 
     def distance(u: np.ndarray) -> tuple[float, np.ndarray]:
