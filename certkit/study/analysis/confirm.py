@@ -209,8 +209,6 @@ class _Search:
     outside: bool = True
     #: a step from that design was rejected: the next one restores feasibility by the least move
     restore: bool = False
-    #: by how much (scaled) the design falls short of each of the problem's limits (0 where within)
-    shortfall: np.ndarray | None = None
 
 
 def _probe_points(x: np.ndarray, bounds: np.ndarray, step: float) -> tuple[np.ndarray, np.ndarray]:
@@ -276,7 +274,8 @@ def _next_design(
         # each violated limit aimed as far inside as the design is outside it: the correction's own error at the
         # design it proposes is of the order of the violation it corrects (a convex constraint would leave a
         # boundary point just outside); the limits the design meets are held at their boundary
-        nearest = nearest_feasible(problem, x, box=box, inside=search.shortfall)
+        shortfall = np.maximum(-_limit_values(search.problem, surrogates, row), 0.0)
+        nearest = nearest_feasible(problem, x, box=box, inside=shortfall)
         if nearest is not None:
             return nearest
     else:
@@ -356,8 +355,7 @@ def confirm_optima(
             conf = Confirmation(o, CONFIRMED, steps=[_step(problem, surrogates, o.x, row)], sense=sense)
             out.append(conf)
             if conf.steps[0].violated:  # an optimum the true model accepts is confirmed as it is
-                shortfall = np.maximum(-_limit_values(problem, surrogates, row), 0.0)
-                state.append(_Search(conf, problem, o.x, row, shortfall=shortfall))
+                state.append(_Search(conf, problem, o.x, row))
     for _ in range(max_steps):
         if gradients:
             _probe(study, store, [s for s in state if s.probes is None], run_cases)
@@ -380,7 +378,6 @@ def confirm_optima(
             s.conf.steps.append(step)
             if step.accepted:
                 s.x, s.row, s.probes, s.outside, s.restore = x, row, None, bool(step.violated), False
-                s.shortfall = np.maximum(-_limit_values(s.problem, surrogates, row), 0.0)
             else:  # the region shrinks to half the rejected step (on the [−1, 1] scale)
                 u = to_unit(np.array([s.x, x]), study.bounds)
                 s.radius = 0.5 * float(np.max(np.abs(u[1] - u[0])))
