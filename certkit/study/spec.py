@@ -442,12 +442,9 @@ class Study(_Model):
         return upper
 
     def holds(self, constraint: Constraint, values: np.ndarray, stage: str = "constrained") -> np.ndarray:
-        """Where ``values`` of ``constraint``'s response meet it as a stage of the analysis judges: the constrained
-        stage at the relaxed level (:meth:`AnalysisOptions.relaxed_max`), the preferred stage at Level 1 as well."""
-        ok = constraint.feasible(values, self.analysis.relaxed_max(constraint))
-        if stage == "preferred" and constraint.is_level:
-            ok &= constraint.feasible(values, 1.0)
-        return ok
+        """Where ``values`` of ``constraint``'s response meet it as a stage of the analysis judges, up to the stage's
+        :meth:`allowed_max`."""
+        return constraint.feasible(values, self.allowed_max(constraint, stage))
 
     def analysed_responses(self) -> list[str]:
         """Responses the analysis fits surrogates for: objectives, constraints and profiled responses."""
