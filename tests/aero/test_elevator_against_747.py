@@ -18,13 +18,13 @@ import pytest
 
 from certkit.models.aero.planform import mac_spanwise_position, mean_aerodynamic_chord, sweep_at
 from certkit.units import FT
+from tests.aero.test_directional_against_747 import BAND
 from tests.dynamics.b747_etkin import CBAR as CBAR_747_M
 from tests.dynamics.b747_etkin import CL_DE, CM_DE
 from tests.dynamics.b747_etkin import S as S_747_M2
 
 SH_747, LH_747 = 1469.6 * FT**2, 106.6 * FT  # JSBSim B747 metrics
 V_H_747 = SH_747 * LH_747 / (S_747_M2 * CBAR_747_M)
-BAND = 0.30
 
 
 @pytest.fixture(scope="module")
