@@ -95,6 +95,37 @@ def test_the_rudder_peak_beyond_the_design_limit_is_the_airplane_not_the_pilot(r
     assert vef.status == "fails" and "VMCG computed" in vef.details["basis"]
 
 
+def test_the_ground_track_is_judged_on_the_baseline(result):
+    """The engine-out runs keep within 30 ft of the centreline at every CG (§25.149(e)): the ground-track check complies
+    with the run's own deviation as its value."""
+    for loading in LOADINGS:
+        f = _by(result, loading, "(a) ground track")
+        assert f.status == "complies" and f.limit == 30.0
+        assert f.value == f.details["max_lateral_deviation_on_ground_ft"] <= 30.0
+
+
+FIN_10_PERCENT_SMALLER = ("    area: 527.84 ft^2          # [given]", "    area: 475.0 ft^2")
+
+
+def test_a_fin_too_small_to_hold_the_centreline_fails_instead_of_going_unevaluated(tmp_path):
+    """The baseline with a fin 10 % smaller (475 ft² for 527.84 ft², the rudder the same share of it): §25.149(e)'s
+    VMCG rises to about 146 kn, just below the VEF of 147 kn, and the engine-out ground runs, with the rudder on its
+    27.3° stop and the rotation at VR begun before the heading is recovered, stray 31–41 ft from the centreline (the
+    baseline's 14–19 ft). That is the airplane's directional control with the declared pilot: §25.111 judges every
+    check of every loading (the ground track fails at each CG, the rudder its design limit) instead of setting the runs
+    aside, and §25.113 reports the distances of the same runs (not evaluated only for want of a declared field
+    length)."""
+    res = run_rule("25.111", tmp_path, [FIN_10_PERCENT_SMALLER])
+    assert all(f.status in ("complies", "fails") for f in own(res)), [f.reason for f in own(res)]
+    for loading in LOADINGS:
+        track = _by(res, loading, "(a) ground track")
+        assert track.status == "fails" and track.value > 30.0
+        assert _by(res, loading, "(a) rudder").details["rudder_min_deg"] == pytest.approx(-27.3, abs=1e-6)
+    assert res.status == "fails"
+    distance = run_rule("25.113", tmp_path, [FIN_10_PERCENT_SMALLER])
+    assert all("no performance.takeoff_field_length declared" in f.reason for f in own(distance))
+
+
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
     """Initial acceleration 9.544 ft/s² (both engines) and 4.772 ft/s² (one engine out) within 0.5 %; V one second
     after the failure at VEF is V1 within 0.5 kn; the (c)(2) limit is V2 = 161 kn; lift-off after VR."""

@@ -24,7 +24,6 @@ from certkit_rules.part25.support.minimum_control import computed_vmca
 from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
 from certkit_rules.part25.support.takeoff import (
     PROCEDURE_CRITERIA,
-    REPRESENTATIVE_CRITERIA,
     TAKEOFF_REQUIRES,
     failure_speed_at_v1,
     run_summary,
@@ -207,7 +206,6 @@ class LiftOffSpeedMargin(Rule):
     requires = (*TAKEOFF_REQUIRES, "geometry.landing_gear.tail_strike_attitude")
     criteria = {
         **PROCEDURE_CRITERIA,
-        **REPRESENTATIVE_CRITERIA,
         "max_practicable_rotation_rate_deg_s": Criterion(
             3.0,
             "deg/s",
@@ -241,9 +239,9 @@ class LiftOffSpeedMargin(Rule):
         model's ground effect; no pitch rate, no strut extension): free-air data in the sense of §25.107(d), not
         verified by a ground test. The maximum practicable rotation rate is a criterion (3°/s), the rotation of the
         §25.111 pilot at that rate toward the V2 attitude and at most the tail-strike attitude less the clearance. A
-        run that does not lift off, leaves the centreline by more than the §25.149(e) 30 ft or reaches the tail-strike
-        attitude on the runway before it lifts off earns no verdict (after the lift-off the VLOF is what it is: the
-        pilot model's rotation toward the climb attitude can set a wheel back down, which §25.111 judges).
+        run that does not lift off or reaches the tail-strike attitude on the runway before it lifts off earns no
+        verdict (after the lift-off the VLOF is what it is: the pilot model's rotation toward the climb attitude can set
+        a wheel back down, which §25.111 judges; so is the engine-out ground track, whatever it is).
     """
 
     def evaluate(self, ctx, conditions, crit):
@@ -280,7 +278,7 @@ class LiftOffSpeedMargin(Rule):
                     )
                     continue
                 summary = run_summary(to, row, vr_kn, v2_kn)
-                why = unrepresentative(summary, crit, tail_strike_deg=strike, to_liftoff=True)
+                why = unrepresentative(summary, tail_strike_deg=strike, to_liftoff=True)
                 details = {
                     "VMU": speeds[i],
                     "vmu_limited_by": u.limited_by[i],

@@ -30,6 +30,10 @@ Checks per condition (engine failed):
         δe_min − δe_lo and δe_hi − δe_max);
     (a)(2)-(3) rudder: the extreme rudder of the run within its design limits (margin deg, likewise) — the
         directional control the engine failure needs on the runway and in the air;
+    (a)(2) ground track: the largest deviation from the runway centreline on the ground, from brake release to the
+        lift-off, within the §25.149(e) 30 ft (margin ft: 30 − deviation) — the bound VEF ≥ VMCG (§25.107(a)(1))
+        implies for the failure at VEF, here held to the lift-off (§25.149(e) measures it to the recovery of the
+        heading: a rotation begun before that recovery is judged with it);
     (c)(1) slope of the airborne path from the screen height to the end of the climb-out positive (margin %:
         smallest gradient between records);
     (c)(2) the speed at 35 ft against V2 (margin kn CAS: V35 − V2 ≥ 0).
@@ -37,9 +41,10 @@ V_LOF, VEF, the speed a recognition interval after the failure, the distances (t
 §25.113 takeoff distance), the largest heading deviation, the lateral deviation from the centreline at lift-off and
 at 35 ft, the bank, the largest attitude on the runway and pitch rate before lift-off, and the mean gradient from
 35 ft to the end of the climb-out are reported as details, with how far VLOF lies beyond VR and V35 beyond V2. A run
-that is not a takeoff (certkit_rules.part25.support.takeoff.unrepresentative: no lift-off, more than 30 ft off the
-centreline on the ground, the tail on the runway) earns no verdict: its checks are not evaluated, with the reason. A
-late lift-off is not among them: an airplane that rotates slowly with the scheduled speeds is judged as it flies.
+that is not a takeoff (certkit_rules.part25.support.takeoff.unrepresentative: no lift-off, the tail on the runway: the
+pilot's rotation stays below it) earns no verdict: its checks are not evaluated, with the reason. A late lift-off and
+a ground track off the centreline are not among them: an airplane that rotates slowly or that its rudder cannot hold
+on the centreline with the scheduled speeds is judged as it flies.
 """
 
 from __future__ import annotations
@@ -47,8 +52,8 @@ from __future__ import annotations
 import numpy as np
 from certkit_rules.part25.support.reference_speeds import declared_cas
 from certkit_rules.part25.support.takeoff import (
+    GROUND_TRACK_CRITERIA,
     PROCEDURE_CRITERIA,
-    REPRESENTATIVE_CRITERIA,
     TAKEOFF_REQUIRES,
     distances,
     run_summary,
@@ -98,12 +103,14 @@ class TakeoffPath(Rule):
         inoperative for the rest of the takeoff; it is rotated (the nose gear may leave the ground at no less than
         VR), the slope of the airborne path must be positive and V2 must be reached before the airplane is 35 ft
         above the takeoff surface. certkit simulates the run with the engine failed at VEF and checks that the
-        elevator and the rudder stay within their design limits, that the airborne path climbs and that the speed
+        elevator and the rudder stay within their design limits, that the ground run stays within 30 ft of the
+        centreline (the §25.149(e) bound VEF ≥ VMCG implies), that the airborne path climbs and that the speed
         at 35 ft is at least V2.
     """
     margin = """
         Elevator and rudder: the smaller distance of the run's extreme deflections inside the design limits (deg;
-        ≥ 0: never past them). (c)(1) smallest climb gradient from 35 ft to the end of the climb-out (%; ≥ 0).
+        ≥ 0: never past them). Ground track: 30 ft less the largest deviation from the centreline before the
+        lift-off (ft; ≥ 0). (c)(1) smallest climb gradient from 35 ft to the end of the climb-out (%; ≥ 0).
         (c)(2) speed at 35 ft minus V2 (kn CAS; ≥ 0 complies).
     """
     limitations = """
@@ -122,10 +129,11 @@ class TakeoffPath(Rule):
         moved at most at takeoff_pilot.rudder_rate, ≤ 5° bank toward the live engine in the air) stands for a pilot;
         VEF from V1 by a quasi-steady engine-out acceleration, never below the VMCG §25.149(e) computes; the path
         beyond the climb-out,
-        (c)(3) 1.2 % from 400 ft and (c)(4) configuration changes are not computed. A run that does not lift off,
-        deviates more than 30 ft from the centreline on the ground or reaches the tail-strike attitude on the
-        runway is not a takeoff a pilot flies: its checks are not evaluated, with the reason (a late lift-off is
-        judged, and reported). The paragraph's text is from memory (not in docs/regulation-notes.md).
+        (c)(3) 1.2 % from 400 ft and (c)(4) configuration changes are not computed. The runway has no edge: a
+        ground run that strays beyond 30 ft fails the ground-track check and its other checks are judged as it
+        flies on. A run that does not lift off or reaches the tail-strike attitude on the runway is not a takeoff
+        a pilot flies: its checks are not evaluated, with the reason (a late lift-off is judged, and reported).
+        The paragraph's text is from memory (not in docs/regulation-notes.md).
     """
     references = ("25.107", "25.121", "25.149")
     requires = TAKEOFF_REQUIRES
@@ -134,7 +142,7 @@ class TakeoffPath(Rule):
         "gradient_min": Criterion(
             0.0, "%", SOURCE + " (c)(1) positive slope", "smallest climb gradient of the airborne path"
         ),
-        **REPRESENTATIVE_CRITERIA,
+        **GROUND_TRACK_CRITERIA,
     }
     conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release, critical engine failed at VEF.")
 
@@ -163,6 +171,7 @@ class TakeoffPath(Rule):
                 "(a) rudder within its design limits, engine failed at VEF",
                 "(c)(1) airborne path slope positive",
                 f"(c)(2) speed at {crit.screen_height:.0f} ft at least V2",
+                f"(a) ground track within {crit.lateral_deviation_max:g} ft of the centreline, engine failed at VEF",
             )
             if not tr.converged:
                 out += [
@@ -217,7 +226,7 @@ class TakeoffPath(Rule):
                 all_engines_elevator_min_deg=round(float(np.degrees(run.elevator_min[a])), 2),
             )
             c35 = c0.with_(speed=cas(run.v_screen[i]) * KN, speed_kind="CAS", speed_name="V35")
-            why = unrepresentative(details, crit, tail_strike_deg=to.basis["tail_strike_deg"])
+            why = unrepresentative(details, tail_strike_deg=to.basis["tail_strike_deg"])
             if why:
                 out += [
                     Finding.not_evaluated(
@@ -274,6 +283,17 @@ class TakeoffPath(Rule):
                 )
             out.append(
                 Finding.compare(c35, checks[3], cas(run.v_screen[i]), v2_kn, at_least=True, unit="kn", **details)
+            )
+            out.append(
+                Finding.compare(
+                    c35,
+                    checks[4],
+                    details["max_lateral_deviation_on_ground_ft"],
+                    crit.lateral_deviation_max,
+                    at_least=False,
+                    unit="ft",
+                    **details,
+                )
             )
         return out
 

@@ -12,7 +12,7 @@ distance to 35 ft and 115 % of it, and the takeoff distance, the greater. With a
 ``performance.takeoff_field_length`` the takeoff distance is checked against it (margin ft: field length − takeoff
 distance ≥ 0; an engine-out run that had not reached 35 ft when it had rolled past the field length fails on that
 lower bound); without one the distances are reported and the check is not evaluated. A run that is not a
-takeoff (the §25.111 bounds: no lift-off, ground track off the centreline, the tail on the runway) earns no verdict; a
+takeoff (no lift-off, the tail on the runway) earns no verdict (a ground track off the centreline is §25.111's check); a
 late lift-off lengthens the distance and is judged.
 """
 
@@ -22,7 +22,6 @@ import numpy as np
 from certkit_rules.part25.support.reference_speeds import declared_cas
 from certkit_rules.part25.support.takeoff import (
     PROCEDURE_CRITERIA,
-    REPRESENTATIVE_CRITERIA,
     TAKEOFF_REQUIRES,
     distances,
     run_summary,
@@ -57,13 +56,14 @@ class TakeoffDistance(Rule):
         ground effect on the wing and on the tail's downwash as in §25.111; the pilot and engine models of §25.111
         (rotation at 2.5°/s below the tail-strike attitude,
         the takeoff_pilot's pedals on heading and centreline, first-order spool-down of the failed engine). Runs that
-        are not takeoffs (§25.111: no lift-off, off the centreline, the tail on the runway) are not evaluated; a late
+        are not takeoffs (no lift-off, the tail on the runway) are not evaluated; a ground track off the centreline is
+        judged by §25.111, not here; a late
         lift-off is judged. The paragraph's text is from memory (not in
         docs/regulation-notes.md).
     """
     references = ("25.111", "25.107", "25.109")
     requires = TAKEOFF_REQUIRES
-    criteria = {**PROCEDURE_CRITERIA, **REPRESENTATIVE_CRITERIA}
+    criteria = {**PROCEDURE_CRITERIA}
     conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release; the §25.111 runs.")
     unevaluated = (
         ("25.113(b)", "the wet-runway takeoff distance is not computed"),
@@ -118,11 +118,11 @@ class TakeoffDistance(Rule):
                 continue
             why = [
                 f"engine out: {w}"
-                for w in unrepresentative(details["engine_out"], crit, tail_strike_deg=to.basis["tail_strike_deg"])
+                for w in unrepresentative(details["engine_out"], tail_strike_deg=to.basis["tail_strike_deg"])
             ]
             why += [
                 f"all engines: {w}"
-                for w in unrepresentative(details["all_engines"], crit, tail_strike_deg=to.basis["tail_strike_deg"])
+                for w in unrepresentative(details["all_engines"], tail_strike_deg=to.basis["tail_strike_deg"])
             ]
             if why:
                 out.append(
