@@ -84,3 +84,18 @@ def test_not_evaluated_without_v2_and_positive_gradient_in_a(tmp_path):
     a = run_rule("25.121(a)")
     f = gradient(a)
     assert f.condition.speed_name == "VR" and "VLOF not declared" in f.reason and f.limit == 0.0
+
+
+def test_a_climb_below_the_stall_speed_fails_instead_of_going_unevaluated(tmp_path):
+    """VR, V1 and V2 declared 15 kn low (140, 135 and 146 kn CAS): at MTOW and VR the takeoff configuration's 1-g lift
+    needs CL 1.98 against its CLmax 1.95 (VSR about 142 kn EAS), so no steady climb exists there and the engine-out
+    trim cannot converge. Each such condition fails 'steady flight within CLmax' on the least lift any steady flight
+    at that speed and weight needs; its gradient stays unevaluated (there is none to read)."""
+    low = [("  V1: 150 kn CAS", "  V1: 135 kn CAS"), ("  VR: 155 kn CAS", "  VR: 140 kn CAS")]
+    r = run_rule("25.121(a)", tmp_path, low + [("  V2: 161 kn CAS", "  V2: 146 kn CAS")])
+    untrimmed = [f for f in own(r) if f.status == "not_evaluated" and "did not converge" in f.reason]
+    lift = [f for f in own(r) if f.check.endswith("steady flight within CLmax")]
+    assert untrimmed and len(lift) == len(untrimmed)
+    assert all(f.status == "fails" and f.limit == pytest.approx(1.95) and 1.95 < f.value < 2.05 for f in lift)
+    assert r.status == "fails"
+    assert not any(f.check.endswith("steady flight within CLmax") for f in own(run_rule("25.121(a)")))

@@ -179,16 +179,38 @@ def test_sign_less_bank_more_margin_forward_cg_more_nose_up_and_rudder(shared, b
     assert rud.value < 0 and rud.condition.get("bank_deg") == 30.0
 
 
-def test_not_evaluated_without_vref_and_where_the_turn_cannot_be_trimmed(tmp_path, base, shared):
+def test_not_evaluated_without_vref_and_a_turn_that_cannot_be_flown_fails(tmp_path, base, shared):
+    """Without VREF the landing turn is not evaluated. The baseline's VFTO (1.18 VSR clean) turn at 40° needs about
+    94 % of CLmax and is trimmed (the model reaches its declared CLmax); at 60° of bank it would need 1.44 × that: no
+    steady turn exists, so its controls are not evaluated (the lift named) and the turn fails the stall-warning check
+    on the least lift any steady turn at that speed and bank needs (a path as steep as 10°, cos 10° of the level
+    turn's: still 1.4 × CLmax)."""
     ctx = edited_context(tmp_path, [("  VREF: 136 kn CAS ", "  # VREF: 136 kn CAS ")])
     r = evaluate_part("25.143(h)", ctx, landing)
     assert len(r) == 1 and r[0].status == "not_evaluated" and r[0].reason == "needs speeds.VREF"
-    # the baseline's VFTO (1.18 VSR clean) turn at 40° needs about 94 % of CLmax and is trimmed (the model reaches its
-    # declared CLmax); at 60° of bank it would need 1.44 × that: no steady turn, not evaluated with the lift named
     enroute = [f for f in base.findings if f.condition.get("case") == "en route VFTO"]
     assert enroute and all(f.margin is not None and 0.9 < f.details["CL_over_CLmax"] < 1.0 for f in enroute)
     steep = evaluate_part("25.143(h)", shared, lambda c: c.get("case") == "en route VFTO", bank_deg=60.0)
-    assert steep and all(f.status == "not_evaluated" and "CLmax" in f.reason for f in steep)
+    trims = [f for f in steep if f.check.endswith("trim")]
+    warnings = [f for f in steep if f.check.endswith("free of stall warning")]
+    assert trims and all(f.status == "not_evaluated" and "CLmax" in f.reason for f in trims)
+    assert len(warnings) == len(trims) and all(f.status == "fails" for f in warnings)
+    assert all(f.value > 1.3 * 1.4 for f in warnings)  # the clean CLmax 1.4 (aircraft file)
+
+
+def test_a_wing_too_small_for_the_turns_fails_them(tmp_path):
+    """The baseline with a wing 15 % smaller (4,188 ft² for 4,927 ft², the same speeds): the 30° turn at V2 and the
+    40° turn at VFTO at MTOW need 1.06 and 1.11 × CLmax, so the airplane cannot fly them; each fails the stall-warning
+    check on the least lift it needs (none is left without a verdict for want of a trim)."""
+    ctx = edited_context(
+        tmp_path, [("  area: 4927.3 ft^2            # [given] wing reference area", "  area: 4188.2 ft^2")]
+    )
+    found = evaluate_part("25.143(h)", ctx, lambda c: c.get("case") in ("takeoff V2", "en route VFTO"))
+    untrimmed = [f for f in found if f.check.endswith("trim")]
+    assert untrimmed
+    for f in untrimmed:
+        twin = next(w for w in found if w.check.endswith("free of stall warning") and w.condition == f.condition)
+        assert twin.status == "fails" and twin.value > twin.limit
 
 
 def test_wat_limited_thrust_gives_the_minimum_gradient(shared):

@@ -66,23 +66,28 @@ def test_hand_calculation_sideslip_and_cn_beta(result, ctx):
     assert dr > 0 and da < 0
 
 
-def test_aileron_design_limit_on_the_limit(result, tmp_path):
-    """Aileron design limit set to the largest aileron the (c) sideslips need (the range is set by the rudder, so
-    the deflections do not move): smallest aileron margin 0."""
-    aileron = [f for f in own(result) if "aileron within" in f.check and f.value is not None]
-    limit = f"{max(f.value for f in aileron):.6f}"
-    r = run_rule(
-        RULE,
-        tmp_path,
-        edits=[
-            (
-                "design_limits: {min: -25 deg, max: 25 deg}",  # the aileron's (baseline)
-                f"design_limits: {{min: -{limit} deg, max: {limit} deg}}",
-            )
-        ],
-    )
-    edited = [f for f in own(r) if "aileron within" in f.check and f.margin is not None]
-    assert min(f.margin for f in edited) == pytest.approx(0.0, abs=1e-4)
+def test_an_aileron_too_small_for_the_sideslips_fails_at_every_point_it_cannot_hold(result, tmp_path):
+    """The baseline's aileron with half its chord (8 % of the wing chord for 17 %): the (c) sideslips, whose range the
+    rudder sets, need more aileron than its ±25° design limit at 80 points (27–35°), where the baseline stays inside
+    it. Every sideslip earns its verdict: a trim that needs the aileron past its limit, or more thrust than the
+    engines give, is judged where the airplane can fly it, never left unevaluated."""
+    small = run_rule(RULE, tmp_path, edits=[("chord_ratio: 0.17      # [given]", "chord_ratio: 0.08")])
+    assert all(f.status in ("complies", "fails") for f in own(small)), {f.reason for f in own(small)}
+    over = [f for f in own(small) if "aileron within" in f.check and f.status == "fails"]
+    assert len(over) >= 40 and all(f.value > 25.0 for f in over)
+    assert all(f.status == "complies" for f in own(result) if "aileron within" in f.check)
+
+
+def test_sideslips_beyond_the_level_flight_ceiling_are_flown_in_the_descent_at_full_thrust(result, tmp_path):
+    """Where level flight in the sideslip needs more than full thrust (at 35,000 ft), the sideslip is flown in the
+    steady descent at full thrust, its flight path in the finding's condition: shallow on the baseline (0.04–1.7°), and
+    steeper with a fifth less thrust (to about 3°), where each sideslip is still judged."""
+    descents = [f.condition.get("flight_path_deg") for f in own(result) if f.condition.get("flight_path_deg")]
+    assert descents and all(-2.0 < d < 0.0 for d in descents)
+    weak = run_rule(RULE, tmp_path, edits=[("  static_thrust: 97300 lbf", "  static_thrust: 77840 lbf")])
+    assert all(f.status in ("complies", "fails") for f in own(weak)), {f.reason for f in own(weak)}
+    steeper = [f.condition.get("flight_path_deg") for f in own(weak) if f.condition.get("flight_path_deg")]
+    assert len(steeper) > len(descents) and min(steeper) < min(descents)
 
 
 def test_sideslip_sweep_stable_and_beyond(result):

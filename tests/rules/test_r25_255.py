@@ -123,3 +123,18 @@ def test_baseline_mistrim_from_the_amm_rate():
             assert mistrim - trim == pytest.approx(min(0.75, 2.25 - trim), abs=1e-3)
     force = [f for f in own(base) if f.check.endswith("stick force")]
     assert force and all(f.status == "not_evaluated" and "control_forces.elevator" in f.reason for f in force)
+
+
+def test_beyond_the_level_flight_ceiling_the_mistrim_starts_from_the_descent_at_full_thrust(tmp_path):
+    """With a fifth less thrust (77,840 lbf per engine) level flight at MMO and 35,000 ft needs more than full thrust at
+    the heavier corners: the trim there is the steady descent at full thrust (0.1–0.5° down, in the finding's
+    condition), from which the mistrim and the manoeuvres are judged like any other; no condition is left unevaluated
+    for want of a level trim."""
+    weak = run_rule("25.255", tmp_path, [("  static_thrust: 97300 lbf", "  static_thrust: 77840 lbf")])
+    judged = [f for f in own(weak) if not f.check.endswith("stick force")]
+    assert judged and all(f.status in ("complies", "fails") for f in judged), {f.reason for f in judged}
+    paths = [f.condition.get("flight_path_deg") for f in judged if f.condition.get("flight_path_deg") is not None]
+    assert paths and all(-1.0 < p < 0.0 for p in paths)
+    assert all(f.condition.altitude > 10_000 for f in judged if f.condition.get("flight_path_deg") is not None)
+    base = run_rule("25.255")
+    assert not any(f.condition.get("flight_path_deg") for f in own(base))

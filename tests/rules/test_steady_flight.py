@@ -10,13 +10,15 @@ THROTTLE_LIMITED = SimpleNamespace(converged=False, limits_exceeded=[SimpleNames
 
 
 class StubContext:
-    """``trim(conds, throttle=None)``: level flight throttle-limited; at full thrust the path ``full``; at idle
-    ``idle`` (rad)."""
+    """``trim(conds, kind, beta, throttle=None)``: level flight throttle-limited; at full thrust the path ``full``; at
+    idle ``idle`` (rad). The kind and sideslips asked are kept (``asked``)."""
 
     def __init__(self, full: float, idle: float):
         self.full, self.idle = full, idle
+        self.asked = []
 
-    def trim(self, conds, throttle=None):
+    def trim(self, conds, kind="straight", beta=0.0, throttle=None):
+        self.asked.append((kind, list(beta), throttle))
         if throttle is None:
             return SimpleNamespace(results=[THROTTLE_LIMITED for _ in conds])
         gamma = self.full if throttle >= 1.0 else self.idle
@@ -43,3 +45,12 @@ def test_at_the_ceiling_the_full_thrust_trim_is_level_flight():
 def test_below_the_idle_floor_the_idle_climb():
     results, stops = steady_flight_trims(StubContext(full=0.05, idle=0.01), ["c"])
     assert stops == [0.0] and results[0].gamma == 0.01
+
+
+def test_sideslips_are_retried_at_the_stop_with_their_own_sideslip():
+    """A steady-heading sideslip beyond the ceiling is trimmed again at full thrust with the same kind and, row by row,
+    the sideslip of the condition retried (the others keep their level trims)."""
+    stub = StubContext(full=-0.01, idle=-0.1)
+    results, stops = steady_flight_trims(stub, ["a", "b"], kind="sideslip", beta=[0.05, 0.1])
+    assert stops == [1.0, 1.0] and [r.gamma for r in results] == [-0.01, -0.01]
+    assert stub.asked == [("sideslip", [0.05, 0.1], None), ("sideslip", [0.05, 0.1], 1.0)]

@@ -554,7 +554,10 @@ def _solve(
             found += _check(
                 "throttle", tval, (lo, hi), _HINTS["throttle_high" if tval > hi else "throttle_low"], angle=False
             )
-            if rnorm[i] > tol and not found and (tval >= _THROTTLE_BOX[1] or tval <= _THROTTLE_BOX[0]):
+            # a non-converged iterate on a throttle stop says so even when a control is also past its limit (level
+            # flight out of thrust leaves the controls' iterate unreliable): callers retry at the stop
+            on_stop = tval >= _THROTTLE_BOX[1] or tval <= _THROTTLE_BOX[0]
+            if rnorm[i] > tol and on_stop and not any(e.control == "throttle" for e in found):
                 high = tval >= _THROTTLE_BOX[1]
                 found.append(
                     LimitExceedance(

@@ -36,6 +36,7 @@ there the gradient must be met.
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -43,8 +44,9 @@ from certkit_rules.part25.support.climb_checks import CGS
 from certkit_rules.part25.support.control_checks import control_findings, trim_details
 from certkit_rules.part25.support.reference_speeds import declared_cas, reference_stall_speed
 from certkit_rules.part25.support.thrust_trims import at_mass, full_thrust, oei_climb, scaled_speed, wat_limit_search
+from certkit_rules.part25.support.turns import STEEPEST_PATH, least_lift_coefficient
 
-from certkit.engine.conditions import ConditionSpace, DesignWeight
+from certkit.engine.conditions import ConditionSpace, DesignWeight, speed_as
 from certkit.engine.evidence.performance import climb_gradient_evidence
 from certkit.engine.registry import ControlCase, ControlResponses, Criterion, Rule, rule
 from certkit.engine.results import Finding
@@ -93,6 +95,22 @@ def climb_findings(
                     f"(residual {r.residual_norm:.1e}); " + "; ".join(m.message for m in r.limits_exceeded),
                 )
             )
+            # below the stall speed no steady climb exists whatever a trim finds: the least lift any steady flight
+            # at this speed and weight needs, against CLmax
+            least, clmax = least_lift_coefficient(ctx, here), ctx.clmax(here.configuration, speed_as(here, "MACH"))
+            if clmax and least > clmax:
+                out.append(
+                    Finding.compare(
+                        here,
+                        f"{check.split(' ')[0]} steady flight within CLmax",
+                        least,
+                        clmax,
+                        at_least=False,
+                        unit="C_L",
+                        reason=f"no steady flight at this speed and weight: it needs at least CL {least:.3f} "
+                        f"(on a path as steep as {math.degrees(STEEPEST_PATH):.0f}°), beyond CLmax {clmax:.3f}",
+                    )
+                )
             continue
         details = dict(
             trim_details(r),

@@ -29,7 +29,7 @@ from certkit_rules.part25.support.climb_checks import CGS
 from certkit_rules.part25.support.control_checks import control_findings
 from certkit_rules.part25.support.reference_speeds import declared_cas, stall_warning_cl
 from certkit_rules.part25.support.thrust_trims import critical_engine, operating_thrust, trim_at_thrust
-from certkit_rules.part25.support.turns import turn_details
+from certkit_rules.part25.support.turns import STEEPEST_PATH, least_lift_coefficient, turn_details
 
 from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.evidence.performance import margins_evidence
@@ -277,6 +277,7 @@ class ManeuveringCapability(Rule):
             )
             if "wat" in spec:
                 details["wat_thrust_capped_at_available"] = bool(capped[i])
+            cl_sw, basis = stall_warning_cl(ctx, c.configuration, c.mass)
             if not r.converged:
                 lift = f"; the turn needs n = {details['load_factor']:.3f}, CL = {details['CL']:.2f}" + (
                     f" ({details['CL_over_CLmax']:.0%} of CLmax: the model's lift near stall may not hold it)"
@@ -293,11 +294,30 @@ class ManeuveringCapability(Rule):
                         **details,
                     )
                 )
+                # the least lift the turn needs on any path: beyond the stall warning, the turn fails whatever the
+                # trim would have found (the controls of a turn that cannot be flown stay unevaluated)
+                least = least_lift_coefficient(ctx, c, float(banks[i]))
+                if least > cl_sw:
+                    out.append(
+                        Finding.compare(
+                            c,
+                            f"{check} free of stall warning",
+                            least,
+                            cl_sw,
+                            at_least=False,
+                            unit="C_L",
+                            reason=f"the turn needs at least CL {least:.3f} (on a path as steep as "
+                            f"{math.degrees(STEEPEST_PATH):.0f}°), beyond the stall-warning CL: no steady turn at this "
+                            "speed and bank stays free of it",
+                            stall_warning_CL=round(cl_sw, 4),
+                            stall_warning_basis=basis,
+                            **details,
+                        )
+                    )
                 continue
             for f in control_findings(c, check, r, limits):
                 f.details.update(details)
                 out.append(f)
-            cl_sw, basis = stall_warning_cl(ctx, c.configuration, c.mass)
             out.append(
                 Finding.compare(
                     c,

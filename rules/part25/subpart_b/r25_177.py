@@ -17,7 +17,13 @@ configuration's maximum allowable speed, at sea level and 35,000 ft (clean only 
 from __future__ import annotations
 
 import numpy as np
-from certkit_rules.part25.support.stability_speeds import FLAP_ALTITUDE, PHASES, by_configuration, refine_speeds
+from certkit_rules.part25.support.stability_speeds import (
+    FLAP_ALTITUDE,
+    PHASES,
+    by_configuration,
+    refine_speeds,
+    steady_flight_trims,
+)
 
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace, speed_as
 from certkit.engine.evidence.stability import margin_matrix_evidence
@@ -83,13 +89,6 @@ class StaticLateralDirectionalStability(Rule):
             5.0, "deg", "certkit numerical choice", "sideslip of the first trim, from which the (c) range is scaled"
         ),
         "low_speed_factor": Criterion(1.13, "", SOURCE + " (a), (b)", "low end of the speed range, multiple of VSR"),
-        "descent_deg": Criterion(
-            3.0,
-            "deg",
-            "project choice: a descent at reduced power where level flight in the "
-            "sideslip needs more than full thrust (§25.177(a): symmetric power conditions)",
-            "flight-path angle of the sideslip trims that cannot be held level",
-        ),
         "flap_altitude_max": FLAP_ALTITUDE,
     }
     conditions = ConditionSpace(
@@ -107,8 +106,9 @@ class StaticLateralDirectionalStability(Rule):
         airplane is symmetric); the 180 lbf bound and the force reversal of (d) need control_forces.rudder (without
         it the range is bounded by the rudder deflection alone); the "limits found necessary for safe operation" of
         the proportionality factor are not numeric (the ratio of local gradients is reported); level flight at the
-        power for level flight (a shallow descent where that needs more than full thrust), not every symmetric
-        power condition; without a declared VFC/MFC the top speed is the least §25.253(b) allows.
+        power for level flight (the steady descent at full thrust where that needs more, its flight path in the
+        finding's condition), not every symmetric power condition; without a declared VFC/MFC the top speed is the
+        least §25.253(b) allows.
     """
 
     implementation = "partial"
@@ -154,22 +154,10 @@ class StaticLateralDirectionalStability(Rule):
         return out
 
     def _trims(self, ctx, conds, betas, crit):
-        """Steady-heading sideslip trims of ``conds`` at ``betas`` (rad, per condition); level flight, or a
-        shallow descent where level flight needs more than full thrust."""
-        results = list(ctx.trim(conds, kind="sideslip", beta=betas).results)
-        short = [
-            k for k, r in enumerate(results) if any(e.control == "throttle" and e.limit > 0 for e in r.limits_exceeded)
-        ]
-        if short:
-            retry = ctx.trim(
-                [conds[k] for k in short],
-                kind="sideslip",
-                beta=np.asarray(betas)[short],
-                gamma=-np.radians(crit.descent_deg),
-            )
-            for k, r in zip(short, retry.results):
-                results[k] = r
-        return results
+        """Steady-heading sideslip trims of ``conds`` at ``betas`` (rad, per condition) in the steady flight the
+        airplane can hold: level, or the steady descent at full thrust where level flight in the sideslip needs more
+        (the flight path solved by the trim)."""
+        return steady_flight_trims(ctx, conds, kind="sideslip", beta=betas)[0]
 
     def _sideslips(self, ctx, conds, crit, limits, rudder_force):
         n = len(conds)

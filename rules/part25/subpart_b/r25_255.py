@@ -9,10 +9,12 @@ extrapolated, (c)), (b)(1) the stick force vs g curve must have a positive slope
 VFC/MFC and VDF/MDF the longitudinal control force may not reverse; (f) from an overspeed at VDF/MDF at least
 1.5 g must be produced for recovery with no more than 125 lbf.
 
-certkit's reading, per CG corner and altitude: trim level at VMO/MMO with the movable stabiliser (elevator at its
-trim setting), move the stabiliser by the rate × 3 s nose up and nose down (within its trim limits) and hold it;
-at VFC/MFC and VDF/MDF (thrust held at the trim), solve the instantaneous symmetric pull-up to 1.5 g and push-over
-to 0 g for the elevator (:func:`certkit.models.dynamics.pull_up.symmetric_pull_up`). Checks: the elevator within
+certkit's reading, per CG corner and altitude: trim at VMO/MMO with the movable stabiliser (elevator at its trim
+setting) in level flight, or where that needs more than full thrust in the steady descent at full thrust (the flight
+path in the condition: the speed is reached as in the flight test, descending), move the stabiliser by the rate × 3 s
+nose up and nose down (within its trim limits) and hold it; at VFC/MFC and VDF/MDF (thrust held at the trim), solve
+the instantaneous symmetric pull-up to 1.5 g and push-over to 0 g for the elevator
+(:func:`certkit.models.dynamics.pull_up.symmetric_pull_up`). Checks: the elevator within
 its design limits (control margin), and the elevator-fixed sense of (b): more trailing-edge-up elevator to pull,
 more trailing-edge-down to push (a positive elevator-per-g slope; no reversal). With control_forces.elevator the
 stick force itself (zero at the original trim, pull positive) must rise with g from 0 g through 1 g to 1.5 g
@@ -25,6 +27,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from certkit_rules.part25.support.stability_speeds import steady_flight_trims
 
 from certkit.atmosphere import convert_speed, speed_of_sound
 from certkit.engine.conditions import Altitudes, CgCorners, ConditionSpace
@@ -91,7 +94,8 @@ class OutOfTrim(Rule):
     implementation = "partial"
     limitations = """
         Steady manoeuvre points (instantaneous pull-up / push-over, the speed not held), not the flight-test dive;
-        1.5 g and 0 g of the (c)(2) range, not the extrapolation to −1 g and 2.5 g; thrust held at the VMO/MMO trim.
+        1.5 g and 0 g of the (c)(2) range, not the extrapolation to −1 g and 2.5 g; thrust held at the VMO/MMO trim
+        (level, or the steady descent at full thrust where level flight at VMO/MMO needs more).
         The (a)(2) autopilot mistrim is not modelled (needs the autopilot's authority); without a declared trim rate
         the mistrim is not known and nothing is evaluated. Stick forces need control_forces.elevator.
     """
@@ -126,6 +130,7 @@ class OutOfTrim(Rule):
             vmo, _ = ctx.design_speed_eas("VMO", c.altitude or 0.0)
             conds.append(c.with_(speed=float(vmo), speed_kind="EAS", speed_name="VMO/MMO"))
         batch = ctx.trim(conds)
+        trims, stops = steady_flight_trims(ctx, conds)  # beyond the level-flight ceiling: descending at full thrust
         limits = control_limits(ac, configuration=conds[0].configuration)  # the trims' configuration (one batch)
         lo, hi = limits["stabilizer"]
         e_lo, e_hi = limits["elevator"]
@@ -133,12 +138,16 @@ class OutOfTrim(Rule):
         elevator = control_force_model(ac, "elevator")
         out = []
         model = batch.model
+        held = [i for i, stop in enumerate(stops) if stop is not None]
+        trim_u = batch.u.copy()
+        for i in held:
+            trim_u[i] = [trims[i].controls[name] for name in model.control_names]
         js, _je = model.control_index("stabilizer"), model.control_index("elevator")
         h = np.array([c.altitude or 0.0 for c in conds])
         for sense, sign in (("nose-up", -1.0), ("nose-down", 1.0)):
-            u = batch.u.copy()
+            u = trim_u.copy()
             u[:, js] = np.clip(u[:, js] + sign * delta, lo, hi)
-            moved = np.abs(u[:, js] - batch.u[:, js])
+            moved = np.abs(u[:, js] - trim_u[:, js])
             for speed_name in ("VFC/MFC", "VDF/MDF"):
                 eas = np.array([test_speeds(ctx, hh)[speed_name] for hh in h])
                 tas = np.array([float(convert_speed(v, "EAS", "TAS", hh)) for v, hh in zip(eas, h)])
@@ -153,11 +162,12 @@ class OutOfTrim(Rule):
                         speed=float(eas[i]),
                         speed_kind="EAS",
                         speed_name=speed_name,
+                        **({} if stops[i] is None else {"flight_path_deg": round(math.degrees(trims[i].gamma), 2)}),
                     )
                     out += self._findings(
                         here,
                         i,
-                        batch.results[i],
+                        trims[i],
                         u[i, js],
                         one,
                         pull,

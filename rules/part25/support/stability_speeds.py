@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 
+import numpy as np
 from certkit_rules.part25.support.control_speeds import vsr_cas
 
 from certkit.atmosphere import convert_speed
@@ -82,22 +83,24 @@ def _throttle_limited(result) -> bool:
 LEVEL_PATH_TOLERANCE = 1e-4
 
 
-def steady_flight_trims(ctx, conds):
+def steady_flight_trims(ctx, conds, kind: str = "straight", beta=None):
     """Trims of ``conds`` (one configuration) in the steady flight the airplane can hold at each condition: level
     flight, or, where level flight needs more than full thrust (beyond the weight's level-flight ceiling), the steady
     descent at full thrust, or where it needs less than idle, the steady climb at idle — the flight path solved by the
     trim. A level trim that ran into a throttle stop does not say reliably which one (its iterate may end at either
     bound), so full thrust is tried first and kept where it descends, then idle where it climbs (each to within
-    :data:`LEVEL_PATH_TOLERANCE` of level: at the ceiling itself the stop's trim is level flight). Returns (trim
-    results, throttle per condition: None for level flight, else the stop held)."""
-    results = list(ctx.trim(conds).results)
+    :data:`LEVEL_PATH_TOLERANCE` of level: at the ceiling itself the stop's trim is level flight). ``kind`` and
+    ``beta`` (rad, one per condition; steady-heading sideslips) are the trim's. Returns (trim results, throttle per
+    condition: None for level flight, else the stop held)."""
+    betas = np.zeros(len(conds)) if beta is None else np.broadcast_to(np.asarray(beta, dtype=float), (len(conds),))
+    results = list(ctx.trim(conds, kind=kind, beta=betas).results)
     stops: list[float | None] = [None] * len(conds)
     tol = LEVEL_PATH_TOLERANCE
     for stop, keep in ((1.0, lambda r: r.gamma <= tol), (0.0, lambda r: r.gamma >= -tol)):
         rows = [i for i, r in enumerate(results) if stops[i] is None and _throttle_limited(r)]
         if not rows:
             break
-        redo = ctx.trim([conds[i] for i in rows], throttle=stop).results
+        redo = ctx.trim([conds[i] for i in rows], kind=kind, beta=betas[rows], throttle=stop).results
         for i, r in zip(rows, redo):
             if r.converged and keep(r):
                 results[i], stops[i] = r, stop
