@@ -363,3 +363,25 @@ def test_out_of_trim_checked_manoeuvres(checked, tmp_path):
             assert a.get("stall_line_load_factor") == b.get("stall_line_load_factor")
         compared += 1
     assert compared == len(out) >= 8
+
+
+def test_a_mistrim_beyond_the_level_flight_ceiling_is_flown_in_the_descent_at_full_thrust(tmp_path):
+    """The baseline with its wing swept 40° for 30.94° (geometry; the same area and aspect ratio): at 43,000 ft the
+    light forward corner's nose-up mistrim from VC, entered in level flight, needs more thrust than full once the
+    elevator holds the mistrim (its trim drag), so that entry is trimmed in the steady flight at full thrust (at that
+    weight's ceiling: within 0.01° of level, the path in the finding's condition) and its checked manoeuvre is flown
+    and judged, as §25.427(b) then splits it; nothing is left unevaluated for want of that trim (on the baseline the
+    findings are unchanged)."""
+    swept = [("    sweep_quarter_chord: 30.94 deg   # [given]", "    sweep_quarter_chord: 40.0 deg")]
+    res = run_rule("25.331(c)(2)", tmp_path, swept)
+    assert not any(f.status == "not_evaluated" and "mistrimmed" in f.reason for f in res.findings)
+    entry = [
+        f
+        for f in own(res)
+        if f.condition.loading == "fwd_mlw"
+        and f.condition.altitude > 13_000
+        and f.condition.get("trim") == "nose up"
+        and f.condition.get("entry_speed") == "VC"
+    ]
+    assert entry and all(-0.01 <= f.condition.get("flight_path_deg") <= 0.0 for f in entry)
+    assert all(f.status in ("complies", "fails") for f in entry)

@@ -498,15 +498,30 @@ def hold_mistrims(ctx, batch, entries, reference, crit) -> dict:
             again = ctx.trim(conds, stabilizer=stab)
         else:
             again = ctx.trim(conds, stabilizer=stab, throttle=np.array([throttle[pos[todo[k]]] for k in group]))
+        results, xs, us = list(again.results), again.x.copy(), again.u.copy()
+        # a level entry whose mistrim (the elevator's trim drag) needs more than full thrust: the steady descent at
+        # full thrust, the flight path solved and recorded in the condition
+        short = [j for j, r in enumerate(results) if level and not r.converged and _needs_more_thrust(r)]
+        if short:
+            down = ctx.trim([conds[j] for j in short], stabilizer=stab[short], throttle=1.0)
+            for jj, j in enumerate(short):
+                if down.results[jj].converged and down.results[jj].gamma <= 0.0:
+                    results[j], xs[j], us[j] = down.results[jj], down.x[jj], down.u[jj]
+                    batch.gamma[pos[todo[group[j]]]] = down.results[jj].gamma
         for j, k in enumerate(group):
-            e, r = todo[k], again.results[j]
+            e, r = todo[k], results[j]
             if r.converged and not r.limits_exceeded:
-                batch.x[pos[e]], batch.u[pos[e]] = again.x[j], again.u[j]
+                batch.x[pos[e]], batch.u[pos[e]] = xs[j], us[j]
             else:
                 msg = "; ".join(m.message for m in r.limits_exceeded) or "trim did not converge"
                 failed[e] = f"no 1 g trim with the stabiliser mistrimmed (the elevator holding it): {msg}"
     batch.failed = sorted(failed.items())
     return details
+
+
+def _needs_more_thrust(result) -> bool:
+    """The trim ran out of thrust (a throttle exceedance at the full-throttle stop, not at idle)."""
+    return any(m.control == "throttle" and m.limit > 0.0 for m in result.limits_exceeded)
 
 
 def _mistrim_key(c, sense=None) -> tuple:
