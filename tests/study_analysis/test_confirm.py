@@ -20,8 +20,8 @@ def f_true(x):
     return (x[:, 0] - 0.8) ** 2 + (x[:, 1] - 0.8) ** 2 + (x[:, 2] - 0.3) ** 2
 
 
-def _true_model(g_true, calls):
-    """A true model as the study runner returns it: a frame of cases (objective f exact, constraint g_true)."""
+def _true_model(g_true, calls, f=f_true):
+    """A true model as the study runner returns it: a frame of cases (objective ``f`` exact, constraint g_true)."""
 
     def run_cases(study, store, points, block, role):
         rows = []
@@ -34,7 +34,7 @@ def _true_model(g_true, calls):
                     "status": "ok",
                     "block": block,
                     **{VAR_PREFIX + v.path: p[v.path] for v in study.variables},
-                    RESP_PREFIX + "f": float(f_true(x)[0]),
+                    RESP_PREFIX + "f": float(f(x)[0]),
                     RESP_PREFIX + "g": float(g_true(x)[0]),
                 }
             )
@@ -62,11 +62,12 @@ def _confirm(g_true):
     return confirm_optima(study, None, sur, checked, run_cases=run), calls
 
 
-def _true_optimum(g_true):
-    """The true problem solved directly (the reference: SLSQP on the true functions, from the feasible origin)."""
+def _true_optimum(g_true, f=f_true, start=None):
+    """The true problem solved directly (the reference: SLSQP on the true functions, from a feasible ``start``,
+    by default 0.2 in every variable)."""
     res = minimize(
-        lambda x: float(f_true(x[None, :])[0]),
-        np.full(D, 0.2),
+        lambda x: float(f(x[None, :])[0]),
+        np.full(D, 0.2) if start is None else np.asarray(start, dtype=float),
         method="SLSQP",
         bounds=[(0.0, 1.0)] * D,
         constraints=[{"type": "ineq", "fun": lambda x: 1.0 - float(g_true(x[None, :])[0])}],
@@ -236,15 +237,7 @@ def test_after_a_rejected_step_the_search_restores_feasibility_by_the_least_move
     def g_true(x):
         return x[:, 0] + x[:, 1] + 0.02 + 20.0 * (x[:, 0] - x0) ** 2
 
-    def run_cases(study, store, points, block, role):
-        rows = []
-        for p in points:
-            x = np.array([[p[v.path] for v in study.variables]])
-            row = {"key": str(x[0].tolist()), "status": "ok", "block": block}
-            row |= {VAR_PREFIX + v.path: p[v.path] for v in study.variables}
-            rows.append(row | {RESP_PREFIX + "f": float(f2(x)[0]), RESP_PREFIX + "g": float(g_true(x)[0])})
-        return pd.DataFrame(rows)
-
+    run_cases = _true_model(g_true, [], f2)
     checked = reevaluate_optima(study, None, sur, [best], run_cases=run_cases)
     (conf,) = confirm_optima(study, None, sur, checked, run_cases=run_cases)
     first, rejected, restored = conf.steps[:3]
@@ -254,13 +247,6 @@ def test_after_a_rejected_step_the_search_restores_feasibility_by_the_least_move
     # the least move: within half the rejected step, on the [−1, 1] scale
     span = lambda a, b: float(np.max(np.abs(a - b))) * 2.0  # noqa: E731 (unit bounds: [0, 1] → [−1, 1])
     assert span(restored.x, first.x) <= 0.5 * span(rejected.x, first.x) + 1e-9
-    res = minimize(
-        lambda x: float(f2(x[None, :])[0]),
-        np.array([0.7, 0.1, 0.3, 0.5]),
-        method="SLSQP",
-        bounds=[(0.0, 1.0)] * D,
-        constraints=[{"type": "ineq", "fun": lambda x: 1.0 - float(g_true(x[None, :])[0])}],
-        options={"ftol": 1e-12},
-    )
+    _, best_f = _true_optimum(g_true, f2, start=[0.7, 0.1, 0.3, 0.5])
     assert conf.status == CONFIRMED and conf.design.true["g"] <= 1.0
-    assert res.fun - 1e-9 <= conf.design.true["f"] <= res.fun + 0.002
+    assert best_f - 1e-9 <= conf.design.true["f"] <= best_f + 0.002
