@@ -11,7 +11,9 @@ trim needs, T_k, gives the next angle by the energy relation (Anderson, *Aircraf
 
 so that the last trim is at (close to) the available thrust and its elevator, aileron and rudder are
 the deflections needed to hold the climb; those are reported against their design limits. The gradient
-is tan γ (height gained over horizontal distance).
+is tan γ (height gained over horizontal distance). A condition whose trim does not converge has no gradient to read;
+where its speed lies below the configuration's stall speed (the least lift any steady flight there needs, on a path
+up to 10°, beyond CLmax: rules/part25/support/turns.py) it fails "steady flight within CLmax".
 
 Thrust available is the engine model's throttle 1: the takeoff rating of the declared deck, and for the
 parametric turbofan (one rating) its sea-level static thrust with the Mattingly lapse, i.e. the takeoff
