@@ -4,6 +4,7 @@ returns what a trim at each throttle setting would: the selection logic is check
 
 from types import SimpleNamespace
 
+import numpy as np
 from certkit_rules.part25.support.stability_speeds import LEVEL_PATH_TOLERANCE, steady_flight_trims
 
 THROTTLE_LIMITED = SimpleNamespace(converged=False, limits_exceeded=[SimpleNamespace(control="throttle")], gamma=0.0)
@@ -18,7 +19,7 @@ class StubContext:
         self.asked = []
 
     def trim(self, conds, kind="straight", beta=0.0, throttle=None):
-        self.asked.append((kind, list(beta), throttle))
+        self.asked.append((kind, np.atleast_1d(beta).tolist(), throttle))
         if throttle is None:
             return SimpleNamespace(results=[THROTTLE_LIMITED for _ in conds])
         gamma = self.full if throttle >= 1.0 else self.idle

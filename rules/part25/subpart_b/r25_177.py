@@ -153,7 +153,7 @@ class StaticLateralDirectionalStability(Rule):
             out += self._sideslips(ctx, conds, crit, limits, rudder_force)
         return out
 
-    def _trims(self, ctx, conds, betas, crit):
+    def _trims(self, ctx, conds, betas):
         """Steady-heading sideslip trims of ``conds`` at ``betas`` (rad, per condition) in the steady flight the
         airplane can hold: level, or the steady descent at full thrust where level flight in the sideslip needs more
         (the flight path solved by the trim)."""
@@ -163,7 +163,7 @@ class StaticLateralDirectionalStability(Rule):
         n = len(conds)
         lo_r, hi_r = limits["rudder"]
         beta_ref = np.radians(crit.reference_sideslip_deg)
-        first = self._trims(ctx, conds, np.full(n, beta_ref), crit)
+        first = self._trims(ctx, conds, np.full(n, beta_ref))
         # the (c) range: the sideslip of half the available rudder (and of 180 lbf), scaled from the reference trim
         # (steady-heading sideslip deflections are near-linear in β); its sweep then shows whether they are
         dr_ref = np.array([r.controls["rudder"] if r.converged else np.nan for r in first])
@@ -182,7 +182,7 @@ class StaticLateralDirectionalStability(Rule):
         ok = np.isfinite(beta_c)
         rows = [(k, j) for k in np.flatnonzero(ok) for j in range(fr.size)]
         sweep = (
-            self._trims(ctx, [conds[k] for k, _ in rows], np.array([fr[j] * beta_c[k] for k, j in rows]), crit)
+            self._trims(ctx, [conds[k] for k, _ in rows], np.array([fr[j] * beta_c[k] for k, j in rows]))
             if rows
             else []
         )

@@ -92,15 +92,18 @@ def steady_flight_trims(ctx, conds, kind: str = "straight", beta=None):
     :data:`LEVEL_PATH_TOLERANCE` of level: at the ceiling itself the stop's trim is level flight). ``kind`` and
     ``beta`` (rad, one per condition; steady-heading sideslips) are the trim's. Returns (trim results, throttle per
     condition: None for level flight, else the stop held)."""
-    betas = np.zeros(len(conds)) if beta is None else np.broadcast_to(np.asarray(beta, dtype=float), (len(conds),))
-    results = list(ctx.trim(conds, kind=kind, beta=betas).results)
+    # without sideslips the level trims are the plain ones other procedures ask for (one memoised batch)
+    per = {} if beta is None else {"beta": np.broadcast_to(np.asarray(beta, dtype=float), (len(conds),))}
+    results = list(ctx.trim(conds, kind=kind, **per).results)
     stops: list[float | None] = [None] * len(conds)
     tol = LEVEL_PATH_TOLERANCE
     for stop, keep in ((1.0, lambda r: r.gamma <= tol), (0.0, lambda r: r.gamma >= -tol)):
         rows = [i for i, r in enumerate(results) if stops[i] is None and _throttle_limited(r)]
         if not rows:
             break
-        redo = ctx.trim([conds[i] for i in rows], kind=kind, beta=betas[rows], throttle=stop).results
+        redo = ctx.trim(
+            [conds[i] for i in rows], kind=kind, throttle=stop, **{k: v[rows] for k, v in per.items()}
+        ).results
         for i, r in zip(rows, redo):
             if r.converged and keep(r):
                 results[i], stops[i] = r, stop
