@@ -60,16 +60,15 @@ def test_less_thrust_and_a_forward_cg_raise_vmu(baseline_result):
 
 def test_a_lower_tail_strike_attitude_fails(baseline_result, tmp_path):
     """An aft body that touches the runway at 11° (longer fuselage or shorter gear): VMU rises (less lift at the
-    limiting attitude) more than the lift-off speed does: every evaluated margin falls and the all-engines checks fail
-    at every CG. (The forward CG's engine-out run reaches 11° on the runway — the rotation toward the climb attitude
-    once the wheels first unload — and earns no verdict there.)"""
+    limiting attitude) more than the all-engines lift-off speed does, so the all-engines margins fall and fail at
+    every CG. With an engine out the pilot, holding 2° below the lower tail-strike attitude, lifts off later at every
+    CG (the engine-out margins then move either way: VLOF rises with VMU)."""
     low = run_rule(RULE, tmp_path, [(STRIKE, "tail_strike_attitude: 11 deg")])
+    assert all(f.status in ("complies", "fails") for f in low.findings), [f.reason for f in low.findings]
     for loading in LOADINGS:
-        for engine_out in (False, True):
-            f = by(low, loading, engine_out)
-            if f.status != "not_evaluated":
-                assert f.margin < by(baseline_result, loading, engine_out).margin
-        assert by(low, loading, False).status == "fails"
+        f, b = by(low, loading, False), by(baseline_result, loading, False)
+        assert f.margin < b.margin and f.status == "fails"
+        assert by(low, loading, True).details["vlof_kn"] > by(baseline_result, loading, True).details["vlof_kn"]
     assert low.status == "fails"
 
 

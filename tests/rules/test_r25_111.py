@@ -109,21 +109,44 @@ FIN_10_PERCENT_SMALLER = ("    area: 527.84 ft^2          # [given]", "    area:
 
 def test_a_fin_too_small_to_hold_the_centreline_fails_instead_of_going_unevaluated(tmp_path):
     """The baseline with a fin 10 % smaller (475 ft² for 527.84 ft², the rudder the same share of it): §25.149(e)'s
-    VMCG rises to about 146 kn, just below the VEF of 147 kn, and the engine-out ground runs, with the rudder on its
-    27.3° stop and the rotation at VR begun before the heading is recovered, stray 31–41 ft from the centreline (the
-    baseline's 14–19 ft). That is the airplane's directional control with the declared pilot: §25.111 judges every
-    check of every loading (the ground track fails at each CG, the rudder its design limit) instead of setting the runs
-    aside, and §25.113 reports the distances of the same runs (not evaluated only for want of a declared field
-    length)."""
+    VMCG rises to about 146 kn, just below the VEF of 147 kn, and the engine-out ground runs hold the rudder on its
+    27.3° stop at every CG. At the forward CG the airplane, lifting off last (about 170 kn against 161–162 kn at the
+    reference and aft CG: the most tail download), strays 48 ft from the centreline (the baseline's 17 ft); at the
+    others 19–24 ft. That is the airplane's directional control with the declared pilot: §25.111 judges every check
+    of every loading (the forward CG's ground track fails, the rudder its design limit everywhere) instead of setting
+    the runs aside, and §25.113 reports the distances of the same runs (not evaluated only for want of a declared
+    field length)."""
     res = run_rule("25.111", tmp_path, [FIN_10_PERCENT_SMALLER])
     assert all(f.status in ("complies", "fails") for f in own(res)), [f.reason for f in own(res)]
+    base_track = _by(run_rule("25.111"), "MTOW forward", "(a) ground track").value
+    track = _by(res, "MTOW forward", "(a) ground track")
+    assert track.status == "fails" and track.value > 30.0 > base_track
     for loading in LOADINGS:
-        track = _by(res, loading, "(a) ground track")
-        assert track.status == "fails" and track.value > 30.0
         assert _by(res, loading, "(a) rudder").details["rudder_min_deg"] == pytest.approx(-27.3, abs=1e-6)
     assert res.status == "fails"
     distance = run_rule("25.113", tmp_path, [FIN_10_PERCENT_SMALLER])
     assert all("no performance.takeoff_field_length declared" in f.reason for f in own(distance))
+
+
+SPEEDS_15_KN_LOW = [
+    ("  V1: 150 kn CAS", "  V1: 135 kn CAS"),
+    ("  VR: 155 kn CAS", "  VR: 140 kn CAS"),
+    ("  V2: 161 kn CAS", "  V2: 146 kn CAS"),
+]
+
+
+def test_rotated_15_kn_early_every_run_is_judged(tmp_path):
+    """VR, V1 and V2 declared 15 kn low: the airplane rotated at 140 kn sits on its main wheels at the held 10.1°
+    until it flies off at about 162–168 kn; the pilot holds that attitude until the wheels are clear of the runway, so
+    no run comes near the tail-strike attitude with a wheel on it (10.4° at most; a pilot who rotated on toward the
+    climb attitude as soon as the gear unloaded set the wheels back down at 12.1–12.2° at the forward and reference
+    CG, and those runs earned no verdict); every check of every loading is judged and V2 is passed by 35 ft."""
+    res = run_rule("25.111", tmp_path, SPEEDS_15_KN_LOW)
+    assert all(f.status in ("complies", "fails") for f in own(res)), [f.reason for f in own(res)]
+    for loading in LOADINGS:
+        f = _by(res, loading, "(c)(2)")
+        assert f.details["max_pitch_on_ground_deg"] <= 12.1 - 1.0
+        assert f.status == "complies" and f.value > 146.0
 
 
 def test_hand_calculation_accelerations_vef_and_v2_limit(result, ctx):
@@ -182,9 +205,10 @@ def test_sign_cg_and_engine_failure(result, tmp_path):
     for c in LOADINGS:
         d = _by(result, c, "(c)(2)").details
         assert d["v35_kn"] < d["all_engines_v35_kn"]
-        # the left engine failed: the nose swings left (ψ < 0 first), the rudder pushes right (δr < 0, conventions)
+        # the left engine failed: the nose swings left (ψ < 0 first), the rudder pushes right (δr < 0, conventions);
+        # its largest deflection is that push (after the lift-off the banked climb may swing it the other way less far)
         r = _by(result, c, "(a) rudder")
-        assert r.details["rudder_min_deg"] < -10.0 and r.details["rudder_max_deg"] < -r.details["rudder_min_deg"] / 2
+        assert r.details["rudder_min_deg"] < -10.0 and r.details["rudder_max_deg"] < -r.details["rudder_min_deg"]
 
 
 def test_not_evaluated_without_landing_gear_or_v1(tmp_path):

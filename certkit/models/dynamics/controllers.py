@@ -55,6 +55,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel, quat_to_euler
+from certkit.models.dynamics.ground import lowest_point_below_cg
 from certkit.models.dynamics.simulate import Controller
 
 
@@ -149,12 +150,7 @@ class TECSApproach(Controller):
         """Height of the lowest gear contact point (or of the CG less ``gear_height``) above the runway."""
         if not self.gear_geometry:
             return x[:, 2] - self.h_rwy - self.h_gear
-        q0, q1, q2, q3 = (x[:, 9 + k, None] for k in range(4))
-        rx, ry, rz = (self.model.r_gear[:, :, k] for k in range(3))
-        down = (
-            2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
-        )
-        return x[:, 2] - self.h_rwy - down.max(axis=1)
+        return x[:, 2] - self.h_rwy - lowest_point_below_cg(self.model, x)
 
     def update(self, t, x, out, u, dt):
         theta = quat_to_euler(x[:, 9:13])[:, 1]
@@ -252,6 +248,11 @@ class EngineFailure(Controller):
         return u
 
 
+#: the share of the weight on the wheels below which the lateral laws fly the airplane as airborne (the bank toward
+#: the operating engine growing as the load goes to zero)
+LIGHT_GEAR = 0.1
+
+
 class HeadingHold(Controller):
     """Lateral–directional hold of the initial heading (the runway's), for an engine failure on the takeoff
     run and climb-out: rudder on the heading error (proportional + integral, so that the steady asymmetric
@@ -265,7 +266,9 @@ class HeadingHold(Controller):
     c held at its last ground value once airborne
     (no step in the rudder at lift-off); no nose-wheel steering (the §25.149(e) VMCG
     demonstration uses the rudder alone). Aileron toward the commanded bank, wings level on the ground and
-    ``bank`` (rad, per condition) once the gear carries no load (e.g. a few degrees toward the operating engine):
+    ``bank`` (rad, per condition) once the gear carries no load (e.g. a few degrees toward the operating engine),
+    coming in as the wheels unload (in proportion as their load falls below :data:`LIGHT_GEAR` of the weight: on
+    lightly loaded wheels the tyres no longer hold the rudder's side force, the bank's weight component does):
         δa = δa0 + K_φ (φ − φ_cmd) + K_p p,
     both clipped to ``limits`` (positive deflections give negative moments, :mod:`certkit.conventions`)."""
 
@@ -290,6 +293,7 @@ class HeadingHold(Controller):
         self.da0, self.dr0 = u0[:, self.ja].copy(), u0[:, self.jr].copy()
         self.k_psi, self.k_i, self.k_r, self.k_phi, self.k_p, self.k_y = k_psi, k_i, k_r, k_phi, k_p, k_y
         self.bank = np.broadcast_to(np.asarray(bank, dtype=float), (model.n,))
+        self.weight = np.broadcast_to(np.asarray(model.mass, dtype=float) * model.g, (model.n,))
         lim = limits or {}
         self.lim_a = lim.get(aileron, (-np.radians(25), np.radians(25)))
         self.lim_r = lim.get(rudder, (-np.radians(25), np.radians(25)))
@@ -314,7 +318,9 @@ class HeadingHold(Controller):
         lo, hi = self.lim_r
         self.integral += np.where(on_stop(raw, err, lo, hi), 0.0, err) * dt
         u[:, self.jr] = np.clip(raw, lo, hi)
-        phi_cmd = np.where(airborne, self.bank, 0.0)
+        # the bank toward the operating engine comes in as the wheels unload (none with a tenth of the weight on them)
+        unloading = np.clip(1.0 - out.gear_load.sum(axis=1) / (LIGHT_GEAR * self.weight), 0.0, 1.0)
+        phi_cmd = unloading * self.bank
         u[:, self.ja] = np.clip(self.da0 + self.k_phi * (phi - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
         return u
 

@@ -26,6 +26,15 @@ def gear_heights(model: AircraftModel, x12: np.ndarray, rows=None) -> np.ndarray
     return x12[:, 2:3] - model.ground.elevation - r_ned[:, :, 2]
 
 
+def lowest_point_below_cg(model: AircraftModel, x13: np.ndarray) -> np.ndarray:
+    """How far (m) the lowest gear contact point lies below the CG, (n,), for quaternion states (n, 13): the wheels
+    are on the runway when the CG's height above it is no more than this."""
+    q0, q1, q2, q3 = (x13[:, 9 + k, None] for k in range(4))
+    rx, ry, rz = (model.r_gear[:, :, k] for k in range(3))
+    down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
+    return down.max(axis=1)
+
+
 def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, max_iter: int = 50) -> np.ndarray:
     """Euler states (n, 12) of the batch at rest on the runway with controls ``u`` (module docstring)."""
     if model.ground is None:

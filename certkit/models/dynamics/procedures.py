@@ -6,13 +6,14 @@
     ``elevator0`` (and any ``settings``, e.g. a stabiliser at its takeoff setting, held throughout) until the
     rotation speed V_R, then the pilot's rotation (:class:`~certkit.models.dynamics.takeoff_pilot.RotationPilot`):
     attitude command rate-limited at ``rotation_rate`` toward ``theta_target`` while on the gear (at most the
-    ``tail_strike`` attitude less ``tail_margin``), then toward the attitude that holds ``climb_speed`` once
-    airborne, elevator by feed-forward (``elevator_ff``) and PI attitude feedback. :class:`WingsLevel` holds wings
-    level / zero sideslip; optionally :class:`EngineFailure` fails ``failed_engine`` at ``failure_speed`` (its
-    thrust decaying with ``failure_decay_time``). Runs until the lowest gear point is ``screen_height`` above the
-    runway with no gear load (or ``t_end``). Returns a :class:`TakeoffResult` with V_LOF (first instant with no
-    gear load after the rotation), the speed, distance and time at the screen height, the extreme elevator, the
-    largest pitch attitude with a gear leg on the runway, the largest pitch rate before lift-off and the largest
+    ``tail_strike`` attitude less ``tail_margin``), then toward the attitude that holds ``climb_speed`` once the
+    wheels are clear of the runway, elevator by feed-forward (``elevator_ff``) and PI attitude feedback.
+    :class:`WingsLevel` holds wings level / zero sideslip; optionally :class:`EngineFailure` fails ``failed_engine``
+    at ``failure_speed`` (its thrust decaying with ``failure_decay_time``). Runs until the lowest gear point is
+    ``screen_height`` above the runway with no gear load (or ``t_end``). Returns a :class:`TakeoffResult` with V_LOF
+    (the lift-off for good: the first record of the airborne stretch that lasts to the end of the run, not a hop on
+    the extending struts), the speed, distance and time at the screen height, the extreme elevator, the largest
+    pitch attitude with a gear leg on the runway, the largest pitch rate before lift-off and the largest
     lateral deviation on the ground.
     ``lateral="heading"`` replaces the wings-level/zero-sideslip hold by :class:`HeadingHold` (rudder
     holds the runway heading and, with ``centreline_gain`` K_y, the centreline on the ground; aileron wings level
@@ -43,7 +44,7 @@ import numpy as np
 
 from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import AircraftModel
-from certkit.models.dynamics.ground import gear_heights, ground_equilibrium
+from certkit.models.dynamics.ground import gear_heights, ground_equilibrium, lowest_point_below_cg
 from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
 from certkit.models.dynamics.takeoff_pilot import DirectionalPilot, RotationPilot
 
@@ -63,7 +64,7 @@ class TakeoffResult:
     x0: np.ndarray  # rest state (n, 12)
     initial_acceleration: np.ndarray  # m/s² along the runway at brake release
     reached: np.ndarray  # bool (n,): screen height reached
-    v_lof: np.ndarray  # m/s TAS (nan if no lift-off)
+    v_lof: np.ndarray  # m/s TAS at the lift-off for good (nan if none; a hop on the extending struts is not one)
     x_lof: np.ndarray  # m from brake release
     v_screen: np.ndarray  # m/s at the screen height (nan if not reached)
     x_screen: np.ndarray
@@ -177,7 +178,7 @@ def takeoff_run(
     t_scr = np.full(n, np.nan)
 
     def screen(t, x, out):
-        down = _lowest_point_below_cg(model, x)
+        down = lowest_point_below_cg(model, x)
         up = (x[:, 2] - elevation - down > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
         t_scr[np.isnan(t_scr) & up] = t
         return t >= t_scr + climb_out - 1e-9
@@ -191,13 +192,20 @@ def takeoff_run(
     wheel = heights.min(axis=2)
     reached = np.isfinite(t_scr)
     airborne = wheel > 0.0
-    v_lof, x_lof = np.full(n, np.nan), np.full(n, np.nan)
+    k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time - 1e-9), nt - 1)
+    # the lift-off for good: the first record of the airborne stretch that lasts to the end of the run (a hop on the
+    # extending struts, the wheels back on the runway a moment later, is not the lift-off)
+    k_lof = np.full(n, nt, dtype=int)
     for i in range(n):
-        k = np.flatnonzero(airborne[:, i])
-        if k.size:
-            v_lof[i], x_lof[i] = sim["V"][k[0], i], sim["x_N"][k[0], i]
-    k_scr = np.minimum(np.searchsorted(sim.t, np.where(reached, t_scr, sim.t[-1]) - 1e-9), nt - 1)
+        if airborne[k_end[i], i]:
+            ground = np.flatnonzero(~airborne[: k_end[i] + 1, i])
+            k_lof[i] = ground[-1] + 1 if ground.size else 0
+    lifted = k_lof < nt
     cols = np.arange(n)
+    k_at = np.minimum(k_lof, nt - 1)
+    v_lof = np.where(lifted, sim["V"][k_at, cols], np.nan)
+    x_lof = np.where(lifted, sim["x_N"][k_at, cols], np.nan)
+    k_scr = np.minimum(np.searchsorted(sim.t, np.where(reached, t_scr, sim.t[-1]) - 1e-9), nt - 1)
     v_scr = np.where(reached, sim["V"][k_scr, cols], np.nan)
     x_scr = np.where(reached, sim["x_N"][k_scr, cols] - x0[:, 0], np.nan)
     t_scr = np.where(reached, t_scr, np.nan)
@@ -208,7 +216,6 @@ def takeoff_run(
     with np.errstate(invalid="ignore", divide="ignore"):
         grad = np.diff(sim["h"], axis=0) / np.diff(s_path, axis=0)
     grad = np.where(airborne[1:] & airborne[:-1], grad, np.nan)
-    k_end = np.minimum(np.searchsorted(sim.t, sim.stop_time - 1e-9), nt - 1)
     with np.errstate(invalid="ignore", divide="ignore"):
         climb = np.where(
             reached & (k_end > k_scr),
@@ -218,7 +225,7 @@ def takeoff_run(
     emin, emax = _elevator_extremes(sim, je)
     on_ground = ~airborne & (np.arange(nt)[:, None] <= k_end[None, :])
     vr = np.broadcast_to(np.asarray(rotation_speed, dtype=float), (n,))
-    to_lof = np.cumsum(airborne, axis=0) == 0  # the records up to the first lift-off
+    to_lof = np.arange(nt)[:, None] < k_lof[None, :]  # the records before the lift-off
     before_lof = (sim["V"] >= vr[None, :]) & to_lof
     with np.errstate(invalid="ignore"):
         pitch_ground = np.where(on_ground, sim["theta"], -np.inf).max(axis=0)
@@ -289,13 +296,6 @@ def engine_failure_speed(
         f"V1 less the speed gained over {recognition_time:g} s after the failure at V1's "
         f"accelerations (engine-out, plus the decaying thrust of the failed engine, τ = {decay_time:g} s)"
     )
-
-
-def _lowest_point_below_cg(model, x13):
-    q0, q1, q2, q3 = (x13[:, 9 + k, None] for k in range(4))
-    rx, ry, rz = (model.r_gear[:, :, k] for k in range(3))
-    down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
-    return down.max(axis=1)
 
 
 def approach_and_landing(

@@ -4,26 +4,32 @@
     The pitch technique of the transport-airplane takeoff (Boeing, *The importance of proper rotation technique*,
     Flight Operations Review, 14 March 1986: rotation initiated at VR, a smooth continuous manoeuvre to the target
     pitch attitude at typically 2–3°/s, not more than 3°/s; the lift-off attitude about 2–4° below the tail-strike
-    attitude; Boeing 777 FCTM §3: lift-off attitude 8.5°, tail strike at 12.1° for the 777-200):
+    attitude, the least tail clearance just after the lift-off; Boeing 777 FCTM §3: lift-off attitude 8.5°, tail
+    strike at 12.1° for the 777-200 with the struts extended):
       * below VR the elevator stays at its take-off setting ``u0`` (the stabiliser, if any, at its setting);
-      * from VR the commanded attitude θ_c rises at the rotation rate r (rate-limited, and never more than
-        r × ``lead_time`` (0.5 s) ahead of the attitude: the pilot flies the rate he sees; the commanded rate itself
-        changes by at most r per ``lead_time`` and slows in time to stop on the target, so a rotation starts,
-        stops or reverses smoothly rather than with a step of the rate feedback's reference), toward the attitude
-        ``theta_ground`` while a gear leg carries load — at most the tail-strike attitude less ``tail_margin``:
-        the pilot holds the attitude there until the airplane unsticks rather than over-rotate —, and once
-        airborne toward the climb attitude: θ_air = θ_LOF + K_V (V − V_climb) + K_VI ∫(V − V_climb) dt, the attitude
-        at lift-off corrected for the speed error (the flight director's speed-on-pitch law: V2 with an engine
-        out, a few knots more with all engines), still rate-limited at r;
+      * from VR the pilot flies a commanded rate θ̇_c: the rotation rate r, changed by at most r per ``lead_time``
+        (0.5 s) and slowed in time to stop on the target, so a rotation starts, stops or reverses smoothly; the
+        commanded attitude θ_c integrates it but never runs more than r × ``lead_time`` ahead of the attitude. The
+        rate asked for is not cut when the airplane lags (with an engine out it pitches up less readily): the rate
+        feedback pulls harder, as a pilot pulls until he sees the rate;
+      * the target: ``theta_ground`` on the runway — at most the tail-strike attitude less ``tail_margin`` —, held
+        until the airplane flies off: the lowest wheel ``clear_height`` (0.3 m) above the runway. A wheel that
+        leaves it for a moment as the struts extend does not count: rotating on then sets the wheels back down
+        nearer the tail-strike attitude. Then the climb attitude, θ_air = θ_climb + K_V (V − V_climb) +
+        K_VI ∫(V − V_climb) dt, with θ_climb = θ_off + V̇_off/g the attitude the acceleration there could hold in a
+        climb (its potential flight path; V̇ the speed trend, a ``trend_time`` first-order lag of the acceleration),
+        corrected for the speed error (the flight director's speed-on-pitch law: V2 with an engine out, a few knots
+        more with all engines): the rotation goes on toward it rather than pausing below the climb speed;
       * the elevator: feed-forward plus proportional–integral attitude feedback and rate feedback on the commanded
         rate,
             δe = δe_ff + K_θ (θ − θ_c) + K_I ∫(θ − θ_c) dt + K_q (q − θ̇_c)   (positive δe nose-down, Etkin)
         with δe_ff the elevator of the airborne climb (e.g. the V2 trim's), the integral frozen while the elevator
         is on its stop in the error's direction (anti-windup), clipped to the elevator ``limits``.
-    The rotation rate is the commanded one: how fast the airplane follows is the airplane's (its elevator power
-    against the weight on the main gear). Gains K_θ 3 (rad/rad), K_I 0.5 /s, K_q 6 s, K_V 1°/(m/s), K_VI 0.1°/m are
-    a choice, made on the baseline so that the pitch rate before lift-off stays within the 3°/s ceiling at every CG
-    (2.7–3.0°/s; with K_q 1 the airplane overshot to 5°/s and past the tail-strike attitude).
+    How fast the airplane follows is the airplane's (its elevator power against the weight on the main gear).
+    Gains K_θ 6 (rad/rad), K_I 1 /s, K_q 6 s, K_V 1°/(m/s), K_VI 0.1°/m are a choice, made on the baseline: the pitch
+    rate before lift-off within the 3°/s ceiling at every CG (2.7–3.0°/s) and the held attitude reached one lead time
+    after the ideal rotation (with K_θ 3, K_I 0.5 and a command slowed to the lagging airplane's rate, the
+    engine-out airplane rotated at 1.1–1.8°/s for two seconds and then sat 0.6° short of the target for 4 s).
 
 :class:`DirectionalPilot`
     The pedals of the takeoff run: the heading-and-centreline law of
@@ -46,6 +52,7 @@ import numpy as np
 
 from certkit.models.dynamics.controllers import HeadingHold, on_stop
 from certkit.models.dynamics.eom import STEERING, AircraftModel
+from certkit.models.dynamics.ground import lowest_point_below_cg
 from certkit.models.dynamics.simulate import Controller
 
 
@@ -61,16 +68,19 @@ class RotationPilot(Controller):
         elevator_ff=None,
         tail_strike=None,
         tail_margin: float = np.radians(2.0),
-        k_theta: float = 3.0,
-        k_i: float = 0.5,
+        clear_height: float = 0.3,
+        k_theta: float = 6.0,
+        k_i: float = 1.0,
         k_q: float = 6.0,
         k_v: float = np.radians(1.0),
         k_vi: float = np.radians(0.1),
         lead_time: float = 0.5,
+        trend_time: float = 1.0,
         elevator: str = "elevator",
         limits=(-np.radians(30), np.radians(20)),
     ):
         n = model.n
+        self.model = model
         self.j = model.control_index(elevator)
         self.de0 = np.asarray(u0, dtype=float)[:, self.j].copy()
         b = lambda v: np.broadcast_to(np.asarray(v, dtype=float), (n,)).copy()  # noqa: E731
@@ -80,40 +90,49 @@ class RotationPilot(Controller):
         if tail_strike is not None:
             ground = np.minimum(ground, b(tail_strike) - tail_margin)
         self.theta_ground = ground
+        self.clear_height = clear_height
+        self.elevation = model.ground.elevation if model.ground is not None else 0.0
         self.de_ff = self.de0.copy() if elevator_ff is None else b(elevator_ff)
         self.rate, self.limits, self.lead, self.lead_time = rotation_rate, limits, rotation_rate * lead_time, lead_time
         self.kt, self.ki, self.kq, self.kv, self.kvi = k_theta, k_i, k_q, k_v, k_vi
+        self.trend_time, self.g = trend_time, model.g
         self.rotating = np.zeros(n, dtype=bool)
         self.airborne = np.zeros(n, dtype=bool)
         self.theta_cmd = None
         self.rate_cmd = np.zeros(n)
-        self.theta_lof = np.full(n, np.nan)
+        self.theta_climb = np.full(n, np.nan)
         self.integral = np.zeros(n)
         self.speed_integral = np.zeros(n)
+        self.v_prev = None
+        self.v_dot = np.zeros(n)
 
     def update(self, t, x, out, u, dt):
         q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
         theta = np.arcsin(np.clip(2.0 * (q0 * q2 - q3 * q1), -1.0, 1.0))
+        V = out.V
+        if self.v_prev is not None:  # the speed trend the pilot reads (first-order lag of the acceleration)
+            self.v_dot += ((V - self.v_prev) / dt - self.v_dot) * min(dt / self.trend_time, 1.0)
+        self.v_prev = V.copy()
         rotating = self.rotating
-        rotating |= out.V >= self.vr
+        rotating |= V >= self.vr
         if (
             self.theta_cmd is None or not rotating.any()
         ):  # the ground roll before VR: elevator at its takeoff setting, command on the attitude
             self.theta_cmd = theta
             u[:, self.j] = np.where(rotating, self.de_ff, self.de0)
             return u
-        V = out.V
-        lifted = rotating & ~self.airborne & (out.gear_load.sum(axis=1) <= 0.0)
-        if lifted.any():
-            self.theta_lof = np.where(lifted, theta, self.theta_lof)
+        wheels = x[:, 2] - self.elevation - lowest_point_below_cg(self.model, x)  # lowest wheel above the runway
+        lifted = rotating & ~self.airborne & (wheels >= self.clear_height)
+        if lifted.any():  # the climb attitude the acceleration at lift-off can hold (its potential flight path)
+            climb = np.where(self.climb_free, theta, theta + self.v_dot / self.g)
+            self.theta_climb = np.where(lifted, climb, self.theta_climb)
             self.airborne |= lifted
         airborne = self.airborne
         if airborne.any():
             dv = np.where(self.climb_free, 0.0, V - self.v_climb)  # no climb speed: hold the lift-off attitude
             self.speed_integral += np.where(airborne, dv, 0.0) * dt
-            target = np.where(
-                airborne, self.theta_lof + self.kv * dv + self.kvi * self.speed_integral, self.theta_ground
-            )
+            climb = self.theta_climb + self.kv * dv + self.kvi * self.speed_integral
+            target = np.where(airborne, climb, self.theta_ground)
         else:
             target = self.theta_ground
         previous = self.theta_cmd
@@ -122,10 +141,11 @@ class RotationPilot(Controller):
         wanted = np.sign(rem) * np.minimum(
             np.minimum(np.abs(rem) / dt, self.rate), np.sqrt(2.0 * self.rate / self.lead_time * np.abs(rem))
         )
-        step = np.clip(wanted, self.rate_cmd - dr, self.rate_cmd + dr) * dt
-        cmd = np.where(rotating, np.minimum(previous + step, theta + self.lead), theta)
+        # the rate the pilot flies (it leads the attitude by at most r × lead_time: a lagging airplane is pulled
+        # harder by the rate term, not given a slower command)
+        rate_cmd = np.where(rotating, np.clip(wanted, self.rate_cmd - dr, self.rate_cmd + dr), 0.0)
+        cmd = np.where(rotating, np.minimum(previous + rate_cmd * dt, theta + self.lead), theta)
         self.theta_cmd = cmd
-        rate_cmd = (cmd - previous) / dt
         self.rate_cmd = rate_cmd
         err = theta - cmd
         lo, hi = self.limits

@@ -10,7 +10,8 @@ rows n..2n−1 with all engines operating (the §25.113(a)(2) distance). The pro
     1986, "typically 2–3 degrees per second … should not exceed 3"; the 777 FCTM the same) toward the attitude of
     the 1-g trim at V2, at most the declared tail-strike attitude (``geometry.landing_gear.tail_strike_attitude``)
     less ``tail_clearance_deg`` while a gear leg is on the runway (the same review: lift-off attitude about 2–4°
-    below the tail-strike attitude); airborne, the attitude flies the speed: V2 with the engine failed,
+    below the tail-strike attitude), held there until the wheels are clear of the runway; then the rotation goes on
+    toward the attitude that flies the speed: V2 with the engine failed,
     V2 + ``all_engines_speed_increment_kn`` with all engines; feed-forward elevator of the V2 trim, PI attitude
     feedback with rate damping;
   * the pedals on the runway heading and the centreline on the ground as the aircraft file's ``takeoff_pilot`` says
