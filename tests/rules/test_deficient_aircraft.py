@@ -7,11 +7,12 @@ deficiencies are gross so that the verdict does not hang on model detail.
 Rules already failing on the baseline show their failure path there (§25.125, §25.143(h), §25.161, §25.181, see
 `certkit check aircraft/lta.yaml`, and each rule's own deficient-airplane test); §25.107(e)(1)(iv) fails on the baseline
 at the forward CG (its declared VR, docs/baseline-sources.md §14b) and tests/rules/test_r25_107_vlof.py fails it at
-every CG with a lower tail-strike attitude; §25.111 fails on the baseline (its
-rudder beyond the ±23.2° design limit, docs/baseline-sources.md §14a), and tests/rules/test_r25_111.py fails it with a
-±15° rudder too; §25.113 needs a declared takeoff field length, and tests/rules/test_r25_113.py fails it with one and
-30 % less thrust; §25.173(b)/(c) need a
-control-force model the baseline does not declare (tests/rules/test_control_forces.py runs them with one).
+every CG with a lower tail-strike attitude; §25.107(c)(2) fails on the baseline (its declared V2 below the 35-ft
+speed, §14b), and tests/rules/test_r25_107_v35.py fails its (e)(1)(iii) with a V2 the takeoff cannot reach;
+§25.111 fails on the baseline (its rudder beyond the ±23.2° design limit, docs/baseline-sources.md §14a), and
+tests/rules/test_r25_111.py fails it with a ±15° rudder too; §25.113 needs a declared takeoff field length, and
+tests/rules/test_r25_113.py fails it with one and 30 % less thrust; §25.173(b)/(c) need a control-force model the
+baseline does not declare (tests/rules/test_control_forces.py runs them with one).
 """
 
 import re
@@ -109,6 +110,7 @@ def test_every_rule_is_exercised_or_explained():
     """Each registered rule is in a deficient case, already fails on the baseline, or needs an absent model."""
     covered = {rid for *_, ids in CASES.values() for rid in ids}
     explained = {
+        "25.107(c)(2)",
         "25.107(e)(1)(iv)",
         "25.111",
         "25.113",

@@ -11,7 +11,8 @@ recognition interval after the critical engine's failure).
 :func:`certkit.models.dynamics.unstick.minimum_unstick_speed` (all engines, and with the critical engine windmilling:
 the one-engine-inoperative thrust-to-weight ratio), VLOF from the simulated takeoffs of §25.111 rotated at the
 maximum practicable rate, the factors those of the geometry-limited branch where VMU is reached at the tail-strike
-attitude.
+attitude. §25.107(c)(2) and (e)(1)(iii), V2 and VR against the speed the §25.111 engine-out takeoff reaches at 35 ft,
+are rule 25.107(c)(2).
 """
 
 from __future__ import annotations
@@ -57,7 +58,7 @@ class TakeoffSpeeds(Rule):
         propeller airplanes with more than three engines and turbojets with such provisions) nor 1.10 VMC (b);
         V2 may not be less than V2MIN (c)(1). VEF may not be less than VMCG, V1 not less than VEF (a).
         VR may not be less than V1 nor 1.05 VMC (e)(1)(i)-(ii); the VLOF it gives against VMU ((e)(1)(iv)) is
-        rule 25.107(e)(1)(iv).
+        rule 25.107(e)(1)(iv), V2 and VR against the speed at 35 ft ((c)(2), (e)(1)(iii)) rule 25.107(c)(2).
     """
     margin = """
         Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
@@ -94,14 +95,12 @@ class TakeoffSpeeds(Rule):
         note="VSR from the declared trimmed CLmax is not CG-sensitive here, so the reference CG.",
     )
     limitations = """
-        V2 ≥ VR + the increment to 35 ft (c)(2), VR giving V2 by 35 ft (e)(1)(iii) and the VR − 5 kt abuse case
-        (e)(3) need the takeoff-path simulation of §25.111 and are not evaluated.
+        V2 against VR plus the increment to 35 ft (c)(2) and VR giving V2 by 35 ft (e)(1)(iii) are rule 25.107(c)(2)
+        (on the §25.111 takeoffs); the VR − 5 kt one-engine-inoperative distance (e)(3) is not evaluated.
     """
 
     implementation = "partial"
     unevaluated = (
-        ("25.107(c)(2)", "V2 ≥ VR + the speed increment to 35 ft needs the §25.111(c)(2) takeoff path: not evaluated"),
-        ("25.107(e)(1)(iii)", "VR allowing V2 to be reached by 35 ft (§25.111(c)(2)) not evaluated"),
         ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
         (
             "25.107(g)(2)",
@@ -319,4 +318,69 @@ class LiftOffSpeedMargin(Rule):
             "§25.107(e)(1)(iv) VLOF against VMU",
             "Lift-off speed at the maximum practicable rotation rate against the minimum unstick speed.",
             ("VLOF", "VMU", "vmu_limited_by", "vlof_scheduled_rotation_kn"),
+        )
+
+
+@rule
+class SpeedsAt35Feet(Rule):
+    id = "25.107(c)(2)"
+    run_with = "takeoff"  # the engine-out runs of §25.111, memoised in one process
+    symbol = "v2-and-vr-at-35-ft"
+    title = "V2 against VR plus the speed increment to 35 ft, and VR reaching V2 by 35 ft ((e)(1)(iii)) (simulated)"
+    amendment = AMDT
+    requirement = """
+        V2 may not be less than VR plus the speed increment attained (in accordance with §25.111(c)(2)) before
+        reaching a height of 35 feet above the takeoff surface (c)(2); VR may not be less than the speed (determined
+        in accordance with §25.111(c)(2)) that allows reaching V2 before reaching a height of 35 feet above the
+        takeoff surface (e)(1)(iii).
+    """
+    margin = """
+        Knots CAS, per loading, on the §25.111 engine-out takeoff (critical engine failed at VEF, rotated at VR as
+        scheduled, then flown as close as practical to V2): (c)(2) V2 − (VR + the increment from VR to the speed at
+        35 ft), i.e. V2 − V35; (e)(1)(iii) V35 − V2. ≥ 0 complies; together they ask that V2 be the 35-ft speed of
+        the scheduled takeoff.
+    """
+    references = ("25.107", "25.111")
+    requires = TAKEOFF_REQUIRES
+    criteria = dict(PROCEDURE_CRITERIA)
+    conditions = takeoff_conditions("Sea level ISA, takeoff thrust; the §25.111 loadings.")
+    limitations = """
+        The increment is the simulated pilot's (rotation at the scheduled rate to the attitude held on the runway,
+        then the climb attitude that flies V2): a run that is not a takeoff (no lift-off, the tail on the runway)
+        earns no verdict. No tolerance is applied to the equality the two sub-paragraphs ask for: a V35 above V2 by
+        any amount fails (c)(2), below it (e)(1)(iii).
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        n = len(conditions)
+        to = simulated_takeoffs(ctx, conditions, crit)
+        vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
+        strike = ctx.aircraft.geometry.landing_gear.tail_strike_attitude
+        strike_deg = None if strike is None else float(np.degrees(strike))
+        out = []
+        for i, cond in enumerate(conditions[:n]):
+            c = cond.with_(altitude=0.0, inoperative=to.engine)
+            summary = run_summary(to, i, vr_kn, v2_kn)
+            checks = ("(c)(2) V2 ≥ VR + the speed increment to 35 ft", "(e)(1)(iii) VR allowing V2 by 35 ft")
+            why = unrepresentative(summary, tail_strike_deg=strike_deg)
+            if not why and summary["v35_kn"] is None:
+                why = ["the engine-out run does not reach 35 ft"]
+            if why:
+                reason = "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why)
+                out += [Finding.not_evaluated(c, check, reason, **summary) for check in checks]
+                continue
+            v35 = summary["v35_kn"]
+            details = {**summary, "speed_increment_kn": round(v35 - vr_kn, 2), "vef_basis": to.vef_basis}  # VR → 35 ft
+            out += [
+                Finding.compare(c, checks[0], v2_kn, v35, at_least=True, unit="kn", V35=v35, **details),
+                Finding.compare(c, checks[1], v35, v2_kn, at_least=True, unit="kn", **details),
+            ]
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        return margins_evidence(
+            findings,
+            "§25.107(c)(2) and (e)(1)(iii): V2 and the speed at 35 ft",
+            "The declared V2 against the speed the engine-out takeoff reaches at 35 ft, rotated at the declared VR.",
+            ("V35", "vr_kn", "v2_kn", "vlof_kn", "speed_increment_kn"),
         )
