@@ -151,3 +151,24 @@ def test_the_rotation_goes_on_through_the_lift_off(baseline_takeoffs):
             climb = theta[k_lof : k_35 + 1]
             assert climb.size > 5 and np.all(climb >= np.maximum.accumulate(climb) - np.radians(0.25))
         assert to.run.pitch_on_ground_max[i] <= to.theta_target[i % n] + np.radians(0.1)
+
+
+def test_the_lift_off_speed_is_the_quasi_static_unstick_speed_of_its_attitude(baseline_takeoffs):
+    """The lift-off is the airplane leaving the runway for good. Engine out the airplane lifts off at the attitude the
+    pilot holds, so its VLOF must agree with the quasi-static unstick speed at that attitude (lift, thrust and weight
+    in balance with the elevator holding the pitch, certkit/models/dynamics/unstick.py, a separate computation):
+    within 1.5 kn at every CG. A wheel's hop as the struts extend is not the lift-off: taken for it, the reference CG
+    "lifted off" about 5 kn below the unstick speed of its attitude (161.3 against 166.0 KCAS)."""
+    from certkit_rules.part25.support.takeoff import takeoff_conditions
+    from certkit_rules.part25.support.unstick import unstick_speeds
+
+    ctx, to, n = baseline_takeoffs
+    u = unstick_speeds(ctx, takeoff_conditions("").expand(ctx.aircraft)).engine_out
+    order = np.argsort(u.attitudes)
+    for i in range(n):
+        t, theta, target, k_vr, k_lof = _rotation(to, i)
+        attitude = theta[int(np.argmax(to.run.sim["V"][:, i] >= to.run.v_lof[i]))]
+        unstick = np.interp(attitude, u.attitudes[order], u.speeds[order, i])
+        cas = [float(convert_speed(v, "TAS", "CAS", 0.0)) / KN for v in (to.run.v_lof[i], unstick)]
+        print(f"row {i}: VLOF {cas[0]:.1f} kn at {np.degrees(attitude):.2f}°, unstick speed there {cas[1]:.1f} kn")
+        assert abs(cas[0] - cas[1]) < 1.5
