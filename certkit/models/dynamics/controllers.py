@@ -55,7 +55,7 @@ from __future__ import annotations
 import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel, quat_to_euler
-from certkit.models.dynamics.ground import lowest_point_below_cg
+from certkit.models.dynamics.ground import wheel_height
 from certkit.models.dynamics.simulate import Controller
 
 
@@ -150,7 +150,7 @@ class TECSApproach(Controller):
         """Height of the lowest gear contact point (or of the CG less ``gear_height``) above the runway."""
         if not self.gear_geometry:
             return x[:, 2] - self.h_rwy - self.h_gear
-        return x[:, 2] - self.h_rwy - lowest_point_below_cg(self.model, x)
+        return wheel_height(self.model, x, self.h_rwy)
 
     def update(self, t, x, out, u, dt):
         theta = quat_to_euler(x[:, 9:13])[:, 1]

@@ -26,13 +26,15 @@ def gear_heights(model: AircraftModel, x12: np.ndarray, rows=None) -> np.ndarray
     return x12[:, 2:3] - model.ground.elevation - r_ned[:, :, 2]
 
 
-def lowest_point_below_cg(model: AircraftModel, x13: np.ndarray) -> np.ndarray:
-    """How far (m) the lowest gear contact point lies below the CG, (n,), for quaternion states (n, 13): the wheels
-    are on the runway when the CG's height above it is no more than this."""
+def wheel_height(model: AircraftModel, x13: np.ndarray, elevation: float | None = None) -> np.ndarray:
+    """Height (m) of the lowest gear contact point above the runway (``model.ground``'s elevation unless given), (n,),
+    for quaternion states (n, 13): the wheels are on the runway where it is not positive."""
     q0, q1, q2, q3 = (x13[:, 9 + k, None] for k in range(4))
     rx, ry, rz = (model.r_gear[:, :, k] for k in range(3))
     down = 2 * (q1 * q3 - q0 * q2) * rx + 2 * (q2 * q3 + q0 * q1) * ry + (q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3) * rz
-    return down.max(axis=1)
+    if elevation is None:
+        elevation = model.ground.elevation if model.ground is not None else 0.0
+    return x13[:, 2] - elevation - down.max(axis=1)
 
 
 def ground_equilibrium(model: AircraftModel, u: np.ndarray, tol: float = 1e-7, max_iter: int = 50) -> np.ndarray:

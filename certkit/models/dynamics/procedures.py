@@ -44,7 +44,7 @@ import numpy as np
 
 from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import AircraftModel
-from certkit.models.dynamics.ground import gear_heights, ground_equilibrium, lowest_point_below_cg
+from certkit.models.dynamics.ground import gear_heights, ground_equilibrium, wheel_height
 from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
 from certkit.models.dynamics.takeoff_pilot import DirectionalPilot, RotationPilot
 
@@ -178,8 +178,7 @@ def takeoff_run(
     t_scr = np.full(n, np.nan)
 
     def screen(t, x, out):
-        down = lowest_point_below_cg(model, x)
-        up = (x[:, 2] - elevation - down > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
+        up = (wheel_height(model, x, elevation) > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
         t_scr[np.isnan(t_scr) & up] = t
         return t >= t_scr + climb_out - 1e-9
 

@@ -52,7 +52,7 @@ import numpy as np
 
 from certkit.models.dynamics.controllers import HeadingHold, on_stop
 from certkit.models.dynamics.eom import STEERING, AircraftModel
-from certkit.models.dynamics.ground import lowest_point_below_cg
+from certkit.models.dynamics.ground import wheel_height
 from certkit.models.dynamics.simulate import Controller
 
 
@@ -91,7 +91,6 @@ class RotationPilot(Controller):
             ground = np.minimum(ground, b(tail_strike) - tail_margin)
         self.theta_ground = ground
         self.clear_height = clear_height
-        self.elevation = model.ground.elevation if model.ground is not None else 0.0
         self.de_ff = self.de0.copy() if elevator_ff is None else b(elevator_ff)
         self.rate, self.limits, self.lead, self.lead_time = rotation_rate, limits, rotation_rate * lead_time, lead_time
         self.kt, self.ki, self.kq, self.kv, self.kvi = k_theta, k_i, k_q, k_v, k_vi
@@ -121,7 +120,7 @@ class RotationPilot(Controller):
             self.theta_cmd = theta
             u[:, self.j] = np.where(rotating, self.de_ff, self.de0)
             return u
-        wheels = x[:, 2] - self.elevation - lowest_point_below_cg(self.model, x)  # lowest wheel above the runway
+        wheels = wheel_height(self.model, x)
         lifted = rotating & ~self.airborne & (wheels >= self.clear_height)
         if lifted.any():  # the climb attitude the acceleration at lift-off can hold (its potential flight path)
             climb = np.where(self.climb_free, theta, theta + self.v_dot / self.g)

@@ -351,29 +351,27 @@ class SpeedsAt35Feet(Rule):
         any amount fails (c)(2), below it (e)(1)(iii).
     """
 
+    checks = ("(c)(2) V2 ≥ VR + the speed increment to 35 ft", "(e)(1)(iii) VR allowing V2 by 35 ft")
+
     def evaluate(self, ctx, conditions, crit):
-        n = len(conditions)
         to = simulated_takeoffs(ctx, conditions, crit)
         vr_kn, v2_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2"))
-        strike = ctx.aircraft.geometry.landing_gear.tail_strike_attitude
-        strike_deg = None if strike is None else float(np.degrees(strike))
         out = []
-        for i, cond in enumerate(conditions[:n]):
+        for i, cond in enumerate(conditions):  # the engine-out rows
             c = cond.with_(altitude=0.0, inoperative=to.engine)
             summary = run_summary(to, i, vr_kn, v2_kn)
-            checks = ("(c)(2) V2 ≥ VR + the speed increment to 35 ft", "(e)(1)(iii) VR allowing V2 by 35 ft")
-            why = unrepresentative(summary, tail_strike_deg=strike_deg)
+            why = unrepresentative(summary, tail_strike_deg=to.basis["tail_strike_deg"])
             if not why and summary["v35_kn"] is None:
                 why = ["the engine-out run does not reach 35 ft"]
             if why:
                 reason = "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why)
-                out += [Finding.not_evaluated(c, check, reason, **summary) for check in checks]
+                out += [Finding.not_evaluated(c, check, reason, **summary) for check in self.checks]
                 continue
             v35 = summary["v35_kn"]
-            details = {**summary, "speed_increment_kn": round(v35 - vr_kn, 2), "vef_basis": to.vef_basis}  # VR → 35 ft
+            details = {**summary, "speed_increment_kn": round(v35 - vr_kn, 2), "vef_basis": to.vef_basis}
             out += [
-                Finding.compare(c, checks[0], v2_kn, v35, at_least=True, unit="kn", V35=v35, **details),
-                Finding.compare(c, checks[1], v35, v2_kn, at_least=True, unit="kn", **details),
+                Finding.compare(c, self.checks[0], v2_kn, v35, at_least=True, unit="kn", V35=v35, **details),
+                Finding.compare(c, self.checks[1], v35, v2_kn, at_least=True, unit="kn", **details),
             ]
         return out
 
