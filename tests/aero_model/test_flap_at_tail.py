@@ -7,7 +7,7 @@ import pytest
 
 from certkit.aircraft import load_aircraft
 from certkit.engine.context import Context
-from certkit.models.aero.high_lift import lift_and_moment_increment
+from certkit.models.aero.high_lift import FlapSettings, lift_and_moment_increment
 
 from ..conftest import BASELINE
 
@@ -16,7 +16,13 @@ def _tail_off(aircraft, configuration, cl_alpha):
     """Raymer's tail-off flap increments (eq. 12.22 and the centre of the flap load at half chord)."""
     w, r = aircraft.geometry.wing, aircraft.reference
     return lift_and_moment_increment(
-        w, w.flaps, aircraft.configurations[configuration].flap, cl_alpha, r.moment_point.x, r.mean_chord
+        w,
+        w.flaps,
+        aircraft.configurations[configuration].flap,
+        cl_alpha,
+        r.moment_point.x,
+        r.mean_chord,
+        FlapSettings.of(aircraft.configurations),
     )
 
 

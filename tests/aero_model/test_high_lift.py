@@ -22,22 +22,35 @@ def test_flapped_area_ratio_closed_forms(baseline):
 
 
 def test_delta_clmax_and_zero_lift_shift_by_hand(baseline):
-    """Baseline slotted flap at 40° (landing reference): ΔCLmax = 0.9·1.3·(S_f/S)·cos Λ_hinge;
-    Δα0 = −15°·(S_f/S)·cos Λ_hinge, ΔCL0 = −CLα·Δα0; half deflection gives half (Raymer's takeoff scaling)."""
+    """Baseline slotted flap at the landing setting (its landing configuration's 30°): ΔCLmax = 0.9·1.3·(S_f/S)·cos
+    Λ_hinge, Δα0 = −15°·(S_f/S)·cos Λ_hinge, ΔCL0 = −CLα·Δα0 (Raymer eqs 12.21, 12.22); at the takeoff setting (its
+    takeoff configuration's 15°) Raymer's −10° 2-D change and 70 % of the landing Δc_lmax (his 60–80 %); flaps 20
+    (approach) between them, two thirds of the way from 15° to 30° nearer the takeoff value: −10° − 5°·(5/15)."""
     wing = baseline.model.geometry.wing
     flaps = wing.flaps
     ratio = hl.flapped_area_ratio(wing, flaps)
     hinge = planform.sweep_at(1 - flaps.chord_ratio, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper)
-    assert hl.delta_clmax(wing, flaps, math.radians(40)) == pytest.approx(
-        0.9 * 1.3 * ratio * math.cos(hinge), rel=1e-12
-    )
-    assert hl.delta_clmax(wing, flaps, math.radians(20)) == pytest.approx(
-        0.5 * hl.delta_clmax(wing, flaps, math.radians(40))
-    )
-    d_cl, d_cm = hl.lift_and_moment_increment(wing, flaps, math.radians(40), 5.0, 29.64, 8.37)
-    assert d_cl == pytest.approx(-5.0 * math.radians(-15) * ratio * math.cos(hinge), rel=1e-12)
+    settings = hl.FlapSettings.of(baseline.model.configurations)
+    assert (math.degrees(settings.takeoff), math.degrees(settings.landing)) == pytest.approx((15.0, 30.0))
+    landing_clmax = 0.9 * 1.3 * ratio * math.cos(hinge)
+    assert hl.delta_clmax(wing, flaps, settings.share(math.radians(30), 0.7)) == pytest.approx(landing_clmax, rel=1e-12)
+    assert hl.delta_clmax(wing, flaps, settings.share(math.radians(15), 0.7)) == pytest.approx(0.7 * landing_clmax)
+    for flap_deg, shift_2d_deg in ((30, -15.0), (40, -15.0), (15, -10.0), (20, -10.0 - 5.0 / 3.0), (7.5, -5.0)):
+        d_cl, _ = hl.lift_and_moment_increment(wing, flaps, math.radians(flap_deg), 5.0, 29.64, 8.37, settings)
+        assert d_cl == pytest.approx(-5.0 * math.radians(shift_2d_deg) * ratio * math.cos(hinge), rel=1e-12), flap_deg
+    d_cl, d_cm = hl.lift_and_moment_increment(wing, flaps, math.radians(30), 5.0, 29.64, 8.37, settings)
     assert d_cm < 0  # flap load aft of the reference point: nose down
-    assert hl.lift_and_moment_increment(wing, flaps, 0.0, 5.0, 29.64, 8.37) == (0.0, 0.0)
+    assert hl.lift_and_moment_increment(wing, flaps, 0.0, 5.0, 29.64, 8.37, settings) == (0.0, 0.0)
+
+
+def test_without_a_takeoff_setting_the_increment_scales_with_the_deflection(baseline):
+    """An aircraft file with no takeoff configuration (or one flapped as for landing) has no takeoff setting: the
+    increments grow in proportion to the deflection up to the landing setting (40° without a landing configuration)."""
+    configurations = dict(baseline.model.configurations)
+    del configurations["takeoff"]
+    settings = hl.FlapSettings.of(configurations)
+    assert settings.takeoff is None and settings.share(math.radians(15), 0.7) == pytest.approx(0.5)
+    assert hl.FlapSettings.of({}).share(math.radians(20), 0.7) == pytest.approx(0.5)
 
 
 def test_clean_clmax_estimate(baseline):

@@ -125,15 +125,17 @@ def _rotation(to, i):
 def test_the_engine_out_rotation_does_not_lag_the_commanded_rate(baseline_takeoffs):
     """Boeing's Flight Operations Review (1986): the rotation is a smooth, continuous manoeuvre at the commanded rate
     (2.5°/s here). With an engine out the airplane pitches up less readily (less thrust moment), so the pilot pulls
-    harder: at the reference and aft CG the attitude comes within 0.5° of the held attitude (10.1°) no later than 1 s
-    after the ideal rotation would (4.1 s after VR; a pilot who gave the lagging airplane a slower command took 5.6 s
-    and then sat 0.6° short of it for 4 s)."""
+    harder: from 1 s after VR (the elevator's build-up) to the lift-off, which comes during the rotation, the attitude
+    rises at 2.5°/s or more on average at every CG, and at the lift-off it is within 1.25° (half a second of the
+    commanded rate) of the ideal rotation from VR (a pilot who gave the lagging airplane a slower command rotated at
+    1.1–1.8°/s for 2 s)."""
     _, to, n = baseline_takeoffs
-    for i in (1, 2):  # reference and aft CG, engine failed
+    for i in range(n):  # engine failed
         t, theta, target, k_vr, k_lof = _rotation(to, i)
-        k_near = int(np.argmax(theta >= target - np.radians(0.5)))
-        assert 0 < k_near <= k_lof
-        assert t[k_near] <= np.degrees(target - theta[k_vr]) / 2.5 + 1.0
+        k_1 = int(np.argmax(t >= 1.0))
+        assert k_vr < k_1 < k_lof and theta[k_lof] < target
+        assert np.degrees(theta[k_lof] - theta[k_1]) / (t[k_lof] - t[k_1]) >= 2.5
+        assert np.degrees(theta[k_lof] - theta[k_vr]) >= 2.5 * t[k_lof] - 1.25
 
 
 def test_the_rotation_goes_on_through_the_lift_off(baseline_takeoffs):
@@ -154,11 +156,14 @@ def test_the_rotation_goes_on_through_the_lift_off(baseline_takeoffs):
 
 
 def test_the_lift_off_speed_is_the_quasi_static_unstick_speed_of_its_attitude(baseline_takeoffs):
-    """The lift-off is the airplane leaving the runway for good. Engine out the airplane lifts off at the attitude the
-    pilot holds, so its VLOF must agree with the quasi-static unstick speed at that attitude (lift, thrust and weight
-    in balance with the elevator holding the pitch, certkit/models/dynamics/unstick.py, a separate computation):
-    within 1.5 kn at every CG. A wheel's hop as the struts extend is not the lift-off: taken for it, the reference CG
-    "lifted off" about 5 kn below the unstick speed of its attitude (161.3 against 166.0 KCAS)."""
+    """The lift-off is the airplane leaving the runway for good. Engine out its VLOF must agree with the quasi-static
+    unstick speed at its lift-off attitude (lift, thrust and weight in balance with the elevator holding the pitch,
+    certkit/models/dynamics/unstick.py, a separate computation): never below it, and at most 4 kn above it — lifting
+    off during the 2.5°/s rotation, the wheels leave a moment after the attitude's quasi-static speed is reached (the
+    airplane must gain vertical speed as the struts extend), and the unstick speed falls about 4.5 kn per degree of
+    attitude (about 1.2 kn per 0.1 s of rotation, the acceleration included): 4 kn is a third of a second. A wheel's
+    hop as the struts extend is not the lift-off: taken for it, the reference CG "lifted off" about 5 kn below the
+    unstick speed of its attitude (161.3 against 166.0 KCAS, with the flap lift of 2026-12-05)."""
     from certkit_rules.part25.support.takeoff import takeoff_conditions
     from certkit_rules.part25.support.unstick import unstick_speeds
 
@@ -171,4 +176,4 @@ def test_the_lift_off_speed_is_the_quasi_static_unstick_speed_of_its_attitude(ba
         unstick = np.interp(attitude, u.attitudes[order], u.speeds[order, i])
         cas = [float(convert_speed(v, "TAS", "CAS", 0.0)) / KN for v in (to.run.v_lof[i], unstick)]
         print(f"row {i}: VLOF {cas[0]:.1f} kn at {np.degrees(attitude):.2f}°, unstick speed there {cas[1]:.1f} kn")
-        assert abs(cas[0] - cas[1]) < 1.5
+        assert 0.0 <= cas[0] - cas[1] <= 4.0

@@ -33,7 +33,7 @@ from certkit.models.aero.derivative_forms import nondimensional_table
 from certkit.models.aero.derivative_model import StabilityDerivativeModel, StallModel
 from certkit.models.aero.drag import configuration_drag_increment, drag_buildup
 from certkit.models.aero.fuselage import fuselage_derivatives
-from certkit.models.aero.high_lift import estimated_clmax, lift_and_moment_increment
+from certkit.models.aero.high_lift import FlapSettings, estimated_clmax, lift_and_moment_increment
 from certkit.models.aero.interface import AeroReference
 from certkit.models.aero.tail_downwash import WING, downwash_lag, flap_at_tail, free_air_downwash, slopes
 from certkit.models.aero.vlm import Configuration as LatticeConfiguration
@@ -357,7 +357,7 @@ def build_airplane_aero(
     notes: list[str] = []
     clmax = cfg.CLmax
     if clmax is None and aircraft.geometry is not None:
-        clmax = estimated_clmax(aircraft.geometry.wing, cfg)
+        clmax = estimated_clmax(aircraft.geometry.wing, cfg, FlapSettings.of(aircraft.configurations))
         notes.append(f"configuration {configuration}: CLmax {clmax:.2f} estimated (Raymer eqs 12.15, 12.21)")
     elif clmax is None:
         notes.append(f"configurations.{configuration}.CLmax not declared: no stall model")
@@ -432,6 +432,15 @@ def build_airplane_aero(
     return result
 
 
+def _setting_name(settings: FlapSettings, deflection: float) -> str:
+    """Which of Raymer's settings the deflection is, for the notes."""
+    if deflection >= settings.landing:
+        return "the landing setting's −15° 2-D zero-lift angle change"
+    if settings.takeoff is not None and abs(deflection - settings.takeoff) < 1e-9:
+        return "the takeoff setting's −10° 2-D zero-lift angle change"
+    return "the 2-D zero-lift angle change interpolated between the takeoff and landing settings"
+
+
 def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tuple[float, list[float] | None]:
     """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
     (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle (tail-on already);
@@ -446,14 +455,16 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tup
         d_cm = [cfg.delta_Cm0] * len(table["CL0"])
     elif wing.flaps is not None:
         ref = aircraft.reference
+        settings = FlapSettings.of(aircraft.configurations)
         pairs = [
-            lift_and_moment_increment(wing, wing.flaps, cfg.flap, a, ref.moment_point.x, ref.mean_chord)
+            lift_and_moment_increment(wing, wing.flaps, cfg.flap, a, ref.moment_point.x, ref.mean_chord, settings)
             for a in table["CL_alpha"]
         ]
         d_cl, d_cm = [p[0] for p in pairs], [p[1] for p in pairs]
         notes.append(
-            f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22; "
-            f"ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach breakpoint)"
+            f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22, "
+            f"{_setting_name(settings, cfg.flap)}; ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach "
+            "breakpoint)"
         )
     elif flap_cl is not None:
         d_cl = [d * cfg.flap for d in flap_cl]

@@ -5,10 +5,16 @@
   Abbott & von Doenhoff: about 1.3 at t/c 0.09 rising to 1.6 at t/c 0.12-0.15).
 * Flap and slat increment of maximum lift: ΔC_Lmax = 0.9 Δc_lmax (S_flapped / S_ref) cos Λ_HL
   (Raymer eq. 12.21) with Δc_lmax of Raymer Table 12.2 (plain/split 0.9, slotted 1.3, double
-  slotted 1.6 c'/c, Fowler 1.3 c'/c, slat 0.4 c'/c, Krueger 0.3) at the landing deflection; a smaller
-  deflection scales it by δ / 40° (takeoff settings give 60-80 % of the landing increment, Raymer).
-* Zero-lift angle shift: Δα_L=0 = −15° (S_flapped/S_ref) cos Λ_HL at landing deflection, scaled the
-  same way (Raymer eq. 12.22), so ΔC_L0 = −C_Lα Δα_L=0.
+  slotted 1.6 c'/c, Fowler 1.3 c'/c, slat 0.4 c'/c, Krueger 0.3) at the landing setting; at a takeoff setting
+  60–80 % of it (Raymer §12.4.7: 70 % taken).
+* Zero-lift angle shift: Δα_L=0 = Δα_L=0,2D (S_flapped/S_ref) cos Λ_HL (Raymer eq. 12.22), the 2-D change about
+  −15° at the landing setting and −10° at the takeoff setting (Raymer §12.4.7, 6th ed. p. 415), so
+  ΔC_L0 = −C_Lα Δα_L=0.
+* The settings are the airplane's own: the flap deflections of the aircraft file's ``takeoff`` and ``landing``
+  configurations (:class:`FlapSettings`). Between them the increments go linearly from the takeoff value to the
+  landing value (an approach setting); below the takeoff setting in proportion to the deflection; at and beyond the
+  landing setting the landing value. Without a declared takeoff setting the increments scale with the deflection up
+  to the landing setting (40° without a declared landing configuration).
 * Flap pitching moment: the flap increment acts at half the local chord (thin-airfoil theory puts the
   centre of a trailing-edge flap's load between c/4 and c/2, Abbott & von Doenhoff §8.2), at the
   flapped span's centroid: ΔC_m0 = −ΔC_L0 (x_flap − x_ref)/c̄.
@@ -16,6 +22,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -36,8 +44,45 @@ DELTA_CLMAX_SECTION = {
 }
 #: types whose Δc_lmax multiplies the extended-chord ratio c'/c (Raymer Table 12.2)
 CHORD_SCALED = {"double_slotted", "fowler", "slat"}
+#: the landing setting when the aircraft file declares no ``landing`` configuration
 LANDING_DEFLECTION = np.radians(40.0)
+#: 2-D zero-lift angle change of a trailing-edge flap (Raymer §12.4.7, 6th ed. p. 415: "≈ −15 deg at landing setting,
+#: −10 deg at takeoff setting")
 ALPHA0_SHIFT_LANDING = np.radians(-15.0)
+ALPHA0_SHIFT_TAKEOFF = np.radians(-10.0)
+#: Δc_lmax at a takeoff setting as a share of the landing setting's (Raymer §12.4.7: "60–80 %"; the middle taken)
+CLMAX_SHARE_TAKEOFF = 0.7
+
+
+@dataclass(frozen=True)
+class FlapSettings:
+    """The airplane's takeoff and landing flap deflections (rad): Raymer's "takeoff setting" and "landing setting"
+    (``takeoff`` None: none declared)."""
+
+    takeoff: float | None = None
+    landing: float = float(LANDING_DEFLECTION)
+
+    @classmethod
+    def of(cls, configurations: Mapping[str, Configuration]) -> FlapSettings:
+        """The settings of an aircraft file's ``configurations`` (its ``takeoff`` and ``landing`` flap deflections;
+        a takeoff deflection not below the landing one is not a separate setting)."""
+        landing = configurations.get("landing")
+        takeoff = configurations.get("takeoff")
+        d_ldg = landing.flap if landing is not None and landing.flap > 0 else float(LANDING_DEFLECTION)
+        d_to = takeoff.flap if takeoff is not None and 0 < takeoff.flap < d_ldg else None
+        return cls(d_to, d_ldg)
+
+    def share(self, deflection: float, takeoff_share: float) -> float:
+        """The increment at ``deflection`` as a share of the landing setting's, ``takeoff_share`` at the takeoff
+        setting: in proportion to the deflection below it, linear from it to the landing setting, 1 beyond."""
+        d = max(float(deflection), 0.0)
+        if d >= self.landing:
+            return 1.0
+        if self.takeoff is None:
+            return d / self.landing
+        if d <= self.takeoff:
+            return takeoff_share * d / self.takeoff
+        return takeoff_share + (1.0 - takeoff_share) * (d - self.takeoff) / (self.landing - self.takeoff)
 
 
 def section_clmax(thickness_ratio: float) -> float:
@@ -67,25 +112,16 @@ def hinge_sweep(wing: LiftingSurface, device: HighLiftDevice, trailing: bool = T
     return float(planform.sweep_at(fraction, wing.sweep_quarter_chord, wing.aspect_ratio, wing.taper))
 
 
-def _deflection_scale(deflection: float) -> float:
-    return float(min(max(deflection, 0.0) / LANDING_DEFLECTION, 1.0))
-
-
-def delta_clmax(wing: LiftingSurface, device: HighLiftDevice | None, deflection: float) -> float:
-    """ΔC_Lmax of one device at ``deflection`` (rad), Raymer eq. 12.21."""
-    if device is None or deflection <= 0:
+def delta_clmax(wing: LiftingSurface, device: HighLiftDevice | None, share: float) -> float:
+    """ΔC_Lmax of one device at ``share`` of its landing-setting value (:meth:`FlapSettings.share`), Raymer
+    eq. 12.21."""
+    if device is None or share <= 0:
         return 0.0
     base = DELTA_CLMAX_SECTION[device.type]
     if device.type in CHORD_SCALED:
         base *= 1.0 + device.chord_ratio  # c'/c with the extension about equal to the device chord
     trailing = device.type not in ("slat", "krueger")
-    return float(
-        0.9
-        * base
-        * flapped_area_ratio(wing, device)
-        * np.cos(hinge_sweep(wing, device, trailing))
-        * _deflection_scale(deflection)
-    )
+    return float(0.9 * base * flapped_area_ratio(wing, device) * np.cos(hinge_sweep(wing, device, trailing)) * share)
 
 
 def lift_and_moment_increment(
@@ -95,12 +131,14 @@ def lift_and_moment_increment(
     cl_alpha: float,
     x_ref: float,
     mean_chord: float,
+    settings: FlapSettings = FlapSettings(),
 ) -> tuple[float, float]:
     """(ΔC_L0, ΔC_m0) of the trailing-edge flaps at ``flap_deflection`` (Raymer eq. 12.22 and the module notes)."""
     if flaps is None or flap_deflection <= 0:
         return 0.0, 0.0
     ratio = flapped_area_ratio(wing, flaps)
-    d_alpha0 = ALPHA0_SHIFT_LANDING * ratio * np.cos(hinge_sweep(wing, flaps)) * _deflection_scale(flap_deflection)
+    shift_2d = ALPHA0_SHIFT_LANDING * settings.share(flap_deflection, ALPHA0_SHIFT_TAKEOFF / ALPHA0_SHIFT_LANDING)
+    d_alpha0 = shift_2d * ratio * np.cos(hinge_sweep(wing, flaps))
     d_cl = -cl_alpha * d_alpha0
     semi = 0.5 * planform.span(wing.area, wing.aspect_ratio)
     c_root = planform.root_chord(wing.area, wing.aspect_ratio, wing.taper)
@@ -114,10 +152,18 @@ def lift_and_moment_increment(
     return float(d_cl), float(-d_cl * (x_flap - x_ref) / mean_chord)
 
 
-def estimated_clmax(wing: LiftingSurface, configuration: Configuration) -> float:
-    """C_Lmax of a configuration: clean estimate plus the flap and slat increments."""
+def estimated_clmax(
+    wing: LiftingSurface, configuration: Configuration, settings: FlapSettings = FlapSettings()
+) -> float:
+    """C_Lmax of a configuration: clean estimate plus the flap and slat increments, both at the share of their
+    landing value the configuration's flap setting gives (a slat alone: its deflection over the landing flap
+    setting's)."""
+    flap_share = settings.share(configuration.flap, CLMAX_SHARE_TAKEOFF) if configuration.flap > 0 else 0.0
+    slat_share = (
+        flap_share if configuration.flap > 0 else FlapSettings(None, settings.landing).share(configuration.slat, 1.0)
+    )
     return (
         clean_clmax(wing)
-        + delta_clmax(wing, wing.flaps, configuration.flap)
-        + delta_clmax(wing, wing.slats, configuration.slat)
+        + delta_clmax(wing, wing.flaps, flap_share)
+        + (delta_clmax(wing, wing.slats, slat_share) if configuration.slat > 0 else 0.0)
     )
