@@ -9,6 +9,9 @@ Rules already failing on the baseline show their failure path there (§25.125, �
 at the forward CG (its declared VR, docs/baseline-sources.md §14b) and tests/rules/test_r25_107_vlof.py fails it at
 every CG with a lower tail-strike attitude; §25.107(c)(2) fails on the baseline (its declared V2 below the 35-ft
 speed, §14b), and tests/rules/test_r25_107_v35.py fails its (e)(1)(iii) with a V2 the takeoff cannot reach;
+§25.107(e)(3) complies on the baseline and tests/rules/test_r25_107_early_rotation.py fails it with less thrust and a
+lower VR; §25.107(g)(2) fails on the baseline (its VFTO, the (g)(1) minimum, inside the stall warning of the 40°
+turn), and tests/rules/test_r25_107_vfto_turn.py passes it with a higher VFTO;
 §25.111 fails on the baseline (its rudder beyond the ±23.2° design limit, docs/baseline-sources.md §14a), and
 tests/rules/test_r25_111.py fails it with a ±15° rudder too; §25.113 needs a declared takeoff field length, and
 tests/rules/test_r25_113.py fails it with one and 30 % less thrust; §25.173(b)/(c) need a control-force model the
@@ -112,6 +115,8 @@ def test_every_rule_is_exercised_or_explained():
     explained = {
         "25.107(c)(2)",
         "25.107(e)(1)(iv)",
+        "25.107(e)(3)",
+        "25.107(g)(2)",
         "25.111",
         "25.113",
         "25.125",

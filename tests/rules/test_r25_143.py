@@ -219,7 +219,7 @@ def test_wat_limited_thrust_gives_the_minimum_gradient(shared):
     trimming at that thrust and reading the flight path back (Anderson eq. 5.12 path; tolerance 1e-4 in tan γ).
     At 80 % of MTOW it is below the takeoff thrust (at MTOW the baseline's gear-down takeoff configuration is close
     to the limit: capped at the takeoff thrust at some CGs)."""
-    from certkit_rules.part25.subpart_b.r25_143 import wat_limited_thrust
+    from certkit_rules.part25.support.maneuvering import wat_limited_thrust
     from certkit_rules.part25.support.thrust_trims import operating_thrust, trim_at_thrust
 
     conds = [

@@ -12,8 +12,9 @@
     at ``failure_speed`` (its thrust decaying with ``failure_decay_time``). Runs until the lowest gear point is
     ``screen_height`` above the runway with no gear load (or ``t_end``). Returns a :class:`TakeoffResult` with V_LOF
     (the lift-off for good: the first record of the airborne stretch that lasts to the end of the run, not a hop on
-    the extending struts), the speed, distance and time at the screen height, the extreme elevator, the largest
-    pitch attitude with a gear leg on the runway, the largest pitch rate before lift-off and the largest
+    the extending struts), the speed, distance and time at the screen height (the first record beyond it; the
+    distance also interpolated to where the lowest wheel crosses it, ``x_screen_crossing``), the extreme elevator,
+    the largest pitch attitude with a gear leg on the runway, the largest pitch rate before lift-off and the largest
     lateral deviation on the ground.
     ``lateral="heading"`` replaces the wings-level/zero-sideslip hold by :class:`HeadingHold` (rudder
     holds the runway heading and, with ``centreline_gain`` K_y, the centreline on the ground; aileron wings level
@@ -79,6 +80,7 @@ class TakeoffResult:
     pitch_rate_max: np.ndarray | None = None  # (n,) rad/s, largest pitch rate from VR to lift-off
     lateral_on_ground_max: np.ndarray | None = None  # (n,) m, largest |y − y0| on the ground
     pitch_to_liftoff_max: np.ndarray | None = None  # (n,) rad, largest attitude up to the first lift-off
+    x_screen_crossing: np.ndarray | None = None  # (n,) m, x_screen interpolated to where the wheel crosses the height
 
 
 @dataclass
@@ -208,6 +210,14 @@ def takeoff_run(
     v_scr = np.where(reached, sim["V"][k_scr, cols], np.nan)
     x_scr = np.where(reached, sim["x_N"][k_scr, cols] - x0[:, 0], np.nan)
     t_scr = np.where(reached, t_scr, np.nan)
+    # the record at the screen height is the first beyond it: between it and the one before, the lowest wheel's height
+    # is interpolated linearly for the distance at which it crosses the screen height (within a step's travel)
+    k_before = np.maximum(k_scr - 1, 0)
+    h_before, h_at = wheel[k_before, cols], wheel[k_scr, cols]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        frac = np.where(h_at > h_before, np.clip((screen_height - h_before) / (h_at - h_before), 0.0, 1.0), 1.0)
+    x_before = sim["x_N"][k_before, cols]
+    x_cross = np.where(reached, x_before + frac * (sim["x_N"][k_scr, cols] - x_before) - x0[:, 0], np.nan)
     # climb gradient (height gained per horizontal distance) between successive records, airborne only
     s_path = np.concatenate(
         [np.zeros((1, n)), np.cumsum(np.hypot(np.diff(sim["x_N"], axis=0), np.diff(sim["y_E"], axis=0)), axis=0)]
@@ -251,6 +261,7 @@ def takeoff_run(
         np.where(np.isfinite(rate_max), rate_max, np.nan),
         lateral_ground,
         pitch_to_lof,
+        x_cross,
     )
 
 

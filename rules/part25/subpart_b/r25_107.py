@@ -21,6 +21,7 @@ from types import SimpleNamespace
 
 import numpy as np
 from certkit_rules.part25.support.ground_control import computed_vmcg
+from certkit_rules.part25.support.maneuvering import EN_ROUTE_CRITERIA, case_spec, turn_findings
 from certkit_rules.part25.support.minimum_control import computed_vmca
 from certkit_rules.part25.support.reference_speeds import declared_cas, ratio_check, reference_stall_speed
 from certkit_rules.part25.support.takeoff import (
@@ -39,7 +40,7 @@ from certkit.engine.conditions import ConditionSpace, DesignWeight
 from certkit.engine.evidence.performance import margins_evidence, unstick_evidence
 from certkit.engine.registry import Criterion, Rule, rule
 from certkit.engine.results import Finding
-from certkit.units import KN
+from certkit.units import FT, KN
 
 AMDT = "25-121"
 TAKEOFF = "takeoff"
@@ -58,7 +59,9 @@ class TakeoffSpeeds(Rule):
         propeller airplanes with more than three engines and turbojets with such provisions) nor 1.10 VMC (b);
         V2 may not be less than V2MIN (c)(1). VEF may not be less than VMCG, V1 not less than VEF (a).
         VR may not be less than V1 nor 1.05 VMC (e)(1)(i)-(ii); the VLOF it gives against VMU ((e)(1)(iv)) is
-        rule 25.107(e)(1)(iv), V2 and VR against the speed at 35 ft ((c)(2), (e)(1)(iii)) rule 25.107(c)(2).
+        rule 25.107(e)(1)(iv), V2 and VR against the speed at 35 ft ((c)(2), (e)(1)(iii)) rule 25.107(c)(2), the
+        VR − 5 kt engine-out distance ((e)(3)) rule 25.107(e)(3), VFTO's manoeuvring capability ((g)(2)) rule
+        25.107(g)(2).
     """
     margin = """
         Ratios less their factors (≥ 0 complies): V2/VSR − 1.13, V2/VMC − 1.10, VR/V1 − 1, VR/VMC − 1.05,
@@ -96,16 +99,18 @@ class TakeoffSpeeds(Rule):
     )
     limitations = """
         V2 against VR plus the increment to 35 ft (c)(2) and VR giving V2 by 35 ft (e)(1)(iii) are rule 25.107(c)(2)
-        (on the §25.111 takeoffs); the VR − 5 kt one-engine-inoperative distance (e)(3) is not evaluated.
+        (on the §25.111 takeoffs); the VR − 5 kt one-engine-inoperative distance (e)(3) is rule 25.107(e)(3); VFTO and
+        the §25.143(h) manoeuvring capability (g)(2) is rule 25.107(g)(2).
     """
 
     implementation = "partial"
     unevaluated = (
-        ("25.107(e)(3)", "the VR − 5 kt one-engine-inoperative takeoff distance case not evaluated"),
         (
-            "25.107(g)(2)",
-            "the §25.143(h) manoeuvring capability at VFTO is not judged here (§25.143(h) flies its turns)",
+            "25.107(c)(3)",
+            "V2 against the speed that provides the §25.143(h) manoeuvring capability is not judged here (§25.143(h) "
+            "flies the V2 turn)",
         ),
+        ("25.107(e)(4)", "over-rotation and out-of-trim variations from the established takeoff are not evaluated"),
     )
 
     def evaluate(self, ctx, conditions, crit):
@@ -381,4 +386,211 @@ class SpeedsAt35Feet(Rule):
             "§25.107(c)(2) and (e)(1)(iii): V2 and the speed at 35 ft",
             "The declared V2 against the speed the engine-out takeoff reaches at 35 ft, rotated at the declared VR.",
             ("V35", "vr_kn", "v2_kn", "vlof_kn", "speed_increment_kn"),
+        )
+
+
+@rule
+class EarlyRotationDistance(Rule):
+    id = "25.107(e)(3)"
+    run_with = "takeoff"  # the established-VR engine-out runs of §25.111, memoised in one process
+    symbol = "early-rotation-distance"
+    title = "One-engine-inoperative takeoff distance rotated at VR − 5 kt against that at VR (simulated)"
+    amendment = AMDT
+    requirement = """
+        It must be shown that the one-engine-inoperative takeoff distance, using a rotation speed of 5 knots less
+        than VR established in accordance with (e)(1) and (2), does not exceed the corresponding
+        one-engine-inoperative takeoff distance using the established VR; the takeoff distances determined in
+        accordance with §25.113(a)(1).
+    """
+    margin = """
+        Feet, per loading: the engine-out distance to 35 ft (§25.113(a)(1)) of the §25.111 takeoff rotated at the
+        established VR, less that of the same takeoff rotated 5 kt CAS earlier (≥ 0 complies): same loading, engine
+        failure and pilot technique, only the rotation speed moved; each distance interpolated to where the lowest
+        wheel crosses 35 ft.
+    """
+    references = ("25.111", "25.113")
+    requires = TAKEOFF_REQUIRES
+    criteria = {
+        **PROCEDURE_CRITERIA,
+        "early_rotation_kn": Criterion(
+            5.0,
+            "kn",
+            "14 CFR 25.107(e)(3) (text up to 'less than VR' corroborated by the GPO 2007 print and a secondary copy; "
+            "the rest not read in a primary rendering)",
+            "how much earlier than VR (CAS) the abused takeoff rotates",
+        ),
+        "distance_increase_allowed": Criterion(
+            0.0,
+            "",
+            "14 CFR 25.107(e)(3): 'does not exceed' (no allowance); the FAA flight-test hazard analysis citing "
+            "AC 25-7A (Section 2 para 10b, secondary) accepts 'no more than 1% increase' in a test: 0.01 for that "
+            "reading",
+            "fraction by which the early-rotation distance may exceed the established one",
+        ),
+    }
+    conditions = takeoff_conditions("Sea level ISA, takeoff thrust from brake release; the §25.111 loadings.")
+    limitations = """
+        The early rotation is the §25.111 pilot's (the same rate toward the same attitude on the runway, then V2 in the
+        air) begun 5 kt CAS before VR; the critical engine fails at the same VEF in both takeoffs. Where the declared
+        V1 lies above VR − 5 kt, both fail it at the VEF of V1 = VR − 5 kt (§25.107(e)(1)(i) allows no rotation below
+        V1; the engine is cut before the rotation, as in the flight-test practice), so that only the rotation speed
+        differs; the distance with the declared V1 is reported beside. The pilot holds the attitude
+        below the tail-strike attitude on the runway; a run that still reaches it (the rotation overshooting), that
+        does not lift off or does not reach 35 ft earns no verdict — except an early-rotation run still short of 35 ft
+        after rolling past the established distance, which fails on that lower bound. Sea level, MTOW, dry runway.
+    """
+
+    def evaluate(self, ctx, conditions, crit):
+        vr_kn, v2_kn, v1_kn = (declared_cas(ctx, name) / KN for name in ("VR", "V2", "V1"))
+        early_kn = vr_kn - crit.early_rotation_kn
+        failure_v1 = early_kn if v1_kn > early_kn + 1e-6 else None  # V1 at the early rotation speed where above it
+        scheduled = simulated_takeoffs(ctx, conditions, crit)
+        established = (
+            scheduled
+            if failure_v1 is None
+            else simulated_takeoffs(ctx, conditions, crit, failure_v1_kn=failure_v1, all_engines=False)
+        )
+        early = simulated_takeoffs(
+            ctx, conditions, crit, -crit.early_rotation_kn, failure_v1_kn=failure_v1, all_engines=False
+        )
+        strike = established.basis["tail_strike_deg"]
+        allowed = 1.0 + crit.distance_increase_allowed
+        check = f"(e)(3) engine-out takeoff distance rotated at VR − {crit.early_rotation_kn:g} kt ≤ at VR"
+        ft = lambda v: round(float(v) / FT, 1) if np.isfinite(v) else None  # noqa: E731
+        out = []
+        for i, cond in enumerate(conditions):  # the engine-out rows of the runs
+            c = cond.with_(altitude=0.0, thrust="takeoff", inoperative=established.engine)
+            at_vr = run_summary(established, i, vr_kn, v2_kn)
+            at_early = run_summary(early, i, early_kn, v2_kn)
+            d_vr, d_early = established.run.x_screen_crossing[i], early.run.x_screen_crossing[i]
+            details = {
+                "established": at_vr,
+                "early_rotation": at_early,
+                "rotation_speed_kn": round(early_kn, 2),
+                "vef_kn": round(float(convert_speed(established.vef[i], "TAS", "CAS", 0.0)) / KN, 2),
+                "vef_basis": established.vef_basis,
+                "rotation_basis": early.basis["rotation"],
+            }
+            if failure_v1 is not None:
+                details["declared_v1_distance_ft"] = ft(scheduled.run.x_screen_crossing[i])
+            why = unrepresentative(at_vr, tail_strike_deg=strike)
+            if not why and not np.isfinite(d_vr):
+                why = [f"it does not reach {crit.screen_height:g} ft"]
+            if why:
+                reason = "the established-VR engine-out takeoff does not represent one a pilot flies: " + "; ".join(why)
+                out.append(Finding.not_evaluated(c, check, reason, **details))
+                continue
+            details["established_distance_ft"] = ft(d_vr)
+            limit = ft(allowed * d_vr)
+            if not np.isfinite(d_early):
+                rolled = early.run.sim["x_N"][-1, i] - early.run.x0[i, 0]
+                if rolled > allowed * d_vr:  # still short of 35 ft beyond the established distance
+                    reason = (
+                        f"rotated at {early_kn:.0f} KCAS the engine-out takeoff had not reached {crit.screen_height:g} "
+                        f"ft after {ft(rolled):,.0f} ft (a lower bound of its distance)"
+                    )
+                    out.append(
+                        Finding.compare(
+                            c, check, ft(rolled), limit, at_least=False, unit="ft", reason=reason, **details
+                        )
+                    )
+                    continue
+                why = unrepresentative(at_early, tail_strike_deg=strike) or [
+                    f"it does not reach {crit.screen_height:g} ft within the run"
+                ]
+                out.append(
+                    Finding.not_evaluated(c, check, f"rotated at {early_kn:.0f} KCAS: " + "; ".join(why), **details)
+                )
+                continue
+            details["early_distance_ft"] = ft(d_early)
+            why = unrepresentative(at_early, tail_strike_deg=strike)
+            if why:
+                reason = (
+                    f"rotated at {early_kn:.0f} KCAS the engine-out takeoff " + "; ".join(why) + " (the pilot holds "
+                    f"{crit.tail_clearance_deg:g}° below it): the distance of a run with the tail on the runway is not "
+                    "modelled"
+                )
+                out.append(Finding.not_evaluated(c, check, reason, **details))
+                continue
+            out.append(
+                Finding.compare(
+                    c.with_(speed=early_kn * KN, speed_kind="CAS", speed_name=f"VR − {crit.early_rotation_kn:g} kt"),
+                    check,
+                    ft(d_early),
+                    limit,
+                    at_least=False,
+                    unit="ft",
+                    distance_ratio=round(float(d_early / d_vr), 5),
+                    **details,
+                )
+            )
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        return margins_evidence(
+            findings,
+            "§25.107(e)(3) early rotation",
+            "Engine-out distance to 35 ft rotated 5 kt before VR against the distance rotated at VR.",
+            ("early_distance_ft", "established_distance_ft", "distance_ratio", "rotation_speed_kn"),
+        )
+
+
+@rule
+class FinalTakeoffSpeedManeuvering(Rule):
+    id = "25.107(g)(2)"
+    run_with = "coordinated turns"  # the §25.143(h) en-route turns, memoised in one process
+    symbol = "vfto-maneuvering"
+    title = "VFTO against the §25.143(h) manoeuvring capability: the en-route 40° coordinated turn at VFTO"
+    amendment = AMDT
+    requirement = """
+        VFTO may not be less than a speed that provides the maneuvering capability specified in §25.143(h): en route,
+        at VFTO, a constant-speed coordinated turn at 40° of bank with asymmetric WAT-limited thrust, free of stall
+        warning or other characteristics that might interfere with normal manoeuvring.
+    """
+    margin = """
+        Per loading (MTOW at the forward, reference and aft CG), altitude (sea level and 1500 ft) and turn direction,
+        at the declared VFTO: the stall-warning onset's 1-g lift coefficient − the turn's CL = n W/(q S) (≥ 0: free of
+        warning, VFTO at or above the speed that gives the capability), and each trim control's design limit −
+        |deflection| (deg). A speed at which the turn's lift coefficient reaches the warning onset is reported (the
+        declared VFTO × √(CL/CL_warning), the load factor and path held).
+    """
+    references = ("25.143(h)", "25.121(c)", "25.207")
+    requires = ("speeds.VFTO", "configurations.clean", "mass.MTOW")
+    criteria = dict(EN_ROUTE_CRITERIA)
+    conditions = ConditionSpace(
+        extra=(("case", ("en route VFTO",)),),
+        note="The §25.143(h) en-route case: MTOW at the forward, reference and aft CG, sea level and 1500 ft, turns "
+        "toward and away from the inoperative (critical) engine.",
+    )
+    implementation = "partial"
+    limitations = """
+        The turns and thrust of §25.143(h) (its reading of "asymmetric WAT-limited": the thrust that climbs at the
+        §25.121(c) minimum gradient in straight flight, at most maximum continuous thrust; the stall-warning onset
+        declared or the latest §25.207(c) allows); a movable stabiliser trimmed wings level and held. Only the speed
+        the declared VFTO is judged at; the speed that would just give the capability is an estimate beside it.
+    """
+    unevaluated = (
+        (
+            "25.107(g)(2)",
+            "characteristics other than stall warning that might interfere with normal manoeuvring at VFTO (buffet "
+            "onset) are not evaluated, as in §25.143(h)",
+        ),
+    )
+
+    def evaluate(self, ctx, conditions, crit):
+        out = []
+        for cond in conditions:
+            for f in turn_findings(ctx, cond, case_spec("en route VFTO", crit), "(g)(2) VFTO, §25.143(h) 40° turn"):
+                if f.check.endswith("free of stall warning") and f.status != "not_evaluated":
+                    v = f.condition.speed
+                    f.details["speed_at_warning_onset_kn"] = round(v * (f.value / f.limit) ** 0.5 / KN, 2)
+                out.append(f)
+        return out
+
+    def evidence(self, ctx, findings, crit):
+        return margins_evidence(
+            findings,
+            "§25.107(g)(2) VFTO and the §25.143(h) turn",
+            "The 40° coordinated turn at VFTO with asymmetric WAT-limited thrust: stall warning and controls.",
+            ("load_factor", "CL", "stall_warning_CL", "speed_at_warning_onset_kn", "flight_path_deg"),
         )

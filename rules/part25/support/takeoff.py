@@ -1,4 +1,5 @@
-"""The simulated takeoff shared by §25.111 (takeoff path) and §25.113 (takeoff distance) (regulation content).
+"""The simulated takeoff shared by §25.111 (takeoff path), §25.113 (takeoff distance) and the §25.107 rules that judge
+the takeoff speeds on it (regulation content).
 
 One batched six-degree-of-freedom run (:func:`certkit.models.dynamics.procedures.takeoff_run`) per set of loadings,
 sea level ISA, takeoff thrust from brake release: rows 0..n−1 with the critical engine failed at VEF (§25.111(a)(2)),
@@ -139,33 +140,45 @@ class Takeoffs:
     basis: dict  # how the procedure was set up (rotation, tail strike, spool-down)
 
 
-def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
+def simulated_takeoffs(
+    ctx, conditions, crit, rotation_offset_kn: float = 0.0, failure_v1_kn: float | None = None, all_engines: bool = True
+) -> Takeoffs:
     """The memoised engine-out and all-engines takeoffs of ``conditions`` (module docstring); ``crit`` holds the
-    :data:`PROCEDURE_CRITERIA`."""
+    :data:`PROCEDURE_CRITERIA`. ``rotation_offset_kn`` (CAS) moves the rotation speed from the declared VR, the pilot's
+    technique unchanged; ``failure_v1_kn`` (CAS) is the V1 VEF is derived from in place of the declared one. Without
+    ``all_engines`` only the engine-out rows are flown (``run`` has n rows)."""
 
     def compute():
         ac = ctx.aircraft
         sp = ac.speeds
         n = len(conditions)
+        copies = 2 if all_engines else 1
         tas = lambda s: float(convert_speed(s.value, s.kind, "TAS", 0.0))  # noqa: E731
-        vr, v2 = tas(sp.VR), tas(sp.V2)
+        vr, v2, v1 = tas(sp.VR), tas(sp.V2), tas(sp.V1)
+        if rotation_offset_kn:
+            vr_cas = float(convert_speed(sp.VR.value, sp.VR.kind, "CAS", 0.0)) + rotation_offset_kn * KN
+            vr = float(convert_speed(vr_cas, "CAS", "TAS", 0.0))
+        if failure_v1_kn is not None:
+            v1 = float(convert_speed(failure_v1_kn * KN, "CAS", "TAS", 0.0))
         trims, held = takeoff_trim(ctx, conditions)
         theta = np.array([r.theta for r in trims.results])
         de_ff = np.array([r.controls.get("elevator", 0.0) if r.converged else 0.0 for r in trims.results])
-        settings = {k: np.tile(v, 2) for k, v in held.items()}
+        settings = {k: np.tile(v, copies) for k, v in held.items()}
         loadings = [ctx.loading(c.mass, c.x_cg, c.loading or "") for c in conditions]
         pilot = ac.takeoff_pilot
         steering = pilot.nose_wheel_steering or None
         model = flight_model(
             ac,
             ctx.aero("takeoff").model,
-            loadings + loadings,
+            loadings * copies,
             ground=ground_model(ac, nose_wheel="steered" if steering else "straight"),
         )
         engine = critical_engine(ctx)  # the same engine as the climb rules' (§25.121)
         vef, vef_basis = engine_failure_speed(
-            model, tas(sp.V1), engine, crit.recognition_time, ac.propulsion.failure_decay_time
+            model, v1, engine, crit.recognition_time, ac.propulsion.failure_decay_time
         )
+        if failure_v1_kn is not None:
+            vef_basis += f" (V1 taken at {failure_v1_kn:g} KCAS)"
         vmcg, _, _ = computed_vmcg(ctx)  # the failure is never scheduled below VMCG (§25.107(a)(1))
         if vmcg is not None and np.isfinite(vmcg):
             low = vef < float(convert_speed(vmcg, "CAS", "TAS", 0.0))
@@ -175,7 +188,7 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         vef[n:] = np.inf  # the all-engines rows
         y = {e.name: e.position.y for e in ac.propulsion.engines}
         toward_live = -np.sign(y[engine]) if y[engine] != 0 else 1.0  # bank right (+) when the left engine is dead
-        bank = np.concatenate([np.full(n, toward_live * np.radians(crit.bank_deg)), np.zeros(n)])
+        bank = np.concatenate([np.full(n, toward_live * np.radians(crit.bank_deg)), np.zeros(n)])[: copies * n]
         v_aeo = float(
             convert_speed(
                 float(convert_speed(v2, "TAS", "CAS", 0.0)) + crit.all_engines_speed_increment_kn * KN,
@@ -184,7 +197,7 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
                 0.0,
             )
         )
-        climb = np.concatenate([np.full(n, v2), np.full(n, v_aeo)])
+        climb = np.concatenate([np.full(n, v2), np.full(n, v_aeo)])[: copies * n]
         strike = ac.geometry.landing_gear.tail_strike_attitude
         margin = np.radians(crit.tail_clearance_deg)
         target = theta if strike is None else np.minimum(theta, strike - margin)
@@ -195,10 +208,10 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         run = takeoff_run(
             model,
             vr,
-            np.concatenate([target, target]),
+            np.tile(target, copies),
             climb_speed=climb,
             settings=settings,
-            elevator_ff=np.concatenate([de_ff, de_ff]),
+            elevator_ff=np.tile(de_ff, copies),
             tail_strike=None,
             rotation_rate=np.radians(crit.rotation_rate_deg_s),
             screen_height=crit.screen_height * FT,
@@ -217,7 +230,9 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         )
         basis = {
             "rotation": (
-                f"rotation at {crit.rotation_rate_deg_s:g}°/s from VR toward the 1-g V2 attitude"
+                f"rotation at {crit.rotation_rate_deg_s:g}°/s from "
+                + (f"VR {rotation_offset_kn:+g} kt" if rotation_offset_kn else "VR")
+                + " toward the 1-g V2 attitude"
                 + (
                     ""
                     if strike is None
@@ -256,6 +271,9 @@ def simulated_takeoffs(ctx, conditions, crit) -> Takeoffs:
         "simulated takeoffs",
         tuple((c.mass, c.x_cg) for c in conditions),
         tuple(float(getattr(crit, k)) for k in PROCEDURE_CRITERIA),
+        float(rotation_offset_kn),
+        failure_v1_kn,
+        all_engines,
     )
     return ctx.memo(key, compute)
 
