@@ -432,15 +432,6 @@ def build_airplane_aero(
     return result
 
 
-def _setting_name(settings: FlapSettings, deflection: float) -> str:
-    """Which of Raymer's settings the deflection is, for the notes."""
-    if deflection >= settings.landing:
-        return "the landing setting's −15° 2-D zero-lift angle change"
-    if settings.takeoff is not None and abs(deflection - settings.takeoff) < 1e-9:
-        return "the takeoff setting's −10° 2-D zero-lift angle change"
-    return "the 2-D zero-lift angle change interpolated between the takeoff and landing settings"
-
-
 def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tuple[float, list[float] | None]:
     """ΔCL0, ΔCm0 of the configuration: declared increments, else Raymer's estimate from the wing's flaps
     (:mod:`certkit.models.aero.high_lift`), else the lattice's flap derivative × angle (tail-on already);
@@ -463,7 +454,7 @@ def _high_lift(aircraft, name, cfg, table, notes, flap_tail=(None, None)) -> tup
         d_cl, d_cm = [p[0] for p in pairs], [p[1] for p in pairs]
         notes.append(
             f"configuration {name}: flap lift and moment increments estimated (Raymer eq. 12.22, "
-            f"{_setting_name(settings, cfg.flap)}; ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach "
+            f"{settings.zero_lift_shift_basis(cfg.flap)}; ΔCL0 {d_cl[0]:.3f}, ΔCm0 {d_cm[0]:.3f} at the lowest Mach "
             "breakpoint)"
         )
     elif flap_cl is not None:

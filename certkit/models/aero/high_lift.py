@@ -84,6 +84,14 @@ class FlapSettings:
             return takeoff_share * d / self.takeoff
         return takeoff_share + (1.0 - takeoff_share) * (d - self.takeoff) / (self.landing - self.takeoff)
 
+    def zero_lift_shift_basis(self, deflection: float) -> str:
+        """Which of Raymer's 2-D zero-lift angle changes the deflection takes, for the notes."""
+        if deflection >= self.landing:
+            return f"the landing setting's −{abs(np.degrees(ALPHA0_SHIFT_LANDING)):.0f}° 2-D zero-lift angle change"
+        if self.takeoff is not None and abs(deflection - self.takeoff) < 1e-9:
+            return f"the takeoff setting's −{abs(np.degrees(ALPHA0_SHIFT_TAKEOFF)):.0f}° 2-D zero-lift angle change"
+        return "the 2-D zero-lift angle change interpolated between the takeoff and landing settings"
+
 
 def section_clmax(thickness_ratio: float) -> float:
     """Section maximum lift of a NACA 4-digit-like section (Abbott & von Doenhoff, Re ≈ 6e6)."""
@@ -158,12 +166,11 @@ def estimated_clmax(
     """C_Lmax of a configuration: clean estimate plus the flap and slat increments, both at the share of their
     landing value the configuration's flap setting gives (a slat alone: its deflection over the landing flap
     setting's)."""
-    flap_share = settings.share(configuration.flap, CLMAX_SHARE_TAKEOFF) if configuration.flap > 0 else 0.0
-    slat_share = (
-        flap_share if configuration.flap > 0 else FlapSettings(None, settings.landing).share(configuration.slat, 1.0)
-    )
-    return (
-        clean_clmax(wing)
-        + delta_clmax(wing, wing.flaps, flap_share)
-        + (delta_clmax(wing, wing.slats, slat_share) if configuration.slat > 0 else 0.0)
-    )
+    flap_share = settings.share(configuration.flap, CLMAX_SHARE_TAKEOFF)
+    if configuration.slat <= 0:
+        slat_share = 0.0
+    elif configuration.flap > 0:
+        slat_share = flap_share
+    else:
+        slat_share = min(configuration.slat / settings.landing, 1.0)
+    return clean_clmax(wing) + delta_clmax(wing, wing.flaps, flap_share) + delta_clmax(wing, wing.slats, slat_share)

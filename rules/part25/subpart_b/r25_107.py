@@ -28,6 +28,7 @@ from certkit_rules.part25.support.takeoff import (
     PROCEDURE_CRITERIA,
     TAKEOFF_REQUIRES,
     failure_speed_at_v1,
+    not_a_takeoff,
     run_summary,
     simulated_takeoffs,
     takeoff_conditions,
@@ -369,7 +370,7 @@ class SpeedsAt35Feet(Rule):
             if not why and summary["v35_kn"] is None:
                 why = ["the engine-out run does not reach 35 ft"]
             if why:
-                reason = "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why)
+                reason = not_a_takeoff(why)
                 out += [Finding.not_evaluated(c, check, reason, **summary) for check in self.checks]
                 continue
             v35 = summary["v35_kn"]
@@ -477,7 +478,7 @@ class EarlyRotationDistance(Rule):
             if not why and not np.isfinite(d_vr):
                 why = [f"it does not reach {crit.screen_height:g} ft"]
             if why:
-                reason = "the established-VR engine-out takeoff does not represent one a pilot flies: " + "; ".join(why)
+                reason = not_a_takeoff(why, "the established-VR engine-out takeoff")
                 out.append(Finding.not_evaluated(c, check, reason, **details))
                 continue
             details["established_distance_ft"] = ft(d_vr)

@@ -56,6 +56,7 @@ from certkit_rules.part25.support.takeoff import (
     PROCEDURE_CRITERIA,
     TAKEOFF_REQUIRES,
     distances,
+    not_a_takeoff,
     run_summary,
     simulated_takeoffs,
     takeoff_conditions,
@@ -232,7 +233,7 @@ class TakeoffPath(Rule):
                     Finding.not_evaluated(
                         c35,
                         ch,
-                        "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why),
+                        not_a_takeoff(why),
                         **details,
                     )
                     for ch in checks

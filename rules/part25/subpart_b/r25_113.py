@@ -24,6 +24,7 @@ from certkit_rules.part25.support.takeoff import (
     PROCEDURE_CRITERIA,
     TAKEOFF_REQUIRES,
     distances,
+    not_a_takeoff,
     run_summary,
     simulated_takeoffs,
     takeoff_conditions,
@@ -129,7 +130,7 @@ class TakeoffDistance(Rule):
                     Finding.not_evaluated(
                         c0,
                         check,
-                        "the simulated takeoff does not represent one a pilot flies: " + "; ".join(why),
+                        not_a_takeoff(why),
                         **details,
                     )
                 )

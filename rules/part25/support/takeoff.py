@@ -357,3 +357,8 @@ def unrepresentative(summary: dict, tail_strike_deg: float | None = None, to_lif
             f"past the {tail_strike_deg:.1f}° tail-strike attitude"
         )
     return out
+
+
+def not_a_takeoff(why: list[str], run: str = "the simulated takeoff") -> str:
+    """The reason of the finding a run :func:`unrepresentative` sets aside: ``run`` and the ``why`` it gave."""
+    return f"{run} does not represent one a pilot flies: " + "; ".join(why)
