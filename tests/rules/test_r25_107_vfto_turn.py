@@ -57,3 +57,22 @@ def test_the_verdicts_are_those_of_the_143h_en_route_case(base):
         if f.condition.get("case") == "en route VFTO" and f.check.endswith("free of stall warning")
     }
     assert mine == theirs
+
+
+def test_a_smaller_wing_loses_the_capability_at_the_same_vfto(tmp_path):
+    """A deficient airplane: the wing (and reference area) 15 % smaller at the VFTO of 204 KCAS that gives the baseline
+    the capability. The turn's C_L = n W/(q S) grows by 1/0.85 (1.234 → about 1.45, above the 1.270 onset): every turn
+    is inside stall warning."""
+    smaller = [
+        ("  area: 4927.3 ft^2            # [given] wing reference area", "  area: 4188.2 ft^2"),
+        ("    area: 4927.3 ft^2          # [given]", "    area: 4188.2 ft^2"),
+        ("  VFTO: 198 kn CAS", "  VFTO: 204 kn CAS"),
+    ]
+    found = warnings(run_rule(RULE, tmp_path, smaller))
+    assert len(found) == 12 and all(f.status == "fails" and f.value > 1.4 for f in found)
+
+
+def test_without_vfto_nothing_is_judged(tmp_path):
+    res = run_rule(RULE, tmp_path, [("  VFTO: 198 kn CAS", "  #VFTO: 198 kn CAS")])
+    assert res.status == "not_evaluated" and all(f.status == "not_evaluated" for f in own(res))
+    assert all("speeds.VFTO" in (f.reason or "") for f in own(res))
