@@ -341,3 +341,35 @@ def test_vmcl_follows_the_rudder_power_and_decides_vref(tmp_path):
     vref = 136.0
     for k, fs in found.items():  # the margin is VREF/VMCL − 1 at every CG (VMCL at the most unfavourable, aft)
         assert all(f.margin == pytest.approx(vref / vmcl[k] - 1.0, abs=1e-6) for f in fs)
+
+
+#: a horizontal tail of the tail study's corner (20 % smaller than the baseline's, swept 42°, thin, its elevator a
+#: third of the chord over 80 % of the span): the light airplane's cuts lift off before the heading recovers
+SMALL_SWEPT_TAIL = (
+    ("    area: 1119.2 ft^2          # [given]", "    area: 895.4 ft^2"),
+    ("    aspect_ratio: 4.62         # [given]", "    aspect_ratio: 3.70"),
+    ("    taper: 0.33                # [given]", "    taper: 0.26"),
+    ("    sweep_quarter_chord: 34.82 deg   # [given]", "    sweep_quarter_chord: 41.78 deg"),
+    ("    thickness_ratio: 0.088     # [given]", "    thickness_ratio: 0.071"),
+    ("        span_start: 0.07       # [given]", "        span_start: 0.0"),
+    ("        span_end: 0.94         # [given]", "        span_end: 0.80"),
+    ("        chord_ratio: 0.29      # [given]", "        chord_ratio: 0.35"),
+)
+
+
+def test_a_light_airplane_lifting_off_before_the_recovery_still_has_a_vmcg(tmp_path):
+    """At 310,000 lb the takeoff wing lifts the airplane off at its attitude of rest near 150 KCAS, 4.5 kn/s after an
+    engine cut: with the tail above, every cut from 120 KCAS up leaves the runway before the heading is back parallel
+    to the centreline. §25.149(e) measures the path to that recovery (CS 25.149(e) restricts the lateral control
+    "until the aeroplane becomes airborne": the manoeuvre may end in the air), so such a run decides by its whole path
+    when the heading recovers in the air, and as beyond the bound when it was beyond on the runway already. The light
+    aft corner then has a VMCG inside its search, bracketed by a run beyond 30 ft and one within (both lifted off),
+    as at the baseline's light aft corner (127.3 KCAS), not "no VMCG on the runway"."""
+    r = run_rule("25.149", tmp_path, list(SMALL_SWEPT_TAIL))
+    f = next(f for f in _vmcg(r) if f.condition.loading == "aft_light")
+    assert f.status == "complies" and 120.0 < f.value < 135.0
+    rows = f.details["search"]
+    below = [row for row in rows if row["failure_speed_kn_cas"] < f.value]
+    above = [row for row in rows if row["failure_speed_kn_cas"] > f.value]
+    assert below[-1]["lifted_off_before_recovery"] and above[0]["lifted_off_before_recovery"]
+    assert (below[-1]["max_lateral_deviation_ft"] or np.inf) > 30.0 >= above[0]["max_lateral_deviation_ft"]

@@ -79,7 +79,10 @@ class MinimumControlSpeed(Rule):
         cut with the declared spool-down, the nose wheel castering, the stabiliser at the V2 takeoff trim, the column
         holding the attitude of rest, the pilot's rudder held for the criteria's reaction time (1 s) after the cut and
         then moved at the declared takeoff_pilot.rudder_rate over its travel on heading and centreline, wings level;
-        the deviation is the largest from the cut to the heading's return parallel to the centreline; the search
+        the deviation is the largest from the cut to the heading's return parallel to the centreline (a light
+        airplane that lifts off at the attitude of rest before it flies on: its path counts to a recovery in the air,
+        beyond the bound if it was beyond on the runway; one within the bound at the lift-off whose heading does not
+        return in the air decides nothing and is left out; the search table marks the runs that lifted off); the search
         runs 9 failure speeds from 0.85 to 1.15 times the static rudder-moment balance speed (more toward 60 KCAS or
         VR only where the crossing lies outside), VMCG interpolated linearly (spacing about 5 kn, within 0.6 kn of a
         finer search on the baseline).
@@ -176,8 +179,9 @@ class MinimumControlSpeed(Rule):
                 {
                     "failure_speed_kn_cas": round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1),
                     "max_lateral_deviation_ft": (round(d / 0.3048, 1) if np.isfinite(d) else None),
+                    "lifted_off_before_recovery": lifted,
                 }
-                for v, d in zip(res.search.speeds[i], res.search.deviations[i])
+                for v, d, lifted in zip(res.search.speeds[i], res.search.deviations[i], res.search.lifted[i])
             ]
             details = dict(search=table, **res.basis)
             vmcg = res.speed_cas[i]
@@ -186,8 +190,8 @@ class MinimumControlSpeed(Rule):
                     Finding.not_evaluated(
                         c0,
                         check,
-                        "every engine-cut run left the runway before the heading "
-                        "recovered (the airplane lifts off at the ground attitude)",
+                        "every engine-cut run lifted off at the attitude of rest within the bound and its "
+                        "heading did not recover in the air: none decides on which side of the bound it lies",
                         **details,
                     )
                 )
