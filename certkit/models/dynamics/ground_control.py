@@ -13,13 +13,11 @@ numbers here: the deviation bound, the reaction time and the pedal rate are the 
     at ``rudder_rate``; the ailerons hold the wings level. The model's nose wheel should caster (a ground model built
     with ``nose_wheel="castering"``): the rudder alone keeps the direction. The run of a row ends when the heading,
     after its swing toward the failed engine, is back parallel to the centreline (the recovery), or ``after`` s after
-    the failure. A light airplane may lift off at the attitude of rest before its heading has recovered: the run goes
-    on in the air, the pilot's laws unchanged, and its path over the runway still counts to the recovery (the
-    regulation measures the path "to the point at which recovery to a direction parallel to the centerline is
-    completed"; CS 25.149(e) limits the lateral control "until the aeroplane becomes airborne", a recovery that may
-    end in the air). Returned per row: the largest lateral deviation from the centreline between the failure and the
-    recovery (m; infinite when the heading did not recover within the run), whether the gear left the runway before
-    the recovery, the heading swing and the peak rudder.
+    the failure, or when the gear leaves the runway first (a light airplane lifts off at the attitude of rest, an
+    unrotated lift-off, before its heading has recovered: the takeoff run is over). Returned per row: the largest
+    lateral deviation from the centreline between the failure and the recovery or that lift-off (m; infinite when
+    the heading did not recover within the run on the runway), whether the run ended in the lift-off, the heading
+    swing and the peak rudder.
 
 :func:`ground_minimum_control_speed`
     For each condition of the batch, the failure speed at which the largest lateral deviation of
@@ -30,11 +28,14 @@ numbers here: the deviation bound, the reaction time and the pedal rate are the 
     bracket (the deviation falls as the failure speed rises: the rudder's power grows with q̄ while the
     thrust asymmetry does not). A condition whose deviation stays within the bound at the lowest speed of the grid is
     reported at that speed with ``below`` set (VMCG no higher); one beyond the bound at the highest with ``above`` set.
-    A run that lifts off before its heading recovers counts with its whole path when the heading recovers in the air,
-    as beyond the bound when it was beyond on the runway already; otherwise (within the bound at the lift-off, the
-    heading not back in the air: a wings-level heading law leaves a steady sideslip and heading error in the air)
-    it decides nothing and is left out; ``lifted`` says which runs lifted off. A condition without a deciding run
-    has no speed (NaN).
+    A run that lifts off before its heading recovers (``airborne``) counts with its deviation on the runway: the
+    minimum control speed on the ground is about the takeoff run ("the calibrated airspeed during the takeoff run"),
+    and a simulator's VMCG test asks for the recovery "with the main gear on the ground" (14 CFR Part 60, Appendix A,
+    test 1.b.2): beyond the bound there, it failed on the runway; within it with the swing arrested on the runway
+    (the heading already turning back at the lift-off: ``arrested``), the rudder held the path for the whole takeoff
+    run after the cut (what follows is the air minimum control speed's case); within it with the heading still
+    swinging away, it decides nothing and is left out (a condition without a deciding run has no speed, NaN).
+    ``lifted`` says which of the runs kept lifted off.
 
 Speeds are true airspeeds (m/s), lengths m, angles rad.
 """
@@ -64,8 +65,8 @@ class EngineCutRuns:
     heading_swing: np.ndarray  # (n,) rad, largest |ψ| after the failure
     rudder_peak: np.ndarray  # (n,) rad, largest |δr|
     recovery_time: np.ndarray  # (n,) s after the failure (nan: not recovered)
-    airborne: np.ndarray  # (n,) bool: the gear left the runway before the recovery (the run went on in the air)
-    deviation_at_liftoff: np.ndarray  # (n,) m, largest |y| from the failure to that lift-off (nan: not airborne)
+    airborne: np.ndarray  # (n,) bool: the gear left the runway before the recovery (the deviation up to then)
+    arrested: np.ndarray  # (n,) bool: airborne with the swing arrested (the heading turning back) at the lift-off
     sim: SimulationResult
 
 
@@ -77,6 +78,7 @@ class GroundControlSpeed:
     speeds: list  # per condition, the failure speeds run (sorted)
     deviations: list  # per condition, their deviations (m)
     lifted: list  # per condition, whether each of those runs lifted off before its heading recovered
+    undecided: list  # per condition, the failure speeds (sorted) of the runs left out: lifted off still swinging
     runs: list  # the EngineCutRuns of each pass
     balance_speed: np.ndarray  # (n,) m/s TAS, the static rudder-moment balance the search started from (NaN: none)
 
@@ -118,7 +120,7 @@ def engine_cut_runs(
     swing_sign = np.zeros(n)
     recovered = np.zeros(n, dtype=bool)
     airborne = np.zeros(n, dtype=bool)
-    t_lift = np.full(n, np.inf)
+    arrested = np.zeros(n, dtype=bool)
 
     def done(t, x, out):
         q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
@@ -132,9 +134,10 @@ def engine_cut_runs(
         with np.errstate(invalid="ignore"):
             late = failed & (t >= t_fail + after)
             reacted = failed & (t >= t_fail + reaction_time)
-        up = reacted & ~recovered & ~airborne & (out.gear_load.sum(axis=1) <= 0.0)
-        airborne[up], t_lift[up] = True, t
-        return back | late | (np.abs(x[:, 1] - y0) > departure)
+        up = reacted & ~back & (out.gear_load.sum(axis=1) <= 0.0)
+        airborne[up] = True
+        arrested[up] = (swing_sign[up] != 0.0) & (x[up, 8] * swing_sign[up] < 0.0)  # yaw rate back toward the runway
+        return back | late | up | (np.abs(x[:, 1] - y0) > departure)
 
     t_end = lead_time * 3.0 + after + 10.0
     sim = simulate(model, x0, u, t_end, dt, controllers=[pitch, pilot, failure], stop=[stop_when("recovered", done)])
@@ -144,13 +147,11 @@ def engine_cut_runs(
     window = (k >= k_fail[None, :]) & (sim.t[:, None] <= sim.stop_time[None, :] + 1e-9)
     y = np.abs(sim["y_E"] - y0[None, :])
     dev = np.where(window, y, 0.0).max(axis=0)
-    dev = np.where(recovered, dev, np.inf)
-    on_runway = window & (sim.t[:, None] <= t_lift[None, :] + 1e-9)
-    dev_lift = np.where(airborne, np.where(on_runway, y, 0.0).max(axis=0), np.nan)
+    dev = np.where(recovered | airborne, dev, np.inf)
     swing = np.where(window, np.abs(sim["psi"]), 0.0).max(axis=0)
     rudder = np.abs(sim.controls[:, :, model.control_index("rudder")]).max(axis=0)
     t_rec = np.where(recovered, sim.stop_time - sim.t[np.minimum(k_fail, nt - 1)], np.nan)
-    return EngineCutRuns(vf, dev, recovered, swing, rudder, t_rec, airborne, dev_lift, sim)
+    return EngineCutRuns(vf, dev, recovered, swing, rudder, t_rec, airborne, arrested, sim)
 
 
 def rudder_balance_speed(
@@ -225,6 +226,7 @@ def ground_minimum_control_speed(
     speeds = [[] for _ in range(n)]
     devs = [[] for _ in range(n)]
     lifted = [[] for _ in range(n)]
+    undecided = [[] for _ in range(n)]
     passes = []
     limits = (runs.get("lateral_limits") or {}).get("rudder", (-np.radians(25), np.radians(25)))
     guess = rudder_balance_speed(model, engine, limits, low, high, settings)
@@ -241,10 +243,9 @@ def ground_minimum_control_speed(
         res = engine_cut_runs(model.subset(rows), vf, engine, reaction_time, rudder_rate, settings=held, **runs)
         passes.append(res)
         for i, (v, d) in enumerate(zip(vf, res.deviation)):
-            if res.airborne[i] and not res.recovered[i]:
-                if res.deviation_at_liftoff[i] <= deviation_limit:
-                    continue  # within the bound when it lifted off, not recovered in the air: undecided
-                d = np.inf  # beyond the bound on the runway already
+            if res.airborne[i] and d <= deviation_limit and not res.arrested[i]:
+                undecided[rows[i]].append(float(v))  # off the runway within the bound, the swing not arrested
+                continue
             speeds[rows[i]].append(float(v))
             devs[rows[i]].append(float(d))
             lifted[rows[i]].append(bool(res.airborne[i]))
@@ -253,7 +254,7 @@ def ground_minimum_control_speed(
             order = np.argsort(speeds[c])
             v, d = np.asarray(speeds[c])[order], np.asarray(devs[c])[order]
             speeds[c], devs[c], lifted[c] = list(v), list(d), [lifted[c][k] for k in order]
-            if v.size == 0:  # every run lifted off within the bound and did not recover in the air: look lower
+            if v.size == 0:  # every run lifted off undecided: look lower
                 if lo[c] > low * (1 + 1e-9):
                     plan[c] = np.linspace(low, lo[c], extend + 1)[:-1]
                     lo[c] = low
@@ -278,7 +279,9 @@ def ground_minimum_control_speed(
             k = beyond[-1]
             d0 = min(d[k], 10.0 * deviation_limit)  # an unrecovered run counts as far beyond the bound
             speed[c] = v[k] + (v[k + 1] - v[k]) * (d0 - deviation_limit) / (d0 - d[k + 1])
-    return GroundControlSpeed(speed, below, above, speeds, devs, lifted, passes, guess)
+    return GroundControlSpeed(
+        speed, below, above, speeds, devs, lifted, [sorted(set(u)) for u in undecided], passes, guess
+    )
 
 
 __all__ = [

@@ -79,10 +79,11 @@ class MinimumControlSpeed(Rule):
         cut with the declared spool-down, the nose wheel castering, the stabiliser at the V2 takeoff trim, the column
         holding the attitude of rest, the pilot's rudder held for the criteria's reaction time (1 s) after the cut and
         then moved at the declared takeoff_pilot.rudder_rate over its travel on heading and centreline, wings level;
-        the deviation is the largest from the cut to the heading's return parallel to the centreline (a light
-        airplane that lifts off at the attitude of rest before it flies on: its path counts to a recovery in the air,
-        beyond the bound if it was beyond on the runway; one within the bound at the lift-off whose heading does not
-        return in the air decides nothing and is left out; the search table marks the runs that lifted off); the search
+        the deviation is the largest from the cut to the heading's return parallel to the centreline, or to the
+        lift-off where a light airplane leaves the runway at the attitude of rest before its heading is back (the
+        takeoff run is over: such a run counts when beyond the bound on the runway, or within it with the swing
+        arrested there, the heading turning back; one still swinging away decides nothing; the search table marks
+        the runs that lifted off); the search
         runs 9 failure speeds from 0.85 to 1.15 times the static rudder-moment balance speed (more toward 60 KCAS or
         VR only where the crossing lies outside), VMCG interpolated linearly (spacing about 5 kn, within 0.6 kn of a
         finer search on the baseline).
@@ -183,22 +184,38 @@ class MinimumControlSpeed(Rule):
                 }
                 for v, d, lifted in zip(res.search.speeds[i], res.search.deviations[i], res.search.lifted[i])
             ]
-            details = dict(search=table, **res.basis)
+            details = dict(
+                search=table,
+                lifted_off_swinging_kn_cas=[
+                    round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1) for v in res.search.undecided[i]
+                ],
+                **res.basis,
+            )
             vmcg = res.speed_cas[i]
             if not np.isfinite(vmcg):
                 out.append(
                     Finding.not_evaluated(
                         c0,
                         check,
-                        "every engine-cut run lifted off at the attitude of rest within the bound and its "
-                        "heading did not recover in the air: none decides on which side of the bound it lies",
+                        "every engine-cut run lifted off at the attitude of rest within the bound with its heading "
+                        "still swinging away: none says on which side of the bound the takeoff run's control lies",
                         **details,
                     )
                 )
                 continue
             found = c0.with_(speed=float(vmcg), speed_kind="CAS", speed_name="VMCG")
             reason = ""
-            if res.above[i]:
+            undecided = res.search.undecided[i]
+            if res.above[i] and undecided and undecided[0] > res.search.speeds[i][-1]:
+                cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
+                reason = (
+                    f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft on the runway for a failure at every "
+                    f"speed up to {cas(res.search.speeds[i][-1]):.1f} kn; from {cas(undecided[0]):.1f} kn the airplane "
+                    "lifts off at the attitude of rest with its heading still swinging away (the rudder has not "
+                    "arrested the swing within the takeoff run): no VMCG on the runway (value shown as VR + 1 kn)"
+                )
+                vmcg = np.inf
+            elif res.above[i]:
                 at_vr = res.search.deviations[i][-1] / 0.3048
                 reason = (
                     f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
