@@ -10,6 +10,7 @@ processes; results are put back in rule order, so they equal those of ``jobs = 1
 from __future__ import annotations
 
 import datetime as _dt
+import gc
 import inspect
 import math
 import os
@@ -393,11 +394,15 @@ def _worker_init(
 
 def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict[str, Any]]]:
     """Rules in a worker process, one after the other on the worker's own Context (its models are reused by the
-    next rules the worker takes), each encoded for ``results.json`` here, while other rules still run."""
+    next rules the worker takes), each encoded for ``results.json`` here, while other rules still run. What a rule
+    leaves (its result, the Context's models) lives as long as the worker: it is frozen out of the cyclic garbage
+    collector's scans (``gc.freeze``) before the encoding, which would otherwise rescan it at every full collection
+    (about 5 % of a check's CPU)."""
     ctx = _WORKER["ctx"]
     out = []
     for rid in rule_ids:
         result = _timed(_WORKER["rules"][rid], ctx, _WORKER["finish"])
+        gc.freeze()
         result.encoded = result.to_json()
         out.append((result, ctx.provenance()))
     return out
