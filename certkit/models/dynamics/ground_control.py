@@ -227,6 +227,7 @@ def ground_minimum_control_speed(
     devs = [[] for _ in range(n)]
     lifted = [[] for _ in range(n)]
     undecided = [[] for _ in range(n)]
+    tried: list[set[float]] = [set() for _ in range(n)]
     passes = []
     limits = (runs.get("lateral_limits") or {}).get("rudder", (-np.radians(25), np.radians(25)))
     guess = rudder_balance_speed(model, engine, limits, low, high, settings)
@@ -243,6 +244,7 @@ def ground_minimum_control_speed(
         res = engine_cut_runs(model.subset(rows), vf, engine, reaction_time, rudder_rate, settings=held, **runs)
         passes.append(res)
         for i, (v, d) in enumerate(zip(vf, res.deviation)):
+            tried[rows[i]].add(float(v))
             if res.airborne[i] and d <= deviation_limit and not res.arrested[i]:
                 undecided[rows[i]].append(float(v))  # off the runway within the bound, the swing not arrested
                 continue
@@ -264,6 +266,9 @@ def ground_minimum_control_speed(
                 plan[c] = np.linspace(low, v[0], extend + 1)[:-1]
             elif beyond.size and beyond[-1] == v.size - 1 and v[-1] < high * (1 - 1e-9):  # beyond throughout: higher
                 plan[c] = np.linspace(v[-1], high, extend + 1)[1:]
+        # a run already made is not made again (above undecided runs the same speeds come back: same result)
+        plan = {c: p[[float(s) not in tried[c] for s in p]] for c, p in plan.items()}
+        plan = {c: p for c, p in plan.items() if p.size}
     speed = np.empty(n)
     below, above = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
     for c in range(n):
@@ -279,9 +284,7 @@ def ground_minimum_control_speed(
             k = beyond[-1]
             d0 = min(d[k], 10.0 * deviation_limit)  # an unrecovered run counts as far beyond the bound
             speed[c] = v[k] + (v[k + 1] - v[k]) * (d0 - deviation_limit) / (d0 - d[k + 1])
-    return GroundControlSpeed(
-        speed, below, above, speeds, devs, lifted, [sorted(set(u)) for u in undecided], passes, guess
-    )
+    return GroundControlSpeed(speed, below, above, speeds, devs, lifted, [sorted(u) for u in undecided], passes, guess)
 
 
 __all__ = [

@@ -33,6 +33,11 @@ from certkit.models.flight import control_limits
 from certkit.units import KN, LBF
 
 
+def _kn_cas(v_tas: float) -> float:
+    """A sea-level true airspeed (m/s), as the VMCG search runs it, in knots CAS."""
+    return float(convert_speed(v_tas, "TAS", "CAS", 0.0)) / KN
+
+
 @rule
 class MinimumControlSpeed(Rule):
     id = VMCA_RULE_ID
@@ -178,7 +183,7 @@ class MinimumControlSpeed(Rule):
             c0 = c.with_(altitude=0.0, thrust="takeoff", inoperative=res.engine)
             table = [
                 {
-                    "failure_speed_kn_cas": round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1),
+                    "failure_speed_kn_cas": round(_kn_cas(v), 1),
                     "max_lateral_deviation_ft": (round(d / 0.3048, 1) if np.isfinite(d) else None),
                     "lifted_off_before_recovery": lifted,
                 }
@@ -186,9 +191,7 @@ class MinimumControlSpeed(Rule):
             ]
             details = dict(
                 search=table,
-                lifted_off_swinging_kn_cas=[
-                    round(float(convert_speed(v, "TAS", "CAS", 0.0)) / KN, 1) for v in res.search.undecided[i]
-                ],
+                lifted_off_swinging_kn_cas=[round(_kn_cas(v), 1) for v in res.search.undecided[i]],
                 **res.basis,
             )
             vmcg = res.speed_cas[i]
@@ -205,25 +208,24 @@ class MinimumControlSpeed(Rule):
                 continue
             found = c0.with_(speed=float(vmcg), speed_kind="CAS", speed_name="VMCG")
             reason = ""
-            undecided = res.search.undecided[i]
-            if res.above[i] and undecided and undecided[0] > res.search.speeds[i][-1]:
-                cas = lambda v: float(convert_speed(v, "TAS", "CAS", 0.0)) / KN  # noqa: E731
-                reason = (
-                    f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft on the runway for a failure at every "
-                    f"speed up to {cas(res.search.speeds[i][-1]):.1f} kn; from {cas(undecided[0]):.1f} kn the airplane "
-                    "lifts off at the attitude of rest with its heading still swinging away (the rudder has not "
-                    "arrested the swing within the takeoff run): no VMCG on the runway (value shown as VR + 1 kn)"
-                )
+            undecided, top = res.search.undecided[i], res.search.speeds[i][-1]
+            if res.above[i]:
                 vmcg = np.inf
-            elif res.above[i]:
-                at_vr = res.search.deviations[i][-1] / 0.3048
-                reason = (
-                    f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
-                    f"VR ({res.high_cas / KN:.1f} kn; at VR "
-                    + (f"{at_vr:.0f} ft" if np.isfinite(at_vr) else "the heading does not recover")
-                    + "): no VMCG on the runway (value shown as VR + 1 kn)"
-                )
-                vmcg = np.inf
+                if undecided and undecided[0] > top:
+                    reason = (
+                        f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft on the runway for a failure at "
+                        f"every speed up to {_kn_cas(top):.1f} kn; from {_kn_cas(undecided[0]):.1f} kn the airplane "
+                        "lifts off at the attitude of rest with its heading still swinging away (the rudder has not "
+                        "arrested the swing within the takeoff run): no VMCG on the runway (value shown as VR + 1 kn)"
+                    )
+                else:
+                    at_vr = res.search.deviations[i][-1] / 0.3048
+                    reason = (
+                        f"the deviation exceeds {crit.vmcg_deviation_max_ft:g} ft for a failure at every speed up to "
+                        f"VR ({res.high_cas / KN:.1f} kn; at VR "
+                        + (f"{at_vr:.0f} ft" if np.isfinite(at_vr) else "the heading does not recover")
+                        + "): no VMCG on the runway (value shown as VR + 1 kn)"
+                    )
             elif res.below[i]:
                 reason = f"within the bound from the lowest speed searched ({crit.vmcg_low_kn:g} kn): VMCG no higher"
             value = float(vmcg) / KN if np.isfinite(vmcg) else float(res.high_cas) / KN + 1.0

@@ -90,7 +90,7 @@ VMCG_CONDITIONS = ConditionSpace(
 
 @dataclass
 class Vmcg:
-    speed_cas: np.ndarray  # (n,) m/s CAS per condition
+    speed_cas: np.ndarray  # (n,) m/s CAS per condition (nan: no run decided, every one lifted off still swinging)
     below: np.ndarray  # (n,) within the bound at the lowest speed searched: VMCG no higher
     above: np.ndarray  # (n,) beyond the bound at the highest speed searched (VR): no VMCG on the runway
     search: object  # GroundControlSpeed
