@@ -184,15 +184,8 @@ class DaskExecutor:
                 raise UserError(f"cannot reach the dask scheduler at {self.scheduler}: {exc}") from None
             self.workers = max(1, sum(self._client.nthreads().values()))
         else:
-            # dask's statistical profiler samples the computing thread's stack every 10 ms; on certkit's Python-heavy
-            # cases it cost about a third of the CPU (seed-study sample: 5.99 → 5.47 s CPU per design, local 3.35–4.02).
-            # The worker processes inherit this from the environment (a user's own setting is kept).
-            os.environ.setdefault("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", "False")
-            # dask's nannies start their workers with MALLOC_TRIM_THRESHOLD_=65536; setting it switches off glibc's
-            # dynamic mmap threshold, so every large numpy temporary is a fresh mmap and its page faults: one baseline
-            # design cost 1.2x the CPU with it (docs/performance.md). A user's own MALLOC_TRIM_THRESHOLD_ is kept.
             _compile_kernels(self.workers)  # at a first run: once, ahead, not in every worker
-            with dask.config.set({"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}):
+            with dask.config.set(_local_cluster_settings()):
                 self._cluster = _untyped(distributed).LocalCluster(
                     n_workers=self.workers,
                     threads_per_worker=1,
@@ -236,6 +229,32 @@ class DaskExecutor:
             finally:
                 future.release()
             submit(1)
+
+
+def _local_cluster_settings() -> dict[str, object]:
+    """dask settings for certkit's LocalCluster, handed to the workers by their nannies (which pass the nanny's dask
+    config, not the environment, so an environment variable set after dask's import does not reach them). A user's own
+    environment setting (``DASK_...``, ``MALLOC_TRIM_THRESHOLD_``) is kept.
+
+    A worker computes in one thread while its event loop wakes on timers; each wake takes the GIL from the case being
+    evaluated (seed-study sample, one worker, CPU per design against a local process; docs/performance.md):
+
+    - dask's statistical profiler samples the computing thread's stack every 10 ms: off;
+    - the event loop's blocked-loop probe (``admin.tick``, every 20 ms) and the memory monitor (every 100 ms): once a
+      second (a case takes seconds; the memory limits still act within a second);
+    - dask's nannies start their workers with MALLOC_TRIM_THRESHOLD_=65536, which switches off glibc's dynamic mmap
+      threshold, so every large numpy temporary is a fresh mmap and its page faults (one baseline design 1.2x the
+      CPU): left unset, the workers inherit the environment's.
+    """
+    settings: dict[str, object] = {"distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": None}
+    for key, value in (
+        ("distributed.worker.profile.enabled", False),
+        ("distributed.admin.tick.interval", "1s"),
+        ("distributed.worker.memory.monitor-interval", "1s"),
+    ):
+        if "DASK_" + key.upper().replace(".", "__").replace("-", "_") not in os.environ:
+            settings[key] = value
+    return settings
 
 
 def _untyped(module: object) -> Any:

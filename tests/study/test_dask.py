@@ -52,3 +52,38 @@ def test_local_cluster_workers_keep_glibcs_dynamic_malloc(monkeypatch):
     monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "1048576")
     with DaskExecutor(1) as executor:
         assert list(executor._client.run(_malloc_environment).values()) == [("1048576", "1")]
+
+
+def _timer_settings():
+    import dask
+
+    return tuple(
+        dask.config.get(key)
+        for key in (
+            "distributed.worker.profile.enabled",
+            "distributed.admin.tick.interval",
+            "distributed.worker.memory.monitor-interval",
+        )
+    )
+
+
+def test_local_cluster_workers_wake_rarely(monkeypatch):
+    """A worker's event loop takes the GIL from the case at each of its timers: dask's profiler (every 10 ms), its
+    blocked-loop probe (20 ms) and memory monitor (100 ms) together cost 1.1-1.2x the CPU of a design. certkit's
+    LocalCluster workers run without the profiler and wake once a second for the others, though the nannies hand the
+    workers their own dask config rather than the environment; a user's own DASK_... setting is left alone."""
+    import dask
+
+    from certkit.study.executors import DaskExecutor
+
+    defaults = (True, "20ms", "100ms")  # dask's
+    assert _timer_settings() == defaults
+    for name in ("WORKER__PROFILE__ENABLED", "ADMIN__TICK__INTERVAL", "WORKER__MEMORY__MONITOR_INTERVAL"):
+        monkeypatch.delenv(f"DASK_DISTRIBUTED__{name}", raising=False)
+    with DaskExecutor(1) as executor:
+        assert list(executor._client.run(_timer_settings).values()) == [(False, "1s", "1s")]
+    monkeypatch.setenv("DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED", "True")
+    monkeypatch.setenv("DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL", "20ms")
+    with DaskExecutor(1) as executor:
+        assert list(executor._client.run(_timer_settings).values()) == [(True, "20ms", "1s")]
+    assert dask.config.get("distributed.admin.tick.interval") == "20ms"  # this process's config untouched
