@@ -6,7 +6,8 @@
    design the split read from the record's timings — set-up (variables, validation), each sizing iteration
    (Subpart C horizontal-tail loads rules and the box sizing), the other rules, the mission.
 
-The numba kernels are compiled (or loaded from their disk cache) by a first, untimed run.
+The numba kernels are compiled (or loaded from their disk cache) by a first, untimed run; the command runs with its
+modules' bytecode cached, as an installed package does (``PYTHONDONTWRITEBYTECODE`` unset for it).
 Run from the repository root:  python benchmarks/bench_evaluate.py
 """
 
@@ -42,6 +43,7 @@ def command(repeats: int = 3) -> list[float]:
         t0 = time.perf_counter()
         subprocess.run(
             [sys.executable, "-m", "certkit.cli", "evaluate", BASELINE, "--json"],
+            env={k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"},  # bytecode cached
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
             check=True,
