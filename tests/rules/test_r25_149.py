@@ -384,3 +384,16 @@ def test_a_light_airplane_lifting_off_before_the_recovery_still_has_a_vmcg(tmp_p
     # the deviation on the runway falls as the cut comes later (less of the run left, more rudder power)
     devs = [row["max_lateral_deviation_ft"] for row in rows if row["max_lateral_deviation_ft"] is not None]
     assert all(a >= b - 0.5 for a, b in zip(devs, devs[1:]))
+
+
+def test_vmcg_not_evaluated_without_vr_and_the_rule_not_passed(tmp_path):
+    """(e) needs the declared VR (the top of the search: VMCG is sought on the runway, below VR). Without it every
+    weight–CG corner's VMCG finding says so and the rule as a whole is not evaluated — it does not comply on its
+    other sub-paragraphs alone, which are still computed."""
+    r = run_rule("25.149", tmp_path, edits=[("  VR: 155 kn CAS", "  #VR: 155 kn CAS")])
+    vmcg = [f for f in own(r) if f.check.startswith("(e)")]
+    assert len(vmcg) == 8  # the corners of the weight–CG envelope
+    assert all(f.status == "not_evaluated" and f.reason == "needs speeds.VR" for f in vmcg)
+    others = [f for f in own(r) if not f.check.startswith("(e)")]
+    assert others and all(f.status != "not_evaluated" for f in others)
+    assert r.status == "not_evaluated"
