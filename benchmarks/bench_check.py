@@ -1,7 +1,9 @@
 """Benchmark: wall time of `certkit check aircraft/lta.yaml` (subprocess, best of 3: all rules with the
 default --jobs (the cores available) and with --jobs 1; the Subpart B set and the Subpart C set
 ``--select 25.3 --select 25.4`` alone) and of each
-rule evaluated in-process on one shared Context (so memoised models are shared as in a check run). The
+rule evaluated in-process on one shared Context (so memoised models are shared as in a check run), and the timeline of
+one check's units of work on its worker processes as the coordinating process sees them (where a check's wall time
+goes: the unit that ends last is its critical path). The
 numba kernels are compiled (or loaded from their disk cache) by a first, untimed run. The commands run as an
 installed package runs: with their modules' bytecode cached (``PYTHONDONTWRITEBYTECODE`` unset for them, so the
 first run writes it); with ``PYTHONDONTWRITEBYTECODE=1`` inherited, an editable install compiles certkit's modules at
@@ -58,6 +60,52 @@ def rules_in_process():
     return rows
 
 
+class _Timeline:
+    """A check's progress receiver noting when each unit of work starts (a worker free for it; the first units at
+    submission, worker start-up included) and ends, seconds from its creation."""
+
+    def __init__(self) -> None:
+        self.t0 = time.perf_counter()
+        self.start_at: dict[str, float] = {}
+        self.end_at: dict[str, float] = {}
+
+    def started(self, rule_ids) -> None:
+        for rid in rule_ids:
+            self.start_at[rid] = time.perf_counter() - self.t0
+
+    def finished(self, results) -> None:
+        for res in results:
+            self.end_at[res.id] = time.perf_counter() - self.t0
+
+
+def timeline(jobs: int = 2) -> None:
+    """One check in this process (:func:`certkit.engine.scheduler.run` with the report's drawing and the missions,
+    as ``certkit check`` runs it, without writing the report): each unit's start, end and length, longest first."""
+    import functools
+
+    from certkit.cli.main import _mission_for_report
+    from certkit.engine.scheduler import run, work_units
+    from certkit.report.html import ReportFinish
+
+    rules = discover()
+    t0 = time.perf_counter()
+    loaded = load_aircraft(BASELINE)
+    progress = _Timeline()
+    mission = {"mission": functools.partial(_mission_for_report, loaded.model)}
+    run(loaded, rules, jobs=jobs, finish=ReportFinish(rules), progress=progress, alongside=mission)
+    wall = time.perf_counter() - t0
+    rows = []
+    for unit in work_units(rules):
+        start, end = progress.start_at[unit[0].id], max(progress.end_at[r.id] for r in unit)
+        rows.append((end - start, start, end, " ".join(r.id for r in unit)))
+    print(f"\ntimeline of one check in this process, --jobs {jobs}: {wall:.2f} s from the aircraft's load")
+    print(f"{'unit (rules sharing their runs)':<64}{'start':>8}{'end':>8}{'length':>8}")
+    for length, start, end, ids in sorted(rows, reverse=True):
+        print(f"{ids[:63]:<64}{start:>8.2f}{end:>8.2f}{length:>8.2f}")
+    summed, last = sum(r[0] for r in rows) / jobs, max(r[2] for r in rows)
+    print(f"summed unit lengths / jobs: {summed:.2f} s; last unit ends at {last:.2f} s")
+
+
 def subpart_c_selection() -> tuple[str, ...]:
     """``--select 25.3 --select 25.4``: the Subpart C flight-loads set with its §25.4xx rules (§25.427(b)) when any
     is registered (a pattern matching no rule is a user error)."""
@@ -79,6 +127,7 @@ def main():
             f"certkit check aircraft/lta.yaml, {label}: best {min(times):.2f} s of "
             f"{', '.join(f'{t:.2f}' for t in times)}"
         )
+    timeline()
     rows = rules_in_process()
     print(f"\n{'rule':<16}{'wall s':>9}  status")
     for rid, t, status in rows:
