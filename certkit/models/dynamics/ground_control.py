@@ -227,7 +227,6 @@ def ground_minimum_control_speed(
     devs = [[] for _ in range(n)]
     lifted = [[] for _ in range(n)]
     undecided = [[] for _ in range(n)]
-    tried: list[set[float]] = [set() for _ in range(n)]
     passes = []
     limits = (runs.get("lateral_limits") or {}).get("rudder", (-np.radians(25), np.radians(25)))
     guess = rudder_balance_speed(model, engine, limits, low, high, settings)
@@ -244,7 +243,6 @@ def ground_minimum_control_speed(
         res = engine_cut_runs(model.subset(rows), vf, engine, reaction_time, rudder_rate, settings=held, **runs)
         passes.append(res)
         for i, (v, d) in enumerate(zip(vf, res.deviation)):
-            tried[rows[i]].add(float(v))
             if res.airborne[i] and d <= deviation_limit and not res.arrested[i]:
                 undecided[rows[i]].append(float(v))  # off the runway within the bound, the swing not arrested
                 continue
@@ -266,8 +264,10 @@ def ground_minimum_control_speed(
                 plan[c] = np.linspace(low, v[0], extend + 1)[:-1]
             elif beyond.size and beyond[-1] == v.size - 1 and v[-1] < high * (1 - 1e-9):  # beyond throughout: higher
                 plan[c] = np.linspace(v[-1], high, extend + 1)[1:]
-        # a run already made is not made again (above undecided runs the same speeds come back: same result)
-        plan = {c: p[[float(s) not in tried[c] for s in p]] for c, p in plan.items()}
+        # a run already made (decided or undecided) is not made again: above undecided runs the same speeds come back
+        for c, p in list(plan.items()):
+            made = {*speeds[c], *undecided[c]}
+            plan[c] = p[[float(s) not in made for s in p]]
         plan = {c: p for c, p in plan.items() if p.size}
     speed = np.empty(n)
     below, above = np.zeros(n, dtype=bool), np.zeros(n, dtype=bool)
