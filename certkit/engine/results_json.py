@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Iterable
 from importlib.resources import files
 from typing import Any
 
@@ -33,6 +34,30 @@ _compact = json.JSONEncoder(ensure_ascii=False, separators=(", ", ": "), allow_n
 _key = json.JSONEncoder(ensure_ascii=False).encode
 
 
+class Rounded(dict):  # type: ignore[type-arg]
+    """A mapping already as results.json writes it (plain JSON data, every number finite and at most
+    :data:`SIGNIFICANT_DIGITS` significant digits, no ``-0.0``): :func:`clean` leaves it as it is, and the C encoder
+    writes it without a walk through its numbers (:func:`rounded_table`)."""
+
+
+class Encoded(str):
+    """Text already encoded as :func:`encode` would write it at its depth (a finding's line): placed as it is."""
+
+
+def rounded_table(keys: Iterable[str], values: np.ndarray, decimals: int) -> dict[str, Any]:
+    """``keys`` → the rows of ``values`` (K, …) rounded to ``decimals`` (≥ 0) decimals, as lists: a :class:`Rounded`
+    mapping when every rounded number is finite and below 10^(SIGNIFICANT_DIGITS − decimals) in magnitude (then it
+    has at most :data:`SIGNIFICANT_DIGITS` significant digits and is the nearest double to its decimal — numpy rounds
+    by scaling, rounding to an integer and dividing — so :func:`clean` would give each number back unchanged), a plain
+    dict (cleaned when written) otherwise."""
+    with np.errstate(over="ignore", invalid="ignore"):  # a number too large to scale is no longer finite: plain
+        rounded = np.round(np.asarray(values, dtype=float), decimals) + 0.0  # + 0.0: -0.0 becomes 0.0
+    rows = dict(zip(keys, rounded.tolist()))
+    if decimals >= 0 and bool(np.all(np.abs(rounded) < 10.0 ** (SIGNIFICANT_DIGITS - decimals))):
+        return Rounded(rows)
+    return rows
+
+
 def clean(obj: object) -> tuple[object, int]:
     """``obj`` as plain JSON data: floats rounded, non-finite numbers ``None`` (their count returned), numpy scalars
     and arrays as numbers and lists, tuples as lists, other objects as their ``str``."""
@@ -47,7 +72,7 @@ def clean(obj: object) -> tuple[object, int]:
                 count[0] += 1
                 return None
             return float(format(o, fmt)) + 0.0  # + 0.0: -0.0 becomes 0.0
-        if t is str or t is int or t is bool or o is None:
+        if t is str or t is int or t is bool or o is None or t is Rounded:
             return o
         if t is dict:
             return {k if type(k) is str else str(k): walk(v) for k, v in o.items()}
@@ -81,6 +106,8 @@ def _numpy(o: object) -> object:
 def encode(data: object, depth: int = 0) -> str:
     """Cleaned ``data`` (:func:`clean`) as text at nesting ``depth`` (a rule's object sits at depth 2: the top-level
     object, then ``rules``): indented down to :data:`INDENTED_DEPTH`, compact below."""
+    if type(data) is Encoded:
+        return data
     if depth >= INDENTED_DEPTH or not data or not isinstance(data, (dict, list)):
         return _compact(data)
     pad, close = "  " * (depth + 1), "  " * depth
@@ -91,6 +118,11 @@ def encode(data: object, depth: int = 0) -> str:
         ]
         return "{\n" + ",\n".join(items) + "\n" + close + "}"
     return "[\n" + ",\n".join(pad + encode(v, depth + 1) for v in data) + "\n" + close + "]"
+
+
+def compact(data: object) -> str:
+    """Cleaned ``data`` as one compact line (the form below :data:`INDENTED_DEPTH`)."""
+    return _compact(data)
 
 
 def stable_lines(text: str) -> str:

@@ -90,6 +90,12 @@ def format_number(value, places: int, thousands: bool = True) -> str:
 
 def format_value(value) -> str:
     """One number on its own at :data:`SIGNIFICANT` digits."""
+    if type(value) is float:  # the common case, without the generality of decimals() and format_number()
+        if not math.isfinite(value):
+            return DASH
+        places = 0 if value == 0.0 else min(6, max(0, SIGNIFICANT - 1 - math.floor(math.log10(abs(value)))))
+        v = round(value, places)
+        return f"{v if v != 0.0 else 0.0:,.{places}f}"
     return format_number(value, decimals([value])) if _finite(value) else DASH
 
 

@@ -80,10 +80,48 @@ def _environment(rule_ids) -> Environment:
     env.filters["mark"] = lambda status: STATUS_MARK.get(status, "")
     env.filters["titled"] = titled_svg
     env.filters["shown_unit"] = lambda unit: {"": "no unit", "1": "no unit"}.get(unit or "", unit_and_factor(unit)[0])
-    env.filters["pct"] = lambda x: "—" if x is None else f"{100 * x:+.1f} %".replace("-0.0 %", "+0.0 %")
+    env.filters["pct"] = _pct
     env.filters["ecfr"] = ecfr_url
     env.filters["refs"] = lambda text: linkify(text, rule_ids)
+    env.filters["finding_rows"] = lambda findings, critical: finding_rows(findings, critical, rule_ids)
     return env
+
+
+#: what markupsafe's escape replaces, for str.translate (the same text, without a Markup object per number)
+_ESCAPES = str.maketrans({"&": "&amp;", "<": "&lt;", ">": "&gt;", "'": "&#39;", '"': "&#34;"})
+
+
+def _pct(x) -> str:
+    return "—" if x is None else f"{100 * x:+.1f} %".replace("-0.0 %", "+0.0 %")
+
+
+def finding_rows(findings, critical, rule_ids) -> Markup:
+    """The rows of a findings table (condition, check, value, limit, margin, normalised margin, status, reason), the
+    critical finding marked; a rule's findings share conditions and check texts, so each is written once."""
+    labels: dict[int, str] = {}
+    texts: dict[str | None, str] = {}
+
+    def linked(text: str | None) -> str:
+        out = texts.get(text)
+        if out is None:
+            out = texts[text] = str(linkify(text, rule_ids))
+        return out
+
+    rows = []
+    for f in findings:
+        label = labels.get(id(f.condition))
+        if label is None:
+            label = labels[id(f.condition)] = str(escape(f.condition.label()))
+        unit, mark = f.unit, ' class="critical"' if f is critical else ""
+        rows.append(
+            f"<tr{mark}><td>{label}</td><td>{linked(f.check)}</td>\n"
+            f'<td class="num">{format_value(f.value, unit).translate(_ESCAPES)}</td>'
+            f'<td class="num">{format_value(f.limit, unit).translate(_ESCAPES)}</td>'
+            f'<td class="num">{margin_value(f.margin, unit, f.limit).translate(_ESCAPES)}</td>\n'
+            f'<td class="num">{_pct(f.normalized_margin)}</td><td class="{escape(f.status)}">'
+            f"{escape(str(f.status).replace('_', ' '))}</td><td>{linked(f.reason)}</td></tr>\n"
+        )
+    return Markup("".join(rows))
 
 
 def titled_svg(svg: str | None, title: str) -> Markup:

@@ -13,6 +13,7 @@ from certkit.atmosphere import RHO0, speed_of_sound
 from certkit.engine.conditions import speed_as
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding
+from certkit.engine.results_json import rounded_table
 from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.models.loads.capability import worst_margin
@@ -43,8 +44,8 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
 
 def station_summary(loads_peaks: np.ndarray, stations) -> dict:
     """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
-    lo, hi = np.round(np.asarray(loads_peaks, dtype=float)[:2] / 1e3, 1).transpose(0, 2, 1).reshape(2, -1).tolist()
-    return dict(zip(_summary_keys(tuple(stations)), map(list, zip(hi, lo))))
+    lo, hi = (np.asarray(loads_peaks, dtype=float)[:2] / 1e3).transpose(0, 2, 1).reshape(2, -1)
+    return rounded_table(_summary_keys(tuple(stations)), np.stack([hi, lo], axis=1), 1)
 
 
 @lru_cache(maxsize=64)
