@@ -9,11 +9,15 @@ installed package runs: with their modules' bytecode cached (``PYTHONDONTWRITEBY
 first run writes it); with ``PYTHONDONTWRITEBYTECODE=1`` inherited, an editable install compiles certkit's modules at
 every start (about 0.3 s of a check).
 
-Run from the repository root:  python benchmarks/bench_check.py
+With ``--against DIR`` (another checkout of certkit, e.g. the code before a change): only whole checks of both trees,
+alternating, ``--pairs`` of them, and the medians of their ratios.
+
+Run from the repository root:  python benchmarks/bench_check.py [--against DIR [--pairs N]]
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 import sys
@@ -27,7 +31,8 @@ from certkit.engine.context import Context  # noqa: E402
 from certkit.engine.registry import discover  # noqa: E402
 from certkit.engine.scheduler import evaluate_rule  # noqa: E402
 
-BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+BASELINE = os.path.join(ROOT, "aircraft", "lta.yaml")
 
 
 #: the environment of the timed commands: bytecode written and read, as an installed package has it
@@ -83,7 +88,7 @@ def timeline(jobs: int = 2) -> None:
     as ``certkit check`` runs it, without writing the report): each unit's start, end and length, longest first."""
     import functools
 
-    from certkit.cli.main import _mission_for_report
+    from certkit.cli.main import MISSION_COST, _mission_for_report
     from certkit.engine.scheduler import run, work_units
     from certkit.report.html import ReportFinish
 
@@ -92,7 +97,15 @@ def timeline(jobs: int = 2) -> None:
     loaded = load_aircraft(BASELINE)
     progress = _Timeline()
     mission = {"mission": functools.partial(_mission_for_report, loaded.model)}
-    run(loaded, rules, jobs=jobs, finish=ReportFinish(rules), progress=progress, alongside=mission)
+    run(
+        loaded,
+        rules,
+        jobs=jobs,
+        finish=ReportFinish(rules),
+        progress=progress,
+        alongside=mission,
+        alongside_cost={"mission": MISSION_COST},
+    )
     wall = time.perf_counter() - t0
     rows = []
     for unit in work_units(rules):
@@ -113,7 +126,43 @@ def subpart_c_selection() -> tuple[str, ...]:
     return ("--select", "25.3") + (("--select", "25.4") if any(i.startswith("25.4") for i in ids) else ())
 
 
+def paired(against: str, pairs: int, jobs: int = 2) -> None:
+    """Whole checks of this code and of the checkout ``against`` (its own source tree and rules, this interpreter),
+    alternating, each tree with its own warm kernel cache: medians of wall and CPU (the process and its workers) and
+    the median of the pairs' ratios."""
+    import statistics
+
+    from bench_first_run import rules_package, run_check
+
+    trees = {"this code": ROOT, "--against": os.path.abspath(against)}
+    links = {name: rules_package(tree, tempfile.mkdtemp()) for name, tree in trees.items()}
+    caches = {name: tempfile.mkdtemp() for name in trees}
+    for name, tree in trees.items():  # untimed: bytecode written, kernels compiled into the tree's cache
+        for _ in range(2):
+            run_check(tree, links[name], caches[name], jobs)
+    runs: dict[str, list[tuple[float, float]]] = {name: [] for name in trees}
+    for i in range(pairs):
+        for name in list(trees)[:: 1 if i % 2 == 0 else -1]:
+            runs[name].append(run_check(trees[name], links[name], caches[name], jobs))
+    print(f"\nwhole checks, --jobs {jobs}, {pairs} alternating pairs with {trees['--against']}:")
+    for name, r in runs.items():
+        print(
+            f"  {name:>10}: wall median {statistics.median(w for w, _ in r):.2f} s, "
+            f"CPU median {statistics.median(c for _, c in r):.2f} s"
+        )
+    wall = statistics.median(a[0] / b[0] for a, b in zip(runs["this code"], runs["--against"]))
+    cpu = statistics.median(a[1] / b[1] for a, b in zip(runs["this code"], runs["--against"]))
+    print(f"  this code / --against (median of the pairs' ratios): wall {wall:.3f}, CPU {cpu:.3f}")
+
+
 def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--against", help="another certkit checkout: whole checks of both, alternating, in this run")
+    parser.add_argument("--pairs", type=int, default=10)
+    args = parser.parse_args()
+    if args.against:
+        paired(args.against, args.pairs)
+        return
     check_subprocess(repeats=1)  # compiles the kernels or loads them from the cache
     sub_c = subpart_c_selection()
     for label, args in (

@@ -101,6 +101,11 @@ def _long_lived_objects():
         gc.enable()
 
 
+#: the report's missions on the scale of the rules' :attr:`~certkit.engine.registry.Rule.cost` (the baseline's fly in
+#: about the time of §25.349(a)'s rolling conditions, cost 5): where the workers take them among the rules
+MISSION_COST = 5.0
+
+
 def _mission_for_report(aircraft) -> dict | None:
     """The aircraft file's missions (design range, payload–range, nominal mission, cruise drag) for the report, or
     why they could not be flown; None without a ``mission:`` section."""
@@ -310,6 +315,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             finish=ReportFinish(chosen),
             progress=progress,
             alongside={"mission": functools.partial(_mission_for_report, loaded.model)},
+            alongside_cost={"mission": MISSION_COST},
         )
         progress.close()
         result.selection = {

@@ -417,6 +417,17 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     return sorted((tuple(u) for u in units.values()), key=lambda u: -sum(r.cost for r in u))  # stable on ties
 
 
+def _queue(
+    units: list[tuple[type[Rule], ...]], alongside: dict[str, Callable[[], Any]], cost: dict[str, float]
+) -> list[tuple[str, Any]]:
+    """The order the work is handed out in: the units (heaviest first, :func:`work_units`), each piece of work
+    alongside after the units at least as heavy as its ``cost`` (after all of them without one)."""
+    keyed: list[tuple[tuple[float, int, int], tuple[str, Any]]]
+    keyed = [((-float(sum(r.cost for r in u)), 0, i), ("unit", u)) for i, u in enumerate(units)]
+    keyed += [((-cost.get(name, -math.inf), 1, j), ("work", name)) for j, name in enumerate(alongside)]
+    return [item for _, item in sorted(keyed, key=lambda k: k[0])]
+
+
 def _collect(
     futures: list[Future[list[tuple[RuleResult, dict[str, Any]]]]],
     units: list[tuple[type[Rule], ...]],
@@ -444,13 +455,15 @@ def run(
     now: _dt.datetime | None = None,
     finish: Finish | None = None,
     alongside: dict[str, Callable[[], Any]] | None = None,
+    alongside_cost: dict[str, float] | None = None,
     progress: Any = None,
 ) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
     evaluated it, so that work runs in parallel too. ``alongside`` (name → picklable function of no argument, e.g. the
-    report's missions) runs in the first worker free once the rules are handed out (in this process with one job);
+    report's missions) runs in the first worker free once the units heavier than its ``alongside_cost`` (on the
+    scale of :attr:`Rule.cost`; without one, once every unit) are handed out (in this process with one job);
     each result goes to ``models[name]``.
     ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
     several processes a unit counts as started when a process becomes free for it: the processes take the units in
@@ -468,9 +481,14 @@ def run(
             max_workers=workers, initializer=_worker_init, initargs=(loaded, options, os.getpid(), finish)
         )
         try:
-            futures = [pool.submit(_worker_run, tuple(r.id for r in u)) for u in units]  # submitted: workers started
-            # after the rules: the first process free takes them (its imports and compiled kernels already loaded)
-            extras = {name: pool.submit(fn) for name, fn in (alongside or {}).items()}
+            futures, extras = [], {}
+            # in order of cost, the heaviest first (longest-processing-time order: the light units fill the end),
+            # the work alongside among them by its own; the first process free takes the next
+            for kind, item in _queue(units, alongside or {}, alongside_cost or {}):
+                if kind == "unit":
+                    futures.append(pool.submit(_worker_run, tuple(r.id for r in item)))
+                else:
+                    extras[item] = pool.submit((alongside or {})[item])
             if progress:
                 for unit in units[:workers]:
                     progress.started([r.id for r in unit])

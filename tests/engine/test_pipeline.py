@@ -271,3 +271,17 @@ def test_work_alongside_the_rules_runs_in_a_worker_and_lands_in_the_models(basel
     one = run(baseline, rules, jobs=1, alongside={"pid": _process_id})
     assert two.models["pid"] != os.getpid() and one.models["pid"] == os.getpid()
     assert [r.id for r in two.rules] == [r.id for r in one.rules]
+
+
+def test_work_alongside_is_handed_out_among_the_units_by_its_cost():
+    """Longest processing time first: the report's missions (cost 5) go after the units at least as heavy and before
+    the lighter ones, so that the light units fill both processes' ends; work without a cost goes last."""
+    from types import SimpleNamespace
+
+    from certkit.engine.scheduler import _queue
+
+    units = [(SimpleNamespace(cost=c, id=f"u{c}"),) for c in (8, 5, 4, 1)]
+    work = {"missions": lambda: None, "uncosted": lambda: None, "heavy": lambda: None}
+    order = _queue(units, work, {"missions": 5.0, "heavy": 100.0})
+    names = [item if kind == "work" else item[0].id for kind, item in order]
+    assert names == ["heavy", "u8", "u5", "missions", "u4", "u1", "uncosted"]

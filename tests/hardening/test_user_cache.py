@@ -9,6 +9,8 @@ import pickle
 import subprocess
 import sys
 
+from jinja2.bccache import bc_magic
+
 PROBE = "from certkit.units import to_si; print(to_si('1000 ft', 'length'))"
 
 
@@ -45,3 +47,33 @@ def test_processes_starting_together_on_an_empty_cache(tmp_path):
     procs = [_run(tmp_path) for _ in range(6)]
     for proc in procs:
         _ok(proc)
+
+
+TEMPLATES = (
+    "from certkit.report.html import _environment; "
+    "print(_environment(set()).get_template('report.html').name, _environment(set()).get_template('report.html').name)"
+)
+
+
+def _templates(cache):
+    proc = subprocess.run(
+        [sys.executable, "-c", TEMPLATES],
+        env={**os.environ, "XDG_CACHE_HOME": str(cache)},
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == ["report.html", "report.html"]
+
+
+def test_compiled_templates_are_cached_and_a_damaged_cache_is_compiled_afresh(tmp_path):
+    _templates(tmp_path)
+    compiled = sorted((tmp_path / "certkit" / "templates").glob("*.cache"))
+    assert compiled, "the report's compiled templates are kept in certkit's cache folder"
+    for p in compiled:
+        with open(p, "r+b") as f:
+            f.truncate(len(bc_magic) + 2)  # within the checksum's pickle: Jinja itself would raise UnpicklingError
+    _templates(tmp_path)
+    (tmp_path / "unwritable").write_text("a file where the cache folder would be")
+    _templates(tmp_path / "unwritable")  # no folder can be made: the templates are compiled each time
