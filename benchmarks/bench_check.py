@@ -26,17 +26,14 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from bench_first_run import INSTALLED_ENV, ROOT, rules_package, run_check  # noqa: E402
+
 from certkit.aircraft import load_aircraft  # noqa: E402
 from certkit.engine.context import Context  # noqa: E402
 from certkit.engine.registry import discover  # noqa: E402
 from certkit.engine.scheduler import evaluate_rule  # noqa: E402
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 BASELINE = os.path.join(ROOT, "aircraft", "lta.yaml")
-
-
-#: the environment of the timed commands: bytecode written and read, as an installed package has it
-ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 
 def check_subprocess(*args: str, repeats: int = 3) -> list[float]:
@@ -46,7 +43,7 @@ def check_subprocess(*args: str, repeats: int = 3) -> list[float]:
             t0 = time.perf_counter()
             subprocess.run(
                 [sys.executable, "-m", "certkit.cli", "check", BASELINE, "--out", out, *args],
-                env=ENV,
+                env=INSTALLED_ENV,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
             )
@@ -131,8 +128,6 @@ def paired(against: str, pairs: int, jobs: int = 2) -> None:
     alternating, each tree with its own warm kernel cache: medians of wall and CPU (the process and its workers) and
     the median of the pairs' ratios."""
     import statistics
-
-    from bench_first_run import rules_package, run_check
 
     trees = {"this code": ROOT, "--against": os.path.abspath(against)}
     links = {name: rules_package(tree, tempfile.mkdtemp()) for name, tree in trees.items()}

@@ -20,6 +20,8 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
+from bench_first_run import INSTALLED_ENV  # noqa: E402
+
 BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 DESIGNS = [
     {},
@@ -43,7 +45,7 @@ def command(repeats: int = 3) -> list[float]:
         t0 = time.perf_counter()
         subprocess.run(
             [sys.executable, "-m", "certkit.cli", "evaluate", BASELINE, "--json"],
-            env={k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"},  # bytecode cached
+            env=INSTALLED_ENV,
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
             check=True,

@@ -19,11 +19,14 @@ import time
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 
 
+#: the environment of the timed commands: bytecode written and read as an installed package has it (pip compiles the
+#: modules when it installs them)
+INSTALLED_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+
+
 def run_check(tree: str, rules_path: str, cache: str, jobs: int) -> tuple[float, float]:
     """(wall s, CPU s of the process and its children) of one check of ``tree``'s baseline with its certkit."""
-    # bytecode written and read as an installed package has it (pip compiles the modules when it installs them)
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-    env |= {"NUMBA_CACHE_DIR": cache, "PYTHONPATH": tree + os.pathsep + rules_path}
+    env = {**INSTALLED_ENV, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": tree + os.pathsep + rules_path}
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:

@@ -313,25 +313,19 @@ class Finding:
             cond = conditions[key] = (compact(data), n)
         fields, count = clean(self._fields())
         count += cond[1]
-        parts = ['{"condition": ', cond[0], ", ", compact(fields)[1:-1]]
         written = self.written_details() if self.written_details is not None else None
         if type(written) is Rounded and written and not written.keys() & self.details.keys():
-            parts += [', "details": ', compact(written)]
+            details = compact(written)  # as it is; the other details after it
             if self.details:
                 more, n = clean(self.details)
-                parts[-1] = parts[-1][:-1]
-                parts += [", ", compact(more)[1:]]
-                count += n
-            parts.append("}")
-            return "".join(parts), count
-        details = self.details if written is None else {**written, **self.details}
-        if details:
-            data, n = clean(details)
-            parts += [', "details": ', compact(data), "}"]
-            count += n
+                details, count = details[:-1] + ", " + compact(more)[1:], count + n
+        elif merged := (self.details if written is None else {**written, **self.details}):
+            data, n = clean(merged)
+            details, count = compact(data), count + n
         else:
-            parts.append("}")
-        return "".join(parts), count
+            details = ""
+        tail = f', "details": {details}}}' if details else "}"
+        return '{"condition": ' + cond[0] + ", " + compact(fields)[1:-1] + tail, count
 
 
 @dataclass

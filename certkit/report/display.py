@@ -72,7 +72,11 @@ def axis_label(label: str, unit: str) -> str:
 
 def decimals(values, significant: int = SIGNIFICANT) -> int:
     """Decimals that give ``significant`` digits to the largest finite magnitude of ``values`` (0 to 6)."""
-    top = max((abs(v) for v in values if _finite(v)), default=0.0)
+    return _places(max((abs(v) for v in values if _finite(v)), default=0.0), significant)
+
+
+def _places(top: float, significant: int = SIGNIFICANT) -> int:
+    """:func:`decimals` of the largest magnitude ``top``."""
     if top == 0.0:
         return 0
     return min(6, max(0, significant - 1 - math.floor(math.log10(top))))
@@ -82,7 +86,12 @@ def format_number(value, places: int, thousands: bool = True) -> str:
     """``value`` with ``places`` decimals (thousands separated), ``-0`` as ``0``, missing as an em dash."""
     if not _finite(value):
         return DASH
-    v = round(float(value), places)
+    return _fixed(float(value), places, thousands)
+
+
+def _fixed(value: float, places: int, thousands: bool = True) -> str:
+    """:func:`format_number` of a finite float."""
+    v = round(value, places)
     if v == 0.0:
         v = 0.0
     return f"{v:,.{places}f}" if thousands else f"{v:.{places}f}"
@@ -90,12 +99,8 @@ def format_number(value, places: int, thousands: bool = True) -> str:
 
 def format_value(value) -> str:
     """One number on its own at :data:`SIGNIFICANT` digits."""
-    if type(value) is float:  # the common case, without the generality of decimals() and format_number()
-        if not math.isfinite(value):
-            return DASH
-        places = 0 if value == 0.0 else min(6, max(0, SIGNIFICANT - 1 - math.floor(math.log10(abs(value)))))
-        v = round(value, places)
-        return f"{v if v != 0.0 else 0.0:,.{places}f}"
+    if type(value) is float:  # the common case, without the generality of decimals() and _finite()
+        return _fixed(value, _places(abs(value))) if math.isfinite(value) else DASH
     return format_number(value, decimals([value])) if _finite(value) else DASH
 
 
