@@ -36,6 +36,7 @@ KERNEL_MODULES = (
     "models/compiled.py",
     "models/dynamics/trim.py",
     "models/dynamics/kernel.py",
+    "models/dynamics/pilot_kernel.py",
     "models/aero/tail_ground_effect.py",
     "models/aero/derivative_kernel.py",
     "models/aero/ground_effect.py",

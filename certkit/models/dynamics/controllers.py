@@ -54,6 +54,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from certkit.models.dynamics import pilot_kernel
+from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.eom import AircraftModel, quat_to_euler
 from certkit.models.dynamics.ground import wheel_height
 from certkit.models.dynamics.simulate import Controller
@@ -95,6 +97,21 @@ class PitchAttitudeHold(Controller):
         held = _pitch_law(u.copy(), self.j, self.de0, theta, self.theta_cmd, x[:, 7], self.kt, self.kq, self.limits)
         u[:, self.j] = np.where(self.rotating, held[:, self.j], self.de0)
         return u
+
+    def kernel_block(self) -> KernelBlock | None:
+        """This law for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first step."""
+        if self.theta_cmd is not None:
+            return None
+        n = self.rotating.shape[0]
+
+        def restore(s):
+            self.rotating, self.theta_cmd = s[:, 0] != 0.0, s[:, 1].copy()
+
+        consts = np.array([self.j, self.rate, self.kt, self.kq, self.limits[0], self.limits[1]], dtype=float)
+        params = columns(n, self.de0, self.vr, self.target)
+        return KernelBlock(
+            "pitch", pilot_kernel.ATTITUDE_HOLD, consts, params, columns(n, self.rotating, 0.0), restore, self
+        )
 
 
 class TECSApproach(Controller):
@@ -221,6 +238,21 @@ class WingsLevel(Controller):
         u[:, self.jr] = np.clip(self.dr0 + self.k_r * x[:, 8] - self.k_beta * out.beta, *self.lim_r)
         return u
 
+    def kernel_block(self) -> KernelBlock:
+        """This law for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+        n = self.da0.shape[0]
+        consts = np.array([self.k_phi, self.k_p, self.k_beta, self.k_r, *self.lim_a, *self.lim_r], dtype=float)
+        return KernelBlock(
+            "lateral",
+            pilot_kernel.WINGS_LEVEL,
+            consts,
+            columns(n, self.da0, self.dr0),
+            np.zeros((n, 1)),
+            lambda s: None,
+            self,
+            (self.ja, self.jr, -1),
+        )
+
 
 class EngineFailure(Controller):
     def __init__(self, model: AircraftModel, engines, speed, decay_time: float | None = None):
@@ -246,6 +278,19 @@ class EngineFailure(Controller):
             frac = np.exp(-(t - np.where(self.failed, self.fail_time, t)) / self.decay_time)
             self.model.failed_thrust_fraction = np.where(self.failed[:, None] & self.mask[None, :], frac[:, None], 0.0)
         return u
+
+    def kernel_block(self) -> KernelBlock:
+        """This failure for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+        n = self.failed.shape[0]
+
+        def restore(s):
+            self.failed, self.fail_time = s[:, 0] != 0.0, s[:, 1].copy()
+
+        decay = np.nan if self.decay_time is None else float(self.decay_time)
+        state = columns(n, self.failed, self.fail_time)
+        return KernelBlock(
+            "failure", 1, np.array([decay]), columns(n, self.speed), state, restore, self, mask=self.mask
+        )
 
 
 #: the share of the weight on the wheels below which the lateral laws fly the airplane as airborne (the bank toward
@@ -323,6 +368,40 @@ class HeadingHold(Controller):
         phi_cmd = unloading * self.bank
         u[:, self.ja] = np.clip(self.da0 + self.k_phi * (phi - phi_cmd) + self.k_p * x[:, 6], *self.lim_a)
         return u
+
+    def kernel_block(self) -> KernelBlock | None:
+        """This law for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first step."""
+        if self.psi0 is not None:
+            return None
+        n = self.da0.shape[0]
+
+        def restore(s):
+            self.psi0, self.y0 = s[:, 0].copy(), s[:, 1].copy()
+            self.integral, self.correction = s[:, 2].copy(), s[:, 3].copy()
+
+        consts = np.array(
+            [
+                self.k_psi,
+                self.k_i,
+                self.k_r,
+                self.k_phi,
+                self.k_p,
+                self.k_y,
+                self.max_correction,
+                *self.lim_a,
+                *self.lim_r,
+                LIGHT_GEAR,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            dtype=float,
+        )
+        params = columns(n, self.da0, self.dr0, self.bank, self.weight)
+        state = columns(n, 0.0, 0.0, self.integral, self.correction, 0.0)
+        kind = pilot_kernel.HEADING_HOLD
+        return KernelBlock("lateral", kind, consts, params, state, restore, self, (self.ja, self.jr, -1))
 
 
 def on_stop(raw, err, lo, hi) -> np.ndarray:

@@ -46,11 +46,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from certkit.models.dynamics import pilot_kernel
+from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.controllers import EngineFailure, PitchAttitudeHold
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import ground_equilibrium
 from certkit.models.dynamics.procedures import runway_acceleration
-from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
+from certkit.models.dynamics.simulate import SimulationResult, simulate
 from certkit.models.dynamics.takeoff_pilot import DirectionalPilot
 
 #: heading swing (rad) below which a row has not yet swung (its recovery is not looked for before)
@@ -81,6 +83,55 @@ class GroundControlSpeed:
     undecided: list  # per condition, the failure speeds (sorted) of the runs left out: lifted off still swinging
     runs: list  # the EngineCutRuns of each pass
     balance_speed: np.ndarray  # (n,) m/s TAS, the static rudder-moment balance the search started from (NaN: none)
+
+
+class EngineCutEnd:
+    """The end of an engine-cut run (:func:`engine_cut_runs`): the heading back parallel to the centreline after its
+    swing (``recovered``), ``after`` s past the failure, the gear off the runway once the pilot reacts (``airborne``;
+    ``arrested``: the yaw rate then back toward the runway) or ``departure`` m off the centreline (from ``y0``)."""
+
+    __name__ = "recovered"
+
+    def __init__(self, failure: EngineFailure, y0: np.ndarray, reaction_time: float, after: float, departure: float):
+        n = y0.shape[0]
+        self.failure, self.y0 = failure, y0
+        self.reaction_time, self.after, self.departure = float(reaction_time), float(after), float(departure)
+        self.swing_sign = np.zeros(n)
+        self.recovered = np.zeros(n, dtype=bool)
+        self.airborne = np.zeros(n, dtype=bool)
+        self.arrested = np.zeros(n, dtype=bool)
+
+    def __call__(self, t, x, out):
+        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
+        psi = np.arctan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2 * q2 + q3 * q3))
+        t_fail, swing_sign = self.failure.fail_time, self.swing_sign
+        failed = np.isfinite(t_fail)
+        started = failed & (swing_sign == 0.0) & (np.abs(psi) > _SWING)
+        swing_sign[started] = np.sign(psi[started])
+        back = failed & (swing_sign != 0.0) & (psi * swing_sign <= 0.0)
+        self.recovered[back] = True
+        with np.errstate(invalid="ignore"):
+            late = failed & (t >= t_fail + self.after)
+            reacted = failed & (t >= t_fail + self.reaction_time)
+        up = reacted & ~back & (out.gear_load.sum(axis=1) <= 0.0)
+        self.airborne[up] = True
+        # the yaw rate back toward the runway
+        self.arrested[up] = (swing_sign[up] != 0.0) & (x[up, 8] * swing_sign[up] < 0.0)
+        return back | late | up | (np.abs(x[:, 1] - self.y0) > self.departure)
+
+    def kernel_block(self) -> KernelBlock:
+        """This criterion for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+
+        def restore(s):
+            self.swing_sign[:] = s[:, 0]
+            self.recovered[:], self.airborne[:], self.arrested[:] = s[:, 1] != 0.0, s[:, 2] != 0.0, s[:, 3] != 0.0
+
+        n = self.y0.shape[0]
+        consts = np.array([_SWING, self.reaction_time, self.after, self.departure])
+        state = columns(n, self.swing_sign, self.recovered, self.airborne, self.arrested)
+        block = KernelBlock("stop", pilot_kernel.ENGINE_CUT, consts, columns(n, self.y0), state, restore, self)
+        block.waits_for = self.failure
+        return block
 
 
 def engine_cut_runs(
@@ -117,30 +168,10 @@ def engine_cut_runs(
         model, u, failure, reaction_time, rudder_rate, None, limits=lateral_limits, k_y=centreline_gain
     )
     y0 = x0[:, 1].copy()
-    swing_sign = np.zeros(n)
-    recovered = np.zeros(n, dtype=bool)
-    airborne = np.zeros(n, dtype=bool)
-    arrested = np.zeros(n, dtype=bool)
-
-    def done(t, x, out):
-        q0, q1, q2, q3 = x[:, 9], x[:, 10], x[:, 11], x[:, 12]
-        psi = np.arctan2(2.0 * (q0 * q3 + q1 * q2), 1.0 - 2.0 * (q2 * q2 + q3 * q3))
-        t_fail = failure.fail_time
-        failed = np.isfinite(t_fail)
-        started = failed & (swing_sign == 0.0) & (np.abs(psi) > _SWING)
-        swing_sign[started] = np.sign(psi[started])
-        back = failed & (swing_sign != 0.0) & (psi * swing_sign <= 0.0)
-        recovered[back] = True
-        with np.errstate(invalid="ignore"):
-            late = failed & (t >= t_fail + after)
-            reacted = failed & (t >= t_fail + reaction_time)
-        up = reacted & ~back & (out.gear_load.sum(axis=1) <= 0.0)
-        airborne[up] = True
-        arrested[up] = (swing_sign[up] != 0.0) & (x[up, 8] * swing_sign[up] < 0.0)  # yaw rate back toward the runway
-        return back | late | up | (np.abs(x[:, 1] - y0) > departure)
-
+    end = EngineCutEnd(failure, y0, reaction_time, after, departure)
     t_end = lead_time * 3.0 + after + 10.0
-    sim = simulate(model, x0, u, t_end, dt, controllers=[pitch, pilot, failure], stop=[stop_when("recovered", done)])
+    sim = simulate(model, x0, u, t_end, dt, controllers=[pitch, pilot, failure], stop=[end])
+    recovered, airborne, arrested = end.recovered, end.airborne, end.arrested
     k_fail = np.argmax(sim["V"] >= vf[None, :], axis=0)
     nt = sim.t.size
     k = np.arange(nt)[:, None]
@@ -288,6 +319,7 @@ def ground_minimum_control_speed(
 
 
 __all__ = [
+    "EngineCutEnd",
     "engine_cut_runs",
     "ground_minimum_control_speed",
     "rudder_balance_speed",

@@ -524,6 +524,21 @@ def rk4_step(
             x[s] /= nq
 
 
+@njit(cache=True)
+def record(out_rec, x_rec, u_rec, irec, out, X, U, active, all_active):
+    """Record ``irec`` of a run: each condition's outputs, state and controls, a stopped one (not ``active``, unless
+    ``all_active`` still) keeping its last record."""
+    for i in range(X.shape[0]):
+        if irec == 0 or active[i] or all_active:
+            copy_row(out_rec[irec, i], out[i])
+            copy_row(x_rec[irec, i], X[i])
+            copy_row(u_rec[irec, i], U[i])
+        else:  # a stopped condition keeps its last record
+            copy_row(out_rec[irec, i], out_rec[irec - 1, i])
+            copy_row(x_rec[irec, i], x_rec[irec - 1, i])
+            copy_row(u_rec[irec, i], u_rec[irec - 1, i])
+
+
 @njit(cache=True, error_model="numpy", fastmath=True)
 def integrate_open_loop(
     X,
@@ -629,15 +644,7 @@ def integrate_open_loop(
                         stop_step[i] = k
                         stop_which[i] = c
         if k % record_every == 0:
-            for i in range(n):
-                if irec == 0 or active[i] or n_active == n:
-                    copy_row(out_rec[irec, i], out[i])
-                    copy_row(x_rec[irec, i], X[i])
-                    copy_row(u_rec[irec, i], U[i])
-                else:  # a stopped condition keeps its last record
-                    copy_row(out_rec[irec, i], out_rec[irec - 1, i])
-                    copy_row(x_rec[irec, i], x_rec[irec - 1, i])
-                    copy_row(u_rec[irec, i], u_rec[irec - 1, i])
+            record(out_rec, x_rec, u_rec, irec, out, X, U, active, n_active == n)
             irec += 1
         if k == nsteps or n_active == 0:
             break

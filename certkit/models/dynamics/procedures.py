@@ -43,6 +43,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from certkit.models.dynamics import pilot_kernel
+from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium, wheel_height
@@ -98,6 +100,35 @@ class LandingResult:
 def _elevator_extremes(sim: SimulationResult, j: int):
     e = sim.controls[:, :, j]
     return e.min(axis=0), e.max(axis=0)
+
+
+class ScreenHeight:
+    """The takeoff's stop criterion: ``climb_out`` s after the lowest wheel first rises above ``screen_height`` over
+    the runway with no gear load (``t_screen`` (n,): that instant, NaN until then)."""
+
+    __name__ = "screen height"
+
+    def __init__(self, model: AircraftModel, screen_height: float, climb_out: float):
+        self.model, self.height, self.climb_out = model, float(screen_height), float(climb_out)
+        self.elevation = model.ground.elevation
+        self.t_screen = np.full(model.n, np.nan)
+
+    def __call__(self, t, x, out):
+        up = (wheel_height(self.model, x, self.elevation) > self.height) & (out.gear_load.sum(axis=1) <= 0.0)
+        self.t_screen[np.isnan(self.t_screen) & up] = t
+        return t >= self.t_screen + self.climb_out - 1e-9
+
+    def kernel_block(self) -> KernelBlock:
+        """This criterion for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+
+        def restore(s):
+            self.t_screen[:] = s[:, 0]
+
+        consts = np.array([self.elevation, self.height, self.climb_out])
+        n = self.t_screen.shape[0]
+        return KernelBlock(
+            "stop", pilot_kernel.SCREEN_HEIGHT, consts, np.zeros((n, 1)), columns(n, self.t_screen), restore, self
+        )
 
 
 def takeoff_run(
@@ -175,16 +206,9 @@ def takeoff_run(
         )
     if failure is not None:
         ctrls.append(failure)
-    elevation = model.ground.elevation
-
-    t_scr = np.full(n, np.nan)
-
-    def screen(t, x, out):
-        up = (wheel_height(model, x, elevation) > screen_height) & (out.gear_load.sum(axis=1) <= 0.0)
-        t_scr[np.isnan(t_scr) & up] = t
-        return t >= t_scr + climb_out - 1e-9
-
-    sim = simulate(model, x0, u, t_end, dt, controllers=ctrls, stop=[stop_when("screen height", screen)])
+    screen = ScreenHeight(model, screen_height, climb_out)
+    sim = simulate(model, x0, u, t_end, dt, controllers=ctrls, stop=[screen])
+    t_scr = screen.t_screen
     nt = sim.t.size
     x12 = np.zeros((nt * n, 12))
     x12[:, 2], x12[:, 9], x12[:, 10] = sim["h"].ravel(), sim["phi"].ravel(), sim["theta"].ravel()
@@ -342,4 +366,11 @@ def approach_and_landing(
     return LandingResult(sim, touched, sink, speed, emin, emax, tecs.tau, tecs.sink)
 
 
-__all__ = ["takeoff_run", "runway_acceleration", "approach_and_landing", "TakeoffResult", "LandingResult"]
+__all__ = [
+    "ScreenHeight",
+    "takeoff_run",
+    "runway_acceleration",
+    "approach_and_landing",
+    "TakeoffResult",
+    "LandingResult",
+]

@@ -23,6 +23,7 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from certkit.models.dynamics.controlled_run import controlled_blocks, run_controlled
 from certkit.models.dynamics.eom import QUAT_STATE, AircraftModel, euler_state_to_quat_state, quat_to_euler
 from certkit.models.dynamics.kernel import OUTPUTS
 
@@ -307,7 +308,11 @@ def simulate(
 
     ``dt`` may differ per condition ((n,) array, e.g. a gust resolved in its own length at each speed): every
     condition then takes the same number of steps, round(max(t_end / dt)), the schedules see each condition's own
-    time (an (n,) array) and the result's ``t`` is (nt, n); without controllers, stop criteria or limits."""
+    time (an (n,) array) and the result's ``t`` is (nt, n); without controllers, stop criteria or limits.
+
+    Two kinds of run are stepped in compiled code, the same arithmetic as the loop below: every step's controls known
+    (no controllers or limits, bounds as stop criteria: :meth:`AircraftModel.open_loop_run`), and laws that offer
+    the compiled loop a block (the takeoff and engine-cut pilots, :mod:`certkit.models.dynamics.controlled_run`)."""
     x = np.array(x0, dtype=float)
     if x.shape[1] == 12:
         x = euler_state_to_quat_state(x)
@@ -361,6 +366,16 @@ def simulate(
         for i in np.flatnonzero(stop_step >= 0):
             stop_time[i] = stop_step[i] * dt
             stop_reason[i] = stop[stop_which[i]].__name__
+    elif controllers and not (lim or sched or per_row or isinstance(dt, np.ndarray)):
+        blocks = controlled_blocks(model, controllers, stop)
+        if blocks is not None:  # the laws and the criterion stepped in compiled code, the same arithmetic
+            x = np.ascontiguousarray(x)
+            compiled, stop_step = run_controlled(
+                model, x, u_trim, dt, nsteps, record_every, blocks, out_rec, x_rec, ctrl_hist
+            )
+            for i in np.flatnonzero(stop_step >= 0):
+                stop_time[i] = stop_step[i] * dt
+                stop_reason[i] = getattr(stop[0], "__name__", "stop")
     if compiled is not None:
         irec = compiled
         steps = np.arange(0, nsteps + 1, record_every)[:irec]

@@ -50,6 +50,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from certkit.models.dynamics import pilot_kernel
+from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.controllers import HeadingHold, on_stop
 from certkit.models.dynamics.eom import STEERING, AircraftModel
 from certkit.models.dynamics.ground import wheel_height
@@ -153,6 +155,54 @@ class RotationPilot(Controller):
         u[:, self.j] = np.where(rotating, np.clip(raw, lo, hi), self.de0)
         return u
 
+    def kernel_block(self) -> KernelBlock | None:
+        """This pilot for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first step."""
+        if self.theta_cmd is not None or self.v_prev is not None or self.model.ground is None:
+            return None
+        n = self.model.n
+
+        def restore(s):
+            self.rotating, self.airborne = s[:, 0] != 0.0, s[:, 1] != 0.0
+            self.theta_cmd, self.rate_cmd, self.theta_climb = s[:, 2].copy(), s[:, 3].copy(), s[:, 4].copy()
+            self.integral, self.speed_integral = s[:, 5].copy(), s[:, 6].copy()
+            self.v_prev, self.v_dot = s[:, 7].copy(), s[:, 8].copy()
+
+        consts = np.array(
+            [
+                self.j,
+                self.rate,
+                self.lead,
+                self.lead_time,
+                self.kt,
+                self.ki,
+                self.kq,
+                self.kv,
+                self.kvi,
+                self.trend_time,
+                self.g,
+                self.clear_height,
+                self.limits[0],
+                self.limits[1],
+                self.model.ground.elevation,
+            ],
+            dtype=float,
+        )
+        params = columns(n, self.de0, self.vr, self.v_climb, self.climb_free, self.theta_ground, self.de_ff)
+        state = columns(
+            n,
+            self.rotating,
+            self.airborne,
+            0.0,
+            self.rate_cmd,
+            self.theta_climb,
+            self.integral,
+            self.speed_integral,
+            0.0,
+            self.v_dot,
+            0.0,
+        )
+        return KernelBlock("pitch", pilot_kernel.ROTATION, consts, params, state, restore, self)
+
 
 class DirectionalPilot(HeadingHold):
     def __init__(
@@ -188,6 +238,25 @@ class DirectionalPilot(HeadingHold):
             loaded = out.gear_load.sum(axis=1) > 0.0
             u[:, self.js] = np.where(loaded, -self.steer_gain * self.pedal, 0.0)
         return u
+
+    def kernel_block(self) -> KernelBlock | None:
+        """This pilot for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first step."""
+        block = super().kernel_block()
+        if block is None:
+            return None
+        law_restore = block.restore
+
+        def restore(s):
+            law_restore(s)
+            self.pedal = s[:, 4].copy()
+
+        block.kind, block.restore = pilot_kernel.DIRECTIONAL, restore
+        block.consts[12:] = [self.rate, self.reaction, self.steer_gain if self.js is not None else 0.0, 0.0]
+        if self.failure is not None:
+            block.consts[15], block.waits_for = 1.0, self.failure
+        block.state[:, 4] = self.pedal
+        block.columns = (self.ja, self.jr, -1 if self.js is None else self.js)
+        return block
 
 
 __all__ = ["RotationPilot", "DirectionalPilot"]
