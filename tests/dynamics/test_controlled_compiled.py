@@ -37,18 +37,24 @@ def models(ctx):
 
 
 def _both(monkeypatch, run):
-    """``run()`` through the compiled loop (checked to be taken), then through the Python loop."""
-    calls = []
-    kernel = pilot_kernel.integrate_controlled
+    """``run()`` through the compiled loop (checked to be taken by every closed-loop run), then through the Python
+    loop."""
+    calls, offered = [], []
+    kernel, blocks = pilot_kernel.integrate_controlled, simulate_module.controlled_blocks
 
     def counted(*args):
         calls.append(1)
         return kernel(*args)
 
+    def checked(*args):
+        offered.append(blocks(*args))
+        return offered[-1]
+
     with monkeypatch.context() as m:
         m.setattr(pilot_kernel, "integrate_controlled", counted)
+        m.setattr(simulate_module, "controlled_blocks", checked)
         compiled = run()
-    assert calls, "the compiled loop was not taken"
+    assert calls and len(calls) == len(offered) and all(b is not None for b in offered), "not every run compiled"
     with monkeypatch.context() as m:
         m.setattr(simulate_module, "controlled_blocks", lambda *a: None)
         loop = run()
@@ -186,3 +192,48 @@ def test_a_law_already_stepped_or_changed_is_left_to_the_python_loop(models):
 
     assert controlled_blocks(model, [Reversed(model, u)], []) is None
     assert controlled_blocks(model, [WingsLevel(model, u), HeadingHold(model, u)], []) is None  # two lateral laws
+
+
+def test_compiled_approach_and_landing_equals_the_python_loop(ctx, monkeypatch):
+    """The total-energy approach, its flare and the wings-level hold to the touchdown criterion, three conditions
+    (the landing weight at two CGs and a lighter one, VREF and 10 kn more) stopping at different steps."""
+    from certkit.engine.conditions import ConditionSpace, DesignWeight
+    from certkit.models.dynamics.procedures import approach_and_landing
+    from certkit.units import FT
+
+    ac = ctx.aircraft
+    conds = ConditionSpace(loading=DesignWeight("MLW", ("forward", "aft")), configurations=("landing",)).expand(ac)
+    conds = [c.with_(altitude=150 * FT, speed=s * KN, speed_kind="CAS") for c, s in zip(conds * 2, (136, 146, 140))]
+    tb = ctx.trim(conds[:3], gamma=np.radians(-3.0))
+    assert tb.converged.all()
+    loadings = [ctx.loading(c.mass, c.x_cg) for c in conds[:3]]
+
+    def run():
+        m = flight_model(ac, ctx.aero("landing").model, loadings, ground=ground_model(ac))
+        return approach_and_landing(m, tb.x, tb.u, elevator_limits=control_limits(ac, design=False)["elevator"])
+
+    compiled, loop = _both(monkeypatch, run)
+    assert compiled.touched_down.all() and len(set(compiled.sim.stop_time)) > 1
+    _assert_same_sim(compiled.sim, loop.sim)
+    _assert_same_fields(compiled, loop, ("touched_down", "sink_rate", "speed", "elevator_min", "elevator_max"))
+
+
+def test_compiled_yaw_manoeuvre_equals_the_python_loop(ctx, monkeypatch):
+    """§25.351's runs: a scheduled rudder ramp with the aileron's roll hold until the sideslip settles (rows settling
+    at different steps), then the rudder returned (a schedule per row) with the hold's integral carried on."""
+    from certkit_rules.part25.support.loads_conditions import trimmed_batch
+
+    from certkit.engine.conditions import CgCorners, ConditionSpace
+    from certkit.models.loads.yaw import simulate_yaw
+
+    cond = ConditionSpace(loading=CgCorners(), configurations=("clean",), altitudes=None).expand(ctx.aircraft)[0]
+    batch = trimmed_batch(ctx, [cond.with_(speed=s * KN, speed_kind="EAS") for s in (250.0, 272.0, 300.0)])
+
+    def run():
+        return simulate_yaw(batch.model, batch.x, batch.u, np.radians([-10.0, -8.0, -6.0]), t_max=30.0)
+
+    compiled, loop = _both(monkeypatch, run)
+    assert compiled.settled.any() and len(set(compiled.held.stop_time)) > 1
+    _assert_same_sim(compiled.held, loop.held)
+    _assert_same_sim(compiled.returned, loop.returned)
+    _assert_same_fields(compiled, loop, ("t_overswing", "t_steady", "settled", "beta_band", "u_steady"))

@@ -5,7 +5,7 @@ A controller or stop criterion that the kernel can step offers ``kernel_block()`
 constants, per-row parameters and state (the layouts are those of the kernel's law functions), or None when it
 cannot (e.g. already stepped by a run). :func:`controlled_blocks` accepts a run whose laws come in the kernel's order
 (pitch, lateral, failure; each at most once) with at most one stop criterion, on a model whose thrust is computed in
-compiled code and that has a ground model; :func:`run_controlled` runs it and writes every block's final state back
+compiled code; :func:`run_controlled` runs it and writes every block's final state back
 into its object, and the engines' state into the model, as the Python loop leaves them.
 """
 
@@ -53,7 +53,7 @@ def controlled_blocks(
     model: AircraftModel, controllers: Sequence[Any], stop: Sequence[Any]
 ) -> list[KernelBlock] | None:
     """The blocks of a run the kernel can step, in order (laws, then the stop criterion), or None."""
-    if not (model.thrust_compiled and model.ground is not None) or len(stop) > 1:
+    if not model.thrust_compiled or len(stop) > 1:
         return None
     blocks = []
     for item in (*controllers, *stop):
@@ -90,7 +90,7 @@ def _empty(n: int) -> np.ndarray:
 def run_controlled(
     model: AircraftModel,
     x13: np.ndarray,
-    u_trim: np.ndarray,
+    U_all: np.ndarray,
     dt: float,
     nsteps: int,
     record_every: int,
@@ -99,8 +99,9 @@ def run_controlled(
     x_rec: np.ndarray,
     u_rec: np.ndarray,
 ) -> tuple[int, np.ndarray]:
-    """Run the blocks' laws over the batch from ``x13`` (advanced in place); the number of records and the step each
-    row stopped at (−1: none)."""
+    """Run the blocks' laws over the batch from ``x13`` (advanced in place), ``U_all`` every step's controls before
+    the laws ((1, n, m): the same at every step); the number of records and the step each row stopped at (−1:
+    none)."""
     n = x13.shape[0]
     by_role = {b.role: b for b in blocks}
     pitch, lateral, failure, stop = (by_role.get(r) for r in (*ROLES, "stop"))
@@ -111,7 +112,8 @@ def run_controlled(
     def parts(block: KernelBlock | None) -> tuple:
         if block is None:
             return 0, np.zeros(1), _empty(n), _empty(n)
-        return block.kind, kernel_array(block.consts), kernel_array(block.params), kernel_array(block.state)
+        params, state = (kernel_array(a) if a.shape[0] == n else _empty(n) for a in (block.params, block.state))
+        return block.kind, kernel_array(block.consts), params, state
 
     p_kind, p_c, p_p, p_s = parts(pitch)
     l_kind, l_c, l_p, l_s = parts(lateral)
@@ -123,7 +125,7 @@ def run_controlled(
     f_s = np.zeros((n, 2)) if failure is None else kernel_array(failure.state)
     irec = pilot_kernel.integrate_controlled(
         x13,
-        kernel_array(u_trim),
+        kernel_array(U_all),
         float(dt),
         int(nsteps),
         int(record_every),

@@ -210,6 +210,48 @@ class TECSApproach(Controller):
         self.prev_gamma = gamma.copy()
         return _pitch_law(u, self.j, self.de0, theta, cmd, x[:, 7], self.kt, self.kq, self.limits)
 
+    def kernel_block(self) -> KernelBlock | None:
+        """This law for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first step."""
+        if self.prev_V is not None or self.prev_gamma is not None or self.theta_cmd is not None:
+            return None
+        if self.gear_geometry and self.model.ground is None:
+            return None
+        n = self.flaring.shape[0]
+
+        def restore(s):
+            self.flaring, self.integral = s[:, 0] != 0.0, s[:, 1].copy()
+            self.theta_cmd, self.prev_V, self.prev_gamma = s[:, 2].copy(), s[:, 3].copy(), s[:, 4].copy()
+
+        consts = np.array(
+            [
+                self.j,
+                self.thr[0] if self.thr.size else 0,
+                self.thr[-1] + 1 if self.thr.size else 0,
+                self.glide,
+                self.hf,
+                self.aim,
+                self.h_rwy,
+                self.k_e,
+                self.k_i,
+                self.k_d,
+                self.kt,
+                self.kq,
+                self.k_v,
+                self.k_p,
+                self.limits[0],
+                self.limits[1],
+                self.k_p_flare,
+                self.k_d_flare,
+                self.k_gdot_flare,
+                float(self.gear_geometry),
+                self.model.g,
+            ],
+            dtype=float,
+        )
+        params = columns(n, self.de0, self.thr0, self.V_cmd, self.h_gear, self.tau)
+        state = columns(n, self.flaring, self.integral, 0.0, 0.0, 0.0)
+        return KernelBlock("pitch", pilot_kernel.TECS, consts, params, state, restore, self)
+
 
 class WingsLevel(Controller):
     def __init__(

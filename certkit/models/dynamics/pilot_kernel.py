@@ -29,12 +29,12 @@ from numba import njit
 
 from certkit.models.dynamics.kernel import air_data, derivatives, engine_forces, record, rk4_step
 
-#: pitch laws
-ROTATION, ATTITUDE_HOLD = 1, 2
+#: pitch laws (the approach's total-energy control flies the throttles too)
+ROTATION, ATTITUDE_HOLD, TECS = 1, 2, 3
 #: lateral laws
-WINGS_LEVEL, HEADING_HOLD, DIRECTIONAL = 1, 2, 3
+WINGS_LEVEL, HEADING_HOLD, DIRECTIONAL, ROLL_HOLD = 1, 2, 3, 4
 #: stop criteria
-SCREEN_HEIGHT, ENGINE_CUT = 1, 2
+SCREEN_HEIGHT, ENGINE_CUT, SIDESLIP_SETTLED, TOUCHDOWN = 1, 2, 3, 4
 #: the heading hold's share of the weight on the wheels below which it flies as airborne
 #: (:data:`certkit.models.dynamics.controllers.LIGHT_GEAR`, passed in the constants)
 
@@ -289,10 +289,85 @@ def _engine_cut_end(t, x, gear_sum, c, p, s, fail_time):
     return back or late or up or abs(x[1] - p[0]) > departure
 
 
+@njit(cache=True)
+def _tecs(first, dt, x, out, u, j, c, p, s, r_gear):
+    """:class:`~certkit.models.dynamics.controllers.TECSApproach` on one row. Constants: throttle columns (start,
+    stop), glide, flare height, aim below, runway elevation, K_E, K_I, K_D, K_θ, K_q, K_V, K_P, elevator limits (2),
+    K_P and K_D of the flare, K_γ̇ of the flare, wheel heights from the gear (1/0), g; parameters: δe0, throttle0,
+    V_cmd, CG-to-wheel height, τ; state: flaring, integral, θ_cmd, V_prev, γ_prev."""
+    q0, q1, q2, q3 = x[9], x[10], x[11], x[12]
+    theta = math.asin(_clip(2 * (q0 * q2 - q3 * q1), -1.0, 1.0))
+    V = out[_V]
+    c31, c32, c33 = 2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
+    hdot = -(c31 * x[3] + c32 * x[4] + c33 * x[5])
+    Vs = _max(V, 1.0)
+    gamma = math.asin(_clip(hdot / Vs, -1.0, 1.0))
+    h_w = _wheel_height(x, r_gear, c[5]) if c[18] != 0.0 else x[2] - c[5] - p[3]
+    if h_w <= c[3]:
+        s[0] = 1.0
+    flaring = s[0] != 0.0
+    tau = p[4]
+    flare_hdot = -(_max(h_w, 0.0) + c[4]) / tau
+    gamma_cmd = math.asin(_clip(flare_hdot / Vs, -1.0, 1.0)) if flaring else c[2]
+    if first:
+        s[3] = V
+        s[2] = theta
+    vdot = (V - s[3]) / max(dt, 1e-9)
+    s[3] = V
+    vdot_cmd = c[11] * (p[2] - V)
+    path_err = gamma_cmd - gamma
+    speed_err = (vdot_cmd - vdot) / c[19]
+    e_err = path_err + speed_err
+    d_err = path_err if flaring else path_err - speed_err
+    s[1] += (0.0 if flaring else e_err) * dt
+    thr = 0.0 if flaring else _clip(p[1] + c[6] * e_err + c[7] * s[1], 0.0, 1.0)
+    for col in range(int(c[0]), int(c[1])):
+        u[col] = thr
+    ff = -hdot / tau / Vs if flaring else 0.0
+    k_d = c[16] if flaring else c[8]
+    k_p = c[15] if flaring else c[12]
+    s[2] = s[2] + (k_d * d_err + ff) * dt
+    cmd = s[2] + k_p * d_err
+    if not first:
+        gdot = (gamma - s[4]) / max(dt, 1e-9)
+        cmd = cmd - (c[17] * gdot if flaring else 0.0)
+    s[4] = gamma
+    u[j] = _clip(p[0] + c[9] * (theta - cmd) + c[10] * x[7], c[13], c[14])
+
+
+@njit(cache=True)
+def _roll_hold(dt, x, u, ja, c, p, s):
+    """:class:`~certkit.models.loads.yaw.RollHold` on one row. Constants: K_φ, K_p, K_I, aileron limits (2);
+    parameters: δa0; state: integral."""
+    phi = math.atan2(2 * (x[9] * x[10] + x[11] * x[12]), 1 - 2 * (x[10] * x[10] + x[11] * x[11]))
+    s[0] += phi * dt
+    u[ja] = _clip(p[0] + c[0] * phi + c[2] * s[0] + c[1] * x[6], c[3], c[4])
+
+
+@njit(cache=True)
+def _sideslip_settled(t, beta, c, s):
+    """:class:`~certkit.models.loads.yaw.SideslipSettled` of one row. Constants: window length (samples), tolerance,
+    earliest time; state: the window's samples, the peak |β|, the samples taken."""
+    m = int(c[0])
+    calls = int(s[m + 1])
+    s[calls % m] = beta
+    calls += 1
+    s[m + 1] = calls
+    s[m] = _max(s[m], abs(beta))
+    if calls < m or t < c[2]:
+        return False
+    band = np.nan
+    for k in range(m):
+        d = abs(s[k] - beta)
+        if d == d and (band != band or d > band):
+            band = d
+    return band <= c[1] * abs(beta) and abs(beta) < s[m]
+
+
 @njit(cache=True, error_model="numpy")
 def integrate_controlled(
     X,
-    u_trim,
+    U_all,
     dt,
     nsteps,
     record_every,
@@ -343,8 +418,9 @@ def integrate_controlled(
     brake_index,
     steer_index,
 ):
-    """The controlled run (module docstring) of the quaternion-state batch ``X`` (advanced in place) from the trim
-    controls ``u_trim`` (n, m), ``nsteps`` steps of ``dt``; ``operative`` and ``fraction`` (n, ne) the engines'
+    """The controlled run (module docstring) of the quaternion-state batch ``X`` (advanced in place) from the controls
+    ``U_all`` of every step before the laws (nsteps + 1, n, m: the trim plus the schedules; (1, n, m): the trim
+    throughout), ``nsteps`` steps of ``dt``; ``operative`` and ``fraction`` (n, ne) the engines'
     state, updated in place; the law blocks (``pitch``: kind, elevator column (``pitch_c``'s layout in the laws),
     ``lateral_j`` = aileron, rudder, steering columns); ``fail_c`` = [spool-down time τ (NaN: windmilling at once)];
     records of every ``record_every``-th step into ``out_rec``, ``x_rec``, ``u_rec``, a stopped row keeping its
@@ -361,7 +437,7 @@ def integrate_controlled(
     pilot_failure = failing and lateral == DIRECTIONAL and lateral_c[15] != 0.0
     for k in range(nsteps + 1):
         t = k * dt
-        U = u_trim.copy()
+        U = U_all[k if U_all.shape[0] > 1 else 0].copy()
         for stage in range(2):  # the state with the trim controls, then with the laws' (one call site each)
             air = air_data(X)
             thrust = engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, windmill)
@@ -405,8 +481,12 @@ def integrate_controlled(
                     _rotation(k == 0, any_rotating, t, dt, x, o, u, jp, pitch_c[1:], pitch_p[i], pitch_s[i], r_gear[i])
                 elif pitch == ATTITUDE_HOLD:
                     _attitude_hold(k == 0, dt, x, o, u, jp, pitch_c[1:], pitch_p[i], pitch_s[i])
+                elif pitch == TECS:
+                    _tecs(k == 0, dt, x, o, u, jp, pitch_c[1:], pitch_p[i], pitch_s[i], r_gear[i])
                 if lateral == WINGS_LEVEL:
                     _wings_level(x, o, u, ja, jr, lateral_c, lateral_p[i])
+                elif lateral == ROLL_HOLD:
+                    _roll_hold(dt, x, u, ja, lateral_c, lateral_p[i], lateral_s[i])
                 elif lateral == HEADING_HOLD or lateral == DIRECTIONAL:
                     _heading_hold(k == 0, x, o, gsum, u, dt, ja, jr, lateral_c, lateral_p[i], lateral_s[i])
                     if lateral == DIRECTIONAL:
@@ -431,6 +511,10 @@ def integrate_controlled(
                 gsum = _gear_sum(gear[i])
                 if stop == SCREEN_HEIGHT:
                     hit = _screen(t, X[i], gsum, r_gear[i], stop_c, stop_s[i])
+                elif stop == SIDESLIP_SETTLED:
+                    hit = _sideslip_settled(t, out[i, _BETA], stop_c, stop_s[i])
+                elif stop == TOUCHDOWN:
+                    hit = gsum > 0.0
                 else:
                     hit = _engine_cut_end(
                         t, X[i], gsum, stop_c, stop_p[i], stop_s[i], fail_s[i, 1] if failing else np.nan

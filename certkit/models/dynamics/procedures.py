@@ -48,7 +48,7 @@ from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, TECSApproach, WingsLevel
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.ground import gear_heights, ground_equilibrium, wheel_height
-from certkit.models.dynamics.simulate import SimulationResult, simulate, stop_when
+from certkit.models.dynamics.simulate import SimulationResult, simulate
 from certkit.models.dynamics.takeoff_pilot import DirectionalPilot, RotationPilot
 
 
@@ -129,6 +129,20 @@ class ScreenHeight:
         return KernelBlock(
             "stop", pilot_kernel.SCREEN_HEIGHT, consts, np.zeros((n, 1)), columns(n, self.t_screen), restore, self
         )
+
+
+class Touchdown:
+    """The landing's stop criterion: the first gear load."""
+
+    __name__ = "touchdown"
+
+    def __call__(self, t, x, out):
+        return out.gear_load.sum(axis=1) > 0.0
+
+    def kernel_block(self) -> KernelBlock:
+        """This criterion for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+        empty = np.zeros((0, 1))
+        return KernelBlock("stop", pilot_kernel.TOUCHDOWN, np.zeros(1), empty, empty, lambda s: None, self)
 
 
 def takeoff_run(
@@ -357,7 +371,7 @@ def approach_and_landing(
         t_end,
         dt,
         controllers=[tecs, WingsLevel(model, u, limits=lateral_limits)],
-        stop=[stop_when("touchdown", lambda t, x, out: out.gear_load.sum(axis=1) > 0.0)],
+        stop=[Touchdown()],
     )
     touched = np.array([r == "touchdown" for r in sim.stop_reason])
     sink = np.where(touched, -_hdot(sim.final_state), np.nan)
@@ -368,6 +382,7 @@ def approach_and_landing(
 
 __all__ = [
     "ScreenHeight",
+    "Touchdown",
     "takeoff_run",
     "runway_acceleration",
     "approach_and_landing",

@@ -290,6 +290,19 @@ RECORDED = (
 )
 
 
+def _scheduled_controls(u_trim, sched, nsteps: int, dt, per_row: bool) -> np.ndarray:
+    """Every step's controls before any law, (nsteps + 1, n, m): the trim plus each schedule's increment at k·dt, added
+    in order as the step-by-step loop adds them."""
+    n, m = u_trim.shape
+    U_all = np.empty((nsteps + 1, n, m))
+    U_all[:] = u_trim
+    steps = np.arange(nsteps + 1)
+    times = steps[:, None] * dt[None, :] if per_row else (steps * dt)[:, None]  # each step's k·dt
+    for j, s in sched:
+        U_all[:, :, j] += s.over(times)
+    return U_all
+
+
 def simulate(
     model: AircraftModel,
     x0: np.ndarray,
@@ -340,12 +353,7 @@ def simulate(
     compiled = None
     if not (controllers or lim) and all(isinstance(c, Bound) for c in stop) and model.runs_open_loop_compiled:
         # every step's controls known, the stop criteria bounds: one compiled run
-        U_all = np.empty((nsteps + 1, n, len(names)))
-        U_all[:] = u_trim
-        steps = np.arange(nsteps + 1)
-        times = steps[:, None] * dt[None, :] if per_row else (steps * dt)[:, None]  # each step's k·dt
-        for j, s in sched:
-            U_all[:, :, j] += s.over(times)
+        U_all = _scheduled_controls(u_trim, sched, nsteps, dt, per_row)
         x = np.ascontiguousarray(x)
         bounds = [c.arrays(n) for c in stop]
         stops = (
@@ -366,12 +374,13 @@ def simulate(
         for i in np.flatnonzero(stop_step >= 0):
             stop_time[i] = stop_step[i] * dt
             stop_reason[i] = stop[stop_which[i]].__name__
-    elif controllers and not (lim or sched or per_row or isinstance(dt, np.ndarray)):
+    elif controllers and not (lim or per_row or isinstance(dt, np.ndarray)):
         blocks = controlled_blocks(model, controllers, stop)
         if blocks is not None:  # the laws and the criterion stepped in compiled code, the same arithmetic
             x = np.ascontiguousarray(x)
+            U_all = _scheduled_controls(u_trim, sched, nsteps, dt, False) if sched else u_trim[None]
             compiled, stop_step = run_controlled(
-                model, x, u_trim, dt, nsteps, record_every, blocks, out_rec, x_rec, ctrl_hist
+                model, x, U_all, dt, nsteps, record_every, blocks, out_rec, x_rec, ctrl_hist
             )
             for i in np.flatnonzero(stop_step >= 0):
                 stop_time[i] = stop_step[i] * dt

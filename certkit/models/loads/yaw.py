@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from certkit.models.dynamics import pilot_kernel
+from certkit.models.dynamics.controlled_run import KernelBlock, columns
 from certkit.models.dynamics.eom import quat_to_euler
 from certkit.models.dynamics.simulate import Controller, Ramp, simulate, stop_when
 
@@ -50,6 +52,19 @@ class RollHold(Controller):
         )
         return u
 
+    def kernel_block(self) -> KernelBlock:
+        """This law for a compiled run (:mod:`certkit.models.dynamics.controlled_run`)."""
+        n = self.da0.shape[0]
+
+        def restore(s):
+            self.integral = s[:, 0].copy()
+
+        consts = np.array([self.k_phi, self.k_p, self.k_i, self.limits[0], self.limits[1]], dtype=float)
+        state = columns(n, self.integral)
+        return KernelBlock(
+            "lateral", pilot_kernel.ROLL_HOLD, consts, columns(n, self.da0), state, restore, self, (self.j, -1, -1)
+        )
+
 
 class SideslipSettled:
     """Stateful stop criterion: β within ``tolerance`` × |β| over the last ``window`` s, after its peak."""
@@ -70,6 +85,21 @@ class SideslipSettled:
             return np.zeros(b.shape, dtype=bool)
         band = np.nanmax(np.abs(self.buf - b[None, :]), axis=0)
         return (band <= self.tol * np.abs(b)) & (np.abs(b) < self.peak)
+
+    def kernel_block(self) -> KernelBlock | None:
+        """This criterion for a compiled run (:mod:`certkit.models.dynamics.controlled_run`), before its first use."""
+        if self.k != 0:
+            return None
+        m, n = self.buf.shape
+
+        def restore(s):
+            self.buf[:] = s[:, :m].T
+            self.peak = s[:, m].copy()
+            self.k = int(s[0, m + 1]) if n else 0
+
+        state = np.column_stack([self.buf.T, self.peak, np.zeros(n)])
+        consts = np.array([m, self.tol, self.t_min], dtype=float)
+        return KernelBlock("stop", pilot_kernel.SIDESLIP_SETTLED, consts, np.zeros((n, 1)), state, restore, self)
 
 
 @dataclass
