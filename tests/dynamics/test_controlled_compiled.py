@@ -176,7 +176,7 @@ def test_a_law_already_stepped_or_changed_is_left_to_the_python_loop(models):
     """A law past its first step (its state no longer the kernel's start) and a subclass that changes a law's
     equations without a block of its own are not compiled."""
     from certkit.models.dynamics.controlled_run import controlled_blocks
-    from certkit.models.dynamics.controllers import HeadingHold, WingsLevel
+    from certkit.models.dynamics.controllers import EngineFailure, HeadingHold, WingsLevel
 
     ac, make = models
     model = make()
@@ -192,6 +192,9 @@ def test_a_law_already_stepped_or_changed_is_left_to_the_python_loop(models):
 
     assert controlled_blocks(model, [Reversed(model, u)], []) is None
     assert controlled_blocks(model, [WingsLevel(model, u), HeadingHold(model, u)], []) is None  # two lateral laws
+    other = make()
+    assert controlled_blocks(model, [EngineFailure(model, "left", 50.0)], []) is not None
+    assert controlled_blocks(model, [EngineFailure(other, "left", 50.0)], []) is None  # fails another model's engine
 
 
 def test_compiled_approach_and_landing_equals_the_python_loop(ctx, monkeypatch):

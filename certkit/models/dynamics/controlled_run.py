@@ -65,6 +65,8 @@ def controlled_blocks(
     laws = [b.role for b in blocks[: len(controllers)]]
     if any(r not in ROLES for r in laws) or laws != sorted(set(laws), key=ROLES.index):
         return None
+    if any(getattr(b.source, "model", model) is not model for b in blocks):
+        return None  # a law of another model (the Python loop would step that model's engines)
     failure = next((b.source for b in blocks if b.role == "failure"), None)
     if any(b.waits_for is not None and b.waits_for is not failure for b in blocks):
         return None
