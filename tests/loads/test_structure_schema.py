@@ -51,7 +51,7 @@ def test_values_in_si_and_capabilities(tmp_path):
     bare = tmp_path / "bare.yaml"
     bare.write_text(BASELINE.read_text().replace(NO_STRUCTURE[0], "", 1))
     assert load_aircraft(bare).model.structure is None
-    assert declared_capabilities(Context(load_aircraft(bare)), "wing") == []
+    assert declared_capabilities(Context(load_aircraft(bare)), "wing") == ()
     assert {c.station for c in declared_capabilities(Context(load_aircraft(BASELINE)), "wing")} == {
         "root",
         "side of body",
@@ -138,6 +138,6 @@ def test_not_evaluated_without_capability_for_the_surface(tmp_path):
     structure = "structure:\n  vertical_tail:" + STRUCTURE.split("  vertical_tail:")[1]
     ctx = Context(load_aircraft(with_structure(tmp_path, structure)))
     caps = declared_capabilities(ctx, "horizontal_tail")
-    assert caps == [] and len(declared_capabilities(ctx, "vertical_tail")) == 1
+    assert caps == () and len(declared_capabilities(ctx, "vertical_tail")) == 1
     f = capability_finding(Condition(loading="x"), "test", "horizontal_tail", np.ones((2, 3, 1)), ("root",), caps, 1.5)
     assert f.status == "not_evaluated" and f.reason == NO_CAPABILITY

@@ -85,6 +85,29 @@ def _table(capabilities: tuple[Capability, ...], surface: str, stations: tuple[s
     return tuple(r[0] for r in rows), q, s, allow, 1.0 / np.maximum(np.abs(allow), 1e-9)
 
 
+#: tables of capability tuples by identity (each entry holds its tuple, so the identity stays its own): a rule passes
+#: the same declared capabilities to each of its thousands of findings, and the table cache's key would hash every
+#: capability of the tuple at each one
+_BY_IDENTITY: dict[tuple[int, str, tuple[str, ...]], tuple[tuple[Capability, ...], CapabilityTable | None]] = {}
+
+
+def _table_of(capabilities: Iterable[Capability], surface: str, stations: Sequence[str]) -> CapabilityTable | None:
+    """:func:`_table` of the capabilities, looked up by identity for a tuple (immutable: the same object holds the
+    same capabilities)."""
+    stations = tuple(stations)
+    if not isinstance(capabilities, tuple):
+        return _table(tuple(capabilities), surface, stations)
+    key = (id(capabilities), surface, stations)
+    hit = _BY_IDENTITY.get(key)
+    if hit is not None and hit[0] is capabilities:
+        return hit[1]
+    table = _table(capabilities, surface, stations)
+    if len(_BY_IDENTITY) >= 256:
+        _BY_IDENTITY.clear()
+    _BY_IDENTITY[key] = (capabilities, table)
+    return table
+
+
 def worst_margin(
     capabilities: Iterable[Capability],
     surface: str,
@@ -97,7 +120,7 @@ def worst_margin(
     Each capability is compared in each loaded sense (max when the largest load is not ≤ 0, min when the smallest is
     not ≥ 0; a NaN load counts as loaded) at limit (|load|) and ultimate (factor × |load|), in that order; the first
     smallest wins (a NaN margin first in that order stays)."""
-    table = _table(tuple(capabilities), surface, tuple(stations))
+    table = _table_of(capabilities, surface, stations)
     if table is None:
         return None
     caps, q, s, allow, inv_scale = table
@@ -134,7 +157,7 @@ def _worst(peaks, q, s, allow, inv_scale, ultimate_factor):  # type: ignore[no-u
     return best_i, best_j, best_load
 
 
-def declared_capabilities(ctx: Any, surface: str) -> list[Capability]:
+def declared_capabilities(ctx: Any, surface: str) -> tuple[Capability, ...]:
     """The capabilities of ``surface`` declared in the aircraft file (empty when none are)."""
     st = getattr(ctx.aircraft, "structure", None)
     out = []
@@ -146,4 +169,4 @@ def declared_capabilities(ctx: Any, surface: str) -> list[Capability]:
         out.append(
             Capability(surface, station_label(c.station), c.quantity, value(c.limit), value(c.ultimate), c.source)
         )
-    return out
+    return tuple(out)

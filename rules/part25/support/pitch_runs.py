@@ -133,7 +133,7 @@ def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: boo
         "wing",
         peaks[:, i],
         env.stations["wing"],
-        declared_capabilities(ctx, "wing"),
+        ctx.memo(("declared_capabilities", "wing"), lambda: declared_capabilities(ctx, "wing")),
         crit.ultimate_factor,
         partial(fuel_detail, names[i], fuel[i], fuel_tank_names(ctx)),
         **details,
