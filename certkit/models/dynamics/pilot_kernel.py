@@ -1,14 +1,18 @@
-"""Compiled closed-loop runs: the takeoff and engine-cut pilots stepped in machine code.
+"""Compiled closed-loop runs: the takeoff, engine-cut, landing and yaw pilots stepped in machine code.
 
 :func:`integrate_controlled` is the loop of :func:`certkit.models.dynamics.simulate.simulate` for a run whose
-controllers are, in this order, a pitch law (:class:`~certkit.models.dynamics.takeoff_pilot.RotationPilot` or
-:class:`~certkit.models.dynamics.controllers.PitchAttitudeHold`), a lateral law
-(:class:`~certkit.models.dynamics.controllers.WingsLevel`, :class:`~certkit.models.dynamics.controllers.HeadingHold`
-or :class:`~certkit.models.dynamics.takeoff_pilot.DirectionalPilot`) and an
-:class:`~certkit.models.dynamics.controllers.EngineFailure`, each optional, with at most one stop criterion (the
-takeoff's screen height, :class:`~certkit.models.dynamics.procedures.ScreenHeight`, or the engine cut's recovery,
-:class:`~certkit.models.dynamics.ground_control.EngineCutEnd`). Each step is the Python loop's: the state evaluated
-with the step's trim controls (:func:`~certkit.models.dynamics.kernel.air_data`,
+controllers are, in this order, a pitch law (:class:`~certkit.models.dynamics.takeoff_pilot.RotationPilot`,
+:class:`~certkit.models.dynamics.controllers.PitchAttitudeHold` or the approach's
+:class:`~certkit.models.dynamics.controllers.TECSApproach`, which flies the throttles too), a lateral law
+(:class:`~certkit.models.dynamics.controllers.WingsLevel`, :class:`~certkit.models.dynamics.controllers.HeadingHold`,
+:class:`~certkit.models.dynamics.takeoff_pilot.DirectionalPilot` or the yaw manoeuvre's
+:class:`~certkit.models.loads.yaw.RollHold`) and an :class:`~certkit.models.dynamics.controllers.EngineFailure`, each
+optional, with at most one stop criterion (the takeoff's screen height,
+:class:`~certkit.models.dynamics.procedures.ScreenHeight`; the engine cut's end,
+:class:`~certkit.models.dynamics.ground_control.EngineCutEnd`; the yaw manoeuvre's settled sideslip,
+:class:`~certkit.models.loads.yaw.SideslipSettled`; the landing's
+:class:`~certkit.models.dynamics.procedures.Touchdown`) and any scheduled inputs. Each step is the Python loop's: the
+state evaluated with the step's scheduled controls (:func:`~certkit.models.dynamics.kernel.air_data`,
 :func:`~certkit.models.dynamics.kernel.engine_forces`, :func:`~certkit.models.dynamics.kernel.derivatives`), the laws
 in order on those outputs, the state evaluated again with their controls, the stop criterion on these outputs, the
 record, then :func:`~certkit.models.dynamics.kernel.rk4_step`. The laws are the Python classes' arithmetic, operation
@@ -29,14 +33,12 @@ from numba import njit
 
 from certkit.models.dynamics.kernel import air_data, derivatives, engine_forces, record, rk4_step
 
-#: pitch laws (the approach's total-energy control flies the throttles too)
+#: pitch laws
 ROTATION, ATTITUDE_HOLD, TECS = 1, 2, 3
 #: lateral laws
 WINGS_LEVEL, HEADING_HOLD, DIRECTIONAL, ROLL_HOLD = 1, 2, 3, 4
 #: stop criteria
 SCREEN_HEIGHT, ENGINE_CUT, SIDESLIP_SETTLED, TOUCHDOWN = 1, 2, 3, 4
-#: the heading hold's share of the weight on the wheels below which it flies as airborne
-#: (:data:`certkit.models.dynamics.controllers.LIGHT_GEAR`, passed in the constants)
 
 _V, _BETA = 0, 2  # columns of kernel.OUTPUTS
 

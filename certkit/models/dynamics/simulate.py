@@ -325,7 +325,8 @@ def simulate(
 
     Two kinds of run are stepped in compiled code, the same arithmetic as the loop below: every step's controls known
     (no controllers or limits, bounds as stop criteria: :meth:`AircraftModel.open_loop_run`), and laws that offer
-    the compiled loop a block (the takeoff and engine-cut pilots, :mod:`certkit.models.dynamics.controlled_run`)."""
+    the compiled loop a block (the takeoff, engine-cut, landing and yaw laws,
+    :mod:`certkit.models.dynamics.controlled_run`)."""
     x = np.array(x0, dtype=float)
     if x.shape[1] == 12:
         x = euler_state_to_quat_state(x)
