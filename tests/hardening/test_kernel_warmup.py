@@ -6,6 +6,7 @@ import subprocess
 import sys
 
 from certkit.models.kernel_warmup import (
+    COMPILED_ELSEWHERE,
     EQUATIONS_OF_MOTION,
     SIGNATURES_FILE,
     argument_types,
@@ -58,6 +59,12 @@ def test_groups_keep_each_module_whole_and_the_equations_of_motion_alone():
         assert sum(any(e[0] == module for e in g) for g in parts) == 1
     assert groups(entries, 1) == [entries]
     assert len(groups(entries, 8)) == 4  # no empty group
+    # a kernel compiled elsewhere goes last into the last group, behind that group's own modules
+    ((module, function),) = COMPILED_ELSEWHERE
+    late = (module, function, "()")
+    parts = groups(entries + [late], 2)
+    assert late not in parts[0] and parts[-1][-1] == late and len(parts) == 2
+    assert groups([e for e in entries if e[0] in EQUATIONS_OF_MOTION] + [late], 2)[-1] == [late]
 
 
 def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path):
