@@ -120,11 +120,8 @@ def run_controlled(
     p_kind, p_c, p_p, p_s = parts(pitch)
     l_kind, l_c, l_p, l_s = parts(lateral)
     s_kind, s_c, s_p, s_s = parts(stop)
-    ne = operative.shape[1]
-    f_mask = np.zeros(ne, dtype=np.bool_) if failure is None else kernel_array(failure.mask, np.bool_)
-    f_c = np.array([np.nan]) if failure is None else kernel_array(failure.consts)
-    f_p = _empty(n) if failure is None else kernel_array(failure.params)
-    f_s = np.zeros((n, 2)) if failure is None else kernel_array(failure.state)
+    _, f_c, f_p, f_s = parts(failure)  # read by the kernel only when there is a failure
+    f_mask = np.zeros(operative.shape[1], dtype=np.bool_) if failure is None else kernel_array(failure.mask, np.bool_)
     irec = pilot_kernel.integrate_controlled(
         x13,
         kernel_array(U_all),

@@ -331,7 +331,14 @@ class EngineFailure(Controller):
         decay = np.nan if self.decay_time is None else float(self.decay_time)
         state = columns(n, self.failed, self.fail_time)
         return KernelBlock(
-            "failure", 1, np.array([decay]), columns(n, self.speed), state, restore, self, mask=self.mask
+            "failure",
+            pilot_kernel.ENGINE_FAILURE,
+            np.array([decay]),
+            columns(n, self.speed),
+            state,
+            restore,
+            self,
+            mask=self.mask,
         )
 
 

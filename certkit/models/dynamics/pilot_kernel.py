@@ -39,6 +39,8 @@ ROTATION, ATTITUDE_HOLD, TECS = 1, 2, 3
 WINGS_LEVEL, HEADING_HOLD, DIRECTIONAL, ROLL_HOLD = 1, 2, 3, 4
 #: stop criteria
 SCREEN_HEIGHT, ENGINE_CUT, SIDESLIP_SETTLED, TOUCHDOWN = 1, 2, 3, 4
+#: the engine failure (the one kind of its block)
+ENGINE_FAILURE = 1
 
 _V, _BETA = 0, 2  # columns of kernel.OUTPUTS
 
@@ -142,7 +144,7 @@ def _rotation(first, any_rotating, t, dt, x, out, u, j, c, p, s, r_gear):
         c[12],
         c[13],
     )
-    theta = math.asin(_clip(2.0 * (x[9] * x[11] - x[12] * x[10]), -1.0, 1.0))
+    theta = _theta(x)
     V = out[_V]
     if s[9] != 0.0:
         s[8] += ((V - s[7]) / dt - s[8]) * min(dt / trend, 1.0)
@@ -187,7 +189,7 @@ def _rotation(first, any_rotating, t, dt, x, out, u, j, c, p, s, r_gear):
 def _attitude_hold(first, dt, x, out, u, j, c, p, s):
     """:class:`~certkit.models.dynamics.controllers.PitchAttitudeHold` on one row. Constants: rate, k_θ, k_q,
     elevator limits (2); parameters: δe0, V_R, θ_target; state: rotating, θ_cmd."""
-    theta = math.asin(_clip(2.0 * (x[9] * x[11] - x[12] * x[10]), -1.0, 1.0))
+    theta = _theta(x)
     if first:
         s[1] = theta
     if out[_V] >= p[1]:
@@ -203,7 +205,7 @@ def _attitude_hold(first, dt, x, out, u, j, c, p, s):
 def _wings_level(x, out, u, ja, jr, c, p):
     """:class:`~certkit.models.dynamics.controllers.WingsLevel` on one row. Constants: K_φ, K_p, K_β, K_r, aileron
     limits (2), rudder limits (2); parameters: δa0, δr0."""
-    phi = math.atan2(2 * (x[9] * x[10] + x[11] * x[12]), 1 - 2 * (x[10] * x[10] + x[11] * x[11]))
+    phi = _phi(x)
     u[ja] = _clip(p[0] + c[0] * phi + c[1] * x[6], c[4], c[5])
     u[jr] = _clip(p[1] + c[3] * x[8] - c[2] * out[_BETA], c[6], c[7])
 
@@ -298,7 +300,7 @@ def _tecs(first, dt, x, out, u, j, c, p, s, r_gear):
     K_P and K_D of the flare, K_γ̇ of the flare, wheel heights from the gear (1/0), g; parameters: δe0, throttle0,
     V_cmd, CG-to-wheel height, τ; state: flaring, integral, θ_cmd, V_prev, γ_prev."""
     q0, q1, q2, q3 = x[9], x[10], x[11], x[12]
-    theta = math.asin(_clip(2 * (q0 * q2 - q3 * q1), -1.0, 1.0))
+    theta = _theta(x)
     V = out[_V]
     c31, c32, c33 = 2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3
     hdot = -(c31 * x[3] + c32 * x[4] + c33 * x[5])
@@ -341,7 +343,7 @@ def _tecs(first, dt, x, out, u, j, c, p, s, r_gear):
 def _roll_hold(dt, x, u, ja, c, p, s):
     """:class:`~certkit.models.loads.yaw.RollHold` on one row. Constants: K_φ, K_p, K_I, aileron limits (2);
     parameters: δa0; state: integral."""
-    phi = math.atan2(2 * (x[9] * x[10] + x[11] * x[12]), 1 - 2 * (x[10] * x[10] + x[11] * x[11]))
+    phi = _phi(x)
     s[0] += phi * dt
     u[ja] = _clip(p[0] + c[0] * phi + c[2] * s[0] + c[1] * x[6], c[3], c[4])
 

@@ -372,9 +372,6 @@ def simulate(
             ctrl_hist,
             stops,
         )
-        for i in np.flatnonzero(stop_step >= 0):
-            stop_time[i] = stop_step[i] * dt
-            stop_reason[i] = stop[stop_which[i]].__name__
     elif controllers and not (lim or per_row or isinstance(dt, np.ndarray)):
         blocks = controlled_blocks(model, controllers, stop)
         if blocks is not None:  # the laws and the criterion stepped in compiled code, the same arithmetic
@@ -383,10 +380,11 @@ def simulate(
             compiled, stop_step = run_controlled(
                 model, x, U_all, dt, nsteps, record_every, blocks, out_rec, x_rec, ctrl_hist
             )
-            for i in np.flatnonzero(stop_step >= 0):
-                stop_time[i] = stop_step[i] * dt
-                stop_reason[i] = getattr(stop[0], "__name__", "stop")
+            stop_which = np.zeros(n, dtype=np.int64)  # its one criterion
     if compiled is not None:
+        for i in np.flatnonzero(stop_step >= 0):
+            stop_time[i] = stop_step[i] * dt
+            stop_reason[i] = getattr(stop[stop_which[i]], "__name__", "stop")
         irec = compiled
         steps = np.arange(0, nsteps + 1, record_every)[:irec]
         t_rec[:irec] = steps[:, None] * dt if per_row else steps * dt
