@@ -27,6 +27,7 @@ import click
 from certkit import __version__, interrupts
 from certkit.engine.worker_processes import one_blas_thread
 from certkit.errors import UserError
+from certkit.user_cache import cache_folder
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 70  # EX_SOFTWARE of sysexits(3)
@@ -106,9 +107,10 @@ def _long_lived_objects():
 MISSION_COST = 5.0
 
 
-def _mission_for_report(aircraft) -> dict | None:
+def _mission_for_report(aircraft, ctx) -> dict | None:
     """The aircraft file's missions (design range, payload–range, nominal mission, cruise drag) for the report, or
-    why they could not be flown; None without a ``mission:`` section."""
+    why they could not be flown, on the clean aerodynamic model of ``ctx`` (a Context on ``aircraft``: the rules' in
+    that process); None without a ``mission:`` section."""
     if aircraft.mission is None:
         return None
     from certkit.models.performance.mission import (  # deferred: CLI start-up: the mission models load with the check
@@ -119,7 +121,7 @@ def _mission_for_report(aircraft) -> dict | None:
     )
 
     try:
-        m = fly_missions(aircraft)
+        m = fly_missions(aircraft, ctx.aero("clean"))
     except UserError as exc:
         return {"error": str(exc)}
     out = m.as_dict()
@@ -277,6 +279,9 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             check_overrides,
             run,
         )
+        from certkit.models.aero.lattice_store import (  # deferred: CLI start-up: the check's layers load when it runs
+            LatticeStore,
+        )
         from certkit.report.html import (  # deferred: CLI start-up: the check's layers load when it runs
             ReportFinish,
             write_report,
@@ -316,6 +321,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             progress=progress,
             alongside={"mission": functools.partial(_mission_for_report, loaded.model)},
             alongside_cost={"mission": MISSION_COST},
+            lattice_store=LatticeStore(cache_folder() / "lattices"),
         )
         progress.close()
         result.selection = {
@@ -870,11 +876,14 @@ def import_jsbsim_command(fdm_file, out_path, mach, altitude):
 
 def entry() -> None:
     """The ``certkit`` program: :func:`main` with Ctrl-C recorded (:mod:`certkit.interrupts`); an interrupted run ends
-    with exit code 130 at once, without the interpreter's shutdown."""
+    with exit code 130 at once, without the interpreter's shutdown. Every object left is frozen before the shutdown
+    (``gc.freeze``): the interpreter's last collection would otherwise scan them all only to free memory that the
+    process hands back as it ends (about 0.2 s after a check)."""
     interrupts.install()
     try:
         main()
     except SystemExit as exc:
         if interrupts.requested() and exc.code == EXIT_INTERRUPTED:
             interrupts.leave(EXIT_INTERRUPTED)
+        gc.freeze()
         raise

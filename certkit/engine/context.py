@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from collections.abc import Iterable, Mapping
 
     from certkit.engine.results import Condition
+    from certkit.models.aero.lattice_store import LatticeStore
     from certkit.models.dynamics.linearize import Linearization
     from certkit.models.dynamics.modes import Mode
     from certkit.models.dynamics.trim import TrimBatch
@@ -32,8 +33,12 @@ MACH_OF = {"VC": "MC", "VD": "MD", "VMO": "MMO", "VFC": "MFC"}
 
 
 class Context:
-    def __init__(self, loaded: LoadedAircraft):
+    """``lattice_store`` (optional): a folder of vortex-lattice solutions kept between runs
+    (:class:`~certkit.models.aero.lattice_store.LatticeStore`) the aerodynamic models take theirs from."""
+
+    def __init__(self, loaded: LoadedAircraft, lattice_store: LatticeStore | None = None):
         self.loaded = loaded
+        self.lattice_store = lattice_store
         self.aircraft: Aircraft = loaded.model
         self._memo: dict[Hashable, object] = {}
         self._loading_names: dict[Hashable, set[str]] = {}
@@ -148,7 +153,8 @@ class Context:
 
         def build() -> AirplaneAero:
             declared = configuration in self.aircraft.aerodynamics.derivative_tables
-            lattice = None if declared else self.memo("lattice_derivatives", lambda: lattice_derivatives(self.aircraft))
+            solve = lattice_derivatives if self.lattice_store is None else self.lattice_store.derivatives
+            lattice = None if declared else self.memo("lattice_derivatives", lambda: solve(self.aircraft))
             return build_airplane_aero(self.aircraft, configuration, lattice=lattice)
 
         return self.memo(("aero", configuration), build)

@@ -19,7 +19,7 @@ import time
 import traceback
 from collections.abc import Callable, Iterable
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
@@ -29,6 +29,9 @@ from certkit.engine.results import Condition, Finding, RuleResult, RunResult, Si
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 from certkit.errors import InputError, Problem, UserError
 from certkit.units import UnitError, to_unit
+
+if TYPE_CHECKING:
+    from certkit.models.aero.lattice_store import LatticeStore
 
 #: what runs on each result in the process that evaluated it (the report's drawing of the evidence)
 Finish = Callable[[RuleResult], object]
@@ -341,9 +344,13 @@ def _timed(rule: type[Rule], ctx: Context, finish: Finish | None = None) -> Rule
 
 
 def _evaluate_many(
-    loaded: LoadedAircraft, rules: list[type[Rule]], finish: Finish | None = None, progress: Any = None
+    loaded: LoadedAircraft,
+    rules: list[type[Rule]],
+    finish: Finish | None = None,
+    progress: Any = None,
+    ctx: Context | None = None,
 ) -> tuple[list[RuleResult], dict[str, Any]]:
-    ctx = Context(loaded)
+    ctx = Context(loaded) if ctx is None else ctx
     results = []
     for r in rules:
         if progress:
@@ -382,12 +389,16 @@ _WORKER: dict[str, Any] = {}
 
 
 def _worker_init(
-    loaded: LoadedAircraft, options: DiscoveryOptions, parent_pid: int, finish: Finish | None = None
+    loaded: LoadedAircraft,
+    options: DiscoveryOptions,
+    parent_pid: int,
+    finish: Finish | None = None,
+    lattice_store: LatticeStore | None = None,
 ) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.engine.worker_processes.die_with_parent`)."""
     die_with_parent(parent_pid)
-    _WORKER["ctx"] = Context(loaded)
+    _WORKER["ctx"] = Context(loaded, lattice_store)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
     _WORKER["finish"] = finish
 
@@ -408,6 +419,12 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict[str, A
     return out
 
 
+def _worker_alongside(work: Callable[[Context], Any]) -> Any:
+    """Work alongside the rules (:func:`run`'s ``alongside``) on the worker's Context: it reuses the models the
+    worker's rules built (the vortex lattice...) and leaves its own to them."""
+    return work(_WORKER["ctx"])
+
+
 def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
     """The rules grouped for the worker processes: rules sharing a :attr:`Rule.run_with` key form one unit (in
     registry order), every other rule its own; the heaviest units (summed :attr:`Rule.cost`) first."""
@@ -418,7 +435,7 @@ def work_units(rules: list[type[Rule]]) -> list[tuple[type[Rule], ...]]:
 
 
 def _queue(
-    units: list[tuple[type[Rule], ...]], alongside: dict[str, Callable[[], Any]], cost: dict[str, float]
+    units: list[tuple[type[Rule], ...]], alongside: dict[str, Callable[[Context], Any]], cost: dict[str, float]
 ) -> list[tuple[str, Any]]:
     """The order the work is handed out in: the units (heaviest first, :func:`work_units`), each piece of work
     alongside after the units at least as heavy as its ``cost`` (after all of them without one)."""
@@ -454,31 +471,35 @@ def run(
     options: DiscoveryOptions = DiscoveryOptions(),
     now: _dt.datetime | None = None,
     finish: Finish | None = None,
-    alongside: dict[str, Callable[[], Any]] | None = None,
+    alongside: dict[str, Callable[[Context], Any]] | None = None,
     alongside_cost: dict[str, float] | None = None,
     progress: Any = None,
+    lattice_store: LatticeStore | None = None,
 ) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
     :class:`RuleResult`, e.g. the report's drawing of the evidence) is applied to each result in the process that
-    evaluated it, so that work runs in parallel too. ``alongside`` (name → picklable function of no argument, e.g. the
-    report's missions) runs in the first worker free once the units heavier than its ``alongside_cost`` (on the
-    scale of :attr:`Rule.cost`; without one, once every unit) are handed out (in this process with one job);
-    each result goes to ``models[name]``.
+    evaluated it, so that work runs in parallel too. ``alongside`` (name → picklable function of the evaluating
+    process's :class:`Context`, e.g. the report's missions, which reuse its aerodynamic models) runs in the first
+    worker free once the units heavier than its ``alongside_cost`` (on the scale of :attr:`Rule.cost`; without one,
+    once every unit) are handed out (in this process with one job); each result goes to ``models[name]``.
     ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
     several processes a unit counts as started when a process becomes free for it: the processes take the units in
-    order)."""
+    order). ``lattice_store``: the vortex-lattice solutions kept between runs (:class:`Context`)."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
-        results, provenance = _evaluate_many(loaded, rules, finish, progress)
+        ctx = Context(loaded, lattice_store)
+        results, provenance = _evaluate_many(loaded, rules, finish, progress, ctx)
         provenance = _merge_provenance([provenance])
-        extra = {name: fn() for name, fn in (alongside or {}).items()}
+        extra = {name: fn(ctx) for name, fn in (alongside or {}).items()}
     else:
         units = work_units(rules)
         workers = min(jobs, len(units))
         pool = ProcessPoolExecutor(
-            max_workers=workers, initializer=_worker_init, initargs=(loaded, options, os.getpid(), finish)
+            max_workers=workers,
+            initializer=_worker_init,
+            initargs=(loaded, options, os.getpid(), finish, lattice_store),
         )
         try:
             futures, extras = [], {}
@@ -488,7 +509,7 @@ def run(
                 if kind == "unit":
                     futures.append(pool.submit(_worker_run, tuple(r.id for r in item)))
                 else:
-                    extras[item] = pool.submit((alongside or {})[item])
+                    extras[item] = pool.submit(_worker_alongside, (alongside or {})[item])
             if progress:
                 for unit in units[:workers]:
                     progress.started([r.id for r in unit])

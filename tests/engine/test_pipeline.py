@@ -255,21 +255,32 @@ def test_a_margin_without_a_unit_is_refused():
     assert Finding.compare(Condition(), "x ≥ 1", 2.0, 1.0, at_least=True, unit="g").unit == "g"
 
 
-def _process_id() -> int:
+def _process_id(ctx) -> tuple[int, str, int]:
     import os
 
-    return os.getpid()
+    return os.getpid(), type(ctx).__name__, id(ctx)
 
 
-def test_work_alongside_the_rules_runs_in_a_worker_and_lands_in_the_models(baseline):
+def test_work_alongside_the_rules_runs_in_a_worker_and_lands_in_the_models(baseline, monkeypatch):
     """``alongside`` (the report's missions): with several processes a worker runs it once the rules are handed out
-    (its result under ``models``); with one, this process."""
+    (its result under ``models``); with one, this process. It is given the Context of the process's rules (whose
+    models it reuses)."""
     import os
+
+    from certkit.engine import scheduler
 
     rules = [r for r in discover() if r.id in ("25.333", "25.335(a)", "25.335(b)")]
     two = run(baseline, rules, jobs=2, alongside={"pid": _process_id})
+    contexts = []
+
+    def context(loaded, lattice_store=None, made=scheduler.Context):
+        contexts.append(made(loaded, lattice_store))
+        return contexts[-1]
+
+    monkeypatch.setattr(scheduler, "Context", context)
     one = run(baseline, rules, jobs=1, alongside={"pid": _process_id})
-    assert two.models["pid"] != os.getpid() and one.models["pid"] == os.getpid()
+    assert two.models["pid"][0] != os.getpid() and two.models["pid"][1] == "Context"
+    assert len(contexts) == 1 and one.models["pid"] == (os.getpid(), "Context", id(contexts[0]))
     assert [r.id for r in two.rules] == [r.id for r in one.rules]
 
 

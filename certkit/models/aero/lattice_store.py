@@ -1,0 +1,108 @@
+"""A folder of vortex-lattice solutions (:func:`~certkit.models.aero.airplane.lattice_derivatives`'s result) kept
+between runs: a check of an aircraft file whose geometry did not change loads its lattice (its derivatives at every
+Mach breakpoint and the unit solutions the strip loads spread) instead of solving it again.
+
+An entry is found by a digest of everything the solution is computed from: the aircraft file's sections that
+:func:`lattice_derivatives` reads (:data:`LATTICE_INPUTS`, tested to be all it reads), the Mach numbers, and the
+source text of certkit's modules with the numpy and Python versions — a change of any of them is another entry, never
+an old solution. An entry that cannot be read is solved again. The newest :data:`KEEP` entries are kept.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import pickle
+import platform
+import tempfile
+from functools import lru_cache
+from pathlib import Path
+from typing import Any, Sequence
+
+import numpy as np
+
+from certkit.models.aero.airplane import LatticeDerivatives, lattice_derivatives
+
+#: the aircraft file's sections the lattice is computed from (geometry and lattice resolution, the reference lengths
+#: and point, the design speeds that set the Mach breakpoints)
+LATTICE_INPUTS = ("aerodynamics", "geometry", "reference", "speeds")
+
+#: entries kept in the folder (about 7 MB each for the baseline), the most recently used
+KEEP = 8
+
+#: the layout of an entry; another layout is another entry
+FORMAT = 1
+
+
+@lru_cache(maxsize=1)
+def source_digest() -> str:
+    """A digest of the text of every module of the certkit package (the lattice's code and the aircraft model's
+    derived quantities it reads), of the numpy and Python versions and of :data:`FORMAT`."""
+    package = Path(__file__).resolve().parents[2]
+    h = hashlib.sha256(f"{FORMAT} {np.__version__} {platform.python_version()}\n".encode())
+    for path in sorted(package.rglob("*.py")):
+        h.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def entry_key(aircraft: Any, machs: Sequence[float] | None = None) -> str:
+    """The digest naming ``aircraft``'s lattice solution at ``machs`` (None: its Mach breakpoints)."""
+    inputs = {name: _plain(getattr(aircraft, name)) for name in LATTICE_INPUTS}
+    inputs["machs"] = None if machs is None else [float(m) for m in machs]
+    text = json.dumps(inputs, sort_keys=True, default=repr)
+    return hashlib.sha256((source_digest() + "\n" + text).encode()).hexdigest()
+
+
+def _plain(section: Any) -> Any:
+    return section.model_dump(mode="json") if hasattr(section, "model_dump") else section
+
+
+class LatticeStore:
+    """The folder ``folder`` of lattice solutions; :meth:`derivatives` is :func:`lattice_derivatives` through it."""
+
+    def __init__(self, folder: Path | str):
+        self.folder = Path(folder)
+
+    def derivatives(self, aircraft: Any, machs: Sequence[float] | None = None) -> LatticeDerivatives:
+        """:func:`lattice_derivatives` of ``aircraft`` at ``machs``: the stored solution of the same inputs, or
+        solved and stored."""
+        path = self.folder / f"{entry_key(aircraft, machs)}.pickle"
+        stored = self._load(path)
+        if stored is not None:
+            return stored
+        solved = lattice_derivatives(aircraft, machs)
+        self._save(path, solved)
+        return solved
+
+    def _load(self, path: Path) -> LatticeDerivatives | None:
+        try:
+            with open(path, "rb") as f:
+                value = pickle.load(f)
+            os.utime(path)  # most recently used: kept longest
+        except OSError:  # none yet, or a folder that cannot be read
+            return None
+        except Exception:  # noqa: BLE001 - a damaged or foreign entry is only a miss: solve again (and replace it)
+            return None
+        return value  # type: ignore[no-any-return]
+
+    def _save(self, path: Path, value: LatticeDerivatives) -> None:
+        """Write ``value`` at ``path`` whole or not at all (another process may be writing the same entry), then
+        keep the newest :data:`KEEP` entries. A folder that cannot be written is left alone: the store only saves
+        time."""
+        tmp = None
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".tmp")
+            with os.fdopen(fd, "wb") as f:
+                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, path)
+            tmp = None
+            entries = sorted(self.folder.glob("*.pickle"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
+            for old in entries[KEEP:]:
+                old.unlink(missing_ok=True)
+        except OSError:
+            return
+        finally:
+            if tmp is not None:
+                Path(tmp).unlink(missing_ok=True)
