@@ -14,8 +14,9 @@ from __future__ import annotations
 
 import json
 import math
+import pickle
 from dataclasses import dataclass, field
-from typing import Any, Callable, Literal
+from typing import TYPE_CHECKING, Any, Callable, Literal
 
 import numpy as np
 
@@ -402,6 +403,10 @@ def margin_key(f: Finding) -> float:
     return math.inf if key is None else key
 
 
+#: what :meth:`RuleResult.__getstate__` sends computed with a result whose findings travel packed
+SUMMARY = ("status", "headline_reason", "not_evaluated_reason", "critical", "worst_failure")
+
+
 @dataclass
 class RuleResult:
     id: str
@@ -434,9 +439,36 @@ class RuleResult:
     #: NaN or infinite numbers :meth:`to_json` wrote as null
     non_finite: int = field(default=0, repr=False, compare=False)
 
+    def __getstate__(self) -> dict[str, Any]:
+        """A result encoded for ``results.json`` (:attr:`encoded`, as a worker process sends it back) travels with its
+        findings as one pickled block, read only when something asks for them (the CI formats, the API), and with
+        what the terminal, the report's index and the exit code read of them (:data:`SUMMARY`): a check's
+        coordinating process skips rebuilding thousands of findings it only writes as text."""
+        state = dict(self.__dict__)
+        if self.encoded is not None and "findings" in state:
+            state["_summary"] = {name: getattr(self, name) for name in SUMMARY}
+            state["_packed_findings"] = pickle.dumps(state.pop("findings"), protocol=pickle.HIGHEST_PROTOCOL)
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+
+    if not TYPE_CHECKING:  # the findings are a field to type checkers; only an unpickled result reads them here
+
+        def __getattr__(self, name):
+            """The packed findings (:meth:`__getstate__`), rebuilt on first use."""
+            packed = self.__dict__.get("_packed_findings") if name == "findings" else None
+            if packed is None:
+                raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+            self.findings = pickle.loads(packed)
+            del self.__dict__["_packed_findings"], self.__dict__["_summary"]
+            return self.findings
+
     @property
     def status(self) -> str:
         """``fails``, ``complies``, ``complies_partial`` or ``not_evaluated`` (module docstring)."""
+        if "_summary" in self.__dict__:
+            return str(self.__dict__["_summary"]["status"])
         statuses = {f.status for f in self.findings}
         if FAILS in statuses:
             return FAILS
@@ -449,17 +481,44 @@ class RuleResult:
     def headline_reason(self) -> str:
         """The reason to show when there is no critical finding: the first finding's, those of the rule's own
         computation before the sub-paragraphs it does not evaluate."""
+        if "_summary" in self.__dict__:
+            return str(self.__dict__["_summary"]["headline_reason"])
         own = [f for f in self.findings if SCOPE_KEY not in f.details]
         first = (own or self.findings)[:1]
         return first[0].reason if first else ""
 
     @property
+    def not_evaluated_reason(self) -> str:
+        """Why the rule (or the part it computes) was not evaluated: its first own ``not_evaluated`` finding's
+        reason, else :attr:`headline_reason` ("no finding" without either)."""
+        if "_summary" in self.__dict__:
+            return str(self.__dict__["_summary"]["not_evaluated_reason"])
+        own = [f for f in self.findings if f.status == NOT_EVALUATED and SCOPE_KEY not in f.details]
+        return (own[0].reason if own else self.headline_reason) or "no finding"
+
+    @property
     def critical(self) -> Finding | None:
         """The evaluated finding with the smallest normalised margin (the critical condition)."""
+        if "_summary" in self.__dict__:
+            critical: Finding | None = self.__dict__["_summary"]["critical"]
+            return critical
         evaluated = [f for f in self.findings if f.margin is not None]
         if not evaluated:
             return None
         return min(evaluated, key=margin_key)
+
+    @property
+    def worst_failure(self) -> Finding | None:
+        """The failing finding with the smallest normalised margin (else margin), or the first failing one when
+        none has a margin; None when nothing fails."""
+        if "_summary" in self.__dict__:
+            worst: Finding | None = self.__dict__["_summary"]["worst_failure"]
+            return worst
+        failing = [f for f in self.findings if f.status == FAILS]
+        with_margin = [f for f in failing if f.margin is not None]
+        if with_margin:
+            return min(with_margin, key=margin_key)
+        return failing[0] if failing else None
 
     def as_dict(self) -> dict[str, Any]:
         return {**self._fields(), "findings": [f.as_dict() for f in self.findings]}

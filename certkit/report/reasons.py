@@ -3,7 +3,7 @@ sub-paragraphs a partial rule leaves out, or the critical check of a rule that c
 
 from __future__ import annotations
 
-from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED, SCOPE_KEY
+from certkit.engine.results import COMPLIES_PARTIAL, FAILS, NOT_EVALUATED
 from certkit.report.display import format_value, unit_and_factor
 
 
@@ -20,28 +20,14 @@ def margin_text(value, unit: str) -> str:
     return f"{text} {shown}" if shown not in ("", "1") else text
 
 
-def not_evaluated_reason(result) -> str:
-    """Why a rule (or the part it computes) was not evaluated: its first own ``not_evaluated`` finding's reason."""
-    own = [f for f in result.findings if f.status == NOT_EVALUATED and SCOPE_KEY not in f.details]
-    return (own[0].reason if own else result.headline_reason) or "no finding"
-
-
-def worst_failure(result):
-    failing = [f for f in result.findings if f.status == FAILS]
-    with_margin = [f for f in failing if f.margin is not None]
-    if with_margin:
-        return min(with_margin, key=lambda f: f.normalized_margin if f.normalized_margin is not None else f.margin)
-    return failing[0] if failing else None
-
-
 def reason_line(result) -> str:
     """The one-line reason of the rule's status (see the module docstring)."""
     if result.status == FAILS:
-        f = worst_failure(result)
+        f = result.worst_failure
         by = margin_text(-f.margin, f.unit).lstrip("+") if f.margin is not None else "—"  # "fails by 0.90 deg"
         return f"fails by {by} at {f.condition.label(numbers=False)}: {f.check}"
     if result.status == NOT_EVALUATED:
-        return "not evaluated: " + not_evaluated_reason(result)
+        return "not evaluated: " + result.not_evaluated_reason
     crit = result.critical
     where = f"critical {crit.check} at {crit.condition.label(numbers=False)}" if crit else "complies"
     if result.status == COMPLIES_PARTIAL:
@@ -51,5 +37,5 @@ def reason_line(result) -> str:
 
 def reason_condition(result) -> str:
     """The full condition behind :func:`reason_line` (masses, CG and speeds in aviation units), for a tooltip."""
-    f = worst_failure(result) if result.status == FAILS else result.critical
+    f = result.worst_failure if result.status == FAILS else result.critical
     return f.condition.label() if f is not None else ""

@@ -16,7 +16,7 @@ import time
 import click
 
 from certkit.engine.results import STATUS_LABEL
-from certkit.report.reasons import margin_text, not_evaluated_reason
+from certkit.report.reasons import margin_text
 
 _COLOURS = {"complies": "green", "complies_partial": "cyan", "fails": "red", "not_evaluated": "yellow"}
 
@@ -32,7 +32,7 @@ def rule_rows(results, width: int | None = None, colour: bool = False) -> list[s
         crit = r.critical
         margin = margin_text(crit.margin, crit.unit) if crit else "—"
         if r.status == "not_evaluated" or not crit:
-            where = "reason: " + not_evaluated_reason(r)
+            where = "reason: " + r.not_evaluated_reason
         else:
             where = f"{crit.condition.label()} — {crit.check}"
         status = STATUS_LABEL[r.status]
