@@ -4,8 +4,8 @@ Mach breakpoint and the unit solutions the strip loads spread) instead of solvin
 
 An entry is found by a digest of everything the solution is computed from: the aircraft file's sections that
 :func:`lattice_derivatives` reads (:data:`LATTICE_INPUTS`, tested to be all it reads), the Mach numbers, and the
-source text of certkit's modules with the numpy and Python versions — a change of any of them is another entry, never
-an old solution. An entry that cannot be read is solved again. The newest :data:`KEEP` entries are kept.
+source text of certkit's modules with the numpy, numba and Python versions — a change of any of them is another entry,
+never an old solution. An entry that cannot be read is solved again. The newest :data:`KEEP` entries are kept.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ import pickle
 import platform
 import tempfile
 from functools import lru_cache
+from importlib.metadata import version
 from pathlib import Path
 from typing import Any, Sequence
 
@@ -38,9 +39,12 @@ FORMAT = 1
 @lru_cache(maxsize=1)
 def source_digest() -> str:
     """A digest of the text of every module of the certkit package (the lattice's code and the aircraft model's
-    derived quantities it reads), of the numpy and Python versions and of :data:`FORMAT`."""
+    derived quantities it reads), of the numpy, numba and Python versions, the machine's architecture and
+    :data:`FORMAT`. (A cache folder shared by machines of one architecture but different processors could give
+    them a solution that differs from their own in the last bits: numba compiles for the processor it runs on.)"""
     package = Path(__file__).resolve().parents[2]
-    h = hashlib.sha256(f"{FORMAT} {np.__version__} {platform.python_version()}\n".encode())
+    versions = f"{FORMAT} {np.__version__} {version('numba')} {platform.python_version()} {platform.machine()}"
+    h = hashlib.sha256(versions.encode() + b"\n")
     for path in sorted(package.rglob("*.py")):
         h.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes() + b"\0")
     return h.hexdigest()
