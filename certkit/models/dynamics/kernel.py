@@ -42,7 +42,7 @@ from certkit.atmosphere import isa_scalar
 from certkit.models.aero.derivative_kernel import _row, coefficients_one, mach_weights
 from certkit.models.aero.ground_effect import H_OVER_B_MAX, N_TABLE, induced_drag_factor_at, lift_ratio
 from certkit.models.aero.tail_ground_effect import downwash_ratio_one
-from certkit.models.compiled import copy_row
+from certkit.models.compiled import borrowed, copy_row
 from certkit.models.propulsion.engine import turbofan_row_thrust, windmill_drag_one
 
 OUTPUTS = ("V", "alpha", "beta", "mach", "qbar", "n_x", "n_y", "n_z", "alpha_dot", "CL", "CD")
@@ -337,6 +337,27 @@ def derivative_one(
     out[10] = CD
 
 
+@njit(cache=True, inline="always")
+def _borrowed_model(props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams):  # type: ignore[no-untyped-def]
+    """The model's arrays :func:`~certkit.models.compiled.borrowed`: :func:`derivatives` and :func:`rk4_step` borrow
+    every array they are given, so that the equations of motion inlined in them alias the arrays without atomic
+    reference counts."""
+    return (
+        borrowed(props),
+        borrowed(consts),
+        borrowed(T),
+        borrowed(machs),
+        borrowed(clmax),
+        borrowed(stall),
+        borrowed(after_stall),
+        borrowed(r_eng),
+        borrowed(d_eng),
+        borrowed(r_gear),
+        borrowed(legs),
+        borrowed(gparams),
+    )
+
+
 @njit(cache=True, error_model="numpy", fastmath=True)
 def derivatives(
     X,
@@ -366,6 +387,10 @@ def derivatives(
 ):
     """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
     Returns ẋ (rows, states), outputs (rows, 11), gear loads (rows, nl)."""
+    X, rows, U, thrust, coef = borrowed(X), borrowed(rows), borrowed(U), borrowed(thrust), borrowed(coef)
+    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
+        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
+    )
     n, ns = X.shape
     xd = np.empty((n, ns))
     out = np.empty((n, len(OUTPUTS)))
@@ -473,6 +498,11 @@ def rk4_step(
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
     classical RK4 step of ``dts[i]`` each, controls and thrust held; ``XD1`` the derivative at the
     step's start. The quaternion is renormalised after the step."""
+    X, XD1, active, dts = borrowed(X), borrowed(XD1), borrowed(active), borrowed(dts)
+    U, thrust, coef = borrowed(U), borrowed(thrust), borrowed(coef)
+    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
+        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
+    )
     n, ns = X.shape
     k = np.empty((3, ns))  # k2, k3, k4 (one call site of the inlined derivative: a third of the compiled code)
     xs = np.empty(ns)
