@@ -112,8 +112,8 @@ def borrowed(typingctx, array):  # type: ignore[no-untyped-def]
 
     numba's own inlining (``inline="always"``) binds each array argument of an inlined function to a new name with an
     atomic reference-count increment, and releases it with an atomic decrement; the equations of motion inlined in the
-    RK4 step pass about twenty arrays, and those atomic operations took about 45 % of a step (measured with ``perf``:
-    1.33 → 0.71 µs per condition and step once the step's arrays are borrowed). A kernel borrows its own array
+    RK4 step pass about twenty arrays, and those atomic operations took nearly half of a step (``perf`` found most of
+    the step's machine-code samples in them; 1.33 → 0.70 µs per condition and step once its arrays are borrowed). A kernel borrows its own array
     arguments only — the caller holds them for the whole call — and never returns a borrowed array, stores it, or
     borrows an array it allocated (numba frees a local array after its last use)."""
     sig = array(array)
