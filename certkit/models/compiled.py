@@ -113,9 +113,9 @@ def borrowed(typingctx, array):  # type: ignore[no-untyped-def]
     numba's own inlining (``inline="always"``) binds each array argument of an inlined function to a new name with an
     atomic reference-count increment, and releases it with an atomic decrement; the equations of motion inlined in the
     RK4 step pass about twenty arrays, and those atomic operations took nearly half of a step (``perf`` found most of
-    the step's machine-code samples in them; 1.33 → 0.70 µs per condition and step once its arrays are borrowed). A kernel borrows its own array
-    arguments only — the caller holds them for the whole call — and never returns a borrowed array, stores it, or
-    borrows an array it allocated (numba frees a local array after its last use)."""
+    the step's machine-code samples in them; 1.33 → 0.70 µs per condition and step once its arrays are borrowed).
+    A kernel borrows its own array arguments only — the caller holds them for the whole call — and never returns a
+    borrowed array, stores it, or borrows an array it allocated (numba frees a local array after its last use)."""
     sig = array(array)
 
     def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
