@@ -344,13 +344,8 @@ def _timed(rule: type[Rule], ctx: Context, finish: Finish | None = None) -> Rule
 
 
 def _evaluate_many(
-    loaded: LoadedAircraft,
-    rules: list[type[Rule]],
-    finish: Finish | None = None,
-    progress: Any = None,
-    ctx: Context | None = None,
+    ctx: Context, rules: list[type[Rule]], finish: Finish | None = None, progress: Any = None
 ) -> tuple[list[RuleResult], dict[str, Any]]:
-    ctx = Context(loaded) if ctx is None else ctx
     results = []
     for r in rules:
         if progress:
@@ -490,7 +485,7 @@ def run(
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
         ctx = Context(loaded, lattice_store)
-        results, provenance = _evaluate_many(loaded, rules, finish, progress, ctx)
+        results, provenance = _evaluate_many(ctx, rules, finish, progress)
         provenance = _merge_provenance([provenance])
         extra = {name: fn(ctx) for name, fn in (alongside or {}).items()}
     else:

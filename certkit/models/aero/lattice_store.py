@@ -84,9 +84,7 @@ class LatticeStore:
             with open(path, "rb") as f:
                 value = pickle.load(f)
             os.utime(path)  # most recently used: kept longest
-        except OSError:  # none yet, or a folder that cannot be read
-            return None
-        except Exception:  # noqa: BLE001 - a damaged or foreign entry is only a miss: solve again (and replace it)
+        except Exception:  # noqa: BLE001 - none yet, an unreadable folder, a damaged or foreign entry: only a miss
             return None
         return value  # type: ignore[no-any-return]
 
