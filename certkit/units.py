@@ -10,9 +10,11 @@ import math
 import re
 from functools import lru_cache
 
-import pint
-
+from certkit.lean_imports import pint_without_dask
 from certkit.user_cache import cache_folder
+
+with pint_without_dask():
+    import pint
 
 
 def _registry() -> pint.UnitRegistry:  # type: ignore[type-arg]  # pint's generic registry: quantity type unused

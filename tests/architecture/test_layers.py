@@ -25,6 +25,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "certkit.conventions",
             "certkit.interrupts",
             "certkit.user_cache",
+            "certkit.lean_imports",
             "certkit",
         ),
     ),
