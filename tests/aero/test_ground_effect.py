@@ -5,7 +5,13 @@ import math
 import numpy as np
 import pytest
 
-from certkit.models.aero.ground_effect import induced_drag_factor_at, induced_drag_factor_table, lift_ratio
+from certkit.models.aero.ground_effect import (
+    N_SPAN,
+    induced_drag_factor_at,
+    induced_drag_factor_table,
+    lift_ratio,
+    trefftz_induced_drag_factors,
+)
 
 
 def wieselsberger_phi(h_over_b):
@@ -64,3 +70,13 @@ def test_lift_ratio_free_air_and_transport_wing():
     two_d = 2 * math.pi * 0.95 / (beta * math.sqrt(1 + t**2 / beta**2))
     free = 2 * math.pi * 8.81 / (2 + math.sqrt(4 + 8.81**2 * beta**2 / 0.95**2 * (1 + t**2 / beta**2)))
     assert lift_ratio(1e-3, 8.81, t, 0.2) == pytest.approx(two_d / free, rel=0.01)
+
+
+def test_the_stored_table_is_the_trefftz_sums_bit_for_bit():
+    # the equations of motion read the stored φ table (certkit.models.aero.ground_effect_phi); the sums recomputed
+    # here must give every double as stored (a changed method regenerates the file)
+    stored = induced_drag_factor_table()
+    assert stored.shape == (201,)
+    assert np.array_equal(trefftz_induced_drag_factors(N_SPAN), stored)
+    # another resolution is computed, not stored, and agrees to the discretisation's order
+    assert np.allclose(induced_drag_factor_table(200), stored, atol=2e-3)

@@ -30,16 +30,32 @@ from functools import lru_cache
 import numpy as np
 from numba import njit
 
+from certkit.models.aero.ground_effect_phi import PHI_TABLE
+
 #: h/b beyond which the ground's effect is ignored (φ > 0.995 there)
 H_OVER_B_MAX = 2.0
 #: entries of the φ table (h/b = 0 … H_OVER_B_MAX)
 N_TABLE = 201
 
 
+#: the trailing vortices of the table the equations of motion use
+N_SPAN = 400
+
+
 @lru_cache(maxsize=None)
-def induced_drag_factor_table(n_span: int = 400) -> np.ndarray:
-    """φ at h/b = 0, 0.01, …, :data:`H_OVER_B_MAX` (module docstring), Trefftz-plane sums over ``n_span``
-    cosine-spaced trailing vortices."""
+def induced_drag_factor_table(n_span: int = N_SPAN) -> np.ndarray:
+    """φ at h/b = 0, 0.01, …, :data:`H_OVER_B_MAX` (module docstring) over ``n_span`` trailing vortices: for
+    :data:`N_SPAN`, the sums of :func:`trefftz_induced_drag_factors` as stored in
+    :mod:`certkit.models.aero.ground_effect_phi` (they take 0.3 s of every process that builds a flight model near the
+    ground; tests/aero/test_ground_effect.py recomputes them and compares every bit)."""
+    if n_span == N_SPAN:
+        return np.array(PHI_TABLE, dtype=float)
+    return trefftz_induced_drag_factors(n_span)
+
+
+def trefftz_induced_drag_factors(n_span: int) -> np.ndarray:
+    """φ at h/b = 0, 0.01, …, :data:`H_OVER_B_MAX`, Trefftz-plane sums over ``n_span`` cosine-spaced trailing
+    vortices."""
     th = np.linspace(0.0, np.pi, n_span + 1)
     y = -np.cos(th)  # trailing vortices at the panel edges, semi-span 1
     yc = -np.cos(0.5 * (th[1:] + th[:-1]))

@@ -124,19 +124,20 @@ def simulate_gust(
     parts, sim, dt = two_phase_run(
         gb.model, gb.x0, gb.u0, H, v, lag, gusts, steps_per_gust, settle, max_step, settle_step
     )
-    t = _per_condition(sim.t)
-    alpha = {"wing": wing(t), "horizontal_tail": tail(t)}
+    felt: dict[str, list] = {"wing": [], "horizontal_tail": []}  # the gust angles of each phase, on its own times
     hist: dict[str, list] = {}
     kept: dict[str, list] = {}
     fuel: dict[str, list] = {}
     for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
         tp = phase_times(parts, k)
         extra = {"wing": wing(tp), "horizontal_tail": tail(tp)}
+        keep = slice(None) if k == 0 else slice(1, None)  # a later phase's first record repeats the last one
+        for s, angles in extra.items():
+            felt[s].append(angles[keep])
         L = response_load_parts(
             loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}
         )
         for s, (aero, inertia) in L.items():
-            keep = slice(None) if k == 0 else slice(1, None)
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
@@ -146,7 +147,7 @@ def simulate_gust(
     return GustRun(
         sim,
         {s: np.concatenate(v_) for s, v_ in hist.items()},
-        alpha,
+        {s: np.concatenate(v_) for s, v_ in felt.items()},  # on the run's times (the phases' times, concatenated)
         dt,
         {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
         {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()},
