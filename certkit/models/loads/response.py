@@ -167,22 +167,28 @@ def fuel_state_peaks(
 @njit(cache=True)
 def _fuel_state_peaks(total, terms, per_state, out):
     """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k terms[t, i, k] per_state[i, m, k, j], NaN skipped
-    (the histories read once, in memory order)."""
+    (the histories read once, in memory order; each state's loads of one time formed over the stations at once, the
+    terms added in the order of k)."""
     nt, n, q = total.shape
     n_states, n_terms = per_state.shape[1], per_state.shape[2]
     out[:, :, 0, :] = np.inf
     out[:, :, 1, :] = -np.inf
+    v = np.empty(q)
     for t in range(nt):
         for i in range(n):
             for m in range(n_states):
                 for j in range(q):
-                    v = total[t, i, j]
-                    for k in range(n_terms):
-                        v += terms[t, i, k] * per_state[i, m, k, j]
-                    if v < out[m, i, 0, j]:
-                        out[m, i, 0, j] = v
-                    if v > out[m, i, 1, j]:
-                        out[m, i, 1, j] = v
+                    v[j] = total[t, i, j]
+                for k in range(n_terms):
+                    a = terms[t, i, k]
+                    for j in range(q):
+                        v[j] += a * per_state[i, m, k, j]
+                for j in range(q):
+                    x = v[j]
+                    if x < out[m, i, 0, j]:
+                        out[m, i, 0, j] = x
+                    if x > out[m, i, 1, j]:
+                        out[m, i, 1, j] = x
     for m in range(n_states):
         for i in range(n):
             for j in range(q):

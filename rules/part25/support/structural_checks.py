@@ -44,8 +44,8 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
 
 def station_summary(loads_peaks: np.ndarray, stations) -> dict:
     """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
-    lo, hi = (np.asarray(loads_peaks, dtype=float)[:2] / 1e3).transpose(0, 2, 1).reshape(2, -1)
-    return rounded_table(_summary_keys(tuple(stations)), np.stack([hi, lo], axis=1), 1)
+    max_min = np.asarray(loads_peaks, dtype=float)[1::-1] / 1e3  # (max, min) × quantity × station
+    return rounded_table(_summary_keys(tuple(stations)), max_min.transpose(2, 1, 0).reshape(-1, 2), 1)
 
 
 @lru_cache(maxsize=64)
