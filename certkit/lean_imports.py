@@ -1,4 +1,4 @@
-"""Two imports that third-party packages make at start-up and certkit never uses, kept out of every certkit process.
+"""Imports that third-party packages make at start-up and certkit never uses, kept out of every certkit process.
 
 - ``numpy.f2py`` (numpy's Fortran wrapper generator): scipy ≥ 1.15 copies numpy's namespace into its array-API layer
   with ``from numpy import *``, and numpy's ``__all__`` names ``f2py``, whose import compiles some hundred regular
@@ -8,6 +8,10 @@
 - dask, imported by pint when it is installed (pint's support for quantities wrapping dask arrays, which certkit's
   boundary conversion of plain numbers never builds): 50–90 ms with its dependencies. :func:`pint_without_dask`
   hides dask from pint's import only; ``import dask`` afterwards (a study on a Dask cluster) works as usual.
+- cffi (and its C parser), imported by numba when it first sets up its typing (the first kernel call of a process)
+  for its support of cffi functions inside kernels, which certkit's kernels do not call: 30 ms of each worker
+  process. :func:`numba_without_cffi` imports numba's cffi module with cffi hidden, so numba records that support
+  as absent; cffi itself imports as usual afterwards.
 
 Both are measured in ``benchmarks/bench_check.py`` (the coordinator's start-up before the worker processes fork).
 """
@@ -17,7 +21,7 @@ from __future__ import annotations
 import importlib.util
 import sys
 from collections.abc import Iterator
-from contextlib import contextmanager
+from contextlib import AbstractContextManager, contextmanager
 
 import numpy
 
@@ -40,14 +44,29 @@ def lazy_f2py() -> None:
 
 
 @contextmanager
-def pint_without_dask() -> Iterator[None]:
-    """Within the block, ``importlib.util.find_spec("dask")`` (pint's test) answers None, unless dask is already
-    imported; afterwards dask imports as usual."""
-    hide = "dask" not in sys.modules
+def hidden(name: str) -> Iterator[None]:
+    """Within the block, module ``name`` cannot be imported (``importlib.util.find_spec`` answers None, ``import``
+    raises ImportError), unless it is already imported; afterwards it imports as usual."""
+    hide = name not in sys.modules
     if hide:
-        sys.modules["dask"] = None  # type: ignore[assignment]  # the import system's "not importable" marker
+        sys.modules[name] = None  # type: ignore[assignment]  # the import system's "not importable" marker
     try:
         yield
     finally:
-        if hide and sys.modules.get("dask", 0) is None:
-            del sys.modules["dask"]
+        if hide and sys.modules.get(name, 0) is None:
+            del sys.modules[name]
+
+
+def pint_without_dask() -> AbstractContextManager[None]:
+    """The block that imports pint, with dask hidden (pint's test for it is ``find_spec("dask")``)."""
+    return hidden("dask")
+
+
+def numba_without_cffi() -> None:
+    """numba's cffi support module imported with cffi hidden, unless numba already imported it."""
+    if "numba.core.typing.cffi_utils" in sys.modules:
+        return
+    with hidden("cffi"):
+        from numba.core.typing import (  # deferred: numba only in the processes that run kernels
+            cffi_utils,  # noqa: F401  # imported for its effect: numba's cffi support recorded absent
+        )

@@ -32,6 +32,8 @@ from numba.core.caching import CacheImpl
 from numba.extending import intrinsic
 from numba.np.arrayobj import make_array
 
+from certkit.lean_imports import numba_without_cffi
+
 #: certkit's modules with kernels cached on disk (``njit(cache=True)``), relative to the package; a test checks the
 #: list against the package's sources
 KERNEL_MODULES = (
@@ -132,3 +134,4 @@ def borrowed(typingctx, array):  # type: ignore[no-untyped-def]
 
 
 refresh_stale_kernels()
+numba_without_cffi()  # before numba's first typing set-up (the first kernel call of the process)

@@ -60,3 +60,24 @@ def test_pint_sees_no_dask_and_dask_imported_first_is_kept():
         check=True,
     )
     assert out.stdout.split() == ["False"]
+
+
+def test_numba_sets_up_its_typing_without_cffi_and_cffi_still_imports():
+    code = (
+        "import sys, certkit.models.compiled\n"
+        "from numba.core.registry import cpu_target\n"
+        "cpu_target.target_context.refresh()\n"
+        "from numba.core.typing import cffi_utils\n"
+        "print('cffi' in sys.modules, cffi_utils.SUPPORTED)\n"
+        "try:\n"
+        "    import cffi\n"
+        "    print(hasattr(cffi, 'FFI'))\n"
+        "except ImportError:\n"
+        "    print('absent')\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT, check=True)
+    words = out.stdout.split()
+    assert words[:2] == ["False", "False"]  # numba's typing set up, cffi never imported, its support recorded absent
+    if words[2] == "absent":
+        pytest.skip("cffi is not installed here (the import afterwards is not tested)")
+    assert words[2] == "True"
