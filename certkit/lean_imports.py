@@ -2,9 +2,10 @@
 
 - ``numpy.f2py`` (numpy's Fortran wrapper generator): scipy ≥ 1.15 copies numpy's namespace into its array-API layer
   with ``from numpy import *``, and numpy's ``__all__`` names ``f2py``, whose import compiles some hundred regular
-  expressions — about 0.1 s of every process that imports ``scipy.linalg``. :func:`lazy_f2py` registers the module
-  with the standard library's :class:`importlib.util.LazyLoader`: ``numpy.f2py`` exists (``from numpy import *``
-  binds it) and is executed only when one of its attributes is read.
+  expressions — about 0.1 s of every process that imports ``scipy.linalg``. :func:`lazy_f2py` has the import system
+  load it with the standard library's :class:`importlib.util.LazyLoader` (a finder first on ``sys.meta_path``, for
+  that one module): ``numpy.f2py`` exists (``from numpy import *`` binds it) and is executed only when one of its
+  attributes is read; numpy itself is not imported for it.
 - dask, imported by pint when it is installed (pint's support for quantities wrapping dask arrays, which certkit's
   boundary conversion of plain numbers never builds): 50–90 ms with its dependencies. :func:`pint_without_dask`
   hides dask from pint's import only; ``import dask`` afterwards (a study on a Dask cluster) works as usual.
@@ -13,34 +14,47 @@
   process. :func:`numba_without_cffi` imports numba's cffi module with cffi hidden, so numba records that support
   as absent; cffi itself imports as usual afterwards.
 
-Both are measured in ``benchmarks/bench_check.py`` (the coordinator's start-up before the worker processes fork).
+Measured with ``python -X importtime`` and ``benchmarks/bench_check.py`` (the coordinator's start-up before the worker
+processes fork); tests/hardening/test_lean_imports.py checks each module stays out and still works when used.
 """
 
 from __future__ import annotations
 
+import importlib.abc
+import importlib.machinery
 import importlib.util
 import sys
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from contextlib import AbstractContextManager, contextmanager
+from types import ModuleType
 
-import numpy
+#: the modules :class:`LazyFinder` loads lazily
+LAZY = ("numpy.f2py",)
+
+
+class LazyFinder(importlib.abc.MetaPathFinder):
+    """Finds the modules of :data:`LAZY` with the other finders and gives them a :class:`importlib.util.LazyLoader`."""
+
+    def find_spec(
+        self, fullname: str, path: Sequence[str] | None, target: ModuleType | None = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        if fullname not in LAZY:
+            return None
+        for finder in sys.meta_path:
+            if finder is self or not hasattr(finder, "find_spec"):
+                continue
+            spec = finder.find_spec(fullname, path, target)
+            if spec is not None:
+                if spec.loader is not None and hasattr(spec.loader, "exec_module"):
+                    spec.loader = importlib.util.LazyLoader(spec.loader)
+                return spec
+        return None
 
 
 def lazy_f2py() -> None:
-    """Register ``numpy.f2py`` for lazy execution unless it is already imported (or not installed)."""
-    if "numpy.f2py" in sys.modules:
-        return
-    spec = importlib.util.find_spec("numpy.f2py")
-    if spec is None or spec.loader is None:
-        return
-    loader = importlib.util.LazyLoader(spec.loader)
-    spec.loader = loader
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["numpy.f2py"] = module
-    # the package attribute too: numpy resolves ``numpy.f2py`` through its own __getattr__, which imports it ``as``
-    # the attribute, so without one it would recurse
-    numpy.f2py = module  # type: ignore[attr-defined]
-    loader.exec_module(module)
+    """Put :class:`LazyFinder` first on ``sys.meta_path`` (once)."""
+    if not any(isinstance(f, LazyFinder) for f in sys.meta_path):
+        sys.meta_path.insert(0, LazyFinder())
 
 
 @contextmanager

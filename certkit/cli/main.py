@@ -105,6 +105,8 @@ def _long_lived_objects():
 #: the report's missions on the scale of the rules' :attr:`~certkit.engine.registry.Rule.cost` (the baseline's fly in
 #: about the time of §25.349(a)'s rolling conditions, cost 5): where the workers take them among the rules
 MISSION_COST = 5.0
+#: the check's output formats written from the findings themselves (the others from the results' text and summary)
+FINDINGS_FORMATS = ("junit", "sarif", "github")
 
 
 def _mission_for_report(aircraft, ctx) -> dict | None:
@@ -322,6 +324,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
             alongside={"mission": functools.partial(_mission_for_report, loaded.model)},
             alongside_cost={"mission": MISSION_COST},
             lattice_store=LatticeStore(cache_folder() / "lattices"),
+            findings=output_format in FINDINGS_FORMATS,  # the other outputs read the summary and the encoded text
         )
         progress.close()
         result.selection = {
@@ -341,7 +344,7 @@ def check(aircraft_file, out_dir, select, ignore, jobs, output_format, output_fi
         progress.close()
         gc.unfreeze()
     lines = None
-    if output_format in ("junit", "sarif", "github"):
+    if output_format in FINDINGS_FORMATS:
         from certkit.report.ci_formats import (  # deferred: CLI start-up: the check's layers load when it runs
             datum_lines,
         )

@@ -438,16 +438,23 @@ class RuleResult:
     seconds: float | None = field(default=None, repr=False, compare=False)
     #: NaN or infinite numbers :meth:`to_json` wrote as null
     non_finite: int = field(default=0, repr=False, compare=False)
+    #: False: once encoded, the result leaves its process without its findings (:meth:`__getstate__`), for a caller
+    #: that reads only the summary, the encoded text and the report's section
+    findings_travel: bool = field(default=True, repr=False, compare=False)
 
     def __getstate__(self) -> dict[str, Any]:
         """A result encoded for ``results.json`` (:attr:`encoded`, as a worker process sends it back) travels with its
         findings as one pickled block, read only when something asks for them (the CI formats, the API), and with
         what the terminal, the report's index and the exit code read of them (:data:`SUMMARY`): a check's
-        coordinating process skips rebuilding thousands of findings it only writes as text."""
+        coordinating process skips rebuilding thousands of findings it only writes as text. Without
+        :attr:`findings_travel` the findings stay behind (reading them afterwards raises AttributeError)."""
         state = dict(self.__dict__)
         if self.encoded is not None and "findings" in state:
             state["_summary"] = {name: getattr(self, name) for name in SUMMARY}
-            state["_packed_findings"] = pickle.dumps(state.pop("findings"), protocol=pickle.HIGHEST_PROTOCOL)
+            findings = state.pop("findings")
+            state["_packed_findings"] = (
+                pickle.dumps(findings, protocol=pickle.HIGHEST_PROTOCOL) if self.findings_travel else None
+            )
         return state
 
     def __setstate__(self, state: dict[str, Any]) -> None:
@@ -459,6 +466,8 @@ class RuleResult:
             """The packed findings (:meth:`__getstate__`), rebuilt on first use."""
             packed = self.__dict__.get("_packed_findings") if name == "findings" else None
             if packed is None:
+                if name == "findings" and "_summary" in self.__dict__:
+                    raise AttributeError(f"the findings of {self.id} stayed in the process that evaluated it")
                 raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
             self.findings = pickle.loads(packed)
             del self.__dict__["_packed_findings"], self.__dict__["_summary"]

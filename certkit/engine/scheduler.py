@@ -389,6 +389,7 @@ def _worker_init(
     parent_pid: int,
     finish: Finish | None = None,
     lattice_store: LatticeStore | None = None,
+    findings: bool = True,
 ) -> None:
     """A worker's Context on the aircraft the parent loaded (inherited when processes fork, pickled otherwise); the
     worker ends with its parent (:func:`certkit.engine.worker_processes.die_with_parent`)."""
@@ -396,6 +397,7 @@ def _worker_init(
     _WORKER["ctx"] = Context(loaded, lattice_store)
     _WORKER["rules"] = {r.id: r for r in discover(options)}
     _WORKER["finish"] = finish
+    _WORKER["findings"] = findings
 
 
 def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict[str, Any]]]:
@@ -410,6 +412,7 @@ def _worker_run(rule_ids: tuple[str, ...]) -> list[tuple[RuleResult, dict[str, A
         result = _timed(_WORKER["rules"][rid], ctx, _WORKER["finish"])
         gc.freeze()
         result.encoded = result.to_json()
+        result.findings_travel = _WORKER["findings"]
         out.append((result, ctx.provenance()))
     return out
 
@@ -470,6 +473,7 @@ def run(
     alongside_cost: dict[str, float] | None = None,
     progress: Any = None,
     lattice_store: LatticeStore | None = None,
+    findings: bool = True,
 ) -> RunResult:
     """Evaluate ``rules`` on ``loaded`` in ``jobs`` processes: each process takes the next unit of work
     (:func:`work_units`) when it is free, the heaviest first. ``finish`` (a picklable function of a
@@ -480,7 +484,10 @@ def run(
     once every unit) are handed out (in this process with one job); each result goes to ``models[name]``.
     ``progress`` (optional) is told ``started(rule_ids)`` and ``finished(results)`` as units start and end (with
     several processes a unit counts as started when a process becomes free for it: the processes take the units in
-    order). ``lattice_store``: the vortex-lattice solutions kept between runs (:class:`Context`)."""
+    order). ``lattice_store``: the vortex-lattice solutions kept between runs (:class:`Context`). ``findings`` False:
+    the worker processes send each result without its findings (:attr:`RuleResult.findings_travel`), for a caller that
+    reads only their summary, the encoded text and the report's sections (a check written as text: ~13 MB fewer to
+    pickle at the end of the longest unit)."""
     if jobs < 1:
         raise UserError(f"--jobs must be at least 1 (got {jobs})")
     if jobs == 1 or len(rules) <= 1:
@@ -494,7 +501,7 @@ def run(
         pool = ProcessPoolExecutor(
             max_workers=workers,
             initializer=_worker_init,
-            initargs=(loaded, options, os.getpid(), finish, lattice_store),
+            initargs=(loaded, options, os.getpid(), finish, lattice_store, findings),
         )
         try:
             futures, extras = [], {}

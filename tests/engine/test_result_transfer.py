@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import pickle
 
+import pytest
+
 from certkit.engine.registry import discover
 from certkit.engine.results import SUMMARY, Condition, Finding, RuleResult
 from certkit.engine.scheduler import evaluate_rule, run
@@ -69,3 +71,25 @@ def test_results_from_worker_processes_equal_those_of_one_process(baseline):
         here = evaluate_rule(next(c for c in rules if c.id == r.id), ctx)
         assert r.status == here.status and r.critical == here.critical
         assert r.findings == here.findings
+
+
+def test_a_result_whose_findings_do_not_travel_keeps_its_summary_and_says_where_they_are():
+    for result in _sample_results():
+        result.encoded = result.to_json()
+        result.findings_travel = False
+        expected = {name: getattr(result, name) for name in SUMMARY}
+        back = pickle.loads(pickle.dumps(result))
+        assert {name: getattr(back, name) for name in SUMMARY} == expected
+        assert back.encoded == result.encoded
+        with pytest.raises(AttributeError, match="stayed in the process that evaluated it"):
+            back.findings  # noqa: B018
+        assert not hasattr(back, "findings")
+
+
+def test_run_without_findings_sends_summaries_and_text_only(baseline):
+    rules = [r for r in discover() if r.id in ("25.143(h)", "25.333", "25.335(a)")]
+    full, lean = run(baseline, rules, jobs=2), run(baseline, rules, jobs=2, findings=False)
+    for a, b in zip(full.rules, lean.rules):
+        assert "_packed_findings" in a.__dict__ and b.__dict__["_packed_findings"] is None
+        assert (b.status, b.critical, b.worst_failure, b.encoded) == (a.status, a.critical, a.worst_failure, a.encoded)
+    assert lean.to_json() == full.to_json().replace(full.created, lean.created)
