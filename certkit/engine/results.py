@@ -27,9 +27,11 @@ from certkit.engine.results_json import (
     VOLATILE_KEY,
     Encoded,
     Rounded,
+    RoundedRows,
     clean,
     compact,
     encode,
+    round_rows,
 )
 from certkit.units import FT, KN, LB
 
@@ -302,11 +304,13 @@ class Finding:
         """``details`` with the :attr:`written_details` before them."""
         return {**self.written_details(), **self.details} if self.written_details is not None else self.details
 
-    def json_line(self, conditions: dict[int, tuple[str, int]]) -> tuple[str, int]:
+    def json_line(
+        self, conditions: dict[int, tuple[str, int]], written: dict[str, Any] | None = None
+    ) -> tuple[str, int]:
         """:meth:`as_dict` as results.json writes it (one compact line) and the count of its non-finite numbers, the
         same text as cleaning and encoding :meth:`as_dict`, made faster: the condition's text is kept in
         ``conditions`` (by object: a rule's findings share their conditions) and written details that come
-        :class:`Rounded` are written as they are."""
+        :class:`Rounded` are written as they are; ``written``: the :attr:`written_details` already computed."""
         key = id(self.condition)
         cond = conditions.get(key)
         if cond is None:
@@ -314,7 +318,8 @@ class Finding:
             cond = conditions[key] = (compact(data), n)
         fields, count = clean(self._fields())
         count += cond[1]
-        written = self.written_details() if self.written_details is not None else None
+        if written is None and self.written_details is not None:
+            written = self.written_details()
         if type(written) is Rounded and written and not written.keys() & self.details.keys():
             details = compact(written)  # as it is; the other details after it
             if self.details:
@@ -562,8 +567,10 @@ class RuleResult:
         assert isinstance(data, dict)
         conditions: dict[int, tuple[str, int]] = {}
         lines = []
-        for f in self.findings:
-            line, n = f.json_line(conditions)
+        tables = [i for i, f in enumerate(self.findings) if type(f.written_details) is RoundedRows]
+        written = dict(zip(tables, round_rows([self.findings[i].written_details for i in tables])))  # type: ignore[misc]
+        for i, f in enumerate(self.findings):
+            line, n = f.json_line(conditions, written.get(i))
             lines.append(Encoded(line))
             count += n
         self.non_finite = count

@@ -16,7 +16,7 @@ from jinja2 import Environment
 from markupsafe import Markup
 
 from certkit.engine.results import Condition, Finding, RuleResult
-from certkit.engine.results_json import Rounded, clean, compact, encode, rounded_table
+from certkit.engine.results_json import Rounded, RoundedRows, clean, compact, encode, round_rows, rounded_table
 from certkit.report.display import decimals, format_number, format_value
 from certkit.report.html import _environment, finding_rows
 
@@ -103,6 +103,48 @@ def test_a_rule_with_shared_conditions_writes_what_the_general_encoding_writes()
     # written null: the condition's altitude in both findings and as the critical condition, a NaN of f1's details
     assert result.non_finite == 4 == clean(result.as_dict())[1]
     assert '"shear": [-146.3, -146.4]' in result.to_json() and '"shear": [1234.6, 0.0]' in result.to_json()
+
+
+def _pairs(stack: np.ndarray) -> np.ndarray:
+    """(N, 2, K) → (N, K, 2): a batched table layout, elementwise (scaled) like a station summary."""
+    return stack.transpose(0, 2, 1) / 1e3
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    st.lists(
+        st.tuples(st.integers(1, 3), st.lists(st.one_of(finite, numbers), min_size=6, max_size=6)),
+        min_size=0,
+        max_size=8,
+    ),
+    st.integers(-1, 3),
+)
+def test_tables_rounded_together_are_those_rounded_one_at_a_time(drawn, places):
+    """:func:`round_rows` forms and rounds tables of one layout in one pass: each dict, and whether it comes
+    :class:`Rounded`, as the table's own call gives it (NaN, infinities, -0.0, numbers too large to scale)."""
+    tables = [
+        RoundedRows(tuple(f"k{i}" for i in range(k)), np.array(v[: 2 * k]).reshape(2, k), _pairs, places)
+        for k, v in drawn
+    ]
+    together = round_rows(tables)
+    for table, got in zip(tables, together):
+        alone = table()
+        assert type(got) is type(alone)
+        assert list(got) == list(alone)
+        assert all(repr(a) == repr(b) for k in alone for a, b in zip(alone[k], got[k]))
+
+
+def test_a_rule_writes_tables_rounded_together_as_the_general_encoding_writes_them():
+    cond = Condition(loading="fwd_light", mass=140613.6354, x_cg=28.05381, altitude=1000.0, speed=94.10123)
+    stack = np.array([[[146340.0, 1.0e20], [-146360.0, 2.0]], [[1234560.0, -40.0], [float("nan"), -0.0]]])
+    found = []
+    for i, values in enumerate(stack):
+        f = Finding.compare(cond.with_(k=i), "bending at root (max)", 7.0, 9.0, at_least=False, unit="N·m")
+        f.written_details = RoundedRows(("shear", "bending"), values, _pairs, 1)
+        found.append(f)
+    result = RuleResult(id="25.427(b)", symbol="R", title="t", findings=found)
+    assert result.to_json() == encode(clean(result.as_dict())[0], depth=2)
+    assert result.non_finite == clean(result.as_dict())[1] == 1
 
 
 #: a findings row in the report's Jinja markup, the general path :func:`finding_rows` shortcuts

@@ -5,7 +5,7 @@ speeds a manoeuvre starts from and the §25.337 limit manoeuvring load factor at
 
 from __future__ import annotations
 
-from functools import lru_cache, partial
+from functools import lru_cache
 
 import numpy as np
 
@@ -13,7 +13,7 @@ from certkit.atmosphere import RHO0, speed_of_sound
 from certkit.engine.conditions import speed_as
 from certkit.engine.registry import Criterion
 from certkit.engine.results import Finding
-from certkit.engine.results_json import rounded_table
+from certkit.engine.results_json import RoundedRows
 from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
 from certkit.models.loads.capability import worst_margin
@@ -42,10 +42,16 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
     return out
 
 
-def station_summary(loads_peaks: np.ndarray, stations) -> dict:
-    """Finding details: max/min of shear (kN), bending and torsion (kN·m) at each station."""
-    max_min = np.asarray(loads_peaks, dtype=float)[1::-1] / 1e3  # (max, min) × quantity × station
-    return rounded_table(_summary_keys(tuple(stations)), max_min.transpose(2, 1, 0).reshape(-1, 2), 1)
+def station_summary(loads_peaks: np.ndarray, stations) -> RoundedRows:
+    """Finding details, computed when written: max/min of shear (kN), bending and torsion (kN·m) at each station of
+    the peaks (2, 3, S)."""
+    return RoundedRows(_summary_keys(tuple(stations)), np.array(loads_peaks, dtype=float), _station_rows, 1)
+
+
+def _station_rows(peaks: np.ndarray) -> np.ndarray:
+    """(N, 2, 3, S) min/max peaks → (N, 3 S, 2) rows of (max, min) in kN, station by station, quantity by quantity."""
+    max_min = peaks[:, 1::-1] / 1e3
+    return max_min.transpose(0, 3, 2, 1).reshape(peaks.shape[0], -1, 2)
 
 
 @lru_cache(maxsize=64)
@@ -79,7 +85,7 @@ def capability_finding(
             unit=unit,
             **details,
         )
-    finding.written_details = partial(station_summary, np.array(peaks, dtype=float), tuple(stations))
+    finding.written_details = station_summary(peaks, stations)
     return finding
 
 
@@ -158,7 +164,7 @@ def set_aside_finding(cond, check: str, reason: str, peaks=None, stations=(), **
         peaks = np.asarray(peaks, dtype=float)
         if peaks.ndim == 4:
             peaks = np.stack([np.fmin.reduce(peaks[:, 0]), np.fmax.reduce(peaks[:, 1])])
-        finding.written_details = partial(station_summary, peaks, tuple(stations))
+        finding.written_details = station_summary(peaks, stations)
     return finding
 
 
