@@ -387,14 +387,80 @@ def derivatives(
 ):
     """:func:`derivative_one` over the batch: row i of ``X`` is a state of condition ``rows[i]``.
     Returns ẋ (rows, states), outputs (rows, 11), gear loads (rows, nl)."""
-    X, rows, U, thrust, coef = borrowed(X), borrowed(rows), borrowed(U), borrowed(thrust), borrowed(coef)
-    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
-        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
-    )
     n, ns = X.shape
     xd = np.empty((n, ns))
     out = np.empty((n, len(OUTPUTS)))
     gear = np.zeros((n, legs.shape[0]))
+    derivatives_into(
+        X,
+        rows,
+        quat,
+        U,
+        thrust,
+        coef,
+        props,
+        consts,
+        T,
+        machs,
+        clmax,
+        stall,
+        alpha_drag,
+        after_stall,
+        n_aero,
+        use_table,
+        r_eng,
+        d_eng,
+        has_ground,
+        r_gear,
+        legs,
+        gparams,
+        brake_index,
+        steer_index,
+        xd,
+        out,
+        gear,
+    )
+    return xd, out, gear
+
+
+@njit(cache=True, error_model="numpy", fastmath=True)
+def derivatives_into(
+    X,
+    rows,
+    quat,
+    U,
+    thrust,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+    xd,
+    out,
+    gear,
+):
+    """:func:`derivatives` into the caller's arrays ``xd``, ``out`` and ``gear`` (the gear loads zero where a leg does
+    not touch): every array borrowed (:func:`~certkit.models.compiled.borrowed`), none counted per row."""
+    X, rows, U, thrust, coef = borrowed(X), borrowed(rows), borrowed(U), borrowed(thrust), borrowed(coef)
+    xd, out, gear = borrowed(xd), borrowed(out), borrowed(gear)
+    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
+        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
+    )
+    n = X.shape[0]
     for i in range(n):
         derivative_one(
             rows[i],
@@ -425,7 +491,6 @@ def derivatives(
             out[i],
             gear[i],
         )
-    return xd, out, gear
 
 
 @njit(cache=True, inline="always")
@@ -498,16 +563,86 @@ def rk4_step(
     """Advance the active conditions of the quaternion-state batch ``X`` (n, 13) in place by one
     classical RK4 step of ``dts[i]`` each, controls and thrust held; ``XD1`` the derivative at the
     step's start. The quaternion is renormalised after the step."""
-    X, XD1, active, dts = borrowed(X), borrowed(XD1), borrowed(active), borrowed(dts)
-    U, thrust, coef = borrowed(U), borrowed(thrust), borrowed(coef)
-    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
-        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
-    )
-    n, ns = X.shape
+    ns = X.shape[1]
     k = np.empty((3, ns))  # k2, k3, k4 (one call site of the inlined derivative: a third of the compiled code)
     xs = np.empty(ns)
     out = np.empty(len(OUTPUTS))
     gear = np.zeros(legs.shape[0])
+    rk4_step_into(
+        X,
+        XD1,
+        active,
+        dts,
+        U,
+        thrust,
+        coef,
+        props,
+        consts,
+        T,
+        machs,
+        clmax,
+        stall,
+        alpha_drag,
+        after_stall,
+        n_aero,
+        use_table,
+        r_eng,
+        d_eng,
+        has_ground,
+        r_gear,
+        legs,
+        gparams,
+        brake_index,
+        steer_index,
+        k,
+        xs,
+        out,
+        gear,
+    )
+
+
+@njit(cache=True, error_model="numpy", fastmath=True)
+def rk4_step_into(
+    X,
+    XD1,
+    active,
+    dts,
+    U,
+    thrust,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+    k,
+    xs,
+    out,
+    gear,
+):
+    """:func:`rk4_step` with the caller's scratch: ``k`` (3, states) for k2–k4, ``xs`` (states,) the stage's state,
+    ``out`` (outputs,) and ``gear`` (legs,) zeros (a leg not touching stays zero). Every array borrowed, so the
+    equations of motion inlined here count none per row and stage."""
+    X, XD1, active, dts = borrowed(X), borrowed(XD1), borrowed(active), borrowed(dts)
+    U, thrust, coef = borrowed(U), borrowed(thrust), borrowed(coef)
+    k, xs, out, gear = borrowed(k), borrowed(xs), borrowed(out), borrowed(gear)
+    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
+        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
+    )
+    n, ns = X.shape
     for i in range(n):
         if not active[i]:
             continue
@@ -617,11 +752,132 @@ def integrate_open_loop(
     state and its last record, and the run ends when every condition has stopped. ``X`` advances in place; the
     outputs, states and controls of every ``record_every``-th step go to ``out_rec``, ``x_rec`` and ``u_rec``.
     Returns the number recorded."""
-    n = X.shape[0]
+    n, ns = X.shape
     rows = np.arange(n)
-    quaternion_state = X.shape[1] == 13  # a bool, not the literal True: the kernel compiled once for both callers
     thrust = np.empty((n, n_engines))
     active = np.ones(n, dtype=np.bool_)
+    xd, out, gear = np.empty((n, ns)), np.empty((n, len(OUTPUTS))), np.zeros((n, legs.shape[0]))  # each step's start
+    k_stages, x_stage = np.empty((3, ns)), np.empty(ns)  # the RK4 step's k2, k3, k4 and its stage state
+    out_stage, gear_stage = np.empty(len(OUTPUTS)), np.zeros(legs.shape[0])
+    return integrate_open_loop_into(
+        X,
+        U_all,
+        dts,
+        record_every,
+        turbofan,
+        throttle_start,
+        n_engines,
+        coef,
+        props,
+        consts,
+        T,
+        machs,
+        clmax,
+        stall,
+        alpha_drag,
+        after_stall,
+        n_aero,
+        use_table,
+        r_eng,
+        d_eng,
+        has_ground,
+        r_gear,
+        legs,
+        gparams,
+        brake_index,
+        steer_index,
+        stop_cols,
+        stop_lo,
+        stop_hi,
+        out_rec,
+        x_rec,
+        u_rec,
+        stop_step,
+        stop_which,
+        rows,
+        thrust,
+        active,
+        xd,
+        out,
+        gear,
+        k_stages,
+        x_stage,
+        out_stage,
+        gear_stage,
+    )
+
+
+@njit(cache=True, error_model="numpy", fastmath=True)
+def integrate_open_loop_into(
+    X,
+    U_all,
+    dts,
+    record_every,
+    turbofan,
+    throttle_start,
+    n_engines,
+    coef,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+    stop_cols,
+    stop_lo,
+    stop_hi,
+    out_rec,
+    x_rec,
+    u_rec,
+    stop_step,
+    stop_which,
+    rows,
+    thrust,
+    active,
+    xd,
+    out,
+    gear,
+    k_stages,
+    x_stage,
+    out_stage,
+    gear_stage,
+):
+    """:func:`integrate_open_loop` with the caller's scratch arrays (``active`` all True): every array borrowed, so
+    that the views of a step (the step's controls, a row's throttles and thrust, the records' rows) count nothing."""
+    X, U_all, dts, turbofan, coef = borrowed(X), borrowed(U_all), borrowed(dts), borrowed(turbofan), borrowed(coef)
+    stop_cols, stop_lo, stop_hi = borrowed(stop_cols), borrowed(stop_lo), borrowed(stop_hi)
+    out_rec, x_rec, u_rec = borrowed(out_rec), borrowed(x_rec), borrowed(u_rec)
+    stop_step, stop_which, rows, thrust, active = (
+        borrowed(stop_step),
+        borrowed(stop_which),
+        borrowed(rows),
+        borrowed(thrust),
+        borrowed(active),
+    )
+    xd, out, gear = borrowed(xd), borrowed(out), borrowed(gear)
+    k_stages, x_stage, out_stage, gear_stage = (
+        borrowed(k_stages),
+        borrowed(x_stage),
+        borrowed(out_stage),
+        borrowed(gear_stage),
+    )
+    props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
+        props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
+    )
+    n = X.shape[0]
+    quaternion_state = X.shape[1] == 13  # a bool, not the literal True: the kernel compiled once for both callers
     n_active = n
     irec = 0
     nsteps = U_all.shape[0] - 1
@@ -638,7 +894,7 @@ def integrate_open_loop(
                 turbofan[2],
                 thrust[i],
             )
-        xd, out, gear = derivatives(
+        derivatives_into(
             X,
             rows,
             quaternion_state,
@@ -663,6 +919,9 @@ def integrate_open_loop(
             gparams,
             brake_index,
             steer_index,
+            xd,
+            out,
+            gear,
         )
         for c in range(stop_cols.shape[0]):
             for i in range(n):
@@ -678,7 +937,7 @@ def integrate_open_loop(
             irec += 1
         if k == nsteps or n_active == 0:
             break
-        rk4_step(
+        rk4_step_into(
             X,
             xd,
             active,
@@ -704,5 +963,9 @@ def integrate_open_loop(
             gparams,
             brake_index,
             steer_index,
+            k_stages,
+            x_stage,
+            out_stage,
+            gear_stage,
         )
     return irec
