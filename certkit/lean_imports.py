@@ -7,8 +7,9 @@
   that one module): ``numpy.f2py`` exists (``from numpy import *`` binds it) and is executed only when one of its
   attributes is read; numpy itself is not imported for it.
 - dask, imported by pint when it is installed (pint's support for quantities wrapping dask arrays, which certkit's
-  boundary conversion of plain numbers never builds): 50–90 ms with its dependencies. :func:`pint_without_dask`
-  hides dask from pint's import only; ``import dask`` afterwards (a study on a Dask cluster) works as usual.
+  boundary conversion of plain numbers never builds): 50–90 ms with its dependencies. ``certkit.units`` imports
+  pint within :func:`hidden` (``"dask"``), pint's test being ``find_spec("dask")``; ``import dask`` afterwards (a
+  study on a Dask cluster) works as usual.
 - cffi (and its C parser), imported by numba when it first sets up its typing (the first kernel call of a process)
   for its support of cffi functions inside kernels, which certkit's kernels do not call: 30 ms of each worker
   process. :func:`numba_without_cffi` imports numba's cffi module with cffi hidden, so numba records that support
@@ -25,7 +26,7 @@ import importlib.machinery
 import importlib.util
 import sys
 from collections.abc import Iterator, Sequence
-from contextlib import AbstractContextManager, contextmanager
+from contextlib import contextmanager
 from types import ModuleType
 
 #: the modules :class:`LazyFinder` loads lazily
@@ -69,11 +70,6 @@ def hidden(name: str) -> Iterator[None]:
     finally:
         if hide and sys.modules.get(name, 0) is None:
             del sys.modules[name]
-
-
-def pint_without_dask() -> AbstractContextManager[None]:
-    """The block that imports pint, with dask hidden (pint's test for it is ``find_spec("dask")``)."""
-    return hidden("dask")
 
 
 def numba_without_cffi() -> None:

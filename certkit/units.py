@@ -10,10 +10,10 @@ import math
 import re
 from functools import lru_cache
 
-from certkit.lean_imports import pint_without_dask
+from certkit.lean_imports import hidden
 from certkit.user_cache import cache_folder
 
-with pint_without_dask():
+with hidden("dask"):  # pint's support of dask arrays, never used here (certkit.lean_imports)
     import pint
 
 

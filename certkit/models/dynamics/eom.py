@@ -557,6 +557,8 @@ class AircraftModel:
         cols, lo, hi = stops if stops is not None else (np.zeros(0, dtype=np.int64), np.zeros((0, n)), np.zeros((0, n)))
         stop_step = np.full(n, -1, dtype=np.int64)
         stop_which = np.full(n, -1, dtype=np.int64)
+        ns, legs = x13.shape[1], 0 if self.ground is None else len(self.ground.legs)
+        outputs = len(kernel.OUTPUTS)
         irec = kernel.integrate_open_loop(
             kernel_array(x13),
             kernel_array(U_all),
@@ -575,6 +577,16 @@ class AircraftModel:
             u_rec,
             stop_step,
             stop_which,
+            np.arange(n),  # the kernel's scratch: rows, thrust, active, each step's start, its RK4 stages
+            np.empty((n, len(self.engines))),
+            np.ones(n, dtype=np.bool_),
+            np.empty((n, ns)),
+            np.empty((n, outputs)),
+            np.zeros((n, legs)),
+            np.empty((3, ns)),
+            np.empty(ns),
+            np.empty(outputs),
+            np.zeros(legs),
         )
         return int(irec), stop_step, stop_which
 

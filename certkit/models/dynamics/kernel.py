@@ -740,109 +740,6 @@ def integrate_open_loop(
     u_rec,
     stop_step,
     stop_which,
-):
-    """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
-    the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
-    parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of each step from
-    the air data as :meth:`certkit.models.propulsion.engine.ParametricTurbofan.thrust_rows` gives it, then
-    :func:`derivatives` and :func:`rk4_step` as the Python loop calls them — and stop criteria that are bounds
-    (:class:`certkit.models.dynamics.simulate.Bound`): criterion c stops a condition when its output column
-    ``stop_cols[c]`` (−1: the time) lies strictly below ``stop_lo[c, i]`` or above ``stop_hi[c, i]``, the first
-    criterion in order naming the stop (``stop_which``, ``stop_step``: −1 when none); a stopped condition keeps its
-    state and its last record, and the run ends when every condition has stopped. ``X`` advances in place; the
-    outputs, states and controls of every ``record_every``-th step go to ``out_rec``, ``x_rec`` and ``u_rec``.
-    Returns the number recorded."""
-    n, ns = X.shape
-    rows = np.arange(n)
-    thrust = np.empty((n, n_engines))
-    active = np.ones(n, dtype=np.bool_)
-    xd, out, gear = np.empty((n, ns)), np.empty((n, len(OUTPUTS))), np.zeros((n, legs.shape[0]))  # each step's start
-    k_stages, x_stage = np.empty((3, ns)), np.empty(ns)  # the RK4 step's k2, k3, k4 and its stage state
-    out_stage, gear_stage = np.empty(len(OUTPUTS)), np.zeros(legs.shape[0])
-    return integrate_open_loop_into(
-        X,
-        U_all,
-        dts,
-        record_every,
-        turbofan,
-        throttle_start,
-        n_engines,
-        coef,
-        props,
-        consts,
-        T,
-        machs,
-        clmax,
-        stall,
-        alpha_drag,
-        after_stall,
-        n_aero,
-        use_table,
-        r_eng,
-        d_eng,
-        has_ground,
-        r_gear,
-        legs,
-        gparams,
-        brake_index,
-        steer_index,
-        stop_cols,
-        stop_lo,
-        stop_hi,
-        out_rec,
-        x_rec,
-        u_rec,
-        stop_step,
-        stop_which,
-        rows,
-        thrust,
-        active,
-        xd,
-        out,
-        gear,
-        k_stages,
-        x_stage,
-        out_stage,
-        gear_stage,
-    )
-
-
-@njit(cache=True, error_model="numpy", fastmath=True)
-def integrate_open_loop_into(
-    X,
-    U_all,
-    dts,
-    record_every,
-    turbofan,
-    throttle_start,
-    n_engines,
-    coef,
-    props,
-    consts,
-    T,
-    machs,
-    clmax,
-    stall,
-    alpha_drag,
-    after_stall,
-    n_aero,
-    use_table,
-    r_eng,
-    d_eng,
-    has_ground,
-    r_gear,
-    legs,
-    gparams,
-    brake_index,
-    steer_index,
-    stop_cols,
-    stop_lo,
-    stop_hi,
-    out_rec,
-    x_rec,
-    u_rec,
-    stop_step,
-    stop_which,
     rows,
     thrust,
     active,
@@ -854,8 +751,21 @@ def integrate_open_loop_into(
     out_stage,
     gear_stage,
 ):
-    """:func:`integrate_open_loop` with the caller's scratch arrays (``active`` all True): every array borrowed, so
-    that the views of a step (the step's controls, a row's throttles and thrust, the records' rows) count nothing."""
+    """The whole fixed-step run of :func:`certkit.models.dynamics.simulate.simulate` when nothing in it needs Python:
+    the controls of every step given (``U_all`` (nsteps + 1, n, m)), no controllers, every engine running as the
+    parametric turbofan ``turbofan`` = (static thrust, throttle ratio, idle fraction) — the thrust of each step from
+    the air data as :meth:`certkit.models.propulsion.engine.ParametricTurbofan.thrust_rows` gives it, then
+    :func:`derivatives` and :func:`rk4_step` as the Python loop calls them — and stop criteria that are bounds
+    (:class:`certkit.models.dynamics.simulate.Bound`): criterion c stops a condition when its output column
+    ``stop_cols[c]`` (−1: the time) lies strictly below ``stop_lo[c, i]`` or above ``stop_hi[c, i]``, the first
+    criterion in order naming the stop (``stop_which``, ``stop_step``: −1 when none); a stopped condition keeps its
+    state and its last record, and the run ends when every condition has stopped. ``X`` advances in place; the
+    outputs, states and controls of every ``record_every``-th step go to ``out_rec``, ``x_rec`` and ``u_rec``.
+    The caller gives the scratch arrays: ``rows`` = 0 … n − 1, ``thrust`` (n, engines), ``active`` (n,) all True,
+    ``xd``, ``out``, ``gear`` (n, states / outputs / legs) and the RK4 step's ``k_stages`` (3, states), ``x_stage``,
+    ``out_stage`` and ``gear_stage`` (the gear buffers zero); every array is borrowed, so that the views of a step
+    (the step's controls, a row's throttles and thrust, the records' rows) count nothing.
+    Returns the number recorded."""
     X, U_all, dts, turbofan, coef = borrowed(X), borrowed(U_all), borrowed(dts), borrowed(turbofan), borrowed(coef)
     stop_cols, stop_lo, stop_hi = borrowed(stop_cols), borrowed(stop_lo), borrowed(stop_hi)
     out_rec, x_rec, u_rec = borrowed(out_rec), borrowed(x_rec), borrowed(u_rec)
