@@ -142,6 +142,40 @@ def test_changed_design_starts_on_the_near_critical_points(bigger, monkeypatch):
     )
 
 
+def test_later_near_critical_passes_fly_the_points_that_set_the_envelope(monkeypatch):
+    """A changed tail's second near-critical pass flies only the conditions of the first that came within
+    FOLLOW_FRACTION of its envelope or hinge moment (a subset: 33 of 235 points for this design; at half the
+    fraction 86), and the loop still converges to the tail
+    group of a loop that evaluates every condition throughout (0.5 kg, a tenth of the loop's tolerance)."""
+    import certkit.design.sizing_loop as sizing_loop
+
+    chosen: list[dict] = []
+    flown: list[dict] = []
+    real = sizing_loop.evaluate_rules
+
+    def recording(*a, select=None, **kw):
+        chosen.append(None if select is None else dict(select))
+        results = real(*a, select=select, **kw)
+        flown.append({r.id: [k for e in r.load_envelopes for k in e.keys] for r in results})
+        return results
+
+    monkeypatch.setattr(sizing_loop, "evaluate_rules", recording)
+    design = {"geometry.horizontal_tail.area": "950 ft^2"}
+    out = evaluate_design(BASELINE, design, responses=LOADS_ONLY)
+    h = out["details"]["sizing"]["history"]
+    assert [x["conditions"] for x in h[:2]] == ["near-critical", "near-critical"], h
+    first, second = flown[-len(h)], chosen[-len(h) + 1]
+    assert all(v is not None for v in second.values())
+    assert all(c in first[rid] for rid, conds in second.items() for c in conds)
+    count = sum(len(v) for v in second.values())
+    assert 0 < count < 0.25 * sum(len(v) for v in first.values())
+    monkeypatch.setattr(sizing_loop, "evaluate_rules", lambda *a, select=None, **kw: real(*a, **kw))
+    full = evaluate_design(BASELINE, design, responses=LOADS_ONLY)
+    assert out["responses"]["sizing.ht_group_mass_kg"] == pytest.approx(
+        full["responses"]["sizing.ht_group_mass_kg"], abs=0.5
+    )
+
+
 def test_the_contraction_of_the_mass_iteration():
     """The ratio of the last two mass changes (a fixed-point iteration x_{k+1} = g(x_k) near its root contracts by
     |g'|, so change_{k+1} ≈ |g'| change_k): −107.5 kg then +12.1 kg gives 0.113, which foresees a next change of
