@@ -130,10 +130,11 @@ class SurfaceLoads:
             x[r] = np.broadcast_to(np.asarray(inputs[self.inputs[k]], dtype=float), shape).ravel()
         flat = np.ascontiguousarray(table.reshape(table.shape[0], table.shape[1], -1))
         out = np.empty((x.shape[1], flat.shape[2]))
+        # fresh writable copies whatever the shapes (a broadcast view would be read-only: another kernel signature)
         _superpose_kernel(
-            np.ascontiguousarray(np.broadcast_to(qbar, shape).ravel()),
-            np.ascontiguousarray(np.broadcast_to(i, shape).ravel(), dtype=np.int64),
-            np.ascontiguousarray(np.broadcast_to(w, shape).ravel(), dtype=float),
+            np.array(np.broadcast_to(qbar, shape).ravel(), dtype=float),
+            np.array(np.broadcast_to(i, shape).ravel(), dtype=np.int64),
+            np.array(np.broadcast_to(w, shape).ravel(), dtype=float),
             x,
             np.array(cols, dtype=np.int64),
             flat,
