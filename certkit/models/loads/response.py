@@ -236,6 +236,41 @@ def below_stall(model, sim) -> np.ndarray | None:
     return aero.without_stall().coefficients(state).CL <= aero.clmax(h["mach"])
 
 
+def time_extremes(L: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The record index of the minimum and of the maximum over time (axis 0) of histories ``L`` (nt ≥ 1, n, ...), NaN
+    skipped, the first of equal extremes (index 0 where every time is NaN), and those extremes (n, 2, ...): min [0],
+    max [1] (NaN where every time is NaN). One compiled pass over the histories; the same indices and values as
+    ``np.argmin``/``np.argmax`` of the histories with NaN filled by ±inf."""
+    nt, rest = L.shape[0], L.shape[1:]
+    flat = np.ascontiguousarray(L, dtype=float).reshape(nt, -1)
+    m = flat.shape[1]
+    ilo, ihi = np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.int64)
+    out = np.empty((2, m))
+    _time_extremes(flat, ilo, ihi, out)
+    peaks = np.ascontiguousarray(np.moveaxis(out.reshape((2,) + rest), 0, 1))
+    return ilo.reshape(rest), ihi.reshape(rest), peaks
+
+
+@njit(cache=True)
+def _time_extremes(L, ilo, ihi, out):
+    """ilo/ihi[j] = first t of the smallest/largest non-NaN L[t, j] (0 if none); out[0/1, j] = L at them."""
+    nt, m = L.shape
+    lo = np.full(m, np.inf)
+    hi = np.full(m, -np.inf)
+    for t in range(nt):
+        for j in range(m):
+            v = L[t, j]
+            if v < lo[j]:
+                lo[j] = v
+                ilo[j] = t
+            if v > hi[j]:
+                hi[j] = v
+                ihi[j] = t
+    for j in range(m):
+        out[0, j] = L[ilo[j], j]
+        out[1, j] = L[ihi[j], j]
+
+
 @dataclass
 class CriticalCase:
     surface: str
@@ -271,12 +306,7 @@ class LoadEnvelope:
     ) -> "LoadEnvelope":
         peaks, times = {}, {}
         for name, L in histories.items():
-            filled_lo = np.where(np.isnan(L), np.inf, L)
-            filled_hi = np.where(np.isnan(L), -np.inf, L)
-            ilo, ihi = np.argmin(filled_lo, axis=0), np.argmax(filled_hi, axis=0)
-            lo = np.take_along_axis(L, ilo[None], axis=0)[0]
-            hi = np.take_along_axis(L, ihi[None], axis=0)[0]
-            peaks[name] = np.stack([lo, hi], axis=1)
+            ilo, ihi, peaks[name] = time_extremes(L)
             times[name] = np.stack([times_at(t, ilo), times_at(t, ihi)], axis=1)
         return cls(
             {k: loads[k].station_names for k in histories},
