@@ -29,6 +29,7 @@ names (a finding's: "complies", "fails", "not_evaluated").
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 from collections.abc import Iterable
@@ -45,8 +46,14 @@ CONTROLS = ("elevator", "aileron", "rudder")
 _DEG = math.pi / 180.0
 
 
+@functools.lru_cache(maxsize=4096)
 def slug(text: str) -> str:
-    return re.sub(r"[^a-z0-9]+", "_", text.lower()).strip("_")
+    """Lower case, every run of other characters one underscore (remembered: a record slugs the same few hundred
+    check texts for every design)."""
+    return _NON_WORD.sub("_", text.lower()).strip("_")
+
+
+_NON_WORD = re.compile(r"[^a-z0-9]+")
 
 
 def check_name(check: str) -> str:
