@@ -21,12 +21,56 @@ from certkit.units import G0
 
 
 def _rates_dot(t, x):
-    """d/dt of the histories x (nt, n) on the time grid t: (nt,), or (nt, n) uniform per condition."""
+    """d/dt of the histories x (nt, n) on the time grid t: (nt,), or (nt, n) uniform per condition — ``np.gradient``
+    along time (central differences inside, one-sided at the ends), its arithmetic in one compiled pass."""
+    x = np.ascontiguousarray(x, dtype=float)
     if x.shape[0] < 2:
         return np.zeros_like(x)
-    if t.ndim == 2:
-        return np.gradient(x, axis=0) / (t[1] - t[0])
-    return np.gradient(x, t, axis=0)
+    if x.ndim != 2:
+        return np.gradient(x, axis=0) / (t[1] - t[0]) if t.ndim == 2 else np.gradient(x, t, axis=0)
+    out = np.empty_like(x)
+    if t.ndim == 2:  # np.gradient(x, axis=0) / (t[1] − t[0])
+        _central_differences(x, 1.0, np.ascontiguousarray(t[1] - t[0], dtype=float), out)
+        return out
+    dt = np.diff(np.asarray(t, dtype=float))
+    if (dt == dt[0]).all():  # numpy's uniform spacing: one step
+        _central_differences(x, float(dt[0]), np.ones(0), out)
+    else:
+        _uneven_differences(x, dt, out)
+    return out
+
+
+@njit(cache=True)
+def _central_differences(x, h, per_column, out):
+    """out = np.gradient(x, h, axis=0) (x (nt ≥ 2, n)), then divided by ``per_column`` (n,) when it is not empty."""
+    nt, n = x.shape
+    scale = per_column.size > 0
+    for j in range(n):
+        v = (x[1, j] - x[0, j]) / h
+        out[0, j] = v / per_column[j] if scale else v
+        v = (x[nt - 1, j] - x[nt - 2, j]) / h
+        out[nt - 1, j] = v / per_column[j] if scale else v
+    for k in range(1, nt - 1):
+        for j in range(n):
+            v = (x[k + 1, j] - x[k - 1, j]) / (2.0 * h)
+            out[k, j] = v / per_column[j] if scale else v
+
+
+@njit(cache=True)
+def _uneven_differences(x, dt, out):
+    """out = np.gradient(x, t, axis=0) for the steps dt = diff(t) (nt − 1,), not all equal: numpy's second-order
+    weights inside, one-sided differences at the ends."""
+    nt, n = x.shape
+    for j in range(n):
+        out[0, j] = (x[1, j] - x[0, j]) / dt[0]
+        out[nt - 1, j] = (x[nt - 1, j] - x[nt - 2, j]) / dt[nt - 2]
+    for k in range(1, nt - 1):
+        dx1, dx2 = dt[k - 1], dt[k]
+        a = -(dx2) / (dx1 * (dx1 + dx2))
+        b = (dx2 - dx1) / (dx1 * dx2)
+        c = dx1 / (dx2 * (dx1 + dx2))
+        for j in range(n):
+            out[k, j] = a * x[k - 1, j] + b * x[k, j] + c * x[k + 1, j]
 
 
 def times_at(t, k) -> np.ndarray:
