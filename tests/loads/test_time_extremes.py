@@ -7,6 +7,7 @@ against 0.0, one record, one condition."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
@@ -75,3 +76,8 @@ def test_from_histories_times_the_extremes_on_a_grid_per_condition():
     env = LoadEnvelope.from_histories(loads, {"horizontal_tail": L}, t, ["a", "b"])
     assert env.peaks["horizontal_tail"][0, 1, 1, 0] == 7.0 and env.times["horizontal_tail"][0, 1, 1, 0] == 0.1 * 3
     assert env.peaks["horizontal_tail"][1, 0, 1, 0] == -2.0 and env.times["horizontal_tail"][1, 0, 1, 0] == 0.25
+
+
+def test_an_empty_history_is_an_error_as_in_numpy():
+    with pytest.raises(ValueError):
+        time_extremes(np.zeros((0, 3, 3, 2)))

@@ -286,6 +286,8 @@ def time_extremes(L: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     max [1] (NaN where every time is NaN). One compiled pass over the histories; the same indices and values as
     ``np.argmin``/``np.argmax`` of the histories with NaN filled by ±inf."""
     nt, rest = L.shape[0], L.shape[1:]
+    if nt == 0:
+        raise ValueError("no records: the extremes over time of an empty history are undefined")
     flat = np.ascontiguousarray(L, dtype=float).reshape(nt, -1)
     m = flat.shape[1]
     ilo, ihi = np.zeros(m, dtype=np.int64), np.zeros(m, dtype=np.int64)
