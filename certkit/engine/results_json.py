@@ -51,12 +51,22 @@ def rounded_table(keys: Iterable[str], values: np.ndarray, decimals: int) -> dic
     has at most :data:`SIGNIFICANT_DIGITS` significant digits and is the nearest double to its decimal — numpy rounds
     by scaling, rounding to an integer and dividing — so :func:`clean` would give each number back unchanged), a plain
     dict (cleaned when written) otherwise."""
+    return _rounded_tables(keys, np.asarray(values, dtype=float)[None], decimals)[0]
+
+
+def _rounded_tables(keys: Iterable[str], values: np.ndarray, decimals: int) -> list[dict[str, Any]]:
+    """:func:`rounded_table` of each of the tables ``values`` (N, K, …), rounded in one numpy pass."""
     with np.errstate(over="ignore", invalid="ignore"):  # a number too large to scale is no longer finite: plain
-        rounded = np.round(np.asarray(values, dtype=float), decimals) + 0.0  # + 0.0: -0.0 becomes 0.0
-    rows = dict(zip(keys, rounded.tolist()))
-    if decimals >= 0 and bool(np.all(np.abs(rounded) < 10.0 ** (SIGNIFICANT_DIGITS - decimals))):
-        return Rounded(rows)
-    return rows
+        rounded = np.round(values, decimals) + 0.0  # + 0.0: -0.0 becomes 0.0
+    as_is = np.zeros(len(rounded), dtype=bool)
+    if decimals >= 0:
+        plain = np.abs(rounded) < 10.0 ** (SIGNIFICANT_DIGITS - decimals)
+        as_is = np.broadcast_to(plain.reshape(len(rounded), -1).all(axis=1), len(rounded))
+    keys = tuple(keys)
+    return [
+        Rounded(zip(keys, table)) if ok else dict(zip(keys, table))
+        for table, ok in zip(rounded.tolist(), as_is.tolist())
+    ]
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,13 +93,8 @@ def round_rows(tables: Sequence[RoundedRows]) -> list[dict[str, Any]]:
         groups.setdefault((t.rows, t.keys, t.source.shape, t.decimals), []).append(i)
     for (rows, keys, _, decimals), members in groups.items():
         values = rows(np.stack([tables[i].source for i in members]).astype(float, copy=False))
-        with np.errstate(over="ignore", invalid="ignore"):  # as rounded_table
-            rounded = np.round(values, decimals) + 0.0
-        plain = np.abs(rounded) < 10.0 ** (SIGNIFICANT_DIGITS - decimals)
-        exact = decimals >= 0 and plain.reshape(len(members), -1).all(axis=1)
-        for i, table, ok in zip(members, rounded.tolist(), np.broadcast_to(exact, len(members)).tolist()):
-            mapping = dict(zip(keys, table))
-            out[i] = Rounded(mapping) if ok else mapping
+        for i, mapping in zip(members, _rounded_tables(keys, values, decimals)):
+            out[i] = mapping
     return out
 
 
