@@ -239,13 +239,8 @@ def _baseline_value(
     hinge = design_hinge_moment(ctx, chosen.hinge_results(results))
     act = size_elevator_actuators(base_aircraft, hinge["design_hinge_moment_Nm"])
     x, y, z = (float(v) for v in np.mean(act.positions, axis=0))
-    return BaselineActuators(act.total_mass, (x, y, z), hinge, ctx, start_conditions(ctx, results, chosen))
-
-
-def start_conditions(ctx: Context, results: list[RuleResult], chosen: SizingRules) -> dict[str, list[Condition] | None]:
-    """Rule id → the conditions where the declared airplane's tail loads or elevator hinge moment come within
-    :data:`START_FRACTION` of their largest (None: all the rule's conditions)."""
-    return critical_points(ctx, results, chosen, START_FRACTION, START_OWN_FRACTION)
+    start = critical_points(ctx, results, chosen, START_FRACTION, START_OWN_FRACTION)
+    return BaselineActuators(act.total_mass, (x, y, z), hinge, ctx, start)
 
 
 def critical_points(
@@ -253,7 +248,8 @@ def critical_points(
 ) -> dict[str, list[Condition] | None]:
     """Rule id → the conditions of ``results`` whose tail load reaches ``fraction`` of their envelope (or
     ``own_fraction`` of the rule's own largest) or whose elevator hinge moment reaches ``fraction`` of the largest
-    (None: all the rule's conditions). A near-critical pass after the first flies those of the pass before at
+    (None: all the rule's conditions). A design's loop starts on the declared airplane's at :data:`START_FRACTION` and
+    :data:`START_OWN_FRACTION`; a near-critical pass after the first flies those of the pass before at
     :data:`FOLLOW_FRACTION`."""
     out = near_critical_conditions(results, fraction, own_fraction)
     for rid, conds in hinge_critical_conditions(ctx, chosen.hinge_results(results), fraction).items():

@@ -26,15 +26,13 @@ def _rates_dot(t, x):
     x = np.ascontiguousarray(x, dtype=float)
     if x.shape[0] < 2:
         return np.zeros_like(x)
-    if x.ndim != 2:
-        return np.gradient(x, axis=0) / (t[1] - t[0]) if t.ndim == 2 else np.gradient(x, t, axis=0)
     out = np.empty_like(x)
     if t.ndim == 2:  # np.gradient(x, axis=0) / (t[1] − t[0])
         _central_differences(x, 1.0, np.ascontiguousarray(t[1] - t[0], dtype=float), out)
         return out
     dt = np.diff(np.asarray(t, dtype=float))
-    if (dt == dt[0]).all():  # numpy's uniform spacing: one step
-        _central_differences(x, float(dt[0]), np.ones(0), out)
+    if (dt == dt[0]).all():  # numpy's uniform spacing: one step (dividing by 1 changes no bit)
+        _central_differences(x, float(dt[0]), np.ones(x.shape[1]), out)
     else:
         _uneven_differences(x, dt, out)
     return out
@@ -42,18 +40,14 @@ def _rates_dot(t, x):
 
 @njit(cache=True)
 def _central_differences(x, h, per_column, out):
-    """out = np.gradient(x, h, axis=0) (x (nt ≥ 2, n)), then divided by ``per_column`` (n,) when it is not empty."""
+    """out = np.gradient(x, h, axis=0) (x (nt ≥ 2, n)) divided by ``per_column`` (n,)."""
     nt, n = x.shape
-    scale = per_column.size > 0
     for j in range(n):
-        v = (x[1, j] - x[0, j]) / h
-        out[0, j] = v / per_column[j] if scale else v
-        v = (x[nt - 1, j] - x[nt - 2, j]) / h
-        out[nt - 1, j] = v / per_column[j] if scale else v
+        out[0, j] = (x[1, j] - x[0, j]) / h / per_column[j]
+        out[nt - 1, j] = (x[nt - 1, j] - x[nt - 2, j]) / h / per_column[j]
     for k in range(1, nt - 1):
         for j in range(n):
-            v = (x[k + 1, j] - x[k - 1, j]) / (2.0 * h)
-            out[k, j] = v / per_column[j] if scale else v
+            out[k, j] = (x[k + 1, j] - x[k - 1, j]) / (2.0 * h) / per_column[j]
 
 
 @njit(cache=True)
