@@ -92,10 +92,24 @@ def _isa_flat(h: FloatArray, which: int) -> FloatArray:
     return out
 
 
+#: the layers' values at the scalar altitudes asked so far, (h, which) → value: the rules convert speeds at a few
+#: altitudes thousands of times per design (each a fresh 0-d array of the compiled function's own value)
+_AT_SCALAR: dict[tuple[float, int], float] = {}
+_AT_SCALAR_MAX = 4096
+
+
 def _isa(h: Values, which: int) -> FloatArray:
+    if isinstance(h, float):
+        value = _AT_SCALAR.get((h, which))
+        if value is not None:
+            return np.array(value)
     heights = np.asarray(h, dtype=float)
     _check_range(heights)
     flat: FloatArray = _isa_flat(np.ascontiguousarray(heights).reshape(-1), which)
+    if isinstance(h, float):
+        if len(_AT_SCALAR) >= _AT_SCALAR_MAX:
+            _AT_SCALAR.clear()
+        _AT_SCALAR[h, which] = float(flat[0])
     return flat.reshape(heights.shape)
 
 

@@ -244,6 +244,16 @@ def test_refined_conditions_cover_their_origin():
     assert not Condition(loading="aft_mlw", mass=2e5, x_cg=28.0).refines(base)
 
 
+def test_a_condition_without_an_extra_item_is_the_condition_built_without_it():
+    from certkit.engine.results import Condition
+
+    tagged = Condition(loading="fwd_mlw", altitude=3000.0, extra=(("source", "25.331(b)"), ("gust", "up")))
+    plain = Condition(loading="fwd_mlw", altitude=3000.0, extra=(("gust", "up"),))
+    assert tagged.without("source") == plain and hash(tagged.without("source")) == hash(plain)
+    assert tagged.without("source", "gust") == Condition(loading="fwd_mlw", altitude=3000.0)
+    assert tagged.without("speed") == tagged and tagged.get("source") == "25.331(b)"  # the original unchanged
+
+
 def test_a_margin_without_a_unit_is_refused():
     """Every margin carries a unit word: a dimensionless comparison names its quantity (ratio, g, C_L, ζ)."""
     from certkit.engine.results import Condition, Finding

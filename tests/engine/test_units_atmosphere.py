@@ -52,3 +52,21 @@ def test_airspeed_conversions_are_consistent():
 def test_altitude_outside_the_model_is_an_error():
     with pytest.raises(isa.AtmosphereRangeError, match="outside"):
         isa.density(25000.0)
+
+
+def test_a_scalar_altitude_gives_the_array_value_and_a_fresh_array():
+    """The layers' values at a scalar altitude are remembered: the same bits as an array of altitudes (first and
+    repeated asks, float and numpy scalars alike), a new 0-d array each time (a caller's in-place change does not reach
+    the next), and an altitude outside the layers still an error at every ask."""
+    heights = np.array([-600.0, 0.0, 1234.5, 10999.9, 11000.0, 15432.1, 20000.0])
+    for h in heights:
+        for f in (isa.temperature, isa.pressure, isa.density, isa.speed_of_sound):
+            first, again, scalar = f(float(h)), f(float(h)), f(np.float64(h))
+            assert first.shape == () and first.dtype == np.float64
+            assert first.tobytes() == again.tobytes() == scalar.tobytes() == f(np.array([h]))[0].tobytes()
+    t = isa.temperature(5000.0)
+    t += 100.0
+    assert isa.temperature(5000.0) == isa.temperature(np.array([5000.0]))[0]
+    for _ in range(2):
+        with pytest.raises(isa.AtmosphereRangeError, match="outside"):
+            isa.pressure(20001.0)

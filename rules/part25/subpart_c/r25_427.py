@@ -22,7 +22,7 @@ included: said by a not-evaluated finding. The fuselage torsion at the tail is c
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 from certkit_rules.part25.support.balanced_runs import (
@@ -104,7 +104,7 @@ class SymmetricSources(ConditionSpace):
 
 
 def _untag(c: Condition) -> Condition:
-    return replace(c, extra=tuple((k, v) for k, v in c.extra if k != "source"))
+    return c.without("source")
 
 
 def _key(c: Condition, source: str):
