@@ -67,7 +67,10 @@ class Condition:
     extra: tuple[tuple[str, object], ...] = ()
 
     def get(self, key: str, default: Any = None) -> Any:
-        return dict(self.extra).get(key, default)
+        for name, value in reversed(self.extra):  # the last item of a name, as a dict of the items would hold
+            if name == key:
+                return value
+        return default
 
     def with_(self, **changes: Any) -> "Condition":
         """This condition with fields changed; a name that is not a field sets (or replaces) an ``extra`` item."""

@@ -10,6 +10,8 @@ Tolerance 1 % of the peak (zero-order hold of the gust over 2 ms steps, lift til
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from certkit.atmosphere import density
 from certkit.models.aero.derivative_model import StabilityDerivativeModel
@@ -136,3 +138,42 @@ def test_pratt_cross_check_with_the_penetration_lag():
     mu = 2 * ws / (density(H_ALT) * chord * A * G0)
     pratt = 0.88 * mu / (5.3 + mu) * density(0.0) * uds * V * A / (2 * ws)
     assert 0.9 < lagged / pratt < 1.15 and lagged < quasi
+
+
+def _lagged_everywhere(s, H, Uds, chord):
+    """The effective gust's closed form evaluated at every penetration alike (the functions on the whole grid)."""
+    sigma = 2.0 * np.asarray(s, dtype=float) / chord
+    w, end = np.pi * chord / (2.0 * H), 4.0 * H / chord
+    inside = np.clip(sigma, 0.0, end)
+    out = np.where((s >= 0) & (s <= 2 * H), 0.5 * Uds * (1 - np.cos(np.pi * s / H)), 0.0)
+    for a_k, b_k in ((0.5, 0.13), (0.5, 1.0)):
+        lag = (b_k * np.sin(w * inside) - w * np.cos(w * inside) + w * np.exp(-b_k * inside)) / (b_k**2 + w**2)
+        lag = 0.5 * Uds * w * lag * np.exp(-b_k * np.maximum(sigma - end, 0.0))
+        out = out - a_k * np.where(sigma > 0.0, lag, 0.0)
+    return out
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    st.floats(30.0, 350.0),
+    st.floats(1.0, 12.0),
+    st.lists(st.floats(-50.0, 400.0), min_size=1, max_size=12),
+    st.integers(1, 40),
+    st.booleans(),
+)
+def test_the_effective_gust_computed_where_it_varies_is_the_closed_form_everywhere(H_ft, chord, starts, nt, ends):
+    """The effective gust (and the 1 − cos gust) evaluate their functions only within the gust and take the values at
+    its ends elsewhere: bit for bit the closed form evaluated at every penetration, on grids per condition that start
+    before, within and after the gust, and through its ends exactly."""
+    from certkit.models.loads.gust import penetration_lagged
+
+    H = H_ft * FT
+    s = np.asarray(starts)[None, :] + 3.0 * np.arange(nt)[:, None]
+    if ends:
+        s[0, 0], s[-1, -1] = 0.0, 2 * H
+    uds = np.linspace(-10.0, 12.0, s.shape[1])
+    for got, expected in (
+        (penetration_lagged(s, H, uds, chord), _lagged_everywhere(s, H, uds, chord)),
+        (one_minus_cosine(s, H, uds), np.where((s >= 0) & (s <= 2 * H), 0.5 * uds * (1 - np.cos(np.pi * s / H)), 0.0)),
+    ):
+        assert got.shape == expected.shape and got.tobytes() == expected.tobytes()

@@ -26,7 +26,13 @@ GUST_CONTROLS = ("gust_wing", "gust_tail")
 def one_minus_cosine(s, H, Uds):
     """Gust velocity at penetration s (m, array) of a 1 − cos gust of gradient H (m), peak Uds."""
     s = np.asarray(s, dtype=float)
-    return np.where((s >= 0) & (s <= 2 * H), 0.5 * Uds * (1 - np.cos(np.pi * s / H)), 0.0)
+    half_peak = 0.5 * np.asarray(Uds, dtype=float)
+    out = np.zeros(np.broadcast_shapes(s.shape, half_peak.shape))
+    within = np.broadcast_to((s >= 0) & (s <= 2 * H), out.shape)  # the cosine only where the gust is
+    out[within] = np.broadcast_to(half_peak, out.shape)[within] * (
+        1 - np.cos(np.pi * np.broadcast_to(s, out.shape)[within] / H)
+    )
+    return out
 
 
 #: R. T. Jones' approximation of Küssner's function: ψ(σ) = 1 − Σ A_k e^(−b_k σ), σ in semichords
@@ -44,11 +50,23 @@ def penetration_lagged(s, H, Uds, chord):
     end = 4.0 * H / chord
     inside = np.clip(sigma, 0.0, end)
     out = one_minus_cosine(s, H, Uds)
+    # the lag's closed form varies only within the gust: before it the slope's lag is nil (masked below), after it the
+    # value at the gust's end (the functions evaluated only where their argument changes)
+    crossing = (inside > 0.0) & (inside < end)
+    some = crossing.any()
     for a_k, b_k in KUSSNER:
-        lag = (b_k * np.sin(w * inside) - w * np.cos(w * inside) + w * np.exp(-b_k * inside)) / (b_k**2 + w**2)
+        lag = np.where(inside > 0.0, _lag_numerator(np.float64(end), w, b_k), _lag_numerator(np.float64(0.0), w, b_k))
+        if some:
+            lag[crossing] = _lag_numerator(inside[crossing], w, b_k)
+        lag = lag / (b_k**2 + w**2)
         lag = 0.5 * Uds * w * lag * np.exp(-b_k * np.maximum(sigma - end, 0.0))
         out = out - a_k * np.where(sigma > 0.0, lag, 0.0)
     return out
+
+
+def _lag_numerator(x, w, b):
+    """b sin(w x) − w cos(w x) + w e^(−b x): the slope's first-order lag at σ = x within the gust (over b² + w²)."""
+    return b * np.sin(w * x) - w * np.cos(w * x) + w * np.exp(-b * x)
 
 
 def penetration_transfer(omega, chord):

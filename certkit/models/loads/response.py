@@ -192,47 +192,47 @@ def fuel_state_peaks(
     nt, n = total.shape[:2]
     q = int(np.prod(total.shape[2:]))
     per_state = np.einsum("nmk,kjq->nmjq", fuel, tables.reshape(tables.shape[0], tables.shape[1], q))
-    out = np.empty((fuel.shape[1], n, 2, q))
+    # the conditions innermost (contiguous: the compiled loops run over them in vector registers)
+    lo_hi = np.empty((2, fuel.shape[1], q, n))
     _fuel_state_peaks(
-        np.ascontiguousarray(total, dtype=float).reshape(nt, n, q),
-        np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])), dtype=float),
-        np.ascontiguousarray(per_state),
-        out,
+        np.ascontiguousarray(np.asarray(total, dtype=float).reshape(nt, n, q).transpose(0, 2, 1)),
+        np.ascontiguousarray(np.broadcast_to(x, (nt, n, x.shape[-1])).transpose(0, 2, 1), dtype=float),
+        np.ascontiguousarray(per_state.transpose(1, 2, 3, 0)),
+        lo_hi,
     )
-    return out.reshape((fuel.shape[1], n, 2) + total.shape[2:])
+    return lo_hi.transpose(1, 3, 0, 2).reshape((fuel.shape[1], n, 2) + total.shape[2:])
 
 
 @njit(cache=True)
-def _fuel_state_peaks(total, terms, per_state, out):
-    """out[m, i, 0/1, j] = min/max over t of total[t, i, j] + Σ_k terms[t, i, k] per_state[i, m, k, j], NaN skipped
-    (the histories read once, in memory order; each state's loads of one time formed over the stations at once, the
-    terms added in the order of k)."""
-    nt, n, q = total.shape
-    n_states, n_terms = per_state.shape[1], per_state.shape[2]
-    out[:, :, 0, :] = np.inf
-    out[:, :, 1, :] = -np.inf
-    v = np.empty(q)
+def _fuel_state_peaks(total, terms, per_state, lo_hi):
+    """lo_hi[0/1, m, j, i] = min/max over t of total[t, j, i] + Σ_k terms[t, k, i] per_state[m, k, j, i], NaN skipped:
+    each state's load of one time formed for every condition at once, the terms added in the order of k."""
+    nt, q, n = total.shape
+    n_states, n_terms = per_state.shape[0], per_state.shape[1]
+    lo, hi = lo_hi[0], lo_hi[1]
+    lo[:] = np.inf
+    hi[:] = -np.inf
+    v = np.empty(n)
     for t in range(nt):
-        for i in range(n):
-            for m in range(n_states):
-                for j in range(q):
-                    v[j] = total[t, i, j]
-                for k in range(n_terms):
-                    a = terms[t, i, k]
-                    for j in range(q):
-                        v[j] += a * per_state[i, m, k, j]
-                for j in range(q):
-                    x = v[j]
-                    if x < out[m, i, 0, j]:
-                        out[m, i, 0, j] = x
-                    if x > out[m, i, 1, j]:
-                        out[m, i, 1, j] = x
-    for m in range(n_states):
-        for i in range(n):
+        for m in range(n_states):
             for j in range(q):
-                if out[m, i, 0, j] > out[m, i, 1, j]:  # every time NaN
-                    out[m, i, 0, j] = np.nan
-                    out[m, i, 1, j] = np.nan
+                for i in range(n):
+                    v[i] = total[t, j, i]
+                for k in range(n_terms):
+                    for i in range(n):
+                        v[i] += terms[t, k, i] * per_state[m, k, j, i]
+                for i in range(n):
+                    x = v[i]
+                    if x < lo[m, j, i]:
+                        lo[m, j, i] = x
+                    if x > hi[m, j, i]:
+                        hi[m, j, i] = x
+    for m in range(n_states):
+        for j in range(q):
+            for i in range(n):
+                if lo[m, j, i] > hi[m, j, i]:  # every time NaN
+                    lo[m, j, i] = np.nan
+                    hi[m, j, i] = np.nan
 
 
 def response_loads(
