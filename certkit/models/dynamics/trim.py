@@ -358,6 +358,18 @@ _GIVEN = ("beta", "phi", "turn_rate", "gamma")
 SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
 
 
+def newton_steps(J: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The Newton steps J⁻¹ r of each condition, (n, k) from Jacobians (n, k, k) and residuals (n, k); a singular
+    Jacobian's by its pseudo-inverse. Each condition's step is the one it would have in a batch of its own (a singular
+    matrix does not change the others': a condition's trim does not depend on the batch it is solved in)."""
+    try:
+        return np.linalg.solve(J, r[:, :, None])[:, :, 0]
+    except np.linalg.LinAlgError:
+        if J.shape[0] == 1:
+            return np.einsum("nij,nj->ni", np.linalg.pinv(J), r)
+        return np.concatenate([newton_steps(J[i : i + 1], r[i : i + 1]) for i in range(J.shape[0])])
+
+
 def _solve(
     model: AircraftModel,
     V,
@@ -504,10 +516,7 @@ def _solve(
             break
         # forward-difference Jacobian: the k perturbed iterates of every active condition in one call
         Jm, ra = _jacobian(residual(*_perturbed(z, idx, hstep)), r, idx, hstep)
-        try:
-            sol = np.linalg.solve(Jm, ra[:, :, None])[:, :, 0]
-        except np.linalg.LinAlgError:
-            sol = np.einsum("nij,nj->ni", np.linalg.pinv(Jm), ra)
+        sol = newton_steps(Jm, ra)
         dz = _limited_step(sol, smax)
         # backtracking: accept the step if it reduces the residual, else halve (per condition)
         lam = np.ones(idx.size)
