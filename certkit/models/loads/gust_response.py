@@ -134,16 +134,17 @@ def simulate_gust(
         keep = slice(None) if k == 0 else slice(1, None)  # a later phase's first record repeats the last one
         for s, angles in extra.items():
             felt[s].append(angles[keep])
+        terms = inertia_terms(part, gb.model)  # the loads' and the fuel's
         L = response_load_parts(
-            loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}
+            loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}, terms=terms
         )
         for s, (aero, inertia) in L.items():
             hist.setdefault(s, []).append((aero + inertia)[keep])
             if s in split:
                 kept.setdefault(s, []).append((aero[keep], inertia[keep]))
-                terms = loads[s].fuel_term_tables(inertia_terms(part, gb.model))
-                if terms is not None:
-                    fuel.setdefault(s, []).append((terms[0][keep], terms[1]))
+                tables = loads[s].fuel_term_tables(terms)
+                if tables is not None:
+                    fuel.setdefault(s, []).append((tables[0][keep], tables[1]))
     return GustRun(
         sim,
         {s: np.concatenate(v_) for s, v_ in hist.items()},

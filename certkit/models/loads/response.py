@@ -77,20 +77,20 @@ def times_at(t, k) -> np.ndarray:
 
 
 def response_load_parts(
-    loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None, extra_beta=None
+    loads: AirplaneLoads, sim, model, surfaces=("horizontal_tail",), extra_alpha=None, extra_beta=None, terms=None
 ) -> dict[str, tuple[np.ndarray, np.ndarray]]:
     """Aerodynamic and inertial station loads, each (nt, n, 3, n_stations), of each of ``surfaces`` along the
     simulation ``sim`` of the flight model ``model`` (its CGs and reference lengths).
 
     ``extra_alpha`` / ``extra_beta``: surface name → (nt, n) angle-of-attack / sideslip increment felt by that
-    surface only (a vertical / lateral gust)."""
+    surface only (a vertical / lateral gust). ``terms``: the run's :func:`inertia_terms` when the caller has them."""
     h = sim.history
     V = np.maximum(h["V"], 1e-3)
     b, c = model.b, model.c
     names = list(sim.control_names)
     controls = {n: sim.controls[:, :, names.index(n)] for n in names if ":" not in n and n != "brake"}
     flap = flap_deflection(loads, model, h["mach"])
-    terms = inertia_terms(sim, model)
+    terms = inertia_terms(sim, model) if terms is None else terms
     out = {}
     for name in surfaces:
         s = loads[name]

@@ -43,7 +43,7 @@ from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts, response_loads
+from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts
 from certkit.models.loads.vn_envelope import envelope as vn_envelope
 from certkit.units import KN
 
@@ -93,11 +93,17 @@ class PitchManeuverRun(LoadsRun):
     kind: object = None
     stations: tuple = ()
     model: object = None  # the flight model of the simulated conditions (their CGs, inertia, reference lengths)
+    #: the tail's (aerodynamic, inertial) station loads along the runs, as the manoeuvre computed them
+    tail_split: tuple | None = None
 
     def tail_parts(self, loads) -> tuple[np.ndarray, np.ndarray]:
         """The right half tailplane's (aerodynamic, inertial) station loads along the runs, each (n_t, n, 3, S),
         NaN outside the window the paragraph considers (what §25.427(b) splits)."""
-        aero, inertia = response_load_parts(loads, self.records, self.model, ("horizontal_tail",))["horizontal_tail"]
+        aero, inertia = (
+            self.tail_split
+            if self.tail_split is not None
+            else response_load_parts(loads, self.records, self.model, ("horizontal_tail",))["horizontal_tail"]
+        )
         keep = np.asarray(self.valid, dtype=bool)[:, :, None, None]
         return np.where(keep, aero, np.nan), np.where(keep, inertia, np.nan)
 
@@ -299,7 +305,8 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     amp, hold, reach, held_short = found.amplitude, found.hold, found.reach, found.held_short
     resp, sim, valid, t_max = found.response, found.sim, found.valid, found.t_max
     loads = airplane_loads(ctx)
-    hist = response_loads(loads, sim, model, LOADED, valid=valid)
+    parts = response_load_parts(loads, sim, model, LOADED)
+    hist = {name: np.where(valid[:, :, None, None], aero + inertia, np.nan) for name, (aero, inertia) in parts.items()}
     unstalled = wing_before_stall(hist, model, sim)
     stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
     fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
@@ -400,6 +407,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         kind=np.where(reach, 0, np.where(held_short, 2, 1)),
         stations=stations,
         model=model,
+        tail_split=parts["horizontal_tail"],
     )
 
 
@@ -589,7 +597,8 @@ def maximum_displacement(ctx, conditions, crit) -> PitchManeuverRun:
         stop=[Bound("n_z > limit", "n_z", upper=n_lim)],
     )
     loads = airplane_loads(ctx)
-    hist = response_loads(loads, sim, batch.model, LOADED)
+    parts = response_load_parts(loads, sim, batch.model, LOADED)
+    hist = {name: aero + inertia for name, (aero, inertia) in parts.items()}
     # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
     root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
     t_peak = sim.t[np.nanargmax(root, axis=0)]
@@ -670,7 +679,15 @@ def maximum_displacement(ctx, conditions, crit) -> PitchManeuverRun:
             )
         )
     return PitchManeuverRun(
-        findings, batch.conditions, sim, valid, envelope=env, loads=hist, stations=stations, model=batch.model
+        findings,
+        batch.conditions,
+        sim,
+        valid,
+        envelope=env,
+        loads=hist,
+        stations=stations,
+        model=batch.model,
+        tail_split=parts["horizontal_tail"],
     )
 
 
