@@ -17,7 +17,7 @@ import os
 import re
 import time
 import traceback
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from typing import TYPE_CHECKING, Any
 
@@ -295,6 +295,7 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
     for c in covered:
         broad.setdefault((c.loading, c.configuration), []).append(c)
     index: dict[tuple[str, ...], dict[tuple[object, ...], list[Condition]]] = {}
+    extras: dict[Condition, dict[str, object]] = {}  # each finding condition's extra items, read once
     out = []
     for cond in conditions:
         if cond in covered:
@@ -308,7 +309,8 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
             names = tuple(k for k, _ in cond.extra)
             table = index.get(names)
             if table is None:
-                table = index[names] = _refinement_index(covered, names)
+                extras = extras or {c: dict(c.extra) for c in covered}
+                table = index[names] = _refinement_index(extras, names)
             candidates = table.get(_place(cond, names, dict(cond.extra)), [])
         if not any(c.refines(cond) for c in candidates):
             out.append(cond)
@@ -323,13 +325,13 @@ _ABSENT = object()  # an extra item a finding's condition does not carry (never 
 
 
 def _refinement_index(
-    covered: Iterable[Condition], names: tuple[str, ...]
+    covered: Mapping[Condition, dict[str, object]], names: tuple[str, ...]
 ) -> dict[tuple[object, ...], list[Condition]]:
-    """The findings' conditions keyed on what a refinement of a scheduled condition with extra items ``names`` keeps:
-    loading, configuration, altitude and those items' values."""
+    """The findings' conditions (each with its extra items) keyed on what a refinement of a scheduled condition with
+    extra items ``names`` keeps: loading, configuration, altitude and those items' values."""
     table: dict[tuple[object, ...], list[Condition]] = {}
-    for c in covered:
-        table.setdefault(_place(c, names, dict(c.extra)), []).append(c)
+    for c, extra in covered.items():
+        table.setdefault(_place(c, names, extra), []).append(c)
     return table
 
 

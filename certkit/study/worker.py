@@ -86,7 +86,8 @@ def _freeze_long_lived() -> None:
     after one full collection so no garbage is kept). Scanning those ~200,000 objects again and again cost about
     0.4 s of every design's 3.5 s (measured with ``gc.callbacks`` on the benchmark sample). The youngest generation is
     then collected every :data:`YOUNG_THRESHOLD` allocations instead of 700: a design allocates millions of short-lived
-    containers, and the ~200 collections of the default cost 0.04 s of each (0.02 s at this threshold, same sample)."""
+    containers, and the ~200 collections of the default cost 0.04 s of each (0.02 s at this threshold; five redesigned
+    tails of ``benchmarks/bench_evaluate.py``)."""
     if not _SETTLED["done"]:
         _SETTLED["done"] = True
         gc.collect()

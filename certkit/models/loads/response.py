@@ -241,8 +241,14 @@ def response_loads(
     """Station loads (nt, n, 3, n_stations) of each of ``surfaces`` along the simulation ``sim``: the sum of
     :func:`response_load_parts`. ``valid``: (nt, n) booleans; loads outside are set to NaN (times after a stop
     criterion or beyond the time the paragraph asks to consider)."""
+    return summed_loads(response_load_parts(loads, sim, model, surfaces, extra_alpha), valid)
+
+
+def summed_loads(parts: dict[str, tuple[np.ndarray, np.ndarray]], valid=None) -> dict[str, np.ndarray]:
+    """:func:`response_loads` from the (aerodynamic, inertial) ``parts`` of :func:`response_load_parts` (for a caller
+    that also keeps the parts)."""
     out = {}
-    for name, (aero, inertia) in response_load_parts(loads, sim, model, surfaces, extra_alpha).items():
+    for name, (aero, inertia) in parts.items():
         total = aero + inertia
         if valid is not None:
             total = np.where(valid[:, :, None, None], total, np.nan)

@@ -43,7 +43,7 @@ from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
 from certkit.models.loads.model import airplane_loads
-from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts
+from certkit.models.loads.response import LoadEnvelope, below_stall, response_load_parts, summed_loads
 from certkit.models.loads.vn_envelope import envelope as vn_envelope
 from certkit.units import KN
 
@@ -306,7 +306,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     resp, sim, valid, t_max = found.response, found.sim, found.valid, found.t_max
     loads = airplane_loads(ctx)
     parts = response_load_parts(loads, sim, model, LOADED)
-    hist = {name: np.where(valid[:, :, None, None], aero + inertia, np.nan) for name, (aero, inertia) in parts.items()}
+    hist = summed_loads(parts, valid)
     unstalled = wing_before_stall(hist, model, sim)
     stalled = np.zeros(len(rows), dtype=bool) if unstalled is None else (valid & ~unstalled).any(axis=0)
     fuelled = fuelled_wing(ctx, loads, sim, model, hist["wing"], sim_conds)
@@ -598,7 +598,7 @@ def maximum_displacement(ctx, conditions, crit) -> PitchManeuverRun:
     )
     loads = airplane_loads(ctx)
     parts = response_load_parts(loads, sim, batch.model, LOADED)
-    hist = {name: aero + inertia for name, (aero, inertia) in parts.items()}
+    hist = summed_loads(parts)
     # loads up to the first of: n_z above the limit (stop) or the tail load's maximum (root shear magnitude)
     root = np.abs(hist["horizontal_tail"][:, :, 0, 0])
     t_peak = sim.t[np.nanargmax(root, axis=0)]
