@@ -123,8 +123,15 @@ class LocalExecutor:
                 in_flight[self._running().submit(run_case, task)] = (task, alone)
                 return True
             # broken since the last wait: the task never started. While a worker dies the pool may not yet know it is
-            # broken, and starting a replacement worker fails on the pool's closed pipe (OSError) — the same event
+            # broken, and starting a replacement worker fails on the pool's closed pipe (OSError), or on the dead
+            # worker's pipe whose descriptor number a new pipe has taken again (the spawn refuses the duplicate) — the
+            # same event
             except (BrokenProcessPool, OSError):
+                suspects.appendleft(task)
+                return False
+            except ValueError as exc:
+                if "fds_to_keep" not in str(exc):
+                    raise
                 suspects.appendleft(task)
                 return False
 

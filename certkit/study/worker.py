@@ -12,6 +12,7 @@ from __future__ import annotations
 import gc
 import importlib
 import json
+import multiprocessing
 import os
 import socket
 import time
@@ -87,12 +88,14 @@ def _freeze_long_lived() -> None:
     0.4 s of every design's 3.5 s (measured with ``gc.callbacks`` on the benchmark sample). The youngest generation is
     then collected every :data:`YOUNG_THRESHOLD` allocations instead of 700: a design allocates millions of short-lived
     containers, and the ~200 collections of the default cost 0.04 s of each (0.02 s at this threshold; five redesigned
-    tails of ``benchmarks/bench_evaluate.py``)."""
+    tails of ``benchmarks/bench_evaluate.py``). Only in a worker process: a case run in the coordinating process (the
+    serial executor) leaves that process's collector as it was."""
     if not _SETTLED["done"]:
         _SETTLED["done"] = True
         gc.collect()
         gc.freeze()
-        gc.set_threshold(YOUNG_THRESHOLD, *gc.get_threshold()[1:])
+        if multiprocessing.parent_process() is not None:
+            gc.set_threshold(YOUNG_THRESHOLD, *gc.get_threshold()[1:])
 
 
 def run_case(task: Task) -> CaseResult:

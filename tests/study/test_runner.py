@@ -227,10 +227,19 @@ def test_a_case_that_kills_its_worker_is_failed_once_and_the_others_run(small_st
     assert summary.submitted == 15 and frame[~big].wall_s.notna().all()
 
 
-def test_a_pool_that_cannot_start_a_worker_is_restarted_and_no_case_is_lost(small_study, tmp_path, monkeypatch):
+@pytest.mark.parametrize(
+    "failure",
+    [OSError("handle is closed"), ValueError("bad value(s) in fds_to_keep")],
+    ids=["closed pipe", "reused descriptor"],
+)
+def test_a_pool_that_cannot_start_a_worker_is_restarted_and_no_case_is_lost(
+    small_study, tmp_path, monkeypatch, failure
+):
     """While a worker dies the pool may not know yet that it is broken, and starting its replacement fails on the
-    pool's closed pipe (OSError from ``submit``): the local executor treats it as a broken pool — restarts it and runs
-    the task that never started — so every case still has its result."""
+    pool's closed pipe (OSError from ``submit``), or on the dead worker's pipe whose descriptor number a new pipe has
+    taken again (Python's spawn refuses the duplicate: ValueError naming ``fds_to_keep``): the local executor treats
+    either as a broken pool — restarts it and runs the task that never started — so every case still has its
+    result."""
     from concurrent.futures import ProcessPoolExecutor
 
     real, calls = ProcessPoolExecutor.submit, {"n": 0}
@@ -238,7 +247,7 @@ def test_a_pool_that_cannot_start_a_worker_is_restarted_and_no_case_is_lost(smal
     def failing_once(self, fn, *args, **kwargs):
         calls["n"] += 1
         if calls["n"] == 4:  # after the start-up probe and two cases
-            raise OSError("handle is closed")
+            raise failure
         return real(self, fn, *args, **kwargs)
 
     monkeypatch.setattr(ProcessPoolExecutor, "submit", failing_once)
@@ -246,3 +255,21 @@ def test_a_pool_that_cannot_start_a_worker_is_restarted_and_no_case_is_lost(smal
     with Store.open(tmp_path / "s.sqlite") as store:
         frame = store.frame()
     assert calls["n"] > 4 and summary.total == len(frame) == 15 and (frame.status == "ok").all()
+
+
+def test_another_error_starting_a_case_is_not_taken_for_a_broken_pool(small_study, tmp_path, monkeypatch):
+    """Only the spawn's refusal of a reused descriptor stands for a dying pool: any other ValueError from ``submit`` is
+    certkit's bug and surfaces (no endless restarts)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    real, calls = ProcessPoolExecutor.submit, {"n": 0}
+
+    def failing(self, fn, *args, **kwargs):
+        calls["n"] += 1
+        if calls["n"] == 3:
+            raise ValueError("something else")
+        return real(self, fn, *args, **kwargs)
+
+    monkeypatch.setattr(ProcessPoolExecutor, "submit", failing)
+    with pytest.raises(ValueError, match="something else"):
+        _run(small_study, tmp_path / "s.sqlite", executor="local", workers=2)
