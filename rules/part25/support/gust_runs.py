@@ -174,15 +174,23 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     def f_g(conds):
         return np.array([flight_profile_alleviation(ctx.aircraft, c.altitude, crit) for c in conds])
 
+    factors: dict[int, tuple] = {}  # the simulated conditions' U_ref and F_g, the same at every gradient
+
+    def design_velocity(conds, h_gust):
+        if id(conds) not in factors:
+            factors[id(conds)] = (conds, u_ref(conds), f_g(conds))  # the list kept: its identity stays its own
+        _, u, f = factors[id(conds)]
+        return design_gust_velocity(u, f, h_gust, crit)
+
     runs = simulate_gust_set(
         ctx,
         conditions,
         lambda c: gust_speeds(ctx, c.altitude)[c.get("speed_point")],
-        lambda conds, h_gust: design_gust_velocity(u_ref(conds), f_g(conds), h_gust, crit),
+        design_velocity,
         gradients(crit),
         crit,
     )
-    runs.u_ref, runs.f_g = u_ref(runs.conditions), f_g(runs.conditions)
+    _, runs.u_ref, runs.f_g = factors.get(id(runs.conditions)) or (None, u_ref(runs.conditions), f_g(runs.conditions))
     return runs
 
 
