@@ -126,11 +126,8 @@ class LocalExecutor:
             # broken, and starting a replacement worker fails on the pool's closed pipe (OSError), or on the dead
             # worker's pipe whose descriptor number a new pipe has taken again (the spawn refuses the duplicate) — the
             # same event
-            except (BrokenProcessPool, OSError):
-                suspects.appendleft(task)
-                return False
-            except ValueError as exc:
-                if "fds_to_keep" not in str(exc):
+            except (BrokenProcessPool, OSError, ValueError) as exc:
+                if isinstance(exc, ValueError) and "fds_to_keep" not in str(exc):
                     raise
                 suspects.appendleft(task)
                 return False

@@ -153,7 +153,7 @@ def flap_gusts(ctx, conditions, crit) -> LoadsRun:
             ctx,
             ok,
             lambda c: vf[c.altitude][0],  # noqa: B023  (called within this iteration)
-            lambda sim, h: np.full(len(sim), uds),
+            lambda sim, gradients: np.full((len(gradients), len(sim)), uds),
             np.array([H]),
             crit,
         )

@@ -198,7 +198,7 @@ def _split_sources(ctx, conditions, crit, tail, full: float, reduced: float) -> 
         if source in by_source:
             run = runs(ctx, by_source[source], crit)
             if run.simulated:
-                aero, inertia = run.tail_parts(airplane_loads(ctx))
+                aero, inertia = run.tail_parts()
                 parts.append((source, aero, inertia, run.conditions))
     if "25.341(a)" in by_source:
         runs = gust_runs(ctx, by_source["25.341(a)"], crit)

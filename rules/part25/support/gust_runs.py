@@ -174,13 +174,9 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
     def f_g(conds):
         return np.array([flight_profile_alleviation(ctx.aircraft, c.altitude, crit) for c in conds])
 
-    factors: dict[int, tuple] = {}  # the simulated conditions' U_ref and F_g, the same at every gradient
-
-    def design_velocity(conds, h_gust):
-        if id(conds) not in factors:
-            factors[id(conds)] = (conds, u_ref(conds), f_g(conds))  # the list kept: its identity stays its own
-        _, u, f = factors[id(conds)]
-        return design_gust_velocity(u, f, h_gust, crit)
+    def design_velocity(conds, H):
+        u, f = u_ref(conds), f_g(conds)
+        return [design_gust_velocity(u, f, h_gust, crit) for h_gust in H]
 
     runs = simulate_gust_set(
         ctx,
@@ -190,7 +186,7 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
         gradients(crit),
         crit,
     )
-    _, runs.u_ref, runs.f_g = factors.get(id(runs.conditions)) or (None, u_ref(runs.conditions), f_g(runs.conditions))
+    runs.u_ref, runs.f_g = u_ref(runs.conditions), f_g(runs.conditions)
     return runs
 
 
@@ -212,9 +208,9 @@ def level_flight_batch(ctx, conditions, speed_of):
 
 def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> GustRuns:
     """The 1 − cos vertical gusts of ``conditions`` (one configuration), each trimmed in level flight at
-    ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocity
-    ``design_velocity(simulated conditions, H) -> (n,)`` (EAS, m/s), up or down as the condition's ``gust`` says;
-    ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
+    ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocities
+    ``design_velocity(simulated conditions, H) -> (gradients, n)`` (EAS, m/s), up or down as the condition's ``gust``
+    says; ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
     trim."""
     batch, rows, sim_conds, refused = level_flight_batch(ctx, conditions, speed_of)
     empty = np.zeros((len(H), 0))
@@ -226,11 +222,11 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
     alt = np.array([c.altitude for c in sim_conds])
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
-    envelopes, nz_hi, nz_lo, uds_all, wing, tail = [], [], [], [], [], []
+    envelopes, nz_hi, nz_lo, wing, tail = [], [], [], [], []
     fuel_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in sim_conds])
     fuel_peaks = None
-    for h_gust in H:
-        uds = np.asarray(design_velocity(sim_conds, h_gust), dtype=float)
+    velocities = np.asarray(design_velocity(sim_conds, H), dtype=float)
+    for h_gust, uds in zip(H, velocities):
         run = simulate_gust(
             loads,
             gb,
@@ -243,7 +239,6 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
         envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
-        uds_all.append(uds)
         wing.append((run.sim.t, *run.parts["wing"]))
         peaks = fuel_state_peaks(run.loads["wing"], run.fuel_units.get("wing"), fuel)
         fuel_peaks = (
@@ -261,7 +256,7 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
         envelopes,
         np.array(nz_hi),
         np.array(nz_lo),
-        np.array(uds_all),
+        velocities,
         wing,
         None,
         None,

@@ -94,16 +94,12 @@ class PitchManeuverRun(LoadsRun):
     stations: tuple = ()
     model: object = None  # the flight model of the simulated conditions (their CGs, inertia, reference lengths)
     #: the tail's (aerodynamic, inertial) station loads along the runs, as the manoeuvre computed them
-    tail_split: tuple | None = None
+    tail_split: tuple = ()
 
-    def tail_parts(self, loads) -> tuple[np.ndarray, np.ndarray]:
+    def tail_parts(self) -> tuple[np.ndarray, np.ndarray]:
         """The right half tailplane's (aerodynamic, inertial) station loads along the runs, each (n_t, n, 3, S),
         NaN outside the window the paragraph considers (what §25.427(b) splits)."""
-        aero, inertia = (
-            self.tail_split
-            if self.tail_split is not None
-            else response_load_parts(loads, self.records, self.model, ("horizontal_tail",))["horizontal_tail"]
-        )
+        aero, inertia = self.tail_split
         keep = np.asarray(self.valid, dtype=bool)[:, :, None, None]
         return np.where(keep, aero, np.nan), np.where(keep, inertia, np.nan)
 
