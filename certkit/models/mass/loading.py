@@ -137,6 +137,22 @@ def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
     return shares
 
 
+def _fuel_moments(groups, fuels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each fuel mass of ``fuels`` (kg), the moment Σ share·x of its :func:`_fuel_shares` (kg·m, the tanks summed in
+    the same order) and whether it exceeds the tanks' capacity, at once for all the masses."""
+    left = np.array(fuels, dtype=float)
+    fuels = left.copy()
+    moment = np.zeros(left.shape)
+    for group in groups:
+        capacity = sum(t.capacity for t in group)
+        load = np.minimum(left, capacity)
+        for t in group:
+            share = load * t.capacity / capacity
+            moment = moment + np.where(share > 0, share * float(t.cg.x), 0.0)
+        left = left - load
+    return moment, left > 1e-6 * np.maximum(fuels, 1.0)
+
+
 def fuel_by_tank(aircraft, fuel: float) -> np.ndarray:
     """kg of ``fuel`` in each declared tank (the file's order), the tanks filled group by group in the declared order
     (:func:`tank_groups`) and used in the reverse order. Raises LoadingError beyond the capacity."""
@@ -283,27 +299,33 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
         )
     best, nearest = None, None
     payloads = np.linspace(p_max, p_min, samples)
-    ranges = zip(*_payload_cg_ranges(zones, payloads))
+    lo, hi = _payload_cg_ranges(zones, payloads)
     groups = tank_groups(m.fuel_tanks)
-    for payload, (lo, hi) in zip(payloads, ranges):
-        fuel = useful - payload
-        rest = mass * x_cg - oew_moment - sum(float(share) * float(t.cg.x) for t, share in _fuel_shares(groups, fuel))
-        if payload <= 1e-9:
-            if abs(rest) <= 1e-6 * mass * max(x_cg, 1.0):
-                best = (fuel, [])
-                break
-            miss = rest  # the moment (kg·m) the empty airplane would have to supply
+    fuels = useful - payloads
+    fuel_moment, overfull = _fuel_moments(groups, fuels)
+    rest = mass * x_cg - oew_moment - fuel_moment  # the moment the payload must supply, per split
+    empty_payload = payloads <= 1e-9
+    with np.errstate(divide="ignore", invalid="ignore"):
+        x_needed = rest / np.where(empty_payload, 1.0, payloads)
+    reached = np.where(
+        empty_payload, np.abs(rest) <= 1e-6 * mass * max(x_cg, 1.0), (lo - 1e-9 <= x_needed) & (x_needed <= hi + 1e-9)
+    )
+    first = int(np.argmax(reached)) if reached.any() else samples
+    if overfull[: first + 1].any():  # the splits are tried in order: the first that cannot be fuelled stops them
+        raise LoadingError(f"{fuels[int(np.argmax(overfull))]:.0f} kg of fuel exceeds the tank capacity")
+    if first < samples:
+        payload = float(payloads[first])
+        best = (
+            float(fuels[first]),
+            [] if empty_payload[first] else _payload_items(zones, payload, float(x_needed[first])),
+        )
+    else:  # the split nearest the corner: the smallest moment missed (the empty airplane would have to supply it)
+        x_reached = np.clip(x_needed, lo, hi)
+        misses = np.where(empty_payload, rest, payloads * (x_needed - x_reached)).tolist()
+        for k, miss in enumerate(misses):
             if nearest is None or abs(miss) < abs(nearest[0]) - 1e-9:
-                nearest = (miss, payload, fuel, None)
-            continue
-        x_needed = rest / payload
-        if lo - 1e-9 <= x_needed <= hi + 1e-9:
-            best = (fuel, _payload_items(zones, payload, x_needed))
-            break
-        x_reached = float(np.clip(x_needed, lo, hi))
-        miss = payload * (x_needed - x_reached)
-        if nearest is None or abs(miss) < abs(nearest[0]) - 1e-9:
-            nearest = (miss, payload, fuel, x_reached)
+                payload = float(payloads[k])
+                nearest = (miss, payload, float(fuels[k]), None if empty_payload[k] else float(x_reached[k]))
     if best is None:
         return _fallback_loading(
             aircraft,
@@ -517,9 +539,12 @@ def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float
     payloads = np.linspace(p_max, max(p_min, 0.0), samples)
     fwd, aft = _payload_cg_ranges(zones, payloads)
     groups = tank_groups(m.fuel_tanks)
-    base = np.array(
-        [oew_moment + sum(share * float(t.cg.x) for t, share in _fuel_shares(groups, useful - p)) for p in payloads]
-    )
+    fuel_moment, overfull = _fuel_moments(groups, useful - payloads)
+    if overfull.any():
+        raise LoadingError(
+            f"{float(useful - payloads[int(np.argmax(overfull))]):.0f} kg of fuel exceeds the tank capacity"
+        )
+    base = oew_moment + fuel_moment
     with np.errstate(invalid="ignore"):
         x_fwd = (base + np.where(payloads > 0, payloads * fwd, 0.0)) / mass
         x_aft = (base + np.where(payloads > 0, payloads * aft, 0.0)) / mass
