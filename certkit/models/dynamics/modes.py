@@ -32,6 +32,7 @@ period 2π/ω_d (oscillatory), time to half amplitude ln 2/(−σ) (σ < 0) or t
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -67,27 +68,36 @@ def _mode(name, lam, vec) -> Mode:
     return Mode(name, complex(lam), float(wn), float(zeta), period, half, double, vec)
 
 
+@lru_cache(maxsize=16)
+def _submatrix(state_names: tuple[str, ...], n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The index of the first ``n`` states of ``_SUB`` among ``state_names``, rows and columns (``np.ix_``)."""
+    idx = [state_names.index(s) for s in _SUB[:n]]
+    return np.ix_(idx, idx)
+
+
 def identify_modes(lin: Linearization, i: int, density_gradient: bool = False) -> dict[str, Mode]:
     """Modes of condition ``i``: keys ``short_period``, ``phugoid``, ``dutch_roll``, ``roll``,
     ``spiral`` (a mode that does not appear in its classical form is left out; extra roots go
     under ``other_<k>``). ``density_gradient`` adds the altitude state (module docstring); without it the
     longitudinal equations are the textbook four (Etkin & Reid eq. 4.9,18)."""
     n = len(_SUB) if density_gradient else len(_SUB) - 1
-    idx = [lin.state_names.index(s) for s in _SUB[:n]]
-    A = lin.A[i][np.ix_(idx, idx)]
+    A = lin.A[i][_submatrix(tuple(lin.state_names), n)]
     V = float(np.linalg.norm(lin.x0[i, 3:6]))
     lam, vecs = np.linalg.eig(A)
     scaled = vecs.copy()
-    scaled[[0, 1, 2], :] /= V
-    for k in range(lam.size):
-        scaled[[3, 4, 5], k] /= max(abs(lam[k]), 1e-6)
-        if density_gradient:
-            scaled[8, k] *= abs(lam[k]) / V
+    scaled[:3] /= V
+    size = [abs(x) for x in lam]  # |λ| by the scalar's abs (the array's SIMD loop may differ in the last bit)
+    scaled[3:6] /= np.array([max(x, 1e-6) for x in size])
+    if density_gradient:
+        scaled[8] *= np.array([x / V for x in size])
     scaled /= np.linalg.norm(scaled, axis=0, keepdims=True)
     mag = np.abs(scaled)
-    lon_share = np.sum(mag[_LON[:n]] ** 2, axis=0)
+    lon_share = np.sum(mag[_LON[:n]] ** 2, axis=0).tolist()
+    # the eigenvalues' parts and the vectors' magnitudes as Python floats for the choices below (the same values)
+    real, imag = lam.real.tolist(), lam.imag.tolist()
+    m_u, m_v, m_w, m_p, _, m_r = mag[:6].tolist()
     # one representative per conjugate pair (imag ≥ 0)
-    keep = [k for k in range(lam.size) if lam[k].imag >= -1e-12]
+    keep = [k for k in range(lam.size) if imag[k] >= -1e-12]
     lon = [k for k in keep if lon_share[k] >= 0.5]
     lat = [k for k in keep if lon_share[k] < 0.5]
     modes: dict[str, Mode] = {}
@@ -97,31 +107,31 @@ def identify_modes(lin: Linearization, i: int, density_gradient: bool = False) -
         pool.remove(k)
 
     def split(ks):
-        return [k for k in ks if abs(lam[k].imag) > 1e-9], [k for k in ks if abs(lam[k].imag) <= 1e-9]
+        return [k for k in ks if abs(imag[k]) > 1e-9], [k for k in ks if abs(imag[k]) <= 1e-9]
 
-    osc, real = split(lon)
-    speed_share = lambda k: mag[0, k] / (mag[0, k] + mag[2, k] + 1e-30)  # noqa: E731
+    osc, real_roots = split(lon)
+    speed_share = lambda k: m_u[k] / (m_u[k] + m_w[k] + 1e-30)  # noqa: E731
     if osc:
         ph = max(osc, key=speed_share)
         if speed_share(ph) > 0.5 or len(osc) > 1:
             take("phugoid", osc, ph)
         if osc:
             take("short_period", osc, min(osc, key=speed_share))
-    a_dom = [k for k in real if speed_share(k) < 0.5]
+    a_dom = [k for k in real_roots if speed_share(k) < 0.5]
     if a_dom and "short_period" not in modes:
-        take("short_period", real, min(a_dom, key=lambda k: lam[k].real))
-    rest = osc + real
+        take("short_period", real_roots, min(a_dom, key=lambda k: real[k]))
+    rest = osc + real_roots
 
-    osc, real = split(lat)
+    osc, real_roots = split(lat)
     if osc:
-        take("dutch_roll", osc, max(osc, key=lambda k: mag[1, k]))
+        take("dutch_roll", osc, max(osc, key=lambda k: m_v[k]))
     # p and r carry the same 1/|λ| factor, so this ratio is that of the raw rates
-    roll_share = lambda k: mag[3, k] / (mag[3, k] + mag[5, k] + 1e-30)  # noqa: E731
-    if real:
-        take("roll", real, max(real, key=roll_share))
-    if real:
-        take("spiral", real, min(real, key=roll_share))
-    for j, k in enumerate(rest + osc + real):
+    roll_share = lambda k: m_p[k] / (m_p[k] + m_r[k] + 1e-30)  # noqa: E731
+    if real_roots:
+        take("roll", real_roots, max(real_roots, key=roll_share))
+    if real_roots:
+        take("spiral", real_roots, min(real_roots, key=roll_share))
+    for j, k in enumerate(rest + osc + real_roots):
         modes[f"other_{j}"] = _mode(f"other_{j}", lam[k], scaled[:, k])
     return modes
 

@@ -125,13 +125,13 @@ def simulate_gust(
         gb.model, gb.x0, gb.u0, H, v, lag, gusts, steps_per_gust, settle, max_step, settle_step
     )
     felt: dict[str, list] = {"wing": [], "horizontal_tail": []}  # the gust angles of each phase, on its own times
-    hist: dict[str, list] = {}
-    kept: dict[str, list] = {}
+    nt, slices = phase_records(parts)
+    hist: dict[str, np.ndarray] = {}
+    kept: dict[str, tuple[np.ndarray, np.ndarray]] = {}
     fuel: dict[str, list] = {}
-    for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
+    for k, (part, (keep, rows)) in enumerate(zip(parts, slices)):  # loads per phase (rate derivatives in its step)
         tp = phase_times(parts, k)
         extra = {"wing": wing(tp), "horizontal_tail": tail(tp)}
-        keep = slice(None) if k == 0 else slice(1, None)  # a later phase's first record repeats the last one
         for s, angles in extra.items():
             felt[s].append(angles[keep])
         terms = inertia_terms(part, gb.model)  # the loads' and the fuel's
@@ -139,18 +139,22 @@ def simulate_gust(
             loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}, terms=terms
         )
         for s, (aero, inertia) in L.items():
-            hist.setdefault(s, []).append((aero + inertia)[keep])
+            if s not in hist:  # the run's histories, each phase written in place
+                hist[s] = np.empty((nt,) + aero.shape[1:])
+            np.add(aero[keep], inertia[keep], out=hist[s][rows])
             if s in split:
-                kept.setdefault(s, []).append((aero[keep], inertia[keep]))
+                if s not in kept:
+                    kept[s] = (np.empty(hist[s].shape), np.empty(hist[s].shape))
+                kept[s][0][rows], kept[s][1][rows] = aero[keep], inertia[keep]
                 tables = loads[s].fuel_term_tables(terms)
                 if tables is not None:
                     fuel.setdefault(s, []).append((tables[0][keep], tables[1]))
     return GustRun(
         sim,
-        {s: np.concatenate(v_) for s, v_ in hist.items()},
+        hist,
         {s: np.concatenate(v_) for s, v_ in felt.items()},  # on the run's times (the phases' times, concatenated)
         dt,
-        {s: (np.concatenate([a_ for a_, _ in v_]), np.concatenate([i_ for _, i_ in v_])) for s, v_ in kept.items()},
+        kept,
         {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()},
     )
 
@@ -186,6 +190,17 @@ def two_phase_run(
         after = {name: later(f) for name, f in inputs.items()}
         parts.append(simulate(model, first.final_state, u0, settle, step, inputs=after))
     return parts, _concatenate(parts), float(np.min(dt))
+
+
+def phase_records(parts) -> tuple[int, list[tuple[slice, slice]]]:
+    """The records of a run of :func:`two_phase_run`'s ``parts``: their number, and per phase the records it keeps
+    (a later phase's first repeats the last one) and where they go in the run's."""
+    slices, start = [], 0
+    for k, part in enumerate(parts):
+        count = part.t.shape[0] - (k > 0)
+        slices.append((slice(None) if k == 0 else slice(1, None), slice(start, start + count)))
+        start += count
+    return start, slices
 
 
 def phase_times(parts, k: int) -> np.ndarray:

@@ -21,7 +21,7 @@ import numpy as np
 
 from certkit.models.dynamics.simulate import Function
 from certkit.models.loads.gust import penetration_lagged
-from certkit.models.loads.gust_response import phase_times, two_phase_run, with_aero
+from certkit.models.loads.gust_response import phase_records, phase_times, two_phase_run, with_aero
 from certkit.models.loads.response import response_load_parts
 
 FIN = "vertical_tail"
@@ -100,9 +100,11 @@ def simulate_lateral_gust(
         max_step,
         settle_step,
     )
-    hist = []
-    for k, part in enumerate(parts):  # loads per phase (rate derivatives within a phase's step)
+    nt, slices = phase_records(parts)
+    hist = None
+    for k, (part, (keep, rows)) in enumerate(zip(parts, slices)):  # loads per phase (rate derivatives in its step)
         beta_g = felt(phase_times(parts, k))
         aero, inertia = response_load_parts(loads, part, lb.model, (FIN,), extra_beta={FIN: beta_g})[FIN]
-        hist.append((aero + inertia)[slice(None) if k == 0 else slice(1, None)])
-    return sim, np.concatenate(hist), felt(phase_times([sim], 0))
+        hist = np.empty((nt,) + aero.shape[1:]) if hist is None else hist  # each phase written in place
+        np.add(aero[keep], inertia[keep], out=hist[rows])
+    return sim, hist, felt(phase_times([sim], 0))

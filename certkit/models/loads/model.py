@@ -153,7 +153,7 @@ class SurfaceLoads:
         if not present:
             return np.zeros(self.inertia.shape[1:])
         shape = np.broadcast_shapes(*(v.shape for _, v in present))
-        x = np.stack([np.broadcast_to(v, shape).ravel() for _, v in present], axis=1)
+        x = _term_matrix(present, shape)
         table = self.inertia[[t for t, _ in present]].reshape(len(present), -1)
         return (x @ table).reshape(shape + self.inertia.shape[1:])
 
@@ -167,7 +167,7 @@ class SurfaceLoads:
         if not present:
             return np.zeros((K,) + self.inertia.shape[1:])
         shape = np.broadcast_shapes(*(v.shape for _, v in present))
-        x = np.stack([np.broadcast_to(v, shape).ravel() for _, v in present], axis=1)
+        x = _term_matrix(present, shape)
         table = self.fuel_inertia[:, [t for t, _ in present]]  # (K, T', 3, S)
         table = np.moveaxis(table, 1, 0).reshape(len(present), -1)
         return (x @ table).reshape(shape + (K,) + self.inertia.shape[1:])
@@ -192,6 +192,16 @@ class SurfaceLoads:
     def strip_normal_force(self, qbar, mach, inputs) -> np.ndarray:
         """Aerodynamic normal force of each strip (..., n_strips), N."""
         return self._superpose(qbar, mach, inputs, self.strip_aero)
+
+
+def _term_matrix(present, shape) -> np.ndarray:
+    """The inertial terms ``present`` ((index, array) pairs) broadcast to ``shape``, one column each: (points, terms),
+    each term written into its column at once."""
+    x = np.empty((int(np.prod(shape, dtype=int)), len(present)))
+    columns = x.reshape(tuple(shape) + (len(present),))
+    for j, (_, v) in enumerate(present):
+        columns[..., j] = v
+    return x
 
 
 @njit(cache=True)
