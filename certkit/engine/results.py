@@ -648,6 +648,11 @@ class RunResult:
     def to_json(self) -> str:
         """``results.json`` (:mod:`certkit.engine.results_json`): each rule's part taken from :attr:`RuleResult.encoded`
         where a worker process already encoded it (the same text as encoding the whole at once)."""
+        return "".join(self.json_chunks())
+
+    def json_chunks(self) -> list[str]:
+        """:meth:`to_json`'s text in consecutive pieces (the head's, then each rule's and its separator), for a writer
+        that need not join a check's ten-odd megabytes into one string first."""
         parts = []
         non_finite = 0
         for r in self.rules:
@@ -668,8 +673,12 @@ class RunResult:
                 },
                 VOLATILE_KEY: head[VOLATILE_KEY],
             }
-        rules = "[\n" + ",\n".join("    " + p for p in parts) + "\n  ]" if parts else "[]"
-        return encode(head).replace(json.dumps(_RULES_MARK), rules, 1)
+        before, after = encode(head).split(json.dumps(_RULES_MARK), 1)
+        if not parts:
+            return [before, "[]", after]
+        rules = [piece for p in parts for piece in (",\n    ", p)]
+        rules[0] = "[\n    "
+        return [before, *rules, "\n  ]", after]
 
     def exit_code(self) -> int:
         """0 every rule complies in full, 1 any fails, 3 nothing fails but something was not evaluated (a rule

@@ -297,7 +297,7 @@ def write_report(run: RunResult, rules: list[type[Rule]], out_dir: str | Path) -
     """Write ``results.json`` and ``index.html`` into ``out_dir`` as one set (:func:`certkit.report.output.write_set`:
     the previous set stays whole until the new one replaces it); return both paths."""
     out = Path(out_dir)
-    texts = {"results.json": run.to_json() + "\n", "index.html": render_html(run, rules)}
+    texts = {"results.json": [*run.json_chunks(), "\n"], "index.html": render_html(run, rules)}
     write_set(prepare_output(out), texts)
     return out / "results.json", out / "index.html"
 

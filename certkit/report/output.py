@@ -20,6 +20,7 @@ import re
 import shutil
 import tempfile
 import unicodedata
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from certkit.errors import UserError
@@ -90,9 +91,9 @@ def _refuse_foreign_entries(given: Path, target: Path) -> None:
             )
 
 
-def write_set(out: Path, files: dict[str, str]) -> None:
-    """Write ``files`` (name → text) as the content of folder ``out``, replacing its previous set in one step; never
-    after an interrupt (Ctrl-C: the previous set stays)."""
+def write_set(out: Path, files: Mapping[str, str | Sequence[str]]) -> None:
+    """Write ``files`` (name → text, or its consecutive pieces) as the content of folder ``out``, replacing its
+    previous set in one step; never after an interrupt (Ctrl-C: the previous set stays)."""
     raise_if_requested()
     _refuse_foreign_entries(out, out)  # checked before the evaluation too; the folder may have changed since
     parent = out.parent
@@ -120,10 +121,10 @@ def write_set(out: Path, files: dict[str, str]) -> None:
     _sync(parent)
 
 
-def _write_new(path: Path, text: str) -> None:
+def _write_new(path: Path, text: str | Sequence[str]) -> None:
     fd = os.open(path, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_NOFOLLOW, 0o666)
     with os.fdopen(fd, "w", encoding="utf-8") as f:
-        f.write(text)
+        f.writelines([text] if isinstance(text, str) else text)
         f.flush()
         os.fsync(f.fileno())
 
@@ -142,7 +143,7 @@ def _swap(new: Path, out: Path) -> None:
     os.rename(old, new)
 
 
-def _replace_each(new: Path, out: Path, files: dict[str, str]) -> None:
+def _replace_each(new: Path, out: Path, files: Mapping[str, object]) -> None:
     for name in sorted(files, key=lambda n: REPORT_FILES.index(n) if n in REPORT_FILES else len(REPORT_FILES)):
         os.replace(new / name, out / name)  # replaces a symlink itself, never its target
     _sync(out)

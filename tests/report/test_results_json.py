@@ -139,3 +139,19 @@ def test_volatile_fields_are_only_in_run(small_check, volatile):
 def test_schema_command_prints_the_shipped_schema(cli):
     out = cli("schema", "--results")
     assert out.exit_code == 0 and json.loads(out.output) == schema()
+
+
+@pytest.mark.parametrize("n_rules", [0, 1, 3])
+def test_results_json_written_in_pieces_is_the_whole_encoded_at_once(n_rules, tmp_path):
+    """The report's writer takes results.json in pieces (each rule's text as a worker encoded it, never joined into
+    one string): the file holds exactly the text of encoding the whole run at once, whatever the number of rules."""
+    from certkit.report.output import prepare_output, write_set
+
+    finding = Finding(Condition(loading="fwd", mass=1000.0), "c", "fails", 0.5, 1.0, -0.5, "m/s", reason="é · ≥")
+    rules = [RuleResult(f"25.{k}", "s", "t", [finding] * (k + 1)) for k in range(n_rules)]
+    run = RunResult("v", "n", "0" * 64, "p", "2026-01-01T00:00:00+00:00", rules)
+    whole = encode(clean(run.as_dict())[0])
+    assert run.to_json() == whole
+    out = tmp_path / "out"
+    write_set(prepare_output(out), {"results.json": [*run.json_chunks(), "\n"]})
+    assert (out / "results.json").read_text(encoding="utf-8") == whole + "\n"
