@@ -31,8 +31,27 @@ INDENTED_DEPTH = 4
 #: the top-level key of what varies between identical runs
 VOLATILE_KEY = "run"
 
-_compact = json.JSONEncoder(ensure_ascii=False, separators=(", ", ": "), allow_nan=False).encode
+_compact_encoder = json.JSONEncoder(ensure_ascii=False, separators=(", ", ": "), allow_nan=False)
 _key = json.JSONEncoder(ensure_ascii=False).encode
+
+
+def _c_compact() -> Callable[[object], str] | None:
+    """``_compact_encoder.encode`` for cleaned data (acyclic: no check for circular references), with the one C encoder
+    ``JSONEncoder.encode`` builds at each call made once (a finding's line is three such calls; the same text)."""
+    make = getattr(json.encoder, "c_make_encoder", None)
+    if make is None:  # an interpreter without the C encoder
+        return None
+    e = _compact_encoder
+    separators = (e.key_separator, e.item_separator)
+    c = make(None, e.default, json.encoder.encode_basestring, None, *separators, False, False, False)
+
+    def encode(data: object) -> str:
+        return "".join(c(data, 0)) if isinstance(data, (dict, list, tuple)) else e.encode(data)
+
+    return encode
+
+
+_compact = _c_compact() or _compact_encoder.encode
 
 
 class Rounded(dict):  # type: ignore[type-arg]

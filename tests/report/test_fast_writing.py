@@ -174,3 +174,23 @@ def test_findings_rows_are_the_jinja_rows(found, pick):
 def test_one_number_as_the_report_shows_it(x):
     expected = format_number(x, decimals([x])) if math.isfinite(x) else "—"
     assert format_value(x) == expected
+
+
+json_data = st.recursive(
+    st.one_of(st.none(), st.booleans(), st.integers(-(10**12), 10**12), finite, texts),
+    lambda children: st.one_of(
+        st.lists(children, max_size=4), st.dictionaries(texts, children, max_size=4), st.tuples(children, children)
+    ),
+    max_leaves=20,
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(json_data)
+def test_compact_lines_are_the_standard_encoders_text(data):
+    """results.json's compact lines (one C encoder made once) are the text of the standard library's encoder with the
+    same options, for any cleaned data: containers, scalars, text with escapes and non-ASCII letters."""
+    import json
+
+    expected = json.dumps(data, ensure_ascii=False, separators=(", ", ": "), allow_nan=False)
+    assert compact(data) == expected
