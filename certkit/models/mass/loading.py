@@ -120,37 +120,39 @@ def tank_groups(tanks) -> list[list]:
     return list(groups.values())
 
 
-def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
-    """(tank, kg) of ``fuel`` in the tank ``groups`` (:func:`tank_groups`) in declared order (each group filled before
-    the next, its tanks in proportion to their capacity); tanks left empty are omitted."""
-    shares, left = [], fuel
-    for group in groups:
-        capacity = sum(t.capacity for t in group)
-        load = min(left, capacity)
-        for t in group:
-            share = load * t.capacity / capacity
-            if share > 0:
-                shares.append((t, share))
-        left -= load
-    if left > 1e-6 * max(fuel, 1.0):
-        raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
-    return shares
-
-
-def _fuel_moments(groups, fuels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For each fuel mass of ``fuels`` (kg), the moment Σ share·x of its :func:`_fuel_shares` (kg·m, the tanks summed in
-    the same order) and whether it exceeds the tanks' capacity, at once for all the masses."""
+def _fill(groups, fuels) -> tuple[list, np.ndarray, np.ndarray]:
+    """Each fuel mass of ``fuels`` (kg, an array) in the tank ``groups`` (:func:`tank_groups`) in declared order (each
+    group filled before the next, its tanks in proportion to their capacity): the tanks, the kg in each (tanks,
+    fuels), and whether a mass exceeds the tanks' capacity."""
     left = np.array(fuels, dtype=float)
     fuels = left.copy()
-    moment = np.zeros(left.shape)
+    tanks, shares = [], []
     for group in groups:
         capacity = sum(t.capacity for t in group)
         load = np.minimum(left, capacity)
         for t in group:
-            share = load * t.capacity / capacity
-            moment = moment + np.where(share > 0, share * float(t.cg.x), 0.0)
+            tanks.append(t)
+            shares.append(load * t.capacity / capacity)
         left = left - load
-    return moment, left > 1e-6 * np.maximum(fuels, 1.0)
+    return tanks, np.array(shares).reshape(len(tanks), fuels.size), left > 1e-6 * np.maximum(fuels, 1.0)
+
+
+def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
+    """(tank, kg) of ``fuel`` by :func:`_fill`; tanks left empty are omitted."""
+    tanks, shares, overfull = _fill(groups, [fuel])
+    if overfull[0]:
+        raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
+    return [(t, share) for t, share in zip(tanks, shares[:, 0].tolist()) if share > 0]
+
+
+def _fuel_moments(groups, fuels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For each fuel mass of ``fuels`` (kg), the moment Σ share·x of its :func:`_fuel_shares` (kg·m, the tanks summed in
+    the same order, the empty ones left out) and whether it exceeds the tanks' capacity, at once for all the masses."""
+    tanks, shares, overfull = _fill(groups, fuels)
+    moment = np.zeros(overfull.shape)
+    for t, share in zip(tanks, shares):
+        moment = moment + np.where(share > 0, share * float(t.cg.x), 0.0)
+    return moment, overfull
 
 
 def fuel_by_tank(aircraft, fuel: float) -> np.ndarray:
