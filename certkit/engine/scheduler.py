@@ -19,6 +19,7 @@ import time
 import traceback
 from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Future, ProcessPoolExecutor, as_completed
+from itertools import repeat
 from typing import TYPE_CHECKING, Any
 
 from certkit import __version__
@@ -318,7 +319,7 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
 
 
 def _place(c: Condition, names: tuple[str, ...], extra: dict[str, object]) -> tuple[object, ...]:
-    return (c.loading, c.configuration, c.altitude) + tuple(extra.get(k, _ABSENT) for k in names)
+    return (c.loading, c.configuration, c.altitude, *map(extra.get, names, repeat(_ABSENT, len(names))))
 
 
 _ABSENT = object()  # an extra item a finding's condition does not carry (never equal to a scheduled value)

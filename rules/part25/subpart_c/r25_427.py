@@ -274,8 +274,9 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
             continue
         p_full, p_red, (t_lo, t_hi), refined = hit
         cond = refined.with_(source=source)
+        label = cond.label()
         if max(abs(t_lo), abs(t_hi)) > worst[0]:
-            worst = (max(abs(t_lo), abs(t_hi)), cond.label())
+            worst = (max(abs(t_lo), abs(t_hi)), label)
         details = {
             "fuselage torsion at the tail max/min (kN·m)": [round(t_hi / 1e3, 1), round(t_lo / 1e3, 1)],
             "source": f"§{source}",
@@ -288,7 +289,7 @@ def unsymmetrical_tail_loads(ctx, conditions, crit) -> TailSplitRun:
         findings.append(
             capability_finding(cond, checks[1], TAIL, p_red, tail.station_names, caps, crit.ultimate_factor, **details)
         )
-        labels.append(cond.label())
+        labels.append(label)
         peaks["100 % side"].append(p_full)
         peaks["80 % side"].append(p_red)
     if worst[1] is not None and not fuselage:
