@@ -92,7 +92,6 @@ class PitchManeuverRun(LoadsRun):
     loads: dict = field(default_factory=dict)
     kind: object = None
     stations: tuple = ()
-    model: object = None  # the flight model of the simulated conditions (their CGs, inertia, reference lengths)
     #: the tail's (aerodynamic, inertial) station loads along the runs, as the manoeuvre computed them
     tail_split: tuple = ()
 
@@ -402,7 +401,6 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
         loads=hist,
         kind=np.where(reach, 0, np.where(held_short, 2, 1)),
         stations=stations,
-        model=model,
         tail_split=parts["horizontal_tail"],
     )
 
@@ -682,7 +680,6 @@ def maximum_displacement(ctx, conditions, crit) -> PitchManeuverRun:
         envelope=env,
         loads=hist,
         stations=stations,
-        model=batch.model,
         tail_split=parts["horizontal_tail"],
     )
 
