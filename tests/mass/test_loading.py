@@ -156,3 +156,22 @@ def test_report_provenance_names_how_each_loading_was_built(baseline):
     rows = {r["name"]: r for r in ctx.provenance()["loadings"]}
     assert "empty airplane moved" in rows["fwd_light"]["built"]
     assert rows["fwd_mlw"]["built"].startswith("declared items: empty airplane (")
+
+
+def test_fuel_beyond_the_tanks_is_refused_by_name_and_within_them_one_group_is_partly_filled(baseline):
+    """The declared tanks hold their summed capacity and no more: one kilogram over is refused naming the mass; at
+    capacity every tank is full; half of it fills whole groups before the next, so at most one group (a tank and its
+    mirror image, at the same fraction) is partly filled."""
+    from certkit.models.mass.loading import LoadingError, fuel_by_tank
+
+    tanks = baseline.model.mass.fuel_tanks
+    capacity = np.array([t.capacity for t in tanks])
+    np.testing.assert_allclose(fuel_by_tank(baseline.model, capacity.sum()), capacity, rtol=1e-12)
+    with pytest.raises(LoadingError, match=f"{capacity.sum() + 1:.0f} kg of fuel exceeds the tank capacity"):
+        fuel_by_tank(baseline.model, capacity.sum() + 1.0)
+    half = fuel_by_tank(baseline.model, 0.5 * capacity.sum())
+    assert half.sum() == pytest.approx(0.5 * capacity.sum(), rel=1e-12)
+    fraction = half / capacity
+    assert np.all((fraction >= 0) & (fraction <= 1 + 1e-12))
+    partly = np.unique(np.round(fraction[(fraction > 1e-12) & (fraction < 1 - 1e-12)], 12))
+    assert partly.size <= 1 and (fraction > 1 - 1e-12).any()  # the first group full, one group partly filled

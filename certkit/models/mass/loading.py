@@ -140,9 +140,14 @@ def _fill(groups, fuels) -> tuple[list, np.ndarray, np.ndarray]:
 def _fuel_shares(groups, fuel: float) -> list[tuple[object, float]]:
     """(tank, kg) of ``fuel`` by :func:`_fill`; tanks left empty are omitted."""
     tanks, shares, overfull = _fill(groups, [fuel])
-    if overfull[0]:
-        raise LoadingError(f"{fuel:.0f} kg of fuel exceeds the tank capacity")
+    _refuse_overfull([fuel], overfull)
     return [(t, share) for t, share in zip(tanks, shares[:, 0].tolist()) if share > 0]
+
+
+def _refuse_overfull(fuels, overfull) -> None:
+    """LoadingError naming the first of the fuel masses ``fuels`` (kg) that :func:`_fill` found beyond the tanks."""
+    if np.any(overfull):
+        raise LoadingError(f"{fuels[int(np.argmax(overfull))]:.0f} kg of fuel exceeds the tank capacity")
 
 
 def _fuel_moments(groups, fuels: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -313,8 +318,8 @@ def solve_loading(aircraft, mass: float, x_cg: float, name: str = "", samples: i
         empty_payload, np.abs(rest) <= 1e-6 * mass * max(x_cg, 1.0), (lo - 1e-9 <= x_needed) & (x_needed <= hi + 1e-9)
     )
     first = int(np.argmax(reached)) if reached.any() else samples
-    if overfull[: first + 1].any():  # the splits are tried in order: the first that cannot be fuelled stops them
-        raise LoadingError(f"{fuels[int(np.argmax(overfull))]:.0f} kg of fuel exceeds the tank capacity")
+    # the splits are tried in order: one that cannot be fuelled before the first that reaches the CG stops them
+    _refuse_overfull(fuels, overfull[: first + 1])
     if first < samples:
         payload = float(payloads[first])
         best = (
@@ -541,11 +546,9 @@ def reachable_cg_range(aircraft, mass: float, samples: int = 201) -> tuple[float
     payloads = np.linspace(p_max, max(p_min, 0.0), samples)
     fwd, aft = _payload_cg_ranges(zones, payloads)
     groups = tank_groups(m.fuel_tanks)
-    fuel_moment, overfull = _fuel_moments(groups, useful - payloads)
-    if overfull.any():
-        raise LoadingError(
-            f"{float(useful - payloads[int(np.argmax(overfull))]):.0f} kg of fuel exceeds the tank capacity"
-        )
+    fuels = useful - payloads
+    fuel_moment, overfull = _fuel_moments(groups, fuels)
+    _refuse_overfull(fuels, overfull)
     base = oew_moment + fuel_moment
     with np.errstate(invalid="ignore"):
         x_fwd = (base + np.where(payloads > 0, payloads * fwd, 0.0)) / mass
