@@ -31,10 +31,14 @@ SIGNATURES_FILE = Path(__file__).with_name("kernel_signatures.txt")
 #: work: about half of the compile time) and the compiled closed-loop runs, which call them (compiled elsewhere they
 #: would compile the equations once more: 15 s against 5 s after them, 2026-12-06)
 EQUATIONS_OF_MOTION = ("certkit.models.dynamics.kernel", "certkit.models.dynamics.pilot_kernel")
-#: kernels of those modules compiled last in another process: they call the equations of motion, which that process then
-#: loads from the cache the first has written by then, and nothing in the first needs them (the open-loop run: about
-#: 5 s of the first process's 18 s moved behind the other's 7 s)
-COMPILED_ELSEWHERE = (("certkit.models.dynamics.kernel", "integrate_open_loop"),)
+#: kernels compiled last in another process: they call the equations of motion, which that process then loads from the
+#: cache the first has written by then, and nothing in the first needs them (the open-loop run: about 5 s of the first
+#: process's 18 s moved behind the other's 7 s; the trims' residual, in the order of its own module, made the first run
+#: compile 2.7 s longer, 2026-12-07)
+COMPILED_ELSEWHERE = (
+    ("certkit.models.dynamics.kernel", "integrate_open_loop"),
+    ("certkit.models.dynamics.trim", "_residual_rows"),
+)
 
 Entry = tuple[str, str, str]  # module, function, argument types (numba's text)
 
@@ -96,15 +100,17 @@ def compile_group(entries: list[Entry]) -> float:
 def groups(entries: list[Entry], processes: int) -> list[list[Entry]]:
     """The entries in at most ``processes`` groups of whole modules: those of :data:`EQUATIONS_OF_MOTION` alone
     together, the others dealt in turn to the group with the fewest kernels (a kernel called by another module's
-    compiles with it either way), then :data:`COMPILED_ELSEWHERE` at the end of the last group."""
+    compiles with it either way), then those of :data:`COMPILED_ELSEWHERE` (of any module) at the end of the last
+    group."""
     by_module: dict[str, list[Entry]] = {}
     for e in entries:
         by_module.setdefault(e[0], []).append(e)
     if processes < 2 or len(by_module) < 2:
         return [list(entries)] if entries else []
+    later = [e for e in entries if e[:2] in COMPILED_ELSEWHERE]
+    by_module = {m: [e for e in es if e not in later] for m, es in by_module.items()}
+    by_module = {m: es for m, es in by_module.items() if es}
     first = [e for module in EQUATIONS_OF_MOTION for e in by_module.pop(module, [])]
-    later = [e for e in first if e[:2] in COMPILED_ELSEWHERE]
-    first = [e for e in first if e[:2] not in COMPILED_ELSEWHERE]
     rest: list[list[Entry]] = [[] for _ in range(processes - 1 if first else processes)]
     for module in sorted(by_module, key=lambda m: -len(by_module[m])):
         min(rest, key=len).extend(by_module[module])

@@ -2,7 +2,8 @@
 when the engines are parametric turbofans) must be the Python engine path (:meth:`AircraftModel.thrust_forces`: the
 engine model's own ``thrust_rows``, its :class:`WindmillDrag`, the spool-down blend) bit for bit — with running,
 failed and spooling-down engines — and so must the trims built on it (an engine-out trim at a bank, a steady-heading
-sideslip, a turn). The reference is the Python path of the same model; the tolerance is zero."""
+sideslip, a turn, a descent), whose residuals are then evaluated in one compiled call (``trim._residual_rows``). The
+reference is the Python path of the same model; the tolerance is zero."""
 
 import numpy as np
 import pytest
@@ -53,7 +54,12 @@ def test_compiled_thrust_equals_the_python_engine_path(model):
 
 @pytest.mark.parametrize(
     "kind, extra",
-    [("oei", {"bank": np.radians(3.0)}), ("sideslip", {"beta": np.radians(4.0)}), ("turn", {"bank": np.radians(25.0)})],
+    [
+        ("oei", {"bank": np.radians(3.0)}),
+        ("sideslip", {"beta": np.radians(4.0)}),
+        ("turn", {"bank": np.radians(25.0)}),
+        ("straight", {"gamma": np.radians(-1.0)}),
+    ],
 )
 def test_trims_equal_with_the_python_engine_path(model, baseline, kind, extra):
     n = model.n

@@ -59,12 +59,15 @@ def test_groups_keep_each_module_whole_and_the_equations_of_motion_alone():
         assert sum(any(e[0] == module for e in g) for g in parts) == 1
     assert groups(entries, 1) == [entries]
     assert len(groups(entries, 8)) == 4  # no empty group
-    # a kernel compiled elsewhere goes last into the last group, behind that group's own modules
-    ((module, function),) = COMPILED_ELSEWHERE
-    late = (module, function, "()")
-    parts = groups(entries + [late], 2)
-    assert late not in parts[0] and parts[-1][-1] == late and len(parts) == 2
-    assert groups([e for e in entries if e[0] in EQUATIONS_OF_MOTION] + [late], 2)[-1] == [late]
+    # the kernels compiled elsewhere go last into the last group, behind that group's own modules, whichever module
+    # they belong to (the open-loop run of the equations' module, the trims' residual of its own)
+    assert {m for m, _ in COMPILED_ELSEWHERE} - set(EQUATIONS_OF_MOTION)
+    late = [(module, function, "()") for module, function in COMPILED_ELSEWHERE]
+    own = [(module, "g", "()") for module, _ in COMPILED_ELSEWHERE if module not in EQUATIONS_OF_MOTION]
+    parts = groups(entries + own + late, 2)
+    assert len(parts) == 2 and not set(late) & set(parts[0]) and parts[-1][-len(late) :] == late
+    assert all(e in parts[-1][: -len(late)] for e in own)  # their modules' other kernels stay in their group
+    assert groups([e for e in entries if e[0] in EQUATIONS_OF_MOTION] + late, 2)[-1] == late
 
 
 def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path):

@@ -535,6 +535,19 @@ class AircraftModel:
         )
         return xd, out, gear, thrust
 
+    def compiled_thrust_args(self) -> tuple:
+        """The arguments after the rows' controls that :func:`kernel.engine_forces` and :func:`kernel.derivatives` take
+        in :meth:`evaluate` for a model whose :attr:`thrust_compiled`: the engine model, the throttles' first column,
+        which engines run, the failed engines' thrust fractions and windmilling drag, then the model's arrays."""
+        return (
+            self._turbofan,
+            self.throttle_slice.start,
+            self.operative,
+            np.ascontiguousarray(self.failed_thrust_fraction, dtype=float),
+            self._windmill,
+            *self._kernel_args,
+        )
+
     @property
     def thrust_compiled(self) -> bool:
         """Does :meth:`evaluate` compute the thrust in compiled code (:func:`kernel.engine_forces`, the arithmetic of

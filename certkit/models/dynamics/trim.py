@@ -44,6 +44,7 @@ import numpy as np
 from numba import njit
 
 from certkit.models.compiled import copy_row
+from certkit.models.dynamics import kernel
 from certkit.models.dynamics.eom import AircraftModel
 
 KINDS = ("straight", "turn", "oei", "sideslip")
@@ -351,6 +352,84 @@ def _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoi
             checkpoint[i] = rnorm[i]
 
 
+@njit(cache=True, fastmath=False)
+def _residual_rows(
+    z,
+    rows,
+    V,
+    h,
+    given,
+    sources,
+    u0,
+    control_cols,
+    throttle_col,
+    throttles,
+    eq_cols,
+    turbofan,
+    throttle_start,
+    operative,
+    fraction,
+    windmill,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+):
+    """The trim equations ``eq_cols`` of the iterates ``z`` of conditions ``rows`` (:func:`_iterates`) for a model whose
+    thrust is compiled (:attr:`~certkit.models.dynamics.eom.AircraftModel.thrust_compiled`): the air data, the
+    engines' forces and the equations of motion of :meth:`~certkit.models.dynamics.eom.AircraftModel.evaluate`, the
+    same kernels in one call."""
+    X, U = _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, throttles)
+    air = kernel.air_data(X)
+    thrust = kernel.engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, windmill)
+    quat = X.shape[1] == 13  # a bool, not a literal: the equations of motion compiled once for every caller
+    xd = kernel.derivatives(
+        X,
+        rows,
+        quat,
+        U,
+        thrust,
+        np.empty((X.shape[0], 8)),
+        props,
+        consts,
+        T,
+        machs,
+        clmax,
+        stall,
+        alpha_drag,
+        after_stall,
+        n_aero,
+        use_table,
+        r_eng,
+        d_eng,
+        has_ground,
+        r_gear,
+        legs,
+        gparams,
+        brake_index,
+        steer_index,
+    )[0]
+    r = np.empty((X.shape[0], eq_cols.shape[0]))
+    for i in range(X.shape[0]):
+        for e in range(eq_cols.shape[0]):
+            r[i, e] = xd[i, eq_cols[e]]
+    return r
+
+
 #: the state parameters given per condition or solved for, in :func:`_iterates`' order
 _GIVEN = ("beta", "phi", "turn_rate", "gamma")
 
@@ -468,10 +547,19 @@ def _solve(
 
     eq_cols = 3 + np.array(equations)
 
-    def residual(z, idx):
-        """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
-        x, u = _iterates(z, idx, *layout)
-        return model.derivatives_euler(x, u, rows=idx)[:, eq_cols]
+    if model.thrust_compiled:  # the iterates, air data, thrust and equations of motion in one compiled call
+        fixed = (*layout, eq_cols, *model.compiled_thrust_args())
+
+        def residual(z, idx):
+            """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
+            return _residual_rows(z, idx, *fixed)
+
+    else:
+
+        def residual(z, idx):
+            """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
+            x, u = _iterates(z, idx, *layout)
+            return model.derivatives_euler(x, u, rows=idx)[:, eq_cols]
 
     steps = {
         "alpha": 1e-6,
