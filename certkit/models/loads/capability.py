@@ -125,10 +125,54 @@ def worst_margin(
         return None
     caps, q, s, allow, inv_scale = table
     i, j, load = _worst(np.ascontiguousarray(peaks, dtype=float), q, s, allow, inv_scale, float(ultimate_factor))
+    return _margin(table, i, j, load)
+
+
+def _margin(table: CapabilityTable, i: int, j: int, load: float) -> tuple[LoadMargin, Capability] | None:
+    """The (LoadMargin, Capability) of row ``i``, column ``j`` of ``table`` (:func:`_worst`'s result; None: i < 0)."""
     if i < 0:
         return None
-    a = float(allow[i, j])
-    return LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], load, a, a - load), caps[i]
+    a = float(table[3][i, j])
+    return LoadMargin(("limit", "ultimate")[j % 2], ("max", "min")[j // 2], load, a, a - load), table[0][i]
+
+
+def worst_state(
+    capabilities: Iterable[Capability],
+    surface: str,
+    stations: Sequence[str],
+    peaks_by_state: npt.ArrayLike,
+    ultimate_factor: float,
+) -> tuple[int, tuple[LoadMargin, Capability]] | None:
+    """The state of ``peaks_by_state`` (M, 2, 3, S) whose :func:`worst_margin` is the smallest margin / max(|allowable|,
+    10⁻⁹) — the first such, or the first whose normalised margin is NaN — and that margin; None when no state loads a
+    capability. One compiled pass over the states (a fuel-state finding compares a handful per condition)."""
+    table = _table_of(capabilities, surface, stations)
+    if table is None:
+        return None
+    _, q, s, allow, inv_scale = table
+    m, i, j, load = _worst_of_states(
+        np.ascontiguousarray(peaks_by_state, dtype=float), q, s, allow, inv_scale, float(ultimate_factor)
+    )
+    found = _margin(table, i, j, load)
+    return None if m < 0 or found is None else (m, found)
+
+
+@njit(cache=True)
+def _worst_of_states(peaks_by_state, q, s, allow, inv_scale, ultimate_factor):  # type: ignore[no-untyped-def]
+    """:func:`worst_state`'s search: the state, row, column and load of the smallest margin / max(|allowable|, 10⁻⁹)
+    over the states' :func:`_worst` margins (a NaN stops the search at its state), or (−1, −1, −1, 0)."""
+    best_m, best_i, best_j, best_load, smallest = -1, -1, -1, 0.0, np.inf
+    for m in range(peaks_by_state.shape[0]):
+        i, j, load = _worst(peaks_by_state[m], q, s, allow, inv_scale, ultimate_factor)
+        if i < 0:
+            continue
+        a = allow[i, j]
+        norm = (a - load) / max(abs(a), 1e-9)
+        if np.isnan(norm):
+            return m, i, j, load
+        if norm < smallest:
+            best_m, best_i, best_j, best_load, smallest = m, i, j, load, norm
+    return best_m, best_i, best_j, best_load
 
 
 @njit(cache=True)

@@ -16,7 +16,7 @@ from certkit.engine.results import Finding
 from certkit.engine.results_json import RoundedRows
 from certkit.models.control_force import control_force_model
 from certkit.models.flight import control_limits
-from certkit.models.loads.capability import worst_margin
+from certkit.models.loads.capability import worst_margin, worst_state
 from certkit.models.loads.model import QUANTITIES
 from certkit.units import LBF
 
@@ -65,11 +65,23 @@ def _summary_keys(stations: tuple) -> tuple:
 
 
 def capability_finding(
-    cond, check: str, surface: str, peaks: np.ndarray, stations, capabilities, ultimate_factor, **details
+    cond,
+    check: str,
+    surface: str,
+    peaks: np.ndarray,
+    stations,
+    capabilities,
+    ultimate_factor,
+    *,
+    found_margin=None,
+    **details,
 ) -> Finding:
     """One finding per condition: the smallest margin of the limit and ultimate loads against the
-    capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details)."""
-    worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
+    capabilities (§25.303, §25.305), or not evaluated without a capability (the loads as details); ``found_margin``:
+    that margin when the caller has it already (:func:`critical_state_finding`)."""
+    worst = found_margin
+    if worst is None and capabilities:
+        worst = worst_margin(capabilities, surface, stations, peaks, ultimate_factor)
     if worst is None:
         reason = f"{NO_CAPABILITY} for the {surface.replace('_', ' ')} stations" if capabilities else NO_CAPABILITY
         finding = Finding.not_evaluated(cond, check, reason, **details)
@@ -116,20 +128,11 @@ def critical_state_finding(
             **details,
             **state_details(0),
         )
-    best, worst = None, np.inf
-    for j, peaks in enumerate(peaks_by_state):
-        w = worst_margin(capabilities, surface, stations, peaks, ultimate_factor) if capabilities else None
-        if w is None:
-            continue
-        norm = w[0].margin / max(abs(w[0].allowable), 1e-9)
-        if np.isnan(norm):
-            best = j
-            break
-        if norm < worst:
-            best, worst = j, norm
-    if best is None:
+    found = worst_state(capabilities, surface, stations, peaks_by_state, ultimate_factor) if capabilities else None
+    if found is None:
         envelope = np.stack([np.fmin.reduce(peaks_by_state[:, 0]), np.fmax.reduce(peaks_by_state[:, 1])])
         return capability_finding(cond, check, surface, envelope, stations, capabilities, ultimate_factor, **details)
+    best, margin = found
     return capability_finding(
         cond,
         check,
@@ -138,6 +141,7 @@ def critical_state_finding(
         stations,
         capabilities,
         ultimate_factor,
+        found_margin=margin,
         **details,
         **state_details(best),
     )
