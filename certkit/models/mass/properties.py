@@ -81,21 +81,33 @@ def combine(components: Sequence[MassComponent]) -> MassProperties:
     if np.any(m < 0):
         bad = [c.name for c in components if c.mass < 0]
         raise ValueError(f"negative component mass: {', '.join(bad)}")
+    own = [None if c.inertia is None else np.asarray(c.inertia, dtype=float) for c in components]
+    return combine_arrays(m, np.array([c.cg for c in components], dtype=float), own)
+
+
+def combine_arrays(m: np.ndarray, pos: np.ndarray, own: Sequence[np.ndarray | None] | np.ndarray) -> MassProperties:
+    """:func:`combine` of components given as arrays: masses (N,) (none negative), CGs (N, 3) and each one's own
+    inertia tensor ((N, 3, 3), or a sequence with None for a point mass)."""
     total = m.sum()
     if total <= 0:
         raise ValueError("total mass is zero")
-    pos = np.array([c.cg for c in components], dtype=float)
     cg = (m[:, None] * pos).sum(axis=0) / total
     d = airplane_to_body(pos, cg)
     # parallel-axis terms m (|d|² I − d dᵀ), formed for all at once, then added one after another from zero with the
     # components' own tensors in the components' order (a cumulative sum: the additions of a loop, without its cost)
     dd = np.array([np.dot(di, di) for di in d])
     terms = m[:, None, None] * (dd[:, None, None] * np.eye(3) - d[:, :, None] * d[:, None, :])
-    addends = [np.zeros((3, 3))]
-    for c, term in zip(components, terms):
-        if c.inertia is not None:
-            addends.append(np.asarray(c.inertia, dtype=float))
-        addends.append(term)
+    if isinstance(own, np.ndarray):  # every component with its own tensor: own and term interleaved
+        addends = np.empty((2 * len(m) + 1, 3, 3))
+        addends[0] = 0.0
+        addends[1::2], addends[2::2] = own, terms
+    else:
+        listed = [np.zeros((3, 3))]
+        for inertia, term in zip(own, terms):
+            if inertia is not None:
+                listed.append(inertia)
+            listed.append(term)
+        addends = np.array(listed)
     J = np.cumsum(addends, axis=0)[-1]
     check_inertia(J)
     return MassProperties(mass=float(total), cg=cg, inertia=J)
@@ -135,4 +147,12 @@ def check_inertia(J, name: str = "inertia tensor") -> np.ndarray:
     return J
 
 
-__all__ = ["MassComponent", "MassProperties", "combine", "inertia_from_radii", "check_inertia", "InertiaError"]
+__all__ = [
+    "MassComponent",
+    "MassProperties",
+    "combine",
+    "combine_arrays",
+    "inertia_from_radii",
+    "check_inertia",
+    "InertiaError",
+]

@@ -14,7 +14,7 @@
 * Mass properties: each item is distributed along the span (the box and ribs by their sized mass per unit span,
   the others by their planform area) and placed at the centroid of its chordwise band, at ±y on both halves
   with the dihedral; each band strip also has its chordwise own inertia m ℓ²/12. CG and the inertia tensor
-  about it (body axes) by :func:`certkit.models.mass.properties.combine`.
+  about it (body axes) by :func:`certkit.models.mass.properties.combine_arrays`.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import numpy as np
 from certkit.aircraft.model import InertiaTensor, Point
 from certkit.aircraft.model import MassComponent as FileComponent
 from certkit.errors import UserError
-from certkit.models.mass.properties import MassComponent, MassProperties, combine
+from certkit.models.mass.properties import MassProperties, combine_arrays
 from certkit.models.structure.box import BoxMaterial, BoxSizing, BoxStations, UltimateLoads, size_box
 
 ITEMS = ("covers", "webs", "non_optimum", "ribs", "leading_edge", "trailing_edge", "elevator", "fittings")
@@ -212,21 +212,23 @@ def _mass_properties(plan: TailPlanform, per_span: dict, band_of: dict) -> MassP
     x_le = plan.leading_edge_x()
     y = s * math.cos(plan.dihedral)
     z = plan.root_leading_edge[2] + s * math.sin(plan.dihedral)
-    items = []
+    masses, points, own = [], [], []
     for name, mps in per_span.items():
         start, end = band_of[name]
         x = x_le + 0.5 * (start + end) * plan.chord
         length = (end - start) * plan.chord
         m = mps * weights
-        for j in np.flatnonzero(m > 0):
-            own = np.diag([0.0, 1.0, 1.0]) * m[j] * length[j] ** 2 / 12.0
-            for side in (1.0, -1.0):
-                items.append(
-                    MassComponent(
-                        name,
-                        float(m[j]),
-                        (float(x[j]), float(side * y[j] + plan.root_leading_edge[1]), float(z[j])),
-                        own,
-                    )
-                )
-    return combine(items)
+        j = np.flatnonzero(m > 0)
+        # each loaded strip on the right half then the left: a slender rod along the chord (m l²/12 about y and z)
+        side = np.tile([1.0, -1.0], j.size)
+        mj, lj = np.repeat(m[j], 2), np.repeat(length[j], 2)
+        masses.append(mj)
+        points.append(
+            np.stack(
+                [np.repeat(x[j], 2), side * np.repeat(y[j], 2) + plan.root_leading_edge[1], np.repeat(z[j], 2)], axis=1
+            )
+        )
+        rods = np.zeros((mj.size, 3, 3))
+        rods[:, 1, 1] = rods[:, 2, 2] = 1.0 * mj * lj**2 / 12.0
+        own.append(rods)
+    return combine_arrays(np.concatenate(masses), np.concatenate(points), np.concatenate(own))
