@@ -9,6 +9,7 @@ import pytest
 
 from certkit.models.aero.interface import AeroState
 from certkit.models.aero.vlm import VortexLattice
+from certkit.models.aero.vlm.solver import _cross
 
 from .vlm_cases import elliptic_wing, rectangular_wing, transport
 
@@ -161,3 +162,28 @@ def test_spanwise_loading_integrates_to_total(transport_lattice):
     wing = sol.strips.for_surface("wing")
     assert np.all(np.diff(wing.y) > 0) and np.all(wing.area > 0)
     np.testing.assert_allclose(wing.c_cn, wing.chord * wing.cn)
+
+
+@pytest.mark.parametrize("mach", [0.0, 0.6])
+def test_unit_solutions_contract_over_the_inputs_set(mach):
+    """The bound-leg velocities of a unit solution (``_vortex_forces``, the strip loads' unit inputs) are contracted
+    over the inputs that are set only: the same bits, signed zeros included, as the contraction over all 6 + 6 m
+    inputs (those of zero add nothing) — for every unit input alone, its negative, and the freestream with one
+    rate or deflection on top."""
+    vl = VortexLattice(transport()).at_mach(mach)
+    k = vl.unit_bound_velocity.shape[1]
+    cases = []
+    for j in range(k):
+        for value in (1e-4, -1e-4):
+            ut = np.zeros(k)
+            ut[j] = value
+            cases.append(ut)
+            with_flow = ut.copy()
+            with_flow[0] += 1.0
+            cases.append(with_flow)
+    lat = vl.lattice
+    for ut in cases:
+        _, parts, _ = vl._vortex_forces(ut)
+        full = np.einsum("ikc,k->ic", vl.unit_bound_velocity, ut)
+        expected = 2.0 * (vl.unit_circulation @ ut)[:, None] * _cross(full, lat.rv2 - lat.rv1)
+        assert np.array_equal(parts[0], expected) and np.array_equal(np.signbit(parts[0]), np.signbit(expected))

@@ -519,7 +519,10 @@ class VortexLattice:
         they carry force) for the unit-input vector ``ut``, with their points of action."""
         lat = self.lattice
         gam = self.unit_circulation @ ut
-        vel = np.einsum("ikc,k->ic", self.unit_bound_velocity, ut)
+        # the contraction over the inputs set only (a unit solution sets one or two of the 6 + 6 m): those of zero add
+        # nothing, and reading their velocities (N × K × 3, a few hundred kB per Mach number) was most of the cost
+        nz = np.flatnonzero(ut)
+        vel = np.einsum("ikc,k->ic", self.unit_bound_velocity[:, nz, :], ut[nz])
         fparts = [2.0 * gam[:, None] * _cross(vel, lat.rv2 - lat.rv1)]
         rpts = [lat.rv]
         for pts, leg in self._leg_geometry() if self.trailing_leg_forces else ():
