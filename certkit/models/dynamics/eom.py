@@ -517,16 +517,7 @@ class AircraftModel:
         if thrust is None or not self._use_table:
             air = kernel.air_data(X)
         if thrust is None and self.thrust_compiled:
-            thrust = kernel.engine_forces(
-                air,
-                U,
-                idx,
-                self._turbofan,
-                self.throttle_slice.start,
-                self.operative,
-                np.ascontiguousarray(self.failed_thrust_fraction, dtype=float),
-                self._windmill,
-            )
+            thrust = kernel.engine_forces(air, U, idx, *self._engine_args())
         elif thrust is None:
             thrust = self.thrust_forces(air, U, rows)
         thrust = kernel_array(thrust)
@@ -535,18 +526,22 @@ class AircraftModel:
         )
         return xd, out, gear, thrust
 
-    def compiled_thrust_args(self) -> tuple:
-        """The arguments after the rows' controls that :func:`kernel.engine_forces` and :func:`kernel.derivatives` take
-        in :meth:`evaluate` for a model whose :attr:`thrust_compiled`: the engine model, the throttles' first column,
-        which engines run, the failed engines' thrust fractions and windmilling drag, then the model's arrays."""
+    def _engine_args(self) -> tuple:
+        """:func:`kernel.engine_forces`' arguments after the rows: the engine model, the throttles' first column, which
+        engines run, the failed engines' thrust fractions and windmilling drag."""
         return (
             self._turbofan,
             self.throttle_slice.start,
             self.operative,
             np.ascontiguousarray(self.failed_thrust_fraction, dtype=float),
             self._windmill,
-            *self._kernel_args,
         )
+
+    def compiled_thrust_args(self) -> tuple:
+        """The arguments :meth:`evaluate` gives :func:`kernel.engine_forces` and :func:`kernel.derivatives` after the
+        rows' state and controls, for a model whose :attr:`thrust_compiled`: the engines' (:meth:`_engine_args`), then
+        the model's arrays."""
+        return (*self._engine_args(), *self._kernel_args)
 
     @property
     def thrust_compiled(self) -> bool:

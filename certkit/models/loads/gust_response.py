@@ -139,9 +139,7 @@ def simulate_gust(
             loads, part, gb.model, surfaces, extra_alpha={s: extra[s] for s in surfaces if s in extra}, terms=terms
         )
         for s, (aero, inertia) in L.items():
-            if s not in hist:  # the run's histories, each phase written in place
-                hist[s] = np.empty((nt,) + aero.shape[1:])
-            np.add(aero[keep], inertia[keep], out=hist[s][rows])
+            hist[s] = phase_into(hist.get(s), nt, keep, rows, aero, inertia)
             if s in split:
                 if s not in kept:
                     kept[s] = (np.empty(hist[s].shape), np.empty(hist[s].shape))
@@ -201,6 +199,15 @@ def phase_records(parts) -> tuple[int, list[tuple[slice, slice]]]:
         slices.append((slice(None) if k == 0 else slice(1, None), slice(start, start + count)))
         start += count
     return start, slices
+
+
+def phase_into(hist, nt: int, keep: slice, rows: slice, aero: np.ndarray, inertia: np.ndarray) -> np.ndarray:
+    """The run's station-load history ``hist`` ((nt, …), made at the first phase when None) with one phase's loads,
+    aerodynamic plus inertial, written in place: its records ``keep`` at the run's ``rows`` (:func:`phase_records`)."""
+    if hist is None:
+        hist = np.empty((nt,) + aero.shape[1:])
+    np.add(aero[keep], inertia[keep], out=hist[rows])
+    return hist
 
 
 def phase_times(parts, k: int) -> np.ndarray:

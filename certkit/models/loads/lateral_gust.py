@@ -21,7 +21,7 @@ import numpy as np
 
 from certkit.models.dynamics.simulate import Function
 from certkit.models.loads.gust import penetration_lagged
-from certkit.models.loads.gust_response import phase_records, phase_times, two_phase_run, with_aero
+from certkit.models.loads.gust_response import phase_into, phase_records, phase_times, two_phase_run, with_aero
 from certkit.models.loads.response import response_load_parts
 
 FIN = "vertical_tail"
@@ -105,6 +105,5 @@ def simulate_lateral_gust(
     for k, (part, (keep, rows)) in enumerate(zip(parts, slices)):  # loads per phase (rate derivatives in its step)
         beta_g = felt(phase_times(parts, k))
         aero, inertia = response_load_parts(loads, part, lb.model, (FIN,), extra_beta={FIN: beta_g})[FIN]
-        hist = np.empty((nt,) + aero.shape[1:]) if hist is None else hist  # each phase written in place
-        np.add(aero[keep], inertia[keep], out=hist[rows])
+        hist = phase_into(hist, nt, keep, rows, aero, inertia)
     return sim, hist, felt(phase_times([sim], 0))
