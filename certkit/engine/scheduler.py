@@ -290,19 +290,24 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
     """The scheduled conditions no finding names, itself or refined (a finding's condition with more fields set).
     A refinement keeps the scheduled condition's loading, configuration, altitude and extra items, so the findings'
     conditions are indexed on those (per set of extra names the schedule uses) and each scheduled condition is
-    compared with its own bucket only (a design's loads rules schedule thousands of conditions)."""
-    covered = {f.condition for f in findings}
+    compared with its own bucket only (a design's loads rules schedule thousands of conditions). A condition names
+    itself too (:meth:`Condition.refines` holds for an equal one), so the buckets alone decide; the findings'
+    conditions enter them once per object (the findings of one condition share it)."""
+    covered = list({id(f.condition): f.condition for f in findings}.values())
     broad: dict[tuple[object, ...], list[Condition]] = {}
     for c in covered:
         broad.setdefault((c.loading, c.configuration), []).append(c)
     index: dict[tuple[str, ...], dict[tuple[object, ...], list[Condition]]] = {}
-    extras: dict[Condition, dict[str, object]] = {}  # each finding condition's extra items, read once
+    extras: dict[int, dict[str, object]] = {}  # each finding condition's extra items (by object), read once
+    by_names: dict[frozenset[str], list[Condition]] = {}  # the findings' conditions by the names of their extra items
+    everywhere: set[Condition] | None = None
     out = []
     for cond in conditions:
-        if cond in covered:
-            continue
         candidates: Iterable[Condition]
         if cond.loading is None or cond.configuration is None:
+            everywhere = set(covered) if everywhere is None else everywhere
+            if cond in everywhere:
+                continue
             candidates = covered
         elif cond.altitude is None:
             candidates = broad.get((cond.loading, cond.configuration), [])
@@ -310,8 +315,14 @@ def _uncovered(conditions: list[Condition], findings: list[Finding]) -> list[Con
             names = tuple(k for k, _ in cond.extra)
             table = index.get(names)
             if table is None:
-                extras = extras or {c: dict(c.extra) for c in covered}
-                table = index[names] = _refinement_index(extras, names)
+                if not extras:
+                    extras = {id(c): dict(c.extra) for c in covered}
+                    for c in covered:
+                        by_names.setdefault(frozenset(extras[id(c)]), []).append(c)
+                need = frozenset(names)  # a refinement carries every extra item of the scheduled condition
+                table = index[names] = _refinement_index(
+                    [c for have, group in by_names.items() if need <= have for c in group], extras, names
+                )
             candidates = table.get(_place(cond, names, dict(cond.extra)), [])
         if not any(c.refines(cond) for c in candidates):
             out.append(cond)
@@ -326,13 +337,13 @@ _ABSENT = object()  # an extra item a finding's condition does not carry (never 
 
 
 def _refinement_index(
-    covered: Mapping[Condition, dict[str, object]], names: tuple[str, ...]
+    covered: list[Condition], extras: Mapping[int, dict[str, object]], names: tuple[str, ...]
 ) -> dict[tuple[object, ...], list[Condition]]:
-    """The findings' conditions (each with its extra items) keyed on what a refinement of a scheduled condition with
-    extra items ``names`` keeps: loading, configuration, altitude and those items' values."""
+    """The findings' conditions (``extras``: each one's extra items, by object) keyed on what a refinement of a
+    scheduled condition with extra items ``names`` keeps: loading, configuration, altitude and those items' values."""
     table: dict[tuple[object, ...], list[Condition]] = {}
-    for c, extra in covered.items():
-        table.setdefault(_place(c, names, extra), []).append(c)
+    for c in covered:
+        table.setdefault(_place(c, names, extras[id(c)]), []).append(c)
     return table
 
 

@@ -134,6 +134,32 @@ def test_declared_clmax_is_the_peak_of_the_lift_curve():
         assert float(m.clmax(mach)) == clmax
 
 
+def test_each_mach_breakpoint_calibrates_its_clmax_as_it_would_alone():
+    """The breakpoints still iterating are evaluated in one batch: a breakpoint's calibrated CLmax must not depend on
+    the others' (at a breakpoint the lift curve reads that breakpoint's CLmax alone), bit for bit — here the
+    neighbours' declared CLmax and lift slopes are changed, so that they also take other numbers of iterations."""
+    from certkit.models.aero.interface import AeroReference
+
+    ref_ = AeroReference(400.0, 60.0, 7.0, 30.0)
+
+    def internal(cl_alpha, clmax):
+        m = StabilityDerivativeModel(
+            ref_,
+            {"CL0": 0.2, "CL_alpha": cl_alpha, "CD0": 0.02, "k": 0.04},
+            mach=[0.2, 0.5, 0.8],
+            stall=StallModel(CLmax=clmax),
+        )
+        return m.kernel_data[2]
+
+    a = internal([5.5, 6.0, 7.5], [1.5, 1.45, 1.3])
+    b = internal([4.0, 6.0, 9.0], [1.1, 1.45, 1.7])
+    assert a[1] == b[1] and a[0] != b[0] and a[2] != b[2]
+    alone = StabilityDerivativeModel(
+        ref_, {"CL0": 0.2, "CL_alpha": 6.0, "CD0": 0.02, "k": 0.04}, mach=[0.5], stall=StallModel(CLmax=1.45)
+    )
+    assert alone.kernel_data[2][0] == a[1]
+
+
 def test_a_copy_with_further_controls_keeps_the_calibrated_clmax():
     """A copy with more control terms (a gust pseudo-control) skips the CLmax calibration: it must hold exactly what
     calibrating it afresh gives (controls neutral see only the base terms)."""

@@ -194,30 +194,39 @@ class StabilityDerivativeModel:
         """Make the declared CLmax the largest lift coefficient the model reaches (controls neutral, at each Mach
         breakpoint): the rounding and the onset of the separated-flow blend keep the curve's peak below the
         CLmax they are written with (by about 15 % with the default widths), so that internal value is raised
-        until the peak of the lift curve equals the declared one (a fixed-point iteration on the ratio)."""
+        until the peak of the lift curve equals the declared one (a fixed-point iteration on the ratio). The
+        breakpoints still iterating are evaluated in one batch: at a breakpoint the kernel reads that breakpoint's
+        CLmax alone (interpolation weights 0 and 1), so each iterates as it would by itself."""
         internal = self._clmax
-        for k, mach in enumerate(self.mach):
-            cla = max(abs(float(self._table[self._index["CL_alpha"], k])), 1e-3)
-            cl0 = float(self._table[self._index["CL0"], k])
-            for _ in range(iterations):
-                alpha_s = (internal[k] - cl0) / cla
-                alpha = np.linspace(alpha_s - 0.2, alpha_s + self.stall.break_delta + 4 * self.stall.break_width, 801)
-                z = np.zeros_like(alpha)
-                peak = float(
-                    coefficients_batch(
-                        *self.kernel_data,
-                        alpha,
-                        z,
-                        z,
-                        z,
-                        z,
-                        np.full_like(alpha, mach),
-                        np.zeros((alpha.size, len(self.control_names))),
-                    )[:, 0].max()
-                )
-                if abs(peak - self._clmax_declared[k]) < 1e-5:
-                    break
-                internal[k] *= self._clmax_declared[k] / peak
+        points = 801
+        cla = np.array([max(abs(float(self._table[self._index["CL_alpha"], k])), 1e-3) for k in range(self.mach.size)])
+        cl0 = np.array([float(self._table[self._index["CL0"], k]) for k in range(self.mach.size)])
+        going = list(range(self.mach.size))
+        for _ in range(iterations):
+            if not going:
+                break
+            starts = [(internal[k] - cl0[k]) / cla[k] for k in going]  # each breakpoint's stall angle
+            alpha = np.concatenate(
+                [np.linspace(a - 0.2, a + self.stall.break_delta + 4 * self.stall.break_width, points) for a in starts]
+            )
+            z = np.zeros_like(alpha)
+            cl = coefficients_batch(
+                *self.kernel_data,
+                alpha,
+                z,
+                z,
+                z,
+                z,
+                np.repeat(self.mach[going], points),
+                np.zeros((alpha.size, len(self.control_names))),
+            )[:, 0]
+            left = []
+            for b, k in enumerate(going):
+                peak = float(cl[b * points : (b + 1) * points].max())
+                if not abs(peak - self._clmax_declared[k]) < 1e-5:  # (a NaN peak goes on, as it would alone)
+                    internal[k] *= self._clmax_declared[k] / peak
+                    left.append(k)
+            going = left
 
     # ------------------------------------------------------------------ helpers
     @property
@@ -289,18 +298,21 @@ class StabilityDerivativeModel:
 
     def without_stall(self) -> "StabilityDerivativeModel":
         """A copy with linear lift (no stall model): for balanced load states on the V–n envelope's stall line,
-        whose lift coefficient C_N,max the rounded stall model does not reach."""
-        derivs = self._nonzero_terms()
-        return StabilityDerivativeModel(
-            self.reference,
-            derivs,
-            mach=self.mach,
-            control_names=self.control_names,
-            after_stall=self.after_stall,
-            alpha_drag=self.uses_alpha_drag,
-            tail_downwash=self.tail_downwash,
-            flap_lift=self.flap_lift,
-        )
+        whose lift coefficient C_N,max the rounded stall model does not reach. Made once per model (the balanced
+        manoeuvres and the stall-line test of every response ask for it)."""
+        linear = self.__dict__.get("_linear")
+        if linear is None:
+            linear = self._linear = StabilityDerivativeModel(
+                self.reference,
+                self._nonzero_terms(),
+                mach=self.mach,
+                control_names=self.control_names,
+                after_stall=self.after_stall,
+                alpha_drag=self.uses_alpha_drag,
+                tail_downwash=self.tail_downwash,
+                flap_lift=self.flap_lift,
+            )
+        return linear
 
     def with_control_terms(
         self, terms: Mapping[str, float | Sequence[float]], after_stall: Sequence[str] = ()

@@ -62,10 +62,11 @@ STEERING = "nose_wheel_steering"
 
 def airplane_to_body(points, cg) -> np.ndarray:
     """Airplane-frame points (X aft, Y right, Z up), shape (..., 3), to body axes about ``cg``."""
-    points = np.asarray(points, dtype=float)
-    cg = np.asarray(cg, dtype=float)
-    d = points - cg
-    return np.stack([-d[..., 0], d[..., 1], -d[..., 2]], axis=-1)
+    return (np.asarray(points, dtype=float) - np.asarray(cg, dtype=float)) * _AIRPLANE_TO_BODY
+
+
+#: the signs turning airplane-frame offsets into body axes (X forward, Y right, Z down): a product by ±1 is exact
+_AIRPLANE_TO_BODY = np.array([-1.0, 1.0, -1.0])
 
 
 @dataclass

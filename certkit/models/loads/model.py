@@ -36,6 +36,7 @@ the strips by :mod:`certkit.models.loads.fuel`), so that any fuel state is a lin
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -97,6 +98,11 @@ class SurfaceLoads:
     @property
     def structural_mass(self) -> float:
         return float(self.strip_mass.sum())
+
+    @functools.cached_property
+    def top_mach(self) -> float:
+        """The highest Mach breakpoint of the unit tables (beyond it they are held, not computed)."""
+        return float(np.max(self.mach))
 
     def input_for_lift(self, name: str, lift_per_qbar, mach) -> np.ndarray:
         """The value of input ``name`` whose force along airplane Z on this surface is ``lift_per_qbar`` (m², per unit

@@ -151,7 +151,7 @@ def beyond_mach_range(loads, mach: float) -> str | None:
     """The reason a condition at Mach ``mach`` is not evaluated when it lies beyond the Mach breakpoints of the strip
     loads model ``loads`` (the airplane's aerodynamic tables share them): its loads and lift would be extrapolated
     (held at the last breakpoint) — None within the range."""
-    top = float(np.max(loads["wing"].mach))
+    top = loads["wing"].top_mach
     if mach <= top + 1e-3:
         return None
     return (
