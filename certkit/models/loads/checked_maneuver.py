@@ -10,8 +10,12 @@ amplitude is searched up to ``max_hold`` (``held_short`` when even that does not
 itself it would start a hold search whose bracket does not hold the aim, and end at the longest hold, far beyond the
 load factor.) The search (:func:`bisect_batch`, regula falsi) aims there and ends within ``resolution`` of it: the
 smallest input that reaches the load factor, so that near the stall line, where the peak is nearly flat in the
-amplitude, the input does not jump between neighbouring conditions. An amplitude search that did not converge and
-ends above the target takes the largest amplitude found below it; a hold takes the bracket end at or above it.
+amplitude, the input does not jump between neighbouring conditions. The peak is linear in a small amplitude and bends
+over near the stall line, where the aim often sits: an amplitude search's first step probes :data:`PROBE` of the
+available amplitude and its second goes where that line reaches the aim (the chord from zero to the full amplitude,
+flat near the stall, would creep along the bend and leave conditions outside the resolution after its steps). An
+amplitude search that did not converge and ends above the target takes the largest amplitude found below it; a hold
+takes the bracket end at or above it.
 
 Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the local cubic of
 :func:`~certkit.models.dynamics.sampled_peak.peak_between_samples`: the sampled extreme alone is not monotone in the
@@ -29,7 +33,12 @@ from numpy.typing import ArrayLike
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.sampled_peak import peak_between_samples
 from certkit.models.dynamics.simulate import Bound, SimulationResult, simulate
-from certkit.models.loads.inputs import SinusoidHold, bisect_batch
+from certkit.models.loads.inputs import SinusoidHold, bisect_batch, linear_probe
+
+#: the amplitude search's first step: this fraction of the available amplitude, where the response is still linear in
+#: it (numerical choice: the checked manoeuvre's load factor bends over near the stall line, at 20–35 % of the
+#: available elevator in the seed study's conditions)
+PROBE = 0.1
 
 
 @dataclass
@@ -116,16 +125,26 @@ def checked_maneuver_inputs(
         return response(amp, hold, mask)
 
     search = ~held_short
+    lo, f_lo = np.zeros(n), np.where(reach, 0.0, r_full)
+    hi, f_hi = np.ones(n), np.where(reach, r_full, r_held)
+    first = np.full(n, np.nan)
+    probe = reach & (np.abs(r_full - aim) > float(resolution))  # an amplitude search with a step to take
+    if steps > 1 and probe.any():  # the probe is the amplitude search's first step (module docstring)
+        b_lo, fb_lo, b_hi, fb_hi, first = linear_probe(searched, aim, r_full, probe, PROBE)
+        lo, f_lo = np.where(probe, b_lo, lo), np.where(probe, fb_lo, f_lo)
+        hi, f_hi = np.where(probe, b_hi, hi), np.where(probe, fb_hi, f_hi)
+        steps -= 1
     p, r_p, p_lo, _, p_hi, _ = bisect_batch(
         searched,
-        np.zeros(n),
-        np.ones(n),
+        lo,
+        hi,
         aim,
         steps=int(steps),
         tol=np.where(reach, float(resolution), 0.0),
-        f_lo=np.where(reach, 0.0, r_full),
-        f_hi=np.where(reach, r_full, r_held),
+        f_lo=f_lo,
+        f_hi=f_hi,
         x_tol=np.where(reach, 0.0, float(hold_resolution) / longest),
+        first=first,
     )
     # the hold is the minimum time that reaches the load factor: take the bracket end at or above it; an
     # amplitude search that did not converge (a response that jumps across the target near stall) takes the

@@ -169,7 +169,12 @@ CHECKED_CRITERIA = {
     "mistrim_seconds": MISTRIM_SECONDS,
     "n_nose_down": Criterion(0.0, "", "14 CFR 25.331(c)(2)", "load factor the nose-down manoeuvre reaches"),
     "time_step": Criterion(0.04, "s", "certkit numerical choice (RK4; ω·dt ≤ 0.15)", "simulation step"),
-    "search_steps": Criterion(10, "", "certkit numerical choice", "batched regula-falsi steps on δ₁ or Δt"),
+    "search_steps": Criterion(
+        10,
+        "",
+        "certkit numerical choice",
+        "batched steps on δ₁ (the first probing the linear response) or Δt, regula falsi",
+    ),
     "load_factor_tolerance": Criterion(
         0.02,
         "",
