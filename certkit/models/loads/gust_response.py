@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from certkit.models.dynamics.eom import AircraftModel
-from certkit.models.dynamics.simulate import Function, SimulationResult, simulate
+from certkit.models.dynamics.simulate import Function, Histories, SimulationResult, simulate
 from certkit.models.loads.gust import gust_aero, gust_tables, penetration_lagged
 from certkit.models.loads.response import inertia_terms, response_load_parts
 
@@ -235,18 +235,16 @@ def _concatenate(parts):
         def grid(p):
             return p.t
 
-    t, hist, ctrl = [grid(parts[0])], {k: [v] for k, v in parts[0].history.items()}, [parts[0].controls]
+    t, ctrl = [grid(parts[0])], [parts[0].controls]
     offset = grid(parts[0])[-1]
     for p in parts[1:]:
         t.append(grid(p)[1:] + offset)
-        for k in hist:
-            hist[k].append(p.history[k][1:])
         ctrl.append(p.controls[1:])
         offset = offset + grid(p)[-1]
     last = parts[-1]
     return SimulationResult(
         np.concatenate(t),
-        {k: np.concatenate(v) for k, v in hist.items()},
+        Histories.joined([p.history for p in parts]),
         np.concatenate(ctrl),
         parts[0].control_names,
         parts[0].stop_time,
