@@ -18,7 +18,10 @@ lag). Inputs are held over each simulation step, so the step must resolve the gu
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
+from numba import njit
 
 GUST_CONTROLS = ("gust_wing", "gust_tail")
 
@@ -44,29 +47,45 @@ def penetration_lagged(s, H, Uds, chord):
     1 − cos gust of gradient ``H`` (m) and peak ``Uds`` for a surface of mean chord ``chord`` (m): the gust's slope
     convolved with Küssner's function :data:`KUSSNER`, in closed form (each exponential is a first-order lag of the
     slope, dy/dσ = −b y + dw/dσ, integrated exactly for the sine slope and decaying after the gust). Tends to
-    :func:`one_minus_cosine` as the gust grows long against the chord."""
-    sigma = 2.0 * np.asarray(s, dtype=float) / chord
+    :func:`one_minus_cosine` as the gust grows long against the chord. Element by element in one compiled pass
+    (:func:`_penetration_lagged_into`)."""
+    s = np.asarray(s, dtype=float)
+    Uds = np.asarray(Uds, dtype=float)
+    shape = np.broadcast_shapes(s.shape, Uds.shape)
     w = np.pi * chord / (2.0 * H)  # the gust's angular frequency per semichord
-    end = 4.0 * H / chord
-    inside = np.clip(sigma, 0.0, end)
-    out = one_minus_cosine(s, H, Uds)
-    # the lag's closed form varies only within the gust: before it the slope's lag is nil (masked below), after it the
-    # value at the gust's end (the functions evaluated only where their argument changes)
-    crossing = (inside > 0.0) & (inside < end)
-    some = crossing.any()
-    for a_k, b_k in KUSSNER:
-        lag = np.where(inside > 0.0, _lag_numerator(np.float64(end), w, b_k), _lag_numerator(np.float64(0.0), w, b_k))
-        if some:
-            lag[crossing] = _lag_numerator(inside[crossing], w, b_k)
-        lag = lag / (b_k**2 + w**2)
-        lag = 0.5 * Uds * w * lag * np.exp(-b_k * np.maximum(sigma - end, 0.0))
-        out = out - a_k * np.where(sigma > 0.0, lag, 0.0)
+    lags = np.array([(a_k, b_k, b_k**2 + w**2) for a_k, b_k in KUSSNER], dtype=float)
+    out = np.empty(shape)
+    _penetration_lagged_into(
+        np.array(np.broadcast_to(s, shape), order="C").ravel(),  # copies: writable, C-ordered (one compiled type)
+        np.array(np.broadcast_to(Uds, shape), order="C").ravel(),
+        float(H),
+        float(chord),
+        float(w),
+        4.0 * H / chord,
+        lags,
+        out.reshape(-1),
+    )
     return out
 
 
-def _lag_numerator(x, w, b):
-    """b sin(w x) − w cos(w x) + w e^(−b x): the slope's first-order lag at σ = x within the gust (over b² + w²)."""
-    return b * np.sin(w * x) - w * np.cos(w * x) + w * np.exp(-b * x)
+@njit(cache=True)
+def _penetration_lagged_into(s, uds, H, chord, w, end, lags, out):
+    """:func:`penetration_lagged` of the flat penetrations ``s`` and peaks ``uds`` into ``out``: the 1 − cos gust
+    (zero outside 0 ≤ s ≤ 2H) less each lag of ``lags`` (rows A_k, b_k, b_k² + w²): the slope's lag at σ clipped to the
+    gust (``end`` = 4H/c semichords), (b sin(wσ) − w cos(wσ) + w e^(−bσ)) / (b² + w²), decaying as e^(−b_k (σ − end))
+    after the gust and nil before it."""
+    for i in range(s.size):
+        si = s[i]
+        half_peak = 0.5 * uds[i]
+        value = half_peak * (1 - math.cos(np.pi * si / H)) if (si >= 0) and (si <= 2 * H) else 0.0
+        sigma = 2.0 * si / chord
+        inside = min(max(sigma, 0.0), end)
+        for k in range(lags.shape[0]):
+            a_k, b_k = lags[k, 0], lags[k, 1]
+            lag = (b_k * math.sin(w * inside) - w * math.cos(w * inside) + w * math.exp(-b_k * inside)) / lags[k, 2]
+            lag = half_peak * w * lag * math.exp(-b_k * max(sigma - end, 0.0))
+            value = value - a_k * (lag if sigma > 0.0 else 0.0)
+        out[i] = value
 
 
 def penetration_transfer(omega, chord):
