@@ -255,18 +255,23 @@ EULER = ("phi", "theta", "psi")
 class Histories(Mapping[str, np.ndarray]):
     """A run's recorded histories by name (:data:`RECORDED` order), each (nt, n). The Euler angles (:data:`EULER`)
     are converted from the recorded attitude quaternions ``quat`` (nt, n, 4) when one is first read: most runs (the
-    loads' gusts and manoeuvres) read none, and the conversion was 1.6 % of a design."""
+    loads' gusts and manoeuvres) read none, and the conversion was 1.6 % of a design. Runs joined end to end
+    (:meth:`joined`) join a history when it is first read."""
 
-    __slots__ = ("_values", "_quat")
+    __slots__ = ("_values", "_quat", "_parts")
 
-    def __init__(self, values: dict[str, np.ndarray], quat: np.ndarray):
-        self._values, self._quat = values, quat
+    def __init__(self, values: dict[str, np.ndarray], quat: np.ndarray | None, parts: Sequence["Histories"] = ()):
+        self._values, self._quat, self._parts = values, quat, tuple(parts)
 
     def __getitem__(self, key: str) -> np.ndarray:
-        if key in EULER and key not in self._values:
-            eul = quat_to_euler(self._quat)
-            self._values.update(phi=eul[:, :, 0], theta=eul[:, :, 1], psi=eul[:, :, 2])
-        return self._values[key]
+        values = self._values
+        if key not in values:
+            if key in EULER:
+                eul = quat_to_euler(self._quaternions())
+                values.update(phi=eul[:, :, 0], theta=eul[:, :, 1], psi=eul[:, :, 2])
+            elif self._parts and key in RECORDED:
+                values[key] = self._join(lambda p: p[key])
+        return values[key]
 
     def __iter__(self) -> Iterator[str]:
         return iter(RECORDED)
@@ -274,17 +279,21 @@ class Histories(Mapping[str, np.ndarray]):
     def __len__(self) -> int:
         return len(RECORDED)
 
+    def _quaternions(self) -> np.ndarray:
+        if self._quat is None:
+            self._quat = self._join(lambda p: p._quaternions())
+        return self._quat
+
+    def _join(self, get: Callable[["Histories"], np.ndarray]) -> np.ndarray:
+        parts = self._parts
+        return np.concatenate([get(parts[0])] + [get(p)[1:] for p in parts[1:]])
+
     @staticmethod
     def joined(parts: Sequence["Histories"]) -> "Histories":
         """The histories of consecutive runs ``parts`` end to end, each after the first without its first record
         (a repeat of the previous run's last); the quaternions joined likewise, so the angles convert as they would
-        part by part (element by element)."""
-
-        def join(get: Callable[["Histories"], np.ndarray]) -> np.ndarray:
-            return np.concatenate([get(parts[0])] + [get(p)[1:] for p in parts[1:]])
-
-        names = [k for k in RECORDED if k not in EULER]
-        return Histories({k: join(lambda p, k=k: p._values[k]) for k in names}, join(lambda p: p._quat))
+        part by part (element by element). Each history is joined when first read."""
+        return Histories({}, None, parts)
 
 
 @dataclass

@@ -73,18 +73,32 @@ def _penetration_lagged_into(s, uds, H, chord, w, end, lags, out):
     """:func:`penetration_lagged` of the flat penetrations ``s`` and peaks ``uds`` into ``out``: the 1 − cos gust
     (zero outside 0 ≤ s ≤ 2H) less each lag of ``lags`` (rows A_k, b_k, b_k² + w²): the slope's lag at σ clipped to the
     gust (``end`` = 4H/c semichords), (b sin(wσ) − w cos(wσ) + w e^(−bσ)) / (b² + w²), decaying as e^(−b_k (σ − end))
-    after the gust and nil before it."""
+    after the gust and nil before it. Within the gust the lags share the sine and cosine of wσ (and decay by
+    e⁰ = 1, left out: exact); past it they share their value at the gust's end, computed once."""
+    n_lag = lags.shape[0]
+    at_end = np.empty(n_lag)
+    sin_end, cos_end = math.sin(w * end), math.cos(w * end)
+    for k in range(n_lag):
+        b_k = lags[k, 1]
+        at_end[k] = (b_k * sin_end - w * cos_end + w * math.exp(-b_k * end)) / lags[k, 2]
     for i in range(s.size):
         si = s[i]
         half_peak = 0.5 * uds[i]
         value = half_peak * (1 - math.cos(np.pi * si / H)) if (si >= 0) and (si <= 2 * H) else 0.0
         sigma = 2.0 * si / chord
-        inside = min(max(sigma, 0.0), end)
-        for k in range(lags.shape[0]):
-            a_k, b_k = lags[k, 0], lags[k, 1]
-            lag = (b_k * math.sin(w * inside) - w * math.cos(w * inside) + w * math.exp(-b_k * inside)) / lags[k, 2]
-            lag = half_peak * w * lag * math.exp(-b_k * max(sigma - end, 0.0))
-            value = value - a_k * (lag if sigma > 0.0 else 0.0)
+        if sigma > 0.0 and sigma < end:  # within the gust
+            sn, cs = math.sin(w * sigma), math.cos(w * sigma)
+            for k in range(n_lag):
+                a_k, b_k = lags[k, 0], lags[k, 1]
+                lag = (b_k * sn - w * cs + w * math.exp(-b_k * sigma)) / lags[k, 2]
+                value = value - a_k * (half_peak * w * lag)
+        elif sigma > 0.0:  # past it (σ ≥ end)
+            for k in range(n_lag):
+                a_k, b_k = lags[k, 0], lags[k, 1]
+                value = value - a_k * (half_peak * w * at_end[k] * math.exp(-b_k * (sigma - end)))
+        else:  # before it (or σ not a number): no lag
+            for k in range(n_lag):
+                value = value - lags[k, 0] * 0.0
         out[i] = value
 
 
