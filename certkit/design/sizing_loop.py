@@ -42,7 +42,7 @@ from certkit.design.tail_group import (
 from certkit.design.tail_loads import SURFACE, TailLoadEnvelope, near_critical_conditions, tail_load_envelope
 from certkit.design.variables import Setting, design_aircraft
 from certkit.engine.context import Context
-from certkit.engine.registry import HINGE_MOMENT, producers
+from certkit.engine.registry import HINGE_MOMENT, Loads, producers
 from certkit.engine.scheduler import evaluate_rule
 from certkit.models.loads.model import airplane_loads
 from certkit.models.structure.actuators import size_elevator_actuators
@@ -227,6 +227,12 @@ class SizingRules:
         return [r for r in results if r.id in self.hinge]
 
 
+#: the loads a sizing pass reads (:func:`tail_load_envelope`, :func:`design_hinge_moment`): a near-critical pass
+#: asks the rules for these only (``evaluate_rule`` ``wanted``); the full pass computes everything, its findings the
+#: verdicts
+SIZING_LOADS = frozenset({Loads(SURFACE), Loads("elevator", HINGE_MOMENT)})
+
+
 def sizing_rules(rules: Sequence[type[Rule]]) -> SizingRules:
     tail = producers(rules, SURFACE)
     hinge = producers(rules, "elevator", HINGE_MOMENT)
@@ -350,7 +356,13 @@ def size_horizontal_tail_loop(
         ctx.aero("clean"), airplane_loads(ctx)  # lattice, aerodynamic and strip-loads models (timed apart)
         aero_seconds += time.perf_counter() - t_aero
         results = evaluate_rules(
-            loads_rules, ctx, jobs, evidence=False, keep_loads=True, select=start_points if partial else None
+            loads_rules,
+            ctx,
+            jobs,
+            evidence=False,
+            keep_loads=True,
+            select=start_points if partial else None,
+            wanted=SIZING_LOADS if partial else None,
         )
         if base_act is None:  # iteration 0 of an unchanged geometry flies the declared airplane: its actuators
             base_act = _baseline_value(base_aircraft, ctx, results, chosen)

@@ -231,6 +231,15 @@ class Rule:
     run_with: ClassVar[str] = ""
     produces: ClassVar[tuple[Loads, ...]] = ()
     offers: ClassVar[tuple[ModeResponses | ControlResponses, ...]] = ()
+    #: the loads the caller of this evaluation wants (:func:`certkit.engine.scheduler.evaluate_rule` ``wanted``: a
+    #: design loop's sizing passes want the horizontal tail's); None: everything the rule computes
+    wanted: "frozenset[Loads] | None" = None
+
+    def computes(self, surface: str, kind: str = STATION_LOADS) -> bool:
+        """Does this evaluation compute ``kind`` loads of ``surface`` (and the findings on them)? Always, but for a
+        caller that wants other loads only (:attr:`wanted`): the rule may then leave them out — a partial result, as
+        an evaluation at selected conditions is, never a verdict."""
+        return self.wanted is None or Loads(surface, kind) in self.wanted
 
     def evaluate(self, ctx: "Context", conditions: list["Condition"], criteria: Criteria) -> list["Finding"]:
         """Return findings for the conditions (any number per condition, each naming its condition)."""

@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any
 from certkit import __version__
 from certkit.aircraft import LoadedAircraft
 from certkit.engine.context import Context
-from certkit.engine.registry import Criteria, DiscoveryOptions, PluginError, Rule, discover, exit_called
+from certkit.engine.registry import Criteria, DiscoveryOptions, Loads, PluginError, Rule, discover, exit_called
 from certkit.engine.results import Condition, Finding, RuleResult, RunResult, SimulationRun
 from certkit.engine.worker_processes import die_with_parent, stop_pool
 from certkit.errors import InputError, Problem, UserError
@@ -187,15 +187,17 @@ def evaluate_rule(
     evidence: bool = True,
     keep_loads: bool = False,
     only: list[Condition] | None = None,
+    wanted: frozenset[Loads] | None = None,
 ) -> RuleResult:
     """Evaluate one rule on the context's aircraft; ``evidence=False`` skips the plots and tables (a design
     evaluation reads only the findings); ``keep_loads`` keeps the rule's load envelopes on the result. ``only``
     (conditions, e.g. of another airplane) restricts the evaluation to the scheduled conditions that are the same
-    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict. After the
+    points (:meth:`Condition.same_point`) — a partial result, for a design loop's start, never a verdict; so does
+    ``wanted``, the loads the caller reads (:attr:`Rule.wanted`: a rule may leave the others out). After the
     rule's own findings come one ``not_evaluated`` finding per sub-paragraph it does not evaluate
     (:attr:`Rule.unevaluated`)."""
     try:
-        result = _evaluate_own(rule, ctx, evidence, keep_loads, only)
+        result = _evaluate_own(rule, ctx, evidence, keep_loads, only, wanted)
     except SystemExit as exc:  # in a worker the pool would carry it to the parent, which would end with its code
         raise PluginError(f"rule {rule.id} ({rule.origin}): {exit_called(exc)}") from None
     result.findings += [Finding.outside_scope(para, why) for para, why in rule.unevaluated]
@@ -203,9 +205,15 @@ def evaluate_rule(
 
 
 def _evaluate_own(
-    rule: type[Rule], ctx: Context, evidence: bool, keep_loads: bool, only: list[Condition] | None = None
+    rule: type[Rule],
+    ctx: Context,
+    evidence: bool,
+    keep_loads: bool,
+    only: list[Condition] | None = None,
+    wanted: frozenset[Loads] | None = None,
 ) -> RuleResult:
     instance = rule()
+    instance.wanted = wanted
     criteria, overrides = criteria_for(rule, ctx)
     result = RuleResult(
         rule.id,
@@ -244,6 +252,10 @@ def _evaluate_own(
             c for c in conditions if any(k.same_point(c) for k in by_place.get((c.loading, c.configuration), ()))
         ]
         result.notes.append(f"partial evaluation: {len(conditions)} selected conditions")
+    if wanted is not None:
+        result.notes.append(
+            "partial evaluation: the " + ", ".join(sorted(f"{w.surface} {w.kind}" for w in wanted)) + " loads wanted"
+        )
     if not conditions:
         result.findings.append(
             Finding.not_evaluated(

@@ -207,3 +207,31 @@ def test_the_factor_of_safety_in_force_sizes_the_box(baseline, tmp_path):
     assert raised["details"]["sizing"]["envelope"]["ultimate_factor"] == 1.65
     box, box_raised = (r["responses"]["sizing.ht_box_mass_kg"] for r in (baseline, raised))
     assert 1.02 * box < box_raised < 1.10 * box
+
+
+def test_a_sizing_pass_gets_the_tail_loads_of_the_whole_rule(monkeypatch):
+    """A near-critical pass asks the loads rules for what the sizing reads (``SIZING_LOADS``: the horizontal tail's
+    station loads and the elevator's hinge moments). §25.341(a) then flies no lateral gust and computes no wing load,
+    and its tail envelope and the points it hands the next pass are those of the rule evaluated whole at the same
+    points, bit for bit; the full pass (nothing asked) computes every surface."""
+    from certkit.aircraft import load_aircraft
+    from certkit.design.sizing_loop import SIZING_LOADS
+    from certkit.design.tail_loads import SURFACE, near_critical_conditions
+    from certkit.engine.context import Context
+    from certkit.engine.registry import discover
+    from certkit.engine.scheduler import evaluate_rule
+
+    rule = next(r for r in discover() if r.id == "25.341(a)")
+    ctx = Context(load_aircraft(BASELINE))
+    points = rule.conditions.expand(ctx.aircraft)[::12]
+    whole = evaluate_rule(rule, ctx, evidence=False, keep_loads=True, only=points)
+    tail = evaluate_rule(rule, ctx, evidence=False, keep_loads=True, only=points, wanted=SIZING_LOADS)
+    checks = [{f.check for f in r.findings} for r in (whole, tail)]
+    assert any("lateral" in c for c in checks[0]) and any(", wing" in c for c in checks[0])
+    assert not any("lateral" in c or ", wing" in c for c in checks[1])
+    assert any(SURFACE.replace("_", " ") in c for c in checks[1])
+    (env_whole, *_), (env_tail, *more) = whole.load_envelopes, tail.load_envelopes
+    assert not more and set(env_tail.peaks) == {SURFACE}
+    assert env_tail.keys == env_whole.keys
+    assert env_tail.peaks[SURFACE].tobytes() == env_whole.peaks[SURFACE].tobytes()
+    assert near_critical_conditions([tail], 0.8) == near_critical_conditions([whole], 0.8)

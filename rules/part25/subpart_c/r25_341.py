@@ -100,7 +100,8 @@ class DiscreteGust(SimulationRule):
     )
 
     def simulate(self, ctx, conditions, crit):
-        return discrete_gusts(ctx, conditions, crit)
+        surfaces = tuple(s for s in SURFACES if self.computes(s))
+        return discrete_gusts(ctx, conditions, crit, surfaces, lateral=self.computes(FIN))
 
     def evidence(self, ctx, findings, crit):
         run = self.run
@@ -130,10 +131,12 @@ class GustRun(LoadsRun):
         return [e for e in (self.envelope, self.lateral_envelope) if e is not None]
 
 
-def discrete_gusts(ctx, conditions, crit) -> GustRun:
-    runs = gust_runs(ctx, conditions, crit)
+def discrete_gusts(ctx, conditions, crit, surfaces=SURFACES, lateral: bool = True) -> GustRun:
+    """The vertical gusts' findings on ``surfaces`` (the wing and the horizontal tail, or the tail alone) and, with
+    ``lateral``, the lateral gusts' on the fin."""
+    runs = gust_runs(ctx, conditions, crit, surfaces)
     findings = refusal_findings(
-        runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}" for s in SURFACES]
+        runs.refused, lambda c: [f"(a) discrete gust, {c.get('gust')}, {s.replace('_', ' ')}" for s in surfaces]
     )
     if not runs.conditions:
         return GustRun(findings, reason="no condition could be trimmed (see the findings)")
@@ -148,7 +151,7 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
         runs.v_eas,
         runs.altitude,
     )
-    caps = {s: declared_capabilities(ctx, s) for s in SURFACES}
+    caps = {s: declared_capabilities(ctx, s) for s in surfaces}
     # information, not a criterion: the §25.333 manoeuvring envelope's load factor at each speed (§25.337), to
     # show where gusts load the airplane beyond the manoeuvres (since Amdt. 25-86 there is no gust V–n envelope)
     n_env = [
@@ -159,7 +162,7 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
         sense = 1 if up[i] else 0
         j_nz = int(np.argmax(nz_hi[:, i]) if up[i] else np.argmin(nz_lo[:, i]))
         beyond_mach = beyond_mach_range(runs.loads, condition_mach(c))
-        for s in SURFACES:
+        for s in surfaces:
             jb = int(which[s][i, sense, 1, 0])  # gradient of the extreme root bending in the gust's sense
             if beyond_mach:
                 check = partial(
@@ -195,9 +198,9 @@ def discrete_gusts(ctx, conditions, crit) -> GustRun:
                     tail_lag_s=round(float(runs.batch.tail_arm / runs.batch.v_tas[i]), 4),
                 )
             )
-    lateral, lateral_env = lateral_gusts(ctx, runs, crit)
+    fin, lateral_env = lateral_gusts(ctx, runs, crit) if lateral else ([], None)
     return GustRun(
-        findings + lateral,
+        findings + fin,
         sim_conds,
         envelope=fuelled_wing_envelope(env, runs.wing_fuel_peaks),
         which=which,

@@ -110,7 +110,7 @@ class GustRuns:
     nz_hi: np.ndarray  # (n_gradients, n)
     nz_lo: np.ndarray
     uds: np.ndarray  # (n_gradients, n) m/s EAS
-    wing: list  # per gradient (t, aero, inertia) of the right half wing, (nt, n, 3, S) each
+    wing: list  # per gradient (t, aero, inertia) of the right half wing, (nt, n, 3, S) each; empty without its loads
     u_ref: np.ndarray = None
     f_g: np.ndarray = None
     v_eas: np.ndarray = None
@@ -157,14 +157,15 @@ class GustRuns:
         return out
 
 
-def gust_runs(ctx, conditions, crit) -> GustRuns:
-    """The gust runs of ``conditions``, memoised on the conditions and the gust criteria (so that §25.341(a) and
-    §25.349(b), evaluated in one process, simulate once)."""
-    key = ("discrete_gust_runs", tuple(conditions), tuple((k, str(crit[k])) for k in GUST_CRITERIA))
-    return ctx.memo(key, lambda: _simulate_gust_runs(ctx, conditions, crit))
+def gust_runs(ctx, conditions, crit, surfaces=SURFACES) -> GustRuns:
+    """The gust runs of ``conditions`` with the loads of ``surfaces`` (the wing and the horizontal tail, or the tail
+    alone), memoised on the conditions, the surfaces and the gust criteria (so that §25.341(a) and §25.349(b),
+    evaluated in one process, simulate once)."""
+    key = ("discrete_gust_runs", tuple(conditions), tuple(surfaces), tuple((k, str(crit[k])) for k in GUST_CRITERIA))
+    return ctx.memo(key, lambda: _simulate_gust_runs(ctx, conditions, crit, tuple(surfaces)))
 
 
-def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
+def _simulate_gust_runs(ctx, conditions, crit, surfaces=SURFACES) -> GustRuns:
     """The §25.341(a) runs: each condition at its speed point, U_ds = U_ref F_g (H/350)^(1/6) at every gradient."""
 
     def u_ref(conds):
@@ -185,6 +186,7 @@ def _simulate_gust_runs(ctx, conditions, crit) -> GustRuns:
         design_velocity,
         gradients(crit),
         crit,
+        surfaces,
     )
     runs.u_ref, runs.f_g = u_ref(runs.conditions), f_g(runs.conditions)
     return runs
@@ -206,12 +208,12 @@ def level_flight_batch(ctx, conditions, speed_of):
     return (batch, *batch.distribute(conditions, entry_of.__getitem__, [e.speed for e in entries]))
 
 
-def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> GustRuns:
+def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit, surfaces=SURFACES) -> GustRuns:
     """The 1 − cos vertical gusts of ``conditions`` (one configuration), each trimmed in level flight at
     ``speed_of(condition)`` (EAS, m/s), at every gradient of ``H`` (m) with the design gust velocities
     ``design_velocity(simulated conditions, H) -> (gradients, n)`` (EAS, m/s), up or down as the condition's ``gust``
     says; ``crit`` holds ``steps_per_gust`` and ``settle_time``. Conditions of one loading, altitude and speed share a
-    trim."""
+    trim. The loads of ``surfaces`` (the horizontal tail always; without the wing no wing parts or fuel states)."""
     batch, rows, sim_conds, refused = level_flight_batch(ctx, conditions, speed_of)
     empty = np.zeros((len(H), 0))
     if not rows.size:
@@ -223,7 +225,8 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
     v_eas = np.array([c.speed for c in sim_conds])
     labels = [c.label() for c in sim_conds]
     envelopes, nz_hi, nz_lo, wing, tail = [], [], [], [], []
-    fuel_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in sim_conds])
+    with_wing = "wing" in surfaces
+    fuel_names, fuel = fuel_state_table(ctx.aircraft, [c.mass for c in sim_conds]) if with_wing else (None, None)
     fuel_peaks = None
     velocities = np.asarray(design_velocity(sim_conds, H), dtype=float)
     for h_gust, uds in zip(H, velocities):
@@ -234,11 +237,15 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
             np.where(up, 1.0, -1.0) * uds / v_eas,
             float(crit.steps_per_gust),
             float(crit.settle_time),
-            split=SURFACES,
+            surfaces=surfaces,
+            split=surfaces,
         )
         envelopes.append(LoadEnvelope.from_histories(loads, run.loads, run.sim.t, labels, keys=sim_conds))
         nz_hi.append(run.sim["n_z"].max(axis=0))
         nz_lo.append(run.sim["n_z"].min(axis=0))
+        tail.append((run.sim.t, *run.parts["horizontal_tail"]))
+        if not with_wing:
+            continue
         wing.append((run.sim.t, *run.parts["wing"]))
         peaks = fuel_state_peaks(run.loads["wing"], run.fuel_units.get("wing"), fuel)
         fuel_peaks = (
@@ -248,7 +255,6 @@ def simulate_gust_set(ctx, conditions, speed_of, design_velocity, H, crit) -> Gu
                 [np.fmin(fuel_peaks[:, :, 0], peaks[:, :, 0]), np.fmax(fuel_peaks[:, :, 1], peaks[:, :, 1])], axis=2
             )
         )
-        tail.append((run.sim.t, *run.parts["horizontal_tail"]))
     return GustRuns(
         list(refused),
         sim_conds,
