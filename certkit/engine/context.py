@@ -346,7 +346,7 @@ class Context:
         condition; None where the trim did not converge. ``throttle`` (a scalar or one per condition) fixes the
         throttles: the modes are then those of the steady climb or descent at that thrust (see :meth:`trim`)."""
         from certkit.models.dynamics.modes import (  # deferred: dynamics: `certkit derivatives` builds the aero only
-            identify_modes,
+            identify_rows,
         )
 
         conds = tuple(conditions)
@@ -354,7 +354,9 @@ class Context:
         def compute() -> list[dict[str, Mode] | None]:
             batch = self.trim(conds, throttle=throttle)
             lin = self.linearization(conds, throttle=throttle)
-            return [identify_modes(lin, i) if r.converged else None for i, r in enumerate(batch.results)]
+            rows = [i for i, r in enumerate(batch.results) if r.converged]
+            found = dict(zip(rows, identify_rows(lin, rows)))
+            return [found.get(i) for i in range(len(batch.results))]
 
         return self.memo(_key("modes", conds, throttle), compute)
 

@@ -80,10 +80,26 @@ def identify_modes(lin: Linearization, i: int, density_gradient: bool = False) -
     ``spiral`` (a mode that does not appear in its classical form is left out; extra roots go
     under ``other_<k>``). ``density_gradient`` adds the altitude state (module docstring); without it the
     longitudinal equations are the textbook four (Etkin & Reid eq. 4.9,18)."""
+    return identify_rows(lin, [i], density_gradient)[0]
+
+
+def identify_rows(lin: Linearization, rows=None, density_gradient: bool = False) -> list[dict[str, Mode]]:
+    """:func:`identify_modes` of each condition of ``rows`` (all by default), their eigenproblems solved in one
+    batched call (LAPACK's solver matrix by matrix: the same values as one at a time)."""
     n = len(_SUB) if density_gradient else len(_SUB) - 1
-    A = lin.A[i][_submatrix(tuple(lin.state_names), n)]
-    V = float(np.linalg.norm(lin.x0[i, 3:6]))
-    lam, vecs = np.linalg.eig(A)
+    rows = list(range(lin.A.shape[0])) if rows is None else [int(i) for i in rows]
+    if not rows:
+        return []
+    ix = _submatrix(tuple(lin.state_names), n)
+    lam_all, vecs_all = np.linalg.eig(lin.A[rows][:, ix[0], ix[1]])
+    return [
+        _identified(lam_all[j], vecs_all[j], float(np.linalg.norm(lin.x0[i, 3:6])), n, density_gradient)
+        for j, i in enumerate(rows)
+    ]
+
+
+def _identified(lam: np.ndarray, vecs: np.ndarray, V: float, n: int, density_gradient: bool) -> dict[str, Mode]:
+    """The modes of one condition from its eigenvalues ``lam`` and eigenvectors ``vecs`` (columns) at speed ``V``."""
     scaled = vecs.copy()
     scaled[:3] /= V
     size = [abs(x) for x in lam]  # |λ| by the scalar's abs (the array's SIMD loop may differ in the last bit)
@@ -137,10 +153,10 @@ def identify_modes(lin: Linearization, i: int, density_gradient: bool = False) -
 
 
 def identify_all(lin: Linearization) -> list[dict[str, Mode]]:
-    return [identify_modes(lin, i) for i in range(lin.A.shape[0])]
+    return identify_rows(lin)
 
 
-__all__ = ["Mode", "identify_modes", "identify_all"]
+__all__ = ["Mode", "identify_modes", "identify_rows", "identify_all"]
 
 
 def load_factor_per_alpha(lin: Linearization) -> np.ndarray:

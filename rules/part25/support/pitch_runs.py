@@ -38,7 +38,7 @@ from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitud
 from certkit.engine.registry import HINGE_MOMENT, Criterion, Loads
 from certkit.engine.results import Finding, LoadsRun
 from certkit.models.dynamics.linearize import linearize
-from certkit.models.dynamics.modes import identify_modes
+from certkit.models.dynamics.modes import identify_rows
 from certkit.models.dynamics.simulate import Bound, Ramp, Step, simulate
 from certkit.models.loads.capability import declared_capabilities
 from certkit.models.loads.checked_maneuver import checked_maneuver_inputs
@@ -144,8 +144,8 @@ def wing_finding(ctx, cond, check: str, env, i: int, crit, fuelled, stalled: boo
 def _modes_frequency(batch) -> np.ndarray:
     lin = linearize(batch.model, batch.x, batch.u)
     out = np.full(batch.n, np.nan)
-    for i in range(batch.n):
-        sp = identify_modes(lin, i).get("short_period")
+    for i, modes in enumerate(identify_rows(lin)):
+        sp = modes.get("short_period")
         if sp is not None and np.isfinite(sp.natural_frequency):
             out[i] = sp.natural_frequency
     return out
