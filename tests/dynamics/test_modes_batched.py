@@ -3,26 +3,17 @@ every condition in one batched LAPACK call) are the modes of each condition iden
 eigenvalues, the scaled eigenvectors and which root is which mode — over a batch from 90 to 260 m/s and from sea
 level to 12,000 m, with and without the density gradient's altitude state."""
 
-import numpy as np
 import pytest
 
 from certkit.models.dynamics.linearize import linearize
 from certkit.models.dynamics.modes import identify_modes, identify_rows
-from certkit.models.dynamics.trim import trim
-from certkit.models.flight import ROLES, control_limits, flight_model
+
+from .conftest import trimmed_baseline
 
 
 @pytest.fixture(scope="module")
 def lin(baseline):
-    from certkit.engine.context import Context
-
-    ctx = Context(baseline)
-    n = 24
-    loadings = [ctx.loading(float(baseline.model.mass.MTOW) * f, 29.5, "x") for f in np.linspace(0.6, 1.0, n)]
-    model = flight_model(baseline.model, ctx.aero("clean").model, loadings)
-    batch = trim(
-        model, np.linspace(90, 260, n), np.linspace(0, 12000, n), limits=control_limits(baseline.model), roles=ROLES
-    )
+    model, batch = trimmed_baseline(baseline, 24, (90, 260), (0, 12000), 0.6)
     return linearize(model, batch.x, batch.u)
 
 

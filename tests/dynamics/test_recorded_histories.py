@@ -9,25 +9,17 @@ import pytest
 
 from certkit.models.dynamics.eom import quat_to_euler
 from certkit.models.dynamics.simulate import EULER, RECORDED, Function, Histories, simulate
-from certkit.models.dynamics.trim import trim
-from certkit.models.flight import ROLES, control_limits, flight_model
+
+from .conftest import trimmed_baseline
 
 
 @pytest.fixture(scope="module")
 def rolled(baseline):
     """Four trimmed conditions given aileron and rudder steps: bank and heading move."""
-    from certkit.engine.context import Context
-
-    ctx = Context(baseline)
-    n = 4
-    loadings = [ctx.loading(float(baseline.model.mass.MTOW) * f, 29.5, "x") for f in np.linspace(0.7, 1.0, n)]
-    model = flight_model(baseline.model, ctx.aero("clean").model, loadings)
-    trims = trim(
-        model, np.linspace(150, 220, n), np.linspace(0, 8000, n), limits=control_limits(baseline.model), roles=ROLES
-    )
+    model, trims = trimmed_baseline(baseline, 4, (150, 220), (0, 8000), 0.7)
     inputs = {
-        "aileron": Function(lambda t: 0.05 * np.minimum(t, 1.0) * np.ones(n)),
-        "rudder": Function(lambda t: 0.03 * np.minimum(t, 1.0) * np.ones(n)),
+        "aileron": Function(lambda t: 0.05 * np.minimum(t, 1.0) * np.ones(4)),
+        "rudder": Function(lambda t: 0.03 * np.minimum(t, 1.0) * np.ones(4)),
     }
     return model, trims, inputs
 
