@@ -50,6 +50,7 @@ KERNEL_MODULES = (
     "models/loads/model.py",
     "models/loads/response.py",
     "models/loads/capability.py",
+    "models/loads/gust.py",
 )
 #: the file, in each kernel cache directory, holding the digest of the sources its kernels were compiled from
 DIGEST_FILE = "certkit-kernels.sha256"
