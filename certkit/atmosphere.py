@@ -212,5 +212,21 @@ def from_tas(tas: Values, kind: str, h: Values) -> FloatArray:
     return _conversion(kind, 1)(tas, h)
 
 
+#: the conversions of scalar speeds asked so far, (speed, from, to, h, their signs) → value: a design converts about
+#: 2,600 scalar speeds, a few hundred distinct (the same design speeds at the same altitudes, condition after condition)
+_SPEEDS: dict[tuple[float, str, str, float, float, float], float] = {}
+
+
 def convert_speed(speed: Values, from_kind: str, to_kind: str, h: Values) -> FloatArray:
-    return from_tas(to_tas(speed, from_kind, h), to_kind, h)
+    """``speed`` of ``from_kind`` (EAS, CAS, TAS or MACH) as ``to_kind`` at altitude ``h``; a scalar's conversion is
+    remembered (the same value, a fresh 0-d array each time; the signs of zeros in the key)."""
+    if not (isinstance(speed, float) and isinstance(h, float)):
+        return from_tas(to_tas(speed, from_kind, h), to_kind, h)
+    key = (speed, from_kind, to_kind, h, math.copysign(1.0, speed), math.copysign(1.0, h))
+    value = _SPEEDS.get(key)
+    if value is None:
+        value = float(from_tas(to_tas(speed, from_kind, h), to_kind, h))
+        if len(_SPEEDS) >= _AT_SCALAR_MAX:
+            _SPEEDS.clear()
+        _SPEEDS[key] = value
+    return np.array(value)

@@ -70,3 +70,22 @@ def test_a_scalar_altitude_gives_the_array_value_and_a_fresh_array():
     for _ in range(2):
         with pytest.raises(isa.AtmosphereRangeError, match="outside"):
             isa.pressure(20001.0)
+
+
+def test_a_remembered_scalar_conversion_is_the_computed_one():
+    """convert_speed remembers the conversions of scalar speeds: the second ask returns the value the conversion
+    computes (TAS through every kind, both ways), bit for bit, signed zeros apart, as a fresh 0-d array."""
+    import itertools
+
+    from certkit.atmosphere import convert_speed, from_tas, to_tas
+
+    rng = np.random.default_rng(5)
+    kinds = ("EAS", "CAS", "TAS", "MACH")
+    for fk, tk in itertools.product(kinds, kinds):
+        for _ in range(40):
+            h = float(rng.choice([0.0, -0.0, rng.uniform(-500, 15000)]))
+            v = float(rng.uniform(0.1, 0.95)) if fk == "MACH" else float(rng.choice([0.0, -0.0, rng.uniform(30, 300)]))
+            computed = np.asarray(from_tas(to_tas(v, fk, h), tk, h))
+            first, second = convert_speed(v, fk, tk, h), convert_speed(v, fk, tk, h)
+            assert first is not second and second.shape == computed.shape == ()
+            assert first.tobytes() == second.tobytes() == computed.tobytes(), (fk, tk, v, h)
