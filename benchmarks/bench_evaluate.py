@@ -8,19 +8,28 @@
 
 The numba kernels are compiled (or loaded from their disk cache) by a first, untimed run; the command runs with its
 modules' bytecode cached, as an installed package does (``PYTHONDONTWRITEBYTECODE`` unset for it).
-Run from the repository root:  python benchmarks/bench_evaluate.py
+With ``--against DIR`` (another checkout of certkit, e.g. the code before a change): the CPU per redesigned tail of
+both trees in pairs of processes run at the same time, one per core, so that the host's drift (its speed can change
+by 10 % within minutes) falls on both; each process evaluates a warm-up design, settles its garbage collector as a
+study worker does, then the redesigned tails twice. Prints each pair's ratio and their median.
+
+Run from the repository root:  python benchmarks/bench_evaluate.py [--against DIR [--pairs N]]
 """
 
 from __future__ import annotations
 
+import argparse
+import json
 import os
+import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from bench_first_run import INSTALLED_ENV  # noqa: E402
+from bench_first_run import INSTALLED_ENV, ROOT, rules_package  # noqa: E402
 
 BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 DESIGNS = [
@@ -72,7 +81,69 @@ def in_process():
         )
 
 
+#: a paired process: a warm-up design, the collector settled as a study worker settles it
+#: (:func:`certkit.study.worker._freeze_long_lived`), then the redesigned tails twice; prints the CPU per design
+PAIRED_PROCESS = """
+import gc, json, sys, time
+from certkit.design.evaluate import evaluate_design
+baseline, designs = sys.argv[1], json.loads(sys.argv[2])
+evaluate_design(baseline, designs[0])
+gc.collect(); gc.freeze(); gc.set_threshold(20_000, *gc.get_threshold()[1:])
+t0 = time.process_time()
+for values in designs * 2:
+    evaluate_design(baseline, values)
+print(f"{(time.process_time() - t0) / (2 * len(designs)):.4f}")
+"""
+
+
+def paired(against: str, pairs: int) -> None:
+    """CPU per redesigned tail of this code and of the checkout ``against`` (its own source tree, rules and kernel
+    cache; this interpreter), in ``pairs`` pairs of processes run at the same time."""
+    trees = {"this code": ROOT, "--against": os.path.abspath(against)}
+    envs = {
+        name: {
+            **INSTALLED_ENV,
+            "OMP_NUM_THREADS": "1",
+            "NUMBA_CACHE_DIR": tempfile.mkdtemp(),
+            "PYTHONPATH": tree + os.pathsep + rules_package(tree, tempfile.mkdtemp()),
+        }
+        for name, tree in trees.items()
+    }
+    redesigned = json.dumps(DESIGNS[1:])
+
+    def start(name: str) -> subprocess.Popen:
+        baseline = os.path.join(trees[name], "aircraft", "lta.yaml")
+        return subprocess.Popen(
+            [sys.executable, "-c", PAIRED_PROCESS, baseline, redesigned],
+            env=envs[name],
+            cwd=tempfile.gettempdir(),
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            text=True,
+        )
+
+    for name in trees:  # untimed, one after the other: bytecode written, kernels compiled into each tree's cache
+        start(name).communicate()
+    ratios = []
+    for _ in range(pairs):
+        procs = {name: start(name) for name in trees}
+        cpu = {name: float(p.communicate()[0].split()[-1]) for name, p in procs.items()}
+        ratios.append(cpu["this code"] / cpu["--against"])
+        print(
+            f"  CPU per design: this code {cpu['this code']:.3f} s, --against {cpu['--against']:.3f} s, "
+            f"{ratios[-1]:.3f}×"
+        )
+    print(f"this code / --against (median of {pairs} pairs run at the same time): {statistics.median(ratios):.3f}")
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--against", help="another certkit checkout: pairs of processes of both, at the same time")
+    parser.add_argument("--pairs", type=int, default=4)
+    args = parser.parse_args()
+    if args.against:
+        paired(args.against, args.pairs)
+        return
     command(repeats=1)  # compiles the kernels or loads them from the cache
     times = command()
     print(f"certkit evaluate aircraft/lta.yaml: best {min(times):.2f} s of {', '.join(f'{x:.2f}' for x in times)}")
