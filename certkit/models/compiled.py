@@ -28,11 +28,9 @@ import numpy as np
 import numpy.typing as npt
 from numba import njit
 from numba.core import cgutils
-from numba.core import types as numba_types
 from numba.core.caching import CacheImpl
 from numba.extending import intrinsic
 from numba.np.arrayobj import make_array
-from numba.np.linalg import F_INT_nbtype, F_INT_nptype
 
 from certkit.lean_imports import numba_without_cffi
 
@@ -109,43 +107,6 @@ def copy_row(destination, source):  # type: ignore[no-untyped-def]
     """``destination[:] = source`` for two 1-D arrays of the same length, element by element."""
     for k in range(source.shape[0]):
         destination[k] = source[k]
-
-
-#: LAPACK's dgesv as numba's ``np.linalg.solve`` calls it (numba's own entry to SciPy's LAPACK, found by name at link
-#: time, so a kernel calling it is cached): kind, n, right-hand sides, A (column-major, overwritten by its LU factors),
-#: lda, pivots, B (overwritten by the solution), ldb → LAPACK's info
-_T: Any = numba_types  # numba's type constructors are not annotated
-_GESV: Any = _T.ExternalFunction(
-    "numba_xgesv",
-    _T.intc(
-        _T.char,
-        _T.intp,
-        _T.intp,
-        _T.CPointer(_T.float64),
-        _T.intp,
-        _T.CPointer(F_INT_nbtype),
-        _T.CPointer(_T.float64),
-        _T.intp,
-    ),
-)
-_DOUBLE = ord("d")
-#: LAPACK's integer (numba's SciPy build: 32 or 64 bits), for :func:`lapack_solve`'s pivots
-LAPACK_INT = F_INT_nptype
-
-
-@njit(cache=True)
-def lapack_solve(A, b, lu, x, pivots):  # type: ignore[no-untyped-def]
-    """x = A⁻¹ b for one square system by LAPACK's dgesv — the routine and the column-major copy of ``np.linalg.solve``
-    (numpy's and numba's alike: the same bits), without numba's generic ``np.linalg.solve``, whose compilation costs
-    several seconds at the first run. ``lu`` (n, n) float64 and ``pivots`` (n,) of LAPACK's integer are the caller's
-    scratch, ``x`` (n,) receives the solution. Returns LAPACK's info: 0 solved, > 0 singular (``x`` then undefined).
-    Non-finite values are the caller's to refuse (``np.linalg.solve`` in numba raises for them)."""
-    n = A.shape[0]
-    for i in range(n):
-        for j in range(n):
-            lu[j, i] = A[i, j]  # row j of the C-ordered scratch: column j of A, as LAPACK reads it
-        x[i] = b[i]
-    return _GESV(_DOUBLE, n, 1, lu.ctypes, n, pivots.ctypes, x.ctypes, n)
 
 
 @intrinsic

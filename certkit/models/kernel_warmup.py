@@ -33,11 +33,11 @@ SIGNATURES_FILE = Path(__file__).with_name("kernel_signatures.txt")
 EQUATIONS_OF_MOTION = ("certkit.models.dynamics.kernel", "certkit.models.dynamics.pilot_kernel")
 #: kernels compiled last in another process: they call the equations of motion, which that process then loads from the
 #: cache the first has written by then, and nothing in the first needs them (the open-loop run: about 5 s of the first
-#: process's 18 s moved behind the other's 7 s; the trims' Newton iteration with their residual, in the order of its own
-#: module, made the first run compile 2.7 s longer, 2026-12-07)
+#: process's 18 s moved behind the other's 7 s; the trims' residual, in the order of its own module, made the first run
+#: compile 2.7 s longer, 2026-12-07)
 COMPILED_ELSEWHERE = (
     ("certkit.models.dynamics.kernel", "integrate_open_loop"),
-    ("certkit.models.dynamics.trim", "_newton_rows"),
+    ("certkit.models.dynamics.trim", "_residual_rows"),
 )
 
 Entry = tuple[str, str, str]  # module, function, argument types (numba's text)
@@ -78,7 +78,6 @@ def argument_types(text: str) -> tuple[Any, ...]:
 
     names = {
         "Array": types.Array,
-        "Tuple": types.Tuple,
         "float64": types.float64,
         "int64": types.int64,
         "bool": types.boolean,

@@ -43,7 +43,7 @@ from typing import Mapping
 import numpy as np
 from numba import njit
 
-from certkit.models.compiled import LAPACK_INT, copy_row, lapack_solve
+from certkit.models.compiled import copy_row
 from certkit.models.dynamics import kernel
 from certkit.models.dynamics.eom import AircraftModel
 
@@ -231,11 +231,10 @@ def _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, thr
 
 
 # The Newton iteration's bookkeeping, compiled (fastmath off: the arithmetic of the numpy expressions it replaces, bit
-# for bit) and inlined (numba IR) into the compiled iteration :func:`_newton_rows`; the Python loop of :func:`_solve`
-# calls them one by one (a model whose thrust is not compiled, or an iteration the compiled one leaves to it).
+# for bit); the residuals (the model's evaluation) and the linear solves stay with their numpy callers.
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _norms(r, scale):
     """max_e |r[i, e] scale[e]| per row (NaN if any is NaN)."""
     out = np.empty(r.shape[0])
@@ -251,7 +250,7 @@ def _norms(r, scale):
     return out
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _active(rnorm, stalls, tol, iters):
     """The conditions still iterating (residual above ``tol``, fewer than 3 stalls); counts their iteration."""
     idx = np.flatnonzero((rnorm > tol) & (stalls < 3))
@@ -260,7 +259,7 @@ def _active(rnorm, stalls, tol, iters):
     return idx
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _perturbed(z, idx, hstep):
     """The forward-difference points of the conditions ``idx``: row j·na + i is z[idx[i]] with unknown j moved by
     hstep[j]; and the condition of each row."""
@@ -275,7 +274,7 @@ def _perturbed(z, idx, hstep):
     return zp, rows
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _jacobian(rp, r, idx, hstep):
     """Forward-difference Jacobians (na, equations, unknowns) from the residuals ``rp`` of :func:`_perturbed`'s
     points, and the residuals of the conditions ``idx``."""
@@ -290,7 +289,7 @@ def _jacobian(rp, r, idx, hstep):
     return J, ra
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _limited_step(s, smax):
     """The Newton step −s (non-finite components 0), scaled down where a component exceeds its ``smax``."""
     dz = np.empty_like(s)
@@ -305,7 +304,7 @@ def _limited_step(s, smax):
     return dz
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _trial(z, idx, dz, lam, j_thr, box):
     """The iterates z[idx] + λ dz, the throttle column ``j_thr`` (−1: none) kept in ``box`` as ``np.clip`` keeps it
     (NaN stays NaN, −0 becomes 0)."""
@@ -320,7 +319,7 @@ def _trial(z, idx, dz, lam, j_thr, box):
     return zt
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _backtrack(r_try, scale, rn_a, lam, bad):
     """Residual norms of the trial iterates; ``bad`` where they do not fall below ``rn_a`` (λ halved there when any is
     bad). Returns the norms and whether any is bad."""
@@ -336,7 +335,7 @@ def _backtrack(r_try, scale, rn_a, lam, bad):
     return rn, any_bad
 
 
-@njit(cache=True, fastmath=False, inline="always")
+@njit(cache=True, fastmath=False)
 def _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoint, window, factor):
     """Take the last trial iterates of the conditions ``idx``; a bad step counts a stall; every ``window``
     iterations after the first ``window``, a condition whose residual fell less than ``factor``-fold since the
@@ -353,47 +352,47 @@ def _accept(idx, z_try, r_try, rn_try, bad, z, r, rnorm, stalls, iters, checkpoi
             checkpoint[i] = rnorm[i]
 
 
-@njit(cache=True, fastmath=False, inline="always")
-def _residual_rows(z, rows, fixed):
+@njit(cache=True, fastmath=False)
+def _residual_rows(
+    z,
+    rows,
+    V,
+    h,
+    given,
+    sources,
+    u0,
+    control_cols,
+    throttle_col,
+    throttles,
+    eq_cols,
+    turbofan,
+    throttle_start,
+    operative,
+    fraction,
+    windmill,
+    props,
+    consts,
+    T,
+    machs,
+    clmax,
+    stall,
+    alpha_drag,
+    after_stall,
+    n_aero,
+    use_table,
+    r_eng,
+    d_eng,
+    has_ground,
+    r_gear,
+    legs,
+    gparams,
+    brake_index,
+    steer_index,
+):
     """The trim equations ``eq_cols`` of the iterates ``z`` of conditions ``rows`` (:func:`_iterates`) for a model whose
     thrust is compiled (:attr:`~certkit.models.dynamics.eom.AircraftModel.thrust_compiled`): the air data, the
     engines' forces and the equations of motion of :meth:`~certkit.models.dynamics.eom.AircraftModel.evaluate`, the
-    same kernels in one call; ``fixed``: the layout of :func:`_iterates` after the rows, ``eq_cols``, then the
-    model's arrays (:meth:`~certkit.models.dynamics.eom.AircraftModel.compiled_thrust_args`)."""
-    (
-        V,
-        h,
-        given,
-        sources,
-        u0,
-        control_cols,
-        throttle_col,
-        throttles,
-        eq_cols,
-        turbofan,
-        throttle_start,
-        operative,
-        fraction,
-        windmill,
-        props,
-        consts,
-        T,
-        machs,
-        clmax,
-        stall,
-        alpha_drag,
-        after_stall,
-        n_aero,
-        use_table,
-        r_eng,
-        d_eng,
-        has_ground,
-        r_gear,
-        legs,
-        gparams,
-        brake_index,
-        steer_index,
-    ) = fixed
+    same kernels in one call."""
     X, U = _iterates(z, rows, V, h, given, sources, u0, control_cols, throttle_col, throttles)
     air = kernel.air_data(X)
     thrust = kernel.engine_forces(air, U, rows, turbofan, throttle_start, operative, fraction, windmill)
@@ -431,75 +430,11 @@ def _residual_rows(z, rows, fixed):
     return r
 
 
-#: Newton's progress test (numerical choice; see :func:`_solve`)
-SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
-
-
-@njit(cache=True, fastmath=False)
-def _newton_rows(z, scale, hstep, smax, j_thr, box, tol, iterations, fixed):
-    """The residuals of the iterates ``z`` and up to ``iterations`` Newton iterations of :func:`_solve` in one compiled
-    call, for a model whose thrust is compiled (``fixed``: :func:`_residual_rows`' arguments after the rows): the same
-    helpers in the same order, the Newton steps by the same LAPACK solve, so every iterate is the Python loop's bit for
-    bit. An iteration whose Jacobian or residual is not finite, or whose Jacobian is singular, is left undone (its
-    count taken back) for the Python loop, which handles those. Returns the residuals, their norms, the stall and
-    iteration counts, the norms at the last progress check (the loop's state), the number of iterations done and
-    whether the iteration has ended (no condition left). ``z`` advances in place.
-
-    The residuals are evaluated at one place in the loop (the start, a Jacobian's perturbed points, a backtracking
-    trial, told apart by ``stage``): each call of the equations of motion compiled into a kernel costs seconds of the
-    first run's compilation."""
-    n, k = z.shape
-    stalls = np.zeros(n, dtype=np.int64)
-    iters = np.zeros(n, dtype=np.int64)
-    r = np.empty((n, 0))
-    rnorm, checkpoint, rn_try = np.empty(n), np.empty(n), np.empty(0)
-    idx, lam, rn_a = np.empty(0, dtype=np.int64), np.empty(0), np.empty(0)
-    dz, bad = np.empty((0, k)), np.empty(0, dtype=np.bool_)
-    stage, done, tries = 0, 0, 0  # stage 0: the start; 1: the Jacobian's points; 2: a backtracking trial
-    zq, rows = z, np.arange(n)
-    while True:
-        rq = _residual_rows(zq, rows, fixed)
-        if stage == 0:
-            r = rq
-            rnorm = _norms(r, scale)
-            checkpoint = rnorm.copy()
-        elif stage == 1:  # the Newton steps, then their first trial
-            Jm, ra = _jacobian(rq, r, idx, hstep)
-            sol = np.empty_like(ra)
-            lu, pivots = np.empty((k, k)), np.empty(k, dtype=LAPACK_INT)
-            solved = np.isfinite(Jm).all() and np.isfinite(ra).all()
-            for a in range(idx.size):
-                if not solved:
-                    break
-                solved = lapack_solve(Jm[a], ra[a], lu, sol[a], pivots) == 0  # else singular: left to Python
-            if not solved:
-                for i in idx:
-                    iters[i] -= 1
-                return r, rnorm, stalls, iters, checkpoint, done, False
-            dz = _limited_step(sol, smax)
-            lam = np.ones(idx.size)
-            bad = np.empty(idx.size, dtype=np.bool_)
-            rn_a = rnorm[idx]
-            zq, rows, stage, tries = _trial(z, idx, dz, lam, j_thr, box), idx, 2, 1
-            continue
-        else:  # a trial: accepted if it reduces the residual, else again with λ halved (six at most)
-            rn_try, any_bad = _backtrack(rq, scale, rn_a, lam, bad)
-            if any_bad and tries < 6:
-                zq, tries = _trial(z, idx, dz, lam, j_thr, box), tries + 1
-                continue
-            _accept(idx, zq, rq, rn_try, bad, z, r, rnorm, stalls, iters, checkpoint, SLOW_WINDOW, SLOW_FACTOR)
-            done += 1
-        if done == iterations:
-            return r, rnorm, stalls, iters, checkpoint, done, False
-        idx = _active(rnorm, stalls, tol, iters)
-        if idx.size == 0:
-            return r, rnorm, stalls, iters, checkpoint, done, True
-        zq, rows = _perturbed(z, idx, hstep)
-        stage = 1
-
-
 #: the state parameters given per condition or solved for, in :func:`_iterates`' order
 _GIVEN = ("beta", "phi", "turn_rate", "gamma")
+
+#: Newton's progress test (numerical choice; see :func:`_solve`)
+SLOW_WINDOW, SLOW_FACTOR = 8, 2.0
 
 
 def newton_steps(J: np.ndarray, r: np.ndarray) -> np.ndarray:
@@ -612,13 +547,12 @@ def _solve(
 
     eq_cols = 3 + np.array(equations)
 
-    fixed: tuple = ()
     if model.thrust_compiled:  # the iterates, air data, thrust and equations of motion in one compiled call
         fixed = (*layout, eq_cols, *model.compiled_thrust_args())
 
         def residual(z, idx):
             """Residual equations of the iterates ``z`` (rows of conditions ``idx``)."""
-            return _residual_rows(z, idx, fixed)
+            return _residual_rows(z, idx, *fixed)
 
     else:
 
@@ -655,21 +589,14 @@ def _solve(
     # Newton stalls there, so the throttle iterate is kept inside (just below 1, where the forward difference
     # still sees the engine); a condition needing more than full thrust ends non-converged at the bound
     box = np.array(_THROTTLE_BOX)
+    iters = np.zeros(n, dtype=np.int64)
+    stalls = np.zeros(n, dtype=np.int64)
     everyone = np.arange(n)
+    r = residual(z, everyone)
     scale = np.where(np.array(equations) < 3, 1.0 / model.g, 1.0)
-    if model.thrust_compiled:  # the iteration in one compiled call; what it leaves undone goes on below
-        j = -1 if j_thr is None else j_thr
-        r, rnorm, stalls, iters, checkpoint, done, ended = _newton_rows(
-            z, scale, hstep, smax, j, box, tol, max_iter, fixed
-        )
-    else:
-        iters = np.zeros(n, dtype=np.int64)
-        stalls = np.zeros(n, dtype=np.int64)
-        r = residual(z, everyone)
-        rnorm = _norms(r, scale)
-        checkpoint = rnorm.copy()
-        done, ended = 0, False
-    for _ in range(0 if ended else max_iter - done):
+    rnorm = _norms(r, scale)
+    checkpoint = rnorm.copy()
+    for _ in range(max_iter):
         # a condition leaves the iteration when converged, or after three Newton steps that could not
         # reduce its residual even when cut 64-fold (a limit or a non-trimmable condition)
         idx = _active(rnorm, stalls, tol, iters)
