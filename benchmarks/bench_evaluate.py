@@ -29,7 +29,7 @@ import time
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from bench_first_run import INSTALLED_ENV, ROOT, rules_package  # noqa: E402
+from bench_first_run import INSTALLED_ENV, ROOT, rules_package, tree_env  # noqa: E402
 
 BASELINE = os.path.join(os.path.dirname(__file__), "..", "aircraft", "lta.yaml")
 DESIGNS = [
@@ -101,12 +101,7 @@ def paired(against: str, pairs: int) -> None:
     cache; this interpreter), in ``pairs`` pairs of processes run at the same time."""
     trees = {"this code": ROOT, "--against": os.path.abspath(against)}
     envs = {
-        name: {
-            **INSTALLED_ENV,
-            "OMP_NUM_THREADS": "1",
-            "NUMBA_CACHE_DIR": tempfile.mkdtemp(),
-            "PYTHONPATH": tree + os.pathsep + rules_package(tree, tempfile.mkdtemp()),
-        }
+        name: {**tree_env(tree, rules_package(tree, tempfile.mkdtemp()), tempfile.mkdtemp()), "OMP_NUM_THREADS": "1"}
         for name, tree in trees.items()
     }
     redesigned = json.dumps(DESIGNS[1:])

@@ -24,9 +24,15 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 INSTALLED_ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
 
+def tree_env(tree: str, rules_path: str, cache: str) -> dict[str, str]:
+    """The environment of a process of the checkout ``tree``: its certkit, its rules (:func:`rules_package`) and its
+    own kernel cache, bytecode as installed."""
+    return {**INSTALLED_ENV, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": tree + os.pathsep + rules_path}
+
+
 def run_check(tree: str, rules_path: str, cache: str, jobs: int) -> tuple[float, float]:
     """(wall s, CPU s of the process and its children) of one check of ``tree``'s baseline with its certkit."""
-    env = {**INSTALLED_ENV, "NUMBA_CACHE_DIR": cache, "PYTHONPATH": tree + os.pathsep + rules_path}
+    env = tree_env(tree, rules_path, cache)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory() as out:

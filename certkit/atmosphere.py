@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -96,6 +97,16 @@ def _isa_flat(h: FloatArray, which: int) -> FloatArray:
 #: altitudes thousands of times per design (each a fresh 0-d array of the compiled function's own value)
 _AT_SCALAR: dict[tuple[float, int], float] = {}
 _AT_SCALAR_MAX = 4096
+K = TypeVar("K")  # a memo's key
+
+
+def _remember(memo: dict[K, float], key: K, value: float) -> float:
+    """Store ``value`` under ``key`` in one of the scalar memos, emptied when it holds :data:`_AT_SCALAR_MAX` values
+    (a bound on the memory of a long study worker)."""
+    if len(memo) >= _AT_SCALAR_MAX:
+        memo.clear()
+    memo[key] = value
+    return value
 
 
 def _isa(h: Values, which: int) -> FloatArray:
@@ -107,9 +118,7 @@ def _isa(h: Values, which: int) -> FloatArray:
     _check_range(heights)
     flat: FloatArray = _isa_flat(np.ascontiguousarray(heights).reshape(-1), which)
     if isinstance(h, float):
-        if len(_AT_SCALAR) >= _AT_SCALAR_MAX:
-            _AT_SCALAR.clear()
-        _AT_SCALAR[h, which] = float(flat[0])
+        _remember(_AT_SCALAR, (h, which), float(flat[0]))
     return flat.reshape(heights.shape)
 
 
@@ -225,8 +234,5 @@ def convert_speed(speed: Values, from_kind: str, to_kind: str, h: Values) -> Flo
     key = (speed, from_kind, to_kind, h, math.copysign(1.0, speed), math.copysign(1.0, h))
     value = _SPEEDS.get(key)
     if value is None:
-        value = float(from_tas(to_tas(speed, from_kind, h), to_kind, h))
-        if len(_SPEEDS) >= _AT_SCALAR_MAX:
-            _SPEEDS.clear()
-        _SPEEDS[key] = value
+        value = _remember(_SPEEDS, key, float(from_tas(to_tas(speed, from_kind, h), to_kind, h)))
     return np.array(value)
