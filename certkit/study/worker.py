@@ -77,31 +77,35 @@ def _where(exc: BaseException) -> str:
 
 
 _SETTLED = {"done": False}
-#: allocations between collections of the youngest generation once a worker has settled (:func:`_freeze_long_lived`)
-YOUNG_THRESHOLD = 20_000
 
 
 def _freeze_long_lived() -> None:
     """After a process's first case, what it keeps for the next ones (imports, compiled kernels, the parsed aircraft,
     the declared airplane's lattice and loads) is moved out of the cyclic garbage collector's reach (``gc.freeze``,
     after one full collection so no garbage is kept). Scanning those ~200,000 objects again and again cost about
-    0.4 s of every design's 3.5 s (measured with ``gc.callbacks`` on the benchmark sample). The youngest generation is
-    then collected every :data:`YOUNG_THRESHOLD` allocations instead of 700: a design allocates millions of short-lived
-    containers, and the ~200 collections of the default cost 0.04 s of each (0.02 s at this threshold; five redesigned
-    tails of ``benchmarks/bench_evaluate.py``). Only in a worker process: a case run in the coordinating process (the
-    serial executor) leaves that process's collector as it was."""
+    0.4 s of every design's 3.5 s (measured with ``gc.callbacks`` on the benchmark sample)."""
     if not _SETTLED["done"]:
         _SETTLED["done"] = True
         gc.collect()
         gc.freeze()
-        if multiprocessing.parent_process() is not None:
-            gc.set_threshold(YOUNG_THRESHOLD, *gc.get_threshold()[1:])
 
 
 def run_case(task: Task) -> CaseResult:
+    """One case. In a settled worker process (:func:`_freeze_long_lived`) the cyclic collector is paused while the
+    case runs and collects once after it: a design allocates millions of short-lived containers, nearly all freed by
+    reference counting, and the youngest generation's collections every few thousand allocations cost about 0.04 s
+    of each design against 0.003 s for the one collection after it (``gc.callbacks`` on four redesigned tails of
+    ``benchmarks/bench_evaluate.py``; the process's peak memory the same). A case run in the coordinating process (the
+    serial executor) leaves that process's collector as it was."""
+    pause = _SETTLED["done"] and gc.isenabled() and multiprocessing.parent_process() is not None
+    if pause:
+        gc.disable()
     try:
         return _run_case(task)
     finally:
+        if pause:
+            gc.enable()
+            gc.collect()
         _freeze_long_lived()
 
 
