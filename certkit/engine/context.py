@@ -191,6 +191,16 @@ class Context:
         speed, limited = self.memo(key, lambda: self._design_speed_eas(name, h))
         return speed.copy(), limited.copy()
 
+    def design_speed_eas_at(self, name: str, altitude: float) -> float:
+        """:meth:`design_speed_eas` of one altitude as a float, memoised on (name, altitude): the loads rules ask it
+        for each condition's altitude about ten thousand times a design (the same value, without the arrays)."""
+        key = ("design_speed_eas_at", name, altitude)
+        try:
+            return self._memo[key]  # type: ignore[no-any-return]
+        except KeyError:
+            value = self._memo[key] = float(self.design_speed_eas(name, altitude)[0])
+            return value
+
     def _design_speed_eas(self, name: str, h: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         speed = getattr(self.aircraft.speeds, name)
         mach = getattr(self.aircraft.speeds, MACH_OF.get(name, ""), None)

@@ -89,3 +89,17 @@ def test_a_remembered_scalar_conversion_is_the_computed_one():
             first, second = convert_speed(v, fk, tk, h), convert_speed(v, fk, tk, h)
             assert first is not second and second.shape == computed.shape == ()
             assert first.tobytes() == second.tobytes() == computed.tobytes(), (fk, tk, v, h)
+
+
+def test_design_speeds_at_one_altitude(ctx):
+    """The baseline's VC (272 kn EAS, MC 0.87) as a float at one altitude: 272 kn at sea level; MC limits it above
+    about 37,000 ft: at 40,000 ft EAS = M a √σ with the ISA table's a = 295.07 m/s and σ = 0.2462 there (ICAO Doc
+    7488; 2 × 10⁻⁴ relative, the table's digits); the same float again from the context's memo, and the arrays of
+    ``design_speed_eas`` agree."""
+    assert ctx.design_speed_eas_at("VC", 0.0) == pytest.approx(272 * 1852 / 3600, rel=1e-12)
+    h = 40000 * 0.3048
+    vc = ctx.design_speed_eas_at("VC", h)
+    assert vc == pytest.approx(0.87 * 295.07 * 0.2462**0.5, rel=2e-4)
+    assert ctx.design_speed_eas_at("VC", h) is vc
+    speed, limited = ctx.design_speed_eas("VC", h)
+    assert float(speed) == vc and bool(limited)

@@ -175,8 +175,8 @@ def yaw_maneuvers(ctx, conditions, crit) -> YawRun:
     if not batch.n:
         return YawRun(findings, reason="no condition could be trimmed (see the findings)")
     lim = control_stops(ctx, "rudder")
-    va = float(ctx.design_speed_eas("VA", 0.0)[0])
-    vc = float(ctx.design_speed_eas("VC", 0.0)[0])
+    va = ctx.design_speed_eas_at("VA", 0.0)
+    vc = ctx.design_speed_eas_at("VC", 0.0)
     pedal_limit = np.array([pedal_force_limit(c.speed, va, vc, crit) for c in batch.conditions])
     target, force_limited = force_limited_deflection(
         ctx, "rudder", batch.conditions, batch.control("rudder"), lim[0], pedal_limit

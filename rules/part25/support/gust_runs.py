@@ -55,11 +55,11 @@ def gradients(crit) -> np.ndarray:
 
 def gust_speeds(ctx, h: float) -> dict[str, float]:
     """EAS (m/s) of VB, VC, VD at altitude h, Mach-limited; VB capped at VC."""
-    vc = float(ctx.design_speed_eas("VC", h)[0])
+    vc = ctx.design_speed_eas_at("VC", h)
     return {
-        "VB": min(float(ctx.design_speed_eas("VB", h)[0]), vc),
+        "VB": min(ctx.design_speed_eas_at("VB", h), vc),
         "VC": vc,
-        "VD": float(ctx.design_speed_eas("VD", h)[0]),
+        "VD": ctx.design_speed_eas_at("VD", h),
     }
 
 

@@ -45,7 +45,7 @@ def out_of_trim_speed(ctx, h: float) -> float:
     """EAS (m/s) up to which §25.255(a) trims the airplane at ``h``: VMO/MMO, else VC/MC where VMO is not declared
     (VMO may not exceed VC, §25.1505)."""
     name = "VMO" if ctx.aircraft.speeds.VMO is not None else "VC"
-    return float(ctx.design_speed_eas(name, h)[0])
+    return ctx.design_speed_eas_at(name, h)
 
 
 def mistrim(ctx, reference_stabilizer: float, sense: str, configuration: str, crit) -> tuple[float, bool]:

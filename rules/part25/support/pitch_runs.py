@@ -244,7 +244,7 @@ def checked_maneuver(ctx, conditions, crit) -> PitchManeuverRun:
     """Batch simulation of every checked-manoeuvre condition; returns findings, the envelope and the
     histories of the final inputs (for evidence)."""
     n_lim = ctx.aircraft.envelope.limit_load_factors.positive
-    va_decl = float(ctx.design_speed_eas("VA", 0.0)[0])
+    va_decl = ctx.design_speed_eas_at("VA", 0.0)
     entries, key_of, reference = [], {}, {}
     for c in conditions:
         key = (c.loading, c.altitude, c.get("entry_speed"), c.get("trim"))

@@ -35,9 +35,9 @@ def entry_speeds(ctx, h: float, names) -> dict[str, float]:
     """EAS (m/s) of the named design speeds at altitude h, each limited by its Mach counterpart; VA
     need not exceed VC (§25.335(c)), so it is capped at the Mach-limited VC."""
     out = {}
-    vc = float(ctx.design_speed_eas("VC", h)[0])
+    vc = ctx.design_speed_eas_at("VC", h)
     for name in names:
-        v = float(ctx.design_speed_eas(name, h)[0])
+        v = ctx.design_speed_eas_at(name, h)
         out[name] = min(v, vc) if name == "VA" else v
     return out
 
