@@ -196,7 +196,7 @@ class Context:
         for each condition's altitude about ten thousand times a design (the same value, without the arrays)."""
         key = ("design_speed_eas_at", name, altitude)
         try:
-            return self._memo[key]  # type: ignore[no-any-return]
+            return self._memo[key]  # type: ignore[return-value]
         except KeyError:
             value = self._memo[key] = float(self.design_speed_eas(name, altitude)[0])
             return value
