@@ -8,6 +8,13 @@ the rules call them with (:data:`SIGNATURES_FILE`, one line per compiled kernel:
 one group of modules per process (:func:`groups`: the equations of motion, the largest, alone); the rules then load
 them from the cache.
 
+Even for one job the kernels are compiled by another process: numba runs the machine code it has just compiled in the
+process that compiled it and writes an object file to its cache that later processes load, and for certkit's
+fast-math kernels the two do not compute the same last bits (the open-loop run replayed on 30 recorded calls of a
+design: other states when compiled in the replaying process than when loaded from the cache that very compilation
+wrote; the seed study's 20-case records then differ in 3,443 of 50,393 values, 2026-12-07). Every result thus comes
+from the cached code, whichever run compiled it: a first check after an install gives the bits of the next ones.
+
 The list is a record of what certkit's rules compile; a test compares it with the kernels a check and a design
 evaluation compile (``tests/hardening/test_kernel_warmup.py``, which prints the new list when it differs). A kernel
 called with types the list lacks is still compiled where it is called: the list only moves work ahead.
@@ -125,10 +132,11 @@ def groups(entries: list[Entry], processes: int) -> list[list[Entry]]:
 def compile_kernels(processes: int, entries: list[Entry] | None = None, context: str = "fork") -> float:
     """Compile the listed kernels (:func:`listed_signatures`) in up to ``processes`` processes (started by the
     multiprocessing ``context``; spawn for a caller with threads), each group of modules in its own, into numba's disk
-    cache; the wall seconds taken. One process: nothing is done ahead (the rules compile what they call as they go,
-    the same work)."""
+    cache; the wall seconds taken. One process too (``--jobs 1``): another process compiles them, so that the process
+    that uses them runs the machine code numba loads from the cache — the kernels compiled where they run give other
+    last bits than the same kernels loaded from the cache (the module's docstring)."""
     entries = listed_signatures() if entries is None else entries
-    if processes < 2 or not entries:
+    if not entries:
         return 0.0
     from certkit.models import compiled  # deferred: numba only where kernels compile (study commands)
 

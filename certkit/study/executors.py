@@ -36,7 +36,8 @@ def _died(task: Task, where: str) -> CaseResult:
 
 def _compile_kernels(processes: int) -> None:
     """At the first run after an install, compile certkit's numba kernels ahead in ``processes`` spawned processes
-    (:mod:`certkit.models.kernel_warmup`) rather than in every worker on its first case."""
+    (:mod:`certkit.models.kernel_warmup`) rather than in every worker on its first case, and so that every case runs
+    the kernels loaded from the cache (the same bits at the first run as at the next)."""
     compile_if_cold(processes, context="spawn")
 
 
@@ -46,6 +47,7 @@ class SerialExecutor:
     workers = 1
 
     def __enter__(self) -> SerialExecutor:
+        _compile_kernels(1)  # at a first run, by another process: the cases run the cached kernels' bits
         return self
 
     def __exit__(self, *exc: object) -> None:
