@@ -5,12 +5,13 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from certkit.models.kernel_warmup import (
     COMPILED_ELSEWHERE,
     EQUATIONS_OF_MOTION,
     SIGNATURES_FILE,
     argument_types,
-    compile_kernels,
     groups,
     listed_signatures,
 )
@@ -70,31 +71,18 @@ def test_groups_keep_each_module_whole_and_the_equations_of_motion_alone():
     assert groups([e for e in entries if e[0] in EQUATIONS_OF_MOTION] + late, 2)[-1] == late
 
 
-def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path):
-    """Two small kernels of two modules compiled by two processes land in an empty cache, where a new process finds
-    them (numba's index file per kernel)."""
-    script = (
-        "from certkit.models.kernel_warmup import compile_kernels, listed_signatures\n"
-        "entries = [e for e in listed_signatures() if e[1] in ('_first_out_of_range', '_worst')]\n"
-        "assert len({e[0] for e in entries}) == 2, entries\n"
-        "print(compile_kernels(2, entries) > 0)\n"
-    )
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, cwd=ROOT)
-    assert done.stdout.strip() == "True", done.stderr[-3000:]
-    indexes = sorted(p.name.split("-")[0] for p in tmp_path.rglob("*.nbi"))
-    assert indexes == ["atmosphere._first_out_of_range", "capability._worst"]
-
-
-def test_one_job_compiles_ahead_in_another_process(tmp_path):
-    """With one job too the kernels are compiled by another process into the cache, and the calling process has
-    compiled none itself: it runs them from the cache (the module's docstring: a process that compiled a kernel runs
-    other last bits than the cached one)."""
+@pytest.mark.parametrize("processes", [2, 1])
+def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path, processes):
+    """Two small kernels of two modules compiled ahead land in an empty cache, where a new process finds them (numba's
+    index file per kernel); with one job too another process compiles them, and the calling process has compiled none
+    itself: it runs them from the cache (the module's docstring: a process that compiled a kernel runs other last bits
+    than the cached one)."""
     script = (
         "import importlib\n"
         "from certkit.models.kernel_warmup import compile_kernels, listed_signatures\n"
         "entries = [e for e in listed_signatures() if e[1] in ('_first_out_of_range', '_worst')]\n"
-        "print(compile_kernels(1, entries) > 0)\n"
+        "assert len({e[0] for e in entries}) == 2, entries\n"
+        f"print(compile_kernels({processes}, entries) > 0)\n"
         "print(sum(len(getattr(importlib.import_module(m), f).signatures) for m, f, _ in entries))\n"
     )
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
