@@ -182,3 +182,47 @@ def test_a_copy_with_further_controls_keeps_the_calibrated_clmax():
     assert copy.coefficients(AeroState(alpha=alpha, mach=0.5)).CL.max() == pytest.approx(1.45, abs=1e-3)
     with pytest.raises(KeyError, match="CL_alpha"):  # a base term would change the lift curve the calibration holds
         m.with_control_terms({"CL_alpha": [4.0, 4.5, 5.0]})
+
+
+def test_a_subset_is_the_model_of_its_rows(ctx):
+    """``subset`` against a model built from those rows alone (the baseline's engines and ground model, four loadings
+    with their own inertia): every per-row array and every compiled-kernel argument equal bit for bit, the failed
+    engines' thrust not carried over, the engines that run kept."""
+    from certkit.models.flight import flight_model, ground_model
+
+    loadings = [ctx.loading(m, x) for m, x in ((2.0e5, 27.0), (2.5e5, 28.0), (2.9e5, 27.5), (1.8e5, 28.4))]
+    ground = ground_model(ctx.aircraft)
+    model = flight_model(ctx.aircraft, ctx.aero("takeoff").model, loadings, ground=ground)
+    model.set_operative([[True, False], [True, True], [False, True], [True, True]])
+    model.failed_thrust_fraction = np.full((4, 2), 0.3)
+    idx = np.array([3, 0, 2])
+    sub = model.subset(idx)
+    fresh = AircraftModel(
+        model.aero,
+        model.mass[idx],
+        model.cg[idx],
+        model.inertia[idx],
+        model.engines,
+        model.operative[idx],
+        ground,
+        model.g,
+    )
+    assert sub.n == fresh.n == 3 and model.n == 4
+    for name in (
+        "mass",
+        "cg",
+        "inertia",
+        "inertia_inv",
+        "operative",
+        "failed_thrust_fraction",
+        "r_ref",
+        "r_eng",
+        "r_gear",
+        "_all_operative",
+    ):
+        np.testing.assert_array_equal(getattr(sub, name), getattr(fresh, name), err_msg=name)
+    assert not sub.failed_thrust_fraction.any() and model.failed_thrust_fraction.all()
+    assert len(sub._kernel_args) == len(fresh._kernel_args)
+    for a, b in zip(sub._kernel_args, fresh._kernel_args):
+        np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
+    np.testing.assert_array_equal(sub.subset([True, False, True]).mass, model.mass[[3, 2]])

@@ -40,6 +40,7 @@ Equations: m(v̇_b + ω × v_b) = F,   J ω̇ + ω × J ω = M  with the full in
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 from typing import Callable, Sequence
 
@@ -341,19 +342,29 @@ class AircraftModel:
         return self.control_names.index(name)
 
     def subset(self, idx) -> "AircraftModel":
-        """The model restricted to conditions ``idx`` (index array or boolean mask)."""
+        """The model restricted to conditions ``idx`` (index array or boolean mask), as a new model of those rows
+        would be (no failed engine's thrust carried over): the per-row arrays are this model's rows (each row's
+        inverse inertia and arms are computed row by row, so the same values), the rest is shared."""
         idx = np.arange(self.n)[idx]
-        return AircraftModel(
-            self.aero,
+        new = copy.copy(self)
+        new.n = idx.size
+        new.mass, new.cg, new.inertia, new.inertia_inv = (
             self.mass[idx],
             self.cg[idx],
             self.inertia[idx],
-            self.engines,
-            self.operative[idx],
-            self.ground,
-            self.g,
-            n=idx.size,
+            self.inertia_inv[idx],
         )
+        new.operative = self.operative[idx]
+        ne = len(self.engines)
+        new.failed_thrust_fraction = np.zeros((idx.size, ne))
+        new.r_ref = self.r_ref[idx]
+        if ne:
+            new.r_eng = self.r_eng[idx]
+        if self.ground is not None:
+            new.r_gear = self.r_gear[idx]
+        new._all_operative = new.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
+        new._pack()
+        return new
 
     # ------------------------------------------------------------------ core
     def _pack(self) -> None:
