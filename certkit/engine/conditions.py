@@ -196,16 +196,18 @@ class ConditionSpace:
         for ld, cfg, h, sp in itertools.product(loadings, configs, alts, speeds):
             for ex in itertools.product(*extra_values):
                 out.append(
-                    Condition(
-                        loading=ld.name if ld else None,
-                        mass=ld.mass if ld else None,
-                        x_cg=ld.x_cg if ld else None,
-                        configuration=cfg,
-                        altitude=None if h is None else float(h),
-                        speed=sp[1] if sp else None,
-                        speed_kind=sp[2] if sp else None,
-                        speed_name=sp[0] if sp else None,
-                        extra=tuple(zip(extra_names, ex)),
+                    Condition.from_fields(
+                        {
+                            "loading": ld.name if ld else None,
+                            "mass": ld.mass if ld else None,
+                            "x_cg": ld.x_cg if ld else None,
+                            "configuration": cfg,
+                            "altitude": None if h is None else float(h),
+                            "speed": sp[1] if sp else None,
+                            "speed_kind": sp[2] if sp else None,
+                            "speed_name": sp[0] if sp else None,
+                            "extra": tuple(zip(extra_names, ex)),
+                        }
                     )
                 )
         return out

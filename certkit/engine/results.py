@@ -83,16 +83,17 @@ class Condition:
             else:
                 extra[key] = value
         values["extra"] = tuple(extra.items())
-        return self._made(values)
+        return self.from_fields(values)
 
     def without(self, *keys: str) -> "Condition":
         """This condition without the ``extra`` items named ``keys``."""
-        return self._made({**self.__dict__, "extra": tuple((k, v) for k, v in self.extra if k not in keys)})
+        return self.from_fields({**self.__dict__, "extra": tuple((k, v) for k, v in self.extra if k not in keys)})
 
-    def _made(self, values: dict[str, Any]) -> "Condition":
-        """A condition of this type with the field ``values`` (frozen, no ``__post_init__``: set as ``__init__`` would
-        set them, without its cost)."""
-        new = object.__new__(type(self))
+    @classmethod
+    def from_fields(cls, values: dict[str, Any]) -> "Condition":
+        """A condition of this type with the field ``values``, every field given in the fields' order (frozen, no
+        ``__post_init__``: set as ``__init__`` would set them, without its cost)."""
+        new = object.__new__(cls)
         new.__dict__.update(values)
         return new
 

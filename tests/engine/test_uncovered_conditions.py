@@ -32,3 +32,22 @@ def test_indexed_search_matches_the_definition():
         findings = [Finding.not_evaluated(c, "check", "test") for c in found]
         expected = [c for c in scheduled if not any(f.condition == c or f.condition.refines(c) for f in findings)]
         assert _uncovered(scheduled, findings) == expected
+
+
+def test_expanded_conditions_are_those_of_the_constructor(ctx):
+    """The condition space's points (built field by field, without the dataclass ``__init__``) equal, hash and order
+    their fields as conditions made by ``Condition(...)``; ``with_`` and ``without`` on them too."""
+    import dataclasses
+
+    from certkit.engine.conditions import CgCorners, ConditionSpace, EnvelopeAltitudes
+
+    space = ConditionSpace(
+        loading=CgCorners(), configurations=("clean",), altitudes=EnvelopeAltitudes(), extra=(("gust", ("up", "down")),)
+    )
+    points = space.expand(ctx.aircraft)
+    assert len(points) > 8
+    names = [f.name for f in dataclasses.fields(Condition)]
+    for c in points:
+        made = Condition(**{n: getattr(c, n) for n in names})
+        assert c == made and hash(c) == hash(made) and list(vars(c)) == names == list(vars(made))
+        assert c.with_(gust="down").without("gust") == made.with_(gust="down").without("gust")
