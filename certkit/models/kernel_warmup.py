@@ -17,7 +17,8 @@ from the cached code, whichever run compiled it: a first check after an install 
 
 The list is a record of what certkit's rules compile; a test compares it with the kernels a check and a design
 evaluation compile (``tests/hardening/test_kernel_warmup.py``, which prints the new list when it differs). A kernel
-called with types the list lacks is still compiled where it is called: the list only moves work ahead.
+called with types the list lacks is still compiled where it is called, and that run computes with its own machine code
+(the last bits above): the test keeps the list complete.
 """
 
 from __future__ import annotations
