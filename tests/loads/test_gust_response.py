@@ -8,6 +8,8 @@ vertical velocity gives ż' + ż/τ = U(t)/τ, τ = m V/(q̄ S a), with U = (U_d
 Tolerance 1 % of the peak (zero-order hold of the gust over 2 ms steps, lift tilt with the climb angle).
 """
 
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -141,15 +143,26 @@ def test_pratt_cross_check_with_the_penetration_lag():
 
 
 def _lagged_everywhere(s, H, Uds, chord):
-    """The effective gust's closed form evaluated at every penetration alike (the functions on the whole grid)."""
-    sigma = 2.0 * np.asarray(s, dtype=float) / chord
-    w, end = np.pi * chord / (2.0 * H), 4.0 * H / chord
-    inside = np.clip(sigma, 0.0, end)
-    out = np.where((s >= 0) & (s <= 2 * H), 0.5 * Uds * (1 - np.cos(np.pi * s / H)), 0.0)
-    for a_k, b_k in ((0.5, 0.13), (0.5, 1.0)):
-        lag = (b_k * np.sin(w * inside) - w * np.cos(w * inside) + w * np.exp(-b_k * inside)) / (b_k**2 + w**2)
-        lag = 0.5 * Uds * w * lag * np.exp(-b_k * np.maximum(sigma - end, 0.0))
-        out = out - a_k * np.where(sigma > 0.0, lag, 0.0)
+    """The effective gust's closed form evaluated at every penetration alike (the functions on the whole grid), element
+    by element with the C library's scalar sine, cosine and exponential (``math``): the functions the compiled kernel
+    calls. numpy's vectorised ufuncs may differ from them in the last bit (its AVX-512 exp, for one), which would test
+    the libraries, not where the kernel evaluates."""
+    s = np.asarray(s, dtype=float)
+    Uds = np.broadcast_to(np.asarray(Uds, dtype=float), s.shape)
+    w, end = math.pi * chord / (2.0 * H), 4.0 * H / chord
+    out = np.empty(s.shape)
+    for idx in np.ndindex(s.shape):
+        si, u = float(s[idx]), float(Uds[idx])
+        sigma = 2.0 * si / chord
+        inside = min(max(sigma, 0.0), end)
+        value = 0.5 * u * (1 - math.cos(math.pi * si / H)) if 0.0 <= si <= 2 * H else 0.0
+        for a_k, b_k in ((0.5, 0.13), (0.5, 1.0)):
+            lag = (b_k * math.sin(w * inside) - w * math.cos(w * inside) + w * math.exp(-b_k * inside)) / (
+                b_k**2 + w**2
+            )
+            lag = 0.5 * u * w * lag * math.exp(-b_k * max(sigma - end, 0.0))
+            value = value - a_k * (lag if sigma > 0.0 else 0.0)
+        out[idx] = value
     return out
 
 
