@@ -1,5 +1,8 @@
 """Shared fixtures: the bundled baseline, a CLI runner and (tests/browser.py) the headless browser."""
 
+import os
+import shutil
+import tempfile
 from pathlib import Path
 
 import pytest
@@ -18,15 +21,26 @@ SHARED_REFERENCE = ROOT.parent / "shared" / "reference"
 
 
 def pytest_configure(config):
-    """At the first run after an install, compile certkit's numba kernels once, ahead, before the test processes
-    start (pytest-xdist's controller, or the lone process): the workers then load them from numba's cache instead of
-    each compiling the same kernels when a test first calls them (certkit.models.kernel_warmup). Tests of a cold
-    cache use a cache directory of their own."""
+    """The suite's own certkit cache folder (``XDG_CACHE_HOME``, a temporary directory for the session, set by the
+    controller before pytest-xdist starts its workers, which inherit it): the tests' lattice solutions — solved in test
+    processes, whose BLAS may run several threads and sum in another order — never enter the user's folder, where a
+    later ``certkit check`` would load them and give other last bits than its own solution. Then, at the first run
+    after an install, compile certkit's numba kernels once, ahead, before the test processes start: the workers load
+    them from numba's cache instead of each compiling the same kernels when a test first calls them
+    (certkit.models.kernel_warmup). Tests of a cold cache use a cache directory of their own."""
     if hasattr(config, "workerinput"):
         return
+    config._certkit_cache = tempfile.mkdtemp(prefix="certkit-test-cache-")
+    os.environ["XDG_CACHE_HOME"] = config._certkit_cache
     from certkit.models.kernel_warmup import compile_if_cold
 
     compile_if_cold(processes=2)
+
+
+def pytest_unconfigure(config):
+    folder = getattr(config, "_certkit_cache", None)
+    if folder is not None:
+        shutil.rmtree(folder, ignore_errors=True)
 
 
 @pytest.fixture(scope="session")

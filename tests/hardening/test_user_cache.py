@@ -77,3 +77,15 @@ def test_compiled_templates_are_cached_and_a_damaged_cache_is_compiled_afresh(tm
     _templates(tmp_path)
     (tmp_path / "unwritable").write_text("a file where the cache folder would be")
     _templates(tmp_path / "unwritable")  # no folder can be made: the templates are compiled each time
+
+
+def test_the_suite_writes_into_a_cache_folder_of_its_own():
+    """The tests' lattice solutions and indexes go to the session's folder (tests/conftest.py), not the user's: a
+    lattice solved in a test process (BLAS threads of its own) and loaded by a later `certkit check` would change the
+    last bits of that check's results.json."""
+    from pathlib import Path
+
+    from certkit.user_cache import cache_folder
+
+    user = Path(os.path.expanduser("~")) / ".cache" / "certkit"
+    assert cache_folder() != user and "certkit-test-cache-" in str(cache_folder())
