@@ -23,9 +23,9 @@ called with types the list lacks is still compiled where it is called, and that 
 
 from __future__ import annotations
 
+import hashlib
 import importlib
 import multiprocessing
-import os
 import sys
 import time
 from collections.abc import Callable, Iterable
@@ -47,6 +47,10 @@ COMPILED_ELSEWHERE = (
     ("certkit.models.dynamics.kernel", "integrate_open_loop"),
     ("certkit.models.dynamics.trim", "_residual_rows"),
 )
+
+#: the file, beside numba's cache of the equations of motion, that a finished :func:`compile_kernels` of the whole list
+#: writes (:func:`completion_stamp`): a first run interrupted while compiling leaves the cache without it
+COMPLETE_FILE = "certkit-kernels.complete"
 
 Entry = tuple[str, str, str]  # module, function, argument types (numba's text)
 
@@ -136,6 +140,7 @@ def compile_kernels(processes: int, entries: list[Entry] | None = None, context:
     cache; the wall seconds taken. One process too (``--jobs 1``): another process compiles them, so that the process
     that uses them runs the machine code numba loads from the cache — the kernels compiled where they run give other
     last bits than the same kernels loaded from the cache (the module's docstring)."""
+    whole = entries is None
     entries = listed_signatures() if entries is None else entries
     if not entries:
         return 0.0
@@ -148,20 +153,49 @@ def compile_kernels(processes: int, entries: list[Entry] | None = None, context:
     parts = groups(entries, processes)
     with ProcessPoolExecutor(len(parts), mp_context=multiprocessing.get_context(context)) as pool:
         list(pool.map(compile_group, parts))
+    path = completion_file() if whole else None
+    if path is not None:  # every listed kernel is in the cache now (:func:`kernels_cached`)
+        try:
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(completion_stamp(entries, path), encoding="utf-8")
+        except OSError:  # a cache numba cannot write either: it compiles in memory
+            pass
     return time.perf_counter() - start
 
 
-def kernels_cached() -> bool:
-    """Does numba's cache hold the compiled equations of motion (False at the first run after an install, when the
-    kernels are compiled: the command says so before it goes quiet for a while)?"""
-    from certkit.models.dynamics import kernel  # deferred: numba only where kernels compile (study commands)
+def completion_stamp(entries: list[Entry], path: Path) -> str:
+    """What :data:`COMPLETE_FILE` ``path`` holds once ``entries`` are compiled: a digest of the kernel sources' digest
+    beside it (:func:`certkit.models.compiled.refresh_stale_kernels` keeps it current) and of the entries (a changed
+    source or list makes it another)."""
+    from certkit.models import compiled  # deferred: numba only where kernels compile (study commands)
 
+    sources = (path.parent / compiled.DIGEST_FILE).read_text(encoding="utf-8")
+    listed = "\n".join(" ".join(e) for e in entries)
+    return hashlib.sha256(f"{sources}\n{listed}".encode()).hexdigest()
+
+
+def completion_file() -> Path | None:
+    """:data:`COMPLETE_FILE` in numba's cache directory of the equations of motion (None: numba caches nothing)."""
+    from certkit.models import compiled  # deferred: numba only where kernels compile (study commands)
+
+    package = Path(compiled.__file__).resolve().parents[1]
+    for directory, stems in compiled.kernel_cache_dirs(package).items():
+        if "kernel" in stems:
+            return directory / COMPLETE_FILE
+    return None
+
+
+def kernels_cached() -> bool:
+    """Has a :func:`compile_kernels` of the whole list finished into numba's cache since the kernel sources last
+    changed (False at the first run after an install, and after a first run that was interrupted while compiling:
+    the kernels are then compiled ahead, and the command says so before it goes quiet for a while)?"""
+    path = completion_file()
+    if path is None:
+        return True  # numba cannot cache here: each process compiles for itself, nothing ahead would help
     try:
-        dispatcher: Any = kernel.derivatives
-        index = dispatcher._cache._cache_file._index_path  # numba's cache layout, not a public API
-    except AttributeError:
-        return True  # another numba: say nothing rather than guess
-    return os.path.exists(index)
+        return path.read_text(encoding="utf-8") == completion_stamp(listed_signatures(), path)
+    except OSError:
+        return False
 
 
 def compile_if_cold(processes: int, context: str = "fork", starting: Callable[[], None] | None = None) -> float | None:
@@ -178,7 +212,10 @@ __all__ = [
     "SIGNATURES_FILE",
     "COMPILED_ELSEWHERE",
     "EQUATIONS_OF_MOTION",
+    "COMPLETE_FILE",
     "compile_if_cold",
+    "completion_file",
+    "completion_stamp",
     "kernels_cached",
     "argument_types",
     "compile_group",

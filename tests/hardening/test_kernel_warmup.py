@@ -90,3 +90,27 @@ def test_the_kernels_are_compiled_into_the_cache_by_other_processes(tmp_path, pr
     assert done.stdout.split() == ["True", "0"], done.stderr[-3000:]
     indexes = sorted(p.name.split("-")[0] for p in tmp_path.rglob("*.nbi"))
     assert indexes == ["atmosphere._first_out_of_range", "capability._worst"]
+
+
+def test_a_cache_is_warm_only_once_the_whole_list_is_compiled(tmp_path):
+    """An interrupted first run leaves some kernels in the cache and not the others: the next run still compiles ahead
+    (else it would compile the missing ones where they run, with that process's own last bits). The cache counts as
+    warm once a compilation of the whole list has finished, and only for that list: a list with more kernels (or
+    changed sources, in the stamp too) makes it cold again. Here the whole list is two small kernels."""
+    script = (
+        "from certkit.models import kernel_warmup as kw\n"
+        "full = kw.listed_signatures()\n"
+        "small = [e for e in full if e[1] in ('_first_out_of_range', '_worst')]\n"
+        "print(kw.kernels_cached())\n"
+        "kw.compile_kernels(1, small[:1])\n"  # the first run stopped after one kernel
+        "kw.listed_signatures = lambda: small\n"
+        "print(kw.kernels_cached())\n"
+        "kw.compile_kernels(1)\n"  # the whole (two-kernel) list
+        "print(kw.kernels_cached())\n"
+        "kw.listed_signatures = lambda: full\n"
+        "print(kw.kernels_cached())\n"
+    )
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env, cwd=ROOT)
+    assert done.stdout.split() == ["False", "False", "True", "False"], done.stderr[-3000:]
+    assert len(list(tmp_path.rglob("*.nbi"))) == 2
