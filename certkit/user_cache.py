@@ -1,13 +1,57 @@
 """certkit's folder in the user's cache: ``$XDG_CACHE_HOME/certkit`` or ``~/.cache/certkit``.
 
-It holds what can be rebuilt at any time (the rule index, pint's parsed unit definitions); losing it only costs time.
+It holds what can be rebuilt at any time (the rule index, pint's parsed unit definitions, lattice solutions, the
+declared airplanes' sizing baselines); losing it only costs time.
 """
 
 from __future__ import annotations
 
 import os
+import pickle
+import tempfile
 from pathlib import Path
+from typing import Any
 
 
 def cache_folder() -> Path:
     return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "certkit"
+
+
+class PickleFolder:
+    """Values pickled under keys (file names) in ``folder``, the newest ``keep`` kept: a miss for anything that cannot
+    be read, nothing for a folder that cannot be written (such a store only saves time)."""
+
+    def __init__(self, folder: Path | str, keep: int):
+        self.folder = Path(folder)
+        self.keep = keep
+
+    def load(self, key: str) -> Any | None:
+        """The value stored under ``key``, or None (none yet, an unreadable folder, a damaged or foreign entry)."""
+        path = self.folder / f"{key}.pickle"
+        try:
+            with open(path, "rb") as f:
+                value = pickle.load(f)
+            os.utime(path)  # most recently used: kept longest
+        except Exception:  # noqa: BLE001 - any unreadable entry is only a miss
+            return None
+        return value
+
+    def save(self, key: str, value: Any) -> None:
+        """Write ``value`` under ``key`` whole or not at all (another process may be writing the same entry), then
+        keep the newest entries."""
+        tmp = None
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+            fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".tmp")
+            with os.fdopen(fd, "wb") as f:
+                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
+            os.replace(tmp, self.folder / f"{key}.pickle")
+            tmp = None
+            entries = sorted(self.folder.glob("*.pickle"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
+            for old in entries[self.keep :]:
+                old.unlink(missing_ok=True)
+        except OSError:
+            return
+        finally:
+            if tmp is not None:
+                Path(tmp).unlink(missing_ok=True)

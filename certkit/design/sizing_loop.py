@@ -25,11 +25,12 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from certkit.design import baseline_store
 from certkit.design.cg_envelope import follows_loading, loading_corners, with_loading_corners
 from certkit.design.parallel import evaluate_rules
 from certkit.design.tail_group import (
@@ -268,19 +269,27 @@ def baseline_actuators(
     source: YamlSource, base_aircraft: Aircraft, rules: Sequence[type[Rule]], loaded_of: LoadedOf
 ) -> BaselineActuators:
     """The unmodified file's elevator actuators, sized from its own pitch manoeuvres, and its near-critical loads
-    conditions (once per process and file)."""
+    conditions (once per process and file; from the user's cache when a process computed them before:
+    :mod:`certkit.design.baseline_store`, the value without its context)."""
     if source.sha256 not in _BASELINE:
         if base_aircraft.sizing is None or base_aircraft.sizing.elevator_actuators is None:
             value = NO_ACTUATORS
         else:
-            ctx = Context(loaded_of(base_aircraft))
             chosen = sizing_rules(rules)
-            value = _baseline_value(
-                base_aircraft,
-                ctx,
-                [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in chosen.rules],
-                chosen,
-            )
+            key = baseline_store.entry_key(base_aircraft, chosen.rules)
+            entries = baseline_store.store()
+            stored = entries.load(key)
+            if isinstance(stored, BaselineActuators):
+                value = stored
+            else:
+                ctx = Context(loaded_of(base_aircraft))
+                value = _baseline_value(
+                    base_aircraft,
+                    ctx,
+                    [evaluate_rule(r, ctx, evidence=False, keep_loads=True) for r in chosen.rules],
+                    chosen,
+                )
+                entries.save(key, replace(value, ctx=None))
         _remember(source, value)
     return _BASELINE[source.sha256]
 

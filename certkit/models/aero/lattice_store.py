@@ -12,10 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
-import pickle
 import platform
-import tempfile
 from functools import lru_cache
 from importlib.metadata import version
 from pathlib import Path
@@ -24,6 +21,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from certkit.models.aero.airplane import LatticeDerivatives, lattice_derivatives
+from certkit.user_cache import PickleFolder
 
 #: the aircraft file's sections the lattice is computed from (geometry and lattice resolution, the reference lengths
 #: and point, the design speeds that set the Mach breakpoints)
@@ -67,44 +65,15 @@ class LatticeStore:
 
     def __init__(self, folder: Path | str):
         self.folder = Path(folder)
+        self._entries = PickleFolder(self.folder, KEEP)
 
     def derivatives(self, aircraft: Any, machs: Sequence[float] | None = None) -> LatticeDerivatives:
         """:func:`lattice_derivatives` of ``aircraft`` at ``machs``: the stored solution of the same inputs, or
         solved and stored."""
-        path = self.folder / f"{entry_key(aircraft, machs)}.pickle"
-        stored = self._load(path)
+        key = entry_key(aircraft, machs)
+        stored = self._entries.load(key)
         if stored is not None:
-            return stored
+            return stored  # type: ignore[no-any-return]
         solved = lattice_derivatives(aircraft, machs)
-        self._save(path, solved)
+        self._entries.save(key, solved)
         return solved
-
-    def _load(self, path: Path) -> LatticeDerivatives | None:
-        try:
-            with open(path, "rb") as f:
-                value = pickle.load(f)
-            os.utime(path)  # most recently used: kept longest
-        except Exception:  # noqa: BLE001 - none yet, an unreadable folder, a damaged or foreign entry: only a miss
-            return None
-        return value  # type: ignore[no-any-return]
-
-    def _save(self, path: Path, value: LatticeDerivatives) -> None:
-        """Write ``value`` at ``path`` whole or not at all (another process may be writing the same entry), then
-        keep the newest :data:`KEEP` entries. A folder that cannot be written is left alone: the store only saves
-        time."""
-        tmp = None
-        try:
-            self.folder.mkdir(parents=True, exist_ok=True)
-            fd, tmp = tempfile.mkstemp(dir=self.folder, suffix=".tmp")
-            with os.fdopen(fd, "wb") as f:
-                pickle.dump(value, f, protocol=pickle.HIGHEST_PROTOCOL)
-            os.replace(tmp, path)
-            tmp = None
-            entries = sorted(self.folder.glob("*.pickle"), key=lambda p: p.stat().st_mtime_ns, reverse=True)
-            for old in entries[KEEP:]:
-                old.unlink(missing_ok=True)
-        except OSError:
-            return
-        finally:
-            if tmp is not None:
-                Path(tmp).unlink(missing_ok=True)
