@@ -12,6 +12,15 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+#: the thread settings a BLAS reads: a threaded BLAS sums in another order (other last bits), so a numerical result kept
+#: in the cache is keyed on them too
+THREAD_SETTINGS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+
+
+def thread_settings() -> dict[str, str | None]:
+    """The process's :data:`THREAD_SETTINGS` (None where unset)."""
+    return {name: os.environ.get(name) for name in THREAD_SETTINGS}
+
 
 def cache_folder() -> Path:
     return Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "certkit"

@@ -16,23 +16,19 @@ from __future__ import annotations
 
 import hashlib
 import json
-import os
 import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from certkit.models.aero.lattice_store import source_digest
-from certkit.user_cache import PickleFolder, cache_folder
+from certkit.user_cache import PickleFolder, cache_folder, thread_settings
 
 #: entries kept in the folder (a few kB each), the most recently used
 KEEP = 16
 
 #: the layout of an entry; another layout is another entry
 FORMAT = 1
-
-#: the thread settings a BLAS reads (their values are part of an entry's key)
-THREAD_SETTINGS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 
 
 def _package_digest(module: str) -> str:
@@ -58,7 +54,7 @@ def entry_key(aircraft: Any, rules: Sequence[type]) -> str:
         "aircraft": model,
         "rules": sorted(str(getattr(r, "id", r.__qualname__)) for r in rules),
         "packages": {p: _package_digest(p) for p in packages},
-        "threads": {v: os.environ.get(v) for v in THREAD_SETTINGS},
+        "threads": thread_settings(),
     }
     text = json.dumps(inputs, sort_keys=True, default=repr)
     return hashlib.sha256((source_digest() + "\n" + text).encode()).hexdigest()

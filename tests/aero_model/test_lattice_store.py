@@ -133,3 +133,12 @@ def test_rules_on_a_stored_lattice_give_the_same_results(baseline, tmp_path):
     loaded = run(baseline, rules, jobs=1, lattice_store=store)
     assert [r.to_json() for r in loaded.rules] == [r.to_json() for r in solved.rules]
     assert all(r.findings for r in loaded.rules)
+
+
+def test_the_key_follows_the_blas_thread_settings(baseline, monkeypatch):
+    """A lattice solved with a threaded BLAS (other last bits: its LU sums in another order) is another entry than one
+    solved with one thread, as certkit's commands run."""
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "1")
+    one = entry_key(baseline.model)
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")
+    assert entry_key(baseline.model) != one

@@ -3,9 +3,10 @@ between runs: a check of an aircraft file whose geometry did not change loads it
 Mach breakpoint and the unit solutions the strip loads spread) instead of solving it again.
 
 An entry is found by a digest of everything the solution is computed from: the aircraft file's sections that
-:func:`lattice_derivatives` reads (:data:`LATTICE_INPUTS`, tested to be all it reads), the Mach numbers, and the
-source text of certkit's modules with the numpy, numba and Python versions — a change of any of them is another entry,
-never an old solution. An entry that cannot be read is solved again. The newest :data:`KEEP` entries are kept.
+:func:`lattice_derivatives` reads (:data:`LATTICE_INPUTS`, tested to be all it reads), the Mach numbers, the
+source text of certkit's modules with the numpy, numba and Python versions, and the process's BLAS thread settings (a
+threaded BLAS solves the lattice to other last bits) — a change of any of them is another entry, never an old
+solution. An entry that cannot be read is solved again. The newest :data:`KEEP` entries are kept.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from certkit.models.aero.airplane import LatticeDerivatives, lattice_derivatives
-from certkit.user_cache import PickleFolder
+from certkit.user_cache import PickleFolder, thread_settings
 
 #: the aircraft file's sections the lattice is computed from (geometry and lattice resolution, the reference lengths
 #: and point, the design speeds that set the Mach breakpoints)
@@ -52,6 +53,7 @@ def entry_key(aircraft: Any, machs: Sequence[float] | None = None) -> str:
     """The digest naming ``aircraft``'s lattice solution at ``machs`` (None: its Mach breakpoints)."""
     inputs = {name: _plain(getattr(aircraft, name)) for name in LATTICE_INPUTS}
     inputs["machs"] = None if machs is None else [float(m) for m in machs]
+    inputs["threads"] = thread_settings()  # the lattice's LU in a threaded BLAS: other last bits
     text = json.dumps(inputs, sort_keys=True, default=repr)
     return hashlib.sha256((source_digest() + "\n" + text).encode()).hexdigest()
 
