@@ -419,6 +419,7 @@ def derivatives(
         xd,
         out,
         gear,
+        np.ones(n, dtype=np.bool_),
     )
     return xd, out, gear
 
@@ -452,16 +453,20 @@ def derivatives_into(
     xd,
     out,
     gear,
+    active,
 ):
     """:func:`derivatives` into the caller's arrays ``xd``, ``out`` and ``gear`` (the gear loads zero where a leg does
-    not touch): every array borrowed (:func:`~certkit.models.compiled.borrowed`), none counted per row."""
+    not touch) for the rows ``active`` (n,) marks, the others' left as they are: every array borrowed
+    (:func:`~certkit.models.compiled.borrowed`), none counted per row."""
     X, rows, U, thrust, coef = borrowed(X), borrowed(rows), borrowed(U), borrowed(thrust), borrowed(coef)
-    xd, out, gear = borrowed(xd), borrowed(out), borrowed(gear)
+    xd, out, gear, active = borrowed(xd), borrowed(out), borrowed(gear), borrowed(active)
     props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams = _borrowed_model(
         props, consts, T, machs, clmax, stall, after_stall, r_eng, d_eng, r_gear, legs, gparams
     )
     n = X.shape[0]
     for i in range(n):
+        if not active[i]:
+            continue
         derivative_one(
             rows[i],
             X[i],
@@ -759,7 +764,8 @@ def integrate_open_loop(
     (:class:`certkit.models.dynamics.simulate.Bound`): criterion c stops a condition when its output column
     ``stop_cols[c]`` (−1: the time) lies strictly below ``stop_lo[c, i]`` or above ``stop_hi[c, i]``, the first
     criterion in order naming the stop (``stop_which``, ``stop_step``: −1 when none); a stopped condition keeps its
-    state and its last record, and the run ends when every condition has stopped. ``X`` advances in place; the
+    state and its last record (nothing of it is computed any more), and the run ends when every
+    condition has stopped. ``X`` advances in place; the
     outputs, states and controls of every ``record_every``-th step go to ``out_rec``, ``x_rec`` and ``u_rec``.
     The caller gives the scratch arrays: ``rows`` = 0 … n − 1, ``thrust`` (n, engines), ``active`` (n,) all True,
     ``xd``, ``out``, ``gear`` (n, states / outputs / legs) and the RK4 step's ``k_stages`` (3, states), ``x_stage``,
@@ -794,6 +800,8 @@ def integrate_open_loop(
     for k in range(nsteps + 1):
         U = U_all[k]
         for i in range(n):
+            if not active[i]:  # a stopped condition keeps its state and last record: nothing of it is computed
+                continue
             air = _air(X[i, 2], X[i, 3], X[i, 4], X[i, 5])
             turbofan_row_thrust(
                 air[0],
@@ -832,6 +840,7 @@ def integrate_open_loop(
             xd,
             out,
             gear,
+            active,
         )
         for c in range(stop_cols.shape[0]):
             for i in range(n):
