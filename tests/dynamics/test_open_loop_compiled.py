@@ -74,3 +74,44 @@ def test_compiled_run_with_bound_stops_equals_the_python_loop(batch):
     assert compiled.stop_reason == loop.stop_reason
     np.testing.assert_array_equal(compiled.stop_time, loop.stop_time)
     _assert_same_run(compiled, loop)
+
+
+def test_a_batch_gathered_from_runs_of_its_conditions_is_the_batch_run(batch):
+    """:func:`gather`: the conditions of a batch flown in other runs — other batches, longer or shorter, the same
+    inputs — gathered column by column give the batch's own run bit for bit (each condition's records up to its stop,
+    its last after it; the run ending at the last stop), the Euler angles (converted from the gathered quaternions)
+    and the final states included; a condition that did not stop in its run cannot be gathered."""
+    from certkit.models.dynamics.simulate import Bound, gather
+
+    model, trims, _ = batch
+    n = trims.x.shape[0]
+    amplitude = np.linspace(-0.02, -0.07, n)
+    t_stop = np.array([1.0, 1.6, 0.7, 2.2, 1.3, 1.9])
+
+    def run(rows, extra_time=0.0):
+        """The conditions ``rows`` alone, pulled by their own amplitude and stopped at their own time."""
+        sub = model.subset(rows)
+        pull = {"elevator": Function(lambda t: amplitude[rows] * np.minimum(np.asarray(t), 1.0))}
+        stops = [Bound("n_z cap", "n_z", upper=np.full(len(rows), 1.45)), Bound("t_max", "t", upper=t_stop[rows])]
+        return simulate(
+            sub,
+            trims.x[rows],
+            trims.u[rows],
+            float(t_stop[rows].max()) + 0.02 + extra_time,
+            0.02,
+            inputs=pull,
+            stop=stops,
+        )
+
+    whole = run(np.arange(n))
+    a, b = run(np.array([3, 0, 5])), run(np.array([1, 4, 2]), extra_time=1.0)
+    picks = [(a, 1), (b, 0), (b, 2), (a, 0), (b, 1), (a, 2)]
+    got = gather(picks)
+    assert got is not None and set(whole.stop_reason) == {"n_z cap", "t_max"}
+    assert got.t.tobytes() == whole.t.tobytes() and got.controls.tobytes() == whole.controls.tobytes()
+    for key in ("n_z", "alpha", "q", "theta", "phi", "V"):
+        assert got.history[key].tobytes() == whole.history[key].tobytes(), key
+    assert got.stop_time.tobytes() == whole.stop_time.tobytes() and got.stop_reason == whole.stop_reason
+    assert got.final_state.tobytes() == whole.final_state.tobytes()
+    never = simulate(model.subset(np.array([0])), trims.x[:1], trims.u[:1], 0.5, 0.02)  # no stop criterion
+    assert gather([(never, 0)]) is None

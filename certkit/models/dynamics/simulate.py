@@ -258,10 +258,16 @@ class Histories(Mapping[str, np.ndarray]):
     loads' gusts and manoeuvres) read none, and the conversion was 1.6 % of a design. Runs joined end to end
     (:meth:`joined`) join a history when it is first read."""
 
-    __slots__ = ("_values", "_quat", "_parts")
+    __slots__ = ("_values", "_quat", "_parts", "_rows")
 
-    def __init__(self, values: dict[str, np.ndarray], quat: np.ndarray | None, parts: Sequence["Histories"] = ()):
-        self._values, self._quat, self._parts = values, quat, tuple(parts)
+    def __init__(
+        self,
+        values: dict[str, np.ndarray],
+        quat: np.ndarray | None,
+        parts: Sequence["Histories"] = (),
+        rows: Sequence[tuple["Histories", np.ndarray, np.ndarray, np.ndarray]] = (),
+    ):
+        self._values, self._quat, self._parts, self._rows = values, quat, tuple(parts), tuple(rows)
 
     def __getitem__(self, key: str) -> np.ndarray:
         values = self._values
@@ -271,6 +277,8 @@ class Histories(Mapping[str, np.ndarray]):
                 values.update(phi=eul[:, :, 0], theta=eul[:, :, 1], psi=eul[:, :, 2])
             elif self._parts and key in RECORDED:
                 values[key] = self._join(lambda p: p[key])
+            elif self._rows and key in RECORDED:
+                values[key] = self._gather(lambda h: h[key])
         return values[key]
 
     def __iter__(self) -> Iterator[str]:
@@ -281,12 +289,30 @@ class Histories(Mapping[str, np.ndarray]):
 
     def _quaternions(self) -> np.ndarray:
         if self._quat is None:
-            self._quat = self._join(lambda p: p._quaternions())
+            self._quat = (
+                self._join(lambda p: p._quaternions()) if self._parts else self._gather(lambda h: h._quaternions())
+            )
         return self._quat
 
     def _join(self, get: Callable[["Histories"], np.ndarray]) -> np.ndarray:
         parts = self._parts
         return np.concatenate([get(parts[0])] + [get(p)[1:] for p in parts[1:]])
+
+    def _gather(self, get: Callable[["Histories"], np.ndarray]) -> np.ndarray:
+        """The gathered history (:meth:`gathered`): each source's conditions' records at their rows."""
+        first = get(self._rows[0][0])
+        n = sum(len(columns) for _, _, columns, _ in self._rows)
+        out = np.empty((self._rows[0][3].shape[0], n) + first.shape[2:], dtype=first.dtype)
+        for source, at, columns, rows in self._rows:
+            out[:, at] = get(source)[rows, columns]
+        return out
+
+    @staticmethod
+    def gathered(rows: Sequence[tuple["Histories", np.ndarray, np.ndarray, np.ndarray]]) -> "Histories":
+        """Histories made of other runs' conditions: per source, its histories, the conditions ``at`` (k,) they fill,
+        their ``columns`` (k,) in the source and the source ``rows`` (nt, k) each record is read from (:func:`gather`).
+        Each history is gathered when first read."""
+        return Histories({}, None, (), rows)
 
     @staticmethod
     def joined(parts: Sequence["Histories"]) -> "Histories":
@@ -349,6 +375,50 @@ def _scheduled_controls(u_trim, sched, nsteps: int, dt, per_row: bool) -> np.nda
     for j, s in sched:
         U_all[:, :, j] += s.over(times)
     return U_all
+
+
+def gather(picks: Sequence[tuple[SimulationResult, int]]) -> SimulationResult | None:
+    """The run of a batch whose condition j was run, with the same inputs, as column ``picks[j][1]`` of the run
+    ``picks[j][0]`` — runs of one time step from t = 0 —, without running it again. A condition's records do not
+    depend on the batch it is run in (each row is integrated alone) until it stops; after its stop it keeps its last
+    record, and the run ends at the last condition's stop. So the gathered run has the records up to the latest of
+    the conditions' stops, each condition's own up to its stop and its last one after. None when a condition did not
+    stop in its run (its records would go on to the batch's end: the run is needed) or the runs' grids differ."""
+    n = len(picks)
+    stops = np.empty(n, dtype=np.int64)
+    grid = picks[0][0].t[:2]
+    for j, (sim, c) in enumerate(picks):
+        t = sim.t
+        if not sim.stop_reason[c] or t.ndim != 1 or not np.array_equal(t[:2], grid):
+            return None
+        k = int(np.searchsorted(t, sim.stop_time[c]))
+        if k >= t.shape[0] or t[k] != sim.stop_time[c]:
+            return None
+        stops[j] = k
+    length = int(stops.max()) + 1
+    longest = picks[int(np.argmax(stops))][0]
+    steps = np.arange(length)[:, None]
+    by_source: dict[int, list[int]] = {}
+    for j, (sim, _) in enumerate(picks):
+        by_source.setdefault(id(sim), []).append(j)
+    rows = []
+    controls = np.empty((length, n, longest.controls.shape[2]))
+    for js in by_source.values():
+        at = np.array(js)
+        sim = picks[js[0]][0]
+        columns = np.array([picks[j][1] for j in js])
+        read = np.minimum(steps, stops[at][None, :])  # a stopped condition's last record, repeated
+        rows.append((sim.history, at, columns, read))
+        controls[:, at] = sim.controls[read, columns]
+    return SimulationResult(
+        t=longest.t[:length],
+        history=Histories.gathered([(h, at, columns, read) for h, at, columns, read in rows]),
+        controls=controls,
+        control_names=longest.control_names,
+        stop_time=np.array([sim.stop_time[c] for sim, c in picks]),
+        stop_reason=[sim.stop_reason[c] for sim, c in picks],
+        final_state=np.array([sim.final_state[c] for sim, c in picks]),
+    )
 
 
 def simulate(
@@ -506,5 +576,6 @@ __all__ = [
     "SimulationResult",
     "Histories",
     "simulate",
+    "gather",
     "RECORDED",
 ]

@@ -15,7 +15,9 @@ over near the stall line, where the aim often sits: an amplitude search's first 
 available amplitude and its second goes where that line reaches the aim (the chord from zero to the full amplitude,
 flat near the stall, would creep along the bend and leave conditions outside the resolution after its steps). An
 amplitude search that did not converge and ends above the target takes the largest amplitude found below it; a hold
-takes the bracket end at or above it.
+takes the bracket end at or above it. Each input found was flown by a step of the search: the recorded run of the
+batch is gathered from those steps' runs (:func:`~certkit.models.dynamics.simulate.gather`, bit for bit the run), not
+flown again.
 
 Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the local cubic of
 :func:`~certkit.models.dynamics.sampled_peak.peak_between_samples`: the sampled extreme alone is not monotone in the
@@ -32,13 +34,16 @@ from numpy.typing import ArrayLike
 
 from certkit.models.dynamics.eom import AircraftModel
 from certkit.models.dynamics.sampled_peak import peak_between_samples
-from certkit.models.dynamics.simulate import Bound, SimulationResult, simulate
+from certkit.models.dynamics.simulate import Bound, SimulationResult, gather, simulate
 from certkit.models.loads.inputs import SinusoidHold, bisect_batch, linear_probe
 
 #: the amplitude search's first step: this fraction of the available amplitude, where the response is still linear in
 #: it (numerical choice: the checked manoeuvre's load factor bends over near the stall line, at 20–35 % of the
 #: available elevator in the seed study's conditions)
 PROBE = 0.1
+
+#: a run of the search: its conditions, their inputs (amplitude, hold), its records and the responses
+Flown = tuple[np.ndarray, np.ndarray, np.ndarray, SimulationResult, np.ndarray]
 
 
 @dataclass
@@ -83,6 +88,7 @@ def checked_maneuver_inputs(
     sign = np.where(up_all, -1.0, 1.0)
     n_lim, periods = float(n_limit), float(periods)
     Recorded = tuple[np.ndarray, SimulationResult, np.ndarray, np.ndarray]
+    flown: list[Flown] = []  # every run of the search
 
     def run(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> Recorded:
         """Simulate the conditions of ``mask`` (all by default): the response for the whole batch (NaN outside the
@@ -102,6 +108,7 @@ def checked_maneuver_inputs(
         valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
         resp = np.full(n, np.nan)
         resp[idx] = np.where(up, peak_between_samples(nz, valid) - 1.0, 1.0 + peak_between_samples(-nz, valid))
+        flown.append((idx, amp[idx], hold[idx], sim, resp[idx]))
         return resp, sim, valid, t_max
 
     def response(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
@@ -152,5 +159,28 @@ def checked_maneuver_inputs(
     over = reach & (np.abs(r_p - target_) > float(tolerance)) & (r_p > target_)
     p = np.where(search & ~reach, p_hi, np.where(search, np.where(over, p_lo, p), 1.0))
     amp, hold = inputs_of(p)
-    resp, sim, valid, t_max = run(amp, hold)  # all conditions, recorded
+    found = _already_flown(flown, amp, hold)
+    if found is None:
+        resp, sim, valid, t_max = run(amp, hold)  # all conditions, recorded
+    else:  # every condition's input was flown by a step of the search: its records, not a run again
+        resp, sim = found
+        t_max = 2 * periods * np.pi / (2 * omega_) + hold
+        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
     return CheckedManeuverInputs(amp, hold, reach, held_short, resp, sim, valid, t_max)
+
+
+def _already_flown(flown: list[Flown], amp: np.ndarray, hold: np.ndarray) -> tuple[np.ndarray, SimulationResult] | None:
+    """The responses and records of the inputs ``amp``/``hold`` (n,) gathered from the search's runs ``flown`` (the
+    latest run of each condition with exactly those inputs, :func:`~certkit.models.dynamics.simulate.gather`), or
+    None when a condition's input was not flown or its run cannot be gathered."""
+    picks: list[tuple[SimulationResult, int] | None] = [None] * amp.shape[0]
+    resp = np.full(amp.shape[0], np.nan)
+    for idx, a, h, sim, r in flown:
+        same = (a == amp[idx]) & (h == hold[idx])
+        for k in np.flatnonzero(same):
+            picks[idx[k]] = (sim, int(k))
+            resp[idx[k]] = r[k]
+    if any(p is None for p in picks):
+        return None
+    gathered = gather([p for p in picks if p is not None])
+    return None if gathered is None else (resp, gathered)
