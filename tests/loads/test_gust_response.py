@@ -190,3 +190,27 @@ def test_the_effective_gust_computed_where_it_varies_is_the_closed_form_everywhe
         (one_minus_cosine(s, H, uds), np.where((s >= 0) & (s <= 2 * H), 0.5 * uds * (1 - np.cos(np.pi * s / H)), 0.0)),
     ):
         assert got.shape == expected.shape and got.tobytes() == expected.tobytes()
+
+
+def test_a_gust_kept_for_its_grids_is_computed_again_for_any_other_grid():
+    """The gust's values are kept for the last two time grids (the gust phase's run and its loads read the same grid):
+    the same grid again is not computed twice, and any other grid — another shape, or the same shape with one time
+    changed by an ulp — is computed afresh, never answered with kept values."""
+    from certkit.models.loads.gust_response import _grids_kept
+
+    calls = []
+
+    @_grids_kept
+    def gust(t):
+        calls.append(t.shape)
+        return np.sin(t) * 3.0
+
+    a = np.linspace(0.0, 2.0, 12).reshape(6, 2)
+    b = a + 0.5
+    nudged = a.copy()
+    nudged[3, 1] = np.nextafter(nudged[3, 1], 9.0)
+    assert gust(a) is gust(a.copy()) and len(calls) == 1
+    gust(b)
+    assert gust(a).tobytes() == (np.sin(a) * 3.0).tobytes() and len(calls) == 2
+    assert gust(nudged).tobytes() == (np.sin(nudged) * 3.0).tobytes() and len(calls) == 3
+    assert gust(a.reshape(12, 1)).shape == (12, 1) and len(calls) == 4

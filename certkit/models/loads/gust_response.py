@@ -114,9 +114,11 @@ def simulate_gust(
 
     c_wing, c_tail = gb.chords
 
+    @_grids_kept
     def wing(t):
         return penetration_lagged(v * t, H, a, c_wing)
 
+    @_grids_kept
     def tail(t):
         return penetration_lagged(v * (t - lag), H, a, c_tail)
 
@@ -155,6 +157,23 @@ def simulate_gust(
         kept,
         {s: (np.concatenate([x for x, _ in v_]), v_[0][1]) for s, v_ in fuel.items()},
     )
+
+
+def _grids_kept(f):
+    """``f`` of a time grid, the values of its last two grids kept: the gust phase's run evaluates the gust on its
+    grid of times (and the free phase's run on its own), then the loads read it again on the gust phase's records'
+    times — the same values, not computed twice."""
+    kept: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def at(t):
+        t = np.asarray(t, dtype=float)
+        for grid, values in kept:
+            if grid.shape == t.shape and grid.tobytes() == t.tobytes():
+                return values
+        kept[:] = kept[-1:] + [(t.copy(), f(t))]
+        return kept[-1][1]
+
+    return at
 
 
 def two_phase_run(
