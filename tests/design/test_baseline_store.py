@@ -88,3 +88,40 @@ def test_the_rules_package_digest_reads_every_module_of_it(chosen, tmp_path, mon
     before = baseline_store._package_digest("plugin_rules_probe.rule")
     (package / "support" / "helper.py").write_text("LIMIT = 3.8\n")
     assert baseline_store._package_digest("plugin_rules_probe.rule") != before
+
+
+# two designs of the declared geometry (a structural setting only) in one process; prints the lattice solves, then
+# each record
+SAME_GEOMETRY = """
+import json, sys
+from certkit.engine import context
+solves = []
+solve = context.lattice_derivatives
+context.lattice_derivatives = lambda *a, **k: solves.append(1) or solve(*a, **k)
+from certkit.design.evaluate import evaluate_design
+records = []
+for strain in (0.0038, 0.0042):
+    record = evaluate_design("aircraft/lta.yaml", {"sizing.horizontal_tail.material.design_strain": strain})
+    record.pop("timings")
+    records.append(record)
+print(len(solves))
+print(json.dumps(records, sort_keys=True))
+"""
+
+
+def test_designs_of_the_declared_geometry_share_one_lattice_with_a_stored_baseline(tmp_path):
+    """A design that changes no geometry flies on the declared airplane's lattice. With the baseline computed in the
+    process, that is the baseline pass's; loaded from the store (without its context), the first such design's serves
+    the next: one lattice solve in the process either way, and the same records."""
+    env = {**os.environ, "XDG_CACHE_HOME": str(tmp_path)}
+
+    def run():
+        done = subprocess.run([sys.executable, "-c", SAME_GEOMETRY], capture_output=True, text=True, env=env, cwd=ROOT)
+        assert done.returncode == 0, done.stderr[-3000:]
+        solves, records = done.stdout.splitlines()
+        return int(solves), records
+
+    computed = run()
+    loaded = run()
+    assert computed[0] == 1 and loaded[0] == 1
+    assert loaded[1] == computed[1]
