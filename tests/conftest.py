@@ -1,5 +1,6 @@
 """Shared fixtures: the bundled baseline, a CLI runner and (tests/browser.py) the headless browser."""
 
+import importlib.util
 import os
 import shutil
 import tempfile
@@ -32,9 +33,31 @@ def pytest_configure(config):
         return
     config._certkit_cache = tempfile.mkdtemp(prefix="certkit-test-cache-")
     os.environ["XDG_CACHE_HOME"] = config._certkit_cache
+    _link_optvl_libraries()
     from certkit.models.kernel_warmup import compile_if_cold
 
     compile_if_cold(processes=2)
+
+
+def _link_optvl_libraries():
+    """The AVL peer (optvl, a test dependency) links its bundled BLAS folder as /tmp/optvl.libs when it first loads,
+    if no such path exists: two test processes loading it at once race to create the link (one fails with
+    FileExistsError), and a link left dangling by a removed installation makes every later load fail the same way.
+    The controller makes the link once, before the workers start, to this installation's folder when it is missing or
+    dangling (a link to another installation's existing folder is left alone)."""
+    spec = importlib.util.find_spec("optvl")
+    if spec is None or not spec.submodule_search_locations:
+        return
+    source = Path(spec.submodule_search_locations[0]).parent / "optvl.libs"
+    link = Path("/tmp/optvl.libs")
+    if not source.exists() or link.exists():
+        return
+    try:
+        if link.is_symlink():  # dangling
+            link.unlink()
+        link.symlink_to(source)
+    except OSError:
+        pass  # another process made it meanwhile, or /tmp is not writable: optvl's own attempt decides
 
 
 def pytest_unconfigure(config):
