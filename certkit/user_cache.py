@@ -6,9 +6,11 @@ declared airplanes' sizing baselines); losing it only costs time.
 
 from __future__ import annotations
 
+import hashlib
 import os
 import pickle
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +22,15 @@ THREAD_SETTINGS = ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
 def thread_settings() -> dict[str, str | None]:
     """The process's :data:`THREAD_SETTINGS` (None where unset)."""
     return {name: os.environ.get(name) for name in THREAD_SETTINGS}
+
+
+def sources_digest(root: Path, files: Iterable[Path], header: bytes = b"") -> str:
+    """The SHA-256 of ``header`` and of each of ``files`` (their paths relative to ``root`` and their bytes): what a
+    cached result computed by that code is keyed on."""
+    h = hashlib.sha256(header)
+    for path in files:
+        h.update(str(path.relative_to(root)).encode() + b"\0" + path.read_bytes() + b"\0")
+    return h.hexdigest()
 
 
 def cache_folder() -> Path:

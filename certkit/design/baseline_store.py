@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from certkit.models.aero.lattice_store import source_digest
-from certkit.user_cache import PickleFolder, cache_folder, thread_settings
+from certkit.user_cache import PickleFolder, cache_folder, sources_digest, thread_settings
 
 #: entries kept in the folder (a few kB each), the most recently used
 KEEP = 16
@@ -38,11 +38,7 @@ def _package_digest(module: str) -> str:
     if where is None:
         return "unknown"
     path = Path(where).resolve()
-    files = sorted(path.parent.rglob("*.py")) if path.name == "__init__.py" else [path]
-    h = hashlib.sha256()
-    for f in files:
-        h.update(str(f.relative_to(path.parent)).encode() + b"\0" + f.read_bytes() + b"\0")
-    return h.hexdigest()
+    return sources_digest(path.parent, sorted(path.parent.rglob("*.py")) if path.name == "__init__.py" else [path])
 
 
 def entry_key(aircraft: Any, rules: Sequence[type]) -> str:

@@ -22,7 +22,7 @@ from typing import Any, Sequence
 import numpy as np
 
 from certkit.models.aero.airplane import LatticeDerivatives, lattice_derivatives
-from certkit.user_cache import PickleFolder, thread_settings
+from certkit.user_cache import PickleFolder, sources_digest, thread_settings
 
 #: the aircraft file's sections the lattice is computed from (geometry and lattice resolution, the reference lengths
 #: and point, the design speeds that set the Mach breakpoints)
@@ -43,10 +43,7 @@ def source_digest() -> str:
     them a solution that differs from their own in the last bits: numba compiles for the processor it runs on.)"""
     package = Path(__file__).resolve().parents[2]
     versions = f"{FORMAT} {np.__version__} {version('numba')} {platform.python_version()} {platform.machine()}"
-    h = hashlib.sha256(versions.encode() + b"\n")
-    for path in sorted(package.rglob("*.py")):
-        h.update(str(path.relative_to(package)).encode() + b"\0" + path.read_bytes() + b"\0")
-    return h.hexdigest()
+    return sources_digest(package, sorted(package.rglob("*.py")), versions.encode() + b"\n")
 
 
 def entry_key(aircraft: Any, machs: Sequence[float] | None = None) -> str:

@@ -412,7 +412,7 @@ def gather(picks: Sequence[tuple[SimulationResult, int]]) -> SimulationResult | 
         controls[:, at] = sim.controls[read, columns]
     return SimulationResult(
         t=longest.t[:length],
-        history=Histories.gathered([(h, at, columns, read) for h, at, columns, read in rows]),
+        history=Histories.gathered(rows),
         controls=controls,
         control_names=longest.control_names,
         stop_time=np.array([sim.stop_time[c] for sim, c in picks]),

@@ -90,13 +90,18 @@ def checked_maneuver_inputs(
     Recorded = tuple[np.ndarray, SimulationResult, np.ndarray, np.ndarray]
     flown: list[Flown] = []  # every run of the search
 
+    def t_max_of(rows: np.ndarray, hold_: np.ndarray) -> np.ndarray:
+        """The end of the manoeuvre of the conditions ``rows`` held ``hold_``: 3π/(2ω) + Δt."""
+        t_max: np.ndarray = 2 * periods * np.pi / (2 * omega_[rows]) + hold_
+        return t_max
+
     def run(amp: np.ndarray, hold: np.ndarray, mask: np.ndarray | None = None) -> Recorded:
         """Simulate the conditions of ``mask`` (all by default): the response for the whole batch (NaN outside the
         mask), the records, their window and t_max."""
         idx = np.flatnonzero(np.ones(n, dtype=bool) if mask is None else mask)
         up = up_all[idx]
         sched = SinusoidHold(sign[idx] * amp[idx], omega_[idx], hold[idx])
-        t_max = 2 * periods * np.pi / (2 * omega_[idx]) + hold[idx]  # 3π/(2ω) + Δt
+        t_max = t_max_of(idx, hold[idx])
         stop = [
             Bound("n_z < 0 (nose up)", "n_z", lower=np.where(up, 0.0, -np.inf)),
             Bound("n_z > limit (nose down)", "n_z", upper=np.where(up, np.inf, n_lim)),
@@ -105,7 +110,7 @@ def checked_maneuver_inputs(
         sub = model if idx.size == n else model.subset(idx)
         sim = simulate(sub, x0[idx], u0[idx], float(t_max.max()) + dt, dt, inputs={"elevator": sched}, stop=stop)
         nz = sim["n_z"]
-        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
+        valid = _within(sim, t_max)
         resp = np.full(n, np.nan)
         resp[idx] = np.where(up, peak_between_samples(nz, valid) - 1.0, 1.0 + peak_between_samples(-nz, valid))
         flown.append((idx, amp[idx], hold[idx], sim, resp[idx]))
@@ -164,9 +169,15 @@ def checked_maneuver_inputs(
         resp, sim, valid, t_max = run(amp, hold)  # all conditions, recorded
     else:  # every condition's input was flown by a step of the search: its records, not a run again
         resp, sim = found
-        t_max = 2 * periods * np.pi / (2 * omega_) + hold
-        valid = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
+        t_max = t_max_of(np.arange(n), hold)
+        valid = _within(sim, t_max)
     return CheckedManeuverInputs(amp, hold, reach, held_short, resp, sim, valid, t_max)
+
+
+def _within(sim: SimulationResult, t_max: np.ndarray) -> np.ndarray:
+    """(T, n): the records of ``sim`` within each condition's run (up to its stop and its ``t_max``)."""
+    inside: np.ndarray = sim.t[:, None] <= np.minimum(sim.stop_time, t_max)[None, :] + 1e-9
+    return inside
 
 
 def _already_flown(flown: list[Flown], amp: np.ndarray, hold: np.ndarray) -> tuple[np.ndarray, SimulationResult] | None:
