@@ -63,7 +63,8 @@ class Context:
     def share_aerodynamics(self, other: "Context") -> None:
         """Reuse ``other``'s vortex lattice and aerodynamic models: valid when the two aircraft differ only in mass
         data (the design layer's sizing loop changes the tail's mass, CG, inertia and structural capability, not its
-        geometry). The loads models are not shared: their strip masses come from the mass table."""
+        geometry). The loads models share their aerodynamic tables (kept with the lattice's unit solutions), not the
+        models themselves: their strip masses come from the mass table."""
         for key, value in other._memo.items():
             if key == "lattice_derivatives" or (isinstance(key, tuple) and key[:1] == ("aero",)):
                 self._memo.setdefault(key, value)

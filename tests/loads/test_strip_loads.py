@@ -186,7 +186,8 @@ def test_the_flight_model_and_the_strip_loads_share_one_lattice(setup):
     assert FLAP_CONTROL in loads["wing"].inputs
     assert ctx.aero("takeoff").lattice is aero.lattice
     solutions = ctx._memo[("aero", "loads unit solutions", "clean", id(aero.lattice))]
-    assert solutions and {mach for mach, *_ in solutions} <= {float(m) for m in aero.mach}
+    unit = [key for key in solutions if isinstance(key[0], float)]  # (Mach, input, value); the rest strip tables
+    assert unit and {mach for mach, *_ in unit} <= {float(m) for m in aero.mach}
 
 
 def test_a_swept_small_tail_keeps_its_root_torsion_at_high_mach():
@@ -220,3 +221,32 @@ def test_a_swept_small_tail_keeps_its_root_torsion_at_high_mach():
         k = tail.inputs.index(name)
         at90, at94 = tail.aero[i90, k, torsion, root], tail.aero[i94, k, torsion, root]
         assert at94 / at90 == pytest.approx(1.0, abs=0.5), name
+
+
+def test_airplanes_of_one_lattice_share_the_aerodynamic_tables():
+    """The sizing loop's passes (one geometry, the tail's mass changed) share the lattice and its aerodynamic strip
+    tables: the second airplane's tables are the first's, bit for bit those of its own build, and only the inertial
+    tables follow the new mass (the tail's doubled: its inertial loads per unit load factor double)."""
+    source = evaluate._source(str(BASELINE))
+    data = design_data(source, [])
+    heavier = dict(data)
+    heavier["mass"] = dict(data["mass"])
+    components = [dict(c) for c in data["mass"]["components"]]
+    (tail,) = [c for c in components if c["name"].strip().lower() == "horizontal tail"]
+    tail["mass"] = f"{2 * float(str(tail['mass']).split()[0])} lb"  # declared "5800 lb"
+    heavier["mass"]["components"] = components
+
+    def context(d):
+        model = design_aircraft(source, [], d)
+        return Context(LoadedAircraft(model=model, path=str(BASELINE), sha256=source.sha256, source=source))
+
+    first, second = context(data), context(heavier)
+    one = airplane_loads(first)
+    second.share_aerodynamics(first)  # as the loop's next pass shares the pass before's
+    two, alone = airplane_loads(second), airplane_loads(context(heavier))
+    for name in ("wing", "horizontal_tail", "vertical_tail"):
+        assert two[name].aero is one[name].aero
+        for table in ("aero", "strip_aero", "vertical_force", "inertia"):
+            np.testing.assert_array_equal(getattr(two[name], table), getattr(alone[name], table), strict=True)
+    ratio = two["horizontal_tail"].inertia[0] / one["horizontal_tail"].inertia[0]
+    assert np.nanmax(np.abs(ratio[np.isfinite(ratio)] - 2.0)) < 1e-9

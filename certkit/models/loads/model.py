@@ -277,7 +277,8 @@ def build_surface_loads(
     ``point_masses``: (mass kg, X, Y, Z) items attached to the surface at their span station.
     ``side_of_body``: Y (m) of an extra station where the surface leaves the fuselage.
     ``solutions``: a store of the lattice's unit solutions (every surface's strips come from the same solve, and
-    the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value).
+    the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value), and of each
+    surface's aerodynamic tables (the geometry's alone: airplanes of one lattice, the sizing loop's passes, share them).
     ``aircraft``: for the wing, the file whose ``mass.fuel_tanks`` are spread on its strips (fuel tables per tank)."""
     lat = vl.lattice
     idx = _strip_indices(lat, surface)
@@ -323,68 +324,81 @@ def build_surface_loads(
     controls = tuple(vl.control_names)
     inputs = ("one",) + RATE_INPUTS + controls
     xv = lat.rv[:, 0]
-    aero, strip_aero, vertical = [], [], []
-    for m in machs:
-        v = vl.at_mach(float(m))
 
-        def solve(name, value):
-            kw = {"alpha": 0.0, "beta": 0.0, "p_hat": 0.0, "q_hat": 0.0, "r_hat": 0.0}
-            ctrl = {}
-            if name in kw:
-                kw[name] = value
-            elif name in controls:
-                ctrl[name] = value
-            return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")  # noqa: B023  (called within this iteration)
+    def unit_tables():
+        """The aerodynamic tables of every Mach number: station loads and strip forces per unit input, and the
+        strips' vertical force (the geometry's alone: shared by the airplanes of one lattice)."""
+        aero, strip_aero, vertical = [], [], []
+        for m in machs:
+            v = vl.at_mach(float(m))
 
-        def state(name, value):
-            if solutions is None:
-                f_all, g = solve(name, value)
-            else:
-                key = (float(m), name, value)  # noqa: B023  (called within this iteration)
-                if key not in solutions:
-                    solutions[key] = solve(name, value)
-                f_all, g = solutions[key]
-            f = f_all[idx]
-            normal = f[:, 1] * ny + f[:, 2] * nz
-            gsum = np.add.reduceat(g, lat.first)[idx]
-            gx = np.add.reduceat(g * xv, lat.first)[idx]
-            return normal, gsum, gx
+            def solve(name, value):
+                kw = {"alpha": 0.0, "beta": 0.0, "p_hat": 0.0, "q_hat": 0.0, "r_hat": 0.0}
+                ctrl = {}
+                if name in kw:
+                    kw[name] = value
+                elif name in controls:
+                    ctrl[name] = value
+                return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")  # noqa: B023  (called within this iteration)
 
-        base_n, base_g, base_gx = state("one", 0.0)
-        # the strips' force per unit circulation, from the flow angle that loads this surface: α for a
-        # horizontal surface, β for a fin (whose strips hardly respond to α)
-        loading_angle = "beta" if np.mean(np.abs(ny)) > np.mean(np.abs(nz)) else "alpha"
-        a_n, a_g, _ = state(loading_angle, EPS)
-        am_n, am_g, _ = state(loading_angle, -EPS)
-        # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force); where
-        # the strip's circulation hardly moves with the loading angle the quotient is ill-conditioned (a swept
-        # tail's root strip near M 0.94: 10⁴ × the Kutta–Joukowski value, or negative on its neighbours, which put
-        # tens of MN·m of torsion at the root) and the Kutta–Joukowski value stands in for it
-        d_g = a_g - am_g
-        moves = np.abs(d_g) > 1e-14
-        quotient = (a_n - am_n) / np.where(moves, d_g, 1.0)
-        # the circulation's sign against the surface's normal is the lattice's (a fin's quotient is negative)
-        kutta_joukowski = 2 * lat.width[idx] * (1.0 if np.median(quotient[moves]) >= 0 else -1.0)
-        in_band = quotient / kutta_joukowski
-        conditioned = moves & (in_band > RATIO_BAND[0]) & (in_band < RATIO_BAND[1])
-        ratio = np.where(conditioned, quotient, kutta_joukowski)
-        # each unit solution's moment about the strip's reference axis, Σ γ (X − X_axis) × the force per unit
-        # circulation: taken about the axis, not the nose, so that the ratio (read from the loading angle's solution)
-        # scales a lever of a few metres and not the strip's whole X (a 1 % mismatch between inputs would otherwise
-        # move the load by 1 % of the distance from the nose)
-        unit_n, unit_m = [base_n], [ratio * (base_gx - x_axis * base_g)]
-        for name in inputs[1:]:
-            pn, pg, pgx = state(name, EPS)
-            mn, mg, mgx = state(name, -EPS)
-            unit_n.append((pn - mn) / (2 * EPS))
-            unit_m.append(ratio * ((pgx - mgx) - x_axis * (pg - mg)) / (2 * EPS))
-        unit_n, unit_m = np.array(unit_n), np.array(unit_m)  # (K, J): force and its moment about the axis
-        big = np.abs(unit_n) > 1e-12
-        x_load = x_axis + np.where(big, unit_m / np.where(big, unit_n, 1.0), 0.0)
-        aero.append(integrate(unit_n, x_load))
-        strip_aero.append(unit_n)
-        vertical.append(unit_n @ (np.zeros_like(nz) if vertical_surface else nz))
-        del base_g
+            def state(name, value):
+                if solutions is None:
+                    f_all, g = solve(name, value)
+                else:
+                    key = (float(m), name, value)  # noqa: B023  (called within this iteration)
+                    if key not in solutions:
+                        solutions[key] = solve(name, value)
+                    f_all, g = solutions[key]
+                f = f_all[idx]
+                normal = f[:, 1] * ny + f[:, 2] * nz
+                gsum = np.add.reduceat(g, lat.first)[idx]
+                gx = np.add.reduceat(g * xv, lat.first)[idx]
+                return normal, gsum, gx
+
+            base_n, base_g, base_gx = state("one", 0.0)
+            # the strips' force per unit circulation, from the flow angle that loads this surface: α for a
+            # horizontal surface, β for a fin (whose strips hardly respond to α)
+            loading_angle = "beta" if np.mean(np.abs(ny)) > np.mean(np.abs(nz)) else "alpha"
+            a_n, a_g, _ = state(loading_angle, EPS)
+            am_n, am_g, _ = state(loading_angle, -EPS)
+            # force per unit circulation of each strip (≈ 2 × strip width, the freestream Kutta–Joukowski force); where
+            # the strip's circulation hardly moves with the loading angle the quotient is ill-conditioned (a swept
+            # tail's root strip near M 0.94: 10⁴ × the Kutta–Joukowski value, or negative on its neighbours, which put
+            # tens of MN·m of torsion at the root) and the Kutta–Joukowski value stands in for it
+            d_g = a_g - am_g
+            moves = np.abs(d_g) > 1e-14
+            quotient = (a_n - am_n) / np.where(moves, d_g, 1.0)
+            # the circulation's sign against the surface's normal is the lattice's (a fin's quotient is negative)
+            kutta_joukowski = 2 * lat.width[idx] * (1.0 if np.median(quotient[moves]) >= 0 else -1.0)
+            in_band = quotient / kutta_joukowski
+            conditioned = moves & (in_band > RATIO_BAND[0]) & (in_band < RATIO_BAND[1])
+            ratio = np.where(conditioned, quotient, kutta_joukowski)
+            # each unit solution's moment about the strip's reference axis, Σ γ (X − X_axis) × the force per unit
+            # circulation: taken about the axis, not the nose, so that the ratio (read from the loading angle's
+            # solution) scales a lever of a few metres and not the strip's whole X (a 1 % mismatch between inputs
+            # would otherwise move the load by 1 % of the distance from the nose)
+            unit_n, unit_m = [base_n], [ratio * (base_gx - x_axis * base_g)]
+            for name in inputs[1:]:
+                pn, pg, pgx = state(name, EPS)
+                mn, mg, mgx = state(name, -EPS)
+                unit_n.append((pn - mn) / (2 * EPS))
+                unit_m.append(ratio * ((pgx - mgx) - x_axis * (pg - mg)) / (2 * EPS))
+            unit_n, unit_m = np.array(unit_n), np.array(unit_m)  # (K, J): force and its moment about the axis
+            big = np.abs(unit_n) > 1e-12
+            x_load = x_axis + np.where(big, unit_m / np.where(big, unit_n, 1.0), 0.0)
+            aero.append(integrate(unit_n, x_load))
+            strip_aero.append(unit_n)
+            vertical.append(unit_n @ (np.zeros_like(nz) if vertical_surface else nz))
+            del base_g
+        return np.array(aero), np.array(strip_aero), np.array(vertical)
+
+    tables_key = ("strip tables", surface, tuple(float(m) for m in machs), axis_fraction, tuple(stations), names)
+    if solutions is None:
+        aero, strip_aero, vertical = unit_tables()
+    else:
+        if tables_key not in solutions:
+            solutions[tables_key] = unit_tables()
+        aero, strip_aero, vertical = solutions[tables_key]
 
     # --- mass ------------------------------------------------------------------------------
     area = lat.chord[idx] * lat.width[idx]
@@ -445,15 +459,15 @@ def build_surface_loads(
         s_mid,
         x_axis,
         mass,
-        np.array(aero),
+        aero,
         inertia,
-        np.array(strip_aero),
+        strip_aero,
         axis_fraction,
         notes,
         tank_names,
         fuel_inertia,
         shares,
-        np.array(vertical),
+        vertical,
         float(np.sum(chord**2 * lat.width[idx]) / np.sum(chord * lat.width[idx])),
     )
 
