@@ -76,6 +76,21 @@ def ctx(baseline):
     return Context(baseline)
 
 
+def clean_trims(aircraft, n: int):
+    """The baseline's flight model and straight trims of ``n`` clean conditions: 0.7–1.0 MTOW at a 29.5 m CG,
+    150–250 m/s TAS from sea level to 10 km."""
+    import numpy as np
+
+    from certkit.models.dynamics.trim import trim
+    from certkit.models.flight import ROLES, control_limits, flight_model
+
+    ctx = Context(aircraft)
+    loadings = [ctx.loading(float(aircraft.model.mass.MTOW) * f, 29.5, "x") for f in np.linspace(0.7, 1.0, n)]
+    model = flight_model(aircraft.model, ctx.aero("clean").model, loadings)
+    speeds, heights = np.linspace(150, 250, n), np.linspace(0, 10000, n)
+    return model, trim(model, speeds, heights, limits=control_limits(aircraft.model), roles=ROLES)
+
+
 @pytest.fixture
 def cli():
     runner = CliRunner()

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from certkit.models.dynamics.simulate import Function, simulate
-from certkit.models.dynamics.trim import trim
-from certkit.models.flight import ROLES, control_limits, flight_model
+
+from ..conftest import clean_trims
 
 
 def _assert_same_run(compiled, loop):
@@ -24,15 +24,8 @@ def _assert_same_run(compiled, loop):
 
 @pytest.fixture(scope="module")
 def batch(baseline):
-    from certkit.engine.context import Context
-
-    ctx = Context(baseline)
     n = 6
-    loadings = [ctx.loading(float(baseline.model.mass.MTOW) * f, 29.5, "x") for f in np.linspace(0.7, 1.0, n)]
-    model = flight_model(baseline.model, ctx.aero("clean").model, loadings)
-    trims = trim(
-        model, np.linspace(150, 250, n), np.linspace(0, 10000, n), limits=control_limits(baseline.model), roles=ROLES
-    )
+    model, trims = clean_trims(baseline, n)
     return model, trims, {"elevator": Function(lambda t: 0.02 * np.sin(t) * np.ones(n))}
 
 
@@ -80,7 +73,8 @@ def test_a_batch_gathered_from_runs_of_its_conditions_is_the_batch_run(batch):
     """:func:`gather`: the conditions of a batch flown in other runs — other batches, longer or shorter, the same
     inputs — gathered column by column give the batch's own run bit for bit (each condition's records up to its stop,
     its last after it; the run ending at the last stop), the Euler angles (converted from the gathered quaternions)
-    and the final states included; a condition that did not stop in its run cannot be gathered."""
+    and the final states included; a condition that did not stop ran to its run's end, and is gathered only into a
+    run that ends there too."""
     from certkit.models.dynamics.simulate import Bound, gather
 
     model, trims, _ = batch
@@ -113,5 +107,19 @@ def test_a_batch_gathered_from_runs_of_its_conditions_is_the_batch_run(batch):
         assert got.history[key].tobytes() == whole.history[key].tobytes(), key
     assert got.stop_time.tobytes() == whole.stop_time.tobytes() and got.stop_reason == whole.stop_reason
     assert got.final_state.tobytes() == whole.final_state.tobytes()
-    never = simulate(model.subset(np.array([0])), trims.x[:1], trims.u[:1], 0.5, 0.02)  # no stop criterion
-    assert gather([(never, 0)]) is None
+
+    def free(rows, t_end=0.5):
+        """The conditions ``rows`` without a stop criterion: each runs to the end."""
+        return simulate(model.subset(rows), trims.x[rows], trims.u[rows], t_end, 0.02)
+
+    never = free(np.array([0]))
+    assert gather([(never, 0)]) is never  # every condition of one run, in its order: that run
+    latest = int(np.argmax(a.stop_time))
+    assert a.stop_time[latest] > 0.5 and gather([(never, 0), (a, latest)]) is None  # its records end too early
+    odd, even = free(np.array([1, 3, 5])), free(np.array([0, 2, 4]))
+    together = gather([(even, 0), (odd, 0), (even, 1), (odd, 1), (even, 2), (odd, 2)])
+    alone = free(np.arange(n))
+    assert together is not None and together.t.tobytes() == alone.t.tobytes()
+    for key in ("n_z", "q", "theta"):
+        assert together.history[key].tobytes() == alone.history[key].tobytes(), key
+    assert together.final_state.tobytes() == alone.final_state.tobytes() and together.stop_reason == [""] * n

@@ -382,20 +382,30 @@ def gather(picks: Sequence[tuple[SimulationResult, int]]) -> SimulationResult | 
     ``picks[j][0]`` — runs of one time step from t = 0 —, without running it again. A condition's records do not
     depend on the batch it is run in (each row is integrated alone) until it stops; after its stop it keeps its last
     record, and the run ends at the last condition's stop. So the gathered run has the records up to the latest of
-    the conditions' stops, each condition's own up to its stop and its last one after. None when a condition did not
-    stop in its run (its records would go on to the batch's end: the run is needed) or the runs' grids differ."""
+    the conditions' stops, each condition's own up to its stop and its last one after; a condition that did not stop
+    ran to its run's end, which must then be the gathered run's. None when it is not (the condition's records would
+    go on: the run is needed) or the runs' grids differ. Every condition of one run, in its order: that run."""
     n = len(picks)
+    first = picks[0][0]
+    if len(first.stop_reason) == n and all(sim is first and c == j for j, (sim, c) in enumerate(picks)):
+        return first
     stops = np.empty(n, dtype=np.int64)
+    ran_out = np.zeros(n, dtype=bool)
     grid = picks[0][0].t[:2]
     for j, (sim, c) in enumerate(picks):
         t = sim.t
-        if not sim.stop_reason[c] or t.ndim != 1 or not np.array_equal(t[:2], grid):
+        if t.ndim != 1 or not np.array_equal(t[:2], grid):
             return None
+        if not sim.stop_reason[c]:  # ran to its run's end
+            stops[j], ran_out[j] = t.shape[0] - 1, True
+            continue
         k = int(np.searchsorted(t, sim.stop_time[c]))
         if k >= t.shape[0] or t[k] != sim.stop_time[c]:
             return None
         stops[j] = k
     length = int(stops.max()) + 1
+    if (stops[ran_out] < length - 1).any():
+        return None
     longest = picks[int(np.argmax(stops))][0]
     steps = np.arange(length)[:, None]
     by_source: dict[int, list[int]] = {}

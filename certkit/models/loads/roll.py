@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from certkit.atmosphere import density, speed_of_sound
-from certkit.models.dynamics.simulate import Ramp, simulate
+from certkit.models.dynamics.simulate import Ramp, gather, simulate
 
 #: histories that change sign in the mirror image (Y ↔ −Y)
 ANTISYMMETRIC_STATES = ("beta", "p", "r", "n_y", "phi", "psi", "y_E")
@@ -196,19 +196,32 @@ def aileron_for_roll_rate(
     corrected proportionally from the full-amplitude response ``sim_full`` (the roll rate is nearly linear in the
     deflection) at most ``steps`` times; a target beyond the whole amplitude keeps it. Returns the simulation of the
     final fractions, its peak roll rates and the fractions."""
-    sim, (p, _) = sim_full, peak_roll_rate(sim_full)
-    simulated = np.ones(len(x0))
+    n = len(x0)
+    p = peak_roll_rate(sim_full)[0].copy()
+    simulated = np.ones(n)
+    flown = [(sim_full, i) for i in range(n)]  # each condition's run at its latest fraction: the run and its column
     frac = np.where(scaled, np.clip(target * (1 + AIM * tolerance) / np.maximum(p, 1e-9), 0.0, 1.0), 1.0)
+
+    def fly() -> None:
+        """The conditions whose fraction changed since their last run, run again (a condition's run does not depend
+        on its batch: the others keep theirs)."""
+        rows = np.flatnonzero(frac != simulated)
+        part = simulate_roll(model.subset(rows), x0[rows], u0[rows], (frac * amplitude)[rows], duration, dt, ramp)
+        p[rows], simulated[rows] = peak_roll_rate(part)[0], frac[rows]
+        for j, i in enumerate(rows):
+            flown[i] = (part, j)
+
     for _ in range(int(steps)):
         if np.array_equal(frac, simulated):
             break
-        sim = simulate_roll(model, x0, u0, frac * amplitude, duration, dt, ramp)
-        p, simulated = peak_roll_rate(sim)[0], frac.copy()
+        fly()
         done = ~scaled | ((p >= target) & (p <= target * (1 + tolerance))) | ((frac >= 1.0) & (p < target))
         if done.all():
             break
         frac = np.where(done, frac, np.clip(frac * target * (1 + AIM * tolerance) / np.maximum(p, 1e-9), 0.0, 1.0))
     if not np.array_equal(frac, simulated):
+        fly()
+    sim = gather(flown)
+    if sim is None:  # runs of other lengths (not the case of simulate_roll's fixed duration): the batch's own run
         sim = simulate_roll(model, x0, u0, frac * amplitude, duration, dt, ramp)
-        p = peak_roll_rate(sim)[0]
     return sim, p, frac
