@@ -76,6 +76,20 @@ def ctx(baseline):
     return Context(baseline)
 
 
+def count_conditions(monkeypatch, module, name: str) -> list:
+    """``module.name`` — a function of (model, one row per condition, …): a run's x0, a trim's speeds — replaced by
+    itself recording the number of conditions of each call: the list it fills."""
+    calls: list = []
+    function = getattr(module, name)
+
+    def counting(model, rows, *args, **kwargs):
+        calls.append(len(rows))
+        return function(model, rows, *args, **kwargs)
+
+    monkeypatch.setattr(module, name, counting)
+    return calls
+
+
 def clean_trims(aircraft, n: int):
     """The baseline's flight model and straight trims of ``n`` clean conditions: 0.7–1.0 MTOW at a 29.5 m CG,
     150–250 m/s TAS from sea level to 10 km."""

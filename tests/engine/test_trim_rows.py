@@ -12,6 +12,8 @@ from certkit.engine.conditions import CgCorners, ConditionSpace
 from certkit.engine.context import Context
 from certkit.units import FT, KN
 
+from ..conftest import count_conditions
+
 
 @pytest.fixture(scope="module")
 def points(baseline):
@@ -35,15 +37,7 @@ def same_batch(a, b):
 @pytest.fixture
 def solved_rows(monkeypatch):
     """The number of rows each call of the trim solver was given."""
-    sizes = []
-    solve = trim_module.trim
-
-    def counting(model, *args, **kwargs):
-        sizes.append(model.n)
-        return solve(model, *args, **kwargs)
-
-    monkeypatch.setattr(trim_module, "trim", counting)
-    return sizes
+    return count_conditions(monkeypatch, trim_module, "trim")
 
 
 @pytest.mark.parametrize("options", [{}, {"gamma": 0.02, "bank": 0.3, "kind": "turn"}, {"inoperative": "left"}])

@@ -79,3 +79,31 @@ def test_the_minimum_hold_to_the_hold_resolution():
 
     assert peak(hold) >= 1.49 - 1e-9
     assert peak(hold - 0.005) < 1.49
+
+
+def test_a_repeated_condition_is_searched_once(baseline, monkeypatch):
+    """A batch holding one flight point twice (three baseline conditions, two of them repeated; nose up and nose
+    down): each distinct condition is searched and flown once, and the inputs, responses and recorded run are bit for
+    bit those of the batch searched row by row (the repeats searched too)."""
+    import certkit.models.loads.checked_maneuver as cm
+
+    from ..conftest import clean_trims, count_conditions
+
+    model, trims = clean_trims(baseline, 3)
+    rows = np.array([0, 1, 2, 0, 2])
+    up = np.array([True, True, False, True, False])
+    args = (model.subset(rows), trims.x[rows], trims.u[rows], up, np.full(5, 1.5), np.full(5, np.radians(8.0)))
+    target = np.where(up, 0.8, 1.0)
+    kwargs = dict(ARGS, steps=10)
+    flown = count_conditions(monkeypatch, cm, "simulate")
+    once = cm.checked_maneuver_inputs(*args, target, **kwargs)
+    assert max(flown) == 3
+    monkeypatch.setattr(cm, "_repeats", lambda *a: None)
+    each = cm.checked_maneuver_inputs(*args, target, **kwargs)
+    assert max(flown) == 5
+    for name in ("amplitude", "hold", "reach", "held_short", "response", "valid", "t_max"):
+        assert getattr(once, name).tobytes() == getattr(each, name).tobytes(), name
+    assert once.sim.t.tobytes() == each.sim.t.tobytes() and once.sim.controls.tobytes() == each.sim.controls.tobytes()
+    for key in ("n_z", "q", "alpha", "theta"):
+        assert once.sim[key].tobytes() == each.sim[key].tobytes(), key
+    assert once.sim.stop_reason == each.sim.stop_reason and (once.sim.stop_time == each.sim.stop_time).all()

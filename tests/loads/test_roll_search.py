@@ -7,7 +7,7 @@ import pytest
 
 import certkit.models.loads.roll as roll
 
-from ..conftest import clean_trims
+from ..conftest import clean_trims, count_conditions
 
 
 @pytest.fixture(scope="module")
@@ -28,14 +28,8 @@ def test_the_search_flies_only_the_changed_fractions(trimmed, monkeypatch):
     p_full = roll.peak_roll_rate(sim_full)[0]
     scaled = np.array([False, False, True, True, True])
     target = np.where(scaled, p_full * np.array([0.0, 0.0, 0.4, 0.5, 0.6]), 0.0)
-    flown = []
     run = roll.simulate_roll
-
-    def counting(model_, x0_, *args, **kwargs):
-        flown.append(x0_.shape[0])
-        return run(model_, x0_, *args, **kwargs)
-
-    monkeypatch.setattr(roll, "simulate_roll", counting)
+    flown = count_conditions(monkeypatch, roll, "simulate_roll")
     sim, p, frac = roll.aileron_for_roll_rate(
         model, x0, u0, amplitude, target, scaled, sim_full, tolerance=0.002, steps=6, **timing
     )

@@ -338,6 +338,21 @@ class AircraftModel:
         self.operative = np.broadcast_to(np.asarray(operative, dtype=bool), (self.n, ne)).copy()
         self._all_operative = self.operative.all(axis=0) if ne else np.zeros(0, dtype=bool)
 
+    def condition_data(self) -> np.ndarray:
+        """Each condition's own data, (n, k): mass, CG, inertia, the engines running and a failed engine's thrust
+        fraction; the rest of the model (aerodynamics, engines, gear) every condition shares. Two conditions with
+        equal rows are one airplane."""
+        n = self.n
+        return np.hstack(
+            [
+                self.mass[:, None],
+                self.cg,
+                self.inertia.reshape(n, 9),
+                self.operative.reshape(n, -1).astype(float),
+                self.failed_thrust_fraction.reshape(n, -1),
+            ]
+        )
+
     def control_index(self, name: str) -> int:
         return self.control_names.index(name)
 

@@ -17,7 +17,8 @@ flat near the stall, would creep along the bend and leave conditions outside the
 amplitude search that did not converge and ends above the target takes the largest amplitude found below it; a hold
 takes the bracket end at or above it. Each input found was flown by a step of the search: the recorded run of the
 batch is gathered from those steps' runs (:func:`~certkit.models.dynamics.simulate.gather`, bit for bit the run), not
-flown again.
+flown again. A condition the batch holds twice (one flight point under two names, bit for bit the same airplane, trim
+and settings: an entry speed capped at another) is searched and flown once, its run gathered for both.
 
 Responses: peak n_z − 1 nose up, 1 − lowest n_z nose down, between the samples (the local cubic of
 :func:`~certkit.models.dynamics.sampled_peak.peak_between_samples`: the sampled extreme alone is not monotone in the
@@ -41,6 +42,9 @@ from certkit.models.loads.inputs import SinusoidHold, bisect_batch, linear_probe
 #: it (numerical choice: the checked manoeuvre's load factor bends over near the stall line, at 20–35 % of the
 #: available elevator in the seed study's conditions)
 PROBE = 0.1
+
+#: the search's settings (the keyword arguments of :func:`checked_maneuver_inputs`)
+SEARCH = ("n_limit", "max_hold", "dt", "periods", "steps", "tolerance", "resolution", "hold_resolution")
 
 #: a run of the search: its conditions, their inputs (amplitude, hold), its records and the responses
 Flown = tuple[np.ndarray, np.ndarray, np.ndarray, SimulationResult, np.ndarray]
@@ -82,9 +86,27 @@ def checked_maneuver_inputs(
     """The checked manoeuvre's input of every condition of ``model`` (n) from its trim ``x0``/``u0`` (module
     docstring): ``nose_up`` (n,) bool, ``omega`` (n,) rad/s, ``available`` (n,) rad of elevator from the trim to the
     stop the pilot can reach, ``target`` (n,) response to reach."""
+    settings = {name: value for name, value in locals().items() if name in SEARCH}  # the keyword arguments
     up_all = np.asarray(nose_up, dtype=bool)
     omega_, available_, target_ = (np.asarray(a, dtype=float) for a in (omega, available, target))
     n = up_all.size
+    repeated = _repeats(model, x0, u0, up_all, omega_, available_, target_)
+    if repeated is not None:  # a condition repeated in the batch (one flight point twice) is searched once
+        first, group = repeated
+        per_condition = (x0[first], u0[first], up_all[first], omega_[first], available_[first], target_[first])
+        once = checked_maneuver_inputs(model.subset(first), *per_condition, **settings)
+        gathered = gather([(once.sim, int(g)) for g in group])
+        if gathered is not None:
+            return CheckedManeuverInputs(
+                once.amplitude[group],
+                once.hold[group],
+                once.reach[group],
+                once.held_short[group],
+                once.response[group],
+                gathered,
+                _within(gathered, once.t_max[group]),
+                once.t_max[group],
+            )
     sign = np.where(up_all, -1.0, 1.0)
     n_lim, periods = float(n_limit), float(periods)
     Recorded = tuple[np.ndarray, SimulationResult, np.ndarray, np.ndarray]
@@ -172,6 +194,20 @@ def checked_maneuver_inputs(
         t_max = t_max_of(np.arange(n), hold)
         valid = _within(sim, t_max)
     return CheckedManeuverInputs(amp, hold, reach, held_short, resp, sim, valid, t_max)
+
+
+def _repeats(model: AircraftModel, *per_condition: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The conditions searched once — the first of each group of equal rows of the model's condition data and the
+    ``per_condition`` arrays (bit for bit) — and each condition's group; None when every condition is its own. A
+    condition's search and run do not depend on its batch, so a repeat's are its first's."""
+    n = model.n
+    rows = np.ascontiguousarray(
+        np.hstack([model.condition_data()] + [np.asarray(a, dtype=float).reshape(n, -1) for a in per_condition])
+    )
+    _, first, group = np.unique(
+        rows.view(np.dtype((np.void, rows.itemsize * rows.shape[1]))).ravel(), return_index=True, return_inverse=True
+    )
+    return None if first.size == n else (first, group.ravel())
 
 
 def _within(sim: SimulationResult, t_max: np.ndarray) -> np.ndarray:
