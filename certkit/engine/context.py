@@ -7,7 +7,6 @@ know nothing of regulations.
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import TYPE_CHECKING, Any, Callable, Hashable, TypeVar
 
 import numpy as np
@@ -43,8 +42,6 @@ class Context:
         self.aircraft: Aircraft = loaded.model
         self._memo: dict[Hashable, object] = {}
         self._loading_names: dict[Hashable, set[str]] = {}
-        #: every row this airplane trimmed: its flight point and trim options → its state, controls and result
-        self._trimmed: dict[Hashable, tuple[np.ndarray, np.ndarray, Any]] = {}
         self.notes: list[str] = []
         self.hits = 0
         self.misses = 0
@@ -339,63 +336,20 @@ class Context:
             operative = np.array([[n != d for n in names] for d in dead])
         model = flight_model(self.aircraft, self.aero(config).model, loadings, operative=operative)
         st = model_stabilizer(self.aircraft, model, design_limits, config)
-        # a condition's trim does not depend on the batch it is solved in (certkit.models.dynamics.trim): the rows this
-        # airplane trimmed before, in other batches, are taken as they were, the others solved as a batch of their own
-        n = len(conds)
-        given = {k: _per_row(v, n) for k, v in (("gamma", gamma), ("bank", bank), ("beta", beta))}
-        held = {
-            k: None if v is None else _per_row(v, n) for k, v in (("throttle", throttle), ("stabilizer", stabilizer))
-        }
-        starts = None if initial is None else {k: _per_row(v, n) for k, v in sorted(initial.items())}
-        keys: list[Hashable] = [  # a warm start of NaN is the default start: as if none were given
-            (
-                config,
-                kind,
-                design_limits,
-                round(float(_number(c.mass)), 3),  # the loading's key (Context.loading)
-                round(float(_number(c.x_cg)), 6),
-                None if operative is None else tuple(operative[i]),
-                float(tas[i]),
-                float(h[i]),
-                tuple(float(v[i]) for v in given.values()),
-                tuple(None if v is None else float(v[i]) for v in held.values()),
-                tuple((k, float(v[i])) for k, v in (starts or {}).items() if np.isfinite(v[i])),
-            )
-            for i, c in enumerate(conds)
-        ]
-        missing = [i for i, key in enumerate(keys) if key not in self._trimmed]
-        if not missing and n:
-            return self._trimmed_batch(model, keys)
-        rows = np.array(missing, dtype=np.int64)
-        part = trim(
-            model if len(missing) == n else model.subset(rows),
-            tas[rows],
-            h[rows],
+        return trim(
+            model,
+            tas,
+            h,
             kind=kind,
-            gamma=given["gamma"][rows],
-            bank=given["bank"][rows],
-            beta=given["beta"][rows],
-            throttle=None if held["throttle"] is None else held["throttle"][rows],
+            gamma=gamma,
+            bank=bank,
+            beta=beta,
+            throttle=throttle,
             limits=control_limits(self.aircraft, design_limits, config),
             roles=ROLES,
             stabilizer=st,
-            stabilizer_setting=None if st is None or held["stabilizer"] is None else held["stabilizer"][rows],
-            initial=None if starts is None else {k: v[rows] for k, v in starts.items()},
-        )
-        for j, i in enumerate(missing):
-            self._trimmed[keys[i]] = (part.x[j].copy(), part.u[j].copy(), part.results[j])
-        return part if len(missing) == n else self._trimmed_batch(model, keys)
-
-    def _trimmed_batch(self, model: Any, keys: list[Hashable]) -> TrimBatch:
-        """The batch of the trimmed rows ``keys`` in that order, on the flight model ``model`` of those rows."""
-        from certkit.models.dynamics.trim import TrimBatch  # deferred: dynamics (see _trim)
-
-        rows = [self._trimmed[key] for key in keys]
-        return TrimBatch(
-            model,
-            np.stack([x for x, _, _ in rows]),
-            np.stack([u for _, u, _ in rows]),
-            [replace(r, index=i) for i, (_, _, r) in enumerate(rows)],
+            stabilizer_setting=None if st is None else stabilizer,
+            initial=initial,
         )
 
     def modes(self, conditions: Iterable[Condition], throttle: Any = None) -> list[dict[str, Mode] | None]:
@@ -445,11 +399,6 @@ def _number(value: float | None) -> float:
     if value is None:
         raise ValueError("a flight condition needs its mass and CG")
     return value
-
-
-def _per_row(value: Any, n: int) -> np.ndarray:
-    """A trim option given as a scalar or one value per condition, as one value per condition."""
-    return np.broadcast_to(np.asarray(value, dtype=float), (n,))
 
 
 def _hashable(value: Any) -> float | tuple[float, ...]:
