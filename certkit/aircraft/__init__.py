@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from pydantic import TypeAdapter, ValidationError
 
@@ -33,6 +34,17 @@ class LoadedAircraft:
         return self.model.name
 
 
+#: a section's validator by its name (building one costs as much as validating the section)
+_ADAPTERS: dict[str, TypeAdapter[Any]] = {}
+
+
+def _adapter(name: str, annotation: Any) -> TypeAdapter[Any]:
+    """The validator of the section ``name`` (its field annotation on :class:`Aircraft`), built once per process."""
+    if name not in _ADAPTERS:
+        _ADAPTERS[name] = TypeAdapter(annotation)
+    return _ADAPTERS[name]
+
+
 def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Aircraft:
     """Validate plain data section by section, then the relations between sections; raise an
     :class:`InputError` with every problem found."""
@@ -55,7 +67,7 @@ def validate_aircraft_data(data: object, source: YamlSource | None = None) -> Ai
                 sections[name] = info.get_default(call_default_factory=True)
             continue
         try:
-            sections[name] = TypeAdapter(info.annotation).validate_python(data[name])
+            sections[name] = _adapter(name, info.annotation).validate_python(data[name])
         except ValidationError as err:
             found += found_in(err, (name,), data=data)
         extreme = extreme_numbers(data[name], (name,))
