@@ -18,6 +18,8 @@ import threading
 import time
 from concurrent.futures import ProcessPoolExecutor
 
+from certkit.user_cache import THREAD_SETTINGS  # stdlib only: no numpy loaded before the settings
+
 _PR_SET_PDEATHSIG = 1  # <linux/prctl.h>
 
 
@@ -60,5 +62,5 @@ def one_blas_thread() -> None:
     """One BLAS/OpenMP thread per process, set before numpy loads (a user's own setting is kept): threaded BLAS in
     several processes oversubscribes the cores, and its summation order (the last digits of a result) would depend on
     the number of threads."""
-    for var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    for var in THREAD_SETTINGS:
         os.environ.setdefault(var, "1")

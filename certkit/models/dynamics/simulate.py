@@ -391,7 +391,7 @@ def gather(picks: Sequence[tuple[SimulationResult, int]]) -> SimulationResult | 
         return first
     stops = np.empty(n, dtype=np.int64)
     ran_out = np.zeros(n, dtype=bool)
-    grid = picks[0][0].t[:2]
+    grid = first.t[:2]
     for j, (sim, c) in enumerate(picks):
         t = sim.t
         if t.ndim != 1 or not np.array_equal(t[:2], grid):
