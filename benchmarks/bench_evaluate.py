@@ -225,8 +225,12 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--against", help="another certkit checkout: pairs of processes of both, at the same time")
     parser.add_argument("--pairs", type=int, default=4)
-    parser.add_argument("--alternate", type=int, metavar="N", help="with --against: N designs alternated per core")
+    parser.add_argument(
+        "--alternate", type=int, metavar="N", help="with --against: N designs in all, alternated on every core"
+    )
     args = parser.parse_args()
+    if args.alternate and not args.against:
+        parser.error("--alternate compares with another checkout: give --against DIR")
     if args.against and args.alternate:
         alternate(args.against, args.alternate)
         return
