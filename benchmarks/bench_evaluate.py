@@ -103,14 +103,21 @@ print(f"{(time.process_time() - t0) / (2 * len(designs)):.4f}")
 """
 
 
-def paired(against: str, pairs: int) -> None:
-    """CPU per redesigned tail of this code and of the checkout ``against`` (its own source tree, rules and kernel
-    cache; this interpreter), in ``pairs`` pairs of processes run at the same time."""
+def _trees(against: str) -> tuple[dict[str, str], dict[str, dict[str, str]]]:
+    """This checkout and ``against`` by name, and each one's process environment: its own source tree, rules and
+    kernel cache, one BLAS thread."""
     trees = {"this code": ROOT, "--against": os.path.abspath(against)}
     envs = {
         name: {**tree_env(tree, rules_package(tree, tempfile.mkdtemp()), tempfile.mkdtemp()), "OMP_NUM_THREADS": "1"}
         for name, tree in trees.items()
     }
+    return trees, envs
+
+
+def paired(against: str, pairs: int) -> None:
+    """CPU per redesigned tail of this code and of the checkout ``against`` (its own source tree, rules and kernel
+    cache; this interpreter), in ``pairs`` pairs of processes run at the same time."""
+    trees, envs = _trees(against)
     redesigned = json.dumps(DESIGNS[1:])
 
     def start(name: str) -> subprocess.Popen:
@@ -170,11 +177,7 @@ def alternate(against: str, count: int) -> None:
 
     cores = sorted(os.sched_getaffinity(0))[: available_cores()]
     designs, _ = sample(load_study(STUDY), DEFAULT_EVALUATOR, count + 1, seed=51)
-    trees = {"this code": ROOT, "--against": os.path.abspath(against)}
-    envs = {
-        name: {**tree_env(tree, rules_package(tree, tempfile.mkdtemp()), tempfile.mkdtemp()), "OMP_NUM_THREADS": "1"}
-        for name, tree in trees.items()
-    }
+    trees, envs = _trees(against)
     text = json.dumps(designs)
 
     def start(name: str, core: int) -> subprocess.Popen:

@@ -280,6 +280,7 @@ def build_surface_loads(
     the lattice's geometry does not change with the masses), filled and reused by (Mach, input, value), and of each
     surface's aerodynamic tables (the geometry's alone: airplanes of one lattice, the sizing loop's passes, share them).
     ``aircraft``: for the wing, the file whose ``mass.fuel_tanks`` are spread on its strips (fuel tables per tank)."""
+    store = {} if solutions is None else solutions  # without one, this build's own
     lat = vl.lattice
     idx = _strip_indices(lat, surface)
     vertical_surface = bool(np.all(np.abs(lat.ensy[idx]) > np.abs(lat.ensz[idx])))
@@ -342,13 +343,10 @@ def build_surface_loads(
                 return v.strip_forces(**kw, controls=ctrl or None, rate_axes="body")  # noqa: B023  (called within this iteration)
 
             def state(name, value):
-                if solutions is None:
-                    f_all, g = solve(name, value)
-                else:
-                    key = (float(m), name, value)  # noqa: B023  (called within this iteration)
-                    if key not in solutions:
-                        solutions[key] = solve(name, value)
-                    f_all, g = solutions[key]
+                key = (float(m), name, value)  # noqa: B023  (called within this iteration)
+                if key not in store:
+                    store[key] = solve(name, value)
+                f_all, g = store[key]
                 f = f_all[idx]
                 normal = f[:, 1] * ny + f[:, 2] * nz
                 gsum = np.add.reduceat(g, lat.first)[idx]
@@ -393,12 +391,9 @@ def build_surface_loads(
         return np.array(aero), np.array(strip_aero), np.array(vertical)
 
     tables_key = ("strip tables", surface, tuple(float(m) for m in machs), axis_fraction, tuple(stations), names)
-    if solutions is None:
-        aero, strip_aero, vertical = unit_tables()
-    else:
-        if tables_key not in solutions:
-            solutions[tables_key] = unit_tables()
-        aero, strip_aero, vertical = solutions[tables_key]
+    if tables_key not in store:
+        store[tables_key] = unit_tables()
+    aero, strip_aero, vertical = store[tables_key]
 
     # --- mass ------------------------------------------------------------------------------
     area = lat.chord[idx] * lat.width[idx]
