@@ -13,7 +13,10 @@ import pytest
 from tests.browser import MARKS, open_page
 from tests.report.report_run import results
 
-pytestmark = MARKS  # skipped with the reason when Playwright or Chromium is missing
+pytestmark = [
+    *MARKS,
+    pytest.mark.xdist_group("small-check"),
+]  # skipped with the reason when Playwright or Chromium is missing
 
 
 @pytest.fixture(scope="module")
@@ -100,7 +103,7 @@ def test_printed_pdf_contains_every_finding(chromium, small_check, tmp_path, scr
     (without either, the collapsed findings tables print as bare headings: about a quarter of the findings here).
     With scripts off, a table stored compressed (the report's size budget) prints as its note, which names its rows
     and results.json; every other finding is printed."""
-    from pypdf import PdfReader
+    import pypdfium2
 
     context = chromium.new_context(java_script_enabled=script, viewport={"width": 1280, "height": 900})
     page, problems = _open(context, small_check[0] / "index.html", 1280)
@@ -112,9 +115,11 @@ def test_printed_pdf_contains_every_finding(chromium, small_check, tmp_path, scr
     page.emulate_media(media="print")
     pdf = tmp_path / "report.pdf"
     page.pdf(path=str(pdf), format="A4", print_background=True)
-    reader = PdfReader(str(pdf))
+    document = pypdfium2.PdfDocument(str(pdf))
+    printed = "".join(page.get_textpage().get_text_range() for page in document)
+    document.close()
     # NFKC: the PDF's typographic ligatures (ﬁ) read as their letters
-    text = re.sub(r"\s+", "", unicodedata.normalize("NFKC", "".join(p.extract_text() for p in reader.pages)))
+    text = re.sub(r"\s+", "", unicodedata.normalize("NFKC", printed))
     data = results(small_check[0])
     slug = lambda rid: "r" + re.sub(r"[^0-9a-z]+", "-", rid).strip("-")  # noqa: E731
     wanted = Counter(

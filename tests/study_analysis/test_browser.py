@@ -9,7 +9,7 @@ import pytest
 from tests.browser import MARKS, open_page
 from tests.study_analysis.report_fixture import small_report, write_small_report
 
-pytestmark = MARKS
+pytestmark = [*MARKS, pytest.mark.xdist_group("study-report")]
 
 
 def _open(browser, path, width):

@@ -16,6 +16,10 @@ from certkit.study.analysis.labels import display_factor, response_axis, respons
 from tests.browser import MARKS, open_page
 from tests.study_analysis.synthetic import DEG, FT2, store_frame, study_dict, study_of
 
+pytestmark = pytest.mark.xdist_group(
+    "study-report"
+)  # the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+
 
 def test_response_words_and_aviation_units():
     assert response_label("objective.block_fuel_kg") == ("block fuel", "lb", pytest.approx(0.45359237, rel=1e-12))

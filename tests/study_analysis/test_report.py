@@ -15,6 +15,10 @@ from certkit.study.analysis.export import evaluate_export
 from tests.study_analysis.report_fixture import small_report
 from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, synthetic_study
 
+pytestmark = pytest.mark.xdist_group(
+    "study-report"
+)  # the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
 
 

@@ -9,7 +9,8 @@ bounds to [−1, 1]:
   is positive (a multiplicative response is linear in its logarithm);
 - a neural network: ``MLPRegressor`` (two tanh layers of 16, L-BFGS) with the outputs standardised
   (``TransformedTargetRegressor`` + ``StandardScaler``) on the transform the best polynomial chose;
-- a Gaussian process (constant × anisotropic RBF + white noise, ``normalize_y``); above ``gp_max_cases``
+- a Gaussian process (constant × anisotropic RBF + white noise, ``normalize_y``; its hyperparameters maximise the
+  log marginal likelihood, :mod:`.gp_likelihood`); above ``gp_max_cases``
   training cases it is fitted on a space-filling subsample of that many (greedy maximin, farthest-point
   selection from the case nearest the centre; the fit is O(n³) and its prediction O(n) per point).
 
@@ -35,9 +36,9 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import numpy.typing as npt
 from joblib import Parallel, delayed
-from scipy.optimize import minimize
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import cdist
+from sklearn import config_context
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.compose import TransformedTargetRegressor
 from sklearn.exceptions import ConvergenceWarning
@@ -49,6 +50,7 @@ from sklearn.neural_network import MLPRegressor
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import PolynomialFeatures, StandardScaler
 
+from certkit.study.analysis.gp_likelihood import LikelihoodSearch
 from certkit.study.executors import available_cores
 
 if TYPE_CHECKING:
@@ -89,17 +91,10 @@ def _mlp() -> Any:
     return TransformedTargetRegressor(regressor=net, transformer=StandardScaler())
 
 
-def _gp_optimizer(
-    obj_func: Callable[..., Any], initial_theta: np.ndarray, bounds: npt.ArrayLike
-) -> tuple[np.ndarray, float]:
-    """L-BFGS-B on the log marginal likelihood with a bounded iteration count (keeps the fit time bounded)."""
-    res = minimize(obj_func, initial_theta, method="L-BFGS-B", jac=True, bounds=bounds, options={"maxiter": 80})
-    return np.asarray(res.x), float(res.fun)
-
-
-def _gp(n_inputs: int) -> Any:
+def _gp(n_inputs: int, search: LikelihoodSearch) -> Any:
+    """The GP regressor whose hyperparameters ``search`` fits (the likelihood of its own training cases)."""
     kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
-    return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=_gp_optimizer, random_state=0)
+    return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=search, random_state=0)
 
 
 def maximin_subsample(u: np.ndarray, m: int) -> np.ndarray:
@@ -137,7 +132,8 @@ class SubsampledGP(BaseEstimator, RegressorMixin):  # type: ignore[misc]  # scik
 
     def fit(self, u: npt.ArrayLike, y: npt.ArrayLike) -> SubsampledGP:
         keep = maximin_subsample(np.asarray(u, dtype=float), self.max_cases)
-        self.gp_ = _gp(self.n_inputs).fit(np.asarray(u)[keep], np.asarray(y)[keep])
+        x, t = np.asarray(u)[keep], np.asarray(y)[keep]
+        self.gp_ = _gp(self.n_inputs, LikelihoodSearch(x, t)).fit(x, t)
         self.n_fitted_ = len(keep)
         return self
 
@@ -218,7 +214,13 @@ class Candidate:
     cv: Fit | None = None
 
     def predict_unit(self, u: np.ndarray) -> np.ndarray:
-        with np.errstate(over="ignore", invalid="ignore"):
+        """Predictions at ``u`` (inputs on [−1, 1]). scikit-learn's checks of the inputs and parameters are skipped:
+        the inputs are finite arrays made here, the estimator's parameters were checked at its fit (the optimisers
+        predict one point at a time, where the checks took most of a prediction's time)."""
+        with (
+            np.errstate(over="ignore", invalid="ignore"),
+            config_context(assume_finite=True, skip_parameter_validation=True),
+        ):
             return np.asarray(self.estimator.predict(u), dtype=float).ravel()
 
 
