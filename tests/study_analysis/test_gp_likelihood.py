@@ -61,6 +61,8 @@ def test_a_kernel_that_is_not_positive_definite_is_the_least_likely(monkeypatch)
     assert value == np.inf and gradient.shape == (6,) and not gradient.any()
 
 
+# the signal's variance reaches its bound (10³) on these cases in both fits: scikit-learn says so, for each
+@pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")
 def test_the_search_finds_scikit_learns_optimum():
     """The fitted GP's hyperparameters are those scikit-learn's own L-BFGS-B search finds on its likelihood from the
     same start (both converged: log-likelihood within 1e-6, θ within 1e-3)."""
@@ -77,3 +79,11 @@ def test_the_search_finds_scikit_learns_optimum():
     assert mine.log_marginal_likelihood_value_ == pytest.approx(peer.log_marginal_likelihood_value_, abs=1e-6)
     assert np.allclose(mine.kernel_.theta, peer.kernel_.theta, atol=1e-3)
     assert mine.kernel_.theta[-1] < np.log(1e-2)  # it found the smooth fit, not the all-noise one
+
+
+def test_a_search_given_other_cases_than_the_gp_is_a_bug_raised_as_such():
+    x, y = _cases()
+    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(4), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
+    wrong = LikelihoodSearch(x[:-1], y[:-1])
+    with pytest.raises(RuntimeError, match="other cases than the GP"):
+        GaussianProcessRegressor(kernel, normalize_y=True, optimizer=wrong).fit(x, y)

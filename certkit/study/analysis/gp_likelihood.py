@@ -72,13 +72,21 @@ class RBFLikelihood:
 class LikelihoodSearch:
     """scikit-learn's ``optimizer`` for a GP fitted on ``x``, ``y`` (y as given: normalised here): L-BFGS-B on
     :class:`RBFLikelihood` from the kernel's θ within its bounds, at most :data:`MAX_ITERATIONS` iterations.
-    scikit-learn's own objective, handed in, is not used: the search minimises the same function."""
+    scikit-learn's own objective, handed in, is evaluated once, at the start (its value only: a Cholesky
+    factorisation), to make sure the search minimises the same function — a GP given other cases than this
+    search's is a bug of certkit's, raised as such."""
 
     def __init__(self, x: np.ndarray, y: np.ndarray):
         self.x, self.y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
 
     def __call__(self, obj_func, initial_theta: np.ndarray, bounds) -> tuple[np.ndarray, float]:
         objective = RBFLikelihood(self.x, normalised(self.y))
+        theirs, ours = float(obj_func(initial_theta, eval_gradient=False)), objective(initial_theta)[0]
+        if not math.isclose(ours, theirs, rel_tol=1e-6, abs_tol=1e-9):
+            raise RuntimeError(
+                f"the GP's likelihood search was given other cases than the GP: −log p {ours!r} against "
+                f"scikit-learn's {theirs!r} at the initial hyperparameters"
+            )
         res = minimize(
             objective, initial_theta, method="L-BFGS-B", jac=True, bounds=bounds, options={"maxiter": MAX_ITERATIONS}
         )
