@@ -28,10 +28,11 @@ MAX_ITERATIONS = 80
 
 
 def normalised(y: np.ndarray) -> np.ndarray:
-    """``y`` less its mean over its standard deviation (a constant ``y``: over 1), as ``normalize_y=True`` does."""
+    """``y`` less its mean over its standard deviation, as ``normalize_y=True`` does for one response: a standard
+    deviation of exactly zero taken as 1, a round-off one (a constant response whose mean is not a float) kept."""
     y = np.asarray(y, dtype=float)
-    std = float(np.std(y))
-    return (y - np.mean(y)) / (1.0 if std < 10 * np.finfo(float).eps else std)
+    std = np.std(y, axis=0)
+    return (y - np.mean(y, axis=0)) / (1.0 if std == 0.0 else std)
 
 
 class RBFLikelihood:
