@@ -10,9 +10,8 @@ import pytest
 from certkit.report.diff import compare, load
 from tests.report.report_run import results
 
-pytestmark = pytest.mark.xdist_group(
-    "small-check"
-)  # the tests of the session's small check run on one pytest-xdist worker, which makes it once
+# the tests of the session's small check run on one pytest-xdist worker, which makes it once
+pytestmark = pytest.mark.xdist_group("small-check")
 
 
 def _write(tmp_path, name, data):

@@ -13,9 +13,8 @@ from certkit.engine.results import Condition, Finding, RuleResult, RunResult
 from certkit.engine.results_json import SCHEMA_VERSION, SIGNIFICANT_DIGITS, clean, encode, schema, stable_lines
 from tests.report.report_run import results
 
-pytestmark = pytest.mark.xdist_group(
-    "small-check"
-)  # the tests of the session's small check run on one pytest-xdist worker, which makes it once
+# the tests of the session's small check run on one pytest-xdist worker, which makes it once
+pytestmark = pytest.mark.xdist_group("small-check")
 
 
 def test_schema_is_a_valid_draft_2020_12_schema():

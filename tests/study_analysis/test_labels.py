@@ -16,9 +16,8 @@ from certkit.study.analysis.labels import display_factor, response_axis, respons
 from tests.browser import MARKS, open_page
 from tests.study_analysis.synthetic import DEG, FT2, store_frame, study_dict, study_of
 
-pytestmark = pytest.mark.xdist_group(
-    "study-report"
-)  # the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+# the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+pytestmark = pytest.mark.xdist_group("study-report")
 
 
 def test_response_words_and_aviation_units():

@@ -15,9 +15,8 @@ from certkit.study.analysis.export import evaluate_export
 from tests.study_analysis.report_fixture import small_report
 from tests.study_analysis.synthetic import VARIABLES, sample, store_frame, synthetic_study
 
-pytestmark = pytest.mark.xdist_group(
-    "study-report"
-)  # the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+# the tests of the synthetic study's reports run on one pytest-xdist worker, which builds each once
+pytestmark = pytest.mark.xdist_group("study-report")
 
 VOID = {"area", "base", "br", "col", "embed", "hr", "img", "input", "link", "meta", "source", "track", "wbr"}
 
