@@ -54,3 +54,14 @@ def open_page(browser_or_context, path, width: int, ready: str | None = None):
     if ready:
         page.wait_for_selector(ready)
     return page, problems
+
+
+def printed_pages(path) -> list[str]:
+    """The text of each page of a PDF the browser printed (PDFium, through pypdfium2)."""
+    import pypdfium2  # deferred: a test dependency only the printing tests read
+
+    document = pypdfium2.PdfDocument(str(path))
+    try:
+        return [page.get_textpage().get_text_range() for page in document]
+    finally:
+        document.close()

@@ -10,13 +10,11 @@ from collections import Counter
 
 import pytest
 
-from tests.browser import MARKS, open_page
+from tests.browser import MARKS, open_page, printed_pages
 from tests.report.report_run import results
 
-pytestmark = [
-    *MARKS,
-    pytest.mark.xdist_group("small-check"),
-]  # skipped with the reason when Playwright or Chromium is missing
+# skipped with the reason when Playwright or Chromium is missing; on one pytest-xdist worker with the small check
+pytestmark = [*MARKS, pytest.mark.xdist_group("small-check")]
 
 
 @pytest.fixture(scope="module")
@@ -103,8 +101,6 @@ def test_printed_pdf_contains_every_finding(chromium, small_check, tmp_path, scr
     (without either, the collapsed findings tables print as bare headings: about a quarter of the findings here).
     With scripts off, a table stored compressed (the report's size budget) prints as its note, which names its rows
     and results.json; every other finding is printed."""
-    import pypdfium2
-
     context = chromium.new_context(java_script_enabled=script, viewport={"width": 1280, "height": 900})
     page, problems = _open(context, small_check[0] / "index.html", 1280)
     assert page.eval_on_selector_all("details:not([open])", "els => els.length") > 0  # some are collapsed on screen
@@ -115,9 +111,7 @@ def test_printed_pdf_contains_every_finding(chromium, small_check, tmp_path, scr
     page.emulate_media(media="print")
     pdf = tmp_path / "report.pdf"
     page.pdf(path=str(pdf), format="A4", print_background=True)
-    document = pypdfium2.PdfDocument(str(pdf))
-    printed = "".join(page.get_textpage().get_text_range() for page in document)
-    document.close()
+    printed = "".join(printed_pages(pdf))
     # NFKC: the PDF's typographic ligatures (ﬁ) read as their letters
     text = re.sub(r"\s+", "", unicodedata.normalize("NFKC", printed))
     data = results(small_check[0])

@@ -13,13 +13,11 @@ import re
 
 import pytest
 
-from tests.browser import MARKS, open_page
+from tests.browser import MARKS, open_page, printed_pages
 from tests.report.report_run import results
 
-pytestmark = [
-    *MARKS,
-    pytest.mark.xdist_group("small-check"),
-]  # skipped with the reason when Playwright or Chromium is missing
+# skipped with the reason when Playwright or Chromium is missing; on one pytest-xdist worker with the small check
+pytestmark = [*MARKS, pytest.mark.xdist_group("small-check")]
 
 
 @pytest.fixture(scope="module")
@@ -165,8 +163,6 @@ def test_table_headers_stay_in_view_when_a_long_table_scrolls(chromium, small_ch
 def test_printed_summary_header_is_not_blank(chromium, small_check, tmp_path):
     """The summary table's header repeated on the next printed page names its columns (Chromium does not repeat a
     header's buttons: printed, the header shows their text instead)."""
-    import pypdfium2
-
     page, problems = open_page(chromium, small_check[0] / "index.html", 1400)
     page.evaluate("""() => { const body = document.querySelector('#triage tbody'), rows = [...body.rows];
                              for (let k = 0; k < 20; k++) {
@@ -179,9 +175,7 @@ def test_printed_summary_header_is_not_blank(chromium, small_check, tmp_path):
     assert page.eval_on_selector(".skip", "e => getComputedStyle(e).display") == "none"
     pdf = tmp_path / "summary.pdf"
     page.pdf(path=str(pdf), format="A4", print_background=True)
-    document = pypdfium2.PdfDocument(str(pdf))
-    second = document[1].get_textpage().get_text_range()
-    document.close()
+    second = printed_pages(pdf)[1]
     top = second[: second.index("§")]  # the repeated header, before the first rule row of the page
     assert "Rule" in top and "Status" in top and "Title" in top, top
     assert problems == []

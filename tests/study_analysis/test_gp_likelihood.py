@@ -9,14 +9,12 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize
 from sklearn.gaussian_process import GaussianProcessRegressor
-from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
 
-from certkit.study.analysis.gp_likelihood import LikelihoodSearch, RBFLikelihood, normalised
+from certkit.study.analysis.gp_likelihood import LikelihoodSearch, RBFLikelihood, kernel, normalised
 
 
 def _peer(x, y, p):
-    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(p), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
-    return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=None).fit(x, y)
+    return GaussianProcessRegressor(kernel(p), normalize_y=True, optimizer=None).fit(x, y)
 
 
 def _cases(n=90, p=4, seed=3):
@@ -77,9 +75,8 @@ def test_the_search_finds_scikit_learns_optimum():
         res = minimize(obj_func, theta, method="L-BFGS-B", jac=True, bounds=bounds, options={"maxiter": 200})
         return res.x, res.fun
 
-    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(p), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
-    peer = GaussianProcessRegressor(kernel, normalize_y=True, optimizer=peer_search).fit(x, y)
-    mine = GaussianProcessRegressor(kernel, normalize_y=True, optimizer=LikelihoodSearch(x, y)).fit(x, y)
+    peer = GaussianProcessRegressor(kernel(p), normalize_y=True, optimizer=peer_search).fit(x, y)
+    mine = GaussianProcessRegressor(kernel(p), normalize_y=True, optimizer=LikelihoodSearch(x, y)).fit(x, y)
     assert mine.log_marginal_likelihood_value_ == pytest.approx(peer.log_marginal_likelihood_value_, abs=1e-6)
     assert np.allclose(mine.kernel_.theta, peer.kernel_.theta, atol=1e-3)
     assert mine.kernel_.theta[-1] < np.log(1e-2)  # it found the smooth fit, not the all-noise one
@@ -87,7 +84,6 @@ def test_the_search_finds_scikit_learns_optimum():
 
 def test_a_search_given_other_cases_than_the_gp_is_a_bug_raised_as_such():
     x, y = _cases()
-    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(4), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
     wrong = LikelihoodSearch(x[:-1], y[:-1])
     with pytest.raises(RuntimeError, match="other cases than the GP"):
-        GaussianProcessRegressor(kernel, normalize_y=True, optimizer=wrong).fit(x, y)
+        GaussianProcessRegressor(kernel(4), normalize_y=True, optimizer=wrong).fit(x, y)

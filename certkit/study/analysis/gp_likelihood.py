@@ -16,15 +16,23 @@ every evaluation (the hyperparameter search evaluates it about 80 times per fit,
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from scipy.linalg import cho_solve, cholesky
 from scipy.optimize import minimize
+from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
 
 #: added to the kernel's diagonal, as scikit-learn's ``GaussianProcessRegressor(alpha=1e-10)`` does
 JITTER = 1e-10
 #: iterations of the hyperparameter search (keeps a fit's time bounded)
 MAX_ITERATIONS = 80
+
+
+def kernel(n_inputs: int) -> Any:
+    """The surrogates' GP kernel, whose likelihood this module computes: c × anisotropic RBF + white noise s, with the
+    hyperparameters' starting values and bounds (c 1 in [1e-3, 1e3], ℓ 1 in [1e-2, 1e3], s 1e-4 in [1e-10, 1])."""
+    return ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
 
 
 def normalised(y: np.ndarray) -> np.ndarray:

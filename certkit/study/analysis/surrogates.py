@@ -43,14 +43,13 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.compose import TransformedTargetRegressor
 from sklearn.exceptions import ConvergenceWarning
 from sklearn.gaussian_process import GaussianProcessRegressor
-from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
 from sklearn.linear_model import RidgeCV
 from sklearn.model_selection import KFold, cross_val_predict
 from sklearn.neural_network import MLPRegressor
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import PolynomialFeatures, StandardScaler
 
-from certkit.study.analysis.gp_likelihood import LikelihoodSearch
+from certkit.study.analysis.gp_likelihood import LikelihoodSearch, kernel
 from certkit.study.executors import available_cores
 
 if TYPE_CHECKING:
@@ -93,8 +92,7 @@ def _mlp() -> Any:
 
 def _gp(n_inputs: int, search: LikelihoodSearch) -> Any:
     """The GP regressor whose hyperparameters ``search`` fits (the likelihood of its own training cases)."""
-    kernel = ConstantKernel(1.0, (1e-3, 1e3)) * RBF(np.ones(n_inputs), (1e-2, 1e3)) + WhiteKernel(1e-4, (1e-10, 1e0))
-    return GaussianProcessRegressor(kernel, normalize_y=True, optimizer=search, random_state=0)
+    return GaussianProcessRegressor(kernel(n_inputs), normalize_y=True, optimizer=search, random_state=0)
 
 
 def maximin_subsample(u: np.ndarray, m: int) -> np.ndarray:
